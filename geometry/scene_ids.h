@@ -1,0 +1,25 @@
+// Numeric ids shared by geometry/ (gmsh physical groups) and fem/ (deal.II material and boundary
+// ids). fem/ knows the scene only through these numbers.
+#pragma once
+
+#include <cstdint>
+
+namespace kimp::geometry
+{
+  /// Material ids (2D physical groups).
+  enum MaterialId : std::uint8_t
+  {
+    slab_material = 1,
+    wall_material = 2,
+    soil_material = 3
+  };
+
+  /// Boundary ids (1D physical groups). Interior bonded faces (wall-soil) carry none.
+  enum BoundaryId : std::uint8_t
+  {
+    fixed_base    = 1, ///< bottom of wall and backfill: u = 0
+    soil_far_side = 2, ///< far vertical side of the backfill: rollers, u_x = 0
+    slab_contact  = 3, ///< slab front face (slave side of the contact)
+    wall_contact  = 4  ///< wall front face (master side of the contact)
+  };
+} // namespace kimp::geometry

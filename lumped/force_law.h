@@ -1,0 +1,59 @@
+// One-dimensional contact force laws for pounding (impact laws 1-7 of PHYSICS.md §1).
+//
+// Sign convention (the only one in kimp; no law branches on the sign of a parameter):
+//   deformation δ = interpenetration of the two bodies, > 0 in contact, <= 0 with the gap open;
+//                   the caller computes it as the relative displacement minus the clear gap;
+//   rate δ̇       = dδ/dt, > 0 while approaching (closing), < 0 while restoring (opening);
+//   force F      = compressive contact force, >= 0 pushes the bodies apart (a law may return
+//                   F < 0 only where its model says so, e.g. Kelvin-Voigt near separation).
+// All quantities SI: m, m/s, N, N/m^n, kg, J.
+#pragma once
+
+#include <memory>
+#include <string>
+
+namespace kimp::lumped
+{
+  /// Result of one trial evaluation.
+  struct ForceResponse
+  {
+    double force     = 0.0; ///< F, N (compressive positive)
+    double stiffness = 0.0; ///< dF/dδ at the trial state, N/m (exact derivative of `force`)
+    double damping   = 0.0; ///< dF/dδ̇ at the trial state, N·s/m
+  };
+
+  /**
+   * Contact force law with trial/commit state (STYLE.md §6.4-6.7).
+   *
+   * Contract:
+   *  - `set_trial(δ, δ̇)` starts from the committed state every time: repeated calls with the same
+   *    arguments return the same result; it never changes committed state, does no I/O.
+   *  - `commit()` accepts the last trial state (and accumulates dissipated work, trapezoid rule);
+   *    `revert_to_last_commit()` discards it; `revert_to_start()` returns to the virgin state.
+   *  - `clone()` returns an independent copy with identical committed and trial state.
+   */
+  class ForceLaw
+  {
+  public:
+    virtual ~ForceLaw() = default;
+
+    /// Evaluate the law at a trial deformation δ (m) and rate δ̇ (m/s).
+    virtual ForceResponse set_trial(double deformation, double rate) = 0;
+    virtual void          commit()                                   = 0;
+    virtual void          revert_to_last_commit()                    = 0;
+    virtual void          revert_to_start()                          = 0;
+
+    /// Largest tangent stiffness the law can reach for deformations up to `max_deformation`
+    /// (N/m); used for the stable time step ω_imp = sqrt(k_t/m_eff).
+    virtual double initial_stiffness(double max_deformation) const = 0;
+    /// Work dissipated by the law up to the last commit, J (>= 0).
+    virtual double dissipated_energy() const = 0;
+    /// Permanent indentation accumulated up to the last commit, m (0 for laws without it).
+    virtual double permanent_indentation() const { return 0.0; }
+    /// True while the committed state is in contact.
+    virtual bool in_contact() const = 0;
+
+    virtual std::string               name() const  = 0;
+    virtual std::unique_ptr<ForceLaw> clone() const = 0;
+  };
+} // namespace kimp::lumped

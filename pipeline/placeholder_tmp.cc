@@ -1,0 +1,1 @@
+namespace kimp { int pipeline_placeholder_tmp() { return 0; } }
