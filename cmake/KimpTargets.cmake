@@ -10,20 +10,28 @@ function(kimp_setup_target target)
   endif()
 endfunction()
 
-# kimp_add_test(NAME name SOURCES a.cc b.cc LIBS kimp::lumped LABELS unit physics)
-# One GoogleTest executable; every TEST becomes a ctest test carrying the labels.
+# kimp_add_test(NAME name SOURCES a.cc b.cc LIBS kimp::lumped LABEL physics [TIMEOUT s])
+# One GoogleTest executable; every TEST becomes a ctest test with the label (unit, physics, mpi,
+# e2e). Tests run in the source directory with KIMP_SOURCE_DIR set; the build directory is compiled
+# in as KIMP_BINARY_DIR. (One label and one environment entry: lists do not survive discovery.)
 function(kimp_add_test)
-  cmake_parse_arguments(T "" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(T "" "NAME;TIMEOUT;LABEL" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
   kimp_setup_target(${T_NAME})
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
+  target_compile_definitions(${T_NAME} PRIVATE KIMP_BINARY_DIR="${PROJECT_BINARY_DIR}")
   if(NOT T_TIMEOUT)
     set(T_TIMEOUT 300)
   endif()
+  if(NOT T_LABEL AND T_LABELS)
+    list(GET T_LABELS 0 T_LABEL) # LABELS a b: only the first survives discovery
+  elseif(NOT T_LABEL)
+    set(T_LABEL unit)
+  endif()
   gtest_discover_tests(${T_NAME}
+    TEST_PREFIX "${T_NAME}."
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
-    PROPERTIES LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT}
-               ENVIRONMENT "KIMP_SOURCE_DIR=${PROJECT_SOURCE_DIR};KIMP_BINARY_DIR=${PROJECT_BINARY_DIR}"
+    PROPERTIES LABELS ${T_LABEL} TIMEOUT ${T_TIMEOUT} ENVIRONMENT "KIMP_SOURCE_DIR=${PROJECT_SOURCE_DIR}"
     DISCOVERY_TIMEOUT 60)
 endfunction()
 

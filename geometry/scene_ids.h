@@ -15,6 +15,9 @@ namespace kimp::geometry
   };
 
   /// Boundary ids (1D physical groups). Interior bonded faces (wall-soil) carry none.
+  /// 0 is never used: deal.II gives boundary faces without a group id 0, which means free
+  /// (wall top and exposed back, soil top, slab top, bottom and back). The whole wall front face
+  /// x = 0, y in [0, H] is wall_contact, not only the part the slab can reach.
   enum BoundaryId : std::uint8_t
   {
     fixed_base    = 1, ///< bottom of wall and backfill: u = 0

@@ -44,7 +44,9 @@ namespace kimp::lumped
     virtual void          revert_to_start()                          = 0;
 
     /// Largest tangent stiffness the law can reach for deformations up to `max_deformation`
-    /// (N/m); used for the stable time step ω_imp = sqrt(k_t/m_eff).
+    /// (N/m); used for the stable time step ω_imp = sqrt(k_t/m_eff). Laws with a linear
+    /// dashpot of known ratio ξ (2-4) return it divided by (sqrt(1 + ξ²) − ξ)², so that
+    /// 2/ω_imp is the damped central-difference limit; see each law.
     virtual double initial_stiffness(double max_deformation) const = 0;
     /// Work dissipated by the law up to the last commit, J (>= 0).
     virtual double dissipated_energy() const = 0;
@@ -52,6 +54,12 @@ namespace kimp::lumped
     virtual double permanent_indentation() const { return 0.0; }
     /// True while the committed state is in contact.
     virtual bool in_contact() const = 0;
+    /// Elastic energy stored in the contact at the last commit, J (>= 0): the potential of the
+    /// conservative part of the force, so that kinetic + strain + stored + dissipated balances.
+    virtual double stored_energy() const { return 0.0; }
+    /// Rate δ̇ (m/s) at the first trial of the current (or last) contact, as committed; 0 before
+    /// the first contact. Laws 5-7 use it as v_imp.
+    virtual double impact_velocity() const { return 0.0; }
 
     virtual std::string               name() const  = 0;
     virtual std::unique_ptr<ForceLaw> clone() const = 0;

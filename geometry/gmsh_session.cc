@@ -1,0 +1,83 @@
+// RAII access to the gmsh singleton (see header).
+#include "geometry/gmsh_session.h"
+
+#include <algorithm>
+#include <gmsh.h>
+#include <stdexcept>
+
+namespace kimp::geometry
+{
+  namespace
+  {
+    // gmsh 4.8 has no gmsh::isInitialized(): model::list() returns no model before the first
+    // gmsh::initialize (which always creates one) and throws after gmsh::finalize.
+    bool gmsh_is_initialized()
+    {
+      try
+      {
+        std::vector<std::string> names;
+        gmsh::model::list(names);
+        return !names.empty();
+      }
+      catch (...)
+      {
+        return false;
+      }
+    }
+  } // namespace
+
+
+  GmshSession::GmshSession(const std::string &model_name, bool verbose)
+  {
+    if (!gmsh_is_initialized())
+    {
+      // readConfigFiles = false: a user's ~/.gmshrc must not change the meshes kimp writes.
+      gmsh::initialize(0, nullptr, false);
+      owns_gmsh_ = true;
+    }
+    else
+    {
+      std::vector<std::string> names;
+      gmsh::model::list(names);
+      gmsh::model::getCurrent(previous_model_);
+      had_previous_model_ = !names.empty();
+    }
+    set_option("General.Terminal", verbose ? 1.0 : 0.0);
+    gmsh::model::add(model_name);
+  }
+
+
+  GmshSession::~GmshSession()
+  {
+    // A destructor must not throw; gmsh reports failures by throwing.
+    try
+    {
+      if (owns_gmsh_)
+      {
+        // Options are not restored first: General.Terminal must stay 0 through finalize, else
+        // gmsh prints "not initialized" errors when the next session probes it.
+        gmsh::finalize();
+        return;
+      }
+      gmsh::model::remove();
+      if (had_previous_model_)
+        gmsh::model::setCurrent(previous_model_);
+      std::for_each(saved_options_.rbegin(),
+                    saved_options_.rend(),
+                    [](const auto &option)
+                    { gmsh::option::setNumber(option.first, option.second); });
+    }
+    catch (...)
+    {
+    }
+  }
+
+
+  void GmshSession::set_option(const std::string &name, double value)
+  {
+    double previous = 0.0;
+    gmsh::option::getNumber(name, previous);
+    saved_options_.emplace_back(name, previous);
+    gmsh::option::setNumber(name, value);
+  }
+} // namespace kimp::geometry

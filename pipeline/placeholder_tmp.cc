@@ -1,1 +1,0 @@
-namespace kimp { int pipeline_placeholder_tmp() { return 0; } }

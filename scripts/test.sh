@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# The README's test command: install dependencies, build, run the whole test suite.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+bash "$root/scripts/install-deps.sh"
+bash "$root/scripts/build.sh"
+# mpirun as root (CI and fresh machines run as root).
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+ctest --test-dir "${KIMP_BUILD_DIR:-$root/build}" --output-on-failure -j "$(nproc)" "$@"
