@@ -1,0 +1,172 @@
+// Benchmarks of the lumped pounding engine (issue 3): the Kobe-length 48 s case with moat walls at
+// Δt = 2e-5 s (2.4 million steps; target < 60 ms on one core), the sweep throughput, and accuracy
+// against cost of the explicit central difference method and the implicit Newmark method.
+#include <benchmark/benchmark.h>
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "lumped/central_difference.h"
+#include "lumped/force_law_factory.h"
+#include "lumped/newmark_integrator.h"
+
+namespace
+{
+  using namespace kimp::lumped;
+
+  /// 48 s synthetic near-fault record sampled at 0.01 s (Kobe KJMA length and sampling).
+  const GroundMotion &record_48s()
+  {
+    static const GroundMotion g = []
+    {
+      SyntheticMotionSpec spec;
+      spec.duration          = 48.0;
+      spec.dt                = 0.01;
+      spec.envelope_duration = 30.0;
+      return synthetic_near_fault(spec);
+    }();
+    return g;
+  }
+
+  /// Thesis Table 4.3 configuration: 4-storey isolated building, modified Kelvin-Voigt walls
+  /// (2500 kN/mm, COR 0.7, m_wall 500 t) at 15 cm on both sides.
+  PoundingModel walled_building(const std::string &law = "modified_kelvin_voigt")
+  {
+    ForceLawSpec spec;
+    spec.law       = law;
+    spec.stiffness = law == "jankowski" ? 750e3 / std::pow(1e-3, 1.5) : 2.5e9;
+    spec.cor       = 0.7;
+    MoatWall w;
+    w.gap = 0.15;
+    w.law = force_law_factory(spec);
+    PoundingScene scene;
+    scene.building   = reference_isolated_building(4);
+    scene.left_wall  = w;
+    scene.right_wall = w;
+    return PoundingModel(scene);
+  }
+
+  void set_counters(benchmark::State &state, const Response &r)
+  {
+    const double dof_steps  = static_cast<double>(r.n_steps) * static_cast<double>(r.n_dofs);
+    state.counters["steps"] = static_cast<double>(r.n_steps);
+    state.counters["s_per_dof_step"] =
+      benchmark::Counter(dof_steps,
+                         benchmark::Counter::kIsIterationInvariantRate |
+                           benchmark::Counter::kInvert);
+    state.counters["runs_per_s"] =
+      benchmark::Counter(1.0, benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["history_samples"] = static_cast<double>(r.history.time.size());
+    state.counters["impacts"]         = static_cast<double>(r.n_impacts());
+  }
+
+  /// The performance target: 48 s, Δt = 2e-5 s, decimated output every 0.01 s (arg 1) or none.
+  void BM_CdmWalls48s(benchmark::State &state)
+  {
+    CentralDifferenceOptions opt;
+    opt.dt              = 2e-5;
+    opt.output_interval = state.range(0) ? 0.01 : 0.0;
+    const CentralDifference cdm(walled_building(), opt);
+    Response                r;
+    for (auto _ : state)
+    {
+      r = cdm.run(record_48s());
+      benchmark::DoNotOptimize(r.peak_displacement.data());
+    }
+    set_counters(state, r);
+  }
+  BENCHMARK(BM_CdmWalls48s)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
+
+  /// Sweep throughput at the thesis' coarser step Δt = 2e-4 s (48 s, 240 000 steps).
+  void BM_CdmSweepRun(benchmark::State &state)
+  {
+    CentralDifferenceOptions opt;
+    opt.dt = 2e-4;
+    const CentralDifference cdm(walled_building(), opt);
+    Response                r;
+    for (auto _ : state)
+    {
+      r = cdm.run(record_48s());
+      benchmark::DoNotOptimize(r.peak_displacement.data());
+    }
+    set_counters(state, r);
+  }
+  BENCHMARK(BM_CdmSweepRun)->Unit(benchmark::kMillisecond);
+
+  struct Reference
+  {
+    double peak_force      = 0.0;
+    double peak_base_accel = 0.0;
+  };
+
+  double max_force(const Response &r)
+  {
+    double f = 0.0;
+    for (const ContactResult &c : r.contacts)
+      f = std::max(f, c.peak_force);
+    return f;
+  }
+
+  /// Reference peaks: central differences at Δt = 2.5e-6 s on the first 20 s of the record.
+  const Reference &reference(const std::string &law)
+  {
+    static std::map<std::string, Reference> cache;
+    auto                                    it = cache.find(law);
+    if (it == cache.end())
+    {
+      CentralDifferenceOptions opt;
+      opt.dt              = 2.5e-6;
+      opt.duration        = 20.0;
+      opt.output_interval = 0.0;
+      const Response r    = CentralDifference(walled_building(law), opt).run(record_48s());
+      it = cache.emplace(law, Reference{max_force(r), r.peak_absolute_acceleration[0]}).first;
+    }
+    return it->second;
+  }
+
+  /// Accuracy against cost: arg 0 = law (0 modified KV, 1 Jankowski), arg 1 = Δt in µs.
+  template <bool implicit>
+  void BM_AccuracyVsCost(benchmark::State &state)
+  {
+    const std::string   law   = state.range(0) == 0 ? "modified_kelvin_voigt" : "jankowski";
+    const double        dt    = static_cast<double>(state.range(1)) * 1e-6;
+    const Reference    &ref   = reference(law);
+    const PoundingModel model = walled_building(law);
+    Response            r;
+    for (auto _ : state)
+    {
+      if constexpr (implicit)
+      {
+        NewmarkOptions opt;
+        opt.dt              = dt;
+        opt.duration        = 20.0;
+        opt.output_interval = 0.0;
+        r                   = NewmarkIntegrator(model, opt).run(record_48s());
+      }
+      else
+      {
+        CentralDifferenceOptions opt;
+        opt.dt              = dt;
+        opt.duration        = 20.0;
+        opt.output_interval = 0.0;
+        r                   = CentralDifference(model, opt).run(record_48s());
+      }
+      benchmark::DoNotOptimize(r.peak_displacement.data());
+    }
+    state.counters["dt_us"]          = static_cast<double>(state.range(1));
+    state.counters["err_peak_force"] = std::abs(max_force(r) - ref.peak_force) / ref.peak_force;
+    state.counters["err_base_accel"] =
+      std::abs(r.peak_absolute_acceleration[0] - ref.peak_base_accel) / ref.peak_base_accel;
+    state.counters["energy_error"] = r.energy.max_relative_error;
+  }
+  BENCHMARK_TEMPLATE(BM_AccuracyVsCost, false)
+    ->ArgsProduct({{0, 1}, {200, 100, 50, 20, 10}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+  BENCHMARK_TEMPLATE(BM_AccuracyVsCost, true)
+    ->ArgsProduct({{0, 1}, {5000, 2000, 1000, 500, 200, 100}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+} // namespace
+
+BENCHMARK_MAIN();

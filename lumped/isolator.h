@@ -1,0 +1,52 @@
+// Interface of base-isolation devices: restoring force f_iso(u, u̇) between the ground and the
+// isolation level (DOF 0), with trial/commit state like the impact laws (STYLE.md §6.4-6.7).
+#pragma once
+
+#include <memory>
+#include <string>
+
+namespace kimp::lumped
+{
+  /// Result of one trial evaluation of an isolator.
+  struct IsolatorResponse
+  {
+    double force     = 0.0; ///< restoring force, N (positive for positive displacement)
+    double stiffness = 0.0; ///< tangent df/du at the trial state, N/m (exact derivative)
+    double damping   = 0.0; ///< df/du̇ at the trial state, N·s/m (0 for rate-independent laws)
+  };
+
+  /**
+   * Isolator law with trial/commit state; admits hysteretic laws (bilinear, later Bouc-Wen and the
+   * friction pendulum). The linear viscous part of the isolation system is not evaluated here: it
+   * enters the damping matrix at C[0,0] (PHYSICS.md §2), see viscous_coefficient().
+   *
+   * Contract (as ForceLaw): `set_trial(u, u̇)` starts from the committed state every time, so it is
+   * idempotent; `commit()` accepts the last trial; `revert_to_last_commit()` discards it;
+   * `revert_to_start()` returns to the virgin state; `clone()` copies committed and trial state.
+   */
+  class Isolator
+  {
+  public:
+    virtual ~Isolator() = default;
+
+    /// Evaluate at the trial displacement u (m, isolation level relative to the ground) and
+    /// velocity u̇ (m/s).
+    virtual IsolatorResponse set_trial(double displacement, double velocity) = 0;
+    virtual void             commit()                                        = 0;
+    virtual void             revert_to_last_commit()                         = 0;
+    virtual void             revert_to_start()                               = 0;
+
+    /// Initial (elastic) stiffness, N/m: used in K for modal analysis, the Rayleigh damping and
+    /// c_iso of PHYSICS.md §2, and the stability limit of the explicit integrator.
+    virtual double initial_stiffness() const = 0;
+    /// Linear viscous coefficient of the device itself, N·s/m, added to C[0,0] (default 0).
+    virtual double viscous_coefficient() const { return 0.0; }
+    /// Recoverable (elastic) energy stored at the committed state, J.
+    virtual double stored_energy() const = 0;
+    /// Hysteretic energy dissipated up to the last commit, J (>= 0).
+    virtual double dissipated_energy() const = 0;
+
+    virtual std::string               name() const  = 0;
+    virtual std::unique_ptr<Isolator> clone() const = 0;
+  };
+} // namespace kimp::lumped
