@@ -1,0 +1,201 @@
+// Plane-strain slab-wall impact: rho u_tt = div sigma(u), sigma = C : eps(u), with frictionless
+// node-to-segment penalty contact between the slab front face and the wall face (PHYSICS.md §4).
+// Light public header: plain structs and functions, no deal.II includes.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <mpi.h>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace kimp::fem
+{
+  /** Linear elastic isotropic material (plane strain). */
+  struct Material
+  {
+    double youngs_modulus = 0; ///< E, Pa (> 0)
+    double poisson_ratio  = 0; ///< nu, - (in [0, 0.5))
+    double density        = 0; ///< rho, kg/m^3 (> 0)
+  };
+
+  /** P-wave speed of a plane-strain continuum, sqrt((lambda + 2 mu) / rho), m/s. */
+  double p_wave_speed(const Material &material);
+
+  /** Everything run_impact() needs. Mesh ids follow geometry/scene_ids.h. */
+  struct ImpactParameters
+  {
+    enum class Integrator
+    {
+      explicit_central_difference, ///< leap-frog with a Gauss-Lobatto lumped mass (default)
+      implicit_newmark ///< average acceleration (beta = 1/4, gamma = 1/2), Newton on the contact
+    };
+
+    /** ASCII MSH file (4.1 or 2.2) with material ids and boundary ids of scene_ids.h. */
+    std::filesystem::path mesh_file;
+    /** Material per material id; every id present in the mesh must be given. */
+    std::map<unsigned int, Material> materials;
+
+    /**
+     * Rigid slab: the slab is one translational DoF of mass slab_mass (kg per metre of depth)
+     * whose front face is the line x = slab_front_x + u, y in [slab_face_y0, slab_face_y1]; slab
+     * cells in the mesh (material id slab_material), if any, are ignored. The wall-face nodes are
+     * then the slave points and the rigid face is the master. Elastic slab: the slab is meshed,
+     * its front-face nodes are the slave points, the wall-face segments the master.
+     */
+    bool   rigid_slab   = false;
+    double slab_mass    = 0; ///< kg/m, rigid slab only (> 0)
+    double slab_face_y0 = 0; ///< m, rigid slab only
+    double slab_face_y1 = 0; ///< m, rigid slab only (> slab_face_y0)
+    double slab_front_x = 0; ///< m, rigid slab only: x of the front face at t = 0
+
+    double initial_velocity = 1.0; ///< m/s, slab, +x (> 0)
+
+    Integrator integrator = Integrator::explicit_central_difference;
+
+    /**
+     * Penalty stiffness per slave node: k_i = penalty_factor * E_master / h_contact * l_i (N/m per
+     * metre of depth), with l_i the node's tributary face length and h_contact the smallest
+     * contact-face segment length. Factor 1 makes the contact spring as stiff as one element;
+     * integral results and the plateau force are converged to < 1 % there (tests/fem).
+     */
+    double penalty_factor = 1.0;
+    /**
+     * Contact damping as a fraction of the critical damping of each penalty spring with its
+     * reduced node mass, c_i = 2 xi sqrt(k_i m_i). It removes the penalty-spring chatter; its
+     * dissipation vanishes as 1/sqrt(k) when the penalty grows and is reported in the history.
+     * Explicit only: the implicit path uses no contact damping (Newton needs a residual without
+     * the dashpot's jump at first touch).
+     */
+    double contact_damping_ratio = 0.5;
+    /**
+     * Width (s) of the impulse-preserving centred moving average of the reported force; 0 (the
+     * default): the p-wave transit time across the contact width, w / c_p (w = slave face length,
+     * c_p of the wall material; 54 us for the default scene). Force features shorter than that
+     * are contact chatter, not resolved physics; the time scale does not depend on the mesh or
+     * the penalty, so the smoothed peak converges in both (>= 0).
+     */
+    double smoothing_window = 0;
+
+    double dt = 0; ///< s; 0: cfl_safety * stable limit. Refused if above the limit.
+    double cfl_safety =
+      0.5; ///< explicit dt = cfl_safety * 2 / omega_max (mesh + penalty), in (0, 1]
+    /** Implicit only: dt = implicit_dt_factor * stable explicit limit when dt == 0. */
+    double implicit_dt_factor   = 4.0;
+    double end_time             = 0.05;     ///< s (> 0)
+    double separation_hold_time = 1.0e-3;   ///< s: stop once the force stayed zero this long
+    double output_interval      = 1.0e-5;   ///< s: history sampling interval (0: every step)
+    double vtu_interval         = 0;        ///< s: field output interval (0: none)
+    std::filesystem::path vtu_dir;          ///< field output directory (empty: none)
+    unsigned int          log_interval = 0; ///< steps between log lines (0: none)
+  };
+
+  /** Histories sampled every output_interval. Forces and energies per metre of depth. */
+  struct ImpactHistory
+  {
+    std::vector<double> time;                   ///< s
+    std::vector<double> contact_force;          ///< N/m, raw penalty + damping force
+    std::vector<double> smoothed_contact_force; ///< N/m, moving average (see ImpactSummary)
+    std::vector<double> n_active;               ///< active slave nodes
+    std::vector<double> slab_displacement;      ///< m, mass-weighted mean x of the slab
+    std::vector<double> slab_velocity;          ///< m/s, mass-weighted mean x of the slab
+    std::vector<double> wall_displacement;      ///< m, mean x of the wall face in contact range
+    std::vector<double> indentation;     ///< m, slab front - wall face displacement - initial gap
+    std::vector<double> max_penetration; ///< m
+    std::vector<double> kinetic;         ///< J/m
+    std::vector<double> strain;          ///< J/m
+    std::vector<double> penalty;         ///< J/m, energy stored in the penalty springs
+    std::vector<double> contact_dissipation; ///< J/m, work of the contact damping
+    std::vector<double> energy_error;        ///< (E_kin + E_strain - W_contact) / E_0 - 1
+  };
+
+  /** Scalar results of one run. */
+  struct ImpactSummary
+  {
+    double peak_force       = 0; ///< N/m, of the smoothed force
+    double peak_force_raw   = 0; ///< N/m, of the raw force (every step)
+    double contact_start    = 0; ///< s
+    double contact_duration = 0; ///< s, first to last step with a non-zero force
+    double impulse          = 0; ///< N s/m, integral of the raw force
+    double rebound_velocity = 0; ///< m/s, slab mean velocity at the end (negative: rebound)
+    double apparent_cor     = 0; ///< -rebound_velocity / initial_velocity
+    double energy_error     = 0; ///< max |energy_error| over the run
+    double smoothing_window = 0; ///< s, moving-average window actually used
+    double max_penetration  = 0; ///< m, largest slave penetration (dynamic node impacts)
+    /** m: stiffness-weighted mean slave penetration averaged over the contact duration. Since
+     *  k p = lambda - c dp/dt, it equals impulse / (T sum k_i): it falls as 1 / penalty. */
+    double        mean_penetration  = 0;
+    double        initial_gap       = 0; ///< m
+    double        penalty_stiffness = 0; ///< N/m per metre, largest slave-node penalty k_i
+    unsigned long n_dofs            = 0;
+    unsigned long n_cells           = 0;
+    unsigned long n_steps           = 0;
+    unsigned long n_newton          = 0; ///< implicit: total Newton iterations
+    double        dt                = 0; ///< s
+    double        dt_stable         = 0; ///< s, explicit stability limit 2 / omega_max
+    double        wall_seconds      = 0;
+    unsigned int  n_ranks           = 1;
+    bool          separated         = false; ///< stopped on separation (else end_time)
+  };
+
+  struct ImpactResult
+  {
+    ImpactHistory history;
+    ImpactSummary summary;
+  };
+
+  /** Numerical failure (divergence, non-convergence) with its context. */
+  class NumericalError : public std::runtime_error
+  {
+  public:
+    NumericalError(const std::string &what, double time, unsigned long step)
+      : std::runtime_error(what)
+      , time(time)
+      , step(step)
+    {
+    }
+    double        time; ///< s
+    unsigned long step;
+  };
+
+  /**
+   * Runs the impact until the slab has separated and the contact force stayed zero for
+   * separation_hold_time, or end_time. Collective on comm. Log lines go to *log on rank 0
+   * (nullptr: silent). Bad input throws (message names the parameter and the bad value);
+   * numerical failure throws NumericalError.
+   */
+  ImpactResult run_impact(const ImpactParameters &parameters,
+                          MPI_Comm                comm = MPI_COMM_WORLD,
+                          std::ostream           *log  = nullptr);
+
+  /**
+   * Static horizontal stiffness (N/m per metre of depth) of a plane-strain cantilever of the
+   * given height and thickness, base clamped, loaded by a uniform shear traction on its top
+   * edge; stiffness = load / mean top-edge x displacement. Mesh: n_thickness square-ish Q1 cells
+   * across, n_thickness * height / thickness along. Serial.
+   */
+  double cantilever_tip_stiffness(double          height,
+                                  double          thickness,
+                                  const Material &material,
+                                  unsigned int    n_thickness);
+
+  /**
+   * Timoshenko plane-strain tip stiffness of the same cantilever: 1 / (H^3 / (3 E' I) +
+   * H / (kappa G A)), E' = E / (1 - nu^2), I = t^3 / 12, A = t, kappa = 5/6.
+   */
+  double timoshenko_tip_stiffness(double height, double thickness, const Material &material);
+
+  /** Mesh statistics and a VTU preview (material id per cell) of an MSH file. Serial. */
+  struct MeshInfo
+  {
+    unsigned long              n_cells    = 0;
+    unsigned long              n_vertices = 0;
+    std::map<unsigned, double> area_by_material;   ///< m^2 per metre
+    std::map<unsigned, double> length_by_boundary; ///< m
+    double                     min_cell_diameter = 0;
+  };
+  MeshInfo read_mesh_info(const std::filesystem::path &mesh_file,
+                          const std::filesystem::path &vtu_file = {});
+} // namespace kimp::fem

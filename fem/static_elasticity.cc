@@ -1,0 +1,177 @@
+// Static plane-strain elasticity K u = f for the closed-form check of the bare cantilever wall
+// (Timoshenko beam: 1/k = H^3 / (3 E' I) + H / (kappa G A)), and mesh statistics / VTU preview.
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparse_direct.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include "fem/impact.h"
+
+namespace kimp::fem
+{
+  double timoshenko_tip_stiffness(double height, double thickness, const Material &m)
+  {
+    constexpr double kappa   = 5.0 / 6.0; // rectangular section
+    const double     e_plane = m.youngs_modulus / (1 - m.poisson_ratio * m.poisson_ratio);
+    const double     shear   = m.youngs_modulus / (2 * (1 + m.poisson_ratio));
+    const double     inertia = thickness * thickness * thickness / 12;
+    return 1.0 / (height * height * height / (3 * e_plane * inertia) +
+                  height / (kappa * shear * thickness));
+  }
+
+  double cantilever_tip_stiffness(double          height,
+                                  double          thickness,
+                                  const Material &m,
+                                  unsigned int    n_thickness)
+  {
+    using namespace dealii;
+    constexpr int dim = 2;
+    AssertThrow(height > 0 && thickness > 0 && n_thickness > 0,
+                ExcMessage("cantilever: height = " + std::to_string(height) +
+                           " m, thickness = " + std::to_string(thickness) + " m, n_thickness = " +
+                           std::to_string(n_thickness) + " (all must be > 0)"));
+    const unsigned int n_height =
+      std::max(1u, static_cast<unsigned int>(std::lround(n_thickness * height / thickness)));
+    Triangulation<dim> tria;
+    GridGenerator::subdivided_hyper_rectangle(tria,
+                                              {n_thickness, n_height},
+                                              Point<dim>(0, 0),
+                                              Point<dim>(thickness, height),
+                                              true);
+    // colorize: boundary id 2 = bottom (y = 0), 3 = top (y = height).
+    FESystem<dim>   fe(FE_Q<dim>(1), dim);
+    DoFHandler<dim> dof_handler(tria);
+    dof_handler.distribute_dofs(fe);
+
+    AffineConstraints<double> constraints;
+    VectorTools::interpolate_boundary_values(dof_handler,
+                                             2,
+                                             Functions::ZeroFunction<dim>(dim),
+                                             constraints);
+    constraints.close();
+    DynamicSparsityPattern dsp(dof_handler.n_dofs());
+    DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
+    SparsityPattern pattern;
+    pattern.copy_from(dsp);
+    SparseMatrix<double> matrix(pattern);
+    Vector<double>       rhs(dof_handler.n_dofs()), u(dof_handler.n_dofs());
+
+    const double lambda =
+      m.youngs_modulus * m.poisson_ratio / ((1 + m.poisson_ratio) * (1 - 2 * m.poisson_ratio));
+    const double          mu = m.youngs_modulus / (2 * (1 + m.poisson_ratio));
+    const QGauss<dim>     quadrature(2);
+    const QGauss<dim - 1> face_quadrature(2);
+    FEValues<dim>         fe_values(fe, quadrature, update_gradients | update_JxW_values);
+    FEFaceValues<dim>     fe_face(fe, face_quadrature, update_values | update_JxW_values);
+    const unsigned int    n = fe.n_dofs_per_cell();
+    FullMatrix<double>    cell_matrix(n, n);
+    Vector<double>        cell_rhs(n);
+    std::vector<types::global_dof_index> dof_indices(n);
+    const FEValuesExtractors::Vector     displacement(0);
+    // Unit total load (1 N per metre of depth) as a uniform shear traction on the top edge.
+    const double traction = 1.0 / thickness;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+    {
+      fe_values.reinit(cell);
+      cell_matrix = 0;
+      cell_rhs    = 0;
+      for (unsigned int q = 0; q < quadrature.size(); ++q)
+        for (unsigned int i = 0; i < n; ++i)
+        {
+          const auto eps_i = fe_values[displacement].symmetric_gradient(i, q);
+          for (unsigned int j = 0; j < n; ++j)
+          {
+            const auto eps_j = fe_values[displacement].symmetric_gradient(j, q);
+            cell_matrix(i, j) +=
+              (lambda * trace(eps_i) * trace(eps_j) + 2 * mu * scalar_product(eps_i, eps_j)) *
+              fe_values.JxW(q);
+          }
+        }
+      for (const auto f : cell->face_indices())
+        if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == 3)
+        {
+          fe_face.reinit(cell, f);
+          for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+            for (unsigned int i = 0; i < n; ++i)
+              if (fe.system_to_component_index(i).first == 0)
+                cell_rhs(i) += traction * fe_face.shape_value(i, q) * fe_face.JxW(q);
+        }
+      cell->get_dof_indices(dof_indices);
+      constraints.distribute_local_to_global(cell_matrix, cell_rhs, dof_indices, matrix, rhs);
+    }
+    SparseDirectUMFPACK solver;
+    solver.initialize(matrix);
+    solver.vmult(u, rhs);
+    constraints.distribute(u);
+
+    // Mean x displacement of the top edge (trapezoid over the vertices).
+    double sum = 0, length = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      for (const auto f : cell->face_indices())
+        if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == 3)
+        {
+          const auto   face = cell->face(f);
+          const double l    = face->measure();
+          for (unsigned int v = 0; v < 2; ++v)
+            sum += 0.5 * l * u(face->vertex_dof_index(v, 0));
+          length += l;
+        }
+    return 1.0 / (sum / length);
+  }
+
+  MeshInfo read_mesh_info(const std::filesystem::path &mesh_file,
+                          const std::filesystem::path &vtu_file)
+  {
+    using namespace dealii;
+    constexpr int dim = 2;
+    AssertThrow(std::filesystem::is_regular_file(mesh_file),
+                ExcMessage("mesh_file = '" + mesh_file.string() +
+                           "' (must be an existing MSH file)"));
+    Triangulation<dim> tria;
+    GridIn<dim>        grid_in;
+    grid_in.attach_triangulation(tria);
+    std::ifstream in(mesh_file);
+    grid_in.read_msh(in);
+
+    MeshInfo info;
+    info.n_cells           = tria.n_active_cells();
+    info.n_vertices        = tria.n_used_vertices();
+    info.min_cell_diameter = std::numeric_limits<double>::max();
+    Vector<float> material(tria.n_active_cells());
+    for (const auto &cell : tria.active_cell_iterators())
+    {
+      info.area_by_material[cell->material_id()] += cell->measure();
+      info.min_cell_diameter              = std::min(info.min_cell_diameter, cell->diameter());
+      material(cell->active_cell_index()) = cell->material_id();
+      for (const auto &face : cell->face_iterators())
+        if (face->at_boundary() && face->boundary_id() != 0)
+          info.length_by_boundary[face->boundary_id()] += face->measure();
+    }
+    if (!vtu_file.empty())
+    {
+      DataOut<dim> data_out;
+      data_out.attach_triangulation(tria);
+      data_out.add_data_vector(material, "material_id");
+      data_out.build_patches();
+      std::ofstream out(vtu_file);
+      AssertThrow(out, ExcMessage("vtu_file = '" + vtu_file.string() + "' (cannot be written)"));
+      data_out.write_vtu(out);
+    }
+    return info;
+  }
+} // namespace kimp::fem

@@ -1,0 +1,394 @@
+// Physics tests of kimp::fem: closed forms (Timoshenko cantilever, colliding bars rho c A v / 2
+// for 2 L / c), contact consistency, energy balance, penalty convergence, rigid vs elastic slab,
+// MPI agreement and refused input. The mesh study is in convergence_test.cc (label slow).
+#include <gtest/gtest.h>
+#include <iostream>
+#include <random>
+
+#include "fem/mpi_session.h"
+#include "fem/penalty_contact.h"
+
+#include "tests/fem/impact_test_support.h"
+
+namespace
+{
+  using namespace kimp::fem;
+  using namespace kimp::fem::testing;
+
+  TEST(Cantilever, TipStiffnessMatchesTimoshenko)
+  {
+    constexpr double tolerance = 0.02;
+    for (const double height : {1.25, 2.0})
+    {
+      const double thickness = 0.25;
+      const double k_fe      = cantilever_tip_stiffness(height, thickness, concrete, 16);
+      const double k_beam    = timoshenko_tip_stiffness(height, thickness, concrete);
+      EXPECT_NEAR(k_fe / k_beam, 1.0, tolerance)
+        << "H = " << height << " m, t = " << thickness << " m: FE " << k_fe << " N/m vs beam "
+        << k_beam << " N/m";
+      if (rank() == 0)
+        std::cout << "cantilever H = " << height << " m: FE " << k_fe
+                  << " N/m, FE/Timoshenko = " << k_fe / k_beam << '\n';
+    }
+  }
+
+  TEST(Cantilever, MeshRefinementConvergesFromAbove)
+  {
+    // Q1 is too stiff on coarse meshes (shear locking): the stiffness decreases with refinement.
+    const double k4  = cantilever_tip_stiffness(1.25, 0.25, concrete, 4);
+    const double k8  = cantilever_tip_stiffness(1.25, 0.25, concrete, 8);
+    const double k16 = cantilever_tip_stiffness(1.25, 0.25, concrete, 16);
+    EXPECT_GT(k4, k8);
+    EXPECT_GT(k8, k16);
+    EXPECT_LT((k8 - k16) / k16, 0.02) << "k8 = " << k8 << ", k16 = " << k16;
+  }
+
+  TEST(PenaltyContact, ForcesAreEqualOppositeAndDeriveFromThePenaltyEnergy)
+  {
+    // Master: a vertical chain x = 0 (outward normal -x); slaves slightly penetrating from x < 0.
+    std::mt19937                           rng(42);
+    std::uniform_real_distribution<double> noise(-1e-5, 1e-5);
+    std::vector<PenaltyContact::Node>      nodes;
+    for (int j = 0; j <= 4; ++j)
+      nodes.push_back({0.0, 0.1 * j});
+    for (int j = 0; j < 3; ++j)
+      nodes.push_back({5e-5, 0.05 + 0.13 * j}); // 50 um inside the master body
+    std::vector<PenaltyContact::Segment> segments;
+    for (unsigned int j = 0; j < 4; ++j)
+      segments.push_back({j, j + 1, -1.0}); // t = +y: n = -(t_y, -t_x) = (-1, 0)
+    std::vector<PenaltyContact::Slave> slaves;
+    for (unsigned int j = 5; j < 8; ++j)
+      slaves.push_back({j, 1e9, 0.0});
+    const PenaltyContact contact(nodes, slaves, segments);
+
+    constexpr double force_tolerance  = 1e-10;
+    constexpr double energy_tolerance = 1e-6;
+    for (int trial = 0; trial < 5; ++trial)
+    {
+      std::vector<double> u(contact.n_compact_dofs()), v(u.size(), 0.0);
+      for (auto &x : u)
+        x = noise(rng);
+      const auto ev = contact.evaluate(u, v);
+      double     fx = 0, fy = 0, scale = 0;
+      for (std::size_t i = 0; i < nodes.size(); ++i)
+      {
+        fx += ev.force[2 * i];
+        fy += ev.force[2 * i + 1];
+        scale += std::abs(ev.force[2 * i]) + std::abs(ev.force[2 * i + 1]);
+      }
+      ASSERT_GT(ev.active.size(), 0u) << "trial " << trial;
+      EXPECT_LT(std::hypot(fx, fy), force_tolerance * scale) << "trial " << trial;
+      // Force = -d(penalty energy)/du by central differences.
+      for (std::size_t k = 0; k < u.size(); ++k)
+      {
+        const double h  = 1e-9;
+        auto         up = u, um = u;
+        up[k] += h;
+        um[k] -= h;
+        const double dE =
+          (contact.evaluate(up, v).penalty_energy - contact.evaluate(um, v).penalty_energy) /
+          (2 * h);
+        EXPECT_NEAR(-dE, ev.force[k], energy_tolerance * scale + 1e-3)
+          << "trial " << trial << ", compact DoF " << k;
+      }
+    }
+  }
+
+  TEST(TwoEqualBars, ExplicitForceIsHalfImpedanceTimesVelocityForTwoLOverC)
+  {
+    constexpr double tolerance = 0.02;
+    const double     L = 1.0, t = 0.1, v = 1.0;
+    const auto       p        = bar_parameters(write_two_bars(L, t, 1e-4, 8, "bars.msh"));
+    const auto       r        = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const double     c        = std::sqrt(bar_material.youngs_modulus / bar_material.density);
+    const double     force    = bar_material.density * c * t * v / 2;
+    const double     duration = 2 * L / c;
+    if (rank() == 0)
+      std::cout << "bars explicit: " << summary_line(r) << "\n  plateau " << plateau(r, 0.2, 0.8)
+                << " N/m vs rho c A v / 2 = " << force << " N/m, duration vs 2L/c = " << duration
+                << " s\n";
+    EXPECT_NEAR(plateau(r, 0.2, 0.8) / force, 1.0, tolerance) << summary_line(r);
+    EXPECT_NEAR(r.summary.peak_force / force, 1.0, tolerance) << summary_line(r);
+    EXPECT_NEAR(r.summary.contact_duration / duration, 1.0, tolerance) << summary_line(r);
+    // Momentum exchange: the impulse is m v = rho L t v and the striker stops.
+    EXPECT_NEAR(r.summary.impulse / (bar_material.density * L * t * v), 1.0, tolerance);
+    EXPECT_NEAR(r.summary.rebound_velocity / v, 0.0, tolerance);
+    EXPECT_TRUE(r.summary.separated);
+  }
+
+  TEST(TwoEqualBars, ImplicitNewmarkDeviationIsSmall)
+  {
+    // Average acceleration at 4x the explicit limit: period elongation smears the wave front,
+    // the plateau and the momentum exchange stay within a few per cent (values printed).
+    constexpr double plateau_tolerance = 0.05;
+    constexpr double impulse_tolerance = 0.02;
+    const double     L = 1.0, t = 0.1, v = 1.0;
+    auto             p = bar_parameters(write_two_bars(L, t, 1e-4, 8, "bars_implicit.msh"));
+    p.integrator       = ImpactParameters::Integrator::implicit_newmark;
+    const auto   r     = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const double c     = std::sqrt(bar_material.youngs_modulus / bar_material.density);
+    const double force = bar_material.density * c * t * v / 2;
+    if (rank() == 0)
+      std::cout << "bars implicit: " << summary_line(r) << ", Newton " << r.summary.n_newton
+                << "\n  plateau deviation " << plateau(r, 0.2, 0.8) / force - 1
+                << ", duration deviation " << r.summary.contact_duration / (2 * L / c) - 1 << '\n';
+    EXPECT_NEAR(plateau(r, 0.2, 0.8) / force, 1.0, plateau_tolerance) << summary_line(r);
+    EXPECT_NEAR(r.summary.impulse / (bar_material.density * L * t * v), 1.0, impulse_tolerance)
+      << summary_line(r);
+    EXPECT_LT(r.summary.energy_error, 0.01) << summary_line(r);
+  }
+
+  TEST(TwoEqualBars, SmoothingPreservesTheImpulse)
+  {
+    constexpr double tolerance = 1e-12;
+    auto             p      = bar_parameters(write_two_bars(1.0, 0.1, 1e-4, 8, "bars_smooth.msh"));
+    p.output_interval       = 0; // every step: the smoothed history can be integrated exactly
+    p.contact_damping_ratio = 0; // raw force chatters; the smoothing must still keep the impulse
+    const auto   r          = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto  &h          = r.history;
+    const double sum =
+      std::accumulate(h.smoothed_contact_force.begin(), h.smoothed_contact_force.end(), 0.0);
+    EXPECT_NEAR(sum * r.summary.dt / r.summary.impulse, 1.0, tolerance)
+      << "window " << r.summary.smoothing_window << " s";
+    EXPECT_LE(r.summary.peak_force, r.summary.peak_force_raw);
+  }
+
+  TEST(EnergyBalance, DriftBelowOnePercentWithoutContactDamping)
+  {
+    constexpr double tolerance = 0.01;
+    auto             bars = bar_parameters(write_two_bars(1.0, 0.1, 1e-4, 8, "bars_energy.msh"));
+    bars.contact_damping_ratio  = 0;
+    auto scene                  = scene_parameters(0.05, false, "scene_energy.msh");
+    scene.contact_damping_ratio = 0;
+    for (const auto &p : {bars, scene})
+    {
+      const auto r = run_impact(p, MPI_COMM_WORLD, nullptr);
+      EXPECT_LT(r.summary.energy_error, tolerance) << summary_line(r);
+      // Without damping all contact work is stored in the penalty springs.
+      for (const double d : r.history.contact_dissipation)
+        EXPECT_NEAR(d / (r.history.kinetic.front() + 1e-300), 0.0, tolerance);
+      if (rank() == 0)
+        std::cout << "energy: max |dE/E0| = " << r.summary.energy_error << '\n';
+    }
+  }
+
+  TEST(EnergyBalance, ContactDampingDissipatesLittle)
+  {
+    // The default contact damping removes the penalty chatter at a small energy cost.
+    constexpr double tolerance = 0.01;
+    const auto       p         = scene_parameters(0.05, false, "scene_damped.msh");
+    const auto       r         = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const double     e0        = r.history.kinetic.front();
+    EXPECT_LT(r.summary.energy_error, tolerance) << summary_line(r);
+    EXPECT_LT(r.history.contact_dissipation.back() / e0, tolerance) << summary_line(r);
+    if (rank() == 0)
+      std::cout << "contact damping dissipates " << r.history.contact_dissipation.back() / e0
+                << " of E0\n";
+  }
+
+  TEST(Penalty, PenetrationFallsAsOneOverPenaltyAndResultsConverge)
+  {
+    constexpr double result_tolerance      = 0.01;
+    constexpr double penetration_tolerance = 0.02;
+    auto             p                     = scene_parameters(0.025, false, "scene_penalty.msh");
+    p.penalty_factor                       = 1;
+    const auto r1                          = run_impact(p, MPI_COMM_WORLD, nullptr);
+    p.penalty_factor                       = 10;
+    const auto r10                         = run_impact(p, MPI_COMM_WORLD, nullptr);
+    if (rank() == 0)
+      std::cout << "penalty x1:  " << summary_line(r1) << "\npenalty x10: " << summary_line(r10)
+                << '\n';
+    EXPECT_NEAR(r1.summary.mean_penetration / r10.summary.mean_penetration,
+                10.0,
+                10.0 * penetration_tolerance)
+      << "mean penetration " << r1.summary.mean_penetration << " m vs "
+      << r10.summary.mean_penetration << " m";
+    EXPECT_NEAR(r10.summary.peak_force / r1.summary.peak_force, 1.0, result_tolerance);
+    EXPECT_NEAR(r10.summary.contact_duration / r1.summary.contact_duration, 1.0, result_tolerance);
+    EXPECT_NEAR(r10.summary.impulse / r1.summary.impulse, 1.0, result_tolerance);
+  }
+
+  TEST(Scene, RigidSlabDoublesPeakForceAndKeepsImpulseAndLocalStiffness)
+  {
+    // A rigid slab has no axial wave: the force is not capped by rho c A v / 2, so the peak is
+    // about twice as high and the contact shorter; the momentum exchange (impulse) is the same,
+    // and so is the secant stiffness F / delta at the peak, a property of the wall's local
+    // compliance (values printed).
+    const auto rigid =
+      run_impact(scene_parameters(0.05, true, "scene_rigid.msh"), MPI_COMM_WORLD, nullptr);
+    const auto elastic =
+      run_impact(scene_parameters(0.05, false, "scene_elastic.msh"), MPI_COMM_WORLD, nullptr);
+    const auto secant = [](const ImpactResult &r)
+    {
+      const auto &h = r.history;
+      const auto  it =
+        std::max_element(h.smoothed_contact_force.begin(), h.smoothed_contact_force.end());
+      const auto i = static_cast<std::size_t>(it - h.smoothed_contact_force.begin());
+      return *it / std::max(h.indentation[i], 1e-12);
+    };
+    if (rank() == 0)
+      std::cout << "rigid:   " << summary_line(rigid) << ", F/delta " << secant(rigid)
+                << " N/m^2\nelastic: " << summary_line(elastic) << ", F/delta " << secant(elastic)
+                << " N/m^2\n";
+    EXPECT_GT(rigid.summary.peak_force, 1.5 * elastic.summary.peak_force);
+    EXPECT_NEAR(secant(rigid) / secant(elastic), 1.0, 0.1);
+    EXPECT_LT(rigid.summary.contact_duration, elastic.summary.contact_duration);
+    EXPECT_NEAR(rigid.summary.impulse / elastic.summary.impulse, 1.0, 0.05);
+    EXPECT_TRUE(rigid.summary.separated);
+    EXPECT_TRUE(elastic.summary.separated);
+  }
+
+  TEST(Scene, ImplicitNewmarkMatchesExplicitForRigidAndElasticSlab)
+  {
+    // The accuracy-vs-cost comparison: integral results agree within a few per cent.
+    constexpr double tolerance = 0.03;
+    for (const bool rigid : {true, false})
+    {
+      auto       p = scene_parameters(0.05, rigid, rigid ? "scene_ir.msh" : "scene_ie.msh");
+      const auto explicit_run = run_impact(p, MPI_COMM_WORLD, nullptr);
+      p.integrator            = ImpactParameters::Integrator::implicit_newmark;
+      const auto implicit_run = run_impact(p, MPI_COMM_WORLD, nullptr);
+      if (rank() == 0)
+        std::cout << (rigid ? "rigid" : "elastic") << " explicit: " << summary_line(explicit_run)
+                  << "\n"
+                  << (rigid ? "rigid" : "elastic") << " implicit: " << summary_line(implicit_run)
+                  << ", Newton " << implicit_run.summary.n_newton << '\n';
+      const auto &e = explicit_run.summary, &i = implicit_run.summary;
+      EXPECT_NEAR(i.impulse / e.impulse, 1.0, tolerance) << "rigid " << rigid;
+      EXPECT_NEAR(i.contact_duration / e.contact_duration, 1.0, tolerance) << "rigid " << rigid;
+      EXPECT_NEAR(i.apparent_cor, e.apparent_cor, tolerance) << "rigid " << rigid;
+      EXPECT_LT(i.energy_error, 0.01) << "rigid " << rigid;
+    }
+  }
+
+  TEST(Output, FieldFilesAndMeshInfoDescribeTheRun)
+  {
+    const double L = 1.0, t = 0.1;
+    const auto   mesh = write_two_bars(L, t, 1e-4, 4, "bars_vtu.msh");
+    auto         p    = bar_parameters(mesh);
+    p.vtu_dir         = scratch("vtu");
+    p.vtu_interval    = 1e-4;
+    if (rank() == 0)
+      std::filesystem::create_directories(p.vtu_dir);
+    MPI_Barrier(MPI_COMM_WORLD);
+    const auto r = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto n_expected =
+      static_cast<std::size_t>(r.summary.n_steps / std::lround(p.vtu_interval / r.summary.dt)) + 1;
+    std::size_t n_pvtu = 0;
+    for (const auto &entry : std::filesystem::directory_iterator(p.vtu_dir))
+      n_pvtu += entry.path().extension() == ".pvtu";
+    EXPECT_EQ(n_pvtu, n_expected);
+    EXPECT_TRUE(std::filesystem::exists(p.vtu_dir / "impact.pvd"));
+
+    constexpr double tolerance = 1e-12;
+    const auto       info      = read_mesh_info(mesh);
+    EXPECT_NEAR(info.area_by_material.at(kimp::geometry::slab_material), L * t, tolerance);
+    EXPECT_NEAR(info.area_by_material.at(kimp::geometry::wall_material), L * t, tolerance);
+    EXPECT_NEAR(info.length_by_boundary.at(kimp::geometry::slab_contact), t, tolerance);
+    EXPECT_NEAR(info.length_by_boundary.at(kimp::geometry::wall_contact), t, tolerance);
+    EXPECT_EQ(info.n_cells, 2u * 40u * 4u);
+  }
+
+  TEST(Mpi, DistributedRunMatchesSerialRun)
+  {
+    // Run on MPI_COMM_WORLD (1 or 2 ranks under ctest) and on MPI_COMM_SELF on every rank.
+    constexpr double tolerance = 1e-10;
+    auto             p         = scene_parameters(0.05, false, "scene_mpi.msh");
+    p.end_time                 = 0.004; // the first axial-wave round trip and its force dips
+    const auto world           = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto self            = run_impact(p, MPI_COMM_SELF, nullptr);
+    ASSERT_EQ(world.history.time.size(), self.history.time.size());
+    double max_force = 0, max_difference = 0;
+    for (const double f : self.history.contact_force)
+      max_force = std::max(max_force, f);
+    ASSERT_GT(max_force, 0);
+    for (std::size_t i = 0; i < world.history.time.size(); ++i)
+      max_difference =
+        std::max(max_difference,
+                 std::abs(world.history.contact_force[i] - self.history.contact_force[i]));
+    for (std::size_t i = 0; i < world.history.time.size(); ++i)
+    {
+      EXPECT_NEAR(world.history.contact_force[i],
+                  self.history.contact_force[i],
+                  tolerance * max_force)
+        << "sample " << i << ", t = " << world.history.time[i];
+      EXPECT_NEAR(world.history.slab_velocity[i], self.history.slab_velocity[i], tolerance)
+        << "sample " << i;
+    }
+    if (rank() == 0)
+      std::cout << "MPI: " << world.summary.n_ranks << " ranks vs 1, " << world.history.time.size()
+                << " samples, max |dF| / max F = " << max_difference / max_force << '\n';
+  }
+
+  TEST(BadInput, TimeStepAboveTheStabilityLimitIsRefused)
+  {
+    auto       p = bar_parameters(write_two_bars(1.0, 0.1, 1e-4, 8, "bars_dt.msh"));
+    const auto r = run_impact(p, MPI_COMM_WORLD, nullptr);
+    p.dt         = 1.01 * r.summary.dt_stable;
+    try
+    {
+      run_impact(p, MPI_COMM_WORLD, nullptr);
+      FAIL() << "dt = " << p.dt << " s above the limit " << r.summary.dt_stable << " s accepted";
+    }
+    catch (const std::exception &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("above the explicit stability limit"), std::string::npos)
+        << e.what();
+    }
+    p.dt = 0.99 * r.summary.dt_stable;
+    EXPECT_NO_THROW(run_impact(p, MPI_COMM_WORLD, nullptr));
+  }
+
+  TEST(BadInput, OverlappingSlabIsRefused)
+  {
+    const auto p = bar_parameters(write_two_bars(1.0, 0.1, -1e-3, 8, "bars_overlap.msh"));
+    try
+    {
+      run_impact(p, MPI_COMM_WORLD, nullptr);
+      FAIL() << "a slab overlapping the wall by 1 mm was accepted";
+    }
+    catch (const std::exception &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("slab overlaps the wall"), std::string::npos)
+        << e.what();
+    }
+  }
+
+  TEST(BadInput, MissingMaterialAndBadParametersAreNamed)
+  {
+    auto       p              = bar_parameters(write_two_bars(1.0, 0.1, 1e-4, 4, "bars_bad.msh"));
+    const auto expect_message = [](const ImpactParameters &q, const std::string &text)
+    {
+      try
+      {
+        run_impact(q, MPI_COMM_WORLD, nullptr);
+        ADD_FAILURE() << "accepted, expected: " << text;
+      }
+      catch (const std::exception &e)
+      {
+        EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+      }
+    };
+    auto q = p;
+    q.materials.erase(kimp::geometry::wall_material);
+    expect_message(q, "material id 2");
+    q                = p;
+    q.penalty_factor = -1;
+    expect_message(q, "penalty_factor = -1");
+    q                                                        = p;
+    q.materials[kimp::geometry::slab_material].poisson_ratio = 0.5;
+    expect_message(q, "poisson_ratio = 0.5");
+  }
+} // namespace
+
+int main(int argc, char **argv)
+{
+  MpiSession mpi(argc, argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  if (mpi.rank() != 0)
+  {
+    auto &listeners = ::testing::UnitTest::GetInstance()->listeners();
+    delete listeners.Release(listeners.default_result_printer());
+  }
+  return RUN_ALL_TESTS();
+}
