@@ -5,9 +5,15 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+
+#if defined(__SSE2__)
+#  include <emmintrin.h>
+#endif
 
 #include "lumped/bilinear_isolator.h"
 #include "lumped/integration_errors.h"
@@ -224,34 +230,9 @@ namespace kimp::lumped
       std::vector<Block> blocks_;
     };
 
-    /// Everything the time loop touches, allocated once per run.
-    struct Workspace
-    {
-      std::size_t n  = 0; ///< DOFs; displacement arrays have n + 1 entries, [n] = ground = 0
-      double      dt = 0.0;
-
-      std::vector<double>                     mass;
-      std::vector<double>                     b_diag, b_upper; ///< 2M/Δt² − K
-      std::vector<double>                     d_diag, d_upper; ///< −M/Δt² + C/(2Δt)
-      std::unique_ptr<EffectiveMatrixInverse> a_inverse;       ///< (M/Δt² + C/(2Δt))⁻¹
-      std::vector<double>      dense_inverse; ///< the same, dense column-major, for small fixed N
-      std::vector<double>      dense_ab, dense_ad, dense_am; ///< A⁻¹B, A⁻¹D, A⁻¹M·1
-      const TridiagonalMatrix *k = nullptr;
-      const TridiagonalMatrix *c = nullptr;
-
-      std::vector<double> buf[4];
-      double             *u_prev2 = nullptr, *u_prev = nullptr, *u = nullptr, *u_next = nullptr;
-      std::vector<double> force, rhs, velocity, accel;
-
-      // contacts
-      std::size_t                            n_contacts = 0;
-      std::vector<std::unique_ptr<ForceLaw>> laws;
-      std::vector<int>                       left, right;
-      std::vector<double>                    gap, f, delta_prev, delta_prev2, peak_force;
-      std::vector<int>                       active, called_prev;
-
-      std::vector<int> storey_low, storey_up;
-    };
+    /// Steps per bookkeeping block: the dynamics runs a block, then velocities, accelerations,
+    /// energies and peaks are evaluated for the whole block in loops over the steps (vectorised).
+    constexpr long block_steps = 64;
 
     inline double law_rate(const LawVelocity scheme,
                            const double      x_n,
@@ -263,420 +244,497 @@ namespace kimp::lumped
                                                (3.0 * x_n - 4.0 * x_nm1 + x_nm2) * (0.5 * inv_dt);
     }
 
-    /**
-     * The time loop, instantiated per isolator type so that final classes are devirtualised, and
-     * for the common sizes N of a single isolated building (3-5 storeys) so that every DOF loop
-     * has a compile-time trip count (N = 0: run-time size).
-     */
-    template <class IsolatorType, int N>
-    void time_loop(Workspace                      &w,
-                   IsolatorType                   *iso,
-                   const GroundMotion             &motion,
-                   const CentralDifferenceOptions &opt,
-                   const long                      n_steps,
-                   Response                       &r)
+    /// Rows of the small dense propagators, rounded up to an even count so that the products
+    /// vectorise in pairs (the padding rows are zero and never stored back).
+    constexpr int padded(const int n)
     {
-      const std::size_t n       = N > 0 ? static_cast<std::size_t>(N) : w.n;
-      const double      dt      = w.dt;
-      const double      inv_dt  = 1.0 / dt;
-      const double      inv_dt2 = inv_dt * inv_dt;
-      const std::size_t nc      = w.n_contacts;
-      const std::size_t ns      = w.storey_low.size();
-      const LawVelocity scheme  = opt.law_velocity;
+      return n + (n & 1);
+    }
 
-      // Ground motion: integer sub-stepping when Δt divides the record's dt (the usual case).
-      const double     *rec   = motion.acceleration.data();
-      const std::size_t n_rec = motion.acceleration.size();
-      const double      ratio = motion.dt / dt;
-      const long        sub   = std::lround(ratio);
-      const bool   integral = sub > 0 && std::abs(ratio - static_cast<double>(sub)) < 1e-9 * ratio;
-      const double inv_sub  = 1.0 / static_cast<double>(sub > 0 ? sub : 1);
-      std::size_t  rec_j    = 0;
-      long         rec_s    = 0;
+    /// Two doubles in one SSE register (GCC/Clang vector extension): element-wise operations
+    /// round exactly like their scalar counterparts.
+    typedef double Pair __attribute__((vector_size(16)));
 
-      const long every =
-        opt.output_interval > 0.0 ? std::max(1L, std::lround(opt.output_interval / dt)) : 0L;
-      if (every > 0)
+    inline Pair load_pair(const double *p)
+    {
+      Pair x;
+      std::memcpy(&x, p, sizeof(x));
+      return x;
+    }
+
+    inline void store_pair(double *p, const Pair x)
+    {
+      std::memcpy(p, &x, sizeof(x));
+    }
+
+    /// |x| (clears the sign bits, as std::abs).
+    inline Pair abs_pair(const Pair x)
+    {
+      typedef std::uint64_t Bits __attribute__((vector_size(16)));
+      Bits                  b;
+      std::memcpy(&b, &x, sizeof(b));
+      b &= ~(Bits{1, 1} << 63);
+      Pair y;
+      std::memcpy(&y, &b, sizeof(y));
+      return y;
+    }
+
+    /// std::max(a, b) = a < b ? b : a element-wise (one MAXPD on x86-64: it returns its second
+    /// operand unless the first is greater, which is the same selection).
+    inline Pair max_pair(const Pair a, const Pair b)
+    {
+#if defined(__SSE2__)
+      return _mm_max_pd(b, a);
+#else
+      return a < b ? b : a;
+#endif
+    }
+
+  } // namespace
+
+  /**
+   * Everything one integration touches, allocated at init(). Displacements live in a block
+   * buffer, one row per DOF plus a zero row for the ground, column c holding u at step
+   * s0 − 2 + c for the block starting at step s0 (so step s0 + k reads u_{n−2}, u_{n−1}, u_n in
+   * columns k, k + 1, k + 2 and writes u_{n+1} to column k + 3).
+   */
+  struct CentralDifferenceStepper::Session
+  {
+    const PoundingModel            *model  = nullptr;
+    const CentralDifferenceOptions *opt    = nullptr;
+    const GroundMotion             *motion = nullptr;
+
+    std::size_t n       = 0;
+    double      dt      = 0.0;
+    long        n_steps = 0; ///< last step index N (t_N = end)
+    long        step    = 0; ///< next step to evaluate
+    LawVelocity scheme  = LawVelocity::backward;
+
+    // matrices
+    std::vector<double>                     mass;
+    std::vector<double>                     b_diag, b_upper; ///< 2M/Δt² − K
+    std::vector<double>                     d_diag, d_upper; ///< −M/Δt² + C/(2Δt)
+    std::unique_ptr<EffectiveMatrixInverse> a_inverse;       ///< (M/Δt² + C/(2Δt))⁻¹
+    /// Dense column-major propagators for a single small building, leading dimension
+    /// padded(n): A⁻¹, A⁻¹B, A⁻¹D, A⁻¹M·1.
+    std::vector<double>      dense_inverse, dense_ab, dense_ad, dense_am;
+    const TridiagonalMatrix *k = nullptr;
+    const TridiagonalMatrix *c = nullptr;
+
+    // block buffers
+    std::size_t         width = 0; ///< columns of the displacement block, block_steps + 3
+    std::vector<double> u_block;   ///< (n + 1) × width
+    std::vector<double> ag_block, velocity, mv, cvv;
+    std::vector<double> lane_peak_u, lane_peak_a, lane_peak_d; ///< per DOF/storey and lane
+    std::vector<double> force, rhs, solution;
+    std::vector<int>    force_dofs; ///< DOFs that can receive a non-linear force, ascending
+
+    // ground motion
+    bool        integral = false;
+    long        sub      = 1;
+    double      inv_sub  = 1.0;
+    std::size_t rec_j    = 0;
+    long        rec_s    = 0;
+    long        every    = 0;
+
+    // laws
+    std::unique_ptr<Isolator>              iso;
+    std::vector<std::unique_ptr<ForceLaw>> laws;
+    std::vector<int>                       left, right;
+    std::vector<std::size_t>               left_row, right_row; ///< offsets in u_block + 2
+    std::vector<double>                    gap, cf, delta_prev, delta_prev2, peak_force;
+    std::vector<int>                       active, called_prev;
+    std::vector<int>                       storey_low, storey_up;
+
+    // energy sums (t_n of the last recorded step)
+    double w_in = 0.0, w_visc = 0.0, w_contact = 0.0, p_in_prev = 0.0, p_visc_prev = 0.0;
+    double e0 = 0.0, max_supplied = 0.0, e_kin = 0.0, e_strain = 0.0, max_residual = 0.0;
+
+    Response r;
+
+    using Kernel    = void (*)(Session &, long len);
+    Kernel dynamics = nullptr;
+
+    double *column(const std::size_t row, const long c)
+    {
+      return u_block.data() + row * width + static_cast<std::size_t>(c);
+    }
+
+    void     init(const CentralDifference &cdm, const GroundMotion &g);
+    void     advance(long count);
+    void     bookkeeping(long len);
+    void     checkpoint(long k);
+    Response response() const;
+  };
+
+  namespace
+  {
+    using Session = CentralDifferenceStepper::Session;
+
+    /**
+     * Isolator and contact forces at t_n = (s0 + k)·Δt from the displacements in the block
+     * columns (explicit, trial + commit). A law whose gap is open and which is not in contact is
+     * not called: every law returns zero force there and its history only matters from the next
+     * contact on (modified Kelvin-Voigt's permanent indentation is read by the law itself when it
+     * is called again; laws 5-7 take v_imp from the rate of the first contact step). Before a law
+     * is called again it is brought to the last open state it skipped, so its first contact step
+     * starts from δ_{n−1} <= 0 (not from an older open state).
+     */
+    template <class IsolatorType>
+    class ForceEvaluator
+    {
+    public:
+      explicit ForceEvaluator(Session &s)
+        : s_(s)
+        , iso_(static_cast<IsolatorType *>(s.iso.get()))
+        , ub_(s.u_block.data())
+        , f_(s.force.data())
+        , fd_(s.force_dofs.data())
+        , n_fd_(s.force_dofs.size())
+        , ground_(s.n)
+        , inv_dt_(1.0 / s.dt)
+        , scheme_(s.scheme)
+        , nc_(s.laws.size())
+        , row_l_(s.left_row.data())
+        , row_r_(s.right_row.data())
+        , gap_(s.gap.data())
+        , active_(s.active.data())
+        , called_(s.called_prev.data())
+        , cf_(s.cf.data())
+        , dp_(s.delta_prev.data())
+        , dpp_(s.delta_prev2.data())
       {
-        const std::size_t n_samples = static_cast<std::size_t>(n_steps / every + 1);
-        r.history.interval          = static_cast<double>(every) * dt;
-        r.history.time.reserve(n_samples);
-        r.history.displacement.reserve(n_samples * n);
-        r.history.absolute_acceleration.reserve(n_samples * n);
-        r.history.interstorey_drift.reserve(n_samples * ns);
-        r.history.contact_force.reserve(n_samples * nc);
-        r.history.energy_input.reserve(n_samples);
-        r.history.energy_error.reserve(n_samples);
       }
-      long until_sample = 0;
 
-      double *const                 peak_u  = r.peak_displacement.data();
-      double *const                 peak_a  = r.peak_absolute_acceleration.data();
-      double *const                 peak_d  = r.peak_interstorey_drift.data();
-      double *const                 peak_f  = w.peak_force.data();
-      double *const                 f       = w.force.data();
-      double *const                 rhs     = w.rhs.data();
-      double *const                 v       = w.velocity.data();
-      double *const                 a       = w.accel.data();
-      double *const                 cf      = w.f.data();
-      double *const                 dp      = w.delta_prev.data();
-      double *const                 dpp     = w.delta_prev2.data();
-      int *const                    active  = w.active.data();
-      int *const                    called  = w.called_prev.data();
-      const int *const              left    = w.left.data();
-      const int *const              right   = w.right.data();
-      const double *const           gap     = w.gap.data();
-      const int *const              s_low   = w.storey_low.data();
-      const int *const              s_up    = w.storey_up.data();
-      const double *const           bd      = w.b_diag.data();
-      const double *const           bu      = w.b_upper.data();
-      const double *const           dd      = w.d_diag.data();
-      const double *const           du      = w.d_upper.data();
-      const double *const           m       = w.mass.data();
-      const EffectiveMatrixInverse &a_inv   = *w.a_inverse;
-      const double *const           a_dense = w.dense_inverse.data();
-      const double *const           a_b     = w.dense_ab.data();
-      const double *const           a_d     = w.dense_ad.data();
-      const double *const           a_m     = w.dense_am.data();
-      const double *const           kd      = w.k->diag.data();
-      const double *const           ku      = w.k->upper.data();
-      const double *const           cd      = w.c->diag.data();
-      const double *const           cu      = w.c->upper.data();
-
-      EnergyBalance &e    = r.energy;
-      double         w_in = 0.0, w_visc = 0.0, w_contact = 0.0;
-      double         p_in_prev = 0.0, p_visc_prev = 0.0;
-      double         e0 = 0.0, max_supplied = 0.0, e_kin = 0.0, e_strain = 0.0;
-      double         max_residual = 0.0;
-      const double   factor       = opt.divergence_energy_factor;
-
-      double *u = w.u, *up = w.u_prev, *upp = w.u_prev2, *un = w.u_next;
-      for (long step = 0; step <= n_steps; ++step)
+      /// Forces at step s0 + k (time t) into Session::force.
+      inline __attribute__((always_inline)) void operator()(const long k, const double t)
       {
-        const double t = static_cast<double>(step) * dt;
-        double       ag;
+        const double *const ub = ub_ + k;
+        double *const       f  = f_;
+        for (std::size_t q = 0; q < n_fd_; ++q)
+          f[fd_[q]] = 0.0;
+        f[ground_] = 0.0;
+        if (iso_)
         {
-          std::size_t j;
-          double      frac;
-          if (integral)
+          f[0] = iso_->set_trial(ub[2], law_rate(scheme_, ub[2], ub[1], ub[0], inv_dt_)).force;
+          iso_->commit();
+        }
+        for (std::size_t c = 0; c < nc_; ++c)
+        {
+          const double delta = ub[row_l_[c]] - ub[row_r_[c]] - gap_[c];
+          if (delta > 0.0 || active_[c])
+            contact(c, delta, t);
+          else
           {
-            j    = rec_j;
-            frac = static_cast<double>(rec_s) * inv_sub;
-            if (++rec_s == sub)
+            called_[c] = 0;
+            // Zero force now; the work term survives only if the last step's force was not
+            // zero.
+            if (cf_[c] != 0.0)
             {
-              rec_s = 0;
-              ++rec_j;
+              s_.w_contact += 0.5 * cf_[c] * (delta - dp_[c]);
+              cf_[c] = 0.0;
             }
           }
-          else
-          {
-            const double x = t / motion.dt;
-            j              = static_cast<std::size_t>(x);
-            frac           = x - static_cast<double>(j);
-          }
-          if (j + 1 < n_rec)
-            ag = rec[j] + frac * (rec[j + 1] - rec[j]);
-          else
-            ag = (j + 1 == n_rec && frac == 0.0) ? rec[j] : 0.0;
+          dpp_[c] = dp_[c];
+          dp_[c]  = delta;
         }
+      }
 
-        for (std::size_t i = 0; i <= n; ++i)
-          f[i] = 0.0;
-        if (iso)
+    private:
+      void contact(const std::size_t c, const double delta, const double t)
+      {
+        const int    L    = s_.left[c];
+        const int    R    = s_.right[c];
+        ForceLaw    &law  = *s_.laws[c];
+        const double dp   = dp_[c];
+        const double rate = law_rate(scheme_, delta, dp, dpp_[c], inv_dt_);
+        if (!called_[c])
         {
-          f[0] = iso->set_trial(u[0], law_rate(scheme, u[0], up[0], upp[0], inv_dt)).force;
-          iso->commit();
+          law.set_trial(dp, (dp - dpp_[c]) * inv_dt_);
+          law.commit();
         }
-        for (std::size_t c = 0; c < nc; ++c)
-        {
-          const int    L     = left[c];
-          const int    R     = right[c];
-          const double delta = u[L] - u[R] - gap[c];
-          double       force = 0.0;
-          if (delta > 0.0 || active[c])
-          {
-            ForceLaw    &law  = *w.laws[c];
-            const double rate = law_rate(scheme, delta, dp[c], dpp[c], inv_dt);
-            if (!called[c])
-            {
-              // Bring the law to the last open state it skipped, so that its first
-              // contact step starts from δ_{n−1} <= 0 (not from an older open state).
-              law.set_trial(dp[c], (dp[c] - dpp[c]) * inv_dt);
-              law.commit();
-            }
-            force = law.set_trial(delta, rate).force;
-            law.commit();
-            const int now_active = law.in_contact() ? 1 : 0;
-            if (now_active && !active[c])
-              r.contacts[c].impacts.push_back({t, rate});
-            active[c] = now_active;
-            called[c] = 1;
-          }
-          else
-            called[c] = 0;
-          // Contact work ∫F dδ, trapezoid between t_{n−1} and t_n.
-          w_contact += 0.5 * (cf[c] + force) * (delta - dp[c]);
-          cf[c]  = force;
-          dpp[c] = dp[c];
-          dp[c]  = delta;
-          f[L] += force;
-          f[R] -= force;
-          peak_f[c] = std::max(peak_f[c], force);
-        }
+        const double force = law.set_trial(delta, rate).force;
+        law.commit();
+        const int now_active = law.in_contact() ? 1 : 0;
+        if (now_active && !active_[c])
+          s_.r.contacts[c].impacts.push_back({t, rate});
+        active_[c] = now_active;
+        called_[c] = 1;
+        // Contact work ∫F dδ, trapezoid between t_{n−1} and t_n.
+        s_.w_contact += 0.5 * (cf_[c] + force) * (delta - dp);
+        cf_[c] = force;
+        f_[L] += force;
+        f_[R] -= force;
+        s_.peak_force[c] = std::max(s_.peak_force[c], force);
+      }
 
-        if constexpr (N > 0)
-        {
-          // u_{n+1} = A⁻¹B·u_n + A⁻¹D·u_{n−1} − A⁻¹M1·ü_g − A⁻¹·f_nl: the first three terms do
-          // not depend on the forces just evaluated, so only the (sparse) force term remains on
-          // the step-to-step dependency chain. Accumulate in registers (un may alias the inputs
-          // as far as the compiler knows).
-          double acc[N > 0 ? N : 1];
-          for (std::size_t i = 0; i < n; ++i)
-            acc[i] = -a_m[i] * ag;
-          for (std::size_t j = 0; j < n; ++j)
-            for (std::size_t i = 0; i < n; ++i)
-              acc[i] += a_b[j * n + i] * u[j] + a_d[j * n + i] * up[j];
-          for (std::size_t j = 0; j < n; ++j)
-            if (f[j] != 0.0)
-              for (std::size_t i = 0; i < n; ++i)
-                acc[i] -= a_dense[j * n + i] * f[j];
-          for (std::size_t i = 0; i < n; ++i)
-            un[i] = acc[i];
-        }
-        else
-        {
-          // (M/Δt² + C/(2Δt))·u_{n+1} = B·u_n + D·u_{n−1} − M·1·ü_g − f_nl.
-          for (std::size_t i = 0; i < n; ++i)
-            rhs[i] = bd[i] * u[i] + dd[i] * up[i] - m[i] * ag - f[i];
-          for (std::size_t i = 0; i + 1 < n; ++i)
-          {
-            rhs[i] += bu[i] * u[i + 1] + du[i] * up[i + 1];
-            rhs[i + 1] += bu[i] * u[i] + du[i] * up[i];
-          }
-          a_inv.apply(rhs, un);
-        }
+      Session            &s_;
+      IsolatorType *const iso_;
+      double *const       ub_;
+      double *const       f_;
+      const int *const    fd_;
+      const std::size_t   n_fd_;
+      const std::size_t   ground_;
+      const double        inv_dt_;
+      const LawVelocity   scheme_;
+      const std::size_t   nc_;
+      const std::size_t  *row_l_;
+      const std::size_t  *row_r_;
+      const double       *gap_;
+      int *const          active_;
+      int *const          called_;
+      double *const       cf_;
+      double *const       dp_;
+      double *const       dpp_;
+    };
 
-        // State at t_n: central velocity, the step's acceleration, energies, peaks.
-        double mv = 0.0, mvv = 0.0, kuu = 0.0, cvv = 0.0;
+    template <class IsolatorType, int N>
+    void dynamics_dense(Session &s, const long len)
+    {
+      constexpr int                P = padded(N) / 2; // pairs of rows
+      const std::size_t            W = s.width;
+      ForceEvaluator<IsolatorType> forces(s);
+      const double                *agb   = s.ag_block.data();
+      const double                *a_m   = s.dense_am.data();
+      const double                *a_b   = s.dense_ab.data();
+      const double                *a_d   = s.dense_ad.data();
+      const double                *a_inv = s.dense_inverse.data();
+      const double                *f     = s.force.data();
+      const int                   *fd    = s.force_dofs.data();
+      const std::size_t            n_fd  = s.force_dofs.size();
+      double                      *ub    = s.u_block.data();
+      Pair                         am[P], ab[N][P], ad[N][P];
+      for (int i = 0; i < P; ++i)
+        am[i] = load_pair(a_m + 2 * i);
+      for (int j = 0; j < N; ++j)
+        for (int i = 0; i < P; ++i)
+        {
+          ab[j][i] = load_pair(a_b + 2 * (j * P + i));
+          ad[j][i] = load_pair(a_d + 2 * (j * P + i));
+        }
+      for (long k = 0; k < len; ++k)
+      {
+        const double ag = agb[k];
+        forces(k, static_cast<double>(s.step + k) * s.dt);
+        const double *col = ub + k;
+        Pair          acc[P];
+        for (int i = 0; i < P; ++i)
+          acc[i] = -am[i] * ag;
+        for (int j = 0; j < N; ++j)
+        {
+          const double uj  = col[static_cast<std::size_t>(j) * W + 2];
+          const double upj = col[static_cast<std::size_t>(j) * W + 1];
+          for (int i = 0; i < P; ++i)
+            acc[i] += ab[j][i] * uj + ad[j][i] * upj;
+        }
+        for (std::size_t q = 0; q < n_fd; ++q)
+        {
+          const int    j  = fd[q];
+          const double fj = f[j];
+          if (fj != 0.0)
+            for (int i = 0; i < P; ++i)
+              acc[i] -= load_pair(a_inv + 2 * (j * P + i)) * fj;
+        }
+        double out[2 * P];
+        std::memcpy(out, acc, sizeof(out));
+        for (int i = 0; i < N; ++i)
+          ub[static_cast<std::size_t>(i) * W + static_cast<std::size_t>(k) + 3] = out[i];
+      }
+    }
+
+    /// Dynamics of one block for any model: (M/Δt² + C/(2Δt))·u_{n+1} = B·u_n + D·u_{n−1}
+    /// − M·1·ü_g − f_nl with B, D tridiagonal and A⁻¹ block-wise (dense or Thomas).
+    template <class IsolatorType>
+    void dynamics_general(Session &s, const long len)
+    {
+      const std::size_t            n = s.n;
+      const std::size_t            W = s.width;
+      ForceEvaluator<IsolatorType> forces(s);
+      const double                *bd = s.b_diag.data(), *bu = s.b_upper.data();
+      const double                *dd = s.d_diag.data(), *du = s.d_upper.data();
+      const double                *m   = s.mass.data();
+      const double                *f   = s.force.data();
+      double                      *rhs = s.rhs.data();
+      double                      *un  = s.solution.data();
+      double                      *ub  = s.u_block.data();
+      for (long k = 0; k < len; ++k)
+      {
+        const double ag = s.ag_block[static_cast<std::size_t>(k)];
+        forces(k, static_cast<double>(s.step + k) * s.dt);
+        const double *col = ub + k;
+        const auto    u   = [&](const std::size_t i) { return col[i * W + 2]; };
+        const auto    up  = [&](const std::size_t i) { return col[i * W + 1]; };
         for (std::size_t i = 0; i < n; ++i)
-        {
-          const double vi = (un[i] - up[i]) * (0.5 * inv_dt);
-          const double ai = (un[i] - 2.0 * u[i] + up[i]) * inv_dt2 + ag;
-          v[i]            = vi;
-          a[i]            = ai;
-          mv += m[i] * vi;
-          mvv += m[i] * vi * vi;
-          kuu += kd[i] * u[i] * u[i];
-          cvv += cd[i] * vi * vi;
-          peak_u[i] = std::max(peak_u[i], std::abs(u[i]));
-          peak_a[i] = std::max(peak_a[i], std::abs(ai));
-        }
+          rhs[i] = bd[i] * u(i) + dd[i] * up(i) - m[i] * ag - f[i];
         for (std::size_t i = 0; i + 1 < n; ++i)
         {
-          kuu += 2.0 * ku[i] * u[i] * u[i + 1];
-          cvv += 2.0 * cu[i] * v[i] * v[i + 1];
+          rhs[i] += bu[i] * u(i + 1) + du[i] * up(i + 1);
+          rhs[i + 1] += bu[i] * u(i) + du[i] * up(i);
         }
-        for (std::size_t s = 0; s < ns; ++s)
-          peak_d[s] = std::max(peak_d[s], std::abs(u[s_up[s]] - u[s_low[s]]));
-
-        const double p_in   = -ag * mv;
-        const double p_visc = cvv;
-        e_kin               = 0.5 * mvv;
-        e_strain            = 0.5 * kuu + (iso ? iso->stored_energy() : 0.0);
-        if (step == 0)
-          e0 = e_kin + e_strain;
-        else
-        {
-          w_in += 0.5 * (p_in_prev + p_in) * dt;
-          w_visc += 0.5 * (p_visc_prev + p_visc) * dt;
-        }
-        p_in_prev    = p_in;
-        p_visc_prev  = p_visc;
-        max_supplied = std::max(max_supplied, e0 + w_in);
-
-        const bool sample = every > 0 && until_sample == 0;
-        if (every > 0 && --until_sample < 0)
-          until_sample = every - 1;
-        if (sample || (step & 511) == 0 || step == n_steps)
-        {
-          e.initial      = e0;
-          e.input        = w_in;
-          e.kinetic      = e_kin;
-          e.strain       = e_strain;
-          e.viscous      = w_visc;
-          e.hysteretic   = iso ? iso->dissipated_energy() : 0.0;
-          e.contact_work = w_contact;
-          // Relative to the largest energy supplied so far, so that the first steps (where
-          // every term is tiny) do not dominate the maximum.
-          const double residual = std::abs(
-            e.residual_relative_error() * std::max(std::abs(e0) + std::abs(w_in),
-                                                   e_kin + e_strain + std::abs(w_visc) +
-                                                     std::abs(e.hysteretic) + std::abs(w_contact)));
-          const double err = residual / std::max(max_supplied, 1e-300);
-          max_residual     = std::max(max_residual, residual);
-          for (std::size_t i = 0; i < n; ++i)
-            if (!std::isfinite(un[i]))
-            {
-              std::ostringstream msg;
-              msg << "central difference diverged: u[" << i << "] is not finite at t = " << t + dt
-                  << " s (step " << step + 1 << ", dt = " << dt << " s)";
-              throw DivergenceError(msg.str(), t + dt, step + 1, static_cast<int>(i));
-            }
-          if (e_kin + e_strain > factor * max_supplied && e_kin + e_strain > 1e-12)
-          {
-            std::size_t worst = 0;
-            for (std::size_t i = 1; i < n; ++i)
-              if (std::abs(v[i]) > std::abs(v[worst]))
-                worst = i;
-            std::ostringstream msg;
-            msg << "central difference diverged: mechanical energy " << e_kin + e_strain
-                << " J exceeds " << factor << " x the energy supplied (" << max_supplied
-                << " J) at t = " << t << " s (step " << step << ", fastest DoF " << worst
-                << ", dt = " << dt << " s)";
-            throw DivergenceError(msg.str(), t, step, static_cast<int>(worst));
-          }
-          if (sample)
-          {
-            ResponseHistory &h = r.history;
-            h.time.push_back(t);
-            h.displacement.insert(h.displacement.end(), u, u + n);
-            h.absolute_acceleration.insert(h.absolute_acceleration.end(), a, a + n);
-            for (std::size_t s = 0; s < ns; ++s)
-              h.interstorey_drift.push_back(u[s_up[s]] - u[s_low[s]]);
-            h.contact_force.insert(h.contact_force.end(), cf, cf + nc);
-            h.energy_input.push_back(e0 + w_in);
-            h.energy_error.push_back(err);
-          }
-        }
-
-        // Rotate the displacement levels (the ground slot [n] stays 0 in every buffer).
-        double *const recycled = upp;
-        upp                    = up;
-        up                     = u;
-        u                      = un;
-        un                     = recycled;
+        s.a_inverse->apply(rhs, un);
+        for (std::size_t i = 0; i < n; ++i)
+          ub[i * W + static_cast<std::size_t>(k) + 3] = un[i];
       }
-      e.relative_error     = e.residual_relative_error();
-      e.max_relative_error = max_residual / std::max(max_supplied, 1e-300);
-      for (std::size_t c = 0; c < nc; ++c)
-        r.contacts[c].peak_force = peak_f[c];
     }
   } // namespace
 
-  Response CentralDifference::run(const GroundMotion &motion) const
+  void CentralDifferenceStepper::Session::init(const CentralDifference &cdm, const GroundMotion &g)
   {
-    if (!(motion.dt > 0.0) || motion.acceleration.empty())
-      throw std::invalid_argument("ground motion '" + motion.name +
+    model  = &cdm.model();
+    opt    = &cdm.options();
+    motion = &g;
+    if (!(g.dt > 0.0) || g.acceleration.empty())
+      throw std::invalid_argument("ground motion '" + g.name +
                                   "': dt must be > 0 and the record non-empty");
-    const double dt       = time_step(motion.dt);
-    const double duration = options_.duration > 0.0 ?
-                              options_.duration :
-                              motion.dt * static_cast<double>(motion.acceleration.size());
-    const long   n_steps  = std::lround(duration / dt);
+    dt = cdm.time_step(g.dt);
+    const double duration =
+      opt->duration > 0.0 ? opt->duration : g.dt * static_cast<double>(g.acceleration.size());
+    n_steps = std::lround(duration / dt);
+    step    = 0;
+    scheme  = opt->law_velocity;
+    n       = model->n_dofs();
+    mass    = model->masses();
+    k       = &model->stiffness();
+    c       = &model->damping();
 
-    Workspace         w;
-    const std::size_t n           = model_.n_dofs();
-    w.n                           = n;
-    w.dt                          = dt;
-    w.mass                        = model_.masses();
-    w.k                           = &model_.stiffness();
-    w.c                           = &model_.damping();
     const double      inv_dt2     = 1.0 / (dt * dt);
     const double      half_inv_dt = 0.5 / dt;
     TridiagonalMatrix a(n);
-    w.b_diag.resize(n);
-    w.d_diag.resize(n);
-    w.b_upper.resize(n > 0 ? n - 1 : 0);
-    w.d_upper.resize(n > 0 ? n - 1 : 0);
+    b_diag.assign(n, 0.0);
+    d_diag.assign(n, 0.0);
+    b_upper.assign(n > 0 ? n - 1 : 0, 0.0);
+    d_upper.assign(n > 0 ? n - 1 : 0, 0.0);
     for (std::size_t i = 0; i < n; ++i)
     {
-      const double mi = w.mass[i];
-      a.diag[i]       = mi * inv_dt2 + w.c->diag[i] * half_inv_dt;
-      w.b_diag[i]     = 2.0 * mi * inv_dt2 - w.k->diag[i];
-      w.d_diag[i]     = -mi * inv_dt2 + w.c->diag[i] * half_inv_dt;
+      const double mi = mass[i];
+      a.diag[i]       = mi * inv_dt2 + c->diag[i] * half_inv_dt;
+      b_diag[i]       = 2.0 * mi * inv_dt2 - k->diag[i];
+      d_diag[i]       = -mi * inv_dt2 + c->diag[i] * half_inv_dt;
     }
     for (std::size_t i = 0; i + 1 < n; ++i)
     {
-      a.upper[i]   = w.c->upper[i] * half_inv_dt;
-      w.b_upper[i] = -w.k->upper[i];
-      w.d_upper[i] = w.c->upper[i] * half_inv_dt;
+      a.upper[i] = c->upper[i] * half_inv_dt;
+      b_upper[i] = -k->upper[i];
+      d_upper[i] = c->upper[i] * half_inv_dt;
     }
-    w.a_inverse = std::make_unique<EffectiveMatrixInverse>(a);
-    if (n <= EffectiveMatrixInverse::max_dense)
+    a_inverse = std::make_unique<EffectiveMatrixInverse>(a);
+
+    const Isolator *proto = model->isolator();
+    iso.reset();
+    if (proto)
     {
+      iso = proto->clone();
+      iso->revert_to_start();
+    }
+    const bool bilinear = dynamic_cast<const BilinearIsolator *>(iso.get()) != nullptr;
+    const bool dense    = bilinear && n >= 4 && n <= 6;
+    dense_inverse.clear();
+    dense_ab.clear();
+    dense_ad.clear();
+    dense_am.clear();
+    if (dense)
+    {
+      const std::size_t     p   = static_cast<std::size_t>(padded(static_cast<int>(n)));
       const Eigen::MatrixXd inv = a.to_dense().inverse();
-      w.dense_inverse.assign(inv.data(), inv.data() + inv.size());
-      TridiagonalMatrix b(n), d(n);
-      b.diag                   = w.b_diag;
-      b.upper                  = w.b_upper;
-      d.diag                   = w.d_diag;
-      d.upper                  = w.d_upper;
+      TridiagonalMatrix     b(n), d(n);
+      b.diag                   = b_diag;
+      b.upper                  = b_upper;
+      d.diag                   = d_diag;
+      d.upper                  = d_upper;
       const Eigen::MatrixXd ab = inv * b.to_dense();
       const Eigen::MatrixXd ad = inv * d.to_dense();
       const Eigen::VectorXd am =
-        inv * Eigen::Map<const Eigen::VectorXd>(w.mass.data(), static_cast<Eigen::Index>(n));
-      w.dense_ab.assign(ab.data(), ab.data() + ab.size());
-      w.dense_ad.assign(ad.data(), ad.data() + ad.size());
-      w.dense_am.assign(am.data(), am.data() + am.size());
+        inv * Eigen::Map<const Eigen::VectorXd>(mass.data(), static_cast<Eigen::Index>(n));
+      const auto pad = [&](const Eigen::MatrixXd &x, std::vector<double> &out)
+      {
+        out.assign(p * static_cast<std::size_t>(x.cols()), 0.0);
+        for (Eigen::Index j = 0; j < x.cols(); ++j)
+          for (Eigen::Index i = 0; i < x.rows(); ++i)
+            out[static_cast<std::size_t>(j) * p + static_cast<std::size_t>(i)] = x(i, j);
+      };
+      pad(inv, dense_inverse);
+      pad(ab, dense_ab);
+      pad(ad, dense_ad);
+      pad(am, dense_am);
     }
-    for (auto &b : w.buf)
-      b.assign(n + 1, 0.0);
-    w.u_prev2 = w.buf[0].data();
-    w.u_prev  = w.buf[1].data();
-    w.u       = w.buf[2].data();
-    w.u_next  = w.buf[3].data();
-    w.force.assign(n + 1, 0.0); // [n]: the ground, absorbs wall reactions
-    w.velocity.assign(n, 0.0);
-    w.accel.assign(n, 0.0);
-    w.rhs.assign(n, 0.0);
+
+    width = static_cast<std::size_t>(block_steps) + 3;
+    u_block.assign((n + 1) * width, 0.0);
+    ag_block.assign(static_cast<std::size_t>(block_steps), 0.0);
+    velocity.assign(n * static_cast<std::size_t>(block_steps), 0.0);
+    mv.assign(static_cast<std::size_t>(block_steps), 0.0);
+    cvv.assign(static_cast<std::size_t>(block_steps), 0.0);
+    force.assign(n + 1, 0.0); // [n]: the ground, absorbs wall reactions
+    rhs.assign(n, 0.0);
+    solution.assign(n, 0.0);
 
     const int ground_slot = static_cast<int>(n);
-    w.n_contacts          = model_.contacts().size();
-    Response r;
-    r.dt        = dt;
-    r.n_steps   = n_steps;
-    r.duration  = static_cast<double>(n_steps) * dt;
-    r.n_dofs    = n;
-    r.n_storeys = model_.storeys().size();
+    r                     = Response{};
+    r.dt                  = dt;
+    r.n_steps             = n_steps;
+    r.duration            = static_cast<double>(n_steps) * dt;
+    r.n_dofs              = n;
+    r.n_storeys           = model->storeys().size();
     r.peak_displacement.assign(n, 0.0);
     r.peak_absolute_acceleration.assign(n, 0.0);
     r.peak_interstorey_drift.assign(r.n_storeys, 0.0);
-    for (const ContactPair &c : model_.contacts())
+    laws.clear();
+    left.clear();
+    right.clear();
+    gap.clear();
+    std::vector<char> carries_force(n + 1, 0);
+    if (iso)
+      carries_force[0] = 1;
+    for (const ContactPair &cp : model->contacts())
     {
-      std::unique_ptr<ForceLaw> law = c.law->clone();
+      std::unique_ptr<ForceLaw> law = cp.law->clone();
       law->revert_to_start();
-      w.laws.push_back(std::move(law));
-      w.left.push_back(c.left_dof >= 0 ? c.left_dof : ground_slot);
-      w.right.push_back(c.right_dof >= 0 ? c.right_dof : ground_slot);
-      w.gap.push_back(c.gap);
+      laws.push_back(std::move(law));
+      left.push_back(cp.left_dof >= 0 ? cp.left_dof : ground_slot);
+      right.push_back(cp.right_dof >= 0 ? cp.right_dof : ground_slot);
+      carries_force[static_cast<std::size_t>(left.back())]  = 1;
+      carries_force[static_cast<std::size_t>(right.back())] = 1;
+      gap.push_back(cp.gap);
       ContactResult cr;
-      cr.name = c.name;
+      cr.name = cp.name;
       r.contacts.push_back(std::move(cr));
     }
-    w.f.assign(w.n_contacts, 0.0);
-    w.active.assign(w.n_contacts, 0);
-    w.called_prev.assign(w.n_contacts, 1);
-    w.peak_force.assign(w.n_contacts, 0.0);
-    for (const Storey &s : model_.storeys())
+    left_row.clear();
+    right_row.clear();
+    for (std::size_t q = 0; q < left.size(); ++q)
     {
-      w.storey_low.push_back(s.lower_dof >= 0 ? s.lower_dof : ground_slot);
-      w.storey_up.push_back(s.upper_dof);
+      left_row.push_back(static_cast<std::size_t>(left[q]) * width + 2);
+      right_row.push_back(static_cast<std::size_t>(right[q]) * width + 2);
     }
-
-    std::unique_ptr<Isolator> iso;
-    if (model_.isolator())
+    force_dofs.clear();
+    for (std::size_t j = 0; j < n; ++j)
+      if (carries_force[j])
+        force_dofs.push_back(static_cast<int>(j));
+    const std::size_t nc = laws.size();
+    cf.assign(nc, 0.0);
+    active.assign(nc, 0);
+    called_prev.assign(nc, 1);
+    peak_force.assign(nc, 0.0);
+    delta_prev.assign(nc, 0.0);
+    delta_prev2.assign(nc, 0.0);
+    storey_low.clear();
+    storey_up.clear();
+    for (const Storey &st : model->storeys())
     {
-      iso = model_.isolator()->clone();
-      iso->revert_to_start();
+      storey_low.push_back(st.lower_dof >= 0 ? st.lower_dof : ground_slot);
+      storey_up.push_back(st.upper_dof);
     }
+    lane_peak_u.assign(n * static_cast<std::size_t>(block_steps), 0.0);
+    lane_peak_a.assign(n * static_cast<std::size_t>(block_steps), 0.0);
+    lane_peak_d.assign(storey_low.size() * static_cast<std::size_t>(block_steps), 0.0);
 
     // Initial conditions: u_{−1}, u_{−2} from a Taylor expansion with a_0 = M⁻¹(p_0 − C·v_0 −
-    // K·u_0 − f_nl(u_0)); the laws are only trialled here, the loop commits at step 0.
+    // K·u_0 − f_nl(u_0)); the laws are only trialled here, the first step commits them.
     std::vector<double> u0(n, 0.0), v0(n, 0.0);
-    if (!options_.initial_displacement.empty())
-      u0 = options_.initial_displacement;
-    if (!options_.initial_velocity.empty())
-      v0 = options_.initial_velocity;
+    if (!opt->initial_displacement.empty())
+      u0 = opt->initial_displacement;
+    if (!opt->initial_velocity.empty())
+      v0 = opt->initial_velocity;
     std::vector<double> f0(n + 1, 0.0), cv(n), ku(n);
     if (iso)
     {
@@ -687,60 +745,426 @@ namespace kimp::lumped
     u0g.push_back(0.0);
     std::vector<double> v0g = v0;
     v0g.push_back(0.0);
-    for (std::size_t c = 0; c < w.n_contacts; ++c)
+    for (std::size_t q = 0; q < nc; ++q)
     {
-      const double delta = u0g[static_cast<std::size_t>(w.left[c])] -
-                           u0g[static_cast<std::size_t>(w.right[c])] - w.gap[c];
+      const double delta =
+        u0g[static_cast<std::size_t>(left[q])] - u0g[static_cast<std::size_t>(right[q])] - gap[q];
       const double rate =
-        v0g[static_cast<std::size_t>(w.left[c])] - v0g[static_cast<std::size_t>(w.right[c])];
-      w.delta_prev.push_back(delta - dt * rate);
-      w.delta_prev2.push_back(delta - 2.0 * dt * rate);
+        v0g[static_cast<std::size_t>(left[q])] - v0g[static_cast<std::size_t>(right[q])];
+      delta_prev[q]  = delta - dt * rate;
+      delta_prev2[q] = delta - 2.0 * dt * rate;
       if (delta > 0.0)
       {
-        const double force = w.laws[c]->set_trial(delta, rate).force;
-        w.laws[c]->revert_to_last_commit();
-        f0[static_cast<std::size_t>(w.left[c])] += force;
-        f0[static_cast<std::size_t>(w.right[c])] -= force;
+        const double fq = laws[q]->set_trial(delta, rate).force;
+        laws[q]->revert_to_last_commit();
+        f0[static_cast<std::size_t>(left[q])] += fq;
+        f0[static_cast<std::size_t>(right[q])] -= fq;
       }
     }
-    w.c->multiply(v0.data(), cv.data());
-    w.k->multiply(u0.data(), ku.data());
-    const double ag0 = motion.acceleration[0];
+    c->multiply(v0.data(), cv.data());
+    k->multiply(u0.data(), ku.data());
+    const double ag0 = g.acceleration[0];
     for (std::size_t i = 0; i < n; ++i)
     {
-      const double a0 = (-w.mass[i] * ag0 - cv[i] - ku[i] - f0[i]) / w.mass[i];
-      w.u[i]          = u0[i];
-      w.u_prev[i]     = u0[i] - dt * v0[i] + 0.5 * dt * dt * a0;
-      w.u_prev2[i]    = u0[i] - 2.0 * dt * v0[i] + 2.0 * dt * dt * a0;
+      const double a0 = (-mass[i] * ag0 - cv[i] - ku[i] - f0[i]) / mass[i];
+      *column(i, 2)   = u0[i];
+      *column(i, 1)   = u0[i] - dt * v0[i] + 0.5 * dt * dt * a0;
+      *column(i, 0)   = u0[i] - 2.0 * dt * v0[i] + 2.0 * dt * dt * a0;
     }
 
-    Isolator *raw = iso.get();
-    if (auto *b = dynamic_cast<BilinearIsolator *>(raw))
-      switch (n)
-      {
-        case 4:
-          time_loop<BilinearIsolator, 4>(w, b, motion, options_, n_steps, r);
-          break;
-        case 5:
-          time_loop<BilinearIsolator, 5>(w, b, motion, options_, n_steps, r);
-          break;
-        case 6:
-          time_loop<BilinearIsolator, 6>(w, b, motion, options_, n_steps, r);
-          break;
-        default:
-          time_loop<BilinearIsolator, 0>(w, b, motion, options_, n_steps, r);
-      }
-    else if (auto *l = dynamic_cast<LinearIsolator *>(raw))
-      time_loop<LinearIsolator, 0>(w, l, motion, options_, n_steps, r);
-    else
-      time_loop<Isolator, 0>(w, raw, motion, options_, n_steps, r);
-
-    for (std::size_t c = 0; c < w.n_contacts; ++c)
+    const double ratio = g.dt / dt;
+    sub                = std::lround(ratio);
+    integral           = sub > 0 && std::abs(ratio - static_cast<double>(sub)) < 1e-9 * ratio;
+    inv_sub            = 1.0 / static_cast<double>(sub > 0 ? sub : 1);
+    rec_j              = 0;
+    rec_s              = 0;
+    every = opt->output_interval > 0.0 ? std::max(1L, std::lround(opt->output_interval / dt)) : 0L;
+    if (every > 0)
     {
-      r.contacts[c].permanent_indentation = w.laws[c]->permanent_indentation();
-      r.contacts[c].dissipated_energy     = w.laws[c]->dissipated_energy();
-      r.energy.impact_dissipated += r.contacts[c].dissipated_energy;
+      const std::size_t n_samples = static_cast<std::size_t>(n_steps / every + 1);
+      const std::size_t ns        = storey_low.size();
+      r.history.interval          = static_cast<double>(every) * dt;
+      r.history.time.reserve(n_samples);
+      r.history.displacement.reserve(n_samples * n);
+      r.history.absolute_acceleration.reserve(n_samples * n);
+      r.history.interstorey_drift.reserve(n_samples * ns);
+      r.history.contact_force.reserve(n_samples * nc);
+      r.history.energy_input.reserve(n_samples);
+      r.history.energy_error.reserve(n_samples);
     }
-    return r;
+    w_in = w_visc = w_contact = p_in_prev = p_visc_prev = 0.0;
+    e0 = max_supplied = e_kin = e_strain = max_residual = 0.0;
+
+    auto *bil = dynamic_cast<BilinearIsolator *>(iso.get());
+    auto *lin = dynamic_cast<LinearIsolator *>(iso.get());
+    if (bil && n == 4)
+      dynamics = dynamics_dense<BilinearIsolator, 4>;
+    else if (bil && n == 5)
+      dynamics = dynamics_dense<BilinearIsolator, 5>;
+    else if (bil && n == 6)
+      dynamics = dynamics_dense<BilinearIsolator, 6>;
+    else if (bil)
+      dynamics = dynamics_general<BilinearIsolator>;
+    else if (lin)
+      dynamics = dynamics_general<LinearIsolator>;
+    else
+      dynamics = dynamics_general<Isolator>;
+  }
+
+  void CentralDifferenceStepper::Session::advance(long count)
+  {
+    while (count > 0 && step <= n_steps)
+    {
+      // The block ends at the next checkpoint (history sample, every 512 steps, the last step)
+      // so that the checks see the laws and the isolator at exactly that step.
+      long next = std::min(n_steps, (step + 511) / 512 * 512);
+      if (every > 0)
+        next = std::min(next, (step + every - 1) / every * every);
+      const long len = std::min({next - step + 1, block_steps, count});
+
+      // ü_g(t_n), linear interpolation; integer sub-stepping when Δt divides the record's dt.
+      const double     *rec   = motion->acceleration.data();
+      const std::size_t n_rec = motion->acceleration.size();
+      for (long q = 0; q < len; ++q)
+      {
+        std::size_t j;
+        double      frac;
+        if (integral)
+        {
+          j    = rec_j;
+          frac = static_cast<double>(rec_s) * inv_sub;
+          if (++rec_s == sub)
+          {
+            rec_s = 0;
+            ++rec_j;
+          }
+        }
+        else
+        {
+          const double x = static_cast<double>(step + q) * dt / motion->dt;
+          j              = static_cast<std::size_t>(x);
+          frac           = x - static_cast<double>(j);
+        }
+        double ag;
+        if (j + 1 < n_rec)
+          ag = rec[j] + frac * (rec[j + 1] - rec[j]);
+        else
+          ag = (j + 1 == n_rec && frac == 0.0) ? rec[j] : 0.0;
+        ag_block[static_cast<std::size_t>(q)] = ag;
+      }
+
+      dynamics(*this, len);
+      bookkeeping(len);
+      const long last = step + len - 1;
+      if ((every > 0 && last % every == 0) || (last & 511) == 0 || last == n_steps)
+        checkpoint(len - 1);
+      step += len;
+      count -= len;
+      // Keep u_{n−2}, u_{n−1}, u_n of the next step in columns 0-2.
+      for (std::size_t i = 0; i < n; ++i)
+        for (long q = 0; q < 3; ++q)
+          *column(i, q) = *column(i, len + q);
+    }
+  }
+
+  /// Central velocity v_n = (u_{n+1} − u_{n−1})/(2Δt), the step's acceleration
+  /// (u_{n+1} − 2u_n + u_{n−1})/Δt² + ü_g(t_n), peaks and the input and viscous powers of every
+  /// step of the block, then the trapezoid sums in step order.
+  void CentralDifferenceStepper::Session::bookkeeping(const long len)
+  {
+    const std::size_t L       = static_cast<std::size_t>(len);
+    const std::size_t B       = static_cast<std::size_t>(block_steps);
+    const double      inv_dt  = 1.0 / dt;
+    const double      inv_dt2 = inv_dt * inv_dt;
+    const double      half    = 0.5 * inv_dt;
+    const double     *agb     = ag_block.data();
+    double           *mvb     = mv.data();
+    double           *cvb     = cvv.data();
+    for (std::size_t q = 0; q < L; ++q)
+    {
+      mvb[q] = 0.0;
+      cvb[q] = 0.0;
+    }
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const double *__restrict u  = column(i, 0);
+      double *__restrict v        = velocity.data() + i * B;
+      double *__restrict pu       = lane_peak_u.data() + i * B;
+      double *__restrict pa       = lane_peak_a.data() + i * B;
+      double *__restrict mvq      = mvb;
+      double *__restrict cvq      = cvb;
+      const double *__restrict ag = agb;
+      const double mi             = mass[i];
+      const double cdi            = c->diag[i];
+      std::size_t  q              = 0;
+      for (; q + 2 <= L; q += 2)
+      {
+        const Pair u1 = load_pair(u + q + 1), u2 = load_pair(u + q + 2), u3 = load_pair(u + q + 3);
+        const Pair vi = (u3 - u1) * half;
+        const Pair ai = (u3 - 2.0 * u2 + u1) * inv_dt2 + load_pair(ag + q);
+        store_pair(v + q, vi);
+        store_pair(mvq + q, load_pair(mvq + q) + mi * vi);
+        store_pair(cvq + q, load_pair(cvq + q) + cdi * vi * vi);
+        store_pair(pu + q, max_pair(load_pair(pu + q), abs_pair(u2)));
+        store_pair(pa + q, max_pair(load_pair(pa + q), abs_pair(ai)));
+      }
+      for (; q < L; ++q)
+      {
+        const double vi = (u[q + 3] - u[q + 1]) * half;
+        const double ai = (u[q + 3] - 2.0 * u[q + 2] + u[q + 1]) * inv_dt2 + ag[q];
+        const double au = std::abs(u[q + 2]);
+        const double aa = std::abs(ai);
+        v[q]            = vi;
+        mvq[q] += mi * vi;
+        cvq[q] += cdi * vi * vi;
+        pu[q] = std::max(pu[q], au);
+        pa[q] = std::max(pa[q], aa);
+      }
+    }
+    for (std::size_t i = 0; i + 1 < n; ++i)
+    {
+      const double *__restrict v0 = velocity.data() + i * B;
+      const double *__restrict v1 = v0 + B;
+      double *__restrict cvq      = cvb;
+      const double cui            = c->upper[i];
+      for (std::size_t q = 0; q < L; ++q)
+        cvq[q] += 2.0 * cui * v0[q] * v1[q];
+    }
+    for (std::size_t s = 0; s < storey_low.size(); ++s)
+    {
+      const double *__restrict hi = column(static_cast<std::size_t>(storey_up[s]), 2);
+      const double *__restrict lo = column(static_cast<std::size_t>(storey_low[s]), 2);
+      double *__restrict pd       = lane_peak_d.data() + s * B;
+      std::size_t q               = 0;
+      for (; q + 2 <= L; q += 2)
+        store_pair(pd + q,
+                   max_pair(load_pair(pd + q), abs_pair(load_pair(hi + q) - load_pair(lo + q))));
+      for (; q < L; ++q)
+        pd[q] = std::max(pd[q], std::abs(hi[q] - lo[q]));
+    }
+
+    const long last = step + len - 1;
+    if ((every > 0 && last % every == 0) || (last & 511) == 0 || last == n_steps)
+    {
+      // Kinetic and strain energy only where they are looked at (E_0, checks, samples, end).
+      const std::size_t q   = L - 1;
+      double            mvv = 0.0, kuu = 0.0;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const double vi = velocity[i * B + q];
+        const double ui = *column(i, len + 1);
+        mvv += mass[i] * vi * vi;
+        kuu += k->diag[i] * ui * ui;
+      }
+      for (std::size_t i = 0; i + 1 < n; ++i)
+        kuu += 2.0 * k->upper[i] * *column(i, len + 1) * *column(i + 1, len + 1);
+      e_kin    = 0.5 * mvv;
+      e_strain = 0.5 * kuu + (iso ? iso->stored_energy() : 0.0);
+    }
+    for (std::size_t q = 0; q < L; ++q)
+    {
+      const double p_in   = -agb[q] * mvb[q];
+      const double p_visc = cvb[q];
+      if (step + static_cast<long>(q) == 0)
+        e0 = e_kin + e_strain;
+      else
+      {
+        w_in += 0.5 * (p_in_prev + p_in) * dt;
+        w_visc += 0.5 * (p_visc_prev + p_visc) * dt;
+      }
+      p_in_prev    = p_in;
+      p_visc_prev  = p_visc;
+      max_supplied = std::max(max_supplied, e0 + w_in);
+    }
+  }
+
+  /// Energy balance, divergence checks and the history sample at the block's last step.
+  void CentralDifferenceStepper::Session::checkpoint(const long q)
+  {
+    const long        this_step = step + q;
+    const double      t         = static_cast<double>(this_step) * dt;
+    const std::size_t B         = static_cast<std::size_t>(block_steps);
+    const std::size_t qq        = static_cast<std::size_t>(q);
+    EnergyBalance    &e         = r.energy;
+    e.initial                   = e0;
+    e.input                     = w_in;
+    e.kinetic                   = e_kin;
+    e.strain                    = e_strain;
+    e.viscous                   = w_visc;
+    e.hysteretic                = iso ? iso->dissipated_energy() : 0.0;
+    e.contact_work              = w_contact;
+    // Relative to the largest energy supplied so far, so that the first steps (where every term
+    // is tiny) do not dominate the maximum.
+    const double residual = std::abs(
+      e.residual_relative_error() *
+      std::max(std::abs(e0) + std::abs(w_in),
+               e_kin + e_strain + std::abs(w_visc) + std::abs(e.hysteretic) + std::abs(w_contact)));
+    const double err = residual / std::max(max_supplied, 1e-300);
+    max_residual     = std::max(max_residual, residual);
+    for (std::size_t i = 0; i < n; ++i)
+      if (!std::isfinite(*column(i, q + 3)))
+      {
+        std::ostringstream msg;
+        msg << "central difference diverged: u[" << i << "] is not finite at t = " << t + dt
+            << " s (step " << this_step + 1 << ", dt = " << dt << " s)";
+        throw DivergenceError(msg.str(), t + dt, this_step + 1, static_cast<int>(i));
+      }
+    const double factor = opt->divergence_energy_factor;
+    if (e_kin + e_strain > factor * max_supplied && e_kin + e_strain > 1e-12)
+    {
+      std::size_t worst = 0;
+      for (std::size_t i = 1; i < n; ++i)
+        if (std::abs(velocity[i * B + qq]) > std::abs(velocity[worst * B + qq]))
+          worst = i;
+      std::ostringstream msg;
+      msg << "central difference diverged: mechanical energy " << e_kin + e_strain << " J exceeds "
+          << factor << " x the energy supplied (" << max_supplied << " J) at t = " << t
+          << " s (step " << this_step << ", fastest DoF " << worst << ", dt = " << dt << " s)";
+      throw DivergenceError(msg.str(), t, this_step, static_cast<int>(worst));
+    }
+    if (every > 0 && this_step % every == 0)
+    {
+      ResponseHistory &h = r.history;
+      h.time.push_back(t);
+      for (std::size_t i = 0; i < n; ++i)
+        h.displacement.push_back(*column(i, q + 2));
+      // The step's acceleration (u_{n+1} − 2u_n + u_{n−1})/Δt² + ü_g(t_n), as in bookkeeping().
+      const double inv_dt = 1.0 / dt;
+      for (std::size_t i = 0; i < n; ++i)
+        h.absolute_acceleration.push_back(
+          (*column(i, q + 3) - 2.0 * *column(i, q + 2) + *column(i, q + 1)) * (inv_dt * inv_dt) +
+          ag_block[qq]);
+      for (std::size_t s = 0; s < storey_low.size(); ++s)
+        h.interstorey_drift.push_back(*column(static_cast<std::size_t>(storey_up[s]), q + 2) -
+                                      *column(static_cast<std::size_t>(storey_low[s]), q + 2));
+      h.contact_force.insert(h.contact_force.end(), cf.begin(), cf.end());
+      h.energy_input.push_back(e0 + w_in);
+      h.energy_error.push_back(err);
+    }
+  }
+
+  Response CentralDifferenceStepper::Session::response() const
+  {
+    Response          out    = r;
+    const std::size_t B      = static_cast<std::size_t>(block_steps);
+    const auto        reduce = [B](const std::vector<double> &lanes, std::vector<double> &peak)
+    {
+      for (std::size_t i = 0; i < peak.size(); ++i)
+        for (std::size_t q = 0; q < B; ++q)
+          peak[i] = std::max(peak[i], lanes[i * B + q]);
+    };
+    reduce(lane_peak_u, out.peak_displacement);
+    reduce(lane_peak_a, out.peak_absolute_acceleration);
+    reduce(lane_peak_d, out.peak_interstorey_drift);
+    EnergyBalance &e     = out.energy;
+    e.relative_error     = e.residual_relative_error();
+    e.max_relative_error = max_residual / std::max(max_supplied, 1e-300);
+    e.impact_dissipated  = 0.0;
+    for (std::size_t q = 0; q < laws.size(); ++q)
+    {
+      ContactResult &cr        = out.contacts[q];
+      cr.peak_force            = peak_force[q];
+      cr.permanent_indentation = laws[q]->permanent_indentation();
+      cr.dissipated_energy     = laws[q]->dissipated_energy();
+      e.impact_dissipated += cr.dissipated_energy;
+    }
+    return out;
+  }
+
+  CentralDifferenceStepper::CentralDifferenceStepper(const CentralDifference &integrator)
+    : integrator_(&integrator)
+    , session_(std::make_unique<Session>())
+  {
+  }
+
+  CentralDifferenceStepper::~CentralDifferenceStepper() = default;
+  CentralDifferenceStepper::CentralDifferenceStepper(CentralDifferenceStepper &&) noexcept =
+    default;
+  CentralDifferenceStepper &
+  CentralDifferenceStepper::operator=(CentralDifferenceStepper &&) noexcept = default;
+
+  void CentralDifferenceStepper::init(const GroundMotion &motion)
+  {
+    session_->init(*integrator_, motion);
+    initialised_ = true;
+  }
+
+  void CentralDifferenceStepper::require_init(const char *what) const
+  {
+    if (!initialised_)
+      throw std::logic_error(std::string("CentralDifferenceStepper::") + what +
+                             " called before init()");
+  }
+
+  void CentralDifferenceStepper::step()
+  {
+    require_init("step");
+    if (finished())
+    {
+      std::ostringstream msg;
+      msg << "CentralDifferenceStepper::step: the run ended at step " << session_->n_steps
+          << " (t = " << static_cast<double>(session_->n_steps) * session_->dt << " s)";
+      throw std::logic_error(msg.str());
+    }
+    session_->advance(1);
+  }
+
+  long CentralDifferenceStepper::advance(const long count)
+  {
+    require_init("advance");
+    const long before = session_->step;
+    session_->advance(std::max(count, 0L));
+    return session_->step - before;
+  }
+
+  long CentralDifferenceStepper::step_index() const
+  {
+    return session_->step;
+  }
+
+  double CentralDifferenceStepper::time() const
+  {
+    return static_cast<double>(session_->step) * session_->dt;
+  }
+
+  double CentralDifferenceStepper::dt() const
+  {
+    return session_->dt;
+  }
+
+  long CentralDifferenceStepper::last_step() const
+  {
+    return session_->n_steps;
+  }
+
+  bool CentralDifferenceStepper::finished() const
+  {
+    return initialised_ && session_->step > session_->n_steps;
+  }
+
+  std::vector<double> CentralDifferenceStepper::displacement(const int level) const
+  {
+    require_init("displacement");
+    if (level < -2 || level > 0)
+      throw std::invalid_argument("CentralDifferenceStepper::displacement: level = " +
+                                  std::to_string(level) + " (must be 0, -1 or -2)");
+    std::vector<double> u(session_->n);
+    for (std::size_t i = 0; i < u.size(); ++i)
+      u[i] = *session_->column(i, 2 + level);
+    return u;
+  }
+
+  Response CentralDifferenceStepper::response() const
+  {
+    require_init("response");
+    return session_->response();
+  }
+
+  Response CentralDifference::run(const GroundMotion &motion) const
+  {
+    CentralDifferenceStepper stepper(*this);
+    stepper.init(motion);
+    stepper.advance(stepper.last_step() + 1);
+    return stepper.response();
   }
 } // namespace kimp::lumped

@@ -3,6 +3,7 @@
 // stable for Δt < 2/ω_max (3.12) with ω_max including every contact's ω_imp = √(k_t/m_eff) (3.13).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -81,10 +82,19 @@ namespace kimp::lumped
    * force term depends on the forces just evaluated. Contacts and the isolator are evaluated
    * explicitly at u_n (trial + commit every step); a law whose gap is open and which is not in
    * contact is not called, and is brought up to date with the last open state just before it
-   * closes (so its first contact step starts from the true previous, open, deformation).
+   * closes (so its first contact step starts from the true previous, open, deformation). Only
+   * the DOFs that can carry a force (isolator, contacts) enter the force term.
+   *
+   * The loop runs in blocks of up to 64 steps that end at every check point (history sample,
+   * every 512 steps, the last step): the dynamics of a block first, then velocities,
+   * accelerations, peaks and the input and viscous powers of all its steps in loops over the
+   * steps (vectorised), then the trapezoid sums in step order. Every quantity is computed with
+   * the same operations in the same order as a step-by-step loop, so the results do not depend
+   * on the blocking (bitwise).
    *
    * Recorded at every t_n (n = 0..N): u_n, the step's acceleration (u_{n+1} − 2u_n + u_{n−1})/Δt²
-   * + ü_g(t_n) (PHYSICS.md §5), the contact forces F_n, and the energy terms.
+   * + ü_g(t_n) (PHYSICS.md §5), the contact forces F_n, and the energy terms (E_kin and E_strain
+   * only at the check points, where they are used).
    */
   class CentralDifference
   {
@@ -101,16 +111,81 @@ namespace kimp::lumped
     double time_step(double record_dt) const;
 
     /**
-     * Integrate from rest (or the initial conditions) under ü_g (zero past the record's end).
+     * Integrate from rest (or the initial conditions) under ü_g (zero past the record's end):
+     * a CentralDifferenceStepper advanced from init() to the end.
      * @throws TimeStepError, DivergenceError (time, step and DoF named).
      */
     Response run(const GroundMotion &motion) const;
 
     const PoundingModel &model() const { return model_; }
 
+    const CentralDifferenceOptions &options() const { return options_; }
+
   private:
     PoundingModel            model_;
     CentralDifferenceOptions options_;
     StabilityLimit           stability_;
+  };
+
+  /**
+   * Step-by-step integration with a CentralDifference (MFEM ODESolver Init/Step; STYLE.md §6.10).
+   * Time is counted in integer steps, t_n = n·Δt (never accumulated); Δt = time_step(motion.dt)
+   * is fixed at init(); the run has steps n = 0..N, N = last_step() = round(duration/Δt).
+   *
+   * Contract:
+   *  - init(motion) [in: motion, which must outlive the stepper or the next init()]: (re)starts
+   *    at n = 0 from the options' initial conditions (u_0, u̇_0, with u_{−1}, u_{−2} from a Taylor
+   *    expansion), with fresh clones of every contact law and of the isolator in their virgin
+   *    state, and an empty Response. Whatever a previous run left behind is discarded, so a run
+   *    after init() is identical to a run on a new stepper.
+   *  - step() [in: n, u_{n−1}, u_n (and u_{n−2}), the laws' and the isolator's state committed at
+   *    t_{n−1}; out: their state committed at t_n, u_{n+1}, the response at t_n recorded (peaks,
+   *    energies, history sample), n ← n + 1]. The forces are evaluated explicitly at u_n and
+   *    committed every step; nothing is ever reverted.
+   *  - advance(k): min(k, N + 1 − n) steps, identical to as many step() calls (faster: the
+   *    bookkeeping runs vectorised over blocks of steps).
+   *  - Integrators do no I/O; numerical failure throws DivergenceError (time, step, DoF), after
+   *    which the stepper must be init()-ed again.
+   */
+  class CentralDifferenceStepper
+  {
+  public:
+    /// @param integrator model, options and stability limit; must outlive the stepper.
+    explicit CentralDifferenceStepper(const CentralDifference &integrator);
+    ~CentralDifferenceStepper();
+    CentralDifferenceStepper(CentralDifferenceStepper &&) noexcept;
+    CentralDifferenceStepper &operator=(CentralDifferenceStepper &&) noexcept;
+
+    /// Start or restart under `motion`. @throws TimeStepError, std::invalid_argument.
+    void init(const GroundMotion &motion);
+    /// One step (see the contract). @throws std::logic_error before init() or after the end.
+    void step();
+    /// Up to `count` steps; returns how many were taken (0 at the end).
+    long advance(long count);
+
+    /// Index n of the next step to evaluate (0 after init(), N + 1 at the end).
+    long step_index() const;
+    /// t_n = n·Δt, s.
+    double time() const;
+    /// Δt, s.
+    double dt() const;
+    /// N, the index of the last step (t_N = duration).
+    long last_step() const;
+    /// True once step N has been evaluated.
+    bool finished() const;
+    /// u_{n+level} for level 0, −1, −2 (m, relative to the ground).
+    std::vector<double> displacement(int level = 0) const;
+    /// The response recorded at t_0..t_{n−1} (energy fields as of the last check: every history
+    /// sample, every 512 steps and the last step).
+    Response response() const;
+
+    struct Session; ///< implementation (central_difference.cc)
+
+  private:
+    void require_init(const char *what) const;
+
+    const CentralDifference *integrator_;
+    std::unique_ptr<Session> session_;
+    bool                     initialised_ = false;
   };
 } // namespace kimp::lumped

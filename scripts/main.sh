@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# The README's main command: install dependencies, build, and run the end-to-end wall-height study
+# on its embedded defaults (mesh -> FEM -> fitted k_imp -> building response, charts, report).
+# Output goes to ./out/study (or the first argument). Run from the repository root so that the
+# shared strong-motion records (../shared/data/records) are found when present.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+out="${1:-$root/out/study}"
+bash "$root/scripts/install-deps.sh"
+bash "$root/scripts/build.sh"
+cd "$root"
+"${KIMP_BUILD_DIR:-$root/build}/kimp" study data/scenes/wall_height_study.yaml -o "$out"
+echo "kimp: study written to $out (report: $out/report.md)"

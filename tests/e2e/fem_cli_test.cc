@@ -1,0 +1,202 @@
+// `kimp fem` end to end: fem.h5 readable by read_fem_cases with the physics of a rigid-slab
+// impact (momentum balance, COR in (0, 1.2)), summary.json and CSV consistent with it, refused
+// scenes (overlap, dt above the stability limit) leaving no result files, and 1 vs 2 MPI ranks.
+#ifdef KIMP_WITH_FEM
+
+#  include <cmath>
+#  include <cstdlib>
+#  include <filesystem>
+#  include <fstream>
+#  include <gtest/gtest.h>
+#  include <nlohmann/json.hpp>
+#  include <sstream>
+#  include <string>
+#  include <sys/wait.h>
+#  include <unistd.h>
+#  include <vector>
+
+#  include "pipeline/fem_results.h"
+
+namespace
+{
+  constexpr double momentum_tolerance = 2e-3;  ///< relative: impulse vs slab momentum change
+  constexpr double rank_tolerance     = 1e-10; ///< relative: 1 vs 2 MPI ranks
+
+  /// A fresh directory, removed at the end of the test.
+  class TempDir
+  {
+  public:
+    explicit TempDir(const std::string &tag)
+      : path_(std::filesystem::temp_directory_path() /
+              ("kimp_" + tag + "_" + std::to_string(::getpid())))
+    {
+      std::filesystem::remove_all(path_);
+      std::filesystem::create_directories(path_);
+    }
+    ~TempDir() { std::filesystem::remove_all(path_); }
+    const std::filesystem::path &path() const { return path_; }
+
+  private:
+    std::filesystem::path path_;
+  };
+
+  std::string read_text(const std::filesystem::path &file)
+  {
+    std::ifstream      in(file);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
+
+  struct KimpRun
+  {
+    int         exit_code = -1;
+    std::string err;
+  };
+
+  /// `kimp <arguments>` in `dir`, stdout and stderr captured to files there.
+  KimpRun kimp(const std::string &arguments, const std::filesystem::path &dir)
+  {
+    const std::filesystem::path err     = dir / "stderr.txt";
+    const std::string           command = std::string("cd '") + dir.string() +
+                                "' && " KIMP_BINARY_DIR "/kimp " + arguments +
+                                " > stdout.txt 2> '" + err.string() + "'";
+    const int status = std::system(command.c_str());
+    KimpRun   run;
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    run.err       = read_text(err);
+    return run;
+  }
+
+  void write(const std::filesystem::path &file, const std::string &text)
+  {
+    std::ofstream(file) << text;
+  }
+
+  /// Coarse scene, seconds of run time (rigid slab unless `rigid` is false), written to
+  /// `dir`/scene.yaml.
+  void write_quick_scene(const std::filesystem::path &dir,
+                         const std::string           &extra = "",
+                         bool                         rigid = true)
+  {
+    const std::string slab = rigid ? "slab: {rigid: true}\n" : "slab: {rigid: false}\n";
+    write(dir / "scene.yaml",
+          "wall_heights: [\"1.25 m\"]\n"
+          "mesh: {h_contact: \"5 cm\", h_max: \"25 cm\", grading: 1.5}\n" +
+            slab + extra);
+  }
+
+  TEST(FemCli, RigidSlabImpactConservesMomentumAndRebounds)
+  {
+    const TempDir dir("fem_cli");
+    write_quick_scene(dir.path(), "dynamics: {end_time: \"40 ms\"}\n");
+    const KimpRun run = kimp("fem scene.yaml -o out", dir.path());
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+
+    const std::vector<kimp::pipeline::FemCase> cases =
+      kimp::pipeline::read_fem_cases(dir.path() / "out/fem.h5");
+    ASSERT_EQ(cases.size(), 1u);
+    const kimp::pipeline::FemCase &c = cases[0];
+    EXPECT_EQ(c.name, "H1.25");
+    EXPECT_EQ(c.status, "ok");
+    const double peak  = c.summary.at("peak_force");
+    const double cor   = c.summary.at("apparent_cor");
+    const double v_end = c.summary.at("rebound_velocity");
+    const double pulse = c.summary.at("impulse");
+    const double v0    = c.impact_velocity;
+    EXPECT_GT(peak, 0.0);
+    EXPECT_GT(cor, 0.0);
+    EXPECT_LT(cor, 1.2);
+    EXPECT_NEAR(c.slab_mass, 2400.0 * 8.0 * 0.2, 1e-9) << "rho L t of the default slab";
+    // The contact force is the only force on a rigid slab: impulse = m (v0 - v_end).
+    const double momentum_change = c.slab_mass * (v0 - v_end);
+    EXPECT_NEAR(pulse, momentum_change, momentum_tolerance * momentum_change)
+      << "impulse " << pulse << " N s/m, m " << c.slab_mass << " kg/m, v_end " << v_end;
+    ASSERT_FALSE(c.time.empty());
+    EXPECT_EQ(c.contact_force.size(), c.time.size());
+    EXPECT_EQ(c.labels.at("slab"), "rigid");
+
+    const nlohmann::json summary =
+      nlohmann::json::parse(read_text(dir.path() / "out/summary.json"));
+    EXPECT_EQ(summary.at("cases").at("H1.25").at("peak_force").get<double>(), peak);
+    EXPECT_EQ(summary.at("n_ranks"), 1);
+
+    // CSV: one row per sample, the raw force written with round-trip precision.
+    std::ifstream csv(dir.path() / "out/fem_histories.csv");
+    std::string   line;
+    std::getline(csv, line);
+    EXPECT_EQ(line.rfind("case,time_s,contact_force_N_per_m", 0), 0u) << line;
+    std::size_t rows = 0;
+    while (std::getline(csv, line))
+    {
+      std::istringstream fields(line);
+      std::string        name, time, force;
+      std::getline(fields, name, ',');
+      std::getline(fields, time, ',');
+      std::getline(fields, force, ',');
+      ASSERT_LT(rows, c.time.size());
+      EXPECT_EQ(std::stod(force), c.contact_force[rows]) << "row " << rows;
+      ++rows;
+    }
+    EXPECT_EQ(rows, c.time.size());
+  }
+
+  TEST(FemCli, OverlappingSceneFailsWithTheKeyAndWritesNoResults)
+  {
+    const TempDir dir("fem_cli_overlap");
+    write_quick_scene(dir.path(), "geometry:\n  gap: \"0 mm\"\n");
+    const KimpRun run = kimp("fem scene.yaml -o out", dir.path());
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.err.find("scene.yaml:5: geometry.gap = 0 mm"), std::string::npos) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "out/fem.h5"));
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "out/summary.json"));
+  }
+
+  TEST(FemCli, TimeStepAboveTheStabilityLimitFailsAndWritesNoResults)
+  {
+    const TempDir dir("fem_cli_dt");
+    write_quick_scene(dir.path(), "dynamics: {dt: \"1 ms\"}\n");
+    const KimpRun run = kimp("fem scene.yaml -o out", dir.path());
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.err.find("H1.25"), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("dt"), std::string::npos) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "out/fem.h5"));
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "out/summary.json"));
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "out/fem_histories.csv"));
+    for (const auto &entry : std::filesystem::directory_iterator(dir.path() / "out"))
+      EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos)
+        << "temporary file left: " << entry.path();
+  }
+
+  /// Run by the ctest test e2e_fem_cli_mpi_two_ranks (label mpi), which sets KIMP_MPIEXEC.
+  TEST(FemCliMpi, TwoRanksGiveTheSameForceHistoryAsOne)
+  {
+    const char *mpiexec = std::getenv("KIMP_MPIEXEC");
+    if (mpiexec == nullptr || *mpiexec == 0)
+      GTEST_SKIP() << "KIMP_MPIEXEC not set: run through ctest -L mpi";
+    const TempDir dir("fem_cli_mpi");
+    write_quick_scene(dir.path(), "dynamics: {end_time: \"3 ms\"}\n", false);
+    const KimpRun one = kimp("-q fem scene.yaml -o one", dir.path());
+    ASSERT_EQ(one.exit_code, 0) << one.err;
+    const std::string command = std::string(mpiexec) +
+                                " -np 2 --allow-run-as-root --oversubscribe " KIMP_BINARY_DIR
+                                "/kimp -q fem scene.yaml -o two";
+    const std::string full = "cd '" + dir.path().string() + "' && " + command + " > mpi.txt 2>&1";
+    ASSERT_EQ(std::system(full.c_str()), 0) << read_text(dir.path() / "mpi.txt");
+
+    const auto a = kimp::pipeline::read_fem_cases(dir.path() / "one/fem.h5");
+    const auto b = kimp::pipeline::read_fem_cases(dir.path() / "two/fem.h5");
+    ASSERT_EQ(a.size(), 1u);
+    ASSERT_EQ(b.size(), 1u);
+    EXPECT_EQ(b[0].summary.at("n_ranks"), 2.0);
+    const double peak = a[0].summary.at("peak_force");
+    EXPECT_GT(peak, 0.0);
+    EXPECT_NEAR(b[0].summary.at("peak_force"), peak, rank_tolerance * peak);
+    ASSERT_EQ(a[0].contact_force.size(), b[0].contact_force.size());
+    for (std::size_t i = 0; i < a[0].contact_force.size(); ++i)
+      ASSERT_NEAR(b[0].contact_force[i], a[0].contact_force[i], rank_tolerance * peak)
+        << "sample " << i << ", t = " << a[0].time[i] << " s";
+  }
+} // namespace
+
+#endif // KIMP_WITH_FEM

@@ -1,0 +1,247 @@
+// End-to-end `kimp lumped`: the built binary on small scenes; exit codes, lumped.h5 (units,
+// status), summary.json, peaks.csv, failed cases, bad scenes leaving no output, --print-defaults.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "pipeline/lumped_scene.h"
+
+namespace
+{
+  namespace fs = std::filesystem;
+
+  struct KimpRun
+  {
+    int         exit_code = -1;
+    std::string out;
+    std::string err;
+  };
+
+  std::string slurp(const fs::path &file)
+  {
+    std::ifstream      in(file);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  /// A fresh directory under the system temp directory, removed at the end of the test.
+  class TempDir
+  {
+  public:
+    explicit TempDir(const std::string &tag)
+      : path_(fs::temp_directory_path() /
+              ("kimp_e2e_lumped_" + tag + "_" + std::to_string(::getpid())))
+    {
+      fs::remove_all(path_);
+      fs::create_directories(path_);
+    }
+    ~TempDir() { fs::remove_all(path_); }
+    const fs::path &path() const { return path_; }
+
+  private:
+    fs::path path_;
+  };
+
+  KimpRun run_kimp(const std::string &arguments, const fs::path &dir)
+  {
+    const fs::path    out = dir / "stdout.txt";
+    const fs::path    err = dir / "stderr.txt";
+    const std::string cmd = std::string(KIMP_BINARY_DIR) + "/kimp " + arguments + " >" +
+                            out.string() + " 2>" + err.string();
+    const int status = std::system(cmd.c_str());
+    KimpRun   run;
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    run.out       = slurp(out);
+    run.err       = slurp(err);
+    return run;
+  }
+
+  /// Read access to a results file with the HDF5 C API.
+  class H5
+  {
+  public:
+    explicit H5(const fs::path &file)
+      : id_(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT))
+    {
+    }
+    ~H5()
+    {
+      if (id_ >= 0)
+        H5Fclose(id_);
+    }
+    bool ok() const { return id_ >= 0; }
+    bool exists(const std::string &path) const
+    {
+      return H5Lexists(id_, path.c_str(), H5P_DEFAULT) > 0;
+    }
+    std::string attribute(const std::string &path, const std::string &name) const
+    {
+      if (H5Aexists_by_name(id_, path.c_str(), name.c_str(), H5P_DEFAULT) <= 0)
+        return "<missing>";
+      const hid_t a    = H5Aopen_by_name(id_, path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
+      const hid_t type = H5Tcopy(H5T_C_S1);
+      H5Tset_size(type, H5T_VARIABLE);
+      H5Tset_cset(type, H5T_CSET_UTF8);
+      char *pointer = nullptr;
+      H5Aread(a, type, &pointer);
+      std::string result = pointer != nullptr ? pointer : "";
+      H5free_memory(pointer);
+      H5Tclose(type);
+      H5Aclose(a);
+      return result;
+    }
+    std::vector<double> doubles(const std::string &path) const
+    {
+      const hid_t         d     = H5Dopen2(id_, path.c_str(), H5P_DEFAULT);
+      const hid_t         space = H5Dget_space(d);
+      const hssize_t      n     = H5Sget_simple_extent_npoints(space);
+      std::vector<double> values(static_cast<std::size_t>(n > 0 ? n : 0));
+      H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+      H5Sclose(space);
+      H5Dclose(d);
+      return values;
+    }
+
+  private:
+    hid_t id_;
+  };
+
+  /// Isolated 4-storey building, walls at 4 cm, 6 s of the synthetic motion: a few impacts.
+  const char *small_scene = "walls:\n"
+                            "  left:\n"
+                            "    gap: \"4 cm\"\n"
+                            "  right:\n"
+                            "    gap: \"4 cm\"\n"
+                            "ground_motion:\n"
+                            "  record: synthetic\n"
+                            "  duration: \"6 s\"\n"
+                            "integration:\n"
+                            "  dt: \"1e-4 s\"\n"
+                            "  output_interval: \"0.02 s\"\n"
+                            "  companion: true\n"
+                            "cases:\n"
+                            "  - name: mkv\n"
+                            "  - name: hysteretic\n"
+                            "    law: hysteretic\n"
+                            "    k: \"750 kN/mm^1.5\"\n";
+
+  constexpr double energy_balance_tolerance = 0.01; ///< relative error of the energy balance
+  /// Penetration bound, m: the whole building (1530 t) arriving at about the peak ground velocity
+  /// (~1 m/s) is stopped by k = 2500 kN/mm within v·sqrt(m/k) = 2.5 cm; without walls the base
+  /// moves about 23 cm under this motion.
+  constexpr double max_overshoot = 0.025;
+} // namespace
+
+TEST(LumpedCli, WritesResultsFileSummaryAndPeaks)
+{
+  TempDir dir("ok");
+  std::ofstream(dir.path() / "scene.yaml") << small_scene;
+  const fs::path out = dir.path() / "out";
+  const KimpRun  run =
+    run_kimp("lumped " + (dir.path() / "scene.yaml").string() + " -o " + out.string(), dir.path());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+
+  H5 h5(out / "lumped.h5");
+  ASSERT_TRUE(h5.ok());
+  for (const char *c : {"mkv", "hysteretic"})
+  {
+    const std::string g = std::string("/lumped/") + c;
+    EXPECT_EQ(h5.attribute(g, "status"), "ok") << g;
+    EXPECT_EQ(h5.attribute(g + "/peaks/displacement", "units"), "m");
+    EXPECT_EQ(h5.attribute(g + "/peaks/absolute_acceleration", "units"), "m/s^2");
+    EXPECT_EQ(h5.attribute(g + "/history/displacement/value", "units"), "m");
+    EXPECT_EQ(h5.attribute(g + "/history/displacement/time", "units"), "s");
+    EXPECT_EQ(h5.attribute(g + "/history/contact_force/value", "units"), "N");
+    EXPECT_EQ(h5.attribute(g + "/dt", "units"), "s");
+    EXPECT_EQ(h5.attribute(g + "/modal/building/period", "units"), "s");
+    EXPECT_TRUE(h5.exists(g + "/contacts/left_wall/impact_time"));
+    EXPECT_TRUE(h5.exists(g + "/energy/relative_error"));
+    EXPECT_TRUE(h5.exists(g + "/amplification/displacement"));
+    // The base cannot travel much past the wall: |u_0| <= gap + a small penetration.
+    const std::vector<double> peaks = h5.doubles(g + "/peaks/displacement");
+    ASSERT_EQ(peaks.size(), 5u);
+    EXPECT_GT(peaks[0], 0.04) << c << ": the walls were reached";
+    EXPECT_LT(peaks[0], 0.04 + max_overshoot) << c;
+  }
+  EXPECT_NE(h5.attribute("/input/scene", "units"), "<missing>");
+
+  const nlohmann::json summary = nlohmann::json::parse(slurp(out / "summary.json"));
+  ASSERT_EQ(summary["cases"].size(), 2u);
+  for (const auto &c : summary["cases"])
+  {
+    EXPECT_EQ(c["status"], "ok");
+    EXPECT_EQ(c["peaks"]["displacement"].size(), 5u);
+    EXPECT_GT(c["n_impacts"].get<int>(), 0) << c["name"];
+    EXPECT_LT(c["energy"]["relative_error"].get<double>(), energy_balance_tolerance) << c["name"];
+    EXPECT_NEAR(c["dt"].get<double>(), 1e-4, 1e-12);
+    EXPECT_EQ(c["n_steps"].get<long>(), 60000);
+    // Isolated period with K1 (contacts open): T1 well above the superstructure's.
+    EXPECT_GT(c["periods"]["building"][0].get<double>(), 0.5);
+  }
+
+  const std::string csv     = slurp(out / "peaks.csv");
+  std::size_t       n_lines = 0;
+  for (const char ch : csv)
+    n_lines += ch == '\n';
+  EXPECT_EQ(n_lines, 1u + 2u * 5u) << csv;
+  EXPECT_EQ(csv.rfind("case,dof,peak_displacement_m", 0), 0u) << csv;
+}
+
+TEST(LumpedCli, FailedCaseIsRecordedAndExitsNonZero)
+{
+  TempDir dir("fail");
+  // Two cases at dt = 5e-4 s: k = 2500 kN/mm is stable (dt_cr of about 0.01 s); k = 1e8 kN/mm
+  // has omega_imp = sqrt(1e14 N/m / 195 t) = 2.3e4 rad/s, dt_cr of about 9e-5 s: refused.
+  const std::string scene =
+    std::string("walls:\n  left:\n    gap: \"4 cm\"\n  right:\n    gap: \"4 cm\"\n"
+                "ground_motion:\n  duration: \"3 s\"\n"
+                "integration:\n  dt: \"5e-4 s\"\n  output_interval: \"0.05 s\"\n"
+                "cases:\n  - name: soft\n    k: \"2500 kN/mm\"\n"
+                "  - name: stiff\n    k: \"1e8 kN/mm\"\n");
+  std::ofstream(dir.path() / "scene.yaml") << scene;
+  const fs::path out = dir.path() / "out";
+  const KimpRun  run =
+    run_kimp("lumped " + (dir.path() / "scene.yaml").string() + " -o " + out.string(), dir.path());
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("stiff"), std::string::npos) << run.err;
+  H5 h5(out / "lumped.h5");
+  ASSERT_TRUE(h5.ok()) << "the other cases are written";
+  EXPECT_EQ(h5.attribute("/lumped/soft", "status"), "ok");
+  const std::string failed = h5.attribute("/lumped/stiff", "status");
+  EXPECT_EQ(failed.rfind("failed: ", 0), 0u) << failed;
+  EXPECT_NE(failed.find("stab"), std::string::npos) << "names the stability limit: " << failed;
+  const nlohmann::json summary = nlohmann::json::parse(slurp(out / "summary.json"));
+  EXPECT_EQ(summary["cases"][1]["status"].get<std::string>().rfind("failed", 0), 0u);
+}
+
+TEST(LumpedCli, BadSceneNamesFileLineKeyAndWritesNothing)
+{
+  TempDir dir("bad");
+  std::ofstream(dir.path() / "bad.yaml") << "isolator:\n  K1: \"200 MN/m\"\n  K2: \"300 MN/m\"\n";
+  const fs::path out = dir.path() / "out";
+  const KimpRun  run =
+    run_kimp("lumped " + (dir.path() / "bad.yaml").string() + " -o " + out.string(), dir.path());
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("bad.yaml:3: isolator.K2 = 300 MN/m"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(out / "lumped.h5"));
+  EXPECT_FALSE(fs::exists(out / "summary.json"));
+  EXPECT_FALSE(fs::exists(out / "peaks.csv"));
+}
+
+TEST(LumpedCli, PrintDefaultsReadsBackToTheDefaults)
+{
+  TempDir       dir("defaults");
+  const KimpRun run = run_kimp("lumped --print-defaults", dir.path());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  using kimp::pipeline::LumpedScene;
+  const LumpedScene back = kimp::pipeline::load_scene_text<LumpedScene>(run.out, "defaults");
+  EXPECT_EQ(kimp::pipeline::to_json_text(back), kimp::pipeline::to_json_text(LumpedScene{}));
+}

@@ -1,0 +1,160 @@
+// `kimp mesh` end to end: the mesh files, the deal.II reading of them (areas of every region equal
+// the scene's rectangles), previews, summary.json, and a refused overlapping scene.
+#ifdef KIMP_WITH_FEM
+
+#  include <cmath>
+#  include <cstdlib>
+#  include <filesystem>
+#  include <fstream>
+#  include <gtest/gtest.h>
+#  include <nlohmann/json.hpp>
+#  include <sstream>
+#  include <string>
+#  include <sys/wait.h>
+#  include <unistd.h>
+
+namespace
+{
+  constexpr double area_tolerance = 1e-10; ///< relative: rectangles meshed exactly
+
+  /// A fresh directory, removed at the end of the test.
+  class TempDir
+  {
+  public:
+    explicit TempDir(const std::string &tag)
+      : path_(std::filesystem::temp_directory_path() /
+              ("kimp_" + tag + "_" + std::to_string(::getpid())))
+    {
+      std::filesystem::remove_all(path_);
+      std::filesystem::create_directories(path_);
+    }
+    ~TempDir() { std::filesystem::remove_all(path_); }
+    const std::filesystem::path &path() const { return path_; }
+
+  private:
+    std::filesystem::path path_;
+  };
+
+  std::string read_text(const std::filesystem::path &file)
+  {
+    std::ifstream      in(file);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
+
+  struct KimpRun
+  {
+    int         exit_code = -1;
+    std::string err;
+  };
+
+  /// `kimp <arguments>` in `dir`, stdout and stderr captured to files there.
+  KimpRun kimp(const std::string &arguments, const std::filesystem::path &dir)
+  {
+    const std::filesystem::path err     = dir / "stderr.txt";
+    const std::string           command = std::string("cd '") + dir.string() +
+                                "' && " KIMP_BINARY_DIR "/kimp " + arguments +
+                                " > stdout.txt 2> '" + err.string() + "'";
+    const int status = std::system(command.c_str());
+    KimpRun   run;
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    run.err       = read_text(err);
+    return run;
+  }
+
+  bool matplotlib_available()
+  {
+    return std::system("/usr/bin/python3 -c 'import matplotlib, numpy' > /dev/null 2>&1") == 0;
+  }
+
+  void write(const std::filesystem::path &file, const std::string &text)
+  {
+    std::ofstream(file) << text;
+  }
+
+  TEST(MeshCli, WritesMeshesWhoseRegionsHaveTheSceneAreas)
+  {
+    const TempDir dir("mesh_cli");
+    write(dir.path() / "scene.yaml",
+          "wall_heights: [\"1.0 m\", \"1.5 m\"]\n"
+          "mesh: {h_contact: \"5 cm\", h_max: \"20 cm\", grading: 1.5}\n");
+    const KimpRun run = kimp("mesh scene.yaml -o out", dir.path());
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+
+    const nlohmann::json summary =
+      nlohmann::json::parse(read_text(dir.path() / "out/summary.json"));
+    EXPECT_EQ(summary.at("command"), "mesh");
+    const double wall_thickness = 0.25, backfill_width = 2.0, slab_length = 8.0,
+                 slab_thickness = 0.20;
+    std::size_t previous_cells  = 0;
+    for (const auto &[name, height] : {std::pair{"H1.00", 1.0}, std::pair{"H1.50", 1.5}})
+    {
+      ASSERT_TRUE(summary.at("cases").contains(name)) << summary.dump(2);
+      const nlohmann::json &entry = summary.at("cases").at(name);
+      const auto            msh   = dir.path() / "out" / entry.at("mesh_file").get<std::string>();
+      ASSERT_TRUE(std::filesystem::is_regular_file(msh)) << msh;
+      EXPECT_EQ(read_text(msh).rfind("$MeshFormat\n4.1 0 8", 0), 0u) << "ASCII MSH 4.1: " << msh;
+      EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / "out" /
+                                                   entry.at("vtu_preview").get<std::string>()));
+
+      // deal.II's reading of the file: material id 1 slab, 2 wall, 3 soil (geometry/scene_ids.h).
+      const nlohmann::json &area        = entry.at("area_by_material");
+      const auto            expect_area = [&](const char *id, double expected)
+      {
+        ASSERT_TRUE(area.contains(id)) << area.dump();
+        EXPECT_NEAR(area.at(id).get<double>(), expected, area_tolerance * expected)
+          << name << " material " << id;
+      };
+      expect_area("1", slab_length * slab_thickness);
+      expect_area("2", wall_thickness * height);
+      expect_area("3", backfill_width * height);
+
+      const std::size_t n_cells = entry.at("statistics").at("n_cells").get<std::size_t>();
+      EXPECT_GT(n_cells, previous_cells) << "a higher wall has more cells";
+      previous_cells = n_cells;
+      EXPECT_LE(entry.at("statistics").at("contact_cell_size").get<double>(), 0.05 + 1e-12);
+
+      if (matplotlib_available())
+      {
+        ASSERT_TRUE(entry.at("png_preview").is_string()) << entry.dump(2);
+        const auto png = dir.path() / "out" / entry.at("png_preview").get<std::string>();
+        ASSERT_TRUE(std::filesystem::is_regular_file(png)) << png;
+        EXPECT_EQ(read_text(png).substr(1, 3), "PNG");
+      }
+      else
+        EXPECT_TRUE(entry.at("png_preview").is_null());
+    }
+  }
+
+  TEST(MeshCli, RigidSlabMeshHasNoSlabCells)
+  {
+    const TempDir dir("mesh_cli_rigid");
+    write(dir.path() / "scene.yaml",
+          "slab: {rigid: true}\ngeometry: {with_backfill: false}\n"
+          "mesh: {h_contact: \"5 cm\", h_max: \"20 cm\"}\n");
+    const KimpRun run = kimp("-q mesh scene.yaml -o out", dir.path());
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const nlohmann::json summary =
+      nlohmann::json::parse(read_text(dir.path() / "out/summary.json"));
+    const nlohmann::json &entry = summary.at("cases").at("H1.25");
+    EXPECT_EQ(entry.at("statistics").at("n_slab_cells"), 0);
+    EXPECT_EQ(entry.at("statistics").at("n_soil_cells"), 0);
+    EXPECT_FALSE(entry.at("area_by_material").contains("1"));
+    EXPECT_NEAR(entry.at("area_by_material").at("2").get<double>(),
+                0.25 * 1.25,
+                area_tolerance * 0.25 * 1.25);
+  }
+
+  TEST(MeshCli, OverlappingSlabIsRefusedWithFileLineAndKey)
+  {
+    const TempDir dir("mesh_cli_overlap");
+    write(dir.path() / "scene.yaml", "geometry:\n  gap: \"-1 mm\"\n");
+    const KimpRun run = kimp("mesh scene.yaml -o out", dir.path());
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.err.find("scene.yaml:2: geometry.gap = -1 mm"), std::string::npos) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "out/mesh")) << run.err;
+  }
+} // namespace
+
+#endif // KIMP_WITH_FEM

@@ -1,0 +1,212 @@
+// `kimp study` end to end on a reduced study (2 wall heights, coarse mesh, rigid slab, short
+// synthetic record; the rigid slab chatters on the wall, so the fit merges contact phases
+// separated by up to 10 times their duration): k falls with H for both laws (a taller cantilever
+// wall is softer), the files carry units, and a re-run reuses the FEM cases instead of recomputing
+// them.
+#ifdef KIMP_WITH_FEM
+
+#  include <cmath>
+#  include <cstdlib>
+#  include <filesystem>
+#  include <fstream>
+#  include <gtest/gtest.h>
+#  include <hdf5.h>
+#  include <map>
+#  include <nlohmann/json.hpp>
+#  include <sstream>
+#  include <string>
+#  include <sys/wait.h>
+#  include <unistd.h>
+#  include <vector>
+
+#  include "pipeline/fem_results.h"
+
+namespace
+{
+  /// A fresh directory, removed at the end of the test.
+  class TempDir
+  {
+  public:
+    explicit TempDir(const std::string &tag)
+      : path_(std::filesystem::temp_directory_path() /
+              ("kimp_" + tag + "_" + std::to_string(::getpid())))
+    {
+      std::filesystem::remove_all(path_);
+      std::filesystem::create_directories(path_);
+    }
+    ~TempDir() { std::filesystem::remove_all(path_); }
+    const std::filesystem::path &path() const { return path_; }
+
+  private:
+    std::filesystem::path path_;
+  };
+
+  std::string read_text(const std::filesystem::path &file)
+  {
+    std::ifstream      in(file);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
+
+  /// `kimp <arguments>` run in `dir`; returns the exit code, stderr (the log) in `log`.
+  int run_kimp(const std::string &arguments, const std::filesystem::path &dir, std::string &log)
+  {
+    const std::string command = "cd '" + dir.string() + "' && " KIMP_BINARY_DIR "/kimp " +
+                                arguments + " > stdout.txt 2> stderr.txt";
+    const int status = std::system(command.c_str());
+    log              = read_text(dir / "stdout.txt") + read_text(dir / "stderr.txt");
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
+  /// Rows of a CSV without quoted fields, as maps header -> text.
+  std::vector<std::map<std::string, std::string>> read_csv(const std::filesystem::path &file)
+  {
+    std::ifstream                                   in(file);
+    std::vector<std::string>                        header;
+    std::vector<std::map<std::string, std::string>> rows;
+    for (std::string line; std::getline(in, line);)
+    {
+      std::vector<std::string> fields;
+      std::stringstream        s(line);
+      for (std::string field; std::getline(s, field, ',');)
+        fields.push_back(field);
+      if (line.back() == ',')
+        fields.emplace_back();
+      if (header.empty())
+      {
+        header = fields;
+        continue;
+      }
+      std::map<std::string, std::string> row;
+      for (std::size_t i = 0; i < header.size() && i < fields.size(); ++i)
+        row[header[i]] = fields[i];
+      rows.push_back(row);
+    }
+    return rows;
+  }
+
+  /// The `units` attribute of dataset `path` of an HDF5 file ("" if absent).
+  std::string units_of(const std::filesystem::path &file, const std::string &path)
+  {
+    const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (f < 0)
+      return "";
+    std::string units;
+    if (H5Aexists_by_name(f, path.c_str(), "units", H5P_DEFAULT) > 0)
+    {
+      const hid_t a    = H5Aopen_by_name(f, path.c_str(), "units", H5P_DEFAULT, H5P_DEFAULT);
+      const hid_t type = H5Tcopy(H5T_C_S1);
+      H5Tset_size(type, H5T_VARIABLE);
+      H5Tset_cset(type, H5T_CSET_UTF8);
+      char *text = nullptr;
+      if (H5Aread(a, type, &text) >= 0 && text != nullptr)
+      {
+        units = text;
+        H5free_memory(text);
+      }
+      H5Tclose(type);
+      H5Aclose(a);
+    }
+    H5Fclose(f);
+    return units;
+  }
+
+  constexpr const char *reduced_study = R"(fem:
+  wall_heights: ["1.0 m", "2.0 m"]
+  mesh:
+    h_contact: "5 cm"
+    h_max: "25 cm"
+    grading: 1.5
+  slab:
+    rigid: true
+  dynamics:
+    end_time: "40 ms"
+    output_interval: "0.02 ms"
+records:
+  - record: synthetic
+    duration: "8 s"
+fit:
+  separation_fraction: 10
+peer_records: false
+charts: true
+)";
+} // namespace
+
+TEST(StudyCli, ReducedStudyGivesSofterWallsForTallerHeightsAndReusesTheFem)
+{
+  const TempDir dir("study_cli");
+  std::ofstream(dir.path() / "study.yaml") << reduced_study;
+  std::string log;
+  ASSERT_EQ(run_kimp("study study.yaml -o out", dir.path(), log), 0) << log;
+  const std::filesystem::path out = dir.path() / "out";
+
+  // k table: k(1.0 m) > k(2.0 m) for both laws, per metre and total = per metre x 27.78 m.
+  constexpr double total_rounding = 1e-5; // CSV values carry 6 significant digits
+  const auto       k_rows         = read_csv(out / "k_table.csv");
+  ASSERT_EQ(k_rows.size(), 2u) << read_text(out / "k_table.csv");
+  for (const char *law : {"kelvin_voigt", "jankowski"})
+  {
+    const std::string per_m = std::string(law) == "kelvin_voigt" ? "kelvin_voigt_kN_per_mm_per_m" :
+                                                                   "jankowski_kN_per_mm1.5_per_m";
+    const std::string total = std::string(law) == "kelvin_voigt" ? "kelvin_voigt_total_kN_per_mm" :
+                                                                   "jankowski_total_kN_per_mm1.5";
+    ASSERT_EQ(k_rows[0].at(std::string(law) + "_status"), "ok") << law;
+    ASSERT_EQ(k_rows[1].at(std::string(law) + "_status"), "ok") << law;
+    const double k_short = std::stod(k_rows[0].at(per_m));
+    const double k_tall  = std::stod(k_rows[1].at(per_m));
+    EXPECT_GT(k_short, k_tall) << law << ": k(H = 1 m) = " << k_short
+                               << ", k(H = 2 m) = " << k_tall;
+    EXPECT_GT(k_tall, 0.0) << law;
+    EXPECT_NEAR(std::stod(k_rows[0].at(total)), k_short * 27.78, total_rounding * k_short * 27.78)
+      << law;
+  }
+
+  // Building runs: every run with walls at a gap 10 % below the no-wall peak must pound.
+  const auto building = read_csv(out / "building_response.csv");
+  ASSERT_EQ(building.size(), 1u + 2u * 3u) << read_text(out / "building_response.csv");
+  for (const auto &row : building)
+  {
+    EXPECT_EQ(row.at("status"), "ok") << row.at("law") << " H = " << row.at("wall_height_m");
+    if (row.at("law") != "none")
+    {
+      EXPECT_GT(std::stoi(row.at("n_impacts")), 0)
+        << row.at("law") << " H = " << row.at("wall_height_m") << " gap " << row.at("gap_cm");
+    }
+  }
+
+  // study.h5: units on the k table, the FEM cases readable through the FemCase contract.
+  EXPECT_EQ(units_of(out / "study.h5", "/k_table/kelvin_voigt"), "kN/mm/m");
+  EXPECT_EQ(units_of(out / "study.h5", "/k_table/jankowski_total"), "kN/mm^1.5");
+  EXPECT_EQ(units_of(out / "study.h5", "/fit/H1.00/kelvin_voigt/model_force"), "N/m");
+  EXPECT_EQ(kimp::pipeline::read_fem_cases(out / "study.h5").size(), 2u);
+  const std::string report = read_text(out / "report.md");
+  EXPECT_NE(report.find("k_table.csv"), std::string::npos) << report;
+  const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
+  EXPECT_EQ(summary.at("k_table").size(), 2u);
+  EXPECT_FALSE(summary.at("k_table").at(0).at("fem_from_cache").get<bool>());
+
+  // Re-run: the FEM cases come from the cache, files untouched, same k.
+  const auto cached_time = std::filesystem::last_write_time(out / "fem" / "H1.00.h5");
+  ASSERT_EQ(run_kimp("study study.yaml -o out", dir.path(), log), 0) << log;
+  EXPECT_NE(log.find("H1.00: FEM result reused"), std::string::npos) << log;
+  EXPECT_NE(log.find("H2.00: FEM result reused"), std::string::npos) << log;
+  EXPECT_EQ(std::filesystem::last_write_time(out / "fem" / "H1.00.h5"), cached_time);
+  const auto again = read_csv(out / "k_table.csv");
+  ASSERT_EQ(again.size(), 2u);
+  EXPECT_EQ(again[0].at("kelvin_voigt_kN_per_mm_per_m"),
+            k_rows[0].at("kelvin_voigt_kN_per_mm_per_m"));
+  const auto summary_again = nlohmann::json::parse(read_text(out / "summary.json"));
+  EXPECT_TRUE(summary_again.at("k_table").at(1).at("fem_from_cache").get<bool>());
+}
+
+TEST(StudyCli, BadSceneFailsWithFileLineAndKey)
+{
+  const TempDir dir("study_cli_bad");
+  std::ofstream(dir.path() / "bad.yaml") << "fit:\n  width: \"-3 m\"\n";
+  std::string log;
+  EXPECT_EQ(run_kimp("study bad.yaml -o out", dir.path(), log), 1) << log;
+  EXPECT_NE(log.find("bad.yaml:2: fit.width = -3 m"), std::string::npos) << log;
+}
+
+#endif
