@@ -94,9 +94,10 @@ namespace kimp::pipeline
                                   std::optional<std::filesystem::path>(scene.records_dir));
     if (!directory)
       return records;
-    // Thesis Table 4.1: Kobe KJMA (its file is 48 s long) and Northridge Sylmar Converter Station.
+    // Thesis Table 4.1: Kobe KJMA (NGA-West2 file, trimmed to the thesis' 48 s) and Northridge
+    // Sylmar Converter Station (SCS142.AT2: the thesis' own pre-NGA file, 0.897 g, 40 s).
     const std::vector<std::pair<std::string, std::optional<double>>> peer =
-      {{"RSN1106_KOBE_KJM000", 48.0}, {"RSN1084_NORTHR_SCS142", std::nullopt}};
+      {{"RSN1106_KOBE_KJM000", 48.0}, {"SCS142", std::nullopt}};
     for (const auto &[name, duration] : peer)
     {
       if (!std::filesystem::is_regular_file(*directory / (name + ".AT2")))
