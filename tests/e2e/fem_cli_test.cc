@@ -17,56 +17,17 @@
 
 #  include "pipeline/fem_results.h"
 
+#  include "tests/e2e/e2e_support.h"
+
 namespace
 {
+  using kimp::e2e::kimp;
+  using kimp::e2e::KimpRun;
+  using kimp::e2e::read_text;
+  using kimp::e2e::TempDir;
+
   constexpr double momentum_tolerance = 2e-3;  ///< relative: impulse vs slab momentum change
   constexpr double rank_tolerance     = 1e-10; ///< relative: 1 vs 2 MPI ranks
-
-  /// A fresh directory, removed at the end of the test.
-  class TempDir
-  {
-  public:
-    explicit TempDir(const std::string &tag)
-      : path_(std::filesystem::temp_directory_path() /
-              ("kimp_" + tag + "_" + std::to_string(::getpid())))
-    {
-      std::filesystem::remove_all(path_);
-      std::filesystem::create_directories(path_);
-    }
-    ~TempDir() { std::filesystem::remove_all(path_); }
-    const std::filesystem::path &path() const { return path_; }
-
-  private:
-    std::filesystem::path path_;
-  };
-
-  std::string read_text(const std::filesystem::path &file)
-  {
-    std::ifstream      in(file);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-  }
-
-  struct KimpRun
-  {
-    int         exit_code = -1;
-    std::string err;
-  };
-
-  /// `kimp <arguments>` in `dir`, stdout and stderr captured to files there.
-  KimpRun kimp(const std::string &arguments, const std::filesystem::path &dir)
-  {
-    const std::filesystem::path err     = dir / "stderr.txt";
-    const std::string           command = std::string("cd '") + dir.string() +
-                                "' && " KIMP_BINARY_DIR "/kimp " + arguments +
-                                " > stdout.txt 2> '" + err.string() + "'";
-    const int status = std::system(command.c_str());
-    KimpRun   run;
-    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    run.err       = read_text(err);
-    return run;
-  }
 
   void write(const std::filesystem::path &file, const std::string &text)
   {

@@ -21,42 +21,19 @@
 
 #  include "pipeline/fem_results.h"
 
+#  include "tests/e2e/e2e_support.h"
+
 namespace
 {
-  /// A fresh directory, removed at the end of the test.
-  class TempDir
-  {
-  public:
-    explicit TempDir(const std::string &tag)
-      : path_(std::filesystem::temp_directory_path() /
-              ("kimp_" + tag + "_" + std::to_string(::getpid())))
-    {
-      std::filesystem::remove_all(path_);
-      std::filesystem::create_directories(path_);
-    }
-    ~TempDir() { std::filesystem::remove_all(path_); }
-    const std::filesystem::path &path() const { return path_; }
-
-  private:
-    std::filesystem::path path_;
-  };
-
-  std::string read_text(const std::filesystem::path &file)
-  {
-    std::ifstream      in(file);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-  }
+  using kimp::e2e::read_text;
+  using kimp::e2e::TempDir;
 
   /// `kimp <arguments>` run in `dir`; returns the exit code, stderr (the log) in `log`.
   int run_kimp(const std::string &arguments, const std::filesystem::path &dir, std::string &log)
   {
-    const std::string command = "cd '" + dir.string() + "' && " KIMP_BINARY_DIR "/kimp " +
-                                arguments + " > stdout.txt 2> stderr.txt";
-    const int status = std::system(command.c_str());
-    log              = read_text(dir / "stdout.txt") + read_text(dir / "stderr.txt");
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    const kimp::e2e::KimpRun run = kimp::e2e::kimp(arguments, dir);
+    log                          = run.out + run.err;
+    return run.exit_code;
   }
 
   /// Rows of a CSV without quoted fields, as maps header -> text.
