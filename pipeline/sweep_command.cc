@@ -3,18 +3,22 @@
 #include "pipeline/sweep_command.h"
 
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
+#include <fmt/format.h>
 #include <memory>
 #include <mpi.h>
 #include <optional>
 #include <string>
 
 #include "pipeline/cli.h"
+#include "pipeline/helper_programs.h"
 #include "pipeline/logging.h"
 #include "pipeline/lumped_scene.h"
 #include "pipeline/summary.h"
 #include "pipeline/sweep_engine.h"
 #include "pipeline/sweep_lumped.h"
+#include "pipeline/sweep_report.h"
 
 namespace kimp::pipeline
 {
@@ -56,7 +60,9 @@ namespace kimp::pipeline
       {
         int finalized = 0;
         MPI_Finalized(&finalized);
-        if (owned_ && !finalized)
+        // While an exception unwinds, MPI_Finalize would wait for the other ranks; main()
+        // reports the error and aborts the job instead.
+        if (owned_ && !finalized && std::uncaught_exceptions() == 0)
           MPI_Finalize();
       }
       int  rank() const { return rank_; }
@@ -77,7 +83,57 @@ namespace kimp::pipeline
       std::string  records_dir;
       unsigned int threads      = 0;
       bool         retry_failed = false;
+      bool         no_charts    = false;
     };
+
+    /**
+     * The d_SRSS table (report kinds gap_study, wall_location, adjacent_buildings, when the sweep
+     * varies the report's gap and has companion metrics), then scripts/sweep_charts.py: charts
+     * and summary.md.
+     * @throws OutputError naming the script and its exit status when the charts fail
+     */
+    void write_report(const SweepPlan &plan, const OutputDir &output, const bool charts)
+    {
+      const SweepReportSpec &spec = *plan.report();
+      if (spec.kind == "adjacent_buildings" || spec.kind == "gap_study" ||
+          spec.kind == "wall_location")
+      {
+        const SweepTable table = collect_sweep_table(plan, output.path());
+        try
+        {
+          const DsrssTable dsrss = dsrss_table(plan, table, spec.gap_key);
+          write_dsrss_table(dsrss, output.file("dsrss_table.csv"));
+          logger().info("d_SRSS table: {} configurations in {}",
+                        dsrss.rows.size(),
+                        output.file("dsrss_table.csv").string());
+        }
+        catch (const SweepError &error)
+        {
+          // E.g. every case failed, or no companion run: the summary says the table is missing.
+          logger().warn("no d_SRSS table: {}", error.what());
+        }
+      }
+      if (!charts)
+        return;
+      const std::filesystem::path script = find_helper_script("sweep_charts.py");
+      if (script.empty())
+        throw OutputError("charts: scripts/sweep_charts.py not found (set KIMP_DATA_DIR to the "
+                          "kimp source tree, or pass --no-charts)");
+      const std::filesystem::path log = output.file("charts/charts.log");
+      std::filesystem::remove(log);
+      const int status = run_program({"/usr/bin/python3", script.string(), output.path().string()},
+                                     ProgramOutput::append,
+                                     log);
+      if (status != 0)
+        throw OutputError(fmt::format("charts: {} exited with status {} (needs /usr/bin/python3 "
+                                      "with matplotlib, numpy and h5py); see {}",
+                                      script.string(),
+                                      status,
+                                      log.string()));
+      logger().info("charts and summary written to {} and {}",
+                    output.file("charts").string(),
+                    output.file("summary.md").string());
+    }
 
     void run(const Options &options)
     {
@@ -116,6 +172,13 @@ namespace kimp::pipeline
                       summary.n_run,
                       summary.n_failed,
                       summary.n_rows);
+      if (mpi.rank() == 0)
+      {
+        if (plan.report())
+          write_report(plan, output, !options.no_charts);
+        else
+          logger().info("no report: section in {}: no charts or summary", options.sweep);
+      }
     }
   } // namespace
 
@@ -142,6 +205,9 @@ namespace kimp::pipeline
     command->add_flag("--retry-failed",
                       options->retry_failed,
                       "rerun cases recorded as failed instead of keeping their failure");
+    command->add_flag("--no-charts",
+                      options->no_charts,
+                      "do not run scripts/sweep_charts.py (charts/ and summary.md)");
     command->add_option("--records-dir", options->records_dir, "directory of the PEER records")
       ->type_name("DIR");
     command->preparse_callback([options](std::size_t) { *options = Options{}; });

@@ -146,12 +146,22 @@ namespace kimp::pipeline
     std::sort(files.begin(), files.end());
     for (const std::filesystem::path &file : files)
     {
-      std::ifstream in(file, std::ios::binary);
-      if (!in)
-        throw OutputError("cannot read sweep journal " + file.string());
-      const std::string text((std::istreambuf_iterator<char>(in)),
-                             std::istreambuf_iterator<char>());
-      std::size_t       begin = 0;
+      if (!std::filesystem::is_regular_file(file, error))
+        throw OutputError("cannot read sweep journal " + file.string() +
+                          ": not a regular file (remove it, or choose another output directory)");
+      std::string text;
+      try
+      {
+        std::ifstream in(file, std::ios::binary);
+        if (!in)
+          throw OutputError("cannot open");
+        text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+      }
+      catch (const std::exception &failure)
+      {
+        throw OutputError("cannot read sweep journal " + file.string() + ": " + failure.what());
+      }
+      std::size_t begin = 0;
       while (begin < text.size())
       {
         const std::size_t end = text.find('\n', begin);

@@ -2,8 +2,10 @@
 #include "pipeline/sweep_lumped.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
 
+#include "pipeline/lumped_scene.h"
 #include "pipeline/scene_io.h"
 
 namespace kimp::pipeline
@@ -51,6 +53,35 @@ namespace kimp::pipeline
     }
   }
 
+  void append_model_metrics(const lumped::PoundingModel &model,
+                            const LumpedCaseResult      &result,
+                            const std::string           &prefix,
+                            CaseRow                     &row)
+  {
+    for (const lumped::BuildingBlock &block : model.buildings())
+    {
+      const auto n_storeys =
+        std::count_if(model.storeys().begin(),
+                      model.storeys().end(),
+                      [&](const lumped::Storey &s) { return s.building == block.name; });
+      row.metrics.emplace_back(prefix + block.name + ".first_dof", block.first_dof);
+      row.metrics.emplace_back(prefix + block.name + ".n_dofs", block.n_dofs);
+      row.metrics.emplace_back(prefix + block.name + ".n_storeys", static_cast<double>(n_storeys));
+    }
+    const std::vector<lumped::ContactPair> &contacts = model.contacts();
+    for (const lumped::ContactPair &c : contacts)
+      row.metrics.emplace_back(prefix + c.name + ".clearance [m]", c.gap);
+    if (!result.companion)
+      return;
+    const std::vector<double> &free_peak = result.companion->peak_displacement;
+    // A DOF index of -1 is the ground (a moat wall moves with it: no relative displacement).
+    const auto peak_of = [&](int dof)
+    { return dof < 0 ? 0.0 : free_peak.at(static_cast<std::size_t>(dof)); };
+    for (const lumped::ContactPair &c : contacts)
+      row.metrics.emplace_back(prefix + c.name + ".srss_gap [m]",
+                               std::hypot(peak_of(c.left_dof), peak_of(c.right_dof)));
+  }
+
   CaseRunner make_lumped_case_runner(std::optional<std::filesystem::path> records_dir_override)
   {
     return [records_dir_override](const std::string &text, const std::string &name)
@@ -66,7 +97,10 @@ namespace kimp::pipeline
           run_lumped_case(case_name, case_scene, motion, scene.ground_motion.scale);
         if (!result.ok())
           return CaseRow{{}, result.status};
-        append_lumped_metrics(result, cases.size() > 1 ? case_name + "." : std::string(), row);
+        const std::string prefix = cases.size() > 1 ? case_name + "." : std::string();
+        append_lumped_metrics(result, prefix, row);
+        const lumped::PoundingModel model(make_pounding_scene(case_scene));
+        append_model_metrics(model, result, prefix, row);
       }
       return row;
     };

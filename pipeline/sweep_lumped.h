@@ -4,7 +4,9 @@
 
 #include <filesystem>
 #include <optional>
+#include <vector>
 
+#include "lumped/pounding_model.h"
 #include "pipeline/lumped_command.h"
 #include "pipeline/sweep_engine.h"
 
@@ -22,6 +24,19 @@ namespace kimp::pipeline
    */
   void
   append_lumped_metrics(const LumpedCaseResult &result, const std::string &prefix, CaseRow &row);
+
+  /**
+   * Metrics of the assembled model: per building block <block>.first_dof, <block>.n_dofs and
+   * <block>.n_storeys (so that charts can pick the main building's floors), per contact c
+   * <c>.clearance [m], the clear gap g_c before contact, and, with a companion run,
+   * <c>.srss_gap [m] = sqrt(d_L² + d_R²), the gap the SRSS rule asks for this contact, where d_L,
+   * d_R are the peak displacements without contact of the two facing DOFs (0 for a wall moving
+   * with the ground). `prefix` is put before every name.
+   */
+  void append_model_metrics(const lumped::PoundingModel &model,
+                            const LumpedCaseResult      &result,
+                            const std::string           &prefix,
+                            CaseRow                     &row);
 
   /**
    * CaseRunner for LumpedScene texts. A scene with several `cases` gives one row whose metric

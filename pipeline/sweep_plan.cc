@@ -2,6 +2,7 @@
 // scene's YAML tree, so every scene key can be varied without the sweep knowing the schema.
 #include "pipeline/sweep_plan.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fmt/format.h>
@@ -160,6 +161,14 @@ namespace kimp::pipeline
       return first == std::string::npos ? std::string() : unit.substr(first);
     }
 
+    std::string kind_list()
+    {
+      std::string list;
+      for (const std::string &kind : sweep_report_kinds())
+        list += (list.empty() ? "" : ", ") + kind;
+      return list;
+    }
+
     void load_root(const std::string &text, const std::string &name, YAML::Node &root)
     {
       try
@@ -171,6 +180,50 @@ namespace kimp::pipeline
         throw SweepError(
           fmt::format("{}:{}: invalid YAML: {}", name, error.mark.line + 1, error.msg));
       }
+    }
+
+    SweepReportSpec parse_report(const YAML::Node &report, const std::string &file, int line)
+    {
+      SweepReportSpec spec;
+      spec.line = line;
+      if (!report.IsMap())
+        fail_at(file,
+                spec.line,
+                "report",
+                "expected a map {kind: ..., gap: scene key path, title: ...}");
+      for (const auto &entry : report)
+      {
+        const std::string key = entry.first.Scalar();
+        if (key != "kind" && key != "gap" && key != "title")
+          fail_at(file,
+                  line_of(entry.first),
+                  "report." + key,
+                  "unknown key (expected kind, gap or title)");
+      }
+      if (!report["kind"])
+        fail_at(file, spec.line, "report.kind", "missing (expected one of " + kind_list() + ")");
+      spec.kind                             = scalar_text(report["kind"], file, "report.kind");
+      const std::vector<std::string> &kinds = sweep_report_kinds();
+      if (std::find(kinds.begin(), kinds.end(), spec.kind) == kinds.end())
+        fail_at(file,
+                line_of(report["kind"]),
+                "report.kind",
+                "'" + spec.kind + "' (expected one of " + kind_list() + ")");
+      if (report["gap"])
+      {
+        spec.gap_key = scalar_text(report["gap"], file, "report.gap");
+        try
+        {
+          split_key_path(spec.gap_key);
+        }
+        catch (const std::invalid_argument &error)
+        {
+          fail_at(file, line_of(report["gap"]), "report.gap", error.what());
+        }
+      }
+      if (report["title"])
+        spec.title = scalar_text(report["title"], file, "report.title");
+      return spec;
     }
   } // namespace
 
@@ -192,6 +245,45 @@ namespace kimp::pipeline
     YAML::Node root = YAML::Load(yaml_text);
     set_node_value(root, key_path, value_yaml);
     return emit(root);
+  }
+
+  const std::vector<std::string> &sweep_report_kinds()
+  {
+    static const std::vector<std::string> kinds{"gap_study",
+                                                "isolation_flexibility",
+                                                "wall_location",
+                                                "impact_parameters",
+                                                "adjacent_buildings",
+                                                "bumpers"};
+    return kinds;
+  }
+
+  std::optional<std::string> get_yaml_value(const std::string &yaml_text,
+                                            const std::string &key_path)
+  {
+    const std::vector<PathStep> steps = split_key_path(key_path);
+    YAML::Node                  node  = YAML::Load(yaml_text);
+    for (const PathStep &step : steps)
+    {
+      if (step.index >= 0)
+      {
+        if (!node.IsSequence() || static_cast<std::size_t>(step.index) >= node.size())
+          return std::nullopt;
+        node.reset(node[static_cast<std::size_t>(step.index)]);
+      }
+      else
+      {
+        if (!node.IsMap() || !node[step.key])
+          return std::nullopt;
+        node.reset(node[step.key]);
+      }
+    }
+    if (node.IsNull())
+      return std::nullopt;
+    if (!node.IsScalar())
+      throw std::invalid_argument("key path '" + key_path +
+                                  "' names a section, not a single value");
+    return node.Scalar();
   }
 
   std::vector<std::string> expand_range(const std::string &from,
@@ -299,16 +391,21 @@ namespace kimp::pipeline
     if (!root.IsMap())
       throw SweepError(file_name + ":1: expected a map with keys scene, parameters, combine, "
                                    "companions, engine");
+    int report_line = 1;
     for (const auto &entry : root)
     {
       const std::string key = entry.first.Scalar();
+      if (key == "report")
+        report_line = line_of(entry.first);
       if (key != "scene" && key != "engine" && key != "combine" && key != "parameters" &&
-          key != "companions")
+          key != "companions" && key != "report")
         fail_at(file_name,
                 line_of(entry.first),
                 key,
-                "unknown key (expected scene, engine, combine, parameters or companions)");
+                "unknown key (expected scene, engine, combine, parameters, companions or report)");
     }
+    if (const YAML::Node report = root["report"])
+      plan.report_ = parse_report(report, file_name, report_line);
     if (root["engine"])
       plan.engine_ = scalar_text(root["engine"], file_name, "engine");
     if (root["combine"])
@@ -619,8 +716,21 @@ namespace kimp::pipeline
     json["combine"]    = combination_ == SweepCombination::product ? "product" : "zip";
     json["parameters"] = nlohmann::ordered_json::array();
     for (const SweepParameter &p : parameters_)
-      json["parameters"].push_back(
-        {{"name", p.name}, {"key_paths", p.key_paths}, {"values", p.values}});
+    {
+      // Per value the key paths it sets (map values set their own keys, e.g. gap and separation).
+      nlohmann::ordered_json settings = nlohmann::ordered_json::array();
+      for (const auto &setting : p.settings)
+      {
+        nlohmann::ordered_json keys = nlohmann::ordered_json::object();
+        for (const auto &[path, value] : setting)
+          keys[path] = value;
+        settings.push_back(keys);
+      }
+      json["parameters"].push_back({{"name", p.name},
+                                    {"key_paths", p.key_paths},
+                                    {"values", p.values},
+                                    {"settings", settings}});
+    }
     json["companions"] = nlohmann::ordered_json::array();
     for (const SweepCompanion &c : companions_)
     {
@@ -629,6 +739,10 @@ namespace kimp::pipeline
         overrides[path] = value;
       json["companions"].push_back({{"name", c.name}, {"overrides", overrides}});
     }
+    if (report_)
+      json["report"] = {{"kind", report_->kind},
+                        {"gap", report_->gap_key},
+                        {"title", report_->title}};
     json["n_cases"] = cases_.size();
     return json.dump(2);
   }

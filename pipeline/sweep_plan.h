@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -50,6 +51,28 @@ namespace kimp::pipeline
     std::vector<std::pair<std::string, std::string>> overrides;
     int                                              line = 0;
   };
+
+  /**
+   * The optional `report:` section: which charts scripts/sweep_charts.py draws and how the summary
+   * reads the rows.
+   * @code
+   *   report:
+   *     kind: adjacent_buildings   # gap_study, isolation_flexibility, wall_location,
+   *                                # impact_parameters, adjacent_buildings or bumpers
+   *     gap: walls.left.gap        # scene key path of the swept gap (default walls.left.gap)
+   *     title: "Study 5: ..."      # optional chart and summary title
+   * @endcode
+   */
+  struct SweepReportSpec
+  {
+    std::string kind;
+    std::string gap_key = "walls.left.gap";
+    std::string title;
+    int         line = 0; ///< line of `report:` in the sweep file (1-based)
+  };
+
+  /// The report kinds scripts/sweep_charts.py knows (issue 6 studies 1-6).
+  const std::vector<std::string> &sweep_report_kinds();
 
   /// One run of the sweep.
   struct SweepCase
@@ -105,10 +128,12 @@ namespace kimp::pipeline
 
     const std::vector<SweepParameter> &parameters() const { return parameters_; }
     const std::vector<SweepCompanion> &companions() const { return companions_; }
-    SweepCombination                   combination() const { return combination_; }
-    const std::string                 &engine() const { return engine_; }
-    const std::string                 &file_name() const { return file_name_; }
-    const std::string                 &text() const { return text_; }
+    /// The `report:` section, if the sweep file has one.
+    const std::optional<SweepReportSpec> &report() const { return report_; }
+    SweepCombination                      combination() const { return combination_; }
+    const std::string                    &engine() const { return engine_; }
+    const std::string                    &file_name() const { return file_name_; }
+    const std::string                    &text() const { return text_; }
 
     /**
      * Load every value of every parameter (one at a time on the base scene) and each companion
@@ -122,15 +147,16 @@ namespace kimp::pipeline
     std::string to_json_text() const;
 
   private:
-    std::string                 file_name_;
-    std::string                 text_;
-    std::string                 base_scene_text_;
-    std::string                 base_scene_name_;
-    std::string                 engine_      = "lumped";
-    SweepCombination            combination_ = SweepCombination::product;
-    std::vector<SweepParameter> parameters_;
-    std::vector<SweepCompanion> companions_;
-    std::vector<SweepCase>      cases_;
+    std::string                    file_name_;
+    std::string                    text_;
+    std::string                    base_scene_text_;
+    std::string                    base_scene_name_;
+    std::string                    engine_      = "lumped";
+    SweepCombination               combination_ = SweepCombination::product;
+    std::vector<SweepParameter>    parameters_;
+    std::vector<SweepCompanion>    companions_;
+    std::optional<SweepReportSpec> report_;
+    std::vector<SweepCase>         cases_;
   };
 
   /**
@@ -152,6 +178,14 @@ namespace kimp::pipeline
   std::string set_yaml_value(const std::string &yaml_text,
                              const std::string &key_path,
                              const std::string &value_yaml);
+
+  /**
+   * The scalar text at `key_path` ("a.b[2].c") of `yaml_text`, or nullopt when the path does not
+   * exist or ends at a null.
+   * @throws std::invalid_argument for a malformed key path or one ending at a section.
+   */
+  std::optional<std::string> get_yaml_value(const std::string &yaml_text,
+                                            const std::string &key_path);
 
   /// 64-bit FNV-1a hash of `text` (stable across platforms and runs).
   std::uint64_t stable_hash(const std::string &text);

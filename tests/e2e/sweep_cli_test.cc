@@ -1,6 +1,7 @@
 // `kimp sweep` end to end (issue 6): a gap sweep of the lumped engine whose rows obey the physics
 // (no impacts beyond the free peak displacement), resume of an interrupted sweep through the CLI,
 // failing cases recorded, malformed sweep files named by file:line:key, and 1 vs 2 MPI ranks.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -252,6 +253,116 @@ namespace
               1);
     EXPECT_NE(read_text(dir / "log_missing.txt").find("missing.yaml:1: scene"), std::string::npos)
       << read_text(dir / "log_missing.txt");
+    fs::remove_all(dir);
+  }
+
+  /// Largest finite value of a CSV column over the main (non-companion) ok rows.
+  double column_max(const Csv &csv, const std::string &name)
+  {
+    const std::size_t column = csv.column(name);
+    const std::size_t status = csv.column("status");
+    double            best   = -1.0;
+    for (const auto &row : csv.rows)
+      if (row[status] == "ok" && !row[column].empty())
+        best = std::max(best, std::stod(row[column]));
+    return best;
+  }
+
+  /// The number after "<label>: " in summary.md, or NaN.
+  double summary_number(const std::string &summary, const std::string &label)
+  {
+    const std::size_t at = summary.find(label + ": ");
+    if (at == std::string::npos)
+      return std::nan("");
+    return std::stod(summary.substr(at + label.size() + 2));
+  }
+
+  TEST(SweepCli, ReportWritesChartsSummaryAndRequiredGapTableThatMatchTheCsv)
+  {
+    const fs::path dir = fresh_dir("report");
+    const fs::path sweep =
+      write_sweep(dir, "report: {kind: gap_study, title: Smoke gap study}\n" + gap_sweep);
+    const fs::path out = dir / "out";
+    ASSERT_EQ(run(kimp + " sweep " + sweep.string() + " -o " + out.string(), dir / "log.txt"), 0)
+      << read_text(dir / "log.txt");
+    for (const char *chart : {"response_vs_gap", "amplification_vs_gap"})
+      for (const char *ext : {".png", ".svg"})
+      {
+        const fs::path file = out / "charts" / (std::string(chart) + ext);
+        EXPECT_TRUE(fs::exists(file) && fs::file_size(file) > 1000) << file;
+      }
+    const std::string summary = read_text(out / "summary.md");
+    ASSERT_FALSE(summary.empty()) << read_text(out / "charts/charts.log");
+    EXPECT_NE(summary.find("# Smoke gap study"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("12 cases (12 ok, 0 failed)"), std::string::npos) << summary;
+
+    // Key numbers (4 significant digits) are the maxima of the CSV columns.
+    const Csv        csv       = read_csv(out / "sweep.csv");
+    constexpr double relative  = 1e-3;
+    const auto       check_max = [&](const std::string &label, double expected)
+    {
+      const double shown = summary_number(summary, label);
+      EXPECT_NEAR(shown, expected, relative * std::abs(expected)) << label << "\n" << summary;
+    };
+    check_max("largest amplification of the base acceleration",
+              column_max(csv, "amp_abs_acceleration_dof0"));
+    check_max("largest number of impacts", column_max(csv, "n_impacts"));
+    check_max("largest max impact velocity",
+              std::max(column_max(csv, "left_wall.max_impact_velocity [m/s]"),
+                       column_max(csv, "right_wall.max_impact_velocity [m/s]")));
+
+    // d_req per COR: the first swept gap beyond which no row pounds, and d_SRSS = free base peak.
+    const Csv dsrss = read_csv(out / "dsrss_table.csv");
+    ASSERT_EQ(dsrss.rows.size(), 2U) << "one configuration per COR";
+    const double free_base = std::stod(csv.rows[0][csv.column("free_peak_displacement_dof0 [m]")]);
+    for (const auto &row : dsrss.rows)
+    {
+      EXPECT_EQ(row[dsrss.column("d_req_status")], "reached");
+      const double d_req = std::stod(row[dsrss.column("d_req [m]")]);
+      EXPECT_GT(d_req, free_base) << "no impact needs a gap above the free peak";
+      EXPECT_LE(d_req - 0.06, free_base) << "one 6 cm step below d_req still pounds";
+      EXPECT_NEAR(std::stod(row[dsrss.column("d_srss [m]")]), free_base, 1e-12);
+    }
+    fs::remove_all(dir);
+  }
+
+  TEST(SweepCli, NoChartsSkipsTheScriptAndAFailingScriptIsAnError)
+  {
+    const fs::path dir   = fresh_dir("nocharts");
+    const fs::path sweep = write_sweep(dir, "report: {kind: gap_study}\n" + gap_sweep);
+    ASSERT_EQ(run(kimp + " sweep " + sweep.string() + " --no-charts -o " + (dir / "a").string(),
+                  dir / "log_a.txt"),
+              0)
+      << read_text(dir / "log_a.txt");
+    EXPECT_TRUE(fs::exists(dir / "a/sweep.csv"));
+    EXPECT_FALSE(fs::exists(dir / "a/summary.md"));
+    EXPECT_FALSE(fs::exists(dir / "a/charts"));
+
+    // A chart script that fails: the sweep results stay, kimp exits with an error naming it.
+    fs::create_directories(dir / "data/scripts");
+    std::ofstream(dir / "data/scripts/sweep_charts.py") << "import sys\nsys.exit(3)\n";
+    EXPECT_EQ(run("KIMP_DATA_DIR=" + (dir / "data").string() + " " + kimp + " sweep " +
+                    sweep.string() + " -o " + (dir / "b").string(),
+                  dir / "log_b.txt"),
+              1);
+    const std::string log = read_text(dir / "log_b.txt");
+    EXPECT_NE(log.find("sweep_charts.py exited with status 3"), std::string::npos) << log;
+    EXPECT_TRUE(fs::exists(dir / "b/sweep.csv"));
+    EXPECT_FALSE(fs::exists(dir / "b/summary.md"));
+    fs::remove_all(dir);
+  }
+
+  TEST(SweepCli, UnknownReportKindIsNamedWithFileAndLine)
+  {
+    const fs::path dir   = fresh_dir("badreport");
+    const fs::path sweep = write_sweep(dir, "report:\n  kind: histogram\n" + gap_sweep);
+    EXPECT_EQ(run(kimp + " sweep " + sweep.string() + " -o " + (dir / "out").string(),
+                  dir / "log.txt"),
+              1);
+    const std::string log = read_text(dir / "log.txt");
+    EXPECT_NE(log.find("sweep.yaml:3: report.kind: 'histogram' (expected one of gap_study"),
+              std::string::npos)
+      << log;
     fs::remove_all(dir);
   }
 

@@ -23,7 +23,9 @@
 
 #include "pipeline/logging.h"
 #include "pipeline/scene_io.h"
+#include "pipeline/summary.h"
 #include "pipeline/sweep_engine.h"
+#include "pipeline/sweep_journal.h"
 #include "pipeline/units.h"
 
 namespace
@@ -441,6 +443,24 @@ namespace
               (std::pair<std::string, std::string>{"v", "m/s"}));
     EXPECT_EQ(kimp::pipeline::split_metric_unit("n_impacts"),
               (std::pair<std::string, std::string>{"n_impacts", "1"}));
+  }
+
+  TEST(SweepJournalLine, UnreadableJournalIsNamedInTheError)
+  {
+    const fs::path dir =
+      fs::temp_directory_path() / ("kimp_journal_dir_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir / "journal/rank-1.jsonl"); // a directory where a file belongs
+    try
+    {
+      kimp::pipeline::SweepJournal::read_all(dir);
+      ADD_FAILURE() << "a directory in place of a journal file was accepted";
+    }
+    catch (const kimp::pipeline::OutputError &error)
+    {
+      EXPECT_NE(std::string(error.what()).find("rank-1.jsonl"), std::string::npos) << error.what();
+    }
+    fs::remove_all(dir);
   }
 
   TEST(SweepJournalLine, RoundTripKeepsMetricsAndNan)

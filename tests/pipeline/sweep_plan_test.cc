@@ -355,4 +355,60 @@ namespace
     EXPECT_EQ(SweepPlan::base_scene_path("scene: ../scenes/a.yaml\n", "data/studies/s.yaml"),
               std::filesystem::path("data/studies/../scenes/a.yaml"));
   }
+
+  TEST(SweepPlan, ReportSectionIsParsedAndOptional)
+  {
+    EXPECT_FALSE(parse("scene: base.yaml\nparameters:\n  record: [kobe]\n").report());
+    const SweepPlan plan = parse("scene: base.yaml\n"
+                                 "report:\n"
+                                 "  kind: adjacent_buildings\n"
+                                 "  gap: walls.right.gap\n"
+                                 "  title: Study 5\n"
+                                 "parameters:\n"
+                                 "  record: [kobe]\n");
+    ASSERT_TRUE(plan.report());
+    EXPECT_EQ(plan.report()->kind, "adjacent_buildings");
+    EXPECT_EQ(plan.report()->gap_key, "walls.right.gap");
+    EXPECT_EQ(plan.report()->title, "Study 5");
+    EXPECT_EQ(plan.report()->line, 2);
+    EXPECT_NE(plan.to_json_text().find("\"kind\": \"adjacent_buildings\""), std::string::npos)
+      << plan.to_json_text();
+    const SweepPlan defaults =
+      parse("scene: base.yaml\nreport: {kind: bumpers}\nparameters:\n  record: [kobe]\n");
+    EXPECT_EQ(defaults.report()->gap_key, "walls.left.gap");
+    for (const std::string &kind : kimp::pipeline::sweep_report_kinds())
+      EXPECT_EQ(parse("scene: base.yaml\nreport: {kind: " + kind +
+                      "}\nparameters:\n  record: [kobe]\n")
+                  .report()
+                  ->kind,
+                kind);
+  }
+
+  TEST(SweepPlan, MalformedReportSectionsGetFileLineAndKey)
+  {
+    const std::string parameters = "parameters:\n  record: [kobe]\n";
+    expect_sweep_error("scene: base.yaml\nreport:\n  kind: histogram\n" + parameters,
+                       {"sweep.yaml:3", "report.kind", "'histogram'", "gap_study", "bumpers"});
+    expect_sweep_error("scene: base.yaml\nreport:\n  title: x\n" + parameters,
+                       {"sweep.yaml:2", "report.kind", "missing"});
+    expect_sweep_error("scene: base.yaml\nreport:\n  kind: gap_study\n  chart: bar\n" + parameters,
+                       {"sweep.yaml:4", "report.chart", "unknown key"});
+    expect_sweep_error("scene: base.yaml\nreport:\n  kind: gap_study\n  gap: walls..gap\n" +
+                         parameters,
+                       {"sweep.yaml:4", "report.gap", "empty key"});
+    expect_sweep_error("scene: base.yaml\nreport: gap_study\n" + parameters,
+                       {"sweep.yaml:2", "report", "expected a map"});
+  }
+
+  TEST(SweepPlan, GetYamlValueReadsScalarsAndReportsMissingPaths)
+  {
+    EXPECT_EQ(kimp::pipeline::get_yaml_value(base_scene, "walls.left.gap"), "15 cm");
+    EXPECT_EQ(kimp::pipeline::get_yaml_value(base_scene, "cases[0].cor"), "0.5");
+    EXPECT_FALSE(kimp::pipeline::get_yaml_value(base_scene, "walls.right.gap"));
+    EXPECT_FALSE(kimp::pipeline::get_yaml_value(base_scene, "cases[3].cor"));
+    EXPECT_THROW(kimp::pipeline::get_yaml_value(base_scene, "walls.left"), std::invalid_argument);
+    // A value set by a sweep reads back unchanged.
+    const std::string set = kimp::pipeline::set_yaml_value(base_scene, "walls.left.gap", "12.5 cm");
+    EXPECT_EQ(kimp::pipeline::get_yaml_value(set, "walls.left.gap"), "12.5 cm");
+  }
 } // namespace

@@ -1,0 +1,589 @@
+#!/usr/bin/python3
+"""Charts and summary.md of `kimp sweep SWEEP.yaml -o DIR` (issue 6 studies 1-6).
+Reads DIR/sweep.csv, the plan JSON in DIR/sweep.h5 (/input/resolved: parameters, their settings and
+the `report:` section) and DIR/dsrss_table.csv if present; writes DIR/charts/*.png and *.svg and
+DIR/summary.md, each under a temporary name renamed when complete. Every number comes from the data."""
+import csv
+import json
+import math
+import os
+import re
+import sys
+import traceback
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+LENGTH_UNITS = {"mm": 1e-3, "cm": 1e-2, "m": 1.0}
+RECORD_KEY = "ground_motion.record"
+MAIN_BUILDING = "building"
+NAN = float("nan")
+
+
+# ---------------------------------------------------------------------------------------- input
+def read_plan(directory):
+    with h5py.File(os.path.join(directory, "sweep.h5"), "r") as f:
+        node = f["input/resolved"]
+        text = node[()] if isinstance(node, h5py.Dataset) else node.attrs["text"]
+    if isinstance(text, bytes):
+        text = text.decode()
+    if isinstance(text, np.ndarray):
+        text = text.item().decode() if isinstance(text.item(), bytes) else str(text.item())
+    return json.loads(text)
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def number(text):
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        return NAN
+
+
+def quantity(text):
+    """'10.5 cm' -> (10.5, 'cm'); '0.7' -> (0.7, ''); non-numbers -> (nan, text)."""
+    match = re.match(r"^\s*([-+0-9.eE]+)\s*(.*?)\s*$", str(text))
+    if not match:
+        return NAN, str(text)
+    try:
+        return float(match.group(1)), match.group(2)
+    except ValueError:
+        return NAN, str(text)
+
+
+def length_m(text):
+    value, unit = quantity(text)
+    return value * LENGTH_UNITS[unit] if unit in LENGTH_UNITS else NAN
+
+
+def fmt(value, digits=4):
+    return "n/a" if value is None or not math.isfinite(value) else f"{value:.{digits}g}"
+
+
+class Sweep:
+    """The rows of one sweep with the plan's parameters and derived per-row quantities."""
+
+    def __init__(self, directory):
+        self.dir = directory
+        self.plan = read_plan(directory)
+        self.report = self.plan.get("report") or {"kind": "gap_study", "gap": "walls.left.gap"}
+        self.kind = self.report.get("kind", "gap_study")
+        self.gap_key = self.report.get("gap") or "walls.left.gap"
+        self.title = self.report.get("title") or os.path.basename(self.plan.get("file", directory))
+        self.params = self.plan["parameters"]
+        for p in self.params:  # plans written before settings were stored: scalar values only
+            if not p.get("settings"):
+                p["settings"] = [{k: v for k in p["key_paths"]} for v in p["values"]]
+        self.names = [p["name"] for p in self.params]
+        self.rows = read_csv(os.path.join(directory, "sweep.csv"))
+        self.columns = list(self.rows[0].keys()) if self.rows else []
+        self.main = [r for r in self.rows if not r["companion"]]
+        self.ok = [r for r in self.main if r["status"] == "ok"]
+        self.failed = [r for r in self.main if r["status"] != "ok"]
+        self.gap_param = next((p["name"] for p in self.params
+                               if any(self.gap_key in s for s in p.get("settings", []))), None)
+        self.record_param = next((p["name"] for p in self.params
+                                  if any(RECORD_KEY in s for s in p.get("settings", []))), None)
+        self.companion_of = {}
+        for r in self.rows:
+            if r["companion"]:
+                self.companion_of[(r["companion"], tuple(r[n] for n in self.names))] = r
+
+    def setting(self, row, name, key):
+        p = self.params[self.names.index(name)]
+        i = p["values"].index(row[name])
+        return p["settings"][i].get(key) if p.get("settings") else row[name]
+
+    def gap(self, row):
+        """Swept gap of a row, m (nan when the gap is not varied)."""
+        if "_gap" not in row:
+            row["_gap"] = length_m(self.setting(row, self.gap_param, self.gap_key)) \
+                if self.gap_param else NAN
+        return row["_gap"]
+
+    def separation_offset(self, row):
+        """Lengths set together with the gap under other names (e.g. a neighbour's separation)
+        minus the gap: 'separation +5 cm'."""
+        if "_offset" not in row:
+            row["_offset"] = self._separation_offset(row)
+        return row["_offset"]
+
+    def _separation_offset(self, row):
+        if not self.gap_param:
+            return ""
+        p = self.params[self.names.index(self.gap_param)]
+        settings = p["settings"][p["values"].index(row[self.gap_param])]
+        gap = self.gap(row)
+        last = self.gap_key.split(".")[-1]
+        offsets = {}
+        for key, text in settings.items():
+            name = key.split(".")[-1]
+            if name != last and math.isfinite(length_m(text)):
+                offsets.setdefault(name, set()).add(round((length_m(text) - gap) * 100, 6))
+        return ", ".join(f"{name} {o:+g} cm" for name, values in sorted(offsets.items())
+                         for o in sorted(values))
+
+    def value(self, row, column):
+        return number(row.get(column))
+
+    def block(self, row, name=MAIN_BUILDING):
+        key = "_block_" + name
+        if key not in row:
+            row[key] = self._block(row, name)
+        return row[key]
+
+    def _block(self, row, name):
+        first = self.value(row, f"{name}.first_dof")
+        n = self.value(row, f"{name}.n_dofs")
+        storeys = self.value(row, f"{name}.n_storeys")
+        if not math.isfinite(first):  # sweeps written before these metrics: all DOFs
+            dofs = [c for c in self.columns if c.startswith("peak_displacement_dof")]
+            drifts = [c for c in self.columns if c.startswith("peak_drift_storey")]
+            return 0, len(dofs), len(drifts)
+        return int(first), int(n), int(storeys)
+
+    def floors_max(self, row, pattern):
+        """Max over the main building's floors above the isolation level (an isolated building
+        has one DOF more than storeys: DOF 0 is the isolation level)."""
+        first, n, storeys = self.block(row)
+        start = max(0, n - storeys)
+        values = [self.value(row, pattern.format(first + i)) for i in range(start, n)]
+        values = [v for v in values if math.isfinite(v)]
+        return max(values) if values else NAN
+
+    def storeys_max(self, row, pattern):
+        _, _, n = self.block(row)
+        values = [self.value(row, pattern.format(s)) for s in range(n)]
+        values = [v for v in values if math.isfinite(v)]
+        return max(values) if values else NAN
+
+    def contacts_max(self, row, suffix):
+        values = [self.value(row, c) for c in self.columns if c.endswith(suffix)]
+        values = [v for v in values if math.isfinite(v)]
+        return max(values) if values else NAN
+
+    def impact_velocity(self, row):
+        return self.contacts_max(row, ".max_impact_velocity [m/s]")
+
+
+# Responses charted for every kind: (key, label, function(sweep, row)).
+RESPONSES = [
+    ("floor_acc", "max floor acceleration [m/s²]",
+     lambda s, r: s.floors_max(r, "peak_abs_acceleration_dof{} [m/s^2]")),
+    ("drift", "max interstorey drift [cm]",
+     lambda s, r: 100 * s.storeys_max(r, "peak_drift_storey{} [m]")),
+    ("impact_velocity", "max impact velocity [m/s]", lambda s, r: s.impact_velocity(r)),
+    ("n_impacts", "number of impacts", lambda s, r: s.value(r, "n_impacts")),
+]
+PEAK_FORCE = ("peak_force", "peak impact force [MN]",
+              lambda s, r: s.contacts_max(r, ".peak_force [N]") / 1e6)
+AMPLIFICATIONS = [
+    ("amp_floor_acc", "amplification of the floor acceleration",
+     lambda s, r: s.floors_max(r, "amp_abs_acceleration_dof{}")),
+    ("amp_base_acc", "amplification of the base acceleration",
+     lambda s, r: s.value(r, f"amp_abs_acceleration_dof{s.block(r)[0]}")),
+    ("amp_drift", "amplification of the interstorey drift",
+     lambda s, r: s.storeys_max(r, "amp_drift_storey{}")),
+]
+
+
+# ---------------------------------------------------------------------------------------- output
+def save(fig, directory, name, written):
+    os.makedirs(os.path.join(directory, "charts"), exist_ok=True)
+    for ext in ("png", "svg"):
+        final = os.path.join(directory, "charts", f"{name}.{ext}")
+        temp = final + f".tmp-{os.getpid()}"
+        fig.savefig(temp, format=ext, dpi=110, bbox_inches="tight")
+        os.replace(temp, final)
+    plt.close(fig)
+    written.append(name)
+
+
+def shown(value):
+    return "none" if value in ("~", "null") else value
+
+
+def describe(sweep, row, skip=()):
+    """The varied parameters of a row (single-valued ones are the same for every row)."""
+    parts = []
+    for p in sweep.params:
+        n = p["name"]
+        if n in skip or len(p["values"]) < 2:
+            continue
+        if n == sweep.gap_param:
+            parts.append(f"gap {fmt(sweep.gap(row) * 100)} cm")
+            off = sweep.separation_offset(row)
+            if off:
+                parts.append(off)
+        else:
+            parts.append(f"{n} = {shown(row[n])}")
+    return ", ".join(parts) or "the only case"
+
+
+def series_label(sweep, row, params):
+    parts = [f"{n.split('.')[-1]}={shown(row[n])}" for n in params]
+    if sweep.gap_param and sweep.gap_param not in params:
+        off = sweep.separation_offset(row)
+        if off and sweep.kind == "adjacent_buildings":
+            parts.append(off)
+    return ", ".join(parts) or "all"
+
+
+def stats_vs(sweep, rows, xfun, yfun, series_params):
+    """{series label: (x, max over the rest, mean over the rest)} with finite values only."""
+    data = {}
+    for r in rows:
+        x, y = xfun(r), yfun(sweep, r)
+        if not (math.isfinite(x) and math.isfinite(y)):
+            continue
+        data.setdefault(series_label(sweep, r, series_params), {}).setdefault(round(x, 9), []).append(y)
+    out = {}
+    for label, by_x in data.items():
+        xs = sorted(by_x)
+        out[label] = (np.array(xs), np.array([max(by_x[x]) for x in xs]),
+                      np.array([float(np.mean(by_x[x])) for x in xs]),
+                      max(len(v) for v in by_x.values()))
+    return out
+
+
+def panels_vs(sweep, rows, xfun, xlabel, series_params, responses, name, title, written):
+    n = len(responses)
+    cols = 2
+    fig, axes = plt.subplots((n + 1) // cols, cols, figsize=(12, 4.2 * ((n + 1) // cols)), squeeze=False)
+    over = "records" if sweep.record_param and sweep.record_param not in series_params \
+        else "the parameters not in the legend"
+    aggregated = False
+    for ax, (_, label, fun) in zip(axes.flat, responses):
+        data = stats_vs(sweep, rows, xfun, fun, series_params)
+        aggregated = aggregated or any(d[3] > 1 for d in data.values())
+        for i, (s, (x, ymax, ymean, n_per_x)) in enumerate(sorted(data.items())):
+            color = f"C{i % 10}"
+            marker = "o" if len(x) < 4 else None
+            ax.plot(x, ymax, "-", color=color, marker=marker, label=f"{s} (max)" if n_per_x > 1 else s)
+            if n_per_x > 1:
+                ax.plot(x, ymean, "--", color=color, marker=marker, label=f"{s} (mean)")
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(label)
+        ax.grid(True, alpha=0.3)
+    for ax in list(axes.flat)[n:]:
+        ax.axis("off")
+    handles, labels = axes.flat[0].get_legend_handles_labels()
+    if handles:
+        fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0),
+                   ncol=min(4, len(labels)), fontsize="small")
+    fig.suptitle(f"{title}\n(solid: max, dashed: mean over {over})" if aggregated else title)
+    fig.tight_layout()
+    save(fig, sweep.dir, name, written)
+
+
+def other_params(sweep, *exclude):
+    return [n for n in sweep.names
+            if n not in exclude and n != sweep.gap_param and n != sweep.record_param
+            and len(sweep.params[sweep.names.index(n)]["values"]) > 1]
+
+
+def gap_charts(sweep, rows, series, written, suffix="", title_extra=""):
+    x = lambda r: sweep.gap(r) * 100  # noqa: E731
+    panels_vs(sweep, rows, x, "gap [cm]", series, RESPONSES, "response_vs_gap" + suffix,
+              f"{sweep.title}{title_extra}: response vs gap", written)
+    if any(c.startswith("amp_") for c in sweep.columns):
+        panels_vs(sweep, rows, x, "gap [cm]", series, AMPLIFICATIONS, "amplification_vs_gap" + suffix,
+                  f"{sweep.title}{title_extra}: amplification vs gap", written)
+
+
+def property_charts(sweep, written):
+    for name in other_params(sweep):
+        p = sweep.params[sweep.names.index(name)]
+        numeric = [quantity(v)[0] for v in p["values"]]
+        if all(math.isfinite(v) for v in numeric):
+            x = lambda r, n=name: quantity(r[n])[0]  # noqa: E731
+            unit = quantity(p["values"][0])[1]
+            xlabel = f"{name} [{unit}]" if unit else name
+        else:
+            x = lambda r, n=name, vals=p["values"]: float(vals.index(r[n]))  # noqa: E731
+            xlabel = f"{name} ({', '.join(f'{i}: {v}' for i, v in enumerate(p['values']))})"
+        responses = [a for a in AMPLIFICATIONS if a[0] != "amp_base_acc"] + RESPONSES[2:]
+        panels_vs(sweep, sweep.ok, x, xlabel, [], responses,
+                  "vs_" + re.sub(r"[^A-Za-z0-9]+", "_", name).strip("_"),
+                  f"{sweep.title}: response vs {name}", written)
+
+
+# ---------------------------------------------------------------------------------------- kinds
+def chart_gap_study(sweep, written, lines):
+    gap_charts(sweep, sweep.ok, other_params(sweep), written)
+    add_dreq_lines(sweep, lines)
+
+
+def chart_wall_location(sweep, written, lines):
+    chart_gap_study(sweep, written, lines)
+
+
+def chart_flexibility(sweep, written, lines):
+    companion = next((c["name"] for c in sweep.plan.get("companions", [])), None)
+
+    def ratio(r):
+        other = sweep.companion_of.get((companion, tuple(r[n] for n in sweep.names)))
+        t_iso = sweep.value(r, f"{MAIN_BUILDING}.T1 [s]")
+        t_fixed = sweep.value(other, f"{MAIN_BUILDING}.T1 [s]") if other else NAN
+        return t_iso / t_fixed if t_fixed > 0 else NAN
+
+    series = [n for n in other_params(sweep) if "isolator" not in n] + (
+        [sweep.gap_param] if sweep.gap_param else [])
+    panels_vs(sweep, sweep.ok, ratio, "T_iso / T_fixed", series, AMPLIFICATIONS + RESPONSES[2:],
+              "vs_period_ratio", f"{sweep.title}: response vs isolation flexibility", written)
+    ratios = [(ratio(r), r) for r in sweep.ok if math.isfinite(ratio(r))]
+    if ratios:
+        lo, hi = min(ratios, key=lambda t: t[0]), max(ratios, key=lambda t: t[0])
+        lines.append(f"- T_iso/T_fixed from {fmt(lo[0])} ({describe(sweep, lo[1])}) to {fmt(hi[0])} "
+                     f"({describe(sweep, hi[1])}).")
+
+
+def chart_impact_parameters(sweep, written, lines):
+    names = [n for n in sweep.names if n != sweep.record_param and n != sweep.gap_param
+             and len(sweep.params[sweep.names.index(n)]["values"]) > 1]
+    if len(names) < 2:
+        property_charts(sweep, written)
+        return
+    xa, ya = names[0], names[1]
+    xs = sorted({quantity(r[xa])[0] for r in sweep.ok})
+    ys = sorted({quantity(r[ya])[0] for r in sweep.ok})
+    fig, axes = plt.subplots(2, 2, figsize=(12, 9))
+    for ax, (_, label, fun) in zip(axes.flat, [AMPLIFICATIONS[0], AMPLIFICATIONS[2], RESPONSES[3],
+                                               PEAK_FORCE]):
+        grid = np.full((len(ys), len(xs)), np.nan)
+        for r in sweep.ok:
+            i, j = ys.index(quantity(r[ya])[0]), xs.index(quantity(r[xa])[0])
+            v = fun(sweep, r)
+            grid[i, j] = v if not np.isfinite(grid[i, j]) else max(grid[i, j], v)
+        mesh = ax.contourf(xs, ys, grid, levels=12, cmap="viridis") if len(xs) > 1 and len(ys) > 1 \
+            else ax.pcolormesh(grid)
+        fig.colorbar(mesh, ax=ax)
+        ax.set_xlabel(f"{xa} [{quantity(sweep.ok[0][xa])[1]}]")
+        ax.set_ylabel(f"{ya} [{quantity(sweep.ok[0][ya])[1]}]".replace(" []", ""))
+        ax.set_title(label, fontsize="medium")
+    fig.suptitle(f"{sweep.title}: amplification surfaces (max over records)" if sweep.record_param
+                 else f"{sweep.title}: amplification surfaces")
+    fig.tight_layout()
+    save(fig, sweep.dir, "amplification_surfaces", written)
+    for key, label, fun in AMPLIFICATIONS[:1]:
+        vals = [(fun(sweep, r), r) for r in sweep.ok if math.isfinite(fun(sweep, r))]
+        if vals:
+            lo = min(vals, key=lambda t: t[0])
+            lines.append(f"- smallest {label}: {fmt(lo[0])} at {describe(sweep, lo[1])}.")
+
+
+def chart_adjacent(sweep, written, lines):
+    side = next((n for n in other_params(sweep)), None)
+    rest = [n for n in other_params(sweep) if n != side]
+    values = sweep.params[sweep.names.index(side)]["values"] if side else [None]
+    for v in values:
+        rows = [r for r in sweep.ok if side is None or r[side] == v]
+        suffix = "" if v is None else "_" + re.sub(r"[^A-Za-z0-9]+", "_", v).strip("_")
+        gap_charts(sweep, rows, rest, written, suffix, "" if v is None else f" ({side} = {v})")
+    dsrss_chart_and_table(sweep, written, lines)
+
+
+def chart_bumpers(sweep, written, lines):
+    gap_values = sweep.params[sweep.names.index(sweep.gap_param)]["values"] if sweep.gap_param else []
+    if len(gap_values) >= 3:
+        gap_charts(sweep, sweep.ok, other_params(sweep), written)
+        first = next(iter(other_params(sweep)), None)
+        if first:
+            for key, label, fun in AMPLIFICATIONS[:1] + RESPONSES[2:3]:
+                for v in sweep.params[sweep.names.index(first)]["values"]:
+                    vals = [fun(sweep, r) for r in sweep.ok if r[first] == v]
+                    vals = [x for x in vals if math.isfinite(x)]
+                    if vals:
+                        lines.append(f"- {first} = {v}: mean {label} {fmt(float(np.mean(vals)))}, "
+                                     f"max {fmt(max(vals))} ({len(vals)} cases).")
+    else:
+        property_charts(sweep, written)
+
+
+# ------------------------------------------------------------------------------- d_req / d_SRSS
+def add_dreq_lines(sweep, lines):
+    path = os.path.join(sweep.dir, "dsrss_table.csv")
+    if not os.path.exists(path):
+        return
+    table = read_csv(path)
+    if not table:
+        return
+    params = [c for c in table[0] if c in sweep.names]
+    reached = [r for r in table if r["d_req_status"] in ("reached", "at_smallest_gap")]
+    n_not = sum(r["d_req_status"] == "not_reached" for r in table)
+    if reached:
+        worst = max(reached, key=lambda r: number(r["d_req [m]"]))
+        lines.append(f"- largest gap found necessary to avoid pounding (d_req): "
+                     f"{fmt(number(worst['d_req [m]']) * 100)} cm for "
+                     f"{', '.join(f'{p} = {worst[p]}' for p in params) or 'the only configuration'}.")
+    lines.append(f"- {n_not} of {len(table)} configurations still pound at the largest swept gap "
+                 f"(d_req not reached; see the table below).")
+
+
+def dsrss_chart_and_table(sweep, written, lines):
+    path = os.path.join(sweep.dir, "dsrss_table.csv")
+    if not os.path.exists(path):
+        lines.append("- no `dsrss_table.csv` (the sweep has no SRSS metrics).")
+        return
+    table = read_csv(path)
+    params = [c for c in table[0] if c in sweep.names] if table else []
+    deltas = [(number(r["delta_d [m]"]), r) for r in table if math.isfinite(number(r["delta_d [m]"]))]
+    n_not = sum(r["d_req_status"] == "not_reached" for r in table)
+    if deltas:
+        lo, hi = min(deltas, key=lambda t: t[0]), max(deltas, key=lambda t: t[0])
+        name = lambda r: ", ".join([f"{p} = {r[p]}" for p in params]  # noqa: E731
+                                   + [f"clearance − gap {fmt(number(r['clearance_offset [m]']) * 100)} cm"])
+        lines.append(f"- Δd = d_SRSS − d_req from {fmt(lo[0] * 100)} cm ({name(lo[1])}) to "
+                     f"{fmt(hi[0] * 100)} cm ({name(hi[1])}); negative Δd: SRSS gap too small; "
+                     f"{sum(d < 0 for d, _ in deltas)} of {len(deltas)} configurations with a "
+                     f"found d_req are unconservative; {n_not} never stop pounding in the swept range.")
+    # Chart: d_SRSS and d_req per configuration (one point per table row, grouped by record).
+    record = sweep.record_param if sweep.record_param in params else None
+    groups = {}
+    for r in table:
+        groups.setdefault(r[record] if record else "all", []).append(r)
+    fig, axes = plt.subplots(len(groups), 1, figsize=(max(10, 0.12 * len(table)), 3.8 * len(groups)),
+                             squeeze=False)
+    for ax, (g, rows) in zip(axes[:, 0], groups.items()):
+        x = np.arange(len(rows))
+        d_req = [number(r["d_req [m]"]) * 100 for r in rows]
+        d_srss = [number(r["d_srss [m]"]) * 100 for r in rows]
+        not_reached = [i for i, r in enumerate(rows) if r["d_req_status"] == "not_reached"]
+        ax.plot(x, d_srss, "s", label="d_SRSS")
+        ax.plot(x, d_req, "o", label="d_req (sweep)")
+        if not_reached:
+            ax.plot(not_reached, [number(rows[i]["gap_max [m]"]) * 100 for i in not_reached], "^",
+                    color="red", label="d_req > largest gap")
+        ax.set_xticks(x)
+        ax.set_xticklabels([", ".join(r[p] for p in params if p != record)
+                            + (f" {number(r['clearance_offset [m]']) * 100:+g} cm"
+                               if number(r["clearance_offset [m]"]) else "") for r in rows],
+                           rotation=90, fontsize=6)
+        ax.set_ylabel("gap [cm]")
+        ax.set_title(f"{record} = {g}" if record else "", fontsize="medium")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize="small")
+    fig.suptitle(f"{sweep.title}: required gap found by the sweep vs SRSS")
+    fig.tight_layout()
+    save(fig, sweep.dir, "dsrss", written)
+
+
+def dsrss_markdown(sweep):
+    path = os.path.join(sweep.dir, "dsrss_table.csv")
+    if not os.path.exists(path):
+        return []
+    table = read_csv(path)
+    if not table:
+        return []
+    params = [c for c in table[0] if c in sweep.names]
+    out = ["", "## Required gap: sweep (d_req) against SRSS (d_SRSS)", "",
+           "d_SRSS = max over contacts of (sqrt(d_L² + d_R²) − (clearance − gap)) from the run "
+           "without contacts; d_req = smallest swept gap from which on no contact has an impact; "
+           "Δd = d_SRSS − d_req (from `dsrss_table.csv`).", "",
+           "| " + " | ".join(params) + " | clearance − gap [cm] | d_req [cm] | d_SRSS [cm] | Δd [cm] | governing |",
+           "|" + "---|" * (len(params) + 5)]
+    for r in table:
+        d_req = number(r["d_req [m]"]) * 100
+        status = r["d_req_status"]
+        d_req_text = {"not_reached": f"> {fmt(number(r['gap_max [m]']) * 100)}",
+                      "at_smallest_gap": f"≤ {fmt(d_req)}", "no_data": "n/a"}.get(status, fmt(d_req))
+        out.append("| " + " | ".join(r[p] for p in params)
+                   + f" | {fmt(number(r['clearance_offset [m]']) * 100)} | {d_req_text} | "
+                   f"{fmt(number(r['d_srss [m]']) * 100)} | {fmt(number(r['delta_d [m]']) * 100)} | "
+                   f"{r['governing_contact']} |")
+    return out
+
+
+# ---------------------------------------------------------------------------------------- summary
+def key_numbers(sweep):
+    lines = []
+    for key, label, fun in AMPLIFICATIONS + RESPONSES + [PEAK_FORCE]:
+        vals = [(fun(sweep, r), r) for r in sweep.ok if math.isfinite(fun(sweep, r))]
+        if not vals:
+            continue
+        best = max(vals, key=lambda t: t[0])
+        unit = re.search(r"\[(.*)\]", label)
+        text = re.sub(r"\s*\[.*\]", "", label)
+        lines.append(f"- largest {text}: {fmt(best[0])}{' ' + unit.group(1) if unit else ''} "
+                     f"at {describe(sweep, best[1])}")
+    return lines
+
+
+def write_summary(sweep, written, extra):
+    n_comp = len(sweep.rows) - len(sweep.main)
+    swept = []
+    for p in sweep.params:
+        vals = [shown(v) for v in p["values"]]
+        listed = ", ".join(vals) if len(vals) <= 6 else f"{vals[0]}, {vals[1]}, …, {vals[-1]}"
+        swept.append(f"- `{p['name']}`: {len(vals)} values ({listed})")
+    failures = {}
+    for r in sweep.failed:
+        failures[r["status"]] = failures.get(r["status"], 0) + 1
+    text = [f"# {sweep.title}", "",
+            f"Sweep file `{sweep.plan.get('file', '')}`, base scene `{sweep.plan.get('scene', '')}`, "
+            f"report kind `{sweep.kind}`.", "",
+            "## What was swept", "",
+            f"{len(sweep.main)} cases ({len(sweep.ok)} ok, {len(sweep.failed)} failed)"
+            + (f" and {n_comp} companion runs ({', '.join(c['name'] for c in sweep.plan.get('companions', []))})"
+               if n_comp else "") + f"; combination: {sweep.plan.get('combine', 'product')}.", ""]
+    text += swept
+    if failures:
+        text += ["", "Failures:"] + [f"- {n} × {s}" for s, n in sorted(failures.items())]
+    text += ["", "## Key numbers", "",
+             "Maxima over all successful cases. Floor accelerations: the main building's floors above "
+             "the isolation level; drifts: its storeys; base: the isolation level; amplification = "
+             "peak with pounding / peak of the run without contacts.", ""]
+    text += key_numbers(sweep) + extra
+    text += dsrss_markdown(sweep)
+    text += ["", "## Charts", ""]
+    text += [f"- [{name}](charts/{name}.svg) ![{name}](charts/{name}.png)" for name in written]
+    final = os.path.join(sweep.dir, "summary.md")
+    temp = final + f".tmp-{os.getpid()}"
+    with open(temp, "w") as f:
+        f.write("\n".join(text) + "\n")
+    os.replace(temp, final)
+
+
+KINDS = {
+    "gap_study": chart_gap_study,
+    "isolation_flexibility": chart_flexibility,
+    "wall_location": chart_wall_location,
+    "impact_parameters": chart_impact_parameters,
+    "adjacent_buildings": chart_adjacent,
+    "bumpers": chart_bumpers,
+}
+
+
+def main(argv):
+    if len(argv) != 2:
+        print(f"usage: {argv[0]} SWEEP_OUTPUT_DIR", file=sys.stderr)
+        return 2
+    sweep = Sweep(argv[1])
+    if sweep.kind not in KINDS:
+        print(f"report.kind = {sweep.kind} (expected one of {', '.join(KINDS)})", file=sys.stderr)
+        return 2
+    written, extra = [], []
+    status = 0
+    if sweep.ok:
+        try:
+            KINDS[sweep.kind](sweep, written, extra)
+        except Exception:  # the summary is still written, then the failure is reported
+            traceback.print_exc()
+            extra.append(f"- **chart failure** ({sweep.kind}): see charts/charts.log; charts "
+                         f"written before it are listed below.")
+            status = 1
+    write_summary(sweep, written, extra)
+    print(f"{len(written)} charts and summary.md written to {sweep.dir}")
+    return status
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
