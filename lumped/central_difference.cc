@@ -1,5 +1,6 @@
 // Central difference method for pounding (thesis eq. 3.9-3.13): stability limit, time-step choice
-// and the allocation-free time loop over the block-tridiagonal system.
+// and the allocation-free time loop (fused dense kernel for <= 8 DOFs, block-tridiagonal
+// otherwise).
 #include "lumped/central_difference.h"
 
 #include <Eigen/Eigenvalues>
@@ -7,9 +8,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
+#include <utility>
 
 #if defined(__SSE2__)
 #  include <emmintrin.h>
@@ -103,6 +107,11 @@ namespace kimp::lumped
       fail("output_interval", options_.output_interval, "must be >= 0 s (0: no histories)");
     if (!(options_.divergence_energy_factor > 1.0))
       fail("divergence_energy_factor", options_.divergence_energy_factor, "must be > 1");
+    if (options_.vector_lanes != 0 && options_.vector_lanes != 2 && options_.vector_lanes != 4 &&
+        options_.vector_lanes != 8)
+      fail("vector_lanes",
+           static_cast<double>(options_.vector_lanes),
+           "must be 0 (widest available), 2, 4 or 8");
     const std::size_t n = model_.n_dofs();
     if (!options_.initial_displacement.empty() && options_.initial_displacement.size() != n)
       fail("initial_displacement.size",
@@ -244,13 +253,6 @@ namespace kimp::lumped
                                                (3.0 * x_n - 4.0 * x_nm1 + x_nm2) * (0.5 * inv_dt);
     }
 
-    /// Rows of the small dense propagators, rounded up to an even count so that the products
-    /// vectorise in pairs (the padding rows are zero and never stored back).
-    constexpr int padded(const int n)
-    {
-      return n + (n & 1);
-    }
-
     /// Two doubles in one SSE register (GCC/Clang vector extension): element-wise operations
     /// round exactly like their scalar counterparts.
     typedef double Pair __attribute__((vector_size(16)));
@@ -315,9 +317,28 @@ namespace kimp::lumped
     std::vector<double>                     b_diag, b_upper; ///< 2M/Δt² − K
     std::vector<double>                     d_diag, d_upper; ///< −M/Δt² + C/(2Δt)
     std::unique_ptr<EffectiveMatrixInverse> a_inverse;       ///< (M/Δt² + C/(2Δt))⁻¹
-    /// Dense column-major propagators for a single small building, leading dimension
-    /// padded(n): A⁻¹, A⁻¹B, A⁻¹D, A⁻¹M·1.
-    std::vector<double>      dense_inverse, dense_ab, dense_ad, dense_am;
+    /// Fused kernel (up to 8 DOFs): dense column-major matrices with leading dimension padded_n
+    /// (padding rows zero): A⁻¹, A⁻¹(C/Δt + K), A⁻¹K, and the vector A⁻¹M·1.
+    bool                fused = false;
+    std::vector<double> dense_inverse, dense_f, dense_g, dense_am;
+    /// Fused kernel state carried between blocks (padded_n each): u_n, Δu_n = u_n − u_{n−1},
+    /// z_{n−1} = A⁻¹K·u_{n−1}, and v and a of the last step taken (checks, history sample).
+    std::vector<double> fused_u, fused_d, fused_z, fused_v, last_accel;
+    /// delta_prev/delta_prev2 hold δ_{n−1}, δ_{n−2} (false after steps that skipped the laws).
+    bool deltas_current = true;
+    /// Fused kernel, per DOF lane (3 × padded_n each): the running peaks of |u_i|, |a_i| and
+    /// |u_i − u_{i−1}| (u_{−1} = 0; the storeys' drifts, storeys being between consecutive
+    /// DOFs), and the sums over the steps so far of ü_g·v_i, v_i² and v_i·v_{i+1}.
+    std::vector<double> fused_peaks, fused_sums;
+    int                 lanes    = 2; ///< doubles per vector register of the fused kernel
+    std::size_t         padded_n = 0; ///< n rounded up to a multiple of lanes
+    double              p_in_0 = 0.0, p_visc_0 = 0.0; ///< input and viscous power at t_0, W
+    /// Fused kernel, per DOF lane: 1 where the storey below DOF i joins DOF i − 1, 0 where it
+    /// joins the ground (or there is none).
+    std::vector<double> drift_mask;
+    /// Fused kernel contact pre-check: a law is skipped while u_L − u_R <= gap_skip (the gap, or
+    /// −∞ while the law is in contact, was called last step or holds a force).
+    std::vector<double>      gap_skip;
     const TridiagonalMatrix *k = nullptr;
     const TridiagonalMatrix *c = nullptr;
 
@@ -355,14 +376,20 @@ namespace kimp::lumped
     using Kernel    = void (*)(Session &, long len);
     Kernel dynamics = nullptr;
 
+    /// Displacement buffer strides: the reference kernel stores a row per DOF (row_stride =
+    /// width, col_stride = 1: the bookkeeping vectorises over steps), the fused kernel a column
+    /// per step (row_stride = 1, col_stride = the padded DOF count: one vector store per step).
+    std::size_t row_stride = 0, col_stride = 1;
+
     double *column(const std::size_t row, const long c)
     {
-      return u_block.data() + row * width + static_cast<std::size_t>(c);
+      return u_block.data() + row * row_stride + static_cast<std::size_t>(c) * col_stride;
     }
 
     void     init(const CentralDifference &cdm, const GroundMotion &g);
     void     advance(long count);
     void     bookkeeping(long len);
+    void     checkpoint_energies(long len);
     void     checkpoint(long k);
     Response response() const;
   };
@@ -388,6 +415,7 @@ namespace kimp::lumped
         : s_(s)
         , iso_(static_cast<IsolatorType *>(s.iso.get()))
         , ub_(s.u_block.data())
+        , cs_(s.col_stride)
         , f_(s.force.data())
         , fd_(s.force_dofs.data())
         , n_fd_(s.force_dofs.size())
@@ -409,21 +437,42 @@ namespace kimp::lumped
       /// Forces at step s0 + k (time t) into Session::force.
       inline __attribute__((always_inline)) void operator()(const long k, const double t)
       {
-        const double *const ub = ub_ + k;
+        const double *const ub = ub_ + static_cast<std::size_t>(k) * cs_;
         double *const       f  = f_;
         for (std::size_t q = 0; q < n_fd_; ++q)
           f[fd_[q]] = 0.0;
         f[ground_] = 0.0;
         if (iso_)
-        {
-          f[0] = iso_->set_trial(ub[2], law_rate(scheme_, ub[2], ub[1], ub[0], inv_dt_)).force;
-          iso_->commit();
-        }
+          f[0] = isolator(k, ub[2 * cs_]);
+        contacts(k, t);
+      }
+
+      /// Isolator force at step s0 + k for u_0 = `u0` (equal to the block's value; passed in so
+      /// that the step-to-step chain does not go through memory), committed.
+      inline __attribute__((always_inline)) double isolator(const long k, const double u0)
+      {
+        const double *const ub = ub_ + static_cast<std::size_t>(k) * cs_;
+        const double f = iso_->set_trial(u0, law_rate(scheme_, u0, ub[cs_], ub[0], inv_dt_)).force;
+        iso_->commit();
+        return f;
+      }
+
+      bool has_isolator() const { return iso_ != nullptr; }
+
+      /// Contact forces at step s0 + k, added to Session::force; true if any law was called (the
+      /// force entries may then be non-zero).
+      inline __attribute__((always_inline)) bool contacts(const long k, const double t)
+      {
+        const double *const ub      = ub_ + static_cast<std::size_t>(k) * cs_;
+        bool                touched = false;
         for (std::size_t c = 0; c < nc_; ++c)
         {
           const double delta = ub[row_l_[c]] - ub[row_r_[c]] - gap_[c];
           if (delta > 0.0 || active_[c])
+          {
             contact(c, delta, t);
+            touched = true;
+          }
           else
           {
             called_[c] = 0;
@@ -438,9 +487,10 @@ namespace kimp::lumped
           dpp_[c] = dp_[c];
           dp_[c]  = delta;
         }
+        return touched;
       }
 
-    private:
+      /// Evaluate and commit law `c` at δ (it is in contact or its gap is closed).
       void contact(const std::size_t c, const double delta, const double t)
       {
         const int    L    = s_.left[c];
@@ -468,9 +518,11 @@ namespace kimp::lumped
         s_.peak_force[c] = std::max(s_.peak_force[c], force);
       }
 
+    private:
       Session            &s_;
       IsolatorType *const iso_;
       double *const       ub_;
+      const std::size_t   cs_;
       double *const       f_;
       const int *const    fd_;
       const std::size_t   n_fd_;
@@ -488,57 +540,393 @@ namespace kimp::lumped
       double *const       dpp_;
     };
 
-    template <class IsolatorType, int N>
-    void dynamics_dense(Session &s, const long len)
+    // The fused kernel is written once for vectors of L doubles (GCC/Clang vector extensions) and
+    // compiled for SSE2 (L = 2, the baseline x86-64 build), AVX2 (L = 4) and AVX-512F (L = 8),
+    // picked at run time. Every operation is element-wise per DOF lane (no horizontal sums per
+    // step, no FMA contraction: optimize("fp-contract=off")), so the three variants give
+    // bitwise identical results. Helpers take vectors by reference only: passing wide vectors
+    // by value from code compiled for the baseline would change the ABI.
+    template <int L>
+    struct Lanes
     {
-      constexpr int                P = padded(N) / 2; // pairs of rows
-      const std::size_t            W = s.width;
+      typedef double       V __attribute__((vector_size(8 * L)));
+      typedef std::int64_t I __attribute__((vector_size(8 * L)));
+      /// V at any double-aligned address (loads and stores by assignment, so that the vectors
+      /// never have their address taken and stay in registers).
+      typedef double U __attribute__((vector_size(8 * L), aligned(8), may_alias));
+    };
+
+    /// out = (x[j], x[j], ...).
+    template <class V, class I, int j>
+    inline __attribute__((always_inline)) void splat(V &out, const V &x)
+    {
+      constexpr int L = sizeof(V) / sizeof(double);
+      I             mask;
+      for (int l = 0; l < L; ++l)
+        mask[l] = j;
+#if defined(__clang__)
+      out = V{} + x[j];
+#else
+      out = __builtin_shuffle(x, mask);
+#endif
+    }
+
+    /// out = (x[1], ..., x[L−1], y[0]): the DOFs one further down the padded vector.
+    template <class V, class I>
+    inline __attribute__((always_inline)) void shift_down(V &out, const V &x, const V &y)
+    {
+      constexpr int L = sizeof(V) / sizeof(double);
+      I             mask;
+      for (int l = 0; l < L; ++l)
+        mask[l] = l + 1;
+#if defined(__clang__)
+      for (int l = 0; l < L; ++l)
+        out[l] = l + 1 < L ? x[l + 1] : y[0];
+      (void)mask;
+#else
+      out = __builtin_shuffle(x, y, mask);
+#endif
+    }
+
+    /// out = (w[L−1], x[0], ..., x[L−2]): the DOFs one further up.
+    template <class V, class I>
+    inline __attribute__((always_inline)) void shift_up(V &out, const V &w, const V &x)
+    {
+      constexpr int L = sizeof(V) / sizeof(double);
+      I             mask;
+      for (int l = 0; l < L; ++l)
+        mask[l] = L - 1 + l;
+#if defined(__clang__)
+      for (int l = 0; l < L; ++l)
+        out[l] = l == 0 ? w[L - 1] : x[l - 1];
+      (void)mask;
+#else
+      out = __builtin_shuffle(w, x, mask);
+#endif
+    }
+
+    /// peak = max(peak, |x|) element-wise (|x| clears the sign bit; max as std::max(peak, |x|)).
+    template <class V, class I>
+    inline __attribute__((always_inline)) void peak_abs(V &peak, const V &x)
+    {
+      const I bits = (I)x & ~(I{} + (std::int64_t{1} << 63)); // vector casts reinterpret
+      const V ax   = (V)bits;
+      peak         = peak < ax ? ax : peak;
+    }
+
+
+    /// f(std::integral_constant<int, j>) for j = 0..N−1 (unrolled at compile time).
+    template <class F, std::size_t... js>
+    inline __attribute__((always_inline)) void for_each_index(F &&f, std::index_sequence<js...>)
+    {
+      (f(std::integral_constant<int, static_cast<int>(js)>{}), ...);
+    }
+
+    /// A contact pre-check failed at step s0 + k (or the run is in its first two steps): the
+    /// reference kernel's contact evaluation for every law, with δ_{n−1} and δ_{n−2} re-formed
+    /// from the displacement columns if the previous step skipped the laws, then the pre-check
+    /// re-armed. Returns true if a law was called (forces in Session::force).
+    template <class IsolatorType>
+    __attribute__((noinline)) bool
+    fused_contacts(Session &s, ForceEvaluator<IsolatorType> &forces, const long k)
+    {
+      const std::size_t nc = s.laws.size();
+      if (!s.deltas_current)
+      {
+        const double     *col = s.u_block.data() + static_cast<std::size_t>(k) * s.col_stride;
+        const std::size_t cs  = s.col_stride; // left_row points at column 2 (u_n)
+        for (std::size_t c = 0; c < nc; ++c)
+        {
+          s.delta_prev[c]  = col[s.left_row[c] - cs] - col[s.right_row[c] - cs] - s.gap[c];
+          s.delta_prev2[c] = col[s.left_row[c] - 2 * cs] - col[s.right_row[c] - 2 * cs] - s.gap[c];
+        }
+      }
+      const bool touched = forces.contacts(k, static_cast<double>(s.step + k) * s.dt);
+      for (std::size_t c = 0; c < nc; ++c)
+      {
+        const bool armed = !s.active[c] && !s.called_prev[c] && s.cf[c] == 0.0;
+        s.gap_skip[c]    = armed ? s.gap[c] : -std::numeric_limits<double>::infinity();
+      }
+      s.deltas_current = true;
+      return touched;
+    }
+
+    /**
+     * Fused kernel for N <= 8 DOFs (see CentralDifference), vectors of L doubles. With
+     * z_n = A⁻¹K·u_n carried as z_n = z_{n−1} + A⁻¹K·Δu_n, the step is
+     *   Δu_{n+1} = Δu_n − z_{n−1} − A⁻¹M·1·ü_g − (A⁻¹C/Δt + A⁻¹K)·Δu_n − A⁻¹f_n,
+     * so only one product (summed as a tree) and the force term lie on the step-to-step chain;
+     * z_n, the bookkeeping of the step (peaks, per-DOF running sums of ü_g·v_i, v_i² and
+     * v_i·v_{i+1}) are independent work. The contact laws are called only when a pre-check
+     * fails, outside the fast loop, so that no call forces the state out of the registers.
+     */
+    template <int L, class IsolatorType, int N>
+    inline __attribute__((always_inline)) void fused_body(Session &s, const long len)
+    {
+      typedef typename Lanes<L>::V V;
+      typedef typename Lanes<L>::I I;
+      typedef typename Lanes<L>::U U;
+      constexpr int                P  = (N + L - 1) / L; // vectors per DOF column
+      constexpr std::size_t        LD = static_cast<std::size_t>(P * L);
+      const std::size_t            S  = s.col_stride;
       ForceEvaluator<IsolatorType> forces(s);
-      const double                *agb   = s.ag_block.data();
-      const double                *a_m   = s.dense_am.data();
-      const double                *a_b   = s.dense_ab.data();
-      const double                *a_d   = s.dense_ad.data();
-      const double                *a_inv = s.dense_inverse.data();
-      const double                *f     = s.force.data();
-      const int                   *fd    = s.force_dofs.data();
-      const std::size_t            n_fd  = s.force_dofs.size();
-      double                      *ub    = s.u_block.data();
-      Pair                         am[P], ab[N][P], ad[N][P];
-      for (int i = 0; i < P; ++i)
-        am[i] = load_pair(a_m + 2 * i);
-      for (int j = 0; j < N; ++j)
+      const auto at  = [](const double *p) -> const U  &{ return *reinterpret_cast<const U *>(p); };
+      const auto put = [](double *p) -> U & { return *reinterpret_cast<U *>(p); };
+      const double      *agb  = s.ag_block.data();
+      const double      *a_f  = s.dense_f.data();
+      const double      *a_g  = s.dense_g.data();
+      const double      *a_i  = s.dense_inverse.data();
+      double            *f    = s.force.data();
+      const int         *fd   = s.force_dofs.data();
+      const std::size_t  n_fd = s.force_dofs.size();
+      const std::size_t  nc   = s.laws.size();
+      const std::size_t *c_l  = s.left_row.data();
+      const std::size_t *c_r  = s.right_row.data();
+      const double      *c_g  = s.gap_skip.data();
+      double            *ub   = s.u_block.data();
+      const double       dt   = s.dt;
+      const bool         iso  = forces.has_isolator();
+      const V            zero = V{} * 0.0;
+      const V            half = zero + 0.5 / dt;
+      const V            idt2 = zero + 1.0 / (dt * dt);
+
+      V          am[P], r0[P], mask[P];
+      V          u[P], d[P], z[P], pu[P], pa[P], pd[P], s_agv[P], s_vv[P], s_vx[P], v[P], a[P];
+      const auto load_state = [&]() __attribute__((always_inline))
+      {
+#pragma GCC unroll 16
         for (int i = 0; i < P; ++i)
         {
-          ab[j][i] = load_pair(a_b + 2 * (j * P + i));
-          ad[j][i] = load_pair(a_d + 2 * (j * P + i));
+          const std::size_t o = static_cast<std::size_t>(i * L);
+          u[i]                = at(s.fused_u.data() + o);
+          d[i]                = at(s.fused_d.data() + o);
+          z[i]                = at(s.fused_z.data() + o);
+          pu[i]               = at(s.fused_peaks.data() + o);
+          pa[i]               = at(s.fused_peaks.data() + LD + o);
+          pd[i]               = at(s.fused_peaks.data() + 2 * LD + o);
+          s_agv[i]            = at(s.fused_sums.data() + o);
+          s_vv[i]             = at(s.fused_sums.data() + LD + o);
+          s_vx[i]             = at(s.fused_sums.data() + 2 * LD + o);
+          v[i]                = at(s.fused_v.data() + o);
+          a[i]                = at(s.last_accel.data() + o);
         }
-      for (long k = 0; k < len; ++k)
+      };
+      const auto store_state = [&]() __attribute__((always_inline))
+      {
+#pragma GCC unroll 16
+        for (int i = 0; i < P; ++i)
+        {
+          const std::size_t o                    = static_cast<std::size_t>(i * L);
+          put(s.fused_u.data() + o)              = u[i];
+          put(s.fused_d.data() + o)              = d[i];
+          put(s.fused_z.data() + o)              = z[i];
+          put(s.fused_peaks.data() + o)          = pu[i];
+          put(s.fused_peaks.data() + LD + o)     = pa[i];
+          put(s.fused_peaks.data() + 2 * LD + o) = pd[i];
+          put(s.fused_sums.data() + o)           = s_agv[i];
+          put(s.fused_sums.data() + LD + o)      = s_vv[i];
+          put(s.fused_sums.data() + 2 * LD + o)  = s_vx[i];
+          put(s.fused_v.data() + o)              = v[i];
+          put(s.last_accel.data() + o)           = a[i];
+        }
+      };
+#pragma GCC unroll 16
+      for (int i = 0; i < P; ++i)
+      {
+        const std::size_t o = static_cast<std::size_t>(i * L);
+        am[i]               = at(s.dense_am.data() + o);
+        r0[i]               = at(a_i + o);
+        mask[i]             = at(s.drift_mask.data() + o);
+      }
+      load_state();
+
+      // One step: isolator, Δu_{n+1}, u_{n+1} (stored as column k + 3), bookkeeping of step n.
+      const auto one_step = [&](const long k, const bool touched) __attribute__((always_inline))
       {
         const double ag = agb[k];
-        forces(k, static_cast<double>(s.step + k) * s.dt);
-        const double *col = ub + k;
-        Pair          acc[P];
+        const double fi = iso ? forces.isolator(k, u[0][0]) : 0.0;
+        V            dn[P], zn[P];
+#pragma GCC unroll 16
         for (int i = 0; i < P; ++i)
-          acc[i] = -am[i] * ag;
-        for (int j = 0; j < N; ++j)
         {
-          const double uj  = col[static_cast<std::size_t>(j) * W + 2];
-          const double upj = col[static_cast<std::size_t>(j) * W + 1];
-          for (int i = 0; i < P; ++i)
-            acc[i] += ab[j][i] * uj + ad[j][i] * upj;
+          V pf[N], pg[N];
+          for_each_index(
+            [&](auto jc)
+            {
+              constexpr int j = decltype(jc)::value;
+              V             dj;
+              splat<V, I, j % L>(dj, d[j / L]);
+              pf[j] =
+                at(a_f + static_cast<std::size_t>(j) * LD + static_cast<std::size_t>(i * L)) * dj;
+              pg[j] =
+                at(a_g + static_cast<std::size_t>(j) * LD + static_cast<std::size_t>(i * L)) * dj;
+            },
+            std::make_index_sequence<N>{});
+// Pairwise (tree) sums: short dependency chains.
+#pragma GCC unroll 16
+          for (int w = 1; w < N; w *= 2)
+#pragma GCC unroll 16
+            for (int j = 0; j + w < N; j += 2 * w)
+            {
+              pf[j] += pf[j + w];
+              pg[j] += pg[j + w];
+            }
+          dn[i] = ((d[i] - z[i]) - am[i] * ag - pf[0]) - r0[i] * fi;
+          zn[i] = z[i] + pg[0];
         }
-        for (std::size_t q = 0; q < n_fd; ++q)
+        if (touched)
         {
-          const int    j  = fd[q];
-          const double fj = f[j];
-          if (fj != 0.0)
-            for (int i = 0; i < P; ++i)
-              acc[i] -= load_pair(a_inv + 2 * (j * P + i)) * fj;
+          for (std::size_t q = 0; q < n_fd; ++q)
+          {
+            const std::size_t j  = static_cast<std::size_t>(fd[q]);
+            const double      fj = f[j];
+            if (fj != 0.0)
+#pragma GCC unroll 16
+              for (int i = 0; i < P; ++i)
+                dn[i] -= at(a_i + j * LD + static_cast<std::size_t>(i * L)) * fj;
+            f[j] = 0.0;
+          }
+          f[s.n] = 0.0;
         }
-        double out[2 * P];
-        std::memcpy(out, acc, sizeof(out));
-        for (int i = 0; i < N; ++i)
-          ub[static_cast<std::size_t>(i) * W + static_cast<std::size_t>(k) + 3] = out[i];
+        double *next = ub + static_cast<std::size_t>(k + 3) * S;
+#pragma GCC unroll 16
+        for (int i = 0; i < P; ++i)
+        {
+          const V un        = u[i] + dn[i];
+          put(next + i * L) = un;
+          v[i]              = (d[i] + dn[i]) * half;
+          a[i]              = (dn[i] - d[i]) * idt2 + ag;
+          V below;
+          shift_up<V, I>(below, i == 0 ? zero : u[i - 1], u[i]);
+          peak_abs<V, I>(pu[i], u[i]);
+          peak_abs<V, I>(pa[i], a[i]);
+          const V drift = u[i] - below * mask[i];
+          peak_abs<V, I>(pd[i], drift);
+          s_agv[i] += v[i] * ag;
+          s_vv[i] += v[i] * v[i];
+        }
+#pragma GCC unroll 16
+        for (int i = 0; i < P; ++i)
+        {
+          V above;
+          shift_down<V, I>(above, v[i], i + 1 < P ? v[i + 1] : zero);
+          s_vx[i] += v[i] * above;
+        }
+#pragma GCC unroll 16
+        for (int i = 0; i < P; ++i)
+        {
+          u[i] = u[i] + dn[i];
+          d[i] = dn[i];
+          z[i] = zn[i];
+        }
+      };
+
+      long k = 0;
+      while (k < len)
+      {
+        // Fast loop: no law is called, so nothing leaves the registers.
+        const long fast_from = k;
+        for (; k < len; ++k)
+        {
+          const double *col = ub + static_cast<std::size_t>(k) * S;
+          bool hit = s.step + k < 2; // the first steps use the initial δ_{−1}, δ_{−2}
+          for (std::size_t c = 0; c < nc; ++c)
+            hit |= col[c_l[c]] - col[c_r[c]] > c_g[c];
+          if (hit)
+            break;
+          one_step(k, false);
+        }
+        if (k > fast_from)
+          s.deltas_current = false;
+        if (k == len)
+          break;
+        store_state();
+        const bool touched = fused_contacts(s, forces, k);
+        load_state();
+        one_step(k, touched);
+        ++k;
+      }
+      store_state();
+      const std::size_t B    = static_cast<std::size_t>(block_steps);
+      const std::size_t last = static_cast<std::size_t>(len - 1);
+      for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i)
+        s.velocity[i * B + last] = s.fused_v[i];
+    }
+
+    template <class IsolatorType, int N>
+    __attribute__((optimize("fp-contract=off"))) void fused_sse2(Session &s, const long len)
+    {
+      fused_body<2, IsolatorType, N>(s, len);
+    }
+
+#if defined(__x86_64__) && defined(__GNUC__)
+    template <class IsolatorType, int N>
+    __attribute__((target("avx2"), optimize("fp-contract=off"))) void fused_avx2(Session   &s,
+                                                                                 const long len)
+    {
+      fused_body<4, IsolatorType, N>(s, len);
+    }
+
+    template <class IsolatorType, int N>
+    __attribute__((target("avx512f"), optimize("fp-contract=off"))) void
+    fused_avx512(Session &s, const long len)
+    {
+      fused_body<8, IsolatorType, N>(s, len);
+    }
+#endif
+
+    /// Widest vector (doubles per register) of the fused kernel on this processor, capped at
+    /// `cap` (0: no cap).
+    int fused_lanes(const int cap)
+    {
+#if defined(__x86_64__) && defined(__GNUC__)
+      if (cap == 2)
+        return 2;
+      if ((cap == 0 || cap == 8) && __builtin_cpu_supports("avx512f"))
+        return 8;
+      if (__builtin_cpu_supports("avx2"))
+        return 4;
+#endif
+      (void)cap;
+      return 2;
+    }
+
+    template <class IsolatorType, int N>
+    Session::Kernel fused_for(const int lanes)
+    {
+#if defined(__x86_64__) && defined(__GNUC__)
+      if (lanes == 8)
+        return fused_avx512<IsolatorType, N>;
+      if (lanes == 4)
+        return fused_avx2<IsolatorType, N>;
+#endif
+      (void)lanes;
+      return fused_sse2<IsolatorType, N>;
+    }
+
+    template <class IsolatorType>
+    Session::Kernel fused_kernel(const std::size_t n, const int lanes)
+    {
+      switch (n)
+      {
+        case 1:
+          return fused_for<IsolatorType, 1>(lanes);
+        case 2:
+          return fused_for<IsolatorType, 2>(lanes);
+        case 3:
+          return fused_for<IsolatorType, 3>(lanes);
+        case 4:
+          return fused_for<IsolatorType, 4>(lanes);
+        case 5:
+          return fused_for<IsolatorType, 5>(lanes);
+        case 6:
+          return fused_for<IsolatorType, 6>(lanes);
+        case 7:
+          return fused_for<IsolatorType, 7>(lanes);
+        case 8:
+          return fused_for<IsolatorType, 8>(lanes);
+        default:
+          return nullptr;
       }
     }
 
@@ -626,23 +1014,41 @@ namespace kimp::lumped
       iso = proto->clone();
       iso->revert_to_start();
     }
-    const bool bilinear = dynamic_cast<const BilinearIsolator *>(iso.get()) != nullptr;
-    const bool dense    = bilinear && n >= 4 && n <= 6;
-    dense_inverse.clear();
-    dense_ab.clear();
-    dense_ad.clear();
-    dense_am.clear();
-    if (dense)
+    // The fused kernel: at most 8 DOFs (one or several buildings), every storey between DOF i − 1
+    // and DOF i or between the ground and DOF i (its drift is then lane i of u − shifted u).
+    bool fits = n >= 1 && n <= 8;
+    drift_mask.assign(n, 0.0);
+    for (const Storey &st : model->storeys())
     {
-      const std::size_t     p   = static_cast<std::size_t>(padded(static_cast<int>(n)));
+      fits = fits && st.upper_dof >= 0 && st.upper_dof < static_cast<int>(n) &&
+             (st.lower_dof == st.upper_dof - 1 || st.lower_dof == -1);
+      if (fits)
+        drift_mask[static_cast<std::size_t>(st.upper_dof)] = st.lower_dof == -1 ? 0.0 : 1.0;
+    }
+    fused = opt->kernel == CdmKernel::automatic && fits;
+    dense_inverse.clear();
+    dense_f.clear();
+    dense_g.clear();
+    dense_am.clear();
+    lanes    = fused_lanes(opt->vector_lanes);
+    padded_n = (n + static_cast<std::size_t>(lanes) - 1) / static_cast<std::size_t>(lanes) *
+               static_cast<std::size_t>(lanes);
+    fused_u.assign(padded_n, 0.0);
+    fused_z.assign(padded_n, 0.0);
+    fused_v.assign(padded_n, 0.0);
+    deltas_current = true;
+    fused_d.assign(padded_n, 0.0);
+    last_accel.assign(padded_n, 0.0);
+    fused_peaks.assign(3 * padded_n, 0.0);
+    fused_sums.assign(3 * padded_n, 0.0);
+    drift_mask.resize(padded_n, 0.0);
+    p_in_0 = p_visc_0 = 0.0;
+    if (fused)
+    {
+      const std::size_t     p   = padded_n;
       const Eigen::MatrixXd inv = a.to_dense().inverse();
-      TridiagonalMatrix     b(n), d(n);
-      b.diag                   = b_diag;
-      b.upper                  = b_upper;
-      d.diag                   = d_diag;
-      d.upper                  = d_upper;
-      const Eigen::MatrixXd ab = inv * b.to_dense();
-      const Eigen::MatrixXd ad = inv * d.to_dense();
+      const Eigen::MatrixXd kg  = inv * k->to_dense();
+      const Eigen::MatrixXd h   = inv * (c->to_dense() * (1.0 / dt) + k->to_dense());
       const Eigen::VectorXd am =
         inv * Eigen::Map<const Eigen::VectorXd>(mass.data(), static_cast<Eigen::Index>(n));
       const auto pad = [&](const Eigen::MatrixXd &x, std::vector<double> &out)
@@ -653,13 +1059,25 @@ namespace kimp::lumped
             out[static_cast<std::size_t>(j) * p + static_cast<std::size_t>(i)] = x(i, j);
       };
       pad(inv, dense_inverse);
-      pad(ab, dense_ab);
-      pad(ad, dense_ad);
+      pad(h, dense_f);
+      pad(kg, dense_g);
       pad(am, dense_am);
     }
 
     width = static_cast<std::size_t>(block_steps) + 3;
-    u_block.assign((n + 1) * width, 0.0);
+    if (fused)
+    {
+      // One column of padded_n (+ a vector if no padding lane is left for the ground) per step.
+      row_stride = 1;
+      col_stride = padded_n + (padded_n == n ? static_cast<std::size_t>(lanes) : 0);
+      u_block.assign(width * col_stride, 0.0);
+    }
+    else
+    {
+      row_stride = width;
+      col_stride = 1;
+      u_block.assign((n + 1) * width, 0.0);
+    }
     ag_block.assign(static_cast<std::size_t>(block_steps), 0.0);
     velocity.assign(n * static_cast<std::size_t>(block_steps), 0.0);
     mv.assign(static_cast<std::size_t>(block_steps), 0.0);
@@ -703,14 +1121,16 @@ namespace kimp::lumped
     right_row.clear();
     for (std::size_t q = 0; q < left.size(); ++q)
     {
-      left_row.push_back(static_cast<std::size_t>(left[q]) * width + 2);
-      right_row.push_back(static_cast<std::size_t>(right[q]) * width + 2);
+      left_row.push_back(static_cast<std::size_t>(left[q]) * row_stride + 2 * col_stride);
+      right_row.push_back(static_cast<std::size_t>(right[q]) * row_stride + 2 * col_stride);
     }
     force_dofs.clear();
     for (std::size_t j = 0; j < n; ++j)
       if (carries_force[j])
         force_dofs.push_back(static_cast<int>(j));
     const std::size_t nc = laws.size();
+    // Not armed at first: called_prev starts at 1, so the first step takes the full path.
+    gap_skip.assign(nc, -std::numeric_limits<double>::infinity());
     cf.assign(nc, 0.0);
     active.assign(nc, 0);
     called_prev.assign(nc, 1);
@@ -770,7 +1190,13 @@ namespace kimp::lumped
       *column(i, 2)   = u0[i];
       *column(i, 1)   = u0[i] - dt * v0[i] + 0.5 * dt * dt * a0;
       *column(i, 0)   = u0[i] - 2.0 * dt * v0[i] + 2.0 * dt * dt * a0;
+      fused_u[i]      = u0[i];
+      fused_d[i]      = dt * v0[i] - 0.5 * dt * dt * a0; // u_0 − u_{−1} without cancellation
     }
+    if (fused)
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < n; ++j) // z_{−1} = A⁻¹K·u_{−1}
+          fused_z[i] += dense_g[j * padded_n + i] * (fused_u[j] - fused_d[j]);
 
     const double ratio = g.dt / dt;
     sub                = std::lround(ratio);
@@ -797,12 +1223,8 @@ namespace kimp::lumped
 
     auto *bil = dynamic_cast<BilinearIsolator *>(iso.get());
     auto *lin = dynamic_cast<LinearIsolator *>(iso.get());
-    if (bil && n == 4)
-      dynamics = dynamics_dense<BilinearIsolator, 4>;
-    else if (bil && n == 5)
-      dynamics = dynamics_dense<BilinearIsolator, 5>;
-    else if (bil && n == 6)
-      dynamics = dynamics_dense<BilinearIsolator, 6>;
+    if (fused)
+      dynamics = bil ? fused_kernel<BilinearIsolator>(n, lanes) : fused_kernel<Isolator>(n, lanes);
     else if (bil)
       dynamics = dynamics_general<BilinearIsolator>;
     else if (lin)
@@ -825,7 +1247,26 @@ namespace kimp::lumped
       // ü_g(t_n), linear interpolation; integer sub-stepping when Δt divides the record's dt.
       const double     *rec   = motion->acceleration.data();
       const std::size_t n_rec = motion->acceleration.size();
-      for (long q = 0; q < len; ++q)
+      double           *agb   = ag_block.data();
+      long              q     = 0;
+      // Integer sub-stepping inside the record: a run of steps within one record interval
+      // (rec[j] + frac·(rec[j+1] − rec[j]), frac = s/sub) at a time.
+      while (integral && q < len && rec_j + 1 < n_rec)
+      {
+        const double r0  = rec[rec_j];
+        const double dr  = rec[rec_j + 1] - rec[rec_j];
+        const long   run = std::min(len - q, sub - rec_s);
+        for (long m = 0; m < run; ++m)
+          agb[q + m] = r0 + (static_cast<double>(rec_s + m) * inv_sub) * dr;
+        q += run;
+        rec_s += run;
+        if (rec_s == sub)
+        {
+          rec_s = 0;
+          ++rec_j;
+        }
+      }
+      for (; q < len; ++q)
       {
         std::size_t j;
         double      frac;
@@ -850,11 +1291,14 @@ namespace kimp::lumped
           ag = rec[j] + frac * (rec[j + 1] - rec[j]);
         else
           ag = (j + 1 == n_rec && frac == 0.0) ? rec[j] : 0.0;
-        ag_block[static_cast<std::size_t>(q)] = ag;
+        agb[q] = ag;
       }
 
       dynamics(*this, len);
-      bookkeeping(len);
+      if (fused)
+        checkpoint_energies(len);
+      else
+        bookkeeping(len);
       const long last = step + len - 1;
       if ((every > 0 && last % every == 0) || (last & 511) == 0 || last == n_steps)
         checkpoint(len - 1);
@@ -862,9 +1306,72 @@ namespace kimp::lumped
       count -= len;
       // Keep u_{n−2}, u_{n−1}, u_n of the next step in columns 0-2.
       for (std::size_t i = 0; i < n; ++i)
-        for (long q = 0; q < 3; ++q)
-          *column(i, q) = *column(i, len + q);
+        for (long c3 = 0; c3 < 3; ++c3)
+          *column(i, c3) = *column(i, len + c3);
     }
+  }
+
+  /// E_kin and E_strain at the block's last step if it is a check point (E_0, checks, samples,
+  /// end: the only places they are used); for the fused kernel also E_0 at step 0.
+  void CentralDifferenceStepper::Session::checkpoint_energies(const long len)
+  {
+    const long last = step + len - 1;
+    if ((every > 0 && last % every == 0) || (last & 511) == 0 || last == n_steps)
+    {
+      const std::size_t B   = static_cast<std::size_t>(block_steps);
+      const std::size_t q   = static_cast<std::size_t>(len - 1);
+      double            mvv = 0.0, kuu = 0.0;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const double vi = velocity[i * B + q];
+        const double ui = *column(i, len + 1);
+        mvv += mass[i] * vi * vi;
+        kuu += k->diag[i] * ui * ui;
+      }
+      for (std::size_t i = 0; i + 1 < n; ++i)
+        kuu += 2.0 * k->upper[i] * *column(i, len + 1) * *column(i + 1, len + 1);
+      e_kin    = 0.5 * mvv;
+      e_strain = 0.5 * kuu + (iso ? iso->stored_energy() : 0.0);
+    }
+    if (!fused)
+      return;
+    // The fused kernel keeps per-DOF sums; the trapezoid rule over steps 0..n is
+    // W(t_n) = Δt·(Σ_{q<=n} p_q − (p_0 + p_n)/2), evaluated here at the check points (step 0 is
+    // a block of its own and a check point). max_supplied is therefore the maximum of E_0 + W_in
+    // over the check points (the reference kernel: over every step).
+    if (!((every > 0 && last % every == 0) || (last & 511) == 0 || last == n_steps))
+      return;
+    const std::size_t B    = static_cast<std::size_t>(block_steps);
+    const std::size_t q    = static_cast<std::size_t>(len - 1);
+    const std::size_t p    = padded_n;
+    double            mv_n = 0.0, cvv_n = 0.0, sum_in = 0.0, sum_visc = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const double vi = velocity[i * B + q];
+      mv_n += mass[i] * vi;
+      cvv_n += c->diag[i] * vi * vi;
+      sum_in -= mass[i] * fused_sums[i];
+      sum_visc += c->diag[i] * fused_sums[p + i];
+    }
+    for (std::size_t i = 0; i + 1 < n; ++i)
+    {
+      cvv_n += 2.0 * c->upper[i] * velocity[i * B + q] * velocity[(i + 1) * B + q];
+      sum_visc += 2.0 * c->upper[i] * fused_sums[2 * p + i];
+    }
+    const double p_in_n = -ag_block[q] * mv_n;
+    if (last == 0)
+    {
+      e0       = e_kin + e_strain;
+      p_in_0   = p_in_n;
+      p_visc_0 = cvv_n;
+      w_in = w_visc = 0.0;
+    }
+    else
+    {
+      w_in   = dt * (sum_in - 0.5 * (p_in_0 + p_in_n));
+      w_visc = dt * (sum_visc - 0.5 * (p_visc_0 + cvv_n));
+    }
+    max_supplied = std::max(max_supplied, e0 + w_in);
   }
 
   /// Central velocity v_n = (u_{n+1} − u_{n−1})/(2Δt), the step's acceleration
@@ -943,24 +1450,7 @@ namespace kimp::lumped
         pd[q] = std::max(pd[q], std::abs(hi[q] - lo[q]));
     }
 
-    const long last = step + len - 1;
-    if ((every > 0 && last % every == 0) || (last & 511) == 0 || last == n_steps)
-    {
-      // Kinetic and strain energy only where they are looked at (E_0, checks, samples, end).
-      const std::size_t q   = L - 1;
-      double            mvv = 0.0, kuu = 0.0;
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        const double vi = velocity[i * B + q];
-        const double ui = *column(i, len + 1);
-        mvv += mass[i] * vi * vi;
-        kuu += k->diag[i] * ui * ui;
-      }
-      for (std::size_t i = 0; i + 1 < n; ++i)
-        kuu += 2.0 * k->upper[i] * *column(i, len + 1) * *column(i + 1, len + 1);
-      e_kin    = 0.5 * mvv;
-      e_strain = 0.5 * kuu + (iso ? iso->stored_energy() : 0.0);
-    }
+    checkpoint_energies(len);
     for (std::size_t q = 0; q < L; ++q)
     {
       const double p_in   = -agb[q] * mvb[q];
@@ -1032,8 +1522,10 @@ namespace kimp::lumped
       const double inv_dt = 1.0 / dt;
       for (std::size_t i = 0; i < n; ++i)
         h.absolute_acceleration.push_back(
-          (*column(i, q + 3) - 2.0 * *column(i, q + 2) + *column(i, q + 1)) * (inv_dt * inv_dt) +
-          ag_block[qq]);
+          fused ?
+            last_accel[i] :
+            (*column(i, q + 3) - 2.0 * *column(i, q + 2) + *column(i, q + 1)) * (inv_dt * inv_dt) +
+              ag_block[qq]);
       for (std::size_t s = 0; s < storey_low.size(); ++s)
         h.interstorey_drift.push_back(*column(static_cast<std::size_t>(storey_up[s]), q + 2) -
                                       *column(static_cast<std::size_t>(storey_low[s]), q + 2));
@@ -1047,15 +1539,26 @@ namespace kimp::lumped
   {
     Response          out    = r;
     const std::size_t B      = static_cast<std::size_t>(block_steps);
-    const auto        reduce = [B](const std::vector<double> &lanes, std::vector<double> &peak)
+    const auto        reduce = [B](const std::vector<double> &per_lane, std::vector<double> &peak)
     {
       for (std::size_t i = 0; i < peak.size(); ++i)
         for (std::size_t q = 0; q < B; ++q)
-          peak[i] = std::max(peak[i], lanes[i * B + q]);
+          peak[i] = std::max(peak[i], per_lane[i * B + q]);
     };
     reduce(lane_peak_u, out.peak_displacement);
     reduce(lane_peak_a, out.peak_absolute_acceleration);
     reduce(lane_peak_d, out.peak_interstorey_drift);
+    if (fused)
+    {
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        out.peak_displacement[i]          = fused_peaks[i];
+        out.peak_absolute_acceleration[i] = fused_peaks[padded_n + i];
+      }
+      for (std::size_t s = 0; s < storey_up.size(); ++s)
+        out.peak_interstorey_drift[s] =
+          fused_peaks[2 * padded_n + static_cast<std::size_t>(storey_up[s])];
+    }
     EnergyBalance &e     = out.energy;
     e.relative_error     = e.residual_relative_error();
     e.max_relative_error = max_residual / std::max(max_supplied, 1e-300);
@@ -1135,6 +1638,12 @@ namespace kimp::lumped
   long CentralDifferenceStepper::last_step() const
   {
     return session_->n_steps;
+  }
+
+  bool CentralDifferenceStepper::uses_fused_kernel() const
+  {
+    require_init("uses_fused_kernel");
+    return session_->fused;
   }
 
   bool CentralDifferenceStepper::finished() const

@@ -28,6 +28,22 @@ namespace kimp::lumped
   };
 
   /**
+   * Time-loop kernel of the central difference method.
+   *  - automatic: the fused dense kernel when the model has at most 8 DOFs (the isolated
+   *    4-storey building with walls, bumpers or a basement; fixed-base buildings of up to 8
+   *    storeys; an isolated building with one small neighbour) and every storey joins DOF i − 1
+   *    and DOF i or the ground and DOF i (true for every PoundingScene), the block-tridiagonal
+   *    reference kernel otherwise;
+   *  - reference: always the block-tridiagonal kernel (Thomas or a dense inverse per block, the
+   *    step-lane bookkeeping); slower, kept as the reference for the fused kernel.
+   */
+  enum class CdmKernel
+  {
+    automatic,
+    reference
+  };
+
+  /**
    * | option                   | unit | default | meaning                                     |
    * |--------------------------|------|---------|---------------------------------------------|
    * | dt                       | s    | 0       | time step; 0 = auto: safety·Δt_cr, reduced  |
@@ -42,6 +58,11 @@ namespace kimp::lumped
    * | initial_velocity         | m/s  | zeros   | u̇(0), empty or one per DOF                  |
    * | divergence_energy_factor | -    | 10      | stop when E_kin + E_strain exceeds this     |
    * |                          |      |         | times max(E_0 + W_in)                       |
+   * | kernel                   | -    | auto    | see CdmKernel                               |
+   * | vector_lanes             | -    | 0       | cap on the fused kernel's vector width in   |
+   * |                          |      |         | doubles: 0 = widest available (AVX-512: 8,  |
+   * |                          |      |         | AVX2: 4, SSE2: 2), or 4 or 2; bitwise equal |
+   * |                          |      |         | results for every width                     |
    */
   struct CentralDifferenceOptions
   {
@@ -54,6 +75,8 @@ namespace kimp::lumped
     std::vector<double> initial_displacement;
     std::vector<double> initial_velocity;
     double              divergence_energy_factor = 10.0;
+    CdmKernel           kernel                   = CdmKernel::automatic;
+    int                 vector_lanes             = 0;
   };
 
   /// Stability limit of the central difference method for a model.
@@ -75,22 +98,34 @@ namespace kimp::lumped
   /**
    * Fixed-step central difference integrator with an allocation-free time loop. The effective
    * matrix A = M/Δt² + C/(2Δt) is block-tridiagonal (one block per building, no coupling between
-   * blocks) and is inverted once: blocks of up to 16 DOFs keep a dense inverse (a short dependency
-   * chain per step), larger ones the pre-factorised Thomas algorithm. For a single building of
-   * 4-6 DOFs with a bilinear isolator the loop is instantiated with a compile-time size and
-   * advances u_{n+1} = A⁻¹B·u_n + A⁻¹D·u_{n−1} − A⁻¹M·1·ü_g − A⁻¹·f_nl, where only the sparse
-   * force term depends on the forces just evaluated. Contacts and the isolator are evaluated
-   * explicitly at u_n (trial + commit every step); a law whose gap is open and which is not in
-   * contact is not called, and is brought up to date with the last open state just before it
-   * closes (so its first contact step starts from the true previous, open, deformation). Only
-   * the DOFs that can carry a force (isolator, contacts) enter the force term.
+   * blocks) and is inverted once. Contacts and the isolator are evaluated explicitly at u_n
+   * (trial + commit every step); a law whose gap is open and which is not in contact is not
+   * called, and is brought up to date with the last open state just before it closes (so its
+   * first contact step starts from the true previous, open, deformation).
    *
-   * The loop runs in blocks of up to 64 steps that end at every check point (history sample,
-   * every 512 steps, the last step): the dynamics of a block first, then velocities,
-   * accelerations, peaks and the input and viscous powers of all its steps in loops over the
-   * steps (vectorised), then the trapezoid sums in step order. Every quantity is computed with
-   * the same operations in the same order as a step-by-step loop, so the results do not depend
-   * on the blocking (bitwise).
+   * Two kernels (CdmKernel), chosen at init():
+   *  - fused (automatic, n <= 8 DOFs, see CdmKernel): the increment form
+   *      Δu_{n+1} = Δu_n − z_{n−1} − A⁻¹M·1·ü_g,n − A⁻¹(C/Δt + K)·Δu_n − A⁻¹·f_nl,n,
+   *      u_{n+1} = u_n + Δu_{n+1},  z_n = z_{n−1} + A⁻¹K·Δu_n  (z_n = A⁻¹K·u_n),
+   *    algebraically the central difference step. u_n, Δu_n and z_n stay in vector registers
+   *    from step to step; Δu is carried exactly (never re-formed from u: no cancellation in
+   *    u_{n+1} − u_n at small Δt). Only one dense product (summed as a tree) and the force term
+   *    lie on the step-to-step dependency chain; z, the bookkeeping of the step (v_n =
+   *    (Δu_n + Δu_{n+1})/(2Δt), a_n = (Δu_{n+1} − Δu_n)/Δt² + ü_g, peaks, per-DOF running sums
+   *    for the input and viscous work, reduced at the check points, so that max(E_0 + W_in)
+   *    is taken over the check points) overlap with it. A contact law is called only when a
+   *    cheap pre-check (u_L − u_R > gap, or the law in contact or just released) fails, outside
+   *    the fast loop. The vector width (SSE2, AVX2 or AVX-512F; see
+   *    CentralDifferenceOptions::vector_lanes) is picked at run time; every operation is per
+   *    DOF lane without FMA contraction, so all widths give bitwise equal results;
+   *  - reference (more than 8 DOFs, or on request): right-hand side with the
+   *    tridiagonal B = 2M/Δt² − K and D = −M/Δt² + C/(2Δt), A⁻¹ block-wise (dense for blocks
+   *    of up to 16 DOFs, else the pre-factorised Thomas algorithm), and the bookkeeping of each
+   *    block of up to 64 steps vectorised over the steps afterwards.
+   * Both kernels run in blocks of up to 64 steps that end at every check point (history sample,
+   * every 512 steps, the last step), and every quantity is computed with the same operations in
+   * the same order whatever the blocking, so advance(k) and step() give bitwise equal results.
+   * The two kernels agree to round-off (tests/lumped/integrator_test.cc states the tolerances).
    *
    * Recorded at every t_n (n = 0..N): u_n, the step's acceleration (u_{n+1} − 2u_n + u_{n−1})/Δt²
    * + ü_g(t_n) (PHYSICS.md §5), the contact forces F_n, and the energy terms (E_kin and E_strain
@@ -173,6 +208,8 @@ namespace kimp::lumped
     long last_step() const;
     /// True once step N has been evaluated.
     bool finished() const;
+    /// True when init() chose the fused dense kernel (see CentralDifference and CdmKernel).
+    bool uses_fused_kernel() const;
     /// u_{n+level} for level 0, −1, −2 (m, relative to the ground).
     std::vector<double> displacement(int level = 0) const;
     /// The response recorded at t_0..t_{n−1} (energy fields as of the last check: every history

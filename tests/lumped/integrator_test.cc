@@ -1,10 +1,14 @@
 // Central difference method (thesis eq. 3.9-3.13) on single-DOF systems against closed forms:
 // free and harmonically forced vibration, second-order convergence (MFEM test_ode2 style), the
-// stability guard (refusal with both numbers, dt = auto) and divergence detection.
+// stability guard (refusal with both numbers, dt = auto) and divergence detection; the fused
+// dense kernel against the block-tridiagonal reference kernel.
+#include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
+#include <iostream>
 #include <random>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "lumped/central_difference.h"
@@ -97,6 +101,71 @@ namespace kimp::lumped
         for (std::size_t i = 0; i < a.contacts[c].impacts.size(); ++i)
           EXPECT_EQ(a.contacts[c].impacts[i].time, b.contacts[c].impacts[i].time) << what;
       }
+    }
+
+    /// Largest relative difference between two responses: peaks (per DOF, storey and contact),
+    /// displacement histories (relative to the peak of each DOF), energy terms (relative to
+    /// W_in); the number of impacts must agree.
+    double max_relative_difference(const Response &a, const Response &b, const std::string &what)
+    {
+      double     worst = 0.0;
+      const auto rel   = [&](const double x, const double y, const double scale)
+      {
+        const double d = std::abs(x - y) / std::max(scale, 1e-300);
+        worst          = std::max(worst, d);
+        return d;
+      };
+      EXPECT_EQ(a.n_impacts(), b.n_impacts()) << what;
+      for (std::size_t i = 0; i < a.peak_displacement.size(); ++i)
+      {
+        rel(a.peak_displacement[i], b.peak_displacement[i], b.peak_displacement[i]);
+        rel(a.peak_absolute_acceleration[i],
+            b.peak_absolute_acceleration[i],
+            b.peak_absolute_acceleration[i]);
+      }
+      for (std::size_t s = 0; s < a.peak_interstorey_drift.size(); ++s)
+        rel(a.peak_interstorey_drift[s], b.peak_interstorey_drift[s], b.peak_interstorey_drift[s]);
+      for (std::size_t c = 0; c < a.contacts.size() && c < b.contacts.size(); ++c)
+        if (b.contacts[c].peak_force > 0.0)
+          rel(a.contacts[c].peak_force, b.contacts[c].peak_force, b.contacts[c].peak_force);
+      const std::size_t n = a.n_dofs;
+      EXPECT_EQ(a.history.displacement.size(), b.history.displacement.size()) << what;
+      for (std::size_t q = 0;
+           q < a.history.displacement.size() && q < b.history.displacement.size();
+           ++q)
+        rel(a.history.displacement[q], b.history.displacement[q], b.peak_displacement[q % n]);
+      const double w = b.energy.input;
+      rel(a.energy.input, b.energy.input, w);
+      rel(a.energy.viscous, b.energy.viscous, w);
+      rel(a.energy.hysteretic, b.energy.hysteretic, w);
+      rel(a.energy.contact_work, b.energy.contact_work, w);
+      rel(a.energy.kinetic, b.energy.kinetic, w);
+      rel(a.energy.strain, b.energy.strain, w);
+      return worst;
+    }
+
+    /// The same run with the fused kernel (which must be chosen) and the reference kernel.
+    double fused_against_reference(const PoundingModel     &model,
+                                   CentralDifferenceOptions opt,
+                                   const GroundMotion      &g,
+                                   const std::string       &what)
+    {
+      const CentralDifference  fast(model, opt);
+      CentralDifferenceStepper stepper(fast);
+      stepper.init(g);
+      EXPECT_TRUE(stepper.uses_fused_kernel()) << what;
+      stepper.advance(stepper.last_step() + 1);
+      const Response fused = stepper.response();
+      opt.kernel           = CdmKernel::reference;
+      const CentralDifference  slow(model, opt);
+      CentralDifferenceStepper ref_stepper(slow);
+      ref_stepper.init(g);
+      EXPECT_FALSE(ref_stepper.uses_fused_kernel()) << what;
+      ref_stepper.advance(ref_stepper.last_step() + 1);
+      const double d = max_relative_difference(fused, ref_stepper.response(), what);
+      std::cout << "  fused vs reference, " << what << ": " << d << " (impacts "
+                << fused.n_impacts() << ")\n";
+      return d;
     }
   } // namespace
 
@@ -381,73 +450,86 @@ namespace kimp::lumped
 
   TEST(CentralDifferenceStepper, RestartAfterInitReproducesAnUninterruptedRun)
   {
-    SyntheticMotionSpec gs;
-    gs.duration                = 10.0;
-    const GroundMotion       g = synthetic_near_fault(gs);
-    CentralDifferenceOptions opt;
-    opt.dt                   = 1e-4;
-    opt.initial_displacement = {0.01, 0.012, 0.014, 0.016, 0.018};
-    const CentralDifference cdm(walled_building(0.10), opt);
-    const Response          uninterrupted = cdm.run(g);
-    ASSERT_GT(uninterrupted.n_impacts(), 1u) << "the restart must cross impacts to mean much";
-    const double first_impact = uninterrupted.contacts[0].impacts.empty() ?
-                                  uninterrupted.contacts[1].impacts[0].time :
-                                  uninterrupted.contacts[0].impacts[0].time;
+    // Both kernels (the fused one carries u, Δu, peaks and sums in its own state).
+    for (const auto &[kernel, name] :
+         {std::pair{CdmKernel::automatic, "fused"}, std::pair{CdmKernel::reference, "reference"}})
+    {
+      SyntheticMotionSpec gs;
+      gs.duration                = 10.0;
+      const GroundMotion       g = synthetic_near_fault(gs);
+      CentralDifferenceOptions opt;
+      opt.dt                   = 1e-4;
+      opt.kernel               = kernel;
+      opt.initial_displacement = {0.01, 0.012, 0.014, 0.016, 0.018};
+      const CentralDifference cdm(walled_building(0.10), opt);
+      const Response          uninterrupted = cdm.run(g);
+      ASSERT_GT(uninterrupted.n_impacts(), 1u) << "the restart must cross impacts to mean much";
+      const double first_impact = uninterrupted.contacts[0].impacts.empty() ?
+                                    uninterrupted.contacts[1].impacts[0].time :
+                                    uninterrupted.contacts[0].impacts[0].time;
 
-    CentralDifferenceStepper stepper(cdm);
-    stepper.init(g);
-    // Run well past the first impact, so that the laws, the isolator and the energy sums all
-    // carry history, then restart.
-    const long interrupted_at = std::lround(first_impact / opt.dt) + 5000;
-    ASSERT_EQ(stepper.advance(interrupted_at), interrupted_at);
-    ASSERT_GT(stepper.response().n_impacts(), 0u);
-    stepper.init(g);
-    EXPECT_EQ(stepper.step_index(), 0);
-    EXPECT_EQ(stepper.time(), 0.0);
-    EXPECT_EQ(stepper.displacement(), opt.initial_displacement);
-    EXPECT_EQ(stepper.response().n_impacts(), 0u);
-    EXPECT_EQ(stepper.advance(stepper.last_step() + 100), stepper.last_step() + 1);
-    EXPECT_TRUE(stepper.finished());
-    expect_identical(stepper.response(), uninterrupted, "restart after init()");
+      CentralDifferenceStepper stepper(cdm);
+      stepper.init(g);
+      // Run well past the first impact, so that the laws, the isolator and the energy sums all
+      // carry history, then restart.
+      const long interrupted_at = std::lround(first_impact / opt.dt) + 5000;
+      ASSERT_EQ(stepper.advance(interrupted_at), interrupted_at);
+      ASSERT_GT(stepper.response().n_impacts(), 0u);
+      stepper.init(g);
+      EXPECT_EQ(stepper.step_index(), 0);
+      EXPECT_EQ(stepper.time(), 0.0);
+      EXPECT_EQ(stepper.displacement(), opt.initial_displacement);
+      EXPECT_EQ(stepper.response().n_impacts(), 0u);
+      EXPECT_EQ(stepper.advance(stepper.last_step() + 100), stepper.last_step() + 1);
+      EXPECT_TRUE(stepper.finished());
+      expect_identical(stepper.response(),
+                       uninterrupted,
+                       std::string("restart after init(), ") + name);
+    }
   }
 
   TEST(CentralDifferenceStepper, StepContractHoldsForAnyChunking)
   {
-    // advance(k) and step() in random chunks give exactly run(); each step moves
-    // u_n -> u_{n-1}, t_n = n dt exactly, and stepping past the end is refused.
-    SyntheticMotionSpec gs;
-    gs.duration                = 6.0;
-    const GroundMotion       g = synthetic_near_fault(gs);
-    CentralDifferenceOptions opt;
-    opt.dt              = 2e-4;
-    opt.output_interval = 0.0126; // not a divisor of the block or of 512 steps
-    const CentralDifference cdm(walled_building(0.06), opt);
-    const Response          whole = cdm.run(g);
-    ASSERT_GT(whole.n_impacts(), 0u);
-    std::mt19937                       rng(20261122);
-    std::uniform_int_distribution<int> chunk(0, 700);
-    CentralDifferenceStepper           stepper(cdm);
-    stepper.init(g);
-    while (!stepper.finished())
+    for (const auto &[kernel, name] :
+         {std::pair{CdmKernel::automatic, "fused"}, std::pair{CdmKernel::reference, "reference"}})
     {
-      const int k = chunk(rng);
-      if (k < 50)
+      // advance(k) and step() in random chunks give exactly run(); each step moves
+      // u_n -> u_{n-1}, t_n = n dt exactly, and stepping past the end is refused.
+      SyntheticMotionSpec gs;
+      gs.duration                = 6.0;
+      const GroundMotion       g = synthetic_near_fault(gs);
+      CentralDifferenceOptions opt;
+      opt.dt              = 2e-4;
+      opt.kernel          = kernel;
+      opt.output_interval = 0.0126; // not a divisor of the block or of 512 steps
+      const CentralDifference cdm(walled_building(0.06), opt);
+      const Response          whole = cdm.run(g);
+      ASSERT_GT(whole.n_impacts(), 0u);
+      std::mt19937                       rng(20261122);
+      std::uniform_int_distribution<int> chunk(0, 700);
+      CentralDifferenceStepper           stepper(cdm);
+      stepper.init(g);
+      while (!stepper.finished())
       {
-        const std::vector<double> u_n = stepper.displacement();
-        const long                n   = stepper.step_index();
-        stepper.step();
-        EXPECT_EQ(stepper.displacement(-1), u_n) << "step " << n;
-        EXPECT_EQ(stepper.step_index(), n + 1);
-        EXPECT_EQ(stepper.time(), static_cast<double>(n + 1) * stepper.dt()) << "step " << n;
+        const int k = chunk(rng);
+        if (k < 50)
+        {
+          const std::vector<double> u_n = stepper.displacement();
+          const long                n   = stepper.step_index();
+          stepper.step();
+          EXPECT_EQ(stepper.displacement(-1), u_n) << "step " << n;
+          EXPECT_EQ(stepper.step_index(), n + 1);
+          EXPECT_EQ(stepper.time(), static_cast<double>(n + 1) * stepper.dt()) << "step " << n;
+        }
+        else
+          stepper.advance(k);
       }
-      else
-        stepper.advance(k);
+      expect_identical(stepper.response(), whole, std::string("random chunks, ") + name);
+      EXPECT_THROW(stepper.step(), std::logic_error);
+      EXPECT_EQ(stepper.advance(10), 0);
+      CentralDifferenceStepper fresh(cdm);
+      EXPECT_THROW(fresh.step(), std::logic_error);
     }
-    expect_identical(stepper.response(), whole, "random chunks");
-    EXPECT_THROW(stepper.step(), std::logic_error);
-    EXPECT_EQ(stepper.advance(10), 0);
-    CentralDifferenceStepper fresh(cdm);
-    EXPECT_THROW(fresh.step(), std::logic_error);
   }
 
   TEST(CentralDifference, ContactWorkAgreesWithTheLawsEnergyBookkeeping)
@@ -488,5 +570,146 @@ namespace kimp::lumped
         << law << ": W_in " << r.energy.input;
       EXPECT_LT(r.energy.max_relative_error, 1e-4) << law;
     }
+  }
+
+  TEST(CentralDifference, FusedKernelAgreesWithTheReferenceKernel)
+  {
+    // Same physics, different algebra (increment form with dense products vs right-hand side
+    // and Thomas/dense block solve): the two differ by round-off, which impacts amplify (a contact
+    // that closes one step earlier in one of them). Peaks, histories and energies agree within
+    // `linear_tol` without contacts and `pounding_tol` with them (observed over 12 s at 1e-4 s:
+    // <= 1.3e-9 and <= 4.5e-9, mostly the reference kernel's round-off, see the next tests).
+    constexpr double    linear_tol   = 1e-8;
+    constexpr double    pounding_tol = 1e-7;
+    SyntheticMotionSpec gs;
+    gs.duration          = 12.0;
+    const GroundMotion g = synthetic_near_fault(gs);
+    ForceLawSpec       mkv;
+    mkv.law         = "modified_kelvin_voigt";
+    mkv.stiffness   = 2.5e9;
+    mkv.cor         = 0.7;
+    const auto wall = [](const double gap, const ForceLawSpec &spec)
+    {
+      MoatWall w;
+      w.gap = gap;
+      w.law = force_law_factory(spec);
+      return w;
+    };
+    CentralDifferenceOptions opt;
+    opt.dt = 1e-4;
+
+    PoundingScene bare;
+    bare.building = reference_isolated_building(4);
+    EXPECT_LT(fused_against_reference(PoundingModel(bare), opt, g, "no walls"), linear_tol);
+    PoundingScene linear_iso;
+    linear_iso.building = reference_isolated_building_linear(4, 40e6);
+    EXPECT_LT(fused_against_reference(PoundingModel(linear_iso), opt, g, "linear isolator"),
+              linear_tol);
+    PoundingScene fixed;
+    fixed.building = reference_fixed_base_building(6);
+    EXPECT_LT(fused_against_reference(PoundingModel(fixed), opt, g, "fixed base, 6 storeys"),
+              linear_tol);
+    CentralDifferenceOptions moving = opt;
+    moving.initial_displacement     = {0.01, 0.012, 0.014, 0.016, 0.018};
+    moving.initial_velocity         = {0.3, 0.31, 0.32, 0.33, 0.34};
+    EXPECT_LT(fused_against_reference(PoundingModel(bare), moving, g, "initial conditions"),
+              linear_tol);
+
+    EXPECT_LT(fused_against_reference(walled_building(0.10), opt, g, "walls both sides"),
+              pounding_tol);
+    PoundingScene basement = bare;
+    basement.left_wall     = wall(0.10, mkv);
+    basement.right_wall    = wall(0.12, mkv);
+    basement.basement      = true;
+    EXPECT_LT(fused_against_reference(PoundingModel(basement), opt, g, "basement walls"),
+              pounding_tol);
+    // The bumper example of the scenes (four 150 x 150 x 50 mm bumpers, k_b = 4·2.25·A·K_r/t^2.65,
+    // crushed at 0.75 t, k_w 1500 kN/mm), with a smaller gap so that it pounds in 12 s.
+    ForceLawSpec bumper;
+    bumper.law                         = "bumper";
+    bumper.stiffness                   = 4.0 * 2.25 * 0.0225 * 55835e3 / std::pow(0.05, 2.65);
+    bumper.bumper_ultimate_deformation = 0.75 * 0.05;
+    bumper.bumper_wall_stiffness       = 1.5e9;
+    PoundingScene bumpers              = bare;
+    MoatWall      bw                   = wall(0.12, bumper);
+    bw.bumper_thickness                = 0.05;
+    bumpers.left_wall                  = bw;
+    bumpers.right_wall                 = bw;
+    EXPECT_LT(fused_against_reference(PoundingModel(bumpers), opt, g, "bumpers"), pounding_tol);
+    PoundingScene    neighbour = bare;
+    AdjacentBuilding nb;
+    nb.building               = reference_fixed_base_building(3);
+    nb.separation             = 0.04;
+    nb.law                    = force_law_factory(mkv);
+    neighbour.right_neighbour = nb;
+    EXPECT_LT(fused_against_reference(PoundingModel(neighbour), opt, g, "neighbour, 8 DOFs"),
+              pounding_tol);
+
+    // Beyond 8 DOFs the reference kernel runs (two neighbours: 13 DOFs).
+    neighbour.left_neighbour = nb;
+    const CentralDifference  big(PoundingModel(neighbour), opt);
+    CentralDifferenceStepper big_stepper(big);
+    big_stepper.init(g);
+    EXPECT_FALSE(big_stepper.uses_fused_kernel());
+  }
+
+  TEST(CentralDifference, FusedKernelIsBitwiseIndependentOfTheVectorWidth)
+  {
+    // SSE2, AVX2 and AVX-512F variants (those the processor has) do the same per-lane
+    // operations without FMA contraction: identical bits.
+    SyntheticMotionSpec gs;
+    gs.duration                = 8.0;
+    const GroundMotion       g = synthetic_near_fault(gs);
+    CentralDifferenceOptions opt;
+    opt.dt              = 1e-4;
+    opt.vector_lanes    = 2;
+    const Response sse2 = CentralDifference(walled_building(0.06), opt).run(g);
+    ASSERT_GT(sse2.n_impacts(), 0u);
+    for (const int lanes : {4, 8, 0})
+    {
+      opt.vector_lanes = lanes;
+      expect_identical(CentralDifference(walled_building(0.06), opt).run(g),
+                       sse2,
+                       "vector_lanes = " + std::to_string(lanes));
+    }
+    opt.vector_lanes = 3;
+    EXPECT_THROW(CentralDifference(walled_building(0.06), opt), std::invalid_argument);
+  }
+} // namespace kimp::lumped
+
+namespace kimp::lumped
+{
+  TEST(CentralDifference, IncrementFormKeepsRoundOffSmallAtTinyTimeSteps)
+  {
+    // Undamped SDOF from u_0 (T = 1 s): the central difference recurrence has the exact solution
+    // u_n = u_0·cos(nθ), sin(θ/2) = ωΔt/2, so any difference from it is round-off. At Δt = 1e-5 s
+    // (10^6 steps) the fused kernel's increment form stays within `fused_tol` of u_0 (observed
+    // 1e-13), the reference kernel, which solves for u_{n+1} from 2M/Δt²·u_n − ..., loses
+    // ~eps·|u|/|Δu| per step (observed 7e-7 over 20 s).
+    constexpr double         fused_tol = 1e-11;
+    const double             m         = 1e5;
+    const double             omega     = 2.0 * M_PI;
+    const double             u0        = 0.1;
+    const double             dt        = 1e-5;
+    CentralDifferenceOptions opt;
+    opt.dt                   = dt;
+    opt.initial_displacement = {u0};
+    const CentralDifference  cdm(sdof(m, m * omega * omega, 0.0), opt);
+    CentralDifferenceStepper stepper(cdm);
+    stepper.init(zero_motion(0.01, 10.0));
+    ASSERT_TRUE(stepper.uses_fused_kernel());
+    stepper.advance(stepper.last_step() + 1);
+    const Response    r     = stepper.response();
+    const long double theta = 2.0L * std::asin(static_cast<long double>(omega * dt) / 2.0L);
+    const long        every = std::lround(opt.output_interval / dt);
+    double            worst = 0.0;
+    for (std::size_t q = 0; q < r.history.time.size(); ++q)
+    {
+      const long double exact =
+        u0 * std::cos(static_cast<long double>(q) * static_cast<long double>(every) * theta);
+      worst =
+        std::max(worst, static_cast<double>(std::abs(r.history.displacement[q] - exact)) / u0);
+    }
+    EXPECT_LT(worst, fused_tol) << "steps " << r.n_steps;
   }
 } // namespace kimp::lumped
