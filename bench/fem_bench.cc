@@ -57,6 +57,19 @@ namespace
     state.counters["duration_ms"]  = s.contact_duration * 1e3;
     state.counters["cor"]          = s.apparent_cor;
     state.counters["impulse_Ns_m"] = s.impulse;
+    state.counters["dt_us"]        = s.dt * 1e6;
+    if (p.integrator == ImpactParameters::Integrator::implicit_newmark)
+    {
+      state.counters["newton"]   = s.n_newton;
+      state.counters["halvings"] = s.n_step_halvings;
+      state.counters["solves"]   = s.n_linear_solves;
+      state.counters["setup_s"]  = s.linear_setup_seconds;
+      state.counters["solver_s"] = s.linear_solver_seconds;
+      state.counters["ms_per_solve"] =
+        s.n_linear_solves > 0 ?
+          1e3 * (s.linear_solver_seconds - s.linear_setup_seconds) / s.n_linear_solves :
+          0.0;
+    }
   }
 
   void ExplicitElasticSlab(benchmark::State &state)
@@ -72,6 +85,15 @@ namespace
     auto p               = scene(state.range(0) * 1e-4, false);
     p.integrator         = ImpactParameters::Integrator::implicit_newmark;
     p.implicit_dt_factor = static_cast<double>(state.range(1));
+    p.implicit_solver    = state.range(2) == 0 ? ImpactParameters::ImplicitSolver::direct :
+                                                 ImpactParameters::ImplicitSolver::cg_amg;
+    run(state, p);
+  }
+  void ImplicitRigidSlab(benchmark::State &state)
+  {
+    auto p               = scene(state.range(0) * 1e-4, true);
+    p.integrator         = ImpactParameters::Integrator::implicit_newmark;
+    p.implicit_dt_factor = static_cast<double>(state.range(1));
     run(state, p);
   }
 } // namespace
@@ -79,9 +101,18 @@ namespace
 // Argument: contact element size in 0.1 mm (250 = 2.5 cm, the default scene).
 BENCHMARK(ExplicitElasticSlab)->Arg(250)->Arg(125)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(ExplicitRigidSlab)->Arg(250)->Iterations(1)->Unit(benchmark::kSecond);
-// Arguments: contact element size in 0.1 mm, dt as a multiple of the explicit limit. At 2.5 cm
-// Newton on the contact does not converge yet (see the fem report): 5 cm only.
-BENCHMARK(ImplicitElasticSlab)->Args({500, 4})->Iterations(1)->Unit(benchmark::kSecond);
+// Arguments: contact element size in 0.1 mm, dt as a multiple of the explicit limit, linear
+// solver (0: direct KLU + Woodbury contact update, 1: CG + ML AMG).
+BENCHMARK(ImplicitElasticSlab)
+  ->Args({500, 4, 0})
+  ->Args({250, 4, 0})
+  ->Args({125, 4, 0})
+  ->Args({500, 4, 1})
+  ->Args({250, 4, 1})
+  ->Args({125, 4, 1})
+  ->Iterations(1)
+  ->Unit(benchmark::kSecond);
+BENCHMARK(ImplicitRigidSlab)->Args({250, 4})->Iterations(1)->Unit(benchmark::kSecond);
 
 int main(int argc, char **argv)
 {

@@ -1,6 +1,8 @@
-// Plane-strain impact: M u_tt + K u = f_c(u, u_t), explicit leap-frog (lumped Gauss-Lobatto M) or
-// Newmark average acceleration with Newton on the penalty contact (Belytschko et al., Nonlinear
-// Finite Elements, 2014, §6.2-6.3; Wriggers, Computational Contact Mechanics, 2006).
+// Plane-strain impact: M u_tt + f_int(u) = f_c(u, u_t), explicit leap-frog (lumped Gauss-Lobatto
+// M) or Newmark average acceleration with semi-smooth Newton and a line search on the incremental
+// potential (Belytschko et al., Nonlinear Finite Elements, 2014, §6.2-6.3; Wriggers, Computational
+// Contact Mechanics, 2006); the low-rank contact tangent enters the factorized K + M / (beta dt^2)
+// by the Woodbury identity (Hager, SIAM Review 31, 1989).
 #include "fem/impact.h"
 
 #include <algorithm>
@@ -28,13 +30,17 @@
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include "fem/material_law.h"
 #include "fem/penalty_contact.h"
 #include "geometry/scene_ids.h"
 
@@ -57,10 +63,18 @@ namespace kimp::fem
     /** Newmark average acceleration. */
     constexpr double newmark_beta  = 0.25;
     constexpr double newmark_gamma = 0.5;
-    /** Newton on the contact: relative displacement-increment tolerance and iteration cap. */
-    constexpr double       newton_tolerance      = 1e-10;
-    constexpr unsigned int newton_max_iterations = 50;
-    constexpr unsigned int max_line_search       = 6;
+    /** Largest implicit_max_halvings: time is counted in integer ticks of dt / 2^max. */
+    constexpr unsigned int max_step_halvings = 30;
+    /** Newton on the contact: relative residual tolerance. */
+    constexpr double newton_tolerance = 1e-10;
+    /** Residual accepted when Newton's direction is no longer a descent one (round-off). */
+    constexpr double newton_roundoff_tolerance = 1e-8;
+    /** Line search: iteration cap and the reduction of |dPi/dalpha| that ends it. */
+    constexpr unsigned int max_line_search       = 20;
+    constexpr double       line_search_reduction = 0.5;
+    /** CG + AMG: relative residual reduction and iteration cap. */
+    constexpr double       cg_tolerance      = 1e-12;
+    constexpr unsigned int max_cg_iterations = 2000;
     /** Divergence guard: relative energy error beyond which the run is stopped. */
     constexpr double divergence_energy_error = 0.5;
 
@@ -98,9 +112,38 @@ namespace kimp::fem
       void setup_system();
       void setup_contact();
       void assemble_system();
+      /** Constitutive law per material id: material_laws, else linear elastic. */
+      void make_laws();
+      /** f = internal force of u: K u for linear laws, else assembled from the laws' stress
+       *  with the committed history (trial history written). */
+      void internal_force(const Vec &u, Vec &f);
       void compute_time_step();
       void run_explicit();
       void run_implicit();
+
+      /** Implicit: K + c1 M of one step size dt / 2^level and its solver. */
+      struct StepOperator
+      {
+        double                                             dt = 0, c1 = 0;
+        double                                             rigid_diagonal = 0; ///< m c1
+        TrilinosWrappers::SparseMatrix                     base, system;
+        SolverControl                                      control;
+        std::unique_ptr<TrilinosWrappers::SolverDirect>    direct;
+        std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
+        /** Direct only: columns of the compact block of base^{-1}, computed on first use. */
+        std::vector<std::vector<double>> flexibility;
+      };
+      StepOperator &step_operator(unsigned int level);
+      /** x = base^{-1} b (direct solver only). */
+      void                       base_solve(StepOperator &op, Vec &x, const Vec &b);
+      const std::vector<double> &flexibility_column(StepOperator &op, unsigned int k);
+      /** Newton increment (du, du_r) of J (du, du_r) = -(residual, r_rigid). */
+      void solve_newton_system(StepOperator                     &op,
+                               const PenaltyContact::Evaluation &ev,
+                               const Vec                        &residual,
+                               double                            r_rigid,
+                               Vec                              &du,
+                               double                           &du_r);
 
       /** Compact contact values (all ranks) of a distributed vector, plus the rigid DoF. */
       std::vector<double> gather_compact(const Vec &v, double rigid_value) const;
@@ -159,6 +202,14 @@ namespace kimp::fem
       double                                      slab_v_end           = 0;
       bool                                        separated_flag       = false;
       double                                      penetration_integral = 0;
+      std::map<unsigned int, std::unique_ptr<StepOperator>>      step_operators;
+      std::vector<bool>                                          compact_free;
+      std::map<unsigned int, std::shared_ptr<const MaterialLaw>> laws;
+      bool                                                       linear_laws = true;
+      QuadraturePointHistory                                     qp_history;
+      Vec           u_ghosted, force_writable; // internal_force() of non-linear laws
+      unsigned long n_linear_solves = 0, n_step_halvings = 0;
+      double        linear_solver_seconds = 0, linear_setup_seconds = 0;
     };
 
     ImpactProblem::ImpactProblem(const ImpactParameters &parameters,
@@ -194,6 +245,10 @@ namespace kimp::fem
         require(m.density > 0,
                 key + "density = " + fmt_double(m.density) + " kg/m^3 (must be > 0)");
       }
+      for (const auto &[id, law] : prm.material_laws)
+        require(law != nullptr && prm.materials.count(id) > 0,
+                "material_laws[" + std::to_string(id) +
+                  "] (must be a law for a material id that has an entry in materials)");
       if (prm.rigid_slab)
       {
         require(prm.slab_mass > 0,
@@ -223,6 +278,15 @@ namespace kimp::fem
                 " s (must be >= 0)");
       require(prm.output_interval >= 0,
               "output_interval = " + fmt_double(prm.output_interval) + " s (must be >= 0)");
+      require(prm.implicit_max_halvings <= max_step_halvings,
+              "implicit_max_halvings = " + std::to_string(prm.implicit_max_halvings) +
+                " (must be <= " + std::to_string(max_step_halvings) + ")");
+      require(prm.implicit_newton_max_iterations > 0,
+              "implicit_newton_max_iterations = " +
+                std::to_string(prm.implicit_newton_max_iterations) + " (must be > 0)");
+      require(prm.progress_interval > 0,
+              "progress_interval = " + std::to_string(prm.progress_interval) +
+                " steps (must be > 0)");
       require(prm.vtu_interval >= 0,
               "vtu_interval = " + fmt_double(prm.vtu_interval) + " s (must be >= 0)");
     }
@@ -571,31 +635,39 @@ namespace kimp::fem
       Vector<double>           cell_mass(n), cell_slab(n);
       std::vector<types::global_dof_index> dof_indices(n);
       const FEValuesExtractors::Vector     displacement(0);
+      std::vector<std::array<double, 3>>   b(n);
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
         {
-          const Material &m      = prm.materials.at(cell->material_id());
-          const double    lambda = m.youngs_modulus * m.poisson_ratio /
-                                ((1 + m.poisson_ratio) * (1 - 2 * m.poisson_ratio));
-          const double mu = m.youngs_modulus / (2 * (1 + m.poisson_ratio));
+          const Material    &m   = prm.materials.at(cell->material_id());
+          const MaterialLaw &law = *laws.at(cell->material_id());
+          // K from the law's tangent in the virgin state (modified Newton for non-linear laws).
+          std::vector<double> history(law.n_history());
+          law.initial_history(history.data());
+          const VoigtTangent d = law.tangent({{0, 0, 0}}, history.data());
           fe_values.reinit(cell);
           fe_mass.reinit(cell);
           cell_matrix = 0;
           cell_mass   = 0;
           cell_slab   = 0;
           for (unsigned int q = 0; q < quadrature.size(); ++q)
+          {
             for (unsigned int i = 0; i < n; ++i)
             {
-              const auto   eps_i = fe_values[displacement].symmetric_gradient(i, q);
-              const double div_i = trace(eps_i);
-              for (unsigned int j = 0; j < n; ++j)
-              {
-                const auto eps_j = fe_values[displacement].symmetric_gradient(j, q);
-                cell_matrix(i, j) +=
-                  (lambda * div_i * trace(eps_j) + 2 * mu * scalar_product(eps_i, eps_j)) *
-                  fe_values.JxW(q);
-              }
+              const auto eps = fe_values[displacement].symmetric_gradient(i, q);
+              b[i]           = {{eps[0][0], eps[1][1], 2 * eps[0][1]}};
             }
+            for (unsigned int i = 0; i < n; ++i)
+            {
+              std::array<double, 3> db{};
+              for (unsigned int r = 0; r < 3; ++r)
+                for (unsigned int c = 0; c < 3; ++c)
+                  db[c] += b[i][r] * d[3 * r + c];
+              for (unsigned int j = 0; j < n; ++j)
+                cell_matrix(i, j) +=
+                  (db[0] * b[j][0] + db[1] * b[j][1] + db[2] * b[j][2]) * fe_values.JxW(q);
+            }
+          }
           // Gauss-Lobatto points are the vertices: the mass matrix is diagonal.
           for (unsigned int q = 0; q < lobatto.size(); ++q)
             for (unsigned int i = 0; i < n; ++i)
@@ -634,6 +706,73 @@ namespace kimp::fem
               "mesh '" + prm.mesh_file.string() + "' has no slab cells (material id " +
                 std::to_string(static_cast<unsigned>(geometry::slab_material)) +
                 ") and rigid_slab is false");
+    }
+
+    void ImpactProblem::make_laws()
+    {
+      laws.clear();
+      linear_laws           = true;
+      unsigned int n_values = 0;
+      for (const auto &[id, m] : prm.materials)
+      {
+        const auto it = prm.material_laws.find(id);
+        laws[id] =
+          it != prm.material_laws.end() ? it->second : std::make_shared<const LinearElasticLaw>(m);
+        linear_laws = linear_laws && laws[id]->is_linear();
+        n_values    = std::max(n_values, laws[id]->n_history());
+      }
+      if (linear_laws)
+        return;
+      qp_history.reinit(triangulation.n_active_cells(), QGauss<dim>(2).size(), n_values);
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          qp_history.initialize_cell(cell->active_cell_index(), *laws.at(cell->material_id()));
+      u_ghosted.reinit(locally_owned, locally_relevant, comm);
+      force_writable.reinit(locally_owned, locally_relevant, comm, true);
+    }
+
+    void ImpactProblem::internal_force(const Vec &u, Vec &f)
+    {
+      if (linear_laws)
+      {
+        stiffness.vmult(f, u);
+        return;
+      }
+      // f = sum over cells of B^T sigma(eps(u), h) JxW (Gauss points of the stiffness).
+      u_ghosted      = u;
+      force_writable = 0;
+      const QGauss<dim>  quadrature(2);
+      FEValues<dim>      fe_values(fe, quadrature, update_gradients | update_JxW_values);
+      const unsigned int n = fe.n_dofs_per_cell();
+      Vector<double>     cell_force(n);
+      std::vector<types::global_dof_index> dof_indices(n);
+      const FEValuesExtractors::Vector     displacement(0);
+      std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+        {
+          const MaterialLaw &law = *laws.at(cell->material_id());
+          const unsigned int c   = cell->active_cell_index();
+          fe_values.reinit(cell);
+          fe_values[displacement].get_function_symmetric_gradients(u_ghosted, eps);
+          cell_force = 0;
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+          {
+            const VoigtStress sigma = law.stress({{eps[q][0][0], eps[q][1][1], 2 * eps[q][0][1]}},
+                                                 qp_history.committed(c, q),
+                                                 qp_history.trial(c, q));
+            for (unsigned int i = 0; i < n; ++i)
+            {
+              const auto e = fe_values[displacement].symmetric_gradient(i, q);
+              cell_force(i) += (sigma[0] * e[0][0] + sigma[1] * e[1][1] + 2 * sigma[2] * e[0][1]) *
+                               fe_values.JxW(q);
+            }
+          }
+          cell->get_dof_indices(dof_indices);
+          constraints.distribute_local_to_global(cell_force, dof_indices, force_writable);
+        }
+      force_writable.compress(VectorOperation::add);
+      f = force_writable;
     }
 
     void ImpactProblem::compute_time_step()
@@ -863,18 +1002,19 @@ namespace kimp::fem
         if (cell->is_locally_owned())
         {
           const unsigned int c = cell->active_cell_index();
-          const Material    &m = prm.materials.at(cell->material_id());
           fe_values.reinit(cell);
           fe_values[displacement].get_function_symmetric_gradients(u_g, eps);
-          const double lambda = m.youngs_modulus * m.poisson_ratio /
-                                ((1 + m.poisson_ratio) * (1 - 2 * m.poisson_ratio));
-          const double mu = m.youngs_modulus / (2 * (1 + m.poisson_ratio));
-          const double tr = trace(eps[0]);
-          material(c)     = cell->material_id();
-          subdomain(c)    = triangulation.locally_owned_subdomain();
-          sxx(c)          = lambda * tr + 2 * mu * eps[0][0][0];
-          syy(c)          = lambda * tr + 2 * mu * eps[0][1][1];
-          sxy(c)          = 2 * mu * eps[0][0][1];
+          // Stress at the cell centre from the committed history of its first Gauss point.
+          const MaterialLaw  &law = *laws.at(cell->material_id());
+          std::vector<double> scratch(law.n_history());
+          const double       *committed = linear_laws ? scratch.data() : qp_history.committed(c, 0);
+          const VoigtStress   sigma =
+            law.stress({{eps[0][0][0], eps[0][1][1], 2 * eps[0][0][1]}}, committed, scratch.data());
+          material(c)  = cell->material_id();
+          subdomain(c) = triangulation.locally_owned_subdomain();
+          sxx(c)       = sigma[0];
+          syy(c)       = sigma[1];
+          sxy(c)       = sigma[2];
         }
       DataOut<dim> data_out;
       data_out.attach_dof_handler(dof_handler);
@@ -941,7 +1081,9 @@ namespace kimp::fem
         const auto                ev = contact->evaluate(cu, cv);
         const std::vector<double> fc = padded_force(ev, cu.size());
 
-        stiffness.vmult(Ku, u);
+        internal_force(u, Ku);
+        if (!linear_laws)
+          qp_history.commit();
         a.equ(-1.0, Ku);
         scatter_add(fc, a);
         a.scale(inverse_mass);
@@ -957,6 +1099,9 @@ namespace kimp::fem
         v_r += h * a_r;
 
         record(n, t, u, v_n, Ku, u_r, v_r_n, ev, cu);
+        if (prm.progress && n % prm.progress_interval == 0 && n > 0 &&
+            Utilities::MPI::this_mpi_process(comm) == 0)
+          prm.progress(t, prm.end_time);
         if (write_vtu && n % vtu_every == 0)
           output_results(t, u, v_n, fc);
 
@@ -982,35 +1127,224 @@ namespace kimp::fem
       n_steps_done = n;
     }
 
+    ImpactProblem::StepOperator &ImpactProblem::step_operator(unsigned int level)
+    {
+      auto &slot = step_operators[level];
+      if (slot)
+        return *slot;
+      const auto start  = std::chrono::steady_clock::now();
+      slot              = std::make_unique<StepOperator>();
+      StepOperator &op  = *slot;
+      op.dt             = dt / static_cast<double>(1UL << level);
+      op.c1             = 1.0 / (newmark_beta * op.dt * op.dt);
+      op.rigid_diagonal = prm.rigid_slab ? prm.slab_mass * op.c1 : 0.0;
+      op.base.reinit(stiffness);
+      op.base.copy_from(stiffness);
+      for (const auto i : locally_owned)
+        op.base.add(i, i, op.c1 * mass(i));
+      op.base.compress(VectorOperation::add);
+      if (prm.implicit_solver == ImpactParameters::ImplicitSolver::direct)
+      {
+        op.direct = std::make_unique<TrilinosWrappers::SolverDirect>(op.control);
+        op.direct->initialize(op.base);
+        op.flexibility.resize(contact_dofs.size() + 1);
+      }
+      else
+      {
+        TrilinosWrappers::PreconditionAMG::AdditionalData data;
+        data.elliptic              = true;
+        data.higher_order_elements = false;
+        data.smoother_sweeps       = 2;
+        data.aggregation_threshold = 0.02;
+        DoFTools::extract_constant_modes(dof_handler, ComponentMask(), data.constant_modes);
+        op.amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+        op.amg->initialize(op.base, data);
+        op.system.reinit(op.base);
+      }
+      const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      linear_setup_seconds += seconds;
+      linear_solver_seconds += seconds;
+      return op;
+    }
+
+    void ImpactProblem::base_solve(StepOperator &op, Vec &x, const Vec &b)
+    {
+      const auto start = std::chrono::steady_clock::now();
+      op.direct->solve(x, b);
+      ++n_linear_solves;
+      linear_solver_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+
+    const std::vector<double> &ImpactProblem::flexibility_column(StepOperator &op, unsigned int k)
+    {
+      // Column k of the compact block of (K + c1 M)^{-1} (the rigid DoF decouples: 1 / (m c1)).
+      auto &column = op.flexibility[k];
+      if (!column.empty())
+        return column;
+      if (k == contact_dofs.size())
+      {
+        column.assign(contact_dofs.size() + 1, 0.0);
+        column.back() = 1.0 / op.rigid_diagonal;
+        return column;
+      }
+      Vec e(locally_owned, comm), x(locally_owned, comm);
+      if (locally_owned.is_element(contact_dofs[k]))
+        e(contact_dofs[k]) = 1.0;
+      e.compress(VectorOperation::insert);
+      base_solve(op, x, e);
+      column = gather_compact(x, 0.0);
+      return column;
+    }
+
+    void ImpactProblem::solve_newton_system(StepOperator                     &op,
+                                            const PenaltyContact::Evaluation &ev,
+                                            const Vec                        &residual,
+                                            double                            r_rigid,
+                                            Vec                              &du,
+                                            double                           &du_r)
+    {
+      // Newton matrix J = B + sum_i k_i g_i g_i^T, B = K + c1 M (with m c1 on the rigid DoF),
+      // g_i = dg/du of active slave i on the free compact DoFs, k_i its tangent penalty.
+      const std::size_t r_index = contact_dofs.size();
+      std::vector<std::pair<double, std::vector<std::pair<unsigned int, double>>>> g;
+      for (const auto &pair : ev.active)
+      {
+        if (pair.dforce_dpenetration <= 0)
+          continue;
+        std::vector<std::pair<unsigned int, double>> entries;
+        for (unsigned int k = 0; k < pair.n_dofs; ++k)
+          if (pair.dofs[k] == r_index || compact_free[pair.dofs[k]])
+            entries.emplace_back(pair.dofs[k], pair.dg_du[k]);
+        g.emplace_back(pair.dforce_dpenetration, std::move(entries));
+      }
+      Vec rhs(locally_owned, comm);
+      rhs.equ(-1.0, residual);
+      if (op.direct)
+      {
+        // Woodbury: J^{-1} r = x - B^{-1} G S^{-1} G^T x, x = B^{-1} r, S = K^{-1} + G^T B^{-1} G;
+        // G^T B^{-1} G needs only the compact block of B^{-1}, cached per step size.
+        base_solve(op, du, rhs);
+        du_r = prm.rigid_slab ? -r_rigid / op.rigid_diagonal : 0.0;
+        if (g.empty())
+          return;
+        const std::vector<double> xc = gather_compact(du, du_r);
+        const unsigned int        m  = g.size();
+        FullMatrix<double>        s(m, m);
+        Vector<double>            w(m), z(m);
+        for (unsigned int i = 0; i < m; ++i)
+        {
+          for (const auto &[k, gk] : g[i].second)
+            w(i) += gk * xc[k];
+          s(i, i) += 1.0 / g[i].first;
+          for (const auto &[l, gl] : g[i].second)
+          {
+            const std::vector<double> &column = flexibility_column(op, l);
+            for (unsigned int j = 0; j < m; ++j)
+              for (const auto &[k, gk] : g[j].second)
+                s(j, i) += gk * column[k] * gl;
+          }
+        }
+        s.gauss_jordan();
+        s.vmult(z, w);
+        std::vector<double> y(r_index + 1, 0.0);
+        for (unsigned int i = 0; i < m; ++i)
+          for (const auto &[k, gk] : g[i].second)
+            y[k] += gk * z(i);
+        Vec                 correction(locally_owned, comm), dx(locally_owned, comm);
+        std::vector<double> y_nodes(y.begin(), y.end());
+        y_nodes.back() = 0;
+        scatter_add(y_nodes, correction);
+        base_solve(op, dx, correction);
+        du -= dx;
+        if (prm.rigid_slab)
+          du_r -= y.back() / op.rigid_diagonal;
+        return;
+      }
+
+      // CG + AMG on the assembled J; the rigid DoF by Sherman-Morrison on the Schur complement
+      // S = A - b b^T / d (A: free block of J, b: its coupling to the rigid DoF, d: rigid entry).
+      double d = op.rigid_diagonal;
+      Vec    b(locally_owned, comm), z(locally_owned, comm);
+      op.system.copy_from(op.base);
+      for (const auto &[k_i, entries] : g)
+        for (const auto &[i, gi] : entries)
+          for (const auto &[j, gj] : entries)
+          {
+            const double value = k_i * gi * gj;
+            const bool   ri = i == r_index, rj = j == r_index;
+            if (ri && rj)
+              d += value;
+            else if (rj)
+            {
+              if (locally_owned.is_element(contact_dofs[i]))
+                b(contact_dofs[i]) += value;
+            }
+            else if (!ri && locally_owned.is_element(contact_dofs[i]))
+              op.system.add(contact_dofs[i], contact_dofs[j], value);
+          }
+      op.system.compress(VectorOperation::add);
+      b.compress(VectorOperation::add);
+      const auto cg_solve = [&](Vec &x, const Vec &f)
+      {
+        const auto                 start = std::chrono::steady_clock::now();
+        SolverControl              control(max_cg_iterations, cg_tolerance * f.l2_norm());
+        TrilinosWrappers::SolverCG cg(control);
+        x = 0;
+        if (f.l2_norm() > 0)
+          cg.solve(op.system, x, f, *op.amg);
+        ++n_linear_solves;
+        linear_solver_seconds +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      };
+      du_r = 0;
+      if (prm.rigid_slab)
+      {
+        const double s = -r_rigid;
+        rhs.add(-s / d, b);
+        cg_solve(du, rhs);
+        cg_solve(z, b);
+        const double bz1 = b * du, bz2 = b * z;
+        du.add(bz1 / (d - bz2), z);
+        du_r = (s - (b * du)) / d;
+      }
+      else
+        cg_solve(du, rhs);
+    }
+
     void ImpactProblem::run_implicit()
     {
-      const double c1 = 1.0 / (newmark_beta * dt * dt);
-      const double c2 = 1.0 / (2 * newmark_beta) - 1;
-      Vec          u(locally_owned, comm), v(locally_owned, comm), acc(locally_owned, comm);
+      Vec u(locally_owned, comm), v(locally_owned, comm), acc(locally_owned, comm);
       Vec u_np1(locally_owned, comm), v_np1(locally_owned, comm), a_np1(locally_owned, comm);
       Vec Ku(locally_owned, comm), residual(locally_owned, comm), du(locally_owned, comm);
-      Vec rhs(locally_owned, comm), b(locally_owned, comm), z(locally_owned, comm);
+      Vec rhs(locally_owned, comm), u_start(locally_owned, comm);
       for (const auto i : locally_owned)
         if (slab_mass_x(i) > 0)
           v(i) = prm.initial_velocity;
       v.compress(VectorOperation::insert);
       double u_r = 0, v_r = prm.initial_velocity, a_r = 0;
 
-      // A = K + M / (beta dt^2): the Newton matrix without contact, factorized once.
-      TrilinosWrappers::SparseMatrix base, system;
-      base.reinit(stiffness);
-      base.copy_from(stiffness);
-      for (const auto i : locally_owned)
-        base.add(i, i, c1 * mass(i));
-      base.compress(VectorOperation::add);
-      SolverControl                  control;
-      TrilinosWrappers::SolverDirect base_solver(control), contact_solver(control);
-      base_solver.initialize(base);
+      compact_free.assign(contact_dofs.size(), false);
+      {
+        std::vector<double> local(contact_dofs.size(), 0.0);
+        for (unsigned int k = 0; k < contact_dofs.size(); ++k)
+          if (locally_owned.is_element(contact_dofs[k]) &&
+              !constraints.is_constrained(contact_dofs[k]))
+            local[k] = 1;
+        std::vector<double> all(local.size());
+        const int           ierr = MPI_Allreduce(local.data(),
+                                       all.data(),
+                                       static_cast<int>(local.size()),
+                                       MPI_DOUBLE,
+                                       MPI_SUM,
+                                       comm);
+        AssertThrowMPI(ierr);
+        for (unsigned int k = 0; k < contact_dofs.size(); ++k)
+          compact_free[k] = all[k] > 0.5;
+      }
       // Round-off floor of the residual: |K| |u|.
       const double stiffness_norm = stiffness.linfty_norm();
-      // Force scale of stopping the slab within one step: the residual is small against it.
-      const double momentum_rate = slab_total_mass * prm.initial_velocity / dt;
-      system.reinit(base);
 
       const bool          write_vtu = !prm.vtu_dir.empty() && prm.vtu_interval > 0;
       const unsigned long vtu_every =
@@ -1020,45 +1354,53 @@ namespace kimp::fem
         static_cast<unsigned long>(std::ceil(prm.separation_hold_time / dt));
       const std::size_t r_index = contact_dofs.size();
 
+      PenaltyContact::Evaluation ev;
+      std::vector<double>        cu;
       {
-        const std::vector<double> cu = gather_compact(u, u_r);
-        const auto                ev = contact->evaluate(cu, gather_compact(v, v_r));
-        stiffness.vmult(Ku, u);
+        cu = gather_compact(u, u_r);
+        ev = contact->evaluate(cu, gather_compact(v, v_r));
+        internal_force(u, Ku);
         record(0, 0.0, u, v, Ku, u_r, v_r, ev, cu);
         if (write_vtu)
           output_results(0.0, u, v, padded_force(ev, cu.size()));
       }
-      bool          started    = false;
-      unsigned long zero_since = 0;
-      unsigned long n          = 0;
-      for (; n < n_max; ++n)
+
+      // One Newmark step of size dt / 2^level from (u, v, acc) into (u_np1, v_np1, a_np1):
+      // semi-smooth Newton on the incremental potential
+      //   Pi(u) = c1 / 2 |u - u~|_M^2 + u.K u / 2 + sum_i k_i max(0, p_i(u))^2 / 2,
+      // whose gradient is the residual R = M a + K u - f_c. Pi is convex and C1 with a piecewise
+      // constant Hessian: a full Newton step can jump across the kinks of max(0, p) and cycle
+      // between active sets; a line search for the minimum of Pi along the Newton direction
+      // cannot. Returns false if Newton fails (the caller halves the step).
+      double     t_fail = 0, r_fail = 0, tol_fail = 0;
+      double     u_r_np1 = 0, v_r_np1 = 0, a_r_np1 = 0;
+      const auto newton_step = [&](unsigned int level) -> bool
       {
-        const double t_np1 = (n + 1) * dt;
-        // Predictor: constant acceleration.
-        u_np1 = u;
-        u_np1.add(dt, v, 0.5 * dt * dt, acc);
-        double u_r_np1 = u_r + dt * v_r + 0.5 * dt * dt * a_r, v_r_np1 = 0, a_r_np1 = 0;
-        PenaltyContact::Evaluation ev;
-        std::vector<double>        cu;
-        double                     r_rigid = 0, scale = 0, r_norm = 0;
-        // Residual R(u_{n+1}) = M a_{n+1} + K u_{n+1} - f_c(u_{n+1}, v_{n+1}) on the free DoFs.
-        const auto evaluate_residual = [&]()
+        StepOperator &op  = step_operator(level);
+        const double  h   = op.dt;
+        const double  c1  = op.c1;
+        const double  c2  = 1.0 / (2 * newmark_beta) - 1;
+        const double  m_r = prm.rigid_slab ? prm.slab_mass : 0.0;
+        u_np1             = u;
+        u_np1.add(h, v, 0.5 * h * h, acc);
+        u_r_np1              = u_r + h * v_r + 0.5 * h * h * a_r;
+        double       r_rigid = 0, scale = 0, r_norm = 0;
+        const double momentum_rate = slab_total_mass * prm.initial_velocity / h;
+        const auto   evaluate      = [&]()
         {
-          // Newmark: a_{n+1} = c1 (u_{n+1} - u_n - dt v_n) - c2 a_n, v_{n+1} = v_n + dt((1 - g) a_n
-          // + g a_{n+1}).
           a_np1 = u_np1;
-          a_np1.add(-1.0, u, -dt, v);
+          a_np1.add(-1.0, u, -h, v);
           a_np1.sadd(c1, -c2, acc);
           v_np1 = v;
-          v_np1.add(dt * (1 - newmark_gamma), acc, dt * newmark_gamma, a_np1);
-          a_r_np1 = c1 * (u_r_np1 - u_r - dt * v_r) - c2 * a_r;
-          v_r_np1 = v_r + dt * ((1 - newmark_gamma) * a_r + newmark_gamma * a_r_np1);
+          v_np1.add(h * (1 - newmark_gamma), acc, h * newmark_gamma, a_np1);
+          a_r_np1 = c1 * (u_r_np1 - u_r - h * v_r) - c2 * a_r;
+          v_r_np1 = v_r + h * ((1 - newmark_gamma) * a_r + newmark_gamma * a_r_np1);
 
           const auto gathered          = gather_compact(u_np1, u_r_np1, v_np1, v_r_np1);
           cu                           = gathered.first;
           ev                           = contact->evaluate(cu, gathered.second);
           const std::vector<double> fc = padded_force(ev, cu.size());
-          stiffness.vmult(Ku, u_np1);
+          internal_force(u_np1, Ku);
           residual = a_np1;
           residual.scale(mass);
           const double inertia_norm = residual.l2_norm();
@@ -1067,128 +1409,136 @@ namespace kimp::fem
           scatter_add(fc, rhs);
           residual -= rhs;
           residual.scale(free_mask);
-          r_rigid = prm.rigid_slab ? prm.slab_mass * a_r_np1 - fc[r_index] : 0.0;
+          r_rigid = prm.rigid_slab ? m_r * a_r_np1 - fc[r_index] : 0.0;
           scale = inertia_norm + Ku.l2_norm() + ev.total_force + stiffness_norm * u_np1.l2_norm() +
-                  momentum_rate + (prm.rigid_slab ? prm.slab_mass * std::abs(a_r_np1) : 0.0) +
-                  std::numeric_limits<double>::min();
+                  momentum_rate + m_r * std::abs(a_r_np1) + std::numeric_limits<double>::min();
           r_norm = std::sqrt(residual.norm_sqr() + r_rigid * r_rigid);
         };
-        evaluate_residual();
+        evaluate();
         for (unsigned int k = 0;; ++k)
         {
           if (r_norm <= newton_tolerance * scale)
-            break;
-          if (k == newton_max_iterations)
-            throw NumericalError("Newton on the contact did not converge at t = " +
-                                   fmt_double(t_np1) + " s (step " + std::to_string(n + 1) + ", " +
-                                   std::to_string(ev.active.size()) +
-                                   " active contact nodes): residual " + fmt_double(r_norm) +
-                                   " N/m vs tolerance " + fmt_double(newton_tolerance * scale),
-                                 t_np1,
-                                 n + 1);
+            return true;
+          if (k == prm.implicit_newton_max_iterations)
+          {
+            r_fail   = r_norm;
+            tol_fail = newton_tolerance * scale;
+            return false;
+          }
           ++n_newton;
-
-          // Contact tangent: d lambda/dp + d lambda/d(dp/dt) gamma / (beta dt), times dg/du^T dg/du
-          // (exact for straight segments: the normal's rotation term cancels, see
-          // penalty_contact.h).
-          const double rate_factor = newmark_gamma / (newmark_beta * dt);
-          double       d           = prm.slab_mass * c1;
-          b                        = 0;
-          const bool use_base      = ev.active.empty();
-          if (!use_base)
-          {
-            system.copy_from(base);
-            for (const auto &pair : ev.active)
-            {
-              const double k_eff = pair.dforce_dpenetration + pair.dforce_drate * rate_factor;
-              if (k_eff <= 0)
-                continue;
-              for (unsigned int i = 0; i < pair.n_dofs; ++i)
-                for (unsigned int j = 0; j < pair.n_dofs; ++j)
-                {
-                  const double value = k_eff * pair.dg_du[i] * pair.dg_du[j];
-                  const bool   ri = pair.dofs[i] == r_index, rj = pair.dofs[j] == r_index;
-                  if (ri && rj)
-                    d += value;
-                  else if (rj)
-                  {
-                    const auto gi = contact_dofs[pair.dofs[i]];
-                    if (locally_owned.is_element(gi) && !constraints.is_constrained(gi))
-                      b(gi) += value;
-                  }
-                  else if (!ri)
-                  {
-                    const auto gi = contact_dofs[pair.dofs[i]], gj = contact_dofs[pair.dofs[j]];
-                    if (locally_owned.is_element(gi) && !constraints.is_constrained(gi) &&
-                        !constraints.is_constrained(gj))
-                      system.add(gi, gj, value);
-                  }
-                }
-            }
-            system.compress(VectorOperation::add);
-            contact_solver.initialize(system);
-          }
-          b.compress(VectorOperation::add);
-          auto &solver = use_base ? base_solver : contact_solver;
-          rhs.equ(-1.0, residual);
           double du_r = 0;
-          if (prm.rigid_slab)
-          {
-            // Rigid DoF by Sherman-Morrison on the Schur complement S - b b^T / d.
-            const double s = -r_rigid;
-            rhs.add(-s / d, b);
-            solver.solve(du, rhs);
-            if (!use_base)
-            {
-              solver.solve(z, b);
-              const double bz1 = b * du, bz2 = b * z;
-              du.add(bz1 / (d - bz2), z);
-            }
-            du_r = (s - (b * du)) / d;
-          }
-          else
-            solver.solve(du, rhs);
+          solve_newton_system(op, ev, residual, r_rigid, du, du_r);
           du.scale(free_mask);
-          // Backtracking on the residual norm: the penalty force is only piecewise smooth, a
-          // full step can jump across a kink and cycle between two active sets. The first step
-          // length (1, 1/2, ...) that lowers the residual is taken; if none does, the full step.
-          const double r_old = r_norm;
-          double       alpha = 1, taken = 0;
-          for (unsigned int ls = 0; ls <= max_line_search; ++ls, alpha *= 0.5)
+          const double slope = residual * du + r_rigid * du_r;
+          if (!(slope < 0))
           {
-            u_np1.add(alpha - taken, du);
-            u_r_np1 += (alpha - taken) * du_r;
-            taken = alpha;
-            evaluate_residual();
-            if (r_norm < r_old)
-              break;
+            // Not a descent direction: only round-off is left in the residual.
+            if (r_norm <= newton_roundoff_tolerance * scale)
+              return true;
+            r_fail   = r_norm;
+            tol_fail = newton_tolerance * scale;
+            return false;
           }
-          if (!(r_norm < r_old))
+          // Line search on phi(alpha) = Pi(u + alpha du), convex, through its derivative
+          // phi'(alpha) = R(u + alpha du) . du, which (unlike Pi itself, a sum of large terms)
+          // stays accurate down to the Newton tolerance: the full step if phi'(1) <= 0 (Pi falls
+          // all the way), else regula falsi (Illinois) for the minimum until |phi'| has fallen
+          // by line_search_reduction. A history law has no Pi; the same search on R . du is
+          // then a heuristic.
+          u_start                = u_np1;
+          const double u_r_start = u_r_np1;
+          const auto   phi_prime = [&](double step)
           {
-            u_np1.add(1 - taken, du);
-            u_r_np1 += (1 - taken) * du_r;
-            evaluate_residual();
+            u_np1 = u_start;
+            u_np1.add(step, du);
+            u_r_np1 = u_r_start + step * du_r;
+            evaluate();
+            return residual * du + r_rigid * du_r;
+          };
+          double alpha = 1, lo = 0, hi = 1, phi_lo = slope, phi_hi = phi_prime(1.0);
+          bool   accepted = phi_hi <= 0 || r_norm <= newton_tolerance * scale;
+          for (unsigned int ls = 0; !accepted && ls < max_line_search; ++ls)
+          {
+            alpha                    = (lo * phi_hi - hi * phi_lo) / (phi_hi - phi_lo);
+            const double phi         = phi_prime(alpha);
+            accepted                 = std::abs(phi) <= line_search_reduction * std::abs(slope);
+            const bool left          = phi < 0;
+            (left ? lo : hi)         = alpha;
+            (left ? phi_lo : phi_hi) = phi;
+            // Illinois: halve the value kept at the end that did not move.
+            (left ? phi_hi : phi_lo) *= 0.5;
+          }
+          if (!accepted)
+          {
+            r_fail   = r_norm;
+            tol_fail = newton_tolerance * scale;
+            return false;
           }
         }
+      };
+
+      bool          started    = false;
+      unsigned long zero_since = 0;
+      unsigned long n          = 0;
+      // Time in ticks of the smallest allowed step, dt / 2^max_halvings.
+      const unsigned int  max_level      = prm.implicit_max_halvings;
+      const unsigned long ticks_per_step = 1UL << max_level;
+      unsigned long       ticks          = 0;
+      unsigned int        level          = 0;
+      while (n < n_max)
+      {
+        const unsigned long step_ticks = ticks_per_step >> level;
+        const double        t_np1 =
+          static_cast<double>(ticks + step_ticks) * dt / static_cast<double>(ticks_per_step);
+        if (!newton_step(level))
+        {
+          if (!linear_laws)
+            qp_history.revert();
+          t_fail = t_np1;
+          if (level == max_level)
+            throw NumericalError("Newton on the contact did not converge at t = " +
+                                   fmt_double(t_fail) + " s (step " + std::to_string(n + 1) +
+                                   ", dt halved " + std::to_string(level) + " times to " +
+                                   fmt_double(step_operator(level).dt) + " s, the floor; " +
+                                   std::to_string(ev.active.size()) +
+                                   " active contact nodes): residual " + fmt_double(r_fail) +
+                                   " N/m vs tolerance " + fmt_double(tol_fail),
+                                 t_fail,
+                                 n + 1);
+          ++level;
+          ++n_step_halvings;
+          continue;
+        }
+        if (!linear_laws)
+          qp_history.commit();
         u.swap(u_np1);
         v.swap(v_np1);
         acc.swap(a_np1);
         u_r = u_r_np1;
         v_r = v_r_np1;
         a_r = a_r_np1;
-        record(n + 1, t_np1, u, v, Ku, u_r, v_r, ev, cu);
-        if (write_vtu && (n + 1) % vtu_every == 0)
+        ticks += step_ticks;
+        // Grow back once the substeps are aligned with the coarser grid.
+        while (level > 0 && ticks % (ticks_per_step >> (level - 1)) == 0)
+          --level;
+        if (ticks % ticks_per_step != 0)
+          continue;
+        ++n;
+        record(n, t_np1, u, v, Ku, u_r, v_r, ev, cu);
+        if (write_vtu && n % vtu_every == 0)
           output_results(t_np1, u, v, padded_force(ev, cu.size()));
+        if (prm.progress && n % prm.progress_interval == 0 &&
+            Utilities::MPI::this_mpi_process(comm) == 0)
+          prm.progress(t_np1, prm.end_time);
 
         if (ev.total_force > 0)
         {
           started    = true;
-          zero_since = n + 2;
+          zero_since = n + 1;
         }
-        if (started && n + 2 - zero_since >= hold_steps && ev.total_force == 0)
+        if (started && n + 1 - zero_since >= hold_steps && ev.total_force == 0)
         {
           separated_flag = true;
-          ++n;
           break;
         }
       }
@@ -1243,16 +1593,20 @@ namespace kimp::fem
       s.initial_gap      = initial_gap;
       for (const auto &sl : contact->slaves())
         s.penalty_stiffness = std::max(s.penalty_stiffness, sl.stiffness);
-      s.n_dofs       = dof_handler.n_dofs();
-      s.n_cells      = triangulation.n_global_active_cells();
-      s.n_steps      = n_steps_done;
-      s.n_newton     = n_newton;
-      s.dt           = dt;
-      s.dt_stable    = dt_stable;
-      s.wall_seconds = wall_seconds;
-      s.n_ranks      = Utilities::MPI::n_mpi_processes(comm);
-      s.separated    = separated_flag;
-      result.history = std::move(history);
+      s.n_dofs                = dof_handler.n_dofs();
+      s.n_cells               = triangulation.n_global_active_cells();
+      s.n_steps               = n_steps_done;
+      s.n_newton              = n_newton;
+      s.n_step_halvings       = n_step_halvings;
+      s.n_linear_solves       = n_linear_solves;
+      s.linear_solver_seconds = linear_solver_seconds;
+      s.linear_setup_seconds  = linear_setup_seconds;
+      s.dt                    = dt;
+      s.dt_stable             = dt_stable;
+      s.wall_seconds          = wall_seconds;
+      s.n_ranks               = Utilities::MPI::n_mpi_processes(comm);
+      s.separated             = separated_flag;
+      result.history          = std::move(history);
     }
 
     ImpactResult ImpactProblem::run()
@@ -1261,6 +1615,7 @@ namespace kimp::fem
       validate_parameters();
       make_grid();
       setup_system();
+      make_laws();
       // The lumped mass is needed by the contact setup (reduced masses), the contact DoFs by the
       // implicit sparsity pattern: assemble the mass first with a provisional pattern.
       contact_dofs.clear();
@@ -1280,6 +1635,8 @@ namespace kimp::fem
         run_explicit();
       else
         run_implicit();
+      if (prm.progress && Utilities::MPI::this_mpi_process(comm) == 0)
+        prm.progress(n_steps_done * dt, prm.end_time);
       ImpactResult result;
       finish(result,
              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

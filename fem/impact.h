@@ -4,7 +4,9 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <map>
+#include <memory>
 #include <mpi.h>
 #include <ostream>
 #include <stdexcept>
@@ -20,6 +22,8 @@ namespace kimp::fem
     double poisson_ratio  = 0; ///< nu, - (in [0, 0.5))
     double density        = 0; ///< rho, kg/m^3 (> 0)
   };
+
+  class MaterialLaw; // fem/material_law.h
 
   /** P-wave speed of a plane-strain continuum, sqrt((lambda + 2 mu) / rho), m/s. */
   double p_wave_speed(const Material &material);
@@ -37,6 +41,14 @@ namespace kimp::fem
     std::filesystem::path mesh_file;
     /** Material per material id; every id present in the mesh must be given. */
     std::map<unsigned int, Material> materials;
+    /**
+     * Optional constitutive law per material id replacing the linear elastic law of materials
+     * (which still gives the density, the wave speed of the time-step limit and the penalty
+     * scale). A law that is not MaterialLaw::is_linear() makes the internal force assembled from
+     * its stress at every quadrature point, with the history committed once per accepted step;
+     * the implicit Newton matrix then stays the law's tangent at zero strain (modified Newton).
+     */
+    std::map<unsigned int, std::shared_ptr<const MaterialLaw>> material_laws;
 
     /**
      * Rigid slab: the slab is one translational DoF of mass slab_mass (kg per metre of depth)
@@ -83,13 +95,40 @@ namespace kimp::fem
     double cfl_safety =
       0.5; ///< explicit dt = cfl_safety * 2 / omega_max (mesh + penalty), in (0, 1]
     /** Implicit only: dt = implicit_dt_factor * stable explicit limit when dt == 0. */
-    double implicit_dt_factor   = 4.0;
+    double implicit_dt_factor = 4.0;
+
+    /** Linear solver of the implicit path. */
+    enum class ImplicitSolver
+    {
+      /** Amesos KLU factorization of K + M / (beta dt^2), once per step size; the contact
+       *  tangent (rank <= active slave nodes) enters by the Woodbury identity. */
+      direct,
+      /** CG with an ML algebraic multigrid preconditioner built once per step size on
+       *  K + M / (beta dt^2), applied to the matrix with the contact tangent. */
+      cg_amg
+    };
+    ImplicitSolver implicit_solver = ImplicitSolver::direct;
+    /**
+     * Implicit only: a step whose Newton iteration does not converge is retried with half the
+     * step, at most this many times (dt floor = dt / 2^max); at the floor NumericalError is
+     * thrown. The substeps then grow back to dt (>= 0).
+     */
+    unsigned int implicit_max_halvings = 6;
+    /** Implicit only: Newton iterations per attempt of a step before it is halved (> 0). */
+    unsigned int implicit_newton_max_iterations = 30;
+
     double end_time             = 0.05;     ///< s (> 0)
     double separation_hold_time = 1.0e-3;   ///< s: stop once the force stayed zero this long
     double output_interval      = 1.0e-5;   ///< s: history sampling interval (0: every step)
     double vtu_interval         = 0;        ///< s: field output interval (0: none)
     std::filesystem::path vtu_dir;          ///< field output directory (empty: none)
     unsigned int          log_interval = 0; ///< steps between log lines (0: none)
+    /**
+     * Progress report: called on rank 0 as progress(t, end_time) (s) every progress_interval
+     * steps and once at the end (empty: none). It must not throw or call MPI.
+     */
+    std::function<void(double t, double t_end)> progress;
+    unsigned int progress_interval = 1000; ///< steps between progress calls (> 0)
   };
 
   /** Histories sampled every output_interval. Forces and energies per metre of depth. */
@@ -133,11 +172,17 @@ namespace kimp::fem
     unsigned long n_cells           = 0;
     unsigned long n_steps           = 0;
     unsigned long n_newton          = 0; ///< implicit: total Newton iterations
-    double        dt                = 0; ///< s
-    double        dt_stable         = 0; ///< s, explicit stability limit 2 / omega_max
-    double        wall_seconds      = 0;
-    unsigned int  n_ranks           = 1;
-    bool          separated         = false; ///< stopped on separation (else end_time)
+    unsigned long n_step_halvings   = 0; ///< implicit: steps retried with half the step
+    unsigned long n_linear_solves   = 0; ///< implicit: Newton linear solves
+    /** s, implicit: wall time of the linear solver (setup, factorizations and solves). */
+    double linear_solver_seconds = 0;
+    /** s, implicit: wall time of the setups (factorization or AMG hierarchy), included above. */
+    double       linear_setup_seconds = 0;
+    double       dt                   = 0; ///< s
+    double       dt_stable            = 0; ///< s, explicit stability limit 2 / omega_max
+    double       wall_seconds         = 0;
+    unsigned int n_ranks              = 1;
+    bool         separated            = false; ///< stopped on separation (else end_time)
   };
 
   struct ImpactResult
@@ -180,6 +225,21 @@ namespace kimp::fem
                                   double          thickness,
                                   const Material &material,
                                   unsigned int    n_thickness);
+
+  /**
+   * Static horizontal stiffness (N/m per metre of depth) of the same cantilever wall with a
+   * bonded backfill block on its back (+x) side, backfill_width wide and backfill_height high
+   * (<= height), base of wall and soil clamped, far soil side u_x = 0 (the scene's boundary
+   * conditions), loaded and measured as in cantilever_tip_stiffness(). backfill_width = 0: the
+   * bare cantilever (soil ignored). Soil cells have the wall's size. Serial.
+   */
+  double backfilled_wall_tip_stiffness(double          height,
+                                       double          thickness,
+                                       const Material &wall,
+                                       double          backfill_width,
+                                       double          backfill_height,
+                                       const Material &soil,
+                                       unsigned int    n_thickness);
 
   /**
    * Timoshenko plane-strain tip stiffness of the same cantilever: 1 / (H^3 / (3 E' I) +

@@ -13,6 +13,9 @@ namespace kimp::fem
   {
     /** Projection tolerance on xi: a slave exactly at a segment end belongs to both segments. */
     constexpr double xi_tolerance = 1e-8;
+    /** Largest overhang (in segment lengths) beyond the ends of the master chain still in
+     *  contact with the extended end segment. */
+    constexpr double max_overhang = 0.25;
   } // namespace
 
   PenaltyContact::PenaltyContact(std::vector<Node>    nodes,
@@ -73,42 +76,51 @@ namespace kimp::fem
     }
     bool   found    = false;
     double best_abs = std::numeric_limits<double>::max();
-    for (const auto &seg : segments_)
+    // First the segments the slave projects onto; if there is none (a slave just beyond an end
+    // of the master chain, e.g. the slab's top corner at the wall's top edge once the wall
+    // bends), the extended end segments, with the same linear weights: the gap and the penalty
+    // energy then stay continuous where the slave slides off the end, which Newton needs.
+    for (const double overhang : {xi_tolerance, max_overhang})
     {
-      const double xa = nodes_[seg.a].x + u[2 * seg.a], ya = nodes_[seg.a].y + u[2 * seg.a + 1];
-      const double xb = nodes_[seg.b].x + u[2 * seg.b], yb = nodes_[seg.b].y + u[2 * seg.b + 1];
-      const double len = std::hypot(xb - xa, yb - ya);
-      const double tx = (xb - xa) / len, ty = (yb - ya) / len;
-      const double xi = ((xs - xa) * tx + (ys - ya) * ty) / len;
-      if (xi < -xi_tolerance || xi > 1 + xi_tolerance)
-        continue;
-      const double nx = seg.normal_sign * ty, ny = -seg.normal_sign * tx;
-      const double g = (xs - xa) * nx + (ys - ya) * ny;
-      if (std::abs(g) >= best_abs)
-        continue;
-      best_abs          = std::abs(g);
-      found             = true;
-      gap               = g;
-      const double xi_c = std::clamp(xi, 0.0, 1.0);
-      pair.n_dofs       = 0;
-      const auto add    = [&pair](unsigned int dof, double d)
+      if (found)
+        break;
+      for (const auto &seg : segments_)
       {
-        if (d != 0 && pair.n_dofs < pair.dofs.size())
+        const double xa = nodes_[seg.a].x + u[2 * seg.a], ya = nodes_[seg.a].y + u[2 * seg.a + 1];
+        const double xb = nodes_[seg.b].x + u[2 * seg.b], yb = nodes_[seg.b].y + u[2 * seg.b + 1];
+        const double len = std::hypot(xb - xa, yb - ya);
+        const double tx = (xb - xa) / len, ty = (yb - ya) / len;
+        const double xi = ((xs - xa) * tx + (ys - ya) * ty) / len;
+        if (xi < -overhang || xi > 1 + overhang)
+          continue;
+        const double nx = seg.normal_sign * ty, ny = -seg.normal_sign * tx;
+        const double g = (xs - xa) * nx + (ys - ya) * ny;
+        if (std::abs(g) >= best_abs)
+          continue;
+        best_abs          = std::abs(g);
+        found             = true;
+        gap               = g;
+        const double xi_c = overhang == xi_tolerance ? std::clamp(xi, 0.0, 1.0) : xi;
+        pair.n_dofs       = 0;
+        const auto add    = [&pair](unsigned int dof, double d)
         {
-          pair.dofs[pair.n_dofs]  = dof;
-          pair.dg_du[pair.n_dofs] = d;
-          ++pair.n_dofs;
-        }
-      };
-      add(2 * i, nx);
-      add(2 * i + 1, ny);
-      const std::array<std::pair<unsigned int, double>, 4> master{
-        {{2 * seg.a, -(1 - xi_c) * nx},
-         {2 * seg.a + 1, -(1 - xi_c) * ny},
-         {2 * seg.b, -xi_c * nx},
-         {2 * seg.b + 1, -xi_c * ny}}};
-      for (const auto &m : master)
-        add(m.first, m.second);
+          if (d != 0 && pair.n_dofs < pair.dofs.size())
+          {
+            pair.dofs[pair.n_dofs]  = dof;
+            pair.dg_du[pair.n_dofs] = d;
+            ++pair.n_dofs;
+          }
+        };
+        add(2 * i, nx);
+        add(2 * i + 1, ny);
+        const std::array<std::pair<unsigned int, double>, 4> master{
+          {{2 * seg.a, -(1 - xi_c) * nx},
+           {2 * seg.a + 1, -(1 - xi_c) * ny},
+           {2 * seg.b, -xi_c * nx},
+           {2 * seg.b + 1, -xi_c * ny}}};
+        for (const auto &m : master)
+          add(m.first, m.second);
+      }
     }
     return found;
   }

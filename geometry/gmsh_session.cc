@@ -2,17 +2,56 @@
 #include "geometry/gmsh_session.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <fcntl.h>
 #include <gmsh.h>
 #include <stdexcept>
+#include <unistd.h>
 
 namespace kimp::geometry
 {
   namespace
   {
+    /**
+     * Silences file descriptor 2 while alive. gmsh 4.8 reports "Gmsh has not been initialized"
+     * on stderr whenever its API is called after a gmsh::finalize that left General.Terminal = 1
+     * (a verbose session, or a caller's or deal.II's own initialize / finalize pair), and the
+     * probe below must make exactly such a call. Not thread safe, like gmsh itself.
+     */
+    class SilencedStderr
+    {
+    public:
+      SilencedStderr()
+      {
+        std::fflush(stderr);
+        saved_         = ::dup(STDERR_FILENO);
+        const int null = ::open("/dev/null", O_WRONLY);
+        if (saved_ >= 0 && null >= 0)
+          ::dup2(null, STDERR_FILENO);
+        if (null >= 0)
+          ::close(null);
+      }
+      ~SilencedStderr()
+      {
+        std::fflush(stderr);
+        if (saved_ >= 0)
+        {
+          ::dup2(saved_, STDERR_FILENO);
+          ::close(saved_);
+        }
+      }
+      SilencedStderr(const SilencedStderr &)            = delete;
+      SilencedStderr &operator=(const SilencedStderr &) = delete;
+
+    private:
+      int saved_ = -1;
+    };
+
     // gmsh 4.8 has no gmsh::isInitialized(): model::list() returns no model before the first
     // gmsh::initialize (which always creates one) and throws after gmsh::finalize.
     bool gmsh_is_initialized()
     {
+      const SilencedStderr silenced;
       try
       {
         std::vector<std::string> names;
@@ -54,8 +93,9 @@ namespace kimp::geometry
     {
       if (owns_gmsh_)
       {
-        // Options are not restored first: General.Terminal must stay 0 through finalize, else
-        // gmsh prints "not initialized" errors when the next session probes it.
+        // Options are not restored first: General.Terminal = 0 through finalize (also after a
+        // verbose session) keeps gmsh quiet when it is probed before the next initialize.
+        gmsh::option::setNumber("General.Terminal", 0);
         gmsh::finalize();
         return;
       }

@@ -1,0 +1,52 @@
+// Plane-strain linear elasticity sigma = lambda tr(eps) I + 2 mu eps in Voigt form, and the
+// quadrature-point history storage (see material_law.h).
+#include "fem/material_law.h"
+
+#include <algorithm>
+
+#include "fem/impact.h"
+
+namespace kimp::fem
+{
+  void MaterialLaw::initial_history(double *history) const
+  {
+    std::fill(history, history + n_history(), 0.0);
+  }
+
+  LinearElasticLaw::LinearElasticLaw(const Material &m)
+  {
+    const double lambda =
+      m.youngs_modulus * m.poisson_ratio / ((1 + m.poisson_ratio) * (1 - 2 * m.poisson_ratio));
+    const double mu = m.youngs_modulus / (2 * (1 + m.poisson_ratio));
+    tangent_        = {{lambda + 2 * mu, lambda, 0, lambda, lambda + 2 * mu, 0, 0, 0, mu}};
+  }
+
+  VoigtStress LinearElasticLaw::stress(const VoigtStrain &e, const double *, double *) const
+  {
+    const auto &d = tangent_;
+    return {{d[0] * e[0] + d[1] * e[1], d[3] * e[0] + d[4] * e[1], d[8] * e[2]}};
+  }
+
+  void QuadraturePointHistory::reinit(unsigned int n_cells,
+                                      unsigned int n_points_per_cell,
+                                      unsigned int n_values)
+  {
+    n_points_per_cell_ = n_points_per_cell;
+    n_values_          = n_values;
+    committed_.assign(static_cast<std::size_t>(n_cells) * n_points_per_cell * n_values, 0.0);
+    trial_ = committed_;
+  }
+
+  void QuadraturePointHistory::initialize_cell(unsigned int cell, const MaterialLaw &law)
+  {
+    if (law.n_history() == 0)
+      return;
+    for (unsigned int q = 0; q < n_points_per_cell_; ++q)
+    {
+      law.initial_history(trial(cell, q));
+      std::copy(trial(cell, q),
+                trial(cell, q) + law.n_history(),
+                committed_.data() + offset(cell, q));
+    }
+  }
+} // namespace kimp::fem

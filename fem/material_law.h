@@ -1,0 +1,102 @@
+// Constitutive laws of the plane-strain continuum, sigma = sigma(eps, h), with per-quadrature-point
+// history h kept as trial and committed values (step-18's quadrature-point history; the
+// trial / commit / revert split of OpenSees' Steel01). No deal.II: Voigt vectors and matrices.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace kimp::fem
+{
+  struct Material;
+
+  /** Plane strain in Voigt notation: {eps_xx, eps_yy, gamma_xy = 2 eps_xy} (-). */
+  using VoigtStrain = std::array<double, 3>;
+  /** {sigma_xx, sigma_yy, sigma_xy} (Pa). */
+  using VoigtStress = std::array<double, 3>;
+  /** d sigma / d eps (Pa), row-major 3 x 3. */
+  using VoigtTangent = std::array<double, 9>;
+
+  /**
+   * A constitutive law. Evaluation is const and pure: the law reads the committed history of a
+   * quadrature point and writes its trial history; QuadraturePointHistory decides what becomes
+   * committed (at the end of an accepted time step) and what is thrown away (a rejected Newton
+   * attempt or step).
+   */
+  class MaterialLaw
+  {
+  public:
+    virtual ~MaterialLaw() = default;
+
+    /** Number of history variables per quadrature point (0: no history). */
+    virtual unsigned int n_history() const = 0;
+    /** Writes the history of the undeformed, virgin state (n_history() values). */
+    virtual void initial_history(double *history) const;
+    /**
+     * Stress at the total strain @p strain from the @p committed history; writes the history
+     * that results to @p trial (both n_history() values; unused when 0).
+     */
+    virtual VoigtStress
+    stress(const VoigtStrain &strain, const double *committed, double *trial) const = 0;
+    /** Consistent tangent d sigma / d eps at @p strain from the @p committed history. */
+    virtual VoigtTangent tangent(const VoigtStrain &strain, const double *committed) const = 0;
+    /**
+     * True if stress = tangent : strain with one constant tangent and no history. The impact
+     * solver then computes the internal force as K u with K assembled once from the tangent;
+     * otherwise it assembles the internal force from stress() at every quadrature point.
+     */
+    virtual bool is_linear() const { return false; }
+  };
+
+  /** Isotropic linear elasticity in plane strain (Lame lambda, mu from E, nu). */
+  class LinearElasticLaw final : public MaterialLaw
+  {
+  public:
+    explicit LinearElasticLaw(const Material &material);
+    unsigned int n_history() const override { return 0; }
+    VoigtStress  stress(const VoigtStrain &strain, const double *, double *) const override;
+    VoigtTangent tangent(const VoigtStrain &, const double *) const override { return tangent_; }
+    bool         is_linear() const override { return true; }
+
+  private:
+    VoigtTangent tangent_{};
+  };
+
+  /**
+   * Trial and committed history of every quadrature point, n_values doubles per point, points
+   * numbered cell * n_points_per_cell + q. A plain vector rather than deal.II's CellDataStorage:
+   * the layout is known, contiguous, and commit / revert are single copies.
+   */
+  class QuadraturePointHistory
+  {
+  public:
+    /** n_cells x n_points_per_cell points of n_values values each, all zero. */
+    void reinit(unsigned int n_cells, unsigned int n_points_per_cell, unsigned int n_values);
+    /** Sets the committed and trial history of all points of @p cell to the law's initial one. */
+    void initialize_cell(unsigned int cell, const MaterialLaw &law);
+
+    const double *committed(unsigned int cell, unsigned int q) const
+    {
+      return committed_.data() + offset(cell, q);
+    }
+    double *trial(unsigned int cell, unsigned int q) { return trial_.data() + offset(cell, q); }
+    const double *trial(unsigned int cell, unsigned int q) const
+    {
+      return trial_.data() + offset(cell, q);
+    }
+    /** The trial history becomes the committed one (an accepted time step). */
+    void commit() { committed_ = trial_; }
+    /** The trial history is discarded (a rejected Newton attempt or time step). */
+    void         revert() { trial_ = committed_; }
+    unsigned int n_values() const { return n_values_; }
+
+  private:
+    std::size_t offset(unsigned int cell, unsigned int q) const
+    {
+      return (static_cast<std::size_t>(cell) * n_points_per_cell_ + q) * n_values_;
+    }
+    unsigned int        n_points_per_cell_ = 0, n_values_ = 0;
+    std::vector<double> committed_, trial_;
+  };
+} // namespace kimp::fem
