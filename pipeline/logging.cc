@@ -126,18 +126,17 @@ namespace kimp::pipeline
   void Progress::print(std::uint64_t step, double time)
   {
     const double elapsed = std::chrono::duration<double>(clock_() - start_).count();
-    std::string  eta     = "--";
-    if (step > 0 && step <= total_steps_)
-      eta =
-        fmt::format("{:.0f} s",
-                    elapsed * static_cast<double>(total_steps_ - step) / static_cast<double>(step));
+    // Fraction done: by steps when their number is known, else by simulated time.
+    const double done = total_steps_ > 0 ?
+                          static_cast<double>(step) / static_cast<double>(total_steps_) :
+                          (end_time_ > 0 ? time / end_time_ : 0.0);
+    std::string  eta  = "--";
+    if (done > 0 && done <= 1)
+      eta = fmt::format("{:.0f} s", elapsed * (1 - done) / done);
     // Trailing spaces wipe the remains of a longer previous line.
-    *out_ << fmt::format("\rstep {}/{}  t = {:.4g}/{:.4g} s  ETA {}    ",
-                         step,
-                         total_steps_,
-                         time,
-                         end_time_,
-                         eta)
+    const std::string steps =
+      total_steps_ > 0 ? fmt::format("step {}/{}  ", step, total_steps_) : std::string();
+    *out_ << fmt::format("\r{}t = {:.4g}/{:.4g} s  ETA {}    ", steps, time, end_time_, eta)
           << std::flush;
     printed_ = true;
   }

@@ -44,7 +44,9 @@ namespace kimp::pipeline
     using Clock = std::function<std::chrono::steady_clock::time_point()>;
 
     /// Progress on stderr, enabled on a terminal unless quiet or not on rank 0.
-    /// @param[in] total_steps number of steps M; @param[in] end_time simulated end time, s
+    /// @param[in] total_steps number of steps M, or 0 if unknown (the line then shows the
+    /// simulated time only, and the ETA comes from t / end_time); @param[in] end_time simulated
+    /// end time, s
     Progress(std::uint64_t total_steps, double end_time);
     /// Progress on `out`, explicitly enabled or not, with an injectable clock (tests).
     Progress(std::uint64_t total_steps,

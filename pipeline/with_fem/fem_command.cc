@@ -33,22 +33,14 @@ namespace kimp::pipeline
 
     /**
      * The log stream handed to fem::run_impact(): each line goes to the kimp logger prefixed by
-     * the case name ("step ..." lines at debug level, the others at info) and drives the
-     * progress line (the total step count is read from the "mesh: ... dt = X s" line).
+     * the case name ("step ..." lines at debug level, the others at info).
      */
     class ImpactLog : public std::streambuf
     {
     public:
-      ImpactLog(std::string case_name, double end_time)
+      explicit ImpactLog(std::string case_name)
         : case_name_(std::move(case_name))
-        , end_time_(end_time)
       {
-      }
-
-      ~ImpactLog() override
-      {
-        if (progress_)
-          progress_->finish();
       }
 
     protected:
@@ -68,29 +60,14 @@ namespace kimp::pipeline
       {
         const std::string line = std::move(line_);
         line_.clear();
-        unsigned long step = 0;
-        double        time = 0;
-        if (std::sscanf(line.c_str(), "step %lu t = %lf", &step, &time) == 2)
-        {
+        if (line.rfind("step ", 0) == 0)
           logger().debug("{}: {}", case_name_, line);
-          if (progress_)
-            progress_->update(step, time);
-          return;
-        }
-        logger().info("{}: {}", case_name_, line);
-        const std::size_t at = line.find(" dt = ");
-        if (!progress_ && line.rfind("mesh:", 0) == 0 && at != std::string::npos)
-        {
-          const double dt = std::atof(line.c_str() + at + 6);
-          if (dt > 0)
-            progress_.emplace(static_cast<std::uint64_t>(std::ceil(end_time_ / dt)), end_time_);
-        }
+        else
+          logger().info("{}: {}", case_name_, line);
       }
 
-      std::string             case_name_;
-      double                  end_time_;
-      std::string             line_;
-      std::optional<Progress> progress_;
+      std::string case_name_;
+      std::string line_;
     };
 
     /// Rank 0 runs `work`; every rank then learns whether it succeeded and throws if not, so no
@@ -197,10 +174,12 @@ namespace kimp::pipeline
         fem::ImpactResult result;
         try
         {
-          ImpactLog    log_buffer(name, scene.dynamics.end_time);
-          std::ostream log(&log_buffer);
-          result =
-            fem::run_impact(impact_parameters(scene, height, mesh, vtu_dir), MPI_COMM_WORLD, &log);
+          ImpactLog             log_buffer(name);
+          std::ostream          log(&log_buffer);
+          Progress              progress(0, scene.dynamics.end_time);
+          fem::ImpactParameters parameters = impact_parameters(scene, height, mesh, vtu_dir);
+          parameters.progress = [&progress](double t, double) { progress.update(0, t); };
+          result              = fem::run_impact(parameters, MPI_COMM_WORLD, &log);
         }
         catch (const std::exception &error)
         {

@@ -64,11 +64,20 @@ namespace kimp::pipeline
                                 {"n_cells", static_cast<double>(s.n_cells)},
                                 {"n_steps", static_cast<double>(s.n_steps)},
                                 {"n_newton", static_cast<double>(s.n_newton)},
+                                {"n_step_halvings", static_cast<double>(s.n_step_halvings)},
+                                {"n_linear_solves", static_cast<double>(s.n_linear_solves)},
+                                {"linear_solver_seconds", s.linear_solver_seconds},
+                                {"linear_setup_seconds", s.linear_setup_seconds},
                                 {"n_ranks", static_cast<double>(s.n_ranks)},
                                 {"dt", s.dt},
                                 {"dt_stable", s.dt_stable},
                                 {"wall_seconds", s.wall_seconds}};
-    c.summary_units          = {{"n_newton", "1"}, {"n_ranks", "1"}};
+    c.summary_units          = {{"n_newton", "1"},
+                                {"n_step_halvings", "1"},
+                                {"n_linear_solves", "1"},
+                                {"linear_solver_seconds", "s"},
+                                {"linear_setup_seconds", "s"},
+                                {"n_ranks", "1"}};
     c.labels                 = {{"integrator",
                  scene.dynamics.integrator == fem::ImpactParameters::Integrator::implicit_newmark ?
                                    "implicit" :

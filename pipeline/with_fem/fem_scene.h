@@ -77,9 +77,13 @@ namespace kimp::pipeline
   {
     fem::ImpactParameters::Integrator integrator = fem::ImpactParameters().integrator;
     /// "auto" (cfl_safety x stable limit; implicit: implicit_dt_factor x limit) or a time.
-    std::string  dt                   = "auto";
-    double       cfl_safety           = fem::ImpactParameters().cfl_safety;           ///< (0, 1]
-    double       implicit_dt_factor   = fem::ImpactParameters().implicit_dt_factor;   ///< > 0
+    std::string dt                 = "auto";
+    double      cfl_safety         = fem::ImpactParameters().cfl_safety;         ///< (0, 1]
+    double      implicit_dt_factor = fem::ImpactParameters().implicit_dt_factor; ///< > 0
+    fem::ImpactParameters::ImplicitSolver implicit_solver = fem::ImpactParameters().implicit_solver;
+    unsigned int implicit_max_halvings = fem::ImpactParameters().implicit_max_halvings;
+    unsigned int implicit_newton_max_iterations =
+      fem::ImpactParameters().implicit_newton_max_iterations;
     double       end_time             = fem::ImpactParameters().end_time;             ///< s
     double       separation_hold_time = fem::ImpactParameters().separation_hold_time; ///< s
     double       output_interval      = fem::ImpactParameters().output_interval;      ///< s
@@ -202,6 +206,23 @@ namespace kimp::pipeline
                 s.implicit_dt_factor,
                 "",
                 "implicit dt / explicit stable limit when dt is auto (> 0)");
+    io.choice("implicit_solver",
+              s.implicit_solver,
+              {{"direct", fem::ImpactParameters::ImplicitSolver::direct},
+               {"cg_amg", fem::ImpactParameters::ImplicitSolver::cg_amg}},
+              "implicit linear solver: direct (Amesos KLU, fastest up to ~1e5 DoFs) or cg_amg "
+              "(CG with ML algebraic multigrid, for large meshes)");
+    io.integer("implicit_max_halvings",
+               s.implicit_max_halvings,
+               "implicit: how often a step whose Newton iteration fails may be halved before "
+               "the run stops with an error",
+               0,
+               30);
+    io.integer("implicit_newton_max_iterations",
+               s.implicit_newton_max_iterations,
+               "implicit: Newton iterations per step before the step is halved",
+               1,
+               1000);
     io.quantity("end_time", s.end_time, "ms", "largest simulated time (> 0)");
     io.quantity("separation_hold_time",
                 s.separation_hold_time,

@@ -254,4 +254,16 @@ namespace
     EXPECT_EQ(text.back(), '\n');
     EXPECT_EQ(text.find("step 2/10"), std::string::npos) << text;
   }
+
+  TEST(Progress, UnknownStepCountShowsSimulatedTimeAndEtaFromIt)
+  {
+    std::ostringstream       out;
+    kimp::pipeline::Progress progress(0, 2.0, out, true, FakeClock::read, 0.0);
+    FakeClock::advance(1.0);
+    progress.update(0, 0.5); // a quarter of the simulated time in 1 s of wall time
+    progress.finish();
+    const std::string text = out.str();
+    EXPECT_NE(text.find("\rt = 0.5/2 s  ETA 3 s"), std::string::npos) << text;
+    EXPECT_EQ(text.find("step"), std::string::npos) << text;
+  }
 } // namespace
