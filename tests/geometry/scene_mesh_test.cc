@@ -307,6 +307,23 @@ namespace
 } // namespace
 
 
+TEST(SceneMesh, RepeatedBuildsAfterAVerboseSessionPrintNothing)
+{
+  // gmsh 4.8 prints "Gmsh has not been initialized" when called after a finalize that left
+  // terminal output on; the study builds many meshes in one process.
+  {
+    const GmshSession verbose("kimp_verbose_session", true);
+  }
+  ::testing::internal::CaptureStderr();
+  ::testing::internal::CaptureStdout();
+  build_scene_mesh(SceneGeometry{}, test_file("_1"));
+  build_scene_mesh(SceneGeometry{}, test_file("_2"));
+  const std::string out = ::testing::internal::GetCapturedStdout();
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(err.find("not been initialized"), std::string::npos) << err;
+  EXPECT_EQ(out.find("not been initialized"), std::string::npos) << out;
+}
+
 TEST(SceneMesh, WritesAsciiMsh41)
 {
   const auto file = test_file();
