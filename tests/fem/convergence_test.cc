@@ -3,8 +3,6 @@
 #include <gtest/gtest.h>
 #include <iostream>
 
-#include "fem/mpi_session.h"
-
 #include "tests/fem/impact_test_support.h"
 
 namespace
@@ -30,15 +28,3 @@ namespace
     EXPECT_NEAR(fine.apparent_cor / medium.apparent_cor, 1.0, tolerance);
   }
 } // namespace
-
-int main(int argc, char **argv)
-{
-  MpiSession mpi(argc, argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  if (mpi.rank() != 0)
-  {
-    auto &listeners = ::testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-  }
-  return RUN_ALL_TESTS();
-}

@@ -5,7 +5,6 @@
 #include <iostream>
 #include <random>
 
-#include "fem/mpi_session.h"
 #include "fem/penalty_contact.h"
 
 #include "tests/fem/impact_test_support.h"
@@ -521,15 +520,3 @@ namespace
     expect_message(q, "progress_interval = 0");
   }
 } // namespace
-
-int main(int argc, char **argv)
-{
-  MpiSession mpi(argc, argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  if (mpi.rank() != 0)
-  {
-    auto &listeners = ::testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-  }
-  return RUN_ALL_TESTS();
-}

@@ -6,7 +6,6 @@
 #include <random>
 
 #include "fem/material_law.h"
-#include "fem/mpi_session.h"
 
 #include "tests/fem/impact_test_support.h"
 
@@ -212,15 +211,3 @@ namespace
     EXPECT_GT(soft.summary.contact_duration, elastic.summary.contact_duration);
   }
 } // namespace
-
-int main(int argc, char **argv)
-{
-  MpiSession mpi(argc, argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  if (mpi.rank() != 0)
-  {
-    auto &listeners = ::testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-  }
-  return RUN_ALL_TESTS();
-}

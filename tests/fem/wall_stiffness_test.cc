@@ -4,8 +4,6 @@
 #include <gtest/gtest.h>
 #include <iostream>
 
-#include "fem/mpi_session.h"
-
 #include "tests/fem/impact_test_support.h"
 
 namespace
@@ -57,15 +55,3 @@ namespace
     EXPECT_GT(k, k_bare);
   }
 } // namespace
-
-int main(int argc, char **argv)
-{
-  MpiSession mpi(argc, argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  if (mpi.rank() != 0)
-  {
-    auto &listeners = ::testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-  }
-  return RUN_ALL_TESTS();
-}
