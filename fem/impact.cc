@@ -268,6 +268,9 @@ namespace kimp::fem
       require(prm.smoothing_window >= 0,
               "smoothing_window = " + fmt_double(prm.smoothing_window) + " s (must be >= 0)");
       require(prm.dt >= 0, "dt = " + fmt_double(prm.dt) + " s (must be >= 0; 0 = automatic)");
+      require(prm.dt_over_limit >= 0 && (prm.dt_over_limit == 0 || prm.dt == 0),
+              "dt_over_limit = " + fmt_double(prm.dt_over_limit) +
+                " (must be >= 0, and dt must be 0 when it is used)");
       require(prm.cfl_safety > 0 && prm.cfl_safety <= 1,
               "cfl_safety = " + fmt_double(prm.cfl_safety) + " (must be in (0, 1])");
       require(prm.implicit_dt_factor > 0,
@@ -801,7 +804,9 @@ namespace kimp::fem
                 "dt = " + fmt_double(prm.dt) + " s is above the explicit stability limit " +
                   fmt_double(dt_stable) + " s (mesh omega = " + fmt_double(omega_mesh) +
                   " rad/s, contact penalty omega = " + fmt_double(omega_penalty) + " rad/s)");
-        dt = prm.dt > 0 ? prm.dt : prm.cfl_safety * dt_stable;
+        dt = prm.dt > 0            ? prm.dt :
+             prm.dt_over_limit > 0 ? prm.dt_over_limit * dt_stable :
+                                     prm.cfl_safety * dt_stable;
       }
       else
         dt = prm.dt > 0 ? prm.dt : prm.implicit_dt_factor * dt_stable;

@@ -94,6 +94,12 @@ namespace kimp::fem
     double dt = 0; ///< s; 0: cfl_safety * stable limit. Refused if above the limit.
     double cfl_safety =
       0.5; ///< explicit dt = cfl_safety * 2 / omega_max (mesh + penalty), in (0, 1]
+    /**
+     * Explicit only, for stability studies: if > 0, dt = dt_over_limit * the stable limit, also
+     * above it (no refusal); a run that then diverges stops with NumericalError as always.
+     * Requires dt == 0 (>= 0; 0: off).
+     */
+    double dt_over_limit = 0;
     /** Implicit only: dt = implicit_dt_factor * stable explicit limit when dt == 0. */
     double implicit_dt_factor = 4.0;
 

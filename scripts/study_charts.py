@@ -1,6 +1,8 @@
 #!/usr/bin/python3
 """Charts of `kimp study DIR`: FEM contact force with the fitted laws (one panel per wall height),
-k against wall height beside thesis Table 2.1, and building response against wall height.
+k against wall height beside thesis Table 2.1 (fit interval and FEM numerical error), building
+response against wall height and, when the study computed them, accuracy against cost (FEM levels;
+building time step), the central-difference stability map and the sensitivity of k.
 Reads DIR/study.h5 and DIR/building_response.csv; writes DIR/charts/*.png and *.svg."""
 import csv
 import math
@@ -59,6 +61,12 @@ def k_vs_height(h5, out_dir):
         upper = table[law + "_upper"][()]
         err = [[max(a - b, 0.0) for a, b in zip(k, lower)], [max(b - a, 0.0) for a, b in zip(k, upper)]]
         ax.errorbar(h, k, yerr=err, fmt="o-", capsize=3, label="kimp (fit 95 % CI)")
+        if law + "_numerical_error" in table:
+            num = table[law + "_numerical_error"][()]
+            if any(not math.isnan(x) for x in num):
+                num = [0.0 if math.isnan(x) else x for x in num]
+                ax.errorbar(h, k, yerr=num, fmt="none", elinewidth=4, alpha=0.4, color="C3",
+                            label="FEM numerical error (level change)")
         thesis = table["thesis_" + law][()]
         points = [(a, b) for a, b in zip(h, thesis) if not math.isnan(b)]
         if points:
@@ -100,6 +108,166 @@ def building_response(csv_path, out_dir):
     save(fig, out_dir, "building_response")
 
 
+def accuracy_fem(h5, out_dir):
+    if "accuracy" not in h5 or "fem" not in h5["accuracy"]:
+        return
+    group = h5["accuracy"]["fem"]
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.8), constrained_layout=True)
+    styles = {"mesh": ("o-", "explicit, mesh levels (h_contact cm)"),
+              "penalty": ("s--", "explicit, penalty levels (factor)"),
+              "implicit": ("^:", "implicit Newmark, mesh levels")}
+    for ax, law, title in ((axes[0], "kelvin_voigt", "Kelvin-Voigt k"),
+                           (axes[1], "jankowski", "Jankowski k")):
+        for series, (style, label) in styles.items():
+            if series not in group:
+                continue
+            t = group[series]
+            ok = t["ok"][()]
+            sec = t["seconds"][()]
+            err = t["error_" + law][()]
+            pts = [(s_, max(e, 1e-6) * 100, hc, pf) for s_, e, o, hc, pf in
+                   zip(sec, err, ok, t["h_contact"][()], t["penalty_factor"][()]) if o > 0.5]
+            if pts:
+                ax.plot([p[0] for p in pts], [p[1] for p in pts], style, label=label)
+                for p in pts:
+                    tag = f"{p[2] * 100:g}" if series != "penalty" else f"x{p[3]:g}"
+                    ax.annotate(tag, (p[0], p[1]), fontsize=7, xytext=(3, 3),
+                                textcoords="offset points")
+            failed = [s_ for s_, o in zip(sec, ok) if o < 0.5]
+            for f in failed:
+                ax.axvline(f if f > 0 else 1e-3, color="r", ls=":", lw=0.8)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("FEM wall time (s)")
+        ax.set_ylabel("|k / k_finest - 1| (%)  (0 plotted as 1e-4 %)")
+        ax.set_title(title)
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=7)
+    save(fig, out_dir, "accuracy_fem")
+
+
+def accuracy_lumped(h5, out_dir):
+    if "accuracy" not in h5 or "lumped" not in h5["accuracy"]:
+        return
+    group = h5["accuracy"]["lumped"]
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.8), constrained_layout=True)
+    for ax, key, title in ((axes[0], "error_impact_force", "peak impact force"),
+                           (axes[1], "error_base_acceleration", "peak base abs. acceleration")):
+        for method, style, label in (("cdm", "o-", "central difference"),
+                                     ("newmark", "s--", "Newmark (average acceleration)")):
+            if method not in group:
+                continue
+            t = group[method]
+            pts = [(s_, max(e, 1e-7) * 100, dt) for s_, e, o, dt in
+                   zip(t["seconds"][()], t[key][()], t["ok"][()], t["dt"][()]) if o > 0.5]
+            if pts:
+                ax.plot([p[0] for p in pts], [p[1] for p in pts], style, label=label)
+                for p in pts:
+                    ax.annotate(f"{p[2]:g}", (p[0], p[1]), fontsize=6, xytext=(3, 3),
+                                textcoords="offset points")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("wall time of the run (s); labels: dt (s)")
+        ax.set_ylabel("error vs reference (%)")
+        ax.set_title(title)
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=7)
+    save(fig, out_dir, "accuracy_lumped")
+
+
+def stability_map(h5, out_dir):
+    if "stability" not in h5 or "lumped" not in h5["stability"]:
+        return
+    t = h5["stability"]["lumped"]
+    k = t["stiffness"][()] * 1e-6  # kN/mm
+    dt = t["dt"][()]
+    stable = t["stable"][()]
+    accurate = t["accurate"][()] if "accurate" in t else stable
+    fig, ax = plt.subplots(figsize=(6, 4.2), constrained_layout=True)
+    for sel, marker, color, label in (
+            (lambda i: accurate[i] > 0.5, "o", "C2", "stable, COR within 5 %"),
+            (lambda i: stable[i] > 0.5 and accurate[i] < 0.5, "s", "C1", "stable, inaccurate"),
+            (lambda i: stable[i] < 0.5, "x", "C3", "unstable (energy gained)")):
+        idx = [i for i in range(len(k)) if sel(i)]
+        if idx:
+            ax.scatter([k[i] for i in idx], [dt[i] for i in idx], marker=marker, color=color, s=14,
+                       label=label)
+    order = sorted(range(len(k)), key=lambda i: k[i])
+    ks = [k[i] for i in order]
+    ax.plot(ks, [t["dt_limit"][()][i] for i in order], "k-", label="2/omega_imp")
+    ax.plot(ks, [t["dt_limit_damped"][()][i] for i in order], "k--",
+            label="2(sqrt(1+xi^2)-xi)/omega_imp (KV dashpot)")
+    k_study = t.attrs.get("study_stiffness_N_per_m", None)
+    if k_study:
+        ax.axvline(float(k_study) * 1e-6, color="C0", ls=":", label="study k_KV (total)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("k_imp (kN/mm)")
+    ax.set_ylabel("time step (s)")
+    ax.set_title("central difference, two-body contact")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    save(fig, out_dir, "stability_map")
+
+
+def stability_map_fem(h5, out_dir):
+    if "stability" not in h5 or "fem" not in h5["stability"]:
+        return
+    t = h5["stability"]["fem"]
+    penalty = t["penalty_factor"][()]
+    dt = t["dt"][()] * 1e6
+    stable = t["stable"][()]
+    fig, ax = plt.subplots(figsize=(6, 4.2), constrained_layout=True)
+    for want, marker, color, label in ((1, "o", "C2", "stable"),
+                                       (0, "x", "C3", "unstable (diverged or energy error > 1 %)")):
+        idx = [i for i in range(len(dt)) if (stable[i] > 0.5) == bool(want) and math.isfinite(dt[i])]
+        if idx:
+            ax.scatter([penalty[i] for i in idx], [dt[i] for i in idx], marker=marker, color=color,
+                       s=24, label=label)
+    limits = {}
+    for p, lim in zip(penalty, t["dt_limit"][()]):
+        if math.isfinite(lim):
+            limits[float(p)] = lim * 1e6
+    if limits:
+        ps = sorted(limits)
+        ax.plot(ps, [limits[p] for p in ps], "k-", label="computed limit 2(sqrt(1+xi^2)-xi)/omega")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("penalty factor (x E/h)")
+    ax.set_ylabel("time step (us)")
+    h = t.attrs.get("h_contact_m", None)
+    ax.set_title("explicit FEM" + (f", {float(h) * 100:g} cm contact elements" if h else ""))
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    save(fig, out_dir, "stability_map_fem")
+
+
+def sensitivity(h5, out_dir):
+    if "sensitivity" not in h5:
+        return
+    g = h5["sensitivity"]
+    base = g["base"]
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.6), constrained_layout=True)
+    names = [n for n in ("soil_modulus", "slab_mass", "impact_velocity", "wall_thickness") if n in g]
+    for ax, law in ((axes[0], "kelvin_voigt"), (axes[1], "jankowski")):
+        k0 = base[law][()][0]
+        for i, name in enumerate(names):
+            t = g[name]
+            for f, k in zip(t["factor"][()], t[law][()]):
+                if math.isnan(k) or math.isnan(k0):
+                    continue
+                change = (k / k0 - 1) * 100
+                ax.barh(i, change, color="C0" if f < 1 else "C1", alpha=0.8,
+                        label=("-" if f < 1 else "+") + f"{abs(f - 1) * 100:g} %" if i == 0 else None)
+        ax.axvline(0, color="k", lw=0.8)
+        ax.set_yticks(range(len(names)))
+        ax.set_yticklabels([n.replace("_", " ") for n in names])
+        ax.set_xlabel(f"change of k ({law.replace('_', '-')}) (%)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    save(fig, out_dir, "sensitivity")
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit("usage: study_charts.py DIR (the output directory of kimp study)")
@@ -109,6 +277,11 @@ def main():
     with h5py.File(os.path.join(directory, "study.h5"), "r") as h5:
         force_histories(h5, out_dir)
         k_vs_height(h5, out_dir)
+        accuracy_fem(h5, out_dir)
+        accuracy_lumped(h5, out_dir)
+        stability_map(h5, out_dir)
+        stability_map_fem(h5, out_dir)
+        sensitivity(h5, out_dir)
     building_response(os.path.join(directory, "building_response.csv"), out_dir)
 
 

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <limits>
 #include <map>
 #include <mpi.h>
@@ -16,6 +17,7 @@
 #include <unistd.h>
 
 #include "lumped/response.h"
+#include "lumped/two_body.h"
 #include "pipeline/cli.h"
 #include "pipeline/helper_programs.h"
 #include "pipeline/logging.h"
@@ -58,6 +60,33 @@ namespace kimp::pipeline
                    nan;
     }
 
+    /// Numerical error of k (fidelity ladder) in kN/mm^n per metre; NaN if not estimated.
+    double numerical_error(const StudyHeight &h, double exponent)
+    {
+      return stiffness_to_kn_per_mm(exponent == 1.0 ? h.kelvin_voigt_numerical_error() :
+                                                      h.jankowski_numerical_error(),
+                                    exponent);
+    }
+
+    double used_h_contact(const StudyScene &scene, const StudyHeight &h)
+    {
+      return h.auto_fidelity ? h.ladder.used_level().h_contact :
+                               scene.fem.mesh.h_contact / std::pow(2.0, scene.fem.mesh.level);
+    }
+
+    double used_penalty(const StudyScene &scene, const StudyHeight &h)
+    {
+      return h.auto_fidelity ? h.ladder.used_level().penalty_factor :
+                               scene.fem.contact.penalty_factor;
+    }
+
+    std::vector<double> scale(std::vector<double> values, double factor)
+    {
+      for (double &v : values)
+        v *= factor;
+      return values;
+    }
+
     std::string number(double value)
     {
       return std::isfinite(value) ? fmt::format("{:.6g}", value) : "";
@@ -65,52 +94,111 @@ namespace kimp::pipeline
 
     // ---------------------------------------------------------------- stage 1: FEM and fits
 
-    std::optional<FitResult> fit_variant(const FemCase       &fem_case,
-                                         const FitVariant    &variant,
-                                         const StudyFitScene &settings,
-                                         std::string         &status)
+    FemScene level_scene(const FemScene &base, const FidelityLevel &level)
     {
-      try
-      {
-        ForceHistory history = force_history(fem_case, !settings.raw_force);
-        if (settings.force_only_contact)
-          history.indentation.clear();
-        FitOptions options          = variant.options;
-        options.separation_fraction = settings.separation_fraction;
-        const FitResult fit         = fit_impact_law(history,
-                                             fem_case.slab_mass,
-                                             fem_case.impact_velocity,
-                                             variant.law,
-                                             options);
-        status                      = "ok";
-        return fit;
-      }
-      catch (const std::exception &error)
-      {
-        status = std::string("failed: ") + error.what();
-        logger().warn("{} {}: fit {}", fem_case.name, variant.name, status);
-        return std::nullopt;
-      }
+      FemScene scene               = base;
+      scene.mesh.h_contact         = level.h_contact;
+      scene.mesh.level             = 0;
+      scene.contact.penalty_factor = level.penalty_factor;
+      return scene;
     }
 
     StudyHeight run_height(const StudyScene &scene, double wall_height, const OutputDir &output)
     {
       StudyHeight h;
-      h.wall_height              = wall_height;
-      h.name                     = fem_case_name(wall_height);
-      StudyFemCase fem           = study_fem_case(scene.fem, wall_height, output);
-      h.fem_case                 = std::move(fem.fem_case);
-      h.fem_from_cache           = fem.from_cache;
-      h.fem_seconds              = fem.wall_seconds;
-      const Clock::time_point t0 = Clock::now();
-      for (const FitVariant &variant : standard_fit_variants({}, scene.fit.cor))
+      h.wall_height = wall_height;
+      h.name        = fem_case_name(wall_height);
+      if (scene.fem.fidelity == Fidelity::fixed)
       {
-        if (variant.name == "kelvin_voigt_cor_fixed")
-          h.kelvin_voigt = fit_variant(h.fem_case, variant, scene.fit, h.kelvin_voigt_status);
-        else if (variant.name == "jankowski_cor_fixed")
-          h.jankowski = fit_variant(h.fem_case, variant, scene.fit, h.jankowski_status);
+        StudyFemCase fem      = study_fem_case(scene.fem, wall_height, output);
+        h.fem_case            = std::move(fem.fem_case);
+        h.fem_from_cache      = fem.from_cache;
+        h.fem_seconds         = fem.wall_seconds;
+        StudyFits fits        = fit_study_laws(h.fem_case, scene.fit);
+        h.kelvin_voigt        = std::move(fits.kelvin_voigt);
+        h.jankowski           = std::move(fits.jankowski);
+        h.kelvin_voigt_status = fits.kelvin_voigt_status;
+        h.jankowski_status    = fits.jankowski_status;
+        h.fit_seconds         = fits.seconds;
+        h.fidelity_reason     = "fidelity fixed: numerical error not estimated";
+        return h;
       }
-      h.fit_seconds = seconds_since(t0);
+
+      // fidelity: auto. Every level keeps its FEM case and fits; the used one is reported.
+      struct Computed
+      {
+        FemCase   fem_case;
+        StudyFits fits;
+        bool      from_cache = false;
+      };
+      std::vector<Computed> computed;
+      h.fem_from_cache = true;
+      const auto run   = [&](const FidelityLevel &level)
+      {
+        LevelOutcome outcome;
+        Computed     c;
+        try
+        {
+          StudyFemCase fem = study_fem_case(level_scene(scene.fem, level),
+                                            wall_height,
+                                            output,
+                                            h.name + "_" + level.label());
+          h.fem_seconds += fem.wall_seconds;
+          h.fem_from_cache = h.fem_from_cache && fem.from_cache;
+          c.fem_case       = std::move(fem.fem_case);
+          c.from_cache     = fem.from_cache;
+          c.fits           = fit_study_laws(c.fem_case, scene.fit);
+          h.fit_seconds += c.fits.seconds;
+          outcome.seconds    = fem.wall_seconds + c.fits.seconds;
+          outcome.from_cache = fem.from_cache;
+          outcome.ok         = c.fits.ok();
+          outcome.status     = outcome.ok ?
+                                 "ok" :
+                                 "fit " + c.fits.kelvin_voigt_status + " / " + c.fits.jankowski_status;
+          if (outcome.ok)
+          {
+            outcome.k_kelvin_voigt = c.fits.kelvin_voigt->stiffness.value;
+            outcome.k_jankowski    = c.fits.jankowski->stiffness.value;
+          }
+        }
+        catch (const std::exception &error)
+        {
+          outcome.status = std::string("failed: ") + error.what();
+          logger().warn("{}: level {} {}", h.name, level.label(), outcome.status);
+        }
+        computed.push_back(std::move(c));
+        logger().info("{}: level {}: k_KV {:.6g} kN/mm/m, k_Jankowski {:.6g} kN/mm^1.5/m ({})",
+                      h.name,
+                      level.label(),
+                      stiffness_to_kn_per_mm(outcome.k_kelvin_voigt, 1.0),
+                      stiffness_to_kn_per_mm(outcome.k_jankowski, 1.5),
+                      outcome.status);
+        return outcome;
+      };
+      h.ladder          = climb_fidelity_ladder(scene.fem.fidelity_h_contact,
+                                       scene.fem.fidelity_penalty_factors,
+                                       scene.fem.fidelity_tolerance,
+                                       run);
+      h.auto_fidelity   = true;
+      h.fidelity_reason = h.ladder.reason;
+      if (!h.ladder.has_usable_level())
+        throw std::runtime_error(
+          fmt::format("{}: no usable FEM level ({})", h.name, h.ladder.outcomes.front().status));
+      Computed &used        = computed.at(h.ladder.used);
+      h.fem_case            = std::move(used.fem_case);
+      h.fem_case.name       = h.name;
+      h.kelvin_voigt        = std::move(used.fits.kelvin_voigt);
+      h.jankowski           = std::move(used.fits.jankowski);
+      h.kelvin_voigt_status = used.fits.kelvin_voigt_status;
+      h.jankowski_status    = used.fits.jankowski_status;
+      logger().info("{}: fidelity auto: {} -> level {} ({}); numerical error of k: KV {:.3g} "
+                    "kN/mm/m, Jankowski {:.3g} kN/mm^1.5/m",
+                    h.name,
+                    h.ladder.reason,
+                    h.ladder.used_level().label(),
+                    h.ladder.converged ? "converged" : "NOT converged",
+                    stiffness_to_kn_per_mm(h.ladder.error_kelvin_voigt, 1.0),
+                    stiffness_to_kn_per_mm(h.ladder.error_jankowski, 1.5));
       return h;
     }
 
@@ -118,22 +206,24 @@ namespace kimp::pipeline
     {
       logger().info("k table (per metre of wall; total = x {} m), beside thesis Table 2.1:",
                     scene.fit.width);
-      logger().info("  H [m] | KV kN/mm/m [95 % CI]        | Table 2.1 | KV total kN/mm | "
-                    "Jankowski kN/mm^1.5/m [95 % CI] | Table 2.1 | J total kN/mm^1.5");
+      logger().info("  H [m] | KV kN/mm/m [95 % CI] ± numerical | Table 2.1 | KV total kN/mm | "
+                    "Jankowski kN/mm^1.5/m [95 % CI] ± numerical | Table 2.1 | J total kN/mm^1.5");
       for (const StudyHeight &h : heights)
       {
         const std::optional<ThesisStiffness> thesis = thesis_row(h.wall_height);
-        logger().info("  {:5.2f} | {:8.4g} [{:.4g}, {:.4g}] | {:>9} | {:14.5g} | {:8.4g} [{:.4g}, "
-                      "{:.4g}] | {:>9} | {:.5g}",
+        logger().info("  {:5.2f} | {:8.4g} [{:.4g}, {:.4g}] ± {:.2g} | {:>9} | {:14.5g} | {:8.4g} "
+                      "[{:.4g}, {:.4g}] ± {:.2g} | {:>9} | {:.5g}",
                       h.wall_height,
                       per_metre(h.kelvin_voigt),
                       per_metre_bound(h.kelvin_voigt, false),
                       per_metre_bound(h.kelvin_voigt, true),
+                      numerical_error(h, 1.0),
                       thesis ? number(thesis->kelvin_voigt) : "-",
                       per_metre(h.kelvin_voigt) * scene.fit.width,
                       per_metre(h.jankowski),
                       per_metre_bound(h.jankowski, false),
                       per_metre_bound(h.jankowski, true),
+                      numerical_error(h, 1.5),
                       thesis ? number(thesis->jankowski) : "-",
                       per_metre(h.jankowski) * scene.fit.width);
       }
@@ -276,7 +366,82 @@ namespace kimp::pipeline
       return runs;
     }
 
-    // ---------------------------------------------------------------- stage 3: files
+    // ---------------------------------------------------------------- stage 3: extra studies
+
+    /// The height of the k table nearest to `wall_height` with a Kelvin-Voigt fit (or null).
+    const StudyHeight *nearest_height(const std::vector<StudyHeight> &heights, double wall_height)
+    {
+      const StudyHeight *best = nullptr;
+      for (const StudyHeight &h : heights)
+        if (h.kelvin_voigt && (!best || std::abs(h.wall_height - wall_height) <
+                                          std::abs(best->wall_height - wall_height)))
+          best = &h;
+      return best;
+    }
+
+    StudyExtras
+    run_extras(const StudyScene &scene, const StudyResult &result, const OutputDir &output)
+    {
+      StudyExtras        extras;
+      const StudyHeight *h       = nearest_height(result.heights, scene.accuracy.wall_height);
+      const double       k_total = h ? h->kelvin_voigt->stiffness.value * scene.fit.width : nan;
+      if (scene.accuracy_study)
+      {
+        logger().info("accuracy study at H = {} m (FEM levels, then the building's time step)",
+                      scene.accuracy.wall_height);
+        extras.fem_accuracy                          = run_fem_accuracy(scene, output);
+        const std::vector<GroundMotionScene> records = study_records(scene);
+        const auto                           bare    = std::find_if(result.building.begin(),
+                                       result.building.end(),
+                                       [](const StudyBuildingRun &r)
+                                       { return r.law == "none" && r.status == "ok"; });
+        if (h && !records.empty() && bare != result.building.end())
+        {
+          extras.lumped_k_total = k_total;
+          extras.lumped_gap =
+            scene.walls.gap.value_or((1.0 - scene.walls.gap_reduction) * bare->base_displacement);
+          extras.lumped_record = bare->record;
+          try
+          {
+            extras.lumped_accuracy =
+              run_lumped_accuracy(scene, records.front(), k_total, extras.lumped_gap);
+          }
+          catch (const std::exception &error)
+          {
+            logger().warn("lumped accuracy study skipped: {}", error.what());
+          }
+        }
+      }
+      if (scene.stability_map && h)
+      {
+        extras.stability_study_k = k_total;
+        extras.stability         = lumped_stability_map(scene.building.isolation_mass,
+                                                scene.walls.mass,
+                                                scene.fit.cor,
+                                                k_total);
+        const lumped::TwoBodySetup setup{scene.building.isolation_mass, scene.walls.mass};
+        extras.stability_effective_mass = setup.effective_mass();
+        try
+        {
+          extras.fem_stability_end_time = fem_stability_end_time;
+          extras.fem_stability = fem_stability_map(scene, output, extras.fem_stability_h_contact);
+        }
+        catch (const std::exception &error)
+        {
+          logger().warn("FEM stability map skipped: {}", error.what());
+        }
+      }
+      if (scene.sensitivity)
+      {
+        logger().info("sensitivity study at H = {} m (+-{} %)",
+                      scene.sensitivity_study.wall_height,
+                      scene.sensitivity_study.variation * 100);
+        extras.sensitivity = run_sensitivity(scene, output);
+      }
+      return extras;
+    }
+
+    // ---------------------------------------------------------------- stage 4: files
 
     std::vector<std::string> k_table_header()
     {
@@ -297,6 +462,14 @@ namespace kimp::pipeline
               "jankowski_total_kN_per_mm1.5",
               "jankowski_normalised_rms",
               "thesis_jankowski_kN_per_mm1.5_per_m",
+              "kelvin_voigt_numerical_error_kN_per_mm_per_m",
+              "jankowski_numerical_error_kN_per_mm1.5_per_m",
+              "kelvin_voigt_total_numerical_error_kN_per_mm",
+              "jankowski_total_numerical_error_kN_per_mm1.5",
+              "fidelity",
+              "fem_h_contact_cm",
+              "fem_penalty_factor",
+              "fidelity_converged",
               "kelvin_voigt_status",
               "jankowski_status"};
     }
@@ -326,6 +499,14 @@ namespace kimp::pipeline
               number(per_metre(h.jankowski) * scene.fit.width),
               number(h.jankowski ? h.jankowski->normalised_rms : nan),
               number(thesis ? thesis->jankowski : nan),
+              number(numerical_error(h, 1.0)),
+              number(numerical_error(h, 1.5)),
+              number(total_stiffness_error(0.0, numerical_error(h, 1.0), scene.fit.width)),
+              number(total_stiffness_error(0.0, numerical_error(h, 1.5), scene.fit.width)),
+              h.auto_fidelity ? "auto" : "fixed",
+              number(used_h_contact(scene, h) * 100.0),
+              number(used_penalty(scene, h)),
+              h.auto_fidelity ? (h.ladder.converged ? "yes" : "no") : "",
               h.kelvin_voigt_status,
               h.jankowski_status};
     }
@@ -427,7 +608,7 @@ namespace kimp::pipeline
         }
       }
 
-      std::vector<TableColumn> k(11);
+      std::vector<TableColumn> k(17);
       k[0]  = {"wall_height", "m", {}};
       k[1]  = {"kelvin_voigt", "kN/mm/m", {}};
       k[2]  = {"kelvin_voigt_lower", "kN/mm/m", {}};
@@ -439,6 +620,12 @@ namespace kimp::pipeline
       k[8]  = {"jankowski_upper", "kN/mm^1.5/m", {}};
       k[9]  = {"jankowski_total", "kN/mm^1.5", {}};
       k[10] = {"thesis_jankowski", "kN/mm^1.5/m", {}};
+      k[11] = {"kelvin_voigt_numerical_error", "kN/mm/m", {}};
+      k[12] = {"jankowski_numerical_error", "kN/mm^1.5/m", {}};
+      k[13] = {"h_contact", "m", {}};
+      k[14] = {"penalty_factor", "1", {}};
+      k[15] = {"fidelity_auto", "1", {}};
+      k[16] = {"fidelity_converged", "1", {}};
       for (const StudyHeight &h : result.heights)
       {
         const std::optional<ThesisStiffness> thesis   = thesis_row(h.wall_height);
@@ -452,12 +639,54 @@ namespace kimp::pipeline
                                                          per_metre_bound(h.jankowski, false),
                                                          per_metre_bound(h.jankowski, true),
                                                          per_metre(h.jankowski) * scene.fit.width,
-                                 thesis ? thesis->jankowski : nan};
+                                 thesis ? thesis->jankowski : nan,
+                                                         numerical_error(h, 1.0),
+                                                         numerical_error(h, 1.5),
+                                                         used_h_contact(scene, h),
+                                                         used_penalty(scene, h),
+                                 h.auto_fidelity ? 1.0 : 0.0,
+                                 h.auto_fidelity && h.ladder.converged ? 1.0 : 0.0};
         for (std::size_t i = 0; i < k.size(); ++i)
           k[i].values.push_back(values[i]);
       }
       root.write_table("k_table", k);
       root.group("k_table").set_attribute("building_width_m", scene.fit.width);
+      write_study_extras(root, result.extras);
+
+      // /fidelity/<H>: the levels climbed (fidelity: auto).
+      for (const StudyHeight &h : result.heights)
+      {
+        if (!h.auto_fidelity)
+          continue;
+        std::vector<TableColumn> levels = {{"h_contact", "m", {}},
+                                           {"penalty_factor", "1", {}},
+                                           {"kelvin_voigt", "kN/mm/m", {}},
+                                           {"jankowski", "kN/mm^1.5/m", {}},
+                                           {"seconds", "s", {}},
+                                           {"ok", "1", {}},
+                                           {"from_cache", "1", {}},
+                                           {"used", "1", {}}};
+        for (std::size_t i = 0; i < h.ladder.outcomes.size(); ++i)
+        {
+          const LevelOutcome &o   = h.ladder.outcomes[i];
+          const double        v[] = {h.ladder.levels[i].h_contact,
+                                     h.ladder.levels[i].penalty_factor,
+                                     stiffness_to_kn_per_mm(o.k_kelvin_voigt, 1.0),
+                                     stiffness_to_kn_per_mm(o.k_jankowski, 1.5),
+                                     o.seconds,
+                              o.ok ? 1.0 : 0.0,
+                              o.from_cache ? 1.0 : 0.0,
+                              i == h.ladder.used ? 1.0 : 0.0};
+          for (std::size_t j = 0; j < levels.size(); ++j)
+            levels[j].values.push_back(v[j]);
+        }
+        ResultsGroup fidelity = root.group("fidelity");
+        fidelity.write_table(h.name, levels);
+        ResultsGroup table = fidelity.group(h.name);
+        table.set_attribute("reason", h.fidelity_reason);
+        table.set_attribute("converged", h.ladder.converged ? 1.0 : 0.0);
+        table.set_attribute("tolerance", scene.fem.fidelity_tolerance);
+      }
 
       // /building/<record>/<law>: one row per wall height (law "none": the run without walls).
       std::map<std::pair<std::string, std::string>, std::vector<const StudyBuildingRun *>> tables;
@@ -520,6 +749,7 @@ namespace kimp::pipeline
       j["wall_seconds"]            = {{"fem", result.fem_seconds},
                                       {"fit", result.fit_seconds},
                                       {"building", result.building_seconds},
+                                      {"extras", result.extras.seconds},
                                       {"charts", result.charts_seconds},
                                       {"total", result.wall_seconds}};
       nlohmann::ordered_json table = nlohmann::ordered_json::array();
@@ -527,11 +757,20 @@ namespace kimp::pipeline
       {
         const std::optional<ThesisStiffness> thesis = thesis_row(h.wall_height);
         nlohmann::ordered_json               row;
-        row["case"]           = h.name;
-        row["wall_height"]    = h.wall_height;
-        row["fem_from_cache"] = h.fem_from_cache;
-        row["fem_seconds"]    = h.fem_seconds;
-        row["fit_seconds"]    = h.fit_seconds;
+        row["case"]               = h.name;
+        row["wall_height"]        = h.wall_height;
+        row["fem_from_cache"]     = h.fem_from_cache;
+        row["fem_seconds"]        = h.fem_seconds;
+        row["fit_seconds"]        = h.fit_seconds;
+        row["fidelity"]           = h.auto_fidelity ? "auto" : "fixed";
+        row["fem_h_contact"]      = used_h_contact(scene, h);
+        row["fem_penalty_factor"] = used_penalty(scene, h);
+        if (h.auto_fidelity)
+        {
+          row["fidelity_converged"] = h.ladder.converged;
+          row["fidelity_levels"]    = h.ladder.outcomes.size();
+        }
+        row["fidelity_reason"] = h.fidelity_reason;
         for (const char *key : {"n_dofs", "n_steps", "dt", "peak_force", "contact_duration"})
           if (const auto it = h.fem_case.summary.find(key); it != h.fem_case.summary.end())
             row[std::string("fem_") + key] = it->second;
@@ -555,6 +794,9 @@ namespace kimp::pipeline
             f["k_total"]        = per_metre(*fit) * scene.fit.width;
             f["unit"]           = (*fit)->per_metre_unit();
             f["normalised_rms"] = (*fit)->normalised_rms;
+            const double error = numerical_error(h, std::string(law) == "kelvin_voigt" ? 1.0 : 1.5);
+            if (std::isfinite(error))
+              f["k_numerical_error"] = error;
           }
           if (std::isfinite(reference))
             f["thesis_table_2_1"] = reference;
@@ -571,37 +813,194 @@ namespace kimp::pipeline
       return j;
     }
 
+    std::string extras_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
+    {
+      std::string md;
+      if (!e.fem_accuracy.empty())
+      {
+        md += fmt::format(
+          "## Accuracy against cost: FEM (H = {} m)\n\nError of k against the finest "
+          "explicit mesh level; seconds are the FEM wall time of each run.\n\n"
+          "| series | h_contact (cm) | penalty | FEM s | k_KV kN/mm/m | error KV | "
+          "k_J kN/mm^1.5/m | error J | status |\n|---|---|---|---|---|---|---|---|---|\n",
+          scene.accuracy.wall_height);
+        for (const FemAccuracyPoint &p : e.fem_accuracy)
+          md += fmt::format("| {} | {:g} | {:g} | {} | {} | {} | {} | {} | {} |\n",
+                            p.series,
+                            p.h_contact * 100,
+                            p.penalty_factor,
+                            number(p.seconds),
+                            number(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
+                            p.ok ? fmt::format("{:.3g} %", 100 * p.error_kelvin_voigt) : "",
+                            number(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
+                            p.ok ? fmt::format("{:.3g} %", 100 * p.error_jankowski) : "",
+                            p.status);
+        md += "\nData: [accuracy_fem.csv](accuracy_fem.csv), study.h5 `/accuracy/fem`.\n\n";
+        if (charts)
+          md += "![FEM accuracy against cost](charts/accuracy_fem.png)\n\n";
+      }
+      if (!e.lumped_accuracy.empty())
+      {
+        md += fmt::format("## Accuracy against cost: building time step (thesis Figs 3.3-3.4)\n\n"
+                          "Record {}, walls at {:.4g} cm, modified Kelvin-Voigt k = {:.5g} kN/mm; "
+                          "errors against central difference at {:g} s.\n\n"
+                          "| method | dt (s) | s | peak impact force (kN) | error | peak base acc. "
+                          "(m/s²) | error | status |\n|---|---|---|---|---|---|---|---|\n",
+                          e.lumped_record,
+                          e.lumped_gap * 100,
+                          stiffness_to_kn_per_mm(e.lumped_k_total, 1.0),
+                          scene.accuracy.lumped_reference_dt);
+        for (const LumpedAccuracyPoint &p : e.lumped_accuracy)
+          md += fmt::format("| {} | {:g} | {} | {} | {} | {} | {} | {} |\n",
+                            p.method,
+                            p.dt,
+                            number(p.seconds),
+                            number(p.ok ? p.peak_impact_force / 1e3 : nan),
+                            p.ok ? fmt::format("{:.3g} %", 100 * p.error_force) : "",
+                            number(p.ok ? p.base_acceleration : nan),
+                            p.ok ? fmt::format("{:.3g} %", 100 * p.error_acceleration) : "",
+                            p.status);
+        md +=
+          "\nData: [accuracy_lumped.csv](accuracy_lumped.csv), study.h5 `/accuracy/lumped`.\n\n";
+        if (charts)
+          md += "![building time step accuracy against cost](charts/accuracy_lumped.png)\n\n";
+      }
+      if (!e.stability.empty())
+      {
+        std::size_t n_stable = 0, n_accurate = 0, stable_above = 0, unstable_below = 0;
+        for (const StabilityPoint &p : e.stability)
+        {
+          n_stable += p.stable;
+          n_accurate += p.accurate;
+          stable_above += p.stable && p.dt > p.dt_limit_damped;
+          unstable_below += !p.stable && p.dt < p.dt_limit_damped;
+        }
+        md +=
+          fmt::format("## Stability map of the central difference method\n\nTwo-body "
+                      "collisions (isolation level {:.0f} t against the wall {:.0f} t, m_eff = "
+                      "{:.4g} t, modified Kelvin-Voigt at COR {}), no stability guard: {} runs, "
+                      "{} stable (energy gain < 0.1 %), {} of them accurate (effective COR within "
+                      "5 % of nominal); {} stable above the damped limit "
+                      "2(sqrt(1+ξ²)−ξ)/ω_imp, {} unstable below it.\n\n"
+                      "Data: [stability_lumped.csv](stability_lumped.csv), study.h5 "
+                      "`/stability/lumped`.\n\n",
+                      scene.building.isolation_mass / 1e3,
+                      scene.walls.mass / 1e3,
+                      e.stability_effective_mass / 1e3,
+                      scene.fit.cor,
+                      e.stability.size(),
+                      n_stable,
+                      n_accurate,
+                      stable_above,
+                      unstable_below);
+        if (charts)
+          md += "![stability map](charts/stability_map.png)\n\n";
+      }
+      if (!e.fem_stability.empty())
+      {
+        std::size_t stable_above = 0, unstable_below = 0, n_stable = 0;
+        for (const FemStabilityPoint &p : e.fem_stability)
+        {
+          n_stable += p.stable;
+          stable_above += p.stable && p.dt_factor > 1;
+          unstable_below += !p.stable && p.dt_factor < 1;
+        }
+        md += fmt::format(
+          "## Stability map of the explicit FEM\n\nH = {} m, contact elements {:g} cm, the "
+          "first {:g} ms of the impact, Δt = factor × the computed limit 2(sqrt(1+ξ²)−ξ)/ω "
+          "(ω from the mesh's CFL bound and the penalty spring, ξ its contact damping), no "
+          "refusal; unstable: diverged, or energy error above 1 %: {} runs, {} stable; {} stable above the limit (the bound is conservative "
+          "there), {} unstable below it.\n\n| penalty factor | Δt limit (µs) | "
+          "stable at Δt / limit |\n|---|---|---|\n",
+          scene.accuracy.wall_height,
+          e.fem_stability_h_contact * 100,
+          e.fem_stability_end_time * 1e3,
+          e.fem_stability.size(),
+          n_stable,
+          stable_above,
+          unstable_below);
+        std::map<double, std::pair<double, std::string>> rows;
+        for (const FemStabilityPoint &p : e.fem_stability)
+        {
+          auto &row = rows[p.penalty_factor];
+          row.first = p.dt_limit;
+          row.second += fmt::format("{}{:g}: {}",
+                                    row.second.empty() ? "" : ", ",
+                                    p.dt_factor,
+                                    p.stable ? "yes" : "no");
+        }
+        for (const auto &[penalty, row] : rows)
+          md += fmt::format("| {:g} | {:.4g} | {} |\n", penalty, row.first * 1e6, row.second);
+        md += "\nData: [stability_fem.csv](stability_fem.csv), study.h5 `/stability/fem`.\n\n";
+        if (charts)
+          md += "![FEM stability map](charts/stability_map_fem.png)\n\n";
+      }
+      if (!e.sensitivity.empty())
+      {
+        md += fmt::format("## Sensitivity of k (H = {} m, ±{:g} %)\n\n| parameter | factor | k_KV "
+                          "kN/mm/m | k_J kN/mm^1.5/m | status |\n|---|---|---|---|---|\n",
+                          scene.sensitivity_study.wall_height,
+                          scene.sensitivity_study.variation * 100);
+        for (const SensitivityPoint &p : e.sensitivity)
+          md += fmt::format("| {} | {:g} | {} | {} | {} |\n",
+                            p.parameter,
+                            p.factor,
+                            number(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
+                            number(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
+                            p.status);
+        md += "\nData: [sensitivity.csv](sensitivity.csv), study.h5 `/sensitivity`.\n\n";
+        if (charts)
+          md += "![sensitivity of k](charts/sensitivity.png)\n\n";
+      }
+      return md;
+    }
+
     std::string report_markdown(const StudyScene &scene, const StudyResult &result, bool charts)
     {
       std::string md = "# kimp wall-height study\n\n" + version_line() + "\n\n";
       md += fmt::format("## Impact stiffness per wall height (fitted at COR {}, W = {} m)\n\n",
                         scene.fit.cor,
                         scene.fit.width);
-      md += "| H (m) | KV kN/mm/m [95 % CI] | Table 2.1 | KV total kN/mm | Jankowski "
-            "kN/mm^1.5/m [95 % CI] | Table 2.1 | J total kN/mm^1.5 | FEM from cache |\n"
-            "|---|---|---|---|---|---|---|---|\n";
+      md += "| H (m) | KV kN/mm/m [95 % CI] ± numerical | Table 2.1 | KV total kN/mm | "
+            "Jankowski kN/mm^1.5/m [95 % CI] ± numerical | Table 2.1 | J total kN/mm^1.5 | FEM "
+            "level (h_contact, penalty) | FEM from cache |\n"
+            "|---|---|---|---|---|---|---|---|---|\n";
+      const auto plus_minus = [](double error)
+      { return std::isfinite(error) ? " ± " + number(error) : std::string(); };
       for (const StudyHeight &h : result.heights)
       {
         const std::optional<ThesisStiffness> t = thesis_row(h.wall_height);
-        md += fmt::format("| {:.2f} | {} [{}, {}] | {} | {} | {} [{}, {}] | {} | {} | {} |\n",
-                          h.wall_height,
-                          number(per_metre(h.kelvin_voigt)),
-                          number(per_metre_bound(h.kelvin_voigt, false)),
-                          number(per_metre_bound(h.kelvin_voigt, true)),
-                          t ? number(t->kelvin_voigt) : "-",
-                          number(per_metre(h.kelvin_voigt) * scene.fit.width),
-                          number(per_metre(h.jankowski)),
-                          number(per_metre_bound(h.jankowski, false)),
-                          number(per_metre_bound(h.jankowski, true)),
-                          t ? number(t->jankowski) : "-",
-                          number(per_metre(h.jankowski) * scene.fit.width),
-                          h.fem_from_cache ? "yes" : "no");
+        md +=
+          fmt::format("| {:.2f} | {} [{}, {}]{} | {} | {} | {} [{}, {}]{} | {} | {} | {:g} cm, "
+                      "{:g}{} | {} |\n",
+                      h.wall_height,
+                      number(per_metre(h.kelvin_voigt)),
+                      number(per_metre_bound(h.kelvin_voigt, false)),
+                      number(per_metre_bound(h.kelvin_voigt, true)),
+                      plus_minus(numerical_error(h, 1.0)),
+                      t ? number(t->kelvin_voigt) : "-",
+                      number(per_metre(h.kelvin_voigt) * scene.fit.width),
+                      number(per_metre(h.jankowski)),
+                      number(per_metre_bound(h.jankowski, false)),
+                      number(per_metre_bound(h.jankowski, true)),
+                      plus_minus(numerical_error(h, 1.5)),
+                      t ? number(t->jankowski) : "-",
+                      number(per_metre(h.jankowski) * scene.fit.width),
+                      used_h_contact(scene, h) * 100.0,
+                      used_penalty(scene, h),
+                      h.auto_fidelity ? (h.ladder.converged ? "" : " (not converged)") : " (fixed)",
+                      h.fem_from_cache ? "yes" : "no");
       }
-      md += "\nThe intervals are the fits' own (law misfit), not the FEM discretisation error. "
-            "The thesis used non-linear materials in ADINA and did not state its slab mass, so "
+      md += "\nThe intervals are the fits' own (law misfit). The ± values are the FEM's numerical "
+            "error of k with `fem.fidelity: auto`: the change of k from the previous level of the "
+            "mesh ladder (and of the penalty ladder, added in quadrature); the climb stops when "
+            "both laws change by less than `fem.fidelity_tolerance`. ";
+      for (const StudyHeight &h : result.heights)
+        md += fmt::format("{}: {}. ", h.name, h.fidelity_reason);
+      md += "The thesis used non-linear materials in ADINA and did not state its slab mass, so "
             "the trend with H and the order of magnitude are what should agree.\n\n"
             "Data: [k_table.csv](k_table.csv), [study.h5](study.h5) (`/k_table`, `/fit/<H>`, "
-            "`/fem/<H>`).\n\n";
+            "`/fem/<H>`, `/fidelity/<H>`).\n\n";
       if (charts)
         md += "![FEM force histories with the fitted laws](charts/force_histories.png)\n\n"
               "![k against wall height](charts/k_vs_height.png)\n\n";
@@ -630,11 +1029,13 @@ namespace kimp::pipeline
             "`/building/<record>/<law>`.\n\n";
       if (charts)
         md += "![building response against wall height](charts/building_response.png)\n\n";
-      md += fmt::format("## Cost\n\nFEM {:.2f} s, fits {:.2f} s, building runs {:.2f} s, charts "
-                        "{:.2f} s, total {:.2f} s (see summary.json).\n",
+      md += extras_markdown(scene, result.extras, charts);
+      md += fmt::format("## Cost\n\nFEM {:.2f} s, fits {:.2f} s, building runs {:.2f} s, extra "
+                        "studies {:.2f} s, charts {:.2f} s, total {:.2f} s (see summary.json).\n",
                         result.fem_seconds,
                         result.fit_seconds,
                         result.building_seconds,
+                        result.extras.seconds,
                         result.charts_seconds,
                         result.wall_seconds);
       return md;
@@ -685,6 +1086,14 @@ namespace kimp::pipeline
     const Clock::time_point start = Clock::now();
     const StudyScene       &scene = loaded.scene;
     StudyResult             result;
+    if (scene.fem.fidelity == Fidelity::auto_ladder)
+      logger().info("fidelity auto: contact mesh ladder {} cm, penalty factors {}, tolerance {} %; "
+                    "{} slab as the scene says (the rigid-slab shortcut is not taken "
+                    "automatically: for this scene it doubles the peak force, docs/validation.md)",
+                    fmt::join(scale(scene.fem.fidelity_h_contact, 100.0), " / "),
+                    fmt::join(scene.fem.fidelity_penalty_factors, " / "),
+                    scene.fem.fidelity_tolerance * 100.0,
+                    scene.fem.slab.rigid ? "rigid" : "elastic");
     for (const double height : scene.fem.wall_heights)
     {
       result.heights.push_back(run_height(scene, height, output));
@@ -697,6 +1106,33 @@ namespace kimp::pipeline
     for (const StudyHeight &h : result.heights)
       k_rows.push_back(k_table_row(scene, h));
     write_csv_atomic(output.file("k_table.csv"), k_table_header(), k_rows);
+    std::vector<std::vector<std::string>> level_rows;
+    for (const StudyHeight &h : result.heights)
+      for (std::size_t i = 0; i < h.ladder.outcomes.size(); ++i)
+      {
+        const LevelOutcome &o = h.ladder.outcomes[i];
+        level_rows.push_back({number(h.wall_height),
+                              number(h.ladder.levels[i].h_contact * 100.0),
+                              number(h.ladder.levels[i].penalty_factor),
+                              number(stiffness_to_kn_per_mm(o.k_kelvin_voigt, 1.0)),
+                              number(stiffness_to_kn_per_mm(o.k_jankowski, 1.5)),
+                              number(o.seconds),
+                              o.from_cache ? "yes" : "no",
+                              i == h.ladder.used ? "yes" : "no",
+                              o.status});
+      }
+    if (!level_rows.empty())
+      write_csv_atomic(output.file("fidelity_levels.csv"),
+                       {"wall_height_m",
+                        "h_contact_cm",
+                        "penalty_factor",
+                        "kelvin_voigt_kN_per_mm_per_m",
+                        "jankowski_kN_per_mm1.5_per_m",
+                        "seconds",
+                        "fem_from_cache",
+                        "used",
+                        "status"},
+                       level_rows);
 
     const Clock::time_point building_start = Clock::now();
     result.building                        = run_building(scene, result.heights);
@@ -705,6 +1141,11 @@ namespace kimp::pipeline
     for (const StudyBuildingRun &r : result.building)
       b_rows.push_back(building_row(r));
     write_csv_atomic(output.file("building_response.csv"), building_header(), b_rows);
+
+    const Clock::time_point extras_start = Clock::now();
+    result.extras                        = run_extras(scene, result, output);
+    result.extras.seconds                = seconds_since(extras_start);
+    write_study_extras_csv(output, result.extras);
     write_study_h5(loaded, result, output);
 
     bool charts = false;

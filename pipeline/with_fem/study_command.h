@@ -9,6 +9,8 @@
 
 #include "pipeline/fit.h"
 #include "pipeline/summary.h"
+#include "pipeline/with_fem/study_extras.h"
+#include "pipeline/with_fem/study_ladder.h"
 #include "pipeline/with_fem/study_scene.h"
 
 namespace CLI
@@ -42,6 +44,13 @@ namespace kimp::pipeline
     std::optional<FitResult> jankowski;                  ///< law 4 at the study COR
     std::string              kelvin_voigt_status = "ok"; ///< "ok" or "failed: ..."
     std::string              jankowski_status    = "ok";
+    bool                     auto_fidelity       = false; ///< fidelity: auto (ladder below)
+    LadderResult             ladder;                      ///< levels climbed (fidelity: auto)
+    std::string              fidelity_reason; ///< why this level (for the log and report)
+
+    /// Numerical error of k from the FEM levels, N/m^n per m (NaN: not estimated).
+    double kelvin_voigt_numerical_error() const { return ladder.error_kelvin_voigt; }
+    double jankowski_numerical_error() const { return ladder.error_jankowski; }
   };
 
   /** One building run: a record, a wall height (0: no walls) and a law. */
@@ -75,6 +84,7 @@ namespace kimp::pipeline
   {
     std::vector<StudyHeight>      heights;
     std::vector<StudyBuildingRun> building;
+    StudyExtras                   extras; ///< accuracy, stability and sensitivity studies
     double                        fem_seconds      = 0.0; ///< s, all heights
     double                        fit_seconds      = 0.0; ///< s
     double                        building_seconds = 0.0; ///< s

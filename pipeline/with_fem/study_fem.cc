@@ -34,6 +34,42 @@ namespace kimp::pipeline
     }
   } // namespace
 
+  StudyFits fit_study_laws(const FemCase &fem_case, const StudyFitScene &settings)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    StudyFits  fits;
+    for (const FitVariant &variant : standard_fit_variants({}, settings.cor))
+    {
+      const bool kv = variant.name == "kelvin_voigt_cor_fixed";
+      if (!kv && variant.name != "jankowski_cor_fixed")
+        continue;
+      std::optional<FitResult> &fit    = kv ? fits.kelvin_voigt : fits.jankowski;
+      std::string              &status = kv ? fits.kelvin_voigt_status : fits.jankowski_status;
+      try
+      {
+        ForceHistory history = force_history(fem_case, !settings.raw_force);
+        if (settings.force_only_contact)
+          history.indentation.clear();
+        FitOptions options          = variant.options;
+        options.separation_fraction = settings.separation_fraction;
+        options.displacement_weight = settings.displacement_weight;
+        fit                         = fit_impact_law(history,
+                             fem_case.slab_mass,
+                             fem_case.impact_velocity,
+                             variant.law,
+                             options);
+        status                      = "ok";
+      }
+      catch (const std::exception &error)
+      {
+        status = std::string("failed: ") + error.what();
+        logger().warn("{} {}: fit {}", fem_case.name, variant.name, status);
+      }
+    }
+    fits.seconds = seconds_since(start);
+    return fits;
+  }
+
   std::string study_fem_cache_key(const FemScene &scene, double wall_height)
   {
     FemScene single     = scene;
@@ -41,10 +77,13 @@ namespace kimp::pipeline
     return fmt::format("{:016x}", stable_hash(version_line() + "\n" + to_json_text(single, 0)));
   }
 
-  StudyFemCase study_fem_case(const FemScene &scene, double wall_height, const OutputDir &output)
+  StudyFemCase study_fem_case(const FemScene    &scene,
+                              double             wall_height,
+                              const OutputDir   &output,
+                              const std::string &case_name)
   {
     const auto        start = std::chrono::steady_clock::now();
-    const std::string name  = fem_case_name(wall_height);
+    const std::string name  = case_name.empty() ? fem_case_name(wall_height) : case_name;
     StudyFemCase      result;
     result.cache_key                       = study_fem_cache_key(scene, wall_height);
     const std::filesystem::path cache_file = output.file("fem/" + name + ".h5");

@@ -2,11 +2,13 @@
 // (fem::run_impact on MPI_COMM_SELF) -> FemCase, cached in DIR/fem/H<H>.h5 under a scene hash.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "pipeline/fem_results.h"
 #include "pipeline/summary.h"
 #include "pipeline/with_fem/fem_scene.h"
+#include "pipeline/with_fem/study_scene.h"
 
 namespace kimp::pipeline
 {
@@ -31,7 +33,30 @@ namespace kimp::pipeline
    * run fem::run_impact() on MPI_COMM_SELF and store the .h5 and then the .key file (a run
    * interrupted before the key exists is recomputed). Must be called on one rank only; MPI must
    * be initialised. Heights are run one after the other by the caller: gmsh's API is global.
+   * @param[in] case_name name of the case and its files ("": fem_case_name(wall_height)); the
+   *            fidelity levels of one height use "H1.25_h2.5cm_p1" etc.
    * @throws the meshing and FEM errors, prefixed with the case name.
    */
-  StudyFemCase study_fem_case(const FemScene &scene, double wall_height, const OutputDir &output);
+  StudyFemCase study_fem_case(const FemScene    &scene,
+                              double             wall_height,
+                              const OutputDir   &output,
+                              const std::string &case_name = "");
+
+  /** The study's two fits of one FEM case (laws 2 and 4 at the study COR). */
+  struct StudyFits
+  {
+    std::optional<FitResult> kelvin_voigt;
+    std::optional<FitResult> jankowski;
+    std::string              kelvin_voigt_status = "ok"; ///< "ok" or "failed: ..."
+    std::string              jankowski_status    = "ok";
+    double                   seconds             = 0.0; ///< s
+
+    bool ok() const { return kelvin_voigt && jankowski; }
+  };
+
+  /**
+   * Fit Kelvin-Voigt and Jankowski at settings.cor to `fem_case` (smoothed force unless
+   * settings.raw_force). A failed fit is logged and reported in its status, not thrown.
+   */
+  StudyFits fit_study_laws(const FemCase &fem_case, const StudyFitScene &settings);
 } // namespace kimp::pipeline

@@ -8,6 +8,36 @@
 
 namespace kimp::pipeline
 {
+  namespace
+  {
+    /// A ladder: non-empty, positive, strictly decreasing (or increasing), at most `largest`.
+    void check_ladder(ValidationContext         &ctx,
+                      const std::string         &key,
+                      const std::vector<double> &values,
+                      const std::string         &unit,
+                      bool                       decreasing,
+                      double                     largest)
+    {
+      ctx.check(!values.empty(), key, "[]", "must list at least one level");
+      for (std::size_t i = 0; i < values.size(); ++i)
+      {
+        const std::string item = key + "[" + std::to_string(i) + "]";
+        ctx.check(values[i] > 0.0, item, format_quantity(values[i], unit), "must be > 0");
+        if (largest > 0.0)
+          ctx.check(values[i] <= largest,
+                    item,
+                    format_quantity(values[i], unit),
+                    "must be <= mesh.h_max = " + format_quantity(largest, unit));
+        if (i > 0)
+          ctx.check(decreasing ? values[i] < values[i - 1] : values[i] > values[i - 1],
+                    item,
+                    format_quantity(values[i], unit),
+                    decreasing ? "must be below the previous level" :
+                                 "must be above the previous level");
+      }
+    }
+  } // namespace
+
   FemScene default_study_fem_scene()
   {
     FemScene scene;
@@ -19,7 +49,51 @@ namespace kimp::pipeline
   {
     {
       const auto scope = ctx.section("fem");
-      validate(scene.fem, ctx);
+      validate(static_cast<const FemScene &>(scene.fem), ctx);
+      ctx.check(scene.fem.fidelity_tolerance > 0.0,
+                "fidelity_tolerance",
+                format_quantity(scene.fem.fidelity_tolerance, "%"),
+                "must be > 0 %");
+      check_ladder(ctx,
+                   "fidelity_h_contact",
+                   scene.fem.fidelity_h_contact,
+                   "cm",
+                   true,
+                   scene.fem.mesh.h_max);
+      check_ladder(ctx,
+                   "fidelity_penalty_factors",
+                   scene.fem.fidelity_penalty_factors,
+                   "",
+                   false,
+                   0.0);
+    }
+    {
+      const auto scope = ctx.section("accuracy");
+      ctx.check(scene.accuracy.wall_height > 0.0,
+                "wall_height",
+                format_quantity(scene.accuracy.wall_height, "m"),
+                "must be > 0");
+      check_ladder(ctx, "h_contact", scene.accuracy.h_contact, "cm", true, scene.fem.mesh.h_max);
+      check_ladder(ctx, "penalty_factors", scene.accuracy.penalty_factors, "", false, 0.0);
+      check_ladder(ctx, "lumped_dt", scene.accuracy.lumped_dt, "s", true, 0.0);
+      const double finest_dt =
+        scene.accuracy.lumped_dt.empty() ? 0.0 : scene.accuracy.lumped_dt.back();
+      ctx.check(scene.accuracy.lumped_reference_dt > 0.0 &&
+                  (finest_dt == 0.0 || scene.accuracy.lumped_reference_dt < finest_dt),
+                "lumped_reference_dt",
+                format_quantity(scene.accuracy.lumped_reference_dt, "s"),
+                "must be > 0 and below every lumped_dt");
+    }
+    {
+      const auto scope = ctx.section("sensitivity_study");
+      ctx.check(scene.sensitivity_study.wall_height > 0.0,
+                "wall_height",
+                format_quantity(scene.sensitivity_study.wall_height, "m"),
+                "must be > 0");
+      ctx.check(scene.sensitivity_study.variation > 0.0 && scene.sensitivity_study.variation < 1.0,
+                "variation",
+                format_quantity(scene.sensitivity_study.variation, "%"),
+                "must be in (0 %, 100 %)");
     }
     {
       const auto scope = ctx.section("fit");
@@ -31,6 +105,10 @@ namespace kimp::pipeline
                 "separation_fraction",
                 format_quantity(scene.fit.separation_fraction, ""),
                 "must be > 0");
+      ctx.check(scene.fit.displacement_weight >= 0.0,
+                "displacement_weight",
+                format_quantity(scene.fit.displacement_weight, ""),
+                "must be >= 0");
       ctx.check(scene.fit.width > 0.0,
                 "width",
                 format_quantity(scene.fit.width, "m"),

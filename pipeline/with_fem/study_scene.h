@@ -17,6 +17,111 @@ namespace kimp::pipeline
   /** The FEM scene of the study: PHYSICS.md §4 defaults with H = 1.00, 1.25, 1.50, 2.00 m. */
   FemScene default_study_fem_scene();
 
+  /** How the study chooses the FEM discretisation of each height. */
+  enum class Fidelity
+  {
+    fixed,       ///< the scene's mesh and penalty (reproducible, no error estimate)
+    auto_ladder, ///< climb fidelity_h_contact, then fidelity_penalty_factors (study_ladder.h)
+  };
+
+  /** The study's FEM section: the FemScene keys plus the fidelity ladder. */
+  struct StudyFemScene : FemScene
+  {
+    StudyFemScene()
+      : FemScene(default_study_fem_scene())
+    {
+    }
+
+    Fidelity            fidelity                 = Fidelity::auto_ladder;
+    double              fidelity_tolerance       = 0.01; ///< relative change of k, > 0
+    std::vector<double> fidelity_h_contact       = {0.05, 0.025, 0.0125}; ///< m, decreasing
+    std::vector<double> fidelity_penalty_factors = {1.0};                 ///< increasing
+  };
+
+  template <class Io>
+  void visit(Io &io, StudyFemScene &s)
+  {
+    visit(io, static_cast<FemScene &>(s));
+    io.choice("fidelity",
+              s.fidelity,
+              {{"auto", Fidelity::auto_ladder}, {"fixed", Fidelity::fixed}},
+              "auto: per height climb fidelity_h_contact (then fidelity_penalty_factors) until "
+              "k_KV and k_Jankowski change by less than fidelity_tolerance, and report the "
+              "change as the numerical error of k; fixed: mesh.h_contact and "
+              "contact.penalty_factor as given, error not estimated");
+    io.quantity("fidelity_tolerance",
+                s.fidelity_tolerance,
+                "%",
+                "auto: largest relative change of k between consecutive levels (> 0)");
+    io.quantity_list("fidelity_h_contact",
+                     s.fidelity_h_contact,
+                     "cm",
+                     "auto: contact element sizes, coarse to fine (each level costs about 4x the "
+                     "previous one; 1.25 cm takes about 10 s per height)");
+    io.quantity_list("fidelity_penalty_factors",
+                     s.fidelity_penalty_factors,
+                     "",
+                     "auto: penalty factors tried at the mesh reached, increasing (the first "
+                     "one is used for the mesh ladder)");
+  }
+
+  /** FEM accuracy-vs-cost and lumped time-step studies at one wall height. */
+  struct StudyAccuracyScene
+  {
+    double              wall_height     = 1.25;                  ///< m
+    std::vector<double> h_contact       = {0.05, 0.025, 0.0125}; ///< m, explicit levels
+    std::vector<double> penalty_factors = {1.0, 10.0};           ///< at the middle mesh level
+    bool implicit = true; ///< also implicit Newmark on every mesh level but the finest
+    std::vector<double> lumped_dt = {2e-3, 1e-3, 5e-4, 2e-4, 1e-4, 5e-5, 2e-5, 1e-5}; ///< s
+    double              lumped_reference_dt = 2.5e-6; ///< s, CDM reference
+  };
+
+  template <class Io>
+  void visit(Io &io, StudyAccuracyScene &s)
+  {
+    io.quantity("wall_height", s.wall_height, "m", "wall height of the accuracy study (> 0)");
+    io.quantity_list("h_contact",
+                     s.h_contact,
+                     "cm",
+                     "FEM mesh levels (explicit, first penalty factor); the finest is the "
+                     "reference");
+    io.quantity_list("penalty_factors",
+                     s.penalty_factors,
+                     "",
+                     "FEM penalty levels, run on the finest mesh level that is not the "
+                     "reference (or the only one)");
+    io.flag("implicit",
+            s.implicit,
+            "also run implicit Newmark on every mesh level but the finest (slow: about 16 s "
+            "at 5 cm; a failure is recorded as a data point)");
+    io.quantity_list("lumped_dt",
+                     s.lumped_dt,
+                     "s",
+                     "time steps of the building with walls (central difference and Newmark)");
+    io.quantity("lumped_reference_dt",
+                s.lumped_reference_dt,
+                "s",
+                "central-difference reference step (> 0, below every lumped_dt)");
+  }
+
+  /** Sensitivity of k to four scene parameters at one wall height. */
+  struct StudySensitivityScene
+  {
+    double wall_height = 1.25; ///< m
+    double variation   = 0.25; ///< each parameter × (1 ∓ variation)
+  };
+
+  template <class Io>
+  void visit(Io &io, StudySensitivityScene &s)
+  {
+    io.quantity("wall_height", s.wall_height, "m", "wall height of the sensitivity study (> 0)");
+    io.quantity("variation",
+                s.variation,
+                "%",
+                "soil modulus, slab mass (length), impact velocity and wall thickness are each "
+                "run at (1 - variation) and (1 + variation) times their value (in (0, 100 %))");
+  }
+
   /** The fits of every height (PHYSICS.md §4 "Fit"). */
   struct StudyFitScene
   {
@@ -27,6 +132,8 @@ namespace kimp::pipeline
     /// negative while the force is still on, which would cut the window at the first bounce).
     bool   force_only_contact  = true;
     double separation_fraction = 1.0; ///< FitOptions::separation_fraction (> 0)
+    /// FitOptions::displacement_weight: also fit the slab's advance since first contact (>= 0).
+    double displacement_weight = 0.0;
   };
 
   template <class Io>
@@ -47,6 +154,11 @@ namespace kimp::pipeline
                 "",
                 "a contact ends at a force-free run longer than this fraction of its duration so "
                 "far (> 0; larger merges the bounces of one impact)");
+    io.quantity("displacement_weight",
+                s.displacement_weight,
+                "",
+                "weight of the slab-displacement misfit beside the force misfit (>= 0; 0: force "
+                "only, the thesis' choice)");
   }
 
   /** Moat walls of the study: on both sides, gap from the building's own no-wall response. */
@@ -75,7 +187,7 @@ namespace kimp::pipeline
    */
   struct StudyScene
   {
-    FemScene                       fem = default_study_fem_scene();
+    StudyFemScene                  fem;
     StudyFitScene                  fit;
     BuildingScene                  building;
     IsolatorScene                  isolator;
@@ -83,9 +195,14 @@ namespace kimp::pipeline
     IntegrationScene               integration;
     std::vector<GroundMotionScene> records{GroundMotionScene{}};
     /// Add the PEER records of peer_record_names() when the records directory holds them.
-    bool        peer_records = true;
-    std::string records_dir  = "";   ///< "" = KIMP_RECORDS_DIR / ../shared/data/records
-    bool        charts       = true; ///< run scripts/study_charts.py
+    bool                  peer_records   = true;
+    std::string           records_dir    = "";   ///< "" = KIMP_RECORDS_DIR / ../shared/data/records
+    bool                  charts         = true; ///< run scripts/study_charts.py
+    bool                  accuracy_study = true; ///< FEM and lumped accuracy against cost
+    StudyAccuracyScene    accuracy;
+    bool                  stability_map = true;  ///< lumped Δt vs k_imp stable/unstable map
+    bool                  sensitivity   = false; ///< sensitivity of k (8 more FEM runs)
+    StudySensitivityScene sensitivity_study;
   };
 
   template <class Io>
@@ -106,6 +223,19 @@ namespace kimp::pipeline
             s.records_dir,
             "directory of the PEER records (\"\" = KIMP_RECORDS_DIR or ../shared/data/records)");
     io.flag("charts", s.charts, "draw the charts with scripts/study_charts.py (python3)");
+    io.flag("accuracy_study",
+            s.accuracy_study,
+            "accuracy against cost: FEM mesh, penalty (and implicit) levels -> error in k; "
+            "building time step -> error in peak impact force and base acceleration");
+    io.section("accuracy", s.accuracy, "settings of the accuracy study");
+    io.flag("stability_map",
+            s.stability_map,
+            "lumped central-difference stability map: time step against k_imp (two-body "
+            "collisions, m_eff of the building's isolation level and the wall), with 2/omega_imp");
+    io.flag("sensitivity",
+            s.sensitivity,
+            "sensitivity of k to soil modulus, slab mass, impact velocity and wall thickness");
+    io.section("sensitivity_study", s.sensitivity_study, "settings of the sensitivity study");
   }
 
   /** Every range and cross-field rule; key paths as in the file ("walls.gap_reduction"). */

@@ -2,7 +2,8 @@
 // synthetic record; the rigid slab chatters on the wall, so the fit merges contact phases
 // separated by up to 10 times their duration): k falls with H for both laws (a taller cantilever
 // wall is softer), the files carry units, and a re-run reuses the FEM cases instead of recomputing
-// them.
+// them. With fidelity: auto the k table carries the level used and its numerical error; the extra
+// studies (accuracy against cost, stability map, sensitivity) are consistent with their physics.
 #ifdef KIMP_WITH_FEM
 
 #  include <cmath>
@@ -100,6 +101,7 @@ namespace
   dynamics:
     end_time: "40 ms"
     output_interval: "0.02 ms"
+  fidelity: fixed
 records:
   - record: synthetic
     duration: "8 s"
@@ -107,6 +109,43 @@ fit:
   separation_fraction: 10
 peer_records: false
 charts: true
+stability_map: false
+accuracy_study: false
+)";
+
+  /// The reduced study with fidelity: auto and every extra study, kept cheap.
+  constexpr const char *auto_study = R"(fem:
+  wall_heights: ["1.0 m", "2.0 m"]
+  mesh:
+    h_max: "25 cm"
+    grading: 1.5
+  slab:
+    rigid: true
+  dynamics:
+    end_time: "40 ms"
+    output_interval: "0.02 ms"
+  fidelity: auto
+  fidelity_tolerance: "0.001 %"
+  fidelity_h_contact: ["10 cm", "5 cm"]
+records:
+  - record: synthetic
+    duration: "8 s"
+fit:
+  separation_fraction: 10
+peer_records: false
+charts: true
+accuracy_study: true
+accuracy:
+  wall_height: "1.0 m"
+  h_contact: ["10 cm", "5 cm"]
+  penalty_factors: [1, 10]
+  implicit: false
+  lumped_dt: ["2e-3 s", "1e-3 s", "2e-4 s"]
+  lumped_reference_dt: "2e-5 s"
+stability_map: true
+sensitivity: true
+sensitivity_study:
+  wall_height: "1.0 m"
 )";
 } // namespace
 
@@ -175,6 +214,134 @@ TEST(StudyCli, ReducedStudyGivesSofterWallsForTallerHeightsAndReusesTheFem)
             k_rows[0].at("kelvin_voigt_kN_per_mm_per_m"));
   const auto summary_again = nlohmann::json::parse(read_text(out / "summary.json"));
   EXPECT_TRUE(summary_again.at("k_table").at(1).at("fem_from_cache").get<bool>());
+}
+
+TEST(StudyCli, AutoFidelityReportsLevelAndErrorAndTheExtraStudiesAreConsistent)
+{
+  const TempDir dir("study_cli_auto");
+  std::ofstream(dir.path() / "study.yaml") << auto_study;
+  std::string log;
+  ASSERT_EQ(run_kimp("study study.yaml -o out", dir.path(), log), 0) << log;
+  const std::filesystem::path out = dir.path() / "out";
+
+  // k table: the tolerance (0.001 %) is not met on two levels, so the finest level is used and
+  // flagged not converged; its error is |k(5 cm) - k(10 cm)|, from the per-level table.
+  const auto k_rows = read_csv(out / "k_table.csv");
+  ASSERT_EQ(k_rows.size(), 2u) << read_text(out / "k_table.csv");
+  const auto levels = read_csv(out / "fidelity_levels.csv");
+  ASSERT_EQ(levels.size(), 4u) << read_text(out / "fidelity_levels.csv");
+  for (std::size_t i = 0; i < 2; ++i)
+  {
+    const auto &row = k_rows[i];
+    EXPECT_EQ(row.at("fidelity"), "auto");
+    EXPECT_EQ(row.at("fidelity_converged"), "no");
+    EXPECT_NEAR(std::stod(row.at("fem_h_contact_cm")), 5.0, 1e-9);
+    const double     k_fine   = std::stod(levels[2 * i + 1].at("kelvin_voigt_kN_per_mm_per_m"));
+    const double     k_coarse = std::stod(levels[2 * i].at("kelvin_voigt_kN_per_mm_per_m"));
+    const double     error    = std::stod(row.at("kelvin_voigt_numerical_error_kN_per_mm_per_m"));
+    constexpr double csv_rounding = 1e-5; // 6 significant digits
+    EXPECT_NEAR(std::stod(row.at("kelvin_voigt_kN_per_mm_per_m")), k_fine, csv_rounding * k_fine);
+    EXPECT_NEAR(error, std::abs(k_fine - k_coarse), csv_rounding * k_fine + 1e-9) << "H row " << i;
+    EXPECT_NEAR(std::stod(row.at("kelvin_voigt_total_numerical_error_kN_per_mm")),
+                error * 27.78,
+                csv_rounding * error * 27.78 + 1e-9);
+  }
+  EXPECT_NE(log.find("fidelity auto"), std::string::npos) << log;
+
+  // FEM accuracy: the reference (finest explicit mesh) has error 0; the mesh levels were reused
+  // from the fidelity ladder's cache.
+  const auto fem_accuracy = read_csv(out / "accuracy_fem.csv");
+  ASSERT_EQ(fem_accuracy.size(), 4u) << read_text(out / "accuracy_fem.csv");
+  EXPECT_EQ(fem_accuracy[1].at("series"), "mesh");
+  EXPECT_EQ(std::stod(fem_accuracy[1].at("error_kelvin_voigt_percent")), 0.0);
+  EXPECT_GT(std::stod(fem_accuracy[0].at("error_kelvin_voigt_percent")), 0.0);
+  EXPECT_NE(log.find("H1.00_h5cm_p1: FEM result reused"), std::string::npos) << log;
+
+  // Building time step: central difference converges to its reference (the impact force error
+  // at the finest step is below that at the coarsest).
+  const auto lumped = read_csv(out / "accuracy_lumped.csv");
+  ASSERT_FALSE(lumped.empty());
+  double coarse = -1, fine = -1;
+  for (const auto &row : lumped)
+    if (row.at("method") == "cdm" && row.at("status") == "ok")
+    {
+      const double error = std::stod(row.at("error_impact_force_percent"));
+      if (coarse < 0)
+        coarse = error;
+      fine = error;
+    }
+  EXPECT_LT(fine, coarse) << read_text(out / "accuracy_lumped.csv");
+
+  // Stability map: every run below the damped limit 2(sqrt(1 + xi^2) - xi)/omega is stable, and
+  // runs far above 2/omega (3x) are not.
+  const auto stability = read_csv(out / "stability_lumped.csv");
+  ASSERT_GT(stability.size(), 50u);
+  std::size_t n_below = 0, n_far_above = 0;
+  for (const auto &row : stability)
+  {
+    const double dt = std::stod(row.at("dt_s"));
+    if (dt < std::stod(row.at("dt_limit_damped_s")))
+    {
+      ++n_below;
+      EXPECT_EQ(std::stod(row.at("stable")), 1.0)
+        << "k " << row.at("k_imp_kN_per_mm") << " dt " << dt;
+    }
+    if (dt > 3 * std::stod(row.at("dt_limit_2_over_omega_s")))
+    {
+      ++n_far_above;
+      EXPECT_EQ(std::stod(row.at("stable")), 0.0)
+        << "k " << row.at("k_imp_kN_per_mm") << " dt " << dt;
+    }
+  }
+  EXPECT_GT(n_below, 10u);
+  EXPECT_GT(n_far_above, 10u);
+
+  // FEM stability map: below the computed limit every run is stable, at twice it none is.
+  const auto fem_stability = read_csv(out / "stability_fem.csv");
+  ASSERT_EQ(fem_stability.size(), 25u) << read_text(out / "stability_fem.csv");
+  for (const auto &row : fem_stability)
+  {
+    const double factor = std::stod(row.at("dt_over_limit"));
+    if (factor < 1)
+    {
+      EXPECT_EQ(row.at("stable"), "1")
+        << "penalty x" << row.at("penalty_factor") << ", dt " << factor << " x limit";
+    }
+    if (factor >= 2)
+    {
+      EXPECT_EQ(row.at("stable"), "0")
+        << "penalty x" << row.at("penalty_factor") << ", dt " << factor << " x limit";
+    }
+  }
+
+  // Sensitivity: a stiffer backfill and a thicker wall make the wall stiffer (k_KV grows).
+  const auto                    sensitivity = read_csv(out / "sensitivity.csv");
+  std::map<std::string, double> k;
+  for (const auto &row : sensitivity)
+    k[row.at("parameter") + "@" + row.at("factor")] =
+      std::stod(row.at("kelvin_voigt_kN_per_mm_per_m"));
+  ASSERT_EQ(k.size(), 9u) << read_text(out / "sensitivity.csv");
+  EXPECT_LT(k.at("soil_modulus@0.75"), k.at("soil_modulus@1.25"));
+  EXPECT_LT(k.at("wall_thickness@0.75"), k.at("wall_thickness@1.25"));
+
+  EXPECT_EQ(units_of(out / "study.h5", "/k_table/kelvin_voigt_numerical_error"), "kN/mm/m");
+  EXPECT_EQ(units_of(out / "study.h5", "/stability/lumped/dt_limit"), "s");
+  const std::string report = read_text(out / "report.md");
+  for (const char *needle : {"accuracy_fem.csv",
+                             "accuracy_lumped.csv",
+                             "stability_lumped.csv",
+                             "stability_fem.csv",
+                             "sensitivity.csv",
+                             "±"})
+    EXPECT_NE(report.find(needle), std::string::npos) << needle;
+  for (const char *chart : {"accuracy_fem.png",
+                            "accuracy_lumped.svg",
+                            "stability_map.png",
+                            "stability_map_fem.png",
+                            "sensitivity.png"})
+    EXPECT_TRUE(std::filesystem::is_regular_file(out / "charts" / chart))
+      << chart << "\n"
+      << read_text(out / "charts" / "charts.log");
 }
 
 TEST(StudyCli, BadSceneFailsWithFileLineAndKey)

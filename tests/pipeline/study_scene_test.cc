@@ -46,6 +46,38 @@ TEST(StudyScene, EmptyDocumentIsTheDefaultStudy)
   EXPECT_EQ(scene.isolator.kind, kimp::pipeline::IsolatorKind::bilinear);
   ASSERT_EQ(scene.records.size(), 1u);
   EXPECT_EQ(scene.records.front().record, "synthetic");
+  // fidelity: auto on the 5 / 2.5 / 1.25 cm ladder at 1 %; the sensitivity study is off.
+  EXPECT_EQ(scene.fem.fidelity, kimp::pipeline::Fidelity::auto_ladder);
+  EXPECT_NEAR(scene.fem.fidelity_tolerance, 0.01, exact);
+  ASSERT_EQ(scene.fem.fidelity_h_contact.size(), 3u);
+  EXPECT_NEAR(scene.fem.fidelity_h_contact[0], 0.05, exact);
+  EXPECT_NEAR(scene.fem.fidelity_h_contact[1], 0.025, exact);
+  EXPECT_NEAR(scene.fem.fidelity_h_contact[2], 0.0125, exact);
+  EXPECT_EQ(scene.fem.fidelity_penalty_factors, std::vector<double>{1.0});
+  EXPECT_TRUE(scene.accuracy_study);
+  EXPECT_TRUE(scene.accuracy.implicit);
+  EXPECT_NEAR(scene.accuracy.wall_height, 1.25, exact);
+  EXPECT_FALSE(scene.sensitivity);
+  EXPECT_TRUE(scene.stability_map);
+}
+
+TEST(StudyScene, FidelityLadderIsValidatedWithKeyAndValue)
+{
+  const std::string message = scene_error("fem:\n"
+                                          "  fidelity: auto\n"
+                                          "  fidelity_tolerance: \"0 %\"\n"
+                                          "  fidelity_h_contact: [\"2.5 cm\", \"5 cm\"]\n"
+                                          "  fidelity_penalty_factors: [10, 1]\n"
+                                          "accuracy:\n"
+                                          "  lumped_reference_dt: \"1 s\"\n");
+  EXPECT_NE(message.find("fem.fidelity_tolerance = 0 %"), std::string::npos) << message;
+  EXPECT_NE(message.find("fem.fidelity_h_contact[1] = 5 cm"), std::string::npos) << message;
+  EXPECT_NE(message.find("fem.fidelity_penalty_factors[1] = 1"), std::string::npos) << message;
+  EXPECT_NE(message.find("accuracy.lumped_reference_dt"), std::string::npos) << message;
+  const std::string choice = scene_error("fem:\n  fidelity: sometimes\n");
+  EXPECT_NE(choice.find("fem.fidelity"), std::string::npos) << choice;
+  const std::string coarse = scene_error("fem:\n  fidelity_h_contact: [\"20 cm\"]\n");
+  EXPECT_NE(coarse.find("h_max"), std::string::npos) << coarse;
 }
 
 TEST(StudyScene, ShippedSceneFileEqualsTheDefaults)
