@@ -12,6 +12,7 @@
 #include <map>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <tuple>
 #include <unistd.h>
@@ -200,6 +201,37 @@ namespace kimp::pipeline
                     stiffness_to_kn_per_mm(h.ladder.error_kelvin_voigt, 1.0),
                     stiffness_to_kn_per_mm(h.ladder.error_jankowski, 1.5));
       return h;
+    }
+
+    /**
+     * Under `mpirun -np N`: rank r computes the FEM (and climbs the fidelity ladder) of heights
+     * r, r + N, ... into the study's FEM cache; rank 0 then finds every height there. Errors are
+     * left for rank 0's own pass to report (it recomputes what is missing).
+     */
+    void compute_heights_on_ranks(const StudyScene &scene,
+                                  const OutputDir  &output,
+                                  int               rank,
+                                  int               n_ranks)
+    {
+      const Clock::time_point start   = Clock::now();
+      const auto             &heights = scene.fem.wall_heights;
+      for (std::size_t i = static_cast<std::size_t>(rank); i < heights.size();
+           i += static_cast<std::size_t>(n_ranks))
+      {
+        try
+        {
+          run_height(scene, heights[i], output);
+        }
+        catch (const std::exception &error)
+        {
+          logger().warn("{}: {}", fem_case_name(heights[i]), error.what());
+        }
+      }
+      logger().info("FEM of rank {}'s share of {} heights on {} ranks: {:.2f} s",
+                    rank,
+                    heights.size(),
+                    n_ranks,
+                    seconds_since(start));
     }
 
     void log_k_table(const StudyScene &scene, const std::vector<StudyHeight> &heights)
@@ -1203,15 +1235,27 @@ namespace kimp::pipeline
         const LoadedScene<StudyScene> scene =
           options->scene.empty() ? read_scene_text<StudyScene>("", "(default study scene)") :
                                    read_scene<StudyScene>(options->scene);
-        int mpi_initialized = 0, rank = 0;
+        int mpi_initialized = 0, rank = 0, n_ranks = 1;
         MPI_Initialized(&mpi_initialized);
         if (!mpi_initialized)
           throw std::logic_error("kimp study: MPI is not initialised (fem::MpiSession in main)");
         MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+        MPI_Comm_size(MPI_COMM_WORLD, &n_ranks);
+        // Rank 0 creates the output directory before the others use it.
+        std::optional<OutputDir> output;
+        if (rank == 0)
+          output.emplace(options->output);
+        if (n_ranks > 1)
+        {
+          MPI_Barrier(MPI_COMM_WORLD);
+          if (rank != 0)
+            output.emplace(options->output);
+          compute_heights_on_ranks(scene.scene, *output, rank, n_ranks);
+          MPI_Barrier(MPI_COMM_WORLD);
+        }
         if (rank != 0)
           return;
-        const OutputDir output(options->output);
-        run_study(scene, output);
+        run_study(scene, *output);
       });
   }
 } // namespace kimp::pipeline

@@ -354,3 +354,32 @@ TEST(StudyCli, BadSceneFailsWithFileLineAndKey)
 }
 
 #endif
+
+// Heights over MPI ranks (`mpirun -np 2 kimp study`): the same k table as one rank, and rank 0
+// finds the other rank's heights in the FEM cache. Disabled by default: run through the ctest
+// entry e2e_study_cli_test.mpi (label mpi), which needs mpirun.
+TEST(StudyCliMpi, DISABLED_TwoRanksShareTheHeightsAndGiveTheSameKTable)
+{
+  const TempDir dir("study_cli_mpi");
+  std::string   study = reduced_study;
+  study.replace(study.find("charts: true"), 12, "charts: false");
+  std::ofstream(dir.path() / "study.yaml") << study;
+  std::string log;
+  ASSERT_EQ(run_kimp("study study.yaml -o one", dir.path(), log), 0) << log;
+  const std::string command = "cd '" + dir.path().string() +
+                              "' && mpirun --allow-run-as-root --oversubscribe -np 2 " +
+                              KIMP_BINARY_DIR "/kimp study study.yaml -o two > two.log 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << read_text(dir.path() / "two.log");
+  const std::string two_log = read_text(dir.path() / "two.log");
+  EXPECT_NE(two_log.find("on 2 ranks"), std::string::npos) << two_log;
+  // Rank 1 computed H = 2.0 m (the second height); rank 0 reused it.
+  EXPECT_NE(two_log.find("H2.00: FEM result reused"), std::string::npos) << two_log;
+  EXPECT_EQ(two_log.find("H2.00: mesh"), std::string::npos) << two_log;
+  const auto one = read_csv(dir.path() / "one/k_table.csv");
+  const auto two = read_csv(dir.path() / "two/k_table.csv");
+  ASSERT_EQ(one.size(), 2u);
+  ASSERT_EQ(two.size(), one.size());
+  for (std::size_t i = 0; i < one.size(); ++i)
+    for (const char *column : {"kelvin_voigt_kN_per_mm_per_m", "jankowski_kN_per_mm1.5_per_m"})
+      EXPECT_EQ(two[i].at(column), one[i].at(column)) << "row " << i << " " << column;
+}
