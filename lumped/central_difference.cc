@@ -357,6 +357,9 @@ namespace kimp::lumped
     std::size_t rec_j    = 0;
     long        rec_s    = 0;
     long        every    = 0;
+    /// Steps between check points (energy checks): at most 512, and a divisor of `every` when
+    /// histories are recorded, so that check points and samples coincide (fewer, longer blocks).
+    long check_every = 512;
 
     // laws
     std::unique_ptr<Isolator>              iso;
@@ -1205,6 +1208,16 @@ namespace kimp::lumped
     rec_j              = 0;
     rec_s              = 0;
     every = opt->output_interval > 0.0 ? std::max(1L, std::lround(opt->output_interval / dt)) : 0L;
+    check_every = 512;
+    if (every > 0 && every <= 512)
+      check_every = every * (512 / every);
+    else if (every > 512)
+      for (long parts = (every + 511) / 512; parts <= every; ++parts)
+        if (every % parts == 0)
+        {
+          check_every = every / parts;
+          break;
+        }
     if (every > 0)
     {
       const std::size_t n_samples = static_cast<std::size_t>(n_steps / every + 1);
@@ -1237,9 +1250,10 @@ namespace kimp::lumped
   {
     while (count > 0 && step <= n_steps)
     {
-      // The block ends at the next checkpoint (history sample, every 512 steps, the last step)
+      // The block ends at the next checkpoint (history sample, every check_every steps, the
+      // last step)
       // so that the checks see the laws and the isolator at exactly that step.
-      long next = std::min(n_steps, (step + 511) / 512 * 512);
+      long next = std::min(n_steps, (step + check_every - 1) / check_every * check_every);
       if (every > 0)
         next = std::min(next, (step + every - 1) / every * every);
       const long len = std::min({next - step + 1, block_steps, count});
@@ -1300,7 +1314,7 @@ namespace kimp::lumped
       else
         bookkeeping(len);
       const long last = step + len - 1;
-      if ((every > 0 && last % every == 0) || (last & 511) == 0 || last == n_steps)
+      if ((every > 0 && last % every == 0) || last % check_every == 0 || last == n_steps)
         checkpoint(len - 1);
       step += len;
       count -= len;
@@ -1316,7 +1330,7 @@ namespace kimp::lumped
   void CentralDifferenceStepper::Session::checkpoint_energies(const long len)
   {
     const long last = step + len - 1;
-    if ((every > 0 && last % every == 0) || (last & 511) == 0 || last == n_steps)
+    if ((every > 0 && last % every == 0) || last % check_every == 0 || last == n_steps)
     {
       const std::size_t B   = static_cast<std::size_t>(block_steps);
       const std::size_t q   = static_cast<std::size_t>(len - 1);
@@ -1339,7 +1353,7 @@ namespace kimp::lumped
     // W(t_n) = Δt·(Σ_{q<=n} p_q − (p_0 + p_n)/2), evaluated here at the check points (step 0 is
     // a block of its own and a check point). max_supplied is therefore the maximum of E_0 + W_in
     // over the check points (the reference kernel: over every step).
-    if (!((every > 0 && last % every == 0) || (last & 511) == 0 || last == n_steps))
+    if (!((every > 0 && last % every == 0) || last % check_every == 0 || last == n_steps))
       return;
     const std::size_t B    = static_cast<std::size_t>(block_steps);
     const std::size_t q    = static_cast<std::size_t>(len - 1);

@@ -123,9 +123,10 @@ namespace kimp::lumped
    *    of up to 16 DOFs, else the pre-factorised Thomas algorithm), and the bookkeeping of each
    *    block of up to 64 steps vectorised over the steps afterwards.
    * Both kernels run in blocks of up to 64 steps that end at every check point (history sample,
-   * every 512 steps, the last step), and every quantity is computed with the same operations in
-   * the same order whatever the blocking, so advance(k) and step() give bitwise equal results.
-   * The two kernels agree to round-off (tests/lumped/integrator_test.cc states the tolerances).
+   * every ≤ 512 steps aligned with the history interval, the last step), and every quantity is
+   * computed with the same operations in the same order whatever the blocking, so advance(k) and
+   * step() give bitwise equal results. The two kernels agree to round-off
+   * (tests/lumped/integrator_test.cc states the tolerances).
    *
    * Recorded at every t_n (n = 0..N): u_n, the step's acceleration (u_{n+1} − 2u_n + u_{n−1})/Δt²
    * + ü_g(t_n) (PHYSICS.md §5), the contact forces F_n, and the energy terms (E_kin and E_strain
@@ -213,7 +214,7 @@ namespace kimp::lumped
     /// u_{n+level} for level 0, −1, −2 (m, relative to the ground).
     std::vector<double> displacement(int level = 0) const;
     /// The response recorded at t_0..t_{n−1} (energy fields as of the last check: every history
-    /// sample, every 512 steps and the last step).
+    /// sample, every ≤ 512 steps and the last step).
     Response response() const;
 
     struct Session; ///< implementation (central_difference.cc)
