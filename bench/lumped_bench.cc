@@ -69,14 +69,9 @@ namespace
     return arg == 0 ? CdmKernel::automatic : CdmKernel::reference;
   }
 
-  /// The performance target: 48 s, Δt = 2e-5 s; arg 0: decimated output every 0.01 s (1) or
-  /// none (0); arg 1: kernel (0 fused, 1 reference), side by side.
-  void BM_CdmWalls48s(benchmark::State &state)
+  /// Runs the walled 4-storey building under the 48 s record with `opt` in the benchmark loop.
+  void run_walled_building(benchmark::State &state, const CentralDifferenceOptions &opt)
   {
-    CentralDifferenceOptions opt;
-    opt.dt              = 2e-5;
-    opt.output_interval = state.range(0) ? 0.01 : 0.0;
-    opt.kernel          = kernel_arg(state.range(1));
     const CentralDifference cdm(walled_building(), opt);
     Response                r;
     for (auto _ : state)
@@ -85,6 +80,17 @@ namespace
       benchmark::DoNotOptimize(r.peak_displacement.data());
     }
     set_counters(state, r);
+  }
+
+  /// The performance target: 48 s, Δt = 2e-5 s; arg 0: decimated output every 0.01 s (1) or
+  /// none (0); arg 1: kernel (0 fused, 1 reference), side by side.
+  void BM_CdmWalls48s(benchmark::State &state)
+  {
+    CentralDifferenceOptions opt;
+    opt.dt              = 2e-5;
+    opt.output_interval = state.range(0) ? 0.01 : 0.0;
+    opt.kernel          = kernel_arg(state.range(1));
+    run_walled_building(state, opt);
   }
   BENCHMARK(BM_CdmWalls48s)
     ->ArgNames({"history", "reference"})
@@ -98,14 +104,7 @@ namespace
     CentralDifferenceOptions opt;
     opt.dt           = 2e-5;
     opt.vector_lanes = static_cast<int>(state.range(0));
-    const CentralDifference cdm(walled_building(), opt);
-    Response                r;
-    for (auto _ : state)
-    {
-      r = cdm.run(record_48s());
-      benchmark::DoNotOptimize(r.peak_displacement.data());
-    }
-    set_counters(state, r);
+    run_walled_building(state, opt);
   }
   BENCHMARK(BM_CdmWalls48sLanes)
     ->ArgName("lanes")
@@ -123,14 +122,7 @@ namespace
     opt.dt       = 2e-4;
     opt.duration = static_cast<double>(state.range(0));
     opt.kernel   = kernel_arg(state.range(1));
-    const CentralDifference cdm(walled_building(), opt);
-    Response                r;
-    for (auto _ : state)
-    {
-      r = cdm.run(record_48s());
-      benchmark::DoNotOptimize(r.peak_displacement.data());
-    }
-    set_counters(state, r);
+    run_walled_building(state, opt);
   }
   BENCHMARK(BM_CdmSweepRun)
     ->ArgNames({"seconds", "reference"})
