@@ -69,4 +69,20 @@ namespace kimp::pipeline
       return -1;
     return WEXITSTATUS(status);
   }
+
+  ChartScriptRun run_chart_script(const std::string           &script_name,
+                                  const std::filesystem::path &output_dir)
+  {
+    ChartScriptRun run;
+    run.script = find_helper_script(script_name);
+    if (run.script.empty())
+      return run;
+    run.log = output_dir / "charts" / "charts.log";
+    std::filesystem::create_directories(run.log.parent_path());
+    std::filesystem::remove(run.log);
+    run.status = run_program({"/usr/bin/python3", run.script.string(), output_dir.string()},
+                             ProgramOutput::append,
+                             run.log);
+    return run;
+  }
 } // namespace kimp::pipeline

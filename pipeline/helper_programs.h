@@ -30,4 +30,19 @@ namespace kimp::pipeline
   int run_program(const std::vector<std::string> &arguments,
                   ProgramOutput                   output,
                   const std::filesystem::path    &log = {});
+
+  /** Outcome of run_chart_script(). */
+  struct ChartScriptRun
+  {
+    std::filesystem::path script;      ///< empty if scripts/<name> was not found (nothing ran)
+    std::filesystem::path log;         ///< DIR/charts/charts.log (stdout and stderr of the script)
+    int                   status = -1; ///< exit status (0: charts written)
+  };
+
+  /**
+   * `/usr/bin/python3 scripts/<script_name> DIR` for an output directory DIR, its output in a
+   * fresh DIR/charts/charts.log; the caller decides whether a failure is an error or a warning.
+   */
+  ChartScriptRun run_chart_script(const std::string           &script_name,
+                                  const std::filesystem::path &output_dir);
 } // namespace kimp::pipeline

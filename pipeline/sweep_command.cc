@@ -115,21 +115,16 @@ namespace kimp::pipeline
       }
       if (!charts)
         return;
-      const std::filesystem::path script = find_helper_script("sweep_charts.py");
-      if (script.empty())
+      const ChartScriptRun run = run_chart_script("sweep_charts.py", output.path());
+      if (run.script.empty())
         throw OutputError("charts: scripts/sweep_charts.py not found (set KIMP_DATA_DIR to the "
                           "kimp source tree, or pass --no-charts)");
-      const std::filesystem::path log = output.file("charts/charts.log");
-      std::filesystem::remove(log);
-      const int status = run_program({"/usr/bin/python3", script.string(), output.path().string()},
-                                     ProgramOutput::append,
-                                     log);
-      if (status != 0)
+      if (run.status != 0)
         throw OutputError(fmt::format("charts: {} exited with status {} (needs /usr/bin/python3 "
                                       "with matplotlib, numpy and h5py); see {}",
-                                      script.string(),
-                                      status,
-                                      log.string()));
+                                      run.script.string(),
+                                      run.status,
+                                      run.log.string()));
       logger().info("charts and summary written to {} and {}",
                     output.file("charts").string(),
                     output.file("summary.md").string());

@@ -108,6 +108,17 @@ def building_response(csv_path, out_dir):
     save(fig, out_dir, "building_response")
 
 
+def log_log_axes(ax, xlabel, ylabel, title):
+    """Log-log axes with labels, title, grid and a small legend (the accuracy and stability charts)."""
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+
+
 def accuracy_fem(h5, out_dir):
     if "accuracy" not in h5 or "fem" not in h5["accuracy"]:
         return
@@ -136,13 +147,7 @@ def accuracy_fem(h5, out_dir):
             failed = [s_ for s_, o in zip(sec, ok) if o < 0.5]
             for f in failed:
                 ax.axvline(f if f > 0 else 1e-3, color="r", ls=":", lw=0.8)
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel("FEM wall time (s)")
-        ax.set_ylabel("|k / k_finest - 1| (%)  (0 plotted as 1e-4 %)")
-        ax.set_title(title)
-        ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=7)
+        log_log_axes(ax, "FEM wall time (s)", "|k / k_finest - 1| (%)  (0 plotted as 1e-4 %)", title)
     save(fig, out_dir, "accuracy_fem")
 
 
@@ -165,13 +170,7 @@ def accuracy_lumped(h5, out_dir):
                 for p in pts:
                     ax.annotate(f"{p[2]:g}", (p[0], p[1]), fontsize=6, xytext=(3, 3),
                                 textcoords="offset points")
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel("wall time of the run (s); labels: dt (s)")
-        ax.set_ylabel("error vs reference (%)")
-        ax.set_title(title)
-        ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=7)
+        log_log_axes(ax, "wall time of the run (s); labels: dt (s)", "error vs reference (%)", title)
     save(fig, out_dir, "accuracy_lumped")
 
 
@@ -200,13 +199,7 @@ def stability_map(h5, out_dir):
     k_study = t.attrs.get("study_stiffness_N_per_m", None)
     if k_study:
         ax.axvline(float(k_study) * 1e-6, color="C0", ls=":", label="study k_KV (total)")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("k_imp (kN/mm)")
-    ax.set_ylabel("time step (s)")
-    ax.set_title("central difference, two-body contact")
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
+    log_log_axes(ax, "k_imp (kN/mm)", "time step (s)", "central difference, two-body contact")
     save(fig, out_dir, "stability_map")
 
 
@@ -231,14 +224,9 @@ def stability_map_fem(h5, out_dir):
     if limits:
         ps = sorted(limits)
         ax.plot(ps, [limits[p] for p in ps], "k-", label="computed limit 2(sqrt(1+xi^2)-xi)/omega")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("penalty factor (x E/h)")
-    ax.set_ylabel("time step (us)")
     h = t.attrs.get("h_contact_m", None)
-    ax.set_title("explicit FEM" + (f", {float(h) * 100:g} cm contact elements" if h else ""))
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
+    log_log_axes(ax, "penalty factor (x E/h)", "time step (us)",
+                 "explicit FEM" + (f", {float(h) * 100:g} cm contact elements" if h else ""))
     save(fig, out_dir, "stability_map_fem")
 
 

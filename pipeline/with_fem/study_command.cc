@@ -1078,25 +1078,20 @@ namespace kimp::pipeline
     /// Draw the charts; false (with a warning) if they could not be drawn.
     bool draw_charts(const OutputDir &output)
     {
-      const std::filesystem::path script = find_helper_script("study_charts.py");
-      if (script.empty())
+      const ChartScriptRun run = run_chart_script("study_charts.py", output.path());
+      if (run.script.empty())
       {
         logger().warn("charts skipped: scripts/study_charts.py not found (set KIMP_DATA_DIR to "
                       "the kimp source tree)");
         return false;
       }
-      const std::filesystem::path log = output.file("charts/charts.log");
-      std::filesystem::remove(log);
-      const int status = run_program({"/usr/bin/python3", script.string(), output.path().string()},
-                                     ProgramOutput::append,
-                                     log);
-      if (status != 0)
+      if (run.status != 0)
       {
         logger().warn("charts skipped: {} exited with {} (needs /usr/bin/python3 with matplotlib "
                       "and h5py; Debian python3-matplotlib python3-h5py); see {}",
-                      script.string(),
-                      status,
-                      log.string());
+                      run.script.string(),
+                      run.status,
+                      run.log.string());
         return false;
       }
       logger().info("charts written to {}", output.file("charts").string());
