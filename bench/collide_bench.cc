@@ -2,11 +2,12 @@
 // at the thesis' set-up (280 t vs 300 t at 1 m/s, Δt = 2e-4 s and 1e-5 s).
 #include <benchmark/benchmark.h>
 #include <cmath>
-#include <lumped/bumper_law.h>
-#include <lumped/cimp_calibration.h>
-#include <lumped/force_law_factory.h>
-#include <lumped/two_body.h>
 #include <string>
+
+#include "lumped/collision/cimp_calibration.h"
+#include "lumped/collision/two_body.h"
+#include "lumped/laws/bumper_law.h"
+#include "lumped/laws/force_law_factory.h"
 
 namespace
 {

@@ -10,29 +10,37 @@ function(kimp_setup_target target)
   endif()
 endfunction()
 
-# kimp_add_test(NAME name SOURCES a.cc b.cc LIBS kimp::lumped LABEL physics [TIMEOUT s])
-# One GoogleTest executable; every TEST becomes a ctest test with the label (unit, physics, mpi,
-# e2e). Tests run in the source directory with KIMP_SOURCE_DIR set; the build directory is compiled
-# in as KIMP_BINARY_DIR. (One label and one environment entry: lists do not survive discovery.)
+# kimp_add_test(NAME name SOURCES a.cc b.cc LIBS kimp::lumped LABELS physics fem [TIMEOUT s])
+# One GoogleTest executable; every TEST becomes a ctest test carrying every label (unit, physics,
+# fem, slow, mpi, e2e). LABEL x is LABELS x with one label. Tests run in the source directory with
+# KIMP_SOURCE_DIR set; the build directory is compiled in as KIMP_BINARY_DIR.
 function(kimp_add_test)
   cmake_parse_arguments(T "" "NAME;TIMEOUT;LABEL" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
   kimp_setup_target(${T_NAME})
-  target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
+  target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} kimp::test_support GTest::gtest GTest::gtest_main)
   target_compile_definitions(${T_NAME} PRIVATE KIMP_BINARY_DIR="${PROJECT_BINARY_DIR}")
   if(NOT T_TIMEOUT)
     set(T_TIMEOUT 300)
   endif()
-  if(NOT T_LABEL AND T_LABELS)
-    list(GET T_LABELS 0 T_LABEL) # LABELS a b: only the first survives discovery
-  elseif(NOT T_LABEL)
-    set(T_LABEL unit)
+  set(labels ${T_LABEL} ${T_LABELS})
+  if(NOT labels)
+    set(labels unit)
   endif()
   gtest_discover_tests(${T_NAME}
     TEST_PREFIX "${T_NAME}."
+    TEST_LIST ${T_NAME}_TESTS
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
-    PROPERTIES LABELS ${T_LABEL} TIMEOUT ${T_TIMEOUT} ENVIRONMENT "KIMP_SOURCE_DIR=${PROJECT_SOURCE_DIR}"
+    PROPERTIES TIMEOUT ${T_TIMEOUT} ENVIRONMENT "KIMP_SOURCE_DIR=${PROJECT_SOURCE_DIR}"
     DISCOVERY_TIMEOUT 60)
+  # Labels after discovery: gtest_discover_tests() flattens a list-valued property (only the first
+  # label would survive). ctest includes this file after the discovered tests' own file.
+  set(labels_file "${CMAKE_CURRENT_BINARY_DIR}/${T_NAME}_labels.cmake")
+  file(WRITE "${labels_file}"
+       "if(${T_NAME}_TESTS)\n"
+       "  set_tests_properties(\${${T_NAME}_TESTS} PROPERTIES LABELS \"${labels}\")\n"
+       "endif()\n")
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES "${labels_file}")
 endfunction()
 
 # kimp_add_library(target alias sources...): a compiled library, or a header-only INTERFACE

@@ -15,9 +15,8 @@
 #  include <unistd.h>
 #  include <vector>
 
-#  include "pipeline/fem_results.h"
-
-#  include "tests/e2e/e2e_support.h"
+#  include "io/fem_results.h"
+#  include "tests/support/kimp_run.h"
 
 namespace
 {
@@ -54,10 +53,10 @@ namespace
     const KimpRun run = kimp("fem scene.yaml -o out", dir.path());
     ASSERT_EQ(run.exit_code, 0) << run.err;
 
-    const std::vector<kimp::pipeline::FemCase> cases =
-      kimp::pipeline::read_fem_cases(dir.path() / "out/fem.h5");
+    const std::vector<kimp::io::FemCase> cases =
+      kimp::io::read_fem_cases(dir.path() / "out/fem.h5");
     ASSERT_EQ(cases.size(), 1u);
-    const kimp::pipeline::FemCase &c = cases[0];
+    const kimp::io::FemCase &c = cases[0];
     EXPECT_EQ(c.name, "H1.25");
     EXPECT_EQ(c.status, "ok");
     const double peak  = c.summary.at("peak_force");
@@ -145,8 +144,8 @@ namespace
     const std::string full = "cd '" + dir.path().string() + "' && " + command + " > mpi.txt 2>&1";
     ASSERT_EQ(std::system(full.c_str()), 0) << read_text(dir.path() / "mpi.txt");
 
-    const auto a = kimp::pipeline::read_fem_cases(dir.path() / "one/fem.h5");
-    const auto b = kimp::pipeline::read_fem_cases(dir.path() / "two/fem.h5");
+    const auto a = kimp::io::read_fem_cases(dir.path() / "one/fem.h5");
+    const auto b = kimp::io::read_fem_cases(dir.path() / "two/fem.h5");
     ASSERT_EQ(a.size(), 1u);
     ASSERT_EQ(b.size(), 1u);
     EXPECT_EQ(b[0].summary.at("n_ranks"), 2.0);

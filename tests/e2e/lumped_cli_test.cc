@@ -11,7 +11,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "pipeline/lumped_scene.h"
+#include "app/lumped_scene.h"
 
 namespace
 {
@@ -241,7 +241,7 @@ TEST(LumpedCli, PrintDefaultsReadsBackToTheDefaults)
   TempDir       dir("defaults");
   const KimpRun run = run_kimp("lumped --print-defaults", dir.path());
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  using kimp::pipeline::LumpedScene;
-  const LumpedScene back = kimp::pipeline::load_scene_text<LumpedScene>(run.out, "defaults");
-  EXPECT_EQ(kimp::pipeline::to_json_text(back), kimp::pipeline::to_json_text(LumpedScene{}));
+  using kimp::app::LumpedScene;
+  const LumpedScene back = kimp::io::load_scene_text<LumpedScene>(run.out, "defaults");
+  EXPECT_EQ(kimp::io::to_json_text(back), kimp::io::to_json_text(LumpedScene{}));
 }

@@ -13,7 +13,7 @@
 #  include <sys/wait.h>
 #  include <unistd.h>
 
-#  include "tests/e2e/e2e_support.h"
+#  include "tests/support/kimp_run.h"
 
 namespace
 {

@@ -2,7 +2,7 @@
 // instead of leaving the other ranks waiting at the sweep's barrier for ever.
 #include <gtest/gtest.h>
 
-#include "tests/e2e/e2e_support.h"
+#include "tests/support/kimp_run.h"
 
 namespace
 {

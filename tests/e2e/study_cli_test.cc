@@ -20,9 +20,8 @@
 #  include <unistd.h>
 #  include <vector>
 
-#  include "pipeline/fem_results.h"
-
-#  include "tests/e2e/e2e_support.h"
+#  include "io/fem_results.h"
+#  include "tests/support/kimp_run.h"
 
 namespace
 {
@@ -195,7 +194,7 @@ TEST(StudyCli, ReducedStudyGivesSofterWallsForTallerHeightsAndReusesTheFem)
   EXPECT_EQ(units_of(out / "study.h5", "/k_table/kelvin_voigt"), "kN/mm/m");
   EXPECT_EQ(units_of(out / "study.h5", "/k_table/jankowski_total"), "kN/mm^1.5");
   EXPECT_EQ(units_of(out / "study.h5", "/fit/H1.00/kelvin_voigt/model_force"), "N/m");
-  EXPECT_EQ(kimp::pipeline::read_fem_cases(out / "study.h5").size(), 2u);
+  EXPECT_EQ(kimp::io::read_fem_cases(out / "study.h5").size(), 2u);
   const std::string report = read_text(out / "report.md");
   EXPECT_NE(report.find("k_table.csv"), std::string::npos) << report;
   const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));

@@ -6,7 +6,6 @@
 #include <random>
 
 #include "fem/penalty_contact.h"
-
 #include "tests/fem/impact_test_support.h"
 
 namespace

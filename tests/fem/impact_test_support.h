@@ -13,7 +13,6 @@
 #include "geometry/scene_geometry.h"
 #include "geometry/scene_ids.h"
 #include "geometry/scene_mesh.h"
-
 #include "tests/fem/test_meshes.h"
 
 namespace kimp::fem::testing

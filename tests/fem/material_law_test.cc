@@ -6,7 +6,6 @@
 #include <random>
 
 #include "fem/material_law.h"
-
 #include "tests/fem/impact_test_support.h"
 
 namespace

@@ -2,8 +2,8 @@
 #include <cmath>
 #include <gtest/gtest.h>
 
-#include "lumped/bilinear_isolator.h"
-#include "lumped/shear_building.h"
+#include "lumped/isolators/bilinear_isolator.h"
+#include "lumped/structure/shear_building.h"
 
 namespace kimp::lumped
 {

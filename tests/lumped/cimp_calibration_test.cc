@@ -3,11 +3,12 @@
 #include <cmath>
 #include <gtest/gtest.h>
 #include <iostream>
-#include <lumped/cimp_calibration.h>
-#include <lumped/hysteretic_law.h>
 #include <map>
 #include <stdexcept>
 #include <string>
+
+#include "lumped/collision/cimp_calibration.h"
+#include "lumped/laws/hysteretic_law.h"
 
 namespace
 {

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <gtest/gtest.h>
 
-#include "lumped/central_difference.h"
-#include "lumped/force_law_factory.h"
-#include "lumped/newmark_integrator.h"
+#include "lumped/integrators/central_difference.h"
+#include "lumped/integrators/newmark_integrator.h"
+#include "lumped/laws/force_law_factory.h"
 
 namespace kimp::lumped
 {

@@ -3,15 +3,16 @@
 #include <cmath>
 #include <gtest/gtest.h>
 #include <limits>
-#include <lumped/bumper_law.h>
-#include <lumped/force_law_factory.h>
-#include <lumped/hertzdamp_law.h>
-#include <lumped/hysteretic_law.h>
-#include <lumped/jankowski_law.h>
-#include <lumped/kelvin_voigt_law.h>
-#include <lumped/modified_kelvin_voigt_law.h>
 #include <stdexcept>
 #include <string>
+
+#include "lumped/laws/bumper_law.h"
+#include "lumped/laws/force_law_factory.h"
+#include "lumped/laws/hertzdamp_law.h"
+#include "lumped/laws/hysteretic_law.h"
+#include "lumped/laws/jankowski_law.h"
+#include "lumped/laws/kelvin_voigt_law.h"
+#include "lumped/laws/modified_kelvin_voigt_law.h"
 
 namespace
 {

@@ -3,12 +3,13 @@
 #include <cmath>
 #include <gtest/gtest.h>
 #include <iostream>
-#include <lumped/bumper_law.h>
-#include <lumped/force_law_factory.h>
 #include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
+
+#include "lumped/laws/bumper_law.h"
+#include "lumped/laws/force_law_factory.h"
 
 namespace
 {

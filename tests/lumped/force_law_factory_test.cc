@@ -2,11 +2,12 @@
 // with a message naming the parameter, its value and the admissible range.
 #include <cmath>
 #include <gtest/gtest.h>
-#include <lumped/force_law_factory.h>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "lumped/laws/force_law_factory.h"
 
 namespace
 {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "lumped/ground_motion.h"
+#include "lumped/excitation/ground_motion.h"
 
 namespace
 {

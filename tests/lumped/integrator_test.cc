@@ -11,10 +11,10 @@
 #include <utility>
 #include <vector>
 
-#include "lumped/central_difference.h"
-#include "lumped/force_law_factory.h"
-#include "lumped/integration_errors.h"
-#include "lumped/newmark_integrator.h"
+#include "lumped/integrators/central_difference.h"
+#include "lumped/integrators/integration_errors.h"
+#include "lumped/integrators/newmark_integrator.h"
+#include "lumped/laws/force_law_factory.h"
 
 namespace kimp::lumped
 {

@@ -5,8 +5,8 @@
 #include <random>
 #include <vector>
 
-#include "lumped/bilinear_isolator.h"
-#include "lumped/linear_isolator.h"
+#include "lumped/isolators/bilinear_isolator.h"
+#include "lumped/isolators/linear_isolator.h"
 
 namespace kimp::lumped
 {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 #include <random>
 
-#include "lumped/modal.h"
+#include "lumped/structure/modal.h"
 
 namespace kimp::lumped
 {

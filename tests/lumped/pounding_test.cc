@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "lumped/central_difference.h"
-#include "lumped/force_law_factory.h"
-#include "lumped/newmark_integrator.h"
+#include "lumped/integrators/central_difference.h"
+#include "lumped/integrators/newmark_integrator.h"
+#include "lumped/laws/force_law_factory.h"
 
 namespace kimp::lumped
 {

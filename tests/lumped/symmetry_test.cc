@@ -3,8 +3,8 @@
 #include <cmath>
 #include <gtest/gtest.h>
 
-#include "lumped/central_difference.h"
-#include "lumped/force_law_factory.h"
+#include "lumped/integrators/central_difference.h"
+#include "lumped/laws/force_law_factory.h"
 
 namespace kimp::lumped
 {

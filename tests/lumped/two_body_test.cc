@@ -4,12 +4,13 @@
 #include <gtest/gtest.h>
 #include <iostream>
 #include <limits>
-#include <lumped/bumper_law.h>
-#include <lumped/force_law_factory.h>
-#include <lumped/hysteretic_law.h>
-#include <lumped/two_body.h>
 #include <string>
 #include <vector>
+
+#include "lumped/collision/two_body.h"
+#include "lumped/laws/bumper_law.h"
+#include "lumped/laws/force_law_factory.h"
+#include "lumped/laws/hysteretic_law.h"
 
 namespace
 {

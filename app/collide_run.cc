@@ -1,0 +1,363 @@
+// `kimp collide`: effective COR table of the impact laws (two-body central difference runs,
+// PHYSICS.md §1) and the C_imp recalibration (thesis eqs. 2.18-2.23).
+#include "app/collide_run.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "base/logging.h"
+#include "io/results_file.h"
+#include "io/units.h"
+
+namespace kimp::app
+{
+  using namespace kimp::base;
+  using namespace kimp::io;
+  namespace
+  {
+    CollideLawScene make_law(const std::string &name,
+                             const std::string &law,
+                             const std::string &k,
+                             const bool         ye = false)
+    {
+      CollideLawScene s;
+      s.name         = name;
+      s.law          = law;
+      s.k            = k;
+      s.hertzdamp_ye = ye;
+      return s;
+    }
+
+    lumped::TwoBodySetup two_body_setup(const CollideScene &scene)
+    {
+      lumped::TwoBodySetup setup;
+      setup.mass_1            = scene.mass_1;
+      setup.mass_2            = scene.mass_2;
+      setup.velocity_1        = scene.velocity;
+      setup.velocity_2        = 0.0;
+      setup.time_step         = scene.time_step;
+      setup.velocity_estimate = scene.velocity_estimate;
+      setup.record_history    = false;
+      return setup;
+    }
+
+    lumped::ForceLawSpec spec_of(const CollideLawScene &law)
+    {
+      ImpactScene impact;
+      static_cast<ImpactLawScene &>(impact) = law;
+      return force_law_spec(impact);
+    }
+
+    bool grid_ok(const std::vector<double> &grid, const double lo, const double hi)
+    {
+      if (grid.empty())
+        return false;
+      for (const double v : grid)
+        if (!(std::isfinite(v) && v > lo && v <= hi))
+          return false;
+      return true;
+    }
+
+    std::string list_text(const std::vector<double> &values, const std::string &unit)
+    {
+      std::string out = "[";
+      for (std::size_t i = 0; i < values.size(); ++i)
+        out += (i ? ", " : "") + format_quantity(values[i], unit);
+      return out + "]";
+    }
+  } // namespace
+
+  std::vector<CollideLawScene> CollideScene::default_laws()
+  {
+    return {make_law("linear", "linear", "2500 kN/mm"),
+            make_law("kelvin_voigt", "kelvin_voigt", "2500 kN/mm"),
+            make_law("modified_kelvin_voigt", "modified_kelvin_voigt", "2500 kN/mm"),
+            make_law("jankowski", "jankowski", "750 kN/mm^1.5"),
+            make_law("hertzdamp", "hertzdamp", "750 kN/mm^1.5"),
+            make_law("hertzdamp_ye", "hertzdamp", "750 kN/mm^1.5", true),
+            make_law("hysteretic", "hysteretic", "750 kN/mm^1.5")};
+  }
+
+  void validate(const CollideScene &scene, ValidationContext &ctx)
+  {
+    ctx.check(scene.mass_1 > 0.0, "mass_1", format_quantity(scene.mass_1, "t"), "must be > 0");
+    ctx.check(scene.mass_2 > 0.0, "mass_2", format_quantity(scene.mass_2, "t"), "must be > 0");
+    ctx.check(scene.velocity > 0.0,
+              "velocity",
+              format_quantity(scene.velocity, "m/s"),
+              "must be > 0");
+    ctx.check(scene.time_step > 0.0,
+              "time_step",
+              format_quantity(scene.time_step, "s"),
+              "must be > 0");
+    ctx.check(grid_ok(scene.cor_grid, 0.0, 1.0),
+              "cor_grid",
+              list_text(scene.cor_grid, ""),
+              "must be non-empty with every value in (0, 1]");
+    ctx.check(!scene.laws.empty(), "laws", "[]", "must list at least one law");
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < scene.laws.size(); ++i)
+    {
+      const CollideLawScene &law   = scene.laws[i];
+      const auto             scope = ctx.section("laws[" + std::to_string(i) + "]");
+      ctx.check(!law.name.empty() && names.insert(law.name).second,
+                "name",
+                "\"" + law.name + "\"",
+                "must be non-empty and unique");
+      ctx.check(law.law != "bumper", "law", law.law, "bumper is not part of the COR table");
+      if (law.law == "bumper")
+        continue;
+      // The same law/k rules as a lumped scene's impact section.
+      LumpedScene probe;
+      static_cast<ImpactLawScene &>(probe.impact) = law;
+      probe.impact.cor                            = 0.5;
+      ValidationContext law_ctx;
+      validate(probe, law_ctx);
+      for (const auto &failure : law_ctx.failures())
+        if (failure.key_path.rfind("impact.", 0) == 0)
+          ctx.fail(failure.key_path.substr(7), failure.value_text, failure.expectation);
+    }
+    {
+      const auto              scope = ctx.section("calibration");
+      const CalibrationScene &c     = scene.calibration;
+      ctx.check(grid_ok(c.cor_grid, 0.0, 1.0) && c.cor_grid.size() >= 2,
+                "cor_grid",
+                list_text(c.cor_grid, ""),
+                "needs >= 2 values in (0, 1]");
+      ctx.check(grid_ok(c.velocity_grid, 0.0, 1e3) && c.velocity_grid.size() >= 2,
+                "velocity_grid",
+                list_text(c.velocity_grid, "m/s"),
+                "needs >= 2 values > 0");
+      ctx.check(grid_ok(c.mass_grid, 0.0, 1e12) && c.mass_grid.size() >= 2,
+                "mass_grid",
+                list_text(c.mass_grid, "t"),
+                "needs >= 2 values > 0");
+      ctx.check(c.other_mass > 0.0,
+                "other_mass",
+                format_quantity(c.other_mass, "t"),
+                "must be > 0");
+      ctx.check(c.stiffness > 0.0,
+                "stiffness",
+                format_quantity(c.stiffness, "kN/mm^1.5"),
+                "must be > 0");
+      ctx.check(c.time_step > 0.0, "time_step", format_quantity(c.time_step, "s"), "must be > 0");
+      ctx.check(c.tolerance > 0.0 && c.tolerance < 0.1,
+                "tolerance",
+                format_quantity(c.tolerance, ""),
+                "must be in (0, 0.1)");
+    }
+  }
+
+  std::vector<CollideRow> collide_cor_table(const CollideScene &scene)
+  {
+    const lumped::TwoBodySetup setup = two_body_setup(scene);
+    std::vector<CollideRow>    rows;
+    for (const CollideLawScene &law : scene.laws)
+    {
+      const lumped::ForceLawSpec spec = spec_of(law);
+      for (const double cor : scene.cor_grid)
+      {
+        CollideRow row;
+        row.name = law.name;
+        try
+        {
+          row.row = lumped::effective_cor_table({spec}, {cor}, setup).at(0);
+        }
+        catch (const std::exception &error)
+        {
+          constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+          row.row              = lumped::CorTableRow{law.law, cor, nan, nan, nan, nan, nan, nan};
+          row.status           = std::string("failed: ") + error.what();
+        }
+        rows.push_back(std::move(row));
+      }
+    }
+    return rows;
+  }
+
+  void run_collide(const LoadedScene<CollideScene> &loaded,
+                   const OutputDir                 &output,
+                   const bool                       calibrate)
+  {
+    const CollideScene           &scene = loaded.scene;
+    const auto                    start = std::chrono::steady_clock::now();
+    const std::vector<CollideRow> rows  = collide_cor_table(scene);
+
+    std::optional<lumped::CalibrationResult> calibration;
+    if (calibrate)
+    {
+      lumped::CalibrationOptions options;
+      options.cor_grid          = scene.calibration.cor_grid;
+      options.velocity_grid     = scene.calibration.velocity_grid;
+      options.mass_grid         = scene.calibration.mass_grid;
+      options.other_mass        = scene.calibration.other_mass;
+      options.stiffness         = scene.calibration.stiffness;
+      options.time_step         = scene.calibration.time_step;
+      options.tolerance         = scene.calibration.tolerance;
+      options.velocity_estimate = scene.velocity_estimate;
+      logger().info("calibrating C_imp over {} points",
+                    options.cor_grid.size() * options.velocity_grid.size() *
+                      options.mass_grid.size());
+      calibration = lumped::calibrate_impact_coefficient(options);
+      logger().info("C_imp = c (1 - COR^2) / (COR^p1 m_eff^p2 v^p3), m_eff in kg, v in m/s:");
+      logger().info("  c  = {:.4g} (thesis {})", calibration->c, ThesisCimp::c);
+      logger().info("  p1 = {:.4f} (thesis {})", calibration->p1, ThesisCimp::p1);
+      logger().info("  p2 = {:.4f} (thesis {})", calibration->p2, ThesisCimp::p2);
+      logger().info("  p3 = {:.4f} (thesis {})", calibration->p3, ThesisCimp::p3);
+      logger().info("  R^2 = {:.5f}; max COR error: thesis law {:.2f} %, refit {:.2f} %",
+                    calibration->r_squared,
+                    100.0 * calibration->max_cor_error_thesis,
+                    100.0 * calibration->max_cor_error_fit);
+    }
+    const double wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    // HDF5: one table group per law.
+    ResultsFile  file(output.file("collide.h5"), loaded.text, loaded.resolved_json);
+    ResultsGroup collide = file.root().group("collide");
+    collide.set_attribute("mass_1", scene.mass_1);
+    collide.set_attribute("mass_2", scene.mass_2);
+    collide.set_attribute("velocity", scene.velocity);
+    collide.set_attribute("time_step", scene.time_step);
+    for (const CollideLawScene &law : scene.laws)
+    {
+      std::vector<TableColumn> columns = {{"nominal_cor", "1", {}},
+                                          {"effective_cor", "1", {}},
+                                          {"relative_error", "1", {}},
+                                          {"peak_force", "N", {}},
+                                          {"contact_duration", "s", {}},
+                                          {"max_penetration", "m", {}},
+                                          {"energy_error", "1", {}}};
+      std::string              status  = "ok";
+      for (const CollideRow &r : rows)
+      {
+        if (r.name != law.name)
+          continue;
+        const lumped::CorTableRow &x        = r.row;
+        const double               values[] = {x.nominal_cor,
+                                               x.effective_cor,
+                                               x.relative_error,
+                                               x.peak_force,
+                                               x.contact_duration,
+                                               x.max_penetration,
+                                               x.energy_error};
+        for (std::size_t c = 0; c < columns.size(); ++c)
+          columns[c].values.push_back(values[c]);
+        if (r.status != "ok")
+          status = "failed: COR " + format_quantity(x.nominal_cor, "") + ": " + r.status;
+      }
+      ResultsGroup g = collide.case_group(law.name);
+      g.set_attribute("law", law.law);
+      g.write_table("cor_table", columns);
+      g.set_status(status);
+    }
+    if (calibration)
+    {
+      ResultsGroup             g       = collide.case_group("calibration");
+      std::vector<TableColumn> columns = {{"cor", "1", {}},
+                                          {"impact_velocity", "m/s", {}},
+                                          {"mass", "kg", {}},
+                                          {"effective_mass", "kg", {}},
+                                          {"a1", "s/m", {}},
+                                          {"a1_thesis", "s/m", {}},
+                                          {"cor_thesis", "1", {}},
+                                          {"cor_fit", "1", {}}};
+      for (const lumped::CalibrationPoint &p : calibration->points)
+      {
+        const double values[] = {p.cor,
+                                 p.impact_velocity,
+                                 p.mass,
+                                 p.effective_mass,
+                                 p.a1,
+                                 p.a1_thesis,
+                                 p.cor_thesis,
+                                 p.cor_fit};
+        for (std::size_t c = 0; c < columns.size(); ++c)
+          columns[c].values.push_back(values[c]);
+      }
+      g.write_table("points", columns);
+      g.write(
+        "fit",
+        std::vector<double>{calibration->c, calibration->p1, calibration->p2, calibration->p3},
+        "1");
+      g.write("thesis",
+              std::vector<double>{ThesisCimp::c, ThesisCimp::p1, ThesisCimp::p2, ThesisCimp::p3},
+              "1");
+      g.write_scalar("r_squared", calibration->r_squared, "1");
+      g.write_scalar("max_cor_error_thesis", calibration->max_cor_error_thesis, "1");
+      g.write_scalar("max_cor_error_fit", calibration->max_cor_error_fit, "1");
+      g.set_status("ok");
+    }
+    file.commit();
+
+    std::vector<std::vector<std::string>> csv;
+    for (const CollideRow &r : rows)
+    {
+      const lumped::CorTableRow &x = r.row;
+      csv.push_back({r.name,
+                     format_quantity(x.nominal_cor, ""),
+                     format_quantity(x.effective_cor, ""),
+                     format_quantity(x.relative_error, ""),
+                     format_quantity(x.peak_force, ""),
+                     format_quantity(x.contact_duration, ""),
+                     format_quantity(x.max_penetration, ""),
+                     format_quantity(x.energy_error, ""),
+                     r.status});
+    }
+    write_csv_atomic(output.file("cor_table.csv"),
+                     {"law",
+                      "nominal_cor",
+                      "effective_cor",
+                      "relative_error",
+                      "peak_force_N",
+                      "contact_duration_s",
+                      "max_penetration_m",
+                      "energy_error",
+                      "status"},
+                     csv);
+
+    nlohmann::json summary;
+    summary["command"]   = "collide";
+    summary["scene"]     = loaded.file_name;
+    summary["wall_time"] = wall_time;
+    summary["setup"]     = {{"mass_1", scene.mass_1},
+                            {"mass_2", scene.mass_2},
+                            {"velocity", scene.velocity},
+                            {"time_step", scene.time_step}};
+    summary["cor_table"] = nlohmann::json::array();
+    for (const CollideRow &r : rows)
+      summary["cor_table"].push_back({{"law", r.name},
+                                      {"nominal_cor", r.row.nominal_cor},
+                                      {"effective_cor", r.row.effective_cor},
+                                      {"relative_error", r.row.relative_error},
+                                      {"peak_force", r.row.peak_force},
+                                      {"status", r.status}});
+    if (calibration)
+      summary["calibration"] = {{"fit",
+                                 {{"c", calibration->c},
+                                  {"p1", calibration->p1},
+                                  {"p2", calibration->p2},
+                                  {"p3", calibration->p3}}},
+                                {"thesis",
+                                 {{"c", ThesisCimp::c},
+                                  {"p1", ThesisCimp::p1},
+                                  {"p2", ThesisCimp::p2},
+                                  {"p3", ThesisCimp::p3}}},
+                                {"r_squared", calibration->r_squared},
+                                {"max_cor_error_thesis", calibration->max_cor_error_thesis},
+                                {"max_cor_error_fit", calibration->max_cor_error_fit},
+                                {"n_points", calibration->points.size()}};
+    write_json_atomic(output.file("summary.json"), summary);
+
+    for (const CollideRow &r : rows)
+      if (r.status != "ok")
+        throw std::runtime_error("collide: law " + r.name + " at COR " +
+                                 format_quantity(r.row.nominal_cor, "") + " " + r.status +
+                                 " (the table is written to " + output.path().string() + ")");
+  }
+
+} // namespace kimp::app

@@ -1,0 +1,92 @@
+// Helpers shared by `kimp mesh`, `kimp fem` and `kimp study`; see fem_commands.h.
+#include "app/fem/fem_common.h"
+
+#include <fmt/format.h>
+#include <sstream>
+
+namespace kimp::app
+{
+  using namespace kimp::io;
+  std::string error_message(const std::exception &error)
+  {
+    const std::string text   = error.what();
+    const std::string marker = "Additional information:";
+    const std::size_t begin  = text.find(marker);
+    if (begin == std::string::npos)
+      return text;
+    // deal.II frames its message with a line of dashes and may append a stack trace.
+    std::string       rest = text.substr(begin + marker.size());
+    const std::size_t end  = rest.find("\n----");
+    if (end != std::string::npos)
+      rest.resize(end);
+    const std::size_t trace = rest.find("Stacktrace:");
+    if (trace != std::string::npos)
+      rest.resize(trace);
+    std::istringstream words(rest);
+    std::string        word, message;
+    while (words >> word)
+      message += (message.empty() ? "" : " ") + word;
+    return message;
+  }
+
+  FemCase to_fem_case(const std::string       &name,
+                      double                   height,
+                      const FemScene          &scene,
+                      const fem::ImpactResult &result)
+  {
+    const fem::ImpactHistory &h = result.history;
+    const fem::ImpactSummary &s = result.summary;
+    FemCase                   c;
+    c.name                   = name;
+    c.wall_height            = height;
+    c.slab_mass              = slab_mass(scene);
+    c.impact_velocity        = scene.slab.velocity;
+    c.time                   = h.time;
+    c.contact_force          = h.contact_force;
+    c.smoothed_contact_force = h.smoothed_contact_force;
+    c.indentation            = h.indentation;
+    c.slab_displacement      = h.slab_displacement;
+    c.slab_velocity          = h.slab_velocity;
+    c.wall_displacement      = h.wall_displacement;
+    c.summary                = {{"peak_force", s.peak_force},
+                                {"peak_force_raw", s.peak_force_raw},
+                                {"contact_start", s.contact_start},
+                                {"contact_duration", s.contact_duration},
+                                {"impulse", s.impulse},
+                                {"rebound_velocity", s.rebound_velocity},
+                                {"apparent_cor", s.apparent_cor},
+                                {"energy_error", s.energy_error},
+                                {"smoothing_window", s.smoothing_window},
+                                {"max_penetration", s.max_penetration},
+                                {"mean_penetration", s.mean_penetration},
+                                {"initial_gap", s.initial_gap},
+                                {"penalty_stiffness", s.penalty_stiffness},
+                                {"n_dofs", static_cast<double>(s.n_dofs)},
+                                {"n_cells", static_cast<double>(s.n_cells)},
+                                {"n_steps", static_cast<double>(s.n_steps)},
+                                {"n_newton", static_cast<double>(s.n_newton)},
+                                {"n_step_halvings", static_cast<double>(s.n_step_halvings)},
+                                {"n_linear_solves", static_cast<double>(s.n_linear_solves)},
+                                {"linear_solver_seconds", s.linear_solver_seconds},
+                                {"linear_setup_seconds", s.linear_setup_seconds},
+                                {"n_ranks", static_cast<double>(s.n_ranks)},
+                                {"dt", s.dt},
+                                {"dt_stable", s.dt_stable},
+                                {"wall_seconds", s.wall_seconds}};
+    c.summary_units          = {{"n_newton", "1"},
+                                {"n_step_halvings", "1"},
+                                {"n_linear_solves", "1"},
+                                {"linear_solver_seconds", "s"},
+                                {"linear_setup_seconds", "s"},
+                                {"n_ranks", "1"}};
+    c.labels                 = {{"integrator",
+                 scene.dynamics.integrator == fem::ImpactParameters::Integrator::implicit_newmark ?
+                                   "implicit" :
+                                   "explicit"},
+                                {"slab", scene.slab.rigid ? "rigid" : "elastic"},
+                                {"mesh_level", std::to_string(scene.mesh.level)},
+                                {"penalty_factor", fmt::format("{}", scene.contact.penalty_factor)},
+                                {"stopped_on", s.separated ? "separation" : "end_time"}};
+    return c;
+  }
+} // namespace kimp::app

@@ -1,0 +1,268 @@
+// `kimp fem SCENE.yaml -o DIR`: the slab-wall impact of PHYSICS.md §4 for every wall height
+// (fem::run_impact, MPI collective), written to fem.h5, summary.json and fem_histories.csv.
+#include "app/fem/fem_run.h"
+
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <mpi.h>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <ostream>
+#include <streambuf>
+
+#include "app/fem/fem_common.h"
+#include "app/fem/fem_scene.h"
+#include "base/logging.h"
+#include "base/version.h"
+#include "fem/impact.h"
+#include "geometry/scene_mesh.h"
+#include "io/fem_results.h"
+#include "io/results_file.h"
+#include "io/summary.h"
+
+namespace kimp::app
+{
+  using namespace kimp::base;
+  using namespace kimp::io;
+  namespace
+  {
+    /// A failed case: names the case; the command exits non-zero without final result files.
+    class FemCaseError : public std::runtime_error
+    {
+    public:
+      using std::runtime_error::runtime_error;
+    };
+
+    /**
+     * The log stream handed to fem::run_impact(): each line goes to the kimp logger prefixed by
+     * the case name ("step ..." lines at debug level, the others at info).
+     */
+    class ImpactLog : public std::streambuf
+    {
+    public:
+      explicit ImpactLog(std::string case_name)
+        : case_name_(std::move(case_name))
+      {
+      }
+
+    protected:
+      int_type overflow(int_type c) override
+      {
+        if (traits_type::eq_int_type(c, traits_type::eof()))
+          return traits_type::not_eof(c);
+        if (traits_type::to_char_type(c) == '\n')
+          line_done();
+        else
+          line_ += traits_type::to_char_type(c);
+        return c;
+      }
+
+    private:
+      void line_done()
+      {
+        const std::string line = std::move(line_);
+        line_.clear();
+        if (line.rfind("step ", 0) == 0)
+          logger().debug("{}: {}", case_name_, line);
+        else
+          logger().info("{}: {}", case_name_, line);
+      }
+
+      std::string case_name_;
+      std::string line_;
+    };
+
+    /// Rank 0 runs `work`; every rank then learns whether it succeeded and throws if not, so no
+    /// rank waits forever for a failed one.
+    template <class Work>
+    void on_rank_zero(int rank, const std::string &what, Work work)
+    {
+      int         ok = 1;
+      std::string message;
+      if (rank == 0)
+      {
+        try
+        {
+          work();
+        }
+        catch (const std::exception &error)
+        {
+          ok      = 0;
+          message = error_message(error);
+        }
+      }
+      MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
+      if (!ok)
+        throw FemCaseError(rank == 0 ? what + ": " + message : what + " failed on rank 0");
+    }
+
+    /// Diagnostics beyond the FemCase contract: energies and contact state (STYLE.md §6.18).
+    void write_diagnostics(ResultsGroup &case_group, const fem::ImpactHistory &h)
+    {
+      std::vector<std::int64_t> steps(h.time.size());
+      for (std::size_t i = 0; i < steps.size(); ++i)
+        steps[i] = static_cast<std::int64_t>(i);
+      const auto series =
+        [&](ResultsGroup &g, const char *name, const std::vector<double> &values, const char *units)
+      {
+        if (!values.empty())
+          g.write_time_series(name, steps, h.time, values, 1, units);
+      };
+      ResultsGroup energy = case_group.group("energy");
+      series(energy, "kinetic", h.kinetic, "J/m");
+      series(energy, "strain", h.strain, "J/m");
+      series(energy, "penalty", h.penalty, "J/m");
+      series(energy, "contact_dissipation", h.contact_dissipation, "J/m");
+      series(energy, "relative_error", h.energy_error, "1");
+      ResultsGroup contact = case_group.group("contact");
+      series(contact, "n_active", h.n_active, "1");
+      series(contact, "max_penetration", h.max_penetration, "m");
+    }
+
+    nlohmann::ordered_json summary_json(const FemCase &c, const std::string &mesh_file)
+    {
+      nlohmann::ordered_json entry;
+      entry["wall_height"]     = c.wall_height;
+      entry["slab_mass"]       = c.slab_mass;
+      entry["impact_velocity"] = c.impact_velocity;
+      for (const auto &[key, value] : c.summary)
+        entry[key] = value;
+      for (const auto &[key, value] : c.labels)
+        entry[key] = value;
+      entry["mesh_file"] = mesh_file;
+      return entry;
+    }
+
+  } // namespace
+
+  void run_fem(const LoadedScene<FemScene> &loaded, const OutputDir &output)
+  {
+    int mpi_initialized = 0;
+    MPI_Initialized(&mpi_initialized);
+    if (!mpi_initialized)
+      throw std::logic_error("kimp fem: MPI is not initialised (kimp::fem::MpiSession in main)");
+    int rank = 0, n_ranks = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &n_ranks);
+
+    const auto                  start = std::chrono::steady_clock::now();
+    const FemScene             &scene = loaded.scene;
+    std::optional<ResultsFile>  results;
+    std::optional<ResultsGroup> fem_root;
+    if (rank == 0)
+    {
+      results.emplace(output.file("fem.h5"), loaded.text, loaded.resolved_json);
+      fem_root.emplace(results->root().group("fem"));
+    }
+
+    nlohmann::ordered_json                cases = nlohmann::ordered_json::object();
+    std::vector<std::vector<std::string>> rows;
+    for (const double height : scene.wall_heights)
+    {
+      const std::string           name     = fem_case_name(height);
+      const std::string           mesh_rel = "mesh/" + name + ".msh";
+      const std::filesystem::path mesh     = output.path() / mesh_rel;
+      const std::filesystem::path vtu_dir  = output.path() / "vtu" / name;
+      on_rank_zero(rank,
+                   name + ": meshing",
+                   [&]()
+                   {
+                     std::ostringstream statistics;
+                     statistics << geometry::build_scene_mesh(scene_geometry(scene, height),
+                                                              output.file(mesh_rel));
+                     logger().info("{}: mesh {} ({})", name, mesh.string(), statistics.str());
+                     if (scene.output.vtu_interval > 0)
+                       std::filesystem::create_directories(vtu_dir);
+                   });
+
+      fem::ImpactResult result;
+      try
+      {
+        ImpactLog             log_buffer(name);
+        std::ostream          log(&log_buffer);
+        Progress              progress(0, scene.dynamics.end_time);
+        fem::ImpactParameters parameters = impact_parameters(scene, height, mesh, vtu_dir);
+        parameters.progress              = [&progress](double t, double) { progress.update(0, t); };
+        result                           = fem::run_impact(parameters, MPI_COMM_WORLD, &log);
+      }
+      catch (const std::exception &error)
+      {
+        throw FemCaseError(fmt::format("{}: {}", name, error_message(error)));
+      }
+      if (rank != 0)
+        continue;
+
+      const FemCase fem_case = to_fem_case(name, height, scene, result);
+      write_fem_case(*fem_root, fem_case);
+      ResultsGroup case_group = fem_root->group(name);
+      write_diagnostics(case_group, result.history);
+      if (scene.output.vtu_interval > 0)
+        case_group.set_attribute("pvd", "vtu/" + name + "/impact.pvd");
+      cases[name] = summary_json(fem_case, mesh_rel);
+      for (std::size_t i = 0; i < fem_case.time.size(); ++i)
+        rows.push_back({name,
+                        fmt::format("{}", fem_case.time[i]),
+                        fmt::format("{}", fem_case.contact_force[i]),
+                        fmt::format("{}", fem_case.smoothed_contact_force[i]),
+                        fmt::format("{}", fem_case.indentation[i]),
+                        fmt::format("{}", fem_case.slab_velocity[i]),
+                        fmt::format("{}", fem_case.wall_displacement[i])});
+      logger().info("{}: peak force {:.4g} kN/m (raw {:.4g}), contact {:.4g} ms, impulse "
+                    "{:.4g} N s/m, COR {:.3f}, {} DoFs, {} steps of {:.3g} s, {:.2f} s",
+                    name,
+                    result.summary.peak_force / 1e3,
+                    result.summary.peak_force_raw / 1e3,
+                    result.summary.contact_duration * 1e3,
+                    result.summary.impulse,
+                    result.summary.apparent_cor,
+                    result.summary.n_dofs,
+                    result.summary.n_steps,
+                    result.summary.dt,
+                    result.summary.wall_seconds);
+    }
+    if (rank != 0)
+      return;
+
+    results->commit();
+    write_csv_atomic(output.file("fem_histories.csv"),
+                     {"case",
+                      "time_s",
+                      "contact_force_N_per_m",
+                      "smoothed_contact_force_N_per_m",
+                      "indentation_m",
+                      "slab_velocity_m_per_s",
+                      "wall_displacement_m"},
+                     rows);
+    nlohmann::ordered_json summary;
+    summary["command"] = "fem";
+    summary["kimp"]    = version_line();
+    summary["n_ranks"] = n_ranks;
+    summary["wall_seconds"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    summary["units"] = {{"wall_height", "m"},
+                        {"slab_mass", "kg/m"},
+                        {"impact_velocity", "m/s"},
+                        {"peak_force", "N/m"},
+                        {"peak_force_raw", "N/m"},
+                        {"impulse", "N*s/m"},
+                        {"contact_start", "s"},
+                        {"contact_duration", "s"},
+                        {"rebound_velocity", "m/s"},
+                        {"max_penetration", "m"},
+                        {"mean_penetration", "m"},
+                        {"initial_gap", "m"},
+                        {"penalty_stiffness", "N/m/m"},
+                        {"smoothing_window", "s"},
+                        {"dt", "s"},
+                        {"dt_stable", "s"},
+                        {"wall_seconds", "s"}};
+    summary["cases"] = cases;
+    write_text_atomic(output.file("summary.json"), summary.dump(2) + "\n");
+    logger().info("wrote {}, {}, {}",
+                  results->final_path().string(),
+                  output.file("summary.json").string(),
+                  output.file("fem_histories.csv").string());
+  }
+
+} // namespace kimp::app

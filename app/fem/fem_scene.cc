@@ -1,0 +1,328 @@
+// FEM scene validation and its translation to geometry/ and fem/ parameters; see fem_scene.h.
+#include "app/fem/fem_scene.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <set>
+#include <stdexcept>
+
+#include "geometry/scene_ids.h"
+#include "io/units.h"
+
+namespace kimp::app
+{
+  using namespace kimp::io;
+  namespace
+  {
+    std::string indexed(std::string_view key, std::size_t index)
+    {
+      return fmt::format("{}[{}]", key, index);
+    }
+
+    void validate_material(const FemMaterial &m, ValidationContext &ctx)
+    {
+      ctx.check(m.youngs_modulus > 0, "E", format_quantity(m.youngs_modulus, "GPa"), "must be > 0");
+      ctx.check(m.poisson_ratio >= 0 && m.poisson_ratio < 0.5,
+                "nu",
+                format_quantity(m.poisson_ratio, ""),
+                "must be in [0, 0.5)");
+      ctx.check(m.density > 0, "rho", format_quantity(m.density, "kg/m^3"), "must be > 0");
+    }
+
+    /// A text that must be "auto" or a time > 0 (fem/ reads 0 as automatic: not accepted).
+    void validate_auto_time(const std::string &text, std::string_view key, ValidationContext &ctx)
+    {
+      const std::string expected = "must be 'auto' or a time > 0 like '2e-6 s'";
+      try
+      {
+        const std::optional<double> value = parse_auto_time(text);
+        if (value)
+          ctx.check(*value > 0, std::string(key), "'" + text + "'", expected);
+      }
+      catch (const UnitError &error)
+      {
+        ctx.fail(std::string(key), "'" + text + "'", expected + " (" + error.what() + ")");
+      }
+    }
+
+    /// Geometry rules that involve the wall height of case `i`.
+    void validate_height(const FemScene &s, std::size_t i, ValidationContext &ctx)
+    {
+      const double      height     = s.wall_heights[i];
+      const std::string height_key = indexed("wall_heights", i);
+      const std::string height_text =
+        fmt::format("{} = {}", height_key, format_quantity(height, "m"));
+      if (!ctx.check(height > 0, height_key, format_quantity(height, "m"), "must be > 0"))
+        return;
+
+      const FemGeometry &g = s.geometry;
+      if (g.backfill_height)
+        ctx.check(*g.backfill_height > 0 && *g.backfill_height <= height,
+                  "geometry.backfill_height",
+                  format_quantity(*g.backfill_height, "m"),
+                  "must be in (0, " + height_text + "]");
+      if (g.slab_top)
+      {
+        ctx.check(*g.slab_top <= height,
+                  "geometry.slab_top",
+                  format_quantity(*g.slab_top, "m"),
+                  "must be <= " + height_text + " (the slab must face the wall)");
+        ctx.check(*g.slab_top - g.slab_thickness >= 0,
+                  "geometry.slab_top",
+                  format_quantity(*g.slab_top, "m"),
+                  "must be >= slab_thickness = " + format_quantity(g.slab_thickness, "m") +
+                    " (the slab must be above the ground)");
+      }
+      else
+        ctx.check(g.slab_thickness <= height,
+                  "geometry.slab_thickness",
+                  format_quantity(g.slab_thickness, "m"),
+                  "must be <= " + height_text +
+                    " (the slab top is flush with the wall top, its bottom above the ground)");
+    }
+  } // namespace
+
+  std::optional<double> parse_auto_time(const std::string &text)
+  {
+    if (text == "auto")
+      return std::nullopt;
+    return parse_quantity_as(text, "s");
+  }
+
+  std::string fem_case_name(double wall_height)
+  {
+    std::string name = fmt::format("{:.2f}", wall_height);
+    if (std::abs(std::stod(name) - wall_height) > 1e-12 * std::abs(wall_height))
+      name = fmt::format("{}", wall_height);
+    return "H" + name;
+  }
+
+  void validate(const FemScene &s, ValidationContext &ctx)
+  {
+    ctx.check(!s.wall_heights.empty(), "wall_heights", "[]", "must list at least one height");
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < s.wall_heights.size(); ++i)
+    {
+      const std::string name = fem_case_name(s.wall_heights[i]);
+      ctx.check(names.insert(name).second,
+                indexed("wall_heights", i),
+                format_quantity(s.wall_heights[i], "m"),
+                "must differ from the other heights (case " + name + " appears twice)");
+    }
+
+    {
+      const auto         scope = ctx.section("geometry");
+      const FemGeometry &g     = s.geometry;
+      ctx.check(g.wall_thickness > 0,
+                "wall_thickness",
+                format_quantity(g.wall_thickness, "m"),
+                "must be > 0");
+      if (g.with_backfill)
+        ctx.check(g.backfill_width > 0,
+                  "backfill_width",
+                  format_quantity(g.backfill_width, "m"),
+                  "must be > 0");
+      ctx.check(g.slab_length > 0,
+                "slab_length",
+                format_quantity(g.slab_length, "m"),
+                "must be > 0");
+      ctx.check(g.slab_thickness > 0,
+                "slab_thickness",
+                format_quantity(g.slab_thickness, "m"),
+                "must be > 0");
+      ctx.check(g.gap > 0,
+                "gap",
+                format_quantity(g.gap, "mm"),
+                "must be > 0 (the slab must not touch or overlap the wall at t = 0)");
+    }
+    {
+      const auto     scope = ctx.section("mesh");
+      const FemMesh &m     = s.mesh;
+      if (ctx.check(m.h_contact > 0,
+                    "h_contact",
+                    format_quantity(m.h_contact, "cm"),
+                    "must be > 0"))
+      {
+        ctx.check(m.h_max >= m.h_contact,
+                  "h_max",
+                  format_quantity(m.h_max, "cm"),
+                  "must be >= h_contact = " + format_quantity(m.h_contact, "cm"));
+        ctx.check(m.h_contact <= s.geometry.wall_thickness,
+                  "h_contact",
+                  format_quantity(m.h_contact, "cm"),
+                  "must be <= geometry.wall_thickness = " +
+                    format_quantity(s.geometry.wall_thickness, "cm"));
+        ctx.check(m.h_contact <= s.geometry.slab_thickness,
+                  "h_contact",
+                  format_quantity(m.h_contact, "cm"),
+                  "must be <= geometry.slab_thickness = " +
+                    format_quantity(s.geometry.slab_thickness, "cm"));
+      }
+      ctx.check(m.grading >= 1, "grading", format_quantity(m.grading, ""), "must be >= 1");
+    }
+    {
+      const auto scope = ctx.section("materials");
+      {
+        const auto concrete = ctx.section("concrete");
+        validate_material(s.materials.concrete, ctx);
+      }
+      const auto soil = ctx.section("soil");
+      validate_material(s.materials.soil, ctx);
+    }
+    {
+      const auto     scope = ctx.section("slab");
+      const FemSlab &slab  = s.slab;
+      if (slab.mass)
+      {
+        ctx.check(*slab.mass > 0, "mass", format_quantity(*slab.mass, "kg/m"), "must be > 0");
+        ctx.check(slab.rigid,
+                  "mass",
+                  format_quantity(*slab.mass, "kg/m"),
+                  "is only for a rigid slab (slab.rigid: true); an elastic slab's mass is "
+                  "rho x length x thickness");
+      }
+      ctx.check(slab.velocity > 0,
+                "velocity",
+                format_quantity(slab.velocity, "m/s"),
+                "must be > 0 (toward the wall)");
+    }
+    {
+      const auto        scope = ctx.section("contact");
+      const FemContact &c     = s.contact;
+      ctx.check(c.penalty_factor > 0,
+                "penalty_factor",
+                format_quantity(c.penalty_factor, ""),
+                "must be > 0");
+      ctx.check(c.contact_damping_ratio >= 0 && c.contact_damping_ratio <= 1,
+                "contact_damping_ratio",
+                format_quantity(c.contact_damping_ratio, ""),
+                "must be in [0, 1]");
+      validate_auto_time(c.smoothing_window, "smoothing_window", ctx);
+    }
+    {
+      const auto         scope = ctx.section("dynamics");
+      const FemDynamics &d     = s.dynamics;
+      validate_auto_time(d.dt, "dt", ctx);
+      ctx.check(d.cfl_safety > 0 && d.cfl_safety <= 1,
+                "cfl_safety",
+                format_quantity(d.cfl_safety, ""),
+                "must be in (0, 1]");
+      ctx.check(d.implicit_dt_factor > 0,
+                "implicit_dt_factor",
+                format_quantity(d.implicit_dt_factor, ""),
+                "must be > 0");
+      ctx.check(d.end_time > 0, "end_time", format_quantity(d.end_time, "ms"), "must be > 0");
+      ctx.check(d.separation_hold_time >= 0,
+                "separation_hold_time",
+                format_quantity(d.separation_hold_time, "ms"),
+                "must be >= 0");
+      ctx.check(d.output_interval >= 0,
+                "output_interval",
+                format_quantity(d.output_interval, "ms"),
+                "must be >= 0");
+    }
+    {
+      const auto scope = ctx.section("output");
+      ctx.check(s.output.vtu_interval >= 0,
+                "vtu_interval",
+                format_quantity(s.output.vtu_interval, "ms"),
+                "must be >= 0");
+    }
+
+    const std::size_t n_failures = ctx.failures().size();
+    for (std::size_t i = 0; i < s.wall_heights.size(); ++i)
+      validate_height(s, i, ctx);
+    if (ctx.failures().size() != n_failures)
+      return;
+    // The geometry's own rules are a superset of the above; any left are reported per case.
+    for (std::size_t i = 0; i < s.wall_heights.size(); ++i)
+    {
+      try
+      {
+        scene_geometry(s, s.wall_heights[i]).validate();
+      }
+      catch (const std::invalid_argument &error)
+      {
+        ctx.fail(indexed("wall_heights", i),
+                 format_quantity(s.wall_heights[i], "m"),
+                 std::string("gives an invalid scene: ") + error.what());
+      }
+    }
+  }
+
+  double slab_mass(const FemScene &scene)
+  {
+    if (scene.slab.rigid && scene.slab.mass)
+      return *scene.slab.mass;
+    return scene.materials.concrete.density * scene.geometry.slab_length *
+           scene.geometry.slab_thickness;
+  }
+
+  geometry::SceneGeometry scene_geometry(const FemScene &scene, double wall_height)
+  {
+    const FemGeometry      &g = scene.geometry;
+    geometry::SceneGeometry result;
+    result.wall_height     = wall_height;
+    result.wall_thickness  = g.wall_thickness;
+    result.with_backfill   = g.with_backfill;
+    result.backfill_width  = g.backfill_width;
+    result.backfill_height = g.backfill_height;
+    result.slab_length     = g.slab_length;
+    result.slab_thickness  = g.slab_thickness;
+    result.slab_top        = g.slab_top;
+    result.gap             = g.gap;
+    result.mesh_slab       = !scene.slab.rigid;
+    result.h_contact       = scene.mesh.h_contact;
+    result.h_max           = scene.mesh.h_max;
+    result.grading         = scene.mesh.grading;
+    return geometry::refined(result, scene.mesh.level);
+  }
+
+  fem::ImpactParameters impact_parameters(const FemScene              &scene,
+                                          double                       wall_height,
+                                          const std::filesystem::path &mesh_file,
+                                          const std::filesystem::path &vtu_dir)
+  {
+    const auto to_material = [](const FemMaterial &m) {
+      return fem::Material{m.youngs_modulus, m.poisson_ratio, m.density};
+    };
+    const geometry::SceneGeometry g = scene_geometry(scene, wall_height);
+
+    fem::ImpactParameters p;
+    p.mesh_file                          = mesh_file;
+    p.materials[geometry::wall_material] = to_material(scene.materials.concrete);
+    if (!scene.slab.rigid)
+      p.materials[geometry::slab_material] = to_material(scene.materials.concrete);
+    if (scene.geometry.with_backfill)
+      p.materials[geometry::soil_material] = to_material(scene.materials.soil);
+
+    p.rigid_slab       = scene.slab.rigid;
+    p.slab_mass        = scene.slab.rigid ? slab_mass(scene) : 0.0;
+    p.slab_face_y0     = g.slab_bottom();
+    p.slab_face_y1     = g.resolved_slab_top();
+    p.slab_front_x     = g.slab_front_x();
+    p.initial_velocity = scene.slab.velocity;
+
+    p.integrator            = scene.dynamics.integrator;
+    p.penalty_factor        = scene.contact.penalty_factor;
+    p.contact_damping_ratio = scene.contact.contact_damping_ratio;
+    p.smoothing_window      = parse_auto_time(scene.contact.smoothing_window).value_or(0.0);
+
+    p.dt                             = parse_auto_time(scene.dynamics.dt).value_or(0.0);
+    p.cfl_safety                     = scene.dynamics.cfl_safety;
+    p.implicit_dt_factor             = scene.dynamics.implicit_dt_factor;
+    p.implicit_solver                = scene.dynamics.implicit_solver;
+    p.implicit_max_halvings          = scene.dynamics.implicit_max_halvings;
+    p.implicit_newton_max_iterations = scene.dynamics.implicit_newton_max_iterations;
+    p.end_time                       = scene.dynamics.end_time;
+    p.separation_hold_time           = scene.dynamics.separation_hold_time;
+    p.output_interval                = scene.dynamics.output_interval;
+    p.log_interval                   = scene.dynamics.log_interval;
+    if (scene.output.vtu_interval > 0 && !vtu_dir.empty())
+    {
+      p.vtu_interval = scene.output.vtu_interval;
+      p.vtu_dir      = vtu_dir;
+    }
+    return p;
+  }
+} // namespace kimp::app

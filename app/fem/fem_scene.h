@@ -1,0 +1,295 @@
+// Scene of `kimp mesh` and `kimp fem`: the plane-strain slab-wall-backfill impact of PHYSICS.md §4
+// as a plain struct with SI members (defaults = the §4 default scene), one case per wall height.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fem/impact.h"
+#include "geometry/scene_geometry.h"
+#include "io/scene_io.h"
+
+namespace kimp::app
+{
+  /** Linear elastic isotropic material (plane strain). */
+  struct FemMaterial
+  {
+    double youngs_modulus = 0; ///< E, Pa (> 0)
+    double poisson_ratio  = 0; ///< nu (in [0, 0.5))
+    double density        = 0; ///< rho, kg/m^3 (> 0)
+  };
+
+  /** Concrete (slab and wall) and soil (backfill); PHYSICS.md §4 defaults. */
+  struct FemMaterials
+  {
+    FemMaterial concrete{30e9, 0.2, 2400};
+    FemMaterial soil{50e6, 0.3, 1900};
+  };
+
+  /**
+   * Scene dimensions other than the wall height (which is the case parameter `wall_heights`).
+   * Defaults from geometry::SceneGeometry.
+   */
+  struct FemGeometry
+  {
+    double                wall_thickness = geometry::SceneGeometry().wall_thickness; ///< m
+    bool                  with_backfill  = geometry::SceneGeometry().with_backfill;
+    double                backfill_width = geometry::SceneGeometry().backfill_width; ///< m
+    std::optional<double> backfill_height; ///< m; default: the wall height of the case
+    double                slab_length    = geometry::SceneGeometry().slab_length;    ///< m
+    double                slab_thickness = geometry::SceneGeometry().slab_thickness; ///< m
+    std::optional<double> slab_top; ///< y of the slab top, m; default: the wall top
+    double                gap = geometry::SceneGeometry().gap; ///< initial clear distance, m
+  };
+
+  /** Element sizes (defaults from geometry::SceneGeometry) and the refinement level. */
+  struct FemMesh
+  {
+    double h_contact = geometry::SceneGeometry().h_contact; ///< m, element size at the contact
+    double h_max     = geometry::SceneGeometry().h_max;     ///< m, largest element size
+    double grading   = geometry::SceneGeometry().grading;   ///< largest neighbour size ratio
+    int    level     = 0; ///< every size divided by 2^level (geometry::refined)
+  };
+
+  /** The striking slab. */
+  struct FemSlab
+  {
+    bool rigid = false; ///< true: one translational DoF; false: meshed elastic concrete slab
+    /// Rigid slab only: kg per metre of wall; default rho_concrete * slab_length * slab_thickness.
+    std::optional<double> mass;
+    double                velocity = fem::ImpactParameters().initial_velocity; ///< m/s, +x
+  };
+
+  /** Penalty contact (see fem::ImpactParameters for the scalings). */
+  struct FemContact
+  {
+    double penalty_factor        = fem::ImpactParameters().penalty_factor;        ///< x E/h_contact
+    double contact_damping_ratio = fem::ImpactParameters().contact_damping_ratio; ///< in [0, 1]
+    /// Moving-average width of the reported force: "auto" (p-wave transit time across the
+    /// contact) or a time with unit, e.g. "0.05 ms".
+    std::string smoothing_window = "auto";
+  };
+
+  /** Time integration. */
+  struct FemDynamics
+  {
+    fem::ImpactParameters::Integrator integrator = fem::ImpactParameters().integrator;
+    /// "auto" (cfl_safety x stable limit; implicit: implicit_dt_factor x limit) or a time.
+    std::string dt                 = "auto";
+    double      cfl_safety         = fem::ImpactParameters().cfl_safety;         ///< (0, 1]
+    double      implicit_dt_factor = fem::ImpactParameters().implicit_dt_factor; ///< > 0
+    fem::ImpactParameters::ImplicitSolver implicit_solver = fem::ImpactParameters().implicit_solver;
+    unsigned int implicit_max_halvings = fem::ImpactParameters().implicit_max_halvings;
+    unsigned int implicit_newton_max_iterations =
+      fem::ImpactParameters().implicit_newton_max_iterations;
+    double       end_time             = fem::ImpactParameters().end_time;             ///< s
+    double       separation_hold_time = fem::ImpactParameters().separation_hold_time; ///< s
+    double       output_interval      = fem::ImpactParameters().output_interval;      ///< s
+    unsigned int log_interval         = 100; ///< history samples between log lines (0: none)
+  };
+
+  /** Field output. */
+  struct FemOutput
+  {
+    double vtu_interval = 0; ///< s between VTU snapshots under DIR/vtu/<case>/ (0: none)
+  };
+
+  /**
+   * The FEM scene: one impact per entry of wall_heights (case name fem_case_name(H), "H1.25").
+   * Load with read_scene<FemScene>(file), which validates.
+   */
+  struct FemScene
+  {
+    std::vector<double> wall_heights{geometry::SceneGeometry().wall_height}; ///< m
+    FemGeometry         geometry;
+    FemMesh             mesh;
+    FemMaterials        materials;
+    FemSlab             slab;
+    FemContact          contact;
+    FemDynamics         dynamics;
+    FemOutput           output;
+  };
+
+  template <class Io>
+  void visit(Io &io, FemMaterial &s)
+  {
+    io.quantity("E", s.youngs_modulus, "GPa", "Young's modulus (> 0)");
+    io.quantity("nu", s.poisson_ratio, "", "Poisson's ratio (in [0, 0.5))");
+    io.quantity("rho", s.density, "kg/m^3", "density (> 0)");
+  }
+
+  template <class Io>
+  void visit(Io &io, FemMaterials &s)
+  {
+    io.section("concrete", s.concrete, "slab and wall, linear elastic");
+    io.section("soil", s.soil, "backfill, linear elastic");
+  }
+
+  template <class Io>
+  void visit(Io &io, FemGeometry &s)
+  {
+    io.quantity("wall_thickness", s.wall_thickness, "m", "moat wall thickness (> 0)");
+    io.flag("with_backfill", s.with_backfill, "soil block behind the wall, bonded to it");
+    io.quantity("backfill_width", s.backfill_width, "m", "backfill width behind the wall (> 0)");
+    io.quantity("backfill_height",
+                s.backfill_height,
+                "m",
+                "backfill height (null: the wall height; must be <= the wall height)");
+    io.quantity("slab_length", s.slab_length, "m", "slab length (> 0)");
+    io.quantity("slab_thickness", s.slab_thickness, "m", "slab thickness (> 0)");
+    io.quantity("slab_top",
+                s.slab_top,
+                "m",
+                "height of the slab top above the ground (null: the wall top)");
+    io.quantity("gap", s.gap, "mm", "initial clear distance between slab and wall (> 0)");
+  }
+
+  template <class Io>
+  void visit(Io &io, FemMesh &s)
+  {
+    io.quantity("h_contact", s.h_contact, "cm", "element size at the contact (> 0)");
+    io.quantity("h_max", s.h_max, "cm", "largest element size (>= h_contact)");
+    io.quantity("grading", s.grading, "", "largest size ratio of neighbouring elements (>= 1)");
+    io.integer("level", s.level, "refinement level: every element size divided by 2^level", 0, 6);
+  }
+
+  template <class Io>
+  void visit(Io &io, FemSlab &s)
+  {
+    io.flag("rigid",
+            s.rigid,
+            "true: rigid slab (one translational DoF); false: meshed elastic concrete slab");
+    io.quantity("mass",
+                s.mass,
+                "kg/m",
+                "rigid slab mass per metre of wall (null: rho_concrete x slab length x "
+                "thickness)");
+    io.quantity("velocity", s.velocity, "m/s", "initial slab velocity toward the wall (> 0)");
+  }
+
+  template <class Io>
+  void visit(Io &io, FemContact &s)
+  {
+    io.quantity("penalty_factor",
+                s.penalty_factor,
+                "",
+                "penalty stiffness per slave node / (E_master / h_contact x tributary length) "
+                "(> 0)");
+    io.quantity("contact_damping_ratio",
+                s.contact_damping_ratio,
+                "",
+                "damping of each penalty spring as a fraction of critical (in [0, 1])");
+    io.text("smoothing_window",
+            s.smoothing_window,
+            "width of the impulse-preserving moving average of the force: 'auto' (p-wave "
+            "transit time across the contact) or a time, e.g. '0.05 ms' [s]");
+  }
+
+  template <class Io>
+  void visit(Io &io, FemDynamics &s)
+  {
+    io.choice("integrator",
+              s.integrator,
+              {{"explicit", fem::ImpactParameters::Integrator::explicit_central_difference},
+               {"implicit", fem::ImpactParameters::Integrator::implicit_newmark}},
+              "explicit: central difference, lumped mass; implicit: Newmark average "
+              "acceleration with Newton on the contact");
+    io.text("dt",
+            s.dt,
+            "time step: 'auto' (explicit: cfl_safety x stable limit; implicit: "
+            "implicit_dt_factor x explicit limit) or a time, e.g. '2e-6 s'; a dt above the "
+            "explicit stability limit is refused [s]");
+    io.quantity("cfl_safety", s.cfl_safety, "", "explicit dt / stable limit (in (0, 1])");
+    io.quantity("implicit_dt_factor",
+                s.implicit_dt_factor,
+                "",
+                "implicit dt / explicit stable limit when dt is auto (> 0)");
+    io.choice("implicit_solver",
+              s.implicit_solver,
+              {{"direct", fem::ImpactParameters::ImplicitSolver::direct},
+               {"cg_amg", fem::ImpactParameters::ImplicitSolver::cg_amg}},
+              "implicit linear solver: direct (Amesos KLU, fastest up to ~1e5 DoFs) or cg_amg "
+              "(CG with ML algebraic multigrid, for large meshes)");
+    io.integer("implicit_max_halvings",
+               s.implicit_max_halvings,
+               "implicit: how often a step whose Newton iteration fails may be halved before "
+               "the run stops with an error",
+               0,
+               30);
+    io.integer("implicit_newton_max_iterations",
+               s.implicit_newton_max_iterations,
+               "implicit: Newton iterations per step before the step is halved",
+               1,
+               1000);
+    io.quantity("end_time", s.end_time, "ms", "largest simulated time (> 0)");
+    io.quantity("separation_hold_time",
+                s.separation_hold_time,
+                "ms",
+                "stop once the slab has separated and the force stayed zero this long (>= 0)");
+    io.quantity("output_interval",
+                s.output_interval,
+                "ms",
+                "history sampling interval (>= 0; 0: every step)");
+    io.integer("log_interval",
+               s.log_interval,
+               "history samples between log lines (shown with -v; 0: none)",
+               0,
+               1000000000);
+  }
+
+  template <class Io>
+  void visit(Io &io, FemOutput &s)
+  {
+    io.quantity("vtu_interval",
+                s.vtu_interval,
+                "ms",
+                "interval of VTU field snapshots under DIR/vtu/<case>/ (>= 0; 0: none)");
+  }
+
+  template <class Io>
+  void visit(Io &io, FemScene &s)
+  {
+    io.quantity_list("wall_heights",
+                     s.wall_heights,
+                     "m",
+                     "moat wall heights H, one impact case each, named H<height in m>");
+    io.section("geometry", s.geometry, "scene dimensions (PHYSICS.md §4)");
+    io.section("mesh", s.mesh, "bilinear quadrilateral mesh");
+    io.section("materials", s.materials, "linear elastic materials");
+    io.section("slab", s.slab, "the striking slab");
+    io.section("contact", s.contact, "frictionless penalty contact slab front - wall face");
+    io.section("dynamics", s.dynamics, "time integration");
+    io.section("output", s.output, "field output");
+  }
+
+  /** Checks ranges and cross-field rules of every section, for every wall height. */
+  void validate(const FemScene &scene, io::ValidationContext &context);
+
+  /**
+   * A time that may be "auto": std::nullopt for "auto", else the time in s.
+   * @throws UnitError if @p text is neither "auto" nor a time with unit.
+   */
+  std::optional<double> parse_auto_time(const std::string &text);
+
+  /** Case name of a wall height: "H1.25", "H2.00" (more digits only when needed). */
+  std::string fem_case_name(double wall_height);
+
+  /** Rigid slab: scene.slab.mass, else rho_concrete * slab_length * slab_thickness (kg/m).
+   *  Elastic slab: the meshed slab's mass, rho_concrete * slab_length * slab_thickness. */
+  double slab_mass(const FemScene &scene);
+
+  /** The meshing parameters of the case with wall height @p wall_height (mesh level applied). */
+  geometry::SceneGeometry scene_geometry(const FemScene &scene, double wall_height);
+
+  /**
+   * The solver parameters of the case with wall height @p wall_height run on @p mesh_file
+   * (written by geometry::build_scene_mesh(scene_geometry(scene, wall_height), ...)).
+   * @param[in] vtu_dir field output directory, used only if scene.output.vtu_interval > 0
+   */
+  fem::ImpactParameters impact_parameters(const FemScene              &scene,
+                                          double                       wall_height,
+                                          const std::filesystem::path &mesh_file,
+                                          const std::filesystem::path &vtu_dir = {});
+} // namespace kimp::app

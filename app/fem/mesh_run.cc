@@ -1,0 +1,138 @@
+// `kimp mesh SCENE.yaml -o DIR`: the PHYSICS.md §4 scene mesh of every wall height, with its
+// statistics and PNG (scripts/plot_mesh.py) and VTU (deal.II GridIn + DataOut) previews.
+#include "app/fem/mesh_run.h"
+
+#include <fmt/format.h>
+#include <mpi.h>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "app/fem/fem_common.h"
+#include "app/fem/fem_scene.h"
+#include "app/helper_programs.h"
+#include "base/logging.h"
+#include "base/version.h"
+#include "fem/impact.h"
+#include "geometry/scene_mesh.h"
+#include "io/summary.h"
+
+extern char **environ;
+
+namespace kimp::app
+{
+  using namespace kimp::base;
+  using namespace kimp::io;
+  namespace
+  {
+    constexpr const char *python = "/usr/bin/python3";
+
+    /// Why a PNG preview cannot be drawn here, or "" if it can.
+    std::string png_unavailable_reason(const std::filesystem::path &script)
+    {
+      if (script.empty())
+        return "scripts/plot_mesh.py not found (set KIMP_DATA_DIR to the kimp source tree)";
+      if (run_program({python, "-c", "import matplotlib, numpy"}, ProgramOutput::discard) != 0)
+        return std::string(python) + " with matplotlib and numpy is not available "
+                                     "(Debian: python3-matplotlib)";
+      return "";
+    }
+
+    nlohmann::json statistics_json(const geometry::MeshStatistics &s)
+    {
+      return {{"n_nodes", s.n_nodes},
+              {"n_cells", s.n_cells},
+              {"n_slab_cells", s.n_slab_cells},
+              {"n_wall_cells", s.n_wall_cells},
+              {"n_soil_cells", s.n_soil_cells},
+              {"n_slab_contact_faces", s.n_slab_contact_faces},
+              {"n_wall_contact_faces", s.n_wall_contact_faces},
+              {"min_cell_size", s.min_cell_size},
+              {"max_cell_size", s.max_cell_size},
+              {"contact_cell_size", s.contact_cell_size},
+              {"max_neighbour_ratio", s.max_neighbour_ratio},
+              {"max_aspect_ratio", s.max_aspect_ratio},
+              {"min_scaled_jacobian", s.min_scaled_jacobian}};
+    }
+
+  } // namespace
+
+  void run_mesh(const LoadedScene<FemScene> &loaded, const OutputDir &output)
+  {
+    int mpi_initialized = 0;
+    MPI_Initialized(&mpi_initialized);
+    int rank = 0;
+    if (mpi_initialized)
+      MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (rank != 0)
+      return;
+
+    const FemScene             &scene  = loaded.scene;
+    const std::filesystem::path script = find_helper_script("plot_mesh.py");
+    const std::string           no_png = png_unavailable_reason(script);
+    if (!no_png.empty())
+      logger().warn("PNG previews skipped: {}", no_png);
+
+    nlohmann::ordered_json cases = nlohmann::ordered_json::object();
+    for (const double height : scene.wall_heights)
+    {
+      const std::string              name                = fem_case_name(height);
+      const std::filesystem::path    msh                 = output.file("mesh/" + name + ".msh");
+      const std::filesystem::path    vtu                 = output.file("mesh/" + name + ".vtu");
+      const geometry::SceneGeometry  geometry_parameters = scene_geometry(scene, height);
+      const geometry::MeshStatistics statistics =
+        geometry::build_scene_mesh(geometry_parameters, msh);
+      std::ostringstream statistics_text;
+      statistics_text << statistics;
+      logger().info("{}: {} ({})", name, msh.string(), statistics_text.str());
+
+      fem::MeshInfo info;
+      try
+      {
+        info = fem::read_mesh_info(msh, vtu);
+      }
+      catch (const std::exception &error)
+      {
+        throw OutputError(
+          fmt::format("{}: VTU preview of '{}': {}", name, msh.string(), error_message(error)));
+      }
+      logger().info("{}: deal.II reads {} cells, {} vertices; VTU preview {}",
+                    name,
+                    info.n_cells,
+                    info.n_vertices,
+                    vtu.string());
+
+      nlohmann::ordered_json entry;
+      entry["wall_height"] = height;
+      entry["mesh_file"]   = "mesh/" + name + ".msh";
+      entry["vtu_preview"] = "mesh/" + name + ".vtu";
+      entry["png_preview"] = nullptr;
+      if (no_png.empty())
+      {
+        const std::filesystem::path png = output.file("mesh/" + name + ".png");
+        if (run_program({python, script.string(), msh.string(), "-o", png.string()},
+                        ProgramOutput::inherit) != 0)
+          throw OutputError(fmt::format("{}: '{} {}' failed to draw '{}'",
+                                        name,
+                                        python,
+                                        script.string(),
+                                        png.string()));
+        logger().info("{}: PNG preview {}", name, png.string());
+        entry["png_preview"] = "mesh/" + name + ".png";
+      }
+      entry["statistics"] = statistics_json(statistics);
+      nlohmann::ordered_json areas;
+      for (const auto &[id, area] : info.area_by_material)
+        areas[std::to_string(id)] = area;
+      entry["area_by_material"] = areas;
+      cases[name]               = entry;
+    }
+
+    nlohmann::ordered_json summary;
+    summary["command"] = "mesh";
+    summary["kimp"]    = version_line();
+    summary["units"]   = {{"lengths", "m"}, {"areas", "m^2 per metre of depth"}};
+    summary["cases"]   = cases;
+    write_text_atomic(output.file("summary.json"), summary.dump(2) + "\n");
+  }
+
+} // namespace kimp::app

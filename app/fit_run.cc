@@ -1,0 +1,194 @@
+// `kimp fit`: FEM force histories -> impact stiffness table (PHYSICS.md §4 "Fit").
+#include "app/fit_run.h"
+
+#include <cstdint>
+#include <fmt/format.h>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "base/logging.h"
+#include "io/results_file.h"
+#include "io/summary.h"
+
+namespace kimp::app
+{
+  using namespace kimp::base;
+  using namespace kimp::io;
+  using namespace kimp::fit;
+  namespace
+  {
+    /// SI unit of a stiffness per metre of wall, e.g. "N/m^1.5/m".
+    std::string si_unit(double exponent)
+    {
+      return exponent == 1.0 ? std::string("N/m/m") : fmt::format("N/m^{:.6g}/m", exponent);
+    }
+
+    std::string number(double value)
+    {
+      return fmt::format("{:.6g}", value);
+    }
+
+    void write_fit(ResultsGroup &group, const FitResult &fit, double width)
+    {
+      const std::string unit = si_unit(fit.exponent.value);
+      group.write_scalar("stiffness", fit.stiffness.value, unit);
+      group.write_scalar("stiffness_lower", fit.stiffness.lower, unit);
+      group.write_scalar("stiffness_upper", fit.stiffness.upper, unit);
+      group.write_scalar("stiffness_total",
+                         fit.stiffness.value * width,
+                         unit.substr(0, unit.size() - 2));
+      group.write_scalar("cor", fit.cor.value, "1");
+      group.write_scalar("cor_lower", fit.cor.lower, "1");
+      group.write_scalar("cor_upper", fit.cor.upper, "1");
+      group.write_scalar("exponent", fit.exponent.value, "1");
+      group.write_scalar("normalised_rms", fit.normalised_rms, "1");
+      group.write_scalar("model_effective_cor", fit.model_effective_cor, "1");
+      group.write_scalar("model_peak_force", fit.model_peak_force, "N/m");
+      group.write_scalar("fem_peak_force", fit.fem_peak_force, "N/m");
+      group.write_scalar("contact_start", fit.contact_start, "s");
+      group.set_attribute("law", fit.law);
+      group.set_attribute("iterations", fit.iterations);
+      group.set_attribute("lm_status", fit.status);
+      std::vector<std::int64_t> steps(fit.time.size());
+      for (std::size_t i = 0; i < steps.size(); ++i)
+        steps[i] = static_cast<std::int64_t>(i);
+      group.write_time_series("fem_force", steps, fit.time, fit.fem_force, 1, "N/m");
+      group.write_time_series("model_force", steps, fit.time, fit.model_force, 1, "N/m");
+    }
+  } // namespace
+
+  fit::ForceHistory force_history(const io::FemCase &fem_case, bool smoothed_force)
+  {
+    fit::ForceHistory h;
+    h.time = fem_case.time;
+    if (smoothed_force && fem_case.smoothed_contact_force.empty())
+      throw fit::FitError(fmt::format("FEM case '{}': smoothed_contact_force is empty (fit the raw "
+                                      "contact_force instead)",
+                                      fem_case.name));
+    h.force             = smoothed_force ? fem_case.smoothed_contact_force : fem_case.contact_force;
+    h.indentation       = fem_case.indentation;
+    h.slab_displacement = fem_case.slab_displacement;
+    return h;
+  }
+
+  int run_fit_command(const FitCommandOptions &options)
+  {
+    if (!(options.width > 0.0))
+      throw std::invalid_argument(fmt::format("fit: width = {} m (must be > 0)", options.width));
+    if (!(options.cor > 0.0 && options.cor <= 1.0))
+      throw std::invalid_argument(fmt::format("fit: cor = {} (must be in (0, 1])", options.cor));
+    if (!(options.displacement_weight >= 0.0))
+      throw std::invalid_argument(
+        fmt::format("fit: displacement_weight = {} (must be >= 0)", options.displacement_weight));
+    const std::vector<FemCase> cases = read_fem_cases(options.fem_file);
+    const OutputDir            output(options.output);
+
+    nlohmann::json resolved = {{"fem_file", options.fem_file.string()},
+                               {"cor", options.cor},
+                               {"width", options.width},
+                               {"raw_force", options.raw_force},
+                               {"displacement_weight", options.displacement_weight}};
+    ResultsFile    file(output.file("fit.h5"), "", resolved.dump());
+    ResultsGroup   root     = file.root();
+    ResultsGroup   fit_root = root.group("fit");
+
+    FitOptions base;
+    base.displacement_weight                       = options.displacement_weight;
+    const std::vector<FitVariant>         variants = standard_fit_variants(base, options.cor);
+    const std::vector<std::string>        header   = {"case",
+                                                      "wall_height_m",
+                                                      "variant",
+                                                      "law",
+                                                      "k_per_m",
+                                                      "k_per_m_lower",
+                                                      "k_per_m_upper",
+                                                      "k_per_m_unit",
+                                                      "k_total",
+                                                      "k_total_unit",
+                                                      "cor",
+                                                      "cor_lower",
+                                                      "cor_upper",
+                                                      "exponent",
+                                                      "normalised_rms",
+                                                      "status"};
+    std::vector<std::vector<std::string>> rows;
+    int                                   failures = 0;
+    for (const FemCase &fem_case : cases)
+    {
+      if (fem_case.status != "ok")
+      {
+        logger().warn("fit: case '{}' skipped, FEM status: {}", fem_case.name, fem_case.status);
+        continue;
+      }
+      ResultsGroup case_group = fit_root.group(fem_case.name);
+      case_group.write_scalar("wall_height", fem_case.wall_height, "m");
+      for (const FitVariant &variant : variants)
+      {
+        ResultsGroup group = case_group.case_group(variant.name);
+        try
+        {
+          const FitResult fit = fit_impact_law(force_history(fem_case, !options.raw_force),
+                                               fem_case.slab_mass,
+                                               fem_case.impact_velocity,
+                                               variant.law,
+                                               variant.options);
+          write_fit(group, fit, options.width);
+          group.set_status("ok");
+          const double scale = stiffness_to_kn_per_mm(1.0, fit.exponent.value);
+          rows.push_back({fem_case.name,
+                          number(fem_case.wall_height),
+                          variant.name,
+                          fit.law,
+                          number(fit.stiffness_per_metre_display()),
+                          number(fit.stiffness.lower * scale),
+                          number(fit.stiffness.upper * scale),
+                          fit.per_metre_unit(),
+                          number(fit.total_stiffness_display(options.width)),
+                          stiffness_display_unit(fit.exponent.value),
+                          number(fit.cor.value),
+                          number(fit.cor.lower),
+                          number(fit.cor.upper),
+                          number(fit.exponent.value),
+                          number(fit.normalised_rms),
+                          "ok"});
+          logger().info("fit: {} {}: k = {} {} (total {} {}), COR = {}, RMS/peak = {}",
+                        fem_case.name,
+                        variant.name,
+                        rows.back()[4],
+                        rows.back()[7],
+                        rows.back()[8],
+                        rows.back()[9],
+                        rows.back()[10],
+                        rows.back()[14]);
+        }
+        catch (const std::exception &error)
+        {
+          ++failures;
+          const std::string status = std::string("failed: ") + error.what();
+          group.set_status(status);
+          rows.push_back({fem_case.name,
+                          number(fem_case.wall_height),
+                          variant.name,
+                          variant.law.law,
+                          "",
+                          "",
+                          "",
+                          "",
+                          "",
+                          "",
+                          "",
+                          "",
+                          "",
+                          "",
+                          "",
+                          status});
+          logger().warn("fit: {} {}: {}", fem_case.name, variant.name, status);
+        }
+      }
+    }
+    write_csv_atomic(output.file("fit_table.csv"), header, rows);
+    file.commit();
+    return failures;
+  }
+
+} // namespace kimp::app

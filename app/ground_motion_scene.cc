@@ -1,0 +1,117 @@
+// Ground-motion scene section: validation, loading (record or synthetic), scaling and trimming.
+#include "app/ground_motion_scene.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "io/records.h"
+#include "io/units.h"
+
+namespace kimp::app
+{
+  using namespace kimp::io;
+  lumped::SyntheticMotionSpec to_spec(const SyntheticMotionScene &scene)
+  {
+    lumped::SyntheticMotionSpec spec;
+    spec.pga               = scene.pga;
+    spec.pulse_period      = scene.pulse_period;
+    spec.duration          = scene.duration;
+    spec.dt                = scene.dt;
+    spec.pulse_time        = scene.pulse_time;
+    spec.gamma             = scene.gamma;
+    spec.nu                = scene.nu;
+    spec.noise_ratio       = scene.noise_ratio;
+    spec.noise_f_low       = scene.noise_f_low;
+    spec.noise_f_high      = scene.noise_f_high;
+    spec.envelope_duration = scene.envelope_duration;
+    spec.envelope_epsilon  = scene.envelope_epsilon;
+    spec.envelope_eta      = scene.envelope_eta;
+    spec.seed              = scene.seed;
+    return spec;
+  }
+
+  void validate(const GroundMotionScene &scene, ValidationContext &ctx)
+  {
+    ctx.check(!scene.record.empty(),
+              "record",
+              "\"\"",
+              "must be \"synthetic\", a record name or a path");
+    if (scene.scale_to_pga)
+      ctx.check(std::isfinite(*scene.scale_to_pga) && *scene.scale_to_pga > 0.0,
+                "scale_to_pga",
+                format_quantity(*scene.scale_to_pga, "g"),
+                "must be > 0");
+    ctx.check(std::isfinite(scene.scale) && scene.scale != 0.0,
+              "scale",
+              format_quantity(scene.scale, ""),
+              "must be finite and != 0");
+    if (scene.duration)
+      ctx.check(std::isfinite(*scene.duration) && *scene.duration > 0.0,
+                "duration",
+                format_quantity(*scene.duration, "s"),
+                "must be > 0");
+    if (!scene.is_record())
+    {
+      // The generator's own rules, reported at the synthetic section's key.
+      try
+      {
+        lumped::validate(to_spec(scene.synthetic));
+      }
+      catch (const std::invalid_argument &error)
+      {
+        // Messages read "synthetic.<key> = <value> <unit> (<rule>)": split them so that the
+        // report points at the key's line.
+        const std::string message = error.what();
+        const std::size_t equals  = message.find(" = ");
+        const std::size_t paren   = message.find(" (", equals == std::string::npos ? 0 : equals);
+        if (message.rfind("synthetic.", 0) == 0 && equals != std::string::npos &&
+            paren != std::string::npos && message.back() == ')')
+          ctx.fail(message.substr(0, equals),
+                   message.substr(equals + 3, paren - equals - 3),
+                   message.substr(paren + 2, message.size() - paren - 3));
+        else
+          ctx.fail("synthetic", "(invalid)", message);
+      }
+      if (scene.duration)
+        ctx.check(*scene.duration <= scene.synthetic.duration,
+                  "duration",
+                  format_quantity(*scene.duration, "s"),
+                  "must be <= synthetic.duration = " +
+                    format_quantity(scene.synthetic.duration, "s"));
+    }
+  }
+
+  std::optional<std::filesystem::path>
+  scene_records_directory(const GroundMotionScene                    &scene,
+                          const std::optional<std::filesystem::path> &records_dir_override)
+  {
+    std::optional<std::filesystem::path> flag = records_dir_override;
+    if (!flag && !scene.records_dir.empty())
+      flag = std::filesystem::path(scene.records_dir);
+    return records_directory(flag);
+  }
+
+  lumped::GroundMotion
+  load_ground_motion(const GroundMotionScene                    &scene,
+                     const std::optional<std::filesystem::path> &records_dir_override)
+  {
+    lumped::GroundMotion motion;
+    if (scene.is_record())
+    {
+      io::AccelerationRecord record =
+        load_record(scene.record, scene_records_directory(scene, records_dir_override));
+      motion.dt           = record.dt;
+      motion.acceleration = std::move(record.acceleration);
+      motion.name         = std::move(record.name);
+    }
+    else
+      motion = lumped::synthetic_near_fault(to_spec(scene.synthetic));
+    if (scene.scale_to_pga)
+      motion = lumped::scaled_to_pga(motion, *scene.scale_to_pga);
+    if (scene.scale != 1.0)
+      motion = lumped::scaled(motion, scene.scale);
+    if (scene.duration)
+      motion = lumped::trimmed(motion, *scene.duration);
+    return motion;
+  }
+} // namespace kimp::app

@@ -1,0 +1,117 @@
+// Scene section `ground_motion`: a PEER record (AT2 name or path) or the synthetic near-fault
+// motion of lumped/excitation/ground_motion.h, then scaling (to a PGA or by a factor) and trimming.
+// Shared by every command that shakes a building (lumped, study, sweeps).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "io/scene_io.h"
+#include "lumped/excitation/ground_motion.h"
+
+namespace kimp::app
+{
+  /// Parameters of lumped::synthetic_near_fault() as a scene section (SI; defaults of
+  /// lumped::SyntheticMotionSpec).
+  struct SyntheticMotionScene
+  {
+    double       pga               = 0.8 * lumped::standard_gravity;
+    double       pulse_period      = 1.0;
+    double       duration          = 20.0;
+    double       dt                = 0.005;
+    double       pulse_time        = 4.0;
+    double       gamma             = 2.0;
+    double       nu                = 0.0;
+    double       noise_ratio       = 0.2;
+    double       noise_f_low       = 0.3;
+    double       noise_f_high      = 12.0;
+    double       envelope_duration = 15.0;
+    double       envelope_epsilon  = 0.2;
+    double       envelope_eta      = 0.05;
+    unsigned int seed              = 1;
+  };
+
+  template <class Io>
+  void visit(Io &io, SyntheticMotionScene &s)
+  {
+    io.quantity("pga", s.pga, "g", "target peak ground acceleration (met exactly)");
+    io.quantity("pulse_period", s.pulse_period, "s", "period T_p of the velocity pulse");
+    io.quantity("duration", s.duration, "s", "record length");
+    io.quantity("dt", s.dt, "s", "sampling interval");
+    io.quantity("pulse_time", s.pulse_time, "s", "time of the pulse centre");
+    io.quantity("gamma", s.gamma, "", "oscillatory character of the pulse (> 1)");
+    io.quantity("nu", s.nu, "", "phase of the pulse, rad");
+    io.quantity("noise_ratio", s.noise_ratio, "", "RMS of the noise / RMS of the pulse");
+    io.quantity("noise_f_low", s.noise_f_low, "1/s", "high-pass corner of the noise band");
+    io.quantity("noise_f_high", s.noise_f_high, "1/s", "low-pass corner of the noise band");
+    io.quantity("envelope_duration", s.envelope_duration, "s", "T_w of the Saragoni-Hart window");
+    io.quantity("envelope_epsilon", s.envelope_epsilon, "", "window peak at epsilon*T_w, (0, 1)");
+    io.quantity("envelope_eta", s.envelope_eta, "", "window value at T_w, (0, 1)");
+    io.integer("seed", s.seed, "seed of the noise generator (same seed: same record)");
+  }
+
+  /// The lumped::SyntheticMotionSpec of a scene section.
+  lumped::SyntheticMotionSpec to_spec(const SyntheticMotionScene &scene);
+
+  /**
+   * Ground motion of a scene.
+   *
+   * | key          | unit | default     | meaning                                          |
+   * |--------------|------|-------------|--------------------------------------------------|
+   * | record       | -    | "synthetic" | "synthetic", a record name in records_dir        |
+   * |              |      |             | (e.g. RSN1106_KOBE_KJM000) or a path to a file   |
+   * | records_dir  | -    | ""          | "" = --records-dir / KIMP_RECORDS_DIR /          |
+   * |              |      |             | ../shared/data/records                           |
+   * | scale_to_pga | g    | null        | scale the record to this PGA                     |
+   * | scale        | -    | 1           | multiply the record (after scale_to_pga)         |
+   * | duration     | s    | null        | keep the first `duration` seconds                |
+   */
+  struct GroundMotionScene
+  {
+    std::string           record      = "synthetic";
+    std::string           records_dir = "";
+    std::optional<double> scale_to_pga;
+    double                scale = 1.0;
+    std::optional<double> duration;
+    SyntheticMotionScene  synthetic;
+
+    /// True if the motion is an external record (needs the records directory or a file).
+    bool is_record() const { return record != "synthetic"; }
+  };
+
+  template <class Io>
+  void visit(Io &io, GroundMotionScene &s)
+  {
+    io.text("record",
+            s.record,
+            "\"synthetic\" (the embedded near-fault motion), a PEER record name looked up in "
+            "records_dir (e.g. RSN1106_KOBE_KJM000) or a path to an AT2 file");
+    io.text("records_dir",
+            s.records_dir,
+            "directory of PEER records; \"\" = $KIMP_RECORDS_DIR, else ../shared/data/records");
+    io.quantity("scale_to_pga", s.scale_to_pga, "g", "scale the record to this PGA");
+    io.quantity("scale", s.scale, "", "factor applied after scale_to_pga (negative flips it)");
+    io.quantity("duration", s.duration, "s", "trim the record to its first `duration` seconds");
+    io.section("synthetic",
+               s.synthetic,
+               "synthetic near-fault motion (used when record = synthetic)");
+  }
+
+  /// Range checks of every key (relative key paths; use inside ctx.section("ground_motion")).
+  void validate(const GroundMotionScene &scene, io::ValidationContext &ctx);
+
+  /**
+   * Load or generate the motion, then scale_to_pga, scale and trim, in that order.
+   * @param[in] records_dir_override directory from the command line (wins over the scene's)
+   * @throws std::invalid_argument / GroundMotionFileError naming the record and the problem.
+   */
+  lumped::GroundMotion
+  load_ground_motion(const GroundMotionScene                    &scene,
+                     const std::optional<std::filesystem::path> &records_dir_override = {});
+
+  /// The records directory the scene would use (override > scene > environment > default).
+  std::optional<std::filesystem::path>
+  scene_records_directory(const GroundMotionScene                    &scene,
+                          const std::optional<std::filesystem::path> &records_dir_override = {});
+} // namespace kimp::app

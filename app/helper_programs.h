@@ -1,0 +1,48 @@
+// Helper programs kimp runs (chart and preview scripts under scripts/, through /usr/bin/python3):
+// where to find them and how to run them without a shell.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace kimp::app
+{
+  /**
+   * scripts/<file_name>: $KIMP_DATA_DIR/scripts/, $KIMP_DATA_DIR/../scripts/, then the scripts/
+   * directory of the source tree kimp was built from. Empty path if none exists.
+   */
+  std::filesystem::path find_helper_script(const std::string &file_name);
+
+  /// Where a helper program's stdout and stderr go.
+  enum class ProgramOutput
+  {
+    inherit, ///< kimp's own stdout/stderr
+    discard, ///< /dev/null
+    append   ///< appended to a log file (stderr joined to stdout)
+  };
+
+  /**
+   * Run `arguments` (argv[0] is an absolute path; no shell) and wait for it.
+   * @param[in] log the log file for ProgramOutput::append, ignored otherwise
+   * @return its exit status, or -1 if it could not be started or did not exit normally
+   */
+  int run_program(const std::vector<std::string> &arguments,
+                  ProgramOutput                   output,
+                  const std::filesystem::path    &log = {});
+
+  /** Outcome of run_chart_script(). */
+  struct ChartScriptRun
+  {
+    std::filesystem::path script;      ///< empty if scripts/<name> was not found (nothing ran)
+    std::filesystem::path log;         ///< DIR/charts/charts.log (stdout and stderr of the script)
+    int                   status = -1; ///< exit status (0: charts written)
+  };
+
+  /**
+   * `/usr/bin/python3 scripts/<script_name> DIR` for an output directory DIR, its output in a
+   * fresh DIR/charts/charts.log; the caller decides whether a failure is an error or a warning.
+   */
+  ChartScriptRun run_chart_script(const std::string           &script_name,
+                                  const std::filesystem::path &output_dir);
+} // namespace kimp::app

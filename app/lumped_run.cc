@@ -1,0 +1,377 @@
+// `kimp lumped`: one pounding analysis per case (central difference or Newmark), results in
+// HDF5 (/lumped/<case>/...), summary.json and peaks.csv; failed cases are recorded, not fatal.
+#include "app/lumped_run.h"
+
+#include <chrono>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "base/logging.h"
+#include "io/results_file.h"
+#include "io/units.h"
+#include "lumped/integrators/central_difference.h"
+#include "lumped/integrators/newmark_integrator.h"
+#include "lumped/structure/pounding_model.h"
+
+namespace kimp::app
+{
+  using namespace kimp::base;
+  using namespace kimp::io;
+  namespace
+  {
+    using Clock = std::chrono::steady_clock;
+
+    double seconds_since(const Clock::time_point start)
+    {
+      return std::chrono::duration<double>(Clock::now() - start).count();
+    }
+
+    std::vector<std::int64_t> history_steps(const lumped::Response &r)
+    {
+      std::vector<std::int64_t> steps;
+      steps.reserve(r.history.time.size());
+      for (const double t : r.history.time)
+        steps.push_back(r.dt > 0.0 ? static_cast<std::int64_t>(std::llround(t / r.dt)) : 0);
+      return steps;
+    }
+
+    void write_peaks(ResultsGroup &&g, const lumped::Response &r)
+    {
+      g.write("displacement", r.peak_displacement, "m");
+      g.write("absolute_acceleration", r.peak_absolute_acceleration, "m/s^2");
+      g.write("interstorey_drift", r.peak_interstorey_drift, "m");
+    }
+
+    void write_history(ResultsGroup &&g, const lumped::Response &r)
+    {
+      const lumped::ResponseHistory &h = r.history;
+      const std::size_t              n = h.time.size();
+      if (n == 0)
+        return;
+      struct Column
+      {
+        const char                *name;
+        const std::vector<double> *values;
+        const char                *units;
+      };
+      const std::vector<Column>   columns = {{"displacement", &h.displacement, "m"},
+                                             {"absolute_acceleration",
+                                              &h.absolute_acceleration,
+                                              "m/s^2"},
+                                             {"interstorey_drift", &h.interstorey_drift, "m"},
+                                             {"contact_force", &h.contact_force, "N"},
+                                             {"energy_input", &h.energy_input, "J"},
+                                             {"energy_error", &h.energy_error, "1"}};
+      std::vector<SeriesSpec>     specs;
+      std::vector<const Column *> used;
+      for (const Column &c : columns)
+        if (!c.values->empty() && c.values->size() % n == 0)
+        {
+          specs.push_back({c.name, c.values->size() / n, c.units});
+          used.push_back(&c);
+        }
+      TimeSeriesSet                   set   = g.time_series_set(specs);
+      const std::vector<std::int64_t> steps = history_steps(r);
+      std::vector<double>             row(set.row_width());
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        std::size_t k = 0;
+        for (std::size_t q = 0; q < used.size(); ++q)
+          for (std::size_t j = 0; j < specs[q].width; ++j)
+            row[k++] = (*used[q]->values)[i * specs[q].width + j];
+        set.append(steps[i], h.time[i], row);
+      }
+      set.flush();
+    }
+
+    void write_case(ResultsGroup &lumped_group, const LumpedCaseResult &c)
+    {
+      ResultsGroup g = lumped_group.case_group(c.name);
+      g.set_attribute("wall_time", c.wall_time);
+      g.write_scalar("wall_time", c.wall_time, "s");
+      for (const BuildingModes &b : c.buildings)
+      {
+        ResultsGroup m = g.group("modal/" + b.name);
+        m.write("period", b.periods, "s");
+        m.write_scalar("rayleigh_a", b.rayleigh_a, "1/s");
+        m.write_scalar("rayleigh_b", b.rayleigh_b, "s");
+        m.write_scalar("c_iso", b.c_iso, "N*s/m");
+      }
+      if (!c.ok())
+      {
+        g.set_status(c.status);
+        return;
+      }
+      const lumped::Response &r = c.response;
+      g.write_scalar("dt", r.dt, "s");
+      g.write_scalar("dt_critical", c.dt_critical, "s");
+      g.set_attribute("dt_governing", c.governing);
+      g.write("n_steps", std::vector<std::int64_t>{static_cast<std::int64_t>(r.n_steps)}, "1");
+      g.set_attribute("n_steps", static_cast<std::int64_t>(r.n_steps));
+      g.write_scalar("duration", r.duration, "s");
+      g.write_scalar("pga", c.pga, "m/s^2");
+      write_peaks(g.group("peaks"), r);
+      g.write_scalar("max_interstorey_drift", r.max_interstorey_drift(), "m");
+      write_history(g.group("history"), r);
+      for (const lumped::ContactResult &contact : r.contacts)
+      {
+        ResultsGroup        cg = g.group("contacts/" + contact.name);
+        std::vector<double> times, velocities;
+        for (const lumped::ImpactEvent &e : contact.impacts)
+        {
+          times.push_back(e.time);
+          velocities.push_back(e.velocity);
+        }
+        cg.write("impact_time", times, "s");
+        cg.write("impact_velocity", velocities, "m/s");
+        cg.set_attribute("n_impacts", static_cast<std::int64_t>(contact.impacts.size()));
+        cg.write_scalar("peak_force", contact.peak_force, "N");
+        cg.write_scalar("permanent_indentation", contact.permanent_indentation, "m");
+        cg.write_scalar("dissipated_energy", contact.dissipated_energy, "J");
+      }
+      const lumped::EnergyBalance &e  = r.energy;
+      ResultsGroup                 eg = g.group("energy");
+      eg.write_scalar("initial", e.initial, "J");
+      eg.write_scalar("input", e.input, "J");
+      eg.write_scalar("kinetic", e.kinetic, "J");
+      eg.write_scalar("strain", e.strain, "J");
+      eg.write_scalar("viscous", e.viscous, "J");
+      eg.write_scalar("hysteretic", e.hysteretic, "J");
+      eg.write_scalar("contact_work", e.contact_work, "J");
+      eg.write_scalar("impact_dissipated", e.impact_dissipated, "J");
+      eg.write_scalar("relative_error", e.relative_error, "1");
+      eg.write_scalar("max_relative_error", e.max_relative_error, "1");
+      if (c.companion)
+      {
+        write_peaks(g.group("companion/peaks"), *c.companion);
+        const lumped::Amplification a  = lumped::amplification_factors(r, *c.companion);
+        ResultsGroup                ag = g.group("amplification");
+        ag.write("displacement", a.displacement, "1");
+        ag.write("absolute_acceleration", a.absolute_acceleration, "1");
+        ag.write("interstorey_drift", a.interstorey_drift, "1");
+      }
+      g.set_status("ok");
+    }
+
+    nlohmann::json case_summary(const LumpedCaseResult &c)
+    {
+      nlohmann::json j;
+      j["name"]      = c.name;
+      j["status"]    = c.status;
+      j["wall_time"] = c.wall_time;
+      for (const BuildingModes &b : c.buildings)
+        j["periods"][b.name] = b.periods;
+      if (!c.ok())
+        return j;
+      const lumped::Response &r           = c.response;
+      j["dt"]                             = r.dt;
+      j["dt_critical"]                    = c.dt_critical;
+      j["n_steps"]                        = r.n_steps;
+      j["duration"]                       = r.duration;
+      j["pga"]                            = c.pga;
+      j["peaks"]["displacement"]          = r.peak_displacement;
+      j["peaks"]["absolute_acceleration"] = r.peak_absolute_acceleration;
+      j["peaks"]["interstorey_drift"]     = r.peak_interstorey_drift;
+      j["max_interstorey_drift"]          = r.max_interstorey_drift();
+      j["n_impacts"]                      = r.n_impacts();
+      j["contacts"]                       = nlohmann::json::array();
+      for (const lumped::ContactResult &contact : r.contacts)
+      {
+        nlohmann::json cj;
+        cj["name"]                  = contact.name;
+        cj["n_impacts"]             = contact.impacts.size();
+        cj["peak_force"]            = contact.peak_force;
+        cj["permanent_indentation"] = contact.permanent_indentation;
+        cj["impacts"]               = nlohmann::json::array();
+        for (const lumped::ImpactEvent &e : contact.impacts)
+          cj["impacts"].push_back({{"time", e.time}, {"velocity", e.velocity}});
+        j["contacts"].push_back(cj);
+      }
+      j["energy"] = {{"relative_error", r.energy.relative_error},
+                     {"max_relative_error", r.energy.max_relative_error},
+                     {"input", r.energy.input},
+                     {"impact_dissipated", r.energy.impact_dissipated}};
+      if (c.companion)
+      {
+        j["companion_peaks"]["displacement"]          = c.companion->peak_displacement;
+        j["companion_peaks"]["absolute_acceleration"] = c.companion->peak_absolute_acceleration;
+        j["companion_peaks"]["interstorey_drift"]     = c.companion->peak_interstorey_drift;
+      }
+      return j;
+    }
+
+    std::string number_text(const double value)
+    {
+      return format_quantity(value, "");
+    }
+  } // namespace
+
+  LumpedCaseResult run_lumped_case(const std::string          &name,
+                                   const LumpedScene          &scene,
+                                   const lumped::GroundMotion &motion,
+                                   const double                base_scale)
+  {
+    LumpedCaseResult        result;
+    const Clock::time_point start = Clock::now();
+    result.name                   = name;
+    try
+    {
+      const lumped::PoundingModel model(make_pounding_scene(scene));
+      for (const lumped::BuildingBlock &block : model.buildings())
+      {
+        BuildingModes b;
+        b.name = block.name;
+        for (Eigen::Index i = 0; i < block.damping.modes.period.size(); ++i)
+          b.periods.push_back(block.damping.modes.period[i]);
+        b.rayleigh_a = block.damping.rayleigh.a;
+        b.rayleigh_b = block.damping.rayleigh.b;
+        b.c_iso      = block.damping.c_iso;
+        result.buildings.push_back(std::move(b));
+      }
+      for (const lumped::ContactPair &c : model.contacts())
+        result.contact_names.push_back(c.name);
+      for (const lumped::Storey &s : model.storeys())
+        result.storey_upper_dofs.push_back(s.upper_dof);
+
+      const double         factor = scene.ground_motion.scale / base_scale;
+      lumped::GroundMotion used   = factor != 1.0 ? lumped::scaled(motion, factor) : motion;
+      result.pga                  = used.pga();
+
+      const IntegrationScene     &in = scene.integration;
+      const std::optional<double> dt = requested_time_step(in);
+      if (in.method == IntegrationMethod::cdm)
+      {
+        lumped::CentralDifferenceOptions options;
+        options.dt                       = dt.value_or(0.0);
+        options.safety                   = in.safety;
+        options.expected_max_penetration = in.expected_max_penetration;
+        options.duration                 = in.duration.value_or(0.0);
+        options.output_interval          = in.output_interval;
+        options.law_velocity             = in.law_velocity;
+        const lumped::CentralDifference integrator(model, options);
+        result.dt_critical = integrator.stability().dt_critical;
+        result.governing   = integrator.stability().governing;
+        logger().debug("case {}: dt_cr = {} s ({})", name, result.dt_critical, result.governing);
+        result.response = integrator.run(used);
+        if (in.companion)
+        {
+          options.dt       = result.response.dt;
+          result.companion = lumped::CentralDifference(model.without_contacts(), options).run(used);
+        }
+      }
+      else
+      {
+        lumped::NewmarkOptions options;
+        options.dt              = dt.value_or(0.0);
+        options.duration        = in.duration.value_or(0.0);
+        options.output_interval = in.output_interval;
+        result.response         = lumped::NewmarkIntegrator(model, options).run(used);
+        if (in.companion)
+          result.companion = lumped::NewmarkIntegrator(model.without_contacts(), options).run(used);
+      }
+    }
+    catch (const std::exception &error)
+    {
+      result.status   = std::string("failed: ") + error.what();
+      result.response = lumped::Response{};
+      result.companion.reset();
+    }
+    result.wall_time = seconds_since(start);
+    return result;
+  }
+
+  std::vector<LumpedCaseResult>
+  run_lumped(const LoadedScene<LumpedScene>             &loaded,
+             const OutputDir                            &output,
+             const std::optional<std::filesystem::path> &records_dir_override)
+  {
+    const LumpedScene         &scene = loaded.scene;
+    const lumped::GroundMotion motion =
+      load_ground_motion(scene.ground_motion, records_dir_override);
+    logger().info("ground motion {}: {} samples at {} s, PGA {} g",
+                  motion.name,
+                  motion.acceleration.size(),
+                  motion.dt,
+                  motion.pga() / lumped::standard_gravity);
+
+    const auto                    cases = resolve_cases(scene);
+    std::vector<LumpedCaseResult> results;
+    Progress                      progress(cases.size(), static_cast<double>(cases.size()));
+    for (std::size_t i = 0; i < cases.size(); ++i)
+    {
+      logger().info("case {}/{}: {}", i + 1, cases.size(), cases[i].first);
+      results.push_back(
+        run_lumped_case(cases[i].first, cases[i].second, motion, scene.ground_motion.scale));
+      const LumpedCaseResult &r = results.back();
+      if (r.ok())
+        logger().info("case {}: {} steps of {} s, {} impacts, peak base {} m, wall time {} s",
+                      r.name,
+                      r.response.n_steps,
+                      r.response.dt,
+                      r.response.n_impacts(),
+                      r.response.peak_displacement.empty() ? 0.0 : r.response.peak_displacement[0],
+                      r.wall_time);
+      else
+        logger().error("case {}: {}", r.name, r.status);
+      progress.update(i + 1, static_cast<double>(i + 1));
+    }
+    progress.finish();
+
+    ResultsFile  file(output.file("lumped.h5"), loaded.text, loaded.resolved_json);
+    ResultsGroup root = file.root();
+    root.group("input").set_attribute("ground_motion", motion.name);
+    ResultsGroup lumped_group = root.group("lumped");
+    for (const LumpedCaseResult &r : results)
+      write_case(lumped_group, r);
+    file.commit();
+
+    nlohmann::json summary;
+    summary["command"]       = "lumped";
+    summary["scene"]         = loaded.file_name;
+    summary["ground_motion"] = {{"name", motion.name},
+                                {"dt", motion.dt},
+                                {"duration", motion.duration()},
+                                {"pga", motion.pga()}};
+    summary["units"]         = {{"displacement", "m"},
+                                {"absolute_acceleration", "m/s^2"},
+                                {"force", "N"},
+                                {"time", "s"},
+                                {"velocity", "m/s"},
+                                {"energy", "J"}};
+    summary["cases"]         = nlohmann::json::array();
+    for (const LumpedCaseResult &r : results)
+      summary["cases"].push_back(case_summary(r));
+    write_json_atomic(output.file("summary.json"), summary);
+
+    std::vector<std::vector<std::string>> rows;
+    for (const LumpedCaseResult &r : results)
+    {
+      if (!r.ok())
+        continue;
+      const lumped::Response &resp = r.response;
+      for (std::size_t dof = 0; dof < resp.peak_displacement.size(); ++dof)
+      {
+        std::string drift;
+        for (std::size_t s = 0; s < r.storey_upper_dofs.size(); ++s)
+          if (r.storey_upper_dofs[s] == static_cast<int>(dof) &&
+              s < resp.peak_interstorey_drift.size())
+            drift = number_text(resp.peak_interstorey_drift[s]);
+        rows.push_back({r.name,
+                        std::to_string(dof),
+                        number_text(resp.peak_displacement[dof]),
+                        number_text(resp.peak_absolute_acceleration[dof]),
+                        drift});
+      }
+    }
+    write_csv_atomic(output.file("peaks.csv"),
+                     {"case",
+                      "dof",
+                      "peak_displacement_m",
+                      "peak_absolute_acceleration_m_s2",
+                      "peak_interstorey_drift_m"},
+                     rows);
+    return results;
+  }
+
+} // namespace kimp::app

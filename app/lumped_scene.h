@@ -1,0 +1,395 @@
+// Scene of `kimp lumped`: the shear building of PHYSICS.md §2-3 (thesis Table 4.2 defaults), its
+// isolator, moat walls, impact law, neighbours, ground motion, integration and a list of cases,
+// read through the Io verbs of scene_io.h and turned into a lumped::PoundingScene.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "app/ground_motion_scene.h"
+#include "io/scene_io.h"
+#include "lumped/integrators/central_difference.h"
+#include "lumped/laws/force_law_factory.h"
+#include "lumped/structure/pounding_model.h"
+#include "lumped/structure/shear_building.h"
+
+namespace kimp::app
+{
+  enum class BuildingKind
+  {
+    isolated,
+    fixed_base
+  };
+
+  enum class IsolatorKind
+  {
+    linear,
+    bilinear
+  };
+
+  enum class IntegrationMethod
+  {
+    cdm,
+    newmark
+  };
+
+  /// The main building (thesis Table 4.2): masses, storey stiffness and damping ratios.
+  struct BuildingScene
+  {
+    BuildingKind kind                     = BuildingKind::isolated;
+    unsigned int n_storeys                = 4;
+    double       floor_mass               = 320e3;
+    double       top_mass                 = 250e3;
+    double       isolation_mass           = 320e3;
+    double       storey_stiffness         = 600e6;
+    double       damping_ratio            = 0.02; ///< ζ_sstr of an isolated building
+    double       fixed_base_damping_ratio = 0.05; ///< ζ of a fixed-base building
+  };
+
+  template <class Io>
+  void visit(Io &io, BuildingScene &s)
+  {
+    io.choice("kind",
+              s.kind,
+              {{"isolated", BuildingKind::isolated}, {"fixed_base", BuildingKind::fixed_base}},
+              "isolated (isolation level = DOF 0) or fixed_base (floors on the ground)");
+    io.integer("n_storeys",
+               s.n_storeys,
+               "floors above the isolation level (or the ground)",
+               1,
+               100);
+    io.quantity("floor_mass", s.floor_mass, "t", "mass of every floor below the top");
+    io.quantity("top_mass", s.top_mass, "t", "mass of the top floor");
+    io.quantity("isolation_mass", s.isolation_mass, "t", "mass of the isolation level (base mat)");
+    io.quantity("storey_stiffness", s.storey_stiffness, "MN/m", "shear stiffness of each storey");
+    io.quantity("damping_ratio",
+                s.damping_ratio,
+                "%",
+                "superstructure damping of an isolated building (Rayleigh, first and last mode)");
+    io.quantity("fixed_base_damping_ratio",
+                s.fixed_base_damping_ratio,
+                "%",
+                "damping of a fixed-base building (Rayleigh, first and last mode)");
+  }
+
+  /// Isolation system: linear (k) or bilinear (K1, K2, Q), plus ζ_iso (PHYSICS.md §2).
+  struct IsolatorScene
+  {
+    IsolatorKind          kind    = IsolatorKind::bilinear;
+    double                K1      = 200e6;
+    double                K2      = 25e6;
+    double                Q_ratio = 0.1;        ///< Q / W_tot (W_tot incl. the isolation level)
+    std::optional<double> Q;                    ///< characteristic strength, N (overrides Q_ratio)
+    double                k             = 25e6; ///< linear isolator stiffness, N/m
+    double                damping_ratio = 0.05; ///< ζ_iso
+  };
+
+  template <class Io>
+  void visit(Io &io, IsolatorScene &s)
+  {
+    io.choice("kind",
+              s.kind,
+              {{"bilinear", IsolatorKind::bilinear}, {"linear", IsolatorKind::linear}},
+              "bilinear hysteretic (K1, K2, Q) or linear (k)");
+    io.quantity("K1", s.K1, "MN/m", "bilinear: initial stiffness");
+    io.quantity("K2", s.K2, "MN/m", "bilinear: post-yield stiffness (< K1)");
+    io.quantity("Q_ratio", s.Q_ratio, "%", "bilinear: characteristic strength / total weight");
+    io.quantity("Q", s.Q, "kN", "bilinear: characteristic strength (overrides Q_ratio)");
+    io.quantity("k", s.k, "MN/m", "linear: stiffness");
+    io.quantity("damping_ratio",
+                s.damping_ratio,
+                "%",
+                "isolation damping zeta_iso; c_iso = 2(zeta_iso - zeta_sstr)sqrt(m_tot k)");
+  }
+
+  /// One moat wall at the isolation level (rigid, moving with the ground).
+  struct WallScene
+  {
+    bool   present = true;
+    double gap     = 0.15;
+    double mass    = 500e3;
+  };
+
+  template <class Io>
+  void visit(Io &io, WallScene &s)
+  {
+    io.flag("present", s.present, "is there a wall on this side");
+    io.quantity("gap", s.gap, "cm", "distance isolation level - wall face (before bumpers)");
+    io.quantity("mass", s.mass, "t", "wall mass for m_eff in the impact law");
+  }
+
+  struct WallsScene
+  {
+    WallScene left;
+    WallScene right;
+    bool      basement = false;
+  };
+
+  template <class Io>
+  void visit(Io &io, WallsScene &s)
+  {
+    io.section("left", s.left, "wall on the left (-x) side");
+    io.section("right", s.right, "wall on the right (+x) side");
+    io.flag("basement", s.basement, "the walls also reach floor 1 (impacts at DOF 0 and 1)");
+  }
+
+  /**
+   * An impact law: name, stiffness k as text with a unit matching the law's exponent n
+   * (N/m^n: "2500 kN/mm" for n = 1, "750 kN/mm^1.5" for n = 1.5), COR and options.
+   */
+  struct ImpactLawScene
+  {
+    std::string           law = "modified_kelvin_voigt";
+    std::string           k   = "2500 kN/mm";
+    std::optional<double> exponent;
+    double                cor          = 0.7;
+    bool                  hertzdamp_ye = false;
+    std::optional<double> a1;
+  };
+
+  template <class Io>
+  void visit_law(Io &io, ImpactLawScene &s)
+  {
+    io.choice("law", s.law, lumped::force_law_names(), "impact law of PHYSICS.md §1 (laws 1-7)");
+    io.text("k",
+            s.k,
+            "impact stiffness with a unit of N/m^n for the law's exponent n, e.g. \"2500 kN/mm\" "
+            "(n = 1) or \"750 kN/mm^1.5\" (n = 1.5); unused by law bumper (see bumper.k_b)");
+    io.quantity("exponent",
+                s.exponent,
+                "",
+                "n for hertzdamp/hysteretic (1.5) and bumper (2.65); fixed for the others");
+    io.quantity("cor", s.cor, "", "nominal coefficient of restitution, (0, 1]");
+    io.flag("hertzdamp_ye", s.hertzdamp_ye, "hertzdamp: Ye et al. (2009) damping instead");
+    io.quantity("a1", s.a1, "s/m", "hysteretic/bumper: C_imp = a1 (1 - COR^2) instead of eq. 2.23");
+  }
+
+  template <class Io>
+  void visit(Io &io, ImpactLawScene &s)
+  {
+    visit_law(io, s);
+  }
+
+  /// Rubber bumpers on the walls (law 7, thesis ch. 6): k_b from the material or given.
+  struct BumperScene
+  {
+    double       thickness       = 0.05;
+    double       width           = 0.15;
+    double       height          = 0.15;
+    unsigned int count           = 4;
+    double       ultimate_strain = 0.75;
+    double       modulus         = 55835e3; ///< K_r, N/m²
+    std::string  k_b             = "";      ///< all bumpers, N/m^n; "" = from the material
+    double       wall_stiffness  = 1500e6;  ///< k_w, N/m
+    bool         recessed        = false;
+  };
+
+  template <class Io>
+  void visit(Io &io, BumperScene &s)
+  {
+    io.quantity("thickness", s.thickness, "mm", "bumper thickness t");
+    io.quantity("width", s.width, "mm", "bumper width (contact area = width x height)");
+    io.quantity("height", s.height, "mm", "bumper height");
+    io.integer("count", s.count, "bumpers in parallel on each wall", 1, 1000);
+    io.quantity("ultimate_strain",
+                s.ultimate_strain,
+                "",
+                "epsilon_u: crushed at delta_u = eps_u t");
+    io.quantity("modulus", s.modulus, "kN/m^2", "rubber constant K_r of k_st = A K_r / t^n (6.2)");
+    io.text("k_b",
+            s.k_b,
+            "stiffness of all bumpers, N/m^n (e.g. \"0.36 kN/mm^2.65\"); \"\" = 2.25 k_st count");
+    io.quantity("wall_stiffness", s.wall_stiffness, "kN/mm", "k_w beyond delta_u");
+    io.flag("recessed", s.recessed, "bumpers sit in a recess: the clear gap is not reduced");
+  }
+
+  /// Impact law of the walls (and default of the neighbours), with the bumper data of law 7.
+  struct ImpactScene : ImpactLawScene
+  {
+    BumperScene bumper;
+  };
+
+  template <class Io>
+  void visit(Io &io, ImpactScene &s)
+  {
+    visit_law(io, s);
+    io.section("bumper", s.bumper, "rubber bumpers (used when law = bumper)");
+  }
+
+  /// A fixed-base neighbour; its floor j faces floor j of the main building.
+  struct NeighbourScene
+  {
+    bool                          present          = false;
+    unsigned int                  n_storeys        = 4;
+    double                        separation       = 0.15;
+    double                        floor_mass       = 320e3;
+    double                        top_mass         = 250e3;
+    double                        storey_stiffness = 600e6;
+    double                        damping_ratio    = 0.05;
+    std::optional<ImpactLawScene> impact;
+  };
+
+  template <class Io>
+  void visit(Io &io, NeighbourScene &s)
+  {
+    io.flag("present", s.present, "is there a neighbour on this side");
+    io.integer("n_storeys", s.n_storeys, "storeys of the fixed-base neighbour", 1, 100);
+    io.quantity("separation", s.separation, "cm", "clear distance between facing floors");
+    io.quantity("floor_mass", s.floor_mass, "t", "mass of every floor below the top");
+    io.quantity("top_mass", s.top_mass, "t", "mass of the top floor");
+    io.quantity("storey_stiffness", s.storey_stiffness, "MN/m", "storey shear stiffness");
+    io.quantity("damping_ratio", s.damping_ratio, "%", "Rayleigh damping, first and last mode");
+    io.optional_section("impact", s.impact, "impact law of the floor contacts (default: impact)");
+  }
+
+  struct NeighboursScene
+  {
+    NeighbourScene left;
+    NeighbourScene right;
+  };
+
+  template <class Io>
+  void visit(Io &io, NeighboursScene &s)
+  {
+    io.section("left", s.left, "neighbour on the left (-x) side");
+    io.section("right", s.right, "neighbour on the right (+x) side");
+  }
+
+  /// Time integration (lumped::CentralDifferenceOptions / NewmarkOptions).
+  struct IntegrationScene
+  {
+    IntegrationMethod     method                   = IntegrationMethod::cdm;
+    std::string           dt                       = "auto";
+    double                safety                   = 0.5;
+    double                expected_max_penetration = 0.05;
+    double                output_interval          = 0.01;
+    lumped::LawVelocity   law_velocity             = lumped::LawVelocity::backward;
+    std::optional<double> duration;
+    bool                  companion = false;
+  };
+
+  template <class Io>
+  void visit(Io &io, IntegrationScene &s)
+  {
+    io.choice("method",
+              s.method,
+              {{"cdm", IntegrationMethod::cdm}, {"newmark", IntegrationMethod::newmark}},
+              "cdm: central difference (explicit, dt below the contact limit); newmark: average "
+              "acceleration with Newton at contacts");
+    io.text("dt",
+            s.dt,
+            "time step: \"auto\" (cdm: safety x dt_cr dividing the record's dt; newmark: the "
+            "record's dt) or a time such as \"2e-5 s\"");
+    io.quantity("safety", s.safety, "", "cdm auto step: fraction of dt_cr, (0, 1]");
+    io.quantity("expected_max_penetration",
+                s.expected_max_penetration,
+                "mm",
+                "cdm: penetration at which the contact tangent enters dt_cr");
+    io.quantity("output_interval", s.output_interval, "s", "history sampling; 0 = no histories");
+    io.choice("law_velocity",
+              s.law_velocity,
+              {{"backward", lumped::LawVelocity::backward},
+               {"backward_second_order", lumped::LawVelocity::backward_second_order}},
+              "cdm: rate given to the laws, (u_n - u_n-1)/dt (thesis) or second order");
+    io.quantity("duration", s.duration, "s", "analysis length (null = the record's length)");
+    io.flag("companion", s.companion, "also run without contacts (amplification factors)");
+  }
+
+  /**
+   * One case: overrides of the scene for one run. Empty text and null keep the scene's value.
+   * A case that changes `law` also drops the scene's exponent (the new law's default applies
+   * unless the case gives one).
+   */
+  struct CaseScene
+  {
+    std::string           name = "case";
+    std::string           law  = "";
+    std::string           k    = "";
+    std::optional<double> exponent;
+    std::optional<double> cor;
+    std::optional<double> gap;
+    std::optional<double> left_gap;
+    std::optional<double> right_gap;
+    std::optional<double> ground_motion_scale;
+  };
+
+  template <class Io>
+  void visit(Io &io, CaseScene &s)
+  {
+    io.text("name", s.name, "case name (HDF5 group /lumped/<name>; letters, digits, _ - .)");
+    io.text("law", s.law, "impact law of the walls (\"\" = impact.law)");
+    io.text("k", s.k, "impact stiffness with unit N/m^n (\"\" = impact.k)");
+    io.quantity("exponent", s.exponent, "", "impact exponent n (null = the law's default)");
+    io.quantity("cor", s.cor, "", "coefficient of restitution (null = impact.cor)");
+    io.quantity("gap", s.gap, "cm", "gap of both walls (null = walls.*.gap)");
+    io.quantity("left_gap", s.left_gap, "cm", "gap of the left wall (wins over gap)");
+    io.quantity("right_gap", s.right_gap, "cm", "gap of the right wall (wins over gap)");
+    io.quantity("ground_motion_scale",
+                s.ground_motion_scale,
+                "",
+                "extra factor on the ground motion of this case");
+  }
+
+  /// The whole scene of `kimp lumped` (SI members, defaults of PHYSICS.md §3).
+  struct LumpedScene
+  {
+    BuildingScene          building;
+    IsolatorScene          isolator;
+    WallsScene             walls;
+    ImpactScene            impact;
+    NeighboursScene        neighbours;
+    GroundMotionScene      ground_motion;
+    IntegrationScene       integration;
+    std::vector<CaseScene> cases;
+  };
+
+  template <class Io>
+  void visit(Io &io, LumpedScene &s)
+  {
+    io.section("building", s.building, "main building (thesis Table 4.2)");
+    io.section("isolator", s.isolator, "isolation system (isolated buildings only)");
+    io.section("walls", s.walls, "moat walls at the isolation level (isolated buildings only)");
+    io.section("impact", s.impact, "impact law of the walls");
+    io.section("neighbours", s.neighbours, "adjacent fixed-base buildings");
+    io.section("ground_motion", s.ground_motion, "ground acceleration");
+    io.section("integration", s.integration, "time integration and output");
+    io.list("cases", s.cases, "runs with overrides (empty: one case named \"default\")");
+  }
+
+  /// Every range and cross-field rule (K2 < K1, gap > bumper thickness, k unit vs exponent, ...).
+  void validate(const LumpedScene &scene, io::ValidationContext &ctx);
+
+  /// Exponent n the law will use: the given one or the law's default (1, 1.5 or 2.65).
+  double impact_exponent(const ImpactLawScene &law);
+
+  /**
+   * k of `law` in SI (N/m^n), parsed from its text.
+   * @throws UnitError when the text is not a quantity of dimension N/m^n.
+   */
+  double impact_stiffness(const ImpactLawScene &law);
+
+  /// k_b of all bumpers (N/m^n): given, or 2.25·count·A·K_r/t^n (thesis eqs. 6.2-6.3).
+  double bumper_stiffness(const ImpactScene &impact);
+
+  /// The lumped::ForceLawSpec of the walls' law (m_eff is set per contact by the model).
+  lumped::ForceLawSpec force_law_spec(const ImpactScene &impact);
+
+  /// The main building as a lumped::ShearBuilding (isolator included when isolated).
+  lumped::ShearBuilding make_building(const LumpedScene &scene);
+
+  /// The complete configuration: building, walls (isolated only), neighbours, laws.
+  lumped::PoundingScene make_pounding_scene(const LumpedScene &scene);
+
+  /// The case names and the scenes with each case's overrides applied (one "default" case when
+  /// `cases` is empty). Applied scenes have no cases of their own.
+  std::vector<std::pair<std::string, LumpedScene>> resolve_cases(const LumpedScene &scene);
+
+  /// `scene` with the overrides of `c` applied.
+  LumpedScene apply_case(const LumpedScene &scene, const CaseScene &c);
+
+  /// Time step requested by integration.dt: nullopt for "auto", else seconds.
+  /// @throws UnitError for a text that is neither "auto" nor a time.
+  std::optional<double> requested_time_step(const IntegrationScene &integration);
+} // namespace kimp::app

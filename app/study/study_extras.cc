@@ -1,0 +1,625 @@
+// Accuracy against cost, stability map (Δt_cr = 2/ω_imp, thesis eq. 3.12-3.13) and sensitivity
+// studies of `kimp study`; each run is one FEM case (study cache), building run or collision.
+#include "app/study/study_extras.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <limits>
+
+#include "app/lumped_run.h"
+#include "app/study/study_fem.h"
+#include "app/study/study_ladder.h"
+#include "base/logging.h"
+#include "fem/impact.h"
+#include "geometry/scene_mesh.h"
+#include "lumped/collision/two_body.h"
+#include "lumped/laws/force_law_factory.h"
+#include "lumped/laws/kelvin_voigt_law.h"
+
+namespace kimp::app
+{
+  using namespace kimp::base;
+  using namespace kimp::io;
+  using namespace kimp::fit;
+  namespace
+  {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+    double summary_value(const FemCase &fem_case, const char *key)
+    {
+      const auto it = fem_case.summary.find(key);
+      return it == fem_case.summary.end() ? nan : it->second;
+    }
+
+    /// One FEM case through the study cache, fitted; failures become the point's status.
+    template <class Point>
+    void run_fem_point(Point             &point,
+                       const FemScene    &fem,
+                       double             wall_height,
+                       const std::string &name,
+                       const StudyScene  &scene,
+                       const OutputDir   &output,
+                       double            *seconds,
+                       double            *n_dofs,
+                       double            *n_steps,
+                       bool              *from_cache)
+    {
+      try
+      {
+        const StudyFemCase c    = study_fem_case(fem, wall_height, output, name);
+        const StudyFits    fits = fit_study_laws(c.fem_case, scene.fit);
+        if (seconds)
+          *seconds = summary_value(c.fem_case, "wall_seconds");
+        if (n_dofs)
+          *n_dofs = summary_value(c.fem_case, "n_dofs");
+        if (n_steps)
+          *n_steps = summary_value(c.fem_case, "n_steps");
+        if (from_cache)
+          *from_cache = c.from_cache;
+        point.ok     = fits.ok();
+        point.status = point.ok ? "ok" : fits.kelvin_voigt_status + " / " + fits.jankowski_status;
+        if (point.ok)
+        {
+          point.k_kelvin_voigt = fits.kelvin_voigt->stiffness.value;
+          point.k_jankowski    = fits.jankowski->stiffness.value;
+        }
+      }
+      catch (const std::exception &error)
+      {
+        point.ok     = false;
+        point.status = std::string("failed: ") + error.what();
+        logger().warn("{}: {}", name, point.status);
+      }
+    }
+
+    FemScene with_level(const FemScene &base, double h_contact, double penalty_factor)
+    {
+      FemScene scene               = base;
+      scene.mesh.h_contact         = h_contact;
+      scene.mesh.level             = 0;
+      scene.contact.penalty_factor = penalty_factor;
+      return scene;
+    }
+
+    std::string text_or_empty(double value)
+    {
+      return std::isfinite(value) ? fmt::format("{:.6g}", value) : "";
+    }
+  } // namespace
+
+  std::vector<FemAccuracyPoint> run_fem_accuracy(const StudyScene &scene, const OutputDir &output)
+  {
+    const StudyAccuracyScene     &a = scene.accuracy;
+    const double                  H = a.wall_height;
+    std::vector<FemAccuracyPoint> points;
+    const auto                    add = [&](const std::string                &series,
+                         double                            h,
+                         double                            penalty,
+                         fem::ImpactParameters::Integrator integrator)
+    {
+      FemAccuracyPoint p;
+      p.series                = series;
+      p.h_contact             = h;
+      p.penalty_factor        = penalty;
+      FemScene fem            = with_level(scene.fem, h, penalty);
+      fem.dynamics.integrator = integrator;
+      const bool implicit     = integrator == fem::ImpactParameters::Integrator::implicit_newmark;
+      const std::string name =
+        fem_case_name(H) + "_" + FidelityLevel{h, penalty}.label() + (implicit ? "_implicit" : "");
+      run_fem_point(p,
+                    fem,
+                    H,
+                    name,
+                    scene,
+                    output,
+                    &p.seconds,
+                    &p.n_dofs,
+                    &p.n_steps,
+                    &p.from_cache);
+      logger().info("accuracy {} {}: k_KV {:.6g} kN/mm/m, {:.3g} s ({})",
+                    series,
+                    name,
+                    stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0),
+                    p.seconds,
+                    p.status);
+      points.push_back(p);
+    };
+    const auto explicit_cd = fem::ImpactParameters::Integrator::explicit_central_difference;
+    for (const double h : a.h_contact)
+      add("mesh", h, a.penalty_factors.front(), explicit_cd);
+    // Penalty levels on the finest mesh below the reference (the reference's own level if only
+    // one).
+    const double h_penalty =
+      a.h_contact.size() > 1 ? a.h_contact[a.h_contact.size() - 2] : a.h_contact.front();
+    for (std::size_t j = 0; j < a.penalty_factors.size(); ++j)
+      add("penalty", h_penalty, a.penalty_factors[j], explicit_cd);
+    // Implicit Newmark on every mesh level but the reference (its finest level costs minutes).
+    if (a.implicit)
+      for (const double h :
+           std::vector<double>(a.h_contact.begin(), a.h_contact.end() - (a.h_contact.size() > 1)))
+        add("implicit",
+            h,
+            a.penalty_factors.front(),
+            fem::ImpactParameters::Integrator::implicit_newmark);
+
+    // Reference: the finest explicit mesh level.
+    const FemAccuracyPoint &reference = points.at(a.h_contact.size() - 1);
+    for (FemAccuracyPoint &p : points)
+    {
+      const bool usable = p.ok && reference.ok;
+      p.error_kelvin_voigt =
+        usable ? std::abs(p.k_kelvin_voigt / reference.k_kelvin_voigt - 1.0) : nan;
+      p.error_jankowski = usable ? std::abs(p.k_jankowski / reference.k_jankowski - 1.0) : nan;
+    }
+    return points;
+  }
+
+  std::vector<LumpedAccuracyPoint> run_lumped_accuracy(const StudyScene        &scene,
+                                                       const GroundMotionScene &record,
+                                                       double                   k_total,
+                                                       double                   gap)
+  {
+    const lumped::GroundMotion motion = load_ground_motion(record);
+    LumpedScene                base   = study_lumped_scene(scene, record);
+    base.walls.left.present = base.walls.right.present = true;
+    base.walls.left.gap = base.walls.right.gap = gap;
+    base.impact.law                            = "modified_kelvin_voigt";
+    base.impact.k   = fmt::format("{:.12g} kN/mm", stiffness_to_kn_per_mm(k_total, 1.0));
+    base.impact.cor = scene.fit.cor;
+    base.integration.output_interval = 0.0;
+
+    const auto run = [&](IntegrationMethod method, double dt)
+    {
+      LumpedAccuracyPoint p;
+      p.method             = method == IntegrationMethod::cdm ? "cdm" : "newmark";
+      p.dt                 = dt;
+      LumpedScene s        = base;
+      s.integration.method = method;
+      s.integration.dt     = fmt::format("{:.12g} s", dt);
+      const LumpedCaseResult r =
+        run_lumped_case(fmt::format("{}_dt{:g}", p.method, dt), s, motion, record.scale);
+      p.ok      = r.ok();
+      p.status  = r.status;
+      p.seconds = r.wall_time;
+      if (p.ok)
+      {
+        for (const lumped::ContactResult &c : r.response.contacts)
+          p.peak_impact_force = std::max(p.peak_impact_force, c.peak_force);
+        p.base_acceleration = r.response.peak_absolute_acceleration.at(0);
+      }
+      return p;
+    };
+    const LumpedAccuracyPoint reference =
+      run(IntegrationMethod::cdm, scene.accuracy.lumped_reference_dt);
+    if (!reference.ok)
+      throw std::runtime_error("lumped accuracy: the reference run failed: " + reference.status);
+    std::vector<LumpedAccuracyPoint> points;
+    for (const IntegrationMethod method : {IntegrationMethod::cdm, IntegrationMethod::newmark})
+      for (const double dt : scene.accuracy.lumped_dt)
+      {
+        LumpedAccuracyPoint p = run(method, dt);
+        p.error_force =
+          p.ok ? std::abs(p.peak_impact_force / reference.peak_impact_force - 1.0) : nan;
+        p.error_acceleration =
+          p.ok ? std::abs(p.base_acceleration / reference.base_acceleration - 1.0) : nan;
+        points.push_back(p);
+      }
+    LumpedAccuracyPoint ref = reference;
+    ref.method              = "cdm_reference";
+    points.push_back(ref);
+    return points;
+  }
+
+  std::vector<StabilityPoint>
+  lumped_stability_map(double mass_1, double mass_2, double cor, double k_study)
+  {
+    std::vector<StabilityPoint> points;
+    lumped::TwoBodySetup        setup;
+    setup.mass_1         = mass_1;
+    setup.mass_2         = mass_2;
+    setup.velocity_1     = 1.0;
+    setup.record_history = false;
+    setup.max_steps      = 200000;
+    const double m_eff   = setup.effective_mass();
+    const double xi      = lumped::kelvin_voigt_damping_ratio(cor);
+    for (const double k_factor : {0.01, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0})
+      for (int i = 0; i <= 28; ++i)
+      {
+        StabilityPoint p;
+        p.stiffness        = k_factor * k_study;
+        p.dt               = 1e-4 * std::pow(10.0, i * 3.5 / 14.0); // 1e-4 ... 0.316 s
+        const double omega = std::sqrt(p.stiffness / m_eff);
+        p.dt_limit         = 2.0 / omega;
+        p.dt_limit_damped  = 2.0 * (std::sqrt(1.0 + xi * xi) - xi) / omega;
+        lumped::ForceLawSpec spec;
+        spec.law            = "modified_kelvin_voigt";
+        spec.stiffness      = p.stiffness;
+        spec.cor            = cor;
+        spec.effective_mass = m_eff;
+        setup.time_step     = p.dt;
+        try
+        {
+          const lumped::TwoBodyResult r =
+            lumped::simulate_two_body(*lumped::make_force_law(spec), setup);
+          p.effective_cor = r.effective_cor;
+          p.peak_force    = r.peak_force;
+          // Unstable: energy gained (the dashpot can only dissipate). A gain below 0.1 % is the
+          // discrete contact of 2-3 steps near ω·Δt ≈ 1 returning COR ≈ 1: inaccurate, bounded.
+          p.stable   = std::isfinite(r.effective_cor) && r.effective_cor <= 1.0 + 1e-3;
+          p.accurate = p.stable && std::abs(r.effective_cor / cor - 1.0) <= 0.05;
+        }
+        catch (const lumped::CollisionError &)
+        {
+          p.effective_cor = nan;
+          p.peak_force    = nan;
+          p.stable        = false;
+        }
+        points.push_back(p);
+      }
+    return points;
+  }
+
+  std::vector<FemStabilityPoint>
+  fem_stability_map(const StudyScene &scene, const OutputDir &output, double &h_contact)
+  {
+    const double H = scene.accuracy.wall_height;
+    h_contact = *std::max_element(scene.accuracy.h_contact.begin(), scene.accuracy.h_contact.end());
+    const std::string           name = fem_case_name(H) + "_stability";
+    const std::filesystem::path mesh = output.file("mesh/" + name + ".msh");
+    std::filesystem::create_directories(mesh.parent_path());
+    geometry::build_scene_mesh(scene_geometry(with_level(scene.fem, h_contact, 1.0), H), mesh);
+    std::vector<FemStabilityPoint> points;
+    for (const double penalty_factor : fem_stability_penalty_factors)
+    {
+      fem::ImpactParameters p =
+        impact_parameters(with_level(scene.fem, h_contact, penalty_factor), H, mesh);
+      p.integrator    = fem::ImpactParameters::Integrator::explicit_central_difference;
+      p.end_time      = fem_stability_end_time;
+      p.log_interval  = 0;
+      p.vtu_interval  = 0;
+      p.dt            = 0;
+      double dt_limit = nan; // from the first (stable) run of this penalty
+      for (const double dt_factor : fem_stability_dt_factors)
+      {
+        FemStabilityPoint point;
+        point.penalty_factor = penalty_factor;
+        point.dt_factor      = dt_factor;
+        p.dt_over_limit      = dt_factor;
+        try
+        {
+          const fem::ImpactResult r = fem::run_impact(p, MPI_COMM_SELF, nullptr);
+          dt_limit                  = r.summary.dt_stable;
+          point.energy_error        = r.summary.energy_error;
+          point.stable              = point.energy_error < fem_stability_energy_tolerance;
+          if (!point.stable)
+            point.status = fmt::format("energy error {:.3g} > {:g}",
+                                       point.energy_error,
+                                       fem_stability_energy_tolerance);
+        }
+        catch (const fem::NumericalError &error)
+        {
+          point.stable = false;
+          point.status = std::string("diverged: ") + error.what();
+        }
+        point.dt_limit = dt_limit;
+        point.dt       = dt_factor * dt_limit;
+        logger().debug("FEM stability: penalty x{}, dt = {} x limit: {}",
+                       penalty_factor,
+                       dt_factor,
+                       point.stable ? "stable" : point.status);
+        points.push_back(point);
+      }
+    }
+    return points;
+  }
+
+  std::vector<SensitivityPoint> run_sensitivity(const StudyScene &scene, const OutputDir &output)
+  {
+    const double                  H    = scene.sensitivity_study.wall_height;
+    const double                  v    = scene.sensitivity_study.variation;
+    const FemScene               &base = scene.fem;
+    const FidelityLevel           level{base.mesh.h_contact / std::pow(2.0, base.mesh.level),
+                              base.contact.penalty_factor};
+    std::vector<SensitivityPoint> points;
+    const auto run = [&](const std::string &parameter, double factor, const FemScene &fem)
+    {
+      SensitivityPoint p;
+      p.parameter = parameter;
+      p.factor    = factor;
+      const std::string name =
+        fem_case_name(H) + "_" + level.label() +
+        (parameter == "base" ? "" : fmt::format("_{}_x{:g}", parameter, factor));
+      run_fem_point(p,
+                    with_level(fem, level.h_contact, level.penalty_factor),
+                    H,
+                    name,
+                    scene,
+                    output,
+                    nullptr,
+                    nullptr,
+                    nullptr,
+                    nullptr);
+      points.push_back(p);
+    };
+    run("base", 1.0, base);
+    for (const double factor : {1.0 - v, 1.0 + v})
+    {
+      FemScene s = base;
+      s.materials.soil.youngs_modulus *= factor;
+      run("soil_modulus", factor, s);
+      s = base;
+      s.geometry.slab_length *= factor;
+      if (s.slab.mass)
+        *s.slab.mass *= factor;
+      run("slab_mass", factor, s);
+      s = base;
+      s.slab.velocity *= factor;
+      run("impact_velocity", factor, s);
+      s = base;
+      s.geometry.wall_thickness *= factor;
+      run("wall_thickness", factor, s);
+    }
+    return points;
+  }
+
+  void write_study_extras(ResultsGroup &root, const StudyExtras &extras)
+  {
+    for (const char *series : {"mesh", "penalty", "implicit"})
+    {
+      std::vector<TableColumn> c = {{"h_contact", "m", {}},
+                                    {"penalty_factor", "1", {}},
+                                    {"ok", "1", {}},
+                                    {"seconds", "s", {}},
+                                    {"n_dofs", "1", {}},
+                                    {"n_steps", "1", {}},
+                                    {"kelvin_voigt", "kN/mm/m", {}},
+                                    {"jankowski", "kN/mm^1.5/m", {}},
+                                    {"error_kelvin_voigt", "1", {}},
+                                    {"error_jankowski", "1", {}}};
+      for (const FemAccuracyPoint &p : extras.fem_accuracy)
+      {
+        if (p.series != series)
+          continue;
+        const double v[] = {p.h_contact,
+                            p.penalty_factor,
+                            p.ok ? 1.0 : 0.0,
+                            p.seconds,
+                            p.n_dofs,
+                            p.n_steps,
+                            p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan,
+                            p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan,
+                            p.error_kelvin_voigt,
+                            p.error_jankowski};
+        for (std::size_t i = 0; i < c.size(); ++i)
+          c[i].values.push_back(v[i]);
+      }
+      if (!c.front().values.empty())
+        root.group("accuracy").group("fem").write_table(series, c);
+    }
+    for (const char *method : {"cdm", "newmark", "cdm_reference"})
+    {
+      std::vector<TableColumn> c = {{"dt", "s", {}},
+                                    {"ok", "1", {}},
+                                    {"seconds", "s", {}},
+                                    {"impact_force", "N", {}},
+                                    {"base_acceleration", "m/s^2", {}},
+                                    {"error_impact_force", "1", {}},
+                                    {"error_base_acceleration", "1", {}}};
+      for (const LumpedAccuracyPoint &p : extras.lumped_accuracy)
+      {
+        if (p.method != method)
+          continue;
+        const double v[] = {p.dt,
+                            p.ok ? 1.0 : 0.0,
+                            p.seconds,
+                            p.ok ? p.peak_impact_force : nan,
+                            p.ok ? p.base_acceleration : nan,
+                            p.error_force,
+                            p.error_acceleration};
+        for (std::size_t i = 0; i < c.size(); ++i)
+          c[i].values.push_back(v[i]);
+      }
+      if (!c.front().values.empty())
+      {
+        ResultsGroup lumped = root.group("accuracy").group("lumped");
+        lumped.write_table(method, c);
+        lumped.set_attribute("k_total_N_per_m", extras.lumped_k_total);
+        lumped.set_attribute("gap_m", extras.lumped_gap);
+        lumped.set_attribute("record", extras.lumped_record);
+      }
+    }
+    if (!extras.stability.empty())
+    {
+      std::vector<TableColumn> c = {{"stiffness", "N/m", {}},
+                                    {"dt", "s", {}},
+                                    {"dt_limit", "s", {}},
+                                    {"dt_limit_damped", "s", {}},
+                                    {"stable", "1", {}},
+                                    {"accurate", "1", {}},
+                                    {"effective_cor", "1", {}},
+                                    {"peak_force", "N", {}}};
+      for (const StabilityPoint &p : extras.stability)
+      {
+        const double v[] = {p.stiffness,
+                            p.dt,
+                            p.dt_limit,
+                            p.dt_limit_damped,
+                            p.stable ? 1.0 : 0.0,
+                            p.accurate ? 1.0 : 0.0,
+                            p.effective_cor,
+                            p.peak_force};
+        for (std::size_t i = 0; i < c.size(); ++i)
+          c[i].values.push_back(v[i]);
+      }
+      ResultsGroup stability = root.group("stability");
+      stability.write_table("lumped", c);
+      ResultsGroup table = stability.group("lumped");
+      table.set_attribute("effective_mass_kg", extras.stability_effective_mass);
+      table.set_attribute("study_stiffness_N_per_m", extras.stability_study_k);
+    }
+    if (!extras.fem_stability.empty())
+    {
+      std::vector<TableColumn> c = {{"penalty_factor", "1", {}},
+                                    {"dt_factor", "1", {}},
+                                    {"dt", "s", {}},
+                                    {"dt_limit", "s", {}},
+                                    {"stable", "1", {}},
+                                    {"energy_error", "1", {}}};
+      for (const FemStabilityPoint &p : extras.fem_stability)
+      {
+        const double v[] = {p.penalty_factor,
+                            p.dt_factor,
+                            p.dt,
+                            p.dt_limit,
+                            p.stable ? 1.0 : 0.0,
+                            p.energy_error > 0 ? p.energy_error : nan};
+        for (std::size_t i = 0; i < c.size(); ++i)
+          c[i].values.push_back(v[i]);
+      }
+      ResultsGroup stability = root.group("stability");
+      stability.write_table("fem", c);
+      ResultsGroup table = stability.group("fem");
+      table.set_attribute("h_contact_m", extras.fem_stability_h_contact);
+      table.set_attribute("end_time_s", extras.fem_stability_end_time);
+    }
+    if (!extras.sensitivity.empty())
+    {
+      for (const char *parameter :
+           {"base", "soil_modulus", "slab_mass", "impact_velocity", "wall_thickness"})
+      {
+        std::vector<TableColumn> c = {{"factor", "1", {}},
+                                      {"ok", "1", {}},
+                                      {"kelvin_voigt", "kN/mm/m", {}},
+                                      {"jankowski", "kN/mm^1.5/m", {}}};
+        for (const SensitivityPoint &p : extras.sensitivity)
+        {
+          if (p.parameter != parameter)
+            continue;
+          const double v[] = {p.factor,
+                              p.ok ? 1.0 : 0.0,
+                              p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan,
+                              p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan};
+          for (std::size_t i = 0; i < c.size(); ++i)
+            c[i].values.push_back(v[i]);
+        }
+        root.group("sensitivity").write_table(parameter, c);
+      }
+    }
+  }
+
+  void write_study_extras_csv(const OutputDir &output, const StudyExtras &extras)
+  {
+    if (!extras.fem_accuracy.empty())
+    {
+      std::vector<std::vector<std::string>> rows;
+      for (const FemAccuracyPoint &p : extras.fem_accuracy)
+        rows.push_back({p.series,
+                        text_or_empty(p.h_contact * 100),
+                        text_or_empty(p.penalty_factor),
+                        text_or_empty(p.seconds),
+                        text_or_empty(p.n_dofs),
+                        text_or_empty(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
+                        text_or_empty(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
+                        text_or_empty(p.error_kelvin_voigt * 100),
+                        text_or_empty(p.error_jankowski * 100),
+                        p.status});
+      write_csv_atomic(output.file("accuracy_fem.csv"),
+                       {"series",
+                        "h_contact_cm",
+                        "penalty_factor",
+                        "fem_seconds",
+                        "n_dofs",
+                        "kelvin_voigt_kN_per_mm_per_m",
+                        "jankowski_kN_per_mm1.5_per_m",
+                        "error_kelvin_voigt_percent",
+                        "error_jankowski_percent",
+                        "status"},
+                       rows);
+    }
+    if (!extras.lumped_accuracy.empty())
+    {
+      std::vector<std::vector<std::string>> rows;
+      for (const LumpedAccuracyPoint &p : extras.lumped_accuracy)
+        rows.push_back({p.method,
+                        text_or_empty(p.dt),
+                        text_or_empty(p.seconds),
+                        text_or_empty(p.ok ? p.peak_impact_force / 1e3 : nan),
+                        text_or_empty(p.ok ? p.base_acceleration : nan),
+                        text_or_empty(p.error_force * 100),
+                        text_or_empty(p.error_acceleration * 100),
+                        p.status});
+      write_csv_atomic(output.file("accuracy_lumped.csv"),
+                       {"method",
+                        "dt_s",
+                        "seconds",
+                        "peak_impact_force_kN",
+                        "peak_base_acceleration_m_per_s2",
+                        "error_impact_force_percent",
+                        "error_base_acceleration_percent",
+                        "status"},
+                       rows);
+    }
+    if (!extras.stability.empty())
+    {
+      std::vector<std::vector<double>> rows;
+      for (const StabilityPoint &p : extras.stability)
+        rows.push_back({stiffness_to_kn_per_mm(p.stiffness, 1.0),
+                        p.dt,
+                        p.dt_limit,
+                        p.dt_limit_damped,
+                        p.stable ? 1.0 : 0.0,
+                        p.accurate ? 1.0 : 0.0,
+                        p.effective_cor});
+      write_csv_atomic(output.file("stability_lumped.csv"),
+                       {"k_imp_kN_per_mm",
+                        "dt_s",
+                        "dt_limit_2_over_omega_s",
+                        "dt_limit_damped_s",
+                        "stable",
+                        "accurate",
+                        "effective_cor"},
+                       rows);
+    }
+    if (!extras.fem_stability.empty())
+    {
+      std::vector<std::vector<std::string>> rows;
+      for (const FemStabilityPoint &p : extras.fem_stability)
+        rows.push_back({text_or_empty(p.penalty_factor),
+                        text_or_empty(p.dt_factor),
+                        text_or_empty(p.dt),
+                        text_or_empty(p.dt_limit),
+                        p.stable ? "1" : "0",
+                        text_or_empty(p.energy_error > 0 ? p.energy_error : nan),
+                        p.status});
+      write_csv_atomic(output.file("stability_fem.csv"),
+                       {"penalty_factor",
+                        "dt_over_limit",
+                        "dt_s",
+                        "dt_limit_s",
+                        "stable",
+                        "max_energy_error",
+                        "status"},
+                       rows);
+    }
+    if (!extras.sensitivity.empty())
+    {
+      std::vector<std::vector<std::string>> rows;
+      for (const SensitivityPoint &p : extras.sensitivity)
+        rows.push_back({p.parameter,
+                        text_or_empty(p.factor),
+                        text_or_empty(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
+                        text_or_empty(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
+                        p.status});
+      write_csv_atomic(output.file("sensitivity.csv"),
+                       {"parameter",
+                        "factor",
+                        "kelvin_voigt_kN_per_mm_per_m",
+                        "jankowski_kN_per_mm1.5_per_m",
+                        "status"},
+                       rows);
+    }
+  }
+} // namespace kimp::app

@@ -1,0 +1,154 @@
+// One wall height of `kimp study`: mesh + FEM impact (PHYSICS.md §4) with a per-height cache.
+#include "app/study/study_fem.h"
+
+#include <chrono>
+#include <fmt/format.h>
+#include <fstream>
+#include <mpi.h>
+#include <sstream>
+#include <stdexcept>
+
+#include "app/fem/fem_common.h"
+#include "app/fit_run.h"
+#include "base/hash.h"
+#include "base/logging.h"
+#include "base/version.h"
+#include "fem/impact.h"
+#include "geometry/scene_mesh.h"
+#include "io/results_file.h"
+
+namespace kimp::app
+{
+  using namespace kimp::base;
+  using namespace kimp::io;
+  using namespace kimp::fit;
+  namespace
+  {
+    std::string read_key(const std::filesystem::path &file)
+    {
+      std::ifstream in(file);
+      std::string   key;
+      in >> key;
+      return key;
+    }
+
+    double seconds_since(std::chrono::steady_clock::time_point start)
+    {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+  } // namespace
+
+  StudyFits fit_study_laws(const FemCase &fem_case, const StudyFitScene &settings)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    StudyFits  fits;
+    for (const FitVariant &variant : standard_fit_variants({}, settings.cor))
+    {
+      const bool kv = variant.name == "kelvin_voigt_cor_fixed";
+      if (!kv && variant.name != "jankowski_cor_fixed")
+        continue;
+      std::optional<FitResult> &fit    = kv ? fits.kelvin_voigt : fits.jankowski;
+      std::string              &status = kv ? fits.kelvin_voigt_status : fits.jankowski_status;
+      try
+      {
+        ForceHistory history = force_history(fem_case, !settings.raw_force);
+        if (settings.force_only_contact)
+          history.indentation.clear();
+        FitOptions options          = variant.options;
+        options.separation_fraction = settings.separation_fraction;
+        options.displacement_weight = settings.displacement_weight;
+        fit                         = fit_impact_law(history,
+                             fem_case.slab_mass,
+                             fem_case.impact_velocity,
+                             variant.law,
+                             options);
+        status                      = "ok";
+      }
+      catch (const std::exception &error)
+      {
+        status = std::string("failed: ") + error.what();
+        logger().warn("{} {}: fit {}", fem_case.name, variant.name, status);
+      }
+    }
+    fits.seconds = seconds_since(start);
+    return fits;
+  }
+
+  std::string study_fem_cache_key(const FemScene &scene, double wall_height)
+  {
+    FemScene single     = scene;
+    single.wall_heights = {wall_height};
+    return fmt::format("{:016x}",
+                       base::stable_hash(base::version_line() + "\n" + to_json_text(single, 0)));
+  }
+
+  StudyFemCase study_fem_case(const FemScene    &scene,
+                              double             wall_height,
+                              const OutputDir   &output,
+                              const std::string &case_name)
+  {
+    const auto        start = std::chrono::steady_clock::now();
+    const std::string name  = case_name.empty() ? fem_case_name(wall_height) : case_name;
+    StudyFemCase      result;
+    result.cache_key                       = study_fem_cache_key(scene, wall_height);
+    const std::filesystem::path cache_file = output.file("fem/" + name + ".h5");
+    const std::filesystem::path key_file   = output.file("fem/" + name + ".key");
+
+    if (std::filesystem::is_regular_file(cache_file) && read_key(key_file) == result.cache_key)
+    {
+      std::vector<FemCase> cases = read_fem_cases(cache_file);
+      if (cases.size() == 1 && cases.front().name == name && cases.front().status == "ok")
+      {
+        result.fem_case     = std::move(cases.front());
+        result.from_cache   = true;
+        result.wall_seconds = seconds_since(start);
+        logger().info("{}: FEM result reused from {} (cache key {})",
+                      name,
+                      cache_file.string(),
+                      result.cache_key);
+        return result;
+      }
+    }
+    std::filesystem::remove(key_file);
+
+    const std::filesystem::path mesh = output.file("mesh/" + name + ".msh");
+    fem::ImpactResult           impact;
+    try
+    {
+      std::ostringstream statistics;
+      statistics << geometry::build_scene_mesh(scene_geometry(scene, wall_height), mesh);
+      logger().info("{}: mesh {} ({})", name, mesh.string(), statistics.str());
+      std::ostringstream log;
+      impact = fem::run_impact(impact_parameters(scene, wall_height, mesh), MPI_COMM_SELF, &log);
+      std::istringstream lines(log.str());
+      for (std::string line; std::getline(lines, line);)
+        logger().debug("{}: {}", name, line);
+    }
+    catch (const std::exception &error)
+    {
+      throw std::runtime_error(fmt::format("{}: {}", name, error_message(error)));
+    }
+    result.fem_case = to_fem_case(name, wall_height, scene, impact);
+
+    FemScene single            = scene;
+    single.wall_heights        = {wall_height};
+    const std::string resolved = to_json_text(single);
+    ResultsFile       file(cache_file, resolved, resolved);
+    ResultsGroup      fem_root = file.root().group("fem");
+    write_fem_case(fem_root, result.fem_case);
+    file.commit();
+    write_text_atomic(key_file, result.cache_key + "\n");
+    result.wall_seconds = seconds_since(start);
+    logger().info("{}: FEM {} DoFs, {} steps of {:.3g} s, peak force {:.4g} kN/m, contact "
+                  "{:.4g} ms, COR {:.3f}, {:.2f} s",
+                  name,
+                  impact.summary.n_dofs,
+                  impact.summary.n_steps,
+                  impact.summary.dt,
+                  impact.summary.peak_force / 1e3,
+                  impact.summary.contact_duration * 1e3,
+                  impact.summary.apparent_cor,
+                  result.wall_seconds);
+    return result;
+  }
+} // namespace kimp::app

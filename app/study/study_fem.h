@@ -1,0 +1,62 @@
+// One wall height of `kimp study`: mesh (geometry::build_scene_mesh) and FEM impact
+// (fem::run_impact on MPI_COMM_SELF) -> FemCase, cached in DIR/fem/H<H>.h5 under a scene hash.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "app/fem/fem_scene.h"
+#include "app/study/study_scene.h"
+#include "io/fem_results.h"
+#include "io/summary.h"
+
+namespace kimp::app
+{
+  /** The FEM case of one height and where it came from. */
+  struct StudyFemCase
+  {
+    io::FemCase fem_case;
+    bool        from_cache = false; ///< read from DIR/fem/H<H>.h5 instead of computed
+    std::string cache_key;          ///< hex hash of the resolved single-height scene
+    double      wall_seconds = 0.0; ///< s spent here (meshing + FEM, or reading the cache)
+  };
+
+  /**
+   * Cache key of the case `wall_height` of `scene`: stable 64-bit hash (hex) of the resolved
+   * scene restricted to that height and of the kimp version. Any parameter change changes it.
+   */
+  std::string study_fem_cache_key(const FemScene &scene, double wall_height);
+
+  /**
+   * The FemCase of height `wall_height`: read from `output`/fem/<case>.h5 when
+   * `output`/fem/<case>.key holds study_fem_cache_key(), else mesh (`output`/mesh/<case>.msh),
+   * run fem::run_impact() on MPI_COMM_SELF and store the .h5 and then the .key file (a run
+   * interrupted before the key exists is recomputed). Must be called on one rank only; MPI must
+   * be initialised. Heights are run one after the other by the caller: gmsh's API is global.
+   * @param[in] case_name name of the case and its files ("": fem_case_name(wall_height)); the
+   *            fidelity levels of one height use "H1.25_h2.5cm_p1" etc.
+   * @throws the meshing and FEM errors, prefixed with the case name.
+   */
+  StudyFemCase study_fem_case(const FemScene      &scene,
+                              double               wall_height,
+                              const io::OutputDir &output,
+                              const std::string   &case_name = "");
+
+  /** The study's two fits of one FEM case (laws 2 and 4 at the study COR). */
+  struct StudyFits
+  {
+    std::optional<fit::FitResult> kelvin_voigt;
+    std::optional<fit::FitResult> jankowski;
+    std::string                   kelvin_voigt_status = "ok"; ///< "ok" or "failed: ..."
+    std::string                   jankowski_status    = "ok";
+    double                        seconds             = 0.0; ///< s
+
+    bool ok() const { return kelvin_voigt && jankowski; }
+  };
+
+  /**
+   * Fit Kelvin-Voigt and Jankowski at settings.cor to `fem_case` (smoothed force unless
+   * settings.raw_force). A failed fit is logged and reported in its status, not thrown.
+   */
+  StudyFits fit_study_laws(const io::FemCase &fem_case, const StudyFitScene &settings);
+} // namespace kimp::app

@@ -1,0 +1,173 @@
+// The fidelity ladder of `kimp study`: k on successively finer FEM levels, stop at a relative
+// change below the tolerance, error = change to the previous level.
+#include "app/study/study_ladder.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <stdexcept>
+
+namespace kimp::app
+{
+  namespace
+  {
+    void check_levels(const std::vector<double> &values, const char *name, bool decreasing)
+    {
+      if (values.empty())
+        throw std::invalid_argument(fmt::format("{}: empty (need at least one level)", name));
+      for (std::size_t i = 0; i < values.size(); ++i)
+      {
+        if (!(values[i] > 0.0 && std::isfinite(values[i])))
+          throw std::invalid_argument(
+            fmt::format("{}[{}] = {} (must be > 0 and finite)", name, i, values[i]));
+        if (i > 0 && (decreasing ? !(values[i] < values[i - 1]) : !(values[i] > values[i - 1])))
+          throw std::invalid_argument(fmt::format("{}[{}] = {} after {} (must be {})",
+                                                  name,
+                                                  i,
+                                                  values[i],
+                                                  values[i - 1],
+                                                  decreasing ? "decreasing" : "increasing"));
+      }
+    }
+
+    bool within(const LevelOutcome &coarse, const LevelOutcome &fine, double tolerance)
+    {
+      return relative_change(coarse.k_kelvin_voigt, fine.k_kelvin_voigt) <= tolerance &&
+             relative_change(coarse.k_jankowski, fine.k_jankowski) <= tolerance;
+    }
+
+    double quadrature(double a, double b)
+    {
+      if (std::isnan(a))
+        return std::isnan(b) ? b : std::abs(b);
+      if (std::isnan(b))
+        return std::abs(a);
+      return std::hypot(a, b);
+    }
+  } // namespace
+
+  std::string FidelityLevel::label() const
+  {
+    return fmt::format("h{:g}cm_p{:g}", h_contact * 100.0, penalty_factor);
+  }
+
+  double relative_change(double coarse, double fine)
+  {
+    if (coarse == fine)
+      return 0.0;
+    if (fine == 0.0)
+      return std::numeric_limits<double>::infinity();
+    return std::abs(coarse - fine) / std::abs(fine);
+  }
+
+  double total_stiffness_error(double k_per_metre, double k_error, double width, double width_error)
+  {
+    return std::hypot(width * k_error, k_per_metre * width_error);
+  }
+
+  LadderResult climb_fidelity_ladder(const std::vector<double> &h_contact_levels,
+                                     const std::vector<double> &penalty_levels,
+                                     double                     tolerance,
+                                     const std::function<LevelOutcome(const FidelityLevel &)> &run)
+  {
+    check_levels(h_contact_levels, "fidelity_h_contact", true);
+    check_levels(penalty_levels, "fidelity_penalty_factors", false);
+    if (!(tolerance > 0.0 && std::isfinite(tolerance)))
+      throw std::invalid_argument(
+        fmt::format("fidelity_tolerance = {} (must be > 0 and finite)", tolerance));
+
+    LadderResult result;
+    // One phase: run `levels` in order from the current state; returns true if it converged.
+    // `first_known`: index of an already computed level that starts the phase (npos: none).
+    const auto phase = [&](const std::vector<FidelityLevel> &levels,
+                           std::size_t                       first_known,
+                           double                           &error_kv,
+                           double                           &error_j,
+                           const char                       *what)
+    {
+      std::size_t previous = first_known;
+      for (const FidelityLevel &level : levels)
+      {
+        result.levels.push_back(level);
+        result.outcomes.push_back(run(level));
+        const std::size_t   i       = result.outcomes.size() - 1;
+        const LevelOutcome &outcome = result.outcomes[i];
+        if (!outcome.ok || !std::isfinite(outcome.k_kelvin_voigt) ||
+            !std::isfinite(outcome.k_jankowski))
+        {
+          result.reason = fmt::format("{} level {} unusable ({}): reporting the previous level",
+                                      what,
+                                      level.label(),
+                                      outcome.status);
+          return false;
+        }
+        result.used = i;
+        if (previous < i)
+        {
+          const LevelOutcome &before = result.outcomes[previous];
+          error_kv                   = std::abs(outcome.k_kelvin_voigt - before.k_kelvin_voigt);
+          error_j                    = std::abs(outcome.k_jankowski - before.k_jankowski);
+          if (within(before, outcome, tolerance))
+          {
+            result.reason =
+              fmt::format("{} converged at {}: k changed by {:.3g} % (KV) and "
+                          "{:.3g} % (Jankowski) from {} (tolerance {:.3g} %)",
+                          what,
+                          level.label(),
+                          100.0 * relative_change(before.k_kelvin_voigt, outcome.k_kelvin_voigt),
+                          100.0 * relative_change(before.k_jankowski, outcome.k_jankowski),
+                          result.levels[previous].label(),
+                          100.0 * tolerance);
+            return true;
+          }
+        }
+        previous = i;
+      }
+      result.reason = result.outcomes.size() == 1 ?
+                        fmt::format("{}: one level ({}), numerical error not estimated",
+                                    what,
+                                    result.levels.back().label()) :
+                        fmt::format("{} ladder exhausted at {} without meeting the tolerance "
+                                    "{:.3g} %",
+                                    what,
+                                    result.levels.back().label(),
+                                    100.0 * tolerance);
+      return false;
+    };
+
+    std::vector<FidelityLevel> mesh;
+    for (const double h : h_contact_levels)
+      mesh.push_back({h, penalty_levels.front()});
+    const bool mesh_converged = phase(mesh,
+                                      std::numeric_limits<std::size_t>::max(),
+                                      result.mesh_error_kelvin_voigt,
+                                      result.mesh_error_jankowski,
+                                      "mesh");
+    if (!result.has_usable_level())
+      return result;
+    // A level that failed after a usable one ends the climb.
+    const bool        mesh_failed = result.used + 1 != result.outcomes.size();
+    const std::string mesh_reason = result.reason;
+
+    bool penalty_converged = penalty_levels.size() == 1;
+    if (penalty_levels.size() > 1 && !mesh_failed)
+    {
+      std::vector<FidelityLevel> penalty;
+      const double               h = result.used_level().h_contact;
+      for (std::size_t j = 1; j < penalty_levels.size(); ++j)
+        penalty.push_back({h, penalty_levels[j]});
+      penalty_converged = phase(penalty,
+                                result.used,
+                                result.penalty_error_kelvin_voigt,
+                                result.penalty_error_jankowski,
+                                "penalty");
+      result.reason     = mesh_reason + "; " + result.reason;
+    }
+    result.converged = mesh_converged && penalty_converged && !mesh_failed &&
+                       result.used + 1 == result.outcomes.size();
+    result.error_kelvin_voigt =
+      quadrature(result.mesh_error_kelvin_voigt, result.penalty_error_kelvin_voigt);
+    result.error_jankowski =
+      quadrature(result.mesh_error_jankowski, result.penalty_error_jankowski);
+    return result;
+  }
+} // namespace kimp::app

@@ -1,0 +1,89 @@
+// `fidelity: auto` of `kimp study` (issue 5): climb a ladder of FEM mesh sizes h_contact and then
+// penalty factors until the fitted k of both laws changes by less than a tolerance between
+// consecutive levels; the numerical error of k is the change to the previous level.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace kimp::app
+{
+  /** One rung of the ladder: an FEM discretisation. */
+  struct FidelityLevel
+  {
+    double h_contact      = 0.0; ///< element size at the contact, m
+    double penalty_factor = 1.0; ///< fem::ImpactParameters::penalty_factor
+
+    /// "h2.5cm_p1": part of the FEM cache file name of the level.
+    std::string label() const;
+  };
+
+  /** What the caller computed on one level (FEM + both fits). */
+  struct LevelOutcome
+  {
+    bool        ok             = false;
+    std::string status         = "ok"; ///< "ok" or why the level is unusable
+    double      k_kelvin_voigt = std::numeric_limits<double>::quiet_NaN(); ///< N/m per m
+    double      k_jankowski    = std::numeric_limits<double>::quiet_NaN(); ///< N/m^1.5 per m
+    double      seconds        = 0.0;   ///< s spent on the level (FEM + fits)
+    bool        from_cache     = false; ///< FEM read from the study's cache
+  };
+
+  /** The ladder as climbed. */
+  struct LadderResult
+  {
+    std::vector<FidelityLevel> levels;   ///< levels run, in order
+    std::vector<LevelOutcome>  outcomes; ///< one per level
+    /// Index of the level whose k is reported (npos: no usable level).
+    std::size_t used      = std::numeric_limits<std::size_t>::max();
+    bool        converged = false; ///< the tolerance was met in the mesh and the penalty phase
+    std::string reason;            ///< why the climb stopped (for the log and the report)
+    /// Numerical error estimates of the reported k, N/m^n per m: change to the previous mesh level
+    /// and to the previous penalty level (NaN: not estimated, a phase with one level), and their
+    /// quadrature sum (NaN if neither phase could estimate it).
+    double mesh_error_kelvin_voigt    = std::numeric_limits<double>::quiet_NaN();
+    double mesh_error_jankowski       = std::numeric_limits<double>::quiet_NaN();
+    double penalty_error_kelvin_voigt = std::numeric_limits<double>::quiet_NaN();
+    double penalty_error_jankowski    = std::numeric_limits<double>::quiet_NaN();
+    double error_kelvin_voigt         = std::numeric_limits<double>::quiet_NaN();
+    double error_jankowski            = std::numeric_limits<double>::quiet_NaN();
+
+    bool                 has_usable_level() const { return used < outcomes.size(); }
+    const LevelOutcome  &used_outcome() const { return outcomes.at(used); }
+    const FidelityLevel &used_level() const { return levels.at(used); }
+  };
+
+  /**
+   * Climb the fidelity ladder. Mesh phase: run (h, p₀) for h in `h_contact_levels` (coarse to
+   * fine, p₀ = penalty_levels[0]) and stop at the first level whose k_KV and k_Jankowski both
+   * differ by at most `tolerance` (relative to the finer value) from the previous level. Penalty
+   * phase (if more than one penalty level): at the mesh level reached, run the further penalty
+   * factors with the same rule. The reported level is the last one run; its error per phase is
+   * |k − k_previous| (not a Richardson extrapolation: convergence need not be monotone, and for
+   * order p >= 1 at ratio 2 the difference bounds the Richardson estimate |Δ|/(2^p − 1)). A
+   * level that fails stops the climb at the previous usable level (converged = false); a ladder
+   * exhausted without meeting the tolerance reports its last level with converged = false.
+   * @param[in] run computes one level; its exceptions propagate
+   * @throws std::invalid_argument for empty level lists, non-positive values, h not decreasing,
+   *         penalties not increasing or tolerance <= 0 (message names the argument and value).
+   */
+  LadderResult climb_fidelity_ladder(const std::vector<double> &h_contact_levels,
+                                     const std::vector<double> &penalty_levels,
+                                     double                     tolerance,
+                                     const std::function<LevelOutcome(const FidelityLevel &)> &run);
+
+  /**
+   * Relative difference |a − b| / |b| (b the finer level); infinity if b == 0 and a != b.
+   */
+  double relative_change(double coarse, double fine);
+
+  /**
+   * Uncertainty of k_total = k_per_metre · W with independent errors of k (fit interval
+   * half-width or numerical error) and of W: σ_total = sqrt((W·σ_k)² + (k·σ_W)²).
+   */
+  double
+  total_stiffness_error(double k_per_metre, double k_error, double width, double width_error = 0.0);
+} // namespace kimp::app

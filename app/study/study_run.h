@@ -1,0 +1,107 @@
+// `kimp study [SCENE.yaml] -o DIR` (issue 5, ARCHITECTURE.md "Data flow of the main job"):
+// per wall height FEM -> fitted k (laws 2 and 4) -> k table -> building pounding runs -> files.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/study/study_extras.h"
+#include "app/study/study_ladder.h"
+#include "app/study/study_scene.h"
+#include "fit/fitter.h"
+#include "io/fem_results.h"
+#include "io/summary.h"
+
+namespace kimp::app
+{
+  /** Thesis Table 2.1 (ADINA) at one wall height, kN/mm/m and kN/mm^1.5/m. */
+  struct ThesisStiffness
+  {
+    double wall_height;  ///< m
+    double kelvin_voigt; ///< kN/mm per metre
+    double jankowski;    ///< kN/mm^1.5 per metre
+  };
+
+  /** The four rows of Table 2.1 (PHYSICS.md §4). */
+  const std::vector<ThesisStiffness> &thesis_table_2_1();
+
+  /** One row of the k table: the fits of one wall height. */
+  struct StudyHeight
+  {
+    double                        wall_height = 0.0; ///< m
+    std::string                   name;              ///< "H1.25"
+    io::FemCase                   fem_case;
+    bool                          fem_from_cache = false;
+    double                        fem_seconds    = 0.0;       ///< s
+    double                        fit_seconds    = 0.0;       ///< s
+    std::optional<fit::FitResult> kelvin_voigt;               ///< law 2 at the study COR
+    std::optional<fit::FitResult> jankowski;                  ///< law 4 at the study COR
+    std::string                   kelvin_voigt_status = "ok"; ///< "ok" or "failed: ..."
+    std::string                   jankowski_status    = "ok";
+    bool                          auto_fidelity       = false; ///< fidelity: auto (ladder below)
+    LadderResult                  ladder;                      ///< levels climbed (fidelity: auto)
+    std::string                   fidelity_reason; ///< why this level (for the log and report)
+
+    /// Numerical error of k from the FEM levels, N/m^n per m (NaN: not estimated).
+    double kelvin_voigt_numerical_error() const { return ladder.error_kelvin_voigt; }
+    double jankowski_numerical_error() const { return ladder.error_jankowski; }
+  };
+
+  /** One building run: a record, a wall height (0: no walls) and a law. */
+  struct StudyBuildingRun
+  {
+    std::string record;
+    double      wall_height = 0.0;            ///< m; 0 for the run without walls
+    std::string law;                          ///< "none" without walls
+    double      k_total                = 0.0; ///< N/m^n of each wall (k_per_m·W)
+    double      exponent               = 1.0;
+    double      gap                    = 0.0; ///< m, both walls
+    double      pga                    = 0.0; ///< m/s²
+    double      base_displacement      = 0.0; ///< peak |u_0|, m
+    double      top_displacement       = 0.0; ///< m
+    double      base_acceleration      = 0.0; ///< peak absolute, m/s²
+    double      top_acceleration       = 0.0; ///< m/s²
+    double      max_floor_acceleration = 0.0; ///< over the superstructure floors, m/s²
+    double      max_interstorey_drift  = 0.0; ///< m
+    double      peak_impact_force      = 0.0; ///< N, over both walls
+    std::size_t n_impacts              = 0;
+    double      permanent_indentation  = 0.0; ///< m, larger wall
+    double      amplification_base_acc = 1.0; ///< peak / peak without walls
+    double      amplification_top_acc  = 1.0;
+    double      amplification_drift    = 1.0;
+    double      wall_seconds           = 0.0; ///< s
+    std::string status                 = "ok";
+  };
+
+  /** What run_study() computed. */
+  struct StudyResult
+  {
+    std::vector<StudyHeight>      heights;
+    std::vector<StudyBuildingRun> building;
+    StudyExtras                   extras; ///< accuracy, stability and sensitivity studies
+    double                        fem_seconds      = 0.0; ///< s, all heights
+    double                        fit_seconds      = 0.0; ///< s
+    double                        building_seconds = 0.0; ///< s
+    double                        charts_seconds   = 0.0; ///< s
+    double                        wall_seconds     = 0.0; ///< s, whole study
+  };
+
+  /**
+   * Run the study of `scene` into `output`: DIR/fem/H<H>.{h5,key} (FEM cache), DIR/mesh/,
+   * DIR/k_table.csv, DIR/building_response.csv, DIR/study.h5, DIR/summary.json, DIR/report.md
+   * and (scene.charts, python3 with matplotlib and h5py) PNG and SVG charts under DIR/charts. Rank
+   * 0 only. A failed fit or building run is a row with its status; a failed FEM height is an error.
+   */
+  StudyResult run_study(const io::LoadedScene<StudyScene> &scene, const io::OutputDir &output);
+
+
+  /**
+   * `kimp study` on every rank of MPI_COMM_WORLD (MPI initialised): the heights are shared by the
+   * ranks (rank r computes heights r, r + N, ... into the FEM cache), then rank 0 runs
+   * run_study() into `output_dir` (created by rank 0 first).
+   */
+  void run_study_job(const io::LoadedScene<StudyScene> &scene,
+                     const std::filesystem::path       &output_dir);
+} // namespace kimp::app

@@ -1,0 +1,193 @@
+// Scene of `kimp study`: defaults, validation and the lumped scenes of the building runs.
+#include "app/study/study_scene.h"
+
+#include <filesystem>
+
+#include "io/records.h"
+#include "io/units.h"
+
+namespace kimp::app
+{
+  using namespace kimp::io;
+  using namespace kimp::fit;
+  namespace
+  {
+    /// A ladder: non-empty, positive, strictly decreasing (or increasing), at most `largest`.
+    void check_ladder(ValidationContext         &ctx,
+                      const std::string         &key,
+                      const std::vector<double> &values,
+                      const std::string         &unit,
+                      bool                       decreasing,
+                      double                     largest)
+    {
+      ctx.check(!values.empty(), key, "[]", "must list at least one level");
+      for (std::size_t i = 0; i < values.size(); ++i)
+      {
+        const std::string item = key + "[" + std::to_string(i) + "]";
+        ctx.check(values[i] > 0.0, item, format_quantity(values[i], unit), "must be > 0");
+        if (largest > 0.0)
+          ctx.check(values[i] <= largest,
+                    item,
+                    format_quantity(values[i], unit),
+                    "must be <= mesh.h_max = " + format_quantity(largest, unit));
+        if (i > 0)
+          ctx.check(decreasing ? values[i] < values[i - 1] : values[i] > values[i - 1],
+                    item,
+                    format_quantity(values[i], unit),
+                    decreasing ? "must be below the previous level" :
+                                 "must be above the previous level");
+      }
+    }
+  } // namespace
+
+  FemScene default_study_fem_scene()
+  {
+    FemScene scene;
+    scene.wall_heights = {1.00, 1.25, 1.50, 2.00};
+    return scene;
+  }
+
+  void validate(const StudyScene &scene, ValidationContext &ctx)
+  {
+    {
+      const auto scope = ctx.section("fem");
+      validate(static_cast<const FemScene &>(scene.fem), ctx);
+      ctx.check(scene.fem.fidelity_tolerance > 0.0,
+                "fidelity_tolerance",
+                format_quantity(scene.fem.fidelity_tolerance, "%"),
+                "must be > 0 %");
+      check_ladder(ctx,
+                   "fidelity_h_contact",
+                   scene.fem.fidelity_h_contact,
+                   "cm",
+                   true,
+                   scene.fem.mesh.h_max);
+      check_ladder(ctx,
+                   "fidelity_penalty_factors",
+                   scene.fem.fidelity_penalty_factors,
+                   "",
+                   false,
+                   0.0);
+    }
+    {
+      const auto scope = ctx.section("accuracy");
+      ctx.check(scene.accuracy.wall_height > 0.0,
+                "wall_height",
+                format_quantity(scene.accuracy.wall_height, "m"),
+                "must be > 0");
+      check_ladder(ctx, "h_contact", scene.accuracy.h_contact, "cm", true, scene.fem.mesh.h_max);
+      check_ladder(ctx, "penalty_factors", scene.accuracy.penalty_factors, "", false, 0.0);
+      check_ladder(ctx, "lumped_dt", scene.accuracy.lumped_dt, "s", true, 0.0);
+      const double finest_dt =
+        scene.accuracy.lumped_dt.empty() ? 0.0 : scene.accuracy.lumped_dt.back();
+      ctx.check(scene.accuracy.lumped_reference_dt > 0.0 &&
+                  (finest_dt == 0.0 || scene.accuracy.lumped_reference_dt < finest_dt),
+                "lumped_reference_dt",
+                format_quantity(scene.accuracy.lumped_reference_dt, "s"),
+                "must be > 0 and below every lumped_dt");
+    }
+    {
+      const auto scope = ctx.section("sensitivity_study");
+      ctx.check(scene.sensitivity_study.wall_height > 0.0,
+                "wall_height",
+                format_quantity(scene.sensitivity_study.wall_height, "m"),
+                "must be > 0");
+      ctx.check(scene.sensitivity_study.variation > 0.0 && scene.sensitivity_study.variation < 1.0,
+                "variation",
+                format_quantity(scene.sensitivity_study.variation, "%"),
+                "must be in (0 %, 100 %)");
+    }
+    {
+      const auto scope = ctx.section("fit");
+      ctx.check(scene.fit.cor > 0.0 && scene.fit.cor <= 1.0,
+                "cor",
+                format_quantity(scene.fit.cor, ""),
+                "must be in (0, 1]");
+      ctx.check(scene.fit.separation_fraction > 0.0,
+                "separation_fraction",
+                format_quantity(scene.fit.separation_fraction, ""),
+                "must be > 0");
+      ctx.check(scene.fit.displacement_weight >= 0.0,
+                "displacement_weight",
+                format_quantity(scene.fit.displacement_weight, ""),
+                "must be >= 0");
+      ctx.check(scene.fit.width > 0.0,
+                "width",
+                format_quantity(scene.fit.width, "m"),
+                "must be > 0");
+    }
+    {
+      const auto scope = ctx.section("walls");
+      ctx.check(scene.walls.mass > 0.0,
+                "mass",
+                format_quantity(scene.walls.mass, "t"),
+                "must be > 0");
+      ctx.check(scene.walls.gap_reduction >= 0.0 && scene.walls.gap_reduction < 1.0,
+                "gap_reduction",
+                format_quantity(scene.walls.gap_reduction, "%"),
+                "must be in [0 %, 100 %)");
+      if (scene.walls.gap)
+        ctx.check(*scene.walls.gap > 0.0,
+                  "gap",
+                  format_quantity(*scene.walls.gap, "cm"),
+                  "must be > 0");
+    }
+    // building, isolator and integration are checked by the lumped scene's rules, whose key
+    // paths are the same as in a study file.
+    LumpedScene building        = study_lumped_scene(scene, GroundMotionScene{});
+    building.walls.left.present = building.walls.right.present = true;
+    validate(building, ctx);
+    ctx.check(scene.building.kind == BuildingKind::isolated,
+              "building.kind",
+              "fixed_base",
+              "must be isolated (the moat walls stand at the isolation level)");
+    for (std::size_t i = 0; i < scene.records.size(); ++i)
+    {
+      const auto scope = ctx.section("records[" + std::to_string(i) + "]");
+      validate(scene.records[i], ctx);
+    }
+  }
+
+  LumpedScene study_lumped_scene(const StudyScene &scene, const GroundMotionScene &record)
+  {
+    LumpedScene lumped;
+    lumped.building            = scene.building;
+    lumped.isolator            = scene.isolator;
+    lumped.integration         = scene.integration;
+    lumped.ground_motion       = record;
+    lumped.walls.left.present  = false;
+    lumped.walls.right.present = false;
+    lumped.walls.left.mass     = scene.walls.mass;
+    lumped.walls.right.mass    = scene.walls.mass;
+    if (scene.walls.gap)
+      lumped.walls.left.gap = lumped.walls.right.gap = *scene.walls.gap;
+    return lumped;
+  }
+
+  std::vector<GroundMotionScene> study_records(const StudyScene &scene)
+  {
+    std::vector<GroundMotionScene> records = scene.records;
+    if (!scene.peer_records)
+      return records;
+    const std::optional<std::filesystem::path> directory = records_directory(
+      scene.records_dir.empty() ? std::nullopt :
+                                  std::optional<std::filesystem::path>(scene.records_dir));
+    if (!directory)
+      return records;
+    // Thesis Table 4.1: Kobe KJMA (NGA-West2 file, trimmed to the thesis' 48 s) and Northridge
+    // Sylmar Converter Station (SCS142.AT2: the thesis' own pre-NGA file, 0.897 g, 40 s).
+    const std::vector<std::pair<std::string, std::optional<double>>> peer =
+      {{"RSN1106_KOBE_KJM000", 48.0}, {"SCS142", std::nullopt}};
+    for (const auto &[name, duration] : peer)
+    {
+      if (!std::filesystem::is_regular_file(*directory / (name + ".AT2")))
+        continue;
+      GroundMotionScene record;
+      record.record      = name;
+      record.records_dir = directory->string();
+      record.duration    = duration;
+      records.push_back(record);
+    }
+    return records;
+  }
+} // namespace kimp::app

@@ -1,0 +1,249 @@
+// Scene of `kimp study` (issue 5): FEM wall-height cases -> fitted k (PHYSICS.md §4) -> the
+// isolated building of PHYSICS.md §2-3 pounding on moat walls with each height's k.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/fem/fem_scene.h"
+#include "app/ground_motion_scene.h"
+#include "app/lumped_scene.h"
+#include "fit/fitter.h"
+#include "io/scene_io.h"
+
+namespace kimp::app
+{
+  /** The FEM scene of the study: PHYSICS.md §4 defaults with H = 1.00, 1.25, 1.50, 2.00 m. */
+  FemScene default_study_fem_scene();
+
+  /** How the study chooses the FEM discretisation of each height. */
+  enum class Fidelity
+  {
+    fixed,       ///< the scene's mesh and penalty (reproducible, no error estimate)
+    auto_ladder, ///< climb fidelity_h_contact, then fidelity_penalty_factors (study_ladder.h)
+  };
+
+  /** The study's FEM section: the FemScene keys plus the fidelity ladder. */
+  struct StudyFemScene : FemScene
+  {
+    StudyFemScene()
+      : FemScene(default_study_fem_scene())
+    {
+    }
+
+    Fidelity            fidelity                 = Fidelity::auto_ladder;
+    double              fidelity_tolerance       = 0.01; ///< relative change of k, > 0
+    std::vector<double> fidelity_h_contact       = {0.05, 0.025, 0.0125}; ///< m, decreasing
+    std::vector<double> fidelity_penalty_factors = {1.0};                 ///< increasing
+  };
+
+  template <class Io>
+  void visit(Io &io, StudyFemScene &s)
+  {
+    visit(io, static_cast<FemScene &>(s));
+    io.choice("fidelity",
+              s.fidelity,
+              {{"auto", Fidelity::auto_ladder}, {"fixed", Fidelity::fixed}},
+              "auto: per height climb fidelity_h_contact (then fidelity_penalty_factors) until "
+              "k_KV and k_Jankowski change by less than fidelity_tolerance, and report the "
+              "change as the numerical error of k; fixed: mesh.h_contact and "
+              "contact.penalty_factor as given, error not estimated");
+    io.quantity("fidelity_tolerance",
+                s.fidelity_tolerance,
+                "%",
+                "auto: largest relative change of k between consecutive levels (> 0)");
+    io.quantity_list("fidelity_h_contact",
+                     s.fidelity_h_contact,
+                     "cm",
+                     "auto: contact element sizes, coarse to fine (each level costs about 4x the "
+                     "previous one; 1.25 cm takes about 10 s per height)");
+    io.quantity_list("fidelity_penalty_factors",
+                     s.fidelity_penalty_factors,
+                     "",
+                     "auto: penalty factors tried at the mesh reached, increasing (the first "
+                     "one is used for the mesh ladder)");
+  }
+
+  /** FEM accuracy-vs-cost and lumped time-step studies at one wall height. */
+  struct StudyAccuracyScene
+  {
+    double              wall_height     = 1.25;                  ///< m
+    std::vector<double> h_contact       = {0.05, 0.025, 0.0125}; ///< m, explicit levels
+    std::vector<double> penalty_factors = {1.0, 10.0};           ///< at the middle mesh level
+    bool implicit = true; ///< also implicit Newmark on every mesh level but the finest
+    std::vector<double> lumped_dt = {2e-3, 1e-3, 5e-4, 2e-4, 1e-4, 5e-5, 2e-5, 1e-5}; ///< s
+    double              lumped_reference_dt = 2.5e-6; ///< s, CDM reference
+  };
+
+  template <class Io>
+  void visit(Io &io, StudyAccuracyScene &s)
+  {
+    io.quantity("wall_height", s.wall_height, "m", "wall height of the accuracy study (> 0)");
+    io.quantity_list("h_contact",
+                     s.h_contact,
+                     "cm",
+                     "FEM mesh levels (explicit, first penalty factor); the finest is the "
+                     "reference");
+    io.quantity_list("penalty_factors",
+                     s.penalty_factors,
+                     "",
+                     "FEM penalty levels, run on the finest mesh level that is not the "
+                     "reference (or the only one)");
+    io.flag("implicit",
+            s.implicit,
+            "also run implicit Newmark on every mesh level but the finest (slow: about 16 s "
+            "at 5 cm; a failure is recorded as a data point)");
+    io.quantity_list("lumped_dt",
+                     s.lumped_dt,
+                     "s",
+                     "time steps of the building with walls (central difference and Newmark)");
+    io.quantity("lumped_reference_dt",
+                s.lumped_reference_dt,
+                "s",
+                "central-difference reference step (> 0, below every lumped_dt)");
+  }
+
+  /** Sensitivity of k to four scene parameters at one wall height. */
+  struct StudySensitivityScene
+  {
+    double wall_height = 1.25; ///< m
+    double variation   = 0.25; ///< each parameter × (1 ∓ variation)
+  };
+
+  template <class Io>
+  void visit(Io &io, StudySensitivityScene &s)
+  {
+    io.quantity("wall_height", s.wall_height, "m", "wall height of the sensitivity study (> 0)");
+    io.quantity("variation",
+                s.variation,
+                "%",
+                "soil modulus, slab mass (length), impact velocity and wall thickness are each "
+                "run at (1 - variation) and (1 + variation) times their value (in (0, 100 %))");
+  }
+
+  /** The fits of every height (PHYSICS.md §4 "Fit"). */
+  struct StudyFitScene
+  {
+    double cor       = 0.7;                        ///< COR of both fitted laws, (0, 1]
+    double width     = fit::thesis_building_width; ///< building side W, m: k_total = k_per_m·W
+    bool   raw_force = false; ///< fit the raw instead of the smoothed FEM contact force
+    /// Contact window from the force alone (the FEM indentation of a chattering rigid slab turns
+    /// negative while the force is still on, which would cut the window at the first bounce).
+    bool   force_only_contact  = true;
+    double separation_fraction = 1.0; ///< fit::FitOptions::separation_fraction (> 0)
+    /// FitOptions::displacement_weight: also fit the slab's advance since first contact (>= 0).
+    double displacement_weight = 0.0;
+  };
+
+  template <class Io>
+  void visit(Io &io, StudyFitScene &s)
+  {
+    io.quantity("cor", s.cor, "", "COR of the fitted Kelvin-Voigt and Jankowski laws, (0, 1]");
+    io.quantity("width",
+                s.width,
+                "m",
+                "building side width W: k_total = k_per_metre x W (> 0; 27.78 m gives the "
+                "thesis' Table 2.2 from Table 2.1)");
+    io.flag("raw_force", s.raw_force, "fit the raw FEM contact force instead of the smoothed one");
+    io.flag("force_only_contact",
+            s.force_only_contact,
+            "contact window from the force alone (true) or from the FEM indentation (false)");
+    io.quantity("separation_fraction",
+                s.separation_fraction,
+                "",
+                "a contact ends at a force-free run longer than this fraction of its duration so "
+                "far (> 0; larger merges the bounces of one impact)");
+    io.quantity("displacement_weight",
+                s.displacement_weight,
+                "",
+                "weight of the slab-displacement misfit beside the force misfit (>= 0; 0: force "
+                "only, the thesis' choice)");
+  }
+
+  /** Moat walls of the study: on both sides, gap from the building's own no-wall response. */
+  struct StudyWallsScene
+  {
+    double                mass          = 500e3; ///< m_wall, kg (> 0)
+    double                gap_reduction = 0.10;  ///< gap = (1 − r)·peak isolation displacement
+    std::optional<double> gap; ///< fixed gap of both walls, m (overrides gap_reduction)
+  };
+
+  template <class Io>
+  void visit(Io &io, StudyWallsScene &s)
+  {
+    io.quantity("mass", s.mass, "t", "wall mass for m_eff in the impact laws (> 0)");
+    io.quantity("gap_reduction",
+                s.gap_reduction,
+                "%",
+                "gap = (1 - gap_reduction) x the no-wall peak isolation displacement of each "
+                "record (in [0, 1))");
+    io.quantity("gap", s.gap, "cm", "fixed gap of both walls (null: from gap_reduction; > 0)");
+  }
+
+  /**
+   * The study scene. Load with read_scene<StudyScene>(file) (validated); an empty document is
+   * the default study.
+   */
+  struct StudyScene
+  {
+    StudyFemScene                  fem;
+    StudyFitScene                  fit;
+    BuildingScene                  building;
+    IsolatorScene                  isolator;
+    StudyWallsScene                walls;
+    IntegrationScene               integration;
+    std::vector<GroundMotionScene> records{GroundMotionScene{}};
+    /// Add the PEER records of peer_record_names() when the records directory holds them.
+    bool                  peer_records   = true;
+    std::string           records_dir    = "";   ///< "" = KIMP_RECORDS_DIR / ../shared/data/records
+    bool                  charts         = true; ///< run scripts/study_charts.py
+    bool                  accuracy_study = true; ///< FEM and lumped accuracy against cost
+    StudyAccuracyScene    accuracy;
+    bool                  stability_map = true;  ///< lumped Δt vs k_imp stable/unstable map
+    bool                  sensitivity   = false; ///< sensitivity of k (8 more FEM runs)
+    StudySensitivityScene sensitivity_study;
+  };
+
+  template <class Io>
+  void visit(Io &io, StudyScene &s)
+  {
+    io.section("fem", s.fem, "the FEM slab-wall impact per wall height (see kimp fem)");
+    io.section("fit", s.fit, "fit of the Kelvin-Voigt and Jankowski laws to each FEM history");
+    io.section("building", s.building, "the pounding building (thesis Table 4.2)");
+    io.section("isolator", s.isolator, "its isolation system");
+    io.section("walls", s.walls, "moat walls on both sides at the isolation level");
+    io.section("integration", s.integration, "time integration of the building runs");
+    io.list("records", s.records, "ground motions of the building runs (see kimp lumped)");
+    io.flag("peer_records",
+            s.peer_records,
+            "also run Kobe KJMA (trimmed to 48 s) and Northridge SCS142 when the records "
+            "directory holds them");
+    io.text("records_dir",
+            s.records_dir,
+            "directory of the PEER records (\"\" = KIMP_RECORDS_DIR or ../shared/data/records)");
+    io.flag("charts", s.charts, "draw the charts with scripts/study_charts.py (python3)");
+    io.flag("accuracy_study",
+            s.accuracy_study,
+            "accuracy against cost: FEM mesh, penalty (and implicit) levels -> error in k; "
+            "building time step -> error in peak impact force and base acceleration");
+    io.section("accuracy", s.accuracy, "settings of the accuracy study");
+    io.flag("stability_map",
+            s.stability_map,
+            "lumped central-difference stability map: time step against k_imp (two-body "
+            "collisions, m_eff of the building's isolation level and the wall), with 2/omega_imp");
+    io.flag("sensitivity",
+            s.sensitivity,
+            "sensitivity of k to soil modulus, slab mass, impact velocity and wall thickness");
+    io.section("sensitivity_study", s.sensitivity_study, "settings of the sensitivity study");
+  }
+
+  /** Every range and cross-field rule; key paths as in the file ("walls.gap_reduction"). */
+  void validate(const StudyScene &scene, io::ValidationContext &ctx);
+
+  /** The lumped scene of the study's building without walls, shaken by `record`. */
+  LumpedScene study_lumped_scene(const StudyScene &scene, const GroundMotionScene &record);
+
+  /** Records the study runs: scene.records, plus the PEER records found (if peer_records). */
+  std::vector<GroundMotionScene> study_records(const StudyScene &scene);
+} // namespace kimp::app

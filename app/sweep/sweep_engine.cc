@@ -1,0 +1,478 @@
+// Sweep execution: static round-robin over ranks, a thread pool per rank pulling case indices from
+// an atomic counter, journal-based resume, and the merged HDF5/CSV table (issue 6).
+#include "app/sweep/sweep_engine.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <fmt/format.h>
+#include <hdf5.h>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <thread>
+#include <unordered_map>
+
+#include "base/logging.h"
+#include "io/results_file.h"
+#include "io/summary.h"
+#include "io/units.h"
+
+namespace kimp::app
+{
+  using namespace kimp::base;
+  using namespace kimp::io;
+  namespace
+  {
+    using SteadyClock = std::chrono::steady_clock;
+
+    double seconds_since(SteadyClock::time_point start)
+    {
+      return std::chrono::duration<double>(SteadyClock::now() - start).count();
+    }
+
+    /// HDF5 object name from a column name ('/' separates groups).
+    std::string dataset_name(std::string name)
+    {
+      std::replace(name.begin(), name.end(), '/', '_');
+      if (name.empty() || name == "." || name == "..")
+        name = "_" + name;
+      return name;
+    }
+
+    /// RAII HDF5 identifier.
+    class Handle
+    {
+    public:
+      Handle(hid_t id, herr_t (*close)(hid_t), const std::string &what)
+        : id_(id)
+        , close_(close)
+      {
+        if (id_ < 0)
+          throw ResultsError("HDF5: cannot " + what);
+      }
+      Handle(const Handle &) = delete;
+      ~Handle() { close_(id_); }
+      hid_t get() const { return id_; }
+
+    private:
+      hid_t id_;
+      herr_t (*close_)(hid_t);
+    };
+
+    hid_t make_utf8_type()
+    {
+      const hid_t type = H5Tcopy(H5T_C_S1);
+      H5Tset_size(type, H5T_VARIABLE);
+      H5Tset_cset(type, H5T_CSET_UTF8);
+      return type;
+    }
+
+    void write_string_attribute(hid_t object, const char *name, const std::string &value)
+    {
+      const Handle type(make_utf8_type(), H5Tclose, "create a string type");
+      const Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create a scalar space");
+      const Handle attribute(
+        H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+        H5Aclose,
+        std::string("create attribute ") + name);
+      const char *data = value.c_str();
+      if (H5Awrite(attribute.get(), type.get(), &data) < 0)
+        throw ResultsError(std::string("HDF5: cannot write attribute ") + name);
+    }
+
+    /// 1-D UTF-8 string dataset `name` in `group` with units "1".
+    void write_strings(hid_t group, const std::string &name, const std::vector<std::string> &values)
+    {
+      const Handle  type(make_utf8_type(), H5Tclose, "create a string type");
+      const hsize_t n = values.size();
+      const Handle  space(H5Screate_simple(1, &n, nullptr), H5Sclose, "create a data space");
+      const Handle  dataset(H5Dcreate2(group,
+                                      name.c_str(),
+                                      type.get(),
+                                      space.get(),
+                                      H5P_DEFAULT,
+                                      H5P_DEFAULT,
+                                      H5P_DEFAULT),
+                           H5Dclose,
+                           "create dataset " + name);
+      std::vector<const char *> pointers;
+      pointers.reserve(values.size());
+      for (const std::string &v : values)
+        pointers.push_back(v.c_str());
+      if (n > 0 &&
+          H5Dwrite(dataset.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()) < 0)
+        throw ResultsError("HDF5: cannot write dataset " + name);
+      write_string_attribute(dataset.get(), "units", "1");
+    }
+
+    std::string metric_text(double value)
+    {
+      return std::isfinite(value) ? fmt::format("{}", value) : std::string();
+    }
+
+    /// Progress line "sweep: N/M cases (K resumed), R cases/s, ETA T s" every `interval` s.
+    class SweepProgress
+    {
+    public:
+      SweepProgress(std::size_t n_total, std::size_t n_done, std::size_t n_mine, double interval)
+        : n_total_(n_total)
+        , n_done_(n_done)
+        , n_resumed_(n_done)
+        , n_mine_(n_mine)
+        , interval_(interval)
+        , start_(SteadyClock::now())
+        , last_(start_)
+      {
+      }
+
+      void case_finished(std::size_t n_finished_here)
+      {
+        const auto now = SteadyClock::now();
+        if (std::chrono::duration<double>(now - last_).count() < interval_ &&
+            n_finished_here < n_mine_)
+          return;
+        last_                = now;
+        const double elapsed = std::max(seconds_since(start_), 1e-9);
+        const double rate    = static_cast<double>(n_finished_here) / elapsed;
+        const double eta = rate > 0.0 ? static_cast<double>(n_mine_ - n_finished_here) / rate : 0.0;
+        logger().info("sweep: {}/{} cases of this rank done ({}/{} in all incl. {} resumed), "
+                      "{:.3g} cases/s, ETA {:.0f} s",
+                      n_finished_here,
+                      n_mine_,
+                      n_done_ + n_finished_here,
+                      n_total_,
+                      n_resumed_,
+                      rate,
+                      eta);
+      }
+
+    private:
+      std::size_t             n_total_;
+      std::size_t             n_done_;
+      std::size_t             n_resumed_;
+      std::size_t             n_mine_;
+      double                  interval_;
+      SteadyClock::time_point start_;
+      SteadyClock::time_point last_;
+    };
+  } // namespace
+
+  std::pair<std::string, std::string> split_metric_unit(const std::string &metric)
+  {
+    const std::size_t open = metric.rfind(" [");
+    if (open == std::string::npos || metric.empty() || metric.back() != ']')
+      return {metric, "1"};
+    std::string unit = metric.substr(open + 2, metric.size() - open - 3);
+    return {metric.substr(0, open), unit.empty() ? "1" : unit};
+  }
+
+  SweepSummary run_sweep(const SweepPlan             &plan,
+                         const CaseRunner            &runner,
+                         const std::filesystem::path &dir,
+                         const SweepOptions          &options)
+  {
+    if (options.n_ranks < 1 || options.rank < 0 || options.rank >= options.n_ranks)
+      throw std::invalid_argument(
+        fmt::format("sweep rank {} of {} ranks (expected 0 <= rank < n_ranks)",
+                    options.rank,
+                    options.n_ranks));
+    SweepSummary summary;
+    summary.n_cases = plan.cases().size();
+
+    const JournalContents journal = SweepJournal::read_all(dir);
+    summary.n_torn_lines          = journal.n_torn_lines;
+    if (journal.n_torn_lines > 0)
+      logger().warn("sweep: ignored {} incomplete journal line(s) in {} (interrupted run)",
+                    journal.n_torn_lines,
+                    (dir / "journal").string());
+    std::set<std::string> finished;
+    for (const JournalEntry &entry : journal.entries)
+      if (!options.retry_failed || entry.row.status == "ok")
+        finished.insert(entry.id);
+
+    std::vector<const SweepCase *> mine;
+    for (const SweepCase &c : plan.cases())
+    {
+      if (finished.count(c.id) > 0)
+      {
+        ++summary.n_resumed;
+        continue;
+      }
+      if (static_cast<int>(c.index % static_cast<std::size_t>(options.n_ranks)) == options.rank)
+        mine.push_back(&c);
+    }
+
+    unsigned int n_threads = options.threads;
+    if (n_threads == 0)
+      n_threads =
+        std::max(1U,
+                 std::thread::hardware_concurrency() / static_cast<unsigned int>(options.n_ranks));
+    n_threads = static_cast<unsigned int>(
+      std::max<std::size_t>(1, std::min<std::size_t>(n_threads, mine.size())));
+    logger().info("sweep: {} cases, {} already finished, {} to run on rank {} with {} thread(s)",
+                  summary.n_cases,
+                  summary.n_resumed,
+                  mine.size(),
+                  options.rank,
+                  n_threads);
+
+    if (!mine.empty())
+    {
+      SweepJournal             out(SweepJournal::file_of(dir, options.rank));
+      std::atomic<std::size_t> next{0};
+      std::atomic<std::size_t> n_failed{0};
+      std::mutex               progress_mutex;
+      std::size_t              n_finished = 0;
+      SweepProgress            progress(summary.n_cases,
+                             summary.n_resumed,
+                             mine.size(),
+                             options.rank == 0 ? options.progress_interval :
+                                                            std::numeric_limits<double>::infinity());
+      std::exception_ptr       io_error;
+
+      const auto work = [&]()
+      {
+        for (std::size_t i = next++; i < mine.size(); i = next++)
+        {
+          const SweepCase &c = *mine[i];
+          JournalEntry     entry;
+          entry.index      = c.index;
+          entry.id         = c.id;
+          entry.rank       = options.rank;
+          const auto start = SteadyClock::now();
+          try
+          {
+            entry.row = runner(c.scene_text, c.scene_name);
+          }
+          catch (const std::exception &error)
+          {
+            entry.row = CaseRow{{}, std::string("failed: ") + error.what()};
+          }
+          catch (...)
+          {
+            entry.row = CaseRow{{}, "failed: unknown exception"};
+          }
+          entry.wall_time = seconds_since(start);
+          if (entry.row.status != "ok")
+          {
+            ++n_failed;
+            logger().warn("sweep: case {} {}", c.id, entry.row.status);
+          }
+          try
+          {
+            out.append(entry);
+          }
+          catch (...)
+          {
+            const std::lock_guard<std::mutex> lock(progress_mutex);
+            if (!io_error)
+              io_error = std::current_exception();
+            next = mine.size();
+            return;
+          }
+          const std::lock_guard<std::mutex> lock(progress_mutex);
+          progress.case_finished(++n_finished);
+        }
+      };
+
+      std::vector<std::thread> pool;
+      for (unsigned int t = 1; t < n_threads; ++t)
+        pool.emplace_back(work);
+      work();
+      for (std::thread &thread : pool)
+        thread.join();
+      if (io_error)
+        std::rethrow_exception(io_error);
+      summary.n_run    = n_finished;
+      summary.n_failed = n_failed;
+    }
+
+    if (options.barrier)
+      options.barrier();
+    if (options.rank == 0)
+    {
+      const SweepTable table = collect_sweep_table(plan, dir);
+      summary.n_rows         = table.rows.size();
+      write_sweep_results(plan, table, dir);
+      if (summary.n_rows < summary.n_cases)
+        logger().warn("sweep: {} of {} cases not finished (run the command again to complete)",
+                      summary.n_cases - summary.n_rows,
+                      summary.n_cases);
+      logger().info("sweep: wrote {} rows to {} and {}",
+                    summary.n_rows,
+                    (dir / "sweep.h5").string(),
+                    (dir / "sweep.csv").string());
+    }
+    return summary;
+  }
+
+  SweepTable collect_sweep_table(const SweepPlan &plan, const std::filesystem::path &dir)
+  {
+    const JournalContents                                 journal = SweepJournal::read_all(dir);
+    std::unordered_map<std::string, const JournalEntry *> best;
+    for (const JournalEntry &entry : journal.entries)
+    {
+      const auto found = best.find(entry.id);
+      if (found == best.end())
+        best.emplace(entry.id, &entry);
+      else if (found->second->row.status != "ok" && entry.row.status == "ok")
+        found->second = &entry;
+    }
+
+    SweepTable table;
+    for (const SweepParameter &p : plan.parameters())
+      table.parameter_names.push_back(p.name);
+    std::map<std::string, std::size_t> metric_column;
+    for (const SweepCase &c : plan.cases())
+    {
+      const auto found = best.find(c.id);
+      if (found == best.end())
+        continue;
+      const JournalEntry &entry = *found->second;
+      SweepTableRow       row;
+      row.index     = c.index;
+      row.id        = c.id;
+      row.companion = c.companion;
+      row.values    = c.values;
+      row.status    = entry.row.status;
+      row.wall_time = entry.wall_time;
+      for (const auto &[name, value] : entry.row.metrics)
+      {
+        auto column = metric_column.find(name);
+        if (column == metric_column.end())
+        {
+          column = metric_column.emplace(name, table.metric_names.size()).first;
+          table.metric_names.push_back(name);
+        }
+        if (row.metrics.size() <= column->second)
+          row.metrics.resize(column->second + 1, std::numeric_limits<double>::quiet_NaN());
+        row.metrics[column->second] = value;
+      }
+      table.rows.push_back(std::move(row));
+    }
+    for (SweepTableRow &row : table.rows)
+      row.metrics.resize(table.metric_names.size(), std::numeric_limits<double>::quiet_NaN());
+    return table;
+  }
+
+  void write_sweep_results(const SweepPlan             &plan,
+                           const SweepTable            &table,
+                           const std::filesystem::path &dir)
+  {
+    const OutputDir output(dir);
+
+    std::vector<std::string> header{"index", "id", "companion"};
+    header.insert(header.end(), table.parameter_names.begin(), table.parameter_names.end());
+    header.push_back("status");
+    header.insert(header.end(), table.metric_names.begin(), table.metric_names.end());
+    header.push_back("wall_time [s]");
+    std::vector<std::vector<std::string>> rows;
+    rows.reserve(table.rows.size());
+    for (const SweepTableRow &r : table.rows)
+    {
+      std::vector<std::string> row{std::to_string(r.index), r.id, r.companion};
+      row.insert(row.end(), r.values.begin(), r.values.end());
+      row.push_back(r.status);
+      for (const double m : r.metrics)
+        row.push_back(metric_text(m));
+      row.push_back(fmt::format("{:.6g}", r.wall_time));
+      rows.push_back(std::move(row));
+    }
+    write_csv_atomic(output.file("sweep.csv"), header, rows);
+
+    // Numeric columns through ResultsFile (meta, input, units), strings added before the rename.
+    const std::filesystem::path partial = output.file("sweep.h5.partial");
+    {
+      ResultsFile               file(partial, plan.text(), plan.to_json_text());
+      ResultsGroup              sweep = file.root().group("sweep");
+      std::vector<std::int64_t> index;
+      std::vector<double>       wall_time;
+      for (const SweepTableRow &r : table.rows)
+      {
+        index.push_back(static_cast<std::int64_t>(r.index));
+        wall_time.push_back(r.wall_time);
+      }
+      sweep.write("index", index, "1");
+      sweep.write("wall_time", wall_time, "s");
+      ResultsGroup metrics = sweep.group("metrics");
+      for (std::size_t m = 0; m < table.metric_names.size(); ++m)
+      {
+        std::vector<double> values;
+        for (const SweepTableRow &r : table.rows)
+          values.push_back(r.metrics[m]);
+        const auto [name, unit] = split_metric_unit(table.metric_names[m]);
+        metrics.write(dataset_name(name), values, unit);
+      }
+      ResultsGroup si = sweep.group("parameters_si");
+      for (std::size_t p = 0; p < table.parameter_names.size(); ++p)
+      {
+        std::vector<double>      values;
+        std::optional<Dimension> dimension;
+        bool                     numeric = true;
+        for (const SweepTableRow &r : table.rows)
+        {
+          try
+          {
+            const Quantity q = parse_quantity(r.values[p]);
+            if (dimension && *dimension != q.dimension)
+              numeric = false;
+            dimension = q.dimension;
+            values.push_back(q.value);
+          }
+          catch (const std::exception &)
+          {
+            numeric = false;
+          }
+          if (!numeric)
+            break;
+        }
+        if (numeric && dimension)
+          si.write(dataset_name(table.parameter_names[p]), values, to_string(*dimension));
+      }
+      sweep.set_attribute("n_cases", plan.cases().size());
+      sweep.set_attribute("n_rows", table.rows.size());
+      file.commit();
+    }
+
+    {
+      const Handle file(H5Fopen(partial.c_str(), H5F_ACC_RDWR, H5P_DEFAULT),
+                        H5Fclose,
+                        "open " + partial.string());
+      const Handle sweep(H5Gopen2(file.get(), "/sweep", H5P_DEFAULT), H5Gclose, "open /sweep");
+      std::vector<std::string> ids, companions, statuses;
+      for (const SweepTableRow &r : table.rows)
+      {
+        ids.push_back(r.id);
+        companions.push_back(r.companion);
+        statuses.push_back(r.status);
+      }
+      write_strings(sweep.get(), "id", ids);
+      write_strings(sweep.get(), "companion", companions);
+      write_strings(sweep.get(), "status", statuses);
+      const Handle parameters(
+        H5Gcreate2(sweep.get(), "parameters", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+        H5Gclose,
+        "create /sweep/parameters");
+      for (std::size_t p = 0; p < table.parameter_names.size(); ++p)
+      {
+        std::vector<std::string> values;
+        for (const SweepTableRow &r : table.rows)
+          values.push_back(r.values[p]);
+        write_strings(parameters.get(), dataset_name(table.parameter_names[p]), values);
+      }
+      std::string columns;
+      for (const std::string &h : header)
+        columns += (columns.empty() ? "" : "\n") + h;
+      write_string_attribute(sweep.get(), "columns", columns);
+    }
+    std::error_code error;
+    std::filesystem::rename(partial, output.file("sweep.h5"), error);
+    if (error)
+      throw OutputError("cannot rename " + partial.string() + " to sweep.h5: " + error.message());
+  }
+} // namespace kimp::app

@@ -1,0 +1,48 @@
+// The lumped engine as a sweep CaseRunner (issue 6): each case's scene text is read as a
+// LumpedScene, run with run_lumped_case() and reduced to one row of scalar metrics.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include "app/lumped_run.h"
+#include "app/sweep/sweep_engine.h"
+#include "lumped/structure/pounding_model.h"
+
+namespace kimp::app
+{
+  /**
+   * Metrics of one lumped case (units in brackets): dt [s], n_steps, per DOF of the model
+   * peak_displacement_dof<i> [m] and peak_abs_acceleration_dof<i> [m/s^2], per storey
+   * peak_drift_storey<s> [m], max_interstorey_drift [m], n_impacts, per contact
+   * <contact>.n_impacts, <contact>.max_impact_velocity [m/s], <contact>.peak_force [N] and
+   * <contact>.indentation [m], energy_error (max relative energy residual), <building>.T1 [s]
+   * (fundamental period of each building block); with a companion run
+   * (integration.companion) also free_peak_displacement_dof<i> [m] and the amplification factors
+   * amp_abs_acceleration_dof<i>, amp_drift_storey<s>. `prefix` is put before every name.
+   */
+  void
+  append_lumped_metrics(const LumpedCaseResult &result, const std::string &prefix, CaseRow &row);
+
+  /**
+   * Metrics of the assembled model: per building block <block>.first_dof, <block>.n_dofs and
+   * <block>.n_storeys (so that charts can pick the main building's floors), per contact c
+   * <c>.clearance [m], the clear gap g_c before contact, and, with a companion run,
+   * <c>.srss_gap [m] = sqrt(d_L² + d_R²), the gap the SRSS rule asks for this contact, where d_L,
+   * d_R are the peak displacements without contact of the two facing DOFs (0 for a wall moving
+   * with the ground). `prefix` is put before every name.
+   */
+  void append_model_metrics(const lumped::PoundingModel &model,
+                            const LumpedCaseResult      &result,
+                            const std::string           &prefix,
+                            CaseRow                     &row);
+
+  /**
+   * CaseRunner for LumpedScene texts. A scene with several `cases` gives one row whose metric
+   * names start with "<case name>."; the row fails with the first failing case's status.
+   * @param[in] records_dir_override directory of the PEER records (else the scene's default)
+   */
+  CaseRunner
+  make_lumped_case_runner(std::optional<std::filesystem::path> records_dir_override = {});
+} // namespace kimp::app

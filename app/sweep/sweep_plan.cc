@@ -1,0 +1,741 @@
+// Sweep file parsing and case enumeration (issue 6); key paths are set on a copy of the base
+// scene's YAML tree, so every scene key can be varied without the sweep knowing the schema.
+#include "app/sweep/sweep_plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <yaml-cpp/yaml.h>
+
+#include "base/hash.h"
+#include "io/scene_io.h"
+#include "io/units.h"
+
+namespace kimp::app
+{
+  using namespace kimp::base;
+  using namespace kimp::io;
+  namespace
+  {
+    /// One step of a key path: a map key, or a list index.
+    struct PathStep
+    {
+      std::string key;
+      long        index = -1; ///< >= 0 for a list index
+    };
+
+    std::vector<PathStep> split_key_path(const std::string &key_path)
+    {
+      std::vector<PathStep> steps;
+      std::size_t           i    = 0;
+      const auto            fail = [&](const std::string &why)
+      { throw std::invalid_argument("key path '" + key_path + "': " + why); };
+      if (key_path.empty())
+        fail("empty (expected e.g. walls.left.gap or cases[0].cor)");
+      while (i < key_path.size())
+      {
+        if (key_path[i] == '[')
+        {
+          const std::size_t close = key_path.find(']', i);
+          if (close == std::string::npos || close == i + 1)
+            fail("unterminated or empty [index]");
+          const std::string digits = key_path.substr(i + 1, close - i - 1);
+          if (digits.find_first_not_of("0123456789") != std::string::npos)
+            fail("index '" + digits + "' is not a non-negative integer");
+          steps.push_back({"", std::stol(digits)});
+          i = close + 1;
+          if (i < key_path.size() && key_path[i] == '.')
+            ++i;
+          continue;
+        }
+        const std::size_t end = key_path.find_first_of(".[", i);
+        const std::string key = key_path.substr(i, end - i);
+        if (key.empty())
+          fail("empty key between dots");
+        steps.push_back({key, -1});
+        if (end == std::string::npos)
+          break;
+        i = key_path[end] == '.' ? end + 1 : end;
+        if (key_path[end] == '.' && i == key_path.size())
+          fail("ends with a dot");
+      }
+      return steps;
+    }
+
+    /// Set the scalar at `key_path` inside `root` (modified in place).
+    void set_node_value(YAML::Node &root, const std::string &key_path, const std::string &value)
+    {
+      const std::vector<PathStep> steps = split_key_path(key_path);
+      if (!root.IsDefined() || root.IsNull())
+        root = YAML::Node(YAML::NodeType::Map);
+      YAML::Node node = root;
+      for (std::size_t s = 0; s < steps.size(); ++s)
+      {
+        const PathStep &step = steps[s];
+        const bool      last = s + 1 == steps.size();
+        YAML::Node      child;
+        if (step.index >= 0)
+        {
+          if (node.IsNull())
+            node = YAML::Node(YAML::NodeType::Sequence);
+          if (!node.IsSequence())
+            throw std::invalid_argument("key path '" + key_path + "': [" +
+                                        std::to_string(step.index) + "] applied to a non-list");
+          const auto index = static_cast<std::size_t>(step.index);
+          if (index > node.size())
+            throw std::invalid_argument(fmt::format(
+              "key path '{}': index {} beyond the list's {} items (at most one new item)",
+              key_path,
+              index,
+              node.size()));
+          if (index == node.size())
+            node.push_back(last ? YAML::Node() : YAML::Node(YAML::NodeType::Map));
+          child = node[index];
+        }
+        else
+        {
+          if (node.IsNull())
+            node = YAML::Node(YAML::NodeType::Map);
+          if (!node.IsMap())
+            throw std::invalid_argument("key path '" + key_path + "': key '" + step.key +
+                                        "' applied to a value that is not a map");
+          if (!node[step.key])
+            node[step.key] = last ? YAML::Node() : YAML::Node(YAML::NodeType::Map);
+          child = node[step.key];
+        }
+        if (last)
+        {
+          if (child.IsMap() || child.IsSequence())
+            throw std::invalid_argument("key path '" + key_path +
+                                        "' names a section, not a single value");
+          child = YAML::Load(value);
+          return;
+        }
+        node.reset(child);
+      }
+    }
+
+    std::string emit(const YAML::Node &root)
+    {
+      YAML::Emitter out;
+      out << root;
+      return std::string(out.c_str()) + "\n";
+    }
+
+    int line_of(const YAML::Node &node)
+    {
+      return node.Mark().line + 1;
+    }
+
+    [[noreturn]] void
+    fail_at(const std::string &file, int line, const std::string &key, const std::string &what)
+    {
+      throw SweepError(fmt::format("{}:{}: {}: {}", file, line, key, what));
+    }
+
+    std::string scalar_text(const YAML::Node &node, const std::string &file, const std::string &key)
+    {
+      if (node.IsNull())
+        return "null";
+      if (!node.IsScalar())
+        fail_at(file, line_of(node), key, "expected a single value (quantity, number, word)");
+      return node.Scalar();
+    }
+
+    /// Text of a value as it must be written back into YAML (strings that look like numbers or
+    /// flags keep their quotes).
+    std::string yaml_value_text(const YAML::Node &node)
+    {
+      YAML::Emitter out;
+      out << node;
+      return out.c_str();
+    }
+
+    std::string unit_of(const std::string &quantity_text)
+    {
+      const char *begin = quantity_text.c_str();
+      char       *end   = nullptr;
+      std::strtod(begin, &end);
+      std::string       unit(end);
+      const std::size_t first = unit.find_first_not_of(' ');
+      return first == std::string::npos ? std::string() : unit.substr(first);
+    }
+
+    std::string kind_list()
+    {
+      std::string list;
+      for (const std::string &kind : sweep_report_kinds())
+        list += (list.empty() ? "" : ", ") + kind;
+      return list;
+    }
+
+    void load_root(const std::string &text, const std::string &name, YAML::Node &root)
+    {
+      try
+      {
+        root = YAML::Load(text);
+      }
+      catch (const YAML::Exception &error)
+      {
+        throw SweepError(
+          fmt::format("{}:{}: invalid YAML: {}", name, error.mark.line + 1, error.msg));
+      }
+    }
+
+    SweepReportSpec parse_report(const YAML::Node &report, const std::string &file, int line)
+    {
+      SweepReportSpec spec;
+      spec.line = line;
+      if (!report.IsMap())
+        fail_at(file,
+                spec.line,
+                "report",
+                "expected a map {kind: ..., gap: scene key path, title: ...}");
+      for (const auto &entry : report)
+      {
+        const std::string key = entry.first.Scalar();
+        if (key != "kind" && key != "gap" && key != "title")
+          fail_at(file,
+                  line_of(entry.first),
+                  "report." + key,
+                  "unknown key (expected kind, gap or title)");
+      }
+      if (!report["kind"])
+        fail_at(file, spec.line, "report.kind", "missing (expected one of " + kind_list() + ")");
+      spec.kind                             = scalar_text(report["kind"], file, "report.kind");
+      const std::vector<std::string> &kinds = sweep_report_kinds();
+      if (std::find(kinds.begin(), kinds.end(), spec.kind) == kinds.end())
+        fail_at(file,
+                line_of(report["kind"]),
+                "report.kind",
+                "'" + spec.kind + "' (expected one of " + kind_list() + ")");
+      if (report["gap"])
+      {
+        spec.gap_key = scalar_text(report["gap"], file, "report.gap");
+        try
+        {
+          split_key_path(spec.gap_key);
+        }
+        catch (const std::invalid_argument &error)
+        {
+          fail_at(file, line_of(report["gap"]), "report.gap", error.what());
+        }
+      }
+      if (report["title"])
+        spec.title = scalar_text(report["title"], file, "report.title");
+      return spec;
+    }
+  } // namespace
+
+  std::string set_yaml_value(const std::string &yaml_text,
+                             const std::string &key_path,
+                             const std::string &value_yaml)
+  {
+    YAML::Node root = YAML::Load(yaml_text);
+    set_node_value(root, key_path, value_yaml);
+    return emit(root);
+  }
+
+  const std::vector<std::string> &sweep_report_kinds()
+  {
+    static const std::vector<std::string> kinds{"gap_study",
+                                                "isolation_flexibility",
+                                                "wall_location",
+                                                "impact_parameters",
+                                                "adjacent_buildings",
+                                                "bumpers"};
+    return kinds;
+  }
+
+  std::optional<std::string> get_yaml_value(const std::string &yaml_text,
+                                            const std::string &key_path)
+  {
+    const std::vector<PathStep> steps = split_key_path(key_path);
+    YAML::Node                  node  = YAML::Load(yaml_text);
+    for (const PathStep &step : steps)
+    {
+      if (step.index >= 0)
+      {
+        if (!node.IsSequence() || static_cast<std::size_t>(step.index) >= node.size())
+          return std::nullopt;
+        node.reset(node[static_cast<std::size_t>(step.index)]);
+      }
+      else
+      {
+        if (!node.IsMap() || !node[step.key])
+          return std::nullopt;
+        node.reset(node[step.key]);
+      }
+    }
+    if (node.IsNull())
+      return std::nullopt;
+    if (!node.IsScalar())
+      throw std::invalid_argument("key path '" + key_path +
+                                  "' names a section, not a single value");
+    return node.Scalar();
+  }
+
+  std::vector<std::string> expand_range(const std::string &from,
+                                        const std::string &to,
+                                        const std::string &step,
+                                        const std::string &where)
+  {
+    Quantity q_from, q_to, q_step;
+    try
+    {
+      q_from = parse_quantity(from);
+      q_to   = parse_quantity(to);
+      q_step = parse_quantity(step);
+    }
+    catch (const std::exception &error)
+    {
+      throw SweepError(where + ": range: " + error.what());
+    }
+    if (q_to.dimension != q_from.dimension || q_step.dimension != q_from.dimension)
+      throw SweepError(fmt::format("{}: range from = {}, to = {}, step = {}: units of different "
+                                   "dimensions (expected one dimension for all three)",
+                                   where,
+                                   from,
+                                   to,
+                                   step));
+    if (!(q_step.value > 0.0))
+      throw SweepError(fmt::format("{}: range step = {} (must be > 0)", where, step));
+    if (q_to.value < q_from.value)
+      throw SweepError(fmt::format("{}: range to = {} (must be >= from = {})", where, to, from));
+    // Round-off tolerance of one part in 1e9 of a step: 10..45 step 0.5 includes 45.
+    constexpr double      tolerance  = 1e-9;
+    const double          span       = (q_to.value - q_from.value) / q_step.value;
+    const auto            n_steps    = static_cast<std::size_t>(std::floor(span + tolerance));
+    constexpr std::size_t max_values = 10'000'000;
+    if (n_steps >= max_values)
+      throw SweepError(fmt::format("{}: range {} .. {} step {} has more than {} values",
+                                   where,
+                                   from,
+                                   to,
+                                   step,
+                                   max_values));
+    const std::string        unit = unit_of(from);
+    std::vector<std::string> values;
+    values.reserve(n_steps + 1);
+    for (std::size_t i = 0; i <= n_steps; ++i)
+    {
+      const double v = q_from.value + static_cast<double>(i) * q_step.value;
+      values.push_back(format_quantity(v, unit));
+    }
+    return values;
+  }
+
+  std::filesystem::path SweepPlan::base_scene_path(const std::string           &text,
+                                                   const std::filesystem::path &sweep_file)
+  {
+    YAML::Node root;
+    load_root(text, sweep_file.string(), root);
+    if (!root.IsMap() || !root["scene"])
+      throw SweepError(sweep_file.string() +
+                       ":1: scene: missing (expected the base scene file, relative to the "
+                       "sweep file)");
+    const std::string           scene = scalar_text(root["scene"], sweep_file.string(), "scene");
+    const std::filesystem::path path(scene);
+    return path.is_absolute() ? path : sweep_file.parent_path() / path;
+  }
+
+  SweepPlan SweepPlan::from_file(const std::filesystem::path &file)
+  {
+    std::string text;
+    try
+    {
+      text = detail::read_text_file(file);
+    }
+    catch (const SceneError &error)
+    {
+      throw SweepError(error.what());
+    }
+    const std::filesystem::path scene = base_scene_path(text, file);
+    std::string                 scene_text;
+    try
+    {
+      scene_text = detail::read_text_file(scene);
+    }
+    catch (const SceneError &error)
+    {
+      YAML::Node root = YAML::Load(text);
+      fail_at(file.string(), line_of(root["scene"]), "scene", error.what());
+    }
+    return parse(text, file.string(), scene_text, scene.string());
+  }
+
+  SweepPlan SweepPlan::parse(const std::string &text,
+                             const std::string &file_name,
+                             const std::string &base_scene_text,
+                             const std::string &base_scene_name)
+  {
+    SweepPlan plan;
+    plan.file_name_       = file_name;
+    plan.text_            = text;
+    plan.base_scene_text_ = base_scene_text;
+    plan.base_scene_name_ = base_scene_name;
+
+    YAML::Node root;
+    load_root(text, file_name, root);
+    if (!root.IsMap())
+      throw SweepError(file_name + ":1: expected a map with keys scene, parameters, combine, "
+                                   "companions, engine");
+    int report_line = 1;
+    for (const auto &entry : root)
+    {
+      const std::string key = entry.first.Scalar();
+      if (key == "report")
+        report_line = line_of(entry.first);
+      if (key != "scene" && key != "engine" && key != "combine" && key != "parameters" &&
+          key != "companions" && key != "report")
+        fail_at(file_name,
+                line_of(entry.first),
+                key,
+                "unknown key (expected scene, engine, combine, parameters, companions or report)");
+    }
+    if (const YAML::Node report = root["report"])
+      plan.report_ = parse_report(report, file_name, report_line);
+    if (root["engine"])
+      plan.engine_ = scalar_text(root["engine"], file_name, "engine");
+    if (root["combine"])
+    {
+      const std::string combine = scalar_text(root["combine"], file_name, "combine");
+      if (combine == "product")
+        plan.combination_ = SweepCombination::product;
+      else if (combine == "zip")
+        plan.combination_ = SweepCombination::zip;
+      else
+        fail_at(file_name,
+                line_of(root["combine"]),
+                "combine",
+                "'" + combine + "' (expected product or zip)");
+    }
+
+    const YAML::Node parameters = root["parameters"];
+    if (!parameters || !parameters.IsMap() || parameters.size() == 0)
+      fail_at(file_name,
+              parameters ? line_of(parameters) : 1,
+              "parameters",
+              "missing or empty (expected a map: scene key path -> list of values or "
+              "{from, to, step})");
+    for (const auto &entry : parameters)
+    {
+      SweepParameter p;
+      p.name                  = entry.first.Scalar();
+      p.line                  = line_of(entry.first);
+      const std::string key   = "parameters." + p.name;
+      std::size_t       begin = 0;
+      while (begin <= p.name.size())
+      {
+        const std::size_t end  = std::min(p.name.find(',', begin), p.name.size());
+        std::string       path = p.name.substr(begin, end - begin);
+        path.erase(0, path.find_first_not_of(' '));
+        path.erase(path.find_last_not_of(' ') + 1);
+        if (path.empty())
+          fail_at(file_name, p.line, key, "empty key path (expected e.g. walls.left.gap)");
+        try
+        {
+          split_key_path(path);
+        }
+        catch (const std::invalid_argument &error)
+        {
+          fail_at(file_name, p.line, key, error.what());
+        }
+        p.key_paths.push_back(path);
+        begin = end + 1;
+      }
+      const YAML::Node &values = entry.second;
+      if (values.IsSequence())
+      {
+        for (const auto &value : values)
+        {
+          if (!value.IsMap())
+          {
+            scalar_text(value, file_name, key);
+            p.values.push_back(yaml_value_text(value));
+            continue;
+          }
+          // A map sets several keys together; `label` names it in the results.
+          std::vector<std::pair<std::string, std::string>> setting;
+          std::string                                      label;
+          for (const auto &item : value)
+          {
+            const std::string path      = item.first.Scalar();
+            const std::string item_text = scalar_text(item.second, file_name, key + "." + path);
+            if (path == "label")
+            {
+              label = item_text;
+              continue;
+            }
+            try
+            {
+              split_key_path(path);
+            }
+            catch (const std::invalid_argument &error)
+            {
+              fail_at(file_name, line_of(item.first), key, error.what());
+            }
+            setting.emplace_back(path, yaml_value_text(item.second));
+          }
+          if (setting.empty())
+            fail_at(file_name, line_of(value), key, "a map value sets no key path");
+          if (label.empty())
+          {
+            YAML::Emitter out;
+            out << YAML::Flow << value;
+            label = out.c_str();
+          }
+          p.values.push_back(label);
+          p.settings.resize(p.values.size());
+          p.settings.back() = std::move(setting);
+        }
+      }
+      else if (values.IsMap())
+      {
+        for (const auto &range_entry : values)
+        {
+          const std::string k = range_entry.first.Scalar();
+          if (k != "from" && k != "to" && k != "step")
+            fail_at(file_name,
+                    line_of(range_entry.first),
+                    key + "." + k,
+                    "unknown key (a range has from, to and step)");
+        }
+        for (const char *k : {"from", "to", "step"})
+          if (!values[k])
+            fail_at(file_name,
+                    line_of(values),
+                    key,
+                    std::string("range without '") + k + "' (expected {from, to, step})");
+        p.values = expand_range(scalar_text(values["from"], file_name, key + ".from"),
+                                scalar_text(values["to"], file_name, key + ".to"),
+                                scalar_text(values["step"], file_name, key + ".step"),
+                                fmt::format("{}:{}: {}", file_name, line_of(values), key));
+      }
+      else
+        fail_at(file_name,
+                line_of(values),
+                key,
+                "expected a list of values or a range {from, to, step}");
+      if (p.values.empty())
+        fail_at(file_name, line_of(values), key, "no values (expected at least one)");
+      p.settings.resize(p.values.size());
+      for (std::size_t v = 0; v < p.values.size(); ++v)
+        if (p.settings[v].empty())
+          for (const std::string &path : p.key_paths)
+            p.settings[v].emplace_back(path, p.values[v]);
+      plan.parameters_.push_back(std::move(p));
+    }
+
+    if (const YAML::Node companions = root["companions"])
+    {
+      if (!companions.IsMap())
+        fail_at(file_name,
+                line_of(companions),
+                "companions",
+                "expected a map: name -> {key path: value, ...}");
+      for (const auto &entry : companions)
+      {
+        SweepCompanion c;
+        c.name                = entry.first.Scalar();
+        c.line                = line_of(entry.first);
+        const std::string key = "companions." + c.name;
+        if (c.name.empty() || c.name.find_first_of(" ,\"") != std::string::npos)
+          fail_at(file_name, c.line, key, "name must be non-empty without spaces, commas, quotes");
+        if (!entry.second.IsMap() || entry.second.size() == 0)
+          fail_at(file_name,
+                  line_of(entry.second),
+                  key,
+                  "expected a non-empty map of key path -> value");
+        for (const auto &o : entry.second)
+        {
+          scalar_text(o.second, file_name, key + "." + o.first.Scalar());
+          c.overrides.emplace_back(o.first.Scalar(), yaml_value_text(o.second));
+        }
+        plan.companions_.push_back(std::move(c));
+      }
+    }
+
+    // Enumerate combinations.
+    std::size_t n_combinations = 1;
+    if (plan.combination_ == SweepCombination::zip)
+    {
+      n_combinations = plan.parameters_.front().values.size();
+      for (const SweepParameter &p : plan.parameters_)
+        if (p.values.size() != n_combinations)
+          fail_at(file_name,
+                  p.line,
+                  "parameters." + p.name,
+                  fmt::format("{} values, but {} has {} (combine: zip needs equal lengths)",
+                              p.values.size(),
+                              plan.parameters_.front().name,
+                              n_combinations));
+    }
+    else
+    {
+      constexpr std::size_t max_cases = 10'000'000;
+      for (const SweepParameter &p : plan.parameters_)
+      {
+        n_combinations *= p.values.size();
+        if (n_combinations > max_cases)
+          fail_at(file_name,
+                  p.line,
+                  "parameters",
+                  fmt::format("more than {} combinations", max_cases));
+      }
+    }
+
+    YAML::Node base;
+    load_root(base_scene_text, base_scene_name, base);
+    std::size_t index = 0;
+    for (std::size_t c = 0; c < n_combinations; ++c)
+    {
+      std::vector<std::string> values(plan.parameters_.size());
+      std::vector<std::size_t> choice(plan.parameters_.size());
+      std::size_t              rest = c;
+      for (std::size_t i = plan.parameters_.size(); i-- > 0;)
+      {
+        const SweepParameter &p = plan.parameters_[i];
+        if (plan.combination_ == SweepCombination::zip)
+          choice[i] = c;
+        else
+        {
+          choice[i] = rest % p.values.size();
+          rest /= p.values.size();
+        }
+        values[i] = p.values[choice[i]];
+      }
+      YAML::Node  scene = YAML::Clone(base);
+      std::string signature;
+      for (std::size_t i = 0; i < plan.parameters_.size(); ++i)
+      {
+        const SweepParameter &p = plan.parameters_[i];
+        signature += p.name + "=" + values[i] + "\n";
+        for (const auto &[path, value] : p.settings[choice[i]])
+        {
+          try
+          {
+            set_node_value(scene, path, value);
+          }
+          catch (const std::exception &error)
+          {
+            fail_at(file_name, p.line, "parameters." + p.name, error.what());
+          }
+          if (path != p.name || value != values[i])
+            signature += "  " + path + "=" + value + "\n";
+        }
+      }
+
+      const auto add_case = [&](const YAML::Node &case_scene, const std::string &companion)
+      {
+        SweepCase sc;
+        sc.index     = index++;
+        sc.companion = companion;
+        sc.values    = values;
+        const std::uint64_t hash =
+          stable_hash(signature + (companion.empty() ? "" : "companion=" + companion + "\n"));
+        sc.id         = fmt::format("{}-{:016x}", sc.index, hash);
+        sc.scene_text = emit(case_scene);
+        sc.scene_name = fmt::format("{} case {}", file_name, sc.id);
+        plan.cases_.push_back(std::move(sc));
+      };
+      add_case(scene, "");
+      for (const SweepCompanion &companion : plan.companions_)
+      {
+        YAML::Node variant = YAML::Clone(scene);
+        for (const auto &[path, value] : companion.overrides)
+        {
+          try
+          {
+            set_node_value(variant, path, value);
+          }
+          catch (const std::exception &error)
+          {
+            fail_at(file_name, companion.line, "companions." + companion.name, error.what());
+          }
+        }
+        add_case(variant, companion.name);
+      }
+    }
+    return plan;
+  }
+
+  void SweepPlan::check_key_paths(const SceneChecker &check) const
+  {
+    YAML::Node base;
+    load_root(base_scene_text_, base_scene_name_, base);
+    for (const SweepParameter &p : parameters_)
+      for (std::size_t v = 0; v < p.values.size(); ++v)
+      {
+        const std::string &value = p.values[v];
+        YAML::Node         scene = YAML::Clone(base);
+        for (const auto &[path, text] : p.settings[v])
+          set_node_value(scene, path, text);
+        try
+        {
+          check(emit(scene), base_scene_name_ + " (" + p.name + " = " + value + ")");
+        }
+        catch (const std::exception &error)
+        {
+          fail_at(file_name_, p.line, "parameters." + p.name + " = " + value, error.what());
+        }
+      }
+    for (const SweepCompanion &c : companions_)
+    {
+      YAML::Node scene = YAML::Clone(base);
+      for (const auto &[path, value] : c.overrides)
+        set_node_value(scene, path, value);
+      try
+      {
+        check(emit(scene), base_scene_name_ + " (companion " + c.name + ")");
+      }
+      catch (const std::exception &error)
+      {
+        fail_at(file_name_, c.line, "companions." + c.name, error.what());
+      }
+    }
+  }
+
+  std::string SweepPlan::to_json_text() const
+  {
+    nlohmann::ordered_json json;
+    json["file"]       = file_name_;
+    json["scene"]      = base_scene_name_;
+    json["engine"]     = engine_;
+    json["combine"]    = combination_ == SweepCombination::product ? "product" : "zip";
+    json["parameters"] = nlohmann::ordered_json::array();
+    for (const SweepParameter &p : parameters_)
+    {
+      // Per value the key paths it sets (map values set their own keys, e.g. gap and separation).
+      nlohmann::ordered_json settings = nlohmann::ordered_json::array();
+      for (const auto &setting : p.settings)
+      {
+        nlohmann::ordered_json keys = nlohmann::ordered_json::object();
+        for (const auto &[path, value] : setting)
+          keys[path] = value;
+        settings.push_back(keys);
+      }
+      json["parameters"].push_back({{"name", p.name},
+                                    {"key_paths", p.key_paths},
+                                    {"values", p.values},
+                                    {"settings", settings}});
+    }
+    json["companions"] = nlohmann::ordered_json::array();
+    for (const SweepCompanion &c : companions_)
+    {
+      nlohmann::ordered_json overrides = nlohmann::ordered_json::object();
+      for (const auto &[path, value] : c.overrides)
+        overrides[path] = value;
+      json["companions"].push_back({{"name", c.name}, {"overrides", overrides}});
+    }
+    if (report_)
+      json["report"] = {{"kind", report_->kind},
+                        {"gap", report_->gap_key},
+                        {"title", report_->title}};
+    json["n_cases"] = cases_.size();
+    return json.dump(2);
+  }
+} // namespace kimp::app

@@ -1,0 +1,318 @@
+// d_req against d_SRSS (PHYSICS.md §2): per contact the SRSS rule asks g_c >= sqrt(d_L² + d_R²)
+// with the peaks of the run without contacts; d_req is read off the swept gaps.
+#include "app/sweep/sweep_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+#include "io/summary.h"
+#include "io/units.h"
+
+namespace kimp::app
+{
+  using namespace kimp::io;
+  namespace
+  {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+    /// Gaps (and offsets) closer than this are the same swept value, m.
+    constexpr double same_length = 1e-9;
+
+    const std::string clearance_suffix = ".clearance [m]";
+    const std::string srss_suffix      = ".srss_gap [m]";
+
+    bool ends_with(const std::string &text, const std::string &suffix)
+    {
+      return text.size() >= suffix.size() &&
+             text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+    }
+
+    std::string number(double value)
+    {
+      return std::isfinite(value) ? fmt::format("{}", value) : std::string();
+    }
+
+    /// Where a contact's metrics sit in SweepTable::metric_names.
+    struct ContactColumns
+    {
+      std::string name;
+      std::size_t clearance = 0;
+      std::size_t srss      = 0;
+    };
+  } // namespace
+
+  std::string to_string(RequiredGapStatus status)
+  {
+    switch (status)
+    {
+      case RequiredGapStatus::reached:
+        return "reached";
+      case RequiredGapStatus::at_smallest_gap:
+        return "at_smallest_gap";
+      case RequiredGapStatus::not_reached:
+        return "not_reached";
+      case RequiredGapStatus::no_data:
+        break;
+    }
+    return "no_data";
+  }
+
+  RequiredGap required_gap(std::vector<GapSample> samples)
+  {
+    samples.erase(std::remove_if(samples.begin(),
+                                 samples.end(),
+                                 [](const GapSample &s) { return !s.ok || !std::isfinite(s.gap); }),
+                  samples.end());
+    RequiredGap result{nan, RequiredGapStatus::no_data};
+    if (samples.empty())
+      return result;
+    std::sort(samples.begin(),
+              samples.end(),
+              [](const GapSample &a, const GapSample &b) { return a.gap < b.gap; });
+    // Distinct gaps, each with "any impact at this gap".
+    std::vector<std::pair<double, bool>> gaps;
+    for (const GapSample &s : samples)
+      if (!gaps.empty() && s.gap - gaps.back().first <= same_length)
+        gaps.back().second = gaps.back().second || s.impact;
+      else
+        gaps.emplace_back(s.gap, s.impact);
+    std::size_t first_safe = 0; // one past the largest gap with an impact
+    for (std::size_t i = 0; i < gaps.size(); ++i)
+      if (gaps[i].second)
+        first_safe = i + 1;
+    if (first_safe == gaps.size())
+      return {nan, RequiredGapStatus::not_reached};
+    return {gaps[first_safe].first,
+            first_safe == 0 ? RequiredGapStatus::at_smallest_gap : RequiredGapStatus::reached};
+  }
+
+  SrssGap srss_required_gap(const std::vector<ContactGap> &contacts, const double gap)
+  {
+    if (contacts.empty())
+      throw std::invalid_argument("d_SRSS: the case has no contact (expected walls or "
+                                  "neighbours)");
+    SrssGap result{-std::numeric_limits<double>::infinity(), ""};
+    for (const ContactGap &c : contacts)
+    {
+      const double required = c.srss_gap - (c.clearance - gap);
+      if (required > result.gap)
+        result = {required, c.name};
+    }
+    return result;
+  }
+
+  double DsrssRow::delta() const
+  {
+    return d_req.status == RequiredGapStatus::reached ||
+               d_req.status == RequiredGapStatus::at_smallest_gap ?
+             d_srss - d_req.gap :
+             nan;
+  }
+
+  DsrssTable dsrss_table(const SweepPlan &plan, const SweepTable &table, const std::string &gap_key)
+  {
+    // Parameters that set the gap are the abscissa; all others name the configuration.
+    std::vector<std::size_t> kept;
+    bool                     gap_swept = false;
+    DsrssTable               dsrss;
+    for (std::size_t p = 0; p < plan.parameters().size(); ++p)
+    {
+      const SweepParameter &parameter = plan.parameters()[p];
+      bool                  sets_gap  = false;
+      for (const auto &setting : parameter.settings)
+        for (const auto &entry : setting)
+          sets_gap = sets_gap || entry.first == gap_key;
+      gap_swept = gap_swept || sets_gap;
+      if (!sets_gap)
+      {
+        kept.push_back(p);
+        dsrss.parameter_names.push_back(parameter.name);
+      }
+    }
+    if (!gap_swept)
+      throw SweepError(fmt::format("{}:{}: report.gap: no parameter sets '{}' (expected the scene "
+                                   "key path of the swept gap)",
+                                   plan.file_name(),
+                                   plan.report() ? plan.report()->line : 1,
+                                   gap_key));
+
+    std::vector<ContactColumns> contacts;
+    std::size_t                 n_impacts_column = table.metric_names.size();
+    for (std::size_t m = 0; m < table.metric_names.size(); ++m)
+    {
+      const std::string &name = table.metric_names[m];
+      if (name == "n_impacts")
+        n_impacts_column = m;
+      if (!ends_with(name, srss_suffix))
+        continue;
+      const std::string contact = name.substr(0, name.size() - srss_suffix.size());
+      const auto        clearance =
+        std::find(table.metric_names.begin(), table.metric_names.end(), contact + clearance_suffix);
+      if (clearance != table.metric_names.end())
+        contacts.push_back(
+          {contact, static_cast<std::size_t>(clearance - table.metric_names.begin()), m});
+    }
+    if (contacts.empty() || n_impacts_column == table.metric_names.size())
+      throw SweepError(plan.file_name() +
+                       ": d_SRSS needs the metrics n_impacts, <contact>.clearance [m] and "
+                       "<contact>.srss_gap [m] (set integration.companion: true in the scene)");
+
+    struct Sample
+    {
+      GapSample   gap;
+      SrssGap     srss;
+      std::size_t row = 0;
+    };
+    struct Group
+    {
+      DsrssRow            row;
+      std::vector<Sample> samples;
+    };
+    std::vector<Group>                                                      groups;
+    std::map<std::pair<std::vector<std::string>, std::string>, std::size_t> index_of;
+    std::map<std::vector<std::string>, std::size_t>                         failed_of;
+
+    for (std::size_t r = 0; r < table.rows.size(); ++r)
+    {
+      const SweepTableRow &row = table.rows[r];
+      if (!row.companion.empty())
+        continue;
+      std::vector<std::string> values;
+      for (const std::size_t p : kept)
+        values.push_back(row.values.at(p));
+      if (row.status != "ok")
+      {
+        ++failed_of[values];
+        continue;
+      }
+      if (row.index >= plan.cases().size())
+        throw SweepError(fmt::format("{}: row {} beyond the plan's {} cases",
+                                     plan.file_name(),
+                                     row.index,
+                                     plan.cases().size()));
+      const std::optional<std::string> gap_text =
+        get_yaml_value(plan.cases()[row.index].scene_text, gap_key);
+      if (!gap_text)
+        throw SweepError(plan.file_name() + ": report.gap: case " + row.id + " has no value at '" +
+                         gap_key + "'");
+      const double gap = parse_quantity_as(*gap_text, "m");
+
+      std::vector<ContactGap> present;
+      std::string             offsets; // the group key part: contact=offset in µm
+      double                  max_offset = -std::numeric_limits<double>::infinity();
+      for (const ContactColumns &c : contacts)
+      {
+        const double clearance = row.metrics.at(c.clearance);
+        const double srss      = row.metrics.at(c.srss);
+        if (!std::isfinite(clearance) || !std::isfinite(srss))
+          continue; // contact absent in this configuration
+        present.push_back({c.name, clearance, srss});
+        const double offset = clearance - gap;
+        max_offset          = std::max(max_offset, offset);
+        offsets += fmt::format("{}={};", c.name, std::llround(offset * 1e6));
+      }
+      if (present.empty())
+        continue;
+      const auto key = std::make_pair(values, offsets);
+      auto       it  = index_of.find(key);
+      if (it == index_of.end())
+      {
+        it = index_of.emplace(key, groups.size()).first;
+        Group group;
+        group.row.values           = values;
+        group.row.clearance_offset = max_offset;
+        groups.push_back(std::move(group));
+      }
+      Sample sample;
+      sample.gap  = {gap, row.metrics.at(n_impacts_column) > 0.0, true};
+      sample.srss = srss_required_gap(present, gap);
+      sample.row  = r;
+      groups[it->second].samples.push_back(sample);
+    }
+
+    for (Group &group : groups)
+    {
+      DsrssRow              &out = group.row;
+      std::vector<GapSample> gaps;
+      for (const Sample &s : group.samples)
+        gaps.push_back(s.gap);
+      out.d_req         = required_gap(gaps);
+      out.n_cases       = group.samples.size();
+      const auto failed = failed_of.find(out.values);
+      if (failed != failed_of.end())
+      {
+        // Failed cases have no metrics, hence no offsets: they count for every group of their
+        // parameter values.
+        out.n_failed = failed->second;
+        out.n_cases += failed->second;
+      }
+      std::vector<double> distinct;
+      double              srss_min = std::numeric_limits<double>::infinity();
+      double              srss_max = -srss_min;
+      const Sample       *smallest = &group.samples.front();
+      for (const Sample &s : group.samples)
+      {
+        distinct.push_back(s.gap.gap);
+        srss_min = std::min(srss_min, s.srss.gap);
+        srss_max = std::max(srss_max, s.srss.gap);
+        if (s.gap.gap < smallest->gap.gap)
+          smallest = &s;
+      }
+      std::sort(distinct.begin(), distinct.end());
+      out.n_gaps = static_cast<std::size_t>(
+        std::unique(distinct.begin(),
+                    distinct.end(),
+                    [](double a, double b) { return std::abs(a - b) <= same_length; }) -
+        distinct.begin());
+      out.gap_min       = distinct.front();
+      out.gap_max       = distinct.back();
+      out.d_srss        = smallest->srss.gap;
+      out.governing     = smallest->srss.governing;
+      out.d_srss_spread = srss_max - srss_min;
+      dsrss.rows.push_back(std::move(out));
+    }
+    return dsrss;
+  }
+
+  void write_dsrss_table(const DsrssTable &dsrss, const std::filesystem::path &file)
+  {
+    std::vector<std::string> header = dsrss.parameter_names;
+    for (const char *column : {"clearance_offset [m]",
+                               "n_gaps",
+                               "n_cases",
+                               "n_failed",
+                               "gap_min [m]",
+                               "gap_max [m]",
+                               "d_req [m]",
+                               "d_req_status",
+                               "d_srss [m]",
+                               "governing_contact",
+                               "d_srss_spread [m]",
+                               "delta_d [m]"})
+      header.emplace_back(column);
+    std::vector<std::vector<std::string>> rows;
+    for (const DsrssRow &r : dsrss.rows)
+    {
+      std::vector<std::string> row = r.values;
+      row.insert(row.end(),
+                 {number(r.clearance_offset),
+                  std::to_string(r.n_gaps),
+                  std::to_string(r.n_cases),
+                  std::to_string(r.n_failed),
+                  number(r.gap_min),
+                  number(r.gap_max),
+                  number(r.d_req.gap),
+                  to_string(r.d_req.status),
+                  number(r.d_srss),
+                  r.governing,
+                  number(r.d_srss_spread),
+                  number(r.delta())});
+      rows.push_back(std::move(row));
+    }
+    write_csv_atomic(file, header, rows);
+  }
+} // namespace kimp::app

@@ -1,0 +1,169 @@
+// `kimp sweep`: reads the sweep file, checks every varied key against the scene schema, then runs
+// the cases of this MPI rank on a thread pool and (rank 0) merges DIR/sweep.h5 and DIR/sweep.csv.
+#include "app/sweep/sweep_run.h"
+
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <fmt/format.h>
+#include <memory>
+#include <mpi.h>
+#include <optional>
+#include <string>
+
+#include "app/helper_programs.h"
+#include "app/lumped_scene.h"
+#include "app/sweep/sweep_engine.h"
+#include "app/sweep/sweep_lumped.h"
+#include "app/sweep/sweep_report.h"
+#include "base/logging.h"
+#include "base/version.h"
+#include "io/summary.h"
+
+namespace kimp::app
+{
+  using namespace kimp::base;
+  using namespace kimp::io;
+  namespace
+  {
+    /// True when started by an MPI launcher (mpirun/srun), so that MPI is worth initializing.
+    bool launched_by_mpi()
+    {
+      for (const char *name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "MPI_LOCALNRANKS"})
+        if (std::getenv(name) != nullptr)
+          return true;
+      return false;
+    }
+
+    /// MPI for the duration of the command, unless main() already initialized it.
+    class MpiScope
+    {
+    public:
+      MpiScope()
+      {
+        int initialized = 0;
+        MPI_Initialized(&initialized);
+        if (!initialized && launched_by_mpi())
+        {
+          int provided = 0;
+          MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+          owned_      = true;
+          initialized = 1;
+        }
+        if (initialized)
+        {
+          active_ = true;
+          MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+          MPI_Comm_size(MPI_COMM_WORLD, &size_);
+        }
+      }
+      MpiScope(const MpiScope &) = delete;
+      ~MpiScope()
+      {
+        int finalized = 0;
+        MPI_Finalized(&finalized);
+        // While an exception unwinds, MPI_Finalize would wait for the other ranks; main()
+        // reports the error and aborts the job instead.
+        if (owned_ && !finalized && std::uncaught_exceptions() == 0)
+          MPI_Finalize();
+      }
+      int  rank() const { return rank_; }
+      int  size() const { return size_; }
+      bool active() const { return active_; }
+
+    private:
+      bool owned_  = false;
+      bool active_ = false;
+      int  rank_   = 0;
+      int  size_   = 1;
+    };
+
+    /**
+     * The d_SRSS table (report kinds gap_study, wall_location, adjacent_buildings, when the sweep
+     * varies the report's gap and has companion metrics), then scripts/sweep_charts.py: charts
+     * and summary.md.
+     * @throws OutputError naming the script and its exit status when the charts fail
+     */
+    void write_report(const SweepPlan &plan, const OutputDir &output, const bool charts)
+    {
+      const SweepReportSpec &spec = *plan.report();
+      if (spec.kind == "adjacent_buildings" || spec.kind == "gap_study" ||
+          spec.kind == "wall_location")
+      {
+        const SweepTable table = collect_sweep_table(plan, output.path());
+        try
+        {
+          const DsrssTable dsrss = dsrss_table(plan, table, spec.gap_key);
+          write_dsrss_table(dsrss, output.file("dsrss_table.csv"));
+          logger().info("d_SRSS table: {} configurations in {}",
+                        dsrss.rows.size(),
+                        output.file("dsrss_table.csv").string());
+        }
+        catch (const SweepError &error)
+        {
+          // E.g. every case failed, or no companion run: the summary says the table is missing.
+          logger().warn("no d_SRSS table: {}", error.what());
+        }
+      }
+      if (!charts)
+        return;
+      const ChartScriptRun run = run_chart_script("sweep_charts.py", output.path());
+      if (run.script.empty())
+        throw OutputError("charts: scripts/sweep_charts.py not found (set KIMP_DATA_DIR to the "
+                          "kimp source tree, or pass --no-charts)");
+      if (run.status != 0)
+        throw OutputError(fmt::format("charts: {} exited with status {} (needs /usr/bin/python3 "
+                                      "with matplotlib, numpy and h5py); see {}",
+                                      run.script.string(),
+                                      run.status,
+                                      run.log.string()));
+      logger().info("charts and summary written to {} and {}",
+                    output.file("charts").string(),
+                    output.file("summary.md").string());
+    }
+
+  } // namespace
+
+  void run_sweep_job(const SweepRunOptions &options)
+  {
+    const MpiScope mpi;
+    set_rank(mpi.rank());
+    logger().info("{}: sweep {} on {} rank(s)", version_line(), options.sweep, mpi.size());
+
+    const SweepPlan plan = SweepPlan::from_file(options.sweep);
+    if (plan.engine() != "lumped")
+      throw SweepError(options.sweep + ": engine: '" + plan.engine() +
+                       "' (expected lumped, the only engine with a sweep runner)");
+    plan.check_key_paths([](const std::string &text, const std::string &name)
+                         { read_scene_text<LumpedScene>(text, name); });
+    const OutputDir output(options.output);
+
+    std::optional<std::filesystem::path> records_dir;
+    if (!options.records_dir.empty())
+      records_dir = options.records_dir;
+    SweepOptions sweep_options;
+    sweep_options.threads      = options.threads;
+    sweep_options.rank         = mpi.rank();
+    sweep_options.n_ranks      = mpi.size();
+    sweep_options.retry_failed = options.retry_failed;
+    if (mpi.active() && mpi.size() > 1)
+      sweep_options.barrier = []() { MPI_Barrier(MPI_COMM_WORLD); };
+    const SweepSummary summary =
+      run_sweep(plan, make_lumped_case_runner(records_dir), output.path(), sweep_options);
+    if (mpi.rank() == 0)
+      logger().info("sweep: {} cases, {} resumed, {} run here ({} failed), {} rows",
+                    summary.n_cases,
+                    summary.n_resumed,
+                    summary.n_run,
+                    summary.n_failed,
+                    summary.n_rows);
+    if (mpi.rank() == 0)
+    {
+      if (plan.report())
+        write_report(plan, output, !options.no_charts);
+      else
+        logger().info("no report: section in {}: no charts or summary", options.sweep);
+    }
+  }
+
+} // namespace kimp::app

@@ -1,0 +1,26 @@
+// `kimp sweep SWEEP.yaml -o DIR`: distributed (MPI ranks x threads), resumable parameter sweeps
+// over any scene key; see sweep_plan.h for the sweep file and sweep_engine.h for results.
+#pragma once
+
+#include <string>
+
+namespace kimp::app
+{
+  /// What `kimp sweep` was asked to do (its command-line options).
+  struct SweepRunOptions
+  {
+    std::string  sweep;            ///< sweep file (YAML)
+    std::string  output;           ///< output directory
+    std::string  records_dir;      ///< PEER records directory; empty: the default search
+    unsigned int threads      = 0; ///< per rank; 0: hardware threads / ranks
+    bool         retry_failed = false;
+    bool         no_charts    = false;
+  };
+
+  /**
+   * Run the sweep: this rank's cases on a thread pool (finished cases journaled, so a rerun
+   * resumes), then rank 0 merges DIR/sweep.h5 and DIR/sweep.csv and writes the report and charts.
+   * Initialises MPI if nobody has.
+   */
+  void run_sweep_job(const SweepRunOptions &options);
+} // namespace kimp::app

@@ -1,0 +1,25 @@
+// `kimp fem SCENE.yaml -o DIR`: the FEM slab-wall impact per wall height.
+// Parses the command's options and calls kimp::app.
+#include <CLI/CLI.hpp>
+
+#include "app/fem/fem_run.h"
+#include "base/logging.h"
+#include "base/version.h"
+#include "cli/cli.h"
+#include "cli/commands.h"
+
+namespace kimp::cli
+{
+  using namespace kimp::base;
+  using namespace kimp::io;
+  using namespace kimp::app;
+
+  void register_fem_command(CLI::App &app)
+  {
+    add_scene_command<FemScene>(app,
+                                "fem",
+                                "run the FEM slab-wall impact for every wall height (also under "
+                                "mpirun): DIR/fem.h5, summary.json, fem_histories.csv",
+                                run_fem);
+  }
+} // namespace kimp::cli

@@ -1,0 +1,54 @@
+// `kimp study [SCENE.yaml] -o DIR`: the wall-height study (main job).
+// Parses the command's options and calls kimp::app.
+#include <CLI/CLI.hpp>
+
+#include "app/study/study_run.h"
+#include "base/logging.h"
+#include "base/version.h"
+#include "cli/cli.h"
+#include "cli/commands.h"
+
+namespace kimp::cli
+{
+  using namespace kimp::base;
+  using namespace kimp::io;
+  using namespace kimp::app;
+
+  void register_study_command(CLI::App &app)
+  {
+    struct Options
+    {
+      std::string scene;
+      std::string output;
+      bool        print_defaults = false;
+    };
+    auto      options = std::make_shared<Options>();
+    CLI::App *command = app.add_subcommand(
+      "study",
+      "the wall-height study: FEM per height -> fitted k (Kelvin-Voigt, Jankowski) -> k table "
+      "beside thesis Table 2.1 -> building pounding runs -> CSV, study.h5, charts, report.md");
+    command->add_option("scene", options->scene, "study scene (YAML; none: the default study)")
+      ->type_name("SCENE.yaml");
+    command->add_option("-o,--output", options->output, "output directory (created if missing)")
+      ->type_name("DIR");
+    command->add_flag("--print-defaults",
+                      options->print_defaults,
+                      "print the annotated default study scene and exit");
+    command->preparse_callback([options](std::size_t) { *options = Options{}; });
+    command->callback(
+      [options]()
+      {
+        if (options->print_defaults)
+          throw PrintDefaults(default_scene_text<StudyScene>("kimp study scene (defaults)"));
+        if (options->output.empty())
+          throw CLI::RequiredError("the output directory -o/--output DIR");
+        logger().info("{}: study {}",
+                      version_line(),
+                      options->scene.empty() ? "(default scene)" : options->scene);
+        const LoadedScene<StudyScene> scene =
+          options->scene.empty() ? read_scene_text<StudyScene>("", "(default study scene)") :
+                                   read_scene<StudyScene>(options->scene);
+        run_study_job(scene, options->output);
+      });
+  }
+} // namespace kimp::cli

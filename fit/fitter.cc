@@ -1,0 +1,802 @@
+// Impact-stiffness fitter: lumped two-body model vs FEM force history, Levenberg-Marquardt
+// (Eigen unsupported module, MINPACK lmder) with a central-difference Jacobian.
+#include "fit/fitter.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <unsupported/Eigen/LevenbergMarquardt>
+#include <utility>
+
+namespace kimp::fit
+{
+  namespace
+  {
+    constexpr double pi = 3.14159265358979323846;
+
+    bool has_free_exponent(const std::string &law)
+    {
+      return law == "hertzdamp" || law == "hysteretic";
+    }
+
+    double default_exponent(const lumped::ForceLawSpec &law)
+    {
+      if (law.exponent)
+        return *law.exponent;
+      if (law.law == "linear" || law.law == "kelvin_voigt" || law.law == "modified_kelvin_voigt")
+        return 1.0;
+      return 1.5;
+    }
+
+    /// z with Φ(z) = p for p in (0.5, 1) (bisection on erfc; Φ(z) = ½·erfc(−z/√2)).
+    double normal_quantile(double p)
+    {
+      double low = 0.0, high = 40.0;
+      for (int i = 0; i < 200; ++i)
+      {
+        const double mid = 0.5 * (low + high);
+        if (0.5 * std::erfc(-mid / std::sqrt(2.0)) < p)
+          low = mid;
+        else
+          high = mid;
+      }
+      return 0.5 * (low + high);
+    }
+
+    double logistic(double x)
+    {
+      return 1.0 / (1.0 + std::exp(-x));
+    }
+
+    /// Piecewise-linear interpolation of (t, y) at `at`; `t` increasing, at inside [t0, tn].
+    double interpolate(const std::vector<double> &t, const std::vector<double> &y, double at)
+    {
+      const auto   upper = std::upper_bound(t.begin(), t.end(), at);
+      const size_t i     = static_cast<size_t>(std::distance(t.begin(), upper));
+      if (i == 0)
+        return y.front();
+      if (i >= t.size())
+        return y.back();
+      const double s = (at - t[i - 1]) / (t[i] - t[i - 1]);
+      return y[i - 1] + s * (y[i] - y[i - 1]);
+    }
+
+    /// Where the FEM history is in contact and which samples enter the misfit.
+    struct ContactWindow
+    {
+      double      start      = 0.0; ///< first contact, s (FEM time)
+      double      separation = 0.0; ///< end of the first contact phase, s
+      double      peak_force = 0.0; ///< N/m
+      double      impulse    = 0.0; ///< N·s/m
+      std::size_t first      = 0;   ///< first sample of the misfit window
+      std::size_t last       = 0;   ///< last sample of the misfit window (inclusive)
+    };
+
+    void check_history(const ForceHistory &h)
+    {
+      const std::size_t n = h.time.size();
+      if (n == 0 || h.force.empty())
+        throw FitError("force history: empty (no samples)");
+      if (h.force.size() != n)
+        throw FitError(
+          fmt::format("force history: {} force samples for {} times", h.force.size(), n));
+      for (const auto &[name, v] :
+           {std::pair<const char *, const std::vector<double> *>{"indentation", &h.indentation},
+            {"slab_displacement", &h.slab_displacement}})
+        if (!v->empty() && v->size() != n)
+          throw FitError(
+            fmt::format("force history: {} has {} samples for {} times", name, v->size(), n));
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const bool finite = std::isfinite(h.time[i]) && std::isfinite(h.force[i]) &&
+                            (h.indentation.empty() || std::isfinite(h.indentation[i])) &&
+                            (h.slab_displacement.empty() || std::isfinite(h.slab_displacement[i]));
+        if (!finite)
+          throw FitError(fmt::format("force history: non-finite value at sample {} (t = {} s, "
+                                     "F = {} N/m)",
+                                     i,
+                                     h.time[i],
+                                     h.force[i]));
+        if (i > 0 && !(h.time[i] > h.time[i - 1]))
+          throw FitError(fmt::format("force history: time not increasing at sample {} ({} s "
+                                     "after {} s)",
+                                     i,
+                                     h.time[i],
+                                     h.time[i - 1]));
+      }
+    }
+
+    ContactWindow find_contact_window(const ForceHistory &h, const FitOptions &options)
+    {
+      const std::size_t n      = h.time.size();
+      const bool        by_gap = !h.indentation.empty();
+      const double      peak   = *std::max_element(h.force.begin(), h.force.end());
+      if (!(peak > 0.0))
+        throw FitError(fmt::format("force history: no contact (largest force {} N/m over {} "
+                                   "samples, {} s to {} s)",
+                                   peak,
+                                   n,
+                                   h.time.front(),
+                                   h.time.back()));
+      const auto in_contact = [&](std::size_t i)
+      { return by_gap ? h.indentation[i] > 0.0 : h.force[i] > options.contact_threshold * peak; };
+
+      std::size_t i0 = 0;
+      while (i0 < n && !in_contact(i0))
+        ++i0;
+      if (i0 == n)
+        throw FitError("force history: no contact (indentation never > 0)");
+
+      ContactWindow w;
+      if (i0 == 0)
+        w.start = h.time[0];
+      else if (by_gap)
+      {
+        const double d0 = h.indentation[i0 - 1], d1 = h.indentation[i0];
+        w.start = h.time[i0 - 1] + (h.time[i0] - h.time[i0 - 1]) * (-d0) / (d1 - d0);
+      }
+      else
+      {
+        // Back to the last force-free sample (the force below the threshold may already be
+        // contact); a force rising linearly from zero (penalty contact) then points at the
+        // touch, a force that jumps (viscous contact) points before that sample, which bounds it.
+        std::size_t q = i0 - 1;
+        while (q > 0 && h.force[q] > 0.0)
+          --q;
+        w.start = h.time[q];
+        if (q + 2 < n && h.force[q + 2] > h.force[q + 1])
+        {
+          const double slope = (h.force[q + 2] - h.force[q + 1]) / (h.time[q + 2] - h.time[q + 1]);
+          w.start = std::clamp(h.time[q + 1] - h.force[q + 1] / slope, h.time[q], h.time[q + 1]);
+        }
+      }
+
+      std::size_t last = i0, next = n;
+      for (std::size_t i = i0 + 1; i < n; ++i)
+      {
+        if (in_contact(i))
+        {
+          if (i > last + 2 &&
+              h.time[i] - h.time[last] > options.separation_fraction * (h.time[last] - w.start))
+          {
+            next = i;
+            break;
+          }
+          last = i;
+        }
+      }
+      w.separation = h.time[last];
+      if (last + 1 < n)
+      {
+        if (by_gap)
+        {
+          const double d0 = h.indentation[last], d1 = h.indentation[last + 1];
+          w.separation = h.time[last] + (h.time[last + 1] - h.time[last]) * d0 / (d0 - d1);
+        }
+        else
+          w.separation = h.time[last + 1];
+      }
+
+      w.first = i0;
+      while (w.first > 0 && h.time[w.first - 1] >= w.start)
+        --w.first;
+      w.peak_force = 0.0;
+      for (std::size_t i = i0; i <= last; ++i)
+        w.peak_force = std::max(w.peak_force, h.force[i]);
+      if (!(w.peak_force > 0.0))
+        throw FitError(fmt::format("force history: no contact force while the indentation is > 0 "
+                                   "({} s to {} s)",
+                                   w.start,
+                                   w.separation));
+      for (std::size_t i = w.first > 0 ? w.first - 1 : 0; i < std::min(last + 1, n - 1); ++i)
+        w.impulse += 0.5 * (h.force[i] + h.force[i + 1]) * (h.time[i + 1] - h.time[i]);
+      const double end = w.separation + options.tail_fraction * (w.separation - w.start);
+      w.last           = last;
+      while (w.last + 1 < next && h.time[w.last + 1] <= end)
+        ++w.last;
+      return w;
+    }
+
+    /// Law parameters in physical units (the optimiser works on ln k, logit COR, ln(n − 1)).
+    struct Parameters
+    {
+      double stiffness = 0.0;
+      double cor       = 0.0;
+      double exponent  = 1.0;
+    };
+
+    /// The lumped model and the misfit; operator() and df() for Eigen's LevenbergMarquardt.
+    class Misfit : public Eigen::DenseFunctor<double>
+    {
+    public:
+      Misfit(const ForceHistory         &history,
+             const ContactWindow        &window,
+             double                      mass,
+             double                      impact_velocity,
+             const lumped::ForceLawSpec &law,
+             const FitOptions           &options,
+             const Parameters           &start,
+             int                         n_parameters,
+             int                         n_residuals)
+        : Eigen::DenseFunctor<double>(n_parameters, n_residuals)
+        , law_(law)
+        , options_(options)
+        , mass_(mass)
+        , velocity_(impact_velocity)
+        , start_(start)
+      {
+        const std::size_t n = window.last - window.first + 1;
+        for (std::size_t j = window.first; j <= window.last; ++j)
+        {
+          tau_.push_back(history.time[j] - window.start);
+          force_.push_back(history.force[j]);
+        }
+        std::vector<double> weight(n, 0.0);
+        for (std::size_t j = 0; j < n; ++j)
+        {
+          const double left  = j > 0 ? tau_[j] - tau_[j - 1] : 0.0;
+          const double right = j + 1 < n ? tau_[j + 1] - tau_[j] : 0.0;
+          weight[j]          = 0.5 * (left + right);
+        }
+        double total = 0.0;
+        for (const double w : weight)
+          total += w;
+        for (const double w : weight)
+          sqrt_weight_.push_back(std::sqrt(w / total));
+        force_scale_ = window.peak_force;
+
+        if (options.displacement_weight > 0.0)
+        {
+          const double u0 = interpolate(history.time, history.slab_displacement, window.start);
+          for (std::size_t j = window.first; j <= window.last; ++j)
+          {
+            displacement_.push_back(history.slab_displacement[j] - u0);
+            displacement_scale_ = std::max(displacement_scale_, std::abs(displacement_.back()));
+          }
+          if (!(displacement_scale_ > 0.0))
+            throw FitError("force history: slab displacement does not change over the contact");
+        }
+        const double wall = options.wall_mass;
+        effective_mass_   = std::isinf(wall) ? mass : mass * wall / (mass + wall);
+      }
+
+      double effective_mass() const { return effective_mass_; }
+
+      Parameters parameters(const Eigen::VectorXd &x) const
+      {
+        Parameters p = start_;
+        int        i = 0;
+        p.stiffness  = start_.stiffness * std::exp(x[i++]);
+        if (options_.fit_cor)
+          p.cor = logistic(x[i++]);
+        if (options_.fit_exponent)
+          p.exponent = 1.0 + std::exp(x[i++]);
+        return p;
+      }
+
+      /// Simulate the model with parameters p; fills the model force (and displacement) at the
+      /// misfit samples. Returns the two-body result.
+      lumped::TwoBodyResult simulate(const Parameters    &p,
+                                     std::vector<double> &force,
+                                     std::vector<double> &displacement) const
+      {
+        lumped::ForceLawSpec spec = law_;
+        spec.stiffness            = p.stiffness;
+        spec.cor                  = p.cor;
+        spec.effective_mass       = effective_mass_;
+        if (has_free_exponent(law_.law))
+          spec.exponent = p.exponent;
+        const auto law = lumped::make_force_law(spec);
+
+        const double n = p.exponent;
+        const double v = velocity_;
+        const double delta_c =
+          std::pow((n + 1.0) * effective_mass_ * v * v / (2.0 * p.stiffness), 1.0 / (n + 1.0));
+        lumped::TwoBodySetup setup;
+        setup.mass_1            = mass_;
+        setup.mass_2            = options_.wall_mass;
+        setup.velocity_1        = v;
+        setup.velocity_2        = 0.0;
+        setup.time_step         = delta_c / v / static_cast<double>(options_.steps_per_time_scale);
+        setup.velocity_estimate = options_.velocity_estimate;
+        setup.record_history    = true;
+        setup.max_steps         = 100 * options_.steps_per_time_scale;
+        lumped::TwoBodyResult result = lumped::simulate_two_body(*law, setup);
+
+        const auto &h = result.history;
+        const auto  m = h.time.size();
+        if (m < 3)
+          throw FitError("model contact shorter than three steps");
+        // Contact samples 0..b; sample b + 1 is the first open one (simulate_two_body's record).
+        const std::size_t b  = m - 2;
+        const double      dt = setup.time_step;
+        const double      f0 = std::clamp(h.force[0] - (h.force[1] - h.force[0]) * h.time[0] / dt,
+                                     0.0,
+                                     std::max(h.force[0], 0.0));
+        double            t_sep = h.time[b + 1], f_sep = 0.0;
+        if (h.deformation[b] > 0.0 && h.deformation[b + 1] <= 0.0)
+        {
+          t_sep = h.time[b] + dt * h.deformation[b] / (h.deformation[b] - h.deformation[b + 1]);
+          f_sep = h.force[b] + (h.force[b] - h.force[b - 1]) / dt * (t_sep - h.time[b]);
+          if (f_sep * h.force[b] < 0.0)
+            f_sep = 0.0;
+        }
+        model_time_.assign(1, 0.0);
+        model_force_.assign(1, f0);
+        for (std::size_t i = 0; i <= b; ++i)
+          if (h.time[i] > model_time_.back())
+          {
+            model_time_.push_back(h.time[i]);
+            model_force_.push_back(h.force[i]);
+          }
+        if (t_sep > model_time_.back())
+        {
+          model_time_.push_back(t_sep);
+          model_force_.push_back(f_sep);
+        }
+        contact_end_ = model_time_.back();
+
+        force.resize(tau_.size());
+        const double half = 0.5 * jump_width_;
+        for (std::size_t j = 0; j < tau_.size(); ++j)
+        {
+          const double t = tau_[j];
+          if (t <= 0.0 || t > contact_end_ + half)
+            force[j] = 0.0;
+          else
+          {
+            force[j] = interpolate(model_time_, model_force_, std::min(t, contact_end_));
+            if (t > contact_end_ - half)
+              force[j] *= (contact_end_ + half - t) / jump_width_;
+          }
+        }
+
+        if (!displacement_.empty())
+        {
+          // u1 = v_cm·t + m2/(m1 + m2)·δ; after the last record δ moves at the final velocity.
+          const bool   wall     = std::isinf(options_.wall_mass);
+          const double v_cm     = wall ? 0.0 : mass_ * v / (mass_ + options_.wall_mass);
+          const double share    = wall ? 1.0 : options_.wall_mass / (mass_ + options_.wall_mass);
+          const double v_after  = result.velocity_1_after - result.velocity_2_after;
+          std::vector<double> t = {0.0}, d = {0.0};
+          for (std::size_t i = 0; i < m; ++i)
+            if (h.time[i] > t.back())
+            {
+              t.push_back(h.time[i]);
+              d.push_back(h.deformation[i]);
+            }
+          displacement.resize(tau_.size());
+          for (std::size_t j = 0; j < tau_.size(); ++j)
+          {
+            const double tj    = tau_[j];
+            const double delta = tj <= 0.0      ? v * tj :
+                                 tj <= t.back() ? interpolate(t, d, tj) :
+                                                  d.back() + v_after * (tj - t.back());
+            displacement[j]    = v_cm * tj + share * delta;
+          }
+        }
+        return result;
+      }
+
+      double model_contact_end() const { return contact_end_; }
+
+      /// Width (s) over which the force drop at the model's separation is spread; 0: a jump.
+      void set_jump_width(double width) const { jump_width_ = width; }
+
+      /// Residuals: force misfit (and displacement misfit) weighted so that Σr² is the time-mean
+      /// of the squared normalised misfit.
+      int operator()(const Eigen::VectorXd &x, Eigen::VectorXd &r) const
+      {
+        ++n_evaluations_;
+        const std::size_t n = tau_.size();
+        r.resize(values());
+        try
+        {
+          simulate(parameters(x), model_, model_displacement_);
+        }
+        catch (const std::exception &)
+        {
+          // Parameters the law or the integrator refuses: a large, flat misfit makes LM reject
+          // the step and shorten it.
+          r.setConstant(1.0e3);
+          return 0;
+        }
+        for (std::size_t j = 0; j < n; ++j)
+          r[static_cast<Eigen::Index>(j)] =
+            sqrt_weight_[j] * (model_[j] - force_[j]) / force_scale_;
+        if (!displacement_.empty())
+        {
+          const double w = std::sqrt(options_.displacement_weight);
+          for (std::size_t j = 0; j < n; ++j)
+            r[static_cast<Eigen::Index>(n + j)] = w * sqrt_weight_[j] *
+                                                  (model_displacement_[j] - displacement_[j]) /
+                                                  displacement_scale_;
+        }
+        return 0;
+      }
+
+      /// Central differences; steps in x: the model is self-similar in k (smooth, small step),
+      /// while COR and n change the discrete contact length (a larger step averages that out).
+      int df(const Eigen::VectorXd &x, Eigen::MatrixXd &jacobian) const
+      {
+        jacobian.resize(values(), inputs());
+        Eigen::VectorXd plus(values()), minus(values());
+        for (int i = 0; i < inputs(); ++i)
+        {
+          const double    h  = i == 0 ? 1.0e-6 : 1.0e-4;
+          Eigen::VectorXd xp = x, xm = x;
+          xp[i] += h;
+          xm[i] -= h;
+          (*this)(xp, plus);
+          (*this)(xm, minus);
+          jacobian.col(i) = (plus - minus) / (2.0 * h);
+        }
+        return 0;
+      }
+
+      int n_evaluations() const { return n_evaluations_; }
+
+    private:
+      lumped::ForceLawSpec law_;
+      FitOptions           options_;
+      double               mass_;
+      double               velocity_;
+      double               effective_mass_ = 0.0;
+      Parameters           start_;
+      std::vector<double>  tau_, force_, sqrt_weight_, displacement_;
+      double               force_scale_        = 1.0;
+      double               displacement_scale_ = 0.0;
+
+      mutable std::vector<double> model_, model_displacement_, model_time_, model_force_;
+      mutable double              contact_end_   = 0.0;
+      mutable double              jump_width_    = 0.0;
+      mutable int                 n_evaluations_ = 0;
+    };
+
+    std::string status_text(Eigen::LevenbergMarquardtSpace::Status status)
+    {
+      using S = Eigen::LevenbergMarquardtSpace::Status;
+      switch (status)
+      {
+        case S::NotStarted:
+          return "not started";
+        case S::Running:
+          return "running";
+        case S::ImproperInputParameters:
+          return "improper input parameters";
+        case S::RelativeReductionTooSmall:
+          return "converged: relative reduction of the misfit below ftol";
+        case S::RelativeErrorTooSmall:
+          return "converged: relative change of the parameters below xtol";
+        case S::RelativeErrorAndReductionTooSmall:
+          return "converged: misfit reduction and parameter change below tolerance";
+        case S::CosinusTooSmall:
+          return "converged: residual orthogonal to the Jacobian";
+        case S::TooManyFunctionEvaluation:
+          return "too many function evaluations";
+        case S::FtolTooSmall:
+          return "converged to machine precision: no further misfit reduction possible";
+        case S::XtolTooSmall:
+          return "converged to machine precision: no further parameter improvement possible";
+        case S::GtolTooSmall:
+          return "converged to machine precision: residual orthogonal to the Jacobian";
+        case S::UserAsked:
+          return "stopped by the model";
+      }
+      return "unknown status";
+    }
+
+    bool converged(Eigen::LevenbergMarquardtSpace::Status status)
+    {
+      using S = Eigen::LevenbergMarquardtSpace::Status;
+      return status == S::RelativeReductionTooSmall || status == S::RelativeErrorTooSmall ||
+             status == S::RelativeErrorAndReductionTooSmall || status == S::CosinusTooSmall ||
+             status == S::FtolTooSmall || status == S::XtolTooSmall || status == S::GtolTooSmall;
+    }
+
+    void validate(double                      mass,
+                  double                      impact_velocity,
+                  const lumped::ForceLawSpec &law,
+                  const FitOptions           &o)
+    {
+      const auto fail = [](const std::string &what)
+      { throw std::invalid_argument("fit: " + what); };
+      if (!(std::isfinite(mass) && mass > 0.0))
+        fail(fmt::format("mass = {} kg/m (must be > 0 and finite)", mass));
+      if (!(std::isfinite(impact_velocity) && impact_velocity > 0.0))
+        fail(fmt::format("impact_velocity = {} m/s (must be > 0 and finite)", impact_velocity));
+      static const std::vector<std::string> laws =
+        {"linear", "kelvin_voigt", "modified_kelvin_voigt", "jankowski", "hertzdamp", "hysteretic"};
+      if (std::find(laws.begin(), laws.end(), law.law) == laws.end())
+        fail(fmt::format("law = '{}' (must be one of linear, kelvin_voigt, "
+                         "modified_kelvin_voigt, jankowski, hertzdamp, hysteretic)",
+                         law.law));
+      if (o.fit_exponent && !has_free_exponent(law.law))
+        fail(fmt::format("fit_exponent = true with law '{}' (only hertzdamp and hysteretic have a "
+                         "free exponent)",
+                         law.law));
+      if (o.fit_cor && law.law == "linear")
+        fail("fit_cor = true with law 'linear' (it has no COR)");
+      if (!(law.cor > 0.0 && law.cor <= 1.0))
+        fail(fmt::format("cor = {} (must be in (0, 1])", law.cor));
+      if (!(o.displacement_weight >= 0.0 && std::isfinite(o.displacement_weight)))
+        fail(fmt::format("displacement_weight = {} (must be >= 0)", o.displacement_weight));
+      if (!(o.wall_mass > 0.0))
+        fail(fmt::format("wall_mass = {} kg/m (must be > 0, or infinity for a fixed wall)",
+                         o.wall_mass));
+      if (o.steps_per_time_scale < 20)
+        fail(fmt::format("steps_per_time_scale = {} (must be >= 20)", o.steps_per_time_scale));
+      if (!(o.contact_threshold > 0.0 && o.contact_threshold < 1.0))
+        fail(fmt::format("contact_threshold = {} (must be in (0, 1))", o.contact_threshold));
+      if (!(o.separation_fraction > 0.0))
+        fail(fmt::format("separation_fraction = {} (must be > 0)", o.separation_fraction));
+      if (!(o.tail_fraction >= 0.0))
+        fail(fmt::format("tail_fraction = {} (must be >= 0)", o.tail_fraction));
+      if (!(o.confidence > 0.0 && o.confidence < 1.0))
+        fail(fmt::format("confidence = {} (must be in (0, 1))", o.confidence));
+      if (o.initial_stiffness &&
+          !(*o.initial_stiffness > 0.0 && std::isfinite(*o.initial_stiffness)))
+        fail(fmt::format("initial_stiffness = {} (must be > 0)", *o.initial_stiffness));
+      if (!(o.tolerance > 0.0))
+        fail(fmt::format("tolerance = {} (must be > 0)", o.tolerance));
+      if (o.max_function_evaluations < 10)
+        fail(
+          fmt::format("max_function_evaluations = {} (must be >= 10)", o.max_function_evaluations));
+    }
+  } // namespace
+
+  double stiffness_to_kn_per_mm(double stiffness, double exponent)
+  {
+    return stiffness * std::pow(1.0e-3, exponent + 1.0);
+  }
+
+  std::string stiffness_display_unit(double exponent)
+  {
+    const std::string n = fmt::format("{:.6g}", exponent);
+    return n == "1" ? std::string("kN/mm") : "kN/mm^" + n;
+  }
+
+  double FitResult::stiffness_per_metre_display() const
+  {
+    return stiffness_to_kn_per_mm(stiffness.value, exponent.value);
+  }
+
+  double FitResult::total_stiffness_display(double width) const
+  {
+    return stiffness_per_metre_display() * width;
+  }
+
+  std::string FitResult::per_metre_unit() const
+  {
+    return stiffness_display_unit(exponent.value) + "/m";
+  }
+
+  FitResult fit_impact_law(const ForceHistory         &history,
+                           double                      mass,
+                           double                      impact_velocity,
+                           const lumped::ForceLawSpec &law,
+                           const FitOptions           &options)
+  {
+    validate(mass, impact_velocity, law, options);
+    check_history(history);
+    if (options.displacement_weight > 0.0 && history.slab_displacement.empty())
+      throw FitError("force history: displacement_weight > 0 but no slab displacement given");
+    const ContactWindow window = find_contact_window(history, options);
+
+    const int n_parameters = 1 + (options.fit_cor ? 1 : 0) + (options.fit_exponent ? 1 : 0);
+    const int n_samples    = static_cast<int>(window.last - window.first + 1);
+    const int n_residuals  = n_samples * (options.displacement_weight > 0.0 ? 2 : 1);
+    if (n_samples < n_parameters + 3)
+      throw FitError(fmt::format("force history: {} samples in the contact window ({} s to {} s), "
+                                 "too few for {} parameters",
+                                 n_samples,
+                                 window.start,
+                                 window.separation,
+                                 n_parameters));
+
+    // Physically based start: the linear oscillator's contact duration π·sqrt(m/k) and the
+    // energy balance ½·m·v² = F_peak·δ_max/(n + 1); the impulse m·v·(1 + COR) gives the COR.
+    const double wall  = options.wall_mass;
+    const double m_eff = std::isinf(wall) ? mass : mass * wall / (mass + wall);
+    const double v     = impact_velocity;
+    const double dur   = window.separation - window.start;
+    Parameters   start;
+    start.exponent = default_exponent(law);
+    if (options.fit_exponent)
+      start.exponent = std::max(start.exponent, 1.05);
+    start.cor =
+      options.fit_cor ? std::clamp(window.impulse / (m_eff * v) - 1.0, 0.05, 0.95) : law.cor;
+    const double delta_max = (start.exponent + 1.0) * m_eff * v * v / (2.0 * window.peak_force);
+    double       k0        = window.peak_force / std::pow(delta_max, start.exponent);
+    if (start.exponent == 1.0 && dur > 0.0)
+      k0 = std::sqrt(k0 * m_eff * (pi / dur) * (pi / dur));
+    start.stiffness = options.initial_stiffness.value_or(k0);
+
+    Misfit misfit(history, window, mass, v, law, options, start, n_parameters, n_residuals);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(n_parameters);
+    {
+      int i = 1;
+      if (options.fit_cor)
+        x[i++] = std::log(start.cor / (1.0 - start.cor));
+      if (options.fit_exponent)
+        x[i++] = std::log(start.exponent - 1.0);
+    }
+
+    // Sampled at points, a law whose force drops abruptly at separation (Kelvin-Voigt's tension)
+    // gives a misfit that jumps whenever the drop crosses a sample, and LM can stall one sample
+    // short of the optimum, or in a ripple of local minima when the data jump too. Stage 1
+    // spreads the drop over eight sample intervals (a smooth misfit whose optimum puts the drop
+    // where the data drop, by symmetry), stage 2 restores the jump starting from there.
+    const double spacing = (history.time[window.last] - history.time[window.first]) /
+                           static_cast<double>(window.last - window.first);
+    FitResult                              result;
+    Eigen::LevenbergMarquardtSpace::Status status = Eigen::LevenbergMarquardtSpace::NotStarted;
+    for (const double width : {8.0 * spacing, 0.0})
+    {
+      misfit.set_jump_width(width);
+      Eigen::LevenbergMarquardt<Misfit> lm(misfit);
+      // On the sampled misfit LM can only creep along the steps once the smooth optimum is
+      // reached; a looser tolerance there stops it without losing the exact-data optimum.
+      const double tolerance =
+        width > 0.0 ? options.tolerance : std::max(options.tolerance, 1.0e-6);
+      lm.setFtol(tolerance);
+      lm.setXtol(tolerance);
+      lm.setMaxfev(static_cast<Eigen::Index>(options.max_function_evaluations));
+      status = lm.minimize(x);
+      result.iterations += static_cast<int>(lm.njev());
+      if (!converged(status))
+        break;
+    }
+    result.law         = law.law;
+    result.status_code = static_cast<int>(status);
+    result.status      = status_text(status);
+    const Parameters p = misfit.parameters(x);
+    if (!converged(status) || !x.allFinite())
+      throw FitError(fmt::format("fit of law '{}': {} after {} iterations (k = {} N/m^{} per m, "
+                                 "COR = {}, n = {})",
+                                 law.law,
+                                 result.status,
+                                 result.iterations,
+                                 p.stiffness,
+                                 p.exponent,
+                                 p.cor,
+                                 p.exponent));
+
+    // Residuals and Jacobian at the optimum (operator() last: the model state is the optimum's).
+    Eigen::VectorXd r(n_residuals);
+    Eigen::MatrixXd jacobian;
+    misfit.df(x, jacobian);
+    misfit(x, r);
+    if (!r.allFinite() || r.cwiseAbs().maxCoeff() >= 1.0e3)
+      throw FitError(fmt::format("fit of law '{}': the model fails at the optimum (k = {})",
+                                 law.law,
+                                 p.stiffness));
+
+    const double                            z  = normal_quantile(0.5 * (1.0 + options.confidence));
+    const double                            s2 = r.squaredNorm() / (n_residuals - n_parameters);
+    const Eigen::MatrixXd                   normal = jacobian.transpose() * jacobian;
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(normal);
+    Eigen::VectorXd                         sigma(n_parameters);
+    if (lu.rank() == n_parameters)
+      sigma = (s2 * lu.inverse()).diagonal().cwiseMax(0.0).cwiseSqrt();
+    else
+    {
+      sigma.setConstant(std::numeric_limits<double>::infinity());
+      result.status += " (Jacobian rank-deficient: confidence intervals unbounded)";
+    }
+
+    int i                   = 0;
+    result.stiffness.value  = p.stiffness;
+    result.stiffness.lower  = start.stiffness * std::exp(x[i] - z * sigma[i]);
+    result.stiffness.upper  = start.stiffness * std::exp(x[i] + z * sigma[i]);
+    result.stiffness.fitted = true;
+    ++i;
+    result.cor = {p.cor, p.cor, p.cor, false};
+    if (options.fit_cor)
+    {
+      result.cor = {p.cor, logistic(x[i] - z * sigma[i]), logistic(x[i] + z * sigma[i]), true};
+      ++i;
+    }
+    result.exponent = {p.exponent, p.exponent, p.exponent, false};
+    if (options.fit_exponent && p.exponent - 1.0 < 1.0e-3)
+      result.status += " (n at its lower bound 1: the data are not Hertz-like)";
+    if (options.fit_exponent)
+      result.exponent = {p.exponent,
+                         1.0 + std::exp(x[i] - z * sigma[i]),
+                         1.0 + std::exp(x[i] + z * sigma[i]),
+                         true};
+
+    // Time-RMS of each misfit part (Σ of the weighted squares is the time mean).
+    double force_sq = 0.0, displacement_sq = 0.0;
+    for (int j = 0; j < n_samples; ++j)
+      force_sq += r[j] * r[j];
+    for (int j = n_samples; j < n_residuals; ++j)
+      displacement_sq += r[j] * r[j];
+    result.normalised_rms = std::sqrt(force_sq);
+    if (options.displacement_weight > 0.0)
+      result.normalised_displacement_rms = std::sqrt(displacement_sq / options.displacement_weight);
+
+    result.function_evaluations = misfit.n_evaluations();
+    result.fem_peak_force       = window.peak_force;
+    result.fem_contact_duration = dur;
+    result.fem_impulse          = window.impulse;
+    result.contact_start        = window.start;
+
+    std::vector<double>         model_force, model_displacement;
+    const lumped::TwoBodyResult model = misfit.simulate(p, model_force, model_displacement);
+    result.model_peak_force           = model.peak_force;
+    result.model_contact_duration     = misfit.model_contact_end();
+    result.model_effective_cor        = model.effective_cor;
+    for (std::size_t j = window.first; j <= window.last; ++j)
+    {
+      result.time.push_back(history.time[j]);
+      result.fem_force.push_back(history.force[j]);
+    }
+    result.model_force = std::move(model_force);
+    return result;
+  }
+
+  std::vector<FitVariant> standard_fit_variants(const FitOptions &base, double cor)
+  {
+    std::vector<FitVariant> variants;
+    const auto add = [&](std::string name, std::string law, bool fit_cor, bool fit_exponent)
+    {
+      FitVariant variant;
+      variant.name                 = std::move(name);
+      variant.law.law              = std::move(law);
+      variant.law.cor              = cor;
+      variant.options              = base;
+      variant.options.fit_cor      = fit_cor;
+      variant.options.fit_exponent = fit_exponent;
+      variants.push_back(std::move(variant));
+    };
+    add("kelvin_voigt_cor_fixed", "kelvin_voigt", false, false);
+    add("jankowski_cor_fixed", "jankowski", false, false);
+    add("kelvin_voigt_cor_free", "kelvin_voigt", true, false);
+    add("jankowski_cor_free", "jankowski", true, false);
+    add("hertz_free_exponent", "hysteretic", false, true);
+    return variants;
+  }
+
+  LevelEstimate level_uncertainty(const std::vector<double> &values,
+                                  double                     refinement_ratio,
+                                  double                     assumed_order)
+  {
+    if (values.size() < 2)
+      throw std::invalid_argument(
+        fmt::format("level_uncertainty: {} values (need at least two levels)", values.size()));
+    for (std::size_t i = 0; i < values.size(); ++i)
+      if (!std::isfinite(values[i]))
+        throw std::invalid_argument(
+          fmt::format("level_uncertainty: values[{}] = {} (must be finite)", i, values[i]));
+    if (!(refinement_ratio > 1.0))
+      throw std::invalid_argument(
+        fmt::format("level_uncertainty: refinement_ratio = {} (must be > 1)", refinement_ratio));
+    if (!(assumed_order > 0.0))
+      throw std::invalid_argument(
+        fmt::format("level_uncertainty: assumed_order = {} (must be > 0)", assumed_order));
+
+    const std::size_t n = values.size();
+    LevelEstimate     e;
+    e.finest          = values[n - 1];
+    e.previous        = values[n - 2];
+    const double e21  = e.finest - e.previous;
+    e.relative_change = e.finest != 0.0 ? std::abs(e21 / e.finest) : std::abs(e21);
+    e.order_used      = assumed_order;
+    if (n >= 3)
+    {
+      const double e32 = e.previous - values[n - 3];
+      if (e21 != 0.0 && e21 * e32 > 0.0)
+      {
+        e.observed_order = std::log(e32 / e21) / std::log(refinement_ratio);
+        if (e.observed_order >= 0.5 && e.observed_order <= 4.0)
+          e.order_used = e.observed_order;
+      }
+    }
+    e.extrapolated   = e.finest + e21 / (std::pow(refinement_ratio, e.order_used) - 1.0);
+    e.error_estimate = std::abs(e.extrapolated - e.finest);
+    e.relative_error = e.finest != 0.0 ? e.error_estimate / std::abs(e.finest) : e.error_estimate;
+    return e;
+  }
+} // namespace kimp::fit

@@ -1,0 +1,106 @@
+// Ground-motion files: PEER .AT2 (3 header lines, an NPTS/DT line, NPTS values in g, Fortran E
+// format) and plain two-column "time acceleration" text. Variants:
+// ../shared/data/records/README.md.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace kimp::io
+{
+  /// An acceleration record as read from a file: uniform samples in SI.
+  struct AccelerationRecord
+  {
+    double              dt = 0.0;     ///< sampling interval, s
+    std::vector<double> acceleration; ///< ü_g at t_i = i·dt, m/s²
+    std::string         name;         ///< the file stem (or the source label)
+
+    /// Record length n·dt, s (the PEER convention NPTS × DT).
+    double duration() const;
+
+    /// Peak ground acceleration max_i |ü_g(t_i)|, m/s² (0 for an empty record).
+    double pga() const;
+  };
+
+  /**
+   * A ground-motion file that cannot be read. what() is
+   * "<file>:<line>: <problem> (expected <what a valid file has>)"; line() is 1-based, 0 when the
+   * problem concerns the whole file (it cannot be opened).
+   */
+  class GroundMotionFileError : public std::runtime_error
+  {
+  public:
+    GroundMotionFileError(const std::string &file, std::size_t line, const std::string &message);
+
+    /// The file name or label the error refers to.
+    const std::string &file() const { return file_; }
+
+    /// 1-based line number, 0 for the whole file.
+    std::size_t line() const { return line_; }
+
+  private:
+    std::string file_;
+    std::size_t line_;
+  };
+
+  /// Lines searched for the NPTS/DT line of an AT2 file (it is line 4 in every known variant).
+  inline constexpr std::size_t at2_max_header_lines = 10;
+
+  /// Two-column times may deviate from the uniform grid t_i = i·dt by this fraction of dt.
+  inline constexpr double two_column_time_tolerance = 1e-3;
+
+  /**
+   * Read a PEER AT2 file; values in g are converted to m/s² (× 9.80665). name = file stem.
+   *
+   * Accepted: the NPTS/DT line anywhere in lines 1-10, found by its keywords (NPTS and DT as
+   * words, any case) and never by number; keyword forms "NPTS= 4000, DT= .01000 SEC" with or
+   * without commas and with any trailing text (e.g. filter corners), or the numbers-first form
+   * "4000 0.0100 NPTS, DT"; values after that line, any number per line, separated by blanks or
+   * touching (Fortran fields such as "-.1E-02-.2E-02" or ".1E-02.2E-02"), mantissas without a
+   * leading zero, exponent letters E or D, a partial last line, trailing blanks, CRLF or LF.
+   * Numbers in the free-text header lines are never read.
+   *
+   * @throws GroundMotionFileError for: a file that cannot be opened, an empty file, binary data
+   *   (NUL or control bytes), a file that ends before the NPTS/DT line, no NPTS/DT line, NPTS not
+   *   a positive integer, DT not a positive number, a non-numeric token (quoted), fewer or more
+   *   values than NPTS. The message names the file and the line.
+   */
+  AccelerationRecord read_at2(const std::filesystem::path &file);
+
+  /// read_at2() on text already in memory; `source` names it in messages and becomes the name.
+  AccelerationRecord parse_at2(std::string_view content, const std::string &source);
+
+  /**
+   * Read plain text with one "time acceleration" pair per line (blank, tab, comma or semicolon
+   * separated); '#' starts a comment; blank lines are skipped. Times must start at 0 and be
+   * uniform: |t_i − i·dt| <= two_column_time_tolerance·dt with dt = (t_last − t_0)/(n − 1).
+   *
+   * @param[in] file              the text file
+   * @param[in] acceleration_unit SI value of one unit of the second column, m/s²
+   *                              (9.80665 for g, 1 for m/s², 0.01 for cm/s²); > 0
+   * @throws GroundMotionFileError naming file and line for fewer than 2 rows, a row without
+   *   exactly 2 numbers, a non-numeric token, non-increasing or non-uniform times, t_0 != 0.
+   * @throws std::invalid_argument for acceleration_unit <= 0.
+   */
+  AccelerationRecord read_two_column(const std::filesystem::path &file, double acceleration_unit);
+
+  /// read_two_column() on text already in memory; `source` names it in messages.
+  AccelerationRecord
+  parse_two_column(std::string_view content, const std::string &source, double acceleration_unit);
+
+  /**
+   * Read either format, chosen by content: an NPTS/DT line within the first
+   * at2_max_header_lines lines means AT2; otherwise a first data line (after comments and blank
+   * lines) holding exactly two numbers means two-column text, which needs `two_column_unit`
+   * (m/s² per unit of the second column), since such files do not state their unit.
+   * @throws GroundMotionFileError when the content is neither, or a two-column file is given
+   *   without a unit, or the chosen reader fails.
+   */
+  AccelerationRecord read_ground_motion(const std::filesystem::path &file,
+                                        std::optional<double> two_column_unit = std::nullopt);
+} // namespace kimp::io

@@ -1,0 +1,229 @@
+// Central difference method for the pounding system (thesis eq. 3.9-3.11):
+//   (M/Δt² + C/(2Δt))·u_{n+1} = p_n − K·u_n − f_nl,n + (2M/Δt²)·u_n − (M/Δt² − C/(2Δt))·u_{n−1},
+// stable for Δt < 2/ω_max (3.12) with ω_max including every contact's ω_imp = √(k_t/m_eff) (3.13).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lumped/excitation/ground_motion.h"
+#include "lumped/integrators/response.h"
+#include "lumped/structure/pounding_model.h"
+
+namespace kimp::lumped
+{
+  /**
+   * Velocity handed to the impact laws and the isolator at step n. The central difference
+   * velocity (u_{n+1} − u_{n−1})/(2Δt) needs u_{n+1}, which depends on the force being evaluated,
+   * so an explicit scheme must use past displacements (PHYSICS.md §5):
+   *  - backward: (u_n − u_{n−1})/Δt, first order, lags by Δt/2 (the thesis' choice);
+   *  - backward_second_order: (3u_n − 4u_{n−1} + u_{n−2})/(2Δt), second order, no lag.
+   * The viscous matrix C is integrated implicitly (central) in either case.
+   */
+  enum class LawVelocity
+  {
+    backward,
+    backward_second_order
+  };
+
+  /**
+   * Time-loop kernel of the central difference method.
+   *  - automatic: the fused dense kernel when the model has at most 8 DOFs (the isolated
+   *    4-storey building with walls, bumpers or a basement; fixed-base buildings of up to 8
+   *    storeys; an isolated building with one small neighbour) and every storey joins DOF i − 1
+   *    and DOF i or the ground and DOF i (true for every PoundingScene), the block-tridiagonal
+   *    reference kernel otherwise;
+   *  - reference: always the block-tridiagonal kernel (Thomas or a dense inverse per block, the
+   *    step-lane bookkeeping); slower, kept as the reference for the fused kernel.
+   */
+  enum class CdmKernel
+  {
+    automatic,
+    reference
+  };
+
+  /**
+   * | option                   | unit | default | meaning                                     |
+   * |--------------------------|------|---------|---------------------------------------------|
+   * | dt                       | s    | 0       | time step; 0 = auto: safety·Δt_cr, reduced  |
+   * |                          |      |         | so that it divides the record's dt exactly  |
+   * | safety                   | -    | 0.5     | (0, 1]; margin for contact damping and      |
+   * |                          |      |         | stiffening beyond the expected penetration  |
+   * | expected_max_penetration | m    | 0.05    | δ at which k_t = law.initial_stiffness(δ)   |
+   * | duration                 | s    | 0       | analysis length; 0 = the record's length    |
+   * | output_interval          | s    | 0.01    | history sampling; 0 = no histories          |
+   * | law_velocity             | -    | backward| see LawVelocity                             |
+   * | initial_displacement     | m    | zeros   | u(0), empty or one per DOF                  |
+   * | initial_velocity         | m/s  | zeros   | u̇(0), empty or one per DOF                  |
+   * | divergence_energy_factor | -    | 10      | stop when E_kin + E_strain exceeds this     |
+   * |                          |      |         | times max(E_0 + W_in)                       |
+   * | kernel                   | -    | auto    | see CdmKernel                               |
+   * | vector_lanes             | -    | 0       | cap on the fused kernel's vector width in   |
+   * |                          |      |         | doubles: 0 = widest available (AVX-512: 8,  |
+   * |                          |      |         | AVX2: 4, SSE2: 2), or 4 or 2; bitwise equal |
+   * |                          |      |         | results for every width                     |
+   */
+  struct CentralDifferenceOptions
+  {
+    double              dt                       = 0.0;
+    double              safety                   = 0.5;
+    double              expected_max_penetration = 0.05;
+    double              duration                 = 0.0;
+    double              output_interval          = 0.01;
+    LawVelocity         law_velocity             = LawVelocity::backward;
+    std::vector<double> initial_displacement;
+    std::vector<double> initial_velocity;
+    double              divergence_energy_factor = 10.0;
+    CdmKernel           kernel                   = CdmKernel::automatic;
+    int                 vector_lanes             = 0;
+  };
+
+  /// Stability limit of the central difference method for a model.
+  struct StabilityLimit
+  {
+    double      omega_structure = 0.0; ///< ω_max of (K + K1·e0e0ᵀ, M), contacts open, rad/s
+    double      omega_closed    = 0.0; ///< ω_max with every contact at its tangent k_t, rad/s
+    double      omega_impact    = 0.0; ///< max_c √(k_t,c/m_eff,c), rad/s
+    double      dt_critical     = 0.0; ///< 2/max(the three), s
+    std::string governing;             ///< which bound governs (for messages)
+  };
+
+  /**
+   * Δt_cr from the structure and every contact, with k_t = law.initial_stiffness(δ_max).
+   * @param[in] expected_max_penetration δ_max, m (> 0)
+   */
+  StabilityLimit stability_limit(const PoundingModel &model, double expected_max_penetration);
+
+  /**
+   * Fixed-step central difference integrator with an allocation-free time loop. The effective
+   * matrix A = M/Δt² + C/(2Δt) is block-tridiagonal (one block per building, no coupling between
+   * blocks) and is inverted once. Contacts and the isolator are evaluated explicitly at u_n
+   * (trial + commit every step); a law whose gap is open and which is not in contact is not
+   * called, and is brought up to date with the last open state just before it closes (so its
+   * first contact step starts from the true previous, open, deformation).
+   *
+   * Two kernels (CdmKernel), chosen at init():
+   *  - fused (automatic, n <= 8 DOFs, see CdmKernel): the increment form
+   *      Δu_{n+1} = Δu_n − z_{n−1} − A⁻¹M·1·ü_g,n − A⁻¹(C/Δt + K)·Δu_n − A⁻¹·f_nl,n,
+   *      u_{n+1} = u_n + Δu_{n+1},  z_n = z_{n−1} + A⁻¹K·Δu_n  (z_n = A⁻¹K·u_n),
+   *    algebraically the central difference step. u_n, Δu_n and z_n stay in vector registers
+   *    from step to step; Δu is carried exactly (never re-formed from u: no cancellation in
+   *    u_{n+1} − u_n at small Δt). Only one dense product (summed as a tree) and the force term
+   *    lie on the step-to-step dependency chain; z, the bookkeeping of the step (v_n =
+   *    (Δu_n + Δu_{n+1})/(2Δt), a_n = (Δu_{n+1} − Δu_n)/Δt² + ü_g, peaks, per-DOF running sums
+   *    for the input and viscous work, reduced at the check points, so that max(E_0 + W_in)
+   *    is taken over the check points) overlap with it. A contact law is called only when a
+   *    cheap pre-check (u_L − u_R > gap, or the law in contact or just released) fails, outside
+   *    the fast loop. The vector width (SSE2, AVX2 or AVX-512F; see
+   *    CentralDifferenceOptions::vector_lanes) is picked at run time; every operation is per
+   *    DOF lane without FMA contraction, so all widths give bitwise equal results;
+   *  - reference (more than 8 DOFs, or on request): right-hand side with the
+   *    tridiagonal B = 2M/Δt² − K and D = −M/Δt² + C/(2Δt), A⁻¹ block-wise (dense for blocks
+   *    of up to 16 DOFs, else the pre-factorised Thomas algorithm), and the bookkeeping of each
+   *    block of up to 64 steps vectorised over the steps afterwards.
+   * Both kernels run in blocks of up to 64 steps that end at every check point (history sample,
+   * every ≤ 512 steps aligned with the history interval, the last step), and every quantity is
+   * computed with the same operations in the same order whatever the blocking, so advance(k) and
+   * step() give bitwise equal results. The two kernels agree to round-off
+   * (tests/lumped/integrator_test.cc states the tolerances).
+   *
+   * Recorded at every t_n (n = 0..N): u_n, the step's acceleration (u_{n+1} − 2u_n + u_{n−1})/Δt²
+   * + ü_g(t_n) (PHYSICS.md §5), the contact forces F_n, and the energy terms (E_kin and E_strain
+   * only at the check points, where they are used).
+   */
+  class CentralDifference
+  {
+  public:
+    /// @throws std::invalid_argument for invalid options.
+    explicit CentralDifference(PoundingModel model, CentralDifferenceOptions options = {});
+
+    const StabilityLimit &stability() const { return stability_; }
+
+    /**
+     * The step used for a record sampled every `record_dt` seconds.
+     * @throws TimeStepError when options.dt exceeds stability().dt_critical (both numbers named).
+     */
+    double time_step(double record_dt) const;
+
+    /**
+     * Integrate from rest (or the initial conditions) under ü_g (zero past the record's end):
+     * a CentralDifferenceStepper advanced from init() to the end.
+     * @throws TimeStepError, DivergenceError (time, step and DoF named).
+     */
+    Response run(const GroundMotion &motion) const;
+
+    const PoundingModel &model() const { return model_; }
+
+    const CentralDifferenceOptions &options() const { return options_; }
+
+  private:
+    PoundingModel            model_;
+    CentralDifferenceOptions options_;
+    StabilityLimit           stability_;
+  };
+
+  /**
+   * Step-by-step integration with a CentralDifference (MFEM ODESolver Init/Step; STYLE.md §6.10).
+   * Time is counted in integer steps, t_n = n·Δt (never accumulated); Δt = time_step(motion.dt)
+   * is fixed at init(); the run has steps n = 0..N, N = last_step() = round(duration/Δt).
+   *
+   * Contract:
+   *  - init(motion) [in: motion, which must outlive the stepper or the next init()]: (re)starts
+   *    at n = 0 from the options' initial conditions (u_0, u̇_0, with u_{−1}, u_{−2} from a Taylor
+   *    expansion), with fresh clones of every contact law and of the isolator in their virgin
+   *    state, and an empty Response. Whatever a previous run left behind is discarded, so a run
+   *    after init() is identical to a run on a new stepper.
+   *  - step() [in: n, u_{n−1}, u_n (and u_{n−2}), the laws' and the isolator's state committed at
+   *    t_{n−1}; out: their state committed at t_n, u_{n+1}, the response at t_n recorded (peaks,
+   *    energies, history sample), n ← n + 1]. The forces are evaluated explicitly at u_n and
+   *    committed every step; nothing is ever reverted.
+   *  - advance(k): min(k, N + 1 − n) steps, identical to as many step() calls (faster: the
+   *    bookkeeping runs vectorised over blocks of steps).
+   *  - Integrators do no I/O; numerical failure throws DivergenceError (time, step, DoF), after
+   *    which the stepper must be init()-ed again.
+   */
+  class CentralDifferenceStepper
+  {
+  public:
+    /// @param integrator model, options and stability limit; must outlive the stepper.
+    explicit CentralDifferenceStepper(const CentralDifference &integrator);
+    ~CentralDifferenceStepper();
+    CentralDifferenceStepper(CentralDifferenceStepper &&) noexcept;
+    CentralDifferenceStepper &operator=(CentralDifferenceStepper &&) noexcept;
+
+    /// Start or restart under `motion`. @throws TimeStepError, std::invalid_argument.
+    void init(const GroundMotion &motion);
+    /// One step (see the contract). @throws std::logic_error before init() or after the end.
+    void step();
+    /// Up to `count` steps; returns how many were taken (0 at the end).
+    long advance(long count);
+
+    /// Index n of the next step to evaluate (0 after init(), N + 1 at the end).
+    long step_index() const;
+    /// t_n = n·Δt, s.
+    double time() const;
+    /// Δt, s.
+    double dt() const;
+    /// N, the index of the last step (t_N = duration).
+    long last_step() const;
+    /// True once step N has been evaluated.
+    bool finished() const;
+    /// True when init() chose the fused dense kernel (see CentralDifference and CdmKernel).
+    bool uses_fused_kernel() const;
+    /// u_{n+level} for level 0, −1, −2 (m, relative to the ground).
+    std::vector<double> displacement(int level = 0) const;
+    /// The response recorded at t_0..t_{n−1} (energy fields as of the last check: every history
+    /// sample, every ≤ 512 steps and the last step).
+    Response response() const;
+
+    struct Session; ///< implementation (central_difference.cc)
+
+  private:
+    void require_init(const char *what) const;
+
+    const CentralDifference *integrator_;
+    std::unique_ptr<Session> session_;
+    bool                     initialised_ = false;
+  };
+} // namespace kimp::lumped

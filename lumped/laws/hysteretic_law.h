@@ -1,0 +1,63 @@
+// Impact law 6, non-linear hysteretic (thesis eqs. 2.17-2.23): approach F = k·δ^n, restitution
+// (δ̇ < 0) F = k·δ^n·(1 + C_imp·δ̇) clipped at 0, with
+// C_imp = 1.55·(1 − COR²)/(COR^0.7076·m_eff^0.0025·v_imp^0.9755) (2.23, m_eff in kg, v in m/s).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "lumped/laws/contact_law.h"
+
+namespace kimp::lumped
+{
+  /// C_imp of (2.23), s/m, from COR, m_eff (kg) and v_imp (m/s).
+  /// @throws std::invalid_argument unless 0 < COR <= 1, m_eff > 0, v_imp > 0.
+  double impact_damping_coefficient(double cor, double effective_mass, double impact_velocity);
+
+  /**
+   * Hertz-type spring on approach, a rate-proportional reduction of the force on restitution
+   * (the hysteresis loop), never tensile: the thesis' proposal. v_imp is the rate δ̇ at the first
+   * trial that enters contact; C_imp is fixed there for the whole contact.
+   *
+   * | parameter | meaning                                      | unit   | range  |
+   * |-----------|----------------------------------------------|--------|--------|
+   * | k         | Hertz stiffness                              | N/m^n  | > 0    |
+   * | n         | exponent (1.5)                               | -      | >= 1   |
+   * | cor       | nominal coefficient of restitution           | -      | (0, 1] |
+   * | m_eff     | m1·m2/(m1 + m2) of the pair                  | kg     | > 0    |
+   * | a1        | optional: C_imp = a1·(1 − COR²) instead of (2.23) | s/m | > 0   |
+   *
+   * Tangent: dF/dδ̇ jumps from 0 to k·δ^n·C_imp at δ̇ = 0 and from k·δ^n·C_imp to 0 where the
+   * clipping starts (1 + C_imp·δ̇ = 0): kinks with continuous F.
+   * Limitation: (2.23) is a fit; the effective COR deviates by up to a few per cent
+   * (lumped/collision/cimp_calibration.h redoes the fit).
+   */
+  class HystereticLaw final : public ContactLaw<HystereticLaw>
+  {
+  public:
+    struct Params
+    {
+      double                stiffness      = 0.0; ///< k, N/m^n
+      double                exponent       = 1.5; ///< n
+      double                cor            = 1.0; ///< nominal COR
+      double                effective_mass = 0.0; ///< m_eff, kg
+      std::optional<double> a1;                   ///< if set, C_imp = a1·(1 − COR²), s/m
+    };
+
+    /// @throws std::invalid_argument naming the bad parameter.
+    explicit HystereticLaw(const Params &params);
+
+    /// n·k·δ_max^(n−1), N/m (the approach tangent bounds the restitution one).
+    /// @throws std::invalid_argument if max_deformation <= 0 and n > 1.
+    double        initial_stiffness(double max_deformation) const override;
+    std::string   name() const override { return "hysteretic"; }
+    const Params &parameters() const { return params_; }
+
+  private:
+    friend class ContactLaw<HystereticLaw>;
+    /// The law itself, called by ContactLaw::set_trial (see there for the contract).
+    void evaluate(const ContactState &committed, ContactState &trial) const;
+
+    const Params params_;
+  };
+} // namespace kimp::lumped

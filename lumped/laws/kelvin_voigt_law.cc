@@ -1,0 +1,55 @@
+// Impact law 2, Kelvin-Voigt F = k·δ + c·δ̇ (thesis eqs. 2.5-2.7, Anagnostopoulos 1988).
+#include "lumped/laws/kelvin_voigt_law.h"
+
+#include <cmath>
+
+namespace kimp::lumped
+{
+  double kelvin_voigt_damping_ratio(double cor)
+  {
+    detail::require_cor("kelvin_voigt", cor);
+    constexpr double pi = 3.14159265358979323846;
+    const double     l  = std::log(cor);
+    return -l / std::sqrt(pi * pi + l * l);
+  }
+
+  double cdm_damping_factor(double damping_ratio)
+  {
+    return std::sqrt(1.0 + damping_ratio * damping_ratio) - damping_ratio;
+  }
+
+  KelvinVoigtLaw::KelvinVoigtLaw(const Params &params)
+    : params_(params)
+  {
+    detail::require_positive(name(), "k", params_.stiffness, "N/m");
+    detail::require_cor(name(), params_.cor);
+    detail::require_positive(name(), "m_eff", params_.effective_mass, "kg");
+    damping_ = 2.0 * kelvin_voigt_damping_ratio(params_.cor) *
+               std::sqrt(params_.stiffness * params_.effective_mass);
+  }
+
+  double KelvinVoigtLaw::initial_stiffness(double /*max_deformation*/) const
+  {
+    const double f = cdm_damping_factor(kelvin_voigt_damping_ratio(params_.cor));
+    return params_.stiffness / (f * f);
+  }
+
+  void KelvinVoigtLaw::evaluate(const ContactState &committed, ContactState &trial) const
+  {
+    const double x = trial.deformation;
+    if (x <= 0.0)
+    {
+      trial.in_contact = false;
+      return;
+    }
+    if (!committed.in_contact)
+      trial.impact_velocity = trial.rate;
+    trial.in_contact    = true;
+    trial.elastic_force = params_.stiffness * x;
+    trial.stored_energy = 0.5 * params_.stiffness * x * x;
+    // May be tensile near separation: the model's known flaw, kept on purpose.
+    trial.force     = trial.elastic_force + damping_ * trial.rate;
+    trial.stiffness = params_.stiffness;
+    trial.damping   = damping_;
+  }
+} // namespace kimp::lumped

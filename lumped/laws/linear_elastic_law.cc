@@ -1,0 +1,33 @@
+// Impact law 1, linear elastic spring F = k·δ (thesis eq. 2.4).
+#include "lumped/laws/linear_elastic_law.h"
+
+namespace kimp::lumped
+{
+  LinearElasticLaw::LinearElasticLaw(const Params &params)
+    : params_(params)
+  {
+    detail::require_positive(name(), "k", params_.stiffness, "N/m");
+  }
+
+  double LinearElasticLaw::initial_stiffness(double /*max_deformation*/) const
+  {
+    return params_.stiffness;
+  }
+
+  void LinearElasticLaw::evaluate(const ContactState &committed, ContactState &trial) const
+  {
+    const double x = trial.deformation;
+    if (x <= 0.0)
+    {
+      trial.in_contact = false;
+      return;
+    }
+    if (!committed.in_contact)
+      trial.impact_velocity = trial.rate;
+    trial.in_contact    = true;
+    trial.force         = params_.stiffness * x;
+    trial.stiffness     = params_.stiffness;
+    trial.elastic_force = trial.force;
+    trial.stored_energy = 0.5 * params_.stiffness * x * x;
+  }
+} // namespace kimp::lumped

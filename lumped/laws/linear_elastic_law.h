@@ -1,0 +1,43 @@
+// Impact law 1, linear elastic spring: F = k·δ for δ > 0 (thesis eq. 2.4; Maison & Kasai 1990,
+// Anagnostopoulos 1988 without the dashpot). Conservative: an impact returns all energy (COR = 1).
+#pragma once
+
+#include <string>
+
+#include "lumped/laws/contact_law.h"
+
+namespace kimp::lumped
+{
+  /**
+   * Linear elastic contact spring.
+   *
+   * | parameter | meaning           | unit | range |
+   * |-----------|-------------------|------|-------|
+   * | k         | contact stiffness | N/m  | > 0   |
+   *
+   * Limitation: no energy loss, so the impact is perfectly elastic whatever the materials.
+   */
+  class LinearElasticLaw final : public ContactLaw<LinearElasticLaw>
+  {
+  public:
+    struct Params
+    {
+      double stiffness = 0.0; ///< k, N/m
+    };
+
+    /// @throws std::invalid_argument if k <= 0.
+    explicit LinearElasticLaw(const Params &params);
+
+    /// k (N/m) whatever the deformation.
+    double        initial_stiffness(double max_deformation) const override;
+    std::string   name() const override { return "linear"; }
+    const Params &parameters() const { return params_; }
+
+  private:
+    friend class ContactLaw<LinearElasticLaw>;
+    /// The law itself, called by ContactLaw::set_trial (see there for the contract).
+    void evaluate(const ContactState &committed, ContactState &trial) const;
+
+    const Params params_;
+  };
+} // namespace kimp::lumped

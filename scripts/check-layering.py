@@ -1,0 +1,117 @@
+#!/usr/bin/env python3
+"""Fails when a source file includes across a forbidden layer boundary (docs/architecture.md).
+
+Every C++ file under a module directory may include headers of its own module and of the modules
+listed for it below, and no third-party header of the families listed as foreign to it. Commands
+(cli/<name>_command.cc) include no other command. Tests and benchmarks are not checked.
+
+    check-layering.py [ROOT]       check the tree at ROOT (default: the repository)
+    check-layering.py --self-test  check that deliberate violations are caught
+"""
+import os
+import re
+import sys
+import tempfile
+
+# module -> kimp modules it may include (besides itself)
+ALLOWED = {
+    "base": set(),
+    "lumped": set(),
+    "geometry": set(),
+    "fem": {"geometry"},
+    "fit": {"lumped"},
+    "io": {"base"},
+    "app": {"base", "io", "fit", "lumped", "geometry", "fem"},
+    "cli": {"base", "io", "app"},
+}
+MODULES = set(ALLOWED)
+
+# module -> third-party header prefixes it must not include
+FOREIGN = {
+    "base": ["deal.II/", "gmsh", "hdf5", "H5", "yaml-cpp/", "CLI/", "Eigen/", "mpi.h"],
+    "lumped": ["deal.II/", "gmsh", "hdf5", "H5", "yaml-cpp/", "nlohmann/", "CLI/", "spdlog/", "mpi.h"],
+    "geometry": ["deal.II/", "hdf5", "H5", "yaml-cpp/", "nlohmann/", "CLI/", "spdlog/"],
+    "fem": ["hdf5", "H5", "yaml-cpp/", "nlohmann/", "CLI/", "spdlog/"],
+    "fit": ["deal.II/", "gmsh", "hdf5", "H5", "yaml-cpp/", "nlohmann/", "CLI/", "mpi.h"],
+    "io": ["deal.II/", "gmsh", "Eigen/", "CLI/"],
+    "app": ["CLI/"],
+    "cli": ["deal.II/", "gmsh", "hdf5", "H5", "yaml-cpp/"],
+}
+
+INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
+COMMAND = re.compile(r"^cli/(\w+)_command\.(cc|h)$")
+
+
+def violations(root):
+    found = []
+    for module in sorted(MODULES):
+        top = os.path.join(root, module)
+        for directory, _, files in os.walk(top):
+            for name in sorted(files):
+                if not name.endswith((".h", ".cc", ".h.in")):
+                    continue
+                path = os.path.join(directory, name)
+                rel = os.path.relpath(path, root).replace(os.sep, "/")
+                with open(path, encoding="utf-8") as f:
+                    text = f.read()
+                for match in INCLUDE.finditer(text):
+                    kind, header = match.groups()
+                    line = text.count("\n", 0, match.start()) + 1
+                    first = header.split("/")[0]
+                    where = f"{rel}:{line}: #include {kind}{header}{'>' if kind == '<' else kind}"
+                    if first in MODULES and "/" in header:
+                        if first != module and first not in ALLOWED[module]:
+                            allowed = ", ".join(sorted(ALLOWED[module])) or "nothing else of kimp"
+                            found.append(f"{where}: {module}/ may include {allowed}, not {first}/")
+                        command = COMMAND.match(rel)
+                        other = COMMAND.match(header)
+                        if command and other and other.group(1) != command.group(1):
+                            found.append(f"{where}: a command includes no other command")
+                    elif kind == "<" or first not in MODULES:
+                        for prefix in FOREIGN[module]:
+                            if header.startswith(prefix):
+                                found.append(f"{where}: {module}/ must not depend on <{prefix}...>")
+    return found
+
+
+def self_test():
+    cases = {
+        "lumped/laws/x.h": '#include "io/units.h"\n',
+        "io/x.cc": '#include "lumped/laws/force_law.h"\n',
+        "fit/x.cc": '#include "fem/impact.h"\n',
+        "cli/lumped_command.cc": '#include "cli/fit_command.cc"\n',
+        "fem/x.cc": '#include "app/lumped_run.h"\n',
+        "lumped/y.cc": "#include <hdf5.h>\n",
+    }
+    with tempfile.TemporaryDirectory() as root:
+        for rel, text in cases.items():
+            path = os.path.join(root, rel)
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+            with open(path, "w", encoding="utf-8") as f:
+                f.write(text)
+        found = violations(root)
+    missed = [rel for rel in cases if not any(v.startswith(rel + ":") for v in found)]
+    if missed:
+        print("check-layering self-test: violations not detected in " + ", ".join(missed))
+        return 1
+    print(f"check-layering self-test: all {len(cases)} deliberate violations detected")
+    return 0
+
+
+def main(argv):
+    if argv[1:] == ["--self-test"]:
+        return self_test()
+    root = argv[1] if len(argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+    found = violations(root)
+    for v in found:
+        print(v)
+    if found:
+        print(f"check-layering: {len(found)} include(s) cross a forbidden layer boundary "
+              "(see docs/architecture.md)")
+        return 1
+    print("check-layering: every include respects the layers")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

@@ -1,0 +1,363 @@
+// FEM scene (app/fem/fem_scene.h): defaults of PHYSICS.md §4, every validation rule
+// with file:line:key, printed defaults reading back to the defaults, shipped scenes, and the
+// translation to geometry/ and fem/ parameters.
+#ifdef KIMP_WITH_FEM
+
+#  include <cmath>
+#  include <cstdlib>
+#  include <filesystem>
+#  include <gtest/gtest.h>
+#  include <stdexcept>
+#  include <string>
+#  include <vector>
+
+#  include "app/fem/fem_common.h"
+#  include "app/fem/fem_scene.h"
+#  include "app/helper_programs.h"
+#  include "geometry/scene_ids.h"
+#  include "io/scene_io.h"
+
+namespace
+{
+  using kimp::app::FemScene;
+  using kimp::io::default_scene_text;
+  using kimp::io::load_scene_text;
+  using kimp::io::SceneError;
+  using Integrator = kimp::fem::ImpactParameters::Integrator;
+
+  constexpr double  exact_tolerance   = 1e-14; ///< relative: values set from decimal literals
+  constexpr double  printed_tolerance = 1e-14; ///< relative: 15-digit printed defaults
+  const std::string file_name         = "fem_scene.yaml";
+
+  void expect_relative(double actual, double expected, double tolerance, const std::string &what)
+  {
+    EXPECT_NEAR(actual, expected, tolerance * std::abs(expected))
+      << what << ": actual " << actual << ", expected " << expected;
+  }
+
+  /// The SceneError message of loading `text`, or "" if it loads.
+  std::string scene_error(const std::string &text)
+  {
+    try
+    {
+      load_scene_text<FemScene>(text, file_name);
+    }
+    catch (const SceneError &error)
+    {
+      return error.what();
+    }
+    return "";
+  }
+
+  void expect_same_scene(const FemScene &a, const FemScene &b, double tolerance)
+  {
+    ASSERT_EQ(a.wall_heights.size(), b.wall_heights.size());
+    for (std::size_t i = 0; i < a.wall_heights.size(); ++i)
+      expect_relative(a.wall_heights[i], b.wall_heights[i], tolerance, "wall_heights");
+    expect_relative(a.geometry.wall_thickness, b.geometry.wall_thickness, tolerance, "t_w");
+    EXPECT_EQ(a.geometry.with_backfill, b.geometry.with_backfill);
+    expect_relative(a.geometry.backfill_width, b.geometry.backfill_width, tolerance, "B");
+    EXPECT_EQ(a.geometry.backfill_height.has_value(), b.geometry.backfill_height.has_value());
+    expect_relative(a.geometry.slab_length, b.geometry.slab_length, tolerance, "L");
+    expect_relative(a.geometry.slab_thickness, b.geometry.slab_thickness, tolerance, "t_s");
+    EXPECT_EQ(a.geometry.slab_top.has_value(), b.geometry.slab_top.has_value());
+    expect_relative(a.geometry.gap, b.geometry.gap, tolerance, "gap");
+    expect_relative(a.mesh.h_contact, b.mesh.h_contact, tolerance, "h_contact");
+    expect_relative(a.mesh.h_max, b.mesh.h_max, tolerance, "h_max");
+    expect_relative(a.mesh.grading, b.mesh.grading, tolerance, "grading");
+    EXPECT_EQ(a.mesh.level, b.mesh.level);
+    for (const auto &[x, y] : {std::pair{a.materials.concrete, b.materials.concrete},
+                               std::pair{a.materials.soil, b.materials.soil}})
+    {
+      expect_relative(x.youngs_modulus, y.youngs_modulus, tolerance, "E");
+      expect_relative(x.poisson_ratio, y.poisson_ratio, tolerance, "nu");
+      expect_relative(x.density, y.density, tolerance, "rho");
+    }
+    EXPECT_EQ(a.slab.rigid, b.slab.rigid);
+    EXPECT_EQ(a.slab.mass.has_value(), b.slab.mass.has_value());
+    expect_relative(a.slab.velocity, b.slab.velocity, tolerance, "velocity");
+    expect_relative(a.contact.penalty_factor, b.contact.penalty_factor, tolerance, "penalty");
+    expect_relative(a.contact.contact_damping_ratio,
+                    b.contact.contact_damping_ratio,
+                    tolerance,
+                    "contact_damping_ratio");
+    EXPECT_EQ(a.contact.smoothing_window, b.contact.smoothing_window);
+    EXPECT_EQ(a.dynamics.integrator, b.dynamics.integrator);
+    EXPECT_EQ(a.dynamics.dt, b.dynamics.dt);
+    expect_relative(a.dynamics.cfl_safety, b.dynamics.cfl_safety, tolerance, "cfl_safety");
+    expect_relative(a.dynamics.implicit_dt_factor,
+                    b.dynamics.implicit_dt_factor,
+                    tolerance,
+                    "implicit_dt_factor");
+    expect_relative(a.dynamics.end_time, b.dynamics.end_time, tolerance, "end_time");
+    expect_relative(a.dynamics.separation_hold_time,
+                    b.dynamics.separation_hold_time,
+                    tolerance,
+                    "separation_hold_time");
+    expect_relative(a.dynamics.output_interval,
+                    b.dynamics.output_interval,
+                    tolerance,
+                    "output_interval");
+    EXPECT_EQ(a.dynamics.log_interval, b.dynamics.log_interval);
+    EXPECT_EQ(a.output.vtu_interval, b.output.vtu_interval);
+  }
+
+  std::filesystem::path source_dir()
+  {
+    const char *dir = std::getenv("KIMP_SOURCE_DIR");
+    return dir != nullptr ? std::filesystem::path(dir) : std::filesystem::current_path();
+  }
+
+  TEST(FemScene, DefaultsAreThePhysicsSection4Scene)
+  {
+    const FemScene s;
+    ASSERT_EQ(s.wall_heights.size(), 1u);
+    expect_relative(s.wall_heights[0], 1.25, exact_tolerance, "H");
+    expect_relative(s.geometry.wall_thickness, 0.25, exact_tolerance, "t_w");
+    EXPECT_TRUE(s.geometry.with_backfill);
+    expect_relative(s.geometry.backfill_width, 2.0, exact_tolerance, "B");
+    EXPECT_FALSE(s.geometry.backfill_height) << "backfill flush with the wall top";
+    expect_relative(s.geometry.slab_length, 8.0, exact_tolerance, "L");
+    expect_relative(s.geometry.slab_thickness, 0.20, exact_tolerance, "t_s");
+    EXPECT_FALSE(s.geometry.slab_top) << "slab top flush with the wall top";
+    expect_relative(s.geometry.gap, 0.5e-3, exact_tolerance, "gap");
+    expect_relative(s.slab.velocity, 1.0, exact_tolerance, "v");
+    expect_relative(s.materials.concrete.youngs_modulus, 30e9, exact_tolerance, "E_c");
+    expect_relative(s.materials.concrete.poisson_ratio, 0.2, exact_tolerance, "nu_c");
+    expect_relative(s.materials.concrete.density, 2400, exact_tolerance, "rho_c");
+    expect_relative(s.materials.soil.youngs_modulus, 50e6, exact_tolerance, "E_s");
+    expect_relative(s.materials.soil.poisson_ratio, 0.3, exact_tolerance, "nu_s");
+    expect_relative(s.materials.soil.density, 1900, exact_tolerance, "rho_s");
+    expect_relative(s.mesh.h_contact, 0.025, exact_tolerance, "h_contact");
+    EXPECT_EQ(s.dynamics.dt, "auto");
+    EXPECT_EQ(s.dynamics.integrator, Integrator::explicit_central_difference);
+    // PHYSICS.md §4: 8.0 m x 0.20 m of concrete is 3840 kg per metre.
+    expect_relative(kimp::app::slab_mass(s), 3840, exact_tolerance, "slab mass");
+
+    const kimp::geometry::SceneGeometry g = kimp::app::scene_geometry(s, 1.25);
+    expect_relative(g.wall_height, 1.25, exact_tolerance, "geometry H");
+    expect_relative(g.resolved_slab_top(), 1.25, exact_tolerance, "slab top");
+    expect_relative(g.resolved_backfill_height(), 1.25, exact_tolerance, "backfill height");
+    EXPECT_TRUE(g.mesh_slab);
+    EXPECT_NO_THROW(g.validate());
+  }
+
+  TEST(FemScene, PrintedDefaultsReadBackToTheDefaults)
+  {
+    const std::string text = default_scene_text<FemScene>("kimp fem scene");
+    for (const char *key : {"wall_heights:",
+                            "geometry:",
+                            "mesh:",
+                            "materials:",
+                            "slab:",
+                            "contact:",
+                            "dynamics:",
+                            "output:",
+                            "h_contact:",
+                            "dt:"})
+      EXPECT_NE(text.find(key), std::string::npos) << "missing " << key << " in\n" << text;
+    FemScene printed;
+    ASSERT_NO_THROW(printed = load_scene_text<FemScene>(text, "defaults.yaml")) << text;
+    expect_same_scene(printed, FemScene(), printed_tolerance);
+  }
+
+  TEST(FemScene, ReadsEveryKeyInItsUnit)
+  {
+    const std::string text = "wall_heights: [\"100 cm\", \"1.5 m\"]\n"
+                             "geometry: {gap: \"2 mm\", slab_top: \"1 m\", backfill_height: "
+                             "\"0.9 m\"}\n"
+                             "materials: {soil: {E: \"80 MPa\"}}\n"
+                             "slab: {rigid: true, mass: \"3 t/m\", velocity: \"2 m/s\"}\n"
+                             "contact: {smoothing_window: \"0.1 ms\"}\n"
+                             "dynamics: {integrator: implicit, dt: \"20 ms\", end_time: \"30 "
+                             "ms\"}\n"
+                             "output: {vtu_interval: \"1 ms\"}\n";
+    const FemScene    s    = load_scene_text<FemScene>(text, file_name);
+    ASSERT_EQ(s.wall_heights.size(), 2u);
+    expect_relative(s.wall_heights[0], 1.0, exact_tolerance, "H0");
+    expect_relative(s.geometry.gap, 2e-3, exact_tolerance, "gap");
+    expect_relative(s.materials.soil.youngs_modulus, 80e6, exact_tolerance, "E_soil");
+    expect_relative(kimp::app::slab_mass(s), 3000, exact_tolerance, "given rigid mass");
+
+    const kimp::fem::ImpactParameters p =
+      kimp::app::impact_parameters(s, 1.5, "H1.50.msh", "vtu/H1.50");
+    EXPECT_TRUE(p.rigid_slab);
+    expect_relative(p.slab_mass, 3000, exact_tolerance, "slab_mass");
+    expect_relative(p.slab_face_y1, 1.0, exact_tolerance, "face top");
+    expect_relative(p.slab_face_y0, 0.8, 1e-12, "face bottom");
+    expect_relative(p.slab_front_x, -2e-3, exact_tolerance, "front x");
+    expect_relative(p.initial_velocity, 2.0, exact_tolerance, "v");
+    expect_relative(p.dt, 20e-3, exact_tolerance, "dt");
+    expect_relative(p.smoothing_window, 1e-4, exact_tolerance, "smoothing");
+    expect_relative(p.vtu_interval, 1e-3, exact_tolerance, "vtu");
+    EXPECT_EQ(p.vtu_dir, std::filesystem::path("vtu/H1.50"));
+    EXPECT_EQ(p.integrator, Integrator::implicit_newmark);
+    EXPECT_EQ(p.materials.count(kimp::geometry::slab_material), 0u) << "rigid: no slab cells";
+    expect_relative(p.materials.at(kimp::geometry::soil_material).youngs_modulus,
+                    80e6,
+                    exact_tolerance,
+                    "soil E");
+  }
+
+  TEST(FemScene, AutomaticTimesBecomeZeroForTheSolver)
+  {
+    const FemScene                    s;
+    const kimp::fem::ImpactParameters p = kimp::app::impact_parameters(s, 1.25, "m.msh");
+    EXPECT_EQ(p.dt, 0.0);
+    EXPECT_EQ(p.smoothing_window, 0.0);
+    EXPECT_FALSE(p.rigid_slab);
+    EXPECT_EQ(p.materials.size(), 3u);
+    EXPECT_TRUE(p.vtu_dir.empty());
+    expect_relative(p.slab_face_y0, 1.05, 1e-12, "face bottom");
+  }
+
+  TEST(FemScene, CaseNamesHaveTwoDecimalsOrMoreWhenNeeded)
+  {
+    EXPECT_EQ(kimp::app::fem_case_name(1.25), "H1.25");
+    EXPECT_EQ(kimp::app::fem_case_name(1.0), "H1.00");
+    EXPECT_EQ(kimp::app::fem_case_name(2.0), "H2.00");
+    EXPECT_EQ(kimp::app::fem_case_name(1.125), "H1.125");
+  }
+
+  /// One validation rule: a scene text and the key and line its message must name.
+  struct Rule
+  {
+    std::string text;
+    std::string key;
+    int         line;
+    std::string expectation;
+  };
+
+  TEST(FemScene, EveryValidationRuleNamesFileLineAndKey)
+  {
+    const std::vector<Rule> rules = {
+      {"wall_heights: []\n", "wall_heights", 1, "at least one"},
+      {"wall_heights: [\"-1 m\"]\n", "wall_heights[0]", 1, "> 0"},
+      {"wall_heights: [\"1.25 m\", \"125 cm\"]\n", "wall_heights[1]", 1, "twice"},
+      {"\ngeometry:\n  wall_thickness: \"0 m\"\n", "geometry.wall_thickness", 3, "> 0"},
+      {"geometry:\n  backfill_width: \"-2 m\"\n", "geometry.backfill_width", 2, "> 0"},
+      {"geometry:\n  slab_length: \"0 m\"\n", "geometry.slab_length", 2, "> 0"},
+      {"geometry:\n  slab_thickness: \"-1 cm\"\n", "geometry.slab_thickness", 2, "> 0"},
+      {"geometry:\n  gap: \"0 mm\"\n", "geometry.gap", 2, "overlap"},
+      {"geometry:\n  gap: \"-1 mm\"\n", "geometry.gap", 2, "> 0"},
+      {"geometry:\n  backfill_height: \"2 m\"\n", "geometry.backfill_height", 2, "(0, "},
+      {"geometry:\n  slab_top: \"1.5 m\"\n", "geometry.slab_top", 2, "face the wall"},
+      {"geometry:\n  slab_top: \"0.1 m\"\n", "geometry.slab_top", 2, "above the ground"},
+      {"wall_heights: [\"0.1 m\"]\nmesh: {h_contact: \"1 cm\"}\n",
+       "geometry.slab_thickness",
+       0,
+       "flush"},
+      {"mesh:\n  h_contact: \"0 cm\"\n", "mesh.h_contact", 2, "> 0"},
+      {"mesh:\n  h_max: \"1 cm\"\n", "mesh.h_max", 2, ">= h_contact"},
+      {"mesh:\n  h_contact: \"30 cm\"\n  h_max: \"40 cm\"\n",
+       "mesh.h_contact",
+       2,
+       "wall_thickness"},
+      {"geometry: {wall_thickness: \"1 m\"}\nmesh:\n  h_contact: \"22 cm\"\n",
+       "mesh.h_contact",
+       3,
+       "slab_thickness"},
+      {"mesh:\n  grading: 0.9\n", "mesh.grading", 2, ">= 1"},
+      {"materials:\n  concrete:\n    E: \"0 GPa\"\n", "materials.concrete.E", 3, "> 0"},
+      {"materials:\n  soil:\n    nu: 0.5\n", "materials.soil.nu", 3, "[0, 0.5)"},
+      {"materials:\n  soil:\n    nu: -0.1\n", "materials.soil.nu", 3, "[0, 0.5)"},
+      {"materials:\n  soil:\n    rho: \"0 kg/m^3\"\n", "materials.soil.rho", 3, "> 0"},
+      {"slab:\n  rigid: true\n  mass: \"-1 kg/m\"\n", "slab.mass", 3, "> 0"},
+      {"slab:\n  mass: \"3 t/m\"\n", "slab.mass", 2, "only for a rigid slab"},
+      {"slab:\n  velocity: \"0 m/s\"\n", "slab.velocity", 2, "> 0"},
+      {"contact:\n  penalty_factor: 0\n", "contact.penalty_factor", 2, "> 0"},
+      {"contact:\n  contact_damping_ratio: 1.5\n", "contact.contact_damping_ratio", 2, "[0, 1]"},
+      {"contact:\n  smoothing_window: soon\n", "contact.smoothing_window", 2, "'auto'"},
+      {"contact:\n  smoothing_window: \"0 s\"\n", "contact.smoothing_window", 2, "> 0"},
+      {"dynamics:\n  dt: \"2 m\"\n", "dynamics.dt", 2, "'auto' or a time"},
+      {"dynamics:\n  dt: \"-1 s\"\n", "dynamics.dt", 2, "> 0"},
+      {"dynamics:\n  cfl_safety: 1.5\n", "dynamics.cfl_safety", 2, "(0, 1]"},
+      {"dynamics:\n  implicit_dt_factor: 0\n", "dynamics.implicit_dt_factor", 2, "> 0"},
+      {"dynamics:\n  end_time: \"0 ms\"\n", "dynamics.end_time", 2, "> 0"},
+      {"dynamics:\n  separation_hold_time: \"-1 ms\"\n",
+       "dynamics.separation_hold_time",
+       2,
+       ">= 0"},
+      {"dynamics:\n  output_interval: \"-1 ms\"\n", "dynamics.output_interval", 2, ">= 0"},
+      {"output:\n  vtu_interval: \"-1 ms\"\n", "output.vtu_interval", 2, ">= 0"},
+    };
+    for (const Rule &rule : rules)
+    {
+      const std::string message = scene_error(rule.text);
+      const std::string where =
+        rule.line > 0 ? file_name + ":" + std::to_string(rule.line) + ": " + rule.key + " = " :
+                        file_name + ": " + rule.key + " = ";
+      EXPECT_NE(message.find(where), std::string::npos)
+        << "scene:\n"
+        << rule.text << "message: " << message << "\nexpected: " << where;
+      EXPECT_NE(message.find(rule.expectation), std::string::npos)
+        << "scene:\n"
+        << rule.text << "message: " << message << "\nexpected: " << rule.expectation;
+    }
+  }
+
+  TEST(FemScene, ReaderErrorsNameFileLineAndKey)
+  {
+    const std::string unknown = scene_error("mesh:\n  h_contac: \"2 cm\"\n");
+    EXPECT_NE(unknown.find(file_name + ":2"), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find("h_contac"), std::string::npos) << unknown;
+    const std::string wrong_unit = scene_error("geometry:\n  gap: \"5 kg\"\n");
+    EXPECT_NE(wrong_unit.find(file_name + ":2: geometry.gap"), std::string::npos) << wrong_unit;
+    const std::string wrong_choice = scene_error("dynamics:\n  integrator: rk4\n");
+    EXPECT_NE(wrong_choice.find(file_name + ":2: dynamics.integrator"), std::string::npos)
+      << wrong_choice;
+  }
+
+  TEST(FemScene, ShippedScenesLoad)
+  {
+    const std::filesystem::path dir = source_dir() / "data" / "scenes";
+    std::size_t                 n   = 0;
+    for (const auto &entry : std::filesystem::directory_iterator(dir))
+    {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind("fem_", 0) != 0 || entry.path().extension() != ".yaml")
+        continue;
+      ++n;
+      EXPECT_NO_THROW(kimp::io::load_scene<FemScene>(entry.path())) << name;
+    }
+    EXPECT_GE(n, 2u) << "fem_default.yaml and fem_quick.yaml in " << dir;
+
+    const FemScene            all = kimp::io::load_scene<FemScene>(dir / "fem_default.yaml");
+    const std::vector<double> heights{1.00, 1.25, 1.50, 2.00};
+    ASSERT_EQ(all.wall_heights.size(), heights.size());
+    for (std::size_t i = 0; i < heights.size(); ++i)
+      expect_relative(all.wall_heights[i], heights[i], exact_tolerance, "default heights");
+    FemScene expected;
+    expected.wall_heights = heights;
+    expect_same_scene(all, expected, exact_tolerance);
+
+    const FemScene quick = kimp::io::load_scene<FemScene>(dir / "fem_quick.yaml");
+    EXPECT_TRUE(quick.slab.rigid);
+    expect_relative(kimp::app::slab_mass(quick), 3840, exact_tolerance, "quick slab mass");
+  }
+
+  TEST(FemCommands, ErrorMessageKeepsTheAdditionalInformationOfDealIIExceptions)
+  {
+    const std::runtime_error deal_ii(
+      "\n--------------------------------------------------------\n"
+      "An error occurred in line <212> of file <impact.cc> in function\n"
+      "    void require(bool, const string&)\n"
+      "The violated condition was: \n    ok\n"
+      "Additional information: \n"
+      "    dt = 1 s (must be <= the stable limit\n    1e-06 s)\n"
+      "--------------------------------------------------------\n");
+    EXPECT_EQ(kimp::app::error_message(deal_ii), "dt = 1 s (must be <= the stable limit 1e-06 s)");
+    const std::runtime_error plain("geometry.gap = 0 mm");
+    EXPECT_EQ(kimp::app::error_message(plain), "geometry.gap = 0 mm");
+  }
+
+  TEST(FemCommands, PlotScriptIsFoundInTheSourceTree)
+  {
+    const std::filesystem::path script = kimp::app::find_helper_script("plot_mesh.py");
+    ASSERT_FALSE(script.empty());
+    EXPECT_EQ(script.filename(), "plot_mesh.py");
+    EXPECT_TRUE(std::filesystem::is_regular_file(script)) << script;
+  }
+} // namespace
+
+#endif // KIMP_WITH_FEM

@@ -1,0 +1,346 @@
+// `kimp lumped` scene: defaults equal PHYSICS.md §3, unit conversions, every validate() rule
+// reported as file:line:key, printed defaults read back, shipped scenes load.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/lumped_scene.h"
+#include "io/units.h"
+#include "lumped/isolators/bilinear_isolator.h"
+#include "lumped/structure/shear_building.h"
+
+namespace
+{
+  using namespace kimp::io;
+  using namespace kimp::app;
+
+  constexpr double exact_tolerance     = 1e-12; ///< relative, conversions of decimal literals
+  constexpr double table_tolerance     = 5e-4;  ///< relative, values quoted to 4-5 digits
+  constexpr double g                   = 9.80665;
+  constexpr double kn_per_mm_1_5_in_si = 750e3 * 31622.776601683792; ///< 750 kN/mm^1.5 in N/m^1.5
+
+  std::filesystem::path source_dir()
+  {
+    const char *env = std::getenv("KIMP_SOURCE_DIR");
+    return env ? std::filesystem::path(env) : std::filesystem::current_path();
+  }
+
+  LumpedScene load(const std::string &text)
+  {
+    return load_scene_text<LumpedScene>(text, "scene.yaml");
+  }
+
+  /// The message of the SceneError thrown by loading `text` ("" if none is thrown).
+  std::string error_of(const std::string &text)
+  {
+    try
+    {
+      load(text);
+    }
+    catch (const SceneError &error)
+    {
+      return error.what();
+    }
+    return "";
+  }
+} // namespace
+
+TEST(LumpedScene, DefaultsEqualThesisTable42)
+{
+  const LumpedScene s;
+  EXPECT_EQ(s.building.kind, BuildingKind::isolated);
+  EXPECT_EQ(s.building.n_storeys, 4u);
+  EXPECT_DOUBLE_EQ(s.building.floor_mass, 320e3);
+  EXPECT_DOUBLE_EQ(s.building.top_mass, 250e3);
+  EXPECT_DOUBLE_EQ(s.building.isolation_mass, 320e3);
+  EXPECT_DOUBLE_EQ(s.building.storey_stiffness, 600e6);
+  EXPECT_DOUBLE_EQ(s.building.damping_ratio, 0.02);
+  EXPECT_DOUBLE_EQ(s.building.fixed_base_damping_ratio, 0.05);
+  EXPECT_DOUBLE_EQ(s.isolator.damping_ratio, 0.05);
+  EXPECT_DOUBLE_EQ(s.walls.left.gap, 0.15);
+  EXPECT_DOUBLE_EQ(s.walls.right.gap, 0.15);
+  EXPECT_DOUBLE_EQ(s.walls.left.mass, 500e3);
+  EXPECT_EQ(s.impact.law, "modified_kelvin_voigt");
+  EXPECT_NEAR(impact_stiffness(s.impact), 2.5e9, 2.5e9 * exact_tolerance);
+  EXPECT_DOUBLE_EQ(s.impact.cor, 0.7);
+  EXPECT_FALSE(s.ground_motion.is_record());
+
+  // Derived values quoted in PHYSICS.md §3: W_tot 1530 t, Q = 1500.9 kN, F_y = 1715.3 kN,
+  // u_y = 8.58 mm, c_iso = 1.0496 MN·s/m.
+  const kimp::lumped::ShearBuilding b = make_building(s);
+  EXPECT_NEAR(b.total_mass(), 1530e3, 1e-6);
+  const auto *iso = dynamic_cast<const kimp::lumped::BilinearIsolator *>(b.isolator.get());
+  ASSERT_NE(iso, nullptr);
+  EXPECT_NEAR(iso->yield_force(), 1715.3e3, 1715.3e3 * table_tolerance);
+  EXPECT_NEAR(iso->yield_force() * (1.0 - 25.0 / 200.0), 1500.9e3, 1500.9e3 * table_tolerance);
+  EXPECT_NEAR(iso->yield_displacement(), 8.58e-3, 8.58e-3 * table_tolerance * 2);
+  const kimp::lumped::BuildingDamping d = kimp::lumped::building_damping(b);
+  EXPECT_NEAR(d.c_iso, 1.0496e6, 1.0496e6 * table_tolerance);
+
+  // The walls get the modified Kelvin-Voigt law at 15 cm on both sides.
+  const kimp::lumped::PoundingScene p = make_pounding_scene(s);
+  ASSERT_TRUE(p.left_wall && p.right_wall);
+  EXPECT_DOUBLE_EQ(p.left_wall->clear_gap(), 0.15);
+  EXPECT_FALSE(p.left_neighbour || p.right_neighbour);
+}
+
+TEST(LumpedScene, FixedBaseFourStoreyPeriodIs0398)
+{
+  LumpedScene      s        = load("building:\n  kind: fixed_base\nwalls:\n  left:\n    present: "
+                                   "false\n  right:\n    present: false\n");
+  const auto       building = make_building(s);
+  const auto       damping  = kimp::lumped::building_damping(building);
+  constexpr double t1_tol   = 1.5e-3; // the thesis quotes 3 digits
+  EXPECT_NEAR(damping.modes.period[0], 0.398, 0.398 * t1_tol) << "T1 = " << damping.modes.period[0];
+  EXPECT_EQ(building.floor_masses.size(), 4u);
+  EXPECT_DOUBLE_EQ(building.floor_masses.back(), 250e3);
+}
+
+TEST(LumpedScene, UnitsConvertToSi)
+{
+  const LumpedScene s = load("building:\n"
+                             "  floor_mass: \"320000 kg\"\n"
+                             "  storey_stiffness: \"600000 kN/m\"\n"
+                             "  damping_ratio: \"3 %\"\n"
+                             "isolator:\n"
+                             "  Q: \"1500.9 kN\"\n"
+                             "walls:\n"
+                             "  left:\n"
+                             "    gap: \"150 mm\"\n"
+                             "    mass: \"500000 kg\"\n"
+                             "impact:\n"
+                             "  law: hysteretic\n"
+                             "  k: \"750 kN/mm^1.5\"\n"
+                             "ground_motion:\n"
+                             "  scale_to_pga: \"0.821 g\"\n"
+                             "integration:\n"
+                             "  dt: \"2e-5 s\"\n");
+  EXPECT_NEAR(s.building.floor_mass, 320e3, 320e3 * exact_tolerance);
+  EXPECT_NEAR(s.building.storey_stiffness, 600e6, 600e6 * exact_tolerance);
+  EXPECT_NEAR(s.building.damping_ratio, 0.03, 0.03 * exact_tolerance);
+  EXPECT_NEAR(*s.isolator.Q, 1500.9e3, 1500.9e3 * exact_tolerance);
+  EXPECT_NEAR(s.walls.left.gap, 0.15, 0.15 * exact_tolerance);
+  EXPECT_NEAR(impact_stiffness(s.impact), kn_per_mm_1_5_in_si, kn_per_mm_1_5_in_si * 1e-9);
+  EXPECT_DOUBLE_EQ(impact_exponent(s.impact), 1.5);
+  EXPECT_NEAR(*s.ground_motion.scale_to_pga, 0.821 * g, 0.821 * g * exact_tolerance);
+  EXPECT_NEAR(*requested_time_step(s.integration), 2e-5, 2e-5 * exact_tolerance);
+  EXPECT_FALSE(requested_time_step(LumpedScene{}.integration).has_value());
+}
+
+TEST(LumpedScene, BumperStiffnessFromMaterialMatchesThesis)
+{
+  // PHYSICS.md §1.7: one 150 x 150 x 50 mm bumper k_b = 0.089 kN/mm^2.65, four = 0.36.
+  LumpedScene s;
+  s.impact.law                     = "bumper";
+  const double     kn_per_mm_2_65  = 1e3 * std::pow(1e3, 2.65);
+  constexpr double quoted_2_digits = 0.01; // 0.089 is quoted to 2 significant digits
+  s.impact.bumper.count            = 1;
+  const double one                 = bumper_stiffness(s.impact) / kn_per_mm_2_65;
+  EXPECT_NEAR(one, 0.089, 0.089 * quoted_2_digits) << "k_b = " << one << " kN/mm^2.65";
+  s.impact.bumper.count = 4;
+  EXPECT_NEAR(bumper_stiffness(s.impact) / kn_per_mm_2_65, 4 * one, 4 * one * exact_tolerance);
+  // The clear gap of the shipped example: 24 cm wall gap - 5 cm bumper = 19 cm.
+  s.walls.left.gap = 0.24;
+  const auto p     = make_pounding_scene(s);
+  ASSERT_TRUE(p.left_wall.has_value());
+  EXPECT_NEAR(p.left_wall->clear_gap(), 0.19, 1e-12);
+  s.impact.bumper.k_b = "0.5 kN/mm^2.65";
+  EXPECT_NEAR(bumper_stiffness(s.impact), 0.5 * kn_per_mm_2_65, 0.5 * kn_per_mm_2_65 * 1e-9);
+}
+
+TEST(LumpedScene, CasesOverrideTheScene)
+{
+  const LumpedScene s     = load("impact:\n"
+                                 "  law: hysteretic\n"
+                                 "  k: \"750 kN/mm^1.6\"\n"
+                                 "  exponent: 1.6\n"
+                                 "cases:\n"
+                                 "  - name: kv\n"
+                                 "    law: kelvin_voigt\n"
+                                 "    k: \"2500 kN/mm\"\n"
+                                 "    gap: \"10 cm\"\n"
+                                 "    right_gap: \"12 cm\"\n"
+                                 "  - name: weak\n"
+                                 "    cor: 0.5\n"
+                                 "    ground_motion_scale: 0.5\n");
+  const auto        cases = resolve_cases(s);
+  ASSERT_EQ(cases.size(), 2u);
+  const LumpedScene &kv = cases[0].second;
+  EXPECT_EQ(cases[0].first, "kv");
+  EXPECT_EQ(kv.impact.law, "kelvin_voigt");
+  EXPECT_FALSE(kv.impact.exponent.has_value()) << "a new law starts from its own exponent";
+  EXPECT_DOUBLE_EQ(impact_stiffness(kv.impact), 2.5e9);
+  EXPECT_DOUBLE_EQ(kv.walls.left.gap, 0.10);
+  EXPECT_DOUBLE_EQ(kv.walls.right.gap, 0.12);
+  const LumpedScene &weak = cases[1].second;
+  EXPECT_EQ(weak.impact.law, "hysteretic");
+  EXPECT_DOUBLE_EQ(*weak.impact.exponent, 1.6);
+  EXPECT_DOUBLE_EQ(weak.impact.cor, 0.5);
+  EXPECT_DOUBLE_EQ(weak.ground_motion.scale, 0.5);
+  EXPECT_DOUBLE_EQ(weak.walls.left.gap, 0.15);
+
+  const auto single = resolve_cases(LumpedScene{});
+  ASSERT_EQ(single.size(), 1u);
+  EXPECT_EQ(single[0].first, "default");
+}
+
+TEST(LumpedScene, EveryValidationRuleNamesFileLineAndKey)
+{
+  struct Rule
+  {
+    const char *yaml;
+    const char *expected; ///< substring: "scene.yaml:LINE: key = value"
+  };
+  const std::vector<Rule> rules = {
+    {"building:\n  floor_mass: \"-1 t\"\n", "scene.yaml:2: building.floor_mass = -1 t"},
+    {"building:\n  top_mass: \"0 t\"\n", "scene.yaml:2: building.top_mass = 0 t"},
+    {"building:\n  isolation_mass: \"0 t\"\n", "scene.yaml:2: building.isolation_mass"},
+    {"building:\n  storey_stiffness: \"0 MN/m\"\n", "scene.yaml:2: building.storey_stiffness"},
+    {"building:\n  damping_ratio: \"120 %\"\n", "scene.yaml:2: building.damping_ratio = 120 %"},
+    {"building:\n  fixed_base_damping_ratio: \"-1 %\"\n",
+     "scene.yaml:2: building.fixed_base_damping_ratio"},
+    {"isolator:\n  K1: \"-3 MN/m\"\n", "scene.yaml:2: isolator.K1 = -3 MN/m"},
+    {"isolator:\n  K1: \"200 MN/m\"\n  K2: \"250 MN/m\"\n",
+     "scene.yaml:3: isolator.K2 = 250 MN/m: must be >= 0 and < K1 = 200 MN/m"},
+    {"isolator:\n  Q_ratio: \"0 %\"\n", "scene.yaml:2: isolator.Q_ratio = 0 %"},
+    {"isolator:\n  Q: \"-5 kN\"\n", "scene.yaml:2: isolator.Q = -5 kN"},
+    {"isolator:\n  kind: linear\n  k: \"0 MN/m\"\n", "scene.yaml:3: isolator.k = 0 MN/m"},
+    {"isolator:\n  damping_ratio: \"1 %\"\n",
+     "scene.yaml:2: isolator.damping_ratio = 1 %: must be >= building.damping_ratio"},
+    {"walls:\n  left:\n    gap: \"-2 cm\"\n", "scene.yaml:3: walls.left.gap = -2 cm"},
+    {"walls:\n  right:\n    mass: \"0 t\"\n", "scene.yaml:3: walls.right.mass = 0 t"},
+    {"building:\n  kind: fixed_base\n",
+     "scene.yaml: walls.left.present = true (default): must be false"},
+    {"impact:\n  law: jankowski\n  k: \"2500 kN/mm\"\n",
+     "scene.yaml:3: impact.k = 2500 kN/mm: law jankowski (n = 1.5) needs a stiffness"},
+    {"impact:\n  k: \"750 kN/mm^1.5\"\n", "scene.yaml:2: impact.k = 750 kN/mm^1.5"},
+    {"impact:\n  k: \"2500 kN/furlong\"\n", "scene.yaml:2: impact.k = 2500 kN/furlong"},
+    {"impact:\n  k: \"-5 kN/mm\"\n", "scene.yaml:2: impact.k = -5 kN/mm: must be > 0"},
+    {"impact:\n  cor: 0\n", "scene.yaml:2: impact.cor = 0: must be in (0, 1]"},
+    {"impact:\n  exponent: 1.5\n", "scene.yaml:2: impact.exponent = 1.5: must be null"},
+    {"impact:\n  law: hertzdamp\n  k: \"750 kN/mm^0.5\"\n  exponent: 0.5\n",
+     "scene.yaml:4: impact.exponent = 0.5: must be >= 1"},
+    {"impact:\n  law: hysteretic\n  k: \"750 kN/mm^1.5\"\n  a1: \"-1 s/m\"\n",
+     "scene.yaml:4: impact.a1 = -1 s/m"},
+    {"impact:\n  law: bumper\n  bumper:\n    thickness: \"200 mm\"\n",
+     "scene.yaml: walls.left.gap = 15 cm (default): must be > impact.bumper.thickness = 200 mm"},
+    {"impact:\n  law: bumper\n  bumper:\n    ultimate_strain: 1.5\n",
+     "scene.yaml:4: impact.bumper.ultimate_strain = 1.5"},
+    {"impact:\n  law: bumper\n  bumper:\n    k_b: \"0.36 kN/mm\"\n",
+     "scene.yaml:4: impact.bumper.k_b = 0.36 kN/mm: needs a stiffness in N/m^n with n = 2.65"},
+    {"impact:\n  law: bumper\n  bumper:\n    wall_stiffness: \"0 kN/mm\"\n",
+     "scene.yaml:4: impact.bumper.wall_stiffness"},
+    {"neighbours:\n  left:\n    present: true\n    separation: \"0 cm\"\n",
+     "scene.yaml:4: neighbours.left.separation = 0 cm"},
+    {"neighbours:\n  right:\n    present: true\n    impact:\n      law: bumper\n",
+     "scene.yaml:5: neighbours.right.impact.law = bumper"},
+    {"ground_motion:\n  scale: 0\n", "scene.yaml:2: ground_motion.scale = 0"},
+    {"ground_motion:\n  scale_to_pga: \"-1 g\"\n", "scene.yaml:2: ground_motion.scale_to_pga"},
+    {"ground_motion:\n  duration: \"30 s\"\n",
+     "scene.yaml:2: ground_motion.duration = 30 s: must be <= synthetic.duration = 20 s"},
+    {"ground_motion:\n  synthetic:\n    dt: \"-1 s\"\n",
+     "scene.yaml:3: ground_motion.synthetic.dt"},
+    {"integration:\n  dt: \"fast\"\n", "scene.yaml:2: integration.dt = fast: must be \"auto\""},
+    {"integration:\n  dt: \"2e-5 m\"\n", "scene.yaml:2: integration.dt = 2e-5 m"},
+    {"integration:\n  safety: 1.5\n", "scene.yaml:2: integration.safety = 1.5"},
+    {"integration:\n  output_interval: \"-1 s\"\n", "scene.yaml:2: integration.output_interval"},
+    {"integration:\n  duration: \"0 s\"\n", "scene.yaml:2: integration.duration = 0 s"},
+    {"cases:\n  - name: a\n  - name: a\n", "scene.yaml:3: cases[1].name = a: must be unique"},
+    {"cases:\n  - name: \"a/b\"\n", "scene.yaml:2: cases[0].name = \"a/b\""},
+    {"cases:\n  - name: j\n    law: jankowski\n",
+     "scene.yaml:3: cases[0].law = 2500 kN/mm: law jankowski (n = 1.5) needs"},
+    {"cases:\n  - name: j\n    k: \"750 kN/mm^1.5\"\n", "scene.yaml:3: cases[0].k = 750 kN/mm^1.5"},
+    {"cases:\n  - name: c\n    cor: 1.5\n", "scene.yaml:3: cases[0].cor = 1.5"},
+    {"cases:\n  - name: c\n    gap: \"-1 cm\"\n", "scene.yaml:3: cases[0].gap = -1 cm"},
+    {"cases:\n  - name: c\n    ground_motion_scale: 0\n",
+     "scene.yaml:3: cases[0].ground_motion_scale"},
+    {"impact:\n  law: bumper\ncases:\n  - name: c\n    right_gap: \"3 cm\"\n",
+     "scene.yaml:5: cases[0].right_gap = 3 cm: must be > impact.bumper.thickness"},
+    {"building:\n  kind: fixed_base\nwalls:\n  left:\n    present: false\n  right:\n    present: "
+     "false\ncases:\n  - name: c\n    gap: \"10 cm\"\n",
+     "scene.yaml:10: cases[0].gap = 10 cm: needs an isolated building"},
+    {"walls:\n  basement: true\nbuilding:\n  kind: fixed_base\n", "scene.yaml:2: walls.basement"},
+  };
+  for (const Rule &rule : rules)
+  {
+    const std::string message = error_of(rule.yaml);
+    EXPECT_NE(message.find(rule.expected), std::string::npos)
+      << "scene:\n"
+      << rule.yaml << "\nexpected: " << rule.expected << "\ngot: " << message;
+  }
+  EXPECT_EQ(error_of("impact:\n  law: bumper\n"), "") << "the default bumper scene is valid";
+}
+
+TEST(LumpedScene, UnknownKeysAndBadUnitsAreRejected)
+{
+  EXPECT_NE(error_of("building:\n  n_floors: 4\n").find("scene.yaml:2"), std::string::npos);
+  EXPECT_NE(error_of("walls:\n  left:\n    gap: \"15 kg\"\n").find("scene.yaml:3"),
+            std::string::npos);
+  EXPECT_NE(error_of("impact:\n  law: elastic\n").find("scene.yaml:2"), std::string::npos);
+}
+
+TEST(LumpedScene, PrintedDefaultsReadBackToTheDefaults)
+{
+  const std::string text = default_scene_text<LumpedScene>("kimp lumped scene");
+  const LumpedScene back = load(text);
+  EXPECT_EQ(to_json_text(back), to_json_text(LumpedScene{}));
+  // Every section and the key quantities appear with their units.
+  for (const char *needle : {"building:",
+                             "isolator:",
+                             "walls:",
+                             "impact:",
+                             "bumper:",
+                             "neighbours:",
+                             "ground_motion:",
+                             "integration:",
+                             "cases:",
+                             "\"2500 kN/mm\"",
+                             "\"320 t\"",
+                             "\"600 MN/m\"",
+                             "\"15 cm\"",
+                             "\"5 %\""})
+    EXPECT_NE(text.find(needle), std::string::npos) << needle << " missing in\n" << text;
+}
+
+TEST(LumpedScene, EveryShippedLumpedSceneLoads)
+{
+  const std::filesystem::path dir = source_dir() / "data" / "scenes";
+  ASSERT_TRUE(std::filesystem::is_directory(dir)) << dir;
+  const std::vector<std::string> shipped = {"isolated_4storey_no_walls.yaml",
+                                            "table_4_3_kobe_gap15.yaml",
+                                            "fixed_base_2storey.yaml",
+                                            "fixed_base_3storey.yaml",
+                                            "fixed_base_4storey.yaml",
+                                            "fixed_base_5storey.yaml",
+                                            "fixed_base_6storey.yaml",
+                                            "isolated_between_neighbours.yaml",
+                                            "bumper_example.yaml"};
+  for (const std::string &name : shipped)
+    EXPECT_TRUE(std::filesystem::exists(dir / name)) << name;
+  std::size_t n_loaded = 0;
+  for (const auto &entry : std::filesystem::directory_iterator(dir))
+  {
+    if (entry.path().extension() != ".yaml")
+      continue;
+    // Lumped scenes are the ones with a top-level `building:` section (others: FEM scenes).
+    std::ifstream in(entry.path());
+    std::string   line;
+    bool          lumped = false;
+    while (std::getline(in, line))
+      lumped = lumped || line.rfind("building:", 0) == 0;
+    if (!lumped)
+      continue;
+    LumpedScene scene;
+    EXPECT_NO_THROW(scene = load_scene<LumpedScene>(entry.path())) << entry.path();
+    // The model is assembled too (walls, neighbours, laws), without running.
+    for (const auto &[name, resolved] : resolve_cases(scene))
+      EXPECT_NO_THROW(kimp::lumped::PoundingModel(make_pounding_scene(resolved)))
+        << entry.path() << " case " << name;
+    ++n_loaded;
+  }
+  EXPECT_GE(n_loaded, shipped.size());
+}

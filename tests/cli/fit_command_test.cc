@@ -1,0 +1,203 @@
+// `kimp fit`: a results file with FEM-like cases made by the Kelvin-Voigt law is fitted end to
+// end; the table gives back k per metre and k·W, fit.h5 has units and statuses.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "app/fit_run.h"
+#include "cli/cli.h"
+#include "cli/commands.h"
+#include "io/fem_results.h"
+#include "io/results_file.h"
+#include "lumped/collision/two_body.h"
+#include "lumped/laws/force_law_factory.h"
+
+namespace
+{
+  using kimp::io::FemCase;
+
+  constexpr double slab_mass = 3840.0; // kg/m
+  // The CSV prints 6 significant digits; the noise-free fit is exact to 1e-4.
+  constexpr double table_tolerance = 1.0e-4;
+
+  class TempDir
+  {
+  public:
+    TempDir()
+      : path_(std::filesystem::temp_directory_path() /
+              ("kimp_fit_command_test_" + std::to_string(::getpid()) + "_" +
+               ::testing::UnitTest::GetInstance()->current_test_info()->name()))
+    {
+      std::filesystem::remove_all(path_);
+      std::filesystem::create_directories(path_);
+    }
+    ~TempDir() { std::filesystem::remove_all(path_); }
+    const std::filesystem::path &path() const { return path_; }
+
+  private:
+    std::filesystem::path path_;
+  };
+
+  /// A rigid-slab FEM case imitated by the Kelvin-Voigt law (k in N/m per metre, COR 0.7).
+  FemCase kelvin_voigt_case(const std::string &name, double height, double k)
+  {
+    kimp::lumped::ForceLawSpec spec;
+    spec.law                      = "kelvin_voigt";
+    spec.stiffness                = k;
+    spec.cor                      = 0.7;
+    spec.effective_mass           = slab_mass;
+    const double               dt = std::sqrt(slab_mass / k) / 200.0;
+    kimp::lumped::TwoBodySetup setup;
+    setup.mass_1            = slab_mass;
+    setup.mass_2            = std::numeric_limits<double>::infinity();
+    setup.velocity_1        = 1.0;
+    setup.velocity_2        = 0.0;
+    setup.time_step         = dt / 100.0;
+    setup.velocity_estimate = kimp::lumped::VelocityEstimate::second_order;
+    const auto law          = kimp::lumped::make_force_law(spec);
+    const auto r            = kimp::lumped::simulate_two_body(*law, setup);
+
+    FemCase c;
+    c.name            = name;
+    c.wall_height     = height;
+    c.slab_mass       = slab_mass;
+    c.impact_velocity = 1.0;
+    const auto add    = [&](double t, double force, double delta)
+    {
+      c.time.push_back(0.001 + t);
+      c.contact_force.push_back(force);
+      c.smoothed_contact_force.push_back(force);
+      c.indentation.push_back(delta);
+      c.slab_displacement.push_back(delta);
+    };
+    for (int j = -20; j <= 0; ++j)
+      add(j * dt, 0.0, j * dt);
+    const long n_first = std::lround(r.history.time.front() / setup.time_step);
+    int        j       = 1;
+    for (; j * 100 - n_first < static_cast<long>(r.history.time.size()); ++j)
+    {
+      const auto i = static_cast<std::size_t>(j * 100 - n_first);
+      add(j * dt, r.history.force[i], r.history.deformation[i]);
+    }
+    for (const int end = j + 100; j < end; ++j)
+      add(j * dt,
+          0.0,
+          r.history.deformation.back() + r.velocity_1_after * (j * dt - r.history.time.back()));
+    return c;
+  }
+
+  std::vector<std::vector<std::string>> read_csv(const std::filesystem::path &path)
+  {
+    std::ifstream                         in(path);
+    std::vector<std::vector<std::string>> rows;
+    std::string                           line;
+    while (std::getline(in, line))
+    {
+      std::vector<std::string> row;
+      std::istringstream       fields(line);
+      std::string              field;
+      while (std::getline(fields, field, ','))
+        row.push_back(field);
+      rows.push_back(row);
+    }
+    return rows;
+  }
+
+  TEST(FitCommand, TableGivesBackStiffnessPerMetreAndTotal)
+  {
+    const TempDir dir;
+    const auto    fem_file = dir.path() / "fem.h5";
+    {
+      kimp::io::ResultsFile file(fem_file, "", "{}");
+      auto                  root = file.root();
+      auto                  fem  = root.group("fem");
+      kimp::io::write_fem_case(fem, kelvin_voigt_case("H1.00", 1.0, 1.5e8));
+      kimp::io::write_fem_case(fem, kelvin_voigt_case("H2.00", 2.0, 2.5e7));
+      FemCase failed;
+      failed.name   = "H1.50";
+      failed.status = "failed: diverged";
+      kimp::io::write_fem_case(fem, failed);
+      file.commit();
+    }
+
+    auto app = kimp::cli::make_app();
+    kimp::cli::register_fit_command(*app);
+    std::ostringstream out, err;
+    const auto         output = dir.path() / "out";
+    ASSERT_EQ(
+      kimp::cli::run_app(*app, {"-q", "fit", fem_file.string(), "-o", output.string()}, out, err),
+      0)
+      << err.str();
+
+    const auto rows = read_csv(output / "fit_table.csv");
+    ASSERT_EQ(rows.size(), 1u + 2u * 5u); // header + 2 ok cases × 5 variants (H1.50 skipped)
+    const std::vector<std::string> &header = rows[0];
+    const auto                      column = [&](const std::string &name)
+    {
+      return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) -
+                                      header.begin());
+    };
+    int checked = 0;
+    for (std::size_t i = 1; i < rows.size(); ++i)
+    {
+      const auto &row = rows[i];
+      EXPECT_EQ(row[column("status")], "ok") << row[0] << " " << row[2];
+      if (row[column("variant")] != "kelvin_voigt_cor_fixed")
+        continue;
+      const double k_table = row[0] == "H1.00" ? 150.0 : 25.0; // kN/mm/m
+      EXPECT_NEAR(std::stod(row[column("k_per_m")]), k_table, table_tolerance * k_table) << row[0];
+      EXPECT_NEAR(std::stod(row[column("k_total")]),
+                  k_table * kimp::fit::thesis_building_width,
+                  table_tolerance * k_table * kimp::fit::thesis_building_width)
+        << row[0];
+      EXPECT_EQ(row[column("k_per_m_unit")], "kN/mm/m");
+      EXPECT_EQ(row[column("k_total_unit")], "kN/mm");
+      ++checked;
+    }
+    EXPECT_EQ(checked, 2);
+
+    const hid_t h5 = H5Fopen((output / "fit.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(h5, 0);
+    const hid_t d = H5Dopen2(h5, "/fit/H1.00/kelvin_voigt_cor_fixed/stiffness", H5P_DEFAULT);
+    ASSERT_GE(d, 0);
+    double k = 0.0;
+    H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &k);
+    EXPECT_NEAR(k, 1.5e8, table_tolerance * 1.5e8);
+    const hid_t a    = H5Aopen(d, "units", H5P_DEFAULT);
+    const hid_t type = H5Aget_type(a);
+    char       *text = nullptr;
+    H5Aread(a, type, &text);
+    EXPECT_STREQ(text, "N/m/m");
+    H5free_memory(text);
+    H5Tclose(type);
+    H5Aclose(a);
+    H5Dclose(d);
+    H5Fclose(h5);
+  }
+
+  TEST(FitCommand, MissingInputIsAnErrorNamingTheFile)
+  {
+    const TempDir dir;
+    auto          app = kimp::cli::make_app();
+    kimp::cli::register_fit_command(*app);
+    std::ostringstream out, err;
+    const auto         missing = (dir.path() / "absent.h5").string();
+    try
+    {
+      kimp::cli::run_app(*app, {"-q", "fit", missing, "-o", (dir.path() / "o").string()}, out, err);
+      ADD_FAILURE() << "no error for a missing FEM file";
+    }
+    catch (const kimp::io::ResultsError &error)
+    {
+      EXPECT_NE(std::string(error.what()).find("absent.h5"), std::string::npos) << error.what();
+    }
+    EXPECT_EQ(kimp::cli::run_app(*app, {"fit", missing}, out, err), 2) << "no -o given";
+  }
+} // namespace

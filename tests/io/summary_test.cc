@@ -1,0 +1,161 @@
+// summary.json / CSV written atomically, output directory creation.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "io/summary.h"
+
+namespace
+{
+  using kimp::io::OutputDir;
+  using kimp::io::OutputError;
+  using kimp::io::write_csv_atomic;
+  using kimp::io::write_json_atomic;
+  using kimp::io::write_text_atomic;
+
+  class TempDir
+  {
+  public:
+    TempDir()
+      : path_(std::filesystem::temp_directory_path() /
+              ("kimp_summary_test_" + std::to_string(::getpid()) + "_" +
+               ::testing::UnitTest::GetInstance()->current_test_info()->name()))
+    {
+      std::filesystem::remove_all(path_);
+      std::filesystem::create_directories(path_);
+    }
+    ~TempDir() { std::filesystem::remove_all(path_); }
+    const std::filesystem::path &path() const { return path_; }
+
+  private:
+    std::filesystem::path path_;
+  };
+
+  std::string read_file(const std::filesystem::path &path)
+  {
+    std::ifstream      in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
+
+  std::size_t n_entries(const std::filesystem::path &dir)
+  {
+    std::size_t n = 0;
+    for ([[maybe_unused]] const auto &entry : std::filesystem::directory_iterator(dir))
+      ++n;
+    return n;
+  }
+
+  TEST(Summary, JsonRoundTripsAndReplacesTheOldFile)
+  {
+    const TempDir  dir;
+    const auto     path = dir.path() / "summary.json";
+    nlohmann::json summary{{"wall_time_s", 12.5},
+                           {"steps", 250000},
+                           {"dofs", 18432},
+                           {"k_per_m", {{"linear", 1.2e9}, {"hertz", 3.4e10}}}};
+    write_json_atomic(path, summary);
+    EXPECT_EQ(nlohmann::json::parse(read_file(path)), summary);
+    summary["steps"] = 1;
+    write_json_atomic(path, summary);
+    EXPECT_EQ(nlohmann::json::parse(read_file(path)).at("steps"), 1);
+    EXPECT_EQ(n_entries(dir.path()), 1u) << "no temporary file may remain";
+  }
+
+  TEST(Summary, CsvQuotesFieldsAsRfc4180)
+  {
+    const TempDir dir;
+    const auto    path = dir.path() / "table.csv";
+    write_csv_atomic(path,
+                     {"case", "note"},
+                     std::vector<std::vector<std::string>>{{"a,b", "say \"hi\""}, {"plain", "x"}});
+    EXPECT_EQ(read_file(path), "case,note\n\"a,b\",\"say \"\"hi\"\"\"\nplain,x\n");
+  }
+
+  TEST(Summary, NumericCsvReadsBackExactly)
+  {
+    const TempDir                          dir;
+    const auto                             path = dir.path() / "k_table.csv";
+    std::mt19937                           random(11);
+    std::uniform_real_distribution<double> u(-1e10, 1e10);
+    std::vector<std::vector<double>>       rows(50, std::vector<double>(3));
+    for (auto &row : rows)
+      for (auto &v : row)
+        v = u(random) * std::pow(10.0, static_cast<int>(u(random)) % 12);
+    write_csv_atomic(path, {"height_m", "k_linear_N_per_m", "k_hertz_N_per_m1.5"}, rows);
+
+    std::istringstream in(read_file(path));
+    std::string        line;
+    std::getline(in, line);
+    EXPECT_EQ(line, "height_m,k_linear_N_per_m,k_hertz_N_per_m1.5");
+    for (const auto &row : rows)
+    {
+      ASSERT_TRUE(std::getline(in, line));
+      std::istringstream fields(line);
+      for (const double expected : row)
+      {
+        std::string field;
+        std::getline(fields, field, ',');
+        EXPECT_EQ(std::strtod(field.c_str(), nullptr), expected) << "field: " << field;
+      }
+    }
+  }
+
+  TEST(Summary, FailedWriteKeepsTheOldFileAndLeavesNoTemporary)
+  {
+    const TempDir dir;
+    const auto    path = dir.path() / "table.csv";
+    write_csv_atomic(path, {"a", "b"}, std::vector<std::vector<double>>{{1.0, 2.0}});
+    const std::string before = read_file(path);
+    try
+    {
+      write_csv_atomic(path, {"a", "b"}, std::vector<std::vector<double>>{{1.0, 2.0}, {3.0}});
+      ADD_FAILURE() << "a short row must throw";
+    }
+    catch (const OutputError &error)
+    {
+      const std::string message = error.what();
+      EXPECT_NE(message.find("CSV row 2 has 1 fields, the header has 2"), std::string::npos)
+        << message;
+      EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+    }
+    EXPECT_EQ(read_file(path), before);
+    EXPECT_EQ(n_entries(dir.path()), 1u);
+    EXPECT_THROW(write_text_atomic(dir.path() / "missing_dir" / "x.json", "{}"), OutputError);
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "missing_dir"));
+  }
+
+  TEST(Summary, OutputDirCreatesDirectoriesAndRejectsFiles)
+  {
+    const TempDir   dir;
+    const OutputDir out(dir.path() / "out" / "study");
+    EXPECT_TRUE(std::filesystem::is_directory(out.path()));
+    const auto mesh = out.file("mesh/H1.25.msh");
+    EXPECT_EQ(mesh, out.path() / "mesh" / "H1.25.msh");
+    EXPECT_TRUE(std::filesystem::is_directory(out.path() / "mesh"));
+    EXPECT_FALSE(std::filesystem::exists(mesh));
+    const OutputDir again(dir.path() / "out" / "study");
+    EXPECT_EQ(again.path(), out.path());
+
+    write_text_atomic(dir.path() / "a_file", "x");
+    try
+    {
+      OutputDir bad(dir.path() / "a_file");
+      ADD_FAILURE() << "a file is not an output directory";
+    }
+    catch (const OutputError &error)
+    {
+      EXPECT_NE(std::string(error.what()).find("exists and is not a directory"), std::string::npos)
+        << error.what();
+    }
+  }
+} // namespace
