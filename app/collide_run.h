@@ -1,6 +1,7 @@
 // `kimp collide [SCENE.yaml] -o DIR [--calibrate]`: effective COR of every impact law against its
-// nominal COR in a two-body collision (thesis: 280 t vs 300 t at 1 m/s, Δt = 2e-4 s, PHYSICS.md
-// §1), and the recalibration of C_imp of eq. 2.23 (1.55 / 0.7076 / 0.0025 / 0.9755).
+// nominal COR in a two-body collision (thesis: 280 t vs 300 t at 1 m/s, Δt = 2e-4 s,
+// docs/physics.md §1), and the recalibration of C_imp of eq. 2.23 (1.55 / 0.7076 / 0.0025 /
+// 0.9755).
 #pragma once
 
 #include <string>

@@ -1,4 +1,4 @@
-// `kimp fit`: FEM force histories -> impact stiffness table (PHYSICS.md §4 "Fit").
+// `kimp fit`: FEM force histories -> impact stiffness table (docs/physics.md §4 "Fit").
 #include "app/fit_run.h"
 
 #include <cstdint>

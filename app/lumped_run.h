@@ -1,5 +1,5 @@
-// `kimp lumped SCENE.yaml -o DIR`: runs every case of a lumped scene (PHYSICS.md §2) and writes
-// DIR/lumped.h5 (STYLE.md §6.18), DIR/summary.json and DIR/peaks.csv.
+// `kimp lumped SCENE.yaml -o DIR`: runs every case of a lumped scene (docs/physics.md §2) and
+// writes DIR/lumped.h5 (docs/architecture.md "Results files"), DIR/summary.json and DIR/peaks.csv.
 #pragma once
 
 #include <filesystem>

@@ -1,4 +1,4 @@
-// `kimp lumped` scene: validation rules and the construction of the lumped model (PHYSICS.md
+// `kimp lumped` scene: validation rules and the construction of the lumped model (docs/physics.md
 // §2-3; bumper stiffness k_b = 2.25·N·A·K_r/t^n, thesis eqs. 6.2-6.3).
 #include "app/lumped_scene.h"
 

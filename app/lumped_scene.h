@@ -1,5 +1,5 @@
-// Scene of `kimp lumped`: the shear building of PHYSICS.md §2-3 (thesis Table 4.2 defaults), its
-// isolator, moat walls, impact law, neighbours, ground motion, integration and a list of cases,
+// Scene of `kimp lumped`: the shear building of docs/physics.md §2-3 (thesis Table 4.2 defaults),
+// its isolator, moat walls, impact law, neighbours, ground motion, integration and a list of cases,
 // read through the Io verbs of scene_io.h and turned into a lumped::PoundingScene.
 #pragma once
 
@@ -74,7 +74,7 @@ namespace kimp::app
                 "damping of a fixed-base building (Rayleigh, first and last mode)");
   }
 
-  /// Isolation system: linear (k) or bilinear (K1, K2, Q), plus ζ_iso (PHYSICS.md §2).
+  /// Isolation system: linear (k) or bilinear (K1, K2, Q), plus ζ_iso (docs/physics.md §2).
   struct IsolatorScene
   {
     IsolatorKind          kind    = IsolatorKind::bilinear;
@@ -152,7 +152,10 @@ namespace kimp::app
   template <class Io>
   void visit_law(Io &io, ImpactLawScene &s)
   {
-    io.choice("law", s.law, lumped::force_law_names(), "impact law of PHYSICS.md §1 (laws 1-7)");
+    io.choice("law",
+              s.law,
+              lumped::force_law_names(),
+              "impact law of docs/physics.md §1 (laws 1-7)");
     io.text("k",
             s.k,
             "impact stiffness with a unit of N/m^n for the law's exponent n, e.g. \"2500 kN/mm\" "
@@ -332,7 +335,7 @@ namespace kimp::app
                 "extra factor on the ground motion of this case");
   }
 
-  /// The whole scene of `kimp lumped` (SI members, defaults of PHYSICS.md §3).
+  /// The whole scene of `kimp lumped` (SI members, defaults of docs/physics.md §3).
   struct LumpedScene
   {
     BuildingScene          building;

@@ -1,4 +1,4 @@
-// Cost of the PHYSICS.md §4 impact (H = 1.25 m) in kimp::fem: explicit vs implicit, rigid vs
+// Cost of the docs/physics.md §4 impact (H = 1.25 m) in kimp::fem: explicit vs implicit, rigid vs
 // elastic slab, two mesh sizes. Fixed single iterations so that `mpirun -np N` stays collective.
 #include <benchmark/benchmark.h>
 #include <filesystem>

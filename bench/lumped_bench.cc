@@ -1,4 +1,4 @@
-// Benchmarks of the lumped pounding engine (issue 3): the Kobe-length 48 s case with moat walls at
+// Benchmarks of the lumped pounding engine: the Kobe-length 48 s case with moat walls at
 // Δt = 2e-5 s (2.4 million steps; target < 60 ms on one core) with the fused and the reference
 // time-loop kernels side by side, the sweep throughput, and accuracy against cost of the explicit
 // central difference method and the implicit Newmark method.

@@ -1,5 +1,5 @@
 // The `kimp` command line (CLI11): global options, the command registry and scene commands with
-// the `--print-defaults` convention (ARCHITECTURE.md "CLI", issue 2 item 7).
+// the `--print-defaults` convention (docs/architecture.md "CLI").
 #pragma once
 
 #include <CLI/CLI.hpp>

@@ -1,6 +1,6 @@
 // Plane-strain slab-wall impact: rho u_tt = div sigma(u), sigma = C : eps(u), with frictionless
-// node-to-segment penalty contact between the slab front face and the wall face (PHYSICS.md §4).
-// Light public header: plain structs and functions, no deal.II includes.
+// node-to-segment penalty contact between the slab front face and the wall face (docs/physics.md
+// §4). Light public header: plain structs and functions, no deal.II includes.
 #pragma once
 
 #include <filesystem>

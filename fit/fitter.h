@@ -1,4 +1,4 @@
-// Impact-stiffness fitter (PHYSICS.md §4 "Fit", issue 5): a mass m striking a wall at v_imp
+// Impact-stiffness fitter (docs/physics.md §4 "Fit"): a mass m striking a wall at v_imp
 // through a lumped contact law (law 2, 4, or a free-exponent Hertz law) is fitted to an FEM
 // contact-force history, min Σ w_i (F_law(t_i) − F_FEM(t_i))², by Levenberg-Marquardt (Eigen).
 #pragma once

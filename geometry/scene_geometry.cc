@@ -1,4 +1,4 @@
-// Validation and mesh ladder of the PHYSICS.md §4 scene parameters.
+// Validation and mesh ladder of the docs/physics.md §4 scene parameters.
 #include "geometry/scene_geometry.h"
 
 #include <cmath>

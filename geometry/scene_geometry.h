@@ -1,4 +1,4 @@
-// Parameters of the plane-strain impact scene of PHYSICS.md §4: slab, cantilever moat wall and
+// Parameters of the plane-strain impact scene of docs/physics.md §4: slab, cantilever moat wall and
 // backfill block (x horizontal, slab moving +x; y up; ground at y = 0; wall contact face x = 0).
 #pragma once
 

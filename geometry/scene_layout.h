@@ -1,5 +1,5 @@
 // The structured (tensor-product) grid lines of the scene: graded 1D node lists per axis and
-// region, refined toward the contact (PHYSICS.md §4 scene, sizes of SceneGeometry).
+// region, refined toward the contact (docs/physics.md §4 scene, sizes of SceneGeometry).
 #pragma once
 
 #include <vector>

@@ -1,5 +1,6 @@
-// Meshing of the PHYSICS.md §4 scene: structured bilinear quadrilaterals written as ASCII MSH 4.1
-// with the numeric physical groups of geometry/scene_ids.h (readable by deal.II GridIn::read_msh).
+// Meshing of the docs/physics.md §4 scene: structured bilinear quadrilaterals written as ASCII
+// MSH 4.1 with the numeric physical groups of geometry/scene_ids.h (readable by deal.II
+// GridIn::read_msh).
 #pragma once
 
 #include <cstddef>
@@ -49,10 +50,10 @@ namespace kimp::geometry
    * - 1D: fixed_base (bottom of wall and backfill), soil_far_side (backfill x = t_w + B; only
    *   with backfill), slab_contact (slab front face x = −gap; only if mesh_slab), wall_contact
    *   (the whole wall front face x = 0, y in [0, H]).
-   * No other face is tagged: the bonded interface carries no group (deal.II issue #17122) and the
-   * free edges (wall top, exposed wall back above H_b, soil top, slab top, bottom and back) get
-   * deal.II's default boundary id 0. Every entity has exactly one physical group.
-   * Format: MSH 4.1 ASCII, only elements of physical groups (no points, no unused nodes).
+   * No other face is tagged: the bonded interface carries no group (deal.II does not read ids on
+   * internal faces) and the free edges (wall top, exposed wall back above H_b, soil top, slab top,
+   * bottom and back) get deal.II's default boundary id 0. Every entity has exactly one physical
+   * group. Format: MSH 4.1 ASCII, only elements of physical groups (no points, no unused nodes).
    *
    * Not thread safe (gmsh is a global singleton; see GmshSession). Does not print.
    * @throws std::invalid_argument from geometry.validate(); std::runtime_error if the file cannot

@@ -1,5 +1,6 @@
 // PEER AT2 and two-column ground-motion readers (see at2_reader.h); values in g → m/s² by
-// g = 9.80665 m/s². Format variants: ../shared/data/records/README.md, "Format notes".
+// g = 9.80665 m/s². Format variants: docs/physics.md
+// "Ground-motion records".
 #include "io/at2_reader.h"
 
 #include <algorithm>

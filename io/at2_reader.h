@@ -1,6 +1,6 @@
 // Ground-motion files: PEER .AT2 (3 header lines, an NPTS/DT line, NPTS values in g, Fortran E
-// format) and plain two-column "time acceleration" text. Variants:
-// ../shared/data/records/README.md.
+// format) and plain two-column "time acceleration" text. Format variants: docs/physics.md
+// "Ground-motion records".
 #pragma once
 
 #include <cstddef>

@@ -1,5 +1,6 @@
 // FEM impact results in the HDF5 results file: the contract between `kimp fem` (writer) and
-// `kimp fit` (reader). Layout below /fem/<case> (schema 1.x, STYLE.md §6.18), all SI, per metre.
+// `kimp fit` (reader). Layout below /fem/<case> (schema 1.x, docs/architecture.md "Results files"),
+// all SI, per metre.
 #pragma once
 
 #include <filesystem>

@@ -1,4 +1,5 @@
-// HDF5 results file (C API, used serially); layout in results_file.h and STYLE.md §6.18.
+// HDF5 results file (C API, used serially); layout in results_file.h and docs/architecture.md
+// "Results files"
 #include "io/results_file.h"
 
 #include <array>

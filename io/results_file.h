@@ -1,6 +1,7 @@
-// One HDF5 results file per command, H5MD-style layout of STYLE.md §6.18 (schema 1.0):
-// /meta (attributes), /input/{scene,resolved}, one group per case with a `status` attribute,
-// time series /<case>/<quantity>/{step,time,value}; every dataset carries a `units` attribute.
+// One HDF5 results file per command, H5MD-style layout of docs/architecture.md "Results files"
+// (schema 1.0): /meta (attributes), /input/{scene,resolved}, one group per case with a `status`
+// attribute, time series /<case>/<quantity>/{step,time,value}; every dataset carries a `units`
+// attribute.
 #pragma once
 
 #include <cstdint>
@@ -79,7 +80,8 @@ namespace kimp::io
 
   /**
    * Quantities sampled at the same steps: one group per quantity with {step, time, value}, where
-   * step and time are written once and hard-linked into every group (STYLE.md §6.18).
+   * step and time are written once and hard-linked into every group (docs/architecture.md "Results
+   * files").
    */
   class TimeSeriesSet
   {

@@ -1,6 +1,7 @@
-// Scene files: YAML -> plain struct with SI members -> validate() -> use (STYLE.md §6.13-6.15).
-// One `template <class Io> void visit(Io &, Scene &)` per struct serves reading (SceneReader),
-// the annotated default listing (DefaultsPrinter) and the resolved JSON dump (JsonWriter).
+// Scene files: YAML -> plain struct with SI members -> validate() -> use (docs/architecture.md
+// "Scenes and errors"). One `template <class Io> void visit(Io &, Scene &)` per struct serves
+// reading (SceneReader), the annotated default listing (DefaultsPrinter) and the resolved JSON dump
+// (JsonWriter).
 #pragma once
 
 #include <algorithm>
@@ -498,9 +499,9 @@ namespace kimp::io
     return out.str();
   }
 
-  // Scene structs give every member a default initializer (STYLE.md §6.13), so they are
-  // default-initialized (`T scene;`): value-initialization `T{}` of such aggregates trips a false
-  // -Wmaybe-uninitialized of GCC 12 at -O3.
+  // Scene structs give every member a default initializer (docs/architecture.md "Scenes and
+  // errors"), so they are default-initialized (`T scene;`): value-initialization `T{}` of such
+  // aggregates trips a false -Wmaybe-uninitialized of GCC 12 at -O3.
 
   /**
    * Parse, visit, then validate (free `validate(const T&, ValidationContext&)` found by ADL, or a

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Charts and summary.md of `kimp sweep SWEEP.yaml -o DIR` (issue 6 studies 1-6).
+"""Charts and summary.md of `kimp sweep SWEEP.yaml -o DIR` (studies 1-6 of data/studies).
 Reads DIR/sweep.csv, the plan JSON in DIR/sweep.h5 (/input/resolved: parameters, their settings and
 the `report:` section) and DIR/dsrss_table.csv if present; writes DIR/charts/*.png and *.svg and
 DIR/summary.md, each under a temporary name renamed when complete. Every number comes from the data."""

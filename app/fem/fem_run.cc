@@ -1,4 +1,4 @@
-// `kimp fem SCENE.yaml -o DIR`: the slab-wall impact of PHYSICS.md §4 for every wall height
+// `kimp fem SCENE.yaml -o DIR`: the slab-wall impact of docs/physics.md §4 for every wall height
 // (fem::run_impact, MPI collective), written to fem.h5, summary.json and fem_histories.csv.
 #include "app/fem/fem_run.h"
 
@@ -97,7 +97,8 @@ namespace kimp::app
         throw FemCaseError(rank == 0 ? what + ": " + message : what + " failed on rank 0");
     }
 
-    /// Diagnostics beyond the FemCase contract: energies and contact state (STYLE.md §6.18).
+    /// Diagnostics beyond the FemCase contract: energies and contact state (docs/architecture.md
+    /// "Results files").
     void write_diagnostics(ResultsGroup &case_group, const fem::ImpactHistory &h)
     {
       std::vector<std::int64_t> steps(h.time.size());

@@ -1,5 +1,6 @@
-// Scene of `kimp mesh` and `kimp fem`: the plane-strain slab-wall-backfill impact of PHYSICS.md §4
-// as a plain struct with SI members (defaults = the §4 default scene), one case per wall height.
+// Scene of `kimp mesh` and `kimp fem`: the plane-strain slab-wall-backfill impact of
+// docs/physics.md §4 as a plain struct with SI members (defaults = the §4 default scene), one case
+// per wall height.
 #pragma once
 
 #include <filesystem>
@@ -21,7 +22,7 @@ namespace kimp::app
     double density        = 0; ///< rho, kg/m^3 (> 0)
   };
 
-  /** Concrete (slab and wall) and soil (backfill); PHYSICS.md §4 defaults. */
+  /** Concrete (slab and wall) and soil (backfill); docs/physics.md §4 defaults. */
   struct FemMaterials
   {
     FemMaterial concrete{30e9, 0.2, 2400};
@@ -255,7 +256,7 @@ namespace kimp::app
                      s.wall_heights,
                      "m",
                      "moat wall heights H, one impact case each, named H<height in m>");
-    io.section("geometry", s.geometry, "scene dimensions (PHYSICS.md §4)");
+    io.section("geometry", s.geometry, "scene dimensions (docs/physics.md §4)");
     io.section("mesh", s.mesh, "bilinear quadrilateral mesh");
     io.section("materials", s.materials, "linear elastic materials");
     io.section("slab", s.slab, "the striking slab");

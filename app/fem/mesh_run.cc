@@ -1,4 +1,4 @@
-// `kimp mesh SCENE.yaml -o DIR`: the PHYSICS.md §4 scene mesh of every wall height, with its
+// `kimp mesh SCENE.yaml -o DIR`: the docs/physics.md §4 scene mesh of every wall height, with its
 // statistics and PNG (scripts/plot_mesh.py) and VTU (deal.II GridIn + DataOut) previews.
 #include "app/fem/mesh_run.h"
 

@@ -1,4 +1,4 @@
-// Extra charts of `kimp study` (issue 5): accuracy against cost of the FEM levels (error in k vs
+// Extra charts of `kimp study`: accuracy against cost of the FEM levels (error in k vs
 // seconds) and of the building's time step (thesis Figs 3.3-3.4), the central-difference stability
 // map Δt vs k_imp with 2/ω_imp (thesis eq. 3.12-3.13), and the sensitivity of k to the scene.
 #pragma once

@@ -1,4 +1,4 @@
-// One wall height of `kimp study`: mesh + FEM impact (PHYSICS.md §4) with a per-height cache.
+// One wall height of `kimp study`: mesh + FEM impact (docs/physics.md §4) with a per-height cache.
 #include "app/study/study_fem.h"
 
 #include <chrono>

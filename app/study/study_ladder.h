@@ -1,4 +1,4 @@
-// `fidelity: auto` of `kimp study` (issue 5): climb a ladder of FEM mesh sizes h_contact and then
+// `fidelity: auto` of `kimp study`: climb a ladder of FEM mesh sizes h_contact and then
 // penalty factors until the fitted k of both laws changes by less than a tolerance between
 // consecutive levels; the numerical error of k is the change to the previous level.
 #pragma once

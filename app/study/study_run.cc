@@ -1,5 +1,5 @@
-// `kimp study`: FEM per wall height -> k fitted with laws 2 and 4 at COR 0.7 (PHYSICS.md §4)
-// -> k_total = k_per_m·W -> isolated building pounding on moat walls (PHYSICS.md §2-3).
+// `kimp study`: FEM per wall height -> k fitted with laws 2 and 4 at COR 0.7 (docs/physics.md §4)
+// -> k_total = k_per_m·W -> isolated building pounding on moat walls (docs/physics.md §2-3).
 #include "app/study/study_run.h"
 
 #include <algorithm>
@@ -1040,7 +1040,7 @@ namespace kimp::app
               "![k against wall height](charts/k_vs_height.png)\n\n";
 
       md += "## Building response\n\n"
-            "Isolated building of PHYSICS.md §3 with moat walls on both sides, gap "
+            "Isolated building of docs/physics.md §3 with moat walls on both sides, gap "
             "from the no-wall peak isolation displacement; modified Kelvin-Voigt with k_KV, "
             "Jankowski and the hysteretic law with k_Jankowski.\n\n"
             "| record | H (m) | law | gap (cm) | base acc. (m/s²) | top acc. (m/s²) | drift (cm) | "

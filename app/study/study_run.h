@@ -1,4 +1,4 @@
-// `kimp study [SCENE.yaml] -o DIR` (issue 5, ARCHITECTURE.md "Data flow of the main job"):
+// `kimp study [SCENE.yaml] -o DIR` (docs/architecture.md "Data flow of the main job"):
 // per wall height FEM -> fitted k (laws 2 and 4) -> k table -> building pounding runs -> files.
 #pragma once
 
@@ -24,7 +24,7 @@ namespace kimp::app
     double jankowski;    ///< kN/mm^1.5 per metre
   };
 
-  /** The four rows of Table 2.1 (PHYSICS.md §4). */
+  /** The four rows of Table 2.1 (docs/physics.md §4). */
   const std::vector<ThesisStiffness> &thesis_table_2_1();
 
   /** One row of the k table: the fits of one wall height. */

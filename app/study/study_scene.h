@@ -1,5 +1,5 @@
-// Scene of `kimp study` (issue 5): FEM wall-height cases -> fitted k (PHYSICS.md §4) -> the
-// isolated building of PHYSICS.md §2-3 pounding on moat walls with each height's k.
+// Scene of `kimp study`: FEM wall-height cases -> fitted k (docs/physics.md §4) -> the
+// isolated building of docs/physics.md §2-3 pounding on moat walls with each height's k.
 #pragma once
 
 #include <optional>
@@ -14,7 +14,7 @@
 
 namespace kimp::app
 {
-  /** The FEM scene of the study: PHYSICS.md §4 defaults with H = 1.00, 1.25, 1.50, 2.00 m. */
+  /** The FEM scene of the study: docs/physics.md §4 defaults with H = 1.00, 1.25, 1.50, 2.00 m. */
   FemScene default_study_fem_scene();
 
   /** How the study chooses the FEM discretisation of each height. */
@@ -122,7 +122,7 @@ namespace kimp::app
                 "run at (1 - variation) and (1 + variation) times their value (in (0, 100 %))");
   }
 
-  /** The fits of every height (PHYSICS.md §4 "Fit"). */
+  /** The fits of every height (docs/physics.md §4 "Fit"). */
   struct StudyFitScene
   {
     double cor       = 0.7;                        ///< COR of both fitted laws, (0, 1]

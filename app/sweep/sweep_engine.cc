@@ -1,5 +1,5 @@
 // Sweep execution: static round-robin over ranks, a thread pool per rank pulling case indices from
-// an atomic counter, journal-based resume, and the merged HDF5/CSV table (issue 6).
+// an atomic counter, journal-based resume, and the merged HDF5/CSV table.
 #include "app/sweep/sweep_engine.h"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 // Runs the cases of a SweepPlan over MPI ranks (static round-robin by case index) and a thread
 // pool, journals each finished case (resume skips them), and merges all journals into DIR/sweep.h5
-// and DIR/sweep.csv, one row per case sorted by index (issue 6).
+// and DIR/sweep.csv, one row per case sorted by index.
 #pragma once
 
 #include <filesystem>

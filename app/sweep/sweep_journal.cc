@@ -1,4 +1,4 @@
-// Journal of finished sweep cases (issue 6: resume without recomputation or lost rows).
+// Journal of finished sweep cases (resume without recomputation or lost rows).
 // POSIX write + fsync: once append() returns, the line survives a SIGKILL or a power loss.
 #include "app/sweep/sweep_journal.h"
 

@@ -1,4 +1,4 @@
-// Reduction of a lumped run (PHYSICS.md §2 responses) to the scalar metrics of a sweep row.
+// Reduction of a lumped run (docs/physics.md §2 responses) to the scalar metrics of a sweep row.
 #include "app/sweep/sweep_lumped.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// The lumped engine as a sweep CaseRunner (issue 6): each case's scene text is read as a
+// The lumped engine as a sweep CaseRunner: each case's scene text is read as a
 // LumpedScene, run with run_lumped_case() and reduced to one row of scalar metrics.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Sweep file parsing and case enumeration (issue 6); key paths are set on a copy of the base
+// Sweep file parsing and case enumeration; key paths are set on a copy of the base
 // scene's YAML tree, so every scene key can be varied without the sweep knowing the schema.
 #include "app/sweep/sweep_plan.h"
 

@@ -1,4 +1,4 @@
-// Sweep files of `kimp sweep` (issue 6): a base scene, parameters varied by scene key path (lists
+// Sweep files of `kimp sweep`: a base scene, parameters varied by scene key path (lists
 // or inclusive ranges, Cartesian product or zipped) and companion runs, expanded into one scene
 // text per case with a stable id (enumeration index + hash of the parameter values).
 #pragma once
@@ -71,7 +71,7 @@ namespace kimp::app
     int         line = 0; ///< line of `report:` in the sweep file (1-based)
   };
 
-  /// The report kinds scripts/sweep_charts.py knows (issue 6 studies 1-6).
+  /// The report kinds scripts/sweep_charts.py knows (studies 1-6 of data/studies).
   const std::vector<std::string> &sweep_report_kinds();
 
   /// One run of the sweep.

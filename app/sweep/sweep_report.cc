@@ -1,5 +1,5 @@
-// d_req against d_SRSS (PHYSICS.md §2): per contact the SRSS rule asks g_c >= sqrt(d_L² + d_R²)
-// with the peaks of the run without contacts; d_req is read off the swept gaps.
+// d_req against d_SRSS (docs/physics.md §2): per contact the SRSS rule asks g_c >= sqrt(d_L² +
+// d_R²) with the peaks of the run without contacts; d_req is read off the swept gaps.
 #include "app/sweep/sweep_report.h"
 
 #include <algorithm>

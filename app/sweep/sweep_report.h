@@ -1,4 +1,4 @@
-// Post-processing of `kimp sweep` rows (issue 6, PHYSICS.md §2 last bullet): the gap d_req a sweep
+// Post-processing of `kimp sweep` rows (docs/physics.md §2 last bullet): the gap d_req a sweep
 // finds necessary to avoid pounding against the SRSS gap, per contact g_c >= sqrt(d_L² + d_R²),
 // d_SRSS = max_c (sqrt(d_L,c² + d_R,c²) − (g_c − gap)), and Δd = d_SRSS − d_req.
 #pragma once

@@ -1,5 +1,5 @@
 // Two-body collision lab: two free masses (or one mass and a rigid wall) meeting through a contact
-// law, integrated by the central difference method (PHYSICS.md §2, eqs. 3.9-3.11) until they
+// law, integrated by the central difference method (docs/physics.md §2, eqs. 3.9-3.11) until they
 // separate; the reference is the stereomechanical impact (2.2-2.3).
 #pragma once
 

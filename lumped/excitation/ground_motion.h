@@ -111,9 +111,9 @@ namespace kimp::lumped
    * Parameters of synthetic_near_fault(), SI units. The defaults give a strong forward-directivity
    * record: PGA 0.8 g, pulse period 1 s, 20 s at 0.005 s. With seed 1 the peak ground velocity is
    * 0.95 m/s (1.38 m/s for the pulse alone; 0.95-1.10 m/s over seeds 1-4) and the peak ground
-   * displacement 18 cm. A rigid 1530 t mass on the bilinear isolator of PHYSICS.md §3 (5 % damping)
-   * then peaks at 23.3 cm; the same model gives 19.0 cm for Kobe KJMA (first 48 s), where the
-   * thesis' MDOF model gives 16.74 cm, so the reference building reaches a 15 cm moat gap.
+   * displacement 18 cm. A rigid 1530 t mass on the bilinear isolator of docs/physics.md §3 (5 %
+   * damping) then peaks at 23.3 cm; the same model gives 19.0 cm for Kobe KJMA (first 48 s), where
+   * the thesis' MDOF model gives 16.74 cm, so the reference building reaches a 15 cm moat gap.
    */
   struct SyntheticMotionSpec
   {

@@ -16,7 +16,7 @@ namespace kimp::lumped
   /**
    * Velocity handed to the impact laws and the isolator at step n. The central difference
    * velocity (u_{n+1} − u_{n−1})/(2Δt) needs u_{n+1}, which depends on the force being evaluated,
-   * so an explicit scheme must use past displacements (PHYSICS.md §5):
+   * so an explicit scheme must use past displacements (docs/physics.md §5):
    *  - backward: (u_n − u_{n−1})/Δt, first order, lags by Δt/2 (the thesis' choice);
    *  - backward_second_order: (3u_n − 4u_{n−1} + u_{n−2})/(2Δt), second order, no lag.
    * The viscous matrix C is integrated implicitly (central) in either case.
@@ -129,8 +129,8 @@ namespace kimp::lumped
    * (tests/lumped/integrator_test.cc states the tolerances).
    *
    * Recorded at every t_n (n = 0..N): u_n, the step's acceleration (u_{n+1} − 2u_n + u_{n−1})/Δt²
-   * + ü_g(t_n) (PHYSICS.md §5), the contact forces F_n, and the energy terms (E_kin and E_strain
-   * only at the check points, where they are used).
+   * + ü_g(t_n) (docs/physics.md §5), the contact forces F_n, and the energy terms (E_kin and
+   * E_strain only at the check points, where they are used).
    */
   class CentralDifference
   {
@@ -164,9 +164,10 @@ namespace kimp::lumped
   };
 
   /**
-   * Step-by-step integration with a CentralDifference (MFEM ODESolver Init/Step; STYLE.md §6.10).
-   * Time is counted in integer steps, t_n = n·Δt (never accumulated); Δt = time_step(motion.dt)
-   * is fixed at init(); the run has steps n = 0..N, N = last_step() = round(duration/Δt).
+   * Step-by-step integration with a CentralDifference (MFEM ODESolver Init/Step;
+   * docs/architecture.md "Time integration"). Time is counted in integer steps, t_n = n·Δt (never
+   * accumulated); Δt = time_step(motion.dt) is fixed at init(); the run has steps n = 0..N, N =
+   * last_step() = round(duration/Δt).
    *
    * Contract:
    *  - init(motion) [in: motion, which must outlive the stepper or the next init()]: (re)starts

@@ -1,6 +1,7 @@
-// Typed errors of the lumped time integrators (STYLE.md §6.15): a time step above the stability
-// limit of the central difference method (Δt_cr = 2/ω_max, thesis eq. 3.12-3.13), divergence, and
-// non-convergence of Newton in the implicit method. Each carries its context as members.
+// Typed errors of the lumped time integrators (docs/architecture.md "Scenes and errors"): a time
+// step above the stability limit of the central difference method (Δt_cr = 2/ω_max, thesis
+// eq. 3.12-3.13), divergence, and non-convergence of Newton in the implicit method. Each carries
+// its context as members.
 #pragma once
 
 #include <stdexcept>

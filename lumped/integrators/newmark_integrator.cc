@@ -1,5 +1,5 @@
 // Newmark average-acceleration method with Newton at the isolator and the contacts, and recursive
-// step halving on non-convergence (Newmark 1959; STYLE.md §6.9-6.11).
+// step halving on non-convergence (Newmark 1959; docs/architecture.md "Time integration").
 #include "lumped/integrators/newmark_integrator.h"
 
 #include <Eigen/LU>

@@ -43,7 +43,8 @@ namespace kimp::lumped
    * with ü_{n+1} = 4(u_{n+1} − u_n)/Δt² − 4u̇_n/Δt − ü_n, u̇_{n+1} = u̇_n + Δt(ü_n + ü_{n+1})/2,
    * by Newton with the laws' exact tangents (stiffness + 2/Δt·damping). The laws and the
    * isolator are committed only after convergence; on failure they are reverted and the step is
-   * retried as two half steps, recursively, up to max_halvings (STYLE.md §6.11).
+   * retried as two half steps, recursively, up to max_halvings (docs/architecture.md "Time
+   * integration").
    *
    * Recorded: the same Response as CentralDifference (accelerations ü_{n+1} + ü_g, velocities of
    * the method); peaks and energies include sub-steps, histories are sampled at macro steps.

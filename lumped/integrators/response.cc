@@ -1,4 +1,4 @@
-// Response summaries: energy residual, amplification factors (PHYSICS.md §2).
+// Response summaries: energy residual, amplification factors (docs/physics.md §2).
 #include "lumped/integrators/response.h"
 
 #include <algorithm>

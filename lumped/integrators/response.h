@@ -1,5 +1,5 @@
-// Responses of a pounding analysis (PHYSICS.md §2, §5): decimated histories, peaks per floor and
-// storey, impacts per contact, permanent indentation and the energy balance
+// Responses of a pounding analysis (docs/physics.md §2, §5): decimated histories, peaks per floor
+// and storey, impacts per contact, permanent indentation and the energy balance
 //   E_0 + W_in = E_kin + E_strain + E_viscous + E_hysteretic + W_contact  (relative error
 //   reported).
 #pragma once

@@ -1,4 +1,4 @@
-// Bilinear isolator with kinematic hardening (thesis §3.1, PHYSICS.md §2/§3): elastic K1 up to
+// Bilinear isolator with kinematic hardening (thesis §3.1, docs/physics.md §2/§3): elastic K1 up to
 // F_y = Q/(1 − K2/K1), post-yield K2; written as a K2 spring in parallel with an elastic-perfectly
 // plastic spring (stiffness K1 − K2, yield force Q), so the hysteretic energy is exactly Q·Σ|Δu_p|.
 #pragma once

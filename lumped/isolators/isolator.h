@@ -1,5 +1,6 @@
 // Interface of base-isolation devices: restoring force f_iso(u, u̇) between the ground and the
-// isolation level (DOF 0), with trial/commit state like the impact laws (STYLE.md §6.4-6.7).
+// isolation level (DOF 0), with trial/commit state like the impact laws (docs/architecture.md
+// "Force laws").
 #pragma once
 
 #include <memory>
@@ -18,7 +19,7 @@ namespace kimp::lumped
   /**
    * Isolator law with trial/commit state; admits hysteretic laws (bilinear, later Bouc-Wen and the
    * friction pendulum). The linear viscous part of the isolation system is not evaluated here: it
-   * enters the damping matrix at C[0,0] (PHYSICS.md §2), see viscous_coefficient().
+   * enters the damping matrix at C[0,0] (docs/physics.md §2), see viscous_coefficient().
    *
    * Contract (as ForceLaw): `set_trial(u, u̇)` starts from the committed state every time, so it is
    * idempotent; `commit()` accepts the last trial; `revert_to_last_commit()` discards it;
@@ -37,7 +38,7 @@ namespace kimp::lumped
     virtual void             revert_to_start()                               = 0;
 
     /// Initial (elastic) stiffness, N/m: used in K for modal analysis, the Rayleigh damping and
-    /// c_iso of PHYSICS.md §2, and the stability limit of the explicit integrator.
+    /// c_iso of docs/physics.md §2, and the stability limit of the explicit integrator.
     virtual double initial_stiffness() const = 0;
     /// Linear viscous coefficient of the device itself, N·s/m, added to C[0,0] (default 0).
     virtual double viscous_coefficient() const { return 0.0; }

@@ -1,5 +1,5 @@
 // Linear isolator: f = k·u (restoring) plus an optional device dashpot c that is added to the
-// damping matrix at C[0,0] (thesis §3.1, PHYSICS.md §2).
+// damping matrix at C[0,0] (thesis §3.1, docs/physics.md §2).
 #pragma once
 
 #include "lumped/isolators/isolator.h"
@@ -14,7 +14,7 @@ namespace kimp::lumped
    * | k         | N/m    | > 0        | horizontal stiffness of the isolation system |
    * | c         | N·s/m  | >= 0       | device dashpot added to C[0,0] (default 0)   |
    *
-   * The isolation system's excess damping of PHYSICS.md §2 (c_iso from ζ_iso) is added by the
+   * The isolation system's excess damping of docs/physics.md §2 (c_iso from ζ_iso) is added by the
    * building's damping model on top of c.
    */
   class LinearIsolator final : public Isolator

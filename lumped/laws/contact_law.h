@@ -1,6 +1,7 @@
-// Trial/commit machinery shared by the contact laws 1-7 (PHYSICS.md §1, STYLE.md §6.5-6.7):
-// one state struct held twice; dissipated work D += ½(F_nc,trial + F_nc,committed)·Δs at commit,
-// F_nc = F − F_el the non-conservative part of the force, s = max(δ, δ_p) the contact travel.
+// Trial/commit machinery shared by the contact laws 1-7 (docs/physics.md §1, docs/architecture.md
+// "Force laws"): one state struct held twice; dissipated work D += ½(F_nc,trial +
+// F_nc,committed)·Δs at commit, F_nc = F − F_el the non-conservative part of the force, s = max(δ,
+// δ_p) the contact travel.
 #pragma once
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// One-dimensional contact force laws for pounding (impact laws 1-7 of PHYSICS.md §1).
+// One-dimensional contact force laws for pounding (impact laws 1-7 of docs/physics.md §1).
 //
 // Sign convention (the only one in kimp; no law branches on the sign of a parameter):
 //   deformation δ = interpenetration of the two bodies, > 0 in contact, <= 0 with the gap open;
@@ -23,7 +23,7 @@ namespace kimp::lumped
   };
 
   /**
-   * Contact force law with trial/commit state (STYLE.md §6.4-6.7).
+   * Contact force law with trial/commit state (docs/architecture.md "Force laws").
    *
    * Contract:
    *  - `set_trial(δ, δ̇)` starts from the committed state every time: repeated calls with the same

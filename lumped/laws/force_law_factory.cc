@@ -1,4 +1,4 @@
-// Factory of the contact laws 1-7 (PHYSICS.md §1).
+// Factory of the contact laws 1-7 (docs/physics.md §1).
 #include "lumped/laws/force_law_factory.h"
 
 #include <sstream>

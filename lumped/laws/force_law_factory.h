@@ -1,4 +1,4 @@
-// Creation of the contact laws 1-7 of PHYSICS.md §1 from a plain parameter struct (SI units),
+// Creation of the contact laws 1-7 of docs/physics.md §1 from a plain parameter struct (SI units),
 // keyed by the law's name; per-contact instances then come from ForceLaw::clone().
 #pragma once
 
@@ -37,7 +37,7 @@ namespace kimp::lumped
     double                bumper_wall_stiffness       = 0.0; ///< k_w, N/m
   };
 
-  /// The names make_force_law() accepts, in the order of PHYSICS.md §1.
+  /// The names make_force_law() accepts, in the order of docs/physics.md §1.
   const std::vector<std::string> &force_law_names();
 
   /**

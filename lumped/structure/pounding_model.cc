@@ -1,5 +1,5 @@
 // Assembly of pounding configurations: buildings as tridiagonal blocks, walls, basement wall,
-// floor-to-floor contacts with neighbours, bumpers (thesis ch. 4-6, PHYSICS.md §2).
+// floor-to-floor contacts with neighbours, bumpers (thesis ch. 4-6, docs/physics.md §2).
 #include "lumped/structure/pounding_model.h"
 
 #include <cmath>

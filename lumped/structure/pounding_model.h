@@ -1,6 +1,6 @@
-// Assembled pounding system (thesis ch. 3-5, PHYSICS.md §2): the isolated (or fixed-base) building,
-// adjacent fixed-base buildings stacked as independent tridiagonal blocks, the isolator at DOF 0
-// and unilateral contacts (moat walls, basement wall, floor-to-floor) coupling them:
+// Assembled pounding system (thesis ch. 3-5, docs/physics.md §2): the isolated (or fixed-base)
+// building, adjacent fixed-base buildings stacked as independent tridiagonal blocks, the isolator
+// at DOF 0 and unilateral contacts (moat walls, basement wall, floor-to-floor) coupling them:
 //   M·ü + C·u̇ + K·u + f_iso(u_0) + Σ_c e_c·F_c(δ_c, δ̇_c) = −M·1·ü_g(t),  δ_c = u_L − u_R − gap_c.
 #pragma once
 

@@ -1,6 +1,7 @@
-// Shear-type MDOF buildings (thesis ch. 3, PHYSICS.md §2-3): masses lumped at the floors, linear
-// storeys, optional isolator between the ground and DOF 0, non-classical damping (eq. 3.1-3.3):
-// C = a·M + b·K (Rayleigh at the first and last mode of the whole model) + c_iso at C[0,0].
+// Shear-type MDOF buildings (thesis ch. 3, docs/physics.md §2-3): masses lumped at the floors,
+// linear storeys, optional isolator between the ground and DOF 0, non-classical damping
+// (eq. 3.1-3.3): C = a·M + b·K (Rayleigh at the first and last mode of the whole model) + c_iso at
+// C[0,0].
 #pragma once
 
 #include <memory>
@@ -57,7 +58,7 @@ namespace kimp::lumped
    */
   TridiagonalMatrix stiffness_matrix(const ShearBuilding &building, bool include_isolator);
 
-  /// The damping model of PHYSICS.md §2 and its ingredients.
+  /// The damping model of docs/physics.md §2 and its ingredients.
   struct BuildingDamping
   {
     ModalProperties      modes;    ///< of (K with the isolator's initial stiffness, M)

@@ -1,4 +1,4 @@
-// FEM scene (app/fem/fem_scene.h): defaults of PHYSICS.md §4, every validation rule
+// FEM scene (app/fem/fem_scene.h): defaults of docs/physics.md §4, every validation rule
 // with file:line:key, printed defaults reading back to the defaults, shipped scenes, and the
 // translation to geometry/ and fem/ parameters.
 #ifdef KIMP_WITH_FEM
@@ -131,7 +131,7 @@ namespace
     expect_relative(s.mesh.h_contact, 0.025, exact_tolerance, "h_contact");
     EXPECT_EQ(s.dynamics.dt, "auto");
     EXPECT_EQ(s.dynamics.integrator, Integrator::explicit_central_difference);
-    // PHYSICS.md §4: 8.0 m x 0.20 m of concrete is 3840 kg per metre.
+    // docs/physics.md §4: 8.0 m x 0.20 m of concrete is 3840 kg per metre.
     expect_relative(kimp::app::slab_mass(s), 3840, exact_tolerance, "slab mass");
 
     const kimp::geometry::SceneGeometry g = kimp::app::scene_geometry(s, 1.25);

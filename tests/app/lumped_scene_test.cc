@@ -1,4 +1,4 @@
-// `kimp lumped` scene: defaults equal PHYSICS.md §3, unit conversions, every validate() rule
+// `kimp lumped` scene: defaults equal docs/physics.md §3, unit conversions, every validate() rule
 // reported as file:line:key, printed defaults read back, shipped scenes load.
 #include <cmath>
 #include <filesystem>
@@ -69,7 +69,7 @@ TEST(LumpedScene, DefaultsEqualThesisTable42)
   EXPECT_DOUBLE_EQ(s.impact.cor, 0.7);
   EXPECT_FALSE(s.ground_motion.is_record());
 
-  // Derived values quoted in PHYSICS.md §3: W_tot 1530 t, Q = 1500.9 kN, F_y = 1715.3 kN,
+  // Derived values quoted in docs/physics.md §3: W_tot 1530 t, Q = 1500.9 kN, F_y = 1715.3 kN,
   // u_y = 8.58 mm, c_iso = 1.0496 MN·s/m.
   const kimp::lumped::ShearBuilding b = make_building(s);
   EXPECT_NEAR(b.total_mass(), 1530e3, 1e-6);
@@ -133,7 +133,7 @@ TEST(LumpedScene, UnitsConvertToSi)
 
 TEST(LumpedScene, BumperStiffnessFromMaterialMatchesThesis)
 {
-  // PHYSICS.md §1.7: one 150 x 150 x 50 mm bumper k_b = 0.089 kN/mm^2.65, four = 0.36.
+  // docs/physics.md §1.7: one 150 x 150 x 50 mm bumper k_b = 0.089 kN/mm^2.65, four = 0.36.
   LumpedScene s;
   s.impact.law                     = "bumper";
   const double     kn_per_mm_2_65  = 1e3 * std::pow(1e3, 2.65);

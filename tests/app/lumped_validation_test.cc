@@ -1,5 +1,5 @@
-// Validation of the lumped solver through the shipped scenes against the thesis (PHYSICS.md §5):
-// fixed-base T1 = 0.398 s; Kobe KJMA without walls 16.74 / 18.85 cm; Table 4.3 for six laws.
+// Validation of the lumped solver through the shipped scenes against the thesis (docs/physics.md
+// §5): fixed-base T1 = 0.398 s; Kobe KJMA without walls 16.74 / 18.85 cm; Table 4.3 for six laws.
 // The Kobe file available is the NGA-West2 processing (PGA 0.834 g) of the thesis' record
 // (0.821 g), so the tolerances are those the comparison supports (docs/validation.md).
 #include <algorithm>

@@ -1,4 +1,4 @@
-// `kimp study` scene: embedded defaults (PHYSICS.md §3-4), validation messages with
+// `kimp study` scene: embedded defaults (docs/physics.md §3-4), validation messages with
 // file:line:key, the lumped scene of the building runs and the FEM cache key.
 #ifdef KIMP_WITH_FEM
 
@@ -139,7 +139,7 @@ TEST(StudyScene, PeerRecordsAreOptional)
 
 TEST(StudyScene, ThesisTable21TimesWidthGivesTable22)
 {
-  // PHYSICS.md §4: Table 2.2 = Table 2.1 x 27.78 m (KV totals, kN/mm).
+  // docs/physics.md §4: Table 2.2 = Table 2.1 x 27.78 m (KV totals, kN/mm).
   constexpr double          table_rounding = 1e-3; // Table 2.2 is printed to 0.01 kN/mm
   const std::vector<double> kv_total{4166.67, 2500, 1250, 694.44};
   const auto               &table = kimp::app::thesis_table_2_1();

@@ -1,4 +1,4 @@
-// Sweep execution (issue 6): resume after SIGKILL gives exactly the rows of an uninterrupted run
+// Sweep execution: resume after SIGKILL gives exactly the rows of an uninterrupted run
 // without recomputing finished cases, failing cases are recorded, torn journal lines are ignored,
 // duplicates merge to one row, and 1 vs 2 ranks give identical rows.
 #include <atomic>

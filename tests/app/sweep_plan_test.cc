@@ -1,4 +1,4 @@
-// Sweep files (issue 6): inclusive ranges, product/zip enumeration, key-path setting in nested maps
+// Sweep files: inclusive ranges, product/zip enumeration, key-path setting in nested maps
 // and lists, stable case ids, and malformed files reported with file:line:key.
 #include <gtest/gtest.h>
 #include <set>

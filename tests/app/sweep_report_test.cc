@@ -1,4 +1,4 @@
-// d_req against d_SRSS (PHYSICS.md §2 last bullet): required gap on hand-made rows (monotone,
+// d_req against d_SRSS (docs/physics.md §2 last bullet): required gap on hand-made rows (monotone,
 // non-monotone, not reached), the SRSS gap in closed form, grouping by configuration and record,
 // and a small real sweep whose d_SRSS is sqrt(d_L² + d_R²) of the free peaks.
 #include <algorithm>

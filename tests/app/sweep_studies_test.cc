@@ -1,4 +1,4 @@
-// The shipped sweep studies (data/studies, issue 6): every file parses, every varied key exists in
+// The shipped sweep studies (data/studies): every file parses, every varied key exists in
 // the lumped scene schema, every case is a valid scene, and the case counts are those of the
 // studies' designs (e.g. study 1: 3 buildings x 3 records x 3 scalings x 71 gaps).
 #include <cstdlib>

@@ -17,7 +17,7 @@ namespace
 {
   namespace fs = std::filesystem;
 
-  constexpr double kelvin_voigt_tolerance = 0.01; ///< |COR_eff − COR|/COR (issue 3: < 1 %)
+  constexpr double kelvin_voigt_tolerance = 0.01; ///< |COR_eff − COR|/COR (< 1 %)
   constexpr double hysteretic_tolerance   = 0.05; ///< same, hysteretic law at COR >= 0.3
   constexpr double elastic_tolerance      = 0.01; ///< linear law: COR_eff = 1
 

@@ -1,4 +1,4 @@
-// `kimp sweep` end to end (issue 6): a gap sweep of the lumped engine whose rows obey the physics
+// `kimp sweep` end to end: a gap sweep of the lumped engine whose rows obey the physics
 // (no impacts beyond the free peak displacement), resume of an interrupted sweep through the CLI,
 // failing cases recorded, malformed sweep files named by file:line:key, and 1 vs 2 MPI ranks.
 #include <algorithm>

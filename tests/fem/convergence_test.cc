@@ -1,5 +1,5 @@
-// Mesh convergence of the PHYSICS.md §4 scene (H = 1.25 m, elastic slab): peak force and contact
-// duration change < 2 % between the two finest contact sizes. Slow (label `slow`).
+// Mesh convergence of the docs/physics.md §4 scene (H = 1.25 m, elastic slab): peak force and
+// contact duration change < 2 % between the two finest contact sizes. Slow (label `slow`).
 #include <gtest/gtest.h>
 #include <iostream>
 

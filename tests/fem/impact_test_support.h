@@ -103,7 +103,7 @@ namespace kimp::fem::testing
   }
 
 
-  /** The PHYSICS.md §4 scene (H = 1.25 m) meshed by geometry/ with contact size h. */
+  /** The docs/physics.md §4 scene (H = 1.25 m) meshed by geometry/ with contact size h. */
   inline ImpactParameters
   scene_parameters(double h_contact, bool rigid, const std::string &name, double h_max = 0.2)
   {

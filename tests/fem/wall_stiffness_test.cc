@@ -1,4 +1,4 @@
-// Static tip stiffness of the moat wall with backfill (issue 4, "same with soil"): the bonded
+// Static tip stiffness of the moat wall with backfill ("same with soil"): the bonded
 // soil adds a parallel support, so the stiffness rises monotonically with the soil modulus and
 // stays above the bare-cantilever value (which matches Timoshenko, see impact_test.cc).
 #include <gtest/gtest.h>
@@ -13,7 +13,8 @@ namespace
 
   TEST(WallWithBackfill, TipStiffnessRisesMonotonicallyWithSoilModulus)
   {
-    // PHYSICS.md §4 wall (H = 1.25 m, t = 0.25 m) and backfill (2.0 m wide, flush with the top).
+    // docs/physics.md §4 wall (H = 1.25 m, t = 0.25 m) and backfill (2.0 m wide, flush with the
+    // top).
     constexpr double   height = 1.25, thickness = 0.25, width = 2.0;
     constexpr unsigned n_thickness = 8;
     const double       k_bare =

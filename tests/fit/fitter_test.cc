@@ -25,7 +25,7 @@ namespace
   using kimp::fit::ForceHistory;
   using kimp::lumped::ForceLawSpec;
 
-  constexpr double        slab_mass       = 3840.0; // kg/m, PHYSICS.md §4 default slab
+  constexpr double        slab_mass       = 3840.0; // kg/m, docs/physics.md §4 default slab
   constexpr double        impact_velocity = 1.0;    // m/s
   constexpr double        exact_tolerance = 1.0e-4; // relative, noise-free recovery
   constexpr double        noisy_tolerance = 1.0e-2; // relative, 2 % noise
@@ -364,7 +364,7 @@ namespace
 
   TEST(StiffnessUnits, Table21TimesWidthGivesTable22)
   {
-    // data/reference/thesis_table_2_1.csv is PHYSICS.md §4 (thesis Tables 2.1 and 2.2).
+    // data/reference/thesis_table_2_1.csv is docs/physics.md §4 (thesis Tables 2.1 and 2.2).
     const char                 *source = std::getenv("KIMP_SOURCE_DIR");
     const std::filesystem::path csv    = std::filesystem::path(source != nullptr ? source : ".") /
                                       "data/reference/thesis_table_2_1.csv";

@@ -1,4 +1,4 @@
-// The scene mesh of PHYSICS.md §4 read back with gmsh: element types, physical groups, areas,
+// The scene mesh of docs/physics.md §4 read back with gmsh: element types, physical groups, areas,
 // conforming bonded interface, the gap, grading toward the contact, variants and validation.
 #include <algorithm>
 #include <array>

@@ -36,8 +36,8 @@ namespace
     bool        pga_negative;
   };
 
-  // ../shared/data/records/README.md, table "Files"; sign: "The PGA sign is negative in all but
-  // RSN77".
+  // The records' published header values (NPTS, DT, PGA in g; the PGA is negative in all but
+  // RSN77), as listed in docs/physics.md "Ground-motion records".
   const std::map<std::string, RecordRow> readme_rows = {
     {"RSN1106_KOBE_KJM000.AT2", {7500, 0.02, 0.8342, true}},
     {"SCS142.AT2", {8000, 0.005, 0.8972, true}},

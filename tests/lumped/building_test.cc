@@ -1,4 +1,5 @@
-// Shear buildings and the non-classical damping of PHYSICS.md §2-3 (thesis Table 4.2, eq. 3.1-3.3).
+// Shear buildings and the non-classical damping of docs/physics.md §2-3 (thesis Table 4.2,
+// eq. 3.1-3.3).
 #include <cmath>
 #include <gtest/gtest.h>
 
@@ -9,8 +10,8 @@ namespace kimp::lumped
 {
   namespace
   {
-    constexpr double period_rel_tol   = 0.005; // PHYSICS.md §5: T1 = 0.398 s to the digits given
-    constexpr double c_iso_rel_tol    = 1e-4;  // 1.0496 MN·s/m to the digits given
+    constexpr double period_rel_tol = 0.005; // docs/physics.md §5: T1 = 0.398 s to the digits given
+    constexpr double c_iso_rel_tol  = 1e-4;  // 1.0496 MN·s/m to the digits given
     constexpr double rayleigh_abs_tol = 1e-12;
   } // namespace
 

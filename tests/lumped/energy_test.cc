@@ -1,5 +1,6 @@
 // Energy balance E_0 + W_in = E_kin + E_strain + E_viscous + E_hysteretic + W_contact
-// (STYLE.md §6.23) for the thesis building, without and with impacts, for both integrators.
+// (docs/architecture.md "Tests") for the thesis building, without and with impacts, for both
+// integrators.
 #include <cmath>
 #include <gtest/gtest.h>
 
@@ -11,7 +12,7 @@ namespace kimp::lumped
 {
   namespace
   {
-    constexpr double balance_tol = 0.01; // PHYSICS/issue 3: closes to < 1 %
+    constexpr double balance_tol = 0.01; // docs/physics.md: closes to < 1 %
 
     GroundMotion motion()
     {

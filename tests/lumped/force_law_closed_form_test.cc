@@ -1,5 +1,5 @@
-// Closed-form checks of the contact laws 1-7 (PHYSICS.md §1): formulas, first-contact force from
-// the total penetration, tension of Kelvin-Voigt, permanent indentation, clipping, loop areas.
+// Closed-form checks of the contact laws 1-7 (docs/physics.md §1): formulas, first-contact force
+// from the total penetration, tension of Kelvin-Voigt, permanent indentation, clipping, loop areas.
 #include <cmath>
 #include <gtest/gtest.h>
 #include <limits>

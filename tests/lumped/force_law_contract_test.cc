@@ -1,5 +1,5 @@
-// Shared contract of every contact law (STYLE.md §6.20-6.21): idempotent trials, exact revert,
-// identical clones, no force with the gap open, exact tangents, non-decreasing dissipation.
+// Shared contract of every contact law (docs/architecture.md "Tests"): idempotent trials, exact
+// revert, identical clones, no force with the gap open, exact tangents, non-decreasing dissipation.
 #include <cmath>
 #include <gtest/gtest.h>
 #include <iostream>

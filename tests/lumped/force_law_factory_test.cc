@@ -1,5 +1,5 @@
-// make_force_law (PHYSICS.md §1 laws 1-7): names, defaults, and rejection of invalid parameters
-// with a message naming the parameter, its value and the admissible range.
+// make_force_law (docs/physics.md §1 laws 1-7): names, defaults, and rejection of invalid
+// parameters with a message naming the parameter, its value and the admissible range.
 #include <cmath>
 #include <gtest/gtest.h>
 #include <stdexcept>

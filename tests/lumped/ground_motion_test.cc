@@ -359,7 +359,7 @@ TEST(SyntheticNearFault, HitsTargetPgaAndEndsAtRest)
 
 TEST(SyntheticNearFault, DefaultsAreAStrongPulseLikeRecord)
 {
-  // PHYSICS.md §3 building, 15 cm moat: a near-fault record with PGV of order 1 m/s whose peak
+  // docs/physics.md §3 building, 15 cm moat: a near-fault record with PGV of order 1 m/s whose peak
   // velocity is the pulse, and little residual drift after the strong motion.
   for (const unsigned int seed : {1u, 2u, 3u, 4u, 5u, 6u})
   {

@@ -22,7 +22,7 @@ namespace kimp::lumped
   {
     constexpr double free_vibration_tol = 2e-4; // max |u − u_exact| / u0, Δt = T/1000
     constexpr double forced_tol         = 2e-3; // relative to the peak response
-    constexpr double min_rate           = 1.9;  // order 2 − 0.1 (STYLE.md §6.22)
+    constexpr double min_rate           = 1.9;  // order 2 − 0.1 (docs/architecture.md "Tests")
 
     PoundingModel
     sdof(const double m, const double k, const double c, std::vector<ContactPair> contacts = {})

@@ -1,5 +1,5 @@
 // Isolator laws: closed-cycle hysteretic energy 4·Q·(D − D_y) (thesis §3.1), exact tangent,
-// trial/commit contract (STYLE.md §6.21), parameter checks.
+// trial/commit contract (docs/architecture.md "Tests"), parameter checks.
 #include <cmath>
 #include <gtest/gtest.h>
 #include <random>

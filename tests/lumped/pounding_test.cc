@@ -1,6 +1,6 @@
-// Pounding configurations (PHYSICS.md §2): assembly of walls, basement, bumpers and neighbours;
-// unilateral contact (no force while the gap is open); block independence of the buildings;
-// the effect of the velocity handed to the laws; amplification factors.
+// Pounding configurations (docs/physics.md §2): assembly of walls, basement, bumpers and
+// neighbours; unilateral contact (no force while the gap is open); block independence of the
+// buildings; the effect of the velocity handed to the laws; amplification factors.
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -264,7 +264,7 @@ namespace kimp::lumped
     GroundMotion g;
     if (!load_kobe(g))
       GTEST_SKIP() << "records folder with RSN1106_KOBE_KJM000.AT2 not found";
-    // PHYSICS.md §5: trim to the thesis' 48 s and scale so that the no-impact peak isolation
+    // docs/physics.md §5: trim to the thesis' 48 s and scale so that the no-impact peak isolation
     // displacement is 16.74 cm (factor 0.939; the NGA file has PGA 0.834 g, the thesis' 0.821 g).
     g.acceleration.resize(2400);
     for (double &a : g.acceleration)

@@ -1,5 +1,6 @@
-// Symmetry (STYLE.md §6.23): symmetric system matrices, and a mirror-symmetric scene (walls or
-// neighbours on both sides, equal gaps) under the negated record gives the mirrored response.
+// Symmetry (docs/architecture.md "Tests"): symmetric system matrices, and a mirror-symmetric scene
+// (walls or neighbours on both sides, equal gaps) under the negated record gives the mirrored
+// response.
 #include <cmath>
 #include <gtest/gtest.h>
 

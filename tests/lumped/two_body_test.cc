@@ -1,4 +1,4 @@
-// Two-body collision lab (PHYSICS.md §1): effective COR of each law against the nominal one,
+// Two-body collision lab (docs/physics.md §1): effective COR of each law against the nominal one,
 // stereomechanical limit (2.2-2.3), momentum and energy balance, velocity estimates.
 #include <cmath>
 #include <gtest/gtest.h>
@@ -81,7 +81,7 @@ namespace
   TEST(TwoBody, ThesisFitWithMassInTonnesMeetsThreePercentDownToCor03)
   {
     // The same fit read with m_eff in t (a1 given explicitly) is closer at low COR: measured
-    // +1.9 % at 0.3, < 0.6 % above. Documents the units question of PHYSICS.md §1 law 6.
+    // +1.9 % at 0.3, < 0.6 % above. Documents the units question of docs/physics.md §1 law 6.
     constexpr double tolerance = 0.03;
     const double     m_t       = TwoBodySetup{}.effective_mass() / 1000.0;
     for (const double cor : {0.3, 0.4, 0.5, 0.7, 0.9})
