@@ -523,6 +523,24 @@ namespace kimp::io
                   file_->name);
   }
 
+  void ResultsGroup::write(std::string_view name, const std::vector<std::string> &values)
+  {
+    const Closer              type(utf8_string_type(), H5Tclose);
+    std::vector<const char *> pointers;
+    pointers.reserve(values.size());
+    for (const std::string &v : values)
+      pointers.push_back(v.c_str());
+    write_dataset(id_,
+                  path_,
+                  name,
+                  type.get(),
+                  type.get(),
+                  pointers.data(),
+                  {values.size()},
+                  "1",
+                  file_->name);
+  }
+
   void ResultsGroup::write_text(std::string_view name, std::string_view text)
   {
     const Closer      type(utf8_string_type(), H5Tclose);

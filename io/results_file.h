@@ -133,6 +133,8 @@ namespace kimp::io
     void write_scalar(std::string_view name, double value, std::string_view units);
     /// Scalar UTF-8 string dataset (units "1").
     void write_text(std::string_view name, std::string_view text);
+    /// 1-D dataset of UTF-8 strings (units "1"), e.g. the case ids or statuses of a table.
+    void write(std::string_view name, const std::vector<std::string> &values);
 
     /// Whole time series at once: steps[n], times[n] (s), values row-major [n][width]
     /// (width 1 gives value[n]).

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Configure and build kimp (Release) into ./build. Extra arguments go to CMake's configure step.
-# KIMP_BUILD_DIR overrides the build directory; KIMP_JOBS the parallel jobs (default: all cores).
+# KIMP_BUILD_DIR overrides the build directory; KIMP_JOBS the parallel jobs (default: all cores);
+# KIMP_TARGETS the targets to build (default: all, i.e. kimp, the tests and the benchmarks).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${KIMP_BUILD_DIR:-$root/build}"
@@ -13,4 +14,6 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
 elif [ $# -gt 0 ]; then
   cmake "$build" "$@"
 fi
-cmake --build "$build" -j "$jobs"
+targets=()
+for t in ${KIMP_TARGETS:-}; do targets+=(--target "$t"); done
+cmake --build "$build" -j "$jobs" "${targets[@]}"

@@ -34,7 +34,7 @@ FOREIGN = {
     "fem": ["hdf5", "H5", "yaml-cpp/", "nlohmann/", "CLI/", "spdlog/"],
     "fit": ["deal.II/", "gmsh", "hdf5", "H5", "yaml-cpp/", "nlohmann/", "CLI/", "mpi.h"],
     "io": ["deal.II/", "gmsh", "Eigen/", "CLI/"],
-    "app": ["CLI/"],
+    "app": ["CLI/", "hdf5", "H5"],
     "cli": ["deal.II/", "gmsh", "hdf5", "H5", "yaml-cpp/"],
 }
 

@@ -8,7 +8,6 @@
 #include <cmath>
 #include <exception>
 #include <fmt/format.h>
-#include <hdf5.h>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -42,72 +41,6 @@ namespace kimp::app
       if (name.empty() || name == "." || name == "..")
         name = "_" + name;
       return name;
-    }
-
-    /// RAII HDF5 identifier.
-    class Handle
-    {
-    public:
-      Handle(hid_t id, herr_t (*close)(hid_t), const std::string &what)
-        : id_(id)
-        , close_(close)
-      {
-        if (id_ < 0)
-          throw ResultsError("HDF5: cannot " + what);
-      }
-      Handle(const Handle &) = delete;
-      ~Handle() { close_(id_); }
-      hid_t get() const { return id_; }
-
-    private:
-      hid_t id_;
-      herr_t (*close_)(hid_t);
-    };
-
-    hid_t make_utf8_type()
-    {
-      const hid_t type = H5Tcopy(H5T_C_S1);
-      H5Tset_size(type, H5T_VARIABLE);
-      H5Tset_cset(type, H5T_CSET_UTF8);
-      return type;
-    }
-
-    void write_string_attribute(hid_t object, const char *name, const std::string &value)
-    {
-      const Handle type(make_utf8_type(), H5Tclose, "create a string type");
-      const Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create a scalar space");
-      const Handle attribute(
-        H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
-        H5Aclose,
-        std::string("create attribute ") + name);
-      const char *data = value.c_str();
-      if (H5Awrite(attribute.get(), type.get(), &data) < 0)
-        throw ResultsError(std::string("HDF5: cannot write attribute ") + name);
-    }
-
-    /// 1-D UTF-8 string dataset `name` in `group` with units "1".
-    void write_strings(hid_t group, const std::string &name, const std::vector<std::string> &values)
-    {
-      const Handle  type(make_utf8_type(), H5Tclose, "create a string type");
-      const hsize_t n = values.size();
-      const Handle  space(H5Screate_simple(1, &n, nullptr), H5Sclose, "create a data space");
-      const Handle  dataset(H5Dcreate2(group,
-                                      name.c_str(),
-                                      type.get(),
-                                      space.get(),
-                                      H5P_DEFAULT,
-                                      H5P_DEFAULT,
-                                      H5P_DEFAULT),
-                           H5Dclose,
-                           "create dataset " + name);
-      std::vector<const char *> pointers;
-      pointers.reserve(values.size());
-      for (const std::string &v : values)
-        pointers.push_back(v.c_str());
-      if (n > 0 &&
-          H5Dwrite(dataset.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()) < 0)
-        throw ResultsError("HDF5: cannot write dataset " + name);
-      write_string_attribute(dataset.get(), "units", "1");
     }
 
     std::string metric_text(double value)
@@ -385,10 +318,9 @@ namespace kimp::app
     }
     write_csv_atomic(output.file("sweep.csv"), header, rows);
 
-    // Numeric columns through ResultsFile (meta, input, units), strings added before the rename.
-    const std::filesystem::path partial = output.file("sweep.h5.partial");
+    // Numeric and text columns, meta and input through ResultsFile (temporary file, then rename).
     {
-      ResultsFile               file(partial, plan.text(), plan.to_json_text());
+      ResultsFile               file(output.file("sweep.h5"), plan.text(), plan.to_json_text());
       ResultsGroup              sweep = file.root().group("sweep");
       std::vector<std::int64_t> index;
       std::vector<double>       wall_time;
@@ -436,14 +368,7 @@ namespace kimp::app
       }
       sweep.set_attribute("n_cases", plan.cases().size());
       sweep.set_attribute("n_rows", table.rows.size());
-      file.commit();
-    }
 
-    {
-      const Handle file(H5Fopen(partial.c_str(), H5F_ACC_RDWR, H5P_DEFAULT),
-                        H5Fclose,
-                        "open " + partial.string());
-      const Handle sweep(H5Gopen2(file.get(), "/sweep", H5P_DEFAULT), H5Gclose, "open /sweep");
       std::vector<std::string> ids, companions, statuses;
       for (const SweepTableRow &r : table.rows)
       {
@@ -451,28 +376,22 @@ namespace kimp::app
         companions.push_back(r.companion);
         statuses.push_back(r.status);
       }
-      write_strings(sweep.get(), "id", ids);
-      write_strings(sweep.get(), "companion", companions);
-      write_strings(sweep.get(), "status", statuses);
-      const Handle parameters(
-        H5Gcreate2(sweep.get(), "parameters", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-        H5Gclose,
-        "create /sweep/parameters");
+      sweep.write("id", ids);
+      sweep.write("companion", companions);
+      sweep.write("status", statuses);
+      ResultsGroup parameters = sweep.group("parameters");
       for (std::size_t p = 0; p < table.parameter_names.size(); ++p)
       {
         std::vector<std::string> values;
         for (const SweepTableRow &r : table.rows)
           values.push_back(r.values[p]);
-        write_strings(parameters.get(), dataset_name(table.parameter_names[p]), values);
+        parameters.write(dataset_name(table.parameter_names[p]), values);
       }
       std::string columns;
       for (const std::string &h : header)
         columns += (columns.empty() ? "" : "\n") + h;
-      write_string_attribute(sweep.get(), "columns", columns);
+      sweep.set_attribute("columns", columns);
+      file.commit();
     }
-    std::error_code error;
-    std::filesystem::rename(partial, output.file("sweep.h5"), error);
-    if (error)
-      throw OutputError("cannot rename " + partial.string() + " to sweep.h5: " + error.message());
   }
 } // namespace kimp::app
