@@ -16,6 +16,7 @@
 #  include "app/helper_programs.h"
 #  include "geometry/scene_ids.h"
 #  include "io/scene_io.h"
+#  include "tests/support/files.h"
 
 namespace
 {
@@ -23,6 +24,7 @@ namespace
   using kimp::io::default_scene_text;
   using kimp::io::load_scene_text;
   using kimp::io::SceneError;
+  using kimp::testing::source_dir;
   using Integrator = kimp::fem::ImpactParameters::Integrator;
 
   constexpr double  exact_tolerance   = 1e-14; ///< relative: values set from decimal literals
@@ -100,12 +102,6 @@ namespace
                     "output_interval");
     EXPECT_EQ(a.dynamics.log_interval, b.dynamics.log_interval);
     EXPECT_EQ(a.output.vtu_interval, b.output.vtu_interval);
-  }
-
-  std::filesystem::path source_dir()
-  {
-    const char *dir = std::getenv("KIMP_SOURCE_DIR");
-    return dir != nullptr ? std::filesystem::path(dir) : std::filesystem::current_path();
   }
 
   TEST(FemScene, DefaultsAreThePhysicsSection4Scene)

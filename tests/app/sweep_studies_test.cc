@@ -11,6 +11,7 @@
 #include "app/ground_motion_scene.h"
 #include "app/lumped_scene.h"
 #include "app/sweep/sweep_plan.h"
+#include "tests/support/files.h"
 
 namespace
 {
@@ -18,8 +19,7 @@ namespace
 
   fs::path studies_dir()
   {
-    const char *dir = std::getenv("KIMP_SOURCE_DIR");
-    return (dir != nullptr ? fs::path(dir) : fs::current_path()) / "data/studies";
+    return kimp::testing::source_dir() / "data/studies";
   }
 
   TEST(SweepStudies, EveryShippedStudyIsValidWithItsDesignedCaseCount)

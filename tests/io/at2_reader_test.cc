@@ -16,6 +16,7 @@
 #include "io/at2_reader.h"
 #include "io/records.h"
 #include "io/units.h"
+#include "tests/support/temp_dir.h"
 
 namespace
 {
@@ -57,37 +58,7 @@ namespace
                                        source ? std::optional<fs::path>(source) : std::nullopt);
   }
 
-  /// A scratch directory removed at the end of the test.
-  class ScratchDir
-  {
-  public:
-    ScratchDir()
-      : path_(fs::temp_directory_path() /
-              ("kimp_at2_reader_test_" + std::to_string(::getpid()) + "_" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name()))
-    {
-      fs::remove_all(path_);
-      fs::create_directories(path_);
-    }
-    ~ScratchDir()
-    {
-      std::error_code ec;
-      fs::remove_all(path_, ec);
-    }
-    ScratchDir(const ScratchDir &)            = delete;
-    ScratchDir &operator=(const ScratchDir &) = delete;
-
-    fs::path write(const std::string &name, const std::string &bytes) const
-    {
-      const fs::path file = path_ / name;
-      std::ofstream  out(file, std::ios::binary);
-      out << bytes;
-      return file;
-    }
-
-  private:
-    fs::path path_;
-  };
+  using ScratchDir = kimp::testing::TempDir;
 
   template <class Function>
   std::string file_error(Function &&function)

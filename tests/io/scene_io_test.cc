@@ -14,6 +14,7 @@
 
 #include "io/scene_io.h"
 #include "io/units.h"
+#include "tests/support/temp_dir.h"
 
 namespace test_scene
 {
@@ -479,8 +480,8 @@ heights: ["1 m", "150 cm", "1750 mm"]
 
   TEST(SceneIo, LoadsFilesAndNamesMissingOnes)
   {
-    const auto path = std::filesystem::temp_directory_path() /
-                      ("kimp_scene_io_test_" + std::to_string(::getpid()) + ".yaml");
+    const kimp::testing::TempDir dir("scene_io_test");
+    const auto                   path = dir.file("scene.yaml");
     {
       std::ofstream out(path);
       out << "n_storeys: 7\n";
