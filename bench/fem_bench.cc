@@ -3,7 +3,6 @@
 #include <benchmark/benchmark.h>
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 
 #include "fem/impact.h"
 #include "fem/mpi_session.h"

@@ -8,12 +8,10 @@
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
-#include <hdf5.h>
 #include <mutex>
 #include <random>
 #include <set>
 #include <signal.h>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <sys/wait.h>

@@ -8,7 +8,6 @@
 #include <gtest/gtest.h>
 #include <random>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "app/sweep/sweep_engine.h"

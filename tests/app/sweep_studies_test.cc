@@ -1,7 +1,6 @@
 // The shipped sweep studies (data/studies): every file parses, every varied key exists in
 // the lumped scene schema, every case is a valid scene, and the case counts are those of the
 // studies' designs (e.g. study 1: 3 buildings x 3 records x 3 scalings x 71 gaps).
-#include <cstdlib>
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <map>

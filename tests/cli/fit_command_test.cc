@@ -2,13 +2,10 @@
 // end; the table gives back k per metre and k·W, fit.h5 has units and statuses.
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <gtest/gtest.h>
-#include <hdf5.h>
 #include <limits>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "app/fit_run.h"

@@ -2,15 +2,11 @@
 // the Kelvin-Voigt row reproduces its nominal COR, the linear law is elastic (COR 1), the
 // hysteretic law stays close to nominal; collide.h5 / cor_table.csv / summary.json written.
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <vector>
 
 #include "tests/support/csv.h"

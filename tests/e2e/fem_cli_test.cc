@@ -11,8 +11,6 @@
 #  include <nlohmann/json.hpp>
 #  include <sstream>
 #  include <string>
-#  include <sys/wait.h>
-#  include <unistd.h>
 #  include <vector>
 
 #  include "io/fem_results.h"

@@ -1,15 +1,10 @@
 // End-to-end `kimp lumped`: the built binary on small scenes; exit codes, lumped.h5 (units,
 // status), summary.json, peaks.csv, failed cases, bad scenes leaving no output, --print-defaults.
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
-#include <hdf5.h>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "app/lumped_scene.h"
 #include "tests/support/files.h"

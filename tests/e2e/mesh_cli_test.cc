@@ -5,13 +5,9 @@
 #  include <cmath>
 #  include <cstdlib>
 #  include <filesystem>
-#  include <fstream>
 #  include <gtest/gtest.h>
 #  include <nlohmann/json.hpp>
-#  include <sstream>
 #  include <string>
-#  include <sys/wait.h>
-#  include <unistd.h>
 
 #  include "tests/support/files.h"
 #  include "tests/support/kimp_run.h"

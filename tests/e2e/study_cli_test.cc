@@ -11,13 +11,9 @@
 #  include <filesystem>
 #  include <fstream>
 #  include <gtest/gtest.h>
-#  include <hdf5.h>
 #  include <map>
 #  include <nlohmann/json.hpp>
-#  include <sstream>
 #  include <string>
-#  include <sys/wait.h>
-#  include <unistd.h>
 #  include <vector>
 
 #  include "io/fem_results.h"

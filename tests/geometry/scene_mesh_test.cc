@@ -14,7 +14,6 @@
 #include <set>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "geometry/gmsh_session.h"

@@ -4,14 +4,12 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <gtest/gtest.h>
 #include <initializer_list>
 #include <map>
 #include <optional>
 #include <random>
 #include <string>
-#include <unistd.h>
 
 #include "io/at2_reader.h"
 #include "io/records.h"

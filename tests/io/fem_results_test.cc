@@ -6,7 +6,6 @@
 #include <hdf5.h>
 #include <random>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "io/fem_results.h"

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 #include <optional>
 #include <string>
-#include <unistd.h>
 
 #include "io/at2_reader.h"
 #include "io/records.h"

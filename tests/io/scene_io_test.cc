@@ -9,7 +9,6 @@
 #include <optional>
 #include <random>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "io/scene_io.h"
