@@ -17,11 +17,7 @@
 namespace
 {
   namespace fs = std::filesystem;
-  using kimp::testing::kimp;
-  using kimp::testing::KimpRun;
-  using kimp::testing::read_json;
-  using kimp::testing::split_csv_line;
-  using kimp::testing::TempDir;
+  using namespace kimp::testing;
 
   constexpr double kelvin_voigt_tolerance = 0.01; ///< |COR_eff − COR|/COR (< 1 %)
   constexpr double hysteretic_tolerance   = 0.05; ///< same, hysteretic law at COR >= 0.3
@@ -32,7 +28,7 @@ TEST(CollideCli, CorTableKelvinVoigtEqualsNominal)
 {
   const TempDir   temp_dir("e2e_collide");
   const fs::path &dir = temp_dir.path();
-  const KimpRun   run = kimp("collide -o " + (dir / "out").string(), dir);
+  const KimpRun   run = run_kimp("collide -o " + (dir / "out").string(), dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_TRUE(fs::exists(dir / "out" / "collide.h5"));
   const nlohmann::json summary = read_json(dir / "out" / "summary.json");
@@ -75,7 +71,7 @@ TEST(CollideCli, SceneChangesTheSetUpAndBadSceneIsRejected)
   std::ofstream(dir / "c.yaml") << "velocity: \"2 m/s\"\ncor_grid: [0.5, 0.9]\nlaws:\n"
                                    "  - name: kv\n    law: kelvin_voigt\n    k: \"2500 kN/mm\"\n";
   const KimpRun run =
-    kimp("collide " + (dir / "c.yaml").string() + " -o " + (dir / "out").string(), dir);
+    run_kimp("collide " + (dir / "c.yaml").string() + " -o " + (dir / "out").string(), dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json summary = read_json(dir / "out" / "summary.json");
   ASSERT_EQ(summary["cor_table"].size(), 2u);
@@ -88,7 +84,7 @@ TEST(CollideCli, SceneChangesTheSetUpAndBadSceneIsRejected)
   std::ofstream(dir / "bad.yaml")
     << "laws:\n  - name: j\n    law: jankowski\n    k: \"2500 kN/mm\"\n";
   const KimpRun bad =
-    kimp("collide " + (dir / "bad.yaml").string() + " -o " + (dir / "bad").string(), dir);
+    run_kimp("collide " + (dir / "bad.yaml").string() + " -o " + (dir / "bad").string(), dir);
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.err.find("bad.yaml:4: laws[0].k = 2500 kN/mm"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(dir / "bad" / "cor_table.csv"));

@@ -20,12 +20,7 @@
 
 namespace
 {
-  using kimp::testing::kimp;
-  using kimp::testing::KimpRun;
-  using kimp::testing::read_json;
-  using kimp::testing::read_text;
-  using kimp::testing::TempDir;
-  using kimp::testing::write_text;
+  using namespace kimp::testing;
 
   constexpr double momentum_tolerance = 2e-3;  ///< relative: impulse vs slab momentum change
   constexpr double rank_tolerance     = 1e-10; ///< relative: 1 vs 2 MPI ranks
@@ -47,7 +42,7 @@ namespace
   {
     const TempDir dir("fem_cli");
     write_quick_scene(dir.path(), "dynamics: {end_time: \"40 ms\"}\n");
-    const KimpRun run = kimp("fem scene.yaml -o out", dir.path());
+    const KimpRun run = run_kimp("fem scene.yaml -o out", dir.path());
     ASSERT_EQ(run.exit_code, 0) << run.err;
 
     const std::vector<kimp::io::FemCase> cases =
@@ -101,7 +96,7 @@ namespace
   {
     const TempDir dir("fem_cli_overlap");
     write_quick_scene(dir.path(), "geometry:\n  gap: \"0 mm\"\n");
-    const KimpRun run = kimp("fem scene.yaml -o out", dir.path());
+    const KimpRun run = run_kimp("fem scene.yaml -o out", dir.path());
     EXPECT_NE(run.exit_code, 0);
     EXPECT_NE(run.err.find("scene.yaml:5: geometry.gap = 0 mm"), std::string::npos) << run.err;
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "out/fem.h5"));
@@ -112,7 +107,7 @@ namespace
   {
     const TempDir dir("fem_cli_dt");
     write_quick_scene(dir.path(), "dynamics: {dt: \"1 ms\"}\n");
-    const KimpRun run = kimp("fem scene.yaml -o out", dir.path());
+    const KimpRun run = run_kimp("fem scene.yaml -o out", dir.path());
     EXPECT_NE(run.exit_code, 0);
     EXPECT_NE(run.err.find("H1.25"), std::string::npos) << run.err;
     EXPECT_NE(run.err.find("dt"), std::string::npos) << run.err;
@@ -132,13 +127,12 @@ namespace
       GTEST_SKIP() << "KIMP_MPIEXEC not set: run through ctest -L mpi";
     const TempDir dir("fem_cli_mpi");
     write_quick_scene(dir.path(), "dynamics: {end_time: \"3 ms\"}\n", false);
-    const KimpRun one = kimp("-q fem scene.yaml -o one", dir.path());
+    const KimpRun one = run_kimp("-q fem scene.yaml -o one", dir.path());
     ASSERT_EQ(one.exit_code, 0) << one.err;
     const std::string command = "cd '" + dir.path().string() + "' && " + mpiexec +
-                                " -np 2 --allow-run-as-root --oversubscribe " +
-                                kimp::testing::kimp_executable() + " -q fem scene.yaml -o two";
-    ASSERT_EQ(kimp::testing::run_command(command, dir.path() / "mpi.txt"), 0)
-      << read_text(dir.path() / "mpi.txt");
+                                " -np 2 --allow-run-as-root --oversubscribe " + kimp_executable() +
+                                " -q fem scene.yaml -o two";
+    ASSERT_EQ(run_command(command, dir.path() / "mpi.txt"), 0) << read_text(dir.path() / "mpi.txt");
 
     const auto a = kimp::io::read_fem_cases(dir.path() / "one/fem.h5");
     const auto b = kimp::io::read_fem_cases(dir.path() / "two/fem.h5");

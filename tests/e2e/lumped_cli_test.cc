@@ -16,11 +16,7 @@ namespace
 {
   namespace fs = std::filesystem;
 
-  using kimp::testing::Hdf5Reader;
-  using kimp::testing::KimpRun;
-  using kimp::testing::read_json;
-  using kimp::testing::read_text;
-  using kimp::testing::TempDir;
+  using namespace kimp::testing;
 
   /// Isolated 4-storey building, walls at 4 cm, 6 s of the synthetic motion: a few impacts.
   const char *small_scene = "walls:\n"
@@ -54,8 +50,7 @@ TEST(LumpedCli, WritesResultsFileSummaryAndPeaks)
   std::ofstream(dir.path() / "scene.yaml") << small_scene;
   const fs::path out = dir.path() / "out";
   const KimpRun  run =
-    kimp::testing::kimp("lumped " + (dir.path() / "scene.yaml").string() + " -o " + out.string(),
-                        dir.path());
+    run_kimp("lumped " + (dir.path() / "scene.yaml").string() + " -o " + out.string(), dir.path());
   ASSERT_EQ(run.exit_code, 0) << run.err;
 
   Hdf5Reader h5(out / "lumped.h5");
@@ -118,8 +113,7 @@ TEST(LumpedCli, FailedCaseIsRecordedAndExitsNonZero)
   std::ofstream(dir.path() / "scene.yaml") << scene;
   const fs::path out = dir.path() / "out";
   const KimpRun  run =
-    kimp::testing::kimp("lumped " + (dir.path() / "scene.yaml").string() + " -o " + out.string(),
-                        dir.path());
+    run_kimp("lumped " + (dir.path() / "scene.yaml").string() + " -o " + out.string(), dir.path());
   EXPECT_NE(run.exit_code, 0);
   EXPECT_NE(run.err.find("stiff"), std::string::npos) << run.err;
   Hdf5Reader h5(out / "lumped.h5");
@@ -138,8 +132,7 @@ TEST(LumpedCli, BadSceneNamesFileLineKeyAndWritesNothing)
   std::ofstream(dir.path() / "bad.yaml") << "isolator:\n  K1: \"200 MN/m\"\n  K2: \"300 MN/m\"\n";
   const fs::path out = dir.path() / "out";
   const KimpRun  run =
-    kimp::testing::kimp("lumped " + (dir.path() / "bad.yaml").string() + " -o " + out.string(),
-                        dir.path());
+    run_kimp("lumped " + (dir.path() / "bad.yaml").string() + " -o " + out.string(), dir.path());
   EXPECT_NE(run.exit_code, 0);
   EXPECT_NE(run.err.find("bad.yaml:3: isolator.K2 = 300 MN/m"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(out / "lumped.h5"));
@@ -150,7 +143,7 @@ TEST(LumpedCli, BadSceneNamesFileLineKeyAndWritesNothing)
 TEST(LumpedCli, PrintDefaultsReadsBackToTheDefaults)
 {
   TempDir       dir("e2e_lumped_defaults");
-  const KimpRun run = kimp::testing::kimp("lumped --print-defaults", dir.path());
+  const KimpRun run = run_kimp("lumped --print-defaults", dir.path());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   using kimp::app::LumpedScene;
   const LumpedScene back = kimp::io::load_scene_text<LumpedScene>(run.out, "defaults");

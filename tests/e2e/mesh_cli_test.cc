@@ -15,12 +15,7 @@
 
 namespace
 {
-  using kimp::testing::kimp;
-  using kimp::testing::KimpRun;
-  using kimp::testing::read_json;
-  using kimp::testing::read_text;
-  using kimp::testing::TempDir;
-  using kimp::testing::write_text;
+  using namespace kimp::testing;
 
   constexpr double area_tolerance = 1e-10; ///< relative: rectangles meshed exactly
 
@@ -35,7 +30,7 @@ namespace
     write_text(dir.path() / "scene.yaml",
                "wall_heights: [\"1.0 m\", \"1.5 m\"]\n"
                "mesh: {h_contact: \"5 cm\", h_max: \"20 cm\", grading: 1.5}\n");
-    const KimpRun run = kimp("mesh scene.yaml -o out", dir.path());
+    const KimpRun run = run_kimp("mesh scene.yaml -o out", dir.path());
     ASSERT_EQ(run.exit_code, 0) << run.err;
 
     const nlohmann::json summary = read_json(dir.path() / "out/summary.json");
@@ -88,7 +83,7 @@ namespace
     write_text(dir.path() / "scene.yaml",
                "slab: {rigid: true}\ngeometry: {with_backfill: false}\n"
                "mesh: {h_contact: \"5 cm\", h_max: \"20 cm\"}\n");
-    const KimpRun run = kimp("-q mesh scene.yaml -o out", dir.path());
+    const KimpRun run = run_kimp("-q mesh scene.yaml -o out", dir.path());
     ASSERT_EQ(run.exit_code, 0) << run.err;
     const nlohmann::json  summary = read_json(dir.path() / "out/summary.json");
     const nlohmann::json &entry   = summary.at("cases").at("H1.25");
@@ -104,7 +99,7 @@ namespace
   {
     const TempDir dir("mesh_cli_overlap");
     write_text(dir.path() / "scene.yaml", "geometry:\n  gap: \"-1 mm\"\n");
-    const KimpRun run = kimp("mesh scene.yaml -o out", dir.path());
+    const KimpRun run = run_kimp("mesh scene.yaml -o out", dir.path());
     EXPECT_NE(run.exit_code, 0);
     EXPECT_NE(run.err.find("scene.yaml:2: geometry.gap = -1 mm"), std::string::npos) << run.err;
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "out/mesh")) << run.err;

@@ -9,10 +9,7 @@
 namespace
 {
   namespace fs = std::filesystem;
-  using kimp::testing::kimp_executable;
-  using kimp::testing::read_text;
-  using kimp::testing::run_command;
-  using kimp::testing::TempDir;
+  using namespace kimp::testing;
 
   // Disabled by default: run through the ctest entry e2e_mpi_abort_test.mpi (label mpi), which
   // needs mpirun.

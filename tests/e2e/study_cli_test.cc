@@ -25,17 +25,15 @@
 
 namespace
 {
-  using kimp::testing::Hdf5Reader;
-  using kimp::testing::read_csv_records;
-  using kimp::testing::read_json;
-  using kimp::testing::read_text;
-  using kimp::testing::TempDir;
+  using namespace kimp::testing;
 
-  /// `kimp <arguments>` run in `dir`; returns the exit code, stderr (the log) in `log`.
-  int run_kimp(const std::string &arguments, const std::filesystem::path &dir, std::string &log)
+  /// `kimp <arguments>` run in `dir`; returns the exit code, stdout and stderr (the log) in `log`.
+  int run_kimp_logged(const std::string           &arguments,
+                      const std::filesystem::path &dir,
+                      std::string                 &log)
   {
-    const kimp::testing::KimpRun run = kimp::testing::kimp(arguments, dir);
-    log                              = run.out + run.err;
+    const KimpRun run = run_kimp(arguments, dir);
+    log               = run.out + run.err;
     return run.exit_code;
   }
 
@@ -103,7 +101,7 @@ TEST(StudyCli, ReducedStudyGivesSofterWallsForTallerHeightsAndReusesTheFem)
   const TempDir dir("study_cli");
   std::ofstream(dir.path() / "study.yaml") << reduced_study;
   std::string log;
-  ASSERT_EQ(run_kimp("study study.yaml -o out", dir.path(), log), 0) << log;
+  ASSERT_EQ(run_kimp_logged("study study.yaml -o out", dir.path(), log), 0) << log;
   const std::filesystem::path out = dir.path() / "out";
 
   // k table: k(1.0 m) > k(2.0 m) for both laws, per metre and total = per metre x 27.78 m.
@@ -153,7 +151,7 @@ TEST(StudyCli, ReducedStudyGivesSofterWallsForTallerHeightsAndReusesTheFem)
 
   // Re-run: the FEM cases come from the cache, files untouched, same k.
   const auto cached_time = std::filesystem::last_write_time(out / "fem" / "H1.00.h5");
-  ASSERT_EQ(run_kimp("study study.yaml -o out", dir.path(), log), 0) << log;
+  ASSERT_EQ(run_kimp_logged("study study.yaml -o out", dir.path(), log), 0) << log;
   EXPECT_NE(log.find("H1.00: FEM result reused"), std::string::npos) << log;
   EXPECT_NE(log.find("H2.00: FEM result reused"), std::string::npos) << log;
   EXPECT_EQ(std::filesystem::last_write_time(out / "fem" / "H1.00.h5"), cached_time);
@@ -170,7 +168,7 @@ TEST(StudyCli, AutoFidelityReportsLevelAndErrorAndTheExtraStudiesAreConsistent)
   const TempDir dir("study_cli_auto");
   std::ofstream(dir.path() / "study.yaml") << auto_study;
   std::string log;
-  ASSERT_EQ(run_kimp("study study.yaml -o out", dir.path(), log), 0) << log;
+  ASSERT_EQ(run_kimp_logged("study study.yaml -o out", dir.path(), log), 0) << log;
   const std::filesystem::path out = dir.path() / "out";
 
   // k table: the tolerance (0.001 %) is not met on two levels, so the finest level is used and
@@ -298,7 +296,7 @@ TEST(StudyCli, BadSceneFailsWithFileLineAndKey)
   const TempDir dir("study_cli_bad");
   std::ofstream(dir.path() / "bad.yaml") << "fit:\n  width: \"-3 m\"\n";
   std::string log;
-  EXPECT_EQ(run_kimp("study bad.yaml -o out", dir.path(), log), 1) << log;
+  EXPECT_EQ(run_kimp_logged("study bad.yaml -o out", dir.path(), log), 1) << log;
   EXPECT_NE(log.find("bad.yaml:2: fit.width = -3 m"), std::string::npos) << log;
 }
 
@@ -314,12 +312,11 @@ TEST(StudyCliMpi, DISABLED_TwoRanksShareTheHeightsAndGiveTheSameKTable)
   study.replace(study.find("charts: true"), 12, "charts: false");
   std::ofstream(dir.path() / "study.yaml") << study;
   std::string log;
-  ASSERT_EQ(run_kimp("study study.yaml -o one", dir.path(), log), 0) << log;
+  ASSERT_EQ(run_kimp_logged("study study.yaml -o one", dir.path(), log), 0) << log;
   const std::string command = "cd '" + dir.path().string() +
                               "' && mpirun --allow-run-as-root --oversubscribe -np 2 " +
-                              kimp::testing::kimp_executable() + " study study.yaml -o two";
-  ASSERT_EQ(kimp::testing::run_command(command, dir.path() / "two.log"), 0)
-    << read_text(dir.path() / "two.log");
+                              kimp_executable() + " study study.yaml -o two";
+  ASSERT_EQ(run_command(command, dir.path() / "two.log"), 0) << read_text(dir.path() / "two.log");
   const std::string two_log = read_text(dir.path() / "two.log");
   EXPECT_NE(two_log.find("on 2 ranks"), std::string::npos) << two_log;
   // Rank 1 computed H = 2.0 m (the second height); rank 0 reused it.

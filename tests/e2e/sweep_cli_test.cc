@@ -18,16 +18,12 @@
 
 namespace
 {
-  using kimp::testing::source_dir;
+  using namespace kimp::testing;
   namespace fs = std::filesystem;
 
-  using kimp::testing::read_csv;
-  using Csv = kimp::testing::CsvTable;
-  using kimp::testing::read_text;
-  using kimp::testing::run_command;
-  using kimp::testing::TempDir;
+  using Csv = CsvTable;
 
-  const std::string kimp = kimp::testing::kimp_executable();
+  const std::string kimp = kimp_executable();
 
   /// Rows without the wall time (last column), which differs between runs.
   std::vector<std::vector<std::string>> rows_without_wall_time(const fs::path &csv_file)

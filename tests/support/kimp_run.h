@@ -1,5 +1,5 @@
-// kimp::testing::kimp(): the built `kimp` executable (KIMP_BINARY_DIR "/kimp", a definition every
-// test gets from kimp_add_test) run in a directory with its output captured; and any shell
+// kimp::testing::run_kimp(): the built `kimp` executable (KIMP_BINARY_DIR "/kimp", a definition
+// every test gets from kimp_add_test) run in a directory with its output captured; and any shell
 // command with its output captured to a log file.
 #pragma once
 
@@ -40,7 +40,7 @@ namespace kimp::testing
 
   /// `kimp <arguments>` run in `dir`, stdout and stderr captured to stdout.txt and stderr.txt
   /// there.
-  inline KimpRun kimp(const std::string &arguments, const std::filesystem::path &dir)
+  inline KimpRun run_kimp(const std::string &arguments, const std::filesystem::path &dir)
   {
     const std::string command = "cd '" + dir.string() + "' && " + kimp_executable() + " " +
                                 arguments + " > stdout.txt 2> stderr.txt";
