@@ -17,6 +17,7 @@
 #  include "geometry/scene_ids.h"
 #  include "io/scene_io.h"
 #  include "tests/support/files.h"
+#  include "tests/support/scene_errors.h"
 
 namespace
 {
@@ -40,15 +41,7 @@ namespace
   /// The SceneError message of loading `text`, or "" if it loads.
   std::string scene_error(const std::string &text)
   {
-    try
-    {
-      load_scene_text<FemScene>(text, file_name);
-    }
-    catch (const SceneError &error)
-    {
-      return error.what();
-    }
-    return "";
+    return kimp::testing::scene_error<FemScene>(text, file_name);
   }
 
   void expect_same_scene(const FemScene &a, const FemScene &b, double tolerance)

@@ -13,6 +13,7 @@
 #include "lumped/isolators/bilinear_isolator.h"
 #include "lumped/structure/shear_building.h"
 #include "tests/support/files.h"
+#include "tests/support/scene_errors.h"
 
 namespace
 {
@@ -33,15 +34,7 @@ namespace
   /// The message of the SceneError thrown by loading `text` ("" if none is thrown).
   std::string error_of(const std::string &text)
   {
-    try
-    {
-      load(text);
-    }
-    catch (const SceneError &error)
-    {
-      return error.what();
-    }
-    return "";
+    return kimp::testing::scene_error<LumpedScene>(text, "scene.yaml");
   }
 } // namespace
 

@@ -13,6 +13,7 @@
 
 #include "io/scene_io.h"
 #include "io/units.h"
+#include "tests/support/scene_errors.h"
 #include "tests/support/temp_dir.h"
 
 namespace test_scene
@@ -166,15 +167,7 @@ namespace
   template <class T = Scene>
   std::string scene_error(const std::string &text)
   {
-    try
-    {
-      load_scene_text<T>(text, file_name);
-    }
-    catch (const SceneError &error)
-    {
-      return error.what();
-    }
-    return "";
+    return kimp::testing::scene_error<T>(text, file_name);
   }
 
   /// Expects `message` to contain every one of `parts`.
