@@ -7,19 +7,20 @@
 #include <string>
 #include <unistd.h>
 
+#include "tests/support/temp_dir.h"
+
 namespace kimp::testing
 {
   /**
-   * The directory kimp_<tag>_<process id of rank 0> under the system temporary directory,
-   * created on every rank of `comm` (collective: every rank must call it). It is left in place
-   * for the rest of the job; the process id keeps concurrent jobs apart.
+   * The directory process_temp_path(tag) of rank 0 of `comm`, created on every rank
+   * (collective: every rank must call it). It is not removed: the files in it are read until
+   * the end of the job, and the process id keeps concurrent jobs apart.
    */
   inline std::filesystem::path shared_temp_dir(const std::string &tag, MPI_Comm comm)
   {
     int pid = static_cast<int>(::getpid());
     MPI_Bcast(&pid, 1, MPI_INT, 0, comm);
-    const auto dir =
-      std::filesystem::temp_directory_path() / ("kimp_" + tag + "_" + std::to_string(pid));
+    const std::filesystem::path dir = process_temp_path(tag, pid);
     std::filesystem::create_directories(dir);
     return dir;
   }

@@ -12,13 +12,13 @@
 namespace kimp::testing
 {
   /**
-   * The path kimp_<tag>_<process id> under the system temporary directory. ctest runs every
-   * test in its own process, so the process id keeps concurrent tests apart. Nothing is created.
+   * The path kimp_<tag>_<pid> under the system temporary directory, by default with the id of
+   * this process: ctest runs every test in its own process, so the process id keeps concurrent
+   * tests apart. Nothing is created.
    */
-  inline std::filesystem::path process_temp_path(const std::string &tag)
+  inline std::filesystem::path process_temp_path(const std::string &tag, int pid = ::getpid())
   {
-    return std::filesystem::temp_directory_path() /
-           ("kimp_" + tag + "_" + std::to_string(::getpid()));
+    return std::filesystem::temp_directory_path() / ("kimp_" + tag + "_" + std::to_string(pid));
   }
 
   /**
