@@ -3,13 +3,13 @@
 #include <benchmark/benchmark.h>
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 
 #include "fem/impact.h"
 #include "fem/mpi_session.h"
 #include "geometry/scene_geometry.h"
 #include "geometry/scene_ids.h"
 #include "geometry/scene_mesh.h"
+#include "tests/support/mpi_temp_dir.h"
 
 namespace
 {
@@ -21,13 +21,10 @@ namespace
     g.h_contact = h_contact;
     g.h_max     = std::max(0.1, h_contact);
     g.mesh_slab = !rigid;
-    int pid     = static_cast<int>(getpid());
-    MPI_Bcast(&pid, 1, MPI_INT, 0, MPI_COMM_WORLD);
-    int rank = 0;
+    int rank    = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    const auto file = std::filesystem::temp_directory_path() /
-                      ("kimp_fem_bench_" + std::to_string(pid) + "_" + std::to_string(h_contact) +
-                       (rigid ? "_rigid" : "") + ".msh");
+    const auto file = kimp::testing::shared_temp_dir("fem_bench", MPI_COMM_WORLD) /
+                      (std::to_string(h_contact) + (rigid ? "_rigid" : "") + ".msh");
     if (rank == 0)
       kimp::geometry::build_scene_mesh(g, file);
     MPI_Barrier(MPI_COMM_WORLD);

@@ -11,6 +11,7 @@
 #include "lumped/integrators/central_difference.h"
 #include "lumped/integrators/newmark_integrator.h"
 #include "lumped/laws/force_law_factory.h"
+#include "tests/support/lumped_scenes.h"
 
 namespace
 {
@@ -34,18 +35,8 @@ namespace
   /// (2500 kN/mm, COR 0.7, m_wall 500 t) at 15 cm on both sides.
   PoundingModel walled_building(const std::string &law = "modified_kelvin_voigt")
   {
-    ForceLawSpec spec;
-    spec.law       = law;
-    spec.stiffness = law == "jankowski" ? 750e3 / std::pow(1e-3, 1.5) : 2.5e9;
-    spec.cor       = 0.7;
-    MoatWall w;
-    w.gap = 0.15;
-    w.law = force_law_factory(spec);
-    PoundingScene scene;
-    scene.building   = reference_isolated_building(4);
-    scene.left_wall  = w;
-    scene.right_wall = w;
-    return PoundingModel(scene);
+    const double stiffness = law == "jankowski" ? 750e3 / std::pow(1e-3, 1.5) : 2.5e9;
+    return PoundingModel(kimp::testing::walled_scene(law, stiffness, 0.15));
   }
 
   void set_counters(benchmark::State &state, const Response &r)

@@ -16,6 +16,8 @@
 #  include "app/helper_programs.h"
 #  include "geometry/scene_ids.h"
 #  include "io/scene_io.h"
+#  include "tests/support/files.h"
+#  include "tests/support/scene_errors.h"
 
 namespace
 {
@@ -23,6 +25,7 @@ namespace
   using kimp::io::default_scene_text;
   using kimp::io::load_scene_text;
   using kimp::io::SceneError;
+  using kimp::testing::source_dir;
   using Integrator = kimp::fem::ImpactParameters::Integrator;
 
   constexpr double  exact_tolerance   = 1e-14; ///< relative: values set from decimal literals
@@ -38,15 +41,7 @@ namespace
   /// The SceneError message of loading `text`, or "" if it loads.
   std::string scene_error(const std::string &text)
   {
-    try
-    {
-      load_scene_text<FemScene>(text, file_name);
-    }
-    catch (const SceneError &error)
-    {
-      return error.what();
-    }
-    return "";
+    return kimp::testing::scene_error<FemScene>(text, file_name);
   }
 
   void expect_same_scene(const FemScene &a, const FemScene &b, double tolerance)
@@ -100,12 +95,6 @@ namespace
                     "output_interval");
     EXPECT_EQ(a.dynamics.log_interval, b.dynamics.log_interval);
     EXPECT_EQ(a.output.vtu_interval, b.output.vtu_interval);
-  }
-
-  std::filesystem::path source_dir()
-  {
-    const char *dir = std::getenv("KIMP_SOURCE_DIR");
-    return dir != nullptr ? std::filesystem::path(dir) : std::filesystem::current_path();
   }
 
   TEST(FemScene, DefaultsAreThePhysicsSection4Scene)

@@ -12,9 +12,12 @@
 #include "io/units.h"
 #include "lumped/isolators/bilinear_isolator.h"
 #include "lumped/structure/shear_building.h"
+#include "tests/support/files.h"
+#include "tests/support/scene_errors.h"
 
 namespace
 {
+  using kimp::testing::source_dir;
   using namespace kimp::io;
   using namespace kimp::app;
 
@@ -22,12 +25,6 @@ namespace
   constexpr double table_tolerance     = 5e-4;  ///< relative, values quoted to 4-5 digits
   constexpr double g                   = 9.80665;
   constexpr double kn_per_mm_1_5_in_si = 750e3 * 31622.776601683792; ///< 750 kN/mm^1.5 in N/m^1.5
-
-  std::filesystem::path source_dir()
-  {
-    const char *env = std::getenv("KIMP_SOURCE_DIR");
-    return env ? std::filesystem::path(env) : std::filesystem::current_path();
-  }
 
   LumpedScene load(const std::string &text)
   {
@@ -37,15 +34,7 @@ namespace
   /// The message of the SceneError thrown by loading `text` ("" if none is thrown).
   std::string error_of(const std::string &text)
   {
-    try
-    {
-      load(text);
-    }
-    catch (const SceneError &error)
-    {
-      return error.what();
-    }
-    return "";
+    return kimp::testing::scene_error<LumpedScene>(text, "scene.yaml");
   }
 } // namespace
 

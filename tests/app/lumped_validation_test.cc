@@ -14,6 +14,7 @@
 #include "app/ground_motion_scene.h"
 #include "app/lumped_run.h"
 #include "app/lumped_scene.h"
+#include "tests/support/files.h"
 
 namespace
 {
@@ -46,9 +47,7 @@ namespace
 
   std::filesystem::path scene_path(const std::string &name)
   {
-    const char *env = std::getenv("KIMP_SOURCE_DIR");
-    return (env ? std::filesystem::path(env) : std::filesystem::current_path()) / "data" /
-           "scenes" / name;
+    return kimp::testing::source_dir() / "data" / "scenes" / name;
   }
 
   /// The shipped scene, or nullopt (with the reason) when its record is not available.

@@ -8,6 +8,7 @@
 #  include "app/study/study_fem.h"
 #  include "app/study/study_run.h"
 #  include "app/study/study_scene.h"
+#  include "tests/support/scene_errors.h"
 
 namespace
 {
@@ -18,15 +19,7 @@ namespace
   /// The scene error message of `text` (empty if it loads).
   std::string scene_error(const std::string &text)
   {
-    try
-    {
-      kimp::io::read_scene_text<StudyScene>(text, "study.yaml");
-    }
-    catch (const kimp::io::SceneError &error)
-    {
-      return error.what();
-    }
-    return "";
+    return kimp::testing::scene_error<StudyScene>(text, "study.yaml");
   }
 } // namespace
 

@@ -8,12 +8,10 @@
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
-#include <hdf5.h>
 #include <mutex>
 #include <random>
 #include <set>
 #include <signal.h>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <sys/wait.h>
@@ -27,9 +25,15 @@
 #include "io/scene_io.h"
 #include "io/summary.h"
 #include "io/units.h"
+#include "tests/support/files.h"
+#include "tests/support/hdf5_reader.h"
+#include "tests/support/temp_dir.h"
 
 namespace
 {
+  using kimp::testing::Hdf5Reader;
+  using kimp::testing::read_lines;
+  using kimp::testing::TempDir;
   namespace fs = std::filesystem;
   using kimp::app::CaseRow;
   using kimp::app::SweepOptions;
@@ -74,23 +78,6 @@ namespace
                             "toy.yaml");
   }
 
-  fs::path fresh_dir(const std::string &name)
-  {
-    const fs::path dir =
-      fs::temp_directory_path() / ("kimp_sweep_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    return dir;
-  }
-
-  std::vector<std::string> read_lines(const fs::path &file)
-  {
-    std::ifstream            in(file);
-    std::vector<std::string> lines;
-    for (std::string line; std::getline(in, line);)
-      lines.push_back(line);
-    return lines;
-  }
-
   /// CSV rows without the last column (wall time differs between runs).
   std::vector<std::string> rows_without_wall_time(const fs::path &dir)
   {
@@ -102,11 +89,7 @@ namespace
 
   std::size_t count_lines(const fs::path &file)
   {
-    std::ifstream in(file);
-    std::size_t   n = 0;
-    for (std::string line; std::getline(in, line);)
-      ++n;
-    return n;
+    return read_lines(file).size();
   }
 
   SweepOptions options(unsigned int threads)
@@ -124,8 +107,9 @@ namespace
 
   TEST_F(SweepEngine, EveryCaseGivesOneRowSortedByIndexAndFailuresAreRecorded)
   {
-    const SweepPlan plan    = toy_plan();
-    const fs::path  dir     = fresh_dir("clean");
+    const SweepPlan plan = toy_plan();
+    const TempDir   temp_dir("sweep_clean");
+    const fs::path  dir     = temp_dir.path() / "sweep";
     const auto      summary = kimp::app::run_sweep(plan, toy_run, dir, options(2));
     ASSERT_EQ(plan.cases().size(), 40U);
     EXPECT_EQ(summary.n_run, 40U);
@@ -163,26 +147,20 @@ namespace
               "index,id,companion,gap,record,cor,status,peak_acceleration [m/s^2],n_impacts,"
               "wall_time [s]");
     EXPECT_EQ(csv[1].rfind("0," + plan.cases()[0].id + ",,10 cm,kobe,0.3,ok,", 0), 0U) << csv[1];
-    fs::remove_all(dir);
   }
 
   TEST_F(SweepEngine, Hdf5TableHasOneRowPerCaseWithUnits)
   {
     const SweepPlan plan = toy_plan();
-    const fs::path  dir  = fresh_dir("h5");
+    const TempDir   temp_dir("sweep_h5");
+    const fs::path  dir = temp_dir.path() / "sweep";
     kimp::app::run_sweep(plan, toy_run, dir, options(1));
-    const hid_t file = H5Fopen((dir / "sweep.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-    ASSERT_GE(file, 0);
+    const Hdf5Reader file(dir / "sweep.h5");
+    ASSERT_GE(file.id(), 0);
     const auto n_rows_of = [&](const char *path)
     {
-      const hid_t dataset = H5Dopen2(file, path, H5P_DEFAULT);
-      EXPECT_GE(dataset, 0) << path;
-      const hid_t space = H5Dget_space(dataset);
-      hsize_t     n     = 0;
-      H5Sget_simple_extent_dims(space, &n, nullptr);
-      H5Sclose(space);
-      H5Dclose(dataset);
-      return n;
+      EXPECT_TRUE(file.exists(path)) << path;
+      return file.dims(path).at(0);
     };
     EXPECT_EQ(n_rows_of("/sweep/index"), 40U);
     EXPECT_EQ(n_rows_of("/sweep/status"), 40U);
@@ -191,35 +169,27 @@ namespace
     EXPECT_EQ(n_rows_of("/sweep/metrics/peak_acceleration"), 40U);
 
     // The gap parameter is also stored in SI with its unit; 10 cm = 0.1 m in the first row.
-    const hid_t gap = H5Dopen2(file, "/sweep/parameters_si/gap", H5P_DEFAULT);
-    ASSERT_GE(gap, 0);
-    std::vector<double> values(40);
-    H5Dread(gap, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
-    constexpr double tolerance = 1e-15;
+    const std::string gap = "/sweep/parameters_si/gap";
+    ASSERT_TRUE(file.exists(gap));
+    const std::vector<double> values    = file.doubles(gap);
+    constexpr double          tolerance = 1e-15;
     EXPECT_NEAR(values[0], 0.1, tolerance);
     EXPECT_NEAR(values[39], 0.19, tolerance);
-    const hid_t attribute = H5Aopen(gap, "units", H5P_DEFAULT);
-    ASSERT_GE(attribute, 0);
-    const hid_t type = H5Aget_type(attribute);
-    char       *text = nullptr;
-    H5Aread(attribute, type, &text);
-    EXPECT_STREQ(text, "m");
-    H5free_memory(text);
-    H5Tclose(type);
-    H5Aclose(attribute);
-    H5Dclose(gap);
-    H5Fclose(file);
+    const std::string units = file.units(gap);
+    ASSERT_NE(units, "<missing>");
+    EXPECT_STREQ(units.c_str(), "m");
     EXPECT_FALSE(fs::exists(dir / "sweep.h5.partial"));
-    fs::remove_all(dir);
   }
 
   TEST_F(SweepEngine, ResumeAfterSigkillGivesTheRowsOfAnUninterruptedRun)
   {
-    const SweepPlan plan  = toy_plan();
-    const fs::path  clean = fresh_dir("reference");
+    const SweepPlan plan = toy_plan();
+    const TempDir   temp_clean("sweep_reference");
+    const fs::path  clean = temp_clean.path() / "sweep";
     kimp::app::run_sweep(plan, toy_run, clean, options(2));
 
-    const fs::path killed  = fresh_dir("killed");
+    const TempDir  temp_killed("sweep_killed");
+    const fs::path killed  = temp_killed.path() / "sweep";
     const fs::path journal = kimp::app::SweepJournal::file_of(killed, 0);
     const pid_t    child   = ::fork();
     ASSERT_GE(child, 0);
@@ -286,14 +256,13 @@ namespace
     kimp::app::run_sweep(plan, counting, killed, options(2));
     EXPECT_EQ(n_calls.load(), 0U);
     EXPECT_EQ(rows_without_wall_time(killed), rows_without_wall_time(clean));
-    fs::remove_all(clean);
-    fs::remove_all(killed);
   }
 
   TEST_F(SweepEngine, TornJournalLineIsIgnoredAndItsCaseRerun)
   {
     const SweepPlan         plan = toy_plan();
-    const fs::path          dir  = fresh_dir("torn");
+    const TempDir           temp_dir("sweep_torn");
+    const fs::path          dir  = temp_dir.path() / "sweep";
     const fs::path          file = kimp::app::SweepJournal::file_of(dir, 0);
     kimp::app::JournalEntry first;
     first.index = 0;
@@ -330,13 +299,13 @@ namespace
     const auto after = kimp::app::SweepJournal::read_all(dir);
     EXPECT_EQ(after.n_torn_lines, 1U);
     EXPECT_EQ(after.entries.size(), plan.cases().size());
-    fs::remove_all(dir);
   }
 
   TEST_F(SweepEngine, DuplicateEntriesMergeToOneRowPreferringOk)
   {
     const SweepPlan plan = toy_plan();
-    const fs::path  dir  = fresh_dir("duplicates");
+    const TempDir   temp_dir("sweep_duplicates");
+    const fs::path  dir = temp_dir.path() / "sweep";
     kimp::app::run_sweep(plan, toy_run, dir, options(1));
     {
       // The same case journaled again by another rank, once failed and once ok.
@@ -358,13 +327,13 @@ namespace
       ids.insert(row.id);
     EXPECT_EQ(ids.size(), table.rows.size());
     EXPECT_EQ(table.rows[3].status, "ok");
-    fs::remove_all(dir);
   }
 
   TEST_F(SweepEngine, RetryFailedRerunsOnlyFailedCases)
   {
     const SweepPlan plan = toy_plan();
-    const fs::path  dir  = fresh_dir("retry");
+    const TempDir   temp_dir("sweep_retry");
+    const fs::path  dir = temp_dir.path() / "sweep";
     kimp::app::run_sweep(plan, toy_run, dir, options(2));
     std::atomic<std::size_t> n_calls{0};
     const auto               healed = [&](const std::string &text, const std::string &name)
@@ -380,17 +349,18 @@ namespace
     const auto table = kimp::app::collect_sweep_table(plan, dir);
     for (const auto &row : table.rows)
       EXPECT_EQ(row.status, "ok") << row.id;
-    fs::remove_all(dir);
   }
 
   /// Two "ranks" as threads of one process, meeting at a barrier before rank 0 merges.
   TEST_F(SweepEngine, OneAndTwoRanksGiveIdenticalRows)
   {
     const SweepPlan plan = toy_plan();
-    const fs::path  one  = fresh_dir("one_rank");
+    const TempDir   temp_one("sweep_one_rank");
+    const fs::path  one = temp_one.path() / "sweep";
     kimp::app::run_sweep(plan, toy_run, one, options(1));
 
-    const fs::path          two = fresh_dir("two_ranks");
+    const TempDir           temp_two("sweep_two_ranks");
+    const fs::path          two = temp_two.path() / "sweep";
     std::mutex              mutex;
     std::condition_variable arrived;
     int                     n_arrived = 0;
@@ -420,20 +390,18 @@ namespace
     EXPECT_EQ(summaries[0].n_rows, 40U);
     EXPECT_TRUE(fs::exists(kimp::app::SweepJournal::file_of(two, 1)));
     EXPECT_EQ(rows_without_wall_time(two), rows_without_wall_time(one));
-    fs::remove_all(one);
-    fs::remove_all(two);
   }
 
   TEST_F(SweepEngine, MergeWithoutFinishedCasesWritesEmptyTables)
   {
-    const SweepPlan plan  = toy_plan();
-    const fs::path  dir   = fresh_dir("empty");
+    const SweepPlan plan = toy_plan();
+    const TempDir   temp_dir("sweep_empty");
+    const fs::path  dir   = temp_dir.path() / "sweep";
     const auto      table = kimp::app::collect_sweep_table(plan, dir);
     EXPECT_TRUE(table.rows.empty());
     ASSERT_NO_THROW(kimp::app::write_sweep_results(plan, table, dir));
     EXPECT_EQ(read_lines(dir / "sweep.csv").size(), 1U) << "header only";
     EXPECT_TRUE(fs::exists(dir / "sweep.h5"));
-    fs::remove_all(dir);
   }
 
   TEST(SweepMetricUnit, NameAndUnitAreSplitAtTheLastBracket)
@@ -446,9 +414,8 @@ namespace
 
   TEST(SweepJournalLine, UnreadableJournalIsNamedInTheError)
   {
-    const fs::path dir =
-      fs::temp_directory_path() / ("kimp_journal_dir_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
+    const TempDir  temp_dir("journal_dir");
+    const fs::path dir = temp_dir.path();
     fs::create_directories(dir / "journal/rank-1.jsonl"); // a directory where a file belongs
     try
     {
@@ -459,7 +426,6 @@ namespace
     {
       EXPECT_NE(std::string(error.what()).find("rank-1.jsonl"), std::string::npos) << error.what();
     }
-    fs::remove_all(dir);
   }
 
   TEST(SweepJournalLine, RoundTripKeepsMetricsAndNan)

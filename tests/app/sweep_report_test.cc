@@ -8,13 +8,13 @@
 #include <gtest/gtest.h>
 #include <random>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "app/sweep/sweep_engine.h"
 #include "app/sweep/sweep_lumped.h"
 #include "app/sweep/sweep_report.h"
 #include "base/logging.h"
+#include "tests/support/temp_dir.h"
 
 namespace
 {
@@ -238,10 +238,9 @@ namespace
                        "real.yaml",
                        scene,
                        "base.yaml");
-    const fs::path dir =
-      fs::temp_directory_path() / ("kimp_sweep_report_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    kimp::app::SweepOptions options;
+    const kimp::testing::TempDir temp_dir("sweep_report");
+    const fs::path               dir = temp_dir.path() / "sweep";
+    kimp::app::SweepOptions      options;
     options.threads = 1;
     kimp::app::run_sweep(plan, kimp::app::make_lumped_case_runner(), dir, options);
     const SweepTable table = kimp::app::collect_sweep_table(plan, dir);
@@ -281,8 +280,7 @@ namespace
                 free(0));
 
     // The CSV has one line per configuration with the units in the header.
-    const fs::path csv =
-      fs::temp_directory_path() / ("kimp_dsrss_" + std::to_string(::getpid()) + ".csv");
+    const fs::path csv = temp_dir.file("dsrss.csv");
     kimp::app::write_dsrss_table(dsrss, csv);
     std::ifstream in(csv);
     std::string   header, line;

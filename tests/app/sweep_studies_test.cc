@@ -1,7 +1,6 @@
 // The shipped sweep studies (data/studies): every file parses, every varied key exists in
 // the lumped scene schema, every case is a valid scene, and the case counts are those of the
 // studies' designs (e.g. study 1: 3 buildings x 3 records x 3 scalings x 71 gaps).
-#include <cstdlib>
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <map>
@@ -11,6 +10,7 @@
 #include "app/ground_motion_scene.h"
 #include "app/lumped_scene.h"
 #include "app/sweep/sweep_plan.h"
+#include "tests/support/files.h"
 
 namespace
 {
@@ -18,8 +18,7 @@ namespace
 
   fs::path studies_dir()
   {
-    const char *dir = std::getenv("KIMP_SOURCE_DIR");
-    return (dir != nullptr ? fs::path(dir) : fs::current_path()) / "data/studies";
+    return kimp::testing::source_dir() / "data/studies";
   }
 
   TEST(SweepStudies, EveryShippedStudyIsValidWithItsDesignedCaseCount)

@@ -7,13 +7,13 @@
 #include <gtest/gtest.h>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "base/logging.h"
 #include "base/version.h"
 #include "cli/cli.h"
 #include "io/units.h"
+#include "tests/support/temp_dir.h"
 
 namespace cli_scene
 {
@@ -47,23 +47,7 @@ namespace
   using kimp::io::LoadedScene;
   using kimp::io::OutputDir;
 
-  class TempDir
-  {
-  public:
-    TempDir()
-      : path_(std::filesystem::temp_directory_path() /
-              ("kimp_cli_test_" + std::to_string(::getpid()) + "_" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name()))
-    {
-      std::filesystem::remove_all(path_);
-      std::filesystem::create_directories(path_);
-    }
-    ~TempDir() { std::filesystem::remove_all(path_); }
-    const std::filesystem::path &path() const { return path_; }
-
-  private:
-    std::filesystem::path path_;
-  };
+  using kimp::testing::TempDir;
 
   /// A `kimp` app with one scene command "demo" that records what it was given.
   struct DemoApp

@@ -2,13 +2,10 @@
 // end; the table gives back k per metre and k·W, fit.h5 has units and statuses.
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <gtest/gtest.h>
-#include <hdf5.h>
 #include <limits>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "app/fit_run.h"
@@ -18,32 +15,20 @@
 #include "io/results_file.h"
 #include "lumped/collision/two_body.h"
 #include "lumped/laws/force_law_factory.h"
+#include "tests/support/csv.h"
+#include "tests/support/hdf5_reader.h"
+#include "tests/support/temp_dir.h"
 
 namespace
 {
   using kimp::io::FemCase;
+  using kimp::testing::Hdf5Reader;
+  using kimp::testing::read_csv_lines;
+  using kimp::testing::TempDir;
 
   constexpr double slab_mass = 3840.0; // kg/m
   // The CSV prints 6 significant digits; the noise-free fit is exact to 1e-4.
   constexpr double table_tolerance = 1.0e-4;
-
-  class TempDir
-  {
-  public:
-    TempDir()
-      : path_(std::filesystem::temp_directory_path() /
-              ("kimp_fit_command_test_" + std::to_string(::getpid()) + "_" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name()))
-    {
-      std::filesystem::remove_all(path_);
-      std::filesystem::create_directories(path_);
-    }
-    ~TempDir() { std::filesystem::remove_all(path_); }
-    const std::filesystem::path &path() const { return path_; }
-
-  private:
-    std::filesystem::path path_;
-  };
 
   /// A rigid-slab FEM case imitated by the Kelvin-Voigt law (k in N/m per metre, COR 0.7).
   FemCase kelvin_voigt_case(const std::string &name, double height, double k)
@@ -93,23 +78,6 @@ namespace
     return c;
   }
 
-  std::vector<std::vector<std::string>> read_csv(const std::filesystem::path &path)
-  {
-    std::ifstream                         in(path);
-    std::vector<std::vector<std::string>> rows;
-    std::string                           line;
-    while (std::getline(in, line))
-    {
-      std::vector<std::string> row;
-      std::istringstream       fields(line);
-      std::string              field;
-      while (std::getline(fields, field, ','))
-        row.push_back(field);
-      rows.push_back(row);
-    }
-    return rows;
-  }
-
   TEST(FitCommand, TableGivesBackStiffnessPerMetreAndTotal)
   {
     const TempDir dir;
@@ -136,7 +104,7 @@ namespace
       0)
       << err.str();
 
-    const auto rows = read_csv(output / "fit_table.csv");
+    const auto rows = read_csv_lines(output / "fit_table.csv");
     ASSERT_EQ(rows.size(), 1u + 2u * 5u); // header + 2 ok cases × 5 variants (H1.50 skipped)
     const std::vector<std::string> &header = rows[0];
     const auto                      column = [&](const std::string &name)
@@ -163,23 +131,13 @@ namespace
     }
     EXPECT_EQ(checked, 2);
 
-    const hid_t h5 = H5Fopen((output / "fit.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-    ASSERT_GE(h5, 0);
-    const hid_t d = H5Dopen2(h5, "/fit/H1.00/kelvin_voigt_cor_fixed/stiffness", H5P_DEFAULT);
-    ASSERT_GE(d, 0);
-    double k = 0.0;
-    H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &k);
+    const Hdf5Reader h5(output / "fit.h5");
+    ASSERT_GE(h5.id(), 0);
+    const std::string stiffness = "/fit/H1.00/kelvin_voigt_cor_fixed/stiffness";
+    ASSERT_TRUE(h5.exists(stiffness));
+    const double k = h5.doubles(stiffness).at(0);
     EXPECT_NEAR(k, 1.5e8, table_tolerance * 1.5e8);
-    const hid_t a    = H5Aopen(d, "units", H5P_DEFAULT);
-    const hid_t type = H5Aget_type(a);
-    char       *text = nullptr;
-    H5Aread(a, type, &text);
-    EXPECT_STREQ(text, "N/m/m");
-    H5free_memory(text);
-    H5Tclose(type);
-    H5Aclose(a);
-    H5Dclose(d);
-    H5Fclose(h5);
+    EXPECT_STREQ(h5.units(stiffness).c_str(), "N/m/m");
   }
 
   TEST(FitCommand, MissingInputIsAnErrorNamingTheFile)

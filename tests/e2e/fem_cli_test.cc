@@ -11,27 +11,19 @@
 #  include <nlohmann/json.hpp>
 #  include <sstream>
 #  include <string>
-#  include <sys/wait.h>
-#  include <unistd.h>
 #  include <vector>
 
 #  include "io/fem_results.h"
+#  include "tests/support/files.h"
 #  include "tests/support/kimp_run.h"
+#  include "tests/support/temp_dir.h"
 
 namespace
 {
-  using kimp::e2e::kimp;
-  using kimp::e2e::KimpRun;
-  using kimp::e2e::read_text;
-  using kimp::e2e::TempDir;
+  using namespace kimp::testing;
 
   constexpr double momentum_tolerance = 2e-3;  ///< relative: impulse vs slab momentum change
   constexpr double rank_tolerance     = 1e-10; ///< relative: 1 vs 2 MPI ranks
-
-  void write(const std::filesystem::path &file, const std::string &text)
-  {
-    std::ofstream(file) << text;
-  }
 
   /// Coarse scene, seconds of run time (rigid slab unless `rigid` is false), written to
   /// `dir`/scene.yaml.
@@ -40,17 +32,17 @@ namespace
                          bool                         rigid = true)
   {
     const std::string slab = rigid ? "slab: {rigid: true}\n" : "slab: {rigid: false}\n";
-    write(dir / "scene.yaml",
-          "wall_heights: [\"1.25 m\"]\n"
-          "mesh: {h_contact: \"5 cm\", h_max: \"25 cm\", grading: 1.5}\n" +
-            slab + extra);
+    write_text(dir / "scene.yaml",
+               "wall_heights: [\"1.25 m\"]\n"
+               "mesh: {h_contact: \"5 cm\", h_max: \"25 cm\", grading: 1.5}\n" +
+                 slab + extra);
   }
 
   TEST(FemCli, RigidSlabImpactConservesMomentumAndRebounds)
   {
     const TempDir dir("fem_cli");
     write_quick_scene(dir.path(), "dynamics: {end_time: \"40 ms\"}\n");
-    const KimpRun run = kimp("fem scene.yaml -o out", dir.path());
+    const KimpRun run = run_kimp("fem scene.yaml -o out", dir.path());
     ASSERT_EQ(run.exit_code, 0) << run.err;
 
     const std::vector<kimp::io::FemCase> cases =
@@ -76,8 +68,7 @@ namespace
     EXPECT_EQ(c.contact_force.size(), c.time.size());
     EXPECT_EQ(c.labels.at("slab"), "rigid");
 
-    const nlohmann::json summary =
-      nlohmann::json::parse(read_text(dir.path() / "out/summary.json"));
+    const nlohmann::json summary = read_json(dir.path() / "out/summary.json");
     EXPECT_EQ(summary.at("cases").at("H1.25").at("peak_force").get<double>(), peak);
     EXPECT_EQ(summary.at("n_ranks"), 1);
 
@@ -105,7 +96,7 @@ namespace
   {
     const TempDir dir("fem_cli_overlap");
     write_quick_scene(dir.path(), "geometry:\n  gap: \"0 mm\"\n");
-    const KimpRun run = kimp("fem scene.yaml -o out", dir.path());
+    const KimpRun run = run_kimp("fem scene.yaml -o out", dir.path());
     EXPECT_NE(run.exit_code, 0);
     EXPECT_NE(run.err.find("scene.yaml:5: geometry.gap = 0 mm"), std::string::npos) << run.err;
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "out/fem.h5"));
@@ -116,7 +107,7 @@ namespace
   {
     const TempDir dir("fem_cli_dt");
     write_quick_scene(dir.path(), "dynamics: {dt: \"1 ms\"}\n");
-    const KimpRun run = kimp("fem scene.yaml -o out", dir.path());
+    const KimpRun run = run_kimp("fem scene.yaml -o out", dir.path());
     EXPECT_NE(run.exit_code, 0);
     EXPECT_NE(run.err.find("H1.25"), std::string::npos) << run.err;
     EXPECT_NE(run.err.find("dt"), std::string::npos) << run.err;
@@ -136,13 +127,12 @@ namespace
       GTEST_SKIP() << "KIMP_MPIEXEC not set: run through ctest -L mpi";
     const TempDir dir("fem_cli_mpi");
     write_quick_scene(dir.path(), "dynamics: {end_time: \"3 ms\"}\n", false);
-    const KimpRun one = kimp("-q fem scene.yaml -o one", dir.path());
+    const KimpRun one = run_kimp("-q fem scene.yaml -o one", dir.path());
     ASSERT_EQ(one.exit_code, 0) << one.err;
-    const std::string command = std::string(mpiexec) +
-                                " -np 2 --allow-run-as-root --oversubscribe " KIMP_BINARY_DIR
-                                "/kimp -q fem scene.yaml -o two";
-    const std::string full = "cd '" + dir.path().string() + "' && " + command + " > mpi.txt 2>&1";
-    ASSERT_EQ(std::system(full.c_str()), 0) << read_text(dir.path() / "mpi.txt");
+    const std::string command = "cd '" + dir.path().string() + "' && " + mpiexec +
+                                " -np 2 --allow-run-as-root --oversubscribe " + kimp_executable() +
+                                " -q fem scene.yaml -o two";
+    ASSERT_EQ(run_command(command, dir.path() / "mpi.txt"), 0) << read_text(dir.path() / "mpi.txt");
 
     const auto a = kimp::io::read_fem_cases(dir.path() / "one/fem.h5");
     const auto b = kimp::io::read_fem_cases(dir.path() / "two/fem.h5");

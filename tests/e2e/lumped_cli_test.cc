@@ -1,118 +1,22 @@
 // End-to-end `kimp lumped`: the built binary on small scenes; exit codes, lumped.h5 (units,
 // status), summary.json, peaks.csv, failed cases, bad scenes leaving no output, --print-defaults.
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
-#include <hdf5.h>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "app/lumped_scene.h"
+#include "tests/support/files.h"
+#include "tests/support/hdf5_reader.h"
+#include "tests/support/kimp_run.h"
+#include "tests/support/temp_dir.h"
 
 namespace
 {
   namespace fs = std::filesystem;
 
-  struct KimpRun
-  {
-    int         exit_code = -1;
-    std::string out;
-    std::string err;
-  };
-
-  std::string slurp(const fs::path &file)
-  {
-    std::ifstream      in(file);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
-
-  /// A fresh directory under the system temp directory, removed at the end of the test.
-  class TempDir
-  {
-  public:
-    explicit TempDir(const std::string &tag)
-      : path_(fs::temp_directory_path() /
-              ("kimp_e2e_lumped_" + tag + "_" + std::to_string(::getpid())))
-    {
-      fs::remove_all(path_);
-      fs::create_directories(path_);
-    }
-    ~TempDir() { fs::remove_all(path_); }
-    const fs::path &path() const { return path_; }
-
-  private:
-    fs::path path_;
-  };
-
-  KimpRun run_kimp(const std::string &arguments, const fs::path &dir)
-  {
-    const fs::path    out = dir / "stdout.txt";
-    const fs::path    err = dir / "stderr.txt";
-    const std::string cmd = std::string(KIMP_BINARY_DIR) + "/kimp " + arguments + " >" +
-                            out.string() + " 2>" + err.string();
-    const int status = std::system(cmd.c_str());
-    KimpRun   run;
-    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    run.out       = slurp(out);
-    run.err       = slurp(err);
-    return run;
-  }
-
-  /// Read access to a results file with the HDF5 C API.
-  class H5
-  {
-  public:
-    explicit H5(const fs::path &file)
-      : id_(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT))
-    {
-    }
-    ~H5()
-    {
-      if (id_ >= 0)
-        H5Fclose(id_);
-    }
-    bool ok() const { return id_ >= 0; }
-    bool exists(const std::string &path) const
-    {
-      return H5Lexists(id_, path.c_str(), H5P_DEFAULT) > 0;
-    }
-    std::string attribute(const std::string &path, const std::string &name) const
-    {
-      if (H5Aexists_by_name(id_, path.c_str(), name.c_str(), H5P_DEFAULT) <= 0)
-        return "<missing>";
-      const hid_t a    = H5Aopen_by_name(id_, path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
-      const hid_t type = H5Tcopy(H5T_C_S1);
-      H5Tset_size(type, H5T_VARIABLE);
-      H5Tset_cset(type, H5T_CSET_UTF8);
-      char *pointer = nullptr;
-      H5Aread(a, type, &pointer);
-      std::string result = pointer != nullptr ? pointer : "";
-      H5free_memory(pointer);
-      H5Tclose(type);
-      H5Aclose(a);
-      return result;
-    }
-    std::vector<double> doubles(const std::string &path) const
-    {
-      const hid_t         d     = H5Dopen2(id_, path.c_str(), H5P_DEFAULT);
-      const hid_t         space = H5Dget_space(d);
-      const hssize_t      n     = H5Sget_simple_extent_npoints(space);
-      std::vector<double> values(static_cast<std::size_t>(n > 0 ? n : 0));
-      H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
-      H5Sclose(space);
-      H5Dclose(d);
-      return values;
-    }
-
-  private:
-    hid_t id_;
-  };
+  using namespace kimp::testing;
 
   /// Isolated 4-storey building, walls at 4 cm, 6 s of the synthetic motion: a few impacts.
   const char *small_scene = "walls:\n"
@@ -142,14 +46,14 @@ namespace
 
 TEST(LumpedCli, WritesResultsFileSummaryAndPeaks)
 {
-  TempDir dir("ok");
+  TempDir dir("e2e_lumped_ok");
   std::ofstream(dir.path() / "scene.yaml") << small_scene;
   const fs::path out = dir.path() / "out";
   const KimpRun  run =
     run_kimp("lumped " + (dir.path() / "scene.yaml").string() + " -o " + out.string(), dir.path());
   ASSERT_EQ(run.exit_code, 0) << run.err;
 
-  H5 h5(out / "lumped.h5");
+  Hdf5Reader h5(out / "lumped.h5");
   ASSERT_TRUE(h5.ok());
   for (const char *c : {"mkv", "hysteretic"})
   {
@@ -173,7 +77,7 @@ TEST(LumpedCli, WritesResultsFileSummaryAndPeaks)
   }
   EXPECT_NE(h5.attribute("/input/scene", "units"), "<missing>");
 
-  const nlohmann::json summary = nlohmann::json::parse(slurp(out / "summary.json"));
+  const nlohmann::json summary = read_json(out / "summary.json");
   ASSERT_EQ(summary["cases"].size(), 2u);
   for (const auto &c : summary["cases"])
   {
@@ -187,7 +91,7 @@ TEST(LumpedCli, WritesResultsFileSummaryAndPeaks)
     EXPECT_GT(c["periods"]["building"][0].get<double>(), 0.5);
   }
 
-  const std::string csv     = slurp(out / "peaks.csv");
+  const std::string csv     = read_text(out / "peaks.csv");
   std::size_t       n_lines = 0;
   for (const char ch : csv)
     n_lines += ch == '\n';
@@ -197,7 +101,7 @@ TEST(LumpedCli, WritesResultsFileSummaryAndPeaks)
 
 TEST(LumpedCli, FailedCaseIsRecordedAndExitsNonZero)
 {
-  TempDir dir("fail");
+  TempDir dir("e2e_lumped_fail");
   // Two cases at dt = 5e-4 s: k = 2500 kN/mm is stable (dt_cr of about 0.01 s); k = 1e8 kN/mm
   // has omega_imp = sqrt(1e14 N/m / 195 t) = 2.3e4 rad/s, dt_cr of about 9e-5 s: refused.
   const std::string scene =
@@ -212,19 +116,19 @@ TEST(LumpedCli, FailedCaseIsRecordedAndExitsNonZero)
     run_kimp("lumped " + (dir.path() / "scene.yaml").string() + " -o " + out.string(), dir.path());
   EXPECT_NE(run.exit_code, 0);
   EXPECT_NE(run.err.find("stiff"), std::string::npos) << run.err;
-  H5 h5(out / "lumped.h5");
+  Hdf5Reader h5(out / "lumped.h5");
   ASSERT_TRUE(h5.ok()) << "the other cases are written";
   EXPECT_EQ(h5.attribute("/lumped/soft", "status"), "ok");
   const std::string failed = h5.attribute("/lumped/stiff", "status");
   EXPECT_EQ(failed.rfind("failed: ", 0), 0u) << failed;
   EXPECT_NE(failed.find("stab"), std::string::npos) << "names the stability limit: " << failed;
-  const nlohmann::json summary = nlohmann::json::parse(slurp(out / "summary.json"));
+  const nlohmann::json summary = read_json(out / "summary.json");
   EXPECT_EQ(summary["cases"][1]["status"].get<std::string>().rfind("failed", 0), 0u);
 }
 
 TEST(LumpedCli, BadSceneNamesFileLineKeyAndWritesNothing)
 {
-  TempDir dir("bad");
+  TempDir dir("e2e_lumped_bad");
   std::ofstream(dir.path() / "bad.yaml") << "isolator:\n  K1: \"200 MN/m\"\n  K2: \"300 MN/m\"\n";
   const fs::path out = dir.path() / "out";
   const KimpRun  run =
@@ -238,7 +142,7 @@ TEST(LumpedCli, BadSceneNamesFileLineKeyAndWritesNothing)
 
 TEST(LumpedCli, PrintDefaultsReadsBackToTheDefaults)
 {
-  TempDir       dir("defaults");
+  TempDir       dir("e2e_lumped_defaults");
   const KimpRun run = run_kimp("lumped --print-defaults", dir.path());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   using kimp::app::LumpedScene;

@@ -5,22 +5,17 @@
 #  include <cmath>
 #  include <cstdlib>
 #  include <filesystem>
-#  include <fstream>
 #  include <gtest/gtest.h>
 #  include <nlohmann/json.hpp>
-#  include <sstream>
 #  include <string>
-#  include <sys/wait.h>
-#  include <unistd.h>
 
+#  include "tests/support/files.h"
 #  include "tests/support/kimp_run.h"
+#  include "tests/support/temp_dir.h"
 
 namespace
 {
-  using kimp::e2e::kimp;
-  using kimp::e2e::KimpRun;
-  using kimp::e2e::read_text;
-  using kimp::e2e::TempDir;
+  using namespace kimp::testing;
 
   constexpr double area_tolerance = 1e-10; ///< relative: rectangles meshed exactly
 
@@ -29,22 +24,16 @@ namespace
     return std::system("/usr/bin/python3 -c 'import matplotlib, numpy' > /dev/null 2>&1") == 0;
   }
 
-  void write(const std::filesystem::path &file, const std::string &text)
-  {
-    std::ofstream(file) << text;
-  }
-
   TEST(MeshCli, WritesMeshesWhoseRegionsHaveTheSceneAreas)
   {
     const TempDir dir("mesh_cli");
-    write(dir.path() / "scene.yaml",
-          "wall_heights: [\"1.0 m\", \"1.5 m\"]\n"
-          "mesh: {h_contact: \"5 cm\", h_max: \"20 cm\", grading: 1.5}\n");
-    const KimpRun run = kimp("mesh scene.yaml -o out", dir.path());
+    write_text(dir.path() / "scene.yaml",
+               "wall_heights: [\"1.0 m\", \"1.5 m\"]\n"
+               "mesh: {h_contact: \"5 cm\", h_max: \"20 cm\", grading: 1.5}\n");
+    const KimpRun run = run_kimp("mesh scene.yaml -o out", dir.path());
     ASSERT_EQ(run.exit_code, 0) << run.err;
 
-    const nlohmann::json summary =
-      nlohmann::json::parse(read_text(dir.path() / "out/summary.json"));
+    const nlohmann::json summary = read_json(dir.path() / "out/summary.json");
     EXPECT_EQ(summary.at("command"), "mesh");
     const double wall_thickness = 0.25, backfill_width = 2.0, slab_length = 8.0,
                  slab_thickness = 0.20;
@@ -91,14 +80,13 @@ namespace
   TEST(MeshCli, RigidSlabMeshHasNoSlabCells)
   {
     const TempDir dir("mesh_cli_rigid");
-    write(dir.path() / "scene.yaml",
-          "slab: {rigid: true}\ngeometry: {with_backfill: false}\n"
-          "mesh: {h_contact: \"5 cm\", h_max: \"20 cm\"}\n");
-    const KimpRun run = kimp("-q mesh scene.yaml -o out", dir.path());
+    write_text(dir.path() / "scene.yaml",
+               "slab: {rigid: true}\ngeometry: {with_backfill: false}\n"
+               "mesh: {h_contact: \"5 cm\", h_max: \"20 cm\"}\n");
+    const KimpRun run = run_kimp("-q mesh scene.yaml -o out", dir.path());
     ASSERT_EQ(run.exit_code, 0) << run.err;
-    const nlohmann::json summary =
-      nlohmann::json::parse(read_text(dir.path() / "out/summary.json"));
-    const nlohmann::json &entry = summary.at("cases").at("H1.25");
+    const nlohmann::json  summary = read_json(dir.path() / "out/summary.json");
+    const nlohmann::json &entry   = summary.at("cases").at("H1.25");
     EXPECT_EQ(entry.at("statistics").at("n_slab_cells"), 0);
     EXPECT_EQ(entry.at("statistics").at("n_soil_cells"), 0);
     EXPECT_FALSE(entry.at("area_by_material").contains("1"));
@@ -110,8 +98,8 @@ namespace
   TEST(MeshCli, OverlappingSlabIsRefusedWithFileLineAndKey)
   {
     const TempDir dir("mesh_cli_overlap");
-    write(dir.path() / "scene.yaml", "geometry:\n  gap: \"-1 mm\"\n");
-    const KimpRun run = kimp("mesh scene.yaml -o out", dir.path());
+    write_text(dir.path() / "scene.yaml", "geometry:\n  gap: \"-1 mm\"\n");
+    const KimpRun run = run_kimp("mesh scene.yaml -o out", dir.path());
     EXPECT_NE(run.exit_code, 0);
     EXPECT_NE(run.err.find("scene.yaml:2: geometry.gap = -1 mm"), std::string::npos) << run.err;
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "out/mesh")) << run.err;

@@ -2,13 +2,14 @@
 // instead of leaving the other ranks waiting at the sweep's barrier for ever.
 #include <gtest/gtest.h>
 
+#include "tests/support/files.h"
 #include "tests/support/kimp_run.h"
+#include "tests/support/temp_dir.h"
 
 namespace
 {
   namespace fs = std::filesystem;
-  using kimp::e2e::read_text;
-  using kimp::e2e::TempDir;
+  using namespace kimp::testing;
 
   // Disabled by default: run through the ctest entry e2e_mpi_abort_test.mpi (label mpi), which
   // needs mpirun.
@@ -25,13 +26,11 @@ namespace
     std::ofstream(bad) << "scene: " << scene << "\nparameters:\n  walls.left.gapp: [4 cm]\n";
     // Two programs in one job (MPMD): rank 0 runs its share of the sweep and then waits for
     // rank 1 at the barrier; rank 1 fails at once on its malformed sweep file.
-    const std::string kimp    = std::string(KIMP_BINARY_DIR) + "/kimp sweep ";
+    const std::string kimp    = kimp_executable() + " sweep ";
     const std::string command = "timeout 120 mpirun --allow-run-as-root --oversubscribe -np 1 " +
                                 kimp + good.string() + " -t 1 -o " + out.string() + " : -np 1 " +
-                                kimp + bad.string() + " -t 1 -o " + out.string() + " > " +
-                                (dir.path() / "log.txt").string() + " 2>&1";
-    const int         status    = std::system(command.c_str());
-    const int         exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+                                kimp + bad.string() + " -t 1 -o " + out.string();
+    const int         exit_code = run_command(command, dir.path() / "log.txt");
     const std::string log       = read_text(dir.path() / "log.txt");
     EXPECT_NE(exit_code, 0) << log;
     EXPECT_NE(exit_code, 124) << "timed out: the ranks hung\n" << log;

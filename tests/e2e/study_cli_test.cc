@@ -11,82 +11,30 @@
 #  include <filesystem>
 #  include <fstream>
 #  include <gtest/gtest.h>
-#  include <hdf5.h>
 #  include <map>
 #  include <nlohmann/json.hpp>
-#  include <sstream>
 #  include <string>
-#  include <sys/wait.h>
-#  include <unistd.h>
 #  include <vector>
 
 #  include "io/fem_results.h"
+#  include "tests/support/csv.h"
+#  include "tests/support/files.h"
+#  include "tests/support/hdf5_reader.h"
 #  include "tests/support/kimp_run.h"
+#  include "tests/support/temp_dir.h"
 
 namespace
 {
-  using kimp::e2e::read_text;
-  using kimp::e2e::TempDir;
+  using namespace kimp::testing;
 
-  /// `kimp <arguments>` run in `dir`; returns the exit code, stderr (the log) in `log`.
-  int run_kimp(const std::string &arguments, const std::filesystem::path &dir, std::string &log)
+  /// `kimp <arguments>` run in `dir`; returns the exit code, stdout and stderr (the log) in `log`.
+  int run_kimp_logged(const std::string           &arguments,
+                      const std::filesystem::path &dir,
+                      std::string                 &log)
   {
-    const kimp::e2e::KimpRun run = kimp::e2e::kimp(arguments, dir);
-    log                          = run.out + run.err;
+    const KimpRun run = run_kimp(arguments, dir);
+    log               = run.out + run.err;
     return run.exit_code;
-  }
-
-  /// Rows of a CSV without quoted fields, as maps header -> text.
-  std::vector<std::map<std::string, std::string>> read_csv(const std::filesystem::path &file)
-  {
-    std::ifstream                                   in(file);
-    std::vector<std::string>                        header;
-    std::vector<std::map<std::string, std::string>> rows;
-    for (std::string line; std::getline(in, line);)
-    {
-      std::vector<std::string> fields;
-      std::stringstream        s(line);
-      for (std::string field; std::getline(s, field, ',');)
-        fields.push_back(field);
-      if (line.back() == ',')
-        fields.emplace_back();
-      if (header.empty())
-      {
-        header = fields;
-        continue;
-      }
-      std::map<std::string, std::string> row;
-      for (std::size_t i = 0; i < header.size() && i < fields.size(); ++i)
-        row[header[i]] = fields[i];
-      rows.push_back(row);
-    }
-    return rows;
-  }
-
-  /// The `units` attribute of dataset `path` of an HDF5 file ("" if absent).
-  std::string units_of(const std::filesystem::path &file, const std::string &path)
-  {
-    const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-    if (f < 0)
-      return "";
-    std::string units;
-    if (H5Aexists_by_name(f, path.c_str(), "units", H5P_DEFAULT) > 0)
-    {
-      const hid_t a    = H5Aopen_by_name(f, path.c_str(), "units", H5P_DEFAULT, H5P_DEFAULT);
-      const hid_t type = H5Tcopy(H5T_C_S1);
-      H5Tset_size(type, H5T_VARIABLE);
-      H5Tset_cset(type, H5T_CSET_UTF8);
-      char *text = nullptr;
-      if (H5Aread(a, type, &text) >= 0 && text != nullptr)
-      {
-        units = text;
-        H5free_memory(text);
-      }
-      H5Tclose(type);
-      H5Aclose(a);
-    }
-    H5Fclose(f);
-    return units;
   }
 
   constexpr const char *reduced_study = R"(fem:
@@ -153,12 +101,12 @@ TEST(StudyCli, ReducedStudyGivesSofterWallsForTallerHeightsAndReusesTheFem)
   const TempDir dir("study_cli");
   std::ofstream(dir.path() / "study.yaml") << reduced_study;
   std::string log;
-  ASSERT_EQ(run_kimp("study study.yaml -o out", dir.path(), log), 0) << log;
+  ASSERT_EQ(run_kimp_logged("study study.yaml -o out", dir.path(), log), 0) << log;
   const std::filesystem::path out = dir.path() / "out";
 
   // k table: k(1.0 m) > k(2.0 m) for both laws, per metre and total = per metre x 27.78 m.
   constexpr double total_rounding = 1e-5; // CSV values carry 6 significant digits
-  const auto       k_rows         = read_csv(out / "k_table.csv");
+  const auto       k_rows         = read_csv_records(out / "k_table.csv");
   ASSERT_EQ(k_rows.size(), 2u) << read_text(out / "k_table.csv");
   for (const char *law : {"kelvin_voigt", "jankowski"})
   {
@@ -178,7 +126,7 @@ TEST(StudyCli, ReducedStudyGivesSofterWallsForTallerHeightsAndReusesTheFem)
   }
 
   // Building runs: every run with walls at a gap 10 % below the no-wall peak must pound.
-  const auto building = read_csv(out / "building_response.csv");
+  const auto building = read_csv_records(out / "building_response.csv");
   ASSERT_EQ(building.size(), 1u + 2u * 3u) << read_text(out / "building_response.csv");
   for (const auto &row : building)
   {
@@ -191,27 +139,27 @@ TEST(StudyCli, ReducedStudyGivesSofterWallsForTallerHeightsAndReusesTheFem)
   }
 
   // study.h5: units on the k table, the FEM cases readable through the FemCase contract.
-  EXPECT_EQ(units_of(out / "study.h5", "/k_table/kelvin_voigt"), "kN/mm/m");
-  EXPECT_EQ(units_of(out / "study.h5", "/k_table/jankowski_total"), "kN/mm^1.5");
-  EXPECT_EQ(units_of(out / "study.h5", "/fit/H1.00/kelvin_voigt/model_force"), "N/m");
+  EXPECT_EQ(Hdf5Reader(out / "study.h5").units("/k_table/kelvin_voigt"), "kN/mm/m");
+  EXPECT_EQ(Hdf5Reader(out / "study.h5").units("/k_table/jankowski_total"), "kN/mm^1.5");
+  EXPECT_EQ(Hdf5Reader(out / "study.h5").units("/fit/H1.00/kelvin_voigt/model_force"), "N/m");
   EXPECT_EQ(kimp::io::read_fem_cases(out / "study.h5").size(), 2u);
   const std::string report = read_text(out / "report.md");
   EXPECT_NE(report.find("k_table.csv"), std::string::npos) << report;
-  const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
+  const auto summary = read_json(out / "summary.json");
   EXPECT_EQ(summary.at("k_table").size(), 2u);
   EXPECT_FALSE(summary.at("k_table").at(0).at("fem_from_cache").get<bool>());
 
   // Re-run: the FEM cases come from the cache, files untouched, same k.
   const auto cached_time = std::filesystem::last_write_time(out / "fem" / "H1.00.h5");
-  ASSERT_EQ(run_kimp("study study.yaml -o out", dir.path(), log), 0) << log;
+  ASSERT_EQ(run_kimp_logged("study study.yaml -o out", dir.path(), log), 0) << log;
   EXPECT_NE(log.find("H1.00: FEM result reused"), std::string::npos) << log;
   EXPECT_NE(log.find("H2.00: FEM result reused"), std::string::npos) << log;
   EXPECT_EQ(std::filesystem::last_write_time(out / "fem" / "H1.00.h5"), cached_time);
-  const auto again = read_csv(out / "k_table.csv");
+  const auto again = read_csv_records(out / "k_table.csv");
   ASSERT_EQ(again.size(), 2u);
   EXPECT_EQ(again[0].at("kelvin_voigt_kN_per_mm_per_m"),
             k_rows[0].at("kelvin_voigt_kN_per_mm_per_m"));
-  const auto summary_again = nlohmann::json::parse(read_text(out / "summary.json"));
+  const auto summary_again = read_json(out / "summary.json");
   EXPECT_TRUE(summary_again.at("k_table").at(1).at("fem_from_cache").get<bool>());
 }
 
@@ -220,14 +168,14 @@ TEST(StudyCli, AutoFidelityReportsLevelAndErrorAndTheExtraStudiesAreConsistent)
   const TempDir dir("study_cli_auto");
   std::ofstream(dir.path() / "study.yaml") << auto_study;
   std::string log;
-  ASSERT_EQ(run_kimp("study study.yaml -o out", dir.path(), log), 0) << log;
+  ASSERT_EQ(run_kimp_logged("study study.yaml -o out", dir.path(), log), 0) << log;
   const std::filesystem::path out = dir.path() / "out";
 
   // k table: the tolerance (0.001 %) is not met on two levels, so the finest level is used and
   // flagged not converged; its error is |k(5 cm) - k(10 cm)|, from the per-level table.
-  const auto k_rows = read_csv(out / "k_table.csv");
+  const auto k_rows = read_csv_records(out / "k_table.csv");
   ASSERT_EQ(k_rows.size(), 2u) << read_text(out / "k_table.csv");
-  const auto levels = read_csv(out / "fidelity_levels.csv");
+  const auto levels = read_csv_records(out / "fidelity_levels.csv");
   ASSERT_EQ(levels.size(), 4u) << read_text(out / "fidelity_levels.csv");
   for (std::size_t i = 0; i < 2; ++i)
   {
@@ -249,7 +197,7 @@ TEST(StudyCli, AutoFidelityReportsLevelAndErrorAndTheExtraStudiesAreConsistent)
 
   // FEM accuracy: the reference (finest explicit mesh) has error 0; the mesh levels were reused
   // from the fidelity ladder's cache.
-  const auto fem_accuracy = read_csv(out / "accuracy_fem.csv");
+  const auto fem_accuracy = read_csv_records(out / "accuracy_fem.csv");
   ASSERT_EQ(fem_accuracy.size(), 4u) << read_text(out / "accuracy_fem.csv");
   EXPECT_EQ(fem_accuracy[1].at("series"), "mesh");
   EXPECT_EQ(std::stod(fem_accuracy[1].at("error_kelvin_voigt_percent")), 0.0);
@@ -258,7 +206,7 @@ TEST(StudyCli, AutoFidelityReportsLevelAndErrorAndTheExtraStudiesAreConsistent)
 
   // Building time step: central difference converges to its reference (the impact force error
   // at the finest step is below that at the coarsest).
-  const auto lumped = read_csv(out / "accuracy_lumped.csv");
+  const auto lumped = read_csv_records(out / "accuracy_lumped.csv");
   ASSERT_FALSE(lumped.empty());
   double coarse = -1, fine = -1;
   for (const auto &row : lumped)
@@ -273,7 +221,7 @@ TEST(StudyCli, AutoFidelityReportsLevelAndErrorAndTheExtraStudiesAreConsistent)
 
   // Stability map: every run below the damped limit 2(sqrt(1 + xi^2) - xi)/omega is stable, and
   // runs far above 2/omega (3x) are not.
-  const auto stability = read_csv(out / "stability_lumped.csv");
+  const auto stability = read_csv_records(out / "stability_lumped.csv");
   ASSERT_GT(stability.size(), 50u);
   std::size_t n_below = 0, n_far_above = 0;
   for (const auto &row : stability)
@@ -296,7 +244,7 @@ TEST(StudyCli, AutoFidelityReportsLevelAndErrorAndTheExtraStudiesAreConsistent)
   EXPECT_GT(n_far_above, 10u);
 
   // FEM stability map: below the computed limit every run is stable, at twice it none is.
-  const auto fem_stability = read_csv(out / "stability_fem.csv");
+  const auto fem_stability = read_csv_records(out / "stability_fem.csv");
   ASSERT_EQ(fem_stability.size(), 25u) << read_text(out / "stability_fem.csv");
   for (const auto &row : fem_stability)
   {
@@ -314,7 +262,7 @@ TEST(StudyCli, AutoFidelityReportsLevelAndErrorAndTheExtraStudiesAreConsistent)
   }
 
   // Sensitivity: a stiffer backfill and a thicker wall make the wall stiffer (k_KV grows).
-  const auto                    sensitivity = read_csv(out / "sensitivity.csv");
+  const auto                    sensitivity = read_csv_records(out / "sensitivity.csv");
   std::map<std::string, double> k;
   for (const auto &row : sensitivity)
     k[row.at("parameter") + "@" + row.at("factor")] =
@@ -323,8 +271,8 @@ TEST(StudyCli, AutoFidelityReportsLevelAndErrorAndTheExtraStudiesAreConsistent)
   EXPECT_LT(k.at("soil_modulus@0.75"), k.at("soil_modulus@1.25"));
   EXPECT_LT(k.at("wall_thickness@0.75"), k.at("wall_thickness@1.25"));
 
-  EXPECT_EQ(units_of(out / "study.h5", "/k_table/kelvin_voigt_numerical_error"), "kN/mm/m");
-  EXPECT_EQ(units_of(out / "study.h5", "/stability/lumped/dt_limit"), "s");
+  EXPECT_EQ(Hdf5Reader(out / "study.h5").units("/k_table/kelvin_voigt_numerical_error"), "kN/mm/m");
+  EXPECT_EQ(Hdf5Reader(out / "study.h5").units("/stability/lumped/dt_limit"), "s");
   const std::string report = read_text(out / "report.md");
   for (const char *needle : {"accuracy_fem.csv",
                              "accuracy_lumped.csv",
@@ -348,7 +296,7 @@ TEST(StudyCli, BadSceneFailsWithFileLineAndKey)
   const TempDir dir("study_cli_bad");
   std::ofstream(dir.path() / "bad.yaml") << "fit:\n  width: \"-3 m\"\n";
   std::string log;
-  EXPECT_EQ(run_kimp("study bad.yaml -o out", dir.path(), log), 1) << log;
+  EXPECT_EQ(run_kimp_logged("study bad.yaml -o out", dir.path(), log), 1) << log;
   EXPECT_NE(log.find("bad.yaml:2: fit.width = -3 m"), std::string::npos) << log;
 }
 
@@ -364,18 +312,18 @@ TEST(StudyCliMpi, DISABLED_TwoRanksShareTheHeightsAndGiveTheSameKTable)
   study.replace(study.find("charts: true"), 12, "charts: false");
   std::ofstream(dir.path() / "study.yaml") << study;
   std::string log;
-  ASSERT_EQ(run_kimp("study study.yaml -o one", dir.path(), log), 0) << log;
+  ASSERT_EQ(run_kimp_logged("study study.yaml -o one", dir.path(), log), 0) << log;
   const std::string command = "cd '" + dir.path().string() +
                               "' && mpirun --allow-run-as-root --oversubscribe -np 2 " +
-                              KIMP_BINARY_DIR "/kimp study study.yaml -o two > two.log 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0) << read_text(dir.path() / "two.log");
+                              kimp_executable() + " study study.yaml -o two";
+  ASSERT_EQ(run_command(command, dir.path() / "two.log"), 0) << read_text(dir.path() / "two.log");
   const std::string two_log = read_text(dir.path() / "two.log");
   EXPECT_NE(two_log.find("on 2 ranks"), std::string::npos) << two_log;
   // Rank 1 computed H = 2.0 m (the second height); rank 0 reused it.
   EXPECT_NE(two_log.find("H2.00: FEM result reused"), std::string::npos) << two_log;
   EXPECT_EQ(two_log.find("H2.00: mesh"), std::string::npos) << two_log;
-  const auto one = read_csv(dir.path() / "one/k_table.csv");
-  const auto two = read_csv(dir.path() / "two/k_table.csv");
+  const auto one = read_csv_records(dir.path() / "one/k_table.csv");
+  const auto two = read_csv_records(dir.path() / "two/k_table.csv");
   ASSERT_EQ(one.size(), 2u);
   ASSERT_EQ(two.size(), one.size());
   for (std::size_t i = 0; i < one.size(); ++i)

@@ -8,96 +8,22 @@
 #include <fstream>
 #include <gtest/gtest.h>
 #include <map>
-#include <sstream>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <vector>
+
+#include "tests/support/csv.h"
+#include "tests/support/files.h"
+#include "tests/support/kimp_run.h"
+#include "tests/support/temp_dir.h"
 
 namespace
 {
+  using namespace kimp::testing;
   namespace fs = std::filesystem;
 
-  const std::string kimp = KIMP_BINARY_DIR "/kimp";
+  using Csv = CsvTable;
 
-  fs::path source_dir()
-  {
-    const char *dir = std::getenv("KIMP_SOURCE_DIR");
-    return dir != nullptr ? fs::path(dir) : fs::current_path();
-  }
-
-  fs::path fresh_dir(const std::string &name)
-  {
-    const fs::path dir =
-      fs::temp_directory_path() / ("kimp_sweep_cli_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-  }
-
-  std::string read_text(const fs::path &file)
-  {
-    std::ifstream      in(file);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-  }
-
-  /// Exit code of `command` with stdout and stderr captured into `log`.
-  int run(const std::string &command, const fs::path &log)
-  {
-    const int status = std::system((command + " > " + log.string() + " 2>&1").c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-
-  /// A CSV of `kimp sweep` as header -> column values (no quoted commas except in the header).
-  struct Csv
-  {
-    std::vector<std::string>              header;
-    std::vector<std::vector<std::string>> rows;
-
-    std::size_t column(const std::string &name) const
-    {
-      for (std::size_t i = 0; i < header.size(); ++i)
-        if (header[i] == name)
-          return i;
-      ADD_FAILURE() << "no column " << name;
-      return 0;
-    }
-  };
-
-  std::vector<std::string> split_csv_line(const std::string &line)
-  {
-    std::vector<std::string> fields;
-    std::string              field;
-    bool                     quoted = false;
-    for (const char c : line)
-    {
-      if (c == '"')
-        quoted = !quoted;
-      else if (c == ',' && !quoted)
-      {
-        fields.push_back(field);
-        field.clear();
-      }
-      else
-        field += c;
-    }
-    fields.push_back(field);
-    return fields;
-  }
-
-  Csv read_csv(const fs::path &file)
-  {
-    Csv           csv;
-    std::ifstream in(file);
-    std::string   line;
-    if (std::getline(in, line))
-      csv.header = split_csv_line(line);
-    while (std::getline(in, line))
-      csv.rows.push_back(split_csv_line(line));
-    return csv;
-  }
+  const std::string kimp = kimp_executable();
 
   /// Rows without the wall time (last column), which differs between runs.
   std::vector<std::vector<std::string>> rows_without_wall_time(const fs::path &csv_file)
@@ -125,10 +51,11 @@ namespace
 
   TEST(SweepCli, GapSweepRowsFollowThePhysics)
   {
-    const fs::path dir   = fresh_dir("physics");
+    const TempDir  temp_dir("sweep_cli_physics");
+    const fs::path dir   = temp_dir.path();
     const fs::path sweep = write_sweep(dir, gap_sweep);
-    ASSERT_EQ(run(kimp + " sweep " + sweep.string() + " -o " + (dir / "out").string(),
-                  dir / "log.txt"),
+    ASSERT_EQ(run_command(kimp + " sweep " + sweep.string() + " -o " + (dir / "out").string(),
+                          dir / "log.txt"),
               0)
       << read_text(dir / "log.txt");
     const Csv csv = read_csv(dir / "out/sweep.csv");
@@ -170,10 +97,13 @@ namespace
 
   TEST(SweepCli, InterruptedSweepResumesWithoutRecomputingFinishedCases)
   {
-    const fs::path dir   = fresh_dir("resume");
+    const TempDir  temp_dir("sweep_cli_resume");
+    const fs::path dir   = temp_dir.path();
     const fs::path sweep = write_sweep(dir, gap_sweep);
     const fs::path out   = dir / "out";
-    ASSERT_EQ(run(kimp + " sweep " + sweep.string() + " -o " + out.string(), dir / "log1.txt"), 0)
+    ASSERT_EQ(run_command(kimp + " sweep " + sweep.string() + " -o " + out.string(),
+                          dir / "log1.txt"),
+              0)
       << read_text(dir / "log1.txt");
     const auto complete = rows_without_wall_time(out / "sweep.csv");
 
@@ -189,7 +119,9 @@ namespace
     fs::remove(out / "sweep.csv");
     fs::remove(out / "sweep.h5");
 
-    ASSERT_EQ(run(kimp + " sweep " + sweep.string() + " -o " + out.string(), dir / "log2.txt"), 0)
+    ASSERT_EQ(run_command(kimp + " sweep " + sweep.string() + " -o " + out.string(),
+                          dir / "log2.txt"),
+              0)
       << read_text(dir / "log2.txt");
     const std::string log = read_text(dir / "log2.txt");
     EXPECT_NE(log.find("12 cases, 5 already finished, 7 to run"), std::string::npos) << log;
@@ -200,13 +132,14 @@ namespace
 
   TEST(SweepCli, FailingCaseIsRecordedAndTheOthersComplete)
   {
-    const fs::path dir   = fresh_dir("failing");
+    const TempDir  temp_dir("sweep_cli_failing");
+    const fs::path dir   = temp_dir.path();
     const fs::path sweep = write_sweep(dir,
                                        "parameters:\n"
                                        "  integration.dt: [auto, 0.05 s, auto]\n"
                                        "  walls.left.gap: [10 cm]\n");
-    ASSERT_EQ(run(kimp + " sweep " + sweep.string() + " -o " + (dir / "out").string(),
-                  dir / "log.txt"),
+    ASSERT_EQ(run_command(kimp + " sweep " + sweep.string() + " -o " + (dir / "out").string(),
+                          dir / "log.txt"),
               0)
       << read_text(dir / "log.txt");
     const Csv csv = read_csv(dir / "out/sweep.csv");
@@ -222,7 +155,8 @@ namespace
 
   TEST(SweepCli, MalformedSweepFilesNameFileLineAndKey)
   {
-    const fs::path                                        dir   = fresh_dir("malformed");
+    const TempDir                                         temp_dir("sweep_cli_malformed");
+    const fs::path                                        dir   = temp_dir.path();
     const std::map<std::string, std::vector<std::string>> cases = {
       {"parameters:\n  walls.left.gapp: [10 cm]\n", {"sweep.yaml:3", "walls.left.gapp"}},
       {"parameters:\n  impact.cor: [0.5, 2 cm]\n", {"sweep.yaml:3", "impact.cor = 2 cm"}},
@@ -237,7 +171,9 @@ namespace
     {
       const fs::path sweep = write_sweep(dir, body);
       const fs::path log   = dir / ("log" + std::to_string(n++) + ".txt");
-      EXPECT_EQ(run(kimp + " sweep " + sweep.string() + " -o " + (dir / "out").string(), log), 1)
+      EXPECT_EQ(run_command(kimp + " sweep " + sweep.string() + " -o " + (dir / "out").string(),
+                            log),
+                1)
         << body;
       const std::string text = read_text(log);
       for (const std::string &piece : expected)
@@ -247,9 +183,9 @@ namespace
       EXPECT_FALSE(fs::exists(dir / "out/sweep.csv")) << body;
     }
     std::ofstream(dir / "missing.yaml") << "scene: no_such_scene.yaml\nparameters:\n  a: [1]\n";
-    EXPECT_EQ(run(kimp + " sweep " + (dir / "missing.yaml").string() + " -o " +
-                    (dir / "out").string(),
-                  dir / "log_missing.txt"),
+    EXPECT_EQ(run_command(kimp + " sweep " + (dir / "missing.yaml").string() + " -o " +
+                            (dir / "out").string(),
+                          dir / "log_missing.txt"),
               1);
     EXPECT_NE(read_text(dir / "log_missing.txt").find("missing.yaml:1: scene"), std::string::npos)
       << read_text(dir / "log_missing.txt");
@@ -279,11 +215,14 @@ namespace
 
   TEST(SweepCli, ReportWritesChartsSummaryAndRequiredGapTableThatMatchTheCsv)
   {
-    const fs::path dir = fresh_dir("report");
+    const TempDir  temp_dir("sweep_cli_report");
+    const fs::path dir = temp_dir.path();
     const fs::path sweep =
       write_sweep(dir, "report: {kind: gap_study, title: Smoke gap study}\n" + gap_sweep);
     const fs::path out = dir / "out";
-    ASSERT_EQ(run(kimp + " sweep " + sweep.string() + " -o " + out.string(), dir / "log.txt"), 0)
+    ASSERT_EQ(run_command(kimp + " sweep " + sweep.string() + " -o " + out.string(),
+                          dir / "log.txt"),
+              0)
       << read_text(dir / "log.txt");
     for (const char *chart : {"response_vs_gap", "amplification_vs_gap"})
       for (const char *ext : {".png", ".svg"})
@@ -328,10 +267,12 @@ namespace
 
   TEST(SweepCli, NoChartsSkipsTheScriptAndAFailingScriptIsAnError)
   {
-    const fs::path dir   = fresh_dir("nocharts");
+    const TempDir  temp_dir("sweep_cli_nocharts");
+    const fs::path dir   = temp_dir.path();
     const fs::path sweep = write_sweep(dir, "report: {kind: gap_study}\n" + gap_sweep);
-    ASSERT_EQ(run(kimp + " sweep " + sweep.string() + " --no-charts -o " + (dir / "a").string(),
-                  dir / "log_a.txt"),
+    ASSERT_EQ(run_command(kimp + " sweep " + sweep.string() + " --no-charts -o " +
+                            (dir / "a").string(),
+                          dir / "log_a.txt"),
               0)
       << read_text(dir / "log_a.txt");
     EXPECT_TRUE(fs::exists(dir / "a/sweep.csv"));
@@ -341,9 +282,9 @@ namespace
     // A chart script that fails: the sweep results stay, kimp exits with an error naming it.
     fs::create_directories(dir / "data/scripts");
     std::ofstream(dir / "data/scripts/sweep_charts.py") << "import sys\nsys.exit(3)\n";
-    EXPECT_EQ(run("KIMP_DATA_DIR=" + (dir / "data").string() + " " + kimp + " sweep " +
-                    sweep.string() + " -o " + (dir / "b").string(),
-                  dir / "log_b.txt"),
+    EXPECT_EQ(run_command("KIMP_DATA_DIR=" + (dir / "data").string() + " " + kimp + " sweep " +
+                            sweep.string() + " -o " + (dir / "b").string(),
+                          dir / "log_b.txt"),
               1);
     const std::string log = read_text(dir / "log_b.txt");
     EXPECT_NE(log.find("sweep_charts.py exited with status 3"), std::string::npos) << log;
@@ -354,10 +295,11 @@ namespace
 
   TEST(SweepCli, UnknownReportKindIsNamedWithFileAndLine)
   {
-    const fs::path dir   = fresh_dir("badreport");
+    const TempDir  temp_dir("sweep_cli_badreport");
+    const fs::path dir   = temp_dir.path();
     const fs::path sweep = write_sweep(dir, "report:\n  kind: histogram\n" + gap_sweep);
-    EXPECT_EQ(run(kimp + " sweep " + sweep.string() + " -o " + (dir / "out").string(),
-                  dir / "log.txt"),
+    EXPECT_EQ(run_command(kimp + " sweep " + sweep.string() + " -o " + (dir / "out").string(),
+                          dir / "log.txt"),
               1);
     const std::string log = read_text(dir / "log.txt");
     EXPECT_NE(log.find("sweep.yaml:3: report.kind: 'histogram' (expected one of gap_study"),
@@ -369,15 +311,16 @@ namespace
   // Run by the ctest entry e2e_sweep_cli_test.mpi (label mpi), which enables disabled tests.
   TEST(SweepCliMpi, DISABLED_OneAndTwoRanksGiveIdenticalRows)
   {
-    const fs::path dir   = fresh_dir("mpi");
+    const TempDir  temp_dir("sweep_cli_mpi");
+    const fs::path dir   = temp_dir.path();
     const fs::path sweep = write_sweep(dir, gap_sweep);
-    ASSERT_EQ(run(kimp + " sweep " + sweep.string() + " -t 1 -o " + (dir / "one").string(),
-                  dir / "log1.txt"),
+    ASSERT_EQ(run_command(kimp + " sweep " + sweep.string() + " -t 1 -o " + (dir / "one").string(),
+                          dir / "log1.txt"),
               0)
       << read_text(dir / "log1.txt");
-    ASSERT_EQ(run("mpirun --allow-run-as-root --oversubscribe -np 2 " + kimp + " sweep " +
-                    sweep.string() + " -t 1 -o " + (dir / "two").string(),
-                  dir / "log2.txt"),
+    ASSERT_EQ(run_command("mpirun --allow-run-as-root --oversubscribe -np 2 " + kimp + " sweep " +
+                            sweep.string() + " -t 1 -o " + (dir / "two").string(),
+                          dir / "log2.txt"),
               0)
       << read_text(dir / "log2.txt");
     EXPECT_TRUE(fs::exists(dir / "two/journal/rank-1.jsonl")) << read_text(dir / "log2.txt");

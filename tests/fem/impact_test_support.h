@@ -14,6 +14,7 @@
 #include "geometry/scene_ids.h"
 #include "geometry/scene_mesh.h"
 #include "tests/fem/test_meshes.h"
+#include "tests/support/mpi_temp_dir.h"
 
 namespace kimp::fem::testing
 {
@@ -34,12 +35,7 @@ namespace kimp::fem::testing
   /** A per-process scratch directory (same on all ranks of one mpirun). */
   inline std::filesystem::path scratch(const std::string &name)
   {
-    int pid = static_cast<int>(getpid());
-    MPI_Bcast(&pid, 1, MPI_INT, 0, MPI_COMM_WORLD);
-    const auto dir =
-      std::filesystem::temp_directory_path() / ("kimp_fem_test_" + std::to_string(pid));
-    std::filesystem::create_directories(dir);
-    return dir / name;
+    return kimp::testing::shared_temp_dir("fem_test", MPI_COMM_WORLD) / name;
   }
 
   /**

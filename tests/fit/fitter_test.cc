@@ -16,6 +16,7 @@
 #include "io/units.h"
 #include "lumped/collision/two_body.h"
 #include "lumped/laws/force_law_factory.h"
+#include "tests/support/files.h"
 
 namespace
 {
@@ -365,9 +366,8 @@ namespace
   TEST(StiffnessUnits, Table21TimesWidthGivesTable22)
   {
     // data/reference/thesis_table_2_1.csv is docs/physics.md §4 (thesis Tables 2.1 and 2.2).
-    const char                 *source = std::getenv("KIMP_SOURCE_DIR");
-    const std::filesystem::path csv    = std::filesystem::path(source != nullptr ? source : ".") /
-                                      "data/reference/thesis_table_2_1.csv";
+    const std::filesystem::path csv =
+      kimp::testing::source_dir() / "data/reference/thesis_table_2_1.csv";
     std::ifstream in(csv);
     ASSERT_TRUE(in) << "cannot open " << csv;
     std::string line;

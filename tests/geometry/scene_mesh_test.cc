@@ -14,7 +14,6 @@
 #include <set>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "geometry/gmsh_session.h"
@@ -22,6 +21,7 @@
 #include "geometry/scene_geometry.h"
 #include "geometry/scene_ids.h"
 #include "geometry/scene_mesh.h"
+#include "tests/support/temp_dir.h"
 
 namespace
 {
@@ -111,8 +111,7 @@ namespace
   {
     if (const char *binary = std::getenv("KIMP_BINARY_DIR"))
       return std::filesystem::path(binary) / "test_output" / "geometry";
-    return std::filesystem::temp_directory_path() /
-           ("kimp_geometry_test_" + std::to_string(::getpid()));
+    return kimp::testing::process_temp_path("geometry_test");
   }
 
   class RemoveTemporaryOutput : public ::testing::Environment

@@ -4,18 +4,17 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <gtest/gtest.h>
 #include <initializer_list>
 #include <map>
 #include <optional>
 #include <random>
 #include <string>
-#include <unistd.h>
 
 #include "io/at2_reader.h"
 #include "io/records.h"
 #include "io/units.h"
+#include "tests/support/temp_dir.h"
 
 namespace
 {
@@ -57,37 +56,7 @@ namespace
                                        source ? std::optional<fs::path>(source) : std::nullopt);
   }
 
-  /// A scratch directory removed at the end of the test.
-  class ScratchDir
-  {
-  public:
-    ScratchDir()
-      : path_(fs::temp_directory_path() /
-              ("kimp_at2_reader_test_" + std::to_string(::getpid()) + "_" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name()))
-    {
-      fs::remove_all(path_);
-      fs::create_directories(path_);
-    }
-    ~ScratchDir()
-    {
-      std::error_code ec;
-      fs::remove_all(path_, ec);
-    }
-    ScratchDir(const ScratchDir &)            = delete;
-    ScratchDir &operator=(const ScratchDir &) = delete;
-
-    fs::path write(const std::string &name, const std::string &bytes) const
-    {
-      const fs::path file = path_ / name;
-      std::ofstream  out(file, std::ios::binary);
-      out << bytes;
-      return file;
-    }
-
-  private:
-    fs::path path_;
-  };
+  using kimp::testing::TempDir;
 
   template <class Function>
   std::string file_error(Function &&function)
@@ -201,20 +170,20 @@ TEST(At2Records, SixAndSevenDigitElCentroCopiesAgree)
 
 TEST(At2Format, TouchingFortranFieldsAndExponentLetters)
 {
-  const ScratchDir dir;
-  const auto       file   = dir.write("touching.AT2",
+  const TempDir dir;
+  const auto    file   = dir.write("touching.AT2",
                               header3 + "NPTS=    8, DT= .0100 SEC\n"
-                                                "-.1E-02-.2E-02 .3E-02.4E-02\n"
-                                                "  .5E-02\t-6.0D-03 +7E+00 .8123-105\n");
-  const auto       motion = kimp::io::read_at2(file);
+                                             "-.1E-02-.2E-02 .3E-02.4E-02\n"
+                                             "  .5E-02\t-6.0D-03 +7E+00 .8123-105\n");
+  const auto    motion = kimp::io::read_at2(file);
   EXPECT_DOUBLE_EQ(motion.dt, 0.01);
   ExpectValuesInG(motion, {-0.001, -0.002, 0.003, 0.004, 0.005, -0.006, 7.0, 0.8123e-105});
 }
 
 TEST(At2Format, CrlfNoCommaPaddingAndPartialLastLine)
 {
-  const ScratchDir dir;
-  const auto       file =
+  const TempDir dir;
+  const auto    file =
     dir.write("crlf.AT2",
               "PEER NGA STRONG MOTION DATABASE RECORD\r\nKobe Japan, 1/16/1995, KJMA, 0\r\n"
               "ACCELERATION TIME SERIES IN UNITS OF G\r\n"
@@ -235,8 +204,8 @@ TEST(At2Format, CrlfNoCommaPaddingAndPartialLastLine)
 
 TEST(At2Format, ClassicMacLineEndings)
 {
-  const ScratchDir dir;
-  const auto       file =
+  const TempDir dir;
+  const auto    file =
     dir.write("cr.AT2", header3 + "NPTS=  3, DT= .0100 SEC\r -.1E-02 .2E-02\r .3E-02\r");
   const auto motion = kimp::io::read_at2(file);
   ExpectValuesInG(motion, {-0.001, 0.002, 0.003});
@@ -247,21 +216,21 @@ TEST(At2Format, ClassicMacLineEndings)
 
 TEST(At2Format, NumbersFirstNptsLine)
 {
-  const ScratchDir dir;
-  const auto       file   = dir.write("numbers_first.AT2",
+  const TempDir dir;
+  const auto    file   = dir.write("numbers_first.AT2",
                               "PEER NGA STRONG MOTION DATABASE RECORD\n"
-                                      "IMPERIAL VALLEY 5/19/40 0439, EL CENTRO ARRAY #9, 180\n"
-                                      "ACCELERATION TIME HISTORY IN UNITS OF G\n"
-                                      "3    0.0100    NPTS, DT\n"
-                                      "  -0.640318E-02  -0.602871E-02   0.530416E-03\n");
-  const auto       motion = kimp::io::read_at2(file);
+                                   "IMPERIAL VALLEY 5/19/40 0439, EL CENTRO ARRAY #9, 180\n"
+                                   "ACCELERATION TIME HISTORY IN UNITS OF G\n"
+                                   "3    0.0100    NPTS, DT\n"
+                                   "  -0.640318E-02  -0.602871E-02   0.530416E-03\n");
+  const auto    motion = kimp::io::read_at2(file);
   EXPECT_DOUBLE_EQ(motion.dt, 0.01);
   ExpectValuesInG(motion, {-0.640318E-02, -0.602871E-02, 0.530416E-03});
 }
 
 TEST(At2Format, FilterTextAfterDtAndDigitsInHeaderAreIgnored)
 {
-  const ScratchDir dir;
+  const TempDir dir;
   // Header lines full of numbers; the NPTS line ends with filter corners that are numbers too.
   const auto file =
     dir.write("filter.AT2",
@@ -275,7 +244,7 @@ TEST(At2Format, FilterTextAfterDtAndDigitsInHeaderAreIgnored)
 
 TEST(At2Errors, EmptyFile)
 {
-  const ScratchDir dir;
+  const TempDir dir;
   for (const std::string &content : {std::string(), std::string("  \n\n \r\n")})
   {
     const auto msg = file_error([&] { kimp::io::read_at2(dir.write("empty.AT2", content)); });
@@ -285,7 +254,7 @@ TEST(At2Errors, EmptyFile)
 
 TEST(At2Errors, BinaryJunk)
 {
-  const ScratchDir  dir;
+  const TempDir     dir;
   const std::string junk = header3 + "NPTS= 2, DT= .01 SEC\n .1E-02\n" +
                            std::string("\x7f\x45\x4c\x46\x02\x01\x00\x00\xff\xfe", 10);
   const auto msg = file_error([&] { kimp::io::read_at2(dir.write("junk.AT2", junk)); });
@@ -294,8 +263,8 @@ TEST(At2Errors, BinaryJunk)
 
 TEST(At2Errors, TruncatedBeforeNptsLine)
 {
-  const ScratchDir dir;
-  const auto       msg = file_error(
+  const TempDir dir;
+  const auto    msg = file_error(
     [&]
     { kimp::io::read_at2(dir.write("cut.AT2", "PEER NGA STRONG MOTION DATABASE RECORD\nKobe")); });
   ExpectContains(msg, {"cut.AT2:2:", "truncated", "before any NPTS/DT line", "NPTS="});
@@ -303,7 +272,7 @@ TEST(At2Errors, TruncatedBeforeNptsLine)
 
 TEST(At2Errors, TruncatedInsideData)
 {
-  const ScratchDir dir;
+  const TempDir dir;
   // Cut in the middle of the 5th value: no final newline; 4.5 of 6 values.
   const auto msg = file_error(
     [&]
@@ -322,14 +291,14 @@ TEST(At2Errors, TruncatedInsideData)
 
 TEST(At2Errors, FewerValuesThanNpts)
 {
-  const ScratchDir dir;
-  const auto       msg = file_error(
+  const TempDir dir;
+  const auto    msg = file_error(
     [&]
     {
       kimp::io::read_at2(dir.write("fewer.AT2",
                                    header3 + "NPTS= 7, DT= .01 SEC\n"
-                                                   " .1E-02 .2E-02 .3E-02 .4E-02 .5E-02\n"
-                                                   " .6E-02\n\n"));
+                                                " .1E-02 .2E-02 .3E-02 .4E-02 .5E-02\n"
+                                                " .6E-02\n\n"));
     });
   ExpectContains(msg, {"fewer.AT2:7:", "fewer values than NPTS", "6 of NPTS = 7"});
   EXPECT_EQ(msg.find("no newline"), std::string::npos) << msg;
@@ -337,21 +306,21 @@ TEST(At2Errors, FewerValuesThanNpts)
 
 TEST(At2Errors, MoreValuesThanNpts)
 {
-  const ScratchDir dir;
-  const auto       msg = file_error(
+  const TempDir dir;
+  const auto    msg = file_error(
     [&]
     {
       kimp::io::read_at2(dir.write("more.AT2",
                                    header3 + "NPTS= 5, DT= .01 SEC\n"
-                                                   " .1E-02 .2E-02 .3E-02 .4E-02 .5E-02\n"
-                                                   " .6E-02\n"));
+                                                " .1E-02 .2E-02 .3E-02 .4E-02 .5E-02\n"
+                                                " .6E-02\n"));
     });
   ExpectContains(msg, {"more.AT2:6:", "more values than NPTS = 5", "value 6"});
 }
 
 TEST(At2Errors, NonNumericTokenIsQuoted)
 {
-  const ScratchDir dir;
+  const TempDir dir;
   for (const char *bad : {"abc", "NaN", ".1E-0x", "1.0E", "1,2"})
   {
     const auto msg = file_error(
@@ -370,8 +339,8 @@ TEST(At2Errors, NonNumericTokenIsQuoted)
 
 TEST(At2Errors, NoNptsLine)
 {
-  const ScratchDir dir;
-  std::string      content = header3;
+  const TempDir dir;
+  std::string   content = header3;
   for (int i = 0; i < 10; ++i)
     content += " .1E-02 .2E-02 .3E-02 .4E-02 .5E-02\n";
   const auto msg = file_error([&] { kimp::io::read_at2(dir.write("headerless.AT2", content)); });
@@ -380,7 +349,7 @@ TEST(At2Errors, NoNptsLine)
 
 TEST(At2Errors, NptsAndDtMustBePositive)
 {
-  const ScratchDir dir;
+  const TempDir dir;
   struct Case
   {
     std::string line, expected;
@@ -402,8 +371,8 @@ TEST(At2Errors, NptsAndDtMustBePositive)
 
 TEST(At2Errors, MissingFileAndDirectory)
 {
-  const ScratchDir dir;
-  const auto       msg = file_error([&] { kimp::io::read_at2("/nonexistent/x.AT2"); });
+  const TempDir dir;
+  const auto    msg = file_error([&] { kimp::io::read_at2("/nonexistent/x.AT2"); });
   ExpectContains(msg, {"/nonexistent/x.AT2: cannot open"});
   const auto msg_dir = file_error([&] { kimp::io::read_at2(fs::temp_directory_path()); });
   ExpectContains(msg_dir, {"is a directory"});
@@ -411,8 +380,8 @@ TEST(At2Errors, MissingFileAndDirectory)
 
 TEST(At2Errors, ErrorCarriesFileAndLine)
 {
-  const ScratchDir dir;
-  const auto       file = dir.write("line.AT2", header3 + "NPTS= 2, DT= .01 SEC\n .1 x\n");
+  const TempDir dir;
+  const auto    file = dir.write("line.AT2", header3 + "NPTS= 2, DT= .01 SEC\n .1 x\n");
   try
   {
     kimp::io::read_at2(file);
@@ -427,15 +396,15 @@ TEST(At2Errors, ErrorCarriesFileAndLine)
 
 TEST(TwoColumn, ReadsUniformTimeSeriesWithComments)
 {
-  const ScratchDir dir;
-  const auto       file   = dir.write("two.txt",
+  const TempDir dir;
+  const auto    file   = dir.write("two.txt",
                               "# time (s)  acceleration (g)\n"
-                                      "0.000  0.10\n"
-                                      "0.005, -0.20   # comma separated\n"
-                                      "\n"
-                                      "0.010\t0.30\r\n"
-                                      "0.015  4.0E-01\n");
-  const auto       motion = kimp::io::read_two_column(file, standard_gravity);
+                                   "0.000  0.10\n"
+                                   "0.005, -0.20   # comma separated\n"
+                                   "\n"
+                                   "0.010\t0.30\r\n"
+                                   "0.015  4.0E-01\n");
+  const auto    motion = kimp::io::read_two_column(file, standard_gravity);
   EXPECT_NEAR(motion.dt, 0.005, 1e-15);
   ExpectValuesInG(motion, {0.10, -0.20, 0.30, 0.40});
   EXPECT_EQ(motion.name, "two");
@@ -443,7 +412,7 @@ TEST(TwoColumn, ReadsUniformTimeSeriesWithComments)
 
 TEST(TwoColumn, RejectsNonUniformNonZeroStartAndBadRows)
 {
-  const ScratchDir dir;
+  const TempDir dir;
   struct Case
   {
     std::string content, expected;
@@ -466,8 +435,8 @@ TEST(TwoColumn, RejectsNonUniformNonZeroStartAndBadRows)
 
 TEST(GroundMotionDispatch, ChoosesTheFormatByContent)
 {
-  const ScratchDir dir;
-  const auto       at2 = dir.write("a.txt", header3 + "NPTS= 2, DT= .01 SEC\n .1E+00 -.2E+00\n");
+  const TempDir dir;
+  const auto    at2 = dir.write("a.txt", header3 + "NPTS= 2, DT= .01 SEC\n .1E+00 -.2E+00\n");
   ExpectValuesInG(kimp::io::read_ground_motion(at2), {0.1, -0.2});
 
   const auto two    = dir.write("b.AT2", "# t a\n0 1.5\n0.02 -2.5\n");

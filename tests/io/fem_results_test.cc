@@ -6,11 +6,12 @@
 #include <hdf5.h>
 #include <random>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "io/fem_results.h"
 #include "io/results_file.h"
+#include "tests/support/hdf5_reader.h"
+#include "tests/support/temp_dir.h"
 
 namespace
 {
@@ -18,23 +19,7 @@ namespace
   using kimp::io::ResultsError;
   using kimp::io::ResultsFile;
 
-  class TempDir
-  {
-  public:
-    TempDir()
-      : path_(std::filesystem::temp_directory_path() /
-              ("kimp_fem_results_test_" + std::to_string(::getpid()) + "_" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name()))
-    {
-      std::filesystem::remove_all(path_);
-      std::filesystem::create_directories(path_);
-    }
-    ~TempDir() { std::filesystem::remove_all(path_); }
-    std::filesystem::path file(const std::string &name) const { return path_ / name; }
-
-  private:
-    std::filesystem::path path_;
-  };
+  using kimp::testing::TempDir;
 
   /// A case with every field set; values from a seeded generator so that no two series agree.
   FemCase make_case(const std::string &name, double height, unsigned seed, std::size_t n)
@@ -66,21 +51,6 @@ namespace
     c.summary_units = {{"custom_length", "mm"}};
     c.labels        = {{"mesh_level", "2"}, {"integrator", "central_difference"}};
     return c;
-  }
-
-  std::string units_of(hid_t file, const std::string &dataset)
-  {
-    const hid_t d         = H5Dopen2(file, dataset.c_str(), H5P_DEFAULT);
-    const hid_t attribute = H5Aopen(d, "units", H5P_DEFAULT);
-    const hid_t type      = H5Aget_type(attribute);
-    char       *text      = nullptr;
-    H5Aread(attribute, type, &text);
-    std::string result = text != nullptr ? text : "";
-    H5free_memory(text);
-    H5Tclose(type);
-    H5Aclose(attribute);
-    H5Dclose(d);
-    return result;
   }
 
   void write_cases(const std::filesystem::path &path, const std::vector<FemCase> &cases)
@@ -138,8 +108,8 @@ namespace
       EXPECT_EQ(b.labels, a.labels);
     }
 
-    const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-    ASSERT_GE(file, 0);
+    const kimp::testing::Hdf5Reader file(path);
+    ASSERT_GE(file.id(), 0);
     const std::vector<std::pair<std::string, std::string>> expected = {
       {"/fem/H1.00/wall_height", "m"},
       {"/fem/H1.00/slab_mass", "kg/m"},
@@ -159,8 +129,7 @@ namespace
       {"/fem/H1.00/summary/custom_length", "mm"},
       {"/fem/H1.25/labels/mesh_level", "1"}};
     for (const auto &[dataset, units] : expected)
-      EXPECT_EQ(units_of(file, dataset), units) << dataset;
-    H5Fclose(file);
+      EXPECT_EQ(file.units(dataset), units) << dataset;
   }
 
   TEST(FemResults, FailedCaseKeepsStatusAndLabelsAndEmptySeriesStayEmpty)

@@ -6,11 +6,11 @@
 #include <gtest/gtest.h>
 #include <optional>
 #include <string>
-#include <unistd.h>
 
 #include "io/at2_reader.h"
 #include "io/records.h"
 #include "io/units.h"
+#include "tests/support/temp_dir.h"
 
 namespace
 {
@@ -23,10 +23,7 @@ namespace
   protected:
     void SetUp() override
     {
-      root_ = fs::temp_directory_path() /
-              ("kimp_records_test_" + std::to_string(::getpid()) + "_" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name());
-      fs::remove_all(root_);
+      root_ = temp_dir_.path();
       for (const char *tree : {"cwd_tree", "source_tree"})
       {
         fs::create_directories(root_ / tree / "repo");
@@ -35,12 +32,6 @@ namespace
       fs::create_directories(root_ / "explicit");
       fs::create_directories(root_ / "from_env");
       fs::create_directories(root_ / "empty_tree/repo");
-    }
-
-    void TearDown() override
-    {
-      std::error_code ec;
-      fs::remove_all(root_, ec);
     }
 
     fs::path write_at2(const fs::path &directory, const std::string &name, double value_g) const
@@ -52,7 +43,8 @@ namespace
       return file;
     }
 
-    fs::path root_;
+    const kimp::testing::TempDir temp_dir_{"records_test"};
+    fs::path                     root_;
   };
 } // namespace
 

@@ -8,144 +8,20 @@
 #include <random>
 #include <stdexcept>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "base/version.h"
 #include "io/results_file.h"
+#include "tests/support/hdf5_reader.h"
+#include "tests/support/temp_dir.h"
 
 namespace
 {
   using kimp::io::ResultsFile;
   using kimp::io::ResultsGroup;
 
-  /// A fresh directory under the system temp directory, removed at the end of the test.
-  class TempDir
-  {
-  public:
-    TempDir()
-      : path_(std::filesystem::temp_directory_path() /
-              ("kimp_results_test_" + std::to_string(::getpid()) + "_" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name()))
-    {
-      std::filesystem::remove_all(path_);
-      std::filesystem::create_directories(path_);
-    }
-    ~TempDir() { std::filesystem::remove_all(path_); }
-    const std::filesystem::path &path() const { return path_; }
-
-  private:
-    std::filesystem::path path_;
-  };
-
-  /// Read-only HDF5 file handle for the checks.
-  class Reader
-  {
-  public:
-    explicit Reader(const std::filesystem::path &file)
-      : id_(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT))
-    {
-      if (id_ < 0)
-        throw std::runtime_error("cannot open " + file.string());
-    }
-    ~Reader() { H5Fclose(id_); }
-    hid_t id() const { return id_; }
-
-    std::vector<hsize_t> dims(const std::string &dataset) const
-    {
-      const hid_t          d     = H5Dopen2(id_, dataset.c_str(), H5P_DEFAULT);
-      const hid_t          space = H5Dget_space(d);
-      const int            rank  = H5Sget_simple_extent_ndims(space);
-      std::vector<hsize_t> result(static_cast<std::size_t>(std::max(rank, 0)));
-      H5Sget_simple_extent_dims(space, result.data(), nullptr);
-      H5Sclose(space);
-      H5Dclose(d);
-      return result;
-    }
-
-    template <class T>
-    std::vector<T> read(const std::string &dataset, hid_t memory_type) const
-    {
-      std::size_t n = 1;
-      for (const hsize_t d : dims(dataset))
-        n *= d;
-      std::vector<T> values(n);
-      const hid_t    d = H5Dopen2(id_, dataset.c_str(), H5P_DEFAULT);
-      EXPECT_GE(H5Dread(d, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0)
-        << dataset;
-      H5Dclose(d);
-      return values;
-    }
-
-    std::string text(const std::string &dataset) const
-    {
-      const hid_t d    = H5Dopen2(id_, dataset.c_str(), H5P_DEFAULT);
-      const hid_t type = H5Tcopy(H5T_C_S1);
-      H5Tset_size(type, H5T_VARIABLE);
-      H5Tset_cset(type, H5T_CSET_UTF8); // HDF5 does not convert between character sets
-      char *pointer = nullptr;
-      EXPECT_GE(H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, &pointer), 0) << dataset;
-      std::string result = pointer != nullptr ? pointer : "";
-      H5free_memory(pointer);
-      H5Tclose(type);
-      H5Dclose(d);
-      return result;
-    }
-
-    /// String attribute `name` of the object at `path`, or "<missing>".
-    std::string attribute(const std::string &path, const std::string &name) const
-    {
-      if (H5Aexists_by_name(id_, path.c_str(), name.c_str(), H5P_DEFAULT) <= 0)
-        return "<missing>";
-      const hid_t a    = H5Aopen_by_name(id_, path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
-      const hid_t type = H5Tcopy(H5T_C_S1);
-      H5Tset_size(type, H5T_VARIABLE);
-      H5Tset_cset(type, H5T_CSET_UTF8); // HDF5 does not convert between character sets
-      char *pointer = nullptr;
-      EXPECT_GE(H5Aread(a, type, &pointer), 0) << path << " @" << name;
-      std::string result = pointer != nullptr ? pointer : "";
-      H5free_memory(pointer);
-      H5Tclose(type);
-      H5Aclose(a);
-      return result;
-    }
-
-    template <class T>
-    std::vector<T>
-    numeric_attribute(const std::string &path, const std::string &name, hid_t memory_type) const
-    {
-      const hid_t    a = H5Aopen_by_name(id_, path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
-      const hid_t    space = H5Aget_space(a);
-      const auto     n     = static_cast<std::size_t>(H5Sget_simple_extent_npoints(space));
-      std::vector<T> values(n);
-      EXPECT_GE(H5Aread(a, memory_type, values.data()), 0) << path << " @" << name;
-      H5Sclose(space);
-      H5Aclose(a);
-      return values;
-    }
-
-  private:
-    hid_t id_;
-  };
-
-  /// Every dataset in the file, by iterating all links recursively.
-  std::vector<std::string> all_datasets(hid_t file)
-  {
-    std::vector<std::string> names;
-    H5Ovisit2(
-      file,
-      H5_INDEX_NAME,
-      H5_ITER_NATIVE,
-      [](hid_t, const char *name, const H5O_info_t *info, void *data) -> herr_t
-      {
-        if (info->type == H5O_TYPE_DATASET)
-          static_cast<std::vector<std::string> *>(data)->push_back(std::string("/") + name);
-        return 0;
-      },
-      &names,
-      H5O_INFO_BASIC);
-    return names;
-  }
+  using kimp::testing::TempDir;
+  using Reader = kimp::testing::Hdf5Reader;
 
   TEST(ResultsFile, WritesMetaInputAndDatasetsWithUnits)
   {
@@ -227,7 +103,7 @@ namespace
     EXPECT_EQ(r.attribute("/lumped/no_walls", "status"),
               "failed: Newton did not converge at t = 3 s");
 
-    const auto datasets = all_datasets(r.id());
+    const auto datasets = r.datasets();
     EXPECT_EQ(datasets.size(), 11u) << "2 input + 4 plain + 3 time series + 2 table columns";
     for (const auto &name : datasets)
       EXPECT_NE(r.attribute(name, "units"), "<missing>") << "dataset without units: " << name;

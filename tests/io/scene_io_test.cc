@@ -9,11 +9,12 @@
 #include <optional>
 #include <random>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "io/scene_io.h"
 #include "io/units.h"
+#include "tests/support/scene_errors.h"
+#include "tests/support/temp_dir.h"
 
 namespace test_scene
 {
@@ -166,15 +167,7 @@ namespace
   template <class T = Scene>
   std::string scene_error(const std::string &text)
   {
-    try
-    {
-      load_scene_text<T>(text, file_name);
-    }
-    catch (const SceneError &error)
-    {
-      return error.what();
-    }
-    return "";
+    return kimp::testing::scene_error<T>(text, file_name);
   }
 
   /// Expects `message` to contain every one of `parts`.
@@ -479,8 +472,8 @@ heights: ["1 m", "150 cm", "1750 mm"]
 
   TEST(SceneIo, LoadsFilesAndNamesMissingOnes)
   {
-    const auto path = std::filesystem::temp_directory_path() /
-                      ("kimp_scene_io_test_" + std::to_string(::getpid()) + ".yaml");
+    const kimp::testing::TempDir dir("scene_io_test");
+    const auto                   path = dir.file("scene.yaml");
     {
       std::ofstream out(path);
       out << "n_storeys: 7\n";

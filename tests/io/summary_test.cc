@@ -2,16 +2,16 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "io/summary.h"
+#include "tests/support/files.h"
+#include "tests/support/temp_dir.h"
 
 namespace
 {
@@ -21,31 +21,9 @@ namespace
   using kimp::io::write_json_atomic;
   using kimp::io::write_text_atomic;
 
-  class TempDir
-  {
-  public:
-    TempDir()
-      : path_(std::filesystem::temp_directory_path() /
-              ("kimp_summary_test_" + std::to_string(::getpid()) + "_" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name()))
-    {
-      std::filesystem::remove_all(path_);
-      std::filesystem::create_directories(path_);
-    }
-    ~TempDir() { std::filesystem::remove_all(path_); }
-    const std::filesystem::path &path() const { return path_; }
-
-  private:
-    std::filesystem::path path_;
-  };
-
-  std::string read_file(const std::filesystem::path &path)
-  {
-    std::ifstream      in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-  }
+  using kimp::testing::read_json;
+  using kimp::testing::read_text;
+  using kimp::testing::TempDir;
 
   std::size_t n_entries(const std::filesystem::path &dir)
   {
@@ -64,10 +42,10 @@ namespace
                            {"dofs", 18432},
                            {"k_per_m", {{"linear", 1.2e9}, {"hertz", 3.4e10}}}};
     write_json_atomic(path, summary);
-    EXPECT_EQ(nlohmann::json::parse(read_file(path)), summary);
+    EXPECT_EQ(read_json(path), summary);
     summary["steps"] = 1;
     write_json_atomic(path, summary);
-    EXPECT_EQ(nlohmann::json::parse(read_file(path)).at("steps"), 1);
+    EXPECT_EQ(read_json(path).at("steps"), 1);
     EXPECT_EQ(n_entries(dir.path()), 1u) << "no temporary file may remain";
   }
 
@@ -78,7 +56,7 @@ namespace
     write_csv_atomic(path,
                      {"case", "note"},
                      std::vector<std::vector<std::string>>{{"a,b", "say \"hi\""}, {"plain", "x"}});
-    EXPECT_EQ(read_file(path), "case,note\n\"a,b\",\"say \"\"hi\"\"\"\nplain,x\n");
+    EXPECT_EQ(read_text(path), "case,note\n\"a,b\",\"say \"\"hi\"\"\"\nplain,x\n");
   }
 
   TEST(Summary, NumericCsvReadsBackExactly)
@@ -93,7 +71,7 @@ namespace
         v = u(random) * std::pow(10.0, static_cast<int>(u(random)) % 12);
     write_csv_atomic(path, {"height_m", "k_linear_N_per_m", "k_hertz_N_per_m1.5"}, rows);
 
-    std::istringstream in(read_file(path));
+    std::istringstream in(read_text(path));
     std::string        line;
     std::getline(in, line);
     EXPECT_EQ(line, "height_m,k_linear_N_per_m,k_hertz_N_per_m1.5");
@@ -115,7 +93,7 @@ namespace
     const TempDir dir;
     const auto    path = dir.path() / "table.csv";
     write_csv_atomic(path, {"a", "b"}, std::vector<std::vector<double>>{{1.0, 2.0}});
-    const std::string before = read_file(path);
+    const std::string before = read_text(path);
     try
     {
       write_csv_atomic(path, {"a", "b"}, std::vector<std::vector<double>>{{1.0, 2.0}, {3.0}});
@@ -128,7 +106,7 @@ namespace
         << message;
       EXPECT_NE(message.find(path.string()), std::string::npos) << message;
     }
-    EXPECT_EQ(read_file(path), before);
+    EXPECT_EQ(read_text(path), before);
     EXPECT_EQ(n_entries(dir.path()), 1u);
     EXPECT_THROW(write_text_atomic(dir.path() / "missing_dir" / "x.json", "{}"), OutputError);
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "missing_dir"));

@@ -7,6 +7,7 @@
 #include "lumped/integrators/central_difference.h"
 #include "lumped/integrators/newmark_integrator.h"
 #include "lumped/laws/force_law_factory.h"
+#include "tests/support/lumped_scenes.h"
 
 namespace kimp::lumped
 {
@@ -19,22 +20,6 @@ namespace kimp::lumped
       SyntheticMotionSpec spec;
       spec.duration = 12.0;
       return synthetic_near_fault(spec);
-    }
-
-    PoundingScene walled(const std::string &law_name, const double k, const double gap)
-    {
-      ForceLawSpec spec;
-      spec.law       = law_name;
-      spec.stiffness = k;
-      spec.cor       = 0.7;
-      MoatWall w;
-      w.gap = gap;
-      w.law = force_law_factory(spec);
-      PoundingScene scene;
-      scene.building   = reference_isolated_building(4);
-      scene.left_wall  = w;
-      scene.right_wall = w;
-      return scene;
     }
 
     void expect_balanced(const Response &r, const std::string &what)
@@ -71,7 +56,8 @@ namespace kimp::lumped
     CentralDifferenceOptions opt;
     opt.dt = 1e-4;
     const Response r =
-      CentralDifference(PoundingModel(walled("linear", 2.5e9, 0.10)), opt).run(motion());
+      CentralDifference(PoundingModel(kimp::testing::walled_scene("linear", 2.5e9, 0.10)), opt)
+        .run(motion());
     ASSERT_GT(r.n_impacts(), 0u);
     expect_balanced(r, "linear law");
     // An elastic law returns what it stores: no net contact work once the walls are free.
@@ -86,7 +72,8 @@ namespace kimp::lumped
       CentralDifferenceOptions opt;
       opt.dt = 1e-4;
       const Response r =
-        CentralDifference(PoundingModel(walled(name, 2.5e9, 0.10)), opt).run(motion());
+        CentralDifference(PoundingModel(kimp::testing::walled_scene(name, 2.5e9, 0.10)), opt)
+          .run(motion());
       ASSERT_GT(r.n_impacts(), 0u) << name;
       expect_balanced(r, name);
       // The integrator's contact work equals what the laws booked as dissipated.
@@ -101,7 +88,9 @@ namespace kimp::lumped
       CentralDifferenceOptions opt;
       opt.dt           = 1e-4;
       const double   k = 750e3 / std::pow(1e-3, 1.5); // 750 kN/mm^1.5
-      const Response r = CentralDifference(PoundingModel(walled(name, k, 0.10)), opt).run(motion());
+      const Response r =
+        CentralDifference(PoundingModel(kimp::testing::walled_scene(name, k, 0.10)), opt)
+          .run(motion());
       ASSERT_GT(r.n_impacts(), 0u) << name;
       expect_balanced(r, name);
     }
@@ -112,7 +101,9 @@ namespace kimp::lumped
     NewmarkOptions opt;
     opt.dt = 5e-4;
     const Response r =
-      NewmarkIntegrator(PoundingModel(walled("kelvin_voigt", 2.5e9, 0.10)), opt).run(motion());
+      NewmarkIntegrator(PoundingModel(kimp::testing::walled_scene("kelvin_voigt", 2.5e9, 0.10)),
+                        opt)
+        .run(motion());
     ASSERT_GT(r.n_impacts(), 0u);
     expect_balanced(r, "Newmark, Kelvin-Voigt");
   }

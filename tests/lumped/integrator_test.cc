@@ -15,6 +15,7 @@
 #include "lumped/integrators/integration_errors.h"
 #include "lumped/integrators/newmark_integrator.h"
 #include "lumped/laws/force_law_factory.h"
+#include "tests/support/lumped_scenes.h"
 
 namespace kimp::lumped
 {
@@ -60,18 +61,7 @@ namespace kimp::lumped
     /// laws carry history between impacts) under a short synthetic record.
     PoundingModel walled_building(const double gap)
     {
-      ForceLawSpec spec;
-      spec.law       = "modified_kelvin_voigt";
-      spec.stiffness = 2.5e9;
-      spec.cor       = 0.7;
-      MoatWall w;
-      w.gap = gap;
-      w.law = force_law_factory(spec);
-      PoundingScene scene;
-      scene.building   = reference_isolated_building(4);
-      scene.left_wall  = w;
-      scene.right_wall = w;
-      return PoundingModel(scene);
+      return PoundingModel(kimp::testing::walled_scene("modified_kelvin_voigt", 2.5e9, gap));
     }
 
     /// Every recorded number of two responses is bitwise equal (same operations in the same
@@ -368,20 +358,10 @@ namespace kimp::lumped
     // (which the central difference method refuses) runs, balances energy and lands close to a
     // fine explicit reference.
     SyntheticMotionSpec gs;
-    gs.duration          = 10.0;
-    const GroundMotion g = synthetic_near_fault(gs);
-    ForceLawSpec       spec;
-    spec.law       = "jankowski";
-    spec.stiffness = 750e3 / std::pow(1e-3, 1.5);
-    spec.cor       = 0.7;
-    MoatWall w;
-    w.gap = 0.12;
-    w.law = force_law_factory(spec);
-    PoundingScene scene;
-    scene.building   = reference_isolated_building(4);
-    scene.left_wall  = w;
-    scene.right_wall = w;
-    const PoundingModel      model(scene);
+    gs.duration           = 10.0;
+    const GroundMotion  g = synthetic_near_fault(gs);
+    const PoundingModel model(
+      kimp::testing::walled_scene("jankowski", 750e3 / std::pow(1e-3, 1.5), 0.12));
     const double             dt = 1.5 * stability_limit(model, 0.05).dt_critical;
     CentralDifferenceOptions cdm_opt;
     cdm_opt.dt = dt;

@@ -1,45 +1,36 @@
-// Helpers shared by the end-to-end tests: a temporary directory, reading a file, and running the
-// built `kimp` binary (KIMP_BINARY_DIR "/kimp") with its output captured.
+// kimp::testing::run_kimp(): the built `kimp` executable (KIMP_BINARY_DIR "/kimp", a definition
+// every test gets from kimp_add_test) run in a directory with its output captured; and any shell
+// command with its output captured to a log file.
 #pragma once
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <sys/wait.h>
-#include <unistd.h>
 
-namespace kimp::e2e
+#include "tests/support/files.h"
+
+namespace kimp::testing
 {
-  /// A fresh directory, removed at the end of the test.
-  class TempDir
+  /// The path of the built `kimp` executable.
+  inline std::string kimp_executable()
   {
-  public:
-    explicit TempDir(const std::string &tag)
-      : path_(std::filesystem::temp_directory_path() /
-              ("kimp_" + tag + "_" + std::to_string(::getpid())))
-    {
-      std::filesystem::remove_all(path_);
-      std::filesystem::create_directories(path_);
-    }
-    ~TempDir() { std::filesystem::remove_all(path_); }
-    TempDir(const TempDir &)                                = delete;
-    TempDir                     &operator=(const TempDir &) = delete;
-    const std::filesystem::path &path() const { return path_; }
-
-  private:
-    std::filesystem::path path_;
-  };
-
-  inline std::string read_text(const std::filesystem::path &file)
-  {
-    std::ifstream      in(file);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
+    return KIMP_BINARY_DIR "/kimp";
   }
 
+  /// The exit code of a std::system() status (-1 if the command did not exit normally).
+  inline int exit_code_of(int status)
+  {
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
+  /// The exit code of the shell command `command`, its stdout and stderr written to `log`.
+  inline int run_command(const std::string &command, const std::filesystem::path &log)
+  {
+    return exit_code_of(std::system((command + " > '" + log.string() + "' 2>&1").c_str()));
+  }
+
+  /// What a run of `kimp` gave back.
   struct KimpRun
   {
     int         exit_code = -1;
@@ -47,16 +38,16 @@ namespace kimp::e2e
     std::string err; ///< stderr (the log)
   };
 
-  /// `kimp <arguments>` run in `dir`, stdout and stderr captured to files there.
-  inline KimpRun kimp(const std::string &arguments, const std::filesystem::path &dir)
+  /// `kimp <arguments>` run in `dir`, stdout and stderr captured to stdout.txt and stderr.txt
+  /// there.
+  inline KimpRun run_kimp(const std::string &arguments, const std::filesystem::path &dir)
   {
-    const std::string command = "cd '" + dir.string() + "' && " KIMP_BINARY_DIR "/kimp " +
+    const std::string command = "cd '" + dir.string() + "' && " + kimp_executable() + " " +
                                 arguments + " > stdout.txt 2> stderr.txt";
-    const int status = std::system(command.c_str());
-    KimpRun   run;
-    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    KimpRun run;
+    run.exit_code = exit_code_of(std::system(command.c_str()));
     run.out       = read_text(dir / "stdout.txt");
     run.err       = read_text(dir / "stderr.txt");
     return run;
   }
-} // namespace kimp::e2e
+} // namespace kimp::testing
