@@ -96,7 +96,12 @@ namespace kimp::app
                   "a1",
                   format_quantity(*law.a1, "s/m"),
                   "must be >= 0");
-      if (law.law != "bumper")
+      if (law.law != "bumper" && law.k_si)
+        ctx.check(std::isfinite(*law.k_si) && *law.k_si > 0.0,
+                  "k",
+                  format_quantity(*law.k_si, "") + " N/m^n",
+                  "must be > 0");
+      else if (law.law != "bumper")
       {
         const double n = impact_exponent(law);
         try
@@ -197,6 +202,8 @@ namespace kimp::app
 
   double impact_stiffness(const ImpactLawScene &law)
   {
+    if (law.k_si)
+      return *law.k_si;
     const Quantity k = parse_quantity(law.k);
     if (k.dimension != stiffness_dimension(impact_exponent(law)))
       throw UnitError("impact.k = " + law.k + " (law " + law.law + " needs N/m^" +

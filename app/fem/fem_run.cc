@@ -127,7 +127,7 @@ namespace kimp::app
       entry["wall_height"]     = c.wall_height;
       entry["slab_mass"]       = c.slab_mass;
       entry["impact_velocity"] = c.impact_velocity;
-      for (const auto &[key, value] : c.summary)
+      for (const auto &[key, value] : c.summary.entries())
         entry[key] = value;
       for (const auto &[key, value] : c.labels)
         entry[key] = value;

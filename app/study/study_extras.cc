@@ -28,12 +28,6 @@ namespace kimp::app
   {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
-    double summary_value(const FemCase &fem_case, const char *key)
-    {
-      const auto it = fem_case.summary.find(key);
-      return it == fem_case.summary.end() ? nan : it->second;
-    }
-
     /// One FEM case through the study cache, fitted; failures become the point's status.
     template <class Point>
     void run_fem_point(Point             &point,
@@ -52,11 +46,11 @@ namespace kimp::app
         const StudyFemCase c    = study_fem_case(fem, wall_height, output, name);
         const StudyFits    fits = fit_study_laws(c.fem_case, scene.fit);
         if (seconds)
-          *seconds = summary_value(c.fem_case, "wall_seconds");
+          *seconds = c.fem_case.summary.wall_seconds.value_or(nan);
         if (n_dofs)
-          *n_dofs = summary_value(c.fem_case, "n_dofs");
+          *n_dofs = c.fem_case.summary.n_dofs.value_or(nan);
         if (n_steps)
-          *n_steps = summary_value(c.fem_case, "n_steps");
+          *n_steps = c.fem_case.summary.n_steps.value_or(nan);
         if (from_cache)
           *from_cache = c.from_cache;
         point.ok     = fits.ok();
@@ -167,8 +161,9 @@ namespace kimp::app
     base.walls.left.present = base.walls.right.present = true;
     base.walls.left.gap = base.walls.right.gap = gap;
     base.impact.law                            = "modified_kelvin_voigt";
-    base.impact.k   = fmt::format("{:.12g} kN/mm", stiffness_to_kn_per_mm(k_total, 1.0));
-    base.impact.cor = scene.fit.cor;
+    base.impact.k.clear();
+    base.impact.k_si                 = k_total;
+    base.impact.cor                  = scene.fit.cor;
     base.integration.output_interval = 0.0;
 
     const auto run = [&](IntegrationMethod method, double dt)
