@@ -8,6 +8,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "fit/fitter.h"
 #include "io/units.h"
 #include "lumped/excitation/ground_motion.h"
 #include "lumped/isolators/bilinear_isolator.h"
@@ -34,12 +35,6 @@ namespace kimp::app
     Dimension stiffness_dimension(const double exponent)
     {
       return Dimension{1.0, 1.0 - exponent, -2.0};
-    }
-
-    /// Display unit "kN/mm^n" for messages.
-    std::string stiffness_unit(const double exponent)
-    {
-      return exponent == 1.0 ? std::string("kN/mm") : "kN/mm^" + format_quantity(exponent, "");
     }
 
     std::string percent(const double value)
@@ -113,7 +108,7 @@ namespace kimp::app
                          "law " + law.law + " (n = " + format_quantity(n, "") +
                            ") needs a stiffness in N/m^n, e.g. \"" +
                            (n == 1.0 ? std::string("2500 ") : std::string("750 ")) +
-                           stiffness_unit(n) + "\""))
+                           fit::stiffness_display_unit(n) + "\""))
             return;
           ctx.check(std::isfinite(k.value) && k.value > 0.0, "k", law.k, "must be > 0");
         }
@@ -150,7 +145,7 @@ namespace kimp::app
                         "k_b",
                         b.k_b,
                         "needs a stiffness in N/m^n with n = " + format_quantity(n, "") +
-                          ", e.g. \"0.36 " + stiffness_unit(n) + "\""))
+                          ", e.g. \"0.36 " + fit::stiffness_display_unit(n) + "\""))
             ctx.check(k.value > 0.0, "k_b", b.k_b, "must be > 0");
         }
         catch (const UnitError &error)

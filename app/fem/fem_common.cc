@@ -29,13 +29,36 @@ namespace kimp::app
     return message;
   }
 
-  FemCase to_fem_case(const std::string       &name,
-                      double                   height,
-                      const FemScene          &scene,
-                      const fem::ImpactResult &result)
+  FemScene single_height_scene(const FemScene &scene, double wall_height)
   {
-    const fem::ImpactHistory &h = result.history;
-    const fem::ImpactSummary &s = result.summary;
+    FemScene single     = scene;
+    single.wall_heights = {wall_height};
+    return single;
+  }
+
+  FemCaseSpec resolve_fem_case(const FemScene              &scene,
+                               double                       wall_height,
+                               const std::string           &name,
+                               const std::filesystem::path &mesh_file,
+                               const std::filesystem::path &vtu_dir)
+  {
+    FemCaseSpec spec;
+    spec.name        = name;
+    spec.wall_height = wall_height;
+    spec.scene       = single_height_scene(scene, wall_height);
+    spec.geometry    = scene_geometry(spec.scene, wall_height);
+    spec.mesh_file   = mesh_file;
+    spec.parameters  = impact_parameters(spec.scene, wall_height, mesh_file, vtu_dir);
+    return spec;
+  }
+
+  FemCase to_fem_case(const FemCaseSpec &spec, const fem::ImpactResult &result)
+  {
+    const std::string        &name   = spec.name;
+    const double              height = spec.wall_height;
+    const FemScene           &scene  = spec.scene;
+    const fem::ImpactHistory &h      = result.history;
+    const fem::ImpactSummary &s      = result.summary;
     FemCase                   c;
     c.name                          = name;
     c.wall_height                   = height;

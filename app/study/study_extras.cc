@@ -69,15 +69,6 @@ namespace kimp::app
       }
     }
 
-    FemScene with_level(const FemScene &base, double h_contact, double penalty_factor)
-    {
-      FemScene scene               = base;
-      scene.mesh.h_contact         = h_contact;
-      scene.mesh.level             = 0;
-      scene.contact.penalty_factor = penalty_factor;
-      return scene;
-    }
-
     std::string text_or_empty(double value)
     {
       return std::isfinite(value) ? fmt::format("{:.6g}", value) : "";
@@ -98,7 +89,7 @@ namespace kimp::app
       p.series                = series;
       p.h_contact             = h;
       p.penalty_factor        = penalty;
-      FemScene fem            = with_level(scene.fem, h, penalty);
+      FemScene fem            = fem_level_scene(scene.fem, h, penalty);
       fem.dynamics.integrator = integrator;
       const bool implicit     = integrator == fem::ImpactParameters::Integrator::implicit_newmark;
       const std::string name =
@@ -265,12 +256,15 @@ namespace kimp::app
     const std::string           name = fem_case_name(H) + "_stability";
     const std::filesystem::path mesh = output.file("mesh/" + name + ".msh");
     std::filesystem::create_directories(mesh.parent_path());
-    geometry::build_scene_mesh(scene_geometry(with_level(scene.fem, h_contact, 1.0), H), mesh);
+    geometry::build_scene_mesh(
+      resolve_fem_case(fem_level_scene(scene.fem, h_contact, 1.0), H, name, mesh).geometry,
+      mesh);
     std::vector<FemStabilityPoint> points;
     for (const double penalty_factor : fem_stability_penalty_factors)
     {
       fem::ImpactParameters p =
-        impact_parameters(with_level(scene.fem, h_contact, penalty_factor), H, mesh);
+        resolve_fem_case(fem_level_scene(scene.fem, h_contact, penalty_factor), H, name, mesh)
+          .parameters;
       p.integrator    = fem::ImpactParameters::Integrator::explicit_central_difference;
       p.end_time      = fem_stability_end_time;
       p.log_interval  = 0;
@@ -328,7 +322,7 @@ namespace kimp::app
         fem_case_name(H) + "_" + level.label() +
         (parameter == "base" ? "" : fmt::format("_{}_x{:g}", parameter, factor));
       run_fem_point(p,
-                    with_level(fem, level.h_contact, level.penalty_factor),
+                    fem_level_scene(fem, level.h_contact, level.penalty_factor),
                     H,
                     name,
                     scene,

@@ -7,6 +7,7 @@
 #include <map>
 #include <tuple>
 
+#include "app/fit_run.h"
 #include "app/study/study_internal.h"
 #include "base/version.h"
 #include "io/results_file.h"
@@ -137,12 +138,6 @@ namespace kimp::app::study_internal
               r.status};
     }
 
-    std::string si_stiffness_unit(double exponent, bool per_metre_of_wall)
-    {
-      const std::string n = exponent == 1.0 ? "" : fmt::format("^{}", exponent);
-      return "N/m" + n + (per_metre_of_wall ? "/m" : "");
-    }
-
   } // namespace
 
   void write_k_table_csv(const OutputDir                &output,
@@ -212,21 +207,7 @@ namespace kimp::app::study_internal
         f.set_status(*status);
         if (!*fit)
           continue;
-        const FitResult  &r    = **fit;
-        const std::string unit = si_stiffness_unit(r.exponent.value, true);
-        f.write_scalar("stiffness", r.stiffness.value, unit);
-        f.write_scalar("stiffness_lower", r.stiffness.lower, unit);
-        f.write_scalar("stiffness_upper", r.stiffness.upper, unit);
-        f.write_scalar("stiffness_total",
-                       r.stiffness.value * scene.fit.width,
-                       si_stiffness_unit(r.exponent.value, false));
-        f.write_scalar("cor", r.cor.value, "1");
-        f.write_scalar("exponent", r.exponent.value, "1");
-        f.write_scalar("normalised_rms", r.normalised_rms, "1");
-        f.write_scalar("model_effective_cor", r.model_effective_cor, "1");
-        f.write("time", r.time, "s");
-        f.write("fem_force", r.fem_force, "N/m");
-        f.write("model_force", r.model_force, "N/m");
+        write_fit_result(f, **fit, scene.fit.width, FitResultLayout::study);
       }
     }
 
@@ -317,7 +298,7 @@ namespace kimp::app::study_internal
         tables[{r.record, r.law}].push_back(&r);
     for (const auto &[key, rows] : tables)
     {
-      const std::string        k_unit = si_stiffness_unit(rows.front()->exponent, false);
+      const std::string        k_unit = stiffness_si_unit(rows.front()->exponent);
       std::vector<TableColumn> c      = {{"wall_height", "m", {}},
                                          {"k_total", k_unit, {}},
                                          {"gap", "m", {}},

@@ -18,14 +18,6 @@ namespace kimp::app::study_internal
   {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
-    FemScene level_scene(const FemScene &base, const FidelityLevel &level)
-    {
-      FemScene scene               = base;
-      scene.mesh.h_contact         = level.h_contact;
-      scene.mesh.level             = 0;
-      scene.contact.penalty_factor = level.penalty_factor;
-      return scene;
-    }
   } // namespace
 
   StudyHeight run_height(const StudyScene &scene, double wall_height, const OutputDir &output)
@@ -64,10 +56,11 @@ namespace kimp::app::study_internal
       Computed     c;
       try
       {
-        StudyFemCase fem = study_fem_case(level_scene(scene.fem, level),
-                                          wall_height,
-                                          output,
-                                          h.name + "_" + level.label());
+        StudyFemCase fem =
+          study_fem_case(fem_level_scene(scene.fem, level.h_contact, level.penalty_factor),
+                         wall_height,
+                         output,
+                         h.name + "_" + level.label());
         h.fem_seconds += fem.wall_seconds;
         h.fem_from_cache = h.fem_from_cache && fem.from_cache;
         c.fem_case       = std::move(fem.fem_case);
