@@ -77,7 +77,6 @@ namespace kimp::app::study_internal
           best = &h;
       return best;
     }
-
   } // namespace
 
   std::vector<StudyBuildingRun> run_building(const StudyScene               &scene,

@@ -14,17 +14,17 @@
 
 namespace kimp::app::study_internal
 {
-  using namespace kimp::base;
   using namespace kimp::io;
   using namespace kimp::fit;
-  double seconds_since(Clock::time_point start)
-  {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-  }
 
   namespace
   {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  } // namespace
+
+  double seconds_since(Clock::time_point start)
+  {
+    return std::chrono::duration<double>(Clock::now() - start).count();
   }
 
   std::optional<ThesisStiffness> thesis_row(double wall_height)
@@ -35,7 +35,6 @@ namespace kimp::app::study_internal
     return std::nullopt;
   }
 
-  /// k of a fit in kN/mm^n per metre (or NaN), and its confidence interval.
   double per_metre(const std::optional<FitResult> &fit)
   {
     return fit ? fit->stiffness_per_metre_display() : nan;
@@ -47,7 +46,6 @@ namespace kimp::app::study_internal
                  nan;
   }
 
-  /// Numerical error of k (fidelity ladder) in kN/mm^n per metre; NaN if not estimated.
   double numerical_error(const StudyHeight &h, double exponent)
   {
     return stiffness_to_kn_per_mm(exponent == 1.0 ? h.kelvin_voigt_numerical_error() :
@@ -118,7 +116,7 @@ namespace kimp::app
   {
     const std::filesystem::path name = "thesis_table_2_1.csv";
     if (const char *data_dir = std::getenv("KIMP_DATA_DIR"); data_dir != nullptr && *data_dir)
-      for (const std::filesystem::path directory :
+      for (const std::filesystem::path &directory :
            {std::filesystem::path(data_dir) / "data" / "reference",
             std::filesystem::path(data_dir) / "reference"})
         if (std::filesystem::is_regular_file(directory / name))

@@ -137,7 +137,6 @@ namespace kimp::app::study_internal
               number(r.wall_seconds),
               r.status};
     }
-
   } // namespace
 
   void write_k_table_csv(const OutputDir                &output,

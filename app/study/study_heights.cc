@@ -14,11 +14,6 @@ namespace kimp::app::study_internal
   using namespace kimp::base;
   using namespace kimp::io;
   using namespace kimp::fit;
-  namespace
-  {
-    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-
-  } // namespace
 
   StudyHeight run_height(const StudyScene &scene, double wall_height, const OutputDir &output)
   {
