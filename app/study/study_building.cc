@@ -65,8 +65,6 @@ namespace kimp::app::study_internal
       return label;
     }
 
-    // ---------------------------------------------------------------- stage 3: extra studies
-
     /// The height of the k table nearest to `wall_height` with a Kelvin-Voigt fit (or null).
     const StudyHeight *nearest_height(const std::vector<StudyHeight> &heights, double wall_height)
     {

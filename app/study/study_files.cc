@@ -21,8 +21,6 @@ namespace kimp::app::study_internal
   {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
-    // ---------------------------------------------------------------- stage 4: files
-
     std::vector<std::string> k_table_header()
     {
       return {"wall_height_m",

@@ -249,8 +249,6 @@ namespace kimp::app::study_internal
     return md;
   }
 
-  // ---------------------------------------------------------------- stage 4: charts
-
   /// Draw the charts; false (with a warning) if they could not be drawn.
   bool draw_charts(const OutputDir &output)
   {
