@@ -17,45 +17,52 @@ namespace kimp::app
   using namespace kimp::fit;
   namespace
   {
-    /// SI unit of a stiffness per metre of wall, e.g. "N/m^1.5/m".
-    std::string si_unit(double exponent)
-    {
-      return exponent == 1.0 ? std::string("N/m/m") : fmt::format("N/m^{:.6g}/m", exponent);
-    }
-
     std::string number(double value)
     {
       return fmt::format("{:.6g}", value);
     }
 
-    void write_fit(ResultsGroup &group, const FitResult &fit, double width)
+  } // namespace
+
+  void
+  write_fit_result(ResultsGroup &group, const FitResult &fit, double width, FitResultLayout layout)
+  {
+    const bool        full = layout == FitResultLayout::full;
+    const std::string unit = stiffness_si_unit(fit.exponent.value, true);
+    group.write_scalar("stiffness", fit.stiffness.value, unit);
+    group.write_scalar("stiffness_lower", fit.stiffness.lower, unit);
+    group.write_scalar("stiffness_upper", fit.stiffness.upper, unit);
+    group.write_scalar("stiffness_total",
+                       fit.stiffness.value * width,
+                       stiffness_si_unit(fit.exponent.value));
+    group.write_scalar("cor", fit.cor.value, "1");
+    if (full)
     {
-      const std::string unit = si_unit(fit.exponent.value);
-      group.write_scalar("stiffness", fit.stiffness.value, unit);
-      group.write_scalar("stiffness_lower", fit.stiffness.lower, unit);
-      group.write_scalar("stiffness_upper", fit.stiffness.upper, unit);
-      group.write_scalar("stiffness_total",
-                         fit.stiffness.value * width,
-                         unit.substr(0, unit.size() - 2));
-      group.write_scalar("cor", fit.cor.value, "1");
       group.write_scalar("cor_lower", fit.cor.lower, "1");
       group.write_scalar("cor_upper", fit.cor.upper, "1");
-      group.write_scalar("exponent", fit.exponent.value, "1");
-      group.write_scalar("normalised_rms", fit.normalised_rms, "1");
-      group.write_scalar("model_effective_cor", fit.model_effective_cor, "1");
-      group.write_scalar("model_peak_force", fit.model_peak_force, "N/m");
-      group.write_scalar("fem_peak_force", fit.fem_peak_force, "N/m");
-      group.write_scalar("contact_start", fit.contact_start, "s");
-      group.set_attribute("law", fit.law);
-      group.set_attribute("iterations", fit.iterations);
-      group.set_attribute("lm_status", fit.status);
-      std::vector<std::int64_t> steps(fit.time.size());
-      for (std::size_t i = 0; i < steps.size(); ++i)
-        steps[i] = static_cast<std::int64_t>(i);
-      group.write_time_series("fem_force", steps, fit.time, fit.fem_force, 1, "N/m");
-      group.write_time_series("model_force", steps, fit.time, fit.model_force, 1, "N/m");
     }
-  } // namespace
+    group.write_scalar("exponent", fit.exponent.value, "1");
+    group.write_scalar("normalised_rms", fit.normalised_rms, "1");
+    group.write_scalar("model_effective_cor", fit.model_effective_cor, "1");
+    if (!full)
+    {
+      group.write("time", fit.time, "s");
+      group.write("fem_force", fit.fem_force, "N/m");
+      group.write("model_force", fit.model_force, "N/m");
+      return;
+    }
+    group.write_scalar("model_peak_force", fit.model_peak_force, "N/m");
+    group.write_scalar("fem_peak_force", fit.fem_peak_force, "N/m");
+    group.write_scalar("contact_start", fit.contact_start, "s");
+    group.set_attribute("law", fit.law);
+    group.set_attribute("iterations", fit.iterations);
+    group.set_attribute("lm_status", fit.status);
+    std::vector<std::int64_t> steps(fit.time.size());
+    for (std::size_t i = 0; i < steps.size(); ++i)
+      steps[i] = static_cast<std::int64_t>(i);
+    group.write_time_series("fem_force", steps, fit.time, fit.fem_force, 1, "N/m");
+    group.write_time_series("model_force", steps, fit.time, fit.model_force, 1, "N/m");
+  }
 
   fit::ForceHistory force_history(const io::FemCase &fem_case, bool smoothed_force)
   {
@@ -132,7 +139,7 @@ namespace kimp::app
                                                fem_case.impact_velocity,
                                                variant.law,
                                                variant.options);
-          write_fit(group, fit, options.width);
+          write_fit_result(group, fit, options.width, FitResultLayout::full);
           group.set_status("ok");
           const double scale = stiffness_to_kn_per_mm(1.0, fit.exponent.value);
           rows.push_back({fem_case.name,

@@ -6,12 +6,32 @@
 
 #include "fit/fitter.h"
 #include "io/fem_results.h"
+#include "io/results_file.h"
 
 namespace kimp::app
 {
   /// The FEM case as a fit::ForceHistory (smoothed or raw contact force, indentation, slab motion).
   /// @throws fit::FitError if the smoothed force is asked for but the case has none.
   fit::ForceHistory force_history(const io::FemCase &fem_case, bool smoothed_force = true);
+
+  /// What write_fit_result() writes besides k, COR, n and the misfit.
+  enum class FitResultLayout
+  {
+    full, ///< `kimp fit`: COR interval, peak forces, contact start, LM attributes; the misfit
+          ///< window as time series fem_force and model_force
+    study ///< study.h5: the misfit window as plain datasets time, fem_force and model_force
+  };
+
+  /**
+   * The one writer of a fitted law below /fit/<case>/<variant> (fit.h5 and study.h5): stiffness,
+   * stiffness_lower, stiffness_upper (N/m^n per metre), stiffness_total (N/m^n, k·`width`), cor,
+   * exponent, normalised_rms, model_effective_cor and what `layout` adds. The status is the
+   * caller's.
+   */
+  void write_fit_result(io::ResultsGroup     &group,
+                        const fit::FitResult &fit,
+                        double                width,
+                        FitResultLayout       layout);
 
   /// Settings of one `kimp fit` run (the command-line options).
   struct FitCommandOptions

@@ -8,6 +8,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "fit/fitter.h"
 #include "io/units.h"
 #include "lumped/excitation/ground_motion.h"
 #include "lumped/isolators/bilinear_isolator.h"
@@ -34,12 +35,6 @@ namespace kimp::app
     Dimension stiffness_dimension(const double exponent)
     {
       return Dimension{1.0, 1.0 - exponent, -2.0};
-    }
-
-    /// Display unit "kN/mm^n" for messages.
-    std::string stiffness_unit(const double exponent)
-    {
-      return exponent == 1.0 ? std::string("kN/mm") : "kN/mm^" + format_quantity(exponent, "");
     }
 
     std::string percent(const double value)
@@ -96,7 +91,12 @@ namespace kimp::app
                   "a1",
                   format_quantity(*law.a1, "s/m"),
                   "must be >= 0");
-      if (law.law != "bumper")
+      if (law.law != "bumper" && law.k_si)
+        ctx.check(std::isfinite(*law.k_si) && *law.k_si > 0.0,
+                  "k",
+                  format_quantity(*law.k_si, "") + " N/m^n",
+                  "must be > 0");
+      else if (law.law != "bumper")
       {
         const double n = impact_exponent(law);
         try
@@ -108,7 +108,7 @@ namespace kimp::app
                          "law " + law.law + " (n = " + format_quantity(n, "") +
                            ") needs a stiffness in N/m^n, e.g. \"" +
                            (n == 1.0 ? std::string("2500 ") : std::string("750 ")) +
-                           stiffness_unit(n) + "\""))
+                           fit::stiffness_display_unit(n) + "\""))
             return;
           ctx.check(std::isfinite(k.value) && k.value > 0.0, "k", law.k, "must be > 0");
         }
@@ -145,7 +145,7 @@ namespace kimp::app
                         "k_b",
                         b.k_b,
                         "needs a stiffness in N/m^n with n = " + format_quantity(n, "") +
-                          ", e.g. \"0.36 " + stiffness_unit(n) + "\""))
+                          ", e.g. \"0.36 " + fit::stiffness_display_unit(n) + "\""))
             ctx.check(k.value > 0.0, "k_b", b.k_b, "must be > 0");
         }
         catch (const UnitError &error)
@@ -197,6 +197,8 @@ namespace kimp::app
 
   double impact_stiffness(const ImpactLawScene &law)
   {
+    if (law.k_si)
+      return *law.k_si;
     const Quantity k = parse_quantity(law.k);
     if (k.dimension != stiffness_dimension(impact_exponent(law)))
       throw UnitError("impact.k = " + law.k + " (law " + law.law + " needs N/m^" +

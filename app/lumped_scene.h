@@ -141,8 +141,11 @@ namespace kimp::app
    */
   struct ImpactLawScene
   {
-    std::string           law = "modified_kelvin_voigt";
-    std::string           k   = "2500 kN/mm";
+    std::string law = "modified_kelvin_voigt";
+    std::string k   = "2500 kN/mm";
+    /// k in SI (N/m^n) handed over by a program (the study's fitted k); when set it is used
+    /// instead of the text `k`, so the number is not rounded through text. Not a scene key.
+    std::optional<double> k_si;
     std::optional<double> exponent;
     double                cor          = 0.7;
     bool                  hertzdamp_ye = false;
@@ -368,7 +371,7 @@ namespace kimp::app
   double impact_exponent(const ImpactLawScene &law);
 
   /**
-   * k of `law` in SI (N/m^n), parsed from its text.
+   * k of `law` in SI (N/m^n): `law.k_si` if set, else parsed from its text.
    * @throws UnitError when the text is not a quantity of dimension N/m^n.
    */
   double impact_stiffness(const ImpactLawScene &law);

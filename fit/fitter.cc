@@ -551,10 +551,27 @@ namespace kimp::fit
     return stiffness * std::pow(1.0e-3, exponent + 1.0);
   }
 
-  std::string stiffness_display_unit(double exponent)
+  namespace
   {
-    const std::string n = fmt::format("{:.6g}", exponent);
-    return n == "1" ? std::string("kN/mm") : "kN/mm^" + n;
+    /// "<length>" for n = 1, "<length>^n" otherwise, then "/m" per metre of wall.
+    std::string
+    stiffness_unit(const char *force_per_length, double exponent, bool per_metre_of_wall)
+    {
+      const std::string n = fmt::format("{:.6g}", exponent);
+      const std::string unit =
+        n == "1" ? std::string(force_per_length) : std::string(force_per_length) + "^" + n;
+      return per_metre_of_wall ? unit + "/m" : unit;
+    }
+  } // namespace
+
+  std::string stiffness_display_unit(double exponent, bool per_metre_of_wall)
+  {
+    return stiffness_unit("kN/mm", exponent, per_metre_of_wall);
+  }
+
+  std::string stiffness_si_unit(double exponent, bool per_metre_of_wall)
+  {
+    return stiffness_unit("N/m", exponent, per_metre_of_wall);
   }
 
   double FitResult::stiffness_per_metre_display() const
@@ -569,7 +586,7 @@ namespace kimp::fit
 
   std::string FitResult::per_metre_unit() const
   {
-    return stiffness_display_unit(exponent.value) + "/m";
+    return stiffness_display_unit(exponent.value, true);
   }
 
   FitResult fit_impact_law(const ForceHistory         &history,

@@ -115,8 +115,12 @@ namespace kimp::fit
 
   /// SI stiffness (N/m^n, or N/m^n per metre) in kN/mm^n (per metre): k·1e-3^(n+1).
   double stiffness_to_kn_per_mm(double stiffness, double exponent);
-  /// "kN/mm" for n = 1, "kN/mm^1.5" otherwise (n to 6 significant digits).
-  std::string stiffness_display_unit(double exponent);
+  /// The one formatter of stiffness units: "kN/mm" for n = 1, "kN/mm^1.5" otherwise (n to 6
+  /// significant digits); "kN/mm/m", "kN/mm^1.5/m" per metre of wall.
+  std::string stiffness_display_unit(double exponent, bool per_metre_of_wall = false);
+  /// The SI unit of a stiffness: "N/m" for n = 1, "N/m^1.5" otherwise (n to 6 significant
+  /// digits); "N/m/m", "N/m^1.5/m" per metre of wall.
+  std::string stiffness_si_unit(double exponent, bool per_metre_of_wall = false);
 
   /**
    * Fit `law` to `history`: simulate mass `mass` hitting the wall at `impact_velocity` with

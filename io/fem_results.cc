@@ -48,6 +48,39 @@ namespace kimp::io
       return fields;
     }
 
+    /// The named fields of FemSummary.
+    const std::vector<std::pair<const char *, std::optional<double> FemSummary::*>> &
+    summary_fields()
+    {
+      static const std::vector<std::pair<const char *, std::optional<double> FemSummary::*>>
+        fields = {{"peak_force", &FemSummary::peak_force},
+                  {"peak_force_raw", &FemSummary::peak_force_raw},
+                  {"contact_start", &FemSummary::contact_start},
+                  {"contact_duration", &FemSummary::contact_duration},
+                  {"impulse", &FemSummary::impulse},
+                  {"rebound_velocity", &FemSummary::rebound_velocity},
+                  {"apparent_cor", &FemSummary::apparent_cor},
+                  {"energy_error", &FemSummary::energy_error},
+                  {"smoothing_window", &FemSummary::smoothing_window},
+                  {"max_penetration", &FemSummary::max_penetration},
+                  {"mean_penetration", &FemSummary::mean_penetration},
+                  {"initial_gap", &FemSummary::initial_gap},
+                  {"penalty_stiffness", &FemSummary::penalty_stiffness},
+                  {"n_dofs", &FemSummary::n_dofs},
+                  {"n_cells", &FemSummary::n_cells},
+                  {"n_steps", &FemSummary::n_steps},
+                  {"n_newton", &FemSummary::n_newton},
+                  {"n_step_halvings", &FemSummary::n_step_halvings},
+                  {"n_linear_solves", &FemSummary::n_linear_solves},
+                  {"linear_solver_seconds", &FemSummary::linear_solver_seconds},
+                  {"linear_setup_seconds", &FemSummary::linear_setup_seconds},
+                  {"n_ranks", &FemSummary::n_ranks},
+                  {"dt", &FemSummary::dt},
+                  {"dt_stable", &FemSummary::dt_stable},
+                  {"wall_seconds", &FemSummary::wall_seconds}};
+      return fields;
+    }
+
     const std::map<std::string, std::string> &known_summary_units()
     {
       static const std::map<std::string, std::string> units = {{"peak_force", "N/m"},
@@ -313,7 +346,7 @@ namespace kimp::io
         for (const std::string &key : reader.children(summary.get(), path + "/summary"))
         {
           const std::string where = path + "/summary/" + key;
-          result.summary[key]     = reader.scalar(summary.get(), key, where, "");
+          result.summary.set(key, reader.scalar(summary.get(), key, where, ""));
           const Handle      dataset(H5Dopen2(summary.get(), key.c_str(), H5P_DEFAULT), H5Dclose);
           const std::string units = reader.string_attribute(dataset.get(), "units", where);
           const auto        known = known_summary_units().find(key);
@@ -324,6 +357,26 @@ namespace kimp::io
       return result;
     }
   } // namespace
+
+  std::map<std::string, double> FemSummary::entries() const
+  {
+    std::map<std::string, double> result = extra;
+    for (const auto &[name, member] : summary_fields())
+      if (this->*member)
+        result[name] = *(this->*member);
+    return result;
+  }
+
+  void FemSummary::set(const std::string &key, double value)
+  {
+    for (const auto &[name, member] : summary_fields())
+      if (key == name)
+      {
+        this->*member = value;
+        return;
+      }
+    extra[key] = value;
+  }
 
   std::string fem_summary_units(const FemCase &fem_case, const std::string &key)
   {
@@ -354,8 +407,9 @@ namespace kimp::io
                                                 n));
     }
     // Resolve every summary unit before anything is written, so a bad key leaves no half case.
-    std::map<std::string, std::string> summary_units;
-    for (const auto &[key, value] : fem_case.summary)
+    std::map<std::string, std::string>  summary_units;
+    const std::map<std::string, double> summary = fem_case.summary.entries();
+    for (const auto &[key, value] : summary)
       summary_units[key] = fem_summary_units(fem_case, key);
 
     if (fem_case.status == "ok" && fem_case.contact_force.empty())
@@ -386,11 +440,11 @@ namespace kimp::io
                                   1,
                                   field.units);
 
-      if (!fem_case.summary.empty())
+      if (!summary.empty())
       {
-        ResultsGroup summary = group.group("summary");
-        for (const auto &[key, value] : fem_case.summary)
-          summary.write_scalar(key, value, summary_units.at(key));
+        ResultsGroup summary_group = group.group("summary");
+        for (const auto &[key, value] : summary)
+          summary_group.write_scalar(key, value, summary_units.at(key));
       }
     }
     group.set_status(fem_case.status);

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,53 @@
 
 namespace kimp::io
 {
+  /**
+   * Scalar results of one FEM run (the summary/<key> datasets of FemCase). An entry that is not
+   * set is not written; reading sets the entries the file holds. Counts are stored as float64.
+   */
+  struct FemSummary
+  {
+    std::optional<double> peak_force;        ///< peak of the smoothed contact force, N/m
+    std::optional<double> peak_force_raw;    ///< peak of the raw contact force, N/m
+    std::optional<double> contact_start;     ///< time of first contact, s
+    std::optional<double> contact_duration;  ///< s
+    std::optional<double> impulse;           ///< ∫ F dt over the contact, N·s/m
+    std::optional<double> rebound_velocity;  ///< slab velocity after separation, m/s
+    std::optional<double> apparent_cor;      ///< rebound/impact velocity
+    std::optional<double> energy_error;      ///< relative energy balance error
+    std::optional<double> smoothing_window;  ///< moving-average window of the smoothed force, s
+    std::optional<double> max_penetration;   ///< m
+    std::optional<double> mean_penetration;  ///< m
+    std::optional<double> initial_gap;       ///< m
+    std::optional<double> penalty_stiffness; ///< contact penalty, N/m per m
+    std::optional<double> n_dofs;
+    std::optional<double> n_cells;
+    std::optional<double> n_steps;
+    std::optional<double> n_newton;
+    std::optional<double> n_step_halvings;
+    std::optional<double> n_linear_solves;
+    std::optional<double> linear_solver_seconds; ///< s
+    std::optional<double> linear_setup_seconds;  ///< s
+    std::optional<double> n_ranks;
+    std::optional<double> dt;           ///< time step, s
+    std::optional<double> dt_stable;    ///< computed stable time step, s
+    std::optional<double> wall_seconds; ///< wall time of the run, s
+    /// Entries of other writers (key -> value; units in FemCase::summary_units).
+    std::map<std::string, double> extra;
+
+    /// Every set entry by key (the fields above under their own names, then `extra`).
+    std::map<std::string, double> entries() const;
+    /// Set the entry `key`: the field of that name, else extra[key].
+    void set(const std::string &key, double value);
+    /// No entry is set.
+    bool empty() const { return entries().empty(); }
+    /// Unset every entry.
+    void clear() { *this = FemSummary(); }
+
+    bool operator==(const FemSummary &other) const { return entries() == other.entries(); }
+    bool operator!=(const FemSummary &other) const { return !(*this == other); }
+  };
+
   /**
    * One FEM impact run (one wall height, one mesh/penalty level), SI units, per metre of wall.
    *
@@ -41,7 +89,7 @@ namespace kimp::io
     std::vector<double> slab_displacement; ///< mass-weighted mean x displacement of the slab, m
     std::vector<double> slab_velocity;     ///< m/s
     std::vector<double> wall_displacement; ///< mean x displacement of the wall face at contact, m
-    std::map<std::string, double> summary; ///< peak_force, contact_duration, impulse, ...
+    FemSummary          summary;           ///< peak_force, contact_duration, impulse, ...
     /// Units of summary entries not known to fem_summary_units() (e.g. {"my_key", "N/m"}).
     std::map<std::string, std::string> summary_units;
     std::map<std::string, std::string> labels; ///< mesh level, penalty level, integrator, ...

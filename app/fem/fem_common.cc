@@ -29,64 +29,87 @@ namespace kimp::app
     return message;
   }
 
-  FemCase to_fem_case(const std::string       &name,
-                      double                   height,
-                      const FemScene          &scene,
-                      const fem::ImpactResult &result)
+  FemScene single_height_scene(const FemScene &scene, double wall_height)
   {
-    const fem::ImpactHistory &h = result.history;
-    const fem::ImpactSummary &s = result.summary;
+    FemScene single     = scene;
+    single.wall_heights = {wall_height};
+    return single;
+  }
+
+  FemCaseSpec resolve_fem_case(const FemScene              &scene,
+                               double                       wall_height,
+                               const std::string           &name,
+                               const std::filesystem::path &mesh_file,
+                               const std::filesystem::path &vtu_dir)
+  {
+    FemCaseSpec spec;
+    spec.name        = name;
+    spec.wall_height = wall_height;
+    spec.scene       = single_height_scene(scene, wall_height);
+    spec.geometry    = scene_geometry(spec.scene, wall_height);
+    spec.mesh_file   = mesh_file;
+    spec.parameters  = impact_parameters(spec.scene, wall_height, mesh_file, vtu_dir);
+    return spec;
+  }
+
+  FemCase to_fem_case(const FemCaseSpec &spec, const fem::ImpactResult &result)
+  {
+    const std::string        &name   = spec.name;
+    const double              height = spec.wall_height;
+    const FemScene           &scene  = spec.scene;
+    const fem::ImpactHistory &h      = result.history;
+    const fem::ImpactSummary &s      = result.summary;
     FemCase                   c;
-    c.name                   = name;
-    c.wall_height            = height;
-    c.slab_mass              = slab_mass(scene);
-    c.impact_velocity        = scene.slab.velocity;
-    c.time                   = h.time;
-    c.contact_force          = h.contact_force;
-    c.smoothed_contact_force = h.smoothed_contact_force;
-    c.indentation            = h.indentation;
-    c.slab_displacement      = h.slab_displacement;
-    c.slab_velocity          = h.slab_velocity;
-    c.wall_displacement      = h.wall_displacement;
-    c.summary                = {{"peak_force", s.peak_force},
-                                {"peak_force_raw", s.peak_force_raw},
-                                {"contact_start", s.contact_start},
-                                {"contact_duration", s.contact_duration},
-                                {"impulse", s.impulse},
-                                {"rebound_velocity", s.rebound_velocity},
-                                {"apparent_cor", s.apparent_cor},
-                                {"energy_error", s.energy_error},
-                                {"smoothing_window", s.smoothing_window},
-                                {"max_penetration", s.max_penetration},
-                                {"mean_penetration", s.mean_penetration},
-                                {"initial_gap", s.initial_gap},
-                                {"penalty_stiffness", s.penalty_stiffness},
-                                {"n_dofs", static_cast<double>(s.n_dofs)},
-                                {"n_cells", static_cast<double>(s.n_cells)},
-                                {"n_steps", static_cast<double>(s.n_steps)},
-                                {"n_newton", static_cast<double>(s.n_newton)},
-                                {"n_step_halvings", static_cast<double>(s.n_step_halvings)},
-                                {"n_linear_solves", static_cast<double>(s.n_linear_solves)},
-                                {"linear_solver_seconds", s.linear_solver_seconds},
-                                {"linear_setup_seconds", s.linear_setup_seconds},
-                                {"n_ranks", static_cast<double>(s.n_ranks)},
-                                {"dt", s.dt},
-                                {"dt_stable", s.dt_stable},
-                                {"wall_seconds", s.wall_seconds}};
-    c.summary_units          = {{"n_newton", "1"},
-                                {"n_step_halvings", "1"},
-                                {"n_linear_solves", "1"},
-                                {"linear_solver_seconds", "s"},
-                                {"linear_setup_seconds", "s"},
-                                {"n_ranks", "1"}};
-    c.labels                 = {{"integrator",
+    c.name                          = name;
+    c.wall_height                   = height;
+    c.slab_mass                     = slab_mass(scene);
+    c.impact_velocity               = scene.slab.velocity;
+    c.time                          = h.time;
+    c.contact_force                 = h.contact_force;
+    c.smoothed_contact_force        = h.smoothed_contact_force;
+    c.indentation                   = h.indentation;
+    c.slab_displacement             = h.slab_displacement;
+    c.slab_velocity                 = h.slab_velocity;
+    c.wall_displacement             = h.wall_displacement;
+    c.summary.peak_force            = s.peak_force;
+    c.summary.peak_force_raw        = s.peak_force_raw;
+    c.summary.contact_start         = s.contact_start;
+    c.summary.contact_duration      = s.contact_duration;
+    c.summary.impulse               = s.impulse;
+    c.summary.rebound_velocity      = s.rebound_velocity;
+    c.summary.apparent_cor          = s.apparent_cor;
+    c.summary.energy_error          = s.energy_error;
+    c.summary.smoothing_window      = s.smoothing_window;
+    c.summary.max_penetration       = s.max_penetration;
+    c.summary.mean_penetration      = s.mean_penetration;
+    c.summary.initial_gap           = s.initial_gap;
+    c.summary.penalty_stiffness     = s.penalty_stiffness;
+    c.summary.n_dofs                = static_cast<double>(s.n_dofs);
+    c.summary.n_cells               = static_cast<double>(s.n_cells);
+    c.summary.n_steps               = static_cast<double>(s.n_steps);
+    c.summary.n_newton              = static_cast<double>(s.n_newton);
+    c.summary.n_step_halvings       = static_cast<double>(s.n_step_halvings);
+    c.summary.n_linear_solves       = static_cast<double>(s.n_linear_solves);
+    c.summary.linear_solver_seconds = s.linear_solver_seconds;
+    c.summary.linear_setup_seconds  = s.linear_setup_seconds;
+    c.summary.n_ranks               = static_cast<double>(s.n_ranks);
+    c.summary.dt                    = s.dt;
+    c.summary.dt_stable             = s.dt_stable;
+    c.summary.wall_seconds          = s.wall_seconds;
+    c.summary_units                 = {{"n_newton", "1"},
+                                       {"n_step_halvings", "1"},
+                                       {"n_linear_solves", "1"},
+                                       {"linear_solver_seconds", "s"},
+                                       {"linear_setup_seconds", "s"},
+                                       {"n_ranks", "1"}};
+    c.labels                        = {{"integrator",
                  scene.dynamics.integrator == fem::ImpactParameters::Integrator::implicit_newmark ?
-                                   "implicit" :
-                                   "explicit"},
-                                {"slab", scene.slab.rigid ? "rigid" : "elastic"},
-                                {"mesh_level", std::to_string(scene.mesh.level)},
-                                {"penalty_factor", fmt::format("{}", scene.contact.penalty_factor)},
-                                {"stopped_on", s.separated ? "separation" : "end_time"}};
+                                          "implicit" :
+                                          "explicit"},
+                                       {"slab", scene.slab.rigid ? "rigid" : "elastic"},
+                                       {"mesh_level", std::to_string(scene.mesh.level)},
+                                       {"penalty_factor", fmt::format("{}", scene.contact.penalty_factor)},
+                                       {"stopped_on", s.separated ? "separation" : "end_time"}};
     return c;
   }
 } // namespace kimp::app

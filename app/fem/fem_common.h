@@ -17,13 +17,38 @@ namespace kimp::app
    *  exception, whitespace collapsed; other messages unchanged. */
   std::string error_message(const std::exception &error);
 
+  /** The scene restricted to one wall height (wall_heights = {wall_height}). */
+  FemScene single_height_scene(const FemScene &scene, double wall_height);
+
   /**
-   * The FemCase of one `kimp fem` run (io/fem_results.h contract): histories, the
-   * ImpactSummary as summary entries, and labels (integrator, slab, mesh level, penalty factor,
+   * One FEM case resolved once from its scene: the scene restricted to the case's height and
+   * what the mesher and the solver take. Every stage of a case (cache key, mesh, run, FemCase,
+   * results file) reads this instead of resolving the scene again.
+   */
+  struct FemCaseSpec
+  {
+    std::string             name;              ///< case and file name, "H1.25" or "H1.25_h2.5cm_p1"
+    double                  wall_height = 0.0; ///< m
+    FemScene                scene;             ///< single_height_scene(scene, wall_height)
+    geometry::SceneGeometry geometry;          ///< scene_geometry(): the meshing parameters
+    std::filesystem::path   mesh_file;         ///< where the mesh is written and read
+    fem::ImpactParameters   parameters;        ///< impact_parameters() on mesh_file
+  };
+
+  /**
+   * Resolve the case `name` of `scene` at `wall_height` whose mesh is `mesh_file`.
+   * @param[in] vtu_dir field output directory, used only if scene.output.vtu_interval > 0
+   */
+  FemCaseSpec resolve_fem_case(const FemScene              &scene,
+                               double                       wall_height,
+                               const std::string           &name,
+                               const std::filesystem::path &mesh_file,
+                               const std::filesystem::path &vtu_dir = {});
+
+  /**
+   * The FemCase of one FEM run of `spec` (io/fem_results.h contract): histories, the
+   * ImpactSummary as the FemSummary, and labels (integrator, slab, mesh level, penalty factor,
    * what stopped the run). Shared by `kimp fem` and `kimp study`.
    */
-  io::FemCase to_fem_case(const std::string       &name,
-                          double                   wall_height,
-                          const FemScene          &scene,
-                          const fem::ImpactResult &result);
+  io::FemCase to_fem_case(const FemCaseSpec &spec, const fem::ImpactResult &result);
 } // namespace kimp::app

@@ -127,7 +127,7 @@ namespace kimp::app
       entry["wall_height"]     = c.wall_height;
       entry["slab_mass"]       = c.slab_mass;
       entry["impact_velocity"] = c.impact_velocity;
-      for (const auto &[key, value] : c.summary)
+      for (const auto &[key, value] : c.summary.entries())
         entry[key] = value;
       for (const auto &[key, value] : c.labels)
         entry[key] = value;
@@ -165,13 +165,14 @@ namespace kimp::app
       const std::string           mesh_rel = "mesh/" + name + ".msh";
       const std::filesystem::path mesh     = output.path() / mesh_rel;
       const std::filesystem::path vtu_dir  = output.path() / "vtu" / name;
+      // Resolved once: the mesher, the solver and the FemCase read the same case.
+      const FemCaseSpec spec = resolve_fem_case(scene, height, name, mesh, vtu_dir);
       on_rank_zero(rank,
                    name + ": meshing",
                    [&]()
                    {
                      std::ostringstream statistics;
-                     statistics << geometry::build_scene_mesh(scene_geometry(scene, height),
-                                                              output.file(mesh_rel));
+                     statistics << geometry::build_scene_mesh(spec.geometry, output.file(mesh_rel));
                      logger().info("{}: mesh {} ({})", name, mesh.string(), statistics.str());
                      if (scene.output.vtu_interval > 0)
                        std::filesystem::create_directories(vtu_dir);
@@ -183,7 +184,7 @@ namespace kimp::app
         ImpactLog             log_buffer(name);
         std::ostream          log(&log_buffer);
         Progress              progress(0, scene.dynamics.end_time);
-        fem::ImpactParameters parameters = impact_parameters(scene, height, mesh, vtu_dir);
+        fem::ImpactParameters parameters = spec.parameters;
         parameters.progress              = [&progress](double t, double) { progress.update(0, t); };
         result                           = fem::run_impact(parameters, MPI_COMM_WORLD, &log);
       }
@@ -194,7 +195,7 @@ namespace kimp::app
       if (rank != 0)
         continue;
 
-      const FemCase fem_case = to_fem_case(name, height, scene, result);
+      const FemCase fem_case = to_fem_case(spec, result);
       write_fem_case(*fem_root, fem_case);
       ResultsGroup case_group = fem_root->group(name);
       write_diagnostics(case_group, result.history);

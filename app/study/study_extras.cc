@@ -28,12 +28,6 @@ namespace kimp::app
   {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
-    double summary_value(const FemCase &fem_case, const char *key)
-    {
-      const auto it = fem_case.summary.find(key);
-      return it == fem_case.summary.end() ? nan : it->second;
-    }
-
     /// One FEM case through the study cache, fitted; failures become the point's status.
     template <class Point>
     void run_fem_point(Point             &point,
@@ -52,11 +46,11 @@ namespace kimp::app
         const StudyFemCase c    = study_fem_case(fem, wall_height, output, name);
         const StudyFits    fits = fit_study_laws(c.fem_case, scene.fit);
         if (seconds)
-          *seconds = summary_value(c.fem_case, "wall_seconds");
+          *seconds = c.fem_case.summary.wall_seconds.value_or(nan);
         if (n_dofs)
-          *n_dofs = summary_value(c.fem_case, "n_dofs");
+          *n_dofs = c.fem_case.summary.n_dofs.value_or(nan);
         if (n_steps)
-          *n_steps = summary_value(c.fem_case, "n_steps");
+          *n_steps = c.fem_case.summary.n_steps.value_or(nan);
         if (from_cache)
           *from_cache = c.from_cache;
         point.ok     = fits.ok();
@@ -75,19 +69,6 @@ namespace kimp::app
       }
     }
 
-    FemScene with_level(const FemScene &base, double h_contact, double penalty_factor)
-    {
-      FemScene scene               = base;
-      scene.mesh.h_contact         = h_contact;
-      scene.mesh.level             = 0;
-      scene.contact.penalty_factor = penalty_factor;
-      return scene;
-    }
-
-    std::string text_or_empty(double value)
-    {
-      return std::isfinite(value) ? fmt::format("{:.6g}", value) : "";
-    }
   } // namespace
 
   std::vector<FemAccuracyPoint> run_fem_accuracy(const StudyScene &scene, const OutputDir &output)
@@ -104,7 +85,7 @@ namespace kimp::app
       p.series                = series;
       p.h_contact             = h;
       p.penalty_factor        = penalty;
-      FemScene fem            = with_level(scene.fem, h, penalty);
+      FemScene fem            = fem_level_scene(scene.fem, h, penalty);
       fem.dynamics.integrator = integrator;
       const bool implicit     = integrator == fem::ImpactParameters::Integrator::implicit_newmark;
       const std::string name =
@@ -167,8 +148,9 @@ namespace kimp::app
     base.walls.left.present = base.walls.right.present = true;
     base.walls.left.gap = base.walls.right.gap = gap;
     base.impact.law                            = "modified_kelvin_voigt";
-    base.impact.k   = fmt::format("{:.12g} kN/mm", stiffness_to_kn_per_mm(k_total, 1.0));
-    base.impact.cor = scene.fit.cor;
+    base.impact.k.clear();
+    base.impact.k_si                 = k_total;
+    base.impact.cor                  = scene.fit.cor;
     base.integration.output_interval = 0.0;
 
     const auto run = [&](IntegrationMethod method, double dt)
@@ -270,12 +252,15 @@ namespace kimp::app
     const std::string           name = fem_case_name(H) + "_stability";
     const std::filesystem::path mesh = output.file("mesh/" + name + ".msh");
     std::filesystem::create_directories(mesh.parent_path());
-    geometry::build_scene_mesh(scene_geometry(with_level(scene.fem, h_contact, 1.0), H), mesh);
+    geometry::build_scene_mesh(
+      resolve_fem_case(fem_level_scene(scene.fem, h_contact, 1.0), H, name, mesh).geometry,
+      mesh);
     std::vector<FemStabilityPoint> points;
     for (const double penalty_factor : fem_stability_penalty_factors)
     {
       fem::ImpactParameters p =
-        impact_parameters(with_level(scene.fem, h_contact, penalty_factor), H, mesh);
+        resolve_fem_case(fem_level_scene(scene.fem, h_contact, penalty_factor), H, name, mesh)
+          .parameters;
       p.integrator    = fem::ImpactParameters::Integrator::explicit_central_difference;
       p.end_time      = fem_stability_end_time;
       p.log_interval  = 0;
@@ -333,7 +318,7 @@ namespace kimp::app
         fem_case_name(H) + "_" + level.label() +
         (parameter == "base" ? "" : fmt::format("_{}_x{:g}", parameter, factor));
       run_fem_point(p,
-                    with_level(fem, level.h_contact, level.penalty_factor),
+                    fem_level_scene(fem, level.h_contact, level.penalty_factor),
                     H,
                     name,
                     scene,
@@ -363,263 +348,5 @@ namespace kimp::app
       run("wall_thickness", factor, s);
     }
     return points;
-  }
-
-  void write_study_extras(ResultsGroup &root, const StudyExtras &extras)
-  {
-    for (const char *series : {"mesh", "penalty", "implicit"})
-    {
-      std::vector<TableColumn> c = {{"h_contact", "m", {}},
-                                    {"penalty_factor", "1", {}},
-                                    {"ok", "1", {}},
-                                    {"seconds", "s", {}},
-                                    {"n_dofs", "1", {}},
-                                    {"n_steps", "1", {}},
-                                    {"kelvin_voigt", "kN/mm/m", {}},
-                                    {"jankowski", "kN/mm^1.5/m", {}},
-                                    {"error_kelvin_voigt", "1", {}},
-                                    {"error_jankowski", "1", {}}};
-      for (const FemAccuracyPoint &p : extras.fem_accuracy)
-      {
-        if (p.series != series)
-          continue;
-        const double v[] = {p.h_contact,
-                            p.penalty_factor,
-                            p.ok ? 1.0 : 0.0,
-                            p.seconds,
-                            p.n_dofs,
-                            p.n_steps,
-                            p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan,
-                            p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan,
-                            p.error_kelvin_voigt,
-                            p.error_jankowski};
-        for (std::size_t i = 0; i < c.size(); ++i)
-          c[i].values.push_back(v[i]);
-      }
-      if (!c.front().values.empty())
-        root.group("accuracy").group("fem").write_table(series, c);
-    }
-    for (const char *method : {"cdm", "newmark", "cdm_reference"})
-    {
-      std::vector<TableColumn> c = {{"dt", "s", {}},
-                                    {"ok", "1", {}},
-                                    {"seconds", "s", {}},
-                                    {"impact_force", "N", {}},
-                                    {"base_acceleration", "m/s^2", {}},
-                                    {"error_impact_force", "1", {}},
-                                    {"error_base_acceleration", "1", {}}};
-      for (const LumpedAccuracyPoint &p : extras.lumped_accuracy)
-      {
-        if (p.method != method)
-          continue;
-        const double v[] = {p.dt,
-                            p.ok ? 1.0 : 0.0,
-                            p.seconds,
-                            p.ok ? p.peak_impact_force : nan,
-                            p.ok ? p.base_acceleration : nan,
-                            p.error_force,
-                            p.error_acceleration};
-        for (std::size_t i = 0; i < c.size(); ++i)
-          c[i].values.push_back(v[i]);
-      }
-      if (!c.front().values.empty())
-      {
-        ResultsGroup lumped = root.group("accuracy").group("lumped");
-        lumped.write_table(method, c);
-        lumped.set_attribute("k_total_N_per_m", extras.lumped_k_total);
-        lumped.set_attribute("gap_m", extras.lumped_gap);
-        lumped.set_attribute("record", extras.lumped_record);
-      }
-    }
-    if (!extras.stability.empty())
-    {
-      std::vector<TableColumn> c = {{"stiffness", "N/m", {}},
-                                    {"dt", "s", {}},
-                                    {"dt_limit", "s", {}},
-                                    {"dt_limit_damped", "s", {}},
-                                    {"stable", "1", {}},
-                                    {"accurate", "1", {}},
-                                    {"effective_cor", "1", {}},
-                                    {"peak_force", "N", {}}};
-      for (const StabilityPoint &p : extras.stability)
-      {
-        const double v[] = {p.stiffness,
-                            p.dt,
-                            p.dt_limit,
-                            p.dt_limit_damped,
-                            p.stable ? 1.0 : 0.0,
-                            p.accurate ? 1.0 : 0.0,
-                            p.effective_cor,
-                            p.peak_force};
-        for (std::size_t i = 0; i < c.size(); ++i)
-          c[i].values.push_back(v[i]);
-      }
-      ResultsGroup stability = root.group("stability");
-      stability.write_table("lumped", c);
-      ResultsGroup table = stability.group("lumped");
-      table.set_attribute("effective_mass_kg", extras.stability_effective_mass);
-      table.set_attribute("study_stiffness_N_per_m", extras.stability_study_k);
-    }
-    if (!extras.fem_stability.empty())
-    {
-      std::vector<TableColumn> c = {{"penalty_factor", "1", {}},
-                                    {"dt_factor", "1", {}},
-                                    {"dt", "s", {}},
-                                    {"dt_limit", "s", {}},
-                                    {"stable", "1", {}},
-                                    {"energy_error", "1", {}}};
-      for (const FemStabilityPoint &p : extras.fem_stability)
-      {
-        const double v[] = {p.penalty_factor,
-                            p.dt_factor,
-                            p.dt,
-                            p.dt_limit,
-                            p.stable ? 1.0 : 0.0,
-                            p.energy_error > 0 ? p.energy_error : nan};
-        for (std::size_t i = 0; i < c.size(); ++i)
-          c[i].values.push_back(v[i]);
-      }
-      ResultsGroup stability = root.group("stability");
-      stability.write_table("fem", c);
-      ResultsGroup table = stability.group("fem");
-      table.set_attribute("h_contact_m", extras.fem_stability_h_contact);
-      table.set_attribute("end_time_s", extras.fem_stability_end_time);
-    }
-    if (!extras.sensitivity.empty())
-    {
-      for (const char *parameter :
-           {"base", "soil_modulus", "slab_mass", "impact_velocity", "wall_thickness"})
-      {
-        std::vector<TableColumn> c = {{"factor", "1", {}},
-                                      {"ok", "1", {}},
-                                      {"kelvin_voigt", "kN/mm/m", {}},
-                                      {"jankowski", "kN/mm^1.5/m", {}}};
-        for (const SensitivityPoint &p : extras.sensitivity)
-        {
-          if (p.parameter != parameter)
-            continue;
-          const double v[] = {p.factor,
-                              p.ok ? 1.0 : 0.0,
-                              p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan,
-                              p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan};
-          for (std::size_t i = 0; i < c.size(); ++i)
-            c[i].values.push_back(v[i]);
-        }
-        root.group("sensitivity").write_table(parameter, c);
-      }
-    }
-  }
-
-  void write_study_extras_csv(const OutputDir &output, const StudyExtras &extras)
-  {
-    if (!extras.fem_accuracy.empty())
-    {
-      std::vector<std::vector<std::string>> rows;
-      for (const FemAccuracyPoint &p : extras.fem_accuracy)
-        rows.push_back({p.series,
-                        text_or_empty(p.h_contact * 100),
-                        text_or_empty(p.penalty_factor),
-                        text_or_empty(p.seconds),
-                        text_or_empty(p.n_dofs),
-                        text_or_empty(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
-                        text_or_empty(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
-                        text_or_empty(p.error_kelvin_voigt * 100),
-                        text_or_empty(p.error_jankowski * 100),
-                        p.status});
-      write_csv_atomic(output.file("accuracy_fem.csv"),
-                       {"series",
-                        "h_contact_cm",
-                        "penalty_factor",
-                        "fem_seconds",
-                        "n_dofs",
-                        "kelvin_voigt_kN_per_mm_per_m",
-                        "jankowski_kN_per_mm1.5_per_m",
-                        "error_kelvin_voigt_percent",
-                        "error_jankowski_percent",
-                        "status"},
-                       rows);
-    }
-    if (!extras.lumped_accuracy.empty())
-    {
-      std::vector<std::vector<std::string>> rows;
-      for (const LumpedAccuracyPoint &p : extras.lumped_accuracy)
-        rows.push_back({p.method,
-                        text_or_empty(p.dt),
-                        text_or_empty(p.seconds),
-                        text_or_empty(p.ok ? p.peak_impact_force / 1e3 : nan),
-                        text_or_empty(p.ok ? p.base_acceleration : nan),
-                        text_or_empty(p.error_force * 100),
-                        text_or_empty(p.error_acceleration * 100),
-                        p.status});
-      write_csv_atomic(output.file("accuracy_lumped.csv"),
-                       {"method",
-                        "dt_s",
-                        "seconds",
-                        "peak_impact_force_kN",
-                        "peak_base_acceleration_m_per_s2",
-                        "error_impact_force_percent",
-                        "error_base_acceleration_percent",
-                        "status"},
-                       rows);
-    }
-    if (!extras.stability.empty())
-    {
-      std::vector<std::vector<double>> rows;
-      for (const StabilityPoint &p : extras.stability)
-        rows.push_back({stiffness_to_kn_per_mm(p.stiffness, 1.0),
-                        p.dt,
-                        p.dt_limit,
-                        p.dt_limit_damped,
-                        p.stable ? 1.0 : 0.0,
-                        p.accurate ? 1.0 : 0.0,
-                        p.effective_cor});
-      write_csv_atomic(output.file("stability_lumped.csv"),
-                       {"k_imp_kN_per_mm",
-                        "dt_s",
-                        "dt_limit_2_over_omega_s",
-                        "dt_limit_damped_s",
-                        "stable",
-                        "accurate",
-                        "effective_cor"},
-                       rows);
-    }
-    if (!extras.fem_stability.empty())
-    {
-      std::vector<std::vector<std::string>> rows;
-      for (const FemStabilityPoint &p : extras.fem_stability)
-        rows.push_back({text_or_empty(p.penalty_factor),
-                        text_or_empty(p.dt_factor),
-                        text_or_empty(p.dt),
-                        text_or_empty(p.dt_limit),
-                        p.stable ? "1" : "0",
-                        text_or_empty(p.energy_error > 0 ? p.energy_error : nan),
-                        p.status});
-      write_csv_atomic(output.file("stability_fem.csv"),
-                       {"penalty_factor",
-                        "dt_over_limit",
-                        "dt_s",
-                        "dt_limit_s",
-                        "stable",
-                        "max_energy_error",
-                        "status"},
-                       rows);
-    }
-    if (!extras.sensitivity.empty())
-    {
-      std::vector<std::vector<std::string>> rows;
-      for (const SensitivityPoint &p : extras.sensitivity)
-        rows.push_back({p.parameter,
-                        text_or_empty(p.factor),
-                        text_or_empty(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
-                        text_or_empty(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
-                        p.status});
-      write_csv_atomic(output.file("sensitivity.csv"),
-                       {"parameter",
-                        "factor",
-                        "kelvin_voigt_kN_per_mm_per_m",
-                        "jankowski_kN_per_mm1.5_per_m",
-                        "status"},
-                       rows);
-    }
   }
 } // namespace kimp::app

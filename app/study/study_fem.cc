@@ -76,10 +76,34 @@ namespace kimp::app
 
   std::string study_fem_cache_key(const FemScene &scene, double wall_height)
   {
-    FemScene single     = scene;
-    single.wall_heights = {wall_height};
     return fmt::format("{:016x}",
-                       base::stable_hash(base::version_line() + "\n" + to_json_text(single, 0)));
+                       base::stable_hash(base::version_line() + "\n" +
+                                         to_json_text(single_height_scene(scene, wall_height), 0)));
+  }
+
+  FemScene fem_level_scene(const FemScene &base, double h_contact, double penalty_factor)
+  {
+    FemScene scene               = base;
+    scene.mesh.h_contact         = h_contact;
+    scene.mesh.level             = 0;
+    scene.contact.penalty_factor = penalty_factor;
+    return scene;
+  }
+
+  FemCaseSpec study_fem_case_spec(const FemScene    &scene,
+                                  double             wall_height,
+                                  const OutputDir   &output,
+                                  const std::string &case_name)
+  {
+    const std::string name = case_name.empty() ? fem_case_name(wall_height) : case_name;
+    try
+    {
+      return resolve_fem_case(scene, wall_height, name, output.path() / "mesh" / (name + ".msh"));
+    }
+    catch (const std::exception &error)
+    {
+      throw std::runtime_error(fmt::format("{}: {}", name, error_message(error)));
+    }
   }
 
   StudyFemCase study_fem_case(const FemScene    &scene,
@@ -87,10 +111,15 @@ namespace kimp::app
                               const OutputDir   &output,
                               const std::string &case_name)
   {
-    const auto        start = std::chrono::steady_clock::now();
-    const std::string name  = case_name.empty() ? fem_case_name(wall_height) : case_name;
-    StudyFemCase      result;
-    result.cache_key                       = study_fem_cache_key(scene, wall_height);
+    return study_fem_case(study_fem_case_spec(scene, wall_height, output, case_name), output);
+  }
+
+  StudyFemCase study_fem_case(const FemCaseSpec &spec, const OutputDir &output)
+  {
+    const auto         start = std::chrono::steady_clock::now();
+    const std::string &name  = spec.name;
+    StudyFemCase       result;
+    result.cache_key                       = study_fem_cache_key(spec.scene, spec.wall_height);
     const std::filesystem::path cache_file = output.file("fem/" + name + ".h5");
     const std::filesystem::path key_file   = output.file("fem/" + name + ".key");
 
@@ -111,15 +140,16 @@ namespace kimp::app
     }
     std::filesystem::remove(key_file);
 
-    const std::filesystem::path mesh = output.file("mesh/" + name + ".msh");
-    fem::ImpactResult           impact;
+    const std::filesystem::path &mesh = spec.mesh_file;
+    fem::ImpactResult            impact;
     try
     {
+      std::filesystem::create_directories(mesh.parent_path());
       std::ostringstream statistics;
-      statistics << geometry::build_scene_mesh(scene_geometry(scene, wall_height), mesh);
+      statistics << geometry::build_scene_mesh(spec.geometry, mesh);
       logger().info("{}: mesh {} ({})", name, mesh.string(), statistics.str());
       std::ostringstream log;
-      impact = fem::run_impact(impact_parameters(scene, wall_height, mesh), MPI_COMM_SELF, &log);
+      impact = fem::run_impact(spec.parameters, MPI_COMM_SELF, &log);
       std::istringstream lines(log.str());
       for (std::string line; std::getline(lines, line);)
         logger().debug("{}: {}", name, line);
@@ -128,11 +158,9 @@ namespace kimp::app
     {
       throw std::runtime_error(fmt::format("{}: {}", name, error_message(error)));
     }
-    result.fem_case = to_fem_case(name, wall_height, scene, impact);
+    result.fem_case = to_fem_case(spec, impact);
 
-    FemScene single            = scene;
-    single.wall_heights        = {wall_height};
-    const std::string resolved = to_json_text(single);
+    const std::string resolved = to_json_text(spec.scene);
     ResultsFile       file(cache_file, resolved, resolved);
     ResultsGroup      fem_root = file.root().group("fem");
     write_fem_case(fem_root, result.fem_case);

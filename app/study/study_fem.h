@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "app/fem/fem_common.h"
 #include "app/fem/fem_scene.h"
 #include "app/study/study_scene.h"
 #include "io/fem_results.h"
@@ -26,6 +27,25 @@ namespace kimp::app
    * scene restricted to that height and of the kimp version. Any parameter change changes it.
    */
   std::string study_fem_cache_key(const FemScene &scene, double wall_height);
+
+  /** `base` on the FEM level (h_contact, m; penalty factor) without mesh refinement levels. */
+  FemScene fem_level_scene(const FemScene &base, double h_contact, double penalty_factor);
+
+  /**
+   * The case `case_name` ("": fem_case_name(wall_height)) of `scene` at `wall_height`, resolved
+   * once, its mesh in `output`/mesh/<case>.msh.
+   * @throws the resolution errors, prefixed with the case name.
+   */
+  FemCaseSpec study_fem_case_spec(const FemScene      &scene,
+                                  double               wall_height,
+                                  const io::OutputDir &output,
+                                  const std::string   &case_name = "");
+
+  /**
+   * The FemCase of `spec` (see the overload below): its cache key is the stable hash of
+   * spec.scene and the kimp version, equal to study_fem_cache_key(scene, wall_height).
+   */
+  StudyFemCase study_fem_case(const FemCaseSpec &spec, const io::OutputDir &output);
 
   /**
    * The FemCase of height `wall_height`: read from `output`/fem/<case>.h5 when

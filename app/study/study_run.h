@@ -24,7 +24,20 @@ namespace kimp::app
     double jankowski;    ///< kN/mm^1.5 per metre
   };
 
-  /** The four rows of Table 2.1 (docs/physics.md §4). */
+  /**
+   * data/reference/thesis_table_2_1.csv: $KIMP_DATA_DIR/data/reference/,
+   * $KIMP_DATA_DIR/reference/, then the source tree kimp was built from.
+   */
+  std::filesystem::path thesis_table_2_1_file();
+
+  /**
+   * Table 2.1 from a CSV file whose first columns are wall_height_m,
+   * kelvin_voigt_kN_per_mm_per_m, jankowski_kN_per_mm1.5_per_m (one row per wall height).
+   * @throws std::runtime_error naming the file (and line) when it is missing or malformed.
+   */
+  std::vector<ThesisStiffness> read_thesis_table_2_1(const std::filesystem::path &file);
+
+  /** The rows of Table 2.1 (docs/physics.md §4), read once from thesis_table_2_1_file(). */
   const std::vector<ThesisStiffness> &thesis_table_2_1();
 
   /** One row of the k table: the fits of one wall height. */

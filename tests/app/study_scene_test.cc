@@ -2,8 +2,11 @@
 // file:line:key, the lumped scene of the building runs and the FEM cache key.
 #ifdef KIMP_WITH_FEM
 
+#  include <filesystem>
+#  include <fstream>
 #  include <gtest/gtest.h>
 #  include <string>
+#  include <unistd.h>
 
 #  include "app/study/study_fem.h"
 #  include "app/study/study_run.h"
@@ -142,6 +145,34 @@ TEST(StudyScene, ThesisTable21TimesWidthGivesTable22)
                 kv_total[i],
                 table_rounding * kv_total[i])
       << "H = " << table[i].wall_height;
+}
+
+TEST(StudyScene, ThesisTable21ErrorsNameTheFile)
+{
+  const std::filesystem::path dir =
+    std::filesystem::temp_directory_path() / ("kimp_thesis_table_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto error_of = [](const std::filesystem::path &file)
+  {
+    try
+    {
+      kimp::app::read_thesis_table_2_1(file);
+    }
+    catch (const std::exception &error)
+    {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  const std::filesystem::path missing = dir / "missing.csv";
+  EXPECT_NE(error_of(missing).find(missing.string()), std::string::npos) << error_of(missing);
+  const std::filesystem::path bad = dir / "bad.csv";
+  std::ofstream(bad) << "wall_height_m,kelvin_voigt_kN_per_mm_per_m,jankowski_kN_per_mm1.5_per_m\n"
+                        "1.00,150,fifty\n";
+  EXPECT_NE(error_of(bad).find(bad.string() + ":2: 'fifty'"), std::string::npos) << error_of(bad);
+  std::ofstream(bad) << "height,k\n1,2\n";
+  EXPECT_NE(error_of(bad).find(bad.string() + ":1: header"), std::string::npos) << error_of(bad);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(StudyFemCache, KeyDependsOnHeightAndEveryParameter)

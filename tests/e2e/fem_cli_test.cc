@@ -51,10 +51,10 @@ namespace
     const kimp::io::FemCase &c = cases[0];
     EXPECT_EQ(c.name, "H1.25");
     EXPECT_EQ(c.status, "ok");
-    const double peak  = c.summary.at("peak_force");
-    const double cor   = c.summary.at("apparent_cor");
-    const double v_end = c.summary.at("rebound_velocity");
-    const double pulse = c.summary.at("impulse");
+    const double peak  = c.summary.peak_force.value();
+    const double cor   = c.summary.apparent_cor.value();
+    const double v_end = c.summary.rebound_velocity.value();
+    const double pulse = c.summary.impulse.value();
     const double v0    = c.impact_velocity;
     EXPECT_GT(peak, 0.0);
     EXPECT_GT(cor, 0.0);
@@ -138,10 +138,10 @@ namespace
     const auto b = kimp::io::read_fem_cases(dir.path() / "two/fem.h5");
     ASSERT_EQ(a.size(), 1u);
     ASSERT_EQ(b.size(), 1u);
-    EXPECT_EQ(b[0].summary.at("n_ranks"), 2.0);
-    const double peak = a[0].summary.at("peak_force");
+    EXPECT_EQ(b[0].summary.n_ranks.value(), 2.0);
+    const double peak = a[0].summary.peak_force.value();
     EXPECT_GT(peak, 0.0);
-    EXPECT_NEAR(b[0].summary.at("peak_force"), peak, rank_tolerance * peak);
+    EXPECT_NEAR(b[0].summary.peak_force.value(), peak, rank_tolerance * peak);
     ASSERT_EQ(a[0].contact_force.size(), b[0].contact_force.size());
     for (std::size_t i = 0; i < a[0].contact_force.size(); ++i)
       ASSERT_NEAR(b[0].contact_force[i], a[0].contact_force[i], rank_tolerance * peak)

@@ -41,15 +41,15 @@ namespace
       c.slab_velocity.push_back(u(rng));
       c.wall_displacement.push_back(1.0e-3 * u(rng));
     }
-    c.summary       = {{"peak_force", 1.2e6},
-                       {"contact_duration", 4.5e-3},
-                       {"impulse", 6528.0},
-                       {"apparent_cor", 0.7},
-                       {"n_dofs", 12345.0},
-                       {"wall_seconds", 3.25},
-                       {"custom_length", 0.25}};
-    c.summary_units = {{"custom_length", "mm"}};
-    c.labels        = {{"mesh_level", "2"}, {"integrator", "central_difference"}};
+    c.summary.peak_force             = 1.2e6;
+    c.summary.contact_duration       = 4.5e-3;
+    c.summary.impulse                = 6528.0;
+    c.summary.apparent_cor           = 0.7;
+    c.summary.n_dofs                 = 12345.0;
+    c.summary.wall_seconds           = 3.25;
+    c.summary.extra["custom_length"] = 0.25;
+    c.summary_units                  = {{"custom_length", "mm"}};
+    c.labels                         = {{"mesh_level", "2"}, {"integrator", "central_difference"}};
     return c;
   }
 
@@ -179,8 +179,8 @@ namespace
                 std::string::npos)
         << error.what();
     }
-    FemCase unknown_key            = make_case("H1.25", 1.25, 5u, 10);
-    unknown_key.summary["mystery"] = 1.0;
+    FemCase unknown_key                  = make_case("H1.25", 1.25, 5u, 10);
+    unknown_key.summary.extra["mystery"] = 1.0;
     EXPECT_THROW(kimp::io::write_fem_case(fem, unknown_key), ResultsError);
   }
 

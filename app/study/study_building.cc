@@ -1,0 +1,227 @@
+// Compute stage of `kimp study` after the k table: the isolated building pounding on moat walls
+// with each height's k (docs/physics.md §2-3), then the accuracy, stability and sensitivity
+// studies.
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+#include <set>
+
+#include "app/lumped_run.h"
+#include "app/study/study_internal.h"
+#include "base/logging.h"
+#include "lumped/collision/two_body.h"
+#include "lumped/integrators/response.h"
+
+namespace kimp::app::study_internal
+{
+  using namespace kimp::base;
+  using namespace kimp::io;
+  using namespace kimp::fit;
+  namespace
+  {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+    void fill_peaks(StudyBuildingRun       &run,
+                    const LumpedCaseResult &result,
+                    unsigned int            top_dof,
+                    const lumped::Response *without_walls)
+    {
+      run.status       = result.status;
+      run.wall_seconds = result.wall_time;
+      run.pga          = result.pga;
+      if (!result.ok())
+        return;
+      const lumped::Response &r = result.response;
+      run.base_displacement     = r.peak_displacement.at(0);
+      run.top_displacement      = r.peak_displacement.at(top_dof);
+      run.base_acceleration     = r.peak_absolute_acceleration.at(0);
+      run.top_acceleration      = r.peak_absolute_acceleration.at(top_dof);
+      run.max_floor_acceleration =
+        *std::max_element(r.peak_absolute_acceleration.begin() + 1,
+                          r.peak_absolute_acceleration.begin() + top_dof + 1);
+      run.max_interstorey_drift = r.max_interstorey_drift();
+      run.n_impacts             = r.n_impacts();
+      for (const lumped::ContactResult &c : r.contacts)
+      {
+        run.peak_impact_force     = std::max(run.peak_impact_force, c.peak_force);
+        run.permanent_indentation = std::max(run.permanent_indentation, c.permanent_indentation);
+      }
+      if (without_walls)
+      {
+        const lumped::Amplification a = lumped::amplification_factors(r, *without_walls);
+        run.amplification_base_acc    = a.absolute_acceleration.at(0);
+        run.amplification_top_acc     = a.absolute_acceleration.at(top_dof);
+        run.amplification_drift =
+          run.max_interstorey_drift / std::max(without_walls->max_interstorey_drift(), 1e-300);
+      }
+    }
+
+    std::string record_label(const GroundMotionScene &record, std::set<std::string> &used)
+    {
+      std::string label = record.record;
+      for (int i = 2; !used.insert(label).second; ++i)
+        label = fmt::format("{}_{}", record.record, i);
+      return label;
+    }
+
+    /// The height of the k table nearest to `wall_height` with a Kelvin-Voigt fit (or null).
+    const StudyHeight *nearest_height(const std::vector<StudyHeight> &heights, double wall_height)
+    {
+      const StudyHeight *best = nullptr;
+      for (const StudyHeight &h : heights)
+        if (h.kelvin_voigt && (!best || std::abs(h.wall_height - wall_height) <
+                                          std::abs(best->wall_height - wall_height)))
+          best = &h;
+      return best;
+    }
+  } // namespace
+
+  std::vector<StudyBuildingRun> run_building(const StudyScene               &scene,
+                                             const std::vector<StudyHeight> &heights)
+  {
+    std::vector<StudyBuildingRun> runs;
+    std::set<std::string>         labels;
+    const unsigned int            top_dof = scene.building.n_storeys;
+    for (const GroundMotionScene &record : study_records(scene))
+    {
+      const std::string label = record_label(record, labels);
+      StudyBuildingRun  bare;
+      bare.record = label;
+      bare.law    = "none";
+      lumped::GroundMotion motion;
+      try
+      {
+        motion = load_ground_motion(record);
+      }
+      catch (const std::exception &error)
+      {
+        bare.status = std::string("failed: ") + error.what();
+        logger().warn("record {}: {}", label, bare.status);
+        runs.push_back(bare);
+        continue;
+      }
+      const LumpedScene      base = study_lumped_scene(scene, record);
+      const LumpedCaseResult none = run_lumped_case("no_walls", base, motion, record.scale);
+      fill_peaks(bare, none, top_dof, nullptr);
+      runs.push_back(bare);
+      if (!none.ok())
+      {
+        logger().warn("record {}: run without walls {}", label, none.status);
+        continue;
+      }
+      const double gap =
+        scene.walls.gap.value_or((1.0 - scene.walls.gap_reduction) * bare.base_displacement);
+      logger().info("record {} (PGA {:.3f} g): no walls: peak isolation displacement {:.4g} cm, "
+                    "top acceleration {:.4g} m/s^2 -> wall gap {:.4g} cm",
+                    label,
+                    none.pga / lumped::standard_gravity,
+                    bare.base_displacement * 100,
+                    bare.top_acceleration,
+                    gap * 100);
+
+      for (const StudyHeight &h : heights)
+      {
+        const std::vector<std::pair<std::string, const std::optional<FitResult> *>> laws = {
+          {"modified_kelvin_voigt", &h.kelvin_voigt},
+          {"jankowski", &h.jankowski},
+          {"hysteretic", &h.jankowski}};
+        for (const auto &[law, fit] : laws)
+        {
+          StudyBuildingRun run;
+          run.record      = label;
+          run.wall_height = h.wall_height;
+          run.law         = law;
+          run.gap         = gap;
+          if (!*fit)
+          {
+            run.status = "skipped: no fitted k for " + h.name;
+            runs.push_back(run);
+            continue;
+          }
+          run.exponent          = (*fit)->exponent.value;
+          run.k_total           = (*fit)->stiffness.value * scene.fit.width;
+          LumpedScene s         = base;
+          s.walls.left.present  = true;
+          s.walls.right.present = true;
+          s.walls.left.gap      = gap;
+          s.walls.right.gap     = gap;
+          s.impact.law          = law;
+          s.impact.k.clear();
+          s.impact.k_si     = run.k_total;
+          s.impact.exponent = std::nullopt;
+          s.impact.cor      = scene.fit.cor;
+          const LumpedCaseResult done =
+            run_lumped_case(h.name + "_" + law, s, motion, record.scale);
+          fill_peaks(run, done, top_dof, &none.response);
+          if (!done.ok())
+            logger().warn("record {} {} {}: {}", label, h.name, law, done.status);
+          runs.push_back(run);
+        }
+      }
+    }
+    return runs;
+  }
+
+  StudyExtras
+  run_extras(const StudyScene &scene, const StudyResult &result, const OutputDir &output)
+  {
+    StudyExtras        extras;
+    const StudyHeight *h       = nearest_height(result.heights, scene.accuracy.wall_height);
+    const double       k_total = h ? h->kelvin_voigt->stiffness.value * scene.fit.width : nan;
+    if (scene.accuracy_study)
+    {
+      logger().info("accuracy study at H = {} m (FEM levels, then the building's time step)",
+                    scene.accuracy.wall_height);
+      extras.fem_accuracy                          = run_fem_accuracy(scene, output);
+      const std::vector<GroundMotionScene> records = study_records(scene);
+      const auto                           bare =
+        std::find_if(result.building.begin(),
+                     result.building.end(),
+                     [](const StudyBuildingRun &r) { return r.law == "none" && r.status == "ok"; });
+      if (h && !records.empty() && bare != result.building.end())
+      {
+        extras.lumped_k_total = k_total;
+        extras.lumped_gap =
+          scene.walls.gap.value_or((1.0 - scene.walls.gap_reduction) * bare->base_displacement);
+        extras.lumped_record = bare->record;
+        try
+        {
+          extras.lumped_accuracy =
+            run_lumped_accuracy(scene, records.front(), k_total, extras.lumped_gap);
+        }
+        catch (const std::exception &error)
+        {
+          logger().warn("lumped accuracy study skipped: {}", error.what());
+        }
+      }
+    }
+    if (scene.stability_map && h)
+    {
+      extras.stability_study_k = k_total;
+      extras.stability         = lumped_stability_map(scene.building.isolation_mass,
+                                              scene.walls.mass,
+                                              scene.fit.cor,
+                                              k_total);
+      const lumped::TwoBodySetup setup{scene.building.isolation_mass, scene.walls.mass};
+      extras.stability_effective_mass = setup.effective_mass();
+      try
+      {
+        extras.fem_stability_end_time = fem_stability_end_time;
+        extras.fem_stability = fem_stability_map(scene, output, extras.fem_stability_h_contact);
+      }
+      catch (const std::exception &error)
+      {
+        logger().warn("FEM stability map skipped: {}", error.what());
+      }
+    }
+    if (scene.sensitivity)
+    {
+      logger().info("sensitivity study at H = {} m (+-{} %)",
+                    scene.sensitivity_study.wall_height,
+                    scene.sensitivity_study.variation * 100);
+      extras.sensitivity = run_sensitivity(scene, output);
+    }
+    return extras;
+  }
+} // namespace kimp::app::study_internal

@@ -1,0 +1,173 @@
+// Small helpers shared by the stages of `kimp study` (k in display units, the FEM level used)
+// and thesis Table 2.1, read from data/reference/thesis_table_2_1.csv.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "app/study/study_internal.h"
+
+namespace kimp::app::study_internal
+{
+  using namespace kimp::io;
+  using namespace kimp::fit;
+
+  namespace
+  {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  } // namespace
+
+  double seconds_since(Clock::time_point start)
+  {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  }
+
+  std::optional<ThesisStiffness> thesis_row(double wall_height)
+  {
+    for (const ThesisStiffness &row : thesis_table_2_1())
+      if (std::abs(row.wall_height - wall_height) < 1e-9)
+        return row;
+    return std::nullopt;
+  }
+
+  double per_metre(const std::optional<FitResult> &fit)
+  {
+    return fit ? fit->stiffness_per_metre_display() : nan;
+  }
+  double per_metre_bound(const std::optional<FitResult> &fit, bool upper)
+  {
+    return fit ? stiffness_to_kn_per_mm(upper ? fit->stiffness.upper : fit->stiffness.lower,
+                                        fit->exponent.value) :
+                 nan;
+  }
+
+  double numerical_error(const StudyHeight &h, double exponent)
+  {
+    return stiffness_to_kn_per_mm(exponent == 1.0 ? h.kelvin_voigt_numerical_error() :
+                                                    h.jankowski_numerical_error(),
+                                  exponent);
+  }
+
+  double used_h_contact(const StudyScene &scene, const StudyHeight &h)
+  {
+    return h.auto_fidelity ? h.ladder.used_level().h_contact :
+                             scene.fem.mesh.h_contact / std::pow(2.0, scene.fem.mesh.level);
+  }
+
+  double used_penalty(const StudyScene &scene, const StudyHeight &h)
+  {
+    return h.auto_fidelity ? h.ladder.used_level().penalty_factor :
+                             scene.fem.contact.penalty_factor;
+  }
+
+  std::vector<double> scale(std::vector<double> values, double factor)
+  {
+    for (double &v : values)
+      v *= factor;
+    return values;
+  }
+
+  std::string number(double value)
+  {
+    return std::isfinite(value) ? fmt::format("{:.6g}", value) : "";
+  }
+} // namespace kimp::app::study_internal
+
+namespace kimp::app
+{
+  namespace
+  {
+    /// One number of the table; the whole cell must be a finite number.
+    double
+    table_number(const std::filesystem::path &file, std::size_t line, const std::string &cell)
+    {
+      std::size_t used  = 0;
+      double      value = std::numeric_limits<double>::quiet_NaN();
+      try
+      {
+        value = std::stod(cell, &used);
+      }
+      catch (const std::exception &)
+      {
+        used = 0;
+      }
+      if (used == 0 || used != cell.size() || !std::isfinite(value))
+        throw std::runtime_error(
+          fmt::format("{}:{}: '{}' is not a number", file.string(), line, cell));
+      return value;
+    }
+
+    std::vector<std::string> split_csv_line(const std::string &line)
+    {
+      std::vector<std::string> cells;
+      std::stringstream        in(line);
+      for (std::string cell; std::getline(in, cell, ',');)
+        cells.push_back(cell);
+      return cells;
+    }
+  } // namespace
+
+  std::filesystem::path thesis_table_2_1_file()
+  {
+    const std::filesystem::path name = "thesis_table_2_1.csv";
+    if (const char *data_dir = std::getenv("KIMP_DATA_DIR"); data_dir != nullptr && *data_dir)
+      for (const std::filesystem::path &directory :
+           {std::filesystem::path(data_dir) / "data" / "reference",
+            std::filesystem::path(data_dir) / "reference"})
+        if (std::filesystem::is_regular_file(directory / name))
+          return directory / name;
+    return std::filesystem::path(KIMP_SOURCE_TREE) / "data" / "reference" / name;
+  }
+
+  std::vector<ThesisStiffness> read_thesis_table_2_1(const std::filesystem::path &file)
+  {
+    std::ifstream in(file);
+    if (!in)
+      throw std::runtime_error(fmt::format("thesis Table 2.1: cannot open {} (set KIMP_DATA_DIR "
+                                           "to the kimp source tree)",
+                                           file.string()));
+    const std::vector<std::string> columns = {"wall_height_m",
+                                              "kelvin_voigt_kN_per_mm_per_m",
+                                              "jankowski_kN_per_mm1.5_per_m"};
+    std::string                    line;
+    std::getline(in, line);
+    const std::vector<std::string> header = split_csv_line(line);
+    if (header.size() < columns.size() ||
+        !std::equal(columns.begin(), columns.end(), header.begin()))
+      throw std::runtime_error(fmt::format("{}:1: header '{}' (expected the columns {}, ...)",
+                                           file.string(),
+                                           line,
+                                           fmt::join(columns, ",")));
+    std::vector<ThesisStiffness> table;
+    for (std::size_t number = 2; std::getline(in, line); ++number)
+    {
+      if (line.empty())
+        continue;
+      const std::vector<std::string> cells = split_csv_line(line);
+      if (cells.size() != header.size())
+        throw std::runtime_error(fmt::format("{}:{}: {} columns (the header has {})",
+                                             file.string(),
+                                             number,
+                                             cells.size(),
+                                             header.size()));
+      table.push_back({table_number(file, number, cells[0]),
+                       table_number(file, number, cells[1]),
+                       table_number(file, number, cells[2])});
+    }
+    if (table.empty())
+      throw std::runtime_error(fmt::format("{}: no rows", file.string()));
+    return table;
+  }
+
+  const std::vector<ThesisStiffness> &thesis_table_2_1()
+  {
+    static const std::vector<ThesisStiffness> table =
+      read_thesis_table_2_1(thesis_table_2_1_file());
+    return table;
+  }
+} // namespace kimp::app

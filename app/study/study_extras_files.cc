@@ -1,0 +1,278 @@
+// Writers of the extra studies of `kimp study`: study.h5 /accuracy, /stability, /sensitivity and
+// accuracy_fem.csv, accuracy_lumped.csv, stability_lumped.csv, stability_fem.csv, sensitivity.csv.
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
+#include "app/study/study_extras.h"
+#include "app/study/study_internal.h"
+#include "fit/fitter.h"
+
+namespace kimp::app
+{
+  using namespace kimp::io;
+  using namespace kimp::fit;
+  using study_internal::number;
+  namespace
+  {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  } // namespace
+
+  void write_study_extras(ResultsGroup &root, const StudyExtras &extras)
+  {
+    for (const char *series : {"mesh", "penalty", "implicit"})
+    {
+      std::vector<TableColumn> c = {{"h_contact", "m", {}},
+                                    {"penalty_factor", "1", {}},
+                                    {"ok", "1", {}},
+                                    {"seconds", "s", {}},
+                                    {"n_dofs", "1", {}},
+                                    {"n_steps", "1", {}},
+                                    {"kelvin_voigt", "kN/mm/m", {}},
+                                    {"jankowski", "kN/mm^1.5/m", {}},
+                                    {"error_kelvin_voigt", "1", {}},
+                                    {"error_jankowski", "1", {}}};
+      for (const FemAccuracyPoint &p : extras.fem_accuracy)
+      {
+        if (p.series != series)
+          continue;
+        const double v[] = {p.h_contact,
+                            p.penalty_factor,
+                            p.ok ? 1.0 : 0.0,
+                            p.seconds,
+                            p.n_dofs,
+                            p.n_steps,
+                            p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan,
+                            p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan,
+                            p.error_kelvin_voigt,
+                            p.error_jankowski};
+        for (std::size_t i = 0; i < c.size(); ++i)
+          c[i].values.push_back(v[i]);
+      }
+      if (!c.front().values.empty())
+        root.group("accuracy").group("fem").write_table(series, c);
+    }
+    for (const char *method : {"cdm", "newmark", "cdm_reference"})
+    {
+      std::vector<TableColumn> c = {{"dt", "s", {}},
+                                    {"ok", "1", {}},
+                                    {"seconds", "s", {}},
+                                    {"impact_force", "N", {}},
+                                    {"base_acceleration", "m/s^2", {}},
+                                    {"error_impact_force", "1", {}},
+                                    {"error_base_acceleration", "1", {}}};
+      for (const LumpedAccuracyPoint &p : extras.lumped_accuracy)
+      {
+        if (p.method != method)
+          continue;
+        const double v[] = {p.dt,
+                            p.ok ? 1.0 : 0.0,
+                            p.seconds,
+                            p.ok ? p.peak_impact_force : nan,
+                            p.ok ? p.base_acceleration : nan,
+                            p.error_force,
+                            p.error_acceleration};
+        for (std::size_t i = 0; i < c.size(); ++i)
+          c[i].values.push_back(v[i]);
+      }
+      if (!c.front().values.empty())
+      {
+        ResultsGroup lumped = root.group("accuracy").group("lumped");
+        lumped.write_table(method, c);
+        lumped.set_attribute("k_total_N_per_m", extras.lumped_k_total);
+        lumped.set_attribute("gap_m", extras.lumped_gap);
+        lumped.set_attribute("record", extras.lumped_record);
+      }
+    }
+    if (!extras.stability.empty())
+    {
+      std::vector<TableColumn> c = {{"stiffness", "N/m", {}},
+                                    {"dt", "s", {}},
+                                    {"dt_limit", "s", {}},
+                                    {"dt_limit_damped", "s", {}},
+                                    {"stable", "1", {}},
+                                    {"accurate", "1", {}},
+                                    {"effective_cor", "1", {}},
+                                    {"peak_force", "N", {}}};
+      for (const StabilityPoint &p : extras.stability)
+      {
+        const double v[] = {p.stiffness,
+                            p.dt,
+                            p.dt_limit,
+                            p.dt_limit_damped,
+                            p.stable ? 1.0 : 0.0,
+                            p.accurate ? 1.0 : 0.0,
+                            p.effective_cor,
+                            p.peak_force};
+        for (std::size_t i = 0; i < c.size(); ++i)
+          c[i].values.push_back(v[i]);
+      }
+      ResultsGroup stability = root.group("stability");
+      stability.write_table("lumped", c);
+      ResultsGroup table = stability.group("lumped");
+      table.set_attribute("effective_mass_kg", extras.stability_effective_mass);
+      table.set_attribute("study_stiffness_N_per_m", extras.stability_study_k);
+    }
+    if (!extras.fem_stability.empty())
+    {
+      std::vector<TableColumn> c = {{"penalty_factor", "1", {}},
+                                    {"dt_factor", "1", {}},
+                                    {"dt", "s", {}},
+                                    {"dt_limit", "s", {}},
+                                    {"stable", "1", {}},
+                                    {"energy_error", "1", {}}};
+      for (const FemStabilityPoint &p : extras.fem_stability)
+      {
+        const double v[] = {p.penalty_factor,
+                            p.dt_factor,
+                            p.dt,
+                            p.dt_limit,
+                            p.stable ? 1.0 : 0.0,
+                            p.energy_error > 0 ? p.energy_error : nan};
+        for (std::size_t i = 0; i < c.size(); ++i)
+          c[i].values.push_back(v[i]);
+      }
+      ResultsGroup stability = root.group("stability");
+      stability.write_table("fem", c);
+      ResultsGroup table = stability.group("fem");
+      table.set_attribute("h_contact_m", extras.fem_stability_h_contact);
+      table.set_attribute("end_time_s", extras.fem_stability_end_time);
+    }
+    if (!extras.sensitivity.empty())
+    {
+      for (const char *parameter :
+           {"base", "soil_modulus", "slab_mass", "impact_velocity", "wall_thickness"})
+      {
+        std::vector<TableColumn> c = {{"factor", "1", {}},
+                                      {"ok", "1", {}},
+                                      {"kelvin_voigt", "kN/mm/m", {}},
+                                      {"jankowski", "kN/mm^1.5/m", {}}};
+        for (const SensitivityPoint &p : extras.sensitivity)
+        {
+          if (p.parameter != parameter)
+            continue;
+          const double v[] = {p.factor,
+                              p.ok ? 1.0 : 0.0,
+                              p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan,
+                              p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan};
+          for (std::size_t i = 0; i < c.size(); ++i)
+            c[i].values.push_back(v[i]);
+        }
+        root.group("sensitivity").write_table(parameter, c);
+      }
+    }
+  }
+
+  void write_study_extras_csv(const OutputDir &output, const StudyExtras &extras)
+  {
+    if (!extras.fem_accuracy.empty())
+    {
+      std::vector<std::vector<std::string>> rows;
+      for (const FemAccuracyPoint &p : extras.fem_accuracy)
+        rows.push_back({p.series,
+                        number(p.h_contact * 100),
+                        number(p.penalty_factor),
+                        number(p.seconds),
+                        number(p.n_dofs),
+                        number(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
+                        number(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
+                        number(p.error_kelvin_voigt * 100),
+                        number(p.error_jankowski * 100),
+                        p.status});
+      write_csv_atomic(output.file("accuracy_fem.csv"),
+                       {"series",
+                        "h_contact_cm",
+                        "penalty_factor",
+                        "fem_seconds",
+                        "n_dofs",
+                        "kelvin_voigt_kN_per_mm_per_m",
+                        "jankowski_kN_per_mm1.5_per_m",
+                        "error_kelvin_voigt_percent",
+                        "error_jankowski_percent",
+                        "status"},
+                       rows);
+    }
+    if (!extras.lumped_accuracy.empty())
+    {
+      std::vector<std::vector<std::string>> rows;
+      for (const LumpedAccuracyPoint &p : extras.lumped_accuracy)
+        rows.push_back({p.method,
+                        number(p.dt),
+                        number(p.seconds),
+                        number(p.ok ? p.peak_impact_force / 1e3 : nan),
+                        number(p.ok ? p.base_acceleration : nan),
+                        number(p.error_force * 100),
+                        number(p.error_acceleration * 100),
+                        p.status});
+      write_csv_atomic(output.file("accuracy_lumped.csv"),
+                       {"method",
+                        "dt_s",
+                        "seconds",
+                        "peak_impact_force_kN",
+                        "peak_base_acceleration_m_per_s2",
+                        "error_impact_force_percent",
+                        "error_base_acceleration_percent",
+                        "status"},
+                       rows);
+    }
+    if (!extras.stability.empty())
+    {
+      std::vector<std::vector<double>> rows;
+      for (const StabilityPoint &p : extras.stability)
+        rows.push_back({stiffness_to_kn_per_mm(p.stiffness, 1.0),
+                        p.dt,
+                        p.dt_limit,
+                        p.dt_limit_damped,
+                        p.stable ? 1.0 : 0.0,
+                        p.accurate ? 1.0 : 0.0,
+                        p.effective_cor});
+      write_csv_atomic(output.file("stability_lumped.csv"),
+                       {"k_imp_kN_per_mm",
+                        "dt_s",
+                        "dt_limit_2_over_omega_s",
+                        "dt_limit_damped_s",
+                        "stable",
+                        "accurate",
+                        "effective_cor"},
+                       rows);
+    }
+    if (!extras.fem_stability.empty())
+    {
+      std::vector<std::vector<std::string>> rows;
+      for (const FemStabilityPoint &p : extras.fem_stability)
+        rows.push_back({number(p.penalty_factor),
+                        number(p.dt_factor),
+                        number(p.dt),
+                        number(p.dt_limit),
+                        p.stable ? "1" : "0",
+                        number(p.energy_error > 0 ? p.energy_error : nan),
+                        p.status});
+      write_csv_atomic(output.file("stability_fem.csv"),
+                       {"penalty_factor",
+                        "dt_over_limit",
+                        "dt_s",
+                        "dt_limit_s",
+                        "stable",
+                        "max_energy_error",
+                        "status"},
+                       rows);
+    }
+    if (!extras.sensitivity.empty())
+    {
+      std::vector<std::vector<std::string>> rows;
+      for (const SensitivityPoint &p : extras.sensitivity)
+        rows.push_back({p.parameter,
+                        number(p.factor),
+                        number(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
+                        number(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
+                        p.status});
+      write_csv_atomic(output.file("sensitivity.csv"),
+                       {"parameter",
+                        "factor",
+                        "kelvin_voigt_kN_per_mm_per_m",
+                        "jankowski_kN_per_mm1.5_per_m",
+                        "status"},
+                       rows);
+    }
+  }
+} // namespace kimp::app

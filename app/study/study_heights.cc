@@ -1,0 +1,172 @@
+// Compute stage of `kimp study` per wall height: the FEM case (fixed level or the fidelity
+// ladder of study_ladder.h) and the fits of laws 2 and 4 (docs/physics.md §4), on one or all ranks.
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
+#include "app/study/study_fem.h"
+#include "app/study/study_internal.h"
+#include "base/logging.h"
+
+namespace kimp::app::study_internal
+{
+  using namespace kimp::base;
+  using namespace kimp::io;
+  using namespace kimp::fit;
+
+  StudyHeight run_height(const StudyScene &scene, double wall_height, const OutputDir &output)
+  {
+    StudyHeight h;
+    h.wall_height = wall_height;
+    h.name        = fem_case_name(wall_height);
+    if (scene.fem.fidelity == Fidelity::fixed)
+    {
+      StudyFemCase fem      = study_fem_case(scene.fem, wall_height, output);
+      h.fem_case            = std::move(fem.fem_case);
+      h.fem_from_cache      = fem.from_cache;
+      h.fem_seconds         = fem.wall_seconds;
+      StudyFits fits        = fit_study_laws(h.fem_case, scene.fit);
+      h.kelvin_voigt        = std::move(fits.kelvin_voigt);
+      h.jankowski           = std::move(fits.jankowski);
+      h.kelvin_voigt_status = fits.kelvin_voigt_status;
+      h.jankowski_status    = fits.jankowski_status;
+      h.fit_seconds         = fits.seconds;
+      h.fidelity_reason     = "fidelity fixed: numerical error not estimated";
+      return h;
+    }
+
+    // fidelity: auto. Every level keeps its FEM case and fits; the used one is reported.
+    struct Computed
+    {
+      FemCase   fem_case;
+      StudyFits fits;
+      bool      from_cache = false;
+    };
+    std::vector<Computed> computed;
+    h.fem_from_cache = true;
+    const auto run   = [&](const FidelityLevel &level)
+    {
+      LevelOutcome outcome;
+      Computed     c;
+      try
+      {
+        StudyFemCase fem =
+          study_fem_case(fem_level_scene(scene.fem, level.h_contact, level.penalty_factor),
+                         wall_height,
+                         output,
+                         h.name + "_" + level.label());
+        h.fem_seconds += fem.wall_seconds;
+        h.fem_from_cache = h.fem_from_cache && fem.from_cache;
+        c.fem_case       = std::move(fem.fem_case);
+        c.from_cache     = fem.from_cache;
+        c.fits           = fit_study_laws(c.fem_case, scene.fit);
+        h.fit_seconds += c.fits.seconds;
+        outcome.seconds    = fem.wall_seconds + c.fits.seconds;
+        outcome.from_cache = fem.from_cache;
+        outcome.ok         = c.fits.ok();
+        outcome.status =
+          outcome.ok ? "ok" : "fit " + c.fits.kelvin_voigt_status + " / " + c.fits.jankowski_status;
+        if (outcome.ok)
+        {
+          outcome.k_kelvin_voigt = c.fits.kelvin_voigt->stiffness.value;
+          outcome.k_jankowski    = c.fits.jankowski->stiffness.value;
+        }
+      }
+      catch (const std::exception &error)
+      {
+        outcome.status = std::string("failed: ") + error.what();
+        logger().warn("{}: level {} {}", h.name, level.label(), outcome.status);
+      }
+      computed.push_back(std::move(c));
+      logger().info("{}: level {}: k_KV {:.6g} kN/mm/m, k_Jankowski {:.6g} kN/mm^1.5/m ({})",
+                    h.name,
+                    level.label(),
+                    stiffness_to_kn_per_mm(outcome.k_kelvin_voigt, 1.0),
+                    stiffness_to_kn_per_mm(outcome.k_jankowski, 1.5),
+                    outcome.status);
+      return outcome;
+    };
+    h.ladder          = climb_fidelity_ladder(scene.fem.fidelity_h_contact,
+                                     scene.fem.fidelity_penalty_factors,
+                                     scene.fem.fidelity_tolerance,
+                                     run);
+    h.auto_fidelity   = true;
+    h.fidelity_reason = h.ladder.reason;
+    if (!h.ladder.has_usable_level())
+      throw std::runtime_error(
+        fmt::format("{}: no usable FEM level ({})", h.name, h.ladder.outcomes.front().status));
+    Computed &used        = computed.at(h.ladder.used);
+    h.fem_case            = std::move(used.fem_case);
+    h.fem_case.name       = h.name;
+    h.kelvin_voigt        = std::move(used.fits.kelvin_voigt);
+    h.jankowski           = std::move(used.fits.jankowski);
+    h.kelvin_voigt_status = used.fits.kelvin_voigt_status;
+    h.jankowski_status    = used.fits.jankowski_status;
+    logger().info("{}: fidelity auto: {} -> level {} ({}); numerical error of k: KV {:.3g} "
+                  "kN/mm/m, Jankowski {:.3g} kN/mm^1.5/m",
+                  h.name,
+                  h.ladder.reason,
+                  h.ladder.used_level().label(),
+                  h.ladder.converged ? "converged" : "NOT converged",
+                  stiffness_to_kn_per_mm(h.ladder.error_kelvin_voigt, 1.0),
+                  stiffness_to_kn_per_mm(h.ladder.error_jankowski, 1.5));
+    return h;
+  }
+
+  /**
+   * Under `mpirun -np N`: rank r computes the FEM (and climbs the fidelity ladder) of heights
+   * r, r + N, ... into the study's FEM cache; rank 0 then finds every height there. Errors are
+   * left for rank 0's own pass to report (it recomputes what is missing).
+   */
+  void
+  compute_heights_on_ranks(const StudyScene &scene, const OutputDir &output, int rank, int n_ranks)
+  {
+    const Clock::time_point start   = Clock::now();
+    const auto             &heights = scene.fem.wall_heights;
+    for (std::size_t i = static_cast<std::size_t>(rank); i < heights.size();
+         i += static_cast<std::size_t>(n_ranks))
+    {
+      try
+      {
+        run_height(scene, heights[i], output);
+      }
+      catch (const std::exception &error)
+      {
+        logger().warn("{}: {}", fem_case_name(heights[i]), error.what());
+      }
+    }
+    logger().info("FEM of rank {}'s share of {} heights on {} ranks: {:.2f} s",
+                  rank,
+                  heights.size(),
+                  n_ranks,
+                  seconds_since(start));
+  }
+
+  void log_k_table(const StudyScene &scene, const std::vector<StudyHeight> &heights)
+  {
+    logger().info("k table (per metre of wall; total = x {} m), beside thesis Table 2.1:",
+                  scene.fit.width);
+    logger().info("  H [m] | KV kN/mm/m [95 % CI] ± numerical | Table 2.1 | KV total kN/mm | "
+                  "Jankowski kN/mm^1.5/m [95 % CI] ± numerical | Table 2.1 | J total kN/mm^1.5");
+    for (const StudyHeight &h : heights)
+    {
+      const std::optional<ThesisStiffness> thesis = thesis_row(h.wall_height);
+      logger().info("  {:5.2f} | {:8.4g} [{:.4g}, {:.4g}] ± {:.2g} | {:>9} | {:14.5g} | {:8.4g} "
+                    "[{:.4g}, {:.4g}] ± {:.2g} | {:>9} | {:.5g}",
+                    h.wall_height,
+                    per_metre(h.kelvin_voigt),
+                    per_metre_bound(h.kelvin_voigt, false),
+                    per_metre_bound(h.kelvin_voigt, true),
+                    numerical_error(h, 1.0),
+                    thesis ? number(thesis->kelvin_voigt) : "-",
+                    per_metre(h.kelvin_voigt) * scene.fit.width,
+                    per_metre(h.jankowski),
+                    per_metre_bound(h.jankowski, false),
+                    per_metre_bound(h.jankowski, true),
+                    numerical_error(h, 1.5),
+                    thesis ? number(thesis->jankowski) : "-",
+                    per_metre(h.jankowski) * scene.fit.width);
+    }
+  }
+} // namespace kimp::app::study_internal

@@ -1,0 +1,274 @@
+// Writers of `kimp study`: report.md (k table beside thesis Table 2.1, building response, extra
+// studies, cost) and the charts (scripts/study_charts.py).
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+#include <map>
+
+#include "app/helper_programs.h"
+#include "app/study/study_internal.h"
+#include "base/logging.h"
+#include "base/version.h"
+
+namespace kimp::app::study_internal
+{
+  using namespace kimp::base;
+  using namespace kimp::io;
+  using namespace kimp::fit;
+  namespace
+  {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+    std::string extras_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
+    {
+      std::string md;
+      if (!e.fem_accuracy.empty())
+      {
+        md += fmt::format(
+          "## Accuracy against cost: FEM (H = {} m)\n\nError of k against the finest "
+          "explicit mesh level; seconds are the FEM wall time of each run.\n\n"
+          "| series | h_contact (cm) | penalty | FEM s | k_KV kN/mm/m | error KV | "
+          "k_J kN/mm^1.5/m | error J | status |\n|---|---|---|---|---|---|---|---|---|\n",
+          scene.accuracy.wall_height);
+        for (const FemAccuracyPoint &p : e.fem_accuracy)
+          md += fmt::format("| {} | {:g} | {:g} | {} | {} | {} | {} | {} | {} |\n",
+                            p.series,
+                            p.h_contact * 100,
+                            p.penalty_factor,
+                            number(p.seconds),
+                            number(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
+                            p.ok ? fmt::format("{:.3g} %", 100 * p.error_kelvin_voigt) : "",
+                            number(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
+                            p.ok ? fmt::format("{:.3g} %", 100 * p.error_jankowski) : "",
+                            p.status);
+        md += "\nData: [accuracy_fem.csv](accuracy_fem.csv), study.h5 `/accuracy/fem`.\n\n";
+        if (charts)
+          md += "![FEM accuracy against cost](charts/accuracy_fem.png)\n\n";
+      }
+      if (!e.lumped_accuracy.empty())
+      {
+        md += fmt::format("## Accuracy against cost: building time step (thesis Figs 3.3-3.4)\n\n"
+                          "Record {}, walls at {:.4g} cm, modified Kelvin-Voigt k = {:.5g} kN/mm; "
+                          "errors against central difference at {:g} s.\n\n"
+                          "| method | dt (s) | s | peak impact force (kN) | error | peak base acc. "
+                          "(m/s²) | error | status |\n|---|---|---|---|---|---|---|---|\n",
+                          e.lumped_record,
+                          e.lumped_gap * 100,
+                          stiffness_to_kn_per_mm(e.lumped_k_total, 1.0),
+                          scene.accuracy.lumped_reference_dt);
+        for (const LumpedAccuracyPoint &p : e.lumped_accuracy)
+          md += fmt::format("| {} | {:g} | {} | {} | {} | {} | {} | {} |\n",
+                            p.method,
+                            p.dt,
+                            number(p.seconds),
+                            number(p.ok ? p.peak_impact_force / 1e3 : nan),
+                            p.ok ? fmt::format("{:.3g} %", 100 * p.error_force) : "",
+                            number(p.ok ? p.base_acceleration : nan),
+                            p.ok ? fmt::format("{:.3g} %", 100 * p.error_acceleration) : "",
+                            p.status);
+        md +=
+          "\nData: [accuracy_lumped.csv](accuracy_lumped.csv), study.h5 `/accuracy/lumped`.\n\n";
+        if (charts)
+          md += "![building time step accuracy against cost](charts/accuracy_lumped.png)\n\n";
+      }
+      if (!e.stability.empty())
+      {
+        std::size_t n_stable = 0, n_accurate = 0, stable_above = 0, unstable_below = 0;
+        for (const StabilityPoint &p : e.stability)
+        {
+          n_stable += p.stable;
+          n_accurate += p.accurate;
+          stable_above += p.stable && p.dt > p.dt_limit_damped;
+          unstable_below += !p.stable && p.dt < p.dt_limit_damped;
+        }
+        md +=
+          fmt::format("## Stability map of the central difference method\n\nTwo-body "
+                      "collisions (isolation level {:.0f} t against the wall {:.0f} t, m_eff = "
+                      "{:.4g} t, modified Kelvin-Voigt at COR {}), no stability guard: {} runs, "
+                      "{} stable (energy gain < 0.1 %), {} of them accurate (effective COR within "
+                      "5 % of nominal); {} stable above the damped limit "
+                      "2(sqrt(1+ξ²)−ξ)/ω_imp, {} unstable below it.\n\n"
+                      "Data: [stability_lumped.csv](stability_lumped.csv), study.h5 "
+                      "`/stability/lumped`.\n\n",
+                      scene.building.isolation_mass / 1e3,
+                      scene.walls.mass / 1e3,
+                      e.stability_effective_mass / 1e3,
+                      scene.fit.cor,
+                      e.stability.size(),
+                      n_stable,
+                      n_accurate,
+                      stable_above,
+                      unstable_below);
+        if (charts)
+          md += "![stability map](charts/stability_map.png)\n\n";
+      }
+      if (!e.fem_stability.empty())
+      {
+        std::size_t stable_above = 0, unstable_below = 0, n_stable = 0;
+        for (const FemStabilityPoint &p : e.fem_stability)
+        {
+          n_stable += p.stable;
+          stable_above += p.stable && p.dt_factor > 1;
+          unstable_below += !p.stable && p.dt_factor < 1;
+        }
+        md += fmt::format(
+          "## Stability map of the explicit FEM\n\nH = {} m, contact elements {:g} cm, the "
+          "first {:g} ms of the impact, Δt = factor × the computed limit 2(sqrt(1+ξ²)−ξ)/ω "
+          "(ω from the mesh's CFL bound and the penalty spring, ξ its contact damping), no "
+          "refusal; unstable: diverged, or energy error above 1 %: {} runs, {} stable; {} stable above the limit (the bound is conservative "
+          "there), {} unstable below it.\n\n| penalty factor | Δt limit (µs) | "
+          "stable at Δt / limit |\n|---|---|---|\n",
+          scene.accuracy.wall_height,
+          e.fem_stability_h_contact * 100,
+          e.fem_stability_end_time * 1e3,
+          e.fem_stability.size(),
+          n_stable,
+          stable_above,
+          unstable_below);
+        std::map<double, std::pair<double, std::string>> rows;
+        for (const FemStabilityPoint &p : e.fem_stability)
+        {
+          auto &row = rows[p.penalty_factor];
+          row.first = p.dt_limit;
+          row.second += fmt::format("{}{:g}: {}",
+                                    row.second.empty() ? "" : ", ",
+                                    p.dt_factor,
+                                    p.stable ? "yes" : "no");
+        }
+        for (const auto &[penalty, row] : rows)
+          md += fmt::format("| {:g} | {:.4g} | {} |\n", penalty, row.first * 1e6, row.second);
+        md += "\nData: [stability_fem.csv](stability_fem.csv), study.h5 `/stability/fem`.\n\n";
+        if (charts)
+          md += "![FEM stability map](charts/stability_map_fem.png)\n\n";
+      }
+      if (!e.sensitivity.empty())
+      {
+        md += fmt::format("## Sensitivity of k (H = {} m, ±{:g} %)\n\n| parameter | factor | k_KV "
+                          "kN/mm/m | k_J kN/mm^1.5/m | status |\n|---|---|---|---|---|\n",
+                          scene.sensitivity_study.wall_height,
+                          scene.sensitivity_study.variation * 100);
+        for (const SensitivityPoint &p : e.sensitivity)
+          md += fmt::format("| {} | {:g} | {} | {} | {} |\n",
+                            p.parameter,
+                            p.factor,
+                            number(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
+                            number(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
+                            p.status);
+        md += "\nData: [sensitivity.csv](sensitivity.csv), study.h5 `/sensitivity`.\n\n";
+        if (charts)
+          md += "![sensitivity of k](charts/sensitivity.png)\n\n";
+      }
+      return md;
+    }
+  } // namespace
+
+  std::string report_markdown(const StudyScene &scene, const StudyResult &result, bool charts)
+  {
+    std::string md = "# kimp wall-height study\n\n" + version_line() + "\n\n";
+    md += fmt::format("## Impact stiffness per wall height (fitted at COR {}, W = {} m)\n\n",
+                      scene.fit.cor,
+                      scene.fit.width);
+    md += "| H (m) | KV kN/mm/m [95 % CI] ± numerical | Table 2.1 | KV total kN/mm | "
+          "Jankowski kN/mm^1.5/m [95 % CI] ± numerical | Table 2.1 | J total kN/mm^1.5 | FEM "
+          "level (h_contact, penalty) | FEM from cache |\n"
+          "|---|---|---|---|---|---|---|---|---|\n";
+    const auto plus_minus = [](double error)
+    { return std::isfinite(error) ? " ± " + number(error) : std::string(); };
+    for (const StudyHeight &h : result.heights)
+    {
+      const std::optional<ThesisStiffness> t = thesis_row(h.wall_height);
+      md +=
+        fmt::format("| {:.2f} | {} [{}, {}]{} | {} | {} | {} [{}, {}]{} | {} | {} | {:g} cm, "
+                    "{:g}{} | {} |\n",
+                    h.wall_height,
+                    number(per_metre(h.kelvin_voigt)),
+                    number(per_metre_bound(h.kelvin_voigt, false)),
+                    number(per_metre_bound(h.kelvin_voigt, true)),
+                    plus_minus(numerical_error(h, 1.0)),
+                    t ? number(t->kelvin_voigt) : "-",
+                    number(per_metre(h.kelvin_voigt) * scene.fit.width),
+                    number(per_metre(h.jankowski)),
+                    number(per_metre_bound(h.jankowski, false)),
+                    number(per_metre_bound(h.jankowski, true)),
+                    plus_minus(numerical_error(h, 1.5)),
+                    t ? number(t->jankowski) : "-",
+                    number(per_metre(h.jankowski) * scene.fit.width),
+                    used_h_contact(scene, h) * 100.0,
+                    used_penalty(scene, h),
+                    h.auto_fidelity ? (h.ladder.converged ? "" : " (not converged)") : " (fixed)",
+                    h.fem_from_cache ? "yes" : "no");
+    }
+    md += "\nThe intervals are the fits' own (law misfit). The ± values are the FEM's numerical "
+          "error of k with `fem.fidelity: auto`: the change of k from the previous level of the "
+          "mesh ladder (and of the penalty ladder, added in quadrature); the climb stops when "
+          "both laws change by less than `fem.fidelity_tolerance`. ";
+    for (const StudyHeight &h : result.heights)
+      md += fmt::format("{}: {}. ", h.name, h.fidelity_reason);
+    md += "The thesis used non-linear materials in ADINA and did not state its slab mass, so "
+          "the trend with H and the order of magnitude are what should agree.\n\n"
+          "Data: [k_table.csv](k_table.csv), [study.h5](study.h5) (`/k_table`, `/fit/<H>`, "
+          "`/fem/<H>`, `/fidelity/<H>`).\n\n";
+    if (charts)
+      md += "![FEM force histories with the fitted laws](charts/force_histories.png)\n\n"
+            "![k against wall height](charts/k_vs_height.png)\n\n";
+
+    md += "## Building response\n\n"
+          "Isolated building of docs/physics.md §3 with moat walls on both sides, gap "
+          "from the no-wall peak isolation displacement; modified Kelvin-Voigt with k_KV, "
+          "Jankowski and the hysteretic law with k_Jankowski.\n\n"
+          "| record | H (m) | law | gap (cm) | base acc. (m/s²) | top acc. (m/s²) | drift (cm) | "
+          "impact force (kN) | impacts | top acc. amplification | status |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const StudyBuildingRun &r : result.building)
+      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+                        r.record,
+                        r.law == "none" ? "-" : number(r.wall_height),
+                        r.law,
+                        r.law == "none" ? "-" : number(r.gap * 100),
+                        number(r.base_acceleration),
+                        number(r.top_acceleration),
+                        number(r.max_interstorey_drift * 100),
+                        number(r.peak_impact_force / 1e3),
+                        r.n_impacts,
+                        number(r.amplification_top_acc),
+                        r.status);
+    md += "\nData: [building_response.csv](building_response.csv), study.h5 "
+          "`/building/<record>/<law>`.\n\n";
+    if (charts)
+      md += "![building response against wall height](charts/building_response.png)\n\n";
+    md += extras_markdown(scene, result.extras, charts);
+    md += fmt::format("## Cost\n\nFEM {:.2f} s, fits {:.2f} s, building runs {:.2f} s, extra "
+                      "studies {:.2f} s, charts {:.2f} s, total {:.2f} s (see summary.json).\n",
+                      result.fem_seconds,
+                      result.fit_seconds,
+                      result.building_seconds,
+                      result.extras.seconds,
+                      result.charts_seconds,
+                      result.wall_seconds);
+    return md;
+  }
+
+  /// Draw the charts; false (with a warning) if they could not be drawn.
+  bool draw_charts(const OutputDir &output)
+  {
+    const ChartScriptRun run = run_chart_script("study_charts.py", output.path());
+    if (run.script.empty())
+    {
+      logger().warn("charts skipped: scripts/study_charts.py not found (set KIMP_DATA_DIR to "
+                    "the kimp source tree)");
+      return false;
+    }
+    if (run.status != 0)
+    {
+      logger().warn("charts skipped: {} exited with {} (needs /usr/bin/python3 with matplotlib "
+                    "and h5py; Debian python3-matplotlib python3-h5py); see {}",
+                    run.script.string(),
+                    run.status,
+                    run.log.string());
+      return false;
+    }
+    logger().info("charts written to {}", output.file("charts").string());
+    return true;
+  }
+} // namespace kimp::app::study_internal
