@@ -53,7 +53,7 @@ namespace kimp::lumped
     std::string impact_name;
     for (const ContactPair &c : model.contacts())
     {
-      const double kt = c.law->initial_stiffness(expected_max_penetration);
+      const double kt = c.law->stability_stiffness(expected_max_penetration);
       const double w  = std::sqrt(kt / c.effective_mass);
       if (w > s.omega_impact)
       {
