@@ -164,7 +164,7 @@ namespace kimp::lumped
       long              q     = 0;
       // Integer sub-stepping inside the record: a run of steps within one record interval
       // (rec[j] + frac·(rec[j+1] − rec[j]), frac = s/sub) at a time.
-      while (integral && q < len && rec_j + 1 < n_rec)
+      while (integer_substeps && q < len && rec_j + 1 < n_rec)
       {
         const double r0  = rec[rec_j];
         const double dr  = rec[rec_j + 1] - rec[rec_j];
@@ -183,7 +183,7 @@ namespace kimp::lumped
       {
         std::size_t j;
         double      frac;
-        if (integral)
+        if (integer_substeps)
         {
           j    = rec_j;
           frac = static_cast<double>(rec_s) * inv_sub;

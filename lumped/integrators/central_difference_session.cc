@@ -235,7 +235,7 @@ namespace kimp::lumped
 
     const double ratio = g.dt / dt;
     sub                = std::lround(ratio);
-    integral           = sub > 0 && std::abs(ratio - static_cast<double>(sub)) < 1e-9 * ratio;
+    integer_substeps   = sub > 0 && std::abs(ratio - static_cast<double>(sub)) < 1e-9 * ratio;
     inv_sub            = 1.0 / static_cast<double>(sub > 0 ? sub : 1);
     rec_j              = 0;
     rec_s              = 0;

@@ -117,12 +117,12 @@ namespace kimp::lumped
     std::vector<int>    force_dofs; ///< DOFs that can receive a non-linear force, ascending
 
     // ground motion
-    bool        integral = false;
-    long        sub      = 1;
-    double      inv_sub  = 1.0;
-    std::size_t rec_j    = 0;
-    long        rec_s    = 0;
-    long        every    = 0;
+    bool        integer_substeps = false; ///< Δt divides the record's dt exactly
+    long        sub              = 1;     ///< steps per record interval (record dt / Δt)
+    double      inv_sub          = 1.0;   ///< 1/sub
+    std::size_t rec_j            = 0;     ///< record interval of the next step
+    long        rec_s            = 0;     ///< sub-step of the next step within rec_j
+    long        every            = 0;     ///< steps between history samples (0: none)
     /// Steps between check points (energy checks): at most 512, and a divisor of `every` when
     /// histories are recorded, so that check points and samples coincide (fewer, longer blocks).
     long check_every = 512;
