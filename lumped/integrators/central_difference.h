@@ -218,7 +218,7 @@ namespace kimp::lumped
     /// sample, every ≤ 512 steps and the last step).
     Response response() const;
 
-    struct Session; ///< implementation (central_difference.cc)
+    struct Session; ///< run state (central_difference_session.h)
 
   private:
     void require_init(const char *what) const;
