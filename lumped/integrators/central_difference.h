@@ -50,7 +50,7 @@ namespace kimp::lumped
    * |                          |      |         | so that it divides the record's dt exactly  |
    * | safety                   | -    | 0.5     | (0, 1]; margin for contact damping and      |
    * |                          |      |         | stiffening beyond the expected penetration  |
-   * | expected_max_penetration | m    | 0.05    | δ at which k_t = law.initial_stiffness(δ)   |
+   * | expected_max_penetration | m    | 0.05    | δ at which k_t = law.stability_stiffness(δ) |
    * | duration                 | s    | 0       | analysis length; 0 = the record's length    |
    * | output_interval          | s    | 0.01    | history sampling; 0 = no histories          |
    * | law_velocity             | -    | backward| see LawVelocity                             |
@@ -90,7 +90,7 @@ namespace kimp::lumped
   };
 
   /**
-   * Δt_cr from the structure and every contact, with k_t = law.initial_stiffness(δ_max).
+   * Δt_cr from the structure and every contact, with k_t = law.stability_stiffness(δ_max).
    * @param[in] expected_max_penetration δ_max, m (> 0)
    */
   StabilityLimit stability_limit(const PoundingModel &model, double expected_max_penetration);
@@ -218,7 +218,7 @@ namespace kimp::lumped
     /// sample, every ≤ 512 steps and the last step).
     Response response() const;
 
-    struct Session; ///< implementation (central_difference.cc)
+    struct Session; ///< run state (central_difference_session.h)
 
   private:
     void require_init(const char *what) const;

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "lumped/integrators/integration_errors.h"
+#include "lumped/integrators/response_recorder.h"
 
 namespace kimp::lumped
 {
@@ -69,9 +70,6 @@ namespace kimp::lumped
         {
           laws_.push_back(c.law->clone());
           laws_.back()->revert_to_start();
-          ContactResult cr;
-          cr.name = c.name;
-          response_.contacts.push_back(std::move(cr));
         }
         active_.assign(laws_.size(), 0);
         for (Eigen::VectorXd *x : {&trial_u_, &trial_a_, &trial_v_, &f_, &res_, &du_})
@@ -90,17 +88,9 @@ namespace kimp::lumped
                                   opt_.duration :
                                   motion_.dt * static_cast<double>(motion_.acceleration.size());
         const long   n_steps  = std::lround(duration / dt);
-        Response    &r        = response_;
-        r.dt                  = dt;
-        r.duration            = static_cast<double>(n_steps) * dt;
-        r.n_dofs              = static_cast<std::size_t>(n_);
-        r.n_storeys           = model_.storeys().size();
-        r.peak_displacement.assign(r.n_dofs, 0.0);
-        r.peak_absolute_acceleration.assign(r.n_dofs, 0.0);
-        r.peak_interstorey_drift.assign(r.n_storeys, 0.0);
-        const long every =
+        const long   every =
           opt_.output_interval > 0.0 ? std::max(1L, std::lround(opt_.output_interval / dt)) : 0L;
-        r.history.interval = static_cast<double>(every) * dt;
+        rec_.start(model_, dt, n_steps, every);
 
         u_ = Eigen::VectorXd::Zero(n_);
         v_ = Eigen::VectorXd::Zero(n_);
@@ -121,9 +111,7 @@ namespace kimp::lumped
           advance(t0, dt, 0, step);
           record(static_cast<double>(step) * dt, every > 0 && step % every == 0);
         }
-        r.n_steps = n_steps;
-        finish();
-        return r;
+        return rec_.finish(laws_);
       }
 
     private:
@@ -200,13 +188,13 @@ namespace kimp::lumped
           {
             const double vL = cp.left_dof >= 0 ? v_(cp.left_dof) : 0.0;
             const double vR = cp.right_dof >= 0 ? v_(cp.right_dof) : 0.0;
-            response_.contacts[c].impacts.push_back({t, vL - vR});
+            rec_.impact(c, t, vL - vR);
           }
           active_[c] = now;
           w_contact_ += 0.5 * (f_prev_[c] + force[c]) * (delta - delta_prev_[c]);
-          f_prev_[c]                       = force[c];
-          delta_prev_[c]                   = delta;
-          response_.contacts[c].peak_force = std::max(response_.contacts[c].peak_force, force[c]);
+          f_prev_[c]     = force[c];
+          delta_prev_[c] = delta;
+          rec_.contact_force(c, force[c]);
         }
       }
 
@@ -286,7 +274,7 @@ namespace kimp::lumped
       /// when `sample`.
       void record(const double t, const bool sample)
       {
-        Response         &r  = response_;
+        Response         &r  = rec_.response();
         const double      ag = ground(t);
         const std::size_t n  = static_cast<std::size_t>(n_);
         for (std::size_t i = 0; i < n; ++i)
@@ -302,54 +290,30 @@ namespace kimp::lumped
           r.peak_interstorey_drift[s] =
             std::max(r.peak_interstorey_drift[s], std::abs(drift(model_.storeys()[s])));
 
-        EnergyBalance &e = r.energy;
-        e.kinetic        = 0.5 * mass_.dot(v_.cwiseProduct(v_));
-        e.strain         = 0.5 * u_.dot(k_ * u_) + (iso_ ? iso_->stored_energy() : 0.0);
+        EnergyBalance terms;
+        terms.kinetic = 0.5 * mass_.dot(v_.cwiseProduct(v_));
+        terms.strain  = 0.5 * u_.dot(k_ * u_) + (iso_ ? iso_->stored_energy() : 0.0);
         if (t == 0.0)
         {
-          e.initial = e.kinetic + e.strain;
-          ag_prev_  = ag;
+          e_initial_ = terms.kinetic + terms.strain;
+          ag_prev_   = ag;
         }
-        e.input               = w_in_;
-        e.viscous             = w_visc_;
-        e.hysteretic          = iso_ ? iso_->dissipated_energy() : 0.0;
-        e.contact_work        = w_contact_;
-        max_supplied_         = std::max(max_supplied_, e.initial + w_in_);
-        const double scale    = std::max({std::abs(e.initial) + std::abs(e.input),
-                                          e.kinetic + e.strain + std::abs(e.viscous) +
-                                            std::abs(e.hysteretic) + std::abs(e.contact_work)});
-        const double residual = e.residual_relative_error() * scale;
-        const double err      = residual / std::max(max_supplied_, 1e-300);
-        max_residual_         = std::max(max_residual_, residual);
+        terms.initial      = e_initial_;
+        terms.input        = w_in_;
+        terms.viscous      = w_visc_;
+        terms.hysteretic   = iso_ ? iso_->dissipated_energy() : 0.0;
+        terms.contact_work = w_contact_;
+        rec_.supplied(e_initial_ + w_in_);
+        const double err = rec_.check_energy(terms);
         if (sample)
-        {
-          ResponseHistory &hh = r.history;
-          hh.time.push_back(t);
-          for (std::size_t i = 0; i < n; ++i)
-          {
-            const auto ii = static_cast<Eigen::Index>(i);
-            hh.displacement.push_back(u_(ii));
-            hh.absolute_acceleration.push_back(a_(ii) + ag);
-          }
-          for (const Storey &s : model_.storeys())
-            hh.interstorey_drift.push_back(drift(s));
-          hh.contact_force.insert(hh.contact_force.end(), f_prev_.begin(), f_prev_.end());
-          hh.energy_input.push_back(e.initial + w_in_);
-          hh.energy_error.push_back(err);
-        }
-      }
-
-      void finish()
-      {
-        Response &r                 = response_;
-        r.energy.relative_error     = r.energy.residual_relative_error();
-        r.energy.max_relative_error = max_residual_ / std::max(max_supplied_, 1e-300);
-        for (std::size_t c = 0; c < laws_.size(); ++c)
-        {
-          r.contacts[c].permanent_indentation = laws_[c]->permanent_indentation();
-          r.contacts[c].dissipated_energy     = laws_[c]->dissipated_energy();
-          r.energy.impact_dissipated += r.contacts[c].dissipated_energy;
-        }
+          rec_.sample(
+            t,
+            [&](const std::size_t i) { return u_(static_cast<Eigen::Index>(i)); },
+            [&](const std::size_t i) { return a_(static_cast<Eigen::Index>(i)) + ag; },
+            [&](const std::size_t s) { return drift(model_.storeys()[s]); },
+            f_prev_,
+            e_initial_ + w_in_,
+            err);
       }
 
       const PoundingModel                   &model_;
@@ -369,9 +333,8 @@ namespace kimp::lumped
       double                               jac_lin_h_ = -1.0;
       Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
       std::vector<double>                  force_;
-      double w_in_ = 0.0, w_visc_ = 0.0, w_contact_ = 0.0, ag_prev_ = 0.0, max_supplied_ = 0.0,
-             max_residual_ = 0.0;
-      Response response_;
+      double w_in_ = 0.0, w_visc_ = 0.0, w_contact_ = 0.0, ag_prev_ = 0.0, e_initial_ = 0.0;
+      ResponseRecorder rec_;
     };
   } // namespace
 

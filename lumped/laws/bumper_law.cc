@@ -33,7 +33,7 @@ namespace kimp::lumped
     energy_u_ = force_u_ * params_.ultimate_deformation / (params_.exponent + 1.0);
   }
 
-  double BumperLaw::initial_stiffness(double max_deformation) const
+  double BumperLaw::stability_stiffness(double max_deformation) const
   {
     detail::require_positive(name(), "max_deformation", max_deformation, "m");
     const double n        = params_.exponent;

@@ -58,7 +58,7 @@ namespace kimp::lumped
 
     /// Largest approach tangent up to max_deformation, N/m.
     /// @throws std::invalid_argument if max_deformation <= 0.
-    double        initial_stiffness(double max_deformation) const override;
+    double        stability_stiffness(double max_deformation) const override;
     std::string   name() const override { return "bumper"; }
     const Params &parameters() const { return params_; }
 

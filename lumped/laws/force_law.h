@@ -43,11 +43,13 @@ namespace kimp::lumped
     virtual void          revert_to_last_commit()                    = 0;
     virtual void          revert_to_start()                          = 0;
 
-    /// Largest tangent stiffness the law can reach for deformations up to `max_deformation`
-    /// (N/m); used for the stable time step ω_imp = sqrt(k_t/m_eff). Laws with a linear
-    /// dashpot of known ratio ξ (2-4) return it divided by (sqrt(1 + ξ²) − ξ)², so that
-    /// 2/ω_imp is the damped central-difference limit; see each law.
-    virtual double initial_stiffness(double max_deformation) const = 0;
+    /// Stiffness k_t (N/m) that bounds the central difference time step for deformations up to
+    /// `max_deformation`: stability_limit() takes ω_imp = sqrt(k_t/m_eff) and Δt_cr = 2/ω_max.
+    /// It is the largest tangent stiffness the law can reach, raised for laws whose damping
+    /// shortens the stable step: laws with a linear dashpot of known ratio ξ (2-4) divide it by
+    /// (sqrt(1 + ξ²) − ξ)², so that 2/ω_imp is the damped central-difference limit, and Hertzdamp
+    /// includes its rate term; see each law. Not an initial (zero-deformation) stiffness.
+    virtual double stability_stiffness(double max_deformation) const = 0;
     /// Work dissipated by the law up to the last commit, J (>= 0).
     virtual double dissipated_energy() const = 0;
     /// Permanent indentation accumulated up to the last commit, m (0 for laws without it).

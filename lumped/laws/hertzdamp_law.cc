@@ -15,7 +15,7 @@ namespace kimp::lumped
     beta_          = params_.ye ? 8.0 * (1.0 - e) / (5.0 * e) : 0.75 * (1.0 - e * e);
   }
 
-  double HertzdampLaw::initial_stiffness(double max_deformation) const
+  double HertzdampLaw::stability_stiffness(double max_deformation) const
   {
     const double n = params_.exponent;
     if (n > 1.0)

@@ -41,7 +41,7 @@ namespace kimp::lumped
 
     /// n·k·δ_max^(n−1)·(1 + β), N/m: the largest dF/dδ for |δ̇| <= v_imp.
     /// @throws std::invalid_argument if max_deformation <= 0 and n > 1.
-    double        initial_stiffness(double max_deformation) const override;
+    double        stability_stiffness(double max_deformation) const override;
     std::string   name() const override { return "hertzdamp"; }
     const Params &parameters() const { return params_; }
     /// β of the header formula.

@@ -26,7 +26,7 @@ namespace kimp::lumped
       detail::require_positive(name(), "a1", *params_.a1, "s/m");
   }
 
-  double HystereticLaw::initial_stiffness(double max_deformation) const
+  double HystereticLaw::stability_stiffness(double max_deformation) const
   {
     const double n = params_.exponent;
     if (n > 1.0)

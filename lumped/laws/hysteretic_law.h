@@ -49,7 +49,7 @@ namespace kimp::lumped
 
     /// n·k·δ_max^(n−1), N/m (the approach tangent bounds the restitution one).
     /// @throws std::invalid_argument if max_deformation <= 0 and n > 1.
-    double        initial_stiffness(double max_deformation) const override;
+    double        stability_stiffness(double max_deformation) const override;
     std::string   name() const override { return "hysteretic"; }
     const Params &parameters() const { return params_; }
 

@@ -24,7 +24,7 @@ namespace kimp::lumped
     damping_scale_ = 2.0 * damping_ratio_ * std::sqrt(params_.stiffness * params_.effective_mass);
   }
 
-  double JankowskiLaw::initial_stiffness(double max_deformation) const
+  double JankowskiLaw::stability_stiffness(double max_deformation) const
   {
     detail::require_positive(name(), "max_deformation", max_deformation, "m");
     const double f = cdm_damping_factor(damping_ratio_ / std::sqrt(1.5));

@@ -43,7 +43,7 @@ namespace kimp::lumped
     /// 1.5k·sqrt(δ_max)/(sqrt(1+ξ'²) − ξ')², N/m, with ξ' = ξ/sqrt(1.5) the damping ratio
     /// relative to the tangent stiffness; the δ^−0.75 rate term of the tangent is left out.
     /// @throws std::invalid_argument if max_deformation <= 0.
-    double        initial_stiffness(double max_deformation) const override;
+    double        stability_stiffness(double max_deformation) const override;
     std::string   name() const override { return "jankowski"; }
     const Params &parameters() const { return params_; }
 

@@ -28,7 +28,7 @@ namespace kimp::lumped
                std::sqrt(params_.stiffness * params_.effective_mass);
   }
 
-  double KelvinVoigtLaw::initial_stiffness(double /*max_deformation*/) const
+  double KelvinVoigtLaw::stability_stiffness(double /*max_deformation*/) const
   {
     const double f = cdm_damping_factor(kelvin_voigt_damping_ratio(params_.cor));
     return params_.stiffness / (f * f);

@@ -43,7 +43,7 @@ namespace kimp::lumped
     explicit KelvinVoigtLaw(const Params &params);
 
     /// k/(sqrt(1+ξ²) − ξ)², N/m: k raised so that 2/sqrt(k_t/m_eff) is the damped CDM limit.
-    double        initial_stiffness(double max_deformation) const override;
+    double        stability_stiffness(double max_deformation) const override;
     std::string   name() const override { return "kelvin_voigt"; }
     const Params &parameters() const { return params_; }
     /// c = 2ξ·sqrt(k·m_eff), N·s/m.

@@ -9,7 +9,7 @@ namespace kimp::lumped
     detail::require_positive(name(), "k", params_.stiffness, "N/m");
   }
 
-  double LinearElasticLaw::initial_stiffness(double /*max_deformation*/) const
+  double LinearElasticLaw::stability_stiffness(double /*max_deformation*/) const
   {
     return params_.stiffness;
   }

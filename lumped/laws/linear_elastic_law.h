@@ -29,7 +29,7 @@ namespace kimp::lumped
     explicit LinearElasticLaw(const Params &params);
 
     /// k (N/m) whatever the deformation.
-    double        initial_stiffness(double max_deformation) const override;
+    double        stability_stiffness(double max_deformation) const override;
     std::string   name() const override { return "linear"; }
     const Params &parameters() const { return params_; }
 

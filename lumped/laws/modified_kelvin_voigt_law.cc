@@ -17,7 +17,7 @@ namespace kimp::lumped
                std::sqrt(params_.stiffness * params_.effective_mass);
   }
 
-  double ModifiedKelvinVoigtLaw::initial_stiffness(double /*max_deformation*/) const
+  double ModifiedKelvinVoigtLaw::stability_stiffness(double /*max_deformation*/) const
   {
     const double f = cdm_damping_factor(kelvin_voigt_damping_ratio(params_.cor));
     return params_.stiffness / (f * f);

@@ -37,7 +37,7 @@ namespace kimp::lumped
     explicit ModifiedKelvinVoigtLaw(const Params &params);
 
     /// k/(sqrt(1+ξ²) − ξ)², N/m (damped CDM limit, see cdm_damping_factor()).
-    double        initial_stiffness(double max_deformation) const override;
+    double        stability_stiffness(double max_deformation) const override;
     std::string   name() const override { return "modified_kelvin_voigt"; }
     const Params &parameters() const { return params_; }
     double        damping_coefficient() const { return damping_; }

@@ -227,7 +227,7 @@ namespace
     EXPECT_NEAR(above, f_u, 1e-9 * f_u);
     EXPECT_NEAR(law.set_trial(0.04, 0.5).force, f_u + 1.5e9 * 0.0025, round_off * 1e8);
     EXPECT_EQ(law.set_trial(0.04, 0.5).stiffness, 1.5e9);
-    EXPECT_EQ(law.initial_stiffness(0.05), std::max(2.65 * k_b * std::pow(0.0375, 1.65), 1.5e9));
+    EXPECT_EQ(law.stability_stiffness(0.05), std::max(2.65 * k_b * std::pow(0.0375, 1.65), 1.5e9));
   }
 
   TEST(StoredEnergy, IsThePotentialOfTheElasticPart)
@@ -253,17 +253,17 @@ namespace
     // Kelvin-Voigt: k/(sqrt(1+ξ²) − ξ)² so that 2/sqrt(k_t/m) is the damped CDM limit.
     KelvinVoigtLaw kv({k_linear, 0.3, m_eff});
     const double   xi = kelvin_voigt_damping_ratio(0.3);
-    EXPECT_NEAR(kv.initial_stiffness(0.01),
+    EXPECT_NEAR(kv.stability_stiffness(0.01),
                 k_linear / std::pow(std::sqrt(1.0 + xi * xi) - xi, 2),
                 round_off * k_linear);
     // Hertz-type laws: n·k·δ_max^(n−1) (times 1 + β for Hertzdamp).
     HystereticLaw hy({k_hertz, 1.5, 0.7, m_eff, std::nullopt});
-    EXPECT_NEAR(hy.initial_stiffness(0.01), 1.5 * k_hertz * 0.1, round_off * k_hertz);
+    EXPECT_NEAR(hy.stability_stiffness(0.01), 1.5 * k_hertz * 0.1, round_off * k_hertz);
     HertzdampLaw hd({k_hertz, 1.5, 0.7, false});
-    EXPECT_NEAR(hd.initial_stiffness(0.01),
+    EXPECT_NEAR(hd.stability_stiffness(0.01),
                 1.5 * k_hertz * 0.1 * (1.0 + hd.damping_factor()),
                 round_off * k_hertz);
-    EXPECT_THROW(hy.initial_stiffness(0.0), std::invalid_argument);
+    EXPECT_THROW(hy.stability_stiffness(0.0), std::invalid_argument);
   }
 } // namespace
 
@@ -291,7 +291,7 @@ namespace
   TEST(CdmDampingFactor, IsTheStabilityLimitOfTheBackwardDifferenceDashpot)
   {
     // Stable just below Ω_cr = 2·(sqrt(1 + ξ²) − ξ), unstable just above: the reason why
-    // initial_stiffness() of laws 2-4 divides k by the factor squared.
+    // stability_stiffness() of laws 2-4 divides k by the factor squared.
     constexpr double margin = 0.01;
     for (const double cor : {0.1, 0.3, 0.7, 0.95})
     {

@@ -1,0 +1,419 @@
+// Fused dense kernel of the central difference method for models of at most 8 DOFs, in the
+// increment form (see CentralDifference): written once for vectors of L doubles and compiled for
+// SSE2, AVX2 and AVX-512F, picked at run time; bitwise equal results for every width.
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <type_traits>
+#include <utility>
+
+#include "lumped/integrators/central_difference_session.h"
+#include "lumped/isolators/bilinear_isolator.h"
+
+namespace kimp::lumped
+{
+  namespace
+  {
+    using cdm::block_steps;
+    using cdm::ForceEvaluator;
+    using cdm::Session;
+
+    // The fused kernel is written once for vectors of L doubles (GCC/Clang vector extensions) and
+    // compiled for SSE2 (L = 2, the baseline x86-64 build), AVX2 (L = 4) and AVX-512F (L = 8),
+    // picked at run time. Every operation is element-wise per DOF lane (no horizontal sums per
+    // step, no FMA contraction: optimize("fp-contract=off")), so the three variants give
+    // bitwise identical results. Helpers take vectors by reference only: passing wide vectors
+    // by value from code compiled for the baseline would change the ABI.
+    template <int L>
+    struct Lanes
+    {
+      typedef double       V __attribute__((vector_size(8 * L)));
+      typedef std::int64_t I __attribute__((vector_size(8 * L)));
+      /// V at any double-aligned address (loads and stores by assignment, so that the vectors
+      /// never have their address taken and stay in registers).
+      typedef double U __attribute__((vector_size(8 * L), aligned(8), may_alias));
+    };
+
+    /// out = (x[j], x[j], ...).
+    template <class V, class I, int j>
+    inline __attribute__((always_inline)) void splat(V &out, const V &x)
+    {
+      constexpr int L = sizeof(V) / sizeof(double);
+      I             mask;
+      for (int l = 0; l < L; ++l)
+        mask[l] = j;
+#if defined(__clang__)
+      out = V{} + x[j];
+#else
+      out = __builtin_shuffle(x, mask);
+#endif
+    }
+
+    /// out = (x[1], ..., x[L−1], y[0]): the DOFs one further down the padded vector.
+    template <class V, class I>
+    inline __attribute__((always_inline)) void shift_down(V &out, const V &x, const V &y)
+    {
+      constexpr int L = sizeof(V) / sizeof(double);
+      I             mask;
+      for (int l = 0; l < L; ++l)
+        mask[l] = l + 1;
+#if defined(__clang__)
+      for (int l = 0; l < L; ++l)
+        out[l] = l + 1 < L ? x[l + 1] : y[0];
+      (void)mask;
+#else
+      out = __builtin_shuffle(x, y, mask);
+#endif
+    }
+
+    /// out = (w[L−1], x[0], ..., x[L−2]): the DOFs one further up.
+    template <class V, class I>
+    inline __attribute__((always_inline)) void shift_up(V &out, const V &w, const V &x)
+    {
+      constexpr int L = sizeof(V) / sizeof(double);
+      I             mask;
+      for (int l = 0; l < L; ++l)
+        mask[l] = L - 1 + l;
+#if defined(__clang__)
+      for (int l = 0; l < L; ++l)
+        out[l] = l == 0 ? w[L - 1] : x[l - 1];
+      (void)mask;
+#else
+      out = __builtin_shuffle(w, x, mask);
+#endif
+    }
+
+    /// peak = max(peak, |x|) element-wise (|x| clears the sign bit; max as std::max(peak, |x|)).
+    template <class V, class I>
+    inline __attribute__((always_inline)) void peak_abs(V &peak, const V &x)
+    {
+      const I bits = (I)x & ~(I{} + (std::int64_t{1} << 63)); // vector casts reinterpret
+      const V ax   = (V)bits;
+      peak         = peak < ax ? ax : peak;
+    }
+
+
+    /// f(std::integral_constant<int, j>) for j = 0..N−1 (unrolled at compile time).
+    template <class F, std::size_t... js>
+    inline __attribute__((always_inline)) void for_each_index(F &&f, std::index_sequence<js...>)
+    {
+      (f(std::integral_constant<int, static_cast<int>(js)>{}), ...);
+    }
+
+    /// A contact pre-check failed at step s0 + k (or the run is in its first two steps): the
+    /// reference kernel's contact evaluation for every law, with δ_{n−1} and δ_{n−2} re-formed
+    /// from the displacement columns if the previous step skipped the laws, then the pre-check
+    /// re-armed. Returns true if a law was called (forces in Session::force).
+    template <class IsolatorType>
+    __attribute__((noinline)) bool
+    fused_contacts(Session &s, ForceEvaluator<IsolatorType> &forces, const long k)
+    {
+      const std::size_t nc = s.laws.size();
+      if (!s.deltas_current)
+      {
+        const double     *col = s.u_block.data() + static_cast<std::size_t>(k) * s.col_stride;
+        const std::size_t cs  = s.col_stride; // left_row points at column 2 (u_n)
+        for (std::size_t c = 0; c < nc; ++c)
+        {
+          s.delta_prev[c]  = col[s.left_row[c] - cs] - col[s.right_row[c] - cs] - s.gap[c];
+          s.delta_prev2[c] = col[s.left_row[c] - 2 * cs] - col[s.right_row[c] - 2 * cs] - s.gap[c];
+        }
+      }
+      const bool touched = forces.contacts(k, static_cast<double>(s.step + k) * s.dt);
+      for (std::size_t c = 0; c < nc; ++c)
+      {
+        const bool armed = !s.active[c] && !s.called_prev[c] && s.cf[c] == 0.0;
+        s.gap_skip[c]    = armed ? s.gap[c] : -std::numeric_limits<double>::infinity();
+      }
+      s.deltas_current = true;
+      return touched;
+    }
+
+    /**
+     * Fused kernel for N <= 8 DOFs (see CentralDifference), vectors of L doubles. With
+     * z_n = A⁻¹K·u_n carried as z_n = z_{n−1} + A⁻¹K·Δu_n, the step is
+     *   Δu_{n+1} = Δu_n − z_{n−1} − A⁻¹M·1·ü_g − (A⁻¹C/Δt + A⁻¹K)·Δu_n − A⁻¹f_n,
+     * so only one product (summed as a tree) and the force term lie on the step-to-step chain;
+     * z_n, the bookkeeping of the step (peaks, per-DOF running sums of ü_g·v_i, v_i² and
+     * v_i·v_{i+1}) are independent work. The contact laws are called only when a pre-check
+     * fails, outside the fast loop, so that no call forces the state out of the registers.
+     */
+    template <int L, class IsolatorType, int N>
+    inline __attribute__((always_inline)) void fused_body(Session &s, const long len)
+    {
+      typedef typename Lanes<L>::V V;
+      typedef typename Lanes<L>::I I;
+      typedef typename Lanes<L>::U U;
+      constexpr int                P  = (N + L - 1) / L; // vectors per DOF column
+      constexpr std::size_t        LD = static_cast<std::size_t>(P * L);
+      const std::size_t            S  = s.col_stride;
+      ForceEvaluator<IsolatorType> forces(s);
+      const auto at  = [](const double *p) -> const U  &{ return *reinterpret_cast<const U *>(p); };
+      const auto put = [](double *p) -> U & { return *reinterpret_cast<U *>(p); };
+      const double      *agb  = s.ag_block.data();
+      const double      *a_f  = s.dense_f.data();
+      const double      *a_g  = s.dense_g.data();
+      const double      *a_i  = s.dense_inverse.data();
+      double            *f    = s.force.data();
+      const int         *fd   = s.force_dofs.data();
+      const std::size_t  n_fd = s.force_dofs.size();
+      const std::size_t  nc   = s.laws.size();
+      const std::size_t *c_l  = s.left_row.data();
+      const std::size_t *c_r  = s.right_row.data();
+      const double      *c_g  = s.gap_skip.data();
+      double            *ub   = s.u_block.data();
+      const double       dt   = s.dt;
+      const bool         iso  = forces.has_isolator();
+      const V            zero = V{} * 0.0;
+      const V            half = zero + 0.5 / dt;
+      const V            idt2 = zero + 1.0 / (dt * dt);
+
+      V          am[P], r0[P], mask[P];
+      V          u[P], d[P], z[P], pu[P], pa[P], pd[P], s_agv[P], s_vv[P], s_vx[P], v[P], a[P];
+      const auto load_state = [&]() __attribute__((always_inline))
+      {
+#pragma GCC unroll 16
+        for (int i = 0; i < P; ++i)
+        {
+          const std::size_t o = static_cast<std::size_t>(i * L);
+          u[i]                = at(s.fused_u.data() + o);
+          d[i]                = at(s.fused_d.data() + o);
+          z[i]                = at(s.fused_z.data() + o);
+          pu[i]               = at(s.fused_peaks.data() + o);
+          pa[i]               = at(s.fused_peaks.data() + LD + o);
+          pd[i]               = at(s.fused_peaks.data() + 2 * LD + o);
+          s_agv[i]            = at(s.fused_sums.data() + o);
+          s_vv[i]             = at(s.fused_sums.data() + LD + o);
+          s_vx[i]             = at(s.fused_sums.data() + 2 * LD + o);
+          v[i]                = at(s.fused_v.data() + o);
+          a[i]                = at(s.last_accel.data() + o);
+        }
+      };
+      const auto store_state = [&]() __attribute__((always_inline))
+      {
+#pragma GCC unroll 16
+        for (int i = 0; i < P; ++i)
+        {
+          const std::size_t o                    = static_cast<std::size_t>(i * L);
+          put(s.fused_u.data() + o)              = u[i];
+          put(s.fused_d.data() + o)              = d[i];
+          put(s.fused_z.data() + o)              = z[i];
+          put(s.fused_peaks.data() + o)          = pu[i];
+          put(s.fused_peaks.data() + LD + o)     = pa[i];
+          put(s.fused_peaks.data() + 2 * LD + o) = pd[i];
+          put(s.fused_sums.data() + o)           = s_agv[i];
+          put(s.fused_sums.data() + LD + o)      = s_vv[i];
+          put(s.fused_sums.data() + 2 * LD + o)  = s_vx[i];
+          put(s.fused_v.data() + o)              = v[i];
+          put(s.last_accel.data() + o)           = a[i];
+        }
+      };
+#pragma GCC unroll 16
+      for (int i = 0; i < P; ++i)
+      {
+        const std::size_t o = static_cast<std::size_t>(i * L);
+        am[i]               = at(s.dense_am.data() + o);
+        r0[i]               = at(a_i + o);
+        mask[i]             = at(s.drift_mask.data() + o);
+      }
+      load_state();
+
+      // One step: isolator, Δu_{n+1}, u_{n+1} (stored as column k + 3), bookkeeping of step n.
+      const auto one_step = [&](const long k, const bool touched) __attribute__((always_inline))
+      {
+        const double ag = agb[k];
+        const double fi = iso ? forces.isolator(k, u[0][0]) : 0.0;
+        V            dn[P], zn[P];
+#pragma GCC unroll 16
+        for (int i = 0; i < P; ++i)
+        {
+          V pf[N], pg[N];
+          for_each_index(
+            [&](auto jc)
+            {
+              constexpr int j = decltype(jc)::value;
+              V             dj;
+              splat<V, I, j % L>(dj, d[j / L]);
+              pf[j] =
+                at(a_f + static_cast<std::size_t>(j) * LD + static_cast<std::size_t>(i * L)) * dj;
+              pg[j] =
+                at(a_g + static_cast<std::size_t>(j) * LD + static_cast<std::size_t>(i * L)) * dj;
+            },
+            std::make_index_sequence<N>{});
+// Pairwise (tree) sums: short dependency chains.
+#pragma GCC unroll 16
+          for (int w = 1; w < N; w *= 2)
+#pragma GCC unroll 16
+            for (int j = 0; j + w < N; j += 2 * w)
+            {
+              pf[j] += pf[j + w];
+              pg[j] += pg[j + w];
+            }
+          dn[i] = ((d[i] - z[i]) - am[i] * ag - pf[0]) - r0[i] * fi;
+          zn[i] = z[i] + pg[0];
+        }
+        if (touched)
+        {
+          for (std::size_t q = 0; q < n_fd; ++q)
+          {
+            const std::size_t j  = static_cast<std::size_t>(fd[q]);
+            const double      fj = f[j];
+            if (fj != 0.0)
+#pragma GCC unroll 16
+              for (int i = 0; i < P; ++i)
+                dn[i] -= at(a_i + j * LD + static_cast<std::size_t>(i * L)) * fj;
+            f[j] = 0.0;
+          }
+          f[s.n] = 0.0;
+        }
+        double *next = ub + static_cast<std::size_t>(k + 3) * S;
+#pragma GCC unroll 16
+        for (int i = 0; i < P; ++i)
+        {
+          const V un        = u[i] + dn[i];
+          put(next + i * L) = un;
+          v[i]              = (d[i] + dn[i]) * half;
+          a[i]              = (dn[i] - d[i]) * idt2 + ag;
+          V below;
+          shift_up<V, I>(below, i == 0 ? zero : u[i - 1], u[i]);
+          peak_abs<V, I>(pu[i], u[i]);
+          peak_abs<V, I>(pa[i], a[i]);
+          const V drift = u[i] - below * mask[i];
+          peak_abs<V, I>(pd[i], drift);
+          s_agv[i] += v[i] * ag;
+          s_vv[i] += v[i] * v[i];
+        }
+#pragma GCC unroll 16
+        for (int i = 0; i < P; ++i)
+        {
+          V above;
+          shift_down<V, I>(above, v[i], i + 1 < P ? v[i + 1] : zero);
+          s_vx[i] += v[i] * above;
+        }
+#pragma GCC unroll 16
+        for (int i = 0; i < P; ++i)
+        {
+          u[i] = u[i] + dn[i];
+          d[i] = dn[i];
+          z[i] = zn[i];
+        }
+      };
+
+      long k = 0;
+      while (k < len)
+      {
+        // Fast loop: no law is called, so nothing leaves the registers.
+        const long fast_from = k;
+        for (; k < len; ++k)
+        {
+          const double *col = ub + static_cast<std::size_t>(k) * S;
+          bool hit = s.step + k < 2; // the first steps use the initial δ_{−1}, δ_{−2}
+          for (std::size_t c = 0; c < nc; ++c)
+            hit |= col[c_l[c]] - col[c_r[c]] > c_g[c];
+          if (hit)
+            break;
+          one_step(k, false);
+        }
+        if (k > fast_from)
+          s.deltas_current = false;
+        if (k == len)
+          break;
+        store_state();
+        const bool touched = fused_contacts(s, forces, k);
+        load_state();
+        one_step(k, touched);
+        ++k;
+      }
+      store_state();
+      const std::size_t B    = static_cast<std::size_t>(block_steps);
+      const std::size_t last = static_cast<std::size_t>(len - 1);
+      for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i)
+        s.velocity[i * B + last] = s.fused_v[i];
+    }
+
+    template <class IsolatorType, int N>
+    __attribute__((optimize("fp-contract=off"))) void fused_sse2(Session &s, const long len)
+    {
+      fused_body<2, IsolatorType, N>(s, len);
+    }
+
+#if defined(__x86_64__) && defined(__GNUC__)
+    template <class IsolatorType, int N>
+    __attribute__((target("avx2"), optimize("fp-contract=off"))) void fused_avx2(Session   &s,
+                                                                                 const long len)
+    {
+      fused_body<4, IsolatorType, N>(s, len);
+    }
+
+    template <class IsolatorType, int N>
+    __attribute__((target("avx512f"), optimize("fp-contract=off"))) void
+    fused_avx512(Session &s, const long len)
+    {
+      fused_body<8, IsolatorType, N>(s, len);
+    }
+#endif
+
+    template <class IsolatorType, int N>
+    Session::Kernel fused_for(const int lanes)
+    {
+#if defined(__x86_64__) && defined(__GNUC__)
+      if (lanes == 8)
+        return fused_avx512<IsolatorType, N>;
+      if (lanes == 4)
+        return fused_avx2<IsolatorType, N>;
+#endif
+      (void)lanes;
+      return fused_sse2<IsolatorType, N>;
+    }
+
+    template <class IsolatorType>
+    Session::Kernel fused_kernel_for(const std::size_t n, const int lanes)
+    {
+      switch (n)
+      {
+        case 1:
+          return fused_for<IsolatorType, 1>(lanes);
+        case 2:
+          return fused_for<IsolatorType, 2>(lanes);
+        case 3:
+          return fused_for<IsolatorType, 3>(lanes);
+        case 4:
+          return fused_for<IsolatorType, 4>(lanes);
+        case 5:
+          return fused_for<IsolatorType, 5>(lanes);
+        case 6:
+          return fused_for<IsolatorType, 6>(lanes);
+        case 7:
+          return fused_for<IsolatorType, 7>(lanes);
+        case 8:
+          return fused_for<IsolatorType, 8>(lanes);
+        default:
+          return nullptr;
+      }
+    }
+  } // namespace
+
+  namespace cdm
+  {
+    int fused_lanes(const int cap)
+    {
+#if defined(__x86_64__) && defined(__GNUC__)
+      if (cap == 2)
+        return 2;
+      if ((cap == 0 || cap == 8) && __builtin_cpu_supports("avx512f"))
+        return 8;
+      if (__builtin_cpu_supports("avx2"))
+        return 4;
+#endif
+      (void)cap;
+      return 2;
+    }
+
+    Session::Kernel fused_kernel(const std::size_t n, const int lanes, const Isolator *isolator)
+    {
+      return dynamic_cast<const BilinearIsolator *>(isolator) ?
+               fused_kernel_for<BilinearIsolator>(n, lanes) :
+               fused_kernel_for<Isolator>(n, lanes);
+    }
+  } // namespace cdm
+} // namespace kimp::lumped

@@ -1,0 +1,102 @@
+// ResponseRecorder: what every integrator records into a Response, written once (run header,
+// impacts, peak contact forces, energy-balance checks, history samples, end-of-run summary).
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "lumped/integrators/response.h"
+#include "lumped/structure/pounding_model.h"
+
+namespace kimp::lumped
+{
+  /**
+   * Records the Response of one run of an integrator (CentralDifference, NewmarkIntegrator):
+   *  - start(): the run's header (Δt, N, DOFs, storeys), zeroed peaks, one ContactResult per
+   *    contact and the history interval;
+   *  - impact(), contact_force(): first-contact events and the peak force per contact;
+   *  - supplied(), check_energy(): the energy balance at a check point, its residual relative to
+   *    the largest energy supplied so far, max_t (E_0 + W_in), and the largest residual;
+   *  - sample(): one row of the histories;
+   *  - finish(): the Response with the laws' own results and the relative errors.
+   * The peaks of u, ü + ü_g and the drifts stay with the integrator (the central difference
+   * kernels keep them per vector lane); it writes them into response() directly.
+   */
+  class ResponseRecorder
+  {
+  public:
+    /**
+     * Starts an empty Response for `model`.
+     * @param dt       time step, s
+     * @param n_steps  N, the index of the last step (duration = N·Δt)
+     * @param every    steps between history samples (0: no histories)
+     */
+    void start(const PoundingModel &model, double dt, long n_steps, long every);
+
+    Response       &response() { return r_; }
+    const Response &response() const { return r_; }
+
+    /// Contact `c` entered contact at `t` (s) with closing rate `rate` (m/s).
+    void impact(const std::size_t c, const double t, const double rate)
+    {
+      r_.contacts[c].impacts.push_back({t, rate});
+    }
+
+    /// Force of contact `c` at a step, N (its maximum is the peak force).
+    void contact_force(const std::size_t c, const double force)
+    {
+      peak_force_[c] = std::max(peak_force_[c], force);
+    }
+
+    /// The energy supplied so far, E_0 + W_in (J), at a step; its maximum scales the errors.
+    void supplied(const double energy) { max_supplied_ = std::max(max_supplied_, energy); }
+
+    /// max_t (E_0 + W_in) so far, J.
+    double max_supplied() const { return max_supplied_; }
+
+    /**
+     * Energy balance at a check point: stores initial, input, kinetic, strain, viscous,
+     * hysteretic and contact_work of `terms` in the Response and keeps the largest residual.
+     * @return the residual divided by max_supplied() (the history's energy_error)
+     */
+    double check_energy(const EnergyBalance &terms);
+
+    /**
+     * One history row at `t` (s): u(i) and a(i) for every DOF (m, m/s²), drift(s) for every
+     * storey (m), the contact forces (N), E_0 + W_in (J) and the relative energy error.
+     */
+    template <class Displacement, class Acceleration, class Drift>
+    void sample(const double               t,
+                Displacement             &&u,
+                Acceleration             &&a,
+                Drift                    &&drift,
+                const std::vector<double> &contact_forces,
+                const double               energy_input,
+                const double               energy_error)
+    {
+      ResponseHistory &h = r_.history;
+      h.time.push_back(t);
+      for (std::size_t i = 0; i < r_.n_dofs; ++i)
+        h.displacement.push_back(u(i));
+      for (std::size_t i = 0; i < r_.n_dofs; ++i)
+        h.absolute_acceleration.push_back(a(i));
+      for (std::size_t s = 0; s < r_.n_storeys; ++s)
+        h.interstorey_drift.push_back(drift(s));
+      h.contact_force.insert(h.contact_force.end(), contact_forces.begin(), contact_forces.end());
+      h.energy_input.push_back(energy_input);
+      h.energy_error.push_back(energy_error);
+    }
+
+    /// The Response so far with the peak contact forces, each law's permanent indentation and
+    /// dissipated energy (laws in contact order), the final and the maximum relative errors.
+    Response finish(const std::vector<std::unique_ptr<ForceLaw>> &laws) const;
+
+  private:
+    Response            r_;
+    std::vector<double> peak_force_;
+    double              max_supplied_ = 0.0;
+    double              max_residual_ = 0.0;
+  };
+} // namespace kimp::lumped
