@@ -1,4 +1,5 @@
-// Scene file reading (yaml-cpp), annotated defaults and resolved JSON; see scene_io.h.
+// Scene file reading (yaml-cpp) with key ranges, annotated defaults, resolved JSON and the key
+// schema; see scene_io.h.
 #include "io/scene_io.h"
 
 #include <algorithm>
@@ -421,9 +422,16 @@ namespace kimp::io
     }
     for (std::size_t i = 0; i < parsed.size(); ++i)
       if (!range.contains(parsed[i]))
-        state_->source->read_failures().fail(state_->full_path(key) + fmt::format("[{}]", i),
+      {
+        // Items are recorded only here, so that validate()'s messages about items stay as they
+        // were; the item was written, so its failure is not marked "(default)".
+        const std::string item_path = state_->full_path(key) + fmt::format("[{}]", i);
+        const int         item_line = line_of(entry->value[i]);
+        state_->source->record(item_path, item_line > 0 ? item_line : entry->line);
+        state_->source->read_failures().fail(item_path,
                                              format_quantity(parsed[i], unit),
                                              range.expectation(unit));
+      }
     values = std::move(parsed);
   }
 
