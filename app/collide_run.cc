@@ -84,16 +84,7 @@ namespace kimp::app
 
   void validate(const CollideScene &scene, ValidationContext &ctx)
   {
-    ctx.check(scene.mass_1 > 0.0, "mass_1", format_quantity(scene.mass_1, "t"), "must be > 0");
-    ctx.check(scene.mass_2 > 0.0, "mass_2", format_quantity(scene.mass_2, "t"), "must be > 0");
-    ctx.check(scene.velocity > 0.0,
-              "velocity",
-              format_quantity(scene.velocity, "m/s"),
-              "must be > 0");
-    ctx.check(scene.time_step > 0.0,
-              "time_step",
-              format_quantity(scene.time_step, "s"),
-              "must be > 0");
+    // Single-key ranges (masses, velocity, time steps, ...) are declared in visit().
     ctx.check(grid_ok(scene.cor_grid, 0.0, 1.0),
               "cor_grid",
               list_text(scene.cor_grid, ""),
@@ -136,19 +127,6 @@ namespace kimp::app
                 "mass_grid",
                 list_text(c.mass_grid, "t"),
                 "needs >= 2 values > 0");
-      ctx.check(c.other_mass > 0.0,
-                "other_mass",
-                format_quantity(c.other_mass, "t"),
-                "must be > 0");
-      ctx.check(c.stiffness > 0.0,
-                "stiffness",
-                format_quantity(c.stiffness, "kN/mm^1.5"),
-                "must be > 0");
-      ctx.check(c.time_step > 0.0, "time_step", format_quantity(c.time_step, "s"), "must be > 0");
-      ctx.check(c.tolerance > 0.0 && c.tolerance < 0.1,
-                "tolerance",
-                format_quantity(c.tolerance, ""),
-                "must be in (0, 0.1)");
     }
   }
 

@@ -49,10 +49,26 @@ namespace kimp::app
     io.quantity_list("cor_grid", s.cor_grid, "", "nominal COR values");
     io.quantity_list("velocity_grid", s.velocity_grid, "m/s", "impact velocities v_imp");
     io.quantity_list("mass_grid", s.mass_grid, "t", "mass m1 of the striking body");
-    io.quantity("other_mass", s.other_mass, "t", "mass m2 of the struck body (at rest)");
-    io.quantity("stiffness", s.stiffness, "kN/mm^1.5", "k of the hysteretic law (n = 1.5)");
-    io.quantity("time_step", s.time_step, "s", "time step of each collision");
-    io.quantity("tolerance", s.tolerance, "", "relative tolerance of the energy balance root");
+    io.quantity("other_mass",
+                s.other_mass,
+                "t",
+                "mass m2 of the struck body (at rest)",
+                io::Range::positive());
+    io.quantity("stiffness",
+                s.stiffness,
+                "kN/mm^1.5",
+                "k of the hysteretic law (n = 1.5)",
+                io::Range::positive());
+    io.quantity("time_step",
+                s.time_step,
+                "s",
+                "time step of each collision",
+                io::Range::positive());
+    io.quantity("tolerance",
+                s.tolerance,
+                "",
+                "relative tolerance of the energy balance root",
+                io::Range::greater(0.0).and_less(0.1));
   }
 
   /// Scene of `kimp collide` (SI members).
@@ -75,10 +91,14 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, CollideScene &s)
   {
-    io.quantity("mass_1", s.mass_1, "t", "striking mass m1");
-    io.quantity("mass_2", s.mass_2, "t", "struck mass m2 (at rest)");
-    io.quantity("velocity", s.velocity, "m/s", "approach velocity of m1");
-    io.quantity("time_step", s.time_step, "s", "central difference time step");
+    io.quantity("mass_1", s.mass_1, "t", "striking mass m1", io::Range::positive());
+    io.quantity("mass_2", s.mass_2, "t", "struck mass m2 (at rest)", io::Range::positive());
+    io.quantity("velocity", s.velocity, "m/s", "approach velocity of m1", io::Range::positive());
+    io.quantity("time_step",
+                s.time_step,
+                "s",
+                "central difference time step",
+                io::Range::positive());
     io.choice("velocity_estimate",
               s.velocity_estimate,
               {{"backward", lumped::VelocityEstimate::backward_difference},

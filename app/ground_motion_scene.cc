@@ -10,52 +10,22 @@
 namespace kimp::app
 {
   using namespace kimp::io;
-  lumped::SyntheticMotionSpec to_spec(const SyntheticMotionScene &scene)
-  {
-    lumped::SyntheticMotionSpec spec;
-    spec.pga               = scene.pga;
-    spec.pulse_period      = scene.pulse_period;
-    spec.duration          = scene.duration;
-    spec.dt                = scene.dt;
-    spec.pulse_time        = scene.pulse_time;
-    spec.gamma             = scene.gamma;
-    spec.nu                = scene.nu;
-    spec.noise_ratio       = scene.noise_ratio;
-    spec.noise_f_low       = scene.noise_f_low;
-    spec.noise_f_high      = scene.noise_f_high;
-    spec.envelope_duration = scene.envelope_duration;
-    spec.envelope_epsilon  = scene.envelope_epsilon;
-    spec.envelope_eta      = scene.envelope_eta;
-    spec.seed              = scene.seed;
-    return spec;
-  }
-
   void validate(const GroundMotionScene &scene, ValidationContext &ctx)
   {
     ctx.check(!scene.record.empty(),
               "record",
               "\"\"",
               "must be \"synthetic\", a record name or a path");
-    if (scene.scale_to_pga)
-      ctx.check(std::isfinite(*scene.scale_to_pga) && *scene.scale_to_pga > 0.0,
-                "scale_to_pga",
-                format_quantity(*scene.scale_to_pga, "g"),
-                "must be > 0");
     ctx.check(std::isfinite(scene.scale) && scene.scale != 0.0,
               "scale",
               format_quantity(scene.scale, ""),
               "must be finite and != 0");
-    if (scene.duration)
-      ctx.check(std::isfinite(*scene.duration) && *scene.duration > 0.0,
-                "duration",
-                format_quantity(*scene.duration, "s"),
-                "must be > 0");
     if (!scene.is_record())
     {
       // The generator's own rules, reported at the synthetic section's key.
       try
       {
-        lumped::validate(to_spec(scene.synthetic));
+        lumped::validate(scene.synthetic);
       }
       catch (const std::invalid_argument &error)
       {
@@ -105,7 +75,7 @@ namespace kimp::app
       motion.name         = std::move(record.name);
     }
     else
-      motion = lumped::synthetic_near_fault(to_spec(scene.synthetic));
+      motion = lumped::synthetic_near_fault(scene.synthetic);
     if (scene.scale_to_pga)
       motion = lumped::scaled_to_pga(motion, *scene.scale_to_pga);
     if (scene.scale != 1.0)

@@ -10,30 +10,12 @@
 #include "io/scene_io.h"
 #include "lumped/excitation/ground_motion.h"
 
-namespace kimp::app
+namespace kimp::lumped
 {
-  /// Parameters of lumped::synthetic_near_fault() as a scene section (SI; defaults of
-  /// lumped::SyntheticMotionSpec).
-  struct SyntheticMotionScene
-  {
-    double       pga               = 0.8 * lumped::standard_gravity;
-    double       pulse_period      = 1.0;
-    double       duration          = 20.0;
-    double       dt                = 0.005;
-    double       pulse_time        = 4.0;
-    double       gamma             = 2.0;
-    double       nu                = 0.0;
-    double       noise_ratio       = 0.2;
-    double       noise_f_low       = 0.3;
-    double       noise_f_high      = 12.0;
-    double       envelope_duration = 15.0;
-    double       envelope_epsilon  = 0.2;
-    double       envelope_eta      = 0.05;
-    unsigned int seed              = 1;
-  };
-
+  /// Scene section `synthetic`: the engine's own spec, visited in place (in the spec's namespace
+  /// so that the io readers find it by argument-dependent lookup); `name` is not a scene key.
   template <class Io>
-  void visit(Io &io, SyntheticMotionScene &s)
+  void visit(Io &io, SyntheticMotionSpec &s)
   {
     io.quantity("pga", s.pga, "g", "target peak ground acceleration (met exactly)");
     io.quantity("pulse_period", s.pulse_period, "s", "period T_p of the velocity pulse");
@@ -50,10 +32,10 @@ namespace kimp::app
     io.quantity("envelope_eta", s.envelope_eta, "", "window value at T_w, (0, 1)");
     io.integer("seed", s.seed, "seed of the noise generator (same seed: same record)");
   }
+} // namespace kimp::lumped
 
-  /// The lumped::SyntheticMotionSpec of a scene section.
-  lumped::SyntheticMotionSpec to_spec(const SyntheticMotionScene &scene);
-
+namespace kimp::app
+{
   /**
    * Ground motion of a scene.
    *
@@ -69,12 +51,12 @@ namespace kimp::app
    */
   struct GroundMotionScene
   {
-    std::string           record      = "synthetic";
-    std::string           records_dir = "";
-    std::optional<double> scale_to_pga;
-    double                scale = 1.0;
-    std::optional<double> duration;
-    SyntheticMotionScene  synthetic;
+    std::string                 record      = "synthetic";
+    std::string                 records_dir = "";
+    std::optional<double>       scale_to_pga;
+    double                      scale = 1.0;
+    std::optional<double>       duration;
+    lumped::SyntheticMotionSpec synthetic;
 
     /// True if the motion is an external record (needs the records directory or a file).
     bool is_record() const { return record != "synthetic"; }
@@ -90,9 +72,17 @@ namespace kimp::app
     io.text("records_dir",
             s.records_dir,
             "directory of PEER records; \"\" = $KIMP_RECORDS_DIR, else ../shared/data/records");
-    io.quantity("scale_to_pga", s.scale_to_pga, "g", "scale the record to this PGA");
+    io.quantity("scale_to_pga",
+                s.scale_to_pga,
+                "g",
+                "scale the record to this PGA",
+                io::Range::positive());
     io.quantity("scale", s.scale, "", "factor applied after scale_to_pga (negative flips it)");
-    io.quantity("duration", s.duration, "s", "trim the record to its first `duration` seconds");
+    io.quantity("duration",
+                s.duration,
+                "s",
+                "trim the record to its first `duration` seconds",
+                io::Range::positive());
     io.section("synthetic",
                s.synthetic,
                "synthetic near-fault motion (used when record = synthetic)");

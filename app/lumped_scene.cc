@@ -255,31 +255,7 @@ namespace kimp::app
   void validate(const LumpedScene &scene, ValidationContext &ctx)
   {
     const bool isolated = scene.building.kind == BuildingKind::isolated;
-    {
-      const auto           scope = ctx.section("building");
-      const BuildingScene &b     = scene.building;
-      ctx.check(b.floor_mass > 0.0,
-                "floor_mass",
-                format_quantity(b.floor_mass, "t"),
-                "must be > 0");
-      ctx.check(b.top_mass > 0.0, "top_mass", format_quantity(b.top_mass, "t"), "must be > 0");
-      ctx.check(b.isolation_mass > 0.0,
-                "isolation_mass",
-                format_quantity(b.isolation_mass, "t"),
-                "must be > 0");
-      ctx.check(b.storey_stiffness > 0.0,
-                "storey_stiffness",
-                format_quantity(b.storey_stiffness, "MN/m"),
-                "must be > 0");
-      ctx.check(b.damping_ratio >= 0.0 && b.damping_ratio < 1.0,
-                "damping_ratio",
-                percent(b.damping_ratio),
-                "must be in [0 %, 100 %)");
-      ctx.check(b.fixed_base_damping_ratio >= 0.0 && b.fixed_base_damping_ratio < 1.0,
-                "fixed_base_damping_ratio",
-                percent(b.fixed_base_damping_ratio),
-                "must be in [0 %, 100 %)");
-    }
+    // building: single-key ranges are declared in visit() and enforced by the reader.
     if (isolated)
     {
       const auto           scope = ctx.section("isolator");
@@ -396,23 +372,6 @@ namespace kimp::app
       {
         ctx.fail("dt", in.dt, std::string("must be \"auto\" or a time (") + error.what() + ")");
       }
-      ctx.check(in.safety > 0.0 && in.safety <= 1.0,
-                "safety",
-                format_quantity(in.safety, ""),
-                "must be in (0, 1]");
-      ctx.check(in.expected_max_penetration > 0.0,
-                "expected_max_penetration",
-                format_quantity(in.expected_max_penetration, "mm"),
-                "must be > 0");
-      ctx.check(in.output_interval >= 0.0,
-                "output_interval",
-                format_quantity(in.output_interval, "s"),
-                "must be >= 0");
-      if (in.duration)
-        ctx.check(*in.duration > 0.0,
-                  "duration",
-                  format_quantity(*in.duration, "s"),
-                  "must be > 0 (or null)");
     }
 
     std::set<std::string> names;

@@ -60,18 +60,32 @@ namespace kimp::app
                "floors above the isolation level (or the ground)",
                1,
                100);
-    io.quantity("floor_mass", s.floor_mass, "t", "mass of every floor below the top");
-    io.quantity("top_mass", s.top_mass, "t", "mass of the top floor");
-    io.quantity("isolation_mass", s.isolation_mass, "t", "mass of the isolation level (base mat)");
-    io.quantity("storey_stiffness", s.storey_stiffness, "MN/m", "shear stiffness of each storey");
+    io.quantity("floor_mass",
+                s.floor_mass,
+                "t",
+                "mass of every floor below the top",
+                io::Range::positive());
+    io.quantity("top_mass", s.top_mass, "t", "mass of the top floor", io::Range::positive());
+    io.quantity("isolation_mass",
+                s.isolation_mass,
+                "t",
+                "mass of the isolation level (base mat)",
+                io::Range::positive());
+    io.quantity("storey_stiffness",
+                s.storey_stiffness,
+                "MN/m",
+                "shear stiffness of each storey",
+                io::Range::positive());
     io.quantity("damping_ratio",
                 s.damping_ratio,
                 "%",
-                "superstructure damping of an isolated building (Rayleigh, first and last mode)");
+                "superstructure damping of an isolated building (Rayleigh, first and last mode)",
+                io::Range::at_least(0.0).and_less(1.0));
     io.quantity("fixed_base_damping_ratio",
                 s.fixed_base_damping_ratio,
                 "%",
-                "damping of a fixed-base building (Rayleigh, first and last mode)");
+                "damping of a fixed-base building (Rayleigh, first and last mode)",
+                io::Range::at_least(0.0).and_less(1.0));
   }
 
   /// Isolation system: linear (k) or bilinear (K1, K2, Q), plus ζ_iso (docs/physics.md §2).
@@ -288,18 +302,31 @@ namespace kimp::app
             s.dt,
             "time step: \"auto\" (cdm: safety x dt_cr dividing the record's dt; newmark: the "
             "record's dt) or a time such as \"2e-5 s\"");
-    io.quantity("safety", s.safety, "", "cdm auto step: fraction of dt_cr, (0, 1]");
+    io.quantity("safety",
+                s.safety,
+                "",
+                "cdm auto step: fraction of dt_cr, (0, 1]",
+                io::Range::greater(0.0).and_at_most(1.0));
     io.quantity("expected_max_penetration",
                 s.expected_max_penetration,
                 "mm",
-                "cdm: penetration at which the contact tangent enters dt_cr");
-    io.quantity("output_interval", s.output_interval, "s", "history sampling; 0 = no histories");
+                "cdm: penetration at which the contact tangent enters dt_cr",
+                io::Range::positive());
+    io.quantity("output_interval",
+                s.output_interval,
+                "s",
+                "history sampling; 0 = no histories",
+                io::Range::non_negative());
     io.choice("law_velocity",
               s.law_velocity,
               {{"backward", lumped::LawVelocity::backward},
                {"backward_second_order", lumped::LawVelocity::backward_second_order}},
               "cdm: rate given to the laws, (u_n - u_n-1)/dt (thesis) or second order");
-    io.quantity("duration", s.duration, "s", "analysis length (null = the record's length)");
+    io.quantity("duration",
+                s.duration,
+                "s",
+                "analysis length (null = the record's length)",
+                io::Range::positive().because("or null"));
     io.flag("companion", s.companion, "also run without contacts (amplification factors)");
   }
 

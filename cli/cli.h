@@ -42,7 +42,8 @@ namespace kimp::cli
               std::ostream                   &out,
               std::ostream                   &err);
 
-  /// Thrown by a scene command's --print-defaults; run_app() prints text() to `out`, returns 0.
+  /// Thrown by a scene command's --print-defaults or --print-schema; run_app() prints text() to
+  /// `out` and returns 0.
   class PrintDefaults : public CLI::Success
   {
   public:
@@ -57,6 +58,15 @@ namespace kimp::cli
     std::string text_;
   };
 
+  /// Adds `--print-schema` (print the JSON schema of the scene's keys and exit) bound to `flag`.
+  inline CLI::Option *add_print_schema_flag(CLI::App &command, bool &flag)
+  {
+    return command.add_flag("--print-schema",
+                            flag,
+                            "print the scene's keys as JSON (type, unit, default, range, meaning) "
+                            "and exit");
+  }
+
   /// What a scene command's run function receives: the validated scene and its output directory.
   template <class Scene>
   using SceneRunner =
@@ -65,7 +75,8 @@ namespace kimp::cli
   /**
    * Add command `name`: `kimp <name> SCENE.yaml -o DIR` loads and validates the scene
    * (SceneError on bad input), creates DIR and calls `run`; `kimp <name> --print-defaults` prints
-   * the annotated default scene of Scene and exits 0.
+   * the annotated default scene of Scene and exits 0; `kimp <name> --print-schema` prints the
+   * JSON schema of its keys (io::SchemaWriter) and exits 0.
    * @return the subcommand, for command-specific options.
    */
   template <class Scene>
@@ -79,6 +90,7 @@ namespace kimp::cli
       std::string scene;
       std::string output;
       bool        print_defaults = false;
+      bool        print_schema   = false;
     };
     auto      options = std::make_shared<Options>();
     CLI::App *command = app.add_subcommand(name, description);
@@ -90,6 +102,7 @@ namespace kimp::cli
                       options->print_defaults,
                       "print the annotated default scene (every key with default, unit and "
                       "meaning) and exit");
+    add_print_schema_flag(*command, options->print_schema);
     // CLI11 keeps bound values between parses of one app: start each use of the command afresh.
     command->preparse_callback([options](std::size_t) { *options = Options{}; });
     command->callback(
@@ -98,6 +111,8 @@ namespace kimp::cli
         if (options->print_defaults)
           throw PrintDefaults(io::default_scene_text<Scene>(
             "kimp " + name + " scene (defaults of kimp " + name + ")"));
+        if (options->print_schema)
+          throw PrintDefaults(io::schema_text<Scene>());
         if (options->scene.empty())
           throw CLI::RequiredError("the scene file SCENE.yaml (or --print-defaults)");
         if (options->output.empty())

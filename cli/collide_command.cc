@@ -21,6 +21,7 @@ namespace kimp::cli
       std::string scene;
       std::string output;
       bool        print_defaults = false;
+      bool        print_schema   = false;
       bool        calibrate      = false;
     };
     auto      options = std::make_shared<Options>();
@@ -40,12 +41,15 @@ namespace kimp::cli
                       options->calibrate,
                       "also recalibrate C_imp = c(1-COR^2)/(COR^p1 m_eff^p2 v^p3) and compare "
                       "with 1.55/0.7076/0.0025/0.9755");
+    add_print_schema_flag(*command, options->print_schema);
     command->preparse_callback([options](std::size_t) { *options = Options{}; });
     command->callback(
       [options]()
       {
         if (options->print_defaults)
           throw PrintDefaults(default_scene_text<CollideScene>("kimp collide scene (defaults)"));
+        if (options->print_schema)
+          throw PrintDefaults(schema_text<CollideScene>());
         if (options->output.empty())
           throw CLI::RequiredError("the output directory -o/--output DIR");
         logger().info("{}: collide {}", version_line(), options->scene);

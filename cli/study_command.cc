@@ -21,6 +21,7 @@ namespace kimp::cli
       std::string scene;
       std::string output;
       bool        print_defaults = false;
+      bool        print_schema   = false;
     };
     auto      options = std::make_shared<Options>();
     CLI::App *command = app.add_subcommand(
@@ -34,12 +35,15 @@ namespace kimp::cli
     command->add_flag("--print-defaults",
                       options->print_defaults,
                       "print the annotated default study scene and exit");
+    add_print_schema_flag(*command, options->print_schema);
     command->preparse_callback([options](std::size_t) { *options = Options{}; });
     command->callback(
       [options]()
       {
         if (options->print_defaults)
           throw PrintDefaults(default_scene_text<StudyScene>("kimp study scene (defaults)"));
+        if (options->print_schema)
+          throw PrintDefaults(schema_text<StudyScene>());
         if (options->output.empty())
           throw CLI::RequiredError("the output directory -o/--output DIR");
         logger().info("{}: study {}",

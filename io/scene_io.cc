@@ -1,4 +1,5 @@
-// Scene file reading (yaml-cpp), annotated defaults and resolved JSON; see scene_io.h.
+// Scene file reading (yaml-cpp) with key ranges, annotated defaults, resolved JSON and the key
+// schema; see scene_io.h.
 #include "io/scene_io.h"
 
 #include <algorithm>
@@ -111,7 +112,41 @@ namespace kimp::io
         return fmt::format("integer <= {}", max);
       return "integer";
     }
+
+    /// A zero bound needs no unit ("> 0"); a percent bound keeps it ("< 100 %", "> 0 %").
+    std::string bound_text(double bound, std::string_view unit)
+    {
+      return bound == 0.0 && unit != "%" ? std::string("0") : format_quantity(bound, unit);
+    }
+
+    /// Unit and range of a quantity's comment: "MN/m", "MN/m, > 0".
+    std::string unit_range_comment(std::string_view unit, const Range &range)
+    {
+      return range.bounded() ? unit_comment(unit) + ", " + range.text(unit) : unit_comment(unit);
+    }
   } // namespace
+
+  // ---------------------------------------------------------------------------------------------
+
+  std::string Range::text(std::string_view unit) const
+  {
+    if (min_ && max_)
+      return fmt::format("in {}{}, {}{}",
+                         min_open_ ? '(' : '[',
+                         bound_text(*min_, unit),
+                         bound_text(*max_, unit),
+                         max_open_ ? ')' : ']');
+    if (min_)
+      return (min_open_ ? "> " : ">= ") + bound_text(*min_, unit);
+    if (max_)
+      return (max_open_ ? "< " : "<= ") + bound_text(*max_, unit);
+    return "";
+  }
+
+  std::string Range::expectation(std::string_view unit) const
+  {
+    return "must be " + text(unit) + (note_.empty() ? "" : " (" + note_ + ")");
+  }
 
   // ---------------------------------------------------------------------------------------------
 
@@ -305,7 +340,8 @@ namespace kimp::io
   void SceneReader::quantity(std::string_view key,
                              double          &value,
                              std::string_view unit,
-                             std::string_view /*doc*/)
+                             std::string_view /*doc*/,
+                             const Range &range)
   {
     const State::Entry *entry = state_->find(key);
     if (entry == nullptr)
@@ -319,12 +355,17 @@ namespace kimp::io
     {
       state_->fail(*entry, error.what());
     }
+    if (!range.contains(value))
+      state_->source->read_failures().fail(state_->full_path(key),
+                                           format_quantity(value, unit),
+                                           range.expectation(unit));
   }
 
   void SceneReader::quantity(std::string_view       key,
                              std::optional<double> &value,
                              std::string_view       unit,
-                             std::string_view       doc)
+                             std::string_view       doc,
+                             const Range           &range)
   {
     const State::Entry *entry = state_->find(key);
     if (entry == nullptr)
@@ -335,14 +376,15 @@ namespace kimp::io
       return;
     }
     double v = value.value_or(parse_unit(unit).value);
-    quantity(key, v, unit, doc);
+    quantity(key, v, unit, doc, range);
     value = v;
   }
 
   void SceneReader::quantity_list(std::string_view     key,
                                   std::vector<double> &values,
                                   std::string_view     unit,
-                                  std::string_view /*doc*/)
+                                  std::string_view /*doc*/,
+                                  const Range &range)
   {
     const State::Entry *entry = state_->find(key);
     if (entry == nullptr)
@@ -378,6 +420,18 @@ namespace kimp::io
                                      error.what()));
       }
     }
+    for (std::size_t i = 0; i < parsed.size(); ++i)
+      if (!range.contains(parsed[i]))
+      {
+        // Items are recorded only here, so that validate()'s messages about items stay as they
+        // were; the item was written, so its failure is not marked "(default)".
+        const std::string item_path = state_->full_path(key) + fmt::format("[{}]", i);
+        const int         item_line = line_of(entry->value[i]);
+        state_->source->record(item_path, item_line > 0 ? item_line : entry->line);
+        state_->source->read_failures().fail(item_path,
+                                             format_quantity(parsed[i], unit),
+                                             range.expectation(unit));
+      }
     values = std::move(parsed);
   }
 
@@ -558,32 +612,40 @@ namespace kimp::io
   void DefaultsPrinter::quantity(std::string_view key,
                                  double          &value,
                                  std::string_view unit,
-                                 std::string_view doc)
+                                 std::string_view doc,
+                                 const Range     &range)
   {
     line(key,
          yaml_quote(format_quantity(value, unit)),
-         fmt::format("{} [{}]", doc, unit_comment(unit)));
+         fmt::format("{} [{}]", doc, unit_range_comment(unit, range)));
   }
 
   void DefaultsPrinter::quantity(std::string_view       key,
                                  std::optional<double> &value,
                                  std::string_view       unit,
-                                 std::string_view       doc)
+                                 std::string_view       doc,
+                                 const Range           &range)
   {
     line(key,
          value ? yaml_quote(format_quantity(*value, unit)) : std::string("null"),
-         fmt::format("{} [{}] (optional: null = not set)", doc, unit_comment(unit)));
+         fmt::format("{} [{}] (optional: null = not set)", doc, unit_range_comment(unit, range)));
   }
 
   void DefaultsPrinter::quantity_list(std::string_view     key,
                                       std::vector<double> &values,
                                       std::string_view     unit,
-                                      std::string_view     doc)
+                                      std::string_view     doc,
+                                      const Range         &range)
   {
     std::vector<std::string> items;
     for (const double v : values)
       items.push_back(yaml_quote(format_quantity(v, unit)));
-    line(key, "[" + join(items, ", ") + "]", fmt::format("{} [{}, list]", doc, unit_comment(unit)));
+    line(key,
+         "[" + join(items, ", ") + "]",
+         fmt::format("{} [{}, list{}]",
+                     doc,
+                     unit_comment(unit),
+                     range.bounded() ? ", each " + range.text(unit) : std::string()));
   }
 
   void DefaultsPrinter::flag(std::string_view key, bool &value, std::string_view doc)
@@ -640,7 +702,8 @@ namespace kimp::io
   void JsonWriter::quantity(std::string_view key,
                             double          &value,
                             std::string_view /*unit*/,
-                            std::string_view /*doc*/)
+                            std::string_view /*doc*/,
+                            const Range & /*range*/)
   {
     (*node_)[std::string(key)] = value;
   }
@@ -648,7 +711,8 @@ namespace kimp::io
   void JsonWriter::quantity(std::string_view       key,
                             std::optional<double> &value,
                             std::string_view /*unit*/,
-                            std::string_view /*doc*/)
+                            std::string_view /*doc*/,
+                            const Range & /*range*/)
   {
     (*node_)[std::string(key)] =
       value ? nlohmann::ordered_json(*value) : nlohmann::ordered_json(nullptr);
@@ -657,7 +721,8 @@ namespace kimp::io
   void JsonWriter::quantity_list(std::string_view     key,
                                  std::vector<double> &values,
                                  std::string_view /*unit*/,
-                                 std::string_view /*doc*/)
+                                 std::string_view /*doc*/,
+                                 const Range & /*range*/)
   {
     (*node_)[std::string(key)] = values;
   }
@@ -711,6 +776,175 @@ namespace kimp::io
     nlohmann::ordered_json &array = (*node_)[std::string(key)];
     array.push_back(nlohmann::ordered_json::object());
     return JsonWriter(root_, &array.back());
+  }
+
+  // ---------------------------------------------------------------------------------------------
+
+  struct SchemaWriter::State
+  {
+    std::shared_ptr<nlohmann::ordered_json> root;  ///< {"keys": [...]}
+    nlohmann::ordered_json                 *array; ///< the entries this writer appends to
+    std::string                             path;  ///< key path of this map ("" at the root)
+
+    std::string full_path(std::string_view key) const
+    {
+      return path.empty() ? std::string(key) : path + "." + std::string(key);
+    }
+
+    /// Appends {key, path, type, ...} and returns it for the caller to complete.
+    nlohmann::ordered_json &add(std::string_view key, std::string_view type, std::string_view doc)
+    {
+      nlohmann::ordered_json entry = nlohmann::ordered_json::object();
+      entry["key"]                 = std::string(key);
+      entry["path"]                = full_path(key);
+      entry["type"]                = std::string(type);
+      entry["doc"]                 = std::string(doc);
+      array->push_back(std::move(entry));
+      return array->back();
+    }
+  };
+
+  namespace
+  {
+    nlohmann::ordered_json range_json(const Range &range, std::string_view unit)
+    {
+      if (!range.bounded())
+        return nullptr;
+      nlohmann::ordered_json json = nlohmann::ordered_json::object();
+      if (range.min())
+      {
+        json["min"]      = *range.min();
+        json["min_open"] = range.min_open();
+      }
+      if (range.max())
+      {
+        json["max"]      = *range.max();
+        json["max_open"] = range.max_open();
+      }
+      json["text"] = range.text(unit);
+      return json;
+    }
+  } // namespace
+
+  SchemaWriter::SchemaWriter()
+    : state_(std::make_unique<State>())
+  {
+    state_->root = std::make_shared<nlohmann::ordered_json>(nlohmann::ordered_json::object());
+    (*state_->root)["keys"] = nlohmann::ordered_json::array();
+    state_->array           = &(*state_->root)["keys"];
+  }
+
+  SchemaWriter::SchemaWriter(std::unique_ptr<State> state)
+    : state_(std::move(state))
+  {
+  }
+
+  SchemaWriter::SchemaWriter(SchemaWriter &&) noexcept = default;
+  SchemaWriter::~SchemaWriter()                        = default;
+
+  std::string SchemaWriter::dump(int indent) const
+  {
+    return state_->root->dump(indent);
+  }
+
+  void SchemaWriter::quantity(std::string_view key,
+                              double          &value,
+                              std::string_view unit,
+                              std::string_view doc,
+                              const Range     &range)
+  {
+    nlohmann::ordered_json &entry = state_->add(key, "quantity", doc);
+    entry["unit"]                 = std::string(unit);
+    entry["default"]              = format_quantity(value, unit);
+    entry["default_si"]           = value;
+    entry["range"]                = range_json(range, unit);
+  }
+
+  void SchemaWriter::quantity(std::string_view       key,
+                              std::optional<double> &value,
+                              std::string_view       unit,
+                              std::string_view       doc,
+                              const Range           &range)
+  {
+    nlohmann::ordered_json &entry = state_->add(key, "optional quantity", doc);
+    entry["unit"]                 = std::string(unit);
+    entry["default"]    = value ? nlohmann::ordered_json(format_quantity(*value, unit)) : nullptr;
+    entry["default_si"] = value ? nlohmann::ordered_json(*value) : nullptr;
+    entry["range"]      = range_json(range, unit);
+  }
+
+  void SchemaWriter::quantity_list(std::string_view     key,
+                                   std::vector<double> &values,
+                                   std::string_view     unit,
+                                   std::string_view     doc,
+                                   const Range         &range)
+  {
+    nlohmann::ordered_json &entry = state_->add(key, "quantity_list", doc);
+    entry["unit"]                 = std::string(unit);
+    std::vector<std::string> texts;
+    for (const double v : values)
+      texts.push_back(format_quantity(v, unit));
+    entry["default"]    = texts;
+    entry["default_si"] = values;
+    entry["range"]      = range_json(range, unit);
+  }
+
+  void SchemaWriter::flag(std::string_view key, bool &value, std::string_view doc)
+  {
+    state_->add(key, "flag", doc)["default"] = value;
+  }
+
+  void SchemaWriter::text(std::string_view key, std::string &value, std::string_view doc)
+  {
+    state_->add(key, "text", doc)["default"] = value;
+  }
+
+  void SchemaWriter::integer_value(std::string_view key,
+                                   long long       &value,
+                                   std::string_view doc,
+                                   long long        min,
+                                   long long        max)
+  {
+    nlohmann::ordered_json &entry = state_->add(key, "integer", doc);
+    entry["default"]              = value;
+    nlohmann::ordered_json range  = nlohmann::ordered_json::object();
+    // Bounds at or beyond the range of int are type limits, as in the default listing.
+    if (min > INT_MIN)
+      range["min"] = min;
+    if (max < INT_MAX)
+      range["max"] = max;
+    range["text"]  = range_text(min, max);
+    entry["range"] = range;
+  }
+
+  void SchemaWriter::choice_index(std::string_view                key,
+                                  std::size_t                    &index,
+                                  const std::vector<std::string> &options,
+                                  std::string_view                doc)
+  {
+    nlohmann::ordered_json &entry = state_->add(key, "choice", doc);
+    entry["default"]              = options.at(index);
+    entry["options"]              = options;
+  }
+
+  SchemaWriter SchemaWriter::nested(std::string_view   key,
+                                    std::string_view   type,
+                                    std::string_view   doc,
+                                    std::string_view   member,
+                                    const std::string &default_json)
+  {
+    nlohmann::ordered_json &entry = state_->add(key, type, doc);
+    if (!default_json.empty())
+      entry["default"] = nlohmann::ordered_json::parse(default_json);
+    // The entry is complete before the child writer points into it (ordered_json objects
+    // reallocate when a key is added).
+    nlohmann::ordered_json &keys = entry[std::string(member)];
+    keys                         = nlohmann::ordered_json::array();
+    auto sub                     = std::make_unique<State>();
+    sub->root                    = state_->root;
+    sub->array                   = &keys;
+    sub->path = state_->full_path(key) + (member == "item" ? std::string("[]") : std::string());
+    return SchemaWriter(std::move(sub));
   }
 
   // ---------------------------------------------------------------------------------------------

@@ -33,6 +33,88 @@ namespace kimp::io
   };
 
   /**
+   * Admissible interval of a quantity, given with its declaration so that the reader enforces it,
+   * the default listing and the schema print it, and validate() keeps only rules linking several
+   * keys. Bounds are SI. A value outside (or NaN) is reported as
+   * "FILE:LINE: key = value: must be > 0" like a validate() failure.
+   * @code
+   *   io.quantity("K1", s.K1, "MN/m", "initial stiffness", Range::positive());
+   *   io.quantity("cor", s.cor, "", "restitution", Range::greater(0).and_at_most(1)); // (0, 1]
+   * @endcode
+   */
+  class Range
+  {
+  public:
+    /// No bound: every finite value.
+    Range() = default;
+
+    static Range greater(double bound) { return Range().lower(bound, true); }
+    static Range at_least(double bound) { return Range().lower(bound, false); }
+    static Range less(double bound) { return Range().upper(bound, true); }
+    static Range at_most(double bound) { return Range().upper(bound, false); }
+    /// > 0
+    static Range positive() { return greater(0.0); }
+    /// >= 0
+    static Range non_negative() { return at_least(0.0); }
+
+    /// This range with an upper bound: < `bound` (and_less) or <= `bound` (and_at_most).
+    Range and_less(double bound) const { return upper(bound, true); }
+    Range and_at_most(double bound) const { return upper(bound, false); }
+    /// This range with a reason appended to the message: "must be > 0 (toward the wall)".
+    Range because(std::string note) const
+    {
+      Range r = *this;
+      r.note_ = std::move(note);
+      return r;
+    }
+
+    bool bounded() const { return min_ || max_; }
+    bool contains(double value) const
+    {
+      if (!bounded())
+        return true;
+      if (min_ && !(min_open_ ? value > *min_ : value >= *min_))
+        return false;
+      if (max_ && !(max_open_ ? value < *max_ : value <= *max_))
+        return false;
+      return value == value; // NaN is outside every range
+    }
+
+    const std::optional<double> &min() const { return min_; }
+    const std::optional<double> &max() const { return max_; }
+    bool                         min_open() const { return min_open_; }
+    bool                         max_open() const { return max_open_; }
+    const std::string           &note() const { return note_; }
+
+    /// "> 0", ">= 1", "in (0, 1]", "in [0 %, 100 %)" with bounds in `unit` ("" if unbounded).
+    std::string text(std::string_view unit) const;
+    /// "must be " + text(unit), plus " (note)" if given: the validation message.
+    std::string expectation(std::string_view unit) const;
+
+  private:
+    Range lower(double bound, bool open) const
+    {
+      Range r     = *this;
+      r.min_      = bound;
+      r.min_open_ = open;
+      return r;
+    }
+    Range upper(double bound, bool open) const
+    {
+      Range r     = *this;
+      r.max_      = bound;
+      r.max_open_ = open;
+      return r;
+    }
+
+    std::optional<double> min_;
+    std::optional<double> max_;
+    bool                  min_open_ = false;
+    bool                  max_open_ = false;
+    std::string           note_;
+  };
+
+  /**
    * Collects violated rules of a scene's `validate()`. Key paths are written as in the file,
    * e.g. "isolator.K2" or "cases[1].gap"; the value as the user would write it
    * (format_quantity(value, "MN/m")). A validator of a nested struct can use keys relative to it
@@ -105,12 +187,17 @@ namespace kimp::io
     /// Throws SceneError listing every failure as "FILE:LINE: key = value: expectation".
     void throw_if_failed(const ValidationContext &context) const;
 
+    /// Range failures found while reading (full key paths); validate() appends to a copy.
+    ValidationContext       &read_failures() { return read_failures_; }
+    const ValidationContext &read_failures() const { return read_failures_; }
+
     /// Collect an unknown-key error; they are all thrown together when the root map finishes.
     void add_unknown_key(std::string message) { unknown_keys_.push_back(std::move(message)); }
     const std::vector<std::string> &unknown_keys() const { return unknown_keys_; }
 
   private:
     std::vector<std::string>   unknown_keys_;
+    ValidationContext          read_failures_;
     std::string                file_name_;
     std::map<std::string, int> lines_;
   };
@@ -192,17 +279,26 @@ namespace kimp::io
     SceneReader &operator=(SceneReader &&) noexcept;
     ~SceneReader();
 
-    /// Quantity with a unit, stored in SI; `unit` is the display unit (e.g. "MN/m").
-    void quantity(std::string_view key, double &value, std::string_view unit, std::string_view doc);
+    /// Quantity with a unit, stored in SI; `unit` is the display unit (e.g. "MN/m"). A value
+    /// written in the file outside `range` is recorded as a failure in the SceneSource (reported
+    /// with validate()'s); a default outside it is not checked.
+    void quantity(std::string_view key,
+                  double          &value,
+                  std::string_view unit,
+                  std::string_view doc,
+                  const Range     &range = {});
     /// Optional quantity: absent keeps the default, `null` clears it.
     void quantity(std::string_view       key,
                   std::optional<double> &value,
                   std::string_view       unit,
-                  std::string_view       doc);
+                  std::string_view       doc,
+                  const Range           &range = {});
+    /// List of quantities; `range` applies to every item (failures at "key[i]").
     void quantity_list(std::string_view     key,
                        std::vector<double> &values,
                        std::string_view     unit,
-                       std::string_view     doc);
+                       std::string_view     doc,
+                       const Range         &range = {});
     void flag(std::string_view key, bool &value, std::string_view doc);
     void text(std::string_view key, std::string &value, std::string_view doc);
 
@@ -287,15 +383,21 @@ namespace kimp::io
   public:
     explicit DefaultsPrinter(std::ostream &out);
 
-    void quantity(std::string_view key, double &value, std::string_view unit, std::string_view doc);
+    void quantity(std::string_view key,
+                  double          &value,
+                  std::string_view unit,
+                  std::string_view doc,
+                  const Range     &range = {});
     void quantity(std::string_view       key,
                   std::optional<double> &value,
                   std::string_view       unit,
-                  std::string_view       doc);
+                  std::string_view       doc,
+                  const Range           &range = {});
     void quantity_list(std::string_view     key,
                        std::vector<double> &values,
                        std::string_view     unit,
-                       std::string_view     doc);
+                       std::string_view     doc,
+                       const Range         &range = {});
     void flag(std::string_view key, bool &value, std::string_view doc);
     void text(std::string_view key, std::string &value, std::string_view doc);
 
@@ -375,15 +477,21 @@ namespace kimp::io
     /// The JSON text of everything written so far.
     std::string dump(int indent = 2) const;
 
-    void quantity(std::string_view key, double &value, std::string_view unit, std::string_view doc);
+    void quantity(std::string_view key,
+                  double          &value,
+                  std::string_view unit,
+                  std::string_view doc,
+                  const Range     &range = {});
     void quantity(std::string_view       key,
                   std::optional<double> &value,
                   std::string_view       unit,
-                  std::string_view       doc);
+                  std::string_view       doc,
+                  const Range           &range = {});
     void quantity_list(std::string_view     key,
                        std::vector<double> &values,
                        std::string_view     unit,
-                       std::string_view     doc);
+                       std::string_view     doc,
+                       const Range         &range = {});
     void flag(std::string_view key, bool &value, std::string_view doc);
     void text(std::string_view key, std::string &value, std::string_view doc);
 
@@ -436,6 +544,99 @@ namespace kimp::io
     nlohmann::ordered_json                 *node_; ///< the object this writer fills
   };
 
+  template <class T>
+  std::string to_json_text(const T &value, int indent = 2);
+
+  /**
+   * Io that describes the keys a visit() walks, as JSON for form generators: an array of
+   * {key, path, type, unit, default, range, doc} entries in file order. Types: "quantity" (default
+   * as the file would write it, e.g. "15 cm", and `default_si`), "quantity_list", "optional
+   * quantity", "integer" (range {min, max}), "flag", "text", "choice" (with `options`), "section"
+   * and "optional section" (with `keys`), "list" (with `item`: the keys of one item, and
+   * `default`: the default items as resolved JSON). A quantity's range is
+   * {min, min_open, max, max_open} in SI plus `text` in the display unit.
+   */
+  class SchemaWriter : public IoVerbs<SchemaWriter>
+  {
+  public:
+    SchemaWriter();
+    SchemaWriter(SchemaWriter &&) noexcept;
+    ~SchemaWriter();
+
+    /// The JSON text of the schema: {"keys": [...]}.
+    std::string dump(int indent = 2) const;
+
+    void quantity(std::string_view key,
+                  double          &value,
+                  std::string_view unit,
+                  std::string_view doc,
+                  const Range     &range = {});
+    void quantity(std::string_view       key,
+                  std::optional<double> &value,
+                  std::string_view       unit,
+                  std::string_view       doc,
+                  const Range           &range = {});
+    void quantity_list(std::string_view     key,
+                       std::vector<double> &values,
+                       std::string_view     unit,
+                       std::string_view     doc,
+                       const Range         &range = {});
+    void flag(std::string_view key, bool &value, std::string_view doc);
+    void text(std::string_view key, std::string &value, std::string_view doc);
+
+    template <class T>
+    void section(std::string_view key, T &value, std::string_view doc)
+    {
+      SchemaWriter sub = nested(key, "section", doc, "keys", "");
+      visit(sub, value);
+    }
+
+    /// Its `default` is the resolved JSON of the default value, or null when absent.
+    template <class T>
+    void optional_section(std::string_view key, std::optional<T> &value, std::string_view doc)
+    {
+      SchemaWriter sub =
+        nested(key, "optional section", doc, "keys", value ? to_json_text(*value, -1) : "null");
+      T example = value ? *value : T();
+      visit(sub, example);
+    }
+
+    template <class T>
+    void list(std::string_view key, std::vector<T> &values, std::string_view doc)
+    {
+      std::string items;
+      for (const T &item : values)
+        items += (items.empty() ? "" : ",") + to_json_text(item, -1);
+      SchemaWriter sub = nested(key, "list", doc, "item", "[" + items + "]");
+      T            example;
+      visit(sub, example);
+    }
+
+    void integer_value(std::string_view key,
+                       long long       &value,
+                       std::string_view doc,
+                       long long        min,
+                       long long        max);
+    void choice_index(std::string_view                key,
+                      std::size_t                    &index,
+                      const std::vector<std::string> &options,
+                      std::string_view                doc);
+
+  private:
+    struct State;
+    explicit SchemaWriter(std::unique_ptr<State> state);
+
+    /// Appends an entry of `type` (with `default_json` as its default unless empty) and returns a
+    /// writer of its `member` array.
+    SchemaWriter nested(std::string_view   key,
+                        std::string_view   type,
+                        std::string_view   doc,
+                        std::string_view   member,
+                        const std::string &default_json);
+
+    std::unique_ptr<State> state_;
+  };
+
   namespace detail
   {
     template <class T, class = void>
@@ -476,7 +677,7 @@ namespace kimp::io
 
   /// JSON text of `value` (SI numbers) through its visit().
   template <class T>
-  std::string to_json_text(const T &value, int indent = 2)
+  std::string to_json_text(const T &value, int indent)
   {
     T          copy = value;
     JsonWriter writer;
@@ -499,6 +700,16 @@ namespace kimp::io
     return out.str();
   }
 
+  /// JSON schema of T (see SchemaWriter): every key with type, unit, default, range and doc.
+  template <class T>
+  std::string schema_text()
+  {
+    T            defaults;
+    SchemaWriter writer;
+    visit(writer, defaults);
+    return writer.dump(2) + "\n";
+  }
+
   // Scene structs give every member a default initializer (docs/architecture.md "Scenes and
   // errors"), so they are default-initialized (`T scene;`): value-initialization `T{}` of such
   // aggregates trips a false -Wmaybe-uninitialized of GCC 12 at -O3.
@@ -517,7 +728,7 @@ namespace kimp::io
     visit(reader, scene);
     reader.finish();
 
-    ValidationContext context;
+    ValidationContext context = source.read_failures();
     if constexpr (detail::HasMemberValidate<T>::value)
       scene.validate(context);
     else if constexpr (detail::HasFreeValidate<T>::value)

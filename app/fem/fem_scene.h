@@ -116,9 +116,13 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, FemMaterial &s)
   {
-    io.quantity("E", s.youngs_modulus, "GPa", "Young's modulus (> 0)");
-    io.quantity("nu", s.poisson_ratio, "", "Poisson's ratio (in [0, 0.5))");
-    io.quantity("rho", s.density, "kg/m^3", "density (> 0)");
+    io.quantity("E", s.youngs_modulus, "GPa", "Young's modulus (> 0)", io::Range::positive());
+    io.quantity("nu",
+                s.poisson_ratio,
+                "",
+                "Poisson's ratio (in [0, 0.5))",
+                io::Range::at_least(0.0).and_less(0.5));
+    io.quantity("rho", s.density, "kg/m^3", "density (> 0)", io::Range::positive());
   }
 
   template <class Io>
@@ -131,28 +135,49 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, FemGeometry &s)
   {
-    io.quantity("wall_thickness", s.wall_thickness, "m", "moat wall thickness (> 0)");
+    io.quantity("wall_thickness",
+                s.wall_thickness,
+                "m",
+                "moat wall thickness (> 0)",
+                io::Range::positive());
     io.flag("with_backfill", s.with_backfill, "soil block behind the wall, bonded to it");
     io.quantity("backfill_width", s.backfill_width, "m", "backfill width behind the wall (> 0)");
     io.quantity("backfill_height",
                 s.backfill_height,
                 "m",
                 "backfill height (null: the wall height; must be <= the wall height)");
-    io.quantity("slab_length", s.slab_length, "m", "slab length (> 0)");
-    io.quantity("slab_thickness", s.slab_thickness, "m", "slab thickness (> 0)");
+    io.quantity("slab_length", s.slab_length, "m", "slab length (> 0)", io::Range::positive());
+    io.quantity("slab_thickness",
+                s.slab_thickness,
+                "m",
+                "slab thickness (> 0)",
+                io::Range::positive());
     io.quantity("slab_top",
                 s.slab_top,
                 "m",
                 "height of the slab top above the ground (null: the wall top)");
-    io.quantity("gap", s.gap, "mm", "initial clear distance between slab and wall (> 0)");
+    io.quantity("gap",
+                s.gap,
+                "mm",
+                "initial clear distance between slab and wall (> 0)",
+                io::Range::positive().because(
+                  "the slab must not touch or overlap the wall at t = 0"));
   }
 
   template <class Io>
   void visit(Io &io, FemMesh &s)
   {
-    io.quantity("h_contact", s.h_contact, "cm", "element size at the contact (> 0)");
+    io.quantity("h_contact",
+                s.h_contact,
+                "cm",
+                "element size at the contact (> 0)",
+                io::Range::positive());
     io.quantity("h_max", s.h_max, "cm", "largest element size (>= h_contact)");
-    io.quantity("grading", s.grading, "", "largest size ratio of neighbouring elements (>= 1)");
+    io.quantity("grading",
+                s.grading,
+                "",
+                "largest size ratio of neighbouring elements (>= 1)",
+                io::Range::at_least(1.0));
     io.integer("level", s.level, "refinement level: every element size divided by 2^level", 0, 6);
   }
 
@@ -166,8 +191,13 @@ namespace kimp::app
                 s.mass,
                 "kg/m",
                 "rigid slab mass per metre of wall (null: rho_concrete x slab length x "
-                "thickness)");
-    io.quantity("velocity", s.velocity, "m/s", "initial slab velocity toward the wall (> 0)");
+                "thickness)",
+                io::Range::positive());
+    io.quantity("velocity",
+                s.velocity,
+                "m/s",
+                "initial slab velocity toward the wall (> 0)",
+                io::Range::positive().because("toward the wall"));
   }
 
   template <class Io>
@@ -246,7 +276,8 @@ namespace kimp::app
     io.quantity("vtu_interval",
                 s.vtu_interval,
                 "ms",
-                "interval of VTU field snapshots under DIR/vtu/<case>/ (>= 0; 0: none)");
+                "interval of VTU field snapshots under DIR/vtu/<case>/ (>= 0; 0: none)",
+                io::Range::non_negative());
   }
 
   template <class Io>

@@ -52,7 +52,8 @@ namespace kimp::app
     io.quantity("fidelity_tolerance",
                 s.fidelity_tolerance,
                 "%",
-                "auto: largest relative change of k between consecutive levels (> 0)");
+                "auto: largest relative change of k between consecutive levels (> 0)",
+                io::Range::positive());
     io.quantity_list("fidelity_h_contact",
                      s.fidelity_h_contact,
                      "cm",
@@ -79,7 +80,11 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, StudyAccuracyScene &s)
   {
-    io.quantity("wall_height", s.wall_height, "m", "wall height of the accuracy study (> 0)");
+    io.quantity("wall_height",
+                s.wall_height,
+                "m",
+                "wall height of the accuracy study (> 0)",
+                io::Range::positive());
     io.quantity_list("h_contact",
                      s.h_contact,
                      "cm",
@@ -114,12 +119,17 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, StudySensitivityScene &s)
   {
-    io.quantity("wall_height", s.wall_height, "m", "wall height of the sensitivity study (> 0)");
+    io.quantity("wall_height",
+                s.wall_height,
+                "m",
+                "wall height of the sensitivity study (> 0)",
+                io::Range::positive());
     io.quantity("variation",
                 s.variation,
                 "%",
                 "soil modulus, slab mass (length), impact velocity and wall thickness are each "
-                "run at (1 - variation) and (1 + variation) times their value (in (0, 100 %))");
+                "run at (1 - variation) and (1 + variation) times their value (in (0, 100 %))",
+                io::Range::greater(0.0).and_less(1.0));
   }
 
   /** The fits of every height (docs/physics.md §4 "Fit"). */
@@ -139,12 +149,17 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, StudyFitScene &s)
   {
-    io.quantity("cor", s.cor, "", "COR of the fitted Kelvin-Voigt and Jankowski laws, (0, 1]");
+    io.quantity("cor",
+                s.cor,
+                "",
+                "COR of the fitted Kelvin-Voigt and Jankowski laws, (0, 1]",
+                io::Range::greater(0.0).and_at_most(1.0));
     io.quantity("width",
                 s.width,
                 "m",
                 "building side width W: k_total = k_per_metre x W (> 0; 27.78 m gives the "
-                "thesis' Table 2.2 from Table 2.1)");
+                "thesis' Table 2.2 from Table 2.1)",
+                io::Range::positive());
     io.flag("raw_force", s.raw_force, "fit the raw FEM contact force instead of the smoothed one");
     io.flag("force_only_contact",
             s.force_only_contact,
@@ -153,12 +168,14 @@ namespace kimp::app
                 s.separation_fraction,
                 "",
                 "a contact ends at a force-free run longer than this fraction of its duration so "
-                "far (> 0; larger merges the bounces of one impact)");
+                "far (> 0; larger merges the bounces of one impact)",
+                io::Range::positive());
     io.quantity("displacement_weight",
                 s.displacement_weight,
                 "",
                 "weight of the slab-displacement misfit beside the force misfit (>= 0; 0: force "
-                "only, the thesis' choice)");
+                "only, the thesis' choice)",
+                io::Range::non_negative());
   }
 
   /** Moat walls of the study: on both sides, gap from the building's own no-wall response. */
@@ -172,13 +189,22 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, StudyWallsScene &s)
   {
-    io.quantity("mass", s.mass, "t", "wall mass for m_eff in the impact laws (> 0)");
+    io.quantity("mass",
+                s.mass,
+                "t",
+                "wall mass for m_eff in the impact laws (> 0)",
+                io::Range::positive());
     io.quantity("gap_reduction",
                 s.gap_reduction,
                 "%",
                 "gap = (1 - gap_reduction) x the no-wall peak isolation displacement of each "
-                "record (in [0, 1))");
-    io.quantity("gap", s.gap, "cm", "fixed gap of both walls (null: from gap_reduction; > 0)");
+                "record (in [0, 1))",
+                io::Range::at_least(0.0).and_less(1.0));
+    io.quantity("gap",
+                s.gap,
+                "cm",
+                "fixed gap of both walls (null: from gap_reduction; > 0)",
+                io::Range::positive());
   }
 
   /**

@@ -1,9 +1,12 @@
 // `kimp lumped` scene: defaults equal docs/physics.md §3, unit conversions, every validate() rule
-// reported as file:line:key, printed defaults read back, shipped scenes load.
+// reported as file:line:key, printed defaults read back, the key schema, shipped scenes load.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -293,6 +296,121 @@ TEST(LumpedScene, PrintedDefaultsReadBackToTheDefaults)
                              "\"15 cm\"",
                              "\"5 %\""})
     EXPECT_NE(text.find(needle), std::string::npos) << needle << " missing in\n" << text;
+}
+
+namespace
+{
+  /// Every scalar key path of a resolved JSON object ("building.floor_mass", "cases").
+  void
+  collect_paths(const nlohmann::json &object, const std::string &prefix, std::set<std::string> &out)
+  {
+    for (const auto &[key, value] : object.items())
+    {
+      const std::string path = prefix.empty() ? key : prefix + "." + key;
+      if (value.is_object())
+        collect_paths(value, path, out);
+      else
+        out.insert(path);
+    }
+  }
+
+  /// Schema entries by path ("building.floor_mass"); sections recurse, list items are skipped.
+  void index_schema(const nlohmann::json &keys, std::map<std::string, nlohmann::json> &out)
+  {
+    for (const auto &entry : keys)
+    {
+      out[entry.at("path").get<std::string>()] = entry;
+      if (entry.contains("keys"))
+        index_schema(entry.at("keys"), out);
+    }
+  }
+
+  /// A scene text that writes every default of the schema explicitly.
+  void schema_defaults_yaml(const nlohmann::json &keys, const std::string &lead, std::string &out)
+  {
+    for (const auto &entry : keys)
+    {
+      const std::string     type = entry.at("type");
+      const std::string     key  = entry.at("key");
+      const nlohmann::json &d = entry.contains("default") ? entry.at("default") : nlohmann::json();
+      if (type == "section" || (type == "optional section" && !d.is_null()))
+      {
+        out += lead + key + ":\n";
+        schema_defaults_yaml(entry.at("keys"), lead + "  ", out);
+      }
+      else if (type == "list")
+      {
+        ASSERT_TRUE(d.empty()) << key << ": the lumped scene's lists are empty by default";
+        out += lead + key + ": []\n";
+      }
+      else if (type == "integer" || type == "flag")
+        out += lead + key + ": " + d.dump() + "\n";
+      else // quantities (as text, e.g. "15 cm"), lists of them, text, choices, null
+        out += lead + key + ": " + d.dump() + "\n";
+    }
+  }
+} // namespace
+
+TEST(LumpedScene, SchemaListsEveryKeyWithUnitRangeAndDefault)
+{
+  const nlohmann::json schema = nlohmann::json::parse(schema_text<LumpedScene>());
+  ASSERT_TRUE(schema.contains("keys"));
+  std::map<std::string, nlohmann::json> by_path;
+  index_schema(schema.at("keys"), by_path);
+
+  // Every key of the resolved scene is in the schema; every quantity has a unit and a range.
+  std::set<std::string> paths;
+  collect_paths(nlohmann::json::parse(to_json_text(LumpedScene{})), "", paths);
+  ASSERT_GT(paths.size(), 50U);
+  for (const std::string &path : paths)
+  {
+    ASSERT_EQ(by_path.count(path), 1U) << path << " missing in the schema";
+    const nlohmann::json &entry = by_path.at(path);
+    const std::string     type  = entry.at("type");
+    if (type.find("quantity") != std::string::npos)
+    {
+      EXPECT_TRUE(entry.at("unit").is_string()) << path;
+      EXPECT_TRUE(entry.contains("range")) << path;
+    }
+    EXPECT_TRUE(entry.at("doc").is_string()) << path;
+  }
+
+  const nlohmann::json &floor_mass = by_path.at("building.floor_mass");
+  EXPECT_EQ(floor_mass.at("type"), "quantity");
+  EXPECT_EQ(floor_mass.at("unit"), "t");
+  EXPECT_EQ(floor_mass.at("default"), "320 t");
+  EXPECT_EQ(floor_mass.at("range").at("min"), 0.0);
+  EXPECT_EQ(floor_mass.at("range").at("min_open"), true);
+  EXPECT_EQ(floor_mass.at("range").at("text"), "> 0");
+  EXPECT_EQ(by_path.at("building.damping_ratio").at("range").at("text"), "in [0 %, 100 %)");
+  EXPECT_EQ(by_path.at("integration.safety").at("range").at("text"), "in (0, 1]");
+  EXPECT_EQ(by_path.at("building.n_storeys").at("range").at("min"), 1);
+  EXPECT_EQ(by_path.at("impact.law").at("type"), "choice");
+  EXPECT_FALSE(by_path.at("impact.law").at("options").empty());
+  EXPECT_EQ(by_path.at("cases").at("type"), "list");
+  EXPECT_FALSE(by_path.at("cases").at("item").empty());
+  EXPECT_EQ(by_path.at("neighbours.left.impact").at("type"), "optional section");
+
+  // The schema's defaults, written out as a scene, read back to the defaults.
+  std::string text;
+  schema_defaults_yaml(schema.at("keys"), "", text);
+  const LumpedScene back = load(text);
+  EXPECT_EQ(to_json_text(back), to_json_text(LumpedScene{})) << text;
+}
+
+TEST(LumpedScene, RangesAreCheckedWhereWrittenAndListedInTheDefaults)
+{
+  EXPECT_NE(error_of("building:\n  floor_mass: \"0 t\"\n")
+              .find("scene.yaml:2: building.floor_mass = 0 t: must be > 0"),
+            std::string::npos);
+  EXPECT_NE(error_of("integration:\n  duration: \"-1 s\"\n")
+              .find("scene.yaml:2: integration.duration = -1 s: must be > 0 (or null)"),
+            std::string::npos);
+  EXPECT_EQ(error_of("integration:\n  duration: null\n"), "");
+  const std::string text = default_scene_text<LumpedScene>("kimp lumped scene");
+  EXPECT_NE(text.find("floor_mass: \"320 t\"  # mass of every floor below the top [t, > 0]"),
+            std::string::npos)
+    << text;
 }
 
 TEST(LumpedScene, EveryShippedLumpedSceneLoads)

@@ -1,10 +1,12 @@
-// `kimp` command line through CLI11 in-process: --version, scene commands with --print-defaults,
+// `kimp` command line through CLI11 in-process: --version, scene commands with --print-defaults
+// and --print-schema,
 // usage errors, verbosity flags; and the progress line of long runs.
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -108,6 +110,22 @@ namespace
     EXPECT_EQ(read_back.n_storeys, 4);
     EXPECT_DOUBLE_EQ(read_back.gap, 0.15);
     EXPECT_DOUBLE_EQ(read_back.K1, 200e6);
+  }
+
+  TEST(Cli, PrintSchemaListsEveryKeyAsJson)
+  {
+    DemoApp demo;
+    ASSERT_EQ(demo.run({"demo", "--print-schema"}), 0) << demo.err.str();
+    EXPECT_EQ(demo.runs, 0) << "--print-schema must not run the command";
+    const nlohmann::json  schema = nlohmann::json::parse(demo.out.str());
+    const nlohmann::json &keys   = schema.at("keys");
+    ASSERT_EQ(keys.size(), 3U) << schema.dump(2);
+    EXPECT_EQ(keys.at(0).at("key"), "n_storeys");
+    EXPECT_EQ(keys.at(0).at("range").at("max"), 50);
+    EXPECT_EQ(keys.at(1).at("key"), "gap");
+    EXPECT_EQ(keys.at(1).at("unit"), "cm");
+    EXPECT_EQ(keys.at(1).at("default"), "15 cm");
+    EXPECT_EQ(keys.at(2).at("doc"), "isolator initial stiffness");
   }
 
   TEST(Cli, SceneCommandLoadsTheSceneAndCreatesTheOutputDirectory)

@@ -148,6 +148,30 @@ namespace test_scene
     io.quantity("dt", s.dt, "s", "time step");
     io.integer("n_threads", s.n_threads, "worker threads");
   }
+
+  /// Quantities with ranges, and one rule linking two keys.
+  struct Ranged
+  {
+    double                x = 1.0;
+    std::optional<double> y;
+    std::vector<double>   z = {0.5};
+    double                r = 0.5;
+  };
+
+  template <class Io>
+  void visit(Io &io, Ranged &s)
+  {
+    using kimp::io::Range;
+    io.quantity("x", s.x, "m", "length", Range::positive());
+    io.quantity("y", s.y, "s", "time", Range::positive().because("or null"));
+    io.quantity_list("z", s.z, "", "fractions", Range::greater(0.0).and_at_most(1.0));
+    io.quantity("r", s.r, "%", "ratio", Range::at_least(0.0).and_less(1.0));
+  }
+
+  void validate(const Ranged &s, ValidationContext &ctx)
+  {
+    ctx.check(s.z.size() <= 3, "z", std::to_string(s.z.size()) + " values", "must be at most 3");
+  }
 } // namespace test_scene
 
 namespace
@@ -386,6 +410,65 @@ heights: ["1 m", "150 cm", "1750 mm"]
                      "scene.yaml:4: cases[1].gap = -2 cm: must be >= 0"});
     expect_contains(scene_error<test_scene::Study>("dt: -1 ms\n"),
                     {"scene.yaml:1: dt = -0.001 s: must be > 0"});
+  }
+
+  TEST(SceneIo, RangeTextsAndBounds)
+  {
+    using kimp::io::Range;
+    EXPECT_EQ(Range::positive().text("m"), "> 0");
+    EXPECT_EQ(Range::non_negative().expectation("ms"), "must be >= 0");
+    EXPECT_EQ(Range::at_least(1.0).text(""), ">= 1");
+    EXPECT_EQ(Range::less(0.5).text("m"), "< 0.5 m");
+    EXPECT_EQ(Range::at_most(2.0).text(""), "<= 2");
+    EXPECT_EQ(Range::greater(0.0).and_at_most(1.0).text(""), "in (0, 1]");
+    EXPECT_EQ(Range::at_least(0.0).and_less(1.0).text("%"), "in [0 %, 100 %)");
+    EXPECT_EQ(Range::positive().because("toward the wall").expectation("m/s"),
+              "must be > 0 (toward the wall)");
+    EXPECT_TRUE(Range::greater(0.0).and_at_most(1.0).contains(1.0));
+    EXPECT_FALSE(Range::greater(0.0).and_at_most(1.0).contains(0.0));
+    EXPECT_FALSE(Range::positive().contains(std::nan("")));
+    EXPECT_TRUE(Range().contains(-1.0));
+  }
+
+  TEST(SceneIo, RangesAreCheckedWhereWrittenWithValidationMessages)
+  {
+    using test_scene::Ranged;
+    EXPECT_EQ(scene_error<Ranged>(""), "");
+    EXPECT_EQ(scene_error<Ranged>("y: null\n"), "") << "a cleared optional has no range to meet";
+    expect_contains(scene_error<Ranged>("x: -1 m\n"), {"scene.yaml:1: x = -1 m: must be > 0"});
+    expect_contains(scene_error<Ranged>("x: 1 m\ny: -2 s\n"),
+                    {"scene.yaml:2: y = -2 s: must be > 0 (or null)"});
+    expect_contains(scene_error<Ranged>("z: [0.5, 0]\n"),
+                    {"scene.yaml:1: z[1] = 0: must be in (0, 1]"});
+    expect_contains(scene_error<Ranged>("r: 100 %\n"),
+                    {"scene.yaml:1: r = 100 %: must be in [0 %, 100 %)"});
+    // Range failures are reported together with validate()'s.
+    expect_contains(scene_error<Ranged>("x: 0 m\nz: [0.1, 0.2, 0.3, 0.4]\n"),
+                    {"scene.yaml:1: x = 0 m: must be > 0",
+                     "scene.yaml:2: z = 4 values: must be at most 3"});
+  }
+
+  TEST(SceneIo, RangesAppearInTheDefaultsAndTheSchema)
+  {
+    using test_scene::Ranged;
+    const std::string text = default_scene_text<Ranged>("ranged");
+    expect_contains(text,
+                    {"x: \"1 m\"  # length [m, > 0]",
+                     "y: null  # time [s, > 0] (optional: null = not set)",
+                     "z: [\"0.5\"]  # fractions [dimensionless, list, each in (0, 1]]",
+                     "r: \"50 %\"  # ratio [%, in [0 %, 100 %)]"});
+    const nlohmann::json  schema = nlohmann::json::parse(kimp::io::schema_text<Ranged>());
+    const nlohmann::json &x      = schema.at("keys").at(0);
+    EXPECT_EQ(x.at("path"), "x");
+    EXPECT_EQ(x.at("unit"), "m");
+    EXPECT_EQ(x.at("default"), "1 m");
+    EXPECT_EQ(x.at("range").at("min"), 0.0);
+    EXPECT_EQ(x.at("range").at("min_open"), true);
+    EXPECT_FALSE(x.at("range").contains("max"));
+    EXPECT_TRUE(schema.at("keys").at(1).at("default").is_null());
+    EXPECT_EQ(schema.at("keys").at(2).at("range").at("text"), "in (0, 1]");
+    // JsonWriter ignores ranges: the resolved JSON holds values only.
+    EXPECT_EQ(nlohmann::json::parse(kimp::io::to_json_text(Ranged{})).at("x"), 1.0);
   }
 
   TEST(SceneIo, PrintedDefaultsReadBackToTheDefaults)
