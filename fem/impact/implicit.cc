@@ -58,7 +58,7 @@ namespace kimp::fem::internal
     for (const auto i : locally_owned)
       op.base.add(i, i, op.c1 * mass(i));
     op.base.compress(VectorOperation::add);
-    if (prm.implicit_solver == ImpactParameters::ImplicitSolver::direct)
+    if (prm.implicit_options.linear_solver == ImplicitOptions::LinearSolver::direct)
     {
       op.direct = std::make_unique<TrilinosWrappers::SolverDirect>(op.control);
       op.direct->initialize(op.base);
@@ -334,7 +334,7 @@ namespace kimp::fem::internal
       {
         if (r_norm <= newton_tolerance * scale)
           return true;
-        if (k == prm.implicit_newton_max_iterations)
+        if (k == prm.implicit_options.newton_max_iterations)
         {
           r_fail   = r_norm;
           tol_fail = newton_tolerance * scale;
@@ -396,7 +396,7 @@ namespace kimp::fem::internal
     unsigned long zero_since = 0;
     unsigned long n          = 0;
     // Time in ticks of the smallest allowed step, dt / 2^max_halvings.
-    const unsigned int  max_level      = prm.implicit_max_halvings;
+    const unsigned int  max_level      = prm.implicit_options.max_halvings;
     const unsigned long ticks_per_step = 1UL << max_level;
     unsigned long       ticks          = 0;
     unsigned int        level          = 0;

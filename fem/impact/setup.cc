@@ -46,7 +46,7 @@ namespace kimp::fem
 
 namespace kimp::fem::internal
 {
-  /** Largest implicit_max_halvings: time is counted in integer ticks of dt / 2^max. */
+  /** Largest ImplicitOptions::max_halvings: time is counted in integer ticks of dt / 2^max. */
   constexpr unsigned int max_step_halvings = 30;
 
   std::string fmt_double(double x)
@@ -156,24 +156,26 @@ namespace kimp::fem::internal
     require(prm.smoothing_window >= 0,
             "smoothing_window = " + fmt_double(prm.smoothing_window) + " s (must be >= 0)");
     require(prm.dt >= 0, "dt = " + fmt_double(prm.dt) + " s (must be >= 0; 0 = automatic)");
-    require(prm.dt_over_limit >= 0 && (prm.dt_over_limit == 0 || prm.dt == 0),
-            "dt_over_limit = " + fmt_double(prm.dt_over_limit) +
+    require(prm.explicit_options.dt_over_limit >= 0 &&
+              (prm.explicit_options.dt_over_limit == 0 || prm.dt == 0),
+            "dt_over_limit = " + fmt_double(prm.explicit_options.dt_over_limit) +
               " (must be >= 0, and dt must be 0 when it is used)");
-    require(prm.cfl_safety > 0 && prm.cfl_safety <= 1,
-            "cfl_safety = " + fmt_double(prm.cfl_safety) + " (must be in (0, 1])");
-    require(prm.implicit_dt_factor > 0,
-            "implicit_dt_factor = " + fmt_double(prm.implicit_dt_factor) + " (must be > 0)");
+    require(prm.explicit_options.cfl_safety > 0 && prm.explicit_options.cfl_safety <= 1,
+            "cfl_safety = " + fmt_double(prm.explicit_options.cfl_safety) + " (must be in (0, 1])");
+    require(prm.implicit_options.dt_factor > 0,
+            "implicit_dt_factor = " + fmt_double(prm.implicit_options.dt_factor) +
+              " (must be > 0)");
     require(prm.end_time > 0, "end_time = " + fmt_double(prm.end_time) + " s (must be > 0)");
     require(prm.separation_hold_time >= 0,
             "separation_hold_time = " + fmt_double(prm.separation_hold_time) + " s (must be >= 0)");
     require(prm.output_interval >= 0,
             "output_interval = " + fmt_double(prm.output_interval) + " s (must be >= 0)");
-    require(prm.implicit_max_halvings <= max_step_halvings,
-            "implicit_max_halvings = " + std::to_string(prm.implicit_max_halvings) +
+    require(prm.implicit_options.max_halvings <= max_step_halvings,
+            "implicit_max_halvings = " + std::to_string(prm.implicit_options.max_halvings) +
               " (must be <= " + std::to_string(max_step_halvings) + ")");
-    require(prm.implicit_newton_max_iterations > 0,
+    require(prm.implicit_options.newton_max_iterations > 0,
             "implicit_newton_max_iterations = " +
-              std::to_string(prm.implicit_newton_max_iterations) + " (must be > 0)");
+              std::to_string(prm.implicit_options.newton_max_iterations) + " (must be > 0)");
     require(prm.progress_interval > 0,
             "progress_interval = " + std::to_string(prm.progress_interval) +
               " steps (must be > 0)");
@@ -437,12 +439,12 @@ namespace kimp::fem::internal
               "dt = " + fmt_double(prm.dt) + " s is above the explicit stability limit " +
                 fmt_double(dt_stable) + " s (mesh omega = " + fmt_double(omega_mesh) +
                 " rad/s, contact penalty omega = " + fmt_double(omega_penalty) + " rad/s)");
-      dt = prm.dt > 0            ? prm.dt :
-           prm.dt_over_limit > 0 ? prm.dt_over_limit * dt_stable :
-                                   prm.cfl_safety * dt_stable;
+      dt = prm.dt > 0                             ? prm.dt :
+           prm.explicit_options.dt_over_limit > 0 ? prm.explicit_options.dt_over_limit * dt_stable :
+                                                    prm.explicit_options.cfl_safety * dt_stable;
     }
     else
-      dt = prm.dt > 0 ? prm.dt : prm.implicit_dt_factor * dt_stable;
+      dt = prm.dt > 0 ? prm.dt : prm.implicit_options.dt_factor * dt_stable;
     sample_every = prm.output_interval > 0 ?
                      std::max<unsigned long>(1, std::lround(prm.output_interval / dt)) :
                      1;
