@@ -1,6 +1,6 @@
-// ImpactProblem explicit time loop (leap-frog with the lumped mass) and the recording both time
-// loops share: histories, energies and the divergence guard, VTU output, and the summary with
-// the impulse-preserving smoothing of the force.
+// ImpactProblem explicit time loop (leap-frog with the Gauss-Lobatto lumped mass, Belytschko et
+// al., Nonlinear Finite Elements, 2014, §6.2) and the recording both time loops share:
+// histories, energies and the divergence guard, VTU output, summary with the smoothed force.
 #include <algorithm>
 #include <array>
 #include <cmath>

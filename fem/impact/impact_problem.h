@@ -1,6 +1,6 @@
-// Private to fem/impact/: ImpactProblem, the deal.II problem class behind run_impact() (the
-// step-18/step-42 layout). setup.cc: run(), validation, mesh, DoFs, mass/stiffness, time step;
-// contact_setup.cc: contact; implicit.cc: Newmark; explicit_and_recording.cc: the rest.
+// Private to fem/impact/: ImpactProblem, the deal.II problem class behind run_impact() for
+// M u_tt + f_int(u) = f_c(u, u_t) (step-18/step-42 layout, one public verb run()). Its phases:
+// setup.cc, contact_setup.cc, implicit.cc (Newmark) and explicit_and_recording.cc.
 #pragma once
 
 #include <map>

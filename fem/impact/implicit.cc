@@ -1,7 +1,8 @@
 // ImpactProblem implicit time loop: Newmark average acceleration with semi-smooth Newton and a
-// line search on the incremental potential, step halving on non-convergence; linear solves by KLU
-// with the contact tangent through the Woodbury identity, or CG + AMG. One algorithm: the loop
-// and its linear algebra share the step operators, hence one file above 400 lines.
+// line search on the incremental potential, step halving on non-convergence (Belytschko et al.,
+// Nonlinear Finite Elements, 2014, §6.2-6.3; Wriggers, Computational Contact Mechanics, 2006);
+// linear solves by KLU with the contact tangent through the Woodbury identity (Hager, SIAM
+// Review 31, 1989), or by CG + AMG.
 #include <chrono>
 #include <cmath>
 #include <limits>
