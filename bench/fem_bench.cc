@@ -14,6 +14,7 @@
 namespace
 {
   using kimp::fem::ImpactParameters;
+  using kimp::fem::ImplicitOptions;
 
   ImpactParameters scene(double h_contact, bool rigid)
   {
@@ -79,18 +80,18 @@ namespace
   }
   void ImplicitElasticSlab(benchmark::State &state)
   {
-    auto p               = scene(state.range(0) * 1e-4, false);
-    p.integrator         = ImpactParameters::Integrator::implicit_newmark;
-    p.implicit_dt_factor = static_cast<double>(state.range(1));
-    p.implicit_solver    = state.range(2) == 0 ? ImpactParameters::ImplicitSolver::direct :
-                                                 ImpactParameters::ImplicitSolver::cg_amg;
+    auto p                           = scene(state.range(0) * 1e-4, false);
+    p.integrator                     = ImpactParameters::Integrator::implicit_newmark;
+    p.implicit_options.dt_factor     = static_cast<double>(state.range(1));
+    p.implicit_options.linear_solver = state.range(2) == 0 ? ImplicitOptions::LinearSolver::direct :
+                                                             ImplicitOptions::LinearSolver::cg_amg;
     run(state, p);
   }
   void ImplicitRigidSlab(benchmark::State &state)
   {
-    auto p               = scene(state.range(0) * 1e-4, true);
-    p.integrator         = ImpactParameters::Integrator::implicit_newmark;
-    p.implicit_dt_factor = static_cast<double>(state.range(1));
+    auto p                       = scene(state.range(0) * 1e-4, true);
+    p.integrator                 = ImpactParameters::Integrator::implicit_newmark;
+    p.implicit_options.dt_factor = static_cast<double>(state.range(1));
     run(state, p);
   }
 } // namespace

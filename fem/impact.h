@@ -28,9 +28,60 @@ namespace kimp::fem
   /** P-wave speed of a plane-strain continuum, sqrt((lambda + 2 mu) / rho), m/s. */
   double p_wave_speed(const Material &material);
 
-  /** Everything run_impact() needs. Mesh ids follow geometry/scene_ids.h. */
+  /** Options of the explicit central-difference integrator (ImpactParameters::explicit_options). */
+  struct ExplicitOptions
+  {
+    /**
+     * Time step as a fraction of the stable limit 2 / omega_max (mesh + penalty) when
+     * ImpactParameters::dt == 0, in (0, 1].
+     */
+    double cfl_safety = 0.5;
+    /**
+     * For stability studies: if > 0, dt = dt_over_limit * the stable limit, also above it (no
+     * refusal); a run that then diverges stops with NumericalError as always. Requires
+     * ImpactParameters::dt == 0 (>= 0; 0: off).
+     */
+    double dt_over_limit = 0;
+  };
+
+  /**
+   * Options of the implicit Newmark integrator (average acceleration, beta = 1/4, gamma = 1/2,
+   * Newton on the contact; ImpactParameters::implicit_options).
+   */
+  struct ImplicitOptions
+  {
+    /** Linear solver of the Newton iterations. */
+    enum class LinearSolver
+    {
+      /** Amesos KLU factorization of K + M / (beta dt^2), once per step size; the contact
+       *  tangent (rank <= active slave nodes) enters by the Woodbury identity. */
+      direct,
+      /** CG with an ML algebraic multigrid preconditioner built once per step size on
+       *  K + M / (beta dt^2), applied to the matrix with the contact tangent. */
+      cg_amg
+    };
+
+    /** dt = dt_factor * the stable explicit limit when ImpactParameters::dt == 0 (> 0). */
+    double       dt_factor     = 4.0;
+    LinearSolver linear_solver = LinearSolver::direct;
+    /**
+     * A step whose Newton iteration does not converge is retried with half the step, at most
+     * this many times (dt floor = dt / 2^max_halvings); at the floor NumericalError is thrown.
+     * The substeps then grow back to dt (>= 0).
+     */
+    unsigned int max_halvings = 6;
+    /** Newton iterations per attempt of a step before it is halved (> 0). */
+    unsigned int newton_max_iterations = 30;
+  };
+
+  /**
+   * Everything run_impact() needs: the options common to both integrators, and one set of
+   * options per integrator (those of the integrator not chosen are ignored). Mesh ids follow
+   * geometry/scene_ids.h.
+   */
   struct ImpactParameters
   {
+    /** Time integrator; each has its own options below. */
     enum class Integrator
     {
       explicit_central_difference, ///< leap-frog with a Gauss-Lobatto lumped mass (default)
@@ -65,8 +116,6 @@ namespace kimp::fem
 
     double initial_velocity = 1.0; ///< m/s, slab, +x (> 0)
 
-    Integrator integrator = Integrator::explicit_central_difference;
-
     /**
      * Penalty stiffness per slave node: k_i = penalty_factor * E_master / h_contact * l_i (N/m per
      * metre of depth), with l_i the node's tributary face length and h_contact the smallest
@@ -79,7 +128,8 @@ namespace kimp::fem
      * reduced node mass, c_i = 2 xi sqrt(k_i m_i). It removes the penalty-spring chatter; its
      * dissipation vanishes as 1/sqrt(k) when the penalty grows and is reported in the history.
      * Explicit only: the implicit path uses no contact damping (Newton needs a residual without
-     * the dashpot's jump at first touch).
+     * the dashpot's jump at first touch), but its automatic dt scales the explicit stability
+     * limit, which this damping lowers.
      */
     double contact_damping_ratio = 0.5;
     /**
@@ -91,37 +141,12 @@ namespace kimp::fem
      */
     double smoothing_window = 0;
 
-    double dt = 0; ///< s; 0: cfl_safety * stable limit. Refused if above the limit.
-    double cfl_safety =
-      0.5; ///< explicit dt = cfl_safety * 2 / omega_max (mesh + penalty), in (0, 1]
     /**
-     * Explicit only, for stability studies: if > 0, dt = dt_over_limit * the stable limit, also
-     * above it (no refusal); a run that then diverges stops with NumericalError as always.
-     * Requires dt == 0 (>= 0; 0: off).
+     * s; 0: automatic (explicit: ExplicitOptions::cfl_safety or dt_over_limit times the stable
+     * limit; implicit: ImplicitOptions::dt_factor times the explicit limit). An explicit dt above
+     * the limit is refused (>= 0).
      */
-    double dt_over_limit = 0;
-    /** Implicit only: dt = implicit_dt_factor * stable explicit limit when dt == 0. */
-    double implicit_dt_factor = 4.0;
-
-    /** Linear solver of the implicit path. */
-    enum class ImplicitSolver
-    {
-      /** Amesos KLU factorization of K + M / (beta dt^2), once per step size; the contact
-       *  tangent (rank <= active slave nodes) enters by the Woodbury identity. */
-      direct,
-      /** CG with an ML algebraic multigrid preconditioner built once per step size on
-       *  K + M / (beta dt^2), applied to the matrix with the contact tangent. */
-      cg_amg
-    };
-    ImplicitSolver implicit_solver = ImplicitSolver::direct;
-    /**
-     * Implicit only: a step whose Newton iteration does not converge is retried with half the
-     * step, at most this many times (dt floor = dt / 2^max); at the floor NumericalError is
-     * thrown. The substeps then grow back to dt (>= 0).
-     */
-    unsigned int implicit_max_halvings = 6;
-    /** Implicit only: Newton iterations per attempt of a step before it is halved (> 0). */
-    unsigned int implicit_newton_max_iterations = 30;
+    double dt = 0;
 
     double end_time             = 0.05;     ///< s (> 0)
     double separation_hold_time = 1.0e-3;   ///< s: stop once the force stayed zero this long
@@ -135,6 +160,11 @@ namespace kimp::fem
      */
     std::function<void(double t, double t_end)> progress;
     unsigned int progress_interval = 1000; ///< steps between progress calls (> 0)
+
+
+    Integrator      integrator = Integrator::explicit_central_difference;
+    ExplicitOptions explicit_options; ///< used when integrator is explicit_central_difference
+    ImplicitOptions implicit_options; ///< used when integrator is implicit_newmark
   };
 
   /** Histories sampled every output_interval. Forces and energies per metre of depth. */

@@ -255,16 +255,16 @@ namespace kimp::app
     p.contact_damping_ratio = scene.contact.contact_damping_ratio;
     p.smoothing_window      = parse_auto_time(scene.contact.smoothing_window).value_or(0.0);
 
-    p.dt                             = parse_auto_time(scene.dynamics.dt).value_or(0.0);
-    p.cfl_safety                     = scene.dynamics.cfl_safety;
-    p.implicit_dt_factor             = scene.dynamics.implicit_dt_factor;
-    p.implicit_solver                = scene.dynamics.implicit_solver;
-    p.implicit_max_halvings          = scene.dynamics.implicit_max_halvings;
-    p.implicit_newton_max_iterations = scene.dynamics.implicit_newton_max_iterations;
-    p.end_time                       = scene.dynamics.end_time;
-    p.separation_hold_time           = scene.dynamics.separation_hold_time;
-    p.output_interval                = scene.dynamics.output_interval;
-    p.log_interval                   = scene.dynamics.log_interval;
+    p.dt                                     = parse_auto_time(scene.dynamics.dt).value_or(0.0);
+    p.explicit_options.cfl_safety            = scene.dynamics.cfl_safety;
+    p.implicit_options.dt_factor             = scene.dynamics.implicit_dt_factor;
+    p.implicit_options.linear_solver         = scene.dynamics.implicit_solver;
+    p.implicit_options.max_halvings          = scene.dynamics.implicit_max_halvings;
+    p.implicit_options.newton_max_iterations = scene.dynamics.implicit_newton_max_iterations;
+    p.end_time                               = scene.dynamics.end_time;
+    p.separation_hold_time                   = scene.dynamics.separation_hold_time;
+    p.output_interval                        = scene.dynamics.output_interval;
+    p.log_interval                           = scene.dynamics.log_interval;
     if (scene.output.vtu_interval > 0 && !vtu_dir.empty())
     {
       p.vtu_interval = scene.output.vtu_interval;

@@ -79,13 +79,12 @@ namespace kimp::app
     fem::ImpactParameters::Integrator integrator = fem::ImpactParameters().integrator;
     /// "auto" (cfl_safety x stable limit; implicit: implicit_dt_factor x limit) or a time.
     std::string dt                 = "auto";
-    double      cfl_safety         = fem::ImpactParameters().cfl_safety;         ///< (0, 1]
-    double      implicit_dt_factor = fem::ImpactParameters().implicit_dt_factor; ///< > 0
-    fem::ImpactParameters::ImplicitSolver implicit_solver = fem::ImpactParameters().implicit_solver;
-    unsigned int implicit_max_halvings = fem::ImpactParameters().implicit_max_halvings;
-    unsigned int implicit_newton_max_iterations =
-      fem::ImpactParameters().implicit_newton_max_iterations;
-    double       end_time             = fem::ImpactParameters().end_time;             ///< s
+    double      cfl_safety         = fem::ExplicitOptions().cfl_safety; ///< (0, 1]
+    double      implicit_dt_factor = fem::ImplicitOptions().dt_factor;  ///< > 0
+    fem::ImplicitOptions::LinearSolver implicit_solver       = fem::ImplicitOptions().linear_solver;
+    unsigned int                       implicit_max_halvings = fem::ImplicitOptions().max_halvings;
+    unsigned int implicit_newton_max_iterations = fem::ImplicitOptions().newton_max_iterations;
+    double       end_time                       = fem::ImpactParameters().end_time;   ///< s
     double       separation_hold_time = fem::ImpactParameters().separation_hold_time; ///< s
     double       output_interval      = fem::ImpactParameters().output_interval;      ///< s
     unsigned int log_interval         = 100; ///< history samples between log lines (0: none)
@@ -239,8 +238,8 @@ namespace kimp::app
                 "implicit dt / explicit stable limit when dt is auto (> 0)");
     io.choice("implicit_solver",
               s.implicit_solver,
-              {{"direct", fem::ImpactParameters::ImplicitSolver::direct},
-               {"cg_amg", fem::ImpactParameters::ImplicitSolver::cg_amg}},
+              {{"direct", fem::ImplicitOptions::LinearSolver::direct},
+               {"cg_amg", fem::ImplicitOptions::LinearSolver::cg_amg}},
               "implicit linear solver: direct (Amesos KLU, fastest up to ~1e5 DoFs) or cg_amg "
               "(CG with ML algebraic multigrid, for large meshes)");
     io.integer("implicit_max_halvings",

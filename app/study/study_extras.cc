@@ -270,9 +270,9 @@ namespace kimp::app
       for (const double dt_factor : fem_stability_dt_factors)
       {
         FemStabilityPoint point;
-        point.penalty_factor = penalty_factor;
-        point.dt_factor      = dt_factor;
-        p.dt_over_limit      = dt_factor;
+        point.penalty_factor             = penalty_factor;
+        point.dt_factor                  = dt_factor;
+        p.explicit_options.dt_over_limit = dt_factor;
         try
         {
           const fem::ImpactResult r = fem::run_impact(p, MPI_COMM_SELF, nullptr);

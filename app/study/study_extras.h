@@ -131,7 +131,7 @@ namespace kimp::app
   /**
    * Stability map of the explicit FEM: the impact at scene.accuracy.wall_height on the coarsest
    * accuracy mesh level, for every penalty factor of fem_stability_penalty_factors and Δt =
-   * fem_stability_dt_factors × the computed limit (fem::ImpactParameters::dt_over_limit, no
+   * fem_stability_dt_factors × the computed limit (fem::ExplicitOptions::dt_over_limit, no
    * refusal), over the first fem_stability_end_time of the contact. A run is unstable when the
    * FEM's divergence guard (energy error > 50 % or not finite) stops it or when its energy error
    * exceeds fem_stability_energy_tolerance. Runs on MPI_COMM_SELF.

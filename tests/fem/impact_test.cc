@@ -124,15 +124,15 @@ namespace
     constexpr double solver_tolerance  = 1e-6; // Newton stops at a relative residual of 1e-10
     const double     L = 1.0, t = 0.1, v = 1.0;
     auto             p = bar_parameters(write_two_bars(L, t, 1e-4, 8, "bars_implicit.msh"));
-    const auto       explicit_run = run_impact(p, MPI_COMM_WORLD, nullptr);
-    p.integrator                  = ImpactParameters::Integrator::implicit_newmark;
-    const auto direct             = run_impact(p, MPI_COMM_WORLD, nullptr);
-    p.implicit_solver             = ImpactParameters::ImplicitSolver::cg_amg;
-    const auto   cg               = run_impact(p, MPI_COMM_WORLD, nullptr);
-    const double c                = std::sqrt(bar_material.youngs_modulus / bar_material.density);
-    const double force            = bar_material.density * c * t * v / 2;
-    const double momentum         = bar_material.density * L * t * v;
-    const double duration         = 2 * L / c;
+    const auto       explicit_run    = run_impact(p, MPI_COMM_WORLD, nullptr);
+    p.integrator                     = ImpactParameters::Integrator::implicit_newmark;
+    const auto direct                = run_impact(p, MPI_COMM_WORLD, nullptr);
+    p.implicit_options.linear_solver = ImplicitOptions::LinearSolver::cg_amg;
+    const auto   cg                  = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const double c        = std::sqrt(bar_material.youngs_modulus / bar_material.density);
+    const double force    = bar_material.density * c * t * v / 2;
+    const double momentum = bar_material.density * L * t * v;
+    const double duration = 2 * L / c;
     if (rank() == 0)
       for (const auto *r : {&explicit_run, &direct, &cg})
       {
@@ -311,12 +311,12 @@ namespace
     // (active set and node-to-segment geometry change): the step is retried at dt / 2, dt / 4,
     // dt / 8 and at that floor the run stops with a NumericalError naming time and step. With
     // three iterations the halvings recover and the momentum exchange is unchanged.
-    constexpr double impulse_tolerance = 0.02;
-    auto             p                 = scene_parameters(0.05, false, "scene_halving.msh");
-    p.integrator                       = ImpactParameters::Integrator::implicit_newmark;
-    const auto reference               = run_impact(p, MPI_COMM_WORLD, nullptr);
-    p.implicit_newton_max_iterations   = 1;
-    p.implicit_max_halvings            = 3;
+    constexpr double impulse_tolerance       = 0.02;
+    auto             p                       = scene_parameters(0.05, false, "scene_halving.msh");
+    p.integrator                             = ImpactParameters::Integrator::implicit_newmark;
+    const auto reference                     = run_impact(p, MPI_COMM_WORLD, nullptr);
+    p.implicit_options.newton_max_iterations = 1;
+    p.implicit_options.max_halvings          = 3;
     try
     {
       run_impact(p, MPI_COMM_WORLD, nullptr);
@@ -331,9 +331,9 @@ namespace
       if (rank() == 0)
         std::cout << "floor: " << e.what() << '\n';
     }
-    p.implicit_newton_max_iterations = 3;
-    p.implicit_max_halvings          = 6;
-    const auto halved                = run_impact(p, MPI_COMM_WORLD, nullptr);
+    p.implicit_options.newton_max_iterations = 3;
+    p.implicit_options.max_halvings          = 6;
+    const auto halved                        = run_impact(p, MPI_COMM_WORLD, nullptr);
     if (rank() == 0)
       std::cout << "halving: " << halved.summary.n_step_halvings << " halvings, "
                 << summary_line(halved) << "\nreference: " << summary_line(reference) << '\n';

@@ -1,0 +1,327 @@
+// ImpactProblem contact setup: the contact-face segments gathered from all ranks, the slave
+// nodes with their penalty stiffness and damping, the master segments or the rigid face, the
+// initial gap, and the compact gather/scatter of contact DoFs used by both time loops.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include <deal.II/base/mpi.h>
+
+#include "fem/impact/impact_problem.h"
+#include "geometry/scene_ids.h"
+
+namespace kimp::fem::internal
+{
+  /** One contact-face segment as gathered from all ranks (reference geometry, global DoFs). */
+  struct FaceSegment
+  {
+    unsigned int                           boundary_id = 0;
+    unsigned int                           material_id = 0;
+    Point<dim>                             p0, p1, cell_center;
+    std::array<types::global_dof_index, 4> dofs{}; // p0 x, p0 y, p1 x, p1 y
+  };
+
+  void ImpactProblem::setup_contact()
+  {
+    // Gather every contact-face segment of the locally owned cells to all ranks.
+    std::vector<double> local;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary() && (face->boundary_id() == geometry::slab_contact ||
+                                      face->boundary_id() == geometry::wall_contact))
+          {
+            local.push_back(face->boundary_id());
+            local.push_back(cell->material_id());
+            for (unsigned int v = 0; v < 2; ++v)
+              for (unsigned int d = 0; d < dim; ++d)
+                local.push_back(face->vertex(v)[d]);
+            for (unsigned int d = 0; d < dim; ++d)
+              local.push_back(cell->center()[d]);
+            for (unsigned int v = 0; v < 2; ++v)
+              for (unsigned int c = 0; c < dim; ++c)
+                local.push_back(static_cast<double>(face->vertex_dof_index(v, c)));
+          }
+    constexpr unsigned int   record = 12;
+    std::vector<FaceSegment> segments;
+    for (const auto &part : Utilities::MPI::all_gather(comm, local))
+      for (std::size_t k = 0; k + record <= part.size(); k += record)
+      {
+        FaceSegment s;
+        s.boundary_id = static_cast<unsigned int>(part[k]);
+        s.material_id = static_cast<unsigned int>(part[k + 1]);
+        s.p0          = Point<dim>(part[k + 2], part[k + 3]);
+        s.p1          = Point<dim>(part[k + 4], part[k + 5]);
+        s.cell_center = Point<dim>(part[k + 6], part[k + 7]);
+        for (unsigned int i = 0; i < 4; ++i)
+          s.dofs[i] = static_cast<types::global_dof_index>(part[k + 8 + i]);
+        segments.push_back(s);
+      }
+    // Deterministic order independent of the partition: by coordinates.
+    const auto key = [](const Point<dim> &p) { return std::make_pair(p[0], p[1]); };
+    std::sort(segments.begin(),
+              segments.end(),
+              [&](const FaceSegment &a, const FaceSegment &b) {
+                return std::make_pair(key(a.p0), key(a.p1)) < std::make_pair(key(b.p0), key(b.p1));
+              });
+
+    const unsigned int slave_id = prm.rigid_slab ? geometry::wall_contact : geometry::slab_contact;
+    std::map<std::pair<double, double>, unsigned int>   node_of;
+    std::vector<std::pair<double, double>>              keys;
+    std::vector<unsigned int>                           node_boundary;
+    std::vector<std::array<types::global_dof_index, 2>> node_dofs;
+    for (const auto &s : segments)
+    {
+      if (prm.rigid_slab && s.boundary_id != geometry::wall_contact)
+        continue;
+      for (unsigned int v = 0; v < 2; ++v)
+      {
+        const auto k = key(v == 0 ? s.p0 : s.p1);
+        if (node_of.count(k) == 0)
+        {
+          node_of[k] = 0;
+          keys.push_back(k);
+        }
+      }
+    }
+    std::sort(keys.begin(), keys.end());
+    for (unsigned int i = 0; i < keys.size(); ++i)
+      node_of[keys[i]] = i;
+    node_boundary.assign(keys.size(), 0);
+    node_dofs.assign(keys.size(), {});
+    double h_contact = std::numeric_limits<double>::max();
+    for (const auto &s : segments)
+    {
+      if (prm.rigid_slab && s.boundary_id != geometry::wall_contact)
+        continue;
+      h_contact = std::min(h_contact, s.p0.distance(s.p1));
+      for (unsigned int v = 0; v < 2; ++v)
+      {
+        const unsigned int i = node_of[key(v == 0 ? s.p0 : s.p1)];
+        node_boundary[i]     = s.boundary_id;
+        node_dofs[i]         = {{s.dofs[2 * v], s.dofs[2 * v + 1]}};
+      }
+    }
+    require(!keys.empty(),
+            "mesh '" + prm.mesh_file.string() + "' has no contact faces (boundary id " +
+              std::to_string(static_cast<unsigned>(geometry::wall_contact)) + " must exist)");
+
+    const unsigned int n_nodes = keys.size();
+    contact_dofs.resize(2 * n_nodes);
+    std::vector<PenaltyContact::Node> nodes(n_nodes);
+    for (unsigned int i = 0; i < n_nodes; ++i)
+    {
+      nodes[i]                = {keys[i].first, keys[i].second};
+      contact_dofs[2 * i]     = node_dofs[i][0];
+      contact_dofs[2 * i + 1] = node_dofs[i][1];
+    }
+
+    // Tributary lengths of the slave nodes (clipped to the rigid face extent) and the wall
+    // weights for the mean wall-face displacement.
+    const double y_lo = prm.rigid_slab ? prm.slab_face_y0 : -std::numeric_limits<double>::max();
+    const double y_hi = prm.rigid_slab ? prm.slab_face_y1 : std::numeric_limits<double>::max();
+    std::vector<double> tributary(n_nodes, 0.0);
+    double              e_master = 0, slave_y_min = std::numeric_limits<double>::max(),
+           slave_y_max = -std::numeric_limits<double>::max();
+    std::vector<PenaltyContact::Segment> master;
+    for (const auto &s : segments)
+    {
+      if (prm.rigid_slab && s.boundary_id != geometry::wall_contact)
+        continue;
+      const unsigned int a = node_of[key(s.p0)], b = node_of[key(s.p1)];
+      if (s.boundary_id == geometry::wall_contact)
+      {
+        e_master = std::max(e_master, prm.materials.at(s.material_id).youngs_modulus);
+        contact_wave_speed =
+          std::max(contact_wave_speed, p_wave_speed(prm.materials.at(s.material_id)));
+        if (!prm.rigid_slab)
+        {
+          // Outward normal of the master cell: sign of (t_y, -t_x) . (face mid - cell centre).
+          const Tensor<1, dim> t   = s.p1 - s.p0;
+          const Tensor<1, dim> out = 0.5 * (s.p0 + s.p1) - s.cell_center;
+          master.push_back({a, b, (t[1] * out[0] - t[0] * out[1]) > 0 ? 1.0 : -1.0});
+        }
+      }
+      if (s.boundary_id != slave_id)
+        continue;
+      const Point<dim> mid = 0.5 * (s.p0 + s.p1);
+      for (const auto &[node, p] : {std::make_pair(a, s.p0), std::make_pair(b, s.p1)})
+      {
+        // The half of the segment next to the node, clipped to [y_lo, y_hi] along y when the
+        // face is not horizontal.
+        const double full = p.distance(mid);
+        const double lo = std::min(p[1], mid[1]), hi = std::max(p[1], mid[1]);
+        double       frac = 1;
+        if (hi > lo)
+          frac = std::max(0.0, std::min(hi, y_hi) - std::max(lo, y_lo)) / (hi - lo);
+        else if (p[1] < y_lo || p[1] > y_hi)
+          frac = 0;
+        tributary[node] += full * frac;
+      }
+    }
+    require(e_master > 0, "mesh '" + prm.mesh_file.string() + "' has no wall contact faces");
+
+    const double              penalty_per_length = prm.penalty_factor * e_master / h_contact;
+    const std::vector<double> node_mass          = [&]
+    {
+      std::vector<double> m = gather_compact(mass, 0.0);
+      m.pop_back();
+      return m;
+    }();
+    std::vector<PenaltyContact::Slave> slaves;
+    omega_penalty = 0;
+    for (unsigned int i = 0; i < n_nodes; ++i)
+    {
+      if (node_boundary[i] != slave_id || tributary[i] <= 0)
+        continue;
+      const double k   = penalty_per_length * tributary[i];
+      const double m_s = node_mass[2 * i];
+      double       m_m = prm.slab_mass;
+      if (!prm.rigid_slab)
+      {
+        // Master mass: the nearest master node in the reference configuration.
+        double best = std::numeric_limits<double>::max();
+        for (unsigned int j = 0; j < n_nodes; ++j)
+          if (node_boundary[j] == geometry::wall_contact &&
+              std::abs(keys[j].second - keys[i].second) < best)
+          {
+            best = std::abs(keys[j].second - keys[i].second);
+            m_m  = node_mass[2 * j];
+          }
+      }
+      require(m_s > 0 && m_m > 0,
+              "contact node at (" + fmt_double(keys[i].first) + ", " + fmt_double(keys[i].second) +
+                ") has no mass");
+      const double m_red = 1.0 / (1.0 / m_s + 1.0 / m_m);
+      // Implicit: no contact damping. Newton needs a residual with few kinks; a dashpot adds a
+      // jump at first touch and a clamp while separating, and Newmark needs no chatter control
+      // for stability.
+      const double xi = prm.integrator == ImpactParameters::Integrator::implicit_newmark ?
+                          0.0 :
+                          prm.contact_damping_ratio;
+      const double c  = 2 * xi * std::sqrt(k * m_red);
+      slaves.push_back({i, k, c});
+      contact_width += tributary[i];
+      omega_penalty = std::max(omega_penalty, std::sqrt(k / m_red));
+      slave_y_min   = std::min(slave_y_min, keys[i].second);
+      slave_y_max   = std::max(slave_y_max, keys[i].second);
+    }
+    require(!slaves.empty(),
+            "no slave contact node found (elastic slab: boundary id " +
+              std::to_string(static_cast<unsigned>(geometry::slab_contact)) +
+              "; rigid slab: wall face within [slab_face_y0, slab_face_y1])");
+
+    if (prm.rigid_slab)
+      contact = std::make_unique<PenaltyContact>(nodes, slaves, prm.slab_front_x);
+    else
+      contact = std::make_unique<PenaltyContact>(nodes, slaves, master);
+
+    // Initial gaps: an overlap (or a slave that sees no master) is refused.
+    const std::vector<double> gaps = contact->reference_gaps();
+    initial_gap                    = std::numeric_limits<double>::max();
+    for (unsigned int s = 0; s < gaps.size(); ++s)
+    {
+      const auto &n = nodes[slaves[s].node];
+      require(gaps[s] >= 0,
+              "slab overlaps the wall: contact node at (" + fmt_double(n.x) + ", " +
+                fmt_double(n.y) + ") m has initial gap " + fmt_double(gaps[s]) +
+                " m (must be >= 0)");
+      if (std::isfinite(gaps[s]))
+        initial_gap = std::min(initial_gap, gaps[s]);
+    }
+    require(initial_gap < std::numeric_limits<double>::max(),
+            "no slave contact node projects onto the wall face");
+
+    // Weights for the mean wall-face and slab-front displacements (tributary lengths).
+    wall_weight.assign(2 * n_nodes + 1, 0.0);
+    front_weight.assign(2 * n_nodes + 1, 0.0);
+    if (prm.rigid_slab)
+    {
+      front_weight[2 * n_nodes] = 1;
+      for (const auto &s : slaves)
+        wall_weight[2 * s.node] = tributary[s.node];
+    }
+    else
+    {
+      for (const auto &s : slaves)
+        front_weight[2 * s.node] = tributary[s.node];
+      for (const auto &s : segments)
+        if (s.boundary_id == geometry::wall_contact)
+        {
+          const double lo = std::max(std::min(s.p0[1], s.p1[1]), slave_y_min);
+          const double hi = std::min(std::max(s.p0[1], s.p1[1]), slave_y_max);
+          if (hi > lo)
+          {
+            wall_weight[2 * node_of[key(s.p0)]] += 0.5 * (hi - lo);
+            wall_weight[2 * node_of[key(s.p1)]] += 0.5 * (hi - lo);
+          }
+        }
+    }
+    for (auto *w : {&wall_weight, &front_weight})
+    {
+      double sum = 0;
+      for (double x : *w)
+        sum += x;
+      if (sum > 0)
+        for (double &x : *w)
+          x /= sum;
+    }
+    log_line("contact: " + std::to_string(slaves.size()) + " slave nodes, " +
+             std::to_string(master.size()) + " master segments" +
+             (prm.rigid_slab ? " (rigid face)" : "") + ", k/l = " + fmt_double(penalty_per_length) +
+             " N/m^2, h_contact = " + fmt_double(h_contact) +
+             " m, initial gap = " + fmt_double(initial_gap) + " m");
+  }
+
+  std::vector<double> ImpactProblem::gather_compact(const Vec &v, double rigid_value) const
+  {
+    std::vector<double> local(contact_dofs.size() + 1, 0.0), all(contact_dofs.size() + 1);
+    for (unsigned int k = 0; k < contact_dofs.size(); ++k)
+      if (locally_owned.is_element(contact_dofs[k]))
+        local[k] = v(contact_dofs[k]);
+    // Exactly one rank owns each entry, the others add zeros: the sum is exact.
+    const int ierr = MPI_Allreduce(local.data(),
+                                   all.data(),
+                                   static_cast<int>(local.size()),
+                                   MPI_DOUBLE,
+                                   MPI_SUM,
+                                   comm);
+    AssertThrowMPI(ierr);
+    all.back() = rigid_value;
+    return all;
+  }
+
+  std::pair<std::vector<double>, std::vector<double>>
+  ImpactProblem::gather_compact(const Vec &a, double rigid_a, const Vec &b, double rigid_b) const
+  {
+    const std::size_t   n = contact_dofs.size();
+    std::vector<double> local(2 * n, 0.0), all(2 * n);
+    for (std::size_t k = 0; k < n; ++k)
+      if (locally_owned.is_element(contact_dofs[k]))
+      {
+        local[k]     = a(contact_dofs[k]);
+        local[n + k] = b(contact_dofs[k]);
+      }
+    const int ierr = MPI_Allreduce(local.data(),
+                                   all.data(),
+                                   static_cast<int>(local.size()),
+                                   MPI_DOUBLE,
+                                   MPI_SUM,
+                                   comm);
+    AssertThrowMPI(ierr);
+    std::vector<double> ca(all.begin(), all.begin() + n), cb(all.begin() + n, all.end());
+    ca.push_back(rigid_a);
+    cb.push_back(rigid_b);
+    return {std::move(ca), std::move(cb)};
+  }
+
+  void ImpactProblem::scatter_add(const std::vector<double> &compact, Vec &f) const
+  {
+    for (unsigned int k = 0; k < contact_dofs.size(); ++k)
+      if (compact[k] != 0 && locally_owned.is_element(contact_dofs[k]))
+        f(contact_dofs[k]) += compact[k];
+    f.compress(VectorOperation::add);
+  }
+} // namespace kimp::fem::internal

@@ -1,0 +1,352 @@
+// ImpactProblem explicit time loop (leap-frog with the Gauss-Lobatto lumped mass, Belytschko et
+// al., Nonlinear Finite Elements, 2014, §6.2) and the recording both time loops share:
+// histories, energies and the divergence guard, VTU output, summary with the smoothed force.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/numerics/data_out.h>
+
+#include "fem/impact/impact_problem.h"
+
+namespace kimp::fem::internal
+{
+  /** Divergence guard: relative energy error beyond which the run is stopped. */
+  constexpr double divergence_energy_error = 0.5;
+
+  void ImpactProblem::run_explicit()
+  {
+    Vec u(locally_owned, comm), v_half(locally_owned, comm), v_n(locally_owned, comm);
+    Vec Ku(locally_owned, comm), a(locally_owned, comm);
+    // Initial velocity: the slab moves at +initial_velocity in x.
+    double u_r = 0, v_r = prm.initial_velocity;
+    for (const auto i : locally_owned)
+      if (slab_mass_x(i) > 0)
+        v_half(i) = prm.initial_velocity;
+    v_half.compress(VectorOperation::insert);
+    v_n = v_half;
+
+    const bool          write_vtu = !prm.vtu_dir.empty() && prm.vtu_interval > 0;
+    const unsigned long vtu_every =
+      write_vtu ? std::max<unsigned long>(1, std::lround(prm.vtu_interval / dt)) : 0;
+    const unsigned long n_max = static_cast<unsigned long>(std::ceil(prm.end_time / dt));
+    const unsigned long hold_steps =
+      static_cast<unsigned long>(std::ceil(prm.separation_hold_time / dt));
+    bool          started    = false;
+    unsigned long zero_since = 0;
+    unsigned long n          = 0;
+    separated_flag           = false;
+    for (;; ++n)
+    {
+      const double t = n * dt;
+      // Contact at (u_n, v_{n-1/2}): the damping lags half a step, which keeps the scheme
+      // explicit.
+      const auto [cu, cv]          = gather_compact(u, u_r, v_half, v_r);
+      const auto                ev = contact->evaluate(cu, cv);
+      const std::vector<double> fc = padded_force(ev, cu.size());
+
+      internal_force(u, Ku);
+      if (!linear_laws)
+        qp_history.commit();
+      a.equ(-1.0, Ku);
+      scatter_add(fc, a);
+      a.scale(inverse_mass);
+      const double a_r = prm.rigid_slab ? fc.back() / prm.slab_mass : 0;
+
+      // v_{n+1/2} = v_{n-1/2} + dt a_n (half a step at the start); v_n = mean of the two.
+      const double h = n == 0 ? 0.5 * dt : dt;
+      v_n            = v_half;
+      if (n > 0)
+        v_n.add(0.5 * dt, a);
+      v_half.add(h, a);
+      const double v_r_n = v_r + (n > 0 ? 0.5 * dt * a_r : 0.0);
+      v_r += h * a_r;
+
+      record(n, t, u, v_n, Ku, u_r, v_r_n, ev, cu);
+      if (prm.progress && n % prm.progress_interval == 0 && n > 0 &&
+          Utilities::MPI::this_mpi_process(comm) == 0)
+        prm.progress(t, prm.end_time);
+      if (write_vtu && n % vtu_every == 0)
+        output_results(t, u, v_n, fc);
+
+      if (ev.total_force > 0)
+      {
+        started    = true;
+        zero_since = n + 1;
+      }
+      if (started && n + 1 - zero_since >= hold_steps && ev.total_force == 0)
+      {
+        separated_flag = true;
+        slab_v_end     = prm.rigid_slab ? v_r_n : (slab_mass_x * v_n) / slab_total_mass;
+        break;
+      }
+      if (n >= n_max)
+      {
+        slab_v_end = prm.rigid_slab ? v_r_n : (slab_mass_x * v_n) / slab_total_mass;
+        break;
+      }
+      u.add(dt, v_half);
+      u_r += dt * v_r;
+    }
+    n_steps_done = n;
+  }
+
+
+  std::vector<double> padded_force(const PenaltyContact::Evaluation &ev, std::size_t size)
+  {
+    std::vector<double> f = ev.force;
+    f.resize(size, 0.0);
+    return f;
+  }
+
+  void ImpactProblem::record(unsigned long                     n,
+                             double                            t,
+                             const Vec                        &u,
+                             const Vec                        &v_n,
+                             const Vec                        &Ku,
+                             double                            u_r,
+                             double                            v_r,
+                             const PenaltyContact::Evaluation &ev,
+                             const std::vector<double>        &cu)
+  {
+    // Contact work by the trapezoid rule over the compact DoFs (the only ones it acts on).
+    const std::vector<double> fc = padded_force(ev, cu.size());
+    if (!cu_prev.empty())
+      for (std::size_t k = 0; k < cu.size(); ++k)
+        contact_work += 0.5 * (fc[k] + fc_prev[k]) * (cu[k] - cu_prev[k]);
+    cu_prev = cu;
+    fc_prev = fc;
+    raw_force.push_back(ev.total_force);
+    penetration_integral += ev.mean_penetration * dt;
+    max_penetration = std::max(max_penetration, ev.max_penetration);
+
+    // Energies and means at the sampled steps only (one reduction): the divergence guard
+    // acts within one output interval.
+    if (n % sample_every != 0)
+      return;
+    std::array<double, 4> local{{0, 0, 0, 0}}; // kinetic, strain, slab m u, slab m v
+    {
+      const double *vp = v_n.begin(), *mp = mass.begin(), *up = u.begin(), *kp = Ku.begin(),
+                   *sp = slab_mass_x.begin();
+      for (std::size_t k = 0; k < v_n.locally_owned_size(); ++k)
+      {
+        local[0] += 0.5 * mp[k] * vp[k] * vp[k];
+        local[1] += 0.5 * up[k] * kp[k];
+        local[2] += sp[k] * up[k];
+        local[3] += sp[k] * vp[k];
+      }
+    }
+    std::array<double, 4> global{};
+    const int ierr = MPI_Allreduce(local.data(), global.data(), 4, MPI_DOUBLE, MPI_SUM, comm);
+    AssertThrowMPI(ierr);
+    const double kinetic = global[0] + (prm.rigid_slab ? 0.5 * prm.slab_mass * v_r * v_r : 0);
+    const double strain  = global[1];
+    const double error   = (kinetic + strain - contact_work) / e0 - 1;
+    max_energy_error     = std::max(max_energy_error, std::abs(error));
+    if (!std::isfinite(error) || std::abs(error) > divergence_energy_error)
+      throw_divergence(n, t, u);
+
+    const double slab_u = prm.rigid_slab ? u_r : global[2] / slab_total_mass;
+    const double slab_v = prm.rigid_slab ? v_r : global[3] / slab_total_mass;
+    double       wall = 0, front = 0;
+    for (std::size_t k = 0; k < cu.size(); ++k)
+    {
+      wall += wall_weight[k] * cu[k];
+      front += front_weight[k] * cu[k];
+    }
+    history.time.push_back(t);
+    history.contact_force.push_back(ev.total_force);
+    history.n_active.push_back(ev.active.size());
+    history.slab_displacement.push_back(slab_u);
+    history.slab_velocity.push_back(slab_v);
+    history.wall_displacement.push_back(wall);
+    history.indentation.push_back(front - wall - initial_gap);
+    history.max_penetration.push_back(ev.max_penetration);
+    history.kinetic.push_back(kinetic);
+    history.strain.push_back(strain);
+    history.penalty.push_back(ev.penalty_energy);
+    history.contact_dissipation.push_back(-contact_work - ev.penalty_energy);
+    history.energy_error.push_back(error);
+    if (prm.log_interval > 0 && (n / sample_every) % prm.log_interval == 0)
+      log_line("step " + std::to_string(n) + " t = " + fmt_double(t) + " s, F = " +
+               fmt_double(ev.total_force) + " N/m, active = " + std::to_string(ev.active.size()) +
+               ", max penetration = " + fmt_double(ev.max_penetration) +
+               " m, dE/E0 = " + fmt_double(error));
+  }
+
+  void ImpactProblem::throw_divergence(unsigned long n, double t, const Vec &u) const
+  {
+    // Locate the largest displacement to name the place of the blow-up.
+    double     local_max = -1;
+    Point<dim> where;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (unsigned int v = 0; v < cell->n_vertices(); ++v)
+          for (unsigned int c = 0; c < dim; ++c)
+          {
+            const auto i = cell->vertex_dof_index(v, c);
+            if (!locally_owned.is_element(i))
+              continue;
+            const double a =
+              std::isfinite(u(i)) ? std::abs(u(i)) : std::numeric_limits<double>::max();
+            if (a > local_max)
+            {
+              local_max = a;
+              where     = cell->vertex(v);
+            }
+          }
+    const auto all =
+      Utilities::MPI::all_gather(comm, std::vector<double>{local_max, where[0], where[1]});
+    std::vector<double> worst{-1, 0, 0};
+    for (const auto &a : all)
+      if (a[0] > worst[0])
+        worst = a;
+    throw NumericalError("impact diverged at t = " + fmt_double(t) + " s (step " +
+                           std::to_string(n) + ", dt = " + fmt_double(dt) +
+                           " s): energy not conserved or not finite; largest displacement " +
+                           fmt_double(worst[0]) + " m at (" + fmt_double(worst[1]) + ", " +
+                           fmt_double(worst[2]) + ") m",
+                         t,
+                         n);
+  }
+
+  void ImpactProblem::output_results(double                     t,
+                                     const Vec                 &u,
+                                     const Vec                 &v,
+                                     const std::vector<double> &contact_force)
+  {
+    Vec u_g(locally_owned, locally_relevant, comm), v_g(locally_owned, locally_relevant, comm);
+    Vec f(locally_owned, comm);
+    scatter_add(contact_force, f);
+    Vec f_g(locally_owned, locally_relevant, comm);
+    u_g = u;
+    v_g = v;
+    f_g = f;
+
+    Vector<float>        material(triangulation.n_active_cells()), subdomain(material.size());
+    Vector<float>        sxx(material.size()), syy(material.size()), sxy(material.size());
+    const QMidpoint<dim> midpoint;
+    FEValues<dim>        fe_values(fe, midpoint, update_gradients);
+    const FEValuesExtractors::Vector     displacement(0);
+    std::vector<SymmetricTensor<2, dim>> eps(1);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+      {
+        const unsigned int c = cell->active_cell_index();
+        fe_values.reinit(cell);
+        fe_values[displacement].get_function_symmetric_gradients(u_g, eps);
+        // Stress at the cell centre from the committed history of its first Gauss point.
+        const MaterialLaw  &law = *laws.at(cell->material_id());
+        std::vector<double> scratch(law.n_history());
+        const double       *committed = linear_laws ? scratch.data() : qp_history.committed(c, 0);
+        const VoigtStress   sigma =
+          law.stress({{eps[0][0][0], eps[0][1][1], 2 * eps[0][0][1]}}, committed, scratch.data());
+        material(c)  = cell->material_id();
+        subdomain(c) = triangulation.locally_owned_subdomain();
+        sxx(c)       = sigma[0];
+        syy(c)       = sigma[1];
+        sxy(c)       = sigma[2];
+      }
+    DataOut<dim> data_out;
+    data_out.attach_dof_handler(dof_handler);
+    const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
+      dim,
+      DataComponentInterpretation::component_is_part_of_vector);
+    data_out.add_data_vector(u_g,
+                             std::vector<std::string>(dim, "displacement"),
+                             DataOut<dim>::type_dof_data,
+                             vector_field);
+    data_out.add_data_vector(v_g,
+                             std::vector<std::string>(dim, "velocity"),
+                             DataOut<dim>::type_dof_data,
+                             vector_field);
+    data_out.add_data_vector(f_g,
+                             std::vector<std::string>(dim, "contact_force"),
+                             DataOut<dim>::type_dof_data,
+                             vector_field);
+    data_out.add_data_vector(material, "material_id");
+    data_out.add_data_vector(subdomain, "subdomain");
+    data_out.add_data_vector(sxx, "stress_xx");
+    data_out.add_data_vector(syy, "stress_yy");
+    data_out.add_data_vector(sxy, "stress_xy");
+    data_out.build_patches();
+    const unsigned int counter = pvd_records.size();
+    const std::string  pvtu =
+      data_out.write_vtu_with_pvtu_record(prm.vtu_dir.string() + "/", "impact", counter, comm, 4);
+    pvd_records.emplace_back(t, pvtu);
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+    {
+      std::ofstream pvd(prm.vtu_dir / "impact.pvd");
+      DataOutBase::write_pvd_record(pvd, pvd_records);
+    }
+  }
+
+  void ImpactProblem::finish(ImpactResult &result, double wall_seconds)
+  {
+    // Impulse-preserving smoothing: a centred moving average (zero padded) over the window;
+    // sum(F) dt is unchanged because the force is zero at both ends of the run.
+    const double period =
+      prm.smoothing_window > 0 ? prm.smoothing_window : contact_width / contact_wave_speed;
+    const long          half  = std::max(0L, static_cast<long>(std::floor(0.5 * period / dt)));
+    const long          n_raw = static_cast<long>(raw_force.size());
+    std::vector<double> prefix(n_raw + 1, 0.0);
+    for (long i = 0; i < n_raw; ++i)
+      prefix[i + 1] = prefix[i] + raw_force[i];
+    const auto smoothed = [&](long i)
+    {
+      const long lo = std::max(0L, i - half), hi = std::min(n_raw - 1, i + half);
+      return (prefix[hi + 1] - prefix[lo]) / static_cast<double>(2 * half + 1);
+    };
+
+    ImpactSummary &s     = result.summary;
+    long           first = -1, last = -1;
+    for (long i = 0; i < n_raw; ++i)
+    {
+      s.peak_force_raw = std::max(s.peak_force_raw, raw_force[i]);
+      s.peak_force     = std::max(s.peak_force, smoothed(i));
+      s.impulse += raw_force[i] * dt;
+      if (raw_force[i] > 0)
+      {
+        if (first < 0)
+          first = i;
+        last = i;
+      }
+    }
+    for (std::size_t j = 0; j < history.time.size(); ++j)
+      history.smoothed_contact_force.push_back(smoothed(static_cast<long>(j * sample_every)));
+    if (first >= 0)
+    {
+      s.contact_start    = first * dt;
+      s.contact_duration = (last - first + 1) * dt;
+    }
+    s.rebound_velocity = slab_v_end;
+    s.apparent_cor     = -slab_v_end / prm.initial_velocity;
+    s.energy_error     = max_energy_error;
+    s.smoothing_window = (2 * half + 1) * dt;
+    s.max_penetration  = max_penetration;
+    s.mean_penetration = s.contact_duration > 0 ? penetration_integral / s.contact_duration : 0;
+    s.initial_gap      = initial_gap;
+    for (const auto &sl : contact->slaves())
+      s.penalty_stiffness = std::max(s.penalty_stiffness, sl.stiffness);
+    s.n_dofs                = dof_handler.n_dofs();
+    s.n_cells               = triangulation.n_global_active_cells();
+    s.n_steps               = n_steps_done;
+    s.n_newton              = n_newton;
+    s.n_step_halvings       = n_step_halvings;
+    s.n_linear_solves       = n_linear_solves;
+    s.linear_solver_seconds = linear_solver_seconds;
+    s.linear_setup_seconds  = linear_setup_seconds;
+    s.dt                    = dt;
+    s.dt_stable             = dt_stable;
+    s.wall_seconds          = wall_seconds;
+    s.n_ranks               = Utilities::MPI::n_mpi_processes(comm);
+    s.separated             = separated_flag;
+    result.history          = std::move(history);
+  }
+} // namespace kimp::fem::internal

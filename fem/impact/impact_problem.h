@@ -1,0 +1,146 @@
+// Private to fem/impact/: ImpactProblem, the deal.II problem class behind run_impact() for
+// M u_tt + f_int(u) = f_c(u, u_t) (step-18/step-42 layout, one public verb run()). Its phases:
+// setup.cc, contact_setup.cc, implicit.cc (Newmark) and explicit_and_recording.cc.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include "fem/impact.h"
+#include "fem/material_law.h"
+#include "fem/penalty_contact.h"
+
+namespace kimp::fem::internal
+{
+  using namespace dealii;
+  constexpr int dim = 2;
+  using Vec         = TrilinosWrappers::MPI::Vector;
+
+  /** x formatted with 6 significant digits (messages). */
+  std::string fmt_double(double x);
+  /** Throws ExcMessage(message) unless ok. */
+  void require(bool ok, const std::string &message);
+  /** Compact vector of the contact evaluation with the rigid DoF appended if missing. */
+  std::vector<double> padded_force(const PenaltyContact::Evaluation &ev, std::size_t size);
+
+  class ImpactProblem
+  {
+  public:
+    ImpactProblem(const ImpactParameters &parameters, MPI_Comm comm, std::ostream *log);
+    ImpactProblem(const ImpactProblem &)            = delete;
+    ImpactProblem &operator=(const ImpactProblem &) = delete;
+
+    /** Runs the impact as documented at run_impact(). Collective on comm. */
+    ImpactResult run();
+
+  private:
+    // setup.cc
+    void validate_parameters() const;
+    void make_grid();
+    void setup_system();
+    void assemble_system();
+    /** Constitutive law per material id: material_laws, else linear elastic. */
+    void make_laws();
+    /** f = internal force of u: K u for linear laws, else assembled from the laws' stress
+     *  with the committed history (trial history written). */
+    void internal_force(const Vec &u, Vec &f);
+    void compute_time_step();
+    void log_line(const std::string &s) const;
+
+    // contact_setup.cc
+    void setup_contact();
+    /** Compact contact values (all ranks) of a distributed vector, plus the rigid DoF. */
+    std::vector<double> gather_compact(const Vec &v, double rigid_value) const;
+    /** Two compact gathers in one reduction: (a, rigid a), (b, rigid b). */
+    std::pair<std::vector<double>, std::vector<double>>
+    gather_compact(const Vec &a, double rigid_a, const Vec &b, double rigid_b) const;
+    /** Adds compact contact forces to the owned entries of a distributed vector. */
+    void scatter_add(const std::vector<double> &compact, Vec &f) const;
+
+    // implicit.cc
+    void run_implicit();
+    /** Implicit: K + c1 M of one step size dt / 2^level and its solver. Complete only in
+     *  implicit.cc, which alone needs the Trilinos solver headers. */
+    struct StepOperator;
+    StepOperator &step_operator(unsigned int level);
+    /** x = base^{-1} b (direct solver only). */
+    void                       base_solve(StepOperator &op, Vec &x, const Vec &b);
+    const std::vector<double> &flexibility_column(StepOperator &op, unsigned int k);
+    /** Newton increment (du, du_r) of J (du, du_r) = -(residual, r_rigid). */
+    void solve_newton_system(StepOperator                     &op,
+                             const PenaltyContact::Evaluation &ev,
+                             const Vec                        &residual,
+                             double                            r_rigid,
+                             Vec                              &du,
+                             double                           &du_r);
+
+    // explicit_and_recording.cc
+    void run_explicit();
+    /** Records histories and energies of step n (time t). */
+    void              record(unsigned long                     n,
+                             double                            t,
+                             const Vec                        &u,
+                             const Vec                        &v_n,
+                             const Vec                        &Ku,
+                             double                            u_r,
+                             double                            v_r,
+                             const PenaltyContact::Evaluation &ev,
+                             const std::vector<double>        &cu);
+    [[noreturn]] void throw_divergence(unsigned long n, double t, const Vec &u) const;
+    void
+    output_results(double t, const Vec &u, const Vec &v, const std::vector<double> &contact_force);
+    void finish(ImpactResult &result, double wall_seconds);
+
+    const ImpactParameters                    prm;
+    MPI_Comm                                  comm;
+    std::ostream                             *log;
+    parallel::distributed::Triangulation<dim> triangulation;
+    FESystem<dim>                             fe;
+    DoFHandler<dim>                           dof_handler;
+    IndexSet                                  locally_owned, locally_relevant;
+    AffineConstraints<double>                 constraints;
+    TrilinosWrappers::SparseMatrix            stiffness;
+    Vec                                       mass, inverse_mass, slab_mass_x, free_mask;
+    double                                    slab_total_mass = 0;
+
+    std::unique_ptr<PenaltyContact>      contact;
+    std::vector<types::global_dof_index> contact_dofs; // compact node component -> global DoF
+    std::vector<double>                  wall_weight, front_weight; // compact node weights
+    double                               initial_gap = 0;
+    double contact_width = 0, contact_wave_speed = 0; // slave face length (m), wall c_p (m/s)
+    double omega_penalty = 0, omega_mesh = 0;
+    double dt = 0, dt_stable = 0;
+
+    // Bookkeeping of the run.
+    double                                      e0 = 0, contact_work = 0, damping_work = 0;
+    std::vector<double>                         cu_prev, fc_prev;
+    std::vector<double>                         raw_force; // every step
+    unsigned long                               sample_every = 1;
+    ImpactHistory                               history;
+    double                                      max_energy_error = 0, max_penetration = 0;
+    std::vector<std::pair<double, std::string>> pvd_records;
+    unsigned long                               n_newton = 0, n_steps_done = 0;
+    double                                      slab_v_end           = 0;
+    bool                                        separated_flag       = false;
+    double                                      penetration_integral = 0;
+    std::map<unsigned int, std::shared_ptr<StepOperator>>      step_operators; // by level
+    std::vector<bool>                                          compact_free;
+    std::map<unsigned int, std::shared_ptr<const MaterialLaw>> laws;
+    bool                                                       linear_laws = true;
+    QuadraturePointHistory                                     qp_history;
+    Vec           u_ghosted, force_writable; // internal_force() of non-linear laws
+    unsigned long n_linear_solves = 0, n_step_halvings = 0;
+    double        linear_solver_seconds = 0, linear_setup_seconds = 0;
+  };
+} // namespace kimp::fem::internal

@@ -1,0 +1,452 @@
+// ImpactProblem setup: run_impact(), run() and the phases before the time loop: parameter
+// validation, mesh (rigid slab: slab cells dropped), DoFs and constraints, constitutive laws,
+// lumped mass and stiffness, internal force and the explicit stability limit.
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include "fem/impact/impact_problem.h"
+#include "geometry/scene_ids.h"
+
+namespace kimp::fem
+{
+  double p_wave_speed(const Material &m)
+  {
+    const double lambda =
+      m.youngs_modulus * m.poisson_ratio / ((1 + m.poisson_ratio) * (1 - 2 * m.poisson_ratio));
+    const double mu = m.youngs_modulus / (2 * (1 + m.poisson_ratio));
+    return std::sqrt((lambda + 2 * mu) / m.density);
+  }
+
+  ImpactResult run_impact(const ImpactParameters &parameters, MPI_Comm comm, std::ostream *log)
+  {
+    internal::ImpactProblem problem(parameters, comm, log);
+    return problem.run();
+  }
+} // namespace kimp::fem
+
+namespace kimp::fem::internal
+{
+  /** Largest ImplicitOptions::max_halvings: time is counted in integer ticks of dt / 2^max. */
+  constexpr unsigned int max_step_halvings = 30;
+
+  std::string fmt_double(double x)
+  {
+    std::ostringstream s;
+    s.precision(6);
+    s << x;
+    return s.str();
+  }
+
+  void require(bool ok, const std::string &message)
+  {
+    AssertThrow(ok, ExcMessage(message));
+  }
+
+  ImpactProblem::ImpactProblem(const ImpactParameters &parameters,
+                               MPI_Comm                comm_,
+                               std::ostream           *log_)
+    : prm(parameters)
+    , comm(comm_)
+    , log(log_)
+    , triangulation(comm_)
+    , fe(FE_Q<dim>(1), dim)
+    , dof_handler(triangulation)
+  {
+  }
+
+  void ImpactProblem::log_line(const std::string &s) const
+  {
+    if (log != nullptr && Utilities::MPI::this_mpi_process(comm) == 0)
+      *log << s << '\n';
+  }
+
+  ImpactResult ImpactProblem::run()
+  {
+    const auto start = std::chrono::steady_clock::now();
+    validate_parameters();
+    make_grid();
+    setup_system();
+    make_laws();
+    // The lumped mass is needed by the contact setup (reduced masses), the contact DoFs by the
+    // implicit sparsity pattern: assemble the mass first with a provisional pattern.
+    contact_dofs.clear();
+    assemble_system();
+    setup_contact();
+    if (prm.integrator == ImpactParameters::Integrator::implicit_newmark)
+      assemble_system();
+    compute_time_step();
+    e0 = 0.5 * slab_total_mass * prm.initial_velocity * prm.initial_velocity;
+    log_line("mesh: " + std::to_string(triangulation.n_global_active_cells()) + " cells, " +
+             std::to_string(dof_handler.n_dofs()) + " DoFs on " +
+             std::to_string(Utilities::MPI::n_mpi_processes(comm)) +
+             " ranks; dt = " + fmt_double(dt) + " s (stable " + fmt_double(dt_stable) +
+             " s, mesh omega " + fmt_double(omega_mesh) + " rad/s, penalty omega " +
+             fmt_double(omega_penalty) + " rad/s)");
+    if (prm.integrator == ImpactParameters::Integrator::explicit_central_difference)
+      run_explicit();
+    else
+      run_implicit();
+    if (prm.progress && Utilities::MPI::this_mpi_process(comm) == 0)
+      prm.progress(n_steps_done * dt, prm.end_time);
+    ImpactResult result;
+    finish(result, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    log_line("done: " + std::to_string(result.summary.n_steps) + " steps, peak force " +
+             fmt_double(result.summary.peak_force) + " N/m, contact " +
+             fmt_double(result.summary.contact_duration) + " s, impulse " +
+             fmt_double(result.summary.impulse) + " N s/m, COR " +
+             fmt_double(result.summary.apparent_cor) + ", max |dE/E0| " +
+             fmt_double(result.summary.energy_error) + ", " +
+             fmt_double(result.summary.wall_seconds) + " s");
+    return result;
+  }
+
+  void ImpactProblem::validate_parameters() const
+  {
+    require(std::filesystem::is_regular_file(prm.mesh_file),
+            "mesh_file = '" + prm.mesh_file.string() + "' (must be an existing MSH file)");
+    require(!prm.materials.empty(), "materials is empty (must give one per material id)");
+    for (const auto &[id, m] : prm.materials)
+    {
+      const std::string key = "materials[" + std::to_string(id) + "].";
+      require(m.youngs_modulus > 0,
+              key + "youngs_modulus = " + fmt_double(m.youngs_modulus) + " Pa (must be > 0)");
+      require(m.poisson_ratio >= 0 && m.poisson_ratio < 0.5,
+              key + "poisson_ratio = " + fmt_double(m.poisson_ratio) + " (must be in [0, 0.5))");
+      require(m.density > 0, key + "density = " + fmt_double(m.density) + " kg/m^3 (must be > 0)");
+    }
+    for (const auto &[id, law] : prm.material_laws)
+      require(law != nullptr && prm.materials.count(id) > 0,
+              "material_laws[" + std::to_string(id) +
+                "] (must be a law for a material id that has an entry in materials)");
+    if (prm.rigid_slab)
+    {
+      require(prm.slab_mass > 0,
+              "slab_mass = " + fmt_double(prm.slab_mass) + " kg/m (must be > 0 for a rigid slab)");
+      require(prm.slab_face_y1 > prm.slab_face_y0,
+              "slab_face_y1 = " + fmt_double(prm.slab_face_y1) +
+                " m (must be > slab_face_y0 = " + fmt_double(prm.slab_face_y0) + " m)");
+    }
+    require(prm.initial_velocity > 0,
+            "initial_velocity = " + fmt_double(prm.initial_velocity) + " m/s (must be > 0)");
+    require(prm.penalty_factor > 0,
+            "penalty_factor = " + fmt_double(prm.penalty_factor) + " (must be > 0)");
+    require(prm.contact_damping_ratio >= 0 && prm.contact_damping_ratio <= 1,
+            "contact_damping_ratio = " + fmt_double(prm.contact_damping_ratio) +
+              " (must be in [0, 1])");
+    require(prm.smoothing_window >= 0,
+            "smoothing_window = " + fmt_double(prm.smoothing_window) + " s (must be >= 0)");
+    require(prm.dt >= 0, "dt = " + fmt_double(prm.dt) + " s (must be >= 0; 0 = automatic)");
+    require(prm.explicit_options.dt_over_limit >= 0 &&
+              (prm.explicit_options.dt_over_limit == 0 || prm.dt == 0),
+            "dt_over_limit = " + fmt_double(prm.explicit_options.dt_over_limit) +
+              " (must be >= 0, and dt must be 0 when it is used)");
+    require(prm.explicit_options.cfl_safety > 0 && prm.explicit_options.cfl_safety <= 1,
+            "cfl_safety = " + fmt_double(prm.explicit_options.cfl_safety) + " (must be in (0, 1])");
+    require(prm.implicit_options.dt_factor > 0,
+            "implicit_dt_factor = " + fmt_double(prm.implicit_options.dt_factor) +
+              " (must be > 0)");
+    require(prm.end_time > 0, "end_time = " + fmt_double(prm.end_time) + " s (must be > 0)");
+    require(prm.separation_hold_time >= 0,
+            "separation_hold_time = " + fmt_double(prm.separation_hold_time) + " s (must be >= 0)");
+    require(prm.output_interval >= 0,
+            "output_interval = " + fmt_double(prm.output_interval) + " s (must be >= 0)");
+    require(prm.implicit_options.max_halvings <= max_step_halvings,
+            "implicit_max_halvings = " + std::to_string(prm.implicit_options.max_halvings) +
+              " (must be <= " + std::to_string(max_step_halvings) + ")");
+    require(prm.implicit_options.newton_max_iterations > 0,
+            "implicit_newton_max_iterations = " +
+              std::to_string(prm.implicit_options.newton_max_iterations) + " (must be > 0)");
+    require(prm.progress_interval > 0,
+            "progress_interval = " + std::to_string(prm.progress_interval) +
+              " steps (must be > 0)");
+    require(prm.vtu_interval >= 0,
+            "vtu_interval = " + fmt_double(prm.vtu_interval) + " s (must be >= 0)");
+  }
+
+  void ImpactProblem::make_grid()
+  {
+    Triangulation<dim> serial;
+    {
+      GridIn<dim> grid_in;
+      grid_in.attach_triangulation(serial);
+      std::ifstream in(prm.mesh_file);
+      grid_in.read_msh(in);
+    }
+    for (const auto &cell : serial.active_cell_iterators())
+      require(prm.materials.count(cell->material_id()) > 0,
+              "mesh '" + prm.mesh_file.string() + "' has material id " +
+                std::to_string(cell->material_id()) + " (no entry in materials)");
+    if (!prm.rigid_slab)
+    {
+      triangulation.copy_triangulation(serial);
+      return;
+    }
+    // Rigid slab: drop the slab cells; boundary ids are restored from the face centres because
+    // removing cells does not carry them over.
+    std::map<std::pair<double, double>, types::boundary_id>     boundary_of;
+    std::set<typename Triangulation<dim>::active_cell_iterator> slab_cells;
+    for (const auto &cell : serial.active_cell_iterators())
+    {
+      if (cell->material_id() == geometry::slab_material)
+        slab_cells.insert(cell);
+      for (const auto &face : cell->face_iterators())
+        if (face->at_boundary())
+          boundary_of[{face->center()[0], face->center()[1]}] = face->boundary_id();
+    }
+    Triangulation<dim> reduced;
+    if (slab_cells.empty())
+      reduced.copy_triangulation(serial);
+    else
+      GridGenerator::create_triangulation_with_removed_cells(serial, slab_cells, reduced);
+    for (const auto &cell : reduced.active_cell_iterators())
+      for (const auto &face : cell->face_iterators())
+        if (face->at_boundary())
+        {
+          const auto it = boundary_of.find({face->center()[0], face->center()[1]});
+          face->set_boundary_id(it == boundary_of.end() ? 0 : it->second);
+        }
+    triangulation.copy_triangulation(reduced);
+  }
+
+  void ImpactProblem::setup_system()
+  {
+    dof_handler.distribute_dofs(fe);
+    locally_owned = dof_handler.locally_owned_dofs();
+    DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant);
+
+    constraints.clear();
+    constraints.reinit(locally_relevant);
+    VectorTools::interpolate_boundary_values(dof_handler,
+                                             geometry::fixed_base,
+                                             Functions::ZeroFunction<dim>(dim),
+                                             constraints);
+    VectorTools::interpolate_boundary_values(dof_handler,
+                                             geometry::soil_far_side,
+                                             Functions::ZeroFunction<dim>(dim),
+                                             constraints,
+                                             ComponentMask(std::vector<bool>{true, false}));
+    constraints.close();
+  }
+
+  void ImpactProblem::assemble_system()
+  {
+    DynamicSparsityPattern dsp(locally_relevant);
+    DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
+    if (prm.integrator == ImpactParameters::Integrator::implicit_newmark)
+      for (const auto i : contact_dofs)
+        if (locally_relevant.is_element(i))
+          for (const auto j : contact_dofs)
+            dsp.add(i, j);
+    SparsityTools::distribute_sparsity_pattern(dsp, locally_owned, comm, locally_relevant);
+    stiffness.reinit(locally_owned, locally_owned, dsp, comm);
+
+    Vec mass_w, slab_w;
+    mass_w.reinit(locally_owned, locally_relevant, comm, true);
+    slab_w.reinit(locally_owned, locally_relevant, comm, true);
+
+    const QGauss<dim>        quadrature(2);
+    const QGaussLobatto<dim> lobatto(2);
+    FEValues<dim>            fe_values(fe, quadrature, update_gradients | update_JxW_values);
+    FEValues<dim>            fe_mass(fe, lobatto, update_values | update_JxW_values);
+    const unsigned int       n = fe.n_dofs_per_cell();
+    FullMatrix<double>       cell_matrix(n, n);
+    Vector<double>           cell_mass(n), cell_slab(n);
+    std::vector<types::global_dof_index> dof_indices(n);
+    const FEValuesExtractors::Vector     displacement(0);
+    std::vector<std::array<double, 3>>   b(n);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+      {
+        const Material    &m   = prm.materials.at(cell->material_id());
+        const MaterialLaw &law = *laws.at(cell->material_id());
+        // K from the law's tangent in the virgin state (modified Newton for non-linear laws).
+        std::vector<double> history(law.n_history());
+        law.initial_history(history.data());
+        const VoigtTangent d = law.tangent({{0, 0, 0}}, history.data());
+        fe_values.reinit(cell);
+        fe_mass.reinit(cell);
+        cell_matrix = 0;
+        cell_mass   = 0;
+        cell_slab   = 0;
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+        {
+          for (unsigned int i = 0; i < n; ++i)
+          {
+            const auto eps = fe_values[displacement].symmetric_gradient(i, q);
+            b[i]           = {{eps[0][0], eps[1][1], 2 * eps[0][1]}};
+          }
+          for (unsigned int i = 0; i < n; ++i)
+          {
+            std::array<double, 3> db{};
+            for (unsigned int r = 0; r < 3; ++r)
+              for (unsigned int c = 0; c < 3; ++c)
+                db[c] += b[i][r] * d[3 * r + c];
+            for (unsigned int j = 0; j < n; ++j)
+              cell_matrix(i, j) +=
+                (db[0] * b[j][0] + db[1] * b[j][1] + db[2] * b[j][2]) * fe_values.JxW(q);
+          }
+        }
+        // Gauss-Lobatto points are the vertices: the mass matrix is diagonal.
+        for (unsigned int q = 0; q < lobatto.size(); ++q)
+          for (unsigned int i = 0; i < n; ++i)
+          {
+            const double phi = fe_mass.shape_value(i, q);
+            cell_mass(i) += m.density * phi * phi * fe_mass.JxW(q);
+          }
+        if (cell->material_id() == geometry::slab_material)
+          for (unsigned int i = 0; i < n; ++i)
+            if (fe.system_to_component_index(i).first == 0)
+              cell_slab(i) = cell_mass(i);
+        cell->get_dof_indices(dof_indices);
+        constraints.distribute_local_to_global(cell_matrix, dof_indices, stiffness);
+        mass_w.add(dof_indices, cell_mass);
+        slab_w.add(dof_indices, cell_slab);
+      }
+    stiffness.compress(VectorOperation::add);
+    mass_w.compress(VectorOperation::add);
+    slab_w.compress(VectorOperation::add);
+    mass.reinit(locally_owned, comm);
+    slab_mass_x.reinit(locally_owned, comm);
+    mass        = mass_w;
+    slab_mass_x = slab_w;
+    inverse_mass.reinit(locally_owned, comm);
+    free_mask.reinit(locally_owned, comm);
+    for (const auto i : locally_owned)
+      if (!constraints.is_constrained(i) && mass(i) > 0)
+      {
+        inverse_mass(i) = 1.0 / mass(i);
+        free_mask(i)    = 1.0;
+      }
+    inverse_mass.compress(VectorOperation::insert);
+    free_mask.compress(VectorOperation::insert);
+    slab_total_mass = prm.rigid_slab ? prm.slab_mass : slab_mass_x.l1_norm();
+    require(slab_total_mass > 0,
+            "mesh '" + prm.mesh_file.string() + "' has no slab cells (material id " +
+              std::to_string(static_cast<unsigned>(geometry::slab_material)) +
+              ") and rigid_slab is false");
+  }
+
+  void ImpactProblem::make_laws()
+  {
+    laws.clear();
+    linear_laws           = true;
+    unsigned int n_values = 0;
+    for (const auto &[id, m] : prm.materials)
+    {
+      const auto it = prm.material_laws.find(id);
+      laws[id] =
+        it != prm.material_laws.end() ? it->second : std::make_shared<const LinearElasticLaw>(m);
+      linear_laws = linear_laws && laws[id]->is_linear();
+      n_values    = std::max(n_values, laws[id]->n_history());
+    }
+    if (linear_laws)
+      return;
+    qp_history.reinit(triangulation.n_active_cells(), QGauss<dim>(2).size(), n_values);
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        qp_history.initialize_cell(cell->active_cell_index(), *laws.at(cell->material_id()));
+    u_ghosted.reinit(locally_owned, locally_relevant, comm);
+    force_writable.reinit(locally_owned, locally_relevant, comm, true);
+  }
+
+  void ImpactProblem::internal_force(const Vec &u, Vec &f)
+  {
+    if (linear_laws)
+    {
+      stiffness.vmult(f, u);
+      return;
+    }
+    // f = sum over cells of B^T sigma(eps(u), h) JxW (Gauss points of the stiffness).
+    u_ghosted      = u;
+    force_writable = 0;
+    const QGauss<dim>  quadrature(2);
+    FEValues<dim>      fe_values(fe, quadrature, update_gradients | update_JxW_values);
+    const unsigned int n = fe.n_dofs_per_cell();
+    Vector<double>     cell_force(n);
+    std::vector<types::global_dof_index> dof_indices(n);
+    const FEValuesExtractors::Vector     displacement(0);
+    std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+      {
+        const MaterialLaw &law = *laws.at(cell->material_id());
+        const unsigned int c   = cell->active_cell_index();
+        fe_values.reinit(cell);
+        fe_values[displacement].get_function_symmetric_gradients(u_ghosted, eps);
+        cell_force = 0;
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+        {
+          const VoigtStress sigma = law.stress({{eps[q][0][0], eps[q][1][1], 2 * eps[q][0][1]}},
+                                               qp_history.committed(c, q),
+                                               qp_history.trial(c, q));
+          for (unsigned int i = 0; i < n; ++i)
+          {
+            const auto e = fe_values[displacement].symmetric_gradient(i, q);
+            cell_force(i) +=
+              (sigma[0] * e[0][0] + sigma[1] * e[1][1] + 2 * sigma[2] * e[0][1]) * fe_values.JxW(q);
+          }
+        }
+        cell->get_dof_indices(dof_indices);
+        constraints.distribute_local_to_global(cell_force, dof_indices, force_writable);
+      }
+    force_writable.compress(VectorOperation::add);
+    f = force_writable;
+  }
+
+  void ImpactProblem::compute_time_step()
+  {
+    // Q1 with a lumped mass: the highest mode of a cell of smallest edge h is omega = 2 c_p / h
+    // (exact in 1D); a contact spring adds omega_c^2 = k (1/m_s + 1/m_m) at its nodes. The
+    // damped central-difference limit is dt = 2 / omega (sqrt(1 + xi^2) - xi) (Belytschko
+    // et al. 2014, eq. 6.3.14) with xi the contact damping seen by the highest mode.
+    double local_omega = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+      {
+        double h = std::numeric_limits<double>::max();
+        for (unsigned int l = 0; l < cell->n_lines(); ++l)
+          h = std::min(h, cell->line(l)->diameter());
+        local_omega =
+          std::max(local_omega, 2 * p_wave_speed(prm.materials.at(cell->material_id())) / h);
+      }
+    omega_mesh         = Utilities::MPI::max(local_omega, comm);
+    const double omega = std::sqrt(omega_mesh * omega_mesh + omega_penalty * omega_penalty);
+    const double xi    = prm.contact_damping_ratio * omega_penalty / omega;
+    dt_stable          = 2 / omega * (std::sqrt(1 + xi * xi) - xi);
+    if (prm.integrator == ImpactParameters::Integrator::explicit_central_difference)
+    {
+      require(prm.dt <= dt_stable,
+              "dt = " + fmt_double(prm.dt) + " s is above the explicit stability limit " +
+                fmt_double(dt_stable) + " s (mesh omega = " + fmt_double(omega_mesh) +
+                " rad/s, contact penalty omega = " + fmt_double(omega_penalty) + " rad/s)");
+      dt = prm.dt > 0                             ? prm.dt :
+           prm.explicit_options.dt_over_limit > 0 ? prm.explicit_options.dt_over_limit * dt_stable :
+                                                    prm.explicit_options.cfl_safety * dt_stable;
+    }
+    else
+      dt = prm.dt > 0 ? prm.dt : prm.implicit_options.dt_factor * dt_stable;
+    sample_every = prm.output_interval > 0 ?
+                     std::max<unsigned long>(1, std::lround(prm.output_interval / dt)) :
+                     1;
+  }
+} // namespace kimp::fem::internal
