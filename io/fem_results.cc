@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "io/hdf5_handle.h"
+
 namespace kimp::io
 {
   namespace
@@ -105,28 +107,7 @@ namespace kimp::io
       return units;
     }
 
-    /// Closes an HDF5 id at scope exit.
-    class Handle
-    {
-    public:
-      Handle(hid_t id, herr_t (*close)(hid_t))
-        : id_(id)
-        , close_(close)
-      {
-      }
-      Handle(const Handle &)            = delete;
-      Handle &operator=(const Handle &) = delete;
-      ~Handle()
-      {
-        if (id_ >= 0)
-          close_(id_);
-      }
-      hid_t get() const { return id_; }
-
-    private:
-      hid_t id_;
-      herr_t (*close_)(hid_t);
-    };
+    using Handle = detail::Hdf5Handle;
 
     /// Reading context: the file name for every message.
     class Reader
@@ -165,10 +146,8 @@ namespace kimp::io
         const Handle type(H5Aget_type(attribute.get()), H5Tclose);
         if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) <= 0)
           fail(where, fmt::format("attribute '{}' is not a variable-length string", name));
-        const Handle memory_type(H5Tcopy(H5T_C_S1), H5Tclose);
-        H5Tset_size(memory_type.get(), H5T_VARIABLE);
-        H5Tset_cset(memory_type.get(), H5T_CSET_UTF8);
-        char *text = nullptr;
+        const Handle memory_type(detail::utf8_string_type(), H5Tclose);
+        char        *text = nullptr;
         if (H5Aread(attribute.get(), memory_type.get(), &text) < 0 || text == nullptr)
           fail(where, fmt::format("cannot read attribute '{}'", name));
         std::string result(text);
@@ -227,10 +206,8 @@ namespace kimp::io
         const Handle type(H5Dget_type(dataset.get()), H5Tclose);
         if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) <= 0)
           fail(where, "not a variable-length string dataset");
-        const Handle memory_type(H5Tcopy(H5T_C_S1), H5Tclose);
-        H5Tset_size(memory_type.get(), H5T_VARIABLE);
-        H5Tset_cset(memory_type.get(), H5T_CSET_UTF8);
-        char *value = nullptr;
+        const Handle memory_type(detail::utf8_string_type(), H5Tclose);
+        char        *value = nullptr;
         if (H5Dread(dataset.get(), memory_type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, &value) < 0 ||
             value == nullptr)
           fail(where, "cannot read the string");

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "base/version.h"
+#include "io/hdf5_handle.h"
 
 namespace kimp::io
 {
@@ -79,35 +80,8 @@ namespace kimp::io
       return result;
     }
 
-    /// Closes an HDF5 id with the given function at scope exit.
-    class Closer
-    {
-    public:
-      Closer(hid_t id, herr_t (*close)(hid_t))
-        : id_(id)
-        , close_(close)
-      {
-      }
-      Closer(const Closer &) = delete;
-      ~Closer()
-      {
-        if (id_ >= 0)
-          close_(id_);
-      }
-      hid_t get() const { return id_; }
-
-    private:
-      hid_t id_;
-      herr_t (*close_)(hid_t);
-    };
-
-    hid_t utf8_string_type()
-    {
-      const hid_t type = H5Tcopy(H5T_C_S1);
-      H5Tset_size(type, H5T_VARIABLE);
-      H5Tset_cset(type, H5T_CSET_UTF8);
-      return type;
-    }
+    using Closer = detail::Hdf5Handle;
+    using detail::utf8_string_type;
 
     std::string join_path(const std::string &parent, std::string_view name)
     {
