@@ -118,6 +118,23 @@ namespace kimp::lumped
       throw std::invalid_argument(msg.str());
     }
 
+    /**
+     * The opening of every law: at deformation x <= 0 the trial state is open (returns false);
+     * otherwise it is in contact, and the first step of a contact records the impact velocity.
+     */
+    inline bool enter_contact(double x, const ContactState &committed, ContactState &trial)
+    {
+      if (x <= 0.0)
+      {
+        trial.in_contact = false;
+        return false;
+      }
+      if (!committed.in_contact)
+        trial.impact_velocity = trial.rate;
+      trial.in_contact = true;
+      return true;
+    }
+
     /// Checks shared by several laws; NaN fails every check.
     inline void require_positive(const std::string &law,
                                  const std::string &name,

@@ -34,15 +34,9 @@ namespace kimp::lumped
   void JankowskiLaw::evaluate(const ContactState &committed, ContactState &trial) const
   {
     const double x = trial.deformation;
-    if (x <= 0.0)
-    {
-      trial.in_contact = false;
+    if (!detail::enter_contact(x, committed, trial))
       return;
-    }
-    if (!committed.in_contact)
-      trial.impact_velocity = trial.rate;
     const double sqrt_x = std::sqrt(x);
-    trial.in_contact    = true;
     trial.elastic_force = params_.stiffness * x * sqrt_x;
     trial.stored_energy = 0.4 * trial.elastic_force * x;
     trial.force         = trial.elastic_force;

@@ -18,33 +18,36 @@ namespace kimp::lumped
     return std::sqrt(1.0 + damping_ratio * damping_ratio) - damping_ratio;
   }
 
+  double kelvin_voigt_dashpot(double stiffness, double cor, double effective_mass)
+  {
+    return 2.0 * kelvin_voigt_damping_ratio(cor) * std::sqrt(stiffness * effective_mass);
+  }
+
+  double kelvin_voigt_stability_stiffness(double stiffness, double cor)
+  {
+    const double f = cdm_damping_factor(kelvin_voigt_damping_ratio(cor));
+    return stiffness / (f * f);
+  }
+
   KelvinVoigtLaw::KelvinVoigtLaw(const Params &params)
     : params_(params)
   {
     detail::require_positive(name(), "k", params_.stiffness, "N/m");
     detail::require_cor(name(), params_.cor);
     detail::require_positive(name(), "m_eff", params_.effective_mass, "kg");
-    damping_ = 2.0 * kelvin_voigt_damping_ratio(params_.cor) *
-               std::sqrt(params_.stiffness * params_.effective_mass);
+    damping_ = kelvin_voigt_dashpot(params_.stiffness, params_.cor, params_.effective_mass);
   }
 
   double KelvinVoigtLaw::stability_stiffness(double /*max_deformation*/) const
   {
-    const double f = cdm_damping_factor(kelvin_voigt_damping_ratio(params_.cor));
-    return params_.stiffness / (f * f);
+    return kelvin_voigt_stability_stiffness(params_.stiffness, params_.cor);
   }
 
   void KelvinVoigtLaw::evaluate(const ContactState &committed, ContactState &trial) const
   {
     const double x = trial.deformation;
-    if (x <= 0.0)
-    {
-      trial.in_contact = false;
+    if (!detail::enter_contact(x, committed, trial))
       return;
-    }
-    if (!committed.in_contact)
-      trial.impact_velocity = trial.rate;
-    trial.in_contact    = true;
     trial.elastic_force = params_.stiffness * x;
     trial.stored_energy = 0.5 * params_.stiffness * x * x;
     // May be tensile near separation: the model's known flaw, kept on purpose.

@@ -17,6 +17,12 @@ namespace kimp::lumped
   /// divide their stiffness by its square so that 2/sqrt(k_t/m) gives the damped limit.
   double cdm_damping_factor(double damping_ratio);
 
+  /// Dashpot coefficient c = 2·ξ(COR)·sqrt(k·m_eff), N·s/m, of laws 2 and 3.
+  double kelvin_voigt_dashpot(double stiffness, double cor, double effective_mass);
+
+  /// Stability stiffness k/(sqrt(1 + ξ²) − ξ)², N/m, of laws 2 and 3 (damped CDM limit).
+  double kelvin_voigt_stability_stiffness(double stiffness, double cor);
+
   /**
    * Linear spring with a linear dashpot, active while δ > 0.
    *

@@ -17,14 +17,8 @@ namespace kimp::lumped
   void LinearElasticLaw::evaluate(const ContactState &committed, ContactState &trial) const
   {
     const double x = trial.deformation;
-    if (x <= 0.0)
-    {
-      trial.in_contact = false;
+    if (!detail::enter_contact(x, committed, trial))
       return;
-    }
-    if (!committed.in_contact)
-      trial.impact_velocity = trial.rate;
-    trial.in_contact    = true;
     trial.force         = params_.stiffness * x;
     trial.stiffness     = params_.stiffness;
     trial.elastic_force = trial.force;

@@ -13,14 +13,12 @@ namespace kimp::lumped
     detail::require_positive(name(), "k", params_.stiffness, "N/m");
     detail::require_cor(name(), params_.cor);
     detail::require_positive(name(), "m_eff", params_.effective_mass, "kg");
-    damping_ = 2.0 * kelvin_voigt_damping_ratio(params_.cor) *
-               std::sqrt(params_.stiffness * params_.effective_mass);
+    damping_ = kelvin_voigt_dashpot(params_.stiffness, params_.cor, params_.effective_mass);
   }
 
   double ModifiedKelvinVoigtLaw::stability_stiffness(double /*max_deformation*/) const
   {
-    const double f = cdm_damping_factor(kelvin_voigt_damping_ratio(params_.cor));
-    return params_.stiffness / (f * f);
+    return kelvin_voigt_stability_stiffness(params_.stiffness, params_.cor);
   }
 
   void ModifiedKelvinVoigtLaw::evaluate(const ContactState &committed, ContactState &trial) const
