@@ -207,8 +207,7 @@ namespace kimp::app
     {
       io.text("kind",
               report.kind,
-              "charts and summary of scripts/sweep_charts.py: gap_study, isolation_flexibility, "
-              "wall_location, impact_parameters, adjacent_buildings or bumpers");
+              "charts and summary of scripts/sweep_charts.py: one of " + kind_list());
       io.text("gap", report.gap, "scene key path of the swept gap");
       io.text("title", report.title, "chart and summary title");
     }
