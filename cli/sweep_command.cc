@@ -1,7 +1,10 @@
 // `kimp sweep SWEEP.yaml -o DIR`: distributed, resumable parameter sweeps.
 // Parses the command's options and calls kimp::app.
 #include <CLI/CLI.hpp>
+#include <memory>
+#include <utility>
 
+#include "app/sweep/sweep_plan.h"
 #include "app/sweep/sweep_run.h"
 #include "base/logging.h"
 #include "base/version.h"
@@ -17,6 +20,7 @@ namespace kimp::cli
   void register_sweep_command(CLI::App &app)
   {
     auto      options = std::make_shared<SweepRunOptions>();
+    auto      prints  = std::make_shared<std::pair<bool, bool>>(); // --print-defaults, -schema
     CLI::App *command = app.add_subcommand(
       "sweep",
       "parameter sweep over scene keys: cases over MPI ranks and threads, resumable "
@@ -42,12 +46,28 @@ namespace kimp::cli
                       "do not run scripts/sweep_charts.py (charts/ and summary.md)");
     command->add_option("--records-dir", options->records_dir, "directory of the PEER records")
       ->type_name("DIR");
-    command->preparse_callback([options](std::size_t) { *options = SweepRunOptions{}; });
-    command->callback(
-      [options]()
+    command->add_flag("--print-defaults",
+                      prints->first,
+                      "print an annotated example sweep file (every key with its meaning) and "
+                      "exit");
+    command->add_flag("--print-schema",
+                      prints->second,
+                      "print the sweep file's keys as JSON (type, default, meaning) and exit");
+    command->preparse_callback(
+      [options, prints](std::size_t)
       {
+        *options = SweepRunOptions{};
+        *prints  = {false, false};
+      });
+    command->callback(
+      [options, prints]()
+      {
+        if (prints->first)
+          throw PrintDefaults(sweep_file_defaults_text());
+        if (prints->second)
+          throw PrintDefaults(sweep_file_schema_text());
         if (options->sweep.empty())
-          throw CLI::RequiredError("the sweep file SWEEP.yaml");
+          throw CLI::RequiredError("the sweep file SWEEP.yaml (or --print-defaults)");
         if (options->output.empty())
           throw CLI::RequiredError("the output directory -o/--output DIR");
         run_sweep_job(*options);

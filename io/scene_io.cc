@@ -119,6 +119,59 @@ namespace kimp::io
       return bound == 0.0 && unit != "%" ? std::string("0") : format_quantity(bound, unit);
     }
 
+    /// One line of flow-style YAML for `node` (a raw() value).
+    std::string flow_text(const YAML::Node &node)
+    {
+      YAML::Emitter out;
+      out << YAML::Flow << node;
+      return out.c_str();
+    }
+
+    /// Records the line of every item of `node` under `path` ("path[i]", "path.key").
+    void record_item_lines(SceneSource &source, const std::string &path, const YAML::Node &node)
+    {
+      if (node.IsSequence())
+        for (std::size_t i = 0; i < node.size(); ++i)
+        {
+          const std::string item_path = path + fmt::format("[{}]", i);
+          if (line_of(node[i]) > 0)
+            source.record(item_path, line_of(node[i]));
+          record_item_lines(source, item_path, node[i]);
+        }
+      else if (node.IsMap())
+        for (auto it = node.begin(); it != node.end(); ++it)
+        {
+          if (!it->first.IsScalar())
+            continue;
+          const std::string item_path = path + "." + it->first.Scalar();
+          source.record(item_path, line_of(it->first));
+          record_item_lines(source, item_path, it->second);
+        }
+    }
+
+    /// JSON of a YAML value; scalars stay strings (their type is the caller's to decide).
+    nlohmann::ordered_json yaml_to_json(const YAML::Node &node)
+    {
+      if (!node.IsDefined() || node.IsNull())
+        return nullptr;
+      if (node.IsScalar())
+        return node.Scalar();
+      nlohmann::ordered_json json =
+        node.IsSequence() ? nlohmann::ordered_json::array() : nlohmann::ordered_json::object();
+      for (auto it = node.begin(); it != node.end(); ++it)
+        if (node.IsSequence())
+          json.push_back(yaml_to_json(*it));
+        else
+          json[it->first.as<std::string>()] = yaml_to_json(it->second);
+      return json;
+    }
+
+    nlohmann::ordered_json yaml_text_to_json(const std::string &yaml_text)
+    {
+      return yaml_text.empty() ? nlohmann::ordered_json(nullptr) :
+                                 yaml_to_json(YAML::Load(yaml_text));
+    }
+
     /// Unit and range of a quantity's comment: "MN/m", "MN/m, > 0".
     std::string unit_range_comment(std::string_view unit, const Range &range)
     {
@@ -552,6 +605,36 @@ namespace kimp::io
     return SceneReader(std::make_unique<State>(*state_->source, path, item, line));
   }
 
+  void SceneReader::raw(std::string_view key, std::string &yaml_text, std::string_view /*doc*/)
+  {
+    const State::Entry *entry = state_->find(key);
+    if (entry == nullptr)
+      return;
+    yaml_text = flow_text(entry->value);
+    record_item_lines(*state_->source, state_->full_path(key), entry->value);
+  }
+
+  std::optional<SceneReader> SceneReader::open_map(std::string_view key)
+  {
+    const State::Entry *entry = state_->find(key);
+    if (entry == nullptr)
+      return std::nullopt;
+    if (!entry->value.IsNull() && !entry->value.IsMap())
+      state_->fail(*entry,
+                   fmt::format("{} is not a map: expected a map of 'name: value' lines",
+                               describe(entry->value)));
+    return SceneReader(
+      std::make_unique<State>(*state_->source, state_->full_path(key), entry->value, entry->line));
+  }
+
+  std::vector<std::string> SceneReader::keys() const
+  {
+    std::vector<std::string> names;
+    for (const auto &e : state_->entries)
+      names.push_back(e.key);
+    return names;
+  }
+
   void SceneReader::finish()
   {
     std::vector<std::string> errors;
@@ -658,6 +741,18 @@ namespace kimp::io
     line(key, yaml_quote(value), doc);
   }
 
+  void DefaultsPrinter::raw(std::string_view key, std::string &yaml_text, std::string_view doc)
+  {
+    const std::string value = yaml_text.empty() ? std::string("null") : yaml_text;
+    if (!doc.empty())
+    {
+      line(key, value, doc);
+      return;
+    }
+    *out_ << (first_lead_.empty() ? lead_ : first_lead_) << key << ": " << value << '\n';
+    first_lead_.clear();
+  }
+
   void DefaultsPrinter::integer_value(std::string_view key,
                                       long long       &value,
                                       std::string_view doc,
@@ -735,6 +830,11 @@ namespace kimp::io
   void JsonWriter::text(std::string_view key, std::string &value, std::string_view /*doc*/)
   {
     (*node_)[std::string(key)] = value;
+  }
+
+  void JsonWriter::raw(std::string_view key, std::string &yaml_text, std::string_view /*doc*/)
+  {
+    (*node_)[std::string(key)] = yaml_text_to_json(yaml_text);
   }
 
   void JsonWriter::integer_value(std::string_view key,
@@ -897,6 +997,21 @@ namespace kimp::io
   void SchemaWriter::text(std::string_view key, std::string &value, std::string_view doc)
   {
     state_->add(key, "text", doc)["default"] = value;
+  }
+
+  void SchemaWriter::raw(std::string_view key, std::string &yaml_text, std::string_view doc)
+  {
+    state_->add(key, "yaml", doc)["default"] = yaml_text;
+  }
+
+  std::string SchemaWriter::json_string(const std::string &text)
+  {
+    return nlohmann::ordered_json(text).dump();
+  }
+
+  std::string SchemaWriter::yaml_json(const std::string &yaml_text)
+  {
+    return yaml_text_to_json(yaml_text).dump();
   }
 
   void SchemaWriter::integer_value(std::string_view key,

@@ -202,6 +202,20 @@ namespace kimp::io
     std::map<std::string, int> lines_;
   };
 
+  namespace detail
+  {
+    /// One value of a map_of(): a std::string is kept as YAML text (raw()), any other T is a
+    /// section visited through its visit().
+    template <class Io, class T>
+    void visit_map_value(Io &io, const std::string &name, T &value, std::string_view doc)
+    {
+      if constexpr (std::is_same_v<T, std::string>)
+        io.raw(name, value, doc);
+      else
+        io.section(name, value, doc);
+    }
+  } // namespace detail
+
   /// Verbs shared by every Io: integer types and enum/string choices map onto the
   /// non-template `integer_value` and `choice_index` of the Io.
   template <class Derived>
@@ -347,6 +361,35 @@ namespace kimp::io
       }
     }
 
+    /**
+     * Any YAML value (scalar, list or map) kept as one line of flow-style YAML text, for a caller
+     * that interprets it itself (e.g. a sweep's list of values or {from, to, step}); `null` gives
+     * "~". The lines of its items are recorded in the SceneSource as "key[i]" and "key.sub".
+     */
+    void raw(std::string_view key, std::string &yaml_text, std::string_view doc);
+
+    /**
+     * Map whose keys the file chooses (e.g. scene key paths), in file order, replacing the default
+     * entries when present. A std::string value is read with raw(), any other T as a section.
+     */
+    template <class T>
+    void map_of(std::string_view                        key,
+                std::vector<std::pair<std::string, T>> &entries,
+                std::string_view                        doc)
+    {
+      std::optional<SceneReader> sub = open_map(key);
+      if (!sub)
+        return;
+      entries.clear();
+      for (const std::string &name : sub->keys())
+      {
+        T value;
+        detail::visit_map_value(*sub, name, value, doc);
+        entries.emplace_back(name, std::move(value));
+      }
+      sub->finish();
+    }
+
     /// Rejects every key of this map that no verb asked for (thrown, with those of all nested
     /// maps, when the root reader finishes).
     void finish();
@@ -369,6 +412,8 @@ namespace kimp::io
     std::optional<SceneReader> open_section(std::string_view key, bool null_means_absent);
     std::optional<std::size_t> open_list(std::string_view key);
     SceneReader                list_item(std::string_view key, std::size_t index);
+    std::optional<SceneReader> open_map(std::string_view key);
+    std::vector<std::string>   keys() const;
 
     std::unique_ptr<State> state_;
   };
@@ -442,6 +487,26 @@ namespace kimp::io
         DefaultsPrinter sub = child(lead_ + "    ", lead_ + "  - ");
         visit(sub, item);
       }
+    }
+
+    /// The YAML text as written (flow style), `null` when empty; no comment when `doc` is empty.
+    void raw(std::string_view key, std::string &yaml_text, std::string_view doc);
+
+    /// Every entry under `key` (`{}` when there is none).
+    template <class T>
+    void map_of(std::string_view                        key,
+                std::vector<std::pair<std::string, T>> &entries,
+                std::string_view                        doc)
+    {
+      if (entries.empty())
+      {
+        line(key, "{}", std::string(doc) + " (map)");
+        return;
+      }
+      line(key, "", std::string(doc) + " (map)");
+      DefaultsPrinter sub = child(lead_ + "  ", "");
+      for (auto &[name, value] : entries)
+        detail::visit_map_value(sub, name, value, ""); // the map's comment says what they are
     }
 
     void integer_value(std::string_view key,
@@ -520,6 +585,20 @@ namespace kimp::io
         JsonWriter sub = array_item(key);
         visit(sub, item);
       }
+    }
+
+    /// The YAML value as JSON (scalars as strings).
+    void raw(std::string_view key, std::string &yaml_text, std::string_view doc);
+
+    /// An object of the entries, in order.
+    template <class T>
+    void map_of(std::string_view                        key,
+                std::vector<std::pair<std::string, T>> &entries,
+                std::string_view                        doc)
+    {
+      JsonWriter sub = object(key);
+      for (auto &[name, value] : entries)
+        detail::visit_map_value(sub, name, value, doc);
     }
 
     void integer_value(std::string_view key,
@@ -612,6 +691,23 @@ namespace kimp::io
       visit(sub, example);
     }
 
+    /// Type "yaml", its default the YAML text.
+    void raw(std::string_view key, std::string &yaml_text, std::string_view doc);
+
+    /// Type "map" with `value`: the entry of one value, keyed "<name>".
+    template <class T>
+    void map_of(std::string_view                        key,
+                std::vector<std::pair<std::string, T>> &entries,
+                std::string_view                        doc)
+    {
+      std::string items;
+      for (const auto &[name, value] : entries)
+        items += (items.empty() ? "" : ",") + json_string(name) + ":" + map_value_json(value);
+      SchemaWriter sub = nested(key, "map", doc, "value", "{" + items + "}");
+      T            example;
+      detail::visit_map_value(sub, "<name>", example, doc);
+    }
+
     void integer_value(std::string_view key,
                        long long       &value,
                        std::string_view doc,
@@ -623,6 +719,19 @@ namespace kimp::io
                       std::string_view                doc);
 
   private:
+    /// `text` as a JSON string literal.
+    static std::string json_string(const std::string &text);
+    /// JSON of a raw YAML text (scalars as strings).
+    static std::string yaml_json(const std::string &yaml_text);
+    template <class T>
+    static std::string map_value_json(const T &value)
+    {
+      if constexpr (std::is_same_v<T, std::string>)
+        return yaml_json(value);
+      else
+        return to_json_text(value, -1);
+    }
+
     struct State;
     explicit SchemaWriter(std::unique_ptr<State> state);
 

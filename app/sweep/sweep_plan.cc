@@ -1,5 +1,6 @@
-// Sweep file parsing and case enumeration; key paths are set on a copy of the base
-// scene's YAML tree, so every scene key can be varied without the sweep knowing the schema.
+// Sweep file reading (through the scene reader) and case enumeration; key paths are set on a copy
+// of the base scene's YAML tree, so every scene key can be varied without the sweep knowing the
+// schema.
 #include "app/sweep/sweep_plan.h"
 
 #include <algorithm>
@@ -7,6 +8,7 @@
 #include <cstdlib>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <stdexcept>
 #include <yaml-cpp/yaml.h>
 
@@ -136,13 +138,20 @@ namespace kimp::app
       throw SweepError(fmt::format("{}:{}: {}: {}", file, line, key, what));
     }
 
-    std::string scalar_text(const YAML::Node &node, const std::string &file, const std::string &key)
+    /// The scalar of `node`; else an error at `line` (where the scene reader recorded it).
+    std::string
+    scalar_text(const YAML::Node &node, const std::string &file, const std::string &key, int line)
     {
       if (node.IsNull())
         return "null";
       if (!node.IsScalar())
-        fail_at(file, line_of(node), key, "expected a single value (quantity, number, word)");
+        fail_at(file, line, key, "expected a single value (quantity, number, word)");
       return node.Scalar();
+    }
+
+    std::string scalar_text(const YAML::Node &node, const std::string &file, const std::string &key)
+    {
+      return scalar_text(node, file, key, line_of(node));
     }
 
     /// Text of a value as it must be written back into YAML (strings that look like numbers or
@@ -185,13 +194,79 @@ namespace kimp::app
       }
     }
 
-    SweepReportSpec parse_report(const YAML::Node &report, const std::string &file, int line)
+    /// The `report:` section as read; kind and gap are checked by SweepPlan::parse().
+    struct ReportFile
     {
-      SweepReportSpec spec;
-      spec.line = line;
+      std::string kind;
+      std::string gap = "walls.left.gap";
+      std::string title;
+    };
+
+    template <class Io>
+    void visit(Io &io, ReportFile &report)
+    {
+      io.text("kind",
+              report.kind,
+              "charts and summary of scripts/sweep_charts.py: one of " + kind_list());
+      io.text("gap", report.gap, "scene key path of the swept gap");
+      io.text("title", report.title, "chart and summary title");
+    }
+
+    /// A sweep file as read: parameter values and companion overrides stay YAML text, since their
+    /// keys and types are those of the base scene.
+    struct SweepFile
+    {
+      std::string                                      scene;
+      std::string                                      engine  = "lumped";
+      std::string                                      combine = "product";
+      std::vector<std::pair<std::string, std::string>> parameters;
+      std::vector<std::pair<std::string, std::string>> companions;
+      std::optional<ReportFile>                        report;
+    };
+
+    template <class Io>
+    void visit(Io &io, SweepFile &file)
+    {
+      io.text("scene", file.scene, "base scene file, relative to the sweep file");
+      io.text("engine", file.engine, "scene type and runner of every case");
+      io.text("combine",
+              file.combine,
+              "product (Cartesian, first parameter slowest) or zip (i-th values together)");
+      io.map_of("parameters",
+                file.parameters,
+                "scene key path(s), comma separated -> list of values, {from, to, step} or list "
+                "of maps {key path: value, ..., label: name}");
+      io.map_of("companions",
+                file.companions,
+                "extra run of every case: name -> {key path: value, ...}");
+      io.optional_section("report", file.report, "charts and summary of the sweep");
+    }
+
+    /// The example printed by `kimp sweep --print-defaults` (a valid sweep file).
+    SweepFile example_sweep_file()
+    {
+      SweepFile file;
+      file.scene      = "scene.yaml";
+      file.parameters = {{"walls.left.gap, walls.right.gap",
+                          "{from: 10 cm, to: 45 cm, step: 5 cm}"},
+                         {"impact.cor", "[0.5, 0.7, 0.9]"}};
+      file.companions = {{"no_contact", "{walls.left.present: false, walls.right.present: false}"}};
+      return file;
+    }
+
+    /// Specific messages for a malformed `report:`, before the scene reader's generic ones.
+    void check_report_shape(const YAML::Node &root, const std::string &file)
+    {
+      const YAML::Node report = root["report"];
+      if (!report)
+        return;
+      int line = line_of(report);
+      for (const auto &entry : root)
+        if (entry.first.Scalar() == "report")
+          line = line_of(entry.first);
       if (!report.IsMap())
         fail_at(file,
-                spec.line,
+                line,
                 "report",
                 "expected a map {kind: ..., gap: scene key path, title: ...}");
       for (const auto &entry : report)
@@ -203,30 +278,6 @@ namespace kimp::app
                   "report." + key,
                   "unknown key (expected kind, gap or title)");
       }
-      if (!report["kind"])
-        fail_at(file, spec.line, "report.kind", "missing (expected one of " + kind_list() + ")");
-      spec.kind                             = scalar_text(report["kind"], file, "report.kind");
-      const std::vector<std::string> &kinds = sweep_report_kinds();
-      if (std::find(kinds.begin(), kinds.end(), spec.kind) == kinds.end())
-        fail_at(file,
-                line_of(report["kind"]),
-                "report.kind",
-                "'" + spec.kind + "' (expected one of " + kind_list() + ")");
-      if (report["gap"])
-      {
-        spec.gap_key = scalar_text(report["gap"], file, "report.gap");
-        try
-        {
-          split_key_path(spec.gap_key);
-        }
-        catch (const std::invalid_argument &error)
-        {
-          fail_at(file, line_of(report["gap"]), "report.gap", error.what());
-        }
-      }
-      if (report["title"])
-        spec.title = scalar_text(report["title"], file, "report.title");
-      return spec;
     }
   } // namespace
 
@@ -237,6 +288,26 @@ namespace kimp::app
     YAML::Node root = YAML::Load(yaml_text);
     set_node_value(root, key_path, value_yaml);
     return emit(root);
+  }
+
+  std::string sweep_file_defaults_text()
+  {
+    std::ostringstream out;
+    out << "# kimp sweep file (an example: parameters and companions have no defaults)\n"
+        << "# Parameter and companion keys are key paths of the base scene; values are written as "
+           "in the scene.\n";
+    SweepFile           file = example_sweep_file();
+    io::DefaultsPrinter printer(out);
+    visit(printer, file);
+    return out.str();
+  }
+
+  std::string sweep_file_schema_text()
+  {
+    SweepFile        file = example_sweep_file();
+    io::SchemaWriter writer;
+    visit(writer, file);
+    return writer.dump(2) + "\n";
   }
 
   const std::vector<std::string> &sweep_report_kinds()
@@ -383,51 +454,76 @@ namespace kimp::app
     if (!root.IsMap())
       throw SweepError(file_name + ":1: expected a map with keys scene, parameters, combine, "
                                    "companions, engine");
-    int report_line = 1;
-    for (const auto &entry : root)
-    {
-      const std::string key = entry.first.Scalar();
-      if (key == "report")
-        report_line = line_of(entry.first);
-      if (key != "scene" && key != "engine" && key != "combine" && key != "parameters" &&
-          key != "companions" && key != "report")
-        fail_at(file_name,
-                line_of(entry.first),
-                key,
-                "unknown key (expected scene, engine, combine, parameters, companions or report)");
-    }
-    if (const YAML::Node report = root["report"])
-      plan.report_ = parse_report(report, file_name, report_line);
-    if (root["engine"])
-      plan.engine_ = scalar_text(root["engine"], file_name, "engine");
-    if (root["combine"])
-    {
-      const std::string combine = scalar_text(root["combine"], file_name, "combine");
-      if (combine == "product")
-        plan.combination_ = SweepCombination::product;
-      else if (combine == "zip")
-        plan.combination_ = SweepCombination::zip;
-      else
-        fail_at(file_name,
-                line_of(root["combine"]),
-                "combine",
-                "'" + combine + "' (expected product or zip)");
-    }
+    check_report_shape(root, file_name);
 
-    const YAML::Node parameters = root["parameters"];
-    if (!parameters || !parameters.IsMap() || parameters.size() == 0)
+    SceneSource source(file_name);
+    SweepFile   file;
+    try
+    {
+      SceneReader reader = SceneReader::root(text, source);
+      visit(reader, file);
+      reader.finish();
+    }
+    catch (const SceneError &error)
+    {
+      throw SweepError(error.what());
+    }
+    // Line of a key path of the sweep file ("parameters.record[1]"), 1 if it was not written.
+    const auto line = [&](const std::string &key_path)
+    { return std::max(source.line_of(key_path), 1); };
+
+    if (file.report)
+    {
+      SweepReportSpec spec;
+      spec.line                             = line("report");
+      spec.kind                             = file.report->kind;
+      spec.gap_key                          = file.report->gap;
+      spec.title                            = file.report->title;
+      const std::vector<std::string> &kinds = sweep_report_kinds();
+      if (!source.present("report.kind"))
+        fail_at(file_name,
+                spec.line,
+                "report.kind",
+                "missing (expected one of " + kind_list() + ")");
+      if (std::find(kinds.begin(), kinds.end(), spec.kind) == kinds.end())
+        fail_at(file_name,
+                line("report.kind"),
+                "report.kind",
+                "'" + spec.kind + "' (expected one of " + kind_list() + ")");
+      try
+      {
+        split_key_path(spec.gap_key);
+      }
+      catch (const std::invalid_argument &error)
+      {
+        fail_at(file_name, line("report.gap"), "report.gap", error.what());
+      }
+      plan.report_ = std::move(spec);
+    }
+    plan.engine_ = file.engine;
+    if (file.combine == "product")
+      plan.combination_ = SweepCombination::product;
+    else if (file.combine == "zip")
+      plan.combination_ = SweepCombination::zip;
+    else
       fail_at(file_name,
-              parameters ? line_of(parameters) : 1,
+              line("combine"),
+              "combine",
+              "'" + file.combine + "' (expected product or zip)");
+
+    if (file.parameters.empty())
+      fail_at(file_name,
+              line("parameters"),
               "parameters",
               "missing or empty (expected a map: scene key path -> list of values or "
               "{from, to, step})");
-    for (const auto &entry : parameters)
+    for (const auto &[name, values_text] : file.parameters)
     {
       SweepParameter p;
-      p.name                  = entry.first.Scalar();
-      p.line                  = line_of(entry.first);
-      const std::string key   = "parameters." + p.name;
-      std::size_t       begin = 0;
+      p.name                = name;
+      const std::string key = "parameters." + p.name;
+      p.line                = line(key);
+      std::size_t begin     = 0;
       while (begin <= p.name.size())
       {
         const std::size_t end  = std::min(p.name.find(',', begin), p.name.size());
@@ -447,14 +543,16 @@ namespace kimp::app
         p.key_paths.push_back(path);
         begin = end + 1;
       }
-      const YAML::Node &values = entry.second;
+      const YAML::Node values = YAML::Load(values_text);
       if (values.IsSequence())
       {
-        for (const auto &value : values)
+        for (std::size_t v = 0; v < values.size(); ++v)
         {
+          const YAML::Node  value     = values[v];
+          const std::string item_path = fmt::format("{}[{}]", key, v);
           if (!value.IsMap())
           {
-            scalar_text(value, file_name, key);
+            scalar_text(value, file_name, key, line(item_path));
             p.values.push_back(yaml_value_text(value));
             continue;
           }
@@ -464,7 +562,9 @@ namespace kimp::app
           for (const auto &item : value)
           {
             const std::string path      = item.first.Scalar();
-            const std::string item_text = scalar_text(item.second, file_name, key + "." + path);
+            const int         path_line = line(item_path + "." + path);
+            const std::string item_text =
+              scalar_text(item.second, file_name, key + "." + path, path_line);
             if (path == "label")
             {
               label = item_text;
@@ -476,12 +576,12 @@ namespace kimp::app
             }
             catch (const std::invalid_argument &error)
             {
-              fail_at(file_name, line_of(item.first), key, error.what());
+              fail_at(file_name, path_line, key, error.what());
             }
             setting.emplace_back(path, yaml_value_text(item.second));
           }
           if (setting.empty())
-            fail_at(file_name, line_of(value), key, "a map value sets no key path");
+            fail_at(file_name, line(item_path), key, "a map value sets no key path");
           if (label.empty())
           {
             YAML::Emitter out;
@@ -500,28 +600,26 @@ namespace kimp::app
           const std::string k = range_entry.first.Scalar();
           if (k != "from" && k != "to" && k != "step")
             fail_at(file_name,
-                    line_of(range_entry.first),
+                    line(key + "." + k),
                     key + "." + k,
                     "unknown key (a range has from, to and step)");
         }
         for (const char *k : {"from", "to", "step"})
           if (!values[k])
             fail_at(file_name,
-                    line_of(values),
+                    p.line,
                     key,
                     std::string("range without '") + k + "' (expected {from, to, step})");
-        p.values = expand_range(scalar_text(values["from"], file_name, key + ".from"),
-                                scalar_text(values["to"], file_name, key + ".to"),
-                                scalar_text(values["step"], file_name, key + ".step"),
-                                fmt::format("{}:{}: {}", file_name, line_of(values), key));
+        p.values =
+          expand_range(scalar_text(values["from"], file_name, key + ".from", line(key + ".from")),
+                       scalar_text(values["to"], file_name, key + ".to", line(key + ".to")),
+                       scalar_text(values["step"], file_name, key + ".step", line(key + ".step")),
+                       fmt::format("{}:{}: {}", file_name, p.line, key));
       }
       else
-        fail_at(file_name,
-                line_of(values),
-                key,
-                "expected a list of values or a range {from, to, step}");
+        fail_at(file_name, p.line, key, "expected a list of values or a range {from, to, step}");
       if (p.values.empty())
-        fail_at(file_name, line_of(values), key, "no values (expected at least one)");
+        fail_at(file_name, p.line, key, "no values (expected at least one)");
       p.settings.resize(p.values.size());
       for (std::size_t v = 0; v < p.values.size(); ++v)
         if (p.settings[v].empty())
@@ -530,33 +628,24 @@ namespace kimp::app
       plan.parameters_.push_back(std::move(p));
     }
 
-    if (const YAML::Node companions = root["companions"])
+    for (const auto &[name, overrides_text] : file.companions)
     {
-      if (!companions.IsMap())
-        fail_at(file_name,
-                line_of(companions),
-                "companions",
-                "expected a map: name -> {key path: value, ...}");
-      for (const auto &entry : companions)
+      SweepCompanion c;
+      c.name                = name;
+      const std::string key = "companions." + c.name;
+      c.line                = line(key);
+      if (c.name.empty() || c.name.find_first_of(" ,\"") != std::string::npos)
+        fail_at(file_name, c.line, key, "name must be non-empty without spaces, commas, quotes");
+      const YAML::Node overrides = YAML::Load(overrides_text);
+      if (!overrides.IsMap() || overrides.size() == 0)
+        fail_at(file_name, c.line, key, "expected a non-empty map of key path -> value");
+      for (const auto &o : overrides)
       {
-        SweepCompanion c;
-        c.name                = entry.first.Scalar();
-        c.line                = line_of(entry.first);
-        const std::string key = "companions." + c.name;
-        if (c.name.empty() || c.name.find_first_of(" ,\"") != std::string::npos)
-          fail_at(file_name, c.line, key, "name must be non-empty without spaces, commas, quotes");
-        if (!entry.second.IsMap() || entry.second.size() == 0)
-          fail_at(file_name,
-                  line_of(entry.second),
-                  key,
-                  "expected a non-empty map of key path -> value");
-        for (const auto &o : entry.second)
-        {
-          scalar_text(o.second, file_name, key + "." + o.first.Scalar());
-          c.overrides.emplace_back(o.first.Scalar(), yaml_value_text(o.second));
-        }
-        plan.companions_.push_back(std::move(c));
+        const std::string path = key + "." + o.first.Scalar();
+        scalar_text(o.second, file_name, path, line(path));
+        c.overrides.emplace_back(o.first.Scalar(), yaml_value_text(o.second));
       }
+      plan.companions_.push_back(std::move(c));
     }
 
     // Enumerate combinations.

@@ -71,6 +71,13 @@ namespace kimp::app
     int         line = 0; ///< line of `report:` in the sweep file (1-based)
   };
 
+  /// An annotated example sweep file (every key with its meaning), for `kimp sweep
+  /// --print-defaults`; it reads back as a valid sweep.
+  std::string sweep_file_defaults_text();
+
+  /// The keys of a sweep file as JSON (io::SchemaWriter), for `kimp sweep --print-schema`.
+  std::string sweep_file_schema_text();
+
   /// The report kinds scripts/sweep_charts.py knows (studies 1-6 of data/studies).
   const std::vector<std::string> &sweep_report_kinds();
 

@@ -2,7 +2,9 @@
 // and lists, stable case ids, and malformed files reported with file:line:key.
 #include <gtest/gtest.h>
 #include <set>
+#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 #include <yaml-cpp/yaml.h>
 
@@ -394,6 +396,71 @@ namespace
                        {"sweep.yaml:4", "report.gap", "empty key"});
     expect_sweep_error("scene: base.yaml\nreport: gap_study\n" + parameters,
                        {"sweep.yaml:2", "report", "expected a map"});
+  }
+
+  /// A scene with keys chosen by the file, as a sweep file has.
+  struct ToyMaps
+  {
+    std::vector<std::pair<std::string, std::string>> values;
+    std::vector<std::pair<std::string, ToyCase>>     cases;
+  };
+  template <class Io>
+  void visit(Io &io, ToyMaps &m)
+  {
+    io.map_of("values", m.values, "key path -> YAML value");
+    io.map_of("cases", m.cases, "name -> case");
+  }
+
+  TEST(SceneMaps, MapOfKeepsFileOrderRawTextAndReadsBack)
+  {
+    const std::string text = "values:\n"
+                             "  z.gap: [10 cm, \"20 cm\"]\n"
+                             "  a.cor: {from: 0.5, to: 0.9, step: 0.2}\n"
+                             "cases:\n"
+                             "  second: {cor: 0.6}\n"
+                             "  first: {name: f}\n";
+    const ToyMaps     maps = kimp::io::load_scene_text<ToyMaps>(text, "maps.yaml");
+    ASSERT_EQ(maps.values.size(), 2U);
+    EXPECT_EQ(maps.values[0].first, "z.gap");
+    EXPECT_EQ(YAML::Load(maps.values[0].second)[1].as<std::string>(), "20 cm");
+    EXPECT_EQ(maps.values[1].first, "a.cor");
+    EXPECT_EQ(YAML::Load(maps.values[1].second)["step"].as<std::string>(), "0.2");
+    ASSERT_EQ(maps.cases.size(), 2U);
+    EXPECT_EQ(maps.cases[0].first, "second");
+    EXPECT_DOUBLE_EQ(maps.cases[0].second.cor, 0.6);
+    EXPECT_EQ(maps.cases[1].second.name, "f");
+    EXPECT_NE(kimp::io::to_json_text(maps).find("\"z.gap\": ["), std::string::npos)
+      << kimp::io::to_json_text(maps);
+
+    std::ostringstream        listing;
+    kimp::io::DefaultsPrinter printer(listing);
+    ToyMaps                   copy = maps;
+    visit(printer, copy);
+    const ToyMaps again = kimp::io::load_scene_text<ToyMaps>(listing.str(), "listing.yaml");
+    EXPECT_EQ(again.values, maps.values) << listing.str();
+    ASSERT_EQ(again.cases.size(), 2U) << listing.str();
+    EXPECT_EQ(again.cases[1].first, "first");
+
+    try
+    {
+      kimp::io::load_scene_text<ToyMaps>("cases:\n  a: {corr: 1}\n", "maps.yaml");
+      FAIL() << "unknown key in a map value accepted";
+    }
+    catch (const kimp::io::SceneError &error)
+    {
+      EXPECT_NE(std::string(error.what()).find("maps.yaml:2: unknown key 'corr' in cases.a"),
+                std::string::npos)
+        << error.what();
+    }
+  }
+
+  TEST(SweepPlan, PrintedDefaultsAreAValidSweep)
+  {
+    const SweepPlan plan = parse(kimp::app::sweep_file_defaults_text());
+    EXPECT_EQ(plan.parameters().size(), 2U);
+    EXPECT_EQ(plan.companions().size(), 1U);
+    EXPECT_EQ(plan.cases().size(), 8U * 3U * 2U);
+    EXPECT_FALSE(plan.report());
   }
 
   TEST(SweepPlan, GetYamlValueReadsScalarsAndReportsMissingPaths)

@@ -11,9 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "app/sweep/sweep_plan.h"
 #include "base/logging.h"
 #include "base/version.h"
 #include "cli/cli.h"
+#include "cli/commands.h"
 #include "io/units.h"
 #include "tests/support/temp_dir.h"
 
@@ -126,6 +128,28 @@ namespace
     EXPECT_EQ(keys.at(1).at("unit"), "cm");
     EXPECT_EQ(keys.at(1).at("default"), "15 cm");
     EXPECT_EQ(keys.at(2).at("doc"), "isolator initial stiffness");
+  }
+
+  TEST(Cli, SweepPrintsAnExampleSweepFileThatReadsBackAndItsSchema)
+  {
+    const std::unique_ptr<CLI::App> app = make_app();
+    kimp::cli::register_sweep_command(*app);
+    std::ostringstream out, err;
+    ASSERT_EQ(run_app(*app, {"sweep", "--print-defaults"}, out, err), 0) << err.str();
+    const std::string listing = out.str();
+    const auto        plan = kimp::app::SweepPlan::parse(listing, "defaults.yaml", "", "base.yaml");
+    EXPECT_FALSE(plan.parameters().empty()) << listing;
+    EXPECT_FALSE(plan.cases().empty()) << listing;
+
+    out.str("");
+    ASSERT_EQ(run_app(*app, {"sweep", "--print-schema"}, out, err), 0) << err.str();
+    const nlohmann::json     schema = nlohmann::json::parse(out.str());
+    std::vector<std::string> keys;
+    for (const nlohmann::json &entry : schema.at("keys"))
+      keys.push_back(entry.at("key"));
+    for (const char *key : {"parameters", "combine", "companions", "report"})
+      EXPECT_NE(std::find(keys.begin(), keys.end(), key), keys.end()) << key << "\n"
+                                                                      << schema.dump(2);
   }
 
   TEST(Cli, SceneCommandLoadsTheSceneAndCreatesTheOutputDirectory)
