@@ -300,8 +300,6 @@ TEST(StudyCli, BadSceneFailsWithFileLineAndKey)
   EXPECT_NE(log.find("bad.yaml:2: fit.width = -3 m"), std::string::npos) << log;
 }
 
-#endif
-
 // Heights over MPI ranks (`mpirun -np 2 kimp study`): the same k table as one rank, and rank 0
 // finds the other rank's heights in the FEM cache. Disabled by default: run through the ctest
 // entry e2e_study_cli_test.mpi (label mpi), which needs mpirun.
@@ -330,3 +328,5 @@ TEST(StudyCliMpi, DISABLED_TwoRanksShareTheHeightsAndGiveTheSameKTable)
     for (const char *column : {"kelvin_voigt_kN_per_mm_per_m", "jankowski_kN_per_mm1.5_per_m"})
       EXPECT_EQ(two[i].at(column), one[i].at(column)) << "row " << i << " " << column;
 }
+
+#endif
