@@ -220,7 +220,8 @@ namespace kimp::app
     StudyWallsScene                walls;
     IntegrationScene               integration;
     std::vector<GroundMotionScene> records{GroundMotionScene{}};
-    /// Add the PEER records of peer_record_names() when the records directory holds them.
+    /// Add Kobe KJMA (trimmed to 48 s) and Sylmar Converter Station (study_records()) when the
+    /// records directory holds them.
     bool                  peer_records   = true;
     std::string           records_dir    = "";   ///< "" = KIMP_RECORDS_DIR / ../shared/data/records
     bool                  charts         = true; ///< run scripts/study_charts.py
