@@ -53,13 +53,12 @@ namespace kimp::lumped
       return;
     }
     if (!committed.in_contact)
-    {
-      trial.impact_velocity = detail::impact_velocity_of("bumper", committed, trial);
-      const double e        = params_.cor;
-      trial.impact_coefficient =
-        params_.a1 ? *params_.a1 * (1.0 - e * e) :
-                     impact_damping_coefficient(e, params_.effective_mass, trial.impact_velocity);
-    }
+      fix_impact_coefficient("bumper",
+                             params_.cor,
+                             params_.a1,
+                             params_.effective_mass,
+                             committed,
+                             trial);
     double spring, tangent;
     if (x < params_.ultimate_deformation)
     {

@@ -15,6 +15,19 @@ namespace kimp::lumped
             std::pow(impact_velocity, 0.9755));
   }
 
+  void fix_impact_coefficient(const char           *law,
+                              double                cor,
+                              std::optional<double> a1,
+                              double                effective_mass,
+                              const ContactState   &committed,
+                              ContactState         &trial)
+  {
+    trial.impact_velocity = detail::impact_velocity_of(law, committed, trial);
+    trial.impact_coefficient =
+      a1 ? *a1 * (1.0 - cor * cor) :
+           impact_damping_coefficient(cor, effective_mass, trial.impact_velocity);
+  }
+
   HystereticLaw::HystereticLaw(const Params &params)
     : params_(params)
   {
@@ -44,13 +57,12 @@ namespace kimp::lumped
       return;
     }
     if (!committed.in_contact)
-    {
-      trial.impact_velocity = detail::impact_velocity_of("hysteretic", committed, trial);
-      const double e        = params_.cor;
-      trial.impact_coefficient =
-        params_.a1 ? *params_.a1 * (1.0 - e * e) :
-                     impact_damping_coefficient(e, params_.effective_mass, trial.impact_velocity);
-    }
+      fix_impact_coefficient("hysteretic",
+                             params_.cor,
+                             params_.a1,
+                             params_.effective_mass,
+                             committed,
+                             trial);
     const double n       = params_.exponent;
     const double x_n1    = detail::power_minus_one(x, n);
     const double spring  = params_.stiffness * x_n1 * x;

@@ -15,6 +15,18 @@ namespace kimp::lumped
   double impact_damping_coefficient(double cor, double effective_mass, double impact_velocity);
 
   /**
+   * The first trial of a contact of laws 6 and 7 (hysteretic, bumper): records v_imp and fixes
+   * C_imp for the whole contact, a1·(1 − COR²) when `a1` is given, else (2.23).
+   * @throws std::invalid_argument (naming `law`) for a contact entered without approach speed.
+   */
+  void fix_impact_coefficient(const char           *law,
+                              double                cor,
+                              std::optional<double> a1,
+                              double                effective_mass,
+                              const ContactState   &committed,
+                              ContactState         &trial);
+
+  /**
    * Hertz-type spring on approach, a rate-proportional reduction of the force on restitution
    * (the hysteresis loop), never tensile: the thesis' proposal. v_imp is the rate δ̇ at the first
    * trial that enters contact; C_imp is fixed there for the whole contact.
