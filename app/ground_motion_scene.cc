@@ -10,8 +10,26 @@
 namespace kimp::app
 {
   using namespace kimp::io;
+  std::optional<double> GroundMotionScene::two_column_unit() const
+  {
+    if (record_unit.empty())
+      return std::nullopt;
+    return parse_quantity_as("1 " + record_unit, "m/s^2");
+  }
+
   void validate(const GroundMotionScene &scene, ValidationContext &ctx)
   {
+    try
+    {
+      scene.two_column_unit();
+    }
+    catch (const UnitError &error)
+    {
+      ctx.fail("record_unit",
+               "'" + scene.record_unit + "'",
+               std::string("must be an acceleration unit such as g, m/s^2 or cm/s^2 (") +
+                 error.what() + ")");
+    }
     ctx.check(!scene.record.empty(),
               "record",
               "\"\"",
@@ -69,7 +87,9 @@ namespace kimp::app
     if (scene.is_record())
     {
       io::AccelerationRecord record =
-        load_record(scene.record, scene_records_directory(scene, records_dir_override));
+        load_record(scene.record,
+                    scene_records_directory(scene, records_dir_override),
+                    scene.two_column_unit());
       motion.dt           = record.dt;
       motion.acceleration = std::move(record.acceleration);
       motion.name         = std::move(record.name);

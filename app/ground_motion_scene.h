@@ -45,6 +45,8 @@ namespace kimp::app
    * |              |      |             | (e.g. RSN1106_KOBE_KJM000) or a path to a file   |
    * | records_dir  | -    | ""          | "" = --records-dir / KIMP_RECORDS_DIR /          |
    * |              |      |             | ../shared/data/records                           |
+   * | record_unit  | -    | ""          | unit of a two-column file's acceleration column  |
+   * |              |      |             | ("g", "m/s^2", "cm/s^2"); required for such files|
    * | scale_to_pga | g    | null        | scale the record to this PGA                     |
    * | scale        | -    | 1           | multiply the record (after scale_to_pga)         |
    * | duration     | s    | null        | keep the first `duration` seconds                |
@@ -53,6 +55,7 @@ namespace kimp::app
   {
     std::string                 record      = "synthetic";
     std::string                 records_dir = "";
+    std::string                 record_unit = "";
     std::optional<double>       scale_to_pga;
     double                      scale = 1.0;
     std::optional<double>       duration;
@@ -60,6 +63,10 @@ namespace kimp::app
 
     /// True if the motion is an external record (needs the records directory or a file).
     bool is_record() const { return record != "synthetic"; }
+
+    /// record_unit in m/s² per unit, or nullopt when it is "".
+    /// @throws io::UnitError when it is not an acceleration unit.
+    std::optional<double> two_column_unit() const;
   };
 
   template <class Io>
@@ -72,6 +79,11 @@ namespace kimp::app
     io.text("records_dir",
             s.records_dir,
             "directory of PEER records; \"\" = $KIMP_RECORDS_DIR, else ../shared/data/records");
+    io.text("record_unit",
+            s.record_unit,
+            "unit of the acceleration column of a two-column 'time acceleration' record file "
+            "(e.g. \"g\", \"m/s^2\", \"cm/s^2\"); required for such files, which do not state "
+            "it; \"\" for AT2 files, whose header states it");
     io.quantity("scale_to_pga",
                 s.scale_to_pga,
                 "g",

@@ -1,6 +1,6 @@
-// PEER AT2 and two-column ground-motion readers (see at2_reader.h); values in g → m/s² by
-// g = 9.80665 m/s². Format variants: docs/physics.md
-// "Ground-motion records".
+// PEER AT2 and two-column ground-motion readers (see at2_reader.h); values in the unit the AT2
+// header states (g = 9.80665 m/s², cm/s², m/s², in/s², ...) → m/s². Format variants:
+// docs/physics.md "Ground-motion records".
 #include "io/at2_reader.h"
 
 #include <algorithm>
@@ -20,7 +20,7 @@ namespace kimp::io
   {
     const char *const at2_expectation =
       "expected 3 header lines, then an NPTS/DT line such as 'NPTS=  4000, DT= .01000 SEC' or "
-      "'4000    0.0100    NPTS, DT', then NPTS values in g";
+      "'4000    0.0100    NPTS, DT', then NPTS values in the unit the header states";
 
     std::string format_number(double value)
     {
@@ -288,6 +288,104 @@ namespace kimp::io
       return header;
     }
 
+    struct UnitName
+    {
+      const char *name;  // as normalised by normalise_unit()
+      double      value; // m/s² per unit
+    };
+
+    /// Acceleration units a PEER header may state, after normalise_unit().
+    const UnitName at2_units[] = {{"G", standard_gravity},
+                                  {"CM/S/S", 0.01},
+                                  {"CM/S2", 0.01},
+                                  {"GAL", 0.01},
+                                  {"MM/S/S", 0.001},
+                                  {"MM/S2", 0.001},
+                                  {"M/S/S", 1.0},
+                                  {"M/S2", 1.0},
+                                  {"IN/S/S", 0.0254},
+                                  {"IN/S2", 0.0254},
+                                  {"FT/S/S", 0.3048},
+                                  {"FT/S2", 0.3048}};
+
+    const char *const at2_unit_expectation =
+      "expected G, CM/S/S (CM/SEC/SEC, CM/S^2, GAL), MM/S/S, M/S/S, IN/S/S or FT/S/S";
+
+    /// Upper case, "SEC" -> "S", "^" and "**" removed: "cm/sec^2" -> "CM/S2".
+    std::string normalise_unit(std::string_view text)
+    {
+      std::string u;
+      for (const char c : text)
+        if (c != '^' && c != '*')
+          u += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+      for (std::size_t p = u.find("SEC"); p != std::string::npos; p = u.find("SEC", p))
+        u.replace(p, 3, "S");
+      return u;
+    }
+
+    /**
+     * The SI value of one unit of the series, from the header lines before the NPTS/DT line: the
+     * PEER line "<QUANTITY> TIME SERIES IN UNITS OF <UNIT>". A velocity or displacement series,
+     * a missing "UNITS OF" statement and a unit that is not an acceleration unit are refused, so
+     * that a file is never read in a unit it does not state.
+     */
+    double
+    header_unit(const std::vector<Line> &lines, std::size_t n_header, const std::string &source)
+    {
+      for (std::size_t i = 0; i < n_header; ++i)
+      {
+        const std::string_view s           = lines[i].text;
+        const bool             series_line = find_word(s, "UNITS") != std::string_view::npos ||
+                                 find_word(s, "SERIES") != std::string_view::npos ||
+                                 find_word(s, "HISTORY") != std::string_view::npos;
+        if (!series_line)
+          continue;
+        for (const char *kind : {"VELOCITY", "DISPLACEMENT"})
+          if (find_word(s, kind) != std::string_view::npos)
+            fail(source,
+                 lines[i].number,
+                 std::string("a ") + (kind[0] == 'V' ? "velocity" : "displacement") +
+                   " series: header line '" + std::string(s) +
+                   "' (expected an ACCELERATION time series; kimp reads accelerations only)");
+      }
+      for (std::size_t i = 0; i < n_header; ++i)
+      {
+        const std::string_view s     = lines[i].text;
+        const std::size_t      units = find_word(s, "UNITS");
+        if (units == std::string_view::npos)
+          continue;
+        std::size_t p = units + 5;
+        while (p < s.size() && is_blank(s[p]))
+          ++p;
+        const std::size_t of = find_word(s.substr(p), "OF");
+        if (of == 0)
+          p += 2;
+        while (p < s.size() && (is_blank(s[p]) || s[p] == ':' || s[p] == '='))
+          ++p;
+        std::size_t end = p;
+        while (end < s.size() && !is_blank(s[end]) && s[end] != ',' && s[end] != ';')
+          ++end;
+        std::string_view token = s.substr(p, end - p);
+        while (!token.empty() && (token.back() == '.' || token.back() == ')'))
+          token.remove_suffix(1);
+        const std::string unit = normalise_unit(token);
+        for (const UnitName &known : at2_units)
+          if (unit == known.name)
+            return known.value;
+        fail(source,
+             lines[i].number,
+             "unknown unit \"" + std::string(token) + "\" in header line '" + std::string(s) +
+               "' (" + at2_unit_expectation + "; kimp never assumes a unit)");
+      }
+      fail(source,
+           lines[n_header].number,
+           "no 'UNITS OF ...' statement in the " +
+             (n_header == 0 ? std::string("header (no line before the NPTS/DT line)") :
+                              "header lines 1-" + std::to_string(n_header)) +
+             " (expected a line such as 'ACCELERATION TIME SERIES IN UNITS OF G'; kimp never "
+             "assumes a unit)");
+    }
+
     std::string read_file(const std::filesystem::path &file)
     {
       std::error_code ec;
@@ -394,6 +492,7 @@ namespace kimp::io
              at2_expectation + ")");
     }
     const Header header = parse_npts_dt(split.lines[header_index], source);
+    const double unit   = header_unit(split.lines, header_index, source);
 
     AccelerationRecord motion;
     motion.dt   = header.dt;
@@ -425,7 +524,7 @@ namespace kimp::io
                  std::to_string(header.npts + 1) +
                  " is on this line (expected exactly NPTS "
                  "values after the NPTS/DT line)");
-        motion.acceleration.push_back(value * standard_gravity);
+        motion.acceleration.push_back(value * unit);
         p = end;
       }
     }
@@ -549,8 +648,9 @@ namespace kimp::io
       if (!two_column_unit)
         fail(source,
              line.number,
-             "two-column time/acceleration text does not state its unit (expected the "
-             "acceleration unit of the second column, e.g. g or m/s^2, from the caller)");
+             "two-column time/acceleration text does not state its unit (expected the unit "
+             "of the acceleration column from the scene, ground_motion.record_unit such as "
+             "\"g\", \"m/s^2\" or \"cm/s^2\")");
       return parse_two_column(content, source, *two_column_unit);
     }
     fail(source, split.lines.size(), "no data lines (expected AT2 or two-column text)");

@@ -1,6 +1,6 @@
-// Ground-motion files: PEER .AT2 (3 header lines, an NPTS/DT line, NPTS values in g, Fortran E
-// format) and plain two-column "time acceleration" text. Format variants: docs/physics.md
-// "Ground-motion records".
+// Ground-motion files: PEER .AT2 (3 header lines, an NPTS/DT line, NPTS values in the unit the
+// header states, Fortran E format) and plain two-column "time acceleration" text. Format variants:
+// docs/physics.md "Ground-motion records".
 #pragma once
 
 #include <cstddef>
@@ -55,7 +55,10 @@ namespace kimp::io
   inline constexpr double two_column_time_tolerance = 1e-3;
 
   /**
-   * Read a PEER AT2 file; values in g are converted to m/s² (× 9.80665). name = file stem.
+   * Read a PEER AT2 file; values are converted to m/s² from the unit the header states
+   * ("ACCELERATION TIME SERIES IN UNITS OF G": × 9.80665; CM/S/S, CM/SEC/SEC, CM/S^2 or GAL:
+   * × 0.01; MM/S/S: × 0.001; M/S/S: × 1; IN/S/S: × 0.0254; FT/S/S: × 0.3048; SEC and S, "^2",
+   * "**2" and "2" are interchangeable, any case). name = file stem.
    *
    * Accepted: the NPTS/DT line anywhere in lines 1-10, found by its keywords (NPTS and DT as
    * words, any case) and never by number; keyword forms "NPTS= 4000, DT= .01000 SEC" with or
@@ -68,7 +71,9 @@ namespace kimp::io
    * @throws GroundMotionFileError for: a file that cannot be opened, an empty file, binary data
    *   (NUL or control bytes), a file that ends before the NPTS/DT line, no NPTS/DT line, NPTS not
    *   a positive integer, DT not a positive number, a non-numeric token (quoted), fewer or more
-   *   values than NPTS. The message names the file and the line.
+   *   values than NPTS, a VELOCITY or DISPLACEMENT series, a header without "UNITS OF <unit>"
+   *   and an unknown unit (a unit is never assumed). The message names the file and the line
+   *   (for the unit: the header line, quoted).
    */
   AccelerationRecord read_at2(const std::filesystem::path &file);
 

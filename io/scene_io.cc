@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <fmt/format.h>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -171,6 +172,47 @@ namespace kimp::io
       return yaml_text.empty() ? nlohmann::ordered_json(nullptr) :
                                  yaml_to_json(YAML::Load(yaml_text));
     }
+
+    /// Line (1-based) of the marker that starts the second document of a YAML stream: the
+    /// second "---" when the text opens with one, else the first (or the node's own line).
+    int second_document_line(const std::string &text, const YAML::Node &second)
+    {
+      std::istringstream lines(text);
+      std::string        line;
+      int                number = 0, markers = 0;
+      bool               opens_with_marker = false, content_seen = false;
+      while (std::getline(lines, line))
+      {
+        ++number;
+        if (!line.empty() && line.back() == '\r')
+          line.pop_back();
+        const bool marker =
+          line.rfind("---", 0) == 0 && (line.size() == 3 || line[3] == ' ' || line[3] == '\t');
+        if (marker)
+        {
+          if (!content_seen && markers == 0)
+            opens_with_marker = true;
+          ++markers;
+          if (markers == (opens_with_marker ? 2 : 1))
+            return number;
+        }
+        const std::size_t first = line.find_first_not_of(" \t");
+        if (first != std::string::npos && line[first] != '#')
+          content_seen = true;
+      }
+      return std::max(1, line_of(second));
+    }
+
+    /// Subnormal doubles (|x| < 2.2e-308, e.g. a gap of 1e-320 m) are not physical inputs and
+    /// pass every "> 0" test while losing precision: they are refused with the range checks.
+    bool is_normal_or_zero(double value)
+    {
+      return value == 0.0 || std::isnormal(value);
+    }
+
+    const char *const subnormal_expectation =
+      "must be 0 or a normal number (|value| >= 2.2e-308 in SI units; a subnormal value is not "
+      "a physical input)";
 
     /// Unit and range of a quantity's comment: "MN/m", "MN/m, > 0".
     std::string unit_range_comment(std::string_view unit, const Range &range)
@@ -369,7 +411,16 @@ namespace kimp::io
     YAML::Node document;
     try
     {
-      document = YAML::Load(text);
+      // Every document is parsed so that a second one is refused rather than silently ignored.
+      const std::vector<YAML::Node> documents = YAML::LoadAll(text);
+      if (documents.size() > 1)
+        throw SceneError(fmt::format("{}:{}: a second YAML document starts here (expected one "
+                                     "scene per file; remove the '---' line and what follows, "
+                                     "or split the file)",
+                                     source.file_name(),
+                                     second_document_line(text, documents[1])));
+      if (!documents.empty())
+        document = documents.front();
     }
     catch (const YAML::ParserException &error)
     {
@@ -412,6 +463,10 @@ namespace kimp::io
       state_->source->read_failures().fail(state_->full_path(key),
                                            format_quantity(value, unit),
                                            range.expectation(unit));
+    else if (!is_normal_or_zero(value))
+      state_->source->read_failures().fail(state_->full_path(key),
+                                           state_->scalar(*entry, ""),
+                                           subnormal_expectation);
   }
 
   void SceneReader::quantity(std::string_view       key,
@@ -474,7 +529,7 @@ namespace kimp::io
       }
     }
     for (std::size_t i = 0; i < parsed.size(); ++i)
-      if (!range.contains(parsed[i]))
+      if (!range.contains(parsed[i]) || !is_normal_or_zero(parsed[i]))
       {
         // Items are recorded only here, so that validate()'s messages about items stay as they
         // were; the item was written, so its failure is not marked "(default)".
@@ -483,7 +538,9 @@ namespace kimp::io
         state_->source->record(item_path, item_line > 0 ? item_line : entry->line);
         state_->source->read_failures().fail(item_path,
                                              format_quantity(parsed[i], unit),
-                                             range.expectation(unit));
+                                             range.contains(parsed[i]) ?
+                                               std::string(subnormal_expectation) :
+                                               range.expectation(unit));
       }
     values = std::move(parsed);
   }
@@ -1066,6 +1123,19 @@ namespace kimp::io
 
   std::string detail::read_text_file(const std::filesystem::path &file)
   {
+    // A directory opens as an empty stream on Linux and would read as the default scene; a
+    // device or a pipe may never end: only a regular file (or a link to one) is a scene.
+    std::error_code                    ec;
+    const std::filesystem::file_status status = std::filesystem::status(file, ec);
+    if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+      throw SceneError(fmt::format("{}: is {} (expected a scene file: a regular YAML file)",
+                                   file.string(),
+                                   std::filesystem::is_directory(status) ? "a directory" :
+                                   std::filesystem::is_fifo(status)      ? "a pipe" :
+                                   std::filesystem::is_character_file(status) ||
+                                       std::filesystem::is_block_file(status) ?
+                                                                      "a device" :
+                                                                      "not a regular file"));
     std::ifstream in(file, std::ios::binary);
     if (!in)
       throw SceneError(fmt::format("{}: cannot open scene file (does it exist and is it readable?)",

@@ -379,15 +379,26 @@ namespace kimp::app
     // Round-off tolerance of one part in 1e9 of a step: 10..45 step 0.5 includes 45.
     constexpr double      tolerance  = 1e-9;
     const double          span       = (q_to.value - q_from.value) / q_step.value;
-    const auto            n_steps    = static_cast<std::size_t>(std::floor(span + tolerance));
     constexpr std::size_t max_values = 10'000'000;
-    if (n_steps >= max_values)
-      throw SweepError(fmt::format("{}: range {} .. {} step {} has more than {} values",
+    // Checked in floating point before the cast: a tiny step gives a count beyond size_t
+    // (1e21 values for 10..20 cm step 1e-20 cm), whose cast is undefined.
+    const double n_values = std::floor(span + tolerance) + 1.0;
+    if (!(n_values <= static_cast<double>(max_values)))
+      throw SweepError(fmt::format("{}: range {} .. {} step {} gives {:.4g} values (expected at "
+                                   "most {}: use a larger step)",
                                    where,
                                    from,
                                    to,
                                    step,
+                                   n_values,
                                    max_values));
+    const auto n_steps = static_cast<std::size_t>(n_values) - 1;
+    if (n_steps > 0 && !(q_from.value + q_step.value != q_from.value))
+      throw SweepError(fmt::format("{}: range step = {} is below the resolution of from = {} "
+                                   "(expected a step that changes the value)",
+                                   where,
+                                   step,
+                                   from));
     const std::string        unit = unit_of(from);
     std::vector<std::string> values;
     values.reserve(n_steps + 1);
