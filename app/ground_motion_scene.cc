@@ -2,14 +2,17 @@
 #include "app/ground_motion_scene.h"
 
 #include <cmath>
+#include <fmt/format.h>
 #include <stdexcept>
 
+#include "base/logging.h"
 #include "io/records.h"
 #include "io/units.h"
 
 namespace kimp::app
 {
   using namespace kimp::io;
+  using kimp::base::logger;
   std::optional<double> GroundMotionScene::two_column_unit() const
   {
     if (record_unit.empty())
@@ -102,6 +105,18 @@ namespace kimp::app
       motion = lumped::scaled(motion, scene.scale);
     if (scene.duration)
       motion = lumped::trimmed(motion, *scene.duration);
+    // The largest recorded peaks are below about 4 g: a bigger one is almost surely a wrong scale
+    // (the run's plausibility limits then catch the response).
+    if (const double pga = motion.pga(); pga > max_credible_pga)
+      logger().warn("ground motion {}: PGA {:.4g} g after scale_to_pga = {} and scale = {:.4g} "
+                    "is above {} g, beyond any recorded motion: is the scale intended?",
+                    motion.name,
+                    pga / standard_gravity,
+                    scene.scale_to_pga ?
+                      fmt::format("{:.4g} g", *scene.scale_to_pga / standard_gravity) :
+                      std::string("null"),
+                    scene.scale,
+                    max_credible_pga / standard_gravity);
     return motion;
   }
 } // namespace kimp::app

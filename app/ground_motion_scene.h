@@ -100,6 +100,9 @@ namespace kimp::app
                "synthetic near-fault motion (used when record = synthetic)");
   }
 
+  /// A ground motion whose PGA after scaling exceeds this (5 g, m/s²) is logged as a warning.
+  inline constexpr double max_credible_pga = 5.0 * 9.80665;
+
   /// Range checks of every key (relative key paths; use inside ctx.section("ground_motion")).
   void validate(const GroundMotionScene &scene, io::ValidationContext &ctx);
 

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -205,7 +206,132 @@ namespace kimp::app
     {
       return format_quantity(value, "");
     }
+
+    lumped::CentralDifferenceOptions cdm_options(const IntegrationScene      &in,
+                                                 const std::optional<double> &dt)
+    {
+      lumped::CentralDifferenceOptions options;
+      options.dt                       = dt.value_or(0.0);
+      options.safety                   = in.safety;
+      options.expected_max_penetration = in.expected_max_penetration;
+      options.duration                 = in.duration.value_or(0.0);
+      options.output_interval          = in.output_interval;
+      options.law_velocity             = in.law_velocity;
+      return options;
+    }
+
+    lumped::NewmarkOptions newmark_options(const IntegrationScene      &in,
+                                           const std::optional<double> &dt)
+    {
+      lumped::NewmarkOptions options;
+      options.dt              = dt.value_or(0.0);
+      options.duration        = in.duration.value_or(0.0);
+      options.output_interval = in.output_interval;
+      return options;
+    }
+
+    /// The estimate for a step `dt` chosen by the integrator (the integrators' own rule for N).
+    RunEstimate make_estimate(double                      dt,
+                              const IntegrationScene     &in,
+                              const lumped::GroundMotion &motion,
+                              std::size_t                 n_dofs)
+    {
+      RunEstimate e;
+      e.dt = dt;
+      e.duration =
+        in.duration.value_or(motion.dt * static_cast<double>(motion.acceleration.size()));
+      e.n_steps             = dt > 0.0 ? std::round(e.duration / dt) : 0.0;
+      e.n_dofs              = n_dofs;
+      e.history_rows        = in.output_interval > 0.0 ?
+                                std::min(e.n_steps, std::round(e.duration / in.output_interval)) :
+                                0.0;
+      const double per_step = in.method == IntegrationMethod::cdm ? cdm_seconds_per_dof_step :
+                                                                    newmark_seconds_per_dof_step;
+      e.seconds             = static_cast<double>(n_dofs) *
+                  (e.n_steps * per_step + e.history_rows * history_seconds_per_dof_row);
+      return e;
+    }
+
+    /// Cases may scale the record further: an absurd peak is worth a warning before the run.
+    constexpr double warning_pga = 5.0 * standard_gravity;
   } // namespace
+
+  std::string RunEstimate::text() const
+  {
+    return fmt::format("{:.3g} steps of {:.3g} s over {:.4g} s x {} DoFs = {:.3g} DoF-steps, "
+                       "{:.3g} history rows, ~{:.2g} s",
+                       n_steps,
+                       dt,
+                       duration,
+                       n_dofs,
+                       n_steps * static_cast<double>(n_dofs),
+                       history_rows,
+                       seconds);
+  }
+
+  RunEstimate estimate_lumped_case(const LumpedScene &scene, const lumped::GroundMotion &motion)
+  {
+    const lumped::PoundingModel model(make_pounding_scene(scene));
+    const IntegrationScene     &in = scene.integration;
+    const std::optional<double> dt = requested_time_step(in);
+    if (in.method == IntegrationMethod::cdm)
+    {
+      const lumped::CentralDifference integrator(model, cdm_options(in, dt));
+      return make_estimate(integrator.time_step(motion.dt), in, motion, model.n_dofs());
+    }
+    return make_estimate(dt.value_or(motion.dt), in, motion, model.n_dofs());
+  }
+
+  void check_run_budget(const std::string      &name,
+                        const RunEstimate      &estimate,
+                        const IntegrationScene &integration)
+  {
+    if (!(estimate.n_steps <= integration.max_steps))
+      throw std::runtime_error(fmt::format(
+        "case {}: {} exceeds the step budget integration.max_steps = {:.3g} (expected fewer "
+        "steps: a shorter integration.duration, a larger integration.dt or safety, or a larger "
+        "max_steps if the run is intended)",
+        name,
+        estimate.text(),
+        integration.max_steps));
+  }
+
+  std::string implausibility(const lumped::Response &r, const IntegrationScene &in)
+  {
+    const auto worst = [](const std::vector<double> &values)
+    {
+      std::size_t at = 0;
+      for (std::size_t i = 1; i < values.size(); ++i)
+        if (std::abs(values[i]) > std::abs(values[at]) || std::isnan(values[i]))
+          at = i;
+      return at;
+    };
+    if (!r.peak_displacement.empty())
+    {
+      const std::size_t i = worst(r.peak_displacement);
+      const double      u = std::abs(r.peak_displacement[i]);
+      if (!(u <= in.plausible_displacement))
+        return fmt::format("peak |displacement| = {:.4g} m at DoF {} exceeds "
+                           "integration.plausible_displacement = {:.4g} m (a wrong unit or "
+                           "scale of the ground motion?)",
+                           u,
+                           i,
+                           in.plausible_displacement);
+    }
+    if (!r.peak_absolute_acceleration.empty())
+    {
+      const std::size_t i = worst(r.peak_absolute_acceleration);
+      const double      a = std::abs(r.peak_absolute_acceleration[i]);
+      if (!(a <= in.plausible_acceleration))
+        return fmt::format("peak |absolute acceleration| = {:.4g} g at DoF {} exceeds "
+                           "integration.plausible_acceleration = {:.4g} g (a wrong unit or "
+                           "scale of the ground motion?)",
+                           a / standard_gravity,
+                           i,
+                           in.plausible_acceleration / standard_gravity);
+    }
+    return "";
+  }
 
   LumpedCaseResult run_lumped_case(const std::string          &name,
                                    const LumpedScene          &scene,
@@ -237,22 +363,28 @@ namespace kimp::app
       const double         factor = scene.ground_motion.scale / base_scale;
       lumped::GroundMotion used   = factor != 1.0 ? lumped::scaled(motion, factor) : motion;
       result.pga                  = used.pga();
+      if (factor != 1.0 && result.pga > warning_pga)
+        logger().warn("case {}: ground motion scaled by {:.4g} to a PGA of {:.4g} g, above {} g "
+                      "(beyond any recorded motion): is the scale intended?",
+                      name,
+                      factor,
+                      result.pga / standard_gravity,
+                      warning_pga / standard_gravity);
 
       const IntegrationScene     &in = scene.integration;
       const std::optional<double> dt = requested_time_step(in);
       if (in.method == IntegrationMethod::cdm)
       {
-        lumped::CentralDifferenceOptions options;
-        options.dt                       = dt.value_or(0.0);
-        options.safety                   = in.safety;
-        options.expected_max_penetration = in.expected_max_penetration;
-        options.duration                 = in.duration.value_or(0.0);
-        options.output_interval          = in.output_interval;
-        options.law_velocity             = in.law_velocity;
-        const lumped::CentralDifference integrator(model, options);
+        lumped::CentralDifferenceOptions options = cdm_options(in, dt);
+        const lumped::CentralDifference  integrator(model, options);
         result.dt_critical = integrator.stability().dt_critical;
         result.governing   = integrator.stability().governing;
         logger().debug("case {}: dt_cr = {} s ({})", name, result.dt_critical, result.governing);
+        const RunEstimate estimate =
+          make_estimate(integrator.time_step(used.dt), in, used, model.n_dofs());
+        result.estimated_steps = estimate.n_steps;
+        logger().debug("case {}: {}", name, estimate.text());
+        check_run_budget(name, estimate, in);
         result.response = integrator.run(used);
         if (in.companion)
         {
@@ -262,14 +394,18 @@ namespace kimp::app
       }
       else
       {
-        lumped::NewmarkOptions options;
-        options.dt              = dt.value_or(0.0);
-        options.duration        = in.duration.value_or(0.0);
-        options.output_interval = in.output_interval;
-        result.response         = lumped::NewmarkIntegrator(model, options).run(used);
+        const lumped::NewmarkOptions options = newmark_options(in, dt);
+        const RunEstimate            estimate =
+          make_estimate(options.dt > 0.0 ? options.dt : used.dt, in, used, model.n_dofs());
+        result.estimated_steps = estimate.n_steps;
+        logger().debug("case {}: {}", name, estimate.text());
+        check_run_budget(name, estimate, in);
+        result.response = lumped::NewmarkIntegrator(model, options).run(used);
         if (in.companion)
           result.companion = lumped::NewmarkIntegrator(model.without_contacts(), options).run(used);
       }
+      if (const std::string why = implausibility(result.response, in); !why.empty())
+        throw std::runtime_error("implausible result: " + why);
     }
     catch (const std::exception &error)
     {
@@ -295,7 +431,26 @@ namespace kimp::app
                   motion.dt,
                   motion.pga() / lumped::standard_gravity);
 
-    const auto                    cases = resolve_cases(scene);
+    const auto cases = resolve_cases(scene);
+    // Every case's cost first, so that a run over budget is refused before anything is computed
+    // (an invalid case is left to run_lumped_case(), which records why it fails).
+    for (const auto &[name, case_scene] : cases)
+    {
+      RunEstimate estimate;
+      try
+      {
+        const double factor = case_scene.ground_motion.scale / scene.ground_motion.scale;
+        estimate =
+          estimate_lumped_case(case_scene, factor != 1.0 ? lumped::scaled(motion, factor) : motion);
+      }
+      catch (const std::exception &)
+      {
+        continue;
+      }
+      logger().info("case {}: estimated {}", name, estimate.text());
+      check_run_budget(name, estimate, case_scene.integration);
+    }
+
     std::vector<LumpedCaseResult> results;
     Progress                      progress(cases.size(), static_cast<double>(cases.size()));
     for (std::size_t i = 0; i < cases.size(); ++i)

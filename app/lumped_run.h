@@ -34,19 +34,66 @@ namespace kimp::app
     std::optional<lumped::Response> companion; ///< without contacts, if requested
     std::vector<BuildingModes>      buildings;
     std::vector<std::string>        contact_names;
-    std::vector<int>                storey_upper_dofs; ///< global DOF above each storey
-    double                          dt_critical = 0.0; ///< s (cdm), 0 for newmark
-    std::string                     governing;         ///< bound governing dt_critical
-    double                          wall_time = 0.0;   ///< s
-    double                          pga       = 0.0;   ///< of the motion used, m/s²
+    std::vector<int>                storey_upper_dofs;     ///< global DOF above each storey
+    double                          dt_critical = 0.0;     ///< s (cdm), 0 for newmark
+    std::string                     governing;             ///< bound governing dt_critical
+    double                          wall_time       = 0.0; ///< s
+    double                          pga             = 0.0; ///< of the motion used, m/s²
+    double                          estimated_steps = 0.0; ///< before the run (0: unknown)
 
     bool ok() const { return status == "ok"; }
   };
 
+  /// Seconds per DoF and time step assumed by the cost estimate: about twice the cost measured
+  /// on the shipped scenes (8-17 ns for the central difference method); Newmark iterates.
+  inline constexpr double cdm_seconds_per_dof_step     = 2e-8;
+  inline constexpr double newmark_seconds_per_dof_step = 2e-7;
+  /// Seconds per DoF and recorded history row (integration.output_interval), measured.
+  inline constexpr double history_seconds_per_dof_row = 3e-7;
+
+  /// Cost of one case, known before it runs.
+  struct RunEstimate
+  {
+    double      dt           = 0.0; ///< time step, s
+    double      duration     = 0.0; ///< analysis length, s
+    double      n_steps      = 0.0; ///< duration/dt, as a double (it may exceed every integer type)
+    std::size_t n_dofs       = 0;
+    double      history_rows = 0.0; ///< samples recorded every integration.output_interval
+    double      seconds      = 0.0; ///< estimated wall time, s
+
+    /// "2.4e+06 steps of 1e-05 s over 24 s x 5 DoFs = 1.2e+07 DoF-steps, 2.4e+03 history rows,
+    /// ~0.24 s".
+    std::string text() const;
+  };
+
+  /**
+   * The estimate of `scene`'s run under `motion` (after the case's scaling): the step the
+   * integrator would choose, the duration (integration.duration or the record's length) and
+   * the model's DoFs.
+   * @throws what the model or the integrator throw for an invalid case.
+   */
+  RunEstimate estimate_lumped_case(const LumpedScene &scene, const lumped::GroundMotion &motion);
+
+  /**
+   * @throws std::runtime_error "case NAME: <estimate> exceeds the step budget
+   *   integration.max_steps = N ..." when estimate.n_steps > integration.max_steps.
+   */
+  void check_run_budget(const std::string      &name,
+                        const RunEstimate      &estimate,
+                        const IntegrationScene &integration);
+
+  /**
+   * Why `response` is physically implausible ("" if it is not): a peak |displacement| above
+   * integration.plausible_displacement or a peak |absolute acceleration| above
+   * integration.plausible_acceleration, with the value, the DoF and the limit.
+   */
+  std::string implausibility(const lumped::Response &response, const IntegrationScene &integration);
+
   /**
    * Run one resolved case (apply_case() already done) under `motion` (before the case's extra
    * ground_motion_scale, which is applied here through scene.ground_motion.scale relative to
-   * `base_scale`). Numerical and model errors are caught and recorded in `status`.
+   * `base_scale`). Numerical and model errors, a case above the step budget and an implausible
+   * result (check_run_budget(), implausibility()) are caught and recorded in `status`.
    * @param[in] motion     the scene's ground motion after its own scaling and trimming
    * @param[in] base_scale the scene's ground_motion.scale already contained in `motion`
    */
@@ -57,6 +104,8 @@ namespace kimp::app
 
   /**
    * Run every case of `scene` and write lumped.h5, summary.json and peaks.csv into `output`.
+   * Every case's estimate is logged first, and a case above the step budget refuses the whole
+   * run before anything is computed (std::runtime_error with the estimate).
    * @return the results, in case order.
    */
   std::vector<LumpedCaseResult>

@@ -288,6 +288,12 @@ namespace kimp::app
     lumped::LawVelocity   law_velocity             = lumped::LawVelocity::backward;
     std::optional<double> duration;
     bool                  companion = false;
+    /// Refuse a case of more steps than this before it starts (docs/physics.md "Run budget").
+    double max_steps = 2e8;
+    /// A case whose peak |displacement| or |absolute acceleration| exceeds these is failed as
+    /// implausible (a wrong unit or scale), m and m/s².
+    double plausible_displacement = 10.0;
+    double plausible_acceleration = 200.0 * 9.80665;
   };
 
   template <class Io>
@@ -328,6 +334,22 @@ namespace kimp::app
                 "analysis length (null = the record's length)",
                 io::Range::positive().because("or null"));
     io.flag("companion", s.companion, "also run without contacts (amplification factors)");
+    io.quantity("max_steps",
+                s.max_steps,
+                "",
+                "step budget: a case of more time steps is refused before it starts, with the "
+                "estimate (steps x DoFs, time)",
+                io::Range::at_least(1.0));
+    io.quantity("plausible_displacement",
+                s.plausible_displacement,
+                "m",
+                "a case whose peak |displacement| exceeds this is failed as implausible",
+                io::Range::positive());
+    io.quantity("plausible_acceleration",
+                s.plausible_acceleration,
+                "g",
+                "a case whose peak |absolute acceleration| exceeds this is failed as implausible",
+                io::Range::positive());
   }
 
   /**
