@@ -72,6 +72,37 @@ namespace kimp::app
     }
   }
 
+  lumped::GroundMotion
+  load_ground_motion_at(const GroundMotionScene                    &scene,
+                        const std::optional<std::filesystem::path> &records_dir,
+                        const std::string                          &file_name,
+                        const std::string                          &scene_text,
+                        const std::string                          &key_path)
+  {
+    if (!scene.is_record())
+      return load_ground_motion(scene, records_dir);
+    try
+    {
+      return load_ground_motion(scene, records_dir);
+    }
+    catch (const std::exception &error)
+    {
+      const std::string key  = key_path + ".record";
+      const int         line = key_line(scene_text, key);
+      // load_record() names the record itself: said once, at the key.
+      std::string       problem = error.what();
+      const std::string echo    = "record = '" + scene.record + "' ";
+      if (problem.rfind(echo, 0) == 0)
+        problem = problem.substr(echo.size());
+      throw SceneError(fmt::format("{}{}: {} = '{}': {}",
+                                   file_name,
+                                   line > 0 ? ":" + std::to_string(line) : std::string(),
+                                   key,
+                                   scene.record,
+                                   problem));
+    }
+  }
+
   std::optional<std::filesystem::path>
   scene_records_directory(const GroundMotionScene                    &scene,
                           const std::optional<std::filesystem::path> &records_dir_override)

@@ -115,6 +115,20 @@ namespace kimp::app
   load_ground_motion(const GroundMotionScene                    &scene,
                      const std::optional<std::filesystem::path> &records_dir_override = {});
 
+  /**
+   * load_ground_motion() of the section at `key_path` ("ground_motion", "records[1]") of the
+   * scene file `file_name` whose text is `scene_text`: a record that cannot be found or read is
+   * reported at its key, "FILE:LINE: KEY_PATH.record = 'NAME': <problem>" (with the reader's
+   * file:line and the did-you-mean of load_record()).
+   * @throws io::SceneError for a record problem; what the generator throws otherwise.
+   */
+  lumped::GroundMotion
+  load_ground_motion_at(const GroundMotionScene                    &scene,
+                        const std::optional<std::filesystem::path> &records_dir,
+                        const std::string                          &file_name,
+                        const std::string                          &scene_text,
+                        const std::string                          &key_path);
+
   /// The records directory the scene would use (override > scene > environment > default).
   std::optional<std::filesystem::path>
   scene_records_directory(const GroundMotionScene                    &scene,

@@ -422,9 +422,12 @@ namespace kimp::app
              const OutputDir                            &output,
              const std::optional<std::filesystem::path> &records_dir_override)
   {
-    const LumpedScene         &scene = loaded.scene;
-    const lumped::GroundMotion motion =
-      load_ground_motion(scene.ground_motion, records_dir_override);
+    const LumpedScene         &scene  = loaded.scene;
+    const lumped::GroundMotion motion = load_ground_motion_at(scene.ground_motion,
+                                                              records_dir_override,
+                                                              loaded.file_name,
+                                                              loaded.text,
+                                                              "ground_motion");
     logger().info("ground motion {}: {} samples at {} s, PGA {} g",
                   motion.name,
                   motion.acceleration.size(),

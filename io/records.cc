@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "io/at2_reader.h"
+#include "io/scene_io.h"
 
 namespace kimp::io
 {
@@ -78,6 +79,32 @@ namespace kimp::io
     return resolve_records_directory(flag_value, env_value, ec ? "." : cwd, source_dir);
   }
 
+  std::optional<std::string> closest_record_name(const std::string              &name,
+                                                 const std::vector<std::string> &names)
+  {
+    std::string given = std::filesystem::path(name).filename().string();
+    if (upper(std::filesystem::path(given).extension().string()) == ".AT2")
+      given = std::filesystem::path(given).stem().string();
+    if (given.empty())
+      return std::nullopt;
+    const std::string          upper_given = upper(given);
+    std::optional<std::string> best;
+    std::size_t                best_distance = std::max<std::size_t>(3, given.size() / 4 + 1);
+    for (const std::string &candidate : names)
+    {
+      const std::string upper_candidate = upper(candidate);
+      // A part of the name ("KOBE", "kjm000") is a stronger hint than a few edits.
+      if (upper_given.size() >= 3 && upper_candidate.find(upper_given) != std::string::npos)
+        return candidate;
+      if (const std::size_t d = edit_distance(upper_given, upper_candidate); d < best_distance)
+      {
+        best_distance = d;
+        best          = candidate;
+      }
+    }
+    return best;
+  }
+
   std::vector<std::filesystem::path> list_records(const std::filesystem::path &directory)
   {
     std::vector<std::filesystem::path> records;
@@ -115,12 +142,18 @@ namespace kimp::io
       if (file_exists(*records_dir / candidate))
         return read_ground_motion(*records_dir / candidate, two_column_unit);
 
-    std::string available;
+    std::string              available;
+    std::vector<std::string> stems;
     for (const auto &record : list_records(*records_dir))
+    {
       available += (available.empty() ? "" : ", ") + record.filename().string();
+      stems.push_back(record.stem().string());
+    }
+    const std::optional<std::string> suggestion = closest_record_name(name_or_path, stems);
     throw std::invalid_argument(
       "record = '" + name_or_path + "' not found in '" + records_dir->string() + "' (tried " +
-      candidates[0] + ", " + candidates[1] + ", " + candidates[2] + "; expected one of: " +
-      (available.empty() ? std::string("<no .AT2 files>") : available) + ")");
+      candidates[0] + ", " + candidates[1] + ", " + candidates[2] +
+      "; expected one of: " + (available.empty() ? std::string("<no .AT2 files>") : available) +
+      ")" + (suggestion ? "; did you mean '" + *suggestion + "'?" : std::string()));
   }
 } // namespace kimp::io

@@ -52,12 +52,21 @@ namespace kimp::io
    * Otherwise it is a bare record name looked up in `records_dir`: first exactly
    * ("RSN1106_KOBE_KJM000.AT2"), then with ".AT2" and ".at2" appended ("RSN1106_KOBE_KJM000").
    * @throws std::invalid_argument when a bare name is given without a records directory, or is
-   *   not found there (the message lists the names tried and the available records).
+   *   not found there (the message lists the names tried and the available records, and ends
+   *   with "did you mean '<name>'?" when closest_record_name() finds one).
    * @throws GroundMotionFileError from the readers.
    */
   AccelerationRecord load_record(const std::string                          &name_or_path,
                                  const std::optional<std::filesystem::path> &records_dir,
                                  std::optional<double> two_column_unit = std::nullopt);
+
+  /**
+   * The record name of `names` (stems such as RSN1106_KOBE_KJM000) a mistyped `name` most likely
+   * meant: the first that contains it (any case, at least 3 characters), else the nearest by edit
+   * distance if fewer than max(3, size/4 + 1) edits away; nullopt if none is close.
+   */
+  std::optional<std::string> closest_record_name(const std::string              &name,
+                                                 const std::vector<std::string> &names);
 
   /// The .AT2 files (any case of the extension) directly in `directory`, sorted by name.
   std::vector<std::filesystem::path> list_records(const std::filesystem::path &directory);

@@ -29,26 +29,77 @@ namespace kimp::io
       return text;
     }
 
-    std::size_t edit_distance(std::string_view a, std::string_view b)
+  } // namespace
+
+  std::size_t edit_distance(std::string_view a, std::string_view b)
+  {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j)
+      row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i)
     {
-      std::vector<std::size_t> row(b.size() + 1);
-      for (std::size_t j = 0; j <= b.size(); ++j)
-        row[j] = j;
-      for (std::size_t i = 1; i <= a.size(); ++i)
+      std::size_t diagonal = row[0];
+      row[0]               = i;
+      for (std::size_t j = 1; j <= b.size(); ++j)
       {
-        std::size_t diagonal = row[0];
-        row[0]               = i;
-        for (std::size_t j = 1; j <= b.size(); ++j)
-        {
-          const std::size_t above = row[j];
-          const bool        same  = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
-                            std::tolower(static_cast<unsigned char>(b[j - 1]));
-          row[j]   = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
-          diagonal = above;
-        }
+        const std::size_t above = row[j];
+        const bool        same  = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                          std::tolower(static_cast<unsigned char>(b[j - 1]));
+        row[j]   = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
+        diagonal = above;
       }
-      return row[b.size()];
     }
+    return row[b.size()];
+  }
+
+  int key_line(const std::string &yaml_text, const std::string &key_path)
+  {
+    try
+    {
+      YAML::Node  node = YAML::Load(yaml_text);
+      int         line = 0;
+      std::size_t i    = 0;
+      while (i < key_path.size())
+      {
+        if (key_path[i] == '.')
+          ++i;
+        if (key_path[i] == '[')
+        {
+          const std::size_t close = key_path.find(']', i);
+          const std::size_t index = std::stoul(key_path.substr(i + 1, close - i - 1));
+          if (!node.IsSequence() || index >= node.size())
+            return line;
+          node.reset(node[index]);
+          line = node.Mark().is_null() ? line : node.Mark().line + 1;
+          i    = close + 1;
+          continue;
+        }
+        const std::size_t end = std::min(key_path.find_first_of(".[", i), key_path.size());
+        const std::string key = key_path.substr(i, end - i);
+        if (!node.IsMap())
+          return line;
+        bool found = false;
+        for (auto it = node.begin(); it != node.end() && !found; ++it)
+          if (it->first.IsScalar() && it->first.Scalar() == key)
+          {
+            line = it->first.Mark().line + 1;
+            node.reset(it->second);
+            found = true;
+          }
+        if (!found)
+          return line;
+        i = end;
+      }
+      return line;
+    }
+    catch (const std::exception &)
+    {
+      return 0;
+    }
+  }
+
+  namespace
+  {
 
     /// The value as the user wrote it, for messages.
     std::string describe(const YAML::Node &node)

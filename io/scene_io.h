@@ -24,6 +24,15 @@
 
 namespace kimp::io
 {
+  /// Case-insensitive Levenshtein distance of two names, for "did you mean" hints.
+  std::size_t edit_distance(std::string_view a, std::string_view b);
+
+  /**
+   * Line (1-based) of `key_path` ("ground_motion.record", "records[1].record") in the YAML
+   * `yaml_text`, else of its nearest written ancestor, else 0 (also for unreadable text).
+   */
+  int key_line(const std::string &yaml_text, const std::string &key_path);
+
   /// Any error in a scene file: YAML syntax, unit, unknown key, type or validation. The message
   /// names file, line, key path, the bad value and what was expected.
   class SceneError : public std::runtime_error

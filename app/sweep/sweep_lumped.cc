@@ -87,11 +87,14 @@ namespace kimp::app
   {
     return [records_dir_override](const std::string &text, const std::string &name)
     {
-      const LumpedScene          scene = load_scene_text<LumpedScene>(text, name);
-      const lumped::GroundMotion motion =
-        load_ground_motion(scene.ground_motion, records_dir_override);
-      const auto cases = resolve_cases(scene);
-      CaseRow    row;
+      const LumpedScene          scene  = load_scene_text<LumpedScene>(text, name);
+      const lumped::GroundMotion motion = load_ground_motion_at(scene.ground_motion,
+                                                                records_dir_override,
+                                                                name,
+                                                                text,
+                                                                "ground_motion");
+      const auto                 cases  = resolve_cases(scene);
+      CaseRow                    row;
       for (const auto &[case_name, case_scene] : cases)
       {
         const LumpedCaseResult result =
