@@ -22,6 +22,7 @@ namespace kimp::cli
       std::string output;
       bool        print_defaults = false;
       bool        print_schema   = false;
+      std::string records_dir;
     };
     auto      options = std::make_shared<Options>();
     CLI::App *command = app.add_subcommand(
@@ -35,6 +36,12 @@ namespace kimp::cli
     command->add_flag("--print-defaults",
                       options->print_defaults,
                       "print the annotated default study scene and exit");
+    command
+      ->add_option("--records-dir",
+                   options->records_dir,
+                   "directory of the PEER records (overrides the scene's records_dir, those of "
+                   "its records and KIMP_RECORDS_DIR)")
+      ->type_name("DIR");
     add_print_schema_flag(*command, options->print_schema);
     command->preparse_callback([options](std::size_t) { *options = Options{}; });
     command->callback(
@@ -49,9 +56,17 @@ namespace kimp::cli
         logger().info("{}: study {}",
                       version_line(),
                       options->scene.empty() ? "(default scene)" : options->scene);
-        const LoadedScene<StudyScene> scene =
-          options->scene.empty() ? read_scene_text<StudyScene>("", "(default study scene)") :
-                                   read_scene<StudyScene>(options->scene);
+        LoadedScene<StudyScene> scene = options->scene.empty() ?
+                                          read_scene_text<StudyScene>("", "(default study scene)") :
+                                          read_scene<StudyScene>(options->scene);
+        if (!options->records_dir.empty())
+        {
+          // The flag wins over every records directory of the scene.
+          scene.scene.records_dir = options->records_dir;
+          for (GroundMotionScene &record : scene.scene.records)
+            record.records_dir = options->records_dir;
+          scene.resolved_json = to_json_text(scene.scene);
+        }
         run_study_job(scene, options->output);
       });
   }

@@ -166,6 +166,8 @@ namespace kimp::app::study_internal
   std::string report_markdown(const StudyScene &scene, const StudyResult &result, bool charts)
   {
     std::string md = "# kimp wall-height study\n\n" + version_line() + "\n\n";
+    for (const std::string &warning : result.warnings)
+      md += "**Warning:** " + warning + ".\n\n";
     md += fmt::format("## Impact stiffness per wall height (fitted at COR {}, W = {} m)\n\n",
                       scene.fit.cor,
                       scene.fit.width);

@@ -23,6 +23,9 @@ namespace kimp::app
     const Clock::time_point start = Clock::now();
     const StudyScene       &scene = loaded.scene;
     StudyResult             result;
+    result.warnings = missing_study_records(scene);
+    for (const std::string &warning : result.warnings)
+      logger().warn("{}", warning);
     if (scene.fem.fidelity == Fidelity::auto_ladder)
       logger().info("fidelity auto: contact mesh ladder {} cm, penalty factors {}, tolerance {} %; "
                     "{} slab as the scene says (the rigid-slab shortcut is not taken "

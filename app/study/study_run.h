@@ -99,6 +99,7 @@ namespace kimp::app
     double                        building_seconds = 0.0; ///< s
     double                        charts_seconds   = 0.0; ///< s
     double                        wall_seconds     = 0.0; ///< s, whole study
+    std::vector<std::string>      warnings; ///< e.g. requested records not found (report.md)
   };
 
   /**

@@ -111,21 +111,47 @@ namespace kimp::app
     return lumped;
   }
 
+  namespace
+  {
+    // Thesis Table 4.1: Kobe KJMA (NGA-West2 file, trimmed to the thesis' 48 s) and Northridge
+    // Sylmar Converter Station (SCS142.AT2: the thesis' own pre-NGA file, 0.897 g, 40 s).
+    const std::vector<std::pair<std::string, std::optional<double>>> peer_study_records =
+      {{"RSN1106_KOBE_KJM000", 48.0}, {"SCS142", std::nullopt}};
+
+    std::optional<std::filesystem::path> study_records_directory(const StudyScene &scene)
+    {
+      return records_directory(scene.records_dir.empty() ?
+                                 std::nullopt :
+                                 std::optional<std::filesystem::path>(scene.records_dir));
+    }
+  } // namespace
+
+  std::vector<std::string> missing_study_records(const StudyScene &scene)
+  {
+    std::vector<std::string> missing;
+    if (!scene.peer_records)
+      return missing;
+    const std::optional<std::filesystem::path> directory = study_records_directory(scene);
+    for (const auto &[name, duration] : peer_study_records)
+      if (!directory)
+        missing.push_back("record " + name +
+                          " is not run: no records directory found (expected --records-dir, "
+                          "records_dir in the scene, KIMP_RECORDS_DIR or ../shared/data/records)");
+      else if (!std::filesystem::is_regular_file(*directory / (name + ".AT2")))
+        missing.push_back("record " + name + " is not run: " + name + ".AT2 is not in '" +
+                          directory->string() + "'");
+    return missing;
+  }
+
   std::vector<GroundMotionScene> study_records(const StudyScene &scene)
   {
     std::vector<GroundMotionScene> records = scene.records;
     if (!scene.peer_records)
       return records;
-    const std::optional<std::filesystem::path> directory = records_directory(
-      scene.records_dir.empty() ? std::nullopt :
-                                  std::optional<std::filesystem::path>(scene.records_dir));
+    const std::optional<std::filesystem::path> directory = study_records_directory(scene);
     if (!directory)
       return records;
-    // Thesis Table 4.1: Kobe KJMA (NGA-West2 file, trimmed to the thesis' 48 s) and Northridge
-    // Sylmar Converter Station (SCS142.AT2: the thesis' own pre-NGA file, 0.897 g, 40 s).
-    const std::vector<std::pair<std::string, std::optional<double>>> peer =
-      {{"RSN1106_KOBE_KJM000", 48.0}, {"SCS142", std::nullopt}};
-    for (const auto &[name, duration] : peer)
+    for (const auto &[name, duration] : peer_study_records)
     {
       if (!std::filesystem::is_regular_file(*directory / (name + ".AT2")))
         continue;

@@ -273,4 +273,7 @@ namespace kimp::app
 
   /** Records the study runs: scene.records, plus the PEER records found (if peer_records). */
   std::vector<GroundMotionScene> study_records(const StudyScene &scene);
+
+  /** One warning per PEER record requested by peer_records that study_records() cannot find. */
+  std::vector<std::string> missing_study_records(const StudyScene &scene);
 } // namespace kimp::app
