@@ -288,7 +288,8 @@ namespace kimp::app
     lumped::LawVelocity   law_velocity             = lumped::LawVelocity::backward;
     std::optional<double> duration;
     bool                  companion = false;
-    /// Refuse a case of more steps than this before it starts (docs/physics.md "Run budget").
+    /// Refuse a case of more steps than this before it starts (docs/physics.md, "Run budget" in
+    /// "Ground-motion records").
     double max_steps = 2e8;
     /// A case whose peak |displacement| or |absolute acceleration| exceeds these is failed as
     /// implausible (a wrong unit or scale), m and m/s².

@@ -278,8 +278,9 @@ namespace kimp::io
       if (end != std::string::npos)
         for (std::size_t k = end; k < dt_text.size(); ++k)
           unit += static_cast<char>(std::toupper(static_cast<unsigned char>(dt_text[k])));
+      // A subnormal DT (1e-320 s) passes "> 0" but would make an endless run.
       if (end == std::string::npos || !(unit.empty() || unit == "SEC" || unit == "S") ||
-          !(dt > 0.0))
+          !(dt > 0.0) || !std::isnormal(dt))
         fail(source,
              line.number,
              "DT = \"" + dt_text + "\" in " + context +
@@ -524,6 +525,11 @@ namespace kimp::io
                  std::to_string(header.npts + 1) +
                  " is on this line (expected exactly NPTS "
                  "values after the NPTS/DT line)");
+        if (!std::isfinite(value * unit))
+          fail(source,
+               line.number,
+               "value " + token_at(line.text, p) + " at column " + std::to_string(p + 1) +
+                 " overflows when converted to m/s^2 (expected a finite acceleration)");
         motion.acceleration.push_back(value * unit);
         p = end;
       }
@@ -573,6 +579,11 @@ namespace kimp::io
              line.number,
              std::to_string(nums.size()) +
                " numbers on the line (expected 2: 'time acceleration')");
+      if (!std::isfinite(nums[1] * acceleration_unit))
+        fail(source,
+             line.number,
+             "acceleration " + format_number(nums[1]) +
+               " overflows when converted to m/s^2 (expected a finite acceleration)");
       times.push_back(nums[0]);
       values.push_back(nums[1] * acceleration_unit);
       line_numbers.push_back(line.number);
@@ -589,7 +600,12 @@ namespace kimp::io
              "time " + format_number(times[i]) + " s after " + format_number(times[i - 1]) +
                " s (expected strictly increasing times)");
 
-    const double dt        = (times.back() - times.front()) / static_cast<double>(times.size() - 1);
+    const double dt = (times.back() - times.front()) / static_cast<double>(times.size() - 1);
+    if (!std::isnormal(dt))
+      fail(source,
+           line_numbers.back(),
+           "time step " + format_number(dt) +
+             " s (expected a positive normal number: times spanning more than 1e-300 s)");
     const double tolerance = two_column_time_tolerance * dt;
     if (std::abs(times.front()) > tolerance)
       fail(source,
