@@ -1,0 +1,2 @@
+// kimp gui: scene editor, runs and results in the browser, served by `kimp gui`.
+'use strict';
