@@ -15,5 +15,6 @@ namespace kimp::cli
     register_fit_command(app);
     register_sweep_command(app);
     register_report_command(app);
+    register_gui_command(app);
   }
 } // namespace kimp::cli

@@ -11,6 +11,8 @@
 #include "base/logging.h"
 #include "io/results_file.h"
 
+#include "report/report.h"
+
 namespace kimp::app
 {
   using namespace kimp::base;
@@ -61,6 +63,7 @@ namespace kimp::app
     result.wall_seconds = seconds_since(start);
     write_text_atomic(output.file("report.md"), report_markdown(scene, result, charts));
     write_text_atomic(output.file("summary.json"), summary_json(scene, result).dump(2) + "\n");
+    kimp::report::write_report(output.path());
     logger().info("study done in {:.2f} s (FEM {:.2f} s, fits {:.2f} s, building {:.2f} s, "
                   "charts {:.2f} s): {}",
                   result.wall_seconds,
@@ -69,6 +72,7 @@ namespace kimp::app
                   result.building_seconds,
                   result.charts_seconds,
                   output.file("report.md").string());
+    logger().info("HTML report: {}", output.file("report.html").string());
     return result;
   }
 
