@@ -282,6 +282,7 @@
 
   async function openResults(id) {
     const data = await getJson(`/api/runs/${id}/data`);
+    data.title = id;
     const pane = document.getElementById('results');
     kimp.showResults(pane, data);
     pane.insertBefore(el('p', {}, [el('a', { href: `/api/runs/${id}/report`, download: `${id}.html`, text: 'download report.html' })]), pane.children[1]);

@@ -29,6 +29,10 @@ async function main() {
     const name = title.replace(/[^A-Za-z0-9_.-]+/g, '_').replace(/^_+|_+$/g, '') + '.svg';
     const svg = await waitForFile(path.join(downloads, name), 5000);
     check(svg.startsWith('<svg') && svg.includes('<path d="M'), `exported ${name} holds the series as SVG paths`);
+    // The same chart as PDF: a vector page written by kimp.js (paths and Helvetica text).
+    await page.$eval('.chart .export-pdf', (b) => b.click());
+    const pdf = await waitForFile(path.join(downloads, name.replace(/\.svg$/, '.pdf')), 5000);
+    check(pdf.startsWith('%PDF-1.4') && pdf.includes(' l\n') && pdf.trimEnd().endsWith('%%EOF'), `exported ${name.replace(/\.svg$/, '.pdf')} is a vector PDF`);
     if (await page.$('svg.animation')) {
       await page.$eval('.anim-play', (b) => b.click());
       await new Promise((r) => setTimeout(r, 600));
