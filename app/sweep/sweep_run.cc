@@ -165,7 +165,15 @@ namespace kimp::app
         write_report(plan, output, !options.no_charts);
       else
         logger().info("no report: section in {}: no charts or summary", options.sweep);
-      logger().info("HTML report: {}", kimp::report::write_report(output.path()).string());
+      // The results are complete by now: a report that cannot be written is only a warning.
+      try
+      {
+        logger().info("HTML report: {}", kimp::report::write_report(output.path()).string());
+      }
+      catch (const std::exception &error)
+      {
+        logger().warn("no HTML report: {}", error.what());
+      }
     }
   }
 
