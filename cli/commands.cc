@@ -14,5 +14,7 @@ namespace kimp::cli
     register_collide_command(app);
     register_fit_command(app);
     register_sweep_command(app);
+    register_report_command(app);
+    register_gui_command(app);
   }
 } // namespace kimp::cli

@@ -17,6 +17,7 @@ packages=(
   jupyter-nbconvert python3-nbformat python3-nbclient python3-ipykernel  # the example notebook, run in CI
   libcpp-httplib-dev                        # the embedded web server of `kimp gui`
   chromium                                  # headless browser tests of the web interface
+  nodejs                                    # gui/ page code: lint, npm packages, browser tests
 )
 
 SUDO=""
@@ -29,11 +30,21 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#packages[@]} packages present"
-  exit 0
+else
+  echo "install-deps: installing ${#missing[@]} packages: ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  echo "install-deps: done"
 fi
 
-echo "install-deps: installing ${#missing[@]} packages: ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-echo "install-deps: done"
+# npm packages of gui/ (uPlot, embedded into kimp at build time; puppeteer-core for the browser
+# tests), exact versions from gui/package-lock.json. The system Chromium is used: no browser is
+# downloaded. Debian's nodejs may come without npm (NodeSource's includes it).
+if ! command -v npm >/dev/null 2>&1; then
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get install -y -qq --no-install-recommends npm >/dev/null
+fi
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+PUPPETEER_SKIP_DOWNLOAD=1 npm ci --prefix "$repo/gui" --no-audit --no-fund
+echo "install-deps: npm packages of gui/ installed"

@@ -11,6 +11,8 @@
 #include "base/logging.h"
 #include "io/results_file.h"
 
+#include "report/report.h"
+
 namespace kimp::app
 {
   using namespace kimp::base;
@@ -64,6 +66,15 @@ namespace kimp::app
     result.wall_seconds = seconds_since(start);
     write_text_atomic(output.file("report.md"), report_markdown(scene, result, charts));
     write_text_atomic(output.file("summary.json"), summary_json(scene, result).dump(2) + "\n");
+    try
+    {
+      kimp::report::write_report(output.path());
+    }
+    catch (const std::exception &error)
+    {
+      // The results are complete by now: a report that cannot be written is only a warning.
+      logger().warn("no HTML report: {}", error.what());
+    }
     logger().info("study done in {:.2f} s (FEM {:.2f} s, fits {:.2f} s, building {:.2f} s, "
                   "charts {:.2f} s): {}",
                   result.wall_seconds,
@@ -72,6 +83,7 @@ namespace kimp::app
                   result.building_seconds,
                   result.charts_seconds,
                   output.file("report.md").string());
+    logger().info("HTML report: {}", output.file("report.html").string());
     return result;
   }
 

@@ -20,6 +20,8 @@
 #include "base/version.h"
 #include "io/summary.h"
 
+#include "report/report.h"
+
 namespace kimp::app
 {
   using namespace kimp::base;
@@ -163,6 +165,15 @@ namespace kimp::app
         write_report(plan, output, !options.no_charts);
       else
         logger().info("no report: section in {}: no charts or summary", options.sweep);
+      // The results are complete by now: a report that cannot be written is only a warning.
+      try
+      {
+        logger().info("HTML report: {}", kimp::report::write_report(output.path()).string());
+      }
+      catch (const std::exception &error)
+      {
+        logger().warn("no HTML report: {}", error.what());
+      }
     }
   }
 

@@ -1,0 +1,830 @@
+// kimp results page: interactive charts (uPlot), tables and the building animation of one result
+// directory, shared by `kimp report` (data inlined) and `kimp gui` (data fetched from the server).
+// Chart export (SVG, PDF, CSV) is drawn here from the series data, not from uPlot's canvas.
+'use strict';
+
+const kimp = (function () {
+  const COLORS = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2',
+    '#7f7f7f', '#bcbd22', '#17becf'];
+  const charts = [];
+  let animation = null;
+
+  // ---- small helpers -------------------------------------------------------------------------
+  function el(tag, attrs, children) {
+    const e = document.createElement(tag);
+    for (const [k, v] of Object.entries(attrs || {})) {
+      if (k === 'text') e.textContent = v;
+      else if (k.startsWith('on')) e.addEventListener(k.slice(2), v);
+      else e.setAttribute(k, v);
+    }
+    for (const c of children || []) if (c) e.appendChild(c);
+    return e;
+  }
+
+  function fmt(x, digits) {
+    if (x === null || x === undefined || Number.isNaN(x)) return '';
+    if (typeof x !== 'number') return String(x);
+    return Number(x.toPrecision(digits || 4)).toString();
+  }
+
+  function download(name, text, type) {
+    const url = URL.createObjectURL(new Blob([text], { type: type }));
+    const a = el('a', { href: url, download: name });
+    document.body.appendChild(a);
+    a.click();
+    a.remove();
+    setTimeout(() => URL.revokeObjectURL(url), 1000);
+  }
+
+  function slug(text) {
+    return String(text).replace(/[^A-Za-z0-9_.-]+/g, '_').replace(/^_+|_+$/g, '') || 'chart';
+  }
+
+  function niceTicks(min, max, count) {
+    if (!(max > min)) return [min];
+    const step0 = (max - min) / count;
+    const mag = Math.pow(10, Math.floor(Math.log10(step0)));
+    const norm = step0 / mag;
+    const step = (norm < 1.5 ? 1 : norm < 3 ? 2 : norm < 7 ? 5 : 10) * mag;
+    const ticks = [];
+    for (let v = Math.ceil(min / step) * step; v <= max + step * 1e-9; v += step) {
+      ticks.push(Math.abs(v) < step * 1e-9 ? 0 : v);
+    }
+    return ticks;
+  }
+
+  function parseCsv(text) {
+    const rows = [];
+    let row = [];
+    let field = '';
+    let quoted = false;
+    for (let i = 0; i < text.length; ++i) {
+      const c = text[i];
+      if (quoted) {
+        if (c === '"' && text[i + 1] === '"') { field += '"'; ++i; }
+        else if (c === '"') quoted = false;
+        else field += c;
+      } else if (c === '"') quoted = true;
+      else if (c === ',') { row.push(field); field = ''; }
+      else if (c === '\n' || c === '\r') {
+        if (c === '\r' && text[i + 1] === '\n') ++i;
+        row.push(field); field = '';
+        if (row.length > 1 || row[0] !== '') rows.push(row);
+        row = [];
+      } else field += c;
+    }
+    if (field !== '' || row.length) { row.push(field); rows.push(row); }
+    return rows;
+  }
+
+  // ---- vector export: one list of primitives, written as SVG or PDF --------------------------
+  // A figure is {width, height, items: [{kind: 'line'|'path'|'rect'|'text'|'circle', ...}]}.
+  function chartFigure(c) {
+    const u = c.plot;
+    const W = 720;
+    const H = 400;
+    const m = { left: 80, right: 20, top: 36, bottom: 56 };
+    const pw = W - m.left - m.right;
+    const ph = H - m.top - m.bottom;
+    const xmin = u.scales.x.min;
+    const xmax = u.scales.x.max;
+    const ys = u.scales.y || u.scales[Object.keys(u.scales).find((k) => k !== 'x')];
+    const ymin = ys.min;
+    const ymax = ys.max;
+    const X = (v) => m.left + (v - xmin) / (xmax - xmin || 1) * pw;
+    const Y = (v) => m.top + ph - (v - ymin) / (ymax - ymin || 1) * ph;
+    const items = [];
+    items.push({ kind: 'rect', x: m.left, y: m.top, w: pw, h: ph, stroke: '#000', width: 1 });
+    for (const t of niceTicks(xmin, xmax, 8)) {
+      items.push({ kind: 'line', x1: X(t), y1: m.top, x2: X(t), y2: m.top + ph, stroke: '#ddd', width: 0.5 });
+      items.push({ kind: 'text', x: X(t), y: m.top + ph + 16, text: fmt(t, 6), anchor: 'middle', size: 11 });
+    }
+    for (const t of niceTicks(ymin, ymax, 6)) {
+      items.push({ kind: 'line', x1: m.left, y1: Y(t), x2: m.left + pw, y2: Y(t), stroke: '#ddd', width: 0.5 });
+      items.push({ kind: 'text', x: m.left - 6, y: Y(t) + 4, text: fmt(t, 6), anchor: 'end', size: 11 });
+    }
+    items.push({ kind: 'text', x: m.left + pw / 2, y: H - 14, text: c.xlabel, anchor: 'middle', size: 12 });
+    items.push({ kind: 'text', x: 16, y: m.top + ph / 2, text: c.ylabel, anchor: 'middle', size: 12, rotate: -90 });
+    items.push({ kind: 'text', x: m.left, y: 20, text: c.title, anchor: 'start', size: 14 });
+    let legendX = m.left + pw;
+    const data = u.data;
+    for (let s = 1; s < u.series.length; ++s) {
+      if (!u.series[s].show) continue;
+      const pts = [];
+      for (let i = 0; i < data[0].length; ++i) {
+        const x = data[0][i];
+        const y = data[s][i];
+        if (x < xmin || x > xmax || y === null || y === undefined || !Number.isFinite(y)) continue;
+        pts.push([X(x), Y(Math.min(Math.max(y, ymin), ymax))]);
+      }
+      items.push({ kind: 'path', points: pts, stroke: u.series[s].stroke(), width: 1.2, dots: c.points });
+      const label = String(u.series[s].label);
+      legendX -= 8 + 7 * label.length + 22;
+      items.push({ kind: 'line', x1: legendX, y1: 16, x2: legendX + 18, y2: 16, stroke: u.series[s].stroke(), width: 2 });
+      items.push({ kind: 'text', x: legendX + 22, y: 20, text: label, anchor: 'start', size: 11 });
+    }
+    return { width: W, height: H, items: items };
+  }
+
+  function escapeXml(s) {
+    return String(s).replace(/[<>&"]/g, (ch) => ({ '<': '&lt;', '>': '&gt;', '&': '&amp;', '"': '&quot;' })[ch]);
+  }
+
+  function figureSvg(f) {
+    const out = [`<svg xmlns="http://www.w3.org/2000/svg" width="${f.width}" height="${f.height}" ` +
+      `viewBox="0 0 ${f.width} ${f.height}" font-family="Helvetica, Arial, sans-serif">`,
+    `<rect width="${f.width}" height="${f.height}" fill="#fff"/>`];
+    const n = (v) => (Math.round(v * 100) / 100).toString();
+    for (const it of f.items) {
+      if (it.kind === 'rect') {
+        out.push(`<rect x="${n(it.x)}" y="${n(it.y)}" width="${n(it.w)}" height="${n(it.h)}" ` +
+          `fill="${it.fill || 'none'}" stroke="${it.stroke || 'none'}" stroke-width="${it.width || 1}"/>`);
+      } else if (it.kind === 'line') {
+        out.push(`<line x1="${n(it.x1)}" y1="${n(it.y1)}" x2="${n(it.x2)}" y2="${n(it.y2)}" ` +
+          `stroke="${it.stroke}" stroke-width="${it.width}"/>`);
+      } else if (it.kind === 'path' && it.points.length) {
+        const d = it.points.map((p, i) => (i ? 'L' : 'M') + n(p[0]) + ' ' + n(p[1])).join('');
+        out.push(`<path d="${d}" fill="none" stroke="${it.stroke}" stroke-width="${it.width}"/>`);
+        if (it.dots) {
+          for (const p of it.points) out.push(`<circle cx="${n(p[0])}" cy="${n(p[1])}" r="2.5" fill="${it.stroke}"/>`);
+        }
+      } else if (it.kind === 'circle') {
+        out.push(`<circle cx="${n(it.x)}" cy="${n(it.y)}" r="${n(it.r)}" fill="${it.fill}" ` +
+          `fill-opacity="${it.opacity === undefined ? 1 : it.opacity}"/>`);
+      } else if (it.kind === 'text') {
+        const rot = it.rotate ? ` transform="rotate(${it.rotate} ${n(it.x)} ${n(it.y)})"` : '';
+        out.push(`<text x="${n(it.x)}" y="${n(it.y)}" font-size="${it.size}" text-anchor="${it.anchor}"${rot}>` +
+          `${escapeXml(it.text)}</text>`);
+      }
+    }
+    out.push('</svg>');
+    return out.join('\n');
+  }
+
+  // A minimal PDF 1.4 writer: one page, lines and Helvetica text, in points (1 px = 0.75 pt).
+  function figurePdf(f) {
+    const k = 0.75;
+    const W = f.width * k;
+    const H = f.height * k;
+    const px = (x) => (x * k).toFixed(2);
+    const py = (y) => (H - y * k).toFixed(2);
+    const rgb = (hex) => {
+      const h = (hex || '#000').replace('#', '');
+      const v = h.length === 3 ? h.split('').map((c) => c + c) : [h.slice(0, 2), h.slice(2, 4), h.slice(4, 6)];
+      return v.map((x) => (parseInt(x, 16) / 255).toFixed(3)).join(' ');
+    };
+    const text = (s) => String(s).replace(/[^\x20-\x7e]/g, '?').replace(/([\\()])/g, '\\$1');
+    const ops = ['1 J 1 j'];
+    for (const it of f.items) {
+      if (it.kind === 'rect') {
+        ops.push(`${rgb(it.stroke)} RG ${(it.width || 1) * k} w ${px(it.x)} ${py(it.y + it.h)} ${px(it.w)} ${px(it.h)} re S`);
+      } else if (it.kind === 'line') {
+        ops.push(`${rgb(it.stroke)} RG ${it.width * k} w ${px(it.x1)} ${py(it.y1)} m ${px(it.x2)} ${py(it.y2)} l S`);
+      } else if (it.kind === 'path' && it.points.length) {
+        const p = it.points;
+        ops.push(`${rgb(it.stroke)} RG ${it.width * k} w ${px(p[0][0])} ${py(p[0][1])} m`);
+        for (let i = 1; i < p.length; ++i) ops.push(`${px(p[i][0])} ${py(p[i][1])} l`);
+        ops.push('S');
+      } else if (it.kind === 'circle') {
+        const r = it.r * k;
+        const cx = it.x * k;
+        const cy = H - it.y * k;
+        const c = 0.5523 * r;
+        ops.push(`${rgb(it.fill)} rg ${(cx + r).toFixed(2)} ${cy.toFixed(2)} m ` +
+          `${(cx + r).toFixed(2)} ${(cy + c).toFixed(2)} ${(cx + c).toFixed(2)} ${(cy + r).toFixed(2)} ${cx.toFixed(2)} ${(cy + r).toFixed(2)} c ` +
+          `${(cx - c).toFixed(2)} ${(cy + r).toFixed(2)} ${(cx - r).toFixed(2)} ${(cy + c).toFixed(2)} ${(cx - r).toFixed(2)} ${cy.toFixed(2)} c ` +
+          `${(cx - r).toFixed(2)} ${(cy - c).toFixed(2)} ${(cx - c).toFixed(2)} ${(cy - r).toFixed(2)} ${cx.toFixed(2)} ${(cy - r).toFixed(2)} c ` +
+          `${(cx + c).toFixed(2)} ${(cy - r).toFixed(2)} ${(cx + r).toFixed(2)} ${(cy - c).toFixed(2)} ${(cx + r).toFixed(2)} ${cy.toFixed(2)} c f`);
+      } else if (it.kind === 'text') {
+        const size = it.size * k;
+        const width = 0.5 * size * String(it.text).length;
+        const dx = it.anchor === 'middle' ? -width / 2 : it.anchor === 'end' ? -width : 0;
+        if (it.rotate) {
+          ops.push(`BT 0 0 0 rg /F1 ${size} Tf 0 1 -1 0 ${px(it.x)} ${(H - it.y * k + dx).toFixed(2)} Tm (${text(it.text)}) Tj ET`);
+        } else {
+          ops.push(`BT 0 0 0 rg /F1 ${size} Tf ${(it.x * k + dx).toFixed(2)} ${py(it.y)} Td (${text(it.text)}) Tj ET`);
+        }
+      }
+    }
+    const content = ops.join('\n');
+    const objects = [
+      '<< /Type /Catalog /Pages 2 0 R >>',
+      '<< /Type /Pages /Kids [3 0 R] /Count 1 >>',
+      `<< /Type /Page /Parent 2 0 R /MediaBox [0 0 ${W.toFixed(2)} ${H.toFixed(2)}] ` +
+        '/Resources << /Font << /F1 4 0 R >> >> /Contents 5 0 R >>',
+      '<< /Type /Font /Subtype /Type1 /BaseFont /Helvetica >>',
+      `<< /Length ${content.length} >>\nstream\n${content}\nendstream`,
+    ];
+    let pdf = '%PDF-1.4\n';
+    const offsets = [];
+    objects.forEach((o, i) => { offsets.push(pdf.length); pdf += `${i + 1} 0 obj\n${o}\nendobj\n`; });
+    const xref = pdf.length;
+    pdf += `xref\n0 ${objects.length + 1}\n0000000000 65535 f \n`;
+    for (const o of offsets) pdf += String(o).padStart(10, '0') + ' 00000 n \n';
+    pdf += `trailer\n<< /Size ${objects.length + 1} /Root 1 0 R >>\nstartxref\n${xref}\n%%EOF\n`;
+    return pdf;
+  }
+
+  function chartCsv(c) {
+    const u = c.plot;
+    const shown = u.series.map((s, i) => i).filter((i) => i === 0 || u.series[i].show);
+    const head = shown.map((i) => (i === 0 ? c.xlabel : u.series[i].label));
+    const lines = [head.map((h) => '"' + String(h).replace(/"/g, '""') + '"').join(',')];
+    for (let r = 0; r < u.data[0].length; ++r) {
+      lines.push(shown.map((i) => (u.data[i][r] === null || u.data[i][r] === undefined ? '' : u.data[i][r])).join(','));
+    }
+    return lines.join('\n') + '\n';
+  }
+
+  // ---- charts ----------------------------------------------------------------------------------
+  function wheelZoom() {
+    return {
+      hooks: {
+        ready: (u) => {
+          u.over.addEventListener('wheel', (e) => {
+            e.preventDefault();
+            const x = u.posToVal(e.offsetX, 'x');
+            const f = e.deltaY < 0 ? 0.8 : 1.25;
+            const min = x - (x - u.scales.x.min) * f;
+            const max = x + (u.scales.x.max - x) * f;
+            u.setScale('x', { min: min, max: max });
+          }, { passive: false });
+          // Shift-drag pans along x.
+          u.over.addEventListener('mousedown', (e) => {
+            if (!e.shiftKey) return;
+            e.stopPropagation();
+            const x0 = e.clientX;
+            const { min, max } = u.scales.x;
+            const per = (max - min) / u.bbox.width * devicePixelRatio;
+            const move = (ev) => u.setScale('x', { min: min - (ev.clientX - x0) * per, max: max - (ev.clientX - x0) * per });
+            const up = () => { document.removeEventListener('mousemove', move); document.removeEventListener('mouseup', up); };
+            document.addEventListener('mousemove', move);
+            document.addEventListener('mouseup', up);
+          }, true);
+        },
+      },
+    };
+  }
+
+  /**
+   * A chart card: spec = {title, xlabel, ylabel, x: [], series: [{label, y: []}], time: bool,
+   * points: bool}. time charts show the animation's time cursor and scrub it on click.
+   */
+  function chart(parent, spec) {
+    const card = el('div', { class: 'chart card' });
+    const bar = el('div', { class: 'chart-bar' }, [el('span', { class: 'chart-title', text: spec.title })]);
+    card.appendChild(bar);
+    const host = el('div', { class: 'chart-host' });
+    card.appendChild(host);
+    parent.appendChild(card);
+    const width = Math.max(320, Math.min(parent.clientWidth || 900, 1200) - 24);
+    const opts = {
+      width: width,
+      height: spec.height || 300,
+      scales: { x: { time: false } },
+      cursor: { sync: { key: spec.time ? 'kimp-time' : 'kimp-' + Math.random() } },
+      axes: [{ label: spec.xlabel }, { label: spec.ylabel, size: 70 }],
+      series: [{ label: spec.xlabel }].concat(spec.series.map((s, i) => ({
+        label: s.label,
+        stroke: COLORS[i % COLORS.length],
+        width: 1.2,
+        points: { show: !!spec.points },
+        paths: spec.points ? undefined : undefined,
+      }))),
+      plugins: [wheelZoom()],
+    };
+    const data = [spec.x].concat(spec.series.map((s) => s.y));
+    const plot = new uPlot(opts, data, host);
+    const c = { plot: plot, title: spec.title, xlabel: spec.xlabel, ylabel: spec.ylabel, points: spec.points, card: card, time: spec.time };
+    const name = slug(spec.title);
+    const exporters = [
+      ['svg', 'SVG', 'download the chart as SVG (vector)', () => figureSvg(chartFigure(c)), 'image/svg+xml'],
+      ['pdf', 'PDF', 'download the chart as PDF (vector)', () => figurePdf(chartFigure(c)), 'application/pdf'],
+      ['csv', 'CSV', 'download the shown series as CSV', () => chartCsv(c), 'text/csv'],
+    ];
+    for (const [ext, text, title, make, type] of exporters) {
+      bar.appendChild(el('button', { class: 'export-' + ext, text: text, title: title, onclick: () => download(name + '.' + ext, make(), type) }));
+    }
+    if (spec.time) {
+      c.cursor = el('div', { class: 'time-cursor' });
+      plot.over.appendChild(c.cursor);
+      plot.over.addEventListener('click', (e) => {
+        if (animation) animation.seek(plot.posToVal(e.offsetX, 'x'));
+      });
+    }
+    charts.push(c);
+    return c;
+  }
+
+  function setTimeCursor(t) {
+    for (const c of charts) {
+      if (!c.cursor || !c.plot.scales.x) continue;
+      const x = c.plot.valToPos(t, 'x');
+      c.cursor.style.display = x >= 0 && x <= c.plot.over.clientWidth ? 'block' : 'none';
+      c.cursor.style.left = x + 'px';
+    }
+  }
+
+  // ---- results file access -------------------------------------------------------------------
+  function datasets(data) {
+    const all = {};
+    for (const [file, h5] of Object.entries(data.h5 || {})) {
+      for (const [path, d] of Object.entries(h5.datasets)) all[file + ':' + path] = d;
+    }
+    return all;
+  }
+
+  function column(values, j) {
+    return values.map((row) => (Array.isArray(row) ? row[j] : row));
+  }
+
+  /** Time-series groups of a results file: {path, time: [], series: [{name, values, units}]}. */
+  function seriesGroups(h5) {
+    const byGroup = {};
+    for (const [path, d] of Object.entries(h5.datasets)) {
+      if (!Array.isArray(d.data) || d.shape.length < 1 || d.shape[0] < 3) continue;
+      const cut = path.lastIndexOf('/');
+      const g = path.slice(0, cut);
+      (byGroup[g] = byGroup[g] || {})[path.slice(cut + 1)] = d;
+    }
+    const groups = [];
+    for (const [g, members] of Object.entries(byGroup)) {
+      let time = members.time;
+      if (!time && members.value) {
+        // Series sampled together share one time dataset, stored once (a hard link elsewhere).
+        const parent = g.slice(0, g.lastIndexOf('/'));
+        for (const [g2, m2] of Object.entries(byGroup)) {
+          if (g2.startsWith(parent + '/') && m2.time && m2.time.data.length === members.value.data.length) {
+            time = m2.time;
+            break;
+          }
+        }
+      }
+      if (!time) continue;
+      const series = [];
+      for (const [name, d] of Object.entries(members)) {
+        if (name === 'time' || name === 'step' || d.data.length !== time.data.length) continue;
+        series.push({ name: name, values: d.data, units: d.units, width: d.shape[1] || 1 });
+      }
+      if (series.length) groups.push({ path: g, time: time.data, series: series });
+    }
+    return groups;
+  }
+
+  // ---- sections --------------------------------------------------------------------------------
+  function section(parent, title, open) {
+    const d = el('details', { class: 'section' });
+    if (open !== false) d.setAttribute('open', '');
+    d.appendChild(el('summary', { text: title }));
+    const body = el('div', { class: 'section-body' });
+    d.appendChild(body);
+    parent.appendChild(d);
+    return body;
+  }
+
+  function table(parent, header, rows, cls) {
+    const t = el('table', { class: cls || 'data' });
+    t.appendChild(el('thead', {}, [el('tr', {}, header.map((h) => el('th', { text: h })))]));
+    const tb = el('tbody');
+    for (const r of rows) tb.appendChild(el('tr', {}, r.map((v) => (v instanceof Node ? el('td', {}, [v]) : el('td', { text: v })))));
+    t.appendChild(tb);
+    parent.appendChild(el('div', { class: 'table-wrap' }, [t]));
+    return t;
+  }
+
+  function csvSection(parent, name, text, preset) {
+    const rows = parseCsv(text);
+    if (rows.length < 2) return;
+    const body = section(parent, name, rows.length <= 60);
+    table(body, rows[0], rows.slice(1, 201));
+    if (rows.length > 201) body.appendChild(el('p', { text: `first 200 of ${rows.length - 1} rows` }));
+    const numeric = rows[0].map((h, j) => rows.slice(1).some((r) => r[j] !== '' && Number.isFinite(Number(r[j]))));
+    const cols = rows[0].map((h, j) => j).filter((j) => numeric[j]);
+    if (cols.length < 2) return;
+    const xs = el('select', { class: 'csv-x' }, cols.map((j) => el('option', { value: j, text: rows[0][j] })));
+    const ys = el('select', { class: 'csv-y', multiple: '', size: Math.min(6, cols.length) }, cols.map((j) => el('option', { value: j, text: rows[0][j] })));
+    const host = el('div');
+    const draw = () => {
+      host.innerHTML = '';
+      const xj = Number(xs.value);
+      const yj = Array.from(ys.selectedOptions).map((o) => Number(o.value));
+      if (!yj.length) return;
+      const order = rows.slice(1).filter((r) => r[xj] !== '').sort((a, b) => Number(a[xj]) - Number(b[xj]));
+      chart(host, {
+        title: `${name}: ${yj.map((j) => rows[0][j]).join(', ')} over ${rows[0][xj]}`,
+        xlabel: rows[0][xj], ylabel: yj.length === 1 ? rows[0][yj[0]] : '', points: true,
+        x: order.map((r) => Number(r[xj])),
+        series: yj.map((j) => ({ label: rows[0][j], y: order.map((r) => (r[j] === '' ? null : Number(r[j]))) })),
+      });
+    };
+    if (preset) {
+      xs.value = String(rows[0].indexOf(preset.x));
+      for (const o of ys.options) o.selected = preset.y.includes(rows[0][Number(o.value)]);
+    } else {
+      xs.value = String(cols[0]);
+      ys.options[1].selected = true;
+    }
+    xs.addEventListener('change', draw);
+    ys.addEventListener('change', draw);
+    body.appendChild(el('div', { class: 'controls' }, [el('label', { text: 'x ' }, [xs]), el('label', { text: ' y ' }, [ys])]));
+    body.appendChild(host);
+    draw();
+  }
+
+  function seriesSection(parent, file, h5) {
+    const groups = seriesGroups(h5);
+    if (!groups.length) return;
+    const body = section(parent, `All histories in ${file} (${groups.length})`, false);
+    const pick = el('select', { class: 'series-pick' }, groups.map((g, i) => el('option', { value: i, text: g.path })));
+    const host = el('div');
+    const draw = () => {
+      host.innerHTML = '';
+      const g = groups[Number(pick.value)];
+      const series = [];
+      for (const s of g.series) {
+        for (let j = 0; j < s.width; ++j) {
+          series.push({ label: s.width > 1 ? `${s.name}[${j}] (${s.units})` : `${s.name} (${s.units})`, y: column(s.values, j) });
+        }
+      }
+      chart(host, { title: g.path, xlabel: 'time (s)', ylabel: '', x: g.time, series: series, time: false });
+    };
+    pick.addEventListener('change', draw);
+    body.appendChild(el('div', { class: 'controls' }, [el('label', { text: 'history ' }, [pick])]));
+    body.appendChild(host);
+    draw();
+  }
+
+  // ---- lumped runs -----------------------------------------------------------------------------
+  const SCALE = { m: [100, 'cm'], 'm/s^2': [1, 'm/s²'], N: [1e-6, 'MN'] };
+
+  function lumpedCases(data) {
+    const h5 = data.h5['lumped.h5'];
+    const resolved = JSON.parse(h5.datasets['/input/resolved'].data);
+    const groups = seriesGroups(h5);
+    const cases = (data.summary && data.summary.cases ? data.summary.cases : []).map((c) => {
+      const hist = {};
+      for (const g of groups) {
+        const prefix = `/lumped/${c.name}/history/`;
+        if (g.path.startsWith(prefix)) hist[g.path.slice(prefix.length)] = { time: g.time, values: g.series[0].values, units: g.series[0].units };
+      }
+      return { summary: c, history: hist };
+    });
+    return { resolved: resolved, cases: cases.filter((c) => c.history.displacement) };
+  }
+
+  function levelNames(n, isolated) {
+    const names = [];
+    for (let i = 0; i < n; ++i) names.push(isolated ? (i === 0 ? 'isolation level' : `floor ${i}`) : `floor ${i + 1}`);
+    return names;
+  }
+
+  function lumpedSection(parent, data) {
+    const model = lumpedCases(data);
+    if (!model.cases.length) return;
+    const r = model.resolved;
+    const isolated = r.building.kind === 'isolated';
+    const nMain = r.building.n_storeys + (isolated ? 1 : 0);
+
+    // Peaks table: the numbers of summary.json, in engineering units.
+    const body = section(parent, 'Peaks (summary.json)');
+    const first = isolated ? 'peak isolation displacement (cm)' : 'peak floor 1 displacement (cm)';
+    const contactNames = model.cases[0].summary.contacts.map((c) => c.name);
+    const header = ['case', 'status', first, 'peak top displacement (cm)', 'max interstorey drift (cm)',
+      'peak absolute acceleration (m/s²)', 'impacts']
+      .concat(contactNames.map((n) => `peak force ${n} (MN)`));
+    const rows = model.cases.map((c) => {
+      const s = c.summary;
+      const cell = (v, scale, key) => el('span', { class: 'peak', 'data-key': key, 'data-si': String(v), 'data-scale': String(scale),
+        text: fmt(v * scale, 6) });
+      return [s.name, s.status,
+        cell(s.peaks.displacement[0], 100, `${s.name}.displacement.0`),
+        cell(s.peaks.displacement[nMain - 1], 100, `${s.name}.displacement.${nMain - 1}`),
+        cell(s.max_interstorey_drift, 100, `${s.name}.max_interstorey_drift`),
+        cell(Math.max(...s.peaks.absolute_acceleration.slice(0, nMain)), 1, `${s.name}.absolute_acceleration.max`),
+        String(s.n_impacts)]
+        .concat(s.contacts.map((k) => cell(k.peak_force, 1e-6, `${s.name}.${k.name}.peak_force`)));
+    });
+    table(body, header, rows, 'data peaks');
+
+    // Case chooser shared by the charts below (overlay of several cases on one chart).
+    const chooser = el('div', { class: 'controls case-chooser' }, [el('span', { text: 'cases: ' })]);
+    model.cases.forEach((c, i) => {
+      const box = el('input', { type: 'checkbox', value: i, class: 'case-box' });
+      if (i === 0) box.checked = true;
+      chooser.appendChild(el('label', {}, [box, document.createTextNode(c.summary.name + ' ')]));
+    });
+    const hbody = section(parent, 'Histories');
+    hbody.appendChild(chooser);
+    const hostH = el('div');
+    hbody.appendChild(hostH);
+    const pbody = section(parent, 'Peak profiles over the floors');
+    const hostP = el('div');
+    pbody.appendChild(hostP);
+    const lbody = section(parent, 'Force-indentation loops');
+    const hostL = el('div');
+    lbody.appendChild(hostL);
+
+    const quantities = [
+      ['displacement', 'displacement', 'm', levelNames(data.h5['lumped.h5'] ? model.cases[0].history.displacement.values[0].length : nMain, isolated)],
+      ['interstorey_drift', 'interstorey drift', 'm', null],
+      ['absolute_acceleration', 'absolute acceleration', 'm/s^2', null],
+      ['contact_force', 'impact force', 'N', contactNames],
+    ];
+    const picks = {};
+    const draw = () => {
+      const chosen = Array.from(chooser.querySelectorAll('input:checked')).map((b) => model.cases[Number(b.value)]);
+      hostH.innerHTML = '';
+      hostP.innerHTML = '';
+      hostL.innerHTML = '';
+      charts.length = 0;
+      if (!chosen.length) return;
+      for (const [key, label, unit, names0] of quantities) {
+        const h0 = chosen[0].history[key];
+        if (!h0) continue;
+        const width = Array.isArray(h0.values[0]) ? h0.values[0].length : 1;
+        const names = names0 || Array.from({ length: width }, (_, j) => (key === 'interstorey_drift' ? `storey ${j + 1}` : levelNames(width, isolated)[j]));
+        if (!picks[key]) {
+          picks[key] = el('select', { class: 'component-pick', 'data-quantity': key }, names.slice(0, width).map((n, j) => el('option', { value: j, text: n })));
+          if (key === 'displacement' || key === 'absolute_acceleration') picks[key].value = '0';
+          picks[key].addEventListener('change', draw);
+        }
+        const j = Number(picks[key].value);
+        const [scale, shown] = SCALE[unit] || [1, unit];
+        hostH.appendChild(el('div', { class: 'controls' }, [el('label', { text: label + ' of ' }, [picks[key]])]));
+        chart(hostH, {
+          title: `${label}: ${names[j]}`, xlabel: 'time (s)', ylabel: `${label} (${shown})`, time: true,
+          x: h0.time,
+          series: chosen.map((c) => ({ label: c.summary.name, y: column(c.history[key].values, j).map((v) => v * scale) })),
+        });
+      }
+      // Peak profiles: level on x, peak on y, one series per case.
+      const profiles = [['displacement', 'peak displacement', 'm'], ['interstorey_drift', 'peak interstorey drift', 'm'],
+        ['absolute_acceleration', 'peak absolute acceleration', 'm/s^2']];
+      for (const [key, label, unit] of profiles) {
+        const [scale, shown] = SCALE[unit];
+        const n = key === 'interstorey_drift' ? nMain - (isolated ? 1 : 0) : nMain;
+        const first = key === 'interstorey_drift' && isolated ? 1 : 0;
+        chart(hostP, {
+          title: `${label} over the floors`, xlabel: isolated ? 'level (0 = isolation)' : 'floor', ylabel: `${label} (${shown})`, points: true,
+          x: Array.from({ length: n }, (_, i) => i + first),
+          series: chosen.map((c) => ({ label: c.summary.name, y: c.summary.peaks[key].slice(0, n).map((v) => v * scale) })),
+        });
+      }
+      // Force-indentation: the moat walls are fixed, so the indentation is the isolation level's
+      // displacement beyond the gap; a neighbour contact uses both floors' displacements.
+      const cf = chosen[0].history.contact_force;
+      if (cf) {
+        contactNames.forEach((name, k) => {
+          const series = [];
+          let xs = null;
+          for (const c of chosen) {
+            const u = c.history.displacement.values;
+            const f = column(c.history.contact_force.values, k);
+            const ind = indentation(name, u, r, nMain);
+            if (!ind) return;
+            // uPlot wants one ascending x: draw the loop as (time-ordered) points of a scatter.
+            const pairs = ind.map((d, i) => [d * 1000, f[i] * 1e-6]).filter((p, i) => f[i] > 0 || (i > 0 && f[i - 1] > 0));
+            xs = pairs;
+            series.push({ label: c.summary.name, pairs: pairs });
+          }
+          if (!xs || !series.some((s) => s.pairs.length)) return;
+          const allX = Array.from(new Set(series.flatMap((s) => s.pairs.map((p) => p[0])))).sort((a, b) => a - b);
+          const index = new Map(allX.map((x, i) => [x, i]));
+          chart(hostL, {
+            title: `force-indentation: ${name}`, xlabel: 'indentation (mm)', ylabel: 'impact force (MN)', points: true,
+            x: allX,
+            series: series.map((s) => {
+              const y = new Array(allX.length).fill(null);
+              for (const p of s.pairs) y[index.get(p[0])] = p[1];
+              return { label: s.label, y: y };
+            }),
+          });
+        });
+      }
+      if (animation) animation.setCase(chosen[0]);
+    };
+    chooser.addEventListener('change', draw);
+    const abody = section(parent, 'Animation');
+    animation = makeAnimation(abody, model, nMain, isolated);
+    draw();
+  }
+
+  function indentation(name, u, r, nMain) {
+    const m = /^(left|right)_(wall|neighbour_floor(\d+))$/.exec(name);
+    if (!m) return null;
+    const side = m[1];
+    if (m[2] === 'wall') {
+      const gap = r.walls[side].gap;
+      return u.map((row) => (side === 'right' ? row[0] - gap : -row[0] - gap));
+    }
+    const floor = Number(m[3]);
+    const nb = r.neighbours[side];
+    const offset = nMain + (side === 'right' && r.neighbours.left.present ? r.neighbours.left.n_storeys : 0);
+    const main = floor - 1 + (r.building.kind === 'isolated' ? 1 : 0);
+    return u.map((row) => (side === 'right' ? row[main] - row[offset + floor - 1] - nb.separation
+      : row[offset + floor - 1] - row[main] - nb.separation));
+  }
+
+  // ---- animation -------------------------------------------------------------------------------
+  function makeAnimation(parent, model, nMain, isolated) {
+    const r = model.resolved;
+    const NS = 'http://www.w3.org/2000/svg';
+    const W = 900;
+    const H = 420;
+    const svg = document.createElementNS(NS, 'svg');
+    svg.setAttribute('viewBox', `0 0 ${W} ${H}`);
+    svg.setAttribute('class', 'animation');
+    svg.setAttribute('xmlns', NS);
+    const state = { t: 0, playing: false, speed: 1, exaggeration: 10, frame: 0, kase: null };
+    const timeLabel = el('span', { id: 'anim-time', class: 'anim-time', text: 't = 0 s' });
+    const scrub = el('input', { type: 'range', min: 0, max: 1000, value: 0, class: 'anim-scrub' });
+    const play = el('button', { class: 'anim-play', text: 'Play' });
+    const restart = el('button', { class: 'anim-restart', text: 'Restart' });
+    const speed = el('select', { class: 'anim-speed' }, [0.1, 0.25, 0.5, 1, 2, 5].map((s) => el('option', { value: s, text: s + '×' })));
+    speed.value = '1';
+    const exag = el('input', { type: 'number', min: 1, max: 200, step: 1, value: 10, class: 'anim-exaggeration' });
+    const exportFrame = el('button', { class: 'anim-export', text: 'Frame SVG' });
+    parent.appendChild(el('div', { class: 'controls' }, [play, restart, el('label', { text: ' speed ' }, [speed]),
+      el('label', { text: ' exaggeration ×' }, [exag]), exportFrame, timeLabel]));
+    parent.appendChild(scrub);
+    parent.appendChild(svg);
+
+    const times = () => state.kase.history.displacement.time;
+    const tEnd = () => times()[times().length - 1];
+    const frameAt = (t) => {
+      const ts = times();
+      let lo = 0;
+      let hi = ts.length - 1;
+      while (hi - lo > 1) { const mid = (lo + hi) >> 1; if (ts[mid] <= t) lo = mid; else hi = mid; }
+      return ts[hi] <= t ? hi : lo;
+    };
+    const storeyH = 300 / (Math.max(nMain, 4) + 0.5);
+    const groundY = H - 40;
+    const widthMain = 160;
+    // Drawing scale: a storey is 3 m; displacements and gaps are drawn `exaggeration` times larger.
+    const pxPerM = storeyH / 3;
+
+    function draw() {
+      if (!state.kase) return;
+      const i = frameAt(state.t);
+      state.frame = i;
+      const u = state.kase.history.displacement.values[i];
+      const e = state.exaggeration * pxPerM;
+      const cx = W / 2;
+      const parts = [];
+      const line = (x1, y1, x2, y2, color, w) => parts.push(`<line x1="${x1.toFixed(1)}" y1="${y1.toFixed(1)}" x2="${x2.toFixed(1)}" y2="${y2.toFixed(1)}" stroke="${color}" stroke-width="${w}"/>`);
+      line(0, groundY, W, groundY, '#654', 3);
+      // Main building: level 0 is the isolation level (on the isolators) or floor 1.
+      const levelY = (k) => groundY - (isolated ? 18 + k * storeyH : (k + 1) * storeyH);
+      const xs = u.slice(0, nMain).map((v) => cx + v * e);
+      if (isolated) {
+        for (const dx of [-widthMain / 2 + 15, widthMain / 2 - 15]) line(cx + dx, groundY, xs[0] + dx, levelY(0), '#888', 5);
+      }
+      for (const side of [-1, 1]) {
+        let px = cx + side * widthMain / 2;
+        let py = groundY;
+        for (let k = isolated ? 0 : -1; k < nMain; ++k) {
+          const x = (k < 0 ? cx : xs[k]) + side * widthMain / 2;
+          const y = k < 0 ? groundY : levelY(k);
+          if (k >= (isolated ? 1 : 0)) line(px, py, x, y, '#345', 3);
+          px = x; py = y;
+        }
+      }
+      for (let k = 0; k < nMain; ++k) line(xs[k] - widthMain / 2, levelY(k), xs[k] + widthMain / 2, levelY(k), '#123', 6);
+      // Moat walls at the gap on either side of the isolation level.
+      for (const side of ['left', 'right']) {
+        const w = r.walls && r.walls[side];
+        if (!w || !w.present) continue;
+        const s = side === 'right' ? 1 : -1;
+        const x = cx + s * (widthMain / 2 + w.gap * e);
+        parts.push(`<rect x="${(s > 0 ? x : x - 14).toFixed(1)}" y="${(levelY(0) - 16).toFixed(1)}" width="14" height="${(groundY - levelY(0) + 16).toFixed(1)}" fill="#999"/>`);
+      }
+      // Neighbours: fixed-base shear buildings across their separation.
+      let offset = nMain;
+      for (const side of ['left', 'right']) {
+        const nb = r.neighbours && r.neighbours[side];
+        if (!nb || !nb.present) continue;
+        const s = side === 'right' ? 1 : -1;
+        const face = cx + s * (widthMain / 2 + nb.separation * e);
+        const wN = 120;
+        const base = face + s * wN / 2;
+        const nx = u.slice(offset, offset + nb.n_storeys).map((v) => base + v * e);
+        const ny = (k) => levelY(k + (isolated ? 1 : 0));
+        for (const side2 of [-1, 1]) {
+          let px = base + side2 * wN / 2;
+          let py = groundY;
+          for (let k = 0; k < nb.n_storeys; ++k) {
+            line(px, py, nx[k] + side2 * wN / 2, ny(k), '#575', 3);
+            px = nx[k] + side2 * wN / 2; py = ny(k);
+          }
+        }
+        for (let k = 0; k < nb.n_storeys; ++k) line(nx[k] - wN / 2, ny(k), nx[k] + wN / 2, ny(k), '#353', 6);
+        offset += nb.n_storeys;
+      }
+      // Impacts flash with their force.
+      const cf = state.kase.history.contact_force;
+      if (cf) {
+        const f = Array.isArray(cf.values[i]) ? cf.values[i] : [cf.values[i]];
+        state.kase.summary.contacts.forEach((c, k) => {
+          if (!(f[k] > 0)) return;
+          const m = /^(left|right)_(wall|neighbour_floor(\d+))$/.exec(c.name);
+          if (!m) return;
+          const s = m[1] === 'right' ? 1 : -1;
+          const level = m[2] === 'wall' ? 0 : Number(m[3]) - (isolated ? 0 : 1);
+          const x = xs[level] + s * widthMain / 2;
+          const y = levelY(level);
+          const rr = 6 + 24 * Math.sqrt(f[k] / Math.max(c.peak_force, 1));
+          parts.push(`<circle cx="${x.toFixed(1)}" cy="${y.toFixed(1)}" r="${rr.toFixed(1)}" fill="#e00" fill-opacity="0.6" class="impact"/>`);
+          parts.push(`<text x="${x.toFixed(1)}" y="${(y - rr - 4).toFixed(1)}" font-size="13" text-anchor="middle" fill="#b00">${fmt(f[k] * 1e-6, 3)} MN</text>`);
+        });
+      }
+      parts.push(`<text x="10" y="20" font-size="14">${state.kase.summary.name}: t = ${state.kase.history.displacement.time[i].toFixed(2)} s, displacements ×${state.exaggeration}</text>`);
+      svg.innerHTML = parts.join('');
+      timeLabel.textContent = `t = ${state.t.toFixed(2)} s`;
+      scrub.value = String(Math.round(state.t / tEnd() * 1000));
+      setTimeCursor(state.t);
+    }
+
+    let last = null;
+    function tick(now) {
+      if (!state.playing) { last = null; return; }
+      if (last !== null) state.t += (now - last) / 1000 * state.speed;
+      last = now;
+      if (state.t >= tEnd()) { state.t = tEnd(); state.playing = false; play.textContent = 'Play'; }
+      draw();
+      if (state.playing) requestAnimationFrame(tick);
+    }
+    const api = {
+      state: state,
+      play: () => { if (!state.playing) { if (state.t >= tEnd()) state.t = 0; state.playing = true; play.textContent = 'Pause'; requestAnimationFrame(tick); } },
+      pause: () => { state.playing = false; play.textContent = 'Play'; },
+      seek: (t) => { state.t = Math.max(0, Math.min(t, tEnd())); draw(); },
+      setCase: (c) => { state.kase = c; state.t = Math.min(state.t, tEnd()); draw(); },
+      frameSvg: () => `<svg xmlns="${NS}" viewBox="0 0 ${W} ${H}" width="${W}" height="${H}" font-family="Helvetica, Arial, sans-serif">` +
+        `<rect width="${W}" height="${H}" fill="#fff"/>${svg.innerHTML}</svg>`,
+    };
+    play.addEventListener('click', () => (state.playing ? api.pause() : api.play()));
+    restart.addEventListener('click', () => { state.t = 0; draw(); api.play(); });
+    speed.addEventListener('change', () => { state.speed = Number(speed.value); });
+    exag.addEventListener('change', () => { state.exaggeration = Math.max(1, Number(exag.value) || 1); draw(); });
+    scrub.addEventListener('input', () => api.seek(Number(scrub.value) / 1000 * tEnd()));
+    exportFrame.addEventListener('click', () => download(`frame_t${state.t.toFixed(2)}.svg`, api.frameSvg(), 'image/svg+xml'));
+    api.setCase(model.cases[0]);
+    return api;
+  }
+
+  // ---- study -----------------------------------------------------------------------------------
+  function studySection(parent, data) {
+    const h5 = data.h5['study.h5'];
+    if (!h5) return;
+    const groups = seriesGroups(h5).filter((g) => g.path.startsWith('/fit/'));
+    if (!groups.length) return;
+    const body = section(parent, 'FEM force histories with the fitted laws');
+    for (const g of groups) {
+      chart(body, {
+        title: `${g.path.slice(5)}: FEM and fitted force`, xlabel: 'time (s)', ylabel: 'force (kN/m)',
+        x: g.time,
+        series: g.series.map((s) => ({ label: s.name, y: s.values.map((v) => v * 1e-3) })),
+      });
+    }
+  }
+
+  // ---- entry point -----------------------------------------------------------------------------
+  function showResults(container, data) {
+    container.innerHTML = '';
+    charts.length = 0;
+    animation = null;
+    const files = Object.keys(data.h5 || {}).concat(Object.keys(data.csv || {}));
+    container.appendChild(el('h1', { text: `kimp ${data.kind || 'results'}: ${data.title}` }));
+    container.appendChild(el('p', { class: 'muted', text: `files: ${files.join(', ')}` }));
+    if (data.h5 && data.h5['lumped.h5']) lumpedSection(container, data);
+    if (data.kind === 'study') studySection(container, data);
+    const presets = {
+      'k_table.csv': {
+        x: 'wall_height_m',
+        y: ['kelvin_voigt_kN_per_mm_per_m', 'thesis_kelvin_voigt_kN_per_mm_per_m', 'jankowski_kN_per_mm1.5_per_m', 'thesis_jankowski_kN_per_mm1.5_per_m'],
+      },
+    };
+    for (const [name, text] of Object.entries(data.csv || {})) csvSection(container, name, text, presets[name]);
+    for (const [file, h5] of Object.entries(data.h5 || {})) seriesSection(container, file, h5);
+    if (data.summary) {
+      const body = section(container, 'summary.json', false);
+      body.appendChild(el('pre', { class: 'json', text: JSON.stringify(data.summary, null, 1) }));
+    }
+  }
+
+  return {
+    showResults: showResults,
+    animation: () => animation,
+    charts: () => charts,
+    figureSvg: figureSvg,
+    figurePdf: figurePdf,
+    chartFigure: chartFigure,
+    parseCsv: parseCsv,
+    chart: chart,
+    el: el,
+    fmt: fmt,
+  };
+})();
+
+if (typeof window !== 'undefined') window.kimp = kimp;

@@ -1,0 +1,59 @@
+// The local web server of `kimp gui` (cpp-httplib): the page, the scene schemas, validation,
+// background runs with progress, results and records, behind loopback-only security checks.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace kimp::server
+{
+  /// Options of `kimp gui`.
+  struct GuiOptions
+  {
+    /// Interface to bind; anything but loopback must be asked for explicitly (--host).
+    std::string host = "127.0.0.1";
+    /// TCP port; 0 picks a free one.
+    int port = 8080;
+    /// Directory of the runs (one sub-directory per run).
+    std::filesystem::path runs_dir = "kimp-runs";
+    /// The PEER records directory, if any (records list, plots).
+    std::optional<std::filesystem::path> records_dir;
+    /// The kimp executable that runs are started with.
+    std::filesystem::path kimp_executable;
+    /// Largest accepted request body (uploads, scenes), bytes.
+    std::size_t max_body = 16u << 20;
+  };
+
+  /// The server; listen() blocks until stop() (from another thread or a signal handler's thread).
+  class GuiServer
+  {
+  public:
+    explicit GuiServer(GuiOptions options);
+    ~GuiServer();
+    GuiServer(const GuiServer &)            = delete;
+    GuiServer &operator=(const GuiServer &) = delete;
+
+    /// Bind host:port; returns the bound port (a free one for port 0).
+    /// @throws std::runtime_error naming host and port when the socket cannot be bound.
+    int bind();
+    /// Serve requests until stop(); bind() first.
+    void listen();
+    /// Stop listen() and cancel running runs.
+    void stop();
+    /// http://host:port/ of the bound server.
+    std::string url() const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+  };
+
+  /// `kimp gui`: bind, print the URL on `announce`, optionally open a browser, serve until SIGINT.
+  void run_gui(const GuiOptions                               &options,
+               bool                                            open_browser,
+               const std::function<void(const std::string &)> &announce);
+} // namespace kimp::server

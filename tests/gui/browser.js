@@ -1,0 +1,48 @@
+// Shared helpers of the browser tests: the system Chromium driven by puppeteer-core (from
+// gui/node_modules; no browser is ever downloaded), console-error and network-request capture.
+'use strict';
+const path = require('path');
+const fs = require('fs');
+const puppeteer = require(path.join(__dirname, '..', '..', 'gui', 'node_modules', 'puppeteer-core'));
+
+const CHROMIUM = process.env.KIMP_CHROMIUM || '/usr/bin/chromium';
+
+async function launch() {
+  const args = ['--headless=new', '--disable-gpu', '--no-first-run', '--disable-extensions',
+    '--disable-background-networking', '--disable-component-update', '--disable-sync',
+    '--disable-default-apps', '--disable-dev-shm-usage'];
+  if (process.getuid && process.getuid() === 0) args.push('--no-sandbox');
+  return puppeteer.launch({ executablePath: CHROMIUM, headless: true, args: args });
+}
+
+/** A page that records console errors, page errors and every request's URL. */
+async function watchedPage(browser, downloadDir) {
+  const page = await browser.newPage();
+  await page.setViewport({ width: 1280, height: 900 });
+  const log = { errors: [], requests: [] };
+  page.on('console', (m) => { if (m.type() === 'error') log.errors.push(m.text()); });
+  page.on('pageerror', (e) => log.errors.push(String(e)));
+  page.on('request', (r) => log.requests.push(r.url()));
+  if (downloadDir) {
+    fs.mkdirSync(downloadDir, { recursive: true });
+    const cdp = await page.createCDPSession();
+    await cdp.send('Browser.setDownloadBehavior', { behavior: 'allow', downloadPath: downloadDir });
+  }
+  return { page: page, log: log };
+}
+
+async function waitForFile(file, ms) {
+  const end = Date.now() + ms;
+  while (Date.now() < end) {
+    if (fs.existsSync(file) && fs.statSync(file).size > 0) return fs.readFileSync(file, 'utf8');
+    await new Promise((r) => setTimeout(r, 100));
+  }
+  throw new Error(`no file ${file} after ${ms} ms`);
+}
+
+function check(condition, message) {
+  if (!condition) throw new Error('check failed: ' + message);
+  console.log('ok: ' + message);
+}
+
+module.exports = { launch, watchedPage, waitForFile, check };

@@ -1,0 +1,121 @@
+// `kimp gui` in headless Chromium: edit a small lumped scene through the form, see a bad value
+// flagged at its field, run, compare the peaks on the page with summary.json, play and pause the
+// animation, export a chart as SVG; no console error. Screenshots go to ARTEFACT_DIR.
+// node gui_test.js KIMP ARTEFACT_DIR
+'use strict';
+const fs = require('fs');
+const path = require('path');
+const { spawn } = require('child_process');
+const { launch, watchedPage, waitForFile, check } = require('./browser.js');
+
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+function startServer(kimpExe, runsDir) {
+  return new Promise((resolve, reject) => {
+    const child = spawn(kimpExe, ['gui', '--port', '0', '--runs-dir', runsDir], { stdio: ['ignore', 'pipe', 'pipe'] });
+    let out = '';
+    child.stdout.on('data', (d) => {
+      out += d;
+      const m = /(http:\/\/127\.0\.0\.1:\d+\/)/.exec(out);
+      if (m) resolve({ child: child, url: m[1] });
+    });
+    child.on('exit', (code) => reject(new Error(`kimp gui exited with ${code}: ${out}`)));
+  });
+}
+
+async function setField(page, fieldPath, value) {
+  await page.$eval(`#scene-form [data-path="${fieldPath}"] input, #scene-form input[data-path="${fieldPath}"]`, (input, v) => {
+    input.value = v;
+    input.dispatchEvent(new Event('change', { bubbles: true }));
+  }, value);
+}
+
+async function main() {
+  const [kimpExe, artefacts] = process.argv.slice(2);
+  const runsDir = path.join(artefacts, 'gui_runs');
+  fs.rmSync(runsDir, { recursive: true, force: true });
+  fs.mkdirSync(artefacts, { recursive: true });
+  const { child, url } = await startServer(kimpExe, runsDir);
+  const browser = await launch();
+  try {
+    const downloads = path.join(artefacts, 'downloads_gui');
+    fs.rmSync(downloads, { recursive: true, force: true });
+    const { page, log } = await watchedPage(browser, downloads);
+    await page.goto(url, { waitUntil: 'load' });
+    await page.waitForSelector('body[data-ready="1"]', { timeout: 15000 });
+    const nFields = await page.$$eval('#scene-form .field', (f) => f.length);
+    check(nFields > 40, `editor form generated from the schema (${nFields} fields)`);
+
+    // A value out of range is flagged at its field with the CLI's own message.
+    await setField(page, 'building.n_storeys', '0');
+    await page.click('#scene-validate');
+    await page.waitForSelector('.field.error[data-path="building.n_storeys"] .field-error');
+    const message = await page.$eval('.field.error .field-error', (e) => e.textContent);
+    check(/scene\.yaml:\d+: building\.n_storeys\b.*\b0\b/.test(message), `error at the field: "${message}"`);
+    await page.screenshot({ path: path.join(artefacts, 'gui_field_error.png') });
+
+    // The small scene, set through the form.
+    await setField(page, 'building.n_storeys', '3');
+    await setField(page, 'walls.left.gap', '8 cm');
+    await setField(page, 'walls.right.gap', '8 cm');
+    await setField(page, 'ground_motion.duration', '6 s');
+    const yaml = await page.$eval('#scene-yaml', (t) => t.value);
+    check(yaml.includes('n_storeys: 3') && yaml.includes('gap: "8 cm"'), 'the form writes the YAML scene');
+    await page.screenshot({ path: path.join(artefacts, 'gui_editor.png') });
+    await page.click('#scene-run');
+    await page.waitForSelector('#results .peaks', { timeout: 60000 });
+    const runId = await page.$eval('#run-status', (s) => s.textContent.split(':')[0]);
+    const summary = JSON.parse(fs.readFileSync(path.join(runsDir, runId, 'out', 'summary.json'), 'utf8'));
+    const peaks = await page.$$eval('#results .peak', (ps) => ps.map((p) => ({ key: p.dataset.key, text: p.textContent, scale: Number(p.dataset.scale) })));
+    const kase = summary.cases[0];
+    const expected = {
+      [`${kase.name}.displacement.0`]: kase.peaks.displacement[0],
+      [`${kase.name}.displacement.3`]: kase.peaks.displacement[3],
+      [`${kase.name}.max_interstorey_drift`]: kase.max_interstorey_drift,
+      [`${kase.name}.left_wall.peak_force`]: kase.contacts.find((c) => c.name === 'left_wall').peak_force,
+      [`${kase.name}.right_wall.peak_force`]: kase.contacts.find((c) => c.name === 'right_wall').peak_force,
+    };
+    for (const [key, value] of Object.entries(expected)) {
+      const shown = peaks.find((p) => p.key === key);
+      check(shown && Number(shown.text) === Number((value * shown.scale).toPrecision(6)),
+        `peak ${key} on the page (${shown && shown.text}) equals summary.json (${value})`);
+    }
+    check(kase.n_impacts > 0, `the run pounds the walls (${kase.n_impacts} impacts)`);
+    await page.screenshot({ path: path.join(artefacts, 'gui_results.png') });
+
+    // Animation: frames advance while playing, pause holds.
+    await page.$eval('svg.animation', (s) => s.scrollIntoView());
+    await page.click('.anim-play');
+    await sleep(700);
+    const t1 = await page.evaluate(() => window.kimp.animation().state.t);
+    const f1 = await page.evaluate(() => window.kimp.animation().state.frame);
+    await sleep(500);
+    const t2 = await page.evaluate(() => window.kimp.animation().state.t);
+    const f2 = await page.evaluate(() => window.kimp.animation().state.frame);
+    check(t2 > t1 && f2 > f1, `frames advance while playing (frame ${f1} -> ${f2}, t ${t1.toFixed(2)} -> ${t2.toFixed(2)} s)`);
+    await page.click('.anim-play');
+    const p1 = await page.evaluate(() => window.kimp.animation().state.t);
+    await sleep(500);
+    const p2 = await page.evaluate(() => window.kimp.animation().state.t);
+    check(p1 === p2, `pause holds (t = ${p1.toFixed(3)} s)`);
+    // Jump to the first impact and look at it.
+    const tImpact = kase.contacts.find((c) => c.impacts.length).impacts[0].time;
+    await page.evaluate((t) => window.kimp.animation().seek(t + 0.005), tImpact);
+    await page.$eval('svg.animation', (s) => s.scrollIntoView());
+    await page.screenshot({ path: path.join(artefacts, 'gui_animation.png') });
+
+    // Export the displacement chart as SVG.
+    await page.$eval('#results .chart .export-svg', (b) => b.click());
+    const title = await page.$eval('#results .chart .chart-title', (t) => t.textContent);
+    const file = path.join(downloads, title.replace(/[^A-Za-z0-9_.-]+/g, '_').replace(/^_+|_+$/g, '') + '.svg');
+    const svg = await waitForFile(file, 5000);
+    check(svg.startsWith('<svg') && svg.includes('<path d="M') && svg.includes('time (s)'), `chart exported as SVG (${path.basename(file)}, ${svg.length} bytes)`);
+    fs.copyFileSync(file, path.join(artefacts, 'gui_chart.svg'));
+    check(log.errors.length === 0, `no console error (${log.errors.join(' | ') || 'none'})`);
+  } finally {
+    await browser.close();
+    child.kill('SIGTERM');
+  }
+}
+
+main().catch((e) => { console.error(e); process.exit(1); });

@@ -1,0 +1,48 @@
+// `kimp report DIR` opens from file:// in headless Chromium: no network request, no console
+// error, the charts and the animation are there, and a chart exports as SVG.
+// node report_test.js KIMP RESULT_DIR ARTEFACT_DIR
+'use strict';
+const fs = require('fs');
+const path = require('path');
+const { execFileSync } = require('child_process');
+const { launch, watchedPage, waitForFile, check } = require('./browser.js');
+
+async function main() {
+  const [kimpExe, dir, artefacts] = process.argv.slice(2);
+  fs.mkdirSync(artefacts, { recursive: true });
+  const html = path.join(artefacts, path.basename(dir) + '_report.html');
+  execFileSync(kimpExe, ['-q', 'report', dir, '-o', html]);
+  const browser = await launch();
+  try {
+    const downloads = path.join(artefacts, 'downloads_' + path.basename(dir));
+    const { page, log } = await watchedPage(browser, downloads);
+    await page.goto('file://' + html, { waitUntil: 'load' });
+    await page.waitForSelector('.chart canvas');
+    const nCharts = await page.$$eval('.chart', (cs) => cs.length);
+    check(nCharts > 0, `${nCharts} charts drawn`);
+    const foreign = log.requests.filter((u) => !u.startsWith('file://') && !u.startsWith('blob:') && !u.startsWith('data:'));
+    check(foreign.length === 0, `no network request (${foreign.join(' ') || 'none'})`);
+    await page.screenshot({ path: path.join(artefacts, path.basename(dir) + '_report.png'), fullPage: false });
+    // Export the first chart as SVG and check that it is a drawing of the chart.
+    await page.$eval('.chart .export-svg', (b) => b.click());
+    const title = await page.$eval('.chart .chart-title', (t) => t.textContent);
+    const name = title.replace(/[^A-Za-z0-9_.-]+/g, '_').replace(/^_+|_+$/g, '') + '.svg';
+    const svg = await waitForFile(path.join(downloads, name), 5000);
+    check(svg.startsWith('<svg') && svg.includes('<path d="M'), `exported ${name} holds the series as SVG paths`);
+    // The same chart as PDF: a vector page written by kimp.js (paths and Helvetica text).
+    await page.$eval('.chart .export-pdf', (b) => b.click());
+    const pdf = await waitForFile(path.join(downloads, name.replace(/\.svg$/, '.pdf')), 5000);
+    check(pdf.startsWith('%PDF-1.4') && pdf.includes(' l\n') && pdf.trimEnd().endsWith('%%EOF'), `exported ${name.replace(/\.svg$/, '.pdf')} is a vector PDF`);
+    if (await page.$('svg.animation')) {
+      await page.$eval('.anim-play', (b) => b.click());
+      await new Promise((r) => setTimeout(r, 600));
+      const t = await page.evaluate(() => window.kimp.animation().state.t);
+      check(t > 0, `animation plays from file:// (t = ${t})`);
+    }
+    check(log.errors.length === 0, `no console error (${log.errors.join(' | ') || 'none'})`);
+  } finally {
+    await browser.close();
+  }
+}
+
+main().catch((e) => { console.error(e); process.exit(1); });
