@@ -199,6 +199,12 @@ namespace kimp::python
       py::arg("second_order"));
 
     m.def(
+      "effective_mass",
+      [](double m1, double m2) { return two_body(m1, m2, 1.0, 0.0, 1.0, false).effective_mass(); },
+      py::arg("mass_1"),
+      py::arg("mass_2"),
+      "m1·m2/(m1 + m2), kg (m1 against a rigid wall, m2 = inf), as the collision computes it.");
+    m.def(
       "cor_table",
       [](const std::string &text, const std::string &name)
       {

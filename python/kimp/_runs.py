@@ -307,8 +307,10 @@ def collide(law, *, mass_1=280e3, mass_2=300e3, velocity=1.0, velocity_2=0.0, ti
 
     if velocity_estimate not in ("backward", "second_order"):
         raise ValueError("velocity_estimate must be 'backward' or 'second_order'")
+    m1 = _si(mass_1, "kg")
     m2 = math.inf if mass_2 == math.inf else _si(mass_2, "kg")
-    d = _kimp.collide(law._law if hasattr(law, "_law") else law, _si(mass_1, "kg"), m2,
+    m_eff = law.m_eff if law.m_eff else _kimp.effective_mass(m1, m2)
+    d = _kimp.collide(law._make(m_eff), m1, m2,
                       _si(velocity, "m/s"), _si(velocity_2, "m/s"), _si(time_step, "s"),
                       velocity_estimate == "second_order")
     return Collision(**d)

@@ -51,8 +51,21 @@ class Law:
         self.a1 = _si(a1, "s/m")
         self.delta_u = _si(delta_u, "m")
         self.k_w = _si(k_w, "N/m")
-        self._law = _kimp.Law(self.law, self.k, exponent, self.cor, self.m_eff, self.ye, self.a1,
-                              self.delta_u, self.k_w)
+        self._given_exponent = exponent
+        self._compiled = None
+
+    def _make(self, m_eff=None):
+        """The C++ law, with `m_eff` (kg) instead of this law's own if given."""
+        return _kimp.Law(self.law, self.k, self._given_exponent, self.cor,
+                         self.m_eff if m_eff is None else m_eff, self.ye, self.a1, self.delta_u,
+                         self.k_w)
+
+    @property
+    def _law(self):
+        # Made on first use: a law for kimp.collide() may leave m_eff to the collision.
+        if self._compiled is None:
+            self._compiled = self._make()
+        return self._compiled
 
     def force(self, delta, delta_dot):
         """Contact force F (N, compressive > 0) at interpenetration δ (m) and rate δ̇ (m/s)."""
