@@ -2,8 +2,10 @@
 // the hand-over of C++ vectors to numpy without a copy.
 #pragma once
 
+#include <memory>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -32,6 +34,22 @@ namespace kimp::python
 
   /// A copy of a numpy array (any float-convertible input) as a std::vector<double>.
   std::vector<double> to_vector(const DoubleArray &array);
+
+  /// A scene read and validated once: its kind, name, resolved JSON (SI) and the scene struct
+  /// (app::LumpedScene for kind "lumped", ...), so a run does not parse the text again.
+  struct ParsedScene
+  {
+    std::string                 kind;
+    std::string                 name;
+    std::string                 resolved;
+    std::shared_ptr<const void> scene;
+
+    template <class Scene>
+    const Scene &as() const
+    {
+      return *std::static_pointer_cast<const Scene>(scene);
+    }
+  };
 
   void register_scene(py::module_ &m);
   void register_lumped(py::module_ &m);

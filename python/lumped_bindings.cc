@@ -1,5 +1,7 @@
 // Lumped runs and ground motions for Python: the scene's cases run by app::run_lumped_case (as
 // `kimp lumped` does, without files) with the GIL released; histories handed to numpy unmoved.
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <pybind11/stl.h>
 #include <string>
@@ -30,6 +32,13 @@ namespace kimp::python
       d["absolute_acceleration"] = to_numpy(std::move(r.peak_absolute_acceleration));
       d["interstorey_drift"]     = to_numpy(std::move(r.peak_interstorey_drift));
       return d;
+    }
+
+    const app::LumpedScene &lumped_scene(const ParsedScene &parsed)
+    {
+      if (parsed.kind != "lumped")
+        throw std::invalid_argument(parsed.name + " is a " + parsed.kind + " scene, not lumped");
+      return parsed.as<app::LumpedScene>();
     }
 
     /// The case as plain Python objects; its vectors are moved into the arrays.
@@ -115,35 +124,61 @@ namespace kimp::python
         return std::nullopt;
       return std::filesystem::path(*text);
     }
+
+    /**
+     * app::load_ground_motion, remembering the last synthetic motion: a loop of runs from
+     * Python varies the building and keeps the motion, whose generation (filtering a 20 s
+     * record) would otherwise cost more than a short run. The same section gives a bitwise
+     * identical record, so reusing it changes no number. Records from files are always read.
+     */
+    std::shared_ptr<const lumped::GroundMotion> scene_motion(const app::GroundMotionScene &scene,
+                                                             const std::optional<std::string> &dir)
+    {
+      if (scene.is_record())
+        return std::make_shared<const lumped::GroundMotion>(
+          app::load_ground_motion(scene, directory(dir)));
+      static std::mutex                                  mutex;
+      static std::string                                 last_key;
+      static std::shared_ptr<const lumped::GroundMotion> last;
+      const std::string                                  key = io::to_json_text(scene, -1);
+      {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (last && key == last_key)
+          return last;
+      }
+      auto motion = std::make_shared<const lumped::GroundMotion>(app::load_ground_motion(scene));
+      const std::lock_guard<std::mutex> lock(mutex);
+      last_key = key;
+      last     = motion;
+      return motion;
+    }
   } // namespace
 
   void register_lumped(py::module_ &m)
   {
     m.def(
       "run_lumped",
-      [](const std::string                &text,
-         const std::string                &name,
+      [](const ParsedScene                &parsed,
          const std::optional<std::string> &records_dir,
          const std::optional<std::string> &only_case)
       {
         std::vector<app::LumpedCaseResult> results;
         {
           // Everything below is C++ only: other Python threads run meanwhile.
-          py::gil_scoped_release     release;
-          const app::LumpedScene     scene = io::load_scene_text<app::LumpedScene>(text, name);
-          const lumped::GroundMotion motion =
-            app::load_ground_motion(scene.ground_motion, directory(records_dir));
-          const auto cases = app::resolve_cases(scene);
+          py::gil_scoped_release  release;
+          const app::LumpedScene &scene  = lumped_scene(parsed);
+          const auto              motion = scene_motion(scene.ground_motion, records_dir);
+          const auto              cases  = app::resolve_cases(scene);
           for (const auto &[case_name, case_scene] : cases)
             if (!only_case || *only_case == case_name)
               results.push_back(
-                app::run_lumped_case(case_name, case_scene, motion, scene.ground_motion.scale));
+                app::run_lumped_case(case_name, case_scene, *motion, scene.ground_motion.scale));
           if (only_case && results.empty())
           {
             std::string known;
             for (const auto &c : cases)
               known += (known.empty() ? "" : ", ") + c.first;
-            throw std::invalid_argument("no case '" + *only_case + "' in " + name +
+            throw std::invalid_argument("no case '" + *only_case + "' in " + parsed.name +
                                         " (cases: " + known + ")");
           }
         }
@@ -152,21 +187,19 @@ namespace kimp::python
           list.append(case_dict(std::move(r)));
         return list;
       },
-      py::arg("text"),
-      py::arg("name"),
+      py::arg("scene"),
       py::arg("records_dir") = py::none(),
       py::arg("case")        = py::none(),
       "Run the cases of a lumped scene as `kimp lumped` does; a list of plain dicts.");
 
     m.def(
       "ground_motion",
-      [](const std::string &text, const std::string &name, const std::optional<std::string> &dir)
+      [](const ParsedScene &parsed, const std::optional<std::string> &dir)
       {
         lumped::GroundMotion motion;
         {
           py::gil_scoped_release release;
-          const app::LumpedScene scene = io::load_scene_text<app::LumpedScene>(text, name);
-          motion = app::load_ground_motion(scene.ground_motion, directory(dir));
+          motion = app::load_ground_motion(lumped_scene(parsed).ground_motion, directory(dir));
         }
         py::dict d;
         d["name"]         = motion.name;
@@ -175,8 +208,7 @@ namespace kimp::python
         d["acceleration"] = to_numpy(std::move(motion.acceleration));
         return d;
       },
-      py::arg("text"),
-      py::arg("name"),
+      py::arg("scene"),
       py::arg("records_dir") = py::none(),
       "The ground motion of a lumped scene's ground_motion section (loaded, scaled, trimmed).");
   }

@@ -24,7 +24,7 @@ namespace kimp::python
     /// What Python needs of one scene kind.
     struct SceneKind
     {
-      std::function<std::string(const std::string &, const std::string &)> validate;
+      std::function<ParsedScene(const std::string &, const std::string &)> validate;
       std::function<std::string()>                                         schema;
       std::function<std::string()>                                         defaults;
     };
@@ -33,7 +33,13 @@ namespace kimp::python
     SceneKind scene_kind(const char *title)
     {
       return {[](const std::string &text, const std::string &name)
-              { return io::read_scene_text<Scene>(text, name).resolved_json; },
+              {
+                io::LoadedScene<Scene> loaded = io::read_scene_text<Scene>(text, name);
+                return ParsedScene{"",
+                                   name,
+                                   std::move(loaded.resolved_json),
+                                   std::make_shared<const Scene>(std::move(loaded.scene))};
+              },
               [] { return io::schema_text<Scene>(); },
               [title] { return io::default_scene_text<Scene>(title); }};
     }
@@ -68,6 +74,10 @@ namespace kimp::python
 
   void register_scene(py::module_ &m)
   {
+    py::class_<ParsedScene>(m, "ParsedScene")
+      .def_readonly("kind", &ParsedScene::kind)
+      .def_readonly("name", &ParsedScene::name)
+      .def_readonly("resolved", &ParsedScene::resolved);
     m.def("scene_kinds",
           []
           {
@@ -79,12 +89,16 @@ namespace kimp::python
     m.def(
       "validate_scene",
       [](const std::string &kind, const std::string &text, const std::string &name)
-      { return find_kind(kind).validate(text, name); },
+      {
+        ParsedScene parsed = find_kind(kind).validate(text, name);
+        parsed.kind        = kind;
+        return parsed;
+      },
       py::arg("kind"),
       py::arg("text"),
       py::arg("name"),
-      "Read and validate a scene as the CLI does; returns its resolved JSON (SI). Raises "
-      "SceneError with the CLI's message.");
+      "Read and validate a scene as the CLI does (a ParsedScene). Raises SceneError with the "
+      "CLI's message.");
     m.def(
       "read_text_file",
       [](const std::string &path) { return io::detail::read_text_file(path); },

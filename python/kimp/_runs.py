@@ -209,7 +209,7 @@ def lumped(scene, case=None, records_dir=None):
     ``results["case"]`` and ``results.peaks``, {case: Peaks}).
     """
     scene = _scene(scene, "lumped")
-    cases = _call(_kimp.run_lumped, scene.text, scene.name,
+    cases = _call(_kimp.run_lumped, scene._parsed,
                   os.fspath(records_dir) if records_dir else None, case)
     results = Results(_result(c) for c in cases)
     return results[0] if len(results) == 1 else results
@@ -258,7 +258,7 @@ def ground_motion(record="synthetic", *, scale_to_pga=None, scale=None, duration
             section["synthetic"] = synthetic
         scene = Scene.from_dict({"ground_motion": section}, "lumped", "<ground_motion>")
     scene = _scene(scene, "lumped")
-    d = _call(_kimp.ground_motion, scene.text, scene.name,
+    d = _call(_kimp.ground_motion, scene._parsed,
               os.fspath(records_dir) if records_dir else None)
     return GroundMotion(**d)
 
