@@ -23,6 +23,7 @@ ALLOWED = {
     "io": {"base"},
     "app": {"base", "io", "fit", "lumped", "geometry", "fem"},
     "cli": {"base", "io", "app"},
+    "python": {"base", "io", "fit", "lumped", "app"},
 }
 MODULES = set(ALLOWED)
 
@@ -36,6 +37,7 @@ FOREIGN = {
     "io": ["deal.II/", "gmsh", "Eigen/", "CLI/"],
     "app": ["CLI/", "hdf5", "H5"],
     "cli": ["deal.II/", "gmsh", "hdf5", "H5", "yaml-cpp/"],
+    "python": ["deal.II/", "gmsh", "hdf5", "H5", "yaml-cpp/", "CLI/"],
 }
 
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
@@ -82,6 +84,8 @@ def self_test():
         "cli/lumped_command.cc": '#include "cli/fit_command.cc"\n',
         "fem/x.cc": '#include "app/lumped_run.h"\n',
         "lumped/y.cc": "#include <hdf5.h>\n",
+        "app/y.cc": '#include "python/bindings.h"\n',
+        "python/x.cc": "#include <CLI/CLI.hpp>\n",
     }
     with tempfile.TemporaryDirectory() as root:
         for rel, text in cases.items():
