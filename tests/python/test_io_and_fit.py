@@ -110,3 +110,41 @@ def test_fem_and_fit_round_trip_against_the_cli(tmp_path):
                     indentation=case["indentation"].value)
     variant = fitted["fit"][name]["kelvin_voigt_cor_fixed"]
     assert mine.k == variant["stiffness"]
+
+
+# One coarse wall height, the synthetic record only, no charts or extra studies: seconds.
+QUICK_STUDY = """\
+fem:
+  wall_heights: ["1.25 m"]
+  mesh:
+    h_contact: "5 cm"
+    h_max: "25 cm"
+    grading: 1.5
+  slab:
+    rigid: true
+    velocity: "1.0 m/s"
+  dynamics:
+    end_time: "40 ms"
+    output_interval: "0.02 ms"
+records:
+  - record: synthetic
+peer_records: false
+charts: false
+stability_map: false
+accuracy_study: false
+"""
+
+
+@pytest.mark.skipif(not kimp.with_fem, reason="built without the FEM engine")
+def test_study_round_trips_against_the_cli(tmp_path):
+    path = tmp_path / "study.yaml"
+    path.write_text(QUICK_STUDY)
+    mine = kimp.study(kimp.Scene.from_yaml(path, kind="study"), tmp_path / "api")
+    run_cli("study", path, "-o", tmp_path / "cli")
+    cli = kimp.read(tmp_path / "cli" / "study.h5")
+    assert mine.scene == cli.scene == QUICK_STUDY
+    fitted = [(name, group) for name, group in cli["fit"].items()]
+    assert fitted
+    for name, group in fitted:
+        for variant, result in group.items():
+            assert mine["fit"][name][variant]["stiffness"] == result["stiffness"], (name, variant)
