@@ -25,6 +25,7 @@ ALLOWED = {
     "app": {"base", "io", "fit", "lumped", "geometry", "fem", "report"},
     "server": {"base", "io", "app", "report"},
     "cli": {"base", "io", "app", "report", "server"},
+    "python": {"base", "io", "fit", "lumped", "app"},
 }
 MODULES = set(ALLOWED)
 
@@ -40,6 +41,7 @@ FOREIGN = {
     "report": ["deal.II/", "gmsh", "hdf5", "H5", "yaml-cpp/", "Eigen/", "CLI/", "httplib", "mpi.h"],
     "server": ["deal.II/", "gmsh", "hdf5", "H5", "Eigen/", "CLI/"],
     "cli": ["deal.II/", "gmsh", "hdf5", "H5", "yaml-cpp/", "httplib"],
+    "python": ["deal.II/", "gmsh", "hdf5", "H5", "yaml-cpp/", "CLI/"],
 }
 
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
@@ -89,6 +91,8 @@ def self_test():
         "report/x.cc": '#include "app/lumped_run.h"\n',
         "lumped/z.cc": '#include "server/server.h"\n',
         "app/x.cc": "#include <httplib.h>\n",
+        "app/y.cc": '#include "python/bindings.h"\n',
+        "python/x.cc": "#include <CLI/CLI.hpp>\n",
     }
     with tempfile.TemporaryDirectory() as root:
         for rel, text in cases.items():

@@ -13,7 +13,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev
   openmpi-bin
   python3 python3-matplotlib python3-numpy python3-h5py
-  pybind11-dev python3-dev python3-pytest   # the Python module `kimp` and its tests
+  pybind11-dev python3-dev python3-pytest python3-yaml  # the Python module `kimp` and its tests
   jupyter-nbconvert python3-nbformat python3-nbclient python3-ipykernel  # the example notebook, run in CI
   libcpp-httplib-dev                        # the embedded web server of `kimp gui`
   chromium                                  # headless browser tests of the web interface

@@ -1,0 +1,80 @@
+// FEM runs and wall-height studies for Python (FEM build only): `kimp fem` and `kimp study` into a
+// directory, with the GIL released. MPI (and p4est) start once, at the first FEM use.
+#include <memory>
+#include <mutex>
+#include <pybind11/stl.h>
+#include <string>
+
+#include "python/bindings.h"
+#ifdef KIMP_WITH_FEM
+#  include "app/fem/fem_run.h"
+#  include "app/fem/fem_scene.h"
+#  include "app/session.h"
+#  include "app/study/study_run.h"
+#  include "app/study/study_scene.h"
+#  include "io/scene_io.h"
+#  include "io/summary.h"
+#endif
+
+namespace kimp::python
+{
+#ifdef KIMP_WITH_FEM
+  namespace
+  {
+    std::unique_ptr<app::Session> &session_slot()
+    {
+      static std::unique_ptr<app::Session> session;
+      return session;
+    }
+
+    /// The process's session (a singleton process, no mpirun needed), created on first use and
+    /// ended by Python's atexit, before the interpreter unloads the module.
+    void ensure_session()
+    {
+      static std::once_flag once;
+      std::call_once(once,
+                     []
+                     {
+                       static int    argc   = 1;
+                       static char   name[] = "kimp";
+                       static char  *args[] = {name, nullptr};
+                       static char **argv   = args;
+                       session_slot()       = std::make_unique<app::Session>(argc, argv);
+                       py::gil_scoped_acquire gil;
+                       py::module_::import("atexit").attr("register")(
+                         py::cpp_function([] { session_slot().reset(); }));
+                     });
+    }
+  } // namespace
+
+  void register_fem(py::module_ &m)
+  {
+    m.def(
+      "run_fem",
+      [](const std::string &text, const std::string &name, const std::string &output)
+      {
+        ensure_session();
+        py::gil_scoped_release release;
+        app::run_fem(io::read_scene_text<app::FemScene>(text, name), io::OutputDir(output));
+      },
+      py::arg("text"),
+      py::arg("name"),
+      py::arg("output"),
+      "`kimp fem` of a scene text into the directory `output` (fem.h5, summary.json, ...).");
+    m.def(
+      "run_study",
+      [](const std::string &text, const std::string &name, const std::string &output)
+      {
+        ensure_session();
+        py::gil_scoped_release release;
+        app::run_study_job(io::read_scene_text<app::StudyScene>(text, name), output);
+      },
+      py::arg("text"),
+      py::arg("name"),
+      py::arg("output"),
+      "`kimp study` of a scene text into the directory `output` (study.h5, k_table.csv, ...).");
+  }
+#else
+  void register_fem(py::module_ &) {}
+#endif
+} // namespace kimp::python

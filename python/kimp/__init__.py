@@ -1,0 +1,39 @@
+"""kimp from Python: scenes, lumped pounding runs, impact laws, collisions, ground motions, fits,
+FEM runs and studies over the same C++ engines as the ``kimp`` command, plus a reader of every
+kimp HDF5 results file.
+
+    >>> import kimp
+    >>> scene = kimp.Scene.from_yaml("data/scenes/isolated_4storey_no_walls.yaml")
+    >>> kimp.lumped(scene).peaks
+    >>> kimp.lumped(scene.with_(**{"walls.left.gap": "10 cm"})).n_impacts
+
+Units: SI floats everywhere (m, s, kg, N, N/m^n, J); inputs also accept unit texts parsed by
+kimp's own unit reader ("600 MN/m", "15 cm", "0.4 g"). See README.md, section "Python".
+"""
+
+from . import _kimp, laws
+from ._read import Array, Float, Group, Int, ResultsFile, TimeSeries, read
+from ._runs import (Collision, Contact, CorRow, Energy, FitResult, GroundMotion, History,
+                    Parameter, Peaks, Result, Results, collide, cor_table, fem, fit, ground_motion,
+                    lumped, study)
+from ._scene import Scene, SceneError
+
+#: True when this build has the FEM engine (kimp.fem, kimp.study).
+with_fem = bool(_kimp.with_fem)
+
+
+def parse_quantity(text, unit):
+    """SI value of a quantity text ("600 MN/m") that must have the dimension of `unit`."""
+    return _kimp.parse_quantity(text, unit)
+
+
+def format_quantity(value, unit):
+    """An SI value as text in `unit` (15 significant digits): format_quantity(6e8, "MN/m")."""
+    return _kimp.format_quantity(float(value), unit)
+
+
+__all__ = ["Scene", "SceneError", "lumped", "Result", "Results", "Peaks", "History", "Contact", "Energy",
+           "ground_motion", "GroundMotion", "collide", "Collision", "cor_table", "CorRow", "fit",
+           "FitResult", "Parameter", "fem", "study", "read", "ResultsFile", "Group",
+           "TimeSeries", "Array", "Float", "Int", "laws", "with_fem", "parse_quantity",
+           "format_quantity"]

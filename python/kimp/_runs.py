@@ -1,0 +1,446 @@
+"""Runs from Python: lumped cases, ground motions, collisions, fits, FEM and studies.
+
+Every function calls the engine through kimp._kimp (the GIL is released while C++ runs) and
+returns plain dataclasses holding numpy arrays; all values are SI (units in each docstring).
+"""
+
+import math
+import os
+import tempfile
+from dataclasses import dataclass, field
+from typing import Dict, List, Optional
+
+import numpy as np
+
+from . import _kimp
+from ._read import read
+from ._scene import Scene, SceneError
+
+
+def _short(array):
+    return np.array2string(np.asarray(array), precision=4, threshold=8, separator=", ")
+
+
+@dataclass(repr=False)
+class Peaks:
+    """Peaks per floor: displacement (m, relative to the ground, per DOF: isolation level first),
+    absolute acceleration (m/s², per DOF), interstorey drift (m, per storey)."""
+
+    displacement: np.ndarray
+    absolute_acceleration: np.ndarray
+    interstorey_drift: np.ndarray
+
+    def __repr__(self):
+        return (f"Peaks(displacement={_short(self.displacement)} m, "
+                f"absolute_acceleration={_short(self.absolute_acceleration)} m/s², "
+                f"interstorey_drift={_short(self.interstorey_drift)} m)")
+
+
+@dataclass(repr=False)
+class History:
+    """Histories at the output interval, row = sample: time (s, n), displacement (m, n × DOFs),
+    absolute_acceleration (m/s², n × DOFs), interstorey_drift (m, n × storeys), contact_force
+    (impact force, N, n × contacts), energy_input (J, n), energy_error (1, n)."""
+
+    time: np.ndarray
+    displacement: np.ndarray
+    absolute_acceleration: np.ndarray
+    interstorey_drift: np.ndarray
+    contact_force: np.ndarray
+    energy_input: np.ndarray
+    energy_error: np.ndarray
+
+    def __repr__(self):
+        n = len(self.time)
+        end = self.time[-1] if n else 0.0
+        return (f"History({n} samples to t = {end:g} s; displacement {self.displacement.shape}, "
+                f"contact_force {self.contact_force.shape})")
+
+
+@dataclass
+class Contact:
+    """One contact pair: peak force (N), impacts (first-contact times, s, and closing rates,
+    m/s), permanent indentation (m) and the work the law dissipated (J)."""
+
+    name: str
+    peak_force: float
+    impact_time: np.ndarray = field(repr=False)
+    impact_velocity: np.ndarray = field(repr=False)
+    permanent_indentation: float
+    dissipated_energy: float
+
+    @property
+    def n_impacts(self):
+        return len(self.impact_time)
+
+
+@dataclass
+class Energy:
+    """Energy balance, J: E_0 + W_in = E_kin + E_strain + E_viscous + E_hyst + W_contact;
+    relative errors are dimensionless (docs/physics.md §5)."""
+
+    initial: float
+    input: float
+    kinetic: float
+    strain: float
+    viscous: float
+    hysteretic: float
+    contact_work: float
+    impact_dissipated: float
+    relative_error: float
+    max_relative_error: float
+
+
+@dataclass(repr=False)
+class Result:
+    """One case of a lumped scene (the /lumped/<case> group of lumped.h5, in memory).
+
+    dt, dt_critical, duration, wall_time in s; pga in m/s²; `modes` per building block:
+    period (s), rayleigh_a (1/s), rayleigh_b (s), c_iso (N·s/m). `status` is "ok" or
+    "failed: <reason>" (then peaks, history and energy are None)."""
+
+    name: str
+    status: str
+    peaks: Optional[Peaks]
+    history: Optional[History]
+    contacts: List[Contact]
+    energy: Optional[Energy]
+    dt: float
+    n_steps: int
+    duration: float
+    pga: float
+    dt_critical: float
+    governing: str
+    wall_time: float
+    modes: Dict[str, dict]
+    contact_names: List[str]
+    storey_upper_dofs: List[int]
+    companion_peaks: Optional[Peaks] = None
+
+    @property
+    def ok(self):
+        return self.status == "ok"
+
+    @property
+    def n_impacts(self):
+        """Impacts over all contacts."""
+        return sum(c.n_impacts for c in self.contacts)
+
+    @property
+    def max_interstorey_drift(self):
+        """Largest peak interstorey drift, m (0 without storeys)."""
+        drift = self.peaks.interstorey_drift if self.peaks else []
+        return float(np.max(drift)) if len(drift) else 0.0
+
+    def __repr__(self):
+        if not self.ok:
+            return f"Result(name={self.name!r}, status={self.status!r})"
+        return (f"Result(name={self.name!r}, {self.n_steps} steps of {self.dt:.4g} s, "
+                f"{self.n_impacts} impacts, peak isolation displacement "
+                f"{self.peaks.displacement[0]:.4g} m, max drift {self.max_interstorey_drift:.4g} "
+                f"m, energy error {self.energy.relative_error:.2g})")
+
+
+class Results(list):
+    """The Results of a scene with several cases, in case order; ``results["name"]`` picks one,
+    ``results.peaks`` is {case name: Peaks}."""
+
+    def __getitem__(self, key):
+        if isinstance(key, str):
+            for result in self:
+                if result.name == key:
+                    return result
+            raise KeyError(f"no case {key!r} (cases: {', '.join(r.name for r in self)})")
+        return super().__getitem__(key)
+
+    @property
+    def names(self):
+        return [r.name for r in self]
+
+    @property
+    def peaks(self):
+        """{case name: Peaks} (None for a failed case)."""
+        return {r.name: r.peaks for r in self}
+
+    def __repr__(self):
+        return "Results([\n" + "".join(f"  {r!r},\n" for r in self) + "])"
+
+
+def _result(d):
+    ok = d["status"] == "ok"
+    peaks = lambda p: Peaks(**p) if p is not None else None  # noqa: E731
+    return Result(
+        name=d["name"], status=d["status"],
+        peaks=peaks(d.get("peaks")),
+        history=History(**d["history"]) if ok else None,
+        contacts=[Contact(**c) for c in d.get("contacts", [])],
+        energy=Energy(**d["energy"]) if ok else None,
+        dt=d.get("dt", 0.0), n_steps=d.get("n_steps", 0), duration=d.get("duration", 0.0),
+        pga=d["pga"], dt_critical=d["dt_critical"], governing=d["governing"],
+        wall_time=d["wall_time"], modes=d["modes"], contact_names=d["contact_names"],
+        storey_upper_dofs=d["storey_upper_dofs"], companion_peaks=peaks(d.get("companion_peaks")))
+
+
+def _scene(scene, kind):
+    if isinstance(scene, (str, os.PathLike)):
+        scene = Scene.from_yaml(scene, kind)
+    elif isinstance(scene, dict):
+        scene = Scene.from_dict(scene, kind)
+    if not isinstance(scene, Scene):
+        raise TypeError(f"expected a kimp.Scene, a scene file or a dict, not {type(scene)}")
+    if scene.kind != kind:
+        scene = Scene(scene.text, scene.name, kind)
+    return scene
+
+
+def _call(function, *args, **kwargs):
+    try:
+        return function(*args, **kwargs)
+    except (_kimp.SceneError, _kimp.UnitError) as error:
+        raise SceneError(str(error)) from None
+
+
+def lumped(scene, case=None, records_dir=None):
+    """Run a lumped scene as ``kimp lumped`` does (same engine, same numbers), in memory.
+
+    scene: a kimp.Scene, a scene file path or a dict. case: run only the case of that name.
+    records_dir: PEER records directory (like --records-dir). Returns the Result of the single
+    case (a scene without `cases`, or `case` given), else Results (a list in case order with
+    ``results["case"]`` and ``results.peaks``, {case: Peaks}).
+    """
+    scene = _scene(scene, "lumped")
+    cases = _call(_kimp.run_lumped, scene._parsed,
+                  os.fspath(records_dir) if records_dir else None, case)
+    results = Results(_result(c) for c in cases)
+    return results[0] if len(results) == 1 else results
+
+
+@dataclass(repr=False)
+class GroundMotion:
+    """A ground acceleration record: samples at t_i = i·dt (dt in s, acceleration in m/s²)."""
+
+    name: str
+    dt: float
+    acceleration: np.ndarray
+    pga: float
+
+    @property
+    def time(self):
+        """t_i = i·dt, s."""
+        return np.arange(len(self.acceleration)) * self.dt
+
+    @property
+    def duration(self):
+        """n·dt, s."""
+        return len(self.acceleration) * self.dt
+
+    def __repr__(self):
+        return (f"GroundMotion({self.name!r}, {len(self.acceleration)} samples at {self.dt:g} s, "
+                f"PGA {self.pga / 9.80665:.4g} g)")
+
+
+def ground_motion(record="synthetic", *, scale_to_pga=None, scale=None, duration=None,
+                  records_dir=None, scene=None, **synthetic):
+    """The ground motion of a scene's ``ground_motion`` section, as the CLI loads it.
+
+    record: "synthetic" (the near-fault motion; its parameters as keywords, e.g. pga="0.5 g",
+    pulse_period=1.2, seed=3), a PEER record name found in records_dir or an AT2 file path.
+    scale_to_pga (m/s² or "0.4 g"), then scale (factor), then duration (s): trim.
+    scene: take the section of a lumped kimp.Scene instead.
+    """
+    if scene is None:
+        section = {"record": os.fspath(record)}
+        for key, value in (("scale_to_pga", scale_to_pga), ("scale", scale),
+                           ("duration", duration)):
+            if value is not None:
+                section[key] = value
+        if synthetic:
+            section["synthetic"] = synthetic
+        scene = Scene.from_dict({"ground_motion": section}, "lumped", "<ground_motion>")
+    scene = _scene(scene, "lumped")
+    d = _call(_kimp.ground_motion, scene._parsed,
+              os.fspath(records_dir) if records_dir else None)
+    return GroundMotion(**d)
+
+
+@dataclass(repr=False)
+class Collision:
+    """A two-body collision (kimp collide's set-up): velocities after (m/s), effective COR,
+    peak and minimum force (N), contact duration (s), max penetration (m), energies (J), and
+    the contact-phase history: time (s), deformation δ (m), rate δ̇ (m/s), force (N)."""
+
+    velocity_1_after: float
+    velocity_2_after: float
+    effective_cor: float
+    peak_force: float
+    min_force: float
+    contact_duration: float
+    max_penetration: float
+    impact_velocity: float
+    kinetic_energy_before: float
+    kinetic_energy_loss: float
+    dissipated_energy: float
+    permanent_indentation: float
+    momentum_error: float
+    n_steps: int
+    effective_mass: float
+    time: np.ndarray
+    deformation: np.ndarray
+    rate: np.ndarray
+    force: np.ndarray
+
+    def __repr__(self):
+        return (f"Collision(effective_cor={self.effective_cor:.4f}, peak_force="
+                f"{self.peak_force:.4g} N, contact_duration={self.contact_duration:.4g} s, "
+                f"max_penetration={self.max_penetration:.4g} m)")
+
+
+def collide(law, *, mass_1=280e3, mass_2=300e3, velocity=1.0, velocity_2=0.0, time_step=2e-4,
+            velocity_estimate="backward"):
+    """Two free masses meeting through `law` (a kimp.laws object), central differences.
+
+    mass_1, mass_2 in kg (or "280 t"; math.inf for a rigid wall), velocity (m/s) of mass 1
+    towards mass 2 (velocity_2, m/s), time_step in s, velocity_estimate "backward" (the
+    solver's) or "second_order". A law without m_eff gets m1·m2/(m1 + m2).
+    """
+    from .laws import _si
+
+    if velocity_estimate not in ("backward", "second_order"):
+        raise ValueError("velocity_estimate must be 'backward' or 'second_order'")
+    m1 = _si(mass_1, "kg")
+    m2 = math.inf if mass_2 == math.inf else _si(mass_2, "kg")
+    m_eff = law.m_eff if law.m_eff else _kimp.effective_mass(m1, m2)
+    d = _kimp.collide(law._make(m_eff), m1, m2,
+                      _si(velocity, "m/s"), _si(velocity_2, "m/s"), _si(time_step, "s"),
+                      velocity_estimate == "second_order")
+    return Collision(**d)
+
+
+@dataclass
+class CorRow:
+    """One row of the effective-COR table of ``kimp collide``: forces in N, duration in s,
+    penetration in m, errors dimensionless."""
+
+    name: str
+    law: str
+    nominal_cor: float
+    effective_cor: float
+    relative_error: float
+    peak_force: float
+    contact_duration: float
+    max_penetration: float
+    energy_error: float
+    status: str
+
+
+def cor_table(scene=None):
+    """The effective-COR table of a collide scene (default: the thesis set-up), in memory."""
+    scene = Scene.default("collide") if scene is None else _scene(scene, "collide")
+    return [CorRow(**row) for row in _call(_kimp.cor_table, scene.text, scene.name)]
+
+
+@dataclass
+class Parameter:
+    """A fitted (or fixed) parameter with its confidence interval [lower, upper]."""
+
+    value: float
+    lower: float
+    upper: float
+    fitted: bool
+
+
+@dataclass(repr=False)
+class FitResult:
+    """A fitted impact law, per metre of wall: stiffness k (N/m^n per m), cor, exponent n;
+    normalised RMS misfits; FEM and model peak force (N/m), contact durations (s), impulse
+    (N·s/m), contact start (s); the misfit window time (s), fem_force and model_force (N/m)."""
+
+    law: str
+    stiffness: Parameter
+    cor: Parameter
+    exponent: Parameter
+    normalised_rms: float
+    normalised_displacement_rms: float
+    function_evaluations: int
+    status: str
+    fem_peak_force: float
+    fem_contact_duration: float
+    fem_impulse: float
+    contact_start: float
+    model_peak_force: float
+    model_contact_duration: float
+    model_effective_cor: float
+    time: np.ndarray
+    fem_force: np.ndarray
+    model_force: np.ndarray
+
+    @property
+    def k(self):
+        """The fitted k, N/m^n per metre of wall."""
+        return self.stiffness.value
+
+    def k_display(self, width=None):
+        """k in kN/mm^n per metre (width None) or k·width in kN/mm^n (width in m)."""
+        k = self.k * (width if width else 1.0)
+        return k * 1e-3 ** (self.exponent.value + 1.0)
+
+    def __repr__(self):
+        unit = "kN/mm/m" if self.exponent.value == 1.0 else f"kN/mm^{self.exponent.value:g}/m"
+        return (f"FitResult(law={self.law!r}, k={self.k_display():.5g} {unit}, "
+                f"cor={self.cor.value:.4g}, n={self.exponent.value:g}, "
+                f"normalised_rms={self.normalised_rms:.3g}, status={self.status!r})")
+
+
+def fit(time, force, velocity, mass, law="kelvin_voigt", *, cor=0.7, exponent=None,
+        fit_cor=False, fit_exponent=False, indentation=None, slab_displacement=None,
+        displacement_weight=0.0, wall_mass=math.inf):
+    """Fit an impact law to a measured impact (fit::fit_impact_law, as ``kimp fit``).
+
+    time (s), force (N per metre of wall, compressive > 0): arrays of one impact; velocity:
+    impact velocity v_imp (m/s); mass: slab mass (kg per metre of wall). law: "kelvin_voigt",
+    "jankowski", "hertzdamp" or "hysteretic", with `cor` fixed (or the start when fit_cor) and
+    `exponent`. Optional indentation and slab_displacement (m) arrays as in the FEM results.
+    """
+    arrays = [None if a is None else np.asarray(a, float) for a in (indentation,
+                                                                     slab_displacement)]
+    d = _kimp.fit(np.asarray(time, float), np.asarray(force, float), float(velocity),
+                  float(mass), law, float(cor), exponent, fit_cor, fit_exponent, arrays[0],
+                  arrays[1], float(displacement_weight), float(wall_mass))
+    for key in ("stiffness", "cor", "exponent"):
+        d[key] = Parameter(*d[key])
+    return FitResult(**d)
+
+
+def _output(output, prefix):
+    if output is None:
+        output = tempfile.mkdtemp(prefix=prefix)
+    os.makedirs(output, exist_ok=True)
+    return os.fspath(output)
+
+
+def fem(scene, output=None):
+    """Run ``kimp fem`` on a FEM scene into `output` (a new temporary directory if None) and
+    return kimp.read() of its fem.h5. Needs a build with the FEM engine; MPI starts on first use
+    (no mpirun needed)."""
+    if not _kimp.with_fem:
+        raise RuntimeError("kimp was built without the FEM engine (KIMP_WITH_FEM=OFF)")
+    scene = _scene(scene, "fem")
+    output = _output(output, "kimp-fem-")
+    _call(_kimp.run_fem, scene.text, scene.name, output)
+    return read(os.path.join(output, "fem.h5"))
+
+
+def study(scene, output=None):
+    """Run ``kimp study`` into `output` (a new temporary directory if None) and return
+    kimp.read() of its study.h5 (k table, building response). Needs the FEM engine."""
+    if not _kimp.with_fem:
+        raise RuntimeError("kimp was built without the FEM engine (KIMP_WITH_FEM=OFF)")
+    scene = _scene(scene, "study")
+    output = _output(output, "kimp-study-")
+    _call(_kimp.run_study, scene.text, scene.name, output)
+    return read(os.path.join(output, "study.h5"))
+
+
+__all__ = ["Peaks", "History", "Contact", "Energy", "Result", "Results", "lumped", "GroundMotion",
+           "ground_motion", "Collision", "collide", "CorRow", "cor_table", "Parameter",
+           "FitResult", "fit", "fem", "study"]

@@ -1,0 +1,215 @@
+// Lumped runs and ground motions for Python: the scene's cases run by app::run_lumped_case (as
+// `kimp lumped` does, without files) with the GIL released; histories handed to numpy unmoved.
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <pybind11/stl.h>
+#include <string>
+
+#include "app/ground_motion_scene.h"
+#include "app/lumped_run.h"
+#include "app/lumped_scene.h"
+#include "io/scene_io.h"
+
+#include "python/bindings.h"
+
+namespace kimp::python
+{
+  namespace
+  {
+    /// History of `n` samples of `width` columns as an (n, width) array (n-vector if width 0).
+    py::array_t<double> history(std::vector<double> &&values, std::size_t n)
+    {
+      const std::size_t width = n == 0 ? 0 : values.size() / n;
+      return to_numpy(std::move(values),
+                      {static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(width)});
+    }
+
+    py::dict peaks(lumped::Response &r)
+    {
+      py::dict d;
+      d["displacement"]          = to_numpy(std::move(r.peak_displacement));
+      d["absolute_acceleration"] = to_numpy(std::move(r.peak_absolute_acceleration));
+      d["interstorey_drift"]     = to_numpy(std::move(r.peak_interstorey_drift));
+      return d;
+    }
+
+    const app::LumpedScene &lumped_scene(const ParsedScene &parsed)
+    {
+      if (parsed.kind != "lumped")
+        throw std::invalid_argument(parsed.name + " is a " + parsed.kind + " scene, not lumped");
+      return parsed.as<app::LumpedScene>();
+    }
+
+    /// The case as plain Python objects; its vectors are moved into the arrays.
+    py::dict case_dict(app::LumpedCaseResult &&c)
+    {
+      py::dict d;
+      d["name"]              = c.name;
+      d["status"]            = c.status;
+      d["wall_time"]         = c.wall_time;
+      d["pga"]               = c.pga;
+      d["dt_critical"]       = c.dt_critical;
+      d["governing"]         = c.governing;
+      d["contact_names"]     = c.contact_names;
+      d["storey_upper_dofs"] = c.storey_upper_dofs;
+      py::dict modes;
+      for (app::BuildingModes &b : c.buildings)
+      {
+        py::dict bd;
+        bd["period"]           = to_numpy(std::move(b.periods));
+        bd["rayleigh_a"]       = b.rayleigh_a;
+        bd["rayleigh_b"]       = b.rayleigh_b;
+        bd["c_iso"]            = b.c_iso;
+        modes[py::str(b.name)] = bd;
+      }
+      d["modes"] = modes;
+      if (!c.ok())
+        return d;
+      lumped::Response &r = c.response;
+      d["dt"]             = r.dt;
+      d["n_steps"]        = r.n_steps;
+      d["duration"]       = r.duration;
+      d["peaks"]          = peaks(r);
+      const std::size_t n = r.history.time.size();
+      py::dict          h;
+      h["time"]                  = to_numpy(std::move(r.history.time));
+      h["displacement"]          = history(std::move(r.history.displacement), n);
+      h["absolute_acceleration"] = history(std::move(r.history.absolute_acceleration), n);
+      h["interstorey_drift"]     = history(std::move(r.history.interstorey_drift), n);
+      h["contact_force"]         = history(std::move(r.history.contact_force), n);
+      h["energy_input"]          = to_numpy(std::move(r.history.energy_input));
+      h["energy_error"]          = to_numpy(std::move(r.history.energy_error));
+      d["history"]               = h;
+      py::list contacts;
+      for (lumped::ContactResult &contact : r.contacts)
+      {
+        std::vector<double> times, velocities;
+        for (const lumped::ImpactEvent &e : contact.impacts)
+        {
+          times.push_back(e.time);
+          velocities.push_back(e.velocity);
+        }
+        py::dict cd;
+        cd["name"]                  = contact.name;
+        cd["peak_force"]            = contact.peak_force;
+        cd["impact_time"]           = to_numpy(std::move(times));
+        cd["impact_velocity"]       = to_numpy(std::move(velocities));
+        cd["permanent_indentation"] = contact.permanent_indentation;
+        cd["dissipated_energy"]     = contact.dissipated_energy;
+        contacts.append(cd);
+      }
+      d["contacts"]                  = contacts;
+      const lumped::EnergyBalance &e = r.energy;
+      py::dict                     ed;
+      ed["initial"]            = e.initial;
+      ed["input"]              = e.input;
+      ed["kinetic"]            = e.kinetic;
+      ed["strain"]             = e.strain;
+      ed["viscous"]            = e.viscous;
+      ed["hysteretic"]         = e.hysteretic;
+      ed["contact_work"]       = e.contact_work;
+      ed["impact_dissipated"]  = e.impact_dissipated;
+      ed["relative_error"]     = e.relative_error;
+      ed["max_relative_error"] = e.max_relative_error;
+      d["energy"]              = ed;
+      if (c.companion)
+        d["companion_peaks"] = peaks(*c.companion);
+      return d;
+    }
+
+    std::optional<std::filesystem::path> directory(const std::optional<std::string> &text)
+    {
+      if (!text || text->empty())
+        return std::nullopt;
+      return std::filesystem::path(*text);
+    }
+
+    /**
+     * app::load_ground_motion, remembering the last synthetic motion: a loop of runs from
+     * Python varies the building and keeps the motion, whose generation (filtering a 20 s
+     * record) would otherwise cost more than a short run. The same section gives a bitwise
+     * identical record, so reusing it changes no number. Records from files are always read.
+     */
+    std::shared_ptr<const lumped::GroundMotion> scene_motion(const app::GroundMotionScene &scene,
+                                                             const std::optional<std::string> &dir)
+    {
+      if (scene.is_record())
+        return std::make_shared<const lumped::GroundMotion>(
+          app::load_ground_motion(scene, directory(dir)));
+      static std::mutex                                  mutex;
+      static std::string                                 last_key;
+      static std::shared_ptr<const lumped::GroundMotion> last;
+      const std::string                                  key = io::to_json_text(scene, -1);
+      {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (last && key == last_key)
+          return last;
+      }
+      auto motion = std::make_shared<const lumped::GroundMotion>(app::load_ground_motion(scene));
+      const std::lock_guard<std::mutex> lock(mutex);
+      last_key = key;
+      last     = motion;
+      return motion;
+    }
+  } // namespace
+
+  void register_lumped(py::module_ &m)
+  {
+    m.def(
+      "run_lumped",
+      [](const ParsedScene                &parsed,
+         const std::optional<std::string> &records_dir,
+         const std::optional<std::string> &only_case)
+      {
+        std::vector<app::LumpedCaseResult> results;
+        {
+          // Everything below is C++ only: other Python threads run meanwhile.
+          py::gil_scoped_release  release;
+          const app::LumpedScene &scene  = lumped_scene(parsed);
+          const auto              motion = scene_motion(scene.ground_motion, records_dir);
+          const auto              cases  = app::resolve_cases(scene);
+          for (const auto &[case_name, case_scene] : cases)
+            if (!only_case || *only_case == case_name)
+              results.push_back(
+                app::run_lumped_case(case_name, case_scene, *motion, scene.ground_motion.scale));
+          if (only_case && results.empty())
+          {
+            std::string known;
+            for (const auto &c : cases)
+              known += (known.empty() ? "" : ", ") + c.first;
+            throw std::invalid_argument("no case '" + *only_case + "' in " + parsed.name +
+                                        " (cases: " + known + ")");
+          }
+        }
+        py::list list;
+        for (app::LumpedCaseResult &r : results)
+          list.append(case_dict(std::move(r)));
+        return list;
+      },
+      py::arg("scene"),
+      py::arg("records_dir") = py::none(),
+      py::arg("case")        = py::none(),
+      "Run the cases of a lumped scene as `kimp lumped` does; a list of plain dicts.");
+
+    m.def(
+      "ground_motion",
+      [](const ParsedScene &parsed, const std::optional<std::string> &dir)
+      {
+        lumped::GroundMotion motion;
+        {
+          py::gil_scoped_release release;
+          motion = app::load_ground_motion(lumped_scene(parsed).ground_motion, directory(dir));
+        }
+        py::dict d;
+        d["name"]         = motion.name;
+        d["dt"]           = motion.dt;
+        d["pga"]          = motion.pga();
+        d["acceleration"] = to_numpy(std::move(motion.acceleration));
+        return d;
+      },
+      py::arg("scene"),
+      py::arg("records_dir") = py::none(),
+      "The ground motion of a lumped scene's ground_motion section (loaded, scaled, trimmed).");
+  }
+} // namespace kimp::python

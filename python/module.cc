@@ -1,0 +1,34 @@
+// The compiled part of the Python module kimp (kimp._kimp): scenes, lumped runs, laws, collisions,
+// ground motions, fits and (FEM build) FEM runs and studies; the package kimp/ wraps it.
+#include <pybind11/pybind11.h>
+
+#include "io/scene_io.h"
+#include "io/units.h"
+
+#include "python/bindings.h"
+
+namespace kimp::python
+{
+  std::vector<double> to_vector(const DoubleArray &array)
+  {
+    return std::vector<double>(array.data(), array.data() + array.size());
+  }
+} // namespace kimp::python
+
+PYBIND11_MODULE(_kimp, m)
+{
+  namespace py = pybind11;
+  m.doc()      = "kimp's engines (lumped pounding, impact laws, fitter, FEM) for the package kimp";
+  // Scene errors keep the CLI's message; kimp.SceneError (kimp/_scene.py) adds file, line, key.
+  py::register_exception<kimp::io::SceneError>(m, "SceneError", PyExc_ValueError);
+  py::register_exception<kimp::io::UnitError>(m, "UnitError", PyExc_ValueError);
+  kimp::python::register_scene(m);
+  kimp::python::register_lumped(m);
+  kimp::python::register_laws(m);
+  kimp::python::register_fem(m);
+#ifdef KIMP_WITH_FEM
+  m.attr("with_fem") = true;
+#else
+  m.attr("with_fem") = false;
+#endif
+}

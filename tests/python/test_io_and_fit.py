@@ -1,0 +1,154 @@
+"""kimp.ground_motion, kimp.fit and kimp.read against the CLI: the motion a lumped run used, a
+fitted law recovering the k that made its force history, and every command's results file read
+back as the same numbers the API returns."""
+
+import glob
+import math
+import os
+
+import numpy as np
+import pytest
+
+import kimp
+from conftest import SOURCE_DIR, run_cli
+
+G = 9.80665
+
+
+def test_synthetic_motion_scaling_and_trimming_are_the_scene_reader_s():
+    base = kimp.ground_motion(pga="0.5 g", seed=3)
+    assert base.pga == 0.5 * G
+    assert base.dt == 0.005 and base.duration == pytest.approx(20.0)
+    flipped = kimp.ground_motion(pga="0.5 g", seed=3, scale=-2.0)
+    np.testing.assert_array_equal(flipped.acceleration, -2.0 * base.acceleration)
+    short = kimp.ground_motion(pga="0.5 g", seed=3, duration="4 s")
+    np.testing.assert_array_equal(short.acceleration, base.acceleration[:800])
+    assert kimp.ground_motion(pga="0.5 g", scale_to_pga="0.3 g").pga == pytest.approx(0.3 * G,
+                                                                                      rel=1e-15)
+    with pytest.raises(kimp.SceneError, match="unknown key 'nope' in ground_motion.synthetic"):
+        kimp.ground_motion(nope=1.0)
+
+
+def test_ground_motion_of_a_scene_is_the_one_the_cli_run_used(tmp_path):
+    scene = kimp.Scene.from_dict({"ground_motion": {"record": "synthetic", "scale_to_pga": "0.4 g",
+                                                    "scale": 1.5, "duration": "2 s"}})
+    path = tmp_path / "scene.yaml"
+    scene.write(path)
+    run_cli("lumped", path, "-o", tmp_path / "out")
+    cli = kimp.read(tmp_path / "out" / "lumped.h5")
+    motion = kimp.ground_motion(scene=scene)
+    assert motion.pga == cli["lumped/default/pga"]
+    assert len(motion.acceleration) == 400
+
+
+def test_at2_record_as_the_cli_reads_it(tmp_path):
+    records = os.environ.get("KIMP_RECORDS_DIR", os.path.join(SOURCE_DIR, "..", "shared", "data",
+                                                               "records"))
+    files = sorted(glob.glob(os.path.join(records, "RSN*.AT2")))
+    if not files:
+        pytest.skip(f"no PEER records in {records}")
+    motion = kimp.ground_motion(files[0], duration="5 s")
+    scene = kimp.Scene.from_dict({"ground_motion": {"record": files[0], "duration": "5 s"},
+                                  "integration": {"output_interval": "0.1 s"}})
+    scene.write(tmp_path / "scene.yaml")
+    run_cli("lumped", tmp_path / "scene.yaml", "-o", tmp_path / "out")
+    assert motion.pga == kimp.read(tmp_path / "out" / "lumped.h5")["lumped/default/pga"]
+    assert motion.name in files[0]
+
+
+def test_fit_recovers_the_kelvin_voigt_stiffness_of_a_collision():
+    # A 50 t/m slab at 1 m/s on a rigid wall through Kelvin-Voigt (k = 400 kN/mm/m, COR 0.7):
+    # the fitter, which models the same set-up, finds k back to the discretisation error of the
+    # 1e-5 s record (measured: 1.3e-4 relative).
+    k, mass, v, dt = 4e8, 50e3, 1.0, 1e-5
+    hit = kimp.collide(kimp.laws.KelvinVoigt(k=k, cor=0.7), mass_1=mass, mass_2=math.inf,
+                       velocity=v, time_step=dt)
+    # Start the record before the contact, at the same sampling, as a measured record does.
+    time = np.concatenate([[-2 * dt, -dt, 0.0], hit.time])
+    force = np.concatenate([[0.0, 0.0, 0.0], hit.force])
+    result = kimp.fit(time, force, velocity=v, mass=mass, law="kelvin_voigt", cor=0.7)
+    assert result.k == pytest.approx(k, rel=1e-3)
+    assert result.cor.value == 0.7 and not result.cor.fitted
+    assert result.normalised_rms < 0.05
+    assert "kN/mm/m" in repr(result)
+    assert result.k_display() == pytest.approx(400, rel=1e-3)
+
+
+def test_read_round_trips_a_sweep(tmp_path):
+    run_cli("sweep", "data/studies/quick_gap_sweep.yaml", "-o", tmp_path / "out")
+    sweep = kimp.read(tmp_path / "out" / "sweep.h5")["sweep"]
+    gaps = sweep["parameters_si"]["walls.left.gap, walls.right.gap"]
+    cors = sweep["parameters_si"]["impact.cor"]
+    scene = kimp.Scene.from_yaml(os.path.join(SOURCE_DIR, "data/studies/scenes/quick_scene.yaml"))
+    for i in (0, len(gaps) - 1):
+        r = kimp.lumped(scene.with_(**{"walls.left.gap": float(gaps[i]),
+                                       "walls.right.gap": float(gaps[i]),
+                                       "impact.cor": float(cors[i])}))
+        for dof in range(5):
+            assert r.peaks.displacement[dof] == sweep["metrics"][f"peak_displacement_dof{dof}"][i]
+        assert r.n_impacts == sweep["metrics"]["n_impacts"][i]
+
+
+@pytest.mark.skipif(not kimp.with_fem, reason="built without the FEM engine")
+def test_fem_and_fit_round_trip_against_the_cli(tmp_path):
+    scene = os.path.join(SOURCE_DIR, "data/scenes/fem_quick.yaml")
+    fem = kimp.fem(scene, tmp_path / "api")
+    run_cli("fem", scene, "-o", tmp_path / "cli")
+    cli = kimp.read(tmp_path / "cli" / "fem.h5")
+    for name, case in cli["fem"].items():
+        mine = fem["fem"][name]
+        assert mine.status == case.status == "ok"
+        np.testing.assert_array_equal(mine["contact_force"].value, case["contact_force"].value)
+        assert case["contact_force"].units == "N/m"
+    # `kimp fit` of that file against kimp.fit of the same history.
+    run_cli("fit", tmp_path / "cli" / "fem.h5", "-o", tmp_path / "fit")
+    fitted = kimp.read(tmp_path / "fit" / "fit.h5")
+    name, case = next(iter(cli["fem"].items()))
+    series = case["smoothed_contact_force"]
+    mine = kimp.fit(series.time, series.value, velocity=case["impact_velocity"],
+                    mass=case["slab_mass"], law="kelvin_voigt", cor=0.7,
+                    indentation=case["indentation"].value)
+    variant = fitted["fit"][name]["kelvin_voigt_cor_fixed"]
+    assert mine.k == variant["stiffness"]
+
+
+# One coarse wall height, the synthetic record only, no charts or extra studies: seconds.
+QUICK_STUDY = """\
+fem:
+  wall_heights: ["1.25 m"]
+  mesh:
+    h_contact: "5 cm"
+    h_max: "25 cm"
+    grading: 1.5
+  slab:
+    rigid: true
+    velocity: "1.0 m/s"
+  dynamics:
+    end_time: "40 ms"
+    output_interval: "0.02 ms"
+records:
+  - record: synthetic
+peer_records: false
+charts: false
+stability_map: false
+accuracy_study: false
+"""
+
+
+@pytest.mark.skipif(not kimp.with_fem, reason="built without the FEM engine")
+def test_study_round_trips_against_the_cli(tmp_path):
+    path = tmp_path / "study.yaml"
+    path.write_text(QUICK_STUDY)
+    mine = kimp.study(kimp.Scene.from_yaml(path, kind="study"), tmp_path / "api")
+    run_cli("study", path, "-o", tmp_path / "cli")
+    cli = kimp.read(tmp_path / "cli" / "study.h5")
+    assert mine.scene == cli.scene == QUICK_STUDY
+    fitted = [(name, group) for name, group in cli["fit"].items()]
+    assert fitted
+    for name, group in fitted:
+        laws = [v for v, result in group.items() if isinstance(result, kimp.Group)]
+        assert laws, name
+        for law in laws:
+            assert mine["fit"][name][law]["stiffness"] == group[law]["stiffness"], (name, law)
+            np.testing.assert_array_equal(mine["fit"][name][law]["model_force"],
+                                          group[law]["model_force"])

@@ -1,0 +1,89 @@
+"""kimp.Scene: the CLI's reader and validation, the same error messages, overrides in SI or
+with units."""
+
+import pytest
+
+import kimp
+from conftest import run_cli
+
+BAD_SCENE = """\
+isolator:
+  K1: "200 MN/m"
+  K2: "250 MN/m"
+walls:
+  left:
+    gap: "15 cm"
+"""
+
+
+def test_scene_error_has_the_cli_message_file_line_and_key(tmp_path):
+    path = tmp_path / "bad.yaml"
+    path.write_text(BAD_SCENE)
+    cli = run_cli("lumped", path, "-o", tmp_path / "out", check=False)
+    assert cli.returncode == 1
+    with pytest.raises(kimp.SceneError) as caught:
+        kimp.Scene.from_yaml(str(path))
+    message = str(caught.value)
+    assert cli.stderr.strip() == f"error: {message}"
+    assert caught.value.file == str(path)
+    assert caught.value.line == 3
+    assert caught.value.key == "isolator.K2"
+    assert not (tmp_path / "out").exists()
+
+
+def test_unknown_key_and_missing_unit_match_the_cli(tmp_path):
+    for text in ("walls:\n  gap: 10 cm\n", "walls:\n  left:\n    gap: 10\n"):
+        path = tmp_path / "bad.yaml"
+        path.write_text(text)
+        cli = run_cli("lumped", path, "-o", tmp_path / "out", check=False)
+        with pytest.raises(kimp.SceneError) as caught:
+            kimp.Scene.from_yaml(path)
+        assert cli.stderr.strip() == f"error: {caught.value}"
+        assert caught.value.line >= 2
+
+
+def test_missing_file_is_a_scene_error_like_the_cli(tmp_path):
+    path = tmp_path / "missing.yaml"
+    cli = run_cli("lumped", path, "-o", tmp_path / "out", check=False)
+    with pytest.raises(kimp.SceneError) as caught:
+        kimp.Scene.from_yaml(path)
+    assert cli.stderr.strip() == f"error: {caught.value}"
+
+
+def test_overrides_in_si_and_with_units_resolve_identically():
+    scene = kimp.Scene.default()
+    with_units = scene.with_(**{"walls.left.gap": "10 cm", "isolator.K1": "300 MN/m",
+                                "building.damping_ratio": "3 %", "impact.k": "2000 kN/mm"})
+    in_si = scene.with_(walls={"left": {"gap": 0.1}}, isolator={"K1": 300e6},
+                        building={"damping_ratio": 0.03}, impact={"k": 2e9})
+    a, b = with_units.resolved, in_si.resolved
+    # impact.k is a text key (its unit depends on the law's exponent): compare its SI value.
+    k_a, k_b = a["impact"].pop("k"), b["impact"].pop("k")
+    assert kimp.parse_quantity(k_a, "N/m") == kimp.parse_quantity(k_b, "N/m") == 2e9
+    assert a == b
+    assert in_si.resolved["walls"]["left"]["gap"] == 0.1
+    assert in_si.resolved["isolator"]["K1"] == 300e6
+    # An SI number reads back bit for bit.
+    odd = scene.with_(**{"walls.right.gap": 0.1234567890123456789})
+    assert odd.resolved["walls"]["right"]["gap"] == 0.1234567890123456789
+
+
+def test_override_errors_name_the_key():
+    with pytest.raises(kimp.SceneError) as caught:
+        kimp.Scene.default().with_(**{"isolator.K2": "250 MN/m"})
+    assert caught.value.key == "isolator.K2"
+    assert "< K1 = 200 MN/m" in str(caught.value)
+
+
+def test_from_dict_to_yaml_round_trip(pounding_scene_file):
+    scene = kimp.Scene.from_yaml(pounding_scene_file)
+    again = kimp.Scene.from_dict(scene.to_dict())
+    assert again.resolved == scene.resolved
+    assert kimp.Scene(again.to_yaml()).resolved == scene.resolved
+    assert "Scene(kind='lumped'" in repr(scene)
+
+
+def test_every_kind_has_defaults():
+    for kind in kimp._kimp.scene_kinds():
+        assert kimp.Scene.default(kind).kind == kind
+        assert "#" in kimp.Scene.defaults_text(kind)
