@@ -14,5 +14,6 @@ namespace kimp::cli
     register_collide_command(app);
     register_fit_command(app);
     register_sweep_command(app);
+    register_export_opensees_command(app);
   }
 } // namespace kimp::cli

@@ -13,6 +13,7 @@ namespace kimp::cli
   void register_collide_command(CLI::App &app);
   void register_fit_command(CLI::App &app);
   void register_sweep_command(CLI::App &app);
+  void register_export_opensees_command(CLI::App &app);
 #ifdef KIMP_WITH_FEM
   void register_mesh_command(CLI::App &app);
   void register_fem_command(CLI::App &app);
