@@ -111,7 +111,8 @@ namespace
       scene_error<kimp::app::LumpedScene>("impact:\n  law: kelvin_voigt\n  k_table: " +
                                             file.string() + "\n",
                                           "site.yaml");
-    EXPECT_NE(no_height.find("impact.wall_height = null: must be given"), std::string::npos)
+    EXPECT_NE(no_height.find("impact.wall_height = null (default): must be given with k_table"),
+              std::string::npos)
       << no_height;
 
     const std::string case_height = scene_error<kimp::app::LumpedScene>(

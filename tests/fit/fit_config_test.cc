@@ -1,6 +1,7 @@
 // Status rules of a fit (fit::fit_verdict, docs/physics.md §4 "Status of a fit"): an unbounded
 // interval or an exponent at its bound is "failed", a misfit window over less than half the
 // contact is "warning", never "ok"; and fit_options()/fit_variants() carry the shared config.
+#include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
 #include <limits>
@@ -98,28 +99,27 @@ namespace
     setup.velocity_1     = 1.0;
     setup.time_step      = std::sqrt(3840.0 / k) / 2000.0;
     setup.record_history = true;
-    const auto   r = kimp::lumped::simulate_two_body(*kimp::lumped::make_force_law(spec), setup);
+    const auto r = kimp::lumped::simulate_two_body(*kimp::lumped::make_force_law(spec), setup);
+    // Force of one impact at time t after its touch (linear between the recorded steps).
+    const auto  &rt       = r.history.time;
+    const double duration = rt.back();
+    const auto   one      = [&](double t)
+    {
+      if (t <= rt.front() || t >= duration)
+        return 0.0;
+      const auto i = static_cast<std::size_t>(
+        std::distance(rt.begin(), std::upper_bound(rt.begin(), rt.end(), t)));
+      const double s = (t - rt[i - 1]) / (rt[i] - rt[i - 1]);
+      return std::max(0.0,
+                      r.history.force[i - 1] + s * (r.history.force[i] - r.history.force[i - 1]));
+    };
     ForceHistory h;
     const double dt = 10.0 * setup.time_step;
-    for (int j = -20; j < 0; ++j)
+    for (int j = -20; j * dt < 6.0 * duration; ++j)
     {
-      h.time.push_back(j * dt);
-      h.force.push_back(0.0);
-    }
-    const double duration = r.history.time.back();
-    for (int bounce = 0; bounce < 2; ++bounce)
-    {
-      const double offset = bounce * 3.0 * duration;
-      for (std::size_t i = 0; i < r.history.time.size(); i += 10)
-      {
-        h.time.push_back(offset + r.history.time[i]);
-        h.force.push_back(std::max(0.0, r.history.force[i]) * (bounce == 0 ? 1.0 : 0.5));
-      }
-      for (double t = duration; t < 3.0 * duration; t += dt)
-      {
-        h.time.push_back(offset + t + dt);
-        h.force.push_back(0.0);
-      }
+      const double t = j * dt;
+      h.time.push_back(t);
+      h.force.push_back(one(t) + 0.5 * one(t - 3.0 * duration));
     }
     return h;
   }
