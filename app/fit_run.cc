@@ -78,30 +78,39 @@ namespace kimp::app
     return h;
   }
 
+  FitResult
+  fit_fem_case(const io::FemCase &fem_case, const FitVariant &variant, const FitConfig &config)
+  {
+    ForceHistory history = force_history(fem_case, !config.raw_force);
+    if (config.force_only_contact)
+      history.indentation.clear();
+    return fit_impact_law(history,
+                          fem_case.slab_mass,
+                          fem_case.impact_velocity,
+                          variant.law,
+                          fit_options(config, variant.options));
+  }
+
   int run_fit_command(const FitCommandOptions &options)
   {
-    if (!(options.width > 0.0))
-      throw std::invalid_argument(fmt::format("fit: width = {} m (must be > 0)", options.width));
-    if (!(options.cor > 0.0 && options.cor <= 1.0))
-      throw std::invalid_argument(fmt::format("fit: cor = {} (must be in (0, 1])", options.cor));
-    if (!(options.displacement_weight >= 0.0))
+    const FitConfig &config = options.config;
+    if (!(config.width > 0.0))
+      throw std::invalid_argument(fmt::format("fit: width = {} m (must be > 0)", config.width));
+    if (!(config.cor > 0.0 && config.cor <= 1.0))
+      throw std::invalid_argument(fmt::format("fit: cor = {} (must be in (0, 1])", config.cor));
+    if (!(config.displacement_weight >= 0.0))
       throw std::invalid_argument(
-        fmt::format("fit: displacement_weight = {} (must be >= 0)", options.displacement_weight));
+        fmt::format("fit: displacement_weight = {} (must be >= 0)", config.displacement_weight));
     const std::vector<FemCase> cases = read_fem_cases(options.fem_file);
     const OutputDir            output(options.output);
 
-    nlohmann::json resolved = {{"fem_file", options.fem_file.string()},
-                               {"cor", options.cor},
-                               {"width", options.width},
-                               {"raw_force", options.raw_force},
-                               {"displacement_weight", options.displacement_weight}};
-    ResultsFile    file(output.file("fit.h5"), "", resolved.dump());
-    ResultsGroup   root     = file.root();
-    ResultsGroup   fit_root = root.group("fit");
+    nlohmann::json resolved = nlohmann::json::parse(to_json_text(config, 0));
+    resolved["fem_file"]    = options.fem_file.string();
+    ResultsFile  file(output.file("fit.h5"), "", resolved.dump());
+    ResultsGroup root     = file.root();
+    ResultsGroup fit_root = root.group("fit");
 
-    FitOptions base;
-    base.displacement_weight                       = options.displacement_weight;
-    const std::vector<FitVariant>         variants = standard_fit_variants(base, options.cor);
+    const std::vector<FitVariant>         variants = fit_variants(config);
     const std::vector<std::string>        header   = {"case",
                                                       "wall_height_m",
                                                       "variant",
@@ -134,13 +143,15 @@ namespace kimp::app
         ResultsGroup group = case_group.case_group(variant.name);
         try
         {
-          const FitResult fit = fit_impact_law(force_history(fem_case, !options.raw_force),
-                                               fem_case.slab_mass,
-                                               fem_case.impact_velocity,
-                                               variant.law,
-                                               variant.options);
-          write_fit_result(group, fit, options.width, FitResultLayout::full);
-          group.set_status("ok");
+          const FitResult   fit     = fit_fem_case(fem_case, variant, config);
+          const std::string verdict = fit_verdict(fit);
+          write_fit_result(group, fit, config.width, FitResultLayout::full);
+          group.set_status(verdict);
+          if (verdict != "ok")
+          {
+            ++failures;
+            logger().warn("fit: {} {}: {}", fem_case.name, variant.name, verdict);
+          }
           const double scale = stiffness_to_kn_per_mm(1.0, fit.exponent.value);
           rows.push_back({fem_case.name,
                           number(fem_case.wall_height),
@@ -150,14 +161,14 @@ namespace kimp::app
                           number(fit.stiffness.lower * scale),
                           number(fit.stiffness.upper * scale),
                           fit.per_metre_unit(),
-                          number(fit.total_stiffness_display(options.width)),
+                          number(fit.total_stiffness_display(config.width)),
                           stiffness_display_unit(fit.exponent.value),
                           number(fit.cor.value),
                           number(fit.cor.lower),
                           number(fit.cor.upper),
                           number(fit.exponent.value),
                           number(fit.normalised_rms),
-                          "ok"});
+                          verdict});
           logger().info("fit: {} {}: k = {} {} (total {} {}), COR = {}, RMS/peak = {}",
                         fem_case.name,
                         variant.name,

@@ -4,9 +4,60 @@
 
 #include <filesystem>
 
+#include "fit/fit_config.h"
 #include "fit/fitter.h"
 #include "io/fem_results.h"
 #include "io/results_file.h"
+#include "io/scene_io.h"
+
+namespace kimp::fit
+{
+  /// The one declaration of the fitting configuration: the study's `fit:` section and the flags
+  /// of `kimp fit` (`--separation-fraction 0.25`, ...) are read through it.
+  template <class Io>
+  void visit(Io &io, FitConfig &s)
+  {
+    io.quantity("cor",
+                s.cor,
+                "",
+                "COR of the fixed-COR Kelvin-Voigt and Jankowski fits, (0, 1]",
+                io::Range::greater(0.0).and_at_most(1.0));
+    io.quantity("width",
+                s.width,
+                "m",
+                "building side width W: k_total = k_per_metre x W (> 0; 27.78 m gives the "
+                "thesis' Table 2.2 from Table 2.1)",
+                io::Range::positive());
+    io.flag("raw_force", s.raw_force, "fit the raw FEM contact force instead of the smoothed one");
+    io.flag("force_only_contact",
+            s.force_only_contact,
+            "contact window from the force alone (true) or from the FEM indentation (false; "
+            "cuts the window at the first bounce of a chattering slab)");
+    io.quantity("separation_fraction",
+                s.separation_fraction,
+                "",
+                "a contact ends at a force-free run longer than this fraction of its duration so "
+                "far (> 0; larger merges the bounces of one impact)",
+                io::Range::positive());
+    io.quantity("tail_fraction",
+                s.tail_fraction,
+                "",
+                "samples after the FEM separation in the misfit, as a fraction of the contact "
+                "duration (>= 0)",
+                io::Range::non_negative());
+    io.quantity("contact_threshold",
+                s.contact_threshold,
+                "",
+                "force-only contact detection: F > contact_threshold x peak force, (0, 1)",
+                io::Range::greater(0.0).and_less(1.0));
+    io.quantity("displacement_weight",
+                s.displacement_weight,
+                "",
+                "weight of the slab-displacement misfit beside the force misfit (>= 0; 0: force "
+                "only, the thesis' choice)",
+                io::Range::non_negative());
+  }
+} // namespace kimp::fit
 
 namespace kimp::app
 {
@@ -33,26 +84,33 @@ namespace kimp::app
                         double                width,
                         FitResultLayout       layout);
 
+  /**
+   * Fit `variant` to `fem_case` with the force source and window of `config`: the one fitting
+   * path of `kimp fit` and `kimp study`, so both give the same k on the same FEM result. Judge
+   * the result with fit::fit_verdict().
+   * @throws fit::FitError (and std::invalid_argument) as fit::fit_impact_law().
+   */
+  fit::FitResult fit_fem_case(const io::FemCase     &fem_case,
+                              const fit::FitVariant &variant,
+                              const fit::FitConfig  &config);
+
   /// Settings of one `kimp fit` run (the command-line options).
   struct FitCommandOptions
   {
-    std::filesystem::path fem_file;                ///< results file holding /fem/<case>
-    std::filesystem::path output;                  ///< output directory
-    double                cor = 0.7;               ///< COR of the fixed-COR variants (thesis: 0.7)
-    double width     = fit::thesis_building_width; ///< building side W, m: k_total = k_per_metre·W
-    bool   raw_force = false;                      ///< fit the raw instead of the smoothed force
-    double displacement_weight = 0.0;              ///< fit::FitOptions::displacement_weight
+    std::filesystem::path fem_file; ///< results file holding /fem/<case>
+    std::filesystem::path output;   ///< output directory
+    fit::FitConfig        config;   ///< the shared fitting configuration (flags)
   };
 
   /**
    * Fit the standard variants (fit::standard_fit_variants) to every "ok" case of the FEM file and
    * write DIR/fit.h5 and DIR/fit_table.csv (one row per case and variant, k per metre and total
-   * in kN/mm^n, COR, n, 95 % intervals, normalised RMS misfit, status). A fit that fails is a
-   * row with status "failed: <reason>", not an error of the command.
-   * @return number of failed fits.
+   * in kN/mm^n, COR, n, 95 % intervals, normalised RMS misfit, status). A fit that fails, or
+   * whose fit::fit_verdict() is "failed: ..." or "warning: ...", is a row with that status, not
+   * an error of the command.
+   * @return number of fits whose status is not "ok".
    * @throws ResultsError or OutputError for unreadable input or unwritable output.
    */
   int run_fit_command(const FitCommandOptions &options);
 
-  /// Add `kimp fit FEM.h5 -o DIR [--cor C] [--width W] [--raw-force] [--displacement-weight w]`.
 } // namespace kimp::app

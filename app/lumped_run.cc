@@ -459,8 +459,17 @@ namespace kimp::app
     for (std::size_t i = 0; i < cases.size(); ++i)
     {
       logger().info("case {}/{}: {}", i + 1, cases.size(), cases[i].first);
-      results.push_back(
-        run_lumped_case(cases[i].first, cases[i].second, motion, scene.ground_motion.scale));
+      const GroundMotionScene &case_motion = cases[i].second.ground_motion;
+      if (case_motion.record == scene.ground_motion.record)
+        results.push_back(
+          run_lumped_case(cases[i].first, cases[i].second, motion, scene.ground_motion.scale));
+      else
+      {
+        // A case with its own record (cases[i].record): loaded for that case only.
+        const lumped::GroundMotion own = load_ground_motion(case_motion, records_dir_override);
+        logger().info("case {}: ground motion {}", cases[i].first, own.name);
+        results.push_back(run_lumped_case(cases[i].first, cases[i].second, own, case_motion.scale));
+      }
       const LumpedCaseResult &r = results.back();
       if (r.ok())
         logger().info("case {}: {} steps of {} s, {} impacts, peak base {} m, wall time {} s",

@@ -8,6 +8,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "app/k_table.h"
 #include "fit/fitter.h"
 #include "io/units.h"
 #include "lumped/excitation/ground_motion.h"
@@ -119,6 +120,54 @@ namespace kimp::app
       }
     }
 
+    /**
+     * `impact` with k_si set from its k_table (if any), so that validate_law() checks the table's
+     * k; the table's problems are reported at k_table / wall_height. With `required` false a
+     * missing wall_height is not an error (the cases give it).
+     */
+    ImpactScene
+    with_table_stiffness(const ImpactScene &impact, ValidationContext &ctx, bool required)
+    {
+      ImpactScene out = impact;
+      if (impact.k_table.empty() || impact.k_si || impact.law == "bumper")
+        return out;
+      out.k_si = 1.0; // a placeholder when the table cannot give k: reported below instead
+      if (!impact.wall_height)
+      {
+        if (required)
+          ctx.fail("wall_height", "null", "must be given with k_table = " + impact.k_table);
+        return out;
+      }
+      const double n = impact_exponent(impact);
+      KTable       table;
+      try
+      {
+        table = read_k_table(impact.k_table);
+      }
+      catch (const std::invalid_argument &error)
+      {
+        ctx.fail("k_table", impact.k_table, error.what());
+        return out;
+      }
+      if (n != 1.0 && n != 1.5)
+      {
+        ctx.fail("k_table",
+                 impact.k_table,
+                 "holds k for n = 1 and n = 1.5 only (law " + impact.law +
+                   " has n = " + format_quantity(n, "") + ")");
+        return out;
+      }
+      try
+      {
+        out.k_si = table.stiffness(*impact.wall_height, n);
+      }
+      catch (const std::invalid_argument &error)
+      {
+        ctx.fail("wall_height", format_quantity(*impact.wall_height, "m"), error.what());
+      }
+      return out;
+    }
+
     void validate_bumper(const ImpactScene &impact, ValidationContext &ctx)
     {
       const auto         scope = ctx.section("bumper");
@@ -204,6 +253,24 @@ namespace kimp::app
       throw UnitError("impact.k = " + law.k + " (law " + law.law + " needs N/m^" +
                       format_quantity(impact_exponent(law), "") + ")");
     return k.value;
+  }
+
+  double impact_stiffness(const ImpactScene &impact)
+  {
+    if (impact.k_si || impact.k_table.empty())
+      return impact_stiffness(static_cast<const ImpactLawScene &>(impact));
+    if (!impact.wall_height)
+      throw std::invalid_argument("impact.k_table = " + impact.k_table +
+                                  ": impact.wall_height (or the case's wall_height) must be given");
+    try
+    {
+      return read_k_table(impact.k_table).stiffness(*impact.wall_height, impact_exponent(impact));
+    }
+    catch (const std::invalid_argument &error)
+    {
+      throw std::invalid_argument("impact.k_table = " + impact.k_table + ", impact.wall_height = " +
+                                  format_quantity(*impact.wall_height, "m") + ": " + error.what());
+    }
   }
 
   double bumper_stiffness(const ImpactScene &impact)
@@ -313,7 +380,7 @@ namespace kimp::app
     validate_walls(scene, ctx, "walls.left.gap", "walls.right.gap");
     {
       const auto scope = ctx.section("impact");
-      validate_law(scene.impact, ctx, true);
+      validate_law(with_table_stiffness(scene.impact, ctx, scene.cases.empty()), ctx, true);
       if (scene.impact.law == "bumper")
         validate_bumper(scene.impact, ctx);
     }
@@ -395,7 +462,21 @@ namespace kimp::app
             {"right_gap", &c.right_gap}})
         if (*gap)
           ctx.check(isolated, key, format_quantity(**gap, "cm"), "needs an isolated building");
-      const LumpedScene applied = apply_case(scene, c);
+      if (c.wall_height && scene.impact.k_table.empty())
+        ctx.fail("wall_height",
+                 format_quantity(*c.wall_height, "m"),
+                 "needs impact.k_table (the k table it selects k from)");
+      LumpedScene applied = apply_case(scene, c);
+      {
+        ValidationContext table_ctx;
+        applied.impact = with_table_stiffness(applied.impact, table_ctx, true);
+        for (const auto &failure : table_ctx.failures())
+          ctx.fail(failure.key_path == "wall_height" && c.wall_height ?
+                     "wall_height" :
+                     "impact." + failure.key_path,
+                   failure.value_text,
+                   failure.expectation);
+      }
       // The case's law and stiffness, reported at the case's own keys.
       ValidationContext law_ctx;
       validate_law(applied.impact, law_ctx, true);
@@ -407,6 +488,8 @@ namespace kimp::app
           key = c.law.empty() ? "k" : "law";
         ctx.fail(key, failure.value_text, failure.expectation);
       }
+      if (!c.record.empty())
+        validate(applied.ground_motion, ctx); // the case's record, reported at cases[i].record
       if (!c.law.empty() && c.law == "bumper")
         validate_bumper(applied.impact, ctx);
       validate_walls(applied,
@@ -439,6 +522,12 @@ namespace kimp::app
       out.walls.right.gap = *c.right_gap;
     if (c.ground_motion_scale)
       out.ground_motion.scale *= *c.ground_motion_scale;
+    if (!c.k.empty())
+      out.impact.k_table.clear(); // the case's own k wins over the table
+    if (c.wall_height)
+      out.impact.wall_height = c.wall_height;
+    if (!c.record.empty())
+      out.ground_motion.record = c.record;
     return out;
   }
 
@@ -527,7 +616,10 @@ namespace kimp::app
       adjacent.separation                       = nb.separation;
       ImpactScene law                           = scene.impact;
       if (nb.impact)
+      {
         static_cast<ImpactLawScene &>(law) = *nb.impact;
+        law.k_table.clear(); // the neighbour's own k, not the walls' table
+      }
       adjacent.law = lumped::force_law_factory(force_law_spec(law));
       return adjacent;
     };

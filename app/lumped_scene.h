@@ -229,6 +229,10 @@ namespace kimp::app
   struct ImpactScene : ImpactLawScene
   {
     BumperScene bumper;
+    /// A study's k_table.csv (or its output directory): k from the table at `wall_height`
+    /// instead of the text `k` (app/k_table.h); "" = use `k`.
+    std::string           k_table;
+    std::optional<double> wall_height; ///< m, where k_table is interpolated
   };
 
   template <class Io>
@@ -236,6 +240,17 @@ namespace kimp::app
   {
     visit_law(io, s);
     io.section("bumper", s.bumper, "rubber bumpers (used when law = bumper)");
+    io.text("k_table",
+            s.k_table,
+            "a study's k_table.csv (or its output directory), path relative to the working "
+            "directory: k = k_total of the law's column (n = 1: Kelvin-Voigt, n = 1.5: Jankowski) "
+            "interpolated at wall_height, instead of k (\"\" = use k)");
+    io.quantity("wall_height",
+                s.wall_height,
+                "m",
+                "with k_table: wall height at which k is interpolated (linearly; refused outside "
+                "the table's heights)",
+                io::Range::positive());
   }
 
   /// A fixed-base neighbour; its floor j faces floor j of the main building.
@@ -369,6 +384,8 @@ namespace kimp::app
     std::optional<double> left_gap;
     std::optional<double> right_gap;
     std::optional<double> ground_motion_scale;
+    std::optional<double> wall_height; ///< m, impact.k_table's height for this case
+    std::string           record = ""; ///< ground_motion.record of this case
   };
 
   template <class Io>
@@ -386,6 +403,12 @@ namespace kimp::app
                 s.ground_motion_scale,
                 "",
                 "extra factor on the ground motion of this case");
+    io.quantity("wall_height",
+                s.wall_height,
+                "m",
+                "wall height at which impact.k_table is interpolated (null = impact.wall_height)",
+                io::Range::positive());
+    io.text("record", s.record, "ground motion record of this case (\"\" = ground_motion.record)");
   }
 
   /// The whole scene of `kimp lumped` (SI members, defaults of docs/physics.md §3).
@@ -420,6 +443,13 @@ namespace kimp::app
   /// Exponent n the law will use: the given one or the law's default (1, 1.5 or 2.65).
   double impact_exponent(const ImpactLawScene &law);
 
+  /**
+   * k of the walls' law in SI (N/m^n): `k_si` if set, else from `k_table` at `wall_height` if
+   * given, else parsed from the text `k`.
+   * @throws std::invalid_argument naming impact.k_table's file and impact.wall_height when the
+   *         table cannot be read or the height is outside it.
+   */
+  double impact_stiffness(const ImpactScene &impact);
   /**
    * k of `law` in SI (N/m^n): `law.k_si` if set, else parsed from its text.
    * @throws UnitError when the text is not a quantity of dimension N/m^n.

@@ -3,10 +3,12 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 #include <iosfwd>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -124,5 +126,68 @@ namespace kimp::cli
         run(scene, output);
       });
     return command;
+  }
+
+  /**
+   * Adds one option `--<key>` (underscores written as dashes) per top-level key of Settings'
+   * visit(): a quantity or text takes a value (`--width "27.78 m"`), a flag is a flag
+   * (`--raw-force`, `--raw-force=false`). The returned function reads the options given as a
+   * scene document through that same visit() (units, ranges and messages of the scene keys;
+   * the others keep Settings' defaults), so a setting is declared once for file and command line.
+   * @throws (the returned function) io::SceneError naming the key, the value and the rule.
+   */
+  template <class Settings>
+  std::function<Settings()> add_key_options(CLI::App &command)
+  {
+    struct Entry
+    {
+      std::string  key;
+      bool         is_flag = false;
+      std::string  text;
+      bool         flag   = false;
+      CLI::Option *option = nullptr;
+    };
+    auto                 entries = std::make_shared<std::vector<Entry>>();
+    const nlohmann::json schema  = nlohmann::json::parse(io::schema_text<Settings>());
+    for (const nlohmann::json &key : schema.at("keys"))
+    {
+      Entry entry;
+      entry.key     = key.at("key").get<std::string>();
+      entry.is_flag = key.at("type") == "flag";
+      entries->push_back(entry);
+    }
+    for (std::size_t i = 0; i < entries->size(); ++i)
+    {
+      const nlohmann::json &key  = schema.at("keys").at(i);
+      Entry                &e    = (*entries)[i];
+      std::string           name = "--" + e.key;
+      std::replace(name.begin(), name.end(), '_', '-');
+      std::string help = key.value("doc", "");
+      if (key.contains("unit") && key.at("unit").is_string() &&
+          !key.at("unit").get<std::string>().empty())
+        help += " [unit: " + key.at("unit").get<std::string>() + "]";
+      if (key.contains("default"))
+        help += " (default " +
+                (key.at("default").is_string() ? key.at("default").get<std::string>() :
+                                                 key.at("default").dump()) +
+                ")";
+      e.option = e.is_flag ? command.add_flag(name, e.flag, help) :
+                             command.add_option(name, e.text, help)->type_name("VALUE");
+    }
+    return [entries]()
+    {
+      std::string yaml;
+      for (const Entry &e : *entries)
+      {
+        if (e.option->count() == 0)
+          continue;
+        std::string value = e.is_flag ? (e.flag ? "true" : "false") : e.text;
+        std::string quoted;
+        for (const char c : value)
+          quoted += c == '\'' ? std::string("''") : std::string(1, c);
+        yaml += e.key + ": " + (e.is_flag ? value : "'" + quoted + "'") + "\n";
+      }
+      return io::load_scene_text<Settings>(yaml, "command line");
+    };
   }
 } // namespace kimp::cli

@@ -16,5 +16,6 @@ namespace kimp::cli
     register_sweep_command(app);
     register_report_command(app);
     register_gui_command(app);
+    register_export_opensees_command(app);
   }
 } // namespace kimp::cli

@@ -15,6 +15,7 @@ namespace kimp::cli
   void register_sweep_command(CLI::App &app);
   void register_report_command(CLI::App &app);
   void register_gui_command(CLI::App &app);
+  void register_export_opensees_command(CLI::App &app);
 #ifdef KIMP_WITH_FEM
   void register_mesh_command(CLI::App &app);
   void register_fem_command(CLI::App &app);

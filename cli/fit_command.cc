@@ -28,16 +28,9 @@ namespace kimp::cli
     command->add_option("-o,--output", *out, "output directory (created if missing)")
       ->type_name("DIR")
       ->required();
-    command->add_option("--cor", options->cor, "COR of the fixed-COR fits, (0, 1]")
-      ->capture_default_str();
-    command->add_option("--width", options->width, "building side W in m: k_total = k·W")
-      ->capture_default_str();
-    command->add_flag("--raw-force", options->raw_force, "fit the raw, not the smoothed, force");
-    command
-      ->add_option("--displacement-weight",
-                   options->displacement_weight,
-                   "weight of the slab-displacement misfit (0: force only)")
-      ->capture_default_str();
+    // --cor, --width, --raw-force, --force-only-contact, --separation-fraction, ...: the keys of
+    // the study's `fit:` section, declared once (fit::FitConfig's visit()).
+    const auto config = add_key_options<fit::FitConfig>(*command);
     command->preparse_callback(
       [options, file, out](std::size_t)
       {
@@ -46,14 +39,17 @@ namespace kimp::cli
         out->clear();
       });
     command->callback(
-      [options, file, out]()
+      [options, file, out, config]()
       {
+        options->config   = config();
         options->fem_file = *file;
         options->output   = *out;
         logger().info("{}: fit {}", version_line(), *file);
         const int failures = run_fit_command(*options);
         if (failures > 0)
-          logger().warn("fit: {} fit(s) failed (see fit_table.csv)", failures);
+          logger().warn("fit: {} fit(s) failed or with a warning (see the status column of "
+                        "fit_table.csv)",
+                        failures);
       });
   }
 } // namespace kimp::cli

@@ -737,8 +737,17 @@ namespace kimp::fit
     result.function_evaluations = misfit.n_evaluations();
     result.fem_peak_force       = window.peak_force;
     result.fem_contact_duration = dur;
-    result.fem_impulse          = window.impulse;
-    result.contact_start        = window.start;
+    {
+      const double peak  = *std::max_element(history.force.begin(), history.force.end());
+      const auto   above = [&](double f) { return f > options.contact_threshold * peak; };
+      const auto   first = std::find_if(history.force.begin(), history.force.end(), above);
+      const auto   last  = std::find_if(history.force.rbegin(), history.force.rend(), above);
+      result.contact_extent =
+        history.time[static_cast<std::size_t>(std::distance(last, history.force.rend())) - 1] -
+        history.time[static_cast<std::size_t>(std::distance(history.force.begin(), first))];
+    }
+    result.fem_impulse   = window.impulse;
+    result.contact_start = window.start;
 
     std::vector<double>         model_force, model_displacement;
     const lumped::TwoBodyResult model = misfit.simulate(p, model_force, model_displacement);

@@ -92,8 +92,11 @@ namespace kimp::fit
     int    status_code                 = 0; ///< Eigen LevenbergMarquardtSpace::Status
     std::string status;                     ///< status_code as text
 
-    double fem_peak_force         = 0.0; ///< N/m
-    double fem_contact_duration   = 0.0; ///< s
+    double fem_peak_force       = 0.0; ///< N/m
+    double fem_contact_duration = 0.0; ///< s, the misfit window's contact phase
+    /// s, first to last sample whose force exceeds contact_threshold·peak, over the whole record
+    /// (bounces included): what the contact phase should span (fit_verdict()).
+    double contact_extent         = 0.0;
     double fem_impulse            = 0.0; ///< N·s/m over the contact phase
     double contact_start          = 0.0; ///< first contact in FEM time, s
     double model_peak_force       = 0.0; ///< N/m

@@ -67,16 +67,17 @@ namespace kimp::app
   {
     std::optional<fit::FitResult> kelvin_voigt;
     std::optional<fit::FitResult> jankowski;
-    std::string                   kelvin_voigt_status = "ok"; ///< "ok" or "failed: ..."
-    std::string                   jankowski_status    = "ok";
-    double                        seconds             = 0.0; ///< s
+    /// "ok", "warning: ..." (fit kept) or "failed: ..." (no fit), see fit::fit_verdict()
+    std::string kelvin_voigt_status = "ok";
+    std::string jankowski_status    = "ok";
+    double      seconds             = 0.0; ///< s
 
     bool ok() const { return kelvin_voigt && jankowski; }
   };
 
   /**
-   * Fit Kelvin-Voigt and Jankowski at settings.cor to `fem_case` (smoothed force unless
-   * settings.raw_force). A failed fit is logged and reported in its status, not thrown.
+   * Fit Kelvin-Voigt and Jankowski at settings.cor to `fem_case` through fit_fem_case(), the
+   * path `kimp fit` takes. A failed fit is logged and reported in its status, not thrown.
    */
   StudyFits fit_study_laws(const io::FemCase &fem_case, const StudyFitScene &settings);
 } // namespace kimp::app

@@ -7,9 +7,10 @@
 #include <vector>
 
 #include "app/fem/fem_scene.h"
+#include "app/fit_run.h"
 #include "app/ground_motion_scene.h"
 #include "app/lumped_scene.h"
-#include "fit/fitter.h"
+#include "fit/fit_config.h"
 #include "io/scene_io.h"
 
 namespace kimp::app
@@ -132,51 +133,9 @@ namespace kimp::app
                 io::Range::greater(0.0).and_less(1.0));
   }
 
-  /** The fits of every height (docs/physics.md §4 "Fit"). */
-  struct StudyFitScene
-  {
-    double cor       = 0.7;                        ///< COR of both fitted laws, (0, 1]
-    double width     = fit::thesis_building_width; ///< building side W, m: k_total = k_per_m·W
-    bool   raw_force = false; ///< fit the raw instead of the smoothed FEM contact force
-    /// Contact window from the force alone (the FEM indentation of a chattering rigid slab turns
-    /// negative while the force is still on, which would cut the window at the first bounce).
-    bool   force_only_contact  = true;
-    double separation_fraction = 1.0; ///< fit::FitOptions::separation_fraction (> 0)
-    /// FitOptions::displacement_weight: also fit the slab's advance since first contact (>= 0).
-    double displacement_weight = 0.0;
-  };
-
-  template <class Io>
-  void visit(Io &io, StudyFitScene &s)
-  {
-    io.quantity("cor",
-                s.cor,
-                "",
-                "COR of the fitted Kelvin-Voigt and Jankowski laws, (0, 1]",
-                io::Range::greater(0.0).and_at_most(1.0));
-    io.quantity("width",
-                s.width,
-                "m",
-                "building side width W: k_total = k_per_metre x W (> 0; 27.78 m gives the "
-                "thesis' Table 2.2 from Table 2.1)",
-                io::Range::positive());
-    io.flag("raw_force", s.raw_force, "fit the raw FEM contact force instead of the smoothed one");
-    io.flag("force_only_contact",
-            s.force_only_contact,
-            "contact window from the force alone (true) or from the FEM indentation (false)");
-    io.quantity("separation_fraction",
-                s.separation_fraction,
-                "",
-                "a contact ends at a force-free run longer than this fraction of its duration so "
-                "far (> 0; larger merges the bounces of one impact)",
-                io::Range::positive());
-    io.quantity("displacement_weight",
-                s.displacement_weight,
-                "",
-                "weight of the slab-displacement misfit beside the force misfit (>= 0; 0: force "
-                "only, the thesis' choice)",
-                io::Range::non_negative());
-  }
+  /// The fits of every height: the fitting configuration shared with `kimp fit`
+  /// (fit/fit_config.h, keys declared in app/fit_run.h).
+  using StudyFitScene = fit::FitConfig;
 
   /** Moat walls of the study: on both sides, gap from the building's own no-wall response. */
   struct StudyWallsScene

@@ -1,0 +1,223 @@
+// OpenSees input of the fitted impact laws: ViscoelasticGap, ElasticPPGap, JankowskiImpact,
+// Hertzdamp and ImpactMaterial (Muthukumar's bilinear approximation of the Hertz law).
+#include "app/opensees_export.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <functional>
+#include <stdexcept>
+#include <vector>
+
+#include "app/k_table.h"
+#include "base/logging.h"
+#include "io/summary.h"
+
+namespace kimp::app
+{
+  namespace
+  {
+    constexpr double pi = 3.14159265358979323846;
+
+    /// One material: OpenSees type, its arguments (numbers as text) and a comment.
+    struct Material
+    {
+      std::string              type;
+      std::vector<std::string> arguments;
+      std::string              comment;
+    };
+
+    std::string number(double value)
+    {
+      return fmt::format("{:.10g}", value);
+    }
+
+    std::vector<Material> materials(const OpenSeesLawInput &in, const OpenSeesParameters &p)
+    {
+      std::vector<Material> out;
+      const std::string     gap = number(-in.gap);
+      if (in.k_kelvin_voigt)
+      {
+        const double k = *in.k_kelvin_voigt;
+        out.push_back({"ViscoelasticGap",
+                       {number(k), number(p.kv_c), gap},
+                       fmt::format("Kelvin-Voigt: K = k_KV, C = 2 xi sqrt(K m_eff), xi = -ln(e)/"
+                                   "sqrt(pi^2 + ln^2 e) = {:.6g}",
+                                   p.kv_xi)});
+        out.push_back(
+          {"ElasticPPGap",
+           {number(k), number(-p.pp_yield_force), gap, "0.0"},
+           fmt::format("Kelvin-Voigt spring without dashpot: E = k_KV, Fy = k_KV x 10 "
+                       "x {:.4g} m (10 x the undamped peak indentation v sqrt(m_eff/k): "
+                       "stays elastic), eta = 0",
+                       p.kv_delta_max)});
+      }
+      if (in.k_hertz)
+      {
+        const double k = *in.k_hertz;
+        out.push_back({"JankowskiImpact",
+                       {number(k), number(p.jankowski_xi), number(in.effective_mass), gap, "1.5"},
+                       "Jankowski: Kh = k_J, xi = (9 sqrt(5)/2)(1 - e^2)/(e (e (9 pi - 16) + 16)), "
+                       "Meff, n = 1.5"});
+        out.push_back({"Hertzdamp",
+                       {number(k), number(p.hertzdamp_xi_norm), gap, "1.5"},
+                       fmt::format("Hertzdamp: Kh = k_J, xiNorm = 3 (1 - e^2)/4 (kimp's hertzdamp "
+                                   "law; Ye et al.'s 8 (1 - e)/(5 e) = {:.6g})",
+                                   p.hertzdamp_xi_norm_ye)});
+        out.push_back({"ImpactMaterial",
+                       {number(p.k1), number(p.k2), number(-p.delta_y), gap},
+                       fmt::format("Muthukumar: delta_m = (5 m_eff v^2/(4 k_J))^(2/5) = {:.6g} m, "
+                                   "K_eff = k_J sqrt(delta_m) = {:.6g} N/m, dE = k_J delta_m^2.5 "
+                                   "(1 - e^2)/2.5 = {:.6g} J, delta_y = a delta_m (a = {:.3g}), "
+                                   "K1 = K_eff + dE/(a delta_m^2), K2 = K_eff - dE/((1 - a) "
+                                   "delta_m^2)",
+                                   p.delta_m,
+                                   p.k_eff,
+                                   p.energy,
+                                   in.yield_ratio)});
+      }
+      return out;
+    }
+
+    std::string header(const OpenSeesLawInput &in, const char *comment, const char *form)
+    {
+      std::string h;
+      const auto  line = [&](const std::string &text) { h += comment + (" " + text) + "\n"; };
+      line(fmt::format("kimp export-opensees: fitted impact laws as OpenSees uniaxial materials "
+                       "({})",
+                       form));
+      line("Units: N, m, s (stiffness N/m or N/m^1.5, damping N*s/m, mass kg, energy J).");
+      line("Gap and yield displacement are negative: every material is a compression-only gap.");
+      line("Use them in a zeroLength element between the isolation level and the moat wall.");
+      line("Source of k: " + (in.source.empty() ? std::string("given explicitly") : in.source));
+      if (in.k_kelvin_voigt)
+        line(fmt::format("k_KV = {} N/m (= {:.6g} kN/mm)",
+                         number(*in.k_kelvin_voigt),
+                         *in.k_kelvin_voigt * 1e-6));
+      if (in.k_hertz)
+        line(fmt::format("k_J = {} N/m^1.5 (= {:.6g} kN/mm^1.5)",
+                         number(*in.k_hertz),
+                         *in.k_hertz * 1e-3 * std::pow(1e-3, 1.5)));
+      line(fmt::format("COR e = {}, m_eff = {} kg, v_imp = {} m/s, gap = {} m",
+                       number(in.cor),
+                       number(in.effective_mass),
+                       number(in.impact_velocity),
+                       number(in.gap)));
+      return h;
+    }
+  } // namespace
+
+  OpenSeesParameters opensees_parameters(const OpenSeesLawInput &in)
+  {
+    const auto require = [](bool ok, const std::string &what)
+    {
+      if (!ok)
+        throw std::invalid_argument("export-opensees: " + what);
+    };
+    require(!in.k_kelvin_voigt || (std::isfinite(*in.k_kelvin_voigt) && *in.k_kelvin_voigt > 0.0),
+            "k_KV must be > 0");
+    require(!in.k_hertz || (std::isfinite(*in.k_hertz) && *in.k_hertz > 0.0), "k_J must be > 0");
+    require(in.k_kelvin_voigt || in.k_hertz, "no k given (neither a k table nor --k-kv/--k-hertz)");
+    require(in.cor > 0.0 && in.cor <= 1.0, fmt::format("COR = {} must be in (0, 1]", in.cor));
+    require(std::isfinite(in.effective_mass) && in.effective_mass > 0.0,
+            "effective mass must be > 0");
+    require(std::isfinite(in.impact_velocity) && in.impact_velocity > 0.0,
+            "impact velocity must be > 0");
+    require(std::isfinite(in.gap) && in.gap > 0.0, "gap must be > 0");
+    require(in.yield_ratio > 0.0 && in.yield_ratio < 1.0, "yield ratio a must be in (0, 1)");
+
+    OpenSeesParameters p;
+    const double       e = in.cor, m = in.effective_mass, v = in.impact_velocity;
+    const double       ln_e = std::log(e);
+    p.kv_xi                 = -ln_e / std::sqrt(pi * pi + ln_e * ln_e);
+    if (in.k_kelvin_voigt)
+    {
+      const double k   = *in.k_kelvin_voigt;
+      p.kv_c           = 2.0 * p.kv_xi * std::sqrt(k * m);
+      p.kv_delta_max   = v * std::sqrt(m / k);
+      p.pp_yield_force = k * 10.0 * p.kv_delta_max;
+    }
+    p.jankowski_xi =
+      9.0 * std::sqrt(5.0) / 2.0 * (1.0 - e * e) / (e * (e * (9.0 * pi - 16.0) + 16.0));
+    p.hertzdamp_xi_norm    = 3.0 * (1.0 - e * e) / 4.0;
+    p.hertzdamp_xi_norm_ye = 8.0 * (1.0 - e) / (5.0 * e);
+    if (in.k_hertz)
+    {
+      const double k = *in.k_hertz, n = 1.5, a = in.yield_ratio;
+      p.delta_m = std::pow((n + 1.0) * m * v * v / (2.0 * k), 1.0 / (n + 1.0));
+      p.energy  = k * std::pow(p.delta_m, n + 1.0) * (1.0 - e * e) / (n + 1.0);
+      p.k_eff   = k * std::sqrt(p.delta_m);
+      p.delta_y = a * p.delta_m;
+      p.k1      = p.k_eff + p.energy / (a * p.delta_m * p.delta_m);
+      p.k2      = p.k_eff - p.energy / ((1.0 - a) * p.delta_m * p.delta_m);
+      require(p.k2 > 0.0,
+              fmt::format("ImpactMaterial K2 = {:.4g} N/m <= 0 (COR {} too low for a = {}; "
+                          "raise the COR or lower a)",
+                          p.k2,
+                          e,
+                          a));
+    }
+    return p;
+  }
+
+  std::string opensees_tcl(const OpenSeesLawInput &in)
+  {
+    const OpenSeesParameters p   = opensees_parameters(in);
+    std::string              out = header(in, "#", "Tcl");
+    int                      tag = in.first_tag;
+    for (const Material &material : materials(in, p))
+    {
+      out += "\n# " + material.comment + "\n";
+      out += fmt::format("uniaxialMaterial {} {}", material.type, tag++);
+      for (const std::string &a : material.arguments)
+        out += " " + a;
+      out += "\n";
+    }
+    return out;
+  }
+
+  std::string opensees_python(const OpenSeesLawInput &in)
+  {
+    const OpenSeesParameters p   = opensees_parameters(in);
+    std::string              out = header(in, "#", "OpenSeesPy");
+    out += "import openseespy.opensees as ops\n";
+    int tag = in.first_tag;
+    for (const Material &material : materials(in, p))
+    {
+      out += "\n# " + material.comment + "\n";
+      out += fmt::format("ops.uniaxialMaterial('{}', {}", material.type, tag++);
+      for (const std::string &a : material.arguments)
+        out += ", " + a;
+      out += ")\n";
+    }
+    return out;
+  }
+
+  void run_export_opensees(ExportOpenSeesOptions options)
+  {
+    OpenSeesLawInput            &laws        = options.settings.laws;
+    const std::optional<double> &wall_height = options.settings.wall_height;
+    if (!options.source.empty())
+    {
+      if (!wall_height)
+        throw std::invalid_argument("export-opensees: --wall-height is needed with a k table (" +
+                                    options.source.string() + ")");
+      const KTable table = read_k_table(options.source);
+      if (!laws.k_kelvin_voigt)
+        laws.k_kelvin_voigt = table.stiffness(*wall_height, 1.0);
+      if (!laws.k_hertz)
+        laws.k_hertz = table.stiffness(*wall_height, 1.5);
+      laws.source = fmt::format("{} at wall height {} m (k_total = k per metre x building width, "
+                                "linearly interpolated between the table's heights)",
+                                table.file.string(),
+                                *wall_height);
+    }
+    const std::string   tcl    = opensees_tcl(laws); // validates before the directory is made
+    const std::string   python = opensees_python(laws);
+    const io::OutputDir output(options.output);
+    io::write_text_atomic(output.file("opensees_impact.tcl"), tcl);
+    io::write_text_atomic(output.file("opensees_impact.py"), python);
+    base::logger().info("export-opensees: wrote {} and {}",
+                        output.file("opensees_impact.tcl").string(),
+                        output.file("opensees_impact.py").string());
+  }
+} // namespace kimp::app

@@ -1,0 +1,128 @@
+// `kimp export-opensees`: the fitted impact laws as OpenSees uniaxial materials (Tcl and
+// OpenSeesPy), from a study's k table or explicit k (docs/physics.md §4 "OpenSees export").
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "io/scene_io.h"
+
+namespace kimp::app
+{
+  /// What is exported, SI (N, m, s, kg); k for the whole contact (k_per_metre · W).
+  struct OpenSeesLawInput
+  {
+    std::optional<double> k_kelvin_voigt; ///< N/m: ViscoelasticGap, ElasticPPGap
+    std::optional<double> k_hertz;        ///< N/m^1.5: JankowskiImpact, Hertzdamp, ImpactMaterial
+    double                cor = 0.7;      ///< coefficient of restitution, (0, 1]
+    /// m_eff = m1·m2/(m1 + m2), kg; default: the thesis building's isolation level (320 t)
+    /// against a 500 t moat wall.
+    double      effective_mass  = 320e3 * 500e3 / (320e3 + 500e3);
+    double      impact_velocity = 1.0;  ///< v_imp, m/s: δ_m of ImpactMaterial
+    double      gap             = 0.15; ///< clear gap, m (written negative: compression only)
+    double      yield_ratio     = 0.1;  ///< a = δ_y/δ_m of ImpactMaterial (Muthukumar: 0.1)
+    int         first_tag       = 1;    ///< tag of the first material
+    std::string source;                 ///< where k comes from, for the header comment
+  };
+
+  /// The keys of OpenSeesLawInput (the options of `kimp export-opensees`), declared once.
+  template <class Io>
+  void visit(Io &io, OpenSeesLawInput &s)
+  {
+    io.quantity("k_kv",
+                s.k_kelvin_voigt,
+                "kN/mm",
+                "Kelvin-Voigt k for the whole contact (wins over the k table)",
+                io::Range::positive());
+    io.quantity("k_hertz",
+                s.k_hertz,
+                "kN/mm^1.5",
+                "Jankowski/Hertz k (n = 1.5) for the whole contact (wins over the k table)",
+                io::Range::positive());
+    io.quantity("cor",
+                s.cor,
+                "",
+                "coefficient of restitution e, (0, 1]",
+                io::Range::greater(0.0).and_at_most(1.0));
+    io.quantity("effective_mass",
+                s.effective_mass,
+                "t",
+                "m_eff = m1 m2/(m1 + m2) of the contact (default: 320 t isolation level against a "
+                "500 t wall)",
+                io::Range::positive());
+    io.quantity("impact_velocity",
+                s.impact_velocity,
+                "m/s",
+                "design impact velocity v_imp (ImpactMaterial's delta_m)",
+                io::Range::positive());
+    io.quantity("gap", s.gap, "cm", "clear gap to the wall (> 0)", io::Range::positive());
+    io.quantity("yield_ratio",
+                s.yield_ratio,
+                "",
+                "ImpactMaterial a = delta_y/delta_m, (0, 1) (Muthukumar: 0.1)",
+                io::Range::greater(0.0).and_less(1.0));
+    io.integer("first_tag", s.first_tag, "tag of the first material", 1, 1000000000);
+  }
+
+  /// The material parameters, SI, from the formulas of docs/physics.md §1 and §4.
+  struct OpenSeesParameters
+  {
+    double kv_xi                = 0.0; ///< −ln e/sqrt(π² + ln² e)
+    double kv_c                 = 0.0; ///< 2ξ·sqrt(k·m_eff), N·s/m
+    double kv_delta_max         = 0.0; ///< v·sqrt(m_eff/k), m (undamped peak indentation)
+    double pp_yield_force       = 0.0; ///< ElasticPPGap Fy = k·10·kv_delta_max, N (stays elastic)
+    double jankowski_xi         = 0.0; ///< (9√5/2)(1 − e²)/(e(e(9π − 16) + 16))
+    double hertzdamp_xi_norm    = 0.0; ///< ξ̄ = 3(1 − e²)/4 (kimp's hertzdamp, Muthukumar)
+    double hertzdamp_xi_norm_ye = 0.0; ///< ξ̄ = 8(1 − e)/(5e) (Ye et al., OpenSees' suggestion)
+    double delta_m              = 0.0; ///< (5·m_eff·v²/(4·k_h))^(2/5), m (Hertz peak, n = 1.5)
+    double energy               = 0.0; ///< ΔE = k_h·δ_m^2.5·(1 − e²)/2.5, J
+    double k_eff                = 0.0; ///< k_h·sqrt(δ_m), N/m
+    double delta_y              = 0.0; ///< a·δ_m, m
+    double k1                   = 0.0; ///< K_eff + ΔE/(a·δ_m²), N/m
+    double k2                   = 0.0; ///< K_eff − ΔE/((1 − a)·δ_m²), N/m
+  };
+
+  /// @throws std::invalid_argument for k <= 0, COR outside (0, 1], m_eff, v or gap <= 0, a
+  ///         outside (0, 1), or K2 <= 0 (a too large for the COR).
+  OpenSeesParameters opensees_parameters(const OpenSeesLawInput &input);
+
+  /// Tcl commands (`uniaxialMaterial ViscoelasticGap 1 ...`) with a header stating units and
+  /// source.
+  std::string opensees_tcl(const OpenSeesLawInput &input);
+  /// The same as OpenSeesPy calls (`ops.uniaxialMaterial('ViscoelasticGap', 1, ...)`).
+  std::string opensees_python(const OpenSeesLawInput &input);
+
+  /// The settings of `kimp export-opensees` (its flags, through visit()).
+  struct ExportOpenSeesSettings
+  {
+    std::optional<double> wall_height; ///< m, where the k table is interpolated
+    OpenSeesLawInput      laws;        ///< explicit k (wins over the table) and the rest
+  };
+
+  template <class Io>
+  void visit(Io &io, ExportOpenSeesSettings &s)
+  {
+    io.quantity("wall_height",
+                s.wall_height,
+                "m",
+                "wall height at which the k table is interpolated (needed with a k table)",
+                io::Range::positive());
+    visit(io, s.laws);
+  }
+
+  /// Options of `kimp export-opensees`.
+  struct ExportOpenSeesOptions
+  {
+    std::filesystem::path  source;   ///< k_table.csv or a study directory ("" = explicit k)
+    std::filesystem::path  output;   ///< directory of opensees_impact.tcl / .py
+    ExportOpenSeesSettings settings; ///< the flags
+  };
+
+  /**
+   * Fill the k from the table (at wall_height) where not given explicitly, then write
+   * DIR/opensees_impact.tcl and DIR/opensees_impact.py.
+   * @throws std::invalid_argument for a missing k, an unreadable table or a height outside it.
+   */
+  void run_export_opensees(ExportOpenSeesOptions options);
+} // namespace kimp::app

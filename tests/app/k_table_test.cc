@@ -1,0 +1,124 @@
+// A study's k_table.csv as the k source of a lumped scene (app/k_table.h, impact.k_table): linear
+// interpolation by wall height, refusal outside the table with file and key, per-case heights
+// and records.
+#include <cmath>
+#include <filesystem>
+#include <gtest/gtest.h>
+#include <string>
+
+#include "app/k_table.h"
+#include "app/lumped_scene.h"
+#include "tests/support/files.h"
+#include "tests/support/scene_errors.h"
+#include "tests/support/temp_dir.h"
+
+namespace
+{
+  using namespace kimp::testing;
+
+  constexpr double exact = 1e-12; // relative: the interpolation is one multiply-add
+
+  /// The columns the reader uses, among others, as `kimp study` writes them (two heights and a
+  /// failed row that must be skipped).
+  std::filesystem::path write_k_table(const std::filesystem::path &dir)
+  {
+    return write_text(dir / "k_table.csv",
+                      "wall_height_m,kelvin_voigt_kN_per_mm_per_m,kelvin_voigt_total_kN_per_mm,"
+                      "jankowski_total_kN_per_mm1.5,kelvin_voigt_status\n"
+                      "1,166.827,4634.45,2141.86,ok\n"
+                      "2,25.7031,714.031,208.796,ok\n"
+                      "1.5,,,,\"failed: no contact\"\n");
+  }
+
+  TEST(KTable, InterpolatesLinearlyInSiAndRefusesOutsideTheRange)
+  {
+    const TempDir           dir("k_table");
+    const auto              file  = write_k_table(dir.path());
+    const kimp::app::KTable table = kimp::app::read_k_table(dir.path()); // the study directory
+    ASSERT_EQ(table.rows.size(), 2u);
+    const double kv_1 = 4634.45e6, kv_2 = 714.031e6;   // N/m
+    const double j_1 = 2141.86e3 * std::pow(1e3, 1.5); // N/m^1.5
+    EXPECT_NEAR(table.stiffness(1.0, 1.0), kv_1, exact * kv_1);
+    EXPECT_NEAR(table.stiffness(1.5, 1.0), 0.5 * (kv_1 + kv_2), exact * kv_1);
+    EXPECT_NEAR(table.stiffness(1.25, 1.0), 0.75 * kv_1 + 0.25 * kv_2, exact * kv_1);
+    EXPECT_NEAR(table.stiffness(1.0, 1.5), j_1, exact * j_1);
+    try
+    {
+      table.stiffness(2.5, 1.0);
+      FAIL() << "2.5 m is outside 1-2 m";
+    }
+    catch (const std::invalid_argument &error)
+    {
+      const std::string message = error.what();
+      EXPECT_NE(message.find("outside the range of " + file.string()), std::string::npos)
+        << message;
+      EXPECT_NE(message.find("not extrapolated"), std::string::npos) << message;
+    }
+    EXPECT_THROW(table.stiffness(1.5, 2.65), std::invalid_argument);
+    EXPECT_THROW(kimp::app::read_k_table(dir.path() / "missing.csv"), std::invalid_argument);
+  }
+
+  TEST(KTable, LumpedSceneTakesKFromTheTableByWallHeight)
+  {
+    const TempDir     dir("k_table_scene");
+    const auto        file  = write_k_table(dir.path());
+    const std::string scene = "impact:\n"
+                              "  law: kelvin_voigt\n"
+                              "  k_table: " +
+                              file.string() +
+                              "\n"
+                              "  wall_height: 1.5 m\n"
+                              "cases:\n"
+                              "  - name: low\n"
+                              "    wall_height: 1 m\n"
+                              "  - name: jankowski\n"
+                              "    law: jankowski\n"
+                              "  - name: other_record\n"
+                              "    record: RSN1106_KOBE_KJM000\n"
+                              "  - name: own_k\n"
+                              "    k: 100 kN/mm\n";
+    const auto s     = kimp::io::load_scene_text<kimp::app::LumpedScene>(scene, "site.yaml");
+    const auto cases = kimp::app::resolve_cases(s);
+    ASSERT_EQ(cases.size(), 4u);
+    const auto k = [&](std::size_t i)
+    { return kimp::app::force_law_spec(cases[i].second.impact).stiffness; };
+    EXPECT_NEAR(k(0), 4634.45e6, exact * 4634.45e6);
+    EXPECT_NEAR(k(1), 0.5 * (2141.86e3 + 208.796e3) * std::pow(1e3, 1.5), 1e-9 * k(1));
+    EXPECT_NEAR(k(2), 0.5 * (4634.45e6 + 714.031e6), exact * k(2));
+    EXPECT_EQ(cases[2].second.ground_motion.record, "RSN1106_KOBE_KJM000");
+    EXPECT_EQ(cases[0].second.ground_motion.record, "synthetic");
+    EXPECT_NEAR(k(3), 100e6, exact * 100e6);
+  }
+
+  TEST(KTable, HeightOutsideTheTableIsRefusedWithFileAndKey)
+  {
+    const TempDir     dir("k_table_bad");
+    const auto        file = write_k_table(dir.path());
+    const std::string error =
+      scene_error<kimp::app::LumpedScene>("impact:\n  law: kelvin_voigt\n  k_table: " +
+                                            file.string() + "\n  wall_height: 3 m\n",
+                                          "site.yaml");
+    EXPECT_NE(error.find("site.yaml:4: impact.wall_height = 3 m"), std::string::npos) << error;
+    EXPECT_NE(error.find(file.string()), std::string::npos) << error;
+
+    const std::string missing = scene_error<kimp::app::LumpedScene>(
+      "impact:\n  k_table: nowhere/k_table.csv\n  wall_height: 1 m\n",
+      "site.yaml");
+    EXPECT_NE(missing.find("site.yaml:2: impact.k_table = nowhere/k_table.csv"), std::string::npos)
+      << missing;
+
+    const std::string no_height =
+      scene_error<kimp::app::LumpedScene>("impact:\n  law: kelvin_voigt\n  k_table: " +
+                                            file.string() + "\n",
+                                          "site.yaml");
+    EXPECT_NE(no_height.find("impact.wall_height = null (default): must be given with k_table"),
+              std::string::npos)
+      << no_height;
+
+    const std::string case_height = scene_error<kimp::app::LumpedScene>(
+      "impact:\n  law: kelvin_voigt\n  k_table: " + file.string() +
+        "\n  wall_height: 1 m\ncases:\n  - name: tall\n    wall_height: 2.5 m\n",
+      "site.yaml");
+    EXPECT_NE(case_height.find("cases[0].wall_height = 2.5 m"), std::string::npos) << case_height;
+  }
+} // namespace

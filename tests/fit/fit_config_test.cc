@@ -1,0 +1,165 @@
+// Status rules of a fit (fit::fit_verdict, docs/physics.md §4 "Status of a fit"): an unbounded
+// interval or an exponent at its bound is "failed", a misfit window over less than half the
+// contact is "warning", never "ok"; and fit_options()/fit_variants() carry the shared config.
+#include <algorithm>
+#include <cmath>
+#include <gtest/gtest.h>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "fit/fit_config.h"
+#include "lumped/collision/two_body.h"
+#include "lumped/laws/force_law_factory.h"
+
+namespace
+{
+  using kimp::fit::fit_verdict;
+  using kimp::fit::FitConfig;
+  using kimp::fit::FitResult;
+  using kimp::fit::ForceHistory;
+
+  constexpr double infinity = std::numeric_limits<double>::infinity();
+
+  /// A converged, well-determined fit: k in [0.99, 1.01]·1e8, window = the whole contact.
+  FitResult good_fit()
+  {
+    FitResult f;
+    f.stiffness            = {1e8, 0.99e8, 1.01e8, true};
+    f.cor                  = {0.7, 0.7, 0.7, false};
+    f.exponent             = {1.0, 1.0, 1.0, false};
+    f.fem_contact_duration = 0.02;
+    f.contact_extent       = 0.02;
+    return f;
+  }
+
+  bool starts_with(const std::string &text, const std::string &prefix)
+  {
+    return text.rfind(prefix, 0) == 0;
+  }
+
+  TEST(FitVerdict, WellDeterminedFitIsOk)
+  {
+    EXPECT_EQ(fit_verdict(good_fit()), "ok");
+  }
+
+  TEST(FitVerdict, UnboundedIntervalFails)
+  {
+    FitResult f       = good_fit();
+    f.stiffness.upper = infinity;
+    EXPECT_TRUE(starts_with(fit_verdict(f), "failed: confidence interval of k unbounded"))
+      << fit_verdict(f);
+    f                 = good_fit();
+    f.stiffness.lower = 0.0;
+    EXPECT_TRUE(starts_with(fit_verdict(f), "failed: confidence interval of k unbounded"))
+      << fit_verdict(f);
+  }
+
+  TEST(FitVerdict, ExponentAtItsBoundWithInfiniteIntervalFails)
+  {
+    // What a free-exponent fit of linear data used to report as "ok": n = 1, CI [0, inf].
+    FitResult f = good_fit();
+    f.exponent  = {1.0, 0.0, infinity, true};
+    EXPECT_TRUE(starts_with(fit_verdict(f), "failed:")) << fit_verdict(f);
+    f.exponent = {1.0000001, 1.0, 1.000001, true};
+    EXPECT_TRUE(starts_with(fit_verdict(f), "failed: exponent n = 1")) << fit_verdict(f);
+  }
+
+  TEST(FitVerdict, CorAtItsBoundFails)
+  {
+    FitResult f = good_fit();
+    f.cor       = {0.99999, 0.9999, 0.999999, true};
+    EXPECT_TRUE(starts_with(fit_verdict(f), "failed: COR")) << fit_verdict(f);
+  }
+
+  TEST(FitVerdict, WindowOverLessThanHalfTheContactWarns)
+  {
+    // The indentation-based window of a chattering slab: 0.32 ms of a 33 ms contact.
+    FitResult f            = good_fit();
+    f.fem_contact_duration = 0.32e-3;
+    f.contact_extent       = 33e-3;
+    const std::string v    = fit_verdict(f);
+    EXPECT_TRUE(starts_with(v, "warning: the misfit window covers 0.97 % of the contact")) << v;
+    f.fem_contact_duration = 0.51 * f.contact_extent;
+    EXPECT_EQ(fit_verdict(f), "ok");
+  }
+
+  /// Kelvin-Voigt history (COR 0.7) of a 3840 kg/m slab at 1 m/s on a rigid wall, then a
+  /// second, later bounce of the same shape: the contact spans both.
+  ForceHistory two_bounces(double k)
+  {
+    kimp::lumped::ForceLawSpec spec;
+    spec.law            = "kelvin_voigt";
+    spec.stiffness      = k;
+    spec.cor            = 0.7;
+    spec.effective_mass = 3840.0;
+    kimp::lumped::TwoBodySetup setup;
+    setup.mass_1         = 3840.0;
+    setup.mass_2         = infinity;
+    setup.velocity_1     = 1.0;
+    setup.time_step      = std::sqrt(3840.0 / k) / 2000.0;
+    setup.record_history = true;
+    const auto r = kimp::lumped::simulate_two_body(*kimp::lumped::make_force_law(spec), setup);
+    // Force of one impact at time t after its touch (linear between the recorded steps).
+    const auto  &rt       = r.history.time;
+    const double duration = rt.back();
+    const auto   one      = [&](double t)
+    {
+      if (t <= rt.front() || t >= duration)
+        return 0.0;
+      const auto i = static_cast<std::size_t>(
+        std::distance(rt.begin(), std::upper_bound(rt.begin(), rt.end(), t)));
+      const double s = (t - rt[i - 1]) / (rt[i] - rt[i - 1]);
+      return std::max(0.0,
+                      r.history.force[i - 1] + s * (r.history.force[i] - r.history.force[i - 1]));
+    };
+    ForceHistory h;
+    const double dt = 10.0 * setup.time_step;
+    for (int j = -20; j * dt < 6.0 * duration; ++j)
+    {
+      const double t = j * dt;
+      h.time.push_back(t);
+      h.force.push_back(one(t) + 0.5 * one(t - 3.0 * duration));
+    }
+    return h;
+  }
+
+  TEST(FitVerdict, WindowCutAtTheFirstBounceIsAWarningAndMergingMakesItOk)
+  {
+    const double       k = 1.5e8;
+    const ForceHistory h = two_bounces(k);
+    FitConfig          config;
+    config.separation_fraction = 0.25; // cuts at the first bounce: 1/4 of the contact span
+    kimp::lumped::ForceLawSpec law;
+    law.law                 = "kelvin_voigt";
+    law.cor                 = 0.7;
+    const FitResult   cut   = kimp::fit::fit_impact_law(h, 3840.0, 1.0, law, fit_options(config));
+    const std::string cut_v = fit_verdict(cut);
+    EXPECT_TRUE(starts_with(cut_v, "warning: the misfit window covers")) << cut_v;
+    EXPECT_NEAR(cut.stiffness.value, k, 1e-2 * k) << "the first bounce alone is the law itself";
+    config.separation_fraction = 10.0; // merges both bounces
+    const FitResult merged = kimp::fit::fit_impact_law(h, 3840.0, 1.0, law, fit_options(config));
+    EXPECT_EQ(fit_verdict(merged), "ok");
+  }
+
+  TEST(FitConfig, OptionsAndVariantsCarryTheSharedConfiguration)
+  {
+    FitConfig config;
+    config.cor                 = 0.6;
+    config.separation_fraction = 3.0;
+    config.tail_fraction       = 0.25;
+    config.contact_threshold   = 2e-3;
+    config.displacement_weight = 0.5;
+    const auto variants        = kimp::fit::fit_variants(config);
+    ASSERT_EQ(variants.size(), 5u);
+    for (const auto &variant : variants)
+    {
+      EXPECT_EQ(variant.law.cor, 0.6) << variant.name;
+      EXPECT_EQ(variant.options.separation_fraction, 3.0) << variant.name;
+      EXPECT_EQ(variant.options.tail_fraction, 0.25) << variant.name;
+      EXPECT_EQ(variant.options.contact_threshold, 2e-3) << variant.name;
+      EXPECT_EQ(variant.options.displacement_weight, 0.5) << variant.name;
+    }
+    EXPECT_TRUE(variants.back().options.fit_exponent);
+  }
+} // namespace
