@@ -789,6 +789,28 @@ const kimp = (function () {
     }
   }
 
+  // ---- collide: the laws' COR tables overlaid ----------------------------------------------
+  function collideSection(parent, data) {
+    const d = data.h5['collide.h5'].datasets;
+    const laws = Object.keys(d).map((k) => /^\/collide\/([^/]+)\/cor_table\/nominal_cor$/.exec(k)).filter((m) => m).map((m) => m[1]);
+    if (!laws.length) return;
+    const body = section(parent, 'Two-body impacts: every law over the nominal COR');
+    const xs = Array.from(new Set(laws.flatMap((l) => d[`/collide/${l}/cor_table/nominal_cor`].data))).sort((a, b) => a - b);
+    const quantities = [['effective_cor', 'effective COR', 1, ''], ['peak_force', 'peak force', 1e-6, 'MN'],
+      ['contact_duration', 'contact duration', 1e3, 'ms'], ['max_penetration', 'max penetration', 1e3, 'mm']];
+    for (const [key, label, scale, unit] of quantities) {
+      if (!d[`/collide/${laws[0]}/cor_table/${key}`]) continue;
+      chart(body, {
+        title: `${label} over the nominal COR`, xlabel: 'nominal COR', ylabel: unit ? `${label} (${unit})` : label, points: true, x: xs,
+        series: laws.map((l) => {
+          const x = d[`/collide/${l}/cor_table/nominal_cor`].data;
+          const y = d[`/collide/${l}/cor_table/${key}`].data;
+          return { label: l, y: xs.map((v) => { const i = x.indexOf(v); return i < 0 || y[i] === null ? null : y[i] * scale; }) };
+        }),
+      });
+    }
+  }
+
   // ---- entry point -----------------------------------------------------------------------------
   function showResults(container, data) {
     container.innerHTML = '';
@@ -799,6 +821,7 @@ const kimp = (function () {
     container.appendChild(el('p', { class: 'muted', text: `files: ${files.join(', ')}` }));
     if (data.h5 && data.h5['lumped.h5']) lumpedSection(container, data);
     if (data.kind === 'study') studySection(container, data);
+    if (data.h5 && data.h5['collide.h5']) collideSection(container, data);
     const presets = {
       'k_table.csv': {
         x: 'wall_height_m',
