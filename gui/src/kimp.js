@@ -398,7 +398,9 @@ const kimp = (function () {
     const body = section(parent, name, rows.length <= 60);
     table(body, rows[0], rows.slice(1, 201));
     if (rows.length > 201) body.appendChild(el('p', { text: `first 200 of ${rows.length - 1} rows` }));
-    const numeric = rows[0].map((h, j) => rows.slice(1).some((r) => r[j] !== '' && Number.isFinite(Number(r[j]))));
+    // Numbers, also with a unit ("10 cm", as a sweep writes its swept values).
+    const num = (v) => (/^\s*-?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?(\s*[A-Za-z%/^.0-9*]+)?\s*$/.test(v) ? parseFloat(v) : NaN);
+    const numeric = rows[0].map((h, j) => rows.slice(1).some((r) => r[j] !== '' && Number.isFinite(num(r[j]))));
     const cols = rows[0].map((h, j) => j).filter((j) => numeric[j]);
     if (cols.length < 2) return;
     const xs = el('select', { class: 'csv-x' }, cols.map((j) => el('option', { value: j, text: rows[0][j] })));
@@ -409,20 +411,25 @@ const kimp = (function () {
       const xj = Number(xs.value);
       const yj = Array.from(ys.selectedOptions).map((o) => Number(o.value));
       if (!yj.length) return;
-      const order = rows.slice(1).filter((r) => r[xj] !== '').sort((a, b) => Number(a[xj]) - Number(b[xj]));
+      const order = rows.slice(1).filter((r) => r[xj] !== '').sort((a, b) => num(a[xj]) - num(b[xj]));
       chart(host, {
         title: `${name}: ${yj.map((j) => rows[0][j]).join(', ')} over ${rows[0][xj]}`,
         xlabel: rows[0][xj], ylabel: yj.length === 1 ? rows[0][yj[0]] : '', points: true,
-        x: order.map((r) => Number(r[xj])),
-        series: yj.map((j) => ({ label: rows[0][j], y: order.map((r) => (r[j] === '' ? null : Number(r[j]))) })),
+        x: order.map((r) => num(r[xj])),
+        series: yj.map((j) => ({ label: rows[0][j], y: order.map((r) => (r[j] === '' ? null : num(r[j]))) })),
       });
     };
     if (preset) {
       xs.value = String(rows[0].indexOf(preset.x));
       for (const o of ys.options) o.selected = preset.y.includes(rows[0][Number(o.value)]);
     } else {
-      xs.value = String(cols[0]);
-      ys.options[1].selected = true;
+      // A column of values with units is the swept parameter; the first peak is the response.
+      const withUnit = cols.find((j) => rows.slice(1).every((r) => r[j] === '' || /[A-Za-z%]\s*$/.test(r[j])));
+      const x = withUnit === undefined ? cols[0] : withUnit;
+      const peak = cols.find((j) => j !== x && /peak/.test(rows[0][j]));
+      xs.value = String(x);
+      const y = peak === undefined ? cols.find((j) => j !== x) : peak;
+      for (const o of ys.options) o.selected = Number(o.value) === y;
     }
     xs.addEventListener('change', draw);
     ys.addEventListener('change', draw);
@@ -789,6 +796,28 @@ const kimp = (function () {
     }
   }
 
+  // ---- collide: the laws' COR tables overlaid ----------------------------------------------
+  function collideSection(parent, data) {
+    const d = data.h5['collide.h5'].datasets;
+    const laws = Object.keys(d).map((k) => /^\/collide\/([^/]+)\/cor_table\/nominal_cor$/.exec(k)).filter((m) => m).map((m) => m[1]);
+    if (!laws.length) return;
+    const body = section(parent, 'Two-body impacts: every law over the nominal COR');
+    const xs = Array.from(new Set(laws.flatMap((l) => d[`/collide/${l}/cor_table/nominal_cor`].data))).sort((a, b) => a - b);
+    const quantities = [['effective_cor', 'effective COR', 1, ''], ['peak_force', 'peak force', 1e-6, 'MN'],
+      ['contact_duration', 'contact duration', 1e3, 'ms'], ['max_penetration', 'max penetration', 1e3, 'mm']];
+    for (const [key, label, scale, unit] of quantities) {
+      if (!d[`/collide/${laws[0]}/cor_table/${key}`]) continue;
+      chart(body, {
+        title: `${label} over the nominal COR`, xlabel: 'nominal COR', ylabel: unit ? `${label} (${unit})` : label, points: true, x: xs,
+        series: laws.map((l) => {
+          const x = d[`/collide/${l}/cor_table/nominal_cor`].data;
+          const y = d[`/collide/${l}/cor_table/${key}`].data;
+          return { label: l, y: xs.map((v) => { const i = x.indexOf(v); return i < 0 || y[i] === null ? null : y[i] * scale; }) };
+        }),
+      });
+    }
+  }
+
   // ---- entry point -----------------------------------------------------------------------------
   function showResults(container, data) {
     container.innerHTML = '';
@@ -799,6 +828,7 @@ const kimp = (function () {
     container.appendChild(el('p', { class: 'muted', text: `files: ${files.join(', ')}` }));
     if (data.h5 && data.h5['lumped.h5']) lumpedSection(container, data);
     if (data.kind === 'study') studySection(container, data);
+    if (data.h5 && data.h5['collide.h5']) collideSection(container, data);
     const presets = {
       'k_table.csv': {
         x: 'wall_height_m',

@@ -111,6 +111,17 @@ async function main() {
     const svg = await waitForFile(file, 5000);
     check(svg.startsWith('<svg') && svg.includes('<path d="M') && svg.includes('time (s)'), `chart exported as SVG (${path.basename(file)}, ${svg.length} bytes)`);
     fs.copyFileSync(file, path.join(artefacts, 'gui_chart.svg'));
+    // Parametric dialog: a gap sweep of the same scene (10, 15, 20 cm) made into a sweep file and run.
+    await page.click('header.top nav button[data-tab="parametric"]');
+    await page.click('#param-make');
+    const sweep = await page.$eval('#sweep-yaml', (t) => t.value);
+    check(sweep.includes('walls.left.gap, walls.right.gap: {from: "10 cm", to: "20 cm", step: "5 cm"}'), 'the dialog writes the sweep file');
+    await page.click('#param-run');
+    await page.waitForFunction(() => document.querySelector('#results h1') && document.querySelector('#results h1').textContent.includes('sweep'),
+      { timeout: 60000 });
+    const rows = await page.$$eval('#results details', (ds) => ds.map((d) => d.querySelector('summary').textContent));
+    check(rows.some((r) => r === 'sweep.csv'), `sweep results shown (${rows.join(', ')})`);
+    await page.screenshot({ path: path.join(artefacts, 'gui_sweep.png') });
     check(log.errors.length === 0, `no console error (${log.errors.join(' | ') || 'none'})`);
   } finally {
     await browser.close();
