@@ -18,6 +18,8 @@ namespace kimp::lumped
     using cdm::Lanes;
     using cdm::peak_abs;
     using cdm::Session;
+    using cdm::shift_down;
+    using cdm::shift_up;
 
     /**
      * The step of the fused kernel (see CentralDifference) for any n, vectors of L doubles:
@@ -38,11 +40,11 @@ namespace kimp::lumped
       typedef typename Lanes<L>::U U;
       const auto at  = [](const double *p) -> const U  &{ return *reinterpret_cast<const U *>(p); };
       const auto put = [](double *p) -> U & { return *reinterpret_cast<U *>(p); };
-      // Broadcast by reference: returning a wide vector from a lambda would change the ABI.
+      // Broadcast by reference (returning a wide vector from a lambda would change the ABI);
+      // x − (+0) is x for every x, −0 included, and compiles to one broadcast.
       const auto bcast = [](V & out, const double x) __attribute__((always_inline))
       {
-        for (int l = 0; l < L; ++l)
-          out[l] = x;
+        out = x - V{};
       };
       ForceEvaluator<IsolatorType> forces(s);
       const std::size_t            n    = s.n;
@@ -162,8 +164,13 @@ namespace kimp::lumped
           put(pu + o) = peak;
           peak        = at(pa + o);
           peak_abs<V, typename Lanes<L>::I>(peak, acc);
-          put(pa + o)   = peak;
-          const V drift = u - at(wu + o - 1) * at(mask + o);
+          put(pa + o) = peak;
+          // u_{r−1} from whole vectors (an unaligned load across two stores of the last step
+          // would defeat store forwarding).
+          const V u_prev = i == 0 ? zero : at(wu + o - L); // by value: U is under-aligned
+          V       below;
+          shift_up<V, typename Lanes<L>::I>(below, u_prev, u);
+          const V drift = u - below * at(mask + o);
           peak          = at(pd + o);
           peak_abs<V, typename Lanes<L>::I>(peak, drift);
           put(pd + o) = peak;
@@ -172,8 +179,12 @@ namespace kimp::lumped
         }
         for (std::size_t i = 0; i < P; ++i)
         {
-          const std::size_t o = i * L;
-          put(sx + o)         = at(sx + o) + at(wv + o) * at(wv + o + 1);
+          const std::size_t o   = i * L;
+          const V           v   = at(wv + o);
+          const V           v_1 = at(wv + o + L); // by value: U is under-aligned
+          V                 above;
+          shift_down<V, typename Lanes<L>::I>(above, v, v_1);
+          put(sx + o) = at(sx + o) + v * above;
         }
         for (std::size_t i = 0; i < P; ++i)
         {

@@ -32,4 +32,38 @@ namespace kimp::lumped::cdm
   }
 
 
+  /// out = (x[1], ..., x[L−1], y[0]): the DOFs one further down the padded vector.
+  template <class V, class I>
+  inline __attribute__((always_inline)) void shift_down(V &out, const V &x, const V &y)
+  {
+    constexpr int L = sizeof(V) / sizeof(double);
+    I             mask;
+    for (int l = 0; l < L; ++l)
+      mask[l] = l + 1;
+#if defined(__clang__)
+    for (int l = 0; l < L; ++l)
+      out[l] = l + 1 < L ? x[l + 1] : y[0];
+    (void)mask;
+#else
+    out = __builtin_shuffle(x, y, mask);
+#endif
+  }
+
+  /// out = (w[L−1], x[0], ..., x[L−2]): the DOFs one further up.
+  template <class V, class I>
+  inline __attribute__((always_inline)) void shift_up(V &out, const V &w, const V &x)
+  {
+    constexpr int L = sizeof(V) / sizeof(double);
+    I             mask;
+    for (int l = 0; l < L; ++l)
+      mask[l] = L - 1 + l;
+#if defined(__clang__)
+    for (int l = 0; l < L; ++l)
+      out[l] = l == 0 ? w[L - 1] : x[l - 1];
+    (void)mask;
+#else
+    out = __builtin_shuffle(w, x, mask);
+#endif
+  }
+
 } // namespace kimp::lumped::cdm
