@@ -33,8 +33,9 @@ namespace kimp::lumped
    *    every PoundingScene), the fused dense kernel for models of at most 8 DOFs (the isolated
    *    4-storey building with walls, bumpers or a basement; fixed-base buildings of up to 8
    *    storeys; an isolated building with one small neighbour) and the any-size fused kernel
-   *    beyond (neighbours on both sides, tall buildings); the block-tridiagonal reference kernel
-   *    otherwise;
+   *    beyond while every building has at most 16 DOFs (neighbours on both sides, basements,
+   *    bumpers); the block-tridiagonal reference kernel otherwise (taller buildings, where its
+   *    O(n) Thomas sweeps beat dense products);
    *  - reference: always the block-tridiagonal kernel (Thomas or a dense inverse per block, the
    *    step-lane bookkeeping); slower, kept as the reference (oracle) for the fused kernels;
    *  - any_size: the any-size fused kernel for every model size (tests and benchmarks compare
@@ -122,10 +123,10 @@ namespace kimp::lumped
    *    the fast loop. The vector width (SSE2, AVX2 or AVX-512F; see
    *    CentralDifferenceOptions::vector_lanes) is picked at run time; every operation is per
    *    DOF lane without FMA contraction, so all widths give bitwise equal results;
-   *  - any-size fused (automatic, more than 8 DOFs): the same step; A is block-diagonal (one
-   *    block per building), so each vector of rows multiplies only its buildings' columns, in
-   *    four partial sums by column index mod 4 (the order depends on the column only, and the
-   *    columns a wider vector adds are exact zeros: bitwise equal results for every width). The
+   *  - any-size fused (automatic, more than 8 DOFs, buildings of <= 16 DOFs): the same step; A is
+   * block-diagonal (one block per building), so each vector of rows multiplies only its buildings'
+   * columns, in four partial sums by column index mod 4 (the order depends on the column only, and
+   * the columns a wider vector adds are exact zeros: bitwise equal results for every width). The
    *    state lives in L1 scratch rather than registers;
    *  - reference (on request, or a model whose storeys do not join consecutive DOFs): right-hand
    *    side with the

@@ -73,7 +73,19 @@ namespace kimp::lumped
       if (fits)
         drift_mask[static_cast<std::size_t>(st.upper_dof)] = st.lower_dof == -1 ? 0.0 : 1.0;
     }
-    fused = opt->kernel != CdmKernel::reference && fits;
+    // Beyond 8 DOFs the any-size kernel's dense products cost O(b²) per building block of b
+    // DOFs against the reference kernel's O(b) Thomas sweeps: it wins up to ≈ 20 DOFs per block
+    // (bench/lumped_bench.cc BM_CdmTallBuilding), so automatic keeps it to blocks of at most
+    // max_dense (16) DOFs, e.g. every building of the adjacent-building studies.
+    std::size_t largest_block = n > 0 ? 1 : 0, block = 1;
+    for (std::size_t i = 0; i + 1 < n; ++i)
+    {
+      block         = k->upper[i] != 0.0 || c->upper[i] != 0.0 ? block + 1 : 1;
+      largest_block = std::max(largest_block, block);
+    }
+    const bool anysize_pays = n <= 8 || largest_block <= cdm::EffectiveMatrixInverse::max_dense;
+    fused                   = fits && (opt->kernel == CdmKernel::any_size ||
+                     (opt->kernel == CdmKernel::automatic && anysize_pays));
     dense_inverse.clear();
     dense_f.clear();
     dense_g.clear();
