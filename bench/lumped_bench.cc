@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 
 #include "lumped/integrators/central_difference.h"
 #include "lumped/integrators/newmark_integrator.h"
@@ -86,6 +87,83 @@ namespace
   BENCHMARK(BM_CdmWalls48s)
     ->ArgNames({"history", "reference"})
     ->ArgsProduct({{1, 0}, {0, 1}})
+    ->Unit(benchmark::kMillisecond);
+
+  /// The isolated building between moat walls at 15 cm and fixed-base neighbours of `left` and
+  /// `right` storeys at 20 cm (modified Kelvin-Voigt everywhere): 5 + left + right DOFs.
+  PoundingModel building_between_neighbours(const int left, const int right)
+  {
+    PoundingScene scene = kimp::testing::walled_scene("modified_kelvin_voigt", 2.5e9, 0.15);
+    for (const auto &[storeys, side] :
+         {std::pair{left, &scene.left_neighbour}, std::pair{right, &scene.right_neighbour}})
+    {
+      ForceLawSpec spec;
+      spec.law       = "modified_kelvin_voigt";
+      spec.stiffness = 2.5e9;
+      spec.cor       = 0.7;
+      AdjacentBuilding nb;
+      nb.building   = reference_fixed_base_building(storeys);
+      nb.separation = 0.20;
+      nb.law        = force_law_factory(spec);
+      *side         = nb;
+    }
+    return PoundingModel(scene);
+  }
+
+  /// Any model size: the building between two neighbours (arg 0, 1: their storeys; 4 + 4 is
+  /// data/scenes/isolated_between_neighbours.yaml, 13 DOFs; 6 + 7: 18 DOFs), 20 s of the record
+  /// at Δt = 2e-5 s (10^6 steps), histories every 0.01 s; arg 2: kernel (0 automatic, i.e. the
+  /// any-size kernel, 1 reference). s_per_dof_step against BM_CdmWalls48s (5 DOFs).
+  void BM_CdmNeighbours(benchmark::State &state)
+  {
+    CentralDifferenceOptions opt;
+    opt.dt       = 2e-5;
+    opt.duration = 20.0;
+    opt.kernel   = kernel_arg(state.range(2));
+    const CentralDifference cdm(building_between_neighbours(static_cast<int>(state.range(0)),
+                                                            static_cast<int>(state.range(1))),
+                                opt);
+    Response                r;
+    for (auto _ : state)
+    {
+      r = cdm.run(record_48s());
+      benchmark::DoNotOptimize(r.peak_displacement.data());
+    }
+    set_counters(state, r);
+  }
+  BENCHMARK(BM_CdmNeighbours)
+    ->ArgNames({"left", "right", "reference"})
+    ->Args({4, 4, 0})
+    ->Args({6, 6, 0})
+    ->Args({6, 7, 0})
+    ->Args({6, 7, 1})
+    ->Args({12, 12, 0})
+    ->Unit(benchmark::kMillisecond);
+
+  /// A tall building alone (arg: storeys of the fixed-base building; one dense block), 20 s at
+  /// Δt = 2e-5 s, no histories; arg 1: kernel (0 automatic, 1 reference): where the dense
+  /// any-size kernel stops paying against the reference kernel's Thomas solve.
+  void BM_CdmTallBuilding(benchmark::State &state)
+  {
+    CentralDifferenceOptions opt;
+    opt.dt              = 2e-5;
+    opt.duration        = 20.0;
+    opt.output_interval = 0.0;
+    opt.kernel          = kernel_arg(state.range(1));
+    PoundingScene scene;
+    scene.building = reference_fixed_base_building(static_cast<int>(state.range(0)));
+    const CentralDifference cdm(PoundingModel(scene), opt);
+    Response                r;
+    for (auto _ : state)
+    {
+      r = cdm.run(record_48s());
+      benchmark::DoNotOptimize(r.peak_displacement.data());
+    }
+    set_counters(state, r);
+  }
+  BENCHMARK(BM_CdmTallBuilding)
+    ->ArgNames({"storeys", "reference"})
+    ->ArgsProduct({{20, 40, 80}, {0, 1}})
     ->Unit(benchmark::kMillisecond);
 
   /// The fused kernel's vector width (arg: doubles per register, 2 SSE2, 4 AVX2, 8 AVX-512F;

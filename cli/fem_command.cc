@@ -16,10 +16,6 @@ namespace kimp::cli
 
   void register_fem_command(CLI::App &app)
   {
-    add_scene_command<FemScene>(app,
-                                "fem",
-                                "run the FEM slab-wall impact for every wall height (also under "
-                                "mpirun): DIR/fem.h5, summary.json, fem_histories.csv",
-                                run_fem);
+    add_scene_command<FemScene>(app, "fem", fem_command_description("fem"), run_fem);
   }
 } // namespace kimp::cli

@@ -1,66 +1,86 @@
 // kimp: impact stiffness for pounding of seismically isolated buildings (command-line entry).
+// The lean executable: no deal.II, gmsh or MPI_Init; the FEM commands are run by `kimp-fem`.
+#include <cerrno>
+#include <cstring>
 #include <exception>
 #include <iostream>
-#include <memory>
-#include <mpi.h>
+#include <string>
+#include <unistd.h>
 
-#include "app/session.h"
-#include "base/logging.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
+#include "cli/main_support.h"
 
 namespace
 {
-  /// An error on one rank of a multi-rank job would leave the others waiting in a collective
-  /// call (a barrier, MPI_Finalize) forever: end the whole job instead. Finished sweep cases
-  /// are journaled, so a rerun resumes.
-  void abort_other_ranks(int exit_code)
+#ifdef KIMP_FEM_EXECUTABLE
+  /// The command named on the command line: the first argument that is not an option (the
+  /// global options -v, -q, --version and --help take no value), or nullptr.
+  const char *command_name(int argc, char **argv)
   {
-    int initialized = 0;
-    int finalized   = 0;
-    MPI_Initialized(&initialized);
-    MPI_Finalized(&finalized);
-    if (!initialized || finalized)
-      return;
-    int size = 1;
-    MPI_Comm_size(MPI_COMM_WORLD, &size);
-    if (size > 1)
-      MPI_Abort(MPI_COMM_WORLD, exit_code);
+    for (int i = 1; i < argc; ++i)
+      if (argv[i][0] != '-')
+        return argv[i];
+    return nullptr;
   }
 
-  int report(const std::exception &error)
+  bool is_fem_command(const char *name)
   {
-    std::cerr << "error: " << error.what() << std::endl;
-    abort_other_ranks(1);
+    for (const kimp::cli::FemCommandInfo &info : kimp::cli::fem_command_infos())
+      if (std::strcmp(name, info.name) == 0)
+        return true;
+    return false;
+  }
+
+  /// Replaces this process by the FEM executable beside this one (/proc/self/exe), with the same
+  /// arguments and environment: same process id, so `mpirun -np N kimp study` works unchanged.
+  /// Returns (exit code 1) only if that fails.
+  int exec_fem_executable(char **argv, const char *command)
+  {
+    std::string   self(4096, '\0');
+    const ssize_t n    = readlink("/proc/self/exe", self.data(), self.size() - 1);
+    std::string   path = KIMP_FEM_EXECUTABLE;
+    if (n > 0)
+    {
+      self.resize(static_cast<std::size_t>(n));
+      path = self.substr(0, self.rfind('/') + 1) + KIMP_FEM_EXECUTABLE;
+    }
+    execv(path.c_str(), argv);
+    std::cerr << "error: kimp " << command << " runs in the FEM executable " << path
+              << ", which could not be started (" << std::strerror(errno)
+              << "); build the target kimp-fem (KIMP_WITH_FEM=ON) beside kimp" << std::endl;
     return 1;
   }
+
+  /// The FEM commands in --help; choosing one never reaches them (main execs kimp-fem first).
+  void register_fem_forwarders(CLI::App &app)
+  {
+    for (const kimp::cli::FemCommandInfo &info : kimp::cli::fem_command_infos())
+      app.add_subcommand(info.name, info.description)->allow_extras();
+  }
+#endif
 } // namespace
 
 int main(int argc, char **argv)
 {
-  // MPI (and p4est) once per process for `kimp fem`, also under mpirun; only rank 0 logs.
-  std::unique_ptr<kimp::app::Session> session;
-  try
-  {
-    session = std::make_unique<kimp::app::Session>(argc, argv);
-    kimp::base::set_rank(static_cast<int>(session->rank()));
-  }
-  catch (const std::exception &error)
-  {
-    return report(error);
-  }
+#ifdef KIMP_FEM_EXECUTABLE
+  if (const char *command = command_name(argc, argv); command && is_fem_command(command))
+    return exec_fem_executable(argv, command);
+#endif
   try
   {
     const auto app = kimp::cli::make_app();
+#ifdef KIMP_FEM_EXECUTABLE
+    register_fem_forwarders(*app);
+#endif
     kimp::cli::register_commands(*app);
     const int exit_code = kimp::cli::run_app(*app, argc, argv, std::cout, std::cerr);
     if (exit_code != 0)
-      abort_other_ranks(exit_code);
+      kimp::cli::abort_other_ranks(exit_code);
     return exit_code;
   }
   catch (const std::exception &error)
   {
-    // Before the MPI session ends: MPI_Finalize would wait for ranks that are still running.
-    return report(error);
+    return kimp::cli::report_error(error);
   }
 }

@@ -16,10 +16,6 @@ namespace kimp::cli
 
   void register_mesh_command(CLI::App &app)
   {
-    add_scene_command<FemScene>(app,
-                                "mesh",
-                                "mesh the FEM impact scene of every wall height: "
-                                "DIR/mesh/H<H>.msh with PNG and VTU previews, summary.json",
-                                run_mesh);
+    add_scene_command<FemScene>(app, "mesh", fem_command_description("mesh"), run_mesh);
   }
 } // namespace kimp::cli

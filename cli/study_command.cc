@@ -25,10 +25,7 @@ namespace kimp::cli
       std::string records_dir;
     };
     auto      options = std::make_shared<Options>();
-    CLI::App *command = app.add_subcommand(
-      "study",
-      "the wall-height study: FEM per height -> fitted k (Kelvin-Voigt, Jankowski) -> k table "
-      "beside thesis Table 2.1 -> building pounding runs -> CSV, study.h5, charts, report.md");
+    CLI::App *command = app.add_subcommand("study", fem_command_description("study"));
     command->add_option("scene", options->scene, "study scene (YAML; none: the default study)")
       ->type_name("SCENE.yaml");
     command->add_option("-o,--output", options->output, "output directory (created if missing)")

@@ -29,18 +29,23 @@ namespace kimp::lumped
 
   /**
    * Time-loop kernel of the central difference method.
-   *  - automatic: the fused dense kernel when the model has at most 8 DOFs (the isolated
+   *  - automatic: when every storey joins DOF i − 1 and DOF i or the ground and DOF i (true for
+   *    every PoundingScene), the fused dense kernel for models of at most 8 DOFs (the isolated
    *    4-storey building with walls, bumpers or a basement; fixed-base buildings of up to 8
-   *    storeys; an isolated building with one small neighbour) and every storey joins DOF i − 1
-   *    and DOF i or the ground and DOF i (true for every PoundingScene), the block-tridiagonal
-   *    reference kernel otherwise;
+   *    storeys; an isolated building with one small neighbour) and the any-size fused kernel
+   *    beyond while every building has at most 16 DOFs (neighbours on both sides, basements,
+   *    bumpers); the block-tridiagonal reference kernel otherwise (taller buildings, where its
+   *    O(n) Thomas sweeps beat dense products);
    *  - reference: always the block-tridiagonal kernel (Thomas or a dense inverse per block, the
-   *    step-lane bookkeeping); slower, kept as the reference for the fused kernel.
+   *    step-lane bookkeeping); slower, kept as the reference (oracle) for the fused kernels;
+   *  - any_size: the any-size fused kernel for every model size (tests and benchmarks compare
+   *    it with the fused kernel at <= 8 DOFs).
    */
   enum class CdmKernel
   {
     automatic,
-    reference
+    reference,
+    any_size
   };
 
   /**
@@ -118,7 +123,13 @@ namespace kimp::lumped
    *    the fast loop. The vector width (SSE2, AVX2 or AVX-512F; see
    *    CentralDifferenceOptions::vector_lanes) is picked at run time; every operation is per
    *    DOF lane without FMA contraction, so all widths give bitwise equal results;
-   *  - reference (more than 8 DOFs, or on request): right-hand side with the
+   *  - any-size fused (automatic, more than 8 DOFs, buildings of <= 16 DOFs): the same step; A is
+   * block-diagonal (one block per building), so each vector of rows multiplies only its buildings'
+   * columns, in four partial sums by column index mod 4 (the order depends on the column only, and
+   * the columns a wider vector adds are exact zeros: bitwise equal results for every width). The
+   *    state lives in L1 scratch rather than registers;
+   *  - reference (on request, or a model whose storeys do not join consecutive DOFs): right-hand
+   *    side with the
    *    tridiagonal B = 2M/Δt² − K and D = −M/Δt² + C/(2Δt), A⁻¹ block-wise (dense for blocks
    *    of up to 16 DOFs, else the pre-factorised Thomas algorithm), and the bookkeeping of each
    *    block of up to 64 steps vectorised over the steps afterwards.

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "lumped/integrators/central_difference_session.h"
+#include "lumped/integrators/central_difference_simd.h"
 #include "lumped/isolators/bilinear_isolator.h"
 
 namespace kimp::lumped
@@ -16,23 +17,12 @@ namespace kimp::lumped
   {
     using cdm::block_steps;
     using cdm::ForceEvaluator;
+    using cdm::fused_contacts;
+    using cdm::Lanes;
+    using cdm::peak_abs;
     using cdm::Session;
-
-    // The fused kernel is written once for vectors of L doubles (GCC/Clang vector extensions) and
-    // compiled for SSE2 (L = 2, the baseline x86-64 build), AVX2 (L = 4) and AVX-512F (L = 8),
-    // picked at run time. Every operation is element-wise per DOF lane (no horizontal sums per
-    // step, no FMA contraction: optimize("fp-contract=off")), so the three variants give
-    // bitwise identical results. Helpers take vectors by reference only: passing wide vectors
-    // by value from code compiled for the baseline would change the ABI.
-    template <int L>
-    struct Lanes
-    {
-      typedef double       V __attribute__((vector_size(8 * L)));
-      typedef std::int64_t I __attribute__((vector_size(8 * L)));
-      /// V at any double-aligned address (loads and stores by assignment, so that the vectors
-      /// never have their address taken and stay in registers).
-      typedef double U __attribute__((vector_size(8 * L), aligned(8), may_alias));
-    };
+    using cdm::shift_down;
+    using cdm::shift_up;
 
     /// out = (x[j], x[j], ...).
     template <class V, class I, int j>
@@ -49,84 +39,11 @@ namespace kimp::lumped
 #endif
     }
 
-    /// out = (x[1], ..., x[L−1], y[0]): the DOFs one further down the padded vector.
-    template <class V, class I>
-    inline __attribute__((always_inline)) void shift_down(V &out, const V &x, const V &y)
-    {
-      constexpr int L = sizeof(V) / sizeof(double);
-      I             mask;
-      for (int l = 0; l < L; ++l)
-        mask[l] = l + 1;
-#if defined(__clang__)
-      for (int l = 0; l < L; ++l)
-        out[l] = l + 1 < L ? x[l + 1] : y[0];
-      (void)mask;
-#else
-      out = __builtin_shuffle(x, y, mask);
-#endif
-    }
-
-    /// out = (w[L−1], x[0], ..., x[L−2]): the DOFs one further up.
-    template <class V, class I>
-    inline __attribute__((always_inline)) void shift_up(V &out, const V &w, const V &x)
-    {
-      constexpr int L = sizeof(V) / sizeof(double);
-      I             mask;
-      for (int l = 0; l < L; ++l)
-        mask[l] = L - 1 + l;
-#if defined(__clang__)
-      for (int l = 0; l < L; ++l)
-        out[l] = l == 0 ? w[L - 1] : x[l - 1];
-      (void)mask;
-#else
-      out = __builtin_shuffle(w, x, mask);
-#endif
-    }
-
-    /// peak = max(peak, |x|) element-wise (|x| clears the sign bit; max as std::max(peak, |x|)).
-    template <class V, class I>
-    inline __attribute__((always_inline)) void peak_abs(V &peak, const V &x)
-    {
-      const I bits = (I)x & ~(I{} + (std::int64_t{1} << 63)); // vector casts reinterpret
-      const V ax   = (V)bits;
-      peak         = peak < ax ? ax : peak;
-    }
-
-
     /// f(std::integral_constant<int, j>) for j = 0..N−1 (unrolled at compile time).
     template <class F, std::size_t... js>
     inline __attribute__((always_inline)) void for_each_index(F &&f, std::index_sequence<js...>)
     {
       (f(std::integral_constant<int, static_cast<int>(js)>{}), ...);
-    }
-
-    /// A contact pre-check failed at step s0 + k (or the run is in its first two steps): the
-    /// reference kernel's contact evaluation for every law, with δ_{n−1} and δ_{n−2} re-formed
-    /// from the displacement columns if the previous step skipped the laws, then the pre-check
-    /// re-armed. Returns true if a law was called (forces in Session::force).
-    template <class IsolatorType>
-    __attribute__((noinline)) bool
-    fused_contacts(Session &s, ForceEvaluator<IsolatorType> &forces, const long k)
-    {
-      const std::size_t nc = s.laws.size();
-      if (!s.deltas_current)
-      {
-        const double     *col = s.u_block.data() + static_cast<std::size_t>(k) * s.col_stride;
-        const std::size_t cs  = s.col_stride; // left_row points at column 2 (u_n)
-        for (std::size_t c = 0; c < nc; ++c)
-        {
-          s.delta_prev[c]  = col[s.left_row[c] - cs] - col[s.right_row[c] - cs] - s.gap[c];
-          s.delta_prev2[c] = col[s.left_row[c] - 2 * cs] - col[s.right_row[c] - 2 * cs] - s.gap[c];
-        }
-      }
-      const bool touched = forces.contacts(k, static_cast<double>(s.step + k) * s.dt);
-      for (std::size_t c = 0; c < nc; ++c)
-      {
-        const bool armed = !s.active[c] && !s.called_prev[c] && s.cf[c] == 0.0;
-        s.gap_skip[c]    = armed ? s.gap[c] : -std::numeric_limits<double>::infinity();
-      }
-      s.deltas_current = true;
-      return touched;
     }
 
     /**

@@ -62,9 +62,9 @@ namespace kimp::lumped
       iso = proto->clone();
       iso->revert_to_start();
     }
-    // The fused kernel: at most 8 DOFs (one or several buildings), every storey between DOF i − 1
-    // and DOF i or between the ground and DOF i (its drift is then lane i of u − shifted u).
-    bool fits = n >= 1 && n <= 8;
+    // The fused kernels (up to 8 DOFs, or any size): every storey between DOF i − 1 and DOF i or
+    // between the ground and DOF i (its drift is then lane i of u − shifted u).
+    bool fits = n >= 1;
     drift_mask.assign(n, 0.0);
     for (const Storey &st : model->storeys())
     {
@@ -73,7 +73,19 @@ namespace kimp::lumped
       if (fits)
         drift_mask[static_cast<std::size_t>(st.upper_dof)] = st.lower_dof == -1 ? 0.0 : 1.0;
     }
-    fused = opt->kernel == CdmKernel::automatic && fits;
+    // Beyond 8 DOFs the any-size kernel's dense products cost O(b²) per building block of b
+    // DOFs against the reference kernel's O(b) Thomas sweeps: it wins up to ≈ 20 DOFs per block
+    // (bench/lumped_bench.cc BM_CdmTallBuilding), so automatic keeps it to blocks of at most
+    // max_dense (16) DOFs, e.g. every building of the adjacent-building studies.
+    std::size_t largest_block = n > 0 ? 1 : 0, block = 1;
+    for (std::size_t i = 0; i + 1 < n; ++i)
+    {
+      block         = k->upper[i] != 0.0 || c->upper[i] != 0.0 ? block + 1 : 1;
+      largest_block = std::max(largest_block, block);
+    }
+    const bool anysize_pays = n <= 8 || largest_block <= cdm::EffectiveMatrixInverse::max_dense;
+    fused                   = fits && (opt->kernel == CdmKernel::any_size ||
+                     (opt->kernel == CdmKernel::automatic && anysize_pays));
     dense_inverse.clear();
     dense_f.clear();
     dense_g.clear();
@@ -99,9 +111,10 @@ namespace kimp::lumped
       const Eigen::MatrixXd h   = inv * (c->to_dense() * (1.0 / dt) + k->to_dense());
       const Eigen::VectorXd am =
         inv * Eigen::Map<const Eigen::VectorXd>(mass.data(), static_cast<Eigen::Index>(n));
+      // Columns up to a multiple of 4 (zero): the any-size kernel sums four columns at a time.
       const auto pad = [&](const Eigen::MatrixXd &x, std::vector<double> &out)
       {
-        out.assign(p * static_cast<std::size_t>(x.cols()), 0.0);
+        out.assign(p * ((static_cast<std::size_t>(x.cols()) + 3) / 4 * 4), 0.0);
         for (Eigen::Index j = 0; j < x.cols(); ++j)
           for (Eigen::Index i = 0; i < x.rows(); ++i)
             out[static_cast<std::size_t>(j) * p + static_cast<std::size_t>(i)] = x(i, j);
@@ -110,6 +123,30 @@ namespace kimp::lumped
       pad(h, dense_f);
       pad(kg, dense_g);
       pad(am, dense_am);
+      // Any-size kernel: the columns each row vector needs (its buildings' blocks).
+      const std::size_t n_vectors = p / static_cast<std::size_t>(lanes);
+      any_lo.assign(n_vectors, 0);
+      any_hi.assign(n_vectors, 0);
+      for (std::size_t v = 0; v < n_vectors; ++v)
+      {
+        std::size_t first = n, end = 0;
+        for (std::size_t i = v * static_cast<std::size_t>(lanes);
+             i < std::min(n, (v + 1) * static_cast<std::size_t>(lanes));
+             ++i)
+          for (std::size_t j = 0; j < n; ++j)
+          {
+            const std::size_t at = j * p + i;
+            if (dense_inverse[at] != 0.0 || dense_f[at] != 0.0 || dense_g[at] != 0.0)
+            {
+              first = std::min(first, j);
+              end   = std::max(end, j + 1);
+            }
+          }
+        any_lo[v] = static_cast<int>(first < end ? first / 4 * 4 : 0);
+        any_hi[v] = static_cast<int>(first < end ? (end + 3) / 4 * 4 : 0);
+      }
+      const std::size_t l = static_cast<std::size_t>(lanes);
+      any_work.assign(l + p + std::max(p, (n + 3) / 4 * 4) + p + l + 2 * p, 0.0);
     }
 
     width = static_cast<std::size_t>(cdm::block_steps) + 3;
@@ -254,7 +291,12 @@ namespace kimp::lumped
     w_in = w_visc = w_contact = p_in_prev = p_visc_prev = 0.0;
     e0 = e_kin = e_strain = 0.0;
 
-    dynamics = fused ? cdm::fused_kernel(n, lanes, iso.get()) : cdm::reference_kernel(iso.get());
+    // Up to 8 DOFs the fused kernel keeps the whole state in registers (unless the any-size
+    // kernel is requested, for comparisons).
+    const bool small = n <= 8 && opt->kernel == CdmKernel::automatic;
+    dynamics         = !fused ? cdm::reference_kernel(iso.get()) :
+                       small  ? cdm::fused_kernel(n, lanes, iso.get()) :
+                                cdm::anysize_kernel(lanes, iso.get());
   }
 
   /// E_kin and E_strain at the block's last step if it is a check point (E_0, checks, samples,

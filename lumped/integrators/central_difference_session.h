@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -104,7 +105,12 @@ namespace kimp::lumped
     std::vector<double> drift_mask;
     /// Fused kernel contact pre-check: a law is skipped while u_L − u_R <= gap_skip (the gap, or
     /// −∞ while the law is in contact, was called last step or holds a force).
-    std::vector<double>      gap_skip;
+    std::vector<double> gap_skip;
+    /// Any-size kernel (more than 8 DOFs): per vector of rows r = i·lanes..(i + 1)·lanes − 1,
+    /// the columns [any_lo[i], any_hi[i]) (multiples of 4) outside which A⁻¹, A⁻¹(C/Δt + K)
+    /// and A⁻¹K are zero in those rows (one block per building), and its scratch vectors.
+    std::vector<int>         any_lo, any_hi;
+    std::vector<double>      any_work;
     const TridiagonalMatrix *k = nullptr;
     const TridiagonalMatrix *c = nullptr;
 
@@ -317,6 +323,35 @@ namespace kimp::lumped
       double *const       dpp_;
     };
 
+    /// A contact pre-check failed at step s0 + k (or the run is in its first two steps): the
+    /// reference kernel's contact evaluation for every law, with δ_{n−1} and δ_{n−2} re-formed
+    /// from the displacement columns if the previous step skipped the laws, then the pre-check
+    /// re-armed. Returns true if a law was called (forces in Session::force).
+    template <class IsolatorType>
+    __attribute__((noinline)) inline bool
+    fused_contacts(Session &s, ForceEvaluator<IsolatorType> &forces, const long k)
+    {
+      const std::size_t nc = s.laws.size();
+      if (!s.deltas_current)
+      {
+        const double     *col = s.u_block.data() + static_cast<std::size_t>(k) * s.col_stride;
+        const std::size_t cs  = s.col_stride; // left_row points at column 2 (u_n)
+        for (std::size_t c = 0; c < nc; ++c)
+        {
+          s.delta_prev[c]  = col[s.left_row[c] - cs] - col[s.right_row[c] - cs] - s.gap[c];
+          s.delta_prev2[c] = col[s.left_row[c] - 2 * cs] - col[s.right_row[c] - 2 * cs] - s.gap[c];
+        }
+      }
+      const bool touched = forces.contacts(k, static_cast<double>(s.step + k) * s.dt);
+      for (std::size_t c = 0; c < nc; ++c)
+      {
+        const bool armed = !s.active[c] && !s.called_prev[c] && s.cf[c] == 0.0;
+        s.gap_skip[c]    = armed ? s.gap[c] : -std::numeric_limits<double>::infinity();
+      }
+      s.deltas_current = true;
+      return touched;
+    }
+
     /// The reference (block-tridiagonal) kernel for the model's isolator type
     /// (central_difference_reference.cc).
     Session::Kernel reference_kernel(const Isolator *isolator);
@@ -324,6 +359,10 @@ namespace kimp::lumped
     /// Widest vector (doubles per register) of the fused kernel on this processor, capped at
     /// `cap` (0: no cap) (central_difference_fused.cc).
     int fused_lanes(int cap);
+
+    /// The any-size fused kernel (any n; the fused kernel's step, products restricted to each
+    /// row vector's columns, `lanes` doubles per vector) (central_difference_anysize.cc).
+    Session::Kernel anysize_kernel(int lanes, const Isolator *isolator);
 
     /// The fused kernel for n <= 8 DOFs, `lanes` doubles per vector and the model's isolator type
     /// (nullptr for n > 8) (central_difference_fused.cc).

@@ -625,12 +625,12 @@ namespace kimp::lumped
     EXPECT_LT(fused_against_reference(PoundingModel(neighbour), opt, g, "neighbour, 8 DOFs"),
               pounding_tol);
 
-    // Beyond 8 DOFs the reference kernel runs (two neighbours: 13 DOFs).
+    // Beyond 8 DOFs the any-size fused kernel runs (two neighbours: 13 DOFs; anysize_kernel_test).
     neighbour.left_neighbour = nb;
     const CentralDifference  big(PoundingModel(neighbour), opt);
     CentralDifferenceStepper big_stepper(big);
     big_stepper.init(g);
-    EXPECT_FALSE(big_stepper.uses_fused_kernel());
+    EXPECT_TRUE(big_stepper.uses_fused_kernel());
   }
 
   TEST(CentralDifference, FusedKernelIsBitwiseIndependentOfTheVectorWidth)

@@ -1,0 +1,42 @@
+// kimp-fem: the `kimp` executable with the FEM engine (deal.II, gmsh, MPI). The lean `kimp` execs
+// it, with the same arguments and environment, for the commands mesh, fem and study.
+#include <exception>
+#include <iostream>
+#include <memory>
+
+#include "app/session.h"
+#include "base/logging.h"
+#include "cli/cli.h"
+#include "cli/commands.h"
+#include "cli/main_support.h"
+
+int main(int argc, char **argv)
+{
+  using kimp::cli::report_error;
+  // MPI (and p4est) once per process, also under mpirun; only rank 0 logs.
+  std::unique_ptr<kimp::app::Session> session;
+  try
+  {
+    session = std::make_unique<kimp::app::Session>(argc, argv);
+    kimp::base::set_rank(static_cast<int>(session->rank()));
+  }
+  catch (const std::exception &error)
+  {
+    return report_error(error);
+  }
+  try
+  {
+    const auto app = kimp::cli::make_app();
+    kimp::cli::register_fem_commands(*app);
+    kimp::cli::register_commands(*app);
+    const int exit_code = kimp::cli::run_app(*app, argc, argv, std::cout, std::cerr);
+    if (exit_code != 0)
+      kimp::cli::abort_other_ranks(exit_code);
+    return exit_code;
+  }
+  catch (const std::exception &error)
+  {
+    // Before the MPI session ends: MPI_Finalize would wait for ranks that are still running.
+    return report_error(error);
+  }
+}
