@@ -14,6 +14,8 @@
 #include "app/lumped_scene.h"
 #include "io/units.h"
 #include "lumped/isolators/bilinear_isolator.h"
+#include "lumped/isolators/bouc_wen_isolator.h"
+#include "lumped/isolators/friction_pendulum_isolator.h"
 #include "lumped/structure/shear_building.h"
 #include "tests/support/files.h"
 #include "tests/support/scene_errors.h"
@@ -201,6 +203,13 @@ TEST(LumpedScene, EveryValidationRuleNamesFileLineAndKey)
     {"isolator:\n  Q_ratio: \"0 %\"\n", "scene.yaml:2: isolator.Q_ratio = 0 %"},
     {"isolator:\n  Q: \"-5 kN\"\n", "scene.yaml:2: isolator.Q = -5 kN"},
     {"isolator:\n  kind: linear\n  k: \"0 MN/m\"\n", "scene.yaml:3: isolator.k = 0 MN/m"},
+    {"isolator:\n  kind: friction_pendulum\n  mu_slow: 0.1\n  mu_fast: 0.05\n",
+     "scene.yaml:4: isolator.mu_fast = 0.05: must be >= mu_slow = 0.1"},
+    {"isolator:\n  kind: friction_pendulum\n  radius: \"0 m\"\n",
+     "scene.yaml:3: isolator.radius = 0 m"},
+    {"isolator:\n  kind: bouc_wen\n  beta: 0.2\n  gamma: 0.5\n",
+     "scene.yaml:3: isolator.beta = 0.2: must be >= |gamma| = 0.5"},
+    {"isolator:\n  kind: bouc_wen\n  n: 0.5\n", "scene.yaml:3: isolator.n = 0.5"},
     {"isolator:\n  damping_ratio: \"1 %\"\n",
      "scene.yaml:2: isolator.damping_ratio = 1 %: must be >= building.damping_ratio"},
     {"walls:\n  left:\n    gap: \"-2 cm\"\n", "scene.yaml:3: walls.left.gap = -2 cm"},
@@ -265,6 +274,39 @@ TEST(LumpedScene, EveryValidationRuleNamesFileLineAndKey)
       << rule.yaml << "\nexpected: " << rule.expected << "\ngot: " << message;
   }
   EXPECT_EQ(error_of("impact:\n  law: bumper\n"), "") << "the default bumper scene is valid";
+}
+
+TEST(LumpedScene, FrictionPendulumAndBoucWenIsolators)
+{
+  // Friction pendulum: W = g·Σm unless given; initial stiffness k_init + W/R.
+  const LumpedScene fp          = load("isolator:\n  kind: friction_pendulum\n  radius: \"2.5 m\"\n"
+                                       "  mu_slow: 0.03\n  mu_fast: 0.07\n  rate: \"25 s/m\"\n"
+                                       "  k_init: \"800 MN/m\"\n");
+  const auto        fp_building = make_building(fp);
+  const auto       *friction =
+    dynamic_cast<const kimp::lumped::FrictionPendulumIsolator *>(fp_building.isolator.get());
+  ASSERT_NE(friction, nullptr);
+  const double W = g * 1530e3;
+  EXPECT_NEAR(friction->pendulum_stiffness(), W / 2.5, exact_tolerance * W / 2.5);
+  EXPECT_NEAR(friction->initial_stiffness(), 800e6 + W / 2.5, exact_tolerance * 800e6);
+  EXPECT_NEAR(friction->friction_coefficient(0.0), 0.03, exact_tolerance);
+  EXPECT_NEAR(friction->friction_coefficient(1.0), 0.07 - 0.04 * std::exp(-25.0), 1e-12);
+  const LumpedScene fp_w  = load("isolator:\n  kind: friction_pendulum\n  weight: \"10 MN\"\n");
+  const auto       *given = dynamic_cast<const kimp::lumped::FrictionPendulumIsolator *>(
+    make_building(fp_w).isolator.get());
+  ASSERT_NE(given, nullptr);
+  EXPECT_NEAR(given->pendulum_stiffness(), 10e6 / fp_w.isolator.radius, 1e-6);
+
+  // Bouc-Wen: the bilinear keys K1, K2, Q give α = K2/K1 and F_y = Q/(1 − α).
+  const LumpedScene bw = load("isolator:\n  kind: bouc_wen\n  Q: \"1500 kN\"\n  n: 3\n");
+  const auto       *bouc_wen =
+    dynamic_cast<const kimp::lumped::BoucWenIsolator *>(make_building(bw).isolator.get());
+  ASSERT_NE(bouc_wen, nullptr);
+  EXPECT_NEAR(bouc_wen->characteristic_strength(), 1500e3, exact_tolerance * 1500e3);
+  EXPECT_NEAR(bouc_wen->yield_displacement(),
+              1500e3 / (1.0 - 0.125) / 200e6,
+              exact_tolerance * 1e-2);
+  EXPECT_NEAR(bouc_wen->initial_stiffness(), 200e6, exact_tolerance * 200e6);
 }
 
 TEST(LumpedScene, UnknownKeysAndBadUnitsAreRejected)
