@@ -61,6 +61,17 @@ namespace kimp::lumped
     Q_     = (1.0 - alpha) * F_y;
     u_y_   = F_y / K1;
     z_max_ = std::pow(A / (beta + gamma), 1.0 / n);
+    n_int_ = (n == std::floor(n) && n <= 64.0) ? static_cast<int>(n) : 0;
+  }
+
+  double BoucWenIsolator::power(const double a) const
+  {
+    if (n_int_ == 0)
+      return std::pow(a, n_);
+    double p = a;
+    for (int i = 1; i < n_int_; ++i)
+      p *= a;
+    return p;
   }
 
   IsolatorResponse BoucWenIsolator::set_trial(const double displacement, const double velocity)
@@ -70,47 +81,55 @@ namespace kimp::lumped
     trial_.u        = displacement;
     const double du = displacement - committed_.u;
     const double K2 = alpha_ * K1_;
+    const double zc = committed_.z;
     if (du == 0.0)
-      return {K2 * displacement + Q_ * committed_.z,
-              K2 + Q_ / u_y_ * (A_ - std::pow(std::abs(committed_.z), n_) * (gamma_ + beta_)),
+      return {K2 * displacement + Q_ * zc,
+              K2 + Q_ / u_y_ * (A_ - power(std::abs(zc)) * (gamma_ + beta_)),
               0.0};
-    const double zc    = committed_.z;
     const double ratio = du / u_y_;
-    // Ψ(z) = γ + β·sgn(z·du); |z|^n vanishes where Ψ jumps, so the residual is continuous.
-    const auto psi = [&](const double z) { return gamma_ + ((z * du > 0.0) ? beta_ : -beta_); };
-    const auto residual = [&](const double z)
-    { return z - zc - ratio * (A_ - std::pow(std::abs(z), n_) * psi(z)); };
-    // Root bracket: g(z_c) <= 0 <= g(±z_max) in the direction of du (|z_c| <= z_max).
+    // Ψ(z) = γ + β·sgn(z·du); |z|^n vanishes where Ψ jumps, so the residual is continuous and,
+    // for β >= |γ|, increasing in z.
+    const double psi_with = gamma_ + beta_, psi_against = gamma_ - beta_;
+    // Root bracket: g(z_c) <= 0 <= g(z_max) for du > 0, g(−z_max) <= 0 <= g(z_c) for du < 0.
     double lo = du > 0.0 ? zc : -z_max_;
     double hi = du > 0.0 ? z_max_ : zc;
     if (lo > hi)
       std::swap(lo, hi);
-    double z = std::min(std::max(zc + ratio * A_, lo), hi);
+    // |z|^n, |z|^(n−1)·sgn(z)·n and Ψ at z; g and ∂g/∂z.
+    double     zn_psi = 0.0, dg = 1.0;
+    const auto evaluate = [&](const double z)
+    {
+      const double az  = std::abs(z);
+      const double psi = z * du > 0.0 ? psi_with : psi_against;
+      const double zn  = power(az);
+      zn_psi           = zn * psi;
+      // n·|z|^(n−1)·sgn(z) = n·|z|^n / z (0 at z = 0 for n >= 1).
+      dg = 1.0 + ratio * (az > 0.0 ? n_ * zn / z : 0.0) * psi;
+      return z - zc - ratio * (A_ - zn_psi);
+    };
+    // Start from the explicit Euler step.
+    double z = std::min(std::max(zc + ratio * (A_ - power(std::abs(zc)) *
+                                                      (zc * du > 0.0 ? psi_with : psi_against)),
+                                 lo),
+                        hi);
     for (int it = 0; it < max_iterations; ++it)
     {
-      const double g = residual(z);
+      const double g = evaluate(z);
       if (g == 0.0)
         break;
-      // residual is increasing in z: move the bracket.
-      (g > 0.0 ? hi : lo) = z;
-      const double az     = std::abs(z);
-      const double dg     = 1.0 + ratio * n_ * (az > 0.0 ? std::pow(az, n_ - 1.0) : 0.0) *
-                                (z >= 0.0 ? 1.0 : -1.0) * psi(z);
-      double next = z - g / dg;
-      if (!(next > lo && next < hi))
-        next = 0.5 * (lo + hi);
-      if (std::abs(next - z) <= 1e-15 * std::max(1.0, std::abs(z)))
+      const double step = g / dg;
+      // Converged: the Newton correction is at round-off (checked before the bracket test,
+      // which a correction of a few ulps can fail).
+      if (std::abs(step) <= 1e-15 * std::max(1.0, std::abs(z)))
       {
-        z = next;
+        z -= step;
         break;
       }
-      z = next;
+      (g > 0.0 ? hi : lo) = z;
+      z                   = z - step > lo && z - step < hi ? z - step : 0.5 * (lo + hi);
     }
-    trial_.z            = z;
-    const double az     = std::abs(z);
-    const double zn_psi = std::pow(az, n_) * psi(z);
-    const double dg     = 1.0 + ratio * n_ * (az > 0.0 ? std::pow(az, n_ - 1.0) : 0.0) *
-                              (z >= 0.0 ? 1.0 : -1.0) * psi(z);
+    evaluate(z);
+    trial_.z           = z;
     const double dz_du = (A_ - zn_psi) / u_y_ / dg;
     // Work of the hysteretic spring beyond its stored energy (>= 0 for β >= |γ|).
     trial_.dissipated += Q_ * z * du * zn_psi / A_;

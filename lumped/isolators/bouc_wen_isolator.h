@@ -89,6 +89,10 @@ namespace kimp::lumped
     double Q_;     ///< (1 − α)·F_y
     double u_y_;   ///< F_y/K1
     double z_max_; ///< (A/(β + γ))^(1/n), the bound of |z|
+    int    n_int_; ///< n when it is a small integer (|z|^n by multiplication), else 0
+
+    /// |z|^n for a = |z| >= 0.
+    double power(double a) const;
     State  committed_;
     State  trial_;
   };
