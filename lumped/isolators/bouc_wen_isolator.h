@@ -57,6 +57,10 @@ namespace kimp::lumped
              0.5 * Q_ * u_y_ * committed_.z * committed_.z / A_;
     }
     double dissipated_energy() const override { return committed_.dissipated; }
+    double committed_force() const override
+    {
+      return alpha_ * K1_ * committed_.u + Q_ * committed_.z;
+    }
 
     /// Characteristic strength Q = (1 − α)·F_y, N.
     double characteristic_strength() const { return Q_; }

@@ -53,6 +53,7 @@ namespace kimp::lumped
              0.5 * committed_.f_s * committed_.f_s / k_init_;
     }
     double dissipated_energy() const override { return committed_.dissipated; }
+    double committed_force() const override { return k_pendulum_ * committed_.u + committed_.f_s; }
 
     /// Friction coefficient μ(v) at sliding velocity v (m/s).
     double friction_coefficient(double velocity) const;

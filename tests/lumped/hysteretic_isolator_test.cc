@@ -81,6 +81,7 @@ namespace kimp::lumped
       }
       const double e0 = iso.dissipated_energy();
       const double s0 = iso.stored_energy();
+      const double f0 = iso.committed_force();
       const auto   a  = iso.set_trial(0.03, 0.2);
       const auto   b  = iso.set_trial(0.03, 0.2);
       EXPECT_EQ(a.force, b.force) << what;
@@ -89,10 +90,14 @@ namespace kimp::lumped
       EXPECT_EQ(iso.dissipated_energy(), e0) << what << ": a trial changed committed state";
       iso.revert_to_last_commit();
       EXPECT_EQ(iso.stored_energy(), s0) << what;
+      EXPECT_EQ(iso.committed_force(), f0) << what;
       const auto copy = iso.clone();
       EXPECT_EQ(copy->set_trial(0.07, 0.1).force, iso.set_trial(0.07, 0.1).force) << what;
       copy->commit();
       EXPECT_EQ(iso.dissipated_energy(), e0) << what << ": the clone shares state";
+      const double f1 = iso.set_trial(0.031, 0.2).force;
+      iso.commit();
+      EXPECT_EQ(iso.committed_force(), f1) << what;
       // Dissipation never decreases.
       double previous = iso.dissipated_energy();
       for (int i = 0; i < 200; ++i)
