@@ -20,6 +20,9 @@
 namespace kimp::app
 {
   using namespace kimp::io;
+  // The engines and io each name g (lumped includes nothing of kimp): one value.
+  static_assert(io::standard_gravity == lumped::standard_gravity,
+                "io and lumped must use the same standard gravity");
   namespace
   {
     bool law_has_fixed_exponent(const std::string &law)
@@ -491,7 +494,9 @@ namespace kimp::app
       building.isolation_damping_ratio = scene.isolator.damping_ratio;
       const IsolatorScene &iso         = scene.isolator;
       const double         weight      = lumped::standard_gravity * building.total_mass();
-      const double         Q           = iso.Q ? *iso.Q : iso.Q_ratio * weight;
+      // (Q_ratio·g)·m, the association of reference_isolated_building(): bitwise the same Q.
+      const double Q =
+        iso.Q ? *iso.Q : iso.Q_ratio * lumped::standard_gravity * building.total_mass();
       switch (iso.kind)
       {
         case IsolatorKind::bilinear:

@@ -276,6 +276,24 @@ TEST(LumpedScene, EveryValidationRuleNamesFileLineAndKey)
   EXPECT_EQ(error_of("impact:\n  law: bumper\n"), "") << "the default bumper scene is valid";
 }
 
+TEST(LumpedScene, OneGravityForSceneAndReferenceBuilding)
+{
+  // Q = 0.1·g·W_tot with the same g in the scene path and the library's reference building
+  // (docs/physics.md §3 "Gravity"): 1500.42 kN for 1530 t.
+  const auto  scene_building = make_building(LumpedScene{});
+  const auto  reference      = kimp::lumped::reference_isolated_building(4);
+  const auto *a =
+    dynamic_cast<const kimp::lumped::BilinearIsolator *>(scene_building.isolator.get());
+  const auto *b = dynamic_cast<const kimp::lumped::BilinearIsolator *>(reference.isolator.get());
+  ASSERT_NE(a, nullptr);
+  ASSERT_NE(b, nullptr);
+  EXPECT_EQ(a->yield_force(), b->yield_force());
+  EXPECT_NEAR(a->yield_force() * (1.0 - 25.0 / 200.0),
+              0.1 * 9.80665 * 1530e3,
+              exact_tolerance * 1500e3);
+  EXPECT_EQ(kimp::io::standard_gravity, kimp::lumped::standard_gravity);
+}
+
 TEST(LumpedScene, FrictionPendulumAndBoucWenIsolators)
 {
   // Friction pendulum: W = g·Σm unless given; initial stiffness k_init + W/R.
