@@ -27,8 +27,8 @@ namespace kimp::app
       return std::chrono::duration<double>(Clock::now() - start).count();
     }
 
-    /// "<building> isolation level" for DOF 0 of an isolated main building, else
-    /// "<building> floor j" (floors above the ground numbered from 1).
+    /// "<building> isolation level" for DOF 0 of an isolated main building, the wall's name for
+    /// a flexible moat wall, else "<building> floor j" (floors above the ground numbered from 1).
     std::vector<std::string> dof_labels(const lumped::PoundingModel &model)
     {
       std::vector<std::string> labels(model.n_dofs());
@@ -36,6 +36,14 @@ namespace kimp::app
       {
         const lumped::BuildingBlock &block    = model.buildings()[b];
         const bool                   isolated = b == 0 && model.isolator() != nullptr;
+        // A flexible moat wall is a block of one DOF named after the wall ("left_wall").
+        const bool wall =
+          block.name.size() > 5 && block.name.compare(block.name.size() - 5, 5, "_wall") == 0;
+        if (wall && block.n_dofs == 1)
+        {
+          labels[static_cast<std::size_t>(block.first_dof)] = block.name;
+          continue;
+        }
         for (int i = 0; i < block.n_dofs; ++i)
           labels[static_cast<std::size_t>(block.first_dof + i)] =
             block.name + (isolated && i == 0 ? std::string(" isolation level") :

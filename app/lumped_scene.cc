@@ -555,6 +555,9 @@ namespace kimp::app
         wall.bumper_thickness = bumper ? scene.impact.bumper.thickness : 0.0;
         wall.bumper_recessed  = bumper && scene.impact.bumper.recessed;
         wall.law              = law;
+        wall.flexible         = w.flexible;
+        wall.stiffness        = w.stiffness;
+        wall.damping_ratio    = w.damping_ratio;
         return wall;
       };
       if (scene.walls.left.present)

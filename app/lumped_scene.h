@@ -191,12 +191,15 @@ namespace kimp::app
                 io::Range::at_least(1.0));
   }
 
-  /// One moat wall at the isolation level (rigid, moving with the ground).
+  /// One moat wall at the isolation level: rigid (moving with the ground) or a SDOF oscillator.
   struct WallScene
   {
-    bool   present = true;
-    double gap     = 0.15;
-    double mass    = 500e3;
+    bool   present       = true;
+    double gap           = 0.15;
+    double mass          = 500e3;
+    bool   flexible      = false;
+    double stiffness     = 1.5e9; ///< SDOF wall, N/m (thesis k_w = 1500 kN/mm)
+    double damping_ratio = 0.05;  ///< SDOF wall ζ
   };
 
   template <class Io>
@@ -204,7 +207,24 @@ namespace kimp::app
   {
     io.flag("present", s.present, "is there a wall on this side");
     io.quantity("gap", s.gap, "cm", "distance isolation level - wall face (before bumpers)");
-    io.quantity("mass", s.mass, "t", "wall mass for m_eff in the impact law");
+    io.quantity("mass",
+                s.mass,
+                "t",
+                "wall mass for m_eff in the impact law (and the SDOF mass of a flexible wall)");
+    io.flag("flexible",
+            s.flexible,
+            "false: rigid wall moving with the ground; true: SDOF wall (mass, stiffness, "
+            "damping_ratio) attached to the ground");
+    io.quantity("stiffness",
+                s.stiffness,
+                "MN/m",
+                "flexible wall: stiffness to the ground at the slab level",
+                io::Range::positive());
+    io.quantity("damping_ratio",
+                s.damping_ratio,
+                "%",
+                "flexible wall: damping ratio of the SDOF (c = 2 zeta sqrt(k m))",
+                io::Range::at_least(0.0).and_less(1.0));
   }
 
   struct WallsScene

@@ -16,6 +16,7 @@
 #include "lumped/isolators/bilinear_isolator.h"
 #include "lumped/isolators/bouc_wen_isolator.h"
 #include "lumped/isolators/friction_pendulum_isolator.h"
+#include "lumped/structure/pounding_model.h"
 #include "lumped/structure/shear_building.h"
 #include "tests/support/files.h"
 #include "tests/support/scene_errors.h"
@@ -292,6 +293,27 @@ TEST(LumpedScene, OneGravityForSceneAndReferenceBuilding)
               0.1 * 9.80665 * 1530e3,
               exact_tolerance * 1500e3);
   EXPECT_EQ(kimp::io::standard_gravity, kimp::lumped::standard_gravity);
+}
+
+TEST(LumpedScene, FlexibleWallsAreSdofBlocks)
+{
+  const LumpedScene scene =
+    load("walls:\n  left:\n    flexible: true\n    stiffness: \"800 MN/m\"\n"
+         "    damping_ratio: \"3 %\"\n    mass: \"400 t\"\n");
+  const auto pounding = make_pounding_scene(scene);
+  ASSERT_TRUE(pounding.left_wall && pounding.right_wall);
+  EXPECT_TRUE(pounding.left_wall->flexible);
+  EXPECT_NEAR(pounding.left_wall->stiffness, 800e6, exact_tolerance * 800e6);
+  EXPECT_NEAR(pounding.left_wall->damping_ratio, 0.03, exact_tolerance);
+  EXPECT_FALSE(pounding.right_wall->flexible);
+  const kimp::lumped::PoundingModel model(pounding);
+  ASSERT_EQ(model.n_dofs(), 6u);
+  EXPECT_NEAR(model.masses()[5], 400e3, exact_tolerance * 400e3);
+  EXPECT_EQ(model.contacts()[0].left_dof, 5);
+  EXPECT_EQ(model.contacts()[1].right_dof, -1);
+  EXPECT_NE(error_of("walls:\n  left:\n    flexible: true\n    stiffness: \"0 MN/m\"\n")
+              .find("scene.yaml:4: walls.left.stiffness = 0 MN/m"),
+            std::string::npos);
 }
 
 TEST(LumpedScene, FrictionPendulumAndBoucWenIsolators)
