@@ -28,6 +28,51 @@ namespace kimp::app
       return std::chrono::duration<double>(Clock::now() - start).count();
     }
 
+    /// "<building> isolation level" for DOF 0 of an isolated main building, the wall's name for
+    /// a flexible moat wall, else "<building> floor j" (floors above the ground numbered from 1).
+    std::vector<std::string> dof_labels(const lumped::PoundingModel &model)
+    {
+      std::vector<std::string> labels(model.n_dofs());
+      for (std::size_t b = 0; b < model.buildings().size(); ++b)
+      {
+        const lumped::BuildingBlock &block    = model.buildings()[b];
+        const bool                   isolated = b == 0 && model.isolator() != nullptr;
+        // A flexible moat wall is a block of one DOF named after the wall ("left_wall").
+        const bool wall =
+          block.name.size() > 5 && block.name.compare(block.name.size() - 5, 5, "_wall") == 0;
+        if (wall && block.n_dofs == 1)
+        {
+          labels[static_cast<std::size_t>(block.first_dof)] = block.name;
+          continue;
+        }
+        for (int i = 0; i < block.n_dofs; ++i)
+          labels[static_cast<std::size_t>(block.first_dof + i)] =
+            block.name + (isolated && i == 0 ? std::string(" isolation level") :
+                                               " floor " + std::to_string(isolated ? i : i + 1));
+      }
+      return labels;
+    }
+
+    /// The storey below a floor takes its number: "building floor 2" -> "building storey 2".
+    std::string storey_label(const std::string &upper_dof_label)
+    {
+      const std::size_t at = upper_dof_label.rfind(" floor ");
+      return at == std::string::npos ?
+               upper_dof_label + " storey" :
+               upper_dof_label.substr(0, at) + " storey " + upper_dof_label.substr(at + 7);
+    }
+
+    /// Column labels of a history quantity: a string dataset `labels` and the same list,
+    /// comma-separated, as attribute `labels`.
+    void write_labels(ResultsGroup &&g, const std::vector<std::string> &labels)
+    {
+      g.write("labels", labels);
+      std::string list;
+      for (const std::string &l : labels)
+        list += (list.empty() ? "" : ",") + l;
+      g.set_attribute("labels", list);
+    }
+
     std::vector<std::int64_t> history_steps(const lumped::Response &r)
     {
       std::vector<std::int64_t> steps;
@@ -44,26 +89,36 @@ namespace kimp::app
       g.write("interstorey_drift", r.peak_interstorey_drift, "m");
     }
 
-    void write_history(ResultsGroup &&g, const lumped::Response &r)
+    void write_history(ResultsGroup &&g, const LumpedCaseResult &result)
     {
+      const lumped::Response        &r = result.response;
       const lumped::ResponseHistory &h = r.history;
       const std::size_t              n = h.time.size();
       if (n == 0)
         return;
       struct Column
       {
-        const char                *name;
-        const std::vector<double> *values;
-        const char                *units;
+        const char                     *name;
+        const std::vector<double>      *values;
+        const char                     *units;
+        const std::vector<std::string> *labels;
       };
-      const std::vector<Column>   columns = {{"displacement", &h.displacement, "m"},
-                                             {"absolute_acceleration",
-                                              &h.absolute_acceleration,
-                                              "m/s^2"},
-                                             {"interstorey_drift", &h.interstorey_drift, "m"},
-                                             {"contact_force", &h.contact_force, "N"},
-                                             {"energy_input", &h.energy_input, "J"},
-                                             {"energy_error", &h.energy_error, "1"}};
+      std::vector<std::string> contact_labels;
+      for (const std::string &name : result.contact_names)
+        contact_labels.push_back("contact " + name);
+      const std::vector<double> no_isolator;
+      std::vector<Column>       columns = {
+              {"displacement", &h.displacement, "m", &result.dof_labels},
+              {"absolute_acceleration", &h.absolute_acceleration, "m/s^2", &result.dof_labels},
+              {"interstorey_drift", &h.interstorey_drift, "m", &result.storey_labels},
+              {"contact_force", &h.contact_force, "N", &contact_labels},
+              {"energy_input", &h.energy_input, "J", nullptr},
+              {"energy_error", &h.energy_error, "1", nullptr}};
+      if (!result.isolator.empty())
+      {
+        columns.push_back({"isolator_force", &h.isolator_force, "N", nullptr});
+        columns.push_back({"hysteretic_energy", &h.hysteretic_energy, "J", nullptr});
+      }
       std::vector<SeriesSpec>     specs;
       std::vector<const Column *> used;
       for (const Column &c : columns)
@@ -84,6 +139,9 @@ namespace kimp::app
         set.append(steps[i], h.time[i], row);
       }
       set.flush();
+      for (const Column *column : used)
+        if (column->labels && column->labels->size() == column->values->size() / n)
+          write_labels(g.group(column->name), *column->labels);
     }
 
     void write_case(ResultsGroup &lumped_group, const LumpedCaseResult &c)
@@ -114,7 +172,14 @@ namespace kimp::app
       g.write_scalar("pga", c.pga, "m/s^2");
       write_peaks(g.group("peaks"), r);
       g.write_scalar("max_interstorey_drift", r.max_interstorey_drift(), "m");
-      write_history(g.group("history"), r);
+      write_history(g.group("history"), c);
+      if (!c.isolator.empty())
+      {
+        ResultsGroup ig = g.group("isolator");
+        ig.write_text("kind", c.isolator);
+        ig.write_scalar("peak_force", r.peak_isolator_force, "N");
+        ig.write_scalar("dissipated_energy", r.energy.hysteretic, "J");
+      }
       for (const lumped::ContactResult &contact : r.contacts)
       {
         ResultsGroup        cg = g.group("contacts/" + contact.name);
@@ -130,6 +195,17 @@ namespace kimp::app
         cg.write_scalar("peak_force", contact.peak_force, "N");
         cg.write_scalar("permanent_indentation", contact.permanent_indentation, "m");
         cg.write_scalar("dissipated_energy", contact.dissipated_energy, "J");
+        // Every step with a non-zero force: the impact pulses at full rate.
+        std::vector<std::int64_t> pulse_steps;
+        pulse_steps.reserve(contact.pulse_time.size());
+        for (const double t : contact.pulse_time)
+          pulse_steps.push_back(static_cast<std::int64_t>(std::llround(t / r.dt)));
+        cg.write_time_series("force_full_rate",
+                             pulse_steps,
+                             contact.pulse_time,
+                             contact.pulse_force,
+                             1,
+                             "N");
       }
       const lumped::EnergyBalance &e  = r.energy;
       ResultsGroup                 eg = g.group("energy");
@@ -176,7 +252,11 @@ namespace kimp::app
       j["peaks"]["interstorey_drift"]     = r.peak_interstorey_drift;
       j["max_interstorey_drift"]          = r.max_interstorey_drift();
       j["n_impacts"]                      = r.n_impacts();
-      j["contacts"]                       = nlohmann::json::array();
+      if (!c.isolator.empty())
+        j["isolator"] = {{"kind", c.isolator},
+                         {"peak_force", r.peak_isolator_force},
+                         {"dissipated_energy", r.energy.hysteretic}};
+      j["contacts"] = nlohmann::json::array();
       for (const lumped::ContactResult &contact : r.contacts)
       {
         nlohmann::json cj;
@@ -359,6 +439,12 @@ namespace kimp::app
         result.contact_names.push_back(c.name);
       for (const lumped::Storey &s : model.storeys())
         result.storey_upper_dofs.push_back(s.upper_dof);
+      result.dof_labels = dof_labels(model);
+      for (const lumped::Storey &s : model.storeys())
+        result.storey_labels.push_back(
+          storey_label(result.dof_labels[static_cast<std::size_t>(s.upper_dof)]));
+      if (model.isolator())
+        result.isolator = model.isolator()->name();
 
       const double         factor = scene.ground_motion.scale / base_scale;
       lumped::GroundMotion used   = factor != 1.0 ? lumped::scaled(motion, factor) : motion;

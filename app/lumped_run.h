@@ -35,6 +35,9 @@ namespace kimp::app
     std::vector<BuildingModes>      buildings;
     std::vector<std::string>        contact_names;
     std::vector<int>                storey_upper_dofs;     ///< global DOF above each storey
+    std::vector<std::string>        dof_labels;            ///< "building floor 1", ... per global DOF
+    std::vector<std::string>        storey_labels;         ///< "building storey 1", ... per storey
+    std::string                     isolator;              ///< isolator name ("" without isolator)
     double                          dt_critical = 0.0;     ///< s (cdm), 0 for newmark
     std::string                     governing;             ///< bound governing dt_critical
     double                          wall_time       = 0.0; ///< s

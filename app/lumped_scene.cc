@@ -13,12 +13,17 @@
 #include "io/units.h"
 #include "lumped/excitation/ground_motion.h"
 #include "lumped/isolators/bilinear_isolator.h"
+#include "lumped/isolators/bouc_wen_isolator.h"
+#include "lumped/isolators/friction_pendulum_isolator.h"
 #include "lumped/isolators/linear_isolator.h"
 #include "lumped/laws/bumper_law.h"
 
 namespace kimp::app
 {
   using namespace kimp::io;
+  // The engines and io each name g (lumped includes nothing of kimp): one value.
+  static_assert(io::standard_gravity == lumped::standard_gravity,
+                "io and lumped must use the same standard gravity");
   namespace
   {
     bool law_has_fixed_exponent(const std::string &law)
@@ -327,7 +332,7 @@ namespace kimp::app
     {
       const auto           scope = ctx.section("isolator");
       const IsolatorScene &iso   = scene.isolator;
-      if (iso.kind == IsolatorKind::bilinear)
+      if (iso.kind == IsolatorKind::bilinear || iso.kind == IsolatorKind::bouc_wen)
       {
         if (ctx.check(iso.K1 > 0.0, "K1", format_quantity(iso.K1, "MN/m"), "must be > 0"))
           ctx.check(iso.K2 >= 0.0 && iso.K2 < iso.K1,
@@ -342,7 +347,24 @@ namespace kimp::app
                     percent(iso.Q_ratio),
                     "must be in (0 %, 100 %)");
       }
-      else
+      if (iso.kind == IsolatorKind::bouc_wen)
+      {
+        ctx.check(iso.bw_beta >= std::abs(iso.bw_gamma),
+                  "beta",
+                  format_quantity(iso.bw_beta, ""),
+                  "must be >= |gamma| = " + format_quantity(std::abs(iso.bw_gamma), "") +
+                    " (non-negative dissipation)");
+        ctx.check(iso.bw_beta + iso.bw_gamma > 0.0,
+                  "gamma",
+                  format_quantity(iso.bw_gamma, ""),
+                  "must give beta + gamma > 0");
+      }
+      if (iso.kind == IsolatorKind::friction_pendulum)
+        ctx.check(iso.mu_fast >= iso.mu_slow,
+                  "mu_fast",
+                  format_quantity(iso.mu_fast, ""),
+                  "must be >= mu_slow = " + format_quantity(iso.mu_slow, ""));
+      if (iso.kind == IsolatorKind::linear)
         ctx.check(iso.k > 0.0, "k", format_quantity(iso.k, "MN/m"), "must be > 0");
       ctx.check(iso.damping_ratio >= scene.building.damping_ratio && iso.damping_ratio < 1.0,
                 "damping_ratio",
@@ -560,14 +582,40 @@ namespace kimp::app
       building.damping_ratio           = b.damping_ratio;
       building.isolation_damping_ratio = scene.isolator.damping_ratio;
       const IsolatorScene &iso         = scene.isolator;
-      if (iso.kind == IsolatorKind::bilinear)
+      const double         weight      = lumped::standard_gravity * building.total_mass();
+      // (Q_ratio·g)·m, the association of reference_isolated_building(): bitwise the same Q.
+      const double Q =
+        iso.Q ? *iso.Q : iso.Q_ratio * lumped::standard_gravity * building.total_mass();
+      switch (iso.kind)
       {
-        const double Q =
-          iso.Q ? *iso.Q : iso.Q_ratio * lumped::standard_gravity * building.total_mass();
-        building.isolator = std::make_shared<lumped::BilinearIsolator>(iso.K1, iso.K2, Q);
+        case IsolatorKind::bilinear:
+          building.isolator = std::make_shared<lumped::BilinearIsolator>(iso.K1, iso.K2, Q);
+          break;
+        case IsolatorKind::linear:
+          building.isolator = std::make_shared<lumped::LinearIsolator>(iso.k);
+          break;
+        case IsolatorKind::friction_pendulum:
+          building.isolator =
+            std::make_shared<lumped::FrictionPendulumIsolator>(iso.weight.value_or(weight),
+                                                               iso.radius,
+                                                               iso.mu_slow,
+                                                               iso.mu_fast,
+                                                               iso.rate,
+                                                               iso.k_init);
+          break;
+        case IsolatorKind::bouc_wen:
+        {
+          const double alpha = iso.K2 / iso.K1;
+          building.isolator  = std::make_shared<lumped::BoucWenIsolator>(iso.K1,
+                                                                        alpha,
+                                                                        Q / (1.0 - alpha),
+                                                                        iso.bw_A,
+                                                                        iso.bw_beta,
+                                                                        iso.bw_gamma,
+                                                                        iso.bw_n);
+          break;
+        }
       }
-      else
-        building.isolator = std::make_shared<lumped::LinearIsolator>(iso.k);
     }
     else
     {
@@ -596,6 +644,9 @@ namespace kimp::app
         wall.bumper_thickness = bumper ? scene.impact.bumper.thickness : 0.0;
         wall.bumper_recessed  = bumper && scene.impact.bumper.recessed;
         wall.law              = law;
+        wall.flexible         = w.flexible;
+        wall.stiffness        = w.stiffness;
+        wall.damping_ratio    = w.damping_ratio;
         return wall;
       };
       if (scene.walls.left.present)

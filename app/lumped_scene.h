@@ -26,7 +26,9 @@ namespace kimp::app
   enum class IsolatorKind
   {
     linear,
-    bilinear
+    bilinear,
+    friction_pendulum,
+    bouc_wen
   };
 
   enum class IntegrationMethod
@@ -88,7 +90,8 @@ namespace kimp::app
                 io::Range::at_least(0.0).and_less(1.0));
   }
 
-  /// Isolation system: linear (k) or bilinear (K1, K2, Q), plus ζ_iso (docs/physics.md §2).
+  /// Isolation system: linear (k), bilinear (K1, K2, Q), friction pendulum (radius, friction) or
+  /// Bouc-Wen (K1, K2, Q and A, beta, gamma, n), plus ζ_iso (docs/physics.md §2, "Isolators").
   struct IsolatorScene
   {
     IsolatorKind          kind    = IsolatorKind::bilinear;
@@ -98,6 +101,18 @@ namespace kimp::app
     std::optional<double> Q;                    ///< characteristic strength, N (overrides Q_ratio)
     double                k             = 25e6; ///< linear isolator stiffness, N/m
     double                damping_ratio = 0.05; ///< ζ_iso
+    // friction pendulum
+    std::optional<double> weight;          ///< W on the bearings, N (null: g·Σm)
+    double                radius  = 2.236; ///< R, m (T = 2π√(R/g) ≈ 3 s)
+    double                mu_slow = 0.04;
+    double                mu_fast = 0.08;
+    double                rate    = 20.0; ///< a of μ(v), s/m
+    double                k_init  = 1e9;  ///< sticking stiffness, N/m
+    // Bouc-Wen
+    double bw_A     = 1.0;
+    double bw_beta  = 0.5;
+    double bw_gamma = 0.5;
+    double bw_n     = 2.0;
   };
 
   template <class Io>
@@ -105,25 +120,86 @@ namespace kimp::app
   {
     io.choice("kind",
               s.kind,
-              {{"bilinear", IsolatorKind::bilinear}, {"linear", IsolatorKind::linear}},
-              "bilinear hysteretic (K1, K2, Q) or linear (k)");
-    io.quantity("K1", s.K1, "MN/m", "bilinear: initial stiffness");
-    io.quantity("K2", s.K2, "MN/m", "bilinear: post-yield stiffness (< K1)");
-    io.quantity("Q_ratio", s.Q_ratio, "%", "bilinear: characteristic strength / total weight");
-    io.quantity("Q", s.Q, "kN", "bilinear: characteristic strength (overrides Q_ratio)");
+              {{"bilinear", IsolatorKind::bilinear},
+               {"linear", IsolatorKind::linear},
+               {"friction_pendulum", IsolatorKind::friction_pendulum},
+               {"bouc_wen", IsolatorKind::bouc_wen}},
+              "bilinear hysteretic (K1, K2, Q), linear (k), friction_pendulum (radius, mu_slow, "
+              "mu_fast, rate, k_init) or bouc_wen (K1, K2, Q, A, beta, gamma, n)");
+    io.quantity("K1", s.K1, "MN/m", "bilinear, bouc_wen: initial stiffness");
+    io.quantity("K2",
+                s.K2,
+                "MN/m",
+                "bilinear, bouc_wen: post-yield stiffness (< K1; post-yield ratio K2/K1)");
+    io.quantity("Q_ratio",
+                s.Q_ratio,
+                "%",
+                "bilinear, bouc_wen: characteristic strength / total weight (yield force "
+                "F_y = Q/(1 - K2/K1))");
+    io.quantity("Q", s.Q, "kN", "bilinear, bouc_wen: characteristic strength (overrides Q_ratio)");
     io.quantity("k", s.k, "MN/m", "linear: stiffness");
     io.quantity("damping_ratio",
                 s.damping_ratio,
                 "%",
-                "isolation damping zeta_iso; c_iso = 2(zeta_iso - zeta_sstr)sqrt(m_tot k)");
+                "isolation damping zeta_iso; c_iso = 2(zeta_iso - zeta_sstr)sqrt(m_tot k), k = "
+                "initial stiffness");
+    io.quantity("weight",
+                s.weight,
+                "kN",
+                "friction_pendulum: weight W on the bearings (null = g x total mass)",
+                io::Range::positive().because("or null"));
+    io.quantity("radius",
+                s.radius,
+                "m",
+                "friction_pendulum: effective radius R (pendulum period 2 pi sqrt(R/g))",
+                io::Range::positive());
+    io.quantity("mu_slow",
+                s.mu_slow,
+                "",
+                "friction_pendulum: friction coefficient at low sliding velocity",
+                io::Range::at_least(0.0).and_less(1.0));
+    io.quantity("mu_fast",
+                s.mu_fast,
+                "",
+                "friction_pendulum: friction coefficient at high sliding velocity (>= mu_slow)",
+                io::Range::at_least(0.0).and_less(1.0));
+    io.quantity("rate",
+                s.rate,
+                "s/m",
+                "friction_pendulum: a in mu(v) = mu_fast - (mu_fast - mu_slow) exp(-a |v|)",
+                io::Range::non_negative());
+    io.quantity("k_init",
+                s.k_init,
+                "MN/m",
+                "friction_pendulum: elastic stiffness before sliding (stick regularisation)",
+                io::Range::positive());
+    io.quantity("A",
+                s.bw_A,
+                "",
+                "bouc_wen: Bouc-Wen A (1: yield force F_y)",
+                io::Range::positive());
+    io.quantity("beta",
+                s.bw_beta,
+                "",
+                "bouc_wen: Bouc-Wen beta (>= |gamma|)",
+                io::Range::non_negative());
+    io.quantity("gamma", s.bw_gamma, "", "bouc_wen: Bouc-Wen gamma (beta + gamma > 0)");
+    io.quantity("n",
+                s.bw_n,
+                "",
+                "bouc_wen: exponent n, sharpness of yielding (large n: bilinear)",
+                io::Range::at_least(1.0));
   }
 
-  /// One moat wall at the isolation level (rigid, moving with the ground).
+  /// One moat wall at the isolation level: rigid (moving with the ground) or a SDOF oscillator.
   struct WallScene
   {
-    bool   present = true;
-    double gap     = 0.15;
-    double mass    = 500e3;
+    bool   present       = true;
+    double gap           = 0.15;
+    double mass          = 500e3;
+    bool   flexible      = false;
+    double stiffness     = 1.5e9; ///< SDOF wall, N/m (thesis k_w = 1500 kN/mm)
+    double damping_ratio = 0.05;  ///< SDOF wall ζ
   };
 
   template <class Io>
@@ -131,7 +207,24 @@ namespace kimp::app
   {
     io.flag("present", s.present, "is there a wall on this side");
     io.quantity("gap", s.gap, "cm", "distance isolation level - wall face (before bumpers)");
-    io.quantity("mass", s.mass, "t", "wall mass for m_eff in the impact law");
+    io.quantity("mass",
+                s.mass,
+                "t",
+                "wall mass for m_eff in the impact law (and the SDOF mass of a flexible wall)");
+    io.flag("flexible",
+            s.flexible,
+            "false: rigid wall moving with the ground; true: SDOF wall (mass, stiffness, "
+            "damping_ratio) attached to the ground");
+    io.quantity("stiffness",
+                s.stiffness,
+                "MN/m",
+                "flexible wall: stiffness to the ground at the slab level",
+                io::Range::positive());
+    io.quantity("damping_ratio",
+                s.damping_ratio,
+                "%",
+                "flexible wall: damping ratio of the SDOF (c = 2 zeta sqrt(k m))",
+                io::Range::at_least(0.0).and_less(1.0));
   }
 
   struct WallsScene

@@ -9,7 +9,9 @@
 
 namespace kimp::lumped
 {
-  /// Standard gravity, m/s² (the "g" of PEER records and of PGA values quoted in g).
+  /// Standard gravity, m/s² (CGPM 1901): kimp's one value of g, for the "g" of PEER records and
+  /// of PGA values quoted in g and for weights W = g·m (Q = Q_ratio·W of the isolators); equal
+  /// to io::standard_gravity (checked in app/). docs/physics.md §3 "Gravity".
   inline constexpr double standard_gravity = 9.80665;
 
   /**

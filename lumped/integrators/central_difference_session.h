@@ -237,6 +237,7 @@ namespace kimp::lumped
         const double *const ub = ub_ + static_cast<std::size_t>(k) * cs_;
         const double f = iso_->set_trial(u0, law_rate(scheme_, u0, ub[cs_], ub[0], inv_dt_)).force;
         iso_->commit();
+        s_.rec.isolator_force(f);
         return f;
       }
 
@@ -298,7 +299,7 @@ namespace kimp::lumped
         cf_[c] = force;
         f_[L] += force;
         f_[R] -= force;
-        s_.rec.contact_force(c, force);
+        s_.rec.contact_force(c, force, t);
       }
 
     private:

@@ -176,7 +176,10 @@ namespace kimp::lumped
       commit_nonlinear(const double t, const std::vector<double> &force, const Eigen::VectorXd &u)
       {
         if (iso_)
+        {
           iso_->commit();
+          rec_.isolator_force(iso_->committed_force());
+        }
         for (std::size_t c = 0; c < laws_.size(); ++c)
         {
           const ContactPair &cp = model_.contacts()[c];
@@ -194,7 +197,7 @@ namespace kimp::lumped
           w_contact_ += 0.5 * (f_prev_[c] + force[c]) * (delta - delta_prev_[c]);
           f_prev_[c]     = force[c];
           delta_prev_[c] = delta;
-          rec_.contact_force(c, force[c]);
+          rec_.contact_force(c, force[c], t);
         }
       }
 

@@ -24,6 +24,10 @@ namespace kimp::lumped
     std::vector<ImpactEvent> impacts;
     double                   permanent_indentation = 0.0; ///< m, at the end (law's value)
     double                   dissipated_energy     = 0.0; ///< J, the law's own bookkeeping
+    /// The contact force at full rate: every step at which it is non-zero (the impact pulses,
+    /// unlike the decimated history which can miss their peaks), s and N.
+    std::vector<double> pulse_time;
+    std::vector<double> pulse_force;
   };
 
   /**
@@ -61,6 +65,8 @@ namespace kimp::lumped
     std::vector<double> absolute_acceleration; ///< ü + ü_g, m/s², [sample][dof]
     std::vector<double> interstorey_drift;     ///< u_upper − u_lower, m, [sample][storey]
     std::vector<double> contact_force;         ///< N, [sample][contact]
+    std::vector<double> isolator_force;        ///< f_iso at the sample, N, [sample] (0: none)
+    std::vector<double> hysteretic_energy;     ///< isolator's E_hysteretic, J, [sample]
     std::vector<double> energy_input;          ///< E_0 + W_in, J, [sample]
     std::vector<double> energy_error;          ///< residual / max energy supplied so far, [sample]
   };
@@ -76,6 +82,7 @@ namespace kimp::lumped
     std::vector<double>        peak_displacement;          ///< max |u_i|, m, per DOF
     std::vector<double>        peak_absolute_acceleration; ///< max |ü_i + ü_g|, m/s², per DOF
     std::vector<double>        peak_interstorey_drift;     ///< m, per storey
+    double                     peak_isolator_force = 0.0;  ///< max |f_iso|, N (0: no isolator)
     std::vector<ContactResult> contacts;
     EnergyBalance              energy;
     ResponseHistory            history;

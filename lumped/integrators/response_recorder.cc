@@ -27,8 +27,9 @@ namespace kimp::lumped
       r_.contacts.push_back(std::move(cr));
     }
     peak_force_.assign(r_.contacts.size(), 0.0);
-    max_supplied_ = 0.0;
-    max_residual_ = 0.0;
+    max_supplied_   = 0.0;
+    max_residual_   = 0.0;
+    isolator_force_ = 0.0;
     if (every > 0)
     {
       const std::size_t n_samples = static_cast<std::size_t>(n_steps / every + 1);
@@ -39,6 +40,8 @@ namespace kimp::lumped
       h.absolute_acceleration.reserve(n_samples * r_.n_dofs);
       h.interstorey_drift.reserve(n_samples * r_.n_storeys);
       h.contact_force.reserve(n_samples * r_.contacts.size());
+      h.isolator_force.reserve(n_samples);
+      h.hysteretic_energy.reserve(n_samples);
       h.energy_input.reserve(n_samples);
       h.energy_error.reserve(n_samples);
     }

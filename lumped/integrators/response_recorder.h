@@ -44,10 +44,23 @@ namespace kimp::lumped
       r_.contacts[c].impacts.push_back({t, rate});
     }
 
-    /// Force of contact `c` at a step, N (its maximum is the peak force).
-    void contact_force(const std::size_t c, const double force)
+    /// Force of contact `c` at a step at time `t` (s), N: its maximum is the peak force, and
+    /// non-zero forces are kept at full rate (ContactResult::pulse_time/pulse_force).
+    void contact_force(const std::size_t c, const double force, const double t)
     {
       peak_force_[c] = std::max(peak_force_[c], force);
+      if (force != 0.0)
+      {
+        r_.contacts[c].pulse_time.push_back(t);
+        r_.contacts[c].pulse_force.push_back(force);
+      }
+    }
+
+    /// Isolator force at a step, N (committed): its peak magnitude and the value sampled next.
+    void isolator_force(const double force)
+    {
+      isolator_force_        = force;
+      r_.peak_isolator_force = std::max(r_.peak_isolator_force, std::abs(force));
     }
 
     /// The energy supplied so far, E_0 + W_in (J), at a step; its maximum scales the errors.
@@ -65,7 +78,8 @@ namespace kimp::lumped
 
     /**
      * One history row at `t` (s): u(i) and a(i) for every DOF (m, m/s²), drift(s) for every
-     * storey (m), the contact forces (N), E_0 + W_in (J) and the relative energy error.
+     * storey (m), the contact forces (N), E_0 + W_in (J) and the relative energy error; also the
+     * last isolator_force() (N) and the hysteretic energy of the last check_energy() (J).
      */
     template <class Displacement, class Acceleration, class Drift>
     void sample(const double               t,
@@ -85,6 +99,8 @@ namespace kimp::lumped
       for (std::size_t s = 0; s < r_.n_storeys; ++s)
         h.interstorey_drift.push_back(drift(s));
       h.contact_force.insert(h.contact_force.end(), contact_forces.begin(), contact_forces.end());
+      h.isolator_force.push_back(isolator_force_);
+      h.hysteretic_energy.push_back(r_.energy.hysteretic);
       h.energy_input.push_back(energy_input);
       h.energy_error.push_back(energy_error);
     }
@@ -96,7 +112,8 @@ namespace kimp::lumped
   private:
     Response            r_;
     std::vector<double> peak_force_;
-    double              max_supplied_ = 0.0;
-    double              max_residual_ = 0.0;
+    double              max_supplied_   = 0.0;
+    double              max_residual_   = 0.0;
+    double              isolator_force_ = 0.0;
   };
 } // namespace kimp::lumped

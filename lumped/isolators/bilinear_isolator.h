@@ -46,7 +46,7 @@ namespace kimp::lumped
     /// Yield displacement u_y = Q/(K1 − K2), m.
     double yield_displacement() const { return Q_ / (K1_ - K2_); }
     /// Force at the committed state, N.
-    double committed_force() const { return K2_ * committed_.u + committed_.f_ep; }
+    double committed_force() const override { return K2_ * committed_.u + committed_.f_ep; }
 
     std::string               name() const override { return "bilinear"; }
     std::unique_ptr<Isolator> clone() const override

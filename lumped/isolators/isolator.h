@@ -46,6 +46,8 @@ namespace kimp::lumped
     virtual double stored_energy() const = 0;
     /// Hysteretic energy dissipated up to the last commit, J (>= 0).
     virtual double dissipated_energy() const = 0;
+    /// Restoring force at the committed state, N (the force of the last committed trial).
+    virtual double committed_force() const = 0;
 
     virtual std::string               name() const  = 0;
     virtual std::unique_ptr<Isolator> clone() const = 0;

@@ -37,6 +37,7 @@ namespace kimp::lumped
     double viscous_coefficient() const override { return c_; }
     double stored_energy() const override { return 0.5 * k_ * committed_u_ * committed_u_; }
     double dissipated_energy() const override { return 0.0; }
+    double committed_force() const override { return k_ * committed_u_; }
 
     std::string               name() const override { return "linear"; }
     std::unique_ptr<Isolator> clone() const override

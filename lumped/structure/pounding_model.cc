@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 namespace kimp::lumped
 {
@@ -40,6 +42,18 @@ namespace kimp::lumped
         msg << where << ".mass = " << wall.mass << " kg (must be > 0)";
         throw std::invalid_argument(msg.str());
       }
+      if (wall.flexible && !(std::isfinite(wall.stiffness) && wall.stiffness > 0.0))
+      {
+        std::ostringstream msg;
+        msg << where << ".stiffness = " << wall.stiffness << " N/m (must be > 0)";
+        throw std::invalid_argument(msg.str());
+      }
+      if (wall.flexible && !(wall.damping_ratio >= 0.0 && wall.damping_ratio < 1.0))
+      {
+        std::ostringstream msg;
+        msg << where << ".damping_ratio = " << wall.damping_ratio << " (must be in [0, 1))";
+        throw std::invalid_argument(msg.str());
+      }
       if (!(wall.bumper_thickness >= 0.0 && wall.bumper_thickness < wall.gap))
       {
         std::ostringstream msg;
@@ -54,7 +68,8 @@ namespace kimp::lumped
                       TridiagonalMatrix          &k,
                       TridiagonalMatrix          &c,
                       std::vector<Storey>        &storeys,
-                      std::vector<BuildingBlock> &blocks)
+                      std::vector<BuildingBlock> &blocks,
+                      const bool                  with_storeys = true)
     {
       const TridiagonalMatrix kb    = stiffness_matrix(building, false);
       BuildingBlock           block = {building.name,
@@ -75,7 +90,7 @@ namespace kimp::lumped
         }
       }
       const int first_storey = building.is_isolated() ? 1 : 0;
-      for (int i = first_storey; i < block.n_dofs; ++i)
+      for (int i = first_storey; with_storeys && i < block.n_dofs; ++i)
         storeys.push_back(
           {i == 0 ? -1 : block.first_dof + i - 1, block.first_dof + i, building.name});
       blocks.push_back(std::move(block));
@@ -98,6 +113,9 @@ namespace kimp::lumped
     append_block(scene.building, masses_, stiffness_, damping_, storeys_, buildings_);
     isolator_ = scene.building.isolator;
 
+    // Contacts with a flexible wall, patched to the wall's DOF once it exists (after the
+    // neighbours, so that their DOFs do not move): (contact index, wall, right side).
+    std::vector<std::tuple<std::size_t, const MoatWall *, bool>> flexible_contacts;
     const auto add_wall = [&](const MoatWall &wall, const bool right, const std::string &where)
     {
       check_wall(wall, where);
@@ -113,6 +131,8 @@ namespace kimp::lumped
         c.gap            = wall.clear_gap();
         c.effective_mass = effective_mass(masses_[static_cast<std::size_t>(level)], wall.mass);
         c.law            = make_law(wall.law, c.effective_mass, where);
+        if (wall.flexible)
+          flexible_contacts.emplace_back(contacts_.size(), &wall, right);
         contacts_.push_back(std::move(c));
       }
     };
@@ -158,6 +178,27 @@ namespace kimp::lumped
       add_neighbour(*scene.left_neighbour, false, "left_neighbour");
     if (scene.right_neighbour)
       add_neighbour(*scene.right_neighbour, true, "right_neighbour");
+
+    // Flexible walls: one fixed-base single-storey block each (stiffness-proportional damping
+    // gives exactly ζ for one mode), no storey (its deflection is not an interstorey drift).
+    for (const auto &[wall, where] :
+         {std::pair<const std::optional<MoatWall> *, const char *>{&scene.left_wall, "left_wall"},
+          {&scene.right_wall, "right_wall"}})
+    {
+      if (!*wall || !(*wall)->flexible)
+        continue;
+      ShearBuilding sdof;
+      sdof.name                    = where;
+      sdof.floor_masses            = {(*wall)->mass};
+      sdof.storey_stiffnesses      = {(*wall)->stiffness};
+      sdof.damping_ratio           = (*wall)->damping_ratio;
+      sdof.isolation_damping_ratio = (*wall)->damping_ratio;
+      const int dof                = static_cast<int>(masses_.size());
+      append_block(sdof, masses_, stiffness_, damping_, storeys_, buildings_, false);
+      for (const auto &[index, w, right] : flexible_contacts)
+        if (w == &**wall)
+          (right ? contacts_[index].right_dof : contacts_[index].left_dof) = dof;
+    }
     check();
   }
 

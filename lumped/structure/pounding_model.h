@@ -26,7 +26,10 @@ namespace kimp::lumped
   ForceLawFactory force_law_factory(ForceLawSpec spec);
 
   /**
-   * Moat wall on one side of the isolation level: rigid, moving with the ground.
+   * Moat wall on one side of the isolation level: rigid, moving with the ground, or (`flexible`)
+   * a single-DOF oscillator of mass `mass`, stiffness `stiffness` and damping ratio
+   * `damping_ratio` attached to the ground (docs/physics.md §2 "Flexible moat wall"); the contact
+   * then acts between the isolation level and the wall's DOF.
    *
    * | field            | unit | admissible     | meaning                                      |
    * |------------------|------|----------------|----------------------------------------------|
@@ -35,6 +38,9 @@ namespace kimp::lumped
    * | mass             | kg   | > 0            | wall mass for m_eff in the law (thesis 500 t)|
    * | bumper_thickness | m    | [0, gap)       | rubber bumper thickness t (law 7)            |
    * | bumper_recessed  | -    |                | true: bumpers sit in a recess, gap unchanged |
+   * | flexible         | -    |                | false: rigid; true: SDOF wall                |
+   * | stiffness        | N/m  | > 0            | SDOF wall: stiffness to the ground           |
+   * | damping_ratio    | -    | [0, 1)         | SDOF wall: ζ (c = 2ζ·sqrt(k·m))              |
    */
   struct MoatWall
   {
@@ -43,6 +49,9 @@ namespace kimp::lumped
     double          bumper_thickness = 0.0;
     bool            bumper_recessed  = false;
     ForceLawFactory law;
+    bool            flexible      = false;
+    double          stiffness     = 1.5e9;
+    double          damping_ratio = 0.05;
 
     /// Clear gap before contact, m: gap − t unless recessed.
     double clear_gap() const { return bumper_recessed ? gap : gap - bumper_thickness; }
@@ -59,7 +68,9 @@ namespace kimp::lumped
 
   /**
    * A pounding configuration (plain data). The main building is usually isolated; walls act at
-   * its DOF 0 (and at DOF 1 too with `basement`, the wall reaching floor 1, same gap).
+   * its DOF 0 (and at DOF 1 too with `basement`, the wall reaching floor 1, same gap). DOFs:
+   * the main building, then the neighbours, then one DOF per flexible wall (left first), each a
+   * block of its own named after the wall ("left_wall") without a storey.
    */
   struct PoundingScene
   {

@@ -73,7 +73,7 @@ namespace kimp::lumped
   /**
    * Thesis Table 4.2 isolated building: isolation level 320 t, floors 320 t, top floor 250 t,
    * storeys 600 MN/m, ζ_sstr 2 %, ζ_iso 5 %, bilinear isolator K1 = 200 MN/m, K2 = 25 MN/m,
-   * Q = 0.1·W_tot (W_tot = g·Σm incl. the isolation level).
+   * Q = 0.1·W_tot (W_tot = g·Σm incl. the isolation level, g = standard_gravity).
    * @param[in] n_storeys floors above the isolation level (>= 1)
    */
   ShearBuilding reference_isolated_building(unsigned int n_storeys);

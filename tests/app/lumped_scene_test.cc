@@ -14,6 +14,9 @@
 #include "app/lumped_scene.h"
 #include "io/units.h"
 #include "lumped/isolators/bilinear_isolator.h"
+#include "lumped/isolators/bouc_wen_isolator.h"
+#include "lumped/isolators/friction_pendulum_isolator.h"
+#include "lumped/structure/pounding_model.h"
 #include "lumped/structure/shear_building.h"
 #include "tests/support/files.h"
 #include "tests/support/scene_errors.h"
@@ -201,6 +204,13 @@ TEST(LumpedScene, EveryValidationRuleNamesFileLineAndKey)
     {"isolator:\n  Q_ratio: \"0 %\"\n", "scene.yaml:2: isolator.Q_ratio = 0 %"},
     {"isolator:\n  Q: \"-5 kN\"\n", "scene.yaml:2: isolator.Q = -5 kN"},
     {"isolator:\n  kind: linear\n  k: \"0 MN/m\"\n", "scene.yaml:3: isolator.k = 0 MN/m"},
+    {"isolator:\n  kind: friction_pendulum\n  mu_slow: 0.1\n  mu_fast: 0.05\n",
+     "scene.yaml:4: isolator.mu_fast = 0.05: must be >= mu_slow = 0.1"},
+    {"isolator:\n  kind: friction_pendulum\n  radius: \"0 m\"\n",
+     "scene.yaml:3: isolator.radius = 0 m"},
+    {"isolator:\n  kind: bouc_wen\n  beta: 0.2\n  gamma: 0.5\n",
+     "scene.yaml:3: isolator.beta = 0.2: must be >= |gamma| = 0.5"},
+    {"isolator:\n  kind: bouc_wen\n  n: 0.5\n", "scene.yaml:3: isolator.n = 0.5"},
     {"isolator:\n  damping_ratio: \"1 %\"\n",
      "scene.yaml:2: isolator.damping_ratio = 1 %: must be >= building.damping_ratio"},
     {"walls:\n  left:\n    gap: \"-2 cm\"\n", "scene.yaml:3: walls.left.gap = -2 cm"},
@@ -265,6 +275,78 @@ TEST(LumpedScene, EveryValidationRuleNamesFileLineAndKey)
       << rule.yaml << "\nexpected: " << rule.expected << "\ngot: " << message;
   }
   EXPECT_EQ(error_of("impact:\n  law: bumper\n"), "") << "the default bumper scene is valid";
+}
+
+TEST(LumpedScene, OneGravityForSceneAndReferenceBuilding)
+{
+  // Q = 0.1·g·W_tot with the same g in the scene path and the library's reference building
+  // (docs/physics.md §3 "Gravity"): 1500.42 kN for 1530 t.
+  const auto  scene_building = make_building(LumpedScene{});
+  const auto  reference      = kimp::lumped::reference_isolated_building(4);
+  const auto *a =
+    dynamic_cast<const kimp::lumped::BilinearIsolator *>(scene_building.isolator.get());
+  const auto *b = dynamic_cast<const kimp::lumped::BilinearIsolator *>(reference.isolator.get());
+  ASSERT_NE(a, nullptr);
+  ASSERT_NE(b, nullptr);
+  EXPECT_EQ(a->yield_force(), b->yield_force());
+  EXPECT_NEAR(a->yield_force() * (1.0 - 25.0 / 200.0),
+              0.1 * 9.80665 * 1530e3,
+              exact_tolerance * 1500e3);
+  EXPECT_EQ(kimp::io::standard_gravity, kimp::lumped::standard_gravity);
+}
+
+TEST(LumpedScene, FlexibleWallsAreSdofBlocks)
+{
+  const LumpedScene scene =
+    load("walls:\n  left:\n    flexible: true\n    stiffness: \"800 MN/m\"\n"
+         "    damping_ratio: \"3 %\"\n    mass: \"400 t\"\n");
+  const auto pounding = make_pounding_scene(scene);
+  ASSERT_TRUE(pounding.left_wall && pounding.right_wall);
+  EXPECT_TRUE(pounding.left_wall->flexible);
+  EXPECT_NEAR(pounding.left_wall->stiffness, 800e6, exact_tolerance * 800e6);
+  EXPECT_NEAR(pounding.left_wall->damping_ratio, 0.03, exact_tolerance);
+  EXPECT_FALSE(pounding.right_wall->flexible);
+  const kimp::lumped::PoundingModel model(pounding);
+  ASSERT_EQ(model.n_dofs(), 6u);
+  EXPECT_NEAR(model.masses()[5], 400e3, exact_tolerance * 400e3);
+  EXPECT_EQ(model.contacts()[0].left_dof, 5);
+  EXPECT_EQ(model.contacts()[1].right_dof, -1);
+  EXPECT_NE(error_of("walls:\n  left:\n    flexible: true\n    stiffness: \"0 MN/m\"\n")
+              .find("scene.yaml:4: walls.left.stiffness = 0 MN/m"),
+            std::string::npos);
+}
+
+TEST(LumpedScene, FrictionPendulumAndBoucWenIsolators)
+{
+  // Friction pendulum: W = g·Σm unless given; initial stiffness k_init + W/R.
+  const LumpedScene fp          = load("isolator:\n  kind: friction_pendulum\n  radius: \"2.5 m\"\n"
+                                       "  mu_slow: 0.03\n  mu_fast: 0.07\n  rate: \"25 s/m\"\n"
+                                       "  k_init: \"800 MN/m\"\n");
+  const auto        fp_building = make_building(fp);
+  const auto       *friction =
+    dynamic_cast<const kimp::lumped::FrictionPendulumIsolator *>(fp_building.isolator.get());
+  ASSERT_NE(friction, nullptr);
+  const double W = g * 1530e3;
+  EXPECT_NEAR(friction->pendulum_stiffness(), W / 2.5, exact_tolerance * W / 2.5);
+  EXPECT_NEAR(friction->initial_stiffness(), 800e6 + W / 2.5, exact_tolerance * 800e6);
+  EXPECT_NEAR(friction->friction_coefficient(0.0), 0.03, exact_tolerance);
+  EXPECT_NEAR(friction->friction_coefficient(1.0), 0.07 - 0.04 * std::exp(-25.0), 1e-12);
+  const LumpedScene fp_w  = load("isolator:\n  kind: friction_pendulum\n  weight: \"10 MN\"\n");
+  const auto       *given = dynamic_cast<const kimp::lumped::FrictionPendulumIsolator *>(
+    make_building(fp_w).isolator.get());
+  ASSERT_NE(given, nullptr);
+  EXPECT_NEAR(given->pendulum_stiffness(), 10e6 / fp_w.isolator.radius, 1e-6);
+
+  // Bouc-Wen: the bilinear keys K1, K2, Q give α = K2/K1 and F_y = Q/(1 − α).
+  const LumpedScene bw = load("isolator:\n  kind: bouc_wen\n  Q: \"1500 kN\"\n  n: 3\n");
+  const auto       *bouc_wen =
+    dynamic_cast<const kimp::lumped::BoucWenIsolator *>(make_building(bw).isolator.get());
+  ASSERT_NE(bouc_wen, nullptr);
+  EXPECT_NEAR(bouc_wen->characteristic_strength(), 1500e3, exact_tolerance * 1500e3);
+  EXPECT_NEAR(bouc_wen->yield_displacement(),
+              1500e3 / (1.0 - 0.125) / 200e6,
+              exact_tolerance * 1e-2);
+  EXPECT_NEAR(bouc_wen->initial_stiffness(), 200e6, exact_tolerance * 200e6);
 }
 
 TEST(LumpedScene, UnknownKeysAndBadUnitsAreRejected)

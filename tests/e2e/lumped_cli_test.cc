@@ -99,6 +99,74 @@ TEST(LumpedCli, WritesResultsFileSummaryAndPeaks)
   EXPECT_EQ(csv.rfind("case,dof,peak_displacement_m", 0), 0u) << csv;
 }
 
+TEST(LumpedCli, LabelledHistoriesIsolatorForceAndFullRatePulses)
+{
+  TempDir dir("e2e_lumped_outputs");
+  std::ofstream(dir.path() / "scene.yaml") << small_scene;
+  const fs::path out = dir.path() / "out";
+  const KimpRun  run =
+    run_kimp("lumped " + (dir.path() / "scene.yaml").string() + " -o " + out.string(), dir.path());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  Hdf5Reader h5(out / "lumped.h5");
+  ASSERT_TRUE(h5.ok());
+  const std::string g = "/lumped/mkv";
+  // Columns named, not bare indices.
+  EXPECT_EQ(h5.attribute(g + "/history/displacement", "labels"),
+            "building isolation level,building floor 1,building floor 2,building floor 3,"
+            "building floor 4");
+  EXPECT_EQ(h5.attribute(g + "/history/interstorey_drift", "labels"),
+            "building storey 1,building storey 2,building storey 3,building storey 4");
+  EXPECT_EQ(h5.attribute(g + "/history/contact_force", "labels"),
+            "contact left_wall,contact right_wall");
+  EXPECT_TRUE(h5.exists(g + "/history/displacement/labels"));
+
+  // Impact pulses at full rate (every step with a force): their maximum is the peak force, which
+  // the 0.02 s history sampling underestimates.
+  const std::vector<double> sampled     = h5.doubles(g + "/history/contact_force/value");
+  double                    sampled_max = 0.0;
+  for (const double f : sampled)
+    sampled_max = std::max(sampled_max, f);
+  double full_max = 0.0;
+  for (const char *wall : {"left_wall", "right_wall"})
+  {
+    const std::string         c     = g + "/contacts/" + wall;
+    const std::vector<double> force = h5.doubles(c + "/force_full_rate/value");
+    const std::vector<double> time  = h5.doubles(c + "/force_full_rate/time");
+    ASSERT_FALSE(force.empty()) << wall;
+    ASSERT_EQ(force.size(), time.size()) << wall;
+    EXPECT_EQ(h5.attribute(c + "/force_full_rate/value", "units"), "N");
+    double peak = 0.0;
+    for (const double f : force)
+      peak = std::max(peak, f);
+    EXPECT_EQ(peak, h5.doubles(c + "/peak_force").at(0)) << wall;
+    full_max = std::max(full_max, peak);
+    // Consecutive samples of one pulse are one step (1e-4 s) apart.
+    EXPECT_NEAR(time[1] - time[0], 1e-4, 1e-12) << wall;
+  }
+  EXPECT_GE(full_max, sampled_max);
+
+  // Isolator: force history, peak and hysteretic energy (the bilinear default, Q = 0.1 g·1530 t,
+  // K2 = 25 MN/m): |F| <= K2·|u| + Q, reached at the peak displacement while loading.
+  const double              Q       = 0.1 * 9.80665 * 1530e3;
+  const double              peak_u  = h5.doubles(g + "/peaks/displacement").at(0);
+  const double              peak_f  = h5.doubles(g + "/isolator/peak_force").at(0);
+  const std::vector<double> f_iso   = h5.doubles(g + "/history/isolator_force/value");
+  const std::vector<double> e_hyst  = h5.doubles(g + "/history/hysteretic_energy/value");
+  constexpr double          f_tol   = 1e-9; ///< relative, round-off of the bound
+  double                    max_iso = 0.0;
+  for (const double f : f_iso)
+    max_iso = std::max(max_iso, std::abs(f));
+  EXPECT_LE(max_iso, peak_f);
+  EXPECT_LE(peak_f, (25e6 * peak_u + Q) * (1.0 + f_tol));
+  EXPECT_GT(peak_f, 0.99 * (25e6 * peak_u + Q));
+  EXPECT_EQ(h5.text(g + "/isolator/kind"), "bilinear");
+  ASSERT_FALSE(e_hyst.empty());
+  EXPECT_EQ(e_hyst.back(), h5.doubles(g + "/energy/hysteretic").at(0));
+  EXPECT_EQ(e_hyst.back(), h5.doubles(g + "/isolator/dissipated_energy").at(0));
+  const nlohmann::json summary = read_json(out / "summary.json");
+  EXPECT_EQ(summary["cases"][0]["isolator"]["peak_force"].get<double>(), peak_f);
+}
+
 TEST(LumpedCli, FailedCaseIsRecordedAndExitsNonZero)
 {
   TempDir dir("e2e_lumped_fail");

@@ -1,0 +1,138 @@
+// Bouc-Wen isolator: parameter checks and the implicit update of the hysteretic variable z
+// (bracketed Newton on the backward-Euler residual).
+#include "lumped/isolators/bouc_wen_isolator.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace kimp::lumped
+{
+  namespace
+  {
+    void
+    require(const bool ok, const char *key, const double value, const char *unit, const char *rule)
+    {
+      if (!ok)
+      {
+        std::ostringstream msg;
+        msg << "isolator." << key << " = " << value << ' ' << unit << " (" << rule << ')';
+        throw std::invalid_argument(msg.str());
+      }
+    }
+
+    /// Newton iterations before giving up on quadratic convergence (bisection guarantees
+    /// progress, so this only bounds the work).
+    constexpr int max_iterations = 100;
+  } // namespace
+
+  BoucWenIsolator::BoucWenIsolator(const double K1,
+                                   const double alpha,
+                                   const double F_y,
+                                   const double A,
+                                   const double beta,
+                                   const double gamma,
+                                   const double n,
+                                   const double c)
+    : K1_(K1)
+    , alpha_(alpha)
+    , A_(A)
+    , beta_(beta)
+    , gamma_(gamma)
+    , n_(n)
+    , c_(c)
+  {
+    require(std::isfinite(K1) && K1 > 0.0, "K1", K1, "N/m", "must be > 0 and finite");
+    require(std::isfinite(alpha) && alpha >= 0.0 && alpha < 1.0,
+            "alpha",
+            alpha,
+            "",
+            "post-yield ratio K2/K1, must be in [0, 1)");
+    require(std::isfinite(F_y) && F_y > 0.0, "F_y", F_y, "N", "yield force, must be > 0");
+    require(std::isfinite(A) && A > 0.0, "bw_A", A, "", "must be > 0");
+    require(std::isfinite(beta) && std::isfinite(gamma) && beta >= std::abs(gamma),
+            "bw_beta",
+            beta,
+            "",
+            "must be >= |bw_gamma| (non-negative dissipation)");
+    require(beta + gamma > 0.0, "bw_gamma", gamma, "", "must give bw_beta + bw_gamma > 0");
+    require(std::isfinite(n) && n >= 1.0, "bw_n", n, "", "must be >= 1");
+    require(std::isfinite(c) && c >= 0.0, "c", c, "N*s/m", "must be >= 0 and finite");
+    Q_     = (1.0 - alpha) * F_y;
+    u_y_   = F_y / K1;
+    z_max_ = std::pow(A / (beta + gamma), 1.0 / n);
+    n_int_ = (n == std::floor(n) && n <= 64.0) ? static_cast<int>(n) : 0;
+  }
+
+  double BoucWenIsolator::power(const double a) const
+  {
+    if (n_int_ == 0)
+      return std::pow(a, n_);
+    double p = a;
+    for (int i = 1; i < n_int_; ++i)
+      p *= a;
+    return p;
+  }
+
+  IsolatorResponse BoucWenIsolator::set_trial(const double displacement, const double velocity)
+  {
+    (void)velocity;
+    trial_          = committed_;
+    trial_.u        = displacement;
+    const double du = displacement - committed_.u;
+    const double K2 = alpha_ * K1_;
+    const double zc = committed_.z;
+    if (du == 0.0)
+      return {K2 * displacement + Q_ * zc,
+              K2 + Q_ / u_y_ * (A_ - power(std::abs(zc)) * (gamma_ + beta_)),
+              0.0};
+    const double ratio = du / u_y_;
+    // Ψ(z) = γ + β·sgn(z·du); |z|^n vanishes where Ψ jumps, so the residual is continuous and,
+    // for β >= |γ|, increasing in z.
+    const double psi_with = gamma_ + beta_, psi_against = gamma_ - beta_;
+    // Root bracket: g(z_c) <= 0 <= g(z_max) for du > 0, g(−z_max) <= 0 <= g(z_c) for du < 0.
+    double lo = du > 0.0 ? zc : -z_max_;
+    double hi = du > 0.0 ? z_max_ : zc;
+    if (lo > hi)
+      std::swap(lo, hi);
+    // |z|^n, |z|^(n−1)·sgn(z)·n and Ψ at z; g and ∂g/∂z.
+    double     zn_psi = 0.0, dg = 1.0;
+    const auto evaluate = [&](const double z)
+    {
+      const double az  = std::abs(z);
+      const double psi = z * du > 0.0 ? psi_with : psi_against;
+      const double zn  = power(az);
+      zn_psi           = zn * psi;
+      // n·|z|^(n−1)·sgn(z) = n·|z|^n / z (0 at z = 0 for n >= 1).
+      dg = 1.0 + ratio * (az > 0.0 ? n_ * zn / z : 0.0) * psi;
+      return z - zc - ratio * (A_ - zn_psi);
+    };
+    // Start from the explicit Euler step.
+    double z = std::min(std::max(zc + ratio * (A_ - power(std::abs(zc)) *
+                                                      (zc * du > 0.0 ? psi_with : psi_against)),
+                                 lo),
+                        hi);
+    for (int it = 0; it < max_iterations; ++it)
+    {
+      const double g = evaluate(z);
+      if (g == 0.0)
+        break;
+      const double step = g / dg;
+      // Converged: the Newton correction is at round-off (checked before the bracket test,
+      // which a correction of a few ulps can fail).
+      if (std::abs(step) <= 1e-15 * std::max(1.0, std::abs(z)))
+      {
+        z -= step;
+        break;
+      }
+      (g > 0.0 ? hi : lo) = z;
+      z                   = z - step > lo && z - step < hi ? z - step : 0.5 * (lo + hi);
+    }
+    evaluate(z);
+    trial_.z           = z;
+    const double dz_du = (A_ - zn_psi) / u_y_ / dg;
+    // Work of the hysteretic spring beyond its stored energy (>= 0 for β >= |γ|).
+    trial_.dissipated += Q_ * z * du * zn_psi / A_;
+    return {K2 * displacement + Q_ * z, K2 + Q_ * dz_du, 0.0};
+  }
+} // namespace kimp::lumped

@@ -1,0 +1,87 @@
+// Single friction pendulum bearing (docs/physics.md §2, "Isolators"): pendulum restoring force
+// W/R·u plus velocity-dependent Coulomb friction μ(v)·W (Constantinou et al. 1990), regularised
+// by an elastic sliding stiffness and a return mapping as in OpenSees' singleFPBearing.
+#pragma once
+
+#include "lumped/isolators/isolator.h"
+
+namespace kimp::lumped
+{
+  /**
+   * Single concave friction pendulum, small-angle approximation:
+   *   F = W/R·u + f_s,  f_s elastic-perfectly-plastic with stiffness k_init and yield force
+   *   μ(v)·W,  μ(v) = μ_fast − (μ_fast − μ_slow)·exp(−a·|v|).
+   * f_s = μ(v)·W·z with the sliding variable z ∈ [−1, 1]; k_init regularises the stick phase
+   * (OpenSees' kInit). While sliding, dF/du = W/R and dF/du̇ = ±W·dμ/dv; while sticking
+   * dF/du = k_init + W/R and dF/du̇ = 0 (exact derivatives of the update).
+   *
+   * | parameter | unit  | admissible        | meaning                                         |
+   * |-----------|-------|-------------------|-------------------------------------------------|
+   * | W         | N     | > 0               | weight carried by the bearing(s)                |
+   * | R         | m     | > 0               | effective radius of the concave surface         |
+   * | mu_slow   | -     | [0, 1)            | friction coefficient at zero sliding velocity   |
+   * | mu_fast   | -     | [mu_slow, 1)      | friction coefficient at high sliding velocity   |
+   * | rate      | s/m   | >= 0              | a, transition rate of μ(v)                      |
+   * | k_init    | N/m   | > 0               | elastic stiffness before sliding                |
+   * | c         | N·s/m | >= 0              | device dashpot added to C[0,0] (default 0)      |
+   *
+   * Free vibration with μ → 0 has the pendulum period T = 2π·√(R/g) (m = W/g); a closed cycle
+   * of amplitude D at constant μ dissipates 4·μ·W·(D − μ·W/k_init) → 4·μ·W·D (rigid-plastic).
+   */
+  class FrictionPendulumIsolator final : public Isolator
+  {
+  public:
+    /// @throws std::invalid_argument naming the parameter, its value and the admissible range.
+    FrictionPendulumIsolator(double W,
+                             double R,
+                             double mu_slow,
+                             double mu_fast,
+                             double rate,
+                             double k_init,
+                             double c = 0.0);
+
+    IsolatorResponse set_trial(double displacement, double velocity) override;
+    void             commit() override { committed_ = trial_; }
+    void             revert_to_last_commit() override { trial_ = committed_; }
+    void             revert_to_start() override { committed_ = trial_ = State{}; }
+
+    double initial_stiffness() const override { return k_init_ + k_pendulum_; }
+    double viscous_coefficient() const override { return c_; }
+    double stored_energy() const override
+    {
+      return 0.5 * k_pendulum_ * committed_.u * committed_.u +
+             0.5 * committed_.f_s * committed_.f_s / k_init_;
+    }
+    double dissipated_energy() const override { return committed_.dissipated; }
+    double committed_force() const override { return k_pendulum_ * committed_.u + committed_.f_s; }
+
+    /// Friction coefficient μ(v) at sliding velocity v (m/s).
+    double friction_coefficient(double velocity) const;
+    /// Pendulum stiffness W/R, N/m.
+    double pendulum_stiffness() const { return k_pendulum_; }
+
+    std::string               name() const override { return "friction_pendulum"; }
+    std::unique_ptr<Isolator> clone() const override
+    {
+      return std::make_unique<FrictionPendulumIsolator>(*this);
+    }
+
+  private:
+    struct State
+    {
+      double u          = 0.0; ///< displacement, m
+      double f_s        = 0.0; ///< friction force, N (|f_s| <= μ·W)
+      double dissipated = 0.0; ///< Σ μ·W·|Δu_slip|, J
+    };
+
+    double W_;
+    double mu_slow_;
+    double mu_fast_;
+    double rate_;
+    double k_init_;
+    double c_;
+    double k_pendulum_; ///< W/R
+    State  committed_;
+    State  trial_;
+  };
+} // namespace kimp::lumped
