@@ -34,12 +34,12 @@ namespace kimp::app
     std::optional<lumped::Response> companion; ///< without contacts, if requested
     std::vector<BuildingModes>      buildings;
     std::vector<std::string>        contact_names;
-    std::vector<int>                storey_upper_dofs;     ///< global DOF above each storey
-    std::vector<std::string>        dof_labels;            ///< "building floor 1", ... per global DOF
-    std::vector<std::string>        storey_labels;         ///< "building storey 1", ... per storey
-    std::string                     isolator;              ///< isolator name ("" without isolator)
-    double                          dt_critical = 0.0;     ///< s (cdm), 0 for newmark
-    std::string                     governing;             ///< bound governing dt_critical
+    std::vector<int>                storey_upper_dofs; ///< global DOF above each storey
+    std::vector<std::string>        dof_labels;        ///< "building floor 1", ... per global DOF
+    std::vector<std::string>        storey_labels;     ///< "building storey 1", ... per storey
+    std::string                     isolator;          ///< isolator name ("" without isolator)
+    double                          dt_critical = 0.0; ///< s (cdm), 0 for newmark
+    std::string                     governing;         ///< bound governing dt_critical
     double                          wall_time       = 0.0; ///< s
     double                          pga             = 0.0; ///< of the motion used, m/s²
     double                          estimated_steps = 0.0; ///< before the run (0: unknown)
