@@ -6,6 +6,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "base/errors.h"
 #include "base/logging.h"
 #include "io/results_file.h"
 #include "io/summary.h"
@@ -171,7 +172,7 @@ namespace kimp::app
         catch (const std::exception &error)
         {
           ++failures;
-          const std::string status = std::string("failed: ") + error.what();
+          const std::string status = "failed: " + base::error_text(error);
           group.set_status(status);
           rows.push_back({fem_case.name,
                           number(fem_case.wall_height),

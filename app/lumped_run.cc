@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "base/errors.h"
 #include "base/logging.h"
 #include "io/results_file.h"
 #include "io/units.h"
@@ -273,7 +274,7 @@ namespace kimp::app
     }
     catch (const std::exception &error)
     {
-      result.status   = std::string("failed: ") + error.what();
+      result.status   = "failed: " + base::error_text(error);
       result.response = lumped::Response{};
       result.companion.reset();
     }

@@ -1,10 +1,13 @@
 // kimp: impact stiffness for pounding of seismically isolated buildings (command-line entry).
+#include <csignal>
 #include <exception>
 #include <iostream>
 #include <memory>
 #include <mpi.h>
+#include <string>
 
 #include "app/session.h"
+#include "base/errors.h"
 #include "base/logging.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
@@ -28,16 +31,24 @@ namespace
       MPI_Abort(MPI_COMM_WORLD, exit_code);
   }
 
-  int report(const std::exception &error)
+  int report(const std::string &message)
   {
-    std::cerr << "error: " << error.what() << std::endl;
+    std::cerr << "error: " << message << std::endl;
     abort_other_ranks(1);
     return 1;
+  }
+
+  int report(const std::exception &error)
+  {
+    return report(kimp::base::error_text(error));
   }
 } // namespace
 
 int main(int argc, char **argv)
 {
+  // A closed pipe (`kimp ... | head -1`) must not kill the run before it writes its files: writes
+  // to the pipe then fail quietly instead.
+  std::signal(SIGPIPE, SIG_IGN);
   // MPI (and p4est) once per process for `kimp fem`, also under mpirun; only rank 0 logs.
   std::unique_ptr<kimp::app::Session> session;
   try
@@ -62,5 +73,9 @@ int main(int argc, char **argv)
   {
     // Before the MPI session ends: MPI_Finalize would wait for ranks that are still running.
     return report(error);
+  }
+  catch (...)
+  {
+    return report("unexpected failure (not a standard exception)");
   }
 }

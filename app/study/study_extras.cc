@@ -12,6 +12,7 @@
 #include "app/lumped_run.h"
 #include "app/study/study_fem.h"
 #include "app/study/study_ladder.h"
+#include "base/errors.h"
 #include "base/logging.h"
 #include "fem/impact.h"
 #include "geometry/scene_mesh.h"
@@ -64,7 +65,7 @@ namespace kimp::app
       catch (const std::exception &error)
       {
         point.ok     = false;
-        point.status = std::string("failed: ") + error.what();
+        point.status = "failed: " + base::error_text(error);
         logger().warn("{}: {}", name, point.status);
       }
     }

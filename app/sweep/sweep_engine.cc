@@ -16,6 +16,7 @@
 #include <thread>
 #include <unordered_map>
 
+#include "base/errors.h"
 #include "base/logging.h"
 #include "io/results_file.h"
 #include "io/summary.h"
@@ -184,7 +185,7 @@ namespace kimp::app
           }
           catch (const std::exception &error)
           {
-            entry.row = CaseRow{{}, std::string("failed: ") + error.what()};
+            entry.row = CaseRow{{}, "failed: " + base::error_text(error)};
           }
           catch (...)
           {
