@@ -205,9 +205,12 @@ namespace kimp::io
           fmt::format("output directory '{}': cannot lock '{}'", dir.string(), file_.string()));
       }
 
+      /// The process that took the lock (a forked child inherits the object, not the lock).
+      pid_t owner() const { return owner_; }
+
       ~DirectoryLock()
       {
-        if (fd_ < 0)
+        if (fd_ < 0 || owner_ != ::getpid())
           return;
         ::unlink(file_.c_str());
         ::close(fd_);
@@ -218,7 +221,8 @@ namespace kimp::io
 
     private:
       std::filesystem::path file_;
-      int                   fd_ = -1;
+      int                   fd_    = -1;
+      pid_t                 owner_ = ::getpid();
     };
   } // namespace detail
 
@@ -235,7 +239,7 @@ namespace kimp::io
       if (error)
         canonical = std::filesystem::absolute(dir);
       const std::lock_guard<std::mutex> guard(mutex);
-      if (auto lock = held[canonical.string()].lock())
+      if (auto lock = held[canonical.string()].lock(); lock && lock->owner() == ::getpid())
         return lock;
       auto lock                = std::make_shared<detail::DirectoryLock>(dir);
       held[canonical.string()] = lock;
