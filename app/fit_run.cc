@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/errors.h"
+#include "base/format.h"
 #include "base/logging.h"
 #include "io/results_file.h"
 #include "io/summary.h"
@@ -162,12 +163,12 @@ namespace kimp::app
           logger().info("fit: {} {}: k = {} {} (total {} {}), COR = {}, RMS/peak = {}",
                         fem_case.name,
                         variant.name,
-                        rows.back()[4],
-                        rows.back()[7],
-                        rows.back()[8],
-                        rows.back()[9],
-                        rows.back()[10],
-                        rows.back()[14]);
+                        base::sig(fit.stiffness_per_metre_display()),
+                        fit.per_metre_unit(),
+                        base::sig(fit.total_stiffness_display(options.width)),
+                        stiffness_display_unit(fit.exponent.value),
+                        base::sig(fit.cor.value),
+                        base::sig(fit.normalised_rms, 3));
         }
         catch (const std::exception &error)
         {

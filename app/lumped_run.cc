@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "base/errors.h"
+#include "base/format.h"
 #include "base/logging.h"
 #include "io/results_file.h"
 #include "io/units.h"
@@ -290,7 +291,7 @@ namespace kimp::app
     const LumpedScene         &scene = loaded.scene;
     const lumped::GroundMotion motion =
       load_ground_motion(scene.ground_motion, records_dir_override);
-    logger().info("ground motion {}: {} samples at {} s, PGA {} g",
+    logger().info("ground motion {}: {} samples at {:.4g} s, PGA {:.4g} g",
                   motion.name,
                   motion.acceleration.size(),
                   motion.dt,
@@ -306,13 +307,15 @@ namespace kimp::app
         run_lumped_case(cases[i].first, cases[i].second, motion, scene.ground_motion.scale));
       const LumpedCaseResult &r = results.back();
       if (r.ok())
-        logger().info("case {}: {} steps of {} s, {} impacts, peak base {} m, wall time {} s",
+        logger().info("case {}: {} steps of {:.4g} s, {} impacts, peak base {} m, wall time {} s",
                       r.name,
                       r.response.n_steps,
                       r.response.dt,
                       r.response.n_impacts(),
-                      r.response.peak_displacement.empty() ? 0.0 : r.response.peak_displacement[0],
-                      r.wall_time);
+                      base::sig(r.response.peak_displacement.empty() ?
+                                  0.0 :
+                                  r.response.peak_displacement[0]),
+                      base::sig(r.wall_time, 3));
       else
         logger().error("case {}: {}", r.name, r.status);
       progress.update(i + 1, static_cast<double>(i + 1));

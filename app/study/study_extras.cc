@@ -101,7 +101,7 @@ namespace kimp::app
                     &p.n_dofs,
                     &p.n_steps,
                     &p.from_cache);
-      logger().info("accuracy {} {}: k_KV {:.6g} kN/mm/m, {:.3g} s ({})",
+      logger().info("accuracy {} {}: k_KV {:.4g} kN/mm/m, {:.3g} s ({})",
                     series,
                     name,
                     stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0),

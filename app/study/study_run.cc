@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "app/study/study_internal.h"
+#include "base/format.h"
 #include "base/logging.h"
 #include "io/results_file.h"
 
@@ -61,13 +62,12 @@ namespace kimp::app
     result.wall_seconds = seconds_since(start);
     write_text_atomic(output.file("report.md"), report_markdown(scene, result, charts));
     write_text_atomic(output.file("summary.json"), summary_json(scene, result).dump(2) + "\n");
-    logger().info("study done in {:.2f} s (FEM {:.2f} s, fits {:.2f} s, building {:.2f} s, "
-                  "charts {:.2f} s): {}",
-                  result.wall_seconds,
-                  result.fem_seconds,
-                  result.fit_seconds,
-                  result.building_seconds,
-                  result.charts_seconds,
+    logger().info("study done in {} s (FEM {} s, fits {} s, building {} s, charts {} s): {}",
+                  base::sig(result.wall_seconds, 3),
+                  base::sig(result.fem_seconds, 3),
+                  base::sig(result.fit_seconds, 3),
+                  base::sig(result.building_seconds, 3),
+                  base::sig(result.charts_seconds, 3),
                   output.file("report.md").string());
     return result;
   }
