@@ -121,7 +121,8 @@ namespace kimp::app
                                                       "normalised_rms",
                                                       "status"};
     std::vector<std::vector<std::string>> rows;
-    int                                   failures = 0;
+    nlohmann::json                        case_summaries = nlohmann::json::array();
+    int                                   failures       = 0;
     for (const FemCase &fem_case : cases)
     {
       if (fem_case.status != "ok")
@@ -160,6 +161,20 @@ namespace kimp::app
                           number(fit.exponent.value),
                           number(fit.normalised_rms),
                           "ok"});
+          case_summaries.push_back(
+            {{"name", fem_case.name + "/" + variant.name},
+             {"fem_case", fem_case.name},
+             {"variant", variant.name},
+             {"law", fit.law},
+             {"status", "ok"},
+             {"wall_height", fem_case.wall_height},
+             {"stiffness_per_metre", fit.stiffness.value},
+             {"stiffness_per_metre_unit", stiffness_si_unit(fit.exponent.value, true)},
+             {"stiffness_per_metre_lower", fit.stiffness.lower},
+             {"stiffness_per_metre_upper", fit.stiffness.upper},
+             {"exponent", fit.exponent.value},
+             {"cor", fit.cor.value},
+             {"normalised_rms", fit.normalised_rms}});
           logger().info("fit: {} {}: k = {} {} (total {} {}), COR = {}, RMS/peak = {}",
                         fem_case.name,
                         variant.name,
@@ -191,12 +206,29 @@ namespace kimp::app
                           "",
                           "",
                           status});
+          case_summaries.push_back({{"name", fem_case.name + "/" + variant.name},
+                                    {"fem_case", fem_case.name},
+                                    {"variant", variant.name},
+                                    {"law", variant.law.law},
+                                    {"status", status},
+                                    {"wall_height", fem_case.wall_height}});
           logger().warn("fit: {} {}: {}", fem_case.name, variant.name, status);
         }
       }
     }
     write_csv_atomic(output.file("fit_table.csv"), header, rows);
     file.commit();
+    nlohmann::json summary;
+    summary["command"]  = "fit";
+    summary["fem_file"] = options.fem_file.string();
+    summary["options"]  = resolved;
+    summary["units"]    = {{"wall_height", "m"},
+                           {"width", "m"},
+                           {"cor", "1"},
+                           {"normalised_rms", "1"}};
+    summary["n_failed"] = failures;
+    summary["cases"]    = case_summaries;
+    write_json_atomic(output.file("summary.json"), summary);
     return failures;
   }
 

@@ -372,7 +372,7 @@ namespace kimp::app
                      {"case",
                       "dof",
                       "peak_displacement_m",
-                      "peak_absolute_acceleration_m_s2",
+                      "peak_absolute_acceleration_m_per_s2",
                       "peak_interstorey_drift_m"},
                      rows);
     return results;

@@ -7,6 +7,7 @@
 #include "base/version.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
+#include "io/units.h"
 
 namespace kimp::cli
 {
@@ -30,8 +31,39 @@ namespace kimp::cli
       ->required();
     command->add_option("--cor", options->cor, "COR of the fixed-COR fits, (0, 1]")
       ->capture_default_str();
-    command->add_option("--width", options->width, "building side W in m: k_total = k·W")
-      ->capture_default_str();
+    // A length with its unit like every quantity of kimp ("27.78 m", "2778 cm"); a bare number
+    // is metres, as before units were accepted.
+    command
+      ->add_option_function<std::string>(
+        "--width",
+        [options](const std::string &text)
+        {
+          std::size_t used = 0;
+          try
+          {
+            options->width = std::stod(text, &used);
+          }
+          catch (const std::exception &)
+          {
+            used = 0;
+          }
+          if (used != text.size() || used == 0)
+          {
+            try
+            {
+              options->width = parse_quantity_as(text, "m");
+            }
+            catch (const std::exception &error)
+            {
+              throw CLI::ValidationError("--width", error.what());
+            }
+          }
+          if (!(options->width > 0.0))
+            throw CLI::ValidationError("--width", "must be > 0, got '" + text + "'");
+        },
+        "building side W, a length such as '27.78 m' (a bare number is metres): k_total = k·W")
+      ->type_name("LENGTH")
+      ->default_str(format_quantity(FitCommandOptions{}.width, "m"));
     command->add_flag("--raw-force", options->raw_force, "fit the raw, not the smoothed, force");
     command
       ->add_option("--displacement-weight",

@@ -117,6 +117,32 @@ namespace kimp::io
     }
   }
 
+  std::string csv_column(std::string_view name, std::string_view unit)
+  {
+    std::string column(name);
+    if (unit.empty() || unit == "1")
+      return column;
+    column += '_';
+    for (const char c : unit)
+    {
+      if (c == '/')
+        column += "_per_";
+      else if (c == '*')
+        column += '_';
+      else if (c != '^' && c != ' ')
+        column += c;
+    }
+    return column;
+  }
+
+  std::string csv_column(std::string_view label)
+  {
+    const std::size_t open = label.rfind(" [");
+    if (open == std::string_view::npos || label.back() != ']')
+      return std::string(label);
+    return csv_column(label.substr(0, open), label.substr(open + 2, label.size() - open - 3));
+  }
+
   void write_json_atomic(const std::filesystem::path &path, const nlohmann::json &value)
   {
     write_text_atomic(path, value.dump(2) + "\n");

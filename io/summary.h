@@ -38,6 +38,17 @@ namespace kimp::io
                         const std::vector<std::string>              &header,
                         const std::vector<std::vector<std::string>> &rows);
 
+  /**
+   * The CSV column name of a quantity, kimp's one header convention `name_unit`: the unit
+   * with '/' written "_per_", '^' and spaces dropped and '*' written '_' ("peak_force", "N" ->
+   * "peak_force_N"; "m/s^2" -> "_m_per_s2"; "kN/mm^1.5/m" -> "_kN_per_mm1.5_per_m"); a
+   * dimensionless quantity (unit "1" or "") has no suffix.
+   */
+  std::string csv_column(std::string_view name, std::string_view unit);
+
+  /// csv_column() of a "name [unit]" label (a sweep metric); a label without "[unit]" is kept.
+  std::string csv_column(std::string_view label);
+
   /// Numeric CSV; values printed with the shortest text that reads back to the same double.
   void write_csv_atomic(const std::filesystem::path            &path,
                         const std::vector<std::string>         &header,

@@ -36,9 +36,37 @@ def read_plan(directory):
     return json.loads(text)
 
 
+def csv_column(label):
+    """The CSV column of a metric label "name [unit]" (kimp's header convention name_unit,
+    io::csv_column): '/' -> "_per_", '^' and spaces dropped, '*' -> '_', no suffix for "1"."""
+    if not label.endswith("]") or " [" not in label:
+        return label
+    name, unit = label[:-1].rsplit(" [", 1)
+    if unit in ("", "1"):
+        return name
+    unit = unit.replace("/", "_per_").replace("^", "").replace(" ", "").replace("*", "_")
+    return f"{name}_{unit}"
+
+
+class Row(dict):
+    """A CSV row that also answers to the metric labels "name [unit]" of sweep.h5."""
+
+    def __missing__(self, key):
+        column = csv_column(key)
+        if column != key and column in self:
+            return self[column]
+        raise KeyError(key)
+
+    def get(self, key, default=None):
+        try:
+            return self[key]
+        except KeyError:
+            return default
+
+
 def read_csv(path):
     with open(path, newline="") as f:
-        return list(csv.DictReader(f))
+        return [Row(r) for r in csv.DictReader(f)]
 
 
 def number(text):
@@ -166,7 +194,7 @@ class Sweep:
         return max(values) if values else NAN
 
     def contacts_max(self, row, suffix):
-        values = [self.value(row, c) for c in self.columns if c.endswith(suffix)]
+        values = [self.value(row, c) for c in self.columns if c.endswith(csv_column(suffix))]
         values = [v for v in values if math.isfinite(v)]
         return max(values) if values else NAN
 

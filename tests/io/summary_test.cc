@@ -207,4 +207,19 @@ namespace
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / kimp::io::output_lock_name));
     EXPECT_FALSE(std::filesystem::exists(lock));
   }
+
+  TEST(Summary, CsvColumnsFollowTheNameUnitConvention)
+  {
+    using kimp::io::csv_column;
+    EXPECT_EQ(csv_column("peak_force", "N"), "peak_force_N");
+    EXPECT_EQ(csv_column("peak_acceleration", "m/s^2"), "peak_acceleration_m_per_s2");
+    EXPECT_EQ(csv_column("k", "kN/mm^1.5/m"), "k_kN_per_mm1.5_per_m");
+    EXPECT_EQ(csv_column("damping", "N*s/m"), "damping_N_s_per_m");
+    EXPECT_EQ(csv_column("cor", "1"), "cor");
+    EXPECT_EQ(csv_column("n_impacts", ""), "n_impacts");
+    EXPECT_EQ(csv_column("left_wall.clearance [m]"), "left_wall.clearance_m");
+    EXPECT_EQ(csv_column("wall_time [s]"), "wall_time_s");
+    EXPECT_EQ(csv_column("amp_drift_storey1"), "amp_drift_storey1");
+    EXPECT_EQ(csv_column("ratio [1]"), "ratio");
+  }
 } // namespace
