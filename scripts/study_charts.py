@@ -74,7 +74,7 @@ def k_vs_height(h5, out_dir):
         ax.set_yscale("log")
         plain_log_ticks(ax.yaxis)
         ax.set_xlabel("wall height H (m)")
-        ax.set_ylabel(f"k ({unit})")
+        ax.set_ylabel(f"k ({unit})".replace("^1.5", "$^{1.5}$"))
         ax.set_title(law.replace("_", "-"))
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
@@ -110,18 +110,22 @@ def building_response(csv_path, out_dir):
 
 
 def plain_log_ticks(axis):
-    """Plain numbers on a log axis ("57.5", not "5.75×10^1"); minor ticks labelled only at 2 and 5
-    times a power of ten, so that labels do not overlap when the range is under a decade."""
+    """Plain numbers on a log axis ("57.5", not "5.75×10^1"). Minor ticks are labelled only where
+    the labels fit: at 2, 3 and 5 times a power of ten over about a decade, at 2 and 5 over up to
+    2.5 decades, not at all over more."""
     from matplotlib import ticker
 
     def plain(value, _):
         return f"{value:g}"
 
     def minor(value, _):
-        if value <= 0:
+        lo, hi = sorted(axis.get_view_interval())
+        if value <= 0 or lo <= 0:
             return ""
+        decades = math.log10(hi / lo)
+        labelled = (2.0, 3.0, 5.0) if decades <= 1.2 else (2.0, 5.0) if decades <= 2.5 else ()
         leading = value / 10 ** math.floor(math.log10(value) + 1e-9)
-        return f"{value:g}" if round(leading, 6) in (2.0, 5.0) else ""
+        return f"{value:g}" if round(leading, 6) in labelled else ""
 
     axis.set_major_formatter(ticker.FuncFormatter(plain))
     axis.set_minor_formatter(ticker.FuncFormatter(minor))
