@@ -207,7 +207,7 @@ def stability_map(h5, out_dir):
     dt = t["dt"][()]
     stable = t["stable"][()]
     accurate = t["accurate"][()] if "accurate" in t else stable
-    fig, ax = plt.subplots(figsize=(6, 4.2), constrained_layout=True)
+    fig, ax = plt.subplots(figsize=(8.5, 4.2), constrained_layout=True)
     for sel, marker, color, label in (
             (lambda i: accurate[i] > 0.5, "o", "C2", "stable, COR within 5 %"),
             (lambda i: stable[i] > 0.5 and accurate[i] < 0.5, "s", "C1", "stable, inaccurate"),
@@ -223,8 +223,14 @@ def stability_map(h5, out_dir):
             label=r"$2(\sqrt{1+\xi^2}-\xi)/\omega_\mathrm{imp}$ (KV dashpot)")
     k_study = t.attrs.get("study_stiffness_N_per_m", None)
     if k_study:
-        ax.axvline(float(k_study) * 1e-6, color="C0", ls=":", label="study k_KV (total)")
+        ax.axvline(float(k_study) * 1e-6, color="C0", ls=":", label=r"study $k_\mathrm{KV}$ (total)")
     log_log_axes(ax, r"$k_\mathrm{imp}$ (kN/mm)", r"time step $\Delta t$ (s)", "central difference, two-body contact")
+    # Time steps far above the limit are all unstable and say nothing more: show up to 30 times
+    # the largest limit, and keep the legend off the points.
+    limits = [v for v in t["dt_limit"][()] if math.isfinite(v) and v > 0]
+    if limits:
+        ax.set_ylim(top=min(ax.get_ylim()[1], 30 * max(limits)))
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     save(fig, out_dir, "stability_map")
 
 
