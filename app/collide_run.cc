@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "base/errors.h"
 #include "base/logging.h"
 #include "io/results_file.h"
 #include "io/units.h"
@@ -149,7 +150,7 @@ namespace kimp::app
         {
           constexpr double nan = std::numeric_limits<double>::quiet_NaN();
           row.row              = lumped::CorTableRow{law.law, cor, nan, nan, nan, nan, nan, nan};
-          row.status           = std::string("failed: ") + error.what();
+          row.status           = "failed: " + base::error_text(error);
         }
         rows.push_back(std::move(row));
       }

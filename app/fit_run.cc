@@ -6,6 +6,8 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "base/errors.h"
+#include "base/format.h"
 #include "base/logging.h"
 #include "io/results_file.h"
 #include "io/summary.h"
@@ -128,7 +130,8 @@ namespace kimp::app
                                                       "normalised_rms",
                                                       "status"};
     std::vector<std::vector<std::string>> rows;
-    int                                   failures = 0;
+    nlohmann::json                        case_summaries = nlohmann::json::array();
+    int                                   failures       = 0;
     for (const FemCase &fem_case : cases)
     {
       if (fem_case.status != "ok")
@@ -169,20 +172,34 @@ namespace kimp::app
                           number(fit.exponent.value),
                           number(fit.normalised_rms),
                           verdict});
+          case_summaries.push_back(
+            {{"name", fem_case.name + "/" + variant.name},
+             {"fem_case", fem_case.name},
+             {"variant", variant.name},
+             {"law", fit.law},
+             {"status", verdict},
+             {"wall_height", fem_case.wall_height},
+             {"stiffness_per_metre", fit.stiffness.value},
+             {"stiffness_per_metre_unit", stiffness_si_unit(fit.exponent.value, true)},
+             {"stiffness_per_metre_lower", fit.stiffness.lower},
+             {"stiffness_per_metre_upper", fit.stiffness.upper},
+             {"exponent", fit.exponent.value},
+             {"cor", fit.cor.value},
+             {"normalised_rms", fit.normalised_rms}});
           logger().info("fit: {} {}: k = {} {} (total {} {}), COR = {}, RMS/peak = {}",
                         fem_case.name,
                         variant.name,
-                        rows.back()[4],
-                        rows.back()[7],
-                        rows.back()[8],
-                        rows.back()[9],
-                        rows.back()[10],
-                        rows.back()[14]);
+                        base::sig(fit.stiffness_per_metre_display()),
+                        fit.per_metre_unit(),
+                        base::sig(fit.total_stiffness_display(config.width)),
+                        stiffness_display_unit(fit.exponent.value),
+                        base::sig(fit.cor.value),
+                        base::sig(fit.normalised_rms, 3));
         }
         catch (const std::exception &error)
         {
           ++failures;
-          const std::string status = std::string("failed: ") + error.what();
+          const std::string status = "failed: " + base::error_text(error);
           group.set_status(status);
           rows.push_back({fem_case.name,
                           number(fem_case.wall_height),
@@ -200,12 +217,29 @@ namespace kimp::app
                           "",
                           "",
                           status});
+          case_summaries.push_back({{"name", fem_case.name + "/" + variant.name},
+                                    {"fem_case", fem_case.name},
+                                    {"variant", variant.name},
+                                    {"law", variant.law.law},
+                                    {"status", status},
+                                    {"wall_height", fem_case.wall_height}});
           logger().warn("fit: {} {}: {}", fem_case.name, variant.name, status);
         }
       }
     }
     write_csv_atomic(output.file("fit_table.csv"), header, rows);
     file.commit();
+    nlohmann::json summary;
+    summary["command"]  = "fit";
+    summary["fem_file"] = options.fem_file.string();
+    summary["options"]  = resolved;
+    summary["units"]    = {{"wall_height", "m"},
+                           {"width", "m"},
+                           {"cor", "1"},
+                           {"normalised_rms", "1"}};
+    summary["n_failed"] = failures;
+    summary["cases"]    = case_summaries;
+    write_json_atomic(output.file("summary.json"), summary);
     return failures;
   }
 

@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "base/errors.h"
+#include "base/format.h"
 #include "base/logging.h"
 #include "io/results_file.h"
 #include "io/units.h"
@@ -495,7 +497,7 @@ namespace kimp::app
     }
     catch (const std::exception &error)
     {
-      result.status   = std::string("failed: ") + error.what();
+      result.status   = "failed: " + base::error_text(error);
       result.response = lumped::Response{};
       result.companion.reset();
     }
@@ -514,7 +516,7 @@ namespace kimp::app
                                                               loaded.file_name,
                                                               loaded.text,
                                                               "ground_motion");
-    logger().info("ground motion {}: {} samples at {} s, PGA {} g",
+    logger().info("ground motion {}: {} samples at {:.4g} s, PGA {:.4g} g",
                   motion.name,
                   motion.acceleration.size(),
                   motion.dt,
@@ -558,13 +560,15 @@ namespace kimp::app
       }
       const LumpedCaseResult &r = results.back();
       if (r.ok())
-        logger().info("case {}: {} steps of {} s, {} impacts, peak base {} m, wall time {} s",
+        logger().info("case {}: {} steps of {:.4g} s, {} impacts, peak base {} m, wall time {} s",
                       r.name,
                       r.response.n_steps,
                       r.response.dt,
                       r.response.n_impacts(),
-                      r.response.peak_displacement.empty() ? 0.0 : r.response.peak_displacement[0],
-                      r.wall_time);
+                      base::sig(r.response.peak_displacement.empty() ?
+                                  0.0 :
+                                  r.response.peak_displacement[0]),
+                      base::sig(r.wall_time, 3));
       else
         logger().error("case {}: {}", r.name, r.status);
       progress.update(i + 1, static_cast<double>(i + 1));
@@ -621,7 +625,7 @@ namespace kimp::app
                      {"case",
                       "dof",
                       "peak_displacement_m",
-                      "peak_absolute_acceleration_m_s2",
+                      "peak_absolute_acceleration_m_per_s2",
                       "peak_interstorey_drift_m"},
                      rows);
     return results;

@@ -58,6 +58,11 @@ namespace kimp::base
     set_verbosity(current_verbosity);
   }
 
+  int rank()
+  {
+    return current_rank;
+  }
+
   Verbosity verbosity()
   {
     return current_verbosity;

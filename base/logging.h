@@ -28,6 +28,8 @@ namespace kimp::base
 
   /// MPI rank of this process: only rank 0 logs (except errors) and shows progress.
   void set_rank(int rank);
+  /// The rank given to set_rank() (0 without MPI).
+  int rank();
 
   /// True if stderr is a terminal (progress lines are then worth printing).
   bool stderr_is_terminal();

@@ -1,7 +1,10 @@
 // `kimp` global options and argument handling; see cli.h.
 #include "cli/cli.h"
 
+#include <algorithm>
+#include <cctype>
 #include <ostream>
+#include <string_view>
 
 #include "base/version.h"
 
@@ -9,6 +12,61 @@ namespace kimp::cli
 {
   using namespace kimp::base;
   using namespace kimp::io;
+
+  namespace
+  {
+    std::size_t edit_distance(std::string_view a, std::string_view b)
+    {
+      std::vector<std::size_t> row(b.size() + 1);
+      for (std::size_t j = 0; j <= b.size(); ++j)
+        row[j] = j;
+      for (std::size_t i = 1; i <= a.size(); ++i)
+      {
+        std::size_t diagonal = row[0];
+        row[0]               = i;
+        for (std::size_t j = 1; j <= b.size(); ++j)
+        {
+          const std::size_t above = row[j];
+          const bool        same  = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                            std::tolower(static_cast<unsigned char>(b[j - 1]));
+          row[j]   = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
+          diagonal = above;
+        }
+      }
+      return row[b.size()];
+    }
+
+    /// "unknown command 'lumpd'; did you mean 'lumped'?" when the first word that is not an
+    /// option names no command; "" otherwise.
+    std::string unknown_command(const CLI::App &app, int argc, const char *const *argv)
+    {
+      for (int i = 1; i < argc; ++i)
+      {
+        const std::string word = argv[i];
+        if (word.empty() || word[0] == '-')
+          continue;
+        std::string suggestion;
+        std::size_t best = 3; // more than two edits away is not a typo
+        std::string known;
+        for (const CLI::App *command : app.get_subcommands({}))
+        {
+          if (command->get_name() == word)
+            return "";
+          known += (known.empty() ? "" : ", ") + command->get_name();
+          if (const std::size_t d = edit_distance(word, command->get_name()); d < best)
+          {
+            best       = d;
+            suggestion = command->get_name();
+          }
+        }
+        return "unknown command '" + word + "'" +
+               (suggestion.empty() ? std::string() : "; did you mean '" + suggestion + "'?") +
+               " (commands: " + known + ")";
+      }
+      return "";
+    }
+  } // namespace
+
   std::unique_ptr<CLI::App> make_app()
   {
     auto app = std::make_unique<CLI::App>(
@@ -56,6 +114,13 @@ namespace kimp::cli
     {
       if (error.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success))
         return app.exit(error, out, err);
+      if (app.get_subcommands().empty())
+        if (const std::string unknown = unknown_command(app, argc, argv); !unknown.empty())
+        {
+          err << "error: " << unknown << "\nRun '" << app.get_name()
+              << " --help' for more information.\n";
+          return 2;
+        }
       err << "error: " << error.what() << "\nRun '" << app.get_name()
           << " --help' for more information.\n";
       return 2;

@@ -1,5 +1,6 @@
 // kimp-fem: the `kimp` executable with the FEM engine (deal.II, gmsh, MPI). The lean `kimp` execs
 // it, with the same arguments and environment, for the commands mesh, fem and study.
+#include <csignal>
 #include <exception>
 #include <iostream>
 #include <memory>
@@ -13,6 +14,7 @@
 int main(int argc, char **argv)
 {
   using kimp::cli::report_error;
+  std::signal(SIGPIPE, SIG_IGN); // outputs are still written when stdout is a closed pipe
   // MPI (and p4est) once per process, also under mpirun; only rank 0 logs.
   std::unique_ptr<kimp::app::Session> session;
   try
@@ -38,5 +40,9 @@ int main(int argc, char **argv)
   {
     // Before the MPI session ends: MPI_Finalize would wait for ranks that are still running.
     return report_error(error);
+  }
+  catch (...)
+  {
+    return report_error("unexpected failure (not a standard exception)");
   }
 }

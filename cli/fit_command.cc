@@ -7,6 +7,7 @@
 #include "base/version.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
+#include "io/units.h"
 
 namespace kimp::cli
 {

@@ -1,6 +1,7 @@
 // kimp: impact stiffness for pounding of seismically isolated buildings (command-line entry).
 // The lean executable: no deal.II, gmsh or MPI_Init; the FEM commands are run by `kimp-fem`.
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <exception>
 #include <iostream>
@@ -63,6 +64,9 @@ namespace
 
 int main(int argc, char **argv)
 {
+  // A closed pipe (`kimp ... | head -1`) must not kill the run before it writes its files: writes
+  // to the pipe then fail quietly instead. Kept across the exec of kimp-fem.
+  std::signal(SIGPIPE, SIG_IGN);
 #ifdef KIMP_FEM_EXECUTABLE
   if (const char *command = command_name(argc, argv); command && is_fem_command(command))
     return exec_fem_executable(argv, command);
@@ -82,5 +86,9 @@ int main(int argc, char **argv)
   catch (const std::exception &error)
   {
     return kimp::cli::report_error(error);
+  }
+  catch (...)
+  {
+    return report("unexpected failure (not a standard exception)");
   }
 }

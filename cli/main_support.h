@@ -5,6 +5,9 @@
 #include <exception>
 #include <iostream>
 #include <mpi.h>
+#include <string>
+
+#include "base/errors.h"
 
 namespace kimp::cli
 {
@@ -25,11 +28,17 @@ namespace kimp::cli
       MPI_Abort(MPI_COMM_WORLD, exit_code);
   }
 
-  /// Prints "error: <what>", ends the other ranks and returns exit code 1.
-  inline int report_error(const std::exception &error)
+  /// Prints "error: <message>", ends the other ranks and returns exit code 1.
+  inline int report_error(const std::string &message)
   {
-    std::cerr << "error: " << error.what() << std::endl;
+    std::cerr << "error: " << message << std::endl;
     abort_other_ranks(1);
     return 1;
+  }
+
+  /// Prints the error as one line ("out of memory" rather than "std::bad_alloc").
+  inline int report_error(const std::exception &error)
+  {
+    return report_error(kimp::base::error_text(error));
   }
 } // namespace kimp::cli

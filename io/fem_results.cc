@@ -432,7 +432,7 @@ namespace kimp::io
     const Reader reader(file.string());
     if (!std::filesystem::exists(file))
       reader.fail("/", "no such file");
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    detail::silence_hdf5_errors();
     const Handle h5(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
     if (h5.get() < 0)
       reader.fail("/", "not a readable HDF5 file");

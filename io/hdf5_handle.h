@@ -29,6 +29,13 @@ namespace kimp::io::detail
     herr_t (*close_)(hid_t);
   };
 
+  /// Switch off HDF5's automatic printing of its error stack (process-wide): kimp turns every
+  /// HDF5 failure into one exception with a one-line message instead.
+  inline void silence_hdf5_errors()
+  {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+
   /// A variable-length UTF-8 string type (the caller closes it with H5Tclose).
   inline hid_t utf8_string_type()
   {

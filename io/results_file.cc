@@ -3,7 +3,10 @@
 #include "io/results_file.h"
 
 #include <array>
+#include <cerrno>
+#include <cstring>
 #include <ctime>
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <hdf5.h>
 #include <system_error>
@@ -21,7 +24,8 @@ namespace kimp::io
     struct ResultsFileState
     {
       hid_t                                       file = -1;
-      std::string                                 name; ///< final file name, for messages
+      int                                         fd   = -1; ///< the temporary file on disk
+      std::string                                 name;      ///< final file name, for messages
       std::vector<std::weak_ptr<TimeSeriesState>> series;
       std::string                                 deferred_error;
 
@@ -51,24 +55,31 @@ namespace kimp::io
 
   namespace
   {
+    /// Descriptions of the HDF5 error stack, outermost first.
     herr_t collect_error(unsigned int /*n*/, const H5E_error2_t *error, void *data)
     {
-      auto *text = static_cast<std::string *>(data);
+      auto *descriptions = static_cast<std::vector<std::string> *>(data);
       if (error->desc != nullptr && error->desc[0] != '\0')
-      {
-        if (!text->empty())
-          *text += "; ";
-        *text += error->desc;
-      }
+        descriptions->emplace_back(error->desc);
       return 0;
     }
 
+    /// One line from HDF5's error stack: the outermost and the innermost description (the
+    /// whole stack runs to a dozen lines that say the same thing).
     std::string hdf5_error_text()
     {
-      std::string text;
-      H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, collect_error, &text);
+      std::vector<std::string> descriptions;
+      H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, collect_error, &descriptions);
       H5Eclear2(H5E_DEFAULT);
-      return text.empty() ? std::string("no HDF5 error detail") : text;
+      if (descriptions.empty())
+        return "no HDF5 error detail";
+      std::string text = descriptions.front();
+      if (descriptions.size() > 1 && descriptions.back() != descriptions.front())
+        text += ": " + descriptions.back();
+      for (char &c : text)
+        if (c == '\n' || c == '\r')
+          c = ' ';
+      return text;
     }
 
     template <class T>
@@ -731,6 +742,47 @@ namespace kimp::io
 
   // ---------------------------------------------------------------------------------------------
 
+  namespace
+  {
+    /// Close the in-memory HDF5 file and the temporary file and delete it; never throws. The
+    /// HDF5 file lives in memory (core driver without backing store), so closing it does no I/O
+    /// and cannot fail on a full disk: no HDF5 id outlives a failed run.
+    void discard(detail::ResultsFileState &state, const std::filesystem::path &temporary)
+    {
+      if (state.open())
+      {
+        H5Fclose(state.file);
+        state.file = -1;
+        H5Eclear2(H5E_DEFAULT);
+      }
+      if (state.fd >= 0)
+      {
+        ::close(state.fd);
+        state.fd = -1;
+      }
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+    }
+
+    /// Write `size` bytes to `fd` from its start; returns 0 or the errno of the failure.
+    int write_all(int fd, const unsigned char *data, std::size_t size)
+    {
+      std::size_t done = 0;
+      while (done < size)
+      {
+        const ssize_t n = ::write(fd, data + done, size - done);
+        if (n < 0)
+        {
+          if (errno == EINTR)
+            continue;
+          return errno;
+        }
+        done += static_cast<std::size_t>(n);
+      }
+      return ::fsync(fd) == 0 ? 0 : errno;
+    }
+  } // namespace
+
   ResultsFile::ResultsFile(std::filesystem::path final_path,
                            std::string_view      scene_text,
                            std::string_view      resolved_json)
@@ -738,19 +790,32 @@ namespace kimp::io
     , temporary_path_(final_path_.string() + ".tmp-" + std::to_string(::getpid()))
     , state_(std::make_shared<detail::ResultsFileState>())
   {
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    detail::silence_hdf5_errors();
     state_->name = final_path_.string();
 
-    // STRONG close: closing the file also closes every group or dataset still held by a caller,
-    // so the file is complete at commit() and removable on failure.
-    const Closer access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
-    H5Pset_fclose_degree(access.get(), H5F_CLOSE_STRONG);
-    state_->file =
-      check(H5Fcreate(temporary_path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()),
-            state_->name,
-            "creating temporary file '" + temporary_path_.string() + "'");
+    // The temporary file is created now, so that an unwritable directory is an error before any
+    // computation; its bytes are written at commit().
+    state_->fd = ::open(temporary_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (state_->fd < 0)
+      throw ResultsError(fmt::format("results file '{}': cannot create '{}': {}",
+                                     state_->name,
+                                     temporary_path_.string(),
+                                     std::strerror(errno)));
     try
     {
+      // The file is built in memory (core driver, no backing store) and written by commit():
+      // HDF5 then never meets a write error, which it cannot recover from (a file whose flush
+      // fails cannot be closed, and HDF5's exit handler crashes on it).
+      // STRONG close: closing the file also closes every group or dataset still held by a
+      // caller, so the file is complete at commit() and removable on failure.
+      const Closer access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+      H5Pset_fclose_degree(access.get(), H5F_CLOSE_STRONG);
+      constexpr std::size_t core_increment = std::size_t(16) << 20; // bytes
+      check(H5Pset_fapl_core(access.get(), core_increment, 0), state_->name, "in-memory file");
+      state_->file =
+        check(H5Fcreate(temporary_path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()),
+              state_->name,
+              "creating temporary file '" + temporary_path_.string() + "'");
       ResultsGroup top  = root();
       ResultsGroup meta = top.group("meta");
       meta.set_attribute("schema_version",
@@ -765,10 +830,7 @@ namespace kimp::io
     }
     catch (...)
     {
-      H5Fclose(state_->file);
-      state_->file = -1;
-      std::error_code ignored;
-      std::filesystem::remove(temporary_path_, ignored);
+      discard(*state_, temporary_path_);
       throw;
     }
   }
@@ -785,13 +847,7 @@ namespace kimp::io
   {
     if (!state_ || committed_)
       return;
-    if (state_->open())
-    {
-      H5Fclose(state_->file);
-      state_->file = -1;
-    }
-    std::error_code ignored;
-    std::filesystem::remove(temporary_path_, ignored);
+    discard(*state_, temporary_path_);
   }
 
   ResultsGroup ResultsFile::root()
@@ -809,25 +865,46 @@ namespace kimp::io
     if (!state_ || !state_->open())
       throw ResultsError(
         fmt::format("results file '{}' is already committed or closed", final_path_.string()));
-    for (const auto &weak : state_->series)
-      if (const auto series = weak.lock())
-        series->flush();
-    if (!state_->deferred_error.empty())
-      throw ResultsError(state_->deferred_error);
-    check(H5Fflush(state_->file, H5F_SCOPE_GLOBAL), state_->name, "flushing");
-    const herr_t closed = H5Fclose(state_->file);
-    state_->file        = -1;
-    check(closed, state_->name, "closing");
-    std::error_code error;
-    std::filesystem::rename(temporary_path_, final_path_, error);
-    if (error)
+    try
     {
-      std::error_code ignored;
-      std::filesystem::remove(temporary_path_, ignored);
-      throw ResultsError(fmt::format("results file '{}': renaming '{}' to it failed: {}",
-                                     final_path_.string(),
-                                     temporary_path_.string(),
-                                     error.message()));
+      for (const auto &weak : state_->series)
+        if (const auto series = weak.lock())
+          series->flush();
+      if (!state_->deferred_error.empty())
+        throw ResultsError(state_->deferred_error);
+      check(H5Fflush(state_->file, H5F_SCOPE_GLOBAL), state_->name, "flushing");
+      const ssize_t              size = check(H5Fget_file_image(state_->file, nullptr, 0),
+                                 state_->name,
+                                 "measuring the file image");
+      std::vector<unsigned char> image(static_cast<std::size_t>(size));
+      check(H5Fget_file_image(state_->file, image.data(), image.size()),
+            state_->name,
+            "copying the file image");
+      const herr_t closed = H5Fclose(state_->file);
+      state_->file        = -1;
+      check(closed, state_->name, "closing");
+      const int write_error = write_all(state_->fd, image.data(), image.size());
+      const int close_error = ::close(state_->fd) == 0 ? 0 : errno;
+      state_->fd            = -1;
+      if (write_error != 0 || close_error != 0)
+        throw ResultsError(
+          fmt::format("results file '{}': writing {} bytes to '{}' failed: {}",
+                      state_->name,
+                      image.size(),
+                      temporary_path_.string(),
+                      std::strerror(write_error != 0 ? write_error : close_error)));
+      std::error_code error;
+      std::filesystem::rename(temporary_path_, final_path_, error);
+      if (error)
+        throw ResultsError(fmt::format("results file '{}': renaming '{}' to it failed: {}",
+                                       final_path_.string(),
+                                       temporary_path_.string(),
+                                       error.message()));
+    }
+    catch (...)
+    {
+      discard(*state_, temporary_path_);
+      throw;
     }
     committed_ = true;
   }

@@ -72,8 +72,9 @@ def k_vs_height(h5, out_dir):
         if points:
             ax.plot([p[0] for p in points], [p[1] for p in points], "s--", label="thesis Table 2.1")
         ax.set_yscale("log")
+        plain_log_ticks(ax.yaxis)
         ax.set_xlabel("wall height H (m)")
-        ax.set_ylabel(f"k ({unit})")
+        ax.set_ylabel(f"k ({unit})".replace("^1.5", "$^{1.5}$"))
         ax.set_title(law.replace("_", "-"))
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
@@ -108,10 +109,34 @@ def building_response(csv_path, out_dir):
     save(fig, out_dir, "building_response")
 
 
+def plain_log_ticks(axis):
+    """Plain numbers on a log axis ("57.5", not "5.75×10^1"). Minor ticks are labelled only where
+    the labels fit: at 2, 3 and 5 times a power of ten over about a decade, at 2 and 5 over up to
+    2.5 decades, not at all over more."""
+    from matplotlib import ticker
+
+    def plain(value, _):
+        return f"{value:g}"
+
+    def minor(value, _):
+        lo, hi = sorted(axis.get_view_interval())
+        if value <= 0 or lo <= 0:
+            return ""
+        decades = math.log10(hi / lo)
+        labelled = (2.0, 3.0, 5.0) if decades <= 1.2 else (2.0, 5.0) if decades <= 2.5 else ()
+        leading = value / 10 ** math.floor(math.log10(value) + 1e-9)
+        return f"{value:g}" if round(leading, 6) in labelled else ""
+
+    axis.set_major_formatter(ticker.FuncFormatter(plain))
+    axis.set_minor_formatter(ticker.FuncFormatter(minor))
+
+
 def log_log_axes(ax, xlabel, ylabel, title):
     """Log-log axes with labels, title, grid and a small legend (the accuracy and stability charts)."""
     ax.set_xscale("log")
     ax.set_yscale("log")
+    plain_log_ticks(ax.xaxis)
+    plain_log_ticks(ax.yaxis)
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     ax.set_title(title)
@@ -182,7 +207,7 @@ def stability_map(h5, out_dir):
     dt = t["dt"][()]
     stable = t["stable"][()]
     accurate = t["accurate"][()] if "accurate" in t else stable
-    fig, ax = plt.subplots(figsize=(6, 4.2), constrained_layout=True)
+    fig, ax = plt.subplots(figsize=(8.5, 4.2), constrained_layout=True)
     for sel, marker, color, label in (
             (lambda i: accurate[i] > 0.5, "o", "C2", "stable, COR within 5 %"),
             (lambda i: stable[i] > 0.5 and accurate[i] < 0.5, "s", "C1", "stable, inaccurate"),
@@ -193,13 +218,19 @@ def stability_map(h5, out_dir):
                        label=label)
     order = sorted(range(len(k)), key=lambda i: k[i])
     ks = [k[i] for i in order]
-    ax.plot(ks, [t["dt_limit"][()][i] for i in order], "k-", label="2/omega_imp")
+    ax.plot(ks, [t["dt_limit"][()][i] for i in order], "k-", label=r"$2/\omega_\mathrm{imp}$")
     ax.plot(ks, [t["dt_limit_damped"][()][i] for i in order], "k--",
-            label="2(sqrt(1+xi^2)-xi)/omega_imp (KV dashpot)")
+            label=r"$2(\sqrt{1+\xi^2}-\xi)/\omega_\mathrm{imp}$ (KV dashpot)")
     k_study = t.attrs.get("study_stiffness_N_per_m", None)
     if k_study:
-        ax.axvline(float(k_study) * 1e-6, color="C0", ls=":", label="study k_KV (total)")
-    log_log_axes(ax, "k_imp (kN/mm)", "time step (s)", "central difference, two-body contact")
+        ax.axvline(float(k_study) * 1e-6, color="C0", ls=":", label=r"study $k_\mathrm{KV}$ (total)")
+    log_log_axes(ax, r"$k_\mathrm{imp}$ (kN/mm)", r"time step $\Delta t$ (s)", "central difference, two-body contact")
+    # Time steps far above the limit are all unstable and say nothing more: show up to 30 times
+    # the largest limit, and keep the legend off the points.
+    limits = [v for v in t["dt_limit"][()] if math.isfinite(v) and v > 0]
+    if limits:
+        ax.set_ylim(top=min(ax.get_ylim()[1], 30 * max(limits)))
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     save(fig, out_dir, "stability_map")
 
 
@@ -223,9 +254,9 @@ def stability_map_fem(h5, out_dir):
             limits[float(p)] = lim * 1e6
     if limits:
         ps = sorted(limits)
-        ax.plot(ps, [limits[p] for p in ps], "k-", label="computed limit 2(sqrt(1+xi^2)-xi)/omega")
+        ax.plot(ps, [limits[p] for p in ps], "k-", label=r"computed limit $2(\sqrt{1+\xi^2}-\xi)/\omega$")
     h = t.attrs.get("h_contact_m", None)
-    log_log_axes(ax, "penalty factor (x E/h)", "time step (us)",
+    log_log_axes(ax, "penalty factor (× E/h)", r"time step $\Delta t$ (μs)",
                  "explicit FEM" + (f", {float(h) * 100:g} cm contact elements" if h else ""))
     save(fig, out_dir, "stability_map_fem")
 

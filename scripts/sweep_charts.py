@@ -36,9 +36,37 @@ def read_plan(directory):
     return json.loads(text)
 
 
+def csv_column(label):
+    """The CSV column of a metric label "name [unit]" (kimp's header convention name_unit,
+    io::csv_column): '/' -> "_per_", '^' and spaces dropped, '*' -> '_', no suffix for "1"."""
+    if not label.endswith("]") or " [" not in label:
+        return label
+    name, unit = label[:-1].rsplit(" [", 1)
+    if unit in ("", "1"):
+        return name
+    unit = unit.replace("/", "_per_").replace("^", "").replace(" ", "").replace("*", "_")
+    return f"{name}_{unit}"
+
+
+class Row(dict):
+    """A CSV row that also answers to the metric labels "name [unit]" of sweep.h5."""
+
+    def __missing__(self, key):
+        column = csv_column(key)
+        if column != key and column in self:
+            return self[column]
+        raise KeyError(key)
+
+    def get(self, key, default=None):
+        try:
+            return self[key]
+        except KeyError:
+            return default
+
+
 def read_csv(path):
     with open(path, newline="") as f:
-        return list(csv.DictReader(f))
+        return [Row(r) for r in csv.DictReader(f)]
 
 
 def number(text):
@@ -46,6 +74,27 @@ def number(text):
         return float(text)
     except (TypeError, ValueError):
         return NAN
+
+
+# Axis names of common scene key paths (the key path itself is a file detail, not a quantity).
+KEY_NAMES = {
+    "impact.k": "impact stiffness $k$",
+    "impact.cor": "coefficient of restitution",
+    "impact.law": "impact law",
+    "walls.left.gap": "gap",
+    "walls.right.gap": "gap",
+    "ground_motion.record": "record",
+    "ground_motion.scale": "record scale",
+}
+
+
+def axis_name(key, unit=""):
+    """A readable axis label for a scene key path: a known name, else its last segment with spaces
+    ("isolator.K1" -> "K1"); the several key paths of one parameter ("a, b") give the first one's
+    name."""
+    first = key.split(",")[0].strip()
+    name = KEY_NAMES.get(first, first.split(".")[-1].replace("_", " "))
+    return f"{name} [{unit}]" if unit else name
 
 
 def quantity(text):
@@ -166,7 +215,7 @@ class Sweep:
         return max(values) if values else NAN
 
     def contacts_max(self, row, suffix):
-        values = [self.value(row, c) for c in self.columns if c.endswith(suffix)]
+        values = [self.value(row, c) for c in self.columns if c.endswith(csv_column(suffix))]
         values = [v for v in values if math.isfinite(v)]
         return max(values) if values else NAN
 
@@ -306,7 +355,7 @@ def property_charts(sweep, written):
         if all(math.isfinite(v) for v in numeric):
             x = lambda r, n=name: quantity(r[n])[0]  # noqa: E731
             unit = quantity(p["values"][0])[1]
-            xlabel = f"{name} [{unit}]" if unit else name
+            xlabel = axis_name(name, unit)
         else:
             x = lambda r, n=name, vals=p["values"]: float(vals.index(r[n]))  # noqa: E731
             xlabel = f"{name} ({', '.join(f'{i}: {v}' for i, v in enumerate(p['values']))})"
@@ -356,18 +405,31 @@ def chart_impact_parameters(sweep, written, lines):
     xs = sorted({quantity(r[xa])[0] for r in sweep.ok})
     ys = sorted({quantity(r[ya])[0] for r in sweep.ok})
     fig, axes = plt.subplots(2, 2, figsize=(12, 9))
-    for ax, (_, label, fun) in zip(axes.flat, [AMPLIFICATIONS[0], AMPLIFICATIONS[2], RESPONSES[3],
-                                               PEAK_FORCE]):
+    for ax, (key, label, fun) in zip(axes.flat, [AMPLIFICATIONS[0], AMPLIFICATIONS[2], RESPONSES[3],
+                                                 PEAK_FORCE]):
         grid = np.full((len(ys), len(xs)), np.nan)
         for r in sweep.ok:
             i, j = ys.index(quantity(r[ya])[0]), xs.index(quantity(r[xa])[0])
             v = fun(sweep, r)
             grid[i, j] = v if not np.isfinite(grid[i, j]) else max(grid[i, j], v)
-        mesh = ax.contourf(xs, ys, grid, levels=12, cmap="viridis") if len(xs) > 1 and len(ys) > 1 \
-            else ax.pcolormesh(grid)
-        fig.colorbar(mesh, ax=ax)
-        ax.set_xlabel(f"{xa} [{quantity(sweep.ok[0][xa])[1]}]")
-        ax.set_ylabel(f"{ya} [{quantity(sweep.ok[0][ya])[1]}]".replace(" []", ""))
+        finite = grid[np.isfinite(grid)]
+        if key == "n_impacts" and finite.size:
+            # A count is discrete: one flat colour per case and integer steps on the colour bar,
+            # not a smooth contour that invents fractional impacts between the cases.
+            lo, hi = int(finite.min()), int(finite.max())
+            step = max(1, math.ceil((hi - lo + 1) / 12))
+            bounds = np.arange(lo - 0.5, hi + step + 0.5, step)
+            cmap = plt.get_cmap("viridis", len(bounds) - 1)
+            norm = matplotlib.colors.BoundaryNorm(bounds, cmap.N)
+            mesh = ax.pcolormesh(xs, ys, grid, shading="nearest", cmap=cmap, norm=norm) \
+                if len(xs) > 1 and len(ys) > 1 else ax.pcolormesh(grid, cmap=cmap, norm=norm)
+            fig.colorbar(mesh, ax=ax, ticks=np.arange(lo, hi + step, step))
+        else:
+            mesh = ax.contourf(xs, ys, grid, levels=12, cmap="viridis") \
+                if len(xs) > 1 and len(ys) > 1 else ax.pcolormesh(grid)
+            fig.colorbar(mesh, ax=ax)
+        ax.set_xlabel(axis_name(xa, quantity(sweep.ok[0][xa])[1]))
+        ax.set_ylabel(axis_name(ya, quantity(sweep.ok[0][ya])[1]))
         ax.set_title(label, fontsize="medium")
     fig.suptitle(f"{sweep.title}: amplification surfaces (max over records)" if sweep.record_param
                  else f"{sweep.title}: amplification surfaces")

@@ -157,7 +157,7 @@ namespace kimp::app
       fem_root.emplace(results->root().group("fem"));
     }
 
-    nlohmann::ordered_json                cases = nlohmann::ordered_json::object();
+    nlohmann::ordered_json                cases = nlohmann::ordered_json::array();
     std::vector<std::vector<std::string>> rows;
     for (const double height : scene.wall_heights)
     {
@@ -201,7 +201,10 @@ namespace kimp::app
       write_diagnostics(case_group, result.history);
       if (scene.output.vtu_interval > 0)
         case_group.set_attribute("pvd", "vtu/" + name + "/impact.pvd");
-      cases[name] = summary_json(fem_case, mesh_rel);
+      // `cases` is a list of objects with "name" in every command's summary.json.
+      nlohmann::ordered_json entry{{"name", name}};
+      entry.update(summary_json(fem_case, mesh_rel));
+      cases.push_back(entry);
       for (std::size_t i = 0; i < fem_case.time.size(); ++i)
         rows.push_back({name,
                         fmt::format("{}", fem_case.time[i]),

@@ -72,7 +72,7 @@ namespace kimp::app
     if (!no_png.empty())
       logger().warn("PNG previews skipped: {}", no_png);
 
-    nlohmann::ordered_json cases = nlohmann::ordered_json::object();
+    nlohmann::ordered_json cases = nlohmann::ordered_json::array();
     for (const double height : scene.wall_heights)
     {
       const std::string              name                = fem_case_name(height);
@@ -102,6 +102,7 @@ namespace kimp::app
                     vtu.string());
 
       nlohmann::ordered_json entry;
+      entry["name"]        = name;
       entry["wall_height"] = height;
       entry["mesh_file"]   = "mesh/" + name + ".msh";
       entry["vtu_preview"] = "mesh/" + name + ".vtu";
@@ -124,7 +125,7 @@ namespace kimp::app
       for (const auto &[id, area] : info.area_by_material)
         areas[std::to_string(id)] = area;
       entry["area_by_material"] = areas;
-      cases[name]               = entry;
+      cases.push_back(entry);
     }
 
     nlohmann::ordered_json summary;

@@ -9,6 +9,7 @@
 
 #include "app/lumped_run.h"
 #include "app/study/study_internal.h"
+#include "base/errors.h"
 #include "base/logging.h"
 #include "lumped/collision/two_body.h"
 #include "lumped/integrators/response.h"
@@ -96,7 +97,7 @@ namespace kimp::app::study_internal
       }
       catch (const std::exception &error)
       {
-        bare.status = std::string("failed: ") + error.what();
+        bare.status = "failed: " + base::error_text(error);
         logger().warn("record {}: {}", label, bare.status);
         runs.push_back(bare);
         continue;

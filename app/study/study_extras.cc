@@ -12,6 +12,7 @@
 #include "app/lumped_run.h"
 #include "app/study/study_fem.h"
 #include "app/study/study_ladder.h"
+#include "base/errors.h"
 #include "base/logging.h"
 #include "fem/impact.h"
 #include "geometry/scene_mesh.h"
@@ -64,7 +65,7 @@ namespace kimp::app
       catch (const std::exception &error)
       {
         point.ok     = false;
-        point.status = std::string("failed: ") + error.what();
+        point.status = "failed: " + base::error_text(error);
         logger().warn("{}: {}", name, point.status);
       }
     }
@@ -100,7 +101,7 @@ namespace kimp::app
                     &p.n_dofs,
                     &p.n_steps,
                     &p.from_cache);
-      logger().info("accuracy {} {}: k_KV {:.6g} kN/mm/m, {:.3g} s ({})",
+      logger().info("accuracy {} {}: k_KV {:.4g} kN/mm/m, {:.3g} s ({})",
                     series,
                     name,
                     stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0),

@@ -10,6 +10,7 @@
 
 #include "app/fem/fem_common.h"
 #include "app/fit_run.h"
+#include "base/errors.h"
 #include "base/hash.h"
 #include "base/logging.h"
 #include "base/version.h"
@@ -61,7 +62,7 @@ namespace kimp::app
       }
       catch (const std::exception &error)
       {
-        status = std::string("failed: ") + error.what();
+        status = "failed: " + base::error_text(error);
         logger().warn("{} {}: fit {}", fem_case.name, variant.name, status);
       }
     }

@@ -79,7 +79,7 @@ namespace kimp::app::study_internal
         logger().warn("{}: level {} {}", h.name, level.label(), outcome.status);
       }
       computed.push_back(std::move(c));
-      logger().info("{}: level {}: k_KV {:.6g} kN/mm/m, k_Jankowski {:.6g} kN/mm^1.5/m ({})",
+      logger().info("{}: level {}: k_KV {:.4g} kN/mm/m, k_Jankowski {:.4g} kN/mm^1.5/m ({})",
                     h.name,
                     level.label(),
                     stiffness_to_kn_per_mm(outcome.k_kelvin_voigt, 1.0),

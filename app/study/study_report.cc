@@ -8,6 +8,7 @@
 
 #include "app/helper_programs.h"
 #include "app/study/study_internal.h"
+#include "base/format.h"
 #include "base/logging.h"
 #include "base/version.h"
 
@@ -18,6 +19,12 @@ namespace kimp::app::study_internal
   using namespace kimp::fit;
   namespace
   {
+    /// A number of the report: 4 significant figures, empty if not finite (as in the CSV).
+    std::string readable(double value)
+    {
+      return std::isfinite(value) ? base::sig(value) : std::string();
+    }
+
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
     std::string extras_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
@@ -36,10 +43,10 @@ namespace kimp::app::study_internal
                             p.series,
                             p.h_contact * 100,
                             p.penalty_factor,
-                            number(p.seconds),
-                            number(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
+                            readable(p.seconds),
+                            readable(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
                             p.ok ? fmt::format("{:.3g} %", 100 * p.error_kelvin_voigt) : "",
-                            number(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
+                            readable(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
                             p.ok ? fmt::format("{:.3g} %", 100 * p.error_jankowski) : "",
                             p.status);
         md += "\nData: [accuracy_fem.csv](accuracy_fem.csv), study.h5 `/accuracy/fem`.\n\n";
@@ -61,10 +68,10 @@ namespace kimp::app::study_internal
           md += fmt::format("| {} | {:g} | {} | {} | {} | {} | {} | {} |\n",
                             p.method,
                             p.dt,
-                            number(p.seconds),
-                            number(p.ok ? p.peak_impact_force / 1e3 : nan),
+                            readable(p.seconds),
+                            readable(p.ok ? p.peak_impact_force / 1e3 : nan),
                             p.ok ? fmt::format("{:.3g} %", 100 * p.error_force) : "",
-                            number(p.ok ? p.base_acceleration : nan),
+                            readable(p.ok ? p.base_acceleration : nan),
                             p.ok ? fmt::format("{:.3g} %", 100 * p.error_acceleration) : "",
                             p.status);
         md +=
@@ -152,8 +159,8 @@ namespace kimp::app::study_internal
           md += fmt::format("| {} | {:g} | {} | {} | {} |\n",
                             p.parameter,
                             p.factor,
-                            number(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
-                            number(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
+                            readable(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
+                            readable(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
                             p.status);
         md += "\nData: [sensitivity.csv](sensitivity.csv), study.h5 `/sensitivity`.\n\n";
         if (charts)
@@ -176,7 +183,7 @@ namespace kimp::app::study_internal
           "level (h_contact, penalty) | FEM from cache |\n"
           "|---|---|---|---|---|---|---|---|---|\n";
     const auto plus_minus = [](double error)
-    { return std::isfinite(error) ? " ± " + number(error) : std::string(); };
+    { return std::isfinite(error) ? " ± " + base::sig(error, 2) : std::string(); };
     for (const StudyHeight &h : result.heights)
     {
       const std::optional<ThesisStiffness> t = thesis_row(h.wall_height);
@@ -184,18 +191,18 @@ namespace kimp::app::study_internal
         fmt::format("| {:.2f} | {} [{}, {}]{} | {} | {} | {} [{}, {}]{} | {} | {} | {:g} cm, "
                     "{:g}{} | {} |\n",
                     h.wall_height,
-                    number(per_metre(h.kelvin_voigt)),
-                    number(per_metre_bound(h.kelvin_voigt, false)),
-                    number(per_metre_bound(h.kelvin_voigt, true)),
+                    readable(per_metre(h.kelvin_voigt)),
+                    readable(per_metre_bound(h.kelvin_voigt, false)),
+                    readable(per_metre_bound(h.kelvin_voigt, true)),
                     plus_minus(numerical_error(h, 1.0)),
-                    t ? number(t->kelvin_voigt) : "-",
-                    number(per_metre(h.kelvin_voigt) * scene.fit.width),
-                    number(per_metre(h.jankowski)),
-                    number(per_metre_bound(h.jankowski, false)),
-                    number(per_metre_bound(h.jankowski, true)),
+                    t ? readable(t->kelvin_voigt) : "-",
+                    readable(per_metre(h.kelvin_voigt) * scene.fit.width),
+                    readable(per_metre(h.jankowski)),
+                    readable(per_metre_bound(h.jankowski, false)),
+                    readable(per_metre_bound(h.jankowski, true)),
                     plus_minus(numerical_error(h, 1.5)),
-                    t ? number(t->jankowski) : "-",
-                    number(per_metre(h.jankowski) * scene.fit.width),
+                    t ? readable(t->jankowski) : "-",
+                    readable(per_metre(h.jankowski) * scene.fit.width),
                     used_h_contact(scene, h) * 100.0,
                     used_penalty(scene, h),
                     h.auto_fidelity ? (h.ladder.converged ? "" : " (not converged)") : " (fixed)",
@@ -225,29 +232,29 @@ namespace kimp::app::study_internal
     for (const StudyBuildingRun &r : result.building)
       md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
                         r.record,
-                        r.law == "none" ? "-" : number(r.wall_height),
+                        r.law == "none" ? "-" : readable(r.wall_height),
                         r.law,
-                        r.law == "none" ? "-" : number(r.gap * 100),
-                        number(r.base_acceleration),
-                        number(r.top_acceleration),
-                        number(r.max_interstorey_drift * 100),
-                        number(r.peak_impact_force / 1e3),
+                        r.law == "none" ? "-" : readable(r.gap * 100),
+                        readable(r.base_acceleration),
+                        readable(r.top_acceleration),
+                        readable(r.max_interstorey_drift * 100),
+                        readable(r.peak_impact_force / 1e3),
                         r.n_impacts,
-                        number(r.amplification_top_acc),
+                        readable(r.amplification_top_acc),
                         r.status);
     md += "\nData: [building_response.csv](building_response.csv), study.h5 "
           "`/building/<record>/<law>`.\n\n";
     if (charts)
       md += "![building response against wall height](charts/building_response.png)\n\n";
     md += extras_markdown(scene, result.extras, charts);
-    md += fmt::format("## Cost\n\nFEM {:.2f} s, fits {:.2f} s, building runs {:.2f} s, extra "
-                      "studies {:.2f} s, charts {:.2f} s, total {:.2f} s (see summary.json).\n",
-                      result.fem_seconds,
-                      result.fit_seconds,
-                      result.building_seconds,
-                      result.extras.seconds,
-                      result.charts_seconds,
-                      result.wall_seconds);
+    md += fmt::format("## Cost\n\nFEM {} s, fits {} s, building runs {} s, extra "
+                      "studies {} s, charts {} s, total {} s (see summary.json).\n",
+                      base::sig(result.fem_seconds, 3),
+                      base::sig(result.fit_seconds, 3),
+                      base::sig(result.building_seconds, 3),
+                      base::sig(result.extras.seconds, 3),
+                      base::sig(result.charts_seconds, 3),
+                      base::sig(result.wall_seconds, 3));
     return md;
   }
 

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "app/study/study_internal.h"
+#include "base/format.h"
 #include "base/logging.h"
 #include "io/results_file.h"
 
@@ -75,13 +76,12 @@ namespace kimp::app
       // The results are complete by now: a report that cannot be written is only a warning.
       logger().warn("no HTML report: {}", error.what());
     }
-    logger().info("study done in {:.2f} s (FEM {:.2f} s, fits {:.2f} s, building {:.2f} s, "
-                  "charts {:.2f} s): {}",
-                  result.wall_seconds,
-                  result.fem_seconds,
-                  result.fit_seconds,
-                  result.building_seconds,
-                  result.charts_seconds,
+    logger().info("study done in {} s (FEM {} s, fits {} s, building {} s, charts {} s): {}",
+                  base::sig(result.wall_seconds, 3),
+                  base::sig(result.fem_seconds, 3),
+                  base::sig(result.fit_seconds, 3),
+                  base::sig(result.building_seconds, 3),
+                  base::sig(result.charts_seconds, 3),
                   output.file("report.md").string());
     logger().info("HTML report: {}", output.file("report.html").string());
     return result;

@@ -16,6 +16,7 @@
 #include <thread>
 #include <unordered_map>
 
+#include "base/errors.h"
 #include "base/logging.h"
 #include "io/results_file.h"
 #include "io/summary.h"
@@ -184,7 +185,7 @@ namespace kimp::app
           }
           catch (const std::exception &error)
           {
-            entry.row = CaseRow{{}, std::string("failed: ") + error.what()};
+            entry.row = CaseRow{{}, "failed: " + base::error_text(error)};
           }
           catch (...)
           {
@@ -302,8 +303,14 @@ namespace kimp::app
     std::vector<std::string> header{"index", "id", "companion"};
     header.insert(header.end(), table.parameter_names.begin(), table.parameter_names.end());
     header.push_back("status");
-    header.insert(header.end(), table.metric_names.begin(), table.metric_names.end());
-    header.push_back("wall_time [s]");
+    // sweep.h5 keeps the metric labels "name [unit]" in its `columns` attribute; sweep.csv
+    // follows the CSV convention name_unit.
+    std::vector<std::string> labels = header;
+    labels.insert(labels.end(), table.metric_names.begin(), table.metric_names.end());
+    labels.push_back("wall_time [s]");
+    for (const std::string &metric : table.metric_names)
+      header.push_back(csv_column(metric));
+    header.push_back("wall_time_s");
     std::vector<std::vector<std::string>> rows;
     rows.reserve(table.rows.size());
     for (const SweepTableRow &r : table.rows)
@@ -388,7 +395,7 @@ namespace kimp::app
         parameters.write(dataset_name(table.parameter_names[p]), values);
       }
       std::string columns;
-      for (const std::string &h : header)
+      for (const std::string &h : labels)
         columns += (columns.empty() ? "" : "\n") + h;
       sweep.set_attribute("columns", columns);
       file.commit();

@@ -281,18 +281,18 @@ namespace kimp::app
   void write_dsrss_table(const DsrssTable &dsrss, const std::filesystem::path &file)
   {
     std::vector<std::string> header = dsrss.parameter_names;
-    for (const char *column : {"clearance_offset [m]",
+    for (const char *column : {"clearance_offset_m",
                                "n_gaps",
                                "n_cases",
                                "n_failed",
-                               "gap_min [m]",
-                               "gap_max [m]",
-                               "d_req [m]",
+                               "gap_min_m",
+                               "gap_max_m",
+                               "d_req_m",
                                "d_req_status",
-                               "d_srss [m]",
+                               "d_srss_m",
                                "governing_contact",
-                               "d_srss_spread [m]",
-                               "delta_d [m]"})
+                               "d_srss_spread_m",
+                               "delta_d_m"})
       header.emplace_back(column);
     std::vector<std::vector<std::string>> rows;
     for (const DsrssRow &r : dsrss.rows)

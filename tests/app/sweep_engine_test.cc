@@ -144,8 +144,8 @@ namespace
     const auto csv = read_lines(dir / "sweep.csv");
     ASSERT_EQ(csv.size(), 41U);
     EXPECT_EQ(csv[0],
-              "index,id,companion,gap,record,cor,status,peak_acceleration [m/s^2],n_impacts,"
-              "wall_time [s]");
+              "index,id,companion,gap,record,cor,status,peak_acceleration_m_per_s2,n_impacts,"
+              "wall_time_s");
     EXPECT_EQ(csv[1].rfind("0," + plan.cases()[0].id + ",,10 cm,kobe,0.3,ok,", 0), 0U) << csv[1];
   }
 

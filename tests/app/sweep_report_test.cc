@@ -287,8 +287,8 @@ namespace
     std::getline(in, header);
     std::getline(in, line);
     fs::remove(csv);
-    EXPECT_NE(header.find("d_srss [m]"), std::string::npos) << header;
-    EXPECT_NE(header.find("delta_d [m]"), std::string::npos) << header;
+    EXPECT_NE(header.find("d_srss_m"), std::string::npos) << header;
+    EXPECT_NE(header.find("delta_d_m"), std::string::npos) << header;
     EXPECT_NE(line.find("reached"), std::string::npos) << line;
   }
 } // namespace

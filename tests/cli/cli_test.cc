@@ -202,6 +202,13 @@ namespace
     EXPECT_EQ(demo.run({"--no-such-option"}), 2);
     EXPECT_NE(demo.err.str().find("--no-such-option"), std::string::npos) << demo.err.str();
     EXPECT_EQ(demo.run({"no-such-command"}), 2);
+    EXPECT_NE(demo.err.str().find("unknown command 'no-such-command' (commands: demo)"),
+              std::string::npos)
+      << demo.err.str();
+    EXPECT_EQ(demo.run({"-q", "dmeo", "scene.yaml", "-o", "out"}), 2);
+    EXPECT_NE(demo.err.str().find("unknown command 'dmeo'; did you mean 'demo'?"),
+              std::string::npos)
+      << demo.err.str();
     EXPECT_EQ(demo.run({}), 2);
     EXPECT_NE(demo.err.str().find("no command given"), std::string::npos) << demo.err.str();
     EXPECT_EQ(demo.run({"-v", "-q", "demo", "--print-defaults"}), 2) << "-v and -q conflict";

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "lumped/collision/two_body.h"
 #include "lumped/laws/force_law_factory.h"
 #include "tests/support/csv.h"
+#include "tests/support/files.h"
 #include "tests/support/hdf5_reader.h"
 #include "tests/support/temp_dir.h"
 
@@ -143,6 +145,63 @@ namespace
     const double k = h5.doubles(stiffness).at(0);
     EXPECT_NEAR(k, 1.5e8, table_tolerance * 1.5e8);
     EXPECT_STREQ(h5.units(stiffness).c_str(), "N/m/m");
+
+    // summary.json: `cases` a list of objects with "name" and "status", k in SI at full
+    // precision (as fit.h5), counts as integers.
+    const nlohmann::json summary = kimp::testing::read_json(output / "summary.json");
+    EXPECT_EQ(summary.at("command"), "fit");
+    EXPECT_TRUE(summary.at("n_failed").is_number_integer());
+    EXPECT_EQ(summary.at("n_failed"), 0);
+    ASSERT_EQ(summary.at("cases").size(), 2u * 5u);
+    const nlohmann::json &first = summary.at("cases").at(0);
+    EXPECT_EQ(first.at("name"), "H1.00/" + first.at("variant").get<std::string>());
+    EXPECT_EQ(first.at("status"), "ok");
+    for (const nlohmann::json &c : summary.at("cases"))
+      if (c.at("name") == "H1.00/kelvin_voigt_cor_fixed")
+      {
+        EXPECT_EQ(c.at("stiffness_per_metre").get<double>(), k) << "the value of fit.h5";
+        EXPECT_EQ(c.at("stiffness_per_metre_unit"), "N/m/m");
+      }
+  }
+
+  // --width takes a length with its unit like every quantity of kimp; a bare number is metres.
+  TEST(FitCommand, WidthAcceptsUnits)
+  {
+    const TempDir dir;
+    const auto    fem_file = dir.path() / "fem.h5";
+    {
+      kimp::io::ResultsFile file(fem_file, "", "{}");
+      auto                  root = file.root();
+      auto                  fem  = root.group("fem");
+      kimp::io::write_fem_case(fem, kelvin_voigt_case("H1.00", 1.0, 1.5e8));
+      file.commit();
+    }
+    auto app = kimp::cli::make_app();
+    kimp::cli::register_fit_command(*app);
+    std::ostringstream out, err;
+    const auto         width_of = [&](const std::string &width, const std::string &name)
+    {
+      const auto output = dir.path() / name;
+      EXPECT_EQ(kimp::cli::run_app(
+                  *app,
+                  {"-q", "fit", fem_file.string(), "-o", output.string(), "--width", width},
+                  out,
+                  err),
+                0)
+        << err.str();
+      return kimp::testing::read_json(output / "summary.json").at("options").at("width");
+    };
+    EXPECT_DOUBLE_EQ(width_of("27.78 m", "a").get<double>(), 27.78);
+    EXPECT_DOUBLE_EQ(width_of("2778 cm", "b").get<double>(), 27.78);
+    EXPECT_DOUBLE_EQ(width_of("27.78", "c").get<double>(), 27.78);
+    err.str("");
+    EXPECT_EQ(kimp::cli::run_app(
+                *app,
+                {"fit", fem_file.string(), "-o", (dir.path() / "d").string(), "--width", "27 kN"},
+                out,
+                err),
+              2);
+    EXPECT_NE(err.str().find("--width"), std::string::npos) << err.str();
   }
 
   TEST(FitCommand, MissingInputIsAnErrorNamingTheFile)

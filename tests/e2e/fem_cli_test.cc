@@ -69,7 +69,10 @@ namespace
     EXPECT_EQ(c.labels.at("slab"), "rigid");
 
     const nlohmann::json summary = read_json(dir.path() / "out/summary.json");
-    EXPECT_EQ(summary.at("cases").at("H1.25").at("peak_force").get<double>(), peak);
+    // `cases` is a list of objects with "name", as in every command's summary.json.
+    ASSERT_EQ(summary.at("cases").size(), 1u);
+    EXPECT_EQ(summary.at("cases").at(0).at("name"), "H1.25");
+    EXPECT_EQ(summary.at("cases").at(0).at("peak_force").get<double>(), peak);
     EXPECT_EQ(summary.at("n_ranks"), 1);
 
     // CSV: one row per sample, the raw force written with round-trip precision.

@@ -38,11 +38,14 @@ namespace
     const double wall_thickness = 0.25, backfill_width = 2.0, slab_length = 8.0,
                  slab_thickness = 0.20;
     std::size_t previous_cells  = 0;
+    // `cases` is a list of objects with "name", in the order of the wall heights.
+    ASSERT_EQ(summary.at("cases").size(), 2u) << summary.dump(2);
+    std::size_t index = 0;
     for (const auto &[name, height] : {std::pair{"H1.00", 1.0}, std::pair{"H1.50", 1.5}})
     {
-      ASSERT_TRUE(summary.at("cases").contains(name)) << summary.dump(2);
-      const nlohmann::json &entry = summary.at("cases").at(name);
-      const auto            msh   = dir.path() / "out" / entry.at("mesh_file").get<std::string>();
+      const nlohmann::json &entry = summary.at("cases").at(index++);
+      EXPECT_EQ(entry.at("name"), name);
+      const auto msh = dir.path() / "out" / entry.at("mesh_file").get<std::string>();
       ASSERT_TRUE(std::filesystem::is_regular_file(msh)) << msh;
       EXPECT_EQ(read_text(msh).rfind("$MeshFormat\n4.1 0 8", 0), 0u) << "ASCII MSH 4.1: " << msh;
       EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / "out" /
@@ -86,7 +89,8 @@ namespace
     const KimpRun run = run_kimp("-q mesh scene.yaml -o out", dir.path());
     ASSERT_EQ(run.exit_code, 0) << run.err;
     const nlohmann::json  summary = read_json(dir.path() / "out/summary.json");
-    const nlohmann::json &entry   = summary.at("cases").at("H1.25");
+    const nlohmann::json &entry   = summary.at("cases").at(0);
+    EXPECT_EQ(entry.at("name"), "H1.25");
     EXPECT_EQ(entry.at("statistics").at("n_slab_cells"), 0);
     EXPECT_EQ(entry.at("statistics").at("n_soil_cells"), 0);
     EXPECT_FALSE(entry.at("area_by_material").contains("1"));

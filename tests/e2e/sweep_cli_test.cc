@@ -63,7 +63,7 @@ namespace
     const std::size_t gap_column    = csv.column("walls.left.gap, walls.right.gap");
     const std::size_t status_column = csv.column("status");
     const std::size_t impacts       = csv.column("n_impacts");
-    const std::size_t free_peak     = csv.column("free_peak_displacement_dof0 [m]");
+    const std::size_t free_peak     = csv.column("free_peak_displacement_dof0_m");
     const std::size_t amplification = csv.column("amp_abs_acceleration_dof4");
     const double      free_base     = std::stod(csv.rows[0][free_peak]);
     std::size_t       n_pounding    = 0;
@@ -247,20 +247,20 @@ namespace
               column_max(csv, "amp_abs_acceleration_dof0"));
     check_max("largest number of impacts", column_max(csv, "n_impacts"));
     check_max("largest max impact velocity",
-              std::max(column_max(csv, "left_wall.max_impact_velocity [m/s]"),
-                       column_max(csv, "right_wall.max_impact_velocity [m/s]")));
+              std::max(column_max(csv, "left_wall.max_impact_velocity_m_per_s"),
+                       column_max(csv, "right_wall.max_impact_velocity_m_per_s")));
 
     // d_req per COR: the first swept gap beyond which no row pounds, and d_SRSS = free base peak.
     const Csv dsrss = read_csv(out / "dsrss_table.csv");
     ASSERT_EQ(dsrss.rows.size(), 2U) << "one configuration per COR";
-    const double free_base = std::stod(csv.rows[0][csv.column("free_peak_displacement_dof0 [m]")]);
+    const double free_base = std::stod(csv.rows[0][csv.column("free_peak_displacement_dof0_m")]);
     for (const auto &row : dsrss.rows)
     {
       EXPECT_EQ(row[dsrss.column("d_req_status")], "reached");
-      const double d_req = std::stod(row[dsrss.column("d_req [m]")]);
+      const double d_req = std::stod(row[dsrss.column("d_req_m")]);
       EXPECT_GT(d_req, free_base) << "no impact needs a gap above the free peak";
       EXPECT_LE(d_req - 0.06, free_base) << "one 6 cm step below d_req still pounds";
-      EXPECT_NEAR(std::stod(row[dsrss.column("d_srss [m]")]), free_base, 1e-12);
+      EXPECT_NEAR(std::stod(row[dsrss.column("d_srss_m")]), free_base, 1e-12);
     }
     fs::remove_all(dir);
   }

@@ -7,6 +7,8 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <vector>
 
 #include "io/summary.h"
@@ -135,5 +137,89 @@ namespace
       EXPECT_NE(std::string(error.what()).find("exists and is not a directory"), std::string::npos)
         << error.what();
     }
+  }
+
+  /// The pid of a process that has ended (a child that exits at once, reaped).
+  pid_t dead_pid()
+  {
+    const pid_t pid = ::fork();
+    if (pid == 0)
+      ::_exit(0);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    return pid;
+  }
+
+  TEST(Summary, StaleTemporariesOfEndedProcessesAreRemoved)
+  {
+    const TempDir dir;
+    const auto    dead  = std::to_string(dead_pid());
+    const auto    alive = std::to_string(::getppid());
+    std::filesystem::create_directories(dir.path() / "fem");
+    const auto orphan        = dir.write("lumped.h5.tmp-" + dead, "partial");
+    const auto nested_orphan = dir.write("fem/H1.5.h5.tmp-" + dead, "partial");
+    const auto running       = dir.write("summary.json.tmp-" + alive, "being written");
+    const auto own           = dir.write("k_table.csv.tmp-" + std::to_string(::getpid()), "x");
+    const auto not_temporary = dir.write("notes.tmp-x1", "kept");
+    const auto partial_sweep = dir.write("sweep.h5.partial", "kept for resuming");
+
+    const OutputDir out(dir.path());
+    EXPECT_FALSE(std::filesystem::exists(orphan));
+    EXPECT_FALSE(std::filesystem::exists(nested_orphan));
+    for (const auto &kept : {running, own, not_temporary, partial_sweep})
+      EXPECT_TRUE(std::filesystem::exists(kept)) << kept;
+  }
+
+  TEST(Summary, OutputDirIsLockedWhileInUseAndReleasedAfter)
+  {
+    const TempDir dir;
+    const auto    lock = dir.path() / kimp::io::output_lock_name;
+    {
+      const OutputDir first(dir.path() / "out");
+      // The same process may name the directory again (a command and its writers).
+      const OutputDir again(dir.path() / "out" / ".");
+      EXPECT_TRUE(std::filesystem::exists(dir.path() / "out" / kimp::io::output_lock_name));
+      EXPECT_EQ(read_text(dir.path() / "out" / kimp::io::output_lock_name),
+                std::to_string(::getpid()) + "\n");
+      // Another process is refused.
+      const pid_t child = ::fork();
+      if (child == 0)
+      {
+        try
+        {
+          const OutputDir other(dir.path() / "out");
+        }
+        catch (const OutputError &error)
+        {
+          const std::string text = error.what();
+          ::_exit(text.find("is in use by another kimp (pid " + std::to_string(::getppid())) !=
+                      std::string::npos ?
+                    0 :
+                    2);
+        }
+        ::_exit(1);
+      }
+      int status = 0;
+      ::waitpid(child, &status, 0);
+      EXPECT_TRUE(WIFEXITED(status));
+      EXPECT_EQ(WEXITSTATUS(status), 0) << "1: not refused, 2: wrong message";
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / kimp::io::output_lock_name));
+    EXPECT_FALSE(std::filesystem::exists(lock));
+  }
+
+  TEST(Summary, CsvColumnsFollowTheNameUnitConvention)
+  {
+    using kimp::io::csv_column;
+    EXPECT_EQ(csv_column("peak_force", "N"), "peak_force_N");
+    EXPECT_EQ(csv_column("peak_acceleration", "m/s^2"), "peak_acceleration_m_per_s2");
+    EXPECT_EQ(csv_column("k", "kN/mm^1.5/m"), "k_kN_per_mm1.5_per_m");
+    EXPECT_EQ(csv_column("damping", "N*s/m"), "damping_N_s_per_m");
+    EXPECT_EQ(csv_column("cor", "1"), "cor");
+    EXPECT_EQ(csv_column("n_impacts", ""), "n_impacts");
+    EXPECT_EQ(csv_column("left_wall.clearance [m]"), "left_wall.clearance_m");
+    EXPECT_EQ(csv_column("wall_time [s]"), "wall_time_s");
+    EXPECT_EQ(csv_column("amp_drift_storey1"), "amp_drift_storey1");
+    EXPECT_EQ(csv_column("ratio [1]"), "ratio");
   }
 } // namespace
