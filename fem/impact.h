@@ -184,6 +184,10 @@ namespace kimp::fem
     std::vector<double> penalty;         ///< J/m, energy stored in the penalty springs
     std::vector<double> contact_dissipation; ///< J/m, work of the contact damping
     std::vector<double> energy_error;        ///< (E_kin + E_strain - W_contact) / E_0 - 1
+    /// Non-linear laws only (empty otherwise), J/m: accumulated plastic and damage
+    /// dissipation, and the internal work (integrated stress power) that replaces E_strain in
+    /// energy_error; `strain` is then the recoverable part.
+    std::vector<double> plastic_dissipation, damage_dissipation, internal_work;
   };
 
   /** Scalar results of one run. */
@@ -219,6 +223,11 @@ namespace kimp::fem
     double       wall_seconds         = 0;
     unsigned int n_ranks              = 1;
     bool         separated            = false; ///< stopped on separation (else end_time)
+    double       plastic_dissipation  = 0;     ///< J/m at the end (non-linear laws)
+    double       damage_dissipation   = 0;     ///< J/m at the end (non-linear laws)
+    /** Non-linear laws: max |W_int - (E_stored + D_plastic + D_damage)| / E_0 over the run,
+     *  the consistency of the point-wise bookkeeping with the integrated stress power. */
+    double dissipation_gap = 0;
   };
 
   struct ImpactResult

@@ -13,6 +13,30 @@ namespace kimp::fem
     std::fill(history, history + n_history(), 0.0);
   }
 
+  void MaterialLaw::initialize_point(double *history, double) const
+  {
+    initial_history(history);
+  }
+
+  PointOutput MaterialLaw::output(const VoigtStrain &e, const double *history) const
+  {
+    std::vector<double> scratch(n_history());
+    std::copy(history, history + n_history(), scratch.begin());
+    const VoigtStress s = stress(e, history, scratch.data());
+    PointOutput       o;
+    o.stored_energy = 0.5 * (s[0] * e[0] + s[1] * e[1] + s[2] * e[2]);
+    return o;
+  }
+
+  PointOutput LinearElasticLaw::output(const VoigtStrain &e, const double *) const
+  {
+    const VoigtStress s = stress(e, nullptr, nullptr);
+    PointOutput       o;
+    o.sigma_zz      = tangent_[1] * (e[0] + e[1]); // lambda tr(eps)
+    o.stored_energy = 0.5 * (s[0] * e[0] + s[1] * e[1] + s[2] * e[2]);
+    return o;
+  }
+
   LinearElasticLaw::LinearElasticLaw(const Material &m)
   {
     const double lambda =
@@ -39,11 +63,16 @@ namespace kimp::fem
 
   void QuadraturePointHistory::initialize_cell(unsigned int cell, const MaterialLaw &law)
   {
+    initialize_cell(cell, law, 0.0);
+  }
+
+  void QuadraturePointHistory::initialize_cell(unsigned int cell, const MaterialLaw &law, double h)
+  {
     if (law.n_history() == 0)
       return;
     for (unsigned int q = 0; q < n_points_per_cell_; ++q)
     {
-      law.initial_history(trial(cell, q));
+      law.initialize_point(trial(cell, q), h);
       std::copy(trial(cell, q),
                 trial(cell, q) + law.n_history(),
                 committed_.data() + offset(cell, q));

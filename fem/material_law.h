@@ -18,6 +18,17 @@ namespace kimp::fem
   /** d sigma / d eps (Pa), row-major 3 x 3. */
   using VoigtTangent = std::array<double, 9>;
 
+  /** Per-point quantities for energy bookkeeping and field output. */
+  struct PointOutput
+  {
+    double sigma_zz                  = 0; ///< out-of-plane stress, Pa
+    double stored_energy             = 0; ///< recoverable strain energy density, J/m^3
+    double plastic_dissipation       = 0; ///< accumulated, J/m^3
+    double damage_dissipation        = 0; ///< accumulated, J/m^3
+    double damage                    = 0; ///< scalar damage, -
+    double equivalent_plastic_strain = 0; ///< -
+  };
+
   /**
    * A constitutive law. Evaluation is const and pure: the law reads the committed history of a
    * quadrature point and writes its trial history; QuadraturePointHistory decides what becomes
@@ -34,6 +45,11 @@ namespace kimp::fem
     /** Writes the history of the undeformed, virgin state (n_history() values). */
     virtual void initial_history(double *history) const;
     /**
+     * Initial history of a point of an element of characteristic length @p h (m; the crack band
+     * of softening laws). Default: initial_history().
+     */
+    virtual void initialize_point(double *history, double h) const;
+    /**
      * Stress at the total strain @p strain from the @p committed history; writes the history
      * that results to @p trial (both n_history() values; unused when 0).
      */
@@ -47,6 +63,11 @@ namespace kimp::fem
      * otherwise it assembles the internal force from stress() at every quadrature point.
      */
     virtual bool is_linear() const { return false; }
+    /**
+     * Out-of-plane stress, stored energy and dissipation at @p strain with the history
+     * @p history that stress() wrote for it. Default: sigma_zz = 0, stored = sigma : eps / 2.
+     */
+    virtual PointOutput output(const VoigtStrain &strain, const double *history) const;
   };
 
   /** Isotropic linear elasticity in plane strain (Lame lambda, mu from E, nu). */
@@ -58,6 +79,7 @@ namespace kimp::fem
     VoigtStress  stress(const VoigtStrain &strain, const double *, double *) const override;
     VoigtTangent tangent(const VoigtStrain &, const double *) const override { return tangent_; }
     bool         is_linear() const override { return true; }
+    PointOutput  output(const VoigtStrain &strain, const double *) const override;
 
   private:
     VoigtTangent tangent_{};
@@ -75,6 +97,8 @@ namespace kimp::fem
     void reinit(unsigned int n_cells, unsigned int n_points_per_cell, unsigned int n_values);
     /** Sets the committed and trial history of all points of @p cell to the law's initial one. */
     void initialize_cell(unsigned int cell, const MaterialLaw &law);
+    /** As initialize_cell(), for an element of characteristic length @p h (m). */
+    void initialize_cell(unsigned int cell, const MaterialLaw &law, double h);
 
     const double *committed(unsigned int cell, unsigned int q) const
     {

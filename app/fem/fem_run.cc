@@ -116,6 +116,10 @@ namespace kimp::app
       series(energy, "penalty", h.penalty, "J/m");
       series(energy, "contact_dissipation", h.contact_dissipation, "J/m");
       series(energy, "relative_error", h.energy_error, "1");
+      // Inelastic laws only (empty, hence not written, for linear ones).
+      series(energy, "internal_work", h.internal_work, "J/m");
+      series(energy, "plastic_dissipation", h.plastic_dissipation, "J/m");
+      series(energy, "damage_dissipation", h.damage_dissipation, "J/m");
       ResultsGroup contact = case_group.group("contact");
       series(contact, "n_active", h.n_active, "1");
       series(contact, "max_penetration", h.max_penetration, "m");

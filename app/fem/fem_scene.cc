@@ -6,6 +6,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "fem/inelastic_laws.h"
+#include "fem/material_law.h"
 #include "geometry/scene_ids.h"
 #include "io/units.h"
 
@@ -108,6 +110,15 @@ namespace kimp::app
                   "backfill_width",
                   format_quantity(g.backfill_width, "m"),
                   "must be > 0");
+    }
+    {
+      const auto                scope = ctx.section("materials");
+      const fem::SoilParameters soil  = soil_parameters(s.materials.soil);
+      ctx.check(soil.dilatancy <= soil.friction_angle,
+                "soil.psi",
+                fmt::format("{:g}", soil.dilatancy * 180 / 3.14159265358979323846),
+                fmt::format("must be <= phi = {:g} (degrees)",
+                            soil.friction_angle * 180 / 3.14159265358979323846));
     }
     {
       const auto     scope = ctx.section("mesh");
@@ -225,23 +236,94 @@ namespace kimp::app
     return geometry::refined(result, scene.mesh.level);
   }
 
+  fem::SoilParameters soil_parameters(const FemSoil &s)
+  {
+    constexpr double    deg = 3.14159265358979323846 / 180;
+    fem::SoilParameters p;
+    if (s.preset != "none")
+      p = fem::soil_preset(s.preset);
+    else
+    {
+      p.youngs_modulus = s.youngs_modulus;
+      p.poisson_ratio  = s.poisson_ratio;
+      p.density        = s.density;
+      p.friction_angle = 30 * deg;
+    }
+    if (s.cohesion)
+      p.cohesion = *s.cohesion;
+    if (s.friction_angle)
+      p.friction_angle = *s.friction_angle * deg;
+    if (s.dilatancy)
+      p.dilatancy = *s.dilatancy * deg;
+    p.tension_cutoff = s.tension_cutoff;
+    return p;
+  }
+
+  std::pair<fem::Material, std::shared_ptr<const fem::MaterialLaw>> soil_material(const FemSoil &s)
+  {
+    const fem::SoilParameters p = soil_parameters(s);
+    const fem::Material       m{p.youngs_modulus, p.poisson_ratio, p.density};
+    switch (s.model)
+    {
+      case FemSoil::Model::mohr_coulomb:
+        return {m, std::make_shared<const fem::MohrCoulombLaw>(p)};
+      case FemSoil::Model::drucker_prager:
+        return {m, std::make_shared<const fem::DruckerPragerLaw>(p)};
+      case FemSoil::Model::elastic:
+        break;
+    }
+    return {m, nullptr};
+  }
+
+  fem::ConcreteParameters concrete_parameters(const FemConcrete &c)
+  {
+    fem::ConcreteParameters p = fem::ConcreteParameters::from_f_cm(c.f_cm);
+    p.poisson_ratio           = c.poisson_ratio;
+    if (c.f_ctm)
+      p.f_ctm = *c.f_ctm;
+    if (c.fracture_energy)
+      p.fracture_energy = *c.fracture_energy;
+    if (c.strain_rate > 0)
+      p.apply_strain_rate(c.strain_rate);
+    return p;
+  }
+
+  std::pair<fem::Material, std::shared_ptr<const fem::MaterialLaw>>
+  concrete_material(const FemConcrete &c)
+  {
+    if (c.model == FemConcrete::Model::elastic)
+      return {fem::Material{c.youngs_modulus, c.poisson_ratio, c.density}, nullptr};
+    const fem::ConcreteParameters p = concrete_parameters(c);
+    return {fem::Material{p.youngs_modulus, p.poisson_ratio, c.density},
+            std::make_shared<const fem::ConcreteDamageLaw>(p)};
+  }
+
   fem::ImpactParameters impact_parameters(const FemScene              &scene,
                                           double                       wall_height,
                                           const std::filesystem::path &mesh_file,
                                           const std::filesystem::path &vtu_dir)
   {
-    const auto to_material = [](const FemMaterial &m) {
-      return fem::Material{m.youngs_modulus, m.poisson_ratio, m.density};
-    };
     const geometry::SceneGeometry g = scene_geometry(scene, wall_height);
 
     fem::ImpactParameters p;
     p.mesh_file                          = mesh_file;
-    p.materials[geometry::wall_material] = to_material(scene.materials.concrete);
+    const auto [concrete, concrete_law]  = concrete_material(scene.materials.concrete);
+    const auto [soil, soil_law]          = soil_material(scene.materials.soil);
+    p.materials[geometry::wall_material] = concrete;
+    if (concrete_law)
+      p.material_laws[geometry::wall_material] = concrete_law;
     if (!scene.slab.rigid)
-      p.materials[geometry::slab_material] = to_material(scene.materials.concrete);
+    {
+      p.materials[geometry::slab_material] = concrete;
+      if (concrete_law)
+        p.material_laws[geometry::slab_material] = concrete_law;
+    }
     if (scene.geometry.with_backfill)
-      p.materials[geometry::soil_material] = to_material(scene.materials.soil);
+    {
+      p.materials[geometry::soil_material] = soil;
+      if (soil_law)
+        p.material_laws[geometry::soil_material] = soil_law;
+    }
 
     p.rigid_slab       = scene.slab.rigid;
     p.slab_mass        = scene.slab.rigid ? slab_mass(scene) : 0.0;

@@ -4,11 +4,14 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fem/impact.h"
+#include "fem/inelastic_laws.h"
 #include "geometry/scene_geometry.h"
 #include "io/scene_io.h"
 
@@ -22,11 +25,52 @@ namespace kimp::app
     double density        = 0; ///< rho, kg/m^3 (> 0)
   };
 
+  /** Backfill: elasticity plus, for the inelastic models, Mohr-Coulomb strength. */
+  struct FemSoil : FemMaterial
+  {
+    FemSoil()
+      : FemMaterial{50e6, 0.3, 1900}
+    {
+    }
+    enum class Model
+    {
+      elastic,
+      mohr_coulomb,
+      drucker_prager
+    };
+    Model       model = Model::elastic;
+    std::string preset =
+      "none"; ///< "none" or a fem::soil_presets() name (sets E, nu, rho, c, phi, psi)
+    std::optional<double> cohesion;           ///< c, Pa; default: the preset's, else 0
+    std::optional<double> friction_angle;     ///< phi, degrees; default: the preset's, else 30
+    std::optional<double> dilatancy;          ///< psi, degrees; default: the preset's, else 0
+    double                tension_cutoff = 0; ///< Pa (clipped to c cot(phi))
+  };
+
+  /** Slab and wall concrete: elasticity, or damage from f_cm by fib Model Code 2010. */
+  struct FemConcrete : FemMaterial
+  {
+    FemConcrete()
+      : FemMaterial{30e9, 0.2, 2400}
+    {
+    }
+    enum class Model
+    {
+      elastic,
+      damage_plasticity
+    };
+    Model                 model = Model::elastic;
+    double                f_cm  = 38e6;    ///< mean compressive strength, Pa
+    std::optional<double> f_ctm;           ///< Pa; default: MC2010 from f_cm
+    std::optional<double> fracture_energy; ///< G_F, N/m; default: MC2010 from f_cm
+    double strain_rate = 0; ///< 1/s for the MC2010 dynamic increase factors (0: none)
+  };
+
   /** Concrete (slab and wall) and soil (backfill); docs/physics.md §4 defaults. */
   struct FemMaterials
   {
-    FemMaterial concrete{30e9, 0.2, 2400};
-    FemMaterial soil{50e6, 0.3, 1900};
+    FemConcrete concrete;
+    FemSoil     soil;
   };
 
   /**
@@ -125,10 +169,76 @@ namespace kimp::app
   }
 
   template <class Io>
+  void visit(Io &io, FemSoil &s)
+  {
+    visit(io, static_cast<FemMaterial &>(s));
+    io.choice("model",
+              s.model,
+              {{"elastic", FemSoil::Model::elastic},
+               {"mohr_coulomb", FemSoil::Model::mohr_coulomb},
+               {"drucker_prager", FemSoil::Model::drucker_prager}},
+              "elastic; mohr_coulomb: perfectly plastic, tension cut-off, non-associated; "
+              "drucker_prager: matched to Mohr-Coulomb in plane strain");
+    io.choice("preset",
+              s.preset,
+              {"none", "loose_sand", "medium_dense_sand", "dense_sand", "soft_clay", "stiff_clay"},
+              "named soil (docs/physics.md): sets E, nu, rho, c, phi, psi; c, phi, psi given "
+              "here override it");
+    io.quantity("c", s.cohesion, "kPa", "cohesion (>= 0)", io::Range::non_negative());
+    io.quantity("phi",
+                s.friction_angle,
+                "",
+                "friction angle in degrees (in [0, 89])",
+                io::Range::at_least(0.0).and_at_most(89.0));
+    io.quantity("psi",
+                s.dilatancy,
+                "",
+                "dilatancy angle in degrees (in [0, phi])",
+                io::Range::at_least(0.0).and_at_most(89.0));
+    io.quantity("tension_cutoff",
+                s.tension_cutoff,
+                "kPa",
+                "largest principal stress (>= 0; at most c cot(phi))",
+                io::Range::non_negative());
+  }
+
+  template <class Io>
+  void visit(Io &io, FemConcrete &s)
+  {
+    visit(io, static_cast<FemMaterial &>(s));
+    io.choice("model",
+              s.model,
+              {{"elastic", FemConcrete::Model::elastic},
+               {"damage_plasticity", FemConcrete::Model::damage_plasticity}},
+              "elastic (E, nu); damage_plasticity: tension/compression damage with crack band, "
+              "parameters from f_cm by fib Model Code 2010 (E then = E_ci)");
+    io.quantity("f_cm",
+                s.f_cm,
+                "MPa",
+                "mean cylinder compressive strength (> 8 MPa)",
+                io::Range::greater(8e6));
+    io.quantity("f_ctm",
+                s.f_ctm,
+                "MPa",
+                "mean tensile strength (> 0; null: MC2010 from f_cm)",
+                io::Range::positive());
+    io.quantity("G_F",
+                s.fracture_energy,
+                "N/m",
+                "fracture energy (> 0; null: MC2010 73 f_cm^0.18)",
+                io::Range::positive());
+    io.quantity("strain_rate",
+                s.strain_rate,
+                "1",
+                "strain rate (1/s) of the MC2010 dynamic increase factors (>= 0; 0: none)",
+                io::Range::non_negative());
+  }
+
+  template <class Io>
   void visit(Io &io, FemMaterials &s)
   {
-    io.section("concrete", s.concrete, "slab and wall, linear elastic");
-    io.section("soil", s.soil, "backfill, linear elastic");
+    io.section("concrete", s.concrete, "slab and wall");
+    io.section("soil", s.soil, "backfill");
   }
 
   template <class Io>
@@ -288,7 +398,7 @@ namespace kimp::app
                      "moat wall heights H, one impact case each, named H<height in m>");
     io.section("geometry", s.geometry, "scene dimensions (docs/physics.md §4)");
     io.section("mesh", s.mesh, "bilinear quadrilateral mesh");
-    io.section("materials", s.materials, "linear elastic materials");
+    io.section("materials", s.materials, "materials (linear elastic unless a model is chosen)");
     io.section("slab", s.slab, "the striking slab");
     io.section("contact", s.contact, "frictionless penalty contact slab front - wall face");
     io.section("dynamics", s.dynamics, "time integration");
@@ -310,6 +420,17 @@ namespace kimp::app
   /** Rigid slab: scene.slab.mass, else rho_concrete * slab_length * slab_thickness (kg/m).
    *  Elastic slab: the meshed slab's mass, rho_concrete * slab_length * slab_thickness. */
   double slab_mass(const FemScene &scene);
+
+  /** Soil strength and elasticity of @p soil: its preset (if any) with c, phi, psi given in
+   *  the scene overriding the preset's. */
+  fem::SoilParameters soil_parameters(const FemSoil &soil);
+  /** Concrete parameters by fib Model Code 2010 from f_cm, with the scene's overrides. */
+  fem::ConcreteParameters concrete_parameters(const FemConcrete &concrete);
+  /** The elastic constants the solver uses (dt, penalty, mass) and the law (null: linear). */
+  std::pair<fem::Material, std::shared_ptr<const fem::MaterialLaw>>
+  soil_material(const FemSoil &soil);
+  std::pair<fem::Material, std::shared_ptr<const fem::MaterialLaw>>
+  concrete_material(const FemConcrete &concrete);
 
   /** The meshing parameters of the case with wall height @p wall_height (mesh level applied). */
   geometry::SceneGeometry scene_geometry(const FemScene &scene, double wall_height);

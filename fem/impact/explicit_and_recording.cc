@@ -126,11 +126,32 @@ namespace kimp::fem::internal
     penetration_integral += ev.mean_penetration * dt;
     max_penetration = std::max(max_penetration, ev.max_penetration);
 
+    // Non-linear laws: internal work by the trapezoid rule, this rank's owned entries (the sum
+    // over ranks is taken with the energies below).
+    if (!linear_laws)
+    {
+      const std::size_t n_local = u.locally_owned_size();
+      const double     *up = u.begin(), *fp = Ku.begin();
+      if (u_prev_local.size() == n_local)
+        for (std::size_t k = 0; k < n_local; ++k)
+          internal_work_local += 0.5 * (fp[k] + f_prev_local[k]) * (up[k] - u_prev_local[k]);
+      u_prev_local.assign(up, up + n_local);
+      f_prev_local.assign(fp, fp + n_local);
+    }
+
     // Energies and means at the sampled steps only (one reduction): the divergence guard
     // acts within one output interval.
     if (n % sample_every != 0)
       return;
-    std::array<double, 4> local{{0, 0, 0, 0}}; // kinetic, strain, slab m u, slab m v
+    // kinetic, strain, slab m u, slab m v; internal work, stored, plastic, damage
+    std::array<double, 8> local{{0,
+                                 0,
+                                 0,
+                                 0,
+                                 internal_work_local,
+                                 point_energy_local[0],
+                                 point_energy_local[1],
+                                 point_energy_local[2]}};
     {
       const double *vp = v_n.begin(), *mp = mass.begin(), *up = u.begin(), *kp = Ku.begin(),
                    *sp = slab_mass_x.begin();
@@ -142,13 +163,25 @@ namespace kimp::fem::internal
         local[3] += sp[k] * vp[k];
       }
     }
-    std::array<double, 4> global{};
-    const int ierr = MPI_Allreduce(local.data(), global.data(), 4, MPI_DOUBLE, MPI_SUM, comm);
+    std::array<double, 8> global{};
+    const int             ierr =
+      MPI_Allreduce(local.data(), global.data(), linear_laws ? 4 : 8, MPI_DOUBLE, MPI_SUM, comm);
     AssertThrowMPI(ierr);
     const double kinetic = global[0] + (prm.rigid_slab ? 0.5 * prm.slab_mass * v_r * v_r : 0);
-    const double strain  = global[1];
-    const double error   = (kinetic + strain - contact_work) / e0 - 1;
-    max_energy_error     = std::max(max_energy_error, std::abs(error));
+    // Linear laws: 1/2 u.Ku is the strain energy. Otherwise the integrated stress power is the
+    // energy the body took, and the points split it into stored, plastic and damage.
+    const double work   = linear_laws ? global[1] : global[4];
+    const double strain = linear_laws ? global[1] : global[5];
+    const double error  = (kinetic + work - contact_work) / e0 - 1;
+    if (!linear_laws)
+    {
+      history.internal_work.push_back(global[4]);
+      history.plastic_dissipation.push_back(global[6]);
+      history.damage_dissipation.push_back(global[7]);
+      max_dissipation_gap =
+        std::max(max_dissipation_gap, std::abs(global[4] - global[5] - global[6] - global[7]) / e0);
+    }
+    max_energy_error = std::max(max_energy_error, std::abs(error));
     if (!std::isfinite(error) || std::abs(error) > divergence_energy_error)
       throw_divergence(n, t, u);
 
@@ -229,29 +262,46 @@ namespace kimp::fem::internal
     v_g = v;
     f_g = f;
 
-    Vector<float>        material(triangulation.n_active_cells()), subdomain(material.size());
-    Vector<float>        sxx(material.size()), syy(material.size()), sxy(material.size());
-    const QMidpoint<dim> midpoint;
-    FEValues<dim>        fe_values(fe, midpoint, update_gradients);
+    Vector<float> material(triangulation.n_active_cells()), subdomain(material.size());
+    Vector<float> sxx(material.size()), syy(material.size()), sxy(material.size());
+    Vector<float> damage(material.size()), eq_plastic(material.size()), von_mises(material.size()),
+      mean_stress(material.size());
+    // Cell means over the Gauss points of the stiffness, each from its committed history.
+    const QGauss<dim>                    quadrature(2);
+    FEValues<dim>                        fe_values(fe, quadrature, update_gradients);
     const FEValuesExtractors::Vector     displacement(0);
-    std::vector<SymmetricTensor<2, dim>> eps(1);
+    std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
+    std::vector<double>                  scratch;
+    const double                         w = 1.0 / quadrature.size();
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
       {
         const unsigned int c = cell->active_cell_index();
         fe_values.reinit(cell);
         fe_values[displacement].get_function_symmetric_gradients(u_g, eps);
-        // Stress at the cell centre from the committed history of its first Gauss point.
-        const MaterialLaw  &law = *laws.at(cell->material_id());
-        std::vector<double> scratch(law.n_history());
-        const double       *committed = linear_laws ? scratch.data() : qp_history.committed(c, 0);
-        const VoigtStress   sigma =
-          law.stress({{eps[0][0][0], eps[0][1][1], 2 * eps[0][0][1]}}, committed, scratch.data());
+        const MaterialLaw &law = *laws.at(cell->material_id());
+        scratch.assign(std::max(1u, law.n_history()), 0.0);
         material(c)  = cell->material_id();
         subdomain(c) = triangulation.locally_owned_subdomain();
-        sxx(c)       = sigma[0];
-        syy(c)       = sigma[1];
-        sxy(c)       = sigma[2];
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+        {
+          const VoigtStrain e{{eps[q][0][0], eps[q][1][1], 2 * eps[q][0][1]}};
+          const double     *committed = linear_laws ? scratch.data() : qp_history.committed(c, q);
+          const VoigtStress sigma     = law.stress(e, committed, scratch.data());
+          const PointOutput po        = law.output(e, linear_laws ? nullptr : scratch.data());
+          const double      p         = (sigma[0] + sigma[1] + po.sigma_zz) / 3;
+          const double      j2 =
+            0.5 * ((sigma[0] - p) * (sigma[0] - p) + (sigma[1] - p) * (sigma[1] - p) +
+                   (po.sigma_zz - p) * (po.sigma_zz - p)) +
+            sigma[2] * sigma[2];
+          sxx(c) += w * sigma[0];
+          syy(c) += w * sigma[1];
+          sxy(c) += w * sigma[2];
+          mean_stress(c) += w * p;
+          von_mises(c) += w * std::sqrt(3 * j2);
+          damage(c) += w * po.damage;
+          eq_plastic(c) += w * po.equivalent_plastic_strain;
+        }
       }
     DataOut<dim> data_out;
     data_out.attach_dof_handler(dof_handler);
@@ -275,6 +325,10 @@ namespace kimp::fem::internal
     data_out.add_data_vector(sxx, "stress_xx");
     data_out.add_data_vector(syy, "stress_yy");
     data_out.add_data_vector(sxy, "stress_xy");
+    data_out.add_data_vector(mean_stress, "mean_stress");
+    data_out.add_data_vector(von_mises, "von_mises_stress");
+    data_out.add_data_vector(damage, "damage");
+    data_out.add_data_vector(eq_plastic, "equivalent_plastic_strain");
     data_out.build_patches();
     const unsigned int counter = pvd_records.size();
     const std::string  pvtu =
@@ -347,6 +401,12 @@ namespace kimp::fem::internal
     s.wall_seconds          = wall_seconds;
     s.n_ranks               = Utilities::MPI::n_mpi_processes(comm);
     s.separated             = separated_flag;
-    result.history          = std::move(history);
+    if (!history.plastic_dissipation.empty())
+    {
+      s.plastic_dissipation = history.plastic_dissipation.back();
+      s.damage_dissipation  = history.damage_dissipation.back();
+      s.dissipation_gap     = max_dissipation_gap;
+    }
+    result.history = std::move(history);
   }
 } // namespace kimp::fem::internal

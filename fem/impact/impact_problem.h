@@ -3,6 +3,7 @@
 // setup.cc, contact_setup.cc, implicit.cc (Newmark) and explicit_and_recording.cc.
 #pragma once
 
+#include <array>
 #include <map>
 #include <memory>
 #include <string>
@@ -139,8 +140,14 @@ namespace kimp::fem::internal
     std::map<unsigned int, std::shared_ptr<const MaterialLaw>> laws;
     bool                                                       linear_laws = true;
     QuadraturePointHistory                                     qp_history;
-    Vec           u_ghosted, force_writable; // internal_force() of non-linear laws
-    unsigned long n_linear_solves = 0, n_step_halvings = 0;
-    double        linear_solver_seconds = 0, linear_setup_seconds = 0;
+    // Energy bookkeeping of non-linear laws (this rank's share): stored, plastic and damage
+    // energy of the last internal_force() (trial history), and the internal work
+    // sum 1/2 (f_n + f_n+1) . (u_n+1 - u_n), the integrated stress power.
+    std::array<double, 3> point_energy_local{{0, 0, 0}};
+    double                internal_work_local = 0, max_dissipation_gap = 0;
+    std::vector<double>   u_prev_local, f_prev_local;
+    Vec                   u_ghosted, force_writable; // internal_force() of non-linear laws
+    unsigned long         n_linear_solves = 0, n_step_halvings = 0;
+    double                linear_solver_seconds = 0, linear_setup_seconds = 0;
   };
 } // namespace kimp::fem::internal

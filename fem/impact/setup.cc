@@ -364,7 +364,10 @@ namespace kimp::fem::internal
     qp_history.reinit(triangulation.n_active_cells(), QGauss<dim>(2).size(), n_values);
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
-        qp_history.initialize_cell(cell->active_cell_index(), *laws.at(cell->material_id()));
+        // Crack-band length of a quadrilateral: the square root of its area.
+        qp_history.initialize_cell(cell->active_cell_index(),
+                                   *laws.at(cell->material_id()),
+                                   std::sqrt(cell->measure()));
     u_ghosted.reinit(locally_owned, locally_relevant, comm);
     force_writable.reinit(locally_owned, locally_relevant, comm, true);
   }
@@ -386,6 +389,7 @@ namespace kimp::fem::internal
     std::vector<types::global_dof_index> dof_indices(n);
     const FEValuesExtractors::Vector     displacement(0);
     std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
+    point_energy_local = {{0, 0, 0}};
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
       {
@@ -396,9 +400,13 @@ namespace kimp::fem::internal
         cell_force = 0;
         for (unsigned int q = 0; q < quadrature.size(); ++q)
         {
-          const VoigtStress sigma = law.stress({{eps[q][0][0], eps[q][1][1], 2 * eps[q][0][1]}},
-                                               qp_history.committed(c, q),
-                                               qp_history.trial(c, q));
+          const VoigtStrain strain{{eps[q][0][0], eps[q][1][1], 2 * eps[q][0][1]}};
+          const VoigtStress sigma =
+            law.stress(strain, qp_history.committed(c, q), qp_history.trial(c, q));
+          const PointOutput po = law.output(strain, qp_history.trial(c, q));
+          point_energy_local[0] += po.stored_energy * fe_values.JxW(q);
+          point_energy_local[1] += po.plastic_dissipation * fe_values.JxW(q);
+          point_energy_local[2] += po.damage_dissipation * fe_values.JxW(q);
           for (unsigned int i = 0; i < n; ++i)
           {
             const auto e = fe_values[displacement].symmetric_gradient(i, q);

@@ -61,8 +61,9 @@ namespace
     expect_relative(a.mesh.h_max, b.mesh.h_max, tolerance, "h_max");
     expect_relative(a.mesh.grading, b.mesh.grading, tolerance, "grading");
     EXPECT_EQ(a.mesh.level, b.mesh.level);
-    for (const auto &[x, y] : {std::pair{a.materials.concrete, b.materials.concrete},
-                               std::pair{a.materials.soil, b.materials.soil}})
+    using Pair = std::pair<kimp::app::FemMaterial, kimp::app::FemMaterial>;
+    for (const auto &[x, y] : {Pair{a.materials.concrete, b.materials.concrete},
+                               Pair{a.materials.soil, b.materials.soil}})
     {
       expect_relative(x.youngs_modulus, y.youngs_modulus, tolerance, "E");
       expect_relative(x.poisson_ratio, y.poisson_ratio, tolerance, "nu");
@@ -186,6 +187,36 @@ namespace
                     80e6,
                     exact_tolerance,
                     "soil E");
+  }
+
+  TEST(FemScene, InelasticMaterialKeysSelectLawsAndPresets)
+  {
+    // Default: elastic, no laws. A preset sets E, nu, rho, c, phi, psi; c given overrides it.
+    const FemScene elastic;
+    EXPECT_TRUE(kimp::app::impact_parameters(elastic, 1.25, "m.msh").material_laws.empty());
+    const FemScene s = load_scene_text<FemScene>("materials:\n"
+                                                 "  soil: {model: mohr_coulomb, preset: dense_sand,"
+                                                 " c: \"5 kPa\"}\n"
+                                                 "  concrete: {model: damage_plasticity, f_cm: "
+                                                 "\"48 MPa\"}\n",
+                                                 file_name);
+    const auto     p = kimp::app::impact_parameters(s, 1.25, "m.msh");
+    namespace ids    = kimp::geometry;
+    ASSERT_EQ(p.material_laws.count(ids::soil_material), 1u);
+    ASSERT_EQ(p.material_laws.count(ids::wall_material), 1u);
+    EXPECT_NE(dynamic_cast<const kimp::fem::MohrCoulombLaw *>(
+                p.material_laws.at(ids::soil_material).get()),
+              nullptr);
+    EXPECT_DOUBLE_EQ(p.materials.at(ids::soil_material).youngs_modulus, 70e6);
+    const auto sp = kimp::app::soil_parameters(s.materials.soil);
+    EXPECT_DOUBLE_EQ(sp.cohesion, 5e3);
+    EXPECT_NEAR(sp.friction_angle, 38 * M_PI / 180, 1e-14);
+    // f_cm = 48 MPa: E_ci = 21.5 GPa 4.8^(1/3) = 36.27 GPa is the solver's E.
+    EXPECT_NEAR(p.materials.at(ids::wall_material).youngs_modulus, 36.27e9, 0.01e9);
+    EXPECT_THROW(load_scene_text<FemScene>("materials: {soil: {preset: sandy}}\n", file_name),
+                 SceneError);
+    EXPECT_THROW(load_scene_text<FemScene>("materials: {soil: {phi: 20, psi: 25}}\n", file_name),
+                 SceneError);
   }
 
   TEST(FemScene, AutomaticTimesBecomeZeroForTheSolver)

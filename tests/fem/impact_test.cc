@@ -5,6 +5,7 @@
 #include <iostream>
 #include <random>
 
+#include "fem/inelastic_laws.h"
 #include "fem/penalty_contact.h"
 #include "tests/fem/impact_test_support.h"
 
@@ -453,6 +454,74 @@ namespace
     EXPECT_LT(max_difference, tolerance * max_force);
     if (rank() == 0)
       std::cout << "MPI implicit: " << world.summary.n_ranks
+                << " ranks vs 1, max |dF| / max F = " << max_difference / max_force << '\n';
+  }
+
+  /** The scene with Mohr-Coulomb soil (c = 10 kPa, phi = 30 deg, psi = 0, no tension) and
+   *  concrete damage from f_cm = 38 MPa in slab and wall. */
+  ImpactParameters inelastic_scene(const std::string &name)
+  {
+    auto           p = scene_parameters(0.05, false, name);
+    SoilParameters sp;
+    sp.youngs_modulus         = soil.youngs_modulus;
+    sp.poisson_ratio          = soil.poisson_ratio;
+    sp.density                = soil.density;
+    sp.cohesion               = 10e3;
+    sp.friction_angle         = 30 * 3.14159265358979323846 / 180;
+    const auto     cp         = ConcreteParameters::from_f_cm(38e6);
+    const auto     concrete_l = std::make_shared<const ConcreteDamageLaw>(cp);
+    const Material concrete_m{cp.youngs_modulus, cp.poisson_ratio, concrete.density};
+    p.materials[ids::slab_material]     = concrete_m;
+    p.materials[ids::wall_material]     = concrete_m;
+    p.material_laws[ids::slab_material] = concrete_l;
+    p.material_laws[ids::wall_material] = concrete_l;
+    p.material_laws[ids::soil_material] = std::make_shared<const MohrCoulombLaw>(sp);
+    p.initial_velocity                  = 2.0;
+    return p;
+  }
+
+  TEST(InelasticImpact, EnergyBalanceClosesWithPlasticAndDamageDissipation)
+  {
+    // kinetic + internal work (integrated stress power) - contact work = E_0 within 1 %, and
+    // the internal work equals stored + plastic + damage energy of the points within 1 % of E_0.
+    const auto  r = run_impact(inelastic_scene("scene_inelastic.msh"), MPI_COMM_WORLD, nullptr);
+    const auto &s = r.summary;
+    if (rank() == 0)
+      std::cout << "inelastic impact: E_0 = " << r.history.kinetic.front() << " J/m, energy error "
+                << s.energy_error << ", bookkeeping gap " << s.dissipation_gap << ", plastic "
+                << s.plastic_dissipation << " J/m, damage " << s.damage_dissipation << " J/m, COR "
+                << s.apparent_cor << ", peak " << s.peak_force << " N/m\n";
+    EXPECT_TRUE(s.separated);
+    EXPECT_LT(s.energy_error, 0.01);
+    EXPECT_LT(s.dissipation_gap, 0.01);
+    EXPECT_GT(s.plastic_dissipation, 0);
+    ASSERT_FALSE(r.history.internal_work.empty());
+  }
+
+  TEST(Mpi, DistributedInelasticRunMatchesSerialRun)
+  {
+    // Mohr-Coulomb soil and damaged concrete: 1 or 2 ranks vs MPI_COMM_SELF (relative 1e-10).
+    constexpr double tolerance = 1e-10;
+    auto             p         = inelastic_scene("scene_mpi_inelastic.msh");
+    p.end_time                 = 0.004;
+    const auto world           = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto self            = run_impact(p, MPI_COMM_SELF, nullptr);
+    ASSERT_EQ(world.history.time.size(), self.history.time.size());
+    double max_force = 0, max_difference = 0;
+    for (std::size_t i = 0; i < self.history.time.size(); ++i)
+    {
+      max_force = std::max(max_force, self.history.contact_force[i]);
+      max_difference =
+        std::max(max_difference,
+                 std::abs(world.history.contact_force[i] - self.history.contact_force[i]));
+    }
+    ASSERT_GT(max_force, 0);
+    EXPECT_LT(max_difference, tolerance * max_force);
+    EXPECT_NEAR(world.summary.plastic_dissipation,
+                self.summary.plastic_dissipation,
+                1e-8 * std::max(self.summary.plastic_dissipation, 1e-30));
+    if (rank() == 0)
+      std::cout << "MPI inelastic: " << world.summary.n_ranks
                 << " ranks vs 1, max |dF| / max F = " << max_difference / max_force << '\n';
   }
 

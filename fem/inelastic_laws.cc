@@ -1,0 +1,688 @@
+// Mohr-Coulomb / Drucker-Prager return mappings and the concrete damage law (see
+// inelastic_laws.h). Everything on the stack: no allocation per quadrature point.
+#include "fem/inelastic_laws.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace kimp::fem
+{
+  namespace
+  {
+    using Vec3 = std::array<double, 3>;
+    using Mat3 = std::array<double, 9>;
+
+    constexpr double pi = 3.14159265358979323846;
+    double           deg(double d)
+    {
+      return d * pi / 180;
+    }
+
+    /** Solves the k x k system m x = b (k <= 3, row-major, stride 3) by Gauss with partial
+     *  pivoting; false if (nearly) singular relative to @p scale. */
+    bool solve_small(unsigned int k, double m[3][3], double b[3], double x[3], double scale)
+    {
+      unsigned int perm[3] = {0, 1, 2};
+      for (unsigned int c = 0; c < k; ++c)
+      {
+        unsigned int piv = c;
+        for (unsigned int r = c + 1; r < k; ++r)
+          if (std::abs(m[perm[r]][c]) > std::abs(m[perm[piv]][c]))
+            piv = r;
+        std::swap(perm[c], perm[piv]);
+        const double d = m[perm[c]][c];
+        if (std::abs(d) <= 1e-10 * scale)
+          return false;
+        for (unsigned int r = c + 1; r < k; ++r)
+        {
+          const double f = m[perm[r]][c] / d;
+          for (unsigned int j = c; j < k; ++j)
+            m[perm[r]][j] -= f * m[perm[c]][j];
+          b[perm[r]] -= f * b[perm[c]];
+        }
+      }
+      for (int c = static_cast<int>(k) - 1; c >= 0; --c)
+      {
+        double s = b[perm[c]];
+        for (unsigned int j = c + 1; j < k; ++j)
+          s -= m[perm[c]][j] * x[j];
+        x[c] = s / m[perm[c]][c];
+      }
+      return true;
+    }
+
+    /** In-plane eigen-decomposition of a symmetric 2 x 2 tensor {xx, yy, xy}: values a >= b,
+     *  unit eigenvector of a = (c, s). */
+    void eigen2(double xx, double yy, double xy, double &a, double &b, double &c, double &s)
+    {
+      const double m = 0.5 * (xx + yy), d = 0.5 * (xx - yy);
+      const double r = std::sqrt(d * d + xy * xy);
+      a              = m + r;
+      b              = m - r;
+      const double t = 0.5 * std::atan2(xy, d);
+      c              = std::cos(t);
+      s              = std::sin(t);
+    }
+
+    /** Plane-strain Voigt tangent from an eigenframe tangent: C = R^T C' R with R the
+     *  engineering-strain rotation into the frame (c, s). */
+    VoigtTangent rotate_back(const VoigtTangent &cp, double c, double s)
+    {
+      const double R[3][3] = {{c * c, s * s, c * s},
+                              {s * s, c * c, -c * s},
+                              {-2 * c * s, 2 * c * s, c * c - s * s}};
+      VoigtTangent out{};
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+        {
+          double v = 0;
+          for (unsigned int k = 0; k < 3; ++k)
+            for (unsigned int l = 0; l < 3; ++l)
+              v += R[k][i] * cp[3 * k + l] * R[l][j];
+          out[3 * i + j] = v;
+        }
+      return out;
+    }
+  } // namespace
+
+  // ---------------------------------------------------------------- presets
+
+  const std::vector<SoilPreset> &soil_presets()
+  {
+    // E, nu, rho, c, phi, psi: docs/physics.md (inelastic materials) gives the sources.
+    static const std::vector<SoilPreset> presets = {
+      {"loose_sand", {20e6, 0.3, 1700, 0, deg(30), deg(0), 0}},
+      {"medium_dense_sand", {40e6, 0.3, 1850, 0, deg(34), deg(4), 0}},
+      {"dense_sand", {70e6, 0.3, 2000, 0, deg(38), deg(8), 0}},
+      {"soft_clay", {5e6, 0.45, 1700, 20e3, deg(0), deg(0), 0}},
+      {"stiff_clay", {40e6, 0.45, 2000, 100e3, deg(0), deg(0), 0}},
+    };
+    return presets;
+  }
+
+  const SoilParameters &soil_preset(const std::string &name)
+  {
+    std::string names;
+    for (const auto &p : soil_presets())
+    {
+      if (p.name == name)
+        return p.parameters;
+      names += (names.empty() ? "" : ", ") + p.name;
+    }
+    throw std::invalid_argument("unknown soil preset '" + name + "' (expected one of: " + names +
+                                ")");
+  }
+
+  // ---------------------------------------------------------------- Mohr-Coulomb
+
+  MohrCoulombLaw::MohrCoulombLaw(const SoilParameters &p)
+    : p_(p)
+  {
+    if (!(p.youngs_modulus > 0) || !(p.poisson_ratio >= 0 && p.poisson_ratio < 0.5) ||
+        !(p.cohesion >= 0) || !(p.friction_angle >= 0 && p.friction_angle < 0.5 * pi) ||
+        !(p.dilatancy >= 0 && p.dilatancy <= p.friction_angle) || !(p.tension_cutoff >= 0))
+      throw std::invalid_argument("Mohr-Coulomb: need E > 0, 0 <= nu < 0.5, c >= 0, "
+                                  "0 <= psi <= phi < 90 deg, tension cut-off >= 0");
+    if (p.friction_angle > 0 && p.tension_cutoff > p.cohesion / std::tan(p.friction_angle))
+      p_.tension_cutoff = p.cohesion / std::tan(p.friction_angle); // the apex bounds it
+    const double E = p.youngs_modulus, nu = p.poisson_ratio;
+    lambda_ = E * nu / ((1 + nu) * (1 - 2 * nu));
+    mu_     = E / (2 * (1 + nu));
+  }
+
+  namespace
+  {
+    /** The 9 planes a.sigma <= b in principal space and their flow directions g. */
+    struct MohrCoulombPlanes
+    {
+      double a[9][3], b[9], g[9][3];
+      MohrCoulombPlanes(const SoilParameters &p)
+      {
+        const double sp = std::sin(p.friction_angle), sd = std::sin(p.dilatancy);
+        unsigned int n = 0;
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            if (i != j)
+            {
+              for (unsigned int k = 0; k < 3; ++k)
+                a[n][k] = g[n][k] = 0;
+              a[n][i] = 1 + sp;
+              a[n][j] = -(1 - sp);
+              g[n][i] = 1 + sd;
+              g[n][j] = -(1 - sd);
+              b[n]    = 2 * p.cohesion * std::cos(p.friction_angle);
+              ++n;
+            }
+        for (unsigned int i = 0; i < 3; ++i, ++n)
+        {
+          for (unsigned int k = 0; k < 3; ++k)
+            a[n][k] = g[n][k] = (k == i ? 1.0 : 0.0);
+          b[n] = p.tension_cutoff;
+        }
+      }
+    };
+  } // namespace
+
+  double MohrCoulombLaw::yield_function(const Vec3 &s) const
+  {
+    const MohrCoulombPlanes pl(p_);
+    double                  f = -std::numeric_limits<double>::max();
+    for (unsigned int n = 0; n < 9; ++n)
+      f = std::max(f, pl.a[n][0] * s[0] + pl.a[n][1] * s[1] + pl.a[n][2] * s[2] - pl.b[n]);
+    return f;
+  }
+
+  VoigtStress MohrCoulombLaw::update(const VoigtStrain &eps,
+                                     const double      *h0,
+                                     double            *h1,
+                                     VoigtTangent      *tangent) const
+  {
+    const double lam = lambda_, mu = mu_;
+    // Trial elastic strain (total eps_zz = 0).
+    const double exx = eps[0] - h0[0], eyy = eps[1] - h0[1], ezz = -h0[2];
+    const double exy = 0.5 * (eps[2] - h0[3]);
+    double       ea, eb, c, s;
+    eigen2(exx, eyy, exy, ea, eb, c, s);
+    const double tr = ea + eb + ezz;
+    Vec3         st{{lam * tr + 2 * mu * ea, lam * tr + 2 * mu * eb, lam * tr + 2 * mu * ezz}};
+
+    const MohrCoulombPlanes pl(p_);
+    const double            scale =
+      std::max({std::abs(st[0]), std::abs(st[1]), std::abs(st[2]), p_.cohesion, 1.0});
+    const double tol = 1e-12 * scale;
+    double       ftr[9];
+    bool         plastic = false;
+    for (unsigned int n = 0; n < 9; ++n)
+    {
+      ftr[n]  = pl.a[n][0] * st[0] + pl.a[n][1] * st[1] + pl.a[n][2] * st[2] - pl.b[n];
+      plastic = plastic || ftr[n] > tol;
+    }
+    std::copy(h0, h0 + n_history(), h1);
+    Vec3         sig      = st;
+    unsigned int best_set = 0, best_k = 0, best_idx[3] = {0, 0, 0};
+    double       Dg[9][3]; // D g of each plane
+    for (unsigned int n = 0; n < 9; ++n)
+    {
+      const double tg = pl.g[n][0] + pl.g[n][1] + pl.g[n][2];
+      for (unsigned int k = 0; k < 3; ++k)
+        Dg[n][k] = lam * tg + 2 * mu * pl.g[n][k];
+    }
+    if (plastic)
+    {
+      // Active-set search: every set of <= 3 planes; keep the admissible one (all multipliers
+      // >= 0, every plane satisfied) closest to the trial state in the complementary energy.
+      double best_dist = std::numeric_limits<double>::max();
+      for (unsigned int set = 1; set < (1u << 9); ++set)
+      {
+        unsigned int idx[3], k = 0;
+        bool         too_many = false;
+        for (unsigned int n = 0; n < 9; ++n)
+          if (set & (1u << n))
+          {
+            if (k == 3)
+            {
+              too_many = true;
+              break;
+            }
+            idx[k++] = n;
+          }
+        if (too_many)
+          continue;
+        double m[3][3], rhs[3], dg[3];
+        for (unsigned int i = 0; i < k; ++i)
+        {
+          rhs[i] = ftr[idx[i]];
+          for (unsigned int j = 0; j < k; ++j)
+            m[i][j] = pl.a[idx[i]][0] * Dg[idx[j]][0] + pl.a[idx[i]][1] * Dg[idx[j]][1] +
+                      pl.a[idx[i]][2] * Dg[idx[j]][2];
+        }
+        if (!solve_small(k, m, rhs, dg, mu))
+          continue;
+        bool ok = true;
+        for (unsigned int i = 0; i < k; ++i)
+          ok = ok && dg[i] >= 0;
+        if (!ok)
+          continue;
+        Vec3 sn = st;
+        for (unsigned int i = 0; i < k; ++i)
+          for (unsigned int q = 0; q < 3; ++q)
+            sn[q] -= dg[i] * Dg[idx[i]][q];
+        for (unsigned int n = 0; n < 9 && ok; ++n)
+          ok = pl.a[n][0] * sn[0] + pl.a[n][1] * sn[1] + pl.a[n][2] * sn[2] - pl.b[n] <= tol;
+        if (!ok)
+          continue;
+        // Complementary energy of the stress jump, C = D^-1 in principal space.
+        const Vec3   d{{st[0] - sn[0], st[1] - sn[1], st[2] - sn[2]}};
+        const double E = p_.youngs_modulus, nu = p_.poisson_ratio;
+        const double dist = ((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) -
+                             2 * nu * (d[0] * d[1] + d[1] * d[2] + d[0] * d[2])) /
+                            E;
+        if (dist < best_dist)
+        {
+          best_dist = dist;
+          best_set  = set;
+          best_k    = k;
+          std::copy(idx, idx + k, best_idx);
+          sig = sn;
+        }
+      }
+      if (best_set == 0)
+        throw std::runtime_error("Mohr-Coulomb return mapping found no admissible stress");
+    }
+
+    // Plastic strain increment in the eigenframe, then in x-y.
+    const double E = p_.youngs_modulus, nu = p_.poisson_ratio;
+    Vec3         dep;
+    for (unsigned int i = 0; i < 3; ++i)
+    {
+      const double ds0 = st[i] - sig[i], ds1 = st[(i + 1) % 3] - sig[(i + 1) % 3],
+                   ds2 = st[(i + 2) % 3] - sig[(i + 2) % 3];
+      dep[i]           = (ds0 - nu * (ds1 + ds2)) / E;
+    }
+    h1[0] = h0[0] + c * c * dep[0] + s * s * dep[1];
+    h1[1] = h0[1] + s * s * dep[0] + c * c * dep[1];
+    h1[2] = h0[2] + dep[2];
+    h1[3] = h0[3] + 2 * c * s * (dep[0] - dep[1]);
+    h1[4] = h0[4] + std::sqrt(2.0 / 3.0 * (dep[0] * dep[0] + dep[1] * dep[1] + dep[2] * dep[2]));
+    h1[5] = h0[5] + sig[0] * dep[0] + sig[1] * dep[1] + sig[2] * dep[2];
+    if (!plastic)
+      h1[6] = static_cast<double>(ReturnType::elastic);
+    else
+    {
+      unsigned int n_mc = 0, n_t = 0;
+      for (unsigned int i = 0; i < best_k; ++i)
+        (best_idx[i] < 6 ? n_mc : n_t) += 1;
+      ReturnType type = n_t == 0  ? (n_mc == 1 ? ReturnType::main :
+                                     n_mc == 2 ? ReturnType::edge :
+                                                 ReturnType::apex) :
+                        n_mc == 0 ? (n_t == 3 ? ReturnType::apex : ReturnType::tension) :
+                                    ReturnType::mixed;
+      h1[6]           = static_cast<double>(type);
+    }
+
+    if (tangent != nullptr)
+    {
+      // Principal tangent T = (I - Dg M^-1 A) D of the active set.
+      Mat3 T{};
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          T[3 * i + j] = lam + (i == j ? 2 * mu : 0.0);
+      if (plastic && best_k > 0)
+      {
+        // X = M^-1 A D (k x 3), column by column.
+        double AD[3][3];
+        for (unsigned int r = 0; r < best_k; ++r)
+          for (unsigned int j = 0; j < 3; ++j)
+            AD[r][j] = pl.a[best_idx[r]][0] * T[j] + pl.a[best_idx[r]][1] * T[3 + j] +
+                       pl.a[best_idx[r]][2] * T[6 + j];
+        double X[3][3] = {};
+        for (unsigned int j = 0; j < 3; ++j)
+        {
+          double m[3][3], rhs[3], x[3];
+          for (unsigned int r = 0; r < best_k; ++r)
+          {
+            rhs[r] = AD[r][j];
+            for (unsigned int q = 0; q < best_k; ++q)
+              m[r][q] = pl.a[best_idx[r]][0] * Dg[best_idx[q]][0] +
+                        pl.a[best_idx[r]][1] * Dg[best_idx[q]][1] +
+                        pl.a[best_idx[r]][2] * Dg[best_idx[q]][2];
+          }
+          solve_small(best_k, m, rhs, x, 0.0);
+          for (unsigned int r = 0; r < best_k; ++r)
+            X[r][j] = x[r];
+        }
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            for (unsigned int r = 0; r < best_k; ++r)
+              T[3 * i + j] -= Dg[best_idx[r]][i] * X[r][j];
+      }
+      // Eigenframe Voigt tangent (a, b, gamma_ab); the spin term couples the shear.
+      const double gap   = ea - eb;
+      const double shear = std::abs(gap) > 1e-9 * std::max({std::abs(ea), std::abs(eb), 1e-12}) ?
+                             0.5 * (sig[0] - sig[1]) / gap :
+                             0.25 * (T[0] - T[1] - T[3] + T[4]);
+      const VoigtTangent cp{{T[0], T[1], 0, T[3], T[4], 0, 0, 0, shear}};
+      *tangent = rotate_back(cp, c, s);
+    }
+    return {{c * c * sig[0] + s * s * sig[1],
+             s * s * sig[0] + c * c * sig[1],
+             c * s * (sig[0] - sig[1])}};
+  }
+
+  VoigtStress
+  MohrCoulombLaw::stress(const VoigtStrain &strain, const double *committed, double *trial) const
+  {
+    return update(strain, committed, trial, nullptr);
+  }
+
+  VoigtTangent MohrCoulombLaw::tangent(const VoigtStrain &strain, const double *committed) const
+  {
+    double       scratch[7];
+    VoigtTangent t{};
+    update(strain, committed, scratch, &t);
+    return t;
+  }
+
+  namespace
+  {
+    /** sigma_zz and stored energy of a plastic law with plastic strain h[0..3]. */
+    PointOutput plastic_output(const VoigtStrain &e,
+                               const double      *h,
+                               double             lam,
+                               double             mu,
+                               double             E,
+                               double             nu)
+    {
+      const double exx = e[0] - h[0], eyy = e[1] - h[1], ezz = -h[2], gxy = e[2] - h[3];
+      const double tr  = exx + eyy + ezz;
+      const double sxx = lam * tr + 2 * mu * exx, syy = lam * tr + 2 * mu * eyy,
+                   szz = lam * tr + 2 * mu * ezz, sxy = mu * gxy;
+      (void)E;
+      (void)nu;
+      PointOutput o;
+      o.sigma_zz                  = szz;
+      o.stored_energy             = 0.5 * (sxx * exx + syy * eyy + szz * ezz + sxy * gxy);
+      o.equivalent_plastic_strain = h[4];
+      o.plastic_dissipation       = h[5];
+      return o;
+    }
+  } // namespace
+
+  PointOutput MohrCoulombLaw::output(const VoigtStrain &strain, const double *history) const
+  {
+    return plastic_output(strain, history, lambda_, mu_, p_.youngs_modulus, p_.poisson_ratio);
+  }
+
+  // ---------------------------------------------------------------- Drucker-Prager
+
+  DruckerPragerLaw::DruckerPragerLaw(const SoilParameters &p)
+    : p_(p)
+  {
+    if (!(p.youngs_modulus > 0) || !(p.poisson_ratio >= 0 && p.poisson_ratio < 0.5) ||
+        !(p.cohesion >= 0) || !(p.friction_angle >= 0 && p.friction_angle < 0.5 * pi) ||
+        !(p.dilatancy >= 0 && p.dilatancy <= p.friction_angle))
+      throw std::invalid_argument(
+        "Drucker-Prager: need E > 0, 0 <= nu < 0.5, c >= 0, 0 <= psi <= phi < 90 deg");
+    const double E = p.youngs_modulus, nu = p.poisson_ratio;
+    lambda_ = E * nu / ((1 + nu) * (1 - 2 * nu));
+    mu_     = E / (2 * (1 + nu));
+    bulk_   = E / (3 * (1 - 2 * nu));
+    // Plane-strain match: at plastic flow with d eps_p_zz = 0 the DP surface reduces to
+    // t + m sin(phi) = c cos(phi) (t, m: in-plane Mohr radius and centre).
+    const double tp = std::tan(p.dilatancy), sp = std::sin(p.friction_angle);
+    eta_bar_       = 3 * tp / std::sqrt(9 + 12 * tp * tp);
+    const double r = std::sqrt(1 - eta_bar_ * eta_bar_ / 3);
+    eta_           = sp / (r + sp * eta_bar_ / 3);
+    xi_            = std::cos(p.friction_angle) * (1 - eta_ * eta_bar_ / 3) / r;
+  }
+
+  double DruckerPragerLaw::yield_function(const std::array<double, 4> &s) const
+  {
+    const double p = (s[0] + s[1] + s[2]) / 3;
+    const double j2 =
+      0.5 * ((s[0] - p) * (s[0] - p) + (s[1] - p) * (s[1] - p) + (s[2] - p) * (s[2] - p)) +
+      s[3] * s[3];
+    return std::sqrt(j2) + eta_ * p - xi_ * p_.cohesion;
+  }
+
+  VoigtStress DruckerPragerLaw::update(const VoigtStrain &eps,
+                                       const double      *h0,
+                                       double            *h1,
+                                       VoigtTangent      *tangent) const
+  {
+    const double mu = mu_, K = bulk_;
+    // Trial elastic strain as a tensor {xx, yy, zz, xy}.
+    const double e[4] = {eps[0] - h0[0], eps[1] - h0[1], -h0[2], 0.5 * (eps[2] - h0[3])};
+    const double ev   = e[0] + e[1] + e[2];
+    const double d[4] = {e[0] - ev / 3, e[1] - ev / 3, e[2] - ev / 3, e[3]};
+    const double dn =
+      std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + 2 * d[3] * d[3]); // ||e_dev||
+    const double sqj2 = std::sqrt(2.0) * mu * dn, ptr = K * ev;
+    const double f     = sqj2 + eta_ * ptr - xi_ * p_.cohesion;
+    const double scale = std::max({sqj2, std::abs(ptr), p_.cohesion, 1.0});
+    std::copy(h0, h0 + n_history(), h1);
+
+    double       sig[4], dg = 0;
+    int          mode = 0; // 0 elastic, 1 cone, 2 apex
+    const double A    = 1 / (mu + K * eta_ * eta_bar_);
+    if (f <= 1e-12 * scale)
+    {
+      for (unsigned int i = 0; i < 4; ++i)
+        sig[i] = 2 * mu * d[i] + (i < 3 ? ptr : 0.0);
+    }
+    else
+    {
+      dg = f * A;
+      if (sqj2 - mu * dg >= 0)
+      {
+        mode              = 1;
+        const double fac  = 1 - mu * dg / sqj2;
+        const double pnew = ptr - K * eta_bar_ * dg;
+        for (unsigned int i = 0; i < 4; ++i)
+          sig[i] = 2 * mu * fac * d[i] + (i < 3 ? pnew : 0.0);
+      }
+      else
+      {
+        mode             = 2;
+        const double pap = eta_ > 0 ? xi_ * p_.cohesion / eta_ : ptr;
+        for (unsigned int i = 0; i < 4; ++i)
+          sig[i] = i < 3 ? pap : 0.0;
+      }
+    }
+    if (mode > 0)
+    {
+      // Plastic strain = trial elastic strain - C sigma.
+      const double ps = (sig[0] + sig[1] + sig[2]) / 3;
+      double       dep[4];
+      for (unsigned int i = 0; i < 4; ++i)
+        dep[i] = e[i] - ((sig[i] - (i < 3 ? ps : 0.0)) / (2 * mu) + (i < 3 ? ps / (3 * K) : 0.0));
+      h1[0] = h0[0] + dep[0];
+      h1[1] = h0[1] + dep[1];
+      h1[2] = h0[2] + dep[2];
+      h1[3] = h0[3] + 2 * dep[3];
+      h1[4] =
+        h0[4] +
+        std::sqrt(2.0 / 3.0 *
+                  (dep[0] * dep[0] + dep[1] * dep[1] + dep[2] * dep[2] + 2 * dep[3] * dep[3]));
+      h1[5] = h0[5] + sig[0] * dep[0] + sig[1] * dep[1] + sig[2] * dep[2] + 2 * sig[3] * dep[3];
+    }
+    h1[6] = static_cast<double>(mode == 0 ? ReturnType::elastic :
+                                mode == 1 ? ReturnType::dp_cone :
+                                            ReturnType::dp_apex);
+
+    if (tangent != nullptr)
+    {
+      // d sigma = 2 mu (1 - a) de + b (n:de) n - c1 (tr de) n - c2 (n:de) 1 + c3 (tr de) 1.
+      double a = 0, b = 0, c1 = 0, c2 = 0, c3 = K, n[4] = {0, 0, 0, 0};
+      if (mode == 1)
+      {
+        for (unsigned int i = 0; i < 4; ++i)
+          n[i] = d[i] / dn;
+        a  = dg / (std::sqrt(2.0) * dn);
+        b  = 2 * mu * a - 2 * mu * mu * A;
+        c1 = std::sqrt(2.0) * mu * A * eta_ * K;
+        c2 = std::sqrt(2.0) * mu * A * K * eta_bar_;
+        c3 = K * (1 - K * eta_ * eta_bar_ * A);
+      }
+      for (unsigned int col = 0; col < 3; ++col)
+      {
+        // Strain direction of the Voigt column (gamma: eps_xy = 1/2).
+        double de[4]           = {0, 0, 0, 0};
+        de[col == 2 ? 3 : col] = col == 2 ? 0.5 : 1.0;
+        const double tr        = de[0] + de[1] + de[2];
+        const double ndn       = n[0] * de[0] + n[1] * de[1] + n[2] * de[2] + 2 * n[3] * de[3];
+        double       ds[4];
+        for (unsigned int i = 0; i < 4; ++i)
+        {
+          const double dev = de[i] - (i < 3 ? tr / 3 : 0.0);
+          ds[i]            = (mode == 2 ? 0.0 :
+                                          2 * mu * (1 - a) * dev + b * ndn * n[i] - c1 * tr * n[i] +
+                                 (i < 3 ? c3 * tr - c2 * ndn : 0.0));
+        }
+        (*tangent)[col]     = ds[0];
+        (*tangent)[3 + col] = ds[1];
+        (*tangent)[6 + col] = ds[3];
+      }
+    }
+    return {{sig[0], sig[1], sig[3]}};
+  }
+
+  VoigtStress
+  DruckerPragerLaw::stress(const VoigtStrain &strain, const double *committed, double *trial) const
+  {
+    return update(strain, committed, trial, nullptr);
+  }
+
+  VoigtTangent DruckerPragerLaw::tangent(const VoigtStrain &strain, const double *committed) const
+  {
+    double       scratch[7];
+    VoigtTangent t{};
+    update(strain, committed, scratch, &t);
+    return t;
+  }
+
+  PointOutput DruckerPragerLaw::output(const VoigtStrain &strain, const double *history) const
+  {
+    return plastic_output(strain, history, lambda_, mu_, p_.youngs_modulus, p_.poisson_ratio);
+  }
+
+  // ---------------------------------------------------------------- concrete
+
+  ConcreteParameters ConcreteParameters::from_f_cm(double f_cm)
+  {
+    if (!(f_cm > 8e6))
+      throw std::invalid_argument("concrete f_cm must exceed 8 MPa");
+    ConcreteParameters p;
+    const double       fcm = f_cm / 1e6, fck = fcm - 8;
+    p.f_cm           = f_cm;
+    p.youngs_modulus = 21.5e9 * std::cbrt(fcm / 10);
+    p.f_ctm = 1e6 * (fck <= 50 ? 0.3 * std::pow(fck, 2.0 / 3.0) : 2.12 * std::log(1 + 0.1 * fcm));
+    p.fracture_energy = 73 * std::pow(fcm, 0.18);
+    p.eps_c1          = 1e-3 * std::min(0.7 * std::pow(fcm, 0.31), 2.8);
+    p.eps_c_lim       = 1e-3 * (fck < 50 ? 3.5 : 2.8 + 27 * std::pow((98 - fcm) / 100, 4));
+    return p;
+  }
+
+  void ConcreteParameters::apply_strain_rate(double rate)
+  {
+    const double rc = 30e-6, rt = 1e-6;
+    dif_compression = rate <= rc ? 1.0 :
+                      rate <= 30 ? std::pow(rate / rc, 0.014) :
+                                   0.012 * std::cbrt(rate / rc);
+    dif_tension     = rate <= rt ? 1.0 :
+                      rate <= 10 ? std::pow(rate / rt, 0.018) :
+                                   0.0062 * std::cbrt(rate / rt);
+  }
+
+  double ConcreteParameters::compression_curve(double e) const
+  {
+    if (e <= 0)
+      return 0;
+    const auto curve = [&](double x)
+    {
+      const double k = youngs_modulus * eps_c1 / f_cm, eta = x / eps_c1;
+      return f_cm * (k * eta - eta * eta) / (1 + (k - 2) * eta);
+    };
+    double s;
+    if (e <= eps_c_lim)
+      s = curve(e);
+    else
+      s = curve(eps_c_lim) * std::max(0.0, (2 * eps_c_lim - e) / eps_c_lim);
+    return dif_compression * std::max(0.0, s);
+  }
+
+  ConcreteDamageLaw::ConcreteDamageLaw(const ConcreteParameters &p)
+    : p_(p)
+  {
+    if (!(p.youngs_modulus > 0) || !(p.poisson_ratio >= 0 && p.poisson_ratio < 0.5) ||
+        !(p.f_ctm > 0) || !(p.fracture_energy > 0) || !(p.eps_c1 > 0) ||
+        !(p.eps_c_lim > p.eps_c1) || !(p.f_cm > 0))
+      throw std::invalid_argument("concrete damage law: need E, f_cm, f_ctm, G_F, eps_c1 > 0, "
+                                  "eps_c_lim > eps_c1, 0 <= nu < 0.5");
+    const double E = p.youngs_modulus, nu = p.poisson_ratio;
+    lambda_ = E * nu / ((1 + nu) * (1 - 2 * nu));
+    mu_     = E / (2 * (1 + nu));
+  }
+
+  void ConcreteDamageLaw::initial_history(double *h) const
+  {
+    initialize_point(h, 0.1); // a 0.1 m crack band when the element size is not known
+  }
+
+  void ConcreteDamageLaw::initialize_point(double *h, double length) const
+  {
+    std::fill(h, h + n_history(), 0.0);
+    h[5] = length > 0 ? length : 0.1;
+  }
+
+  double ConcreteDamageLaw::effective_tensile_strength(double h) const
+  {
+    // Keep the softening branch at least as long as the elastic one (no snap-back):
+    // G_F / (h f_t) - f_t / (2 E) >= f_t / E.
+    const double ft = p_.f_ctm * p_.dif_tension;
+    return std::min(ft, std::sqrt(p_.youngs_modulus * p_.fracture_energy / (1.5 * h)));
+  }
+
+  namespace
+  {
+    constexpr double max_damage = 1 - 1e-6;
+  }
+
+  VoigtStress ConcreteDamageLaw::stress(const VoigtStrain &e, const double *h0, double *h1) const
+  {
+    const double E = p_.youngs_modulus, lam = lambda_, mu = mu_;
+    const double tr  = e[0] + e[1];
+    const double sxx = lam * tr + 2 * mu * e[0], syy = lam * tr + 2 * mu * e[1], szz = lam * tr,
+                 sxy = mu * e[2];
+    double sa, sb, c, s;
+    eigen2(sxx, syy, sxy, sa, sb, c, s);
+    const double smax = std::max(sa, szz), smin = std::min(sb, szz);
+    std::copy(h0, h0 + n_history(), h1);
+    const double kt = std::max(h0[0], std::max(smax, 0.0) / E);
+    const double kc = std::max(h0[1], std::max(-smin, 0.0) / E);
+    h1[0]           = kt;
+    h1[1]           = kc;
+    // Tension: exponential softening with the crack-band energy G_F / h.
+    const double hb = h0[5], ft = effective_tensile_strength(hb), k0 = ft / E;
+    double       dt = 0;
+    if (kt > k0)
+    {
+      const double ef = p_.fracture_energy / (hb * ft) - 0.5 * k0;
+      dt              = 1 - k0 / kt * std::exp(-(kt - k0) / ef);
+    }
+    double dc       = kc > 0 ? 1 - p_.compression_curve(kc) / (E * kc) : 0.0;
+    dt              = std::clamp(std::max(dt, h0[2]), 0.0, max_damage);
+    dc              = std::clamp(std::max(dc, h0[3]), 0.0, max_damage);
+    h1[2]           = dt;
+    h1[3]           = dc;
+    const double d0 = 1 - (1 - h0[2]) * (1 - h0[3]), d1 = 1 - (1 - dt) * (1 - dc);
+    // Y = psi_0 = eps : D eps / 2, the energy release rate of the scalar damage.
+    const double Y = 0.5 * (sxx * e[0] + syy * e[1] + sxy * e[2]);
+    h1[4]          = h0[4] + Y * (d1 - d0);
+    const double w = 1 - d1;
+    return {{w * sxx, w * syy, w * sxy}};
+  }
+
+  VoigtTangent ConcreteDamageLaw::tangent(const VoigtStrain &, const double *h) const
+  {
+    const double w   = (1 - h[2]) * (1 - h[3]);
+    const double lam = lambda_, mu = mu_;
+    return {{w * (lam + 2 * mu), w * lam, 0, w * lam, w * (lam + 2 * mu), 0, 0, 0, w * mu}};
+  }
+
+  PointOutput ConcreteDamageLaw::output(const VoigtStrain &e, const double *h) const
+  {
+    const double w   = (1 - h[2]) * (1 - h[3]);
+    const double tr  = e[0] + e[1];
+    const double sxx = lambda_ * tr + 2 * mu_ * e[0], syy = lambda_ * tr + 2 * mu_ * e[1],
+                 sxy = mu_ * e[2];
+    PointOutput o;
+    o.sigma_zz           = w * lambda_ * tr;
+    o.stored_energy      = 0.5 * w * (sxx * e[0] + syy * e[1] + sxy * e[2]);
+    o.damage             = 1 - w;
+    o.damage_dissipation = h[4];
+    return o;
+  }
+} // namespace kimp::fem

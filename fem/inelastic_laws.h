@@ -1,0 +1,163 @@
+// Inelastic plane-strain laws behind the MaterialLaw interface: Mohr-Coulomb with tension cut-off
+// and Drucker-Prager (soil), scalar tension/compression damage with crack band (concrete). Plain
+// C++ (no deal.II): allocation-free quadrature-point code that unit tests compile in seconds.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "fem/material_law.h"
+
+namespace kimp::fem
+{
+  /** Perfectly plastic soil: elasticity and the Mohr-Coulomb strength parameters. */
+  struct SoilParameters
+  {
+    double youngs_modulus = 50e6; ///< E, Pa
+    double poisson_ratio  = 0.3;  ///< nu, -
+    double density        = 1900; ///< rho, kg/m^3
+    double cohesion       = 0;    ///< c, Pa
+    double friction_angle = 0;    ///< phi, rad
+    double dilatancy      = 0;    ///< psi, rad (<= phi)
+    double tension_cutoff = 0;    ///< largest principal stress allowed, Pa (<= c cot phi)
+  };
+
+  /** A named soil preset (docs/physics.md gives the sources). */
+  struct SoilPreset
+  {
+    std::string    name;
+    SoilParameters parameters;
+  };
+  /** loose_sand, medium_dense_sand, dense_sand, soft_clay, stiff_clay. */
+  const std::vector<SoilPreset> &soil_presets();
+  /** The preset named @p name; throws std::invalid_argument listing the names otherwise. */
+  const SoilParameters &soil_preset(const std::string &name);
+
+  /** Which surfaces the last return mapping ended on (history value, for tests and output). */
+  enum class ReturnType
+  {
+    elastic = 0,
+    main    = 1, ///< one Mohr-Coulomb plane
+    edge    = 2, ///< two Mohr-Coulomb planes (triaxial compression or extension edge)
+    apex    = 3, ///< three or more planes meet (Mohr-Coulomb apex or tension corner)
+    tension = 4, ///< tension cut-off planes only
+    mixed   = 5, ///< Mohr-Coulomb plane(s) and tension cut-off plane(s)
+    dp_cone = 6,
+    dp_apex = 7,
+  };
+
+  /**
+   * Mohr-Coulomb with tension cut-off and non-associated flow (dilatancy psi), perfectly plastic.
+   * Implicit (backward Euler) return mapping in principal stresses (in-plane pair and sigma_zz):
+   * the 6 Mohr-Coulomb planes and 3 cut-off planes are linear in principal space, so each active
+   * set is one small linear solve; the admissible set closest in the energy norm is taken. That
+   * covers de Souza Neto, Peric & Owen (2008) Box 8.4's main-plane, left/right edge and apex
+   * returns. Consistent tangent from the principal tangent plus the eigenvector spin term.
+   * History: plastic strain {xx, yy, zz, gamma_xy}, equivalent plastic strain, plastic
+   * dissipation density (J/m^3), return type.
+   */
+  class MohrCoulombLaw final : public MaterialLaw
+  {
+  public:
+    explicit MohrCoulombLaw(const SoilParameters &p);
+    unsigned int n_history() const override { return 7; }
+    VoigtStress
+    stress(const VoigtStrain &strain, const double *committed, double *trial) const override;
+    VoigtTangent tangent(const VoigtStrain &strain, const double *committed) const override;
+    PointOutput  output(const VoigtStrain &strain, const double *history) const override;
+    /** Largest yield function value (Pa) at principal stresses {s1, s2, s3}. */
+    double yield_function(const std::array<double, 3> &principal) const;
+
+  private:
+    /** Stress, trial history and (if tangent != nullptr) the consistent tangent. */
+    VoigtStress    update(const VoigtStrain &strain,
+                          const double      *committed,
+                          double            *trial,
+                          VoigtTangent      *tangent) const;
+    SoilParameters p_;
+    double         lambda_, mu_;
+  };
+
+  /**
+   * Drucker-Prager matched to Mohr-Coulomb in plane strain (the plane-strain collapse strength of
+   * both is t + m sin(phi) = c cos(phi); with dilatancy eta_bar from psi). Perfectly plastic,
+   * cone and apex returns (de Souza Neto et al. 2008 Box 8.8). History as MohrCoulombLaw.
+   */
+  class DruckerPragerLaw final : public MaterialLaw
+  {
+  public:
+    explicit DruckerPragerLaw(const SoilParameters &p);
+    unsigned int n_history() const override { return 7; }
+    VoigtStress
+    stress(const VoigtStrain &strain, const double *committed, double *trial) const override;
+    VoigtTangent tangent(const VoigtStrain &strain, const double *committed) const override;
+    PointOutput  output(const VoigtStrain &strain, const double *history) const override;
+    /** f = sqrt(J2) + eta p - xi c (Pa) at the 3D stress {xx, yy, zz, xy}. */
+    double yield_function(const std::array<double, 4> &sigma) const;
+    double eta() const { return eta_; }
+    double eta_bar() const { return eta_bar_; }
+    double xi() const { return xi_; }
+
+  private:
+    VoigtStress    update(const VoigtStrain &strain,
+                          const double      *committed,
+                          double            *trial,
+                          VoigtTangent      *tangent) const;
+    SoilParameters p_;
+    double         lambda_, mu_, bulk_, eta_, eta_bar_, xi_;
+  };
+
+  /** Concrete parameters; ConcreteParameters::from_f_cm() derives them by fib MC2010. */
+  struct ConcreteParameters
+  {
+    double f_cm            = 38e6; ///< mean cylinder compressive strength, Pa
+    double youngs_modulus  = 0;    ///< E_ci, Pa (tangent modulus at the origin)
+    double poisson_ratio   = 0.2;  ///< nu, -
+    double f_ctm           = 0;    ///< mean tensile strength, Pa
+    double fracture_energy = 0;    ///< G_F, N/m
+    double eps_c1          = 0;    ///< strain at peak compressive stress (> 0)
+    double eps_c_lim       = 0;    ///< nominal ultimate compressive strain (> eps_c1)
+    double dif_compression = 1;    ///< dynamic increase factor on f_cm (>= 1)
+    double dif_tension     = 1;    ///< dynamic increase factor on f_ctm (>= 1)
+    /**
+     * fib Model Code 2010 §5.1.4-5.1.8 from f_cm (Pa): f_ck = f_cm - 8 MPa,
+     * E_ci = 21.5 GPa (f_cm / 10 MPa)^(1/3), f_ctm = 0.3 f_ck^(2/3) (<= C50) or
+     * 2.12 ln(1 + 0.1 f_cm), G_F = 73 f_cm^0.18 N/m; eps_c1, eps_c,lim by EN 1992-1-1 Table 3.1.
+     */
+    static ConcreteParameters from_f_cm(double f_cm);
+    /** fib MC2010 §7.2 (5.1-?) dynamic increase factors at the strain rate @p rate (1/s). */
+    void apply_strain_rate(double rate);
+    /** MC2010 / EN 1992-1-1 eq. 3.14 compressive stress (Pa, > 0) at compressive strain e > 0:
+     *  the curve to eps_c_lim, then a linear descent to zero at 2 eps_c_lim. */
+    double compression_curve(double e) const;
+  };
+
+  /**
+   * Concrete: isotropic scalar damage d = 1 - (1 - d_t)(1 - d_c) on the plane-strain elasticity,
+   * sigma = (1 - d) D eps, with a Rankine tension measure (largest principal effective stress / E)
+   * and a compression measure (-smallest principal effective stress / E). Tension softens
+   * exponentially with the crack-band energy G_F / h (Bazant & Oh 1983), compression follows
+   * compression_curve(); unloading is secant (degraded stiffness). History: kappa_t, kappa_c,
+   * d_t, d_c, damage dissipation density (J/m^3), h (m).
+   */
+  class ConcreteDamageLaw final : public MaterialLaw
+  {
+  public:
+    explicit ConcreteDamageLaw(const ConcreteParameters &p);
+    unsigned int n_history() const override { return 6; }
+    void         initialize_point(double *history, double characteristic_length) const override;
+    void         initial_history(double *history) const override;
+    VoigtStress
+    stress(const VoigtStrain &strain, const double *committed, double *trial) const override;
+    /** Secant tangent (1 - d) D: enough for the virgin-state stiffness the solvers assemble. */
+    VoigtTangent tangent(const VoigtStrain &strain, const double *committed) const override;
+    PointOutput  output(const VoigtStrain &strain, const double *history) const override;
+    /** Tensile strength used at crack-band length h (reduced if h exceeds the snap-back limit). */
+    double                    effective_tensile_strength(double h) const;
+    const ConcreteParameters &parameters() const { return p_; }
+
+  private:
+    ConcreteParameters p_;
+    double             lambda_, mu_;
+  };
+} // namespace kimp::fem
