@@ -89,6 +89,6 @@ int main(int argc, char **argv)
   }
   catch (...)
   {
-    return report("unexpected failure (not a standard exception)");
+    return kimp::cli::report_error("unexpected failure (not a standard exception)");
   }
 }

@@ -899,7 +899,9 @@ namespace kimp::io
 
   std::string JsonWriter::dump(int indent) const
   {
-    return root_->dump(indent);
+    // Scene text may hold bytes that are not UTF-8 (a mistyped or binary file): replaced
+    // (U+FFFD) rather than thrown, so a bad scene is refused by its reader, not by the JSON writer.
+    return root_->dump(indent, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
   }
 
   void JsonWriter::quantity(std::string_view key,
@@ -1052,7 +1054,7 @@ namespace kimp::io
 
   std::string SchemaWriter::dump(int indent) const
   {
-    return state_->root->dump(indent);
+    return state_->root->dump(indent, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
   }
 
   void SchemaWriter::quantity(std::string_view key,
@@ -1114,12 +1116,18 @@ namespace kimp::io
 
   std::string SchemaWriter::json_string(const std::string &text)
   {
-    return nlohmann::ordered_json(text).dump();
+    return nlohmann::ordered_json(text).dump(-1,
+                                             ' ',
+                                             false,
+                                             nlohmann::ordered_json::error_handler_t::replace);
   }
 
   std::string SchemaWriter::yaml_json(const std::string &yaml_text)
   {
-    return yaml_text_to_json(yaml_text).dump();
+    return yaml_text_to_json(yaml_text).dump(-1,
+                                             ' ',
+                                             false,
+                                             nlohmann::ordered_json::error_handler_t::replace);
   }
 
   void SchemaWriter::integer_value(std::string_view key,

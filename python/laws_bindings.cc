@@ -6,6 +6,7 @@
 #include <string>
 
 #include "app/collide_run.h"
+#include "fit/fit_config.h"
 #include "fit/fitter.h"
 #include "io/scene_io.h"
 #include "lumped/collision/two_body.h"
@@ -261,7 +262,8 @@ namespace kimp::python
         spec.law      = law;
         spec.cor      = cor;
         spec.exponent = exponent;
-        fit::FitOptions options;
+        // The window and misfit settings of `kimp fit` and `kimp study` (fit::FitConfig).
+        fit::FitOptions options     = fit::fit_options(fit::FitConfig{});
         options.fit_cor             = fit_cor;
         options.fit_exponent        = fit_exponent;
         options.displacement_weight = displacement_weight;

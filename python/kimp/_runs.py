@@ -393,14 +393,19 @@ class FitResult:
 
 def fit(time, force, velocity, mass, law="kelvin_voigt", *, cor=0.7, exponent=None,
         fit_cor=False, fit_exponent=False, indentation=None, slab_displacement=None,
-        displacement_weight=0.0, wall_mass=math.inf):
+        displacement_weight=0.0, wall_mass=math.inf, force_only_contact=True):
     """Fit an impact law to a measured impact (fit::fit_impact_law, as ``kimp fit``).
 
     time (s), force (N per metre of wall, compressive > 0): arrays of one impact; velocity:
     impact velocity v_imp (m/s); mass: slab mass (kg per metre of wall). law: "kelvin_voigt",
     "jankowski", "hertzdamp" or "hysteretic", with `cor` fixed (or the start when fit_cor) and
     `exponent`. Optional indentation and slab_displacement (m) arrays as in the FEM results.
+    The misfit window and separation settings are those of ``kimp fit`` and ``kimp study`` (one
+    fitting configuration, docs/physics.md §4); as there, force_only_contact=True (the default)
+    finds the contact from the force alone and ignores `indentation`.
     """
+    if force_only_contact:
+        indentation = None
     arrays = [None if a is None else np.asarray(a, float) for a in (indentation,
                                                                      slab_displacement)]
     d = _kimp.fit(np.asarray(time, float), np.asarray(force, float), float(velocity),

@@ -151,7 +151,8 @@ namespace
     const nlohmann::json summary = kimp::testing::read_json(output / "summary.json");
     EXPECT_EQ(summary.at("command"), "fit");
     EXPECT_TRUE(summary.at("n_failed").is_number_integer());
-    EXPECT_EQ(summary.at("n_failed"), 0);
+    // The two free-exponent fits of linear data fail (see above); every other fit is ok.
+    EXPECT_EQ(summary.at("n_failed"), 2);
     ASSERT_EQ(summary.at("cases").size(), 2u * 5u);
     const nlohmann::json &first = summary.at("cases").at(0);
     EXPECT_EQ(first.at("name"), "H1.00/" + first.at("variant").get<std::string>());
@@ -193,15 +194,31 @@ namespace
     };
     EXPECT_DOUBLE_EQ(width_of("27.78 m", "a").get<double>(), 27.78);
     EXPECT_DOUBLE_EQ(width_of("2778 cm", "b").get<double>(), 27.78);
-    EXPECT_DOUBLE_EQ(width_of("27.78", "c").get<double>(), 27.78);
-    err.str("");
-    EXPECT_EQ(kimp::cli::run_app(
-                *app,
-                {"fit", fem_file.string(), "-o", (dir.path() / "d").string(), "--width", "27 kN"},
-                out,
-                err),
-              2);
-    EXPECT_NE(err.str().find("--width"), std::string::npos) << err.str();
+    // As in scene files, a quantity needs its unit: a bare number and a force are refused,
+    // naming the option's key.
+    for (const std::string bad : {"27.78", "27 kN"})
+    {
+      err.str("");
+      std::string message;
+      int         code = 0;
+      try
+      {
+        code = kimp::cli::run_app(
+          *app,
+          {"fit", fem_file.string(), "-o", (dir.path() / "d").string(), "--width", bad},
+          out,
+          err);
+        message = err.str();
+      }
+      catch (const std::exception &error)
+      {
+        code    = 1;
+        message = error.what();
+      }
+      EXPECT_NE(code, 0) << bad;
+      EXPECT_NE(message.find("width"), std::string::npos) << message;
+      EXPECT_FALSE(std::filesystem::exists(dir.path() / "d" / "summary.json")) << bad;
+    }
   }
 
   TEST(FitCommand, MissingInputIsAnErrorNamingTheFile)
