@@ -15,27 +15,6 @@ namespace kimp::cli
 
   namespace
   {
-    std::size_t edit_distance(std::string_view a, std::string_view b)
-    {
-      std::vector<std::size_t> row(b.size() + 1);
-      for (std::size_t j = 0; j <= b.size(); ++j)
-        row[j] = j;
-      for (std::size_t i = 1; i <= a.size(); ++i)
-      {
-        std::size_t diagonal = row[0];
-        row[0]               = i;
-        for (std::size_t j = 1; j <= b.size(); ++j)
-        {
-          const std::size_t above = row[j];
-          const bool        same  = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
-                            std::tolower(static_cast<unsigned char>(b[j - 1]));
-          row[j]   = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
-          diagonal = above;
-        }
-      }
-      return row[b.size()];
-    }
-
     /// "unknown command 'lumpd'; did you mean 'lumped'?" when the first word that is not an
     /// option names no command; "" otherwise.
     std::string unknown_command(const CLI::App &app, int argc, const char *const *argv)
@@ -53,7 +32,7 @@ namespace kimp::cli
           if (command->get_name() == word)
             return "";
           known += (known.empty() ? "" : ", ") + command->get_name();
-          if (const std::size_t d = edit_distance(word, command->get_name()); d < best)
+          if (const std::size_t d = io::edit_distance(word, command->get_name()); d < best)
           {
             best       = d;
             suggestion = command->get_name();
