@@ -16,11 +16,15 @@
 #include "lumped/integrators/newmark_integrator.h"
 #include "lumped/laws/force_law_factory.h"
 #include "tests/support/lumped_scenes.h"
+#include "tests/support/response_compare.h"
 
 namespace kimp::lumped
 {
   namespace
   {
+    using kimp::testing::expect_identical;
+    using kimp::testing::max_relative_difference;
+
     constexpr double free_vibration_tol = 2e-4; // max |u − u_exact| / u0, Δt = T/1000
     constexpr double forced_tol         = 2e-3; // relative to the peak response
     constexpr double min_rate           = 1.9;  // order 2 − 0.1 (docs/architecture.md "Tests")
@@ -62,76 +66,6 @@ namespace kimp::lumped
     PoundingModel walled_building(const double gap)
     {
       return PoundingModel(kimp::testing::walled_scene("modified_kelvin_voigt", 2.5e9, gap));
-    }
-
-    /// Every recorded number of two responses is bitwise equal (same operations in the same
-    /// order: a restart or a different stepping pattern must not change a single bit).
-    void expect_identical(const Response &a, const Response &b, const std::string &what)
-    {
-      EXPECT_EQ(a.n_steps, b.n_steps) << what;
-      EXPECT_EQ(a.peak_displacement, b.peak_displacement) << what;
-      EXPECT_EQ(a.peak_absolute_acceleration, b.peak_absolute_acceleration) << what;
-      EXPECT_EQ(a.peak_interstorey_drift, b.peak_interstorey_drift) << what;
-      EXPECT_EQ(a.history.time, b.history.time) << what;
-      EXPECT_EQ(a.history.displacement, b.history.displacement) << what;
-      EXPECT_EQ(a.history.absolute_acceleration, b.history.absolute_acceleration) << what;
-      EXPECT_EQ(a.history.contact_force, b.history.contact_force) << what;
-      EXPECT_EQ(a.history.energy_error, b.history.energy_error) << what;
-      EXPECT_EQ(a.energy.input, b.energy.input) << what;
-      EXPECT_EQ(a.energy.viscous, b.energy.viscous) << what;
-      EXPECT_EQ(a.energy.hysteretic, b.energy.hysteretic) << what;
-      EXPECT_EQ(a.energy.contact_work, b.energy.contact_work) << what;
-      EXPECT_EQ(a.energy.max_relative_error, b.energy.max_relative_error) << what;
-      ASSERT_EQ(a.contacts.size(), b.contacts.size()) << what;
-      for (std::size_t c = 0; c < a.contacts.size(); ++c)
-      {
-        EXPECT_EQ(a.contacts[c].peak_force, b.contacts[c].peak_force) << what;
-        EXPECT_EQ(a.contacts[c].permanent_indentation, b.contacts[c].permanent_indentation) << what;
-        ASSERT_EQ(a.contacts[c].impacts.size(), b.contacts[c].impacts.size()) << what;
-        for (std::size_t i = 0; i < a.contacts[c].impacts.size(); ++i)
-          EXPECT_EQ(a.contacts[c].impacts[i].time, b.contacts[c].impacts[i].time) << what;
-      }
-    }
-
-    /// Largest relative difference between two responses: peaks (per DOF, storey and contact),
-    /// displacement histories (relative to the peak of each DOF), energy terms (relative to
-    /// W_in); the number of impacts must agree.
-    double max_relative_difference(const Response &a, const Response &b, const std::string &what)
-    {
-      double     worst = 0.0;
-      const auto rel   = [&](const double x, const double y, const double scale)
-      {
-        const double d = std::abs(x - y) / std::max(scale, 1e-300);
-        worst          = std::max(worst, d);
-        return d;
-      };
-      EXPECT_EQ(a.n_impacts(), b.n_impacts()) << what;
-      for (std::size_t i = 0; i < a.peak_displacement.size(); ++i)
-      {
-        rel(a.peak_displacement[i], b.peak_displacement[i], b.peak_displacement[i]);
-        rel(a.peak_absolute_acceleration[i],
-            b.peak_absolute_acceleration[i],
-            b.peak_absolute_acceleration[i]);
-      }
-      for (std::size_t s = 0; s < a.peak_interstorey_drift.size(); ++s)
-        rel(a.peak_interstorey_drift[s], b.peak_interstorey_drift[s], b.peak_interstorey_drift[s]);
-      for (std::size_t c = 0; c < a.contacts.size() && c < b.contacts.size(); ++c)
-        if (b.contacts[c].peak_force > 0.0)
-          rel(a.contacts[c].peak_force, b.contacts[c].peak_force, b.contacts[c].peak_force);
-      const std::size_t n = a.n_dofs;
-      EXPECT_EQ(a.history.displacement.size(), b.history.displacement.size()) << what;
-      for (std::size_t q = 0;
-           q < a.history.displacement.size() && q < b.history.displacement.size();
-           ++q)
-        rel(a.history.displacement[q], b.history.displacement[q], b.peak_displacement[q % n]);
-      const double w = b.energy.input;
-      rel(a.energy.input, b.energy.input, w);
-      rel(a.energy.viscous, b.energy.viscous, w);
-      rel(a.energy.hysteretic, b.energy.hysteretic, w);
-      rel(a.energy.contact_work, b.energy.contact_work, w);
-      rel(a.energy.kinetic, b.energy.kinetic, w);
-      rel(a.energy.strain, b.energy.strain, w);
-      return worst;
     }
 
     /// The same run with the fused kernel (which must be chosen) and the reference kernel.
