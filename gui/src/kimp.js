@@ -396,7 +396,10 @@ const kimp = (function () {
     const rows = parseCsv(text);
     if (rows.length < 2) return;
     const body = section(parent, name, rows.length <= 60);
-    table(body, rows[0], rows.slice(1, 201));
+    // 4 significant figures on screen for real numbers (integers such as counts stay whole; the
+    // CSV export and the file keep full precision).
+    const shown = (v) => (/^\s*-?(\d+\.\d*|\.\d+|\d+(\.\d*)?[eE][-+]?\d+)\s*$/.test(v) ? fmt(parseFloat(v), 4) : v);
+    table(body, rows[0], rows.slice(1, 201).map((r) => r.map(shown)));
     if (rows.length > 201) body.appendChild(el('p', { text: `first 200 of ${rows.length - 1} rows` }));
     // Numbers, also with a unit ("10 cm", as a sweep writes its swept values).
     const num = (v) => (/^\s*-?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?(\s*[A-Za-z%/^.0-9*]+)?\s*$/.test(v) ? parseFloat(v) : NaN);
