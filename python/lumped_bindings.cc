@@ -80,7 +80,17 @@ namespace kimp::python
       h["contact_force"]         = history(std::move(r.history.contact_force), n);
       h["energy_input"]          = to_numpy(std::move(r.history.energy_input));
       h["energy_error"]          = to_numpy(std::move(r.history.energy_error));
+      h["isolator_force"]        = to_numpy(std::move(r.history.isolator_force));
+      h["hysteretic_energy"]     = to_numpy(std::move(r.history.hysteretic_energy));
       d["history"]               = h;
+      if (!c.isolator.empty())
+      {
+        py::dict iso;
+        iso["kind"]              = c.isolator;
+        iso["peak_force"]        = r.peak_isolator_force;
+        iso["dissipated_energy"] = r.energy.hysteretic;
+        d["isolator"]            = iso;
+      }
       py::list contacts;
       for (lumped::ContactResult &contact : r.contacts)
       {

@@ -117,7 +117,12 @@ const kimp = (function () {
         if (x < xmin || x > xmax || y === null || y === undefined || !Number.isFinite(y)) continue;
         pts.push([X(x), Y(Math.min(Math.max(y, ymin), ymax))]);
       }
-      items.push({ kind: 'path', points: pts, stroke: u.series[s].stroke(), width: 1.2, dots: c.points });
+      if (c.scatter) {
+        // Loops (force against displacement): the samples as dots, not joined in x order.
+        for (const p of pts) items.push({ kind: 'circle', x: p[0], y: p[1], r: 1.5, fill: u.series[s].stroke() });
+      } else {
+        items.push({ kind: 'path', points: pts, stroke: u.series[s].stroke(), width: 1.2, dots: c.points });
+      }
       const label = String(u.series[s].label);
       legendX -= 8 + 7 * label.length + 22;
       items.push({ kind: 'line', x1: legendX, y1: 16, x2: legendX + 18, y2: 16, stroke: u.series[s].stroke(), width: 2 });
@@ -288,14 +293,15 @@ const kimp = (function () {
         label: s.label,
         stroke: COLORS[i % COLORS.length],
         width: 1.2,
-        points: { show: !!spec.points },
-        paths: spec.points ? undefined : undefined,
+        points: spec.scatter ? { show: true, size: 4, fill: COLORS[i % COLORS.length] } : { show: !!spec.points },
+        // A loop's samples are not ordered in x: dots only (uPlot joins in x order otherwise).
+        paths: spec.scatter ? () => null : undefined,
       }))),
       plugins: [wheelZoom()],
     };
     const data = [spec.x].concat(spec.series.map((s) => s.y));
     const plot = new uPlot(opts, data, host);
-    const c = { plot: plot, title: spec.title, xlabel: spec.xlabel, ylabel: spec.ylabel, points: spec.points, card: card, time: spec.time };
+    const c = { plot: plot, title: spec.title, xlabel: spec.xlabel, ylabel: spec.ylabel, points: spec.points, scatter: !!spec.scatter, card: card, time: spec.time };
     const name = slug(spec.title);
     const exporters = [
       ['svg', 'SVG', 'download the chart as SVG (vector)', () => figureSvg(chartFigure(c)), 'image/svg+xml'],
@@ -533,12 +539,15 @@ const kimp = (function () {
     const lbody = section(parent, 'Force-indentation loops');
     const hostL = el('div');
     lbody.appendChild(hostL);
+    const hostI = el('div');
+    if (isolated) section(parent, 'Isolator hysteresis loop').appendChild(hostI);
 
     const quantities = [
       ['displacement', 'displacement', 'm', levelNames(data.h5['lumped.h5'] ? model.cases[0].history.displacement.values[0].length : nMain, isolated)],
       ['interstorey_drift', 'interstorey drift', 'm', null],
       ['absolute_acceleration', 'absolute acceleration', 'm/s^2', null],
       ['contact_force', 'impact force', 'N', contactNames],
+      ['isolator_force', 'isolator force', 'N', ['isolator']],
     ];
     const picks = {};
     const draw = () => {
@@ -546,6 +555,7 @@ const kimp = (function () {
       hostH.innerHTML = '';
       hostP.innerHTML = '';
       hostL.innerHTML = '';
+      hostI.innerHTML = '';
       charts.length = 0;
       if (!chosen.length) return;
       for (const [key, label, unit, names0] of quantities) {
@@ -601,7 +611,7 @@ const kimp = (function () {
           const allX = Array.from(new Set(series.flatMap((s) => s.pairs.map((p) => p[0])))).sort((a, b) => a - b);
           const index = new Map(allX.map((x, i) => [x, i]));
           chart(hostL, {
-            title: `force-indentation: ${name}`, xlabel: 'indentation (mm)', ylabel: 'impact force (MN)', points: true,
+            title: `force-indentation: ${name}`, xlabel: 'indentation (mm)', ylabel: 'impact force (MN)', scatter: true,
             x: allX,
             series: series.map((s) => {
               const y = new Array(allX.length).fill(null);
@@ -609,6 +619,26 @@ const kimp = (function () {
               return { label: s.label, y: y };
             }),
           });
+        });
+      }
+      // Isolator hysteresis: its force on the base against the isolation level's displacement.
+      if (isolated && chosen[0].history.isolator_force) {
+        const series = chosen.filter((c) => c.history.isolator_force).map((c) => {
+          const f = column(c.history.isolator_force.values, 0);
+          const u = column(c.history.displacement.values, 0);
+          return { label: c.summary.name, pairs: u.map((d, i) => [d * 100, f[i] * 1e-6]) };
+        });
+        const allX = Array.from(new Set(series.flatMap((s) => s.pairs.map((p) => p[0])))).sort((a, b) => a - b);
+        const index = new Map(allX.map((x, i) => [x, i]));
+        const kind = chosen[0].summary.isolator ? ` (${chosen[0].summary.isolator.kind})` : '';
+        chart(hostI, {
+          title: `isolator hysteresis${kind}`, xlabel: 'isolation displacement (cm)', ylabel: 'isolator force (MN)', scatter: true,
+          x: allX,
+          series: series.map((s) => {
+            const y = new Array(allX.length).fill(null);
+            for (const p of s.pairs) y[index.get(p[0])] = p[1];
+            return { label: s.label, y: y };
+          }),
         });
       }
       if (animation) animation.setCase(chosen[0]);

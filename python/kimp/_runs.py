@@ -40,7 +40,10 @@ class Peaks:
 class History:
     """Histories at the output interval, row = sample: time (s, n), displacement (m, n × DOFs),
     absolute_acceleration (m/s², n × DOFs), interstorey_drift (m, n × storeys), contact_force
-    (impact force, N, n × contacts), energy_input (J, n), energy_error (1, n)."""
+    (impact force, N, n × contacts), energy_input (J, n), energy_error (1, n), isolator_force
+    (the isolator's force on the base, N, n; zeros without isolator) and hysteretic_energy (the
+    isolator's dissipated energy so far, J, n). isolator_force against displacement[:, 0] is the
+    isolator's hysteresis loop."""
 
     time: np.ndarray
     displacement: np.ndarray
@@ -49,6 +52,8 @@ class History:
     contact_force: np.ndarray
     energy_input: np.ndarray
     energy_error: np.ndarray
+    isolator_force: np.ndarray
+    hysteretic_energy: np.ndarray
 
     def __repr__(self):
         n = len(self.time)
@@ -72,6 +77,16 @@ class Contact:
     @property
     def n_impacts(self):
         return len(self.impact_time)
+
+
+@dataclass
+class Isolator:
+    """The isolator of the main building: its kind ("linear", "bilinear", "friction_pendulum",
+    "bouc_wen"), peak force (max |f_iso|, N) and the energy it dissipated (J)."""
+
+    kind: str
+    peak_force: float
+    dissipated_energy: float
 
 
 @dataclass
@@ -116,6 +131,7 @@ class Result:
     contact_names: List[str]
     storey_upper_dofs: List[int]
     companion_peaks: Optional[Peaks] = None
+    isolator: Optional[Isolator] = None
 
     @property
     def ok(self):
@@ -178,7 +194,8 @@ def _result(d):
         dt=d.get("dt", 0.0), n_steps=d.get("n_steps", 0), duration=d.get("duration", 0.0),
         pga=d["pga"], dt_critical=d["dt_critical"], governing=d["governing"],
         wall_time=d["wall_time"], modes=d["modes"], contact_names=d["contact_names"],
-        storey_upper_dofs=d["storey_upper_dofs"], companion_peaks=peaks(d.get("companion_peaks")))
+        storey_upper_dofs=d["storey_upper_dofs"], companion_peaks=peaks(d.get("companion_peaks")),
+        isolator=Isolator(**d["isolator"]) if "isolator" in d else None)
 
 
 def _scene(scene, kind):

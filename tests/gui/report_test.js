@@ -33,6 +33,22 @@ async function main() {
     await page.$eval('.chart .export-pdf', (b) => b.click());
     const pdf = await waitForFile(path.join(downloads, name.replace(/\.svg$/, '.pdf')), 5000);
     check(pdf.startsWith('%PDF-1.4') && pdf.includes(' l\n') && pdf.trimEnd().endsWith('%%EOF'), `exported ${name.replace(/\.svg$/, '.pdf')} is a vector PDF`);
+    // A lumped run with an isolator shows its hysteresis loop (force against the isolation
+    // displacement) whose largest force is the summary's peak within the history sampling.
+    const summary = JSON.parse(fs.readFileSync(path.join(dir, 'summary.json'), 'utf8'));
+    const withIsolator = (summary.cases || []).find((c) => c.isolator && c.status === 'ok');
+    if (withIsolator) {
+      const loop = await page.evaluate(() => {
+        const c = window.kimp.charts().find((x) => x.title.startsWith('isolator hysteresis'));
+        if (!c) return null;
+        const ys = Array.from(c.plot.data[1]).filter((v) => v !== null && v !== undefined);
+        return { n: ys.length, max: Math.max(...ys.map(Math.abs)) };
+      });
+      check(loop !== null && loop.n > 10, `isolator hysteresis loop drawn (${loop ? loop.n : 0} points)`);
+      const peak = withIsolator.isolator.peak_force * 1e-6;
+      check(loop.max <= peak * (1 + 1e-9) && loop.max > 0.5 * peak,
+        `loop's largest force ${loop.max.toFixed(4)} MN within the peak ${peak.toFixed(4)} MN`);
+    }
     if (await page.$('svg.animation')) {
       await page.$eval('.anim-play', (b) => b.click());
       await new Promise((r) => setTimeout(r, 600));

@@ -113,3 +113,42 @@ def test_memory_stays_flat_over_1000_runs():
     # One run's arrays are ~50 kB; a leak of one of them per run would add ~50 MB.
     assert growth < 8 * 2**20, f"RSS grew by {growth / 2**20:.1f} MiB over 1000 runs"
     assert r.peaks.displacement.shape == (5,)
+
+
+def test_isolator_force_history_equals_the_cli_and_its_loop_dissipates(tmp_path):
+    scene = dict(SHORT_SCENE, isolator={"kind": "bouc_wen", "K1": "200 MN/m", "K2": "25 MN/m",
+                                        "Q_ratio": "10 %", "A": 1, "beta": 0.5, "gamma": 0.5,
+                                        "n": 2},
+                 integration={"output_interval": "1 ms"})
+    scene_file = tmp_path / "bouc_wen.yaml"
+    scene_file.write_text(kimp.Scene.from_dict(scene).to_yaml())
+    run_cli("lumped", scene_file, "-o", tmp_path / "out")
+    group = kimp.read(tmp_path / "out" / "lumped.h5")["lumped"]["default"]
+    r = kimp.lumped(scene_file)
+    np.testing.assert_array_equal(r.history.isolator_force, group["history"]["isolator_force"].value)
+    np.testing.assert_array_equal(r.history.hysteretic_energy,
+                                  group["history"]["hysteretic_energy"].value)
+    assert group["history"]["isolator_force"].units == "N"
+    assert r.isolator.kind == "bouc_wen"
+    assert r.isolator.peak_force == group["isolator"]["peak_force"]
+    assert r.isolator.dissipated_energy == group["isolator"]["dissipated_energy"]
+    # The sampled history holds the peak within the sampling, and the loop's area (the work of
+    # the isolator force over the base displacement) is what the isolator dissipated plus what
+    # it still stores elastically; its stored energy is at most F²/(2 K1).
+    force = r.history.isolator_force
+    assert np.max(np.abs(force)) <= r.isolator.peak_force * (1 + 1e-12)
+    assert np.max(np.abs(force)) > 0.95 * r.isolator.peak_force
+    u = r.history.displacement[:, 0]
+    work = np.sum(0.5 * (force[1:] + force[:-1]) * np.diff(u))
+    stored_max = force[-1] ** 2 / (2 * 200e6)
+    assert r.isolator.dissipated_energy > 0
+    assert abs(work - r.isolator.dissipated_energy) <= stored_max + 0.02 * r.isolator.dissipated_energy
+
+
+def test_no_isolator_gives_none_and_zero_force():
+    r = kimp.lumped(kimp.Scene.from_dict({"building": {"kind": "fixed_base"},
+                                          "walls": {"left": {"present": False},
+                                                    "right": {"present": False}},
+                                          "ground_motion": SHORT_SCENE["ground_motion"]}))
+    assert r.isolator is None
+    assert not np.any(r.history.isolator_force)
