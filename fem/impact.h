@@ -148,10 +148,12 @@ namespace kimp::fem
      */
     double dt = 0;
 
-    double end_time             = 0.05;     ///< s (> 0)
-    double separation_hold_time = 1.0e-3;   ///< s: stop once the force stayed zero this long
-    double output_interval      = 1.0e-5;   ///< s: history sampling interval (0: every step)
-    double vtu_interval         = 0;        ///< s: field output interval (0: none)
+    double end_time             = 0.05;   ///< s (> 0)
+    double separation_hold_time = 1.0e-3; ///< s: stop once the force stayed zero this long
+    double output_interval      = 1.0e-5; ///< s: history sampling interval (0: every step)
+    double vtu_interval         = 0;      ///< s: field output interval (0: none)
+    /** s: interval of the deformed-mesh frames of ImpactResult::frames (0: none; >= 0). */
+    double                frame_interval = 0;
     std::filesystem::path vtu_dir;          ///< field output directory (empty: none)
     unsigned int          log_interval = 0; ///< steps between log lines (0: none)
     /**
@@ -230,10 +232,30 @@ namespace kimp::fem
     double dissipation_gap = 0;
   };
 
+  /**
+   * Deformed-mesh frames for an animation (ImpactParameters::frame_interval > 0), complete on
+   * rank 0 of the run's communicator (empty on the others): the mesh once, then per frame the
+   * displacement of every vertex and cell means of stress measures over the Gauss points. With a
+   * rigid slab the slab is not meshed and so not in the frames.
+   */
+  struct ImpactFrames
+  {
+    std::vector<double> vertices;         ///< m, undeformed x, y per vertex, [vertex][2]
+    std::vector<double> cells;            ///< vertex indices of each quadrilateral, [cell][4]
+    std::vector<double> material;         ///< material id per cell (geometry/scene_ids.h), [cell]
+    std::vector<double> time;             ///< s, [frame]
+    std::vector<double> displacement;     ///< m, [frame][vertex][2]
+    std::vector<double> von_mises_stress; ///< Pa, [frame][cell] (with sigma_zz)
+    std::vector<double> mean_stress;      ///< Pa, [frame][cell], tension positive
+    /// -, [frame][cell]; non-linear laws only (empty otherwise).
+    std::vector<double> damage, equivalent_plastic_strain;
+  };
+
   struct ImpactResult
   {
     ImpactHistory history;
     ImpactSummary summary;
+    ImpactFrames  frames; ///< empty unless ImpactParameters::frame_interval > 0
   };
 
   /** Numerical failure (divergence, non-convergence) with its context. */

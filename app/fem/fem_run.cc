@@ -125,6 +125,32 @@ namespace kimp::app
       series(contact, "max_penetration", h.max_penetration, "m");
     }
 
+    /// The deformed-mesh frames (fem::ImpactFrames) as group `frames`, if any were recorded.
+    void write_frames(ResultsGroup &case_group, const fem::ImpactFrames &f)
+    {
+      if (f.time.empty())
+        return;
+      ResultsGroup      g        = case_group.group("frames");
+      const std::size_t n_frames = f.time.size(), n_vertices = f.vertices.size() / 2,
+                        n_cells = f.material.size();
+      g.write_matrix("vertices", f.vertices, n_vertices, 2, "m");
+      g.write_matrix("cells", f.cells, n_cells, 4, "1");
+      g.write("material", f.material, "1");
+      g.write("time", f.time, "s");
+      g.write_matrix("displacement", f.displacement, n_frames, 2 * n_vertices, "m");
+      g.write_matrix("von_mises_stress", f.von_mises_stress, n_frames, n_cells, "Pa");
+      g.write_matrix("mean_stress", f.mean_stress, n_frames, n_cells, "Pa");
+      if (!f.damage.empty())
+      {
+        g.write_matrix("damage", f.damage, n_frames, n_cells, "1");
+        g.write_matrix("equivalent_plastic_strain",
+                       f.equivalent_plastic_strain,
+                       n_frames,
+                       n_cells,
+                       "1");
+      }
+    }
+
     nlohmann::ordered_json summary_json(const FemCase &c, const std::string &mesh_file)
     {
       nlohmann::ordered_json entry;
@@ -190,6 +216,7 @@ namespace kimp::app
         Progress              progress(0, scene.dynamics.end_time);
         fem::ImpactParameters parameters = spec.parameters;
         parameters.progress              = [&progress](double t, double) { progress.update(0, t); };
+        parameters.frame_interval        = scene.output.frame_interval;
         result                           = fem::run_impact(parameters, MPI_COMM_WORLD, &log);
       }
       catch (const std::exception &error)
@@ -203,6 +230,7 @@ namespace kimp::app
       write_fem_case(*fem_root, fem_case);
       ResultsGroup case_group = fem_root->group(name);
       write_diagnostics(case_group, result.history);
+      write_frames(case_group, result.frames);
       if (scene.output.vtu_interval > 0)
         case_group.set_attribute("pvd", "vtu/" + name + "/impact.pvd");
       // `cases` is a list of objects with "name" in every command's summary.json.

@@ -138,6 +138,8 @@ namespace kimp::app
   struct FemOutput
   {
     double vtu_interval = 0; ///< s between VTU snapshots under DIR/vtu/<case>/ (0: none)
+    /// s between the deformed-mesh frames of fem.h5 (`frames`, the report's animation; 0: none)
+    double frame_interval = 1e-3;
   };
 
   /**
@@ -386,6 +388,13 @@ namespace kimp::app
                 s.vtu_interval,
                 "ms",
                 "interval of VTU field snapshots under DIR/vtu/<case>/ (>= 0; 0: none)",
+                io::Range::non_negative());
+    io.quantity("frame_interval",
+                s.frame_interval,
+                "ms",
+                "interval of the deformed-mesh frames in fem.h5 (`frames`: mesh, displacements, "
+                "von Mises and mean stress, damage and plastic strain), drawn as an animation by "
+                "`kimp report` (>= 0; 0: none)",
                 io::Range::non_negative());
   }
 

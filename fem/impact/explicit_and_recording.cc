@@ -35,6 +35,8 @@ namespace kimp::fem::internal
     const bool          write_vtu = !prm.vtu_dir.empty() && prm.vtu_interval > 0;
     const unsigned long vtu_every =
       write_vtu ? std::max<unsigned long>(1, std::lround(prm.vtu_interval / dt)) : 0;
+    const unsigned long frame_every =
+      prm.frame_interval > 0 ? std::max<unsigned long>(1, std::lround(prm.frame_interval / dt)) : 0;
     const unsigned long n_max = static_cast<unsigned long>(std::ceil(prm.end_time / dt));
     const unsigned long hold_steps =
       static_cast<unsigned long>(std::ceil(prm.separation_hold_time / dt));
@@ -74,6 +76,8 @@ namespace kimp::fem::internal
         prm.progress(t, prm.end_time);
       if (write_vtu && n % vtu_every == 0)
         output_results(t, u, v_n, fc);
+      if (frame_every && n % frame_every == 0)
+        record_frame(t, u);
 
       if (ev.total_force > 0)
       {
@@ -249,23 +253,13 @@ namespace kimp::fem::internal
                          n);
   }
 
-  void ImpactProblem::output_results(double                     t,
-                                     const Vec                 &u,
-                                     const Vec                 &v,
-                                     const std::vector<double> &contact_force)
+  ImpactProblem::CellMeans ImpactProblem::cell_means(const Vec &u_g) const
   {
-    Vec u_g(locally_owned, locally_relevant, comm), v_g(locally_owned, locally_relevant, comm);
-    Vec f(locally_owned, comm);
-    scatter_add(contact_force, f);
-    Vec f_g(locally_owned, locally_relevant, comm);
-    u_g = u;
-    v_g = v;
-    f_g = f;
-
-    Vector<float> material(triangulation.n_active_cells()), subdomain(material.size());
-    Vector<float> sxx(material.size()), syy(material.size()), sxy(material.size());
-    Vector<float> damage(material.size()), eq_plastic(material.size()), von_mises(material.size()),
-      mean_stress(material.size());
+    CellMeans          m;
+    const unsigned int n_cells = triangulation.n_active_cells();
+    for (Vector<float> *v :
+         {&m.sxx, &m.syy, &m.sxy, &m.mean_stress, &m.von_mises, &m.damage, &m.eq_plastic})
+      v->reinit(n_cells);
     // Cell means over the Gauss points of the stiffness, each from its committed history.
     const QGauss<dim>                    quadrature(2);
     FEValues<dim>                        fe_values(fe, quadrature, update_gradients);
@@ -281,8 +275,6 @@ namespace kimp::fem::internal
         fe_values[displacement].get_function_symmetric_gradients(u_g, eps);
         const MaterialLaw &law = *laws.at(cell->material_id());
         scratch.assign(std::max(1u, law.n_history()), 0.0);
-        material(c)  = cell->material_id();
-        subdomain(c) = triangulation.locally_owned_subdomain();
         for (unsigned int q = 0; q < quadrature.size(); ++q)
         {
           const VoigtStrain e{{eps[q][0][0], eps[q][1][1], 2 * eps[q][0][1]}};
@@ -294,15 +286,41 @@ namespace kimp::fem::internal
             0.5 * ((sigma[0] - p) * (sigma[0] - p) + (sigma[1] - p) * (sigma[1] - p) +
                    (po.sigma_zz - p) * (po.sigma_zz - p)) +
             sigma[2] * sigma[2];
-          sxx(c) += w * sigma[0];
-          syy(c) += w * sigma[1];
-          sxy(c) += w * sigma[2];
-          mean_stress(c) += w * p;
-          von_mises(c) += w * std::sqrt(3 * j2);
-          damage(c) += w * po.damage;
-          eq_plastic(c) += w * po.equivalent_plastic_strain;
+          m.sxx(c) += w * sigma[0];
+          m.syy(c) += w * sigma[1];
+          m.sxy(c) += w * sigma[2];
+          m.mean_stress(c) += w * p;
+          m.von_mises(c) += w * std::sqrt(3 * j2);
+          m.damage(c) += w * po.damage;
+          m.eq_plastic(c) += w * po.equivalent_plastic_strain;
         }
       }
+    return m;
+  }
+
+  void ImpactProblem::output_results(double                     t,
+                                     const Vec                 &u,
+                                     const Vec                 &v,
+                                     const std::vector<double> &contact_force)
+  {
+    Vec u_g(locally_owned, locally_relevant, comm), v_g(locally_owned, locally_relevant, comm);
+    Vec f(locally_owned, comm);
+    scatter_add(contact_force, f);
+    Vec f_g(locally_owned, locally_relevant, comm);
+    u_g = u;
+    v_g = v;
+    f_g = f;
+
+    Vector<float> material(triangulation.n_active_cells()), subdomain(material.size());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+      {
+        material(cell->active_cell_index())  = cell->material_id();
+        subdomain(cell->active_cell_index()) = triangulation.locally_owned_subdomain();
+      }
+    const CellMeans      m   = cell_means(u_g);
+    const Vector<float> &sxx = m.sxx, &syy = m.syy, &sxy = m.sxy, &mean_stress = m.mean_stress,
+                        &von_mises = m.von_mises, &damage = m.damage, &eq_plastic = m.eq_plastic;
     DataOut<dim> data_out;
     data_out.attach_dof_handler(dof_handler);
     const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
@@ -341,8 +359,80 @@ namespace kimp::fem::internal
     }
   }
 
+  void ImpactProblem::record_frame(double t, const Vec &u)
+  {
+    Vec u_g(locally_owned, locally_relevant, comm);
+    u_g                      = u;
+    const CellMeans    m     = cell_means(u_g);
+    const unsigned int n_v   = triangulation.n_vertices();
+    const unsigned int n_c   = triangulation.n_active_cells();
+    const bool         root  = Utilities::MPI::this_mpi_process(comm) == 0;
+    const bool         first = frames.time.empty();
+    // The mesh is the unrefined coarse mesh, which every rank holds whole: vertex and level-0
+    // cell numbers are the same on all ranks. Each rank fills what it owns; sums gather it.
+    std::vector<double> displacement(2 * n_v, 0.0), count(n_v, 0.0);
+    std::vector<double> fields(4 * n_c, 0.0);
+    std::vector<double> cells, material;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+    {
+      const unsigned int c = cell->active_cell_index();
+      if (first && root)
+      {
+        // deal.II numbers quadrilateral vertices lexicographically; the frames list them
+        // counter-clockwise so that they draw as polygons.
+        for (const unsigned int v : {0u, 1u, 3u, 2u})
+          cells.push_back(cell->vertex_index(v));
+        material.push_back(cell->material_id());
+      }
+      if (!cell->is_locally_owned())
+        continue;
+      for (unsigned int v = 0; v < cell->n_vertices(); ++v)
+      {
+        const unsigned int k = cell->vertex_index(v);
+        for (unsigned int d = 0; d < dim; ++d)
+          displacement[2 * k + d] = u_g(cell->vertex_dof_index(v, d));
+        count[k] = 1;
+      }
+      fields[c]           = m.von_mises(c);
+      fields[n_c + c]     = m.mean_stress(c);
+      fields[2 * n_c + c] = m.damage(c);
+      fields[3 * n_c + c] = m.eq_plastic(c);
+    }
+    // A vertex shared by two ranks' cells holds the same value on both: sum, then divide.
+    for (std::vector<double> *x : {&displacement, &count, &fields})
+      MPI_Allreduce(MPI_IN_PLACE,
+                    x->data(),
+                    static_cast<int>(x->size()),
+                    MPI_DOUBLE,
+                    MPI_SUM,
+                    comm);
+    if (!root)
+      return;
+    if (first)
+    {
+      for (const auto &p : triangulation.get_vertices())
+        frames.vertices.insert(frames.vertices.end(), {p[0], p[1]});
+      frames.cells    = std::move(cells);
+      frames.material = std::move(material);
+    }
+    frames.time.push_back(t);
+    for (unsigned int k = 0; k < n_v; ++k)
+      for (unsigned int d = 0; d < dim; ++d)
+        frames.displacement.push_back(count[k] > 0 ? displacement[2 * k + d] / count[k] : 0.0);
+    const auto append = [&](std::vector<double> &to, unsigned int which)
+    { to.insert(to.end(), fields.begin() + which * n_c, fields.begin() + (which + 1) * n_c); };
+    append(frames.von_mises_stress, 0);
+    append(frames.mean_stress, 1);
+    if (!linear_laws)
+    {
+      append(frames.damage, 2);
+      append(frames.equivalent_plastic_strain, 3);
+    }
+  }
+
   void ImpactProblem::finish(ImpactResult &result, double wall_seconds)
   {
+    result.frames = std::move(frames);
     // Impulse-preserving smoothing: a centred moving average (zero padded) over the window;
     // sum(F) dt is unchanged because the force is zero at both ends of the run.
     const double period =

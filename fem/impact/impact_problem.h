@@ -17,6 +17,7 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
 
 #include "fem/impact.h"
 #include "fem/material_law.h"
@@ -101,7 +102,17 @@ namespace kimp::fem::internal
     [[noreturn]] void throw_divergence(unsigned long n, double t, const Vec &u) const;
     void
     output_results(double t, const Vec &u, const Vec &v, const std::vector<double> &contact_force);
-    void finish(ImpactResult &result, double wall_seconds);
+    /** Cell means over the Gauss points of the stress measures of u_g (ghosted), by active cell
+     *  index; locally owned cells only (the others stay 0). */
+    struct CellMeans
+    {
+      Vector<float> sxx, syy, sxy, mean_stress, von_mises, damage, eq_plastic;
+    };
+    CellMeans cell_means(const Vec &u_g) const;
+    /** Appends a frame of ImpactResult::frames at time t (collective; frames.cc). */
+    void         record_frame(double t, const Vec &u);
+    ImpactFrames frames;
+    void         finish(ImpactResult &result, double wall_seconds);
 
     const ImpactParameters                    prm;
     MPI_Comm                                  comm;

@@ -265,6 +265,8 @@ namespace kimp::fem::internal
     const bool          write_vtu = !prm.vtu_dir.empty() && prm.vtu_interval > 0;
     const unsigned long vtu_every =
       write_vtu ? std::max<unsigned long>(1, std::lround(prm.vtu_interval / dt)) : 0;
+    const unsigned long frame_every =
+      prm.frame_interval > 0 ? std::max<unsigned long>(1, std::lround(prm.frame_interval / dt)) : 0;
     const unsigned long n_max = static_cast<unsigned long>(std::ceil(prm.end_time / dt));
     const unsigned long hold_steps =
       static_cast<unsigned long>(std::ceil(prm.separation_hold_time / dt));
@@ -279,6 +281,8 @@ namespace kimp::fem::internal
       record(0, 0.0, u, v, Ku, u_r, v_r, ev, cu);
       if (write_vtu)
         output_results(0.0, u, v, padded_force(ev, cu.size()));
+      if (frame_every)
+        record_frame(0.0, u);
     }
 
     // One Newmark step of size dt / 2^level from (u, v, acc) into (u_np1, v_np1, a_np1):
@@ -443,6 +447,8 @@ namespace kimp::fem::internal
       record(n, t_np1, u, v, Ku, u_r, v_r, ev, cu);
       if (write_vtu && n % vtu_every == 0)
         output_results(t_np1, u, v, padded_force(ev, cu.size()));
+      if (frame_every && n % frame_every == 0)
+        record_frame(t_np1, u);
       if (prm.progress && n % prm.progress_interval == 0 &&
           Utilities::MPI::this_mpi_process(comm) == 0)
         prm.progress(t_np1, prm.end_time);

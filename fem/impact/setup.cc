@@ -181,6 +181,8 @@ namespace kimp::fem::internal
               " steps (must be > 0)");
     require(prm.vtu_interval >= 0,
             "vtu_interval = " + fmt_double(prm.vtu_interval) + " s (must be >= 0)");
+    require(prm.frame_interval >= 0,
+            "frame_interval = " + fmt_double(prm.frame_interval) + " s (must be >= 0)");
   }
 
   void ImpactProblem::make_grid()

@@ -8,6 +8,7 @@ const kimp = (function () {
     '#7f7f7f', '#bcbd22', '#17becf'];
   const charts = [];
   let animation = null;
+  let femAnimation = null;
 
   // ---- small helpers -------------------------------------------------------------------------
   function el(tag, attrs, children) {
@@ -19,6 +20,10 @@ const kimp = (function () {
     }
     for (const c of children || []) if (c) e.appendChild(c);
     return e;
+  }
+
+  function tickLabels(u, splits) {
+    return splits.map((v) => fmt(v, 6));
   }
 
   function fmt(x, digits) {
@@ -288,7 +293,9 @@ const kimp = (function () {
       height: spec.height || 300,
       scales: { x: { time: false } },
       cursor: { sync: { key: spec.time ? 'kimp-time' : 'kimp-' + Math.random() } },
-      axes: [{ label: spec.xlabel }, { label: spec.ylabel, size: 70 }],
+      // Tick labels to 6 significant digits: uPlot's default rounds to the tick step's decimals,
+      // which repeats labels on narrow ranges (0.001, 0.001, 0.002 for steps of 0.5 ms).
+      axes: [{ label: spec.xlabel, values: tickLabels }, { label: spec.ylabel, size: 70, values: tickLabels }],
       series: [{ label: spec.xlabel }].concat(spec.series.map((s, i) => ({
         label: s.label,
         stroke: COLORS[i % COLORS.length],
@@ -355,6 +362,7 @@ const kimp = (function () {
     }
     const groups = [];
     for (const [g, members] of Object.entries(byGroup)) {
+      if (g.endsWith('/frames')) continue; // the deformed-mesh frames: drawn by femSection
       let time = members.time;
       if (!time && members.value) {
         // Series sampled together share one time dataset, stored once (a hard link elsewhere).
@@ -813,6 +821,166 @@ const kimp = (function () {
     return api;
   }
 
+  // ---- FEM: the deformed mesh over the impact ------------------------------------------------
+  /** Colour of v in [0, 1] on a perceptually ordered blue-green-yellow ramp (viridis stops). */
+  function ramp(v) {
+    const stops = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
+    const x = Math.max(0, Math.min(1, v)) * (stops.length - 1);
+    const i = Math.min(stops.length - 2, Math.floor(x));
+    const f = x - i;
+    const c = stops[i].map((a, k) => Math.round(a + f * (stops[i + 1][k] - a)));
+    return `rgb(${c[0]},${c[1]},${c[2]})`;
+  }
+
+  function femSection(parent, data) {
+    const h5 = data.h5['fem.h5'];
+    const d = h5.datasets;
+    const names = Object.keys(d).map((k) => /^\/fem\/([^/]+)\/frames\/time$/.exec(k)).filter((m) => m).map((m) => m[1]);
+    if (!names.length) return;
+    const body = section(parent, 'Deformed mesh over the impact');
+    const FIELDS = [['von_mises_stress', 'von Mises stress', 1e-6, 'MPa'], ['mean_stress', 'mean stress', 1e-6, 'MPa'],
+      ['damage', 'damage', 1, '-'], ['equivalent_plastic_strain', 'equivalent plastic strain', 1, '-']];
+    const NS = 'http://www.w3.org/2000/svg';
+    const W = 900;
+    const H = 440;
+    const caseSel = el('select', { class: 'fem-case' }, names.map((n) => el('option', { value: n, text: n })));
+    const fieldSel = el('select', { class: 'fem-field' });
+    const play = el('button', { class: 'fem-play', text: 'Play' });
+    const restart = el('button', { class: 'fem-restart', text: 'Restart' });
+    const speed = el('select', { class: 'fem-speed' }, [0.25, 0.5, 1, 2, 4].map((v) => el('option', { value: v, text: v + '×' })));
+    speed.value = '1';
+    const exag = el('input', { type: 'number', min: 1, max: 100000, step: 1, value: 1, class: 'fem-exaggeration' });
+    const exportFrame = el('button', { class: 'fem-export', text: 'Frame SVG' });
+    const label = el('span', { class: 'fem-time', text: '' });
+    const scrub = el('input', { type: 'range', min: 0, max: 0, value: 0, class: 'fem-scrub' });
+    body.appendChild(el('div', { class: 'controls' }, [el('label', { text: 'case ' }, [caseSel]), el('label', { text: ' colour by ' }, [fieldSel]),
+      play, restart, el('label', { text: ' speed ' }, [speed]), el('label', { text: ' exaggeration ×' }, [exag]), exportFrame, label]));
+    body.appendChild(scrub);
+    const svg = document.createElementNS(NS, 'svg');
+    svg.setAttribute('viewBox', `0 0 ${W} ${H}`);
+    svg.setAttribute('class', 'fem-animation');
+    svg.setAttribute('xmlns', NS);
+    body.appendChild(svg);
+    const state = { frame: 0, playing: false, mesh: null };
+    // The case's contact force beside the mesh: its time cursor follows the frame.
+    const forceHost = el('div');
+    body.appendChild(forceHost);
+    const drawForce = (name) => {
+      forceHost.innerHTML = '';
+      const raw = d[`/fem/${name}/contact_force/value`];
+      const time = d[`/fem/${name}/contact_force/time`];
+      if (!raw || !time) return;
+      const series = [{ label: 'raw', y: raw.data.map((v) => v * 1e-3) }];
+      const smooth = d[`/fem/${name}/smoothed_contact_force/value`];
+      if (smooth && smooth.data.length === raw.data.length) series.push({ label: 'smoothed', y: smooth.data.map((v) => v * 1e-3) });
+      chart(forceHost, { title: `${name}: contact force`, xlabel: 'time (s)', ylabel: 'force (kN/m)', time: true, x: time.data, series: series });
+    };
+
+    function load(name) {
+      const g = (k) => d[`/fem/${name}/frames/${k}`];
+      const m = {
+        name: name, time: g('time').data, vertices: g('vertices').data, cells: g('cells').data,
+        displacement: g('displacement').data, fields: {},
+      };
+      for (const [key, text, scale, unit] of FIELDS) {
+        if (!g(key)) continue;
+        let lo = Infinity;
+        let hi = -Infinity;
+        for (const row of g(key).data) for (const v of row) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
+        m.fields[key] = { values: g(key).data, text: text, scale: scale, unit: unit, lo: lo, hi: hi };
+      }
+      let x0 = Infinity; let x1 = -Infinity; let y0 = Infinity; let y1 = -Infinity;
+      for (const [x, y] of m.vertices) { x0 = Math.min(x0, x); x1 = Math.max(x1, x); y0 = Math.min(y0, y); y1 = Math.max(y1, y); }
+      m.box = [x0, x1, y0, y1];
+      // Exaggeration that draws the largest displacement as 3 % of the model's size.
+      let umax = 0;
+      for (const row of m.displacement) for (const v of row) umax = Math.max(umax, Math.abs(v));
+      m.autoExaggeration = umax > 0 ? Math.max(1, Math.round(0.03 * Math.max(x1 - x0, y1 - y0) / umax)) : 1;
+      return m;
+    }
+
+    function draw() {
+      const m = state.mesh;
+      const f = m.fields[fieldSel.value];
+      const i = state.frame;
+      const u = m.displacement[i];
+      const e = Math.max(1, Number(exag.value) || 1);
+      const [x0, x1, y0, y1] = m.box;
+      const sc = Math.min((W - 140) / (x1 - x0), (H - 70) / (y1 - y0));
+      const X = (x) => 20 + (x - x0) * sc;
+      const Y = (y) => H - 20 - (y - y0) * sc;
+      const parts = [];
+      const span = f.hi - f.lo || 1;
+      m.cells.forEach((c, k) => {
+        const pts = c.map((v) => `${X(m.vertices[v][0] + e * u[2 * v]).toFixed(1)},${Y(m.vertices[v][1] + e * u[2 * v + 1]).toFixed(1)}`).join(' ');
+        parts.push(`<polygon points="${pts}" fill="${ramp((f.values[i][k] - f.lo) / span)}" stroke="#0003" stroke-width="0.3"/>`);
+      });
+      // Colour bar: the field's range over all frames.
+      const bx = W - 100;
+      for (let j = 0; j < 50; ++j) {
+        parts.push(`<rect x="${bx}" y="${(40 + (49 - j) * 6).toFixed(1)}" width="18" height="6.5" fill="${ramp(j / 49)}"/>`);
+      }
+      parts.push(`<text x="${bx + 24}" y="46" font-size="12">${fmt(f.hi * f.scale, 4)}</text>`);
+      parts.push(`<text x="${bx + 24}" y="340" font-size="12">${fmt(f.lo * f.scale, 4)}</text>`);
+      parts.push(`<text x="${W - 8}" y="28" font-size="12" text-anchor="end">${f.text} (${f.unit})</text>`);
+      const t = m.time[i];
+      parts.push(`<text x="20" y="22" font-size="14">${m.name}: t = ${fmt(t * 1e3, 4)} ms, displacements ×${e}</text>`);
+      svg.innerHTML = parts.join('');
+      label.textContent = ` frame ${i + 1}/${m.time.length}, t = ${fmt(t * 1e3, 4)} ms`;
+      scrub.value = String(i);
+      setTimeCursor(t);
+    }
+
+    function setCase(name) {
+      state.mesh = load(name);
+      drawForce(name);
+      const keep = fieldSel.value;
+      fieldSel.innerHTML = '';
+      for (const key of Object.keys(state.mesh.fields)) fieldSel.appendChild(el('option', { value: key, text: state.mesh.fields[key].text }));
+      if (state.mesh.fields[keep]) fieldSel.value = keep;
+      exag.value = String(state.mesh.autoExaggeration);
+      scrub.max = String(state.mesh.time.length - 1);
+      state.frame = 0;
+      draw();
+    }
+
+    let last = null;
+    let carry = 0;
+    function tick(now) {
+      if (!state.playing) { last = null; return; }
+      // 10 frames per second at speed 1.
+      if (last !== null) carry += (now - last) / 100 * Number(speed.value);
+      last = now;
+      const n = state.mesh.time.length;
+      while (carry >= 1 && state.frame < n - 1) { carry -= 1; state.frame += 1; }
+      if (state.frame >= n - 1) { state.playing = false; play.textContent = 'Play'; }
+      draw();
+      if (state.playing) requestAnimationFrame(tick);
+    }
+    const api = {
+      state: state,
+      play: () => {
+        if (state.playing) return;
+        if (state.frame >= state.mesh.time.length - 1) state.frame = 0;
+        state.playing = true; carry = 0; play.textContent = 'Pause'; requestAnimationFrame(tick);
+      },
+      pause: () => { state.playing = false; play.textContent = 'Play'; },
+      seek: (i) => { state.frame = Math.max(0, Math.min(i, state.mesh.time.length - 1)); draw(); },
+      time: () => state.mesh.time[state.frame],
+      frameSvg: () => `<svg xmlns="${NS}" viewBox="0 0 ${W} ${H}" width="${W}" height="${H}" font-family="Helvetica, Arial, sans-serif">` +
+        `<rect width="${W}" height="${H}" fill="#fff"/>${svg.innerHTML}</svg>`,
+    };
+    play.addEventListener('click', () => (state.playing ? api.pause() : api.play()));
+    restart.addEventListener('click', () => { state.frame = 0; draw(); api.play(); });
+    caseSel.addEventListener('change', () => setCase(caseSel.value));
+    fieldSel.addEventListener('change', draw);
+    exag.addEventListener('change', draw);
+    scrub.addEventListener('input', () => api.seek(Number(scrub.value)));
+    exportFrame.addEventListener('click', () => download(`${state.mesh.name}_frame${state.frame}.svg`, api.frameSvg(), 'image/svg+xml'));
+    setCase(names[0]);
+    femAnimation = api;
+  }
+
   // ---- study -----------------------------------------------------------------------------------
   function studySection(parent, data) {
     const h5 = data.h5['study.h5'];
@@ -856,11 +1024,13 @@ const kimp = (function () {
     container.innerHTML = '';
     charts.length = 0;
     animation = null;
+    femAnimation = null;
     const files = Object.keys(data.h5 || {}).concat(Object.keys(data.csv || {}));
     container.appendChild(el('h1', { text: `kimp ${data.kind || 'results'}: ${data.title}` }));
     container.appendChild(el('p', { class: 'muted', text: `files: ${files.join(', ')}` }));
     if (data.h5 && data.h5['lumped.h5']) lumpedSection(container, data);
     if (data.kind === 'study') studySection(container, data);
+    if (data.h5 && data.h5['fem.h5']) femSection(container, data);
     if (data.h5 && data.h5['collide.h5']) collideSection(container, data);
     const presets = {
       'k_table.csv': {
@@ -879,6 +1049,7 @@ const kimp = (function () {
   return {
     showResults: showResults,
     animation: () => animation,
+    femAnimation: () => femAnimation,
     charts: () => charts,
     figureSvg: figureSvg,
     figurePdf: figurePdf,

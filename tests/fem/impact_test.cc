@@ -431,6 +431,60 @@ namespace
                 << " samples, max |dF| / max F = " << max_difference / max_force << '\n';
   }
 
+  TEST(Mpi, FramesGatherTheWholeMeshOnRankZeroAsOnOneRank)
+  {
+    // The deformed-mesh frames of the report's animation: gathered from 1 or 2 ranks they equal
+    // a run on one rank; frame 0 is undeformed; every cell is counter-clockwise.
+    auto p           = scene_parameters(0.05, false, "scene_mpi_frames.msh");
+    p.end_time       = 0.004;
+    p.frame_interval = 1e-3;
+    const auto world = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto self  = run_impact(p, MPI_COMM_SELF, nullptr);
+    if (rank() != 0)
+    {
+      EXPECT_TRUE(world.frames.time.empty()) << "frames are gathered on rank 0 only";
+      return;
+    }
+    const ImpactFrames &f = world.frames, &g = self.frames;
+    const std::size_t   n_cells = f.material.size(), n_vertices = f.vertices.size() / 2;
+    EXPECT_EQ(n_cells, world.summary.n_cells);
+    ASSERT_EQ(f.cells.size(), 4 * n_cells);
+    const auto every = std::lround(p.frame_interval / world.summary.dt);
+    ASSERT_EQ(f.time.size(), world.summary.n_steps / every + 1);
+    ASSERT_EQ(f.displacement.size(), f.time.size() * 2 * n_vertices);
+    ASSERT_EQ(f.von_mises_stress.size(), f.time.size() * n_cells);
+    EXPECT_TRUE(f.damage.empty()) << "linear laws have no damage field";
+    for (std::size_t c = 0; c < n_cells; ++c)
+    {
+      double area2 = 0; // shoelace: positive for counter-clockwise vertices
+      for (int k = 0; k < 4; ++k)
+      {
+        const auto a = static_cast<std::size_t>(f.cells[4 * c + k]);
+        const auto b = static_cast<std::size_t>(f.cells[4 * c + (k + 1) % 4]);
+        area2 +=
+          f.vertices[2 * a] * f.vertices[2 * b + 1] - f.vertices[2 * b] * f.vertices[2 * a + 1];
+      }
+      EXPECT_GT(area2, 0) << "cell " << c;
+    }
+    double u_max = 0, s_max = 0;
+    for (std::size_t i = 0; i < 2 * n_vertices; ++i)
+      EXPECT_EQ(f.displacement[i], 0.0) << "frame 0 is the undeformed mesh";
+    for (const double u : g.displacement)
+      u_max = std::max(u_max, std::abs(u));
+    for (const double s : g.von_mises_stress)
+      s_max = std::max(s_max, s);
+    ASSERT_GT(u_max, 0);
+    ASSERT_GT(s_max, 0);
+    ASSERT_EQ(g.displacement.size(), f.displacement.size());
+    for (std::size_t i = 0; i < f.displacement.size(); ++i)
+      ASSERT_NEAR(f.displacement[i], g.displacement[i], 1e-10 * u_max) << "value " << i;
+    for (std::size_t i = 0; i < f.von_mises_stress.size(); ++i)
+      ASSERT_NEAR(f.von_mises_stress[i], g.von_mises_stress[i], 1e-8 * s_max) << "value " << i;
+    std::cout << "frames: " << f.time.size() << " of " << n_cells << " cells and " << n_vertices
+              << " vertices on " << world.summary.n_ranks << " ranks, max |u| " << u_max
+              << " m, max von Mises " << s_max << " Pa\n";
+  }
+
   TEST(Mpi, DistributedImplicitRunMatchesSerialRun)
   {
     // Implicit, direct solver: the KLU factorization and the Woodbury contact update on 1 or 2

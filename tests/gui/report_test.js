@@ -55,6 +55,25 @@ async function main() {
       const t = await page.evaluate(() => window.kimp.animation().state.t);
       check(t > 0, `animation plays from file:// (t = ${t})`);
     }
+    if (await page.$('svg.fem-animation')) {
+      // The FEM deformed mesh: one polygon per cell, frames advance on play and hold on pause.
+      const nPoly = await page.$$eval('svg.fem-animation polygon', (ps) => ps.length);
+      const nCells = await page.evaluate(() => window.kimp.femAnimation().state.mesh.cells.length);
+      check(nPoly === nCells && nCells > 0, `deformed mesh drawn: ${nPoly} polygons for ${nCells} cells`);
+      await page.$eval('.fem-play', (b) => b.click());
+      await new Promise((r) => setTimeout(r, 700));
+      const f1 = await page.evaluate(() => window.kimp.femAnimation().state.frame);
+      check(f1 > 0, `FEM animation advances (frame ${f1})`);
+      await page.$eval('.fem-play', (b) => b.click());
+      const held = await page.evaluate(() => window.kimp.femAnimation().state.frame);
+      await new Promise((r) => setTimeout(r, 400));
+      const f2 = await page.evaluate(() => window.kimp.femAnimation().state.frame);
+      check(f2 === held, `pause holds the frame (${held} -> ${f2})`);
+      const fields = await page.$$eval('.fem-field option', (os) => os.map((o) => o.value));
+      check(fields.includes('von_mises_stress') && fields.includes('mean_stress'), `fields to colour by: ${fields.join(', ')}`);
+      await page.$eval('svg.fem-animation', (s) => s.scrollIntoView());
+      await page.screenshot({ path: path.join(artefacts, path.basename(dir) + '_fem_mesh.png') });
+    }
     check(log.errors.length === 0, `no console error (${log.errors.join(' | ') || 'none'})`);
   } finally {
     await browser.close();
