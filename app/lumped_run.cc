@@ -362,6 +362,9 @@ namespace kimp::app
       return e;
     }
 
+    /// `dt: auto` warns when its estimated error of the peak impact force exceeds this.
+    constexpr double variable_step_warning = 0.005;
+
     /// Cases may scale the record further: an absurd peak is worth a warning before the run.
     constexpr double warning_pga = 5.0 * standard_gravity;
   } // namespace
@@ -517,6 +520,12 @@ namespace kimp::app
           result.response = adaptive.run(used, &report);
           result.adaptive = report;
           logger().info("case {}: {}", name, report.text());
+          if (report.force_error > variable_step_warning)
+            logger().warn("case {}: dt auto estimates the peak impact force within {:.2g} %, "
+                          "above {:.2g} %: raise integration.contact_steps or use a fixed dt",
+                          name,
+                          100.0 * report.force_error,
+                          100.0 * variable_step_warning);
         }
         else
         {

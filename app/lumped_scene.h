@@ -392,7 +392,7 @@ namespace kimp::app
     std::string       dt     = "auto";
     double            safety = 0.5;
     /// `dt: auto` (cdm): steps per contact half-period π/ω_imp (lumped::AdaptiveStepOptions).
-    double                contact_steps            = 100.0;
+    double                contact_steps            = 80.0;
     double                expected_max_penetration = 0.05;
     double                output_interval          = 0.01;
     lumped::LawVelocity   law_velocity             = lumped::LawVelocity::backward;

@@ -31,9 +31,9 @@ namespace kimp::lumped
   struct AdaptiveStepOptions
   {
     double structure_step  = 0.6;
-    double approach_steps  = 48.0;
+    double approach_steps  = 40.0;
     double approach_time   = 1.0;
-    double contact_steps   = 100.0;
+    double contact_steps   = 80.0;
     double lookahead       = 3.0;
     double tail            = 0.02;
     bool   error_estimate  = true;
