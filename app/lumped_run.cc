@@ -173,6 +173,7 @@ namespace kimp::app
       {
         // Variable steps (dt: auto): dt above is the large step.
         const lumped::AdaptiveStepReport &a = *c.adaptive;
+        g.set_attribute("dt_approach", a.dt_approach);
         g.set_attribute("dt_contact", a.dt_contact);
         g.set_attribute("dt_min", a.dt_min);
         g.set_attribute("contact_windows", static_cast<std::int64_t>(a.windows));

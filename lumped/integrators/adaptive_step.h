@@ -1,6 +1,6 @@
 // Variable-step central differences for `dt: auto`: large steps while every contact is open and
 // far, small steps that resolve each contact pulse (onset located within the step), and a
-// step-doubling error estimate of the peaks over every contact window (docs/physics.md §2).
+// step-factor error estimate of the peaks over every contact window (docs/physics.md §2).
 #pragma once
 
 #include <string>
@@ -19,7 +19,7 @@ namespace kimp::lumped
    * |                 |      |         | step safety·Δt_cr), reduced to divide the record's dt  |
    * | approach_steps  | -    | 48      | steps per shortest structural period 2π/ω_structure    |
    * |                 |      |         | while a gap closes within approach_time: Δt_a          |
-   * | approach_time   | s    | 1.0     | horizontal prediction of the approach (present rate)   |
+   * | approach_time   | s    | 1.0     | horizon of the approach prediction (present rate)      |
    * | contact_steps   | -    | 100     | steps per contact half-period π/ω_imp (ω_imp at the    |
    * |                 |      |         | expected penetration): Δt_c = π/(contact_steps·ω_imp)  |
    * | lookahead       | -    | 3       | a gap closing within this many Δt_large switches to    |
@@ -44,16 +44,18 @@ namespace kimp::lumped
   struct AdaptiveStepReport
   {
     double dt_large            = 0.0; ///< step while every contact is open and far, s
+    double dt_approach         = 0.0; ///< step while a gap closes within approach_time, s
     double dt_contact          = 0.0; ///< step while a contact is active or imminent, s
     double dt_min              = 0.0; ///< smallest step taken (onset location, sample times), s
     long   steps               = 0;   ///< steps of the run (force evaluations but the first)
-    long   contact_steps_taken = 0;   ///< of which at Δt_c (and the steps growing back), count
-    long   estimate_steps      = 0;   ///< extra steps of the step-doubling re-runs
-    int    windows             = 0;   ///< contact windows (first onset to tail end)
-    /// Estimated relative errors of the peaks (step doubling over every window: the peak at
-    /// Δt_c minus the peak at 2·Δt_c, relative to the run's peak; first order in Δt is assumed
-    /// for the backward law velocity, so the difference itself is the estimate), largest over
-    /// contacts (force) and DOFs (absolute acceleration, displacement).
+    long   contact_steps_taken = 0;   ///< of which below Δt_large (approach, contact), count
+    long   estimate_steps      = 0;   ///< extra steps of the error-estimate re-runs
+    int    windows             = 0;   ///< windows of steps below Δt_large
+    /// Estimated relative errors of the peaks: every window is integrated again from a copy of
+    /// its first state with estimate_factor (f) times its steps, and |P_h − P_fh|/(f − 1)
+    /// (first order assumed, so an over-estimate for a second-order run) relative to the run's
+    /// peak is reported, largest over contacts (force) and DOFs (absolute acceleration,
+    /// displacement). It covers the windows only, not the large steps before them.
     double force_error        = 0.0;
     double acceleration_error = 0.0;
     double displacement_error = 0.0;
@@ -70,22 +72,27 @@ namespace kimp::lumped
    * constant step it is algebraically the central difference step of CentralDifference
    * (M/h² + C/(2h))·u_{n+1} = ...; with a changing step its truncation error is O(h²·|h_n −
    * h_{n−1}|) per step, so a bounded number of step changes keeps it second order. Contact and
-   * isolator forces are explicit at u_n with the law velocity of the options (backward:
-   * (δ_n − δ_{n−1})/h_{n−1}; second order: the three-point formula for unequal steps). The
+   * isolator forces are explicit at u_n with the rate of the three-point formula for unequal
+   * steps, δ̇_n ≈ s₁ + h_{n−1}/(h_{n−1} + h_{n−2})·(s₁ − s₂), s₁ = (δ_n − δ_{n−1})/h_{n−1},
+   * s₂ = (δ_{n−1} − δ_{n−2})/h_{n−2} (second order; the options' law_velocity is not used: the
+   * run aims at the Δt → 0 response, the same for both rates). The
    * recorded acceleration is (v_{n+1/2} − v_{n−1/2})/h̄_n + ü_g(t_n).
    *
-   * Step choice at t_n (after the forces at t_n are evaluated):
-   *  - Δt_large = safety·2/ω_structure (contacts open), reduced to divide the record's dt;
-   *  - Δt_c = min(π/(contact_steps·ω_imp), safety·Δt_cr with every contact closed) while any
-   *    contact is in contact, its gap is closed, or it closes within lookahead·Δt_large at its
-   *    present closing rate, and for `tail` seconds after;
+   * Step choice at t_n (after the forces at t_n are evaluated), three tiers:
+   *  - Δt_large = min(the `stable` step safety·Δt_cr, structure_step/ω_structure reduced to
+   *    divide the record's dt) while every gap is open and not closing within approach_time;
+   *  - Δt_a = min(Δt_large/3, 2π/(approach_steps·ω_structure)) while a gap closes within
+   *    approach_time at its present rate: the impact velocity carries the error of the whole
+   *    approach (high modes of the superstructure), so it is integrated finely too;
+   *  - Δt_c = min(π/(contact_steps·ω_imp), Δt_a, safety·Δt_cr) while any contact is in contact,
+   *    its gap is closed, holds a force, or closes within lookahead·Δt_large, and for `tail`
+   *    seconds after;
    *  - a step that would close a gap is shortened to end where the gap closes at the present
-   *    rate (contact onset located within the step);
-   *  - after a window the step grows by at most 2× per step; steps end on every history sample
-   *    and at the end of the run.
-   * Error estimate: every contact window (from the step that switched to Δt_c to the end of its
-   * tail) is integrated again from a copy of the state at 2·Δt_c, and the change of the window's
-   * peaks is reported (AdaptiveStepReport).
+   *    rate (contact onset located within the step, down to Δt_c/16);
+   *  - the step grows by at most 2× per step; steps end on every history sample and at the
+   *    end of the run.
+   * Error estimate: every window (the steps below Δt_large) is integrated again from a copy of
+   * its first state (laws cloned) with estimate_factor times the steps (AdaptiveStepReport).
    *
    * The Response is that of CentralDifference with dt = Δt_large and n_steps the number of
    * steps taken; histories are sampled every output_interval.
