@@ -176,7 +176,7 @@ namespace kimp::app
         g.set_attribute("dt_approach", a.dt_approach);
         g.set_attribute("dt_contact", a.dt_contact);
         g.set_attribute("dt_min", a.dt_min);
-        g.set_attribute("contact_windows", static_cast<std::int64_t>(a.windows));
+        g.set_attribute("windows", static_cast<std::int64_t>(a.windows));
         g.set_attribute("estimate_steps", static_cast<std::int64_t>(a.estimate_steps));
         g.set_attribute("estimated_error_peak_force", a.force_error);
         g.set_attribute("estimated_error_peak_acceleration", a.acceleration_error);
@@ -265,10 +265,11 @@ namespace kimp::app
       {
         const lumped::AdaptiveStepReport &a = *c.adaptive;
         j["variable_step"]                  = {{"dt_large", a.dt_large},
+                                               {"dt_approach", a.dt_approach},
                                                {"dt_contact", a.dt_contact},
                                                {"dt_min", a.dt_min},
-                                               {"contact_windows", a.windows},
-                                               {"contact_steps", a.contact_steps_taken},
+                                               {"windows", a.windows},
+                                               {"small_steps", a.contact_steps_taken},
                                                {"estimate_steps", a.estimate_steps},
                                                {"estimated_error",
                                                 {{"peak_force", a.force_error},
@@ -363,8 +364,9 @@ namespace kimp::app
       return e;
     }
 
-    /// `dt: auto` warns when its estimated error of the peak impact force exceeds this.
-    constexpr double variable_step_warning = 0.005;
+    /// `dt: auto` warns when its estimated error of the peak impact force exceeds this (the
+    /// estimate is pessimistic: 0.09-0.87 % on Table 4.3 for true errors of 0.001-0.23 %).
+    constexpr double variable_step_warning = 0.01;
 
     /// Cases may scale the record further: an absurd peak is worth a warning before the run.
     constexpr double warning_pga = 5.0 * standard_gravity;
