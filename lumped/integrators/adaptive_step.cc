@@ -106,7 +106,10 @@ namespace kimp::lumped
         c_    = model.damping().to_dense();
       }
 
-      Response run(AdaptiveStepReport *report)
+      /// `replay`: take these steps (a run's `taken`) instead of choosing them, no estimate;
+      /// `taken`: the steps of this run.
+      Response
+      run(AdaptiveStepReport *report, const std::vector<double> *replay, std::vector<double> *taken)
       {
         const double duration = cdm_.duration > 0.0 ?
                                   cdm_.duration :
@@ -129,14 +132,15 @@ namespace kimp::lumped
         while (true)
         {
           forces(s, true);
-          const bool   last   = s.t >= duration - eps;
-          const double target = target_step(s, 1.0);
+          const bool   last      = s.t >= duration - eps;
+          const double target    = target_step(s, 1.0);
+          const bool   replaying = replay && static_cast<std::size_t>(s.n) < replay->size();
           if (in_window && target >= big_)
           {
             close_window(snapshot, peaks, s.t);
             in_window = false;
           }
-          if (target < big_ && !in_window && opt_.error_estimate && !last)
+          if (target < big_ && !in_window && opt_.error_estimate && !replay && !last)
           {
             snapshot  = s.copy();
             in_window = true;
@@ -149,8 +153,12 @@ namespace kimp::lumped
           const bool sample_now = interval > 0.0 && std::abs(s.t - next_sample) <= eps;
           if (sample_now)
             next_sample = static_cast<double>(++sample_k) * interval;
-          const double to  = std::min(next_sample, duration);
-          h                = clip(h, to - s.t);
+          const double to = std::min(next_sample, duration);
+          h               = clip(h, to - s.t);
+          if (replaying)
+            h = (*replay)[static_cast<std::size_t>(s.n)];
+          if (taken)
+            taken->push_back(h);
           const bool check = sample_now || s.n % 512 == 0 || last;
           step(s, h, true, in_window ? &peaks : nullptr, sample_now, check);
           if (last)
@@ -617,8 +625,25 @@ namespace kimp::lumped
     return std::min(stable, record_dt / std::max(n_sub, 1.0));
   }
 
-  Response AdaptiveCentralDifference::run(const GroundMotion &motion,
-                                          AdaptiveStepReport *report) const
+  Response AdaptiveCentralDifference::run(const GroundMotion  &motion,
+                                          AdaptiveStepReport  *report,
+                                          std::vector<double> *steps) const
+  {
+    if (steps)
+      steps->clear();
+    return run_with(motion, report, nullptr, steps);
+  }
+
+  Response AdaptiveCentralDifference::replay(const GroundMotion        &motion,
+                                             const std::vector<double> &steps) const
+  {
+    return run_with(motion, nullptr, &steps, nullptr);
+  }
+
+  Response AdaptiveCentralDifference::run_with(const GroundMotion        &motion,
+                                               AdaptiveStepReport        *report,
+                                               const std::vector<double> *replay,
+                                               std::vector<double>       *taken) const
   {
     if (!(motion.dt > 0.0) || motion.acceleration.empty())
       throw std::invalid_argument("ground motion '" + motion.name +
@@ -627,6 +652,6 @@ namespace kimp::lumped
     const double approach = std::min(big / 3.0, dt_approach_);
     const double fine     = std::min(approach, dt_contact_);
     AdaptiveRun  r(model_, cdm_, options_, motion, big, approach, fine);
-    return r.run(report);
+    return r.run(report, replay, taken);
   }
 } // namespace kimp::lumped

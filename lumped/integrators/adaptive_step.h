@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "lumped/excitation/ground_motion.h"
 #include "lumped/integrators/central_difference.h"
@@ -112,12 +113,30 @@ namespace kimp::lumped
     /// Δt_c, s (∞ without contacts).
     double contact_step() const { return dt_contact_; }
 
-    /// @throws DivergenceError, std::invalid_argument.
-    Response run(const GroundMotion &motion, AdaptiveStepReport *report = nullptr) const;
+    /**
+     * @param[out] report what the run did (optional)
+     * @param[out] steps  the steps h_0, h_1, ... it took (optional; for replay())
+     * @throws DivergenceError, std::invalid_argument.
+     */
+    Response run(const GroundMotion  &motion,
+                 AdaptiveStepReport  *report = nullptr,
+                 std::vector<double> *steps  = nullptr) const;
+
+    /**
+     * The same model under `motion` with the steps of another run (e.g. the run with contacts, for
+     * its companion without contacts: where no contact closed, both are then identical, and
+     * amplification factors are exactly 1), no error estimate. Steps beyond `steps` are chosen.
+     */
+    Response replay(const GroundMotion &motion, const std::vector<double> &steps) const;
 
     const PoundingModel &model() const { return model_; }
 
   private:
+    Response run_with(const GroundMotion        &motion,
+                      AdaptiveStepReport        *report,
+                      const std::vector<double> *replay,
+                      std::vector<double>       *taken) const;
+
     PoundingModel            model_;
     CentralDifferenceOptions cdm_;
     AdaptiveStepOptions      options_;

@@ -162,3 +162,26 @@ TEST(AdaptiveStep, EveryLawWithinHalfAPercentOfTheConvergedPeaksAtTwiceTheStable
     EXPECT_LT(var.energy.max_relative_error, 1e-3) << c.law;
   }
 }
+
+TEST(AdaptiveStep, CompanionReplayingTheStepsIsIdenticalWhereNoContactCloses)
+{
+  // Walls beyond reach: the run with contacts still refines while a gap closes, so its
+  // companion without contacts must take the same steps (replay) for amplification factors of
+  // exactly 1.
+  SyntheticMotionSpec gs;
+  gs.duration                = 10.0;
+  const GroundMotion       g = synthetic_near_fault(gs);
+  const PoundingModel      model(kimp::testing::walled_scene("linear", k_linear, 0.5));
+  CentralDifferenceOptions o;
+  o.output_interval = 0.01;
+  std::vector<double> steps;
+  AdaptiveStepReport  report;
+  const Response      with_walls = AdaptiveCentralDifference(model, o).run(g, &report, &steps);
+  ASSERT_EQ(with_walls.n_impacts(), 0u);
+  ASSERT_GT(report.contact_steps_taken, 0) << "the approach refinement should have triggered";
+  const Response free = AdaptiveCentralDifference(model.without_contacts(), o).replay(g, steps);
+  EXPECT_EQ(free.n_steps, with_walls.n_steps);
+  EXPECT_EQ(free.peak_displacement, with_walls.peak_displacement);
+  EXPECT_EQ(free.peak_absolute_acceleration, with_walls.peak_absolute_acceleration);
+  EXPECT_EQ(free.history.displacement, with_walls.history.displacement);
+}
