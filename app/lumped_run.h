@@ -10,6 +10,7 @@
 #include "app/lumped_scene.h"
 #include "io/summary.h"
 #include "lumped/excitation/ground_motion.h"
+#include "lumped/integrators/adaptive_step.h"
 #include "lumped/integrators/response.h"
 #include "lumped/structure/modal.h"
 
@@ -43,6 +44,11 @@ namespace kimp::app
     double                          wall_time       = 0.0; ///< s
     double                          pga             = 0.0; ///< of the motion used, m/s²
     double                          estimated_steps = 0.0; ///< before the run (0: unknown)
+    /// How Δt was chosen: "fixed" (integration.dt a time), "stable" (cdm, safety·Δt_cr),
+    /// "variable" (cdm `dt: auto`, lumped::AdaptiveCentralDifference) or "record" (newmark auto).
+    std::string dt_policy;
+    /// The variable-step run's steps and estimated errors (dt_policy "variable").
+    std::optional<lumped::AdaptiveStepReport> adaptive;
 
     bool ok() const { return status == "ok"; }
   };

@@ -319,9 +319,14 @@ namespace kimp::app
 
   std::optional<double> requested_time_step(const IntegrationScene &integration)
   {
-    if (integration.dt == "auto")
+    if (integration.dt == "auto" || integration.dt == "stable")
       return std::nullopt;
     return parse_quantity_as(integration.dt, "s");
+  }
+
+  bool variable_time_step(const IntegrationScene &integration)
+  {
+    return integration.dt == "auto" && integration.method == IntegrationMethod::cdm;
   }
 
   void validate(const LumpedScene &scene, ValidationContext &ctx)
@@ -455,11 +460,16 @@ namespace kimp::app
       {
         const std::optional<double> dt = requested_time_step(in);
         if (dt)
-          ctx.check(std::isfinite(*dt) && *dt > 0.0, "dt", in.dt, "must be \"auto\" or > 0 s");
+          ctx.check(std::isfinite(*dt) && *dt > 0.0,
+                    "dt",
+                    in.dt,
+                    "must be \"auto\", \"stable\" or > 0 s");
       }
       catch (const UnitError &error)
       {
-        ctx.fail("dt", in.dt, std::string("must be \"auto\" or a time (") + error.what() + ")");
+        ctx.fail("dt",
+                 in.dt,
+                 std::string("must be \"auto\", \"stable\" or a time (") + error.what() + ")");
       }
     }
 

@@ -388,9 +388,11 @@ namespace kimp::app
   /// Time integration (lumped::CentralDifferenceOptions / NewmarkOptions).
   struct IntegrationScene
   {
-    IntegrationMethod     method                   = IntegrationMethod::cdm;
-    std::string           dt                       = "auto";
-    double                safety                   = 0.5;
+    IntegrationMethod method = IntegrationMethod::cdm;
+    std::string       dt     = "auto";
+    double            safety = 0.5;
+    /// `dt: auto` (cdm): steps per contact half-period π/ω_imp (lumped::AdaptiveStepOptions).
+    double                contact_steps            = 80.0;
     double                expected_max_penetration = 0.05;
     double                output_interval          = 0.01;
     lumped::LawVelocity   law_velocity             = lumped::LawVelocity::backward;
@@ -415,13 +417,20 @@ namespace kimp::app
               "acceleration with Newton at contacts");
     io.text("dt",
             s.dt,
-            "time step: \"auto\" (cdm: safety x dt_cr dividing the record's dt; newmark: the "
-            "record's dt) or a time such as \"2e-5 s\"");
+            "time step: \"auto\" (cdm: variable, large steps between contacts and "
+            "contact_steps steps per contact pulse, with an error estimate; newmark: the record's "
+            "dt), \"stable\" (cdm: the fixed step safety x dt_cr dividing the record's dt) or a "
+            "time such as \"2e-5 s\"");
     io.quantity("safety",
                 s.safety,
                 "",
-                "cdm auto step: fraction of dt_cr, (0, 1]",
+                "cdm auto and stable steps: fraction of dt_cr, (0, 1]",
                 io::Range::greater(0.0).and_at_most(1.0));
+    io.quantity("contact_steps",
+                s.contact_steps,
+                "",
+                "cdm dt auto: steps per contact half-period pi/omega_imp",
+                io::Range::at_least(4.0));
     io.quantity("expected_max_penetration",
                 s.expected_max_penetration,
                 "mm",
@@ -568,7 +577,11 @@ namespace kimp::app
   /// `scene` with the overrides of `c` applied.
   LumpedScene apply_case(const LumpedScene &scene, const CaseScene &c);
 
-  /// Time step requested by integration.dt: nullopt for "auto", else seconds.
-  /// @throws UnitError for a text that is neither "auto" nor a time.
+  /// Time step requested by integration.dt: nullopt for "auto" and "stable", else seconds.
+  /// @throws UnitError for a text that is neither "auto", "stable" nor a time.
   std::optional<double> requested_time_step(const IntegrationScene &integration);
+
+  /// True when the central difference method runs with variable steps (`dt: auto`, method cdm;
+  /// lumped::AdaptiveCentralDifference).
+  bool variable_time_step(const IntegrationScene &integration);
 } // namespace kimp::app

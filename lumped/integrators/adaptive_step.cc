@@ -1,0 +1,657 @@
+// Variable-step central differences (`dt: auto`): the leap-frog step with a changing Δt, the
+// step choice around contacts and the step-factor error estimate over contact windows
+// (docs/physics.md §2, "Variable-step central differences").
+#include "lumped/integrators/adaptive_step.h"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "lumped/integrators/integration_errors.h"
+#include "lumped/integrators/response_recorder.h"
+
+namespace kimp::lumped
+{
+  namespace
+  {
+    constexpr double pi = 3.14159265358979323846;
+
+    /// Everything that evolves during a run: copied (laws cloned) for the error-estimate re-run.
+    struct State
+    {
+      double                                 t       = 0.0;
+      double                                 h_prev  = 0.0; ///< h_{n−1}
+      double                                 h_prev2 = 0.0; ///< h_{n−2}
+      long                                   n       = 0;
+      Eigen::VectorXd                        u, v_half, f; ///< u_n, v_{n−1/2}, f_nl,n
+      std::vector<double>                    dp, dpp, delta, cf;
+      std::vector<int>                       active;
+      double                                 iso_u1 = 0.0, iso_u2 = 0.0; ///< u_0 at n−1, n−2
+      std::unique_ptr<Isolator>              iso;
+      std::vector<std::unique_ptr<ForceLaw>> laws;
+      double w_in = 0.0, w_visc = 0.0, w_contact = 0.0, p_in_prev = 0.0, p_visc_prev = 0.0;
+      double tail_until = -std::numeric_limits<double>::infinity();
+
+      State copy() const
+      {
+        State s;
+        s.t       = t;
+        s.h_prev  = h_prev;
+        s.h_prev2 = h_prev2;
+        s.n       = n;
+        s.u       = u;
+        s.v_half  = v_half;
+        s.f       = f;
+        s.dp      = dp;
+        s.dpp     = dpp;
+        s.delta   = delta;
+        s.cf      = cf;
+        s.active  = active;
+        s.iso_u1  = iso_u1;
+        s.iso_u2  = iso_u2;
+        if (iso)
+          s.iso = iso->clone();
+        for (const auto &law : laws)
+          s.laws.push_back(law->clone());
+        s.w_in        = w_in;
+        s.w_visc      = w_visc;
+        s.w_contact   = w_contact;
+        s.p_in_prev   = p_in_prev;
+        s.p_visc_prev = p_visc_prev;
+        s.tail_until  = tail_until;
+        return s;
+      }
+    };
+
+    /// Peaks inside one contact window.
+    struct WindowPeaks
+    {
+      std::vector<double> force, acceleration, displacement;
+      void                reset(std::size_t n_contacts, std::size_t n_dofs)
+      {
+        force.assign(n_contacts, 0.0);
+        acceleration.assign(n_dofs, 0.0);
+        displacement.assign(n_dofs, 0.0);
+      }
+    };
+
+    class AdaptiveRun
+    {
+    public:
+      AdaptiveRun(const PoundingModel            &model,
+                  const CentralDifferenceOptions &cdm,
+                  const AdaptiveStepOptions      &opt,
+                  const GroundMotion             &g,
+                  const double                    dt_large,
+                  const double                    dt_approach,
+                  const double                    dt_contact)
+        : model_(model)
+        , cdm_(cdm)
+        , opt_(opt)
+        , motion_(g)
+        , n_(static_cast<Eigen::Index>(model.n_dofs()))
+        , big_(dt_large)
+        , fine_(dt_contact)
+        , approach_(dt_approach)
+        , est_(opt.estimate_factor)
+      {
+        mass_ = Eigen::Map<const Eigen::VectorXd>(model.masses().data(), n_);
+        k_    = model.stiffness().to_dense();
+        c_    = model.damping().to_dense();
+      }
+
+      /// `replay`: take these steps (a run's `taken`) instead of choosing them, no estimate;
+      /// `taken`: the steps of this run.
+      Response
+      run(AdaptiveStepReport *report, const std::vector<double> *replay, std::vector<double> *taken)
+      {
+        const double duration = cdm_.duration > 0.0 ?
+                                  cdm_.duration :
+                                  motion_.dt * static_cast<double>(motion_.acceleration.size());
+        const double interval = cdm_.output_interval;
+        const long   every    = interval > 0.0 ? std::max(1L, std::lround(interval / big_)) : 0L;
+        rec_.start(model_, big_, std::lround(duration / big_), every);
+        report_.dt_min = std::numeric_limits<double>::infinity();
+        State s        = initial_state();
+        e0_            = 0.5 * mass_.dot(s.v_half.cwiseProduct(s.v_half)) + 0.5 * s.u.dot(k_ * s.u);
+        if (s.iso)
+          e0_ += s.iso->stored_energy();
+
+        const double eps         = 1e-6 * std::min(big_, fine_);
+        double       next_sample = interval > 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
+        long         sample_k    = 0;
+        bool         in_window   = false;
+        State        snapshot;
+        WindowPeaks  peaks;
+        while (true)
+        {
+          forces(s, true);
+          const bool   last      = s.t >= duration - eps;
+          const double target    = target_step(s, 1.0);
+          const bool   replaying = replay && static_cast<std::size_t>(s.n) < replay->size();
+          if (in_window && target >= big_)
+          {
+            close_window(snapshot, peaks, s.t);
+            in_window = false;
+          }
+          if (target < big_ && !in_window && opt_.error_estimate && !replay && !last)
+          {
+            snapshot  = s.copy();
+            in_window = true;
+            peaks.reset(s.laws.size(), static_cast<std::size_t>(n_));
+            ++report_.windows;
+          }
+          double h = choose_step(s, std::min(target, 2.0 * s.h_prev));
+          if (h < big_)
+            ++report_.contact_steps_taken;
+          const bool sample_now = interval > 0.0 && std::abs(s.t - next_sample) <= eps;
+          if (sample_now)
+            next_sample = static_cast<double>(++sample_k) * interval;
+          const double to = std::min(next_sample, duration);
+          h               = clip(h, to - s.t);
+          if (replaying)
+            h = (*replay)[static_cast<std::size_t>(s.n)];
+          if (taken)
+            taken->push_back(h);
+          const bool check = sample_now || s.n % 512 == 0 || last;
+          step(s, h, true, in_window ? &peaks : nullptr, sample_now, check);
+          if (last)
+            break;
+          report_.dt_min = std::min(report_.dt_min, h);
+          // Land exactly on the targets, so that the time does not drift.
+          s.t = std::abs(s.t + h - to) <= eps ? to : s.t + h;
+          ++s.n;
+        }
+        if (in_window)
+          close_window(snapshot, peaks, s.t + eps);
+        Response r          = rec_.finish(s.laws);
+        r.n_steps           = s.n;
+        r.duration          = duration;
+        r.history.interval  = interval;
+        report_.dt_large    = big_;
+        report_.dt_contact  = fine_;
+        report_.dt_approach = approach_;
+        report_.steps       = s.n;
+        if (report)
+          *report = report_;
+        return r;
+      }
+
+    private:
+      double ground(const double t) const
+      {
+        const std::vector<double> &rec = motion_.acceleration;
+        const double               x   = t / motion_.dt;
+        const auto                 j   = static_cast<std::size_t>(std::floor(x + 1e-9));
+        const double               fr  = std::max(0.0, x - static_cast<double>(j));
+        if (j + 1 < rec.size())
+          return rec[j] + fr * (rec[j + 1] - rec[j]);
+        return j + 1 == rec.size() && fr < 1e-9 ? rec[j] : 0.0;
+      }
+
+      double delta_of(const ContactPair &cp, const Eigen::VectorXd &u) const
+      {
+        return (cp.left_dof >= 0 ? u(cp.left_dof) : 0.0) -
+               (cp.right_dof >= 0 ? u(cp.right_dof) : 0.0) - cp.gap;
+      }
+
+      State initial_state()
+      {
+        State s;
+        s.u      = Eigen::VectorXd::Zero(n_);
+        s.v_half = Eigen::VectorXd::Zero(n_);
+        s.f      = Eigen::VectorXd::Zero(n_);
+        if (!cdm_.initial_displacement.empty())
+          s.u = Eigen::Map<const Eigen::VectorXd>(cdm_.initial_displacement.data(), n_);
+        Eigen::VectorXd v0 = Eigen::VectorXd::Zero(n_);
+        if (!cdm_.initial_velocity.empty())
+          v0 = Eigen::Map<const Eigen::VectorXd>(cdm_.initial_velocity.data(), n_);
+        if (model_.isolator())
+        {
+          s.iso = model_.isolator()->clone();
+          s.iso->revert_to_start();
+        }
+        for (const ContactPair &c : model_.contacts())
+        {
+          s.laws.push_back(c.law->clone());
+          s.laws.back()->revert_to_start();
+        }
+        // ü_0 from the linear part and the isolator at u_0 (contacts open at the start); the
+        // half-step velocity v_{−1/2} = u̇_0 − (Δt/2)·ü_0 and u_{−1}, u_{−2} follow from it.
+        Eigen::VectorXd r = -mass_ * ground(0.0) - c_ * v0 - k_ * s.u;
+        if (s.iso)
+        {
+          r(0) -= s.iso->set_trial(s.u(0), v0(0)).force;
+          s.iso->revert_to_start();
+        }
+        const Eigen::VectorXd a0 = r.cwiseQuotient(mass_);
+        s.h_prev                 = big_;
+        s.h_prev2                = big_;
+        s.v_half                 = v0 - 0.5 * big_ * a0;
+        const Eigen::VectorXd u1 = s.u - big_ * s.v_half;
+        const Eigen::VectorXd u2 = u1 - big_ * s.v_half;
+        s.iso_u1                 = u1(0);
+        s.iso_u2                 = u2(0);
+        const std::size_t nc     = s.laws.size();
+        s.dp.resize(nc);
+        s.dpp.resize(nc);
+        s.delta.assign(nc, 0.0);
+        s.cf.assign(nc, 0.0);
+        s.active.assign(nc, 0);
+        for (std::size_t c = 0; c < nc; ++c)
+        {
+          s.dp[c]  = delta_of(model_.contacts()[c], u1);
+          s.dpp[c] = delta_of(model_.contacts()[c], u2);
+        }
+        return s;
+      }
+
+      /// Rate of x at t_n from x_n, x_{n−1}, x_{n−2} and the steps h_{n−1}, h_{n−2}: the
+      /// three-point (second-order) formula for unequal steps, whatever the options' law_velocity:
+      /// the run aims at the Δt → 0 response, which both rates share, and the second-order one
+      /// reaches it with fewer steps (the backward rate lags by h/2, a first-order error in the
+      /// dashpot force of the laws).
+      double rate(const State &s, const double x0, const double x1, const double x2) const
+      {
+        const double s1 = (x0 - x1) / s.h_prev;
+        const double s2 = (x1 - x2) / s.h_prev2;
+        return s1 + s.h_prev / (s.h_prev + s.h_prev2) * (s1 - s2);
+      }
+
+      /// Isolator and contact forces at t_n (explicit, trial + commit) into s.f.
+      void forces(State &s, const bool record)
+      {
+        s.f.setZero();
+        if (s.iso)
+        {
+          const double u0 = s.u(0);
+          const double f  = s.iso->set_trial(u0, rate(s, u0, s.iso_u1, s.iso_u2)).force;
+          s.iso->commit();
+          if (record)
+            rec_.isolator_force(f);
+          s.f(0) += f;
+          s.iso_u2 = s.iso_u1;
+          s.iso_u1 = u0;
+        }
+        for (std::size_t c = 0; c < s.laws.size(); ++c)
+        {
+          const ContactPair &cp    = model_.contacts()[c];
+          const double       delta = delta_of(cp, s.u);
+          const double       r     = rate(s, delta, s.dp[c], s.dpp[c]);
+          ForceLaw          &law   = *s.laws[c];
+          const double       force = law.set_trial(delta, r).force;
+          law.commit();
+          const int now = law.in_contact() ? 1 : 0;
+          if (record && now && !s.active[c])
+            rec_.impact(c, s.t, r);
+          s.active[c] = now;
+          s.w_contact += 0.5 * (s.cf[c] + force) * (delta - s.dp[c]);
+          s.cf[c]    = force;
+          s.delta[c] = delta;
+          s.dpp[c]   = s.dp[c];
+          s.dp[c]    = delta;
+          if (record)
+            rec_.contact_force(c, force, s.t);
+          if (cp.left_dof >= 0)
+            s.f(cp.left_dof) += force;
+          if (cp.right_dof >= 0)
+            s.f(cp.right_dof) -= force;
+        }
+      }
+
+      /// Closing rate of contact c at t_n (after forces()), m/s.
+      double closing_rate(const State &s, const std::size_t c) const
+      {
+        return (s.dp[c] - s.dpp[c]) / s.h_prev;
+      }
+
+      /**
+       * The step wanted at t_n (after forces()), the steps of the error estimate scaled by
+       * `scale`: Δt_c while a contact is in contact, its gap closed or closing within
+       * lookahead·Δt_large (and for `tail` after), Δt_a while a gap closes within the approach
+       * time at its present rate, else Δt_large.
+       */
+      double target_step(State &s, const double scale) const
+      {
+        bool hot = false, near = false;
+        for (std::size_t c = 0; c < s.laws.size(); ++c)
+        {
+          const double ahead = s.delta[c] + closing_rate(s, c) * opt_.lookahead * big_;
+          hot  = hot || s.active[c] || s.delta[c] > 0.0 || s.cf[c] != 0.0 || ahead > 0.0;
+          near = near || s.delta[c] + closing_rate(s, c) * opt_.approach_time > 0.0;
+        }
+        if (hot)
+          s.tail_until = s.t + opt_.tail;
+        if (hot || s.t < s.tail_until)
+          return scale * fine_;
+        return near ? std::min(big_, scale * approach_) : big_;
+      }
+
+      /// `h`, shortened so that a step does not carry an open gap past closing (at its rate).
+      double choose_step(const State &s, double h) const
+      {
+        for (std::size_t c = 0; c < s.laws.size(); ++c)
+        {
+          if (s.active[c] || s.delta[c] > 0.0)
+            continue;
+          const double r = closing_rate(s, c);
+          if (r > 0.0 && s.delta[c] + r * h > 0.0)
+            h = std::max(-s.delta[c] / r, fine_ / 16.0);
+        }
+        return h;
+      }
+
+      /// A step h that ends on `remaining` when that is within two steps (no sliver steps).
+      static double clip(const double h, const double remaining)
+      {
+        if (!(remaining > 0.0))
+          return h;
+        const double k = std::ceil(remaining / h * (1.0 - 1e-12));
+        return k <= 2.0 ? remaining / k : h;
+      }
+
+      const Eigen::PartialPivLU<Eigen::MatrixXd> &effective(const double hbar, const double wp)
+      {
+        for (auto &e : lu_cache_)
+          if (e.hbar == hbar && e.wp == wp && e.valid)
+            return e.lu;
+        auto &e           = lu_cache_[next_lu_];
+        next_lu_          = (next_lu_ + 1) % lu_cache_.size();
+        Eigen::MatrixXd a = wp * c_;
+        a.diagonal() += mass_ / hbar;
+        e.lu.compute(a);
+        e.hbar  = hbar;
+        e.wp    = wp;
+        e.valid = true;
+        return e.lu;
+      }
+
+      /// One step h from t_n (forces at t_n in s.f): v_{n+1/2}, the record at t_n, u_{n+1}.
+      void step(State       &s,
+                const double h,
+                const bool   record,
+                WindowPeaks *peaks,
+                const bool   sample,
+                const bool   check)
+      {
+        const double    hbar = 0.5 * (s.h_prev + h);
+        const double    wp   = s.h_prev / (s.h_prev + h);
+        const double    wm   = h / (s.h_prev + h);
+        const double    ag   = ground(s.t);
+        Eigen::VectorXd rhs =
+          mass_.cwiseProduct(s.v_half) / hbar - wm * (c_ * s.v_half) - mass_ * ag - k_ * s.u - s.f;
+        const Eigen::VectorXd v_plus = effective(hbar, wp).solve(rhs);
+        const Eigen::VectorXd a      = (v_plus - s.v_half) / hbar;
+        const Eigen::VectorXd v      = wm * s.v_half + wp * v_plus;
+        const double          p_in   = -ag * mass_.dot(v);
+        const double          p_visc = v.dot(c_ * v);
+        if (s.n > 0)
+        {
+          s.w_in += 0.5 * (s.p_in_prev + p_in) * s.h_prev;
+          s.w_visc += 0.5 * (s.p_visc_prev + p_visc) * s.h_prev;
+        }
+        s.p_in_prev   = p_in;
+        s.p_visc_prev = p_visc;
+        if (!v_plus.allFinite())
+        {
+          std::ostringstream msg;
+          msg << "variable-step central differences diverged at t = " << s.t << " s (step " << s.n
+              << ", dt = " << h << " s)";
+          throw DivergenceError(msg.str(), s.t, s.n, 0);
+        }
+        if (peaks)
+        {
+          for (std::size_t c = 0; c < s.cf.size(); ++c)
+            peaks->force[c] = std::max(peaks->force[c], s.cf[c]);
+          for (Eigen::Index i = 0; i < n_; ++i)
+          {
+            const auto q           = static_cast<std::size_t>(i);
+            peaks->acceleration[q] = std::max(peaks->acceleration[q], std::abs(a(i) + ag));
+            peaks->displacement[q] = std::max(peaks->displacement[q], std::abs(s.u(i)));
+          }
+        }
+        if (record)
+          record_step(s, a, v, ag, sample, check);
+        s.u += h * v_plus;
+        s.v_half  = v_plus;
+        s.h_prev2 = s.h_prev;
+        s.h_prev  = h;
+      }
+
+      void record_step(const State           &s,
+                       const Eigen::VectorXd &a,
+                       const Eigen::VectorXd &v,
+                       const double           ag,
+                       const bool             sample,
+                       const bool             check)
+      {
+        Response &r = rec_.response();
+        for (Eigen::Index i = 0; i < n_; ++i)
+        {
+          const auto q           = static_cast<std::size_t>(i);
+          r.peak_displacement[q] = std::max(r.peak_displacement[q], std::abs(s.u(i)));
+          r.peak_absolute_acceleration[q] =
+            std::max(r.peak_absolute_acceleration[q], std::abs(a(i) + ag));
+        }
+        const auto drift = [&](const Storey &st)
+        { return s.u(st.upper_dof) - (st.lower_dof >= 0 ? s.u(st.lower_dof) : 0.0); };
+        for (std::size_t q = 0; q < model_.storeys().size(); ++q)
+          r.peak_interstorey_drift[q] =
+            std::max(r.peak_interstorey_drift[q], std::abs(drift(model_.storeys()[q])));
+        if (!check)
+          return;
+        EnergyBalance terms;
+        terms.kinetic      = 0.5 * mass_.dot(v.cwiseProduct(v));
+        terms.strain       = 0.5 * s.u.dot(k_ * s.u) + (s.iso ? s.iso->stored_energy() : 0.0);
+        terms.initial      = e0_;
+        terms.input        = s.w_in;
+        terms.viscous      = s.w_visc;
+        terms.hysteretic   = s.iso ? s.iso->dissipated_energy() : 0.0;
+        terms.contact_work = s.w_contact;
+        rec_.supplied(e0_ + s.w_in);
+        const double err = rec_.check_energy(terms);
+        if (terms.kinetic + terms.strain >
+            cdm_.divergence_energy_factor * std::max(rec_.max_supplied(), 1e-300))
+        {
+          std::ostringstream msg;
+          msg << "variable-step central differences diverged at t = " << s.t
+              << " s: E_kin + E_strain = " << terms.kinetic + terms.strain << " J exceeds "
+              << cdm_.divergence_energy_factor << " x the energy supplied";
+          throw DivergenceError(msg.str(), s.t, s.n, 0);
+        }
+        if (sample)
+          rec_.sample(
+            s.t,
+            [&](const std::size_t i) { return s.u(static_cast<Eigen::Index>(i)); },
+            [&](const std::size_t i) { return a(static_cast<Eigen::Index>(i)) + ag; },
+            [&](const std::size_t q) { return drift(model_.storeys()[q]); },
+            s.cf,
+            e0_ + s.w_in,
+            err);
+      }
+
+      /// Re-run the window from `start` to `t_end` at 2·Δt_c and compare its peaks with `fine`.
+      void close_window(const State &start, const WindowPeaks &fine, const double t_end)
+      {
+        State       z = start.copy();
+        WindowPeaks coarse;
+        coarse.reset(z.laws.size(), static_cast<std::size_t>(n_));
+        const double eps   = 1e-6 * fine_;
+        bool         first = true;
+        while (z.t < t_end - eps)
+        {
+          if (!first)
+            forces(z, false);
+          first = false;
+          double h =
+            clip(choose_step(z, std::min(target_step(z, est_), 2.0 * z.h_prev)), t_end - z.t);
+          step(z, h, false, &coarse, false, false);
+          z.t += h;
+          ++z.n;
+          ++report_.estimate_steps;
+        }
+        const Response &r = rec_.response();
+        // First order in Δt: P_h − P_0 ≈ (P_fh − P_h)/(f − 1) for the factor f of the re-run.
+        const double f   = est_;
+        const auto   rel = [f](const std::vector<double> &a,
+                             const std::vector<double> &b,
+                             const std::vector<double> &scale)
+        {
+          double e = 0.0;
+          for (std::size_t i = 0; i < a.size(); ++i)
+            if (scale[i] > 0.0)
+              e = std::max(e, std::abs(a[i] - b[i]) / ((f - 1.0) * scale[i]));
+          return e;
+        };
+        std::vector<double> force_scale(fine.force.size());
+        for (std::size_t c = 0; c < force_scale.size(); ++c)
+          force_scale[c] = std::max(fine.force[c], rec_peak_force(c));
+        report_.force_error =
+          std::max(report_.force_error, rel(fine.force, coarse.force, force_scale));
+        report_.acceleration_error =
+          std::max(report_.acceleration_error,
+                   rel(fine.acceleration, coarse.acceleration, r.peak_absolute_acceleration));
+        report_.displacement_error =
+          std::max(report_.displacement_error,
+                   rel(fine.displacement, coarse.displacement, r.peak_displacement));
+      }
+
+      double rec_peak_force(const std::size_t c) const
+      {
+        const ContactResult &cr = rec_.response().contacts[c];
+        double               m  = 0.0;
+        for (const double f : cr.pulse_force)
+          m = std::max(m, f);
+        return m;
+      }
+
+      struct CachedLu
+      {
+        double                               hbar  = 0.0;
+        double                               wp    = 0.0;
+        bool                                 valid = false;
+        Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+      };
+
+      const PoundingModel            &model_;
+      const CentralDifferenceOptions &cdm_;
+      const AdaptiveStepOptions      &opt_;
+      const GroundMotion             &motion_;
+      Eigen::Index                    n_;
+      double                          big_, fine_, approach_;
+      double                          est_;
+      Eigen::VectorXd                 mass_;
+      Eigen::MatrixXd                 k_, c_;
+      std::array<CachedLu, 4>         lu_cache_;
+      std::size_t                     next_lu_ = 0;
+      double                          e0_      = 0.0;
+      ResponseRecorder                rec_;
+      AdaptiveStepReport              report_;
+    };
+  } // namespace
+
+  std::string AdaptiveStepReport::text() const
+  {
+    std::ostringstream o;
+    o << "variable step: " << dt_large << " s, " << dt_approach << " s approaching, " << dt_contact
+      << " s at contacts (" << windows << " windows, " << steps << " steps of which "
+      << contact_steps_taken << " below the large step, +" << estimate_steps
+      << " for the estimate); estimated errors: peak force " << 100.0 * force_error
+      << " %, peak acceleration " << 100.0 * acceleration_error << " %, peak displacement "
+      << 100.0 * displacement_error << " %";
+    return o.str();
+  }
+
+  AdaptiveCentralDifference::AdaptiveCentralDifference(PoundingModel            model,
+                                                       CentralDifferenceOptions cdm,
+                                                       AdaptiveStepOptions      options)
+    : model_(std::move(model))
+    , cdm_(std::move(cdm))
+    , options_(options)
+  {
+    if (cdm_.dt != 0.0)
+      throw std::invalid_argument("variable-step central differences choose dt themselves "
+                                  "(central_difference.dt must be 0)");
+    if (!(options_.contact_steps >= 4.0))
+      throw std::invalid_argument(
+        "adaptive contact_steps = " + std::to_string(options_.contact_steps) + " (must be >= 4)");
+    if (!(options_.lookahead >= 1.0))
+      throw std::invalid_argument("adaptive lookahead = " + std::to_string(options_.lookahead) +
+                                  " (must be >= 1)");
+    if (!(options_.approach_steps >= 4.0 && options_.approach_time >= 0.0))
+      throw std::invalid_argument(
+        "adaptive approach_steps = " + std::to_string(options_.approach_steps) +
+        " (must be >= 4), approach_time = " + std::to_string(options_.approach_time) +
+        " s (must be >= 0)");
+    if (!(options_.structure_step > 0.0 && options_.structure_step <= 2.0))
+      throw std::invalid_argument("adaptive structure_step = " +
+                                  std::to_string(options_.structure_step) + " (must be in (0, 2])");
+    if (!(options_.estimate_factor >= 2.0))
+      throw std::invalid_argument("adaptive estimate_factor = " +
+                                  std::to_string(options_.estimate_factor) + " (must be >= 2)");
+    if (!(options_.tail >= 0.0))
+      throw std::invalid_argument("adaptive tail = " + std::to_string(options_.tail) +
+                                  " s (must be >= 0)");
+    // Validates the shared options and gives ω_structure, ω_closed and ω_imp.
+    stability_     = CentralDifference(model_, cdm_).stability();
+    double contact = std::numeric_limits<double>::infinity();
+    if (stability_.omega_impact > 0.0)
+      contact = pi / (options_.contact_steps * stability_.omega_impact);
+    if (!model_.contacts().empty())
+      contact = std::min(contact, cdm_.safety * stability_.dt_critical);
+    dt_contact_ = contact;
+    dt_approach_ =
+      2.0 * pi / (options_.approach_steps * std::max(stability_.omega_structure, 1e-300));
+  }
+
+  double AdaptiveCentralDifference::large_step(const double record_dt) const
+  {
+    if (!(record_dt > 0.0 && std::isfinite(record_dt)))
+      throw std::invalid_argument("ground motion dt = " + std::to_string(record_dt) +
+                                  " s (must be > 0)");
+    // The fixed step of `dt: stable` (safety·Δt_cr with every contact at its tangent), so that
+    // the run costs that many steps away from contacts.
+    CentralDifferenceOptions o = cdm_;
+    o.dt                       = 0.0;
+    const double stable        = CentralDifference(model_, o).time_step(record_dt);
+    const double target = options_.structure_step / std::max(stability_.omega_structure, 1e-300);
+    const double n_sub  = std::ceil(record_dt / target * (1.0 - 1e-12));
+    return std::min(stable, record_dt / std::max(n_sub, 1.0));
+  }
+
+  Response AdaptiveCentralDifference::run(const GroundMotion  &motion,
+                                          AdaptiveStepReport  *report,
+                                          std::vector<double> *steps) const
+  {
+    if (steps)
+      steps->clear();
+    return run_with(motion, report, nullptr, steps);
+  }
+
+  Response AdaptiveCentralDifference::replay(const GroundMotion        &motion,
+                                             const std::vector<double> &steps) const
+  {
+    return run_with(motion, nullptr, &steps, nullptr);
+  }
+
+  Response AdaptiveCentralDifference::run_with(const GroundMotion        &motion,
+                                               AdaptiveStepReport        *report,
+                                               const std::vector<double> *replay,
+                                               std::vector<double>       *taken) const
+  {
+    if (!(motion.dt > 0.0) || motion.acceleration.empty())
+      throw std::invalid_argument("ground motion '" + motion.name +
+                                  "': dt must be > 0 and the record non-empty");
+    const double big      = large_step(motion.dt);
+    const double approach = std::min(big / 3.0, dt_approach_);
+    const double fine     = std::min(approach, dt_contact_);
+    AdaptiveRun  r(model_, cdm_, options_, motion, big, approach, fine);
+    return r.run(report, replay, taken);
+  }
+} // namespace kimp::lumped
