@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "lumped/integrators/central_difference_session.h"
 
@@ -141,6 +142,49 @@ namespace kimp::lumped
     }
   } // namespace
 
+  std::string FreeRunPrefix::contacts_key(const PoundingModel &model)
+  {
+    std::string key;
+    for (const ContactPair &c : model.contacts())
+    {
+      key += c.name;
+      key += '|';
+      put(key, c.left_dof);
+      put(key, c.right_dof);
+      put(key, c.gap);
+      put(key, c.effective_mass);
+      key += c.law->name();
+      key += '|';
+      for (const double delta : {1e-4, 1e-3, 1e-2, 5e-2})
+        put(key, c.law->stability_stiffness(delta));
+      // Laws have no parameter list: their response along a path of approach, indentation at
+      // several rates, release and a second impact identifies them.
+      std::unique_ptr<ForceLaw> law = c.law->clone();
+      law->revert_to_start();
+      for (const auto &[delta, rate] : {std::pair{-0.01, 0.5},
+                                        std::pair{1e-4, 0.8},
+                                        std::pair{1e-3, 0.6},
+                                        std::pair{5e-3, 0.3},
+                                        std::pair{0.02, 0.1},
+                                        std::pair{0.05, 0.0},
+                                        std::pair{0.03, -0.3},
+                                        std::pair{0.01, -0.6},
+                                        std::pair{1e-3, -0.8},
+                                        std::pair{-0.01, -0.5},
+                                        std::pair{2e-3, 1.5},
+                                        std::pair{0.1, 2.0},
+                                        std::pair{0.0, -1.0}})
+      {
+        put(key, law->set_trial(delta, rate).force);
+        law->commit();
+        put(key, law->dissipated_energy());
+        put(key, law->permanent_indentation());
+        put(key, law->in_contact());
+      }
+    }
+    return key;
+  }
+
   std::string
   FreeRunPrefix::key(const CentralDifference &cdm, const double dt, const GroundMotion &motion)
   {
@@ -271,13 +315,24 @@ namespace kimp::lumped
     if (key(with_contacts, stepper.dt(), motion) != key_)
       throw std::invalid_argument("FreeRunPrefix::run: the model, time step, options or ground "
                                   "motion differ from the free run's");
+    const std::string contacts = contacts_key(with_contacts.model());
+    {
+      const std::lock_guard<std::mutex> lock(memo_mutex_);
+      const auto                        found = memo_.find(contacts);
+      if (found != memo_.end())
+        return *found->second;
+    }
     CentralDifferenceStepper::Session &s = *stepper.session_;
     const std::size_t                  p = start_point(with_contacts);
     // Steps 0 and 1 read δ_{−1}, δ_{−2} from the initial conditions, not from the columns.
     if (p > 0 && points_[p]->step >= 2)
       points_[p]->restore(s);
     s.advance(s.n_steps + 1 - s.step);
-    return stepper.response();
+    auto response = std::make_shared<const Response>(stepper.response());
+    const std::lock_guard<std::mutex> lock(memo_mutex_);
+    if (memo_.size() < 4096)
+      memo_.emplace(contacts, response);
+    return *response;
   }
 
   std::size_t FreeRunPrefix::memory_bytes() const

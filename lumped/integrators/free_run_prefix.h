@@ -4,7 +4,9 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -28,7 +30,9 @@ namespace kimp::lumped
    *
    * Results are bitwise equal to CentralDifference::run() of the model with contacts (tested in
    * tests/lumped/free_run_prefix_test.cc): the restart point is a block boundary of the full run,
-   * so every later step does the same operations on the same values.
+   * so every later step does the same operations on the same values. A run whose contacts equal
+   * an earlier one's (contacts_key()) returns that run's response. run() may be called from
+   * several threads at once.
    *
    * Requirements (checked; std::invalid_argument otherwise): no histories (output_interval = 0),
    * and the run with contacts has the same masses, stiffness, damping, storeys, isolator, time
@@ -73,6 +77,13 @@ namespace kimp::lumped
 
     struct Snapshot; ///< one check point (free_run_prefix.cc)
 
+    /**
+     * Bytes that identify the contacts of a model: per contact its name, DOFs, gap, effective
+     * mass and law (name, stability stiffness and response along a fixed path of deformations
+     * and rates). Two runs of the same free run with equal contact keys are the same run.
+     */
+    static std::string contacts_key(const PoundingModel &model);
+
   private:
     /// Index of the check point to start `with_contacts` from (0: from t = 0).
     std::size_t start_point(const CentralDifference &with_contacts) const;
@@ -80,5 +91,9 @@ namespace kimp::lumped
     std::string                            key_;
     Response                               response_;
     std::vector<std::unique_ptr<Snapshot>> points_;
+    /// Responses of the runs with contacts so far, by contacts_key() (a sweep may repeat a case,
+    /// e.g. a neighbour's storey count without the neighbour): computed once.
+    mutable std::mutex                                             memo_mutex_;
+    mutable std::map<std::string, std::shared_ptr<const Response>> memo_;
   };
 } // namespace kimp::lumped

@@ -163,4 +163,32 @@ namespace kimp::lumped
     EXPECT_THROW(FreeRunPrefix(CentralDifference(walls.without_contacts(), with_histories), g),
                  std::invalid_argument);
   }
+
+  TEST(FreeRunPrefix, RepeatedContactsShareARunOtherLawsDoNot)
+  {
+    CentralDifferenceOptions opt;
+    opt.dt                    = 2e-4;
+    opt.output_interval       = 0.0;
+    const GroundMotion      g = motion();
+    const PoundingModel     walls(scene(0.05, 0, 0, 0.0));
+    const FreeRunPrefix     prefix(CentralDifference(walls.without_contacts(), opt), g);
+    const CentralDifference cdm(walls, opt);
+    const Response          full = cdm.run(g);
+    expect_identical_all(prefix.run(cdm, g), full, "first run");
+    expect_identical_all(prefix.run(CentralDifference(PoundingModel(scene(0.05, 0, 0, 0.0)), opt),
+                                    g),
+                         full,
+                         "the same contacts again (from the memo)");
+    ASSERT_GT(full.n_impacts(), 0U);
+    // Another COR or stiffness at the same gap is another run.
+    for (const auto &[k, cor] : {std::pair{2.5e9, 0.5}, std::pair{1.0e9, 0.7}})
+    {
+      const PoundingScene other =
+        kimp::testing::walled_scene("modified_kelvin_voigt", k, 0.05, cor);
+      const CentralDifference other_cdm(PoundingModel(other), opt);
+      const Response          other_full = other_cdm.run(g);
+      EXPECT_NE(other_full.contacts[0].peak_force, full.contacts[0].peak_force);
+      expect_identical_all(prefix.run(other_cdm, g), other_full, "another law");
+    }
+  }
 } // namespace kimp::lumped
