@@ -460,6 +460,15 @@ namespace kimp::app
                                    const lumped::GroundMotion &motion,
                                    const double                base_scale)
   {
+    return run_lumped_case(name, scene, motion, base_scale, FreeRunSource());
+  }
+
+  LumpedCaseResult run_lumped_case(const std::string          &name,
+                                   const LumpedScene          &scene,
+                                   const lumped::GroundMotion &motion,
+                                   const double                base_scale,
+                                   const FreeRunSource        &free_runs)
+  {
     LumpedCaseResult        result;
     const Clock::time_point start = Clock::now();
     result.name                   = name;
@@ -556,12 +565,31 @@ namespace kimp::app
           result.estimated_steps = estimate.n_steps;
           logger().debug("case {}: {}", name, estimate.text());
           check_run_budget(name, estimate, in);
-          result.response = integrator.run(used);
-        }
-        if (in.companion && !variable_time_step(in))
-        {
-          options.dt       = result.response.dt;
-          result.companion = lumped::CentralDifference(model.without_contacts(), options).run(used);
+          std::shared_ptr<const lumped::FreeRunPrefix> prefix;
+          if (free_runs && !(options.output_interval > 0.0))
+          {
+            lumped::CentralDifferenceOptions free_options = options;
+            free_options.dt                               = integrator.time_step(used.dt);
+            prefix = free_runs(lumped::CentralDifference(model.without_contacts(), free_options),
+                               free_options.dt,
+                               used);
+          }
+          if (prefix)
+          {
+            result.response = prefix->run(integrator, used);
+            if (in.companion)
+              result.companion = prefix->response();
+          }
+          else
+          {
+            result.response = integrator.run(used);
+            if (in.companion)
+            {
+              options.dt = result.response.dt;
+              result.companion =
+                lumped::CentralDifference(model.without_contacts(), options).run(used);
+            }
+          }
         }
       }
       else

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +13,8 @@
 #include "io/summary.h"
 #include "lumped/excitation/ground_motion.h"
 #include "lumped/integrators/adaptive_step.h"
+#include "lumped/integrators/central_difference.h"
+#include "lumped/integrators/free_run_prefix.h"
 #include "lumped/integrators/response.h"
 #include "lumped/structure/modal.h"
 
@@ -110,6 +114,26 @@ namespace kimp::app
                                    const LumpedScene          &scene,
                                    const lumped::GroundMotion &motion,
                                    double                      base_scale = 1.0);
+
+  /**
+   * Supplies the shared contact-free run of a model (lumped::FreeRunPrefix) for the central
+   * difference method: `free` is the case's model without contacts with Δt = `dt` set, under
+   * `motion`. Returns nullptr when it has none (the case then runs from t = 0). Sweeps pass a
+   * cache (app/sweep/sweep_lumped.h), so that cases differing only in gaps or contact laws share
+   * one free run, which is also their companion run.
+   */
+  using FreeRunSource = std::function<
+    std::shared_ptr<const lumped::FreeRunPrefix>(const lumped::CentralDifference &free,
+                                                 double                           dt,
+                                                 const lumped::GroundMotion      &motion)>;
+
+  /// run_lumped_case() with the central difference run (and its companion) taken from
+  /// `free_runs` when the case records no histories: bitwise the same results, fewer steps.
+  LumpedCaseResult run_lumped_case(const std::string          &name,
+                                   const LumpedScene          &scene,
+                                   const lumped::GroundMotion &motion,
+                                   double                      base_scale,
+                                   const FreeRunSource        &free_runs);
 
   /**
    * Run every case of `scene` and write lumped.h5, summary.json and peaks.csv into `output`.

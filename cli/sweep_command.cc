@@ -44,6 +44,10 @@ namespace kimp::cli
     command->add_flag("--no-charts",
                       options->no_charts,
                       "do not run scripts/sweep_charts.py (charts/ and summary.md)");
+    command->add_flag("--no-shared-runs",
+                      options->no_shared_runs,
+                      "run every case from t = 0 instead of from a shared contact-free run "
+                      "(the same results, bit for bit; for timing comparisons)");
     command->add_option("--records-dir", options->records_dir, "directory of the PEER records")
       ->type_name("DIR");
     command->add_flag("--print-defaults",

@@ -4,6 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <future>
+#include <list>
+#include <map>
+#include <mutex>
+#include <string>
+#include <utility>
 
 #include "app/lumped_scene.h"
 #include "io/scene_io.h"
@@ -83,22 +89,142 @@ namespace kimp::app
                                std::hypot(peak_of(c.left_dof), peak_of(c.right_dof)));
   }
 
-  CaseRunner make_lumped_case_runner(std::optional<std::filesystem::path> records_dir_override)
+  struct FreeRunCache::Impl
   {
-    return [records_dir_override](const std::string &text, const std::string &name)
+    using Entry =
+      std::pair<std::string, std::shared_future<std::shared_ptr<const lumped::FreeRunPrefix>>>;
+    std::mutex       mutex;
+    std::list<Entry> entries; ///< most recently used first
+    std::size_t      capacity = 12;
+    std::size_t      computed = 0;
+    std::size_t      served   = 0;
+  };
+
+  FreeRunCache::FreeRunCache(const std::size_t capacity)
+    : impl_(std::make_unique<Impl>())
+  {
+    impl_->capacity = std::max<std::size_t>(capacity, 1);
+  }
+
+  FreeRunCache::~FreeRunCache() = default;
+
+  std::shared_ptr<const lumped::FreeRunPrefix>
+  FreeRunCache::get(const lumped::CentralDifference &free,
+                    const double                     dt,
+                    const lumped::GroundMotion      &motion)
+  {
+    std::string key = lumped::FreeRunPrefix::key(free, dt, motion);
+    std::promise<std::shared_ptr<const lumped::FreeRunPrefix>> promise;
+    std::unique_lock<std::mutex>                               lock(impl_->mutex);
+    const auto found = std::find_if(impl_->entries.begin(),
+                                    impl_->entries.end(),
+                                    [&](const Impl::Entry &e) { return e.first == key; });
+    if (found != impl_->entries.end())
     {
-      const LumpedScene          scene  = load_scene_text<LumpedScene>(text, name);
-      const lumped::GroundMotion motion = load_ground_motion_at(scene.ground_motion,
-                                                                records_dir_override,
-                                                                name,
-                                                                text,
-                                                                "ground_motion");
-      const auto                 cases  = resolve_cases(scene);
-      CaseRow                    row;
+      impl_->entries.splice(impl_->entries.begin(), impl_->entries, found);
+      ++impl_->served;
+      const auto future = found->second;
+      lock.unlock(); // another thread may still be computing it
+      return future.get();
+    }
+    impl_->entries.emplace_front(std::move(key), promise.get_future().share());
+    if (impl_->entries.size() > impl_->capacity)
+      impl_->entries.pop_back();
+    ++impl_->computed;
+    lock.unlock();
+    std::shared_ptr<const lumped::FreeRunPrefix> prefix;
+    try
+    {
+      prefix = std::make_shared<const lumped::FreeRunPrefix>(free, motion);
+    }
+    catch (const std::exception &)
+    {
+      prefix = nullptr; // the cases run alone and report their own errors
+    }
+    promise.set_value(prefix);
+    return prefix;
+  }
+
+  std::size_t FreeRunCache::computed() const
+  {
+    const std::lock_guard<std::mutex> lock(impl_->mutex);
+    return impl_->computed;
+  }
+
+  std::size_t FreeRunCache::served() const
+  {
+    const std::lock_guard<std::mutex> lock(impl_->mutex);
+    return impl_->served;
+  }
+
+  namespace
+  {
+    /// Recorded ground motions by what selects them (loading and filtering an AT2 file costs more
+    /// than a short run); synthetic motions are generated per case.
+    class MotionCache
+    {
+    public:
+      std::shared_ptr<const lumped::GroundMotion>
+      get(const GroundMotionScene                    &gm,
+          const std::optional<std::filesystem::path> &records_dir,
+          const std::string                          &name,
+          const std::string                          &text)
+      {
+        if (!gm.is_record())
+          return std::make_shared<const lumped::GroundMotion>(
+            load_ground_motion_at(gm, records_dir, name, text, "ground_motion"));
+        // The scene name only enters error messages (failed loads are not cached).
+        const std::string key =
+          fmt::format("{}\n{}\n{}\n{}\n{}\n{}\n{}",
+                      records_dir ? records_dir->string() : std::string(),
+                      gm.record,
+                      gm.records_dir,
+                      gm.record_unit,
+                      gm.scale_to_pga ? fmt::format("{:a}", *gm.scale_to_pga) : "-",
+                      fmt::format("{:a}", gm.scale),
+                      gm.duration ? fmt::format("{:a}", *gm.duration) : "-");
+        {
+          const std::lock_guard<std::mutex> lock(mutex_);
+          const auto                        found = motions_.find(key);
+          if (found != motions_.end())
+            return found->second;
+        }
+        auto motion = std::make_shared<const lumped::GroundMotion>(
+          load_ground_motion_at(gm, records_dir, name, text, "ground_motion"));
+        const std::lock_guard<std::mutex> lock(mutex_);
+        if (motions_.size() >= 64)
+          motions_.clear();
+        return motions_.emplace(key, motion).first->second;
+      }
+
+    private:
+      std::mutex                                                         mutex_;
+      std::map<std::string, std::shared_ptr<const lumped::GroundMotion>> motions_;
+    };
+  } // namespace
+
+  CaseRunner make_lumped_case_runner(std::optional<std::filesystem::path> records_dir_override,
+                                     const bool                           share_free_runs)
+  {
+    const auto    motions   = std::make_shared<MotionCache>();
+    const auto    free_runs = share_free_runs ? std::make_shared<FreeRunCache>() : nullptr;
+    FreeRunSource source;
+    if (free_runs)
+      source = [free_runs](const lumped::CentralDifference &free,
+                           const double                     dt,
+                           const lumped::GroundMotion      &motion)
+      { return free_runs->get(free, dt, motion); };
+    return [records_dir_override, motions, source](const std::string &text, const std::string &name)
+    {
+      const LumpedScene scene = load_scene_text<LumpedScene>(text, name);
+      const std::shared_ptr<const lumped::GroundMotion> motion =
+        motions->get(scene.ground_motion, records_dir_override, name, text);
+      const auto cases = resolve_cases(scene);
+      CaseRow    row;
       for (const auto &[case_name, case_scene] : cases)
       {
         const LumpedCaseResult result =
-          run_lumped_case(case_name, case_scene, motion, scene.ground_motion.scale);
+          run_lumped_case(case_name, case_scene, *motion, scene.ground_motion.scale, source);
         if (!result.ok())
           return CaseRow{{}, result.status};
         const std::string prefix = cases.size() > 1 ? case_name + "." : std::string();

@@ -2,7 +2,9 @@
 // LumpedScene, run with run_lumped_case() and reduced to one row of scalar metrics.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -39,10 +41,42 @@ namespace kimp::app
                             CaseRow                     &row);
 
   /**
+   * A thread-safe cache of contact-free runs (lumped::FreeRunPrefix) keyed by
+   * FreeRunPrefix::key(), keeping the `capacity` most recently used ones: the first case of a
+   * model computes its free run, the others (other gaps, contact laws, walls) wait for it and
+   * share it. A free run that fails (e.g. diverges) is cached as nullptr: its cases run from
+   * t = 0 as without the cache.
+   */
+  class FreeRunCache
+  {
+  public:
+    explicit FreeRunCache(std::size_t capacity = 12);
+    ~FreeRunCache();
+    FreeRunCache(const FreeRunCache &)            = delete;
+    FreeRunCache &operator=(const FreeRunCache &) = delete;
+
+    /// The free run of `free` (Δt = `dt`, s) under `motion`, computed at most once while cached.
+    std::shared_ptr<const lumped::FreeRunPrefix>
+    get(const lumped::CentralDifference &free, double dt, const lumped::GroundMotion &motion);
+
+    /// Free runs computed so far and cases served from the cache.
+    std::size_t computed() const;
+    std::size_t served() const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+  };
+
+  /**
    * CaseRunner for LumpedScene texts. A scene with several `cases` gives one row whose metric
    * names start with "<case name>."; the row fails with the first failing case's status.
+   * Cases share recorded ground motions (loaded once per record, scaling and trimming) and,
+   * when `share_free_runs` is set, contact-free runs through a FreeRunCache: each central
+   * difference case without histories starts at its first possible contact and takes its
+   * companion run from the cache (bitwise the same results as running every case alone).
    * @param[in] records_dir_override directory of the PEER records (else the scene's default)
    */
-  CaseRunner
-  make_lumped_case_runner(std::optional<std::filesystem::path> records_dir_override = {});
+  CaseRunner make_lumped_case_runner(std::optional<std::filesystem::path> records_dir_override = {},
+                                     bool                                 share_free_runs = true);
 } // namespace kimp::app

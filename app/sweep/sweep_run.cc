@@ -151,7 +151,10 @@ namespace kimp::app
     if (mpi.active() && mpi.size() > 1)
       sweep_options.barrier = []() { MPI_Barrier(MPI_COMM_WORLD); };
     const SweepSummary summary =
-      run_sweep(plan, make_lumped_case_runner(records_dir), output.path(), sweep_options);
+      run_sweep(plan,
+                make_lumped_case_runner(records_dir, !options.no_shared_runs),
+                output.path(),
+                sweep_options);
     if (mpi.rank() == 0)
       logger().info("sweep: {} cases, {} resumed, {} run here ({} failed), {} rows",
                     summary.n_cases,

@@ -9,12 +9,13 @@ namespace kimp::app
   /// What `kimp sweep` was asked to do (its command-line options).
   struct SweepRunOptions
   {
-    std::string  sweep;            ///< sweep file (YAML)
-    std::string  output;           ///< output directory
-    std::string  records_dir;      ///< PEER records directory; empty: the default search
-    unsigned int threads      = 0; ///< per rank; 0: hardware threads / ranks
-    bool         retry_failed = false;
-    bool         no_charts    = false;
+    std::string  sweep;              ///< sweep file (YAML)
+    std::string  output;             ///< output directory
+    std::string  records_dir;        ///< PEER records directory; empty: the default search
+    unsigned int threads        = 0; ///< per rank; 0: hardware threads / ranks
+    bool         retry_failed   = false;
+    bool         no_charts      = false;
+    bool         no_shared_runs = false; ///< every case from t = 0 (no FreeRunCache)
   };
 
   /**

@@ -232,6 +232,8 @@ namespace kimp::lumped
     struct Session; ///< run state (central_difference_session.h)
 
   private:
+    friend class FreeRunPrefix; // restarts a run from a contact-free run's check point
+
     void require_init(const char *what) const;
 
     const CentralDifference *integrator_;

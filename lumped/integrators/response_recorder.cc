@@ -3,6 +3,7 @@
 #include "lumped/integrators/response_recorder.h"
 
 #include <cmath>
+#include <utility>
 
 namespace kimp::lumped
 {
@@ -83,5 +84,14 @@ namespace kimp::lumped
       e.impact_dissipated += cr.dissipated_energy;
     }
     return out;
+  }
+
+  void ResponseRecorder::continue_from(const ResponseRecorder &prefix)
+  {
+    std::vector<ContactResult> contacts   = std::move(r_.contacts);
+    std::vector<double>        peak_force = std::move(peak_force_);
+    *this                                 = prefix;
+    r_.contacts                           = std::move(contacts);
+    peak_force_                           = std::move(peak_force);
   }
 } // namespace kimp::lumped

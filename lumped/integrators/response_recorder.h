@@ -109,6 +109,13 @@ namespace kimp::lumped
     /// dissipated energy (laws in contact order), the final and the maximum relative errors.
     Response finish(const std::vector<std::unique_ptr<ForceLaw>> &laws) const;
 
+    /**
+     * Take over what `prefix` recorded: a run without histories of the same model without
+     * contacts, stopped before any of this recorder's contacts could act (FreeRunPrefix). Its
+     * energies, checks and isolator peak are copied; this recorder's contacts stay untouched.
+     */
+    void continue_from(const ResponseRecorder &prefix);
+
   private:
     Response            r_;
     std::vector<double> peak_force_;
