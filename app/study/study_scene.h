@@ -161,7 +161,7 @@ namespace kimp::app
     io.quantity("mass",
                 s.mass,
                 "t",
-                "wall mass for m_eff in the impact laws (> 0)",
+                "wall mass for m_eff in the impact laws of the rigid-wall runs (> 0)",
                 io::Range::positive());
     io.quantity("gap_reduction",
                 s.gap_reduction,
@@ -177,8 +177,9 @@ namespace kimp::app
     io.flag("flexible",
             s.flexible,
             "also derive each height's wall as a SDOF from its FE model (static stiffness at "
-            "the slab band, mass from the participating mode) and run the building against "
-            "it beside the rigid wall (wall_sdof.csv, flexible_wall.csv)");
+            "the slab band, mass from its modes: flexible_mass) and run the building against "
+            "it beside the rigid wall, the SDOF's mass then also in the laws' m_eff "
+            "(wall_sdof.csv, flexible_wall.csv)");
     io.quantity("damping_ratio",
                 s.damping_ratio,
                 "%",
