@@ -22,45 +22,41 @@ namespace kimp::app::study_internal
   namespace
   {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-  } // namespace
 
-  void fill_peaks(StudyBuildingRun       &run,
-                  const LumpedCaseResult &result,
-                  unsigned int            top_dof,
-                  const lumped::Response *without_walls)
-  {
-    run.status       = result.status;
-    run.wall_seconds = result.wall_time;
-    run.pga          = result.pga;
-    if (!result.ok())
-      return;
-    const lumped::Response &r = result.response;
-    run.base_displacement     = r.peak_displacement.at(0);
-    run.top_displacement      = r.peak_displacement.at(top_dof);
-    run.base_acceleration     = r.peak_absolute_acceleration.at(0);
-    run.top_acceleration      = r.peak_absolute_acceleration.at(top_dof);
-    run.max_floor_acceleration =
-      *std::max_element(r.peak_absolute_acceleration.begin() + 1,
-                        r.peak_absolute_acceleration.begin() + top_dof + 1);
-    run.max_interstorey_drift = r.max_interstorey_drift();
-    run.n_impacts             = r.n_impacts();
-    for (const lumped::ContactResult &c : r.contacts)
+    void fill_peaks(StudyBuildingRun       &run,
+                    const LumpedCaseResult &result,
+                    unsigned int            top_dof,
+                    const lumped::Response *without_walls)
     {
-      run.peak_impact_force     = std::max(run.peak_impact_force, c.peak_force);
-      run.permanent_indentation = std::max(run.permanent_indentation, c.permanent_indentation);
+      run.status       = result.status;
+      run.wall_seconds = result.wall_time;
+      run.pga          = result.pga;
+      if (!result.ok())
+        return;
+      const lumped::Response &r = result.response;
+      run.base_displacement     = r.peak_displacement.at(0);
+      run.top_displacement      = r.peak_displacement.at(top_dof);
+      run.base_acceleration     = r.peak_absolute_acceleration.at(0);
+      run.top_acceleration      = r.peak_absolute_acceleration.at(top_dof);
+      run.max_floor_acceleration =
+        *std::max_element(r.peak_absolute_acceleration.begin() + 1,
+                          r.peak_absolute_acceleration.begin() + top_dof + 1);
+      run.max_interstorey_drift = r.max_interstorey_drift();
+      run.n_impacts             = r.n_impacts();
+      for (const lumped::ContactResult &c : r.contacts)
+      {
+        run.peak_impact_force     = std::max(run.peak_impact_force, c.peak_force);
+        run.permanent_indentation = std::max(run.permanent_indentation, c.permanent_indentation);
+      }
+      if (without_walls)
+      {
+        const lumped::Amplification a = lumped::amplification_factors(r, *without_walls);
+        run.amplification_base_acc    = a.absolute_acceleration.at(0);
+        run.amplification_top_acc     = a.absolute_acceleration.at(top_dof);
+        run.amplification_drift =
+          run.max_interstorey_drift / std::max(without_walls->max_interstorey_drift(), 1e-300);
+      }
     }
-    if (without_walls)
-    {
-      const lumped::Amplification a = lumped::amplification_factors(r, *without_walls);
-      run.amplification_base_acc    = a.absolute_acceleration.at(0);
-      run.amplification_top_acc     = a.absolute_acceleration.at(top_dof);
-      run.amplification_drift =
-        run.max_interstorey_drift / std::max(without_walls->max_interstorey_drift(), 1e-300);
-    }
-  }
-
-  namespace
-  {
 
     std::string record_label(const GroundMotionScene &record, std::set<std::string> &used)
     {
@@ -228,5 +224,13 @@ namespace kimp::app::study_internal
       extras.sensitivity = run_sensitivity(scene, output);
     }
     return extras;
+  }
+
+  void fill_building_peaks(StudyBuildingRun       &run,
+                           const LumpedCaseResult &result,
+                           unsigned int            top_dof,
+                           const lumped::Response *without_walls)
+  {
+    fill_peaks(run, result, top_dof, without_walls);
   }
 } // namespace kimp::app::study_internal

@@ -201,7 +201,7 @@ namespace kimp::app::study_internal
                                                         flexible_wall_scene(s, sdof),
                                                         motion,
                                                         records[i].scale);
-          fill_peaks(run, done, top_dof, nullptr);
+          fill_building_peaks(run, done, top_dof, nullptr);
           if (done.ok())
           {
             // Amplification against the run without walls, from its row (the flexible run has

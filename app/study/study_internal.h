@@ -57,10 +57,10 @@ namespace kimp::app::study_internal
   std::vector<StudyBuildingRun> run_building(const StudyScene               &scene,
                                              const std::vector<StudyHeight> &heights);
   /// Peaks, status and (with `without_walls`) amplification of one building run into `run`.
-  void fill_peaks(StudyBuildingRun       &run,
-                  const LumpedCaseResult &result,
-                  unsigned int            top_dof,
-                  const lumped::Response *without_walls);
+  void fill_building_peaks(StudyBuildingRun       &run,
+                           const LumpedCaseResult &result,
+                           unsigned int            top_dof,
+                           const lumped::Response *without_walls);
   /// The accuracy, stability and sensitivity studies the scene asks for.
   StudyExtras
   run_extras(const StudyScene &scene, const StudyResult &result, const io::OutputDir &output);
