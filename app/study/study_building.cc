@@ -225,4 +225,12 @@ namespace kimp::app::study_internal
     }
     return extras;
   }
+
+  void fill_building_peaks(StudyBuildingRun       &run,
+                           const LumpedCaseResult &result,
+                           unsigned int            top_dof,
+                           const lumped::Response *without_walls)
+  {
+    fill_peaks(run, result, top_dof, without_walls);
+  }
 } // namespace kimp::app::study_internal

@@ -252,6 +252,7 @@ namespace kimp::app::study_internal
     root.write_table("k_table", k);
     root.group("k_table").set_attribute("building_width_m", scene.fit.width);
     write_study_extras(root, result.extras);
+    write_flexible_wall_h5(root, result);
 
     // /fidelity/<H>: the levels climbed (fidelity: auto).
     for (const StudyHeight &h : result.heights)
@@ -415,6 +416,8 @@ namespace kimp::app::study_internal
     for (const StudyBuildingRun &r : result.building)
       n_failed += r.status != "ok";
     j["n_building_runs_not_ok"] = n_failed;
+    if (!result.wall_sdofs.empty())
+      j["flexible_wall"] = flexible_wall_json(result);
     return j;
   }
 } // namespace kimp::app::study_internal

@@ -8,7 +8,13 @@
 #include <string>
 #include <vector>
 
+#include "app/lumped_run.h"
 #include "app/study/study_run.h"
+
+namespace kimp::io
+{
+  class ResultsGroup;
+} // namespace kimp::io
 
 namespace kimp::app::study_internal
 {
@@ -50,9 +56,36 @@ namespace kimp::app::study_internal
   /// Per record: the building without walls, then with walls for every height and law.
   std::vector<StudyBuildingRun> run_building(const StudyScene               &scene,
                                              const std::vector<StudyHeight> &heights);
+  /// Peaks, status and (with `without_walls`) amplification of one building run into `run`.
+  void fill_building_peaks(StudyBuildingRun       &run,
+                           const LumpedCaseResult &result,
+                           unsigned int            top_dof,
+                           const lumped::Response *without_walls);
   /// The accuracy, stability and sensitivity studies the scene asks for.
   StudyExtras
   run_extras(const StudyScene &scene, const StudyResult &result, const io::OutputDir &output);
+
+  // compute: study_flexible_wall.cc (walls.flexible)
+  /// The wall SDOF of every height from its FE model (a failure is a row with its status).
+  std::vector<StudyWallSdof> compute_wall_sdofs(const StudyScene               &scene,
+                                                const std::vector<StudyHeight> &heights,
+                                                const io::OutputDir            &output);
+  /// The runs of run_building() with walls, against each height's flexible wall instead.
+  std::vector<StudyBuildingRun>
+  run_flexible_wall_building(const StudyScene                    &scene,
+                             const std::vector<StudyHeight>      &heights,
+                             const std::vector<StudyWallSdof>    &sdofs,
+                             const std::vector<StudyBuildingRun> &rigid);
+
+  // writers: study_flexible_wall_files.cc
+  /// DIR/wall_sdof.csv and DIR/flexible_wall.csv (rigid beside flexible, per run).
+  void write_flexible_wall_csv(const io::OutputDir &output, const StudyResult &result);
+  /// study.h5 /wall_sdof and /flexible_wall/<record>/<law>.
+  void write_flexible_wall_h5(io::ResultsGroup &root, const StudyResult &result);
+  /// summary.json "flexible_wall".
+  nlohmann::ordered_json flexible_wall_json(const StudyResult &result);
+  /// The report.md section (empty without flexible-wall results).
+  std::string flexible_wall_markdown(const StudyScene &scene, const StudyResult &result);
 
   // writers: study_files.cc
   /// DIR/k_table.csv and (fidelity: auto) DIR/fidelity_levels.csv.

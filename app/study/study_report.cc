@@ -246,6 +246,7 @@ namespace kimp::app::study_internal
           "`/building/<record>/<law>`.\n\n";
     if (charts)
       md += "![building response against wall height](charts/building_response.png)\n\n";
+    md += flexible_wall_markdown(scene, result);
     md += extras_markdown(scene, result.extras, charts);
     md += fmt::format("## Cost\n\nFEM {} s, fits {} s, building runs {} s, extra "
                       "studies {} s, charts {} s, total {} s (see summary.json).\n",

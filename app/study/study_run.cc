@@ -50,6 +50,15 @@ namespace kimp::app
     result.building                        = run_building(scene, result.heights);
     result.building_seconds                = seconds_since(building_start);
     write_building_csv(output, result.building);
+    if (scene.walls.flexible)
+    {
+      const Clock::time_point flexible_start = Clock::now();
+      result.wall_sdofs                      = compute_wall_sdofs(scene, result.heights, output);
+      result.flexible_building =
+        run_flexible_wall_building(scene, result.heights, result.wall_sdofs, result.building);
+      result.flexible_wall_seconds = seconds_since(flexible_start);
+      write_flexible_wall_csv(output, result);
+    }
 
     const Clock::time_point extras_start = Clock::now();
     result.extras                        = run_extras(scene, result, output);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/study/study_extras.h"
+#include "app/study/study_flexible_wall.h"
 #include "app/study/study_ladder.h"
 #include "app/study/study_scene.h"
 #include "fit/fitter.h"
@@ -86,6 +87,9 @@ namespace kimp::app
     double      amplification_drift    = 1.0;
     double      wall_seconds           = 0.0; ///< s
     std::string status                 = "ok";
+    bool        flexible_wall          = false; ///< walls: the height's SDOF (else rigid)
+    double      peak_wall_displacement = 0.0;   ///< m, flexible walls: larger of the two
+    double      energy_error           = 0.0;   ///< flexible walls: max relative residual
   };
 
   /** What run_study() computed. */
@@ -94,11 +98,16 @@ namespace kimp::app
     std::vector<StudyHeight>      heights;
     std::vector<StudyBuildingRun> building;
     StudyExtras                   extras; ///< accuracy, stability and sensitivity studies
-    double                        fem_seconds      = 0.0; ///< s, all heights
-    double                        fit_seconds      = 0.0; ///< s
-    double                        building_seconds = 0.0; ///< s
-    double                        charts_seconds   = 0.0; ///< s
-    double                        wall_seconds     = 0.0; ///< s, whole study
+    /// walls.flexible: each height's wall SDOF, and the building runs against it (rows as in
+    /// `building`, flexible_wall = true, amplification against the same run without walls)
+    std::vector<StudyWallSdof>    wall_sdofs;
+    std::vector<StudyBuildingRun> flexible_building;
+    double                        flexible_wall_seconds = 0.0; ///< s, SDOFs and their runs
+    double                        fem_seconds           = 0.0; ///< s, all heights
+    double                        fit_seconds           = 0.0; ///< s
+    double                        building_seconds      = 0.0; ///< s
+    double                        charts_seconds        = 0.0; ///< s
+    double                        wall_seconds          = 0.0; ///< s, whole study
     std::vector<std::string>      warnings; ///< e.g. requested records not found (report.md)
   };
 

@@ -137,12 +137,22 @@ namespace kimp::app
   /// (fit/fit_config.h, keys declared in app/fit_run.h).
   using StudyFitScene = fit::FitConfig;
 
+  /** Mass of the flexible wall SDOF (docs/physics.md §4 "Wall SDOF"). */
+  enum class WallSdofMass
+  {
+    participation, ///< k^2 u_s^T M u_s: the band's receptance to second order, all modes
+    mode           ///< k / omega^2 of the mode with the largest share of the static deflection
+  };
+
   /** Moat walls of the study: on both sides, gap from the building's own no-wall response. */
   struct StudyWallsScene
   {
     double                mass          = 500e3; ///< m_wall, kg (> 0)
     double                gap_reduction = 0.10;  ///< gap = (1 − r)·peak isolation displacement
-    std::optional<double> gap; ///< fixed gap of both walls, m (overrides gap_reduction)
+    std::optional<double> gap;         ///< fixed gap of both walls, m (overrides gap_reduction)
+    bool         flexible      = true; ///< also run against each height's wall SDOF from its FEM
+    double       damping_ratio = 0.05; ///< ζ of the flexible wall SDOF
+    WallSdofMass flexible_mass = WallSdofMass::participation;
   };
 
   template <class Io>
@@ -151,7 +161,7 @@ namespace kimp::app
     io.quantity("mass",
                 s.mass,
                 "t",
-                "wall mass for m_eff in the impact laws (> 0)",
+                "wall mass for m_eff in the impact laws of the rigid-wall runs (> 0)",
                 io::Range::positive());
     io.quantity("gap_reduction",
                 s.gap_reduction,
@@ -164,6 +174,23 @@ namespace kimp::app
                 "cm",
                 "fixed gap of both walls (null: from gap_reduction; > 0)",
                 io::Range::positive());
+    io.flag("flexible",
+            s.flexible,
+            "also derive each height's wall as a SDOF from its FE model (static stiffness at "
+            "the slab band, mass from its modes: flexible_mass) and run the building against "
+            "it beside the rigid wall, the SDOF's mass then also in the laws' m_eff "
+            "(wall_sdof.csv, flexible_wall.csv)");
+    io.quantity("damping_ratio",
+                s.damping_ratio,
+                "%",
+                "flexible: damping ratio of the wall SDOF (c = 2 zeta sqrt(k m))",
+                io::Range::at_least(0.0).and_less(1.0));
+    io.choice("flexible_mass",
+              s.flexible_mass,
+              {{"participation", WallSdofMass::participation}, {"mode", WallSdofMass::mode}},
+              "flexible: SDOF mass; participation: k^2 u^T M u of the static deflection u under "
+              "the slab (Rayleigh; every mode by its share); mode: k / omega^2 of the mode "
+              "with the largest share");
   }
 
   /**

@@ -1037,6 +1037,8 @@ const kimp = (function () {
         x: 'wall_height_m',
         y: ['kelvin_voigt_kN_per_mm_per_m', 'thesis_kelvin_voigt_kN_per_mm_per_m', 'jankowski_kN_per_mm1.5_per_m', 'thesis_jankowski_kN_per_mm1.5_per_m'],
       },
+      'wall_sdof.csv': { x: 'wall_height_m', y: ['stiffness_MN_per_m_per_m', 'effective_mass_t_per_m', 'frequency_Hz'] },
+      'flexible_wall.csv': { x: 'wall_height_m', y: ['ratio_peak_base_acceleration', 'ratio_peak_top_acceleration', 'ratio_peak_impact_force', 'ratio_peak_interstorey_drift'] },
     };
     for (const [name, text] of Object.entries(data.csv || {})) csvSection(container, name, text, presets[name]);
     for (const [file, h5] of Object.entries(data.h5 || {})) seriesSection(container, file, h5);
