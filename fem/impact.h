@@ -115,6 +115,25 @@ namespace kimp::fem
     double slab_front_x = 0; ///< m, rigid slab only: x of the front face at t = 0
 
     double initial_velocity = 1.0; ///< m/s, slab, +x (> 0)
+    /**
+     * Wave-propagation checks only: the elastic slab starts moving in +y instead of +x (a
+     * velocity pulse in a column of which the slab cells are a bonded part). No contact then
+     * occurs unless the mesh places one; the slab histories (x means) stay zero.
+     */
+    bool initial_velocity_along_y = false;
+
+    /**
+     * Lysmer-Kuhlemeyer absorbing boundary (docs/physics.md §6): boundary ids whose faces on
+     * soil cells (material id geometry::soil_material) carry viscous dashpots instead of their
+     * constraint; faces of other cells keep it (the wall base stays clamped). Per unit area the
+     * dashpots are rho c_p normal and rho c_s tangential to the face (c_p, c_s of the soil's
+     * Material), lumped to the face's two nodes by the trapezoidal rule, so C is diagonal; faces
+     * must be axis-parallel. Allowed ids: geometry::fixed_base and geometry::soil_far_side.
+     * Empty (default): fixed base and rollers. The dashpots leave the explicit stability limit
+     * unchanged (they enter at the full step, implicitly in the velocity); their work is the
+     * radiated energy of the energy balance.
+     */
+    std::vector<unsigned int> absorbing_boundaries;
 
     /**
      * Penalty stiffness per slave node: k_i = penalty_factor * E_master / h_contact * l_i (N/m per
@@ -185,11 +204,15 @@ namespace kimp::fem
     std::vector<double> strain;          ///< J/m
     std::vector<double> penalty;         ///< J/m, energy stored in the penalty springs
     std::vector<double> contact_dissipation; ///< J/m, work of the contact damping
-    std::vector<double> energy_error;        ///< (E_kin + E_strain - W_contact) / E_0 - 1
+    /// (E_kin + E_strain - W_contact + E_radiated) / E_0 - 1
+    std::vector<double> energy_error;
     /// Non-linear laws only (empty otherwise), J/m: accumulated plastic and damage
     /// dissipation, and the internal work (integrated stress power) that replaces E_strain in
     /// energy_error; `strain` is then the recoverable part.
     std::vector<double> plastic_dissipation, damage_dissipation, internal_work;
+    /// Absorbing boundaries only (empty otherwise), J/m: energy radiated through the dashpots,
+    /// the time integral of v . C v.
+    std::vector<double> radiation;
   };
 
   /** Scalar results of one run. */
@@ -230,6 +253,7 @@ namespace kimp::fem
     /** Non-linear laws: max |W_int - (E_stored + D_plastic + D_damage)| / E_0 over the run,
      *  the consistency of the point-wise bookkeeping with the integrated stress power. */
     double dissipation_gap = 0;
+    double radiated_energy = 0; ///< J/m at the end (absorbing boundaries)
   };
 
   /**

@@ -110,6 +110,12 @@ namespace kimp::app
                                        {"mesh_level", std::to_string(scene.mesh.level)},
                                        {"penalty_factor", fmt::format("{}", scene.contact.penalty_factor)},
                                        {"stopped_on", s.separated ? "separation" : "end_time"}};
+    if (scene.boundary.far == FemBoundary::Far::absorbing)
+    {
+      c.summary.set("radiated_energy", s.radiated_energy);
+      c.summary_units["radiated_energy"] = "J/m";
+      c.labels["far_boundary"]           = "absorbing";
+    }
     return c;
   }
 } // namespace kimp::app

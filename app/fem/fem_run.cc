@@ -120,6 +120,8 @@ namespace kimp::app
       series(energy, "internal_work", h.internal_work, "J/m");
       series(energy, "plastic_dissipation", h.plastic_dissipation, "J/m");
       series(energy, "damage_dissipation", h.damage_dissipation, "J/m");
+      // Absorbing boundaries only.
+      series(energy, "radiation", h.radiation, "J/m");
       ResultsGroup contact = case_group.group("contact");
       series(contact, "n_active", h.n_active, "1");
       series(contact, "max_penetration", h.max_penetration, "m");

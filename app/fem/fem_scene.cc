@@ -111,6 +111,11 @@ namespace kimp::app
                   format_quantity(g.backfill_width, "m"),
                   "must be > 0");
     }
+    if (s.boundary.far == FemBoundary::Far::absorbing)
+      ctx.check(s.geometry.with_backfill,
+                "boundary.far",
+                "absorbing",
+                "needs a backfill (geometry.with_backfill: true): the dashpots sit on the soil");
     {
       const auto                scope = ctx.section("materials");
       const fem::SoilParameters soil  = soil_parameters(s.materials.soil);
@@ -324,6 +329,9 @@ namespace kimp::app
       if (soil_law)
         p.material_laws[geometry::soil_material] = soil_law;
     }
+
+    if (scene.boundary.far == FemBoundary::Far::absorbing && scene.geometry.with_backfill)
+      p.absorbing_boundaries = {geometry::fixed_base, geometry::soil_far_side};
 
     p.rigid_slab       = scene.slab.rigid;
     p.slab_mass        = scene.slab.rigid ? slab_mass(scene) : 0.0;

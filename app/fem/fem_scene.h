@@ -134,6 +134,18 @@ namespace kimp::app
     unsigned int log_interval         = 100; ///< history samples between log lines (0: none)
   };
 
+  /** Boundary conditions of the backfill block (docs/physics.md §6). */
+  struct FemBoundary
+  {
+    /** What ends the model's soil at its far side and base. */
+    enum class Far
+    {
+      rollers,  ///< far side u_x = 0, base u = 0 (the thesis' finite block)
+      absorbing ///< Lysmer-Kuhlemeyer dashpots rho c_p (normal), rho c_s (tangential)
+    };
+    Far far = Far::rollers;
+  };
+
   /** Field output. */
   struct FemOutput
   {
@@ -156,6 +168,7 @@ namespace kimp::app
     FemContact          contact;
     FemDynamics         dynamics;
     FemOutput           output;
+    FemBoundary         boundary;
   };
 
   template <class Io>
@@ -399,6 +412,18 @@ namespace kimp::app
   }
 
   template <class Io>
+  void visit(Io &io, FemBoundary &s)
+  {
+    io.choice("far",
+              s.far,
+              {{"rollers", FemBoundary::Far::rollers}, {"absorbing", FemBoundary::Far::absorbing}},
+              "soil far side and base: rollers (far side u_x = 0, base fixed: a finite block "
+              "that reflects the waves) or absorbing (Lysmer-Kuhlemeyer dashpots rho c_p normal, "
+              "rho c_s tangential on the soil's far side and base, for an unbounded backfill; "
+              "the wall base stays fixed)");
+  }
+
+  template <class Io>
   void visit(Io &io, FemScene &s)
   {
     io.quantity_list("wall_heights",
@@ -412,6 +437,7 @@ namespace kimp::app
     io.section("contact", s.contact, "frictionless penalty contact slab front - wall face");
     io.section("dynamics", s.dynamics, "time integration");
     io.section("output", s.output, "field output");
+    io.section("boundary", s.boundary, "boundary conditions of the backfill block");
   }
 
   /** Checks ranges and cross-field rules of every section, for every wall height. */

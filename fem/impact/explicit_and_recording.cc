@@ -26,10 +26,7 @@ namespace kimp::fem::internal
     Vec Ku(locally_owned, comm), a(locally_owned, comm);
     // Initial velocity: the slab moves at +initial_velocity in x.
     double u_r = 0, v_r = prm.initial_velocity;
-    for (const auto i : locally_owned)
-      if (slab_mass_x(i) > 0)
-        v_half(i) = prm.initial_velocity;
-    v_half.compress(VectorOperation::insert);
+    set_initial_slab_velocity(v_half);
     v_n = v_half;
 
     const bool          write_vtu = !prm.vtu_dir.empty() && prm.vtu_interval > 0;
@@ -59,6 +56,8 @@ namespace kimp::fem::internal
       a.equ(-1.0, Ku);
       scatter_add(fc, a);
       a.scale(inverse_mass);
+      if (absorbing)
+        apply_dashpots_explicit(n == 0, v_half, a);
       const double a_r = prm.rigid_slab ? fc.back() / prm.slab_mass : 0;
 
       // v_{n+1/2} = v_{n-1/2} + dt a_n (half a step at the start); v_n = mean of the two.
@@ -143,6 +142,9 @@ namespace kimp::fem::internal
       f_prev_local.assign(fp, fp + n_local);
     }
 
+    if (absorbing)
+      accumulate_radiation(u, v_n);
+
     // Energies and means at the sampled steps only (one reduction): the divergence guard
     // acts within one output interval.
     if (n % sample_every != 0)
@@ -174,9 +176,12 @@ namespace kimp::fem::internal
     const double kinetic = global[0] + (prm.rigid_slab ? 0.5 * prm.slab_mass * v_r * v_r : 0);
     // Linear laws: 1/2 u.Ku is the strain energy. Otherwise the integrated stress power is the
     // energy the body took, and the points split it into stored, plastic and damage.
-    const double work   = linear_laws ? global[1] : global[4];
-    const double strain = linear_laws ? global[1] : global[5];
-    const double error  = (kinetic + work - contact_work) / e0 - 1;
+    const double work     = linear_laws ? global[1] : global[4];
+    const double strain   = linear_laws ? global[1] : global[5];
+    const double radiated = absorbing ? Utilities::MPI::sum(radiation_local, comm) : 0.0;
+    const double error    = (kinetic + work - contact_work + radiated) / e0 - 1;
+    if (absorbing)
+      history.radiation.push_back(radiated);
     if (!linear_laws)
     {
       history.internal_work.push_back(global[4]);
@@ -497,6 +502,8 @@ namespace kimp::fem::internal
       s.damage_dissipation  = history.damage_dissipation.back();
       s.dissipation_gap     = max_dissipation_gap;
     }
+    if (!history.radiation.empty())
+      s.radiated_energy = history.radiation.back();
     result.history = std::move(history);
   }
 } // namespace kimp::fem::internal

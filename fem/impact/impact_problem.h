@@ -87,6 +87,28 @@ namespace kimp::fem::internal
                              Vec                              &du,
                              double                           &du_r);
 
+    // absorbing_boundary.cc
+    /** prm.absorbing_boundaries holds this boundary id. */
+    bool is_absorbing(unsigned int boundary_id) const;
+    /** Constrains the faces of absorbing ids that are not on soil cells (fixed base: u = 0;
+     *  far side: u_x = 0), as the constraint they replace. Before constraints.close(). */
+    void constrain_non_absorbing_faces();
+    /** Lumped Lysmer-Kuhlemeyer dashpots into `damping` and the list of damped free DoFs. */
+    void assemble_dashpots();
+    /** Explicit: a = M^{-1} (f - K u) on entry; on the damped DoFs it becomes the acceleration
+     *  with the dashpot force -C v_n at v_n = (M v_{n-1/2} + dt/2 (f - K u)) / (M + dt/2 C)
+     *  (v_0 itself at the first step), so the usual v updates stay. */
+    void apply_dashpots_explicit(bool first_step, const Vec &v_half, Vec &a) const;
+    /** Implicit: r += C v (owned entries). */
+    void add_dashpot_force(const Vec &v, Vec &r) const;
+    /** Implicit: matrix += factor C on the diagonal (before compress). */
+    void add_dashpot_matrix(TrilinosWrappers::SparseMatrix &matrix, double factor) const;
+    /** Trapezoidal dashpot work since the last call, added to radiation_local. */
+    void accumulate_radiation(const Vec &u, const Vec &v);
+    /** Slab velocity at t = 0: +x, or +y with initial_velocity_along_y (then E_0 is set to
+     *  the initial kinetic energy). */
+    void set_initial_slab_velocity(Vec &v);
+
     // explicit_and_recording.cc
     void run_explicit();
     /** Records histories and energies of step n (time t). */
@@ -160,5 +182,12 @@ namespace kimp::fem::internal
     Vec                   u_ghosted, force_writable; // internal_force() of non-linear laws
     unsigned long         n_linear_solves = 0, n_step_halvings = 0;
     double                linear_solver_seconds = 0, linear_setup_seconds = 0;
+    // Absorbing boundary: diagonal dashpot matrix C, its free owned DoFs (local index into the
+    // owned range, c_i, m_i), their last u and C v, and this rank's radiated energy.
+    bool                      absorbing = false;
+    Vec                       damping;
+    std::vector<unsigned int> damped_index;
+    std::vector<double>       damped_c, damped_m, damped_u_prev, damped_f_prev;
+    double                    radiation_local = 0;
   };
 } // namespace kimp::fem::internal

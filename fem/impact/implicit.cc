@@ -58,6 +58,7 @@ namespace kimp::fem::internal
     op.base.copy_from(stiffness);
     for (const auto i : locally_owned)
       op.base.add(i, i, op.c1 * mass(i));
+    add_dashpot_matrix(op.base, newmark_gamma / (newmark_beta * op.dt));
     op.base.compress(VectorOperation::add);
     if (prm.implicit_options.linear_solver == ImplicitOptions::LinearSolver::direct)
     {
@@ -235,10 +236,7 @@ namespace kimp::fem::internal
     Vec u_np1(locally_owned, comm), v_np1(locally_owned, comm), a_np1(locally_owned, comm);
     Vec Ku(locally_owned, comm), residual(locally_owned, comm), du(locally_owned, comm);
     Vec rhs(locally_owned, comm), u_start(locally_owned, comm);
-    for (const auto i : locally_owned)
-      if (slab_mass_x(i) > 0)
-        v(i) = prm.initial_velocity;
-    v.compress(VectorOperation::insert);
+    set_initial_slab_velocity(v);
     double u_r = 0, v_r = prm.initial_velocity, a_r = 0;
 
     compact_free.assign(contact_dofs.size(), false);
@@ -325,6 +323,8 @@ namespace kimp::fem::internal
         residual.scale(mass);
         const double inertia_norm = residual.l2_norm();
         residual += Ku;
+        if (absorbing)
+          add_dashpot_force(v_np1, residual);
         rhs = 0;
         scatter_add(fc, rhs);
         residual -= rhs;

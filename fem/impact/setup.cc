@@ -94,6 +94,7 @@ namespace kimp::fem::internal
     setup_contact();
     if (prm.integrator == ImpactParameters::Integrator::implicit_newmark)
       assemble_system();
+    assemble_dashpots();
     compute_time_step();
     e0 = 0.5 * slab_total_mass * prm.initial_velocity * prm.initial_velocity;
     log_line("mesh: " + std::to_string(triangulation.n_global_active_cells()) + " cells, " +
@@ -238,15 +239,18 @@ namespace kimp::fem::internal
 
     constraints.clear();
     constraints.reinit(locally_relevant);
-    VectorTools::interpolate_boundary_values(dof_handler,
-                                             geometry::fixed_base,
-                                             Functions::ZeroFunction<dim>(dim),
-                                             constraints);
-    VectorTools::interpolate_boundary_values(dof_handler,
-                                             geometry::soil_far_side,
-                                             Functions::ZeroFunction<dim>(dim),
-                                             constraints,
-                                             ComponentMask(std::vector<bool>{true, false}));
+    if (!is_absorbing(geometry::fixed_base))
+      VectorTools::interpolate_boundary_values(dof_handler,
+                                               geometry::fixed_base,
+                                               Functions::ZeroFunction<dim>(dim),
+                                               constraints);
+    if (!is_absorbing(geometry::soil_far_side))
+      VectorTools::interpolate_boundary_values(dof_handler,
+                                               geometry::soil_far_side,
+                                               Functions::ZeroFunction<dim>(dim),
+                                               constraints,
+                                               ComponentMask(std::vector<bool>{true, false}));
+    constrain_non_absorbing_faces();
     constraints.close();
   }
 

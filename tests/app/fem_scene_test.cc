@@ -356,6 +356,25 @@ namespace
     expect_relative(kimp::app::slab_mass(quick), 3840, exact_tolerance, "quick slab mass");
   }
 
+  TEST(FemScene, FarBoundaryKeySelectsTheDashpots)
+  {
+    // Default rollers: no absorbing ids (results unchanged); absorbing: the soil's fixed base
+    // and far side; without a backfill there is no soil to put dashpots on.
+    EXPECT_TRUE(
+      kimp::app::impact_parameters(FemScene(), 1.25, "m.msh").absorbing_boundaries.empty());
+    const FemScene s = load_scene_text<FemScene>("boundary: {far: absorbing}\n", file_name);
+    EXPECT_EQ(s.boundary.far, kimp::app::FemBoundary::Far::absorbing);
+    const auto ids = kimp::app::impact_parameters(s, 1.25, "m.msh").absorbing_boundaries;
+    EXPECT_EQ(ids,
+              (std::vector<unsigned int>{kimp::geometry::fixed_base,
+                                         kimp::geometry::soil_far_side}));
+    const std::string no_soil =
+      scene_error("geometry: {with_backfill: false}\nboundary: {far: absorbing}\n");
+    EXPECT_NE(no_soil.find("boundary.far"), std::string::npos) << no_soil;
+    EXPECT_NE(no_soil.find("needs a backfill"), std::string::npos) << no_soil;
+    EXPECT_NE(scene_error("boundary: {far: sponge}\n").find("boundary.far"), std::string::npos);
+  }
+
   TEST(FemCommands, ErrorMessageKeepsTheAdditionalInformationOfDealIIExceptions)
   {
     const std::runtime_error deal_ii(
