@@ -261,7 +261,7 @@ namespace kimp::fem
     const double exx = eps[0] - h0[0], eyy = eps[1] - h0[1], ezz = -h0[2];
     const double exy = 0.5 * (eps[2] - h0[3]);
     double       ea, eb, c, s;
-    eigen2(exx, eyy, exy, ea, eb, c, s);
+    principal2(exx, eyy, exy, ea, eb);
     const double tr = ea + eb + ezz;
     Vec3         st{{lam * tr + 2 * mu * ea, lam * tr + 2 * mu * eb, lam * tr + 2 * mu * ezz}};
 
@@ -276,6 +276,16 @@ namespace kimp::fem
       plastic = plastic || ftr[n] > tol;
     }
     std::copy(h0, h0 + n_history(), h1);
+    if (!plastic && tangent == nullptr)
+    {
+      // Elastic predictor inside the surface: no history change (the plastic increment below
+      // would be zero), and the stress is the trial stress, here without the eigenframe's
+      // trigonometry (equal to the rotated principal stresses up to round-off).
+      h1[6]           = static_cast<double>(ReturnType::elastic);
+      const double tv = exx + eyy + ezz;
+      return {{lam * tv + 2 * mu * exx, lam * tv + 2 * mu * eyy, 2 * mu * exy}};
+    }
+    eigen2(exx, eyy, exy, ea, eb, c, s);
     Vec3         sig      = st;
     unsigned int best_set = 0, best_k = 0, best_idx[3] = {0, 0, 0};
     const auto  &Dg = dg_;
@@ -294,13 +304,19 @@ namespace kimp::fem
           rhs[i] = ftr[idx[i]];
         for (unsigned int o = 0; o < as.n_ops; ++o)
           rhs[as.op_dst[o]] -= as.op_f[o] * rhs[as.op_src[o]];
-        for (int col = static_cast<int>(k) - 1; col >= 0; --col)
+        bool negative = false;
+        for (int col = static_cast<int>(k) - 1; col >= 0 && !negative; --col)
         {
           double sum = rhs[as.perm[col]];
           for (unsigned int j = col + 1; j < k; ++j)
             sum -= as.upper[as.perm[col]][j] * dg[j];
-          dg[col] = sum / as.upper[as.perm[col]][col];
+          const double pivot = as.upper[as.perm[col]][col];
+          // A negative multiplier rejects the set: known from the signs, before the division.
+          negative = (sum < 0 && pivot > 0) || (sum > 0 && pivot < 0);
+          dg[col]  = sum / pivot;
         }
+        if (negative)
+          continue;
         bool ok = true;
         for (unsigned int i = 0; i < k; ++i)
           ok = ok && dg[i] >= 0;
