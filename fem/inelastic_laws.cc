@@ -305,7 +305,7 @@ namespace kimp::fem
         for (unsigned int o = 0; o < as.n_ops; ++o)
           rhs[as.op_dst[o]] -= as.op_f[o] * rhs[as.op_src[o]];
         bool negative = false;
-        for (int col = static_cast<int>(k) - 1; col >= 0 && !negative; --col)
+        for (int col = static_cast<int>(k) - 1; col >= 0; --col)
         {
           double sum = rhs[as.perm[col]];
           for (unsigned int j = col + 1; j < k; ++j)
@@ -313,7 +313,9 @@ namespace kimp::fem
           const double pivot = as.upper[as.perm[col]][col];
           // A negative multiplier rejects the set: known from the signs, before the division.
           negative = (sum < 0 && pivot > 0) || (sum > 0 && pivot < 0);
-          dg[col]  = sum / pivot;
+          if (negative)
+            break;
+          dg[col] = sum / pivot;
         }
         if (negative)
           continue;
