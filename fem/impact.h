@@ -100,6 +100,12 @@ namespace kimp::fem
      * the implicit Newton matrix then stays the law's tangent at zero strain (modified Newton).
      */
     std::map<unsigned int, std::shared_ptr<const MaterialLaw>> material_laws;
+    /**
+     * Non-linear laws: evaluate the internal force by a deal.II FEValues loop over the cells at
+     * every step instead of the kernel precomputed once (same numbers, slower): the kernel's
+     * reference in tests.
+     */
+    bool reference_internal_force = false;
 
     /**
      * Rigid slab: the slab is one translational DoF of mass slab_mass (kg per metre of depth)
@@ -254,6 +260,29 @@ namespace kimp::fem
      *  the consistency of the point-wise bookkeeping with the integrated stress power. */
     double dissipation_gap = 0;
     double radiated_energy = 0; ///< J/m at the end (absorbing boundaries)
+    /**
+     * m: permanent indentation of the wall, the x displacement (+x: pushed back, away from the
+     * slab) of the wall face in the contact range that stays once the vibrations have died out:
+     * the static displacement after elastic unloading (virgin stiffness of wall and soil) from
+     * the committed end state, K u = -f_int(0; h). Zero for history-free laws and for damage
+     * (secant unloading); plastic strain leaves it. The next impact meets a gap wider by this.
+     */
+    double permanent_indentation = 0;
+    /** m: x displacement of the wall face in the contact range at the end of the run (the
+     *  permanent part plus the free vibration at that instant). */
+    double wall_residual_displacement = 0;
+    /** J/m: work of the contact damping at the end. */
+    double contact_dissipation = 0;
+    /**
+     * J/m: energy left in the bodies at the end besides the slab's mean motion: kinetic energy
+     * of wall, soil and the slab's vibration plus the recoverable strain energy. With the
+     * dissipation it closes E_0 (1 - COR^2) = plastic + damage + contact + residual (+ the
+     * radiated energy with absorbing boundaries, + the energy error).
+     */
+    double residual_energy = 0;
+    /** sqrt(1 - (plastic + damage dissipation) / E_0): the COR the material dissipation alone
+     *  implies (1 for elastic laws), beside apparent_cor from the rebound velocity. */
+    double dissipation_cor = 1;
   };
 
   /**

@@ -66,6 +66,15 @@ namespace kimp::fem
       s              = std::sin(t);
     }
 
+    /** The eigenvalues a >= b of eigen2(), without the eigenvector (no trigonometry). */
+    void principal2(double xx, double yy, double xy, double &a, double &b)
+    {
+      const double m = 0.5 * (xx + yy), d = 0.5 * (xx - yy);
+      const double r = std::sqrt(d * d + xy * xy);
+      a              = m + r;
+      b              = m - r;
+    }
+
     /** Plane-strain Voigt tangent from an eigenframe tangent: C = R^T C' R with R the
      *  engineering-strain rotation into the frame (c, s). */
     VoigtTangent rotate_back(const VoigtTangent &cp, double c, double s)
@@ -117,21 +126,6 @@ namespace kimp::fem
 
   // ---------------------------------------------------------------- Mohr-Coulomb
 
-  MohrCoulombLaw::MohrCoulombLaw(const SoilParameters &p)
-    : p_(p)
-  {
-    if (!(p.youngs_modulus > 0) || !(p.poisson_ratio >= 0 && p.poisson_ratio < 0.5) ||
-        !(p.cohesion >= 0) || !(p.friction_angle >= 0 && p.friction_angle < 0.5 * pi) ||
-        !(p.dilatancy >= 0 && p.dilatancy <= p.friction_angle) || !(p.tension_cutoff >= 0))
-      throw std::invalid_argument("Mohr-Coulomb: need E > 0, 0 <= nu < 0.5, c >= 0, "
-                                  "0 <= psi <= phi < 90 deg, tension cut-off >= 0");
-    if (p.friction_angle > 0 && p.tension_cutoff > p.cohesion / std::tan(p.friction_angle))
-      p_.tension_cutoff = p.cohesion / std::tan(p.friction_angle); // the apex bounds it
-    const double E = p.youngs_modulus, nu = p.poisson_ratio;
-    lambda_ = E * nu / ((1 + nu) * (1 - 2 * nu));
-    mu_     = E / (2 * (1 + nu));
-  }
-
   namespace
   {
     /** The 9 planes a.sigma <= b in principal space and their flow directions g. */
@@ -165,12 +159,95 @@ namespace kimp::fem
     };
   } // namespace
 
+  MohrCoulombLaw::MohrCoulombLaw(const SoilParameters &p)
+    : p_(p)
+  {
+    if (!(p.youngs_modulus > 0) || !(p.poisson_ratio >= 0 && p.poisson_ratio < 0.5) ||
+        !(p.cohesion >= 0) || !(p.friction_angle >= 0 && p.friction_angle < 0.5 * pi) ||
+        !(p.dilatancy >= 0 && p.dilatancy <= p.friction_angle) || !(p.tension_cutoff >= 0))
+      throw std::invalid_argument("Mohr-Coulomb: need E > 0, 0 <= nu < 0.5, c >= 0, "
+                                  "0 <= psi <= phi < 90 deg, tension cut-off >= 0");
+    if (p.friction_angle > 0 && p.tension_cutoff > p.cohesion / std::tan(p.friction_angle))
+      p_.tension_cutoff = p.cohesion / std::tan(p.friction_angle); // the apex bounds it
+    const double E = p.youngs_modulus, nu = p.poisson_ratio;
+    lambda_ = E * nu / ((1 + nu) * (1 - 2 * nu));
+    mu_     = E / (2 * (1 + nu));
+
+    // Constants of every return mapping, computed once instead of per point.
+    const MohrCoulombPlanes pl(p_);
+    for (unsigned int n = 0; n < 9; ++n)
+    {
+      b_[n]           = pl.b[n];
+      const double tg = pl.g[n][0] + pl.g[n][1] + pl.g[n][2];
+      for (unsigned int k = 0; k < 3; ++k)
+      {
+        a_[n][k]  = pl.a[n][k];
+        dg_[n][k] = lambda_ * tg + 2 * mu_ * pl.g[n][k];
+      }
+    }
+    // Every set of <= 3 planes, eliminated once as solve_small() would (same pivots, same
+    // multipliers); singular ones are dropped as solve_small() would reject them.
+    for (unsigned int set = 1; set < (1u << 9); ++set)
+    {
+      ActiveSet as;
+      bool      too_many = false;
+      for (unsigned int n = 0; n < 9; ++n)
+        if (set & (1u << n))
+        {
+          if (as.k == 3)
+          {
+            too_many = true;
+            break;
+          }
+          as.idx[as.k++] = n;
+        }
+      if (too_many)
+        continue;
+      as.set = set;
+      double m[3][3];
+      for (unsigned int i = 0; i < as.k; ++i)
+        for (unsigned int j = 0; j < as.k; ++j)
+          m[i][j] = a_[as.idx[i]][0] * dg_[as.idx[j]][0] + a_[as.idx[i]][1] * dg_[as.idx[j]][1] +
+                    a_[as.idx[i]][2] * dg_[as.idx[j]][2];
+      bool singular = false;
+      for (unsigned int c = 0; c < as.k && !singular; ++c)
+      {
+        unsigned int piv = c;
+        for (unsigned int r = c + 1; r < as.k; ++r)
+          if (std::abs(m[as.perm[r]][c]) > std::abs(m[as.perm[piv]][c]))
+            piv = r;
+        std::swap(as.perm[c], as.perm[piv]);
+        const double d = m[as.perm[c]][c];
+        if (std::abs(d) <= 1e-10 * mu_)
+        {
+          singular = true;
+          break;
+        }
+        for (unsigned int r = c + 1; r < as.k; ++r)
+        {
+          const double f = m[as.perm[r]][c] / d;
+          for (unsigned int j = c; j < as.k; ++j)
+            m[as.perm[r]][j] -= f * m[as.perm[c]][j];
+          as.op_dst[as.n_ops] = as.perm[r];
+          as.op_src[as.n_ops] = as.perm[c];
+          as.op_f[as.n_ops]   = f;
+          ++as.n_ops;
+        }
+      }
+      if (singular)
+        continue;
+      for (unsigned int r = 0; r < 3; ++r)
+        for (unsigned int j = 0; j < 3; ++j)
+          as.upper[r][j] = r < as.k && j < as.k ? m[r][j] : 0.0;
+      active_sets_.push_back(as);
+    }
+  }
+
   double MohrCoulombLaw::yield_function(const Vec3 &s) const
   {
-    const MohrCoulombPlanes pl(p_);
-    double                  f = -std::numeric_limits<double>::max();
+    double f = -std::numeric_limits<double>::max();
     for (unsigned int n = 0; n < 9; ++n)
-      f = std::max(f, pl.a[n][0] * s[0] + pl.a[n][1] * s[1] + pl.a[n][2] * s[2] - pl.b[n]);
+      f = std::max(f, a_[n][0] * s[0] + a_[n][1] * s[1] + a_[n][2] * s[2] - b_[n]);
     return f;
   }
 
@@ -184,61 +261,63 @@ namespace kimp::fem
     const double exx = eps[0] - h0[0], eyy = eps[1] - h0[1], ezz = -h0[2];
     const double exy = 0.5 * (eps[2] - h0[3]);
     double       ea, eb, c, s;
-    eigen2(exx, eyy, exy, ea, eb, c, s);
+    principal2(exx, eyy, exy, ea, eb);
     const double tr = ea + eb + ezz;
     Vec3         st{{lam * tr + 2 * mu * ea, lam * tr + 2 * mu * eb, lam * tr + 2 * mu * ezz}};
 
-    const MohrCoulombPlanes pl(p_);
-    const double            scale =
+    const double scale =
       std::max({std::abs(st[0]), std::abs(st[1]), std::abs(st[2]), p_.cohesion, 1.0});
     const double tol = 1e-12 * scale;
     double       ftr[9];
     bool         plastic = false;
     for (unsigned int n = 0; n < 9; ++n)
     {
-      ftr[n]  = pl.a[n][0] * st[0] + pl.a[n][1] * st[1] + pl.a[n][2] * st[2] - pl.b[n];
+      ftr[n]  = a_[n][0] * st[0] + a_[n][1] * st[1] + a_[n][2] * st[2] - b_[n];
       plastic = plastic || ftr[n] > tol;
     }
     std::copy(h0, h0 + n_history(), h1);
+    if (!plastic && tangent == nullptr)
+    {
+      // Elastic predictor inside the surface: no history change (the plastic increment below
+      // would be zero), and the stress is the trial stress, here without the eigenframe's
+      // trigonometry (equal to the rotated principal stresses up to round-off).
+      h1[6]           = static_cast<double>(ReturnType::elastic);
+      const double tv = exx + eyy + ezz;
+      return {{lam * tv + 2 * mu * exx, lam * tv + 2 * mu * eyy, 2 * mu * exy}};
+    }
+    eigen2(exx, eyy, exy, ea, eb, c, s);
     Vec3         sig      = st;
     unsigned int best_set = 0, best_k = 0, best_idx[3] = {0, 0, 0};
-    double       Dg[9][3]; // D g of each plane
-    for (unsigned int n = 0; n < 9; ++n)
-    {
-      const double tg = pl.g[n][0] + pl.g[n][1] + pl.g[n][2];
-      for (unsigned int k = 0; k < 3; ++k)
-        Dg[n][k] = lam * tg + 2 * mu * pl.g[n][k];
-    }
+    const auto  &Dg = dg_;
     if (plastic)
     {
       // Active-set search: every set of <= 3 planes; keep the admissible one (all multipliers
       // >= 0, every plane satisfied) closest to the trial state in the complementary energy.
+      // Each set's elimination is precomputed: only its right-hand side is processed here.
       double best_dist = std::numeric_limits<double>::max();
-      for (unsigned int set = 1; set < (1u << 9); ++set)
+      for (const ActiveSet &as : active_sets_)
       {
-        unsigned int idx[3], k = 0;
-        bool         too_many = false;
-        for (unsigned int n = 0; n < 9; ++n)
-          if (set & (1u << n))
-          {
-            if (k == 3)
-            {
-              too_many = true;
-              break;
-            }
-            idx[k++] = n;
-          }
-        if (too_many)
-          continue;
-        double m[3][3], rhs[3], dg[3];
+        const unsigned int  k = as.k, set = as.set;
+        const unsigned int *idx = as.idx;
+        double              rhs[3], dg[3];
         for (unsigned int i = 0; i < k; ++i)
-        {
           rhs[i] = ftr[idx[i]];
-          for (unsigned int j = 0; j < k; ++j)
-            m[i][j] = pl.a[idx[i]][0] * Dg[idx[j]][0] + pl.a[idx[i]][1] * Dg[idx[j]][1] +
-                      pl.a[idx[i]][2] * Dg[idx[j]][2];
+        for (unsigned int o = 0; o < as.n_ops; ++o)
+          rhs[as.op_dst[o]] -= as.op_f[o] * rhs[as.op_src[o]];
+        bool negative = false;
+        for (int col = static_cast<int>(k) - 1; col >= 0; --col)
+        {
+          double sum = rhs[as.perm[col]];
+          for (unsigned int j = col + 1; j < k; ++j)
+            sum -= as.upper[as.perm[col]][j] * dg[j];
+          const double pivot = as.upper[as.perm[col]][col];
+          // A negative multiplier rejects the set: known from the signs, before the division.
+          negative = (sum < 0 && pivot > 0) || (sum > 0 && pivot < 0);
+          if (negative)
+            break;
+          dg[col] = sum / pivot;
         }
-        if (!solve_small(k, m, rhs, dg, mu))
+        if (negative)
           continue;
         bool ok = true;
         for (unsigned int i = 0; i < k; ++i)
@@ -250,7 +329,7 @@ namespace kimp::fem
           for (unsigned int q = 0; q < 3; ++q)
             sn[q] -= dg[i] * Dg[idx[i]][q];
         for (unsigned int n = 0; n < 9 && ok; ++n)
-          ok = pl.a[n][0] * sn[0] + pl.a[n][1] * sn[1] + pl.a[n][2] * sn[2] - pl.b[n] <= tol;
+          ok = a_[n][0] * sn[0] + a_[n][1] * sn[1] + a_[n][2] * sn[2] - b_[n] <= tol;
         if (!ok)
           continue;
         // Complementary energy of the stress jump, C = D^-1 in principal space.
@@ -315,19 +394,19 @@ namespace kimp::fem
         double AD[3][3];
         for (unsigned int r = 0; r < best_k; ++r)
           for (unsigned int j = 0; j < 3; ++j)
-            AD[r][j] = pl.a[best_idx[r]][0] * T[j] + pl.a[best_idx[r]][1] * T[3 + j] +
-                       pl.a[best_idx[r]][2] * T[6 + j];
+            AD[r][j] = a_[best_idx[r]][0] * T[j] + a_[best_idx[r]][1] * T[3 + j] +
+                       a_[best_idx[r]][2] * T[6 + j];
         double X[3][3] = {};
         for (unsigned int j = 0; j < 3; ++j)
         {
-          double m[3][3], rhs[3], x[3];
+          double m[3][3], rhs[3], x[3] = {0, 0, 0};
           for (unsigned int r = 0; r < best_k; ++r)
           {
             rhs[r] = AD[r][j];
             for (unsigned int q = 0; q < best_k; ++q)
-              m[r][q] = pl.a[best_idx[r]][0] * Dg[best_idx[q]][0] +
-                        pl.a[best_idx[r]][1] * Dg[best_idx[q]][1] +
-                        pl.a[best_idx[r]][2] * Dg[best_idx[q]][2];
+              m[r][q] = a_[best_idx[r]][0] * Dg[best_idx[q]][0] +
+                        a_[best_idx[r]][1] * Dg[best_idx[q]][1] +
+                        a_[best_idx[r]][2] * Dg[best_idx[q]][2];
           }
           solve_small(best_k, m, rhs, x, 0.0);
           for (unsigned int r = 0; r < best_k; ++r)
@@ -394,6 +473,17 @@ namespace kimp::fem
   {
     return plastic_output(strain, history, lambda_, mu_, p_.youngs_modulus, p_.poisson_ratio);
   }
+  void MohrCoulombLaw::update_points(unsigned int           n,
+                                     const VoigtStrain     *strain,
+                                     const double          *committed,
+                                     double                *trial,
+                                     unsigned int           stride,
+                                     VoigtStress           *stress,
+                                     std::array<double, 3> *energy) const
+  {
+    update_points_of(*this, n, strain, committed, trial, stride, stress, energy);
+  }
+
 
   // ---------------------------------------------------------------- Drucker-Prager
 
@@ -547,6 +637,17 @@ namespace kimp::fem
   {
     return plastic_output(strain, history, lambda_, mu_, p_.youngs_modulus, p_.poisson_ratio);
   }
+  void DruckerPragerLaw::update_points(unsigned int           n,
+                                       const VoigtStrain     *strain,
+                                       const double          *committed,
+                                       double                *trial,
+                                       unsigned int           stride,
+                                       VoigtStress           *stress,
+                                       std::array<double, 3> *energy) const
+  {
+    update_points_of(*this, n, strain, committed, trial, stride, stress, energy);
+  }
+
 
   // ---------------------------------------------------------------- concrete
 
@@ -636,10 +737,19 @@ namespace kimp::fem
     const double tr  = e[0] + e[1];
     const double sxx = lam * tr + 2 * mu * e[0], syy = lam * tr + 2 * mu * e[1], szz = lam * tr,
                  sxy = mu * e[2];
-    double sa, sb, c, s;
-    eigen2(sxx, syy, sxy, sa, sb, c, s);
+    double sa, sb;
+    principal2(sxx, syy, sxy, sa, sb);
     const double smax = std::max(sa, szz), smin = std::min(sb, szz);
     std::copy(h0, h0 + n_history(), h1);
+    if (std::max(smax, 0.0) / E <= h0[0] && std::max(-smin, 0.0) / E <= h0[1])
+    {
+      // Neither measure grows: the damage stays. The full update below would recompute the
+      // committed damage from the same kappa (the damage functions are non-decreasing) and add
+      // no dissipation; this gives the same numbers without the softening and curve evaluations.
+      const double d = 1 - (1 - h0[2]) * (1 - h0[3]);
+      const double w = 1 - d;
+      return {{w * sxx, w * syy, w * sxy}};
+    }
     const double kt = std::max(h0[0], std::max(smax, 0.0) / E);
     const double kc = std::max(h0[1], std::max(-smin, 0.0) / E);
     h1[0]           = kt;
@@ -685,4 +795,15 @@ namespace kimp::fem
     o.damage_dissipation = h[4];
     return o;
   }
+  void ConcreteDamageLaw::update_points(unsigned int           n,
+                                        const VoigtStrain     *strain,
+                                        const double          *committed,
+                                        double                *trial,
+                                        unsigned int           stride,
+                                        VoigtStress           *stress,
+                                        std::array<double, 3> *energy) const
+  {
+    update_points_of(*this, n, strain, committed, trial, stride, stress, energy);
+  }
+
 } // namespace kimp::fem

@@ -65,6 +65,13 @@ namespace kimp::fem
     stress(const VoigtStrain &strain, const double *committed, double *trial) const override;
     VoigtTangent tangent(const VoigtStrain &strain, const double *committed) const override;
     PointOutput  output(const VoigtStrain &strain, const double *history) const override;
+    void         update_points(unsigned int           n,
+                               const VoigtStrain     *strain,
+                               const double          *committed,
+                               double                *trial,
+                               unsigned int           stride,
+                               VoigtStress           *stress,
+                               std::array<double, 3> *energy) const override;
     /** Largest yield function value (Pa) at principal stresses {s1, s2, s3}. */
     double yield_function(const std::array<double, 3> &principal) const;
 
@@ -76,6 +83,22 @@ namespace kimp::fem
                           VoigtTangent      *tangent) const;
     SoilParameters p_;
     double         lambda_, mu_;
+    /** The 9 planes a.sigma <= b in principal space (6 Mohr-Coulomb, 3 cut-off), their flow
+     *  directions' images D g: constants of the law, computed once. */
+    double a_[9][3], b_[9], dg_[9][3];
+    /** One candidate active set of 1-3 planes with the Gauss elimination of its matrix
+     *  M_ij = a_i . D g_j (constant) precomputed, so that a point only replays it on its
+     *  right-hand side (the same operations, hence the same numbers, as a fresh elimination). */
+    struct ActiveSet
+    {
+      unsigned int k = 0, idx[3] = {0, 0, 0}, perm[3] = {0, 1, 2};
+      unsigned int set = 0; ///< bit mask of the planes
+      /// Elimination steps b[op_dst] -= op_f * b[op_src], in order.
+      unsigned int n_ops = 0, op_dst[3] = {0, 0, 0}, op_src[3] = {0, 0, 0};
+      double       op_f[3] = {0, 0, 0};
+      double       upper[3][3]{}; ///< the reduced matrix (rows as stored, used through perm)
+    };
+    std::vector<ActiveSet> active_sets_; ///< the non-singular sets in ascending mask order
   };
 
   /**
@@ -92,6 +115,13 @@ namespace kimp::fem
     stress(const VoigtStrain &strain, const double *committed, double *trial) const override;
     VoigtTangent tangent(const VoigtStrain &strain, const double *committed) const override;
     PointOutput  output(const VoigtStrain &strain, const double *history) const override;
+    void         update_points(unsigned int           n,
+                               const VoigtStrain     *strain,
+                               const double          *committed,
+                               double                *trial,
+                               unsigned int           stride,
+                               VoigtStress           *stress,
+                               std::array<double, 3> *energy) const override;
     /** f = sqrt(J2) + eta p - xi c (Pa) at the 3D stress {xx, yy, zz, xy}. */
     double yield_function(const std::array<double, 4> &sigma) const;
     double eta() const { return eta_; }
@@ -152,6 +182,13 @@ namespace kimp::fem
     /** Secant tangent (1 - d) D: enough for the virgin-state stiffness the solvers assemble. */
     VoigtTangent tangent(const VoigtStrain &strain, const double *committed) const override;
     PointOutput  output(const VoigtStrain &strain, const double *history) const override;
+    void         update_points(unsigned int           n,
+                               const VoigtStrain     *strain,
+                               const double          *committed,
+                               double                *trial,
+                               unsigned int           stride,
+                               VoigtStress           *stress,
+                               std::array<double, 3> *energy) const override;
     /** Tensile strength used at crack-band length h (reduced if h exceeds the snap-back limit). */
     double                    effective_tensile_strength(double h) const;
     const ConcreteParameters &parameters() const { return p_; }

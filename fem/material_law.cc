@@ -28,6 +28,35 @@ namespace kimp::fem
     return o;
   }
 
+  void MaterialLaw::update_points(unsigned int           n,
+                                  const VoigtStrain     *strain,
+                                  const double          *committed,
+                                  double                *trial,
+                                  unsigned int           stride,
+                                  VoigtStress           *stress,
+                                  std::array<double, 3> *energy) const
+  {
+    for (unsigned int p = 0; p < n; ++p)
+    {
+      const double *h0     = committed + static_cast<std::size_t>(p) * stride;
+      double       *h1     = trial + static_cast<std::size_t>(p) * stride;
+      stress[p]            = this->stress(strain[p], h0, h1);
+      const PointOutput po = output(strain[p], h1);
+      energy[p]            = {{po.stored_energy, po.plastic_dissipation, po.damage_dissipation}};
+    }
+  }
+
+  void LinearElasticLaw::update_points(unsigned int           n,
+                                       const VoigtStrain     *strain,
+                                       const double          *committed,
+                                       double                *trial,
+                                       unsigned int           stride,
+                                       VoigtStress           *stress,
+                                       std::array<double, 3> *energy) const
+  {
+    update_points_of(*this, n, strain, committed, trial, stride, stress, energy);
+  }
+
   PointOutput LinearElasticLaw::output(const VoigtStrain &e, const double *) const
   {
     const VoigtStress s = stress(e, nullptr, nullptr);

@@ -68,7 +68,44 @@ namespace kimp::fem
      * @p history that stress() wrote for it. Default: sigma_zz = 0, stored = sigma : eps / 2.
      */
     virtual PointOutput output(const VoigtStrain &strain, const double *history) const;
+    /**
+     * Batched update of @p n points: for p < n, stress[p] = stress(strain[p], committed + p *
+     * stride, trial + p * stride) and energy[p] = {stored, plastic, damage} of output() (J/m^3)
+     * with the trial history written. One virtual call per batch; the laws override it with their
+     * inlined point update (same numbers as the point-wise calls). Default: the point-wise calls.
+     */
+    virtual void update_points(unsigned int           n,
+                               const VoigtStrain     *strain,
+                               const double          *committed,
+                               double                *trial,
+                               unsigned int           stride,
+                               VoigtStress           *stress,
+                               std::array<double, 3> *energy) const;
   };
+
+  /**
+   * The loop of MaterialLaw::update_points() over a law of final type @p Law, whose stress() and
+   * output() calls the compiler then binds statically and inlines.
+   */
+  template <class Law>
+  void update_points_of(const Law             &law,
+                        unsigned int           n,
+                        const VoigtStrain     *strain,
+                        const double          *committed,
+                        double                *trial,
+                        unsigned int           stride,
+                        VoigtStress           *stress,
+                        std::array<double, 3> *energy)
+  {
+    for (unsigned int p = 0; p < n; ++p)
+    {
+      const double *h0     = committed + static_cast<std::size_t>(p) * stride;
+      double       *h1     = trial + static_cast<std::size_t>(p) * stride;
+      stress[p]            = law.Law::stress(strain[p], h0, h1);
+      const PointOutput po = law.Law::output(strain[p], h1);
+      energy[p]            = {{po.stored_energy, po.plastic_dissipation, po.damage_dissipation}};
+    }
+  }
 
   /** Isotropic linear elasticity in plane strain (Lame lambda, mu from E, nu). */
   class LinearElasticLaw final : public MaterialLaw
@@ -80,6 +117,13 @@ namespace kimp::fem
     VoigtTangent tangent(const VoigtStrain &, const double *) const override { return tangent_; }
     bool         is_linear() const override { return true; }
     PointOutput  output(const VoigtStrain &strain, const double *) const override;
+    void         update_points(unsigned int           n,
+                               const VoigtStrain     *strain,
+                               const double          *committed,
+                               double                *trial,
+                               unsigned int           stride,
+                               VoigtStress           *stress,
+                               std::array<double, 3> *energy) const override;
 
   private:
     VoigtTangent tangent_{};
@@ -111,6 +155,12 @@ namespace kimp::fem
     }
     /** The trial history becomes the committed one (an accepted time step). */
     void commit() { committed_ = trial_; }
+    /**
+     * The trial history becomes the committed one by exchanging the two buffers: the trial
+     * history is then stale until the next evaluation. For loops that rewrite the trial history
+     * of every evaluated point before reading it (the explicit time loop): no copy per step.
+     */
+    void commit_by_swap() { committed_.swap(trial_); }
     /** The trial history is discarded (a rejected Newton attempt or time step). */
     void         revert() { trial_ = committed_; }
     unsigned int n_values() const { return n_values_; }

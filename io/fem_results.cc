@@ -103,7 +103,14 @@ namespace kimp::io
                                                                {"energy_error", "1"},
                                                                {"n_dofs", "1"},
                                                                {"n_steps", "1"},
-                                                               {"n_cells", "1"}};
+                                                               {"n_cells", "1"},
+                                                               {"plastic_dissipation", "J/m"},
+                                                               {"damage_dissipation", "J/m"},
+                                                               {"contact_dissipation", "J/m"},
+                                                               {"residual_energy", "J/m"},
+                                                               {"dissipation_cor", "1"},
+                                                               {"permanent_indentation", "m"},
+                                                               {"wall_residual_displacement", "m"}};
       return units;
     }
 

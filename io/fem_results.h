@@ -101,8 +101,10 @@ namespace kimp::io
    * peak_force_raw "N/m"; impulse "N*s/m"; contact_start, contact_duration, dt, dt_stable,
    * smoothing_window, wall_seconds "s"; max_penetration, mean_penetration, initial_gap "m";
    * rebound_velocity "m/s"; penalty_stiffness "N/m/m"; apparent_cor, energy_error, n_dofs,
-   * n_steps, n_cells "1"). On reading, summary_units holds the units of the keys that are not
-   * known or whose units differ from the known ones.
+   * n_steps, n_cells "1"; after the impact: plastic_dissipation, damage_dissipation,
+   * contact_dissipation, residual_energy "J/m", dissipation_cor "1", permanent_indentation,
+   * wall_residual_displacement "m", kept in FemSummary::extra). On reading, summary_units holds the
+   * units of the keys that are not known or whose units differ from the known ones.
    * @throws ResultsError naming the case and key if neither knows it.
    */
   std::string fem_summary_units(const FemCase &fem_case, const std::string &key);

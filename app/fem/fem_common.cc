@@ -116,6 +116,14 @@ namespace kimp::app
       c.summary_units["radiated_energy"] = "J/m";
       c.labels["far_boundary"]           = "absorbing";
     }
+    // After the impact (fem::ImpactSummary): dissipation, the COR it implies, the wall's state.
+    c.summary.set("plastic_dissipation", s.plastic_dissipation);
+    c.summary.set("damage_dissipation", s.damage_dissipation);
+    c.summary.set("contact_dissipation", s.contact_dissipation);
+    c.summary.set("residual_energy", s.residual_energy);
+    c.summary.set("dissipation_cor", s.dissipation_cor);
+    c.summary.set("permanent_indentation", s.permanent_indentation);
+    c.summary.set("wall_residual_displacement", s.wall_residual_displacement);
     return c;
   }
 } // namespace kimp::app

@@ -259,6 +259,19 @@ namespace kimp::app
                     result.summary.n_steps,
                     result.summary.dt,
                     result.summary.wall_seconds);
+      logger().info("{}: after the impact: permanent indentation {:.4g} mm, wall displacement at "
+                    "the end {:.4g} mm; dissipation plastic {:.4g}, damage {:.4g}, contact {:.4g} "
+                    "J/m, left in the bodies {:.4g} J/m; COR implied by the material "
+                    "dissipation {:.3f} (apparent {:.3f})",
+                    name,
+                    result.summary.permanent_indentation * 1e3,
+                    result.summary.wall_residual_displacement * 1e3,
+                    result.summary.plastic_dissipation,
+                    result.summary.damage_dissipation,
+                    result.summary.contact_dissipation,
+                    result.summary.residual_energy,
+                    result.summary.dissipation_cor,
+                    result.summary.apparent_cor);
     }
     if (rank != 0)
       return;
@@ -295,7 +308,14 @@ namespace kimp::app
                         {"smoothing_window", "s"},
                         {"dt", "s"},
                         {"dt_stable", "s"},
-                        {"wall_seconds", "s"}};
+                        {"wall_seconds", "s"},
+                        {"plastic_dissipation", "J/m"},
+                        {"damage_dissipation", "J/m"},
+                        {"contact_dissipation", "J/m"},
+                        {"residual_energy", "J/m"},
+                        {"dissipation_cor", "1"},
+                        {"permanent_indentation", "m"},
+                        {"wall_residual_displacement", "m"}};
     summary["cases"] = cases;
     write_text_atomic(output.file("summary.json"), summary.dump(2) + "\n");
     logger().info("wrote {}, {}, {}",

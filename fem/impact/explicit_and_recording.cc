@@ -51,8 +51,9 @@ namespace kimp::fem::internal
       const std::vector<double> fc = padded_force(ev, cu.size());
 
       internal_force(u, Ku);
+      // Every evaluated point's trial history was rewritten: swapping commits it without a copy.
       if (!linear_laws)
-        qp_history.commit();
+        qp_history.commit_by_swap();
       a.equ(-1.0, Ku);
       scatter_add(fc, a);
       a.scale(inverse_mass);
@@ -98,6 +99,7 @@ namespace kimp::fem::internal
       u_r += dt * v_r;
     }
     n_steps_done = n;
+    compute_residual_state(u, u_r);
   }
 
 
@@ -504,6 +506,20 @@ namespace kimp::fem::internal
     }
     if (!history.radiation.empty())
       s.radiated_energy = history.radiation.back();
+    // After the impact: the wall's state and where the slab's energy went (last sample).
+    s.permanent_indentation      = permanent_wall_indentation;
+    s.wall_residual_displacement = wall_end_displacement;
+    if (!history.time.empty())
+    {
+      s.contact_dissipation = history.contact_dissipation.back();
+      const double work =
+        history.internal_work.empty() ? history.strain.back() : history.internal_work.back();
+      const double slab_v = history.slab_velocity.back();
+      s.residual_energy   = history.kinetic.back() + work - s.plastic_dissipation -
+                          s.damage_dissipation - 0.5 * slab_total_mass * slab_v * slab_v;
+    }
+    s.dissipation_cor =
+      std::sqrt(std::max(0.0, 1 - (s.plastic_dissipation + s.damage_dissipation) / e0));
     result.history = std::move(history);
   }
 } // namespace kimp::fem::internal

@@ -54,11 +54,22 @@ namespace kimp::fem::internal
     void assemble_system();
     /** Constitutive law per material id: material_laws, else linear elastic. */
     void make_laws();
+    void compute_time_step();
+    void log_line(const std::string &s) const;
+
+    // residual.cc
+    /** After the run, u (and u_r) at its end: the wall face's displacement then and its
+     *  permanent indentation (elastic unloading from the committed end state). */
+    void compute_residual_state(const Vec &u, double u_r);
+
+    // internal_force.cc
+    /** Precomputes the kernel of internal_force() (non-linear laws; after make_laws()). */
+    void setup_internal_force();
     /** f = internal force of u: K u for linear laws, else assembled from the laws' stress
      *  with the committed history (trial history written). */
     void internal_force(const Vec &u, Vec &f);
-    void compute_time_step();
-    void log_line(const std::string &s) const;
+    /** The same by an FEValues loop over the cells at every call: the kernel's reference. */
+    void internal_force_reference(const Vec &u, Vec &f);
 
     // contact_setup.cc
     void setup_contact();
@@ -180,8 +191,6 @@ namespace kimp::fem::internal
     double                internal_work_local = 0, max_dissipation_gap = 0;
     std::vector<double>   u_prev_local, f_prev_local;
     Vec                   u_ghosted, force_writable; // internal_force() of non-linear laws
-    unsigned long         n_linear_solves = 0, n_step_halvings = 0;
-    double                linear_solver_seconds = 0, linear_setup_seconds = 0;
     // Absorbing boundary: diagonal dashpot matrix C, its free owned DoFs (local index into the
     // owned range, c_i, m_i), their last u and C v, and this rank's radiated energy.
     bool                      absorbing = false;
@@ -189,5 +198,28 @@ namespace kimp::fem::internal
     std::vector<unsigned int> damped_index;
     std::vector<double>       damped_c, damped_m, damped_u_prev, damped_f_prev;
     double                    radiation_local = 0;
+    // Kernel of internal_force(): Q1 cells with 4 Gauss points; per point the 4 vertex shape
+    // gradients d/dx, then d/dy, then JxW (gradient_width values).
+    static constexpr unsigned int dofs_per_cell = 8, vertices_per_cell = 4, points_per_cell = 4;
+    static constexpr unsigned int gradient_width = 2 * vertices_per_cell + 1;
+    struct ForceCell
+    {
+      const MaterialLaw *law    = nullptr;
+      unsigned int       cell   = 0;  // active cell index (history)
+      int                lid[8] = {}; // positions in u_ghosted's local (owned + ghost) array
+    };
+    double                      wall_end_displacement = 0, permanent_wall_indentation = 0; // m
+    unsigned long               unloading_iterations = 0;
+    bool                        fast_internal_force  = false;
+    std::vector<ForceCell>      force_cells;
+    std::vector<double>         force_gradients; // per cell points_per_cell * width
+    std::vector<double>         force_local;     // by u_ghosted position
+    std::vector<int>            force_owned_lid; // position in an owned vector, or -1
+    std::vector<char>           force_constrained;
+    std::vector<std::size_t>    force_ghost_lid;
+    std::vector<Vec::size_type> force_ghost_gid;
+    std::vector<double>         force_ghost_values;
+    unsigned long               n_linear_solves = 0, n_step_halvings = 0;
+    double                      linear_solver_seconds = 0, linear_setup_seconds = 0;
   };
 } // namespace kimp::fem::internal

@@ -466,6 +466,7 @@ namespace kimp::fem::internal
     }
     slab_v_end   = prm.rigid_slab ? v_r : (slab_mass_x * v) / slab_total_mass;
     n_steps_done = n;
+    compute_residual_state(u, u_r);
   }
 
 } // namespace kimp::fem::internal

@@ -1,6 +1,6 @@
 // ImpactProblem setup: run_impact(), run() and the phases before the time loop: parameter
 // validation, mesh (rigid slab: slab cells dropped), DoFs and constraints, constitutive laws,
-// lumped mass and stiffness, internal force and the explicit stability limit.
+// lumped mass and stiffness, and the explicit stability limit.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -376,55 +376,7 @@ namespace kimp::fem::internal
                                    std::sqrt(cell->measure()));
     u_ghosted.reinit(locally_owned, locally_relevant, comm);
     force_writable.reinit(locally_owned, locally_relevant, comm, true);
-  }
-
-  void ImpactProblem::internal_force(const Vec &u, Vec &f)
-  {
-    if (linear_laws)
-    {
-      stiffness.vmult(f, u);
-      return;
-    }
-    // f = sum over cells of B^T sigma(eps(u), h) JxW (Gauss points of the stiffness).
-    u_ghosted      = u;
-    force_writable = 0;
-    const QGauss<dim>  quadrature(2);
-    FEValues<dim>      fe_values(fe, quadrature, update_gradients | update_JxW_values);
-    const unsigned int n = fe.n_dofs_per_cell();
-    Vector<double>     cell_force(n);
-    std::vector<types::global_dof_index> dof_indices(n);
-    const FEValuesExtractors::Vector     displacement(0);
-    std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
-    point_energy_local = {{0, 0, 0}};
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-      {
-        const MaterialLaw &law = *laws.at(cell->material_id());
-        const unsigned int c   = cell->active_cell_index();
-        fe_values.reinit(cell);
-        fe_values[displacement].get_function_symmetric_gradients(u_ghosted, eps);
-        cell_force = 0;
-        for (unsigned int q = 0; q < quadrature.size(); ++q)
-        {
-          const VoigtStrain strain{{eps[q][0][0], eps[q][1][1], 2 * eps[q][0][1]}};
-          const VoigtStress sigma =
-            law.stress(strain, qp_history.committed(c, q), qp_history.trial(c, q));
-          const PointOutput po = law.output(strain, qp_history.trial(c, q));
-          point_energy_local[0] += po.stored_energy * fe_values.JxW(q);
-          point_energy_local[1] += po.plastic_dissipation * fe_values.JxW(q);
-          point_energy_local[2] += po.damage_dissipation * fe_values.JxW(q);
-          for (unsigned int i = 0; i < n; ++i)
-          {
-            const auto e = fe_values[displacement].symmetric_gradient(i, q);
-            cell_force(i) +=
-              (sigma[0] * e[0][0] + sigma[1] * e[1][1] + 2 * sigma[2] * e[0][1]) * fe_values.JxW(q);
-          }
-        }
-        cell->get_dof_indices(dof_indices);
-        constraints.distribute_local_to_global(cell_force, dof_indices, force_writable);
-      }
-    force_writable.compress(VectorOperation::add);
-    f = force_writable;
+    setup_internal_force();
   }
 
   void ImpactProblem::compute_time_step()

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# Whole-process timing of `kimp fem` with inelastic materials (Mohr-Coulomb backfill, damaged
+# concrete): data/scenes/fem_inelastic.yaml (the default scene at H = 1.25 m, 2.5 cm contact
+# elements, 1 m/s) on 1 and 2 MPI ranks, and the same materials on the quick scene (rigid slab,
+# 5 cm). Prints wall and CPU time per run and the solver's steps and time per step.
+# Usage: bench/fem_inelastic.sh [BUILD_DIR (default: build)] [RUNS (default: 3)]
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="${1:-$root/build}"
+runs="${2:-3}"
+kimp="$build/kimp"
+[[ -x "$kimp" && -x "$build/kimp-fem" ]] || { echo "fem_inelastic.sh: build the target kimp (with FEM) in $build" >&2; exit 1; }
+[[ -x /usr/bin/time ]] || { echo "fem_inelastic.sh: needs /usr/bin/time (Debian package time)" >&2; exit 1; }
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+cat > "$work/quick.yaml" <<'YAML'
+# data/scenes/fem_quick.yaml (rigid slab, 5 cm) with the materials of fem_inelastic.yaml.
+wall_heights: ["1.25 m"]
+mesh: {h_contact: "5 cm", h_max: "25 cm", grading: 1.5}
+slab: {rigid: true, velocity: "1.0 m/s"}
+dynamics: {end_time: "40 ms", output_interval: "0.02 ms"}
+materials:
+  concrete: {model: damage_plasticity, f_cm: "38 MPa"}
+  soil: {model: mohr_coulomb, preset: medium_dense_sand, c: "5 kPa"}
+YAML
+
+# measure NAME RANKS SCENE: RUNS runs of `kimp fem`; one line per run.
+measure() {
+  local name="$1" ranks="$2" scene="$3"
+  for ((i = 0; i < runs; ++i)); do
+    rm -rf "$work/out"
+    local launcher=()
+    [[ "$ranks" -gt 1 ]] && launcher=(mpirun -np "$ranks")
+    /usr/bin/time -o "$work/time" -f "%e %U %S" "${launcher[@]}" "$kimp" fem "$scene" -o "$work/out" -q
+    python3 - "$name" "$work/time" "$work/out/summary.json" <<'PY'
+import json, sys
+name, time_file, summary = sys.argv[1:4]
+wall, user, sys_ = (float(x) for x in open(time_file).read().split()[-3:])
+c = json.load(open(summary))["cases"][0]
+steps = c["n_steps"]
+print(f"{name:34s} wall {wall:6.2f} s  cpu {user + sys_:6.2f} s  solver {c['wall_seconds']:6.2f} s  "
+      f"{int(steps)} steps  {1e6 * c['wall_seconds'] / steps:7.1f} us/step  "
+      f"peak {c['peak_force'] / 1e3:.6g} kN/m  COR {c['apparent_cor']:.6g}")
+PY
+  done
+}
+
+echo "kimp fem, inelastic materials, $runs runs each ($(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg))"
+measure "quick scene (rigid slab, 5 cm), 1 rank" 1 "$work/quick.yaml"
+measure "fem_inelastic.yaml, 1 rank" 1 "$root/data/scenes/fem_inelastic.yaml"
+measure "fem_inelastic.yaml, 2 ranks" 2 "$root/data/scenes/fem_inelastic.yaml"

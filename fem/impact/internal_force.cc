@@ -1,0 +1,264 @@
+// ImpactProblem internal force of non-linear laws, f = sum over cells of B^T sigma(eps(u), h) JxW:
+// a kernel over per-cell data precomputed once (DoF positions, shape gradients, JxW) with one law
+// call per batch of points, and the FEValues loop it replaces, kept as its reference.
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/vector.h>
+
+#include "fem/impact/impact_problem.h"
+
+namespace kimp::fem::internal
+{
+  namespace
+  {
+    /** Cells per law call: bounds the stack buffers of strains, stresses and energies. */
+    constexpr unsigned int max_batch_cells = 32;
+  } // namespace
+
+  void ImpactProblem::setup_internal_force()
+  {
+    force_cells.clear();
+    force_gradients.clear();
+    fast_internal_force = false;
+    if (linear_laws || prm.reference_internal_force)
+      return;
+    // The kernel assumes Q1 vector elements with dof i = component i % 2 of vertex i / 2 and
+    // homogeneous constraints without entries (Dirichlet zero); otherwise the reference path.
+    if (fe.n_dofs_per_cell() != dofs_per_cell)
+      return;
+    for (unsigned int i = 0; i < dofs_per_cell; ++i)
+      if (fe.system_to_component_index(i) != std::make_pair(i % 2, i / 2))
+        return;
+    for (const auto &line : constraints.get_lines())
+      if (!line.entries.empty())
+        return;
+
+    const QGauss<dim> quadrature(2);
+    if (quadrature.size() != points_per_cell)
+      return;
+    FEValues<dim> fe_values(fe, quadrature, update_gradients | update_JxW_values);
+    std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
+    const Epetra_BlockMap               &ghosted_map = u_ghosted.trilinos_vector().Map();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+      {
+        fe_values.reinit(cell);
+        cell->get_dof_indices(dof_indices);
+        ForceCell fc;
+        fc.law  = laws.at(cell->material_id()).get();
+        fc.cell = cell->active_cell_index();
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        {
+          fc.lid[i] = ghosted_map.LID(static_cast<int>(dof_indices[i]));
+          if (fc.lid[i] < 0)
+            return;
+        }
+        for (unsigned int q = 0; q < points_per_cell; ++q)
+        {
+          // Both components of a vertex share the scalar shape gradient: stored once.
+          std::array<double, 2 * vertices_per_cell + 1> g{};
+          for (unsigned int a = 0; a < vertices_per_cell; ++a)
+          {
+            const Tensor<1, dim> gx = fe_values.shape_grad(2 * a, q);
+            const Tensor<1, dim> gy = fe_values.shape_grad(2 * a + 1, q);
+            if (gx[0] != gy[0] || gx[1] != gy[1])
+              return;
+            g[a]                     = gx[0];
+            g[vertices_per_cell + a] = gx[1];
+          }
+          g[2 * vertices_per_cell] = fe_values.JxW(q);
+          force_gradients.insert(force_gradients.end(), g.begin(), g.end());
+        }
+        force_cells.push_back(fc);
+      }
+
+    // Positions of the ghosted vector: owned ones map into f, ghost ones go to their owner.
+    const int n_ghosted = ghosted_map.NumMyElements();
+    force_local.assign(n_ghosted, 0.0);
+    force_owned_lid.assign(n_ghosted, -1);
+    force_constrained.assign(n_ghosted, 0);
+    force_ghost_lid.clear();
+    force_ghost_gid.clear();
+    const Vec              owned_vector(locally_owned, comm);
+    const Epetra_BlockMap &owned_map = owned_vector.trilinos_vector().Map();
+    for (int k = 0; k < n_ghosted; ++k)
+    {
+      const types::global_dof_index gid = ghosted_map.GID(k);
+      force_constrained[k]              = constraints.is_constrained(gid) ? 1 : 0;
+      if (locally_owned.is_element(gid))
+        force_owned_lid[k] = owned_map.LID(static_cast<int>(gid));
+      else if (!force_constrained[k])
+      {
+        force_ghost_lid.push_back(k);
+        force_ghost_gid.push_back(gid);
+      }
+    }
+    force_ghost_values.assign(force_ghost_lid.size(), 0.0);
+    fast_internal_force = true;
+  }
+
+  void ImpactProblem::internal_force(const Vec &u, Vec &f)
+  {
+    if (linear_laws)
+    {
+      stiffness.vmult(f, u);
+      return;
+    }
+    if (!fast_internal_force)
+    {
+      internal_force_reference(u, f);
+      return;
+    }
+    // The same sums in the same order as internal_force_reference() (cells, then Gauss points,
+    // then DoFs), so that both give the same numbers; deal.II's symmetric gradient of a
+    // component-0 shape function is {gx, 0, gy / 2} and the factors 2 and 1/2 are exact.
+    u_ghosted                = u;
+    const double *ug         = u_ghosted.trilinos_vector()[0];
+    const double  zero       = 0.0;
+    double       *fl         = force_local.data();
+    const auto    n_ghosted  = force_local.size();
+    const auto    n_cells    = force_cells.size();
+    const double *gradients  = force_gradients.data();
+    const auto    cell_width = static_cast<std::size_t>(points_per_cell) * gradient_width;
+    std::fill(fl, fl + n_ghosted, zero);
+    point_energy_local = {{0, 0, 0}};
+
+    constexpr unsigned int                   n_buf = max_batch_cells * 4;
+    std::array<VoigtStrain, n_buf>           strain;
+    std::array<VoigtStress, n_buf>           stress;
+    std::array<std::array<double, 3>, n_buf> energy;
+    static_assert(points_per_cell == 4, "buffers sized for four Gauss points per cell");
+    const unsigned int n_values = qp_history.n_values();
+    for (std::size_t b0 = 0; b0 < n_cells;)
+    {
+      // A batch: consecutive cells of one law whose histories are contiguous.
+      const MaterialLaw *law = force_cells[b0].law;
+      std::size_t        b1  = b0 + 1;
+      while (b1 < n_cells && b1 - b0 < max_batch_cells && force_cells[b1].law == law &&
+             force_cells[b1].cell == force_cells[b1 - 1].cell + 1)
+        ++b1;
+      for (std::size_t k = b0; k < b1; ++k)
+      {
+        const ForceCell &fc = force_cells[k];
+        double           ue[dofs_per_cell];
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          ue[i] = ug[fc.lid[i]];
+        const double *g = gradients + k * cell_width;
+        for (unsigned int q = 0; q < points_per_cell; ++q, g += gradient_width)
+        {
+          const double *gx = g, *gy = g + vertices_per_cell;
+          double        exx = 0, eyy = 0, gxy = 0;
+          for (unsigned int a = 0; a < vertices_per_cell; ++a)
+          {
+            exx += ue[2 * a] * gx[a];
+            gxy += ue[2 * a] * gy[a];
+            eyy += ue[2 * a + 1] * gy[a];
+            gxy += ue[2 * a + 1] * gx[a];
+          }
+          strain[(k - b0) * points_per_cell + q] = {{exx, eyy, gxy}};
+        }
+      }
+      const unsigned int n_points = static_cast<unsigned int>((b1 - b0) * points_per_cell);
+      law->update_points(n_points,
+                         strain.data(),
+                         qp_history.committed(force_cells[b0].cell, 0),
+                         qp_history.trial(force_cells[b0].cell, 0),
+                         n_values,
+                         stress.data(),
+                         energy.data());
+      for (std::size_t k = b0; k < b1; ++k)
+      {
+        const ForceCell &fc                      = force_cells[k];
+        double           fe_local[dofs_per_cell] = {};
+        const double    *g                       = gradients + k * cell_width;
+        for (unsigned int q = 0; q < points_per_cell; ++q, g += gradient_width)
+        {
+          const unsigned int p  = static_cast<unsigned int>((k - b0) * points_per_cell + q);
+          const double      *gx = g, *gy = g + vertices_per_cell;
+          const double       jxw = g[2 * vertices_per_cell];
+          const VoigtStress &s   = stress[p];
+          point_energy_local[0] += energy[p][0] * jxw;
+          point_energy_local[1] += energy[p][1] * jxw;
+          point_energy_local[2] += energy[p][2] * jxw;
+          for (unsigned int a = 0; a < vertices_per_cell; ++a)
+          {
+            fe_local[2 * a] += (s[0] * gx[a] + s[2] * gy[a]) * jxw;
+            fe_local[2 * a + 1] += (s[1] * gy[a] + s[2] * gx[a]) * jxw;
+          }
+        }
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          fl[fc.lid[i]] += fe_local[i];
+      }
+      b0 = b1;
+    }
+
+    // Constrained DoFs get no force (distribute_local_to_global drops them); ghost entries are
+    // added on their owner, after which the owned sums are added (own + imported, as before).
+    double *fp = f.trilinos_vector()[0];
+    if (force_ghost_lid.empty() && Utilities::MPI::n_mpi_processes(comm) == 1)
+    {
+      for (std::size_t k = 0; k < n_ghosted; ++k)
+        if (force_owned_lid[k] >= 0)
+          fp[force_owned_lid[k]] = force_constrained[k] ? 0.0 : fl[k];
+      return;
+    }
+    for (std::size_t j = 0; j < force_ghost_lid.size(); ++j)
+      force_ghost_values[j] = fl[force_ghost_lid[j]];
+    force_writable = 0;
+    force_writable.add(force_ghost_gid.size(), force_ghost_gid.data(), force_ghost_values.data());
+    force_writable.compress(VectorOperation::add);
+    f  = force_writable;
+    fp = f.trilinos_vector()[0];
+    for (std::size_t k = 0; k < n_ghosted; ++k)
+      if (force_owned_lid[k] >= 0 && !force_constrained[k])
+        fp[force_owned_lid[k]] += fl[k];
+  }
+
+  void ImpactProblem::internal_force_reference(const Vec &u, Vec &f)
+  {
+    // f = sum over cells of B^T sigma(eps(u), h) JxW (Gauss points of the stiffness).
+    u_ghosted      = u;
+    force_writable = 0;
+    const QGauss<dim>  quadrature(2);
+    FEValues<dim>      fe_values(fe, quadrature, update_gradients | update_JxW_values);
+    const unsigned int n = fe.n_dofs_per_cell();
+    Vector<double>     cell_force(n);
+    std::vector<types::global_dof_index> dof_indices(n);
+    const FEValuesExtractors::Vector     displacement(0);
+    std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
+    point_energy_local = {{0, 0, 0}};
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+      {
+        const MaterialLaw &law = *laws.at(cell->material_id());
+        const unsigned int c   = cell->active_cell_index();
+        fe_values.reinit(cell);
+        fe_values[displacement].get_function_symmetric_gradients(u_ghosted, eps);
+        cell_force = 0;
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+        {
+          const VoigtStrain strain{{eps[q][0][0], eps[q][1][1], 2 * eps[q][0][1]}};
+          const VoigtStress sigma =
+            law.stress(strain, qp_history.committed(c, q), qp_history.trial(c, q));
+          const PointOutput po = law.output(strain, qp_history.trial(c, q));
+          point_energy_local[0] += po.stored_energy * fe_values.JxW(q);
+          point_energy_local[1] += po.plastic_dissipation * fe_values.JxW(q);
+          point_energy_local[2] += po.damage_dissipation * fe_values.JxW(q);
+          for (unsigned int i = 0; i < n; ++i)
+          {
+            const auto e = fe_values[displacement].symmetric_gradient(i, q);
+            cell_force(i) +=
+              (sigma[0] * e[0][0] + sigma[1] * e[1][1] + 2 * sigma[2] * e[0][1]) * fe_values.JxW(q);
+          }
+        }
+        cell->get_dof_indices(dof_indices);
+        constraints.distribute_local_to_global(cell_force, dof_indices, force_writable);
+      }
+    force_writable.compress(VectorOperation::add);
+    f = force_writable;
+  }
+} // namespace kimp::fem::internal
