@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <gtest/gtest.h>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "fem/inelastic_laws.h"
@@ -99,16 +100,21 @@ namespace
   /**
    * Rigid smooth strip footing of half-width b = 1 m on weightless Tresca soil (half model
    * [0, 4b] x [-3b, 0], symmetry x = 0, rollers at x = 4b, rough base), pushed down by delta;
-   * grid lines graded towards the footing edge and the surface, level m = 1, 2, 3 doubles them.
+   * grid lines graded towards the footing edge and the surface; level 1: 14 x 10 cells, level
+   * l: l times as many lines in each direction.
    */
-  StaticPlasticityParameters prandtl_problem(const SoilParameters &s, unsigned int m, double delta)
+  StaticPlasticityParameters
+  prandtl_problem(std::shared_ptr<const MaterialLaw> law, double level, double delta)
   {
     constexpr double b = 1, width = 4 * b, depth = 3 * b, tol = 1e-9;
     // Cell size ratios across each segment: 4 under the footing, 8 outside and with depth.
-    const auto grade = [&](double x0, double x1, unsigned n, double end_over_start)
-    { return graded_coordinates(x0, x1, n, std::pow(end_over_start, 1.0 / (n - 1))); };
-    const std::vector<double>  xs = join(grade(0, b, 6 * m, 1.0 / 4), grade(b, width, 8 * m, 8));
-    const std::vector<double>  ys = grade(-depth, 0, 10 * m, 1.0 / 8);
+    const auto grade = [&](double x0, double x1, double n_1, double end_over_start)
+    {
+      const auto n = static_cast<unsigned int>(std::lround(n_1 * level));
+      return graded_coordinates(x0, x1, n, std::pow(end_over_start, 1.0 / (n - 1)));
+    };
+    const std::vector<double>  xs = join(grade(0, b, 6, 1.0 / 4), grade(b, width, 8, 8));
+    const std::vector<double>  ys = grade(-depth, 0, 10, 1.0 / 8);
     StaticPlasticityParameters p;
     p.mesh       = tensor_product_mesh(xs,
                                  ys,
@@ -121,7 +127,7 @@ namespace
                                                 x < b            ? footing :
                                                                    free_surface;
                                  });
-    p.laws[0]    = std::make_shared<MohrCoulombLaw>(s);
+    p.laws[0]    = std::move(law);
     p.prescribed = {{base, true, true, 0, 0},
                     {symmetry, true, false, 0, 0},
                     {far_side, true, false, 0, 0},
@@ -161,7 +167,7 @@ namespace
   {
     constexpr double     max_ratio = 100, min_order = 1.8, asymptotic = 1e-4, floor = 1e-12;
     const SoilParameters c        = soil(10e6, 0.45, 20e3, 0, 1e9);
-    auto                 p        = prandtl_problem(c, 1, 0.05);
+    auto                 p        = prandtl_problem(std::make_shared<MohrCoulombLaw>(c), 1, 0.05);
     p.newton_tolerance            = 1e-12;
     const auto   r                = run_static_plasticity(p);
     unsigned int steps_with_pairs = 0;
@@ -252,26 +258,83 @@ namespace
     EXPECT_LT(std::abs(P[2] / P[0] - 1), mesh_spread);
   }
 
-  // Prandtl: rigid smooth strip footing on weightless Tresca soil (c = 20 kPa, E = 10 MPa,
-  // nu = 0.45), q_u = (2 + pi) c = 102.8 kPa, within 3 % on the finest of three meshes, from
-  // above and monotonically.
+  /** Bearing pressures q (Pa) of the Prandtl problem with @p law at the given mesh levels. */
+  std::vector<double> prandtl_pressures(const char                        *name,
+                                        std::shared_ptr<const MaterialLaw> law,
+                                        const std::vector<double>         &levels,
+                                        double                             exact)
+  {
+    std::vector<double> q;
+    for (const double level : levels)
+    {
+      const auto r = run_static_plasticity(prandtl_problem(law, level, 0.05));
+      print_path(name, r, exact, 3);
+      q.push_back(final_load(r, 3) / 1.0); // half-width b = 1 m
+      std::printf("level %.1f: q = %.5g Pa, exact %.5g Pa, ratio %.4f\n",
+                  level,
+                  q.back(),
+                  exact,
+                  q.back() / exact);
+    }
+    return q;
+  }
+
+  // Prandtl: rigid smooth strip footing on weightless Tresca soil (Mohr-Coulomb with phi = 0,
+  // c = 20 kPa, E = 10 MPa, nu = 0.45, no tension cut-off), q_u = (2 + pi) c = 102.8 kPa,
+  // within 3 % on the finest of three meshes, from above and monotonically.
   TEST(StaticPlasticity, PrandtlBearingCapacity)
   {
     constexpr double     tolerance = 0.03;
     const SoilParameters c         = soil(10e6, 0.45, 20e3, 0, 1e9);
     const double         exact     = (2 + pi) * c.cohesion;
-    std::vector<double>  q;
-    for (const unsigned int m : {1u, 2u, 3u})
+    expect_converges_from_above(prandtl_pressures("Prandtl, Mohr-Coulomb",
+                                                  std::make_shared<MohrCoulombLaw>(c),
+                                                  {1, 1.5, 2},
+                                                  exact),
+                                exact,
+                                tolerance);
+  }
+
+  // The same with Drucker-Prager matched to Mohr-Coulomb in plane strain (phi = 0: von Mises
+  // with sqrt(J2) = c, which in steady plane-strain flow is Tresca's t = c).
+  TEST(StaticPlasticity, PrandtlBearingCapacityDruckerPrager)
+  {
+    constexpr double     tolerance = 0.03;
+    const SoilParameters c         = soil(10e6, 0.45, 20e3, 0, 0);
+    const double         exact     = (2 + pi) * c.cohesion;
+    expect_converges_from_above(prandtl_pressures("Prandtl, Drucker-Prager",
+                                                  std::make_shared<DruckerPragerLaw>(c),
+                                                  {1, 1.5, 2},
+                                                  exact),
+                                exact,
+                                tolerance);
+  }
+} // namespace
+
+namespace
+{
+  using namespace kimp::fem;
+
+  // A step that Newton cannot finish is a NumericalError naming the load step, never a result;
+  // a mesh material without a law is bad input.
+  TEST(StaticPlasticity, NonConvergenceIsANumericalError)
+  {
+    const SoilParameters c = soil(10e6, 0.45, 20e3, 0, 1e9);
+    auto                 p = prandtl_problem(std::make_shared<MohrCoulombLaw>(c), 1, 0.05);
+    p.n_steps              = 1;
+    p.max_iterations       = 2;
+    p.max_cuts             = 0;
+    try
     {
-      const auto r = run_static_plasticity(prandtl_problem(c, m, 0.05));
-      print_path("Prandtl", r, exact, 3);
-      q.push_back(final_load(r, 3) / 1.0); // half-width b = 1 m
-      std::printf("level %u: q = %.5g Pa, exact %.5g Pa, ratio %.4f\n",
-                  m,
-                  q.back(),
-                  exact,
-                  q.back() / exact);
+      run_static_plasticity(p);
+      FAIL() << "expected NumericalError";
     }
-    expect_converges_from_above(q, exact, tolerance);
+    catch (const NumericalError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("load step 1"), std::string::npos) << e.what();
+      EXPECT_EQ(e.step, 1u);
+    }
+    p.laws.clear();
+    EXPECT_THROW(run_static_plasticity(p), std::invalid_argument);
   }
 } // namespace
