@@ -544,9 +544,11 @@ namespace kimp::fem
       // Totals and vertex displacements.
       for (unsigned int c = 0; c < cell_law_.size(); ++c)
         for (unsigned int q = 0; q < n_q; ++q)
-          out.plastic_dissipation +=
-            cell_law_[c]->output(strain(u_, c, q), history_.committed(c, q)).plastic_dissipation *
-            jxw_[c * n_q + q];
+        {
+          const PointOutput o = cell_law_[c]->output(strain(u_, c, q), history_.committed(c, q));
+          out.plastic_dissipation += o.plastic_dissipation * jxw_[c * n_q + q];
+          out.damage_dissipation += o.damage_dissipation * jxw_[c * n_q + q];
+        }
       out.vertex_displacements.assign(tria_.n_vertices(), {{0.0, 0.0}});
       for (const auto &cell : dof_handler_.active_cell_iterators())
         for (const auto v : cell->vertex_indices())

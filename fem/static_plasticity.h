@@ -136,6 +136,7 @@ namespace kimp::fem
     double       weight                 = 0; ///< total body weight, N/m
     unsigned int n_dofs                 = 0;
     double       plastic_dissipation    = 0; ///< total at the end, J/m
+    double       damage_dissipation     = 0; ///< total at the end, J/m
     /** Final displacement at each mesh vertex (m), in mesh.vertices order. */
     std::vector<std::array<double, 2>> vertex_displacements;
   };

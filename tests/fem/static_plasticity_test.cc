@@ -338,3 +338,106 @@ namespace
     EXPECT_THROW(run_static_plasticity(p), std::invalid_argument);
   }
 } // namespace
+
+namespace
+{
+  using namespace kimp::fem;
+
+  /** Concrete from f_cm = 38 MPa by fib MC2010 with nu = 0 (uniaxial states stay uniaxial). */
+  ConcreteParameters concrete()
+  {
+    ConcreteParameters c = ConcreteParameters::from_f_cm(38e6);
+    c.poisson_ratio      = 0;
+    return c;
+  }
+
+  // Uniaxial compression of one concrete element through the solver (bottom and left smooth,
+  // top pushed down to 2.5 eps_c,lim... i.e. past the peak and down the descending branch):
+  // the stress -R_y / width follows the input curve (MC2010 eq. 5.1-26, then the linear
+  // descent) at every step within 1e-9 f_cm.
+  TEST(StaticPlasticity, ConcreteUniaxialCompressionFollowsTheInputCurve)
+  {
+    constexpr double           a = 0.1, tolerance = 1e-9;
+    const ConcreteParameters   c          = concrete();
+    const double               strain_end = 1.5 * c.eps_c_lim, tol = 1e-9 * a;
+    StaticPlasticityParameters p;
+    p.mesh           = tensor_product_mesh({0, a},
+                                 {0, a},
+                                 0,
+                                 [&](double x, double y) {
+                                   return y > a - tol ? footing :
+                                                    y < tol     ? base :
+                                                    x < tol     ? symmetry :
+                                                                  free_surface;
+                                 });
+    p.laws[0]        = std::make_shared<ConcreteDamageLaw>(c);
+    p.prescribed     = {{base, false, true, 0, 0},
+                        {symmetry, true, false, 0, 0},
+                        {footing, false, true, 0, -strain_end * a}};
+    p.n_steps        = 40;
+    const auto r     = run_static_plasticity(p);
+    double     worst = 0, peak = 0;
+    for (const auto &st : r.steps)
+    {
+      const double e = st.load_factor * strain_end;
+      const double s = -st.reactions[2][1] / a;
+      worst          = std::max(worst, std::abs(s - c.compression_curve(e)));
+      peak           = std::max(peak, s);
+    }
+    std::printf("uniaxial compression: %zu steps, peak %.5g MPa (f_cm %.5g), largest "
+                "difference from the curve %.2e MPa\n",
+                r.steps.size(),
+                peak / 1e6,
+                c.f_cm / 1e6,
+                worst / 1e6);
+    EXPECT_LT(worst, tolerance * c.f_cm);
+    EXPECT_NEAR(peak / c.f_cm, 1, 1e-3); // a step lands within 0.1 % of the peak
+  }
+
+  // Crack band through the solver: a bar of square elements of size h (h = 0.1, 0.05, 0.025 m,
+  // length 0.3 m < the characteristic length E G_F / f_t^2 = 0.56 m, so no snap-back) pulled
+  // apart until the crack is open; the middle element is 1 % weaker so that the crack localises
+  // there. The dissipated energy per unit crack area (J/m per metre of bar height) is G_F within
+  // 5 % on every mesh.
+  TEST(StaticPlasticity, CrackBandDissipatesTheFractureEnergyOnEveryMesh)
+  {
+    constexpr double         length = 0.3, tolerance = 0.05;
+    const ConcreteParameters c    = concrete();
+    ConcreteParameters       weak = c;
+    weak.f_ctm                    = 0.99 * c.f_ctm;
+    for (const unsigned int n : {3u, 6u, 12u})
+    {
+      const double               h = length / n, tol = 1e-9 * h;
+      StaticPlasticityParameters p;
+      p.mesh                       = tensor_product_mesh(uniform(0, length, n),
+                                   {0, h},
+                                   0,
+                                   [&](double x, double y) {
+                                     return x < tol          ? symmetry :
+                                                                  x > length - tol ? wall :
+                                                                  y < tol          ? base :
+                                                                                     free_surface;
+                                   });
+      p.mesh.cells[n / 2].material = 1;
+      p.laws[0]                    = std::make_shared<ConcreteDamageLaw>(c);
+      p.laws[1]                    = std::make_shared<ConcreteDamageLaw>(weak);
+      // Opened to 10 x the crack's characteristic opening G_F / f_t (the rest of the energy
+      // < 1e-4 G_F).
+      const double opening = 10 * c.fracture_energy / c.f_ctm;
+      p.prescribed         = {{base, false, true, 0, 0},
+                              {symmetry, true, false, 0, 0},
+                              {wall, true, false, opening, 0}};
+      p.n_steps            = 200;
+      p.max_iterations     = 200;
+      const auto   r       = run_static_plasticity(p);
+      const double g_f     = r.damage_dissipation / h;
+      std::printf("crack band h = %.4f m: dissipation %.5g N/m (G_F %.5g), end stress %.3g "
+                  "MPa\n",
+                  h,
+                  g_f,
+                  c.fracture_energy,
+                  r.steps.back().reactions[2][0] / h / 1e6);
+      EXPECT_NEAR(g_f / c.fracture_energy, 1, tolerance) << "h = " << h;
+    }
+  }
+} // namespace
