@@ -119,6 +119,27 @@ namespace kimp::fem
       return x;
     }
 
+    /** Central difference of the law's stress at @p e from the committed history @p h. */
+    VoigtTangent difference_tangent(const MaterialLaw   &law,
+                                    const VoigtStrain   &e,
+                                    const double        *h,
+                                    std::vector<double> &scratch)
+    {
+      const double d = 1e-7 * std::max({std::abs(e[0]), std::abs(e[1]), std::abs(e[2]), 1e-6});
+      VoigtTangent t{};
+      for (unsigned int j = 0; j < 3; ++j)
+      {
+        VoigtStrain ep = e, em = e;
+        ep[j] += d;
+        em[j] -= d;
+        const VoigtStress sp = law.stress(ep, h, scratch.data());
+        const VoigtStress sm = law.stress(em, h, scratch.data());
+        for (unsigned int i = 0; i < 3; ++i)
+          t[3 * i + j] = (sp[i] - sm[i]) / (2 * d);
+      }
+      return t;
+    }
+
     class StaticProblem
     {
     public:
@@ -129,11 +150,13 @@ namespace kimp::fem
       /** r = f_int(u) - f_ext at every DoF; writes the trial history. */
       void residual(const Vector<double> &u, Vector<double> &r);
       /** Tangent at u (committed history) into matrix_; rhs = -r - K lift at the free DoFs. */
-      void                               assemble(const Vector<double> &u,
-                                                  const Vector<double> &r,
-                                                  const Vector<double> &lift,
-                                                  Vector<double>       &rhs);
-      double                             relative_residual(const Vector<double> &r) const;
+      void   assemble(const Vector<double> &u,
+                      const Vector<double> &r,
+                      const Vector<double> &lift,
+                      Vector<double>       &rhs);
+      double relative_residual(const Vector<double> &r) const;
+      /** |r| over the prescribed DoFs (N/m). */
+      double                             fixed_norm(const Vector<double> &r) const;
       std::vector<std::array<double, 2>> reactions(const Vector<double> &r) const;
       /** Newton from u (residual r) with the prescribed increment lift; false if it fails. */
       bool        newton(Vector<double>       &u,
@@ -148,6 +171,7 @@ namespace kimp::fem
       FESystem<dim>                        fe_;
       DoFHandler<dim>                      dof_handler_;
       std::vector<const MaterialLaw *>     cell_law_;
+      std::vector<bool>                    cell_fd_;     // numerical tangent per cell
       std::vector<types::global_dof_index> cell_dofs_;   // n_cells x n_d
       std::vector<double>                  bbar_;        // n_cells x n_q x n_d x 3
       std::vector<double>                  jxw_;         // n_cells x n_q
@@ -159,9 +183,10 @@ namespace kimp::fem
       SparsityPattern                      pattern_;
       SparseMatrix<double>                 matrix_;
       QuadraturePointHistory               history_;
-      double                               weight_ = 0;
-      unsigned long                        step_   = 0;
-      std::ostream                        *log_    = nullptr;
+      double                               weight_      = 0;
+      double                               force_scale_ = 0; // largest converged |reactions|
+      unsigned long                        step_        = 0;
+      std::ostream                        *log_         = nullptr;
     };
 
     StaticProblem::StaticProblem(const StaticPlasticityParameters &p)
@@ -255,6 +280,7 @@ namespace kimp::fem
         n_history = std::max(n_history, law->n_history());
       history_.reinit(n_cells, n_q, n_history);
       cell_law_.resize(n_cells);
+      cell_fd_.resize(n_cells);
       cell_dofs_.resize(n_cells * n_d);
       bbar_.resize(n_cells * n_q * n_d * 3);
       jxw_.resize(n_cells * n_q);
@@ -274,6 +300,7 @@ namespace kimp::fem
         std::copy(dofs.begin(), dofs.end(), cell_dofs_.begin() + c * n_d);
         const MaterialLaw &law = *p.laws.at(cell->material_id());
         cell_law_[c]           = &law;
+        cell_fd_[c]            = p.numerical_tangent.count(cell->material_id()) > 0;
         history_.initialize_cell(c, law, std::sqrt(cell->measure()));
         const auto   rho_it = p.densities.find(cell->material_id());
         const double gamma  = (rho_it == p.densities.end() ? 0.0 : rho_it->second) * p.gravity;
@@ -362,6 +389,7 @@ namespace kimp::fem
     {
       matrix_ = 0;
       rhs.reinit(u.size());
+      std::vector<double>                  scratch(history_.n_values());
       FullMatrix<double>                   k(n_d, n_d);
       Vector<double>                       k_lift(n_d);
       std::vector<types::global_dof_index> dofs(n_d);
@@ -371,9 +399,12 @@ namespace kimp::fem
         std::copy(&cell_dofs_[c * n_d], &cell_dofs_[c * n_d] + n_d, dofs.begin());
         for (unsigned int q = 0; q < n_q; ++q)
         {
-          const VoigtTangent t = cell_law_[c]->tangent(strain(u, c, q), history_.committed(c, q));
-          const double      *B = &bbar_[(c * n_q + q) * n_d * 3];
-          const double       w = jxw_[c * n_q + q];
+          const VoigtStrain  e = strain(u, c, q);
+          const VoigtTangent t =
+            cell_fd_[c] ? difference_tangent(*cell_law_[c], e, history_.committed(c, q), scratch) :
+                          cell_law_[c]->tangent(e, history_.committed(c, q));
+          const double *B = &bbar_[(c * n_q + q) * n_d * 3];
+          const double  w = jxw_[c * n_q + q];
           for (unsigned int j = 0; j < n_d; ++j)
           {
             // t B_j, then B_i . (t B_j)
@@ -402,10 +433,21 @@ namespace kimp::fem
       double free = 0, fixed = 0;
       for (unsigned int d = 0; d < r.size(); ++d)
         (governed_by_[d] >= 0 ? fixed : free) += r[d] * r[d];
-      const double reference = std::max(f_ext_.l2_norm(), std::sqrt(fixed));
+      // The largest reaction of the run so far keeps the reference when a softening body unloads
+      // (its reactions fall to zero while round-off stays at the scale of the peak force).
+      const double reference = std::max({f_ext_.l2_norm(), std::sqrt(fixed), force_scale_});
       if (free == 0)
         return 0;
       return reference > 0 ? std::sqrt(free) / reference : std::numeric_limits<double>::infinity();
+    }
+
+    double StaticProblem::fixed_norm(const Vector<double> &r) const
+    {
+      double fixed = 0;
+      for (unsigned int d = 0; d < r.size(); ++d)
+        if (governed_by_[d] >= 0)
+          fixed += r[d] * r[d];
+      return std::sqrt(fixed);
     }
 
     std::vector<std::array<double, 2>> StaticProblem::reactions(const Vector<double> &r) const
@@ -478,6 +520,7 @@ namespace kimp::fem
       {
         history_.commit();
         step.reactions = reactions(r_);
+        force_scale_   = std::max(force_scale_, fixed_norm(r_));
         if (log_ != nullptr)
         {
           *log_ << "static step " << out.steps.size() << ": load factor " << b << ", "

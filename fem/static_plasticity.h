@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <ostream>
+#include <set>
 #include <vector>
 
 #include "fem/impact.h"
@@ -95,6 +96,12 @@ namespace kimp::fem
      */
     InitialStress                       initial_stress;
     std::vector<PrescribedDisplacement> prescribed;
+    /**
+     * Material ids whose tangent is taken as a central difference of the law's stress (the
+     * algorithmic tangent) instead of MaterialLaw::tangent(): for laws whose tangent() is only a
+     * secant (ConcreteDamageLaw), with which Newton converges linearly and stalls in softening.
+     */
+    std::set<unsigned int> numerical_tangent;
     /** Load steps from load factor 0 to 1 (> 0), after the equilibrium step 0. */
     unsigned int n_steps = 20;
     /**
