@@ -352,9 +352,9 @@ namespace
   }
 
   // Uniaxial compression of one concrete element through the solver (bottom and left smooth,
-  // top pushed down to 2.5 eps_c,lim... i.e. past the peak and down the descending branch):
-  // the stress -R_y / width follows the input curve (MC2010 eq. 5.1-26, then the linear
-  // descent) at every step within 1e-9 f_cm.
+  // top pushed down to 1.5 eps_c,lim in 40 steps: past the peak and down the descending
+  // branch): the stress -R_y / width follows the input curve (MC2010 eq. 5.1-26, then the linear
+  // descent) at every step within 1e-9 f_cm; a step lands within 0.1 % of the peak f_cm.
   TEST(StaticPlasticity, ConcreteUniaxialCompressionFollowsTheInputCurve)
   {
     constexpr double           a = 0.1, tolerance = 1e-9;
