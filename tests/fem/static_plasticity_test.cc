@@ -226,6 +226,30 @@ namespace
     expect_converges_from_above(P, exact, tolerance);
   }
 
+  // The same with Drucker-Prager matched to Mohr-Coulomb in plane strain (phi = 0: von Mises,
+  // sqrt(J2) = c, Tresca's t = c in steady plane-strain flow).
+  TEST(StaticPlasticity, RankinePassivePressureOfCohesiveSoilDruckerPrager)
+  {
+    constexpr double     H = 2, tolerance = 0.05;
+    const SoilParameters c     = soil(5e6, 0.45, 20e3, 0, 0);
+    const double         exact = 0.5 * c.density * g * H * H + 2 * c.cohesion * H;
+    std::vector<double>  P;
+    for (const unsigned int n : {4u, 8u, 16u})
+    {
+      auto p       = rankine_problem(c, H, 1.0, 0.03 * H, n, 10, true, 3);
+      p.laws[0]    = std::make_shared<DruckerPragerLaw>(c);
+      const auto r = run_static_plasticity(p);
+      print_path("Rankine, Drucker-Prager, phi = 0, c = 20 kPa", r, exact, 2);
+      P.push_back(final_load(r, 2));
+      std::printf("n = %u: P = %.5g N/m, exact %.5g N/m, ratio %.4f\n",
+                  n,
+                  P.back(),
+                  exact,
+                  P.back() / exact);
+    }
+    expect_converges_from_above(P, exact, tolerance);
+  }
+
   // Rankine passive thrust of sand (phi = 30 deg, c = 0, associated psi = phi, E = 20 MPa,
   // nu = 1/3 so that the elastic K0 = nu / (1 - nu) equals Jaky's 1 - sin phi = 0.5 and the
   // initial sigma_zz is K0 gamma z too), smooth wall H = 2 m on a smooth base, L = 4 H: the whole
