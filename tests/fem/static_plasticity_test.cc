@@ -1,6 +1,7 @@
 // Static inelastic solver (fem/static_plasticity.h) against closed forms: quadratic Newton
 // convergence with the consistent tangent, Rankine passive earth pressure on a smooth rigid wall
-// (Mohr-Coulomb, with gravity and a K0 initial stress) and Prandtl's strip footing on Tresca soil.
+// (gravity, K0 initial stress), Prandtl's strip footing on Tresca soil, concrete in compression
+// and the crack band through the solver. Numbers and set-ups: docs/validation.md, physics.md §6.
 #include <cmath>
 #include <cstdio>
 #include <gtest/gtest.h>
@@ -204,7 +205,7 @@ namespace
   // Rankine passive thrust of clay (phi = 0, c = 20 kPa, E = 5 MPa, nu = 0.45, gravity with
   // K0 = 1 - sin 0 = 1), smooth wall H = 2 m, rough base, L = 3 H (the Rankine wedge reaches
   // H / tan 45 deg = H behind the wall). P_p = gamma H^2 / 2 + 2 c H = 113.4 kN/m; the displacement
-  // FE solution converges from above; 5 % on the finest mesh (the tolerance).
+  // FE solution converges from above; within 5 % on the finest mesh (the required tolerance).
   TEST(StaticPlasticity, RankinePassivePressureOfCohesiveSoil)
   {
     constexpr double     H = 2, tolerance = 0.05;
