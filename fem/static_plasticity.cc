@@ -1,0 +1,611 @@
+// Static plane-strain plasticity (see static_plasticity.h), one cohesive algorithm: B-bar
+// operators precomputed per Gauss point, residual and consistent-tangent assembly, full Newton
+// with a direct solve, load steps halved when Newton fails.
+#include "fem/static_plasticity.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparse_direct.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/vector.h>
+
+namespace kimp::fem
+{
+  PlaneMesh tensor_product_mesh(const std::vector<double>                         &xs,
+                                const std::vector<double>                         &ys,
+                                unsigned int                                       material,
+                                const std::function<unsigned int(double, double)> &boundary_id)
+  {
+    const auto increasing = [](const std::vector<double> &v)
+    {
+      for (std::size_t i = 1; i < v.size(); ++i)
+        if (!(v[i] > v[i - 1]))
+          return false;
+      return v.size() >= 2;
+    };
+    if (!increasing(xs) || !increasing(ys))
+      throw std::invalid_argument("tensor_product_mesh: xs and ys must hold >= 2 strictly "
+                                  "increasing coordinates");
+    const unsigned int nx = xs.size() - 1, ny = ys.size() - 1;
+    const auto         v = [&](unsigned int i, unsigned int j) { return j * (nx + 1) + i; };
+    PlaneMesh          m;
+    for (unsigned int j = 0; j <= ny; ++j)
+      for (unsigned int i = 0; i <= nx; ++i)
+        m.vertices.push_back({{xs[i], ys[j]}});
+    for (unsigned int j = 0; j < ny; ++j)
+      for (unsigned int i = 0; i < nx; ++i)
+        m.cells.push_back({{{v(i, j), v(i + 1, j), v(i, j + 1), v(i + 1, j + 1)}}, material});
+    const auto edge = [&](unsigned int a, unsigned int b)
+    {
+      const double x = 0.5 * (m.vertices[a][0] + m.vertices[b][0]);
+      const double y = 0.5 * (m.vertices[a][1] + m.vertices[b][1]);
+      m.boundary_edges.push_back({{{a, b}}, boundary_id ? boundary_id(x, y) : 0u});
+    };
+    for (unsigned int i = 0; i < nx; ++i)
+    {
+      edge(v(i, 0), v(i + 1, 0));
+      edge(v(i, ny), v(i + 1, ny));
+    }
+    for (unsigned int j = 0; j < ny; ++j)
+    {
+      edge(v(0, j), v(0, j + 1));
+      edge(v(nx, j), v(nx, j + 1));
+    }
+    return m;
+  }
+
+  std::vector<double> graded_coordinates(double a, double b, unsigned int n, double ratio)
+  {
+    if (!(b > a) || n == 0 || !(ratio > 0))
+      throw std::invalid_argument("graded_coordinates: need b > a, n > 0, ratio > 0");
+    std::vector<double> x(n + 1);
+    const double        h0 =
+      ratio == 1 ? (b - a) / n : (b - a) * (1 - ratio) / (1 - std::pow(ratio, double(n)));
+    x[0] = a;
+    for (unsigned int k = 0; k < n; ++k)
+      x[k + 1] = x[k] + h0 * std::pow(ratio, double(k));
+    x[n] = b;
+    return x;
+  }
+
+  InitialStress geostatic_stress(double surface_y, double unit_weight, double k0)
+  {
+    return [=](double, double y) -> VoigtStress
+    {
+      const double z = std::max(0.0, surface_y - y);
+      return {{-k0 * unit_weight * z, -unit_weight * z, 0.0}};
+    };
+  }
+
+  namespace
+  {
+    using namespace dealii;
+    constexpr int          dim = 2;
+    constexpr unsigned int n_q = 4, n_d = 8; // Q1: 2 x 2 Gauss points, 8 DoFs per cell
+
+    /** Solves the 3 x 3 system d x = b (row-major) by Cramer's rule. */
+    VoigtStrain solve3(const VoigtTangent &d, const VoigtStress &b)
+    {
+      const auto det = [](const std::array<double, 9> &m)
+      {
+        return m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
+               m[2] * (m[3] * m[7] - m[4] * m[6]);
+      };
+      const double d0 = det(d);
+      if (!(std::abs(d0) > 0))
+        throw std::invalid_argument("initial stress: the law's virgin tangent is singular");
+      VoigtStrain x{};
+      for (unsigned int c = 0; c < 3; ++c)
+      {
+        std::array<double, 9> m = d;
+        for (unsigned int r = 0; r < 3; ++r)
+          m[3 * r + c] = b[r];
+        x[c] = det(m) / d0;
+      }
+      return x;
+    }
+
+    /** Central difference of the law's stress at @p e from the committed history @p h. */
+    VoigtTangent difference_tangent(const MaterialLaw   &law,
+                                    const VoigtStrain   &e,
+                                    const double        *h,
+                                    std::vector<double> &scratch)
+    {
+      const double d = 1e-7 * std::max({std::abs(e[0]), std::abs(e[1]), std::abs(e[2]), 1e-6});
+      VoigtTangent t{};
+      for (unsigned int j = 0; j < 3; ++j)
+      {
+        VoigtStrain ep = e, em = e;
+        ep[j] += d;
+        em[j] -= d;
+        const VoigtStress sp = law.stress(ep, h, scratch.data());
+        const VoigtStress sm = law.stress(em, h, scratch.data());
+        for (unsigned int i = 0; i < 3; ++i)
+          t[3 * i + j] = (sp[i] - sm[i]) / (2 * d);
+      }
+      return t;
+    }
+
+    class StaticProblem
+    {
+    public:
+      explicit StaticProblem(const StaticPlasticityParameters &p);
+      StaticPlasticityResult run(std::ostream *log);
+
+    private:
+      /** r = f_int(u) - f_ext at every DoF; writes the trial history. */
+      void residual(const Vector<double> &u, Vector<double> &r);
+      /** Tangent at u (committed history) into matrix_; rhs = -r - K lift at the free DoFs. */
+      void   assemble(const Vector<double> &u,
+                      const Vector<double> &r,
+                      const Vector<double> &lift,
+                      Vector<double>       &rhs);
+      double relative_residual(const Vector<double> &r) const;
+      /** |r| over the prescribed DoFs (N/m). */
+      double                             fixed_norm(const Vector<double> &r) const;
+      std::vector<std::array<double, 2>> reactions(const Vector<double> &r) const;
+      /** Newton from u (residual r) with the prescribed increment lift; false if it fails. */
+      bool        newton(Vector<double>       &u,
+                         Vector<double>       &r,
+                         const Vector<double> &lift,
+                         std::vector<double>  &residuals);
+      void        advance(double a, double b, unsigned int depth, StaticPlasticityResult &out);
+      VoigtStrain strain(const Vector<double> &u, unsigned int c, unsigned int q) const;
+
+      const StaticPlasticityParameters    &p_;
+      Triangulation<dim>                   tria_;
+      FESystem<dim>                        fe_;
+      DoFHandler<dim>                      dof_handler_;
+      std::vector<const MaterialLaw *>     cell_law_;
+      std::vector<bool>                    cell_fd_;     // numerical tangent per cell
+      std::vector<types::global_dof_index> cell_dofs_;   // n_cells x n_d
+      std::vector<double>                  bbar_;        // n_cells x n_q x n_d x 3
+      std::vector<double>                  jxw_;         // n_cells x n_q
+      std::vector<VoigtStrain>             eps0_;        // n_cells x n_q
+      std::vector<int>                     governed_by_; // per DoF: entry or -1
+      std::vector<unsigned int>            component_;   // per DoF
+      Vector<double>                       f_ext_, target_, u_, r_;
+      AffineConstraints<double>            constraints_;
+      SparsityPattern                      pattern_;
+      SparseMatrix<double>                 matrix_;
+      QuadraturePointHistory               history_;
+      double                               weight_      = 0;
+      double                               force_scale_ = 0; // largest converged |reactions|
+      unsigned long                        step_        = 0;
+      std::ostream                        *log_         = nullptr;
+    };
+
+    StaticProblem::StaticProblem(const StaticPlasticityParameters &p)
+      : p_(p)
+      , fe_(FE_Q<dim>(1), dim)
+    {
+      const auto bad = [](const std::string &what) { throw std::invalid_argument(what); };
+      if (p.mesh.cells.empty())
+        bad("static plasticity: the mesh has no cells");
+      if (p.n_steps == 0 || !(p.newton_tolerance > 0) || p.max_iterations == 0)
+        bad("static plasticity: n_steps, newton_tolerance and max_iterations must be > 0");
+      if (!(p.gravity >= 0))
+        bad("static plasticity: gravity = " + std::to_string(p.gravity) + " (must be >= 0)");
+      for (const auto &[id, rho] : p.densities)
+        if (!(rho >= 0))
+          bad("static plasticity: density of material " + std::to_string(id) + " = " +
+              std::to_string(rho) + " (must be >= 0)");
+
+      // Mesh.
+      std::vector<Point<dim>> vertices;
+      for (const auto &v : p.mesh.vertices)
+        vertices.emplace_back(v[0], v[1]);
+      std::vector<CellData<dim>> cells(p.mesh.cells.size());
+      for (std::size_t c = 0; c < cells.size(); ++c)
+      {
+        const auto &mc = p.mesh.cells[c];
+        for (unsigned int k = 0; k < 4; ++k)
+          if (mc.vertices[k] >= vertices.size())
+            bad("static plasticity: cell " + std::to_string(c) + " names vertex " +
+                std::to_string(mc.vertices[k]) + " of " + std::to_string(vertices.size()));
+        cells[c].vertices    = {mc.vertices[0], mc.vertices[1], mc.vertices[2], mc.vertices[3]};
+        cells[c].material_id = mc.material;
+        const auto it        = p.laws.find(mc.material);
+        if (it == p.laws.end() || !it->second)
+          bad("static plasticity: no material law for material id " + std::to_string(mc.material));
+      }
+      SubCellData boundary;
+      for (const auto &e : p.mesh.boundary_edges)
+      {
+        CellData<1> line;
+        line.vertices    = {e.vertices[0], e.vertices[1]};
+        line.boundary_id = static_cast<types::boundary_id>(e.boundary);
+        boundary.boundary_lines.push_back(line);
+      }
+      tria_.create_triangulation(vertices, cells, boundary);
+      dof_handler_.reinit(tria_);
+      dof_handler_.distribute_dofs(fe_);
+      const unsigned int n_dofs = dof_handler_.n_dofs(), n_cells = tria_.n_active_cells();
+
+      // Prescribed DoFs: the later entry governs a shared DoF.
+      governed_by_.assign(n_dofs, -1);
+      component_.assign(n_dofs, 0);
+      target_.reinit(n_dofs);
+      std::vector<types::global_dof_index> face_dofs(fe_.n_dofs_per_face());
+      for (std::size_t e = 0; e < p.prescribed.size(); ++e)
+      {
+        const auto &pd    = p.prescribed[e];
+        bool        found = false;
+        for (const auto &cell : dof_handler_.active_cell_iterators())
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == pd.boundary_id)
+            {
+              found = true;
+              cell->face(f)->get_dof_indices(face_dofs);
+              for (unsigned int i = 0; i < face_dofs.size(); ++i)
+              {
+                const unsigned int comp = fe_.face_system_to_component_index(i).first;
+                if ((comp == 0 && pd.x) || (comp == 1 && pd.y))
+                {
+                  governed_by_[face_dofs[i]] = static_cast<int>(e);
+                  target_[face_dofs[i]]      = comp == 0 ? pd.ux : pd.uy;
+                }
+              }
+            }
+        if (!found)
+          bad("static plasticity: prescribed displacement on boundary id " +
+              std::to_string(pd.boundary_id) + ", which has no edge in the mesh");
+      }
+      for (unsigned int d = 0; d < n_dofs; ++d)
+        if (governed_by_[d] >= 0)
+          constraints_.add_line(d);
+      constraints_.close();
+      DynamicSparsityPattern dsp(n_dofs);
+      DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints_, false);
+      pattern_.copy_from(dsp);
+      matrix_.reinit(pattern_);
+
+      // Per Gauss point: B-bar (Voigt), JxW, eigenstrain of the initial stress; body force.
+      unsigned int n_history = 0;
+      for (const auto &[id, law] : p.laws)
+        n_history = std::max(n_history, law->n_history());
+      history_.reinit(n_cells, n_q, n_history);
+      cell_law_.resize(n_cells);
+      cell_fd_.resize(n_cells);
+      cell_dofs_.resize(n_cells * n_d);
+      bbar_.resize(n_cells * n_q * n_d * 3);
+      jxw_.resize(n_cells * n_q);
+      eps0_.assign(n_cells * n_q, VoigtStrain{});
+      f_ext_.reinit(n_dofs);
+      const QGauss<dim>                    quadrature(2);
+      FEValues<dim>                        fv(fe_,
+                       quadrature,
+                       update_values | update_gradients | update_JxW_values |
+                         update_quadrature_points);
+      std::vector<types::global_dof_index> dofs(n_d);
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+      {
+        const unsigned int c = cell->active_cell_index();
+        fv.reinit(cell);
+        cell->get_dof_indices(dofs);
+        std::copy(dofs.begin(), dofs.end(), cell_dofs_.begin() + c * n_d);
+        const MaterialLaw &law = *p.laws.at(cell->material_id());
+        cell_law_[c]           = &law;
+        cell_fd_[c]            = p.numerical_tangent.count(cell->material_id()) > 0;
+        history_.initialize_cell(c, law, std::sqrt(cell->measure()));
+        const auto   rho_it = p.densities.find(cell->material_id());
+        const double gamma  = (rho_it == p.densities.end() ? 0.0 : rho_it->second) * p.gravity;
+        double       div[n_q][n_d], mean_div[n_d] = {}, area = 0;
+        for (unsigned int q = 0; q < n_q; ++q)
+        {
+          const double w    = fv.JxW(q);
+          jxw_[c * n_q + q] = w;
+          area += w;
+          weight_ += gamma * w;
+          double *B = &bbar_[(c * n_q + q) * n_d * 3];
+          for (unsigned int i = 0; i < n_d; ++i)
+          {
+            const unsigned int comp = fe_.system_to_component_index(i).first;
+            component_[dofs[i]]     = comp;
+            const auto g            = fv.shape_grad_component(i, q, comp);
+            B[3 * i + 0]            = comp == 0 ? g[0] : 0.0;
+            B[3 * i + 1]            = comp == 1 ? g[1] : 0.0;
+            B[3 * i + 2]            = comp == 0 ? g[1] : g[0];
+            div[q][i]               = g[comp];
+            mean_div[i] += g[comp] * w;
+            if (comp == 1)
+              f_ext_[dofs[i]] -= gamma * fv.shape_value_component(i, q, comp) * w;
+          }
+          if (p.initial_stress)
+          {
+            const Point<dim> x = fv.quadrature_point(q);
+            eps0_[c * n_q + q] = solve3(law.tangent(VoigtStrain{}, history_.committed(c, q)),
+                                        p.initial_stress(x[0], x[1]));
+          }
+        }
+        if (p.bbar)
+          for (unsigned int q = 0; q < n_q; ++q)
+          {
+            double *B = &bbar_[(c * n_q + q) * n_d * 3];
+            for (unsigned int i = 0; i < n_d; ++i)
+            {
+              const double shift = 0.5 * (mean_div[i] / area - div[q][i]);
+              B[3 * i + 0] += shift;
+              B[3 * i + 1] += shift;
+            }
+          }
+      }
+      u_.reinit(n_dofs);
+      r_.reinit(n_dofs);
+    }
+
+    VoigtStrain StaticProblem::strain(const Vector<double> &u, unsigned int c, unsigned int q) const
+    {
+      VoigtStrain                    e    = eps0_[c * n_q + q];
+      const double                  *B    = &bbar_[(c * n_q + q) * n_d * 3];
+      const types::global_dof_index *dofs = &cell_dofs_[c * n_d];
+      for (unsigned int i = 0; i < n_d; ++i)
+      {
+        const double ui = u[dofs[i]];
+        e[0] += B[3 * i] * ui;
+        e[1] += B[3 * i + 1] * ui;
+        e[2] += B[3 * i + 2] * ui;
+      }
+      return e;
+    }
+
+    void StaticProblem::residual(const Vector<double> &u, Vector<double> &r)
+    {
+      r = f_ext_;
+      r *= -1.0;
+      for (unsigned int c = 0; c < cell_law_.size(); ++c)
+      {
+        const types::global_dof_index *dofs = &cell_dofs_[c * n_d];
+        for (unsigned int q = 0; q < n_q; ++q)
+        {
+          const VoigtStress s =
+            cell_law_[c]->stress(strain(u, c, q), history_.committed(c, q), history_.trial(c, q));
+          const double *B = &bbar_[(c * n_q + q) * n_d * 3];
+          const double  w = jxw_[c * n_q + q];
+          for (unsigned int i = 0; i < n_d; ++i)
+            r[dofs[i]] += (B[3 * i] * s[0] + B[3 * i + 1] * s[1] + B[3 * i + 2] * s[2]) * w;
+        }
+      }
+    }
+
+    void StaticProblem::assemble(const Vector<double> &u,
+                                 const Vector<double> &r,
+                                 const Vector<double> &lift,
+                                 Vector<double>       &rhs)
+    {
+      matrix_ = 0;
+      rhs.reinit(u.size());
+      std::vector<double>                  scratch(history_.n_values());
+      FullMatrix<double>                   k(n_d, n_d);
+      Vector<double>                       k_lift(n_d);
+      std::vector<types::global_dof_index> dofs(n_d);
+      for (unsigned int c = 0; c < cell_law_.size(); ++c)
+      {
+        k = 0;
+        std::copy(&cell_dofs_[c * n_d], &cell_dofs_[c * n_d] + n_d, dofs.begin());
+        for (unsigned int q = 0; q < n_q; ++q)
+        {
+          const VoigtStrain  e = strain(u, c, q);
+          const VoigtTangent t =
+            cell_fd_[c] ? difference_tangent(*cell_law_[c], e, history_.committed(c, q), scratch) :
+                          cell_law_[c]->tangent(e, history_.committed(c, q));
+          const double *B = &bbar_[(c * n_q + q) * n_d * 3];
+          const double  w = jxw_[c * n_q + q];
+          for (unsigned int j = 0; j < n_d; ++j)
+          {
+            // t B_j, then B_i . (t B_j)
+            const double *bj = B + 3 * j;
+            double        tb[3];
+            for (unsigned int a = 0; a < 3; ++a)
+              tb[a] = t[3 * a] * bj[0] + t[3 * a + 1] * bj[1] + t[3 * a + 2] * bj[2];
+            for (unsigned int i = 0; i < n_d; ++i)
+              k(i, j) += (B[3 * i] * tb[0] + B[3 * i + 1] * tb[1] + B[3 * i + 2] * tb[2]) * w;
+          }
+        }
+        for (unsigned int i = 0; i < n_d; ++i)
+        {
+          k_lift[i] = 0;
+          for (unsigned int j = 0; j < n_d; ++j)
+            k_lift[i] -= k(i, j) * lift[dofs[j]];
+        }
+        constraints_.distribute_local_to_global(k, k_lift, dofs, matrix_, rhs);
+      }
+      for (unsigned int d = 0; d < rhs.size(); ++d)
+        rhs[d] = governed_by_[d] >= 0 ? 0.0 : rhs[d] - r[d];
+    }
+
+    double StaticProblem::relative_residual(const Vector<double> &r) const
+    {
+      double free = 0, fixed = 0;
+      for (unsigned int d = 0; d < r.size(); ++d)
+        (governed_by_[d] >= 0 ? fixed : free) += r[d] * r[d];
+      // The largest reaction of the run so far keeps the reference when a softening body unloads
+      // (its reactions fall to zero while round-off stays at the scale of the peak force).
+      const double reference = std::max({f_ext_.l2_norm(), std::sqrt(fixed), force_scale_});
+      if (free == 0)
+        return 0;
+      return reference > 0 ? std::sqrt(free) / reference : std::numeric_limits<double>::infinity();
+    }
+
+    double StaticProblem::fixed_norm(const Vector<double> &r) const
+    {
+      double fixed = 0;
+      for (unsigned int d = 0; d < r.size(); ++d)
+        if (governed_by_[d] >= 0)
+          fixed += r[d] * r[d];
+      return std::sqrt(fixed);
+    }
+
+    std::vector<std::array<double, 2>> StaticProblem::reactions(const Vector<double> &r) const
+    {
+      std::vector<std::array<double, 2>> out(p_.prescribed.size(), {{0.0, 0.0}});
+      for (unsigned int d = 0; d < r.size(); ++d)
+        if (governed_by_[d] >= 0)
+          out[governed_by_[d]][component_[d]] += r[d];
+      return out;
+    }
+
+    bool StaticProblem::newton(Vector<double>       &u,
+                               Vector<double>       &r,
+                               const Vector<double> &lift,
+                               std::vector<double>  &residuals)
+    {
+      Vector<double>       rhs, du(u.size());
+      const Vector<double> zero(u.size());
+      try
+      {
+        for (unsigned int k = 0; k < p_.max_iterations; ++k)
+        {
+          const Vector<double> &l = k == 0 ? lift : zero;
+          assemble(u, r, l, rhs);
+          SparseDirectUMFPACK solver;
+          solver.initialize(matrix_);
+          solver.vmult(du, rhs);
+          // Backtracking on the residual norm: full steps near the solution (quadratic rate),
+          // shorter ones while the active sets of the return mappings still switch.
+          const Vector<double> u0 = u;
+          const double         previous =
+            k == 0 ? std::numeric_limits<double>::infinity() : residuals.back();
+          double rel = 0;
+          for (unsigned int cut = 0;; ++cut)
+          {
+            const double alpha = std::pow(0.5, cut);
+            u                  = u0;
+            u.add(alpha, du);
+            u += l;
+            residual(u, r);
+            rel = relative_residual(r);
+            if ((std::isfinite(rel) && rel < previous) || cut == p_.max_line_search)
+              break;
+          }
+          residuals.push_back(rel);
+          if (!std::isfinite(rel))
+            return false;
+          if (rel <= p_.newton_tolerance)
+            return true;
+        }
+      }
+      catch (const std::exception &)
+      {
+        // A singular tangent or a failed return mapping: the step is cut like a stalled one.
+        return false;
+      }
+      return false;
+    }
+
+    void StaticProblem::advance(double a, double b, unsigned int depth, StaticPlasticityResult &out)
+    {
+      const Vector<double> u_save = u_, r_save = r_;
+      Vector<double>       lift(u_.size());
+      for (unsigned int d = 0; d < lift.size(); ++d)
+        if (governed_by_[d] >= 0)
+          lift[d] = target_[d] * (b - a);
+      StaticStep step;
+      step.load_factor = b;
+      if (newton(u_, r_, lift, step.residuals))
+      {
+        history_.commit();
+        step.reactions = reactions(r_);
+        force_scale_   = std::max(force_scale_, fixed_norm(r_));
+        if (log_ != nullptr)
+        {
+          *log_ << "static step " << out.steps.size() << ": load factor " << b << ", "
+                << step.residuals.size() << " Newton iterations, residual "
+                << step.residuals.back();
+          for (std::size_t e = 0; e < step.reactions.size(); ++e)
+            *log_ << ", reaction " << e << " (" << step.reactions[e][0] << ", "
+                  << step.reactions[e][1] << ") N/m";
+          *log_ << '\n';
+        }
+        out.steps.push_back(std::move(step));
+        return;
+      }
+      history_.revert();
+      u_ = u_save;
+      r_ = r_save;
+      if (depth >= p_.max_cuts)
+      {
+        std::ostringstream msg;
+        msg << "static plasticity: load step " << step_ << " (load factor " << a << " -> " << b
+            << ") did not converge in " << p_.max_iterations << " Newton iterations after " << depth
+            << " halvings; relative residuals:";
+        for (const double x : step.residuals)
+          msg << ' ' << x;
+        throw NumericalError(msg.str(), b, step_);
+      }
+      const double mid = 0.5 * (a + b);
+      advance(a, mid, depth + 1, out);
+      advance(mid, b, depth + 1, out);
+    }
+
+    StaticPlasticityResult StaticProblem::run(std::ostream *log)
+    {
+      log_ = log;
+      StaticPlasticityResult out;
+      out.n_dofs = dof_handler_.n_dofs();
+      out.weight = weight_;
+      // Step 0: gravity and initial stress with the prescribed parts held.
+      residual(u_, r_);
+      {
+        double free = 0;
+        for (unsigned int d = 0; d < r_.size(); ++d)
+          if (governed_by_[d] < 0)
+            free += r_[d] * r_[d];
+        out.initial_out_of_balance = weight_ > 0 ? std::sqrt(free) / weight_ : std::sqrt(free);
+      }
+      StaticStep step0;
+      if (relative_residual(r_) > p_.newton_tolerance)
+      {
+        const Vector<double> zero(u_.size());
+        if (!newton(u_, r_, zero, step0.residuals))
+          throw NumericalError("static plasticity: the initial state (gravity and initial "
+                               "stress) did not reach equilibrium in " +
+                                 std::to_string(p_.max_iterations) + " Newton iterations",
+                               0.0,
+                               0);
+      }
+      history_.commit();
+      step0.reactions = reactions(r_);
+      out.steps.push_back(step0);
+      for (step_ = 1; step_ <= p_.n_steps; ++step_)
+        advance(double(step_ - 1) / p_.n_steps, double(step_) / p_.n_steps, 0, out);
+
+      // Totals and vertex displacements.
+      for (unsigned int c = 0; c < cell_law_.size(); ++c)
+        for (unsigned int q = 0; q < n_q; ++q)
+        {
+          const PointOutput o = cell_law_[c]->output(strain(u_, c, q), history_.committed(c, q));
+          out.plastic_dissipation += o.plastic_dissipation * jxw_[c * n_q + q];
+          out.damage_dissipation += o.damage_dissipation * jxw_[c * n_q + q];
+        }
+      out.vertex_displacements.assign(tria_.n_vertices(), {{0.0, 0.0}});
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+        for (const auto v : cell->vertex_indices())
+          for (unsigned int comp = 0; comp < dim; ++comp)
+            out.vertex_displacements[cell->vertex_index(v)][comp] =
+              u_[cell->vertex_dof_index(v, comp)];
+      return out;
+    }
+  } // namespace
+
+  StaticPlasticityResult run_static_plasticity(const StaticPlasticityParameters &parameters,
+                                               std::ostream                     *log)
+  {
+    StaticProblem problem(parameters);
+    return problem.run(log);
+  }
+} // namespace kimp::fem

@@ -1,0 +1,162 @@
+// Static, displacement-controlled, load-stepped full-Newton solver for plane-strain bodies of
+// inelastic material laws (fem/material_law.h) with gravity and an initial (geostatic) stress:
+// the verification problems of docs/physics.md §6. Plain-struct header, no deal.II includes.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <map>
+#include <memory>
+#include <ostream>
+#include <set>
+#include <vector>
+
+#include "fem/impact.h"
+#include "fem/material_law.h"
+
+namespace kimp::fem
+{
+  /**
+   * A mesh of bilinear quadrilaterals given in memory. Cell vertices in deal.II's lexicographic
+   * order: (x0, y0), (x1, y0), (x0, y1), (x1, y1) of the cell's own axes (counter-clockwise
+   * orientation, so 0-1-3-2 runs counter-clockwise). Boundary edges not listed get id 0.
+   */
+  struct PlaneMesh
+  {
+    struct Cell
+    {
+      std::array<unsigned int, 4> vertices{};
+      unsigned int                material = 0;
+    };
+    struct Edge
+    {
+      std::array<unsigned int, 2> vertices{};
+      unsigned int                boundary = 0;
+    };
+    std::vector<std::array<double, 2>> vertices; ///< m
+    std::vector<Cell>                  cells;
+    std::vector<Edge>                  boundary_edges;
+  };
+
+  /**
+   * Tensor-product mesh on the grid lines @p xs x @p ys (m, increasing), every cell of material
+   * @p material; each boundary edge gets boundary_id(x, y) of its midpoint (m).
+   */
+  PlaneMesh tensor_product_mesh(const std::vector<double>                         &xs,
+                                const std::vector<double>                         &ys,
+                                unsigned int                                       material,
+                                const std::function<unsigned int(double, double)> &boundary_id);
+
+  /**
+   * @p n + 1 grid lines from @p a to @p b (m) whose spacing grows geometrically by @p ratio (> 0)
+   * from a to b (ratio < 1: finer towards b; 1: uniform).
+   */
+  std::vector<double> graded_coordinates(double a, double b, unsigned int n, double ratio);
+
+  /**
+   * Prescribed displacement components on the edges of one boundary id, reached in proportion to
+   * the load factor (0 at the start, the given value at 1). A rigid smooth wall with normal x:
+   * x only; a rough wall: x and y; a roller: one component with 0. Where entries share a DoF,
+   * the later entry governs it (and gets its reaction).
+   */
+  struct PrescribedDisplacement
+  {
+    unsigned int boundary_id = 0;
+    bool         x           = false; ///< prescribe u_x
+    bool         y           = false; ///< prescribe u_y
+    double       ux          = 0;     ///< m, at load factor 1
+    double       uy          = 0;     ///< m, at load factor 1
+  };
+
+  /** Initial stress field sigma_0(x, y) (Pa, tension positive) at a point (m). */
+  using InitialStress = std::function<VoigtStress(double x, double y)>;
+
+  /**
+   * Geostatic stress below a horizontal surface at y = @p surface_y (m): sigma_yy = -gamma z,
+   * sigma_xx = -K0 gamma z, z = surface_y - y, sigma_xy = 0 (@p unit_weight gamma in N/m^3).
+   */
+  InitialStress geostatic_stress(double surface_y, double unit_weight, double k0);
+
+  /** Everything run_static_plasticity() needs. */
+  struct StaticPlasticityParameters
+  {
+    PlaneMesh mesh;
+    /** Material law per material id; every id of the mesh must have one. */
+    std::map<unsigned int, std::shared_ptr<const MaterialLaw>> laws;
+    /** Density per material id (kg/m^3); a missing id is weightless. */
+    std::map<unsigned int, double> densities;
+    /** Gravitational acceleration along -y (m/s^2, >= 0), applied in full from the start. */
+    double gravity = 0;
+    /**
+     * Initial stress (empty: stress-free). Imposed as an eigenstrain: each law is evaluated at
+     * eps(u) + eps_0 with eps_0 = D^-1 sigma_0 (D: the law's tangent in its virgin state), so
+     * sigma_0 must lie inside the elastic domain; the out-of-plane stress that results is
+     * sigma_zz,0 = nu (sigma_xx,0 + sigma_yy,0) of the plane-strain elasticity (equal to
+     * K0 gamma z of a geostatic state when K0 = nu / (1 - nu)).
+     */
+    InitialStress                       initial_stress;
+    std::vector<PrescribedDisplacement> prescribed;
+    /**
+     * Material ids whose tangent is taken as a central difference of the law's stress (the
+     * algorithmic tangent) instead of MaterialLaw::tangent(): for laws whose tangent() is only a
+     * secant (ConcreteDamageLaw), with which Newton converges linearly and stalls in softening.
+     */
+    std::set<unsigned int> numerical_tangent;
+    /** Load steps from load factor 0 to 1 (> 0), after the equilibrium step 0. */
+    unsigned int n_steps = 20;
+    /**
+     * Mean-dilatation B-bar: the volumetric strain of each cell is its mean (Q1/P0), so that
+     * isochoric or dilatant plastic flow does not lock the Q1 element (Nagtegaal, Parks & Rice
+     * 1974); false: the plain Q1 strain.
+     */
+    bool bbar = true;
+    /** Newton converged when |R_free| <= tolerance * max(|f_ext|, |reactions|) (> 0). */
+    double newton_tolerance = 1e-10;
+    /** Newton iterations per (sub)step before it is cut (> 0). */
+    unsigned int max_iterations = 25;
+    /**
+     * Backtracking line search: a Newton update is halved at most this many times until the
+     * residual falls (0: plain Newton). Full updates are taken once Newton converges.
+     */
+    unsigned int max_line_search = 4;
+    /** A step that does not converge is halved at most this many times; then NumericalError. */
+    unsigned int max_cuts = 4;
+  };
+
+  /** One converged load (sub)step. */
+  struct StaticStep
+  {
+    double load_factor = 0; ///< -
+    /** Reaction (N/m per metre of depth, {x, y}) of each prescribed entry: the force the
+     *  support exerts on the body, sum of f_int - f_ext over the DoFs the entry governs. */
+    std::vector<std::array<double, 2>> reactions;
+    /** |R_free| / reference force after each Newton solve (the last one <= tolerance). */
+    std::vector<double> residuals;
+  };
+
+  struct StaticPlasticityResult
+  {
+    std::vector<StaticStep> steps; ///< steps[0]: equilibrium at load factor 0
+    /** Out-of-balance force of the initial state (gravity + initial stress) at the free DoFs
+     *  before step 0, relative to the body's weight (0 if weightless). */
+    double       initial_out_of_balance = 0;
+    double       weight                 = 0; ///< total body weight, N/m
+    unsigned int n_dofs                 = 0;
+    double       plastic_dissipation    = 0; ///< total at the end, J/m
+    double       damage_dissipation     = 0; ///< total at the end, J/m
+    /** Final displacement at each mesh vertex (m), in mesh.vertices order. */
+    std::vector<std::array<double, 2>> vertex_displacements;
+  };
+
+  /**
+   * Solves the static problem step by step: step 0 brings gravity and the initial stress into
+   * equilibrium with the prescribed parts held at zero displacement; step n prescribes n /
+   * n_steps of the prescribed displacements and iterates full Newton with the laws' consistent
+   * tangents (a direct sparse solve per iteration). History is committed per converged step.
+   * Serial. Log lines (one per step) go to *log if not nullptr. Bad input throws
+   * std::invalid_argument; a step that does not converge after max_cuts halvings throws
+   * NumericalError (time = load factor, step = load step).
+   */
+  StaticPlasticityResult run_static_plasticity(const StaticPlasticityParameters &parameters,
+                                               std::ostream                     *log = nullptr);
+} // namespace kimp::fem
