@@ -75,6 +75,27 @@ namespace kimp::fem
   };
 
   /**
+   * Geostatic initial state (ImpactParameters::geostatic): gravity on every body but the slab
+   * (which rides on its isolators), an initial stress sigma_v = -gamma z, sigma_h = sigma_zz =
+   * K0 sigma_v (tension positive, z depth below the top of the material's cells, gamma = rho g)
+   * in the materials of initial_stress_K0, and a static equilibrium step before the impact
+   * (docs/physics.md §6 "Geostatic initial state"). The impact starts from that state; reported
+   * displacements, indentation and dissipation are relative to it.
+   */
+  struct GeostaticOptions
+  {
+    bool   enabled = false;   ///< false: no gravity, stress-free start (the default)
+    double gravity = 9.80665; ///< g, m/s^2 (standard gravity), acting in -y (> 0)
+    /** K0 = sigma_h / sigma_v per material id carrying an initial stress (>= 0). */
+    std::map<unsigned int, double> initial_stress_K0;
+    /** Largest out-of-balance force after the static step, as a fraction of the weight of the
+     *  materials of initial_stress_K0 (or of all weight without them) (> 0). */
+    double tolerance = 1e-8;
+    /** Modified-Newton iterations of the static step before NumericalError (> 0). */
+    unsigned int max_iterations = 200;
+  };
+
+  /**
    * Everything run_impact() needs: the options common to both integrators, and one set of
    * options per integrator (those of the integrator not chosen are ignored). Mesh ids follow
    * geometry/scene_ids.h.
@@ -162,9 +183,10 @@ namespace kimp::fem
     unsigned int progress_interval = 1000; ///< steps between progress calls (> 0)
 
 
-    Integrator      integrator = Integrator::explicit_central_difference;
-    ExplicitOptions explicit_options; ///< used when integrator is explicit_central_difference
-    ImplicitOptions implicit_options; ///< used when integrator is implicit_newmark
+    Integrator       integrator = Integrator::explicit_central_difference;
+    ExplicitOptions  explicit_options; ///< used when integrator is explicit_central_difference
+    ImplicitOptions  implicit_options; ///< used when integrator is implicit_newmark
+    GeostaticOptions geostatic;        ///< gravity and initial stress before the impact
   };
 
   /** Histories sampled every output_interval. Forces and energies per metre of depth. */
@@ -228,12 +250,34 @@ namespace kimp::fem
     /** Non-linear laws: max |W_int - (E_stored + D_plastic + D_damage)| / E_0 over the run,
      *  the consistency of the point-wise bookkeeping with the integrated stress power. */
     double dissipation_gap = 0;
+
+    /** Geostatic step (GeostaticOptions::enabled only): the weight it balances (N/m), the
+     *  out-of-balance force left as a fraction of it, its modified-Newton iterations, the
+     *  plastic dissipation and largest equivalent plastic strain it caused (J/m, -), and the
+     *  mean x displacement of the wall face in the contact range it caused (m). */
+    double        geostatic_weight              = 0;
+    double        geostatic_residual            = 0;
+    unsigned long geostatic_iterations          = 0;
+    double        geostatic_plastic_dissipation = 0;
+    double        geostatic_max_plastic_strain  = 0;
+    double        geostatic_wall_displacement   = 0;
+  };
+
+  /** Stress at one Gauss point of the geostatic state (tension positive). */
+  struct PointStress
+  {
+    double       x = 0, y = 0; ///< m
+    unsigned int material_id = 0;
+    double       xx = 0, yy = 0, zz = 0, xy = 0; ///< Pa
   };
 
   struct ImpactResult
   {
     ImpactHistory history;
     ImpactSummary summary;
+    /** Geostatic step only: the stress of every Gauss point after it, all ranks, sorted by
+     *  (material, x, y). */
+    std::vector<PointStress> geostatic_stress;
   };
 
   /** Numerical failure (divergence, non-convergence) with its context. */

@@ -109,7 +109,8 @@ namespace kimp::app
                                        {"slab", scene.slab.rigid ? "rigid" : "elastic"},
                                        {"mesh_level", std::to_string(scene.mesh.level)},
                                        {"penalty_factor", fmt::format("{}", scene.contact.penalty_factor)},
-                                       {"stopped_on", s.separated ? "separation" : "end_time"}};
+                                       {"stopped_on", s.separated ? "separation" : "end_time"},
+                                       {"geostatic", geostatic_enabled(scene) ? "on" : "off"}};
     return c;
   }
 } // namespace kimp::app

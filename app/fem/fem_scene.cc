@@ -216,6 +216,20 @@ namespace kimp::app
            scene.geometry.slab_thickness;
   }
 
+  bool geostatic_enabled(const FemScene &scene)
+  {
+    switch (scene.geostatic)
+    {
+      case FemGeostatic::on:
+        return true;
+      case FemGeostatic::off:
+        return false;
+      case FemGeostatic::auto_:
+        break;
+    }
+    return scene.geometry.with_backfill && scene.materials.soil.model != FemSoil::Model::elastic;
+  }
+
   geometry::SceneGeometry scene_geometry(const FemScene &scene, double wall_height)
   {
     const FemGeometry      &g = scene.geometry;
@@ -347,6 +361,16 @@ namespace kimp::app
     p.separation_hold_time                   = scene.dynamics.separation_hold_time;
     p.output_interval                        = scene.dynamics.output_interval;
     p.log_interval                           = scene.dynamics.log_interval;
+    if (geostatic_enabled(scene))
+    {
+      p.geostatic.enabled = true;
+      if (scene.geometry.with_backfill)
+      {
+        const fem::SoilParameters sp = soil_parameters(scene.materials.soil);
+        p.geostatic.initial_stress_K0[geometry::soil_material] =
+          scene.materials.soil.K0.value_or(1 - std::sin(sp.friction_angle));
+      }
+    }
     if (scene.output.vtu_interval > 0 && !vtu_dir.empty())
     {
       p.vtu_interval = scene.output.vtu_interval;

@@ -45,6 +45,8 @@ namespace kimp::app
     std::optional<double> friction_angle;     ///< phi, degrees; default: the preset's, else 30
     std::optional<double> dilatancy;          ///< psi, degrees; default: the preset's, else 0
     double                tension_cutoff = 0; ///< Pa (clipped to c cot(phi))
+    /// At-rest earth pressure coefficient of the geostatic state; default 1 - sin(phi) (Jaky).
+    std::optional<double> K0;
   };
 
   /** Slab and wall concrete: elasticity, or damage from f_cm by fib Model Code 2010. */
@@ -140,6 +142,14 @@ namespace kimp::app
     double vtu_interval = 0; ///< s between VTU snapshots under DIR/vtu/<case>/ (0: none)
   };
 
+  /** Geostatic initial state before the impact (docs/physics.md §6). */
+  enum class FemGeostatic
+  {
+    auto_, ///< on when the backfill's law is inelastic
+    on,
+    off
+  };
+
   /**
    * The FEM scene: one impact per entry of wall_heights (case name fem_case_name(H), "H1.25").
    * Load with read_scene<FemScene>(file), which validates.
@@ -154,6 +164,7 @@ namespace kimp::app
     FemContact          contact;
     FemDynamics         dynamics;
     FemOutput           output;
+    FemGeostatic        geostatic = FemGeostatic::auto_;
   };
 
   template <class Io>
@@ -200,6 +211,12 @@ namespace kimp::app
                 "kPa",
                 "largest principal stress (>= 0; at most c cot(phi))",
                 io::Range::non_negative());
+    io.quantity("K0",
+                s.K0,
+                "",
+                "at-rest earth pressure coefficient sigma_h / sigma_v of the geostatic state "
+                "(in [0, 3]; null: 1 - sin(phi), Jaky)",
+                io::Range::at_least(0.0).and_at_most(3.0));
   }
 
   template <class Io>
@@ -403,7 +420,17 @@ namespace kimp::app
     io.section("contact", s.contact, "frictionless penalty contact slab front - wall face");
     io.section("dynamics", s.dynamics, "time integration");
     io.section("output", s.output, "field output");
+    io.choice("geostatic",
+              s.geostatic,
+              {{"auto", FemGeostatic::auto_}, {"on", FemGeostatic::on}, {"off", FemGeostatic::off}},
+              "gravity (not on the slab) and the at-rest stress sigma_v = gamma z, sigma_h = K0 "
+              "sigma_v in the backfill, brought to static equilibrium before the impact; "
+              "results are relative to that state. auto: on when the soil model is inelastic "
+              "(a linear body's impact does not depend on the preload)");
   }
+
+  /** Whether the case runs the geostatic step (FemScene::geostatic resolved). */
+  bool geostatic_enabled(const FemScene &scene);
 
   /** Checks ranges and cross-field rules of every section, for every wall height. */
   void validate(const FemScene &scene, io::ValidationContext &context);

@@ -86,6 +86,12 @@ namespace kimp::fem::internal
                              Vec                              &du,
                              double                           &du_r);
 
+    // geostatic.cc
+    /** Gravity, initial stress and the static equilibrium the impact starts from. */
+    void run_geostatic_step();
+    /** Gauss-point stresses of the geostatic state, gathered to all ranks. */
+    std::vector<PointStress> gather_point_stresses(const Vec &u);
+
     // explicit_and_recording.cc
     void run_explicit();
     /** Records histories and energies of step n (time t). */
@@ -149,5 +155,16 @@ namespace kimp::fem::internal
     Vec                   u_ghosted, force_writable; // internal_force() of non-linear laws
     unsigned long         n_linear_solves = 0, n_step_halvings = 0;
     double                linear_solver_seconds = 0, linear_setup_seconds = 0;
+
+    // Geostatic state (geostatic.cc). internal_force() then returns f_int(u) + f_0 - f_g, with
+    // f_g the gravity load and f_0 the initial stress of points whose law cannot hold it:
+    // geostatic_offset = f_0 - f_g. The time loops start from u = geostatic_u; recording
+    // subtracts it and the point energies of that state.
+    bool                     geostatic_on = false;
+    Vec                      geostatic_offset, geostatic_u;
+    std::array<double, 3>    geostatic_point_energy{{0, 0, 0}}; // stored, plastic, damage (J/m)
+    double                   geostatic_wall = 0, geostatic_front = 0; // compact means (m)
+    ImpactSummary            geostatic_summary;                       // geostatic_* fields
+    std::vector<PointStress> geostatic_stress;
   };
 } // namespace kimp::fem::internal

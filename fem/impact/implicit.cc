@@ -235,6 +235,8 @@ namespace kimp::fem::internal
     Vec u_np1(locally_owned, comm), v_np1(locally_owned, comm), a_np1(locally_owned, comm);
     Vec Ku(locally_owned, comm), residual(locally_owned, comm), du(locally_owned, comm);
     Vec rhs(locally_owned, comm), u_start(locally_owned, comm);
+    if (geostatic_on)
+      u = geostatic_u;
     for (const auto i : locally_owned)
       if (slab_mass_x(i) > 0)
         v(i) = prm.initial_velocity;

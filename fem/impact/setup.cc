@@ -94,6 +94,8 @@ namespace kimp::fem::internal
     setup_contact();
     if (prm.integrator == ImpactParameters::Integrator::implicit_newmark)
       assemble_system();
+    if (prm.geostatic.enabled)
+      run_geostatic_step();
     compute_time_step();
     e0 = 0.5 * slab_total_mass * prm.initial_velocity * prm.initial_velocity;
     log_line("mesh: " + std::to_string(triangulation.n_global_active_cells()) + " cells, " +
@@ -377,6 +379,8 @@ namespace kimp::fem::internal
     if (linear_laws)
     {
       stiffness.vmult(f, u);
+      if (geostatic_on)
+        f += geostatic_offset;
       return;
     }
     // f = sum over cells of B^T sigma(eps(u), h) JxW (Gauss points of the stiffness).
@@ -419,6 +423,8 @@ namespace kimp::fem::internal
       }
     force_writable.compress(VectorOperation::add);
     f = force_writable;
+    if (geostatic_on)
+      f += geostatic_offset;
   }
 
   void ImpactProblem::compute_time_step()
