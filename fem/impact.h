@@ -96,6 +96,22 @@ namespace kimp::fem
   };
 
   /**
+   * Wall-soil interface (ImpactParameters::wall_soil_interface). Bonded: the mesh shares the
+   * nodes. Contact: the mesh has separate wall_back and soil_front faces (geometry/scene_ids.h)
+   * whose nodes coincide in pairs, joined by a unilateral Coulomb penalty interface
+   * (fem/frictional_interface.h): closed by the geostatic earth pressure, free to open. Explicit
+   * integrator only.
+   */
+  struct InterfaceOptions
+  {
+    bool   contact  = false; ///< false: bonded (shared nodes)
+    double friction = 0.5;   ///< Coulomb mu (>= 0)
+    /** k_N = penalty_factor * E_soil / h * l_i per pair (h: shortest interface segment, l_i:
+     *  tributary length); k_T = k_N (> 0). */
+    double penalty_factor = 1.0;
+  };
+
+  /**
    * Everything run_impact() needs: the options common to both integrators, and one set of
    * options per integrator (those of the integrator not chosen are ignored). Mesh ids follow
    * geometry/scene_ids.h.
@@ -184,9 +200,10 @@ namespace kimp::fem
 
 
     Integrator       integrator = Integrator::explicit_central_difference;
-    ExplicitOptions  explicit_options; ///< used when integrator is explicit_central_difference
-    ImplicitOptions  implicit_options; ///< used when integrator is implicit_newmark
-    GeostaticOptions geostatic;        ///< gravity and initial stress before the impact
+    ExplicitOptions  explicit_options;    ///< used when integrator is explicit_central_difference
+    ImplicitOptions  implicit_options;    ///< used when integrator is implicit_newmark
+    GeostaticOptions geostatic;           ///< gravity and initial stress before the impact
+    InterfaceOptions wall_soil_interface; ///< bonded or frictional contact
   };
 
   /** Histories sampled every output_interval. Forces and energies per metre of depth. */
@@ -210,6 +227,9 @@ namespace kimp::fem
     /// dissipation, and the internal work (integrated stress power) that replaces E_strain in
     /// energy_error; `strain` is then the recoverable part.
     std::vector<double> plastic_dissipation, damage_dissipation, internal_work;
+    /// Wall-soil contact interface only (empty otherwise): total normal force (N/m), closed
+    /// pairs, friction dissipation since the start of the impact (J/m).
+    std::vector<double> interface_normal_force, interface_closed, friction_dissipation;
   };
 
   /** Scalar results of one run. */
@@ -261,6 +281,11 @@ namespace kimp::fem
     double        geostatic_plastic_dissipation = 0;
     double        geostatic_max_plastic_strain  = 0;
     double        geostatic_wall_displacement   = 0;
+    /** Wall-soil contact interface: its normal force at the start of the impact (N/m), its
+     *  pairs, and the friction dissipation during the impact (J/m). */
+    double        interface_normal_force = 0;
+    unsigned long interface_pairs        = 0;
+    double        friction_dissipation   = 0;
   };
 
   /** Stress at one Gauss point of the geostatic state (tension positive). */

@@ -110,7 +110,9 @@ namespace kimp::app
                                        {"mesh_level", std::to_string(scene.mesh.level)},
                                        {"penalty_factor", fmt::format("{}", scene.contact.penalty_factor)},
                                        {"stopped_on", s.separated ? "separation" : "end_time"},
-                                       {"geostatic", geostatic_enabled(scene) ? "on" : "off"}};
+                                       {"geostatic", geostatic_enabled(scene) ? "on" : "off"},
+                                       {"interface",
+                 scene.interface.model == FemInterface::Model::contact ? "contact" : "bonded"}};
     return c;
   }
 } // namespace kimp::app

@@ -142,6 +142,42 @@ namespace kimp::app
     double vtu_interval = 0; ///< s between VTU snapshots under DIR/vtu/<case>/ (0: none)
   };
 
+  /** Wall-soil interface (docs/physics.md §6 "Wall-soil interface"). */
+  struct FemInterface
+  {
+    enum class Model
+    {
+      bonded, ///< wall and backfill share their interface nodes
+      contact ///< unilateral Coulomb penalty contact, free to open
+    };
+    Model model = Model::bonded;
+    /// Coulomb friction coefficient; default tan(2 phi / 3) of the soil.
+    std::optional<double> friction;
+    double                penalty_factor = fem::InterfaceOptions().penalty_factor; ///< x E_soil / h
+  };
+
+  template <class Io>
+  void visit(Io &io, FemInterface &s)
+  {
+    io.choice("model",
+              s.model,
+              {{"bonded", FemInterface::Model::bonded}, {"contact", FemInterface::Model::contact}},
+              "bonded: wall and backfill share their nodes; contact: unilateral frictional "
+              "penalty contact between wall back and backfill (explicit integrator), closed by "
+              "the geostatic earth pressure, free to open");
+    io.quantity("friction",
+                s.friction,
+                "",
+                "contact: Coulomb friction coefficient mu (>= 0; null: tan(2 phi / 3))",
+                io::Range::non_negative());
+    io.quantity("penalty_factor",
+                s.penalty_factor,
+                "",
+                "contact: normal and tangential penalty per node pair / (E_soil / h x tributary "
+                "length) (> 0)",
+                io::Range::positive());
+  }
+
   /** Geostatic initial state before the impact (docs/physics.md §6). */
   enum class FemGeostatic
   {
@@ -165,6 +201,7 @@ namespace kimp::app
     FemDynamics         dynamics;
     FemOutput           output;
     FemGeostatic        geostatic = FemGeostatic::auto_;
+    FemInterface        interface;
   };
 
   template <class Io>
@@ -426,7 +463,9 @@ namespace kimp::app
               "gravity (not on the slab) and the at-rest stress sigma_v = gamma z, sigma_h = K0 "
               "sigma_v in the backfill, brought to static equilibrium before the impact; "
               "results are relative to that state. auto: on when the soil model is inelastic "
-              "(a linear body's impact does not depend on the preload)");
+              "(a linear body's impact does not depend on the preload) or the wall-soil "
+              "interface is a contact");
+    io.section("interface", s.interface, "wall-soil interface");
   }
 
   /** Whether the case runs the geostatic step (FemScene::geostatic resolved). */

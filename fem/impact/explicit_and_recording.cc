@@ -56,6 +56,8 @@ namespace kimp::fem::internal
       internal_force(u, Ku);
       if (!linear_laws)
         qp_history.commit();
+      if (interface)
+        interface->commit();
       a.equ(-1.0, Ku);
       scatter_add(fc, a);
       a.scale(inverse_mass);
@@ -196,9 +198,21 @@ namespace kimp::fem::internal
       history.plastic_dissipation.push_back(global[6]);
       history.damage_dissipation.push_back(global[7]);
       // Geostatic: W_int includes the work of gravity; the points' energies are increments.
-      max_dissipation_gap =
-        std::max(max_dissipation_gap,
-                 std::abs(global[4] + global[8] - global[5] - global[6] - global[7]) / e0);
+      // Geostatic: W_int includes the work of gravity; the points' energies are increments.
+      // A contact interface stores penalty energy and dissipates by friction.
+      const double interface_energy =
+        interface ? interface_ev.penalty_energy + interface_ev.dissipation - interface_energy0 :
+                    0.0;
+      max_dissipation_gap = std::max(max_dissipation_gap,
+                                     std::abs(global[4] + global[8] - global[5] - global[6] -
+                                              global[7] - interface_energy) /
+                                       e0);
+      if (interface)
+      {
+        history.interface_normal_force.push_back(interface_ev.normal_force);
+        history.interface_closed.push_back(interface_ev.n_closed);
+        history.friction_dissipation.push_back(interface_ev.dissipation - interface_dissipation0);
+      }
     }
     max_energy_error = std::max(max_energy_error, std::abs(error));
     if (!std::isfinite(error) || std::abs(error) > divergence_energy_error)
@@ -435,6 +449,14 @@ namespace kimp::fem::internal
       s.geostatic_max_plastic_strain  = geostatic_summary.geostatic_max_plastic_strain;
       s.geostatic_wall_displacement   = geostatic_summary.geostatic_wall_displacement;
       result.geostatic_stress         = std::move(geostatic_stress);
+    }
+    if (interface)
+    {
+      s.interface_pairs = interface->pairs().size();
+      s.interface_normal_force =
+        history.interface_normal_force.empty() ? 0.0 : history.interface_normal_force.front();
+      s.friction_dissipation =
+        history.friction_dissipation.empty() ? 0.0 : history.friction_dissipation.back();
     }
     result.history = std::move(history);
   }

@@ -150,6 +150,8 @@ namespace kimp::fem::internal
     op.copy_from(stiffness);
     for (const auto i : slab_dofs)
       op.add(i, i, stiffness.diag_element(i));
+    if (interface)
+      add_interface_stiffness(op);
     op.compress(VectorOperation::add);
     SolverControl                  control;
     TrilinosWrappers::SolverDirect direct(control);
@@ -181,6 +183,12 @@ namespace kimp::fem::internal
     }
     if (!linear_laws)
       qp_history.commit();
+    if (interface)
+    {
+      interface->commit();
+      interface_energy0      = interface_ev.penalty_energy + interface_ev.dissipation;
+      interface_dissipation0 = interface_ev.dissipation;
+    }
     geostatic_u = u;
     {
       const std::array<double, 3> local = point_energy_local;

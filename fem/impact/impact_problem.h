@@ -18,6 +18,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include "fem/frictional_interface.h"
 #include "fem/impact.h"
 #include "fem/material_law.h"
 #include "fem/penalty_contact.h"
@@ -91,6 +92,14 @@ namespace kimp::fem::internal
     void run_geostatic_step();
     /** Gauss-point stresses of the geostatic state, gathered to all ranks. */
     std::vector<PointStress> gather_point_stresses(const Vec &u);
+
+    // interface_setup.cc
+    /** The wall-soil contact interface's node pairs (wall_soil_interface.contact only). */
+    void setup_interface();
+    /** f -= the interface forces at u (trial history of the interface written). */
+    void subtract_interface_force(const Vec &u, Vec &f);
+    /** Adds the interface's penalty springs to a matrix whose sparsity has their couplings. */
+    void add_interface_stiffness(TrilinosWrappers::SparseMatrix &matrix) const;
 
     // explicit_and_recording.cc
     void run_explicit();
@@ -166,5 +175,14 @@ namespace kimp::fem::internal
     double                   geostatic_wall = 0, geostatic_front = 0; // compact means (m)
     ImpactSummary            geostatic_summary;                       // geostatic_* fields
     std::vector<PointStress> geostatic_stress;
+
+    // Wall-soil contact interface (interface_setup.cc): pairs over compact interface nodes,
+    // their global DoFs, the last evaluation (same on all ranks) and its stored energy plus
+    // dissipation at the start of the impact (J/m).
+    std::unique_ptr<FrictionalInterface> interface;
+    std::vector<types::global_dof_index> interface_dofs;
+    FrictionalInterface::Evaluation      interface_ev;
+    double                               interface_energy0 = 0, interface_dissipation0 = 0;
+    double                               omega_interface = 0;
   };
 } // namespace kimp::fem::internal

@@ -9,6 +9,7 @@
 #include <limits>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -92,7 +93,9 @@ namespace kimp::fem::internal
     contact_dofs.clear();
     assemble_system();
     setup_contact();
-    if (prm.integrator == ImpactParameters::Integrator::implicit_newmark)
+    if (prm.wall_soil_interface.contact)
+      setup_interface();
+    if (prm.integrator == ImpactParameters::Integrator::implicit_newmark || interface)
       assemble_system();
     if (prm.geostatic.enabled)
       run_geostatic_step();
@@ -205,15 +208,18 @@ namespace kimp::fem::internal
     }
     // Rigid slab: drop the slab cells; boundary ids are restored from the face centres because
     // removing cells does not carry them over.
-    std::map<std::pair<double, double>, types::boundary_id>     boundary_of;
-    std::set<typename Triangulation<dim>::active_cell_iterator> slab_cells;
+    // Keyed by the face centre and the cell's material: the wall_back and soil_front faces of
+    // a contact interface share their centres.
+    std::map<std::tuple<double, double, unsigned int>, types::boundary_id> boundary_of;
+    std::set<typename Triangulation<dim>::active_cell_iterator>            slab_cells;
     for (const auto &cell : serial.active_cell_iterators())
     {
       if (cell->material_id() == geometry::slab_material)
         slab_cells.insert(cell);
       for (const auto &face : cell->face_iterators())
         if (face->at_boundary())
-          boundary_of[{face->center()[0], face->center()[1]}] = face->boundary_id();
+          boundary_of[{face->center()[0], face->center()[1], cell->material_id()}] =
+            face->boundary_id();
     }
     Triangulation<dim> reduced;
     if (slab_cells.empty())
@@ -224,7 +230,8 @@ namespace kimp::fem::internal
       for (const auto &face : cell->face_iterators())
         if (face->at_boundary())
         {
-          const auto it = boundary_of.find({face->center()[0], face->center()[1]});
+          const auto it =
+            boundary_of.find({face->center()[0], face->center()[1], cell->material_id()});
           face->set_boundary_id(it == boundary_of.end() ? 0 : it->second);
         }
     triangulation.copy_triangulation(reduced);
@@ -259,6 +266,11 @@ namespace kimp::fem::internal
         if (locally_relevant.is_element(i))
           for (const auto j : contact_dofs)
             dsp.add(i, j);
+    // The wall-soil interface springs couple nodes of different cells (geostatic operator).
+    for (const auto i : interface_dofs)
+      if (locally_relevant.is_element(i))
+        for (const auto j : interface_dofs)
+          dsp.add(i, j);
     SparsityTools::distribute_sparsity_pattern(dsp, locally_owned, comm, locally_relevant);
     stiffness.reinit(locally_owned, locally_owned, dsp, comm);
 
@@ -361,6 +373,9 @@ namespace kimp::fem::internal
       linear_laws = linear_laws && laws[id]->is_linear();
       n_values    = std::max(n_values, laws[id]->n_history());
     }
+    // A wall-soil contact interface is not linear: energies from the internal work.
+    if (prm.wall_soil_interface.contact)
+      linear_laws = false;
     if (linear_laws)
       return;
     qp_history.reinit(triangulation.n_active_cells(), QGauss<dim>(2).size(), n_values);
@@ -425,6 +440,8 @@ namespace kimp::fem::internal
     f = force_writable;
     if (geostatic_on)
       f += geostatic_offset;
+    if (interface)
+      subtract_interface_force(u, f);
   }
 
   void ImpactProblem::compute_time_step()
@@ -443,7 +460,9 @@ namespace kimp::fem::internal
         local_omega =
           std::max(local_omega, 2 * p_wave_speed(prm.materials.at(cell->material_id())) / h);
       }
-    omega_mesh         = Utilities::MPI::max(local_omega, comm);
+    omega_mesh = Utilities::MPI::max(local_omega, comm);
+    if (omega_interface > 0) // the wall-soil interface springs
+      omega_mesh = std::sqrt(omega_mesh * omega_mesh + omega_interface * omega_interface);
     const double omega = std::sqrt(omega_mesh * omega_mesh + omega_penalty * omega_penalty);
     const double xi    = prm.contact_damping_ratio * omega_penalty / omega;
     dt_stable          = 2 / omega * (std::sqrt(1 + xi * xi) - xi);

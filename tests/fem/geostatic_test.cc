@@ -7,6 +7,7 @@
 
 #include "fem/impact.h"
 #include "fem/inelastic_laws.h"
+#include "geometry/scene_layout.h"
 #include "tests/fem/impact_test_support.h"
 
 namespace kimp::fem::testing
@@ -211,6 +212,124 @@ namespace kimp::fem::testing
                 << '\n';
   }
 
+  /** geostatic_scene() meshed with separate wall and soil interface nodes, joined by the
+   *  frictional contact interface with mu = tan(2 phi / 3). */
+  ImpactParameters interface_scene(const std::string &name)
+  {
+    auto                          p = geostatic_scene(name, true);
+    kimp::geometry::SceneGeometry geometry;
+    geometry.h_contact         = 0.05;
+    geometry.h_max             = 0.2;
+    geometry.mesh_slab         = false;
+    geometry.interface_contact = true;
+    if (rank() == 0)
+      kimp::geometry::build_scene_mesh(geometry, p.mesh_file);
+    MPI_Barrier(MPI_COMM_WORLD);
+    const SoilParameters sp        = soil_preset("medium_dense_sand");
+    p.wall_soil_interface.contact  = true;
+    p.wall_soil_interface.friction = std::tan(2.0 / 3.0 * sp.friction_angle);
+    return p;
+  }
+
+  TEST(WallSoilInterface, ClosedUnderTheGeostaticPressureAndTransmitsIt)
+  {
+    // Behind an unyielding wall the interface closes under the earth pressure and carries the
+    // at-rest thrust P0 = K0 gamma H^2 / 2 less the share of the fixed base node, which goes
+    // to the base: K0 gamma (H h1 / 2 - h1^2 / 6) for a lowest segment h1 (within 1 %); every
+    // pair but the top one (no pressure) and the fixed base one is closed; the state is in
+    // equilibrium to 1e-8. Penalty 100: the interface springs' own compliance lets the soil
+    // expand toward the wall and relax (at the default factor 1 the force is 7 % lower).
+    constexpr double thrust_tolerance    = 0.01;
+    auto             p                   = interface_scene("interface_closed.msh");
+    p.end_time                           = 1e-4;
+    p.wall_soil_interface.penalty_factor = 100;
+    p.materials[ids::wall_material].youngs_modulus *= 1000;
+    const auto                    r  = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto                   &s  = r.summary;
+    const SoilParameters          sp = soil_preset("medium_dense_sand");
+    const double                  k0 = 1 - std::sin(sp.friction_angle);
+    const double                  H  = kimp::geometry::SceneGeometry().wall_height;
+    kimp::geometry::SceneGeometry geometry;
+    geometry.h_contact  = 0.05;
+    geometry.h_max      = 0.2;
+    const double h1     = kimp::geometry::SceneLayout::build(geometry).soil_y[1];
+    const double gamma  = sp.density * g;
+    const double thrust = 0.5 * k0 * gamma * H * H - k0 * gamma * (H * h1 / 2 - h1 * h1 / 6);
+    if (rank() == 0)
+      std::cout << "interface at rest: normal force " << s.interface_normal_force
+                << " N/m vs K0 gamma H^2 / 2 less the base node's share = " << thrust << " N/m, "
+                << r.history.interface_closed.front() << " of " << s.interface_pairs
+                << " pairs closed, out-of-balance " << s.geostatic_residual << ", "
+                << s.geostatic_iterations << " iterations\n";
+    EXPECT_LT(s.geostatic_residual, 1e-8);
+    EXPECT_NEAR(s.interface_normal_force, thrust, thrust_tolerance * thrust);
+    EXPECT_GE(r.history.interface_closed.front() + 2, s.interface_pairs);
+  }
+
+  TEST(WallSoilInterface, ImpactOpensTheInterfaceWithoutTensionAndClosesTheEnergyBalance)
+  {
+    // The slab (1 m/s) pushes the concrete wall into the backfill and the wall rebounds: the
+    // interface force is never a pull, the interface opens at least partly after the impact,
+    // and kinetic + internal work (with gravity, penalty energy and friction) - contact work
+    // = E_0 within 1 %.
+    constexpr double energy_tolerance = 0.01;
+    auto             p                = interface_scene("interface_impact.msh");
+    const auto       r                = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto      &s                = r.summary;
+    const auto      &h                = r.history;
+    double           f_min = 1e300, f_max = 0, closed_min = 1e300, closed_start = 0;
+    for (std::size_t i = 0; i < h.interface_normal_force.size(); ++i)
+    {
+      f_min      = std::min(f_min, h.interface_normal_force[i]);
+      f_max      = std::max(f_max, h.interface_normal_force[i]);
+      closed_min = std::min(closed_min, h.interface_closed[i]);
+    }
+    closed_start = h.interface_closed.front();
+    if (rank() == 0)
+      std::cout << "interface impact: " << summary_line(r) << "; interface force "
+                << s.interface_normal_force << " N/m at start, min " << f_min << ", max " << f_max
+                << " N/m; closed pairs " << closed_start << " at start, min " << closed_min
+                << "; friction dissipation " << s.friction_dissipation << " J/m, plastic "
+                << s.plastic_dissipation << " J/m, bookkeeping gap " << s.dissipation_gap << '\n';
+    EXPECT_TRUE(s.separated);
+    EXPECT_GE(f_min, 0);
+    EXPECT_GT(f_max, s.interface_normal_force);
+    EXPECT_LT(closed_min, closed_start);
+    EXPECT_GE(s.friction_dissipation, 0);
+    EXPECT_LT(s.energy_error, energy_tolerance);
+    EXPECT_LT(s.dissipation_gap, energy_tolerance);
+  }
+
+  TEST(MpiGeostatic, DistributedInterfaceRunMatchesSerialRun)
+  {
+    // The frictional wall-soil interface on 1 or 2 ranks vs MPI_COMM_SELF (relative 1e-10).
+    constexpr double tolerance = 1e-10;
+    auto             p         = interface_scene("interface_mpi.msh");
+    p.end_time                 = 0.004;
+    const auto world           = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto self            = run_impact(p, MPI_COMM_SELF, nullptr);
+    ASSERT_EQ(world.history.time.size(), self.history.time.size());
+    double max_force = 0, max_difference = 0, max_interface = 0, max_interface_difference = 0;
+    for (std::size_t i = 0; i < self.history.time.size(); ++i)
+    {
+      max_force = std::max(max_force, self.history.contact_force[i]);
+      max_difference =
+        std::max(max_difference,
+                 std::abs(world.history.contact_force[i] - self.history.contact_force[i]));
+      max_interface            = std::max(max_interface, self.history.interface_normal_force[i]);
+      max_interface_difference = std::max(max_interface_difference,
+                                          std::abs(world.history.interface_normal_force[i] -
+                                                   self.history.interface_normal_force[i]));
+    }
+    ASSERT_GT(max_force, 0);
+    EXPECT_LT(max_difference, tolerance * max_force);
+    EXPECT_LT(max_interface_difference, tolerance * max_interface);
+    if (rank() == 0)
+      std::cout << "MPI interface: " << world.summary.n_ranks
+                << " ranks vs 1, max |dF| / max F = " << max_difference / max_force
+                << ", interface " << max_interface_difference / max_interface << '\n';
+  }
+
   TEST(Geostatic, BadOptionsAreNamed)
   {
     auto p                                            = scene_parameters(0.05, true, "geo_bad.msh");
@@ -224,6 +343,21 @@ namespace kimp::fem::testing
     catch (const std::exception &e)
     {
       EXPECT_NE(std::string(e.what()).find("initial_stress_K0"), std::string::npos) << e.what();
+    }
+  }
+
+  TEST(WallSoilInterface, ImplicitIntegratorIsRefused)
+  {
+    auto p       = interface_scene("interface_implicit.msh");
+    p.integrator = ImpactParameters::Integrator::implicit_newmark;
+    try
+    {
+      run_impact(p, MPI_COMM_WORLD, nullptr);
+      FAIL() << "implicit run with a frictional interface accepted";
+    }
+    catch (const std::exception &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("explicit integrator"), std::string::npos) << e.what();
     }
   }
 } // namespace kimp::fem::testing
