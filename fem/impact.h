@@ -75,6 +75,43 @@ namespace kimp::fem
   };
 
   /**
+   * Geostatic initial state (ImpactParameters::geostatic): gravity on every body but the slab
+   * (which rides on its isolators), an initial stress sigma_v = -gamma z, sigma_h = sigma_zz =
+   * K0 sigma_v (tension positive, z depth below the top of the material's cells, gamma = rho g)
+   * in the materials of initial_stress_K0, and a static equilibrium step before the impact
+   * (docs/physics.md §6 "Geostatic initial state"). The impact starts from that state; reported
+   * displacements, indentation and dissipation are relative to it.
+   */
+  struct GeostaticOptions
+  {
+    bool   enabled = false;   ///< false: no gravity, stress-free start (the default)
+    double gravity = 9.80665; ///< g, m/s^2 (standard gravity), acting in -y (> 0)
+    /** K0 = sigma_h / sigma_v per material id carrying an initial stress (>= 0). */
+    std::map<unsigned int, double> initial_stress_K0;
+    /** Largest out-of-balance force after the static step, as a fraction of the weight of the
+     *  materials of initial_stress_K0 (or of all weight without them) (> 0). */
+    double tolerance = 1e-8;
+    /** Modified-Newton iterations of the static step before NumericalError (> 0). */
+    unsigned int max_iterations = 200;
+  };
+
+  /**
+   * Wall-soil interface (ImpactParameters::wall_soil_interface). Bonded: the mesh shares the
+   * nodes. Contact: the mesh has separate wall_back and soil_front faces (geometry/scene_ids.h)
+   * whose nodes coincide in pairs, joined by a unilateral Coulomb penalty interface
+   * (fem/frictional_interface.h): closed by the geostatic earth pressure, free to open. Explicit
+   * integrator only.
+   */
+  struct InterfaceOptions
+  {
+    bool   contact  = false; ///< false: bonded (shared nodes)
+    double friction = 0.5;   ///< Coulomb mu (>= 0)
+    /** k_N = penalty_factor * E_soil / h * l_i per pair (h: shortest interface segment, l_i:
+     *  tributary length); k_T = k_N (> 0). */
+    double penalty_factor = 1.0;
+  };
+
+  /**
    * Everything run_impact() needs: the options common to both integrators, and one set of
    * options per integrator (those of the integrator not chosen are ignored). Mesh ids follow
    * geometry/scene_ids.h.
@@ -189,9 +226,11 @@ namespace kimp::fem
     unsigned int progress_interval = 1000; ///< steps between progress calls (> 0)
 
 
-    Integrator      integrator = Integrator::explicit_central_difference;
-    ExplicitOptions explicit_options; ///< used when integrator is explicit_central_difference
-    ImplicitOptions implicit_options; ///< used when integrator is implicit_newmark
+    Integrator       integrator = Integrator::explicit_central_difference;
+    ExplicitOptions  explicit_options;    ///< used when integrator is explicit_central_difference
+    ImplicitOptions  implicit_options;    ///< used when integrator is implicit_newmark
+    GeostaticOptions geostatic;           ///< gravity and initial stress before the impact
+    InterfaceOptions wall_soil_interface; ///< bonded or frictional contact
   };
 
   /** Histories sampled every output_interval. Forces and energies per metre of depth. */
@@ -219,6 +258,9 @@ namespace kimp::fem
     /// Absorbing boundaries only (empty otherwise), J/m: energy radiated through the dashpots,
     /// the time integral of v . C v.
     std::vector<double> radiation;
+    /// Wall-soil contact interface only (empty otherwise): total normal force (N/m), closed
+    /// pairs, friction dissipation since the start of the impact (J/m).
+    std::vector<double> interface_normal_force, interface_closed, friction_dissipation;
   };
 
   /** Scalar results of one run. */
@@ -283,6 +325,22 @@ namespace kimp::fem
     /** sqrt(1 - (plastic + damage dissipation) / E_0): the COR the material dissipation alone
      *  implies (1 for elastic laws), beside apparent_cor from the rebound velocity. */
     double dissipation_cor = 1;
+
+    /** Geostatic step (GeostaticOptions::enabled only): the weight it balances (N/m), the
+     *  out-of-balance force left as a fraction of it, its modified-Newton iterations, the
+     *  plastic dissipation and largest equivalent plastic strain it caused (J/m, -), and the
+     *  mean x displacement of the wall face in the contact range it caused (m). */
+    double        geostatic_weight              = 0;
+    double        geostatic_residual            = 0;
+    unsigned long geostatic_iterations          = 0;
+    double        geostatic_plastic_dissipation = 0;
+    double        geostatic_max_plastic_strain  = 0;
+    double        geostatic_wall_displacement   = 0;
+    /** Wall-soil contact interface: its normal force at the start of the impact (N/m), its
+     *  pairs, and the friction dissipation during the impact (J/m). */
+    double        interface_normal_force = 0;
+    unsigned long interface_pairs        = 0;
+    double        friction_dissipation   = 0;
   };
 
   /**
@@ -304,11 +362,22 @@ namespace kimp::fem
     std::vector<double> damage, equivalent_plastic_strain;
   };
 
+  /** Stress at one Gauss point of the geostatic state (tension positive). */
+  struct PointStress
+  {
+    double       x = 0, y = 0; ///< m
+    unsigned int material_id = 0;
+    double       xx = 0, yy = 0, zz = 0, xy = 0; ///< Pa
+  };
+
   struct ImpactResult
   {
     ImpactHistory history;
     ImpactSummary summary;
     ImpactFrames  frames; ///< empty unless ImpactParameters::frame_interval > 0
+    /** Geostatic step only: the stress of every Gauss point after it, all ranks, sorted by
+     *  (material, x, y). */
+    std::vector<PointStress> geostatic_stress;
   };
 
   /** Numerical failure (divergence, non-convergence) with its context. */

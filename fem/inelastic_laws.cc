@@ -485,6 +485,24 @@ namespace kimp::fem
   }
 
 
+  namespace
+  {
+    /** Plastic-strain slots {xx, yy, zz, gamma_xy} = -D^-1 sigma0 (isotropic compliance). */
+    void initial_elastic_strain(double *h, const InitialStress &s, double E, double nu)
+    {
+      h[0] = -(s[0] - nu * (s[1] + s[2])) / E;
+      h[1] = -(s[1] - nu * (s[0] + s[2])) / E;
+      h[2] = -(s[2] - nu * (s[0] + s[1])) / E;
+      h[3] = -2 * (1 + nu) * s[3] / E;
+    }
+  } // namespace
+
+  bool MohrCoulombLaw::set_initial_stress(double *history, const InitialStress &sigma0) const
+  {
+    initial_elastic_strain(history, sigma0, p_.youngs_modulus, p_.poisson_ratio);
+    return true;
+  }
+
   // ---------------------------------------------------------------- Drucker-Prager
 
   DruckerPragerLaw::DruckerPragerLaw(const SoilParameters &p)
@@ -648,6 +666,12 @@ namespace kimp::fem
     update_points_of(*this, n, strain, committed, trial, stride, stress, energy);
   }
 
+
+  bool DruckerPragerLaw::set_initial_stress(double *history, const InitialStress &sigma0) const
+  {
+    initial_elastic_strain(history, sigma0, p_.youngs_modulus, p_.poisson_ratio);
+    return true;
+  }
 
   // ---------------------------------------------------------------- concrete
 

@@ -72,6 +72,9 @@ namespace kimp::fem
                                unsigned int           stride,
                                VoigtStress           *stress,
                                std::array<double, 3> *energy) const override;
+    /** The initial stress enters as an initial elastic strain: the plastic-strain slots start
+     *  at -D^-1 sigma0 (the dissipation and equivalent plastic strain stay zero). */
+    bool set_initial_stress(double *history, const InitialStress &sigma0) const override;
     /** Largest yield function value (Pa) at principal stresses {s1, s2, s3}. */
     double yield_function(const std::array<double, 3> &principal) const;
 
@@ -122,6 +125,8 @@ namespace kimp::fem
                                unsigned int           stride,
                                VoigtStress           *stress,
                                std::array<double, 3> *energy) const override;
+    /** As MohrCoulombLaw::set_initial_stress(). */
+    bool set_initial_stress(double *history, const InitialStress &sigma0) const override;
     /** f = sqrt(J2) + eta p - xi c (Pa) at the 3D stress {xx, yy, zz, xy}. */
     double yield_function(const std::array<double, 4> &sigma) const;
     double eta() const { return eta_; }

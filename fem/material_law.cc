@@ -18,6 +18,11 @@ namespace kimp::fem
     initial_history(history);
   }
 
+  bool MaterialLaw::set_initial_stress(double *, const InitialStress &) const
+  {
+    return false;
+  }
+
   PointOutput MaterialLaw::output(const VoigtStrain &e, const double *history) const
   {
     std::vector<double> scratch(n_history());

@@ -17,6 +17,8 @@ namespace kimp::fem
   using VoigtStress = std::array<double, 3>;
   /** d sigma / d eps (Pa), row-major 3 x 3. */
   using VoigtTangent = std::array<double, 9>;
+  /** A plane-strain stress state with its out-of-plane part: {xx, yy, zz, xy} (Pa). */
+  using InitialStress = std::array<double, 4>;
 
   /** Per-point quantities for energy bookkeeping and field output. */
   struct PointOutput
@@ -63,6 +65,14 @@ namespace kimp::fem
      * otherwise it assembles the internal force from stress() at every quadrature point.
      */
     virtual bool is_linear() const { return false; }
+    /**
+     * Makes @p history (a point's initialized history) that of a point carrying the stress
+     * @p sigma0 at zero strain, so that stress() returns sigma0 + the response to the strain
+     * (the geostatic initial state). Returns false if the law cannot hold an initial stress
+     * (default; the solver then carries it as a constant nodal force, which is exact for a
+     * linear law).
+     */
+    virtual bool set_initial_stress(double *history, const InitialStress &sigma0) const;
     /**
      * Out-of-plane stress, stored energy and dissipation at @p strain with the history
      * @p history that stress() wrote for it. Default: sigma_zz = 0, stored = sigma : eps / 2.

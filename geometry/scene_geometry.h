@@ -38,6 +38,12 @@ namespace kimp::geometry
     double gap = 0.5e-3; ///< initial clear distance between slab front and wall face, m
 
     bool mesh_slab = true; ///< false: rigid slab, no slab cells are written
+    /**
+     * false: wall and backfill share the nodes of their interface (bonded). true: the backfill
+     * has its own interface nodes, and the faces are tagged wall_back and soil_front
+     * (scene_ids.h) for a contact interface.
+     */
+    bool interface_contact = false;
 
     double h_contact = 0.025; ///< element size at the contact, m
     double h_max     = 0.10;  ///< largest element size away from the contact, m

@@ -23,6 +23,11 @@ namespace kimp::geometry
     fixed_base    = 1, ///< bottom of wall and backfill: u = 0
     soil_far_side = 2, ///< far vertical side of the backfill: rollers, u_x = 0
     slab_contact  = 3, ///< slab front face (slave side of the contact)
-    wall_contact  = 4  ///< wall front face (master side of the contact)
+    wall_contact  = 4, ///< wall front face (master side of the contact)
+    /// With a wall-soil contact interface (SceneGeometry::interface_contact) only: the wall's
+    /// back face against the backfill, y in [0, H_b], and the backfill's front face on it, each
+    /// with its own nodes at the same places.
+    wall_back  = 5,
+    soil_front = 6
   };
 } // namespace kimp::geometry

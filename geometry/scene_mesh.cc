@@ -34,7 +34,9 @@ namespace kimp::geometry
       soil_base_curve  = 2,
       soil_side_curve  = 3,
       slab_front_curve = 4,
-      wall_front_curve = 5
+      wall_front_curve = 5,
+      wall_back_curve  = 6,
+      soil_front_curve = 7
     };
 
     // One structured block: node tag of grid point (i, j) is tags[j * x.size() + i].
@@ -220,7 +222,8 @@ namespace kimp::geometry
       std::vector<std::size_t> interface(soil.y.size());
       for (std::size_t j = 0; j < soil.y.size(); ++j)
         interface[j] = wall.tag(wall.x.size() - 1, j);
-      soil_nodes = number_nodes(soil, next_node, &interface);
+      // A contact interface: the soil gets its own nodes at the same places.
+      soil_nodes = number_nodes(soil, next_node, geometry.interface_contact ? nullptr : &interface);
     }
     if (geometry.mesh_slab)
       slab_nodes = number_nodes(slab, next_node, nullptr);
@@ -282,6 +285,15 @@ namespace kimp::geometry
         add_curve(soil_side_curve, column_lines(soil, soil.x.size() - 1), next_element);
         base_curves.push_back(soil_base_curve);
         add_boundary_group(soil_far_side, {soil_side_curve}, "soil_far_side");
+        if (geometry.interface_contact)
+        {
+          std::vector<std::size_t> back = column_lines(wall, wall.x.size() - 1);
+          back.resize(2 * (soil.y.size() - 1)); // up to H_b; above it the wall back is free
+          add_curve(wall_back_curve, back, next_element);
+          add_curve(soil_front_curve, column_lines(soil, 0), next_element);
+          add_boundary_group(wall_back, {wall_back_curve}, "wall_back");
+          add_boundary_group(soil_front, {soil_front_curve}, "soil_front");
+        }
       }
       add_boundary_group(fixed_base, base_curves, "fixed_base");
       if (geometry.mesh_slab)

@@ -49,7 +49,9 @@ namespace kimp::geometry
    *   backfill);
    * - 1D: fixed_base (bottom of wall and backfill), soil_far_side (backfill x = t_w + B; only
    *   with backfill), slab_contact (slab front face x = −gap; only if mesh_slab), wall_contact
-   *   (the whole wall front face x = 0, y in [0, H]).
+   *   (the whole wall front face x = 0, y in [0, H]); with geometry.interface_contact also
+   *   wall_back (x = t_w, y in [0, H_b], wall nodes) and soil_front (the same line, the soil's
+   *   own nodes: the interface is then not bonded).
    * No other face is tagged: the bonded interface carries no group (deal.II does not read ids on
    * internal faces) and the free edges (wall top, exposed wall back above H_b, soil top, slab top,
    * bottom and back) get deal.II's default boundary id 0. Every entity has exactly one physical

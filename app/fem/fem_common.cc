@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 #include <sstream>
+#include <tuple>
 
 namespace kimp::app
 {
@@ -109,7 +110,10 @@ namespace kimp::app
                                        {"slab", scene.slab.rigid ? "rigid" : "elastic"},
                                        {"mesh_level", std::to_string(scene.mesh.level)},
                                        {"penalty_factor", fmt::format("{}", scene.contact.penalty_factor)},
-                                       {"stopped_on", s.separated ? "separation" : "end_time"}};
+                                       {"stopped_on", s.separated ? "separation" : "end_time"},
+                                       {"geostatic", geostatic_enabled(scene) ? "on" : "off"},
+                                       {"interface",
+                 scene.interface.model == FemInterface::Model::contact ? "contact" : "bonded"}};
     if (scene.boundary.far == FemBoundary::Far::absorbing)
     {
       c.summary.set("radiated_energy", s.radiated_energy);
@@ -124,6 +128,29 @@ namespace kimp::app
     c.summary.set("dissipation_cor", s.dissipation_cor);
     c.summary.set("permanent_indentation", s.permanent_indentation);
     c.summary.set("wall_residual_displacement", s.wall_residual_displacement);
+    if (geostatic_enabled(scene))
+    {
+      // The static step before the impact (fem::ImpactSummary geostatic_*).
+      for (const auto &[key, value, units] :
+           {std::tuple<const char *, double, const char *>{"geostatic_weight",
+                                                           s.geostatic_weight,
+                                                           "N/m"},
+            {"geostatic_residual", s.geostatic_residual, "1"},
+            {"geostatic_iterations", static_cast<double>(s.geostatic_iterations), "1"},
+            {"geostatic_plastic_dissipation", s.geostatic_plastic_dissipation, "J/m"},
+            {"geostatic_wall_displacement", s.geostatic_wall_displacement, "m"}})
+      {
+        c.summary.set(key, value);
+        c.summary_units[key] = units;
+      }
+    }
+    if (scene.interface.model == FemInterface::Model::contact)
+    {
+      c.summary.set("interface_normal_force", s.interface_normal_force);
+      c.summary_units["interface_normal_force"] = "N/m";
+      c.summary.set("friction_dissipation", s.friction_dissipation);
+      c.summary_units["friction_dissipation"] = "J/m";
+    }
     return c;
   }
 } // namespace kimp::app

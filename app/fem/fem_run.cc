@@ -125,6 +125,14 @@ namespace kimp::app
       ResultsGroup contact = case_group.group("contact");
       series(contact, "n_active", h.n_active, "1");
       series(contact, "max_penetration", h.max_penetration, "m");
+      // Wall-soil contact interface only.
+      if (!h.interface_normal_force.empty())
+      {
+        ResultsGroup interface = case_group.group("interface");
+        series(interface, "normal_force", h.interface_normal_force, "N/m");
+        series(interface, "closed_pairs", h.interface_closed, "1");
+        series(energy, "friction_dissipation", h.friction_dissipation, "J/m");
+      }
     }
 
     /// The deformed-mesh frames (fem::ImpactFrames) as group `frames`, if any were recorded.

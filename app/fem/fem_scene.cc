@@ -125,6 +125,19 @@ namespace kimp::app
                 fmt::format("must be <= phi = {:g} (degrees)",
                             soil.friction_angle * 180 / 3.14159265358979323846));
     }
+    if (s.interface.model == FemInterface::Model::contact)
+    {
+      ctx.check(s.dynamics.integrator ==
+                  fem::ImpactParameters::Integrator::explicit_central_difference,
+                "interface.model",
+                "contact",
+                "needs dynamics.integrator: explicit (the implicit Newton has no frictional "
+                "interface tangent)");
+      ctx.check(s.geometry.with_backfill,
+                "interface.model",
+                "contact",
+                "needs geometry.with_backfill: true");
+    }
     {
       const auto     scope = ctx.section("mesh");
       const FemMesh &m     = s.mesh;
@@ -221,6 +234,21 @@ namespace kimp::app
            scene.geometry.slab_thickness;
   }
 
+  bool geostatic_enabled(const FemScene &scene)
+  {
+    switch (scene.geostatic)
+    {
+      case FemGeostatic::on:
+        return true;
+      case FemGeostatic::off:
+        return false;
+      case FemGeostatic::auto_:
+        break;
+    }
+    return scene.geometry.with_backfill && (scene.materials.soil.model != FemSoil::Model::elastic ||
+                                            scene.interface.model == FemInterface::Model::contact);
+  }
+
   geometry::SceneGeometry scene_geometry(const FemScene &scene, double wall_height)
   {
     const FemGeometry      &g = scene.geometry;
@@ -235,9 +263,11 @@ namespace kimp::app
     result.slab_top        = g.slab_top;
     result.gap             = g.gap;
     result.mesh_slab       = !scene.slab.rigid;
-    result.h_contact       = scene.mesh.h_contact;
-    result.h_max           = scene.mesh.h_max;
-    result.grading         = scene.mesh.grading;
+    result.interface_contact =
+      g.with_backfill && scene.interface.model == FemInterface::Model::contact;
+    result.h_contact = scene.mesh.h_contact;
+    result.h_max     = scene.mesh.h_max;
+    result.grading   = scene.mesh.grading;
     return geometry::refined(result, scene.mesh.level);
   }
 
@@ -355,6 +385,24 @@ namespace kimp::app
     p.separation_hold_time                   = scene.dynamics.separation_hold_time;
     p.output_interval                        = scene.dynamics.output_interval;
     p.log_interval                           = scene.dynamics.log_interval;
+    if (scene.geometry.with_backfill && scene.interface.model == FemInterface::Model::contact)
+    {
+      const fem::SoilParameters sp  = soil_parameters(scene.materials.soil);
+      p.wall_soil_interface.contact = true;
+      p.wall_soil_interface.friction =
+        scene.interface.friction.value_or(std::tan(2.0 / 3.0 * sp.friction_angle));
+      p.wall_soil_interface.penalty_factor = scene.interface.penalty_factor;
+    }
+    if (geostatic_enabled(scene))
+    {
+      p.geostatic.enabled = true;
+      if (scene.geometry.with_backfill)
+      {
+        const fem::SoilParameters sp = soil_parameters(scene.materials.soil);
+        p.geostatic.initial_stress_K0[geometry::soil_material] =
+          scene.materials.soil.K0.value_or(1 - std::sin(sp.friction_angle));
+      }
+    }
     if (scene.output.vtu_interval > 0 && !vtu_dir.empty())
     {
       p.vtu_interval = scene.output.vtu_interval;

@@ -45,6 +45,8 @@ namespace kimp::app
     std::optional<double> friction_angle;     ///< phi, degrees; default: the preset's, else 30
     std::optional<double> dilatancy;          ///< psi, degrees; default: the preset's, else 0
     double                tension_cutoff = 0; ///< Pa (clipped to c cot(phi))
+    /// At-rest earth pressure coefficient of the geostatic state; default 1 - sin(phi) (Jaky).
+    std::optional<double> K0;
   };
 
   /** Slab and wall concrete: elasticity, or damage from f_cm by fib Model Code 2010. */
@@ -154,6 +156,50 @@ namespace kimp::app
     double frame_interval = 1e-3;
   };
 
+  /** Wall-soil interface (docs/physics.md §6 "Wall-soil interface"). */
+  struct FemInterface
+  {
+    enum class Model
+    {
+      bonded, ///< wall and backfill share their interface nodes
+      contact ///< unilateral Coulomb penalty contact, free to open
+    };
+    Model model = Model::bonded;
+    /// Coulomb friction coefficient; default tan(2 phi / 3) of the soil.
+    std::optional<double> friction;
+    double                penalty_factor = fem::InterfaceOptions().penalty_factor; ///< x E_soil / h
+  };
+
+  template <class Io>
+  void visit(Io &io, FemInterface &s)
+  {
+    io.choice("model",
+              s.model,
+              {{"bonded", FemInterface::Model::bonded}, {"contact", FemInterface::Model::contact}},
+              "bonded: wall and backfill share their nodes; contact: unilateral frictional "
+              "penalty contact between wall back and backfill (explicit integrator), closed by "
+              "the geostatic earth pressure, free to open");
+    io.quantity("friction",
+                s.friction,
+                "",
+                "contact: Coulomb friction coefficient mu (>= 0; null: tan(2 phi / 3))",
+                io::Range::non_negative());
+    io.quantity("penalty_factor",
+                s.penalty_factor,
+                "",
+                "contact: normal and tangential penalty per node pair / (E_soil / h x tributary "
+                "length) (> 0)",
+                io::Range::positive());
+  }
+
+  /** Geostatic initial state before the impact (docs/physics.md §6). */
+  enum class FemGeostatic
+  {
+    auto_, ///< on when the backfill's law is inelastic
+    on,
+    off
+  };
+
   /**
    * The FEM scene: one impact per entry of wall_heights (case name fem_case_name(H), "H1.25").
    * Load with read_scene<FemScene>(file), which validates.
@@ -169,6 +215,8 @@ namespace kimp::app
     FemDynamics         dynamics;
     FemOutput           output;
     FemBoundary         boundary;
+    FemGeostatic        geostatic = FemGeostatic::auto_;
+    FemInterface        interface;
   };
 
   template <class Io>
@@ -215,6 +263,12 @@ namespace kimp::app
                 "kPa",
                 "largest principal stress (>= 0; at most c cot(phi))",
                 io::Range::non_negative());
+    io.quantity("K0",
+                s.K0,
+                "",
+                "at-rest earth pressure coefficient sigma_h / sigma_v of the geostatic state "
+                "(in [0, 3]; null: 1 - sin(phi), Jaky)",
+                io::Range::at_least(0.0).and_at_most(3.0));
   }
 
   template <class Io>
@@ -438,7 +492,19 @@ namespace kimp::app
     io.section("dynamics", s.dynamics, "time integration");
     io.section("output", s.output, "field output");
     io.section("boundary", s.boundary, "boundary conditions of the backfill block");
+    io.choice("geostatic",
+              s.geostatic,
+              {{"auto", FemGeostatic::auto_}, {"on", FemGeostatic::on}, {"off", FemGeostatic::off}},
+              "gravity (not on the slab) and the at-rest stress sigma_v = gamma z, sigma_h = K0 "
+              "sigma_v in the backfill, brought to static equilibrium before the impact; "
+              "results are relative to that state. auto: on when the soil model is inelastic "
+              "(a linear body's impact does not depend on the preload) or the wall-soil "
+              "interface is a contact");
+    io.section("interface", s.interface, "wall-soil interface");
   }
+
+  /** Whether the case runs the geostatic step (FemScene::geostatic resolved). */
+  bool geostatic_enabled(const FemScene &scene);
 
   /** Checks ranges and cross-field rules of every section, for every wall height. */
   void validate(const FemScene &scene, io::ValidationContext &context);

@@ -24,6 +24,8 @@ namespace kimp::fem::internal
   {
     Vec u(locally_owned, comm), v_half(locally_owned, comm), v_n(locally_owned, comm);
     Vec Ku(locally_owned, comm), a(locally_owned, comm);
+    if (geostatic_on)
+      u = geostatic_u;
     // Initial velocity: the slab moves at +initial_velocity in x.
     double u_r = 0, v_r = prm.initial_velocity;
     set_initial_slab_velocity(v_half);
@@ -54,6 +56,8 @@ namespace kimp::fem::internal
       // Every evaluated point's trial history was rewritten: swapping commits it without a copy.
       if (!linear_laws)
         qp_history.commit_by_swap();
+      if (interface)
+        interface->commit();
       a.equ(-1.0, Ku);
       scatter_add(fc, a);
       a.scale(inverse_mass);
@@ -152,29 +156,44 @@ namespace kimp::fem::internal
     if (n % sample_every != 0)
       return;
     // kinetic, strain, slab m u, slab m v; internal work, stored, plastic, damage
-    std::array<double, 8> local{{0,
+    // (+ geostatic: the work (f_g - f_0) . (u - u_g) of the loads of the geostatic state)
+    std::array<double, 9> local{{0,
                                  0,
                                  0,
                                  0,
                                  internal_work_local,
                                  point_energy_local[0],
                                  point_energy_local[1],
-                                 point_energy_local[2]}};
+                                 point_energy_local[2],
+                                 0}};
     {
       const double *vp = v_n.begin(), *mp = mass.begin(), *up = u.begin(), *kp = Ku.begin(),
                    *sp = slab_mass_x.begin();
+      // Geostatic: energies and displacements relative to its state (the slab's is zero).
+      const double *gp = geostatic_on ? geostatic_u.begin() : nullptr;
+      const double *op = geostatic_on ? geostatic_offset.begin() : nullptr;
       for (std::size_t k = 0; k < v_n.locally_owned_size(); ++k)
       {
+        const double du = gp != nullptr ? up[k] - gp[k] : up[k];
         local[0] += 0.5 * mp[k] * vp[k] * vp[k];
-        local[1] += 0.5 * up[k] * kp[k];
+        local[1] += 0.5 * du * kp[k];
         local[2] += sp[k] * up[k];
         local[3] += sp[k] * vp[k];
+        if (op != nullptr)
+          local[8] -= op[k] * du;
       }
     }
-    std::array<double, 8> global{};
-    const int             ierr =
-      MPI_Allreduce(local.data(), global.data(), linear_laws ? 4 : 8, MPI_DOUBLE, MPI_SUM, comm);
+    std::array<double, 9> global{};
+    const int             ierr = MPI_Allreduce(local.data(),
+                                   global.data(),
+                                   linear_laws ? 4 : (geostatic_on ? 9 : 8),
+                                   MPI_DOUBLE,
+                                   MPI_SUM,
+                                   comm);
     AssertThrowMPI(ierr);
+    if (geostatic_on)
+      for (unsigned int i = 0; i < 3; ++i)
+        global[5 + i] -= geostatic_point_energy[i];
     const double kinetic = global[0] + (prm.rigid_slab ? 0.5 * prm.slab_mass * v_r * v_r : 0);
     // Linear laws: 1/2 u.Ku is the strain energy. Otherwise the integrated stress power is the
     // energy the body took, and the points split it into stored, plastic and damage.
@@ -189,8 +208,22 @@ namespace kimp::fem::internal
       history.internal_work.push_back(global[4]);
       history.plastic_dissipation.push_back(global[6]);
       history.damage_dissipation.push_back(global[7]);
-      max_dissipation_gap =
-        std::max(max_dissipation_gap, std::abs(global[4] - global[5] - global[6] - global[7]) / e0);
+      // Geostatic: W_int includes the work of gravity; the points' energies are increments.
+      // Geostatic: W_int includes the work of gravity; the points' energies are increments.
+      // A contact interface stores penalty energy and dissipates by friction.
+      const double interface_energy =
+        interface ? interface_ev.penalty_energy + interface_ev.dissipation - interface_energy0 :
+                    0.0;
+      max_dissipation_gap = std::max(max_dissipation_gap,
+                                     std::abs(global[4] + global[8] - global[5] - global[6] -
+                                              global[7] - interface_energy) /
+                                       e0);
+      if (interface)
+      {
+        history.interface_normal_force.push_back(interface_ev.normal_force);
+        history.interface_closed.push_back(interface_ev.n_closed);
+        history.friction_dissipation.push_back(interface_ev.dissipation - interface_dissipation0);
+      }
     }
     max_energy_error = std::max(max_energy_error, std::abs(error));
     if (!std::isfinite(error) || std::abs(error) > divergence_energy_error)
@@ -198,7 +231,7 @@ namespace kimp::fem::internal
 
     const double slab_u = prm.rigid_slab ? u_r : global[2] / slab_total_mass;
     const double slab_v = prm.rigid_slab ? v_r : global[3] / slab_total_mass;
-    double       wall = 0, front = 0;
+    double       wall = -geostatic_wall, front = -geostatic_front;
     for (std::size_t k = 0; k < cu.size(); ++k)
     {
       wall += wall_weight[k] * cu[k];
@@ -520,6 +553,24 @@ namespace kimp::fem::internal
     }
     s.dissipation_cor =
       std::sqrt(std::max(0.0, 1 - (s.plastic_dissipation + s.damage_dissipation) / e0));
+    if (geostatic_on)
+    {
+      s.geostatic_weight              = geostatic_summary.geostatic_weight;
+      s.geostatic_residual            = geostatic_summary.geostatic_residual;
+      s.geostatic_iterations          = geostatic_summary.geostatic_iterations;
+      s.geostatic_plastic_dissipation = geostatic_summary.geostatic_plastic_dissipation;
+      s.geostatic_max_plastic_strain  = geostatic_summary.geostatic_max_plastic_strain;
+      s.geostatic_wall_displacement   = geostatic_summary.geostatic_wall_displacement;
+      result.geostatic_stress         = std::move(geostatic_stress);
+    }
+    if (interface)
+    {
+      s.interface_pairs = interface->pairs().size();
+      s.interface_normal_force =
+        history.interface_normal_force.empty() ? 0.0 : history.interface_normal_force.front();
+      s.friction_dissipation =
+        history.friction_dissipation.empty() ? 0.0 : history.friction_dissipation.back();
+    }
     result.history = std::move(history);
   }
 } // namespace kimp::fem::internal

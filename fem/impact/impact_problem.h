@@ -19,6 +19,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include "fem/frictional_interface.h"
 #include "fem/impact.h"
 #include "fem/material_law.h"
 #include "fem/penalty_contact.h"
@@ -54,6 +55,9 @@ namespace kimp::fem::internal
     void assemble_system();
     /** Constitutive law per material id: material_laws, else linear elastic. */
     void make_laws();
+    /** f = laws_internal_force(u) + the geostatic offset (initial stress - gravity) - the
+     *  wall-soil interface force: the force the time loops balance with the inertia. */
+    void internal_force(const Vec &u, Vec &f);
     void compute_time_step();
     void log_line(const std::string &s) const;
 
@@ -65,9 +69,9 @@ namespace kimp::fem::internal
     // internal_force.cc
     /** Precomputes the kernel of internal_force() (non-linear laws; after make_laws()). */
     void setup_internal_force();
-    /** f = internal force of u: K u for linear laws, else assembled from the laws' stress
-     *  with the committed history (trial history written). */
-    void internal_force(const Vec &u, Vec &f);
+    /** f = internal force of the laws at u: K u for linear laws, else assembled from the
+     *  laws' stress with the committed history (trial history written). */
+    void laws_internal_force(const Vec &u, Vec &f);
     /** The same by an FEValues loop over the cells at every call: the kernel's reference. */
     void internal_force_reference(const Vec &u, Vec &f);
 
@@ -119,6 +123,20 @@ namespace kimp::fem::internal
     /** Slab velocity at t = 0: +x, or +y with initial_velocity_along_y (then E_0 is set to
      *  the initial kinetic energy). */
     void set_initial_slab_velocity(Vec &v);
+
+    // geostatic.cc
+    /** Gravity, initial stress and the static equilibrium the impact starts from. */
+    void run_geostatic_step();
+    /** Gauss-point stresses of the geostatic state, gathered to all ranks. */
+    std::vector<PointStress> gather_point_stresses(const Vec &u);
+
+    // interface_setup.cc
+    /** The wall-soil contact interface's node pairs (wall_soil_interface.contact only). */
+    void setup_interface();
+    /** f -= the interface forces at u (trial history of the interface written). */
+    void subtract_interface_force(const Vec &u, Vec &f);
+    /** Adds the interface's penalty springs to a matrix whose sparsity has their couplings. */
+    void add_interface_stiffness(TrilinosWrappers::SparseMatrix &matrix) const;
 
     // explicit_and_recording.cc
     void run_explicit();
@@ -221,5 +239,26 @@ namespace kimp::fem::internal
     std::vector<double>         force_ghost_values;
     unsigned long               n_linear_solves = 0, n_step_halvings = 0;
     double                      linear_solver_seconds = 0, linear_setup_seconds = 0;
+
+
+    // Geostatic state (geostatic.cc). internal_force() then returns f_int(u) + f_0 - f_g, with
+    // f_g the gravity load and f_0 the initial stress of points whose law cannot hold it:
+    // geostatic_offset = f_0 - f_g. The time loops start from u = geostatic_u; recording
+    // subtracts it and the point energies of that state.
+    bool                     geostatic_on = false;
+    Vec                      geostatic_offset, geostatic_u;
+    std::array<double, 3>    geostatic_point_energy{{0, 0, 0}}; // stored, plastic, damage (J/m)
+    double                   geostatic_wall = 0, geostatic_front = 0; // compact means (m)
+    ImpactSummary            geostatic_summary;                       // geostatic_* fields
+    std::vector<PointStress> geostatic_stress;
+
+    // Wall-soil contact interface (interface_setup.cc): pairs over compact interface nodes,
+    // their global DoFs, the last evaluation (same on all ranks) and its stored energy plus
+    // dissipation at the start of the impact (J/m).
+    std::unique_ptr<FrictionalInterface> interface;
+    std::vector<types::global_dof_index> interface_dofs;
+    FrictionalInterface::Evaluation      interface_ev;
+    double                               interface_energy0 = 0, interface_dissipation0 = 0;
+    double                               omega_interface = 0;
   };
 } // namespace kimp::fem::internal

@@ -236,6 +236,8 @@ namespace kimp::fem::internal
     Vec u_np1(locally_owned, comm), v_np1(locally_owned, comm), a_np1(locally_owned, comm);
     Vec Ku(locally_owned, comm), residual(locally_owned, comm), du(locally_owned, comm);
     Vec rhs(locally_owned, comm), u_start(locally_owned, comm);
+    if (geostatic_on)
+      u = geostatic_u;
     set_initial_slab_velocity(v);
     double u_r = 0, v_r = prm.initial_velocity, a_r = 0;
 

@@ -101,7 +101,7 @@ namespace kimp::fem::internal
     fast_internal_force = true;
   }
 
-  void ImpactProblem::internal_force(const Vec &u, Vec &f)
+  void ImpactProblem::laws_internal_force(const Vec &u, Vec &f)
   {
     if (linear_laws)
     {

@@ -74,10 +74,11 @@ namespace kimp::fem::internal
     if (linear_laws)
       return; // no history: the unloaded body is undeformed
 
-    // Force of the history alone, f_int(0; h): zero for damage (secant unloading), the
+    // Force of the history alone at the start state, f_int(u_0; h) (u_0 = 0, or the geostatic
+    // state, which the initial history balances): zero for damage (secant unloading), the
     // eigenstress of the plastic strains otherwise.
     Vec zero(locally_owned, comm), f0(locally_owned, comm);
-    internal_force(zero, f0);
+    internal_force(geostatic_on ? geostatic_u : zero, f0);
     qp_history.revert(); // an evaluation after the run: leave the end state committed
     Vec rhs(locally_owned, comm);
     rhs.equ(-1.0, f0);

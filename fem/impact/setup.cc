@@ -9,6 +9,7 @@
 #include <limits>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -92,9 +93,13 @@ namespace kimp::fem::internal
     contact_dofs.clear();
     assemble_system();
     setup_contact();
-    if (prm.integrator == ImpactParameters::Integrator::implicit_newmark)
+    if (prm.wall_soil_interface.contact)
+      setup_interface();
+    if (prm.integrator == ImpactParameters::Integrator::implicit_newmark || interface)
       assemble_system();
     assemble_dashpots();
+    if (prm.geostatic.enabled)
+      run_geostatic_step();
     compute_time_step();
     e0 = 0.5 * slab_total_mass * prm.initial_velocity * prm.initial_velocity;
     log_line("mesh: " + std::to_string(triangulation.n_global_active_cells()) + " cells, " +
@@ -206,15 +211,18 @@ namespace kimp::fem::internal
     }
     // Rigid slab: drop the slab cells; boundary ids are restored from the face centres because
     // removing cells does not carry them over.
-    std::map<std::pair<double, double>, types::boundary_id>     boundary_of;
-    std::set<typename Triangulation<dim>::active_cell_iterator> slab_cells;
+    // Keyed by the face centre and the cell's material: the wall_back and soil_front faces of
+    // a contact interface share their centres.
+    std::map<std::tuple<double, double, unsigned int>, types::boundary_id> boundary_of;
+    std::set<typename Triangulation<dim>::active_cell_iterator>            slab_cells;
     for (const auto &cell : serial.active_cell_iterators())
     {
       if (cell->material_id() == geometry::slab_material)
         slab_cells.insert(cell);
       for (const auto &face : cell->face_iterators())
         if (face->at_boundary())
-          boundary_of[{face->center()[0], face->center()[1]}] = face->boundary_id();
+          boundary_of[{face->center()[0], face->center()[1], cell->material_id()}] =
+            face->boundary_id();
     }
     Triangulation<dim> reduced;
     if (slab_cells.empty())
@@ -225,7 +233,8 @@ namespace kimp::fem::internal
       for (const auto &face : cell->face_iterators())
         if (face->at_boundary())
         {
-          const auto it = boundary_of.find({face->center()[0], face->center()[1]});
+          const auto it =
+            boundary_of.find({face->center()[0], face->center()[1], cell->material_id()});
           face->set_boundary_id(it == boundary_of.end() ? 0 : it->second);
         }
     triangulation.copy_triangulation(reduced);
@@ -263,6 +272,11 @@ namespace kimp::fem::internal
         if (locally_relevant.is_element(i))
           for (const auto j : contact_dofs)
             dsp.add(i, j);
+    // The wall-soil interface springs couple nodes of different cells (geostatic operator).
+    for (const auto i : interface_dofs)
+      if (locally_relevant.is_element(i))
+        for (const auto j : interface_dofs)
+          dsp.add(i, j);
     SparsityTools::distribute_sparsity_pattern(dsp, locally_owned, comm, locally_relevant);
     stiffness.reinit(locally_owned, locally_owned, dsp, comm);
 
@@ -365,6 +379,9 @@ namespace kimp::fem::internal
       linear_laws = linear_laws && laws[id]->is_linear();
       n_values    = std::max(n_values, laws[id]->n_history());
     }
+    // A wall-soil contact interface is not linear: energies from the internal work.
+    if (prm.wall_soil_interface.contact)
+      linear_laws = false;
     if (linear_laws)
       return;
     qp_history.reinit(triangulation.n_active_cells(), QGauss<dim>(2).size(), n_values);
@@ -377,6 +394,15 @@ namespace kimp::fem::internal
     u_ghosted.reinit(locally_owned, locally_relevant, comm);
     force_writable.reinit(locally_owned, locally_relevant, comm, true);
     setup_internal_force();
+  }
+
+  void ImpactProblem::internal_force(const Vec &u, Vec &f)
+  {
+    laws_internal_force(u, f);
+    if (geostatic_on)
+      f += geostatic_offset;
+    if (interface)
+      subtract_interface_force(u, f);
   }
 
   void ImpactProblem::compute_time_step()
@@ -395,7 +421,9 @@ namespace kimp::fem::internal
         local_omega =
           std::max(local_omega, 2 * p_wave_speed(prm.materials.at(cell->material_id())) / h);
       }
-    omega_mesh         = Utilities::MPI::max(local_omega, comm);
+    omega_mesh = Utilities::MPI::max(local_omega, comm);
+    if (omega_interface > 0) // the wall-soil interface springs
+      omega_mesh = std::sqrt(omega_mesh * omega_mesh + omega_interface * omega_interface);
     const double omega = std::sqrt(omega_mesh * omega_mesh + omega_penalty * omega_penalty);
     const double xi    = prm.contact_damping_ratio * omega_penalty / omega;
     dt_stable          = 2 / omega * (std::sqrt(1 + xi * xi) - xi);

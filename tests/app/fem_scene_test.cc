@@ -219,6 +219,60 @@ namespace
                  SceneError);
   }
 
+  TEST(FemScene, GeostaticKeysResolveToTheSolversOptions)
+  {
+    // auto: off for the elastic default (results unchanged), on with an inelastic soil with
+    // K0 = 1 - sin(phi) (Jaky); K0 given overrides it; on/off force it.
+    namespace ids = kimp::geometry;
+    const FemScene elastic;
+    EXPECT_FALSE(kimp::app::impact_parameters(elastic, 1.25, "m.msh").geostatic.enabled);
+    const FemScene sand = load_scene_text<FemScene>(
+      "materials: {soil: {model: mohr_coulomb, preset: medium_dense_sand}}\n",
+      file_name);
+    const auto p = kimp::app::impact_parameters(sand, 1.25, "m.msh");
+    EXPECT_TRUE(p.geostatic.enabled);
+    EXPECT_NEAR(p.geostatic.initial_stress_K0.at(ids::soil_material),
+                1 - std::sin(34 * M_PI / 180),
+                1e-14);
+    const FemScene given =
+      load_scene_text<FemScene>("geostatic: on\nmaterials: {soil: {K0: 0.6}}\n", file_name);
+    const auto q = kimp::app::impact_parameters(given, 1.25, "m.msh");
+    EXPECT_TRUE(q.geostatic.enabled);
+    EXPECT_DOUBLE_EQ(q.geostatic.initial_stress_K0.at(ids::soil_material), 0.6);
+    const FemScene off =
+      load_scene_text<FemScene>("geostatic: off\nmaterials: {soil: {model: mohr_coulomb}}\n",
+                                file_name);
+    EXPECT_FALSE(kimp::app::impact_parameters(off, 1.25, "m.msh").geostatic.enabled);
+    EXPECT_THROW(load_scene_text<FemScene>("materials: {soil: {K0: -1}}\n", file_name),
+                 kimp::io::SceneError);
+    EXPECT_THROW(load_scene_text<FemScene>("geostatic: maybe\n", file_name), kimp::io::SceneError);
+  }
+
+  TEST(FemScene, InterfaceContactMeshesSeparateNodesAndDefaultsToTanTwoThirdsPhi)
+  {
+    // bonded by default; contact: separate interface nodes in the mesh, mu = tan(2 phi / 3),
+    // geostatic (auto) on; refused with the implicit integrator.
+    const FemScene bonded;
+    EXPECT_FALSE(kimp::app::impact_parameters(bonded, 1.25, "m.msh").wall_soil_interface.contact);
+    EXPECT_FALSE(kimp::app::scene_geometry(bonded, 1.25).interface_contact);
+    const FemScene s =
+      load_scene_text<FemScene>("interface: {model: contact}\nmaterials: {soil: {phi: 30}}\n",
+                                file_name);
+    const auto p = kimp::app::impact_parameters(s, 1.25, "m.msh");
+    EXPECT_TRUE(p.wall_soil_interface.contact);
+    EXPECT_NEAR(p.wall_soil_interface.friction, std::tan(20 * M_PI / 180), 1e-14);
+    EXPECT_TRUE(p.geostatic.enabled);
+    EXPECT_TRUE(kimp::app::scene_geometry(s, 1.25).interface_contact);
+    const FemScene given =
+      load_scene_text<FemScene>("interface: {model: contact, friction: 0.3}\n", file_name);
+    EXPECT_DOUBLE_EQ(
+      kimp::app::impact_parameters(given, 1.25, "m.msh").wall_soil_interface.friction,
+      0.3);
+    EXPECT_NE(scene_error("interface: {model: contact}\ndynamics: {integrator: implicit}\n")
+                .find("interface.model"),
+              std::string::npos);
+  }
+
   TEST(FemScene, AutomaticTimesBecomeZeroForTheSolver)
   {
     const FemScene                    s;

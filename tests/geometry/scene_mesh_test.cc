@@ -547,6 +547,49 @@ TEST(SceneMesh, WithoutBackfillTheWallIsABareCantilever)
 }
 
 
+TEST(SceneMesh, ContactInterfaceDuplicatesTheWallSoilNodes)
+{
+  // interface_contact: the backfill's front column has its own nodes at the places of the wall's
+  // back nodes up to H_b (one more node per soil grid row), tagged soil_front and wall_back over
+  // [0, H_b]; no quad uses a node of both bodies.
+  SceneGeometry bonded;
+  bonded.backfill_height           = 1.0;
+  SceneGeometry separate           = bonded;
+  separate.interface_contact       = true;
+  const auto           bonded_file = test_file(), separate_file = test_file("_interface");
+  const MeshStatistics bonded_stats   = build_scene_mesh(bonded, bonded_file);
+  const MeshStatistics separate_stats = build_scene_mesh(separate, separate_file);
+  const MeshFile       mesh           = read_mesh(separate_file);
+  const auto           lines          = [&](int id)
+  {
+    std::vector<std::array<double, 4>> result;
+    for (const Line &l : mesh.lines.at(id))
+      result.push_back({mesh.x(l[0]), mesh.y(l[0]), mesh.x(l[1]), mesh.y(l[1])});
+    std::sort(result.begin(), result.end());
+    return result;
+  };
+  const auto back = lines(wall_back), front = lines(soil_front);
+  ASSERT_EQ(back.size(), front.size());
+  EXPECT_EQ(back, front);
+  std::set<std::size_t> wall_nodes, soil_nodes;
+  for (const Quad &q : mesh.quads.at(wall_material))
+    wall_nodes.insert(q.begin(), q.end());
+  for (const Quad &q : mesh.quads.at(soil_material))
+    soil_nodes.insert(q.begin(), q.end());
+  for (const std::size_t n : soil_nodes)
+    EXPECT_EQ(wall_nodes.count(n), 0u) << "node " << n << " shared";
+  double top = 0;
+  for (const auto &l : back)
+  {
+    EXPECT_EQ(l[0], separate.wall_thickness);
+    top = std::max(top, std::max(l[1], l[3]));
+  }
+  EXPECT_EQ(top, 1.0);
+  EXPECT_EQ(separate_stats.n_nodes, bonded_stats.n_nodes + back.size() + 1);
+  EXPECT_EQ(mesh.n_entities_with_one_group, mesh.n_entities);
+}
+
+
 TEST(SceneMesh, LowerBackfillAndLowerSlabKeepTheInvariants)
 {
   SceneGeometry g;

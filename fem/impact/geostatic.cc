@@ -1,0 +1,288 @@
+// ImpactProblem geostatic step: gravity on every body but the slab, the K0 initial stress of the
+// backfill, and the static equilibrium the impact starts from, by modified Newton on the virgin
+// stiffness factorised once (KLU) (docs/physics.md §6 "Geostatic initial state").
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <tuple>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/vector.h>
+
+#include "fem/impact/impact_problem.h"
+#include "geometry/scene_ids.h"
+
+namespace kimp::fem::internal
+{
+  namespace
+  {
+    /** Top (m) of the cells of every material of @p k0, the same on all ranks. */
+    std::map<unsigned int, double> material_tops(const DoFHandler<dim>                &dofs,
+                                                 const std::map<unsigned int, double> &k0,
+                                                 MPI_Comm                              comm)
+    {
+      std::vector<double> local(k0.size(), -std::numeric_limits<double>::max());
+      for (const auto &cell : dofs.active_cell_iterators())
+        if (cell->is_locally_owned())
+        {
+          const auto it = k0.find(cell->material_id());
+          if (it == k0.end())
+            continue;
+          const std::size_t m = std::distance(k0.begin(), it);
+          for (unsigned int v = 0; v < cell->n_vertices(); ++v)
+            local[m] = std::max(local[m], cell->vertex(v)[1]);
+        }
+      std::vector<double> global(local.size());
+      const int           ierr = MPI_Allreduce(local.data(),
+                                     global.data(),
+                                     static_cast<int>(local.size()),
+                                     MPI_DOUBLE,
+                                     MPI_MAX,
+                                     comm);
+      AssertThrowMPI(ierr);
+      std::map<unsigned int, double> tops;
+      std::size_t                    m = 0;
+      for (const auto &entry : k0)
+        tops[entry.first] = global[m++];
+      return tops;
+    }
+  } // namespace
+
+  void ImpactProblem::run_geostatic_step()
+  {
+    const GeostaticOptions &g = prm.geostatic;
+    require(g.gravity > 0, "geostatic.gravity = " + fmt_double(g.gravity) + " m/s^2 (must be > 0)");
+    require(g.tolerance > 0, "geostatic.tolerance = " + fmt_double(g.tolerance) + " (must be > 0)");
+    require(g.max_iterations > 0, "geostatic.max_iterations = 0 (must be > 0)");
+    for (const auto &[id, k0] : g.initial_stress_K0)
+      require(k0 >= 0 && prm.materials.count(id) > 0,
+              "geostatic.initial_stress_K0[" + std::to_string(id) + "] = " + fmt_double(k0) +
+                " (must be >= 0, for a material id that has an entry in materials)");
+    const std::map<unsigned int, double> tops =
+      material_tops(dof_handler, g.initial_stress_K0, comm);
+    // sigma0 at height y in a material of K0 (tension positive), or false.
+    const auto initial_stress = [&](unsigned int material, double y, InitialStress &sigma)
+    {
+      const auto it = g.initial_stress_K0.find(material);
+      if (it == g.initial_stress_K0.end())
+        return false;
+      const double sv = -prm.materials.at(material).density * g.gravity * (tops.at(material) - y);
+      sigma           = {{it->second * sv, sv, it->second * sv, 0}};
+      return true;
+    };
+
+    // Gravity load f_g (consistent with the Gauss-Lobatto lumped mass: exact for a constant
+    // body force on a parallelogram) and f_0 = int B^T sigma0 of the points whose law cannot
+    // hold sigma0; the others get it in their history.
+    Vec offset_w;
+    offset_w.reinit(locally_owned, locally_relevant, comm, true);
+    const QGauss<dim>                    quadrature(2);
+    const QGaussLobatto<dim>             lobatto(2);
+    FEValues<dim>                        fe_values(fe,
+                            quadrature,
+                            update_gradients | update_JxW_values | update_quadrature_points);
+    FEValues<dim>                        fe_mass(fe, lobatto, update_values | update_JxW_values);
+    const unsigned int                   n = fe.n_dofs_per_cell();
+    Vector<double>                       cell_force(n);
+    std::vector<types::global_dof_index> dof_indices(n);
+    const FEValuesExtractors::Vector     displacement(0);
+    std::set<types::global_dof_index>    slab_dofs;
+    double                               weight_local = 0;
+    const bool                           weigh_all    = g.initial_stress_K0.empty();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+      {
+        const unsigned int mid = cell->material_id();
+        cell->get_dof_indices(dof_indices);
+        if (mid == geometry::slab_material)
+        {
+          // The slab rides on its isolators: no weight. Its DoFs get a diagonal in the static
+          // operator (it is free and unloaded, so it stays at rest).
+          for (const auto i : dof_indices)
+            if (locally_owned.is_element(i))
+              slab_dofs.insert(i);
+          continue;
+        }
+        const double rho = prm.materials.at(mid).density;
+        fe_values.reinit(cell);
+        fe_mass.reinit(cell);
+        cell_force = 0;
+        for (unsigned int q = 0; q < lobatto.size(); ++q)
+          for (unsigned int i = 0; i < n; ++i)
+            if (fe.system_to_component_index(i).first == 1)
+              cell_force(i) += rho * g.gravity * fe_mass.shape_value(i, q) * fe_mass.JxW(q);
+        if (weigh_all || g.initial_stress_K0.count(mid) > 0)
+          weight_local += rho * g.gravity * cell->measure();
+        const MaterialLaw &law = *laws.at(mid);
+        const unsigned int c   = cell->active_cell_index();
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+        {
+          InitialStress sigma{};
+          if (!initial_stress(mid, fe_values.quadrature_point(q)[1], sigma))
+            continue;
+          if (!linear_laws && law.n_history() > 0 &&
+              law.set_initial_stress(qp_history.trial(c, q), sigma))
+            continue;
+          for (unsigned int i = 0; i < n; ++i)
+          {
+            const auto e = fe_values[displacement].symmetric_gradient(i, q);
+            cell_force(i) +=
+              (sigma[0] * e[0][0] + sigma[1] * e[1][1] + 2 * sigma[3] * e[0][1]) * fe_values.JxW(q);
+          }
+        }
+        constraints.distribute_local_to_global(cell_force, dof_indices, offset_w);
+      }
+    offset_w.compress(VectorOperation::add);
+    if (!linear_laws)
+      qp_history.commit(); // the initial stress becomes the committed state
+    geostatic_offset.reinit(locally_owned, comm);
+    geostatic_offset    = offset_w;
+    geostatic_on        = true;
+    const double weight = Utilities::MPI::sum(weight_local, comm);
+    require(weight > 0, "geostatic step: the bodies under gravity have no weight");
+
+    // Static operator: the virgin stiffness, with the free slab's DoFs held by their diagonal.
+    TrilinosWrappers::SparseMatrix op;
+    op.reinit(stiffness);
+    op.copy_from(stiffness);
+    for (const auto i : slab_dofs)
+      op.add(i, i, stiffness.diag_element(i));
+    if (interface)
+      add_interface_stiffness(op);
+    op.compress(VectorOperation::add);
+    SolverControl                  control;
+    TrilinosWrappers::SolverDirect direct(control);
+    direct.initialize(op);
+
+    // Modified Newton: u <- u - K^-1 (f_int(u) + f_0 - f_g). One iteration for linear laws and
+    // for inelastic ones that stay elastic; linear convergence once points yield.
+    Vec           u(locally_owned, comm), r(locally_owned, comm), du(locally_owned, comm);
+    double        residual = 0;
+    unsigned long k        = 0;
+    for (;; ++k)
+    {
+      internal_force(u, r);
+      r.scale(free_mask);
+      residual = r.l2_norm();
+      if (residual <= g.tolerance * weight)
+        break;
+      if (k == g.max_iterations)
+        throw NumericalError("geostatic step did not converge: out-of-balance force " +
+                               fmt_double(residual) + " N/m after " + std::to_string(k) +
+                               " modified Newton iterations, above " + fmt_double(g.tolerance) +
+                               " x the weight " + fmt_double(weight) +
+                               " N/m (the backfill may be collapsing under its own weight)",
+                             0.0,
+                             0);
+      direct.solve(du, r);
+      ++n_linear_solves;
+      u.add(-1.0, du);
+    }
+    if (!linear_laws)
+      qp_history.commit();
+    if (interface)
+    {
+      interface->commit();
+      interface_energy0      = interface_ev.penalty_energy + interface_ev.dissipation;
+      interface_dissipation0 = interface_ev.dissipation;
+    }
+    geostatic_u = u;
+    {
+      const std::array<double, 3> local = point_energy_local;
+      for (unsigned int i = 0; i < 3; ++i)
+        geostatic_point_energy[i] = Utilities::MPI::sum(local[i], comm);
+    }
+
+    // The slab-wall gap at the geostatic state: the earth pressure moves the wall face.
+    const std::vector<double> cu = gather_compact(u, 0.0);
+    for (std::size_t i = 0; i < cu.size(); ++i)
+    {
+      geostatic_wall += wall_weight[i] * cu[i];
+      geostatic_front += front_weight[i] * cu[i];
+    }
+    const auto ev = contact->evaluate(cu, std::vector<double>(cu.size(), 0.0));
+    require(ev.total_force == 0,
+            "geostatic step: the wall moved onto the slab under the earth pressure (largest "
+            "penetration " +
+              fmt_double(ev.max_penetration) + " m); increase geometry.gap");
+    initial_gap += geostatic_wall - geostatic_front;
+
+    geostatic_stress                                = gather_point_stresses(u);
+    geostatic_summary.geostatic_weight              = weight;
+    geostatic_summary.geostatic_residual            = residual / weight;
+    geostatic_summary.geostatic_iterations          = k;
+    geostatic_summary.geostatic_plastic_dissipation = geostatic_point_energy[1];
+    geostatic_summary.geostatic_wall_displacement   = geostatic_wall;
+    log_line("geostatic: weight " + fmt_double(weight) + " N/m, out-of-balance " +
+             fmt_double(residual / weight) + " of it after " + std::to_string(k) +
+             " iterations, wall face u_x = " + fmt_double(geostatic_wall) +
+             " m, plastic dissipation " + fmt_double(geostatic_point_energy[1]) + " J/m");
+  }
+
+  std::vector<PointStress> ImpactProblem::gather_point_stresses(const Vec &u)
+  {
+    const GeostaticOptions &g    = prm.geostatic;
+    const auto              tops = material_tops(dof_handler, g.initial_stress_K0, comm);
+    Vec                     u_g(locally_owned, locally_relevant, comm);
+    u_g = u;
+    const QGauss<dim> quadrature(2);
+    FEValues<dim>     fe_values(fe, quadrature, update_gradients | update_quadrature_points);
+    const FEValuesExtractors::Vector     displacement(0);
+    std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
+    std::vector<double>                  local, scratch, probe;
+    double                               max_plastic = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned() && cell->material_id() != geometry::slab_material)
+      {
+        const unsigned int mid = cell->material_id();
+        const unsigned int c   = cell->active_cell_index();
+        const MaterialLaw &law = *laws.at(mid);
+        fe_values.reinit(cell);
+        fe_values[displacement].get_function_symmetric_gradients(u_g, eps);
+        scratch.assign(std::max(1u, law.n_history()), 0.0);
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+        {
+          const VoigtStrain e{{eps[q][0][0], eps[q][1][1], 2 * eps[q][0][1]}};
+          const bool        history = !linear_laws && law.n_history() > 0;
+          const double     *h       = history ? qp_history.committed(c, q) : scratch.data();
+          VoigtStress       s       = law.stress(e, h, scratch.data());
+          const PointOutput po      = law.output(e, history ? scratch.data() : nullptr);
+          double            szz     = po.sigma_zz;
+          max_plastic               = std::max(max_plastic, po.equivalent_plastic_strain);
+          const auto point          = fe_values.quadrature_point(q);
+          const auto it             = g.initial_stress_K0.find(mid);
+          probe.assign(scratch.size(), 0.0);
+          if (it != g.initial_stress_K0.end() &&
+              !(history && law.set_initial_stress(probe.data(), InitialStress{})))
+          {
+            // A law without history: its stress is the increment; add sigma0.
+            const double sv =
+              -prm.materials.at(mid).density * g.gravity * (tops.at(mid) - point[1]);
+            s[0] += it->second * sv;
+            s[1] += sv;
+            szz += it->second * sv;
+          }
+          local.insert(local.end(), {point[0], point[1], double(mid), s[0], s[1], szz, s[2]});
+        }
+      }
+    geostatic_summary.geostatic_max_plastic_strain = Utilities::MPI::max(max_plastic, comm);
+    std::vector<PointStress> points;
+    for (const auto &part : Utilities::MPI::all_gather(comm, local))
+      for (std::size_t k = 0; k + 7 <= part.size(); k += 7)
+        points.push_back({part[k],
+                          part[k + 1],
+                          static_cast<unsigned int>(part[k + 2]),
+                          part[k + 3],
+                          part[k + 4],
+                          part[k + 5],
+                          part[k + 6]});
+    std::sort(points.begin(),
+              points.end(),
+              [](const PointStress &a, const PointStress &b)
+              { return std::tie(a.material_id, a.x, a.y) < std::tie(b.material_id, b.x, b.y); });
+    return points;
+  }
+} // namespace kimp::fem::internal

@@ -1,0 +1,363 @@
+// Geostatic initial state of the FE impact (docs/physics.md §6): static equilibrium under gravity
+// with the Jaky K0 stress in the backfill, a cohesionless Mohr-Coulomb backfill that stays
+// elastic, the energy balance of an impact from that state, and 1 vs 2 MPI ranks.
+#include <cmath>
+#include <gtest/gtest.h>
+#include <iostream>
+
+#include "fem/impact.h"
+#include "fem/inelastic_laws.h"
+#include "geometry/scene_layout.h"
+#include "tests/fem/impact_test_support.h"
+
+namespace kimp::fem::testing
+{
+  namespace
+  {
+    constexpr double g = 9.80665;
+
+    /** The §4 scene (H = 1.25 m, backfill 2 m) with the medium_dense_sand Mohr-Coulomb
+     *  backfill and the geostatic state, K0 = 1 - sin(phi). */
+    ImpactParameters geostatic_scene(const std::string &name, bool rigid, double h = 0.05)
+    {
+      auto                 p          = scene_parameters(h, rigid, name);
+      const SoilParameters sp         = soil_preset("medium_dense_sand");
+      p.materials[ids::soil_material] = Material{sp.youngs_modulus, sp.poisson_ratio, sp.density};
+      p.material_laws[ids::soil_material] = std::make_shared<const MohrCoulombLaw>(sp);
+      p.geostatic.enabled                 = true;
+      p.geostatic.initial_stress_K0[ids::soil_material] = 1 - std::sin(sp.friction_angle);
+      return p;
+    }
+  } // namespace
+
+  /** Max relative deviations of the soil points below the top 10 cm from the Jaky state. */
+  struct JakyDeviation
+  {
+    double       vertical = 0, horizontal = 0, out_of_plane = 0, shear = 0;
+    unsigned int n = 0;
+  };
+
+  JakyDeviation jaky_deviation(const ImpactResult &r, double x_min)
+  {
+    const SoilParameters                sp    = soil_preset("medium_dense_sand");
+    const double                        k0    = 1 - std::sin(sp.friction_angle);
+    const double                        gamma = sp.density * g;
+    const kimp::geometry::SceneGeometry geometry;
+    const double                        top = geometry.wall_height;
+    JakyDeviation                       d;
+    for (const auto &q : r.geostatic_stress)
+    {
+      if (q.material_id != ids::soil_material || q.x < x_min || top - q.y < 0.1)
+        continue;
+      const double sv = -gamma * (top - q.y);
+      d.vertical      = std::max(d.vertical, std::abs(q.yy / sv - 1));
+      d.horizontal    = std::max(d.horizontal, std::abs(q.xx / (k0 * sv) - 1));
+      d.out_of_plane  = std::max(d.out_of_plane, std::abs(q.zz / (k0 * sv) - 1));
+      d.shear         = std::max(d.shear, std::abs(q.xy / sv));
+      ++d.n;
+    }
+    return d;
+  }
+
+  std::ostream &operator<<(std::ostream &out, const JakyDeviation &d)
+  {
+    return out << d.n << " points: max |sigma_v/(-gamma z) - 1| " << d.vertical
+               << ", |sigma_h/(K0 sigma_v) - 1| " << d.horizontal
+               << ", |sigma_zz/(K0 sigma_v) - 1| " << d.out_of_plane << ", |tau/sigma_v| "
+               << d.shear;
+  }
+
+  TEST(Geostatic, JakyStressesBehindAnUnyieldingWall)
+  {
+    // A wall 1000 times stiffer than concrete does not yield to the earth pressure: out-of-
+    // balance force < 1e-8 of the soil weight, stresses sigma_v = -gamma z, sigma_h = sigma_zz =
+    // K0 sigma_v within 1 % everywhere below the top 10 cm (Jaky's at-rest state), and the
+    // cohesionless Mohr-Coulomb backfill stays elastic.
+    constexpr double balance_tolerance = 1e-8;
+    constexpr double stress_tolerance  = 0.01;
+    auto             p                 = geostatic_scene("geostatic_k0_stiff.msh", true);
+    p.end_time                         = 1e-4; // the impact itself is not the point here
+    p.materials[ids::wall_material].youngs_modulus *= 1000;
+    const auto                          r = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto                         &s = r.summary;
+    const kimp::geometry::SceneGeometry geometry;
+    const SoilParameters                sp     = soil_preset("medium_dense_sand");
+    const double                        weight = sp.density * g * 2.0 * geometry.wall_height;
+    const JakyDeviation                 d      = jaky_deviation(r, geometry.wall_thickness);
+    if (rank() == 0)
+      std::cout << "geostatic, unyielding wall: weight " << s.geostatic_weight
+                << " N/m, out-of-balance " << s.geostatic_residual << " of it, "
+                << s.geostatic_iterations << " iterations, wall face u_x "
+                << s.geostatic_wall_displacement << " m; " << d << "; plastic dissipation "
+                << s.geostatic_plastic_dissipation << " J/m, max plastic strain "
+                << s.geostatic_max_plastic_strain << '\n';
+    EXPECT_NEAR(s.geostatic_weight, weight, 1e-9 * weight);
+    EXPECT_LT(s.geostatic_residual, balance_tolerance);
+    ASSERT_GT(d.n, 100u);
+    EXPECT_LT(d.vertical, stress_tolerance);
+    EXPECT_LT(d.horizontal, stress_tolerance);
+    EXPECT_LT(d.out_of_plane, stress_tolerance);
+    EXPECT_LT(d.shear, stress_tolerance);
+    EXPECT_EQ(s.geostatic_max_plastic_strain, 0);
+    EXPECT_EQ(s.geostatic_plastic_dissipation, 0);
+  }
+
+  TEST(Geostatic, ConcreteWallCarriesTheEarthPressure)
+  {
+    // The concrete cantilever deflects toward the slab under the earth pressure; equilibrium is
+    // still reached to 1e-8 of the soil weight. The 2 m block relaxes toward the active state
+    // as the wall yields (sigma_h falls by about the same few hundred Pa everywhere).
+    constexpr double balance_tolerance    = 1e-8;
+    auto             p                    = geostatic_scene("geostatic_k0.msh", true);
+    p.end_time                            = 1e-4;
+    const auto                          r = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto                         &s = r.summary;
+    const kimp::geometry::SceneGeometry geometry;
+    if (rank() == 0)
+      std::cout << "geostatic, concrete wall: out-of-balance " << s.geostatic_residual << ", "
+                << s.geostatic_iterations << " iterations, wall face u_x "
+                << s.geostatic_wall_displacement << " m; away from the wall (x > t_w + 1 m) "
+                << jaky_deviation(r, geometry.wall_thickness + 1.0) << "; plastic dissipation "
+                << s.geostatic_plastic_dissipation << " J/m, max plastic strain "
+                << s.geostatic_max_plastic_strain << '\n';
+    EXPECT_LT(s.geostatic_residual, balance_tolerance);
+    EXPECT_LT(s.geostatic_wall_displacement, 0);
+  }
+
+  TEST(Geostatic, ImpactFromTheGeostaticStateClosesItsEnergyBalance)
+  {
+    // Rigid slab (no weight) on the wall with Mohr-Coulomb backfill under gravity: kinetic +
+    // internal work - contact work - work of gravity = E_0 within 1 %, and the points' energy
+    // increments account for the internal work within 1 % of E_0.
+    constexpr double energy_tolerance = 0.01;
+    auto             p                = geostatic_scene("geostatic_energy.msh", true);
+    p.initial_velocity                = 2.0;
+    const auto  r                     = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto &s                     = r.summary;
+    if (rank() == 0)
+      std::cout << "geostatic impact: " << summary_line(r) << "; bookkeeping gap "
+                << s.dissipation_gap << ", plastic " << s.plastic_dissipation
+                << " J/m; geostatic out-of-balance " << s.geostatic_residual << '\n';
+    EXPECT_TRUE(s.separated);
+    EXPECT_LT(s.energy_error, energy_tolerance);
+    EXPECT_LT(s.dissipation_gap, energy_tolerance);
+    EXPECT_LT(s.geostatic_residual, 1e-8);
+    // Relative to the geostatic state: the histories start at zero.
+    EXPECT_NEAR(r.history.wall_displacement.front(), 0, 1e-15);
+    EXPECT_NEAR(r.history.indentation.front(), -s.initial_gap, 1e-15);
+  }
+
+  TEST(Geostatic, LinearSoilImpactIsUnchangedByThePreload)
+  {
+    // Linear bodies: the geostatic preload superposes; impulse and peak force equal those of
+    // the stress-free run. The contact starts earlier (the wall moved toward the slab by 15 um,
+    // about 4 time steps), so the force is sampled at another phase of the time grid: measured
+    // 1.6e-4 (impulse) and 4.3e-3 (smoothed peak).
+    constexpr double tolerance      = 1e-3;
+    constexpr double peak_tolerance = 1e-2;
+    auto             p              = scene_parameters(0.05, true, "geostatic_linear.msh");
+    const auto       free_run       = run_impact(p, MPI_COMM_WORLD, nullptr);
+    p.geostatic.enabled             = true;
+    p.geostatic.initial_stress_K0[ids::soil_material] = 0.5;
+    const auto pre                                    = run_impact(p, MPI_COMM_WORLD, nullptr);
+    if (rank() == 0)
+      std::cout << "linear soil: peak " << free_run.summary.peak_force << " vs "
+                << pre.summary.peak_force << " N/m, impulse " << free_run.summary.impulse << " vs "
+                << pre.summary.impulse << " N s/m, gap " << free_run.summary.initial_gap << " vs "
+                << pre.summary.initial_gap << " m, out-of-balance "
+                << pre.summary.geostatic_residual << '\n';
+    EXPECT_LT(pre.summary.geostatic_residual, 1e-8);
+    EXPECT_LT(pre.summary.initial_gap, free_run.summary.initial_gap);
+    EXPECT_NEAR(pre.summary.peak_force,
+                free_run.summary.peak_force,
+                peak_tolerance * free_run.summary.peak_force);
+    EXPECT_NEAR(pre.summary.impulse,
+                free_run.summary.impulse,
+                tolerance * free_run.summary.impulse);
+    EXPECT_LT(pre.summary.energy_error, 0.01);
+  }
+
+  TEST(MpiGeostatic, DistributedGeostaticRunMatchesSerialRun)
+  {
+    // 1 or 2 ranks vs MPI_COMM_SELF: same geostatic state and force history (relative 1e-10).
+    constexpr double tolerance = 1e-10;
+    auto             p         = geostatic_scene("geostatic_mpi.msh", false);
+    p.end_time                 = 0.004;
+    const auto world           = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto self            = run_impact(p, MPI_COMM_SELF, nullptr);
+    ASSERT_EQ(world.history.time.size(), self.history.time.size());
+    ASSERT_EQ(world.geostatic_stress.size(), self.geostatic_stress.size());
+    double max_force = 0, max_difference = 0, max_stress = 0, max_stress_difference = 0;
+    for (std::size_t i = 0; i < self.history.time.size(); ++i)
+    {
+      max_force = std::max(max_force, self.history.contact_force[i]);
+      max_difference =
+        std::max(max_difference,
+                 std::abs(world.history.contact_force[i] - self.history.contact_force[i]));
+    }
+    for (std::size_t i = 0; i < self.geostatic_stress.size(); ++i)
+    {
+      max_stress = std::max(max_stress, std::abs(self.geostatic_stress[i].yy));
+      max_stress_difference =
+        std::max(max_stress_difference,
+                 std::abs(world.geostatic_stress[i].xx - self.geostatic_stress[i].xx));
+    }
+    ASSERT_GT(max_force, 0);
+    EXPECT_LT(max_difference, tolerance * max_force);
+    EXPECT_LT(max_stress_difference, tolerance * max_stress);
+    if (rank() == 0)
+      std::cout << "MPI geostatic: " << world.summary.n_ranks
+                << " ranks vs 1, max |dF| / max F = " << max_difference / max_force
+                << ", max |d sigma_xx| / max |sigma_yy| = " << max_stress_difference / max_stress
+                << '\n';
+  }
+
+  /** geostatic_scene() meshed with separate wall and soil interface nodes, joined by the
+   *  frictional contact interface with mu = tan(2 phi / 3). */
+  ImpactParameters interface_scene(const std::string &name)
+  {
+    auto                          p = geostatic_scene(name, true);
+    kimp::geometry::SceneGeometry geometry;
+    geometry.h_contact         = 0.05;
+    geometry.h_max             = 0.2;
+    geometry.mesh_slab         = false;
+    geometry.interface_contact = true;
+    if (rank() == 0)
+      kimp::geometry::build_scene_mesh(geometry, p.mesh_file);
+    MPI_Barrier(MPI_COMM_WORLD);
+    const SoilParameters sp        = soil_preset("medium_dense_sand");
+    p.wall_soil_interface.contact  = true;
+    p.wall_soil_interface.friction = std::tan(2.0 / 3.0 * sp.friction_angle);
+    return p;
+  }
+
+  TEST(WallSoilInterface, ClosedUnderTheGeostaticPressureAndTransmitsIt)
+  {
+    // Behind an unyielding wall the interface closes under the earth pressure and carries the
+    // at-rest thrust P0 = K0 gamma H^2 / 2 less the share of the fixed base node, which goes
+    // to the base: K0 gamma (H h1 / 2 - h1^2 / 6) for a lowest segment h1 (within 1 %); every
+    // pair but the top one (no pressure) and the fixed base one is closed; the state is in
+    // equilibrium to 1e-8. Penalty 100: the interface springs' own compliance lets the soil
+    // expand toward the wall and relax (at the default factor 1 the force is 7 % lower).
+    constexpr double thrust_tolerance    = 0.01;
+    auto             p                   = interface_scene("interface_closed.msh");
+    p.end_time                           = 1e-4;
+    p.wall_soil_interface.penalty_factor = 100;
+    p.materials[ids::wall_material].youngs_modulus *= 1000;
+    const auto                    r  = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto                   &s  = r.summary;
+    const SoilParameters          sp = soil_preset("medium_dense_sand");
+    const double                  k0 = 1 - std::sin(sp.friction_angle);
+    const double                  H  = kimp::geometry::SceneGeometry().wall_height;
+    kimp::geometry::SceneGeometry geometry;
+    geometry.h_contact  = 0.05;
+    geometry.h_max      = 0.2;
+    const double h1     = kimp::geometry::SceneLayout::build(geometry).soil_y[1];
+    const double gamma  = sp.density * g;
+    const double thrust = 0.5 * k0 * gamma * H * H - k0 * gamma * (H * h1 / 2 - h1 * h1 / 6);
+    if (rank() == 0)
+      std::cout << "interface at rest: normal force " << s.interface_normal_force
+                << " N/m vs K0 gamma H^2 / 2 less the base node's share = " << thrust << " N/m, "
+                << r.history.interface_closed.front() << " of " << s.interface_pairs
+                << " pairs closed, out-of-balance " << s.geostatic_residual << ", "
+                << s.geostatic_iterations << " iterations\n";
+    EXPECT_LT(s.geostatic_residual, 1e-8);
+    EXPECT_NEAR(s.interface_normal_force, thrust, thrust_tolerance * thrust);
+    EXPECT_GE(r.history.interface_closed.front() + 2, s.interface_pairs);
+  }
+
+  TEST(WallSoilInterface, ImpactOpensTheInterfaceWithoutTensionAndClosesTheEnergyBalance)
+  {
+    // The slab (1 m/s) pushes the concrete wall into the backfill and the wall rebounds: the
+    // interface force is never a pull, the interface opens at least partly after the impact,
+    // and kinetic + internal work (with gravity, penalty energy and friction) - contact work
+    // = E_0 within 1 %.
+    constexpr double energy_tolerance = 0.01;
+    auto             p                = interface_scene("interface_impact.msh");
+    const auto       r                = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto      &s                = r.summary;
+    const auto      &h                = r.history;
+    double           f_min = 1e300, f_max = 0, closed_min = 1e300, closed_start = 0;
+    for (std::size_t i = 0; i < h.interface_normal_force.size(); ++i)
+    {
+      f_min      = std::min(f_min, h.interface_normal_force[i]);
+      f_max      = std::max(f_max, h.interface_normal_force[i]);
+      closed_min = std::min(closed_min, h.interface_closed[i]);
+    }
+    closed_start = h.interface_closed.front();
+    if (rank() == 0)
+      std::cout << "interface impact: " << summary_line(r) << "; interface force "
+                << s.interface_normal_force << " N/m at start, min " << f_min << ", max " << f_max
+                << " N/m; closed pairs " << closed_start << " at start, min " << closed_min
+                << "; friction dissipation " << s.friction_dissipation << " J/m, plastic "
+                << s.plastic_dissipation << " J/m, bookkeeping gap " << s.dissipation_gap << '\n';
+    EXPECT_TRUE(s.separated);
+    EXPECT_GE(f_min, 0);
+    EXPECT_GT(f_max, s.interface_normal_force);
+    EXPECT_LT(closed_min, closed_start);
+    EXPECT_GE(s.friction_dissipation, 0);
+    EXPECT_LT(s.energy_error, energy_tolerance);
+    EXPECT_LT(s.dissipation_gap, energy_tolerance);
+  }
+
+  TEST(MpiGeostatic, DistributedInterfaceRunMatchesSerialRun)
+  {
+    // The frictional wall-soil interface on 1 or 2 ranks vs MPI_COMM_SELF (relative 1e-10).
+    constexpr double tolerance = 1e-10;
+    auto             p         = interface_scene("interface_mpi.msh");
+    p.end_time                 = 0.004;
+    const auto world           = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto self            = run_impact(p, MPI_COMM_SELF, nullptr);
+    ASSERT_EQ(world.history.time.size(), self.history.time.size());
+    double max_force = 0, max_difference = 0, max_interface = 0, max_interface_difference = 0;
+    for (std::size_t i = 0; i < self.history.time.size(); ++i)
+    {
+      max_force = std::max(max_force, self.history.contact_force[i]);
+      max_difference =
+        std::max(max_difference,
+                 std::abs(world.history.contact_force[i] - self.history.contact_force[i]));
+      max_interface            = std::max(max_interface, self.history.interface_normal_force[i]);
+      max_interface_difference = std::max(max_interface_difference,
+                                          std::abs(world.history.interface_normal_force[i] -
+                                                   self.history.interface_normal_force[i]));
+    }
+    ASSERT_GT(max_force, 0);
+    EXPECT_LT(max_difference, tolerance * max_force);
+    EXPECT_LT(max_interface_difference, tolerance * max_interface);
+    if (rank() == 0)
+      std::cout << "MPI interface: " << world.summary.n_ranks
+                << " ranks vs 1, max |dF| / max F = " << max_difference / max_force
+                << ", interface " << max_interface_difference / max_interface << '\n';
+  }
+
+  TEST(Geostatic, BadOptionsAreNamed)
+  {
+    auto p                                            = scene_parameters(0.05, true, "geo_bad.msh");
+    p.geostatic.enabled                               = true;
+    p.geostatic.initial_stress_K0[ids::soil_material] = -0.5;
+    try
+    {
+      run_impact(p, MPI_COMM_WORLD, nullptr);
+      FAIL() << "negative K0 accepted";
+    }
+    catch (const std::exception &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("initial_stress_K0"), std::string::npos) << e.what();
+    }
+  }
+
+  TEST(WallSoilInterface, ImplicitIntegratorIsRefused)
+  {
+    auto p       = interface_scene("interface_implicit.msh");
+    p.integrator = ImpactParameters::Integrator::implicit_newmark;
+    try
+    {
+      run_impact(p, MPI_COMM_WORLD, nullptr);
+      FAIL() << "implicit run with a frictional interface accepted";
+    }
+    catch (const std::exception &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("explicit integrator"), std::string::npos) << e.what();
+    }
+  }
+} // namespace kimp::fem::testing
