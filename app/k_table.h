@@ -1,8 +1,11 @@
-// A study's k table (DIR/k_table.csv of `kimp study`) read back: k against wall height, linearly
-// interpolated, for lumped scenes (impact.k_table) and `kimp export-opensees`.
+// A study's k table (DIR/k_table.csv of `kimp study`) read back: k against wall height and impact
+// velocity, linearly interpolated, for lumped scenes (impact.k_table), `kimp export-opensees` and
+// the study's consistent-k building runs.
 #pragma once
 
 #include <filesystem>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,9 +17,13 @@ namespace kimp::app
     double wall_height        = 0.0; ///< m
     double kelvin_voigt_total = 0.0; ///< N/m (n = 1)
     double jankowski_total    = 0.0; ///< N/m^1.5 (n = 1.5)
+    /// Impact velocity of the FEM case, m/s (NaN: a table without the velocity column).
+    double impact_velocity = std::numeric_limits<double>::quiet_NaN();
+    /// The row is at the table's reference velocity (the one used when none is asked for).
+    bool reference = true;
   };
 
-  /// The rows of a k_table.csv with a usable k, sorted by wall height.
+  /// The rows of a k_table.csv with a usable k, sorted by wall height, then impact velocity.
   struct KTable
   {
     std::filesystem::path  file;
@@ -24,17 +31,33 @@ namespace kimp::app
 
     /**
      * k_total at `wall_height` (m) for the exponent `exponent` (1: Kelvin-Voigt column, 1.5:
-     * Jankowski column), linearly interpolated between the two neighbouring heights.
+     * Jankowski column) at the reference velocity, linearly interpolated between the two
+     * neighbouring heights (rows of one velocity: the same as a table without velocities).
      * @throws std::invalid_argument naming the file for a height outside the table's range or
      *         an exponent other than 1 or 1.5.
      */
     double stiffness(double wall_height, double exponent) const;
+
+    /**
+     * k_total at `wall_height` (m) and impact velocity `velocity` (m/s): at each velocity of the
+     * table interpolated linearly in the wall height, then linearly in the velocity between the
+     * two neighbouring velocities. A table without velocities (or with one) gives the same k at
+     * every velocity.
+     * @throws std::invalid_argument naming the file for a height or velocity outside the
+     *         table's range (k is not extrapolated), or an exponent other than 1 or 1.5.
+     */
+    double stiffness(double wall_height, double exponent, double velocity) const;
+
+    /// The distinct impact velocities of the table, increasing, m/s (empty: no velocity column).
+    std::vector<double> velocities() const;
   };
 
   /**
    * Read `path`: a k_table.csv, or a study output directory holding one. Columns by name:
-   * wall_height_m, kelvin_voigt_total_kN_per_mm, jankowski_total_kN_per_mm1.5 (rows whose k is
-   * empty or not finite, i.e. failed fits, are left out).
+   * wall_height_m, kelvin_voigt_total_kN_per_mm, jankowski_total_kN_per_mm1.5, and if present
+   * impact_velocity_m_per_s and reference_velocity ("yes" marks the rows of the reference
+   * velocity; without the column every row is a reference row). Rows whose k is empty or not
+   * finite, i.e. failed fits, are left out.
    * @throws std::invalid_argument naming the file (missing, no such column, no usable row).
    */
   KTable read_k_table(const std::filesystem::path &path);

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Charts of `kimp study DIR`: FEM contact force with the fitted laws (one panel per wall height),
-k against wall height beside thesis Table 2.1 (fit interval and FEM numerical error), building
+k against wall height beside thesis Table 2.1 (fit interval and FEM numerical error), k against
+impact velocity per wall height (with the linear k beside an inelastic one), building
 response against wall height and, when the study computed them, accuracy against cost (FEM levels;
 building time step), the central-difference stability map and the sensitivity of k.
 Reads DIR/study.h5 and DIR/building_response.csv; writes DIR/charts/*.png and *.svg."""
@@ -79,6 +80,47 @@ def k_vs_height(h5, out_dir):
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
     save(fig, out_dir, "k_vs_height")
+
+
+def k_vs_velocity(h5, out_dir):
+    """k against impact velocity, one line per wall height (fit 95 % interval as error bars), with
+    the linear-elastic k dashed where the FEM was inelastic."""
+    if "k_table_velocity" not in h5:
+        return
+    table = h5["k_table_velocity"]
+    h = table["wall_height"][()]
+    v = table["impact_velocity"][()]
+    if len(set(v)) < 2:
+        return
+    fig, axes = plt.subplots(1, 2, figsize=(9, 3.6), constrained_layout=True)
+    for ax, law, unit in ((axes[0], "kelvin_voigt", "kN/mm/m"), (axes[1], "jankowski", "kN/mm^1.5/m")):
+        k = table[law][()]
+        lower = table[law + "_lower"][()]
+        upper = table[law + "_upper"][()]
+        linear = table["linear_" + law][()]
+        for i, height in enumerate(sorted(set(h))):
+            rows = sorted((v[j], k[j], lower[j], upper[j], linear[j]) for j in range(len(h))
+                          if h[j] == height and not math.isnan(k[j]))
+            if not rows:
+                continue
+            xs = [r[0] for r in rows]
+            ys = [r[1] for r in rows]
+            err = [[max(r[1] - r[2], 0.0) for r in rows], [max(r[3] - r[1], 0.0) for r in rows]]
+            ax.errorbar(xs, ys, yerr=err, fmt="o-", capsize=3, color=f"C{i}", label=f"H = {height:g} m")
+            lin = [(r[0], r[4]) for r in rows if not math.isnan(r[4])]
+            if lin:
+                ax.plot([p[0] for p in lin], [p[1] for p in lin], "--", color=f"C{i}",
+                        label=f"H = {height:g} m, linear")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        plain_log_ticks(ax.xaxis)
+        plain_log_ticks(ax.yaxis)
+        ax.set_xlabel("impact velocity v (m/s)")
+        ax.set_ylabel(f"k ({unit})".replace("^1.5", "$^{1.5}$"))
+        ax.set_title(law.replace("_", "-"))
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=7)
+    save(fig, out_dir, "k_vs_velocity")
 
 
 def building_response(csv_path, out_dir):
@@ -296,6 +338,7 @@ def main():
     with h5py.File(os.path.join(directory, "study.h5"), "r") as h5:
         force_histories(h5, out_dir)
         k_vs_height(h5, out_dir)
+        k_vs_velocity(h5, out_dir)
         accuracy_fem(h5, out_dir)
         accuracy_lumped(h5, out_dir)
         stability_map(h5, out_dir)

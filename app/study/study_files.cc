@@ -9,6 +9,7 @@
 
 #include "app/fit_run.h"
 #include "app/study/study_internal.h"
+#include "app/study/study_velocity.h"
 #include "base/version.h"
 #include "io/results_file.h"
 
@@ -49,7 +50,11 @@ namespace kimp::app::study_internal
               "fem_penalty_factor",
               "fidelity_converged",
               "kelvin_voigt_status",
-              "jankowski_status"};
+              "jankowski_status",
+              "reference_velocity",
+              "material",
+              "linear_kelvin_voigt_kN_per_mm_per_m",
+              "linear_jankowski_kN_per_mm1.5_per_m"};
     }
 
     std::vector<std::string> k_table_row(const StudyScene &scene, const StudyHeight &h)
@@ -82,7 +87,11 @@ namespace kimp::app::study_internal
               number(used_penalty(scene, h)),
               h.auto_fidelity ? (h.ladder.converged ? "yes" : "no") : "",
               h.kelvin_voigt_status,
-              h.jankowski_status};
+              h.jankowski_status,
+              h.reference_velocity ? "yes" : "no",
+              h.inelastic ? "inelastic" : "linear",
+              number(per_metre(h.linear_kelvin_voigt)),
+              number(per_metre(h.linear_jankowski))};
     }
 
     std::vector<std::string> building_header()
@@ -139,11 +148,15 @@ namespace kimp::app::study_internal
 
   void write_k_table_csv(const OutputDir                &output,
                          const StudyScene               &scene,
-                         const std::vector<StudyHeight> &heights)
+                         const std::vector<StudyHeight> &heights,
+                         const std::vector<StudyHeight> &velocity_cases)
   {
     std::vector<std::vector<std::string>> k_rows;
-    for (const StudyHeight &h : heights)
-      k_rows.push_back(k_table_row(scene, h));
+    StudyResult                           all; // rows by height, then impact velocity
+    all.heights        = heights;
+    all.velocity_cases = velocity_cases;
+    for (const StudyHeight *h : k_table_cases(all))
+      k_rows.push_back(k_table_row(scene, *h));
     write_csv_atomic(output.file("k_table.csv"), k_table_header(), k_rows);
     std::vector<std::vector<std::string>> level_rows;
     for (const StudyHeight &h : heights)
@@ -253,6 +266,7 @@ namespace kimp::app::study_internal
     root.group("k_table").set_attribute("building_width_m", scene.fit.width);
     write_study_extras(root, result.extras);
     write_flexible_wall_h5(root, result);
+    write_velocity_h5(root, scene, result);
 
     // /fidelity/<H>: the levels climbed (fidelity: auto).
     for (const StudyHeight &h : result.heights)
@@ -418,6 +432,7 @@ namespace kimp::app::study_internal
     j["n_building_runs_not_ok"] = n_failed;
     if (!result.wall_sdofs.empty())
       j["flexible_wall"] = flexible_wall_json(result);
+    add_velocity_summary(j, scene, result);
     return j;
   }
 } // namespace kimp::app::study_internal

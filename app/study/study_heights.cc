@@ -7,6 +7,7 @@
 
 #include "app/study/study_fem.h"
 #include "app/study/study_internal.h"
+#include "app/study/study_velocity.h"
 #include "base/logging.h"
 
 namespace kimp::app::study_internal
@@ -18,8 +19,10 @@ namespace kimp::app::study_internal
   StudyHeight run_height(const StudyScene &scene, double wall_height, const OutputDir &output)
   {
     StudyHeight h;
-    h.wall_height = wall_height;
-    h.name        = fem_case_name(wall_height);
+    h.wall_height     = wall_height;
+    h.name            = fem_case_name(wall_height);
+    h.impact_velocity = scene.fem.slab.velocity;
+    choose_material_model(scene, wall_height, output, h);
     if (scene.fem.fidelity == Fidelity::fixed)
     {
       StudyFemCase fem      = study_fem_case(scene.fem, wall_height, output);
@@ -33,6 +36,8 @@ namespace kimp::app::study_internal
       h.jankowski_status    = fits.jankowski_status;
       h.fit_seconds         = fits.seconds;
       h.fidelity_reason     = "fidelity fixed: numerical error not estimated";
+      if (h.inelastic)
+        add_linear_counterpart(scene.fem, scene.fit, wall_height, output, h.name + "_linear", h);
       return h;
     }
 
@@ -44,18 +49,21 @@ namespace kimp::app::study_internal
       bool      from_cache = false;
     };
     std::vector<Computed> computed;
-    h.fem_from_cache = true;
-    const auto run   = [&](const FidelityLevel &level)
+    // The material model chosen above (linear for an inelastic scene: cache names "_linear").
+    const FemScene    material = material_fem_scene(scene.fem, h.inelastic);
+    const std::string prefix   = h.name + material_suffix(scene.fem, h.inelastic);
+    h.fem_from_cache           = true;
+    const auto run             = [&](const FidelityLevel &level)
     {
       LevelOutcome outcome;
       Computed     c;
       try
       {
         StudyFemCase fem =
-          study_fem_case(fem_level_scene(scene.fem, level.h_contact, level.penalty_factor),
+          study_fem_case(fem_level_scene(material, level.h_contact, level.penalty_factor),
                          wall_height,
                          output,
-                         h.name + "_" + level.label());
+                         prefix + "_" + level.label());
         h.fem_seconds += fem.wall_seconds;
         h.fem_from_cache = h.fem_from_cache && fem.from_cache;
         c.fem_case       = std::move(fem.fem_case);
@@ -103,6 +111,15 @@ namespace kimp::app::study_internal
     h.jankowski           = std::move(used.fits.jankowski);
     h.kelvin_voigt_status = used.fits.kelvin_voigt_status;
     h.jankowski_status    = used.fits.jankowski_status;
+    if (h.inelastic)
+      add_linear_counterpart(fem_level_scene(material,
+                                             h.ladder.used_level().h_contact,
+                                             h.ladder.used_level().penalty_factor),
+                             scene.fit,
+                             wall_height,
+                             output,
+                             h.name + "_linear_" + h.ladder.used_level().label(),
+                             h);
     logger().info("{}: fidelity auto: {} -> level {} ({}); numerical error of k: KV {:.3g} "
                   "kN/mm/m, Jankowski {:.3g} kN/mm^1.5/m",
                   h.name,

@@ -91,7 +91,8 @@ namespace kimp::app::study_internal
   /// DIR/k_table.csv and (fidelity: auto) DIR/fidelity_levels.csv.
   void write_k_table_csv(const io::OutputDir            &output,
                          const StudyScene               &scene,
-                         const std::vector<StudyHeight> &heights);
+                         const std::vector<StudyHeight> &heights,
+                         const std::vector<StudyHeight> &velocity_cases = {});
   /// DIR/building_response.csv.
   void write_building_csv(const io::OutputDir &output, const std::vector<StudyBuildingRun> &runs);
   /// DIR/study.h5: /fem, /fit, /k_table, extras, /fidelity, /building.

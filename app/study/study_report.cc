@@ -8,6 +8,7 @@
 
 #include "app/helper_programs.h"
 #include "app/study/study_internal.h"
+#include "app/study/study_velocity.h"
 #include "base/format.h"
 #include "base/logging.h"
 #include "base/version.h"
@@ -221,6 +222,7 @@ namespace kimp::app::study_internal
     if (charts)
       md += "![FEM force histories with the fitted laws](charts/force_histories.png)\n\n"
             "![k against wall height](charts/k_vs_height.png)\n\n";
+    md += velocity_report_markdown(scene, result, charts);
 
     md += "## Building response\n\n"
           "Isolated building of docs/physics.md §3 with moat walls on both sides, gap "
@@ -247,6 +249,7 @@ namespace kimp::app::study_internal
     if (charts)
       md += "![building response against wall height](charts/building_response.png)\n\n";
     md += flexible_wall_markdown(scene, result);
+    md += consistent_k_report_markdown(scene, result);
     md += extras_markdown(scene, result.extras, charts);
     md += fmt::format("## Cost\n\nFEM {} s, fits {} s, building runs {} s, extra "
                       "studies {} s, charts {} s, total {} s (see summary.json).\n",

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "app/study/study_internal.h"
+#include "app/study/study_velocity.h"
 #include "base/format.h"
 #include "base/logging.h"
 #include "io/results_file.h"
@@ -43,12 +44,22 @@ namespace kimp::app
       result.fem_seconds += result.heights.back().fem_seconds;
       result.fit_seconds += result.heights.back().fit_seconds;
     }
+    for (const StudyHeight &h : result.heights)
+      for (StudyHeight &c : run_velocity_cases(scene, h, output))
+      {
+        result.fem_seconds += c.fem_seconds;
+        result.fit_seconds += c.fit_seconds;
+        result.velocity_cases.push_back(std::move(c));
+      }
     log_k_table(scene, result.heights);
-    write_k_table_csv(output, scene, result.heights);
+    log_velocity_table(result);
+    write_k_table_csv(output, scene, result.heights, result.velocity_cases);
 
     const Clock::time_point building_start = Clock::now();
     result.building                        = run_building(scene, result.heights);
-    result.building_seconds                = seconds_since(building_start);
+    result.consistent_k                    = run_consistent_k(scene, result);
+    write_consistent_k_csv(output, result);
+    result.building_seconds = seconds_since(building_start);
     write_building_csv(output, result.building);
     if (scene.walls.flexible)
     {
@@ -115,6 +126,9 @@ namespace kimp::app
       if (rank != 0)
         output.emplace(output_dir);
       compute_heights_on_ranks(scene.scene, *output, rank, n_ranks);
+      MPI_Barrier(MPI_COMM_WORLD);
+      // The velocity cases need their height's FEM level, chosen by the ladder above.
+      compute_velocity_cases_on_ranks(scene.scene, *output, rank, n_ranks);
       MPI_Barrier(MPI_COMM_WORLD);
     }
     if (rank != 0)

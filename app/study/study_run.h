@@ -57,6 +57,17 @@ namespace kimp::app
     bool                          auto_fidelity       = false; ///< fidelity: auto (ladder below)
     LadderResult                  ladder;                      ///< levels climbed (fidelity: auto)
     std::string                   fidelity_reason; ///< why this level (for the log and report)
+    /// The k(H, v) axis (app/study/study_velocity.h): impact velocity of the FEM case, m/s, and
+    /// whether it is the reference velocity (fem.slab.velocity, where the ladder ran).
+    double impact_velocity    = 0.0;
+    bool   reference_velocity = true;
+    /// Material model of the FEM case: false = linear elastic (also when fidelity: auto chose
+    /// linear for an inelastic scene), true = the scene's inelastic soil/concrete models.
+    bool        inelastic = false;
+    std::string material_reason; ///< why this material model (fidelity: auto), for the report
+    /// k of the linear-elastic counterpart at the same FEM level (inelastic cases only).
+    std::optional<fit::FitResult> linear_kelvin_voigt;
+    std::optional<fit::FitResult> linear_jankowski;
 
     /// Numerical error of k from the FEM levels, N/m^n per m (NaN: not estimated).
     double kelvin_voigt_numerical_error() const { return ladder.error_kelvin_voigt; }
@@ -92,6 +103,32 @@ namespace kimp::app
     double      energy_error           = 0.0;   ///< flexible walls: max relative residual
   };
 
+  /** One building run of the consistent-k iteration: k used and the impact velocity found. */
+  struct ConsistentKIteration
+  {
+    double k_total           = 0.0; ///< N/m^n of each wall, the k this run used
+    double impact_velocity   = 0.0; ///< largest closing velocity at first contact, both walls, m/s
+    double velocity_used     = 0.0; ///< impact_velocity clamped to the table's velocities, m/s
+    double k_next            = 0.0; ///< k(H, velocity_used), N/m^n
+    double change            = 0.0; ///< |k_next − k_total| / k_total
+    double peak_impact_force = 0.0; ///< N
+    std::size_t n_impacts    = 0;
+  };
+
+  /** The consistent-k iteration of one record, wall height and law. */
+  struct ConsistentKRun
+  {
+    std::string                       record;
+    double                            wall_height = 0.0; ///< m
+    std::string                       law;
+    double                            exponent    = 1.0;
+    double                            gap         = 0.0; ///< m
+    double                            k_reference = 0.0; ///< k at the reference velocity, N/m^n
+    std::vector<ConsistentKIteration> iterations;
+    bool                              converged = false;
+    std::string                       status = "ok"; ///< "ok", "not converged: ...", "failed: ..."
+  };
+
   /** What run_study() computed. */
   struct StudyResult
   {
@@ -109,6 +146,10 @@ namespace kimp::app
     double                        charts_seconds        = 0.0; ///< s
     double                        wall_seconds          = 0.0; ///< s, whole study
     std::vector<std::string>      warnings; ///< e.g. requested records not found (report.md)
+    /// The k(H, v) cases at the velocities other than the reference (study_velocity.h).
+    std::vector<StudyHeight> velocity_cases;
+    /// The consistent-k iterations of the building runs (study_velocity.h).
+    std::vector<ConsistentKRun> consistent_k;
   };
 
   /**

@@ -64,6 +64,8 @@ namespace kimp::app
                    "",
                    false,
                    0.0);
+      if (!scene.fem.velocities.empty())
+        check_ladder(ctx, "velocities", scene.fem.velocities, "m/s", false, 0.0);
     }
     {
       const auto scope = ctx.section("accuracy");

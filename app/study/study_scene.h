@@ -37,6 +37,9 @@ namespace kimp::app
     double              fidelity_tolerance       = 0.01; ///< relative change of k, > 0
     std::vector<double> fidelity_h_contact       = {0.05, 0.025, 0.0125}; ///< m, decreasing
     std::vector<double> fidelity_penalty_factors = {1.0};                 ///< increasing
+    /// Impact velocities of the k(H, v) table, m/s (> 0, increasing); slab.velocity, the
+    /// reference velocity of the fidelity ladder and the building runs, is always added.
+    std::vector<double> velocities = {0.5, 1.0, 2.0};
   };
 
   template <class Io>
@@ -65,6 +68,14 @@ namespace kimp::app
                      "",
                      "auto: penalty factors tried at the mesh reached, increasing (the first "
                      "one is used for the mesh ladder)");
+    io.quantity_list("velocities",
+                     s.velocities,
+                     "m/s",
+                     "impact velocities of the k(H, v) table, increasing (> 0): one FEM case per "
+                     "height and velocity, at the FEM level (and material model) the fidelity "
+                     "ladder chose at slab.velocity, which is always part of the table and is the "
+                     "reference velocity of the building runs ([]: slab.velocity only)",
+                     io::Range::positive());
   }
 
   /** FEM accuracy-vs-cost and lumped time-step studies at one wall height. */
@@ -194,6 +205,38 @@ namespace kimp::app
   }
 
   /**
+   * Consistent k of the building runs (docs/physics.md §4 "k against impact velocity and
+   * consistent k"): run the building, read the largest impact velocity at the walls, interpolate
+   * k(H, v_imp) in the k table and rerun until k changes by less than `tolerance`.
+   */
+  struct StudyConsistentKScene
+  {
+    bool         enabled        = true;
+    double       tolerance      = 0.02; ///< relative change of k between runs, > 0
+    unsigned int max_iterations = 10;   ///< building runs per record, height and law
+  };
+
+  template <class Io>
+  void visit(Io &io, StudyConsistentKScene &s)
+  {
+    io.flag("enabled",
+            s.enabled,
+            "repeat each building run (record, height, law) with the k of its own impact "
+            "velocity, k(H, v_imp), from the k(H, v) table");
+    io.quantity("tolerance",
+                s.tolerance,
+                "%",
+                "stop when k changes by less than this between two runs (> 0)",
+                io::Range::positive());
+    io.integer("max_iterations",
+               s.max_iterations,
+               "building runs per record, height and law before the iteration is reported as "
+               "not converged",
+               1,
+               100);
+  }
+
+  /**
    * The study scene. Load with read_scene<StudyScene>(file) (validated); an empty document is
    * the default study.
    */
@@ -216,6 +259,7 @@ namespace kimp::app
     bool                  stability_map = true;  ///< lumped Δt vs k_imp stable/unstable map
     bool                  sensitivity   = false; ///< sensitivity of k (8 more FEM runs)
     StudySensitivityScene sensitivity_study;
+    StudyConsistentKScene consistent_k;
   };
 
   template <class Io>
@@ -249,6 +293,9 @@ namespace kimp::app
             s.sensitivity,
             "sensitivity of k to soil modulus, slab mass, impact velocity and wall thickness");
     io.section("sensitivity_study", s.sensitivity_study, "settings of the sensitivity study");
+    io.section("consistent_k",
+               s.consistent_k,
+               "building runs with the k of their own impact velocity, k(H, v_imp)");
   }
 
   /** Every range and cross-field rule; key paths as in the file ("walls.gap_reduction"). */

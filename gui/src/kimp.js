@@ -985,6 +985,7 @@ const kimp = (function () {
   function studySection(parent, data) {
     const h5 = data.h5['study.h5'];
     if (!h5) return;
+    studyVelocitySection(parent, h5);
     const groups = seriesGroups(h5).filter((g) => g.path.startsWith('/fit/'));
     if (!groups.length) return;
     const body = section(parent, 'FEM force histories with the fitted laws');
@@ -993,6 +994,37 @@ const kimp = (function () {
         title: `${g.path.slice(5)}: FEM and fitted force`, xlabel: 'time (s)', ylabel: 'force (kN/m)',
         x: g.time,
         series: g.series.map((s) => ({ label: s.name, y: s.values.map((v) => v * 1e-3) })),
+      });
+    }
+  }
+
+  // k(H, v): k against the impact velocity, one series per wall height (and its linear k).
+  function studyVelocitySection(parent, h5) {
+    const d = h5.datasets || {};
+    const column = (name) => (d[`/k_table_velocity/${name}`] || {}).data;
+    const hs = column('wall_height');
+    const vs = column('impact_velocity');
+    if (!hs || !vs || new Set(vs).size < 2) return;
+    const body = section(parent, 'Impact stiffness against impact velocity, k(H, v)');
+    const xs = Array.from(new Set(vs)).sort((a, b) => a - b);
+    const heights = Array.from(new Set(hs)).sort((a, b) => a - b);
+    for (const [law, unit] of [['kelvin_voigt', 'kN/mm/m'], ['jankowski', 'kN/mm^1.5/m']]) {
+      const series = [];
+      for (const [key, suffix] of [[law, ''], [`linear_${law}`, ', linear']]) {
+        const k = column(key);
+        if (!k) continue;
+        for (const height of heights) {
+          const y = xs.map((x) => {
+            const i = hs.findIndex((h, j) => h === height && vs[j] === x);
+            return i < 0 ? null : k[i];
+          });
+          if (y.some((v) => v !== null)) series.push({ label: `H = ${fmt(height, 3)} m${suffix}`, y: y });
+        }
+      }
+      if (!series.length) continue;
+      chart(body, {
+        title: `${law.replace('_', '-')} k against impact velocity`, xlabel: 'impact velocity (m/s)', ylabel: `k (${unit})`,
+        points: true, x: xs, series: series,
       });
     }
   }

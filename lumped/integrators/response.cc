@@ -26,6 +26,14 @@ namespace kimp::lumped
     return m;
   }
 
+  double ContactResult::largest_impact_velocity() const
+  {
+    double v = 0.0;
+    for (const ImpactEvent &impact : impacts)
+      v = std::max(v, std::abs(impact.velocity));
+    return v;
+  }
+
   std::size_t Response::n_impacts() const
   {
     std::size_t n = 0;

@@ -28,6 +28,10 @@ namespace kimp::lumped
     /// unlike the decimated history which can miss their peaks), s and N.
     std::vector<double> pulse_time;
     std::vector<double> pulse_force;
+
+    /// The impact velocity of the contact: the largest closing rate at first contact over its
+    /// impacts, m/s (0 without impacts).
+    double largest_impact_velocity() const;
   };
 
   /**

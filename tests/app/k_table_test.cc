@@ -1,10 +1,11 @@
 // A study's k_table.csv as the k source of a lumped scene (app/k_table.h, impact.k_table): linear
 // interpolation by wall height, refusal outside the table with file and key, per-case heights
-// and records.
+// and records; a k(H, v) table interpolated in height at each velocity, then in velocity.
 #include <cmath>
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <string>
+#include <vector>
 
 #include "app/k_table.h"
 #include "app/lumped_scene.h"
@@ -28,6 +29,64 @@ namespace
                       "1,166.827,4634.45,2141.86,ok\n"
                       "2,25.7031,714.031,208.796,ok\n"
                       "1.5,,,,\"failed: no contact\"\n");
+  }
+
+  /// A k(H, v) table as `kimp study` writes it with fem.velocities: two heights at 0.5, 1 and
+  /// 2 m/s, 1 m/s the reference velocity; rows deliberately out of order.
+  std::filesystem::path write_velocity_table(const std::filesystem::path &dir)
+  {
+    return write_text(dir / "k_table.csv",
+                      "wall_height_m,impact_velocity_m_per_s,kelvin_voigt_total_kN_per_mm,"
+                      "jankowski_total_kN_per_mm1.5,reference_velocity\n"
+                      "1,1,4000,2000,yes\n"
+                      "1,0.5,3000,2400,no\n"
+                      "2,0.5,600,300,no\n"
+                      "1,2,5000,1600,no\n"
+                      "2,1,800,250,yes\n"
+                      "2,2,1000,200,no\n");
+  }
+
+  TEST(KTable, VelocityTableInterpolatesInHeightThenVelocityAndKeepsTheReference)
+  {
+    const TempDir           dir("k_table_velocity");
+    const auto              file  = write_velocity_table(dir.path());
+    const kimp::app::KTable table = kimp::app::read_k_table(file);
+    ASSERT_EQ(table.rows.size(), 6u);
+    ASSERT_EQ(table.velocities(), (std::vector<double>{0.5, 1.0, 2.0}));
+    const double kn_mm = 1e6; // kN/mm -> N/m
+    // Without a velocity: the reference rows (1 m/s), as an old single-velocity table.
+    EXPECT_NEAR(table.stiffness(1.0, 1.0), 4000 * kn_mm, exact * 4000 * kn_mm);
+    EXPECT_NEAR(table.stiffness(1.5, 1.0), 2400 * kn_mm, exact * 2400 * kn_mm);
+    // On the grid: the row itself.
+    EXPECT_NEAR(table.stiffness(2.0, 1.0, 0.5), 600 * kn_mm, exact * 600 * kn_mm);
+    // Bilinear: at H = 1.5 m the KV k is 1800 at 0.5 m/s and 2400 at 1 m/s; 0.75 m/s is halfway.
+    EXPECT_NEAR(table.stiffness(1.5, 1.0, 0.75), 2100 * kn_mm, exact * 2100 * kn_mm);
+    // 1.5 m/s between 1 and 2 m/s at H = 1 m: 4500.
+    EXPECT_NEAR(table.stiffness(1.0, 1.0, 1.5), 4500 * kn_mm, exact * 4500 * kn_mm);
+    // Jankowski column: H = 2 m, 1.5 m/s -> (250 + 200) / 2 kN/mm^1.5.
+    const double j = 225e3 * std::pow(1e3, 1.5);
+    EXPECT_NEAR(table.stiffness(2.0, 1.5, 1.5), j, exact * j);
+    try
+    {
+      table.stiffness(1.0, 1.0, 3.0);
+      FAIL() << "3 m/s is outside 0.5-2 m/s";
+    }
+    catch (const std::invalid_argument &error)
+    {
+      const std::string message = error.what();
+      EXPECT_NE(message.find("impact velocity 3 m/s is outside the range of " + file.string()),
+                std::string::npos)
+        << message;
+    }
+  }
+
+  TEST(KTable, TableWithoutVelocitiesGivesTheSameKAtEveryVelocity)
+  {
+    const TempDir           dir("k_table_no_velocity");
+    const kimp::app::KTable table = kimp::app::read_k_table(write_k_table(dir.path()));
+    EXPECT_TRUE(table.velocities().empty());
+    for (const double v : {0.1, 1.0, 7.0})
+      EXPECT_EQ(table.stiffness(1.25, 1.0, v), table.stiffness(1.25, 1.0)) << v << " m/s";
   }
 
   TEST(KTable, InterpolatesLinearlyInSiAndRefusesOutsideTheRange)

@@ -75,6 +75,27 @@ TEST(StudyScene, FidelityLadderIsValidatedWithKeyAndValue)
   EXPECT_NE(coarse.find("h_max"), std::string::npos) << coarse;
 }
 
+TEST(StudyScene, VelocityAxisAndConsistentKDefaultsAndRules)
+{
+  const StudyScene scene = kimp::io::read_scene_text<StudyScene>("", "(default study scene)").scene;
+  EXPECT_EQ(scene.fem.velocities, (std::vector<double>{0.5, 1.0, 2.0}));
+  EXPECT_TRUE(scene.consistent_k.enabled);
+  EXPECT_NEAR(scene.consistent_k.tolerance, 0.02, exact);
+  EXPECT_EQ(scene.consistent_k.max_iterations, 10u);
+  const StudyScene none =
+    kimp::io::read_scene_text<StudyScene>("fem:\n  velocities: []\n", "study.yaml").scene;
+  EXPECT_TRUE(none.fem.velocities.empty());
+  const std::string message = scene_error("fem:\n"
+                                          "  velocities: [\"2 m/s\", \"1 m/s\"]\n"
+                                          "consistent_k:\n"
+                                          "  tolerance: \"0 %\"\n");
+  EXPECT_NE(message.find("fem.velocities[1] = 1 m/s"), std::string::npos) << message;
+  EXPECT_NE(message.find("must be above the previous level"), std::string::npos) << message;
+  EXPECT_NE(message.find("consistent_k.tolerance = 0 %"), std::string::npos) << message;
+  EXPECT_NE(scene_error("fem:\n  velocities: [\"-1 m/s\"]\n").find("fem.velocities"),
+            std::string::npos);
+}
+
 TEST(StudyScene, ShippedSceneFileEqualsTheDefaults)
 {
   const auto shipped  = kimp::io::read_scene<StudyScene>("data/scenes/wall_height_study.yaml");

@@ -49,6 +49,7 @@ namespace
     end_time: "40 ms"
     output_interval: "0.02 ms"
   fidelity: fixed
+  velocities: []
 records:
   - record: synthetic
     duration: "8 s"
@@ -74,6 +75,7 @@ accuracy_study: false
   fidelity: auto
   fidelity_tolerance: "0.001 %"
   fidelity_h_contact: ["10 cm", "5 cm"]
+  velocities: []
 records:
   - record: synthetic
     duration: "8 s"

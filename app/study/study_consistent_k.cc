@@ -1,0 +1,549 @@
+// Consistent k of `kimp study` (docs/physics.md §4 "Consistent k"): each building run is repeated
+// with k(H, v_imp) of its own impact velocity until k changes by less than the tolerance; and the
+// files, results groups and report sections of the k(H, v) table and of these iterations.
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+#include <map>
+#include <set>
+
+#include "app/lumped_run.h"
+#include "app/study/study_internal.h"
+#include "app/study/study_velocity.h"
+#include "base/errors.h"
+#include "base/format.h"
+#include "base/logging.h"
+#include "lumped/integrators/response.h"
+
+namespace kimp::app::study_internal
+{
+  using namespace kimp::base;
+  using namespace kimp::io;
+  using namespace kimp::fit;
+  namespace
+  {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+    std::string readable(double value)
+    {
+      return std::isfinite(value) ? base::sig(value) : std::string();
+    }
+
+    /// The labels run_building() gives the records (a repeated record gets "_2", "_3", ...).
+    std::vector<std::pair<std::string, GroundMotionScene>> labelled_records(const StudyScene &scene)
+    {
+      std::vector<std::pair<std::string, GroundMotionScene>> records;
+      std::set<std::string>                                  used;
+      for (const GroundMotionScene &record : study_records(scene))
+      {
+        std::string label = record.record;
+        for (int i = 2; !used.insert(label).second; ++i)
+          label = fmt::format("{}_{}", record.record, i);
+        records.emplace_back(label, record);
+      }
+      return records;
+    }
+
+    /// The gap run_building() used for `record` (NaN if its run without walls failed).
+    double record_gap(const StudyScene &scene, const StudyResult &result, const std::string &record)
+    {
+      for (const StudyBuildingRun &r : result.building)
+        if (r.record == record && r.law == "none" && r.status == "ok")
+          return scene.walls.gap.value_or((1.0 - scene.walls.gap_reduction) * r.base_displacement);
+      return nan;
+    }
+
+    double final_k(const ConsistentKRun &run)
+    {
+      return run.iterations.empty() ? nan : run.iterations.back().k_total;
+    }
+
+    double k_display(double k, double exponent)
+    {
+      return std::isfinite(k) ? stiffness_to_kn_per_mm(k, exponent) : nan;
+    }
+  } // namespace
+
+  std::vector<ConsistentKRun> run_consistent_k(const StudyScene &scene, const StudyResult &result)
+  {
+    std::vector<ConsistentKRun> runs;
+    if (!scene.consistent_k.enabled)
+      return runs;
+    const KTable table = study_k_table(scene, result);
+    if (table.rows.empty())
+    {
+      logger().warn("consistent k skipped: no height has both fitted k");
+      return runs;
+    }
+    const std::vector<double> velocities = table.velocities();
+    const double              tolerance  = scene.consistent_k.tolerance;
+    for (const auto &[label, record] : labelled_records(scene))
+    {
+      const double gap = record_gap(scene, result, label);
+      if (!std::isfinite(gap))
+        continue;
+      lumped::GroundMotion motion;
+      try
+      {
+        motion = load_ground_motion(record);
+      }
+      catch (const std::exception &error)
+      {
+        logger().warn("consistent k, record {}: {}", label, base::error_text(error));
+        continue;
+      }
+      const LumpedScene base = study_lumped_scene(scene, record);
+      for (const StudyHeight &h : result.heights)
+        for (const char *law : {"modified_kelvin_voigt", "jankowski", "hysteretic"})
+        {
+          const bool                      kv  = std::string(law) == "modified_kelvin_voigt";
+          const std::optional<FitResult> &fit = kv ? h.kelvin_voigt : h.jankowski;
+          if (!fit)
+            continue;
+          ConsistentKRun run;
+          run.record      = label;
+          run.wall_height = h.wall_height;
+          run.law         = law;
+          run.exponent    = fit->exponent.value;
+          run.gap         = gap;
+          run.k_reference = fit->stiffness.value * scene.fit.width;
+          double k        = run.k_reference;
+          for (unsigned int i = 0; i < scene.consistent_k.max_iterations; ++i)
+          {
+            LumpedScene s         = base;
+            s.walls.left.present  = true;
+            s.walls.right.present = true;
+            s.walls.left.gap      = gap;
+            s.walls.right.gap     = gap;
+            s.impact.law          = law;
+            s.impact.k.clear();
+            s.impact.k_si     = k;
+            s.impact.exponent = std::nullopt;
+            s.impact.cor      = scene.fit.cor;
+            const LumpedCaseResult done =
+              run_lumped_case(fmt::format("{}_{}_consistent_{}", h.name, law, i + 1),
+                              s,
+                              motion,
+                              record.scale);
+            if (!done.ok())
+            {
+              run.status = "failed: building run " + std::to_string(i + 1) + ": " + done.status;
+              break;
+            }
+            ConsistentKIteration it;
+            it.k_total   = k;
+            it.n_impacts = done.response.n_impacts();
+            for (const lumped::ContactResult &c : done.response.contacts)
+            {
+              it.impact_velocity   = std::max(it.impact_velocity, c.largest_impact_velocity());
+              it.peak_impact_force = std::max(it.peak_impact_force, c.peak_force);
+            }
+            if (it.n_impacts == 0)
+            {
+              // Nothing to be consistent with: the reference k stands.
+              it.velocity_used = nan;
+              it.k_next        = k;
+              run.iterations.push_back(it);
+              run.converged = true;
+              run.status    = "ok: no impact";
+              break;
+            }
+            // k is not extrapolated: a velocity outside the table takes its nearest end.
+            it.velocity_used =
+              velocities.empty() ?
+                it.impact_velocity :
+                std::clamp(it.impact_velocity, velocities.front(), velocities.back());
+            try
+            {
+              it.k_next = table.stiffness(h.wall_height, run.exponent, it.velocity_used);
+            }
+            catch (const std::exception &error)
+            {
+              run.status = std::string("failed: ") + error.what();
+              run.iterations.push_back(it);
+              break;
+            }
+            it.change = relative_change(it.k_next, k);
+            run.iterations.push_back(it);
+            if (it.change < tolerance)
+            {
+              run.converged = true;
+              break;
+            }
+            k = it.k_next;
+          }
+          if (!run.converged && run.status == "ok")
+            run.status = fmt::format("not converged: k changed by {:.3g} % in run {} of {} "
+                                     "(tolerance {:.3g} %)",
+                                     100.0 * run.iterations.back().change,
+                                     run.iterations.size(),
+                                     scene.consistent_k.max_iterations,
+                                     100.0 * tolerance);
+          logger().info("consistent k, record {} {} {}: {} run(s), v_imp {:.4g} m/s, k {:.5g} -> "
+                        "{:.5g} {} ({})",
+                        label,
+                        h.name,
+                        law,
+                        run.iterations.size(),
+                        run.iterations.empty() ? nan : run.iterations.back().impact_velocity,
+                        k_display(run.k_reference, run.exponent),
+                        k_display(final_k(run), run.exponent),
+                        stiffness_display_unit(run.exponent),
+                        run.status);
+          runs.push_back(std::move(run));
+        }
+    }
+    return runs;
+  }
+
+  void write_consistent_k_csv(const OutputDir &output, const StudyResult &result)
+  {
+    if (result.consistent_k.empty())
+      return;
+    std::vector<std::vector<std::string>> rows, iteration_rows;
+    for (const ConsistentKRun &r : result.consistent_k)
+    {
+      const ConsistentKIteration *last  = r.iterations.empty() ? nullptr : &r.iterations.back();
+      const ConsistentKIteration *first = r.iterations.empty() ? nullptr : &r.iterations.front();
+      rows.push_back({r.record,
+                      number(r.wall_height),
+                      r.law,
+                      number(k_display(r.k_reference, r.exponent)),
+                      number(k_display(final_k(r), r.exponent)),
+                      stiffness_display_unit(r.exponent),
+                      number(100.0 * (final_k(r) / r.k_reference - 1.0)),
+                      number(last ? last->impact_velocity : nan),
+                      number(last ? last->velocity_used : nan),
+                      std::to_string(r.iterations.size()),
+                      r.converged ? "yes" : "no",
+                      number(first ? first->peak_impact_force / 1e3 : nan),
+                      number(last ? last->peak_impact_force / 1e3 : nan),
+                      r.status});
+      for (std::size_t i = 0; i < r.iterations.size(); ++i)
+      {
+        const ConsistentKIteration &it = r.iterations[i];
+        iteration_rows.push_back({r.record,
+                                  number(r.wall_height),
+                                  r.law,
+                                  std::to_string(i + 1),
+                                  number(k_display(it.k_total, r.exponent)),
+                                  stiffness_display_unit(r.exponent),
+                                  number(it.impact_velocity),
+                                  number(it.velocity_used),
+                                  number(k_display(it.k_next, r.exponent)),
+                                  number(100.0 * it.change),
+                                  number(it.peak_impact_force / 1e3),
+                                  std::to_string(it.n_impacts)});
+      }
+    }
+    write_csv_atomic(output.file("consistent_k.csv"),
+                     {"record",
+                      "wall_height_m",
+                      "law",
+                      "k_reference",
+                      "k_consistent",
+                      "k_unit",
+                      "change_percent",
+                      "impact_velocity_m_per_s",
+                      "velocity_used_m_per_s",
+                      "iterations",
+                      "converged",
+                      "peak_impact_force_reference_kN",
+                      "peak_impact_force_consistent_kN",
+                      "status"},
+                     rows);
+    write_csv_atomic(output.file("consistent_k_iterations.csv"),
+                     {"record",
+                      "wall_height_m",
+                      "law",
+                      "iteration",
+                      "k_total",
+                      "k_unit",
+                      "impact_velocity_m_per_s",
+                      "velocity_used_m_per_s",
+                      "k_next",
+                      "change_percent",
+                      "peak_impact_force_kN",
+                      "n_impacts"},
+                     iteration_rows);
+  }
+
+  void write_velocity_h5(ResultsGroup &root, const StudyScene &scene, const StudyResult &result)
+  {
+    // /fem/<H>_v<v> and /fit_velocity/<case>/<law>: the velocity cases.
+    ResultsGroup fem_root = root.group("fem");
+    for (const StudyHeight &h : result.velocity_cases)
+    {
+      if (h.fem_case.name.empty())
+        continue; // the FEM failed: no case to write
+      write_fem_case(fem_root, h.fem_case);
+      ResultsGroup g = root.group("fit_velocity").group(h.name);
+      g.write_scalar("wall_height", h.wall_height, "m");
+      g.write_scalar("impact_velocity", h.impact_velocity, "m/s");
+      for (const auto &[law, fit, status] :
+           {std::tuple{"kelvin_voigt", &h.kelvin_voigt, &h.kelvin_voigt_status},
+            std::tuple{"jankowski", &h.jankowski, &h.jankowski_status}})
+      {
+        ResultsGroup f = g.group(law);
+        f.set_status(*status);
+        if (*fit)
+          write_fit_result(f, **fit, scene.fit.width, FitResultLayout::study);
+      }
+    }
+
+    // /k_table_velocity: every height and velocity, with the linear k beside.
+    std::vector<TableColumn> k = {{"wall_height", "m", {}},
+                                  {"impact_velocity", "m/s", {}},
+                                  {"reference_velocity", "1", {}},
+                                  {"inelastic", "1", {}},
+                                  {"kelvin_voigt", "kN/mm/m", {}},
+                                  {"kelvin_voigt_lower", "kN/mm/m", {}},
+                                  {"kelvin_voigt_upper", "kN/mm/m", {}},
+                                  {"kelvin_voigt_numerical_error", "kN/mm/m", {}},
+                                  {"linear_kelvin_voigt", "kN/mm/m", {}},
+                                  {"jankowski", "kN/mm^1.5/m", {}},
+                                  {"jankowski_lower", "kN/mm^1.5/m", {}},
+                                  {"jankowski_upper", "kN/mm^1.5/m", {}},
+                                  {"jankowski_numerical_error", "kN/mm^1.5/m", {}},
+                                  {"linear_jankowski", "kN/mm^1.5/m", {}}};
+    for (const StudyHeight *h : k_table_cases(result))
+    {
+      const double v[] = {h->wall_height,
+                          h->impact_velocity,
+                          h->reference_velocity ? 1.0 : 0.0,
+                          h->inelastic ? 1.0 : 0.0,
+                          per_metre(h->kelvin_voigt),
+                          per_metre_bound(h->kelvin_voigt, false),
+                          per_metre_bound(h->kelvin_voigt, true),
+                          numerical_error(*h, 1.0),
+                          per_metre(h->linear_kelvin_voigt),
+                          per_metre(h->jankowski),
+                          per_metre_bound(h->jankowski, false),
+                          per_metre_bound(h->jankowski, true),
+                          numerical_error(*h, 1.5),
+                          per_metre(h->linear_jankowski)};
+      for (std::size_t i = 0; i < k.size(); ++i)
+        k[i].values.push_back(v[i]);
+    }
+    root.write_table("k_table_velocity", k);
+    root.group("k_table_velocity")
+      .set_attribute("reference_velocity_m_per_s", scene.fem.slab.velocity);
+
+    // /consistent_k/<record>/<law>: one row per building run of the iteration.
+    std::map<std::pair<std::string, std::string>, std::vector<const ConsistentKRun *>> tables;
+    for (const ConsistentKRun &r : result.consistent_k)
+      tables[{r.record, r.law}].push_back(&r);
+    for (const auto &[key, runs] : tables)
+    {
+      const std::string        unit = stiffness_si_unit(runs.front()->exponent);
+      std::vector<TableColumn> c    = {{"wall_height", "m", {}},
+                                       {"iteration", "1", {}},
+                                       {"k_total", unit, {}},
+                                       {"impact_velocity", "m/s", {}},
+                                       {"velocity_used", "m/s", {}},
+                                       {"k_next", unit, {}},
+                                       {"change", "1", {}},
+                                       {"peak_impact_force", "N", {}},
+                                       {"n_impacts", "1", {}},
+                                       {"converged", "1", {}}};
+      for (const ConsistentKRun *r : runs)
+        for (std::size_t i = 0; i < r->iterations.size(); ++i)
+        {
+          const ConsistentKIteration &it  = r->iterations[i];
+          const double                v[] = {r->wall_height,
+                                             static_cast<double>(i + 1),
+                                             it.k_total,
+                                             it.impact_velocity,
+                                             it.velocity_used,
+                                             it.k_next,
+                                             it.change,
+                                             it.peak_impact_force,
+                                             static_cast<double>(it.n_impacts),
+                              r->converged ? 1.0 : 0.0};
+          for (std::size_t j = 0; j < c.size(); ++j)
+            c[j].values.push_back(v[j]);
+        }
+      ResultsGroup group = root.group("consistent_k").group(key.first);
+      group.write_table(key.second, c);
+      group.group(key.second).set_attribute("tolerance", scene.consistent_k.tolerance);
+    }
+  }
+
+  void add_velocity_summary(nlohmann::ordered_json &j,
+                            const StudyScene       &scene,
+                            const StudyResult      &result)
+  {
+    nlohmann::ordered_json table = nlohmann::ordered_json::array();
+    for (const StudyHeight *h : k_table_cases(result))
+    {
+      nlohmann::ordered_json row;
+      row["case"]               = h->name;
+      row["wall_height"]        = h->wall_height;
+      row["impact_velocity"]    = h->impact_velocity;
+      row["reference_velocity"] = h->reference_velocity;
+      row["material"]           = h->inelastic ? "inelastic" : "linear";
+      if (!h->material_reason.empty())
+        row["material_reason"] = h->material_reason;
+      for (const auto &[law, fit, linear, status] :
+           {std::tuple{"kelvin_voigt",
+                       &h->kelvin_voigt,
+                       &h->linear_kelvin_voigt,
+                       &h->kelvin_voigt_status},
+            std::tuple{"jankowski", &h->jankowski, &h->linear_jankowski, &h->jankowski_status}})
+      {
+        nlohmann::ordered_json f;
+        f["status"] = *status;
+        if (*fit)
+        {
+          f["k_per_metre"] = per_metre(*fit);
+          f["k_lower"]     = per_metre_bound(*fit, false);
+          f["k_upper"]     = per_metre_bound(*fit, true);
+          f["unit"]        = (*fit)->per_metre_unit();
+          const double e   = numerical_error(*h, std::string(law) == "kelvin_voigt" ? 1.0 : 1.5);
+          if (std::isfinite(e))
+            f["k_numerical_error"] = e;
+        }
+        if (*linear)
+          f["linear_k_per_metre"] = per_metre(*linear);
+        row[law] = f;
+      }
+      table.push_back(row);
+    }
+    j["reference_velocity"]     = scene.fem.slab.velocity;
+    j["k_table_velocity"]       = table;
+    nlohmann::ordered_json runs = nlohmann::ordered_json::array();
+    for (const ConsistentKRun &r : result.consistent_k)
+    {
+      nlohmann::ordered_json row;
+      row["record"]              = r.record;
+      row["wall_height"]         = r.wall_height;
+      row["law"]                 = r.law;
+      row["unit"]                = stiffness_display_unit(r.exponent);
+      row["k_reference"]         = k_display(r.k_reference, r.exponent);
+      row["k_consistent"]        = k_display(final_k(r), r.exponent);
+      row["iterations"]          = r.iterations.size();
+      row["converged"]           = r.converged;
+      row["status"]              = r.status;
+      nlohmann::ordered_json its = nlohmann::ordered_json::array();
+      for (const ConsistentKIteration &it : r.iterations)
+        its.push_back({{"k_total", k_display(it.k_total, r.exponent)},
+                       {"impact_velocity", it.impact_velocity},
+                       {"k_next", k_display(it.k_next, r.exponent)},
+                       {"change", it.change}});
+      row["runs"] = its;
+      runs.push_back(row);
+    }
+    j["consistent_k"] = {{"enabled", scene.consistent_k.enabled},
+                         {"tolerance", scene.consistent_k.tolerance},
+                         {"max_iterations", scene.consistent_k.max_iterations},
+                         {"runs", runs}};
+  }
+
+  std::string
+  velocity_report_markdown(const StudyScene &scene, const StudyResult &result, bool charts)
+  {
+    const bool any_inelastic = std::any_of(result.heights.begin(),
+                                           result.heights.end(),
+                                           [](const StudyHeight &h) { return h.inelastic; });
+    if (result.velocity_cases.empty() && !any_inelastic && !has_inelastic_materials(scene.fem))
+      return "";
+    std::string md = fmt::format(
+      "## Impact stiffness against impact velocity, k(H, v)\n\n"
+      "One FEM case per wall height and slab velocity. The fidelity ladder runs once per height "
+      "at the reference velocity {} m/s; the FEM level (and material model) it chose is reused "
+      "at the other velocities, whose numerical error (±) is the reference's relative error "
+      "times their k (carried over, not measured). The linear k is the same FEM case with "
+      "linear-elastic materials of the same initial stiffness.\n\n"
+      "| H (m) | v (m/s) | materials | KV kN/mm/m [95 % CI] ± numerical | linear KV | Table 2.1 "
+      "| Jankowski kN/mm^1.5/m [95 % CI] ± numerical | linear J | Table 2.1 | status |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n",
+      scene.fem.slab.velocity);
+    const auto plus_minus = [](double error)
+    { return std::isfinite(error) ? " ± " + base::sig(error, 2) : std::string(); };
+    for (const StudyHeight *h : k_table_cases(result))
+    {
+      const std::optional<ThesisStiffness> t = thesis_row(h->wall_height);
+      const bool ok = h->kelvin_voigt_status == "ok" && h->jankowski_status == "ok";
+      md +=
+        fmt::format("| {:.2f} | {:g}{} | {} | {} [{}, {}]{} | {} | {} | {} [{}, {}]{} | {} | "
+                    "{} | {} |\n",
+                    h->wall_height,
+                    h->impact_velocity,
+                    h->reference_velocity ? " (reference)" : "",
+                    h->inelastic ? "inelastic" : "linear",
+                    readable(per_metre(h->kelvin_voigt)),
+                    readable(per_metre_bound(h->kelvin_voigt, false)),
+                    readable(per_metre_bound(h->kelvin_voigt, true)),
+                    plus_minus(numerical_error(*h, 1.0)),
+                    h->inelastic ? readable(per_metre(h->linear_kelvin_voigt)) : "-",
+                    t && h->reference_velocity ? readable(t->kelvin_voigt) : "-",
+                    readable(per_metre(h->jankowski)),
+                    readable(per_metre_bound(h->jankowski, false)),
+                    readable(per_metre_bound(h->jankowski, true)),
+                    plus_minus(numerical_error(*h, 1.5)),
+                    h->inelastic ? readable(per_metre(h->linear_jankowski)) : "-",
+                    t && h->reference_velocity ? readable(t->jankowski) : "-",
+                    ok ? std::string("ok") : h->kelvin_voigt_status + " / " + h->jankowski_status);
+    }
+    md += "\n";
+    for (const StudyHeight &h : result.heights)
+      if (has_inelastic_materials(scene.fem) && !h.material_reason.empty())
+        md += fmt::format("Materials, {}: {}. ", h.name, h.material_reason);
+    md += "\n\nData: [k_table.csv](k_table.csv) (one row per height and velocity, column "
+          "`impact_velocity_m_per_s`), study.h5 `/k_table_velocity`, `/fit_velocity/<case>`.\n\n";
+    if (charts && !result.velocity_cases.empty())
+      md += "![k against impact velocity per wall height](charts/k_vs_velocity.png)\n\n";
+    return md;
+  }
+
+  std::string consistent_k_report_markdown(const StudyScene &scene, const StudyResult &result)
+  {
+    if (result.consistent_k.empty())
+      return "";
+    std::size_t n_converged = 0;
+    for (const ConsistentKRun &r : result.consistent_k)
+      n_converged += r.converged;
+    std::string md = fmt::format(
+      "## Consistent k: building runs with k(H, v_imp)\n\n"
+      "Each building run is repeated with the k of its own impact velocity v_imp (the largest "
+      "closing velocity at first contact over the impacts on both walls), interpolated in the "
+      "k(H, v) table (clamped to its velocities, never extrapolated), until k changes by less "
+      "than {:g} % (at most {} runs). {} of {} iterations converged.\n\n"
+      "| record | H (m) | law | k at {} m/s | consistent k | unit | runs | v_imp (m/s) per run | "
+      "k per run | peak force (kN), first / last | status |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|\n",
+      100.0 * scene.consistent_k.tolerance,
+      scene.consistent_k.max_iterations,
+      n_converged,
+      result.consistent_k.size(),
+      scene.fem.slab.velocity);
+    for (const ConsistentKRun &r : result.consistent_k)
+    {
+      std::string velocities, ks;
+      for (const ConsistentKIteration &it : r.iterations)
+      {
+        velocities += (velocities.empty() ? "" : ", ") + readable(it.impact_velocity);
+        ks += (ks.empty() ? "" : ", ") + readable(k_display(it.k_total, r.exponent));
+      }
+      md += fmt::format(
+        "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {} | {} |\n",
+        r.record,
+        readable(r.wall_height),
+        r.law,
+        readable(k_display(r.k_reference, r.exponent)),
+        readable(k_display(final_k(r), r.exponent)),
+        stiffness_display_unit(r.exponent),
+        r.iterations.size(),
+        velocities,
+        ks,
+        readable(r.iterations.empty() ? nan : r.iterations.front().peak_impact_force / 1e3),
+        readable(r.iterations.empty() ? nan : r.iterations.back().peak_impact_force / 1e3),
+        r.status);
+    }
+    md += "\nData: [consistent_k.csv](consistent_k.csv), "
+          "[consistent_k_iterations.csv](consistent_k_iterations.csv), study.h5 "
+          "`/consistent_k/<record>/<law>`.\n\n";
+    return md;
+  }
+} // namespace kimp::app::study_internal

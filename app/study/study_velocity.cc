@@ -1,0 +1,337 @@
+// The k(H, v) axis of `kimp study`: per wall height the FEM cases at the other impact velocities
+// (at the reference velocity's FEM level and material model), the material-model choice of
+// fidelity: auto (linear or inelastic) and the linear k beside an inelastic one.
+#include "app/study/study_velocity.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
+#include "app/study/study_fem.h"
+#include "app/study/study_internal.h"
+#include "base/logging.h"
+
+namespace kimp::app::study_internal
+{
+  using namespace kimp::base;
+  using namespace kimp::io;
+  using namespace kimp::fit;
+  namespace
+  {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+    bool same_speed(double a, double b)
+    {
+      return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b));
+    }
+
+    /// relative error of the reference case's k times `k` (NaN if either is unknown).
+    double scaled_error(double                          error,
+                        const std::optional<FitResult> &reference,
+                        const std::optional<FitResult> &fit)
+    {
+      if (!reference || !fit || !(reference->stiffness.value > 0.0))
+        return nan;
+      return error / reference->stiffness.value * fit->stiffness.value;
+    }
+
+    /// One velocity case of `reference` at `velocity`.
+    StudyHeight run_velocity_case(const StudyScene  &scene,
+                                  const StudyHeight &reference,
+                                  double             velocity,
+                                  const OutputDir   &output)
+    {
+      StudyHeight c;
+      c.wall_height        = reference.wall_height;
+      c.name               = velocity_case_name(reference.wall_height, velocity);
+      c.impact_velocity    = velocity;
+      c.reference_velocity = false;
+      c.inelastic          = reference.inelastic;
+      c.material_reason    = reference.material_reason;
+      c.auto_fidelity      = reference.auto_fidelity;
+      c.ladder             = reference.ladder;
+      c.fidelity_reason    = fmt::format("FEM level and material model of {} (the reference "
+                                         "velocity {} m/s)",
+                                      reference.name,
+                                      reference.impact_velocity);
+      FemScene fem         = material_fem_scene(scene.fem, reference.inelastic);
+      fem.slab.velocity    = velocity;
+      if (reference.auto_fidelity)
+        fem = fem_level_scene(fem,
+                              reference.ladder.used_level().h_contact,
+                              reference.ladder.used_level().penalty_factor);
+      try
+      {
+        StudyFemCase result =
+          study_fem_case(fem,
+                         c.wall_height,
+                         output,
+                         c.name + material_suffix(scene.fem, reference.inelastic));
+        c.fem_case       = std::move(result.fem_case);
+        c.fem_case.name  = c.name;
+        c.fem_from_cache = result.from_cache;
+        c.fem_seconds    = result.wall_seconds;
+      }
+      catch (const std::exception &error)
+      {
+        // A velocity case that fails is a row with its status; the reference k stays usable.
+        c.kelvin_voigt_status = c.jankowski_status = std::string("failed: FEM: ") + error.what();
+        logger().warn("{}: {}", c.name, c.kelvin_voigt_status);
+        return c;
+      }
+      StudyFits fits        = fit_study_laws(c.fem_case, scene.fit);
+      c.kelvin_voigt        = std::move(fits.kelvin_voigt);
+      c.jankowski           = std::move(fits.jankowski);
+      c.kelvin_voigt_status = fits.kelvin_voigt_status;
+      c.jankowski_status    = fits.jankowski_status;
+      c.fit_seconds         = fits.seconds;
+      // The ladder ran at the reference velocity only: its relative error is carried over.
+      LadderResult &l = c.ladder;
+      l.error_kelvin_voigt =
+        scaled_error(reference.ladder.error_kelvin_voigt, reference.kelvin_voigt, c.kelvin_voigt);
+      l.error_jankowski =
+        scaled_error(reference.ladder.error_jankowski, reference.jankowski, c.jankowski);
+      l.mesh_error_kelvin_voigt = scaled_error(reference.ladder.mesh_error_kelvin_voigt,
+                                               reference.kelvin_voigt,
+                                               c.kelvin_voigt);
+      l.mesh_error_jankowski =
+        scaled_error(reference.ladder.mesh_error_jankowski, reference.jankowski, c.jankowski);
+      l.penalty_error_kelvin_voigt = scaled_error(reference.ladder.penalty_error_kelvin_voigt,
+                                                  reference.kelvin_voigt,
+                                                  c.kelvin_voigt);
+      l.penalty_error_jankowski =
+        scaled_error(reference.ladder.penalty_error_jankowski, reference.jankowski, c.jankowski);
+      if (c.inelastic)
+        add_linear_counterpart(fem, scene.fit, c.wall_height, output, c.name + "_linear", c);
+      logger().info("{}: k_KV {:.4g} kN/mm/m, k_Jankowski {:.4g} kN/mm^1.5/m at {} m/s",
+                    c.name,
+                    per_metre(c.kelvin_voigt),
+                    per_metre(c.jankowski),
+                    velocity);
+      return c;
+    }
+  } // namespace
+
+  std::vector<double> study_velocities(const StudyScene &scene)
+  {
+    std::vector<double> v = scene.fem.velocities;
+    if (std::none_of(v.begin(),
+                     v.end(),
+                     [&](double x) { return same_speed(x, scene.fem.slab.velocity); }))
+      v.push_back(scene.fem.slab.velocity);
+    std::sort(v.begin(), v.end());
+    return v;
+  }
+
+  std::string velocity_case_name(double wall_height, double velocity)
+  {
+    return fmt::format("{}_v{:g}", fem_case_name(wall_height), velocity);
+  }
+
+  bool has_inelastic_materials(const FemScene &scene)
+  {
+    return scene.materials.concrete.model != FemConcrete::Model::elastic ||
+           (scene.geometry.with_backfill && scene.materials.soil.model != FemSoil::Model::elastic);
+  }
+
+  FemScene linear_fem_scene(const FemScene &scene)
+  {
+    FemScene linear = scene;
+    if (scene.materials.concrete.model != FemConcrete::Model::elastic)
+    {
+      // The damage law's initial stiffness: E_ci from f_cm (fib MC2010), as the inelastic run.
+      linear.materials.concrete.youngs_modulus =
+        concrete_parameters(scene.materials.concrete).youngs_modulus;
+      linear.materials.concrete.model = FemConcrete::Model::elastic;
+    }
+    // An elastic soil keeps its preset's E, nu and rho (soil_parameters()).
+    linear.materials.soil.model = FemSoil::Model::elastic;
+    return linear;
+  }
+
+  FemScene material_fem_scene(const FemScene &scene, bool inelastic)
+  {
+    return inelastic ? scene : linear_fem_scene(scene);
+  }
+
+  std::string material_suffix(const FemScene &scene, bool inelastic)
+  {
+    return !inelastic && has_inelastic_materials(scene) ? "_linear" : "";
+  }
+
+  void choose_material_model(const StudyScene &scene,
+                             double            wall_height,
+                             const OutputDir  &output,
+                             StudyHeight      &h)
+  {
+    if (!has_inelastic_materials(scene.fem))
+    {
+      h.inelastic       = false;
+      h.material_reason = "linear elastic materials (the scene's)";
+      return;
+    }
+    h.inelastic = true;
+    if (scene.fem.fidelity == Fidelity::fixed)
+    {
+      h.material_reason = "fidelity fixed: the scene's inelastic materials as given";
+      return;
+    }
+    const FidelityLevel cheap{scene.fem.fidelity_h_contact.front(),
+                              scene.fem.fidelity_penalty_factors.front()};
+    StudyFits           fits[2];
+    for (const bool inelastic : {false, true})
+    {
+      StudyFemCase fem =
+        study_fem_case(fem_level_scene(material_fem_scene(scene.fem, inelastic),
+                                       cheap.h_contact,
+                                       cheap.penalty_factor),
+                       wall_height,
+                       output,
+                       h.name + material_suffix(scene.fem, inelastic) + "_" + cheap.label());
+      h.fem_seconds += fem.wall_seconds;
+      fits[inelastic] = fit_study_laws(fem.fem_case, scene.fit);
+      h.fit_seconds += fits[inelastic].seconds;
+    }
+    if (!fits[0].ok() || !fits[1].ok())
+    {
+      h.material_reason = fmt::format("at {} a fit failed (linear: {} / {}; inelastic: {} / {}): "
+                                      "the ladder climbs with the inelastic materials",
+                                      cheap.label(),
+                                      fits[0].kelvin_voigt_status,
+                                      fits[0].jankowski_status,
+                                      fits[1].kelvin_voigt_status,
+                                      fits[1].jankowski_status);
+      return;
+    }
+    const double change_kv =
+      relative_change(fits[0].kelvin_voigt->stiffness.value, fits[1].kelvin_voigt->stiffness.value);
+    const double change_j =
+      relative_change(fits[0].jankowski->stiffness.value, fits[1].jankowski->stiffness.value);
+    h.inelastic =
+      !(change_kv <= scene.fem.fidelity_tolerance && change_j <= scene.fem.fidelity_tolerance);
+    h.material_reason =
+      fmt::format("at {} the linear k differs from the inelastic one by {:.3g} % (KV) and "
+                  "{:.3g} % (Jankowski), {} the tolerance {:.3g} %: {}",
+                  cheap.label(),
+                  100.0 * change_kv,
+                  100.0 * change_j,
+                  h.inelastic ? "above" : "within",
+                  100.0 * scene.fem.fidelity_tolerance,
+                  h.inelastic ? "the ladder climbs with the inelastic materials" :
+                                "linear materials kept (inelasticity does not change k here)");
+    logger().info("{}: material model: {}", h.name, h.material_reason);
+  }
+
+  void add_linear_counterpart(const FemScene      &level_scene,
+                              const StudyFitScene &fit,
+                              double               wall_height,
+                              const OutputDir     &output,
+                              const std::string   &case_name,
+                              StudyHeight         &h)
+  {
+    try
+    {
+      StudyFemCase fem =
+        study_fem_case(linear_fem_scene(level_scene), wall_height, output, case_name);
+      h.fem_seconds += fem.wall_seconds;
+      StudyFits fits = fit_study_laws(fem.fem_case, fit);
+      h.fit_seconds += fits.seconds;
+      h.linear_kelvin_voigt = std::move(fits.kelvin_voigt);
+      h.linear_jankowski    = std::move(fits.jankowski);
+    }
+    catch (const std::exception &error)
+    {
+      logger().warn("{}: linear counterpart failed: {}", case_name, error.what());
+    }
+  }
+
+  std::vector<StudyHeight>
+  run_velocity_cases(const StudyScene &scene, const StudyHeight &reference, const OutputDir &output)
+  {
+    std::vector<StudyHeight> cases;
+    for (const double v : study_velocities(scene))
+      if (!same_speed(v, scene.fem.slab.velocity))
+        cases.push_back(run_velocity_case(scene, reference, v, output));
+    return cases;
+  }
+
+  void compute_velocity_cases_on_ranks(const StudyScene &scene,
+                                       const OutputDir  &output,
+                                       int               rank,
+                                       int               n_ranks)
+  {
+    std::vector<std::pair<double, double>> jobs;
+    for (const double height : scene.fem.wall_heights)
+      for (const double v : study_velocities(scene))
+        if (!same_speed(v, scene.fem.slab.velocity))
+          jobs.emplace_back(height, v);
+    for (std::size_t i = static_cast<std::size_t>(rank); i < jobs.size();
+         i += static_cast<std::size_t>(n_ranks))
+    {
+      try
+      {
+        // The reference height is in the FEM cache: this only re-reads and re-fits it.
+        const StudyHeight reference = run_height(scene, jobs[i].first, output);
+        run_velocity_case(scene, reference, jobs[i].second, output);
+      }
+      catch (const std::exception &error)
+      {
+        logger().warn("{}: {}", velocity_case_name(jobs[i].first, jobs[i].second), error.what());
+      }
+    }
+  }
+
+  std::vector<const StudyHeight *> k_table_cases(const StudyResult &result)
+  {
+    std::vector<const StudyHeight *> cases;
+    for (const StudyHeight &h : result.heights)
+      cases.push_back(&h);
+    for (const StudyHeight &h : result.velocity_cases)
+      cases.push_back(&h);
+    std::stable_sort(cases.begin(),
+                     cases.end(),
+                     [](const StudyHeight *a, const StudyHeight *b)
+                     {
+                       return a->wall_height < b->wall_height ||
+                              (a->wall_height == b->wall_height &&
+                               a->impact_velocity < b->impact_velocity);
+                     });
+    return cases;
+  }
+
+  KTable study_k_table(const StudyScene &scene, const StudyResult &result)
+  {
+    KTable table;
+    table.file = "the study's k table";
+    for (const StudyHeight *h : k_table_cases(result))
+      if (h->kelvin_voigt && h->jankowski)
+        table.rows.push_back({h->wall_height,
+                              h->kelvin_voigt->stiffness.value * scene.fit.width,
+                              h->jankowski->stiffness.value * scene.fit.width,
+                              h->impact_velocity,
+                              h->reference_velocity});
+    return table;
+  }
+
+  void log_velocity_table(const StudyResult &result)
+  {
+    if (result.velocity_cases.empty() &&
+        std::none_of(result.heights.begin(),
+                     result.heights.end(),
+                     [](const StudyHeight &h) { return h.inelastic; }))
+      return;
+    logger().info("k(H, v) per metre of wall (linear k beside an inelastic one):");
+    logger().info("  H [m] | v [m/s] | model | KV kN/mm/m | linear KV | Jankowski kN/mm^1.5/m | "
+                  "linear J");
+    for (const StudyHeight *h : k_table_cases(result))
+      logger().info("  {:5.2f} | {:7.3g} | {:9} | {:10.4g} | {:9.4g} | {:21.4g} | {:.4g}",
+                    h->wall_height,
+                    h->impact_velocity,
+                    h->inelastic ? "inelastic" : "linear",
+                    per_metre(h->kelvin_voigt),
+                    per_metre(h->linear_kelvin_voigt),
+                    per_metre(h->jankowski),
+                    per_metre(h->linear_jankowski));
+  }
+} // namespace kimp::app::study_internal
