@@ -82,7 +82,7 @@ namespace kimp::fem
     return x;
   }
 
-  InitialStress geostatic_stress(double surface_y, double unit_weight, double k0)
+  InitialStressField geostatic_stress(double surface_y, double unit_weight, double k0)
   {
     return [=](double, double y) -> VoigtStress
     {

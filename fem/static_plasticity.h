@@ -69,13 +69,13 @@ namespace kimp::fem
   };
 
   /** Initial stress field sigma_0(x, y) (Pa, tension positive) at a point (m). */
-  using InitialStress = std::function<VoigtStress(double x, double y)>;
+  using InitialStressField = std::function<VoigtStress(double x, double y)>;
 
   /**
    * Geostatic stress below a horizontal surface at y = @p surface_y (m): sigma_yy = -gamma z,
    * sigma_xx = -K0 gamma z, z = surface_y - y, sigma_xy = 0 (@p unit_weight gamma in N/m^3).
    */
-  InitialStress geostatic_stress(double surface_y, double unit_weight, double k0);
+  InitialStressField geostatic_stress(double surface_y, double unit_weight, double k0);
 
   /** Everything run_static_plasticity() needs. */
   struct StaticPlasticityParameters
@@ -94,7 +94,7 @@ namespace kimp::fem
      * sigma_zz,0 = nu (sigma_xx,0 + sigma_yy,0) of the plane-strain elasticity (equal to
      * K0 gamma z of a geostatic state when K0 = nu / (1 - nu)).
      */
-    InitialStress                       initial_stress;
+    InitialStressField                  initial_stress;
     std::vector<PrescribedDisplacement> prescribed;
     /**
      * Material ids whose tangent is taken as a central difference of the law's stress (the
