@@ -51,6 +51,14 @@ namespace kimp::fit
                          100.0 * fit.fem_contact_duration / fit.contact_extent,
                          1e3 * fit.fem_contact_duration,
                          1e3 * fit.contact_extent);
+    // A zero-width interval is no precision: the misfit has a kink at the optimum (e.g. the
+    // contact's end moving across a sample), where its curvature says nothing.
+    if (fit.stiffness.fitted && std::isfinite(fit.stiffness.value) &&
+        fit.stiffness.upper - fit.stiffness.lower <= 1.0e-6 * std::abs(fit.stiffness.value))
+      return fmt::format("warning: confidence interval of k degenerate ([{:.6g}, {:.6g}] N/m^n "
+                         "per m): the misfit has a kink at the optimum, its width is not known",
+                         fit.stiffness.lower,
+                         fit.stiffness.upper);
     return "ok";
   }
 } // namespace kimp::fit

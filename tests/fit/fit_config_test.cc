@@ -43,6 +43,16 @@ namespace
     EXPECT_EQ(fit_verdict(good_fit()), "ok");
   }
 
+  TEST(FitVerdict, DegenerateIntervalIsAWarning)
+  {
+    FitResult f = good_fit();
+    f.stiffness = {92.6e6, 92.6e6, 92.6e6, true};
+    EXPECT_TRUE(starts_with(fit_verdict(f), "warning: confidence interval of k degenerate"))
+      << fit_verdict(f);
+    f.stiffness = {92.6e6, 92.59e6, 92.61e6, true}; // 2e-4 relative: a real interval
+    EXPECT_EQ(fit_verdict(f), "ok");
+  }
+
   TEST(FitVerdict, UnboundedIntervalFails)
   {
     FitResult f       = good_fit();
