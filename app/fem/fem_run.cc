@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <fmt/format.h>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
@@ -168,7 +169,14 @@ namespace kimp::app
       entry["slab_mass"]       = c.slab_mass;
       entry["impact_velocity"] = c.impact_velocity;
       for (const auto &[key, value] : c.summary.entries())
-        entry[key] = value;
+      {
+        // Counts (n_steps, n_dofs, geostatic_iterations, ...) are integers in the JSON.
+        const bool count = key.rfind("n_", 0) == 0 || key.find("_iterations") != std::string::npos;
+        if (count && std::isfinite(value) && value == std::floor(value) && std::abs(value) < 9.0e15)
+          entry[key] = static_cast<std::int64_t>(value);
+        else
+          entry[key] = value;
+      }
       for (const auto &[key, value] : c.labels)
         entry[key] = value;
       entry["mesh_file"] = mesh_file;

@@ -922,9 +922,9 @@ const kimp = (function () {
       }
       parts.push(`<text x="${bx + 24}" y="46" font-size="12">${fmt(f.hi * f.scale, 4)}</text>`);
       parts.push(`<text x="${bx + 24}" y="340" font-size="12">${fmt(f.lo * f.scale, 4)}</text>`);
-      parts.push(`<text x="${W - 8}" y="28" font-size="12" text-anchor="end">${f.text} (${f.unit})</text>`);
+      parts.push(`<text x="${W - 8}" y="28" font-size="12" text-anchor="end">${escapeXml(`${f.text} (${f.unit})`)}</text>`);
       const t = m.time[i];
-      parts.push(`<text x="20" y="22" font-size="14">${m.name}: t = ${fmt(t * 1e3, 4)} ms, displacements ×${e}</text>`);
+      parts.push(`<text x="20" y="22" font-size="14">${escapeXml(m.name)}: t = ${fmt(t * 1e3, 4)} ms, displacements ×${e}</text>`);
       svg.innerHTML = parts.join('');
       label.textContent = ` frame ${i + 1}/${m.time.length}, t = ${fmt(t * 1e3, 4)} ms`;
       scrub.value = String(i);
