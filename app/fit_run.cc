@@ -93,6 +93,18 @@ namespace kimp::app
                           fit_options(config, variant.options));
   }
 
+  std::string fem_fit_verdict(const io::FemCase &fem_case, const fit::FitResult &fit)
+  {
+    const std::optional<double> cor = fem_case.summary.apparent_cor;
+    if (cor && !(*cor > 0.0))
+      return fmt::format(
+        "failed: the slab does not rebound (apparent COR {:.3g}): the wall or the backfill gives "
+        "way during the impact (see damage_dissipation and plastic_dissipation), so the run has no "
+        "impact stiffness",
+        *cor);
+    return fit_verdict(fit);
+  }
+
   int run_fit_command(const FitCommandOptions &options)
   {
     const FitConfig &config = options.config;
@@ -147,7 +159,7 @@ namespace kimp::app
         try
         {
           const FitResult   fit     = fit_fem_case(fem_case, variant, config);
-          const std::string verdict = fit_verdict(fit);
+          const std::string verdict = fem_fit_verdict(fem_case, fit);
           write_fit_result(group, fit, config.width, FitResultLayout::full);
           group.set_status(verdict);
           if (verdict != "ok")

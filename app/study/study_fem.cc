@@ -54,7 +54,7 @@ namespace kimp::app
       {
         // The same path as `kimp fit` (fit_fem_case), so both give the same k.
         fit    = fit_fem_case(fem_case, variant, settings);
-        status = fit_verdict(*fit);
+        status = fem_fit_verdict(fem_case, *fit);
         if (status.rfind("failed", 0) == 0)
           fit.reset();
         if (status != "ok")
