@@ -95,8 +95,22 @@ namespace kimp::app
 
   std::string fem_fit_verdict(const io::FemCase &fem_case, const fit::FitResult &fit)
   {
-    const std::optional<double> cor = fem_case.summary.apparent_cor;
-    if (cor && !(*cor > 0.0))
+    // Only a run that ended on separation has a rebound velocity: one stopped at its end time
+    // (e.g. a rigid slab still chattering) may be caught moving in.
+    const std::optional<double> cor     = fem_case.summary.apparent_cor;
+    const auto                  stopped = fem_case.labels.find("stopped_on");
+    const bool separated = stopped != fem_case.labels.end() && stopped->second == "separation";
+    // And only an inelastic one can give way: a linear wall may send a rigid slab off still
+    // moving in (the wall face springing back faster), which is chatter, not failure.
+    const auto extra = [&](const char *key)
+    {
+      const auto it = fem_case.summary.extra.find(key);
+      return it == fem_case.summary.extra.end() ? 0.0 : it->second;
+    };
+    const double dissipated = extra("plastic_dissipation") + extra("damage_dissipation");
+    const double energy =
+      0.5 * fem_case.slab_mass * fem_case.impact_velocity * fem_case.impact_velocity;
+    if (cor && separated && !(*cor > 0.0) && dissipated > 1.0e-2 * energy)
       return fmt::format(
         "failed: the slab does not rebound (apparent COR {:.3g}): the wall or the backfill gives "
         "way during the impact (see damage_dissipation and plastic_dissipation), so the run has no "

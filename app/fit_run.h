@@ -97,8 +97,10 @@ namespace kimp::app
   /**
    * The status of `fit` to `fem_case`: first what the FEM run itself rules out, then
    * fit::fit_verdict(). An impact stiffness describes a contact the slab rebounds from: if the
-   * slab does not rebound (apparent COR <= 0: it still moves into the wall when the contact
-   * ends, because the wall or the backfill gives way), the run has no impact stiffness and the
+   * slab does not rebound (the run ended on separation with an apparent COR <= 0 and its
+   * materials dissipated more than 1 % of the impact energy: the slab still moves into the
+   * wall when the contact ends, because the wall or the backfill gives way), the run has no
+   * impact stiffness and the
    * fit is "failed: ...", whatever its misfit. Used by `kimp fit` and `kimp study`.
    */
   std::string fem_fit_verdict(const io::FemCase &fem_case, const fit::FitResult &fit);
