@@ -1,6 +1,7 @@
 // Inelastic plane-strain laws behind the MaterialLaw interface: Mohr-Coulomb with tension cut-off
-// and Drucker-Prager (soil), scalar tension/compression damage with crack band (concrete). Plain
-// C++ (no deal.II): allocation-free quadrature-point code that unit tests compile in seconds.
+// and Drucker-Prager (soil), scalar tension/compression damage with crack band and smeared steel
+// bars (concrete). Plain C++ (no deal.II): allocation-free quadrature-point code that unit tests
+// compile in seconds.
 #pragma once
 
 #include <string>

@@ -371,7 +371,9 @@ namespace
       const double e = 3 * ey - 2.2 * fy / Es * i / n;
       go(e);
       if (e > e_rev + 1e-9 * ey)
+      {
         EXPECT_NEAR(st.stress, s_max - Es * (3 * ey - e), 1e-9 * fy) << e;
+      }
     }
     const double e_end = 3 * ey - 2.2 * fy / Es;
     EXPECT_NEAR(st.stress, s_max - 2 * fy - Et * (e_rev - e_end), 1e-9 * fy);
