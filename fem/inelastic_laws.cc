@@ -718,9 +718,18 @@ namespace kimp::fem
     return dif_compression * std::max(0.0, s);
   }
 
-  ConcreteDamageLaw::ConcreteDamageLaw(const ConcreteParameters &p)
+  ConcreteDamageLaw::ConcreteDamageLaw(const ConcreteParameters      &p,
+                                       const ReinforcementParameters &reinforcement)
     : p_(p)
+    , r_(reinforcement)
+    , steel_(reinforcement)
+    , reinforced_(reinforcement.any())
   {
+    const ReinforcementParameters &r = reinforcement;
+    if (!(r.ratio_x >= 0 && r.ratio_x < 1) || !(r.ratio_y >= 0 && r.ratio_y < 1) ||
+        !(r.yield_stress > 0) || !(r.youngs_modulus > 0) || !(r.hardening >= 0 && r.hardening < 1))
+      throw std::invalid_argument("reinforcement: need 0 <= ratio_x, ratio_y < 1, f_y > 0, "
+                                  "E_s > 0, 0 <= hardening < 1");
     if (!(p.youngs_modulus > 0) || !(p.poisson_ratio >= 0 && p.poisson_ratio < 0.5) ||
         !(p.f_ctm > 0) || !(p.fracture_energy > 0) || !(p.eps_c1 > 0) ||
         !(p.eps_c_lim > p.eps_c1) || !(p.f_cm > 0))
@@ -756,6 +765,26 @@ namespace kimp::fem
   }
 
   VoigtStress ConcreteDamageLaw::stress(const VoigtStrain &e, const double *h0, double *h1) const
+  {
+    VoigtStress s = concrete_stress(e, h0, h1);
+    if (reinforced_)
+    {
+      // Bars along x and y strained as the concrete (perfect bond), in parallel with it.
+      const SteelState sx = steel_.update(e[0], h0[6], h0[7]);
+      const SteelState sy = steel_.update(e[1], h0[8], h0[9]);
+      h1[6]               = sx.plastic_strain;
+      h1[7]               = sx.back_stress;
+      h1[8]               = sy.plastic_strain;
+      h1[9]               = sy.back_stress;
+      h1[10]              = h0[10] + r_.ratio_x * sx.plastic_work + r_.ratio_y * sy.plastic_work;
+      s[0] += r_.ratio_x * sx.stress;
+      s[1] += r_.ratio_y * sy.stress;
+    }
+    return s;
+  }
+
+  VoigtStress
+  ConcreteDamageLaw::concrete_stress(const VoigtStrain &e, const double *h0, double *h1) const
   {
     const double E = p_.youngs_modulus, lam = lambda_, mu = mu_;
     const double tr  = e[0] + e[1];
@@ -799,11 +828,17 @@ namespace kimp::fem
     return {{w * sxx, w * syy, w * sxy}};
   }
 
-  VoigtTangent ConcreteDamageLaw::tangent(const VoigtStrain &, const double *h) const
+  VoigtTangent ConcreteDamageLaw::tangent(const VoigtStrain &e, const double *h) const
   {
     const double w   = (1 - h[2]) * (1 - h[3]);
     const double lam = lambda_, mu = mu_;
-    return {{w * (lam + 2 * mu), w * lam, 0, w * lam, w * (lam + 2 * mu), 0, 0, 0, w * mu}};
+    VoigtTangent t{{w * (lam + 2 * mu), w * lam, 0, w * lam, w * (lam + 2 * mu), 0, 0, 0, w * mu}};
+    if (reinforced_)
+    {
+      t[0] += r_.ratio_x * steel_.update(e[0], h[6], h[7]).tangent;
+      t[4] += r_.ratio_y * steel_.update(e[1], h[8], h[9]).tangent;
+    }
+    return t;
   }
 
   PointOutput ConcreteDamageLaw::output(const VoigtStrain &e, const double *h) const
@@ -817,6 +852,14 @@ namespace kimp::fem
     o.stored_energy      = 0.5 * w * (sxx * e[0] + syy * e[1] + sxy * e[2]);
     o.damage             = 1 - w;
     o.damage_dissipation = h[4];
+    if (reinforced_)
+    {
+      // The bars' elastic energy is stored; their plastic work (hardening included) dissipated.
+      const double ex = e[0] - h[6], ey = e[1] - h[8], Es = r_.youngs_modulus;
+      o.stored_energy += 0.5 * Es * (r_.ratio_x * ex * ex + r_.ratio_y * ey * ey);
+      o.plastic_dissipation       = h[10];
+      o.equivalent_plastic_strain = std::max(std::abs(h[6]), std::abs(h[8]));
+    }
     return o;
   }
   void ConcreteDamageLaw::update_points(unsigned int           n,

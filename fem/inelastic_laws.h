@@ -1,6 +1,7 @@
 // Inelastic plane-strain laws behind the MaterialLaw interface: Mohr-Coulomb with tension cut-off
-// and Drucker-Prager (soil), scalar tension/compression damage with crack band (concrete). Plain
-// C++ (no deal.II): allocation-free quadrature-point code that unit tests compile in seconds.
+// and Drucker-Prager (soil), scalar tension/compression damage with crack band and smeared steel
+// bars (concrete). Plain C++ (no deal.II): allocation-free quadrature-point code that unit tests
+// compile in seconds.
 #pragma once
 
 #include <string>
@@ -168,18 +169,92 @@ namespace kimp::fem
   };
 
   /**
+   * Smeared reinforcement of a concrete body: steel bars along x and along y, their area per
+   * concrete area ratio_x, ratio_y, perfectly bonded (the bar strain is the concrete's normal
+   * strain eps_xx or eps_yy), no tension stiffening, no dowel action (docs/physics.md §6).
+   */
+  struct ReinforcementParameters
+  {
+    double ratio_x        = 0;     ///< steel area / concrete area of the bars along x, -
+    double ratio_y        = 0;     ///< steel area / concrete area of the bars along y, -
+    double yield_stress   = 500e6; ///< f_y, Pa (B500)
+    double youngs_modulus = 200e9; ///< E_s, Pa
+    double hardening      = 0.01;  ///< b = post-yield tangent / E_s, in [0, 1)
+    /** True if any bar is present. */
+    bool any() const { return ratio_x > 0 || ratio_y > 0; }
+    /** Kinematic hardening modulus H = b E_s / (1 - b) (Pa): E_s H / (E_s + H) = b E_s. */
+    double hardening_modulus() const { return hardening * youngs_modulus / (1 - hardening); }
+  };
+
+  /** One step of a uniaxial steel bar (SteelBar::update()). */
+  struct SteelState
+  {
+    double stress         = 0; ///< Pa
+    double tangent        = 0; ///< consistent d sigma / d eps, Pa
+    double plastic_strain = 0; ///< eps_p, -
+    double back_stress    = 0; ///< alpha, Pa
+    double plastic_work   = 0; ///< increment of the plastic work int sigma d eps_p, J/m^3
+  };
+
+  /**
+   * Uniaxial elastic-plastic steel with linear kinematic hardening (Simo & Hughes 1998 §1.4):
+   * yield function |sigma - alpha| <= f_y, alpha = H eps_p, so that reversed loading yields at
+   * alpha - f_y (Bauschinger effect). Backward-Euler return mapping, exact for this linear law.
+   */
+  struct SteelBar
+  {
+    double f_y = 500e6, E_s = 200e9, H = 0; ///< Pa
+    explicit SteelBar(const ReinforcementParameters &r)
+      : f_y(r.yield_stress)
+      , E_s(r.youngs_modulus)
+      , H(r.hardening_modulus())
+    {
+    }
+    /** The state at total strain @p strain from the committed @p plastic_strain and
+     *  @p back_stress. The plastic work increment f_y |d eps_p| + (alpha_0 + alpha_1) / 2
+     *  d eps_p is the exact integral along the step (the flow direction is constant in it). */
+    SteelState update(double strain, double plastic_strain, double back_stress) const
+    {
+      SteelState   s;
+      const double trial = E_s * (strain - plastic_strain);
+      const double xi = trial - back_stress, f = (xi < 0 ? -xi : xi) - f_y;
+      if (f <= 0)
+      {
+        s.stress         = trial;
+        s.tangent        = E_s;
+        s.plastic_strain = plastic_strain;
+        s.back_stress    = back_stress;
+        return s;
+      }
+      const double sign = xi < 0 ? -1.0 : 1.0, dgamma = f / (E_s + H);
+      s.plastic_strain = plastic_strain + sign * dgamma;
+      s.back_stress    = back_stress + sign * H * dgamma;
+      s.stress         = trial - sign * E_s * dgamma;
+      s.tangent        = E_s * H / (E_s + H);
+      s.plastic_work   = f_y * dgamma + 0.5 * (back_stress + s.back_stress) * sign * dgamma;
+      return s;
+    }
+  };
+
+  /**
    * Concrete: isotropic scalar damage d = 1 - (1 - d_t)(1 - d_c) on the plane-strain elasticity,
    * sigma = (1 - d) D eps, with a Rankine tension measure (largest principal effective stress / E)
    * and a compression measure (-smallest principal effective stress / E). Tension softens
    * exponentially with the crack-band energy G_F / h (Bazant & Oh 1983), compression follows
    * compression_curve(); unloading is secant (degraded stiffness). History: kappa_t, kappa_c,
    * d_t, d_c, damage dissipation density (J/m^3), h (m).
+   *
+   * With reinforcement, smeared steel bars (SteelBar) add ratio_i sigma_s(eps_ii) to the normal
+   * stress i = x, y of the damaged concrete and ratio_i E_t to the tangent; the history then
+   * also holds eps_p and alpha of the x bars, of the y bars, and the steel's plastic work
+   * density (J/m^3, reported as plastic dissipation). The steel's elastic energy is stored.
    */
   class ConcreteDamageLaw final : public MaterialLaw
   {
   public:
-    explicit ConcreteDamageLaw(const ConcreteParameters &p);
-    unsigned int n_history() const override { return 6; }
+    explicit ConcreteDamageLaw(const ConcreteParameters      &p,
+                               const ReinforcementParameters &reinforcement = {});
+    unsigned int n_history() const override { return reinforced_ ? 11 : 6; }
     void         initialize_point(double *history, double characteristic_length) const override;
     void         initial_history(double *history) const override;
     VoigtStress
@@ -195,11 +270,17 @@ namespace kimp::fem
                                VoigtStress           *stress,
                                std::array<double, 3> *energy) const override;
     /** Tensile strength used at crack-band length h (reduced if h exceeds the snap-back limit). */
-    double                    effective_tensile_strength(double h) const;
-    const ConcreteParameters &parameters() const { return p_; }
+    double                         effective_tensile_strength(double h) const;
+    const ConcreteParameters      &parameters() const { return p_; }
+    const ReinforcementParameters &reinforcement() const { return r_; }
 
   private:
-    ConcreteParameters p_;
-    double             lambda_, mu_;
+    /** The damaged concrete's stress (history slots 0-5). */
+    VoigtStress concrete_stress(const VoigtStrain &strain, const double *h0, double *h1) const;
+    ConcreteParameters      p_;
+    ReinforcementParameters r_;
+    SteelBar                steel_;
+    bool                    reinforced_ = false;
+    double                  lambda_, mu_;
   };
 } // namespace kimp::fem

@@ -133,6 +133,22 @@ namespace kimp::app
                 fmt::format("must be <= phi = {:g} (degrees)",
                             soil.friction_angle * 180 / 3.14159265358979323846));
     }
+    if (s.materials.concrete.model == FemConcrete::Model::elastic)
+    {
+      // Bars need the damage law (an elastic concrete stays linear): refused, not ignored.
+      const auto scope = ctx.section("materials");
+      const auto check = [&](const char *key, const FemReinforcement &r)
+      {
+        const bool x = r.ratio_x != 0;
+        ctx.check(!x && r.ratio_y == 0,
+                  std::string("concrete.") + key + (x ? ".ratio_x" : ".ratio_y"),
+                  format_quantity(x ? r.ratio_x : r.ratio_y, "%"),
+                  "needs materials.concrete.model: damage_plasticity (smeared bars act in the "
+                  "concrete damage law only)");
+      };
+      check("wall_reinforcement", s.materials.concrete.wall_reinforcement);
+      check("slab_reinforcement", s.materials.concrete.slab_reinforcement);
+    }
     if (s.interface.model == FemInterface::Model::contact)
     {
       ctx.check(s.dynamics.integrator ==
@@ -331,14 +347,32 @@ namespace kimp::app
     return p;
   }
 
+  fem::ReinforcementParameters reinforcement_parameters(const FemReinforcement &r)
+  {
+    fem::ReinforcementParameters p;
+    p.ratio_x        = r.ratio_x;
+    p.ratio_y        = r.ratio_y;
+    p.yield_stress   = r.f_y;
+    p.youngs_modulus = r.E_s;
+    p.hardening      = r.hardening;
+    return p;
+  }
+
   std::pair<fem::Material, std::shared_ptr<const fem::MaterialLaw>>
   concrete_material(const FemConcrete &c)
+  {
+    return concrete_material(c, FemReinforcement{});
+  }
+
+  std::pair<fem::Material, std::shared_ptr<const fem::MaterialLaw>>
+  concrete_material(const FemConcrete &c, const FemReinforcement &reinforcement)
   {
     if (c.model == FemConcrete::Model::elastic)
       return {fem::Material{c.youngs_modulus, c.poisson_ratio, c.density}, nullptr};
     const fem::ConcreteParameters p = concrete_parameters(c);
-    return {fem::Material{p.youngs_modulus, p.poisson_ratio, c.density},
-            std::make_shared<const fem::ConcreteDamageLaw>(p)};
+    return {
+      fem::Material{p.youngs_modulus, p.poisson_ratio, c.density},
+      std::make_shared<const fem::ConcreteDamageLaw>(p, reinforcement_parameters(reinforcement))};
   }
 
   fem::ImpactParameters impact_parameters(const FemScene              &scene,
@@ -350,16 +384,22 @@ namespace kimp::app
 
     fem::ImpactParameters p;
     p.mesh_file                          = mesh_file;
-    const auto [concrete, concrete_law]  = concrete_material(scene.materials.concrete);
+    const FemConcrete &c                 = scene.materials.concrete;
+    const auto [concrete, concrete_law]  = concrete_material(c, c.wall_reinforcement);
     const auto [soil, soil_law]          = soil_material(scene.materials.soil);
     p.materials[geometry::wall_material] = concrete;
     if (concrete_law)
       p.material_laws[geometry::wall_material] = concrete_law;
     if (!scene.slab.rigid)
     {
+      // The slab's own bars: a second law only when they differ from the wall's.
+      const FemReinforcement &w = c.wall_reinforcement, &r = c.slab_reinforcement;
+      const bool same = w.ratio_x == r.ratio_x && w.ratio_y == r.ratio_y && w.f_y == r.f_y &&
+                        w.E_s == r.E_s && w.hardening == r.hardening;
       p.materials[geometry::slab_material] = concrete;
       if (concrete_law)
-        p.material_laws[geometry::slab_material] = concrete_law;
+        p.material_laws[geometry::slab_material] =
+          same ? concrete_law : concrete_material(c, r).second;
     }
     if (scene.geometry.with_backfill)
     {

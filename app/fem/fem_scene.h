@@ -49,6 +49,16 @@ namespace kimp::app
     std::optional<double> K0;
   };
 
+  /** Smeared reinforcement of one concrete body (fem::ReinforcementParameters). */
+  struct FemReinforcement
+  {
+    double ratio_x   = 0;     ///< steel / concrete area of the bars along x (horizontal), -
+    double ratio_y   = 0;     ///< steel / concrete area of the bars along y (vertical), -
+    double f_y       = 500e6; ///< yield stress, Pa
+    double E_s       = 200e9; ///< Pa
+    double hardening = 0.01;  ///< post-yield modulus / E_s, -
+  };
+
   /** Slab and wall concrete: elasticity, or damage from f_cm by fib Model Code 2010. */
   struct FemConcrete : FemMaterial
   {
@@ -66,6 +76,10 @@ namespace kimp::app
     std::optional<double> f_ctm;           ///< Pa; default: MC2010 from f_cm
     std::optional<double> fracture_energy; ///< G_F, N/m; default: MC2010 from f_cm
     double strain_rate = 0; ///< 1/s for the MC2010 dynamic increase factors (0: none)
+    /// Smeared bars of the wall (damage_plasticity only; default none).
+    FemReinforcement wall_reinforcement;
+    /// Smeared bars of the meshed slab (damage_plasticity only; default none).
+    FemReinforcement slab_reinforcement;
   };
 
   /** Concrete (slab and wall) and soil (backfill); docs/physics.md §4 defaults. */
@@ -272,6 +286,30 @@ namespace kimp::app
   }
 
   template <class Io>
+  void visit(Io &io, FemReinforcement &s)
+  {
+    io.quantity("ratio_x",
+                s.ratio_x,
+                "%",
+                "steel area / concrete area of the bars along x, the horizontal of the section "
+                "(in [0, 10 %]; 0: none)",
+                io::Range::at_least(0.0).and_at_most(0.1));
+    io.quantity("ratio_y",
+                s.ratio_y,
+                "%",
+                "steel area / concrete area of the bars along y, the vertical of the section "
+                "(in [0, 10 %]; 0: none)",
+                io::Range::at_least(0.0).and_at_most(0.1));
+    io.quantity("f_y", s.f_y, "MPa", "steel yield stress (> 0; B500)", io::Range::positive());
+    io.quantity("E_s", s.E_s, "GPa", "steel Young's modulus (> 0)", io::Range::positive());
+    io.quantity("hardening",
+                s.hardening,
+                "",
+                "post-yield (linear kinematic hardening) tangent / E_s (in [0, 1))",
+                io::Range::at_least(0.0).and_less(1.0));
+  }
+
+  template <class Io>
   void visit(Io &io, FemConcrete &s)
   {
     visit(io, static_cast<FemMaterial &>(s));
@@ -301,6 +339,14 @@ namespace kimp::app
                 "1",
                 "strain rate (1/s) of the MC2010 dynamic increase factors (>= 0; 0: none)",
                 io::Range::non_negative());
+    io.section("wall_reinforcement",
+               s.wall_reinforcement,
+               "damage_plasticity: smeared, perfectly bonded steel bars of the wall (ratio_y: "
+               "its vertical bars; ratio_x: ties through its thickness)");
+    io.section("slab_reinforcement",
+               s.slab_reinforcement,
+               "damage_plasticity: smeared, perfectly bonded steel bars of the meshed slab "
+               "(ratio_x: its bars along the impact; ratio_y: links through its thickness)");
   }
 
   template <class Io>
@@ -532,6 +578,11 @@ namespace kimp::app
   soil_material(const FemSoil &soil);
   std::pair<fem::Material, std::shared_ptr<const fem::MaterialLaw>>
   concrete_material(const FemConcrete &concrete);
+  /** As concrete_material(), the damage law with the smeared bars @p reinforcement. */
+  std::pair<fem::Material, std::shared_ptr<const fem::MaterialLaw>>
+  concrete_material(const FemConcrete &concrete, const FemReinforcement &reinforcement);
+  /** The law's steel parameters of a scene's reinforcement section. */
+  fem::ReinforcementParameters reinforcement_parameters(const FemReinforcement &reinforcement);
 
   /** The meshing parameters of the case with wall height @p wall_height (mesh level applied). */
   geometry::SceneGeometry scene_geometry(const FemScene &scene, double wall_height);

@@ -144,6 +144,9 @@ namespace kimp::app::study_internal
       linear.materials.concrete.youngs_modulus =
         concrete_parameters(scene.materials.concrete).youngs_modulus;
       linear.materials.concrete.model = FemConcrete::Model::elastic;
+      // The linear reference is the plain concrete's: the bars act in the damage law only.
+      linear.materials.concrete.wall_reinforcement = FemReinforcement{};
+      linear.materials.concrete.slab_reinforcement = FemReinforcement{};
     }
     // An elastic soil keeps its preset's E, nu and rho (soil_parameters()).
     linear.materials.soil.model = FemSoil::Model::elastic;

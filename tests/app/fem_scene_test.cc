@@ -219,6 +219,52 @@ namespace
                  SceneError);
   }
 
+  TEST(FemScene, ReinforcementKeysGiveEachBodyItsBars)
+  {
+    // Default: no bars (the plain law, 6 history values). The wall's and the slab's sections
+    // give each body its own law; percent ratios, f_y, E_s, hardening reach the law; bars on an
+    // elastic concrete are refused, naming the key.
+    namespace ids = kimp::geometry;
+    using kimp::fem::ConcreteDamageLaw;
+    const FemScene plain =
+      load_scene_text<FemScene>("materials: {concrete: {model: damage_plasticity}}\n", file_name);
+    const auto p0 = kimp::app::impact_parameters(plain, 1.25, "m.msh");
+    EXPECT_EQ(p0.material_laws.at(ids::wall_material)->n_history(), 6u);
+    EXPECT_EQ(p0.material_laws.at(ids::wall_material), p0.material_laws.at(ids::slab_material));
+    const FemScene s = load_scene_text<FemScene>(
+      "materials:\n"
+      "  concrete:\n"
+      "    model: damage_plasticity\n"
+      "    wall_reinforcement: {ratio_y: \"0.8 %\", ratio_x: \"0.2 %\", f_y: \"550 MPa\"}\n"
+      "    slab_reinforcement: {ratio_x: \"0.5 %\", E_s: \"210 GPa\", hardening: 0.02}\n",
+      file_name);
+    const auto p = kimp::app::impact_parameters(s, 1.25, "m.msh");
+    const auto wall =
+      dynamic_cast<const ConcreteDamageLaw *>(p.material_laws.at(ids::wall_material).get());
+    const auto slab =
+      dynamic_cast<const ConcreteDamageLaw *>(p.material_laws.at(ids::slab_material).get());
+    ASSERT_NE(wall, nullptr);
+    ASSERT_NE(slab, nullptr);
+    EXPECT_EQ(wall->n_history(), 11u);
+    EXPECT_DOUBLE_EQ(wall->reinforcement().ratio_y, 0.008);
+    EXPECT_DOUBLE_EQ(wall->reinforcement().ratio_x, 0.002);
+    EXPECT_DOUBLE_EQ(wall->reinforcement().yield_stress, 550e6);
+    EXPECT_DOUBLE_EQ(wall->reinforcement().youngs_modulus, 200e9);
+    EXPECT_DOUBLE_EQ(slab->reinforcement().ratio_x, 0.005);
+    EXPECT_DOUBLE_EQ(slab->reinforcement().ratio_y, 0);
+    EXPECT_DOUBLE_EQ(slab->reinforcement().youngs_modulus, 210e9);
+    EXPECT_DOUBLE_EQ(slab->reinforcement().hardening, 0.02);
+    EXPECT_NE(scene_error("materials: {concrete: {wall_reinforcement: {ratio_y: \"1 %\"}}}\n")
+                .find("concrete.wall_reinforcement.ratio_y"),
+              std::string::npos);
+    EXPECT_NE(scene_error("materials: {concrete: {model: damage_plasticity, slab_reinforcement: "
+                          "{ratio_x: 0.01}}}\n"),
+              "");
+    EXPECT_NE(scene_error("materials: {concrete: {model: damage_plasticity, slab_reinforcement: "
+                          "{ratio_x: \"12 %\"}}}\n"),
+              "");
+  }
+
   TEST(FemScene, GeostaticKeysResolveToTheSolversOptions)
   {
     // auto: off for the elastic default (results unchanged), on with an inelastic soil with

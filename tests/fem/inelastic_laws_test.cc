@@ -1,5 +1,6 @@
 // Inelastic laws at one quadrature point: Mohr-Coulomb / Drucker-Prager return mappings against
-// closed forms and finite differences, the crack-band fracture energy and the compression curve.
+// closed forms and finite differences, the crack-band fracture energy and the compression curve,
+// the steel bar of the smeared reinforcement.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -320,5 +321,130 @@ namespace
     const double s = -law.stress({{-1.75e-3, 0, 0}}, h0.data(), h1.data())[0];
     EXPECT_NEAR(s, (1 - d) * c.youngs_modulus * 1.75e-3, 1e-9 * c.f_cm);
     EXPECT_GT(d, 0.3);
+  }
+
+  // The reinforcement's steel bar (linear kinematic hardening, b = 5 %): loading to 3 eps_y
+  // follows sigma = f_y + b E_s (eps - eps_y); unloading is elastic over 2 f_y, so reversed
+  // yielding starts at sigma_max - 2 f_y = alpha - f_y (Bauschinger) and not at -f_y; at the
+  // end of the cycle the plastic work (the law's increments) equals int sigma d eps (trapezoid
+  // over fine steps) minus the stored sigma^2 / (2 E_s), and the closed form
+  // f_y sum |d eps_p| + H (eps_p)^2 / 2 |_0^end.
+  TEST(Steel, KinematicHardeningYieldsAndShowsTheBauschingerEffect)
+  {
+    ReinforcementParameters r;
+    r.hardening = 0.05;
+    const SteelBar bar(r);
+    const double   fy = r.yield_stress, Es = r.youngs_modulus, ey = fy / Es;
+    const double   Et = r.hardening * Es, H = r.hardening_modulus();
+    EXPECT_NEAR(Es * H / (Es + H), Et, 1e-9 * Et);
+
+    double     ep = 0, alpha = 0, work = 0, external = 0, s_prev = 0, e_prev = 0;
+    double     path = 0; // sum |d eps_p|
+    SteelState st;
+    const auto go = [&](double e)
+    {
+      st = bar.update(e, ep, alpha);
+      path += std::abs(st.plastic_strain - ep);
+      ep    = st.plastic_strain;
+      alpha = st.back_stress;
+      work += st.plastic_work;
+      external += 0.5 * (st.stress + s_prev) * (e - e_prev);
+      s_prev = st.stress;
+      e_prev = e;
+    };
+    const int n = 3000;
+    // Elastic, then hardening.
+    go(0.5 * ey);
+    EXPECT_NEAR(st.stress, 0.5 * fy, 1e-12 * fy);
+    EXPECT_DOUBLE_EQ(st.tangent, Es);
+    EXPECT_EQ(st.plastic_work, 0);
+    for (int i = 1; i <= n; ++i)
+      go(0.5 * ey + 2.5 * ey * i / n);
+    const double s_max = fy + Et * 2 * ey;
+    EXPECT_NEAR(st.stress, s_max, 1e-9 * fy);
+    EXPECT_NEAR(st.tangent, Et, 1e-9 * Et);
+    EXPECT_NEAR(alpha, H * ep, 1e-9 * fy);
+    // Reversed: elastic down to s_max - 2 f_y, then yielding at alpha - f_y.
+    const double e_rev = 3 * ey - 2 * fy / Es;
+    for (int i = 1; i <= n; ++i)
+    {
+      const double e = 3 * ey - 2.2 * fy / Es * i / n;
+      go(e);
+      if (e > e_rev + 1e-9 * ey)
+      {
+        EXPECT_NEAR(st.stress, s_max - Es * (3 * ey - e), 1e-9 * fy) << e;
+      }
+    }
+    const double e_end = 3 * ey - 2.2 * fy / Es;
+    EXPECT_NEAR(st.stress, s_max - 2 * fy - Et * (e_rev - e_end), 1e-9 * fy);
+    EXPECT_GT(st.stress, -fy); // Bauschinger: reversed yield well above -f_y
+    EXPECT_NEAR(st.stress, alpha - fy, 1e-9 * fy);
+    // Energy: the increments, the closed form and the work of the cycle agree.
+    const double closed = fy * path + 0.5 * H * ep * ep;
+    const double stored = 0.5 * st.stress * st.stress / Es;
+    std::printf("steel cycle: sigma_max %.4g MPa, reversed yield %.4g MPa, plastic work %.6g "
+                "J/m^3 (closed form %.6g, external - stored %.6g)\n",
+                s_max / 1e6,
+                (s_max - 2 * fy) / 1e6,
+                work,
+                closed,
+                external - stored);
+    EXPECT_NEAR(work, closed, 1e-9 * closed);
+    EXPECT_NEAR(external - stored, work, 1e-6 * work);
+  }
+
+  // Smeared bars in the concrete law: the stress is the plain concrete's plus ratio_i
+  // sigma_s(eps_ii) (x, y; no shear), the tangent gains ratio_i E_t, the stored energy the
+  // bars' elastic energy and the plastic dissipation their plastic work; ratio 0 is the plain
+  // law with its 6 history values.
+  TEST(Concrete, SmearedBarsAddTheirStressTangentAndEnergy)
+  {
+    ConcreteParameters      c = ConcreteParameters::from_f_cm(38e6);
+    ReinforcementParameters r;
+    r.ratio_x = 0.005;
+    r.ratio_y = 0.01;
+    const ConcreteDamageLaw plain(c), none(c, ReinforcementParameters{}), rc(c, r);
+    EXPECT_EQ(none.n_history(), 6u);
+    EXPECT_EQ(rc.n_history(), 11u);
+    const SteelBar      bar(r);
+    std::vector<double> hp(plain.n_history()), hp1(plain.n_history()), h0(rc.n_history()),
+      h1(rc.n_history());
+    plain.initialize_point(hp.data(), 0.05);
+    rc.initialize_point(h0.data(), 0.05);
+    // Past the steel's yield strain in x (cracked concrete), compressed in y, sheared.
+    double       ep_x = 0, ep_y = 0, a_x = 0, a_y = 0, w = 0;
+    const double ey = r.yield_stress / r.youngs_modulus;
+    for (int i = 1; i <= 20; ++i)
+    {
+      const VoigtStrain e{{2 * ey * i / 20, -1e-3 * i / 20, 2e-4 * i / 20}};
+      const VoigtStress sp = plain.stress(e, hp.data(), hp1.data());
+      const VoigtStress s  = rc.stress(e, h0.data(), h1.data());
+      const SteelState  sx = bar.update(e[0], ep_x, a_x), sy = bar.update(e[1], ep_y, a_y);
+      EXPECT_NEAR(s[0], sp[0] + r.ratio_x * sx.stress, 1e-9 * r.yield_stress) << i;
+      EXPECT_NEAR(s[1], sp[1] + r.ratio_y * sy.stress, 1e-9 * r.yield_stress) << i;
+      EXPECT_DOUBLE_EQ(s[2], sp[2]) << i;
+      for (unsigned int k = 0; k < 6; ++k)
+        EXPECT_DOUBLE_EQ(h1[k], hp1[k]) << k;
+      const VoigtTangent tp = plain.tangent(e, hp.data()), t = rc.tangent(e, h0.data());
+      EXPECT_NEAR(t[0] - tp[0], r.ratio_x * sx.tangent, 1e-6 * r.youngs_modulus);
+      EXPECT_NEAR(t[4] - tp[4], r.ratio_y * sy.tangent, 1e-6 * r.youngs_modulus);
+      w += r.ratio_x * sx.plastic_work + r.ratio_y * sy.plastic_work;
+      ep_x                 = sx.plastic_strain;
+      a_x                  = sx.back_stress;
+      ep_y                 = sy.plastic_strain;
+      a_y                  = sy.back_stress;
+      const PointOutput op = plain.output(e, hp1.data()), o = rc.output(e, h1.data());
+      const double      ex = e[0] - ep_x, eyy = e[1] - ep_y;
+      EXPECT_NEAR(o.stored_energy - op.stored_energy,
+                  0.5 * r.youngs_modulus * (r.ratio_x * ex * ex + r.ratio_y * eyy * eyy),
+                  1e-9 * r.yield_stress * ey);
+      EXPECT_NEAR(o.plastic_dissipation, w, 1e-12 * r.yield_stress);
+      EXPECT_DOUBLE_EQ(o.damage_dissipation, op.damage_dissipation);
+      hp = hp1;
+      h0 = h1;
+    }
+    EXPECT_GT(ep_x, 0.5 * ey); // the x bars yielded
+    EXPECT_EQ(ep_y, 0);        // the y bars did not
+    EXPECT_GT(h0[2], 0.9);     // the concrete cracked
   }
 } // namespace
