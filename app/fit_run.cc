@@ -110,13 +110,29 @@ namespace kimp::app
     const double dissipated = extra("plastic_dissipation") + extra("damage_dissipation");
     const double energy =
       0.5 * fem_case.slab_mass * fem_case.impact_velocity * fem_case.impact_velocity;
-    if (cor && separated && !(*cor > 0.0) && dissipated > 1.0e-2 * energy)
+    const std::string from_fit = fit_verdict(fit);
+    if (!(cor && separated && !(*cor > 0.0) && dissipated > 1.0e-2 * energy))
+      return from_fit;
+    // The slab keeps more than a quarter of its kinetic energy moving in: the wall has broken,
+    // not stopped it.
+    if (*cor < -0.5)
       return fmt::format(
-        "failed: the slab does not rebound (apparent COR {:.3g}): the wall or the backfill gives "
-        "way during the impact (see damage_dissipation and plastic_dissipation), so the run has no "
-        "impact stiffness",
-        *cor);
-    return fit_verdict(fit);
+        "failed: the slab passes through (apparent COR {:.3g}: it keeps {:.3g} % of its kinetic "
+        "energy moving into the wall): the wall or the backfill fails during the impact (damage "
+        "{:.4g} J/m, plastic {:.4g} J/m), so the run has no impact stiffness",
+        *cor,
+        100.0 * *cor * *cor,
+        extra("damage_dissipation"),
+        extra("plastic_dissipation"));
+    if (from_fit.rfind("failed", 0) == 0)
+      return from_fit;
+    return fmt::format(
+      "warning: the wall yields: the slab is stopped, not rebounded (apparent COR {:.3g}; "
+      "material dissipation {:.3g} % of the impact energy), so k is the equivalent stiffness of a "
+      "yielding wall{}",
+      *cor,
+      100.0 * dissipated / energy,
+      from_fit == "ok" ? "" : "; " + from_fit);
   }
 
   int run_fit_command(const FitCommandOptions &options)

@@ -95,13 +95,13 @@ namespace kimp::app
                               const fit::FitConfig  &config);
 
   /**
-   * The status of `fit` to `fem_case`: first what the FEM run itself rules out, then
-   * fit::fit_verdict(). An impact stiffness describes a contact the slab rebounds from: if the
-   * slab does not rebound (the run ended on separation with an apparent COR <= 0 and its
-   * materials dissipated more than 1 % of the impact energy: the slab still moves into the
-   * wall when the contact ends, because the wall or the backfill gives way), the run has no
-   * impact stiffness and the
-   * fit is "failed: ...", whatever its misfit. Used by `kimp fit` and `kimp study`.
+   * The status of `fit` to `fem_case`: fit::fit_verdict(), after what the FEM run itself says.
+   * An impact stiffness describes a contact the slab rebounds from. A run that ended on
+   * separation with the slab still moving into the wall (apparent COR <= 0) while its materials
+   * dissipated more than 1 % of the impact energy did not rebound because the wall gave way:
+   * "failed: ..." if the slab keeps more than a quarter of its kinetic energy (COR < -0.5: the
+   * wall broke), else "warning: ..." (the wall yielded and stopped the slab: k is the equivalent
+   * stiffness of a yielding wall). Used by `kimp fit` and `kimp study`.
    */
   std::string fem_fit_verdict(const io::FemCase &fem_case, const fit::FitResult &fit);
 
