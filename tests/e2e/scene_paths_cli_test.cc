@@ -128,7 +128,7 @@ namespace
     fs::create_directories(temp.path() / "elsewhere");
     const KimpRun ok = run_kimp("sweep ../sweeps/tables.yaml -o out", temp.path() / "elsewhere");
     ASSERT_EQ(ok.exit_code, 0) << ok.err;
-    const Csv csv = read_csv(temp.path() / "elsewhere/out/sweep.csv");
+    const CsvTable csv = read_csv(temp.path() / "elsewhere/out/sweep.csv");
     ASSERT_EQ(csv.rows.size(), 2u);
     for (const auto &row : csv.rows)
       EXPECT_EQ(row[csv.column("status")], "ok");
