@@ -137,9 +137,9 @@ namespace kimp::app
     }
 
     /**
-     * A value of the sweep file for `key_path`, with a relative path in it (impact.k_table, a
-     * record file, records_dir) made absolute against the sweep file's `directory`: the case
-     * scenes are read relative to the base scene, which may live elsewhere.
+     * A value of the sweep file `file` for `key_path`, with a relative path in it
+     * (impact.k_table, a record file, records_dir) made absolute against the sweep file's
+     * directory: the case scenes are read relative to the base scene, which may live elsewhere.
      */
     std::string
     sweep_value(const std::string &key_path, const std::string &value, const std::string &file)
