@@ -399,6 +399,8 @@ def value_words(sweep, name, value):
     value = shown(value)
     if name == "building.n_storeys":
         return f"{value} storeys"
+    if name.startswith("neighbours.") and name.endswith("n_storeys"):
+        return f"{value}-storey neighbour"
     if name == "ground_motion.scale_to_pga":
         return "unscaled" if value == "none" else f"scaled to PGA {value}"
     if name == sweep.record_param:
@@ -471,8 +473,11 @@ def gap_panels(sweep, rows, series, responses, name, title, written):
         else None
     combos = sorted({tuple(r[n] for n in series) for r in rows},
                     key=lambda c: tuple(values[n].index(v) for n, v in zip(series, c)))
-    offsets = sorted({sweep.separation_offset(r) for r in rows}) \
+    offsets = sorted({sweep.separation_offset(r) for r in rows},
+                     key=lambda o: [float(v) for v in re.findall(r"[-+][0-9.]+", o)]) \
         if sweep.kind == "adjacent_buildings" else [""]
+    # One parameter and several separations: colour for the parameter, style for the separation.
+    by_offset = not style_param and len(series) == 1 and 1 < len(offsets) <= len(LINE_STYLES)
     lines_per_panel = [(c, o) for c in combos for o in offsets]
 
     def look(combo, offset_index):
@@ -480,6 +485,9 @@ def gap_panels(sweep, rows, series, responses, name, title, written):
         if style_param:
             colour = values[colour_param].index(combo[0])
             style = LINE_STYLES[values[style_param].index(combo[1])]
+        elif by_offset:
+            colour = values[colour_param].index(combo[0])
+            style = LINE_STYLES[offset_index]
         else:
             colour, style = i, LINE_STYLES[offset_index % len(LINE_STYLES)]
         return f"C{colour % 10}", style
@@ -548,6 +556,12 @@ def gap_panels(sweep, rows, series, responses, name, title, written):
         groups.append([Line2D([], [], color="0.3", ls=LINE_STYLES[i], lw=1.4,
                               label=value_words(sweep, style_param, v))
                        for i, v in enumerate(values[style_param])])
+    elif by_offset:
+        groups.append([Line2D([], [], color=f"C{i % 10}", lw=2,
+                              label=value_words(sweep, colour_param, v))
+                       for i, v in enumerate(values[colour_param])])
+        groups.append([Line2D([], [], color="0.3", ls=LINE_STYLES[k], lw=1.4, label=o)
+                       for k, o in enumerate(offsets)])
     else:
         named = []
         for combo in combos:
