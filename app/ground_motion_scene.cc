@@ -72,6 +72,24 @@ namespace kimp::app
     }
   }
 
+  std::string resolve_record_path(const std::string &record, const std::filesystem::path &directory)
+  {
+    if (record.empty() || record == "synthetic" || directory.empty())
+      return record;
+    if (record.find('/') != std::string::npos)
+      return resolve_scene_path(record, directory);
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(directory / record, ec))
+      return (directory / record).lexically_normal().string();
+    return record;
+  }
+
+  void resolve_paths(GroundMotionScene &scene, const std::filesystem::path &directory)
+  {
+    scene.record      = resolve_record_path(scene.record, directory);
+    scene.records_dir = resolve_scene_path(scene.records_dir, directory);
+  }
+
   lumped::GroundMotion
   load_ground_motion_at(const GroundMotionScene                    &scene,
                         const std::optional<std::filesystem::path> &records_dir,
@@ -94,6 +112,11 @@ namespace kimp::app
       const std::string echo    = "record = '" + scene.record + "' ";
       if (problem.rfind(echo, 0) == 0)
         problem = problem.substr(echo.size());
+      // "synthetic" is a name of the scene, not of the records directory: suggested here.
+      const std::string written = std::filesystem::path(scene.record).filename().string();
+      if (problem.find("did you mean") == std::string::npos &&
+          edit_distance(written, "synthetic") <= 3)
+        problem += "; did you mean 'synthetic'?";
       throw SceneError(fmt::format("{}{}: {} = '{}': {}",
                                    file_name,
                                    line > 0 ? ":" + std::to_string(line) : std::string(),

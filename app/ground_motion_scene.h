@@ -43,8 +43,9 @@ namespace kimp::app
    * |--------------|------|-------------|--------------------------------------------------|
    * | record       | -    | "synthetic" | "synthetic", a record name in records_dir        |
    * |              |      |             | (e.g. RSN1106_KOBE_KJM000) or a path to a file   |
+   * |              |      |             | (relative to the scene file's directory)         |
    * | records_dir  | -    | ""          | "" = --records-dir / KIMP_RECORDS_DIR /          |
-   * |              |      |             | ../shared/data/records                           |
+   * |              |      |             | ../shared/data/records; relative to the scene    |
    * | record_unit  | -    | ""          | unit of a two-column file's acceleration column  |
    * |              |      |             | ("g", "m/s^2", "cm/s^2"); required for such files|
    * | scale_to_pga | g    | null        | scale the record to this PGA                     |
@@ -75,10 +76,12 @@ namespace kimp::app
     io.text("record",
             s.record,
             "\"synthetic\" (the embedded near-fault motion), a PEER record name looked up in "
-            "records_dir (e.g. RSN1106_KOBE_KJM000) or a path to an AT2 file");
+            "records_dir (e.g. RSN1106_KOBE_KJM000) or a path to an AT2 file (relative to the "
+            "scene file's directory)");
     io.text("records_dir",
             s.records_dir,
-            "directory of PEER records; \"\" = $KIMP_RECORDS_DIR, else ../shared/data/records");
+            "directory of PEER records, relative to the scene file's directory; \"\" = "
+            "$KIMP_RECORDS_DIR, else ../shared/data/records");
     io.text("record_unit",
             s.record_unit,
             "unit of the acceleration column of a two-column 'time acceleration' record file "
@@ -99,6 +102,17 @@ namespace kimp::app
                s.synthetic,
                "synthetic near-fault motion (used when record = synthetic)");
   }
+
+  /**
+   * `record` as written in a scene file of `directory`, resolved against it: a path (with a
+   * directory separator, or naming a file beside the scene) becomes `directory`/record; an
+   * absolute path, "synthetic" and a bare record name (looked up in the records directory) stay.
+   */
+  std::string resolve_record_path(const std::string           &record,
+                                  const std::filesystem::path &directory);
+
+  /// The scene's paths (a record file, records_dir) resolved against the scene file's directory.
+  void resolve_paths(GroundMotionScene &scene, const std::filesystem::path &directory);
 
   /// A ground motion whose PGA after scaling exceeds this (5 g, m/s²) is logged as a warning.
   inline constexpr double max_credible_pga = 5.0 * 9.80665;

@@ -636,16 +636,29 @@ namespace kimp::app
                   motion.pga() / lumped::standard_gravity);
 
     const auto cases = resolve_cases(scene);
+    // The cases' own records (cases[i].record) before any run, so that a missing one is an error
+    // at its key rather than a run stopped half-way.
+    std::vector<std::optional<lumped::GroundMotion>> own_motions(cases.size());
+    for (std::size_t i = 0; i < cases.size(); ++i)
+      if (cases[i].second.ground_motion.record != scene.ground_motion.record)
+        own_motions[i] = load_ground_motion_at(cases[i].second.ground_motion,
+                                               records_dir_override,
+                                               loaded.file_name,
+                                               loaded.text,
+                                               "cases[" + std::to_string(i) + "]");
     // Every case's cost first, so that a run over budget is refused before anything is computed
     // (an invalid case is left to run_lumped_case(), which records why it fails).
-    for (const auto &[name, case_scene] : cases)
+    for (std::size_t i = 0; i < cases.size(); ++i)
     {
+      const auto &[name, case_scene] = cases[i];
       RunEstimate estimate;
       try
       {
         const double factor = case_scene.ground_motion.scale / scene.ground_motion.scale;
-        estimate =
-          estimate_lumped_case(case_scene, factor != 1.0 ? lumped::scaled(motion, factor) : motion);
+        estimate            = own_motions[i] ?
+                                estimate_lumped_case(case_scene, *own_motions[i]) :
+                                estimate_lumped_case(case_scene,
+                                          factor != 1.0 ? lumped::scaled(motion, factor) : motion);
       }
       catch (const std::exception &)
       {
@@ -661,15 +674,16 @@ namespace kimp::app
     {
       logger().info("case {}/{}: {}", i + 1, cases.size(), cases[i].first);
       const GroundMotionScene &case_motion = cases[i].second.ground_motion;
-      if (case_motion.record == scene.ground_motion.record)
+      if (!own_motions[i])
         results.push_back(
           run_lumped_case(cases[i].first, cases[i].second, motion, scene.ground_motion.scale));
       else
       {
-        // A case with its own record (cases[i].record): loaded for that case only.
-        const lumped::GroundMotion own = load_ground_motion(case_motion, records_dir_override);
-        logger().info("case {}: ground motion {}", cases[i].first, own.name);
-        results.push_back(run_lumped_case(cases[i].first, cases[i].second, own, case_motion.scale));
+        // A case with its own record (cases[i].record), loaded above.
+        logger().info("case {}: ground motion {}", cases[i].first, own_motions[i]->name);
+        results.push_back(
+          run_lumped_case(cases[i].first, cases[i].second, *own_motions[i], case_motion.scale));
+        own_motions[i].reset();
       }
       const LumpedCaseResult &r = results.back();
       if (r.ok())

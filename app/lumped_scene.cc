@@ -147,7 +147,7 @@ namespace kimp::app
       KTable       table;
       try
       {
-        table = read_k_table(impact.k_table);
+        table = read_k_table(ctx.resolve_path(impact.k_table));
       }
       catch (const std::invalid_argument &error)
       {
@@ -237,6 +237,14 @@ namespace kimp::app
       one(scene.walls.right, right_gap_key);
     }
   } // namespace
+
+  void resolve_paths(LumpedScene &scene, const std::filesystem::path &directory)
+  {
+    scene.impact.k_table = resolve_scene_path(scene.impact.k_table, directory);
+    resolve_paths(scene.ground_motion, directory);
+    for (CaseScene &c : scene.cases)
+      c.record = resolve_record_path(c.record, directory);
+  }
 
   double impact_exponent(const ImpactLawScene &law)
   {
@@ -501,6 +509,7 @@ namespace kimp::app
       LumpedScene applied = apply_case(scene, c);
       {
         ValidationContext table_ctx;
+        table_ctx.set_directory(ctx.directory());
         applied.impact = with_table_stiffness(applied.impact, table_ctx, true);
         for (const auto &failure : table_ctx.failures())
           ctx.fail(failure.key_path == "wall_height" && c.wall_height ?

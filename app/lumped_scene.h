@@ -335,7 +335,7 @@ namespace kimp::app
     io.section("bumper", s.bumper, "rubber bumpers (used when law = bumper)");
     io.text("k_table",
             s.k_table,
-            "a study's k_table.csv (or its output directory), path relative to the working "
+            "a study's k_table.csv (or its output directory), path relative to the scene file's "
             "directory: k = k_total of the law's column (n = 1: Kelvin-Voigt, n = 1.5: Jankowski) "
             "interpolated at wall_height, instead of k (\"\" = use k)");
     io.quantity("wall_height",
@@ -541,6 +541,10 @@ namespace kimp::app
 
   /// Every range and cross-field rule (K2 < K1, gap > bumper thickness, k unit vs exponent, ...).
   void validate(const LumpedScene &scene, io::ValidationContext &ctx);
+
+  /// impact.k_table and the records (ground_motion, cases[i].record) resolved against the scene
+  /// file's `directory` (io::read_scene_text() calls it after validate()).
+  void resolve_paths(LumpedScene &scene, const std::filesystem::path &directory);
 
   /// Exponent n the law will use: the given one or the law's default (1, 1.5 or 2.65).
   double impact_exponent(const ImpactLawScene &law);

@@ -125,6 +125,34 @@ namespace kimp::io
                                   "RSN1106_KOBE_KJM000 or a file path)");
     const std::filesystem::path given(name_or_path);
     const bool is_path = name_or_path.find('/') != std::string::npos || given.has_parent_path();
+    if (is_path && !file_exists(given))
+    {
+      // A misspelt file name: suggest from the records beside it (or the records directory).
+      std::error_code                    ec;
+      const std::filesystem::path        parent = given.parent_path();
+      std::vector<std::filesystem::path> files  = list_records(parent.empty() ? "." : parent);
+      const bool                         beside = !files.empty();
+      if (!beside && records_dir)
+        files = list_records(*records_dir);
+      std::vector<std::string> stems;
+      for (const auto &record : files)
+        stems.push_back(record.stem().string());
+      std::string suggestion;
+      if (const auto closest = closest_record_name(name_or_path, stems))
+      {
+        const auto file = std::find_if(files.begin(),
+                                       files.end(),
+                                       [&](const auto &f) { return f.stem() == *closest; });
+        suggestion =
+          "; did you mean '" + (beside ? (parent / file->filename()).string() : *closest) + "'?";
+      }
+      throw std::invalid_argument(
+        "record = '" + name_or_path + "' is not a file (" +
+        (std::filesystem::is_directory(given, ec) ? "a directory" : "no such file") +
+        "; expected an AT2 or two-column record file, or a record name such as "
+        "RSN1106_KOBE_KJM000 in the records directory)" +
+        suggestion);
+    }
     if (is_path || file_exists(given))
       return read_ground_motion(given, two_column_unit);
 

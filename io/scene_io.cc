@@ -52,6 +52,13 @@ namespace kimp::io
     return row[b.size()];
   }
 
+  std::string resolve_scene_path(const std::string &path, const std::filesystem::path &directory)
+  {
+    if (path.empty() || directory.empty() || std::filesystem::path(path).is_absolute())
+      return path;
+    return (directory / path).lexically_normal().string();
+  }
+
   int key_line(const std::string &yaml_text, const std::string &key_path)
   {
     try

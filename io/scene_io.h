@@ -33,6 +33,13 @@ namespace kimp::io
    */
   int key_line(const std::string &yaml_text, const std::string &key_path);
 
+  /**
+   * A path written in a scene file, resolved against the scene file's `directory`: absolute paths,
+   * "" and paths of a scene without a directory (text, or a file in the working directory) stay as
+   * they are; a relative path becomes `directory`/path (lexically normalised).
+   */
+  std::string resolve_scene_path(const std::string &path, const std::filesystem::path &directory);
+
   /// Any error in a scene file: YAML syntax, unit, unknown key, type or validation. The message
   /// names file, line, key path, the bad value and what was expected.
   class SceneError : public std::runtime_error
@@ -151,6 +158,16 @@ namespace kimp::io
 
     const std::vector<Failure> &failures() const { return failures_; }
 
+    /// Directory of the scene file being validated ("" for a scene given as text): relative
+    /// paths in the scene (impact.k_table, a record file) are relative to it.
+    const std::filesystem::path &directory() const { return directory_; }
+    void set_directory(std::filesystem::path directory) { directory_ = std::move(directory); }
+    /// resolve_scene_path() of `path` against directory().
+    std::string resolve_path(const std::string &path) const
+    {
+      return resolve_scene_path(path, directory_);
+    }
+
     /// Prefixes key paths with "<key>." until destroyed (scopes nest).
     class Section
     {
@@ -174,8 +191,9 @@ namespace kimp::io
     [[nodiscard]] Section section(std::string_view key) { return Section(*this, key); }
 
   private:
-    std::vector<Failure> failures_;
-    std::string          prefix_;
+    std::vector<Failure>  failures_;
+    std::string           prefix_;
+    std::filesystem::path directory_;
   };
 
   /// File name and the line of every key path present in a scene file (1-based).
@@ -779,6 +797,19 @@ namespace kimp::io
     {
     };
 
+    template <class T, class = void>
+    struct HasResolvePaths : std::false_type
+    {
+    };
+    template <class T>
+    struct HasResolvePaths<
+      T,
+      std::void_t<decltype(resolve_paths(std::declval<T &>(),
+                                         std::declval<const std::filesystem::path &>()))>>
+      : std::true_type
+    {
+    };
+
     /// Reads the whole file; SceneError naming the file if it cannot.
     std::string read_text_file(const std::filesystem::path &file);
   } // namespace detail
@@ -834,11 +865,16 @@ namespace kimp::io
 
   /**
    * Parse, visit, then validate (free `validate(const T&, ValidationContext&)` found by ADL, or a
-   * member `validate(ValidationContext&) const`). `name` is used in error messages.
+   * member `validate(ValidationContext&) const`). `name` is used in error messages. Paths in
+   * the scene are relative to `directory` (the scene file's directory): validate() sees them as
+   * written (ValidationContext::directory() resolves them), then a free
+   * `resolve_paths(T&, const std::filesystem::path&)`, if T has one, rewrites them resolved, so
+   * that the scene returned (and its resolved JSON) works from any working directory.
    * @throws SceneError naming file, line, key path, value and expectation.
    */
   template <class T>
-  LoadedScene<T> read_scene_text(std::string text, std::string name)
+  LoadedScene<T>
+  read_scene_text(std::string text, std::string name, const std::filesystem::path &directory = {})
   {
     SceneSource source(name);
     T           scene;
@@ -847,11 +883,14 @@ namespace kimp::io
     reader.finish();
 
     ValidationContext context = source.read_failures();
+    context.set_directory(directory);
     if constexpr (detail::HasMemberValidate<T>::value)
       scene.validate(context);
     else if constexpr (detail::HasFreeValidate<T>::value)
       validate(static_cast<const T &>(scene), context);
     source.throw_if_failed(context);
+    if constexpr (detail::HasResolvePaths<T>::value)
+      resolve_paths(scene, directory);
 
     std::string resolved = to_json_text(scene);
     return {std::move(scene), std::move(name), std::move(text), std::move(resolved)};
@@ -861,7 +900,7 @@ namespace kimp::io
   template <class T>
   LoadedScene<T> read_scene(const std::filesystem::path &file)
   {
-    return read_scene_text<T>(detail::read_text_file(file), file.string());
+    return read_scene_text<T>(detail::read_text_file(file), file.string(), file.parent_path());
   }
 
   /// The validated scene of `file` (see read_scene_text()).
@@ -873,8 +912,8 @@ namespace kimp::io
 
   /// The validated scene of `text`, named `name` in messages (see read_scene_text()).
   template <class T>
-  T load_scene_text(std::string text, std::string name)
+  T load_scene_text(std::string text, std::string name, const std::filesystem::path &directory = {})
   {
-    return read_scene_text<T>(std::move(text), std::move(name)).scene;
+    return read_scene_text<T>(std::move(text), std::move(name), directory).scene;
   }
 } // namespace kimp::io

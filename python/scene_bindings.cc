@@ -1,5 +1,6 @@
 // Scenes for Python: validation through the CLI's reader (io::read_scene_text), the schema and the
 // annotated defaults of every scene kind, and unit parsing (io/units.h).
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <pybind11/stl.h>
@@ -34,7 +35,14 @@ namespace kimp::python
     {
       return {[](const std::string &text, const std::string &name)
               {
-                io::LoadedScene<Scene> loaded = io::read_scene_text<Scene>(text, name);
+                // A scene read from a file (Scene.from_yaml names it by its path): its paths
+                // are relative to the file's directory, as on the command line.
+                std::error_code             ec;
+                const std::filesystem::path file(name);
+                const std::filesystem::path directory = std::filesystem::is_regular_file(file, ec) ?
+                                                          file.parent_path() :
+                                                          std::filesystem::path();
+                io::LoadedScene<Scene> loaded = io::read_scene_text<Scene>(text, name, directory);
                 return ParsedScene{"",
                                    name,
                                    std::move(loaded.resolved_json),

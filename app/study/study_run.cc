@@ -116,6 +116,8 @@ namespace kimp::app
       throw std::logic_error("kimp study: MPI is not initialised (fem::MpiSession in main)");
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &n_ranks);
+    // A missing record is an input error: said before any output or FEM run.
+    check_study_records(scene);
     // Rank 0 creates the output directory before the others use it.
     std::optional<OutputDir> output;
     if (rank == 0)

@@ -128,6 +128,25 @@ namespace kimp::app
     }
   } // namespace
 
+  void resolve_paths(StudyScene &scene, const std::filesystem::path &directory)
+  {
+    for (GroundMotionScene &record : scene.records)
+      resolve_paths(record, directory);
+    scene.records_dir = resolve_scene_path(scene.records_dir, directory);
+  }
+
+  void check_study_records(const io::LoadedScene<StudyScene> &loaded)
+  {
+    const std::vector<GroundMotionScene> &records = loaded.scene.records;
+    for (std::size_t i = 0; i < records.size(); ++i)
+      if (records[i].is_record())
+        load_ground_motion_at(records[i],
+                              std::nullopt,
+                              loaded.file_name,
+                              loaded.text,
+                              "records[" + std::to_string(i) + "]");
+  }
+
   std::vector<std::string> missing_study_records(const StudyScene &scene)
   {
     std::vector<std::string> missing;

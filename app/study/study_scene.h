@@ -278,7 +278,8 @@ namespace kimp::app
             "directory holds them");
     io.text("records_dir",
             s.records_dir,
-            "directory of the PEER records (\"\" = KIMP_RECORDS_DIR or ../shared/data/records)");
+            "directory of the PEER records, relative to the scene file's directory (\"\" = "
+            "KIMP_RECORDS_DIR or ../shared/data/records)");
     io.flag("charts", s.charts, "draw the charts with scripts/study_charts.py (python3)");
     io.flag("accuracy_study",
             s.accuracy_study,
@@ -300,6 +301,18 @@ namespace kimp::app
 
   /** Every range and cross-field rule; key paths as in the file ("walls.gap_reduction"). */
   void validate(const StudyScene &scene, io::ValidationContext &ctx);
+
+  /// records[i] and records_dir resolved against the scene file's `directory` (called by
+  /// io::read_scene_text()).
+  void resolve_paths(StudyScene &scene, const std::filesystem::path &directory);
+
+  /**
+   * Load every record of scene.records once, before any computation, so that a missing or
+   * misspelt one is an error at its key: "FILE:LINE: records[i].record = 'NAME': ...; did you
+   * mean ...?" (load_ground_motion_at()).
+   * @throws io::SceneError for the first record that cannot be loaded.
+   */
+  void check_study_records(const io::LoadedScene<StudyScene> &loaded);
 
   /** The lumped scene of the study's building without walls, shaken by `record`. */
   LumpedScene study_lumped_scene(const StudyScene &scene, const GroundMotionScene &record);

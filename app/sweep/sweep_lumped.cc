@@ -168,11 +168,12 @@ namespace kimp::app
       get(const GroundMotionScene                    &gm,
           const std::optional<std::filesystem::path> &records_dir,
           const std::string                          &name,
-          const std::string                          &text)
+          const std::string                          &text,
+          const std::string                          &key_path = "ground_motion")
       {
         if (!gm.is_record())
           return std::make_shared<const lumped::GroundMotion>(
-            load_ground_motion_at(gm, records_dir, name, text, "ground_motion"));
+            load_ground_motion_at(gm, records_dir, name, text, key_path));
         // The scene name only enters error messages (failed loads are not cached).
         const std::string key =
           fmt::format("{}\n{}\n{}\n{}\n{}\n{}\n{}",
@@ -190,7 +191,7 @@ namespace kimp::app
             return found->second;
         }
         auto motion = std::make_shared<const lumped::GroundMotion>(
-          load_ground_motion_at(gm, records_dir, name, text, "ground_motion"));
+          load_ground_motion_at(gm, records_dir, name, text, key_path));
         const std::lock_guard<std::mutex> lock(mutex_);
         if (motions_.size() >= 64)
           motions_.clear();
@@ -204,7 +205,8 @@ namespace kimp::app
   } // namespace
 
   CaseRunner make_lumped_case_runner(std::optional<std::filesystem::path> records_dir_override,
-                                     const bool                           share_free_runs)
+                                     const bool                           share_free_runs,
+                                     std::filesystem::path                scene_directory)
   {
     const auto    motions   = std::make_shared<MotionCache>();
     const auto    free_runs = share_free_runs ? std::make_shared<FreeRunCache>() : nullptr;
@@ -214,17 +216,33 @@ namespace kimp::app
                            const double                     dt,
                            const lumped::GroundMotion      &motion)
       { return free_runs->get(free, dt, motion); };
-    return [records_dir_override, motions, source](const std::string &text, const std::string &name)
+    return [records_dir_override, motions, source, scene_directory](const std::string &text,
+                                                                    const std::string &name)
     {
-      const LumpedScene scene = load_scene_text<LumpedScene>(text, name);
+      const LumpedScene scene = load_scene_text<LumpedScene>(text, name, scene_directory);
       const std::shared_ptr<const lumped::GroundMotion> motion =
         motions->get(scene.ground_motion, records_dir_override, name, text);
       const auto cases = resolve_cases(scene);
       CaseRow    row;
-      for (const auto &[case_name, case_scene] : cases)
+      for (std::size_t i = 0; i < cases.size(); ++i)
       {
+        const auto &[case_name, case_scene] = cases[i];
+        // A case with its own record (cases[i].record) runs with it, not with the scene's.
+        const GroundMotionScene &case_motion = case_scene.ground_motion;
+        const bool               own         = case_motion.record != scene.ground_motion.record;
+        const std::shared_ptr<const lumped::GroundMotion> used =
+          own ? motions->get(case_motion,
+                             records_dir_override,
+                             name,
+                             text,
+                             "cases[" + std::to_string(i) + "]") :
+                motion;
         const LumpedCaseResult result =
-          run_lumped_case(case_name, case_scene, *motion, scene.ground_motion.scale, source);
+          run_lumped_case(case_name,
+                          case_scene,
+                          *used,
+                          own ? case_motion.scale : scene.ground_motion.scale,
+                          source);
         if (!result.ok())
           return CaseRow{{}, result.status};
         const std::string prefix = cases.size() > 1 ? case_name + "." : std::string();

@@ -75,8 +75,12 @@ namespace kimp::app
    * when `share_free_runs` is set, contact-free runs through a FreeRunCache: each central
    * difference case without histories starts at its first possible contact and takes its
    * companion run from the cache (bitwise the same results as running every case alone).
+   * A case of the scene with its own record (`cases[i].record`) runs with that record.
    * @param[in] records_dir_override directory of the PEER records (else the scene's default)
+   * @param[in] scene_directory directory of the base scene file: relative paths of the case
+   *            scenes (impact.k_table, record files) are relative to it
    */
   CaseRunner make_lumped_case_runner(std::optional<std::filesystem::path> records_dir_override = {},
-                                     bool                                 share_free_runs = true);
+                                     bool                                 share_free_runs = true,
+                                     std::filesystem::path                scene_directory = {});
 } // namespace kimp::app

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <yaml-cpp/yaml.h>
 
+#include "app/ground_motion_scene.h"
 #include "base/hash.h"
 #include "io/scene_io.h"
 #include "io/units.h"
@@ -118,6 +119,60 @@ namespace kimp::app
         }
         node.reset(child);
       }
+    }
+
+    /// The last key of a key path ("cases[1].record" -> "record").
+    std::string last_key(const std::string &key_path)
+    {
+      const std::size_t dot = key_path.find_last_of('.');
+      const std::string key = dot == std::string::npos ? key_path : key_path.substr(dot + 1);
+      return key.substr(0, key.find('['));
+    }
+
+    /// True for the keys that select a ground motion's record.
+    bool is_record_key(const std::string &key_path)
+    {
+      const std::string key = last_key(key_path);
+      return key == "record" || key == "records_dir" || key == "record_unit";
+    }
+
+    /**
+     * A value of the sweep file `file` for `key_path`, with a relative path in it
+     * (impact.k_table, a record file, records_dir) made absolute against the sweep file's
+     * directory: the case scenes are read relative to the base scene, which may live elsewhere.
+     */
+    std::string
+    sweep_value(const std::string &key_path, const std::string &value, const std::string &file)
+    {
+      const std::string key = last_key(key_path);
+      if (key != "k_table" && key != "record" && key != "records_dir")
+        return value;
+      YAML::Node node;
+      try
+      {
+        node = YAML::Load(value);
+      }
+      catch (const std::exception &)
+      {
+        return value;
+      }
+      if (!node.IsScalar())
+        return value;
+      const std::filesystem::path parent = std::filesystem::path(file).parent_path();
+      std::error_code             ec;
+      const std::filesystem::path directory =
+        std::filesystem::absolute(parent.empty() ? std::filesystem::path(".") : parent, ec)
+          .lexically_normal();
+      if (ec)
+        return value;
+      const std::string written  = node.Scalar();
+      const std::string resolved = key == "record" ? resolve_record_path(written, directory) :
+                                                     resolve_scene_path(written, directory);
+      if (resolved == written)
+        return value;
+      YAML::Emitter out;
+      out << YAML::DoubleQuoted << resolved;
+      return out.c_str();
     }
 
     std::string emit(const YAML::Node &root)
@@ -718,7 +773,7 @@ namespace kimp::app
         {
           try
           {
-            set_node_value(scene, path, value);
+            set_node_value(scene, path, sweep_value(path, value, file_name));
           }
           catch (const std::exception &error)
           {
@@ -750,7 +805,7 @@ namespace kimp::app
         {
           try
           {
-            set_node_value(variant, path, value);
+            set_node_value(variant, path, sweep_value(path, value, file_name));
           }
           catch (const std::exception &error)
           {
@@ -773,7 +828,7 @@ namespace kimp::app
         const std::string &value = p.values[v];
         YAML::Node         scene = YAML::Clone(base);
         for (const auto &[path, text] : p.settings[v])
-          set_node_value(scene, path, text);
+          set_node_value(scene, path, sweep_value(path, text, file_name_));
         try
         {
           check(emit(scene), base_scene_name_ + " (" + p.name + " = " + value + ")");
@@ -787,7 +842,7 @@ namespace kimp::app
     {
       YAML::Node scene = YAML::Clone(base);
       for (const auto &[path, value] : c.overrides)
-        set_node_value(scene, path, value);
+        set_node_value(scene, path, sweep_value(path, value, file_name_));
       try
       {
         check(emit(scene), base_scene_name_ + " (companion " + c.name + ")");
@@ -797,6 +852,55 @@ namespace kimp::app
         fail_at(file_name_, c.line, "companions." + c.name, error.what());
       }
     }
+  }
+
+  void SweepPlan::check_records(const SceneChecker &check) const
+  {
+    YAML::Node base;
+    load_root(base_scene_text_, base_scene_name_, base);
+    bool set_here = false;
+    for (const SweepParameter &p : parameters_)
+      for (std::size_t v = 0; v < p.values.size(); ++v)
+      {
+        if (std::none_of(p.settings[v].begin(),
+                         p.settings[v].end(),
+                         [](const auto &setting) { return is_record_key(setting.first); }))
+          continue;
+        set_here         = true;
+        YAML::Node scene = YAML::Clone(base);
+        for (const auto &[path, text] : p.settings[v])
+          set_node_value(scene, path, sweep_value(path, text, file_name_));
+        try
+        {
+          check(emit(scene), base_scene_name_ + " (" + p.name + " = " + p.values[v] + ")");
+        }
+        catch (const std::exception &error)
+        {
+          fail_at(file_name_, p.line, "parameters." + p.name + " = " + p.values[v], error.what());
+        }
+      }
+    for (const SweepCompanion &c : companions_)
+    {
+      if (std::none_of(c.overrides.begin(),
+                       c.overrides.end(),
+                       [](const auto &setting) { return is_record_key(setting.first); }))
+        continue;
+      set_here         = true;
+      YAML::Node scene = YAML::Clone(base);
+      for (const auto &[path, value] : c.overrides)
+        set_node_value(scene, path, sweep_value(path, value, file_name_));
+      try
+      {
+        check(emit(scene), base_scene_name_ + " (companion " + c.name + ")");
+      }
+      catch (const std::exception &error)
+      {
+        fail_at(file_name_, c.line, "companions." + c.name, error.what());
+      }
+    }
+    // The base scene's own records, reported at its lines, when nothing above replaced them.
+    if (!set_here)
+      check(base_scene_text_, base_scene_name_);
   }
 
   std::string SweepPlan::to_json_text() const

@@ -150,6 +150,18 @@ namespace kimp::app
      */
     void check_key_paths(const SceneChecker &check) const;
 
+    /**
+     * Load the ground motions before anything runs, with `check` (which loads a scene text's
+     * records): each parameter value and companion that sets a record key (record,
+     * records_dir, record_unit), reported as check_key_paths() does; when the sweep file sets no
+     * record, the base scene itself, whose errors name its own file, line and key.
+     * @throws SweepError for a value or companion; what `check` throws for the base scene.
+     */
+    void check_records(const SceneChecker &check) const;
+
+    /// The base scene file (the `scene:` entry resolved against the sweep file's directory).
+    const std::string &base_scene_name() const { return base_scene_name_; }
+
     /// The plan as JSON text (parameters, values, companions, number of cases).
     std::string to_json_text() const;
 

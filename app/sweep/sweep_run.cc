@@ -2,6 +2,7 @@
 // the cases of this MPI rank on a thread pool and (rank 0) merges DIR/sweep.h5 and DIR/sweep.csv.
 #include "app/sweep/sweep_run.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
@@ -81,16 +82,36 @@ namespace kimp::app
     };
 
     /**
-     * The d_SRSS table (report kinds gap_study, wall_location, adjacent_buildings, when the sweep
-     * varies the report's gap and has companion metrics), then scripts/sweep_charts.py: charts
-     * and summary.md.
+     * The d_SRSS table (report kinds gap_study, wall_location, adjacent_buildings, and bumpers
+     * when the sweep varies the report's gap; needs companion metrics), then
+     * scripts/sweep_charts.py: charts and summary.md.
      * @throws OutputError naming the script and its exit status when the charts fail
      */
     void write_report(const SweepPlan &plan, const OutputDir &output, const bool charts)
     {
       const SweepReportSpec &spec = *plan.report();
+      // Bumper studies have the table (and d_req on their gap charts) when they sweep the gap.
+      const bool gap_swept =
+        std::any_of(plan.parameters().begin(),
+                    plan.parameters().end(),
+                    [&](const SweepParameter &p)
+                    {
+                      return std::any_of(p.key_paths.begin(),
+                                         p.key_paths.end(),
+                                         [&](const std::string &k) { return k == spec.gap_key; }) ||
+                             std::any_of(p.settings.begin(),
+                                         p.settings.end(),
+                                         [&](const auto &setting)
+                                         {
+                                           return std::any_of(setting.begin(),
+                                                              setting.end(),
+                                                              [&](const auto &entry) {
+                                                                return entry.first == spec.gap_key;
+                                                              });
+                                         });
+                    });
       if (spec.kind == "adjacent_buildings" || spec.kind == "gap_study" ||
-          spec.kind == "wall_location")
+          spec.kind == "wall_location" || (spec.kind == "bumpers" && gap_swept))
       {
         const SweepTable table = collect_sweep_table(plan, output.path());
         try
@@ -136,13 +157,30 @@ namespace kimp::app
     if (plan.engine() != "lumped")
       throw SweepError(options.sweep + ": engine: '" + plan.engine() +
                        "' (expected lumped, the only engine with a sweep runner)");
-    plan.check_key_paths([](const std::string &text, const std::string &name)
-                         { read_scene_text<LumpedScene>(text, name); });
-    const OutputDir output(options.output);
-
+    // Paths of the case scenes (k_table, record files) are relative to the base scene's file.
+    const std::filesystem::path scene_directory =
+      std::filesystem::path(plan.base_scene_name()).parent_path();
+    plan.check_key_paths([&](const std::string &text, const std::string &name)
+                         { read_scene_text<LumpedScene>(text, name, scene_directory); });
     std::optional<std::filesystem::path> records_dir;
     if (!options.records_dir.empty())
       records_dir = options.records_dir;
+    // Every record before the output directory is made: a misspelt one is an input error.
+    plan.check_records(
+      [&](const std::string &text, const std::string &name)
+      {
+        const LumpedScene scene = load_scene_text<LumpedScene>(text, name, scene_directory);
+        load_ground_motion_at(scene.ground_motion, records_dir, name, text, "ground_motion");
+        for (std::size_t i = 0; i < scene.cases.size(); ++i)
+          if (!scene.cases[i].record.empty() && scene.cases[i].record != scene.ground_motion.record)
+          {
+            GroundMotionScene own = scene.ground_motion;
+            own.record            = scene.cases[i].record;
+            load_ground_motion_at(own, records_dir, name, text, "cases[" + std::to_string(i) + "]");
+          }
+      });
+    const OutputDir output(options.output);
+
     SweepOptions sweep_options;
     sweep_options.threads      = options.threads;
     sweep_options.rank         = mpi.rank();
@@ -152,7 +190,7 @@ namespace kimp::app
       sweep_options.barrier = []() { MPI_Barrier(MPI_COMM_WORLD); };
     const SweepSummary summary =
       run_sweep(plan,
-                make_lumped_case_runner(records_dir, !options.no_shared_runs),
+                make_lumped_case_runner(records_dir, !options.no_shared_runs, scene_directory),
                 output.path(),
                 sweep_options);
     if (mpi.rank() == 0)

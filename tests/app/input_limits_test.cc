@@ -147,6 +147,54 @@ namespace
     EXPECT_DOUBLE_EQ(motion.acceleration[0], 0.2 * kimp::io::standard_gravity);
   }
 
+  TEST(GroundMotionRecords, RecordPathsAreRelativeToTheSceneAndMissingOnesSuggest)
+  {
+    const kimp::testing::TempDir dir;
+    std::filesystem::create_directories(dir.path() / "records");
+    dir.write("records/RSN1106_KOBE_KJM000.AT2", at2(4, 0.1));
+    const auto scene  = dir.write("scene.yaml",
+                                 "ground_motion:\n  record: records/RSN1106_KOBE_KJM000.AT2\n"
+                                  "  records_dir: records\n");
+    const auto loaded = kimp::io::read_scene<LumpedScene>(scene);
+    EXPECT_EQ(loaded.scene.ground_motion.record,
+              (dir.path() / "records/RSN1106_KOBE_KJM000.AT2").string());
+    EXPECT_EQ(loaded.scene.ground_motion.records_dir, (dir.path() / "records").string());
+    EXPECT_DOUBLE_EQ(load_ground_motion(loaded.scene.ground_motion).acceleration[0],
+                     0.1 * kimp::io::standard_gravity);
+    // A bare name stays a name (looked up in the records directory, also relative to the scene).
+    const auto named   = dir.write("named.yaml",
+                                 "ground_motion:\n  record: RSN1106_KOBE_KJM000\n"
+                                   "  records_dir: records\n");
+    const auto by_name = kimp::io::read_scene<LumpedScene>(named);
+    EXPECT_EQ(by_name.scene.ground_motion.record, "RSN1106_KOBE_KJM000");
+    EXPECT_EQ(load_ground_motion(by_name.scene.ground_motion).acceleration.size(), 4u);
+    // A misspelt file: "no such file" and the file beside it.
+    const std::string typo = "ground_motion:\n  record: records/RSN1106_KOBE_KJM00.AT2\n";
+    const auto        bad  = kimp::io::read_scene_text<LumpedScene>(typo, "s.yaml", dir.path());
+    expect_contains(
+      message_of(
+        [&]
+        { load_ground_motion_at(bad.scene.ground_motion, {}, "s.yaml", typo, "ground_motion"); }),
+      {"s.yaml:2: ground_motion.record = '" +
+         (dir.path() / "records/RSN1106_KOBE_KJM00.AT2").string() + "'",
+       "no such file",
+       "did you mean '" + (dir.path() / "records/RSN1106_KOBE_KJM000.AT2").string() + "'?"});
+    // The built-in name misspelt, with or without a records directory.
+    const std::string synthetic = "ground_motion:\n  record: synthetc\n";
+    const auto        s         = kimp::io::read_scene_text<LumpedScene>(synthetic, "s.yaml");
+    for (const auto &records : {std::optional<std::filesystem::path>(),
+                                std::optional<std::filesystem::path>(dir.path() / "records")})
+      expect_contains(message_of(
+                        [&] {
+                          load_ground_motion_at(s.scene.ground_motion,
+                                                records,
+                                                "s.yaml",
+                                                synthetic,
+                                                "ground_motion");
+                        }),
+                      {"s.yaml:2: ground_motion.record = 'synthetc'", "did you mean 'synthetic'?"});
+  }
+
   TEST(RunBudget, EstimateBeforeTheRunAndRefusalAboveTheBudget)
   {
     // The default scene (synthetic motion, no walls) with a 1e7 s analysis: 2e9 steps of the
@@ -228,6 +276,30 @@ namespace
     EXPECT_EQ(study_records(scene).size(), 2u); // the synthetic motion and SCS142
     scene.peer_records = false;
     EXPECT_TRUE(missing_study_records(scene).empty());
+  }
+
+  TEST(StudyRecords, MisspeltRecordIsAnErrorAtItsKeyBeforeAnyRun)
+  {
+    const kimp::testing::TempDir dir;
+    std::filesystem::create_directories(dir.path() / "records");
+    dir.write("records/SCS142.AT2", at2(4, 0.2));
+    const auto file   = dir.write("study.yaml",
+                                "peer_records: false\n"
+                                  "records:\n"
+                                  "  - {record: synthetic}\n"
+                                  "  - {record: records/SCS142.AT2}\n"
+                                  "  - {record: SCS124, records_dir: records}\n");
+    const auto loaded = kimp::io::read_scene<StudyScene>(file);
+    expect_contains(message_of([&] { check_study_records(loaded); }),
+                    {file.string() + ":5: records[2].record = 'SCS124': not found",
+                     "did you mean 'SCS142'?"});
+    // Fixed, every record loads (the path relative to the scene file).
+    const auto fixed = dir.write("fixed.yaml",
+                                 "peer_records: false\n"
+                                 "records:\n"
+                                 "  - {record: records/SCS142.AT2}\n"
+                                 "  - {record: SCS142, records_dir: records}\n");
+    EXPECT_NO_THROW(check_study_records(kimp::io::read_scene<StudyScene>(fixed)));
   }
 #endif
 } // namespace

@@ -149,6 +149,46 @@ namespace
     EXPECT_NEAR(k(3), 100e6, exact * 100e6);
   }
 
+  TEST(KTable, TablePathIsRelativeToTheSceneFile)
+  {
+    const TempDir dir("k_table_relative");
+    write_k_table(dir.path());
+    const auto scene = write_text(dir.path() / "site.yaml",
+                                  "impact:\n  law: kelvin_voigt\n  k_table: k_table.csv\n"
+                                  "  wall_height: 1 m\n");
+    // The working directory (the test's) holds no k_table.csv: the scene's directory is used.
+    ASSERT_FALSE(std::filesystem::exists("k_table.csv"));
+    const auto loaded = kimp::io::read_scene<kimp::app::LumpedScene>(scene);
+    EXPECT_EQ(loaded.scene.impact.k_table, (dir.path() / "k_table.csv").string());
+    EXPECT_NEAR(kimp::app::impact_stiffness(loaded.scene.impact), 4634.45e6, exact * 4634.45e6);
+    // An absolute path stays as it is.
+    const auto absolute =
+      write_text(dir.path() / "absolute.yaml",
+                 "impact:\n  law: kelvin_voigt\n  k_table: " +
+                   (dir.path() / "k_table.csv").string() + "\n  wall_height: 2 m\n");
+    EXPECT_NEAR(kimp::app::impact_stiffness(
+                  kimp::io::read_scene<kimp::app::LumpedScene>(absolute).scene.impact),
+                714.031e6,
+                exact * 714.031e6);
+    // A table missing beside the scene: the key as written, the file looked for.
+    const auto  missing = write_text(dir.path() / "missing.yaml",
+                                    "impact:\n  law: kelvin_voigt\n  k_table: other.csv\n"
+                                     "  wall_height: 1 m\n");
+    std::string error;
+    try
+    {
+      kimp::io::read_scene<kimp::app::LumpedScene>(missing);
+    }
+    catch (const kimp::io::SceneError &e)
+    {
+      error = e.what();
+    }
+    EXPECT_NE(error.find(missing.string() + ":3: impact.k_table = other.csv: " +
+                         (dir.path() / "other.csv").string() + ": cannot read the k table"),
+              std::string::npos)
+      << error;
+  }
+
   TEST(KTable, HeightOutsideTheTableIsRefusedWithFileAndKey)
   {
     const TempDir     dir("k_table_bad");

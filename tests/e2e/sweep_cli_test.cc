@@ -265,6 +265,55 @@ namespace
     fs::remove_all(dir);
   }
 
+  /// Occurrences of `piece` in `text`.
+  std::size_t count_of(const std::string &text, const std::string &piece)
+  {
+    std::size_t n = 0;
+    for (std::size_t at = text.find(piece); at != std::string::npos; at = text.find(piece, at + 1))
+      ++n;
+    return n;
+  }
+
+  TEST(SweepCli, GapChartsDrawOneLinePerRecordAndConfigurationWithItsRequiredGap)
+  {
+    const TempDir  temp_dir("sweep_cli_record_lines");
+    const fs::path dir   = temp_dir.path();
+    const fs::path sweep = write_sweep(
+      dir,
+      "report: {kind: gap_study}\n" + gap_sweep +
+        "  record:\n"
+        "    - {label: full, ground_motion.record: synthetic}\n"
+        "    - {label: half, ground_motion.record: synthetic, ground_motion.scale: 0.5}\n");
+    const fs::path out = dir / "out";
+    ASSERT_EQ(run_command(kimp + " sweep " + sweep.string() + " -o " + out.string(),
+                          dir / "log.txt"),
+              0)
+      << read_text(dir / "log.txt");
+    const Csv dsrss = read_csv(out / "dsrss_table.csv");
+    ASSERT_EQ(dsrss.rows.size(), 4U) << "2 records x 2 COR";
+    const std::string svg = read_text(out / "charts/response_vs_gap.svg");
+    // Four responses, each with one line per record and COR and that line's d_req mark (every
+    // configuration has a d_req: reached, or below the smallest swept gap).
+    EXPECT_EQ(count_of(svg, "id=\"series-"), 16U);
+    EXPECT_EQ(count_of(svg, "id=\"d_req-"), 16U);
+    for (const auto &row : dsrss.rows)
+    {
+      const std::string record = row[dsrss.column("record")];
+      const std::string cor    = row[dsrss.column("impact.cor")] == "0.5" ? "0_5" : "0_9";
+      EXPECT_NE(row[dsrss.column("d_req_status")], "not_reached");
+      for (const char *response : {"floor_acc", "drift", "impact_velocity", "n_impacts"})
+        for (const std::string kind : {"series-", "d_req-"})
+        {
+          const std::string id = "id=\"" + kind + record + "--" + cor + "--" + response + "\"";
+          EXPECT_EQ(count_of(svg, id), 1U) << id;
+        }
+    }
+    // Axes in words with units, records as panel titles; no key path on an axis.
+    for (const char *words : {"gap to the moat wall [cm]", "record: full", "record: half"})
+      EXPECT_NE(svg.find(words), std::string::npos) << words;
+    fs::remove_all(dir);
+  }
+
   TEST(SweepCli, NoChartsSkipsTheScriptAndAFailingScriptIsAnError)
   {
     const TempDir  temp_dir("sweep_cli_nocharts");

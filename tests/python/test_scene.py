@@ -87,3 +87,24 @@ def test_every_kind_has_defaults():
     for kind in kimp._kimp.scene_kinds():
         assert kimp.Scene.default(kind).kind == kind
         assert "#" in kimp.Scene.defaults_text(kind)
+
+
+def test_paths_of_a_scene_file_are_relative_to_it(tmp_path, monkeypatch):
+    site = tmp_path / "site"
+    site.mkdir()
+    (site / "k_table.csv").write_text(
+        "wall_height_m,kelvin_voigt_total_kN_per_mm,jankowski_total_kN_per_mm1.5\n"
+        "1,4634.45,2141.86\n2,714.031,208.796\n")
+    (site / "scene.yaml").write_text(
+        "impact:\n  law: kelvin_voigt\n  k_table: k_table.csv\n  wall_height: 1 m\n")
+    (site / "missing.yaml").write_text(
+        "impact:\n  law: kelvin_voigt\n  k_table: other.csv\n  wall_height: 1 m\n")
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)  # holds no k_table.csv
+    kimp.Scene.from_yaml("../site/scene.yaml")
+    with pytest.raises(kimp.SceneError) as caught:
+        kimp.Scene.from_yaml("../site/missing.yaml")
+    assert caught.value.line == 3
+    assert caught.value.key == "impact.k_table"
+    assert "../site/other.csv: cannot read the k table" in str(caught.value)
