@@ -23,15 +23,23 @@ namespace kimp::lumped
     constexpr double pi = 3.14159265358979323846;
 
     /// Everything that evolves during a run: copied (laws cloned) for the error-estimate re-run.
+    /// N: the number of DOFs (Eigen::Dynamic for any).
+    template <int N>
     struct State
     {
-      double                                 t       = 0.0;
-      double                                 h_prev  = 0.0; ///< h_{n−1}
-      double                                 h_prev2 = 0.0; ///< h_{n−2}
-      long                                   n       = 0;
-      Eigen::VectorXd                        u, v_half, f; ///< u_n, v_{n−1/2}, f_nl,n
-      std::vector<double>                    dp, dpp, delta, cf;
-      std::vector<int>                       active;
+      using Vec                   = Eigen::Matrix<double, N, 1>;
+      double              t       = 0.0;
+      double              h_prev  = 0.0; ///< h_{n−1}
+      double              h_prev2 = 0.0; ///< h_{n−2}
+      long                n       = 0;
+      Vec                 u, v_half, f; ///< u_n, v_{n−1/2}, f_nl,n
+      std::vector<double> dp, dpp, delta, cf;
+      std::vector<int>    active;
+      /// Fast path: the rate of the last step per contact, and whether the law was called then
+      /// (its committed state is that step's); a law skipped while open is first brought to the
+      /// last skipped state before it is called again.
+      std::vector<double>                    rate_prev;
+      std::vector<int>                       called;
       double                                 iso_u1 = 0.0, iso_u2 = 0.0; ///< u_0 at n−1, n−2
       std::unique_ptr<Isolator>              iso;
       std::vector<std::unique_ptr<ForceLaw>> laws;
@@ -41,20 +49,22 @@ namespace kimp::lumped
       State copy() const
       {
         State s;
-        s.t       = t;
-        s.h_prev  = h_prev;
-        s.h_prev2 = h_prev2;
-        s.n       = n;
-        s.u       = u;
-        s.v_half  = v_half;
-        s.f       = f;
-        s.dp      = dp;
-        s.dpp     = dpp;
-        s.delta   = delta;
-        s.cf      = cf;
-        s.active  = active;
-        s.iso_u1  = iso_u1;
-        s.iso_u2  = iso_u2;
+        s.t         = t;
+        s.h_prev    = h_prev;
+        s.h_prev2   = h_prev2;
+        s.n         = n;
+        s.u         = u;
+        s.v_half    = v_half;
+        s.f         = f;
+        s.dp        = dp;
+        s.dpp       = dpp;
+        s.delta     = delta;
+        s.cf        = cf;
+        s.active    = active;
+        s.rate_prev = rate_prev;
+        s.called    = called;
+        s.iso_u1    = iso_u1;
+        s.iso_u2    = iso_u2;
         if (iso)
           s.iso = iso->clone();
         for (const auto &law : laws)
@@ -81,8 +91,21 @@ namespace kimp::lumped
       }
     };
 
+    /**
+     * One variable-step run. N: the number of DOFs as a compile-time size (fixed-size vectors and
+     * matrices, nothing allocated per step), or Eigen::Dynamic. Fast: the effective matrix of
+     * each step size as a cached inverse (one product per step instead of an LU solve) and the
+     * laws not called while their gap is open (as in the fused fixed-step kernel); otherwise
+     * the reference path (dynamic LU per step size, every law every step), the oracle of the fast
+     * one in the tests.
+     */
+    template <int N, bool Fast>
     class AdaptiveRun
     {
+      using Vec   = Eigen::Matrix<double, N, 1>;
+      using Mat   = Eigen::Matrix<double, N, N>;
+      using State = kimp::lumped::State<N>;
+
     public:
       AdaptiveRun(const PoundingModel            &model,
                   const CentralDifferenceOptions &cdm,
@@ -101,7 +124,7 @@ namespace kimp::lumped
         , approach_(dt_approach)
         , est_(opt.estimate_factor)
       {
-        mass_ = Eigen::Map<const Eigen::VectorXd>(model.masses().data(), n_);
+        mass_ = Eigen::Map<const Vec>(model.masses().data(), n_);
         k_    = model.stiffness().to_dense();
         c_    = model.damping().to_dense();
       }
@@ -195,7 +218,7 @@ namespace kimp::lumped
         return j + 1 == rec.size() && fr < 1e-9 ? rec[j] : 0.0;
       }
 
-      double delta_of(const ContactPair &cp, const Eigen::VectorXd &u) const
+      double delta_of(const ContactPair &cp, const Vec &u) const
       {
         return (cp.left_dof >= 0 ? u(cp.left_dof) : 0.0) -
                (cp.right_dof >= 0 ? u(cp.right_dof) : 0.0) - cp.gap;
@@ -204,14 +227,14 @@ namespace kimp::lumped
       State initial_state()
       {
         State s;
-        s.u      = Eigen::VectorXd::Zero(n_);
-        s.v_half = Eigen::VectorXd::Zero(n_);
-        s.f      = Eigen::VectorXd::Zero(n_);
+        s.u      = Vec::Zero(n_);
+        s.v_half = Vec::Zero(n_);
+        s.f      = Vec::Zero(n_);
         if (!cdm_.initial_displacement.empty())
-          s.u = Eigen::Map<const Eigen::VectorXd>(cdm_.initial_displacement.data(), n_);
-        Eigen::VectorXd v0 = Eigen::VectorXd::Zero(n_);
+          s.u = Eigen::Map<const Vec>(cdm_.initial_displacement.data(), n_);
+        Vec v0 = Vec::Zero(n_);
         if (!cdm_.initial_velocity.empty())
-          v0 = Eigen::Map<const Eigen::VectorXd>(cdm_.initial_velocity.data(), n_);
+          v0 = Eigen::Map<const Vec>(cdm_.initial_velocity.data(), n_);
         if (model_.isolator())
         {
           s.iso = model_.isolator()->clone();
@@ -224,26 +247,28 @@ namespace kimp::lumped
         }
         // ü_0 from the linear part and the isolator at u_0 (contacts open at the start); the
         // half-step velocity v_{−1/2} = u̇_0 − (Δt/2)·ü_0 and u_{−1}, u_{−2} follow from it.
-        Eigen::VectorXd r = -mass_ * ground(0.0) - c_ * v0 - k_ * s.u;
+        Vec r = -mass_ * ground(0.0) - c_ * v0 - k_ * s.u;
         if (s.iso)
         {
           r(0) -= s.iso->set_trial(s.u(0), v0(0)).force;
           s.iso->revert_to_start();
         }
-        const Eigen::VectorXd a0 = r.cwiseQuotient(mass_);
-        s.h_prev                 = big_;
-        s.h_prev2                = big_;
-        s.v_half                 = v0 - 0.5 * big_ * a0;
-        const Eigen::VectorXd u1 = s.u - big_ * s.v_half;
-        const Eigen::VectorXd u2 = u1 - big_ * s.v_half;
-        s.iso_u1                 = u1(0);
-        s.iso_u2                 = u2(0);
-        const std::size_t nc     = s.laws.size();
+        const Vec a0         = r.cwiseQuotient(mass_);
+        s.h_prev             = big_;
+        s.h_prev2            = big_;
+        s.v_half             = v0 - 0.5 * big_ * a0;
+        const Vec u1         = s.u - big_ * s.v_half;
+        const Vec u2         = u1 - big_ * s.v_half;
+        s.iso_u1             = u1(0);
+        s.iso_u2             = u2(0);
+        const std::size_t nc = s.laws.size();
         s.dp.resize(nc);
         s.dpp.resize(nc);
         s.delta.assign(nc, 0.0);
         s.cf.assign(nc, 0.0);
         s.active.assign(nc, 0);
+        s.rate_prev.assign(nc, 0.0);
+        s.called.assign(nc, 1); // the virgin state is current: nothing to catch up
         for (std::size_t c = 0; c < nc; ++c)
         {
           s.dp[c]  = delta_of(model_.contacts()[c], u1);
@@ -285,7 +310,30 @@ namespace kimp::lumped
           const double       delta = delta_of(cp, s.u);
           const double       r     = rate(s, delta, s.dp[c], s.dpp[c]);
           ForceLaw          &law   = *s.laws[c];
-          const double       force = law.set_trial(delta, r).force;
+          if constexpr (Fast)
+          {
+            // Open gap, out of contact, no force: every law returns zero here and its history
+            // matters only from the next contact on (docs/architecture.md "Force laws"), so the
+            // call is skipped; the work term 0.5·(0 + 0)·Δδ and the zero force change nothing.
+            if (!(delta > 0.0) && !s.active[c] && s.cf[c] == 0.0)
+            {
+              s.called[c]    = 0;
+              s.rate_prev[c] = r;
+              s.delta[c]     = delta;
+              s.dpp[c]       = s.dp[c];
+              s.dp[c]        = delta;
+              continue;
+            }
+            if (!s.called[c])
+            {
+              // The call of the last step, skipped: the law's state the reference path has.
+              law.set_trial(s.dp[c], s.rate_prev[c]);
+              law.commit();
+            }
+            s.called[c]    = 1;
+            s.rate_prev[c] = r;
+          }
+          const double force = law.set_trial(delta, r).force;
           law.commit();
           const int now = law.in_contact() ? 1 : 0;
           if (record && now && !s.active[c])
@@ -356,6 +404,35 @@ namespace kimp::lumped
         return k <= 2.0 ? remaining / k : h;
       }
 
+      /// (M/h̄ + w₊·C)⁻¹ (fast path), cached for the last few (h̄, w₊).
+      const Mat &inverse(const double hbar, const double wp)
+      {
+        {
+          const CachedInverse &e = inv_cache_[last_inv_];
+          if (e.hbar == hbar && e.wp == wp && e.valid)
+            return e.inv;
+        }
+        for (std::size_t i = 0; i < inv_cache_.size(); ++i)
+        {
+          const CachedInverse &e = inv_cache_[i];
+          if (e.hbar == hbar && e.wp == wp && e.valid)
+          {
+            last_inv_ = i;
+            return e.inv;
+          }
+        }
+        last_inv_        = next_inv_;
+        next_inv_        = (next_inv_ + 1) % inv_cache_.size();
+        CachedInverse &e = inv_cache_[last_inv_];
+        Mat            a = wp * c_;
+        a.diagonal() += mass_ / hbar;
+        e.inv   = a.partialPivLu().inverse();
+        e.hbar  = hbar;
+        e.wp    = wp;
+        e.valid = true;
+        return e.inv;
+      }
+
       const Eigen::PartialPivLU<Eigen::MatrixXd> &effective(const double hbar, const double wp)
       {
         for (auto &e : lu_cache_)
@@ -380,17 +457,21 @@ namespace kimp::lumped
                 const bool   sample,
                 const bool   check)
       {
-        const double    hbar = 0.5 * (s.h_prev + h);
-        const double    wp   = s.h_prev / (s.h_prev + h);
-        const double    wm   = h / (s.h_prev + h);
-        const double    ag   = ground(s.t);
-        Eigen::VectorXd rhs =
+        const double hbar = 0.5 * (s.h_prev + h);
+        const double wp   = s.h_prev / (s.h_prev + h);
+        const double wm   = h / (s.h_prev + h);
+        const double ag   = ground(s.t);
+        const Vec    rhs =
           mass_.cwiseProduct(s.v_half) / hbar - wm * (c_ * s.v_half) - mass_ * ag - k_ * s.u - s.f;
-        const Eigen::VectorXd v_plus = effective(hbar, wp).solve(rhs);
-        const Eigen::VectorXd a      = (v_plus - s.v_half) / hbar;
-        const Eigen::VectorXd v      = wm * s.v_half + wp * v_plus;
-        const double          p_in   = -ag * mass_.dot(v);
-        const double          p_visc = v.dot(c_ * v);
+        Vec v_plus;
+        if constexpr (Fast)
+          v_plus.noalias() = inverse(hbar, wp) * rhs;
+        else
+          v_plus = effective(hbar, wp).solve(rhs);
+        const Vec    a      = (v_plus - s.v_half) / hbar;
+        const Vec    v      = wm * s.v_half + wp * v_plus;
+        const double p_in   = -ag * mass_.dot(v);
+        const double p_visc = v.dot(c_ * v);
         if (s.n > 0)
         {
           s.w_in += 0.5 * (s.p_in_prev + p_in) * s.h_prev;
@@ -424,12 +505,12 @@ namespace kimp::lumped
         s.h_prev  = h;
       }
 
-      void record_step(const State           &s,
-                       const Eigen::VectorXd &a,
-                       const Eigen::VectorXd &v,
-                       const double           ag,
-                       const bool             sample,
-                       const bool             check)
+      void record_step(const State &s,
+                       const Vec   &a,
+                       const Vec   &v,
+                       const double ag,
+                       const bool   sample,
+                       const bool   check)
       {
         Response &r = rec_.response();
         for (Eigen::Index i = 0; i < n_; ++i)
@@ -531,6 +612,14 @@ namespace kimp::lumped
         return m;
       }
 
+      struct CachedInverse
+      {
+        double hbar  = 0.0;
+        double wp    = 0.0;
+        bool   valid = false;
+        Mat    inv;
+      };
+
       struct CachedLu
       {
         double                               hbar  = 0.0;
@@ -546,11 +635,13 @@ namespace kimp::lumped
       Eigen::Index                    n_;
       double                          big_, fine_, approach_;
       double                          est_;
-      Eigen::VectorXd                 mass_;
-      Eigen::MatrixXd                 k_, c_;
+      Vec                             mass_;
+      Mat                             k_, c_;
       std::array<CachedLu, 4>         lu_cache_;
       std::size_t                     next_lu_ = 0;
-      double                          e0_      = 0.0;
+      std::array<CachedInverse, 8>    inv_cache_;
+      std::size_t                     last_inv_ = 0, next_inv_ = 0;
+      double                          e0_ = 0.0;
       ResponseRecorder                rec_;
       AdaptiveStepReport              report_;
     };
@@ -651,7 +742,27 @@ namespace kimp::lumped
     const double big      = large_step(motion.dt);
     const double approach = std::min(big / 3.0, dt_approach_);
     const double fine     = std::min(approach, dt_contact_);
-    AdaptiveRun  r(model_, cdm_, options_, motion, big, approach, fine);
-    return r.run(report, replay, taken);
+    const auto   go       = [&](auto &&run) { return run.run(report, replay, taken); };
+    if (options_.reference_kernel)
+      return go(
+        AdaptiveRun<Eigen::Dynamic, false>(model_, cdm_, options_, motion, big, approach, fine));
+#define KIMP_ADAPTIVE_FIXED(n) \
+  case n:                      \
+    return go(AdaptiveRun<n, true>(model_, cdm_, options_, motion, big, approach, fine));
+    switch (model_.n_dofs())
+    {
+      KIMP_ADAPTIVE_FIXED(1)
+      KIMP_ADAPTIVE_FIXED(2)
+      KIMP_ADAPTIVE_FIXED(3)
+      KIMP_ADAPTIVE_FIXED(4)
+      KIMP_ADAPTIVE_FIXED(5)
+      KIMP_ADAPTIVE_FIXED(6)
+      KIMP_ADAPTIVE_FIXED(7)
+      KIMP_ADAPTIVE_FIXED(8)
+      default:
+        return go(
+          AdaptiveRun<Eigen::Dynamic, true>(model_, cdm_, options_, motion, big, approach, fine));
+    }
+#undef KIMP_ADAPTIVE_FIXED
   }
 } // namespace kimp::lumped
