@@ -15,6 +15,7 @@
 
 #include "lumped/integrators/integration_errors.h"
 #include "lumped/integrators/response_recorder.h"
+#include "lumped/isolators/bilinear_isolator.h"
 
 namespace kimp::lumped
 {
@@ -27,13 +28,18 @@ namespace kimp::lumped
     template <int N>
     struct State
     {
-      using Vec                   = Eigen::Matrix<double, N, 1>;
-      double              t       = 0.0;
-      double              h_prev  = 0.0; ///< h_{n−1}
-      double              h_prev2 = 0.0; ///< h_{n−2}
-      long                n       = 0;
-      Vec                 u, v_half, f; ///< u_n, v_{n−1/2}, f_nl,n
+      using Vec      = Eigen::Matrix<double, N, 1>;
+      double t       = 0.0;
+      double h_prev  = 0.0; ///< h_{n−1}
+      double h_prev2 = 0.0; ///< h_{n−2}
+      long   n       = 0;
+      Vec    u, v_half, f; ///< u_n, v_{n−1/2}, f_nl,n
+      /// Fast path: C·v_{n−1/2} (carried from the last step), 1/h_{n−1}, 1/h_{n−2} and
+      /// h_{n−1}/(h_{n−1} + h_{n−2}) of the three-point rate.
+      Vec                 cv_half;
+      double              ih_prev = 0.0, ih_prev2 = 0.0, w_rate = 0.0;
       std::vector<double> dp, dpp, delta, cf;
+      std::vector<double> closing; ///< fast path: closing rate at t_n, m/s
       std::vector<int>    active;
       /// Fast path: the rate of the last step per contact, and whether the law was called then
       /// (its committed state is that step's); a law skipped while open is first brought to the
@@ -55,12 +61,17 @@ namespace kimp::lumped
         s.n         = n;
         s.u         = u;
         s.v_half    = v_half;
+        s.cv_half   = cv_half;
+        s.ih_prev   = ih_prev;
+        s.ih_prev2  = ih_prev2;
+        s.w_rate    = w_rate;
         s.f         = f;
         s.dp        = dp;
         s.dpp       = dpp;
         s.delta     = delta;
         s.cf        = cf;
         s.active    = active;
+        s.closing   = closing;
         s.rate_prev = rate_prev;
         s.called    = called;
         s.iso_u1    = iso_u1;
@@ -124,9 +135,10 @@ namespace kimp::lumped
         , approach_(dt_approach)
         , est_(opt.estimate_factor)
       {
-        mass_ = Eigen::Map<const Vec>(model.masses().data(), n_);
-        k_    = model.stiffness().to_dense();
-        c_    = model.damping().to_dense();
+        mass_     = Eigen::Map<const Vec>(model.masses().data(), n_);
+        bilinear_ = dynamic_cast<const BilinearIsolator *>(model.isolator()) != nullptr;
+        k_        = model.stiffness().to_dense();
+        c_        = model.damping().to_dense();
       }
 
       /// `replay`: take these steps (a run's `taken`) instead of choosing them, no estimate;
@@ -253,20 +265,23 @@ namespace kimp::lumped
           r(0) -= s.iso->set_trial(s.u(0), v0(0)).force;
           s.iso->revert_to_start();
         }
-        const Vec a0         = r.cwiseQuotient(mass_);
-        s.h_prev             = big_;
-        s.h_prev2            = big_;
-        s.v_half             = v0 - 0.5 * big_ * a0;
-        const Vec u1         = s.u - big_ * s.v_half;
-        const Vec u2         = u1 - big_ * s.v_half;
-        s.iso_u1             = u1(0);
-        s.iso_u2             = u2(0);
+        const Vec a0 = r.cwiseQuotient(mass_);
+        s.h_prev     = big_;
+        s.h_prev2    = big_;
+        s.v_half     = v0 - 0.5 * big_ * a0;
+        const Vec u1 = s.u - big_ * s.v_half;
+        const Vec u2 = u1 - big_ * s.v_half;
+        s.iso_u1     = u1(0);
+        s.iso_u2     = u2(0);
+        s.cv_half    = c_ * s.v_half;
+        set_rate_weights(s);
         const std::size_t nc = s.laws.size();
         s.dp.resize(nc);
         s.dpp.resize(nc);
         s.delta.assign(nc, 0.0);
         s.cf.assign(nc, 0.0);
         s.active.assign(nc, 0);
+        s.closing.assign(nc, 0.0);
         s.rate_prev.assign(nc, 0.0);
         s.called.assign(nc, 1); // the virgin state is current: nothing to catch up
         for (std::size_t c = 0; c < nc; ++c)
@@ -284,9 +299,23 @@ namespace kimp::lumped
       /// dashpot force of the laws).
       double rate(const State &s, const double x0, const double x1, const double x2) const
       {
+        if constexpr (Fast)
+        {
+          const double s1 = (x0 - x1) * s.ih_prev;
+          const double s2 = (x1 - x2) * s.ih_prev2;
+          return s1 + s.w_rate * (s1 - s2);
+        }
         const double s1 = (x0 - x1) / s.h_prev;
         const double s2 = (x1 - x2) / s.h_prev2;
         return s1 + s.h_prev / (s.h_prev + s.h_prev2) * (s1 - s2);
+      }
+
+      /// The reciprocal steps and the weight of rate() (fast path), after h_{n−1} changed.
+      static void set_rate_weights(State &s)
+      {
+        s.ih_prev  = 1.0 / s.h_prev;
+        s.ih_prev2 = 1.0 / s.h_prev2;
+        s.w_rate   = s.h_prev / (s.h_prev + s.h_prev2);
       }
 
       /// Isolator and contact forces at t_n (explicit, trial + commit) into s.f.
@@ -296,8 +325,20 @@ namespace kimp::lumped
         if (s.iso)
         {
           const double u0 = s.u(0);
-          const double f  = s.iso->set_trial(u0, rate(s, u0, s.iso_u1, s.iso_u2)).force;
-          s.iso->commit();
+          const double v0 = rate(s, u0, s.iso_u1, s.iso_u2);
+          double       f  = 0.0;
+          if (Fast && bilinear_)
+          {
+            // The final class: set_trial and commit inlined, no virtual call.
+            auto &b = static_cast<BilinearIsolator &>(*s.iso);
+            f       = b.set_trial(u0, v0).force;
+            b.commit();
+          }
+          else
+          {
+            f = s.iso->set_trial(u0, v0).force;
+            s.iso->commit();
+          }
           if (record)
             rec_.isolator_force(f);
           s.f(0) += f;
@@ -322,6 +363,7 @@ namespace kimp::lumped
               s.delta[c]     = delta;
               s.dpp[c]       = s.dp[c];
               s.dp[c]        = delta;
+              s.closing[c]   = (s.dp[c] - s.dpp[c]) / s.h_prev;
               continue;
             }
             if (!s.called[c])
@@ -344,6 +386,8 @@ namespace kimp::lumped
           s.delta[c] = delta;
           s.dpp[c]   = s.dp[c];
           s.dp[c]    = delta;
+          if constexpr (Fast)
+            s.closing[c] = (s.dp[c] - s.dpp[c]) / s.h_prev;
           if (record)
             rec_.contact_force(c, force, s.t);
           if (cp.left_dof >= 0)
@@ -356,6 +400,8 @@ namespace kimp::lumped
       /// Closing rate of contact c at t_n (after forces()), m/s.
       double closing_rate(const State &s, const std::size_t c) const
       {
+        if constexpr (Fast)
+          return s.closing[c];
         return (s.dp[c] - s.dpp[c]) / s.h_prev;
       }
 
@@ -398,39 +444,81 @@ namespace kimp::lumped
       /// A step h that ends on `remaining` when that is within two steps (no sliver steps).
       static double clip(const double h, const double remaining)
       {
-        if (!(remaining > 0.0))
+        if (!(remaining > 0.0) || remaining > 2.001 * h) // k > 2 for sure: no division
           return h;
         const double k = std::ceil(remaining / h * (1.0 - 1e-12));
         return k <= 2.0 ? remaining / k : h;
       }
 
-      /// (M/h̄ + w₊·C)⁻¹ (fast path), cached for the last few (h̄, w₊).
-      const Mat &inverse(const double hbar, const double wp)
+      /**
+       * Inverse of a symmetric positive definite matrix (M/h̄ + w₊·C, M diagonal and positive, C
+       * symmetric positive semi-definite) by Gauss-Jordan elimination without pivoting: the
+       * effective matrix of every step size that is not in the cache (steps ending on history
+       * samples, onsets located within a step) costs ≈ 2N³ flops instead of a general LU and N
+       * triangular solves.
+       */
+      static Mat spd_inverse(Mat a)
+      {
+        Mat inv = Mat::Identity();
+        for (int k = 0; k < N; ++k)
+        {
+          const double p = 1.0 / a(k, k);
+          a.row(k) *= p;
+          inv.row(k) *= p;
+          for (int i = 0; i < N; ++i)
+            if (i != k && a(i, k) != 0.0)
+            {
+              const double f = a(i, k);
+              a.row(i) -= f * a.row(k);
+              inv.row(i) -= f * inv.row(k);
+            }
+        }
+        return inv;
+      }
+
+      /// What the fast path needs of a step h after a step h_prev (cached).
+      struct Factor
+      {
+        double h_prev = 0.0, h = 0.0;
+        bool   valid = false;
+        double ihbar = 0.0, wp = 0.0, wm = 0.0; ///< 1/h̄, w₊, w₋
+        Mat    inv;                             ///< (M/h̄ + w₊·C)⁻¹
+      };
+
+      /// The Factor of (h_prev, h), from the cache of the last few.
+      const Factor &factor(const double h_prev, const double h)
       {
         {
-          const CachedInverse &e = inv_cache_[last_inv_];
-          if (e.hbar == hbar && e.wp == wp && e.valid)
-            return e.inv;
+          const Factor &e = factors_[last_factor_];
+          if (e.h_prev == h_prev && e.h == h && e.valid)
+            return e;
         }
-        for (std::size_t i = 0; i < inv_cache_.size(); ++i)
+        for (std::size_t i = 0; i < factors_.size(); ++i)
         {
-          const CachedInverse &e = inv_cache_[i];
-          if (e.hbar == hbar && e.wp == wp && e.valid)
+          const Factor &e = factors_[i];
+          if (e.h_prev == h_prev && e.h == h && e.valid)
           {
-            last_inv_ = i;
-            return e.inv;
+            last_factor_ = i;
+            return e;
           }
         }
-        last_inv_        = next_inv_;
-        next_inv_        = (next_inv_ + 1) % inv_cache_.size();
-        CachedInverse &e = inv_cache_[last_inv_];
-        Mat            a = wp * c_;
+        last_factor_      = next_factor_;
+        next_factor_      = (next_factor_ + 1) % factors_.size();
+        Factor      &e    = factors_[last_factor_];
+        const double hbar = 0.5 * (h_prev + h);
+        e.wp              = h_prev / (h_prev + h);
+        e.wm              = h / (h_prev + h);
+        e.ihbar           = 1.0 / hbar;
+        Mat a             = e.wp * c_;
         a.diagonal() += mass_ / hbar;
-        e.inv   = a.partialPivLu().inverse();
-        e.hbar  = hbar;
-        e.wp    = wp;
-        e.valid = true;
-        return e.inv;
+        if constexpr (N == Eigen::Dynamic)
+          e.inv = a.partialPivLu().inverse();
+        else
+          e.inv = spd_inverse(a);
+        e.h_prev = h_prev;
+        e.h      = h;
+        e.valid  = true;
+        return e;
       }
 
       const Eigen::PartialPivLU<Eigen::MatrixXd> &effective(const double hbar, const double wp)
@@ -457,21 +545,38 @@ namespace kimp::lumped
                 const bool   sample,
                 const bool   check)
       {
-        const double hbar = 0.5 * (s.h_prev + h);
-        const double wp   = s.h_prev / (s.h_prev + h);
-        const double wm   = h / (s.h_prev + h);
-        const double ag   = ground(s.t);
-        const Vec    rhs =
-          mass_.cwiseProduct(s.v_half) / hbar - wm * (c_ * s.v_half) - mass_ * ag - k_ * s.u - s.f;
-        Vec v_plus;
+        const double ag = ground(s.t);
+        Vec          v_plus, a, v, ku;
+        double       p_visc = 0.0;
+        ku.noalias()        = k_ * s.u;
         if constexpr (Fast)
-          v_plus.noalias() = inverse(hbar, wp) * rhs;
+        {
+          // One cached entry per (h_{n−1}, h_n): (M/h̄ + w₊·C)⁻¹, 1/h̄ and the weights; C·v
+          // carried from the last step, so three products per step (K·u, the inverse, C·v).
+          const Factor &e = factor(s.h_prev, h);
+          const Vec     rhs =
+            mass_.cwiseProduct(s.v_half) * e.ihbar - e.wm * s.cv_half - mass_ * ag - ku - s.f;
+          v_plus.noalias() = e.inv * rhs;
+          Vec cv_plus;
+          cv_plus.noalias() = c_ * v_plus;
+          a                 = (v_plus - s.v_half) * e.ihbar;
+          v                 = e.wm * s.v_half + e.wp * v_plus;
+          p_visc            = v.dot(e.wm * s.cv_half + e.wp * cv_plus);
+          s.cv_half         = cv_plus;
+        }
         else
+        {
+          const double hbar = 0.5 * (s.h_prev + h);
+          const double wp   = s.h_prev / (s.h_prev + h);
+          const double wm   = h / (s.h_prev + h);
+          const Vec    rhs =
+            mass_.cwiseProduct(s.v_half) / hbar - wm * (c_ * s.v_half) - mass_ * ag - ku - s.f;
           v_plus = effective(hbar, wp).solve(rhs);
-        const Vec    a      = (v_plus - s.v_half) / hbar;
-        const Vec    v      = wm * s.v_half + wp * v_plus;
-        const double p_in   = -ag * mass_.dot(v);
-        const double p_visc = v.dot(c_ * v);
+          a      = (v_plus - s.v_half) / hbar;
+          v      = wm * s.v_half + wp * v_plus;
+          p_visc = v.dot(c_ * v);
+        }
+        const double p_in = -ag * mass_.dot(v);
         if (s.n > 0)
         {
           s.w_in += 0.5 * (s.p_in_prev + p_in) * s.h_prev;
@@ -498,16 +603,19 @@ namespace kimp::lumped
           }
         }
         if (record)
-          record_step(s, a, v, ag, sample, check);
+          record_step(s, a, v, ku, ag, sample, check);
         s.u += h * v_plus;
         s.v_half  = v_plus;
         s.h_prev2 = s.h_prev;
         s.h_prev  = h;
+        if constexpr (Fast)
+          set_rate_weights(s);
       }
 
       void record_step(const State &s,
                        const Vec   &a,
                        const Vec   &v,
+                       const Vec   &ku,
                        const double ag,
                        const bool   sample,
                        const bool   check)
@@ -529,7 +637,7 @@ namespace kimp::lumped
           return;
         EnergyBalance terms;
         terms.kinetic      = 0.5 * mass_.dot(v.cwiseProduct(v));
-        terms.strain       = 0.5 * s.u.dot(k_ * s.u) + (s.iso ? s.iso->stored_energy() : 0.0);
+        terms.strain       = 0.5 * s.u.dot(ku) + (s.iso ? s.iso->stored_energy() : 0.0);
         terms.initial      = e0_;
         terms.input        = s.w_in;
         terms.viscous      = s.w_visc;
@@ -612,13 +720,6 @@ namespace kimp::lumped
         return m;
       }
 
-      struct CachedInverse
-      {
-        double hbar  = 0.0;
-        double wp    = 0.0;
-        bool   valid = false;
-        Mat    inv;
-      };
 
       struct CachedLu
       {
@@ -639,9 +740,10 @@ namespace kimp::lumped
       Mat                             k_, c_;
       std::array<CachedLu, 4>         lu_cache_;
       std::size_t                     next_lu_ = 0;
-      std::array<CachedInverse, 8>    inv_cache_;
-      std::size_t                     last_inv_ = 0, next_inv_ = 0;
-      double                          e0_ = 0.0;
+      std::array<Factor, 8>           factors_;
+      std::size_t                     last_factor_ = 0, next_factor_ = 0;
+      bool                            bilinear_ = false; ///< the isolator is a BilinearIsolator
+      double                          e0_       = 0.0;
       ResponseRecorder                rec_;
       AdaptiveStepReport              report_;
     };
