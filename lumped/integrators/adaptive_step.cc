@@ -135,10 +135,11 @@ namespace kimp::lumped
         , approach_(dt_approach)
         , est_(opt.estimate_factor)
       {
-        mass_     = Eigen::Map<const Vec>(model.masses().data(), n_);
-        bilinear_ = dynamic_cast<const BilinearIsolator *>(model.isolator()) != nullptr;
-        k_        = model.stiffness().to_dense();
-        c_        = model.damping().to_dense();
+        mass_          = Eigen::Map<const Vec>(model.masses().data(), n_);
+        bilinear_      = dynamic_cast<const BilinearIsolator *>(model.isolator()) != nullptr;
+        inv_record_dt_ = 1.0 / g.dt;
+        k_             = model.stiffness().to_dense();
+        c_             = model.damping().to_dense();
       }
 
       /// `replay`: take these steps (a run's `taken`) instead of choosing them, no estimate;
@@ -152,6 +153,9 @@ namespace kimp::lumped
         const double interval = cdm_.output_interval;
         const long   every    = interval > 0.0 ? std::max(1L, std::lround(interval / big_)) : 0L;
         rec_.start(model_, big_, std::lround(duration / big_), every);
+        // Steps land on every sample (the N/every + 1 rows start() reserves assume Δt_large).
+        if (interval > 0.0)
+          rec_.reserve_samples(static_cast<std::size_t>(std::ceil(duration / interval)) + 2);
         report_.dt_min = std::numeric_limits<double>::infinity();
         State s        = initial_state();
         e0_            = 0.5 * mass_.dot(s.v_half.cwiseProduct(s.v_half)) + 0.5 * s.u.dot(k_ * s.u);
@@ -205,7 +209,7 @@ namespace kimp::lumped
         }
         if (in_window)
           close_window(snapshot, peaks, s.t + eps);
-        Response r          = rec_.finish(s.laws);
+        Response r          = rec_.release(s.laws);
         r.n_steps           = s.n;
         r.duration          = duration;
         r.history.interval  = interval;
@@ -222,7 +226,7 @@ namespace kimp::lumped
       double ground(const double t) const
       {
         const std::vector<double> &rec = motion_.acceleration;
-        const double               x   = t / motion_.dt;
+        const double               x   = Fast ? t * inv_record_dt_ : t / motion_.dt;
         const auto                 j   = static_cast<std::size_t>(std::floor(x + 1e-9));
         const double               fr  = std::max(0.0, x - static_cast<double>(j));
         if (j + 1 < rec.size())
@@ -363,7 +367,7 @@ namespace kimp::lumped
               s.delta[c]     = delta;
               s.dpp[c]       = s.dp[c];
               s.dp[c]        = delta;
-              s.closing[c]   = (s.dp[c] - s.dpp[c]) / s.h_prev;
+              s.closing[c]   = (s.dp[c] - s.dpp[c]) * s.ih_prev;
               continue;
             }
             if (!s.called[c])
@@ -387,7 +391,7 @@ namespace kimp::lumped
           s.dpp[c]   = s.dp[c];
           s.dp[c]    = delta;
           if constexpr (Fast)
-            s.closing[c] = (s.dp[c] - s.dpp[c]) / s.h_prev;
+            s.closing[c] = (s.dp[c] - s.dpp[c]) * s.ih_prev;
           if (record)
             rec_.contact_force(c, force, s.t);
           if (cp.left_dof >= 0)
@@ -605,11 +609,13 @@ namespace kimp::lumped
         if (record)
           record_step(s, a, v, ku, ag, sample, check);
         s.u += h * v_plus;
-        s.v_half  = v_plus;
-        s.h_prev2 = s.h_prev;
-        s.h_prev  = h;
+        const bool same_steps = h == s.h_prev && s.h_prev == s.h_prev2;
+        s.v_half              = v_plus;
+        s.h_prev2             = s.h_prev;
+        s.h_prev              = h;
         if constexpr (Fast)
-          set_rate_weights(s);
+          if (!same_steps) // else the weights are those of the last step
+            set_rate_weights(s);
       }
 
       void record_step(const State &s,
@@ -742,8 +748,9 @@ namespace kimp::lumped
       std::size_t                     next_lu_ = 0;
       std::array<Factor, 8>           factors_;
       std::size_t                     last_factor_ = 0, next_factor_ = 0;
-      bool                            bilinear_ = false; ///< the isolator is a BilinearIsolator
-      double                          e0_       = 0.0;
+      bool                            bilinear_ = false;    ///< the isolator is a BilinearIsolator
+      double                          inv_record_dt_ = 0.0; ///< 1/(the record's dt), 1/s
+      double                          e0_            = 0.0;
       ResponseRecorder                rec_;
       AdaptiveStepReport              report_;
     };
