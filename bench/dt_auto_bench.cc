@@ -3,10 +3,17 @@
 // the Δt → 0 reference (Richardson on fixed central-difference steps). Prints a Markdown table
 // (docs/performance.md "Accuracy against cost"). Not a Google Benchmark: it counts steps.
 //   dt_auto_bench SCENE.yaml [CASE-SUBSTRING] [--newmark]
+//   dt_auto_bench SCENE.yaml [CASE-SUBSTRING] --time [REPEATS]
+// The second form times `dt: stable` and `dt: auto` per case instead (no companion): the least
+// wall and thread CPU time of REPEATS (default 20) interleaved runs of each, and their ratio.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <ctime>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -65,6 +72,58 @@ namespace
     return peaks_of(r, roof);
   }
 
+  double cpu_seconds()
+  {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+  }
+
+  std::string load_average()
+  {
+    std::ifstream in("/proc/loadavg");
+    std::string   a, b, c;
+    in >> a >> b >> c;
+    return a + " " + b + " " + c;
+  }
+
+  /// Least wall and CPU time (s) of `repeats` runs of `stable` and `auto`, interleaved.
+  void time_policies(const std::string                &name,
+                     const LumpedScene                &scene,
+                     const kimp::lumped::GroundMotion &motion,
+                     const double                      base_scale,
+                     const int                         repeats)
+  {
+    double           wall[2] = {1e300, 1e300}, cpu[2] = {1e300, 1e300}, steps[2] = {0, 0};
+    const char      *policy[2] = {"stable", "auto"};
+    LumpedCaseResult r;
+    for (int k = 0; k < repeats; ++k)
+      for (int p = 0; p < 2; ++p)
+      {
+        const auto   w0 = std::chrono::steady_clock::now();
+        const double c0 = cpu_seconds();
+        steps[p]        = run(name, scene, motion, base_scale, policy[p], false, &r).steps;
+        const double c1 = cpu_seconds();
+        const auto   w1 = std::chrono::steady_clock::now();
+        wall[p]         = std::min(wall[p], std::chrono::duration<double>(w1 - w0).count());
+        cpu[p]          = std::min(cpu[p], c1 - c0);
+      }
+    std::printf("| %s | %.0f | %.3f ms | %.3f ms | %.0f | %.3f ms | %.3f ms | %.2f | %.2f | %.0f / "
+                "%.0f ns |\n",
+                name.c_str(),
+                steps[0],
+                1e3 * wall[0],
+                1e3 * cpu[0],
+                steps[1],
+                1e3 * wall[1],
+                1e3 * cpu[1],
+                wall[1] / wall[0],
+                cpu[1] / cpu[0],
+                1e9 * cpu[0] / steps[0],
+                1e9 * cpu[1] / steps[1]);
+    std::fflush(stdout);
+  }
+
   double err(double x, double ref)
   {
     return ref != 0.0 ? 100.0 * (x - ref) / ref : 0.0;
@@ -87,13 +146,29 @@ int main(int argc, char **argv)
 {
   if (argc < 2)
   {
-    std::fprintf(stderr, "usage: dt_auto_bench SCENE.yaml [CASE-SUBSTRING] [--newmark]\n");
+    std::fprintf(
+      stderr,
+      "usage: dt_auto_bench SCENE.yaml [CASE-SUBSTRING] [--newmark | --time [REPEATS]]\n");
     return 2;
   }
   const std::string                filter  = argc > 2 ? argv[2] : "";
   const bool                       newmark = argc > 3 && std::strcmp(argv[3], "--newmark") == 0;
+  const bool                       timing  = argc > 3 && std::strcmp(argv[3], "--time") == 0;
   const LumpedScene                scene   = kimp::io::load_scene<LumpedScene>(argv[1]);
   const kimp::lumped::GroundMotion motion  = load_ground_motion(scene.ground_motion);
+  if (timing)
+  {
+    const int repeats = argc > 4 ? std::max(1, std::atoi(argv[4])) : 20;
+    std::printf("load average before: %s\n", load_average().c_str());
+    std::printf("| case | stable steps | stable wall | stable CPU | auto steps | auto wall | auto "
+                "CPU | wall auto/stable | CPU auto/stable | CPU per step stable / auto |\n"
+                "|---|---|---|---|---|---|---|---|---|---|\n");
+    for (const auto &[name, resolved] : resolve_cases(scene))
+      if (filter.empty() || name.find(filter) != std::string::npos)
+        time_policies(name, resolved, motion, scene.ground_motion.scale, repeats);
+    std::printf("load average after: %s\n", load_average().c_str());
+    return 0;
+  }
   std::printf(
     "| case | policy | steps | cost vs stable | peak force | base acc. | roof acc. | base "
     "displ. | roof displ. |\n|---|---|---|---|---|---|---|---|---|\n");

@@ -15,6 +15,7 @@
 
 #include "lumped/integrators/integration_errors.h"
 #include "lumped/integrators/response_recorder.h"
+#include "lumped/isolators/bilinear_isolator.h"
 
 namespace kimp::lumped
 {
@@ -23,15 +24,28 @@ namespace kimp::lumped
     constexpr double pi = 3.14159265358979323846;
 
     /// Everything that evolves during a run: copied (laws cloned) for the error-estimate re-run.
+    /// N: the number of DOFs (Eigen::Dynamic for any).
+    template <int N>
     struct State
     {
-      double                                 t       = 0.0;
-      double                                 h_prev  = 0.0; ///< h_{n−1}
-      double                                 h_prev2 = 0.0; ///< h_{n−2}
-      long                                   n       = 0;
-      Eigen::VectorXd                        u, v_half, f; ///< u_n, v_{n−1/2}, f_nl,n
-      std::vector<double>                    dp, dpp, delta, cf;
-      std::vector<int>                       active;
+      using Vec      = Eigen::Matrix<double, N, 1>;
+      double t       = 0.0;
+      double h_prev  = 0.0; ///< h_{n−1}
+      double h_prev2 = 0.0; ///< h_{n−2}
+      long   n       = 0;
+      Vec    u, v_half, f; ///< u_n, v_{n−1/2}, f_nl,n
+      /// Fast path: C·v_{n−1/2} (carried from the last step), 1/h_{n−1}, 1/h_{n−2} and
+      /// h_{n−1}/(h_{n−1} + h_{n−2}) of the three-point rate.
+      Vec                 cv_half;
+      double              ih_prev = 0.0, ih_prev2 = 0.0, w_rate = 0.0;
+      std::vector<double> dp, dpp, delta, cf;
+      std::vector<double> closing; ///< fast path: closing rate at t_n, m/s
+      std::vector<int>    active;
+      /// Fast path: the rate of the last step per contact, and whether the law was called then
+      /// (its committed state is that step's); a law skipped while open is first brought to the
+      /// last skipped state before it is called again.
+      std::vector<double>                    rate_prev;
+      std::vector<int>                       called;
       double                                 iso_u1 = 0.0, iso_u2 = 0.0; ///< u_0 at n−1, n−2
       std::unique_ptr<Isolator>              iso;
       std::vector<std::unique_ptr<ForceLaw>> laws;
@@ -41,20 +55,27 @@ namespace kimp::lumped
       State copy() const
       {
         State s;
-        s.t       = t;
-        s.h_prev  = h_prev;
-        s.h_prev2 = h_prev2;
-        s.n       = n;
-        s.u       = u;
-        s.v_half  = v_half;
-        s.f       = f;
-        s.dp      = dp;
-        s.dpp     = dpp;
-        s.delta   = delta;
-        s.cf      = cf;
-        s.active  = active;
-        s.iso_u1  = iso_u1;
-        s.iso_u2  = iso_u2;
+        s.t         = t;
+        s.h_prev    = h_prev;
+        s.h_prev2   = h_prev2;
+        s.n         = n;
+        s.u         = u;
+        s.v_half    = v_half;
+        s.cv_half   = cv_half;
+        s.ih_prev   = ih_prev;
+        s.ih_prev2  = ih_prev2;
+        s.w_rate    = w_rate;
+        s.f         = f;
+        s.dp        = dp;
+        s.dpp       = dpp;
+        s.delta     = delta;
+        s.cf        = cf;
+        s.active    = active;
+        s.closing   = closing;
+        s.rate_prev = rate_prev;
+        s.called    = called;
+        s.iso_u1    = iso_u1;
+        s.iso_u2    = iso_u2;
         if (iso)
           s.iso = iso->clone();
         for (const auto &law : laws)
@@ -81,8 +102,21 @@ namespace kimp::lumped
       }
     };
 
+    /**
+     * One variable-step run. N: the number of DOFs as a compile-time size (fixed-size vectors and
+     * matrices, nothing allocated per step), or Eigen::Dynamic. Fast: the effective matrix of
+     * each step size as a cached inverse (one product per step instead of an LU solve) and the
+     * laws not called while their gap is open (as in the fused fixed-step kernel); otherwise
+     * the reference path (dynamic LU per step size, every law every step), the oracle of the fast
+     * one in the tests.
+     */
+    template <int N, bool Fast>
     class AdaptiveRun
     {
+      using Vec   = Eigen::Matrix<double, N, 1>;
+      using Mat   = Eigen::Matrix<double, N, N>;
+      using State = kimp::lumped::State<N>;
+
     public:
       AdaptiveRun(const PoundingModel            &model,
                   const CentralDifferenceOptions &cdm,
@@ -101,9 +135,11 @@ namespace kimp::lumped
         , approach_(dt_approach)
         , est_(opt.estimate_factor)
       {
-        mass_ = Eigen::Map<const Eigen::VectorXd>(model.masses().data(), n_);
-        k_    = model.stiffness().to_dense();
-        c_    = model.damping().to_dense();
+        mass_          = Eigen::Map<const Vec>(model.masses().data(), n_);
+        bilinear_      = dynamic_cast<const BilinearIsolator *>(model.isolator()) != nullptr;
+        inv_record_dt_ = 1.0 / g.dt;
+        k_             = model.stiffness().to_dense();
+        c_             = model.damping().to_dense();
       }
 
       /// `replay`: take these steps (a run's `taken`) instead of choosing them, no estimate;
@@ -117,6 +153,9 @@ namespace kimp::lumped
         const double interval = cdm_.output_interval;
         const long   every    = interval > 0.0 ? std::max(1L, std::lround(interval / big_)) : 0L;
         rec_.start(model_, big_, std::lround(duration / big_), every);
+        // Steps land on every sample (the N/every + 1 rows start() reserves assume Δt_large).
+        if (interval > 0.0)
+          rec_.reserve_samples(static_cast<std::size_t>(std::ceil(duration / interval)) + 2);
         report_.dt_min = std::numeric_limits<double>::infinity();
         State s        = initial_state();
         e0_            = 0.5 * mass_.dot(s.v_half.cwiseProduct(s.v_half)) + 0.5 * s.u.dot(k_ * s.u);
@@ -170,7 +209,7 @@ namespace kimp::lumped
         }
         if (in_window)
           close_window(snapshot, peaks, s.t + eps);
-        Response r          = rec_.finish(s.laws);
+        Response r          = rec_.release(s.laws);
         r.n_steps           = s.n;
         r.duration          = duration;
         r.history.interval  = interval;
@@ -187,7 +226,7 @@ namespace kimp::lumped
       double ground(const double t) const
       {
         const std::vector<double> &rec = motion_.acceleration;
-        const double               x   = t / motion_.dt;
+        const double               x   = Fast ? t * inv_record_dt_ : t / motion_.dt;
         const auto                 j   = static_cast<std::size_t>(std::floor(x + 1e-9));
         const double               fr  = std::max(0.0, x - static_cast<double>(j));
         if (j + 1 < rec.size())
@@ -195,7 +234,7 @@ namespace kimp::lumped
         return j + 1 == rec.size() && fr < 1e-9 ? rec[j] : 0.0;
       }
 
-      double delta_of(const ContactPair &cp, const Eigen::VectorXd &u) const
+      double delta_of(const ContactPair &cp, const Vec &u) const
       {
         return (cp.left_dof >= 0 ? u(cp.left_dof) : 0.0) -
                (cp.right_dof >= 0 ? u(cp.right_dof) : 0.0) - cp.gap;
@@ -204,14 +243,14 @@ namespace kimp::lumped
       State initial_state()
       {
         State s;
-        s.u      = Eigen::VectorXd::Zero(n_);
-        s.v_half = Eigen::VectorXd::Zero(n_);
-        s.f      = Eigen::VectorXd::Zero(n_);
+        s.u      = Vec::Zero(n_);
+        s.v_half = Vec::Zero(n_);
+        s.f      = Vec::Zero(n_);
         if (!cdm_.initial_displacement.empty())
-          s.u = Eigen::Map<const Eigen::VectorXd>(cdm_.initial_displacement.data(), n_);
-        Eigen::VectorXd v0 = Eigen::VectorXd::Zero(n_);
+          s.u = Eigen::Map<const Vec>(cdm_.initial_displacement.data(), n_);
+        Vec v0 = Vec::Zero(n_);
         if (!cdm_.initial_velocity.empty())
-          v0 = Eigen::Map<const Eigen::VectorXd>(cdm_.initial_velocity.data(), n_);
+          v0 = Eigen::Map<const Vec>(cdm_.initial_velocity.data(), n_);
         if (model_.isolator())
         {
           s.iso = model_.isolator()->clone();
@@ -224,26 +263,31 @@ namespace kimp::lumped
         }
         // ü_0 from the linear part and the isolator at u_0 (contacts open at the start); the
         // half-step velocity v_{−1/2} = u̇_0 − (Δt/2)·ü_0 and u_{−1}, u_{−2} follow from it.
-        Eigen::VectorXd r = -mass_ * ground(0.0) - c_ * v0 - k_ * s.u;
+        Vec r = -mass_ * ground(0.0) - c_ * v0 - k_ * s.u;
         if (s.iso)
         {
           r(0) -= s.iso->set_trial(s.u(0), v0(0)).force;
           s.iso->revert_to_start();
         }
-        const Eigen::VectorXd a0 = r.cwiseQuotient(mass_);
-        s.h_prev                 = big_;
-        s.h_prev2                = big_;
-        s.v_half                 = v0 - 0.5 * big_ * a0;
-        const Eigen::VectorXd u1 = s.u - big_ * s.v_half;
-        const Eigen::VectorXd u2 = u1 - big_ * s.v_half;
-        s.iso_u1                 = u1(0);
-        s.iso_u2                 = u2(0);
-        const std::size_t nc     = s.laws.size();
+        const Vec a0 = r.cwiseQuotient(mass_);
+        s.h_prev     = big_;
+        s.h_prev2    = big_;
+        s.v_half     = v0 - 0.5 * big_ * a0;
+        const Vec u1 = s.u - big_ * s.v_half;
+        const Vec u2 = u1 - big_ * s.v_half;
+        s.iso_u1     = u1(0);
+        s.iso_u2     = u2(0);
+        s.cv_half    = c_ * s.v_half;
+        set_rate_weights(s);
+        const std::size_t nc = s.laws.size();
         s.dp.resize(nc);
         s.dpp.resize(nc);
         s.delta.assign(nc, 0.0);
         s.cf.assign(nc, 0.0);
         s.active.assign(nc, 0);
+        s.closing.assign(nc, 0.0);
+        s.rate_prev.assign(nc, 0.0);
+        s.called.assign(nc, 1); // the virgin state is current: nothing to catch up
         for (std::size_t c = 0; c < nc; ++c)
         {
           s.dp[c]  = delta_of(model_.contacts()[c], u1);
@@ -259,9 +303,23 @@ namespace kimp::lumped
       /// dashpot force of the laws).
       double rate(const State &s, const double x0, const double x1, const double x2) const
       {
+        if constexpr (Fast)
+        {
+          const double s1 = (x0 - x1) * s.ih_prev;
+          const double s2 = (x1 - x2) * s.ih_prev2;
+          return s1 + s.w_rate * (s1 - s2);
+        }
         const double s1 = (x0 - x1) / s.h_prev;
         const double s2 = (x1 - x2) / s.h_prev2;
         return s1 + s.h_prev / (s.h_prev + s.h_prev2) * (s1 - s2);
+      }
+
+      /// The reciprocal steps and the weight of rate() (fast path), after h_{n−1} changed.
+      static void set_rate_weights(State &s)
+      {
+        s.ih_prev  = 1.0 / s.h_prev;
+        s.ih_prev2 = 1.0 / s.h_prev2;
+        s.w_rate   = s.h_prev / (s.h_prev + s.h_prev2);
       }
 
       /// Isolator and contact forces at t_n (explicit, trial + commit) into s.f.
@@ -271,8 +329,20 @@ namespace kimp::lumped
         if (s.iso)
         {
           const double u0 = s.u(0);
-          const double f  = s.iso->set_trial(u0, rate(s, u0, s.iso_u1, s.iso_u2)).force;
-          s.iso->commit();
+          const double v0 = rate(s, u0, s.iso_u1, s.iso_u2);
+          double       f  = 0.0;
+          if (Fast && bilinear_)
+          {
+            // The final class: set_trial and commit inlined, no virtual call.
+            auto &b = static_cast<BilinearIsolator &>(*s.iso);
+            f       = b.set_trial(u0, v0).force;
+            b.commit();
+          }
+          else
+          {
+            f = s.iso->set_trial(u0, v0).force;
+            s.iso->commit();
+          }
           if (record)
             rec_.isolator_force(f);
           s.f(0) += f;
@@ -285,7 +355,31 @@ namespace kimp::lumped
           const double       delta = delta_of(cp, s.u);
           const double       r     = rate(s, delta, s.dp[c], s.dpp[c]);
           ForceLaw          &law   = *s.laws[c];
-          const double       force = law.set_trial(delta, r).force;
+          if constexpr (Fast)
+          {
+            // Open gap, out of contact, no force: every law returns zero here and its history
+            // matters only from the next contact on (docs/architecture.md "Force laws"), so the
+            // call is skipped; the work term 0.5·(0 + 0)·Δδ and the zero force change nothing.
+            if (!(delta > 0.0) && !s.active[c] && s.cf[c] == 0.0)
+            {
+              s.called[c]    = 0;
+              s.rate_prev[c] = r;
+              s.delta[c]     = delta;
+              s.dpp[c]       = s.dp[c];
+              s.dp[c]        = delta;
+              s.closing[c]   = (s.dp[c] - s.dpp[c]) * s.ih_prev;
+              continue;
+            }
+            if (!s.called[c])
+            {
+              // The call of the last step, skipped: the law's state the reference path has.
+              law.set_trial(s.dp[c], s.rate_prev[c]);
+              law.commit();
+            }
+            s.called[c]    = 1;
+            s.rate_prev[c] = r;
+          }
+          const double force = law.set_trial(delta, r).force;
           law.commit();
           const int now = law.in_contact() ? 1 : 0;
           if (record && now && !s.active[c])
@@ -296,6 +390,8 @@ namespace kimp::lumped
           s.delta[c] = delta;
           s.dpp[c]   = s.dp[c];
           s.dp[c]    = delta;
+          if constexpr (Fast)
+            s.closing[c] = (s.dp[c] - s.dpp[c]) * s.ih_prev;
           if (record)
             rec_.contact_force(c, force, s.t);
           if (cp.left_dof >= 0)
@@ -308,6 +404,8 @@ namespace kimp::lumped
       /// Closing rate of contact c at t_n (after forces()), m/s.
       double closing_rate(const State &s, const std::size_t c) const
       {
+        if constexpr (Fast)
+          return s.closing[c];
         return (s.dp[c] - s.dpp[c]) / s.h_prev;
       }
 
@@ -350,10 +448,81 @@ namespace kimp::lumped
       /// A step h that ends on `remaining` when that is within two steps (no sliver steps).
       static double clip(const double h, const double remaining)
       {
-        if (!(remaining > 0.0))
+        if (!(remaining > 0.0) || remaining > 2.001 * h) // k > 2 for sure: no division
           return h;
         const double k = std::ceil(remaining / h * (1.0 - 1e-12));
         return k <= 2.0 ? remaining / k : h;
+      }
+
+      /**
+       * Inverse of a symmetric positive definite matrix (M/h̄ + w₊·C, M diagonal and positive, C
+       * symmetric positive semi-definite) by Gauss-Jordan elimination without pivoting: the
+       * effective matrix of every step size that is not in the cache (steps ending on history
+       * samples, onsets located within a step) costs ≈ 2N³ flops instead of a general LU and N
+       * triangular solves.
+       */
+      static Mat spd_inverse(Mat a)
+      {
+        Mat inv = Mat::Identity();
+        for (int k = 0; k < N; ++k)
+        {
+          const double p = 1.0 / a(k, k);
+          a.row(k) *= p;
+          inv.row(k) *= p;
+          for (int i = 0; i < N; ++i)
+            if (i != k && a(i, k) != 0.0)
+            {
+              const double f = a(i, k);
+              a.row(i) -= f * a.row(k);
+              inv.row(i) -= f * inv.row(k);
+            }
+        }
+        return inv;
+      }
+
+      /// What the fast path needs of a step h after a step h_prev (cached).
+      struct Factor
+      {
+        double h_prev = 0.0, h = 0.0;
+        bool   valid = false;
+        double ihbar = 0.0, wp = 0.0, wm = 0.0; ///< 1/h̄, w₊, w₋
+        Mat    inv;                             ///< (M/h̄ + w₊·C)⁻¹
+      };
+
+      /// The Factor of (h_prev, h), from the cache of the last few.
+      const Factor &factor(const double h_prev, const double h)
+      {
+        {
+          const Factor &e = factors_[last_factor_];
+          if (e.h_prev == h_prev && e.h == h && e.valid)
+            return e;
+        }
+        for (std::size_t i = 0; i < factors_.size(); ++i)
+        {
+          const Factor &e = factors_[i];
+          if (e.h_prev == h_prev && e.h == h && e.valid)
+          {
+            last_factor_ = i;
+            return e;
+          }
+        }
+        last_factor_      = next_factor_;
+        next_factor_      = (next_factor_ + 1) % factors_.size();
+        Factor      &e    = factors_[last_factor_];
+        const double hbar = 0.5 * (h_prev + h);
+        e.wp              = h_prev / (h_prev + h);
+        e.wm              = h / (h_prev + h);
+        e.ihbar           = 1.0 / hbar;
+        Mat a             = e.wp * c_;
+        a.diagonal() += mass_ / hbar;
+        if constexpr (N == Eigen::Dynamic)
+          e.inv = a.partialPivLu().inverse();
+        else
+          e.inv = spd_inverse(a);
+        e.h_prev = h_prev;
+        e.h      = h;
+        e.valid  = true;
+        return e;
       }
 
       const Eigen::PartialPivLU<Eigen::MatrixXd> &effective(const double hbar, const double wp)
@@ -380,17 +549,38 @@ namespace kimp::lumped
                 const bool   sample,
                 const bool   check)
       {
-        const double    hbar = 0.5 * (s.h_prev + h);
-        const double    wp   = s.h_prev / (s.h_prev + h);
-        const double    wm   = h / (s.h_prev + h);
-        const double    ag   = ground(s.t);
-        Eigen::VectorXd rhs =
-          mass_.cwiseProduct(s.v_half) / hbar - wm * (c_ * s.v_half) - mass_ * ag - k_ * s.u - s.f;
-        const Eigen::VectorXd v_plus = effective(hbar, wp).solve(rhs);
-        const Eigen::VectorXd a      = (v_plus - s.v_half) / hbar;
-        const Eigen::VectorXd v      = wm * s.v_half + wp * v_plus;
-        const double          p_in   = -ag * mass_.dot(v);
-        const double          p_visc = v.dot(c_ * v);
+        const double ag = ground(s.t);
+        Vec          v_plus, a, v, ku;
+        double       p_visc = 0.0;
+        ku.noalias()        = k_ * s.u;
+        if constexpr (Fast)
+        {
+          // One cached entry per (h_{n−1}, h_n): (M/h̄ + w₊·C)⁻¹, 1/h̄ and the weights; C·v
+          // carried from the last step, so three products per step (K·u, the inverse, C·v).
+          const Factor &e = factor(s.h_prev, h);
+          const Vec     rhs =
+            mass_.cwiseProduct(s.v_half) * e.ihbar - e.wm * s.cv_half - mass_ * ag - ku - s.f;
+          v_plus.noalias() = e.inv * rhs;
+          Vec cv_plus;
+          cv_plus.noalias() = c_ * v_plus;
+          a                 = (v_plus - s.v_half) * e.ihbar;
+          v                 = e.wm * s.v_half + e.wp * v_plus;
+          p_visc            = v.dot(e.wm * s.cv_half + e.wp * cv_plus);
+          s.cv_half         = cv_plus;
+        }
+        else
+        {
+          const double hbar = 0.5 * (s.h_prev + h);
+          const double wp   = s.h_prev / (s.h_prev + h);
+          const double wm   = h / (s.h_prev + h);
+          const Vec    rhs =
+            mass_.cwiseProduct(s.v_half) / hbar - wm * (c_ * s.v_half) - mass_ * ag - ku - s.f;
+          v_plus = effective(hbar, wp).solve(rhs);
+          a      = (v_plus - s.v_half) / hbar;
+          v      = wm * s.v_half + wp * v_plus;
+          p_visc = v.dot(c_ * v);
+        }
+        const double p_in = -ag * mass_.dot(v);
         if (s.n > 0)
         {
           s.w_in += 0.5 * (s.p_in_prev + p_in) * s.h_prev;
@@ -417,19 +607,24 @@ namespace kimp::lumped
           }
         }
         if (record)
-          record_step(s, a, v, ag, sample, check);
+          record_step(s, a, v, ku, ag, sample, check);
         s.u += h * v_plus;
-        s.v_half  = v_plus;
-        s.h_prev2 = s.h_prev;
-        s.h_prev  = h;
+        const bool same_steps = h == s.h_prev && s.h_prev == s.h_prev2;
+        s.v_half              = v_plus;
+        s.h_prev2             = s.h_prev;
+        s.h_prev              = h;
+        if constexpr (Fast)
+          if (!same_steps) // else the weights are those of the last step
+            set_rate_weights(s);
       }
 
-      void record_step(const State           &s,
-                       const Eigen::VectorXd &a,
-                       const Eigen::VectorXd &v,
-                       const double           ag,
-                       const bool             sample,
-                       const bool             check)
+      void record_step(const State &s,
+                       const Vec   &a,
+                       const Vec   &v,
+                       const Vec   &ku,
+                       const double ag,
+                       const bool   sample,
+                       const bool   check)
       {
         Response &r = rec_.response();
         for (Eigen::Index i = 0; i < n_; ++i)
@@ -448,7 +643,7 @@ namespace kimp::lumped
           return;
         EnergyBalance terms;
         terms.kinetic      = 0.5 * mass_.dot(v.cwiseProduct(v));
-        terms.strain       = 0.5 * s.u.dot(k_ * s.u) + (s.iso ? s.iso->stored_energy() : 0.0);
+        terms.strain       = 0.5 * s.u.dot(ku) + (s.iso ? s.iso->stored_energy() : 0.0);
         terms.initial      = e0_;
         terms.input        = s.w_in;
         terms.viscous      = s.w_visc;
@@ -531,6 +726,7 @@ namespace kimp::lumped
         return m;
       }
 
+
       struct CachedLu
       {
         double                               hbar  = 0.0;
@@ -546,11 +742,15 @@ namespace kimp::lumped
       Eigen::Index                    n_;
       double                          big_, fine_, approach_;
       double                          est_;
-      Eigen::VectorXd                 mass_;
-      Eigen::MatrixXd                 k_, c_;
+      Vec                             mass_;
+      Mat                             k_, c_;
       std::array<CachedLu, 4>         lu_cache_;
       std::size_t                     next_lu_ = 0;
-      double                          e0_      = 0.0;
+      std::array<Factor, 8>           factors_;
+      std::size_t                     last_factor_ = 0, next_factor_ = 0;
+      bool                            bilinear_ = false;    ///< the isolator is a BilinearIsolator
+      double                          inv_record_dt_ = 0.0; ///< 1/(the record's dt), 1/s
+      double                          e0_            = 0.0;
       ResponseRecorder                rec_;
       AdaptiveStepReport              report_;
     };
@@ -651,7 +851,27 @@ namespace kimp::lumped
     const double big      = large_step(motion.dt);
     const double approach = std::min(big / 3.0, dt_approach_);
     const double fine     = std::min(approach, dt_contact_);
-    AdaptiveRun  r(model_, cdm_, options_, motion, big, approach, fine);
-    return r.run(report, replay, taken);
+    const auto   go       = [&](auto &&run) { return run.run(report, replay, taken); };
+    if (options_.reference_kernel)
+      return go(
+        AdaptiveRun<Eigen::Dynamic, false>(model_, cdm_, options_, motion, big, approach, fine));
+#define KIMP_ADAPTIVE_FIXED(n) \
+  case n:                      \
+    return go(AdaptiveRun<n, true>(model_, cdm_, options_, motion, big, approach, fine));
+    switch (model_.n_dofs())
+    {
+      KIMP_ADAPTIVE_FIXED(1)
+      KIMP_ADAPTIVE_FIXED(2)
+      KIMP_ADAPTIVE_FIXED(3)
+      KIMP_ADAPTIVE_FIXED(4)
+      KIMP_ADAPTIVE_FIXED(5)
+      KIMP_ADAPTIVE_FIXED(6)
+      KIMP_ADAPTIVE_FIXED(7)
+      KIMP_ADAPTIVE_FIXED(8)
+      default:
+        return go(
+          AdaptiveRun<Eigen::Dynamic, true>(model_, cdm_, options_, motion, big, approach, fine));
+    }
+#undef KIMP_ADAPTIVE_FIXED
   }
 } // namespace kimp::lumped

@@ -28,17 +28,25 @@ namespace kimp::lumped
    * | tail            | s    | 0.02    | Δt_c kept this long after the last contact separated   |
    * | error_estimate  | -    | true    | re-run every window at estimate_factor times its steps |
    * | estimate_factor | -    | 4       | (step-factor re-run, >= 2)                              |
+   * | reference_kernel| -    | false   | run the reference path (dynamic-size products, an LU   |
+   * |                 |      |         | solve per step, every law every step): the oracle of   |
+   * |                 |      |         | the fast path in the tests, not for production         |
+   *
+   * The fast path (the default) runs fixed-size products for models of up to 8 DOFs, one cached
+   * inverse of the effective matrix per step size, and skips the laws while their gap is open;
+   * its peaks agree with the reference path's to rounding (tests/lumped/adaptive_step_test.cc).
    */
   struct AdaptiveStepOptions
   {
-    double structure_step  = 0.6;
-    double approach_steps  = 40.0;
-    double approach_time   = 1.0;
-    double contact_steps   = 80.0;
-    double lookahead       = 3.0;
-    double tail            = 0.02;
-    bool   error_estimate  = true;
-    double estimate_factor = 4.0;
+    double structure_step   = 0.6;
+    double approach_steps   = 40.0;
+    double approach_time    = 1.0;
+    double contact_steps    = 80.0;
+    double lookahead        = 3.0;
+    double tail             = 0.02;
+    bool   error_estimate   = true;
+    double estimate_factor  = 4.0;
+    bool   reference_kernel = false;
   };
 
   /// What a variable-step run did: its steps and its estimated errors.

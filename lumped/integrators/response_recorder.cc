@@ -33,19 +33,23 @@ namespace kimp::lumped
     isolator_force_ = 0.0;
     if (every > 0)
     {
-      const std::size_t n_samples = static_cast<std::size_t>(n_steps / every + 1);
-      ResponseHistory  &h         = r_.history;
-      h.interval                  = static_cast<double>(every) * dt;
-      h.time.reserve(n_samples);
-      h.displacement.reserve(n_samples * r_.n_dofs);
-      h.absolute_acceleration.reserve(n_samples * r_.n_dofs);
-      h.interstorey_drift.reserve(n_samples * r_.n_storeys);
-      h.contact_force.reserve(n_samples * r_.contacts.size());
-      h.isolator_force.reserve(n_samples);
-      h.hysteretic_energy.reserve(n_samples);
-      h.energy_input.reserve(n_samples);
-      h.energy_error.reserve(n_samples);
+      r_.history.interval = static_cast<double>(every) * dt;
+      reserve_samples(static_cast<std::size_t>(n_steps / every + 1));
     }
+  }
+
+  void ResponseRecorder::reserve_samples(const std::size_t n_samples)
+  {
+    ResponseHistory &h = r_.history;
+    h.time.reserve(n_samples);
+    h.displacement.reserve(n_samples * r_.n_dofs);
+    h.absolute_acceleration.reserve(n_samples * r_.n_dofs);
+    h.interstorey_drift.reserve(n_samples * r_.n_storeys);
+    h.contact_force.reserve(n_samples * r_.contacts.size());
+    h.isolator_force.reserve(n_samples);
+    h.hysteretic_energy.reserve(n_samples);
+    h.energy_input.reserve(n_samples);
+    h.energy_error.reserve(n_samples);
   }
 
   double ResponseRecorder::check_energy(const EnergyBalance &terms)
@@ -70,7 +74,22 @@ namespace kimp::lumped
 
   Response ResponseRecorder::finish(const std::vector<std::unique_ptr<ForceLaw>> &laws) const
   {
-    Response       out   = r_;
+    Response out = r_;
+    complete(out, laws);
+    return out;
+  }
+
+  Response ResponseRecorder::release(const std::vector<std::unique_ptr<ForceLaw>> &laws)
+  {
+    Response out = std::move(r_);
+    r_           = Response{};
+    complete(out, laws);
+    return out;
+  }
+
+  void ResponseRecorder::complete(Response                                     &out,
+                                  const std::vector<std::unique_ptr<ForceLaw>> &laws) const
+  {
     EnergyBalance &e     = out.energy;
     e.relative_error     = e.residual_relative_error();
     e.max_relative_error = max_residual_ / std::max(max_supplied_, 1e-300);
@@ -83,7 +102,6 @@ namespace kimp::lumped
       cr.dissipated_energy     = laws[q]->dissipated_energy();
       e.impact_dissipated += cr.dissipated_energy;
     }
-    return out;
   }
 
   void ResponseRecorder::continue_from(const ResponseRecorder &prefix)

@@ -108,6 +108,10 @@ namespace kimp::lumped
     /// The Response so far with the peak contact forces, each law's permanent indentation and
     /// dissipated energy (laws in contact order), the final and the maximum relative errors.
     Response finish(const std::vector<std::unique_ptr<ForceLaw>> &laws) const;
+    /// finish(), the histories moved out instead of copied: the recorder is left empty.
+    Response release(const std::vector<std::unique_ptr<ForceLaw>> &laws);
+    /// Room for `n_samples` history rows (start() reserves N/every + 1).
+    void reserve_samples(std::size_t n_samples);
 
     /**
      * Take over what `prefix` recorded: a run without histories of the same model without
@@ -117,6 +121,8 @@ namespace kimp::lumped
     void continue_from(const ResponseRecorder &prefix);
 
   private:
+    void complete(Response &out, const std::vector<std::unique_ptr<ForceLaw>> &laws) const;
+
     Response            r_;
     std::vector<double> peak_force_;
     double              max_supplied_   = 0.0;

@@ -75,19 +75,22 @@ namespace kimp::lumped
                                                       const double velocity)
   {
     (void)velocity;
-    trial_               = committed_;
+    // The trial state is formed in registers and stored once: field-by-field stores into trial_
+    // followed by commit()'s wide copy stall the store forwarding of the next load (measured in
+    // the variable-step kernel, where the isolator is called every step).
     const double k_ep    = K1_ - K2_;
     const double f_trial = committed_.f_ep + k_ep * (displacement - committed_.u);
-    trial_.u             = displacement;
     if (f_trial > Q_ || f_trial < -Q_)
     {
       const double f_yield = f_trial > 0.0 ? Q_ : -Q_;
       // Plastic slip |Δu_p| = |f_trial − f_yield|/k_ep dissipates Q per unit slip.
-      trial_.dissipated += Q_ * (f_trial - f_yield) / k_ep * (f_trial > 0.0 ? 1.0 : -1.0);
-      trial_.f_ep = f_yield;
+      trial_ = {displacement,
+                f_yield,
+                committed_.dissipated +
+                  Q_ * (f_trial - f_yield) / k_ep * (f_trial > 0.0 ? 1.0 : -1.0)};
       return {K2_ * displacement + f_yield, K2_, 0.0};
     }
-    trial_.f_ep = f_trial;
+    trial_ = {displacement, f_trial, committed_.dissipated};
     return {K2_ * displacement + f_trial, K1_, 0.0};
   }
 } // namespace kimp::lumped
