@@ -724,7 +724,11 @@ namespace kimp::fem
     , r_(reinforcement)
     , steel_(reinforcement)
     , reinforced_(reinforcement.any())
+    , plastic_(p.plastic_fraction > 0)
+    , bars_(p.plastic_fraction > 0 ? 10 : 6)
   {
+    if (!(p.plastic_fraction >= 0 && p.plastic_fraction < 1))
+      throw std::invalid_argument("concrete damage law: need 0 <= plastic_fraction < 1");
     const ReinforcementParameters &r = reinforcement;
     if (!(r.ratio_x >= 0 && r.ratio_x < 1) || !(r.ratio_y >= 0 && r.ratio_y < 1) ||
         !(r.yield_stress > 0) || !(r.youngs_modulus > 0) || !(r.hardening >= 0 && r.hardening < 1))
@@ -766,21 +770,88 @@ namespace kimp::fem
 
   VoigtStress ConcreteDamageLaw::stress(const VoigtStrain &e, const double *h0, double *h1) const
   {
-    VoigtStress s = concrete_stress(e, h0, h1);
+    VoigtStress s = plastic_ ? plastic_concrete_stress(e, h0, h1) : concrete_stress(e, h0, h1);
     if (reinforced_)
     {
       // Bars along x and y strained as the concrete (perfect bond), in parallel with it.
-      const SteelState sx = steel_.update(e[0], h0[6], h0[7]);
-      const SteelState sy = steel_.update(e[1], h0[8], h0[9]);
-      h1[6]               = sx.plastic_strain;
-      h1[7]               = sx.back_stress;
-      h1[8]               = sy.plastic_strain;
-      h1[9]               = sy.back_stress;
-      h1[10]              = h0[10] + r_.ratio_x * sx.plastic_work + r_.ratio_y * sy.plastic_work;
+      const double    *b0 = h0 + bars_;
+      double          *b1 = h1 + bars_;
+      const SteelState sx = steel_.update(e[0], b0[0], b0[1]);
+      const SteelState sy = steel_.update(e[1], b0[2], b0[3]);
+      b1[0]               = sx.plastic_strain;
+      b1[1]               = sx.back_stress;
+      b1[2]               = sy.plastic_strain;
+      b1[3]               = sy.back_stress;
+      b1[4]               = b0[4] + r_.ratio_x * sx.plastic_work + r_.ratio_y * sy.plastic_work;
       s[0] += r_.ratio_x * sx.stress;
       s[1] += r_.ratio_y * sy.stress;
     }
     return s;
+  }
+
+  double ConcreteDamageLaw::plastic_strain(double kc) const
+  {
+    return p_.plastic_fraction * std::max(0.0, kc - p_.compression_curve(kc) / p_.youngs_modulus);
+  }
+
+  VoigtStress ConcreteDamageLaw::plastic_concrete_stress(const VoigtStrain &e,
+                                                         const double      *h0,
+                                                         double            *h1) const
+  {
+    const double E = p_.youngs_modulus, lam = lambda_, mu = mu_;
+    std::copy(h0, h0 + n_history(), h1);
+    // Compression measure on the total strain (so that uniaxial compression follows the curve
+    // exactly whatever b_c); the plastic strain grows along the largest compression.
+    double       tr  = e[0] + e[1];
+    const double txx = lam * tr + 2 * mu * e[0], tyy = lam * tr + 2 * mu * e[1], tzz = lam * tr,
+                 txy = mu * e[2];
+    double ta, tb, c, sn;
+    eigen2(txx, tyy, txy, ta, tb, c, sn);
+    const double kc = std::max(h0[1], std::max(-std::min(tb, tzz), 0.0) / E);
+    const double dp = plastic_strain(kc) - plastic_strain(h0[1]);
+    // n = (-s, c), the eigenvector of tb: n (x) n = {s^2, c^2, -2 c s} (engineering shear).
+    const double nxx = sn * sn, nyy = c * c, nxy = -2 * c * sn;
+    if (dp > 0)
+    {
+      h1[6] = h0[6] - dp * nxx;
+      h1[7] = h0[7] - dp * nyy;
+      h1[8] = h0[8] - dp * nxy;
+    }
+    // Elastic strain and its (effective) stress; the tension measure acts on that stress.
+    const double exx = e[0] - h1[6], eyy = e[1] - h1[7], gxy = e[2] - h1[8];
+    tr               = exx + eyy;
+    const double sxx = lam * tr + 2 * mu * exx, syy = lam * tr + 2 * mu * eyy, szz = lam * tr,
+                 sxy = mu * gxy;
+    double sa, sb;
+    principal2(sxx, syy, sxy, sa, sb);
+    const double kt = std::max(h0[0], std::max(std::max(sa, szz), 0.0) / E);
+    h1[0]           = kt;
+    h1[1]           = kc;
+    const double hb = h0[5], ft = effective_tensile_strength(hb), k0 = ft / E;
+    double       dt = 0;
+    if (kt > k0)
+    {
+      const double ef = p_.fracture_energy / (hb * ft) - 0.5 * k0;
+      dt              = 1 - k0 / kt * std::exp(-(kt - k0) / ef);
+    }
+    // sigma_c(kappa_c) = (1 - d_c) E (kappa_c - eps_p) in uniaxial compression.
+    const double el = kc - plastic_strain(kc);
+    double       dc = kc > 0 && el > 0 ? 1 - p_.compression_curve(kc) / (E * el) : 0.0;
+    dt              = std::clamp(std::max(dt, h0[2]), 0.0, max_damage);
+    dc              = std::clamp(std::max(dc, h0[3]), 0.0, max_damage);
+    h1[2]           = dt;
+    h1[3]           = dc;
+    const double d0 = 1 - (1 - h0[2]) * (1 - h0[3]), d1 = 1 - (1 - dt) * (1 - dc);
+    const double Y = 0.5 * (sxx * exx + syy * eyy + sxy * gxy);
+    h1[4]          = h0[4] + Y * (d1 - d0);
+    const double w = 1 - d1;
+    // Plastic work sigma : d eps_p = -dp sigma_nn (sigma_nn < 0 in compression).
+    if (dp > 0)
+    {
+      const double s_nn = w * (sxx * nxx + syy * nyy + sxy * nxy);
+      h1[9]             = h0[9] - dp * s_nn;
+    }
+    return {{w * sxx, w * syy, w * sxy}};
   }
 
   VoigtStress
@@ -835,30 +906,41 @@ namespace kimp::fem
     VoigtTangent t{{w * (lam + 2 * mu), w * lam, 0, w * lam, w * (lam + 2 * mu), 0, 0, 0, w * mu}};
     if (reinforced_)
     {
-      t[0] += r_.ratio_x * steel_.update(e[0], h[6], h[7]).tangent;
-      t[4] += r_.ratio_y * steel_.update(e[1], h[8], h[9]).tangent;
+      const double *b = h + bars_;
+      t[0] += r_.ratio_x * steel_.update(e[0], b[0], b[1]).tangent;
+      t[4] += r_.ratio_y * steel_.update(e[1], b[2], b[3]).tangent;
     }
     return t;
   }
 
   PointOutput ConcreteDamageLaw::output(const VoigtStrain &e, const double *h) const
   {
-    const double w   = (1 - h[2]) * (1 - h[3]);
-    const double tr  = e[0] + e[1];
-    const double sxx = lambda_ * tr + 2 * mu_ * e[0], syy = lambda_ * tr + 2 * mu_ * e[1],
-                 sxy = mu_ * e[2];
+    const double w = (1 - h[2]) * (1 - h[3]);
+    // Elastic strain: the total one less the concrete's compressive plastic strain (if any).
+    const double exx = plastic_ ? e[0] - h[6] : e[0], eyy = plastic_ ? e[1] - h[7] : e[1],
+                 gxy = plastic_ ? e[2] - h[8] : e[2];
+    const double tr  = exx + eyy;
+    const double sxx = lambda_ * tr + 2 * mu_ * exx, syy = lambda_ * tr + 2 * mu_ * eyy,
+                 sxy = mu_ * gxy;
     PointOutput o;
     o.sigma_zz           = w * lambda_ * tr;
-    o.stored_energy      = 0.5 * w * (sxx * e[0] + syy * e[1] + sxy * e[2]);
+    o.stored_energy      = 0.5 * w * (sxx * exx + syy * eyy + sxy * gxy);
     o.damage             = 1 - w;
     o.damage_dissipation = h[4];
+    if (plastic_)
+    {
+      o.plastic_dissipation       = h[9];
+      o.equivalent_plastic_strain = plastic_strain(h[1]);
+    }
     if (reinforced_)
     {
       // The bars' elastic energy is stored; their plastic work (hardening included) dissipated.
-      const double ex = e[0] - h[6], ey = e[1] - h[8], Es = r_.youngs_modulus;
+      const double *b  = h + bars_;
+      const double  ex = e[0] - b[0], ey = e[1] - b[2], Es = r_.youngs_modulus;
       o.stored_energy += 0.5 * Es * (r_.ratio_x * ex * ex + r_.ratio_y * ey * ey);
-      o.plastic_dissipation       = h[10];
-      o.equivalent_plastic_strain = std::max(std::abs(h[6]), std::abs(h[8]));
+      o.plastic_dissipation += b[4];
+      o.equivalent_plastic_strain =
+        std::max({o.equivalent_plastic_strain, std::abs(b[0]), std::abs(b[2])});
     }
     return o;
   }

@@ -155,6 +155,9 @@ namespace kimp::fem
     double eps_c_lim       = 0;    ///< nominal ultimate compressive strain (> eps_c1)
     double dif_compression = 1;    ///< dynamic increase factor on f_cm (>= 1)
     double dif_tension     = 1;    ///< dynamic increase factor on f_ctm (>= 1)
+    /** b_c: fraction of the compressive inelastic strain that is plastic (irreversible), in
+     *  [0, 1); 0: secant unloading to the origin. */
+    double plastic_fraction = 0;
     /**
      * fib Model Code 2010 §5.1.4-5.1.8 from f_cm (Pa): f_ck = f_cm - 8 MPa,
      * E_ci = 21.5 GPa (f_cm / 10 MPa)^(1/3), f_ctm = 0.3 f_ck^(2/3) (<= C50) or
@@ -248,13 +251,19 @@ namespace kimp::fem
    * stress i = x, y of the damaged concrete and ratio_i E_t to the tangent; the history then
    * also holds eps_p and alpha of the x bars, of the y bars, and the steel's plastic work
    * density (J/m^3, reported as plastic dissipation). The steel's elastic energy is stored.
+   *
+   * With plastic_fraction b_c > 0, compression leaves plastic strain: eps_p grows by b_c times
+   * the growth of the uniaxial curve's inelastic strain kappa_c - sigma_c(kappa_c) / E along the
+   * direction of the largest compression, sigma = (1 - d) D (eps - eps_p), and d_c is such that
+   * uniaxial compression still follows the curve. The history then also holds eps_p {xx, yy,
+   * gamma_xy} and its plastic dissipation density (J/m^3) before the bars' values.
    */
   class ConcreteDamageLaw final : public MaterialLaw
   {
   public:
     explicit ConcreteDamageLaw(const ConcreteParameters      &p,
                                const ReinforcementParameters &reinforcement = {});
-    unsigned int n_history() const override { return reinforced_ ? 11 : 6; }
+    unsigned int n_history() const override { return bars_ + (reinforced_ ? 5 : 0); }
     void         initialize_point(double *history, double characteristic_length) const override;
     void         initial_history(double *history) const override;
     VoigtStress
@@ -277,10 +286,17 @@ namespace kimp::fem
   private:
     /** The damaged concrete's stress (history slots 0-5). */
     VoigtStress concrete_stress(const VoigtStrain &strain, const double *h0, double *h1) const;
+    /** As concrete_stress() with compressive plastic strain (history slots 0-9). */
+    VoigtStress
+    plastic_concrete_stress(const VoigtStrain &strain, const double *h0, double *h1) const;
+    /** b_c times the uniaxial curve's inelastic strain at the compression measure kappa_c. */
+    double                  plastic_strain(double kappa_c) const;
     ConcreteParameters      p_;
     ReinforcementParameters r_;
     SteelBar                steel_;
     bool                    reinforced_ = false;
+    bool                    plastic_    = false;
+    unsigned int            bars_       = 6; ///< first history slot of the bars
     double                  lambda_, mu_;
   };
 } // namespace kimp::fem

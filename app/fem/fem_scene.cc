@@ -148,6 +148,10 @@ namespace kimp::app
       };
       check("wall_reinforcement", s.materials.concrete.wall_reinforcement);
       check("slab_reinforcement", s.materials.concrete.slab_reinforcement);
+      ctx.check(s.materials.concrete.plastic_fraction == 0,
+                "concrete.plastic_fraction",
+                format_quantity(s.materials.concrete.plastic_fraction, ""),
+                "needs materials.concrete.model: damage_plasticity");
     }
     if (s.interface.model == FemInterface::Model::contact)
     {
@@ -344,6 +348,7 @@ namespace kimp::app
       p.fracture_energy = *c.fracture_energy;
     if (c.strain_rate > 0)
       p.apply_strain_rate(c.strain_rate);
+    p.plastic_fraction = c.plastic_fraction;
     return p;
   }
 

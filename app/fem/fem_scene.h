@@ -76,6 +76,8 @@ namespace kimp::app
     std::optional<double> f_ctm;           ///< Pa; default: MC2010 from f_cm
     std::optional<double> fracture_energy; ///< G_F, N/m; default: MC2010 from f_cm
     double strain_rate = 0; ///< 1/s for the MC2010 dynamic increase factors (0: none)
+    /// b_c: plastic fraction of the compressive inelastic strain (0: secant unloading).
+    double plastic_fraction = 0;
     /// Smeared bars of the wall (damage_plasticity only; default none).
     FemReinforcement wall_reinforcement;
     /// Smeared bars of the meshed slab (damage_plasticity only; default none).
@@ -339,6 +341,13 @@ namespace kimp::app
                 "1",
                 "strain rate (1/s) of the MC2010 dynamic increase factors (>= 0; 0: none)",
                 io::Range::non_negative());
+    io.quantity("plastic_fraction",
+                s.plastic_fraction,
+                "",
+                "damage_plasticity: fraction b_c of the compressive inelastic strain that stays "
+                "as plastic strain on unloading (in [0, 1); 0: secant unloading; Abaqus CDP "
+                "calibrations ~0.7)",
+                io::Range::at_least(0.0).and_less(1.0));
     io.section("wall_reinforcement",
                s.wall_reinforcement,
                "damage_plasticity: smeared, perfectly bonded steel bars of the wall (ratio_y: "

@@ -144,9 +144,10 @@ namespace kimp::app::study_internal
       linear.materials.concrete.youngs_modulus =
         concrete_parameters(scene.materials.concrete).youngs_modulus;
       linear.materials.concrete.model = FemConcrete::Model::elastic;
-      // The linear reference is the plain concrete's: the bars act in the damage law only.
+      // The linear reference is the plain concrete's: bars and b_c act in the damage law only.
       linear.materials.concrete.wall_reinforcement = FemReinforcement{};
       linear.materials.concrete.slab_reinforcement = FemReinforcement{};
+      linear.materials.concrete.plastic_fraction   = 0;
     }
     // An elastic soil keeps its preset's E, nu and rho (soil_parameters()).
     linear.materials.soil.model = FemSoil::Model::elastic;

@@ -584,6 +584,28 @@ namespace
     EXPECT_GT(s.damage_dissipation, 0);
   }
 
+  TEST(InelasticImpact, EnergyBalanceClosesWithCompressionPlasticity)
+  {
+    // The plain scene with b_c = 0.7 (docs/physics.md §6 "Compression plasticity"): the
+    // concrete's plastic work joins the plastic dissipation; balance and bookkeeping < 1 %.
+    auto p                              = inelastic_scene("scene_compression_plasticity.msh");
+    auto cp                             = ConcreteParameters::from_f_cm(38e6);
+    cp.plastic_fraction                 = 0.7;
+    const auto law                      = std::make_shared<const ConcreteDamageLaw>(cp);
+    p.material_laws[ids::wall_material] = law;
+    p.material_laws[ids::slab_material] = law;
+    const auto  r                       = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto &s                       = r.summary;
+    if (rank() == 0)
+      std::cout << "compression plasticity impact: energy error " << s.energy_error
+                << ", bookkeeping gap " << s.dissipation_gap << ", plastic "
+                << s.plastic_dissipation << " J/m, damage " << s.damage_dissipation << " J/m, COR "
+                << s.apparent_cor << '\n';
+    EXPECT_TRUE(s.separated);
+    EXPECT_LT(s.energy_error, 0.01);
+    EXPECT_LT(s.dissipation_gap, 0.01);
+  }
+
   TEST(Mpi, DistributedInelasticRunMatchesSerialRun)
   {
     // Mohr-Coulomb soil and damaged (and, second, reinforced) concrete: 1 or 2 ranks vs

@@ -447,4 +447,73 @@ namespace
     EXPECT_EQ(ep_y, 0);        // the y bars did not
     EXPECT_GT(h0[2], 0.9);     // the concrete cracked
   }
+
+  // Compression plasticity (b_c = 0.7, Birtel & Mark 2006): uniaxial compression (nu = 0) to
+  // 1.5 eps_c1, past the peak, follows the MC2010 curve as with b_c = 0; unloading is linear,
+  // sigma = (1 - d) E (eps - eps_p), and reaches zero stress at the permanent strain
+  // eps_p = -b_c (kappa - sigma_c(kappa) / E); reloading returns on the same line to the curve.
+  // The work int sigma d eps of the cycle to zero stress equals the damage + plastic dissipation
+  // (stored energy 0 there) within 1 %.
+  TEST(Concrete, CompressionPlasticityLeavesThePermanentStrainAndFollowsTheCurve)
+  {
+    ConcreteParameters c = ConcreteParameters::from_f_cm(38e6);
+    c.poisson_ratio      = 0;
+    c.plastic_fraction   = 0.7;
+    const ConcreteDamageLaw law(c);
+    EXPECT_EQ(law.n_history(), 10u);
+    std::vector<double> h0(law.n_history()), h1(law.n_history());
+    law.initialize_point(h0.data(), 0.05);
+    const double E = c.youngs_modulus, e_max = 1.5 * c.eps_c1;
+    const int    n    = 3000;
+    double       work = 0, s_prev = 0, e_prev = 0, worst = 0;
+    const auto   step = [&](double e)
+    {
+      const double s = law.stress({{e, 0, 0}}, h0.data(), h1.data())[0];
+      work += 0.5 * (s + s_prev) * (e - e_prev);
+      s_prev = s;
+      e_prev = e;
+      h0     = h1;
+      return s;
+    };
+    for (int i = 1; i <= n; ++i)
+    {
+      const double e = -e_max * i / n;
+      worst          = std::max(worst, std::abs(-step(e) - c.compression_curve(-e)));
+    }
+    EXPECT_LT(worst, 1e-9 * c.f_cm);
+    const double eps_p = -0.7 * (e_max - c.compression_curve(e_max) / E);
+    EXPECT_NEAR(h0[6], eps_p, 1e-12);
+    EXPECT_NEAR(h0[7], 0, 1e-15);
+    // Unloading: linear from (-e_max, -sigma_c) to (eps_p, 0).
+    const double slope = c.compression_curve(e_max) / (e_max + eps_p);
+    double       s     = 0;
+    for (int i = 1; i <= n; ++i)
+    {
+      const double e = -e_max + (e_max + eps_p) * i / n;
+      s              = step(e);
+      EXPECT_NEAR(s, slope * (e - eps_p), 1e-9 * c.f_cm) << e;
+    }
+    EXPECT_NEAR(s, 0, 1e-9 * c.f_cm);
+    const PointOutput o = law.output({{eps_p, 0, 0}}, h0.data());
+    std::printf("compression plasticity b_c = 0.7: eps_p = %.4g (closed form %.4g), work %.6g "
+                "J/m^3, damage %.6g + plastic %.6g = %.6g J/m^3, stored %.2g\n",
+                h0[6],
+                eps_p,
+                work,
+                o.damage_dissipation,
+                o.plastic_dissipation,
+                o.damage_dissipation + o.plastic_dissipation,
+                o.stored_energy);
+    EXPECT_NEAR(o.stored_energy, 0, 1e-9 * work);
+    EXPECT_NEAR(o.damage_dissipation + o.plastic_dissipation, work, 0.01 * work);
+    EXPECT_GT(o.plastic_dissipation, 0.3 * work);
+    // Reloading: back along the same line, then on the curve again.
+    for (int i = 1; i <= n; ++i)
+    {
+      const double e = eps_p - (e_max + eps_p) * i / n;
+      EXPECT_NEAR(step(e), slope * (e - eps_p), 1e-9 * c.f_cm) << e;
+    }
+    const double e_more = -1.6 * c.eps_c1;
+    EXPECT_NEAR(-step(e_more), c.compression_curve(-e_more), 1e-9 * c.f_cm);
+  }
 } // namespace
