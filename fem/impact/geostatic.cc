@@ -21,6 +21,9 @@ namespace kimp::fem::internal
 {
   namespace
   {
+    /** Share of the virgin stiffness added to the consistent tangent of the geostatic step. */
+    constexpr double tangent_regularization = 1e-3;
+
     /** Top (m) of the cells of every material of @p k0, the same on all ranks. */
     std::map<unsigned int, double> material_tops(const DoFHandler<dim>                &dofs,
                                                  const std::map<unsigned int, double> &k0,
@@ -252,6 +255,11 @@ namespace kimp::fem::internal
           constraints.distribute_local_to_global(cell_matrix, dof_indices, tangent);
         }
       tangent.compress(VectorOperation::add);
+      // Points at the apex of the tension cut-off carry a constant stress (zero tangent); nodes
+      // surrounded by them made the matrix singular (Newton steps of 1e11 m). A small share
+      // of the virgin stiffness keeps it regular; it only slows the final quadratic rate by a
+      // linear term of that order.
+      tangent.add(tangent_regularization, stiffness);
       finish_operator(tangent);
     };
 
