@@ -298,6 +298,35 @@ namespace kimp::fem::testing
                 << '\n';
   }
 
+  TEST(MpiGeostatic, DistributedAbsorbingRunMatchesSerialRun)
+  {
+    // Absorbing far side and base with the geostatic state (supports' reactions as forces) on 1
+    // or 2 ranks vs MPI_COMM_SELF: same force history and radiated energy (relative 1e-10).
+    constexpr double tolerance = 1e-10;
+    auto             p         = geostatic_scene("geostatic_mpi_absorbing.msh", false);
+    p.absorbing_boundaries     = {ids::fixed_base, ids::soil_far_side};
+    p.end_time                 = 0.004;
+    const auto world           = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto self            = run_impact(p, MPI_COMM_SELF, nullptr);
+    ASSERT_EQ(world.history.time.size(), self.history.time.size());
+    double max_force = 0, max_difference = 0;
+    for (std::size_t i = 0; i < self.history.time.size(); ++i)
+    {
+      max_force = std::max(max_force, self.history.contact_force[i]);
+      max_difference =
+        std::max(max_difference,
+                 std::abs(world.history.contact_force[i] - self.history.contact_force[i]));
+    }
+    ASSERT_GT(max_force, 0);
+    EXPECT_LT(max_difference, tolerance * max_force);
+    EXPECT_NEAR(world.summary.radiated_energy,
+                self.summary.radiated_energy,
+                tolerance * self.history.kinetic.front());
+    if (rank() == 0)
+      std::cout << "MPI geostatic absorbing: " << world.summary.n_ranks
+                << " ranks vs 1, max |dF| / max F = " << max_difference / max_force << '\n';
+  }
+
   /** geostatic_scene() meshed with separate wall and soil interface nodes, joined by the
    *  frictional contact interface with mu = tan(2 phi / 3). */
   ImpactParameters interface_scene(const std::string &name)
