@@ -116,14 +116,6 @@ namespace kimp::app
                 "boundary.far",
                 "absorbing",
                 "needs a backfill (geometry.with_backfill: true): the dashpots sit on the soil");
-    // The dashpots replace the base's support; under gravity the released base would need its
-    // static reaction applied as a force, which is not modelled: refused rather than sinking.
-    if (s.boundary.far == FemBoundary::Far::absorbing && geostatic_enabled(s))
-      ctx.fail("boundary.far",
-               "absorbing",
-               "cannot be combined with the geostatic state yet (gravity needs the released "
-               "base's static reaction, which the dashpots do not carry): use rollers, or "
-               "geostatic: off with an elastic soil and a bonded interface");
     {
       const auto                scope = ctx.section("materials");
       const fem::SoilParameters soil  = soil_parameters(s.materials.soil);

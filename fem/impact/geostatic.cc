@@ -1,7 +1,8 @@
 // ImpactProblem geostatic step: gravity on every body but the slab, the K0 initial stress of the
-// backfill, and the static equilibrium the impact starts from, by modified Newton on the virgin
-// stiffness factorised once (KLU) (docs/physics.md §6 "Geostatic initial state").
+// backfill, and the static equilibrium the impact starts from: modified Newton on the virgin
+// stiffness, then full Newton on the consistent tangent once points yield (docs/physics.md §6).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <set>
 #include <tuple>
@@ -9,6 +10,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/vector.h>
 
@@ -19,6 +21,9 @@ namespace kimp::fem::internal
 {
   namespace
   {
+    /** Share of the virgin stiffness added to the consistent tangent of the geostatic step. */
+    constexpr double tangent_regularization = 1e-3;
+
     /** Top (m) of the cells of every material of @p k0, the same on all ranks. */
     std::map<unsigned int, double> material_tops(const DoFHandler<dim>                &dofs,
                                                  const std::map<unsigned int, double> &k0,
@@ -144,42 +149,221 @@ namespace kimp::fem::internal
     const double weight = Utilities::MPI::sum(weight_local, comm);
     require(weight > 0, "geostatic step: the bodies under gravity have no weight");
 
-    // Static operator: the virgin stiffness, with the free slab's DoFs held by their diagonal.
+    // Absorbing boundaries release the soil's far side and base: the static step holds them as
+    // the rollers do (base u = 0, far side u_x = 0), the DoFs of `supported` (owned, free), and
+    // their reactions become constant nodal forces of the impact (FLAC's and PLAXIS' way with
+    // viscous boundaries), so that the dashpots start from an equilibrium.
+    Vec                                  static_mask(free_mask);
+    std::vector<types::global_dof_index> supported;
+    std::vector<unsigned int>            supported_component;
+    if (absorbing)
+    {
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (!cell->is_artificial() && cell->material_id() == geometry::soil_material)
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary() && is_absorbing(face->boundary_id()))
+            {
+              const unsigned int n_components = face->boundary_id() == geometry::fixed_base ? 2 : 1;
+              for (unsigned int v = 0; v < face->n_vertices(); ++v)
+                for (unsigned int c = 0; c < n_components; ++c)
+                {
+                  const auto i = face->vertex_dof_index(v, c);
+                  if (locally_owned.is_element(i) && free_mask(i) > 0 && static_mask(i) > 0)
+                  {
+                    static_mask(i) = 0;
+                    supported.push_back(i);
+                    supported_component.push_back(c);
+                  }
+                }
+            }
+      static_mask.compress(VectorOperation::insert);
+    }
+
+    // Static operator: the virgin stiffness, with the free slab's DoFs held by their diagonal
+    // and the supported rows replaced by their diagonal (their residual is zero, so du = 0
+    // there: the constrained solve).
+    const auto finish_operator = [&](TrilinosWrappers::SparseMatrix &matrix)
+    {
+      for (const auto i : slab_dofs)
+        matrix.add(i, i, stiffness.diag_element(i));
+      if (interface)
+        add_interface_stiffness(matrix);
+      matrix.compress(VectorOperation::add);
+      for (const auto i : supported)
+        matrix.clear_row(i, stiffness.diag_element(i));
+    };
     TrilinosWrappers::SparseMatrix op;
     op.reinit(stiffness);
     op.copy_from(stiffness);
-    for (const auto i : slab_dofs)
-      op.add(i, i, stiffness.diag_element(i));
-    if (interface)
-      add_interface_stiffness(op);
-    op.compress(VectorOperation::add);
+    finish_operator(op);
     SolverControl                  control;
     TrilinosWrappers::SolverDirect direct(control);
     direct.initialize(op);
 
-    // Modified Newton: u <- u - K^-1 (f_int(u) + f_0 - f_g). One iteration for linear laws and
-    // for inelastic ones that stay elastic; linear convergence once points yield.
-    Vec           u(locally_owned, comm), r(locally_owned, comm), du(locally_owned, comm);
-    double        residual = 0;
-    unsigned long k        = 0;
-    for (;; ++k)
+    // The consistent tangent at u (the laws' tangent from the committed initial state, which
+    // is the whole step's start), assembled into `tangent` (the sparsity of the stiffness).
+    TrilinosWrappers::SparseMatrix tangent;
+    const auto                     assemble_tangent = [&](const Vec &u)
     {
-      internal_force(u, r);
-      r.scale(free_mask);
-      residual = r.l2_norm();
-      if (residual <= g.tolerance * weight)
-        break;
+      if (tangent.m() == 0)
+        tangent.reinit(stiffness);
+      tangent = 0;
+      Vec u_g(locally_owned, locally_relevant, comm);
+      u_g = u;
+      FEValues<dim>      fe_t(fe, quadrature, update_gradients | update_JxW_values);
+      FullMatrix<double> cell_matrix(n, n);
+      std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
+      std::vector<std::array<double, 3>>   b(n);
+      std::vector<double>                  virgin;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+        {
+          const MaterialLaw &law = *laws.at(cell->material_id());
+          const unsigned int c   = cell->active_cell_index();
+          fe_t.reinit(cell);
+          fe_t[displacement].get_function_symmetric_gradients(u_g, eps);
+          cell_matrix = 0;
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+          {
+            const VoigtStrain e{{eps[q][0][0], eps[q][1][1], 2 * eps[q][0][1]}};
+            const double     *h = nullptr;
+            if (!linear_laws && law.n_history() > 0)
+              h = qp_history.committed(c, q);
+            else
+            {
+              virgin.assign(std::max(1u, law.n_history()), 0.0);
+              law.initial_history(virgin.data());
+              h = virgin.data();
+            }
+            const VoigtTangent t = law.tangent(e, h);
+            for (unsigned int i = 0; i < n; ++i)
+            {
+              const auto ei = fe_t[displacement].symmetric_gradient(i, q);
+              b[i]          = {{ei[0][0], ei[1][1], 2 * ei[0][1]}};
+            }
+            for (unsigned int j = 0; j < n; ++j)
+            {
+              const std::array<double, 3> tb{{t[0] * b[j][0] + t[1] * b[j][1] + t[2] * b[j][2],
+                                              t[3] * b[j][0] + t[4] * b[j][1] + t[5] * b[j][2],
+                                              t[6] * b[j][0] + t[7] * b[j][1] + t[8] * b[j][2]}};
+              for (unsigned int i = 0; i < n; ++i)
+                cell_matrix(i, j) +=
+                  (b[i][0] * tb[0] + b[i][1] * tb[1] + b[i][2] * tb[2]) * fe_t.JxW(q);
+            }
+          }
+          cell->get_dof_indices(dof_indices);
+          constraints.distribute_local_to_global(cell_matrix, dof_indices, tangent);
+        }
+      tangent.compress(VectorOperation::add);
+      // Points at the apex of the tension cut-off carry a constant stress (zero tangent); nodes
+      // surrounded by them made the matrix singular (Newton steps of 1e11 m). A small share
+      // of the virgin stiffness keeps it regular; it only slows the final quadratic rate by a
+      // linear term of that order.
+      tangent.add(tangent_regularization, stiffness);
+      finish_operator(tangent);
+    };
+
+    // Modified Newton, u <- u - K0^-1 r(u), r = f_int(u) + f_0 - f_g: one iteration for linear
+    // laws and for inelastic ones that stay elastic. Once points yield it converges only
+    // linearly, at a rate that degrades as the mesh refines (surface points at the tension
+    // cut-off); when the rate observed predicts more than a few further iterations, the step
+    // switches to full Newton on the consistent tangent, refreshed every iteration, with a
+    // backtracking line search on |r|. A tangent step that does not reduce |r| (a singular or
+    // poor tangent) falls back to the virgin-stiffness step.
+    const auto    t_start = std::chrono::steady_clock::now();
+    const double  target  = g.tolerance * weight;
+    Vec           u(locally_owned, comm), r(locally_owned, comm), du(locally_owned, comm);
+    Vec           u0(locally_owned, comm);
+    double        residual = 0, previous = 0;
+    unsigned long k = 0, n_tangent = 0;
+    bool          use_tangent = false;
+    const auto    evaluate    = [&](const Vec &x)
+    {
+      internal_force(x, r);
+      r.scale(static_mask);
+      return r.l2_norm();
+    };
+    residual = evaluate(u);
+    for (; residual > target; ++k)
+    {
       if (k == g.max_iterations)
         throw NumericalError("geostatic step did not converge: out-of-balance force " +
                                fmt_double(residual) + " N/m after " + std::to_string(k) +
-                               " modified Newton iterations, above " + fmt_double(g.tolerance) +
+                               " Newton iterations (" + std::to_string(n_tangent) +
+                               " on the consistent tangent), above " + fmt_double(g.tolerance) +
                                " x the weight " + fmt_double(weight) +
                                " N/m (the backfill may be collapsing under its own weight)",
                              0.0,
                              0);
-      direct.solve(du, r);
-      ++n_linear_solves;
-      u.add(-1.0, du);
+      if (!use_tangent && !linear_laws && k >= 2 && residual > 0 && previous > residual)
+      {
+        const double rate = residual / previous;
+        use_tangent       = std::log(target / residual) / std::log(rate) > 8;
+      }
+      else if (!use_tangent && !linear_laws && k >= 2)
+        use_tangent = true; // modified Newton is not contracting at all
+      previous      = residual;
+      u0            = u;
+      bool accepted = false;
+      if (use_tangent)
+      {
+        try
+        {
+          assemble_tangent(u);
+          TrilinosWrappers::SolverDirect newton(control);
+          newton.initialize(tangent);
+          newton.solve(du, r);
+          ++n_linear_solves;
+          ++n_tangent;
+          for (unsigned int cut = 0; cut <= 10 && std::isfinite(du.l2_norm()); ++cut)
+          {
+            u = u0;
+            u.add(-std::pow(0.5, cut), du);
+            residual = evaluate(u);
+            if (std::isfinite(residual) && residual < previous)
+            {
+              accepted = true;
+              break;
+            }
+          }
+        }
+        catch (const std::exception &)
+        {
+          // A singular tangent: the virgin-stiffness step below.
+        }
+      }
+      if (!accepted)
+      {
+        // The same residual as at u0 (the line search may have moved the trial history on).
+        u = u0;
+        if (use_tangent)
+          evaluate(u);
+        direct.solve(du, r);
+        ++n_linear_solves;
+        u.add(-1.0, du);
+        residual = evaluate(u);
+      }
+    }
+    const double geostatic_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+    if (absorbing)
+    {
+      // The supports' reactions R = r there (f_int + f_0 = f_g + R): applied as constant
+      // forces, f(u_g) = f_int + f_0 - f_g - R vanishes on the released DoFs too.
+      internal_force(u, r);
+      Vec reaction(locally_owned, comm);
+      for (const auto i : supported)
+        reaction(i) = r(i);
+      reaction.compress(VectorOperation::insert);
+      geostatic_offset.add(-1.0, reaction);
+      double resultant[2] = {0, 0}; // the supports' force on the soil, N/m
+      for (std::size_t j = 0; j < supported.size(); ++j)
+        resultant[supported_component[j]] += r(supported[j]);
+      resultant[0] = Utilities::MPI::sum(resultant[0], comm);
+      resultant[1] = Utilities::MPI::sum(resultant[1], comm);
+      log_line("geostatic: the absorbing boundary's supports hold the soil with (" +
+               fmt_double(resultant[0]) + ", " + fmt_double(resultant[1]) +
+               ") N/m, applied as constant nodal forces during the impact");
     }
     if (!linear_laws)
       qp_history.commit();
@@ -217,8 +401,9 @@ namespace kimp::fem::internal
     geostatic_summary.geostatic_plastic_dissipation = geostatic_point_energy[1];
     geostatic_summary.geostatic_wall_displacement   = geostatic_wall;
     log_line("geostatic: weight " + fmt_double(weight) + " N/m, out-of-balance " +
-             fmt_double(residual / weight) + " of it after " + std::to_string(k) +
-             " iterations, wall face u_x = " + fmt_double(geostatic_wall) +
+             fmt_double(residual / weight) + " of it after " + std::to_string(k) + " iterations (" +
+             std::to_string(n_tangent) + " on the consistent tangent, " +
+             fmt_double(geostatic_seconds) + " s), wall face u_x = " + fmt_double(geostatic_wall) +
              " m, plastic dissipation " + fmt_double(geostatic_point_energy[1]) + " J/m");
   }
 

@@ -468,6 +468,15 @@ namespace
     EXPECT_EQ(ids,
               (std::vector<unsigned int>{kimp::geometry::fixed_base,
                                          kimp::geometry::soil_far_side}));
+    // With an inelastic soil the geostatic state comes along (the static step holds the
+    // released faces on rollers and applies their reactions as forces).
+    const FemScene inelastic = load_scene_text<FemScene>(
+      "boundary: {far: absorbing}\nmaterials: {soil: {model: mohr_coulomb, preset: "
+      "medium_dense_sand}}\n",
+      file_name);
+    const auto pi = kimp::app::impact_parameters(inelastic, 1.25, "m.msh");
+    EXPECT_TRUE(pi.geostatic.enabled);
+    EXPECT_EQ(pi.absorbing_boundaries, ids);
     const std::string no_soil =
       scene_error("geometry: {with_backfill: false}\nboundary: {far: absorbing}\n");
     EXPECT_NE(no_soil.find("boundary.far"), std::string::npos) << no_soil;
