@@ -666,6 +666,7 @@ namespace kimp::app
         wall.flexible         = w.flexible;
         wall.stiffness        = w.stiffness;
         wall.damping_ratio    = w.damping_ratio;
+        wall.sdof_mass        = w.sdof_mass;
         return wall;
       };
       if (scene.walls.left.present)

@@ -194,12 +194,13 @@ namespace kimp::app
   /// One moat wall at the isolation level: rigid (moving with the ground) or a SDOF oscillator.
   struct WallScene
   {
-    bool   present       = true;
-    double gap           = 0.15;
-    double mass          = 500e3;
-    bool   flexible      = false;
-    double stiffness     = 1.5e9; ///< SDOF wall, N/m (thesis k_w = 1500 kN/mm)
-    double damping_ratio = 0.05;  ///< SDOF wall ζ
+    bool                  present       = true;
+    double                gap           = 0.15;
+    double                mass          = 500e3;
+    bool                  flexible      = false;
+    double                stiffness     = 1.5e9; ///< SDOF wall, N/m (thesis k_w = 1500 kN/mm)
+    double                damping_ratio = 0.05;  ///< SDOF wall ζ
+    std::optional<double> sdof_mass; ///< SDOF wall's mass, kg (null: mass; not in m_eff)
   };
 
   template <class Io>
@@ -210,11 +211,18 @@ namespace kimp::app
     io.quantity("mass",
                 s.mass,
                 "t",
-                "wall mass for m_eff in the impact law (and the SDOF mass of a flexible wall)");
+                "wall mass for m_eff in the impact law (and the SDOF mass of a flexible wall "
+                "without sdof_mass)");
     io.flag("flexible",
             s.flexible,
-            "false: rigid wall moving with the ground; true: SDOF wall (mass, stiffness, "
-            "damping_ratio) attached to the ground");
+            "false: rigid wall moving with the ground; true: SDOF wall (sdof_mass or mass, "
+            "stiffness, damping_ratio) attached to the ground");
+    io.quantity("sdof_mass",
+                s.sdof_mass,
+                "t",
+                "flexible wall: the SDOF's mass (null: mass); the impact law keeps the m_eff of "
+                "mass, so its dashpot is the rigid wall's",
+                io::Range::positive());
     io.quantity("stiffness",
                 s.stiffness,
                 "MN/m",

@@ -24,9 +24,11 @@ namespace kimp::app
     LumpedScene s = rigid;
     for (WallScene *wall : {&s.walls.left, &s.walls.right})
     {
-      wall->flexible      = true;
-      wall->stiffness     = sdof.stiffness;
-      wall->mass          = sdof.mass;
+      wall->flexible  = true;
+      wall->stiffness = sdof.stiffness;
+      // The SDOF's mass gives the wall its inertia; the laws keep the wall mass of the rigid
+      // run in their m_eff (walls.mass), so that both runs have the same dashpot constant.
+      wall->sdof_mass     = sdof.mass;
       wall->damping_ratio = sdof.damping_ratio;
     }
     return s;

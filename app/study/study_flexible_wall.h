@@ -43,7 +43,8 @@ namespace kimp::app
 
   /**
    * `rigid` (a study building scene with its walls present) with both walls flexible: the SDOF's
-   * stiffness, mass (which the impact law's m_eff then also uses) and damping ratio.
+   * stiffness, mass (`sdof_mass`: the wall's inertia) and damping ratio. The walls' `mass` stays
+   * the rigid run's, so the impact law keeps its m_eff and dashpot constant.
    */
   LumpedScene flexible_wall_scene(const LumpedScene &rigid, const StudyWallSdof &sdof);
 } // namespace kimp::app

@@ -172,7 +172,7 @@ namespace kimp::app
     io.quantity("mass",
                 s.mass,
                 "t",
-                "wall mass for m_eff in the impact laws of the rigid-wall runs (> 0)",
+                "wall mass for m_eff in the impact laws (rigid and flexible walls; > 0)",
                 io::Range::positive());
     io.quantity("gap_reduction",
                 s.gap_reduction,
@@ -189,7 +189,7 @@ namespace kimp::app
             s.flexible,
             "also derive each height's wall as a SDOF from its FE model (static stiffness at "
             "the slab band, mass from its modes: flexible_mass) and run the building against "
-            "it beside the rigid wall, the SDOF's mass then also in the laws' m_eff "
+            "it beside the rigid wall with the same impact laws (their m_eff keeps mass) "
             "(wall_sdof.csv, flexible_wall.csv)");
     io.quantity("damping_ratio",
                 s.damping_ratio,

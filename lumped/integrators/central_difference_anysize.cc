@@ -3,6 +3,7 @@
 // products restricted to each building's block; SSE2, AVX2 and AVX-512F, bitwise equal results.
 #include <algorithm>
 #include <cstddef>
+#include <utility>
 
 #include "lumped/integrators/central_difference_session.h"
 #include "lumped/integrators/central_difference_simd.h"
@@ -20,6 +21,55 @@ namespace kimp::lumped
     using cdm::Session;
     using cdm::shift_down;
     using cdm::shift_up;
+    using cdm::splat;
+
+    /**
+     * Splats of the four DOFs j..j+3 (j a multiple of 4) of the padded vector at `x` (L-aligned
+     * vectors), each from a whole-vector load: a scalar turned into a vector inside this
+     * target-less template would be built lane by lane (one masked broadcast per lane), while
+     * a shuffle of a loaded vector is one instruction, and a load of a whole stored vector is
+     * forwarded from the store.
+     */
+    template <class V, class I, int L, class At>
+    inline __attribute__((always_inline)) void
+    splat4(V &d0, V &d1, V &d2, V &d3, const double *x, const std::size_t j, const At &at)
+    {
+      if constexpr (L == 2)
+      {
+        const V a = at(x + j), b = at(x + j + 2);
+        splat<V, I, 0>(d0, a);
+        splat<V, I, 1>(d1, a);
+        splat<V, I, 0>(d2, b);
+        splat<V, I, 1>(d3, b);
+      }
+      else if constexpr (L == 4)
+      {
+        const V a = at(x + j);
+        splat<V, I, 0>(d0, a);
+        splat<V, I, 1>(d1, a);
+        splat<V, I, 2>(d2, a);
+        splat<V, I, 3>(d3, a);
+      }
+      else
+      {
+        static_assert(L == 8, "vectors of 2, 4 or 8 doubles");
+        const V a = at(x + (j & ~std::size_t{7}));
+        if (j & 4)
+        {
+          splat<V, I, 4>(d0, a);
+          splat<V, I, 5>(d1, a);
+          splat<V, I, 6>(d2, a);
+          splat<V, I, 7>(d3, a);
+        }
+        else
+        {
+          splat<V, I, 0>(d0, a);
+          splat<V, I, 1>(d1, a);
+          splat<V, I, 2>(d2, a);
+          splat<V, I, 3>(d3, a);
+        }
+      }
+    }
 
     /**
      * The step of the fused kernel (see CentralDifference) for any n, vectors of L doubles:
@@ -31,21 +81,19 @@ namespace kimp::lumped
      * (s0 + s1) + (s2 + s3): the order depends on j only, and a column a vector includes for
      * another of its rows adds an exact zero, so every vector width gives bitwise the same
      * result. The state lives in L1 (scratch in Session::any_work) instead of registers: with
-     * 9-100 DOFs it would not fit, and the products, not the loads, set the pace.
+     * 9-100 DOFs it would not fit, and the products, not the loads, set the pace. Δu is double
+     * buffered (the products of every row read Δu_n while Δu_{n+1} is written), z is updated in
+     * place (row i's products do not read it), and the bookkeeping of step n and the update of
+     * u run in one pass over the vectors.
      */
     template <int L, class IsolatorType>
     inline __attribute__((always_inline)) void anysize_body(Session &s, const long len)
     {
       typedef typename Lanes<L>::V V;
+      typedef typename Lanes<L>::I I;
       typedef typename Lanes<L>::U U;
       const auto at  = [](const double *p) -> const U  &{ return *reinterpret_cast<const U *>(p); };
       const auto put = [](double *p) -> U & { return *reinterpret_cast<U *>(p); };
-      // Broadcast by reference (returning a wide vector from a lambda would change the ABI);
-      // x − (+0) is x for every x, −0 included, and compiles to one broadcast.
-      const auto bcast = [](V & out, const double x) __attribute__((always_inline))
-      {
-        out = x - V{};
-      };
       ForceEvaluator<IsolatorType> forces(s);
       const std::size_t            n    = s.n;
       const std::size_t            LD   = s.padded_n;
@@ -74,13 +122,11 @@ namespace kimp::lumped
       const V                      half = zero + 0.5 / dt;
       const V                      idt2 = zero + 1.0 / (dt * dt);
 
-      // Scratch: [L zeros | u | d (LD4) | v | L zeros | Δu_{n+1} | z_n]; the zeros are u_{−1}
-      // below DOF 0 (drifts) and v above the last DOF (the running sums of v_i·v_{i+1}).
-      double *const wu = s.any_work.data() + L;
-      double *const wd = wu + LD;
-      double *const wv = wd + LD4;
-      double *const dn = wv + LD + L;
-      double *const zn = dn + LD;
+      // Scratch: [u | Δu (LD4) | Δu (LD4) | v]; the two Δu alternate between Δu_n and Δu_{n+1}.
+      double *const wu = s.any_work.data();
+      double       *wd = wu + LD;
+      double       *dn = wd + LD4;
+      double *const wv = dn + LD4;
       double *const z  = s.fused_z.data();
       double *const a  = s.last_accel.data();
       double *const pu = s.fused_peaks.data();
@@ -97,10 +143,12 @@ namespace kimp::lumped
       {
         const double ag = agb[k];
         const double fi = iso ? forces.isolator(k, wu[0]) : 0.0;
-        V            vg;
-        bcast(vg, ag);
-        V vf;
-        bcast(vf, fi);
+        // ü_g and f_iso as vectors: splats of vectors whose lane 0 holds them (see splat4).
+        V vg = zero, vf = zero;
+        vg[0] = ag;
+        vf[0] = fi;
+        splat<V, I, 0>(vg, vg);
+        splat<V, I, 0>(vf, vf);
         for (std::size_t i = 0; i < P; ++i)
         {
           const std::size_t o  = i * L;
@@ -112,10 +160,7 @@ namespace kimp::lumped
                j += 4)
           {
             V d0, d1, d2, d3;
-            bcast(d0, wd[j]);
-            bcast(d1, wd[j + 1]);
-            bcast(d2, wd[j + 2]);
-            bcast(d3, wd[j + 3]);
+            splat4<V, I, L>(d0, d1, d2, d3, wd, j, at);
             f0 += at(F + j * LD) * d0;
             g0 += at(G + j * LD) * d0;
             f1 += at(F + (j + 1) * LD) * d1;
@@ -127,8 +172,9 @@ namespace kimp::lumped
           }
           const V sf  = (f0 + f1) + (f2 + f3);
           const V sg3 = (g0 + g1) + (g2 + g3);
-          put(dn + o) = ((at(wd + o) - at(z + o)) - at(am + o) * vg - sf) - at(a_i + o) * vf;
-          put(zn + o) = at(z + o) + sg3;
+          const V zo  = at(z + o);
+          put(dn + o) = ((at(wd + o) - zo) - at(am + o) * vg - sf) - at(a_i + o) * vf;
+          put(z + o)  = zo + sg3;
         }
         if (touched)
         {
@@ -138,8 +184,9 @@ namespace kimp::lumped
             const double      fj = f[j];
             if (fj != 0.0)
             {
-              V vj;
-              bcast(vj, fj);
+              V vj  = zero;
+              vj[0] = fj;
+              splat<V, I, 0>(vj, vj);
               for (std::size_t i = 0; i < P; ++i)
                 put(dn + i * L) = at(dn + i * L) - at(a_i + j * LD + i * L) * vj;
             }
@@ -147,52 +194,50 @@ namespace kimp::lumped
           }
           f[n] = 0.0;
         }
-        double *next = ub + static_cast<std::size_t>(k + 3) * S;
+        // Bookkeeping of step n and u_{n+1}, one pass: the drift of vector i needs the old u
+        // of vector i − 1, the running sum of v_i·v_{i+1} the new v of vector i + 1.
+        double *next   = ub + static_cast<std::size_t>(k + 3) * S;
+        V       u_prev = zero, v_prev = zero;
         for (std::size_t i = 0; i < P; ++i)
         {
           const std::size_t o  = i * L;
           const V           u  = at(wu + o);
           const V           d  = at(wd + o);
           const V           dd = at(dn + o);
-          put(next + o)        = u + dd;
+          const V           un = u + dd;
+          put(next + o)        = un;
+          put(wu + o)          = un;
           const V v            = (d + dd) * half;
           const V acc          = (dd - d) * idt2 + vg;
-          put(wv + o)          = v;
           put(a + o)           = acc;
           V peak               = at(pu + o);
-          peak_abs<V, typename Lanes<L>::I>(peak, u);
+          peak_abs<V, I>(peak, u);
           put(pu + o) = peak;
           peak        = at(pa + o);
-          peak_abs<V, typename Lanes<L>::I>(peak, acc);
+          peak_abs<V, I>(peak, acc);
           put(pa + o) = peak;
-          // u_{r−1} from whole vectors (an unaligned load across two stores of the last step
-          // would defeat store forwarding).
-          const V u_prev = i == 0 ? zero : at(wu + o - L); // by value: U is under-aligned
-          V       below;
-          shift_up<V, typename Lanes<L>::I>(below, u_prev, u);
+          V below;
+          shift_up<V, I>(below, u_prev, u);
           const V drift = u - below * at(mask + o);
           peak          = at(pd + o);
-          peak_abs<V, typename Lanes<L>::I>(peak, drift);
+          peak_abs<V, I>(peak, drift);
           put(pd + o) = peak;
           put(sg + o) = at(sg + o) + v * vg;
           put(sv + o) = at(sv + o) + v * v;
+          put(wv + o) = v;
+          if (i > 0)
+          {
+            V above;
+            shift_down<V, I>(above, v_prev, v);
+            put(sx + o - L) = at(sx + o - L) + v_prev * above;
+          }
+          u_prev = u;
+          v_prev = v;
         }
-        for (std::size_t i = 0; i < P; ++i)
-        {
-          const std::size_t o   = i * L;
-          const V           v   = at(wv + o);
-          const V           v_1 = at(wv + o + L); // by value: U is under-aligned
-          V                 above;
-          shift_down<V, typename Lanes<L>::I>(above, v, v_1);
-          put(sx + o) = at(sx + o) + v * above;
-        }
-        for (std::size_t i = 0; i < P; ++i)
-        {
-          const std::size_t o = i * L;
-          put(wu + o)         = at(wu + o) + at(dn + o);
-          put(wd + o)         = at(dn + o);
-          put(z + o)          = at(zn + o);
-        }
+        V above;
+        shift_down<V, I>(above, v_prev, zero);
+        put(sx + LD - L) = at(sx + LD - L) + v_prev * above;
+        std::swap(wd, dn);
       };
 
       for (long k = 0; k < len; ++k)

@@ -23,21 +23,7 @@ namespace kimp::lumped
     using cdm::Session;
     using cdm::shift_down;
     using cdm::shift_up;
-
-    /// out = (x[j], x[j], ...).
-    template <class V, class I, int j>
-    inline __attribute__((always_inline)) void splat(V &out, const V &x)
-    {
-      constexpr int L = sizeof(V) / sizeof(double);
-      I             mask;
-      for (int l = 0; l < L; ++l)
-        mask[l] = j;
-#if defined(__clang__)
-      out = V{} + x[j];
-#else
-      out = __builtin_shuffle(x, mask);
-#endif
-    }
+    using cdm::splat;
 
     /// f(std::integral_constant<int, j>) for j = 0..N−1 (unrolled at compile time).
     template <class F, std::size_t... js>

@@ -145,8 +145,8 @@ namespace kimp::lumped
         any_lo[v] = static_cast<int>(first < end ? first / 4 * 4 : 0);
         any_hi[v] = static_cast<int>(first < end ? (end + 3) / 4 * 4 : 0);
       }
-      const std::size_t l = static_cast<std::size_t>(lanes);
-      any_work.assign(l + p + std::max(p, (n + 3) / 4 * 4) + p + l + 2 * p, 0.0);
+      // u, Δu twice (the any-size kernel's double buffer, up to a multiple of 4), v.
+      any_work.assign(p + 2 * std::max(p, (n + 3) / 4 * 4) + p, 0.0);
     }
 
     width = static_cast<std::size_t>(cdm::block_steps) + 3;

@@ -22,6 +22,21 @@ namespace kimp::lumped::cdm
     typedef double U __attribute__((vector_size(8 * L), aligned(8), may_alias));
   };
 
+  /// out = (x[j], x[j], ...).
+  template <class V, class I, int j>
+  inline __attribute__((always_inline)) void splat(V &out, const V &x)
+  {
+    constexpr int L = sizeof(V) / sizeof(double);
+    I             mask;
+    for (int l = 0; l < L; ++l)
+      mask[l] = j;
+#if defined(__clang__)
+    out = x[j] - V{}; // x − (+0) is x, −0 included
+#else
+    out = __builtin_shuffle(x, mask);
+#endif
+  }
+
   /// peak = max(peak, |x|) element-wise (|x| clears the sign bit; max as std::max(peak, |x|)).
   template <class V, class I>
   inline __attribute__((always_inline)) void peak_abs(V &peak, const V &x)

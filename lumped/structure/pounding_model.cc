@@ -42,6 +42,12 @@ namespace kimp::lumped
         msg << where << ".mass = " << wall.mass << " kg (must be > 0)";
         throw std::invalid_argument(msg.str());
       }
+      if (wall.sdof_mass && !(std::isfinite(*wall.sdof_mass) && *wall.sdof_mass > 0.0))
+      {
+        std::ostringstream msg;
+        msg << where << ".sdof_mass = " << *wall.sdof_mass << " kg (must be > 0)";
+        throw std::invalid_argument(msg.str());
+      }
       if (wall.flexible && !(std::isfinite(wall.stiffness) && wall.stiffness > 0.0))
       {
         std::ostringstream msg;
@@ -125,12 +131,17 @@ namespace kimp::lumped
       for (int level = 0; level < n_levels; ++level)
       {
         ContactPair c;
-        c.name           = where + (level == 0 ? "" : "_floor1");
-        c.left_dof       = right ? level : -1;
-        c.right_dof      = right ? -1 : level;
-        c.gap            = wall.clear_gap();
-        c.effective_mass = effective_mass(masses_[static_cast<std::size_t>(level)], wall.mass);
-        c.law            = make_law(wall.law, c.effective_mass, where);
+        c.name            = where + (level == 0 ? "" : "_floor1");
+        c.left_dof        = right ? level : -1;
+        c.right_dof       = right ? -1 : level;
+        c.gap             = wall.clear_gap();
+        const double mass = masses_[static_cast<std::size_t>(level)];
+        // The law is the one calibrated against the wall mass `mass`, whatever the SDOF's mass:
+        // a flexible wall then differs from the rigid one by its compliance and inertia only,
+        // not by the law's dashpot constant (docs/physics.md §2 "Flexible moat wall"). The
+        // stable step needs the bodies' own masses.
+        c.effective_mass = effective_mass(mass, wall.flexible ? wall.oscillator_mass() : wall.mass);
+        c.law            = make_law(wall.law, effective_mass(mass, wall.mass), where);
         if (wall.flexible)
           flexible_contacts.emplace_back(contacts_.size(), &wall, right);
         contacts_.push_back(std::move(c));
@@ -189,7 +200,7 @@ namespace kimp::lumped
         continue;
       ShearBuilding sdof;
       sdof.name                    = where;
-      sdof.floor_masses            = {(*wall)->mass};
+      sdof.floor_masses            = {(*wall)->oscillator_mass()};
       sdof.storey_stiffnesses      = {(*wall)->stiffness};
       sdof.damping_ratio           = (*wall)->damping_ratio;
       sdof.isolation_damping_ratio = (*wall)->damping_ratio;

@@ -27,15 +27,18 @@ namespace kimp::lumped
 
   /**
    * Moat wall on one side of the isolation level: rigid, moving with the ground, or (`flexible`)
-   * a single-DOF oscillator of mass `mass`, stiffness `stiffness` and damping ratio
-   * `damping_ratio` attached to the ground (docs/physics.md §2 "Flexible moat wall"); the contact
-   * then acts between the isolation level and the wall's DOF.
+   * a single-DOF oscillator of mass `sdof_mass` (unset: `mass`), stiffness `stiffness` and damping
+   * ratio `damping_ratio` attached to the ground (docs/physics.md §2 "Flexible moat wall"); the
+   * contact then acts between the isolation level and the wall's DOF. The impact law's m_eff
+   * always takes `mass`, so a flexible wall with its own `sdof_mass` keeps the law (its dashpot
+   * constant) of the rigid wall of mass `mass`.
    *
    * | field            | unit | admissible     | meaning                                      |
    * |------------------|------|----------------|----------------------------------------------|
    * | gap              | m    | > 0            | distance from the isolation level to the     |
    * |                  |      |                | wall face (before bumpers)                   |
    * | mass             | kg   | > 0            | wall mass for m_eff in the law (thesis 500 t)|
+   * | sdof_mass        | kg   | > 0 or unset   | flexible: the SDOF's mass (unset: `mass`)    |
    * | bumper_thickness | m    | [0, gap)       | rubber bumper thickness t (law 7)            |
    * | bumper_recessed  | -    |                | true: bumpers sit in a recess, gap unchanged |
    * | flexible         | -    |                | false: rigid; true: SDOF wall                |
@@ -52,6 +55,11 @@ namespace kimp::lumped
     bool            flexible      = false;
     double          stiffness     = 1.5e9;
     double          damping_ratio = 0.05;
+    /// Flexible wall: the SDOF's mass, kg (unset: `mass`); not used by the law's m_eff.
+    std::optional<double> sdof_mass;
+
+    /// The mass of the wall's DOF, kg: `sdof_mass` if set, else `mass`.
+    double oscillator_mass() const { return sdof_mass.value_or(mass); }
 
     /// Clear gap before contact, m: gap − t unless recessed.
     double clear_gap() const { return bumper_recessed ? gap : gap - bumper_thickness; }
@@ -89,11 +97,14 @@ namespace kimp::lumped
    */
   struct ContactPair
   {
-    std::string                     name;
-    int                             left_dof       = -1;
-    int                             right_dof      = -1;
-    double                          gap            = 0.0; ///< clear gap, m
-    double                          effective_mass = 0.0; ///< kg (for ω_imp = √(k_t/m_eff))
+    std::string name;
+    int         left_dof  = -1;
+    int         right_dof = -1;
+    double      gap       = 0.0; ///< clear gap, m
+    /// The two bodies' m1·m2/(m1 + m2), kg, for ω_imp = √(k_t/m_eff) of the stable step. The
+    /// law's own m_eff may differ: at a flexible wall with `sdof_mass` the law keeps the m_eff of
+    /// the wall mass `mass` (MoatWall), this one the SDOF's.
+    double                          effective_mass = 0.0;
     std::shared_ptr<const ForceLaw> law; ///< prototype; integrators clone it per run
   };
 

@@ -316,6 +316,29 @@ TEST(LumpedScene, FlexibleWallsAreSdofBlocks)
             std::string::npos);
 }
 
+TEST(LumpedScene, FlexibleWallSdofMassIsNotTheLawsWallMass)
+{
+  // sdof_mass is the wall DOF's mass; the law's m_eff keeps `mass` (docs/physics.md §2).
+  const LumpedScene scene =
+    load("walls:\n  left:\n    flexible: true\n    mass: \"500 t\"\n    sdof_mass: \"20 t\"\n");
+  const auto pounding = make_pounding_scene(scene);
+  ASSERT_TRUE(pounding.left_wall && pounding.left_wall->sdof_mass);
+  EXPECT_NEAR(*pounding.left_wall->sdof_mass, 20e3, exact_tolerance * 20e3);
+  EXPECT_FALSE(pounding.right_wall->sdof_mass);
+  const kimp::lumped::PoundingModel model(pounding);
+  ASSERT_EQ(model.n_dofs(), 6u);
+  EXPECT_NEAR(model.masses()[5], 20e3, exact_tolerance * 20e3);
+  const kimp::lumped::PoundingModel rigid(
+    make_pounding_scene(load("walls:\n  left:\n    mass: \"500 t\"\n")));
+  // Same law: the same force at the same approach.
+  const auto a = model.contacts()[0].law->clone();
+  const auto b = rigid.contacts()[0].law->clone();
+  EXPECT_EQ(a->set_trial(1e-3, 0.5).force, b->set_trial(1e-3, 0.5).force);
+  EXPECT_NE(error_of("walls:\n  left:\n    flexible: true\n    sdof_mass: \"0 t\"\n")
+              .find("walls.left.sdof_mass"),
+            std::string::npos);
+}
+
 TEST(LumpedScene, FrictionPendulumAndBoucWenIsolators)
 {
   // Friction pendulum: W = g·Σm unless given; initial stiffness k_init + W/R.

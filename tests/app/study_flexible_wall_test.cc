@@ -1,6 +1,7 @@
 // The study's building against a flexible wall (app/study/study_flexible_wall.h): a very stiff
-// wall SDOF reproduces the rigid wall's response, and with a wall SDOF of the size the FEM gives
-// the energy balance closes with the wall's kinetic, strain and damping energy.
+// wall SDOF, heavy or light, reproduces the rigid wall's response (the laws keep the rigid run's
+// m_eff), and with a wall SDOF of the size the FEM gives the energy balance closes with the
+// wall's kinetic, strain and damping energy.
 #include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
@@ -66,59 +67,87 @@ namespace kimp::app
     {
       EXPECT_TRUE(w->flexible);
       EXPECT_EQ(w->stiffness, 3e9);
-      EXPECT_EQ(w->mass, 80e3);
+      ASSERT_TRUE(w->sdof_mass.has_value());
+      EXPECT_EQ(*w->sdof_mass, 80e3);
+      // The laws' m_eff keeps the rigid run's wall mass.
+      EXPECT_EQ(w->mass, s.rigid.walls.left.mass);
+      EXPECT_EQ(w->mass, s.study.walls.mass);
       EXPECT_EQ(w->damping_ratio, 0.05);
       EXPECT_EQ(w->gap, s.rigid.walls.left.gap);
     }
   }
 
-  TEST(StudyFlexibleWall, StiffWallReproducesTheRigidWall)
+  namespace
   {
-    // The rigid run uses the study's wall mass (500 t) in m_eff; so does the stiff SDOF here, so
-    // only the wall's compliance differs. Measured at k = 1e12 N/m: largest relative difference
-    // of the peaks (accelerations, drift, impact force, displacement) 1.4e-3 (the lumped test
-    // shows the 1/k approach).
-    constexpr double   rigid_limit_tolerance = 5e-3;
-    const BuildingCase s                     = building_case();
-    const auto         rigid                 = run_lumped_case("rigid", s.rigid, s.motion);
-    const auto         stiff                 = run_lumped_case("stiff",
-                                       flexible_wall_scene(s.rigid, sdof(1e12, s.study.walls.mass)),
-                                       s.motion);
-    ASSERT_TRUE(rigid.ok()) << rigid.status;
-    ASSERT_TRUE(stiff.ok()) << stiff.status;
-    ASSERT_GT(rigid.response.n_impacts(), 0u);
-    EXPECT_EQ(stiff.response.n_impacts(), rigid.response.n_impacts());
-    const auto peak_force = [](const lumped::Response &r)
+    double peak_force(const lumped::Response &r)
     {
       double f = 0;
       for (const auto &c : r.contacts)
         f = std::max(f, c.peak_force);
       return f;
-    };
-    const unsigned int top        = s.study.building.n_storeys;
-    const double       pairs[][2] = {
-            {rigid.response.peak_absolute_acceleration.at(0),
-             stiff.response.peak_absolute_acceleration.at(0)},
-            {rigid.response.peak_absolute_acceleration.at(top),
-             stiff.response.peak_absolute_acceleration.at(top)},
-            {rigid.response.max_interstorey_drift(), stiff.response.max_interstorey_drift()},
-            {peak_force(rigid.response), peak_force(stiff.response)},
-            {rigid.response.peak_displacement.at(0), stiff.response.peak_displacement.at(0)}};
-    double largest = 0;
-    for (const auto &p : pairs)
-    {
-      EXPECT_NEAR(p[1] / p[0], 1.0, rigid_limit_tolerance)
-        << "rigid " << p[0] << ", stiff " << p[1];
-      largest = std::max(largest, std::abs(p[1] / p[0] - 1));
     }
-    std::cout << "stiff wall against rigid: largest relative difference " << largest << '\n';
+
+    /// Largest relative difference of the peaks (base and top accelerations, drift, impact
+    /// force, isolation displacement) of a very stiff wall SDOF of mass `mass` against the rigid
+    /// wall, each pair checked against `tolerance`.
+    double stiff_against_rigid(const double mass, const double tolerance)
+    {
+      const BuildingCase s     = building_case();
+      const auto         rigid = run_lumped_case("rigid", s.rigid, s.motion);
+      const auto         stiff =
+        run_lumped_case("stiff", flexible_wall_scene(s.rigid, sdof(1e12, mass)), s.motion);
+      EXPECT_TRUE(rigid.ok()) << rigid.status;
+      EXPECT_TRUE(stiff.ok()) << stiff.status;
+      if (!rigid.ok() || !stiff.ok())
+        return INFINITY;
+      EXPECT_GT(rigid.response.n_impacts(), 0u);
+      EXPECT_EQ(stiff.response.n_impacts(), rigid.response.n_impacts());
+      const unsigned int top        = s.study.building.n_storeys;
+      const double       pairs[][2] = {
+              {rigid.response.peak_absolute_acceleration.at(0),
+               stiff.response.peak_absolute_acceleration.at(0)},
+              {rigid.response.peak_absolute_acceleration.at(top),
+               stiff.response.peak_absolute_acceleration.at(top)},
+              {rigid.response.max_interstorey_drift(), stiff.response.max_interstorey_drift()},
+              {peak_force(rigid.response), peak_force(stiff.response)},
+              {rigid.response.peak_displacement.at(0), stiff.response.peak_displacement.at(0)}};
+      double largest = 0;
+      for (const auto &p : pairs)
+      {
+        EXPECT_NEAR(p[1] / p[0], 1.0, tolerance) << "rigid " << p[0] << ", stiff " << p[1];
+        largest = std::max(largest, std::abs(p[1] / p[0] - 1));
+      }
+      return largest;
+    }
+  } // namespace
+
+  TEST(StudyFlexibleWall, StiffWallReproducesTheRigidWall)
+  {
+    // A SDOF of the wall mass (500 t) made stiff: only the wall's compliance differs. Measured at
+    // k = 1e12 N/m: largest relative difference of the peaks 1.4e-3 (the lumped test shows the
+    // 1/k approach).
+    constexpr double rigid_limit_tolerance = 5e-3;
+    std::cout << "stiff 500 t wall against rigid: largest relative difference "
+              << stiff_against_rigid(500e3, rigid_limit_tolerance) << '\n';
+  }
+
+  TEST(StudyFlexibleWall, StiffLightWallKeepsTheRigidRunsLaw)
+  {
+    // The SDOF mass the FEM gives (17.4 t at H = 1.25 m) made stiff: the laws keep the rigid
+    // run's m_eff (500 t wall), so the run still tends to the rigid one. Measured at 1e12 N/m:
+    // largest relative difference of the peaks 1.3e-3. With the SDOF's mass in the laws' m_eff
+    // as well (the dashpot c ∝ sqrt(m_eff) 3.4 times smaller) the peaks differed by 5.6 %
+    // (drift) to 11 % (top acceleration), impact force +8.6 %.
+    constexpr double rigid_limit_tolerance = 5e-3;
+    std::cout << "stiff 17.4 t wall against rigid: largest relative difference "
+              << stiff_against_rigid(17.4e3, rigid_limit_tolerance) << '\n';
   }
 
   TEST(StudyFlexibleWall, EnergyBalanceClosesWithTheWallsEnergy)
   {
     // A wall of the size the FEM gives at H = 1.25 m (order 3 GN/m and 100 t for the building
     // width): it takes part of the impact energy and the balance still closes. Measured: largest
-    // residual 1.0e-7 of the energy supplied, peak wall displacement 6.3 mm.
+    // residual 9.2e-8 of the energy supplied, peak wall displacement 6.1 mm.
     constexpr double   energy_tolerance = 0.01;
     const BuildingCase s                = building_case();
     const auto         r =
