@@ -949,7 +949,7 @@ const kimp = (function () {
         const ys = f.nodes.map((v) => m.vertices[v][1]);
         const [ya, yb] = [Math.min(...ys), Math.max(...ys)];
         const bh = Math.max(2, Math.min(14, 0.8 * ih / f.nodes.length));
-        parts.push(`<g class="pressure-profile"><rect x="${ix - 8}" y="${iy - 26}" width="${iw + 16}" height="${ih + 52}" fill="#fffe" stroke="#0003"/>`);
+        parts.push(`<g class="pressure-profile"><rect x="${ix - 8}" y="${iy - 26}" width="${iw + 16}" height="${ih + 52}" fill="#fff" fill-opacity="0.9" stroke="#0003"/>`);
         parts.push(`<text x="${ix}" y="${iy - 10}" font-size="11">pressure along the face (${f.unit})</text>`);
         f.nodes.forEach((v, k) => {
           const yc = iy + ih - bh / 2 - (yb > ya ? (ys[k] - ya) / (yb - ya) : 0.5) * (ih - bh);
