@@ -360,6 +360,15 @@ namespace kimp::fem
     std::vector<double> mean_stress;      ///< Pa, [frame][cell], tension positive
     /// -, [frame][cell]; non-linear laws only (empty otherwise).
     std::vector<double> damage, equivalent_plastic_strain;
+    /// Vertex indices of the contact nodes (the penalty contact's slaves: the wall face with a
+    /// rigid slab, the slab front otherwise), ordered along the face by y, [node].
+    std::vector<double> contact_vertices;
+    /// m, tributary length of each contact node on the face (reference geometry), [node].
+    std::vector<double> contact_length;
+    /// Pa, [frame][node]: slab-wall contact pressure, the node's penalty force (normal contact
+    /// traction, positive in compression) over its tributary length; sum(pressure * length)
+    /// is the contact force per metre at the frame's time.
+    std::vector<double> contact_pressure;
   };
 
   /** Stress at one Gauss point of the geostatic state (tension positive). */

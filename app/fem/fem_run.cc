@@ -160,6 +160,13 @@ namespace kimp::app
                        n_cells,
                        "1");
       }
+      if (!f.contact_vertices.empty())
+      {
+        const std::size_t n_nodes = f.contact_vertices.size();
+        g.write("contact_vertices", f.contact_vertices, "1");
+        g.write("contact_length", f.contact_length, "m");
+        g.write_matrix("contact_pressure", f.contact_pressure, n_frames, n_nodes, "Pa");
+      }
     }
 
     nlohmann::ordered_json summary_json(const FemCase &c, const std::string &mesh_file)

@@ -203,6 +203,7 @@ namespace kimp::fem::internal
                           prm.contact_damping_ratio;
       const double c  = 2 * xi * std::sqrt(k * m_red);
       slaves.push_back({i, k, c});
+      slave_length.push_back(tributary[i]);
       contact_width += tributary[i];
       omega_penalty = std::max(omega_penalty, std::sqrt(k / m_red));
       slave_y_min   = std::min(slave_y_min, keys[i].second);

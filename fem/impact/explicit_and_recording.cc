@@ -81,7 +81,7 @@ namespace kimp::fem::internal
       if (write_vtu && n % vtu_every == 0)
         output_results(t, u, v_n, fc);
       if (frame_every && n % frame_every == 0)
-        record_frame(t, u);
+        record_frame(t, u, ev);
 
       if (ev.total_force > 0)
       {
@@ -399,7 +399,7 @@ namespace kimp::fem::internal
     }
   }
 
-  void ImpactProblem::record_frame(double t, const Vec &u)
+  void ImpactProblem::record_frame(double t, const Vec &u, const PenaltyContact::Evaluation &ev)
   {
     Vec u_g(locally_owned, locally_relevant, comm);
     u_g                      = u;
@@ -468,6 +468,7 @@ namespace kimp::fem::internal
       append(frames.damage, 2);
       append(frames.equivalent_plastic_strain, 3);
     }
+    record_contact_pressure(ev);
   }
 
   void ImpactProblem::finish(ImpactResult &result, double wall_seconds)

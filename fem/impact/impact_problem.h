@@ -160,10 +160,16 @@ namespace kimp::fem::internal
       Vector<float> sxx, syy, sxy, mean_stress, von_mises, damage, eq_plastic;
     };
     CellMeans cell_means(const Vec &u_g) const;
-    /** Appends a frame of ImpactResult::frames at time t (collective; frames.cc). */
-    void         record_frame(double t, const Vec &u);
+    /** Appends a frame of ImpactResult::frames at time t with the contact evaluation ev of
+     *  that state (collective). */
+    void         record_frame(double t, const Vec &u, const PenaltyContact::Evaluation &ev);
     ImpactFrames frames;
-    void         finish(ImpactResult &result, double wall_seconds);
+
+    // frames.cc
+    /** Appends the contact pressure of ev to frames (and, at the first frame, the contact
+     *  nodes' vertices and tributary lengths). ev is the same on every rank. */
+    void record_contact_pressure(const PenaltyContact::Evaluation &ev);
+    void finish(ImpactResult &result, double wall_seconds);
 
     const ImpactParameters                    prm;
     MPI_Comm                                  comm;
@@ -180,6 +186,7 @@ namespace kimp::fem::internal
     std::unique_ptr<PenaltyContact>      contact;
     std::vector<types::global_dof_index> contact_dofs; // compact node component -> global DoF
     std::vector<double>                  wall_weight, front_weight; // compact node weights
+    std::vector<double>                  slave_length; // tributary length per slave (m)
     double                               initial_gap = 0;
     double contact_width = 0, contact_wave_speed = 0; // slave face length (m), wall c_p (m/s)
     double omega_penalty = 0, omega_mesh = 0;

@@ -282,7 +282,7 @@ namespace kimp::fem::internal
       if (write_vtu)
         output_results(0.0, u, v, padded_force(ev, cu.size()));
       if (frame_every)
-        record_frame(0.0, u);
+        record_frame(0.0, u, ev);
     }
 
     // One Newmark step of size dt / 2^level from (u, v, acc) into (u_np1, v_np1, a_np1):
@@ -450,7 +450,7 @@ namespace kimp::fem::internal
       if (write_vtu && n % vtu_every == 0)
         output_results(t_np1, u, v, padded_force(ev, cu.size()));
       if (frame_every && n % frame_every == 0)
-        record_frame(t_np1, u);
+        record_frame(t_np1, u, ev);
       if (prm.progress && n % prm.progress_interval == 0 &&
           Utilities::MPI::this_mpi_process(comm) == 0)
         prm.progress(t_np1, prm.end_time);

@@ -889,6 +889,20 @@ const kimp = (function () {
         for (const row of g(key).data) for (const v of row) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
         m.fields[key] = { values: g(key).data, text: text, scale: scale, unit: unit, lo: lo, hi: hi };
       }
+      // The contact pressure is per contact node, not per cell: drawn on the contact face only.
+      const cv = g('contact_vertices');
+      const cp = g('contact_pressure');
+      if (cv && cp && cv.data.length > 1) {
+        let hi = 0;
+        for (const row of cp.data) for (const v of row) hi = Math.max(hi, v);
+        const nodes = cv.data.map(Number);
+        // The cell of each face between neighbouring contact nodes (two of its vertices).
+        const faceCell = nodes.slice(1).map((b, k) => m.cells.findIndex((c) => c.includes(nodes[k]) && c.includes(b)));
+        m.fields.contact_pressure = {
+          values: cp.data, text: 'contact pressure', scale: hi >= 1e6 ? 1e-6 : 1e-3, unit: hi >= 1e6 ? 'MPa' : 'kPa',
+          lo: 0, hi: hi, nodes: nodes, faceCell: faceCell, length: g('contact_length') ? g('contact_length').data : null,
+        };
+      }
       let x0 = Infinity; let x1 = -Infinity; let y0 = Infinity; let y1 = -Infinity;
       for (const [x, y] of m.vertices) { x0 = Math.min(x0, x); x1 = Math.max(x1, x); y0 = Math.min(y0, y); y1 = Math.max(y1, y); }
       m.box = [x0, x1, y0, y1];
@@ -911,10 +925,42 @@ const kimp = (function () {
       const Y = (y) => H - 20 - (y - y0) * sc;
       const parts = [];
       const span = f.hi - f.lo || 1;
+      const at = (v) => [X(m.vertices[v][0] + e * u[2 * v]), Y(m.vertices[v][1] + e * u[2 * v + 1])];
+      // Nodal field (contact pressure): the mesh neutral, the cells along the contact face in
+      // the mean pressure of their face, and over them each node's tributary part of the face.
+      const cellFill = new Map();
+      if (f.nodes) f.faceCell.forEach((c, k) => { if (c >= 0) cellFill.set(c, ramp(0.5 * (f.values[i][k] + f.values[i][k + 1]) / span)); });
       m.cells.forEach((c, k) => {
-        const pts = c.map((v) => `${X(m.vertices[v][0] + e * u[2 * v]).toFixed(1)},${Y(m.vertices[v][1] + e * u[2 * v + 1]).toFixed(1)}`).join(' ');
-        parts.push(`<polygon points="${pts}" fill="${ramp((f.values[i][k] - f.lo) / span)}" stroke="#0003" stroke-width="0.3"/>`);
+        const pts = c.map((v) => at(v).map((z) => z.toFixed(1)).join(',')).join(' ');
+        const fill = f.nodes ? (cellFill.get(k) || '#d9d9d9') : ramp((f.values[i][k] - f.lo) / span);
+        parts.push(`<polygon points="${pts}" fill="${fill}" stroke="#0003" stroke-width="0.3"/>`);
       });
+      if (f.nodes) {
+        const p = f.nodes.map(at);
+        const mid = (a, b) => [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+        f.nodes.forEach((v, k) => {
+          const from = k > 0 ? mid(p[k - 1], p[k]) : p[k];
+          const to = k + 1 < p.length ? mid(p[k], p[k + 1]) : p[k];
+          const xy = [from, p[k], to].map((q) => q.map((z) => z.toFixed(1)).join(',')).join(' ');
+          parts.push(`<polyline class="contact-face" points="${xy}" fill="none" stroke="${ramp(f.values[i][k] / span)}" stroke-width="7"/>`);
+        });
+        // The face is short beside the model: its profile as bars, bottom to top (inset).
+        const [ix, iy, iw, ih] = [W - 430, 44, 190, 150];
+        const ys = f.nodes.map((v) => m.vertices[v][1]);
+        const [ya, yb] = [Math.min(...ys), Math.max(...ys)];
+        const bh = Math.max(2, Math.min(14, 0.8 * ih / f.nodes.length));
+        parts.push(`<g class="pressure-profile"><rect x="${ix - 8}" y="${iy - 26}" width="${iw + 16}" height="${ih + 52}" fill="#fff" fill-opacity="0.9" stroke="#0003"/>`);
+        parts.push(`<text x="${ix}" y="${iy - 10}" font-size="11">pressure along the face (${f.unit})</text>`);
+        f.nodes.forEach((v, k) => {
+          const yc = iy + ih - bh / 2 - (yb > ya ? (ys[k] - ya) / (yb - ya) : 0.5) * (ih - bh);
+          const w = Math.max(0, f.values[i][k] / span) * iw;
+          parts.push(`<rect x="${ix}" y="${(yc - bh / 2).toFixed(1)}" width="${w.toFixed(1)}" height="${bh.toFixed(1)}" fill="${ramp(f.values[i][k] / span)}"/>`);
+        });
+        parts.push(`<line x1="${ix}" y1="${iy}" x2="${ix}" y2="${iy + ih}" stroke="#000"/>`);
+        parts.push(`<text x="${ix}" y="${iy + ih + 14}" font-size="10">0</text>`);
+        parts.push(`<text x="${ix + iw}" y="${iy + ih + 14}" font-size="10" text-anchor="end">${fmt(f.hi * f.scale, 4)}</text>`);
+        parts.push(`<text x="${ix + iw / 2}" y="${iy + ih + 14}" font-size="10" text-anchor="middle">y ${fmt(ya, 4)} to ${fmt(yb, 4)} m</text></g>`);
+      }
       // Colour bar: the field's range over all frames.
       const bx = W - 100;
       for (let j = 0; j < 50; ++j) {

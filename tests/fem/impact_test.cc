@@ -480,9 +480,26 @@ namespace
       ASSERT_NEAR(f.displacement[i], g.displacement[i], 1e-10 * u_max) << "value " << i;
     for (std::size_t i = 0; i < f.von_mises_stress.size(); ++i)
       ASSERT_NEAR(f.von_mises_stress[i], g.von_mises_stress[i], 1e-8 * s_max) << "value " << i;
+    // The contact pressure: the same contact nodes (mesh vertices on the slab front) and
+    // pressures, to the tolerance of the displacements it comes from.
+    const std::size_t n_contact = f.contact_vertices.size();
+    ASSERT_GT(n_contact, 1u);
+    ASSERT_EQ(f.contact_vertices, g.contact_vertices);
+    ASSERT_EQ(f.contact_length, g.contact_length);
+    ASSERT_EQ(f.contact_pressure.size(), f.time.size() * n_contact);
+    ASSERT_EQ(g.contact_pressure.size(), f.contact_pressure.size());
+    for (const double v : f.contact_vertices)
+      ASSERT_LT(v, static_cast<double>(n_vertices));
+    double p_max = 0;
+    for (const double x : g.contact_pressure)
+      p_max = std::max(p_max, x);
+    ASSERT_GT(p_max, 0);
+    for (std::size_t i = 0; i < f.contact_pressure.size(); ++i)
+      ASSERT_NEAR(f.contact_pressure[i], g.contact_pressure[i], 1e-8 * p_max) << "value " << i;
     std::cout << "frames: " << f.time.size() << " of " << n_cells << " cells and " << n_vertices
               << " vertices on " << world.summary.n_ranks << " ranks, max |u| " << u_max
-              << " m, max von Mises " << s_max << " Pa\n";
+              << " m, max von Mises " << s_max << " Pa, max contact pressure " << p_max << " Pa on "
+              << n_contact << " nodes\n";
   }
 
   TEST(Mpi, DistributedImplicitRunMatchesSerialRun)

@@ -73,6 +73,32 @@ async function main() {
       check(fields.includes('von_mises_stress') && fields.includes('mean_stress'), `fields to colour by: ${fields.join(', ')}`);
       await page.$eval('svg.fem-animation', (s) => s.scrollIntoView());
       await page.screenshot({ path: path.join(artefacts, path.basename(dir) + '_fem_mesh.png') });
+      if (fields.includes('contact_pressure')) {
+        // Contact pressure at the frame of the largest contact force: the contact face drawn in
+        // the pressure's colours over a neutral mesh, other colours than the stress field's.
+        const peak = await page.evaluate(() => {
+          const a = window.kimp.femAnimation();
+          const { values: rows, length: len } = a.state.mesh.fields.contact_pressure;
+          const force = rows.map((r) => r.reduce((s, p, k) => s + p * len[k], 0));
+          const i = force.indexOf(Math.max(...force));
+          a.seek(i);
+          return { frame: i, force: force[i] };
+        });
+        check(peak.force > 0, `frame ${peak.frame} has the largest integrated contact pressure (${(peak.force * 1e-3).toFixed(1)} kN/m)`);
+        const colours = () => page.$$eval('svg.fem-animation polygon, svg.fem-animation polyline', (ps) => ps.map((p) => p.getAttribute('fill') + '/' + p.getAttribute('stroke')).join(';'));
+        const before = await colours();
+        await page.select('.fem-field', 'contact_pressure');
+        const after = await colours();
+        check(after !== before, 'choosing contact pressure changes the drawn colours');
+        const face = await page.$$eval('svg.fem-animation polyline.contact-face', (ls) => ls.map((l) => l.getAttribute('stroke')));
+        const nodes = await page.evaluate(() => window.kimp.femAnimation().state.mesh.fields.contact_pressure.nodes.length);
+        check(face.length === nodes && new Set(face).size > 1, `contact face drawn: ${face.length} pieces for ${nodes} nodes, ${new Set(face).size} colours`);
+        const neutral = await page.$$eval('svg.fem-animation polygon', (ps) => ps.filter((p) => p.getAttribute('fill') === '#d9d9d9').length);
+        check(neutral > 0.5 * nCells, `the rest of the mesh neutral (${neutral} of ${nCells} cells)`);
+        const bar = await page.$eval('svg.fem-animation', (s) => s.textContent);
+        check(/contact pressure \((kPa|MPa)\)/.test(bar), 'colour bar in kPa or MPa');
+        await page.screenshot({ path: path.join(artefacts, path.basename(dir) + '_fem_pressure.png') });
+      }
     }
     check(log.errors.length === 0, `no console error (${log.errors.join(' | ') || 'none'})`);
   } finally {
