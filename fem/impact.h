@@ -91,7 +91,8 @@ namespace kimp::fem
     /** Largest out-of-balance force after the static step, as a fraction of the weight of the
      *  materials of initial_stress_K0 (or of all weight without them) (> 0). */
     double tolerance = 1e-8;
-    /** Modified-Newton iterations of the static step before NumericalError (> 0). */
+    /** Iterations of the static step (modified Newton, then the consistent tangent) before
+     *  NumericalError (> 0). */
     unsigned int max_iterations = 200;
   };
 
@@ -174,7 +175,9 @@ namespace kimp::fem
      * must be axis-parallel. Allowed ids: geometry::fixed_base and geometry::soil_far_side.
      * Empty (default): fixed base and rollers. The dashpots leave the explicit stability limit
      * unchanged (they enter at the full step, implicitly in the velocity); their work is the
-     * radiated energy of the energy balance.
+     * radiated energy of the energy balance. With a geostatic state the static step holds
+     * these faces as the rollers do and their reactions are applied as constant forces after it,
+     * so the dynamic step starts in equilibrium.
      */
     std::vector<unsigned int> absorbing_boundaries;
 

@@ -250,7 +250,8 @@ namespace kimp::fem::internal
 
     // Geostatic state (geostatic.cc). internal_force() then returns f_int(u) + f_0 - f_g, with
     // f_g the gravity load and f_0 the initial stress of points whose law cannot hold it:
-    // geostatic_offset = f_0 - f_g. The time loops start from u = geostatic_u; recording
+    // geostatic_offset = f_0 - f_g (- R, the static reactions of faces released to absorbing
+    // dashpots, so that they keep holding). The time loops start from u = geostatic_u; recording
     // subtracts it and the point energies of that state.
     bool                     geostatic_on = false;
     Vec                      geostatic_offset, geostatic_u;
