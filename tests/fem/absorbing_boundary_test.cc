@@ -281,14 +281,7 @@ namespace
     const auto world           = run_impact(p, MPI_COMM_WORLD, nullptr);
     const auto self            = run_impact(p, MPI_COMM_SELF, nullptr);
     ASSERT_EQ(world.history.time.size(), self.history.time.size());
-    double max_force = 0, max_difference = 0;
-    for (std::size_t i = 0; i < self.history.time.size(); ++i)
-    {
-      max_force = std::max(max_force, self.history.contact_force[i]);
-      max_difference =
-        std::max(max_difference,
-                 std::abs(world.history.contact_force[i] - self.history.contact_force[i]));
-    }
+    const auto [max_force, max_difference] = force_history_difference(world, self);
     ASSERT_GT(max_force, 0);
     EXPECT_LT(max_difference, tolerance * max_force);
     EXPECT_NEAR(world.summary.radiated_energy,

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 #include <unistd.h>
+#include <utility>
 
 #include "fem/impact.h"
 #include "geometry/scene_geometry.h"
@@ -126,4 +127,21 @@ namespace kimp::fem::testing
     return p;
   }
 
+  /**
+   * Compare the contact-force histories of two runs sampled alike (e.g. on 1-2 ranks and on
+   * MPI_COMM_SELF): {largest force of `reference`, largest |force(run) - force(reference)|}, N/m.
+   */
+  inline std::pair<double, double> force_history_difference(const ImpactResult &run,
+                                                            const ImpactResult &reference)
+  {
+    double max_force = 0, max_difference = 0;
+    for (std::size_t i = 0; i < reference.history.time.size(); ++i)
+    {
+      max_force = std::max(max_force, reference.history.contact_force[i]);
+      max_difference =
+        std::max(max_difference,
+                 std::abs(run.history.contact_force[i] - reference.history.contact_force[i]));
+    }
+    return {max_force, max_difference};
+  }
 } // namespace kimp::fem::testing
