@@ -54,16 +54,31 @@ namespace kimp::fem
     }
 
     /** In-plane eigen-decomposition of a symmetric 2 x 2 tensor {xx, yy, xy}: values a >= b,
-     *  unit eigenvector of a = (c, s). */
+     *  unit eigenvector of a = (c, s) = (cos t, sin t), t = atan2(xy, d) / 2 in (-pi/2, pi/2],
+     *  from the half-angle formulas (no trigonometric calls; equal to them up to round-off). */
     void eigen2(double xx, double yy, double xy, double &a, double &b, double &c, double &s)
     {
       const double m = 0.5 * (xx + yy), d = 0.5 * (xx - yy);
       const double r = std::sqrt(d * d + xy * xy);
       a              = m + r;
       b              = m - r;
-      const double t = 0.5 * std::atan2(xy, d);
-      c              = std::cos(t);
-      s              = std::sin(t);
+      if (!(r > 0))
+      {
+        c = 1;
+        s = 0;
+      }
+      else if (d >= 0)
+      {
+        // cos 2t = d / r >= 0: c >= 1 / sqrt(2), s from sin 2t = 2 s c.
+        c = std::sqrt(0.5 * (1 + d / r));
+        s = xy / (2 * r * c);
+      }
+      else
+      {
+        // |t| > pi / 4: |s| >= 1 / sqrt(2) with the sign of xy (t = +-pi/2 at xy = +-0).
+        s = std::copysign(std::sqrt(0.5 * (1 - d / r)), xy);
+        c = xy / (2 * r * s);
+      }
     }
 
     /** The eigenvalues a >= b of eigen2(), without the eigenvector (no trigonometry). */
@@ -159,8 +174,9 @@ namespace kimp::fem
     };
   } // namespace
 
-  MohrCoulombLaw::MohrCoulombLaw(const SoilParameters &p)
+  MohrCoulombLaw::MohrCoulombLaw(const SoilParameters &p, bool exhaustive)
     : p_(p)
+    , exhaustive_(exhaustive)
   {
     if (!(p.youngs_modulus > 0) || !(p.poisson_ratio >= 0 && p.poisson_ratio < 0.5) ||
         !(p.cohesion >= 0) || !(p.friction_angle >= 0 && p.friction_angle < 0.5 * pi) ||
@@ -174,6 +190,7 @@ namespace kimp::fem
     mu_     = E / (2 * (1 + nu));
 
     // Constants of every return mapping, computed once instead of per point.
+    set_index_.fill(-1);
     const MohrCoulombPlanes pl(p_);
     for (unsigned int n = 0; n < 9; ++n)
     {
@@ -239,6 +256,9 @@ namespace kimp::fem
       for (unsigned int r = 0; r < 3; ++r)
         for (unsigned int j = 0; j < 3; ++j)
           as.upper[r][j] = r < as.k && j < as.k ? m[r][j] : 0.0;
+      if (as.k == 1)
+        single_set_[as.idx[0]] = static_cast<int>(active_sets_.size());
+      set_index_[set] = static_cast<int>(active_sets_.size());
       active_sets_.push_back(as);
     }
   }
@@ -282,6 +302,7 @@ namespace kimp::fem
       // would be zero), and the stress is the trial stress, here without the eigenframe's
       // trigonometry (equal to the rotated principal stresses up to round-off).
       h1[6]           = static_cast<double>(ReturnType::elastic);
+      h1[7]           = 0;
       const double tv = exx + eyy + ezz;
       return {{lam * tv + 2 * mu * exx, lam * tv + 2 * mu * eyy, 2 * mu * exy}};
     }
@@ -291,20 +312,24 @@ namespace kimp::fem
     const auto  &Dg = dg_;
     if (plastic)
     {
-      // Active-set search: every set of <= 3 planes; keep the admissible one (all multipliers
-      // >= 0, every plane satisfied) closest to the trial state in the complementary energy.
-      // Each set's elimination is precomputed: only its right-hand side is processed here.
-      double best_dist = std::numeric_limits<double>::max();
-      for (const ActiveSet &as : active_sets_)
+      // Active-set search (de Souza Neto et al. 2008 Box 8.4 in spirit): first the most
+      // violated plane alone (the main-plane return of the textbook, three quarters of the
+      // plastic points of an impact); if its stress violates another plane or its multiplier is
+      // negative, every set of <= 3 planes, keeping the admissible one (all multipliers >= 0,
+      // every plane satisfied) closest to the trial state in the complementary energy. Each
+      // set's elimination is precomputed: only its right-hand side is processed here.
+      const double E = p_.youngs_modulus, nu = p_.poisson_ratio;
+      // Returns the complementary-energy distance of the set's stress (written to sn), or a
+      // negative number if the set is not admissible.
+      const auto try_set = [&](const ActiveSet &as, Vec3 &sn) -> double
       {
-        const unsigned int  k = as.k, set = as.set;
+        const unsigned int  k   = as.k;
         const unsigned int *idx = as.idx;
         double              rhs[3], dg[3];
         for (unsigned int i = 0; i < k; ++i)
           rhs[i] = ftr[idx[i]];
         for (unsigned int o = 0; o < as.n_ops; ++o)
           rhs[as.op_dst[o]] -= as.op_f[o] * rhs[as.op_src[o]];
-        bool negative = false;
         for (int col = static_cast<int>(k) - 1; col >= 0; --col)
         {
           double sum = rhs[as.perm[col]];
@@ -312,39 +337,56 @@ namespace kimp::fem
             sum -= as.upper[as.perm[col]][j] * dg[j];
           const double pivot = as.upper[as.perm[col]][col];
           // A negative multiplier rejects the set: known from the signs, before the division.
-          negative = (sum < 0 && pivot > 0) || (sum > 0 && pivot < 0);
-          if (negative)
-            break;
+          if ((sum < 0 && pivot > 0) || (sum > 0 && pivot < 0))
+            return -1.0;
           dg[col] = sum / pivot;
         }
-        if (negative)
-          continue;
-        bool ok = true;
         for (unsigned int i = 0; i < k; ++i)
-          ok = ok && dg[i] >= 0;
-        if (!ok)
-          continue;
-        Vec3 sn = st;
+          if (!(dg[i] >= 0))
+            return -1.0;
+        sn = st;
         for (unsigned int i = 0; i < k; ++i)
           for (unsigned int q = 0; q < 3; ++q)
             sn[q] -= dg[i] * Dg[idx[i]][q];
-        for (unsigned int n = 0; n < 9 && ok; ++n)
-          ok = a_[n][0] * sn[0] + a_[n][1] * sn[1] + a_[n][2] * sn[2] - b_[n] <= tol;
-        if (!ok)
-          continue;
+        for (unsigned int n = 0; n < 9; ++n)
+          if (!(a_[n][0] * sn[0] + a_[n][1] * sn[1] + a_[n][2] * sn[2] - b_[n] <= tol))
+            return -1.0;
         // Complementary energy of the stress jump, C = D^-1 in principal space.
-        const Vec3   d{{st[0] - sn[0], st[1] - sn[1], st[2] - sn[2]}};
-        const double E = p_.youngs_modulus, nu = p_.poisson_ratio;
-        const double dist = ((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) -
-                             2 * nu * (d[0] * d[1] + d[1] * d[2] + d[0] * d[2])) /
-                            E;
-        if (dist < best_dist)
+        const Vec3 d{{st[0] - sn[0], st[1] - sn[1], st[2] - sn[2]}};
+        return ((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) -
+                2 * nu * (d[0] * d[1] + d[1] * d[2] + d[0] * d[2])) /
+               E;
+      };
+      const auto accept = [&](const ActiveSet &as, const Vec3 &sn)
+      {
+        best_set = as.set;
+        best_k   = as.k;
+        std::copy(as.idx, as.idx + as.k, best_idx);
+        sig = sn;
+      };
+      unsigned int worst = 0;
+      for (unsigned int n = 1; n < 9; ++n)
+        if (ftr[n] > ftr[worst])
+          worst = n;
+      // The set of the point's last plastic return (an edge or the apex stays so for many steps).
+      const int last = static_cast<int>(h0[7]) > 0 ? set_index_[static_cast<int>(h0[7])] : -1;
+      Vec3      sn;
+      if (!exhaustive_ && single_set_[worst] >= 0 &&
+          try_set(active_sets_[single_set_[worst]], sn) >= 0)
+        accept(active_sets_[single_set_[worst]], sn);
+      else if (!exhaustive_ && last >= 0 && try_set(active_sets_[last], sn) >= 0)
+        accept(active_sets_[last], sn);
+      else
+      {
+        double best_dist = std::numeric_limits<double>::max();
+        for (const ActiveSet &as : active_sets_)
         {
-          best_dist = dist;
-          best_set  = set;
-          best_k    = k;
-          std::copy(idx, idx + k, best_idx);
-          sig = sn;
+          const double dist = try_set(as, sn);
+          if (dist >= 0 && dist < best_dist)
+          {
+            best_dist = dist;
+            accept(as, sn);
+          }
         }
       }
       if (best_set == 0)
@@ -366,6 +408,7 @@ namespace kimp::fem
     h1[3] = h0[3] + 2 * c * s * (dep[0] - dep[1]);
     h1[4] = h0[4] + std::sqrt(2.0 / 3.0 * (dep[0] * dep[0] + dep[1] * dep[1] + dep[2] * dep[2]));
     h1[5] = h0[5] + sig[0] * dep[0] + sig[1] * dep[1] + sig[2] * dep[2];
+    h1[7] = static_cast<double>(best_set);
     if (!plastic)
       h1[6] = static_cast<double>(ReturnType::elastic);
     else
@@ -438,7 +481,7 @@ namespace kimp::fem
 
   VoigtTangent MohrCoulombLaw::tangent(const VoigtStrain &strain, const double *committed) const
   {
-    double       scratch[7];
+    double       scratch[8];
     VoigtTangent t{};
     update(strain, committed, scratch, &t);
     return t;

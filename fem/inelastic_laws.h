@@ -60,8 +60,12 @@ namespace kimp::fem
   class MohrCoulombLaw final : public MaterialLaw
   {
   public:
-    explicit MohrCoulombLaw(const SoilParameters &p);
-    unsigned int n_history() const override { return 7; }
+    /** @p exhaustive: search every active set at every plastic point (the oracle of the
+     *  tests; the default tries the most violated plane and the point's last set first). */
+    explicit MohrCoulombLaw(const SoilParameters &p, bool exhaustive = false);
+    /** History: plastic strain {xx, yy, zz, gamma_xy}, equivalent plastic strain, plastic
+     *  dissipation, ReturnType of the last update, bit mask of its active set (0: elastic). */
+    unsigned int n_history() const override { return 8; }
     VoigtStress
     stress(const VoigtStrain &strain, const double *committed, double *trial) const override;
     VoigtTangent tangent(const VoigtStrain &strain, const double *committed) const override;
@@ -86,6 +90,7 @@ namespace kimp::fem
                           double            *trial,
                           VoigtTangent      *tangent) const;
     SoilParameters p_;
+    bool           exhaustive_;
     double         lambda_, mu_;
     /** The 9 planes a.sigma <= b in principal space (6 Mohr-Coulomb, 3 cut-off), their flow
      *  directions' images D g: constants of the law, computed once. */
@@ -103,6 +108,10 @@ namespace kimp::fem
       double       upper[3][3]{}; ///< the reduced matrix (rows as stored, used through perm)
     };
     std::vector<ActiveSet> active_sets_; ///< the non-singular sets in ascending mask order
+    /// Index in active_sets_ of the set of plane n alone (-1 if singular).
+    int single_set_[9] = {-1, -1, -1, -1, -1, -1, -1, -1, -1};
+    /// Index in active_sets_ of each bit mask of planes (-1: not a candidate set).
+    std::array<int, 512> set_index_;
   };
 
   /**

@@ -43,11 +43,14 @@ namespace kimp::fem
   {
     for (unsigned int p = 0; p < n; ++p)
     {
-      const double *h0     = committed + static_cast<std::size_t>(p) * stride;
-      double       *h1     = trial + static_cast<std::size_t>(p) * stride;
-      stress[p]            = this->stress(strain[p], h0, h1);
-      const PointOutput po = output(strain[p], h1);
-      energy[p]            = {{po.stored_energy, po.plastic_dissipation, po.damage_dissipation}};
+      const double *h0 = committed + static_cast<std::size_t>(p) * stride;
+      double       *h1 = trial + static_cast<std::size_t>(p) * stride;
+      stress[p]        = this->stress(strain[p], h0, h1);
+      if (energy != nullptr)
+      {
+        const PointOutput po = output(strain[p], h1);
+        energy[p]            = {{po.stored_energy, po.plastic_dissipation, po.damage_dissipation}};
+      }
     }
   }
 

@@ -81,8 +81,9 @@ namespace kimp::fem
     /**
      * Batched update of @p n points: for p < n, stress[p] = stress(strain[p], committed + p *
      * stride, trial + p * stride) and energy[p] = {stored, plastic, damage} of output() (J/m^3)
-     * with the trial history written. One virtual call per batch; the laws override it with their
-     * inlined point update (same numbers as the point-wise calls). Default: the point-wise calls.
+     * with the trial history written; @p energy may be nullptr (the energies are then not
+     * computed). One virtual call per batch; the laws override it with their inlined point update
+     * (same numbers as the point-wise calls). Default: the point-wise calls.
      */
     virtual void update_points(unsigned int           n,
                                const VoigtStrain     *strain,
@@ -109,11 +110,14 @@ namespace kimp::fem
   {
     for (unsigned int p = 0; p < n; ++p)
     {
-      const double *h0     = committed + static_cast<std::size_t>(p) * stride;
-      double       *h1     = trial + static_cast<std::size_t>(p) * stride;
-      stress[p]            = law.Law::stress(strain[p], h0, h1);
-      const PointOutput po = law.Law::output(strain[p], h1);
-      energy[p]            = {{po.stored_energy, po.plastic_dissipation, po.damage_dissipation}};
+      const double *h0 = committed + static_cast<std::size_t>(p) * stride;
+      double       *h1 = trial + static_cast<std::size_t>(p) * stride;
+      stress[p]        = law.Law::stress(strain[p], h0, h1);
+      if (energy != nullptr)
+      {
+        const PointOutput po = law.Law::output(strain[p], h1);
+        energy[p]            = {{po.stored_energy, po.plastic_dissipation, po.damage_dissipation}};
+      }
     }
   }
 

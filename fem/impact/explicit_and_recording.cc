@@ -52,7 +52,10 @@ namespace kimp::fem::internal
       const auto                ev = contact->evaluate(cu, cv);
       const std::vector<double> fc = padded_force(ev, cu.size());
 
+      // The points' energies are read at the sampled steps only (record()).
+      point_energy_needed = n % sample_every == 0;
       internal_force(u, Ku);
+      point_energy_needed = true;
       // Every evaluated point's trial history was rewritten: swapping commits it without a copy.
       if (!linear_laws)
         qp_history.commit_by_swap();

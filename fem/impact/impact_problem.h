@@ -213,9 +213,12 @@ namespace kimp::fem::internal
     // energy of the last internal_force() (trial history), and the internal work
     // sum 1/2 (f_n + f_n+1) . (u_n+1 - u_n), the integrated stress power.
     std::array<double, 3> point_energy_local{{0, 0, 0}};
-    double                internal_work_local = 0, max_dissipation_gap = 0;
-    std::vector<double>   u_prev_local, f_prev_local;
-    Vec                   u_ghosted, force_writable; // internal_force() of non-linear laws
+    /// False while the explicit loop computes a step whose energies are not sampled: the
+    /// kernel then skips the points' energies (point_energy_local is not updated).
+    bool                point_energy_needed = true;
+    double              internal_work_local = 0, max_dissipation_gap = 0;
+    std::vector<double> u_prev_local, f_prev_local;
+    Vec                 u_ghosted, force_writable; // internal_force() of non-linear laws
     // Absorbing boundary: diagonal dashpot matrix C, its free owned DoFs (local index into the
     // owned range, c_i, m_i), their last u and C v, and this rank's radiated energy.
     bool                      absorbing = false;

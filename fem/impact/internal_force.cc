@@ -169,7 +169,7 @@ namespace kimp::fem::internal
                          qp_history.trial(force_cells[b0].cell, 0),
                          n_values,
                          stress.data(),
-                         energy.data());
+                         point_energy_needed ? energy.data() : nullptr);
       for (std::size_t k = b0; k < b1; ++k)
       {
         const ForceCell &fc                      = force_cells[k];
@@ -181,9 +181,12 @@ namespace kimp::fem::internal
           const double      *gx = g, *gy = g + vertices_per_cell;
           const double       jxw = g[2 * vertices_per_cell];
           const VoigtStress &s   = stress[p];
-          point_energy_local[0] += energy[p][0] * jxw;
-          point_energy_local[1] += energy[p][1] * jxw;
-          point_energy_local[2] += energy[p][2] * jxw;
+          if (point_energy_needed)
+          {
+            point_energy_local[0] += energy[p][0] * jxw;
+            point_energy_local[1] += energy[p][1] * jxw;
+            point_energy_local[2] += energy[p][2] * jxw;
+          }
           for (unsigned int a = 0; a < vertices_per_cell; ++a)
           {
             fe_local[2 * a] += (s[0] * gx[a] + s[2] * gy[a]) * jxw;

@@ -181,6 +181,72 @@ namespace
     EXPECT_GT(dt.h0[4], 0.0); // equivalent plastic strain
   }
 
+  TEST(MohrCoulomb, ActiveSetShortcutsGiveTheExhaustiveSearchsStress)
+  {
+    // The return mapping tries the most violated plane alone and the point's last active set
+    // before the search over every set of <= 3 planes; it must end where the exhaustive search
+    // ends. Random strain walks from an at-rest state (K0 = 1 - sin(phi), as the geostatic
+    // step) through main-plane, edge, apex and cut-off returns, for a cohesionless sand (the
+    // medium-dense preset), a c-phi soil with a cut-off and a phi = 0 clay.
+    const SoilParameters cases[] = {soil(0, 34, 4, 0),
+                                    soil(10e3, 30, 10, 2e3),
+                                    soil(20e3, 0, 0, 1e9)};
+    unsigned int         seed    = 12345;
+    const auto           uniform = [&seed]() // [-1, 1), a fixed linear congruential sequence
+    {
+      seed = 1103515245u * seed + 12345u;
+      return static_cast<double>((seed >> 8) & 0xffffff) / 8388608.0 - 1.0;
+    };
+    for (const SoilParameters &p : cases)
+    {
+      const MohrCoulombLaw fast(p), exhaustive(p, true);
+      unsigned int         n_type[8] = {};
+      double               worst     = 0;
+      for (int point = 0; point < 40; ++point)
+      {
+        Driver              a(fast), b(exhaustive);
+        const double        sv = -20e3 * (1 + point % 5), k0 = 1 - std::sin(p.friction_angle);
+        const InitialStress s0{{k0 * sv, sv, k0 * sv, 0}};
+        fast.set_initial_stress(a.h0.data(), s0);
+        exhaustive.set_initial_stress(b.h0.data(), s0);
+        VoigtStrain e{{0, 0, 0}};
+        for (int step = 0; step < 400; ++step)
+        {
+          for (double &x : e)
+            x += 1.5e-4 * uniform();
+          a.go(e);
+          b.go(e);
+          const double scale = std::max(
+            {std::abs(b.sigma[0]), std::abs(b.sigma[1]), std::abs(b.sigma[2]), p.cohesion, 1e3});
+          for (unsigned int i = 0; i < 3; ++i)
+            worst = std::max(worst, std::abs(a.sigma[i] - b.sigma[i]) / scale);
+          for (unsigned int i = 0; i < 6; ++i)
+            worst =
+              std::max(worst, std::abs(a.h0[i] - b.h0[i]) / std::max(std::abs(b.h0[i]), 1e-3));
+          ++n_type[static_cast<unsigned int>(a.h0[6]) % 8];
+        }
+      }
+      std::printf("c = %g kPa, phi = %g deg: largest difference %.3g; returns: elastic %u, main "
+                  "%u, edge %u, apex %u, tension %u, mixed %u\n",
+                  p.cohesion / 1e3,
+                  p.friction_angle * 180 / pi,
+                  worst,
+                  n_type[static_cast<unsigned int>(ReturnType::elastic)],
+                  n_type[static_cast<unsigned int>(ReturnType::main)],
+                  n_type[static_cast<unsigned int>(ReturnType::edge)],
+                  n_type[static_cast<unsigned int>(ReturnType::apex)],
+                  n_type[static_cast<unsigned int>(ReturnType::tension)],
+                  n_type[static_cast<unsigned int>(ReturnType::mixed)]);
+      EXPECT_LT(worst, 1e-9);
+      EXPECT_GT(n_type[static_cast<unsigned int>(ReturnType::main)], 100u);
+      EXPECT_GT(n_type[static_cast<unsigned int>(ReturnType::edge)] +
+                  n_type[static_cast<unsigned int>(ReturnType::apex)] +
+                  n_type[static_cast<unsigned int>(ReturnType::tension)] +
+                  n_type[static_cast<unsigned int>(ReturnType::mixed)],
+                100u);
+    }
+  }
+
   TEST(MohrCoulomb, ConsistentTangentEqualsFiniteDifference)
   {
     // Main plane (general state), the oedometric edge and an elastic state.
