@@ -119,6 +119,32 @@ namespace kimp::app
     {
       const auto                scope = ctx.section("materials");
       const fem::SoilParameters soil  = soil_parameters(s.materials.soil);
+      // A preset sets E, nu and rho: a value given beside it would be ignored, so it is refused.
+      const FemSoil &given = s.materials.soil;
+      const FemSoil  defaults;
+      if (given.preset != "none")
+      {
+        const auto refuse = [&](bool same, const char *key, const std::string &value)
+        {
+          ctx.check(same,
+                    std::string("soil.") + key,
+                    value,
+                    fmt::format("cannot be set with soil.preset {} (the preset sets E = {:g} MPa, "
+                                "nu = {:g}, rho = {:g} kg/m^3; c, phi and psi may override it): "
+                                "remove the preset or the key",
+                                given.preset,
+                                soil.youngs_modulus / 1e6,
+                                soil.poisson_ratio,
+                                soil.density));
+        };
+        refuse(given.youngs_modulus == defaults.youngs_modulus,
+               "E",
+               format_quantity(given.youngs_modulus, "MPa"));
+        refuse(given.poisson_ratio == defaults.poisson_ratio,
+               "nu",
+               format_quantity(given.poisson_ratio, ""));
+        refuse(given.density == defaults.density, "rho", format_quantity(given.density, "kg/m^3"));
+      }
       ctx.check(soil.dilatancy <= soil.friction_angle,
                 "soil.psi",
                 fmt::format("{:g}", soil.dilatancy * 180 / 3.14159265358979323846),

@@ -22,7 +22,9 @@ namespace kimp::app::study_internal
     h.wall_height     = wall_height;
     h.name            = fem_case_name(wall_height);
     h.impact_velocity = scene.fem.slab.velocity;
-    choose_material_model(scene, wall_height, output, h);
+    // The cheap level's inelastic fits, when the material choice ran them (reused by the ladder).
+    std::optional<StudyFits> cheap_fits;
+    choose_material_model(scene, wall_height, output, h, &cheap_fits);
     if (scene.fem.fidelity == Fidelity::fixed)
     {
       StudyFemCase fem      = study_fem_case(scene.fem, wall_height, output);
@@ -68,8 +70,15 @@ namespace kimp::app::study_internal
         h.fem_from_cache = h.fem_from_cache && fem.from_cache;
         c.fem_case       = std::move(fem.fem_case);
         c.from_cache     = fem.from_cache;
-        c.fits           = fit_study_laws(c.fem_case, scene.fit);
-        h.fit_seconds += c.fits.seconds;
+        const bool cheap = level.h_contact == scene.fem.fidelity_h_contact.front() &&
+                           level.penalty_factor == scene.fem.fidelity_penalty_factors.front();
+        if (cheap && cheap_fits && h.inelastic)
+          c.fits = *cheap_fits; // fitted (and its warnings logged) by the material choice
+        else
+        {
+          c.fits = fit_study_laws(c.fem_case, scene.fit);
+          h.fit_seconds += c.fits.seconds;
+        }
         outcome.seconds    = fem.wall_seconds + c.fits.seconds;
         outcome.from_cache = fem.from_cache;
         outcome.ok         = c.fits.ok();

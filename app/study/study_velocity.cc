@@ -164,10 +164,11 @@ namespace kimp::app::study_internal
     return !inelastic && has_inelastic_materials(scene) ? "_linear" : "";
   }
 
-  void choose_material_model(const StudyScene &scene,
-                             double            wall_height,
-                             const OutputDir  &output,
-                             StudyHeight      &h)
+  void choose_material_model(const StudyScene         &scene,
+                             double                    wall_height,
+                             const OutputDir          &output,
+                             StudyHeight              &h,
+                             std::optional<StudyFits> *inelastic_cheap_fits)
   {
     if (!has_inelastic_materials(scene.fem))
     {
@@ -197,6 +198,8 @@ namespace kimp::app::study_internal
       fits[inelastic] = fit_study_laws(fem.fem_case, scene.fit);
       h.fit_seconds += fits[inelastic].seconds;
     }
+    if (inelastic_cheap_fits != nullptr)
+      *inelastic_cheap_fits = fits[1];
     if (!fits[0].ok() || !fits[1].ok())
     {
       h.material_reason = fmt::format("at {} a fit failed (linear: {} / {}; inelastic: {} / {}): "

@@ -4,10 +4,12 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "app/k_table.h"
+#include "app/study/study_fem.h"
 #include "app/study/study_run.h"
 #include "io/results_file.h"
 
@@ -39,11 +41,14 @@ namespace kimp::app::study_internal
    * fidelity: auto on a scene with inelastic materials: run the cheapest ladder level linear and
    * inelastic; keep linear if both k differ by less than the ladder tolerance, else inelastic.
    * Sets h.inelastic and h.material_reason. An elastic scene is left linear without a run.
+   * If @p inelastic_cheap_fits is given, it receives the inelastic fits of the cheap level (when
+   * run), so that the fidelity ladder reuses them instead of fitting (and logging) them again.
    */
-  void choose_material_model(const StudyScene    &scene,
-                             double               wall_height,
-                             const io::OutputDir &output,
-                             StudyHeight         &h);
+  void choose_material_model(const StudyScene         &scene,
+                             double                    wall_height,
+                             const io::OutputDir      &output,
+                             StudyHeight              &h,
+                             std::optional<StudyFits> *inelastic_cheap_fits = nullptr);
 
   /**
    * For an inelastic case: fit the linear counterpart of `level_scene` (the FEM level the case

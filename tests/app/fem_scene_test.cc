@@ -217,6 +217,27 @@ namespace
                  SceneError);
     EXPECT_THROW(load_scene_text<FemScene>("materials: {soil: {phi: 20, psi: 25}}\n", file_name),
                  SceneError);
+    // E, nu or rho beside a preset would be ignored (the preset sets them): refused, naming the
+    // key and the preset's value.
+    for (const char *key : {"E: \"80 MPa\"", "nu: 0.35", "rho: \"2000 kg/m^3\""})
+    {
+      try
+      {
+        load_scene_text<FemScene>(std::string("materials: {soil: {preset: medium_dense_sand, ") +
+                                    key + "}}\n",
+                                  file_name);
+        ADD_FAILURE() << key << " beside a preset was accepted";
+      }
+      catch (const SceneError &error)
+      {
+        const std::string what = error.what();
+        EXPECT_NE(what.find("materials.soil." +
+                            std::string(key).substr(0, std::string(key).find(':'))),
+                  std::string::npos)
+          << what;
+        EXPECT_NE(what.find("E = 40 MPa"), std::string::npos) << what;
+      }
+    }
   }
 
   TEST(FemScene, ReinforcementKeysGiveEachBodyItsBars)
