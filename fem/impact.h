@@ -3,6 +3,7 @@
 // §4). Light public header: plain structs and functions, no deal.II includes.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -301,6 +302,8 @@ namespace kimp::fem
     bool         separated            = false; ///< stopped on separation (else end_time)
     double       plastic_dissipation  = 0;     ///< J/m at the end (non-linear laws)
     double       damage_dissipation   = 0;     ///< J/m at the end (non-linear laws)
+    /// The same split by body: slab, wall, soil (J/m; a material of another id is in neither).
+    std::array<double, 3> plastic_dissipation_by_body{}, damage_dissipation_by_body{};
     /** Non-linear laws: max |W_int - (E_stored + D_plastic + D_damage)| / E_0 over the run,
      *  the consistency of the point-wise bookkeeping with the integrated stress power. */
     double dissipation_gap = 0;

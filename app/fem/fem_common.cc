@@ -124,6 +124,22 @@ namespace kimp::app
     c.summary.set("plastic_dissipation", s.plastic_dissipation);
     c.summary.set("damage_dissipation", s.damage_dissipation);
     c.summary.set("contact_dissipation", s.contact_dissipation);
+    if (scene.materials.concrete.model != FemConcrete::Model::elastic ||
+        (scene.geometry.with_backfill && scene.materials.soil.model != FemSoil::Model::elastic))
+    {
+      // Where the material dissipation happened: plastic work of soil, bars and concrete, and
+      // the concrete's damage, per body.
+      const char *body[3] = {"slab", "wall", "soil"};
+      for (unsigned int b = 0; b < 3; ++b)
+        for (const auto &[what, value] :
+             {std::pair<const char *, double>{"plastic", s.plastic_dissipation_by_body[b]},
+              {"damage", s.damage_dissipation_by_body[b]}})
+        {
+          const std::string key = fmt::format("{}_dissipation_{}", what, body[b]);
+          c.summary.set(key, value);
+          c.summary_units[key] = "J/m";
+        }
+    }
     c.summary.set("residual_energy", s.residual_energy);
     c.summary.set("dissipation_cor", s.dissipation_cor);
     c.summary.set("permanent_indentation", s.permanent_indentation);

@@ -282,15 +282,22 @@ namespace kimp::app
                     result.summary.n_steps,
                     result.summary.dt,
                     result.summary.wall_seconds);
+      const auto &sm = result.summary;
       logger().info("{}: after the impact: permanent indentation {:.4g} mm, wall displacement at "
-                    "the end {:.4g} mm; dissipation plastic {:.4g}, damage {:.4g}, contact {:.4g} "
+                    "the end {:.4g} mm; dissipation plastic {:.4g} (soil {:.4g}, wall {:.4g}, "
+                    "slab {:.4g}), damage {:.4g} (wall {:.4g}, slab {:.4g}), contact {:.4g} "
                     "J/m, left in the bodies {:.4g} J/m; COR implied by the material "
                     "dissipation {:.3f} (apparent {:.3f})",
                     name,
                     result.summary.permanent_indentation * 1e3,
                     result.summary.wall_residual_displacement * 1e3,
-                    result.summary.plastic_dissipation,
-                    result.summary.damage_dissipation,
+                    sm.plastic_dissipation,
+                    sm.plastic_dissipation_by_body[2],
+                    sm.plastic_dissipation_by_body[1],
+                    sm.plastic_dissipation_by_body[0],
+                    sm.damage_dissipation,
+                    sm.damage_dissipation_by_body[1],
+                    sm.damage_dissipation_by_body[0],
                     result.summary.contact_dissipation,
                     result.summary.residual_energy,
                     result.summary.dissipation_cor,

@@ -159,16 +159,21 @@ namespace kimp::fem::internal
     if (n % sample_every != 0)
       return;
     // kinetic, strain, slab m u, slab m v; internal work, stored, plastic, damage
-    // (+ geostatic: the work (f_g - f_0) . (u - u_g) of the loads of the geostatic state)
-    std::array<double, 9> local{{0,
-                                 0,
-                                 0,
-                                 0,
-                                 internal_work_local,
-                                 point_energy_local[0],
-                                 point_energy_local[1],
-                                 point_energy_local[2],
-                                 0}};
+    // (+ geostatic: the work (f_g - f_0) . (u - u_g) of the loads of the geostatic state);
+    // plastic and damage per body (slab, wall, soil, other)
+    constexpr unsigned int       n_values = 9 + 8;
+    std::array<double, n_values> local{{0,
+                                        0,
+                                        0,
+                                        0,
+                                        internal_work_local,
+                                        point_energy_local[0],
+                                        point_energy_local[1],
+                                        point_energy_local[2],
+                                        0}};
+    for (unsigned int b = 0; b < 4; ++b)
+      for (unsigned int i = 0; i < 2; ++i)
+        local[9 + 2 * b + i] = body_dissipation_local[b][i];
     {
       const double *vp = v_n.begin(), *mp = mass.begin(), *up = u.begin(), *kp = Ku.begin(),
                    *sp = slab_mass_x.begin();
@@ -186,10 +191,10 @@ namespace kimp::fem::internal
           local[8] -= op[k] * du;
       }
     }
-    std::array<double, 9> global{};
-    const int             ierr = MPI_Allreduce(local.data(),
+    std::array<double, n_values> global{};
+    const int                    ierr = MPI_Allreduce(local.data(),
                                    global.data(),
-                                   linear_laws ? 4 : (geostatic_on ? 9 : 8),
+                                   linear_laws ? 4 : n_values,
                                    MPI_DOUBLE,
                                    MPI_SUM,
                                    comm);
@@ -197,6 +202,11 @@ namespace kimp::fem::internal
     if (geostatic_on)
       for (unsigned int i = 0; i < 3; ++i)
         global[5 + i] -= geostatic_point_energy[i];
+    if (!linear_laws)
+      for (unsigned int b = 0; b < 4; ++b)
+        for (unsigned int i = 0; i < 2; ++i)
+          body_dissipation[b][i] =
+            global[9 + 2 * b + i] - (geostatic_on ? geostatic_body_dissipation[b][i] : 0.0);
     const double kinetic = global[0] + (prm.rigid_slab ? 0.5 * prm.slab_mass * v_r * v_r : 0);
     // Linear laws: 1/2 u.Ku is the strain energy. Otherwise the integrated stress power is the
     // energy the body took, and the points split it into stored, plastic and damage.
@@ -211,7 +221,6 @@ namespace kimp::fem::internal
       history.internal_work.push_back(global[4]);
       history.plastic_dissipation.push_back(global[6]);
       history.damage_dissipation.push_back(global[7]);
-      // Geostatic: W_int includes the work of gravity; the points' energies are increments.
       // Geostatic: W_int includes the work of gravity; the points' energies are increments.
       // A contact interface stores penalty energy and dissipates by friction.
       const double interface_energy =
@@ -539,7 +548,12 @@ namespace kimp::fem::internal
     {
       s.plastic_dissipation = history.plastic_dissipation.back();
       s.damage_dissipation  = history.damage_dissipation.back();
-      s.dissipation_gap     = max_dissipation_gap;
+      for (unsigned int b = 0; b < 3; ++b)
+      {
+        s.plastic_dissipation_by_body[b] = body_dissipation[b][0];
+        s.damage_dissipation_by_body[b]  = body_dissipation[b][1];
+      }
+      s.dissipation_gap = max_dissipation_gap;
     }
     if (!history.radiation.empty())
       s.radiated_energy = history.radiation.back();

@@ -378,6 +378,10 @@ namespace kimp::fem::internal
       const std::array<double, 3> local = point_energy_local;
       for (unsigned int i = 0; i < 3; ++i)
         geostatic_point_energy[i] = Utilities::MPI::sum(local[i], comm);
+      for (unsigned int b = 0; b < 4; ++b)
+        for (unsigned int i = 0; i < 2; ++i)
+          geostatic_body_dissipation[b][i] =
+            Utilities::MPI::sum(body_dissipation_local[b][i], comm);
     }
 
     // The slab-wall gap at the geostatic state: the earth pressure moves the wall face.

@@ -23,6 +23,7 @@
 #include "fem/impact.h"
 #include "fem/material_law.h"
 #include "fem/penalty_contact.h"
+#include "geometry/scene_ids.h"
 
 namespace kimp::fem::internal
 {
@@ -213,6 +214,20 @@ namespace kimp::fem::internal
     // energy of the last internal_force() (trial history), and the internal work
     // sum 1/2 (f_n + f_n+1) . (u_n+1 - u_n), the integrated stress power.
     std::array<double, 3> point_energy_local{{0, 0, 0}};
+    /// Plastic and damage energy of the points per body (slab, wall, soil, any other material),
+    /// J/m, accumulated beside point_energy_local.
+    std::array<std::array<double, 2>, 4> body_dissipation_local{};
+    /// The same, summed over the ranks, at the last sampled step (less the geostatic step's).
+    std::array<std::array<double, 2>, 4> body_dissipation{};
+    std::array<std::array<double, 2>, 4> geostatic_body_dissipation{};
+    /// Index of a material id in body_dissipation: slab, wall, soil, other.
+    static unsigned int body_of(types::material_id id)
+    {
+      return id == geometry::slab_material ? 0 :
+             id == geometry::wall_material ? 1 :
+             id == geometry::soil_material ? 2 :
+                                             3;
+    }
     /// False while the explicit loop computes a step whose energies are not sampled: the
     /// kernel then skips the points' energies (point_energy_local is not updated).
     bool                point_energy_needed = true;
@@ -234,6 +249,7 @@ namespace kimp::fem::internal
     {
       const MaterialLaw *law    = nullptr;
       unsigned int       cell   = 0;  // active cell index (history)
+      unsigned int       body   = 3;  // body_of(material id)
       int                lid[8] = {}; // positions in u_ghosted's local (owned + ghost) array
     };
     double                      wall_end_displacement = 0, permanent_wall_indentation = 0; // m

@@ -51,6 +51,7 @@ namespace kimp::fem::internal
         ForceCell fc;
         fc.law  = laws.at(cell->material_id()).get();
         fc.cell = cell->active_cell_index();
+        fc.body = body_of(cell->material_id());
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
         {
           fc.lid[i] = ghosted_map.LID(static_cast<int>(dof_indices[i]));
@@ -125,7 +126,8 @@ namespace kimp::fem::internal
     const double *gradients  = force_gradients.data();
     const auto    cell_width = static_cast<std::size_t>(points_per_cell) * gradient_width;
     std::fill(fl, fl + n_ghosted, zero);
-    point_energy_local = {{0, 0, 0}};
+    point_energy_local     = {{0, 0, 0}};
+    body_dissipation_local = {};
 
     constexpr unsigned int                   n_buf = max_batch_cells * 4;
     std::array<VoigtStrain, n_buf>           strain;
@@ -186,6 +188,8 @@ namespace kimp::fem::internal
             point_energy_local[0] += energy[p][0] * jxw;
             point_energy_local[1] += energy[p][1] * jxw;
             point_energy_local[2] += energy[p][2] * jxw;
+            body_dissipation_local[fc.body][0] += energy[p][1] * jxw;
+            body_dissipation_local[fc.body][1] += energy[p][2] * jxw;
           }
           for (unsigned int a = 0; a < vertices_per_cell; ++a)
           {
@@ -233,7 +237,8 @@ namespace kimp::fem::internal
     std::vector<types::global_dof_index> dof_indices(n);
     const FEValuesExtractors::Vector     displacement(0);
     std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
-    point_energy_local = {{0, 0, 0}};
+    point_energy_local     = {{0, 0, 0}};
+    body_dissipation_local = {};
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
       {
@@ -251,6 +256,10 @@ namespace kimp::fem::internal
           point_energy_local[0] += po.stored_energy * fe_values.JxW(q);
           point_energy_local[1] += po.plastic_dissipation * fe_values.JxW(q);
           point_energy_local[2] += po.damage_dissipation * fe_values.JxW(q);
+          body_dissipation_local[body_of(cell->material_id())][0] +=
+            po.plastic_dissipation * fe_values.JxW(q);
+          body_dissipation_local[body_of(cell->material_id())][1] +=
+            po.damage_dissipation * fe_values.JxW(q);
           for (unsigned int i = 0; i < n; ++i)
           {
             const auto e = fe_values[displacement].symmetric_gradient(i, q);

@@ -592,6 +592,19 @@ namespace
     EXPECT_LT(s.energy_error, 0.01);
     EXPECT_LT(s.dissipation_gap, 0.01);
     EXPECT_GT(s.damage_dissipation, 0);
+    // The split by body adds up to the totals (the same point energies, summed per body); the
+    // soil has no damage; the wall cracks and its bars yield.
+    const auto &pb = s.plastic_dissipation_by_body, &db = s.damage_dissipation_by_body;
+    if (rank() == 0)
+      std::cout << "by body: plastic slab " << pb[0] << ", wall " << pb[1] << ", soil " << pb[2]
+                << " J/m; damage slab " << db[0] << ", wall " << db[1] << ", soil " << db[2]
+                << " J/m\n";
+    EXPECT_NEAR(pb[0] + pb[1] + pb[2], s.plastic_dissipation, 1e-9 * s.plastic_dissipation);
+    EXPECT_NEAR(db[0] + db[1] + db[2], s.damage_dissipation, 1e-9 * s.damage_dissipation);
+    EXPECT_EQ(db[2], 0.0);
+    EXPECT_GT(db[1], 0.0);
+    EXPECT_GT(pb[1], 0.0);
+    EXPECT_GT(pb[2], 0.0);
   }
 
   TEST(InelasticImpact, EnergyBalanceClosesWithCompressionPlasticity)
