@@ -58,7 +58,7 @@ namespace kimp::lumped
     double dt_large            = 0.0; ///< step while every contact is open and far, s
     double dt_approach         = 0.0; ///< step while a gap closes within approach_time, s
     double dt_contact          = 0.0; ///< step while a contact is active or imminent, s
-    double dt_min              = 0.0; ///< smallest step taken (onset location, end of run), s
+    double dt_min              = 0.0; ///< smallest step taken (onsets, reversals, end of run), s
     long   steps               = 0;   ///< steps of the run (force evaluations but the first)
     long   contact_steps_taken = 0;   ///< of which below Δt_large (approach, contact), count
     long   estimate_steps      = 0;   ///< extra steps of the error-estimate re-runs
