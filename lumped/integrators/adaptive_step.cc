@@ -44,9 +44,11 @@ namespace kimp::lumped
       /// Fast path: the rate of the last step per contact, and whether the law was called then
       /// (its committed state is that step's); a law skipped while open is first brought to the
       /// last skipped state before it is called again.
-      std::vector<double>                    rate_prev;
-      std::vector<int>                       called;
-      double                                 iso_u1 = 0.0, iso_u2 = 0.0; ///< u_0 at n−1, n−2
+      std::vector<double> rate_prev;
+      std::vector<int>    called;
+      double              iso_u1 = 0.0, iso_u2 = 0.0; ///< u_0 at n−1, n−2
+      /// Isolator rate u̇_0 at t_n (three-point) and the relative acceleration ü_0 at t_{n−1}.
+      double                                 iso_rate = 0.0, iso_acc = 0.0;
       std::unique_ptr<Isolator>              iso;
       std::vector<std::unique_ptr<ForceLaw>> laws;
       double w_in = 0.0, w_visc = 0.0, w_contact = 0.0, p_in_prev = 0.0, p_visc_prev = 0.0;
@@ -76,6 +78,8 @@ namespace kimp::lumped
         s.called    = called;
         s.iso_u1    = iso_u1;
         s.iso_u2    = iso_u2;
+        s.iso_rate  = iso_rate;
+        s.iso_acc   = iso_acc;
         if (iso)
           s.iso = iso->clone();
         for (const auto &law : laws)
@@ -124,7 +128,8 @@ namespace kimp::lumped
                   const GroundMotion             &g,
                   const double                    dt_large,
                   const double                    dt_approach,
-                  const double                    dt_contact)
+                  const double                    dt_contact,
+                  const double                    dt_stick)
         : model_(model)
         , cdm_(cdm)
         , opt_(opt)
@@ -133,10 +138,12 @@ namespace kimp::lumped
         , big_(dt_large)
         , fine_(dt_contact)
         , approach_(dt_approach)
+        , stick_(dt_stick)
         , est_(opt.estimate_factor)
       {
         mass_          = Eigen::Map<const Vec>(model.masses().data(), n_);
         bilinear_      = dynamic_cast<const BilinearIsolator *>(model.isolator()) != nullptr;
+        stick_slip_    = model.isolator() && model.isolator()->stick_slip();
         inv_record_dt_ = 1.0 / g.dt;
         k_             = model.stiffness().to_dense();
         c_             = model.damping().to_dense();
@@ -153,7 +160,7 @@ namespace kimp::lumped
         const double interval = cdm_.output_interval;
         const long   every    = interval > 0.0 ? std::max(1L, std::lround(interval / big_)) : 0L;
         rec_.start(model_, big_, std::lround(duration / big_), every);
-        // Steps land on every sample (the N/every + 1 rows start() reserves assume Δt_large).
+        // One row every output_interval (the N/every + 1 rows start() reserves assume Δt_large).
         if (interval > 0.0)
           rec_.reserve_samples(static_cast<std::size_t>(std::ceil(duration / interval)) + 2);
         report_.dt_min = std::numeric_limits<double>::infinity();
@@ -162,12 +169,19 @@ namespace kimp::lumped
         if (s.iso)
           e0_ += s.iso->stored_energy();
 
-        const double eps         = 1e-6 * std::min(big_, fine_);
-        double       next_sample = interval > 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
-        long         sample_k    = 0;
-        bool         in_window   = false;
-        State        snapshot;
-        WindowPeaks  peaks;
+        const double eps = 1e-6 * std::min(big_, fine_);
+        interval_        = interval;
+        eps_             = eps;
+        next_sample_     = interval > 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
+        sample_k_        = 0;
+        left_.u.assign(static_cast<std::size_t>(n_), 0.0);
+        left_.a.assign(static_cast<std::size_t>(n_), 0.0);
+        left_.drift.assign(model_.storeys().size(), 0.0);
+        left_.cf.assign(s.laws.size(), 0.0);
+        row_                  = left_;
+        bool        in_window = false;
+        State       snapshot;
+        WindowPeaks peaks;
         while (true)
         {
           forces(s, true);
@@ -189,22 +203,22 @@ namespace kimp::lumped
           double h = choose_step(s, std::min(target, 2.0 * s.h_prev));
           if (h < big_)
             ++report_.contact_steps_taken;
-          const bool sample_now = interval > 0.0 && std::abs(s.t - next_sample) <= eps;
-          if (sample_now)
-            next_sample = static_cast<double>(++sample_k) * interval;
-          const double to = std::min(next_sample, duration);
-          h               = clip(h, to - s.t);
+          // The steps do not land on the history samples: a sample inside a step is
+          // interpolated between the step's ends (record_step()); they end at the end of the run.
+          h = clip(h, duration - s.t);
           if (replaying)
             h = (*replay)[static_cast<std::size_t>(s.n)];
           if (taken)
             taken->push_back(h);
-          const bool check = sample_now || s.n % 512 == 0 || last;
-          step(s, h, true, in_window ? &peaks : nullptr, sample_now, check);
+          // Rows due at t_n: those inside the last step and one at t_n itself.
+          const bool sample_now = next_sample_ <= s.t + eps;
+          const bool check      = sample_now || s.n % 512 == 0 || last;
+          step(s, h, true, in_window ? &peaks : nullptr, sample_now, check, last);
           if (last)
             break;
           report_.dt_min = std::min(report_.dt_min, h);
-          // Land exactly on the targets, so that the time does not drift.
-          s.t = std::abs(s.t + h - to) <= eps ? to : s.t + h;
+          // Land exactly on the end, so that the time does not drift.
+          s.t = std::abs(s.t + h - duration) <= eps ? duration : s.t + h;
           ++s.n;
         }
         if (in_window)
@@ -277,6 +291,7 @@ namespace kimp::lumped
         const Vec u2 = u1 - big_ * s.v_half;
         s.iso_u1     = u1(0);
         s.iso_u2     = u2(0);
+        s.iso_acc    = a0(0);
         s.cv_half    = c_ * s.v_half;
         set_rate_weights(s);
         const std::size_t nc = s.laws.size();
@@ -346,8 +361,9 @@ namespace kimp::lumped
           if (record)
             rec_.isolator_force(f);
           s.f(0) += f;
-          s.iso_u2 = s.iso_u1;
-          s.iso_u1 = u0;
+          s.iso_rate = v0;
+          s.iso_u2   = s.iso_u1;
+          s.iso_u1   = u0;
         }
         for (std::size_t c = 0; c < s.laws.size(); ++c)
         {
@@ -431,9 +447,24 @@ namespace kimp::lumped
         return near ? std::min(big_, scale * approach_) : big_;
       }
 
-      /// `h`, shortened so that a step does not carry an open gap past closing (at its rate).
+      /**
+       * `h`, shortened so that a step does not carry an open gap past closing (at its rate), and
+       * for a stick-slip isolator (Isolator::stick_slip()) not past a reversal of its velocity
+       * (at the last acceleration: the kink of the friction force is located within the step, as
+       * a contact onset) and not beyond Δt_stick while it sticks.
+       */
       double choose_step(const State &s, double h) const
       {
+        if (stick_slip_)
+        {
+          if (s.iso->sticking())
+            h = std::min(h, stick_);
+          // Reversal of u̇_0 ahead at the last acceleration: end the step there (not below
+          // Δt_large/16).
+          const double v = s.iso_rate, acc = s.iso_acc;
+          if (v * acc < 0.0 && std::abs(v) < std::abs(acc) * h)
+            h = std::max(std::abs(v / acc), std::min(big_ / 16.0, h));
+        }
         for (std::size_t c = 0; c < s.laws.size(); ++c)
         {
           if (s.active[c] || s.delta[c] > 0.0)
@@ -457,9 +488,9 @@ namespace kimp::lumped
       /**
        * Inverse of a symmetric positive definite matrix (M/h̄ + w₊·C, M diagonal and positive, C
        * symmetric positive semi-definite) by Gauss-Jordan elimination without pivoting: the
-       * effective matrix of every step size that is not in the cache (steps ending on history
-       * samples, onsets located within a step) costs ≈ 2N³ flops instead of a general LU and N
-       * triangular solves.
+       * effective matrix of every step size that is not in the cache (onsets located within a
+       * step, the step growth after a window, the last step) costs ≈ 2N³ flops instead of a general
+       * LU and N triangular solves.
        */
       static Mat spd_inverse(Mat a)
       {
@@ -547,7 +578,8 @@ namespace kimp::lumped
                 const bool   record,
                 WindowPeaks *peaks,
                 const bool   sample,
-                const bool   check)
+                const bool   check,
+                const bool   last = false)
       {
         const double ag = ground(s.t);
         Vec          v_plus, a, v, ku;
@@ -564,6 +596,7 @@ namespace kimp::lumped
           Vec cv_plus;
           cv_plus.noalias() = c_ * v_plus;
           a                 = (v_plus - s.v_half) * e.ihbar;
+          s.iso_acc         = a(0);
           v                 = e.wm * s.v_half + e.wp * v_plus;
           p_visc            = v.dot(e.wm * s.cv_half + e.wp * cv_plus);
           s.cv_half         = cv_plus;
@@ -575,10 +608,11 @@ namespace kimp::lumped
           const double wm   = h / (s.h_prev + h);
           const Vec    rhs =
             mass_.cwiseProduct(s.v_half) / hbar - wm * (c_ * s.v_half) - mass_ * ag - ku - s.f;
-          v_plus = effective(hbar, wp).solve(rhs);
-          a      = (v_plus - s.v_half) / hbar;
-          v      = wm * s.v_half + wp * v_plus;
-          p_visc = v.dot(c_ * v);
+          v_plus    = effective(hbar, wp).solve(rhs);
+          a         = (v_plus - s.v_half) / hbar;
+          s.iso_acc = a(0);
+          v         = wm * s.v_half + wp * v_plus;
+          p_visc    = v.dot(c_ * v);
         }
         const double p_in = -ag * mass_.dot(v);
         if (s.n > 0)
@@ -607,7 +641,7 @@ namespace kimp::lumped
           }
         }
         if (record)
-          record_step(s, a, v, ku, ag, sample, check);
+          record_step(s, a, v, ku, ag, h, sample, check, last);
         s.u += h * v_plus;
         const bool same_steps = h == s.h_prev && s.h_prev == s.h_prev2;
         s.v_half              = v_plus;
@@ -618,13 +652,23 @@ namespace kimp::lumped
             set_rate_weights(s);
       }
 
+      /**
+       * Peaks at t_n (every step), the energy balance at check steps, and the history rows due at
+       * t_n: each sample time inside the last step (t_{n−1}, t_n) interpolated linearly between
+       * the values at its ends (u is linear within a central-difference step; ü, the drifts, the
+       * forces and the energies are interpolated likewise; the energy error is that of t_n), and
+       * one at t_n itself when a sample time falls on it. The values at t_n are kept when the
+       * next step h will contain a sample time.
+       */
       void record_step(const State &s,
                        const Vec   &a,
                        const Vec   &v,
                        const Vec   &ku,
                        const double ag,
+                       const double h,
                        const bool   sample,
-                       const bool   check)
+                       const bool   check,
+                       const bool   last)
       {
         Response &r = rec_.response();
         for (Eigen::Index i = 0; i < n_; ++i)
@@ -639,36 +683,104 @@ namespace kimp::lumped
         for (std::size_t q = 0; q < model_.storeys().size(); ++q)
           r.peak_interstorey_drift[q] =
             std::max(r.peak_interstorey_drift[q], std::abs(drift(model_.storeys()[q])));
-        if (!check)
-          return;
-        EnergyBalance terms;
-        terms.kinetic      = 0.5 * mass_.dot(v.cwiseProduct(v));
-        terms.strain       = 0.5 * s.u.dot(ku) + (s.iso ? s.iso->stored_energy() : 0.0);
-        terms.initial      = e0_;
-        terms.input        = s.w_in;
-        terms.viscous      = s.w_visc;
-        terms.hysteretic   = s.iso ? s.iso->dissipated_energy() : 0.0;
-        terms.contact_work = s.w_contact;
-        rec_.supplied(e0_ + s.w_in);
-        const double err = rec_.check_energy(terms);
-        if (terms.kinetic + terms.strain >
-            cdm_.divergence_energy_factor * std::max(rec_.max_supplied(), 1e-300))
+        if (check)
         {
-          std::ostringstream msg;
-          msg << "variable-step central differences diverged at t = " << s.t
-              << " s: E_kin + E_strain = " << terms.kinetic + terms.strain << " J exceeds "
-              << cdm_.divergence_energy_factor << " x the energy supplied";
-          throw DivergenceError(msg.str(), s.t, s.n, 0);
+          EnergyBalance terms;
+          terms.kinetic      = 0.5 * mass_.dot(v.cwiseProduct(v));
+          terms.strain       = 0.5 * s.u.dot(ku) + (s.iso ? s.iso->stored_energy() : 0.0);
+          terms.initial      = e0_;
+          terms.input        = s.w_in;
+          terms.viscous      = s.w_visc;
+          terms.hysteretic   = s.iso ? s.iso->dissipated_energy() : 0.0;
+          terms.contact_work = s.w_contact;
+          rec_.supplied(e0_ + s.w_in);
+          const double err = rec_.check_energy(terms);
+          if (terms.kinetic + terms.strain >
+              cdm_.divergence_energy_factor * std::max(rec_.max_supplied(), 1e-300))
+          {
+            std::ostringstream msg;
+            msg << "variable-step central differences diverged at t = " << s.t
+                << " s: E_kin + E_strain = " << terms.kinetic + terms.strain << " J exceeds "
+                << cdm_.divergence_energy_factor << " x the energy supplied";
+            throw DivergenceError(msg.str(), s.t, s.n, 0);
+          }
+          if (sample)
+            emit_samples(s, a, ag, err, terms.hysteretic);
         }
-        if (sample)
-          rec_.sample(
-            s.t,
-            [&](const std::size_t i) { return s.u(static_cast<Eigen::Index>(i)); },
-            [&](const std::size_t i) { return a(static_cast<Eigen::Index>(i)) + ag; },
-            [&](const std::size_t q) { return drift(model_.storeys()[q]); },
-            s.cf,
-            e0_ + s.w_in,
-            err);
+        if (!last && next_sample_ < s.t + h - eps_)
+          keep_left(s, a, ag);
+      }
+
+      /// The values at t_n of the rows interpolated inside the next step.
+      void keep_left(const State &s, const Vec &a, const double ag)
+      {
+        left_.t = s.t;
+        for (Eigen::Index i = 0; i < n_; ++i)
+        {
+          const auto q = static_cast<std::size_t>(i);
+          left_.u[q]   = s.u(i);
+          left_.a[q]   = a(i) + ag;
+        }
+        for (std::size_t q = 0; q < model_.storeys().size(); ++q)
+        {
+          const Storey &st = model_.storeys()[q];
+          left_.drift[q]   = s.u(st.upper_dof) - (st.lower_dof >= 0 ? s.u(st.lower_dof) : 0.0);
+        }
+        std::copy(s.cf.begin(), s.cf.end(), left_.cf.begin());
+        left_.isolator   = rec_.last_isolator_force();
+        left_.hysteretic = s.iso ? s.iso->dissipated_energy() : 0.0;
+        left_.input      = e0_ + s.w_in;
+      }
+
+      /// The rows of the sample times up to t_n (after the energy check at t_n).
+      void emit_samples(const State &s,
+                        const Vec   &a,
+                        const double ag,
+                        const double err,
+                        const double hysteretic)
+      {
+        const auto drift = [&](const Storey &st)
+        { return s.u(st.upper_dof) - (st.lower_dof >= 0 ? s.u(st.lower_dof) : 0.0); };
+        while (next_sample_ <= s.t + eps_)
+        {
+          const double ts = next_sample_;
+          next_sample_    = static_cast<double>(++sample_k_) * interval_;
+          if (ts >= s.t - eps_)
+          {
+            // On the step.
+            rec_.sample(
+              ts,
+              [&](const std::size_t i) { return s.u(static_cast<Eigen::Index>(i)); },
+              [&](const std::size_t i) { return a(static_cast<Eigen::Index>(i)) + ag; },
+              [&](const std::size_t q) { return drift(model_.storeys()[q]); },
+              s.cf,
+              e0_ + s.w_in,
+              err);
+            continue;
+          }
+          // Inside the last step (t_{n−1}, t_n): linear between its ends.
+          const double th  = (ts - left_.t) / (s.t - left_.t);
+          const auto   mix = [th](const double x0, const double x1) { return x0 + th * (x1 - x0); };
+          for (Eigen::Index i = 0; i < n_; ++i)
+          {
+            const auto q = static_cast<std::size_t>(i);
+            row_.u[q]    = mix(left_.u[q], s.u(i));
+            row_.a[q]    = mix(left_.a[q], a(i) + ag);
+          }
+          for (std::size_t q = 0; q < model_.storeys().size(); ++q)
+            row_.drift[q] = mix(left_.drift[q], drift(model_.storeys()[q]));
+          for (std::size_t c = 0; c < s.cf.size(); ++c)
+            row_.cf[c] = mix(left_.cf[c], s.cf[c]);
+          rec_.sample_row(ts,
+                          row_.u.data(),
+                          row_.a.data(),
+                          row_.drift.data(),
+                          row_.cf.data(),
+                          mix(left_.isolator, rec_.last_isolator_force()),
+                          mix(left_.hysteretic, hysteretic),
+                          mix(left_.input, e0_ + s.w_in),
+                          err);
+        }
       }
 
       /// Re-run the window from `start` to `t_end` at 2·Δt_c and compare its peaks with `fine`.
@@ -740,7 +852,8 @@ namespace kimp::lumped
       const AdaptiveStepOptions      &opt_;
       const GroundMotion             &motion_;
       Eigen::Index                    n_;
-      double                          big_, fine_, approach_;
+      double                          big_, fine_, approach_, stick_;
+      bool                            stick_slip_ = false; ///< Isolator::stick_slip()
       double                          est_;
       Vec                             mass_;
       Mat                             k_, c_;
@@ -748,11 +861,24 @@ namespace kimp::lumped
       std::size_t                     next_lu_ = 0;
       std::array<Factor, 8>           factors_;
       std::size_t                     last_factor_ = 0, next_factor_ = 0;
-      bool                            bilinear_ = false;    ///< the isolator is a BilinearIsolator
-      double                          inv_record_dt_ = 0.0; ///< 1/(the record's dt), 1/s
-      double                          e0_            = 0.0;
-      ResponseRecorder                rec_;
-      AdaptiveStepReport              report_;
+      /// A history row: the values at the start of the step that contains the next sample time
+      /// (left_) and the row interpolated from them (row_).
+      struct Row
+      {
+        double              t = 0.0;
+        std::vector<double> u, a, drift, cf;
+        double              isolator = 0.0, hysteretic = 0.0, input = 0.0;
+      };
+      Row                left_, row_;
+      double             interval_      = 0.0;   ///< output_interval, s (0: none)
+      double             next_sample_   = 0.0;   ///< time of the next history row, s
+      long               sample_k_      = 0;     ///< its index
+      double             eps_           = 0.0;   ///< time tolerance of the run, s
+      bool               bilinear_      = false; ///< the isolator is a BilinearIsolator
+      double             inv_record_dt_ = 0.0;   ///< 1/(the record's dt), 1/s
+      double             e0_            = 0.0;
+      ResponseRecorder   rec_;
+      AdaptiveStepReport report_;
     };
   } // namespace
 
@@ -792,6 +918,9 @@ namespace kimp::lumped
     if (!(options_.structure_step > 0.0 && options_.structure_step <= 2.0))
       throw std::invalid_argument("adaptive structure_step = " +
                                   std::to_string(options_.structure_step) + " (must be in (0, 2])");
+    if (!(options_.stick_step > 0.0 && options_.stick_step <= 2.0))
+      throw std::invalid_argument("adaptive stick_step = " + std::to_string(options_.stick_step) +
+                                  " (must be in (0, 2])");
     if (!(options_.estimate_factor >= 2.0))
       throw std::invalid_argument("adaptive estimate_factor = " +
                                   std::to_string(options_.estimate_factor) + " (must be >= 2)");
@@ -851,13 +980,15 @@ namespace kimp::lumped
     const double big      = large_step(motion.dt);
     const double approach = std::min(big / 3.0, dt_approach_);
     const double fine     = std::min(approach, dt_contact_);
-    const auto   go       = [&](auto &&run) { return run.run(report, replay, taken); };
+    const double stick =
+      std::min(big, options_.stick_step / std::max(stability_.omega_structure, 1e-300));
+    const auto go = [&](auto &&run) { return run.run(report, replay, taken); };
     if (options_.reference_kernel)
-      return go(
-        AdaptiveRun<Eigen::Dynamic, false>(model_, cdm_, options_, motion, big, approach, fine));
+      return go(AdaptiveRun<Eigen::Dynamic,
+                            false>(model_, cdm_, options_, motion, big, approach, fine, stick));
 #define KIMP_ADAPTIVE_FIXED(n) \
   case n:                      \
-    return go(AdaptiveRun<n, true>(model_, cdm_, options_, motion, big, approach, fine));
+    return go(AdaptiveRun<n, true>(model_, cdm_, options_, motion, big, approach, fine, stick));
     switch (model_.n_dofs())
     {
       KIMP_ADAPTIVE_FIXED(1)
@@ -869,8 +1000,8 @@ namespace kimp::lumped
       KIMP_ADAPTIVE_FIXED(7)
       KIMP_ADAPTIVE_FIXED(8)
       default:
-        return go(
-          AdaptiveRun<Eigen::Dynamic, true>(model_, cdm_, options_, motion, big, approach, fine));
+        return go(AdaptiveRun<Eigen::Dynamic,
+                              true>(model_, cdm_, options_, motion, big, approach, fine, stick));
     }
 #undef KIMP_ADAPTIVE_FIXED
   }

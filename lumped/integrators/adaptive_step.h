@@ -31,6 +31,8 @@ namespace kimp::lumped
    * | reference_kernel| -    | false   | run the reference path (dynamic-size products, an LU   |
    * |                 |      |         | solve per step, every law every step): the oracle of   |
    * |                 |      |         | the fast path in the tests, not for production         |
+   * | stick_step      | -    | 0.3     | ω_structure·Δt_stick, the largest step while a         |
+   * |                 |      |         | stick-slip isolator sticks (Isolator::stick_slip())    |
    *
    * The fast path (the default) runs fixed-size products for models of up to 8 DOFs, one cached
    * inverse of the effective matrix per step size, and skips the laws while their gap is open;
@@ -47,6 +49,7 @@ namespace kimp::lumped
     bool   error_estimate   = true;
     double estimate_factor  = 4.0;
     bool   reference_kernel = false;
+    double stick_step       = 0.3;
   };
 
   /// What a variable-step run did: its steps and its estimated errors.
@@ -55,7 +58,7 @@ namespace kimp::lumped
     double dt_large            = 0.0; ///< step while every contact is open and far, s
     double dt_approach         = 0.0; ///< step while a gap closes within approach_time, s
     double dt_contact          = 0.0; ///< step while a contact is active or imminent, s
-    double dt_min              = 0.0; ///< smallest step taken (onset location, sample times), s
+    double dt_min              = 0.0; ///< smallest step taken (onsets, reversals, end of run), s
     long   steps               = 0;   ///< steps of the run (force evaluations but the first)
     long   contact_steps_taken = 0;   ///< of which below Δt_large (approach, contact), count
     long   estimate_steps      = 0;   ///< extra steps of the error-estimate re-runs
@@ -98,13 +101,20 @@ namespace kimp::lumped
    *    seconds after;
    *  - a step that would close a gap is shortened to end where the gap closes at the present
    *    rate (contact onset located within the step, down to Δt_c/16);
-   *  - the step grows by at most 2× per step; steps end on every history sample and at the
-   *    end of the run.
+   *  - with a stick-slip isolator (a friction pendulum): a step that would carry the isolator's
+   *    velocity through zero (at its last acceleration) is shortened to end there (down to
+   *    Δt_large/16), where the friction force has a kink (μ(|u̇|), the stick branch starts),
+   *    and the step is at most Δt_stick = min(Δt_large, stick_step/ω_structure) while the
+   *    isolator sticks (the stiff k_init branch);
+   *  - the step grows by at most 2× per step; the last step ends at the end of the run. The
+   *    history samples do not constrain the steps: a row every output_interval is interpolated
+   *    linearly between the two steps around it (u is linear within a central-difference step),
+   *    or taken at a step that falls on it; peaks are taken at every step.
    * Error estimate: every window (the steps below Δt_large) is integrated again from a copy of
    * its first state (laws cloned) with estimate_factor times the steps (AdaptiveStepReport).
    *
    * The Response is that of CentralDifference with dt = Δt_large and n_steps the number of
-   * steps taken; histories are sampled every output_interval.
+   * steps taken; histories have a row every output_interval (interpolated between steps).
    */
   class AdaptiveCentralDifference
   {

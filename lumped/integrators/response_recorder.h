@@ -105,6 +105,39 @@ namespace kimp::lumped
       h.energy_error.push_back(energy_error);
     }
 
+    /**
+     * One history row at `t` (s) from values given explicitly (the variable-step run's rows
+     * interpolated between two steps): u and a per DOF (m, m/s²), drift per storey (m), the
+     * contact forces (N), the isolator force (N), the hysteretic energy (J), E_0 + W_in (J) and
+     * the relative energy error.
+     */
+    void sample_row(const double  t,
+                    const double *u,
+                    const double *a,
+                    const double *drift,
+                    const double *contact_forces,
+                    const double  isolator_force,
+                    const double  hysteretic_energy,
+                    const double  energy_input,
+                    const double  energy_error)
+    {
+      ResponseHistory &h = r_.history;
+      h.time.push_back(t);
+      h.displacement.insert(h.displacement.end(), u, u + r_.n_dofs);
+      h.absolute_acceleration.insert(h.absolute_acceleration.end(), a, a + r_.n_dofs);
+      h.interstorey_drift.insert(h.interstorey_drift.end(), drift, drift + r_.n_storeys);
+      h.contact_force.insert(h.contact_force.end(),
+                             contact_forces,
+                             contact_forces + r_.contacts.size());
+      h.isolator_force.push_back(isolator_force);
+      h.hysteretic_energy.push_back(hysteretic_energy);
+      h.energy_input.push_back(energy_input);
+      h.energy_error.push_back(energy_error);
+    }
+
+    /// The last isolator_force(), N.
+    double last_isolator_force() const { return isolator_force_; }
+
     /// The Response so far with the peak contact forces, each law's permanent indentation and
     /// dissipated energy (laws in contact order), the final and the maximum relative errors.
     Response finish(const std::vector<std::unique_ptr<ForceLaw>> &laws) const;

@@ -76,11 +76,13 @@ namespace kimp::lumped
       // Return mapping: slip |Δu_slip| = (|f_trial| − q)/k_init at the friction force ±q.
       const double sign = f_trial > 0.0 ? 1.0 : -1.0;
       trial_.f_s        = sign * q;
+      trial_.sliding    = true;
       trial_.dissipated += q * (std::abs(f_trial) - q) / k_init_;
       const double dmu_dv = (mu_fast_ - mu_slow_) * rate_ * e * (velocity >= 0.0 ? 1.0 : -1.0);
       return {k_pendulum_ * displacement + trial_.f_s, k_pendulum_, sign * W_ * dmu_dv};
     }
-    trial_.f_s = f_trial;
+    trial_.f_s     = f_trial;
+    trial_.sliding = false;
     return {k_pendulum_ * displacement + f_trial, k_pendulum_ + k_init_, 0.0};
   }
 } // namespace kimp::lumped

@@ -54,6 +54,8 @@ namespace kimp::lumped
     }
     double dissipated_energy() const override { return committed_.dissipated; }
     double committed_force() const override { return k_pendulum_ * committed_.u + committed_.f_s; }
+    bool   stick_slip() const override { return true; }
+    bool   sticking() const override { return !committed_.sliding; }
 
     /// Friction coefficient μ(v) at sliding velocity v (m/s).
     double friction_coefficient(double velocity) const;
@@ -69,9 +71,10 @@ namespace kimp::lumped
   private:
     struct State
     {
-      double u          = 0.0; ///< displacement, m
-      double f_s        = 0.0; ///< friction force, N (|f_s| <= μ·W)
-      double dissipated = 0.0; ///< Σ μ·W·|Δu_slip|, J
+      double u          = 0.0;   ///< displacement, m
+      double f_s        = 0.0;   ///< friction force, N (|f_s| <= μ·W)
+      double dissipated = 0.0;   ///< Σ μ·W·|Δu_slip|, J
+      bool   sliding    = false; ///< the last update slipped (f_s = ±μ·W)
     };
 
     double W_;

@@ -48,6 +48,15 @@ namespace kimp::lumped
     virtual double dissipated_energy() const = 0;
     /// Restoring force at the committed state, N (the force of the last committed trial).
     virtual double committed_force() const = 0;
+    /**
+     * Whether the law sticks and slips (a friction bearing: a stiff elastic branch while it
+     * sticks, a kink of the force where its velocity reverses). The variable-step integrator
+     * (`dt: auto`) then ends a step where the isolator's velocity reverses and limits the step
+     * while sticking() (AdaptiveStepOptions::stick_step). Default false.
+     */
+    virtual bool stick_slip() const { return false; }
+    /// The committed state is on the stick (elastic) branch of a stick-slip law.
+    virtual bool sticking() const { return false; }
 
     virtual std::string               name() const  = 0;
     virtual std::unique_ptr<Isolator> clone() const = 0;

@@ -45,10 +45,10 @@ namespace
     return table;
   }
 
-  /// The target of `dt: auto`: every peak within 0.5 % of Δt → 0 (measured: 0.23 % at most).
+  /// The target of `dt: auto`: every peak within 0.5 % of Δt → 0 (measured: 0.29 % at most).
   constexpr double tolerance = 0.005;
   /// At most twice the steps of `dt: stable`, the error-estimate re-runs included (measured:
-  /// 1.5-1.85×).
+  /// 1.40-1.48×).
   constexpr double cost_factor = 2.0;
 } // namespace
 
@@ -98,10 +98,56 @@ TEST(DtAuto, Table43EveryCaseWithinHalfAPercentAtTwiceTheStableCost)
     EXPECT_NEAR(r.peak_displacement[0], ref.base_u, tolerance * ref.base_u) << name;
     EXPECT_NEAR(r.peak_displacement[4], ref.roof_u, tolerance * ref.roof_u) << name;
     EXPECT_LE(steps, cost_factor * static_cast<double>(old.response.n_steps)) << name;
-    // The estimate (windows only, first order assumed) is reported; measured 0.09-0.87 %, an
+    // The estimate (windows only, first order assumed) is reported; measured 0.09-0.85 %, an
     // over-estimate for the linear-family laws, near the true error for the others.
     EXPECT_GT(var.adaptive->force_error, 0.0) << name;
     EXPECT_LT(var.adaptive->force_error, 0.02) << name;
     EXPECT_LT(r.energy.max_relative_error, 1e-3) << name;
+  }
+}
+
+TEST(DtAuto, FrictionPendulumWithinHalfAPercentOfTheConvergedPeaks)
+{
+  // The friction pendulum on Kobe (no impact: the gaps stay open): its peaks are set by the
+  // stick-slip of the bearing, whose velocity reversals `dt: auto` locates within a step and
+  // whose stick phases it integrates at Δt_stick. Reference: Richardson 2·P(5e-6 s) − P(1e-5 s)
+  // of fixed-step runs (bench/dt_auto_bench); measured: base acc +0.37 %, roof acc +0.08 %, base
+  // and roof u +0.06 %, 1.61x the steps of `dt: stable` (before: +1.38 % / +1.02 %).
+  const LumpedScene scene = load_scene<LumpedScene>(kimp::testing::source_dir() / "data" /
+                                                    "scenes" / "friction_pendulum_kobe_gap15.yaml");
+  const auto        dir   = scene_records_directory(scene.ground_motion);
+  if (!dir || !std::filesystem::exists(*dir / (scene.ground_motion.record + ".AT2")))
+    GTEST_SKIP() << "record " << scene.ground_motion.record << " not available";
+  const kimp::lumped::GroundMotion motion = load_ground_motion(scene.ground_motion);
+  const Reference                  ref    = {0.0, 4.62223, 5.70558, 0.145406, 0.156328};
+  for (const auto &[name, resolved_scene] : resolve_cases(scene))
+  {
+    LumpedScene resolved           = resolved_scene;
+    resolved.integration.companion = false;
+    resolved.integration.dt        = "auto";
+    const LumpedCaseResult var = run_lumped_case(name, resolved, motion, scene.ground_motion.scale);
+    resolved.integration.dt    = "stable";
+    const LumpedCaseResult old = run_lumped_case(name, resolved, motion, scene.ground_motion.scale);
+    ASSERT_TRUE(var.ok()) << var.status;
+    ASSERT_TRUE(old.ok()) << old.status;
+    ASSERT_TRUE(var.adaptive.has_value());
+    const kimp::lumped::Response &r = var.response;
+    EXPECT_EQ(r.n_impacts(), 0u);
+    const double steps = static_cast<double>(r.n_steps + var.adaptive->estimate_steps);
+    std::printf("friction pendulum: base acc %+.3f %%, roof acc %+.3f %%, base u %+.4f %%, roof u "
+                "%+.4f %%; %.0f steps = %.2f x stable (%ld)\n",
+                100 * (r.peak_absolute_acceleration[0] / ref.base_acc - 1),
+                100 * (r.peak_absolute_acceleration[4] / ref.roof_acc - 1),
+                100 * (r.peak_displacement[0] / ref.base_u - 1),
+                100 * (r.peak_displacement[4] / ref.roof_u - 1),
+                steps,
+                steps / static_cast<double>(old.response.n_steps),
+                old.response.n_steps);
+    EXPECT_NEAR(r.peak_absolute_acceleration[0], ref.base_acc, tolerance * ref.base_acc);
+    EXPECT_NEAR(r.peak_absolute_acceleration[4], ref.roof_acc, tolerance * ref.roof_acc);
+    EXPECT_NEAR(r.peak_displacement[0], ref.base_u, tolerance * ref.base_u);
+    EXPECT_NEAR(r.peak_displacement[4], ref.roof_u, tolerance * ref.roof_u);
+    EXPECT_LE(steps, cost_factor * static_cast<double>(old.response.n_steps));
+    EXPECT_LT(r.energy.max_relative_error, 1e-3);
   }
 }

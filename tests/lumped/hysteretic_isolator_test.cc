@@ -197,6 +197,31 @@ namespace kimp::lumped
     expect_exact_tangents(iso, 0.1099, -0.1, 1e9, "sticking");
   }
 
+  TEST(FrictionPendulum, StickSlipStateOfTheCommittedUpdate)
+  {
+    // μ·W/k_init = 0.04·15e6/1e9 = 0.6 mm of elastic travel from rest (μ_slow at v = 0).
+    FrictionPendulumIsolator iso(15e6, 2.236, 0.04, 0.04, 20.0, 1e9);
+    EXPECT_TRUE(iso.stick_slip());
+    EXPECT_TRUE(iso.sticking()); // virgin state: elastic
+    iso.set_trial(0.5e-3, 0.01);
+    iso.commit();
+    EXPECT_TRUE(iso.sticking()) << "0.5 mm < 0.6 mm: still elastic";
+    iso.set_trial(1.0e-3, 0.01);
+    EXPECT_TRUE(iso.sticking()) << "a trial does not change the committed state";
+    iso.commit();
+    EXPECT_FALSE(iso.sticking()) << "1 mm > 0.6 mm: sliding";
+    // Reversal: back on the elastic branch (2·μ·W/k_init = 1.2 mm before sliding again).
+    iso.set_trial(0.9e-3, -0.01);
+    iso.commit();
+    EXPECT_TRUE(iso.sticking());
+    iso.revert_to_start();
+    EXPECT_TRUE(iso.sticking());
+    // Laws without stick-slip keep the defaults.
+    const BilinearIsolator b(25e6, 2.5e6, 1e5);
+    EXPECT_FALSE(b.stick_slip());
+    EXPECT_FALSE(b.sticking());
+  }
+
   TEST(FrictionPendulum, Contract)
   {
     FrictionPendulumIsolator iso(15e6, 2.236, 0.04, 0.08, 20.0, 1e9, 1e4);
