@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <fmt/format.h>
+#include <map>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -213,6 +214,7 @@ namespace kimp::app
     }
 
     nlohmann::ordered_json                cases = nlohmann::ordered_json::array();
+    std::map<std::string, std::string>    extra_units; // of the cases' optional summary keys
     std::vector<std::vector<std::string>> rows;
     for (const double height : scene.wall_heights)
     {
@@ -262,6 +264,7 @@ namespace kimp::app
       nlohmann::ordered_json entry{{"name", name}};
       entry.update(summary_json(fem_case, mesh_rel));
       cases.push_back(entry);
+      extra_units.insert(fem_case.summary_units.begin(), fem_case.summary_units.end());
       for (std::size_t i = 0; i < fem_case.time.size(); ++i)
         rows.push_back({name,
                         fmt::format("{}", fem_case.time[i]),
@@ -346,6 +349,10 @@ namespace kimp::app
                         {"dissipation_cor", "1"},
                         {"permanent_indentation", "m"},
                         {"wall_residual_displacement", "m"}};
+    // The units of the keys only some cases have (geostatic step, interface, dissipation by body).
+    for (const auto &[key, unit] : extra_units)
+      if (!summary["units"].contains(key))
+        summary["units"][key] = unit;
     summary["cases"] = cases;
     write_text_atomic(output.file("summary.json"), summary.dump(2) + "\n");
     logger().info("wrote {}, {}, {}",

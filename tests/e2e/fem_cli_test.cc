@@ -3,6 +3,7 @@
 // scenes (overlap, dt above the stability limit) leaving no result files, and 1 vs 2 MPI ranks.
 #ifdef KIMP_WITH_FEM
 
+#  include <algorithm>
 #  include <cmath>
 #  include <cstdlib>
 #  include <filesystem>
@@ -93,6 +94,39 @@ namespace
       ++rows;
     }
     EXPECT_EQ(rows, c.time.size());
+  }
+
+  TEST(FemCli, InelasticRunSplitsTheDissipationByBodyWithUnits)
+  {
+    // Mohr-Coulomb backfill and damaged concrete: the summary gives the plastic and damage
+    // dissipation per body, they add up to the totals, and summary.json names their unit.
+    const TempDir dir("fem_cli_inelastic");
+    write_quick_scene(dir.path(),
+                      "dynamics: {end_time: \"10 ms\"}\n"
+                      "materials:\n"
+                      "  concrete: {model: damage_plasticity, f_cm: \"38 MPa\"}\n"
+                      "  soil: {model: mohr_coulomb, preset: medium_dense_sand, c: \"5 kPa\"}\n");
+    const KimpRun run = run_kimp("fem scene.yaml -o out", dir.path());
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const nlohmann::json  summary = read_json(dir.path() / "out/summary.json");
+    const nlohmann::json &c       = summary.at("cases").at(0);
+    for (const char *what : {"plastic", "damage"})
+    {
+      double sum = 0;
+      for (const char *body : {"slab", "wall", "soil"})
+      {
+        const std::string key = std::string(what) + "_dissipation_" + body;
+        ASSERT_TRUE(c.contains(key)) << key;
+        EXPECT_EQ(summary.at("units").at(key), "J/m") << key;
+        EXPECT_GE(c.at(key).get<double>(), 0.0) << key;
+        sum += c.at(key).get<double>();
+      }
+      const double total = c.at(std::string(what) + "_dissipation").get<double>();
+      EXPECT_NEAR(sum, total, 1e-9 * std::max(total, 1e-12)) << what;
+    }
+    EXPECT_GT(c.at("plastic_dissipation_soil").get<double>(), 0.0);
+    EXPECT_EQ(c.at("damage_dissipation_soil").get<double>(), 0.0);
+    EXPECT_EQ(summary.at("units").at("geostatic_weight"), "N/m");
   }
 
   TEST(FemCli, OverlappingSceneFailsWithTheKeyAndWritesNoResults)
