@@ -124,8 +124,7 @@ namespace kimp::app
     c.summary.set("plastic_dissipation", s.plastic_dissipation);
     c.summary.set("damage_dissipation", s.damage_dissipation);
     c.summary.set("contact_dissipation", s.contact_dissipation);
-    if (scene.materials.concrete.model != FemConcrete::Model::elastic ||
-        (scene.geometry.with_backfill && scene.materials.soil.model != FemSoil::Model::elastic))
+    if (has_inelastic_materials(scene))
     {
       // Where the material dissipation happened: plastic work of soil, bars and concrete, and
       // the concrete's damage, per body.

@@ -272,6 +272,12 @@ namespace kimp::app
     }
   }
 
+  bool has_inelastic_materials(const FemScene &scene)
+  {
+    return scene.materials.concrete.model != FemConcrete::Model::elastic ||
+           (scene.geometry.with_backfill && scene.materials.soil.model != FemSoil::Model::elastic);
+  }
+
   double slab_mass(const FemScene &scene)
   {
     if (scene.slab.rigid && scene.slab.mass)
@@ -338,6 +344,23 @@ namespace kimp::app
       p.dilatancy = *s.dilatancy * deg;
     p.tension_cutoff = s.tension_cutoff;
     return p;
+  }
+
+  FemSoil without_preset(const FemSoil &soil)
+  {
+    if (soil.preset == "none")
+      return soil;
+    constexpr double          deg = 3.14159265358979323846 / 180;
+    const fem::SoilParameters p   = soil_parameters(soil);
+    FemSoil                   out = soil;
+    out.preset                    = "none";
+    out.youngs_modulus            = p.youngs_modulus;
+    out.poisson_ratio             = p.poisson_ratio;
+    out.density                   = p.density;
+    out.cohesion                  = p.cohesion;
+    out.friction_angle            = p.friction_angle / deg;
+    out.dilatancy                 = p.dilatancy / deg;
+    return out;
   }
 
   std::pair<fem::Material, std::shared_ptr<const fem::MaterialLaw>> soil_material(const FemSoil &s)

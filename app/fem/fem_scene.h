@@ -561,6 +561,9 @@ namespace kimp::app
   /** Whether the case runs the geostatic step (FemScene::geostatic resolved). */
   bool geostatic_enabled(const FemScene &scene);
 
+  /** True if the scene's concrete model, or its soil model with a backfill, is inelastic. */
+  bool has_inelastic_materials(const FemScene &scene);
+
   /** Checks ranges and cross-field rules of every section, for every wall height. */
   void validate(const FemScene &scene, io::ValidationContext &context);
 
@@ -580,6 +583,9 @@ namespace kimp::app
   /** Soil strength and elasticity of @p soil: its preset (if any) with c, phi, psi given in
    *  the scene overriding the preset's. */
   fem::SoilParameters soil_parameters(const FemSoil &soil);
+  /** @p soil with its preset written out as E, nu, rho, c, phi, psi (preset "none"), so that
+   *  those values can be changed (the same soil_parameters()). */
+  FemSoil without_preset(const FemSoil &soil);
   /** Concrete parameters by fib Model Code 2010 from f_cm, with the scene's overrides. */
   fem::ConcreteParameters concrete_parameters(const FemConcrete &concrete);
   /** The elastic constants the solver uses (dt, penalty, mass) and the law (null: linear). */

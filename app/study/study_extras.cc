@@ -333,20 +333,8 @@ namespace kimp::app
     run("base", 1.0, base);
     for (const double factor : {1.0 - v, 1.0 + v})
     {
-      FemScene s = base;
-      if (s.materials.soil.preset != "none")
-      {
-        // The preset's values, written out, so that its E can be scaled.
-        const fem::SoilParameters p    = soil_parameters(s.materials.soil);
-        FemSoil                  &soil = s.materials.soil;
-        soil.preset                    = "none";
-        soil.poisson_ratio             = p.poisson_ratio;
-        soil.density                   = p.density;
-        soil.youngs_modulus            = p.youngs_modulus;
-        soil.cohesion                  = p.cohesion;
-        soil.friction_angle            = p.friction_angle * 180 / 3.14159265358979323846;
-        soil.dilatancy                 = p.dilatancy * 180 / 3.14159265358979323846;
-      }
+      FemScene s       = base;
+      s.materials.soil = without_preset(s.materials.soil); // a preset's E is scaled too
       s.materials.soil.youngs_modulus *= factor;
       run("soil_modulus", factor, s);
       s = base;

@@ -129,12 +129,6 @@ namespace kimp::app::study_internal
     return fmt::format("{}_v{:g}", fem_case_name(wall_height), velocity);
   }
 
-  bool has_inelastic_materials(const FemScene &scene)
-  {
-    return scene.materials.concrete.model != FemConcrete::Model::elastic ||
-           (scene.geometry.with_backfill && scene.materials.soil.model != FemSoil::Model::elastic);
-  }
-
   FemScene linear_fem_scene(const FemScene &scene)
   {
     FemScene linear = scene;

@@ -21,9 +21,6 @@ namespace kimp::app::study_internal
   /// Name of a velocity case: "H1.25_v0.5" (m, m/s).
   std::string velocity_case_name(double wall_height, double velocity);
 
-  /// True if the scene's soil or concrete model is inelastic.
-  bool has_inelastic_materials(const FemScene &scene);
-
   /**
    * The linear-elastic counterpart of `scene`: both material models elastic with the elastic
    * constants the inelastic laws use (E_ci from f_cm for damage-plasticity concrete, the preset's

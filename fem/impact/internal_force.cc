@@ -256,10 +256,9 @@ namespace kimp::fem::internal
           point_energy_local[0] += po.stored_energy * fe_values.JxW(q);
           point_energy_local[1] += po.plastic_dissipation * fe_values.JxW(q);
           point_energy_local[2] += po.damage_dissipation * fe_values.JxW(q);
-          body_dissipation_local[body_of(cell->material_id())][0] +=
-            po.plastic_dissipation * fe_values.JxW(q);
-          body_dissipation_local[body_of(cell->material_id())][1] +=
-            po.damage_dissipation * fe_values.JxW(q);
+          auto &body = body_dissipation_local[body_of(cell->material_id())];
+          body[0] += po.plastic_dissipation * fe_values.JxW(q);
+          body[1] += po.damage_dissipation * fe_values.JxW(q);
           for (unsigned int i = 0; i < n; ++i)
           {
             const auto e = fe_values[displacement].symmetric_gradient(i, q);

@@ -678,11 +678,9 @@ namespace kimp::lumped
           r.peak_absolute_acceleration[q] =
             std::max(r.peak_absolute_acceleration[q], std::abs(a(i) + ag));
         }
-        const auto drift = [&](const Storey &st)
-        { return s.u(st.upper_dof) - (st.lower_dof >= 0 ? s.u(st.lower_dof) : 0.0); };
         for (std::size_t q = 0; q < model_.storeys().size(); ++q)
           r.peak_interstorey_drift[q] =
-            std::max(r.peak_interstorey_drift[q], std::abs(drift(model_.storeys()[q])));
+            std::max(r.peak_interstorey_drift[q], std::abs(drift(s, model_.storeys()[q])));
         if (check)
         {
           EnergyBalance terms;
@@ -711,6 +709,12 @@ namespace kimp::lumped
           keep_left(s, a, ag);
       }
 
+      /// Interstorey drift of storey @p st at the state @p s, m.
+      static double drift(const State &s, const Storey &st)
+      {
+        return s.u(st.upper_dof) - (st.lower_dof >= 0 ? s.u(st.lower_dof) : 0.0);
+      }
+
       /// The values at t_n of the rows interpolated inside the next step.
       void keep_left(const State &s, const Vec &a, const double ag)
       {
@@ -722,10 +726,7 @@ namespace kimp::lumped
           left_.a[q]   = a(i) + ag;
         }
         for (std::size_t q = 0; q < model_.storeys().size(); ++q)
-        {
-          const Storey &st = model_.storeys()[q];
-          left_.drift[q]   = s.u(st.upper_dof) - (st.lower_dof >= 0 ? s.u(st.lower_dof) : 0.0);
-        }
+          left_.drift[q] = drift(s, model_.storeys()[q]);
         std::copy(s.cf.begin(), s.cf.end(), left_.cf.begin());
         left_.isolator   = rec_.last_isolator_force();
         left_.hysteretic = s.iso ? s.iso->dissipated_energy() : 0.0;
@@ -739,8 +740,6 @@ namespace kimp::lumped
                         const double err,
                         const double hysteretic)
       {
-        const auto drift = [&](const Storey &st)
-        { return s.u(st.upper_dof) - (st.lower_dof >= 0 ? s.u(st.lower_dof) : 0.0); };
         while (next_sample_ <= s.t + eps_)
         {
           const double ts = next_sample_;
@@ -752,7 +751,7 @@ namespace kimp::lumped
               ts,
               [&](const std::size_t i) { return s.u(static_cast<Eigen::Index>(i)); },
               [&](const std::size_t i) { return a(static_cast<Eigen::Index>(i)) + ag; },
-              [&](const std::size_t q) { return drift(model_.storeys()[q]); },
+              [&](const std::size_t q) { return drift(s, model_.storeys()[q]); },
               s.cf,
               e0_ + s.w_in,
               err);
@@ -768,7 +767,7 @@ namespace kimp::lumped
             row_.a[q]    = mix(left_.a[q], a(i) + ag);
           }
           for (std::size_t q = 0; q < model_.storeys().size(); ++q)
-            row_.drift[q] = mix(left_.drift[q], drift(model_.storeys()[q]));
+            row_.drift[q] = mix(left_.drift[q], drift(s, model_.storeys()[q]));
           for (std::size_t c = 0; c < s.cf.size(); ++c)
             row_.cf[c] = mix(left_.cf[c], s.cf[c]);
           rec_.sample_row(ts,

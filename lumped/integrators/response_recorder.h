@@ -90,19 +90,16 @@ namespace kimp::lumped
                 const double               energy_input,
                 const double               energy_error)
     {
-      ResponseHistory &h = r_.history;
-      h.time.push_back(t);
-      for (std::size_t i = 0; i < r_.n_dofs; ++i)
-        h.displacement.push_back(u(i));
-      for (std::size_t i = 0; i < r_.n_dofs; ++i)
-        h.absolute_acceleration.push_back(a(i));
-      for (std::size_t s = 0; s < r_.n_storeys; ++s)
-        h.interstorey_drift.push_back(drift(s));
-      h.contact_force.insert(h.contact_force.end(), contact_forces.begin(), contact_forces.end());
-      h.isolator_force.push_back(isolator_force_);
-      h.hysteretic_energy.push_back(r_.energy.hysteretic);
-      h.energy_input.push_back(energy_input);
-      h.energy_error.push_back(energy_error);
+      push_row(t,
+               u,
+               a,
+               drift,
+               contact_forces.data(),
+               contact_forces.size(),
+               isolator_force_,
+               r_.energy.hysteretic,
+               energy_input,
+               energy_error);
     }
 
     /**
@@ -121,18 +118,17 @@ namespace kimp::lumped
                     const double  energy_input,
                     const double  energy_error)
     {
-      ResponseHistory &h = r_.history;
-      h.time.push_back(t);
-      h.displacement.insert(h.displacement.end(), u, u + r_.n_dofs);
-      h.absolute_acceleration.insert(h.absolute_acceleration.end(), a, a + r_.n_dofs);
-      h.interstorey_drift.insert(h.interstorey_drift.end(), drift, drift + r_.n_storeys);
-      h.contact_force.insert(h.contact_force.end(),
-                             contact_forces,
-                             contact_forces + r_.contacts.size());
-      h.isolator_force.push_back(isolator_force);
-      h.hysteretic_energy.push_back(hysteretic_energy);
-      h.energy_input.push_back(energy_input);
-      h.energy_error.push_back(energy_error);
+      push_row(
+        t,
+        [u](const std::size_t i) { return u[i]; },
+        [a](const std::size_t i) { return a[i]; },
+        [drift](const std::size_t s) { return drift[s]; },
+        contact_forces,
+        r_.contacts.size(),
+        isolator_force,
+        hysteretic_energy,
+        energy_input,
+        energy_error);
     }
 
     /// The last isolator_force(), N.
@@ -155,6 +151,34 @@ namespace kimp::lumped
 
   private:
     void complete(Response &out, const std::vector<std::unique_ptr<ForceLaw>> &laws) const;
+
+    /// Appends one history row (sample() and sample_row()).
+    template <class Displacement, class Acceleration, class Drift>
+    void push_row(const double   t,
+                  Displacement &&u,
+                  Acceleration &&a,
+                  Drift        &&drift,
+                  const double  *contact_forces,
+                  std::size_t    n_contacts,
+                  const double   isolator_force,
+                  const double   hysteretic_energy,
+                  const double   energy_input,
+                  const double   energy_error)
+    {
+      ResponseHistory &h = r_.history;
+      h.time.push_back(t);
+      for (std::size_t i = 0; i < r_.n_dofs; ++i)
+        h.displacement.push_back(u(i));
+      for (std::size_t i = 0; i < r_.n_dofs; ++i)
+        h.absolute_acceleration.push_back(a(i));
+      for (std::size_t s = 0; s < r_.n_storeys; ++s)
+        h.interstorey_drift.push_back(drift(s));
+      h.contact_force.insert(h.contact_force.end(), contact_forces, contact_forces + n_contacts);
+      h.isolator_force.push_back(isolator_force);
+      h.hysteretic_energy.push_back(hysteretic_energy);
+      h.energy_input.push_back(energy_input);
+      h.energy_error.push_back(energy_error);
+    }
 
     Response            r_;
     std::vector<double> peak_force_;

@@ -240,6 +240,29 @@ namespace
     }
   }
 
+  TEST(FemScene, PresetWrittenOutIsTheSameSoil)
+  {
+    // without_preset() (the study's sensitivity run scales its E): the same soil as the preset,
+    // with c given beside the preset kept; a soil without preset is returned unchanged.
+    const FemScene s = load_scene_text<FemScene>(
+      "materials: {soil: {model: mohr_coulomb, preset: dense_sand, c: \"5 kPa\"}}\n",
+      file_name);
+    const kimp::app::FemSoil out = kimp::app::without_preset(s.materials.soil);
+    const auto               a   = kimp::app::soil_parameters(s.materials.soil);
+    const auto               b   = kimp::app::soil_parameters(out);
+    EXPECT_EQ(out.preset, "none");
+    EXPECT_EQ(b.youngs_modulus, a.youngs_modulus);
+    EXPECT_EQ(b.poisson_ratio, a.poisson_ratio);
+    EXPECT_EQ(b.density, a.density);
+    EXPECT_EQ(b.cohesion, 5e3);
+    EXPECT_NEAR(b.friction_angle, a.friction_angle, 1e-14);
+    EXPECT_NEAR(b.dilatancy, a.dilatancy, 1e-14);
+    EXPECT_EQ(b.tension_cutoff, a.tension_cutoff);
+    const FemScene plain;
+    EXPECT_EQ(kimp::app::without_preset(plain.materials.soil).youngs_modulus,
+              plain.materials.soil.youngs_modulus);
+  }
+
   TEST(FemScene, ReinforcementKeysGiveEachBodyItsBars)
   {
     // Default: no bars (the plain law, 6 history values). The wall's and the slab's sections
