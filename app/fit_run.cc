@@ -95,13 +95,13 @@ namespace kimp::app
 
   std::string fem_fit_verdict(const io::FemCase &fem_case, const fit::FitResult &fit)
   {
-    // Only a run that ended on separation has a rebound velocity: one stopped at its end time
-    // (e.g. a rigid slab still chattering) may be caught moving in.
+    // A run ends on separation only once the slab no longer moves in (apparent COR >= 0); one
+    // stopped at its end time may have caught the slab still moving in.
     const std::optional<double> cor     = fem_case.summary.apparent_cor;
     const auto                  stopped = fem_case.labels.find("stopped_on");
     const bool separated = stopped != fem_case.labels.end() && stopped->second == "separation";
-    // And only an inelastic one can give way: a linear wall may send a rigid slab off still
-    // moving in (the wall face springing back faster), which is chatter, not failure.
+    // Only an inelastic wall can give way: a linear wall may still be chattering with a rigid
+    // slab at the end time, which is not failure.
     const auto extra = [&](const char *key)
     {
       const auto it = fem_case.summary.extra.find(key);
@@ -111,28 +111,33 @@ namespace kimp::app
     const double energy =
       0.5 * fem_case.slab_mass * fem_case.impact_velocity * fem_case.impact_velocity;
     const std::string from_fit = fit_verdict(fit);
-    if (!(cor && separated && !(*cor > 0.0) && dissipated > 1.0e-2 * energy))
+    if (!cor || !(dissipated > 1.0e-2 * energy))
       return from_fit;
-    // The slab keeps more than a quarter of its kinetic energy moving in: the wall has broken,
-    // not stopped it.
-    if (*cor < -0.5)
+    // At the end time the slab keeps more than a quarter of its kinetic energy moving in: the
+    // wall has broken, not stopped it.
+    if (!separated && *cor < -0.5)
       return fmt::format(
-        "failed: the slab passes through (apparent COR {:.3g}: it keeps {:.3g} % of its kinetic "
-        "energy moving into the wall): the wall or the backfill fails during the impact (damage "
-        "{:.4g} J/m, plastic {:.4g} J/m), so the run has no impact stiffness",
+        "failed: the slab passes through (apparent COR {:.3g} at the end time: it keeps {:.3g} % "
+        "of its kinetic energy moving into the wall): the wall or the backfill fails during the "
+        "impact (damage {:.4g} J/m, plastic {:.4g} J/m), so the run has no impact stiffness",
         *cor,
         100.0 * *cor * *cor,
         extra("damage_dissipation"),
         extra("plastic_dissipation"));
     if (from_fit.rfind("failed", 0) == 0)
       return from_fit;
-    return fmt::format(
-      "warning: the wall yields: the slab is stopped, not rebounded (apparent COR {:.3g}; "
-      "material dissipation {:.3g} % of the impact energy), so k is the equivalent stiffness of a "
-      "yielding wall{}",
-      *cor,
-      100.0 * dissipated / energy,
-      from_fit == "ok" ? "" : "; " + from_fit);
+    // Stopped, not rebounded: less than 1 % of the impact energy leaves with the slab.
+    if (*cor < yielding_wall_cor)
+      return fmt::format(
+        "warning: the wall yields: {} (apparent COR {:.3g}{}; material dissipation {:.3g} % of "
+        "the impact energy), so k is the equivalent stiffness of a yielding wall{}",
+        !separated && *cor < 0.0 ? "the slab still moves in at the end time" :
+                                   "the slab is stopped, not rebounded",
+        *cor,
+        separated ? "" : " at the end time",
+        100.0 * dissipated / energy,
+        from_fit == "ok" ? "" : "; " + from_fit);
+    return from_fit;
   }
 
   int run_fit_command(const FitCommandOptions &options)

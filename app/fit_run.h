@@ -94,14 +94,19 @@ namespace kimp::app
                               const fit::FitVariant &variant,
                               const fit::FitConfig  &config);
 
+  /// Apparent COR below which a slab counts as stopped (it leaves with < 1 % of its energy).
+  inline constexpr double yielding_wall_cor = 0.1;
+
   /**
    * The status of `fit` to `fem_case`: fit::fit_verdict(), after what the FEM run itself says.
-   * An impact stiffness describes a contact the slab rebounds from. A run that ended on
-   * separation with the slab still moving into the wall (apparent COR <= 0) while its materials
-   * dissipated more than 1 % of the impact energy did not rebound because the wall gave way:
-   * "failed: ..." if the slab keeps more than a quarter of its kinetic energy (COR < -0.5: the
-   * wall broke), else "warning: ..." (the wall yielded and stopped the slab: k is the equivalent
-   * stiffness of a yielding wall). Used by `kimp fit` and `kimp study`.
+   * An impact stiffness describes a contact the slab rebounds from; a run ends on separation only
+   * once the slab comes in at no more than 5 % of its impact speed (apparent COR >= -0.05).
+   * When the materials dissipated more than 1 % of the impact energy: a run stopped at its end time
+   * with the slab keeping more than a quarter of its kinetic energy moving in (COR < -0.5) is
+   * "failed: ..." (the wall broke); a slab that leaves with less than 1 % of the impact energy (COR
+   * < yielding_wall_cor, or still moving in at the end time) gives "warning: ..." (the wall yielded
+   * and stopped the slab: k is the equivalent stiffness of a yielding wall). Used by `kimp fit` and
+   * `kimp study`.
    */
   std::string fem_fit_verdict(const io::FemCase &fem_case, const fit::FitResult &fit);
 

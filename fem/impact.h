@@ -36,7 +36,7 @@ namespace kimp::fem
      * Time step as a fraction of the stable limit 2 / omega_max (mesh + penalty) when
      * ImpactParameters::dt == 0, in (0, 1].
      */
-    double cfl_safety = 0.5;
+    double cfl_safety = 0.8;
     /**
      * For stability studies: if > 0, dt = dt_over_limit * the stable limit, also above it (no
      * refusal); a run that then diverges stops with NumericalError as always. Requires
@@ -214,10 +214,21 @@ namespace kimp::fem
      */
     double dt = 0;
 
-    double end_time             = 0.05;   ///< s (> 0)
-    double separation_hold_time = 1.0e-3; ///< s: stop once the force stayed zero this long
-    double output_interval      = 1.0e-5; ///< s: history sampling interval (0: every step)
-    double vtu_interval         = 0;      ///< s: field output interval (0: none)
+    double end_time = 0.05; ///< s (> 0)
+    /**
+     * s: the run stops once the force stayed zero this long and the slab moves in at no more than
+     * separation_velocity_fraction of the impact velocity (>= 0).
+     */
+    double separation_hold_time = 1.0e-3;
+    /**
+     * A slab still moving in faster than this fraction of the impact velocity has not separated:
+     * a yielding wall, or a wall face springing ahead of a rigid slab, opens gaps while the slab
+     * still comes. Above zero so that a slab that hands on all its momentum (equal bars) and
+     * rests at round-off speed counts as separated. In [0, 1).
+     */
+    double separation_velocity_fraction = 0.05;
+    double output_interval              = 1.0e-5; ///< s: history sampling interval (0: every step)
+    double vtu_interval                 = 0;      ///< s: field output interval (0: none)
     /** s: interval of the deformed-mesh frames of ImpactResult::frames (0: none; >= 0). */
     double                frame_interval = 0;
     std::filesystem::path vtu_dir;          ///< field output directory (empty: none)

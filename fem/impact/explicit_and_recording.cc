@@ -91,11 +91,16 @@ namespace kimp::fem::internal
         started    = true;
         zero_since = n + 1;
       }
+      // Over once the force stayed zero for the hold time and the slab no longer comes in
+      // (ImpactParameters::separation_velocity_fraction).
       if (started && n + 1 - zero_since >= hold_steps && ev.total_force == 0)
       {
-        separated_flag = true;
-        slab_v_end     = prm.rigid_slab ? v_r_n : (slab_mass_x * v_n) / slab_total_mass;
-        break;
+        slab_v_end = prm.rigid_slab ? v_r_n : (slab_mass_x * v_n) / slab_total_mass;
+        if (!(slab_v_end > prm.separation_velocity_fraction * prm.initial_velocity))
+        {
+          separated_flag = true;
+          break;
+        }
       }
       if (n >= n_max)
       {

@@ -460,7 +460,10 @@ namespace kimp::fem::internal
         started    = true;
         zero_since = n + 1;
       }
-      if (started && n + 1 - zero_since >= hold_steps && ev.total_force == 0)
+      // Over as in the explicit loop: zero force for the hold time, the slab not moving in.
+      if (started && n + 1 - zero_since >= hold_steps && ev.total_force == 0 &&
+          !((prm.rigid_slab ? v_r : (slab_mass_x * v) / slab_total_mass) >
+            prm.separation_velocity_fraction * prm.initial_velocity))
       {
         separated_flag = true;
         break;

@@ -172,6 +172,9 @@ namespace kimp::fem::internal
             "implicit_dt_factor = " + fmt_double(prm.implicit_options.dt_factor) +
               " (must be > 0)");
     require(prm.end_time > 0, "end_time = " + fmt_double(prm.end_time) + " s (must be > 0)");
+    require(prm.separation_velocity_fraction >= 0 && prm.separation_velocity_fraction < 1,
+            "separation_velocity_fraction = " + fmt_double(prm.separation_velocity_fraction) +
+              " (must be in [0, 1))");
     require(prm.separation_hold_time >= 0,
             "separation_hold_time = " + fmt_double(prm.separation_hold_time) + " s (must be >= 0)");
     require(prm.output_interval >= 0,

@@ -521,6 +521,18 @@ namespace
                 << " ranks vs 1, max |dF| / max F = " << max_difference / max_force << '\n';
   }
 
+  /** A run stops on separation only once the slab comes in at no more than 5 % of its impact
+   *  velocity: at 2 m/s the plain wall breaks and the slab still comes in at the end time. */
+  void expect_stop_rule(const ImpactSummary &s)
+  {
+    const double fraction = ImpactParameters().separation_velocity_fraction;
+    EXPECT_EQ(fraction, 0.05);
+    if (s.separated)
+      EXPECT_GE(s.apparent_cor, -fraction) << "stopped while the slab still came in";
+    else
+      EXPECT_LT(s.apparent_cor, -fraction) << "the end time hides a separation";
+  }
+
   /** The scene with Mohr-Coulomb soil (c = 10 kPa, phi = 30 deg, psi = 0, no tension) and
    *  concrete damage from f_cm = 38 MPa in slab and wall. */
   ImpactParameters inelastic_scene(const std::string &name)
@@ -555,7 +567,7 @@ namespace
                 << s.energy_error << ", bookkeeping gap " << s.dissipation_gap << ", plastic "
                 << s.plastic_dissipation << " J/m, damage " << s.damage_dissipation << " J/m, COR "
                 << s.apparent_cor << ", peak " << s.peak_force << " N/m\n";
-    EXPECT_TRUE(s.separated);
+    expect_stop_rule(s);
     EXPECT_LT(s.energy_error, 0.01);
     EXPECT_LT(s.dissipation_gap, 0.01);
     EXPECT_GT(s.plastic_dissipation, 0);
@@ -588,7 +600,7 @@ namespace
                 << s.energy_error << ", bookkeeping gap " << s.dissipation_gap << ", plastic "
                 << s.plastic_dissipation << " J/m, damage " << s.damage_dissipation << " J/m, COR "
                 << s.apparent_cor << ", peak " << s.peak_force << " N/m\n";
-    EXPECT_TRUE(s.separated);
+    expect_stop_rule(s);
     EXPECT_LT(s.energy_error, 0.01);
     EXPECT_LT(s.dissipation_gap, 0.01);
     EXPECT_GT(s.damage_dissipation, 0);
@@ -624,7 +636,7 @@ namespace
                 << ", bookkeeping gap " << s.dissipation_gap << ", plastic "
                 << s.plastic_dissipation << " J/m, damage " << s.damage_dissipation << " J/m, COR "
                 << s.apparent_cor << '\n';
-    EXPECT_TRUE(s.separated);
+    expect_stop_rule(s);
     EXPECT_LT(s.energy_error, 0.01);
     EXPECT_LT(s.dissipation_gap, 0.01);
   }
