@@ -44,6 +44,11 @@ namespace kimp::fit
                          fit.exponent.value);
     if (fit.cor.fitted && (fit.cor.value < at_bound || fit.cor.value > 1.0 - at_bound))
       return fmt::format("failed: COR = {:.6g} at its bound (0 or 1)", fit.cor.value);
+    if (fit.contact_open_at_end)
+      return fmt::format("warning: the contact lasts to the end of the FEM record ({:.4g} ms "
+                         "after first contact): k fits a truncated contact (raise the FEM end "
+                         "time)",
+                         1e3 * fit.fem_contact_duration);
     if (fit.contact_extent > 0.0 &&
         fit.fem_contact_duration < min_window_coverage * fit.contact_extent)
       return fmt::format("warning: the misfit window covers {:.3g} % of the contact ({:.4g} of "

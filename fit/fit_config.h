@@ -43,7 +43,8 @@ namespace kimp::fit
    * Status of a converged fit (docs/physics.md §4 "Status of a fit"): "failed: <reason>" if a
    * fitted parameter's confidence interval is unbounded (non-finite, or k's lower bound not > 0)
    * or a fitted exponent or COR sits at its bound (n − 1 < 1e-3; COR < 1e-3 or > 1 − 1e-3);
-   * "warning: <reason>" if the misfit window spans less than min_window_coverage of the contact;
+   * "warning: <reason>" if the FEM contact lasts to the end of its record (a truncated contact)
+   * or the misfit window spans less than min_window_coverage of the contact;
    * "ok" otherwise.
    */
   std::string fit_verdict(const FitResult &fit);

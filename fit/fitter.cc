@@ -65,12 +65,13 @@ namespace kimp::fit
     /// Where the FEM history is in contact and which samples enter the misfit.
     struct ContactWindow
     {
-      double      start      = 0.0; ///< first contact, s (FEM time)
-      double      separation = 0.0; ///< end of the first contact phase, s
-      double      peak_force = 0.0; ///< N/m
-      double      impulse    = 0.0; ///< N·s/m
-      std::size_t first      = 0;   ///< first sample of the misfit window
-      std::size_t last       = 0;   ///< last sample of the misfit window (inclusive)
+      double      start       = 0.0;   ///< first contact, s (FEM time)
+      double      separation  = 0.0;   ///< end of the first contact phase, s
+      double      peak_force  = 0.0;   ///< N/m
+      double      impulse     = 0.0;   ///< N·s/m
+      std::size_t first       = 0;     ///< first sample of the misfit window
+      std::size_t last        = 0;     ///< last sample of the misfit window (inclusive)
+      bool        open_at_end = false; ///< the contact phase lasts to the last sample
     };
 
     void check_history(const ForceHistory &h)
@@ -166,7 +167,8 @@ namespace kimp::fit
           last = i;
         }
       }
-      w.separation = h.time[last];
+      w.separation  = h.time[last];
+      w.open_at_end = last + 1 == n;
       if (last + 1 < n)
       {
         if (by_gap)
@@ -746,8 +748,9 @@ namespace kimp::fit
         history.time[static_cast<std::size_t>(std::distance(last, history.force.rend())) - 1] -
         history.time[static_cast<std::size_t>(std::distance(history.force.begin(), first))];
     }
-    result.fem_impulse   = window.impulse;
-    result.contact_start = window.start;
+    result.fem_impulse         = window.impulse;
+    result.contact_start       = window.start;
+    result.contact_open_at_end = window.open_at_end;
 
     std::vector<double>         model_force, model_displacement;
     const lumped::TwoBodyResult model = misfit.simulate(p, model_force, model_displacement);

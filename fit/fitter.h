@@ -96,8 +96,10 @@ namespace kimp::fit
     double fem_contact_duration = 0.0; ///< s, the misfit window's contact phase
     /// s, first to last sample whose force exceeds contact_threshold·peak, over the whole record
     /// (bounces included): what the contact phase should span (fit_verdict()).
-    double contact_extent         = 0.0;
-    double fem_impulse            = 0.0; ///< N·s/m over the contact phase
+    double contact_extent = 0.0;
+    double fem_impulse    = 0.0; ///< N·s/m over the contact phase
+    /// The FEM contact phase lasts to the record's last sample: the fit saw a truncated contact.
+    bool   contact_open_at_end    = false;
     double contact_start          = 0.0; ///< first contact in FEM time, s
     double model_peak_force       = 0.0; ///< N/m
     double model_contact_duration = 0.0; ///< s

@@ -152,6 +152,32 @@ namespace
     EXPECT_EQ(fit_verdict(merged), "ok");
   }
 
+  TEST(FitVerdict, ContactOpenAtTheEndOfTheRecordIsAWarning)
+  {
+    // The first bounce of two_bounces() cut at 60 % of its duration (an FEM run that stopped at
+    // its end time while the slab still pushed): the fit says it saw a truncated contact.
+    const double               k    = 1.5e8;
+    ForceHistory               full = two_bounces(k), cut;
+    FitConfig                  config;
+    kimp::lumped::ForceLawSpec law;
+    law.law               = "kelvin_voigt";
+    law.cor               = 0.7;
+    const FitResult whole = kimp::fit::fit_impact_law(full, 3840.0, 1.0, law, fit_options(config));
+    const double    end_time = whole.contact_start + 0.6 * whole.fem_contact_duration;
+    for (std::size_t i = 0; i < full.time.size() && full.time[i] <= end_time; ++i)
+    {
+      cut.time.push_back(full.time[i]);
+      cut.force.push_back(full.force[i]);
+    }
+    ASSERT_GT(cut.force.back(), 0.0);
+    EXPECT_FALSE(whole.contact_open_at_end);
+    const FitResult truncated =
+      kimp::fit::fit_impact_law(cut, 3840.0, 1.0, law, fit_options(config));
+    EXPECT_TRUE(truncated.contact_open_at_end);
+    const std::string v = fit_verdict(truncated);
+    EXPECT_TRUE(starts_with(v, "warning: the contact lasts to the end of the FEM record")) << v;
+  }
+
   TEST(FitConfig, OptionsAndVariantsCarryTheSharedConfiguration)
   {
     FitConfig config;
