@@ -1044,6 +1044,39 @@ const kimp = (function () {
     }
   }
 
+  // ---- fem: the summary of every case in engineering units, 4 significant figures -------------
+  // Rows: [summary key, label, scale from the SI value]; a row shows when any case has the key.
+  const femSummaryRows = [
+    ['wall_height', 'wall height (m)', 1], ['impact_velocity', 'impact velocity (m/s)', 1],
+    ['peak_force', 'peak contact force (kN/m)', 1e-3], ['contact_duration', 'contact duration (ms)', 1e3],
+    ['impulse', 'impulse (N·s/m)', 1], ['apparent_cor', 'apparent COR', 1], ['stopped_on', 'run stopped on', null],
+    ['max_penetration', 'largest penetration (mm)', 1e3], ['permanent_indentation', 'permanent indentation (mm)', 1e3],
+    ['wall_residual_displacement', 'wall face at the end (mm)', 1e3],
+    ['plastic_dissipation', 'plastic dissipation (J/m)', 1], ['plastic_dissipation_slab', '  of it in the slab (J/m)', 1],
+    ['plastic_dissipation_wall', '  in the wall (J/m)', 1], ['plastic_dissipation_soil', '  in the soil (J/m)', 1],
+    ['damage_dissipation', 'damage dissipation (J/m)', 1], ['damage_dissipation_slab', '  of it in the slab (J/m)', 1],
+    ['damage_dissipation_wall', '  in the wall (J/m)', 1], ['contact_dissipation', 'contact dissipation (J/m)', 1],
+    ['radiated_energy', 'radiated energy (J/m)', 1], ['energy_error', 'energy balance error (of E_0)', 1],
+    ['n_dofs', 'DoFs', null], ['n_steps', 'steps', null], ['dt', 'time step (µs)', 1e6],
+    ['dt_stable', 'stable limit (µs)', 1e6], ['wall_seconds', 'solver time (s)', 1],
+  ];
+
+  function femSummarySection(parent, summary) {
+    const cases = (summary.cases || []).filter((c) => c && typeof c === 'object');
+    if (!cases.length) return;
+    const body = section(parent, 'FEM summary (summary.json)');
+    const rows = [];
+    for (const [key, label, scale] of femSummaryRows) {
+      if (!cases.some((c) => c[key] !== undefined && c[key] !== null)) continue;
+      rows.push([label].concat(cases.map((c) => {
+        const v = c[key];
+        if (typeof v !== 'number' || scale === null) return v === undefined || v === null ? '' : String(v);
+        return el('span', { class: 'fem-summary-value', 'data-key': `${c.name}.${key}`, 'data-si': String(v), text: fmt(v * scale, 4) });
+      })));
+    }
+    table(body, ['quantity'].concat(cases.map((c) => c.name)), rows, 'data fem-summary');
+  }
+
   // k(H, v): k against the impact velocity, one series per wall height (and its linear k).
   function studyVelocitySection(parent, h5) {
     const d = h5.datasets || {};
@@ -1108,6 +1141,7 @@ const kimp = (function () {
     container.appendChild(el('p', { class: 'muted', text: `files: ${files.join(', ')}` }));
     if (data.h5 && data.h5['lumped.h5']) lumpedSection(container, data);
     if (data.kind === 'study') studySection(container, data);
+    if (data.kind === 'fem' && data.summary) femSummarySection(container, data.summary);
     if (data.h5 && data.h5['fem.h5']) femSection(container, data);
     if (data.h5 && data.h5['collide.h5']) collideSection(container, data);
     const presets = {

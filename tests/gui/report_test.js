@@ -55,6 +55,20 @@ async function main() {
       const t = await page.evaluate(() => window.kimp.animation().state.t);
       check(t > 0, `animation plays from file:// (t = ${t})`);
     }
+    if (summary.command === 'fem') {
+      // The FEM summary table: every case's peak force and COR as in summary.json, in kN/m and
+      // to 4 significant figures (the file keeps full precision).
+      const shown = await page.$$eval('table.fem-summary .fem-summary-value',
+        (vs) => vs.map((v) => ({ key: v.getAttribute('data-key'), si: Number(v.getAttribute('data-si')), text: v.textContent })));
+      for (const c of summary.cases) {
+        const peak = shown.find((v) => v.key === `${c.name}.peak_force`);
+        check(peak !== undefined && peak.si === c.peak_force && peak.text === String(Number((c.peak_force * 1e-3).toPrecision(4))),
+          `FEM summary: ${c.name} peak force ${peak ? peak.text : '(missing)'} kN/m from ${c.peak_force} N/m`);
+        const cor = shown.find((v) => v.key === `${c.name}.apparent_cor`);
+        check(cor !== undefined && cor.text.replace('-', '').replace('.', '').replace(/^0+/, '').length <= 4,
+          `FEM summary: ${c.name} COR shown to 4 significant figures (${cor ? cor.text : '(missing)'})`);
+      }
+    }
     if (await page.$('svg.fem-animation')) {
       // The FEM deformed mesh: one polygon per cell, frames advance on play and hold on pause.
       const nPoly = await page.$$eval('svg.fem-animation polygon', (ps) => ps.length);
