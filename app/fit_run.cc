@@ -95,8 +95,8 @@ namespace kimp::app
 
   std::string fem_fit_verdict(const io::FemCase &fem_case, const fit::FitResult &fit)
   {
-    // A run ends on separation only once the slab no longer moves in (apparent COR >= 0); one
-    // stopped at its end time may have caught the slab still moving in.
+    // A run ends on separation only once the slab comes in at no more than 5 % of its impact
+    // speed (apparent COR >= -0.05); one stopped at its end time may have caught it moving in.
     const std::optional<double> cor     = fem_case.summary.apparent_cor;
     const auto                  stopped = fem_case.labels.find("stopped_on");
     const bool separated = stopped != fem_case.labels.end() && stopped->second == "separation";

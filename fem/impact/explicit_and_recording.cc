@@ -95,8 +95,8 @@ namespace kimp::fem::internal
       // (ImpactParameters::separation_velocity_fraction).
       if (started && n + 1 - zero_since >= hold_steps && ev.total_force == 0)
       {
-        slab_v_end = prm.rigid_slab ? v_r_n : (slab_mass_x * v_n) / slab_total_mass;
-        if (!(slab_v_end > prm.separation_velocity_fraction * prm.initial_velocity))
+        slab_v_end = slab_velocity(v_n, v_r_n);
+        if (slab_no_longer_comes_in(slab_v_end))
         {
           separated_flag = true;
           break;
@@ -104,7 +104,7 @@ namespace kimp::fem::internal
       }
       if (n >= n_max)
       {
-        slab_v_end = prm.rigid_slab ? v_r_n : (slab_mass_x * v_n) / slab_total_mass;
+        slab_v_end = slab_velocity(v_n, v_r_n);
         break;
       }
       u.add(dt, v_half);

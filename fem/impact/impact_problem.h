@@ -61,6 +61,11 @@ namespace kimp::fem::internal
     void internal_force(const Vec &u, Vec &f);
     void compute_time_step();
     void log_line(const std::string &s) const;
+    /** The slab's mean velocity along the impact: v_r (rigid) or the mass-weighted mean of v. */
+    double slab_velocity(const Vec &v, double v_r) const;
+    /** The separation test of both time loops: the slab comes in at no more than
+     *  separation_velocity_fraction of the impact velocity. */
+    bool slab_no_longer_comes_in(double slab_v) const;
 
     // residual.cc
     /** After the run, u (and u_r) at its end: the wall face's displacement then and its

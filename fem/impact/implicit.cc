@@ -462,14 +462,13 @@ namespace kimp::fem::internal
       }
       // Over as in the explicit loop: zero force for the hold time, the slab not moving in.
       if (started && n + 1 - zero_since >= hold_steps && ev.total_force == 0 &&
-          !((prm.rigid_slab ? v_r : (slab_mass_x * v) / slab_total_mass) >
-            prm.separation_velocity_fraction * prm.initial_velocity))
+          slab_no_longer_comes_in(slab_velocity(v, v_r)))
       {
         separated_flag = true;
         break;
       }
     }
-    slab_v_end   = prm.rigid_slab ? v_r : (slab_mass_x * v) / slab_total_mass;
+    slab_v_end   = slab_velocity(v, v_r);
     n_steps_done = n;
     compute_residual_state(u, u_r);
   }

@@ -408,6 +408,16 @@ namespace kimp::fem::internal
       subtract_interface_force(u, f);
   }
 
+  double ImpactProblem::slab_velocity(const Vec &v, double v_r) const
+  {
+    return prm.rigid_slab ? v_r : (slab_mass_x * v) / slab_total_mass;
+  }
+
+  bool ImpactProblem::slab_no_longer_comes_in(double slab_v) const
+  {
+    return !(slab_v > prm.separation_velocity_fraction * prm.initial_velocity);
+  }
+
   void ImpactProblem::compute_time_step()
   {
     // Q1 with a lumped mass: the highest mode of a cell of smallest edge h is omega = 2 c_p / h
