@@ -8,6 +8,7 @@
 #include "fem/inelastic_laws.h"
 #include "fem/penalty_contact.h"
 #include "tests/fem/impact_test_support.h"
+#include "tests/fem/inelastic_scenes.h"
 
 namespace
 {
@@ -534,29 +535,6 @@ namespace
       EXPECT_LT(s.apparent_cor, -fraction) << "the end time hides a separation";
   }
 
-  /** The scene with Mohr-Coulomb soil (c = 10 kPa, phi = 30 deg, psi = 0, no tension) and
-   *  concrete damage from f_cm = 38 MPa in slab and wall. */
-  ImpactParameters inelastic_scene(const std::string &name)
-  {
-    auto           p = scene_parameters(0.05, false, name);
-    SoilParameters sp;
-    sp.youngs_modulus         = soil.youngs_modulus;
-    sp.poisson_ratio          = soil.poisson_ratio;
-    sp.density                = soil.density;
-    sp.cohesion               = 10e3;
-    sp.friction_angle         = 30 * 3.14159265358979323846 / 180;
-    const auto     cp         = ConcreteParameters::from_f_cm(38e6);
-    const auto     concrete_l = std::make_shared<const ConcreteDamageLaw>(cp);
-    const Material concrete_m{cp.youngs_modulus, cp.poisson_ratio, concrete.density};
-    p.materials[ids::slab_material]     = concrete_m;
-    p.materials[ids::wall_material]     = concrete_m;
-    p.material_laws[ids::slab_material] = concrete_l;
-    p.material_laws[ids::wall_material] = concrete_l;
-    p.material_laws[ids::soil_material] = std::make_shared<const MohrCoulombLaw>(sp);
-    p.initial_velocity                  = 2.0;
-    return p;
-  }
-
   TEST(InelasticImpact, EnergyBalanceClosesWithPlasticAndDamageDissipation)
   {
     // kinetic + internal work (integrated stress power) - contact work = E_0 within 1 %, and
@@ -573,21 +551,6 @@ namespace
     EXPECT_LT(s.dissipation_gap, 0.01);
     EXPECT_GT(s.plastic_dissipation, 0);
     ASSERT_FALSE(r.history.internal_work.empty());
-  }
-
-  /** inelastic_scene() with smeared B500 bars (docs/physics.md §6): the wall's vertical
-   *  ratio_y = 0.8 % and ties ratio_x = 0.2 %, the slab's ratio_x = 0.5 % along the impact. */
-  ImpactParameters reinforced_scene(const std::string &name)
-  {
-    auto                    p  = inelastic_scene(name);
-    const auto              cp = ConcreteParameters::from_f_cm(38e6);
-    ReinforcementParameters wall, slab;
-    wall.ratio_x                        = 0.002;
-    wall.ratio_y                        = 0.008;
-    slab.ratio_x                        = 0.005;
-    p.material_laws[ids::wall_material] = std::make_shared<const ConcreteDamageLaw>(cp, wall);
-    p.material_laws[ids::slab_material] = std::make_shared<const ConcreteDamageLaw>(cp, slab);
-    return p;
   }
 
   TEST(InelasticImpact, EnergyBalanceClosesWithReinforcedConcrete)

@@ -6,34 +6,12 @@
 
 #include "fem/inelastic_laws.h"
 #include "tests/fem/impact_test_support.h"
+#include "tests/fem/inelastic_scenes.h"
 
 namespace
 {
   using namespace kimp::fem;
   using namespace kimp::fem::testing;
-
-  /** The test scene with Mohr-Coulomb soil (c = 10 kPa, phi = 30 deg, psi = 0) and concrete
-   *  damage from f_cm = 38 MPa in slab and wall, slab at 2 m/s (as impact_test.cc). */
-  ImpactParameters inelastic_scene(const std::string &name, bool rigid = false)
-  {
-    auto           p = scene_parameters(0.05, rigid, name);
-    SoilParameters sp;
-    sp.youngs_modulus         = soil.youngs_modulus;
-    sp.poisson_ratio          = soil.poisson_ratio;
-    sp.density                = soil.density;
-    sp.cohesion               = 10e3;
-    sp.friction_angle         = 30 * 3.14159265358979323846 / 180;
-    const auto     cp         = ConcreteParameters::from_f_cm(38e6);
-    const auto     concrete_l = std::make_shared<const ConcreteDamageLaw>(cp);
-    const Material concrete_m{cp.youngs_modulus, cp.poisson_ratio, concrete.density};
-    p.materials[ids::slab_material]     = concrete_m;
-    p.materials[ids::wall_material]     = concrete_m;
-    p.material_laws[ids::slab_material] = concrete_l;
-    p.material_laws[ids::wall_material] = concrete_l;
-    p.material_laws[ids::soil_material] = std::make_shared<const MohrCoulombLaw>(sp);
-    p.initial_velocity                  = 2.0;
-    return p;
-  }
 
   /** Largest |a - b| over two histories of the same length, relative to max |b|. */
   double relative_difference(const std::vector<double> &a, const std::vector<double> &b)
@@ -110,19 +88,12 @@ namespace
     // within 1 % of E_0; the yielded backfill keeps the wall face pushed back (> 0), the
     // material dissipation alone implies a COR above the apparent one.
     // A plain wall breaks at these speeds (the slab still comes in at the end time); with bars as
-    // in impact_test.cc it yields and sends the slab back (measured COR 0.25).
-    auto                    p  = inelastic_scene("after_inelastic.msh", true);
-    const auto              cp = ConcreteParameters::from_f_cm(38e6);
-    ReinforcementParameters wall, slab;
-    wall.ratio_x                        = 0.002;
-    wall.ratio_y                        = 0.008;
-    slab.ratio_x                        = 0.005;
-    p.material_laws[ids::wall_material] = std::make_shared<const ConcreteDamageLaw>(cp, wall);
-    p.material_laws[ids::slab_material] = std::make_shared<const ConcreteDamageLaw>(cp, slab);
-    p.initial_velocity                  = 1.0;
-    const auto   r                      = run_impact(p, MPI_COMM_WORLD, nullptr);
-    const auto  &s                      = r.summary;
-    const double e0                     = r.history.kinetic.front();
+    // in reinforced_scene() it yields and sends the slab back (measured COR 0.25).
+    auto p             = reinforced_scene("after_inelastic.msh", true);
+    p.initial_velocity = 1.0;
+    const auto   r     = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto  &s     = r.summary;
+    const double e0    = r.history.kinetic.front();
     const double dissipated =
       s.plastic_dissipation + s.damage_dissipation + s.contact_dissipation + s.residual_energy;
     const double balance = e0 * (1 - s.apparent_cor * s.apparent_cor) - dissipated;
