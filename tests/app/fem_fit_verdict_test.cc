@@ -53,7 +53,8 @@ namespace
   TEST(FemFitVerdict, ABrokenWallFailsAYieldingOneWarns)
   {
     // Plain concrete, measured: cracked through at the base, the slab keeps 80 % of its speed
-    // until the end time (a run ends on separation only once the slab no longer moves in).
+    // until the end time (a run ends on separation only once the slab comes in at <= 5 % of
+    // its impact speed).
     const std::string broken =
       kimp::app::fem_fit_verdict(unfinished_case(-0.79, 105.5, 0.0), good_fit());
     EXPECT_TRUE(starts_with(broken,
