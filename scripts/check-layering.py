@@ -2,8 +2,11 @@
 """Fails when a source file includes across a forbidden layer boundary (docs/architecture.md).
 
 Every C++ file under a module directory may include headers of its own module and of the modules
-listed for it below, and no third-party header of the families listed as foreign to it. Commands
-(cli/<name>_command.cc) include no other command. Tests and benchmarks are not checked.
+listed for it below, and no third-party header of the families listed as foreign to it. Includes are
+written from the repository root: a path with ".." (which could reach any layer) is refused, and so is
+an included source file (*.cc): a command (cli/<name>_command.cc) is never included by another file.
+Each module's CMakeLists.txt may link only the kimp targets of the modules it may include, so the
+build graph says what the includes say. Tests and benchmarks are not checked.
 
     check-layering.py [ROOT]       check the tree at ROOT (default: the repository)
     check-layering.py --self-test  check that deliberate violations are caught
@@ -46,6 +49,9 @@ FOREIGN = {
 
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
 COMMAND = re.compile(r"^cli/(\w+)_command\.(cc|h)$")
+# kimp::<target> -> the module it belongs to (a module may build several targets)
+TARGET_MODULE = {"app_core": "app", "cli_core": "cli", "test_support": "tests"}
+KIMP_TARGET = re.compile(r"\bkimp::(\w+)")
 
 
 def violations(root):
@@ -65,6 +71,12 @@ def violations(root):
                     line = text.count("\n", 0, match.start()) + 1
                     first = header.split("/")[0]
                     where = f"{rel}:{line}: #include {kind}{header}{'>' if kind == '<' else kind}"
+                    if kind == '"' and ".." in header.split("/"):
+                        found.append(f"{where}: write includes from the repository root, without '..'")
+                        continue
+                    if kind == '"' and header.endswith(".cc"):
+                        found.append(f"{where}: a source file is compiled, never included")
+                        continue
                     if first in MODULES and "/" in header:
                         if first != module and first not in ALLOWED[module]:
                             allowed = ", ".join(sorted(ALLOWED[module])) or "nothing else of kimp"
@@ -77,6 +89,29 @@ def violations(root):
                         for prefix in FOREIGN[module]:
                             if header.startswith(prefix):
                                 found.append(f"{where}: {module}/ must not depend on <{prefix}...>")
+    return found + link_violations(root)
+
+
+def link_violations(root):
+    """kimp targets linked by a module's CMakeLists.txt that the module may not include."""
+    found = []
+    for module in sorted(MODULES):
+        path = os.path.join(root, module, "CMakeLists.txt")
+        if not os.path.isfile(path):
+            continue
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+        for match in KIMP_TARGET.finditer(text):
+            target = match.group(1)
+            line_start = text.rfind("\n", 0, match.start()) + 1
+            if text[line_start:match.start()].lstrip().startswith("#"):
+                continue
+            other = TARGET_MODULE.get(target, target)
+            if other != module and other not in ALLOWED[module]:
+                line = text.count("\n", 0, match.start()) + 1
+                allowed = ", ".join(sorted(ALLOWED[module])) or "nothing else of kimp"
+                found.append(f"{module}/CMakeLists.txt:{line}: links kimp::{target}: "
+                             f"{module}/ may use {allowed}, not {other}/")
     return found
 
 
@@ -93,6 +128,11 @@ def self_test():
         "app/x.cc": "#include <httplib.h>\n",
         "app/y.cc": '#include "python/bindings.h"\n',
         "python/x.cc": "#include <CLI/CLI.hpp>\n",
+        "lumped/w.cc": '#include "../io/units.h"\n',
+        "lumped/v.cc": '#include "lumped/../io/units.h"\n',
+        "cli/commands.cc": '#include "cli/study_command.cc"\n',
+        "fit/CMakeLists.txt": "target_link_libraries(kimp_fit PUBLIC kimp::lumped kimp::io)\n",
+        "io/CMakeLists.txt": "target_link_libraries(kimp_io PRIVATE kimp::app_core)\n",
     }
     with tempfile.TemporaryDirectory() as root:
         for rel, text in cases.items():
