@@ -69,23 +69,37 @@ namespace kimp::cli
                             "and exit");
   }
 
-  /// What a scene command's run function receives: the validated scene and its output directory.
+  /// How a scene command reads its scene file.
+  struct SceneCommandSpec
+  {
+    std::string name;        ///< the command, `kimp <name>`
+    std::string description; ///< its line in `kimp --help`
+    /// Empty: SCENE.yaml is required. Otherwise the scene file is optional and this names the
+    /// defaults used without it in the log and the resolved scene ("default study scene").
+    std::string default_scene = "";
+  };
+
+  /// What a scene command's run function receives: the validated scene (which it may still
+  /// adjust, e.g. from a command-line flag) and the output directory as given.
+  template <class Scene>
+  using ScenePathRunner =
+    std::function<void(io::LoadedScene<Scene> &scene, const std::filesystem::path &output)>;
+
+  /// The usual run function: the output directory created and locked (io::OutputDir).
   template <class Scene>
   using SceneRunner =
     std::function<void(const io::LoadedScene<Scene> &scene, const io::OutputDir &output)>;
 
   /**
-   * Add command `name`: `kimp <name> SCENE.yaml -o DIR` loads and validates the scene
-   * (SceneError on bad input), creates DIR and calls `run`; `kimp <name> --print-defaults` prints
-   * the annotated default scene of Scene and exits 0; `kimp <name> --print-schema` prints the
-   * JSON schema of its keys (io::SchemaWriter) and exits 0.
-   * @return the subcommand, for command-specific options.
+   * Add command `spec.name`: `kimp <name> [SCENE.yaml] -o DIR` loads and validates the scene
+   * (SceneError on bad input) and calls `run` with the output directory as given (a command run
+   * on several MPI ranks creates it on one rank only); `kimp <name> --print-defaults` prints the
+   * annotated default scene of Scene and exits 0; `kimp <name> --print-schema` prints the JSON
+   * schema of its keys (io::SchemaWriter) and exits 0. Command-specific options are added to the
+   * returned subcommand unbound (read with count()/as() in `run`), so every parse starts afresh.
    */
   template <class Scene>
-  CLI::App *add_scene_command(CLI::App          &app,
-                              const std::string &name,
-                              const std::string &description,
-                              SceneRunner<Scene> run)
+  CLI::App *add_scene_command_at(CLI::App &app, SceneCommandSpec spec, ScenePathRunner<Scene> run)
   {
     struct Options
     {
@@ -94,10 +108,12 @@ namespace kimp::cli
       bool        print_defaults = false;
       bool        print_schema   = false;
     };
-    auto      options = std::make_shared<Options>();
-    CLI::App *command = app.add_subcommand(name, description);
-    command->add_option("scene", options->scene, "scene file (YAML); see --print-defaults")
-      ->type_name("SCENE.yaml");
+    auto        options  = std::make_shared<Options>();
+    CLI::App   *command  = app.add_subcommand(spec.name, spec.description);
+    const bool  optional = !spec.default_scene.empty();
+    std::string what     = optional ? "scene file (YAML; none: the " + spec.default_scene + ")" :
+                                      "scene file (YAML); see --print-defaults";
+    command->add_option("scene", options->scene, what)->type_name("SCENE.yaml");
     command->add_option("-o,--output", options->output, "output directory (created if missing)")
       ->type_name("DIR");
     command->add_flag("--print-defaults",
@@ -108,24 +124,40 @@ namespace kimp::cli
     // CLI11 keeps bound values between parses of one app: start each use of the command afresh.
     command->preparse_callback([options](std::size_t) { *options = Options{}; });
     command->callback(
-      [options, run, name]()
+      [options, run, spec, optional]()
       {
         if (options->print_defaults)
           throw PrintDefaults(io::default_scene_text<Scene>(
-            "kimp " + name + " scene (defaults of kimp " + name + ")"));
+            "kimp " + spec.name + " scene (defaults of kimp " + spec.name + ")"));
         if (options->print_schema)
           throw PrintDefaults(io::schema_text<Scene>());
-        if (options->scene.empty())
+        if (options->scene.empty() && !optional)
           throw CLI::RequiredError("the scene file SCENE.yaml (or --print-defaults)");
         if (options->output.empty())
           throw CLI::RequiredError("the output directory -o/--output DIR");
-        base::logger().info("{}: {} {}", base::version_line(), name, options->scene);
-        const io::LoadedScene<Scene> scene = io::read_scene<Scene>(options->scene);
+        const bool defaults = options->scene.empty();
+        base::logger().info("{}: {} {}",
+                            base::version_line(),
+                            spec.name,
+                            defaults ? "(" + spec.default_scene + ")" : options->scene);
+        io::LoadedScene<Scene> scene =
+          defaults ? io::read_scene_text<Scene>("", "(" + spec.default_scene + ")") :
+                     io::read_scene<Scene>(options->scene);
         base::logger().debug("resolved scene (SI):\n{}", scene.resolved_json);
-        const io::OutputDir output(options->output);
-        run(scene, output);
+        run(scene, options->output);
       });
     return command;
+  }
+
+  /// add_scene_command_at() whose run function gets the output directory created and locked.
+  template <class Scene>
+  CLI::App *add_scene_command(CLI::App &app, SceneCommandSpec spec, SceneRunner<Scene> run)
+  {
+    return add_scene_command_at<Scene>(app,
+                                       std::move(spec),
+                                       [run](io::LoadedScene<Scene>      &scene,
+                                             const std::filesystem::path &output)
+                                       { run(scene, io::OutputDir(output)); });
   }
 
   /**

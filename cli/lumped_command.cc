@@ -19,9 +19,9 @@ namespace kimp::cli
     auto      records_dir = std::make_shared<CLI::Option *>(nullptr);
     CLI::App *command     = add_scene_command<LumpedScene>(
       app,
-      "lumped",
-      "pounding analysis of a shear building (isolated or fixed-base) with moat walls, "
-          "neighbours and impact laws 1-7; writes DIR/lumped.h5, summary.json, peaks.csv",
+      {"lumped",
+           "pounding analysis of a shear building (isolated or fixed-base) with moat walls, "
+               "neighbours and impact laws 1-7; writes DIR/lumped.h5, summary.json, peaks.csv"},
       [records_dir](const LoadedScene<LumpedScene> &scene, const OutputDir &output)
       {
         std::optional<std::filesystem::path> override_dir;

@@ -66,8 +66,7 @@ namespace
     DemoApp()
     {
       add_scene_command<cli_scene::Scene>(*app,
-                                          "demo",
-                                          "demo command",
+                                          {"demo", "demo command"},
                                           [this](const LoadedScene<cli_scene::Scene> &loaded,
                                                  const OutputDir                     &dir)
                                           {
@@ -167,6 +166,35 @@ namespace
     EXPECT_EQ(demo.output, dir.path() / "out");
     EXPECT_TRUE(std::filesystem::is_directory(dir.path() / "out"));
     EXPECT_EQ(kimp::base::verbosity(), Verbosity::quiet);
+  }
+
+  TEST(Cli, OptionalSceneRunsTheDefaultsAndTheOutputIsPassedAsGiven)
+  {
+    const TempDir             dir;
+    std::unique_ptr<CLI::App> app  = make_app();
+    int                       runs = 0;
+    cli_scene::Scene          seen;
+    std::filesystem::path     output;
+    kimp::cli::add_scene_command_at<cli_scene::Scene>(*app,
+                                                      {"demo", "demo command", "demo defaults"},
+                                                      [&](LoadedScene<cli_scene::Scene> &loaded,
+                                                          const std::filesystem::path   &out)
+                                                      {
+                                                        ++runs;
+                                                        seen   = loaded.scene;
+                                                        output = out;
+                                                      });
+    std::ostringstream out;
+    std::ostringstream err;
+    const std::string  target = (dir.path() / "out").string();
+    ASSERT_EQ(run_app(*app, {"demo", "-o", target, "-q"}, out, err), 0) << err.str();
+    EXPECT_EQ(runs, 1);
+    EXPECT_EQ(seen.n_storeys, 4) << "no scene file: the defaults";
+    EXPECT_DOUBLE_EQ(seen.gap, 0.15);
+    EXPECT_EQ(output, target);
+    EXPECT_FALSE(std::filesystem::exists(target)) << "the run function creates it, not the command";
+    EXPECT_EQ(run_app(*app, {"demo"}, out, err), 2) << "the output directory stays required";
+    EXPECT_EQ(runs, 1);
   }
 
   TEST(Cli, SceneErrorsPropagateToMain)
