@@ -22,6 +22,8 @@ const kimp = (function () {
     return e;
   }
 
+  const INTEGER_INCRS = [1, 2, 5, 10, 20, 50, 100, 200, 500, 1000];
+
   function tickLabels(u, splits) {
     return splits.map((v) => fmt(v, 6));
   }
@@ -82,13 +84,72 @@ const kimp = (function () {
     return rows;
   }
 
+  // ---- quantities: "5000 ms" -> 5 s, with kimp's own unit symbols (io/units.cc) ------------------
+  const G = 9.80665;
+  const UNITS = {
+    m: [1, [0, 1, 0]], cm: [1e-2, [0, 1, 0]], mm: [1e-3, [0, 1, 0]], km: [1e3, [0, 1, 0]],
+    s: [1, [0, 0, 1]], ms: [1e-3, [0, 0, 1]], kg: [1, [1, 0, 0]], t: [1e3, [1, 0, 0]],
+    N: [1, [1, 1, -2]], kN: [1e3, [1, 1, -2]], MN: [1e6, [1, 1, -2]], Pa: [1, [1, -1, -2]],
+    kPa: [1e3, [1, -1, -2]], MPa: [1e6, [1, -1, -2]], GPa: [1e9, [1, -1, -2]], g: [G, [0, 1, -2]],
+    '%': [1e-2, [0, 0, 0]], 1: [1, [0, 0, 0]],
+  };
+
+  /** A unit text ("kN/mm^1.5", "m/s^2") as [factor to SI, dimension exponents [kg, m, s]]. */
+  function parseUnit(text) {
+    const unit = String(text || '').trim();
+    let factor = 1;
+    const dim = [0, 0, 0];
+    if (!unit) return [factor, dim];
+    const parts = unit.split(/\s*([*/])\s*/);
+    let sign = 1;
+    for (let i = 0; i < parts.length; i += 2) {
+      const m = /^([^\s^]+)\s*(?:\^\s*(-?\d+(?:\.\d+)?))?$/.exec(parts[i]);
+      if (!m || !UNITS[m[1]]) {
+        throw new Error(`unknown unit '${parts[i]}' in '${unit}' (known: ${Object.keys(UNITS).join(', ')})`);
+      }
+      const e = sign * (m[2] === undefined ? 1 : Number(m[2]));
+      factor *= Math.pow(UNITS[m[1]][0], e);
+      UNITS[m[1]][1].forEach((d, k) => { dim[k] += e * d; });
+      sign = parts[i + 1] === '/' ? -1 : 1;
+    }
+    return [factor, dim];
+  }
+
+  /**
+   * A scene quantity in SI, checked against the unit its key declares (the schema's unit):
+   * "5000 ms" for a key in s gives 5; "0.5" for a key in s is refused as the CLI refuses it.
+   */
+  function parseQuantity(text, expectedUnit) {
+    const t = String(text).trim();
+    const m = /^([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*)$/.exec(t);
+    if (!m) throw new Error(`'${t}' does not start with a number (expected a number with a unit, like '15 cm')`);
+    const [factor, dim] = parseUnit(m[2]);
+    const [, want] = parseUnit(expectedUnit);
+    const same = dim.every((d, k) => Math.abs(d - want[k]) < 1e-9);
+    if (!m[2] && want.some((d) => d !== 0)) throw new Error(`'${t}' has no unit: expected a unit like '${expectedUnit}'`);
+    if (!same) throw new Error(`'${t}' has the wrong dimension: expected units like '${expectedUnit}'`);
+    return Number(m[1]) * factor;
+  }
+
   // ---- vector export: one list of primitives, written as SVG or PDF --------------------------
   // A figure is {width, height, items: [{kind: 'line'|'path'|'rect'|'text'|'circle', ...}]}.
   function chartFigure(c) {
     const u = c.plot;
     const W = 720;
-    const H = 400;
-    const m = { left: 80, right: 20, top: 36, bottom: 56 };
+    const shownSeries = [];
+    for (let s = 1; s < u.series.length; ++s) if (u.series[s].show) shownSeries.push(s);
+    // Legend rows under the title, wrapped at the figure's width.
+    const legend = [];
+    let lx = 80;
+    let row = 0;
+    for (const s of shownSeries) {
+      const w = 30 + 6.2 * String(u.series[s].label).length;
+      if (lx + w > W - 10 && lx > 80) { lx = 80; ++row; }
+      legend.push({ s: s, x: lx, row: row });
+      lx += w;
+    }
+    const m = { left: 80, right: 20, top: 44 + 15 * row, bottom: 56 };
+    const H = 400 + 15 * row;
     const pw = W - m.left - m.right;
     const ph = H - m.top - m.bottom;
     const xmin = u.scales.x.min;
@@ -100,7 +161,7 @@ const kimp = (function () {
     const Y = (v) => m.top + ph - (v - ymin) / (ymax - ymin || 1) * ph;
     const items = [];
     items.push({ kind: 'rect', x: m.left, y: m.top, w: pw, h: ph, stroke: '#000', width: 1 });
-    for (const t of niceTicks(xmin, xmax, 8)) {
+    for (const t of niceTicks(xmin, xmax, 8).filter((v) => !c.integerX || Number.isInteger(v))) {
       items.push({ kind: 'line', x1: X(t), y1: m.top, x2: X(t), y2: m.top + ph, stroke: '#ddd', width: 0.5 });
       items.push({ kind: 'text', x: X(t), y: m.top + ph + 16, text: fmt(t, 6), anchor: 'middle', size: 11 });
     }
@@ -110,28 +171,32 @@ const kimp = (function () {
     }
     items.push({ kind: 'text', x: m.left + pw / 2, y: H - 14, text: c.xlabel, anchor: 'middle', size: 12 });
     items.push({ kind: 'text', x: 16, y: m.top + ph / 2, text: c.ylabel, anchor: 'middle', size: 12, rotate: -90 });
-    items.push({ kind: 'text', x: m.left, y: 20, text: c.title, anchor: 'start', size: 14 });
-    let legendX = m.left + pw;
+    items.push({ kind: 'text', x: m.left, y: 18, text: c.title, anchor: 'start', size: 14 });
     const data = u.data;
-    for (let s = 1; s < u.series.length; ++s) {
-      if (!u.series[s].show) continue;
-      const pts = [];
+    for (const { s, x: legendX, row: r } of legend) {
+      const stroke = u.series[s].stroke();
+      const marker = c.markers[s - 1];
+      // A null is a gap (a new piece of path); undefined is an alignment artefact (joined over).
+      const pieces = [[]];
       for (let i = 0; i < data[0].length; ++i) {
         const x = data[0][i];
         const y = data[s][i];
-        if (x < xmin || x > xmax || y === null || y === undefined || !Number.isFinite(y)) continue;
-        pts.push([X(x), Y(Math.min(Math.max(y, ymin), ymax))]);
+        if (y === null) { if (pieces[pieces.length - 1].length) pieces.push([]); continue; }
+        if (x < xmin || x > xmax || y === undefined || !Number.isFinite(y)) continue;
+        pieces[pieces.length - 1].push([X(x), Y(Math.min(Math.max(y, ymin), ymax))]);
       }
-      if (c.scatter) {
-        // Loops (force against displacement): the samples as dots, not joined in x order.
-        for (const p of pts) items.push({ kind: 'circle', x: p[0], y: p[1], r: 1.5, fill: u.series[s].stroke() });
-      } else {
-        items.push({ kind: 'path', points: pts, stroke: u.series[s].stroke(), width: 1.2, dots: c.points });
+      for (const pts of pieces) {
+        if (c.scatter || marker) {
+          // Loops (force against displacement): the samples as dots, not joined in x order.
+          for (const p of pts) items.push({ kind: 'circle', x: p[0], y: p[1], r: marker ? 4 : 1.5, fill: stroke });
+        } else if (pts.length) {
+          items.push({ kind: 'path', points: pts, stroke: stroke, width: 1.2, dots: c.points, dash: c.dashes[s - 1] });
+        }
       }
-      const label = String(u.series[s].label);
-      legendX -= 8 + 7 * label.length + 22;
-      items.push({ kind: 'line', x1: legendX, y1: 16, x2: legendX + 18, y2: 16, stroke: u.series[s].stroke(), width: 2 });
-      items.push({ kind: 'text', x: legendX + 22, y: 20, text: label, anchor: 'start', size: 11 });
+      const ly = 34 + 15 * r;
+      if (marker) items.push({ kind: 'circle', x: legendX + 9, y: ly - 4, r: 4, fill: stroke });
+      else items.push({ kind: 'line', x1: legendX, y1: ly - 4, x2: legendX + 18, y2: ly - 4, stroke: stroke, width: 2 });
+      items.push({ kind: 'text', x: legendX + 22, y: ly, text: String(u.series[s].label), anchor: 'start', size: 11 });
     }
     return { width: W, height: H, items: items };
   }
@@ -154,7 +219,8 @@ const kimp = (function () {
           `stroke="${it.stroke}" stroke-width="${it.width}"/>`);
       } else if (it.kind === 'path' && it.points.length) {
         const d = it.points.map((p, i) => (i ? 'L' : 'M') + n(p[0]) + ' ' + n(p[1])).join('');
-        out.push(`<path d="${d}" fill="none" stroke="${it.stroke}" stroke-width="${it.width}"/>`);
+        const dash = it.dash ? ` stroke-dasharray="${it.dash.join(' ')}"` : '';
+        out.push(`<path d="${d}" fill="none" stroke="${it.stroke}" stroke-width="${it.width}"${dash}/>`);
         if (it.dots) {
           for (const p of it.points) out.push(`<circle cx="${n(p[0])}" cy="${n(p[1])}" r="2.5" fill="${it.stroke}"/>`);
         }
@@ -192,9 +258,10 @@ const kimp = (function () {
         ops.push(`${rgb(it.stroke)} RG ${it.width * k} w ${px(it.x1)} ${py(it.y1)} m ${px(it.x2)} ${py(it.y2)} l S`);
       } else if (it.kind === 'path' && it.points.length) {
         const p = it.points;
-        ops.push(`${rgb(it.stroke)} RG ${it.width * k} w ${px(p[0][0])} ${py(p[0][1])} m`);
+        const dash = it.dash ? `[${it.dash.map((v) => (v * k).toFixed(1)).join(' ')}] 0 d` : '[] 0 d';
+        ops.push(`${dash} ${rgb(it.stroke)} RG ${it.width * k} w ${px(p[0][0])} ${py(p[0][1])} m`);
         for (let i = 1; i < p.length; ++i) ops.push(`${px(p[i][0])} ${py(p[i][1])} l`);
-        ops.push('S');
+        ops.push('S [] 0 d');
       } else if (it.kind === 'circle') {
         const r = it.r * k;
         const cx = it.x * k;
@@ -235,10 +302,18 @@ const kimp = (function () {
     return pdf;
   }
 
+  /** The shown series as CSV; the header names each column as name_unit (time_s, ..._cm). */
   function chartCsv(c) {
     const u = c.plot;
     const shown = u.series.map((s, i) => i).filter((i) => i === 0 || u.series[i].show);
-    const head = shown.map((i) => (i === 0 ? c.xlabel : u.series[i].label));
+    const [xName, xUnit] = splitUnit(c.xlabel);
+    const [yName, yUnit] = splitUnit(c.ylabel);
+    const head = shown.map((i) => {
+      if (i === 0) return csvName(xName, xUnit);
+      const [label, labelUnit] = splitUnit(u.series[i].label);
+      if (c.units[i - 1] || labelUnit) return csvName(label, c.units[i - 1] || labelUnit);
+      return csvName(yName && yName !== label ? `${label} ${yName}` : label, yUnit);
+    });
     const lines = [head.map((h) => '"' + String(h).replace(/"/g, '""') + '"').join(',')];
     for (let r = 0; r < u.data[0].length; ++r) {
       lines.push(shown.map((i) => (u.data[i][r] === null || u.data[i][r] === undefined ? '' : u.data[i][r])).join(','));
@@ -276,9 +351,27 @@ const kimp = (function () {
     };
   }
 
+  /** Column name of a CSV export: "name_unit" as in kimp's own tables (m/s² -> m_per_s2). */
+  function csvName(name, unit) {
+    const u = String(unit || '').replace(/²/g, '2').replace(/³/g, '3').replace(/\^/g, '')
+      .replace(/·/g, '_').replace(/\//g, '_per_').replace(/%/g, 'percent').replace(/\s+/g, '_');
+    const n = String(name).replace(/[^A-Za-z0-9_.-]+/g, '_').replace(/^_+|_+$/g, '');
+    return u && u !== '-' && u !== '1' ? `${n}_${u}` : n;
+  }
+
+  /** "displacement (cm)" -> ["displacement", "cm"]; no unit -> [label, ""]. */
+  function splitUnit(label) {
+    const m = /^(.*?)\s*\(([^()]*)\)\s*$/.exec(String(label || ''));
+    return m ? [m[1], m[2]] : [String(label || ''), ''];
+  }
+
   /**
-   * A chart card: spec = {title, xlabel, ylabel, x: [], series: [{label, y: []}], time: bool,
-   * points: bool}. time charts show the animation's time cursor and scrub it on click.
+   * A chart card: spec = {title, xlabel, ylabel, x: [], series: [{label, y: [], x?: [], unit?,
+   * dash?, marker?}], time: bool, points: bool, scatter: bool, integerX: bool, height}.
+   * A series with its own x (another run, another sampling) is aligned with uPlot.join; a marker
+   * series is a few labelled points (a peak). time charts show the animation's time cursor and
+   * scrub it on click. The chart follows the width of its card (drawn while hidden, it widens
+   * when shown).
    */
   function chart(parent, spec) {
     const card = el('div', { class: 'chart card' });
@@ -287,28 +380,56 @@ const kimp = (function () {
     const host = el('div', { class: 'chart-host' });
     card.appendChild(host);
     parent.appendChild(card);
-    const width = Math.max(320, Math.min(parent.clientWidth || 900, 1200) - 24);
+    const widthOf = () => Math.max(320, Math.min(card.clientWidth || parent.clientWidth || 900, 1400) - 12);
+    const ownX = spec.series.some((s) => s.x);
     const opts = {
-      width: width,
+      width: widthOf(),
       height: spec.height || 300,
       scales: { x: { time: false } },
       cursor: { sync: { key: spec.time ? 'kimp-time' : 'kimp-' + Math.random() } },
       // Tick labels to 6 significant digits: uPlot's default rounds to the tick step's decimals,
       // which repeats labels on narrow ranges (0.001, 0.001, 0.002 for steps of 0.5 ms).
-      axes: [{ label: spec.xlabel, values: tickLabels }, { label: spec.ylabel, size: 70, values: tickLabels }],
-      series: [{ label: spec.xlabel }].concat(spec.series.map((s, i) => ({
-        label: s.label,
-        stroke: COLORS[i % COLORS.length],
-        width: 1.2,
-        points: spec.scatter ? { show: true, size: 4, fill: COLORS[i % COLORS.length] } : { show: !!spec.points },
-        // A loop's samples are not ordered in x: dots only (uPlot joins in x order otherwise).
-        paths: spec.scatter ? () => null : undefined,
-      }))),
+      axes: [
+        { label: spec.xlabel, values: tickLabels, space: 50, incrs: spec.integerX ? INTEGER_INCRS : undefined },
+        { label: spec.ylabel, size: 70, values: tickLabels, space: 25 },
+      ],
+      series: [{ label: spec.xlabel }].concat(spec.series.map((s, i) => {
+        const color = s.color || COLORS[i % COLORS.length];
+        if (s.marker) {
+          return { label: s.label, stroke: color, width: 0, paths: () => null,
+            points: { show: true, size: 9, fill: color, stroke: '#000', width: 1 } };
+        }
+        return {
+          label: s.label,
+          stroke: color,
+          width: 1.2,
+          dash: s.dash,
+          spanGaps: ownX,
+          points: spec.scatter ? { show: true, size: 4, fill: color } : { show: !!spec.points },
+          // A loop's samples are not ordered in x: dots only (uPlot joins in x order otherwise).
+          paths: spec.scatter ? () => null : undefined,
+        };
+      })),
       plugins: [wheelZoom()],
     };
-    const data = [spec.x].concat(spec.series.map((s) => s.y));
+    const data = ownX ? uPlot.join(spec.series.map((s) => [s.x || spec.x, s.y]))
+      : [spec.x].concat(spec.series.map((s) => s.y));
     const plot = new uPlot(opts, data, host);
-    const c = { plot: plot, title: spec.title, xlabel: spec.xlabel, ylabel: spec.ylabel, points: spec.points, scatter: !!spec.scatter, card: card, time: spec.time };
+    const c = {
+      plot: plot, title: spec.title, xlabel: spec.xlabel, ylabel: spec.ylabel, points: spec.points,
+      scatter: !!spec.scatter, card: card, time: spec.time, integerX: !!spec.integerX,
+      units: spec.series.map((s) => s.unit),
+      markers: spec.series.map((s) => !!s.marker),
+      dashes: spec.series.map((s) => s.dash),
+    };
+    if (typeof ResizeObserver !== 'undefined') {
+      let last = opts.width;
+      new ResizeObserver(() => {
+        if (!card.clientWidth) return;
+        const w = widthOf();
+        if (Math.abs(w - last) > 2) { last = w; plot.setSize({ width: w, height: opts.height }); }
+      }).observe(card);
+    }
     const name = slug(spec.title);
     const exporters = [
       ['svg', 'SVG', 'download the chart as SVG (vector)', () => figureSvg(chartFigure(c)), 'image/svg+xml'],
@@ -321,8 +442,11 @@ const kimp = (function () {
     if (spec.time) {
       c.cursor = el('div', { class: 'time-cursor' });
       plot.over.appendChild(c.cursor);
+      // A click moves the animation to that time (the building's, or the FEM mesh's frame).
       plot.over.addEventListener('click', (e) => {
-        if (animation) animation.seek(plot.posToVal(e.offsetX, 'x'));
+        const t = plot.posToVal(e.offsetX, 'x');
+        if (spec.seek) spec.seek(t);
+        else if (animation) animation.seek(t);
       });
     }
     charts.push(c);
@@ -1170,6 +1294,7 @@ const kimp = (function () {
     chartFigure: chartFigure,
     parseCsv: parseCsv,
     chart: chart,
+    parseQuantity: parseQuantity,
     el: el,
     fmt: fmt,
   };
