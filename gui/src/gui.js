@@ -359,13 +359,63 @@
     });
   }
 
-  async function openResults(id) {
+  /** The run's warnings (its log's "warning:" lines), e.g. why a sweep wrote no d_SRSS table. */
+  async function runWarnings(id) {
+    const r = await fetch(`/api/files/${id}/run.log`);
+    if (!r.ok) return [];
+    return (await r.text()).split('\n').filter((l) => l.startsWith('warning: ')).map((l) => l.slice(9));
+  }
+
+  async function openResults(id, overlay) {
     const data = await getJson(`/api/runs/${id}/data`);
     data.title = id;
+    const others = [];
+    for (const o of overlay || []) {
+      const d = await getJson(`/api/runs/${o}/data`);
+      d.title = o;
+      others.push(d);
+    }
     const pane = document.getElementById('results');
-    kimp.showResults(pane, data);
-    pane.insertBefore(el('p', {}, [el('a', { href: `/api/runs/${id}/report`, download: `${id}.html`, text: 'download report.html' })]), pane.children[1]);
+    state.shown = { id: id, overlay: overlay || [] };
+    kimp.showResults(pane, data, others);
+    pane.insertBefore(el('p', {}, [el('a', { href: `/api/runs/${id}/report`, download: `${id}.html`, text: 'download report.html' })]),
+      pane.children[1]);
     showTab('results');
+    await Promise.all([runPicker(id, data, overlay || []), showRunNotes(id, data)]);
+  }
+
+  async function showRunNotes(id, data) {
+    const host = document.getElementById('results-notes');
+    host.innerHTML = '';
+    const warnings = await runWarnings(id);
+    const csv = data.csv || {};
+    const gapStudy = data.kind === 'sweep' && Object.keys(csv).includes('sweep.csv') && !csv['dsrss_table.csv'];
+    const dsrss = warnings.filter((w) => /d_SRSS/.test(w));
+    if (gapStudy && dsrss.length) {
+      host.appendChild(el('div', { class: 'notice dsrss-missing', text: `No d_req / d_SRSS table: ${dsrss.join('\n')}` }));
+    }
+    const rest = warnings.filter((w) => !dsrss.includes(w));
+    if (rest.length) host.appendChild(el('div', { class: 'notice run-warnings', text: `warnings of ${id}:\n${rest.join('\n')}` }));
+  }
+
+  /** Other finished runs of the same command to overlay on the charts (legend: run: case). */
+  async function runPicker(id, data, overlay) {
+    const host = document.getElementById('results-bar');
+    host.innerHTML = '';
+    const list = (await getJson('/api/runs')).filter((r) => r.state === 'done' && r.id !== id && r.command === data.kind);
+    if (!list.length) return;
+    const boxes = list.map((r) => {
+      const box = el('input', { type: 'checkbox', value: r.id, class: 'overlay-run' });
+      box.checked = overlay.includes(r.id);
+      return el('label', {}, [box, document.createTextNode(' ' + r.id)]);
+    });
+    const go = el('button', { class: 'overlay-apply', text: 'Overlay on the charts' });
+    go.addEventListener('click', () => {
+      const chosen = Array.from(host.querySelectorAll('.overlay-run:checked')).map((b) => b.value);
+      openResults(id, chosen);
+    });
+    host.appendChild(el('div', { class: 'section run-picker' }, [el('strong', { text: `Overlay other ${data.kind} runs:` }),
+      ...boxes, go]));
   }
 
   async function refreshRuns() {

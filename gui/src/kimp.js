@@ -530,53 +530,124 @@ const kimp = (function () {
     return t;
   }
 
+  /** A table cell as a number: "0.5", "1e-3", or a quantity "10 cm" (its number, in its unit). */
+  function cellNumber(v) {
+    return /^\s*-?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?(\s*[A-Za-z%/^.0-9*]+)?\s*$/.test(v) ? parseFloat(v) : NaN;
+  }
+
+  /** The unit a column's cells carry ("10 cm" -> "cm"), or "" for plain numbers. */
+  function cellUnit(rows, j) {
+    for (const r of rows) {
+      const m = /^\s*-?[\d.]+(?:[eE][-+]?\d+)?\s*([A-Za-z%][A-Za-z%/^.0-9*]*)\s*$/.exec(r[j] || '');
+      if (m) return m[1];
+    }
+    return '';
+  }
+
+  /** The column as numbers in one unit (a sweep may write "10 cm" and "0.2 m" in one column). */
+  function columnNumbers(rows, j) {
+    const unit = cellUnit(rows, j);
+    return rows.map((r) => {
+      if (r[j] === '' || r[j] === undefined) return null;
+      if (!unit) return cellNumber(r[j]);
+      try {
+        return parseQuantity(r[j], unit) / parseQuantity(`1 ${unit}`, unit);
+      } catch (e) {
+        return cellNumber(r[j]);
+      }
+    });
+  }
+
+  /**
+   * A CSV file as a table and a chart of chosen columns. preset = {x, groups: [[y columns], ...]
+   * (one chart per group: columns of one unit), group: [columns] (one series per distinct value
+   * of these), chart: false}.
+   */
   function csvSection(parent, name, text, preset) {
     const rows = parseCsv(text);
-    if (rows.length < 2) return;
-    const body = section(parent, name, rows.length <= 60);
+    if (rows.length < 2) return null;
+    const head = rows[0];
+    const body = rows.slice(1);
+    const sec = section(parent, name, rows.length <= 60);
     // 4 significant figures on screen for real numbers (integers such as counts stay whole; the
     // CSV export and the file keep full precision).
     const shown = (v) => (/^\s*-?(\d+\.\d*|\.\d+|\d+(\.\d*)?[eE][-+]?\d+)\s*$/.test(v) ? fmt(parseFloat(v), 4) : v);
-    table(body, rows[0], rows.slice(1, 201).map((r) => r.map(shown)));
-    if (rows.length > 201) body.appendChild(el('p', { text: `first 200 of ${rows.length - 1} rows` }));
-    // Numbers, also with a unit ("10 cm", as a sweep writes its swept values).
-    const num = (v) => (/^\s*-?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?(\s*[A-Za-z%/^.0-9*]+)?\s*$/.test(v) ? parseFloat(v) : NaN);
-    const numeric = rows[0].map((h, j) => rows.slice(1).some((r) => r[j] !== '' && Number.isFinite(num(r[j]))));
-    const cols = rows[0].map((h, j) => j).filter((j) => numeric[j]);
-    if (cols.length < 2) return;
-    const xs = el('select', { class: 'csv-x' }, cols.map((j) => el('option', { value: j, text: rows[0][j] })));
-    const ys = el('select', { class: 'csv-y', multiple: '', size: Math.min(6, cols.length) }, cols.map((j) => el('option', { value: j, text: rows[0][j] })));
+    table(sec, head, body.slice(0, 200).map((r) => r.map(shown)));
+    if (body.length > 200) sec.appendChild(el('p', { text: `first 200 of ${body.length} rows` }));
+    if (preset && preset.chart === false) return sec;
+    const numeric = head.map((h, j) => body.some((r) => r[j] !== '' && Number.isFinite(cellNumber(r[j]))));
+    const cols = head.map((h, j) => j).filter((j) => numeric[j]);
+    if (cols.length < 2) return sec;
+    const label = (j) => (cellUnit(body, j) ? `${head[j]} (${cellUnit(body, j)})` : head[j]);
+    const xs = el('select', { class: 'csv-x' }, cols.map((j) => el('option', { value: j, text: label(j) })));
+    const ys = el('select', { class: 'csv-y', multiple: '', size: Math.min(6, cols.length) },
+      cols.map((j) => el('option', { value: j, text: label(j) })));
+    // Group by: a column of few distinct values (a second swept parameter, a case, a velocity).
+    const distinct = (j) => new Set(body.map((r) => r[j])).size;
+    const groupable = head.map((h, j) => j).filter((j) => distinct(j) > 1 && distinct(j) <= 12 && distinct(j) < body.length);
+    const groupOptions = [el('option', { value: '', text: 'nothing' })];
+    if (preset && preset.group && preset.group.length > 1) {
+      groupOptions.push(el('option', { value: preset.group.join(','), text: preset.group.map((j) => head[j]).join(' + ') }));
+    }
+    for (const j of groupable) groupOptions.push(el('option', { value: String(j), text: head[j] }));
+    const group = el('select', { class: 'csv-group' }, groupOptions);
     const host = el('div');
     const draw = () => {
       host.innerHTML = '';
       const xj = Number(xs.value);
-      const yj = Array.from(ys.selectedOptions).map((o) => Number(o.value));
-      if (!yj.length) return;
-      const order = rows.slice(1).filter((r) => r[xj] !== '').sort((a, b) => num(a[xj]) - num(b[xj]));
-      chart(host, {
-        title: `${name}: ${yj.map((j) => rows[0][j]).join(', ')} over ${rows[0][xj]}`,
-        xlabel: rows[0][xj], ylabel: yj.length === 1 ? rows[0][yj[0]] : '', points: true,
-        x: order.map((r) => num(r[xj])),
-        series: yj.map((j) => ({ label: rows[0][j], y: order.map((r) => (r[j] === '' ? null : num(r[j]))) })),
-      });
+      const chosen = Array.from(ys.selectedOptions).map((o) => Number(o.value));
+      if (!chosen.length) return;
+      const gj = group.value === '' ? [] : group.value.split(',').map(Number).filter((j) => j !== xj);
+      const keyOf = (r) => gj.map((j) => `${head[j]} = ${r[j] || '-'}`).join(', ');
+      const keys = Array.from(new Set(body.map(keyOf)));
+      const xValues = columnNumbers(body, xj);
+      const integerX = xValues.every((v) => v === null || Number.isInteger(v));
+      const chartGroups = preset && preset.groups && chosen.length > 1 ? preset.groups
+        .map((g) => g.map((n) => head.indexOf(n)).filter((j) => chosen.includes(j))).filter((g) => g.length) : [chosen];
+      for (const yjs of chartGroups) {
+        const series = [];
+        for (const key of keys) {
+          const idx = body.map((r, i) => i).filter((i) => keyOf(body[i]) === key && xValues[i] !== null)
+            .sort((a, b) => xValues[a] - xValues[b]);
+          for (const yj of yjs) {
+            const yv = columnNumbers(body, yj);
+            series.push({
+              label: [yjs.length > 1 || !key ? head[yj] : '', key].filter((t) => t).join(', '),
+              x: idx.map((i) => xValues[i]), y: idx.map((i) => yv[i]),
+            });
+          }
+        }
+        chart(host, {
+          title: `${name}: ${yjs.map((j) => head[j]).join(', ')} over ${head[xj]}${gj.length ? ', by ' + gj.map((j) => head[j]).join(' + ') : ''}`,
+          xlabel: label(xj), ylabel: yjs.length === 1 ? label(yjs[0]) : '', points: true, integerX: integerX,
+          x: series[0].x, series: series,
+        });
+      }
     };
-    if (preset) {
-      xs.value = String(rows[0].indexOf(preset.x));
-      for (const o of ys.options) o.selected = preset.y.includes(rows[0][Number(o.value)]);
-    } else {
+    const pickX = (preset && preset.x !== undefined) ? (typeof preset.x === 'number' ? preset.x : head.indexOf(preset.x)) : -1;
+    if (pickX >= 0) xs.value = String(pickX);
+    else {
       // A column of values with units is the swept parameter; the first peak is the response.
-      const withUnit = cols.find((j) => rows.slice(1).every((r) => r[j] === '' || /[A-Za-z%]\s*$/.test(r[j])));
-      const x = withUnit === undefined ? cols[0] : withUnit;
-      const peak = cols.find((j) => j !== x && /peak/.test(rows[0][j]));
-      xs.value = String(x);
+      const withUnit = cols.find((j) => body.every((r) => r[j] === '' || /[A-Za-z%]\s*$/.test(r[j])));
+      xs.value = String(withUnit === undefined ? cols[0] : withUnit);
+    }
+    const wanted = preset && preset.groups ? preset.groups.flat() : preset && preset.y ? preset.y : null;
+    if (wanted) for (const o of ys.options) o.selected = wanted.includes(head[Number(o.value)]);
+    if (!Array.from(ys.selectedOptions).length) {
+      const x = Number(xs.value);
+      const peak = cols.find((j) => j !== x && /peak/.test(head[j]));
       const y = peak === undefined ? cols.find((j) => j !== x) : peak;
       for (const o of ys.options) o.selected = Number(o.value) === y;
     }
+    if (preset && preset.group) group.value = preset.group.join(',');
     xs.addEventListener('change', draw);
     ys.addEventListener('change', draw);
-    body.appendChild(el('div', { class: 'controls' }, [el('label', { text: 'x ' }, [xs]), el('label', { text: ' y ' }, [ys])]));
-    body.appendChild(host);
+    group.addEventListener('change', draw);
+    sec.appendChild(el('div', { class: 'controls' }, [el('label', { text: 'x ' }, [xs]), el('label', { text: ' y ' }, [ys]),
+      el('label', { text: ' one series per ' }, [group])]));
+    sec.appendChild(host);
     draw();
+    return sec;
   }
 
   function seriesSection(parent, file, h5) {
@@ -605,19 +676,39 @@ const kimp = (function () {
   // ---- lumped runs -----------------------------------------------------------------------------
   const SCALE = { m: [100, 'cm'], 'm/s^2': [1, 'm/s²'], N: [1e-6, 'MN'] };
 
-  function lumpedCases(data) {
+  /**
+   * The cases of a lumped run: [{summary, label, run, resolved, nMain, isolated, history,
+   * pulses}]. `run` names the run when several runs are overlaid (the legend shows run: case).
+   */
+  function lumpedCases(data, run) {
     const h5 = data.h5['lumped.h5'];
     const resolved = JSON.parse(h5.datasets['/input/resolved'].data);
+    const isolated = resolved.building.kind === 'isolated';
+    const nMain = resolved.building.n_storeys + (isolated ? 1 : 0);
     const groups = seriesGroups(h5);
     const cases = (data.summary && data.summary.cases ? data.summary.cases : []).map((c) => {
       const hist = {};
+      const pulses = {};
+      const prefix = `/lumped/${c.name}/history/`;
       for (const g of groups) {
-        const prefix = `/lumped/${c.name}/history/`;
-        if (g.path.startsWith(prefix)) hist[g.path.slice(prefix.length)] = { time: g.time, values: g.series[0].values, units: g.series[0].units };
+        if (g.path.startsWith(prefix)) {
+          hist[g.path.slice(prefix.length)] = { time: g.time, values: g.series[0].values, units: g.series[0].units };
+        }
       }
-      return { summary: c, history: hist };
+      for (const k of c.contacts || []) {
+        const base = `/lumped/${c.name}/contacts/${k.name}`;
+        const v = h5.datasets[`${base}/force_full_rate/value`];
+        const t = h5.datasets[`${base}/force_full_rate/time`];
+        const at = h5.datasets[`${base}/impact_time`];
+        if (v && t && Array.isArray(v.data) && v.data.length) {
+          pulses[k.name] = { time: t.data, force: v.data, stride: v.stride || 1, rows: v.shape[0],
+            impacts: at && Array.isArray(at.data) ? at.data : [] };
+        }
+      }
+      return { summary: c, label: run ? `${run}: ${c.name}` : c.name, run: run, resolved: resolved,
+        nMain: nMain, isolated: isolated, history: hist, pulses: pulses };
     });
-    return { resolved: resolved, cases: cases.filter((c) => c.history.displacement) };
+    return cases.filter((c) => c.history.displacement);
   }
 
   function levelNames(n, isolated) {
@@ -626,40 +717,74 @@ const kimp = (function () {
     return names;
   }
 
-  function lumpedSection(parent, data) {
-    const model = lumpedCases(data);
-    if (!model.cases.length) return;
-    const r = model.resolved;
-    const isolated = r.building.kind === 'isolated';
-    const nMain = r.building.n_storeys + (isolated ? 1 : 0);
+  /** True when every case samples its histories at the same times (one x for all series). */
+  function sameTimes(cases, key) {
+    const t0 = cases[0].history[key].time;
+    return cases.every((c) => {
+      const t = c.history[key].time;
+      return t === t0 || (t.length === t0.length && t[0] === t0[0] && t[t.length - 1] === t0[t0.length - 1]);
+    });
+  }
+
+  /** The full-rate force samples of one contact split into pulses at the force-free gaps. */
+  function splitPulses(p) {
+    const t = p.time;
+    const steps = [];
+    for (let i = 1; i < t.length; ++i) steps.push(t[i] - t[i - 1]);
+    const typical = steps.length ? steps.slice().sort((a, b) => a - b)[Math.floor(steps.length / 2)] : 0;
+    const out = [];
+    let cur = null;
+    for (let i = 0; i < t.length; ++i) {
+      if (!cur || t[i] - t[i - 1] > 10 * typical) {
+        cur = { start: t[i], time: [], force: [] };
+        out.push(cur);
+      }
+      cur.time.push(t[i]);
+      cur.force.push(p.force[i]);
+    }
+    return out;
+  }
+
+  function lumpedSection(parent, data, others) {
+    const cases = lumpedCases(data, others && others.length ? data.title : null);
+    for (const o of others || []) if (o.h5 && o.h5['lumped.h5']) cases.push(...lumpedCases(o, o.title));
+    if (!cases.length) return;
+    const first = cases[0];
+    const { isolated, nMain } = first;
 
     // Peaks table: the numbers of summary.json, in engineering units.
     const body = section(parent, 'Peaks (summary.json)');
-    const first = isolated ? 'peak isolation displacement (cm)' : 'peak floor 1 displacement (cm)';
-    const contactNames = model.cases[0].summary.contacts.map((c) => c.name);
-    const header = ['case', 'status', first, 'peak top displacement (cm)', 'max interstorey drift (cm)',
+    const firstLevel = isolated ? 'peak isolation displacement (cm)' : 'peak floor 1 displacement (cm)';
+    const contactNames = Array.from(new Set(cases.flatMap((c) => c.summary.contacts.map((k) => k.name))));
+    const header = ['case', 'status', firstLevel, 'peak top displacement (cm)', 'max interstorey drift (cm)',
       'peak absolute acceleration (m/s²)', 'impacts']
       .concat(contactNames.map((n) => `peak force ${n} (MN)`));
-    const rows = model.cases.map((c) => {
+    const rows = cases.map((c) => {
       const s = c.summary;
-      const cell = (v, scale, key) => el('span', { class: 'peak', 'data-key': key, 'data-si': String(v), 'data-scale': String(scale),
-        text: fmt(v * scale, 6) });
-      return [s.name, s.status,
+      const cell = (v, scale, key) => el('span', {
+        class: 'peak', 'data-key': key, 'data-si': String(v), 'data-scale': String(scale), text: fmt(v * scale, 6),
+      });
+      const top = c.nMain - 1;
+      return [c.label, s.status,
         cell(s.peaks.displacement[0], 100, `${s.name}.displacement.0`),
-        cell(s.peaks.displacement[nMain - 1], 100, `${s.name}.displacement.${nMain - 1}`),
+        cell(s.peaks.displacement[top], 100, `${s.name}.displacement.${top}`),
         cell(s.max_interstorey_drift, 100, `${s.name}.max_interstorey_drift`),
-        cell(Math.max(...s.peaks.absolute_acceleration.slice(0, nMain)), 1, `${s.name}.absolute_acceleration.max`),
+        cell(Math.max(...s.peaks.absolute_acceleration.slice(0, c.nMain)), 1, `${s.name}.absolute_acceleration.max`),
         String(s.n_impacts)]
-        .concat(s.contacts.map((k) => cell(k.peak_force, 1e-6, `${s.name}.${k.name}.peak_force`)));
+        .concat(contactNames.map((n) => {
+          const k = s.contacts.find((x) => x.name === n);
+          return k ? cell(k.peak_force, 1e-6, `${s.name}.${n}.peak_force`) : '';
+        }));
     });
     table(body, header, rows, 'data peaks');
 
-    // Case chooser shared by the charts below (overlay of several cases on one chart).
+    // Case chooser shared by the charts below (overlay of several cases, or runs, on one chart).
     const chooser = el('div', { class: 'controls case-chooser' }, [el('span', { text: 'cases: ' })]);
-    model.cases.forEach((c, i) => {
+    const firstOfRun = new Set();
+    cases.forEach((c, i) => {
       const box = el('input', { type: 'checkbox', value: i, class: 'case-box' });
-      if (i === 0) box.checked = true;
-      chooser.appendChild(el('label', {}, [box, document.createTextNode(c.summary.name + ' ')]));
+      if (!firstOfRun.has(c.run)) { box.checked = true; firstOfRun.add(c.run); }
+      chooser.appendChild(el('label', {}, [box, document.createTextNode(c.label + ' ')]));
     });
     const hbody = section(parent, 'Histories');
     hbody.appendChild(chooser);
@@ -668,117 +793,190 @@ const kimp = (function () {
     const pbody = section(parent, 'Peak profiles over the floors');
     const hostP = el('div');
     pbody.appendChild(hostP);
-    const lbody = section(parent, 'Force-indentation loops');
+    const fbody = section(parent, 'Impact force pulses at full rate');
+    const hostF = el('div');
+    fbody.appendChild(hostF);
+    const lbody = section(parent, 'Force-indentation loops', false);
     const hostL = el('div');
     lbody.appendChild(hostL);
     const hostI = el('div');
     if (isolated) section(parent, 'Isolator hysteresis loop').appendChild(hostI);
 
+    const nLevels = first.history.displacement.values[0].length;
     const quantities = [
-      ['displacement', 'displacement', 'm', levelNames(data.h5['lumped.h5'] ? model.cases[0].history.displacement.values[0].length : nMain, isolated)],
+      ['displacement', 'displacement', 'm', levelNames(nLevels, isolated)],
       ['interstorey_drift', 'interstorey drift', 'm', null],
       ['absolute_acceleration', 'absolute acceleration', 'm/s^2', null],
-      ['contact_force', 'impact force', 'N', contactNames],
+      ['contact_force', 'impact force', 'N', first.summary.contacts.map((k) => k.name)],
       ['isolator_force', 'isolator force', 'N', ['isolator']],
     ];
     const picks = {};
     const draw = () => {
-      const chosen = Array.from(chooser.querySelectorAll('input:checked')).map((b) => model.cases[Number(b.value)]);
-      hostH.innerHTML = '';
-      hostP.innerHTML = '';
-      hostL.innerHTML = '';
-      hostI.innerHTML = '';
+      const chosen = Array.from(chooser.querySelectorAll('input:checked')).map((b) => cases[Number(b.value)]);
+      for (const host of [hostH, hostP, hostF, hostL, hostI]) host.innerHTML = '';
       charts.length = 0;
       if (!chosen.length) return;
       for (const [key, label, unit, names0] of quantities) {
-        const h0 = chosen[0].history[key];
-        if (!h0) continue;
+        const having = chosen.filter((c) => c.history[key]);
+        if (!having.length) continue;
+        const h0 = having[0].history[key];
         const width = Array.isArray(h0.values[0]) ? h0.values[0].length : 1;
-        const names = names0 || Array.from({ length: width }, (_, j) => (key === 'interstorey_drift' ? `storey ${j + 1}` : levelNames(width, isolated)[j]));
+        const names = names0 || Array.from({ length: width },
+          (_, j) => (key === 'interstorey_drift' ? `storey ${j + 1}` : levelNames(width, isolated)[j]));
         if (!picks[key]) {
-          picks[key] = el('select', { class: 'component-pick', 'data-quantity': key }, names.slice(0, width).map((n, j) => el('option', { value: j, text: n })));
+          picks[key] = el('select', { class: 'component-pick', 'data-quantity': key },
+            names.slice(0, width).map((n, j) => el('option', { value: j, text: n })));
           if (key === 'displacement' || key === 'absolute_acceleration') picks[key].value = '0';
           picks[key].addEventListener('change', draw);
         }
         const j = Number(picks[key].value);
         const [scale, shown] = SCALE[unit] || [1, unit];
+        // Contacts are matched by name across runs (the column order may differ).
+        const column0 = (c) => (key === 'contact_force' ? c.summary.contacts.findIndex((k) => k.name === names[j]) : j);
+        const own = !sameTimes(having, key);
         hostH.appendChild(el('div', { class: 'controls' }, [el('label', { text: label + ' of ' }, [picks[key]])]));
         chart(hostH, {
           title: `${label}: ${names[j]}`, xlabel: 'time (s)', ylabel: `${label} (${shown})`, time: true,
           x: h0.time,
-          series: chosen.map((c) => ({ label: c.summary.name, y: column(c.history[key].values, j).map((v) => v * scale) })),
+          series: having.filter((c) => column0(c) >= 0).map((c) => ({
+            label: c.label, x: own ? c.history[key].time : undefined,
+            y: column(c.history[key].values, column0(c)).map((v) => v * scale),
+          })),
         });
       }
-      // Peak profiles: level on x, peak on y, one series per case.
+      // Peak profiles: level on x (integers), peak on y, one series per case.
       const profiles = [['displacement', 'peak displacement', 'm'], ['interstorey_drift', 'peak interstorey drift', 'm'],
         ['absolute_acceleration', 'peak absolute acceleration', 'm/s^2']];
       for (const [key, label, unit] of profiles) {
         const [scale, shown] = SCALE[unit];
-        const n = key === 'interstorey_drift' ? nMain - (isolated ? 1 : 0) : nMain;
-        const first = key === 'interstorey_drift' && isolated ? 1 : 0;
+        const levels = (c) => {
+          const n = key === 'interstorey_drift' ? c.nMain - (c.isolated ? 1 : 0) : c.nMain;
+          const from = key === 'interstorey_drift' && c.isolated ? 1 : 0;
+          return Array.from({ length: n }, (_, i) => i + from);
+        };
+        const own = chosen.some((c) => c.nMain !== chosen[0].nMain);
         chart(hostP, {
-          title: `${label} over the floors`, xlabel: isolated ? 'level (0 = isolation)' : 'floor', ylabel: `${label} (${shown})`, points: true,
-          x: Array.from({ length: n }, (_, i) => i + first),
-          series: chosen.map((c) => ({ label: c.summary.name, y: c.summary.peaks[key].slice(0, n).map((v) => v * scale) })),
+          title: `${label} over the floors`, xlabel: isolated ? 'level (0 = isolation)' : 'floor', ylabel: `${label} (${shown})`,
+          points: true, integerX: true, x: levels(chosen[0]),
+          series: chosen.map((c) => ({
+            label: c.label, x: own ? levels(c) : undefined,
+            y: c.summary.peaks[key].slice(0, levels(c).length).map((v) => v * scale),
+          })),
         });
       }
-      // Force-indentation: the moat walls are fixed, so the indentation is the isolation level's
-      // displacement beyond the gap; a neighbour contact uses both floors' displacements.
-      const cf = chosen[0].history.contact_force;
-      if (cf) {
-        contactNames.forEach((name, k) => {
-          const series = [];
-          let xs = null;
-          for (const c of chosen) {
-            const u = c.history.displacement.values;
-            const f = column(c.history.contact_force.values, k);
-            const ind = indentation(name, u, r, nMain);
-            if (!ind) return;
-            // uPlot wants one ascending x: draw the loop as (time-ordered) points of a scatter.
-            const pairs = ind.map((d, i) => [d * 1000, f[i] * 1e-6]).filter((p, i) => f[i] > 0 || (i > 0 && f[i - 1] > 0));
-            xs = pairs;
-            series.push({ label: c.summary.name, pairs: pairs });
-          }
-          if (!xs || !series.some((s) => s.pairs.length)) return;
-          const allX = Array.from(new Set(series.flatMap((s) => s.pairs.map((p) => p[0])))).sort((a, b) => a - b);
-          const index = new Map(allX.map((x, i) => [x, i]));
-          chart(hostL, {
-            title: `force-indentation: ${name}`, xlabel: 'indentation (mm)', ylabel: 'impact force (MN)', scatter: true,
-            x: allX,
-            series: series.map((s) => {
-              const y = new Array(allX.length).fill(null);
-              for (const p of s.pairs) y[index.get(p[0])] = p[1];
-              return { label: s.label, y: y };
-            }),
-          });
-        });
-      }
+      drawPulses(hostF, chosen);
+      drawLoops(hostL, chosen);
       // Isolator hysteresis: its force on the base against the isolation level's displacement.
-      if (isolated && chosen[0].history.isolator_force) {
-        const series = chosen.filter((c) => c.history.isolator_force).map((c) => {
+      const withIsolator = chosen.filter((c) => c.isolated && c.history.isolator_force);
+      if (withIsolator.length) {
+        const series = withIsolator.map((c) => {
           const f = column(c.history.isolator_force.values, 0);
           const u = column(c.history.displacement.values, 0);
-          return { label: c.summary.name, pairs: u.map((d, i) => [d * 100, f[i] * 1e-6]) };
+          return { label: c.label, pairs: u.map((d, i) => [d * 100, f[i] * 1e-6]) };
         });
-        const allX = Array.from(new Set(series.flatMap((s) => s.pairs.map((p) => p[0])))).sort((a, b) => a - b);
-        const index = new Map(allX.map((x, i) => [x, i]));
-        const kind = chosen[0].summary.isolator ? ` (${chosen[0].summary.isolator.kind})` : '';
-        chart(hostI, {
-          title: `isolator hysteresis${kind}`, xlabel: 'isolation displacement (cm)', ylabel: 'isolator force (MN)', scatter: true,
-          x: allX,
-          series: series.map((s) => {
-            const y = new Array(allX.length).fill(null);
-            for (const p of s.pairs) y[index.get(p[0])] = p[1];
-            return { label: s.label, y: y };
-          }),
-        });
+        const kind = withIsolator[0].summary.isolator ? ` (${withIsolator[0].summary.isolator.kind})` : '';
+        scatterChart(hostI, `isolator hysteresis${kind}`, 'isolation displacement (cm)', 'isolator force (MN)', series);
       }
       if (animation) animation.setCase(chosen[0]);
     };
     chooser.addEventListener('change', draw);
     const abody = section(parent, 'Animation');
-    animation = makeAnimation(abody, model, nMain, isolated);
+    animation = makeAnimation(abody, first);
     draw();
+  }
+
+  /** Samples as dots (a loop is not ordered in x): series = [{label, pairs: [[x, y]]}]. */
+  function scatterChart(host, title, xlabel, ylabel, series) {
+    const allX = Array.from(new Set(series.flatMap((s) => s.pairs.map((p) => p[0])))).sort((a, b) => a - b);
+    const index = new Map(allX.map((x, i) => [x, i]));
+    return chart(host, {
+      title: title, xlabel: xlabel, ylabel: ylabel, scatter: true, x: allX,
+      series: series.map((s) => {
+        const y = new Array(allX.length).fill(null);
+        for (const p of s.pairs) y[index.get(p[0])] = p[1];
+        return { label: s.label, y: y };
+      }),
+    });
+  }
+
+  /**
+   * Every impact's force at every time step (contacts/<name>/force_full_rate of lumped.h5) against
+   * the time since the impact began: the pulse shape of each impact of each chosen case.
+   */
+  function drawPulses(host, chosen) {
+    const MAX_IMPACTS = 8;
+    const names = Array.from(new Set(chosen.flatMap((c) => Object.keys(c.pulses))));
+    if (!names.length) {
+      host.appendChild(el('p', { class: 'muted', text: 'No impact in the chosen cases.' }));
+      return;
+    }
+    const notes = ['Each impact\'s contact force at every time step (lumped.h5 contacts/<name>/force_full_rate), ' +
+      'against the time since the impact began.'];
+    for (const name of names) {
+      const series = [];
+      for (const c of chosen) {
+        const p = c.pulses[name];
+        if (!p) continue;
+        const pieces = splitPulses(p);
+        if (pieces.length > MAX_IMPACTS) notes.push(`${c.label} ${name}: the first ${MAX_IMPACTS} of ${pieces.length} impacts drawn.`);
+        if (p.stride > 1) notes.push(`${c.label} ${name}: every ${p.stride}th of ${p.rows} samples (report size limit).`);
+        pieces.slice(0, MAX_IMPACTS).forEach((piece, k) => series.push({
+          label: `${c.label} #${k + 1} (t = ${fmt(piece.start, 4)} s)`,
+          x: piece.time.map((t) => (t - piece.start) * 1e3),
+          y: piece.force.map((f) => f * 1e-6),
+        }));
+      }
+      if (!series.length) continue;
+      // One x per impact: aligned by uPlot.join (points of other impacts are gaps, joined over).
+      const order = series.map((s) => {
+        const idx = s.x.map((_, i) => i).sort((a, b) => s.x[a] - s.x[b]);
+        return { label: s.label, x: idx.map((i) => s.x[i]), y: idx.map((i) => s.y[i]) };
+      });
+      chart(host, {
+        title: `impact force pulses at full rate: ${name}`, xlabel: 'time since the impact began (ms)',
+        ylabel: 'impact force (MN)', x: order[0].x, series: order,
+      });
+    }
+    host.insertBefore(el('p', { class: 'muted pulse-note', text: notes.join(' ') }), host.firstChild);
+  }
+
+  /**
+   * Force against indentation from the histories. The walls are fixed, so the indentation is the
+   * isolation level's displacement beyond the gap; a neighbour contact uses both floors. The
+   * histories are sampled every integration.output_interval: a loop needs many samples per impact,
+   * and lumped.h5 keeps the indentation only at those samples (the force alone at full rate).
+   */
+  function drawLoops(host, chosen) {
+    const MIN_SAMPLES = 20;
+    const names = Array.from(new Set(chosen.flatMap((c) => c.summary.contacts.map((k) => k.name))));
+    const notes = [];
+    for (const name of names) {
+      const series = [];
+      for (const c of chosen) {
+        if (!c.history.contact_force) continue;
+        const k = c.summary.contacts.findIndex((x) => x.name === name);
+        const ind = k < 0 ? null : indentation(name, c.history.displacement.values, c.resolved, c.nMain);
+        if (!ind) continue;
+        const f = column(c.history.contact_force.values, k);
+        const pairs = ind.map((d, i) => [d * 1000, f[i] * 1e-6]).filter((p, i) => f[i] > 0 || (i > 0 && f[i - 1] > 0));
+        const nImpacts = c.summary.contacts[k].impacts ? c.summary.contacts[k].impacts.length : 0;
+        if (!nImpacts) continue;
+        const perImpact = pairs.length / nImpacts;
+        const dt = c.history.contact_force.time[1] - c.history.contact_force.time[0];
+        if (perImpact < MIN_SAMPLES) {
+          notes.push(`${c.label} ${name}: ${fmt(perImpact, 2)} history samples per impact (every ${fmt(dt, 3)} s), ` +
+            `too few for a loop.`);
+          continue;
+        }
+        series.push({ label: c.label, pairs: pairs });
+      }
+      if (series.length) scatterChart(host, `force-indentation: ${name}`, 'indentation (mm)', 'impact force (MN)', series);
+    }
+    if (notes.length) {
+      host.insertBefore(el('p', { class: 'muted loop-note', text: notes.join(' ') + ' lumped.h5 keeps the contact force ' +
+        'at every step but the indentation only at the history samples: set integration.output_interval to a ' +
+        'fraction of a contact duration (e.g. "1e-4 s") for loops; the pulses above are at full rate.' }), host.firstChild);
+    }
   }
 
   function indentation(name, u, r, nMain) {
@@ -798,8 +996,7 @@ const kimp = (function () {
   }
 
   // ---- animation -------------------------------------------------------------------------------
-  function makeAnimation(parent, model, nMain, isolated) {
-    const r = model.resolved;
+  function makeAnimation(parent, firstCase) {
     const NS = 'http://www.w3.org/2000/svg';
     const W = 900;
     const H = 420;
@@ -830,14 +1027,23 @@ const kimp = (function () {
       while (hi - lo > 1) { const mid = (lo + hi) >> 1; if (ts[mid] <= t) lo = mid; else hi = mid; }
       return ts[hi] <= t ? hi : lo;
     };
-    const storeyH = 300 / (Math.max(nMain, 4) + 0.5);
     const groundY = H - 40;
     const widthMain = 160;
-    // Drawing scale: a storey is 3 m; displacements and gaps are drawn `exaggeration` times larger.
-    const pxPerM = storeyH / 3;
+    // The drawn frame's own time (the history sample), to the digits its sampling needs.
+    const frameTime = () => times()[state.frame];
+    const timeText = (t) => {
+      const ts = times();
+      const dt = ts.length > 1 ? ts[1] - ts[0] : 0.01;
+      return t.toFixed(Math.min(6, Math.max(2, Math.ceil(-Math.log10(dt) - 1e-9))));
+    };
 
     function draw() {
       if (!state.kase) return;
+      // The case's own model (cases of overlaid runs may differ).
+      const { resolved: r, nMain, isolated } = state.kase;
+      const storeyH = 300 / (Math.max(nMain, 4) + 0.5);
+      // Drawing scale: a storey is 3 m; displacements and gaps are drawn `exaggeration` times larger.
+      const pxPerM = storeyH / 3;
       const i = frameAt(state.t);
       state.frame = i;
       const u = state.kase.history.displacement.values[i];
@@ -906,13 +1112,20 @@ const kimp = (function () {
           const x = xs[level] + s * widthMain / 2;
           const y = levelY(level);
           const rr = 6 + 24 * Math.sqrt(f[k] / Math.max(c.peak_force, 1));
-          parts.push(`<circle cx="${x.toFixed(1)}" cy="${y.toFixed(1)}" r="${rr.toFixed(1)}" fill="#e00" fill-opacity="0.6" class="impact"/>`);
-          parts.push(`<text x="${x.toFixed(1)}" y="${(y - rr - 4).toFixed(1)}" font-size="13" text-anchor="middle" fill="#b00">${fmt(f[k] * 1e-6, 3)} MN</text>`);
+          parts.push(`<circle cx="${x.toFixed(1)}" cy="${y.toFixed(1)}" r="${rr.toFixed(1)}" fill="#e00" ` +
+            'fill-opacity="0.6" class="impact"/>');
+          // The force beside its circle, outwards (levels are a storey apart: labels never meet),
+          // on a white halo over the walls and neighbours.
+          parts.push(`<text class="impact-label" x="${(x + s * (rr + 4)).toFixed(1)}" y="${(y + 4).toFixed(1)}" ` +
+            `font-size="13" text-anchor="${s > 0 ? 'start' : 'end'}" fill="#b00" stroke="#fff" stroke-width="3" ` +
+            `paint-order="stroke">${fmt(f[k] * 1e-6, 3)} MN</text>`);
         });
       }
-      parts.push(`<text x="10" y="20" font-size="14">${state.kase.summary.name}: t = ${state.kase.history.displacement.time[i].toFixed(2)} s, displacements ×${state.exaggeration}</text>`);
+      const tFrame = frameTime();
+      parts.push(`<text x="10" y="20" font-size="14">${escapeXml(state.kase.label)}: t = ${timeText(tFrame)} s, ` +
+        `displacements ×${state.exaggeration}</text>`);
       svg.innerHTML = parts.join('');
-      timeLabel.textContent = `t = ${state.t.toFixed(2)} s`;
+      timeLabel.textContent = `t = ${timeText(tFrame)} s`;
       scrub.value = String(Math.round(state.t / tEnd() * 1000));
       setTimeCursor(state.t);
     }
@@ -940,8 +1153,8 @@ const kimp = (function () {
     speed.addEventListener('change', () => { state.speed = Number(speed.value); });
     exag.addEventListener('change', () => { state.exaggeration = Math.max(1, Number(exag.value) || 1); draw(); });
     scrub.addEventListener('input', () => api.seek(Number(scrub.value) / 1000 * tEnd()));
-    exportFrame.addEventListener('click', () => download(`frame_t${state.t.toFixed(2)}.svg`, api.frameSvg(), 'image/svg+xml'));
-    api.setCase(model.cases[0]);
+    exportFrame.addEventListener('click', () => download(`frame_t${timeText(frameTime())}.svg`, api.frameSvg(), 'image/svg+xml'));
+    api.setCase(firstCase);
     return api;
   }
 
@@ -997,7 +1210,11 @@ const kimp = (function () {
       const series = [{ label: 'raw', y: raw.data.map((v) => v * 1e-3) }];
       const smooth = d[`/fem/${name}/smoothed_contact_force/value`];
       if (smooth && smooth.data.length === raw.data.length) series.push({ label: 'smoothed', y: smooth.data.map((v) => v * 1e-3) });
-      chart(forceHost, { title: `${name}: contact force`, xlabel: 'time (s)', ylabel: 'force (kN/m)', time: true, x: time.data, series: series });
+      // A click on the force history moves the mesh to the frame at that time.
+      chart(forceHost, {
+        title: `${name}: contact force`, xlabel: 'time (s)', ylabel: 'force (kN/m)', time: true, x: time.data, series: series,
+        seek: (t) => api.seekTime(t),
+      });
     };
 
     function load(name) {
@@ -1136,6 +1353,13 @@ const kimp = (function () {
       },
       pause: () => { state.playing = false; play.textContent = 'Play'; },
       seek: (i) => { state.frame = Math.max(0, Math.min(i, state.mesh.time.length - 1)); draw(); },
+      /** The frame nearest to time t (s). */
+      seekTime: (t) => {
+        const ts = state.mesh.time;
+        let best = 0;
+        for (let k = 1; k < ts.length; ++k) if (Math.abs(ts[k] - t) < Math.abs(ts[best] - t)) best = k;
+        api.seek(best);
+      },
       time: () => state.mesh.time[state.frame],
       frameSvg: () => `<svg xmlns="${NS}" viewBox="0 0 ${W} ${H}" width="${W}" height="${H}" font-family="Helvetica, Arial, sans-serif">` +
         `<rect width="${W}" height="${H}" fill="#fff"/>${svg.innerHTML}</svg>`,
@@ -1233,29 +1457,202 @@ const kimp = (function () {
   }
 
   // ---- collide: the laws' COR tables overlaid ----------------------------------------------
-  function collideSection(parent, data) {
-    const d = data.h5['collide.h5'].datasets;
-    const laws = Object.keys(d).map((k) => /^\/collide\/([^/]+)\/cor_table\/nominal_cor$/.exec(k)).filter((m) => m).map((m) => m[1]);
+  function collideSection(parent, data, others) {
+    // Every law of every run (overlaid runs name theirs "run: law").
+    const laws = [];
+    const runs = [data].concat((others || []).filter((o) => o.h5 && o.h5['collide.h5']));
+    for (const run of runs) {
+      const d = run.h5['collide.h5'].datasets;
+      for (const k of Object.keys(d)) {
+        const m = /^\/collide\/([^/]+)\/cor_table\/nominal_cor$/.exec(k);
+        if (m) laws.push({ label: runs.length > 1 ? `${run.title}: ${m[1]}` : m[1], d: d, law: m[1] });
+      }
+    }
     if (!laws.length) return;
     const body = section(parent, 'Two-body impacts: every law over the nominal COR');
-    const xs = Array.from(new Set(laws.flatMap((l) => d[`/collide/${l}/cor_table/nominal_cor`].data))).sort((a, b) => a - b);
+    const column = (l, key) => l.d[`/collide/${l.law}/cor_table/${key}`];
     const quantities = [['effective_cor', 'effective COR', 1, ''], ['peak_force', 'peak force', 1e-6, 'MN'],
       ['contact_duration', 'contact duration', 1e3, 'ms'], ['max_penetration', 'max penetration', 1e3, 'mm']];
     for (const [key, label, scale, unit] of quantities) {
-      if (!d[`/collide/${laws[0]}/cor_table/${key}`]) continue;
+      const having = laws.filter((l) => column(l, key));
+      if (!having.length) continue;
       chart(body, {
-        title: `${label} over the nominal COR`, xlabel: 'nominal COR', ylabel: unit ? `${label} (${unit})` : label, points: true, x: xs,
-        series: laws.map((l) => {
-          const x = d[`/collide/${l}/cor_table/nominal_cor`].data;
-          const y = d[`/collide/${l}/cor_table/${key}`].data;
-          return { label: l, y: xs.map((v) => { const i = x.indexOf(v); return i < 0 || y[i] === null ? null : y[i] * scale; }) };
-        }),
+        title: `${label} over the nominal COR`, xlabel: 'nominal COR', ylabel: unit ? `${label} (${unit})` : label,
+        points: true, x: column(having[0], 'nominal_cor').data,
+        series: having.map((l) => ({
+          label: l.label, x: column(l, 'nominal_cor').data,
+          y: column(l, key).data.map((v) => (v === null ? null : v * scale)),
+        })),
       });
     }
   }
 
+  // ---- sweeps: the swept values grouped by the other parameters, and the d_req / d_SRSS table --
+  /** Parameter columns of sweep.csv: between "companion" (or "id") and "status". */
+  function sweepParameters(head) {
+    const from = head.indexOf('companion') >= 0 ? head.indexOf('companion') : head.indexOf('id');
+    const to = head.indexOf('status');
+    return from >= 0 && to > from ? head.slice(from + 1, to).map((h, k) => from + 1 + k) : [];
+  }
+
+  function sweepSection(parent, data) {
+    const rows = parseCsv(data.csv['sweep.csv']);
+    if (rows.length < 2) return;
+    const head = rows[0];
+    const body = rows.slice(1);
+    const params = sweepParameters(head);
+    // x: the first swept quantity with a unit (a gap), else the first numeric parameter; one
+    // series per value of the other parameters (and of the companion runs).
+    const numericParam = params.filter((j) => body.every((r) => r[j] === '' || Number.isFinite(cellNumber(r[j]))));
+    const x = numericParam.find((j) => cellUnit(body, j)) ?? numericParam[0] ?? params[0];
+    const group = params.filter((j) => j !== x);
+    const comp = head.indexOf('companion');
+    if (comp >= 0 && body.some((r) => r[comp] !== '')) group.push(comp);
+    const metric = ['max_interstorey_drift_m', 'peak_displacement_dof0_m', 'n_impacts']
+      .find((m) => head.some((h) => h === m || h.endsWith('.' + m)));
+    const y = metric ? head.filter((h) => h === metric || h.endsWith('.' + metric)) : undefined;
+    csvSection(parent, 'sweep.csv', data.csv['sweep.csv'], { x: x, group: group, y: y });
+  }
+
+  /**
+   * dsrss_table.csv of a gap sweep: the gap the sweep needed to avoid every impact (d_req) beside
+   * the SRSS estimate of the separation (d_SRSS), per value of the other swept parameters.
+   */
+  function dsrssSection(parent, data) {
+    const rows = parseCsv(data.csv['dsrss_table.csv']);
+    if (rows.length < 2) return;
+    const head = rows[0];
+    const body = rows.slice(1);
+    const col = (n) => head.indexOf(n);
+    const groupCols = head.slice(0, Math.max(0, col('clearance_offset_m'))).map((h, j) => j);
+    const cm = (v) => (v === '' || v === undefined ? '' : fmt(parseFloat(v) * 100, 4));
+    const sec = section(parent, 'Required gap d_req and the SRSS estimate d_SRSS (dsrss_table.csv)');
+    sec.appendChild(el('p', { class: 'muted', text: 'd_req: the smallest swept gap with no impact (not_reached: every ' +
+      'swept gap had impacts); d_SRSS: the SRSS of the free (no-contact companion) peak displacements across the ' +
+      'gap; Δd = d_req − d_SRSS.' }));
+    const header = groupCols.map((j) => head[j]).concat(['d_req (cm)', 'd_req status', 'd_SRSS (cm)', 'governing contact',
+      'Δd (cm)', 'd_SRSS spread (cm)', 'gaps swept (cm)', 'cases (failed)']);
+    table(sec, header, body.map((r) => groupCols.map((j) => r[j]).concat([
+      el('span', { class: 'd-req', 'data-si': r[col('d_req_m')], text: cm(r[col('d_req_m')]) }),
+      r[col('d_req_status')],
+      el('span', { class: 'd-srss', 'data-si': r[col('d_srss_m')], text: cm(r[col('d_srss_m')]) }),
+      r[col('governing_contact')], cm(r[col('delta_d_m')]), cm(r[col('d_srss_spread_m')]),
+      `${cm(r[col('gap_min_m')])} to ${cm(r[col('gap_max_m')])} (${r[col('n_gaps')]} gaps)`,
+      `${r[col('n_cases')]} (${r[col('n_failed')]})`,
+    ])), 'data dsrss');
+    // d_req and d_SRSS over the other parameter (one point per row when there is none).
+    const gx = groupCols.find((j) => body.every((r) => Number.isFinite(cellNumber(r[j]))));
+    const xs = gx === undefined ? body.map((r, i) => i + 1) : columnNumbers(body, gx);
+    const order = xs.map((v, i) => i).sort((a, b) => xs[a] - xs[b]);
+    const yOf = (n) => order.map((i) => (body[i][col(n)] === '' ? null : parseFloat(body[i][col(n)]) * 100));
+    chart(sec, {
+      title: 'required gap d_req and SRSS estimate d_SRSS', points: true, integerX: gx === undefined,
+      xlabel: gx === undefined ? 'row of dsrss_table.csv' : head[gx], ylabel: 'gap (cm)',
+      x: order.map((i) => xs[i]),
+      series: [{ label: 'd_req', y: yOf('d_req_m') }, { label: 'd_SRSS', y: yOf('d_srss_m') }],
+    });
+  }
+
+  // ---- study: k(H), one chart per law, one series per impact velocity ---------------------------
+  function kTableSection(parent, text) {
+    const rows = parseCsv(text);
+    if (rows.length < 2) return;
+    const head = rows[0];
+    const body = rows.slice(1);
+    const col = (n) => head.indexOf(n);
+    if (col('wall_height_m') < 0) return;
+    const sec = section(parent, 'Impact stiffness against wall height, k(H)');
+    const velocities = col('impact_velocity_m_per_s') < 0 ? [''] :
+      Array.from(new Set(body.map((r) => r[col('impact_velocity_m_per_s')]))).sort((a, b) => parseFloat(a) - parseFloat(b));
+    for (const [law, unit, text] of [['kelvin_voigt', 'kN_per_mm_per_m', 'kN/mm/m'],
+      ['jankowski', 'kN_per_mm1.5_per_m', 'kN/mm^1.5/m']]) {
+      const series = [];
+      const add = (name, label, rowsOf, dash) => {
+        const j = col(name);
+        if (j < 0) return;
+        const picked = rowsOf.filter((r) => r[j] !== '').sort((a, b) => parseFloat(a[col('wall_height_m')]) - parseFloat(b[col('wall_height_m')]));
+        if (!picked.length) return;
+        series.push({ label: label, dash: dash, x: picked.map((r) => parseFloat(r[col('wall_height_m')])),
+          y: picked.map((r) => parseFloat(r[j])) });
+      };
+      for (const v of velocities) {
+        const at = v === '' ? body : body.filter((r) => r[col('impact_velocity_m_per_s')] === v);
+        const vText = v === '' ? '' : `v = ${fmt(parseFloat(v), 4)} m/s`;
+        add(`${law}_${unit}`, vText || 'fitted', at);
+        add(`linear_${law}_${unit}`, `${vText ? vText + ', ' : ''}linear materials`, at, [6, 3]);
+      }
+      // The thesis' value is one per height: from the first row of each height.
+      const firstOfH = body.filter((r, i) => body.findIndex((q) => q[col('wall_height_m')] === r[col('wall_height_m')]) === i);
+      add(`thesis_${law}_${unit}`, 'thesis', firstOfH, [2, 3]);
+      if (!series.length) continue;
+      chart(sec, {
+        title: `${law.replace('_', '-')} k(H)${velocities.length > 1 ? ' per impact velocity' : ''}`, points: true,
+        xlabel: 'wall height H (m)', ylabel: `k (${text})`, x: series[0].x, series: series.map((s) => Object.assign(s, { unit: text })),
+      });
+    }
+  }
+
+  // ---- fit: the FEM force beside each fitted law, and the k of every variant with its unit ------
+  function fitSection(parent, data) {
+    const d = data.h5['fit.h5'].datasets;
+    const variants = {};
+    for (const k of Object.keys(d)) {
+      const m = /^\/fit\/([^/]+)\/([^/]+)\/model_force\/value$/.exec(k);
+      if (m) (variants[m[1]] = variants[m[1]] || []).push(m[2]);
+    }
+    const cases = Object.keys(variants);
+    if (!cases.length) return;
+    const sec = section(parent, 'Fitted impact laws against the FEM force');
+    for (const c of cases) {
+      const g = (v, n) => d[`/fit/${c}/${v}/${n}`];
+      const first = variants[c][0];
+      const t0 = g(first, 'contact_start') ? g(first, 'contact_start').data : 0;
+      const ms = (ts) => ts.map((t) => (t - t0) * 1e3);
+      const series = [{ label: 'FEM', x: ms(g(first, 'fem_force/time').data), y: g(first, 'fem_force/value').data.map((f) => f * 1e-3),
+        color: '#000' }];
+      for (const v of variants[c]) {
+        const k = g(v, 'stiffness');
+        const cor = g(v, 'cor');
+        series.push({
+          label: `${v} (k = ${k ? fmt(kUnit(k).value, 4) + ' ' + kUnit(k).unit : '?'}, COR ${cor ? fmt(cor.data, 3) : '?'})`,
+          x: ms(g(v, 'model_force/time').data), y: g(v, 'model_force/value').data.map((f) => f * 1e-3), dash: [5, 3],
+        });
+      }
+      const height = d[`/fit/${c}/wall_height`];
+      chart(sec, {
+        title: `${c}${height ? ` (H = ${fmt(height.data, 4)} m)` : ''}: FEM contact force and the fitted laws`,
+        xlabel: 'time since the contact began (ms)', ylabel: 'contact force (kN/m)', x: series[0].x, series: series,
+      });
+    }
+    const text = data.csv && data.csv['fit_table.csv'];
+    if (!text) return;
+    const rows = parseCsv(text);
+    const head = rows[0];
+    const col = (n) => head.indexOf(n);
+    const unit = (r, n) => (col(n) >= 0 ? r[col(n)] : '');
+    table(sec, ['case', 'H (m)', 'variant', 'law', 'k per metre', 'k 95 % interval', 'k of the wall width', 'COR', 'exponent',
+      'normalised RMS', 'status'], rows.slice(1).map((r) => [r[col('case')], r[col('wall_height_m')], r[col('variant')], r[col('law')],
+      el('span', { class: 'fit-k', text: `${fmt(parseFloat(r[col('k_per_m')]), 4)} ${unit(r, 'k_per_m_unit')}` }),
+      `${fmt(parseFloat(r[col('k_per_m_lower')]), 3)} to ${fmt(parseFloat(r[col('k_per_m_upper')]), 3)} ${unit(r, 'k_per_m_unit')}`,
+      `${fmt(parseFloat(r[col('k_total')]), 4)} ${unit(r, 'k_total_unit')}`,
+      fmt(parseFloat(r[col('cor')]), 4), r[col('exponent')], fmt(parseFloat(r[col('normalised_rms')]), 3), r[col('status')]]),
+    'data fit-table');
+  }
+
+  /** A stiffness dataset (N/m^n/m) in the kN/mm^n/m engineers read. */
+  function kUnit(k) {
+    const m = /^N\/m(\^([\d.]+))?\/m$/.exec(k.units || '');
+    if (!m) return { value: k.data, unit: k.units };
+    const n = m[2] ? Number(m[2]) : 1;
+    return { value: k.data * Math.pow(1e-3, n) * 1e-3, unit: n === 1 ? 'kN/mm/m' : `kN/mm^${n}/m` };
+  }
+
   // ---- entry point -----------------------------------------------------------------------------
-  function showResults(container, data) {
+  /**
+   * The results page of one result directory (`data`, kimp report's JSON); `others` are more
+   * runs' data overlaid on the same charts (their cases named "run: case").
+   */
+  function showResults(container, data, others) {
     container.innerHTML = '';
     charts.length = 0;
     animation = null;
@@ -1263,20 +1660,30 @@ const kimp = (function () {
     const files = Object.keys(data.h5 || {}).concat(Object.keys(data.csv || {}));
     container.appendChild(el('h1', { text: `kimp ${data.kind || 'results'}: ${data.title}` }));
     container.appendChild(el('p', { class: 'muted', text: `files: ${files.join(', ')}` }));
-    if (data.h5 && data.h5['lumped.h5']) lumpedSection(container, data);
+    if (data.h5 && data.h5['lumped.h5']) lumpedSection(container, data, others);
     if (data.kind === 'study') studySection(container, data);
     if (data.kind === 'fem' && data.summary) femSummarySection(container, data.summary);
     if (data.h5 && data.h5['fem.h5']) femSection(container, data);
-    if (data.h5 && data.h5['collide.h5']) collideSection(container, data);
+    if (data.h5 && data.h5['collide.h5']) collideSection(container, data, others);
+    if (data.h5 && data.h5['fit.h5']) fitSection(container, data);
+    const csv = data.csv || {};
+    if (csv['dsrss_table.csv']) dsrssSection(container, data);
+    if (csv['sweep.csv']) sweepSection(container, data);
+    if (csv['k_table.csv']) kTableSection(container, csv['k_table.csv']);
+    // Charts of several columns: one chart per unit.
     const presets = {
-      'k_table.csv': {
+      'k_table.csv': { chart: false },
+      'fit_table.csv': { chart: false },
+      'wall_sdof.csv': { x: 'wall_height_m', groups: [['stiffness_MN_per_m_per_m'], ['effective_mass_t_per_m'], ['frequency_Hz']] },
+      'flexible_wall.csv': {
         x: 'wall_height_m',
-        y: ['kelvin_voigt_kN_per_mm_per_m', 'thesis_kelvin_voigt_kN_per_mm_per_m', 'jankowski_kN_per_mm1.5_per_m', 'thesis_jankowski_kN_per_mm1.5_per_m'],
+        groups: [['ratio_peak_base_acceleration', 'ratio_peak_top_acceleration', 'ratio_peak_impact_force', 'ratio_peak_interstorey_drift']],
       },
-      'wall_sdof.csv': { x: 'wall_height_m', y: ['stiffness_MN_per_m_per_m', 'effective_mass_t_per_m', 'frequency_Hz'] },
-      'flexible_wall.csv': { x: 'wall_height_m', y: ['ratio_peak_base_acceleration', 'ratio_peak_top_acceleration', 'ratio_peak_impact_force', 'ratio_peak_interstorey_drift'] },
     };
-    for (const [name, text] of Object.entries(data.csv || {})) csvSection(container, name, text, presets[name]);
+    for (const [name, text] of Object.entries(csv)) {
+      if (name === 'sweep.csv' || name === 'dsrss_table.csv') continue;
+      csvSection(container, name, text, presets[name]);
+    }
     for (const [file, h5] of Object.entries(data.h5 || {})) seriesSection(container, file, h5);
     if (data.summary) {
       const body = section(container, 'summary.json', false);
