@@ -1540,16 +1540,23 @@ const kimp = (function () {
       `${cm(r[col('gap_min_m')])} to ${cm(r[col('gap_max_m')])} (${r[col('n_gaps')]} gaps)`,
       `${r[col('n_cases')]} (${r[col('n_failed')]})`,
     ])), 'data dsrss');
-    // d_req and d_SRSS over the other parameter (one point per row when there is none).
+    // d_req and d_SRSS over a numeric parameter (row number when there is none), one pair of
+    // series per value of the others.
     const gx = groupCols.find((j) => body.every((r) => Number.isFinite(cellNumber(r[j]))));
     const xs = gx === undefined ? body.map((r, i) => i + 1) : columnNumbers(body, gx);
-    const order = xs.map((v, i) => i).sort((a, b) => xs[a] - xs[b]);
-    const yOf = (n) => order.map((i) => (body[i][col(n)] === '' ? null : parseFloat(body[i][col(n)]) * 100));
+    const rest = groupCols.filter((j) => j !== gx);
+    const keyOf = (r) => rest.map((j) => `${head[j]} = ${r[j]}`).join(', ');
+    const series = [];
+    for (const key of Array.from(new Set(body.map(keyOf)))) {
+      const idx = body.map((r, i) => i).filter((i) => keyOf(body[i]) === key).sort((a, b) => xs[a] - xs[b]);
+      const yOf = (n) => idx.map((i) => (body[i][col(n)] === '' ? null : parseFloat(body[i][col(n)]) * 100));
+      const suffix = key ? `, ${key}` : '';
+      series.push({ label: `d_req${suffix}`, x: idx.map((i) => xs[i]), y: yOf('d_req_m') });
+      series.push({ label: `d_SRSS${suffix}`, x: idx.map((i) => xs[i]), y: yOf('d_srss_m'), dash: [6, 3] });
+    }
     chart(sec, {
       title: 'required gap d_req and SRSS estimate d_SRSS', points: true, integerX: gx === undefined,
-      xlabel: gx === undefined ? 'row of dsrss_table.csv' : head[gx], ylabel: 'gap (cm)',
-      x: order.map((i) => xs[i]),
-      series: [{ label: 'd_req', y: yOf('d_req_m') }, { label: 'd_SRSS', y: yOf('d_srss_m') }],
+      xlabel: gx === undefined ? 'row of dsrss_table.csv' : head[gx], ylabel: 'gap (cm)', x: series[0].x, series: series,
     });
   }
 
