@@ -31,6 +31,7 @@ const kimp = (function () {
   function fmt(x, digits) {
     if (x === null || x === undefined || Number.isNaN(x)) return '';
     if (typeof x !== 'number') return String(x);
+    if (!Number.isFinite(x)) return x > 0 ? '∞' : '−∞';
     return Number(x.toPrecision(digits || 4)).toString();
   }
 
@@ -1574,23 +1575,26 @@ const kimp = (function () {
     for (const [law, unit, text] of [['kelvin_voigt', 'kN_per_mm_per_m', 'kN/mm/m'],
       ['jankowski', 'kN_per_mm1.5_per_m', 'kN/mm^1.5/m']]) {
       const series = [];
-      const add = (name, label, rowsOf, dash) => {
+      const add = (name, label, rowsOf, dash, color) => {
         const j = col(name);
         if (j < 0) return;
-        const picked = rowsOf.filter((r) => r[j] !== '').sort((a, b) => parseFloat(a[col('wall_height_m')]) - parseFloat(b[col('wall_height_m')]));
+        const h = col('wall_height_m');
+        const picked = rowsOf.filter((r) => r[j] !== '').sort((a, b) => parseFloat(a[h]) - parseFloat(b[h]));
         if (!picked.length) return;
-        series.push({ label: label, dash: dash, x: picked.map((r) => parseFloat(r[col('wall_height_m')])),
+        series.push({ label: label, dash: dash, color: color, x: picked.map((r) => parseFloat(r[h])),
           y: picked.map((r) => parseFloat(r[j])) });
       };
-      for (const v of velocities) {
+      // One colour per impact velocity: solid for the study's materials, dashed for linear ones.
+      velocities.forEach((v, k) => {
         const at = v === '' ? body : body.filter((r) => r[col('impact_velocity_m_per_s')] === v);
         const vText = v === '' ? '' : `v = ${fmt(parseFloat(v), 4)} m/s`;
-        add(`${law}_${unit}`, vText || 'fitted', at);
-        add(`linear_${law}_${unit}`, `${vText ? vText + ', ' : ''}linear materials`, at, [6, 3]);
-      }
+        const material = col('material') >= 0 && at.length ? at[0][col('material')] : '';
+        add(`${law}_${unit}`, `${vText || 'fitted'}${material ? ` (${material} materials)` : ''}`, at, undefined, COLORS[k % COLORS.length]);
+        add(`linear_${law}_${unit}`, `${vText ? vText + ' ' : ''}(linear materials)`, at, [6, 3], COLORS[k % COLORS.length]);
+      });
       // The thesis' value is one per height: from the first row of each height.
       const firstOfH = body.filter((r, i) => body.findIndex((q) => q[col('wall_height_m')] === r[col('wall_height_m')]) === i);
-      add(`thesis_${law}_${unit}`, 'thesis', firstOfH, [2, 3]);
+      add(`thesis_${law}_${unit}`, 'thesis', firstOfH, [2, 3], '#000');
       if (!series.length) continue;
       chart(sec, {
         title: `${law.replace('_', '-')} k(H)${velocities.length > 1 ? ' per impact velocity' : ''}`, points: true,
