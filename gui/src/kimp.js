@@ -1116,10 +1116,14 @@ const kimp = (function () {
           parts.push(`<circle cx="${x.toFixed(1)}" cy="${y.toFixed(1)}" r="${rr.toFixed(1)}" fill="#e00" ` +
             'fill-opacity="0.6" class="impact"/>');
           // The force beside its circle, outwards (levels are a storey apart: labels never meet),
-          // on a white halo over the walls and neighbours.
-          parts.push(`<text class="impact-label" x="${(x + s * (rr + 4)).toFixed(1)}" y="${(y + 4).toFixed(1)}" ` +
-            `font-size="13" text-anchor="${s > 0 ? 'start' : 'end'}" fill="#b00" stroke="#fff" stroke-width="3" ` +
-            `paint-order="stroke">${fmt(f[k] * 1e-6, 3)} MN</text>`);
+          // on a white box over the walls and neighbours.
+          const text = `${fmt(f[k] * 1e-6, 3)} MN`;
+          const w = 7.4 * text.length + 6;
+          const x0 = s > 0 ? x + rr + 2 : x - rr - 2 - w;
+          parts.push(`<rect class="impact-label-box" x="${x0.toFixed(1)}" y="${(y - 9).toFixed(1)}" width="${w.toFixed(1)}" ` +
+            'height="18" rx="3" fill="#fff" fill-opacity="0.9" stroke="#b00" stroke-width="0.5"/>');
+          parts.push(`<text class="impact-label" x="${(x0 + w / 2).toFixed(1)}" y="${(y + 4.5).toFixed(1)}" font-size="13" ` +
+            `text-anchor="middle" fill="#b00">${text}</text>`);
         });
       }
       const tFrame = frameTime();
