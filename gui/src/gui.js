@@ -27,7 +27,8 @@
 
   // ---- tabs --------------------------------------------------------------------------------
   function showTab(name) {
-    for (const b of document.querySelectorAll('header.top nav button')) b.classList.toggle('active', b.dataset.tab === name);
+    for (const b of document.querySelectorAll('header.top nav button'))
+      b.classList.toggle('active', b.dataset.tab === name);
     for (const p of document.querySelectorAll('.pane')) p.classList.toggle('active', p.id === 'pane-' + name);
     if (name === 'runs') refreshRuns();
     if (name === 'motion') showMotion();
@@ -38,7 +39,14 @@
     if (v === null || v === undefined) return 'null';
     if (typeof v === 'boolean' || typeof v === 'number') return String(v);
     if (Array.isArray(v)) return '[' + v.map(yamlScalar).join(', ') + ']';
-    if (typeof v === 'object') return '{' + Object.entries(v).map(([k, x]) => `${yamlKey(k)}: ${yamlScalar(x)}`).join(', ') + '}';
+    if (typeof v === 'object')
+      return (
+        '{' +
+        Object.entries(v)
+          .map(([k, x]) => `${yamlKey(k)}: ${yamlScalar(x)}`)
+          .join(', ') +
+        '}'
+      );
     if (/^-?\d+(\.\d+)?([eE][-+]?\d+)?$/.test(v)) return v;
     return JSON.stringify(String(v));
   }
@@ -87,8 +95,11 @@
       const k = keys.find((x) => x.key === name);
       const path = where ? `${where}.${name}` : name;
       if (!k) {
-        out.push({ path: where, message: `unknown key '${name}' in ${where || 'the scene'} ` +
-          `(known: ${keys.map((x) => x.key).join(', ')})` });
+        out.push({
+          path: where,
+          message:
+            `unknown key '${name}' in ${where || 'the scene'} ` + `(known: ${keys.map((x) => x.key).join(', ')})`,
+        });
       } else if (k.keys) unknownKeys(value, k.keys, path, out);
       else if (k.type === 'list' && Array.isArray(value) && Array.isArray(k.item)) {
         value.forEach((item, i) => unknownKeys(item, k.item, `${path}[${i}]`, out));
@@ -113,7 +124,8 @@
 
   function mergeInto(target, extra) {
     for (const [k, v] of Object.entries(extra)) {
-      if (v && typeof v === 'object' && !Array.isArray(v) && target[k] && typeof target[k] === 'object') mergeInto(target[k], v);
+      if (v && typeof v === 'object' && !Array.isArray(v) && target[k] && typeof target[k] === 'object')
+        mergeInto(target[k], v);
       else target[k] = v;
     }
     return target;
@@ -128,7 +140,11 @@
   function fieldInput(k, onChange) {
     let input;
     if (k.type === 'choice') {
-      input = el('select', {}, k.options.map((o) => el('option', { value: o, text: o })));
+      input = el(
+        'select',
+        {},
+        k.options.map((o) => el('option', { value: o, text: o })),
+      );
       input.value = String(k.default);
     } else if (k.type === 'flag') {
       input = el('input', { type: 'checkbox' });
@@ -164,13 +180,26 @@
       if (k.type === 'section' || k.type === 'optional section') {
         const fs = el('details', { class: 'form-section', 'data-path': k.path });
         fs.appendChild(el('summary', { text: `${k.key} — ${k.doc || ''}` }));
-        if (k.path.split('.').length === 1 && ['building', 'walls', 'impact', 'ground_motion', 'integration'].includes(k.key)) fs.open = true;
+        if (
+          k.path.split('.').length === 1 &&
+          ['building', 'walls', 'impact', 'ground_motion', 'integration'].includes(k.key)
+        )
+          fs.open = true;
         buildKeys(fs, k.keys || [], onChange);
         parent.appendChild(fs);
       } else if (k.type === 'list' || k.type === 'map') {
-        const area = el('textarea', { class: 'yaml list-yaml', 'data-path': k.path, rows: 4, placeholder: `${k.key}: YAML (${k.doc})` });
+        const area = el('textarea', {
+          class: 'yaml list-yaml',
+          'data-path': k.path,
+          rows: 4,
+          placeholder: `${k.key}: YAML (${k.doc})`,
+        });
         area.addEventListener('change', onChange);
-        const row = el('div', { class: 'field', 'data-path': k.path }, [el('label', { text: k.key }), area, el('span', { class: 'doc', text: k.doc || '' })]);
+        const row = el('div', { class: 'field', 'data-path': k.path }, [
+          el('label', { text: k.key }),
+          area,
+          el('span', { class: 'doc', text: k.doc || '' }),
+        ]);
         parent.appendChild(row);
         fields.push({ key: k, input: area, row: row, raw: true });
       } else {
@@ -178,7 +207,9 @@
         const unit = k.unit ? ` [${k.unit}]` : '';
         const range = k.range && k.range.text ? ` (${k.range.text})` : '';
         const row = el('div', { class: 'field', 'data-path': k.path }, [
-          el('label', { text: k.key + unit, title: k.path }), input, el('span', { class: 'doc', text: (k.doc || '') + range }),
+          el('label', { text: k.key + unit, title: k.path }),
+          input,
+          el('span', { class: 'doc', text: (k.doc || '') + range }),
         ]);
         parent.appendChild(row);
         fields.push({ key: k, input: input, row: row });
@@ -230,16 +261,26 @@
   function loadScene(obj, source) {
     for (const f of fields) {
       const v = getPath(obj, f.key.path);
-      if (f.raw) f.input.value = v === undefined ? '' : toYaml({ x: v }, 0).split('\n').slice(1).map((l) => l.slice(2)).join('\n');
+      if (f.raw)
+        f.input.value =
+          v === undefined
+            ? ''
+            : toYaml({ x: v }, 0)
+                .split('\n')
+                .slice(1)
+                .map((l) => l.slice(2))
+                .join('\n');
       else writeField(f.key, f.input, v);
     }
     state.extra = unknownPart(obj, state.schema.keys);
     syncYaml();
     const unknown = unknownKeys(obj, state.schema.keys, '', []);
     if (unknown.length) {
-      showProblems(unknown.map((u) => ({ path: u.path, message: `${source ? source + ': ' : ''}${u.message}` })),
+      showProblems(
+        unknown.map((u) => ({ path: u.path, message: `${source ? source + ': ' : ''}${u.message}` })),
         `${unknown.length} unknown key(s): kept in the YAML, so Validate and Run refuse the scene as the CLI does ` +
-        'until they are fixed (Scene as YAML below, then Apply).');
+          'until they are fixed (Scene as YAML below, then Apply).',
+      );
     }
   }
 
@@ -264,7 +305,10 @@
     const plain = path.replace(/\[\d*\]/g, '');
     const candidates = [plain];
     if (path.includes('[')) candidates.push(path.slice(0, path.indexOf('[')));
-    for (let p = plain; p.includes('.');) { p = p.slice(0, p.lastIndexOf('.')); candidates.push(p); }
+    for (let p = plain; p.includes('.');) {
+      p = p.slice(0, p.lastIndexOf('.'));
+      candidates.push(p);
+    }
     for (const c of candidates) {
       const e = document.querySelector(`#scene-form .field[data-path="${c}"], #scene-form details[data-path="${c}"]`);
       if (e) return e;
@@ -355,7 +399,10 @@
           resolve(s.state);
         }
       };
-      events.onerror = () => { events.close(); resolve('lost'); };
+      events.onerror = () => {
+        events.close();
+        resolve('lost');
+      };
     });
   }
 
@@ -363,7 +410,10 @@
   async function runWarnings(id) {
     const r = await fetch(`/api/files/${id}/run.log`);
     if (!r.ok) return [];
-    return (await r.text()).split('\n').filter((l) => l.startsWith('warning: ')).map((l) => l.slice(9));
+    return (await r.text())
+      .split('\n')
+      .filter((l) => l.startsWith('warning: '))
+      .map((l) => l.slice(9));
   }
 
   async function openResults(id, overlay) {
@@ -378,8 +428,10 @@
     const pane = document.getElementById('results');
     state.shown = { id: id, overlay: overlay || [] };
     kimp.showResults(pane, data, others);
-    pane.insertBefore(el('p', {}, [el('a', { href: `/api/runs/${id}/report`, download: `${id}.html`, text: 'download report.html' })]),
-      pane.children[1]);
+    pane.insertBefore(
+      el('p', {}, [el('a', { href: `/api/runs/${id}/report`, download: `${id}.html`, text: 'download report.html' })]),
+      pane.children[1],
+    );
     showTab('results');
     await Promise.all([runPicker(id, data, overlay || []), showRunNotes(id, data)]);
   }
@@ -392,17 +444,22 @@
     const gapStudy = data.kind === 'sweep' && Object.keys(csv).includes('sweep.csv') && !csv['dsrss_table.csv'];
     const dsrss = warnings.filter((w) => /d_SRSS/.test(w));
     if (gapStudy && dsrss.length) {
-      host.appendChild(el('div', { class: 'notice dsrss-missing', text: `No d_req / d_SRSS table: ${dsrss.join('\n')}` }));
+      host.appendChild(
+        el('div', { class: 'notice dsrss-missing', text: `No d_req / d_SRSS table: ${dsrss.join('\n')}` }),
+      );
     }
     const rest = warnings.filter((w) => !dsrss.includes(w));
-    if (rest.length) host.appendChild(el('div', { class: 'notice run-warnings', text: `warnings of ${id}:\n${rest.join('\n')}` }));
+    if (rest.length)
+      host.appendChild(el('div', { class: 'notice run-warnings', text: `warnings of ${id}:\n${rest.join('\n')}` }));
   }
 
   /** Other finished runs of the same command to overlay on the charts (legend: run: case). */
   async function runPicker(id, data, overlay) {
     const host = document.getElementById('results-bar');
     host.innerHTML = '';
-    const list = (await getJson('/api/runs')).filter((r) => r.state === 'done' && r.id !== id && r.command === data.kind);
+    const list = (await getJson('/api/runs')).filter(
+      (r) => r.state === 'done' && r.id !== id && r.command === data.kind,
+    );
     if (!list.length) return;
     const boxes = list.map((r) => {
       const box = el('input', { type: 'checkbox', value: r.id, class: 'overlay-run' });
@@ -414,8 +471,13 @@
       const chosen = Array.from(host.querySelectorAll('.overlay-run:checked')).map((b) => b.value);
       openResults(id, chosen);
     });
-    host.appendChild(el('div', { class: 'section run-picker' }, [el('strong', { text: `Overlay other ${data.kind} runs:` }),
-      ...boxes, go]));
+    host.appendChild(
+      el('div', { class: 'section run-picker' }, [
+        el('strong', { text: `Overlay other ${data.kind} runs:` }),
+        ...boxes,
+        go,
+      ]),
+    );
   }
 
   async function refreshRuns() {
@@ -423,12 +485,28 @@
     const host = document.getElementById('runs-list');
     host.innerHTML = '';
     const t = el('table', { class: 'data' });
-    t.appendChild(el('tr', {}, ['run', 'command', 'state', ''].map((h) => el('th', { text: h }))));
+    t.appendChild(
+      el(
+        'tr',
+        {},
+        ['run', 'command', 'state', ''].map((h) => el('th', { text: h })),
+      ),
+    );
     for (const r of list) {
       const actions = el('span');
       if (r.state === 'done') actions.appendChild(el('button', { text: 'results', onclick: () => openResults(r.id) }));
-      if (r.state === 'running') actions.appendChild(el('button', { text: 'cancel', onclick: () => postJson(`/api/runs/${r.id}/cancel`, {}).then(refreshRuns) }));
-      t.appendChild(el('tr', {}, [el('td', { text: r.id }), el('td', { text: r.command || '' }), el('td', { text: r.state }), el('td', {}, [actions])]));
+      if (r.state === 'running')
+        actions.appendChild(
+          el('button', { text: 'cancel', onclick: () => postJson(`/api/runs/${r.id}/cancel`, {}).then(refreshRuns) }),
+        );
+      t.appendChild(
+        el('tr', {}, [
+          el('td', { text: r.id }),
+          el('td', { text: r.command || '' }),
+          el('td', { text: r.state }),
+          el('td', {}, [actions]),
+        ]),
+      );
     }
     host.appendChild(t);
   }
@@ -438,8 +516,11 @@
   // exactly as a run applies it (scale_to_pga, then scale, then trim to round(duration / dt)).
   const motion = { rec: null, file: null };
   const TWO_COLUMN_UNITS = { g: 9.80665, 'm/s^2': 1, 'cm/s^2': 0.01 };
-  const MOTION_KEYS = [['motion-scale-to-pga', 'ground_motion.scale_to_pga'], ['motion-scale', 'ground_motion.scale'],
-    ['motion-duration', 'ground_motion.duration']];
+  const MOTION_KEYS = [
+    ['motion-scale-to-pga', 'ground_motion.scale_to_pga'],
+    ['motion-scale', 'ground_motion.scale'],
+    ['motion-duration', 'ground_motion.duration'],
+  ];
 
   function sceneInput(path) {
     return document.querySelector(`#scene-form input[data-path="${path}"], #scene-form select[data-path="${path}"]`);
@@ -451,7 +532,10 @@
 
   function setSceneValue(path, value) {
     const input = sceneInput(path);
-    if (input) { input.value = value; syncYaml(); }
+    if (input) {
+      input.value = value;
+      syncYaml();
+    }
   }
 
   function integrate(a, dt) {
@@ -521,7 +605,8 @@
     const pgd = Math.abs(d[id]) * 100;
     info.dataset.pga = String(pga);
     info.dataset.samples = String(a.length);
-    info.textContent = `${rec.name}: dt = ${rec.dt} s, ${a.length} samples (${kimp.fmt(a.length * rec.dt, 6)} s), ` +
+    info.textContent =
+      `${rec.name}: dt = ${rec.dt} s, ${a.length} samples (${kimp.fmt(a.length * rec.dt, 6)} s), ` +
       `PGA = ${kimp.fmt(pga, 4)} g, PGV = ${kimp.fmt(pgv, 4)} cm/s, PGD = ${kimp.fmt(pgd, 4)} cm (${notes})`;
     const marker = (i, ys, label) => {
       const y = new Array(ys.length).fill(null);
@@ -530,18 +615,41 @@
     };
     kimp.chart(host, {
       title: `${rec.name}: ground acceleration, PGA = ${kimp.fmt(pga, 4)} g at ${kimp.fmt(t[ia], 4)} s`,
-      xlabel: 'time (s)', ylabel: 'acceleration (m/s²)', x: t, height: 260,
+      xlabel: 'time (s)',
+      ylabel: 'acceleration (m/s²)',
+      x: t,
+      height: 260,
       series: [{ label: 'a_g', y: a }, marker(ia, a, `PGA ${kimp.fmt(pga, 4)} g`)],
     });
     kimp.chart(host, {
       title: `${rec.name}: ground velocity, PGV = ${kimp.fmt(pgv, 4)} cm/s at ${kimp.fmt(t[iv], 4)} s`,
-      xlabel: 'time (s)', ylabel: 'velocity (cm/s)', x: t, height: 260,
-      series: [{ label: 'v_g', y: v.map((x) => x * 100) }, marker(iv, v.map((x) => x * 100), `PGV ${kimp.fmt(pgv, 4)} cm/s`)],
+      xlabel: 'time (s)',
+      ylabel: 'velocity (cm/s)',
+      x: t,
+      height: 260,
+      series: [
+        { label: 'v_g', y: v.map((x) => x * 100) },
+        marker(
+          iv,
+          v.map((x) => x * 100),
+          `PGV ${kimp.fmt(pgv, 4)} cm/s`,
+        ),
+      ],
     });
     kimp.chart(host, {
       title: `${rec.name}: ground displacement, PGD = ${kimp.fmt(pgd, 4)} cm at ${kimp.fmt(t[id], 4)} s`,
-      xlabel: 'time (s)', ylabel: 'displacement (cm)', x: t, height: 260,
-      series: [{ label: 'd_g', y: d.map((x) => x * 100) }, marker(id, d.map((x) => x * 100), `PGD ${kimp.fmt(pgd, 4)} cm`)],
+      xlabel: 'time (s)',
+      ylabel: 'displacement (cm)',
+      x: t,
+      height: 260,
+      series: [
+        { label: 'd_g', y: d.map((x) => x * 100) },
+        marker(
+          id,
+          d.map((x) => x * 100),
+          `PGD ${kimp.fmt(pgd, 4)} cm`,
+        ),
+      ],
     });
   }
 
@@ -553,7 +661,8 @@
     motion.rec = null;
     if (!state.info.motion_preview) {
       document.getElementById('motion-charts').innerHTML = '';
-      document.getElementById('motion-info').textContent = 'The synthetic near-fault motion is generated by kimp at ' +
+      document.getElementById('motion-info').textContent =
+        'The synthetic near-fault motion is generated by kimp at ' +
         'run time (ground_motion.synthetic); this kimp gui cannot draw it before a run.';
       return;
     }
@@ -590,7 +699,10 @@
     motion.key = body.path;
     const pick = document.getElementById('motion-record');
     let option = pick.querySelector('option[data-upload]');
-    if (!option) { option = el('option', { 'data-upload': '1' }); pick.appendChild(option); }
+    if (!option) {
+      option = el('option', { 'data-upload': '1' });
+      pick.appendChild(option);
+    }
     option.value = body.path;
     option.textContent = `uploaded: ${file.name}${at2 ? '' : ' (' + unit + ')'}`;
     pick.value = body.path;
@@ -624,7 +736,9 @@
 
   async function initMotion() {
     const pick = document.getElementById('motion-record');
-    pick.appendChild(el('option', { value: 'synthetic', text: 'synthetic near-fault motion (ground_motion.synthetic)' }));
+    pick.appendChild(
+      el('option', { value: 'synthetic', text: 'synthetic near-fault motion (ground_motion.synthetic)' }),
+    );
     for (const name of await getJson('/api/records')) pick.appendChild(el('option', { value: name, text: name }));
     pick.addEventListener('change', async () => {
       if (pick.selectedOptions[0] && pick.selectedOptions[0].dataset.upload) return;
@@ -659,7 +773,11 @@
   function sweepableKeys(keys, out) {
     for (const k of keys) {
       if (k.keys) sweepableKeys(k.keys, out);
-      else if (['quantity', 'optional quantity', 'integer', 'choice', 'flag'].includes(k.type) && !k.path.includes('[]')) out.push(k);
+      else if (
+        ['quantity', 'optional quantity', 'integer', 'choice', 'flag'].includes(k.type) &&
+        !k.path.includes('[]')
+      )
+        out.push(k);
     }
     return out;
   }
@@ -673,14 +791,19 @@
     for (const row of rows.querySelectorAll('.param-row')) {
       const key = row.querySelector('.param-key').value;
       let keyText = key;
-      if (key === 'walls.left.gap' && document.getElementById('param-both').checked) keyText = 'walls.left.gap, walls.right.gap';
+      if (key === 'walls.left.gap' && document.getElementById('param-both').checked)
+        keyText = 'walls.left.gap, walls.right.gap';
       if (key.endsWith('.gap') && !gap) gap = key;
       if (row.querySelector('.param-mode').value === 'range') {
         const [f, t, s] = ['from', 'to', 'step'].map((n) => row.querySelector('.param-' + n).value.trim());
         params.push(`  ${keyText}: {from: ${JSON.stringify(f)}, to: ${JSON.stringify(t)}, step: ${JSON.stringify(s)}}`);
       } else {
         const picked = Array.from(row.querySelectorAll('.param-option:checked')).map((b) => b.value);
-        const typed = row.querySelector('.param-values').value.split(',').map((v) => v.trim()).filter((v) => v);
+        const typed = row
+          .querySelector('.param-values')
+          .value.split(',')
+          .map((v) => v.trim())
+          .filter((v) => v);
         const values = picked.length ? picked : typed;
         params.push(`  ${keyText}: [${values.map((v) => JSON.stringify(v)).join(', ')}]`);
       }
@@ -693,17 +816,43 @@
   function addParamRow(path, mode, values) {
     const rows = document.getElementById('param-rows');
     const keys = sweepableKeys(state.schemas.lumped ? state.schemas.lumped.keys : [], []);
-    const sel = el('select', { class: 'param-key' }, keys.map((k) => el('option', {
-      value: k.path, text: `${k.path}${k.unit ? ' [' + k.unit + ']' : ''}${k.type === 'choice' ? ' (choice)' : ''}`,
-    })));
+    const sel = el(
+      'select',
+      { class: 'param-key' },
+      keys.map((k) =>
+        el('option', {
+          value: k.path,
+          text: `${k.path}${k.unit ? ' [' + k.unit + ']' : ''}${k.type === 'choice' ? ' (choice)' : ''}`,
+        }),
+      ),
+    );
     if (path) sel.value = path;
-    const modeSel = el('select', { class: 'param-mode' }, [el('option', { value: 'range', text: 'from / to / step' }),
-      el('option', { value: 'values', text: 'list of values' })]);
+    const modeSel = el('select', { class: 'param-mode' }, [
+      el('option', { value: 'range', text: 'from / to / step' }),
+      el('option', { value: 'values', text: 'list of values' }),
+    ]);
     const range = ['from', 'to', 'step'].map((n) => el('input', { type: 'text', class: 'param-' + n, placeholder: n }));
-    const list = el('input', { type: 'text', class: 'param-values', placeholder: 'values, comma separated ("0.5, 0.7, 0.9")' });
+    const list = el('input', {
+      type: 'text',
+      class: 'param-values',
+      placeholder: 'values, comma separated ("0.5, 0.7, 0.9")',
+    });
     const options = el('span', { class: 'param-options' });
-    const row = el('div', { class: 'controls param-row' }, [sel, modeSel, ...range, list, options,
-      el('button', { text: '×', title: 'remove this parameter', onclick: () => { row.remove(); makeSweep(); } })]);
+    const row = el('div', { class: 'controls param-row' }, [
+      sel,
+      modeSel,
+      ...range,
+      list,
+      options,
+      el('button', {
+        text: '×',
+        title: 'remove this parameter',
+        onclick: () => {
+          row.remove();
+          makeSweep();
+        },
+      }),
+    ]);
     const layout = () => {
       const k = keys.find((x) => x.path === sel.value) || {};
       const choice = k.type === 'choice' || k.type === 'flag';
@@ -715,17 +864,31 @@
       options.innerHTML = '';
       if (choice) {
         const opts = k.type === 'flag' ? ['false', 'true'] : k.options;
-        for (const o of opts) options.appendChild(el('label', {}, [el('input', { type: 'checkbox', class: 'param-option', value: o }),
-          document.createTextNode(' ' + o + ' ')]));
+        for (const o of opts)
+          options.appendChild(
+            el('label', {}, [
+              el('input', { type: 'checkbox', class: 'param-option', value: o }),
+              document.createTextNode(' ' + o + ' '),
+            ]),
+          );
       }
     };
-    sel.addEventListener('change', () => { layout(); makeSweep(); });
-    modeSel.addEventListener('change', () => { layout(); makeSweep(); });
+    sel.addEventListener('change', () => {
+      layout();
+      makeSweep();
+    });
+    modeSel.addEventListener('change', () => {
+      layout();
+      makeSweep();
+    });
     row.addEventListener('input', makeSweep);
     row.addEventListener('change', makeSweep);
     if (mode) modeSel.value = mode;
     layout();
-    if (mode === 'range' && values) range.forEach((input, i) => { input.value = values[i]; });
+    if (mode === 'range' && values)
+      range.forEach((input, i) => {
+        input.value = values[i];
+      });
     else if (values) {
       for (const b of options.querySelectorAll('.param-option')) b.checked = values.includes(b.value);
       list.value = values.join(', ');
@@ -752,14 +915,19 @@
     document.getElementById('param-both').addEventListener('change', makeSweep);
     document.getElementById('param-run').addEventListener('click', () => {
       const text = document.getElementById('sweep-yaml').value;
-      startRun('sweep', lumpedSceneForSweep(), text.trim() ? text : (makeSweep(), document.getElementById('sweep-yaml').value));
+      startRun(
+        'sweep',
+        lumpedSceneForSweep(),
+        text.trim() ? text : (makeSweep(), document.getElementById('sweep-yaml').value),
+      );
     });
     addParamRow('walls.left.gap', 'range', ['10 cm', '20 cm', '5 cm']);
   }
 
   // ---- start -------------------------------------------------------------------------------
   async function init() {
-    for (const b of document.querySelectorAll('header.top nav button')) b.addEventListener('click', () => showTab(b.dataset.tab));
+    for (const b of document.querySelectorAll('header.top nav button'))
+      b.addEventListener('click', () => showTab(b.dataset.tab));
     const info = await getJson('/api/info');
     state.info = info;
     document.getElementById('version').textContent = info.version;
@@ -768,12 +936,20 @@
     cmd.addEventListener('change', () => loadCommand(cmd.value));
     await loadCommand('lumped');
     document.getElementById('scene-apply').addEventListener('click', () => {
-      try { loadScene(fromYaml(document.getElementById('scene-yaml').value)); } catch (e) { showError(e.message); }
+      try {
+        loadScene(fromYaml(document.getElementById('scene-yaml').value));
+      } catch (e) {
+        showError(e.message);
+      }
     });
     document.getElementById('scene-import').addEventListener('change', async (e) => {
       const f = e.target.files[0];
       if (!f) return;
-      try { loadScene(fromYaml(await f.text()), f.name); } catch (err) { showError(`${f.name}: ${err.message}`); }
+      try {
+        loadScene(fromYaml(await f.text()), f.name);
+      } catch (err) {
+        showError(`${f.name}: ${err.message}`);
+      }
     });
     document.getElementById('scene-export').addEventListener('click', () => {
       const url = URL.createObjectURL(new Blob([sceneYaml()], { type: 'text/yaml' }));
@@ -785,27 +961,52 @@
     document.getElementById('scene-validate').addEventListener('click', async () => {
       const errors = [];
       const text = sceneYaml(errors);
-      if (errors.length) { showProblems(errors); return; }
+      if (errors.length) {
+        showProblems(errors);
+        return;
+      }
       const r = await postJson('/api/validate', { command: state.command, scene: text });
-      if (r.ok) { clearErrors(); document.getElementById('scene-error').textContent = 'scene is valid'; } else showError(r.error);
+      if (r.ok) {
+        clearErrors();
+        document.getElementById('scene-error').textContent = 'scene is valid';
+      } else showError(r.error);
     });
     document.getElementById('scene-run').addEventListener('click', () => {
       const errors = [];
       const text = sceneYaml(errors);
-      if (errors.length) { showProblems(errors); return; }
-      if (state.command !== 'sweep') { startRun(state.command, text, ''); return; }
+      if (errors.length) {
+        showProblems(errors);
+        return;
+      }
+      if (state.command !== 'sweep') {
+        startRun(state.command, text, '');
+        return;
+      }
       // A sweep runs on the scene last edited for its engine (saved as scene.yaml beside it).
       const engine = (formScene().engine || 'lumped').trim();
       const base = state.saved[engine];
-      if (!base) { showError(`sweep: edit the ${engine} scene first (command ${engine}), then come back to sweep`); return; }
+      if (!base) {
+        showError(`sweep: edit the ${engine} scene first (command ${engine}), then come back to sweep`);
+        return;
+      }
       startRun('sweep', base.yaml, text.replace(/^scene:.*$/m, 'scene: scene.yaml'));
     });
-    document.getElementById('run-cancel').addEventListener('click', () => { if (state.current) postJson(`/api/runs/${state.current}/cancel`, {}); });
+    document.getElementById('run-cancel').addEventListener('click', () => {
+      if (state.current) postJson(`/api/runs/${state.current}/cancel`, {});
+    });
     await initMotion();
     await initParametric();
     document.body.dataset.ready = '1';
   }
 
-  window.kimpGui = { toYaml: toYaml, fromYaml: fromYaml, sceneYaml: sceneYaml, loadScene: loadScene, startRun: startRun };
-  init().catch((e) => { document.getElementById('scene-error').textContent = String(e); });
+  window.kimpGui = {
+    toYaml: toYaml,
+    fromYaml: fromYaml,
+    sceneYaml: sceneYaml,
+    loadScene: loadScene,
+    startRun: startRun,
+  };
+  init().catch((e) => {
+    document.getElementById('scene-error').textContent = String(e);
+  });
 })();

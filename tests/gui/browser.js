@@ -8,9 +8,17 @@ const puppeteer = require(path.join(__dirname, '..', '..', 'gui', 'node_modules'
 const CHROMIUM = process.env.KIMP_CHROMIUM || '/usr/bin/chromium';
 
 async function launch() {
-  const args = ['--headless=new', '--disable-gpu', '--no-first-run', '--disable-extensions',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync',
-    '--disable-default-apps', '--disable-dev-shm-usage'];
+  const args = [
+    '--headless=new',
+    '--disable-gpu',
+    '--no-first-run',
+    '--disable-extensions',
+    '--disable-background-networking',
+    '--disable-component-update',
+    '--disable-sync',
+    '--disable-default-apps',
+    '--disable-dev-shm-usage',
+  ];
   if (process.getuid && process.getuid() === 0) args.push('--no-sandbox');
   return puppeteer.launch({ executablePath: CHROMIUM, headless: true, args: args });
 }
@@ -20,7 +28,9 @@ async function watchedPage(browser, downloadDir) {
   const page = await browser.newPage();
   await page.setViewport({ width: 1280, height: 900 });
   const log = { errors: [], requests: [] };
-  page.on('console', (m) => { if (m.type() === 'error') log.errors.push(m.text()); });
+  page.on('console', (m) => {
+    if (m.type() === 'error') log.errors.push(m.text());
+  });
   page.on('pageerror', (e) => log.errors.push(String(e)));
   page.on('request', (r) => log.requests.push(r.url()));
   if (downloadDir) {

@@ -24,10 +24,14 @@ function startServer(kimpExe, runsDir) {
 }
 
 async function setField(page, fieldPath, value) {
-  await page.$eval(`#scene-form [data-path="${fieldPath}"] input, #scene-form input[data-path="${fieldPath}"]`, (input, v) => {
-    input.value = v;
-    input.dispatchEvent(new Event('change', { bubbles: true }));
-  }, value);
+  await page.$eval(
+    `#scene-form [data-path="${fieldPath}"] input, #scene-form input[data-path="${fieldPath}"]`,
+    (input, v) => {
+      input.value = v;
+      input.dispatchEvent(new Event('change', { bubbles: true }));
+    },
+    value,
+  );
 }
 
 async function main() {
@@ -66,7 +70,9 @@ async function main() {
     await page.waitForSelector('#results .peaks', { timeout: 60000 });
     const runId = await page.$eval('#run-status', (s) => s.textContent.split(':')[0]);
     const summary = JSON.parse(fs.readFileSync(path.join(runsDir, runId, 'out', 'summary.json'), 'utf8'));
-    const peaks = await page.$$eval('#results .peak', (ps) => ps.map((p) => ({ key: p.dataset.key, text: p.textContent, scale: Number(p.dataset.scale) })));
+    const peaks = await page.$$eval('#results .peak', (ps) =>
+      ps.map((p) => ({ key: p.dataset.key, text: p.textContent, scale: Number(p.dataset.scale) })),
+    );
     const kase = summary.cases[0];
     const expected = {
       [`${kase.name}.displacement.0`]: kase.peaks.displacement[0],
@@ -77,8 +83,10 @@ async function main() {
     };
     for (const [key, value] of Object.entries(expected)) {
       const shown = peaks.find((p) => p.key === key);
-      check(shown && Number(shown.text) === Number((value * shown.scale).toPrecision(6)),
-        `peak ${key} on the page (${shown && shown.text}) equals summary.json (${value})`);
+      check(
+        shown && Number(shown.text) === Number((value * shown.scale).toPrecision(6)),
+        `peak ${key} on the page (${shown && shown.text}) equals summary.json (${value})`,
+      );
     }
     check(kase.n_impacts > 0, `the run pounds the walls (${kase.n_impacts} impacts)`);
     await page.screenshot({ path: path.join(artefacts, 'gui_results.png') });
@@ -92,7 +100,10 @@ async function main() {
     await sleep(500);
     const t2 = await page.evaluate(() => window.kimp.animation().state.t);
     const f2 = await page.evaluate(() => window.kimp.animation().state.frame);
-    check(t2 > t1 && f2 > f1, `frames advance while playing (frame ${f1} -> ${f2}, t ${t1.toFixed(2)} -> ${t2.toFixed(2)} s)`);
+    check(
+      t2 > t1 && f2 > f1,
+      `frames advance while playing (frame ${f1} -> ${f2}, t ${t1.toFixed(2)} -> ${t2.toFixed(2)} s)`,
+    );
     await page.click('.anim-play');
     const p1 = await page.evaluate(() => window.kimp.animation().state.t);
     await sleep(500);
@@ -109,18 +120,30 @@ async function main() {
     const title = await page.$eval('#results .chart .chart-title', (t) => t.textContent);
     const file = path.join(downloads, title.replace(/[^A-Za-z0-9_.-]+/g, '_').replace(/^_+|_+$/g, '') + '.svg');
     const svg = await waitForFile(file, 5000);
-    check(svg.startsWith('<svg') && svg.includes('<path d="M') && svg.includes('time (s)'), `chart exported as SVG (${path.basename(file)}, ${svg.length} bytes)`);
+    check(
+      svg.startsWith('<svg') && svg.includes('<path d="M') && svg.includes('time (s)'),
+      `chart exported as SVG (${path.basename(file)}, ${svg.length} bytes)`,
+    );
     fs.copyFileSync(file, path.join(artefacts, 'gui_chart.svg'));
     // Parametric dialog: a gap sweep of the same scene (10, 15, 20 cm) made into a sweep file and run.
     await page.click('header.top nav button[data-tab="parametric"]');
     await page.click('#param-make');
     const sweep = await page.$eval('#sweep-yaml', (t) => t.value);
-    check(sweep.includes('walls.left.gap, walls.right.gap: {from: "10 cm", to: "20 cm", step: "5 cm"}'), 'the dialog writes the sweep file');
+    check(
+      sweep.includes('walls.left.gap, walls.right.gap: {from: "10 cm", to: "20 cm", step: "5 cm"}'),
+      'the dialog writes the sweep file',
+    );
     await page.click('#param-run');
-    await page.waitForFunction(() => document.querySelector('#results h1') && document.querySelector('#results h1').textContent.includes('sweep'),
-      { timeout: 60000 });
+    await page.waitForFunction(
+      () =>
+        document.querySelector('#results h1') && document.querySelector('#results h1').textContent.includes('sweep'),
+      { timeout: 60000 },
+    );
     const rows = await page.$$eval('#results details', (ds) => ds.map((d) => d.querySelector('summary').textContent));
-    check(rows.some((r) => r === 'sweep.csv'), `sweep results shown (${rows.join(', ')})`);
+    check(
+      rows.some((r) => r === 'sweep.csv'),
+      `sweep results shown (${rows.join(', ')})`,
+    );
     await page.screenshot({ path: path.join(artefacts, 'gui_sweep.png') });
     check(log.errors.length === 0, `no console error (${log.errors.join(' | ') || 'none'})`);
   } finally {
@@ -129,4 +152,7 @@ async function main() {
   }
 }
 
-main().catch((e) => { console.error(e); process.exit(1); });
+main().catch((e) => {
+  console.error(e);
+  process.exit(1);
+});

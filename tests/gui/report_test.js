@@ -20,7 +20,9 @@ async function main() {
     await page.waitForSelector('.chart canvas');
     const nCharts = await page.$$eval('.chart', (cs) => cs.length);
     check(nCharts > 0, `${nCharts} charts drawn`);
-    const foreign = log.requests.filter((u) => !u.startsWith('file://') && !u.startsWith('blob:') && !u.startsWith('data:'));
+    const foreign = log.requests.filter(
+      (u) => !u.startsWith('file://') && !u.startsWith('blob:') && !u.startsWith('data:'),
+    );
     check(foreign.length === 0, `no network request (${foreign.join(' ') || 'none'})`);
     await page.screenshot({ path: path.join(artefacts, path.basename(dir) + '_report.png'), fullPage: false });
     // Export the first chart as SVG and check that it is a drawing of the chart.
@@ -32,7 +34,10 @@ async function main() {
     // The same chart as PDF: a vector page written by kimp.js (paths and Helvetica text).
     await page.$eval('.chart .export-pdf', (b) => b.click());
     const pdf = await waitForFile(path.join(downloads, name.replace(/\.svg$/, '.pdf')), 5000);
-    check(pdf.startsWith('%PDF-1.4') && pdf.includes(' l\n') && pdf.trimEnd().endsWith('%%EOF'), `exported ${name.replace(/\.svg$/, '.pdf')} is a vector PDF`);
+    check(
+      pdf.startsWith('%PDF-1.4') && pdf.includes(' l\n') && pdf.trimEnd().endsWith('%%EOF'),
+      `exported ${name.replace(/\.svg$/, '.pdf')} is a vector PDF`,
+    );
     // A lumped run with an isolator shows its hysteresis loop (force against the isolation
     // displacement) whose largest force is the summary's peak within the history sampling.
     const summary = JSON.parse(fs.readFileSync(path.join(dir, 'summary.json'), 'utf8'));
@@ -46,8 +51,10 @@ async function main() {
       });
       check(loop !== null && loop.n > 10, `isolator hysteresis loop drawn (${loop ? loop.n : 0} points)`);
       const peak = withIsolator.isolator.peak_force * 1e-6;
-      check(loop.max <= peak * (1 + 1e-9) && loop.max > 0.5 * peak,
-        `loop's largest force ${loop.max.toFixed(4)} MN within the peak ${peak.toFixed(4)} MN`);
+      check(
+        loop.max <= peak * (1 + 1e-9) && loop.max > 0.5 * peak,
+        `loop's largest force ${loop.max.toFixed(4)} MN within the peak ${peak.toFixed(4)} MN`,
+      );
     }
     if (await page.$('svg.animation')) {
       await page.$eval('.anim-play', (b) => b.click());
@@ -58,15 +65,26 @@ async function main() {
     if (summary.command === 'fem') {
       // The FEM summary table: every case's peak force and COR as in summary.json, in kN/m and
       // to 4 significant figures (the file keeps full precision).
-      const shown = await page.$$eval('table.fem-summary .fem-summary-value',
-        (vs) => vs.map((v) => ({ key: v.getAttribute('data-key'), si: Number(v.getAttribute('data-si')), text: v.textContent })));
+      const shown = await page.$$eval('table.fem-summary .fem-summary-value', (vs) =>
+        vs.map((v) => ({
+          key: v.getAttribute('data-key'),
+          si: Number(v.getAttribute('data-si')),
+          text: v.textContent,
+        })),
+      );
       for (const c of summary.cases) {
         const peak = shown.find((v) => v.key === `${c.name}.peak_force`);
-        check(peak !== undefined && peak.si === c.peak_force && peak.text === String(Number((c.peak_force * 1e-3).toPrecision(4))),
-          `FEM summary: ${c.name} peak force ${peak ? peak.text : '(missing)'} kN/m from ${c.peak_force} N/m`);
+        check(
+          peak !== undefined &&
+            peak.si === c.peak_force &&
+            peak.text === String(Number((c.peak_force * 1e-3).toPrecision(4))),
+          `FEM summary: ${c.name} peak force ${peak ? peak.text : '(missing)'} kN/m from ${c.peak_force} N/m`,
+        );
         const cor = shown.find((v) => v.key === `${c.name}.apparent_cor`);
-        check(cor !== undefined && cor.text.replace('-', '').replace('.', '').replace(/^0+/, '').length <= 4,
-          `FEM summary: ${c.name} COR shown to 4 significant figures (${cor ? cor.text : '(missing)'})`);
+        check(
+          cor !== undefined && cor.text.replace('-', '').replace('.', '').replace(/^0+/, '').length <= 4,
+          `FEM summary: ${c.name} COR shown to 4 significant figures (${cor ? cor.text : '(missing)'})`,
+        );
       }
     }
     if (await page.$('svg.fem-animation')) {
@@ -84,7 +102,10 @@ async function main() {
       const f2 = await page.evaluate(() => window.kimp.femAnimation().state.frame);
       check(f2 === held, `pause holds the frame (${held} -> ${f2})`);
       const fields = await page.$$eval('.fem-field option', (os) => os.map((o) => o.value));
-      check(fields.includes('von_mises_stress') && fields.includes('mean_stress'), `fields to colour by: ${fields.join(', ')}`);
+      check(
+        fields.includes('von_mises_stress') && fields.includes('mean_stress'),
+        `fields to colour by: ${fields.join(', ')}`,
+      );
       await page.$eval('svg.fem-animation', (s) => s.scrollIntoView());
       await page.screenshot({ path: path.join(artefacts, path.basename(dir) + '_fem_mesh.png') });
       if (fields.includes('contact_pressure')) {
@@ -98,16 +119,32 @@ async function main() {
           a.seek(i);
           return { frame: i, force: force[i] };
         });
-        check(peak.force > 0, `frame ${peak.frame} has the largest integrated contact pressure (${(peak.force * 1e-3).toFixed(1)} kN/m)`);
-        const colours = () => page.$$eval('svg.fem-animation polygon, svg.fem-animation polyline', (ps) => ps.map((p) => p.getAttribute('fill') + '/' + p.getAttribute('stroke')).join(';'));
+        check(
+          peak.force > 0,
+          `frame ${peak.frame} has the largest integrated contact pressure (${(peak.force * 1e-3).toFixed(1)} kN/m)`,
+        );
+        const colours = () =>
+          page.$$eval('svg.fem-animation polygon, svg.fem-animation polyline', (ps) =>
+            ps.map((p) => p.getAttribute('fill') + '/' + p.getAttribute('stroke')).join(';'),
+          );
         const before = await colours();
         await page.select('.fem-field', 'contact_pressure');
         const after = await colours();
         check(after !== before, 'choosing contact pressure changes the drawn colours');
-        const face = await page.$$eval('svg.fem-animation polyline.contact-face', (ls) => ls.map((l) => l.getAttribute('stroke')));
-        const nodes = await page.evaluate(() => window.kimp.femAnimation().state.mesh.fields.contact_pressure.nodes.length);
-        check(face.length === nodes && new Set(face).size > 1, `contact face drawn: ${face.length} pieces for ${nodes} nodes, ${new Set(face).size} colours`);
-        const neutral = await page.$$eval('svg.fem-animation polygon', (ps) => ps.filter((p) => p.getAttribute('fill') === '#d9d9d9').length);
+        const face = await page.$$eval('svg.fem-animation polyline.contact-face', (ls) =>
+          ls.map((l) => l.getAttribute('stroke')),
+        );
+        const nodes = await page.evaluate(
+          () => window.kimp.femAnimation().state.mesh.fields.contact_pressure.nodes.length,
+        );
+        check(
+          face.length === nodes && new Set(face).size > 1,
+          `contact face drawn: ${face.length} pieces for ${nodes} nodes, ${new Set(face).size} colours`,
+        );
+        const neutral = await page.$$eval(
+          'svg.fem-animation polygon',
+          (ps) => ps.filter((p) => p.getAttribute('fill') === '#d9d9d9').length,
+        );
         check(neutral > 0.5 * nCells, `the rest of the mesh neutral (${neutral} of ${nCells} cells)`);
         const bar = await page.$eval('svg.fem-animation', (s) => s.textContent);
         check(/contact pressure \((kPa|MPa)\)/.test(bar), 'colour bar in kPa or MPa');
@@ -120,4 +157,7 @@ async function main() {
   }
 }
 
-main().catch((e) => { console.error(e); process.exit(1); });
+main().catch((e) => {
+  console.error(e);
+  process.exit(1);
+});
