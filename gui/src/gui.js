@@ -381,6 +381,7 @@
     const log = document.getElementById('run-log');
     log.textContent = '';
     status.textContent = `${id}: running`;
+    status.dataset.state = 'running';
     bar.value = 0;
     state.current = id;
     return new Promise((resolve) => {

@@ -3,6 +3,7 @@
 'use strict';
 const path = require('path');
 const fs = require('fs');
+const { spawn } = require('child_process');
 const puppeteer = require(path.join(__dirname, '..', '..', 'gui', 'node_modules', 'puppeteer-core'));
 
 const CHROMIUM = process.env.KIMP_CHROMIUM || '/usr/bin/chromium';
@@ -55,4 +56,30 @@ function check(condition, message) {
   console.log('ok: ' + message);
 }
 
-module.exports = { launch, watchedPage, waitForFile, check };
+/** `kimp gui` on a free port with its runs in runsDir: {child, url}. */
+function startServer(kimpExe, runsDir) {
+  return new Promise((resolve, reject) => {
+    const child = spawn(kimpExe, ['gui', '--port', '0', '--runs-dir', runsDir], { stdio: ['ignore', 'pipe', 'pipe'] });
+    let out = '';
+    child.stdout.on('data', (d) => {
+      out += d;
+      const m = /(http:\/\/127\.0\.0\.1:\d+\/)/.exec(out);
+      if (m) resolve({ child: child, url: m[1] });
+    });
+    child.on('exit', (code) => reject(new Error(`kimp gui exited with ${code}: ${out}`)));
+  });
+}
+
+/** Set a text field of the scene form and fire its change event. */
+async function setField(page, fieldPath, value) {
+  await page.$eval(
+    `#scene-form [data-path="${fieldPath}"] input, #scene-form input[data-path="${fieldPath}"]`,
+    (input, v) => {
+      input.value = v;
+      input.dispatchEvent(new Event('change', { bubbles: true }));
+    },
+    value,
+  );
+}
+
+module.exports = { launch, watchedPage, waitForFile, check, startServer, setField };
