@@ -62,6 +62,62 @@ async function main() {
       const t = await page.evaluate(() => window.kimp.animation().state.t);
       check(t > 0, `animation plays from file:// (t = ${t})`);
     }
+    // Impact pulses at full rate (force_full_rate): the largest force drawn of a contact is its
+    // peak force of summary.json (7 significant digits in the report).
+    const hit = (summary.cases || []).flatMap((c) =>
+      (c.contacts || []).filter((k) => k.impacts && k.impacts.length).map((k) => [c, k]),
+    );
+    if (hit.length) {
+      const [c, k] = hit[0];
+      const drawn = await page.evaluate((name) => {
+        const ch = window.kimp.charts().find((x) => x.title === `impact force pulses at full rate: ${name}`);
+        if (!ch) return null;
+        let m = 0;
+        for (const ys of ch.plot.data.slice(1))
+          for (const y of ys) if (y !== null && y !== undefined) m = Math.max(m, y);
+        return { max: m, n: ch.plot.data[0].length };
+      }, k.name);
+      check(drawn !== null && drawn.n > 50, `${k.name}: pulses drawn at full rate (${drawn ? drawn.n : 0} samples)`);
+      const peak = k.peak_force * 1e-6;
+      check(
+        Math.abs(drawn.max - peak) <= 1e-6 * peak,
+        `${c.name} ${k.name}: largest pulse force ${drawn.max} MN = peak force ${peak} MN (1e-6)`,
+      );
+    }
+    if (summary.command === 'study') {
+      // k(H): one chart per law, one series per impact velocity (plus the thesis), y in its unit.
+      const kh = await page.evaluate(() =>
+        window.kimp
+          .charts()
+          .filter((x) => / k\(H\)/.test(x.title))
+          .map((x) => ({ y: x.ylabel, labels: x.plot.series.slice(1).map((s) => s.label) })),
+      );
+      check(
+        kh.length === 2 && kh[0].y === 'k (kN/mm/m)' && kh[1].y === 'k (kN/mm^1.5/m)',
+        `k(H) charts per law with their units (${kh.map((x) => x.y).join(', ')})`,
+      );
+      const rows = fs.readFileSync(path.join(dir, 'k_table.csv'), 'utf8').trim().split('\n');
+      const vcol = rows[0].split(',').indexOf('impact_velocity_m_per_s');
+      const nv = new Set(rows.slice(1).map((r) => r.split(',')[vcol])).size;
+      check(
+        kh[0].labels.filter((l) => l.startsWith('v = ')).length >= nv,
+        `one series per impact velocity (${nv}): ${kh[0].labels.join(' | ')}`,
+      );
+    }
+    if (summary.command === 'fit' || fs.existsSync(path.join(dir, 'fit.h5'))) {
+      const fit = await page.evaluate(() =>
+        window.kimp
+          .charts()
+          .filter((x) => x.title.endsWith('FEM contact force and the fitted laws'))
+          .map((x) => x.plot.series.slice(1).map((s) => s.label)),
+      );
+      check(
+        fit.length > 0 && fit[0][0] === 'FEM' && fit[0].length > 1,
+        `FEM force with the fitted laws: ${fit[0].join(' | ')}`,
+      );
+      const ks = await page.$$eval('table.fit-table .fit-k', (es) => es.map((e) => e.textContent));
+      check(ks.length > 0 && ks.every((t) => /kN\/mm(\^[\d.]+)?\/m$/.test(t)), `k table with units: ${ks.join(', ')}`);
+    }
     if (summary.command === 'fem') {
       // The FEM summary table: every case's peak force and COR as in summary.json, in kN/m and
       // to 4 significant figures (the file keeps full precision).
