@@ -990,7 +990,7 @@
         showError(`sweep: edit the ${engine} scene first (command ${engine}), then come back to sweep`);
         return;
       }
-      startRun('sweep', base.yaml, text.replace(/^scene:.*$/m, 'scene: scene.yaml'));
+      startRun('sweep', base.yaml, toYaml(Object.assign(formScene(), { scene: 'scene.yaml' }), 0) + '\n');
     });
     document.getElementById('run-cancel').addEventListener('click', () => {
       if (state.current) postJson(`/api/runs/${state.current}/cancel`, {});
@@ -1006,6 +1006,7 @@
     sceneYaml: sceneYaml,
     loadScene: loadScene,
     startRun: startRun,
+    state: state,
   };
   init().catch((e) => {
     document.getElementById('scene-error').textContent = String(e);
