@@ -157,6 +157,27 @@ async function main() {
       await new Promise((r) => setTimeout(r, 400));
       const f2 = await page.evaluate(() => window.kimp.femAnimation().state.frame);
       check(f2 === held, `pause holds the frame (${held} -> ${f2})`);
+      // A click on the force history moves the mesh to the frame nearest that time.
+      const target = await page.evaluate(() => {
+        const c = window.kimp.charts().find((x) => x.title.endsWith(': contact force'));
+        const ts = window.kimp.femAnimation().state.mesh.time;
+        const t = ts[Math.floor(ts.length / 2)];
+        c.plot.over.scrollIntoView();
+        const r = c.plot.over.getBoundingClientRect();
+        return { x: r.x + c.plot.valToPos(t, 'x'), y: r.y + r.height / 2, t: t };
+      });
+      await page.mouse.click(target.x, target.y);
+      const clicked = await page.evaluate(() => window.kimp.femAnimation().time());
+      const dtFrame = await page.evaluate(() => {
+        const ts = window.kimp.femAnimation().state.mesh.time;
+        return ts[1] - ts[0];
+      });
+      check(
+        Math.abs(clicked - target.t) <= dtFrame,
+        `clicking the force history at ${target.t} s shows the frame at ${clicked} s`,
+      );
+      const scrubWidth = await page.$eval('.fem-scrub', (x) => x.getBoundingClientRect().width);
+      check(scrubWidth > 600, `the FEM scrub slider spans the animation (${scrubWidth} px)`);
       const fields = await page.$$eval('.fem-field option', (os) => os.map((o) => o.value));
       check(
         fields.includes('von_mises_stress') && fields.includes('mean_stress'),
