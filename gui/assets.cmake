@@ -1,14 +1,16 @@
 # The page files of `kimp gui` and `kimp report` embedded into the binary (report/assets.h):
-# gui/src plus uPlot from gui/node_modules (installed by `npm ci --prefix gui`, scripts/install-deps.sh).
+# gui/src plus uPlot (charts) and js-yaml (the scene editor's YAML reader) from gui/node_modules
+# (installed by `npm ci --prefix gui`, scripts/install-deps.sh).
 # Nothing is fetched at build or run time.
 set(KIMP_GUI_DIR ${PROJECT_SOURCE_DIR}/gui)
 set(KIMP_GUI_ASSET_FILES
     src/kimp.js src/gui.js src/style.css src/gui.html src/report.html
-    node_modules/uplot/dist/uPlot.iife.min.js node_modules/uplot/dist/uPlot.min.css)
+    node_modules/uplot/dist/uPlot.iife.min.js node_modules/uplot/dist/uPlot.min.css
+    node_modules/js-yaml/dist/browser/js-yaml.umd.min.js)
 foreach(asset ${KIMP_GUI_ASSET_FILES})
   if(NOT EXISTS ${KIMP_GUI_DIR}/${asset})
     message(FATAL_ERROR "gui/${asset} is missing: run `npm ci --prefix gui` "
-                        "(scripts/install-deps.sh installs uPlot from gui/package-lock.json)")
+                        "(scripts/install-deps.sh installs uPlot and js-yaml from gui/package-lock.json)")
   endif()
 endforeach()
 

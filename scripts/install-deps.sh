@@ -38,8 +38,8 @@ else
   echo "install-deps: done"
 fi
 
-# npm packages of gui/ (uPlot, embedded into kimp at build time; puppeteer-core for the browser
-# tests), exact versions from gui/package-lock.json. The system Chromium is used: no browser is
+# npm packages of gui/ (uPlot and js-yaml, embedded into kimp at build time; ESLint for the
+# gui_lint test; puppeteer-core for the browser tests), exact versions from gui/package-lock.json. The system Chromium is used: no browser is
 # downloaded. Debian's nodejs may come without npm (NodeSource's includes it).
 if ! command -v npm >/dev/null 2>&1; then
   export DEBIAN_FRONTEND=noninteractive

@@ -4,7 +4,7 @@
 
 (function () {
   const el = kimp.el;
-  const state = { command: 'lumped', schema: null, values: {}, lists: {}, runs: {}, current: null };
+  const state = { command: 'lumped', schema: null, schemas: {}, extra: {}, saved: {}, current: null, info: {} };
 
   // ---- server access -----------------------------------------------------------------------
   async function getJson(url) {
@@ -27,73 +27,108 @@
 
   // ---- tabs --------------------------------------------------------------------------------
   function showTab(name) {
-    for (const b of document.querySelectorAll('header.top nav button')) b.classList.toggle('active', b.dataset.tab === name);
+    for (const b of document.querySelectorAll('header.top nav button'))
+      b.classList.toggle('active', b.dataset.tab === name);
     for (const p of document.querySelectorAll('.pane')) p.classList.toggle('active', p.id === 'pane-' + name);
     if (name === 'runs') refreshRuns();
+    if (name === 'motion') showMotion();
   }
 
-  // ---- YAML (the subset scenes use: nested maps, lists of maps, flow lists, quoted scalars) ----
+  // ---- YAML: written here (quantities quoted, block maps, flow lists), read by js-yaml ----------
   function yamlScalar(v) {
+    if (v === null || v === undefined) return 'null';
     if (typeof v === 'boolean' || typeof v === 'number') return String(v);
     if (Array.isArray(v)) return '[' + v.map(yamlScalar).join(', ') + ']';
+    if (typeof v === 'object')
+      return (
+        '{' +
+        Object.entries(v)
+          .map(([k, x]) => `${yamlKey(k)}: ${yamlScalar(x)}`)
+          .join(', ') +
+        '}'
+      );
     if (/^-?\d+(\.\d+)?([eE][-+]?\d+)?$/.test(v)) return v;
     return JSON.stringify(String(v));
   }
+
+  function yamlKey(k) {
+    return /^[A-Za-z0-9_][A-Za-z0-9_.\- ,]*$/.test(k) && !/ $/.test(k) ? k : JSON.stringify(k);
+  }
+
+  const isMap = (v) => v !== null && typeof v === 'object' && !Array.isArray(v);
 
   function toYaml(obj, indent) {
     const pad = ' '.repeat(indent || 0);
     const lines = [];
     for (const [k, v] of Object.entries(obj)) {
-      if (v && typeof v === 'object' && !Array.isArray(v)) {
-        lines.push(`${pad}${k}:`);
+      if (isMap(v) && Object.keys(v).length) {
+        lines.push(`${pad}${yamlKey(k)}:`);
         lines.push(toYaml(v, (indent || 0) + 2));
-      } else if (Array.isArray(v) && v.length && typeof v[0] === 'object') {
-        lines.push(`${pad}${k}:`);
+      } else if (Array.isArray(v) && v.length && v.every((item) => isMap(item) && Object.keys(item).length)) {
+        lines.push(`${pad}${yamlKey(k)}:`);
         for (const item of v) {
           const inner = toYaml(item, (indent || 0) + 4).split('\n');
           inner[0] = pad + '  - ' + inner[0].trimStart();
           lines.push(inner.join('\n'));
         }
-      } else lines.push(`${pad}${k}: ${yamlScalar(v)}`);
+      } else lines.push(`${pad}${yamlKey(k)}: ${yamlScalar(v)}`);
     }
     return lines.filter((l) => l !== '').join('\n');
   }
 
-  function parseScalar(text) {
-    const t = text.trim();
-    if (t.startsWith('"') || t.startsWith("'")) return t.slice(1, -1);
-    if (t.startsWith('[')) return t.slice(1, -1).split(',').map((s) => parseScalar(s)).filter((s) => s !== '');
-    if (t === 'true' || t === 'false') return t === 'true';
-    return t;
+  /** A scene's YAML text as an object (js-yaml: block scalars, anchors, flow maps and all). */
+  function fromYaml(text) {
+    const value = jsyaml.load(text);
+    if (value === null || value === undefined) return {};
+    if (typeof value !== 'object' || Array.isArray(value)) throw new Error('a scene is a map of keys (key: value)');
+    return value;
   }
 
-  function fromYaml(text) {
-    const lines = text.split('\n').map((l) => l.replace(/\s+#.*$/, '').replace(/^#.*$/, '')).filter((l) => l.trim() !== '');
-    let i = 0;
-    function block(indent) {
-      let result = null;
-      while (i < lines.length) {
-        const line = lines[i];
-        const ind = line.length - line.trimStart().length;
-        if (ind < indent) break;
-        const body = line.trim();
-        if (body.startsWith('- ')) {
-          result = result || [];
-          // A list item: its first key on the dash line, the rest indented below.
-          lines[i] = ' '.repeat(ind + 2) + body.slice(2);
-          result.push(block(ind + 2));
-          continue;
-        }
-        const m = /^([^:]+):\s*(.*)$/.exec(body);
-        if (!m) throw new Error(`line "${body}": expected key: value`);
-        result = result || {};
-        ++i;
-        if (m[2] === '') result[m[1].trim()] = block(ind + 1) || {};
-        else result[m[1].trim()] = parseScalar(m[2]);
+  /**
+   * Keys of `obj` that the schema does not know, as the CLI names them ("unknown key 'gapz' in
+   * walls.left (known: present, gap, ...)"): [{path, message}]. Maps take any key; list items are
+   * checked against their item's keys.
+   */
+  function unknownKeys(obj, keys, where, out) {
+    if (!obj || typeof obj !== 'object' || Array.isArray(obj) || !keys) return out;
+    for (const [name, value] of Object.entries(obj)) {
+      const k = keys.find((x) => x.key === name);
+      const path = where ? `${where}.${name}` : name;
+      if (!k) {
+        out.push({
+          path: where,
+          message:
+            `unknown key '${name}' in ${where || 'the scene'} ` + `(known: ${keys.map((x) => x.key).join(', ')})`,
+        });
+      } else if (k.keys) unknownKeys(value, k.keys, path, out);
+      else if (k.type === 'list' && Array.isArray(value) && Array.isArray(k.item)) {
+        value.forEach((item, i) => unknownKeys(item, k.item, `${path}[${i}]`, out));
       }
-      return result;
     }
-    return block(0) || {};
+    return out;
+  }
+
+  /** The part of `obj` the form cannot hold (unknown keys), kept so that a run refuses it too. */
+  function unknownPart(obj, keys) {
+    const extra = {};
+    for (const [name, value] of Object.entries(obj || {})) {
+      const k = keys.find((x) => x.key === name);
+      if (!k) extra[name] = value;
+      else if (k.keys && value && typeof value === 'object' && !Array.isArray(value)) {
+        const inner = unknownPart(value, k.keys);
+        if (Object.keys(inner).length) extra[name] = inner;
+      }
+    }
+    return extra;
+  }
+
+  function mergeInto(target, extra) {
+    for (const [k, v] of Object.entries(extra)) {
+      if (v && typeof v === 'object' && !Array.isArray(v) && target[k] && typeof target[k] === 'object')
+        mergeInto(target[k], v);
+      else target[k] = v;
+    }
+    return target;
   }
 
   // ---- the form ----------------------------------------------------------------------------
@@ -105,7 +140,11 @@
   function fieldInput(k, onChange) {
     let input;
     if (k.type === 'choice') {
-      input = el('select', {}, k.options.map((o) => el('option', { value: o, text: o })));
+      input = el(
+        'select',
+        {},
+        k.options.map((o) => el('option', { value: o, text: o })),
+      );
       input.value = String(k.default);
     } else if (k.type === 'flag') {
       input = el('input', { type: 'checkbox' });
@@ -141,13 +180,26 @@
       if (k.type === 'section' || k.type === 'optional section') {
         const fs = el('details', { class: 'form-section', 'data-path': k.path });
         fs.appendChild(el('summary', { text: `${k.key} — ${k.doc || ''}` }));
-        if (k.path.split('.').length === 1 && ['building', 'walls', 'impact', 'ground_motion', 'integration'].includes(k.key)) fs.open = true;
+        if (
+          k.path.split('.').length === 1 &&
+          ['building', 'walls', 'impact', 'ground_motion', 'integration'].includes(k.key)
+        )
+          fs.open = true;
         buildKeys(fs, k.keys || [], onChange);
         parent.appendChild(fs);
       } else if (k.type === 'list' || k.type === 'map') {
-        const area = el('textarea', { class: 'yaml list-yaml', 'data-path': k.path, rows: 4, placeholder: `${k.key}: YAML (${k.doc})` });
+        const area = el('textarea', {
+          class: 'yaml list-yaml',
+          'data-path': k.path,
+          rows: 4,
+          placeholder: `${k.key}: YAML (${k.doc})`,
+        });
         area.addEventListener('change', onChange);
-        const row = el('div', { class: 'field', 'data-path': k.path }, [el('label', { text: k.key }), area, el('span', { class: 'doc', text: k.doc || '' })]);
+        const row = el('div', { class: 'field', 'data-path': k.path }, [
+          el('label', { text: k.key }),
+          area,
+          el('span', { class: 'doc', text: k.doc || '' }),
+        ]);
         parent.appendChild(row);
         fields.push({ key: k, input: area, row: row, raw: true });
       } else {
@@ -155,7 +207,9 @@
         const unit = k.unit ? ` [${k.unit}]` : '';
         const range = k.range && k.range.text ? ` (${k.range.text})` : '';
         const row = el('div', { class: 'field', 'data-path': k.path }, [
-          el('label', { text: k.key + unit, title: k.path }), input, el('span', { class: 'doc', text: (k.doc || '') + range }),
+          el('label', { text: k.key + unit, title: k.path }),
+          input,
+          el('span', { class: 'doc', text: (k.doc || '') + range }),
         ]);
         parent.appendChild(row);
         fields.push({ key: k, input: input, row: row });
@@ -179,42 +233,106 @@
     return o;
   }
 
-  function formScene() {
+  /** The scene of the form; YAML errors of the raw boxes (cases, laws) go to `errors`. */
+  function formScene(errors) {
     const scene = {};
     for (const f of fields) {
       if (f.raw) {
         const t = f.input.value.trim();
-        if (t) setPath(scene, f.key.path, fromYaml(`x:\n${t.split('\n').map((l) => '  ' + l).join('\n')}`).x);
+        if (!t) continue;
+        try {
+          setPath(scene, f.key.path, jsyaml.load(t));
+        } catch (e) {
+          if (errors) errors.push({ path: f.key.path, message: `${f.key.path}: ${e.message}` });
+        }
         continue;
       }
       const v = readField(f.key, f.input);
       if (v !== undefined) setPath(scene, f.key.path, v);
     }
-    return scene;
+    return mergeInto(scene, JSON.parse(JSON.stringify(state.extra || {})));
   }
 
-  function sceneYaml() {
-    return toYaml(formScene(), 0) + '\n';
+  function sceneYaml(errors) {
+    return toYaml(formScene(errors), 0) + '\n';
   }
 
-  function loadScene(obj) {
+  /** Fill the form from a scene object; its unknown keys are reported (and kept, as the CLI refuses them). */
+  function loadScene(obj, source) {
     for (const f of fields) {
       const v = getPath(obj, f.key.path);
-      if (f.raw) f.input.value = v === undefined ? '' : toYaml({ x: v }, 0).split('\n').slice(1).map((l) => l.slice(2)).join('\n');
+      if (f.raw)
+        f.input.value =
+          v === undefined
+            ? ''
+            : toYaml({ x: v }, 0)
+                .split('\n')
+                .slice(1)
+                .map((l) => l.slice(2))
+                .join('\n');
       else writeField(f.key, f.input, v);
     }
+    state.extra = unknownPart(obj, state.schema.keys);
     syncYaml();
+    const unknown = unknownKeys(obj, state.schema.keys, '', []);
+    if (unknown.length) {
+      showProblems(
+        unknown.map((u) => ({ path: u.path, message: `${source ? source + ': ' : ''}${u.message}` })),
+        `${unknown.length} unknown key(s): kept in the YAML, so Validate and Run refuse the scene as the CLI does ` +
+          'until they are fixed (Scene as YAML below, then Apply).',
+      );
+    }
   }
 
   function syncYaml() {
-    document.getElementById('scene-yaml').value = sceneYaml();
+    const errors = [];
+    document.getElementById('scene-yaml').value = sceneYaml(errors);
     clearErrors();
+    if (errors.length) showProblems(errors);
   }
 
   function clearErrors() {
-    for (const r of document.querySelectorAll('.field.error')) r.classList.remove('error');
+    for (const r of document.querySelectorAll('.error')) r.classList.remove('error');
     for (const e of document.querySelectorAll('.field-error')) e.remove();
     document.getElementById('scene-error').textContent = '';
+  }
+
+  /**
+   * The form element a message's key path names: the field itself, else (a list item such as
+   * cases[0].law) the list's box, else the nearest section (walls.left for an unknown key there).
+   */
+  function elementOf(path) {
+    const plain = path.replace(/\[\d*\]/g, '');
+    const candidates = [plain];
+    if (path.includes('[')) candidates.push(path.slice(0, path.indexOf('[')));
+    for (let p = plain; p.includes('.');) {
+      p = p.slice(0, p.lastIndexOf('.'));
+      candidates.push(p);
+    }
+    for (const c of candidates) {
+      const e = document.querySelector(`#scene-form .field[data-path="${c}"], #scene-form details[data-path="${c}"]`);
+      if (e) return e;
+    }
+    return null;
+  }
+
+  function flagAt(path, text) {
+    const target = elementOf(path);
+    if (!target) return false;
+    target.classList.add('error');
+    const note = el('div', { class: 'field-error', text: text });
+    if (target.tagName === 'DETAILS') target.insertBefore(note, target.children[1] || null);
+    else target.appendChild(note);
+    for (let p = target; p; p = p.parentElement) if (p.tagName === 'DETAILS') p.open = true;
+    return true;
+  }
+
+  /** Key path named by a message line of the CLI, or null. */
+  function pathOf(line) {
+    const unknown = /unknown key '([^']+)' in ([A-Za-z0-9_.[\]]+)/.exec(line);
+    if (unknown) return unknown[2];
+    const m = /^[^:]*:\d+: ([A-Za-z0-9_.[\]]+)[ :=]/.exec(line) || /key "?([A-Za-z0-9_.[\]]+)"?/.exec(line);
+    return m ? m[1] : null;
   }
 
   /** The command's own message, also shown at each field it names ("file:line: key.path = ..."). */
@@ -222,25 +340,30 @@
     clearErrors();
     document.getElementById('scene-error').textContent = message;
     for (const line of message.split('\n')) {
-      const m = /^[^:]*:\d+: ([A-Za-z0-9_.]+)(\[\d+\])?[ :]/.exec(line) || /key "?([A-Za-z0-9_.]+)"?/.exec(line);
-      if (!m) continue;
-      const row = document.querySelector(`.field[data-path="${m[1]}"]`);
-      if (!row) continue;
-      row.classList.add('error');
-      row.appendChild(el('div', { class: 'field-error', text: line }));
-      let p = row.parentElement;
-      while (p) { if (p.tagName === 'DETAILS') p.open = true; p = p.parentElement; }
+      const path = pathOf(line);
+      if (path) flagAt(path, line);
     }
   }
 
+  /** Problems found on the page ([{path, message}]) at their fields, and listed above the form. */
+  function showProblems(problems, summary) {
+    const box = document.getElementById('scene-error');
+    box.textContent = (summary ? summary + '\n' : '') + problems.map((p) => p.message).join('\n');
+    for (const p of problems) flagAt(p.path, p.message);
+  }
+
   async function loadCommand(command) {
+    if (state.schema) state.saved[state.command] = { yaml: sceneYaml(), extra: state.extra };
     state.command = command;
     state.schema = await getJson('/api/schema/' + command);
+    state.extra = {};
     fields.length = 0;
     const form = document.getElementById('scene-form');
     form.innerHTML = '';
     buildKeys(form, state.schema.keys, syncYaml);
-    syncYaml();
+    const saved = state.saved[command];
+    if (saved) loadScene(fromYaml(saved.yaml));
+    else syncYaml();
   }
 
   // ---- runs --------------------------------------------------------------------------------
@@ -258,6 +381,7 @@
     const log = document.getElementById('run-log');
     log.textContent = '';
     status.textContent = `${id}: running`;
+    status.dataset.state = 'running';
     bar.value = 0;
     state.current = id;
     return new Promise((resolve) => {
@@ -276,17 +400,85 @@
           resolve(s.state);
         }
       };
-      events.onerror = () => { events.close(); resolve('lost'); };
+      events.onerror = () => {
+        events.close();
+        resolve('lost');
+      };
     });
   }
 
-  async function openResults(id) {
+  /** The run's warnings (its log's "warning:" lines), e.g. why a sweep wrote no d_SRSS table. */
+  async function runWarnings(id) {
+    const r = await fetch(`/api/files/${id}/run.log`);
+    if (!r.ok) return [];
+    return (await r.text())
+      .split('\n')
+      .filter((l) => l.startsWith('warning: '))
+      .map((l) => l.slice(9));
+  }
+
+  async function openResults(id, overlay) {
     const data = await getJson(`/api/runs/${id}/data`);
     data.title = id;
+    const others = [];
+    for (const o of overlay || []) {
+      const d = await getJson(`/api/runs/${o}/data`);
+      d.title = o;
+      others.push(d);
+    }
     const pane = document.getElementById('results');
-    kimp.showResults(pane, data);
-    pane.insertBefore(el('p', {}, [el('a', { href: `/api/runs/${id}/report`, download: `${id}.html`, text: 'download report.html' })]), pane.children[1]);
+    state.shown = { id: id, overlay: overlay || [] };
+    kimp.showResults(pane, data, others);
+    pane.insertBefore(
+      el('p', {}, [el('a', { href: `/api/runs/${id}/report`, download: `${id}.html`, text: 'download report.html' })]),
+      pane.children[1],
+    );
     showTab('results');
+    await Promise.all([runPicker(id, data, overlay || []), showRunNotes(id, data)]);
+  }
+
+  async function showRunNotes(id, data) {
+    const host = document.getElementById('results-notes');
+    host.innerHTML = '';
+    const warnings = await runWarnings(id);
+    const csv = data.csv || {};
+    const gapStudy = data.kind === 'sweep' && Object.keys(csv).includes('sweep.csv') && !csv['dsrss_table.csv'];
+    const dsrss = warnings.filter((w) => /d_SRSS/.test(w));
+    if (gapStudy && dsrss.length) {
+      host.appendChild(
+        el('div', { class: 'notice dsrss-missing', text: `No d_req / d_SRSS table: ${dsrss.join('\n')}` }),
+      );
+    }
+    const rest = warnings.filter((w) => !dsrss.includes(w));
+    if (rest.length)
+      host.appendChild(el('div', { class: 'notice run-warnings', text: `warnings of ${id}:\n${rest.join('\n')}` }));
+  }
+
+  /** Other finished runs of the same command to overlay on the charts (legend: run: case). */
+  async function runPicker(id, data, overlay) {
+    const host = document.getElementById('results-bar');
+    host.innerHTML = '';
+    const list = (await getJson('/api/runs')).filter(
+      (r) => r.state === 'done' && r.id !== id && r.command === data.kind,
+    );
+    if (!list.length) return;
+    const boxes = list.map((r) => {
+      const box = el('input', { type: 'checkbox', value: r.id, class: 'overlay-run' });
+      box.checked = overlay.includes(r.id);
+      return el('label', {}, [box, document.createTextNode(' ' + r.id)]);
+    });
+    const go = el('button', { class: 'overlay-apply', text: 'Overlay on the charts' });
+    go.addEventListener('click', () => {
+      const chosen = Array.from(host.querySelectorAll('.overlay-run:checked')).map((b) => b.value);
+      openResults(id, chosen);
+    });
+    host.appendChild(
+      el('div', { class: 'section run-picker' }, [
+        el('strong', { text: `Overlay other ${data.kind} runs:` }),
+        ...boxes,
+        go,
+      ]),
+    );
   }
 
   async function refreshRuns() {
@@ -294,126 +486,471 @@
     const host = document.getElementById('runs-list');
     host.innerHTML = '';
     const t = el('table', { class: 'data' });
-    t.appendChild(el('tr', {}, ['run', 'command', 'state', ''].map((h) => el('th', { text: h }))));
+    t.appendChild(
+      el(
+        'tr',
+        {},
+        ['run', 'command', 'state', ''].map((h) => el('th', { text: h })),
+      ),
+    );
     for (const r of list) {
       const actions = el('span');
       if (r.state === 'done') actions.appendChild(el('button', { text: 'results', onclick: () => openResults(r.id) }));
-      if (r.state === 'running') actions.appendChild(el('button', { text: 'cancel', onclick: () => postJson(`/api/runs/${r.id}/cancel`, {}).then(refreshRuns) }));
-      t.appendChild(el('tr', {}, [el('td', { text: r.id }), el('td', { text: r.command || '' }), el('td', { text: r.state }), el('td', {}, [actions])]));
+      if (r.state === 'running')
+        actions.appendChild(
+          el('button', { text: 'cancel', onclick: () => postJson(`/api/runs/${r.id}/cancel`, {}).then(refreshRuns) }),
+        );
+      t.appendChild(
+        el('tr', {}, [
+          el('td', { text: r.id }),
+          el('td', { text: r.command || '' }),
+          el('td', { text: r.state }),
+          el('td', {}, [actions]),
+        ]),
+      );
     }
     host.appendChild(t);
   }
 
   // ---- ground motion -----------------------------------------------------------------------
+  // The chosen record as the server read it (unscaled, m/s²); the scene's scaling is applied here
+  // exactly as a run applies it (scale_to_pga, then scale, then trim to round(duration / dt)).
+  const motion = { rec: null, file: null };
+  const TWO_COLUMN_UNITS = { g: 9.80665, 'm/s^2': 1, 'cm/s^2': 0.01 };
+  const MOTION_KEYS = [
+    ['motion-scale-to-pga', 'ground_motion.scale_to_pga'],
+    ['motion-scale', 'ground_motion.scale'],
+    ['motion-duration', 'ground_motion.duration'],
+  ];
+
+  function sceneInput(path) {
+    return document.querySelector(`#scene-form input[data-path="${path}"], #scene-form select[data-path="${path}"]`);
+  }
+
+  function sceneField(path) {
+    return fields.find((f) => f.key.path === path);
+  }
+
+  function setSceneValue(path, value) {
+    const input = sceneInput(path);
+    if (input) {
+      input.value = value;
+      syncYaml();
+    }
+  }
+
   function integrate(a, dt) {
     const v = [0];
     for (let i = 1; i < a.length; ++i) v.push(v[i - 1] + 0.5 * (a[i - 1] + a[i]) * dt);
     return v;
   }
 
-  function plotMotion(rec) {
+  /** The motion as a run would see it: [acceleration (m/s²), description of the scaling]. */
+  function scaledMotion(rec) {
+    const text = (path) => (sceneInput(path) ? sceneInput(path).value.trim() : '');
+    const unitOf = (path) => (sceneField(path) ? sceneField(path).key.unit || '' : '');
+    let a = rec.acceleration.slice();
+    const peak = (xs) => xs.reduce((m, x) => Math.max(m, Math.abs(x)), 0);
+    const notes = [];
+    const toPga = text('ground_motion.scale_to_pga');
+    if (toPga) {
+      const target = kimp.parseQuantity(toPga, unitOf('ground_motion.scale_to_pga'));
+      const factor = target / peak(a);
+      a = a.map((x) => Math.max(-target, Math.min(target, x * factor)));
+      notes.push(`scaled to PGA ${toPga} (×${kimp.fmt(factor, 4)})`);
+    }
+    const scaleText = text('ground_motion.scale');
+    if (scaleText) {
+      const scale = kimp.parseQuantity(scaleText, unitOf('ground_motion.scale'));
+      a = a.map((x) => x * scale);
+      notes.push(`scale ${kimp.fmt(scale, 6)}`);
+    }
+    const durationText = text('ground_motion.duration');
+    if (durationText) {
+      const duration = kimp.parseQuantity(durationText, unitOf('ground_motion.duration'));
+      a = a.slice(0, Math.min(a.length, Math.round(duration / rec.dt)));
+      notes.push(`trimmed to ${kimp.fmt(duration, 6)} s`);
+    }
+    return [a, notes.length ? notes.join(', ') : 'unscaled'];
+  }
+
+  function peakAt(xs) {
+    let k = 0;
+    for (let i = 1; i < xs.length; ++i) if (Math.abs(xs[i]) > Math.abs(xs[k])) k = i;
+    return k;
+  }
+
+  function plotMotion() {
     const host = document.getElementById('motion-charts');
+    const info = document.getElementById('motion-info');
+    const out = document.getElementById('motion-error');
     host.innerHTML = '';
-    const scale = Number(document.querySelector('[data-path="ground_motion.scale"]')?.value || 1) || 1;
-    const durationText = document.querySelector('[data-path="ground_motion.duration"]')?.value || '';
-    const duration = parseFloat(durationText) || rec.duration;
-    const n = Math.min(rec.acceleration.length, Math.round(duration / rec.dt) + 1);
-    const a = rec.acceleration.slice(0, n).map((x) => x * scale);
+    info.textContent = '';
+    out.textContent = '';
+    const rec = motion.rec;
+    if (!rec) return;
+    let a;
+    let notes;
+    try {
+      [a, notes] = rec.scaled ? [rec.acceleration, 'as the run scales it'] : scaledMotion(rec);
+    } catch (e) {
+      out.textContent = `ground motion: ${e.message}`;
+      return;
+    }
     const t = a.map((_, i) => i * rec.dt);
     const v = integrate(a, rec.dt);
     const d = integrate(v, rec.dt);
-    const peak = (xs) => Math.max(...xs.map(Math.abs));
-    host.appendChild(el('p', { text: `${rec.name}: dt = ${rec.dt} s, ${n} samples, PGA = ${kimp.fmt(peak(a) / 9.80665, 4)} g, ` +
-      `PGV = ${kimp.fmt(peak(v) * 100, 4)} cm/s, PGD = ${kimp.fmt(peak(d) * 100, 4)} cm (scale ${scale})` }));
-    kimp.chart(host, { title: `${rec.name}: ground acceleration`, xlabel: 'time (s)', ylabel: 'acceleration (m/s²)', x: t, series: [{ label: 'a_g', y: a }], height: 200 });
-    kimp.chart(host, { title: `${rec.name}: ground velocity`, xlabel: 'time (s)', ylabel: 'velocity (m/s)', x: t, series: [{ label: 'v_g', y: v }], height: 200 });
-    kimp.chart(host, { title: `${rec.name}: ground displacement`, xlabel: 'time (s)', ylabel: 'displacement (m)', x: t, series: [{ label: 'd_g', y: d }], height: 200 });
+    const [ia, iv, id] = [peakAt(a), peakAt(v), peakAt(d)];
+    const pga = Math.abs(a[ia]) / 9.80665;
+    const pgv = Math.abs(v[iv]) * 100;
+    const pgd = Math.abs(d[id]) * 100;
+    info.dataset.pga = String(pga);
+    info.dataset.samples = String(a.length);
+    info.textContent =
+      `${rec.name}: dt = ${rec.dt} s, ${a.length} samples (${kimp.fmt(a.length * rec.dt, 6)} s), ` +
+      `PGA = ${kimp.fmt(pga, 4)} g, PGV = ${kimp.fmt(pgv, 4)} cm/s, PGD = ${kimp.fmt(pgd, 4)} cm (${notes})`;
+    const marker = (i, ys, label) => {
+      const y = new Array(ys.length).fill(null);
+      y[i] = ys[i];
+      return { label: label, y: y, marker: true, color: '#d62728' };
+    };
+    kimp.chart(host, {
+      title: `${rec.name}: ground acceleration, PGA = ${kimp.fmt(pga, 4)} g at ${kimp.fmt(t[ia], 4)} s`,
+      xlabel: 'time (s)',
+      ylabel: 'acceleration (m/s²)',
+      x: t,
+      height: 260,
+      series: [{ label: 'a_g', y: a }, marker(ia, a, `PGA ${kimp.fmt(pga, 4)} g`)],
+    });
+    kimp.chart(host, {
+      title: `${rec.name}: ground velocity, PGV = ${kimp.fmt(pgv, 4)} cm/s at ${kimp.fmt(t[iv], 4)} s`,
+      xlabel: 'time (s)',
+      ylabel: 'velocity (cm/s)',
+      x: t,
+      height: 260,
+      series: [
+        { label: 'v_g', y: v.map((x) => x * 100) },
+        marker(
+          iv,
+          v.map((x) => x * 100),
+          `PGV ${kimp.fmt(pgv, 4)} cm/s`,
+        ),
+      ],
+    });
+    kimp.chart(host, {
+      title: `${rec.name}: ground displacement, PGD = ${kimp.fmt(pgd, 4)} cm at ${kimp.fmt(t[id], 4)} s`,
+      xlabel: 'time (s)',
+      ylabel: 'displacement (cm)',
+      x: t,
+      height: 260,
+      series: [
+        { label: 'd_g', y: d.map((x) => x * 100) },
+        marker(
+          id,
+          d.map((x) => x * 100),
+          `PGD ${kimp.fmt(pgd, 4)} cm`,
+        ),
+      ],
+    });
   }
 
-  function setRecord(value) {
-    const input = document.querySelector('input[data-path="ground_motion.record"]');
-    if (input) { input.value = value; syncYaml(); }
+  /**
+   * The synthetic motion is generated by kimp at run time: the page asks the server for it
+   * (scaled as the run scales it) and draws nothing of its own when the server cannot.
+   */
+  async function loadSynthetic() {
+    motion.rec = null;
+    if (!state.info.motion_preview) {
+      document.getElementById('motion-charts').innerHTML = '';
+      document.getElementById('motion-info').textContent =
+        'The synthetic near-fault motion is generated by kimp at ' +
+        'run time (ground_motion.synthetic); this kimp gui cannot draw it before a run.';
+      return;
+    }
+    const r = await fetch('/api/motion', {
+      method: 'POST',
+      headers: { 'Content-Type': 'application/json', 'X-Kimp-Request': '1' },
+      body: JSON.stringify({ command: state.command === 'sweep' ? 'lumped' : state.command, scene: sceneYaml() }),
+    });
+    if (r.ok) {
+      motion.rec = Object.assign(await r.json(), { scaled: true });
+      plotMotion();
+    } else {
+      document.getElementById('motion-charts').innerHTML = '';
+      document.getElementById('motion-error').textContent = (await r.json()).error;
+    }
+  }
+
+  async function uploadMotion() {
+    const file = motion.file;
+    const unit = document.getElementById('motion-unit').value;
+    const at2 = /\.at2$/i.test(file.name);
+    const r = await fetch('/api/upload?name=' + encodeURIComponent(file.name) + '&unit=' + TWO_COLUMN_UNITS[unit], {
+      method: 'POST',
+      headers: { 'X-Kimp-Request': '1', 'Content-Type': 'application/octet-stream' },
+      body: await file.text(),
+    });
+    const body = await r.json();
+    document.getElementById('motion-error').textContent = r.ok ? '' : body.error;
+    if (!r.ok) return;
+    // The scene names the uploaded file and, for a two-column file, the unit of its column.
+    setSceneValue('ground_motion.record', body.path);
+    setSceneValue('ground_motion.record_unit', at2 ? '' : unit);
+    motion.rec = body;
+    motion.key = body.path;
+    const pick = document.getElementById('motion-record');
+    let option = pick.querySelector('option[data-upload]');
+    if (!option) {
+      option = el('option', { 'data-upload': '1' });
+      pick.appendChild(option);
+    }
+    option.value = body.path;
+    option.textContent = `uploaded: ${file.name}${at2 ? '' : ' (' + unit + ')'}`;
+    pick.value = body.path;
+    plotMotion();
+  }
+
+  /** The motion tab's scaling inputs mirror the scene's keys (both ways). */
+  function syncMotionInputs() {
+    for (const [id, path] of MOTION_KEYS) {
+      const input = sceneInput(path);
+      document.getElementById(id).value = input ? input.value : '';
+    }
+  }
+
+  async function showMotion() {
+    syncMotionInputs();
+    const record = sceneInput('ground_motion.record') ? sceneInput('ground_motion.record').value.trim() : '';
+    if (!record || record === 'synthetic') {
+      document.getElementById('motion-record').value = 'synthetic';
+      await loadSynthetic();
+      return;
+    }
+    const pick = document.getElementById('motion-record');
+    if ((!motion.rec || motion.key !== record) && Array.from(pick.options).some((o) => o.value === record)) {
+      pick.value = record;
+      motion.rec = await getJson('/api/records/' + encodeURIComponent(record));
+      motion.key = record;
+    }
+    plotMotion();
   }
 
   async function initMotion() {
     const pick = document.getElementById('motion-record');
-    pick.appendChild(el('option', { value: 'synthetic', text: 'synthetic near-fault motion (generated at run time)' }));
+    pick.appendChild(
+      el('option', { value: 'synthetic', text: 'synthetic near-fault motion (ground_motion.synthetic)' }),
+    );
     for (const name of await getJson('/api/records')) pick.appendChild(el('option', { value: name, text: name }));
     pick.addEventListener('change', async () => {
-      setRecord(pick.value === 'synthetic' ? '' : pick.value);
-      document.getElementById('motion-charts').innerHTML = '';
-      if (pick.value !== 'synthetic') plotMotion(await getJson('/api/records/' + encodeURIComponent(pick.value)));
+      if (pick.selectedOptions[0] && pick.selectedOptions[0].dataset.upload) return;
+      motion.file = null;
+      setSceneValue('ground_motion.record', pick.value === 'synthetic' ? '' : pick.value);
+      setSceneValue('ground_motion.record_unit', '');
+      if (pick.value === 'synthetic') await loadSynthetic();
+      else {
+        motion.rec = await getJson('/api/records/' + encodeURIComponent(pick.value));
+        motion.key = pick.value;
+        plotMotion();
+      }
     });
     document.getElementById('motion-upload').addEventListener('change', async (e) => {
-      const file = e.target.files[0];
-      if (!file) return;
-      const r = await fetch('/api/upload?name=' + encodeURIComponent(file.name) + '&unit=' + document.getElementById('motion-unit').value,
-        { method: 'POST', headers: { 'X-Kimp-Request': '1', 'Content-Type': 'application/octet-stream' }, body: await file.text() });
-      const body = await r.json();
-      const out = document.getElementById('motion-error');
-      out.textContent = r.ok ? '' : body.error;
-      if (r.ok) { setRecord(body.path); plotMotion(body); }
+      motion.file = e.target.files[0] || null;
+      if (motion.file) await uploadMotion();
     });
+    document.getElementById('motion-unit').addEventListener('change', async () => {
+      if (motion.file && !/\.at2$/i.test(motion.file.name)) await uploadMotion();
+    });
+    for (const [id, path] of MOTION_KEYS) {
+      document.getElementById(id).addEventListener('change', async (e) => {
+        setSceneValue(path, e.target.value.trim());
+        if (motion.rec && !motion.rec.scaled) plotMotion();
+        else await showMotion();
+      });
+    }
   }
 
   // ---- parametric dialog -------------------------------------------------------------------
-  function quantityPaths(keys, out) {
+  /** Scene keys a sweep can vary: quantities, integers and choices (impact.law). */
+  function sweepableKeys(keys, out) {
     for (const k of keys) {
-      if (k.keys) quantityPaths(k.keys, out);
-      else if (['quantity', 'optional quantity', 'integer'].includes(k.type) && !k.path.includes('[]')) out.push(k);
+      if (k.keys) sweepableKeys(k.keys, out);
+      else if (
+        ['quantity', 'optional quantity', 'integer', 'choice', 'flag'].includes(k.type) &&
+        !k.path.includes('[]')
+      )
+        out.push(k);
     }
     return out;
   }
 
-  function initParametric() {
+  /** The sweep file of the dialog's rows; regenerated on every change, so a run never uses a stale one. */
+  function makeSweep() {
     const rows = document.getElementById('param-rows');
-    const addRow = (path, from, to, step) => {
-      const keys = quantityPaths(state.schema ? state.schema.keys : [], []);
-      const sel = el('select', { class: 'param-key' }, keys.map((k) => el('option', { value: k.path, text: `${k.path}${k.unit ? ' [' + k.unit + ']' : ''}` })));
-      if (path) sel.value = path;
-      const inputs = [from, to, step].map((v, i) => el('input', { type: 'text', class: 'param-' + ['from', 'to', 'step'][i], value: v || '', placeholder: ['from', 'to', 'step'][i] }));
-      rows.appendChild(el('div', { class: 'controls param-row' }, [sel, ...inputs, el('button', { text: '×', onclick: (e) => { e.target.parentElement.remove(); } })]));
-    };
-    document.getElementById('param-add').addEventListener('click', () => addRow());
-    document.getElementById('param-make').addEventListener('click', () => {
-      const lines = ['# parameter study made by kimp gui', 'scene: scene.yaml', 'combine: product'];
-      const params = [];
-      let gap = null;
-      for (const row of rows.querySelectorAll('.param-row')) {
-        const key = row.querySelector('.param-key').value;
-        let keyText = key;
-        if (key === 'walls.left.gap' && document.getElementById('param-both').checked) keyText = 'walls.left.gap, walls.right.gap';
-        if (key.endsWith('.gap') && !gap) gap = key;
+    const lines = ['# parameter study made by kimp gui', 'scene: scene.yaml', 'combine: product'];
+    const params = [];
+    let gap = null;
+    for (const row of rows.querySelectorAll('.param-row')) {
+      const key = row.querySelector('.param-key').value;
+      let keyText = key;
+      if (key === 'walls.left.gap' && document.getElementById('param-both').checked)
+        keyText = 'walls.left.gap, walls.right.gap';
+      if (key.endsWith('.gap') && !gap) gap = key;
+      if (row.querySelector('.param-mode').value === 'range') {
         const [f, t, s] = ['from', 'to', 'step'].map((n) => row.querySelector('.param-' + n).value.trim());
         params.push(`  ${keyText}: {from: ${JSON.stringify(f)}, to: ${JSON.stringify(t)}, step: ${JSON.stringify(s)}}`);
+      } else {
+        const picked = Array.from(row.querySelectorAll('.param-option:checked')).map((b) => b.value);
+        const typed = row
+          .querySelector('.param-values')
+          .value.split(',')
+          .map((v) => v.trim())
+          .filter((v) => v);
+        const values = picked.length ? picked : typed;
+        params.push(`  ${keyText}: [${values.map((v) => JSON.stringify(v)).join(', ')}]`);
       }
-      if (gap) lines.push('report:', '  kind: gap_study', `  gap: ${gap}`, '  title: "Gap sweep (kimp gui)"');
-      lines.push('parameters:', ...params);
-      document.getElementById('sweep-yaml').value = lines.join('\n') + '\n';
+    }
+    if (gap) lines.push('report:', '  kind: gap_study', `  gap: ${gap}`, '  title: "Gap sweep (kimp gui)"');
+    lines.push('parameters:', ...params);
+    document.getElementById('sweep-yaml').value = lines.join('\n') + '\n';
+  }
+
+  function addParamRow(path, mode, values) {
+    const rows = document.getElementById('param-rows');
+    const keys = sweepableKeys(state.schemas.lumped ? state.schemas.lumped.keys : [], []);
+    const sel = el(
+      'select',
+      { class: 'param-key' },
+      keys.map((k) =>
+        el('option', {
+          value: k.path,
+          text: `${k.path}${k.unit ? ' [' + k.unit + ']' : ''}${k.type === 'choice' ? ' (choice)' : ''}`,
+        }),
+      ),
+    );
+    if (path) sel.value = path;
+    const modeSel = el('select', { class: 'param-mode' }, [
+      el('option', { value: 'range', text: 'from / to / step' }),
+      el('option', { value: 'values', text: 'list of values' }),
+    ]);
+    const range = ['from', 'to', 'step'].map((n) => el('input', { type: 'text', class: 'param-' + n, placeholder: n }));
+    const list = el('input', {
+      type: 'text',
+      class: 'param-values',
+      placeholder: 'values, comma separated ("0.5, 0.7, 0.9")',
     });
+    const options = el('span', { class: 'param-options' });
+    const row = el('div', { class: 'controls param-row' }, [
+      sel,
+      modeSel,
+      ...range,
+      list,
+      options,
+      el('button', {
+        text: '×',
+        title: 'remove this parameter',
+        onclick: () => {
+          row.remove();
+          makeSweep();
+        },
+      }),
+    ]);
+    const layout = () => {
+      const k = keys.find((x) => x.path === sel.value) || {};
+      const choice = k.type === 'choice' || k.type === 'flag';
+      if (choice) modeSel.value = 'values';
+      modeSel.disabled = choice;
+      const isRange = modeSel.value === 'range';
+      for (const input of range) input.style.display = isRange ? '' : 'none';
+      list.style.display = !isRange && !choice ? '' : 'none';
+      options.innerHTML = '';
+      if (choice) {
+        const opts = k.type === 'flag' ? ['false', 'true'] : k.options;
+        for (const o of opts)
+          options.appendChild(
+            el('label', {}, [
+              el('input', { type: 'checkbox', class: 'param-option', value: o }),
+              document.createTextNode(' ' + o + ' '),
+            ]),
+          );
+      }
+    };
+    sel.addEventListener('change', () => {
+      layout();
+      makeSweep();
+    });
+    modeSel.addEventListener('change', () => {
+      layout();
+      makeSweep();
+    });
+    row.addEventListener('input', makeSweep);
+    row.addEventListener('change', makeSweep);
+    if (mode) modeSel.value = mode;
+    layout();
+    if (mode === 'range' && values)
+      range.forEach((input, i) => {
+        input.value = values[i];
+      });
+    else if (values) {
+      for (const b of options.querySelectorAll('.param-option')) b.checked = values.includes(b.value);
+      list.value = values.join(', ');
+    }
+    rows.appendChild(row);
+    makeSweep();
+  }
+
+  /** The lumped scene a dialog sweep runs on: the Scene tab's (or the last edited lumped one). */
+  function lumpedSceneForSweep() {
+    const yaml = state.command === 'lumped' ? sceneYaml() : state.saved.lumped ? state.saved.lumped.yaml : '';
+    const scene = yaml.trim() ? fromYaml(yaml) : {};
+    if (document.getElementById('param-companion').checked) {
+      scene.integration = scene.integration || {};
+      scene.integration.companion = true;
+    }
+    return toYaml(scene, 0) + '\n';
+  }
+
+  async function initParametric() {
+    state.schemas.lumped = state.command === 'lumped' ? state.schema : await getJson('/api/schema/lumped');
+    document.getElementById('param-add').addEventListener('click', () => addParamRow());
+    document.getElementById('param-make').addEventListener('click', makeSweep);
+    document.getElementById('param-both').addEventListener('change', makeSweep);
     document.getElementById('param-run').addEventListener('click', () => {
-      if (!document.getElementById('sweep-yaml').value.trim()) document.getElementById('param-make').click();
-      startRun('sweep', sceneYaml(), document.getElementById('sweep-yaml').value);
+      const text = document.getElementById('sweep-yaml').value;
+      startRun(
+        'sweep',
+        lumpedSceneForSweep(),
+        text.trim() ? text : (makeSweep(), document.getElementById('sweep-yaml').value),
+      );
     });
-    addRow('walls.left.gap', '10 cm', '20 cm', '5 cm');
+    addParamRow('walls.left.gap', 'range', ['10 cm', '20 cm', '5 cm']);
   }
 
   // ---- start -------------------------------------------------------------------------------
   async function init() {
-    for (const b of document.querySelectorAll('header.top nav button')) b.addEventListener('click', () => showTab(b.dataset.tab));
+    for (const b of document.querySelectorAll('header.top nav button'))
+      b.addEventListener('click', () => showTab(b.dataset.tab));
     const info = await getJson('/api/info');
+    state.info = info;
     document.getElementById('version').textContent = info.version;
     const cmd = document.getElementById('scene-command');
-    for (const c of info.commands.filter((x) => x !== 'sweep')) cmd.appendChild(el('option', { value: c, text: c }));
+    for (const c of info.commands) cmd.appendChild(el('option', { value: c, text: c }));
     cmd.addEventListener('change', () => loadCommand(cmd.value));
     await loadCommand('lumped');
     document.getElementById('scene-apply').addEventListener('click', () => {
-      try { loadScene(fromYaml(document.getElementById('scene-yaml').value)); } catch (e) { showError(e.message); }
+      try {
+        loadScene(fromYaml(document.getElementById('scene-yaml').value));
+      } catch (e) {
+        showError(e.message);
+      }
     });
     document.getElementById('scene-import').addEventListener('change', async (e) => {
       const f = e.target.files[0];
       if (!f) return;
-      try { loadScene(fromYaml(await f.text())); } catch (err) { showError(`${f.name}: ${err.message}`); }
+      try {
+        loadScene(fromYaml(await f.text()), f.name);
+      } catch (err) {
+        showError(`${f.name}: ${err.message}`);
+      }
     });
     document.getElementById('scene-export').addEventListener('click', () => {
       const url = URL.createObjectURL(new Blob([sceneYaml()], { type: 'text/yaml' }));
@@ -423,16 +960,55 @@
       a.remove();
     });
     document.getElementById('scene-validate').addEventListener('click', async () => {
-      const r = await postJson('/api/validate', { command: state.command, scene: sceneYaml() });
-      if (r.ok) { clearErrors(); document.getElementById('scene-error').textContent = 'scene is valid'; } else showError(r.error);
+      const errors = [];
+      const text = sceneYaml(errors);
+      if (errors.length) {
+        showProblems(errors);
+        return;
+      }
+      const r = await postJson('/api/validate', { command: state.command, scene: text });
+      if (r.ok) {
+        clearErrors();
+        document.getElementById('scene-error').textContent = 'scene is valid';
+      } else showError(r.error);
     });
-    document.getElementById('scene-run').addEventListener('click', () => startRun(state.command, sceneYaml(), ''));
-    document.getElementById('run-cancel').addEventListener('click', () => { if (state.current) postJson(`/api/runs/${state.current}/cancel`, {}); });
+    document.getElementById('scene-run').addEventListener('click', () => {
+      const errors = [];
+      const text = sceneYaml(errors);
+      if (errors.length) {
+        showProblems(errors);
+        return;
+      }
+      if (state.command !== 'sweep') {
+        startRun(state.command, text, '');
+        return;
+      }
+      // A sweep runs on the scene last edited for its engine (saved as scene.yaml beside it).
+      const engine = (formScene().engine || 'lumped').trim();
+      const base = state.saved[engine];
+      if (!base) {
+        showError(`sweep: edit the ${engine} scene first (command ${engine}), then come back to sweep`);
+        return;
+      }
+      startRun('sweep', base.yaml, toYaml(Object.assign(formScene(), { scene: 'scene.yaml' }), 0) + '\n');
+    });
+    document.getElementById('run-cancel').addEventListener('click', () => {
+      if (state.current) postJson(`/api/runs/${state.current}/cancel`, {});
+    });
     await initMotion();
-    initParametric();
+    await initParametric();
     document.body.dataset.ready = '1';
   }
 
-  window.kimpGui = { toYaml: toYaml, fromYaml: fromYaml, sceneYaml: sceneYaml, loadScene: loadScene, startRun: startRun };
-  init().catch((e) => { document.getElementById('scene-error').textContent = String(e); });
+  window.kimpGui = {
+    toYaml: toYaml,
+    fromYaml: fromYaml,
+    sceneYaml: sceneYaml,
+    loadScene: loadScene,
+    startRun: startRun,
+    state: state,
+  };
+  init().catch((e) => {
+    document.getElementById('scene-error').textContent = String(e);
+  });
 })();

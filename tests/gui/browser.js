@@ -3,14 +3,23 @@
 'use strict';
 const path = require('path');
 const fs = require('fs');
+const { spawn } = require('child_process');
 const puppeteer = require(path.join(__dirname, '..', '..', 'gui', 'node_modules', 'puppeteer-core'));
 
 const CHROMIUM = process.env.KIMP_CHROMIUM || '/usr/bin/chromium';
 
 async function launch() {
-  const args = ['--headless=new', '--disable-gpu', '--no-first-run', '--disable-extensions',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync',
-    '--disable-default-apps', '--disable-dev-shm-usage'];
+  const args = [
+    '--headless=new',
+    '--disable-gpu',
+    '--no-first-run',
+    '--disable-extensions',
+    '--disable-background-networking',
+    '--disable-component-update',
+    '--disable-sync',
+    '--disable-default-apps',
+    '--disable-dev-shm-usage',
+  ];
   if (process.getuid && process.getuid() === 0) args.push('--no-sandbox');
   return puppeteer.launch({ executablePath: CHROMIUM, headless: true, args: args });
 }
@@ -20,7 +29,9 @@ async function watchedPage(browser, downloadDir) {
   const page = await browser.newPage();
   await page.setViewport({ width: 1280, height: 900 });
   const log = { errors: [], requests: [] };
-  page.on('console', (m) => { if (m.type() === 'error') log.errors.push(m.text()); });
+  page.on('console', (m) => {
+    if (m.type() === 'error') log.errors.push(m.text());
+  });
   page.on('pageerror', (e) => log.errors.push(String(e)));
   page.on('request', (r) => log.requests.push(r.url()));
   if (downloadDir) {
@@ -45,4 +56,30 @@ function check(condition, message) {
   console.log('ok: ' + message);
 }
 
-module.exports = { launch, watchedPage, waitForFile, check };
+/** `kimp gui` on a free port with its runs in runsDir: {child, url}. */
+function startServer(kimpExe, runsDir) {
+  return new Promise((resolve, reject) => {
+    const child = spawn(kimpExe, ['gui', '--port', '0', '--runs-dir', runsDir], { stdio: ['ignore', 'pipe', 'pipe'] });
+    let out = '';
+    child.stdout.on('data', (d) => {
+      out += d;
+      const m = /(http:\/\/127\.0\.0\.1:\d+\/)/.exec(out);
+      if (m) resolve({ child: child, url: m[1] });
+    });
+    child.on('exit', (code) => reject(new Error(`kimp gui exited with ${code}: ${out}`)));
+  });
+}
+
+/** Set a text field of the scene form and fire its change event. */
+async function setField(page, fieldPath, value) {
+  await page.$eval(
+    `#scene-form [data-path="${fieldPath}"] input, #scene-form input[data-path="${fieldPath}"]`,
+    (input, v) => {
+      input.value = v;
+      input.dispatchEvent(new Event('change', { bubbles: true }));
+    },
+    value,
+  );
+}
+
+module.exports = { launch, watchedPage, waitForFile, check, startServer, setField };

@@ -5,30 +5,9 @@
 'use strict';
 const fs = require('fs');
 const path = require('path');
-const { spawn } = require('child_process');
-const { launch, watchedPage, waitForFile, check } = require('./browser.js');
+const { launch, watchedPage, waitForFile, check, startServer, setField } = require('./browser.js');
 
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-
-function startServer(kimpExe, runsDir) {
-  return new Promise((resolve, reject) => {
-    const child = spawn(kimpExe, ['gui', '--port', '0', '--runs-dir', runsDir], { stdio: ['ignore', 'pipe', 'pipe'] });
-    let out = '';
-    child.stdout.on('data', (d) => {
-      out += d;
-      const m = /(http:\/\/127\.0\.0\.1:\d+\/)/.exec(out);
-      if (m) resolve({ child: child, url: m[1] });
-    });
-    child.on('exit', (code) => reject(new Error(`kimp gui exited with ${code}: ${out}`)));
-  });
-}
-
-async function setField(page, fieldPath, value) {
-  await page.$eval(`#scene-form [data-path="${fieldPath}"] input, #scene-form input[data-path="${fieldPath}"]`, (input, v) => {
-    input.value = v;
-    input.dispatchEvent(new Event('change', { bubbles: true }));
-  }, value);
-}
 
 async function main() {
   const [kimpExe, artefacts] = process.argv.slice(2);
@@ -66,7 +45,9 @@ async function main() {
     await page.waitForSelector('#results .peaks', { timeout: 60000 });
     const runId = await page.$eval('#run-status', (s) => s.textContent.split(':')[0]);
     const summary = JSON.parse(fs.readFileSync(path.join(runsDir, runId, 'out', 'summary.json'), 'utf8'));
-    const peaks = await page.$$eval('#results .peak', (ps) => ps.map((p) => ({ key: p.dataset.key, text: p.textContent, scale: Number(p.dataset.scale) })));
+    const peaks = await page.$$eval('#results .peak', (ps) =>
+      ps.map((p) => ({ key: p.dataset.key, text: p.textContent, scale: Number(p.dataset.scale) })),
+    );
     const kase = summary.cases[0];
     const expected = {
       [`${kase.name}.displacement.0`]: kase.peaks.displacement[0],
@@ -77,8 +58,10 @@ async function main() {
     };
     for (const [key, value] of Object.entries(expected)) {
       const shown = peaks.find((p) => p.key === key);
-      check(shown && Number(shown.text) === Number((value * shown.scale).toPrecision(6)),
-        `peak ${key} on the page (${shown && shown.text}) equals summary.json (${value})`);
+      check(
+        shown && Number(shown.text) === Number((value * shown.scale).toPrecision(6)),
+        `peak ${key} on the page (${shown && shown.text}) equals summary.json (${value})`,
+      );
     }
     check(kase.n_impacts > 0, `the run pounds the walls (${kase.n_impacts} impacts)`);
     await page.screenshot({ path: path.join(artefacts, 'gui_results.png') });
@@ -92,7 +75,10 @@ async function main() {
     await sleep(500);
     const t2 = await page.evaluate(() => window.kimp.animation().state.t);
     const f2 = await page.evaluate(() => window.kimp.animation().state.frame);
-    check(t2 > t1 && f2 > f1, `frames advance while playing (frame ${f1} -> ${f2}, t ${t1.toFixed(2)} -> ${t2.toFixed(2)} s)`);
+    check(
+      t2 > t1 && f2 > f1,
+      `frames advance while playing (frame ${f1} -> ${f2}, t ${t1.toFixed(2)} -> ${t2.toFixed(2)} s)`,
+    );
     await page.click('.anim-play');
     const p1 = await page.evaluate(() => window.kimp.animation().state.t);
     await sleep(500);
@@ -109,19 +95,77 @@ async function main() {
     const title = await page.$eval('#results .chart .chart-title', (t) => t.textContent);
     const file = path.join(downloads, title.replace(/[^A-Za-z0-9_.-]+/g, '_').replace(/^_+|_+$/g, '') + '.svg');
     const svg = await waitForFile(file, 5000);
-    check(svg.startsWith('<svg') && svg.includes('<path d="M') && svg.includes('time (s)'), `chart exported as SVG (${path.basename(file)}, ${svg.length} bytes)`);
+    check(
+      svg.startsWith('<svg') && svg.includes('<path d="M') && svg.includes('time (s)'),
+      `chart exported as SVG (${path.basename(file)}, ${svg.length} bytes)`,
+    );
     fs.copyFileSync(file, path.join(artefacts, 'gui_chart.svg'));
-    // Parametric dialog: a gap sweep of the same scene (10, 15, 20 cm) made into a sweep file and run.
+    // ... and its data as CSV: the header names each column with its unit.
+    await page.$eval('#results .chart .export-csv', (b) => b.click());
+    const csvText = await waitForFile(file.replace(/\.svg$/, '.csv'), 5000);
+    const csvHead = csvText.split('\n')[0];
+    check(csvHead === `"time_s","${kase.name}_displacement_cm"`, `CSV header with units: ${csvHead}`);
+    // Parametric dialog: a gap sweep of the same scene (10, 15, 20 cm) made into a sweep file and
+    // run, then a second parameter (the COR, a list of values) added: the file follows the rows.
     await page.click('header.top nav button[data-tab="parametric"]');
     await page.click('#param-make');
-    const sweep = await page.$eval('#sweep-yaml', (t) => t.value);
-    check(sweep.includes('walls.left.gap, walls.right.gap: {from: "10 cm", to: "20 cm", step: "5 cm"}'), 'the dialog writes the sweep file');
+    let sweep = await page.$eval('#sweep-yaml', (t) => t.value);
+    check(
+      sweep.includes('walls.left.gap, walls.right.gap: {from: "10 cm", to: "20 cm", step: "5 cm"}'),
+      'the dialog writes the sweep file',
+    );
+    await page.click('#param-add');
+    await page.evaluate(() => {
+      const row = document.querySelectorAll('.param-row')[1];
+      const key = row.querySelector('.param-key');
+      key.value = 'impact.cor';
+      key.dispatchEvent(new Event('change'));
+      const mode = row.querySelector('.param-mode');
+      mode.value = 'values';
+      mode.dispatchEvent(new Event('change'));
+      const values = row.querySelector('.param-values');
+      values.value = '0.5, 0.9';
+      values.dispatchEvent(new Event('input', { bubbles: true }));
+    });
+    sweep = await page.$eval('#sweep-yaml', (t) => t.value);
+    check(sweep.includes('impact.cor: ["0.5", "0.9"]'), 'an added row is in the sweep file without "Make sweep file"');
     await page.click('#param-run');
-    await page.waitForFunction(() => document.querySelector('#results h1') && document.querySelector('#results h1').textContent.includes('sweep'),
-      { timeout: 60000 });
+    await page.waitForFunction(
+      () =>
+        document.querySelector('#results h1') && document.querySelector('#results h1').textContent.includes('sweep'),
+      { timeout: 60000 },
+    );
+    await page.waitForSelector('#results table.dsrss');
     const rows = await page.$$eval('#results details', (ds) => ds.map((d) => d.querySelector('summary').textContent));
-    check(rows.some((r) => r === 'sweep.csv'), `sweep results shown (${rows.join(', ')})`);
-    await page.screenshot({ path: path.join(artefacts, 'gui_sweep.png') });
+    check(
+      rows.some((r) => r === 'sweep.csv'),
+      `sweep results shown (${rows.join(', ')})`,
+    );
+    // The d_SRSS table (companion runs on): its values are dsrss_table.csv's, one row per COR.
+    const sweepId = await page.$eval('#run-status', (st) => st.textContent.split(':')[0]);
+    const csv = fs
+      .readFileSync(path.join(runsDir, sweepId, 'out', 'dsrss_table.csv'), 'utf8')
+      .trim()
+      .split('\n');
+    const dsrssCol = csv[0].split(',').indexOf('d_srss_m');
+    const shown = await page.$$eval('#results table.dsrss .d-srss', (es) => es.map((e) => Number(e.dataset.si)));
+    check(
+      shown.length === csv.length - 1 && shown.every((v, i) => v === Number(csv[i + 1].split(',')[dsrssCol])),
+      `d_SRSS on the page equals dsrss_table.csv (${shown.map((v) => (v * 100).toFixed(2)).join(', ')} cm)`,
+    );
+    // sweep.csv over the gap: one series per COR, not one zig-zag through both.
+    const labels = await page.evaluate(() =>
+      window.kimp
+        .charts()
+        .find((c) => c.title.startsWith('sweep.csv'))
+        .plot.series.slice(1)
+        .map((x) => x.label),
+    );
+    check(
+      labels.length === 2 && labels[0] === 'impact.cor = 0.5' && labels[1] === 'impact.cor = 0.9',
+      `sweep chart grouped by the second parameter (${labels.join(' | ')})`,
+    );
+    await page.screenshot({ path: path.join(artefacts, 'gui_sweep.png'), fullPage: true });
     check(log.errors.length === 0, `no console error (${log.errors.join(' | ') || 'none'})`);
   } finally {
     await browser.close();
@@ -129,4 +173,7 @@ async function main() {
   }
 }
 
-main().catch((e) => { console.error(e); process.exit(1); });
+main().catch((e) => {
+  console.error(e);
+  process.exit(1);
+});

@@ -20,7 +20,9 @@ async function main() {
     await page.waitForSelector('.chart canvas');
     const nCharts = await page.$$eval('.chart', (cs) => cs.length);
     check(nCharts > 0, `${nCharts} charts drawn`);
-    const foreign = log.requests.filter((u) => !u.startsWith('file://') && !u.startsWith('blob:') && !u.startsWith('data:'));
+    const foreign = log.requests.filter(
+      (u) => !u.startsWith('file://') && !u.startsWith('blob:') && !u.startsWith('data:'),
+    );
     check(foreign.length === 0, `no network request (${foreign.join(' ') || 'none'})`);
     await page.screenshot({ path: path.join(artefacts, path.basename(dir) + '_report.png'), fullPage: false });
     // Export the first chart as SVG and check that it is a drawing of the chart.
@@ -32,7 +34,10 @@ async function main() {
     // The same chart as PDF: a vector page written by kimp.js (paths and Helvetica text).
     await page.$eval('.chart .export-pdf', (b) => b.click());
     const pdf = await waitForFile(path.join(downloads, name.replace(/\.svg$/, '.pdf')), 5000);
-    check(pdf.startsWith('%PDF-1.4') && pdf.includes(' l\n') && pdf.trimEnd().endsWith('%%EOF'), `exported ${name.replace(/\.svg$/, '.pdf')} is a vector PDF`);
+    check(
+      pdf.startsWith('%PDF-1.4') && pdf.includes(' l\n') && pdf.trimEnd().endsWith('%%EOF'),
+      `exported ${name.replace(/\.svg$/, '.pdf')} is a vector PDF`,
+    );
     // A lumped run with an isolator shows its hysteresis loop (force against the isolation
     // displacement) whose largest force is the summary's peak within the history sampling.
     const summary = JSON.parse(fs.readFileSync(path.join(dir, 'summary.json'), 'utf8'));
@@ -46,8 +51,10 @@ async function main() {
       });
       check(loop !== null && loop.n > 10, `isolator hysteresis loop drawn (${loop ? loop.n : 0} points)`);
       const peak = withIsolator.isolator.peak_force * 1e-6;
-      check(loop.max <= peak * (1 + 1e-9) && loop.max > 0.5 * peak,
-        `loop's largest force ${loop.max.toFixed(4)} MN within the peak ${peak.toFixed(4)} MN`);
+      check(
+        loop.max <= peak * (1 + 1e-9) && loop.max > 0.5 * peak,
+        `loop's largest force ${loop.max.toFixed(4)} MN within the peak ${peak.toFixed(4)} MN`,
+      );
     }
     if (await page.$('svg.animation')) {
       await page.$eval('.anim-play', (b) => b.click());
@@ -55,18 +62,85 @@ async function main() {
       const t = await page.evaluate(() => window.kimp.animation().state.t);
       check(t > 0, `animation plays from file:// (t = ${t})`);
     }
+    // Impact pulses at full rate (force_full_rate): the largest force drawn of a contact is its
+    // peak force of summary.json (7 significant digits in the report).
+    const hit = (summary.cases || []).flatMap((c) =>
+      (c.contacts || []).filter((k) => k.impacts && k.impacts.length).map((k) => [c, k]),
+    );
+    if (hit.length) {
+      const [c, k] = hit[0];
+      const drawn = await page.evaluate((name) => {
+        const ch = window.kimp.charts().find((x) => x.title === `impact force pulses at full rate: ${name}`);
+        if (!ch) return null;
+        let m = 0;
+        for (const ys of ch.plot.data.slice(1))
+          for (const y of ys) if (y !== null && y !== undefined) m = Math.max(m, y);
+        return { max: m, n: ch.plot.data[0].length };
+      }, k.name);
+      check(drawn !== null && drawn.n > 50, `${k.name}: pulses drawn at full rate (${drawn ? drawn.n : 0} samples)`);
+      const peak = k.peak_force * 1e-6;
+      check(
+        Math.abs(drawn.max - peak) <= 1e-6 * peak,
+        `${c.name} ${k.name}: largest pulse force ${drawn.max} MN = peak force ${peak} MN (1e-6)`,
+      );
+    }
+    if (summary.command === 'study') {
+      // k(H): one chart per law, one series per impact velocity (plus the thesis), y in its unit.
+      const kh = await page.evaluate(() =>
+        window.kimp
+          .charts()
+          .filter((x) => / k\(H\)/.test(x.title))
+          .map((x) => ({ y: x.ylabel, labels: x.plot.series.slice(1).map((s) => s.label) })),
+      );
+      check(
+        kh.length === 2 && kh[0].y === 'k (kN/mm/m)' && kh[1].y === 'k (kN/mm^1.5/m)',
+        `k(H) charts per law with their units (${kh.map((x) => x.y).join(', ')})`,
+      );
+      const rows = fs.readFileSync(path.join(dir, 'k_table.csv'), 'utf8').trim().split('\n');
+      const vcol = rows[0].split(',').indexOf('impact_velocity_m_per_s');
+      const nv = new Set(rows.slice(1).map((r) => r.split(',')[vcol])).size;
+      check(
+        kh[0].labels.filter((l) => l.startsWith('v = ')).length >= nv,
+        `one series per impact velocity (${nv}): ${kh[0].labels.join(' | ')}`,
+      );
+    }
+    if (summary.command === 'fit' || fs.existsSync(path.join(dir, 'fit.h5'))) {
+      const fit = await page.evaluate(() =>
+        window.kimp
+          .charts()
+          .filter((x) => x.title.endsWith('FEM contact force and the fitted laws'))
+          .map((x) => x.plot.series.slice(1).map((s) => s.label)),
+      );
+      check(
+        fit.length > 0 && fit[0][0] === 'FEM' && fit[0].length > 1,
+        `FEM force with the fitted laws: ${fit[0].join(' | ')}`,
+      );
+      const ks = await page.$$eval('table.fit-table .fit-k', (es) => es.map((e) => e.textContent));
+      check(ks.length > 0 && ks.every((t) => /kN\/mm(\^[\d.]+)?\/m$/.test(t)), `k table with units: ${ks.join(', ')}`);
+    }
     if (summary.command === 'fem') {
       // The FEM summary table: every case's peak force and COR as in summary.json, in kN/m and
       // to 4 significant figures (the file keeps full precision).
-      const shown = await page.$$eval('table.fem-summary .fem-summary-value',
-        (vs) => vs.map((v) => ({ key: v.getAttribute('data-key'), si: Number(v.getAttribute('data-si')), text: v.textContent })));
+      const shown = await page.$$eval('table.fem-summary .fem-summary-value', (vs) =>
+        vs.map((v) => ({
+          key: v.getAttribute('data-key'),
+          si: Number(v.getAttribute('data-si')),
+          text: v.textContent,
+        })),
+      );
       for (const c of summary.cases) {
         const peak = shown.find((v) => v.key === `${c.name}.peak_force`);
-        check(peak !== undefined && peak.si === c.peak_force && peak.text === String(Number((c.peak_force * 1e-3).toPrecision(4))),
-          `FEM summary: ${c.name} peak force ${peak ? peak.text : '(missing)'} kN/m from ${c.peak_force} N/m`);
+        check(
+          peak !== undefined &&
+            peak.si === c.peak_force &&
+            peak.text === String(Number((c.peak_force * 1e-3).toPrecision(4))),
+          `FEM summary: ${c.name} peak force ${peak ? peak.text : '(missing)'} kN/m from ${c.peak_force} N/m`,
+        );
         const cor = shown.find((v) => v.key === `${c.name}.apparent_cor`);
-        check(cor !== undefined && cor.text.replace('-', '').replace('.', '').replace(/^0+/, '').length <= 4,
-          `FEM summary: ${c.name} COR shown to 4 significant figures (${cor ? cor.text : '(missing)'})`);
+        check(
+          cor !== undefined && cor.text.replace('-', '').replace('.', '').replace(/^0+/, '').length <= 4,
+          `FEM summary: ${c.name} COR shown to 4 significant figures (${cor ? cor.text : '(missing)'})`,
+        );
       }
     }
     if (await page.$('svg.fem-animation')) {
@@ -83,8 +157,32 @@ async function main() {
       await new Promise((r) => setTimeout(r, 400));
       const f2 = await page.evaluate(() => window.kimp.femAnimation().state.frame);
       check(f2 === held, `pause holds the frame (${held} -> ${f2})`);
+      // A click on the force history moves the mesh to the frame nearest that time.
+      const target = await page.evaluate(() => {
+        const c = window.kimp.charts().find((x) => x.title.endsWith(': contact force'));
+        const ts = window.kimp.femAnimation().state.mesh.time;
+        const t = ts[Math.floor(ts.length / 2)];
+        c.plot.over.scrollIntoView();
+        const r = c.plot.over.getBoundingClientRect();
+        return { x: r.x + c.plot.valToPos(t, 'x'), y: r.y + r.height / 2, t: t };
+      });
+      await page.mouse.click(target.x, target.y);
+      const clicked = await page.evaluate(() => window.kimp.femAnimation().time());
+      const dtFrame = await page.evaluate(() => {
+        const ts = window.kimp.femAnimation().state.mesh.time;
+        return ts[1] - ts[0];
+      });
+      check(
+        Math.abs(clicked - target.t) <= dtFrame,
+        `clicking the force history at ${target.t} s shows the frame at ${clicked} s`,
+      );
+      const scrubWidth = await page.$eval('.fem-scrub', (x) => x.getBoundingClientRect().width);
+      check(scrubWidth > 600, `the FEM scrub slider spans the animation (${scrubWidth} px)`);
       const fields = await page.$$eval('.fem-field option', (os) => os.map((o) => o.value));
-      check(fields.includes('von_mises_stress') && fields.includes('mean_stress'), `fields to colour by: ${fields.join(', ')}`);
+      check(
+        fields.includes('von_mises_stress') && fields.includes('mean_stress'),
+        `fields to colour by: ${fields.join(', ')}`,
+      );
       await page.$eval('svg.fem-animation', (s) => s.scrollIntoView());
       await page.screenshot({ path: path.join(artefacts, path.basename(dir) + '_fem_mesh.png') });
       if (fields.includes('contact_pressure')) {
@@ -98,16 +196,32 @@ async function main() {
           a.seek(i);
           return { frame: i, force: force[i] };
         });
-        check(peak.force > 0, `frame ${peak.frame} has the largest integrated contact pressure (${(peak.force * 1e-3).toFixed(1)} kN/m)`);
-        const colours = () => page.$$eval('svg.fem-animation polygon, svg.fem-animation polyline', (ps) => ps.map((p) => p.getAttribute('fill') + '/' + p.getAttribute('stroke')).join(';'));
+        check(
+          peak.force > 0,
+          `frame ${peak.frame} has the largest integrated contact pressure (${(peak.force * 1e-3).toFixed(1)} kN/m)`,
+        );
+        const colours = () =>
+          page.$$eval('svg.fem-animation polygon, svg.fem-animation polyline', (ps) =>
+            ps.map((p) => p.getAttribute('fill') + '/' + p.getAttribute('stroke')).join(';'),
+          );
         const before = await colours();
         await page.select('.fem-field', 'contact_pressure');
         const after = await colours();
         check(after !== before, 'choosing contact pressure changes the drawn colours');
-        const face = await page.$$eval('svg.fem-animation polyline.contact-face', (ls) => ls.map((l) => l.getAttribute('stroke')));
-        const nodes = await page.evaluate(() => window.kimp.femAnimation().state.mesh.fields.contact_pressure.nodes.length);
-        check(face.length === nodes && new Set(face).size > 1, `contact face drawn: ${face.length} pieces for ${nodes} nodes, ${new Set(face).size} colours`);
-        const neutral = await page.$$eval('svg.fem-animation polygon', (ps) => ps.filter((p) => p.getAttribute('fill') === '#d9d9d9').length);
+        const face = await page.$$eval('svg.fem-animation polyline.contact-face', (ls) =>
+          ls.map((l) => l.getAttribute('stroke')),
+        );
+        const nodes = await page.evaluate(
+          () => window.kimp.femAnimation().state.mesh.fields.contact_pressure.nodes.length,
+        );
+        check(
+          face.length === nodes && new Set(face).size > 1,
+          `contact face drawn: ${face.length} pieces for ${nodes} nodes, ${new Set(face).size} colours`,
+        );
+        const neutral = await page.$$eval(
+          'svg.fem-animation polygon',
+          (ps) => ps.filter((p) => p.getAttribute('fill') === '#d9d9d9').length,
+        );
         check(neutral > 0.5 * nCells, `the rest of the mesh neutral (${neutral} of ${nCells} cells)`);
         const bar = await page.$eval('svg.fem-animation', (s) => s.textContent);
         check(/contact pressure \((kPa|MPa)\)/.test(bar), 'colour bar in kPa or MPa');
@@ -120,4 +234,7 @@ async function main() {
   }
 }
 
-main().catch((e) => { console.error(e); process.exit(1); });
+main().catch((e) => {
+  console.error(e);
+  process.exit(1);
+});
