@@ -1058,7 +1058,7 @@ const kimp = (function () {
     ['damage_dissipation_wall', 'damage dissipation in the wall (J/m)', 1], ['contact_dissipation', 'contact dissipation (J/m)', 1],
     ['radiated_energy', 'radiated energy (J/m)', 1], ['energy_error', 'energy balance error (of E_0)', 1],
     ['n_dofs', 'DoFs', null], ['n_steps', 'steps', null], ['dt', 'time step (µs)', 1e6],
-    ['dt_stable', 'stable limit (µs)', 1e6], ['wall_seconds', 'solver time (s)', 1],
+    ['dt_stable', 'stable limit (µs)', 1e6], ['wall_time', 'solver time (s)', 1],
   ];
 
   function femSummarySection(parent, summary) {
