@@ -11,6 +11,7 @@
 
 #include "base/errors.h"
 #include "base/logging.h"
+#include "base/version.h"
 #include "io/results_file.h"
 #include "io/units.h"
 
@@ -301,20 +302,28 @@ namespace kimp::app
 
     nlohmann::json summary;
     summary["command"]   = "collide";
+    summary["kimp"]      = version_line();
     summary["scene"]     = loaded.file_name;
     summary["wall_time"] = wall_time;
+    summary["units"]     = {{"mass_1", "kg"},
+                            {"mass_2", "kg"},
+                            {"velocity", "m/s"},
+                            {"time_step", "s"},
+                            {"peak_force", "N"},
+                            {"wall_time", "s"}};
     summary["setup"]     = {{"mass_1", scene.mass_1},
                             {"mass_2", scene.mass_2},
                             {"velocity", scene.velocity},
                             {"time_step", scene.time_step}};
-    summary["cor_table"] = nlohmann::json::array();
+    // One case per law, in the shape of every command's summary.json (name, status).
+    summary["cases"] = nlohmann::json::array();
     for (const CollideRow &r : rows)
-      summary["cor_table"].push_back({{"law", r.name},
-                                      {"nominal_cor", r.row.nominal_cor},
-                                      {"effective_cor", r.row.effective_cor},
-                                      {"relative_error", r.row.relative_error},
-                                      {"peak_force", r.row.peak_force},
-                                      {"status", r.status}});
+      summary["cases"].push_back({{"name", r.name},
+                                  {"nominal_cor", r.row.nominal_cor},
+                                  {"effective_cor", r.row.effective_cor},
+                                  {"relative_error", r.row.relative_error},
+                                  {"peak_force", r.row.peak_force},
+                                  {"status", r.status}});
     if (calibration)
       summary["calibration"] = {{"fit",
                                  {{"c", calibration->c},

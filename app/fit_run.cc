@@ -1,6 +1,7 @@
 // `kimp fit`: FEM force histories -> impact stiffness table (docs/physics.md §4 "Fit").
 #include "app/fit_run.h"
 
+#include <chrono>
 #include <cstdint>
 #include <fmt/format.h>
 #include <memory>
@@ -9,6 +10,7 @@
 #include "base/errors.h"
 #include "base/format.h"
 #include "base/logging.h"
+#include "base/version.h"
 #include "io/results_file.h"
 #include "io/summary.h"
 
@@ -102,12 +104,9 @@ namespace kimp::app
     const bool separated = stopped != fem_case.labels.end() && stopped->second == "separation";
     // Only an inelastic wall can give way: a linear wall may still be chattering with a rigid
     // slab at the end time, which is not failure.
-    const auto extra = [&](const char *key)
-    {
-      const auto it = fem_case.summary.extra.find(key);
-      return it == fem_case.summary.extra.end() ? 0.0 : it->second;
-    };
-    const double dissipated = extra("plastic_dissipation") + extra("damage_dissipation");
+    const double damage     = fem_case.summary.damage_dissipation.value_or(0.0);
+    const double plastic    = fem_case.summary.plastic_dissipation.value_or(0.0);
+    const double dissipated = plastic + damage;
     const double energy =
       0.5 * fem_case.slab_mass * fem_case.impact_velocity * fem_case.impact_velocity;
     const std::string from_fit = fit_verdict(fit);
@@ -122,8 +121,8 @@ namespace kimp::app
         "impact (damage {:.4g} J/m, plastic {:.4g} J/m), so the run has no impact stiffness",
         *cor,
         100.0 * *cor * *cor,
-        extra("damage_dissipation"),
-        extra("plastic_dissipation"));
+        damage,
+        plastic);
     if (from_fit.rfind("failed", 0) == 0)
       return from_fit;
     // Stopped, not rebounded: less than 1 % of the impact energy leaves with the slab.
@@ -150,6 +149,7 @@ namespace kimp::app
     if (!(config.displacement_weight >= 0.0))
       throw std::invalid_argument(
         fmt::format("fit: displacement_weight = {} (must be >= 0)", config.displacement_weight));
+    const auto                 start = std::chrono::steady_clock::now();
     const std::vector<FemCase> cases = read_fem_cases(options.fem_file);
     const OutputDir            output(options.output);
 
@@ -278,12 +278,16 @@ namespace kimp::app
     file.commit();
     nlohmann::json summary;
     summary["command"]  = "fit";
+    summary["kimp"]     = version_line();
     summary["fem_file"] = options.fem_file.string();
+    summary["wall_time"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     summary["options"]  = resolved;
     summary["units"]    = {{"wall_height", "m"},
                            {"width", "m"},
                            {"cor", "1"},
-                           {"normalised_rms", "1"}};
+                           {"normalised_rms", "1"},
+                           {"wall_time", "s"}};
     summary["n_failed"] = failures;
     summary["cases"]    = case_summaries;
     write_json_atomic(output.file("summary.json"), summary);

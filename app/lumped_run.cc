@@ -11,6 +11,8 @@
 #include "base/errors.h"
 #include "base/format.h"
 #include "base/logging.h"
+#include "base/version.h"
+#include "fit/fitter.h"
 #include "io/results_file.h"
 #include "io/units.h"
 #include "lumped/integrators/central_difference.h"
@@ -24,6 +26,25 @@ namespace kimp::app
   namespace
   {
     using Clock = std::chrono::steady_clock;
+
+    /// AdaptiveStepReport::text() with a few significant figures.
+    std::string variable_step_text(const lumped::AdaptiveStepReport &r)
+    {
+      return fmt::format("variable step: {} s, {} s approaching, {} s at contacts ({} windows, "
+                         "{} steps of which {} below the large step, +{} for the estimate); "
+                         "estimated errors: peak force {} %, peak acceleration {} %, peak "
+                         "displacement {} %",
+                         base::sig(r.dt_large, 3),
+                         base::sig(r.dt_approach, 3),
+                         base::sig(r.dt_contact, 3),
+                         r.windows,
+                         r.steps,
+                         r.contact_steps_taken,
+                         r.estimate_steps,
+                         base::sig(100.0 * r.force_error, 2),
+                         base::sig(100.0 * r.acceleration_error, 2),
+                         base::sig(100.0 * r.displacement_error, 2));
+    }
 
     double seconds_since(const Clock::time_point start)
     {
@@ -550,7 +571,8 @@ namespace kimp::app
               result.response            = std::move(same);
             }
           }
-          logger().info("case {}: {}", name, report.text());
+          // Per case at -v; the study and the summary.json give the largest errors.
+          logger().debug("case {}: {}", name, variable_step_text(report));
           if (report.force_error > variable_step_warning)
             logger().warn("case {}: dt auto estimates the peak impact force within {:.2g} %, "
                           "above {:.2g} %: raise integration.contact_steps or use a fixed dt",
@@ -623,6 +645,7 @@ namespace kimp::app
              const OutputDir                            &output,
              const std::optional<std::filesystem::path> &records_dir_override)
   {
+    const Clock::time_point    start  = Clock::now();
     const LumpedScene         &scene  = loaded.scene;
     const lumped::GroundMotion motion = load_ground_motion_at(scene.ground_motion,
                                                               records_dir_override,
@@ -636,6 +659,33 @@ namespace kimp::app
                   motion.pga() / lumped::standard_gravity);
 
     const auto cases = resolve_cases(scene);
+    // Which k each case took from a study's k table (summary.json "impact_k" and the log).
+    std::vector<nlohmann::json> k_from_table(cases.size());
+    for (std::size_t i = 0; i < cases.size(); ++i)
+    {
+      const ImpactScene &impact = cases[i].second.impact;
+      if (impact.k_table.empty() || impact.k_si || impact.law == "bumper" || !impact.wall_height)
+        continue;
+      try
+      {
+        const double k        = impact_stiffness(impact);
+        const double exponent = impact_exponent(impact);
+        logger().info("case {}: impact k = {} {} from the k table {} at wall height {} m",
+                      cases[i].first,
+                      base::sig(fit::stiffness_to_kn_per_mm(k, exponent)),
+                      fit::stiffness_display_unit(exponent),
+                      impact.k_table,
+                      base::sig(*impact.wall_height));
+        k_from_table[i] = {{"k_table", impact.k_table},
+                           {"wall_height", *impact.wall_height},
+                           {"k", k},
+                           {"unit", fit::stiffness_si_unit(exponent)}};
+      }
+      catch (const std::exception &)
+      {
+        // run_lumped_case() records why the case cannot run.
+      }
+    }
     // The cases' own records (cases[i].record) before any run, so that a missing one is an error
     // at its key rather than a run stopped half-way.
     std::vector<std::optional<lumped::GroundMotion>> own_motions(cases.size());
@@ -712,7 +762,9 @@ namespace kimp::app
 
     nlohmann::json summary;
     summary["command"]       = "lumped";
+    summary["kimp"]          = base::version_line();
     summary["scene"]         = loaded.file_name;
+    summary["wall_time"]     = seconds_since(start);
     summary["ground_motion"] = {{"name", motion.name},
                                 {"dt", motion.dt},
                                 {"duration", motion.duration()},
@@ -722,10 +774,15 @@ namespace kimp::app
                                 {"force", "N"},
                                 {"time", "s"},
                                 {"velocity", "m/s"},
-                                {"energy", "J"}};
+                                {"energy", "J"},
+                                {"wall_time", "s"}};
     summary["cases"]         = nlohmann::json::array();
-    for (const LumpedCaseResult &r : results)
-      summary["cases"].push_back(case_summary(r));
+    for (std::size_t i = 0; i < results.size(); ++i)
+    {
+      summary["cases"].push_back(case_summary(results[i]));
+      if (i < k_from_table.size() && !k_from_table[i].is_null())
+        summary["cases"].back()["impact_k"] = k_from_table[i];
+    }
     write_json_atomic(output.file("summary.json"), summary);
 
     std::vector<std::vector<std::string>> rows;

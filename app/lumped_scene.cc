@@ -340,7 +340,17 @@ namespace kimp::app
   void validate(const LumpedScene &scene, ValidationContext &ctx)
   {
     const bool isolated = scene.building.kind == BuildingKind::isolated;
-    // building: single-key ranges are declared in visit() and enforced by the reader.
+    // building: single-key ranges are declared in visit() and enforced by the reader; masses
+    // below 1 kg (a slip of the unit, or a denormal that passes "> 0") are no storey, and the
+    // modal analysis cannot take them.
+    {
+      const auto           scope = ctx.section("building");
+      const BuildingScene &b     = scene.building;
+      for (const auto &[key, mass] : {std::pair{"floor_mass", b.floor_mass},
+                                      std::pair{"top_mass", b.top_mass},
+                                      std::pair{"isolation_mass", b.isolation_mass}})
+        ctx.check(!(mass < 1.0), key, format_quantity(mass, "t"), "must be >= 1 kg (a storey)");
+    }
     if (isolated)
     {
       const auto           scope = ctx.section("isolator");

@@ -2,14 +2,17 @@
 // Hertzdamp and ImpactMaterial (Muthukumar's bilinear approximation of the Hertz law).
 #include "app/opensees_export.h"
 
+#include <chrono>
 #include <cmath>
 #include <fmt/format.h>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <vector>
 
 #include "app/k_table.h"
 #include "base/logging.h"
+#include "base/version.h"
 #include "io/summary.h"
 
 namespace kimp::app
@@ -194,6 +197,7 @@ namespace kimp::app
 
   void run_export_opensees(ExportOpenSeesOptions options)
   {
+    const auto                   start       = std::chrono::steady_clock::now();
     OpenSeesLawInput            &laws        = options.settings.laws;
     const std::optional<double> &wall_height = options.settings.wall_height;
     if (!options.source.empty())
@@ -216,8 +220,63 @@ namespace kimp::app
     const io::OutputDir output(options.output);
     io::write_text_atomic(output.file("opensees_impact.tcl"), tcl);
     io::write_text_atomic(output.file("opensees_impact.py"), python);
-    base::logger().info("export-opensees: wrote {} and {}",
+
+    const OpenSeesParameters p = opensees_parameters(laws);
+    nlohmann::ordered_json   j;
+    j["command"] = "export-opensees";
+    j["kimp"]    = base::version_line();
+    j["source"] =
+      laws.source.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(laws.source);
+    j["k_table"] = options.source.empty() ? nlohmann::ordered_json() :
+                                            nlohmann::ordered_json(options.source.string());
+    j["wall_height"] =
+      wall_height ? nlohmann::ordered_json(*wall_height) : nlohmann::ordered_json();
+    j["units"]          = {{"wall_height", "m"},
+                           {"k_kelvin_voigt", "N/m"},
+                           {"k_hertz", "N/m^1.5"},
+                           {"effective_mass", "kg"},
+                           {"impact_velocity", "m/s"},
+                           {"gap", "m"},
+                           {"kv_c", "N*s/m"},
+                           {"kv_delta_max", "m"},
+                           {"pp_yield_force", "N"},
+                           {"delta_m", "m"},
+                           {"energy", "J"},
+                           {"k_eff", "N/m"},
+                           {"delta_y", "m"},
+                           {"k1", "N/m"},
+                           {"k2", "N/m"},
+                           {"wall_time", "s"}};
+    const auto optional = [](const std::optional<double> &v)
+    { return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(); };
+    j["input"]      = {{"k_kelvin_voigt", optional(laws.k_kelvin_voigt)},
+                       {"k_hertz", optional(laws.k_hertz)},
+                       {"cor", laws.cor},
+                       {"effective_mass", laws.effective_mass},
+                       {"impact_velocity", laws.impact_velocity},
+                       {"gap", laws.gap},
+                       {"yield_ratio", laws.yield_ratio},
+                       {"first_tag", laws.first_tag}};
+    j["parameters"] = {{"kv_xi", p.kv_xi},
+                       {"kv_c", p.kv_c},
+                       {"kv_delta_max", p.kv_delta_max},
+                       {"pp_yield_force", p.pp_yield_force},
+                       {"jankowski_xi", p.jankowski_xi},
+                       {"hertzdamp_xi_norm", p.hertzdamp_xi_norm},
+                       {"hertzdamp_xi_norm_ye", p.hertzdamp_xi_norm_ye},
+                       {"delta_m", p.delta_m},
+                       {"energy", p.energy},
+                       {"k_eff", p.k_eff},
+                       {"delta_y", p.delta_y},
+                       {"k1", p.k1},
+                       {"k2", p.k2}};
+    j["files"]      = {"opensees_impact.tcl", "opensees_impact.py"};
+    j["wall_time"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    io::write_text_atomic(output.file("summary.json"), j.dump(2) + "\n");
+    base::logger().info("export-opensees: wrote {}, {} and {}",
                         output.file("opensees_impact.tcl").string(),
-                        output.file("opensees_impact.py").string());
+                        output.file("opensees_impact.py").string(),
+                        output.file("summary.json").string());
   }
 } // namespace kimp::app

@@ -4,7 +4,9 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
+#include <fmt/format.h>
 #include <functional>
 #include <iosfwd>
 #include <memory>
@@ -161,6 +163,23 @@ namespace kimp::cli
   }
 
   /**
+   * A default of --help with a few significant figures: "195.121951219512 t" -> "≈195.1 t"
+   * (the exact value is in --print-defaults); other texts unchanged.
+   */
+  inline std::string readable_default(const std::string &text)
+  {
+    const char  *begin = text.c_str();
+    char        *end   = nullptr;
+    const double value = std::strtod(begin, &end);
+    if (end == begin || (*end != '\0' && *end != ' '))
+      return text;
+    const std::string short_number = fmt::format("{:.4g}", value);
+    if (std::strtod(short_number.c_str(), nullptr) == value)
+      return text;
+    return "≈" + short_number + std::string(end);
+  }
+
+  /**
    * Adds one option `--<key>` (underscores written as dashes) per top-level key of Settings'
    * visit(): a quantity or text takes a value (`--width "27.78 m"`), a flag is a flag
    * (`--raw-force`, `--raw-force=false`). The returned function reads the options given as a
@@ -199,10 +218,11 @@ namespace kimp::cli
           !key.at("unit").get<std::string>().empty())
         help += " [unit: " + key.at("unit").get<std::string>() + "]";
       if (key.contains("default"))
-        help += " (default " +
-                (key.at("default").is_string() ? key.at("default").get<std::string>() :
-                                                 key.at("default").dump()) +
-                ")";
+        help +=
+          " (default " +
+          (key.at("default").is_string() ? readable_default(key.at("default").get<std::string>()) :
+                                           key.at("default").dump()) +
+          ")";
       e.option = e.is_flag ? command.add_flag(name, e.flag, help) :
                              command.add_option(name, e.text, help)->type_name("VALUE");
     }

@@ -1,6 +1,7 @@
 // `kimp lumped SCENE.yaml -o DIR`: a pounding analysis of every case of a lumped scene.
 // Parses the command's options and calls kimp::app.
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include "app/lumped_run.h"
 #include "base/logging.h"
@@ -36,10 +37,19 @@ namespace kimp::cli
             ++n_failed;
             failed += "\n  " + r.name + ": " + r.status;
           }
+        if (n_failed == results.size())
+          throw std::runtime_error(fmt::format("{} of {} cases failed, no results ({} status is "
+                                                   "in {}):{}",
+                                               n_failed,
+                                               n_failed,
+                                               n_failed == 1 ? "its" : "their",
+                                               (output.path() / "summary.json").string(),
+                                               failed));
         if (n_failed > 0)
-          throw std::runtime_error(
-            std::to_string(n_failed) + " of " + std::to_string(results.size()) +
-            " cases failed (the others are written to " + output.path().string() + "):" + failed);
+          throw std::runtime_error(std::to_string(n_failed) + " of " +
+                                   std::to_string(results.size()) +
+                                   " cases failed (the other results are written to " +
+                                   output.path().string() + "):" + failed);
       });
     *records_dir = command->add_option("--records-dir",
                                        "directory of PEER records (overrides the scene's "

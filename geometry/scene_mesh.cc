@@ -193,14 +193,17 @@ namespace kimp::geometry
 
   std::ostream &operator<<(std::ostream &out, const MeshStatistics &s)
   {
-    return out << s.n_nodes << " nodes, " << s.n_cells << " quads (slab " << s.n_slab_cells
-               << ", wall " << s.n_wall_cells << ", soil " << s.n_soil_cells
-               << "), contact faces slab " << s.n_slab_contact_faces << " / wall "
-               << s.n_wall_contact_faces << ", cell size " << s.min_cell_size << " to "
-               << s.max_cell_size << " m (contact " << s.contact_cell_size
-               << " m), neighbour ratio <= " << s.max_neighbour_ratio
-               << ", aspect ratio <= " << s.max_aspect_ratio << ", min scaled Jacobian "
-               << s.min_scaled_jacobian;
+    // Lengths and ratios with 4 significant figures (a log line, not data).
+    const std::streamsize precision = out.precision(4);
+    out << s.n_nodes << " nodes, " << s.n_cells << " quads (slab " << s.n_slab_cells << ", wall "
+        << s.n_wall_cells << ", soil " << s.n_soil_cells << "), contact faces slab "
+        << s.n_slab_contact_faces << " / wall " << s.n_wall_contact_faces << ", cell size "
+        << s.min_cell_size << " to " << s.max_cell_size << " m (contact " << s.contact_cell_size
+        << " m), neighbour ratio <= " << s.max_neighbour_ratio
+        << ", aspect ratio <= " << s.max_aspect_ratio << ", min scaled Jacobian "
+        << s.min_scaled_jacobian;
+    out.precision(precision);
+    return out;
   }
 
 

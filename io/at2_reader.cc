@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <fmt/format.h>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -645,7 +646,24 @@ namespace kimp::io
     const SplitText split = split_lines(content);
     for (std::size_t i = 0; i < std::min(split.lines.size(), at2_max_header_lines); ++i)
       if (is_npts_dt_line(split.lines[i].text))
+      {
+        // An AT2 file is read in the unit its header states: a unit for two-column text that
+        // says otherwise is a mistake, not something to ignore silently.
+        if (two_column_unit)
+        {
+          const double stated = header_unit(split.lines, i, source);
+          if (std::abs(stated - *two_column_unit) > 1e-9 * stated)
+            fail(source,
+                 split.lines[i].number,
+                 fmt::format("a PEER AT2 file whose header states its unit (1 unit = {:.6g} "
+                             "m/s^2), but the scene's record_unit gives 1 unit = {:.6g} m/s^2 "
+                             "(expected no record_unit: it is for two-column text; an AT2 file "
+                             "is read in the unit of its header)",
+                             stated,
+                             *two_column_unit));
+        }
         return parse_at2(content, source);
+      }
 
     for (const Line &line : split.lines)
     {

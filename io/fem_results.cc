@@ -1,9 +1,11 @@
 // FEM impact results: /fem/<case> written through ResultsGroup, read back with the HDF5 C API.
 #include "io/fem_results.h"
 
+#include <cmath>
 #include <cstdint>
 #include <fmt/format.h>
 #include <hdf5.h>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <utility>
 
@@ -50,68 +52,77 @@ namespace kimp::io
       return fields;
     }
 
-    /// The named fields of FemSummary.
-    const std::vector<std::pair<const char *, std::optional<double> FemSummary::*>> &
-    summary_fields()
+    /// A field of FemSummary: a real value or a count, with its units.
+    struct SummaryField
     {
-      static const std::vector<std::pair<const char *, std::optional<double> FemSummary::*>>
-        fields = {{"peak_force", &FemSummary::peak_force},
-                  {"peak_force_raw", &FemSummary::peak_force_raw},
-                  {"contact_start", &FemSummary::contact_start},
-                  {"contact_duration", &FemSummary::contact_duration},
-                  {"impulse", &FemSummary::impulse},
-                  {"rebound_velocity", &FemSummary::rebound_velocity},
-                  {"apparent_cor", &FemSummary::apparent_cor},
-                  {"energy_error", &FemSummary::energy_error},
-                  {"smoothing_window", &FemSummary::smoothing_window},
-                  {"max_penetration", &FemSummary::max_penetration},
-                  {"mean_penetration", &FemSummary::mean_penetration},
-                  {"initial_gap", &FemSummary::initial_gap},
-                  {"penalty_stiffness", &FemSummary::penalty_stiffness},
-                  {"n_dofs", &FemSummary::n_dofs},
-                  {"n_cells", &FemSummary::n_cells},
-                  {"n_steps", &FemSummary::n_steps},
-                  {"n_newton", &FemSummary::n_newton},
-                  {"n_step_halvings", &FemSummary::n_step_halvings},
-                  {"n_linear_solves", &FemSummary::n_linear_solves},
-                  {"linear_solver_seconds", &FemSummary::linear_solver_seconds},
-                  {"linear_setup_seconds", &FemSummary::linear_setup_seconds},
-                  {"n_ranks", &FemSummary::n_ranks},
-                  {"dt", &FemSummary::dt},
-                  {"dt_stable", &FemSummary::dt_stable},
-                  {"wall_seconds", &FemSummary::wall_seconds}};
+      const char           *name;
+      const char           *units;
+      std::optional<double> FemSummary::*real        = nullptr;
+      std::optional<std::int64_t> FemSummary::*count = nullptr;
+    };
+
+    /// The fields of FemSummary in the order of the struct.
+    const std::vector<SummaryField> &summary_fields()
+    {
+      using S                                       = FemSummary;
+      static const std::vector<SummaryField> fields = {
+        {"peak_force", "N/m", &S::peak_force},
+        {"peak_force_raw", "N/m", &S::peak_force_raw},
+        {"contact_start", "s", &S::contact_start},
+        {"contact_duration", "s", &S::contact_duration},
+        {"impulse", "N*s/m", &S::impulse},
+        {"rebound_velocity", "m/s", &S::rebound_velocity},
+        {"apparent_cor", "1", &S::apparent_cor},
+        {"energy_error", "1", &S::energy_error},
+        {"smoothing_window", "s", &S::smoothing_window},
+        {"max_penetration", "m", &S::max_penetration},
+        {"mean_penetration", "m", &S::mean_penetration},
+        {"initial_gap", "m", &S::initial_gap},
+        {"penalty_stiffness", "N/m/m", &S::penalty_stiffness},
+        {"mesh_level", "1", nullptr, &S::mesh_level},
+        {"penalty_factor", "1", &S::penalty_factor},
+        {"n_dofs", "1", nullptr, &S::n_dofs},
+        {"n_cells", "1", nullptr, &S::n_cells},
+        {"n_steps", "1", nullptr, &S::n_steps},
+        {"n_newton", "1", nullptr, &S::n_newton},
+        {"n_step_halvings", "1", nullptr, &S::n_step_halvings},
+        {"n_linear_solves", "1", nullptr, &S::n_linear_solves},
+        {"linear_solver_seconds", "s", &S::linear_solver_seconds},
+        {"linear_setup_seconds", "s", &S::linear_setup_seconds},
+        {"n_ranks", "1", nullptr, &S::n_ranks},
+        {"dt", "s", &S::dt},
+        {"dt_stable", "s", &S::dt_stable},
+        {"wall_time", "s", &S::wall_time},
+        {"plastic_dissipation", "J/m", &S::plastic_dissipation},
+        {"damage_dissipation", "J/m", &S::damage_dissipation},
+        {"contact_dissipation", "J/m", &S::contact_dissipation},
+        {"residual_energy", "J/m", &S::residual_energy},
+        {"dissipation_cor", "1", &S::dissipation_cor},
+        {"permanent_indentation", "m", &S::permanent_indentation},
+        {"wall_residual_displacement", "m", &S::wall_residual_displacement},
+        {"radiated_energy", "J/m", &S::radiated_energy},
+        {"plastic_dissipation_slab", "J/m", &S::plastic_dissipation_slab},
+        {"plastic_dissipation_wall", "J/m", &S::plastic_dissipation_wall},
+        {"plastic_dissipation_soil", "J/m", &S::plastic_dissipation_soil},
+        {"damage_dissipation_slab", "J/m", &S::damage_dissipation_slab},
+        {"damage_dissipation_wall", "J/m", &S::damage_dissipation_wall},
+        {"damage_dissipation_soil", "J/m", &S::damage_dissipation_soil},
+        {"geostatic_weight", "N/m", &S::geostatic_weight},
+        {"geostatic_residual", "1", &S::geostatic_residual},
+        {"geostatic_iterations", "1", nullptr, &S::geostatic_iterations},
+        {"geostatic_plastic_dissipation", "J/m", &S::geostatic_plastic_dissipation},
+        {"geostatic_wall_displacement", "m", &S::geostatic_wall_displacement},
+        {"interface_normal_force", "N/m", &S::interface_normal_force},
+        {"friction_dissipation", "J/m", &S::friction_dissipation}};
       return fields;
     }
 
-    const std::map<std::string, std::string> &known_summary_units()
+    const SummaryField *summary_field(const std::string &key)
     {
-      static const std::map<std::string, std::string> units = {{"peak_force", "N/m"},
-                                                               {"peak_force_raw", "N/m"},
-                                                               {"impulse", "N*s/m"},
-                                                               {"contact_start", "s"},
-                                                               {"contact_duration", "s"},
-                                                               {"dt", "s"},
-                                                               {"dt_stable", "s"},
-                                                               {"smoothing_window", "s"},
-                                                               {"wall_seconds", "s"},
-                                                               {"max_penetration", "m"},
-                                                               {"mean_penetration", "m"},
-                                                               {"initial_gap", "m"},
-                                                               {"rebound_velocity", "m/s"},
-                                                               {"penalty_stiffness", "N/m/m"},
-                                                               {"apparent_cor", "1"},
-                                                               {"energy_error", "1"},
-                                                               {"n_dofs", "1"},
-                                                               {"n_steps", "1"},
-                                                               {"n_cells", "1"},
-                                                               {"plastic_dissipation", "J/m"},
-                                                               {"damage_dissipation", "J/m"},
-                                                               {"contact_dissipation", "J/m"},
-                                                               {"residual_energy", "J/m"},
-                                                               {"dissipation_cor", "1"},
-                                                               {"permanent_indentation", "m"},
-                                                               {"wall_residual_displacement", "m"}};
-      return units;
+      for (const SummaryField &field : summary_fields())
+        if (key == field.name)
+          return &field;
+      return nullptr;
     }
 
     using Handle = detail::Hdf5Handle;
@@ -331,10 +342,10 @@ namespace kimp::io
         {
           const std::string where = path + "/summary/" + key;
           result.summary.set(key, reader.scalar(summary.get(), key, where, ""));
-          const Handle      dataset(H5Dopen2(summary.get(), key.c_str(), H5P_DEFAULT), H5Dclose);
-          const std::string units = reader.string_attribute(dataset.get(), "units", where);
-          const auto        known = known_summary_units().find(key);
-          if (known == known_summary_units().end() || known->second != units)
+          const Handle        dataset(H5Dopen2(summary.get(), key.c_str(), H5P_DEFAULT), H5Dclose);
+          const std::string   units = reader.string_attribute(dataset.get(), "units", where);
+          const SummaryField *field = summary_field(key == "wall_seconds" ? "wall_time" : key);
+          if (field == nullptr || units != field->units)
             result.summary_units[key] = units;
         }
       }
@@ -345,29 +356,47 @@ namespace kimp::io
   std::map<std::string, double> FemSummary::entries() const
   {
     std::map<std::string, double> result = extra;
-    for (const auto &[name, member] : summary_fields())
-      if (this->*member)
-        result[name] = *(this->*member);
+    for (const SummaryField &field : summary_fields())
+      if (field.real && this->*field.real)
+        result[field.name] = *(this->*field.real);
+      else if (field.count && this->*field.count)
+        result[field.name] = static_cast<double>(*(this->*field.count));
     return result;
   }
 
   void FemSummary::set(const std::string &key, double value)
   {
-    for (const auto &[name, member] : summary_fields())
-      if (key == name)
-      {
-        this->*member = value;
-        return;
-      }
-    extra[key] = value;
+    // Files written before the key was named like every command's wall time.
+    const SummaryField *field = summary_field(key == "wall_seconds" ? "wall_time" : key);
+    if (field == nullptr)
+      extra[key] = value;
+    else if (field->real)
+      this->*field->real = value;
+    else if (std::isfinite(value) && std::abs(value) < 9.0e15)
+      this->*field->count = std::llround(value);
+    else
+      throw std::invalid_argument(fmt::format("FEM summary: {} = {} is not a count", key, value));
+  }
+
+  nlohmann::ordered_json FemSummary::json() const
+  {
+    nlohmann::ordered_json result = nlohmann::ordered_json::object();
+    for (const SummaryField &field : summary_fields())
+      if (field.real && this->*field.real)
+        result[field.name] = *(this->*field.real);
+      else if (field.count && this->*field.count)
+        result[field.name] = *(this->*field.count);
+    for (const auto &[key, value] : extra)
+      result[key] = value;
+    return result;
   }
 
   std::string fem_summary_units(const FemCase &fem_case, const std::string &key)
   {
     if (const auto given = fem_case.summary_units.find(key); given != fem_case.summary_units.end())
       return given->second;
-    if (const auto known = known_summary_units().find(key); known != known_summary_units().end())
-      return known->second;
+    if (const SummaryField *field = summary_field(key))
+      return field->units;
     throw ResultsError(fmt::format("FEM case '{}': summary key '{}' has no known units (give "
                                    "them in FemCase::summary_units)",
                                    fem_case.name,

@@ -3,8 +3,10 @@
 // all SI, per metre.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <map>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,11 +16,13 @@
 namespace kimp::io
 {
   /**
-   * Scalar results of one FEM run (the summary/<key> datasets of FemCase). An entry that is not
-   * set is not written; reading sets the entries the file holds. Counts are stored as float64.
+   * Scalar results of one FEM run (the summary/<key> datasets of FemCase), one typed field per
+   * key; a field that is not set is not written, and reading sets the fields the file holds.
+   * Counts are integers here and in summary.json (float64 datasets in the HDF5 file).
    */
   struct FemSummary
   {
+    // The impact.
     std::optional<double> peak_force;        ///< peak of the smoothed contact force, N/m
     std::optional<double> peak_force_raw;    ///< peak of the raw contact force, N/m
     std::optional<double> contact_start;     ///< time of first contact, s
@@ -32,25 +36,53 @@ namespace kimp::io
     std::optional<double> mean_penetration;  ///< m
     std::optional<double> initial_gap;       ///< m
     std::optional<double> penalty_stiffness; ///< contact penalty, N/m per m
-    std::optional<double> n_dofs;
-    std::optional<double> n_cells;
-    std::optional<double> n_steps;
-    std::optional<double> n_newton;
-    std::optional<double> n_step_halvings;
-    std::optional<double> n_linear_solves;
-    std::optional<double> linear_solver_seconds; ///< s
-    std::optional<double> linear_setup_seconds;  ///< s
-    std::optional<double> n_ranks;
-    std::optional<double> dt;           ///< time step, s
-    std::optional<double> dt_stable;    ///< computed stable time step, s
-    std::optional<double> wall_seconds; ///< wall time of the run, s
+    // The run.
+    std::optional<std::int64_t> mesh_level;     ///< refinement level of the mesh
+    std::optional<double>       penalty_factor; ///< contact penalty factor of the run
+    std::optional<std::int64_t> n_dofs;
+    std::optional<std::int64_t> n_cells;
+    std::optional<std::int64_t> n_steps;
+    std::optional<std::int64_t> n_newton;
+    std::optional<std::int64_t> n_step_halvings;
+    std::optional<std::int64_t> n_linear_solves;
+    std::optional<double>       linear_solver_seconds; ///< s
+    std::optional<double>       linear_setup_seconds;  ///< s
+    std::optional<std::int64_t> n_ranks;
+    std::optional<double>       dt;        ///< time step, s
+    std::optional<double>       dt_stable; ///< computed stable time step, s
+    std::optional<double>       wall_time; ///< wall time of the run, s
+    // After the impact: where the energy went and the wall's state.
+    std::optional<double> plastic_dissipation;        ///< J/m
+    std::optional<double> damage_dissipation;         ///< J/m
+    std::optional<double> contact_dissipation;        ///< J/m
+    std::optional<double> residual_energy;            ///< left in the bodies, J/m
+    std::optional<double> dissipation_cor;            ///< COR implied by the dissipation
+    std::optional<double> permanent_indentation;      ///< m
+    std::optional<double> wall_residual_displacement; ///< m
+    std::optional<double> radiated_energy;            ///< absorbing far boundary, J/m
+    /// Inelastic materials: plastic work and damage dissipation per body, J/m.
+    std::optional<double> plastic_dissipation_slab, plastic_dissipation_wall,
+      plastic_dissipation_soil;
+    std::optional<double> damage_dissipation_slab, damage_dissipation_wall, damage_dissipation_soil;
+    // The geostatic step before the impact.
+    std::optional<double>       geostatic_weight;   ///< N/m
+    std::optional<double>       geostatic_residual; ///< relative
+    std::optional<std::int64_t> geostatic_iterations;
+    std::optional<double>       geostatic_plastic_dissipation; ///< J/m
+    std::optional<double>       geostatic_wall_displacement;   ///< m
+    // The soil-wall interface (contact model).
+    std::optional<double> interface_normal_force; ///< N/m
+    std::optional<double> friction_dissipation;   ///< J/m
     /// Entries of other writers (key -> value; units in FemCase::summary_units).
     std::map<std::string, double> extra;
 
     /// Every set entry by key (the fields above under their own names, then `extra`).
     std::map<std::string, double> entries() const;
-    /// Set the entry `key`: the field of that name, else extra[key].
+    /// Set the entry `key`: the field of that name (a count rounded to an integer), else
+    /// extra[key].
     void set(const std::string &key, double value);
+    /// Every set entry as JSON, in the order above (counts as integers), then `extra`.
+    nlohmann::ordered_json json() const;
     /// No entry is set.
     bool empty() const { return entries().empty(); }
     /// Unset every entry.
@@ -71,10 +103,11 @@ namespace kimp::io
    * | contact_force, smoothed_contact_force    | time series {step,time,value} | N/m |
    * | indentation, slab_displacement, wall_displacement | time series     | m      |
    * | slab_velocity                            | time series              | m/s    |
-   * | summary/<key>                            | scalar float64           | see fem_summary_units()
-   * | | labels/<key>                             | scalar UTF-8 string      | 1      | All time
-   * series share `time` (s) and `step` (0, 1, ...). An empty vector is not written and reads back
-   * empty. A failed case holds only its status and labels.
+   * | summary/<key>                            | scalar float64           | fem_summary_units() |
+   * | labels/<key>                             | scalar UTF-8 string      | 1      |
+   *
+   * All time series share `time` (s) and `step` (0, 1, ...). An empty vector is not written and
+   * reads back empty. A failed case holds only its status and labels.
    */
   struct FemCase
   {
@@ -97,14 +130,10 @@ namespace kimp::io
   };
 
   /**
-   * Units of a summary key: `fem_case.summary_units` first, then the known keys (peak_force,
-   * peak_force_raw "N/m"; impulse "N*s/m"; contact_start, contact_duration, dt, dt_stable,
-   * smoothing_window, wall_seconds "s"; max_penetration, mean_penetration, initial_gap "m";
-   * rebound_velocity "m/s"; penalty_stiffness "N/m/m"; apparent_cor, energy_error, n_dofs,
-   * n_steps, n_cells "1"; after the impact: plastic_dissipation, damage_dissipation,
-   * contact_dissipation, residual_energy "J/m", dissipation_cor "1", permanent_indentation,
-   * wall_residual_displacement "m", kept in FemSummary::extra). On reading, summary_units holds the
-   * units of the keys that are not known or whose units differ from the known ones.
+   * Units of a summary key: `fem_case.summary_units` first, then those of the fields of
+   * FemSummary (forces N/m, energies J/m, lengths m, times s, impulse N*s/m, penalty_stiffness
+   * N/m/m, counts and ratios "1"). On reading, summary_units holds the units of the keys that are
+   * not fields or whose units differ from the fields' ones.
    * @throws ResultsError naming the case and key if neither knows it.
    */
   std::string fem_summary_units(const FemCase &fem_case, const std::string &key);

@@ -313,7 +313,15 @@ namespace kimp::io
         fmt::format("{}; {}", error.what(), describe_expected(expected.dimension, expected_unit)));
     }
     const bool percent_expected = trim(expected_unit) == "%";
-    if (parsed.unit_text.empty() && (!expected.dimension.dimensionless() || percent_expected))
+    if (parsed.unit_text.empty() && percent_expected)
+      // A bare number could be a fraction (0.05) or a percentage (5): never guessed.
+      throw UnitError(fmt::format("'{}' has no unit: a ratio given in % needs the percent sign "
+                                  "(write '{:g} %' for the fraction {}, or '{} %')",
+                                  trim(text),
+                                  parsed.quantity.value * 100.0,
+                                  trim(text),
+                                  trim(text)));
+    if (parsed.unit_text.empty() && !expected.dimension.dimensionless())
       throw UnitError(fmt::format("'{}' has no unit: {}",
                                   trim(text),
                                   describe_expected(expected.dimension, expected_unit)));

@@ -41,9 +41,9 @@ def force_histories(h5, out_dir):
             k = fit["stiffness"][()]
             n = fit["exponent"][()]
             k_display = k * 1e-3 ** (n + 1)
-            unit = "kN/mm/m" if n == 1 else f"kN/mm^{n:g}/m"
+            unit = "kN/mm/m" if n == 1 else f"kN/mm$^{{{n:g}}}$/m"
             ax.plot(t, fit["model_force"][()] / 1e3, style, lw=1.5,
-                    label=f"{law.replace('_', '-')} k = {k_display:.3g} {unit}")
+                    label=f"{law.replace('_', '-')}: k = {k_display:.4g} {unit}")
         ax.set_title(f"H = {case[1:]} m")
         ax.set_xlabel("time since first contact (ms)")
         ax.set_ylabel("contact force (kN/m)")
@@ -62,6 +62,7 @@ def k_vs_height(h5, out_dir):
         upper = table[law + "_upper"][()]
         err = [[max(a - b, 0.0) for a, b in zip(k, lower)], [max(b - a, 0.0) for a, b in zip(k, upper)]]
         ax.errorbar(h, k, yerr=err, fmt="o-", capsize=3, label="kimp (fit 95 % CI)")
+        shown = list(k) + list(lower) + list(upper)
         if law + "_numerical_error" in table:
             num = table[law + "_numerical_error"][()]
             if any(not math.isnan(x) for x in num):
@@ -72,10 +73,15 @@ def k_vs_height(h5, out_dir):
         points = [(a, b) for a, b in zip(h, thesis) if not math.isnan(b)]
         if points:
             ax.plot([p[0] for p in points], [p[1] for p in points], "s--", label="thesis Table 2.1")
-        ax.set_yscale("log")
-        plain_log_ticks(ax.yaxis)
+            shown += [p[1] for p in points]
+        value_axis(ax, "y", shown)
+        if len(set(h)) == 1:  # one height: a readable x axis around it, the value written
+            ax.set_xlim(h[0] - 0.5, h[0] + 0.5)
+            if not math.isnan(k[0]):
+                ax.annotate(f"{k[0]:.4g} [{lower[0]:.4g}, {upper[0]:.4g}]", (h[0], k[0]),
+                            xytext=(8, 0), textcoords="offset points", va="center", fontsize=8)
         ax.set_xlabel("wall height H (m)")
-        ax.set_ylabel(f"k ({unit})".replace("^1.5", "$^{1.5}$"))
+        ax.set_ylabel(f"k ({unit_text(unit)})")
         ax.set_title(law.replace("_", "-"))
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
@@ -111,25 +117,32 @@ def k_vs_velocity(h5, out_dir):
             if lin:
                 ax.plot([p[0] for p in lin], [p[1] for p in lin], "--", color=f"C{i}",
                         label=f"H = {height:g} m, linear")
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        plain_log_ticks(ax.xaxis)
-        plain_log_ticks(ax.yaxis)
+        valid = [j for j in range(len(h)) if not math.isnan(k[j])]
+        value_axis(ax, "x", [v[j] for j in valid])
+        value_axis(ax, "y", [k[j] for j in valid] + [lower[j] for j in valid]
+                   + [upper[j] for j in valid] + [x for x in linear if not math.isnan(x)])
         ax.set_xlabel("impact velocity v (m/s)")
-        ax.set_ylabel(f"k ({unit})".replace("^1.5", "$^{1.5}$"))
+        ax.set_ylabel(f"k ({unit_text(unit)})")
         ax.set_title(law.replace("_", "-"))
         ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=7)
+    # One legend beside both panels: inside, it covered the lines of the stiffest wall.
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="center left", bbox_to_anchor=(1.0, 0.5), fontsize=8)
     save(fig, out_dir, "k_vs_velocity")
 
 
 def building_response(csv_path, out_dir):
+    """Peak responses against wall height, one line per law, the run without walls dotted. With
+    one wall height (a site's study), bars per law with their values instead."""
     with open(csv_path, newline="") as f:
         rows = [r for r in csv.DictReader(f) if r["status"] == "ok"]
     quantities = (("peak_top_acceleration_m_per_s2", "peak top abs. acceleration (m/s²)"),
                   ("peak_interstorey_drift_cm", "peak interstorey drift (cm)"),
-                  ("peak_impact_force_kN", "peak impact force (kN)"))
+                  ("peak_impact_force_kN", "peak impact force (MN)"))
+    scale = {"peak_impact_force_kN": 1e-3}  # kN -> MN: tens of MN read better than 38950 kN
+    laws = ("modified_kelvin_voigt", "jankowski", "hysteretic")
     records = sorted({r["record"] for r in rows})
+    heights = sorted({float(r["wall_height_m"]) for r in rows if r["law"] != "none"})
     fig, axes = plt.subplots(len(records), len(quantities), figsize=(12, 3.4 * len(records)),
                              constrained_layout=True, squeeze=False)
     for i, record in enumerate(records):
@@ -137,8 +150,31 @@ def building_response(csv_path, out_dir):
         bare = [r for r in mine if r["law"] == "none"]
         for j, (key, label) in enumerate(quantities):
             ax = axes[i][j]
-            for law in ("modified_kelvin_voigt", "jankowski", "hysteretic"):
-                pts = sorted((float(r["wall_height_m"]), float(r[key])) for r in mine if r["law"] == law)
+            if len(heights) == 1:
+                names, values, colours = [], [], []
+                if bare and key != "peak_impact_force_kN":
+                    names.append("no walls")
+                    values.append(float(bare[0][key]) * scale.get(key, 1.0))
+                    colours.append("0.6")
+                for k, law in enumerate(laws):
+                    v = [float(r[key]) * scale.get(key, 1.0) for r in mine if r["law"] == law]
+                    if v:
+                        names.append(law.replace("_", " ").replace("modified ", "mod. "))
+                        values.append(v[0])
+                        colours.append(f"C{k}")
+                bars = ax.bar(range(len(names)), values, color=colours)
+                ax.bar_label(bars, labels=[f"{v:.4g}" if abs(v) < 1e4 else f"{v:.0f}"
+                                           for v in values], fontsize=8)
+                ax.set_xticks(range(len(names)))
+                ax.set_xticklabels(names, fontsize=8)
+                ax.set_ylim(0, 1.15 * max(values) if values else 1)
+                ax.set_title(f"{record}, H = {heights[0]:g} m", fontsize=9)
+                ax.set_ylabel(label)
+                ax.grid(alpha=0.3, axis="y")
+                continue
+            for law in laws:
+                pts = sorted((float(r["wall_height_m"]), float(r[key]) * scale.get(key, 1.0))
+                             for r in mine if r["law"] == law)
                 if pts:
                     ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", label=law.replace("_", " "))
             if bare and key != "peak_impact_force_kN":
@@ -173,6 +209,30 @@ def plain_log_ticks(axis):
     axis.set_minor_formatter(ticker.FuncFormatter(minor))
 
 
+def value_axis(ax, which, values):
+    """A log axis (plain tick labels) when the values span a factor of 3 or more, else a linear
+    axis with plain numbers: a log axis over a narrow range has no labelled tick at all."""
+    positive = [v for v in values if v is not None and math.isfinite(v) and v > 0]
+    axis = ax.yaxis if which == "y" else ax.xaxis
+    if positive and max(positive) / min(positive) >= 3.0:
+        (ax.set_yscale if which == "y" else ax.set_xscale)("log")
+        plain_log_ticks(axis)
+        return
+    from matplotlib import ticker
+    formatter = ticker.ScalarFormatter(useOffset=False)
+    formatter.set_scientific(False)
+    axis.set_major_formatter(formatter)
+    if positive:  # some room around a single value
+        lo, hi = min(positive), max(positive)
+        pad = 0.15 * (hi - lo) if hi > lo else 0.1 * hi
+        (ax.set_ylim if which == "y" else ax.set_xlim)(max(0.0, lo - pad), hi + pad)
+
+
+def unit_text(unit):
+    """A unit in math text: "kN/mm^1.5/m" -> "kN/mm$^{1.5}$/m"."""
+    return unit.replace("^1.5", "$^{1.5}$")
+
+
 def log_log_axes(ax, xlabel, ylabel, title):
     """Log-log axes with labels, title, grid and a small legend (the accuracy and stability charts)."""
     ax.set_xscale("log")
@@ -187,34 +247,55 @@ def log_log_axes(ax, xlabel, ylabel, title):
 
 
 def accuracy_fem(h5, out_dir):
+    """Error of k against the finest explicit level, against FEM wall time. The reference run
+    itself (error 0, no place on a log axis) is a star on the bottom edge."""
     if "accuracy" not in h5 or "fem" not in h5["accuracy"]:
         return
     group = h5["accuracy"]["fem"]
     fig, axes = plt.subplots(1, 2, figsize=(10, 3.8), constrained_layout=True)
-    styles = {"mesh": ("o-", "explicit, mesh levels (h_contact cm)"),
-              "penalty": ("s--", "explicit, penalty levels (factor)"),
-              "implicit": ("^:", "implicit Newmark, mesh levels")}
+    # series: (style, legend, label of a point, label offset in points)
+    styles = {"mesh": ("o-", "explicit, mesh levels (label: contact cell)",
+                       lambda hc, pf: f"{hc * 100:g} cm", (4, 4)),
+              "penalty": ("s--", "explicit, penalty levels (label: factor)",
+                          lambda hc, pf: f"×{pf:g}", (4, -10)),
+              "implicit": ("^:", "implicit Newmark, mesh levels",
+                           lambda hc, pf: f"{hc * 100:g} cm", (-28, 4))}
     for ax, law, title in ((axes[0], "kelvin_voigt", "Kelvin-Voigt k"),
                            (axes[1], "jankowski", "Jankowski k")):
-        for series, (style, label) in styles.items():
+        references = []
+        for series, (style, label, tag, offset) in styles.items():
             if series not in group:
                 continue
             t = group[series]
             ok = t["ok"][()]
             sec = t["seconds"][()]
             err = t["error_" + law][()]
-            pts = [(s_, max(e, 1e-6) * 100, hc, pf) for s_, e, o, hc, pf in
+            pts = [(s_, e * 100, hc, pf) for s_, e, o, hc, pf in
                    zip(sec, err, ok, t["h_contact"][()], t["penalty_factor"][()]) if o > 0.5]
-            if pts:
-                ax.plot([p[0] for p in pts], [p[1] for p in pts], style, label=label)
-                for p in pts:
-                    tag = f"{p[2] * 100:g}" if series != "penalty" else f"x{p[3]:g}"
-                    ax.annotate(tag, (p[0], p[1]), fontsize=7, xytext=(3, 3),
+            drawn = [p for p in pts if p[1] > 0]
+            references += [p for p in pts if p[1] <= 0]
+            if drawn:
+                ax.plot([p[0] for p in drawn], [p[1] for p in drawn], style, label=label)
+                for p in drawn:
+                    ax.annotate(tag(p[2], p[3]), (p[0], p[1]), fontsize=7, xytext=offset,
                                 textcoords="offset points")
             failed = [s_ for s_, o in zip(sec, ok) if o < 0.5]
             for f in failed:
                 ax.axvline(f if f > 0 else 1e-3, color="r", ls=":", lw=0.8)
-        log_log_axes(ax, "FEM wall time (s)", "|k / k_finest - 1| (%)  (0 plotted as 1e-4 %)", title)
+        log_log_axes(ax, "FEM wall time (s)", r"$|k/k_\mathrm{finest} - 1|$ (%)", title)
+        if references:
+            bottom = ax.get_ylim()[0]
+            ax.plot([p[0] for p in references], [bottom] * len(references), "*", ms=11,
+                    color="k", clip_on=False, zorder=5,
+                    label=r"reference $k_\mathrm{finest}$ (error 0)")
+            for p in references:
+                ax.annotate(f"{p[2] * 100:g} cm, ×{p[3]:g}", (p[0], bottom), fontsize=7,
+                            xytext=(6, 4), textcoords="offset points")
+            ax.set_ylim(bottom=bottom)
+        ax.get_legend().remove()
+    # One legend for both panels, below them (inside, it hid the points and their labels).
+    handles, labels = axes[1].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=2, fontsize=8)
     save(fig, out_dir, "accuracy_fem")
 
 
@@ -235,9 +316,10 @@ def accuracy_lumped(h5, out_dir):
             if pts:
                 ax.plot([p[0] for p in pts], [p[1] for p in pts], style, label=label)
                 for p in pts:
-                    ax.annotate(f"{p[2]:g}", (p[0], p[1]), fontsize=6, xytext=(3, 3),
+                    ax.annotate(f"{p[2] * 1e3:g} ms", (p[0], p[1]), fontsize=6, xytext=(3, 3),
                                 textcoords="offset points")
-        log_log_axes(ax, "wall time of the run (s); labels: dt (s)", "error vs reference (%)", title)
+        log_log_axes(ax, "wall time of the run (s); labels: time step Δt", "error vs reference (%)",
+                     title)
     save(fig, out_dir, "accuracy_lumped")
 
 

@@ -148,6 +148,7 @@ class Sweep:
         self.names = [p["name"] for p in self.params]
         self.rows = read_csv(os.path.join(directory, "sweep.csv"))
         self.columns = list(self.rows[0].keys()) if self.rows else []
+        self._read_parameter_values(directory)
         self.main = [r for r in self.rows if not r["companion"]]
         self.ok = [r for r in self.main if r["status"] == "ok"]
         self.failed = [r for r in self.main if r["status"] != "ok"]
@@ -159,6 +160,37 @@ class Sweep:
         for r in self.rows:
             if r["companion"]:
                 self.companion_of[(r["companion"], tuple(r[n] for n in self.names))] = r
+
+    def _read_parameter_values(self, directory):
+        """sweep.csv holds each parameter as a number in one unit (or as text) under the column of
+        /sweep/parameter_columns; the value texts of the sweep file ("4 cm"), row by row, are
+        /sweep/parameters/<name>. Rows get them under the parameter's name, and the cells of each
+        column map back to them (for dsrss_table.csv)."""
+        self.cell_values = {}
+        with h5py.File(os.path.join(directory, "sweep.h5"), "r") as f:
+            if "sweep/parameter_columns" not in f:  # older sweeps: the texts are the columns
+                return
+            columns = [c.decode() if isinstance(c, bytes) else str(c)
+                       for c in f["sweep/parameter_columns"][()]]
+            for name, column in zip(self.names, columns):
+                texts = f["sweep/parameters/" + name.replace("/", "_")][()]
+                texts = [t.decode() if isinstance(t, bytes) else str(t) for t in texts]
+                mapping = self.cell_values.setdefault(name, (column, {}))[1]
+                for row, text in zip(self.rows, texts):
+                    mapping[row[column]] = text
+        self.with_values(self.rows)
+
+    def with_values(self, rows):
+        """Set row[parameter name] to the sweep file's value text from the parameter's column."""
+        for row in rows:
+            for name, (column, mapping) in self.cell_values.items():
+                if column in row:
+                    row[name] = mapping.get(row[column], row[column])
+        return rows
+
+    def read_table(self, path):
+        """A CSV of the sweep directory (dsrss_table.csv) with the parameters' value texts."""
+        return self.with_values(read_csv(path))
 
     def setting(self, row, name, key):
         p = self.params[self.names.index(name)]
@@ -348,12 +380,17 @@ def panels_vs(sweep, rows, xfun, xlabel, series_params, responses, name, title, 
                 style = LINE_STYLES[values[series_params[1]].index(key[1][1])]
             else:
                 color, style = f"C{i % 10}", "-"
-            marker = "o" if len(x) < 4 else None
+            # A count (number of impacts): a hollow marker of the line's own shape on every
+            # swept value, so that lines with equal counts stay visible on top of each other.
+            count = key_name == "n_impacts"
+            marker = COUNT_MARKERS[i % len(COUNT_MARKERS)] if count else \
+                "o" if len(x) < 4 else None
+            look = dict(ms=6, mfc="none", mew=1.3, lw=0.9) if count else {}
             gid = "series-" + slug("_".join(key[1]))
             ax.plot(x, ymax, style, color=color, marker=marker, gid=gid,
-                    label=f"{s} (max)" if n_per_x > 1 else s)
+                    label=f"{s} (max)" if n_per_x > 1 else s, **look)
             if n_per_x > 1 and not styled:
-                ax.plot(x, ymean, "--", color=color, marker=marker, label=f"{s} (mean)")
+                ax.plot(x, ymean, "--", color=color, marker=marker, label=f"{s} (mean)", **look)
         ax.set_xlabel(xlabel)
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
@@ -385,6 +422,7 @@ def other_params(sweep, *exclude):
 # varied parameters: colour for the first, line style for the second), the required gap d_req of
 # dsrss_table.csv marked on each line.
 LINE_STYLES = ["-", "--", ":", "-."]
+COUNT_MARKERS = ["o", "s", "^", "D", "v", "P", "X"]
 DREQ_MARK = {"reached": ("D", "d_req: smallest swept gap without impact"),
              "at_smallest_gap": ("<", "d_req ≤ smallest swept gap (no impact at any gap)"),
              "not_reached": (">", "d_req > largest swept gap (impacts at every gap)")}
@@ -429,8 +467,8 @@ class RequiredGaps:
         path = os.path.join(sweep.dir, "dsrss_table.csv")
         if not os.path.exists(path):
             return
-        table = read_csv(path)
-        self.params = [c for c in table[0] if c in sweep.names] if table else []
+        table = sweep.read_table(path)
+        self.params = [n for n in sweep.names if n in table[0]] if table else []
         for r in table:
             self.rows.setdefault(tuple(r[p] for p in self.params), []).append(r)
 
@@ -522,8 +560,15 @@ def gap_panels(sweep, rows, series, responses, name, title, written):
                     colour, style = look(combo, k)
                     key = "--".join([slug(record), slug("_".join(list(combo) + [offset])),
                                      key_name])
-                    ax.plot(xs, ys, style, color=colour, lw=1.4,
-                            marker="o" if len(xs) < 4 else None, ms=3, gid=f"series-{key}")
+                    if key_name == "n_impacts":
+                        # A count: a hollow marker of its own shape on every swept gap, so that
+                        # lines with equal counts stay visible on top of each other.
+                        shape = COUNT_MARKERS[len(ax.get_lines()) % len(COUNT_MARKERS)]
+                        ax.plot(xs, ys, style, color=colour, lw=0.9, marker=shape, ms=6,
+                                mfc="none", mew=1.3, gid=f"series-{key}")
+                    else:
+                        ax.plot(xs, ys, style, color=colour, lw=1.4,
+                                marker="o" if len(xs) < 4 else None, ms=3, gid=f"series-{key}")
                     dreq = required.of(sweep, chosen[0])
                     if dreq is None or dreq[1] not in DREQ_MARK:
                         continue
@@ -722,10 +767,10 @@ def add_dreq_lines(sweep, lines):
     path = os.path.join(sweep.dir, "dsrss_table.csv")
     if not os.path.exists(path):
         return
-    table = read_csv(path)
+    table = sweep.read_table(path)
     if not table:
         return
-    params = [c for c in table[0] if c in sweep.names]
+    params = [n for n in sweep.names if n in table[0]]
     reached = [r for r in table if r["d_req_status"] in ("reached", "at_smallest_gap")]
     n_not = sum(r["d_req_status"] == "not_reached" for r in table)
     if reached:
@@ -742,8 +787,8 @@ def dsrss_chart_and_table(sweep, written, lines):
     if not os.path.exists(path):
         lines.append("- no `dsrss_table.csv` (the sweep has no SRSS metrics).")
         return
-    table = read_csv(path)
-    params = [c for c in table[0] if c in sweep.names] if table else []
+    table = sweep.read_table(path)
+    params = [n for n in sweep.names if n in table[0]] if table else []
     deltas = [(number(r["delta_d [m]"]), r) for r in table if math.isfinite(number(r["delta_d [m]"]))]
     n_not = sum(r["d_req_status"] == "not_reached" for r in table)
     if deltas:
@@ -789,10 +834,10 @@ def dsrss_markdown(sweep):
     path = os.path.join(sweep.dir, "dsrss_table.csv")
     if not os.path.exists(path):
         return []
-    table = read_csv(path)
+    table = sweep.read_table(path)
     if not table:
         return []
-    params = [c for c in table[0] if c in sweep.names]
+    params = [n for n in sweep.names if n in table[0]]
     out = ["", "## Required gap: sweep (d_req) against SRSS (d_SRSS)", "",
            "d_SRSS = max over contacts of (sqrt(d_L² + d_R²) − (clearance − gap)) from the run "
            "without contacts; d_req = smallest swept gap from which on no contact has an impact; "

@@ -85,86 +85,67 @@ namespace kimp::app
     c.summary.mean_penetration      = s.mean_penetration;
     c.summary.initial_gap           = s.initial_gap;
     c.summary.penalty_stiffness     = s.penalty_stiffness;
-    c.summary.n_dofs                = static_cast<double>(s.n_dofs);
-    c.summary.n_cells               = static_cast<double>(s.n_cells);
-    c.summary.n_steps               = static_cast<double>(s.n_steps);
-    c.summary.n_newton              = static_cast<double>(s.n_newton);
-    c.summary.n_step_halvings       = static_cast<double>(s.n_step_halvings);
-    c.summary.n_linear_solves       = static_cast<double>(s.n_linear_solves);
+    c.summary.mesh_level            = scene.mesh.level;
+    c.summary.penalty_factor        = scene.contact.penalty_factor;
+    c.summary.n_dofs                = static_cast<std::int64_t>(s.n_dofs);
+    c.summary.n_cells               = static_cast<std::int64_t>(s.n_cells);
+    c.summary.n_steps               = static_cast<std::int64_t>(s.n_steps);
+    c.summary.n_newton              = static_cast<std::int64_t>(s.n_newton);
+    c.summary.n_step_halvings       = static_cast<std::int64_t>(s.n_step_halvings);
+    c.summary.n_linear_solves       = static_cast<std::int64_t>(s.n_linear_solves);
     c.summary.linear_solver_seconds = s.linear_solver_seconds;
     c.summary.linear_setup_seconds  = s.linear_setup_seconds;
-    c.summary.n_ranks               = static_cast<double>(s.n_ranks);
+    c.summary.n_ranks               = static_cast<std::int64_t>(s.n_ranks);
     c.summary.dt                    = s.dt;
     c.summary.dt_stable             = s.dt_stable;
-    c.summary.wall_seconds          = s.wall_seconds;
-    c.summary_units                 = {{"n_newton", "1"},
-                                       {"n_step_halvings", "1"},
-                                       {"n_linear_solves", "1"},
-                                       {"linear_solver_seconds", "s"},
-                                       {"linear_setup_seconds", "s"},
-                                       {"n_ranks", "1"}};
+    c.summary.wall_time             = s.wall_seconds;
     c.labels                        = {{"integrator",
                  scene.dynamics.integrator == fem::ImpactParameters::Integrator::implicit_newmark ?
                                           "implicit" :
                                           "explicit"},
                                        {"slab", scene.slab.rigid ? "rigid" : "elastic"},
-                                       {"mesh_level", std::to_string(scene.mesh.level)},
-                                       {"penalty_factor", fmt::format("{}", scene.contact.penalty_factor)},
                                        {"stopped_on", s.separated ? "separation" : "end_time"},
                                        {"geostatic", geostatic_enabled(scene) ? "on" : "off"},
                                        {"interface",
                  scene.interface.model == FemInterface::Model::contact ? "contact" : "bonded"}};
     if (scene.boundary.far == FemBoundary::Far::absorbing)
     {
-      c.summary.set("radiated_energy", s.radiated_energy);
-      c.summary_units["radiated_energy"] = "J/m";
-      c.labels["far_boundary"]           = "absorbing";
+      c.summary.radiated_energy = s.radiated_energy;
+      c.labels["far_boundary"]  = "absorbing";
     }
     // After the impact (fem::ImpactSummary): dissipation, the COR it implies, the wall's state.
-    c.summary.set("plastic_dissipation", s.plastic_dissipation);
-    c.summary.set("damage_dissipation", s.damage_dissipation);
-    c.summary.set("contact_dissipation", s.contact_dissipation);
+    FemSummary &sum                = c.summary;
+    sum.plastic_dissipation        = s.plastic_dissipation;
+    sum.damage_dissipation         = s.damage_dissipation;
+    sum.contact_dissipation        = s.contact_dissipation;
+    sum.residual_energy            = s.residual_energy;
+    sum.dissipation_cor            = s.dissipation_cor;
+    sum.permanent_indentation      = s.permanent_indentation;
+    sum.wall_residual_displacement = s.wall_residual_displacement;
     if (has_inelastic_materials(scene))
     {
       // Where the material dissipation happened: plastic work of soil, bars and concrete, and
-      // the concrete's damage, per body.
-      const char *body[3] = {"slab", "wall", "soil"};
-      for (unsigned int b = 0; b < 3; ++b)
-        for (const auto &[what, value] :
-             {std::pair<const char *, double>{"plastic", s.plastic_dissipation_by_body[b]},
-              {"damage", s.damage_dissipation_by_body[b]}})
-        {
-          const std::string key = fmt::format("{}_dissipation_{}", what, body[b]);
-          c.summary.set(key, value);
-          c.summary_units[key] = "J/m";
-        }
+      // the concrete's damage, per body (0 slab, 1 wall, 2 soil).
+      sum.plastic_dissipation_slab = s.plastic_dissipation_by_body[0];
+      sum.plastic_dissipation_wall = s.plastic_dissipation_by_body[1];
+      sum.plastic_dissipation_soil = s.plastic_dissipation_by_body[2];
+      sum.damage_dissipation_slab  = s.damage_dissipation_by_body[0];
+      sum.damage_dissipation_wall  = s.damage_dissipation_by_body[1];
+      sum.damage_dissipation_soil  = s.damage_dissipation_by_body[2];
     }
-    c.summary.set("residual_energy", s.residual_energy);
-    c.summary.set("dissipation_cor", s.dissipation_cor);
-    c.summary.set("permanent_indentation", s.permanent_indentation);
-    c.summary.set("wall_residual_displacement", s.wall_residual_displacement);
     if (geostatic_enabled(scene))
     {
       // The static step before the impact (fem::ImpactSummary geostatic_*).
-      for (const auto &[key, value, units] :
-           {std::tuple<const char *, double, const char *>{"geostatic_weight",
-                                                           s.geostatic_weight,
-                                                           "N/m"},
-            {"geostatic_residual", s.geostatic_residual, "1"},
-            {"geostatic_iterations", static_cast<double>(s.geostatic_iterations), "1"},
-            {"geostatic_plastic_dissipation", s.geostatic_plastic_dissipation, "J/m"},
-            {"geostatic_wall_displacement", s.geostatic_wall_displacement, "m"}})
-      {
-        c.summary.set(key, value);
-        c.summary_units[key] = units;
-      }
+      sum.geostatic_weight              = s.geostatic_weight;
+      sum.geostatic_residual            = s.geostatic_residual;
+      sum.geostatic_iterations          = static_cast<std::int64_t>(s.geostatic_iterations);
+      sum.geostatic_plastic_dissipation = s.geostatic_plastic_dissipation;
+      sum.geostatic_wall_displacement   = s.geostatic_wall_displacement;
     }
     if (scene.interface.model == FemInterface::Model::contact)
     {
-      c.summary.set("interface_normal_force", s.interface_normal_force);
-      c.summary_units["interface_normal_force"] = "N/m";
-      c.summary.set("friction_dissipation", s.friction_dissipation);
-      c.summary_units["friction_dissipation"] = "J/m";
+      sum.interface_normal_force = s.interface_normal_force;
+      sum.friction_dissipation   = s.friction_dissipation;
     }
     return c;
   }

@@ -176,15 +176,7 @@ namespace kimp::app
       entry["wall_height"]     = c.wall_height;
       entry["slab_mass"]       = c.slab_mass;
       entry["impact_velocity"] = c.impact_velocity;
-      for (const auto &[key, value] : c.summary.entries())
-      {
-        // Counts (n_steps, n_dofs, geostatic_iterations, ...) are integers in the JSON.
-        const bool count = key.rfind("n_", 0) == 0 || key.find("_iterations") != std::string::npos;
-        if (count && std::isfinite(value) && value == std::floor(value) && std::abs(value) < 9.0e15)
-          entry[key] = static_cast<std::int64_t>(value);
-        else
-          entry[key] = value;
-      }
+      entry.update(c.summary.json()); // counts as integers
       for (const auto &[key, value] : c.labels)
         entry[key] = value;
       entry["mesh_file"] = mesh_file;
@@ -261,10 +253,11 @@ namespace kimp::app
       if (scene.output.vtu_interval > 0)
         case_group.set_attribute("pvd", "vtu/" + name + "/impact.pvd");
       // `cases` is a list of objects with "name" in every command's summary.json.
-      nlohmann::ordered_json entry{{"name", name}};
+      nlohmann::ordered_json entry{{"name", name}, {"status", fem_case.status}};
       entry.update(summary_json(fem_case, mesh_rel));
       cases.push_back(entry);
-      extra_units.insert(fem_case.summary_units.begin(), fem_case.summary_units.end());
+      for (const auto &[key, value] : fem_case.summary.entries())
+        extra_units.emplace(key, fem_summary_units(fem_case, key));
       for (std::size_t i = 0; i < fem_case.time.size(); ++i)
         rows.push_back({name,
                         fmt::format("{}", fem_case.time[i]),
@@ -323,7 +316,7 @@ namespace kimp::app
     summary["command"] = "fem";
     summary["kimp"]    = version_line();
     summary["n_ranks"] = n_ranks;
-    summary["wall_seconds"] =
+    summary["wall_time"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     summary["units"] = {{"wall_height", "m"},
                         {"slab_mass", "kg/m"},
@@ -341,7 +334,7 @@ namespace kimp::app
                         {"smoothing_window", "s"},
                         {"dt", "s"},
                         {"dt_stable", "s"},
-                        {"wall_seconds", "s"},
+                        {"wall_time", "s"},
                         {"plastic_dissipation", "J/m"},
                         {"damage_dissipation", "J/m"},
                         {"contact_dissipation", "J/m"},

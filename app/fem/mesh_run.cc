@@ -2,6 +2,7 @@
 // statistics and PNG (scripts/plot_mesh.py) and VTU (deal.II GridIn + DataOut) previews.
 #include "app/fem/mesh_run.h"
 
+#include <chrono>
 #include <fmt/format.h>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
@@ -58,7 +59,8 @@ namespace kimp::app
 
   void run_mesh(const LoadedScene<FemScene> &loaded, const OutputDir &output)
   {
-    int mpi_initialized = 0;
+    const auto start           = std::chrono::steady_clock::now();
+    int        mpi_initialized = 0;
     MPI_Initialized(&mpi_initialized);
     int rank = 0;
     if (mpi_initialized)
@@ -103,6 +105,7 @@ namespace kimp::app
 
       nlohmann::ordered_json entry;
       entry["name"]        = name;
+      entry["status"]      = "ok"; // a mesh that fails ends the command
       entry["wall_height"] = height;
       entry["mesh_file"]   = "mesh/" + name + ".msh";
       entry["vtu_preview"] = "mesh/" + name + ".vtu";
@@ -131,8 +134,10 @@ namespace kimp::app
     nlohmann::ordered_json summary;
     summary["command"] = "mesh";
     summary["kimp"]    = version_line();
-    summary["units"]   = {{"lengths", "m"}, {"areas", "m^2 per metre of depth"}};
-    summary["cases"]   = cases;
+    summary["wall_time"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    summary["units"] = {{"lengths", "m"}, {"areas", "m^2 per metre of depth"}, {"wall_time", "s"}};
+    summary["cases"] = cases;
     write_text_atomic(output.file("summary.json"), summary.dump(2) + "\n");
   }
 

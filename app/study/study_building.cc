@@ -10,6 +10,7 @@
 #include "app/lumped_run.h"
 #include "app/study/study_internal.h"
 #include "base/errors.h"
+#include "base/format.h"
 #include "base/logging.h"
 #include "lumped/collision/two_body.h"
 #include "lumped/integrators/response.h"
@@ -76,6 +77,44 @@ namespace kimp::app::study_internal
           best = &h;
       return best;
     }
+
+    /// The largest estimated errors of the variable-step building runs, for one log line.
+    struct VariableStepErrors
+    {
+      std::size_t n_runs = 0, n_variable = 0;
+      double      force = 0.0, acceleration = 0.0, displacement = 0.0;
+      std::string force_case;
+
+      void add(const std::string &name, const LumpedCaseResult &result)
+      {
+        ++n_runs;
+        if (!result.adaptive)
+          return;
+        ++n_variable;
+        if (result.adaptive->force_error >= force)
+        {
+          force      = result.adaptive->force_error;
+          force_case = name;
+        }
+        acceleration = std::max(acceleration, result.adaptive->acceleration_error);
+        displacement = std::max(displacement, result.adaptive->displacement_error);
+      }
+
+      void log() const
+      {
+        if (n_variable == 0)
+          return;
+        logger().info("building runs: {} of {} with variable steps (dt: auto); largest "
+                      "estimated errors: peak force {} % ({}), peak acceleration {} %, peak "
+                      "displacement {} % (each run with -v)",
+                      n_variable,
+                      n_runs,
+                      base::sig(100.0 * force, 2),
+                      force_case,
+                      base::sig(100.0 * acceleration, 2),
+                      base::sig(100.0 * displacement, 2));
+      }
+    };
   } // namespace
 
   std::vector<StudyBuildingRun> run_building(const StudyScene               &scene,
@@ -84,6 +123,7 @@ namespace kimp::app::study_internal
     std::vector<StudyBuildingRun> runs;
     std::set<std::string>         labels;
     const unsigned int            top_dof = scene.building.n_storeys;
+    VariableStepErrors            errors;
     for (const GroundMotionScene &record : study_records(scene))
     {
       const std::string label = record_label(record, labels);
@@ -104,6 +144,7 @@ namespace kimp::app::study_internal
       }
       const LumpedScene      base = study_lumped_scene(scene, record);
       const LumpedCaseResult none = run_lumped_case("no_walls", base, motion, record.scale);
+      errors.add(label + " no_walls", none);
       fill_peaks(bare, none, top_dof, nullptr);
       runs.push_back(bare);
       if (!none.ok())
@@ -154,6 +195,7 @@ namespace kimp::app::study_internal
           s.impact.cor      = scene.fit.cor;
           const LumpedCaseResult done =
             run_lumped_case(h.name + "_" + law, s, motion, record.scale);
+          errors.add(label + " " + h.name + " " + law, done);
           fill_peaks(run, done, top_dof, &none.response);
           if (!done.ok())
             logger().warn("record {} {} {}: {}", label, h.name, law, done.status);
@@ -161,6 +203,7 @@ namespace kimp::app::study_internal
         }
       }
     }
+    errors.log();
     return runs;
   }
 

@@ -180,15 +180,16 @@ namespace kimp::app::study_internal
                                      run.iterations.size(),
                                      scene.consistent_k.max_iterations,
                                      100.0 * tolerance);
-          logger().info("consistent k, record {} {} {}: {} run(s), v_imp {:.4g} m/s, k {:.5g} -> "
-                        "{:.5g} {} ({})",
+          logger().info("consistent k, record {} {} {}: {} run(s), v_imp {} m/s, k {} -> {} {} "
+                        "({})",
                         label,
                         h.name,
                         law,
                         run.iterations.size(),
-                        run.iterations.empty() ? nan : run.iterations.back().impact_velocity,
-                        k_display(run.k_reference, run.exponent),
-                        k_display(final_k(run), run.exponent),
+                        base::sig(run.iterations.empty() ? nan :
+                                                           run.iterations.back().impact_velocity),
+                        base::sig(k_display(run.k_reference, run.exponent)),
+                        base::sig(k_display(final_k(run), run.exponent)),
                         stiffness_display_unit(run.exponent),
                         run.status);
           runs.push_back(std::move(run));

@@ -47,11 +47,13 @@ namespace kimp::app
         const StudyFemCase c    = study_fem_case(fem, wall_height, output, name);
         const StudyFits    fits = fit_study_laws(c.fem_case, scene.fit);
         if (seconds)
-          *seconds = c.fem_case.summary.wall_seconds.value_or(nan);
+          *seconds = c.fem_case.summary.wall_time.value_or(nan);
         if (n_dofs)
-          *n_dofs = c.fem_case.summary.n_dofs.value_or(nan);
+          *n_dofs =
+            c.fem_case.summary.n_dofs ? static_cast<double>(*c.fem_case.summary.n_dofs) : nan;
         if (n_steps)
-          *n_steps = c.fem_case.summary.n_steps.value_or(nan);
+          *n_steps =
+            c.fem_case.summary.n_steps ? static_cast<double>(*c.fem_case.summary.n_steps) : nan;
         if (from_cache)
           *from_cache = c.from_cache;
         point.ok     = fits.ok();

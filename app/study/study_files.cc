@@ -10,8 +10,10 @@
 #include "app/fit_run.h"
 #include "app/study/study_internal.h"
 #include "app/study/study_velocity.h"
+#include "base/format.h"
 #include "base/version.h"
 #include "io/results_file.h"
+#include "io/table.h"
 
 namespace kimp::app::study_internal
 {
@@ -22,142 +24,150 @@ namespace kimp::app::study_internal
   {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
-    std::vector<std::string> k_table_header()
+    /// building_response.csv: one row per building run; k_total in the unit of its law's
+    /// exponent (k_total_unit beside it).
+    Table building_table(const std::vector<StudyBuildingRun> &runs)
     {
-      return {"wall_height_m",
-              "slab_mass_kg_per_m",
-              "impact_velocity_m_per_s",
-              "fem_peak_force_kN_per_m",
-              "fem_contact_duration_ms",
-              "kelvin_voigt_kN_per_mm_per_m",
-              "kelvin_voigt_lower_kN_per_mm_per_m",
-              "kelvin_voigt_upper_kN_per_mm_per_m",
-              "kelvin_voigt_total_kN_per_mm",
-              "kelvin_voigt_normalised_rms",
-              "thesis_kelvin_voigt_kN_per_mm_per_m",
-              "jankowski_kN_per_mm1.5_per_m",
-              "jankowski_lower_kN_per_mm1.5_per_m",
-              "jankowski_upper_kN_per_mm1.5_per_m",
-              "jankowski_total_kN_per_mm1.5",
-              "jankowski_normalised_rms",
-              "thesis_jankowski_kN_per_mm1.5_per_m",
-              "kelvin_voigt_numerical_error_kN_per_mm_per_m",
-              "jankowski_numerical_error_kN_per_mm1.5_per_m",
-              "kelvin_voigt_total_numerical_error_kN_per_mm",
-              "jankowski_total_numerical_error_kN_per_mm1.5",
-              "fidelity",
-              "fem_h_contact_cm",
-              "fem_penalty_factor",
-              "fidelity_converged",
-              "kelvin_voigt_status",
-              "jankowski_status",
-              "reference_velocity",
-              "material",
-              "linear_kelvin_voigt_kN_per_mm_per_m",
-              "linear_jankowski_kN_per_mm1.5_per_m"};
-    }
-
-    std::vector<std::string> k_table_row(const StudyScene &scene, const StudyHeight &h)
-    {
-      const std::optional<ThesisStiffness> thesis = thesis_row(h.wall_height);
-      const FemSummary                    &fem    = h.fem_case.summary;
-      return {number(h.wall_height),
-              number(h.fem_case.slab_mass),
-              number(h.fem_case.impact_velocity),
-              number(fem.peak_force.value_or(nan) / 1e3),
-              number(fem.contact_duration.value_or(nan) * 1e3),
-              number(per_metre(h.kelvin_voigt)),
-              number(per_metre_bound(h.kelvin_voigt, false)),
-              number(per_metre_bound(h.kelvin_voigt, true)),
-              number(per_metre(h.kelvin_voigt) * scene.fit.width),
-              number(h.kelvin_voigt ? h.kelvin_voigt->normalised_rms : nan),
-              number(thesis ? thesis->kelvin_voigt : nan),
-              number(per_metre(h.jankowski)),
-              number(per_metre_bound(h.jankowski, false)),
-              number(per_metre_bound(h.jankowski, true)),
-              number(per_metre(h.jankowski) * scene.fit.width),
-              number(h.jankowski ? h.jankowski->normalised_rms : nan),
-              number(thesis ? thesis->jankowski : nan),
-              number(numerical_error(h, 1.0)),
-              number(numerical_error(h, 1.5)),
-              number(total_stiffness_error(0.0, numerical_error(h, 1.0), scene.fit.width)),
-              number(total_stiffness_error(0.0, numerical_error(h, 1.5), scene.fit.width)),
-              h.auto_fidelity ? "auto" : "fixed",
-              number(used_h_contact(scene, h) * 100.0),
-              number(used_penalty(scene, h)),
-              h.auto_fidelity ? (h.ladder.converged ? "yes" : "no") : "",
-              h.kelvin_voigt_status,
-              h.jankowski_status,
-              h.reference_velocity ? "yes" : "no",
-              h.inelastic ? "inelastic" : "linear",
-              number(per_metre(h.linear_kelvin_voigt)),
-              number(per_metre(h.linear_jankowski))};
-    }
-
-    std::vector<std::string> building_header()
-    {
-      return {"record",
-              "wall_height_m",
-              "law",
-              "k_total",
-              "k_total_unit",
-              "gap_cm",
-              "pga_m_per_s2",
-              "peak_base_displacement_cm",
-              "peak_top_displacement_cm",
-              "peak_base_acceleration_m_per_s2",
-              "peak_top_acceleration_m_per_s2",
-              "peak_floor_acceleration_m_per_s2",
-              "peak_interstorey_drift_cm",
-              "peak_impact_force_kN",
-              "n_impacts",
-              "permanent_indentation_mm",
-              "amplification_base_acceleration",
-              "amplification_top_acceleration",
-              "amplification_interstorey_drift",
-              "wall_seconds",
-              "status"};
-    }
-
-    std::vector<std::string> building_row(const StudyBuildingRun &r)
-    {
-      const bool walls = r.law != "none";
-      return {r.record,
-              walls ? number(r.wall_height) : "",
-              r.law,
-              walls ? number(stiffness_to_kn_per_mm(r.k_total, r.exponent)) : "",
-              walls ? stiffness_display_unit(r.exponent) : "",
-              walls ? number(r.gap * 100) : "",
-              number(r.pga),
-              number(r.base_displacement * 100),
-              number(r.top_displacement * 100),
-              number(r.base_acceleration),
-              number(r.top_acceleration),
-              number(r.max_floor_acceleration),
-              number(r.max_interstorey_drift * 100),
-              number(r.peak_impact_force / 1e3),
-              std::to_string(r.n_impacts),
-              number(r.permanent_indentation * 1e3),
-              number(r.amplification_base_acc),
-              number(r.amplification_top_acc),
-              number(r.amplification_drift),
-              number(r.wall_seconds),
-              r.status};
+      Table t;
+      t.text("record")
+        .number("wall_height", "m")
+        .text("law")
+        .number("k_total", "1")
+        .text("k_total_unit")
+        .number("gap", "cm")
+        .number("pga", "m/s^2")
+        .number("peak_base_displacement", "cm")
+        .number("peak_top_displacement", "cm")
+        .number("peak_base_acceleration", "m/s^2")
+        .number("peak_top_acceleration", "m/s^2")
+        .number("peak_floor_acceleration", "m/s^2")
+        .number("peak_interstorey_drift", "cm")
+        .number("peak_impact_force", "kN")
+        .integer("n_impacts")
+        .number("permanent_indentation", "mm")
+        .number("amplification_base_acceleration", "1")
+        .number("amplification_top_acceleration", "1")
+        .number("amplification_interstorey_drift", "1")
+        .number("wall_time", "s")
+        .text("status");
+      for (const StudyBuildingRun &r : runs)
+      {
+        const bool walls = r.law != "none";
+        t.add_row({r.record,
+                   walls ? r.wall_height : nan,
+                   r.law,
+                   walls ? stiffness_to_kn_per_mm(r.k_total, r.exponent) : nan,
+                   walls ? stiffness_display_unit(r.exponent) : std::string(),
+                   walls ? r.gap * 100 : nan,
+                   r.pga,
+                   r.base_displacement * 100,
+                   r.top_displacement * 100,
+                   r.base_acceleration,
+                   r.top_acceleration,
+                   r.max_floor_acceleration,
+                   r.max_interstorey_drift * 100,
+                   r.peak_impact_force / 1e3,
+                   static_cast<std::int64_t>(r.n_impacts),
+                   r.permanent_indentation * 1e3,
+                   r.amplification_base_acc,
+                   r.amplification_top_acc,
+                   r.amplification_drift,
+                   r.wall_seconds,
+                   r.status});
+      }
+      return t;
     }
   } // namespace
+
+  Table k_table(const StudyScene &scene, const std::vector<const StudyHeight *> &cases)
+  {
+    const std::string  kv = "kN/mm/m", kv_total = "kN/mm";
+    const std::string  jk = "kN/mm^1.5/m", jk_total = "kN/mm^1.5";
+    const ColumnFormat error_format{2, {}, false};
+    const ColumnFormat short_format{3, {}, true};
+    Table              t;
+    t.number("wall_height", "m", short_format)
+      .number("slab_mass", "kg/m")
+      .number("impact_velocity", "m/s")
+      .number("fem_peak_force", "kN/m")
+      .number("fem_contact_duration", "ms")
+      .number("kelvin_voigt", kv)
+      .number("kelvin_voigt_lower", kv)
+      .number("kelvin_voigt_upper", kv)
+      .number("kelvin_voigt_total", kv_total)
+      .number("kelvin_voigt_normalised_rms", "1")
+      .number("thesis_kelvin_voigt", kv)
+      .number("jankowski", jk)
+      .number("jankowski_lower", jk)
+      .number("jankowski_upper", jk)
+      .number("jankowski_total", jk_total)
+      .number("jankowski_normalised_rms", "1")
+      .number("thesis_jankowski", jk)
+      .number("kelvin_voigt_numerical_error", kv, error_format)
+      .number("jankowski_numerical_error", jk, error_format)
+      .number("kelvin_voigt_total_numerical_error", kv_total, error_format)
+      .number("jankowski_total_numerical_error", jk_total, error_format)
+      .text("fidelity")
+      .number("fem_h_contact", "cm", short_format)
+      .number("fem_penalty_factor", "1", short_format)
+      .text("fidelity_converged")
+      .text("kelvin_voigt_status")
+      .text("jankowski_status")
+      .text("reference_velocity")
+      .text("material")
+      .number("linear_kelvin_voigt", kv)
+      .number("linear_jankowski", jk)
+      .text("fem_from_cache");
+    for (const StudyHeight *h : cases)
+    {
+      const std::optional<ThesisStiffness> thesis = thesis_row(h->wall_height);
+      const FemSummary                    &fem    = h->fem_case.summary;
+      const double                         width  = scene.fit.width;
+      t.add_row({h->wall_height,
+                 h->fem_case.slab_mass,
+                 h->fem_case.impact_velocity,
+                 fem.peak_force.value_or(nan) / 1e3,
+                 fem.contact_duration.value_or(nan) * 1e3,
+                 per_metre(h->kelvin_voigt),
+                 per_metre_bound(h->kelvin_voigt, false),
+                 per_metre_bound(h->kelvin_voigt, true),
+                 per_metre(h->kelvin_voigt) * width,
+                 h->kelvin_voigt ? h->kelvin_voigt->normalised_rms : nan,
+                 thesis ? thesis->kelvin_voigt : nan,
+                 per_metre(h->jankowski),
+                 per_metre_bound(h->jankowski, false),
+                 per_metre_bound(h->jankowski, true),
+                 per_metre(h->jankowski) * width,
+                 h->jankowski ? h->jankowski->normalised_rms : nan,
+                 thesis ? thesis->jankowski : nan,
+                 numerical_error(*h, 1.0),
+                 numerical_error(*h, 1.5),
+                 total_stiffness_error(0.0, numerical_error(*h, 1.0), width),
+                 total_stiffness_error(0.0, numerical_error(*h, 1.5), width),
+                 std::string(h->auto_fidelity ? "auto" : "fixed"),
+                 used_h_contact(scene, *h) * 100.0,
+                 used_penalty(scene, *h),
+                 std::string(h->auto_fidelity ? (h->ladder.converged ? "yes" : "no") : ""),
+                 h->kelvin_voigt_status,
+                 h->jankowski_status,
+                 std::string(h->reference_velocity ? "yes" : "no"),
+                 std::string(h->inelastic ? "inelastic" : "linear"),
+                 per_metre(h->linear_kelvin_voigt),
+                 per_metre(h->linear_jankowski),
+                 std::string(h->fem_from_cache ? "yes" : "no")});
+    }
+    return t;
+  }
 
   void write_k_table_csv(const OutputDir                &output,
                          const StudyScene               &scene,
                          const std::vector<StudyHeight> &heights,
                          const std::vector<StudyHeight> &velocity_cases)
   {
-    std::vector<std::vector<std::string>> k_rows;
-    StudyResult                           all; // rows by height, then impact velocity
+    StudyResult all; // rows by height, then impact velocity
     all.heights        = heights;
     all.velocity_cases = velocity_cases;
-    for (const StudyHeight *h : k_table_cases(all))
-      k_rows.push_back(k_table_row(scene, *h));
-    write_csv_atomic(output.file("k_table.csv"), k_table_header(), k_rows);
+    k_table(scene, k_table_cases(all)).write_csv(output.file("k_table.csv"));
     std::vector<std::vector<std::string>> level_rows;
     for (const StudyHeight &h : heights)
       for (std::size_t i = 0; i < h.ladder.outcomes.size(); ++i)
@@ -180,7 +190,7 @@ namespace kimp::app::study_internal
                         "penalty_factor",
                         "kelvin_voigt_kN_per_mm_per_m",
                         "jankowski_kN_per_mm1.5_per_m",
-                        "seconds",
+                        "wall_time_s",
                         "fem_from_cache",
                         "used",
                         "status"},
@@ -189,10 +199,7 @@ namespace kimp::app::study_internal
 
   void write_building_csv(const OutputDir &output, const std::vector<StudyBuildingRun> &runs)
   {
-    std::vector<std::vector<std::string>> b_rows;
-    for (const StudyBuildingRun &r : runs)
-      b_rows.push_back(building_row(r));
-    write_csv_atomic(output.file("building_response.csv"), building_header(), b_rows);
+    building_table(runs).write_csv(output.file("building_response.csv"));
   }
 
   void write_study_h5(const LoadedScene<StudyScene> &loaded,
@@ -221,48 +228,10 @@ namespace kimp::app::study_internal
       }
     }
 
-    std::vector<TableColumn> k(17);
-    k[0]  = {"wall_height", "m", {}};
-    k[1]  = {"kelvin_voigt", "kN/mm/m", {}};
-    k[2]  = {"kelvin_voigt_lower", "kN/mm/m", {}};
-    k[3]  = {"kelvin_voigt_upper", "kN/mm/m", {}};
-    k[4]  = {"kelvin_voigt_total", "kN/mm", {}};
-    k[5]  = {"thesis_kelvin_voigt", "kN/mm/m", {}};
-    k[6]  = {"jankowski", "kN/mm^1.5/m", {}};
-    k[7]  = {"jankowski_lower", "kN/mm^1.5/m", {}};
-    k[8]  = {"jankowski_upper", "kN/mm^1.5/m", {}};
-    k[9]  = {"jankowski_total", "kN/mm^1.5", {}};
-    k[10] = {"thesis_jankowski", "kN/mm^1.5/m", {}};
-    k[11] = {"kelvin_voigt_numerical_error", "kN/mm/m", {}};
-    k[12] = {"jankowski_numerical_error", "kN/mm^1.5/m", {}};
-    k[13] = {"h_contact", "m", {}};
-    k[14] = {"penalty_factor", "1", {}};
-    k[15] = {"fidelity_auto", "1", {}};
-    k[16] = {"fidelity_converged", "1", {}};
+    std::vector<const StudyHeight *> heights;
     for (const StudyHeight &h : result.heights)
-    {
-      const std::optional<ThesisStiffness> thesis   = thesis_row(h.wall_height);
-      const double                         values[] = {h.wall_height,
-                                                       per_metre(h.kelvin_voigt),
-                                                       per_metre_bound(h.kelvin_voigt, false),
-                                                       per_metre_bound(h.kelvin_voigt, true),
-                                                       per_metre(h.kelvin_voigt) * scene.fit.width,
-                               thesis ? thesis->kelvin_voigt : nan,
-                                                       per_metre(h.jankowski),
-                                                       per_metre_bound(h.jankowski, false),
-                                                       per_metre_bound(h.jankowski, true),
-                                                       per_metre(h.jankowski) * scene.fit.width,
-                               thesis ? thesis->jankowski : nan,
-                                                       numerical_error(h, 1.0),
-                                                       numerical_error(h, 1.5),
-                                                       used_h_contact(scene, h),
-                                                       used_penalty(scene, h),
-                               h.auto_fidelity ? 1.0 : 0.0,
-                               h.auto_fidelity && h.ladder.converged ? 1.0 : 0.0};
-      for (std::size_t i = 0; i < k.size(); ++i)
-        k[i].values.push_back(values[i]);
-    }
-    root.write_table("k_table", k);
+      heights.push_back(&h);
+    k_table(scene, heights).write_hdf5(root, "k_table");
     root.group("k_table").set_attribute("building_width_m", scene.fit.width);
     write_study_extras(root, result.extras);
     write_flexible_wall_h5(root, result);
@@ -351,22 +320,75 @@ namespace kimp::app::study_internal
     file.commit();
   }
 
+  std::vector<std::pair<std::string, double>> cost_by_stage(const StudyResult &result)
+  {
+    std::vector<std::pair<std::string, double>> stages = {{"fem", result.fem_seconds},
+                                                          {"fit", result.fit_seconds},
+                                                          {"building", result.building_seconds}};
+    if (!result.wall_sdofs.empty())
+      stages.emplace_back("flexible_wall", result.flexible_wall_seconds);
+    const StudyExtras &e = result.extras;
+    if (!e.fem_accuracy.empty() || !e.lumped_accuracy.empty() || !e.stability.empty() ||
+        !e.fem_stability.empty() || !e.sensitivity.empty())
+      stages.emplace_back("extras", e.seconds);
+    if (result.charts_seconds > 0.0)
+      stages.emplace_back("charts", result.charts_seconds);
+    double sum = 0.0;
+    for (const auto &stage : stages)
+      sum += stage.second;
+    stages.emplace_back("other", std::max(0.0, result.wall_seconds - sum));
+    return stages;
+  }
+
+  std::string cost_text(const StudyResult &result)
+  {
+    static const std::map<std::string, std::string> names = {{"fem", "FEM"},
+                                                             {"fit", "fits"},
+                                                             {"building", "building runs"},
+                                                             {"flexible_wall", "flexible walls"},
+                                                             {"extras", "extra studies"},
+                                                             {"charts", "charts"},
+                                                             {"other", "files and the rest"}};
+    std::string                                     text;
+    for (const auto &[stage, seconds] : cost_by_stage(result))
+      text += fmt::format("{} {} s, ", names.at(stage), base::sig(seconds, 3));
+    return text + fmt::format("total {} s", base::sig(result.wall_seconds, 3));
+  }
+
   nlohmann::ordered_json summary_json(const StudyScene &scene, const StudyResult &result)
   {
     nlohmann::ordered_json j;
-    j["command"]                 = "study";
-    j["kimp"]                    = version_line();
-    j["units"]                   = {{"wall_height", "m"},
-                                    {"k_per_metre", "kN/mm^n/m"},
-                                    {"k_total", "kN/mm^n"},
-                                    {"seconds", "s"}};
-    j["building_width"]          = scene.fit.width;
-    j["wall_seconds"]            = {{"fem", result.fem_seconds},
-                                    {"fit", result.fit_seconds},
-                                    {"building", result.building_seconds},
-                                    {"extras", result.extras.seconds},
-                                    {"charts", result.charts_seconds},
-                                    {"total", result.wall_seconds}};
+    j["command"]        = "study";
+    j["kimp"]           = version_line();
+    j["units"]          = {{"wall_height", "m"},
+                           {"k_per_metre", "kN/mm^n/m"},
+                           {"k_total", "kN/mm^n"},
+                           {"wall_time", "s"}};
+    j["building_width"] = scene.fit.width;
+    j["wall_time"]      = result.wall_seconds;
+    nlohmann::ordered_json stages;
+    for (const auto &[stage, seconds] : cost_by_stage(result))
+      stages[stage] = seconds;
+    j["wall_time_by_stage"] = stages;
+    // One case per wall height, in the shape of every command's summary.json (name, status).
+    j["cases"] = nlohmann::ordered_json::array();
+    for (const StudyHeight &h : result.heights)
+    {
+      const bool        both_ok = h.kelvin_voigt_status == "ok" && h.jankowski_status == "ok";
+      const std::string status  = both_ok ?
+                                    "ok" :
+                                    fmt::format("{}Kelvin-Voigt: {}; Jankowski: {}",
+                                               h.kelvin_voigt_status.rfind("failed", 0) == 0 ||
+                                                   h.jankowski_status.rfind("failed", 0) == 0 ?
+                                                  "failed: " :
+                                                  "warning: ",
+                                               h.kelvin_voigt_status,
+                                               h.jankowski_status);
+      j["cases"].push_back({{"name", h.name},
+                            {"status", status},
+                            {"wall_height", h.wall_height},
+                            {"wall_time", h.fem_seconds + h.fit_seconds}});
+    }
     nlohmann::ordered_json table = nlohmann::ordered_json::array();
     for (const StudyHeight &h : result.heights)
     {
@@ -387,9 +409,11 @@ namespace kimp::app::study_internal
       }
       row["fidelity_reason"] = h.fidelity_reason;
       const FemSummary &fem  = h.fem_case.summary;
-      for (const auto &[key, value] : {std::pair{"n_dofs", fem.n_dofs},
-                                       std::pair{"n_steps", fem.n_steps},
-                                       std::pair{"dt", fem.dt},
+      if (fem.n_dofs)
+        row["fem_n_dofs"] = *fem.n_dofs;
+      if (fem.n_steps)
+        row["fem_n_steps"] = *fem.n_steps;
+      for (const auto &[key, value] : {std::pair{"dt", fem.dt},
                                        std::pair{"peak_force", fem.peak_force},
                                        std::pair{"contact_duration", fem.contact_duration}})
         if (value)

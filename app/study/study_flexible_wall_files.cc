@@ -116,7 +116,7 @@ namespace kimp::app::study_internal
                       "damping_ratio",
                       "h_contact_cm",
                       "n_dofs",
-                      "seconds",
+                      "wall_time_s",
                       "status"},
                      sdof_rows);
 
@@ -265,8 +265,8 @@ namespace kimp::app::study_internal
                                     {"mass", "kg"},
                                     {"per_metre", "of wall"},
                                     {"frequency", "Hz"},
-                                    {"seconds", "s"}};
-    j["seconds"]                 = result.flexible_wall_seconds;
+                                    {"wall_time", "s"}};
+    j["wall_time"]               = result.flexible_wall_seconds;
     nlohmann::ordered_json sdofs = nlohmann::ordered_json::array();
     for (const StudyWallSdof &s : result.wall_sdofs)
     {

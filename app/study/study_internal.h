@@ -14,6 +14,7 @@
 namespace kimp::io
 {
   class ResultsGroup;
+  class Table;
 } // namespace kimp::io
 
 namespace kimp::app::study_internal
@@ -88,6 +89,8 @@ namespace kimp::app::study_internal
   std::string flexible_wall_markdown(const StudyScene &scene, const StudyResult &result);
 
   // writers: study_files.cc
+  /// The k table of `cases` (one row each): k_table.csv, study.h5 /k_table and report.md.
+  io::Table k_table(const StudyScene &scene, const std::vector<const StudyHeight *> &cases);
   /// DIR/k_table.csv and (fidelity: auto) DIR/fidelity_levels.csv.
   void write_k_table_csv(const io::OutputDir            &output,
                          const StudyScene               &scene,
@@ -99,6 +102,11 @@ namespace kimp::app::study_internal
   void write_study_h5(const io::LoadedScene<StudyScene> &loaded,
                       const StudyResult                 &result,
                       const io::OutputDir               &output);
+  /// Wall time of the study's stages that ran, in order (FEM, fits, building runs, flexible
+  /// walls, extra studies, charts, then "files and the rest" = total minus the others), s.
+  std::vector<std::pair<std::string, double>> cost_by_stage(const StudyResult &result);
+  /// "FEM 11.4 s, fits 2.02 s, ..., total 49.2 s" of cost_by_stage().
+  std::string cost_text(const StudyResult &result);
   /// The content of DIR/summary.json.
   nlohmann::ordered_json summary_json(const StudyScene &scene, const StudyResult &result);
 

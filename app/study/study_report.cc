@@ -12,6 +12,7 @@
 #include "base/format.h"
 #include "base/logging.h"
 #include "base/version.h"
+#include "io/table.h"
 
 namespace kimp::app::study_internal
 {
@@ -179,36 +180,45 @@ namespace kimp::app::study_internal
     md += fmt::format("## Impact stiffness per wall height (fitted at COR {}, W = {} m)\n\n",
                       scene.fit.cor,
                       scene.fit.width);
-    md += "| H (m) | KV kN/mm/m [95 % CI] ± numerical | Table 2.1 | KV total kN/mm | "
-          "Jankowski kN/mm^1.5/m [95 % CI] ± numerical | Table 2.1 | J total kN/mm^1.5 | FEM "
-          "level (h_contact, penalty) | FEM from cache |\n"
-          "|---|---|---|---|---|---|---|---|---|\n";
-    const auto plus_minus = [](double error)
-    { return std::isfinite(error) ? " ± " + base::sig(error, 2) : std::string(); };
-    for (const StudyHeight &h : result.heights)
+    // The k table of k_table.csv and study.h5 /k_table: a value with its 95 % interval and the
+    // FEM's numerical error in one cell.
+    const auto with_interval = [](const std::vector<std::string> &t)
     {
-      const std::optional<ThesisStiffness> t = thesis_row(h.wall_height);
-      md +=
-        fmt::format("| {:.2f} | {} [{}, {}]{} | {} | {} | {} [{}, {}]{} | {} | {} | {:g} cm, "
-                    "{:g}{} | {} |\n",
-                    h.wall_height,
-                    readable(per_metre(h.kelvin_voigt)),
-                    readable(per_metre_bound(h.kelvin_voigt, false)),
-                    readable(per_metre_bound(h.kelvin_voigt, true)),
-                    plus_minus(numerical_error(h, 1.0)),
-                    t ? readable(t->kelvin_voigt) : "-",
-                    readable(per_metre(h.kelvin_voigt) * scene.fit.width),
-                    readable(per_metre(h.jankowski)),
-                    readable(per_metre_bound(h.jankowski, false)),
-                    readable(per_metre_bound(h.jankowski, true)),
-                    plus_minus(numerical_error(h, 1.5)),
-                    t ? readable(t->jankowski) : "-",
-                    readable(per_metre(h.jankowski) * scene.fit.width),
-                    used_h_contact(scene, h) * 100.0,
-                    used_penalty(scene, h),
-                    h.auto_fidelity ? (h.ladder.converged ? "" : " (not converged)") : " (fixed)",
-                    h.fem_from_cache ? "yes" : "no");
-    }
+      if (t[0].empty())
+        return std::string("-");
+      return t[0] + " [" + t[1] + ", " + t[2] + "]" + (t[3].empty() ? "" : " ± " + t[3]);
+    };
+    const auto or_dash = [](const std::vector<std::string> &t)
+    { return t[0].empty() ? std::string("-") : t[0]; };
+    const auto fem_level = [](const std::vector<std::string> &t)
+    {
+      const std::string state =
+        t[2] == "auto" ? (t[3] == "yes" ? "" : " (not converged)") : " (fixed)";
+      return t[0] + " cm, " + t[1] + state;
+    };
+    std::vector<const StudyHeight *> heights;
+    for (const StudyHeight &h : result.heights)
+      heights.push_back(&h);
+    md += k_table(scene, heights)
+            .markdown(
+              {{"H (m)", {"wall_height"}, {}},
+               {"KV kN/mm/m [95 % CI] ± numerical",
+                {"kelvin_voigt",
+                 "kelvin_voigt_lower",
+                 "kelvin_voigt_upper",
+                 "kelvin_voigt_numerical_error"},
+                with_interval},
+               {"Table 2.1", {"thesis_kelvin_voigt"}, or_dash},
+               {"KV total kN/mm", {"kelvin_voigt_total"}, or_dash},
+               {"Jankowski kN/mm^1.5/m [95 % CI] ± numerical",
+                {"jankowski", "jankowski_lower", "jankowski_upper", "jankowski_numerical_error"},
+                with_interval},
+               {"Table 2.1", {"thesis_jankowski"}, or_dash},
+               {"J total kN/mm^1.5", {"jankowski_total"}, or_dash},
+               {"FEM level (h_contact, penalty)",
+                {"fem_h_contact", "fem_penalty_factor", "fidelity", "fidelity_converged"},
+                fem_level},
+               {"FEM from cache", {"fem_from_cache"}, {}}});
     md += "\nThe intervals are the fits' own (law misfit). The ± values are the FEM's numerical "
           "error of k with `fem.fidelity: auto`: the change of k from the previous level of the "
           "mesh ladder (and of the penalty ladder, added in quadrature); the climb stops when "
@@ -251,14 +261,7 @@ namespace kimp::app::study_internal
     md += flexible_wall_markdown(scene, result);
     md += consistent_k_report_markdown(scene, result);
     md += extras_markdown(scene, result.extras, charts);
-    md += fmt::format("## Cost\n\nFEM {} s, fits {} s, building runs {} s, extra "
-                      "studies {} s, charts {} s, total {} s (see summary.json).\n",
-                      base::sig(result.fem_seconds, 3),
-                      base::sig(result.fit_seconds, 3),
-                      base::sig(result.building_seconds, 3),
-                      base::sig(result.extras.seconds, 3),
-                      base::sig(result.charts_seconds, 3),
-                      base::sig(result.wall_seconds, 3));
+    md += "## Cost\n\n" + cost_text(result) + " (wall time; see summary.json).\n";
     return md;
   }
 

@@ -96,13 +96,7 @@ namespace kimp::app
       // The results are complete by now: a report that cannot be written is only a warning.
       logger().warn("no HTML report: {}", error.what());
     }
-    logger().info("study done in {} s (FEM {} s, fits {} s, building {} s, charts {} s): {}",
-                  base::sig(result.wall_seconds, 3),
-                  base::sig(result.fem_seconds, 3),
-                  base::sig(result.fit_seconds, 3),
-                  base::sig(result.building_seconds, 3),
-                  base::sig(result.charts_seconds, 3),
-                  output.file("report.md").string());
+    logger().info("study done: {}: {}", cost_text(result), output.file("report.md").string());
     logger().info("HTML report: {}", output.file("report.html").string());
     return result;
   }

@@ -20,6 +20,7 @@
 #include "base/logging.h"
 #include "io/results_file.h"
 #include "io/summary.h"
+#include "io/table.h"
 #include "io/units.h"
 
 namespace kimp::app
@@ -42,11 +43,6 @@ namespace kimp::app
       if (name.empty() || name == "." || name == "..")
         name = "_" + name;
       return name;
-    }
-
-    std::string metric_text(double value)
-    {
-      return std::isfinite(value) ? fmt::format("{}", value) : std::string();
     }
 
     /// Progress line "sweep: N/M cases (K resumed), R cases/s, ETA T s" every `interval` s.
@@ -95,6 +91,112 @@ namespace kimp::app
       SteadyClock::time_point last_;
     };
   } // namespace
+
+  namespace
+  {
+    /// The SI unit of a common dimension, or "" (the column is then text).
+    std::string si_unit(const Dimension &d)
+    {
+      static const std::pair<Dimension, const char *> units[] = {{{0, 1, 0}, "m"},
+                                                                 {{1, 0, 0}, "kg"},
+                                                                 {{0, 0, 1}, "s"},
+                                                                 {{1, 1, -2}, "N"},
+                                                                 {{1, 0, -2}, "N/m"},
+                                                                 {{1, 0, -1}, "N*s/m"},
+                                                                 {{0, 1, -1}, "m/s"},
+                                                                 {{0, 1, -2}, "m/s^2"},
+                                                                 {{1, -1, -2}, "Pa"},
+                                                                 {{1, -3, 0}, "kg/m^3"}};
+      for (const auto &[dimension, unit] : units)
+        if (dimension == d)
+          return unit;
+      return {};
+    }
+
+    /// "4 cm" -> {4, "cm"}; "0.7" -> {0.7, ""}; nullopt if the text does not start with a
+    /// number or is no quantity.
+    std::optional<std::pair<double, std::string>> number_and_unit(const std::string &text)
+    {
+      const char  *begin = text.c_str();
+      char        *end   = nullptr;
+      const double value = std::strtod(begin, &end);
+      if (end == begin || !std::isfinite(value))
+        return std::nullopt;
+      std::string unit(end);
+      unit.erase(0, unit.find_first_not_of(" \t"));
+      unit.erase(unit.find_last_not_of(" \t") + 1);
+      try
+      {
+        parse_unit(unit);
+      }
+      catch (const std::exception &)
+      {
+        return std::nullopt;
+      }
+      return std::pair{value, unit};
+    }
+  } // namespace
+
+  double SweepParameterColumn::number(const std::string &value) const
+  {
+    const auto found = std::find(values.begin(), values.end(), value);
+    return numeric && found != values.end() ? numbers[found - values.begin()] :
+                                              std::numeric_limits<double>::quiet_NaN();
+  }
+
+  SweepParameterColumn sweep_parameter_column(const SweepParameter &parameter)
+  {
+    SweepParameterColumn column;
+    for (const std::string &path : parameter.key_paths)
+      column.name += (column.name.empty() ? "" : "+") + path;
+    if (column.name.empty())
+      column.name = parameter.name;
+    column.values = parameter.values;
+    std::vector<std::pair<double, std::string>> parsed;
+    for (const std::string &value : parameter.values)
+    {
+      const auto q = number_and_unit(value);
+      if (!q)
+        return column; // text
+      parsed.push_back(*q);
+    }
+    if (parsed.empty())
+      return column;
+    const bool        one_unit = std::all_of(parsed.begin(),
+                                      parsed.end(),
+                                      [&](const auto &q) { return q.second == parsed[0].second; });
+    const std::string unit     = parsed[0].second;
+    if (one_unit && unit != "%")
+    {
+      column.unit = unit;
+      for (const auto &q : parsed)
+        column.numbers.push_back(q.first);
+    }
+    else
+    {
+      // Several units (or %): SI values, in the SI unit of their one dimension.
+      std::optional<Dimension> dimension;
+      for (const std::string &value : parameter.values)
+      {
+        const Quantity q = parse_quantity(value);
+        if (dimension && *dimension != q.dimension)
+          return column; // mixed dimensions: text
+        dimension = q.dimension;
+        column.numbers.push_back(q.value);
+      }
+      if (!dimension->dimensionless())
+      {
+        column.unit = si_unit(*dimension);
+        if (column.unit.empty())
+        {
+          column.numbers.clear();
+          return column;
+        }
+      }
+    }
+    column.numeric = true;
+    return column;
+  }
 
   std::pair<std::string, std::string> split_metric_unit(const std::string &metric)
   {
@@ -300,30 +402,46 @@ namespace kimp::app
   {
     const OutputDir output(dir);
 
-    std::vector<std::string> header{"index", "id", "companion"};
-    header.insert(header.end(), table.parameter_names.begin(), table.parameter_names.end());
-    header.push_back("status");
     // sweep.h5 keeps the metric labels "name [unit]" in its `columns` attribute; sweep.csv
-    // follows the CSV convention name_unit.
-    std::vector<std::string> labels = header;
+    // follows the CSV convention name_unit, with numbers only in numeric columns.
+    std::vector<std::string> labels{"index", "id", "companion"};
+    labels.insert(labels.end(), table.parameter_names.begin(), table.parameter_names.end());
+    labels.push_back("status");
     labels.insert(labels.end(), table.metric_names.begin(), table.metric_names.end());
     labels.push_back("wall_time [s]");
+
+    std::vector<SweepParameterColumn> parameter_columns;
+    for (const SweepParameter &p : plan.parameters())
+      parameter_columns.push_back(sweep_parameter_column(p));
+    Table csv;
+    csv.integer("index").text("id").text("companion");
+    for (const SweepParameterColumn &p : parameter_columns)
+      if (p.numeric)
+        csv.number(p.name, p.unit);
+      else
+        csv.text(p.name);
+    csv.text("status");
     for (const std::string &metric : table.metric_names)
-      header.push_back(csv_column(metric));
-    header.push_back("wall_time_s");
-    std::vector<std::vector<std::string>> rows;
-    rows.reserve(table.rows.size());
+    {
+      const auto [name, unit] = split_metric_unit(metric);
+      csv.number(name, unit);
+    }
+    csv.number("wall_time", "s");
     for (const SweepTableRow &r : table.rows)
     {
-      std::vector<std::string> row{std::to_string(r.index), r.id, r.companion};
-      row.insert(row.end(), r.values.begin(), r.values.end());
-      row.push_back(r.status);
+      std::vector<Cell> row{static_cast<std::int64_t>(r.index), r.id, r.companion};
+      for (std::size_t p = 0; p < parameter_columns.size(); ++p)
+        if (parameter_columns[p].numeric)
+          row.emplace_back(parameter_columns[p].number(r.values.at(p)));
+        else
+          row.emplace_back(r.values.at(p));
+      row.emplace_back(r.status);
       for (const double m : r.metrics)
-        row.push_back(metric_text(m));
-      row.push_back(fmt::format("{:.6g}", r.wall_time));
-      rows.push_back(std::move(row));
+        row.emplace_back(m);
+      row.emplace_back(r.wall_time);
+      csv.add_row(std::move(row));
     }
-    write_csv_atomic(output.file("sweep.csv"), header, rows);
+    csv.write_csv(output.file("sweep.csv"));
 
     // Numeric and text columns, meta and input through ResultsFile (temporary file, then rename).
     {
@@ -373,6 +491,10 @@ namespace kimp::app
         if (numeric && dimension)
           si.write(dataset_name(table.parameter_names[p]), values, to_string(*dimension));
       }
+      std::vector<std::string> column_names;
+      for (const SweepParameterColumn &p : parameter_columns)
+        column_names.push_back(csv_column(p.name, p.unit));
+      sweep.write("parameter_columns", column_names);
       sweep.set_attribute("n_cases", plan.cases().size());
       sweep.set_attribute("n_rows", table.rows.size());
 

@@ -80,15 +80,39 @@ namespace kimp::app
   SweepTable collect_sweep_table(const SweepPlan &plan, const std::filesystem::path &dir);
 
   /**
-   * DIR/sweep.csv (index, id, companion, parameters..., status, metrics..., wall_time [s]) and
+   * DIR/sweep.csv (index, id, companion, parameters..., status, metrics..., wall_time_s; header
+   * convention name_unit, parameters as sweep_parameter_column() says) and
    * DIR/sweep.h5: /meta, /input/{scene = sweep file, resolved = plan JSON}, and /sweep with one
    * dataset per column (strings for id, companion, status and parameter texts; parameters that are
-   * all quantities of one dimension also as SI numbers under /sweep/parameters_si). Both files are
-   * written under temporary names and renamed.
+   * all quantities of one dimension also as SI numbers under /sweep/parameters_si; the CSV column
+   * of each parameter, in plan order, in /sweep/parameter_columns). Both files are written under
+   * temporary names and renamed.
    */
   void write_sweep_results(const SweepPlan             &plan,
                            const SweepTable            &table,
                            const std::filesystem::path &dir);
+
+  /**
+   * How a parameter is written in sweep.csv and dsrss_table.csv. Its column is named by its key
+   * paths joined with '+' ("walls.left.gap+walls.right.gap"). When every value is a number with
+   * one unit, the column holds the numbers in that unit (`..._cm`: 4, 6, 8); "%" values and bare
+   * numbers are dimensionless fractions (no suffix: 0.02); numbers in several units of one
+   * dimension are SI (`_m`, `_N_per_m`, ...). Other values (records, labels) are a text column.
+   */
+  struct SweepParameterColumn
+  {
+    std::string              name; ///< CSV column name before the unit suffix
+    std::string              unit; ///< unit of the numbers ("" dimensionless or text)
+    bool                     numeric = false;
+    std::vector<std::string> values;  ///< the parameter's value texts
+    std::vector<double>      numbers; ///< per value, in `unit` (numeric columns)
+
+    /// The number of the value text `value` (NaN if unknown), or -- for a text column -- none.
+    double number(const std::string &value) const;
+  };
+
+  /// The column of `parameter` (see SweepParameterColumn).
+  SweepParameterColumn sweep_parameter_column(const SweepParameter &parameter);
 
   /// "name [unit]" -> {"name", "unit"}; a name without brackets has unit "1".
   std::pair<std::string, std::string> split_metric_unit(const std::string &metric);

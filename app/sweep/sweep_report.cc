@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "io/summary.h"
+#include "io/table.h"
 #include "io/units.h"
 
 namespace kimp::app
@@ -29,11 +30,6 @@ namespace kimp::app
     {
       return text.size() >= suffix.size() &&
              text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-    }
-
-    std::string number(double value)
-    {
-      return std::isfinite(value) ? fmt::format("{}", value) : std::string();
     }
 
     /// Where a contact's metrics sit in SweepTable::metric_names.
@@ -131,6 +127,7 @@ namespace kimp::app
       {
         kept.push_back(p);
         dsrss.parameter_names.push_back(parameter.name);
+        dsrss.parameter_columns.push_back(sweep_parameter_column(parameter));
       }
     }
     if (!gap_swept)
@@ -280,39 +277,47 @@ namespace kimp::app
 
   void write_dsrss_table(const DsrssTable &dsrss, const std::filesystem::path &file)
   {
-    std::vector<std::string> header = dsrss.parameter_names;
-    for (const char *column : {"clearance_offset_m",
-                               "n_gaps",
-                               "n_cases",
-                               "n_failed",
-                               "gap_min_m",
-                               "gap_max_m",
-                               "d_req_m",
-                               "d_req_status",
-                               "d_srss_m",
-                               "governing_contact",
-                               "d_srss_spread_m",
-                               "delta_d_m"})
-      header.emplace_back(column);
-    std::vector<std::vector<std::string>> rows;
+    Table csv;
+    for (const SweepParameterColumn &p : dsrss.parameter_columns)
+      if (p.numeric)
+        csv.number(p.name, p.unit);
+      else
+        csv.text(p.name);
+    csv.number("clearance_offset", "m")
+      .integer("n_gaps")
+      .integer("n_cases")
+      .integer("n_failed")
+      .number("gap_min", "m")
+      .number("gap_max", "m")
+      .number("d_req", "m")
+      .text("d_req_status")
+      .number("d_srss", "m")
+      .text("governing_contact")
+      .number("d_srss_spread", "m")
+      .number("delta_d", "m");
     for (const DsrssRow &r : dsrss.rows)
     {
-      std::vector<std::string> row = r.values;
+      std::vector<Cell> row;
+      for (std::size_t p = 0; p < dsrss.parameter_columns.size(); ++p)
+        if (dsrss.parameter_columns[p].numeric)
+          row.emplace_back(dsrss.parameter_columns[p].number(r.values.at(p)));
+        else
+          row.emplace_back(r.values.at(p));
       row.insert(row.end(),
-                 {number(r.clearance_offset),
-                  std::to_string(r.n_gaps),
-                  std::to_string(r.n_cases),
-                  std::to_string(r.n_failed),
-                  number(r.gap_min),
-                  number(r.gap_max),
-                  number(r.d_req.gap),
+                 {r.clearance_offset,
+                  static_cast<std::int64_t>(r.n_gaps),
+                  static_cast<std::int64_t>(r.n_cases),
+                  static_cast<std::int64_t>(r.n_failed),
+                  r.gap_min,
+                  r.gap_max,
+                  r.d_req.gap,
                   to_string(r.d_req.status),
-                  number(r.d_srss),
+                  r.d_srss,
                   r.governing,
-                  number(r.d_srss_spread),
-                  number(r.delta())});
-      rows.push_back(std::move(row));
+                  r.d_srss_spread,
+                  r.delta()});
+      csv.add_row(std::move(row));
     }
-    write_csv_atomic(file, header, rows);
+    csv.write_csv(file);
   }
 } // namespace kimp::app

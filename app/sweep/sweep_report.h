@@ -91,8 +91,9 @@ namespace kimp::app
 
   struct DsrssTable
   {
-    std::vector<std::string> parameter_names; ///< the parameters of DsrssRow::values
-    std::vector<DsrssRow>    rows;            ///< in order of first appearance in the sweep
+    std::vector<std::string>          parameter_names;   ///< the parameters of DsrssRow::values
+    std::vector<SweepParameterColumn> parameter_columns; ///< their CSV columns
+    std::vector<DsrssRow>             rows; ///< in order of first appearance in the sweep
   };
 
   /**

@@ -3,12 +3,14 @@
 #include "app/sweep/sweep_run.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <fmt/format.h>
 #include <memory>
 #include <mpi.h>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
@@ -145,10 +147,51 @@ namespace kimp::app
                     output.file("summary.md").string());
     }
 
+    /// DIR/summary.json: what ran, and one entry per case in the shape of every command's
+    /// summary (`cases`: name, status), with the parameter values as in the sweep file.
+    void write_sweep_summary(const SweepPlan    &plan,
+                             const SweepSummary &summary,
+                             const OutputDir    &output,
+                             int                 n_ranks,
+                             double              wall_time)
+    {
+      const SweepTable       table = collect_sweep_table(plan, output.path());
+      nlohmann::ordered_json j;
+      j["command"]         = "sweep";
+      j["kimp"]            = version_line();
+      j["sweep"]           = plan.file_name();
+      j["scene"]           = plan.base_scene_name();
+      j["n_ranks"]         = n_ranks;
+      j["wall_time"]       = wall_time;
+      j["units"]           = {{"wall_time", "s"}};
+      j["n_cases"]         = summary.n_cases;
+      j["n_resumed"]       = summary.n_resumed;
+      j["n_run"]           = summary.n_run;
+      j["n_failed"]        = summary.n_failed;
+      j["n_rows"]          = summary.n_rows;
+      std::size_t n_not_ok = 0;
+      j["cases"]           = nlohmann::ordered_json::array();
+      for (const SweepTableRow &r : table.rows)
+      {
+        n_not_ok += r.status != "ok";
+        nlohmann::ordered_json parameters = nlohmann::ordered_json::object();
+        for (std::size_t p = 0; p < table.parameter_names.size(); ++p)
+          parameters[table.parameter_names[p]] = r.values.at(p);
+        j["cases"].push_back({{"name", r.id},
+                              {"status", r.status},
+                              {"index", r.index},
+                              {"companion", r.companion},
+                              {"parameters", parameters},
+                              {"wall_time", r.wall_time}});
+      }
+      j["n_rows_not_ok"] = n_not_ok;
+      write_text_atomic(output.file("summary.json"), j.dump(2) + "\n");
+    }
   } // namespace
 
   void run_sweep_job(const SweepRunOptions &options)
   {
+    const auto     start = std::chrono::steady_clock::now();
     const MpiScope mpi;
     set_rank(mpi.rank());
     logger().info("{}: sweep {} on {} rank(s)", version_line(), options.sweep, mpi.size());
@@ -202,6 +245,12 @@ namespace kimp::app
                     summary.n_rows);
     if (mpi.rank() == 0)
     {
+      write_sweep_summary(
+        plan,
+        summary,
+        output,
+        mpi.size(),
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       if (plan.report())
         write_report(plan, output, !options.no_charts);
       else

@@ -1860,7 +1860,7 @@ const kimp = (function () {
     ['n_steps', 'steps', null],
     ['dt', 'time step (µs)', 1e6],
     ['dt_stable', 'stable limit (µs)', 1e6],
-    ['wall_seconds', 'solver time (s)', 1],
+    ['wall_time', 'solver time (s)', 1],
   ];
 
   function femSummarySection(parent, summary) {

@@ -33,12 +33,12 @@ namespace
   kimp::io::FemCase separated_case(double cor, double damage, double plastic)
   {
     kimp::io::FemCase c;
-    c.labels["stopped_on"]                 = "separation";
-    c.slab_mass                            = 3840.0;
-    c.impact_velocity                      = 1.0;
-    c.summary.apparent_cor                 = cor;
-    c.summary.extra["damage_dissipation"]  = damage;
-    c.summary.extra["plastic_dissipation"] = plastic;
+    c.labels["stopped_on"]        = "separation";
+    c.slab_mass                   = 3840.0;
+    c.impact_velocity             = 1.0;
+    c.summary.apparent_cor        = cor;
+    c.summary.damage_dissipation  = damage;
+    c.summary.plastic_dissipation = plastic;
     return c;
   }
 

@@ -60,7 +60,7 @@ namespace
       << read_text(dir / "log.txt");
     const Csv csv = read_csv(dir / "out/sweep.csv");
     ASSERT_EQ(csv.rows.size(), 12U) << "6 gaps x 2 COR";
-    const std::size_t gap_column    = csv.column("walls.left.gap, walls.right.gap");
+    const std::size_t gap_column    = csv.column("walls.left.gap+walls.right.gap_cm");
     const std::size_t status_column = csv.column("status");
     const std::size_t impacts       = csv.column("n_impacts");
     const std::size_t free_peak     = csv.column("free_peak_displacement_dof0_m");

@@ -122,4 +122,23 @@ namespace
     EXPECT_DOUBLE_EQ(r.acceleration[1], -0.002);
     EXPECT_DOUBLE_EQ(r.dt, 0.01);
   }
+
+  TEST(At2Units, RecordUnitThatContradictsTheHeaderIsRefused)
+  {
+    const kimp::testing::TempDir dir;
+    const auto file = dir.write("rec.AT2", at2_text("ACCELERATION TIME SERIES IN UNITS OF G"));
+    try
+    {
+      kimp::io::read_ground_motion(file, 0.01); // record_unit cm/s^2 for a file in g
+      FAIL() << "record_unit cm/s^2 was ignored for an AT2 file in g";
+    }
+    catch (const GroundMotionFileError &error)
+    {
+      expect_contains(error.what(), {"rec.AT2:4:", "9.80665", "0.01", "record_unit"});
+    }
+    // The header's own unit given again is no contradiction: the values are read in g.
+    const kimp::io::AccelerationRecord r = kimp::io::read_ground_motion(file, standard_gravity);
+    ASSERT_EQ(r.acceleration.size(), 3u);
+    EXPECT_DOUBLE_EQ(r.acceleration[1], -2.0 * standard_gravity);
+  }
 } // namespace

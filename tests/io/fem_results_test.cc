@@ -45,8 +45,8 @@ namespace
     c.summary.contact_duration       = 4.5e-3;
     c.summary.impulse                = 6528.0;
     c.summary.apparent_cor           = 0.7;
-    c.summary.n_dofs                 = 12345.0;
-    c.summary.wall_seconds           = 3.25;
+    c.summary.n_dofs                 = 12345;
+    c.summary.wall_time              = 3.25;
     c.summary.extra["custom_length"] = 0.25;
     c.summary_units                  = {{"custom_length", "mm"}};
     c.labels                         = {{"mesh_level", "2"}, {"integrator", "central_difference"}};

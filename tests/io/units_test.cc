@@ -207,7 +207,15 @@ namespace
     EXPECT_NE(message.find("'2500' has no unit"), std::string::npos) << message;
     EXPECT_NE(message.find("expected a stiffness"), std::string::npos) << message;
     const auto percent = error_of("5", "%");
-    EXPECT_NE(percent.find("like '5 %'"), std::string::npos) << percent;
+    EXPECT_NE(percent.find("'5' has no unit"), std::string::npos) << percent;
+    EXPECT_NE(percent.find("'5 %'"), std::string::npos) << percent;
+    // A fraction where % is declared (building.damping_ratio: 0.02) is refused, never guessed,
+    // and the message gives both readings.
+    const auto fraction = error_of("0.02", "%");
+    EXPECT_NE(fraction.find("write '2 %' for the fraction 0.02, or '0.02 %'"), std::string::npos)
+      << fraction;
+    EXPECT_DOUBLE_EQ(kimp::io::parse_quantity_as("2 %", "%"), 0.02);
+    EXPECT_DOUBLE_EQ(kimp::io::parse_quantity_as("0.7", ""), 0.7); // a plain ratio (COR)
   }
 
   TEST(Units, RejectsNonFiniteValues)
