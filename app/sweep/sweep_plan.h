@@ -12,13 +12,16 @@
 #include <utility>
 #include <vector>
 
+#include "io/scene_source.h"
+
 namespace kimp::app
 {
-  /// A malformed sweep file; the message is "FILE:LINE: key: what is wrong (what was expected)".
-  class SweepError : public std::runtime_error
+  /// A malformed sweep file; the message is "FILE:LINE: key: what is wrong (what was expected)",
+  /// one line per error (a sweep file is read like a scene file).
+  class SweepError : public io::SceneError
   {
   public:
-    using std::runtime_error::runtime_error;
+    using io::SceneError::SceneError;
   };
 
   /// How the value lists of several parameters are combined into cases.
