@@ -2,6 +2,7 @@
 #include "io/defaults_printer.h"
 
 #include <fmt/format.h>
+#include <variant>
 
 #include "io/units.h"
 
@@ -50,6 +51,72 @@ namespace kimp::io
     }
   } // namespace
 
+  namespace
+  {
+    /// The value as written in the listing and the comment after it.
+    struct Listing
+    {
+      std::string value;
+      std::string comment;
+    };
+
+    Listing listing(const Key &key, const double *value)
+    {
+      return {yaml_quote(format_quantity(*value, key.unit)),
+              fmt::format("{} [{}]", key.doc, unit_range_comment(key.unit, key.range))};
+    }
+
+    Listing listing(const Key &key, const std::optional<double> *value)
+    {
+      return {*value ? yaml_quote(format_quantity(**value, key.unit)) : std::string("null"),
+              fmt::format("{} [{}] (optional: null = not set)",
+                          key.doc,
+                          unit_range_comment(key.unit, key.range))};
+    }
+
+    Listing listing(const Key &key, const std::vector<double> *values)
+    {
+      std::vector<std::string> items;
+      for (const double v : *values)
+        items.push_back(yaml_quote(format_quantity(v, key.unit)));
+      return {"[" + join(items, ", ") + "]",
+              fmt::format("{} [{}, list{}]",
+                          key.doc,
+                          unit_comment(key.unit),
+                          key.range.bounded() ? ", each " + key.range.text(key.unit) :
+                                                std::string())};
+    }
+
+    Listing listing(const Key &key, const bool *value)
+    {
+      return {*value ? "true" : "false", fmt::format("{} (true or false)", key.doc)};
+    }
+
+    Listing listing(const Key &key, Member::Text member)
+    {
+      return {yaml_quote(*member.value), std::string(key.doc)};
+    }
+
+    /// The YAML text as written (flow style), `null` when empty; no comment when `doc` is empty
+    /// (the values of a map, which its own comment describes).
+    Listing listing(const Key &key, Member::Yaml member)
+    {
+      return {member.text->empty() ? std::string("null") : *member.text, std::string(key.doc)};
+    }
+
+    Listing listing(const Key &key, Member::Integer member)
+    {
+      return {std::to_string(*member.value),
+              fmt::format("{} ({})", key.doc, integer_range_text(member.min, member.max))};
+    }
+
+    Listing listing(const Key &key, Member::Choice member)
+    {
+      return {yaml_quote(member.options->at(*member.index)),
+              fmt::format("{} (one of: {})", key.doc, join(*member.options, ", "))};
+    }
+  } // namespace
+
   DefaultsPrinter::DefaultsPrinter(std::ostream &out)
     : out_(&out)
   {
@@ -73,76 +140,21 @@ namespace kimp::io
     *out_ << lead << extra_lead << key << ':';
     if (!value.empty())
       *out_ << ' ' << value;
-    *out_ << "  # " << comment << '\n';
+    if (!comment.empty())
+      *out_ << "  # " << comment;
+    *out_ << '\n';
   }
 
-  void DefaultsPrinter::quantity_value(const QuantityKey &key, double &value)
+  void DefaultsPrinter::value(const Key &key, Member::Ref member)
   {
-    line(key.key,
-         yaml_quote(format_quantity(value, key.unit)),
-         fmt::format("{} [{}]", key.doc, unit_range_comment(key.unit, key.range)));
+    const Listing l = std::visit([&](auto m) { return listing(key, m); }, member);
+    line(key.key, l.value, l.comment);
   }
 
-  void DefaultsPrinter::quantity_value(const QuantityKey &key, std::optional<double> &value)
+  std::optional<DefaultsPrinter> DefaultsPrinter::open_section(std::string_view key,
+                                                               std::string_view doc)
   {
-    line(key.key,
-         value ? yaml_quote(format_quantity(*value, key.unit)) : std::string("null"),
-         fmt::format("{} [{}] (optional: null = not set)",
-                     key.doc,
-                     unit_range_comment(key.unit, key.range)));
-  }
-
-  void DefaultsPrinter::quantity_value(const QuantityKey &key, std::vector<double> &values)
-  {
-    std::vector<std::string> items;
-    for (const double v : values)
-      items.push_back(yaml_quote(format_quantity(v, key.unit)));
-    line(key.key,
-         "[" + join(items, ", ") + "]",
-         fmt::format("{} [{}, list{}]",
-                     key.doc,
-                     unit_comment(key.unit),
-                     key.range.bounded() ? ", each " + key.range.text(key.unit) : std::string()));
-  }
-
-  void DefaultsPrinter::flag(std::string_view key, bool &value, std::string_view doc)
-  {
-    line(key, value ? "true" : "false", fmt::format("{} (true or false)", doc));
-  }
-
-  void DefaultsPrinter::text(std::string_view key, std::string &value, std::string_view doc)
-  {
-    line(key, yaml_quote(value), doc);
-  }
-
-  void DefaultsPrinter::raw(std::string_view key, std::string &yaml_text, std::string_view doc)
-  {
-    const std::string value = yaml_text.empty() ? std::string("null") : yaml_text;
-    if (!doc.empty())
-    {
-      line(key, value, doc);
-      return;
-    }
-    *out_ << (first_lead_.empty() ? lead_ : first_lead_) << key << ": " << value << '\n';
-    first_lead_.clear();
-  }
-
-  void DefaultsPrinter::integer_value(std::string_view key,
-                                      long long       &value,
-                                      std::string_view doc,
-                                      long long        min,
-                                      long long        max)
-  {
-    line(key, std::to_string(value), fmt::format("{} ({})", doc, integer_range_text(min, max)));
-  }
-
-  void DefaultsPrinter::choice_index(std::string_view                key,
-                                     std::size_t                    &index,
-                                     const std::vector<std::string> &options,
-                                     std::string_view                doc)
-  {
-    line(key,
-         yaml_quote(options.at(index)),
-         fmt::format("{} (one of: {})", doc, join(options, ", ")));
+    line(key, "", doc);
+    return child(lead_ + "  ", "");
   }
 } // namespace kimp::io

@@ -25,22 +25,12 @@ namespace kimp::io
   public:
     explicit DefaultsPrinter(std::ostream &out);
 
-    using IoVerbs<DefaultsPrinter>::section;
+    /// Writes the key, its value and a comment with meaning, unit, range or options.
+    void value(const Key &key, Member::Ref member);
 
-    void quantity_value(const QuantityKey &key, double &value);
-    void quantity_value(const QuantityKey &key, std::optional<double> &value);
-    void quantity_value(const QuantityKey &key, std::vector<double> &values);
-    void flag(std::string_view key, bool &value, std::string_view doc);
-    void text(std::string_view key, std::string &value, std::string_view doc);
-
-    /// A section whose keys `visit_keys(io, value)` declares.
-    template <class T, class VisitKeys>
-    void section(std::string_view key, T &value, std::string_view doc, VisitKeys visit_keys)
-    {
-      line(key, "", doc);
-      DefaultsPrinter sub = child(lead_ + "  ", "");
-      visit_keys(sub, value);
-    }
+    /// Writes the section's key and returns the printer of its keys.
+    std::optional<DefaultsPrinter> open_section(std::string_view key, std::string_view doc);
+    void                           finish() {}
 
     /// An absent optional section is listed commented out, with the defaults of T.
     template <class T>
@@ -77,9 +67,6 @@ namespace kimp::io
       }
     }
 
-    /// The YAML text as written (flow style), `null` when empty; no comment when `doc` is empty.
-    void raw(std::string_view key, std::string &yaml_text, std::string_view doc);
-
     /// Every entry under `key` (`{}` when there is none).
     template <class T>
     void map_of(std::string_view                        key,
@@ -97,22 +84,13 @@ namespace kimp::io
         detail::visit_map_value(sub, name, value, ""); // the map's comment says what they are
     }
 
-    void integer_value(std::string_view key,
-                       long long       &value,
-                       std::string_view doc,
-                       long long        min,
-                       long long        max);
-    void choice_index(std::string_view                key,
-                      std::size_t                    &index,
-                      const std::vector<std::string> &options,
-                      std::string_view                doc);
-
   private:
     DefaultsPrinter child(std::string lead, std::string first_lead) const;
-    void            line(std::string_view key,
-                         std::string_view value,
-                         std::string_view comment,
-                         std::string_view extra_lead = "");
+    /// `key: value  # comment` (no comment when it is empty).
+    void line(std::string_view key,
+              std::string_view value,
+              std::string_view comment,
+              std::string_view extra_lead = "");
 
     std::ostream *out_;
     std::string   lead_;       ///< text before every key of this map (indentation, "# ")

@@ -4,6 +4,7 @@
 #include <climits>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <variant>
 #include <yaml-cpp/yaml.h>
 
 #include "io/units.h"
@@ -60,52 +61,50 @@ namespace kimp::io
     return root_->dump(indent, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
   }
 
-  void JsonWriter::quantity_value(const QuantityKey &key, double &value)
+  namespace
   {
-    (*node_)[std::string(key.key)] = value;
+    nlohmann::ordered_json json_of(const double *value)
+    {
+      return *value;
+    }
+    nlohmann::ordered_json json_of(const std::optional<double> *value)
+    {
+      return *value ? nlohmann::ordered_json(**value) : nlohmann::ordered_json(nullptr);
+    }
+    nlohmann::ordered_json json_of(const std::vector<double> *values)
+    {
+      return *values;
+    }
+    nlohmann::ordered_json json_of(const bool *value)
+    {
+      return *value;
+    }
+    nlohmann::ordered_json json_of(Member::Text member)
+    {
+      return *member.value;
+    }
+    nlohmann::ordered_json json_of(Member::Yaml member)
+    {
+      return yaml_text_to_json(*member.text);
+    }
+    nlohmann::ordered_json json_of(Member::Integer member)
+    {
+      return *member.value;
+    }
+    nlohmann::ordered_json json_of(Member::Choice member)
+    {
+      return member.options->at(*member.index);
+    }
+  } // namespace
+
+  void JsonWriter::value(const Key &key, Member::Ref member)
+  {
+    (*node_)[std::string(key.key)] = std::visit([](auto m) { return json_of(m); }, member);
   }
 
-  void JsonWriter::quantity_value(const QuantityKey &key, std::optional<double> &value)
+  std::optional<JsonWriter> JsonWriter::open_section(std::string_view key, std::string_view /*doc*/)
   {
-    (*node_)[std::string(key.key)] =
-      value ? nlohmann::ordered_json(*value) : nlohmann::ordered_json(nullptr);
-  }
-
-  void JsonWriter::quantity_value(const QuantityKey &key, std::vector<double> &values)
-  {
-    (*node_)[std::string(key.key)] = values;
-  }
-
-  void JsonWriter::flag(std::string_view key, bool &value, std::string_view /*doc*/)
-  {
-    (*node_)[std::string(key)] = value;
-  }
-
-  void JsonWriter::text(std::string_view key, std::string &value, std::string_view /*doc*/)
-  {
-    (*node_)[std::string(key)] = value;
-  }
-
-  void JsonWriter::raw(std::string_view key, std::string &yaml_text, std::string_view /*doc*/)
-  {
-    (*node_)[std::string(key)] = yaml_text_to_json(yaml_text);
-  }
-
-  void JsonWriter::integer_value(std::string_view key,
-                                 long long       &value,
-                                 std::string_view /*doc*/,
-                                 long long /*min*/,
-                                 long long /*max*/)
-  {
-    (*node_)[std::string(key)] = value;
-  }
-
-  void JsonWriter::choice_index(std::string_view                key,
-                                std::size_t                    &index,
-                                const std::vector<std::string> &options,
-                                std::string_view /*doc*/)
-  {
-    (*node_)[std::string(key)] = options.at(index);
+    return object(key);
   }
 
   JsonWriter JsonWriter::object(std::string_view key)
@@ -203,52 +202,86 @@ namespace kimp::io
     return state_->root->dump(indent, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
   }
 
-  void SchemaWriter::add_quantity(const QuantityKey       &key,
-                                  std::string_view         type,
-                                  nlohmann::ordered_json &&default_text,
-                                  nlohmann::ordered_json &&default_si)
+  namespace
   {
-    nlohmann::ordered_json &entry = state_->add(key.key, type, key.doc);
-    entry["unit"]                 = std::string(key.unit);
-    entry["default"]              = std::move(default_text);
-    entry["default_si"]           = std::move(default_si);
-    entry["range"]                = range_json(key.range, key.unit);
+    /// Completes a key's entry by the kind of its member: its type, default and what else the
+    /// kind has (a quantity's unit and range, an integer's bounds, a choice's options).
+    struct Describe
+    {
+      const Key              &key;
+      nlohmann::ordered_json &entry;
+
+      void quantity(const char *type, nlohmann::ordered_json text, nlohmann::ordered_json si) const
+      {
+        entry["type"]       = type;
+        entry["unit"]       = std::string(key.unit);
+        entry["default"]    = std::move(text);
+        entry["default_si"] = std::move(si);
+        entry["range"]      = range_json(key.range, key.unit);
+      }
+
+      void operator()(const double *value) const
+      {
+        quantity("quantity", format_quantity(*value, key.unit), *value);
+      }
+      void operator()(const std::optional<double> *value) const
+      {
+        quantity("optional quantity",
+                 *value ? nlohmann::ordered_json(format_quantity(**value, key.unit)) : nullptr,
+                 *value ? nlohmann::ordered_json(**value) : nullptr);
+      }
+      void operator()(const std::vector<double> *values) const
+      {
+        std::vector<std::string> texts;
+        for (const double v : *values)
+          texts.push_back(format_quantity(v, key.unit));
+        quantity("quantity_list", texts, *values);
+      }
+      void operator()(const bool *value) const
+      {
+        entry["type"]    = "flag";
+        entry["default"] = *value;
+      }
+      void operator()(Member::Text member) const
+      {
+        entry["type"]    = "text";
+        entry["default"] = *member.value;
+      }
+      void operator()(Member::Yaml member) const
+      {
+        entry["type"]    = "yaml";
+        entry["default"] = *member.text;
+      }
+      void operator()(Member::Integer member) const
+      {
+        entry["type"]                = "integer";
+        entry["default"]             = *member.value;
+        nlohmann::ordered_json range = nlohmann::ordered_json::object();
+        // Bounds at or beyond the range of int are type limits, as in the default listing.
+        if (member.min > INT_MIN)
+          range["min"] = member.min;
+        if (member.max < INT_MAX)
+          range["max"] = member.max;
+        range["text"]  = integer_range_text(member.min, member.max);
+        entry["range"] = range;
+      }
+      void operator()(Member::Choice member) const
+      {
+        entry["type"]    = "choice";
+        entry["default"] = member.options->at(*member.index);
+        entry["options"] = *member.options;
+      }
+    };
+  } // namespace
+
+  void SchemaWriter::value(const Key &key, Member::Ref member)
+  {
+    std::visit(Describe{key, state_->add(key.key, "", key.doc)}, member);
   }
 
-  void SchemaWriter::quantity_value(const QuantityKey &key, double &value)
+  std::optional<SchemaWriter> SchemaWriter::open_section(std::string_view key, std::string_view doc)
   {
-    add_quantity(key, "quantity", format_quantity(value, key.unit), value);
-  }
-
-  void SchemaWriter::quantity_value(const QuantityKey &key, std::optional<double> &value)
-  {
-    add_quantity(key,
-                 "optional quantity",
-                 value ? nlohmann::ordered_json(format_quantity(*value, key.unit)) : nullptr,
-                 value ? nlohmann::ordered_json(*value) : nullptr);
-  }
-
-  void SchemaWriter::quantity_value(const QuantityKey &key, std::vector<double> &values)
-  {
-    std::vector<std::string> texts;
-    for (const double v : values)
-      texts.push_back(format_quantity(v, key.unit));
-    add_quantity(key, "quantity_list", texts, values);
-  }
-
-  void SchemaWriter::flag(std::string_view key, bool &value, std::string_view doc)
-  {
-    state_->add(key, "flag", doc)["default"] = value;
-  }
-
-  void SchemaWriter::text(std::string_view key, std::string &value, std::string_view doc)
-  {
-    state_->add(key, "text", doc)["default"] = value;
-  }
-
-  void SchemaWriter::raw(std::string_view key, std::string &yaml_text, std::string_view doc)
-  {
-    state_->add(key, "yaml", doc)["default"] = yaml_text;
+    return nested(key, "section", doc, "keys", "");
   }
 
   std::string SchemaWriter::json_string(const std::string &text)
@@ -265,34 +298,6 @@ namespace kimp::io
                                              ' ',
                                              false,
                                              nlohmann::ordered_json::error_handler_t::replace);
-  }
-
-  void SchemaWriter::integer_value(std::string_view key,
-                                   long long       &value,
-                                   std::string_view doc,
-                                   long long        min,
-                                   long long        max)
-  {
-    nlohmann::ordered_json &entry = state_->add(key, "integer", doc);
-    entry["default"]              = value;
-    nlohmann::ordered_json range  = nlohmann::ordered_json::object();
-    // Bounds at or beyond the range of int are type limits, as in the default listing.
-    if (min > INT_MIN)
-      range["min"] = min;
-    if (max < INT_MAX)
-      range["max"] = max;
-    range["text"]  = integer_range_text(min, max);
-    entry["range"] = range;
-  }
-
-  void SchemaWriter::choice_index(std::string_view                key,
-                                  std::size_t                    &index,
-                                  const std::vector<std::string> &options,
-                                  std::string_view                doc)
-  {
-    nlohmann::ordered_json &entry = state_->add(key, "choice", doc);
-    entry["default"]              = options.at(index);
-    entry["options"]              = options;
   }
 
   SchemaWriter SchemaWriter::nested(std::string_view   key,

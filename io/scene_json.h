@@ -28,21 +28,12 @@ namespace kimp::io
     /// The JSON text of everything written so far.
     std::string dump(int indent = 2) const;
 
-    using IoVerbs<JsonWriter>::section;
+    /// Sets the key to its value in SI (a choice as its name, a YAML text as JSON).
+    void value(const Key &key, Member::Ref member);
 
-    void quantity_value(const QuantityKey &key, double &value);
-    void quantity_value(const QuantityKey &key, std::optional<double> &value);
-    void quantity_value(const QuantityKey &key, std::vector<double> &values);
-    void flag(std::string_view key, bool &value, std::string_view doc);
-    void text(std::string_view key, std::string &value, std::string_view doc);
-
-    /// A section whose keys `visit_keys(io, value)` declares.
-    template <class T, class VisitKeys>
-    void section(std::string_view key, T &value, std::string_view /*doc*/, VisitKeys visit_keys)
-    {
-      JsonWriter sub = object(key);
-      visit_keys(sub, value);
-    }
+    /// The writer of the object at `key`.
+    std::optional<JsonWriter> open_section(std::string_view key, std::string_view doc);
+    void                      finish() {}
 
     template <class T>
     void optional_section(std::string_view key, std::optional<T> &value, std::string_view doc)
@@ -64,9 +55,6 @@ namespace kimp::io
       }
     }
 
-    /// The YAML value as JSON (scalars as strings).
-    void raw(std::string_view key, std::string &yaml_text, std::string_view doc);
-
     /// An object of the entries, in order.
     template <class T>
     void map_of(std::string_view                        key,
@@ -77,16 +65,6 @@ namespace kimp::io
       for (auto &[name, value] : entries)
         detail::visit_map_value(sub, name, value, doc);
     }
-
-    void integer_value(std::string_view key,
-                       long long       &value,
-                       std::string_view doc,
-                       long long        min,
-                       long long        max);
-    void choice_index(std::string_view                key,
-                      std::size_t                    &index,
-                      const std::vector<std::string> &options,
-                      std::string_view                doc);
 
   private:
     JsonWriter(std::shared_ptr<nlohmann::ordered_json> root, nlohmann::ordered_json *node);
@@ -130,21 +108,12 @@ namespace kimp::io
     /// The JSON text of the schema: {"keys": [...]}.
     std::string dump(int indent = 2) const;
 
-    using IoVerbs<SchemaWriter>::section;
+    /// Appends the key's entry: type, doc, default and, by kind, unit and range or options.
+    void value(const Key &key, Member::Ref member);
 
-    void quantity_value(const QuantityKey &key, double &value);
-    void quantity_value(const QuantityKey &key, std::optional<double> &value);
-    void quantity_value(const QuantityKey &key, std::vector<double> &values);
-    void flag(std::string_view key, bool &value, std::string_view doc);
-    void text(std::string_view key, std::string &value, std::string_view doc);
-
-    /// A section whose keys `visit_keys(io, value)` declares.
-    template <class T, class VisitKeys>
-    void section(std::string_view key, T &value, std::string_view doc, VisitKeys visit_keys)
-    {
-      SchemaWriter sub = nested(key, "section", doc, "keys", "");
-      visit_keys(sub, value);
-    }
+    /// Appends a "section" entry and returns the writer of its keys.
+    std::optional<SchemaWriter> open_section(std::string_view key, std::string_view doc);
+    void                        finish() {}
 
     /// Its `default` is the resolved JSON of the default value, or null when absent.
     template <class T>
@@ -167,9 +136,6 @@ namespace kimp::io
       visit(sub, example);
     }
 
-    /// Type "yaml", its default the YAML text.
-    void raw(std::string_view key, std::string &yaml_text, std::string_view doc);
-
     /// Type "map" with `value`: the entry of one value, keyed "<name>".
     template <class T>
     void map_of(std::string_view                        key,
@@ -183,16 +149,6 @@ namespace kimp::io
       T            example;
       detail::visit_map_value(sub, "<name>", example, doc);
     }
-
-    void integer_value(std::string_view key,
-                       long long       &value,
-                       std::string_view doc,
-                       long long        min,
-                       long long        max);
-    void choice_index(std::string_view                key,
-                      std::size_t                    &index,
-                      const std::vector<std::string> &options,
-                      std::string_view                doc);
 
   private:
     /// `text` as a JSON string literal.
@@ -218,11 +174,6 @@ namespace kimp::io
                         std::string_view   doc,
                         std::string_view   member,
                         const std::string &default_json);
-    /// Appends the entry of a quantity verb: unit, default (as written and in SI) and range.
-    void add_quantity(const QuantityKey       &key,
-                      std::string_view         type,
-                      nlohmann::ordered_json &&default_text,
-                      nlohmann::ordered_json &&default_si);
 
     std::unique_ptr<State> state_;
   };

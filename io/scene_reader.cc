@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <sstream>
+#include <variant>
 #include <yaml-cpp/yaml.h>
 
 #include "io/units.h"
@@ -189,6 +190,133 @@ namespace kimp::io
              fmt::format("{} is not a single value: expected {}", describe(entry.value), expected));
       return entry.value.Scalar();
     }
+
+    /// A range failure (or a subnormal value) of the value at `path`, reported with validate()'s.
+    void check_range(const std::string &path, const Key &key, double value, const std::string &text)
+    {
+      if (!key.range.contains(value))
+        source->read_failures().fail(path,
+                                     format_quantity(value, key.unit),
+                                     key.range.expectation(key.unit));
+      else if (!is_normal_or_zero(value))
+        source->read_failures().fail(path, text, subnormal_expectation);
+    }
+
+    void read(const Entry &entry, const Key &key, double *value)
+    {
+      const std::string expected =
+        fmt::format("a quantity like '{}'", format_quantity(*value, key.unit));
+      const std::string &text = scalar(entry, expected);
+      try
+      {
+        *value = parse_quantity_as(text, key.unit);
+      }
+      catch (const UnitError &error)
+      {
+        fail(entry, error.what());
+      }
+      check_range(full_path(key.key), key, *value, text);
+    }
+
+    void read(const Entry &entry, const Key &key, std::optional<double> *value)
+    {
+      if (entry.value.IsNull())
+      {
+        value->reset();
+        return;
+      }
+      double v = value->value_or(parse_unit(key.unit).value);
+      read(entry, key, &v);
+      *value = v;
+    }
+
+    void read(const Entry &entry, const Key &key, std::vector<double> *values)
+    {
+      if (entry.value.IsNull())
+      {
+        values->clear();
+        return;
+      }
+      if (!entry.value.IsSequence())
+        fail(entry,
+             fmt::format("{} is not a list: expected a list of quantities like [\"{}\", ...]",
+                         describe(entry.value),
+                         format_quantity(parse_unit(key.unit).value, key.unit)));
+      std::vector<double> parsed;
+      for (std::size_t i = 0; i < entry.value.size(); ++i)
+      {
+        const YAML::Node  item      = entry.value[i];
+        const std::string item_path = full_path(key.key) + fmt::format("[{}]", i);
+        const int         item_line = line_of(item) > 0 ? line_of(item) : entry.line;
+        try
+        {
+          if (!item.IsScalar())
+            throw UnitError(fmt::format("{} is not a quantity", describe(item)));
+          parsed.push_back(parse_quantity_as(item.Scalar(), key.unit));
+        }
+        catch (const UnitError &error)
+        {
+          throw SceneError(
+            fmt::format("{}:{}: {}: {}", source->file_name(), item_line, item_path, error.what()));
+        }
+        if (!key.range.contains(parsed.back()) || !is_normal_or_zero(parsed.back()))
+        {
+          // Items are recorded only here, so that validate()'s messages about items stay as they
+          // were; the item was written, so its failure is not marked "(default)".
+          source->record(item_path, item_line);
+          check_range(item_path, key, parsed.back(), format_quantity(parsed.back(), key.unit));
+        }
+      }
+      *values = std::move(parsed);
+    }
+
+    void read(const Entry &entry, const Key & /*key*/, bool *value)
+    {
+      const std::string &text = scalar(entry, "true or false");
+      if (!YAML::convert<bool>::decode(entry.value, *value))
+        fail(entry, fmt::format("'{}' is not true or false", text));
+    }
+
+    void read(const Entry &entry, const Key & /*key*/, Member::Text member)
+    {
+      if (entry.value.IsNull())
+        fail(entry, "missing value: expected a text");
+      *member.value = scalar(entry, "a text");
+    }
+
+    void read(const Entry &entry, const Key &key, Member::Yaml member)
+    {
+      *member.text = flow_text(entry.value);
+      record_item_lines(*source, full_path(key.key), entry.value);
+    }
+
+    void read(const Entry &entry, const Key & /*key*/, Member::Integer member)
+    {
+      const std::string  expected = integer_range_text(member.min, member.max);
+      const std::string &text     = scalar(entry, expected);
+      std::string_view   digits(text);
+      if (!digits.empty() && digits.front() == '+')
+        digits.remove_prefix(1);
+      long long parsed = 0;
+      const auto [end, error] =
+        std::from_chars(digits.data(), digits.data() + digits.size(), parsed);
+      if (digits.empty() || error != std::errc() || end != digits.data() + digits.size())
+        fail(entry, fmt::format("'{}' is not an integer: expected an {}", text, expected));
+      if (parsed < member.min || parsed > member.max)
+        fail(entry, fmt::format("{} is out of range: expected an {}", parsed, expected));
+      *member.value = parsed;
+    }
+
+    void read(const Entry &entry, const Key & /*key*/, Member::Choice member)
+    {
+      const std::vector<std::string> &options  = *member.options;
+      const std::string               expected = "one of: " + join(options, ", ");
+      const std::string              &text     = scalar(entry, expected);
+      const auto                      it       = std::find(options.begin(), options.end(), text);
+      if (it == options.end())
+        fail(entry, fmt::format("'{}' is not {}", text, expected));
+      *member.index = static_cast<std::size_t>(it - options.begin());
+    }
   };
 
   SceneReader::SceneReader(std::unique_ptr<State> state)
@@ -235,163 +363,10 @@ namespace kimp::io
     return SceneReader(std::move(state));
   }
 
-  void SceneReader::quantity_value(const QuantityKey &key, double &value)
+  void SceneReader::value(const Key &key, Member::Ref member)
   {
-    const State::Entry *entry = state_->find(key.key);
-    if (entry == nullptr)
-      return;
-    const std::string expected =
-      fmt::format("a quantity like '{}'", format_quantity(value, key.unit));
-    try
-    {
-      value = parse_quantity_as(state_->scalar(*entry, expected), key.unit);
-    }
-    catch (const UnitError &error)
-    {
-      state_->fail(*entry, error.what());
-    }
-    if (!key.range.contains(value))
-      state_->source->read_failures().fail(state_->full_path(key.key),
-                                           format_quantity(value, key.unit),
-                                           key.range.expectation(key.unit));
-    else if (!is_normal_or_zero(value))
-      state_->source->read_failures().fail(state_->full_path(key.key),
-                                           state_->scalar(*entry, ""),
-                                           subnormal_expectation);
-  }
-
-  void SceneReader::quantity_value(const QuantityKey &key, std::optional<double> &value)
-  {
-    const State::Entry *entry = state_->find(key.key);
-    if (entry == nullptr)
-      return;
-    if (entry->value.IsNull())
-    {
-      value.reset();
-      return;
-    }
-    double v = value.value_or(parse_unit(key.unit).value);
-    quantity_value(key, v);
-    value = v;
-  }
-
-  void SceneReader::quantity_value(const QuantityKey &key, std::vector<double> &values)
-  {
-    const State::Entry *entry = state_->find(key.key);
-    if (entry == nullptr)
-      return;
-    if (entry->value.IsNull())
-    {
-      values.clear();
-      return;
-    }
-    if (!entry->value.IsSequence())
-      state_->fail(*entry,
-                   fmt::format("{} is not a list: expected a list of quantities like "
-                               "[\"{}\", ...]",
-                               describe(entry->value),
-                               format_quantity(parse_unit(key.unit).value, key.unit)));
-    std::vector<double> parsed;
-    for (std::size_t i = 0; i < entry->value.size(); ++i)
-    {
-      const YAML::Node  item      = entry->value[i];
-      const std::string item_path = state_->full_path(key.key) + fmt::format("[{}]", i);
-      try
-      {
-        if (!item.IsScalar())
-          throw UnitError(fmt::format("{} is not a quantity", describe(item)));
-        parsed.push_back(parse_quantity_as(item.Scalar(), key.unit));
-      }
-      catch (const UnitError &error)
-      {
-        throw SceneError(fmt::format("{}:{}: {}: {}",
-                                     state_->source->file_name(),
-                                     line_of(item) > 0 ? line_of(item) : entry->line,
-                                     item_path,
-                                     error.what()));
-      }
-    }
-    for (std::size_t i = 0; i < parsed.size(); ++i)
-      if (!key.range.contains(parsed[i]) || !is_normal_or_zero(parsed[i]))
-      {
-        // Items are recorded only here, so that validate()'s messages about items stay as they
-        // were; the item was written, so its failure is not marked "(default)".
-        const std::string item_path = state_->full_path(key.key) + fmt::format("[{}]", i);
-        const int         item_line = line_of(entry->value[i]);
-        state_->source->record(item_path, item_line > 0 ? item_line : entry->line);
-        state_->source->read_failures().fail(item_path,
-                                             format_quantity(parsed[i], key.unit),
-                                             key.range.contains(parsed[i]) ?
-                                               std::string(subnormal_expectation) :
-                                               key.range.expectation(key.unit));
-      }
-    values = std::move(parsed);
-  }
-
-  void SceneReader::flag(std::string_view key, bool &value, std::string_view /*doc*/)
-  {
-    const State::Entry *entry = state_->find(key);
-    if (entry == nullptr)
-      return;
-    const std::string &text   = state_->scalar(*entry, "true or false");
-    bool               parsed = false;
-    if (!YAML::convert<bool>::decode(entry->value, parsed))
-      state_->fail(*entry, fmt::format("'{}' is not true or false", text));
-    value = parsed;
-  }
-
-  void SceneReader::text(std::string_view key, std::string &value, std::string_view /*doc*/)
-  {
-    const State::Entry *entry = state_->find(key);
-    if (entry == nullptr)
-      return;
-    if (entry->value.IsNull())
-      state_->fail(*entry, "missing value: expected a text");
-    value = state_->scalar(*entry, "a text");
-  }
-
-  void SceneReader::integer_value(std::string_view key,
-                                  long long       &value,
-                                  std::string_view /*doc*/,
-                                  long long min,
-                                  long long max)
-  {
-    const State::Entry *entry = state_->find(key);
-    if (entry == nullptr)
-      return;
-    const std::string &text = state_->scalar(*entry, integer_range_text(min, max));
-    std::string_view   digits(text);
-    if (!digits.empty() && digits.front() == '+')
-      digits.remove_prefix(1);
-    long long parsed        = 0;
-    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), parsed);
-    if (digits.empty() || error != std::errc() || end != digits.data() + digits.size())
-      state_->fail(*entry,
-                   fmt::format("'{}' is not an integer: expected an {}",
-                               text,
-                               integer_range_text(min, max)));
-    if (parsed < min || parsed > max)
-      state_->fail(*entry,
-                   fmt::format("{} is out of range: expected an {}",
-                               parsed,
-                               integer_range_text(min, max)));
-    value = parsed;
-  }
-
-  void SceneReader::choice_index(std::string_view                key,
-                                 std::size_t                    &index,
-                                 const std::vector<std::string> &options,
-                                 std::string_view /*doc*/)
-  {
-    const State::Entry *entry = state_->find(key);
-    if (entry == nullptr)
-      return;
-    const std::string  expected = "one of: " + join(options, ", ");
-    const std::string &text     = state_->scalar(*entry, expected);
-    const auto         it       = std::find(options.begin(), options.end(), text);
-    if (it == options.end())
-      state_->fail(*entry, fmt::format("'{}' is not {}", text, expected));
-    index = static_cast<std::size_t>(it - options.begin());
+    if (const State::Entry *entry = state_->find(key.key))
+      std::visit([&](auto m) { state_->read(*entry, key, m); }, member);
   }
 
   bool SceneReader::has_key(std::string_view key) const
@@ -402,17 +377,23 @@ namespace kimp::io
     return false;
   }
 
-  std::optional<SceneReader> SceneReader::open_section(std::string_view key, bool null_means_absent)
+  std::optional<SceneReader> SceneReader::open_section(std::string_view key,
+                                                       std::string_view /*doc*/)
+  {
+    return open_map(key, false, false);
+  }
+
+  std::optional<SceneReader>
+  SceneReader::open_map(std::string_view key, bool null_means_absent, bool file_named_keys)
   {
     const State::Entry *entry = state_->find(key);
-    if (entry == nullptr)
-      return std::nullopt;
-    if (entry->value.IsNull() && null_means_absent)
+    if (entry == nullptr || (entry->value.IsNull() && null_means_absent))
       return std::nullopt;
     if (!entry->value.IsNull() && !entry->value.IsMap())
       state_->fail(*entry,
-                   fmt::format("{} is not a section: expected indented 'key: value' lines",
-                               describe(entry->value)));
+                   describe(entry->value) +
+                     (file_named_keys ? " is not a map: expected a map of 'name: value' lines" :
+                                        " is not a section: expected indented 'key: value' lines"));
     return SceneReader(
       std::make_unique<State>(*state_->source, state_->full_path(key), entry->value, entry->line));
   }
@@ -445,28 +426,6 @@ namespace kimp::io
                                    path,
                                    describe(item)));
     return SceneReader(std::make_unique<State>(*state_->source, path, item, line));
-  }
-
-  void SceneReader::raw(std::string_view key, std::string &yaml_text, std::string_view /*doc*/)
-  {
-    const State::Entry *entry = state_->find(key);
-    if (entry == nullptr)
-      return;
-    yaml_text = flow_text(entry->value);
-    record_item_lines(*state_->source, state_->full_path(key), entry->value);
-  }
-
-  std::optional<SceneReader> SceneReader::open_map(std::string_view key)
-  {
-    const State::Entry *entry = state_->find(key);
-    if (entry == nullptr)
-      return std::nullopt;
-    if (!entry->value.IsNull() && !entry->value.IsMap())
-      state_->fail(*entry,
-                   fmt::format("{} is not a map: expected a map of 'name: value' lines",
-                               describe(entry->value)));
-    return SceneReader(
-      std::make_unique<State>(*state_->source, state_->full_path(key), entry->value, entry->line));
   }
 
   std::vector<std::string> SceneReader::keys() const

@@ -30,24 +30,11 @@ namespace kimp::io
     SceneReader &operator=(SceneReader &&) noexcept;
     ~SceneReader();
 
-    using IoVerbs<SceneReader>::section;
+    /// Reads the key's value into `member` (absent: keeps it).
+    void value(const Key &key, Member::Ref member);
 
-    void quantity_value(const QuantityKey &key, double &value);
-    void quantity_value(const QuantityKey &key, std::optional<double> &value);
-    void quantity_value(const QuantityKey &key, std::vector<double> &values);
-    void flag(std::string_view key, bool &value, std::string_view doc);
-    void text(std::string_view key, std::string &value, std::string_view doc);
-
-    /// A section whose keys `visit_keys(io, value)` declares.
-    template <class T, class VisitKeys>
-    void section(std::string_view key, T &value, std::string_view /*doc*/, VisitKeys visit_keys)
-    {
-      if (std::optional<SceneReader> sub = open_section(key, false))
-      {
-        visit_keys(*sub, value);
-        sub->finish();
-      }
-    }
+    /// The reader of section `key`, or none when the key is absent.
+    std::optional<SceneReader> open_section(std::string_view key, std::string_view doc);
 
     /// Optional section: absent keeps the default, `null` clears it, a map fills a default T.
     template <class T>
@@ -55,7 +42,7 @@ namespace kimp::io
     {
       if (!has_key(key))
         return;
-      std::optional<SceneReader> sub = open_section(key, true);
+      std::optional<SceneReader> sub = open_map(key, true, false);
       if (!sub)
       {
         value.reset();
@@ -85,13 +72,6 @@ namespace kimp::io
     }
 
     /**
-     * Any YAML value (scalar, list or map) kept as one line of flow-style YAML text, for a caller
-     * that interprets it itself (e.g. a sweep's list of values or {from, to, step}); `null` gives
-     * "~". The lines of its items are recorded in the SceneSource as "key[i]" and "key.sub".
-     */
-    void raw(std::string_view key, std::string &yaml_text, std::string_view doc);
-
-    /**
      * Map whose keys the file chooses (e.g. scene key paths), in file order, replacing the default
      * entries when present. A std::string value is read with raw(), any other T as a section.
      */
@@ -100,7 +80,7 @@ namespace kimp::io
                 std::vector<std::pair<std::string, T>> &entries,
                 std::string_view                        doc)
     {
-      std::optional<SceneReader> sub = open_map(key);
+      std::optional<SceneReader> sub = open_map(key, false, true);
       if (!sub)
         return;
       entries.clear();
@@ -117,25 +97,17 @@ namespace kimp::io
     /// maps, when the root reader finishes).
     void finish();
 
-    void integer_value(std::string_view key,
-                       long long       &value,
-                       std::string_view doc,
-                       long long        min,
-                       long long        max);
-    void choice_index(std::string_view                key,
-                      std::size_t                    &index,
-                      const std::vector<std::string> &options,
-                      std::string_view                doc);
-
   private:
     struct State;
     explicit SceneReader(std::unique_ptr<State> state);
 
-    bool                       has_key(std::string_view key) const;
-    std::optional<SceneReader> open_section(std::string_view key, bool null_means_absent);
+    bool has_key(std::string_view key) const;
+    /// The reader of the map at `key`, none when absent (or null, with `null_means_absent`);
+    /// `file_named_keys`: a map_of() (keys chosen by the file), else a section.
+    std::optional<SceneReader>
+    open_map(std::string_view key, bool null_means_absent, bool file_named_keys);
     std::optional<std::size_t> open_list(std::string_view key);
     SceneReader                list_item(std::string_view key, std::size_t index);
-    std::optional<SceneReader> open_map(std::string_view key);
     std::vector<std::string>   keys() const;
 
     std::unique_ptr<State> state_;

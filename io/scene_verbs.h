@@ -1,6 +1,6 @@
-// The verbs a scene struct's visit() calls, shared by every Io (SceneReader, DefaultsPrinter,
-// JsonWriter, SchemaWriter): each verb is declared here once and forwards to the one member of
-// the Io that does its work (quantity_value, integer_value, choice_index, section).
+// The verbs a scene struct's visit() calls, declared once for every Io (SceneReader,
+// DefaultsPrinter, JsonWriter, SchemaWriter). A key with a single value reaches the Io as one call,
+// value(key, member); a section as open_section(key, doc) and finish() around its keys.
 #pragma once
 
 #include <algorithm>
@@ -13,20 +13,55 @@
 #include <string_view>
 #include <type_traits>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "io/scene_source.h"
 
 namespace kimp::io
 {
-  /// What a quantity verb declares besides the member: key, display unit (e.g. "MN/m"), meaning
-  /// and admissible range (SI bounds).
-  struct QuantityKey
+  /// What a verb declares besides the member: the key, its meaning and, for a quantity, its
+  /// display unit (e.g. "MN/m") and admissible range (SI bounds).
+  struct Key
   {
     std::string_view key;
-    std::string_view unit;
     std::string_view doc;
+    std::string_view unit;
     const Range     &range;
+  };
+
+  /// The member behind a key of one value, by kind: a quantity (a double, an optional one or a
+  /// list, SI), a flag, a text, a YAML value kept as text, an integer in [min, max], or the index
+  /// of a choice among its options.
+  struct Member
+  {
+    struct Text
+    {
+      std::string *value;
+    };
+    struct Yaml
+    {
+      std::string *text;
+    };
+    struct Integer
+    {
+      long long *value;
+      long long  min;
+      long long  max;
+    };
+    struct Choice
+    {
+      std::size_t                    *index;
+      const std::vector<std::string> *options;
+    };
+    using Ref = std::variant<double *,
+                             std::optional<double> *,
+                             std::vector<double> *,
+                             bool *,
+                             Text,
+                             Yaml,
+                             Integer,
+                             Choice>;
   };
 
   namespace detail
@@ -51,12 +86,19 @@ namespace kimp::io
       else
         io.section(name, value, doc);
     }
+
+    /// The range of a key declared without one.
+    inline const Range &unbounded()
+    {
+      static const Range range;
+      return range;
+    }
   } // namespace detail
 
   /**
-   * Verbs shared by every Io. Quantities (a double, an optional one or a list) go to the Io's
-   * `quantity_value(const QuantityKey &, T &)`, integer types to `integer_value`, enum and string
-   * choices to `choice_index`, a section to `section(key, value, doc, visit_keys)`.
+   * The verbs of every Io. A key of one value goes to the Io's `value(const Key &, Member::Ref)`;
+   * a section to `std::optional<Io> open_section(key, doc)`, the keys of visit_keys on it, then
+   * its finish(); lists, optional sections and maps are the Io's own templates.
    */
   template <class Derived>
   class IoVerbs
@@ -68,9 +110,9 @@ namespace kimp::io
                   double          &value,
                   std::string_view unit,
                   std::string_view doc,
-                  const Range     &range = {})
+                  const Range     &range = detail::unbounded())
     {
-      self().quantity_value(QuantityKey{key, unit, doc, range}, value);
+      self().value(Key{key, doc, unit, range}, &value);
     }
 
     /// Optional quantity: absent keeps the default, `null` clears it; `range` applies when set.
@@ -78,9 +120,9 @@ namespace kimp::io
                   std::optional<double> &value,
                   std::string_view       unit,
                   std::string_view       doc,
-                  const Range           &range = {})
+                  const Range           &range = detail::unbounded())
     {
-      self().quantity_value(QuantityKey{key, unit, doc, range}, value);
+      self().value(Key{key, doc, unit, range}, &value);
     }
 
     /// List of quantities; `range` applies to every item (failures at "key[i]").
@@ -88,9 +130,29 @@ namespace kimp::io
                        std::vector<double> &values,
                        std::string_view     unit,
                        std::string_view     doc,
-                       const Range         &range = {})
+                       const Range         &range = detail::unbounded())
     {
-      self().quantity_value(QuantityKey{key, unit, doc, range}, values);
+      self().value(Key{key, doc, unit, range}, &values);
+    }
+
+    void flag(std::string_view key, bool &value, std::string_view doc)
+    {
+      self().value(Key{key, doc, {}, detail::unbounded()}, &value);
+    }
+
+    void text(std::string_view key, std::string &value, std::string_view doc)
+    {
+      self().value(Key{key, doc, {}, detail::unbounded()}, Member::Text{&value});
+    }
+
+    /**
+     * Any YAML value (scalar, list or map) kept as one line of flow-style YAML text, for a caller
+     * that interprets it itself (e.g. a sweep's list of values or {from, to, step}); `null` gives
+     * "~". The reader records the lines of its items as "key[i]" and "key.sub".
+     */
+    void raw(std::string_view key, std::string &yaml_text, std::string_view doc)
+    {
+      self().value(Key{key, doc, {}, detail::unbounded()}, Member::Yaml{&yaml_text});
     }
 
     /// Integer `key` in [min, max] and in the range of Int (so an unsigned key is >= 0).
@@ -106,7 +168,7 @@ namespace kimp::io
       if constexpr (std::is_signed_v<Int> || sizeof(Int) < sizeof(long long))
         max = std::min<long long>(max, static_cast<long long>(std::numeric_limits<Int>::max()));
       long long v = static_cast<long long>(value);
-      self().integer_value(key, v, doc, min, max);
+      self().value(Key{key, doc, {}, detail::unbounded()}, Member::Integer{&v, min, max});
       value = static_cast<Int>(v);
     }
 
@@ -117,7 +179,7 @@ namespace kimp::io
                 std::string_view                doc)
     {
       std::size_t index = index_of(options, [&](const std::string &o) { return o == value; });
-      self().choice_index(key, index, options, doc);
+      self().value(Key{key, doc, {}, detail::unbounded()}, Member::Choice{&index, &options});
       value = options.at(index);
     }
 
@@ -132,7 +194,7 @@ namespace kimp::io
       for (const auto &entry : table)
         names.push_back(entry.first);
       std::size_t index = index_of(table, [&](const auto &entry) { return entry.second == value; });
-      self().choice_index(key, index, names, doc);
+      self().value(Key{key, doc, {}, detail::unbounded()}, Member::Choice{&index, &names});
       value = table.at(index).second;
     }
 
@@ -140,7 +202,19 @@ namespace kimp::io
     template <class T>
     void section(std::string_view key, T &value, std::string_view doc)
     {
-      self().section(key, value, doc, detail::VisitKeys{});
+      section(key, value, doc, detail::VisitKeys{});
+    }
+
+    /// A section whose keys `visit_keys(io, value)` declares: for a section whose keys live in
+    /// several structs (e.g. an engine's options beside the scene's own).
+    template <class T, class VisitKeys>
+    void section(std::string_view key, T &value, std::string_view doc, VisitKeys visit_keys)
+    {
+      if (std::optional<Derived> sub = self().open_section(key, doc))
+      {
+        visit_keys(*sub, value);
+        sub->finish();
+      }
     }
 
   private:
