@@ -169,6 +169,21 @@ namespace kimp::app
     std::string to_json_text() const;
 
   private:
+    /// A scene the sweep's settings give on their own: one parameter value or one companion,
+    /// set on the base scene.
+    struct Variant
+    {
+      std::string label; ///< "walls.left.gap = 10 cm", "companion no_contact"
+      std::string key;   ///< the sweep file's key blamed for its errors
+      int         line = 0;
+      std::vector<std::pair<std::string, std::string>> settings; ///< (key path, YAML value)
+    };
+    std::vector<Variant> variants() const;
+    /// `check` of the variant's scene; its error becomes "FILE:LINE: key: <error>".
+    void check_variant(const Variant &variant, const SceneChecker &check) const;
+    /// Fills cases_ from the parameters and companions.
+    void enumerate_cases();
+
     std::string                    file_name_;
     std::string                    text_;
     std::string                    base_scene_text_;
