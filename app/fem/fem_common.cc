@@ -64,7 +64,7 @@ namespace kimp::app
     c.name                          = name;
     c.wall_height                   = height;
     c.slab_mass                     = slab_mass(scene);
-    c.impact_velocity               = scene.slab.velocity;
+    c.impact_velocity               = scene.solver.initial_velocity;
     c.time                          = h.time;
     c.contact_force                 = h.contact_force;
     c.smoothed_contact_force        = h.smoothed_contact_force;
@@ -104,12 +104,12 @@ namespace kimp::app
                                        {"linear_setup_seconds", "s"},
                                        {"n_ranks", "1"}};
     c.labels                        = {{"integrator",
-                 scene.dynamics.integrator == fem::ImpactParameters::Integrator::implicit_newmark ?
+                 scene.solver.integrator == fem::ImpactParameters::Integrator::implicit_newmark ?
                                           "implicit" :
                                           "explicit"},
-                                       {"slab", scene.slab.rigid ? "rigid" : "elastic"},
-                                       {"mesh_level", std::to_string(scene.mesh.level)},
-                                       {"penalty_factor", fmt::format("{}", scene.contact.penalty_factor)},
+                                       {"slab", scene.solver.rigid_slab ? "rigid" : "elastic"},
+                                       {"mesh_level", std::to_string(scene.mesh_level)},
+                                       {"penalty_factor", fmt::format("{}", scene.solver.penalty_factor)},
                                        {"stopped_on", s.separated ? "separation" : "end_time"},
                                        {"geostatic", geostatic_enabled(scene) ? "on" : "off"},
                                        {"interface",
