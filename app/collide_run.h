@@ -46,9 +46,21 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, CalibrationScene &s)
   {
-    io.quantity_list("cor_grid", s.cor_grid, "", "nominal COR values");
-    io.quantity_list("velocity_grid", s.velocity_grid, "m/s", "impact velocities v_imp");
-    io.quantity_list("mass_grid", s.mass_grid, "t", "mass m1 of the striking body");
+    io.quantity_list("cor_grid",
+                     s.cor_grid,
+                     "",
+                     "nominal COR values (at least 2)",
+                     io::Range::greater(0.0).and_at_most(1.0));
+    io.quantity_list("velocity_grid",
+                     s.velocity_grid,
+                     "m/s",
+                     "impact velocities v_imp (at least 2)",
+                     io::Range::greater(0.0).and_at_most(1e3));
+    io.quantity_list("mass_grid",
+                     s.mass_grid,
+                     "t",
+                     "mass m1 of the striking body (at least 2)",
+                     io::Range::greater(0.0).and_at_most(1e12));
     io.quantity("other_mass",
                 s.other_mass,
                 "t",
@@ -104,7 +116,11 @@ namespace kimp::app
               {{"backward", lumped::VelocityEstimate::backward_difference},
                {"second_order", lumped::VelocityEstimate::second_order}},
               "rate given to the law: (d_n - d_n-1)/dt (thesis) or second order");
-    io.quantity_list("cor_grid", s.cor_grid, "", "nominal COR values of the table, (0, 1]");
+    io.quantity_list("cor_grid",
+                     s.cor_grid,
+                     "",
+                     "nominal COR values of the table",
+                     io::Range::greater(0.0).and_at_most(1.0));
     io.list("laws", s.laws, "laws of the table (their cor is replaced by the grid)");
     io.section("calibration", s.calibration, "C_imp calibration (--calibrate)");
   }

@@ -20,12 +20,12 @@ namespace kimp::fit
     io.quantity("cor",
                 s.cor,
                 "",
-                "COR of the fixed-COR Kelvin-Voigt and Jankowski fits, (0, 1]",
+                "COR of the fixed-COR Kelvin-Voigt and Jankowski fits",
                 io::Range::greater(0.0).and_at_most(1.0));
     io.quantity("width",
                 s.width,
                 "m",
-                "building side width W: k_total = k_per_metre x W (> 0; 27.78 m gives the "
+                "building side width W: k_total = k_per_metre x W (27.78 m gives the "
                 "thesis' Table 2.2 from Table 2.1)",
                 io::Range::positive());
     io.flag("raw_force", s.raw_force, "fit the raw FEM contact force instead of the smoothed one");
@@ -37,23 +37,23 @@ namespace kimp::fit
                 s.separation_fraction,
                 "",
                 "a contact ends at a force-free run longer than this fraction of its duration so "
-                "far (> 0; larger merges the bounces of one impact)",
+                "far (larger merges the bounces of one impact)",
                 io::Range::positive());
     io.quantity("tail_fraction",
                 s.tail_fraction,
                 "",
                 "samples after the FEM separation in the misfit, as a fraction of the contact "
-                "duration (>= 0)",
+                "duration",
                 io::Range::non_negative());
     io.quantity("contact_threshold",
                 s.contact_threshold,
                 "",
-                "force-only contact detection: F > contact_threshold x peak force, (0, 1)",
+                "force-only contact detection: F > contact_threshold x peak force",
                 io::Range::greater(0.0).and_less(1.0));
     io.quantity("displacement_weight",
                 s.displacement_weight,
                 "",
-                "weight of the slab-displacement misfit beside the force misfit (>= 0; 0: force "
+                "weight of the slab-displacement misfit beside the force misfit (0: force "
                 "only, the thesis' choice)",
                 io::Range::non_negative());
   }

@@ -37,10 +37,6 @@ namespace kimp::app
               "record",
               "\"\"",
               "must be \"synthetic\", a record name or a path");
-    ctx.check(std::isfinite(scene.scale) && scene.scale != 0.0,
-              "scale",
-              format_quantity(scene.scale, ""),
-              "must be finite and != 0");
     if (!scene.is_record())
     {
       // The generator's own rules, reported at the synthetic section's key.

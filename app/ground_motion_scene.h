@@ -17,19 +17,61 @@ namespace kimp::lumped
   template <class Io>
   void visit(Io &io, SyntheticMotionSpec &s)
   {
-    io.quantity("pga", s.pga, "g", "target peak ground acceleration (met exactly)");
-    io.quantity("pulse_period", s.pulse_period, "s", "period T_p of the velocity pulse");
-    io.quantity("duration", s.duration, "s", "record length");
-    io.quantity("dt", s.dt, "s", "sampling interval");
-    io.quantity("pulse_time", s.pulse_time, "s", "time of the pulse centre");
-    io.quantity("gamma", s.gamma, "", "oscillatory character of the pulse (> 1)");
+    using io::Range;
+    io.quantity("pga",
+                s.pga,
+                "g",
+                "target peak ground acceleration (met exactly)",
+                Range::positive());
+    io.quantity("pulse_period",
+                s.pulse_period,
+                "s",
+                "period T_p of the velocity pulse (>= 4 dt)",
+                Range::positive());
+    io.quantity("duration", s.duration, "s", "record length (>= 10 dt)", Range::positive());
+    io.quantity("dt", s.dt, "s", "sampling interval", Range::positive());
+    io.quantity("pulse_time",
+                s.pulse_time,
+                "s",
+                "time of the pulse centre (the pulse must lie within the record)",
+                Range::positive());
+    io.quantity("gamma",
+                s.gamma,
+                "",
+                "oscillatory character of the pulse",
+                Range::greater(1.0).because("Mavroeidis-Papageorgiou"));
+    // Unbounded: a phase, any real number.
     io.quantity("nu", s.nu, "", "phase of the pulse, rad");
-    io.quantity("noise_ratio", s.noise_ratio, "", "RMS of the noise / RMS of the pulse");
-    io.quantity("noise_f_low", s.noise_f_low, "1/s", "high-pass corner of the noise band");
-    io.quantity("noise_f_high", s.noise_f_high, "1/s", "low-pass corner of the noise band");
-    io.quantity("envelope_duration", s.envelope_duration, "s", "T_w of the Saragoni-Hart window");
-    io.quantity("envelope_epsilon", s.envelope_epsilon, "", "window peak at epsilon*T_w, (0, 1)");
-    io.quantity("envelope_eta", s.envelope_eta, "", "window value at T_w, (0, 1)");
+    io.quantity("noise_ratio",
+                s.noise_ratio,
+                "",
+                "RMS of the noise / RMS of the pulse",
+                Range::non_negative());
+    io.quantity("noise_f_low",
+                s.noise_f_low,
+                "1/s",
+                "high-pass corner of the noise band",
+                Range::positive());
+    io.quantity("noise_f_high",
+                s.noise_f_high,
+                "1/s",
+                "low-pass corner of the noise band (> noise_f_low, < 1/(2 dt))",
+                Range::positive());
+    io.quantity("envelope_duration",
+                s.envelope_duration,
+                "s",
+                "T_w of the Saragoni-Hart window",
+                Range::positive());
+    io.quantity("envelope_epsilon",
+                s.envelope_epsilon,
+                "",
+                "window peak at epsilon*T_w",
+                Range::greater(0.0).and_less(1.0));
+    io.quantity("envelope_eta",
+                s.envelope_eta,
+                "",
+                "window value at T_w",
+                Range::greater(0.0).and_less(1.0));
     io.integer("seed", s.seed, "seed of the noise generator (same seed: same record)");
   }
 } // namespace kimp::lumped
@@ -92,7 +134,11 @@ namespace kimp::app
                 "g",
                 "scale the record to this PGA",
                 io::Range::positive());
-    io.quantity("scale", s.scale, "", "factor applied after scale_to_pga (negative flips it)");
+    io.quantity("scale",
+                s.scale,
+                "",
+                "factor applied after scale_to_pga (negative flips it)",
+                io::Range::nonzero());
     io.quantity("duration",
                 s.duration,
                 "s",
@@ -117,7 +163,8 @@ namespace kimp::app
   /// A ground motion whose PGA after scaling exceeds this (5 g, m/s²) is logged as a warning.
   inline constexpr double max_credible_pga = 5.0 * 9.80665;
 
-  /// Range checks of every key (relative key paths; use inside ctx.section("ground_motion")).
+  /// Rules beyond the keys' ranges: the record unit, the synthetic motion's own rules (relative
+  /// key paths; use inside ctx.section("ground_motion")).
   void validate(const GroundMotionScene &scene, io::ValidationContext &ctx);
 
   /**

@@ -1,5 +1,5 @@
-// `kimp lumped` scene: validation rules and the construction of the lumped model (docs/physics.md
-// §2-3; bumper stiffness k_b = 2.25·N·A·K_r/t^n, thesis eqs. 6.2-6.3).
+// `kimp lumped` scene: the rules linking its keys, the cases, and the construction of the lumped
+// model (docs/physics.md §2-3); the impact law section is app/impact_scene.cc.
 #include "app/lumped_scene.h"
 
 #include <algorithm>
@@ -8,15 +8,12 @@
 #include <set>
 #include <stdexcept>
 
-#include "app/k_table.h"
-#include "fit/fitter.h"
 #include "io/units.h"
 #include "lumped/excitation/ground_motion.h"
 #include "lumped/isolators/bilinear_isolator.h"
 #include "lumped/isolators/bouc_wen_isolator.h"
 #include "lumped/isolators/friction_pendulum_isolator.h"
 #include "lumped/isolators/linear_isolator.h"
-#include "lumped/laws/bumper_law.h"
 
 namespace kimp::app
 {
@@ -26,23 +23,6 @@ namespace kimp::app
                 "io and lumped must use the same standard gravity");
   namespace
   {
-    bool law_has_fixed_exponent(const std::string &law)
-    {
-      return law == "linear" || law == "kelvin_voigt" || law == "modified_kelvin_voigt" ||
-             law == "jankowski";
-    }
-
-    bool law_uses_cor(const std::string &law)
-    {
-      return law != "linear";
-    }
-
-    /// Dimension of N/m^n: kg·m^(1−n)·s^−2.
-    Dimension stiffness_dimension(const double exponent)
-    {
-      return Dimension{1.0, 1.0 - exponent, -2.0};
-    }
-
     std::string percent(const double value)
     {
       return format_quantity(value, "%");
@@ -58,157 +38,6 @@ namespace kimp::app
       return true;
     }
 
-    /// Checks of one impact law; key paths relative to the current section.
-    void validate_law(const ImpactLawScene &law, ValidationContext &ctx, const bool bumper_allowed)
-    {
-      const auto &names = lumped::force_law_names();
-      if (!ctx.check(std::find(names.begin(), names.end(), law.law) != names.end(),
-                     "law",
-                     law.law,
-                     "must be one of linear, kelvin_voigt, modified_kelvin_voigt, jankowski, "
-                     "hertzdamp, hysteretic, bumper"))
-        return;
-      if (!bumper_allowed)
-        ctx.check(law.law != "bumper",
-                  "law",
-                  law.law,
-                  "bumper acts only at the moat walls (use another law for floor contacts)");
-      if (law.exponent)
-      {
-        if (law_has_fixed_exponent(law.law))
-          ctx.fail("exponent",
-                   format_quantity(*law.exponent, ""),
-                   "must be null: law " + law.law + " has a fixed exponent");
-        else
-          ctx.check(std::isfinite(*law.exponent) && *law.exponent >= 1.0,
-                    "exponent",
-                    format_quantity(*law.exponent, ""),
-                    "must be >= 1");
-      }
-      if (law_uses_cor(law.law))
-      {
-        ctx.check(std::isfinite(law.cor) && law.cor > 0.0 && law.cor <= 1.0,
-                  "cor",
-                  format_quantity(law.cor, ""),
-                  "must be in (0, 1]");
-      }
-      if (law.a1)
-        ctx.check(std::isfinite(*law.a1) && *law.a1 >= 0.0,
-                  "a1",
-                  format_quantity(*law.a1, "s/m"),
-                  "must be >= 0");
-      if (law.law != "bumper" && law.k_si)
-        ctx.check(std::isfinite(*law.k_si) && *law.k_si > 0.0,
-                  "k",
-                  format_quantity(*law.k_si, "") + " N/m^n",
-                  "must be > 0");
-      else if (law.law != "bumper")
-      {
-        const double n = impact_exponent(law);
-        try
-        {
-          const Quantity k = parse_quantity(law.k);
-          if (!ctx.check(k.dimension == stiffness_dimension(n),
-                         "k",
-                         law.k,
-                         "law " + law.law + " (n = " + format_quantity(n, "") +
-                           ") needs a stiffness in N/m^n, e.g. \"" +
-                           (n == 1.0 ? std::string("2500 ") : std::string("750 ")) +
-                           fit::stiffness_display_unit(n) + "\""))
-            return;
-          ctx.check(std::isfinite(k.value) && k.value > 0.0, "k", law.k, "must be > 0");
-        }
-        catch (const UnitError &error)
-        {
-          ctx.fail("k", law.k, error.what());
-        }
-      }
-    }
-
-    /**
-     * `impact` with k_si set from its k_table (if any), so that validate_law() checks the table's
-     * k; the table's problems are reported at k_table / wall_height. With `required` false a
-     * missing wall_height is not an error (the cases give it).
-     */
-    ImpactScene
-    with_table_stiffness(const ImpactScene &impact, ValidationContext &ctx, bool required)
-    {
-      ImpactScene out = impact;
-      if (impact.k_table.empty() || impact.k_si || impact.law == "bumper")
-        return out;
-      out.k_si = 1.0; // a placeholder when the table cannot give k: reported below instead
-      if (!impact.wall_height)
-      {
-        if (required)
-          ctx.fail("wall_height", "null", "must be given with k_table = " + impact.k_table);
-        return out;
-      }
-      const double n = impact_exponent(impact);
-      KTable       table;
-      try
-      {
-        table = read_k_table(ctx.resolve_path(impact.k_table));
-      }
-      catch (const std::invalid_argument &error)
-      {
-        ctx.fail("k_table", impact.k_table, error.what());
-        return out;
-      }
-      if (n != 1.0 && n != 1.5)
-      {
-        ctx.fail("k_table",
-                 impact.k_table,
-                 "holds k for n = 1 and n = 1.5 only (law " + impact.law +
-                   " has n = " + format_quantity(n, "") + ")");
-        return out;
-      }
-      try
-      {
-        out.k_si = table.stiffness(*impact.wall_height, n);
-      }
-      catch (const std::invalid_argument &error)
-      {
-        ctx.fail("wall_height", format_quantity(*impact.wall_height, "m"), error.what());
-      }
-      return out;
-    }
-
-    void validate_bumper(const ImpactScene &impact, ValidationContext &ctx)
-    {
-      const auto         scope = ctx.section("bumper");
-      const BumperScene &b     = impact.bumper;
-      ctx.check(b.thickness > 0.0, "thickness", format_quantity(b.thickness, "mm"), "must be > 0");
-      ctx.check(b.width > 0.0, "width", format_quantity(b.width, "mm"), "must be > 0");
-      ctx.check(b.height > 0.0, "height", format_quantity(b.height, "mm"), "must be > 0");
-      ctx.check(b.ultimate_strain > 0.0 && b.ultimate_strain <= 1.0,
-                "ultimate_strain",
-                format_quantity(b.ultimate_strain, ""),
-                "must be in (0, 1]");
-      ctx.check(b.modulus > 0.0, "modulus", format_quantity(b.modulus, "kN/m^2"), "must be > 0");
-      ctx.check(b.wall_stiffness > 0.0,
-                "wall_stiffness",
-                format_quantity(b.wall_stiffness, "kN/mm"),
-                "must be > 0");
-      if (!b.k_b.empty())
-      {
-        const double n = impact_exponent(impact);
-        try
-        {
-          const Quantity k = parse_quantity(b.k_b);
-          if (ctx.check(k.dimension == stiffness_dimension(n),
-                        "k_b",
-                        b.k_b,
-                        "needs a stiffness in N/m^n with n = " + format_quantity(n, "") +
-                          ", e.g. \"0.36 " + fit::stiffness_display_unit(n) + "\""))
-            ctx.check(k.value > 0.0, "k_b", b.k_b, "must be > 0");
-        }
-        catch (const UnitError &error)
-        {
-          ctx.fail("k_b", b.k_b, error.what());
-        }
-      }
-    }
-
     /// Walls and bumpers of an (already case-applied) scene; `gap_key` names the key to blame.
     void validate_walls(const LumpedScene &scene,
                         ValidationContext &ctx,
@@ -218,14 +47,7 @@ namespace kimp::app
       const bool bumper = scene.impact.law == "bumper";
       const auto one    = [&](const WallScene &w, const std::string &gap_key)
       {
-        if (!w.present)
-          return;
-        if (!ctx.check(std::isfinite(w.gap) && w.gap > 0.0,
-                       gap_key,
-                       format_quantity(w.gap, "cm"),
-                       "must be > 0"))
-          return;
-        if (bumper && !scene.impact.bumper.recessed)
+        if (w.present && bumper && !scene.impact.bumper.recessed)
           ctx.check(w.gap > scene.impact.bumper.thickness,
                     gap_key,
                     format_quantity(w.gap, "cm"),
@@ -238,91 +60,20 @@ namespace kimp::app
     }
   } // namespace
 
+  std::vector<double> StoreysScene::floor_masses() const
+  {
+    std::vector<double> masses(n_storeys, floor_mass);
+    if (!masses.empty())
+      masses.back() = top_mass;
+    return masses;
+  }
+
   void resolve_paths(LumpedScene &scene, const std::filesystem::path &directory)
   {
     scene.impact.k_table = resolve_scene_path(scene.impact.k_table, directory);
     resolve_paths(scene.ground_motion, directory);
     for (CaseScene &c : scene.cases)
       c.record = resolve_record_path(c.record, directory);
-  }
-
-  double impact_exponent(const ImpactLawScene &law)
-  {
-    if (law.exponent)
-      return *law.exponent;
-    if (law.law == "linear" || law.law == "kelvin_voigt" || law.law == "modified_kelvin_voigt")
-      return 1.0;
-    if (law.law == "bumper")
-      return 2.65;
-    return 1.5;
-  }
-
-  double impact_stiffness(const ImpactLawScene &law)
-  {
-    if (law.k_si)
-      return *law.k_si;
-    const Quantity k = parse_quantity(law.k);
-    if (k.dimension != stiffness_dimension(impact_exponent(law)))
-      throw UnitError("impact.k = " + law.k + " (law " + law.law + " needs N/m^" +
-                      format_quantity(impact_exponent(law), "") + ")");
-    return k.value;
-  }
-
-  double impact_stiffness(const ImpactScene &impact)
-  {
-    if (impact.k_si || impact.k_table.empty())
-      return impact_stiffness(static_cast<const ImpactLawScene &>(impact));
-    if (!impact.wall_height)
-      throw std::invalid_argument("impact.k_table = " + impact.k_table +
-                                  ": impact.wall_height (or the case's wall_height) must be given");
-    try
-    {
-      return read_k_table(impact.k_table).stiffness(*impact.wall_height, impact_exponent(impact));
-    }
-    catch (const std::invalid_argument &error)
-    {
-      throw std::invalid_argument("impact.k_table = " + impact.k_table + ", impact.wall_height = " +
-                                  format_quantity(*impact.wall_height, "m") + ": " + error.what());
-    }
-  }
-
-  double bumper_stiffness(const ImpactScene &impact)
-  {
-    const BumperScene &b = impact.bumper;
-    const double       n = impact_exponent(impact);
-    if (!b.k_b.empty())
-    {
-      const Quantity k = parse_quantity(b.k_b);
-      if (k.dimension != stiffness_dimension(n))
-        throw UnitError("impact.bumper.k_b = " + b.k_b + " (needs N/m^" + format_quantity(n, "") +
-                        ")");
-      return k.value;
-    }
-    return lumped::bumper_stiffness(b.width * b.height,
-                                    b.modulus,
-                                    b.thickness,
-                                    n,
-                                    static_cast<int>(b.count));
-  }
-
-  lumped::ForceLawSpec force_law_spec(const ImpactScene &impact)
-  {
-    lumped::ForceLawSpec spec;
-    spec.law = impact.law;
-    if (!law_has_fixed_exponent(impact.law))
-      spec.exponent = impact_exponent(impact);
-    spec.cor          = impact.cor;
-    spec.hertzdamp_ye = impact.hertzdamp_ye;
-    spec.impact_a1    = impact.a1;
-    if (impact.law == "bumper")
-    {
-      spec.stiffness                   = bumper_stiffness(impact);
-      spec.bumper_ultimate_deformation = impact.bumper.ultimate_strain * impact.bumper.thickness;
-      spec.bumper_wall_stiffness       = impact.bumper.wall_stiffness;
-    }
-    else
-      spec.stiffness = impact_stiffness(impact);
-    return spec;
   }
 
   std::optional<double> requested_time_step(const IntegrationScene &integration)
@@ -355,21 +106,13 @@ namespace kimp::app
     {
       const auto           scope = ctx.section("isolator");
       const IsolatorScene &iso   = scene.isolator;
-      if (iso.kind == IsolatorKind::bilinear || iso.kind == IsolatorKind::bouc_wen)
-      {
-        if (ctx.check(iso.K1 > 0.0, "K1", format_quantity(iso.K1, "MN/m"), "must be > 0"))
-          ctx.check(iso.K2 >= 0.0 && iso.K2 < iso.K1,
-                    "K2",
-                    format_quantity(iso.K2, "MN/m"),
-                    "must be >= 0 and < K1 = " + format_quantity(iso.K1, "MN/m"));
-        if (iso.Q)
-          ctx.check(*iso.Q > 0.0, "Q", format_quantity(*iso.Q, "kN"), "must be > 0");
-        else
-          ctx.check(iso.Q_ratio > 0.0 && iso.Q_ratio < 1.0,
-                    "Q_ratio",
-                    percent(iso.Q_ratio),
-                    "must be in (0 %, 100 %)");
-      }
+      // K1 <= 0 is refused by its range.
+      if ((iso.kind == IsolatorKind::bilinear || iso.kind == IsolatorKind::bouc_wen) &&
+          iso.K1 > 0.0)
+        ctx.check(iso.K2 < iso.K1,
+                  "K2",
+                  format_quantity(iso.K2, "MN/m"),
+                  "must be < K1 = " + format_quantity(iso.K1, "MN/m"));
       if (iso.kind == IsolatorKind::bouc_wen)
       {
         ctx.check(iso.bw_beta >= std::abs(iso.bw_gamma),
@@ -387,13 +130,10 @@ namespace kimp::app
                   "mu_fast",
                   format_quantity(iso.mu_fast, ""),
                   "must be >= mu_slow = " + format_quantity(iso.mu_slow, ""));
-      if (iso.kind == IsolatorKind::linear)
-        ctx.check(iso.k > 0.0, "k", format_quantity(iso.k, "MN/m"), "must be > 0");
-      ctx.check(iso.damping_ratio >= scene.building.damping_ratio && iso.damping_ratio < 1.0,
+      ctx.check(iso.damping_ratio >= scene.building.damping_ratio,
                 "damping_ratio",
                 percent(iso.damping_ratio),
-                "must be >= building.damping_ratio = " + percent(scene.building.damping_ratio) +
-                  " and < 100 %");
+                "must be >= building.damping_ratio = " + percent(scene.building.damping_ratio));
     }
     {
       const auto scope = ctx.section("walls");
@@ -408,14 +148,6 @@ namespace kimp::app
                   "true",
                   "must be false for a fixed-base building (moat walls act at an isolation level)");
       }
-      for (const auto &[key, wall] :
-           {std::pair<const char *, const WallScene *>{"left", &scene.walls.left},
-            {"right", &scene.walls.right}})
-        if (wall->present)
-          ctx.check(wall->mass > 0.0,
-                    std::string(key) + ".mass",
-                    format_quantity(wall->mass, "t"),
-                    "must be > 0");
       if (scene.walls.basement)
         ctx.check(isolated && scene.building.n_storeys >= 1,
                   "basement",
@@ -438,26 +170,6 @@ namespace kimp::app
         if (!nb->present)
           continue;
         const auto side = ctx.section(key);
-        ctx.check(nb->separation > 0.0,
-                  "separation",
-                  format_quantity(nb->separation, "cm"),
-                  "must be > 0");
-        ctx.check(nb->floor_mass > 0.0,
-                  "floor_mass",
-                  format_quantity(nb->floor_mass, "t"),
-                  "must be > 0");
-        ctx.check(nb->top_mass > 0.0,
-                  "top_mass",
-                  format_quantity(nb->top_mass, "t"),
-                  "must be > 0");
-        ctx.check(nb->storey_stiffness > 0.0,
-                  "storey_stiffness",
-                  format_quantity(nb->storey_stiffness, "MN/m"),
-                  "must be > 0");
-        ctx.check(nb->damping_ratio >= 0.0 && nb->damping_ratio < 1.0,
-                  "damping_ratio",
-                  percent(nb->damping_ratio),
-                  "must be in [0 %, 100 %)");
         if (nb->impact)
         {
           const auto law_scope = ctx.section("impact");
@@ -501,11 +213,6 @@ namespace kimp::app
                     "\"" + c.name + "\"",
                     "must be non-empty letters, digits, '_', '-' or '.'"))
         ctx.check(names.insert(c.name).second, "name", c.name, "must be unique among the cases");
-      if (c.ground_motion_scale)
-        ctx.check(std::isfinite(*c.ground_motion_scale) && *c.ground_motion_scale != 0.0,
-                  "ground_motion_scale",
-                  format_quantity(*c.ground_motion_scale, ""),
-                  "must be finite and != 0");
       for (const auto &[key, gap] :
            {std::pair<const char *, const std::optional<double> *>{"gap", &c.gap},
             {"left_gap", &c.left_gap},
@@ -604,9 +311,9 @@ namespace kimp::app
     building.name = "building";
     if (b.kind == BuildingKind::isolated)
     {
-      building.floor_masses.push_back(b.isolation_mass);
-      for (unsigned int j = 1; j <= b.n_storeys; ++j)
-        building.floor_masses.push_back(j == b.n_storeys ? b.top_mass : b.floor_mass);
+      building.floor_masses = {b.isolation_mass};
+      for (const double m : b.floor_masses())
+        building.floor_masses.push_back(m);
       building.storey_stiffnesses.assign(b.n_storeys, b.storey_stiffness);
       building.damping_ratio           = b.damping_ratio;
       building.isolation_damping_ratio = scene.isolator.damping_ratio;
@@ -648,8 +355,7 @@ namespace kimp::app
     }
     else
     {
-      for (unsigned int j = 1; j <= b.n_storeys; ++j)
-        building.floor_masses.push_back(j == b.n_storeys ? b.top_mass : b.floor_mass);
+      building.floor_masses = b.floor_masses();
       building.storey_stiffnesses.assign(b.n_storeys, b.storey_stiffness);
       building.damping_ratio           = b.fixed_base_damping_ratio;
       building.isolation_damping_ratio = b.fixed_base_damping_ratio;
@@ -688,9 +394,8 @@ namespace kimp::app
     const auto to_neighbour = [&](const NeighbourScene &nb, const std::string &name)
     {
       lumped::AdjacentBuilding adjacent;
-      adjacent.building.name = name;
-      for (unsigned int j = 1; j <= nb.n_storeys; ++j)
-        adjacent.building.floor_masses.push_back(j == nb.n_storeys ? nb.top_mass : nb.floor_mass);
+      adjacent.building.name         = name;
+      adjacent.building.floor_masses = nb.floor_masses();
       adjacent.building.storey_stiffnesses.assign(nb.n_storeys, nb.storey_stiffness);
       adjacent.building.damping_ratio           = nb.damping_ratio;
       adjacent.building.isolation_damping_ratio = nb.damping_ratio;

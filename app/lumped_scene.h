@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "app/ground_motion_scene.h"
+#include "app/impact_scene.h"
 #include "io/scene_io.h"
 #include "lumped/integrators/central_difference.h"
-#include "lumped/laws/force_law_factory.h"
 #include "lumped/structure/pounding_model.h"
 #include "lumped/structure/shear_building.h"
 
@@ -37,15 +37,41 @@ namespace kimp::app
     newmark
   };
 
-  /// The main building (thesis Table 4.2): masses, storey stiffness and damping ratios.
-  struct BuildingScene
+  /// The storeys of a shear building (thesis Table 4.2), the same keys for the main building and
+  /// its neighbours: floor j sits on storey j, the top floor has its own mass.
+  struct StoreysScene
+  {
+    unsigned int n_storeys        = 4;
+    double       floor_mass       = 320e3;
+    double       top_mass         = 250e3;
+    double       storey_stiffness = 600e6;
+
+    /// Masses of floors 1..n_storeys (the last one top_mass), kg.
+    std::vector<double> floor_masses() const;
+  };
+
+  template <class Io>
+  void visit(Io &io, StoreysScene &s)
+  {
+    io.integer("n_storeys", s.n_storeys, "storeys above the isolation level or the ground", 1, 100);
+    io.quantity("floor_mass",
+                s.floor_mass,
+                "t",
+                "mass of every floor below the top",
+                io::Range::positive());
+    io.quantity("top_mass", s.top_mass, "t", "mass of the top floor", io::Range::positive());
+    io.quantity("storey_stiffness",
+                s.storey_stiffness,
+                "MN/m",
+                "shear stiffness of each storey",
+                io::Range::positive());
+  }
+
+  /// The main building (thesis Table 4.2): its storeys, isolation level and damping ratios.
+  struct BuildingScene : StoreysScene
   {
     BuildingKind kind                     = BuildingKind::isolated;
-    unsigned int n_storeys                = 4;
-    double       floor_mass               = 320e3;
-    double       top_mass                 = 250e3;
     double       isolation_mass           = 320e3;
-    double       storey_stiffness         = 600e6;
     double       damping_ratio            = 0.02; ///< ζ_sstr of an isolated building
     double       fixed_base_damping_ratio = 0.05; ///< ζ of a fixed-base building
   };
@@ -57,26 +83,11 @@ namespace kimp::app
               s.kind,
               {{"isolated", BuildingKind::isolated}, {"fixed_base", BuildingKind::fixed_base}},
               "isolated (isolation level = DOF 0) or fixed_base (floors on the ground)");
-    io.integer("n_storeys",
-               s.n_storeys,
-               "floors above the isolation level (or the ground)",
-               1,
-               100);
-    io.quantity("floor_mass",
-                s.floor_mass,
-                "t",
-                "mass of every floor below the top",
-                io::Range::positive());
-    io.quantity("top_mass", s.top_mass, "t", "mass of the top floor", io::Range::positive());
+    visit(io, static_cast<StoreysScene &>(s));
     io.quantity("isolation_mass",
                 s.isolation_mass,
                 "t",
                 "mass of the isolation level (base mat)",
-                io::Range::positive());
-    io.quantity("storey_stiffness",
-                s.storey_stiffness,
-                "MN/m",
-                "shear stiffness of each storey",
                 io::Range::positive());
     io.quantity("damping_ratio",
                 s.damping_ratio,
@@ -126,23 +137,30 @@ namespace kimp::app
                {"bouc_wen", IsolatorKind::bouc_wen}},
               "bilinear hysteretic (K1, K2, Q), linear (k), friction_pendulum (radius, mu_slow, "
               "mu_fast, rate, k_init) or bouc_wen (K1, K2, Q, A, beta, gamma, n)");
-    io.quantity("K1", s.K1, "MN/m", "bilinear, bouc_wen: initial stiffness");
+    io.quantity("K1", s.K1, "MN/m", "bilinear, bouc_wen: initial stiffness", io::Range::positive());
     io.quantity("K2",
                 s.K2,
                 "MN/m",
-                "bilinear, bouc_wen: post-yield stiffness (< K1; post-yield ratio K2/K1)");
+                "bilinear, bouc_wen: post-yield stiffness (< K1; post-yield ratio K2/K1)",
+                io::Range::non_negative());
     io.quantity("Q_ratio",
                 s.Q_ratio,
                 "%",
                 "bilinear, bouc_wen: characteristic strength / total weight (yield force "
-                "F_y = Q/(1 - K2/K1))");
-    io.quantity("Q", s.Q, "kN", "bilinear, bouc_wen: characteristic strength (overrides Q_ratio)");
-    io.quantity("k", s.k, "MN/m", "linear: stiffness");
+                "F_y = Q/(1 - K2/K1))",
+                io::Range::greater(0.0).and_less(1.0));
+    io.quantity("Q",
+                s.Q,
+                "kN",
+                "bilinear, bouc_wen: characteristic strength (overrides Q_ratio)",
+                io::Range::positive());
+    io.quantity("k", s.k, "MN/m", "linear: stiffness", io::Range::positive());
     io.quantity("damping_ratio",
                 s.damping_ratio,
                 "%",
-                "isolation damping zeta_iso; c_iso = 2(zeta_iso - zeta_sstr)sqrt(m_tot k), k = "
-                "initial stiffness");
+                "isolation damping zeta_iso (>= building.damping_ratio); c_iso = 2(zeta_iso - "
+                "zeta_sstr)sqrt(m_tot k), k = initial stiffness",
+                io::Range::at_least(0.0).and_less(1.0));
     io.quantity("weight",
                 s.weight,
                 "kN",
@@ -183,6 +201,7 @@ namespace kimp::app
                 "",
                 "bouc_wen: Bouc-Wen beta (>= |gamma|)",
                 io::Range::non_negative());
+    // Unbounded: gamma may be negative (softening); beta + gamma > 0 is checked in validate().
     io.quantity("gamma", s.bw_gamma, "", "bouc_wen: Bouc-Wen gamma (beta + gamma > 0)");
     io.quantity("n",
                 s.bw_n,
@@ -207,12 +226,17 @@ namespace kimp::app
   void visit(Io &io, WallScene &s)
   {
     io.flag("present", s.present, "is there a wall on this side");
-    io.quantity("gap", s.gap, "cm", "distance isolation level - wall face (before bumpers)");
+    io.quantity("gap",
+                s.gap,
+                "cm",
+                "distance isolation level - wall face (before bumpers)",
+                io::Range::positive());
     io.quantity("mass",
                 s.mass,
                 "t",
                 "wall mass for m_eff in the impact law (and the SDOF mass of a flexible wall "
-                "without sdof_mass)");
+                "without sdof_mass)",
+                io::Range::positive());
     io.flag("flexible",
             s.flexible,
             "false: rigid wall moving with the ground; true: SDOF wall (sdof_mass or mass, "
@@ -250,120 +274,12 @@ namespace kimp::app
     io.flag("basement", s.basement, "the walls also reach floor 1 (impacts at DOF 0 and 1)");
   }
 
-  /**
-   * An impact law: name, stiffness k as text with a unit matching the law's exponent n
-   * (N/m^n: "2500 kN/mm" for n = 1, "750 kN/mm^1.5" for n = 1.5), COR and options.
-   */
-  struct ImpactLawScene
-  {
-    std::string law = "modified_kelvin_voigt";
-    std::string k   = "2500 kN/mm";
-    /// k in SI (N/m^n) handed over by a program (the study's fitted k); when set it is used
-    /// instead of the text `k`, so the number is not rounded through text. Not a scene key.
-    std::optional<double> k_si;
-    std::optional<double> exponent;
-    double                cor          = 0.7;
-    bool                  hertzdamp_ye = false;
-    std::optional<double> a1;
-  };
-
-  template <class Io>
-  void visit_law(Io &io, ImpactLawScene &s)
-  {
-    io.choice("law",
-              s.law,
-              lumped::force_law_names(),
-              "impact law of docs/physics.md §1 (laws 1-7)");
-    io.text("k",
-            s.k,
-            "impact stiffness with a unit of N/m^n for the law's exponent n, e.g. \"2500 kN/mm\" "
-            "(n = 1) or \"750 kN/mm^1.5\" (n = 1.5); unused by law bumper (see bumper.k_b)");
-    io.quantity("exponent",
-                s.exponent,
-                "",
-                "n for hertzdamp/hysteretic (1.5) and bumper (2.65); fixed for the others");
-    io.quantity("cor", s.cor, "", "nominal coefficient of restitution, (0, 1]");
-    io.flag("hertzdamp_ye", s.hertzdamp_ye, "hertzdamp: Ye et al. (2009) damping instead");
-    io.quantity("a1", s.a1, "s/m", "hysteretic/bumper: C_imp = a1 (1 - COR^2) instead of eq. 2.23");
-  }
-
-  template <class Io>
-  void visit(Io &io, ImpactLawScene &s)
-  {
-    visit_law(io, s);
-  }
-
-  /// Rubber bumpers on the walls (law 7, thesis ch. 6): k_b from the material or given.
-  struct BumperScene
-  {
-    double       thickness       = 0.05;
-    double       width           = 0.15;
-    double       height          = 0.15;
-    unsigned int count           = 4;
-    double       ultimate_strain = 0.75;
-    double       modulus         = 55835e3; ///< K_r, N/m²
-    std::string  k_b             = "";      ///< all bumpers, N/m^n; "" = from the material
-    double       wall_stiffness  = 1500e6;  ///< k_w, N/m
-    bool         recessed        = false;
-  };
-
-  template <class Io>
-  void visit(Io &io, BumperScene &s)
-  {
-    io.quantity("thickness", s.thickness, "mm", "bumper thickness t");
-    io.quantity("width", s.width, "mm", "bumper width (contact area = width x height)");
-    io.quantity("height", s.height, "mm", "bumper height");
-    io.integer("count", s.count, "bumpers in parallel on each wall", 1, 1000);
-    io.quantity("ultimate_strain",
-                s.ultimate_strain,
-                "",
-                "epsilon_u: crushed at delta_u = eps_u t");
-    io.quantity("modulus", s.modulus, "kN/m^2", "rubber constant K_r of k_st = A K_r / t^n (6.2)");
-    io.text("k_b",
-            s.k_b,
-            "stiffness of all bumpers, N/m^n (e.g. \"0.36 kN/mm^2.65\"); \"\" = 2.25 k_st count");
-    io.quantity("wall_stiffness", s.wall_stiffness, "kN/mm", "k_w beyond delta_u");
-    io.flag("recessed", s.recessed, "bumpers sit in a recess: the clear gap is not reduced");
-  }
-
-  /// Impact law of the walls (and default of the neighbours), with the bumper data of law 7.
-  struct ImpactScene : ImpactLawScene
-  {
-    BumperScene bumper;
-    /// A study's k_table.csv (or its output directory): k from the table at `wall_height`
-    /// instead of the text `k` (app/k_table.h); "" = use `k`.
-    std::string           k_table;
-    std::optional<double> wall_height; ///< m, where k_table is interpolated
-  };
-
-  template <class Io>
-  void visit(Io &io, ImpactScene &s)
-  {
-    visit_law(io, s);
-    io.section("bumper", s.bumper, "rubber bumpers (used when law = bumper)");
-    io.text("k_table",
-            s.k_table,
-            "a study's k_table.csv (or its output directory), path relative to the scene file's "
-            "directory: k = k_total of the law's column (n = 1: Kelvin-Voigt, n = 1.5: Jankowski) "
-            "interpolated at wall_height, instead of k (\"\" = use k)");
-    io.quantity("wall_height",
-                s.wall_height,
-                "m",
-                "with k_table: wall height at which k is interpolated (linearly; refused outside "
-                "the table's heights)",
-                io::Range::positive());
-  }
-
   /// A fixed-base neighbour; its floor j faces floor j of the main building.
-  struct NeighbourScene
+  struct NeighbourScene : StoreysScene
   {
-    bool                          present          = false;
-    unsigned int                  n_storeys        = 4;
-    double                        separation       = 0.15;
-    double                        floor_mass       = 320e3;
-    double                        top_mass         = 250e3;
-    double                        storey_stiffness = 600e6;
-    double                        damping_ratio    = 0.05;
+    bool                          present       = false;
+    double                        separation    = 0.15;
+    double                        damping_ratio = 0.05;
     std::optional<ImpactLawScene> impact;
   };
 
@@ -371,12 +287,17 @@ namespace kimp::app
   void visit(Io &io, NeighbourScene &s)
   {
     io.flag("present", s.present, "is there a neighbour on this side");
-    io.integer("n_storeys", s.n_storeys, "storeys of the fixed-base neighbour", 1, 100);
-    io.quantity("separation", s.separation, "cm", "clear distance between facing floors");
-    io.quantity("floor_mass", s.floor_mass, "t", "mass of every floor below the top");
-    io.quantity("top_mass", s.top_mass, "t", "mass of the top floor");
-    io.quantity("storey_stiffness", s.storey_stiffness, "MN/m", "storey shear stiffness");
-    io.quantity("damping_ratio", s.damping_ratio, "%", "Rayleigh damping, first and last mode");
+    io.quantity("separation",
+                s.separation,
+                "cm",
+                "clear distance between facing floors",
+                io::Range::positive());
+    visit(io, static_cast<StoreysScene &>(s));
+    io.quantity("damping_ratio",
+                s.damping_ratio,
+                "%",
+                "Rayleigh damping, first and last mode",
+                io::Range::at_least(0.0).and_less(1.0));
     io.optional_section("impact", s.impact, "impact law of the floor contacts (default: impact)");
   }
 
@@ -432,7 +353,7 @@ namespace kimp::app
     io.quantity("safety",
                 s.safety,
                 "",
-                "cdm auto and stable steps: fraction of dt_cr, (0, 1]",
+                "cdm auto and stable steps: fraction of dt_cr",
                 io::Range::greater(0.0).and_at_most(1.0));
     io.quantity("contact_steps",
                 s.contact_steps,
@@ -504,15 +425,36 @@ namespace kimp::app
     io.text("name", s.name, "case name (HDF5 group /lumped/<name>; letters, digits, _ - .)");
     io.text("law", s.law, "impact law of the walls (\"\" = impact.law)");
     io.text("k", s.k, "impact stiffness with unit N/m^n (\"\" = impact.k)");
-    io.quantity("exponent", s.exponent, "", "impact exponent n (null = the law's default)");
-    io.quantity("cor", s.cor, "", "coefficient of restitution (null = impact.cor)");
-    io.quantity("gap", s.gap, "cm", "gap of both walls (null = walls.*.gap)");
-    io.quantity("left_gap", s.left_gap, "cm", "gap of the left wall (wins over gap)");
-    io.quantity("right_gap", s.right_gap, "cm", "gap of the right wall (wins over gap)");
+    io.quantity("exponent",
+                s.exponent,
+                "",
+                "impact exponent n (null = the law's default)",
+                io::Range::at_least(1.0));
+    io.quantity("cor",
+                s.cor,
+                "",
+                "coefficient of restitution (null = impact.cor)",
+                io::Range::greater(0.0).and_at_most(1.0));
+    io.quantity("gap",
+                s.gap,
+                "cm",
+                "gap of both walls (null = walls.*.gap)",
+                io::Range::positive());
+    io.quantity("left_gap",
+                s.left_gap,
+                "cm",
+                "gap of the left wall (wins over gap)",
+                io::Range::positive());
+    io.quantity("right_gap",
+                s.right_gap,
+                "cm",
+                "gap of the right wall (wins over gap)",
+                io::Range::positive());
     io.quantity("ground_motion_scale",
                 s.ground_motion_scale,
                 "",
-                "extra factor on the ground motion of this case");
+                "extra factor on the ground motion of this case (negative flips it)",
+                io::Range::nonzero());
     io.quantity("wall_height",
                 s.wall_height,
                 "m",
@@ -553,28 +495,6 @@ namespace kimp::app
   /// impact.k_table and the records (ground_motion, cases[i].record) resolved against the scene
   /// file's `directory` (io::read_scene_text() calls it after validate()).
   void resolve_paths(LumpedScene &scene, const std::filesystem::path &directory);
-
-  /// Exponent n the law will use: the given one or the law's default (1, 1.5 or 2.65).
-  double impact_exponent(const ImpactLawScene &law);
-
-  /**
-   * k of the walls' law in SI (N/m^n): `k_si` if set, else from `k_table` at `wall_height` if
-   * given, else parsed from the text `k`.
-   * @throws std::invalid_argument naming impact.k_table's file and impact.wall_height when the
-   *         table cannot be read or the height is outside it.
-   */
-  double impact_stiffness(const ImpactScene &impact);
-  /**
-   * k of `law` in SI (N/m^n): `law.k_si` if set, else parsed from its text.
-   * @throws UnitError when the text is not a quantity of dimension N/m^n.
-   */
-  double impact_stiffness(const ImpactLawScene &law);
-
-  /// k_b of all bumpers (N/m^n): given, or 2.25·count·A·K_r/t^n (thesis eqs. 6.2-6.3).
-  double bumper_stiffness(const ImpactScene &impact);
-
-  /// The lumped::ForceLawSpec of the walls' law (m_eff is set per contact by the model).
-  lumped::ForceLawSpec force_law_spec(const ImpactScene &impact);
 
   /// The main building as a lumped::ShearBuilding (isolator included when isolated).
   lumped::ShearBuilding make_building(const LumpedScene &scene);

@@ -217,6 +217,8 @@ namespace kimp::cli
       if (key.contains("unit") && key.at("unit").is_string() &&
           !key.at("unit").get<std::string>().empty())
         help += " [unit: " + key.at("unit").get<std::string>() + "]";
+      if (key.contains("range") && key.at("range").is_object())
+        help += " (" + key.at("range").at("text").get<std::string>() + ")";
       if (key.contains("default"))
         help +=
           " (default " +

@@ -5,9 +5,11 @@
 #include <exception>
 #include <iostream>
 #include <mpi.h>
+#include <sstream>
 #include <string>
 
 #include "base/errors.h"
+#include "io/scene_source.h"
 
 namespace kimp::cli
 {
@@ -36,9 +38,19 @@ namespace kimp::cli
     return 1;
   }
 
-  /// Prints the error as one line ("out of memory" rather than "std::bad_alloc").
+  /// Prints the error as one line ("out of memory" rather than "std::bad_alloc"); the errors of a
+  /// scene or sweep file, one per line in file order, each as its own "error: " line.
   inline int report_error(const std::exception &error)
   {
-    return report_error(kimp::base::error_text(error));
+    if (dynamic_cast<const kimp::io::SceneError *>(&error) == nullptr)
+      return report_error(kimp::base::error_text(error));
+    std::istringstream lines(error.what());
+    std::string        line;
+    while (std::getline(lines, line))
+      if (!line.empty())
+        std::cerr << "error: " << line << '\n';
+    std::cerr << std::flush;
+    abort_other_ranks(1);
+    return 1;
   }
 } // namespace kimp::cli

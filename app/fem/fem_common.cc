@@ -64,7 +64,7 @@ namespace kimp::app
     c.name                          = name;
     c.wall_height                   = height;
     c.slab_mass                     = slab_mass(scene);
-    c.impact_velocity               = scene.slab.velocity;
+    c.impact_velocity               = scene.solver.initial_velocity;
     c.time                          = h.time;
     c.contact_force                 = h.contact_force;
     c.smoothed_contact_force        = h.smoothed_contact_force;
@@ -85,8 +85,8 @@ namespace kimp::app
     c.summary.mean_penetration      = s.mean_penetration;
     c.summary.initial_gap           = s.initial_gap;
     c.summary.penalty_stiffness     = s.penalty_stiffness;
-    c.summary.mesh_level            = scene.mesh.level;
-    c.summary.penalty_factor        = scene.contact.penalty_factor;
+    c.summary.mesh_level            = scene.mesh_level;
+    c.summary.penalty_factor        = scene.solver.penalty_factor;
     c.summary.n_dofs                = static_cast<std::int64_t>(s.n_dofs);
     c.summary.n_cells               = static_cast<std::int64_t>(s.n_cells);
     c.summary.n_steps               = static_cast<std::int64_t>(s.n_steps);
@@ -100,10 +100,10 @@ namespace kimp::app
     c.summary.dt_stable             = s.dt_stable;
     c.summary.wall_time             = s.wall_seconds;
     c.labels                        = {{"integrator",
-                 scene.dynamics.integrator == fem::ImpactParameters::Integrator::implicit_newmark ?
+                 scene.solver.integrator == fem::ImpactParameters::Integrator::implicit_newmark ?
                                           "implicit" :
                                           "explicit"},
-                                       {"slab", scene.slab.rigid ? "rigid" : "elastic"},
+                                       {"slab", scene.solver.rigid_slab ? "rigid" : "elastic"},
                                        {"stopped_on", s.separated ? "separation" : "end_time"},
                                        {"geostatic", geostatic_enabled(scene) ? "on" : "off"},
                                        {"interface",

@@ -232,7 +232,7 @@ namespace kimp::app
       {
         ImpactLog             log_buffer(name);
         std::ostream          log(&log_buffer);
-        Progress              progress(0, scene.dynamics.end_time);
+        Progress              progress(0, scene.solver.end_time);
         fem::ImpactParameters parameters = spec.parameters;
         parameters.progress              = [&progress](double t, double) { progress.update(0, t); };
         parameters.frame_interval        = scene.output.frame_interval;

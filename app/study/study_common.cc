@@ -56,13 +56,12 @@ namespace kimp::app::study_internal
   double used_h_contact(const StudyScene &scene, const StudyHeight &h)
   {
     return h.auto_fidelity ? h.ladder.used_level().h_contact :
-                             scene.fem.mesh.h_contact / std::pow(2.0, scene.fem.mesh.level);
+                             scene.fem.geometry.h_contact / std::pow(2.0, scene.fem.mesh_level);
   }
 
   double used_penalty(const StudyScene &scene, const StudyHeight &h)
   {
-    return h.auto_fidelity ? h.ladder.used_level().penalty_factor :
-                             scene.fem.contact.penalty_factor;
+    return h.auto_fidelity ? h.ladder.used_level().penalty_factor : scene.fem.solver.penalty_factor;
   }
 
   std::vector<double> scale(std::vector<double> values, double factor)

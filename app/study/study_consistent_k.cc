@@ -329,7 +329,7 @@ namespace kimp::app::study_internal
     }
     root.write_table("k_table_velocity", k);
     root.group("k_table_velocity")
-      .set_attribute("reference_velocity_m_per_s", scene.fem.slab.velocity);
+      .set_attribute("reference_velocity_m_per_s", scene.fem.solver.initial_velocity);
 
     // /consistent_k/<record>/<law>: one row per building run of the iteration.
     std::map<std::pair<std::string, std::string>, std::vector<const ConsistentKRun *>> tables;
@@ -411,7 +411,7 @@ namespace kimp::app::study_internal
       }
       table.push_back(row);
     }
-    j["reference_velocity"]     = scene.fem.slab.velocity;
+    j["reference_velocity"]     = scene.fem.solver.initial_velocity;
     j["k_table_velocity"]       = table;
     nlohmann::ordered_json runs = nlohmann::ordered_json::array();
     for (const ConsistentKRun &r : result.consistent_k)
@@ -459,7 +459,7 @@ namespace kimp::app::study_internal
       "| H (m) | v (m/s) | materials | KV kN/mm/m [95 % CI] ± numerical | linear KV | Table 2.1 "
       "| Jankowski kN/mm^1.5/m [95 % CI] ± numerical | linear J | Table 2.1 | status |\n"
       "|---|---|---|---|---|---|---|---|---|---|\n",
-      scene.fem.slab.velocity);
+      scene.fem.solver.initial_velocity);
     const auto plus_minus = [](double error)
     { return std::isfinite(error) ? " ± " + base::sig(error, 2) : std::string(); };
     for (const StudyHeight *h : k_table_cases(result))
@@ -518,7 +518,7 @@ namespace kimp::app::study_internal
       scene.consistent_k.max_iterations,
       n_converged,
       result.consistent_k.size(),
-      scene.fem.slab.velocity);
+      scene.fem.solver.initial_velocity);
     for (const ConsistentKRun &r : result.consistent_k)
     {
       std::string velocities, ks;

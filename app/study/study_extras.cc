@@ -85,12 +85,12 @@ namespace kimp::app
                          fem::ImpactParameters::Integrator integrator)
     {
       FemAccuracyPoint p;
-      p.series                = series;
-      p.h_contact             = h;
-      p.penalty_factor        = penalty;
-      FemScene fem            = fem_level_scene(scene.fem, h, penalty);
-      fem.dynamics.integrator = integrator;
-      const bool implicit     = integrator == fem::ImpactParameters::Integrator::implicit_newmark;
+      p.series              = series;
+      p.h_contact           = h;
+      p.penalty_factor      = penalty;
+      FemScene fem          = fem_level_scene(scene.fem, h, penalty);
+      fem.solver.integrator = integrator;
+      const bool implicit   = integrator == fem::ImpactParameters::Integrator::implicit_newmark;
       const std::string name =
         fem_case_name(H) + "_" + FidelityLevel{h, penalty}.label() + (implicit ? "_implicit" : "");
       run_fem_point(p,
@@ -309,8 +309,8 @@ namespace kimp::app
     const double                  H    = scene.sensitivity_study.wall_height;
     const double                  v    = scene.sensitivity_study.variation;
     const FemScene               &base = scene.fem;
-    const FidelityLevel           level{base.mesh.h_contact / std::pow(2.0, base.mesh.level),
-                              base.contact.penalty_factor};
+    const FidelityLevel           level{base.geometry.h_contact / std::pow(2.0, base.mesh_level),
+                              base.solver.penalty_factor};
     std::vector<SensitivityPoint> points;
     const auto run = [&](const std::string &parameter, double factor, const FemScene &fem)
     {
@@ -341,11 +341,11 @@ namespace kimp::app
       run("soil_modulus", factor, s);
       s = base;
       s.geometry.slab_length *= factor;
-      if (s.slab.mass)
-        *s.slab.mass *= factor;
+      if (s.rigid_slab_mass)
+        *s.rigid_slab_mass *= factor;
       run("slab_mass", factor, s);
       s = base;
-      s.slab.velocity *= factor;
+      s.solver.initial_velocity *= factor;
       run("impact_velocity", factor, s);
       s = base;
       s.geometry.wall_thickness *= factor;

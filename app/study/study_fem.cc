@@ -79,10 +79,10 @@ namespace kimp::app
 
   FemScene fem_level_scene(const FemScene &base, double h_contact, double penalty_factor)
   {
-    FemScene scene               = base;
-    scene.mesh.h_contact         = h_contact;
-    scene.mesh.level             = 0;
-    scene.contact.penalty_factor = penalty_factor;
+    FemScene scene              = base;
+    scene.geometry.h_contact    = h_contact;
+    scene.mesh_level            = 0;
+    scene.solver.penalty_factor = penalty_factor;
     return scene;
   }
 

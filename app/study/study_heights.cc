@@ -21,7 +21,7 @@ namespace kimp::app::study_internal
     StudyHeight h;
     h.wall_height     = wall_height;
     h.name            = fem_case_name(wall_height);
-    h.impact_velocity = scene.fem.slab.velocity;
+    h.impact_velocity = scene.fem.solver.initial_velocity;
     // The cheap level's inelastic fits, when the material choice ran them (reused by the ladder).
     std::optional<StudyFits> cheap_fits;
     choose_material_model(scene, wall_height, output, h, &cheap_fits);

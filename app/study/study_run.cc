@@ -37,7 +37,7 @@ namespace kimp::app
                     fmt::join(scale(scene.fem.fidelity_h_contact, 100.0), " / "),
                     fmt::join(scene.fem.fidelity_penalty_factors, " / "),
                     scene.fem.fidelity_tolerance * 100.0,
-                    scene.fem.slab.rigid ? "rigid" : "elastic");
+                    scene.fem.solver.rigid_slab ? "rigid" : "elastic");
     for (const double height : scene.fem.wall_heights)
     {
       result.heights.push_back(run_height(scene, height, output));

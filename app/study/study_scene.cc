@@ -12,7 +12,8 @@ namespace kimp::app
   using namespace kimp::fit;
   namespace
   {
-    /// A ladder: non-empty, positive, strictly decreasing (or increasing), at most `largest`.
+    /// A ladder: non-empty, strictly decreasing (or increasing), at most `largest` (its values'
+    /// range, > 0, is declared with the key).
     void check_ladder(ValidationContext         &ctx,
                       const std::string         &key,
                       const std::vector<double> &values,
@@ -24,7 +25,6 @@ namespace kimp::app
       for (std::size_t i = 0; i < values.size(); ++i)
       {
         const std::string item = key + "[" + std::to_string(i) + "]";
-        ctx.check(values[i] > 0.0, item, format_quantity(values[i], unit), "must be > 0");
         if (largest > 0.0)
           ctx.check(values[i] <= largest,
                     item,
@@ -57,7 +57,7 @@ namespace kimp::app
                    scene.fem.fidelity_h_contact,
                    "cm",
                    true,
-                   scene.fem.mesh.h_max);
+                   scene.fem.geometry.h_max);
       check_ladder(ctx,
                    "fidelity_penalty_factors",
                    scene.fem.fidelity_penalty_factors,
@@ -69,16 +69,21 @@ namespace kimp::app
     }
     {
       const auto scope = ctx.section("accuracy");
-      check_ladder(ctx, "h_contact", scene.accuracy.h_contact, "cm", true, scene.fem.mesh.h_max);
+      check_ladder(ctx,
+                   "h_contact",
+                   scene.accuracy.h_contact,
+                   "cm",
+                   true,
+                   scene.fem.geometry.h_max);
       check_ladder(ctx, "penalty_factors", scene.accuracy.penalty_factors, "", false, 0.0);
       check_ladder(ctx, "lumped_dt", scene.accuracy.lumped_dt, "s", true, 0.0);
       const double finest_dt =
         scene.accuracy.lumped_dt.empty() ? 0.0 : scene.accuracy.lumped_dt.back();
-      ctx.check(scene.accuracy.lumped_reference_dt > 0.0 &&
-                  (finest_dt == 0.0 || scene.accuracy.lumped_reference_dt < finest_dt),
+      ctx.check(finest_dt == 0.0 || scene.accuracy.lumped_reference_dt < finest_dt,
                 "lumped_reference_dt",
                 format_quantity(scene.accuracy.lumped_reference_dt, "s"),
-                "must be > 0 and below every lumped_dt");
+                "must be below every lumped_dt (the finest is " + format_quantity(finest_dt, "s") +
+                  ")");
     }
     // sensitivity_study, fit and walls: single-key ranges are declared in visit().
     // building, isolator and integration are checked by the lumped scene's rules, whose key

@@ -43,20 +43,20 @@ namespace kimp::app::study_internal
                                   const OutputDir   &output)
     {
       StudyHeight c;
-      c.wall_height        = reference.wall_height;
-      c.name               = velocity_case_name(reference.wall_height, velocity);
-      c.impact_velocity    = velocity;
-      c.reference_velocity = false;
-      c.inelastic          = reference.inelastic;
-      c.material_reason    = reference.material_reason;
-      c.auto_fidelity      = reference.auto_fidelity;
-      c.ladder             = reference.ladder;
-      c.fidelity_reason    = fmt::format("FEM level and material model of {} (the reference "
-                                         "velocity {} m/s)",
+      c.wall_height               = reference.wall_height;
+      c.name                      = velocity_case_name(reference.wall_height, velocity);
+      c.impact_velocity           = velocity;
+      c.reference_velocity        = false;
+      c.inelastic                 = reference.inelastic;
+      c.material_reason           = reference.material_reason;
+      c.auto_fidelity             = reference.auto_fidelity;
+      c.ladder                    = reference.ladder;
+      c.fidelity_reason           = fmt::format("FEM level and material model of {} (the reference "
+                                                "velocity {} m/s)",
                                       reference.name,
                                       reference.impact_velocity);
-      FemScene fem         = material_fem_scene(scene.fem, reference.inelastic);
-      fem.slab.velocity    = velocity;
+      FemScene fem                = material_fem_scene(scene.fem, reference.inelastic);
+      fem.solver.initial_velocity = velocity;
       if (reference.auto_fidelity)
         fem = fem_level_scene(fem,
                               reference.ladder.used_level().h_contact,
@@ -118,8 +118,8 @@ namespace kimp::app::study_internal
     std::vector<double> v = scene.fem.velocities;
     if (std::none_of(v.begin(),
                      v.end(),
-                     [&](double x) { return same_speed(x, scene.fem.slab.velocity); }))
-      v.push_back(scene.fem.slab.velocity);
+                     [&](double x) { return same_speed(x, scene.fem.solver.initial_velocity); }))
+      v.push_back(scene.fem.solver.initial_velocity);
     std::sort(v.begin(), v.end());
     return v;
   }
@@ -139,8 +139,8 @@ namespace kimp::app::study_internal
         concrete_parameters(scene.materials.concrete).youngs_modulus;
       linear.materials.concrete.model = FemConcrete::Model::elastic;
       // The linear reference is the plain concrete's: bars and b_c act in the damage law only.
-      linear.materials.concrete.wall_reinforcement = FemReinforcement{};
-      linear.materials.concrete.slab_reinforcement = FemReinforcement{};
+      linear.materials.concrete.wall_reinforcement = fem::ReinforcementParameters{};
+      linear.materials.concrete.slab_reinforcement = fem::ReinforcementParameters{};
       linear.materials.concrete.plastic_fraction   = 0;
     }
     // An elastic soil keeps its preset's E, nu and rho (soil_parameters()).
@@ -252,7 +252,7 @@ namespace kimp::app::study_internal
   {
     std::vector<StudyHeight> cases;
     for (const double v : study_velocities(scene))
-      if (!same_speed(v, scene.fem.slab.velocity))
+      if (!same_speed(v, scene.fem.solver.initial_velocity))
         cases.push_back(run_velocity_case(scene, reference, v, output));
     return cases;
   }
@@ -265,7 +265,7 @@ namespace kimp::app::study_internal
     std::vector<std::pair<double, double>> jobs;
     for (const double height : scene.fem.wall_heights)
       for (const double v : study_velocities(scene))
-        if (!same_speed(v, scene.fem.slab.velocity))
+        if (!same_speed(v, scene.fem.solver.initial_velocity))
           jobs.emplace_back(height, v);
     for (std::size_t i = static_cast<std::size_t>(rank); i < jobs.size();
          i += static_cast<std::size_t>(n_ranks))

@@ -12,13 +12,16 @@
 #include <utility>
 #include <vector>
 
+#include "io/scene_source.h"
+
 namespace kimp::app
 {
-  /// A malformed sweep file; the message is "FILE:LINE: key: what is wrong (what was expected)".
-  class SweepError : public std::runtime_error
+  /// A malformed sweep file; the message is "FILE:LINE: key: what is wrong (what was expected)",
+  /// one line per error (a sweep file is read like a scene file).
+  class SweepError : public io::SceneError
   {
   public:
-    using std::runtime_error::runtime_error;
+    using io::SceneError::SceneError;
   };
 
   /// How the value lists of several parameters are combined into cases.
@@ -166,6 +169,21 @@ namespace kimp::app
     std::string to_json_text() const;
 
   private:
+    /// A scene the sweep's settings give on their own: one parameter value or one companion,
+    /// set on the base scene.
+    struct Variant
+    {
+      std::string label; ///< "walls.left.gap = 10 cm", "companion no_contact"
+      std::string key;   ///< the sweep file's key blamed for its errors
+      int         line = 0;
+      std::vector<std::pair<std::string, std::string>> settings; ///< (key path, YAML value)
+    };
+    std::vector<Variant> variants() const;
+    /// `check` of the variant's scene; its error becomes "FILE:LINE: key: <error>".
+    void check_variant(const Variant &variant, const SceneChecker &check) const;
+    /// Fills cases_ from the parameters and companions.
+    void enumerate_cases();
+
     std::string                    file_name_;
     std::string                    text_;
     std::string                    base_scene_text_;

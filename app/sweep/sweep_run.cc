@@ -196,10 +196,8 @@ namespace kimp::app
     set_rank(mpi.rank());
     logger().info("{}: sweep {} on {} rank(s)", version_line(), options.sweep, mpi.size());
 
+    // The reader refuses an engine other than lumped, at its line.
     const SweepPlan plan = SweepPlan::from_file(options.sweep);
-    if (plan.engine() != "lumped")
-      throw SweepError(options.sweep + ": engine: '" + plan.engine() +
-                       "' (expected lumped, the only engine with a sweep runner)");
     // Paths of the case scenes (k_table, record files) are relative to the base scene's file.
     const std::filesystem::path scene_directory =
       std::filesystem::path(plan.base_scene_name()).parent_path();

@@ -57,10 +57,10 @@ namespace
     expect_relative(a.geometry.slab_thickness, b.geometry.slab_thickness, tolerance, "t_s");
     EXPECT_EQ(a.geometry.slab_top.has_value(), b.geometry.slab_top.has_value());
     expect_relative(a.geometry.gap, b.geometry.gap, tolerance, "gap");
-    expect_relative(a.mesh.h_contact, b.mesh.h_contact, tolerance, "h_contact");
-    expect_relative(a.mesh.h_max, b.mesh.h_max, tolerance, "h_max");
-    expect_relative(a.mesh.grading, b.mesh.grading, tolerance, "grading");
-    EXPECT_EQ(a.mesh.level, b.mesh.level);
+    expect_relative(a.geometry.h_contact, b.geometry.h_contact, tolerance, "h_contact");
+    expect_relative(a.geometry.h_max, b.geometry.h_max, tolerance, "h_max");
+    expect_relative(a.geometry.grading, b.geometry.grading, tolerance, "grading");
+    EXPECT_EQ(a.mesh_level, b.mesh_level);
     using Pair = std::pair<kimp::app::FemMaterial, kimp::app::FemMaterial>;
     for (const auto &[x, y] : {Pair{a.materials.concrete, b.materials.concrete},
                                Pair{a.materials.soil, b.materials.soil}})
@@ -69,32 +69,35 @@ namespace
       expect_relative(x.poisson_ratio, y.poisson_ratio, tolerance, "nu");
       expect_relative(x.density, y.density, tolerance, "rho");
     }
-    EXPECT_EQ(a.slab.rigid, b.slab.rigid);
-    EXPECT_EQ(a.slab.mass.has_value(), b.slab.mass.has_value());
-    expect_relative(a.slab.velocity, b.slab.velocity, tolerance, "velocity");
-    expect_relative(a.contact.penalty_factor, b.contact.penalty_factor, tolerance, "penalty");
-    expect_relative(a.contact.contact_damping_ratio,
-                    b.contact.contact_damping_ratio,
+    EXPECT_EQ(a.solver.rigid_slab, b.solver.rigid_slab);
+    EXPECT_EQ(a.rigid_slab_mass.has_value(), b.rigid_slab_mass.has_value());
+    expect_relative(a.solver.initial_velocity, b.solver.initial_velocity, tolerance, "velocity");
+    expect_relative(a.solver.penalty_factor, b.solver.penalty_factor, tolerance, "penalty");
+    expect_relative(a.solver.contact_damping_ratio,
+                    b.solver.contact_damping_ratio,
                     tolerance,
                     "contact_damping_ratio");
-    EXPECT_EQ(a.contact.smoothing_window, b.contact.smoothing_window);
-    EXPECT_EQ(a.dynamics.integrator, b.dynamics.integrator);
-    EXPECT_EQ(a.dynamics.dt, b.dynamics.dt);
-    expect_relative(a.dynamics.cfl_safety, b.dynamics.cfl_safety, tolerance, "cfl_safety");
-    expect_relative(a.dynamics.implicit_dt_factor,
-                    b.dynamics.implicit_dt_factor,
+    EXPECT_EQ(a.smoothing_window, b.smoothing_window);
+    EXPECT_EQ(a.solver.integrator, b.solver.integrator);
+    EXPECT_EQ(a.dt, b.dt);
+    expect_relative(a.solver.explicit_options.cfl_safety,
+                    b.solver.explicit_options.cfl_safety,
+                    tolerance,
+                    "cfl_safety");
+    expect_relative(a.solver.implicit_options.dt_factor,
+                    b.solver.implicit_options.dt_factor,
                     tolerance,
                     "implicit_dt_factor");
-    expect_relative(a.dynamics.end_time, b.dynamics.end_time, tolerance, "end_time");
-    expect_relative(a.dynamics.separation_hold_time,
-                    b.dynamics.separation_hold_time,
+    expect_relative(a.solver.end_time, b.solver.end_time, tolerance, "end_time");
+    expect_relative(a.solver.separation_hold_time,
+                    b.solver.separation_hold_time,
                     tolerance,
                     "separation_hold_time");
-    expect_relative(a.dynamics.output_interval,
-                    b.dynamics.output_interval,
+    expect_relative(a.solver.output_interval,
+                    b.solver.output_interval,
                     tolerance,
                     "output_interval");
-    EXPECT_EQ(a.dynamics.log_interval, b.dynamics.log_interval);
+    EXPECT_EQ(a.solver.log_interval, b.solver.log_interval);
     EXPECT_EQ(a.output.vtu_interval, b.output.vtu_interval);
   }
 
@@ -111,16 +114,16 @@ namespace
     expect_relative(s.geometry.slab_thickness, 0.20, exact_tolerance, "t_s");
     EXPECT_FALSE(s.geometry.slab_top) << "slab top flush with the wall top";
     expect_relative(s.geometry.gap, 0.5e-3, exact_tolerance, "gap");
-    expect_relative(s.slab.velocity, 1.0, exact_tolerance, "v");
+    expect_relative(s.solver.initial_velocity, 1.0, exact_tolerance, "v");
     expect_relative(s.materials.concrete.youngs_modulus, 30e9, exact_tolerance, "E_c");
     expect_relative(s.materials.concrete.poisson_ratio, 0.2, exact_tolerance, "nu_c");
     expect_relative(s.materials.concrete.density, 2400, exact_tolerance, "rho_c");
     expect_relative(s.materials.soil.youngs_modulus, 50e6, exact_tolerance, "E_s");
     expect_relative(s.materials.soil.poisson_ratio, 0.3, exact_tolerance, "nu_s");
     expect_relative(s.materials.soil.density, 1900, exact_tolerance, "rho_s");
-    expect_relative(s.mesh.h_contact, 0.025, exact_tolerance, "h_contact");
-    EXPECT_EQ(s.dynamics.dt, "auto");
-    EXPECT_EQ(s.dynamics.integrator, Integrator::explicit_central_difference);
+    expect_relative(s.geometry.h_contact, 0.025, exact_tolerance, "h_contact");
+    EXPECT_EQ(s.dt, "auto");
+    EXPECT_EQ(s.solver.integrator, Integrator::explicit_central_difference);
     // docs/physics.md §4: 8.0 m x 0.20 m of concrete is 3840 kg per metre.
     expect_relative(kimp::app::slab_mass(s), 3840, exact_tolerance, "slab mass");
 
@@ -404,7 +407,11 @@ namespace
       {"geometry:\n  slab_thickness: \"-1 cm\"\n", "geometry.slab_thickness", 2, "> 0"},
       {"geometry:\n  gap: \"0 mm\"\n", "geometry.gap", 2, "overlap"},
       {"geometry:\n  gap: \"-1 mm\"\n", "geometry.gap", 2, "> 0"},
-      {"geometry:\n  backfill_height: \"2 m\"\n", "geometry.backfill_height", 2, "(0, "},
+      {"geometry:\n  backfill_height: \"2 m\"\n",
+       "geometry.backfill_height",
+       2,
+       "<= wall_heights[0] = 1.25 m"},
+      {"geometry:\n  backfill_height: \"0 m\"\n", "geometry.backfill_height", 2, "> 0"},
       {"geometry:\n  slab_top: \"1.5 m\"\n", "geometry.slab_top", 2, "face the wall"},
       {"geometry:\n  slab_top: \"0.1 m\"\n", "geometry.slab_top", 2, "above the ground"},
       {"wall_heights: [\"0.1 m\"]\nmesh: {h_contact: \"1 cm\"}\n",
@@ -496,7 +503,7 @@ namespace
     expect_same_scene(all, expected, exact_tolerance);
 
     const FemScene quick = kimp::io::load_scene<FemScene>(dir / "fem_quick.yaml");
-    EXPECT_TRUE(quick.slab.rigid);
+    EXPECT_TRUE(quick.solver.rigid_slab);
     expect_relative(kimp::app::slab_mass(quick), 3840, exact_tolerance, "quick slab mass");
   }
 

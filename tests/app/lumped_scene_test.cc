@@ -200,7 +200,7 @@ TEST(LumpedScene, EveryValidationRuleNamesFileLineAndKey)
      "scene.yaml:2: building.fixed_base_damping_ratio"},
     {"isolator:\n  K1: \"-3 MN/m\"\n", "scene.yaml:2: isolator.K1 = -3 MN/m"},
     {"isolator:\n  K1: \"200 MN/m\"\n  K2: \"250 MN/m\"\n",
-     "scene.yaml:3: isolator.K2 = 250 MN/m: must be >= 0 and < K1 = 200 MN/m"},
+     "scene.yaml:3: isolator.K2 = 250 MN/m: must be < K1 = 200 MN/m"},
     {"isolator:\n  Q_ratio: \"0 %\"\n", "scene.yaml:2: isolator.Q_ratio = 0 %"},
     {"isolator:\n  Q: \"-5 kN\"\n", "scene.yaml:2: isolator.Q = -5 kN"},
     {"isolator:\n  kind: linear\n  k: \"0 MN/m\"\n", "scene.yaml:3: isolator.k = 0 MN/m"},

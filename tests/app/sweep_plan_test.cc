@@ -333,8 +333,11 @@ namespace
     expect_sweep_error("scene: base.yaml\nparamters:\n  record: [kobe]\n",
                        {"sweep.yaml:2", "paramters", "unknown key"});
     expect_sweep_error("scene: base.yaml\ncombine: cartesian\nparameters:\n  record: [kobe]\n",
-                       {"sweep.yaml:2", "combine", "cartesian", "product or zip"});
+                       {"sweep.yaml:2", "combine", "'cartesian'", "one of: product, zip"});
     expect_sweep_error("scene: base.yaml\n", {"sweep.yaml:1", "parameters", "missing"});
+    expect_sweep_error("scene: base.yaml\nengine: bogus\nparameters:\n  record: [kobe]\n",
+                       {"sweep.yaml:2", "engine", "'bogus'", "one of: lumped"});
+    expect_sweep_error("parameters:\n  record: [kobe]\n", {"sweep.yaml:1", "scene", "missing"});
     expect_sweep_error("scene: base.yaml\nparameters:\n  walls.left.gap: {from: 1 cm, to: 2 cm}\n",
                        {"sweep.yaml:3", "parameters.walls.left.gap", "step"});
     expect_sweep_error("scene: base.yaml\nparameters:\n  walls.left.gap: {from: 1 cm, to: 2 cm, "
@@ -348,7 +351,7 @@ namespace
                        {"sweep.yaml:3", "parameters.record", "no values"});
     expect_sweep_error("scene: base.yaml\nparameters:\n  cases[x].cor: [1]\n",
                        {"sweep.yaml:3", "cases[x].cor", "index"});
-    expect_sweep_error("scene: base.yaml\nparameters: [\n", {"sweep.yaml:", "invalid YAML"});
+    expect_sweep_error("scene: base.yaml\nparameters: [\n", {"sweep.yaml:", "YAML syntax error"});
     EXPECT_THROW(SweepPlan::base_scene_path("parameters: {}\n", "dir/sweep.yaml"), SweepError);
     EXPECT_EQ(SweepPlan::base_scene_path("scene: ../scenes/a.yaml\n", "data/studies/s.yaml"),
               std::filesystem::path("data/studies/../scenes/a.yaml"));
@@ -390,12 +393,12 @@ namespace
     expect_sweep_error("scene: base.yaml\nreport:\n  title: x\n" + parameters,
                        {"sweep.yaml:2", "report.kind", "missing"});
     expect_sweep_error("scene: base.yaml\nreport:\n  kind: gap_study\n  chart: bar\n" + parameters,
-                       {"sweep.yaml:4", "report.chart", "unknown key"});
+                       {"sweep.yaml:4", "unknown key 'chart' in report", "known: kind, gap, title"});
     expect_sweep_error("scene: base.yaml\nreport:\n  kind: gap_study\n  gap: walls..gap\n" +
                          parameters,
                        {"sweep.yaml:4", "report.gap", "empty key"});
     expect_sweep_error("scene: base.yaml\nreport: gap_study\n" + parameters,
-                       {"sweep.yaml:2", "report", "expected a map"});
+                       {"sweep.yaml:2", "report", "is not a section"});
   }
 
   /// A scene with keys chosen by the file, as a sweep file has.

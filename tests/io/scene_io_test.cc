@@ -156,6 +156,7 @@ namespace test_scene
     std::optional<double> y;
     std::vector<double>   z = {0.5};
     double                r = 0.5;
+    double                f = 1.0;
   };
 
   template <class Io>
@@ -166,11 +167,14 @@ namespace test_scene
     io.quantity("y", s.y, "s", "time", Range::positive().because("or null"));
     io.quantity_list("z", s.z, "", "fractions", Range::greater(0.0).and_at_most(1.0));
     io.quantity("r", s.r, "%", "ratio", Range::at_least(0.0).and_less(1.0));
+    io.quantity("f", s.f, "", "factor (negative flips it)", Range::nonzero());
   }
 
   void validate(const Ranged &s, ValidationContext &ctx)
   {
     ctx.check(s.z.size() <= 3, "z", std::to_string(s.z.size()) + " values", "must be at most 3");
+    // A rule that follows from x's range too: reported once, by the range.
+    ctx.check(s.x > 0.0 && s.x < 10.0, "x", format_quantity(s.x, "m"), "must be in (0, 10 m)");
   }
 } // namespace test_scene
 
@@ -428,6 +432,10 @@ heights: ["1 m", "150 cm", "1750 mm"]
     EXPECT_FALSE(Range::greater(0.0).and_at_most(1.0).contains(0.0));
     EXPECT_FALSE(Range::positive().contains(std::nan("")));
     EXPECT_TRUE(Range().contains(-1.0));
+    EXPECT_EQ(Range::nonzero().text(""), "!= 0");
+    EXPECT_FALSE(Range::nonzero().contains(0.0));
+    EXPECT_TRUE(Range::nonzero().contains(-0.5));
+    EXPECT_FALSE(Range::nonzero().contains(std::nan("")));
   }
 
   TEST(SceneIo, RangesAreCheckedWhereWrittenWithValidationMessages)
@@ -446,6 +454,29 @@ heights: ["1 m", "150 cm", "1750 mm"]
     expect_contains(scene_error<Ranged>("x: 0 m\nz: [0.1, 0.2, 0.3, 0.4]\n"),
                     {"scene.yaml:1: x = 0 m: must be > 0",
                      "scene.yaml:2: z = 4 values: must be at most 3"});
+  }
+
+  TEST(SceneIo, ErrorsStandOnePerLineInFileOrderAndEachKeyOnce)
+  {
+    using test_scene::Ranged;
+    // Written out of order: the reader's range failures and validate()'s are merged by line.
+    const std::string message = scene_error<Ranged>("z: [0.1, 0.2, 0.3, 0.4]\n"
+                                                    "f: 0\n"
+                                                    "r: -1 %\n"
+                                                    "x: -2 m\n");
+    EXPECT_EQ(message,
+              "scene.yaml:1: z = 4 values: must be at most 3\n"
+              "scene.yaml:2: f = 0: must be != 0\n"
+              "scene.yaml:3: r = -1 %: must be in [0 %, 100 %)\n"
+              "scene.yaml:4: x = -2 m: must be > 0");
+    // x within its range but beyond validate()'s rule: that rule is reported.
+    EXPECT_EQ(scene_error<Ranged>("x: 20 m\n"), "scene.yaml:1: x = 20 m: must be in (0, 10 m)");
+    // Unknown keys too, in file order whatever the nesting.
+    expect_contains(scene_error("isolator:\n  K3: 1 MN/m\nmasss: 1 t\n"),
+                    {"scene.yaml:2: unknown key 'K3' in isolator",
+                     "\nscene.yaml:3: unknown key 'masss'"});
+    EXPECT_LT(scene_error("masss: 1 t\nisolator:\n  K3: 1 MN/m\n").find("masss"),
+              scene_error("masss: 1 t\nisolator:\n  K3: 1 MN/m\n").find("K3"));
   }
 
   TEST(SceneIo, RangesAppearInTheDefaultsAndTheSchema)
