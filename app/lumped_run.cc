@@ -550,7 +550,8 @@ namespace kimp::app
               result.response            = std::move(same);
             }
           }
-          logger().info("case {}: {}", name, report.text());
+          if (logger().should_log(spdlog::level::info)) // the text costs more than a short run
+            logger().info("case {}: {}", name, report.text());
           if (report.force_error > variable_step_warning)
             logger().warn("case {}: dt auto estimates the peak impact force within {:.2g} %, "
                           "above {:.2g} %: raise integration.contact_steps or use a fixed dt",
@@ -618,37 +619,54 @@ namespace kimp::app
     return result;
   }
 
-  std::vector<LumpedCaseResult>
-  run_lumped(const LoadedScene<LumpedScene>             &loaded,
-             const OutputDir                            &output,
-             const std::optional<std::filesystem::path> &records_dir_override)
+  LumpedCasesRun run_lumped_cases(const LumpedScene                          &scene,
+                                  const std::string                          &file_name,
+                                  const std::string                          &scene_text,
+                                  const std::optional<std::filesystem::path> &records_dir_override,
+                                  const std::optional<std::string>           &only_case,
+                                  const SyntheticMotionSource                &synthetic)
   {
-    const LumpedScene         &scene  = loaded.scene;
-    const lumped::GroundMotion motion = load_ground_motion_at(scene.ground_motion,
-                                                              records_dir_override,
-                                                              loaded.file_name,
-                                                              loaded.text,
-                                                              "ground_motion");
+    const auto load = [&](const GroundMotionScene &section, const std::string &key_path)
+    {
+      if (!section.is_record() && synthetic)
+        return synthetic(section);
+      return std::make_shared<const lumped::GroundMotion>(
+        load_ground_motion_at(section, records_dir_override, file_name, scene_text, key_path));
+    };
+
+    // The cases to run, with their index in `cases` (which names their keys in messages).
+    const auto               cases = resolve_cases(scene);
+    std::vector<std::size_t> chosen;
+    for (std::size_t i = 0; i < cases.size(); ++i)
+      if (!only_case || cases[i].first == *only_case)
+        chosen.push_back(i);
+    if (chosen.empty())
+    {
+      std::string known;
+      for (const auto &c : cases)
+        known += (known.empty() ? "" : ", ") + c.first;
+      throw std::invalid_argument("no case '" + only_case.value_or("") + "' in " + file_name +
+                                  " (cases: " + known + ")");
+    }
+
+    LumpedCasesRun run;
+    run.motion                         = load(scene.ground_motion, "ground_motion");
+    const lumped::GroundMotion &motion = *run.motion;
     logger().info("ground motion {}: {} samples at {:.4g} s, PGA {:.4g} g",
                   motion.name,
                   motion.acceleration.size(),
                   motion.dt,
                   motion.pga() / lumped::standard_gravity);
 
-    const auto cases = resolve_cases(scene);
     // The cases' own records (cases[i].record) before any run, so that a missing one is an error
     // at its key rather than a run stopped half-way.
-    std::vector<std::optional<lumped::GroundMotion>> own_motions(cases.size());
-    for (std::size_t i = 0; i < cases.size(); ++i)
+    std::vector<std::shared_ptr<const lumped::GroundMotion>> own_motions(cases.size());
+    for (const std::size_t i : chosen)
       if (cases[i].second.ground_motion.record != scene.ground_motion.record)
-        own_motions[i] = load_ground_motion_at(cases[i].second.ground_motion,
-                                               records_dir_override,
-                                               loaded.file_name,
-                                               loaded.text,
-                                               "cases[" + std::to_string(i) + "]");
+        own_motions[i] = load(cases[i].second.ground_motion, "cases[" + std::to_string(i) + "]");
     // Every case's cost first, so that a run over budget is refused before anything is computed
     // (an invalid case is left to run_lumped_case(), which records why it fails).
-    for (std::size_t i = 0; i < cases.size(); ++i)
+    for (const std::size_t i : chosen)
     {
       const auto &[name, case_scene] = cases[i];
       RunEstimate estimate;
@@ -668,24 +686,25 @@ namespace kimp::app
       check_run_budget(name, estimate, case_scene.integration);
     }
 
-    std::vector<LumpedCaseResult> results;
-    Progress                      progress(cases.size(), static_cast<double>(cases.size()));
-    for (std::size_t i = 0; i < cases.size(); ++i)
+    Progress progress(chosen.size(), static_cast<double>(chosen.size()));
+    for (std::size_t done = 0; done < chosen.size(); ++done)
     {
+      const std::size_t i = chosen[done];
       logger().info("case {}/{}: {}", i + 1, cases.size(), cases[i].first);
-      const GroundMotionScene &case_motion = cases[i].second.ground_motion;
       if (!own_motions[i])
-        results.push_back(
+        run.results.push_back(
           run_lumped_case(cases[i].first, cases[i].second, motion, scene.ground_motion.scale));
       else
       {
         // A case with its own record (cases[i].record), loaded above.
         logger().info("case {}: ground motion {}", cases[i].first, own_motions[i]->name);
-        results.push_back(
-          run_lumped_case(cases[i].first, cases[i].second, *own_motions[i], case_motion.scale));
+        run.results.push_back(run_lumped_case(cases[i].first,
+                                              cases[i].second,
+                                              *own_motions[i],
+                                              cases[i].second.ground_motion.scale));
         own_motions[i].reset();
       }
-      const LumpedCaseResult &r = results.back();
+      const LumpedCaseResult &r = run.results.back();
       if (r.ok())
         logger().info("case {}: {} steps of {:.4g} s, {} impacts, peak base {} m, wall time {} s",
                       r.name,
@@ -698,9 +717,21 @@ namespace kimp::app
                       base::sig(r.wall_time, 3));
       else
         logger().error("case {}: {}", r.name, r.status);
-      progress.update(i + 1, static_cast<double>(i + 1));
+      progress.update(done + 1, static_cast<double>(done + 1));
     }
     progress.finish();
+    return run;
+  }
+
+  std::vector<LumpedCaseResult>
+  run_lumped(const LoadedScene<LumpedScene>             &loaded,
+             const OutputDir                            &output,
+             const std::optional<std::filesystem::path> &records_dir_override)
+  {
+    LumpedCasesRun run =
+      run_lumped_cases(loaded.scene, loaded.file_name, loaded.text, records_dir_override);
+    const lumped::GroundMotion    &motion  = *run.motion;
+    std::vector<LumpedCaseResult> &results = run.results;
 
     ResultsFile  file(output.file("lumped.h5"), loaded.text, loaded.resolved_json);
     ResultsGroup root = file.root();
@@ -755,7 +786,7 @@ namespace kimp::app
                       "peak_absolute_acceleration_m_per_s2",
                       "peak_interstorey_drift_m"},
                      rows);
-    return results;
+    return std::move(run.results);
   }
 
 } // namespace kimp::app

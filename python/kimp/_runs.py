@@ -206,15 +206,17 @@ def _scene(scene, kind):
     if not isinstance(scene, Scene):
         raise TypeError(f"expected a kimp.Scene, a scene file or a dict, not {type(scene)}")
     if scene.kind != kind:
-        scene = Scene(scene.text, scene.name, kind)
+        scene = Scene(scene.text, scene.name, kind, directory=scene._base_directory())
     return scene
 
 
-def _call(function, *args, **kwargs):
+def _call(function, *args, file=None, **kwargs):
+    """function(*args, **kwargs) with the engine's scene errors raised as SceneError (`file`:
+    the name of the scene the messages start with)."""
     try:
         return function(*args, **kwargs)
     except (_kimp.SceneError, _kimp.UnitError) as error:
-        raise SceneError(str(error)) from None
+        raise SceneError(str(error), file) from None
 
 
 def lumped(scene, case=None, records_dir=None):
@@ -227,7 +229,7 @@ def lumped(scene, case=None, records_dir=None):
     """
     scene = _scene(scene, "lumped")
     cases = _call(_kimp.run_lumped, scene._parsed,
-                  os.fspath(records_dir) if records_dir else None, case)
+                  os.fspath(records_dir) if records_dir else None, case, file=scene.name)
     results = Results(_result(c) for c in cases)
     return results[0] if len(results) == 1 else results
 
@@ -257,18 +259,19 @@ class GroundMotion:
 
 
 def ground_motion(record="synthetic", *, scale_to_pga=None, scale=None, duration=None,
-                  records_dir=None, scene=None, **synthetic):
+                  record_unit=None, records_dir=None, scene=None, **synthetic):
     """The ground motion of a scene's ``ground_motion`` section, as the CLI loads it.
 
     record: "synthetic" (the near-fault motion; its parameters as keywords, e.g. pga="0.5 g",
-    pulse_period=1.2, seed=3), a PEER record name found in records_dir or an AT2 file path.
+    pulse_period=1.2, seed=3), a PEER record name found in records_dir or a file path (AT2, or
+    two columns "time acceleration" with record_unit, e.g. "g", "cm/s^2").
     scale_to_pga (m/s² or "0.4 g"), then scale (factor), then duration (s): trim.
     scene: take the section of a lumped kimp.Scene instead.
     """
     if scene is None:
         section = {"record": os.fspath(record)}
         for key, value in (("scale_to_pga", scale_to_pga), ("scale", scale),
-                           ("duration", duration)):
+                           ("duration", duration), ("record_unit", record_unit)):
             if value is not None:
                 section[key] = value
         if synthetic:
@@ -276,7 +279,7 @@ def ground_motion(record="synthetic", *, scale_to_pga=None, scale=None, duration
         scene = Scene.from_dict({"ground_motion": section}, "lumped", "<ground_motion>")
     scene = _scene(scene, "lumped")
     d = _call(_kimp.ground_motion, scene._parsed,
-              os.fspath(records_dir) if records_dir else None)
+              os.fspath(records_dir) if records_dir else None, file=scene.name)
     return GroundMotion(**d)
 
 
@@ -353,7 +356,8 @@ class CorRow:
 def cor_table(scene=None):
     """The effective-COR table of a collide scene (default: the thesis set-up), in memory."""
     scene = Scene.default("collide") if scene is None else _scene(scene, "collide")
-    return [CorRow(**row) for row in _call(_kimp.cor_table, scene.text, scene.name)]
+    return [CorRow(**row) for row in _call(_kimp.cor_table, scene.text, scene.name,
+                                           file=scene.name)]
 
 
 @dataclass
