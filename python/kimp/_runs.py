@@ -319,9 +319,11 @@ def collide(law, *, mass_1=280e3, mass_2=300e3, velocity=1.0, velocity_2=0.0, ti
             velocity_estimate="backward"):
     """Two free masses meeting through `law` (a kimp.laws object), central differences.
 
-    mass_1, mass_2 in kg (or "280 t"; math.inf for a rigid wall), velocity (m/s) of mass 1
-    towards mass 2 (velocity_2, m/s), time_step in s, velocity_estimate "backward" (the
-    solver's) or "second_order". A law without m_eff gets m1·m2/(m1 + m2).
+    mass_1, mass_2 in kg (or "280 t"), mass_2 = math.inf for a rigid wall (a text such as
+    "inf t" is refused, as the scene of ``kimp collide`` refuses it: its masses are finite);
+    velocity (m/s) of mass 1 towards mass 2 (velocity_2, m/s), time_step in s,
+    velocity_estimate "backward" (the solver's) or "second_order". A law without m_eff gets
+    m1·m2/(m1 + m2).
     """
     from .laws import _si
 
@@ -374,7 +376,12 @@ class Parameter:
 class FitResult:
     """A fitted impact law, per metre of wall: stiffness k (N/m^n per m), cor, exponent n;
     normalised RMS misfits; FEM and model peak force (N/m), contact durations (s), impulse
-    (N·s/m), contact start (s); the misfit window time (s), fem_force and model_force (N/m)."""
+    (N·s/m), contact start (s); the misfit window time (s), fem_force and model_force (N/m).
+
+    ``status`` is the optimiser's ("RelativeReductionTooSmall", ...); ``verdict`` is the fit's
+    quality as ``kimp fit`` judges it (docs/physics.md §4 "Status of a fit"): "ok",
+    "warning: <reason>" (e.g. a misfit window covering too little of the contact: k is then not
+    reliable) or "failed: <reason>". ``ok`` is True for the verdict "ok"."""
 
     law: str
     stiffness: Parameter
@@ -384,6 +391,7 @@ class FitResult:
     normalised_displacement_rms: float
     function_evaluations: int
     status: str
+    verdict: str
     fem_peak_force: float
     fem_contact_duration: float
     fem_impulse: float
@@ -394,6 +402,11 @@ class FitResult:
     time: np.ndarray
     fem_force: np.ndarray
     model_force: np.ndarray
+
+    @property
+    def ok(self):
+        """True when the verdict is "ok" (neither a warning nor a failure)."""
+        return self.verdict == "ok"
 
     @property
     def k(self):
@@ -409,7 +422,23 @@ class FitResult:
         unit = "kN/mm/m" if self.exponent.value == 1.0 else f"kN/mm^{self.exponent.value:g}/m"
         return (f"FitResult(law={self.law!r}, k={self.k_display():.5g} {unit}, "
                 f"cor={self.cor.value:.4g}, n={self.exponent.value:g}, "
-                f"normalised_rms={self.normalised_rms:.3g}, status={self.status!r})")
+                f"normalised_rms={self.normalised_rms:.3g}, verdict={self.verdict!r})")
+
+
+def _mass_per_metre(value, name):
+    """kg per metre of wall from a number or a text of mass ("50 t", meant per metre) or of mass
+    per length ("50 t/m")."""
+    from .laws import _si
+
+    if not isinstance(value, str):
+        return float(value)
+    try:
+        return _si(value, "kg/m")
+    except _kimp.UnitError as per_length:
+        try:
+            return _si(value, "kg")
+        except _kimp.UnitError:
+            raise _kimp.UnitError(f"{name}: {per_length}") from None
 
 
 def fit(time, force, velocity, mass, law="kelvin_voigt", *, cor=0.7, exponent=None,
@@ -418,20 +447,25 @@ def fit(time, force, velocity, mass, law="kelvin_voigt", *, cor=0.7, exponent=No
     """Fit an impact law to a measured impact (fit::fit_impact_law, as ``kimp fit``).
 
     time (s), force (N per metre of wall, compressive > 0): arrays of one impact; velocity:
-    impact velocity v_imp (m/s); mass: slab mass (kg per metre of wall). law: "kelvin_voigt",
-    "jankowski", "hertzdamp" or "hysteretic", with `cor` fixed (or the start when fit_cor) and
-    `exponent`. Optional indentation and slab_displacement (m) arrays as in the FEM results.
-    The misfit window and separation settings are those of ``kimp fit`` and ``kimp study`` (one
-    fitting configuration, docs/physics.md §4); as there, force_only_contact=True (the default)
-    finds the contact from the force alone and ignores `indentation`.
+    impact velocity v_imp (m/s or a text: "1 m/s"); mass: slab mass (kg per metre of wall, or a
+    text: "50 t/m", or "50 t" meaning per metre); wall_mass likewise (inf: a rigid wall). law:
+    "kelvin_voigt", "jankowski", "hertzdamp" or "hysteretic", with `cor` fixed (or the start
+    when fit_cor) and `exponent`. Optional indentation and slab_displacement (m) arrays as in
+    the FEM results. The misfit window and separation settings are those of ``kimp fit`` and
+    ``kimp study`` (one fitting configuration, docs/physics.md §4); as there,
+    force_only_contact=True (the default) finds the contact from the force alone and ignores
+    `indentation`. Check the result's ``verdict`` before using its k.
     """
+    from .laws import _si
+
     if force_only_contact:
         indentation = None
     arrays = [None if a is None else np.asarray(a, float) for a in (indentation,
                                                                      slab_displacement)]
-    d = _kimp.fit(np.asarray(time, float), np.asarray(force, float), float(velocity),
-                  float(mass), law, float(cor), exponent, fit_cor, fit_exponent, arrays[0],
-                  arrays[1], float(displacement_weight), float(wall_mass))
+    d = _call(_kimp.fit, np.asarray(time, float), np.asarray(force, float),
+              _si(velocity, "m/s"), _mass_per_metre(mass, "mass"), law, _si(cor, ""),
+              _si(exponent, ""), fit_cor, fit_exponent, arrays[0], arrays[1],
+              float(displacement_weight), _mass_per_metre(wall_mass, "wall_mass"))
     for key in ("stiffness", "cor", "exponent"):
         d[key] = Parameter(*d[key])
     return FitResult(**d)

@@ -152,3 +152,32 @@ def test_study_round_trips_against_the_cli(tmp_path):
             assert mine["fit"][name][law]["stiffness"] == group[law]["stiffness"], (name, law)
             np.testing.assert_array_equal(mine["fit"][name][law]["model_force"],
                                           group[law]["model_force"])
+
+
+def test_fit_and_collide_take_unit_texts_like_the_other_functions():
+    k, mass, v, dt = 4e8, 50e3, 1.0, 1e-5
+    hit = kimp.collide(kimp.laws.KelvinVoigt(k=k, cor=0.7), mass_1="50 t", mass_2=math.inf,
+                       velocity="1 m/s", time_step="0.01 ms")
+    same = kimp.collide(kimp.laws.KelvinVoigt(k=k, cor=0.7), mass_1=mass, mass_2=math.inf,
+                        velocity=v, time_step=dt)
+    np.testing.assert_array_equal(hit.force, same.force)
+    time = np.concatenate([[-2 * dt, -dt, 0.0], hit.time])
+    force = np.concatenate([[0.0, 0.0, 0.0], hit.force])
+    in_si = kimp.fit(time, force, velocity=v, mass=mass)
+    # "50 t" is read per metre of wall, like "50 t/m"; the results are the same bits.
+    for texts in ({"velocity": "1 m/s", "mass": "50 t"}, {"velocity": "100 cm/s", "mass": "50 t/m"},
+                  {"velocity": v, "mass": "50000 kg/m", "wall_mass": "1e12 t"}):
+        fitted = kimp.fit(time, force, **texts)
+        if "wall_mass" in texts:
+            # A 1e12 t/m wall: m_eff within 5e-14 of the slab's, k within the fit's tolerance.
+            assert fitted.k == pytest.approx(in_si.k, rel=1e-6)
+            continue
+        assert fitted.k == in_si.k, texts
+        np.testing.assert_array_equal(fitted.model_force, in_si.model_force)
+    with pytest.raises(ValueError, match="expected a mass"):
+        kimp.fit(time, force, velocity=v, mass="50 m")
+    # The CLI's scenes hold finite masses: "inf" is refused as `kimp collide` refuses it, a
+    # rigid wall is the float math.inf.
+    with pytest.raises(ValueError, match="'inf' is not a finite number"):
+        kimp.collide(kimp.laws.KelvinVoigt(k=k, cor=0.7), mass_1="50 t", mass_2="inf")
+    assert hit.effective_mass == mass
