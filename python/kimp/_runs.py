@@ -471,34 +471,43 @@ def fit(time, force, velocity, mass, law="kelvin_voigt", *, cor=0.7, exponent=No
     return FitResult(**d)
 
 
-def _output(output, prefix):
-    if output is None:
-        output = tempfile.mkdtemp(prefix=prefix)
-    os.makedirs(output, exist_ok=True)
-    return os.fspath(output)
+def _need_fem():
+    if not _kimp.with_fem:
+        raise RuntimeError("kimp was built without the FEM engine (KIMP_WITH_FEM=OFF)")
+
+
+def _run_into(run, scene, output, prefix, file):
+    """run(text, name, directory, scene_directory) into `output` and kimp.read() of its `file`.
+    Without `output` the run goes to a temporary directory, removed once the file is read (the
+    returned ResultsFile holds every value in memory; its ``path`` is then None)."""
+    if output is not None:
+        output = os.fspath(output)
+        os.makedirs(output, exist_ok=True)
+        _call(run, scene.text, scene.name, output, scene._base_directory(), file=scene.name)
+        return read(os.path.join(output, file))
+    with tempfile.TemporaryDirectory(prefix=prefix) as work:
+        _call(run, scene.text, scene.name, work, scene._base_directory(), file=scene.name)
+        result = read(os.path.join(work, file))
+    result.path = None
+    return result
 
 
 def fem(scene, output=None):
-    """Run ``kimp fem`` on a FEM scene into `output` (a new temporary directory if None) and
-    return kimp.read() of its fem.h5. Needs a build with the FEM engine; MPI starts on first use
-    (no mpirun needed)."""
-    if not _kimp.with_fem:
-        raise RuntimeError("kimp was built without the FEM engine (KIMP_WITH_FEM=OFF)")
-    scene = _scene(scene, "fem")
-    output = _output(output, "kimp-fem-")
-    _call(_kimp.run_fem, scene.text, scene.name, output)
-    return read(os.path.join(output, "fem.h5"))
+    """Run ``kimp fem`` on a FEM scene and return kimp.read() of its fem.h5. The command's files
+    (fem.h5, summary.json, ...) are written to `output` and kept; without `output` they go to a
+    temporary directory that is removed once fem.h5 is read. Needs a build with the FEM engine;
+    MPI starts on first use (no mpirun needed)."""
+    _need_fem()
+    return _run_into(_kimp.run_fem, _scene(scene, "fem"), output, "kimp-fem-", "fem.h5")
 
 
 def study(scene, output=None):
-    """Run ``kimp study`` into `output` (a new temporary directory if None) and return
-    kimp.read() of its study.h5 (k table, building response). Needs the FEM engine."""
-    if not _kimp.with_fem:
-        raise RuntimeError("kimp was built without the FEM engine (KIMP_WITH_FEM=OFF)")
-    scene = _scene(scene, "study")
-    output = _output(output, "kimp-study-")
-    _call(_kimp.run_study, scene.text, scene.name, output)
-    return read(os.path.join(output, "study.h5"))
+    """Run ``kimp study`` and return kimp.read() of its study.h5 (k table, fits, building
+    response). The command's files (study.h5, k_table.csv, report.md, ...) are written to
+    `output` and kept; without `output` they go to a temporary directory that is removed once
+    study.h5 is read. Needs the FEM engine."""
+    _need_fem()
+    return _run_into(_kimp.run_study, _scene(scene, "study"), output, "kimp-study-", "study.h5")
 
 
 __all__ = ["Peaks", "History", "Contact", "Energy", "Result", "Results", "lumped", "GroundMotion",

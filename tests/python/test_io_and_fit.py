@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import kimp
-from conftest import SOURCE_DIR, run_cli
+from conftest import QUICK_STUDY, SOURCE_DIR, run_cli
 
 G = 9.80665
 
@@ -100,39 +100,39 @@ def test_fem_and_fit_round_trip_against_the_cli(tmp_path):
         assert mine.status == case.status == "ok"
         np.testing.assert_array_equal(mine["contact_force"].value, case["contact_force"].value)
         assert case["contact_force"].units == "N/m"
-    # `kimp fit` of that file against kimp.fit of the same history.
+    # `kimp fit` of that file against kimp.fit of the same history: every variant of the CLI
+    # (law, COR fixed or free, free exponent), its k, COR, n, misfit, model force and verdict.
     run_cli("fit", tmp_path / "cli" / "fem.h5", "-o", tmp_path / "fit")
     fitted = kimp.read(tmp_path / "fit" / "fit.h5")
     name, case = next(iter(cli["fem"].items()))
     series = case["smoothed_contact_force"]
-    mine = kimp.fit(series.time, series.value, velocity=case["impact_velocity"],
-                    mass=case["slab_mass"], law="kelvin_voigt", cor=0.7,
-                    indentation=case["indentation"].value)
-    variant = fitted["fit"][name]["kelvin_voigt_cor_fixed"]
-    assert mine.k == variant["stiffness"]
-
-
-# One coarse wall height, the synthetic record only, no charts or extra studies: seconds.
-QUICK_STUDY = """\
-fem:
-  wall_heights: ["1.25 m"]
-  mesh:
-    h_contact: "5 cm"
-    h_max: "25 cm"
-    grading: 1.5
-  slab:
-    rigid: true
-    velocity: "1.0 m/s"
-  dynamics:
-    end_time: "40 ms"
-    output_interval: "0.02 ms"
-records:
-  - record: synthetic
-peer_records: false
-charts: false
-stability_map: false
-accuracy_study: false
-"""
+    variants = {"kelvin_voigt_cor_fixed": ("kelvin_voigt", False, False),
+                "jankowski_cor_fixed": ("jankowski", False, False),
+                "kelvin_voigt_cor_free": ("kelvin_voigt", True, False),
+                "jankowski_cor_free": ("jankowski", True, False),
+                "hertz_free_exponent": ("hysteretic", False, True)}
+    assert sorted(v for v in fitted["fit"][name].keys() if v in variants) == sorted(variants)
+    for variant, (law, fit_cor, fit_exponent) in variants.items():
+        mine = kimp.fit(series.time, series.value, velocity=case["impact_velocity"],
+                        mass=case["slab_mass"], law=law, cor=0.7, fit_cor=fit_cor,
+                        fit_exponent=fit_exponent, indentation=case["indentation"].value,
+                        slab_displacement=case["slab_displacement"].value)
+        group = fitted["fit"][name][variant]
+        assert group.attrs["law"] == law, variant
+        assert mine.k == group["stiffness"], variant
+        assert mine.cor.value == group["cor"] and mine.exponent.value == group["exponent"]
+        assert mine.normalised_rms == group["normalised_rms"], variant
+        np.testing.assert_array_equal(mine.model_force, group["model_force"].value,
+                                      err_msg=variant)
+        np.testing.assert_array_equal(mine.time, group["model_force"].time, err_msg=variant)
+        np.testing.assert_array_equal(mine.fem_force, group["fem_force"].value, err_msg=variant)
+        assert mine.verdict == group.attrs["status"], variant
+        assert mine.status == group.attrs["lm_status"], variant
+    # The CLI's slab mass is stored per metre of wall with its unit: as a text it reads the same.
+    assert case["slab_mass"].units == "kg/m"
+    again = kimp.fit(series.time, series.value, velocity=f"{float(case['impact_velocity'])!r} m/s",
+                     mass=f"{float(case['slab_mass'])!r} kg/m")
+    assert again.k == fitted["fit"][name]["kelvin_voigt_cor_fixed"]["stiffness"]
 
 
 @pytest.mark.skipif(not kimp.with_fem, reason="built without the FEM engine")
