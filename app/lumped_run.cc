@@ -526,7 +526,8 @@ namespace kimp::app
           const RunEstimate                       estimate =
             make_estimate(adaptive.large_step(used.dt), in, used, model.n_dofs());
           result.estimated_steps = estimate.n_steps;
-          logger().debug("case {}: {}", name, estimate.text());
+          if (logger().should_log(spdlog::level::debug))
+            logger().debug("case {}: {}", name, estimate.text());
           check_run_budget(name, estimate, in);
           lumped::AdaptiveStepReport report;
           result.response = adaptive.run(used, &report);
@@ -550,7 +551,7 @@ namespace kimp::app
               result.response            = std::move(same);
             }
           }
-          if (logger().should_log(spdlog::level::info)) // the text costs more than a short run
+          if (logger().should_log(spdlog::level::info))
             logger().info("case {}: {}", name, report.text());
           if (report.force_error > variable_step_warning)
             logger().warn("case {}: dt auto estimates the peak impact force within {:.2g} %, "
@@ -564,7 +565,8 @@ namespace kimp::app
           const RunEstimate estimate =
             make_estimate(integrator.time_step(used.dt), in, used, model.n_dofs());
           result.estimated_steps = estimate.n_steps;
-          logger().debug("case {}: {}", name, estimate.text());
+          if (logger().should_log(spdlog::level::debug))
+            logger().debug("case {}: {}", name, estimate.text());
           check_run_budget(name, estimate, in);
           std::shared_ptr<const lumped::FreeRunPrefix> prefix;
           if (free_runs && !(options.output_interval > 0.0))
@@ -600,7 +602,8 @@ namespace kimp::app
         const RunEstimate estimate =
           make_estimate(options.dt > 0.0 ? options.dt : used.dt, in, used, model.n_dofs());
         result.estimated_steps = estimate.n_steps;
-        logger().debug("case {}: {}", name, estimate.text());
+        if (logger().should_log(spdlog::level::debug))
+          logger().debug("case {}: {}", name, estimate.text());
         check_run_budget(name, estimate, in);
         result.response = lumped::NewmarkIntegrator(model, options).run(used);
         if (in.companion)
@@ -682,7 +685,8 @@ namespace kimp::app
       {
         continue;
       }
-      logger().info("case {}: estimated {}", name, estimate.text());
+      if (logger().should_log(spdlog::level::info))
+        logger().info("case {}: estimated {}", name, estimate.text());
       check_run_budget(name, estimate, case_scene.integration);
     }
 
@@ -705,7 +709,7 @@ namespace kimp::app
         own_motions[i].reset();
       }
       const LumpedCaseResult &r = run.results.back();
-      if (r.ok())
+      if (r.ok() && logger().should_log(spdlog::level::info))
         logger().info("case {}: {} steps of {:.4g} s, {} impacts, peak base {} m, wall time {} s",
                       r.name,
                       r.response.n_steps,
@@ -715,7 +719,7 @@ namespace kimp::app
                                   0.0 :
                                   r.response.peak_displacement[0]),
                       base::sig(r.wall_time, 3));
-      else
+      else if (!r.ok())
         logger().error("case {}: {}", r.name, r.status);
       progress.update(done + 1, static_cast<double>(done + 1));
     }
