@@ -51,6 +51,30 @@ namespace kimp::app
       return std::chrono::duration<double>(Clock::now() - start).count();
     }
 
+    /// The k a case takes from a study's k table (impact.k_table at impact.wall_height): the
+    /// table, the height, k in SI with its unit and in the display unit; nullopt when the case
+    /// gives k itself or cannot resolve it (run_lumped_case() then records why).
+    std::optional<nlohmann::json> k_from_table(const ImpactScene &impact)
+    {
+      if (impact.k_table.empty() || impact.k_si || impact.law == "bumper" || !impact.wall_height)
+        return std::nullopt;
+      try
+      {
+        const double k        = impact_stiffness(impact);
+        const double exponent = impact_exponent(impact);
+        return nlohmann::json{{"k_table", impact.k_table},
+                              {"wall_height", *impact.wall_height},
+                              {"k", k},
+                              {"unit", fit::stiffness_si_unit(exponent)},
+                              {"k_display", fit::stiffness_to_kn_per_mm(k, exponent)},
+                              {"display_unit", fit::stiffness_display_unit(exponent)}};
+      }
+      catch (const std::exception &)
+      {
+        return std::nullopt;
+      }
+    }
+
     /// "<building> isolation level" for DOF 0 of an isolated main building, the wall's name for
     /// a flexible moat wall, else "<building> floor j" (floors above the ground numbered from 1).
     std::vector<std::string> dof_labels(const lumped::PoundingModel &model)
@@ -547,7 +571,8 @@ namespace kimp::app
           const RunEstimate                       estimate =
             make_estimate(adaptive.large_step(used.dt), in, used, model.n_dofs());
           result.estimated_steps = estimate.n_steps;
-          logger().debug("case {}: {}", name, estimate.text());
+          if (logger().should_log(spdlog::level::debug))
+            logger().debug("case {}: {}", name, estimate.text());
           check_run_budget(name, estimate, in);
           lumped::AdaptiveStepReport report;
           result.response = adaptive.run(used, &report);
@@ -585,7 +610,8 @@ namespace kimp::app
           const RunEstimate estimate =
             make_estimate(integrator.time_step(used.dt), in, used, model.n_dofs());
           result.estimated_steps = estimate.n_steps;
-          logger().debug("case {}: {}", name, estimate.text());
+          if (logger().should_log(spdlog::level::debug))
+            logger().debug("case {}: {}", name, estimate.text());
           check_run_budget(name, estimate, in);
           std::shared_ptr<const lumped::FreeRunPrefix> prefix;
           if (free_runs && !(options.output_interval > 0.0))
@@ -621,7 +647,8 @@ namespace kimp::app
         const RunEstimate estimate =
           make_estimate(options.dt > 0.0 ? options.dt : used.dt, in, used, model.n_dofs());
         result.estimated_steps = estimate.n_steps;
-        logger().debug("case {}: {}", name, estimate.text());
+        if (logger().should_log(spdlog::level::debug))
+          logger().debug("case {}: {}", name, estimate.text());
         check_run_budget(name, estimate, in);
         result.response = lumped::NewmarkIntegrator(model, options).run(used);
         if (in.companion)
@@ -640,65 +667,63 @@ namespace kimp::app
     return result;
   }
 
-  std::vector<LumpedCaseResult>
-  run_lumped(const LoadedScene<LumpedScene>             &loaded,
-             const OutputDir                            &output,
-             const std::optional<std::filesystem::path> &records_dir_override)
+  LumpedCasesRun run_lumped_cases(const LumpedScene                          &scene,
+                                  const std::string                          &file_name,
+                                  const std::string                          &scene_text,
+                                  const std::optional<std::filesystem::path> &records_dir_override,
+                                  const std::optional<std::string>           &only_case,
+                                  const SyntheticMotionSource                &synthetic)
   {
-    const Clock::time_point    start  = Clock::now();
-    const LumpedScene         &scene  = loaded.scene;
-    const lumped::GroundMotion motion = load_ground_motion_at(scene.ground_motion,
-                                                              records_dir_override,
-                                                              loaded.file_name,
-                                                              loaded.text,
-                                                              "ground_motion");
+    const auto load = [&](const GroundMotionScene &section, const std::string &key_path)
+    {
+      if (!section.is_record() && synthetic)
+        return synthetic(section);
+      return std::make_shared<const lumped::GroundMotion>(
+        load_ground_motion_at(section, records_dir_override, file_name, scene_text, key_path));
+    };
+
+    // The cases to run, with their index in `cases` (which names their keys in messages).
+    const auto               cases = resolve_cases(scene);
+    std::vector<std::size_t> chosen;
+    for (std::size_t i = 0; i < cases.size(); ++i)
+      if (!only_case || cases[i].first == *only_case)
+        chosen.push_back(i);
+    if (chosen.empty())
+    {
+      std::string known;
+      for (const auto &c : cases)
+        known += (known.empty() ? "" : ", ") + c.first;
+      throw std::invalid_argument("no case '" + only_case.value_or("") + "' in " + file_name +
+                                  " (cases: " + known + ")");
+    }
+
+    LumpedCasesRun run;
+    run.motion                         = load(scene.ground_motion, "ground_motion");
+    const lumped::GroundMotion &motion = *run.motion;
     logger().info("ground motion {}: {} samples at {:.4g} s, PGA {:.4g} g",
                   motion.name,
                   motion.acceleration.size(),
                   motion.dt,
                   motion.pga() / lumped::standard_gravity);
 
-    const auto cases = resolve_cases(scene);
-    // Which k each case took from a study's k table (summary.json "impact_k" and the log).
-    std::vector<nlohmann::json> k_from_table(cases.size());
-    for (std::size_t i = 0; i < cases.size(); ++i)
-    {
-      const ImpactScene &impact = cases[i].second.impact;
-      if (impact.k_table.empty() || impact.k_si || impact.law == "bumper" || !impact.wall_height)
-        continue;
-      try
-      {
-        const double k        = impact_stiffness(impact);
-        const double exponent = impact_exponent(impact);
+    // Which k each case takes from a study's k table (summary.json "impact_k" too).
+    for (const std::size_t i : chosen)
+      if (const std::optional<nlohmann::json> k = k_from_table(cases[i].second.impact))
         logger().info("case {}: impact k = {} {} from the k table {} at wall height {} m",
                       cases[i].first,
-                      base::sig(fit::stiffness_to_kn_per_mm(k, exponent)),
-                      fit::stiffness_display_unit(exponent),
-                      impact.k_table,
-                      base::sig(*impact.wall_height));
-        k_from_table[i] = {{"k_table", impact.k_table},
-                           {"wall_height", *impact.wall_height},
-                           {"k", k},
-                           {"unit", fit::stiffness_si_unit(exponent)}};
-      }
-      catch (const std::exception &)
-      {
-        // run_lumped_case() records why the case cannot run.
-      }
-    }
+                      base::sig(k->at("k_display").get<double>()),
+                      k->at("display_unit").get<std::string>(),
+                      k->at("k_table").get<std::string>(),
+                      base::sig(k->at("wall_height").get<double>()));
     // The cases' own records (cases[i].record) before any run, so that a missing one is an error
     // at its key rather than a run stopped half-way.
-    std::vector<std::optional<lumped::GroundMotion>> own_motions(cases.size());
-    for (std::size_t i = 0; i < cases.size(); ++i)
+    std::vector<std::shared_ptr<const lumped::GroundMotion>> own_motions(cases.size());
+    for (const std::size_t i : chosen)
       if (cases[i].second.ground_motion.record != scene.ground_motion.record)
-        own_motions[i] = load_ground_motion_at(cases[i].second.ground_motion,
-                                               records_dir_override,
-                                               loaded.file_name,
-                                               loaded.text,
-                                               "cases[" + std::to_string(i) + "]");
+        own_motions[i] = load(cases[i].second.ground_motion, "cases[" + std::to_string(i) + "]");
     // Every case's cost first, so that a run over budget is refused before anything is computed
     // (an invalid case is left to run_lumped_case(), which records why it fails).
-    for (std::size_t i = 0; i < cases.size(); ++i)
+    for (const std::size_t i : chosen)
     {
       const auto &[name, case_scene] = cases[i];
       RunEstimate estimate;
@@ -714,29 +739,31 @@ namespace kimp::app
       {
         continue;
       }
-      logger().info("case {}: estimated {}", name, estimate.text());
+      if (logger().should_log(spdlog::level::info))
+        logger().info("case {}: estimated {}", name, estimate.text());
       check_run_budget(name, estimate, case_scene.integration);
     }
 
-    std::vector<LumpedCaseResult> results;
-    Progress                      progress(cases.size(), static_cast<double>(cases.size()));
-    for (std::size_t i = 0; i < cases.size(); ++i)
+    Progress progress(chosen.size(), static_cast<double>(chosen.size()));
+    for (std::size_t done = 0; done < chosen.size(); ++done)
     {
+      const std::size_t i = chosen[done];
       logger().info("case {}/{}: {}", i + 1, cases.size(), cases[i].first);
-      const GroundMotionScene &case_motion = cases[i].second.ground_motion;
       if (!own_motions[i])
-        results.push_back(
+        run.results.push_back(
           run_lumped_case(cases[i].first, cases[i].second, motion, scene.ground_motion.scale));
       else
       {
         // A case with its own record (cases[i].record), loaded above.
         logger().info("case {}: ground motion {}", cases[i].first, own_motions[i]->name);
-        results.push_back(
-          run_lumped_case(cases[i].first, cases[i].second, *own_motions[i], case_motion.scale));
+        run.results.push_back(run_lumped_case(cases[i].first,
+                                              cases[i].second,
+                                              *own_motions[i],
+                                              cases[i].second.ground_motion.scale));
         own_motions[i].reset();
       }
-      const LumpedCaseResult &r = results.back();
-      if (r.ok())
+      const LumpedCaseResult &r = run.results.back();
+      if (r.ok() && logger().should_log(spdlog::level::info))
         logger().info("case {}: {} steps of {:.4g} s, {} impacts, peak base {} m, wall time {} s",
                       r.name,
                       r.response.n_steps,
@@ -746,11 +773,24 @@ namespace kimp::app
                                   0.0 :
                                   r.response.peak_displacement[0]),
                       base::sig(r.wall_time, 3));
-      else
+      else if (!r.ok())
         logger().error("case {}: {}", r.name, r.status);
-      progress.update(i + 1, static_cast<double>(i + 1));
+      progress.update(done + 1, static_cast<double>(done + 1));
     }
     progress.finish();
+    return run;
+  }
+
+  std::vector<LumpedCaseResult>
+  run_lumped(const LoadedScene<LumpedScene>             &loaded,
+             const OutputDir                            &output,
+             const std::optional<std::filesystem::path> &records_dir_override)
+  {
+    const Clock::time_point start = Clock::now();
+    LumpedCasesRun          run =
+      run_lumped_cases(loaded.scene, loaded.file_name, loaded.text, records_dir_override);
+    const lumped::GroundMotion    &motion  = *run.motion;
+    std::vector<LumpedCaseResult> &results = run.results;
 
     ResultsFile  file(output.file("lumped.h5"), loaded.text, loaded.resolved_json);
     ResultsGroup root = file.root();
@@ -777,11 +817,17 @@ namespace kimp::app
                                 {"energy", "J"},
                                 {"wall_time", "s"}};
     summary["cases"]         = nlohmann::json::array();
+    const auto cases         = resolve_cases(loaded.scene);
     for (std::size_t i = 0; i < results.size(); ++i)
     {
       summary["cases"].push_back(case_summary(results[i]));
-      if (i < k_from_table.size() && !k_from_table[i].is_null())
-        summary["cases"].back()["impact_k"] = k_from_table[i];
+      if (i < cases.size())
+        if (std::optional<nlohmann::json> k = k_from_table(cases[i].second.impact))
+        {
+          k->erase("k_display");
+          k->erase("display_unit");
+          summary["cases"].back()["impact_k"] = *k;
+        }
     }
     write_json_atomic(output.file("summary.json"), summary);
 
@@ -812,7 +858,7 @@ namespace kimp::app
                       "peak_absolute_acceleration_m_per_s2",
                       "peak_interstorey_drift_m"},
                      rows);
-    return results;
+    return std::move(run.results);
   }
 
 } // namespace kimp::app

@@ -135,10 +135,43 @@ namespace kimp::app
                                    double                      base_scale,
                                    const FreeRunSource        &free_runs);
 
+  /// Supplies the motion of a synthetic `ground_motion` section (default: load_ground_motion());
+  /// the Python module passes a cache of the last one, which gives the same bits.
+  using SyntheticMotionSource =
+    std::function<std::shared_ptr<const lumped::GroundMotion>(const GroundMotionScene &section)>;
+
+  /// The cases of a lumped scene, run in memory.
+  struct LumpedCasesRun
+  {
+    std::shared_ptr<const lumped::GroundMotion> motion;  ///< the scene's ground_motion
+    std::vector<LumpedCaseResult>               results; ///< in case order
+  };
+
   /**
-   * Run every case of `scene` and write lumped.h5, summary.json and peaks.csv into `output`.
-   * Every case's estimate is logged first, and a case above the step budget refuses the whole
-   * run before anything is computed (std::runtime_error with the estimate).
+   * Every case of `scene` as `kimp lumped` runs them, without writing a file (run_lumped() and
+   * the Python module both run the cases through this):
+   * 1. the scene's ground motion and the cases' own records (cases[i].record) are loaded first,
+   *    a record that cannot be found or read being an io::SceneError at its key,
+   *    "FILE_NAME:LINE: cases[i].record = 'NAME': <problem>" (load_ground_motion_at(), with the
+   *    line of the key in `scene_text`);
+   * 2. every case's cost is estimated and logged, and a case above the step budget refuses the
+   *    whole run before anything is computed (std::runtime_error of check_run_budget());
+   * 3. each case runs by run_lumped_case() (failures recorded in its status).
+   * @param[in] only_case run only the case of this name (the others are neither loaded nor
+   *            checked); std::invalid_argument listing the cases when there is none
+   * @param[in] synthetic source of a synthetic motion (empty: load_ground_motion())
+   */
+  LumpedCasesRun
+  run_lumped_cases(const LumpedScene                          &scene,
+                   const std::string                          &file_name,
+                   const std::string                          &scene_text,
+                   const std::optional<std::filesystem::path> &records_dir_override = {},
+                   const std::optional<std::string>           &only_case            = {},
+                   const SyntheticMotionSource                &synthetic            = {});
+
+  /**
+   * run_lumped_cases() of the whole scene, then lumped.h5, summary.json and peaks.csv written
+   * into `output`.
    * @return the results, in case order.
    */
   std::vector<LumpedCaseResult>

@@ -35,12 +35,14 @@ namespace kimp::python
   /// A copy of a numpy array (any float-convertible input) as a std::vector<double>.
   std::vector<double> to_vector(const DoubleArray &array);
 
-  /// A scene read and validated once: its kind, name, resolved JSON (SI) and the scene struct
-  /// (app::LumpedScene for kind "lumped", ...), so a run does not parse the text again.
+  /// A scene read and validated once: its kind, name (the file name of its messages), text,
+  /// resolved JSON (SI) and the scene struct (app::LumpedScene for kind "lumped", ...), so a run
+  /// does not parse the text again.
   struct ParsedScene
   {
     std::string                 kind;
     std::string                 name;
+    std::string                 text;
     std::string                 resolved;
     std::shared_ptr<const void> scene;
 

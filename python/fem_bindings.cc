@@ -1,7 +1,9 @@
 // FEM runs and wall-height studies for Python (FEM build only): `kimp fem` and `kimp study` into a
 // directory, with the GIL released. MPI (and p4est) start once, at the first FEM use.
+#include <filesystem>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <pybind11/stl.h>
 #include <string>
 
@@ -28,22 +30,33 @@ namespace kimp::python
     }
 
     /// The process's session (a singleton process, no mpirun needed), created on first use and
-    /// ended by Python's atexit, before the interpreter unloads the module.
+    /// ended by Python's atexit, before the interpreter unloads the module. Called with the GIL
+    /// held; MPI starts with it released, so other Python threads run meanwhile.
     void ensure_session()
     {
       static std::once_flag once;
-      std::call_once(once,
-                     []
-                     {
-                       static int    argc   = 1;
-                       static char   name[] = "kimp";
-                       static char  *args[] = {name, nullptr};
-                       static char **argv   = args;
-                       session_slot()       = std::make_unique<app::Session>(argc, argv);
-                       py::gil_scoped_acquire gil;
-                       py::module_::import("atexit").attr("register")(
-                         py::cpp_function([] { session_slot().reset(); }));
-                     });
+      bool                  created = false;
+      {
+        py::gil_scoped_release release;
+        std::call_once(once,
+                       [&created]
+                       {
+                         static int    argc   = 1;
+                         static char   name[] = "kimp";
+                         static char  *args[] = {name, nullptr};
+                         static char **argv   = args;
+                         session_slot()       = std::make_unique<app::Session>(argc, argv);
+                         created              = true;
+                       });
+      }
+      if (created)
+        py::module_::import("atexit").attr("register")(
+          py::cpp_function([] { session_slot().reset(); }));
+    }
+
+    std::filesystem::path directory(const std::optional<std::string> &text)
+    {
+      return text ? std::filesystem::path(*text) : std::filesystem::path();
     }
   } // namespace
 
@@ -51,27 +64,39 @@ namespace kimp::python
   {
     m.def(
       "run_fem",
-      [](const std::string &text, const std::string &name, const std::string &output)
+      [](const std::string                &text,
+         const std::string                &name,
+         const std::string                &output,
+         const std::optional<std::string> &scene_directory)
       {
         ensure_session();
         py::gil_scoped_release release;
-        app::run_fem(io::read_scene_text<app::FemScene>(text, name), io::OutputDir(output));
+        app::run_fem(io::read_scene_text<app::FemScene>(text, name, directory(scene_directory)),
+                     io::OutputDir(output));
       },
       py::arg("text"),
       py::arg("name"),
       py::arg("output"),
+      py::arg("directory") = py::none(),
       "`kimp fem` of a scene text into the directory `output` (fem.h5, summary.json, ...).");
     m.def(
       "run_study",
-      [](const std::string &text, const std::string &name, const std::string &output)
+      [](const std::string                &text,
+         const std::string                &name,
+         const std::string                &output,
+         const std::optional<std::string> &scene_directory)
       {
         ensure_session();
         py::gil_scoped_release release;
-        app::run_study_job(io::read_scene_text<app::StudyScene>(text, name), output);
+        app::run_study_job(io::read_scene_text<app::StudyScene>(text,
+                                                                name,
+                                                                directory(scene_directory)),
+                           output);
       },
       py::arg("text"),
       py::arg("name"),
       py::arg("output"),
+      py::arg("directory") = py::none(),
       "`kimp study` of a scene text into the directory `output` (study.h5, k_table.csv, ...).");
   }
 #else

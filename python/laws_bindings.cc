@@ -90,6 +90,7 @@ namespace kimp::python
       d["normalised_displacement_rms"] = r.normalised_displacement_rms;
       d["function_evaluations"]        = r.function_evaluations;
       d["status"]                      = r.status;
+      d["verdict"]                     = fit::fit_verdict(r);
       d["fem_peak_force"]              = r.fem_peak_force;
       d["fem_contact_duration"]        = r.fem_contact_duration;
       d["fem_impulse"]                 = r.fem_impulse;

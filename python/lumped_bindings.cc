@@ -1,5 +1,6 @@
-// Lumped runs and ground motions for Python: the scene's cases run by app::run_lumped_case (as
-// `kimp lumped` does, without files) with the GIL released; histories handed to numpy unmoved.
+// Lumped runs and ground motions for Python: the scene's cases run by app::run_lumped_cases (as
+// `kimp lumped` runs them, without files) with the GIL released; histories handed to numpy
+// unmoved.
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -136,17 +137,14 @@ namespace kimp::python
     }
 
     /**
-     * app::load_ground_motion, remembering the last synthetic motion: a loop of runs from
-     * Python varies the building and keeps the motion, whose generation (filtering a 20 s
-     * record) would otherwise cost more than a short run. The same section gives a bitwise
+     * app::load_ground_motion of a synthetic section, remembering the last motion: a loop of
+     * runs from Python varies the building and keeps the motion, whose generation (filtering a
+     * 20 s record) would otherwise cost more than a short run. The same section gives a bitwise
      * identical record, so reusing it changes no number. Records from files are always read.
      */
-    std::shared_ptr<const lumped::GroundMotion> scene_motion(const app::GroundMotionScene &scene,
-                                                             const std::optional<std::string> &dir)
+    std::shared_ptr<const lumped::GroundMotion>
+    last_synthetic_motion(const app::GroundMotionScene &scene)
     {
-      if (scene.is_record())
-        return std::make_shared<const lumped::GroundMotion>(
-          app::load_ground_motion(scene, directory(dir)));
       static std::mutex                                  mutex;
       static std::string                                 last_key;
       static std::shared_ptr<const lumped::GroundMotion> last;
@@ -172,27 +170,19 @@ namespace kimp::python
          const std::optional<std::string> &records_dir,
          const std::optional<std::string> &only_case)
       {
-        std::vector<app::LumpedCaseResult> results;
+        app::LumpedCasesRun run;
         {
           // Everything below is C++ only: other Python threads run meanwhile.
-          py::gil_scoped_release  release;
-          const app::LumpedScene &scene  = lumped_scene(parsed);
-          const auto              motion = scene_motion(scene.ground_motion, records_dir);
-          const auto              cases  = app::resolve_cases(scene);
-          for (const auto &[case_name, case_scene] : cases)
-            if (!only_case || *only_case == case_name)
-              results.push_back(
-                app::run_lumped_case(case_name, case_scene, *motion, scene.ground_motion.scale));
-          if (only_case && results.empty())
-          {
-            std::string known;
-            for (const auto &c : cases)
-              known += (known.empty() ? "" : ", ") + c.first;
-            throw std::invalid_argument("no case '" + *only_case + "' in " + parsed.name +
-                                        " (cases: " + known + ")");
-          }
+          py::gil_scoped_release release;
+          run = app::run_lumped_cases(lumped_scene(parsed),
+                                      parsed.name,
+                                      parsed.text,
+                                      directory(records_dir),
+                                      only_case,
+                                      last_synthetic_motion);
         }
-        py::list list;
+        std::vector<app::LumpedCaseResult> &results = run.results;
+        py::list                            list;
         for (app::LumpedCaseResult &r : results)
           list.append(case_dict(std::move(r)));
         return list;
@@ -200,7 +190,8 @@ namespace kimp::python
       py::arg("scene"),
       py::arg("records_dir") = py::none(),
       py::arg("case")        = py::none(),
-      "Run the cases of a lumped scene as `kimp lumped` does; a list of plain dicts.");
+      "Run the cases of a lumped scene as `kimp lumped` does (app::run_lumped_cases: the same "
+      "records, step budget and messages); a list of plain dicts.");
 
     m.def(
       "ground_motion",
@@ -209,7 +200,11 @@ namespace kimp::python
         lumped::GroundMotion motion;
         {
           py::gil_scoped_release release;
-          motion = app::load_ground_motion(lumped_scene(parsed).ground_motion, directory(dir));
+          motion = app::load_ground_motion_at(lumped_scene(parsed).ground_motion,
+                                              directory(dir),
+                                              parsed.name,
+                                              parsed.text,
+                                              "ground_motion");
         }
         py::dict d;
         d["name"]         = motion.name;

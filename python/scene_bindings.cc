@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <pybind11/stl.h>
 #include <stdexcept>
 #include <string>
@@ -25,26 +26,33 @@ namespace kimp::python
     /// What Python needs of one scene kind.
     struct SceneKind
     {
-      std::function<ParsedScene(const std::string &, const std::string &)> validate;
-      std::function<std::string()>                                         schema;
-      std::function<std::string()>                                         defaults;
+      std::function<
+        ParsedScene(const std::string &, const std::string &, const std::optional<std::string> &)>
+                                   validate;
+      std::function<std::string()> schema;
+      std::function<std::string()> defaults;
     };
 
     template <class Scene>
     SceneKind scene_kind(const char *title)
     {
-      return {[](const std::string &text, const std::string &name)
+      return {[](const std::string                &text,
+                 const std::string                &name,
+                 const std::optional<std::string> &given_directory)
               {
-                // A scene read from a file (Scene.from_yaml names it by its path): its paths
-                // are relative to the file's directory, as on the command line.
+                // Paths in the scene are relative to `given_directory`, else (a scene read from
+                // a file, which Scene.from_yaml names by its path) to the file's directory, as
+                // on the command line.
                 std::error_code             ec;
                 const std::filesystem::path file(name);
-                const std::filesystem::path directory = std::filesystem::is_regular_file(file, ec) ?
-                                                          file.parent_path() :
-                                                          std::filesystem::path();
+                const std::filesystem::path directory =
+                  given_directory ? std::filesystem::path(*given_directory) :
+                  std::filesystem::is_regular_file(file, ec) ? file.parent_path() :
+                                                               std::filesystem::path();
                 io::LoadedScene<Scene> loaded = io::read_scene_text<Scene>(text, name, directory);
                 return ParsedScene{"",
                                    name,
+                                   text,
                                    std::move(loaded.resolved_json),
                                    std::make_shared<const Scene>(std::move(loaded.scene))};
               },
@@ -96,17 +104,22 @@ namespace kimp::python
           });
     m.def(
       "validate_scene",
-      [](const std::string &kind, const std::string &text, const std::string &name)
+      [](const std::string                &kind,
+         const std::string                &text,
+         const std::string                &name,
+         const std::optional<std::string> &directory)
       {
-        ParsedScene parsed = find_kind(kind).validate(text, name);
+        ParsedScene parsed = find_kind(kind).validate(text, name, directory);
         parsed.kind        = kind;
         return parsed;
       },
       py::arg("kind"),
       py::arg("text"),
       py::arg("name"),
-      "Read and validate a scene as the CLI does (a ParsedScene). Raises SceneError with the "
-      "CLI's message.");
+      py::arg("directory") = py::none(),
+      "Read and validate a scene as the CLI does (a ParsedScene); its relative paths are "
+      "resolved against `directory` (default: the directory of the file `name`, if it is one). "
+      "Raises SceneError with the CLI's message.");
     m.def(
       "read_text_file",
       [](const std::string &path) { return io::detail::read_text_file(path); },

@@ -22,6 +22,15 @@ from ._scene import Scene, SceneError
 with_fem = bool(_kimp.with_fem)
 
 
+def set_verbosity(level):
+    """What the engines log on stderr: "quiet" (warnings and errors: the default of the module,
+    as ``kimp -q``), "normal" (also each run's progress, as the CLI without -q) or "verbose"."""
+    _kimp.set_verbosity(level)
+
+
+set_verbosity("quiet")
+
+
 def parse_quantity(text, unit):
     """SI value of a quantity text ("600 MN/m") that must have the dimension of `unit`."""
     return _kimp.parse_quantity(text, unit)
@@ -36,4 +45,4 @@ __all__ = ["Scene", "SceneError", "lumped", "Result", "Results", "Peaks", "Histo
            "ground_motion", "GroundMotion", "collide", "Collision", "cor_table", "CorRow", "fit",
            "FitResult", "Parameter", "fem", "study", "read", "ResultsFile", "Group",
            "TimeSeries", "Array", "Float", "Int", "laws", "with_fem", "parse_quantity",
-           "format_quantity"]
+           "format_quantity", "set_verbosity"]

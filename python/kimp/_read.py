@@ -79,9 +79,21 @@ class Group:
         self._members = members
 
     def __getitem__(self, path):
-        node = self
+        """The member at `path` ("lumped/default/peaks"); a time series' datasets are reached
+        by their names in the file ("history/displacement/value", ".../time", ".../step").
+        KeyError naming the path and the members there if there is none."""
+        node, walked = self, self.name.rstrip("/")
         for part in path.strip("/").split("/"):
-            node = node._members[part]
+            if isinstance(node, Group) and part in node._members:
+                node = node._members[part]
+            elif isinstance(node, TimeSeries) and part in ("step", "time", "value"):
+                node = getattr(node, part)
+            else:
+                members = (list(node._members) if isinstance(node, Group) else
+                           ["step", "time", "value"] if isinstance(node, TimeSeries) else [])
+                raise KeyError(f"no '{part}' in {walked or '/'} (members: "
+                               f"{', '.join(members) or 'none, it is a dataset'})")
+            walked += "/" + part
         return node
 
     def __getattr__(self, name):
@@ -98,6 +110,9 @@ class Group:
 
     def keys(self):
         return self._members.keys()
+
+    def values(self):
+        return self._members.values()
 
     def items(self):
         return self._members.items()

@@ -206,15 +206,17 @@ def _scene(scene, kind):
     if not isinstance(scene, Scene):
         raise TypeError(f"expected a kimp.Scene, a scene file or a dict, not {type(scene)}")
     if scene.kind != kind:
-        scene = Scene(scene.text, scene.name, kind)
+        scene = Scene(scene.text, scene.name, kind, directory=scene._base_directory())
     return scene
 
 
-def _call(function, *args, **kwargs):
+def _call(function, *args, file=None, **kwargs):
+    """function(*args, **kwargs) with the engine's scene errors raised as SceneError (`file`:
+    the name of the scene the messages start with)."""
     try:
         return function(*args, **kwargs)
     except (_kimp.SceneError, _kimp.UnitError) as error:
-        raise SceneError(str(error)) from None
+        raise SceneError(str(error), file) from None
 
 
 def lumped(scene, case=None, records_dir=None):
@@ -227,7 +229,7 @@ def lumped(scene, case=None, records_dir=None):
     """
     scene = _scene(scene, "lumped")
     cases = _call(_kimp.run_lumped, scene._parsed,
-                  os.fspath(records_dir) if records_dir else None, case)
+                  os.fspath(records_dir) if records_dir else None, case, file=scene.name)
     results = Results(_result(c) for c in cases)
     return results[0] if len(results) == 1 else results
 
@@ -257,18 +259,19 @@ class GroundMotion:
 
 
 def ground_motion(record="synthetic", *, scale_to_pga=None, scale=None, duration=None,
-                  records_dir=None, scene=None, **synthetic):
+                  record_unit=None, records_dir=None, scene=None, **synthetic):
     """The ground motion of a scene's ``ground_motion`` section, as the CLI loads it.
 
     record: "synthetic" (the near-fault motion; its parameters as keywords, e.g. pga="0.5 g",
-    pulse_period=1.2, seed=3), a PEER record name found in records_dir or an AT2 file path.
+    pulse_period=1.2, seed=3), a PEER record name found in records_dir or a file path (AT2, or
+    two columns "time acceleration" with record_unit, e.g. "g", "cm/s^2").
     scale_to_pga (m/s² or "0.4 g"), then scale (factor), then duration (s): trim.
     scene: take the section of a lumped kimp.Scene instead.
     """
     if scene is None:
         section = {"record": os.fspath(record)}
         for key, value in (("scale_to_pga", scale_to_pga), ("scale", scale),
-                           ("duration", duration)):
+                           ("duration", duration), ("record_unit", record_unit)):
             if value is not None:
                 section[key] = value
         if synthetic:
@@ -276,7 +279,7 @@ def ground_motion(record="synthetic", *, scale_to_pga=None, scale=None, duration
         scene = Scene.from_dict({"ground_motion": section}, "lumped", "<ground_motion>")
     scene = _scene(scene, "lumped")
     d = _call(_kimp.ground_motion, scene._parsed,
-              os.fspath(records_dir) if records_dir else None)
+              os.fspath(records_dir) if records_dir else None, file=scene.name)
     return GroundMotion(**d)
 
 
@@ -316,9 +319,11 @@ def collide(law, *, mass_1=280e3, mass_2=300e3, velocity=1.0, velocity_2=0.0, ti
             velocity_estimate="backward"):
     """Two free masses meeting through `law` (a kimp.laws object), central differences.
 
-    mass_1, mass_2 in kg (or "280 t"; math.inf for a rigid wall), velocity (m/s) of mass 1
-    towards mass 2 (velocity_2, m/s), time_step in s, velocity_estimate "backward" (the
-    solver's) or "second_order". A law without m_eff gets m1·m2/(m1 + m2).
+    mass_1, mass_2 in kg (or "280 t"), mass_2 = math.inf for a rigid wall (a text such as
+    "inf t" is refused, as the scene of ``kimp collide`` refuses it: its masses are finite);
+    velocity (m/s) of mass 1 towards mass 2 (velocity_2, m/s), time_step in s,
+    velocity_estimate "backward" (the solver's) or "second_order". A law without m_eff gets
+    m1·m2/(m1 + m2).
     """
     from .laws import _si
 
@@ -353,7 +358,8 @@ class CorRow:
 def cor_table(scene=None):
     """The effective-COR table of a collide scene (default: the thesis set-up), in memory."""
     scene = Scene.default("collide") if scene is None else _scene(scene, "collide")
-    return [CorRow(**row) for row in _call(_kimp.cor_table, scene.text, scene.name)]
+    return [CorRow(**row) for row in _call(_kimp.cor_table, scene.text, scene.name,
+                                           file=scene.name)]
 
 
 @dataclass
@@ -370,7 +376,12 @@ class Parameter:
 class FitResult:
     """A fitted impact law, per metre of wall: stiffness k (N/m^n per m), cor, exponent n;
     normalised RMS misfits; FEM and model peak force (N/m), contact durations (s), impulse
-    (N·s/m), contact start (s); the misfit window time (s), fem_force and model_force (N/m)."""
+    (N·s/m), contact start (s); the misfit window time (s), fem_force and model_force (N/m).
+
+    ``status`` is the optimiser's ("RelativeReductionTooSmall", ...); ``verdict`` is the fit's
+    quality as ``kimp fit`` judges it (docs/physics.md §4 "Status of a fit"): "ok",
+    "warning: <reason>" (e.g. a misfit window covering too little of the contact: k is then not
+    reliable) or "failed: <reason>". ``ok`` is True for the verdict "ok"."""
 
     law: str
     stiffness: Parameter
@@ -380,6 +391,7 @@ class FitResult:
     normalised_displacement_rms: float
     function_evaluations: int
     status: str
+    verdict: str
     fem_peak_force: float
     fem_contact_duration: float
     fem_impulse: float
@@ -390,6 +402,11 @@ class FitResult:
     time: np.ndarray
     fem_force: np.ndarray
     model_force: np.ndarray
+
+    @property
+    def ok(self):
+        """True when the verdict is "ok" (neither a warning nor a failure)."""
+        return self.verdict == "ok"
 
     @property
     def k(self):
@@ -405,7 +422,23 @@ class FitResult:
         unit = "kN/mm/m" if self.exponent.value == 1.0 else f"kN/mm^{self.exponent.value:g}/m"
         return (f"FitResult(law={self.law!r}, k={self.k_display():.5g} {unit}, "
                 f"cor={self.cor.value:.4g}, n={self.exponent.value:g}, "
-                f"normalised_rms={self.normalised_rms:.3g}, status={self.status!r})")
+                f"normalised_rms={self.normalised_rms:.3g}, verdict={self.verdict!r})")
+
+
+def _mass_per_metre(value, name):
+    """kg per metre of wall from a number or a text of mass ("50 t", meant per metre) or of mass
+    per length ("50 t/m")."""
+    from .laws import _si
+
+    if not isinstance(value, str):
+        return float(value)
+    try:
+        return _si(value, "kg/m")
+    except _kimp.UnitError as per_length:
+        try:
+            return _si(value, "kg")
+        except _kimp.UnitError:
+            raise _kimp.UnitError(f"{name}: {per_length}") from None
 
 
 def fit(time, force, velocity, mass, law="kelvin_voigt", *, cor=0.7, exponent=None,
@@ -414,53 +447,67 @@ def fit(time, force, velocity, mass, law="kelvin_voigt", *, cor=0.7, exponent=No
     """Fit an impact law to a measured impact (fit::fit_impact_law, as ``kimp fit``).
 
     time (s), force (N per metre of wall, compressive > 0): arrays of one impact; velocity:
-    impact velocity v_imp (m/s); mass: slab mass (kg per metre of wall). law: "kelvin_voigt",
-    "jankowski", "hertzdamp" or "hysteretic", with `cor` fixed (or the start when fit_cor) and
-    `exponent`. Optional indentation and slab_displacement (m) arrays as in the FEM results.
-    The misfit window and separation settings are those of ``kimp fit`` and ``kimp study`` (one
-    fitting configuration, docs/physics.md §4); as there, force_only_contact=True (the default)
-    finds the contact from the force alone and ignores `indentation`.
+    impact velocity v_imp (m/s or a text: "1 m/s"); mass: slab mass (kg per metre of wall, or a
+    text: "50 t/m", or "50 t" meaning per metre); wall_mass likewise (inf: a rigid wall). law:
+    "kelvin_voigt", "jankowski", "hertzdamp" or "hysteretic", with `cor` fixed (or the start
+    when fit_cor) and `exponent`. Optional indentation and slab_displacement (m) arrays as in
+    the FEM results. The misfit window and separation settings are those of ``kimp fit`` and
+    ``kimp study`` (one fitting configuration, docs/physics.md §4); as there,
+    force_only_contact=True (the default) finds the contact from the force alone and ignores
+    `indentation`. Check the result's ``verdict`` before using its k.
     """
+    from .laws import _si
+
     if force_only_contact:
         indentation = None
     arrays = [None if a is None else np.asarray(a, float) for a in (indentation,
                                                                      slab_displacement)]
-    d = _kimp.fit(np.asarray(time, float), np.asarray(force, float), float(velocity),
-                  float(mass), law, float(cor), exponent, fit_cor, fit_exponent, arrays[0],
-                  arrays[1], float(displacement_weight), float(wall_mass))
+    d = _call(_kimp.fit, np.asarray(time, float), np.asarray(force, float),
+              _si(velocity, "m/s"), _mass_per_metre(mass, "mass"), law, _si(cor, ""),
+              _si(exponent, ""), fit_cor, fit_exponent, arrays[0], arrays[1],
+              float(displacement_weight), _mass_per_metre(wall_mass, "wall_mass"))
     for key in ("stiffness", "cor", "exponent"):
         d[key] = Parameter(*d[key])
     return FitResult(**d)
 
 
-def _output(output, prefix):
-    if output is None:
-        output = tempfile.mkdtemp(prefix=prefix)
-    os.makedirs(output, exist_ok=True)
-    return os.fspath(output)
+def _need_fem():
+    if not _kimp.with_fem:
+        raise RuntimeError("kimp was built without the FEM engine (KIMP_WITH_FEM=OFF)")
+
+
+def _run_into(run, scene, output, prefix, file):
+    """run(text, name, directory, scene_directory) into `output` and kimp.read() of its `file`.
+    Without `output` the run goes to a temporary directory, removed once the file is read (the
+    returned ResultsFile holds every value in memory; its ``path`` is then None)."""
+    if output is not None:
+        output = os.fspath(output)
+        os.makedirs(output, exist_ok=True)
+        _call(run, scene.text, scene.name, output, scene._base_directory(), file=scene.name)
+        return read(os.path.join(output, file))
+    with tempfile.TemporaryDirectory(prefix=prefix) as work:
+        _call(run, scene.text, scene.name, work, scene._base_directory(), file=scene.name)
+        result = read(os.path.join(work, file))
+    result.path = None
+    return result
 
 
 def fem(scene, output=None):
-    """Run ``kimp fem`` on a FEM scene into `output` (a new temporary directory if None) and
-    return kimp.read() of its fem.h5. Needs a build with the FEM engine; MPI starts on first use
-    (no mpirun needed)."""
-    if not _kimp.with_fem:
-        raise RuntimeError("kimp was built without the FEM engine (KIMP_WITH_FEM=OFF)")
-    scene = _scene(scene, "fem")
-    output = _output(output, "kimp-fem-")
-    _call(_kimp.run_fem, scene.text, scene.name, output)
-    return read(os.path.join(output, "fem.h5"))
+    """Run ``kimp fem`` on a FEM scene and return kimp.read() of its fem.h5. The command's files
+    (fem.h5, summary.json, ...) are written to `output` and kept; without `output` they go to a
+    temporary directory that is removed once fem.h5 is read. Needs a build with the FEM engine;
+    MPI starts on first use (no mpirun needed)."""
+    _need_fem()
+    return _run_into(_kimp.run_fem, _scene(scene, "fem"), output, "kimp-fem-", "fem.h5")
 
 
 def study(scene, output=None):
-    """Run ``kimp study`` into `output` (a new temporary directory if None) and return
-    kimp.read() of its study.h5 (k table, building response). Needs the FEM engine."""
-    if not _kimp.with_fem:
-        raise RuntimeError("kimp was built without the FEM engine (KIMP_WITH_FEM=OFF)")
-    scene = _scene(scene, "study")
-    output = _output(output, "kimp-study-")
-    _call(_kimp.run_study, scene.text, scene.name, output)
-    return read(os.path.join(output, "study.h5"))
+    """Run ``kimp study`` and return kimp.read() of its study.h5 (k table, fits, building
+    response). The command's files (study.h5, k_table.csv, report.md, ...) are written to
+    `output` and kept; without `output` they go to a temporary directory that is removed once
+    study.h5 is read. Needs the FEM engine."""
+    _need_fem()
+    return _run_into(_kimp.run_study, _scene(scene, "study"), output, "kimp-study-", "study.h5")
 
 
 __all__ = ["Peaks", "History", "Contact", "Energy", "Result", "Results", "lumped", "GroundMotion",

@@ -6,6 +6,7 @@ scene raises SceneError with the CLI's message.
 """
 
 import copy
+import functools
 import json
 import os
 import re
@@ -22,8 +23,15 @@ def _dump(data):
 
 from . import _kimp
 
-# "FILE:LINE: key = value: rule" or "FILE:LINE: message" (first failure of the message).
-_LOCATION = re.compile(r"^(?P<file>.*?):(?P<line>\d+): (?:(?P<key>[\w.\[\]]+) = )?")
+# The location a message starts with: "FILE:LINE:COLUMN: " (YAML syntax), "FILE:LINE: " or
+# "FILE: " (a file that cannot be read).
+_LOCATION = re.compile(r"^(?P<file>.*?)(?::(?P<line>\d+)(?::(?P<column>\d+))?)?: ")
+_LINE = re.compile(r"^:(?P<line>\d+)(?::(?P<column>\d+))?: ")
+# What follows the location: "KEY = VALUE: rule", "KEY: problem", "unknown key 'K'[ in PATH]",
+# "duplicate key 'PATH'".
+_KEY = re.compile(r"^(?:unknown key '(?P<unknown>[^']*)'(?: in (?P<parent>[\w.\[\]]+))?"
+                  r"|duplicate key '(?P<duplicate>[^']*)'"
+                  r"|(?P<key>[\w]+(?:[.\[][\w\]]*)*)(?: = |: ))")
 
 # Default exponent n of each law (the unit N/m^n of a bare SI k), docs/physics.md §1.
 _LAW_EXPONENT = {"hertzdamp": 1.5, "hysteretic": 1.5, "jankowski": 1.5, "bumper": 2.65}
@@ -32,24 +40,53 @@ _LAW_EXPONENT = {"hertzdamp": 1.5, "hysteretic": 1.5, "jankowski": 1.5, "bumper"
 class SceneError(ValueError):
     """A scene the CLI would refuse; str(error) is the CLI's message (without "error: ").
 
-    Attributes: ``file`` (name given to the reader), ``line`` (1-based, 0 if unknown) and ``key``
-    (key path of the first failure, "" if the message names none).
+    Attributes of the message's first failure: ``file`` (the name given to the reader: the path
+    of a file, "<dict>", "NAME (with_)"), ``line`` and ``column`` (1-based, 0 if unknown) and
+    ``key`` (its key path, e.g. "walls.left.gap" or "cases[0].record"; "" if it names none).
+    The line of a scene made by from_dict() or with_() is a line of its to_yaml() text.
     """
 
-    def __init__(self, message):
+    def __init__(self, message, file=None):
         super().__init__(message)
         first = message.splitlines()[0] if message else ""
-        match = _LOCATION.match(first)
-        self.file = match.group("file") if match else ""
-        self.line = int(match.group("line")) if match else 0
-        self.key = (match.group("key") or "") if match else ""
+        self.file, self.line, self.column, self.key = "", 0, 0, ""
+        rest = None
+        if file and first.startswith(file + ":"):
+            # The reader's name is known: file names with a colon are told apart.
+            self.file = file
+            rest = first[len(file):]
+            match = _LINE.match(rest)
+            if match:
+                self.line = int(match.group("line"))
+                self.column = int(match.group("column") or 0)
+                rest = rest[match.end():]
+            elif rest.startswith(": "):
+                rest = rest[2:]
+            else:
+                rest = None
+        if rest is None:
+            match = _LOCATION.match(first)
+            if not match:
+                return
+            self.file = match.group("file")
+            self.line = int(match.group("line") or 0)
+            self.column = int(match.group("column") or 0)
+            rest = first[match.end():]
+        match = _KEY.match(rest)
+        if match:
+            if match.group("unknown") is not None:
+                parent = match.group("parent")
+                self.key = f"{parent}.{match.group('unknown')}" if parent else match.group(
+                    "unknown")
+            else:
+                self.key = match.group("duplicate") or match.group("key") or ""
 
 
-def _validate(kind, text, name):
+def _validate(kind, text, name, directory=None):
     try:
-        return _kimp.validate_scene(kind, text, name)
+        return _kimp.validate_scene(kind, text, name, directory)
     except (_kimp.SceneError, _kimp.UnitError) as error:
-        raise SceneError(str(error)) from None
+        raise SceneError(str(error), name) from None
 
 
 _schemas = {}
@@ -77,9 +114,14 @@ def _number(value):
         type(value).__module__ == "numpy" and getattr(value, "shape", None) == ())
 
 
+@functools.lru_cache(maxsize=None)
+def _si_unit(unit):
+    return _kimp.si_unit(unit)
+
+
 def _si_text(value, unit):
     """A number in SI as quantity text in the scene grammar (read back bit for bit)."""
-    si = _kimp.si_unit(unit)
+    si = _si_unit(unit)
     text = repr(float(value))
     return text if si == "1" and unit in ("", "1") else f"{text} {si}"
 
@@ -93,47 +135,53 @@ def _stiffness_unit(section):
 
 
 def _to_text_values(kind, data, prefix=""):
-    """Turn SI numbers given for quantity (and stiffness, time step) keys into unit texts."""
-    schema = _schema(kind)
+    """Turn SI numbers given for quantity (and stiffness, time step) keys into unit texts (new
+    dicts and lists; `data` is not changed)."""
     if isinstance(data, list):
         return [_to_text_values(kind, item, prefix + "[]") for item in data]
     if not isinstance(data, dict):
         return data
-    out = {}
-    for key, value in data.items():
-        path = f"{prefix}.{key}" if prefix else str(key)
-        kind_of_key, unit = schema.get(path, ("", ""))
-        if isinstance(value, (dict, list)):
-            out[key] = _to_text_values(kind, value, path)
-        elif _number(value) and "quantity" in kind_of_key:
-            out[key] = _si_text(value, unit)
-        elif _number(value) and kind_of_key == "text" and key in ("k", "k_b"):
-            out[key] = f"{float(value)!r} {_stiffness_unit(data)}"
-        elif _number(value) and kind_of_key == "text" and key == "dt":
-            out[key] = f"{float(value)!r} s"
-        elif type(value).__module__ == "numpy":
-            out[key] = value.item() if hasattr(value, "item") else value
-        else:
-            out[key] = value
+    return {key: _text_value(kind, data, key, value, f"{prefix}.{key}" if prefix else str(key))
+            for key, value in data.items()}
+
+
+def _text_value(kind, section, key, value, path):
+    """`value` of `key` in the dict `section` (at key path `path`) as the scene text holds it."""
+    if isinstance(value, (dict, list)):
+        return _to_text_values(kind, value, path)
+    if not _number(value):
+        return value
+    kind_of_key, unit = _schema(kind).get(path, ("", ""))
+    if "quantity" in kind_of_key:
+        return _si_text(value, unit)
+    if kind_of_key == "text" and key in ("k", "k_b"):
+        return f"{float(value)!r} {_stiffness_unit(section)}"
+    if kind_of_key == "text" and key == "dt":
+        return f"{float(value)!r} s"
+    if type(value).__module__ == "numpy":
+        return value.item() if hasattr(value, "item") else value
+    return value
+
+
+def _merged(node, keys, value):
+    """A copy of the nested dict `node` with the key path `keys` set to `value` (a dict value
+    merges key by key, its keys may be dotted paths too). Only the dicts along the path are
+    copied: the rest is shared with `node`, which is left unchanged."""
+    out = dict(node) if isinstance(node, dict) else {}
+    key = keys[0]
+    if len(keys) > 1:
+        out[key] = _merged(out.get(key), keys[1:], value)
+    elif isinstance(value, dict):
+        sub = out.get(key) if isinstance(out.get(key), dict) else {}
+        for sub_key, sub_value in value.items():
+            sub = _merged(sub, str(sub_key).split("."), sub_value)
+        out[key] = sub
+    else:
+        out[key] = value
     return out
 
 
-def _merge(base, path, value):
-    """Set the dotted key `path` of the nested dict `base` (nested dicts merge key by key)."""
-    keys = path.split(".")
-    node = base
-    for key in keys[:-1]:
-        if not isinstance(node.get(key), dict):
-            node[key] = {}
-        node = node[key]
-    last = keys[-1]
-    if isinstance(value, dict):
-        if not isinstance(node.get(last), dict):
-            node[last] = {}
-        for sub, sub_value in value.items():
-            _merge(node[last], sub, sub_value)
-    else:
-        node[last] = value
+_WITH = " (with_)"
 
 
 class Scene:
@@ -143,12 +191,17 @@ class Scene:
     with_(), as plain numbers in SI (N/m, m, 1 for ratios: 0.05 is 5 %).
     """
 
-    def __init__(self, text="", name="<scene>", kind="lumped", _data=None):
+    def __init__(self, text="", name="<scene>", kind="lumped", _data=None, directory=None):
+        """A scene of `text` named `name` in messages; its relative paths (records, k tables)
+        are relative to `directory` (default: the directory of the file `name`, if it is one,
+        else the working directory)."""
         self.kind = kind
         self.name = name
         self.text = text
-        self._parsed = _validate(kind, text, name)
-        self._data = _data  # the dict `text` was dumped from, if any
+        self.directory = None if directory is None else os.fspath(directory)
+        self._parsed = _validate(kind, text, name, self.directory)
+        self._data = _data  # the dict `text` was dumped from, if any (never changed)
+        self._texts = _data  # the scene as nested dicts of unit texts, made on first with_()
 
     @classmethod
     def from_yaml(cls, path, kind="lumped"):
@@ -157,8 +210,8 @@ class Scene:
         try:
             text = _kimp.read_text_file(name)
         except _kimp.SceneError as error:
-            raise SceneError(str(error)) from None
-        return cls(text, name, kind)
+            raise SceneError(str(error), name) from None
+        return cls(text, name, kind, directory=os.path.dirname(name))
 
     @classmethod
     def from_dict(cls, data, kind="lumped", name="<dict>"):
@@ -194,12 +247,31 @@ class Scene:
 
     def with_(self, overrides=None, **kwargs):
         """A new scene with keys replaced: dotted paths or nested dicts, e.g.
-        ``scene.with_(**{"walls.left.gap": "10 cm"})`` or ``scene.with_(impact={"cor": 0.5})``."""
-        data = self.to_dict()
+        ``scene.with_(**{"walls.left.gap": "10 cm"})`` or ``scene.with_(impact={"cor": 0.5})``.
+
+        The new scene's text is written anew (its to_yaml()), so it is named "NAME (with_)":
+        the lines of its error messages are lines of that text, not of the original file. Its
+        relative paths stay relative to the original file's directory."""
+        if self._texts is None:
+            self._texts = _to_text_values(self.kind, self.to_dict())
+        # Only the dicts along the changed paths are new (the rest is shared, never changed),
+        # and only the changed top-level sections are converted to unit texts.
+        data, changed = self._texts, set()
         for path, value in {**(overrides or {}), **kwargs}.items():
-            _merge(data, path, value)
-        data = _to_text_values(self.kind, data)
-        return Scene(_dump(data), self.name, self.kind, data)
+            keys = str(path).split(".")
+            data = _merged(data, keys, value)
+            changed.add(keys[0])
+        for key in changed:
+            data[key] = _text_value(self.kind, data, key, data[key], key)
+        name = self.name if self.name.endswith(_WITH) else self.name + _WITH
+        return Scene(_dump(data), name, self.kind, data, self._base_directory())
+
+    def _base_directory(self):
+        """The directory this scene's relative paths are resolved against ("" = working
+        directory); looked up once."""
+        if self.directory is None:
+            self.directory = os.path.dirname(self.name) if os.path.isfile(self.name) else ""
+        return self.directory
 
     def write(self, path):
         """Write the scene text to `path`."""

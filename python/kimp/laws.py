@@ -91,10 +91,14 @@ class Law:
         return {"k": self.k, "cor": self.cor, "m_eff": self.m_eff}
 
     def __repr__(self):
-        unit = _stiffness_unit(self.exponent)
-        text = ", ".join(f"{key}={value:.6g}" for key, value in self._parameters().items()
-                         if value is not None)
-        return f"{type(self).__name__}({text}) [k in {unit}, m_eff in kg]"
+        parameters = self._parameters()
+        text = ", ".join(f"{key}={value!r}" if isinstance(value, bool) else f"{key}={value:.6g}"
+                         for key, value in parameters.items() if value is not None)
+        units = {"k": _stiffness_unit(self.exponent), "m_eff": "kg", "a1": "s/m", "delta_u": "m",
+                 "k_w": "N/m"}
+        told = ", ".join(f"{key} in {unit}" for key, unit in units.items()
+                         if parameters.get(key) is not None)
+        return f"{type(self).__name__}({text}) [{told}]"
 
 
 class Linear(Law):
@@ -138,7 +142,8 @@ class Jankowski(Law):
 
 
 class Hertzdamp(Law):
-    """Law 5, Hertzdamp (Muthukumar & DesRoches): k in N/m^n, n = 1.5 by default."""
+    """Law 5, Hertzdamp (Muthukumar & DesRoches): F = kδ^n·(1 + β·δ̇/v_imp), k in N/m^n, n = 1.5
+    by default, β = 3(1 − e²)/4 (ye=True: Ye et al.'s β = 8(1 − e)/(5e)); no m_eff."""
 
     law = "hertzdamp"
     default_exponent = 1.5
@@ -147,7 +152,7 @@ class Hertzdamp(Law):
         super().__init__(k, cor, 0.0, exponent, ye)
 
     def _parameters(self):
-        return {"k": self.k, "cor": self.cor, "n": self.exponent}
+        return {"k": self.k, "cor": self.cor, "n": self.exponent, "ye": self.ye}
 
 
 class Hysteretic(Law):

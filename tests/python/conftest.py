@@ -4,6 +4,8 @@ and small scenes (synthetic motion, so no records directory is needed)."""
 import os
 import shutil
 import subprocess
+import threading
+import time
 
 import pytest
 
@@ -63,3 +65,49 @@ def pounding_scene_file(tmp_path):
     path = tmp_path / "pounding.yaml"
     path.write_text(POUNDING_SCENE)
     return path
+
+
+def run_beside_a_python_thread(run):
+    """Run `run()` in a thread while this thread counts loop turns; returns (its result, the
+    longest pause of this thread's loop, s, and the turns). With the GIL held for the whole run
+    this thread would stop for the run's duration; with it released it only yields at Python's
+    switch interval (5 ms)."""
+    results = []
+    worker = threading.Thread(target=lambda: results.append(run()))
+    ticks, longest_pause = 0, 0.0
+    last = time.perf_counter()
+    worker.start()
+    while worker.is_alive():
+        now = time.perf_counter()
+        longest_pause = max(longest_pause, now - last)
+        last = now
+        ticks += 1
+    worker.join()
+    assert results, "the run raised in its thread"
+    return results[0], longest_pause, ticks
+
+
+# A site study like the notebook's, at a fixed fidelity for speed: one wall height, an elastic
+# slab, the study's mesh on a 5 cm contact mesh, the reference velocity only, rigid walls, the
+# synthetic record, no charts or extra studies: seconds.
+QUICK_STUDY = """\
+fem:
+  wall_heights: ["1.25 m"]
+  mesh:
+    h_contact: "5 cm"
+  slab:
+    velocity: "1.0 m/s"
+  dynamics:
+    end_time: "40 ms"
+    output_interval: "0.02 ms"
+  fidelity: fixed
+  velocities: []
+walls:
+  flexible: false
+records:
+  - record: synthetic
+peer_records: false
+charts: false
+stability_map: false
+accuracy_study: false
+"""

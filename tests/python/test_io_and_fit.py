@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import kimp
-from conftest import SOURCE_DIR, run_cli
+from conftest import QUICK_STUDY, SOURCE_DIR, run_cli
 
 G = 9.80665
 
@@ -100,39 +100,39 @@ def test_fem_and_fit_round_trip_against_the_cli(tmp_path):
         assert mine.status == case.status == "ok"
         np.testing.assert_array_equal(mine["contact_force"].value, case["contact_force"].value)
         assert case["contact_force"].units == "N/m"
-    # `kimp fit` of that file against kimp.fit of the same history.
+    # `kimp fit` of that file against kimp.fit of the same history: every variant of the CLI
+    # (law, COR fixed or free, free exponent), its k, COR, n, misfit, model force and verdict.
     run_cli("fit", tmp_path / "cli" / "fem.h5", "-o", tmp_path / "fit")
     fitted = kimp.read(tmp_path / "fit" / "fit.h5")
     name, case = next(iter(cli["fem"].items()))
     series = case["smoothed_contact_force"]
-    mine = kimp.fit(series.time, series.value, velocity=case["impact_velocity"],
-                    mass=case["slab_mass"], law="kelvin_voigt", cor=0.7,
-                    indentation=case["indentation"].value)
-    variant = fitted["fit"][name]["kelvin_voigt_cor_fixed"]
-    assert mine.k == variant["stiffness"]
-
-
-# One coarse wall height, the synthetic record only, no charts or extra studies: seconds.
-QUICK_STUDY = """\
-fem:
-  wall_heights: ["1.25 m"]
-  mesh:
-    h_contact: "5 cm"
-    h_max: "25 cm"
-    grading: 1.5
-  slab:
-    rigid: true
-    velocity: "1.0 m/s"
-  dynamics:
-    end_time: "40 ms"
-    output_interval: "0.02 ms"
-records:
-  - record: synthetic
-peer_records: false
-charts: false
-stability_map: false
-accuracy_study: false
-"""
+    variants = {"kelvin_voigt_cor_fixed": ("kelvin_voigt", False, False),
+                "jankowski_cor_fixed": ("jankowski", False, False),
+                "kelvin_voigt_cor_free": ("kelvin_voigt", True, False),
+                "jankowski_cor_free": ("jankowski", True, False),
+                "hertz_free_exponent": ("hysteretic", False, True)}
+    assert sorted(v for v in fitted["fit"][name].keys() if v in variants) == sorted(variants)
+    for variant, (law, fit_cor, fit_exponent) in variants.items():
+        mine = kimp.fit(series.time, series.value, velocity=case["impact_velocity"],
+                        mass=case["slab_mass"], law=law, cor=0.7, fit_cor=fit_cor,
+                        fit_exponent=fit_exponent, indentation=case["indentation"].value,
+                        slab_displacement=case["slab_displacement"].value)
+        group = fitted["fit"][name][variant]
+        assert group.attrs["law"] == law, variant
+        assert mine.k == group["stiffness"], variant
+        assert mine.cor.value == group["cor"] and mine.exponent.value == group["exponent"]
+        assert mine.normalised_rms == group["normalised_rms"], variant
+        np.testing.assert_array_equal(mine.model_force, group["model_force"].value,
+                                      err_msg=variant)
+        np.testing.assert_array_equal(mine.time, group["model_force"].time, err_msg=variant)
+        np.testing.assert_array_equal(mine.fem_force, group["fem_force"].value, err_msg=variant)
+        assert mine.verdict == group.attrs["status"], variant
+        assert mine.status == group.attrs["lm_status"], variant
+    # The CLI's slab mass is stored per metre of wall with its unit: as a text it reads the same.
+    assert case["slab_mass"].units == "kg/m"
+    again = kimp.fit(series.time, series.value, velocity=f"{float(case['impact_velocity'])!r} m/s",
+                     mass=f"{float(case['slab_mass'])!r} kg/m")
+    assert again.k == fitted["fit"][name]["kelvin_voigt_cor_fixed"]["stiffness"]
 
 
 @pytest.mark.skipif(not kimp.with_fem, reason="built without the FEM engine")
@@ -152,3 +152,32 @@ def test_study_round_trips_against_the_cli(tmp_path):
             assert mine["fit"][name][law]["stiffness"] == group[law]["stiffness"], (name, law)
             np.testing.assert_array_equal(mine["fit"][name][law]["model_force"],
                                           group[law]["model_force"])
+
+
+def test_fit_and_collide_take_unit_texts_like_the_other_functions():
+    k, mass, v, dt = 4e8, 50e3, 1.0, 1e-5
+    hit = kimp.collide(kimp.laws.KelvinVoigt(k=k, cor=0.7), mass_1="50 t", mass_2=math.inf,
+                       velocity="1 m/s", time_step="0.01 ms")
+    same = kimp.collide(kimp.laws.KelvinVoigt(k=k, cor=0.7), mass_1=mass, mass_2=math.inf,
+                        velocity=v, time_step=dt)
+    np.testing.assert_array_equal(hit.force, same.force)
+    time = np.concatenate([[-2 * dt, -dt, 0.0], hit.time])
+    force = np.concatenate([[0.0, 0.0, 0.0], hit.force])
+    in_si = kimp.fit(time, force, velocity=v, mass=mass)
+    # "50 t" is read per metre of wall, like "50 t/m"; the results are the same bits.
+    for texts in ({"velocity": "1 m/s", "mass": "50 t"}, {"velocity": "100 cm/s", "mass": "50 t/m"},
+                  {"velocity": v, "mass": "50000 kg/m", "wall_mass": "1e12 t"}):
+        fitted = kimp.fit(time, force, **texts)
+        if "wall_mass" in texts:
+            # A 1e12 t/m wall: m_eff within 5e-14 of the slab's, k within the fit's tolerance.
+            assert fitted.k == pytest.approx(in_si.k, rel=1e-6)
+            continue
+        assert fitted.k == in_si.k, texts
+        np.testing.assert_array_equal(fitted.model_force, in_si.model_force)
+    with pytest.raises(ValueError, match="expected a mass"):
+        kimp.fit(time, force, velocity=v, mass="50 m")
+    # The CLI's scenes hold finite masses: "inf" is refused as `kimp collide` refuses it, a
+    # rigid wall is the float math.inf.
+    with pytest.raises(ValueError, match="'inf' is not a finite number"):
+        kimp.collide(kimp.laws.KelvinVoigt(k=k, cor=0.7), mass_1="50 t", mass_2="inf")
+    assert hit.effective_mass == mass

@@ -98,3 +98,106 @@ def test_collide_matches_the_cli_cor_table(tmp_path):
             np.testing.assert_array_equal(group["cor_table"][column],
                                           [getattr(r, column) for r in mine], err_msg=name)
     assert len(rows) == len(table)
+
+
+def impact_damping_coefficient(cor, m_eff, v_imp):
+    """C_imp of eq. 2.23 (docs/physics.md §1): 1.55(1 − e²)/(e^0.7076 · m_eff^0.0025 · v^0.9755),
+    m_eff in kg, v_imp in m/s."""
+    return 1.55 * (1 - cor ** 2) / (cor ** 0.7076 * m_eff ** 0.0025 * v_imp ** 0.9755)
+
+
+def test_modified_kelvin_voigt_keeps_the_remaining_deformation_as_permanent_set():
+    law = kimp.laws.ModifiedKelvinVoigt(k=K_LINEAR, cor=0.5, m_eff=M_EFF)
+    c = 2.0 * kv_damping_ratio(0.5) * math.sqrt(K_LINEAR * M_EFF)
+    # Open at −5 mm, in to 5 mm at 1 m/s, turn (δ̇ = 0), then at 2 mm opening at 1 m/s, where
+    # k·δ + c·δ̇ < 0: the contact ends there and δ_p = 2 mm stays. Then 1.5 mm (inside the set:
+    # no force) and 3 mm closing at 0.5 m/s: F = k·(δ − δ_p) + c·δ̇.
+    assert K_LINEAR * 2e-3 - c < 0.0
+    force = law.path([-5e-3, 5e-3, 5e-3, 2e-3, 1.5e-3, 3e-3], [1.0, 1.0, 0.0, -1.0, 0.5, 0.5])
+    assert force[1] == pytest.approx(K_LINEAR * 5e-3 + c, rel=ROUND_OFF)
+    assert force[2] == pytest.approx(K_LINEAR * 5e-3, rel=ROUND_OFF)
+    assert force[3] == 0.0 and force[4] == 0.0
+    assert force[5] == pytest.approx(K_LINEAR * 1e-3 + c * 0.5, rel=ROUND_OFF)
+    # Kelvin-Voigt (law 2) at the same point pulls: k·δ + c·δ̇ < 0, the tension law 3 removes.
+    kv = kimp.laws.KelvinVoigt(k=K_LINEAR, cor=0.5, m_eff=M_EFF)
+    assert kv.path([-5e-3, 5e-3, 5e-3, 2e-3], [1.0, 1.0, 0.0, -1.0])[3] == pytest.approx(
+        K_LINEAR * 2e-3 - c, rel=ROUND_OFF)
+    # In a collision the permanent set is what kimp.collide reports: a second law object ends
+    # its contact where k·δ + c·δ̇ turns negative, above zero indentation.
+    hit = kimp.collide(law, mass_1="280 t", mass_2="300 t", velocity=1.0, time_step=2e-5)
+    assert hit.permanent_indentation > 0.0 and hit.min_force >= 0.0
+
+
+def test_hysteretic_restitution_is_reduced_by_c_imp_and_clipped_at_zero():
+    law = kimp.laws.Hysteretic(k=K_HERTZ, cor=0.7, m_eff=M_EFF)
+    c_imp = impact_damping_coefficient(0.7, M_EFF, 1.0)
+    # The C++ test's independent evaluation of eq. 2.23 at the thesis m_eff and 1 m/s.
+    assert c_imp == pytest.approx(0.98766206409, abs=1e-10)
+    spring = K_HERTZ * 4e-3 ** 1.5
+    # Approach at v_imp = 1 m/s to 5 mm: the Hertz spring alone; restitution at 4 mm opening at
+    # 0.3 m/s: spring·(1 + C_imp·δ̇); opening faster than 1/C_imp: no force (no tension).
+    approach = law.path([-5e-3, 5e-3], [1.0, 1.0])
+    assert approach[1] == pytest.approx(K_HERTZ * 5e-3 ** 1.5, rel=ROUND_OFF)
+    back = law.path([-5e-3, 5e-3, 4e-3], [1.0, 1.0, -0.3])
+    assert back[2] == pytest.approx(spring * (1.0 - 0.3 * c_imp), rel=ROUND_OFF)
+    assert law.path([-5e-3, 5e-3, 4e-3], [1.0, 1.0, -1.1 / c_imp])[2] == 0.0
+    # A faster impact: C_imp (s/m) falls as v_imp^−0.9755 and multiplies the rate itself.
+    c_2 = impact_damping_coefficient(0.7, M_EFF, 2.0)
+    assert law.path([-5e-3, 5e-3, 4e-3], [2.0, 2.0, -0.6])[2] == pytest.approx(
+        spring * (1.0 - 0.3 * c_2 * 2.0), rel=ROUND_OFF)
+
+
+def test_hysteretic_with_a1_uses_a1_times_one_minus_e_squared_and_its_loop_area():
+    # C_imp = a1·(1 − e²). Quasi-static loop, load at +r to δ_m, unload at −r: the area is
+    # C·r·k·δ_m^(n+1)/(n+1) (C·r < 1), here integrated from the path by the trapezoidal rule
+    # over 20,000 samples a leg: O(1/n) from the rate's jump at the turn, < 1e-3 relative.
+    a1, cor, r, delta_m, n = 0.8, 0.6, 0.5, 8e-3, 20000
+    law = kimp.laws.Hysteretic(k=K_HERTZ, cor=cor, m_eff=M_EFF, a1=a1)
+    c = a1 * (1 - cor ** 2)
+    up = delta_m * np.arange(n + 1) / n
+    delta = np.concatenate([up, up[-2::-1]])
+    rate = np.concatenate([np.full(n, r), [0.0], np.full(n, -r)])
+    force = law.path(delta, rate)
+    # Unloading: F = k·δ^n·(1 − C·r), C = a1·(1 − e²) whatever m_eff and v_imp.
+    assert force[n + 1] == pytest.approx(K_HERTZ * up[-2] ** 1.5 * (1 - c * r), rel=ROUND_OFF)
+    area = np.trapz(force, delta)  # ∮F dδ: loading minus unloading work
+    expected = c * r * K_HERTZ * delta_m ** 2.5 / 2.5
+    assert area == pytest.approx(expected, rel=1e-3)
+    assert "a1=0.8" in repr(law) and "a1 in s/m" in repr(law)
+
+
+def test_hertzdamp_ye_damping_factor_and_the_rate_over_v_imp():
+    md = kimp.laws.Hertzdamp(k=K_HERTZ, cor=0.6)
+    ye = kimp.laws.Hertzdamp(k=K_HERTZ, cor=0.6, ye=True)
+    beta_md = 0.75 * (1 - 0.6 ** 2)
+    beta_ye = 8 * (1 - 0.6) / (5 * 0.6)
+    hertz = K_HERTZ * 1e-3 ** 1.5
+    # First contact at δ̇ = v_imp: F = k·δ^n·(1 + β).
+    assert md.force(1e-3, 1.0) == pytest.approx(hertz * (1 + beta_md), rel=ROUND_OFF)
+    assert ye.force(1e-3, 1.0) == pytest.approx(hertz * (1 + beta_ye), rel=ROUND_OFF)
+    # Later in the contact (v_imp = 2 m/s): F = k·δ^n·(1 + β·δ̇/v_imp).
+    force = ye.path([-5e-3, 5e-3, 4e-3], [2.0, 2.0, 1.0])
+    assert force[2] == pytest.approx(K_HERTZ * 4e-3 ** 1.5 * (1 + beta_ye * 0.5), rel=ROUND_OFF)
+    # Hertzdamp has no m_eff: its repr says so.
+    assert "m_eff" not in repr(ye) and "ye=True" in repr(ye) and "[k in N/m^1.5]" in repr(ye)
+
+
+def test_bumper_hands_over_to_the_wall_beyond_the_ultimate_deformation():
+    # k_b of four 150 × 150 × 50 mm bumpers, K_r = 55835 kN/m², n = 2.65 (thesis eqs. 6.2-6.3).
+    k_b = 2.25 * 4 * 0.15 * 0.15 * 55835e3 / 0.05 ** 2.65
+    delta_u, k_w = 0.0375, 1.5e9
+    law = kimp.laws.Bumper(k=k_b, cor=0.7, m_eff=M_EFF, delta_u=delta_u, k_w=k_w)
+    f_u = k_b * delta_u ** 2.65
+
+    def loading(delta):
+        """F on loading at 0.5 m/s after an impact at 1 m/s to 1 cm."""
+        return law.path([-5e-3, 0.01, delta], [1.0, 1.0, 0.5])[2]
+
+    # Continuous at δ_u (the rubber's k_b·δ_u^n on both sides), then the wall's k_w on top.
+    assert loading(delta_u * (1 - 1e-12)) == pytest.approx(f_u, rel=1e-9)
+    assert loading(delta_u * (1 + 1e-12)) == pytest.approx(f_u, rel=1e-9)
+    assert loading(0.04) == pytest.approx(f_u + k_w * (0.04 - delta_u), rel=ROUND_OFF)
+    assert loading(0.02) == pytest.approx(k_b * 0.02 ** 2.65, rel=ROUND_OFF)
+    assert law.stiffness(0.04, 0.5) == k_w
+    assert law.stability_stiffness(0.05) == max(2.65 * k_b * delta_u ** 1.65, k_w)
+    assert "delta_u in m" in repr(law) and "k_w in N/m" in repr(law)

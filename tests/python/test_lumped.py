@@ -1,14 +1,13 @@
 """kimp.lumped against `kimp lumped` on the same scene: identical peaks and histories (bit for
 bit), kimp.read of the CLI's lumped.h5, the GIL released during a run, memory flat over runs."""
 
-import threading
 import time
 
 import numpy as np
 import pytest
 
 import kimp
-from conftest import SHORT_SCENE, run_cli
+from conftest import SHORT_SCENE, run_beside_a_python_thread, run_cli
 
 
 def test_peaks_histories_and_impacts_equal_the_cli_bit_for_bit(tmp_path, pounding_scene_file):
@@ -77,22 +76,10 @@ def test_a_run_in_a_thread_does_not_block_other_python_threads():
     expected = kimp.lumped(scene)
     alone = time.perf_counter() - start
     assert alone > 0.1, "the run must be long enough to observe"
-    results = []
-    worker = threading.Thread(target=lambda: results.append(kimp.lumped(scene)))
-    ticks, longest_pause = 0, 0.0
-    last = time.perf_counter()
-    worker.start()
-    while worker.is_alive():
-        now = time.perf_counter()
-        longest_pause = max(longest_pause, now - last)
-        last = now
-        ticks += 1
-    worker.join()
-    # With the GIL held for the whole run, this thread would stop for the run's duration; with it
-    # released it only yields at Python's switch interval (5 ms).
+    result, longest_pause, ticks = run_beside_a_python_thread(lambda: kimp.lumped(scene))
     assert longest_pause < 0.5 * alone, (longest_pause, alone, ticks)
     assert ticks > 1000
-    np.testing.assert_array_equal(results[0].peaks.displacement, expected.peaks.displacement)
+    np.testing.assert_array_equal(result.peaks.displacement, expected.peaks.displacement)
 
 
 def _rss_bytes():
@@ -152,3 +139,19 @@ def test_no_isolator_gives_none_and_zero_force():
                                           "ground_motion": SHORT_SCENE["ground_motion"]}))
     assert r.isolator is None
     assert not np.any(r.history.isolator_force)
+
+
+def test_read_paths_reach_the_datasets_of_a_time_series_and_miss_with_key_error(
+        tmp_path, pounding_scene_file):
+    run_cli("lumped", pounding_scene_file, "-o", tmp_path / "out")
+    cli = kimp.read(tmp_path / "out" / "lumped.h5")
+    series = cli["lumped/kv/history/displacement"]
+    # The file's own paths: {step, time, value} of the time series group.
+    np.testing.assert_array_equal(cli["lumped/kv/history/displacement/value"], series.value)
+    np.testing.assert_array_equal(cli["/lumped/kv/history/displacement/time"], series.time)
+    with pytest.raises(KeyError, match="no 'nope' in /lumped/kv/history/displacement"):
+        cli["lumped/kv/history/displacement/nope"]
+    with pytest.raises(KeyError, match="it is a dataset"):
+        cli["lumped/kv/peaks/displacement/value"]
+    with pytest.raises(KeyError, match="members: .*peaks"):
+        cli["lumped/kv/nope"]

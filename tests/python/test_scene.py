@@ -108,3 +108,56 @@ def test_paths_of_a_scene_file_are_relative_to_it(tmp_path, monkeypatch):
     assert caught.value.line == 3
     assert caught.value.key == "impact.k_table"
     assert "../site/other.csv: cannot read the k table" in str(caught.value)
+
+
+# (scene text, line, column, key) of a message's first failure, as the reader reports them.
+LOCATED_ERRORS = [
+    ('walls:\n  left:\n    gap: "8 cm"\n  right: [a\n', 5, 1, ""),             # YAML syntax
+    ('walls:\n  left:\n    gapp: "8 cm"\n', 3, 0, "walls.left.gapp"),          # unknown key
+    ("gapp: 1\n", 1, 0, "gapp"),                                                # ... at the top
+    ("walls:\n  left:\n    gap: abc\n", 3, 0, "walls.left.gap"),               # not a quantity
+    ("walls:\n  left:\n    gap: 8 cm\n    gap: 9 cm\n", 4, 0, "walls.left.gap"),  # duplicate
+    ('walls:\n  left:\n    gap: "-8 cm"\n', 3, 0, "walls.left.gap"),           # out of range
+    ("cases:\n  - name: a\n    cor: 2\n", 3, 0, "cases[0].cor"),               # list item
+]
+
+
+@pytest.mark.parametrize("text, line, column, key", LOCATED_ERRORS)
+def test_scene_error_attributes_locate_every_kind_of_message(tmp_path, text, line, column, key):
+    # A file name with a colon: the location is still told apart from the name.
+    path = tmp_path / "site:a.yaml"
+    path.write_text(text)
+    cli = run_cli("lumped", path, "-o", tmp_path / "out", check=False)
+    with pytest.raises(kimp.SceneError) as caught:
+        kimp.Scene.from_yaml(path)
+    error = caught.value
+    assert cli.stderr.strip().splitlines()[0] == f"error: {error}".splitlines()[0]
+    assert (error.file, error.line, error.column, error.key) == (str(path), line, column, key)
+    # Without the reader's name the message alone gives the same location.
+    alone = kimp.SceneError(str(error))
+    assert (alone.line, alone.column, alone.key) == (line, column, key)
+
+
+def test_missing_file_error_names_the_file_without_a_line(tmp_path):
+    path = tmp_path / "missing.yaml"
+    with pytest.raises(kimp.SceneError) as caught:
+        kimp.Scene.from_yaml(path)
+    assert (caught.value.file, caught.value.line, caught.value.key) == (str(path), 0, "")
+
+
+def test_with_errors_name_the_generated_text_not_the_file(pounding_scene_file):
+    scene = kimp.Scene.from_yaml(pounding_scene_file)
+    with pytest.raises(kimp.SceneError) as caught:
+        scene.with_(**{"isolator.K2": "900 MN/m"})
+    error = caught.value
+    assert error.file == f"{pounding_scene_file} (with_)"
+    assert str(error).startswith(f"{pounding_scene_file} (with_):{error.line}: isolator.K2 = ")
+    assert error.key == "isolator.K2"
+    # The line is one of the with_ scene's own text (what to_yaml() would give), where K2 is.
+    text = kimp.Scene.from_yaml(pounding_scene_file).with_(
+        **{"isolator.K2": "20 MN/m"}).to_yaml().splitlines()
+    assert '"K2"' in text[error.line - 1]
+    # A scene derived twice keeps one suffix, and its paths stay relative to the file.
+    twice = scene.with_(**{"walls.left.gap": "9 cm"}).with_(**{"walls.right.gap": "9 cm"})
+    assert twice.name == f"{pounding_scene_file} (with_)"
+    assert twice.directory == str(pounding_scene_file.parent)
