@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "lumped/integrators/central_difference.h"
@@ -61,10 +62,12 @@ namespace
     return arg == 0 ? CdmKernel::automatic : arg == 1 ? CdmKernel::reference : CdmKernel::any_size;
   }
 
-  /// Runs the walled 4-storey building under the 48 s record with `opt` in the benchmark loop.
-  void run_walled_building(benchmark::State &state, const CentralDifferenceOptions &opt)
+  /// Runs `model` under the 48 s record with `opt` in the benchmark loop.
+  void run_model(benchmark::State               &state,
+                 const PoundingModel            &model,
+                 const CentralDifferenceOptions &opt)
   {
-    const CentralDifference cdm(walled_building(), opt);
+    const CentralDifference cdm(model, opt);
     Response                r;
     for (auto _ : state)
     {
@@ -72,6 +75,12 @@ namespace
       benchmark::DoNotOptimize(r.peak_displacement.data());
     }
     set_counters(state, r);
+  }
+
+  /// Runs the walled 4-storey building under the 48 s record with `opt` in the benchmark loop.
+  void run_walled_building(benchmark::State &state, const CentralDifferenceOptions &opt)
+  {
+    run_model(state, walled_building(), opt);
   }
 
   /// The performance target: 48 s, Δt = 2e-5 s; arg 0: decimated output every 0.01 s (1) or
@@ -97,14 +106,10 @@ namespace
     for (const auto &[storeys, side] :
          {std::pair{left, &scene.left_neighbour}, std::pair{right, &scene.right_neighbour}})
     {
-      ForceLawSpec spec;
-      spec.law       = "modified_kelvin_voigt";
-      spec.stiffness = 2.5e9;
-      spec.cor       = 0.7;
       AdjacentBuilding nb;
       nb.building   = reference_fixed_base_building(storeys);
       nb.separation = 0.20;
-      nb.law        = force_law_factory(spec);
+      nb.law        = force_law_factory(kimp::testing::contact_law("modified_kelvin_voigt", 2.5e9));
       *side         = nb;
     }
     return PoundingModel(scene);
@@ -120,16 +125,10 @@ namespace
     opt.dt       = 2e-5;
     opt.duration = 20.0;
     opt.kernel   = kernel_arg(state.range(2));
-    const CentralDifference cdm(building_between_neighbours(static_cast<int>(state.range(0)),
-                                                            static_cast<int>(state.range(1))),
-                                opt);
-    Response                r;
-    for (auto _ : state)
-    {
-      r = cdm.run(record_48s());
-      benchmark::DoNotOptimize(r.peak_displacement.data());
-    }
-    set_counters(state, r);
+    run_model(state,
+              building_between_neighbours(static_cast<int>(state.range(0)),
+                                          static_cast<int>(state.range(1))),
+              opt);
   }
   BENCHMARK(BM_CdmNeighbours)
     ->ArgNames({"left", "right", "reference"})
@@ -153,14 +152,7 @@ namespace
     opt.kernel          = kernel_arg(state.range(1));
     PoundingScene scene;
     scene.building = reference_fixed_base_building(static_cast<int>(state.range(0)));
-    const CentralDifference cdm(PoundingModel(scene), opt);
-    Response                r;
-    for (auto _ : state)
-    {
-      r = cdm.run(record_48s());
-      benchmark::DoNotOptimize(r.peak_displacement.data());
-    }
-    set_counters(state, r);
+    run_model(state, PoundingModel(scene), opt);
   }
   BENCHMARK(BM_CdmTallBuilding)
     ->ArgNames({"storeys", "kernel"})
@@ -262,22 +254,13 @@ namespace
     Response            r;
     for (auto _ : state)
     {
-      if constexpr (implicit)
-      {
-        NewmarkOptions opt;
-        opt.dt              = dt;
-        opt.duration        = 20.0;
-        opt.output_interval = 0.0;
-        r                   = NewmarkIntegrator(model, opt).run(record_48s());
-      }
-      else
-      {
-        CentralDifferenceOptions opt;
-        opt.dt              = dt;
-        opt.duration        = 20.0;
-        opt.output_interval = 0.0;
-        r                   = CentralDifference(model, opt).run(record_48s());
-      }
+      using Integrator = std::conditional_t<implicit, NewmarkIntegrator, CentralDifference>;
+      using Options    = std::conditional_t<implicit, NewmarkOptions, CentralDifferenceOptions>;
+      Options opt;
+      opt.dt              = dt;
+      opt.duration        = 20.0;
+      opt.output_interval = 0.0;
+      r                   = Integrator(model, opt).run(record_48s());
       benchmark::DoNotOptimize(r.peak_displacement.data());
     }
     state.counters["dt_us"]          = static_cast<double>(state.range(1));

@@ -1,7 +1,6 @@
 // The any-size fused kernel against the reference kernel on every shipped lumped scene
 // (data/scenes) and a sample of the adjacent-building study's topologies (data/studies study 5),
 // over the full runs; scenes on PEER records are skipped when the records are not found.
-#include <filesystem>
 #include <gtest/gtest.h>
 #include <iostream>
 #include <string>
@@ -13,12 +12,12 @@
 #include "lumped/isolators/bilinear_isolator.h"
 #include "lumped/isolators/linear_isolator.h"
 #include "lumped/structure/pounding_model.h"
+#include "tests/app/shipped_lumped_scenes.h"
 #include "tests/support/files.h"
 #include "tests/support/response_compare.h"
 
 namespace
 {
-  namespace fs = std::filesystem;
   using namespace kimp;
 
   // Same physics, different algebra: the increment form with dense products against the right-hand
@@ -66,53 +65,18 @@ namespace
     return opt;
   }
 
-  /// The scene's motion, or nullopt when its record is not available here.
-  std::optional<lumped::GroundMotion> motion_of(const app::LumpedScene &scene)
-  {
-    try
-    {
-      return app::load_ground_motion(scene.ground_motion);
-    }
-    catch (const std::exception &error)
-    {
-      if (scene.ground_motion.is_record())
-        return std::nullopt;
-      throw;
-    }
-  }
-
   TEST(AnySizeScenes, EveryShippedLumpedSceneAgreesWithTheReferenceKernel)
   {
-    std::size_t compared = 0, skipped = 0;
-    for (const auto &item : fs::directory_iterator(kimp::testing::source_dir() / "data/scenes"))
-    {
-      const fs::path    path = item.path();
-      const std::string name = path.filename().string();
-      if (path.extension() != ".yaml" || name.rfind("fem_", 0) == 0 ||
-          name == "wall_height_study.yaml" || name == "my_site.yaml")
-        continue; // FEM and study scenes
-      SCOPED_TRACE(name);
-      const app::LumpedScene scene = io::load_scene<app::LumpedScene>(path);
-      const auto             g     = motion_of(scene);
-      if (!g)
+    std::size_t       compared = 0;
+    const std::size_t skipped  = kimp::testing::for_each_shipped_lumped_case(
+      [&](const kimp::testing::ShippedCase &c)
       {
-        std::cout << "  " << name << ": record not found, skipped\n";
-        ++skipped;
-        continue;
-      }
-      for (const auto &[case_name, case_scene] : app::resolve_cases(scene))
-      {
-        const lumped::GroundMotion used =
-          case_scene.ground_motion.scale != scene.ground_motion.scale ?
-            lumped::scaled(*g, case_scene.ground_motion.scale / scene.ground_motion.scale) :
-            *g;
-        compare(lumped::PoundingModel(app::make_pounding_scene(case_scene)),
-                options(case_scene.integration),
-                used,
-                name + " " + case_name);
+        compare(lumped::PoundingModel(app::make_pounding_scene(c.scene)),
+                options(c.scene.integration),
+                c.motion,
+                c.what);
         ++compared;
-      }
-    }
+      });
     std::cout << "  " << compared << " cases compared, " << skipped << " scenes skipped\n";
     EXPECT_GT(compared, 0U);
   }
@@ -130,7 +94,7 @@ namespace
       if (c.index % stride != 0 || !c.companion.empty())
         continue;
       const app::LumpedScene scene = io::load_scene_text<app::LumpedScene>(c.scene_text, c.id);
-      const auto             g     = motion_of(scene);
+      const auto             g     = kimp::testing::motion_of(scene);
       if (!g)
         GTEST_SKIP() << "records of study 5 not found (KIMP_RECORDS_DIR)";
       compare(lumped::PoundingModel(app::make_pounding_scene(scene)),

@@ -5,7 +5,6 @@
 // the records are not found.
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <gtest/gtest.h>
 #include <iostream>
 #include <optional>
@@ -16,12 +15,12 @@
 #include "app/lumped_scene.h"
 #include "lumped/integrators/adaptive_step.h"
 #include "lumped/structure/pounding_model.h"
+#include "tests/app/shipped_lumped_scenes.h"
 #include "tests/support/files.h"
 #include "tests/support/response_compare.h"
 
 namespace
 {
-  namespace fs = std::filesystem;
   using namespace kimp;
 
   // Same steps and the same physics; the algebra differs in round-off only (an inverse product
@@ -42,58 +41,26 @@ namespace
     return opt;
   }
 
-  std::optional<lumped::GroundMotion> motion_of(const app::LumpedScene &scene)
-  {
-    try
-    {
-      return app::load_ground_motion(scene.ground_motion);
-    }
-    catch (const std::exception &)
-    {
-      if (scene.ground_motion.is_record())
-        return std::nullopt;
-      throw;
-    }
-  }
-
   TEST(DtAutoFastPath, EveryShippedLumpedSceneAgreesWithTheReferencePath)
   {
     std::size_t compared = 0;
-    for (const auto &item : fs::directory_iterator(kimp::testing::source_dir() / "data/scenes"))
-    {
-      const fs::path    path = item.path();
-      const std::string name = path.filename().string();
-      if (path.extension() != ".yaml" || name.rfind("fem_", 0) == 0 ||
-          name == "wall_height_study.yaml" || name == "my_site.yaml")
-        continue; // FEM and study scenes
-      SCOPED_TRACE(name);
-      const app::LumpedScene scene = io::load_scene<app::LumpedScene>(path);
-      const auto             g     = motion_of(scene);
-      if (!g)
+    kimp::testing::for_each_shipped_lumped_case(
+      [&](const kimp::testing::ShippedCase &c)
       {
-        std::cout << "  " << name << ": record not found, skipped\n";
-        continue;
-      }
-      for (const auto &[case_name, case_scene] : app::resolve_cases(scene))
-      {
-        const lumped::GroundMotion used =
-          case_scene.ground_motion.scale != scene.ground_motion.scale ?
-            lumped::scaled(*g, case_scene.ground_motion.scale / scene.ground_motion.scale) :
-            *g;
-        const lumped::PoundingModel model(app::make_pounding_scene(case_scene));
+        const lumped::PoundingModel model(app::make_pounding_scene(c.scene));
         lumped::AdaptiveStepOptions adaptive;
-        adaptive.contact_steps = case_scene.integration.contact_steps;
+        adaptive.contact_steps = c.scene.integration.contact_steps;
         lumped::AdaptiveStepReport fast_report, ref_report;
         std::vector<double>        fast_steps, ref_steps;
         const lumped::Response     fast =
-          lumped::AdaptiveCentralDifference(model, options(case_scene.integration), adaptive)
-            .run(used, &fast_report, &fast_steps);
+          lumped::AdaptiveCentralDifference(model, options(c.scene.integration), adaptive)
+            .run(c.motion, &fast_report, &fast_steps);
         adaptive.reference_kernel = true;
         const lumped::Response ref =
-          lumped::AdaptiveCentralDifference(model, options(case_scene.integration), adaptive)
-            .run(used, &ref_report, &ref_steps);
-        const std::string what = name + " " + case_name;
-        const double      d    = kimp::testing::max_relative_difference(fast, ref, what);
+          lumped::AdaptiveCentralDifference(model, options(c.scene.integration), adaptive)
+            .run(c.motion, &ref_report, &ref_steps);
+        const std::string &what = c.what;
+        const double       d    = kimp::testing::max_relative_difference(fast, ref, what);
         std::cout << "  " << what << " (" << model.n_dofs() << " DOFs, " << fast.n_impacts()
                   << " impacts, " << fast.n_steps << " steps): " << d << "\n";
         EXPECT_LT(d, tolerance) << what;
@@ -108,8 +75,7 @@ namespace
         EXPECT_EQ(fast.history.time, ref.history.time) << what;
         EXPECT_NEAR(fast_report.force_error, ref_report.force_error, 1e-9) << what;
         ++compared;
-      }
-    }
+      });
     std::cout << "  " << compared << " cases compared\n";
     EXPECT_GT(compared, 0U);
   }

@@ -8,26 +8,14 @@
 
 #include "app/fit_run.h"
 #include "fit/fit_config.h"
+#include "tests/support/fit_results.h"
 
 namespace
 {
   using kimp::fit::FitResult;
 
-  FitResult good_fit()
-  {
-    FitResult f;
-    f.stiffness            = {1e8, 0.99e8, 1.01e8, true};
-    f.cor                  = {0.7, 0.7, 0.7, false};
-    f.exponent             = {1.0, 1.0, 1.0, false};
-    f.fem_contact_duration = 0.02;
-    f.contact_extent       = 0.02;
-    return f;
-  }
-
-  bool starts_with(const std::string &text, const std::string &prefix)
-  {
-    return text.rfind(prefix, 0) == 0;
-  }
+  using kimp::testing::good_fit;
+  using kimp::testing::starts_with;
 
   /// The default scene's slab at 1 m/s (E0 = 1920 J/m), run ended on separation.
   kimp::io::FemCase separated_case(double cor, double damage, double plastic)

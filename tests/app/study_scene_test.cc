@@ -3,15 +3,14 @@
 #ifdef KIMP_WITH_FEM
 
 #  include <filesystem>
-#  include <fstream>
 #  include <gtest/gtest.h>
 #  include <string>
-#  include <unistd.h>
 
 #  include "app/study/study_fem.h"
 #  include "app/study/study_run.h"
 #  include "app/study/study_scene.h"
 #  include "tests/support/scene_errors.h"
+#  include "tests/support/temp_dir.h"
 
 namespace
 {
@@ -170,10 +169,8 @@ TEST(StudyScene, ThesisTable21TimesWidthGivesTable22)
 
 TEST(StudyScene, ThesisTable21ErrorsNameTheFile)
 {
-  const std::filesystem::path dir =
-    std::filesystem::temp_directory_path() / ("kimp_thesis_table_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  const auto error_of = [](const std::filesystem::path &file)
+  const kimp::testing::TempDir dir("thesis_table");
+  const auto                   error_of = [](const std::filesystem::path &file)
   {
     try
     {
@@ -185,15 +182,15 @@ TEST(StudyScene, ThesisTable21ErrorsNameTheFile)
     }
     return std::string();
   };
-  const std::filesystem::path missing = dir / "missing.csv";
+  const std::filesystem::path missing = dir.file("missing.csv");
   EXPECT_NE(error_of(missing).find(missing.string()), std::string::npos) << error_of(missing);
-  const std::filesystem::path bad = dir / "bad.csv";
-  std::ofstream(bad) << "wall_height_m,kelvin_voigt_kN_per_mm_per_m,jankowski_kN_per_mm1.5_per_m\n"
-                        "1.00,150,fifty\n";
+  const std::filesystem::path bad =
+    dir.write("bad.csv",
+              "wall_height_m,kelvin_voigt_kN_per_mm_per_m,jankowski_kN_per_mm1.5_per_m\n"
+              "1.00,150,fifty\n");
   EXPECT_NE(error_of(bad).find(bad.string() + ":2: 'fifty'"), std::string::npos) << error_of(bad);
-  std::ofstream(bad) << "height,k\n1,2\n";
+  dir.write("bad.csv", "height,k\n1,2\n");
   EXPECT_NE(error_of(bad).find(bad.string() + ":1: header"), std::string::npos) << error_of(bad);
-  std::filesystem::remove_all(dir);
 }
 
 TEST(StudyFemCache, KeyDependsOnHeightAndEveryParameter)

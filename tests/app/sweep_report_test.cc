@@ -14,6 +14,7 @@
 #include "app/sweep/sweep_lumped.h"
 #include "app/sweep/sweep_report.h"
 #include "base/logging.h"
+#include "tests/app/lumped_sweeps.h"
 #include "tests/support/temp_dir.h"
 
 namespace
@@ -239,12 +240,8 @@ namespace
                        scene,
                        "base.yaml");
     const kimp::testing::TempDir temp_dir("sweep_report");
-    const fs::path               dir = temp_dir.path() / "sweep";
-    kimp::app::SweepOptions      options;
-    options.threads = 1;
-    kimp::app::run_sweep(plan, kimp::app::make_lumped_case_runner(), dir, options);
-    const SweepTable table = kimp::app::collect_sweep_table(plan, dir);
-    fs::remove_all(dir);
+    const SweepTable             table =
+      kimp::testing::run_lumped_sweep(plan, temp_dir.path() / "sweep", true, 1);
     ASSERT_EQ(table.rows.size(), 2U);
     for (const auto &row : table.rows)
       ASSERT_EQ(row.status, "ok");

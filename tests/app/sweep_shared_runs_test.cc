@@ -1,36 +1,26 @@
 // Sweeps whose cases share contact-free runs (FreeRunCache) give bitwise the rows of sweeps that
 // run every case alone: gaps, separations, neighbour storeys, walls present or not, dt auto.
 #include <cstring>
-#include <filesystem>
 #include <gtest/gtest.h>
 #include <string>
 
 #include "app/sweep/sweep_engine.h"
-#include "app/sweep/sweep_lumped.h"
 #include "base/logging.h"
+#include "tests/app/lumped_sweeps.h"
 #include "tests/support/temp_dir.h"
 
 namespace
 {
-  namespace fs = std::filesystem;
   using kimp::app::SweepPlan;
   using kimp::app::SweepTable;
-
-  SweepTable run(const SweepPlan &plan, const fs::path &dir, const bool shared, unsigned threads)
-  {
-    kimp::app::SweepOptions options;
-    options.threads = threads;
-    kimp::app::run_sweep(plan, kimp::app::make_lumped_case_runner({}, shared), dir, options);
-    SweepTable table = kimp::app::collect_sweep_table(plan, dir);
-    fs::remove_all(dir);
-    return table;
-  }
 
   void expect_same_rows(const SweepPlan &plan, const std::string &what)
   {
     const kimp::testing::TempDir temp_dir("sweep_shared_runs");
-    const SweepTable             alone  = run(plan, temp_dir.path() / "alone", false, 1);
-    const SweepTable             shared = run(plan, temp_dir.path() / "shared", true, 2);
+    const SweepTable             alone =
+      kimp::testing::run_lumped_sweep(plan, temp_dir.path() / "alone", false, 1);
+    const SweepTable shared =
+      kimp::testing::run_lumped_sweep(plan, temp_dir.path() / "shared", true, 2);
     ASSERT_EQ(alone.rows.size(), plan.cases().size()) << what;
     ASSERT_EQ(shared.rows.size(), alone.rows.size()) << what;
     ASSERT_EQ(shared.metric_names, alone.metric_names) << what;

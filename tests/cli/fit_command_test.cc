@@ -17,6 +17,7 @@
 #include "lumped/collision/two_body.h"
 #include "lumped/laws/force_law_factory.h"
 #include "tests/support/csv.h"
+#include "tests/support/fem_cases.h"
 #include "tests/support/files.h"
 #include "tests/support/hdf5_reader.h"
 #include "tests/support/temp_dir.h"
@@ -84,18 +85,13 @@ namespace
   {
     const TempDir dir;
     const auto    fem_file = dir.path() / "fem.h5";
-    {
-      kimp::io::ResultsFile file(fem_file, "", "{}");
-      auto                  root = file.root();
-      auto                  fem  = root.group("fem");
-      kimp::io::write_fem_case(fem, kelvin_voigt_case("H1.00", 1.0, 1.5e8));
-      kimp::io::write_fem_case(fem, kelvin_voigt_case("H2.00", 2.0, 2.5e7));
-      FemCase failed;
-      failed.name   = "H1.50";
-      failed.status = "failed: diverged";
-      kimp::io::write_fem_case(fem, failed);
-      file.commit();
-    }
+    FemCase       failed;
+    failed.name   = "H1.50";
+    failed.status = "failed: diverged";
+    kimp::testing::write_fem_cases(fem_file,
+                                   {kelvin_voigt_case("H1.00", 1.0, 1.5e8),
+                                    kelvin_voigt_case("H2.00", 2.0, 2.5e7),
+                                    failed});
 
     auto app = kimp::cli::make_app();
     kimp::cli::register_fit_command(*app);
@@ -170,13 +166,7 @@ namespace
   {
     const TempDir dir;
     const auto    fem_file = dir.path() / "fem.h5";
-    {
-      kimp::io::ResultsFile file(fem_file, "", "{}");
-      auto                  root = file.root();
-      auto                  fem  = root.group("fem");
-      kimp::io::write_fem_case(fem, kelvin_voigt_case("H1.00", 1.0, 1.5e8));
-      file.commit();
-    }
+    kimp::testing::write_fem_cases(fem_file, {kelvin_voigt_case("H1.00", 1.0, 1.5e8)});
     auto app = kimp::cli::make_app();
     kimp::cli::register_fit_command(*app);
     std::ostringstream out, err;

@@ -11,6 +11,7 @@
 #include "fit/fit_config.h"
 #include "lumped/collision/two_body.h"
 #include "lumped/laws/force_law_factory.h"
+#include "tests/support/fit_results.h"
 
 namespace
 {
@@ -21,22 +22,8 @@ namespace
 
   constexpr double infinity = std::numeric_limits<double>::infinity();
 
-  /// A converged, well-determined fit: k in [0.99, 1.01]·1e8, window = the whole contact.
-  FitResult good_fit()
-  {
-    FitResult f;
-    f.stiffness            = {1e8, 0.99e8, 1.01e8, true};
-    f.cor                  = {0.7, 0.7, 0.7, false};
-    f.exponent             = {1.0, 1.0, 1.0, false};
-    f.fem_contact_duration = 0.02;
-    f.contact_extent       = 0.02;
-    return f;
-  }
-
-  bool starts_with(const std::string &text, const std::string &prefix)
-  {
-    return text.rfind(prefix, 0) == 0;
-  }
+  using kimp::testing::good_fit;
+  using kimp::testing::starts_with;
 
   TEST(FitVerdict, WellDeterminedFitIsOk)
   {

@@ -78,6 +78,12 @@ namespace
     return {};
   }
 
+  /// The error of read_at2() on `content` written to the file `name` in `dir`.
+  std::string at2_error(const TempDir &dir, const std::string &name, const std::string &content)
+  {
+    return file_error([&] { kimp::io::read_at2(dir.write(name, content)); });
+  }
+
   void ExpectContains(const std::string &message, std::initializer_list<std::string> parts)
   {
     for (const std::string &part : parts)
@@ -209,8 +215,7 @@ TEST(At2Format, ClassicMacLineEndings)
     dir.write("cr.AT2", header3 + "NPTS=  3, DT= .0100 SEC\r -.1E-02 .2E-02\r .3E-02\r");
   const auto motion = kimp::io::read_at2(file);
   ExpectValuesInG(motion, {-0.001, 0.002, 0.003});
-  const auto msg = file_error(
-    [&] { kimp::io::read_at2(dir.write("cr_bad.AT2", header3 + "NPTS= 2, DT= .01\r .1\r x\r")); });
+  const auto msg = at2_error(dir, "cr_bad.AT2", header3 + "NPTS= 2, DT= .01\r .1\r x\r");
   ExpectContains(msg, {"cr_bad.AT2:6:", "non-numeric token \"x\""});
 }
 
@@ -247,7 +252,7 @@ TEST(At2Errors, EmptyFile)
   const TempDir dir;
   for (const std::string &content : {std::string(), std::string("  \n\n \r\n")})
   {
-    const auto msg = file_error([&] { kimp::io::read_at2(dir.write("empty.AT2", content)); });
+    const auto msg = at2_error(dir, "empty.AT2", content);
     ExpectContains(msg, {"empty.AT2:1:", "empty file", "expected 3 header lines"});
   }
 }
@@ -257,16 +262,14 @@ TEST(At2Errors, BinaryJunk)
   const TempDir     dir;
   const std::string junk = header3 + "NPTS= 2, DT= .01 SEC\n .1E-02\n" +
                            std::string("\x7f\x45\x4c\x46\x02\x01\x00\x00\xff\xfe", 10);
-  const auto msg = file_error([&] { kimp::io::read_at2(dir.write("junk.AT2", junk)); });
+  const auto msg = at2_error(dir, "junk.AT2", junk);
   ExpectContains(msg, {"junk.AT2:6:", "binary data", "0x7f", "column 1", "expected a text file"});
 }
 
 TEST(At2Errors, TruncatedBeforeNptsLine)
 {
   const TempDir dir;
-  const auto    msg = file_error(
-    [&]
-    { kimp::io::read_at2(dir.write("cut.AT2", "PEER NGA STRONG MOTION DATABASE RECORD\nKobe")); });
+  const auto    msg = at2_error(dir, "cut.AT2", "PEER NGA STRONG MOTION DATABASE RECORD\nKobe");
   ExpectContains(msg, {"cut.AT2:2:", "truncated", "before any NPTS/DT line", "NPTS="});
 }
 
@@ -274,13 +277,9 @@ TEST(At2Errors, TruncatedInsideData)
 {
   const TempDir dir;
   // Cut in the middle of the 5th value: no final newline; 4.5 of 6 values.
-  const auto msg = file_error(
-    [&]
-    {
-      kimp::io::read_at2(
-        dir.write("cut_data.AT2",
-                  header3 + "NPTS= 6, DT= .01 SEC\n .1E-02 .2E-02 .3E-02\n .4E-02 .51"));
-    });
+  const auto msg = at2_error(dir,
+                             "cut_data.AT2",
+                             header3 + "NPTS= 6, DT= .01 SEC\n .1E-02 .2E-02 .3E-02\n .4E-02 .51");
   ExpectContains(msg,
                  {"cut_data.AT2:6:",
                   "fewer values than NPTS",
@@ -292,14 +291,11 @@ TEST(At2Errors, TruncatedInsideData)
 TEST(At2Errors, FewerValuesThanNpts)
 {
   const TempDir dir;
-  const auto    msg = file_error(
-    [&]
-    {
-      kimp::io::read_at2(dir.write("fewer.AT2",
-                                   header3 + "NPTS= 7, DT= .01 SEC\n"
-                                                " .1E-02 .2E-02 .3E-02 .4E-02 .5E-02\n"
-                                                " .6E-02\n\n"));
-    });
+  const auto    msg = at2_error(dir,
+                             "fewer.AT2",
+                             header3 + "NPTS= 7, DT= .01 SEC\n"
+                                          " .1E-02 .2E-02 .3E-02 .4E-02 .5E-02\n"
+                                          " .6E-02\n\n");
   ExpectContains(msg, {"fewer.AT2:7:", "fewer values than NPTS", "6 of NPTS = 7"});
   EXPECT_EQ(msg.find("no newline"), std::string::npos) << msg;
 }
@@ -307,14 +303,11 @@ TEST(At2Errors, FewerValuesThanNpts)
 TEST(At2Errors, MoreValuesThanNpts)
 {
   const TempDir dir;
-  const auto    msg = file_error(
-    [&]
-    {
-      kimp::io::read_at2(dir.write("more.AT2",
-                                   header3 + "NPTS= 5, DT= .01 SEC\n"
-                                                " .1E-02 .2E-02 .3E-02 .4E-02 .5E-02\n"
-                                                " .6E-02\n"));
-    });
+  const auto    msg = at2_error(dir,
+                             "more.AT2",
+                             header3 + "NPTS= 5, DT= .01 SEC\n"
+                                          " .1E-02 .2E-02 .3E-02 .4E-02 .5E-02\n"
+                                          " .6E-02\n");
   ExpectContains(msg, {"more.AT2:6:", "more values than NPTS = 5", "value 6"});
 }
 
@@ -323,12 +316,8 @@ TEST(At2Errors, NonNumericTokenIsQuoted)
   const TempDir dir;
   for (const char *bad : {"abc", "NaN", ".1E-0x", "1.0E", "1,2"})
   {
-    const auto msg = file_error(
-      [&]
-      {
-        kimp::io::read_at2(
-          dir.write("text.AT2", header3 + "NPTS= 3, DT= .01 SEC\n .1E-02 " + bad + " .3E-02\n"));
-      });
+    const auto msg =
+      at2_error(dir, "text.AT2", header3 + "NPTS= 3, DT= .01 SEC\n .1E-02 " + bad + " .3E-02\n");
     ExpectContains(msg,
                    {"text.AT2:5:",
                     std::string("non-numeric token \"") + bad + "\"",
@@ -343,7 +332,7 @@ TEST(At2Errors, NoNptsLine)
   std::string   content = header3;
   for (int i = 0; i < 10; ++i)
     content += " .1E-02 .2E-02 .3E-02 .4E-02 .5E-02\n";
-  const auto msg = file_error([&] { kimp::io::read_at2(dir.write("headerless.AT2", content)); });
+  const auto msg = at2_error(dir, "headerless.AT2", content);
   ExpectContains(msg, {"headerless.AT2:10:", "no NPTS/DT line in lines 1-10", "NPTS="});
 }
 
@@ -363,8 +352,7 @@ TEST(At2Errors, NptsAndDtMustBePositive)
                         Case{"NPTS= 3, DT= fast", "DT = \"fast\""},
                         Case{"0  0.01  NPTS, DT", "NPTS = \"0\""}})
   {
-    const auto msg = file_error(
-      [&] { kimp::io::read_at2(dir.write("bad_header.AT2", header3 + c.line + "\n .1 .2 .3\n")); });
+    const auto msg = at2_error(dir, "bad_header.AT2", header3 + c.line + "\n .1 .2 .3\n");
     ExpectContains(msg, {"bad_header.AT2:4:", c.expected, "expected a positive"});
   }
 }

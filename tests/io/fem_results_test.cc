@@ -10,6 +10,7 @@
 
 #include "io/fem_results.h"
 #include "io/results_file.h"
+#include "tests/support/fem_cases.h"
 #include "tests/support/hdf5_reader.h"
 #include "tests/support/temp_dir.h"
 
@@ -55,12 +56,7 @@ namespace
 
   void write_cases(const std::filesystem::path &path, const std::vector<FemCase> &cases)
   {
-    ResultsFile file(path, "scene: test", "{}");
-    auto        root = file.root();
-    auto        fem  = root.group("fem");
-    for (const auto &c : cases)
-      kimp::io::write_fem_case(fem, c);
-    file.commit();
+    kimp::testing::write_fem_cases(path, cases, "scene: test");
   }
 
   void expect_error(const std::filesystem::path &path, const std::string &part)
@@ -205,29 +201,26 @@ namespace
     expect_error(future, "schema_version 2.0");
 
     // An "ok" case without its contact force, and one with wrong units.
-    const auto broken = dir.file("broken.h5");
+    // An "ok" case H1.00 of scalars only: wall height 1 m, slab mass 3840 in `slab_mass_units`
+    // and, if `velocity`, an impact velocity of 1 m/s.
+    const auto scalars_only =
+      [&](const char *name, const std::string &slab_mass_units, bool velocity)
     {
-      ResultsFile file(broken, "", "{}");
+      const auto  path = dir.file(name);
+      ResultsFile file(path, "", "{}");
       auto        root = file.root();
       auto        c    = root.group("fem").case_group("H1.00");
       c.write_scalar("wall_height", 1.0, "m");
-      c.write_scalar("slab_mass", 3840.0, "kg/m");
-      c.write_scalar("impact_velocity", 1.0, "m/s");
+      c.write_scalar("slab_mass", 3840.0, slab_mass_units);
+      if (velocity)
+        c.write_scalar("impact_velocity", 1.0, "m/s");
       c.set_status("ok");
       file.commit();
-    }
-    expect_error(broken, "/fem/H1.00/contact_force: time series missing");
-
-    const auto wrong_units = dir.file("units.h5");
-    {
-      ResultsFile file(wrong_units, "", "{}");
-      auto        root = file.root();
-      auto        c    = root.group("fem").case_group("H1.00");
-      c.write_scalar("wall_height", 1.0, "m");
-      c.write_scalar("slab_mass", 3840.0, "kg");
-      c.set_status("ok");
-      file.commit();
-    }
-    expect_error(wrong_units, "/fem/H1.00/slab_mass: units 'kg', expected 'kg/m'");
+      return path;
+    };
+    expect_error(scalars_only("broken.h5", "kg/m", true),
+                 "/fem/H1.00/contact_force: time series missing");
+    expect_error(scalars_only("units.h5", "kg", false),
+                 "/fem/H1.00/slab_mass: units 'kg', expected 'kg/m'");
   }
 } // namespace

@@ -45,6 +45,18 @@ namespace
     Dimension   dimension;
   };
 
+  /// Every case parses to its SI value (relative_tolerance) and dimension.
+  void expect_parsed(const std::vector<UnitCase> &cases)
+  {
+    for (const auto &c : cases)
+    {
+      const auto q = parse_quantity(c.text);
+      expect_relative_near(q.value, c.si, c.text);
+      EXPECT_EQ(q.dimension, c.dimension)
+        << "input: '" << c.text << "' gave " << kimp::io::to_string(q.dimension);
+    }
+  }
+
   TEST(Units, EverySymbolConvertsToSI)
   {
     const std::vector<UnitCase> cases{
@@ -67,13 +79,7 @@ namespace
       {"5 %", 0.05, {0, 0, 0}},
       {"0.3", 0.3, {0, 0, 0}},
     };
-    for (const auto &c : cases)
-    {
-      const auto q = parse_quantity(c.text);
-      expect_relative_near(q.value, c.si, c.text);
-      EXPECT_EQ(q.dimension, c.dimension)
-        << "input: '" << c.text << "' gave " << kimp::io::to_string(q.dimension);
-    }
+    expect_parsed(cases);
   }
 
   TEST(Units, ProductsQuotientsAndPowers)
@@ -96,13 +102,7 @@ namespace
       {"8 1/s", 8.0, {0, 0, -1}},
       {"1 m^-1", 1.0, {0, -1, 0}},
     };
-    for (const auto &c : cases)
-    {
-      const auto q = parse_quantity(c.text);
-      expect_relative_near(q.value, c.si, c.text);
-      EXPECT_EQ(q.dimension, c.dimension)
-        << "input: '" << c.text << "' gave " << kimp::io::to_string(q.dimension);
-    }
+    expect_parsed(cases);
   }
 
   TEST(Units, AnyDecimalExponentConvertsExactly)

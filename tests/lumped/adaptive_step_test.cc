@@ -36,6 +36,23 @@ namespace
     return p;
   }
 
+  /// The relative differences (%) of the peaks `p` from `ref`, as one line.
+  std::string peak_differences(const Peaks &p, const Peaks &ref)
+  {
+    const auto rel = [](double x, double r) { return 100 * (x - r) / r; };
+    char       line[160];
+    std::snprintf(line,
+                  sizeof line,
+                  "force %+.3f %%, base acc %+.3f %%, roof acc %+.3f %%, base u %+.4f %%, roof u "
+                  "%+.4f %%",
+                  rel(p.force, ref.force),
+                  rel(p.base_acc, ref.base_acc),
+                  rel(p.roof_acc, ref.roof_acc),
+                  rel(p.base_u, ref.base_u),
+                  rel(p.roof_u, ref.roof_u));
+    return line;
+  }
+
   Response fixed(const PoundingModel &model, const GroundMotion &g, const double dt)
   {
     CentralDifferenceOptions o;
@@ -76,9 +93,7 @@ namespace
 
 TEST(AdaptiveStep, ConstantStepWithoutContactsIsTheCentralDifferenceMethod)
 {
-  SyntheticMotionSpec gs;
-  gs.duration           = 10.0;
-  const GroundMotion  g = synthetic_near_fault(gs);
+  const GroundMotion  g = kimp::testing::near_fault_motion(10.0);
   const PoundingModel model =
     PoundingModel(kimp::testing::walled_scene("linear", k_linear, 0.12)).without_contacts();
   CentralDifferenceOptions o;
@@ -105,9 +120,7 @@ TEST(AdaptiveStep, EveryLawWithinHalfAPercentOfTheConvergedPeaksAtTwiceTheStable
 {
   // 20 s of synthetic near-fault motion, walls at 15 cm: a few impact episodes within quiet
   // stretches, as under the Table 4.3 record (docs/validation.md).
-  SyntheticMotionSpec gs;
-  gs.duration          = 20.0;
-  const GroundMotion g = synthetic_near_fault(gs);
+  const GroundMotion g = kimp::testing::near_fault_motion(20.0);
   for (const LawCase &c : {LawCase{"linear", k_linear},
                            LawCase{"kelvin_voigt", k_linear},
                            LawCase{"modified_kelvin_voigt", k_linear},
@@ -126,26 +139,15 @@ TEST(AdaptiveStep, EveryLawWithinHalfAPercentOfTheConvergedPeaksAtTwiceTheStable
     const Response                  var = adaptive.run(g, &report);
     ASSERT_GT(var.n_impacts(), 0u) << c.law;
     const Peaks p = peaks(var), q = peaks(old);
-    const auto  rel = [](double x, double r) { return (x - r) / r; };
-    std::printf("%-22s stable %ld steps: force %+.3f %%, base acc %+.3f %%, roof acc %+.3f %%, "
-                "base u %+.4f %%, roof u %+.4f %%\n",
+    std::printf("%-22s stable %ld steps: %s\n",
                 c.law,
                 old.n_steps,
-                100 * rel(q.force, ref.force),
-                100 * rel(q.base_acc, ref.base_acc),
-                100 * rel(q.roof_acc, ref.roof_acc),
-                100 * rel(q.base_u, ref.base_u),
-                100 * rel(q.roof_u, ref.roof_u));
-    std::printf("%-22s auto %ld + %ld steps: force %+.3f %%, base acc %+.3f %%, roof acc %+.3f %%, "
-                "base u %+.4f %%, roof u %+.4f %%\n  %s\n",
+                peak_differences(q, ref).c_str());
+    std::printf("%-22s auto %ld + %ld steps: %s\n  %s\n",
                 c.law,
                 var.n_steps,
                 report.estimate_steps,
-                100 * rel(p.force, ref.force),
-                100 * rel(p.base_acc, ref.base_acc),
-                100 * rel(p.roof_acc, ref.roof_acc),
-                100 * rel(p.base_u, ref.base_u),
-                100 * rel(p.roof_u, ref.roof_u),
+                peak_differences(p, ref).c_str(),
                 report.text().c_str());
     EXPECT_NEAR(p.force, ref.force, tolerance * ref.force) << c.law;
     EXPECT_NEAR(p.base_acc, ref.base_acc, tolerance * ref.base_acc) << c.law;
@@ -168,9 +170,7 @@ TEST(AdaptiveStep, CompanionReplayingTheStepsIsIdenticalWhereNoContactCloses)
   // Walls beyond reach: the run with contacts still refines while a gap closes, so its
   // companion without contacts must take the same steps (replay) for amplification factors of
   // exactly 1.
-  SyntheticMotionSpec gs;
-  gs.duration                = 10.0;
-  const GroundMotion       g = synthetic_near_fault(gs);
+  const GroundMotion       g = kimp::testing::near_fault_motion(10.0);
   const PoundingModel      model(kimp::testing::walled_scene("linear", k_linear, 0.5));
   CentralDifferenceOptions o;
   o.output_interval = 0.01;
@@ -191,9 +191,7 @@ TEST(AdaptiveStep, HistoryRowsAreInterpolatedAndDoNotConstrainTheSteps)
   // The history rows every output_interval are interpolated between the steps around them: the
   // run with histories takes exactly the steps of the run without, with the same peaks (taken at
   // every step), and its rows follow the Δt → 0 histories at the row times.
-  SyntheticMotionSpec gs;
-  gs.duration                = 10.0;
-  const GroundMotion       g = synthetic_near_fault(gs);
+  const GroundMotion       g = kimp::testing::near_fault_motion(10.0);
   const PoundingModel      model(kimp::testing::walled_scene("kelvin_voigt", k_linear, gap));
   CentralDifferenceOptions o;
   o.output_interval = 0.0;

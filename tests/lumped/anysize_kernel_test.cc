@@ -31,21 +31,12 @@ namespace kimp::lumped
     // observed <= 4.7e-14 over 12 s with pounding (25 impacts); tolerance 1e-12.
     constexpr double same_algebra_tol = 1e-12;
 
-    ForceLawSpec mkv()
-    {
-      ForceLawSpec s;
-      s.law       = "modified_kelvin_voigt";
-      s.stiffness = 2.5e9;
-      s.cor       = 0.7;
-      return s;
-    }
-
     AdjacentBuilding neighbour(const int storeys, const double separation)
     {
       AdjacentBuilding nb;
       nb.building   = reference_fixed_base_building(storeys);
       nb.separation = separation;
-      nb.law        = force_law_factory(mkv());
+      nb.law        = force_law_factory(kimp::testing::contact_law("modified_kelvin_voigt", 2.5e9));
       return nb;
     }
 
@@ -69,12 +60,7 @@ namespace kimp::lumped
                                      const std::string       &what)
     {
       EXPECT_GT(model.n_dofs(), 8u) << what;
-      const CentralDifference  fast(model, opt);
-      CentralDifferenceStepper stepper(fast);
-      stepper.init(g);
-      EXPECT_TRUE(stepper.uses_fused_kernel()) << what;
-      stepper.advance(stepper.last_step() + 1);
-      const Response any = stepper.response();
+      const Response any = kimp::testing::stepped_run(model, opt, g, true, what);
       opt.kernel         = CdmKernel::reference;
       const Response ref = CentralDifference(model, opt).run(g);
       const double   d   = max_relative_difference(any, ref, what);
@@ -82,18 +68,11 @@ namespace kimp::lumped
                 << " (impacts " << any.n_impacts() << ")\n";
       return d;
     }
-
-    GroundMotion motion(const double duration)
-    {
-      SyntheticMotionSpec gs;
-      gs.duration = duration;
-      return synthetic_near_fault(gs);
-    }
   } // namespace
 
   TEST(AnySizeKernel, AgreesWithTheReferenceKernel)
   {
-    const GroundMotion       g = motion(12.0);
+    const GroundMotion       g = kimp::testing::near_fault_motion(12.0);
     CentralDifferenceOptions opt;
     opt.dt = 1e-4;
 
@@ -115,43 +94,32 @@ namespace kimp::lumped
                                         "initial conditions, both neighbours"),
               pounding_tol);
 
-    EXPECT_LT(anysize_against_reference(PoundingModel(between_neighbours(0.10, 4, 4, 0.10)),
-                                        opt,
-                                        g,
-                                        "walls and both neighbours, 4 + 4 storeys"),
-              pounding_tol);
-    EXPECT_LT(anysize_against_reference(PoundingModel(between_neighbours(0.10, 6, 6, 0.10)),
-                                        opt,
-                                        g,
-                                        "walls and both neighbours, 6 + 6 storeys"),
-              pounding_tol);
-    EXPECT_LT(anysize_against_reference(PoundingModel(between_neighbours(0.12, 2, 5, 0.17)),
-                                        opt,
-                                        g,
-                                        "walls and both neighbours, 2 + 5 storeys"),
-              pounding_tol);
-    EXPECT_LT(anysize_against_reference(PoundingModel(between_neighbours(0.10, 0, 6, 0.10)),
-                                        opt,
-                                        g,
-                                        "wall and a 6-storey neighbour"),
-              pounding_tol);
+    struct Neighbours
+    {
+      double      gap;
+      int         left, right;
+      double      separation;
+      const char *what;
+    };
+    for (const Neighbours &c :
+         {Neighbours{0.10, 4, 4, 0.10, "walls and both neighbours, 4 + 4 storeys"},
+          Neighbours{0.10, 6, 6, 0.10, "walls and both neighbours, 6 + 6 storeys"},
+          Neighbours{0.12, 2, 5, 0.17, "walls and both neighbours, 2 + 5 storeys"},
+          Neighbours{0.10, 0, 6, 0.10, "wall and a 6-storey neighbour"}})
+      EXPECT_LT(anysize_against_reference(
+                  PoundingModel(between_neighbours(c.gap, c.left, c.right, c.separation)),
+                  opt,
+                  g,
+                  c.what),
+                pounding_tol);
     PoundingScene basement = between_neighbours(0.10, 4, 4, 0.12);
     basement.basement      = true;
     EXPECT_LT(anysize_against_reference(PoundingModel(basement), opt, g, "basement, neighbours"),
               pounding_tol);
     // The bumper example of the scenes with a smaller gap (see integrator_test.cc).
-    ForceLawSpec bumper                = mkv();
-    bumper.law                         = "bumper";
-    bumper.stiffness                   = 4.0 * 2.25 * 0.0225 * 55835e3 / std::pow(0.05, 2.65);
-    bumper.bumper_ultimate_deformation = 0.75 * 0.05;
-    bumper.bumper_wall_stiffness       = 1.5e9;
-    PoundingScene bumpers              = between_neighbours(0.12, 4, 4, 0.14);
-    MoatWall      bw;
-    bw.gap              = 0.12;
-    bw.law              = force_law_factory(bumper);
-    bw.bumper_thickness = 0.05;
-    bumpers.left_wall   = bw;
-    bumpers.right_wall  = bw;
+    PoundingScene bumpers = between_neighbours(0.12, 4, 4, 0.14);
+    bumpers.left_wall     = kimp::testing::bumper_wall(0.12);
+    bumpers.right_wall    = kimp::testing::bumper_wall(0.12);
     EXPECT_LT(anysize_against_reference(PoundingModel(bumpers), opt, g, "bumpers, neighbours"),
               pounding_tol);
   }
@@ -160,7 +128,7 @@ namespace kimp::lumped
   {
     // Forced onto <= 8-DOF models (CdmKernel::any_size), the any-size kernel does the fused
     // kernel's arithmetic with the products summed in another order: round-off apart, equal.
-    const GroundMotion       g = motion(12.0);
+    const GroundMotion       g = kimp::testing::near_fault_motion(12.0);
     CentralDifferenceOptions opt;
     opt.dt = 1e-4;
     for (const auto &[what, scene] :
@@ -185,45 +153,32 @@ namespace kimp::lumped
   {
     // Dense products per building block pay up to 16 DOFs per block (the 15-storey isolated
     // building); a 30-storey building runs the reference kernel's Thomas sweeps unless asked.
-    const GroundMotion       g = motion(6.0);
+    const GroundMotion       g = kimp::testing::near_fault_motion(6.0);
     CentralDifferenceOptions opt;
     opt.dt = 1e-4;
     for (const auto &[storeys, fused] : {std::pair{15u, true}, std::pair{30u, false}})
     {
       PoundingScene scene;
       scene.building = reference_isolated_building(storeys);
-      const CentralDifference  cdm(PoundingModel(scene), opt);
-      CentralDifferenceStepper stepper(cdm);
-      stepper.init(g);
-      EXPECT_EQ(stepper.uses_fused_kernel(), fused) << storeys << " storeys";
+      EXPECT_EQ(kimp::testing::uses_fused_kernel(PoundingModel(scene), opt, g), fused)
+        << storeys << " storeys";
     }
     opt.kernel = CdmKernel::any_size;
     PoundingScene scene;
     scene.building = reference_isolated_building(30);
-    const CentralDifference  cdm(PoundingModel(scene), opt);
-    CentralDifferenceStepper stepper(cdm);
-    stepper.init(g);
-    EXPECT_TRUE(stepper.uses_fused_kernel());
+    EXPECT_TRUE(kimp::testing::uses_fused_kernel(PoundingModel(scene), opt, g));
   }
 
   TEST(AnySizeKernel, IsBitwiseIndependentOfTheVectorWidthAndTheStepping)
   {
     // SSE2, AVX2 and AVX-512F variants (those the processor has): the same operations per DOF
     // lane in the same order, and the columns a wider vector adds are exact zeros.
-    const GroundMotion       g = motion(6.0);
+    const GroundMotion       g = kimp::testing::near_fault_motion(6.0);
     CentralDifferenceOptions opt;
-    opt.dt           = 1e-4;
-    opt.vector_lanes = 2;
+    opt.dt = 1e-4;
     const PoundingModel model(between_neighbours(0.06, 5, 3, 0.06));
-    const Response      sse2 = CentralDifference(model, opt).run(g);
-    ASSERT_GT(sse2.n_impacts(), 0u);
-    for (const int lanes : {4, 8, 0})
-    {
-      opt.vector_lanes = lanes;
-      expect_identical(CentralDifference(model, opt).run(g),
-                       sse2,
-                       "vector_lanes = " + std::to_string(lanes));
-    }
+    Response            sse2;
+    ASSERT_NO_FATAL_FAILURE(kimp::testing::expect_independent_of_vector_width(model, opt, g, sse2));
     // Step by step equals the whole run.
     opt.vector_lanes = 0;
     const CentralDifference  cdm(model, opt);

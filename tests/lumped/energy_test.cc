@@ -15,13 +15,6 @@ namespace kimp::lumped
   {
     constexpr double balance_tol = 0.01; // docs/physics.md: closes to < 1 %
 
-    GroundMotion motion()
-    {
-      SyntheticMotionSpec spec;
-      spec.duration = 12.0;
-      return synthetic_near_fault(spec);
-    }
-
     void expect_balanced(const Response &r, const std::string &what)
     {
       const EnergyBalance &e = r.energy;
@@ -38,15 +31,17 @@ namespace kimp::lumped
     PoundingScene scene;
     scene.building = reference_isolated_building(4);
     CentralDifferenceOptions opt;
-    opt.dt           = 1e-3;
-    const Response r = CentralDifference(PoundingModel(scene), opt).run(motion());
+    opt.dt = 1e-3;
+    const Response r =
+      CentralDifference(PoundingModel(scene), opt).run(kimp::testing::near_fault_motion(12.0));
     expect_balanced(r, "no walls, bilinear isolator");
     // The bilinear isolator yields: most of the input goes to hysteresis and viscous damping.
     EXPECT_GT(r.energy.hysteretic, 0.2 * r.energy.input);
     EXPECT_EQ(r.energy.contact_work, 0.0);
 
-    scene.building     = reference_isolated_building_linear(4, 25e6);
-    const Response lin = CentralDifference(PoundingModel(scene), opt).run(motion());
+    scene.building = reference_isolated_building_linear(4, 25e6);
+    const Response lin =
+      CentralDifference(PoundingModel(scene), opt).run(kimp::testing::near_fault_motion(12.0));
     expect_balanced(lin, "no walls, linear isolator");
     EXPECT_EQ(lin.energy.hysteretic, 0.0);
   }
@@ -57,7 +52,7 @@ namespace kimp::lumped
     opt.dt = 1e-4;
     const Response r =
       CentralDifference(PoundingModel(kimp::testing::walled_scene("linear", 2.5e9, 0.10)), opt)
-        .run(motion());
+        .run(kimp::testing::near_fault_motion(12.0));
     ASSERT_GT(r.n_impacts(), 0u);
     expect_balanced(r, "linear law");
     // An elastic law returns what it stores: no net contact work once the walls are free.
@@ -73,7 +68,7 @@ namespace kimp::lumped
       opt.dt = 1e-4;
       const Response r =
         CentralDifference(PoundingModel(kimp::testing::walled_scene(name, 2.5e9, 0.10)), opt)
-          .run(motion());
+          .run(kimp::testing::near_fault_motion(12.0));
       ASSERT_GT(r.n_impacts(), 0u) << name;
       expect_balanced(r, name);
       // The integrator's contact work equals what the laws booked as dissipated.
@@ -90,7 +85,7 @@ namespace kimp::lumped
       const double   k = 750e3 / std::pow(1e-3, 1.5); // 750 kN/mm^1.5
       const Response r =
         CentralDifference(PoundingModel(kimp::testing::walled_scene(name, k, 0.10)), opt)
-          .run(motion());
+          .run(kimp::testing::near_fault_motion(12.0));
       ASSERT_GT(r.n_impacts(), 0u) << name;
       expect_balanced(r, name);
     }
@@ -103,7 +98,7 @@ namespace kimp::lumped
     const Response r =
       NewmarkIntegrator(PoundingModel(kimp::testing::walled_scene("kelvin_voigt", 2.5e9, 0.10)),
                         opt)
-        .run(motion());
+        .run(kimp::testing::near_fault_motion(12.0));
     ASSERT_GT(r.n_impacts(), 0u);
     expect_balanced(r, "Newmark, Kelvin-Voigt");
   }
@@ -125,8 +120,9 @@ namespace kimp::lumped
       (right ? scene.right_neighbour : scene.left_neighbour) = nb;
     }
     CentralDifferenceOptions opt;
-    opt.dt           = 1e-4;
-    const Response r = CentralDifference(PoundingModel(scene), opt).run(motion());
+    opt.dt = 1e-4;
+    const Response r =
+      CentralDifference(PoundingModel(scene), opt).run(kimp::testing::near_fault_motion(12.0));
     ASSERT_GT(r.n_impacts(), 0u);
     expect_balanced(r, "two neighbours");
   }

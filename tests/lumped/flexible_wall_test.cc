@@ -17,16 +17,15 @@ namespace kimp::lumped
 {
   namespace
   {
-    GroundMotion motion()
+    /// The rigid walls the flexible ones replace: modified Kelvin-Voigt walls at 10 cm.
+    PoundingScene rigid_scene()
     {
-      SyntheticMotionSpec spec;
-      spec.duration = 8.0;
-      return synthetic_near_fault(spec);
+      return kimp::testing::walled_scene("modified_kelvin_voigt", 2.5e9, 0.10);
     }
 
     PoundingScene flexible_scene(const double stiffness, const double damping_ratio = 0.05)
     {
-      PoundingScene scene = kimp::testing::walled_scene("modified_kelvin_voigt", 2.5e9, 0.10);
+      PoundingScene scene = rigid_scene();
       for (auto *wall : {&scene.left_wall, &scene.right_wall})
       {
         (*wall)->flexible      = true;
@@ -34,6 +33,12 @@ namespace kimp::lumped
         (*wall)->damping_ratio = damping_ratio;
       }
       return scene;
+    }
+
+    /// The central difference run of `model` with `opt` under the 8 s near-fault record.
+    Response run_cdm(const PoundingModel &model, const CentralDifferenceOptions &opt)
+    {
+      return CentralDifference(model, opt).run(kimp::testing::near_fault_motion(8.0));
     }
 
     double max_relative_difference(const std::vector<double> &a, const std::vector<double> &b)
@@ -69,19 +74,15 @@ namespace kimp::lumped
   TEST(FlexibleWall, StiffWallTendsToTheRigidWall)
   {
     CentralDifferenceOptions opt;
-    opt.dt = 5e-5;
-    const Response rigid =
-      CentralDifference(PoundingModel(
-                          kimp::testing::walled_scene("modified_kelvin_voigt", 2.5e9, 0.10)),
-                        opt)
-        .run(motion());
+    opt.dt               = 5e-5;
+    const Response rigid = run_cdm(PoundingModel(rigid_scene()), opt);
     ASSERT_GT(rigid.n_impacts(), 0u);
     const std::vector<double> rigid_peaks(rigid.peak_displacement.begin(),
                                           rigid.peak_displacement.end());
     double                    previous = INFINITY;
     for (const double k : {1e10, 1e11, 1e12})
     {
-      const Response r = CentralDifference(PoundingModel(flexible_scene(k)), opt).run(motion());
+      const Response      r = run_cdm(PoundingModel(flexible_scene(k)), opt);
       std::vector<double> building(r.peak_displacement.begin(), r.peak_displacement.begin() + 5);
       const double        d = max_relative_difference(building, rigid_peaks);
       EXPECT_LT(d, previous) << "k = " << k;
@@ -91,7 +92,9 @@ namespace kimp::lumped
       // motion.
       const double F = std::max(r.contacts[0].peak_force, r.contacts[1].peak_force);
       EXPECT_GT(r.peak_displacement[5], 0.5 * r.contacts[0].peak_force / k) << "k = " << k;
-      EXPECT_LT(r.peak_displacement[5], (2.0 * F + 500e3 * motion().pga()) / k) << "k = " << k;
+      EXPECT_LT(r.peak_displacement[5],
+                (2.0 * F + 500e3 * kimp::testing::near_fault_motion(8.0).pga()) / k)
+        << "k = " << k;
     }
     // Peak displacements differ by 2.0 %, 0.34 %, 0.040 % at k = 1e10, 1e11, 1e12
     // N/m (~1/k).
@@ -106,19 +109,20 @@ namespace kimp::lumped
     CentralDifferenceOptions opt;
     opt.dt = 1e-4;
     const PoundingModel model(flexible_scene(2e8));
-    const Response      r = CentralDifference(model, opt).run(motion());
+    const Response      r = run_cdm(model, opt);
     ASSERT_GT(r.n_impacts(), 0u);
     EXPECT_GT(r.peak_displacement[5], 1e-3);
     EXPECT_LT(r.energy.max_relative_error, 0.01);
     EXPECT_LT(r.energy.relative_error, 0.01);
     opt.kernel         = CdmKernel::reference;
-    const Response ref = CentralDifference(model, opt).run(motion());
+    const Response ref = run_cdm(model, opt);
     for (std::size_t i = 0; i < r.peak_displacement.size(); ++i)
       EXPECT_NEAR(r.peak_displacement[i], ref.peak_displacement[i], 1e-9 * ref.peak_displacement[i])
         << "DOF " << i;
     NewmarkOptions nopt;
-    nopt.dt                = 1e-3;
-    const Response newmark = NewmarkIntegrator(model, nopt).run(motion());
+    nopt.dt = 1e-3;
+    const Response newmark =
+      NewmarkIntegrator(model, nopt).run(kimp::testing::near_fault_motion(8.0));
     EXPECT_LT(newmark.energy.relative_error, 0.01);
   }
 
@@ -128,7 +132,7 @@ namespace kimp::lumped
     // step's m_eff take the SDOF's mass, the law (its dashpot c =
     // 2ξ·sqrt(k·m_eff)) stays the rigid wall's.
     constexpr double    sdof_mass = 30e3;
-    const PoundingModel rigid(kimp::testing::walled_scene("modified_kelvin_voigt", 2.5e9, 0.10));
+    const PoundingModel rigid(rigid_scene());
     PoundingScene       scene = flexible_scene(1e9);
     for (auto *wall : {&scene.left_wall, &scene.right_wall})
       (*wall)->sdof_mass = sdof_mass;
@@ -171,17 +175,13 @@ namespace kimp::lumped
     constexpr double         rigid_limit_tol = 1e-3;
     constexpr double         force_tol       = 5e-3;
     CentralDifferenceOptions opt;
-    opt.dt = 5e-5;
-    const Response rigid =
-      CentralDifference(PoundingModel(
-                          kimp::testing::walled_scene("modified_kelvin_voigt", 2.5e9, 0.10)),
-                        opt)
-        .run(motion());
+    opt.dt               = 5e-5;
+    const Response rigid = run_cdm(PoundingModel(rigid_scene()), opt);
     ASSERT_GT(rigid.n_impacts(), 0u);
     PoundingScene scene = flexible_scene(1e12);
     for (auto *wall : {&scene.left_wall, &scene.right_wall})
       (*wall)->sdof_mass = 30e3;
-    const Response            r = CentralDifference(PoundingModel(scene), opt).run(motion());
+    const Response            r = run_cdm(PoundingModel(scene), opt);
     const std::vector<double> building(r.peak_displacement.begin(),
                                        r.peak_displacement.begin() + 5);
     const std::vector<double> rigid_peaks(rigid.peak_displacement.begin(),

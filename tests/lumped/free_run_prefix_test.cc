@@ -42,11 +42,7 @@ namespace kimp::lumped
 
     ForceLawSpec mkv()
     {
-      ForceLawSpec s;
-      s.law       = "modified_kelvin_voigt";
-      s.stiffness = 2.5e9;
-      s.cor       = 0.7;
-      return s;
+      return kimp::testing::contact_law("modified_kelvin_voigt", 2.5e9);
     }
 
     /// The thesis building between walls at `gap`, neighbours of `left`/`right` storeys (0: none)
@@ -104,11 +100,13 @@ namespace kimp::lumped
       return saved;
     }
 
-    GroundMotion motion()
+    /// Δt = 0.2 ms and no histories: what a free-run prefix can share.
+    CentralDifferenceOptions prefix_options()
     {
-      SyntheticMotionSpec gs;
-      gs.duration = 12.0;
-      return synthetic_near_fault(gs);
+      CentralDifferenceOptions opt;
+      opt.dt              = 2e-4;
+      opt.output_interval = 0.0;
+      return opt;
     }
 
     const std::vector<double> gaps{0.03, 0.06, 0.09, 0.12, 0.16, 0.25, 0.6};
@@ -116,37 +114,33 @@ namespace kimp::lumped
 
   TEST(FreeRunPrefix, FusedKernelRunsAreBitwiseEqualToFullRuns)
   {
-    CentralDifferenceOptions opt;
-    opt.dt              = 2e-4;
-    opt.output_interval = 0.0;
-    check_gap_sweep(0, 0, opt, gaps, motion(), "walls, fused kernel");
+    const GroundMotion       g   = kimp::testing::near_fault_motion(12.0);
+    CentralDifferenceOptions opt = prefix_options();
+    check_gap_sweep(0, 0, opt, gaps, g, "walls, fused kernel");
     opt.law_velocity = LawVelocity::backward_second_order;
-    check_gap_sweep(0, 0, opt, gaps, motion(), "walls, second-order law velocity");
+    check_gap_sweep(0, 0, opt, gaps, g, "walls, second-order law velocity");
     opt.law_velocity = LawVelocity::backward;
     opt.dt           = 0.0; // auto: the step of the model with contacts
-    check_gap_sweep(0, 3, opt, gaps, motion(), "wall and a 3-storey neighbour, dt auto");
+    check_gap_sweep(0, 3, opt, gaps, g, "wall and a 3-storey neighbour, dt auto");
   }
 
   TEST(FreeRunPrefix, AnySizeAndReferenceKernelRunsAreBitwiseEqualToFullRuns)
   {
-    CentralDifferenceOptions opt;
-    opt.dt              = 2e-4;
-    opt.output_interval = 0.0;
-    check_gap_sweep(4, 4, opt, gaps, motion(), "both neighbours 4 + 4, any-size kernel");
-    check_gap_sweep(6, 2, opt, gaps, motion(), "both neighbours 6 + 2, any-size kernel");
+    const GroundMotion       g   = kimp::testing::near_fault_motion(12.0);
+    CentralDifferenceOptions opt = prefix_options();
+    check_gap_sweep(4, 4, opt, gaps, g, "both neighbours 4 + 4, any-size kernel");
+    check_gap_sweep(6, 2, opt, gaps, g, "both neighbours 6 + 2, any-size kernel");
     opt.kernel = CdmKernel::reference;
-    check_gap_sweep(4, 4, opt, gaps, motion(), "both neighbours 4 + 4, reference kernel");
-    check_gap_sweep(0, 0, opt, gaps, motion(), "walls, reference kernel");
+    check_gap_sweep(4, 4, opt, gaps, g, "both neighbours 4 + 4, reference kernel");
+    check_gap_sweep(0, 0, opt, gaps, g, "walls, reference kernel");
   }
 
   TEST(FreeRunPrefix, RefusesOtherModelsAndHistories)
   {
-    CentralDifferenceOptions opt;
-    opt.dt                = 2e-4;
-    opt.output_interval   = 0.0;
-    const GroundMotion  g = motion();
-    const PoundingModel walls(scene(0.1, 0, 0, 0.0));
-    const FreeRunPrefix prefix(CentralDifference(walls.without_contacts(), opt), g);
+    CentralDifferenceOptions opt = prefix_options();
+    const GroundMotion       g   = kimp::testing::near_fault_motion(12.0);
+    const PoundingModel      walls(scene(0.1, 0, 0, 0.0));
+    const FreeRunPrefix      prefix(CentralDifference(walls.without_contacts(), opt), g);
     // Another building (5 storeys), another step, another record: refused.
     PoundingScene taller = scene(0.1, 0, 0, 0.0);
     taller.building      = reference_isolated_building(5);
@@ -166,14 +160,12 @@ namespace kimp::lumped
 
   TEST(FreeRunPrefix, RepeatedContactsShareARunOtherLawsDoNot)
   {
-    CentralDifferenceOptions opt;
-    opt.dt                    = 2e-4;
-    opt.output_interval       = 0.0;
-    const GroundMotion      g = motion();
-    const PoundingModel     walls(scene(0.05, 0, 0, 0.0));
-    const FreeRunPrefix     prefix(CentralDifference(walls.without_contacts(), opt), g);
-    const CentralDifference cdm(walls, opt);
-    const Response          full = cdm.run(g);
+    CentralDifferenceOptions opt = prefix_options();
+    const GroundMotion       g   = kimp::testing::near_fault_motion(12.0);
+    const PoundingModel      walls(scene(0.05, 0, 0, 0.0));
+    const FreeRunPrefix      prefix(CentralDifference(walls.without_contacts(), opt), g);
+    const CentralDifference  cdm(walls, opt);
+    const Response           full = cdm.run(g);
     expect_identical_all(prefix.run(cdm, g), full, "first run");
     expect_identical_all(prefix.run(CentralDifference(PoundingModel(scene(0.05, 0, 0, 0.0)), opt),
                                     g),

@@ -15,11 +15,14 @@
 #include "lumped/isolators/bouc_wen_isolator.h"
 #include "lumped/isolators/friction_pendulum_isolator.h"
 #include "lumped/structure/pounding_model.h"
+#include "tests/support/lumped_scenes.h"
 
 namespace kimp::lumped
 {
   namespace
   {
+    using kimp::testing::zero_motion;
+
     constexpr double pi = 3.14159265358979323846;
 
     /// Imposed u(t) = D·sin(2πt/T) for `cycles` cycles in `steps_per_cycle` steps each,
@@ -117,15 +120,6 @@ namespace kimp::lumped
     {
       TridiagonalMatrix k(1), c(1);
       return PoundingModel({m}, k, c, std::move(iso), {}, {});
-    }
-
-    GroundMotion zero_motion(const double dt, const double duration)
-    {
-      GroundMotion g;
-      g.dt = dt;
-      g.acceleration.assign(static_cast<std::size_t>(std::lround(duration / dt)), 0.0);
-      g.name = "zero";
-      return g;
     }
   } // namespace
 
@@ -329,11 +323,9 @@ namespace kimp::lumped
     // The thesis building on each new isolator under a near-fault pulse: the fused kernel
     // (virtual isolator calls) and the reference kernel give the same response, and
     // E_0 + W_in = E_kin + E_strain + E_viscous + E_hyst closes.
-    SyntheticMotionSpec spec;
-    spec.duration                                             = 10.0;
-    const GroundMotion                                 motion = synthetic_near_fault(spec);
-    const ShearBuilding                                base   = reference_isolated_building(4);
-    const double                                       W = standard_gravity * base.total_mass();
+    const GroundMotion  motion = kimp::testing::near_fault_motion(10.0);
+    const ShearBuilding base   = reference_isolated_building(4);
+    const double        W      = standard_gravity * base.total_mass();
     const std::vector<std::shared_ptr<const Isolator>> isolators = {
       std::make_shared<FrictionPendulumIsolator>(W, 2.236, 0.04, 0.08, 20.0, 1e9),
       std::make_shared<BoucWenIsolator>(200e6, 0.125, 0.1 * W / 0.875, 1.0, 0.5, 0.5, 2.0)};

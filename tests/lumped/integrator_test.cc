@@ -24,6 +24,8 @@ namespace kimp::lumped
   {
     using kimp::testing::expect_identical;
     using kimp::testing::max_relative_difference;
+    using kimp::testing::moat_wall;
+    using kimp::testing::zero_motion;
 
     constexpr double free_vibration_tol = 2e-4; // max |u − u_exact| / u0, Δt = T/1000
     constexpr double forced_tol         = 2e-3; // relative to the peak response
@@ -36,15 +38,6 @@ namespace kimp::lumped
       kk.diag[0] = k;
       cc.diag[0] = c;
       return PoundingModel({m}, kk, cc, nullptr, std::move(contacts), {{-1, 0, "sdof"}});
-    }
-
-    GroundMotion zero_motion(const double dt, const double duration)
-    {
-      GroundMotion g;
-      g.dt = dt;
-      g.acceleration.assign(static_cast<std::size_t>(std::lround(duration / dt)), 0.0);
-      g.name = "zero";
-      return g;
     }
 
     ContactPair wall_contact(const ForceLawSpec &spec, const double gap, const double m_eff)
@@ -74,22 +67,49 @@ namespace kimp::lumped
                                    const GroundMotion      &g,
                                    const std::string       &what)
     {
-      const CentralDifference  fast(model, opt);
-      CentralDifferenceStepper stepper(fast);
-      stepper.init(g);
-      EXPECT_TRUE(stepper.uses_fused_kernel()) << what;
-      stepper.advance(stepper.last_step() + 1);
-      const Response fused = stepper.response();
+      const Response fused = kimp::testing::stepped_run(model, opt, g, true, what);
       opt.kernel           = CdmKernel::reference;
-      const CentralDifference  slow(model, opt);
-      CentralDifferenceStepper ref_stepper(slow);
-      ref_stepper.init(g);
-      EXPECT_FALSE(ref_stepper.uses_fused_kernel()) << what;
-      ref_stepper.advance(ref_stepper.last_step() + 1);
-      const double d = max_relative_difference(fused, ref_stepper.response(), what);
+      const double d =
+        max_relative_difference(fused,
+                                kimp::testing::stepped_run(model, opt, g, false, what),
+                                what);
       std::cout << "  fused vs reference, " << what << ": " << d << " (impacts "
                 << fused.n_impacts() << ")\n";
       return d;
+    }
+
+    /// The fused kernel (chosen automatically on these models) and the reference kernel.
+    const std::pair<CdmKernel, const char *> both_kernels[] = {{CdmKernel::automatic, "fused"},
+                                                               {CdmKernel::reference, "reference"}};
+
+    /// Runs of the undamped SDOF (ω = 2π, u_0 = 1 cm) over one period T = 1 s with
+    /// Δt = T/20 ... T/320 by `Integrator` with its `Options`: three samples (t = 0, T/2, T),
+    /// and the error of u(T) falls at order > min_rate. `check(r, dt)` sees each run first (a
+    /// fatal failure in it ends the test).
+    template <class Integrator, class Options, class Check>
+    void expect_second_order_over_one_period(const Check &check)
+    {
+      const double m = 1e3, w = 2 * M_PI, u0 = 0.01;
+      double       previous = 0.0;
+      for (int level = 0; level < 5; ++level)
+      {
+        const double dt = 1.0 / (20 << level);
+        Options      opt;
+        opt.dt                   = dt;
+        opt.duration             = 1.0;
+        opt.output_interval      = 0.5;
+        opt.initial_displacement = {u0};
+        const Response r = Integrator(sdof(m, m * w * w, 0.0), opt).run(zero_motion(dt, 1.0));
+        ASSERT_EQ(r.history.time.size(), 3u);
+        ASSERT_NO_FATAL_FAILURE(check(r, dt));
+        const double err = std::abs(r.history.displacement[2] - u0);
+        if (level > 0)
+        {
+          const double rate = std::log2(previous / err);
+          EXPECT_GT(rate, min_rate) << "dt: " << dt << " error " << err << " previous " << previous;
+        }
+        previous = err;
+      }
     }
   } // namespace
 
@@ -148,27 +168,8 @@ namespace kimp::lumped
   TEST(CentralDifference, SecondOrderConvergence)
   {
     // Undamped SDOF, one period T = 1 s; error of u(T) for Δt = T/20 ... T/320.
-    const double m = 1e3, w = 2 * M_PI, u0 = 0.01;
-    double       previous = 0.0;
-    for (int level = 0; level < 5; ++level)
-    {
-      const double             dt = 1.0 / (20 << level);
-      CentralDifferenceOptions opt;
-      opt.dt                   = dt;
-      opt.duration             = 1.0;
-      opt.output_interval      = 0.5;
-      opt.initial_displacement = {u0};
-      const Response r = CentralDifference(sdof(m, m * w * w, 0.0), opt).run(zero_motion(dt, 1.0));
-      ASSERT_EQ(r.history.time.size(), 3u);
-      ASSERT_NEAR(r.history.time[2], 1.0, 1e-12);
-      const double err = std::abs(r.history.displacement[2] - u0);
-      if (level > 0)
-      {
-        const double rate = std::log2(previous / err);
-        EXPECT_GT(rate, min_rate) << "dt: " << dt << " error " << err << " previous " << previous;
-      }
-      previous = err;
-    }
+    expect_second_order_over_one_period<CentralDifference, CentralDifferenceOptions>(
+      [](const Response &r, double) { ASSERT_NEAR(r.history.time[2], 1.0, 1e-12); });
   }
 
   TEST(CentralDifference, TimeStepAboveStabilityLimitIsRefused)
@@ -262,28 +263,13 @@ namespace kimp::lumped
 
   TEST(Newmark, SecondOrderAndEnergyConservingOnLinearSdof)
   {
-    const double m = 1e3, w = 2 * M_PI, u0 = 0.01;
-    double       previous = 0.0;
-    for (int level = 0; level < 5; ++level)
-    {
-      const double   dt = 1.0 / (20 << level);
-      NewmarkOptions opt;
-      opt.dt                   = dt;
-      opt.duration             = 1.0;
-      opt.output_interval      = 0.5;
-      opt.initial_displacement = {u0};
-      const Response r = NewmarkIntegrator(sdof(m, m * w * w, 0.0), opt).run(zero_motion(dt, 1.0));
-      ASSERT_EQ(r.history.time.size(), 3u);
-      const double err = std::abs(r.history.displacement[2] - u0);
-      if (level > 0)
+    // Average acceleration conserves the energy of a linear undamped system exactly.
+    expect_second_order_over_one_period<NewmarkIntegrator, NewmarkOptions>(
+      [](const Response &r, double dt)
       {
-        EXPECT_GT(std::log2(previous / err), min_rate) << "dt: " << dt;
-      }
-      previous = err;
-      // Average acceleration conserves the energy of a linear undamped system exactly.
-      EXPECT_NEAR(r.energy.kinetic + r.energy.strain, r.energy.initial, 1e-9 * r.energy.initial)
-        << "dt: " << dt;
-    }
+        EXPECT_NEAR(r.energy.kinetic + r.energy.strain, r.energy.initial, 1e-9 * r.energy.initial)
+          << "dt: " << dt;
+      });
   }
 
   TEST(Newmark, StableAboveTheExplicitLimit)
@@ -291,9 +277,7 @@ namespace kimp::lumped
     // Building against Hertz-type walls (750 kN/mm^1.5): Newmark at 1.5 × the explicit limit
     // (which the central difference method refuses) runs, balances energy and lands close to a
     // fine explicit reference.
-    SyntheticMotionSpec gs;
-    gs.duration           = 10.0;
-    const GroundMotion  g = synthetic_near_fault(gs);
+    const GroundMotion  g = kimp::testing::near_fault_motion(10.0);
     const PoundingModel model(
       kimp::testing::walled_scene("jankowski", 750e3 / std::pow(1e-3, 1.5), 0.12));
     const double             dt = 1.5 * stability_limit(model, 0.05).dt_critical;
@@ -315,21 +299,8 @@ namespace kimp::lumped
 
   TEST(Newmark, ConvergesToTheCentralDifferenceReference)
   {
-    SyntheticMotionSpec gs;
-    gs.duration          = 10.0;
-    const GroundMotion g = synthetic_near_fault(gs);
-    ForceLawSpec       spec;
-    spec.law       = "kelvin_voigt";
-    spec.stiffness = 2.5e9;
-    spec.cor       = 0.7;
-    MoatWall w;
-    w.gap = 0.12;
-    w.law = force_law_factory(spec);
-    PoundingScene scene;
-    scene.building   = reference_isolated_building(4);
-    scene.left_wall  = w;
-    scene.right_wall = w;
-    const PoundingModel      model(scene);
+    const GroundMotion       g = kimp::testing::near_fault_motion(10.0);
+    const PoundingModel      model(kimp::testing::walled_scene("kelvin_voigt", 2.5e9, 0.12));
     CentralDifferenceOptions ref_opt;
     ref_opt.dt              = 1e-5;
     ref_opt.output_interval = 0.0;
@@ -365,12 +336,9 @@ namespace kimp::lumped
   TEST(CentralDifferenceStepper, RestartAfterInitReproducesAnUninterruptedRun)
   {
     // Both kernels (the fused one carries u, Δu, peaks and sums in its own state).
-    for (const auto &[kernel, name] :
-         {std::pair{CdmKernel::automatic, "fused"}, std::pair{CdmKernel::reference, "reference"}})
+    for (const auto &[kernel, name] : both_kernels)
     {
-      SyntheticMotionSpec gs;
-      gs.duration                = 10.0;
-      const GroundMotion       g = synthetic_near_fault(gs);
+      const GroundMotion       g = kimp::testing::near_fault_motion(10.0);
       CentralDifferenceOptions opt;
       opt.dt                   = 1e-4;
       opt.kernel               = kernel;
@@ -404,14 +372,11 @@ namespace kimp::lumped
 
   TEST(CentralDifferenceStepper, StepContractHoldsForAnyChunking)
   {
-    for (const auto &[kernel, name] :
-         {std::pair{CdmKernel::automatic, "fused"}, std::pair{CdmKernel::reference, "reference"}})
+    for (const auto &[kernel, name] : both_kernels)
     {
       // advance(k) and step() in random chunks give exactly run(); each step moves
       // u_n -> u_{n-1}, t_n = n dt exactly, and stepping past the end is refused.
-      SyntheticMotionSpec gs;
-      gs.duration                = 6.0;
-      const GroundMotion       g = synthetic_near_fault(gs);
+      const GroundMotion       g = kimp::testing::near_fault_motion(6.0);
       CentralDifferenceOptions opt;
       opt.dt              = 2e-4;
       opt.kernel          = kernel;
@@ -452,28 +417,18 @@ namespace kimp::lumped
     // integrator's steps), against the laws' own Σ(stored + dissipated) (trapezoid over their
     // deformation). With every contact open at the end nothing is stored, so the two differ only
     // by quadrature: a check of both bookkeepings (observed <= 3e-4 of W_in at Δt = 1e-4 s).
-    constexpr double    bookkeeping_tol = 1e-3; // relative to W_in
-    SyntheticMotionSpec gs;
-    gs.duration          = 12.0;
-    const GroundMotion g = synthetic_near_fault(gs);
+    constexpr double   bookkeeping_tol = 1e-3; // relative to W_in
+    const GroundMotion g               = kimp::testing::near_fault_motion(12.0);
     for (const std::string law :
          {"kelvin_voigt", "modified_kelvin_voigt", "jankowski", "hertzdamp", "hysteretic"})
     {
-      ForceLawSpec spec;
-      spec.law = law;
-      spec.stiffness =
+      const double stiffness =
         law.find("kelvin") != std::string::npos ? 2.5e9 : 750e3 / std::pow(1e-3, 1.5);
-      spec.cor = 0.7;
-      MoatWall w;
-      w.gap = 0.10;
-      w.law = force_law_factory(spec);
-      PoundingScene scene;
-      scene.building   = reference_isolated_building(4);
-      scene.left_wall  = w;
-      scene.right_wall = w;
       CentralDifferenceOptions opt;
-      opt.dt           = 1e-4;
-      const Response r = CentralDifference(PoundingModel(scene), opt).run(g);
+      opt.dt = 1e-4;
+      const Response r =
+        CentralDifference(PoundingModel(kimp::testing::walled_scene(law, stiffness, 0.10)), opt)
+          .run(g);
       ASSERT_GT(r.n_impacts(), 0u) << law;
       const std::vector<double> &f = r.history.contact_force;
       ASSERT_EQ(f[f.size() - 1], 0.0) << law << ": contact closed at the end";
@@ -493,22 +448,10 @@ namespace kimp::lumped
     // that closes one step earlier in one of them). Peaks, histories and energies agree within
     // `linear_tol` without contacts and `pounding_tol` with them (observed over 12 s at 1e-4 s:
     // <= 1.3e-9 and <= 4.5e-9, mostly the reference kernel's round-off, see the next tests).
-    constexpr double    linear_tol   = 1e-8;
-    constexpr double    pounding_tol = 1e-7;
-    SyntheticMotionSpec gs;
-    gs.duration          = 12.0;
-    const GroundMotion g = synthetic_near_fault(gs);
-    ForceLawSpec       mkv;
-    mkv.law         = "modified_kelvin_voigt";
-    mkv.stiffness   = 2.5e9;
-    mkv.cor         = 0.7;
-    const auto wall = [](const double gap, const ForceLawSpec &spec)
-    {
-      MoatWall w;
-      w.gap = gap;
-      w.law = force_law_factory(spec);
-      return w;
-    };
+    constexpr double         linear_tol   = 1e-8;
+    constexpr double         pounding_tol = 1e-7;
+    const GroundMotion       g            = kimp::testing::near_fault_motion(12.0);
+    const ForceLawSpec       mkv = kimp::testing::contact_law("modified_kelvin_voigt", 2.5e9);
     CentralDifferenceOptions opt;
     opt.dt = 1e-4;
 
@@ -532,23 +475,15 @@ namespace kimp::lumped
     EXPECT_LT(fused_against_reference(walled_building(0.10), opt, g, "walls both sides"),
               pounding_tol);
     PoundingScene basement = bare;
-    basement.left_wall     = wall(0.10, mkv);
-    basement.right_wall    = wall(0.12, mkv);
+    basement.left_wall     = moat_wall(0.10, mkv);
+    basement.right_wall    = moat_wall(0.12, mkv);
     basement.basement      = true;
     EXPECT_LT(fused_against_reference(PoundingModel(basement), opt, g, "basement walls"),
               pounding_tol);
-    // The bumper example of the scenes (four 150 x 150 x 50 mm bumpers, k_b = 4·2.25·A·K_r/t^2.65,
-    // crushed at 0.75 t, k_w 1500 kN/mm), with a smaller gap so that it pounds in 12 s.
-    ForceLawSpec bumper;
-    bumper.law                         = "bumper";
-    bumper.stiffness                   = 4.0 * 2.25 * 0.0225 * 55835e3 / std::pow(0.05, 2.65);
-    bumper.bumper_ultimate_deformation = 0.75 * 0.05;
-    bumper.bumper_wall_stiffness       = 1.5e9;
-    PoundingScene bumpers              = bare;
-    MoatWall      bw                   = wall(0.12, bumper);
-    bw.bumper_thickness                = 0.05;
-    bumpers.left_wall                  = bw;
-    bumpers.right_wall                 = bw;
+    // The bumper example of the scenes with a smaller gap so that it pounds in 12 s.
+    PoundingScene bumpers = bare;
+    bumpers.left_wall     = kimp::testing::bumper_wall(0.12);
+    bumpers.right_wall    = kimp::testing::bumper_wall(0.12);
     EXPECT_LT(fused_against_reference(PoundingModel(bumpers), opt, g, "bumpers"), pounding_tol);
     PoundingScene    neighbour = bare;
     AdjacentBuilding nb;
@@ -561,31 +496,19 @@ namespace kimp::lumped
 
     // Beyond 8 DOFs the any-size fused kernel runs (two neighbours: 13 DOFs; anysize_kernel_test).
     neighbour.left_neighbour = nb;
-    const CentralDifference  big(PoundingModel(neighbour), opt);
-    CentralDifferenceStepper big_stepper(big);
-    big_stepper.init(g);
-    EXPECT_TRUE(big_stepper.uses_fused_kernel());
+    EXPECT_TRUE(kimp::testing::uses_fused_kernel(PoundingModel(neighbour), opt, g));
   }
 
   TEST(CentralDifference, FusedKernelIsBitwiseIndependentOfTheVectorWidth)
   {
     // SSE2, AVX2 and AVX-512F variants (those the processor has) do the same per-lane
     // operations without FMA contraction: identical bits.
-    SyntheticMotionSpec gs;
-    gs.duration                = 8.0;
-    const GroundMotion       g = synthetic_near_fault(gs);
+    const GroundMotion       g = kimp::testing::near_fault_motion(8.0);
     CentralDifferenceOptions opt;
-    opt.dt              = 1e-4;
-    opt.vector_lanes    = 2;
-    const Response sse2 = CentralDifference(walled_building(0.06), opt).run(g);
-    ASSERT_GT(sse2.n_impacts(), 0u);
-    for (const int lanes : {4, 8, 0})
-    {
-      opt.vector_lanes = lanes;
-      expect_identical(CentralDifference(walled_building(0.06), opt).run(g),
-                       sse2,
-                       "vector_lanes = " + std::to_string(lanes));
-    }
+    opt.dt = 1e-4;
+    Response sse2;
+    ASSERT_NO_FATAL_FAILURE(
+      kimp::testing::expect_independent_of_vector_width(walled_building(0.06), opt, g, sse2));
     opt.vector_lanes = 3;
     EXPECT_THROW(CentralDifference(walled_building(0.06), opt), std::invalid_argument);
   }

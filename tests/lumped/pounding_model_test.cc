@@ -11,44 +11,25 @@
 #include "lumped/integrators/central_difference.h"
 #include "lumped/integrators/newmark_integrator.h"
 #include "lumped/laws/force_law_factory.h"
+#include "tests/support/lumped_scenes.h"
 
 namespace kimp::lumped
 {
   namespace
   {
+    using kimp::testing::contact_law;
+    using kimp::testing::moat_wall;
+    using kimp::testing::near_fault_motion;
+
     constexpr double m_eff_rel_tol = 1e-12;
-
-    ForceLawSpec law(const std::string &name, const double k)
-    {
-      ForceLawSpec s;
-      s.law       = name;
-      s.stiffness = k;
-      s.cor       = 0.7;
-      return s;
-    }
-
-    MoatWall wall(const double gap, const ForceLawSpec &spec)
-    {
-      MoatWall w;
-      w.gap = gap;
-      w.law = force_law_factory(spec);
-      return w;
-    }
-
-    GroundMotion motion(const double duration = 12.0)
-    {
-      SyntheticMotionSpec spec;
-      spec.duration = duration;
-      return synthetic_near_fault(spec);
-    }
   } // namespace
 
   TEST(PoundingModel, AssemblesWallsBasementAndBumpers)
   {
     PoundingScene scene;
     scene.building         = reference_isolated_building(4);
-    scene.left_wall        = wall(0.15, law("linear", 2.5e9));
-    MoatWall right         = wall(0.19, law("linear", 2.5e9));
+    scene.left_wall        = moat_wall(0.15, contact_law("linear", 2.5e9));
+    MoatWall right         = moat_wall(0.19, contact_law("linear", 2.5e9));
     right.bumper_thickness = 0.05;
     scene.right_wall       = right;
     scene.basement         = true;
@@ -67,7 +48,7 @@ namespace kimp::lumped
     right.bumper_recessed = true;
     EXPECT_DOUBLE_EQ(right.clear_gap(), 0.19);
 
-    MoatWall bad    = wall(-0.1, law("linear", 2.5e9));
+    MoatWall bad    = moat_wall(-0.1, contact_law("linear", 2.5e9));
     scene.left_wall = bad;
     try
     {
@@ -87,7 +68,7 @@ namespace kimp::lumped
     AdjacentBuilding nb;
     nb.building           = reference_fixed_base_building(3);
     nb.separation         = 0.2;
-    nb.law                = force_law_factory(law("linear", 2.5e9));
+    nb.law                = force_law_factory(contact_law("linear", 2.5e9));
     scene.right_neighbour = nb;
     const PoundingModel model(scene);
     ASSERT_EQ(model.n_dofs(), 8u);
@@ -110,7 +91,7 @@ namespace kimp::lumped
     scene.right_neighbour->separation = 10.0;
     CentralDifferenceOptions opt;
     opt.dt                  = 2e-4;
-    const GroundMotion g    = motion(6.0);
+    const GroundMotion g    = near_fault_motion(6.0);
     const Response     both = CentralDifference(PoundingModel(scene), opt).run(g);
     PoundingScene      alone;
     alone.building        = reference_fixed_base_building(3);
@@ -125,15 +106,12 @@ namespace kimp::lumped
 
   TEST(PoundingModel, NoContactForceWhileTheGapIsOpen)
   {
-    PoundingScene scene;
-    scene.building   = reference_isolated_building(4);
-    const double gap = 0.10;
-    scene.left_wall  = wall(gap, law("kelvin_voigt", 2.5e9));
-    scene.right_wall = wall(gap, law("kelvin_voigt", 2.5e9));
+    const double             gap   = 0.10;
+    const PoundingScene      scene = kimp::testing::walled_scene("kelvin_voigt", 2.5e9, gap);
     CentralDifferenceOptions opt;
     opt.dt              = 1e-4;
     opt.output_interval = 1e-4;
-    const Response r    = CentralDifference(PoundingModel(scene), opt).run(motion());
+    const Response r    = CentralDifference(PoundingModel(scene), opt).run(near_fault_motion(12.0));
     ASSERT_GT(r.n_impacts(), 0u);
     const std::size_t n = r.n_dofs;
     for (std::size_t s = 0; s < r.history.time.size(); ++s)
@@ -162,7 +140,8 @@ namespace kimp::lumped
     // instant δ̇ = 0 and the Kelvin-Voigt force is k·δ_max <= the peak force.
     PoundingScene free_scene;
     free_scene.building = scene.building;
-    const Response ref  = CentralDifference(PoundingModel(free_scene), opt).run(motion());
+    const Response ref =
+      CentralDifference(PoundingModel(free_scene), opt).run(near_fault_motion(12.0));
     ASSERT_GT(ref.peak_displacement[0], gap) << "the record must drive the building to the wall";
     const double peak_force = std::max(r.contacts[0].peak_force, r.contacts[1].peak_force);
     EXPECT_LE(r.peak_displacement[0], gap + peak_force / 2.5e9 * (1 + 1e-9));
@@ -182,7 +161,7 @@ namespace kimp::lumped
     // only at coarse steps; the onset error dominates otherwise.
     const double m = 3e5, k = 2.5e9, v = 1.0, cor = 0.7;
     const double contact_duration = M_PI / std::sqrt(k / m);
-    ForceLawSpec spec             = law("kelvin_voigt", k);
+    ForceLawSpec spec             = contact_law("kelvin_voigt", k);
     spec.effective_mass           = m;
     spec.cor                      = cor;
     GroundMotion g;
@@ -280,8 +259,8 @@ namespace kimp::lumped
 
     // Table 4.3, modified Kelvin-Voigt (2500 kN/mm, COR 0.7, m_wall 500 t), gap 15 cm: base
     // 15.555 cm, top 19.424 cm, first impact about 8.4 s on one side.
-    scene.left_wall  = wall(0.15, law("modified_kelvin_voigt", 2.5e9));
-    scene.right_wall = wall(0.15, law("modified_kelvin_voigt", 2.5e9));
+    scene.left_wall  = moat_wall(0.15, contact_law("modified_kelvin_voigt", 2.5e9));
+    scene.right_wall = moat_wall(0.15, contact_law("modified_kelvin_voigt", 2.5e9));
     const Response r = CentralDifference(PoundingModel(scene), opt).run(g);
     EXPECT_NEAR(r.peak_displacement[0], 0.15555, 0.01 * 0.15555);
     EXPECT_NEAR(r.peak_displacement[4], 0.19424, 0.05 * 0.19424);

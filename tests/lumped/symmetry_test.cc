@@ -6,6 +6,7 @@
 
 #include "lumped/integrators/central_difference.h"
 #include "lumped/laws/force_law_factory.h"
+#include "tests/support/lumped_scenes.h"
 
 namespace kimp::lumped
 {
@@ -45,11 +46,7 @@ namespace kimp::lumped
 
     ForceLawSpec kv()
     {
-      ForceLawSpec s;
-      s.law       = "modified_kelvin_voigt";
-      s.stiffness = 2.5e9;
-      s.cor       = 0.7;
-      return s;
+      return kimp::testing::contact_law("modified_kelvin_voigt", 2.5e9);
     }
   } // namespace
 
@@ -72,17 +69,9 @@ namespace kimp::lumped
 
   TEST(Symmetry, MirroredSceneWithWallsGivesMirroredResponse)
   {
-    SyntheticMotionSpec spec;
-    spec.duration        = 10.0;
-    const GroundMotion g = synthetic_near_fault(spec);
-    PoundingScene      scene;
-    scene.building = reference_isolated_building(4);
-    MoatWall w;
-    w.gap            = 0.10;
-    w.law            = force_law_factory(kv());
-    scene.left_wall  = w;
-    scene.right_wall = w;
-    scene.basement   = true;
+    const GroundMotion g     = kimp::testing::near_fault_motion(10.0);
+    PoundingScene      scene = kimp::testing::walled_scene("modified_kelvin_voigt", 2.5e9, 0.10);
+    scene.basement           = true;
     CentralDifferenceOptions opt;
     opt.dt = 2e-4;
     const CentralDifference cdm(PoundingModel(scene), opt);
@@ -96,9 +85,7 @@ namespace kimp::lumped
 
   TEST(Symmetry, MirroredSceneWithNeighboursGivesMirroredResponse)
   {
-    SyntheticMotionSpec spec;
-    spec.duration        = 8.0;
-    const GroundMotion g = synthetic_near_fault(spec);
+    const GroundMotion g = kimp::testing::near_fault_motion(8.0);
     PoundingScene      scene;
     scene.building = reference_isolated_building(4);
     AdjacentBuilding nb;

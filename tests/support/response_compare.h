@@ -1,5 +1,7 @@
 // Comparing two lumped Responses: bitwise (expect_identical) and by the largest relative
-// difference of peaks, histories and energies (max_relative_difference), for kernel tests.
+// difference of peaks, histories and energies (max_relative_difference), for kernel tests; and a
+// run against itself at every SIMD width (expect_independent_of_vector_width); the kernel a
+// central difference stepper picks (uses_fused_kernel, stepped_run).
 #pragma once
 
 #include <algorithm>
@@ -7,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <string>
 
+#include "lumped/integrators/central_difference.h"
 #include "lumped/integrators/response.h"
 
 namespace kimp::testing
@@ -81,6 +84,56 @@ namespace kimp::testing
     rel(a.energy.kinetic, b.energy.kinetic, w);
     rel(a.energy.strain, b.energy.strain, w);
     return worst;
+  }
+
+  /// Whether the central difference stepper of `model` with `opt` picks a fused kernel for `g`.
+  inline bool uses_fused_kernel(const lumped::PoundingModel            &model,
+                                const lumped::CentralDifferenceOptions &opt,
+                                const lumped::GroundMotion             &g)
+  {
+    const lumped::CentralDifference  cdm(model, opt);
+    lumped::CentralDifferenceStepper stepper(cdm);
+    stepper.init(g);
+    return stepper.uses_fused_kernel();
+  }
+
+  /// The central difference run of `model` under `g` with `opt` through a stepper, which is
+  /// expected to pick a fused kernel if `fused` and the reference kernel otherwise.
+  inline Response stepped_run(const lumped::PoundingModel            &model,
+                              const lumped::CentralDifferenceOptions &opt,
+                              const lumped::GroundMotion             &g,
+                              bool                                    fused,
+                              const std::string                      &what)
+  {
+    const lumped::CentralDifference  cdm(model, opt);
+    lumped::CentralDifferenceStepper stepper(cdm);
+    stepper.init(g);
+    EXPECT_EQ(stepper.uses_fused_kernel(), fused) << what;
+    stepper.advance(stepper.last_step() + 1);
+    return stepper.response();
+  }
+
+  /**
+   * The central difference run of `model` under `g` with `opt` and vector_lanes 2 (SSE2), which
+   * must pound, is bitwise identical to the runs with 4 (AVX2), 8 (AVX-512F) and 0 (the widest
+   * the processor has) lanes: the same per-lane operations without FMA contraction. The SSE2
+   * run is left in `sse2`. Call it inside ASSERT_NO_FATAL_FAILURE().
+   */
+  inline void expect_independent_of_vector_width(const lumped::PoundingModel     &model,
+                                                 lumped::CentralDifferenceOptions opt,
+                                                 const lumped::GroundMotion      &g,
+                                                 Response                        &sse2)
+  {
+    opt.vector_lanes = 2;
+    sse2             = lumped::CentralDifference(model, opt).run(g);
+    ASSERT_GT(sse2.n_impacts(), 0u);
+    for (const int lanes : {4, 8, 0})
+    {
+      opt.vector_lanes = lanes;
+      expect_identical(lumped::CentralDifference(model, opt).run(g),
+                       sse2,
+                       "vector_lanes = " + std::to_string(lanes));
+    }
   }
 
 } // namespace kimp::testing
