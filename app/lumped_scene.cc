@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <fmt/format.h>
 #include <set>
 #include <stdexcept>
 
@@ -100,7 +101,10 @@ namespace kimp::app
       for (const auto &[key, mass] : {std::pair{"floor_mass", b.floor_mass},
                                       std::pair{"top_mass", b.top_mass},
                                       std::pair{"isolation_mass", b.isolation_mass}})
-        ctx.check(!(mass < 1.0), key, format_quantity(mass, "t"), "must be >= 1 kg (a storey)");
+        ctx.check(!(mass < 1.0),
+                  key,
+                  fmt::format("{:.4g} t", mass / 1e3), // a denormal has no 15 true digits
+                  "must be >= 1 kg (a storey)");
     }
     if (isolated)
     {

@@ -86,7 +86,7 @@ namespace kimp::app::study_internal
     const ColumnFormat error_format{2, {}, false};
     const ColumnFormat short_format{3, {}, true};
     Table              t;
-    t.number("wall_height", "m", short_format)
+    t.number("wall_height", "m", ColumnFormat{3, {}, false})
       .number("slab_mass", "kg/m")
       .number("impact_velocity", "m/s")
       .number("fem_peak_force", "kN/m")

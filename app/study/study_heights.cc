@@ -8,6 +8,7 @@
 #include "app/study/study_fem.h"
 #include "app/study/study_internal.h"
 #include "app/study/study_velocity.h"
+#include "base/format.h"
 #include "base/logging.h"
 
 namespace kimp::app::study_internal
@@ -172,27 +173,14 @@ namespace kimp::app::study_internal
   void log_k_table(const StudyScene &scene, const std::vector<StudyHeight> &heights)
   {
     logger().info("k table (per metre of wall; total = x {} m), beside thesis Table 2.1:",
-                  scene.fit.width);
-    logger().info("  H [m] | KV kN/mm/m [95 % CI] ± numerical | Table 2.1 | KV total kN/mm | "
-                  "Jankowski kN/mm^1.5/m [95 % CI] ± numerical | Table 2.1 | J total kN/mm^1.5");
-    for (const StudyHeight &h : heights)
+                  base::sig(scene.fit.width));
+    const std::string table = k_table_markdown(scene, heights);
+    for (std::size_t begin = 0; begin < table.size();)
     {
-      const std::optional<ThesisStiffness> thesis = thesis_row(h.wall_height);
-      logger().info("  {:5.2f} | {:8.4g} [{:.4g}, {:.4g}] ± {:.2g} | {:>9} | {:14.5g} | {:8.4g} "
-                    "[{:.4g}, {:.4g}] ± {:.2g} | {:>9} | {:.5g}",
-                    h.wall_height,
-                    per_metre(h.kelvin_voigt),
-                    per_metre_bound(h.kelvin_voigt, false),
-                    per_metre_bound(h.kelvin_voigt, true),
-                    numerical_error(h, 1.0),
-                    thesis ? number(thesis->kelvin_voigt) : "-",
-                    per_metre(h.kelvin_voigt) * scene.fit.width,
-                    per_metre(h.jankowski),
-                    per_metre_bound(h.jankowski, false),
-                    per_metre_bound(h.jankowski, true),
-                    numerical_error(h, 1.5),
-                    thesis ? number(thesis->jankowski) : "-",
-                    per_metre(h.jankowski) * scene.fit.width);
+      const std::size_t end = std::min(table.find('\n', begin), table.size());
+      if (table.compare(begin, 4, "|---") != 0) // the rule line says nothing in a log
+        logger().info("  {}", table.substr(begin, end - begin));
+      begin = end + 1;
     }
   }
 } // namespace kimp::app::study_internal

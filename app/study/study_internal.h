@@ -111,6 +111,9 @@ namespace kimp::app::study_internal
   nlohmann::ordered_json summary_json(const StudyScene &scene, const StudyResult &result);
 
   // writers: study_report.cc
+  /// The k table of `heights` as Markdown (report.md and the log): k [95 % CI] ± numerical,
+  /// thesis Table 2.1, totals, the FEM level.
+  std::string k_table_markdown(const StudyScene &scene, const std::vector<StudyHeight> &heights);
   /// The content of DIR/report.md (`charts`: link the charts).
   std::string report_markdown(const StudyScene &scene, const StudyResult &result, bool charts);
   /// Draw the charts; false (with a warning) if they could not be drawn.

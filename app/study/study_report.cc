@@ -172,14 +172,8 @@ namespace kimp::app::study_internal
     }
   } // namespace
 
-  std::string report_markdown(const StudyScene &scene, const StudyResult &result, bool charts)
+  std::string k_table_markdown(const StudyScene &scene, const std::vector<StudyHeight> &heights)
   {
-    std::string md = "# kimp wall-height study\n\n" + version_line() + "\n\n";
-    for (const std::string &warning : result.warnings)
-      md += "**Warning:** " + warning + ".\n\n";
-    md += fmt::format("## Impact stiffness per wall height (fitted at COR {}, W = {} m)\n\n",
-                      scene.fit.cor,
-                      scene.fit.width);
     // The k table of k_table.csv and study.h5 /k_table: a value with its 95 % interval and the
     // FEM's numerical error in one cell.
     const auto with_interval = [](const std::vector<std::string> &t)
@@ -196,29 +190,39 @@ namespace kimp::app::study_internal
         t[2] == "auto" ? (t[3] == "yes" ? "" : " (not converged)") : " (fixed)";
       return t[0] + " cm, " + t[1] + state;
     };
-    std::vector<const StudyHeight *> heights;
-    for (const StudyHeight &h : result.heights)
-      heights.push_back(&h);
-    md += k_table(scene, heights)
-            .markdown(
-              {{"H (m)", {"wall_height"}, {}},
-               {"KV kN/mm/m [95 % CI] ± numerical",
-                {"kelvin_voigt",
-                 "kelvin_voigt_lower",
-                 "kelvin_voigt_upper",
-                 "kelvin_voigt_numerical_error"},
-                with_interval},
-               {"Table 2.1", {"thesis_kelvin_voigt"}, or_dash},
-               {"KV total kN/mm", {"kelvin_voigt_total"}, or_dash},
-               {"Jankowski kN/mm^1.5/m [95 % CI] ± numerical",
-                {"jankowski", "jankowski_lower", "jankowski_upper", "jankowski_numerical_error"},
-                with_interval},
-               {"Table 2.1", {"thesis_jankowski"}, or_dash},
-               {"J total kN/mm^1.5", {"jankowski_total"}, or_dash},
-               {"FEM level (h_contact, penalty)",
-                {"fem_h_contact", "fem_penalty_factor", "fidelity", "fidelity_converged"},
-                fem_level},
-               {"FEM from cache", {"fem_from_cache"}, {}}});
+    std::vector<const StudyHeight *> cases;
+    for (const StudyHeight &h : heights)
+      cases.push_back(&h);
+    return k_table(scene, cases)
+      .markdown({{"H (m)", {"wall_height"}, {}},
+                 {"KV kN/mm/m [95 % CI] ± numerical",
+                  {"kelvin_voigt",
+                   "kelvin_voigt_lower",
+                   "kelvin_voigt_upper",
+                   "kelvin_voigt_numerical_error"},
+                  with_interval},
+                 {"Table 2.1", {"thesis_kelvin_voigt"}, or_dash},
+                 {"KV total kN/mm", {"kelvin_voigt_total"}, or_dash},
+                 {"Jankowski kN/mm^1.5/m [95 % CI] ± numerical",
+                  {"jankowski", "jankowski_lower", "jankowski_upper", "jankowski_numerical_error"},
+                  with_interval},
+                 {"Table 2.1", {"thesis_jankowski"}, or_dash},
+                 {"J total kN/mm^1.5", {"jankowski_total"}, or_dash},
+                 {"FEM level (h_contact, penalty)",
+                  {"fem_h_contact", "fem_penalty_factor", "fidelity", "fidelity_converged"},
+                  fem_level},
+                 {"FEM from cache", {"fem_from_cache"}, {}}});
+  }
+
+  std::string report_markdown(const StudyScene &scene, const StudyResult &result, bool charts)
+  {
+    std::string md = "# kimp wall-height study\n\n" + version_line() + "\n\n";
+    for (const std::string &warning : result.warnings)
+      md += "**Warning:** " + warning + ".\n\n";
+    md += fmt::format("## Impact stiffness per wall height (fitted at COR {}, W = {} m)\n\n",
+                      scene.fit.cor,
+                      scene.fit.width);
+    md += k_table_markdown(scene, result.heights);
     md += "\nThe intervals are the fits' own (law misfit). The ± values are the FEM's numerical "
           "error of k with `fem.fidelity: auto`: the change of k from the previous level of the "
           "mesh ladder (and of the penalty ladder, added in quadrature); the climb stops when "

@@ -10,6 +10,7 @@
 
 #include "app/study/study_fem.h"
 #include "app/study/study_internal.h"
+#include "base/format.h"
 #include "base/logging.h"
 
 namespace kimp::app::study_internal
@@ -325,14 +326,17 @@ namespace kimp::app::study_internal
     logger().info("k(H, v) per metre of wall (linear k beside an inelastic one):");
     logger().info("  H [m] | v [m/s] | model | KV kN/mm/m | linear KV | Jankowski kN/mm^1.5/m | "
                   "linear J");
+    // A k that was not computed (no linear run beside a linear FEM case) is "-", not "nan".
+    const auto k = [](double value)
+    { return std::isfinite(value) ? base::sig(value) : std::string("-"); };
     for (const StudyHeight *h : k_table_cases(result))
-      logger().info("  {:5.2f} | {:7.3g} | {:9} | {:10.4g} | {:9.4g} | {:21.4g} | {:.4g}",
+      logger().info("  {:5.2f} | {:>7} | {:9} | {:>10} | {:>9} | {:>21} | {}",
                     h->wall_height,
-                    h->impact_velocity,
+                    base::sig(h->impact_velocity, 3),
                     h->inelastic ? "inelastic" : "linear",
-                    per_metre(h->kelvin_voigt),
-                    per_metre(h->linear_kelvin_voigt),
-                    per_metre(h->jankowski),
-                    per_metre(h->linear_jankowski));
+                    k(per_metre(h->kelvin_voigt)),
+                    k(per_metre(h->linear_kelvin_voigt)),
+                    k(per_metre(h->jankowski)),
+                    k(per_metre(h->linear_jankowski)));
   }
 } // namespace kimp::app::study_internal
