@@ -43,7 +43,7 @@ namespace kimp::app
     io.quantity("cor",
                 s.cor,
                 "",
-                "coefficient of restitution e, (0, 1]",
+                "coefficient of restitution e",
                 io::Range::greater(0.0).and_at_most(1.0));
     io.quantity("effective_mass",
                 s.effective_mass,
@@ -56,11 +56,11 @@ namespace kimp::app
                 "m/s",
                 "design impact velocity v_imp (ImpactMaterial's delta_m)",
                 io::Range::positive());
-    io.quantity("gap", s.gap, "cm", "clear gap to the wall (> 0)", io::Range::positive());
+    io.quantity("gap", s.gap, "cm", "clear gap to the wall", io::Range::positive());
     io.quantity("yield_ratio",
                 s.yield_ratio,
                 "",
-                "ImpactMaterial a = delta_y/delta_m, (0, 1) (Muthukumar: 0.1)",
+                "ImpactMaterial a = delta_y/delta_m (Muthukumar: 0.1)",
                 io::Range::greater(0.0).and_less(1.0));
     io.integer("first_tag", s.first_tag, "tag of the first material", 1, 1000000000);
   }

@@ -393,7 +393,9 @@ namespace
     expect_sweep_error("scene: base.yaml\nreport:\n  title: x\n" + parameters,
                        {"sweep.yaml:2", "report.kind", "missing"});
     expect_sweep_error("scene: base.yaml\nreport:\n  kind: gap_study\n  chart: bar\n" + parameters,
-                       {"sweep.yaml:4", "unknown key 'chart' in report", "known: kind, gap, title"});
+                       {"sweep.yaml:4",
+                        "unknown key 'chart' in report",
+                        "known: kind, gap, title"});
     expect_sweep_error("scene: base.yaml\nreport:\n  kind: gap_study\n  gap: walls..gap\n" +
                          parameters,
                        {"sweep.yaml:4", "report.gap", "empty key"});

@@ -351,7 +351,7 @@ namespace
                           dir / "log.txt"),
               1);
     const std::string log = read_text(dir / "log.txt");
-    EXPECT_NE(log.find("sweep.yaml:3: report.kind: 'histogram' (expected one of gap_study"),
+    EXPECT_NE(log.find("sweep.yaml:3: report.kind: 'histogram' is not one of: gap_study"),
               std::string::npos)
       << log;
     fs::remove_all(dir);
