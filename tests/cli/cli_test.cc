@@ -3,6 +3,7 @@
 // usage errors, verbosity flags; and the progress line of long runs.
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
@@ -327,5 +328,28 @@ namespace
     const std::string text = out.str();
     EXPECT_NE(text.find("\rt = 0.5/2 s  ETA 3 s"), std::string::npos) << text;
     EXPECT_EQ(text.find("step"), std::string::npos) << text;
+  }
+
+  TEST(Progress, LinesModeWritesWholeProgressLinesWithTheFractionDone)
+  {
+    std::ostringstream out;
+    ::setenv("KIMP_PROGRESS", "lines", 1); // as `kimp gui` starts its runs
+    {
+      kimp::base::Progress progress(4, 4.0, out, true, FakeClock::read, 1.0);
+      for (int n = 1; n <= 4; ++n)
+      {
+        FakeClock::advance(1.0); // 1 s per step: every step is printed
+        progress.update(static_cast<std::uint64_t>(n), n * 1.0);
+      }
+      progress.finish();
+    }
+    ::unsetenv("KIMP_PROGRESS");
+    const std::string text = out.str();
+    EXPECT_EQ(text.find('\r'), std::string::npos) << text;
+    EXPECT_NE(text.find("progress: 0.2500 step 1/4  t = 1/4 s  ETA 3 s\n"), std::string::npos)
+      << text;
+    EXPECT_NE(text.find("progress: 1.0000 step 4/4  t = 4/4 s  ETA 0 s\n"), std::string::npos)
+      << text;
+    EXPECT_EQ(text.rfind("progress: ", 0), 0u) << text;
   }
 } // namespace
