@@ -219,6 +219,20 @@ namespace
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "out")) << "no output for a bad scene";
   }
 
+  TEST(Cli, CheckValidatesTheSceneWithoutRunning)
+  {
+    const TempDir dir;
+    const auto    good = dir.path() / "good.yaml";
+    const auto    bad  = dir.path() / "bad.yaml";
+    std::ofstream(good) << "n_storeys: 6\n";
+    std::ofstream(bad) << "n_storeys: 6\nbogus: 1\n";
+    DemoApp demo;
+    ASSERT_EQ(demo.run({"demo", good.string(), "--check"}), 0) << demo.err.str();
+    EXPECT_EQ(demo.out.str(), good.string() + ": valid\n");
+    EXPECT_THROW(demo.run({"demo", bad.string(), "--check"}), kimp::io::SceneError);
+    EXPECT_EQ(demo.runs, 0) << "--check must not run the command";
+  }
+
   TEST(Cli, UsageErrorsReturnTwoWithAMessage)
   {
     DemoApp demo;
