@@ -1,6 +1,12 @@
-// kimp logger and progress line; see logging.h.
+// kimp logger and progress line; see logging.h. With KIMP_PROGRESS=lines in the environment (set by
+// `kimp gui` for its runs) an enabled Progress writes whole machine-readable lines instead,
+// "progress: 0.2500 step 1/4  t = 1/4 s  ETA 3 s" (the fraction done first), at most one a second,
+// and the default Progress is enabled whatever stderr is.
 #include "base/logging.h"
 
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
 #include <fmt/format.h>
 #include <iostream>
 #include <memory>
@@ -13,6 +19,13 @@ namespace kimp::base
   {
     Verbosity current_verbosity = Verbosity::normal;
     int       current_rank      = 0;
+
+    /// Whether KIMP_PROGRESS is "lines" (machine-readable progress lines for `kimp gui`).
+    bool progress_lines()
+    {
+      const char *value = std::getenv("KIMP_PROGRESS");
+      return value != nullptr && std::strcmp(value, "lines") == 0;
+    }
 
     std::shared_ptr<spdlog::logger> make_logger()
     {
@@ -77,7 +90,10 @@ namespace kimp::base
     : Progress(total_steps,
                end_time,
                std::cerr,
-               stderr_is_terminal() && verbosity() != Verbosity::quiet && current_rank == 0)
+               current_rank == 0 &&
+                 (progress_lines() || (stderr_is_terminal() && verbosity() != Verbosity::quiet)),
+               std::chrono::steady_clock::now,
+               progress_lines() ? 1.0 : 0.25)
   {
   }
 
@@ -125,7 +141,8 @@ namespace kimp::base
     if (!enabled_ || !printed_)
       return;
     print(last_step_, last_time_);
-    *out_ << '\n' << std::flush;
+    if (!progress_lines())
+      *out_ << '\n' << std::flush;
   }
 
   void Progress::print(std::uint64_t step, double time)
@@ -141,8 +158,17 @@ namespace kimp::base
     // Trailing spaces wipe the remains of a longer previous line.
     const std::string steps =
       total_steps_ > 0 ? fmt::format("step {}/{}  ", step, total_steps_) : std::string();
-    *out_ << fmt::format("\r{}t = {:.4g}/{:.4g} s  ETA {}    ", steps, time, end_time_, eta)
-          << std::flush;
+    if (progress_lines())
+      *out_ << fmt::format("progress: {:.4f} {}t = {:.4g}/{:.4g} s  ETA {}\n",
+                           std::clamp(done, 0.0, 1.0),
+                           steps,
+                           time,
+                           end_time_,
+                           eta)
+            << std::flush;
+    else
+      *out_ << fmt::format("\r{}t = {:.4g}/{:.4g} s  ETA {}    ", steps, time, end_time_, eta)
+            << std::flush;
     printed_ = true;
   }
 } // namespace kimp::base

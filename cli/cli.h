@@ -71,6 +71,16 @@ namespace kimp::cli
                             "and exit");
   }
 
+  /// Adds `--check` (read and validate the scene, print "SCENE: valid" and exit without running;
+  /// an invalid scene is an error as for a run) bound to `flag`.
+  inline CLI::Option *add_check_flag(CLI::App &command, bool &flag)
+  {
+    return command.add_flag("--check",
+                            flag,
+                            "read and validate the scene, then exit without running (an error "
+                            "names the line and key, as for a run)");
+  }
+
   /// How a scene command reads its scene file.
   struct SceneCommandSpec
   {
@@ -97,8 +107,10 @@ namespace kimp::cli
    * (SceneError on bad input) and calls `run` with the output directory as given (a command run
    * on several MPI ranks creates it on one rank only); `kimp <name> --print-defaults` prints the
    * annotated default scene of Scene and exits 0; `kimp <name> --print-schema` prints the JSON
-   * schema of its keys (io::SchemaWriter) and exits 0. Command-specific options are added to the
-   * returned subcommand unbound (read with count()/as() in `run`), so every parse starts afresh.
+   * schema of its keys (io::SchemaWriter) and exits 0; `kimp <name> [SCENE.yaml] --check`
+   * validates the scene and exits 0 without running (`kimp gui` validates fem and study scenes
+   * so). Command-specific options are added to the returned subcommand unbound (read with
+   * count()/as() in `run`), so every parse starts afresh.
    */
   template <class Scene>
   CLI::App *add_scene_command_at(CLI::App &app, SceneCommandSpec spec, ScenePathRunner<Scene> run)
@@ -109,6 +121,7 @@ namespace kimp::cli
       std::string output;
       bool        print_defaults = false;
       bool        print_schema   = false;
+      bool        check          = false;
     };
     auto        options  = std::make_shared<Options>();
     CLI::App   *command  = app.add_subcommand(spec.name, spec.description);
@@ -123,6 +136,7 @@ namespace kimp::cli
                       "print the annotated default scene (every key with default, unit and "
                       "meaning) and exit");
     add_print_schema_flag(*command, options->print_schema);
+    add_check_flag(*command, options->check);
     // CLI11 keeps bound values between parses of one app: start each use of the command afresh.
     command->preparse_callback([options](std::size_t) { *options = Options{}; });
     command->callback(
@@ -135,6 +149,14 @@ namespace kimp::cli
           throw PrintDefaults(io::schema_text<Scene>());
         if (options->scene.empty() && !optional)
           throw CLI::RequiredError("the scene file SCENE.yaml (or --print-defaults)");
+        if (options->check)
+        {
+          if (!options->scene.empty())
+            io::read_scene<Scene>(options->scene);
+          throw PrintDefaults(
+            (options->scene.empty() ? "(" + spec.default_scene + ")" : options->scene) +
+            ": valid\n");
+        }
         if (options->output.empty())
           throw CLI::RequiredError("the output directory -o/--output DIR");
         const bool defaults = options->scene.empty();

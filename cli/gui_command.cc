@@ -1,8 +1,11 @@
-// `kimp gui [--port P] [--host H] [--open]`: the local web interface (scene editor, runs, results).
+// `kimp gui [--port P] [--host H] [--open] [--max-runs N]`: the local web interface (scene editor,
+// runs, results).
 // Parses the command's options and calls kimp::server.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdlib>
 #include <iostream>
+#include <thread>
 #include <unistd.h>
 
 #include "base/logging.h"
@@ -21,12 +24,15 @@ namespace kimp::cli
       bool               open = false;
       std::string        records_dir;
     };
-    auto      options = std::make_shared<Options>();
-    CLI::App *command = app.add_subcommand(
+    // One run per core at a time by default (a 2-core laptop runs 2, the others queue).
+    const unsigned cores   = std::max(1u, std::thread::hardware_concurrency());
+    auto           options = std::make_shared<Options>();
+    CLI::App      *command = app.add_subcommand(
       "gui",
       "local web interface: scene editor, ground motions, runs with progress, interactive results "
-      "and animation (serves http://127.0.0.1:PORT/ until Ctrl-C)");
-    command->add_option("--port", options->gui.port, "TCP port (0: any free port)")
+           "and animation (serves http://127.0.0.1:PORT/ until Ctrl-C)");
+    command->add_option("--port", options->gui.port, "TCP port, 1-65535 (0: any free port)")
+      ->check(CLI::Range(0, 65535))
       ->capture_default_str();
     command
       ->add_option("--host",
@@ -36,8 +42,21 @@ namespace kimp::cli
     command->add_flag("--open", options->open, "open the page in the default browser");
     command->add_option("--runs-dir", options->gui.runs_dir, "directory of the runs")
       ->capture_default_str();
-    command->add_option("--records-dir", options->records_dir, "directory of the PEER records");
-    command->preparse_callback([options](std::size_t) { *options = Options{}; });
+    command->add_option("--records-dir",
+                        options->records_dir,
+                        "directory of the PEER records (listed on the page and passed to every "
+                        "run; default KIMP_RECORDS_DIR)");
+    command
+      ->add_option("--max-runs",
+                   options->gui.max_runs,
+                   "runs at a time; further runs wait in a queue (default: one per core)")
+      ->check(CLI::Range(1, 64));
+    command->preparse_callback(
+      [options, cores](std::size_t)
+      {
+        *options              = Options{};
+        options->gui.max_runs = cores;
+      });
     command->callback(
       [options]()
       {

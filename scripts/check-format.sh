@@ -3,7 +3,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
-mapfile -t files < <(find base lumped geometry fem fit io app cli tests bench -type f \( -name '*.h' -o -name '*.cc' \) | sort)
+mapfile -t files < <(find base lumped geometry fem fit io app report server cli tests bench -type f \( -name '*.h' -o -name '*.cc' \) | sort)
 [ ${#files[@]} -gt 0 ] || exit 0
 clang-format --dry-run --Werror "${files[@]}"
 echo "check-format: ${#files[@]} files formatted"

@@ -3,7 +3,8 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bash "$root/scripts/install-deps.sh"
-bash "$root/scripts/build.sh"
+# The browser tests are required here: a missing node or Chromium fails the configure step.
+bash "$root/scripts/build.sh" -DKIMP_REQUIRE_BROWSER_TESTS=ON
 # mpirun as root (CI and fresh machines run as root).
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 ctest --test-dir "${KIMP_BUILD_DIR:-$root/build}" --output-on-failure -j "$(nproc)" "$@"

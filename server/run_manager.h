@@ -1,82 +1,153 @@
-// Background runs of `kimp gui`: each run is a child `kimp <command> SCENE -o DIR` process watched
-// by a thread, so a run can be cancelled (SIGTERM) and a crash never takes the server down.
+// Background runs of `kimp gui`: each run is a child `kimp <command> SCENE -o DIR` process (its own
+// process group) watched by a thread, so a run can be cancelled (SIGTERM, then SIGKILL) and a crash
+// never takes the server down. At most max_running children at a time; later runs wait in a queue.
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
+#include <deque>
 #include <filesystem>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace kimp::server
 {
+  using SteadyClock = std::chrono::steady_clock;
+
+  /// How runs are started and how many at a time.
+  struct RunSettings
+  {
+    /// Directory of the runs (one sub-directory per run; created).
+    std::filesystem::path runs_dir = "kimp-runs";
+    /// The kimp executable that runs are started with.
+    std::filesystem::path kimp;
+    /// Records directory passed to every run (as KIMP_RECORDS_DIR): a bare record name in a
+    /// scene is looked up there unless the scene names its own records_dir.
+    std::optional<std::filesystem::path> records_dir;
+    /// Runs at a time (at least 1); more wait in the queue, state "queued".
+    unsigned max_running = 2;
+    /// Runs waiting at most; a further start is refused (RunQueueFull).
+    unsigned max_queued = 16;
+    /// Seconds between SIGTERM and SIGKILL when a run is cancelled or the server stops.
+    double kill_grace = 1.0;
+  };
+
+  /// Thrown by RunManager::start when max_queued runs are waiting already.
+  struct RunQueueFull : std::runtime_error
+  {
+    using std::runtime_error::runtime_error;
+  };
+
   /// State of one run; every member is guarded by RunManager's mutex.
   struct Run
   {
     std::string              id;
     std::string              command;
     std::filesystem::path    dir;                  ///< runs_dir/id: scene, log, results
+    std::vector<std::string> arguments;            ///< of kimp, after the executable
     std::string              state     = "queued"; ///< queued, running, done, failed, cancelled
     int                      exit_code = -1;
     std::string              error;          ///< the command's "error: ..." line(s)
-    std::vector<std::string> log;            ///< stderr lines
-    double                   progress = 0.0; ///< 0..1 from "case i/n" lines, 1 when done
-    int                      pid      = -1;
-    bool                     cancel   = false;
-    std::thread              watcher;
+    std::vector<std::string> log;            ///< stderr lines (without "progress:" lines)
+    double                   progress = 0.0; ///< 0..1, 1 when done
+    std::string              progress_text;  ///< the last progress line, for the page
+    /// A lumped case's progress between its log lines: the cost estimate of each case ("case
+    /// NAME: estimated ..., ~T s", seconds by name), the case going (i of n) and its start.
+    std::map<std::string, double> case_estimates;
+    int                           case_index    = 0;
+    int                           case_count    = 0;
+    double                        case_estimate = 0.0;
+    SteadyClock::time_point       case_started;
+    int                           pid    = -1; ///< of the child, also its process group
+    bool                          cancel = false;
+    SteadyClock::time_point       started;        ///< when the child was started
+    SteadyClock::time_point       cancelled_at;   ///< when SIGTERM was sent
+    bool                          killed = false; ///< SIGKILL sent after the grace period
+    std::thread                   watcher;
   };
 
   /**
-   * Starts, watches, cancels and lists runs. A run's directory holds `scene.yaml` (and `sweep.yaml`
-   * for a sweep), `run.log` (stderr of the child) and `run.json` (final state), so the list of past
-   * runs survives a restart of the server.
+   * Starts, queues, watches, cancels and lists runs. A run's directory holds `scene.yaml` (and
+   * `sweep.yaml` for a sweep), `run.log` (stderr of the child) and `run.json` (final state), so
+   * the list of past runs survives a restart of the server.
+   *
+   * Progress (0..1) comes from the child's stderr: "progress: F" lines (base::Progress with
+   * KIMP_PROGRESS=lines, set for every run: after each lumped case, FEM time steps) and, for a
+   * sweep, its "sweep: ... (N/M in all ...)" lines. Within a lumped case (whose engine reports
+   * nothing until it ends) the progress is estimated from the time spent against the case's
+   * logged cost estimate, at most 90 % of the case, and marked "progress_estimated".
    */
   class RunManager
   {
   public:
-    /// @param runs_dir directory of the runs (created); @param kimp the kimp executable
-    RunManager(std::filesystem::path runs_dir, std::filesystem::path kimp);
+    explicit RunManager(RunSettings settings);
+    /// Cancels every run (queued ones at once, running ones with SIGTERM, SIGKILL after
+    /// kill_grace) and waits for the children.
     ~RunManager();
     RunManager(const RunManager &)            = delete;
     RunManager &operator=(const RunManager &) = delete;
 
     /**
-     * Start `kimp <command>` on `scene` (YAML text). For a sweep, `sweep` is the sweep file and
-     * `scene` its base scene (written beside it as scene.yaml).
+     * Start `kimp <command>` on `scene` (YAML text), now or when a running run ends. For a sweep,
+     * `sweep` is the sweep file and `scene` its base scene (written beside it as scene.yaml).
      * @return the run's id
-     * @throws std::invalid_argument for an unknown command
+     * @throws std::invalid_argument for an unknown command; RunQueueFull when max_queued runs
+     *         wait already
      */
     std::string
     start(const std::string &command, const std::string &scene, const std::string &sweep);
-    /// Send SIGTERM to a running child; false when there is no such run or it has finished.
+    /// Cancel a queued run, or stop a running child (SIGTERM to its process group, SIGKILL after
+    /// kill_grace); false when there is no such run or it has finished.
     bool cancel(const std::string &id);
-    /// The run as JSON (id, command, state, progress, exit_code, error, log tail from `from`).
+    /// Cancel everything and wait for the children (as the destructor; idempotent).
+    void shutdown();
+    /// The run as JSON (id, command, state, progress, exit_code, error, pid, files written, log
+    /// tail from line `from`).
     nlohmann::json describe(const std::string &id, std::size_t from = 0) const;
-    /// Every run in runs_dir, newest first (finished ones read from run.json).
+    /// Every run in runs_dir, newest first (finished ones read from run.json), without logs.
     nlohmann::json list() const;
     /// Whether `id` names a run directory (only [A-Za-z0-9_-] characters).
     bool exists(const std::string &id) const;
     /// Block until the run changed after `seen_lines` log lines or finished, at most `ms` ms.
     void wait_for_change(const std::string &id, std::size_t seen_lines, int ms) const;
-    const std::filesystem::path &runs_dir() const { return runs_dir_; }
+    const std::filesystem::path &runs_dir() const { return settings_.runs_dir; }
+    const RunSettings           &settings() const { return settings_; }
 
   private:
-    void watch(std::shared_ptr<Run> run, std::vector<std::string> arguments);
+    nlohmann::json describe_locked(const std::string &id, std::optional<std::size_t> from) const;
+    void           launch_queued_locked();
+    void           watch(std::shared_ptr<Run> run);
+    void           finish(Run &run, int status, bool spawned);
 
-    std::filesystem::path                       runs_dir_;
-    std::filesystem::path                       kimp_;
+    RunSettings                                 settings_;
     mutable std::mutex                          mutex_;
     mutable std::condition_variable             changed_;
     std::map<std::string, std::shared_ptr<Run>> runs_;
-    unsigned                                    counter_ = 0;
+    std::deque<std::shared_ptr<Run>>            queue_;
+    unsigned                                    running_  = 0;
+    unsigned                                    counter_  = 0;
+    bool                                        stopping_ = false;
   };
 
-  /// Output of `kimp ARGS...` (stdout) and its exit code; used for --print-schema and the like.
-  std::pair<int, std::string> capture_kimp(const std::filesystem::path    &kimp,
-                                           const std::vector<std::string> &arguments);
+  /// Output of `kimp ARGS...` and its exit code (-1 when it could not be started, timed out
+  /// after `timeout_s` and was killed, or died of a signal). `cwd`: its working directory
+  /// (empty: this one's). Used for --print-schema and --check.
+  struct Captured
+  {
+    int         exit_code = -1;
+    std::string out;
+    std::string err;
+  };
+  Captured capture_kimp(const std::filesystem::path    &kimp,
+                        const std::vector<std::string> &arguments,
+                        const std::filesystem::path    &cwd       = {},
+                        double                          timeout_s = 60.0);
 } // namespace kimp::server

@@ -3,6 +3,10 @@
 #include "server/server.h"
 
 #include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -26,10 +30,6 @@
 #include "report/assets.h"
 #include "report/report.h"
 #include "server/run_manager.h"
-#ifdef KIMP_WITH_FEM
-#  include "app/fem/fem_scene.h"
-#  include "app/study/study_scene.h"
-#endif
 
 // After the app headers: <httplib.h> brings <resolv.h>, whose `_res` macro breaks Eigen.
 #include <httplib.h>
@@ -62,9 +62,9 @@ namespace kimp::server
       send_json(res, {{"error", message}}, status);
     }
 
-    nlohmann::json parse_body(const httplib::Request &req)
+    nlohmann::json parse_body(const std::string &text)
     {
-      nlohmann::json body = nlohmann::json::parse(req.body, nullptr, false);
+      nlohmann::json body = nlohmann::json::parse(text, nullptr, false);
       if (body.is_discarded() || !body.is_object())
         throw HttpError(400, "malformed JSON: the request body must be a JSON object");
       return body;
@@ -113,28 +113,47 @@ namespace kimp::server
       return std::regex_match(host, ipv4) || (host.size() > 2 && host.front() == '[');
     }
 
-    /// The scene `text` of `command` read and validated as the command would: "" when valid,
-    /// else the command's own message ("scene.yaml:12: isolator.K2 = ...: must be < K1 ...").
-    std::string validation_error(const std::string &command, const std::string &text)
+    /// The commands whose scenes the server validates itself (kimp::app_core); fem and study
+    /// are validated by the FEM executable (`kimp fem SCENE --check`).
+    bool validated_here(const std::string &command)
+    {
+      return command == "lumped" || command == "collide";
+    }
+
+    /// The scene `text` of lumped or collide read and validated as the command would: "" when
+    /// valid, else the command's own message ("scene.yaml:12: isolator.K2 = ...: must be < K1").
+    std::string validation_error_here(const std::string &command, const std::string &text)
     {
       try
       {
         if (command == "lumped")
           io::read_scene_text<app::LumpedScene>(text, "scene.yaml");
-        else if (command == "collide")
+        else
           io::read_scene_text<app::CollideScene>(text, "scene.yaml");
-#ifdef KIMP_WITH_FEM
-        else if (command == "fem")
-          io::read_scene_text<app::FemScene>(text, "scene.yaml");
-        else if (command == "study")
-          io::read_scene_text<app::StudyScene>(text, "scene.yaml");
-#endif
         return {};
       }
       catch (const std::exception &error)
       {
         return error.what();
       }
+    }
+
+    /// The number in query parameter `key` of an upload, or HttpError 400 naming it.
+    double positive_number_parameter(const httplib::Request &req, const char *key, double fallback)
+    {
+      if (!req.has_param(key))
+        return fallback;
+      const std::string text = req.get_param_value(key);
+      errno                  = 0;
+      char        *end       = nullptr;
+      const double value     = std::strtod(text.c_str(), &end);
+      if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE ||
+          !std::isfinite(value) || !(value > 0))
+        throw HttpError(400,
+                        std::string(key) + " = \"" + text +
+                          "\": must be a positive finite number (m/s² per unit of the file's "
+                          "acceleration values, e.g. 9.80665 for g)");
+      return value;
     }
 
     nlohmann::json record_json(const io::AccelerationRecord &record)
@@ -169,11 +188,31 @@ namespace kimp::server
     RunManager                         runs;
     int                                port = 0;
     std::mutex                         cache_mutex;
-    std::map<std::string, std::string> schema_cache;
+    std::map<std::string, std::string> schema_cache;  ///< command + flag -> text
+    std::map<std::string, std::string> schema_errors; ///< command + flag -> why not
+    std::atomic<unsigned>              check_counter{0};
+    /// listen() and stop() from different threads, in either order (a stop() before the
+    /// server loop runs must still end it): guarded by listen_mutex.
+    std::mutex        listen_mutex;
+    bool              stop_requested = false;
+    bool              listening      = false;
+    std::atomic<bool> listen_returned{false};
+
+    static RunSettings run_settings(const GuiOptions &o)
+    {
+      RunSettings s;
+      s.runs_dir    = o.runs_dir;
+      s.kimp        = o.kimp_executable;
+      s.records_dir = o.records_dir;
+      s.max_running = o.max_runs;
+      s.max_queued  = o.max_queued;
+      s.kill_grace  = o.kill_grace;
+      return s;
+    }
 
     explicit Impl(GuiOptions o)
       : options(std::move(o))
-      , runs(options.runs_dir, options.kimp_executable)
+      , runs(run_settings(options))
     {
     }
 
@@ -195,17 +234,143 @@ namespace kimp::server
       return !loopback() && (name == options.host || is_ip_literal(name));
     }
 
+    /// Output of `kimp COMMAND FLAG` (--print-schema or --print-defaults), asked once.
+    /// @throws HttpError 404 when that kimp cannot print it (no such command, or no kimp-fem
+    /// beside a lean kimp for fem and study).
     std::string schema(const std::string &command, const std::string &flag)
     {
+      static const std::vector<std::string> scene_commands = {"lumped",
+                                                              "collide",
+                                                              "fem",
+                                                              "study",
+                                                              "sweep"};
+      if (std::find(scene_commands.begin(), scene_commands.end(), command) == scene_commands.end())
+        throw HttpError(404,
+                        "no scene command \"" + command +
+                          "\" (kimp gui edits lumped, collide, fem, study and sweep scenes)");
       std::lock_guard<std::mutex> lock(cache_mutex);
       const std::string           key = command + flag;
-      const auto                  it  = schema_cache.find(key);
-      if (it != schema_cache.end())
+      if (const auto it = schema_cache.find(key); it != schema_cache.end())
         return it->second;
-      const auto [status, out] = capture_kimp(options.kimp_executable, {command, flag});
-      if (status != 0)
-        throw HttpError(404, "kimp " + command + " has no " + flag + " in this build");
-      return schema_cache[key] = out;
+      if (const auto it = schema_errors.find(key); it != schema_errors.end())
+        throw HttpError(404, it->second);
+      const Captured result = capture_kimp(options.kimp_executable, {command, flag});
+      if (result.exit_code != 0)
+      {
+        std::string why = result.err;
+        while (!why.empty() && (why.back() == '\n' || why.back() == '\r'))
+          why.pop_back();
+        if (why.rfind("error: ", 0) == 0)
+          why.erase(0, 7);
+        throw HttpError(404,
+                        schema_errors[key] = "kimp " + command + " is not available here" +
+                                             (why.empty() ? std::string() : ": " + why));
+      }
+      return schema_cache[key] = result.out;
+    }
+
+    /// The commands this installation runs: lumped, collide and sweep always; fem and study
+    /// when the kimp executable prints their schema (a build with the FEM engine, whose kimp
+    /// finds kimp-fem beside it).
+    nlohmann::json available_commands()
+    {
+      nlohmann::json commands = nlohmann::json::array({"lumped", "collide"});
+      for (const char *command : {"fem", "study"})
+      {
+        try
+        {
+          schema(command, "--print-schema");
+          commands.push_back(command);
+        }
+        catch (const HttpError &)
+        {
+        }
+      }
+      commands.push_back("sweep");
+      return commands;
+    }
+
+    /// "" when `text` is a valid scene of `command`, else the command's own message.
+    /// @throws HttpError 400 for anything but a command whose scenes kimp gui edits and runs
+    std::string validation_error(const std::string &command, const std::string &text)
+    {
+      if (validated_here(command))
+        return validation_error_here(command, text);
+      if (command == "sweep")
+        throw HttpError(400,
+                        "a sweep file is checked by kimp sweep when its run starts; validate "
+                        "its base scene with the base scene's command (lumped)");
+      if (command != "fem" && command != "study")
+        throw HttpError(400,
+                        "unknown command \"" + command +
+                          "\" (expected lumped, collide, fem, study or sweep)");
+      try
+      {
+        schema(command, "--print-schema");
+      }
+      catch (const HttpError &error)
+      {
+        throw HttpError(400, error.what());
+      }
+      // The FEM executable reads the scene as its run would, in a directory of its own so
+      // that its messages name "scene.yaml" as the in-process ones do.
+      const auto dir =
+        std::filesystem::temp_directory_path() /
+        ("kimp-gui-check-" + std::to_string(getpid()) + "-" + std::to_string(++check_counter));
+      std::filesystem::create_directories(dir);
+      io::write_text_atomic(dir / "scene.yaml", text);
+      const Captured result =
+        capture_kimp(options.kimp_executable, {"-q", command, "scene.yaml", "--check"}, dir);
+      std::error_code ec;
+      std::filesystem::remove_all(dir, ec);
+      if (result.exit_code == 0)
+        return {};
+      std::string message = result.err;
+      while (!message.empty() && (message.back() == '\n' || message.back() == '\r'))
+        message.pop_back();
+      if (const std::size_t at = message.find("error: "); at != std::string::npos)
+        message.erase(0, at + 7);
+      if (message.empty())
+        message = "kimp " + command + " --check failed (exit code " +
+                  std::to_string(result.exit_code) + ")";
+      return message;
+    }
+
+    /// A POST route whose body is read here (not by cpp-httplib, which would refuse a
+    /// form-encoded body over 8 KB): up to max_body bytes, 413 beyond.
+    void
+    post(const std::string &pattern,
+         std::function<void(const httplib::Request &, const std::string &, httplib::Response &)>
+           handler)
+    {
+      http.Post(pattern,
+                [handler](const httplib::Request       &req,
+                          httplib::Response            &res,
+                          const httplib::ContentReader &reader)
+                {
+                  // Without a length the body would be read until the client closes: say
+                  // what is missing at once instead.
+                  if (!req.has_header("Content-Length") &&
+                      req.get_header_value("Transfer-Encoding").find("chunked") ==
+                        std::string::npos)
+                    throw HttpError(411,
+                                    "a POST to " + req.path +
+                                      " needs its body with a Content-Length header (a JSON "
+                                      "object for /api/validate and /api/runs, the file for "
+                                      "/api/upload, {} for a cancel)");
+                  std::string body;
+                  const bool  read = reader(
+                    [&](const char *data, std::size_t n)
+                    {
+                      body.append(data, n);
+                      return true;
+                    });
+                  if (!read)
+                    throw HttpError(res.status == 413 ? 413 : 400,
+                                    res.status == 413 ? "request body too large" :
+                                                        "the request body could not be read");
+                  handler(req, body, res);
+                });
     }
 
     void routes();
@@ -268,12 +433,30 @@ namespace kimp::server
         }
       });
     http.set_error_handler(
-      [](const httplib::Request &, httplib::Response &res)
+      [this](const httplib::Request &req, httplib::Response &res)
       {
-        if (res.body.empty())
-          send_error(res,
-                     res.status,
-                     res.status == 413 ? "request body too large" : "no such page or endpoint");
+        if (!res.body.empty())
+          return;
+        std::string message;
+        switch (res.status)
+        {
+          case 400:
+            message = "bad request: malformed HTTP request";
+            break;
+          case 404:
+            message = "no such page or endpoint: " + req.method + " " + req.path;
+            break;
+          case 413:
+            message =
+              "request body too large (at most " + std::to_string(options.max_body >> 20) + " MB)";
+            break;
+          case 414:
+            message = "request line too long";
+            break;
+          default:
+            message = "HTTP error " + std::to_string(res.status);
+        }
+        send_error(res, res.status, message);
       });
 
     http.Get("/",
@@ -290,14 +473,10 @@ namespace kimp::server
     http.Get("/api/info",
              [this](const httplib::Request &, httplib::Response &res)
              {
-               nlohmann::json commands = nlohmann::json::array({"lumped", "collide", "sweep"});
-#ifdef KIMP_WITH_FEM
-               commands.push_back("fem");
-               commands.push_back("study");
-#endif
                send_json(res,
                          {{"version", base::version_line()},
-                          {"commands", commands},
+                          {"commands", available_commands()},
+                          {"max_runs", options.max_runs},
                           {"runs_dir", std::filesystem::absolute(options.runs_dir).string()},
                           {"records_dir",
                            options.records_dir ? options.records_dir->string() : std::string()}});
@@ -310,29 +489,36 @@ namespace kimp::server
                                         schema_wanted ? "--print-schema" : "--print-defaults");
                res.set_content(text, schema_wanted ? "application/json" : "text/plain");
              });
-    http.Post("/api/validate",
-              [](const httplib::Request &req, httplib::Response &res)
-              {
-                const auto        body = parse_body(req);
-                const std::string error =
-                  validation_error(text_member(body, "command"), text_member(body, "scene"));
-                send_json(res, {{"ok", error.empty()}, {"error", error}});
-              });
-    http.Post("/api/runs",
-              [this](const httplib::Request &req, httplib::Response &res)
-              {
-                const auto        body    = parse_body(req);
-                const std::string command = text_member(body, "command");
-                const std::string scene   = text_member(body, "scene");
-                const std::string sweep   = text_member(body, "sweep", command == "sweep");
-                if (command != "sweep")
-                {
-                  const std::string error = validation_error(command, scene);
-                  if (!error.empty())
-                    throw HttpError(400, error);
-                }
-                send_json(res, {{"id", runs.start(command, scene, sweep)}}, 201);
-              });
+    post("/api/validate",
+         [this](const httplib::Request &, const std::string &text, httplib::Response &res)
+         {
+           const auto        body = parse_body(text);
+           const std::string error =
+             validation_error(text_member(body, "command"), text_member(body, "scene"));
+           send_json(res, {{"ok", error.empty()}, {"error", error}});
+         });
+    post("/api/runs",
+         [this](const httplib::Request &, const std::string &text, httplib::Response &res)
+         {
+           const auto        body    = parse_body(text);
+           const std::string command = text_member(body, "command");
+           const std::string scene   = text_member(body, "scene");
+           const std::string sweep   = text_member(body, "sweep", command == "sweep");
+           if (command != "sweep")
+           {
+             const std::string error = validation_error(command, scene);
+             if (!error.empty())
+               throw HttpError(400, error);
+           }
+           try
+           {
+             send_json(res, {{"id", runs.start(command, scene, sweep)}}, 201);
+           }
+           catch (const RunQueueFull &error)
+           {
+             throw HttpError(429, error.what());
+           }
+         });
     http.Get("/api/runs",
              [this](const httplib::Request &, httplib::Response &res)
              { send_json(res, runs.list()); });
@@ -343,10 +529,13 @@ namespace kimp::server
                  throw HttpError(404, "no run " + req.matches[1].str());
                send_json(res, runs.describe(req.matches[1]));
              });
-    http.Post(R"(/api/runs/([A-Za-z0-9_-]+)/cancel)",
-              [this](const httplib::Request &req, httplib::Response &res) {
-                send_json(res, {{"cancelled", runs.cancel(req.matches[1])}});
-              });
+    post(R"(/api/runs/([A-Za-z0-9_-]+)/cancel)",
+         [this](const httplib::Request &req, const std::string &, httplib::Response &res)
+         {
+           if (!runs.exists(req.matches[1]))
+             throw HttpError(404, "no run " + req.matches[1].str());
+           send_json(res, {{"cancelled", runs.cancel(req.matches[1])}});
+         });
     http.Get(R"(/api/runs/([A-Za-z0-9_-]+)/events)",
              [this](const httplib::Request &req, httplib::Response &res)
              {
@@ -409,43 +598,43 @@ namespace kimp::server
              [this](const httplib::Request &req, httplib::Response &res)
              {
                if (!options.records_dir)
-                 throw HttpError(404, "no records directory (set KIMP_RECORDS_DIR)");
+                 throw HttpError(404,
+                                 "no records directory (kimp gui --records-dir DIR, or set "
+                                 "KIMP_RECORDS_DIR)");
                for (const auto &path : io::list_records(*options.records_dir))
                  if (path.stem().string() == req.matches[1].str())
                    return send_json(res, record_json(io::read_at2(path)));
                throw HttpError(404, "no record " + req.matches[1].str());
              });
-    http.Post("/api/upload",
-              [this](const httplib::Request &req, httplib::Response &res)
-              {
-                static const std::regex safe(R"([A-Za-z0-9_.-]{1,100})");
-                const std::string       name = req.get_param_value("name");
-                if (!std::regex_match(name, safe) || name.front() == '.')
-                  throw HttpError(400,
-                                  "upload name \"" + name +
-                                    "\" must be 1-100 letters, digits, '_', '-' or '.'");
-                double unit = 9.80665;
-                if (req.has_param("unit"))
-                  unit = std::stod(req.get_param_value("unit"));
-                const auto dir = options.runs_dir / "uploads";
-                std::filesystem::create_directories(dir);
-                const auto path = dir / name;
-                try
-                {
-                  const auto record = name.size() > 4 && (name.substr(name.size() - 4) == ".AT2" ||
-                                                          name.substr(name.size() - 4) == ".at2") ?
-                                        io::parse_at2(req.body, name) :
-                                        io::parse_two_column(req.body, name, unit);
-                  io::write_text_atomic(path, req.body);
-                  nlohmann::json j = record_json(record);
-                  j["path"]        = std::filesystem::absolute(path).string();
-                  send_json(res, j, 201);
-                }
-                catch (const io::GroundMotionFileError &error)
-                {
-                  throw HttpError(400, error.what());
-                }
-              });
+    post("/api/upload",
+         [this](const httplib::Request &req, const std::string &body, httplib::Response &res)
+         {
+           static const std::regex safe(R"([A-Za-z0-9_.-]{1,100})");
+           const std::string       name = req.get_param_value("name");
+           if (!std::regex_match(name, safe) || name.front() == '.')
+             throw HttpError(400,
+                             "upload name \"" + name +
+                               "\" must be 1-100 letters, digits, '_', '-' or '.'");
+           const double unit = positive_number_parameter(req, "unit", 9.80665);
+           const auto   dir  = options.runs_dir / "uploads";
+           std::filesystem::create_directories(dir);
+           const auto path = dir / name;
+           try
+           {
+             const auto record = name.size() > 4 && (name.substr(name.size() - 4) == ".AT2" ||
+                                                     name.substr(name.size() - 4) == ".at2") ?
+                                   io::parse_at2(body, name) :
+                                   io::parse_two_column(body, name, unit);
+             io::write_text_atomic(path, body);
+             nlohmann::json j = record_json(record);
+             j["path"]        = std::filesystem::absolute(path).string();
+             send_json(res, j, 201);
+           }
+           catch (const io::GroundMotionFileError &error)
+           {
+             throw HttpError(400, error.what());
+           }
+         });
   }
 
   GuiServer::GuiServer(GuiOptions options)
@@ -461,29 +650,69 @@ namespace kimp::server
 
   int GuiServer::bind()
   {
+    const int requested = impl_->options.port;
+    if (requested < 0 || requested > 65535)
+      throw std::invalid_argument("kimp gui: port " + std::to_string(requested) +
+                                  " is not a TCP port (1-65535, or 0 for any free port)");
+    // SO_REUSEADDR only: cpp-httplib's default SO_REUSEPORT would let a second kimp gui bind the
+    // port of a running one (and the kernel share the connections between them).
+    impl_->http.set_socket_options(
+      [](socket_t sock)
+      {
+        int yes = 1;
+        setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+      });
     const std::string host = impl_->options.host == "localhost" ? "127.0.0.1" : impl_->options.host;
-    if (impl_->options.port == 0)
+    errno                  = 0;
+    if (requested == 0)
       impl_->port = impl_->http.bind_to_any_port(host.c_str());
-    else if (impl_->http.bind_to_port(host.c_str(), impl_->options.port))
-      impl_->port = impl_->options.port;
+    else if (impl_->http.bind_to_port(host.c_str(), requested))
+      impl_->port = requested;
     else
       impl_->port = -1;
     if (impl_->port <= 0)
-      throw std::runtime_error("kimp gui: cannot listen on " + impl_->options.host + ":" +
-                               std::to_string(impl_->options.port) +
-                               " (port in use? choose another with --port)");
+    {
+      const int error = errno;
+      throw std::runtime_error(
+        "kimp gui: cannot listen on " + impl_->options.host + ":" + std::to_string(requested) +
+        (error == EADDRINUSE ? ": the port is in use (another kimp gui?); choose another with "
+                               "--port, or --port 0 for any free port" :
+                               std::string(": ") + (error ? std::strerror(error) : "bind failed") +
+                                 " (choose another --host or --port)"));
+    }
     return impl_->port;
   }
 
   void GuiServer::listen()
   {
+    {
+      std::lock_guard<std::mutex> lock(impl_->listen_mutex);
+      if (impl_->stop_requested)
+        return;
+      impl_->listening = true;
+    }
     impl_->http.listen_after_bind();
+    impl_->listen_returned = true;
   }
 
   void GuiServer::stop()
   {
-    if (impl_ && impl_->http.is_running())
+    if (!impl_)
+      return;
+    bool listening = false;
+    {
+      std::lock_guard<std::mutex> lock(impl_->listen_mutex);
+      impl_->stop_requested = true;
+      listening             = impl_->listening;
+    }
+    // cpp-httplib's stop() does nothing until its loop runs: wait for the loop (or its end).
+    if (listening)
+    {
+      while (!impl_->http.is_running() && !impl_->listen_returned)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
       impl_->http.stop();
+    }
+    impl_->runs.shutdown();
   }
 
   std::string GuiServer::url() const

@@ -16,16 +16,21 @@ namespace kimp::server
   {
     /// Interface to bind; anything but loopback must be asked for explicitly (--host).
     std::string host = "127.0.0.1";
-    /// TCP port; 0 picks a free one.
+    /// TCP port, 1-65535; 0 picks a free one.
     int port = 8080;
     /// Directory of the runs (one sub-directory per run).
     std::filesystem::path runs_dir = "kimp-runs";
-    /// The PEER records directory, if any (records list, plots).
+    /// The PEER records directory, if any (records list, plots; passed to every run).
     std::optional<std::filesystem::path> records_dir;
     /// The kimp executable that runs are started with.
     std::filesystem::path kimp_executable;
-    /// Largest accepted request body (uploads, scenes), bytes.
+    /// Largest accepted request body (uploads, scenes, form-encoded or not), bytes.
     std::size_t max_body = 16u << 20;
+    /// Runs at a time; further runs wait in a queue of at most max_queued.
+    unsigned max_runs   = 2;
+    unsigned max_queued = 16;
+    /// Seconds between SIGTERM and SIGKILL when a run is cancelled or the server stops.
+    double kill_grace = 1.0;
   };
 
   /// The server; listen() blocks until stop() (from another thread or a signal handler's thread).
@@ -38,11 +43,13 @@ namespace kimp::server
     GuiServer &operator=(const GuiServer &) = delete;
 
     /// Bind host:port; returns the bound port (a free one for port 0).
-    /// @throws std::runtime_error naming host and port when the socket cannot be bound.
+    /// @throws std::invalid_argument for a port outside 0-65535; std::runtime_error naming host
+    /// and port when the socket cannot be bound (also when another server listens there).
     int bind();
     /// Serve requests until stop(); bind() first.
     void listen();
-    /// Stop listen() and cancel running runs.
+    /// Stop listen() and cancel the runs (SIGTERM, SIGKILL after kill_grace); returns once the
+    /// children are gone.
     void stop();
     /// http://host:port/ of the bound server.
     std::string url() const;
@@ -52,7 +59,8 @@ namespace kimp::server
     std::unique_ptr<Impl> impl_;
   };
 
-  /// `kimp gui`: bind, print the URL on `announce`, optionally open a browser, serve until SIGINT.
+  /// `kimp gui`: bind, print the URL on `announce`, optionally open a browser, serve until SIGINT
+  /// or SIGTERM, which cancel the runs and return within about kill_grace.
   void run_gui(const GuiOptions                               &options,
                bool                                            open_browser,
                const std::function<void(const std::string &)> &announce);

@@ -391,7 +391,10 @@
         bar.value = s.progress || 0;
         for (const line of s.log || []) log.textContent += line + '\n';
         log.scrollTop = log.scrollHeight;
-        status.textContent = `${id}: ${s.state}`;
+        let note = '';
+        if (s.state === 'queued') note = ` (place ${s.queue_position} in the queue)`;
+        else if (s.state === 'running' && s.progress_text) note = ` (${s.progress_text})`;
+        status.textContent = `${id}: ${s.state}${note}`;
         status.dataset.state = s.state;
         if (s.state !== 'running' && s.state !== 'queued') {
           events.close();
@@ -496,15 +499,20 @@
     for (const r of list) {
       const actions = el('span');
       if (r.state === 'done') actions.appendChild(el('button', { text: 'results', onclick: () => openResults(r.id) }));
-      if (r.state === 'running')
+      if (r.state === 'running' || r.state === 'queued')
         actions.appendChild(
           el('button', { text: 'cancel', onclick: () => postJson(`/api/runs/${r.id}/cancel`, {}).then(refreshRuns) }),
         );
+      // A cancelled or failed run: why, and what it wrote before it stopped.
+      if (r.state !== 'done') {
+        for (const f of (r.files || []).filter((x) => !x.endsWith('/')))
+          actions.appendChild(el('a', { href: `/api/files/${r.id}/${f}`, text: f.slice(4) + ' ' }));
+      }
       t.appendChild(
         el('tr', {}, [
           el('td', { text: r.id }),
           el('td', { text: r.command || '' }),
-          el('td', { text: r.state }),
+          el('td', { text: r.state + (r.state !== 'done' && r.error ? ` (${r.error})` : '') }),
           el('td', {}, [actions]),
         ]),
       );

@@ -3,6 +3,7 @@
 // usage errors, verbosity flags; and the progress line of long runs.
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
@@ -218,6 +219,20 @@ namespace
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "out")) << "no output for a bad scene";
   }
 
+  TEST(Cli, CheckValidatesTheSceneWithoutRunning)
+  {
+    const TempDir dir;
+    const auto    good = dir.path() / "good.yaml";
+    const auto    bad  = dir.path() / "bad.yaml";
+    std::ofstream(good) << "n_storeys: 6\n";
+    std::ofstream(bad) << "n_storeys: 6\nbogus: 1\n";
+    DemoApp demo;
+    ASSERT_EQ(demo.run({"demo", good.string(), "--check"}), 0) << demo.err.str();
+    EXPECT_EQ(demo.out.str(), good.string() + ": valid\n");
+    EXPECT_THROW(demo.run({"demo", bad.string(), "--check"}), kimp::io::SceneError);
+    EXPECT_EQ(demo.runs, 0) << "--check must not run the command";
+  }
+
   TEST(Cli, UsageErrorsReturnTwoWithAMessage)
   {
     DemoApp demo;
@@ -327,5 +342,28 @@ namespace
     const std::string text = out.str();
     EXPECT_NE(text.find("\rt = 0.5/2 s  ETA 3 s"), std::string::npos) << text;
     EXPECT_EQ(text.find("step"), std::string::npos) << text;
+  }
+
+  TEST(Progress, LinesModeWritesWholeProgressLinesWithTheFractionDone)
+  {
+    std::ostringstream out;
+    ::setenv("KIMP_PROGRESS", "lines", 1); // as `kimp gui` starts its runs
+    {
+      kimp::base::Progress progress(4, 4.0, out, true, FakeClock::read, 1.0);
+      for (int n = 1; n <= 4; ++n)
+      {
+        FakeClock::advance(1.0); // 1 s per step: every step is printed
+        progress.update(static_cast<std::uint64_t>(n), n * 1.0);
+      }
+      progress.finish();
+    }
+    ::unsetenv("KIMP_PROGRESS");
+    const std::string text = out.str();
+    EXPECT_EQ(text.find('\r'), std::string::npos) << text;
+    EXPECT_NE(text.find("progress: 0.2500 step 1/4  t = 1/4 s  ETA 3 s\n"), std::string::npos)
+      << text;
+    EXPECT_NE(text.find("progress: 1.0000 step 4/4  t = 4/4 s  ETA 0 s\n"), std::string::npos)
+      << text;
+    EXPECT_EQ(text.rfind("progress: ", 0), 0u) << text;
   }
 } // namespace

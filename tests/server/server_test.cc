@@ -1,13 +1,22 @@
 // The server of `kimp gui` through real HTTP requests: DNS-rebinding and cross-site requests
 // refused, paths confined, oversized uploads and malformed JSON answered with 4xx, concurrent
-// runs complete while the server keeps answering.
+// runs complete while the server keeps answering, runs beyond the limit queue, progress reaches
+// the page as server-sent events, ports in use and out of range are refused.
+#include <algorithm>
+#include <arpa/inet.h>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
 #include <nlohmann/json.hpp>
+#include <sys/socket.h>
+#include <sys/time.h>
 #include <thread>
+#include <unistd.h>
 
+#include "tests/support/files.h"
 #include "tests/support/temp_dir.h"
 
 #include "server/server.h"
@@ -24,16 +33,20 @@ namespace
   class ServerFixture : public ::testing::Test
   {
   protected:
+    /// Options of the server under test (a fixture may change them).
+    virtual void configure(server::GuiOptions &) {}
+
     void SetUp() override
     {
       server::GuiOptions options;
       options.port            = 0;
       options.runs_dir        = dir_.path() / "runs";
       options.kimp_executable = std::filesystem::path(KIMP_BINARY_DIR) / "kimp";
-      server_                 = std::make_unique<server::GuiServer>(options);
-      port_                   = server_->bind();
-      thread_                 = std::thread([this] { server_->listen(); });
-      client_                 = std::make_unique<httplib::Client>("127.0.0.1", port_);
+      configure(options);
+      server_ = std::make_unique<server::GuiServer>(options);
+      port_   = server_->bind();
+      thread_ = std::thread([this] { server_->listen(); });
+      client_ = std::make_unique<httplib::Client>("127.0.0.1", port_);
       client_->set_read_timeout(30, 0);
     }
     void TearDown() override
@@ -49,6 +62,62 @@ namespace
     nlohmann::json json_of(const httplib::Result &r) const
     {
       return nlohmann::json::parse(r->body, nullptr, false);
+    }
+    httplib::Result post(const std::string &path, const nlohmann::json &body)
+    {
+      return client_->Post(path, post_headers(), body.dump(), "application/json");
+    }
+    /// Starts a run and returns its id (a failed start fails the test).
+    std::string start(const nlohmann::json &request)
+    {
+      const auto r = post("/api/runs", request);
+      EXPECT_TRUE(r);
+      if (!r)
+        return "";
+      EXPECT_EQ(r->status, 201) << r->body;
+      return json_of(r).value("id", "");
+    }
+    /// Polls the run until `done` holds, at most `limit_s` seconds.
+    template <class Predicate>
+    nlohmann::json wait_for_run(const std::string &id, double limit_s, Predicate done)
+    {
+      const auto     deadline = Clock::now() + std::chrono::duration<double>(limit_s);
+      nlohmann::json run;
+      while (Clock::now() < deadline)
+      {
+        const auto r = client_->Get("/api/runs/" + id);
+        run          = r ? json_of(r) : nlohmann::json();
+        if (done(run))
+          break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      }
+      return run;
+    }
+    static bool finished(const nlohmann::json &run)
+    {
+      const std::string state = run.value("state", "");
+      return state != "running" && state != "queued";
+    }
+    /// The raw answer of the server to the bytes `request` (for requests httplib cannot send).
+    std::string raw_request(const std::string &request) const
+    {
+      const int   sock = socket(AF_INET, SOCK_STREAM, 0);
+      sockaddr_in address{};
+      address.sin_family = AF_INET;
+      address.sin_port   = htons(static_cast<std::uint16_t>(port_));
+      inet_pton(AF_INET, "127.0.0.1", &address.sin_addr);
+      std::string answer;
+      timeval     timeout{10, 0};
+      setsockopt(sock, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof(timeout));
+      if (connect(sock, reinterpret_cast<sockaddr *>(&address), sizeof(address)) == 0 &&
+          send(sock, request.data(), request.size(), 0) == static_cast<ssize_t>(request.size()))
+      {
+        char buffer[4096];
+        for (ssize_t n; (n = recv(sock, buffer, sizeof(buffer), 0)) > 0;)
+          answer.append(buffer, static_cast<std::size_t>(n));
+      }
+      close(sock);
+      return answer;
     }
 
     kimp::testing::TempDir             dir_{"server"};
@@ -210,5 +279,303 @@ ground_motion:
     const auto list = client_->Get("/api/runs");
     ASSERT_TRUE(list);
     EXPECT_EQ(json_of(list).size(), 2u);
+  }
+
+  /// The small scene over 60 s of synthetic motion at a fixed step `dt`: a case of about
+  /// 3e-6 s / dt seconds of work (measured: 0.63 s at 5e-6 s on the 2-core test machine).
+  std::string long_scene(const std::string &dt)
+  {
+    std::string       scene = small_scene;
+    const std::string six   = "duration: \"6 s\"";
+    scene.replace(scene.find(six),
+                  six.size(),
+                  "duration: \"60 s\"\n  synthetic:\n    duration: \"60 s\"");
+    return scene + "integration:\n  dt: \"" + dt + "\"\n";
+  }
+
+  /// A lumped base scene and a sweep over it of 3000 cases, minutes of work: a run to cancel.
+  const nlohmann::json long_sweep = {
+    {"command", "sweep"},
+    {"scene", small_scene},
+    {"sweep",
+     "scene: scene.yaml\ncombine: product\nparameters:\n"
+     "  walls.left.gap: {from: \"1 cm\", to: \"30 cm\", step: \"0.01 cm\"}\n"}};
+
+  TEST_F(ServerFixture, RunListHasNoLogFieldsAndARunItsLogFromTheStart)
+  {
+    const std::string    id  = start({{"command", "lumped"}, {"scene", small_scene}});
+    const nlohmann::json run = wait_for_run(id, 60, finished);
+    EXPECT_EQ(run["state"], "done") << run.dump();
+    EXPECT_EQ(run["log_from"], 0) << run.dump();
+    EXPECT_EQ(run["log"].size(), run["log_lines"].get<std::size_t>()) << run.dump();
+    EXPECT_NE(std::find(run["files"].begin(), run["files"].end(), "out/summary.json"),
+              run["files"].end())
+      << run.dump();
+    const auto list = client_->Get("/api/runs");
+    ASSERT_TRUE(list);
+    const nlohmann::json runs = json_of(list);
+    ASSERT_EQ(runs.size(), 1u);
+    EXPECT_FALSE(runs[0].contains("log_from")) << runs.dump();
+    EXPECT_FALSE(runs[0].contains("log")) << runs.dump();
+  }
+
+  /// The events of GET /api/runs/ID/events, each the JSON after "data: ", until the stream ends.
+  std::vector<nlohmann::json> read_events(int port, const std::string &id)
+  {
+    httplib::Client client("127.0.0.1", port);
+    client.set_read_timeout(120, 0);
+    std::string                 pending;
+    std::vector<nlohmann::json> events;
+    const auto                  r =
+      client.Get("/api/runs/" + id + "/events",
+                 [&](const char *data, std::size_t n)
+                 {
+                   pending.append(data, n);
+                   for (std::size_t end; (end = pending.find("\n\n")) != std::string::npos;)
+                   {
+                     const std::string event = pending.substr(0, end);
+                     pending.erase(0, end + 2);
+                     EXPECT_EQ(event.rfind("data: ", 0), 0u) << event;
+                     events.push_back(nlohmann::json::parse(event.substr(6), nullptr, false));
+                   }
+                   return true;
+                 });
+    EXPECT_TRUE(r);
+    if (r)
+    {
+      EXPECT_EQ(r->status, 200);
+      EXPECT_EQ(r->get_header_value("Content-Type"), "text/event-stream");
+    }
+    return events;
+  }
+
+  TEST_F(ServerFixture, ProgressOfALumpedRunReachesThePageAsServerSentEvents)
+  {
+    // Six cases of 2.4e7 steps each: several seconds in all, a progress line after each case.
+    std::string scene = long_scene("2.5e-6 s") + "cases:\n";
+    for (int i = 0; i < 6; ++i)
+      scene +=
+        "  - {name: c" + std::to_string(i) + ", gap: \"" + std::to_string(4 + i) + " cm\"}\n";
+    const std::string                 id     = start({{"command", "lumped"}, {"scene", scene}});
+    const std::vector<nlohmann::json> events = read_events(port_, id);
+    ASSERT_FALSE(events.empty());
+    EXPECT_EQ(events.back()["state"], "done") << events.back().dump();
+    EXPECT_EQ(events.back()["progress"], 1.0);
+    double      last     = 0.0;
+    std::size_t log      = 0;
+    int         measured = 0, estimated = 0;
+    for (const nlohmann::json &e : events)
+    {
+      ASSERT_TRUE(e.is_object());
+      const double p = e["progress"];
+      EXPECT_GE(p, last) << "progress never goes back in a lumped run";
+      last = p;
+      // Each event carries the log lines after the previous one, without the progress lines.
+      EXPECT_EQ(e["log_from"], log);
+      log += e["log"].size();
+      for (const auto &line : e["log"])
+        EXPECT_NE(line.get<std::string>().rfind("progress: ", 0), 0u) << "progress lines stay out";
+      if (!(p > 0.0 && p < 1.0))
+        continue;
+      if (e["progress_estimated"].get<bool>())
+        ++estimated; // within a case, from its cost estimate: less than its end
+      else
+      {
+        // From the run's own lines: whole cases done, in steps of 1/6.
+        ++measured;
+        EXPECT_NEAR(p * 6.0, std::round(p * 6.0), 1e-3) << p;
+      }
+    }
+    EXPECT_GT(measured, 0) << events.size() << " events";
+    EXPECT_GT(estimated, 0) << events.size() << " events";
+  }
+
+  TEST_F(ServerFixture, ProgressOfASingleLumpedCaseIsEstimatedFromItsCost)
+  {
+    // One case of 6e7 steps: seconds of work, and no line from the engine until it ends.
+    const std::string                 scene  = long_scene("1e-6 s");
+    const std::string                 id     = start({{"command", "lumped"}, {"scene", scene}});
+    const std::vector<nlohmann::json> events = read_events(port_, id);
+    ASSERT_FALSE(events.empty());
+    EXPECT_EQ(events.back()["state"], "done") << events.back().dump();
+    EXPECT_EQ(events.back()["progress"], 1.0);
+    std::vector<double> between;
+    for (const nlohmann::json &e : events)
+      if (e["progress"] > 0.0 && e["progress"] < 1.0)
+      {
+        EXPECT_TRUE(e["progress_estimated"].get<bool>()) << e.dump();
+        EXPECT_LE(e["progress"].get<double>(), 0.9) << "an estimate stops at 90 % of the case";
+        between.push_back(e["progress"]);
+      }
+    EXPECT_FALSE(between.empty()) << events.size() << " events";
+    EXPECT_TRUE(std::is_sorted(between.begin(), between.end()));
+  }
+
+  TEST_F(ServerFixture, ProgressOfAFemRunIsItsSimulatedTime)
+  {
+    if (!std::filesystem::exists(std::filesystem::path(KIMP_BINARY_DIR) / "kimp-fem"))
+      GTEST_SKIP() << "a build without the FEM engine has no kimp-fem";
+    // The quick smoke scene: about 2 s, ended by separation at about 17 of its 40 ms.
+    const std::string scene =
+      kimp::testing::read_text(kimp::testing::source_dir() / "data/scenes/fem_quick.yaml");
+    const std::string                 id     = start({{"command", "fem"}, {"scene", scene}});
+    const std::vector<nlohmann::json> events = read_events(port_, id);
+    ASSERT_FALSE(events.empty());
+    EXPECT_EQ(events.back()["state"], "done") << events.back().dump();
+    int between = 0;
+    for (const nlohmann::json &e : events)
+    {
+      const double p = e["progress"];
+      if (!(p > 0.0 && p < 1.0))
+        continue;
+      ++between;
+      // "progress: F t = T/0.04 s ..." of base::Progress: F = T / end_time.
+      const std::string text = e["progress_text"];
+      const std::size_t at   = text.find("t = ");
+      ASSERT_NE(at, std::string::npos) << text;
+      const double t = std::stod(text.substr(at + 4));
+      EXPECT_NEAR(p, t / 0.04, 1e-3) << text;
+    }
+    EXPECT_GT(between, 0) << events.size() << " events";
+  }
+
+  TEST_F(ServerFixture, UploadUnitsAndBodiesAreCheckedWithMessagesNamingTheField)
+  {
+    const std::string two_column = "0.00 0.0\n0.01 0.5\n0.02 -0.5\n0.03 0.0\n";
+    for (const char *unit : {"1e400", "abc", "-1", "0", "nan", "2x"})
+    {
+      const auto r = client_->Post(std::string("/api/upload?name=m.txt&unit=") + unit,
+                                   post_headers(),
+                                   two_column,
+                                   "text/plain");
+      ASSERT_TRUE(r) << unit;
+      EXPECT_EQ(r->status, 400) << unit << ": " << r->body;
+      EXPECT_NE(r->body.find(std::string("unit = \\\"") + unit + "\\\": must be a positive finite"),
+                std::string::npos)
+        << r->body;
+    }
+    const auto ok =
+      client_->Post("/api/upload?name=m.txt&unit=1", post_headers(), two_column, "text/plain");
+    ASSERT_TRUE(ok);
+    ASSERT_EQ(ok->status, 201) << ok->body;
+    EXPECT_DOUBLE_EQ(json_of(ok)["pga"].get<double>(), 0.5); // unit 1: m/s² as written
+    EXPECT_DOUBLE_EQ(json_of(ok)["dt"].get<double>(), 0.01);
+
+    // A form-encoded upload (curl -d) of 40 KB is read like any other, up to the body limit.
+    std::string big = "0 0\n";
+    for (int i = 1; big.size() < 40000; ++i)
+      big += std::to_string(i * 0.01) + " " + (i % 2 ? "0.25" : "-0.25") + "\n";
+    const auto form = client_->Post("/api/upload?name=big.txt&unit=1",
+                                    post_headers(),
+                                    big,
+                                    "application/x-www-form-urlencoded");
+    ASSERT_TRUE(form);
+    EXPECT_EQ(form->status, 201) << form->body;
+    EXPECT_DOUBLE_EQ(json_of(form).value("pga", 0.0), 0.25);
+
+    // An empty body is not JSON; a request without a body says what was expected.
+    const auto empty = client_->Post("/api/runs", post_headers(), "", "application/json");
+    ASSERT_TRUE(empty);
+    EXPECT_EQ(empty->status, 400);
+    EXPECT_NE(empty->body.find("must be a JSON object"), std::string::npos) << empty->body;
+    const std::string host   = this->host();
+    const std::string answer = raw_request("POST /api/runs HTTP/1.1\r\nHost: " + host +
+                                           "\r\nX-Kimp-Request: 1\r\nConnection: close\r\n\r\n");
+    EXPECT_EQ(answer.rfind("HTTP/1.1 411", 0), 0u) << "[" << answer << "]";
+    EXPECT_NE(answer.find("a POST to /api/runs needs its body with a Content-Length header (a "
+                          "JSON object"),
+              std::string::npos)
+      << answer;
+  }
+
+  TEST_F(ServerFixture, UnknownPagesAndRunsAreNamedInThe404)
+  {
+    const auto page = client_->Get("/nothing/here");
+    ASSERT_TRUE(page);
+    EXPECT_EQ(page->status, 404);
+    EXPECT_NE(page->body.find("GET /nothing/here"), std::string::npos) << page->body;
+    const auto cancel = post("/api/runs/no-such-run/cancel", nlohmann::json::object());
+    ASSERT_TRUE(cancel);
+    EXPECT_EQ(cancel->status, 404) << cancel->body;
+    const auto schema = client_->Get("/api/schema/rm");
+    ASSERT_TRUE(schema);
+    EXPECT_EQ(schema->status, 404);
+    EXPECT_NE(schema->body.find("no scene command \\\"rm\\\""), std::string::npos) << schema->body;
+  }
+
+  TEST_F(ServerFixture, PortsInUseAndOutOfRangeAreRefused)
+  {
+    EXPECT_NE(server_->url().find(":" + std::to_string(port_) + "/"), std::string::npos)
+      << server_->url();
+    server::GuiOptions same;
+    same.port            = port_;
+    same.runs_dir        = dir_.path() / "runs2";
+    same.kimp_executable = std::filesystem::path(KIMP_BINARY_DIR) / "kimp";
+    server::GuiServer second(same);
+    try
+    {
+      second.bind();
+      ADD_FAILURE() << "a second server bound the port of a running one";
+    }
+    catch (const std::runtime_error &error)
+    {
+      EXPECT_NE(std::string(error.what())
+                  .find("127.0.0.1:" + std::to_string(port_) + ": the port is in use"),
+                std::string::npos)
+        << error.what();
+    }
+    for (const int port : {99999, 65536, -1})
+    {
+      server::GuiOptions bad = same;
+      bad.port               = port;
+      server::GuiServer s(bad);
+      EXPECT_THROW(s.bind(), std::invalid_argument) << port;
+    }
+  }
+
+  /// A server that runs one run at a time and queues one more.
+  class OneRunServer : public ServerFixture
+  {
+  protected:
+    void configure(server::GuiOptions &options) override
+    {
+      options.max_runs   = 1;
+      options.max_queued = 1;
+    }
+  };
+
+  TEST_F(OneRunServer, RunsBeyondTheLimitAreQueuedThenRefused)
+  {
+    const std::string long_run = start(long_sweep);
+    EXPECT_EQ(wait_for_run(long_run, 30, [](const nlohmann::json &r) { return r.contains("pid"); })
+                .value("state", ""),
+              "running");
+    const std::string queued = start({{"command", "lumped"}, {"scene", small_scene}});
+    const auto        q      = client_->Get("/api/runs/" + queued);
+    ASSERT_TRUE(q);
+    EXPECT_EQ(json_of(q)["state"], "queued") << q->body;
+    EXPECT_EQ(json_of(q)["queue_position"], 1) << q->body;
+    const auto refused = post("/api/runs", {{"command", "lumped"}, {"scene", small_scene}});
+    ASSERT_TRUE(refused);
+    EXPECT_EQ(refused->status, 429) << refused->body;
+    EXPECT_NE(refused->body.find(
+                "too many runs: 1 running (at most 1, kimp gui --max-runs) and 1 queued"),
+              std::string::npos)
+      << refused->body;
+
+    // Cancelling the long run frees its place: the queued run starts and completes.
+    ASSERT_EQ(post("/api/runs/" + long_run + "/cancel", nlohmann::json::object())->status, 200);
+    EXPECT_EQ(wait_for_run(long_run, 30, finished)["state"], "cancelled");
+    EXPECT_EQ(wait_for_run(queued, 60, finished)["state"], "done");
+
+    // A queued run can be cancelled before it starts.
+    const std::string second_long = start(long_sweep);
+    const std::string never       = start({{"command", "lumped"}, {"scene", small_scene}});
+    ASSERT_EQ(post("/api/runs/" + never + "/cancel", nlohmann::json::object())->status, 200);
+    const nlohmann::json n = wait_for_run(never, 5, finished);
+    EXPECT_EQ(n["state"], "cancelled");
+    EXPECT_EQ(n["error"], "cancelled before it started");
+    EXPECT_FALSE(std::filesystem::exists(dir_.path() / "runs" / never / "out"));
+    ASSERT_EQ(post("/api/runs/" + second_long + "/cancel", nlohmann::json::object())->status, 200);
   }
 } // namespace

@@ -1,0 +1,498 @@
+// `kimp gui` as a user starts it: the real executable as a child process on a free port, driven
+// by HTTP requests. A cancel stops the run's child process, SIGTERM stops the server and its runs,
+// the commands offered and validated are those of the executable (fem and study through
+// kimp-fem), --records-dir reaches the runs, and bad ports are refused.
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <fcntl.h>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <regex>
+#include <spawn.h>
+#include <string>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+#include <vector>
+
+#include "tests/support/files.h"
+#include "tests/support/temp_dir.h"
+
+// Last: <httplib.h> brings <resolv.h>, whose `_res` macro breaks Eigen headers.
+#include <httplib.h>
+
+extern char **environ;
+
+namespace
+{
+  namespace fs = std::filesystem;
+  using Clock  = std::chrono::steady_clock;
+
+  /// Whether process `pid` still exists as a running (not zombie) process.
+  bool process_alive(int pid)
+  {
+    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+    std::string   text;
+    if (!stat || !std::getline(stat, text))
+      return false;
+    const std::size_t close = text.rfind(')');
+    return close != std::string::npos && close + 2 < text.size() && text[close + 2] != 'Z';
+  }
+
+  /// The "SigBlk:" mask of process `pid` (hexadecimal text), or "" when it is gone.
+  std::string blocked_signals(int pid)
+  {
+    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+    for (std::string line; std::getline(status, line);)
+      if (line.rfind("SigBlk:", 0) == 0)
+        return line.substr(line.find_first_not_of(" \t", 7));
+    return "";
+  }
+
+  /// The result of waiting for a child process.
+  struct Exit
+  {
+    bool   exited    = false; ///< it ended before the deadline
+    int    exit_code = -1;    ///< exit code, or -1 after a signal
+    double seconds   = 0.0;   ///< how long it took
+  };
+
+  /// Waits up to `limit_s` for child `pid` to end.
+  Exit wait_for_exit(int pid, double limit_s)
+  {
+    Exit       e;
+    const auto start = Clock::now();
+    while (std::chrono::duration<double>(Clock::now() - start).count() < limit_s)
+    {
+      int status = 0;
+      if (waitpid(pid, &status, WNOHANG) == pid)
+      {
+        e.exited    = true;
+        e.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    e.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    return e;
+  }
+
+  /// `EXECUTABLE gui --port 0 ARGS...` with its stdout and stderr in files of `dir`, and the
+  /// environment without KIMP_RECORDS_DIR; the URL read from its first line.
+  class GuiProcess
+  {
+  public:
+    GuiProcess(const fs::path                 &executable,
+               const fs::path                 &dir,
+               const std::vector<std::string> &arguments,
+               bool                            wait_for_url = true)
+      : out_(dir / "gui_stdout.txt")
+      , err_(dir / "gui_stderr.txt")
+    {
+      std::vector<std::string> argv_text = {executable.string(), "gui"};
+      argv_text.insert(argv_text.end(), arguments.begin(), arguments.end());
+      std::vector<char *> argv;
+      for (auto &a : argv_text)
+        argv.push_back(a.data());
+      argv.push_back(nullptr);
+      std::vector<std::string> env_text;
+      for (char **e = environ; *e; ++e)
+        if (std::string(*e).rfind("KIMP_RECORDS_DIR=", 0) != 0)
+          env_text.emplace_back(*e);
+      std::vector<char *> envp;
+      for (auto &e : env_text)
+        envp.push_back(e.data());
+      envp.push_back(nullptr);
+      posix_spawn_file_actions_t actions;
+      posix_spawn_file_actions_init(&actions);
+      posix_spawn_file_actions_addopen(&actions,
+                                       1,
+                                       out_.c_str(),
+                                       O_WRONLY | O_CREAT | O_TRUNC,
+                                       0644);
+      posix_spawn_file_actions_addopen(&actions,
+                                       2,
+                                       err_.c_str(),
+                                       O_WRONLY | O_CREAT | O_TRUNC,
+                                       0644);
+      const int status =
+        posix_spawn(&pid_, executable.c_str(), &actions, nullptr, argv.data(), envp.data());
+      posix_spawn_file_actions_destroy(&actions);
+      if (status != 0)
+        pid_ = -1;
+      if (!wait_for_url || pid_ <= 0)
+        return;
+      static const std::regex url(R"(http://127\.0\.0\.1:(\d+)/)");
+      const auto              deadline = Clock::now() + std::chrono::seconds(30);
+      while (Clock::now() < deadline && port_ == 0)
+      {
+        std::smatch       m;
+        const std::string text = kimp::testing::read_text(out_);
+        if (std::regex_search(text, m, url))
+          port_ = std::stoi(m[1]);
+        else if (wait_for_exit_now())
+          break;
+        else
+          std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+      if (port_ > 0)
+      {
+        client_ = std::make_unique<httplib::Client>("127.0.0.1", port_);
+        client_->set_read_timeout(60, 0);
+      }
+    }
+
+    ~GuiProcess()
+    {
+      if (pid_ > 0 && !exit_)
+      {
+        kill(pid_, SIGKILL);
+        waitpid(pid_, nullptr, 0);
+      }
+    }
+
+    int              pid() const { return pid_; }
+    int              port() const { return port_; }
+    httplib::Client &client() { return *client_; }
+    std::string      out() const { return kimp::testing::read_text(out_); }
+    std::string      err() const { return kimp::testing::read_text(err_); }
+
+    /// POST of a JSON body with the headers the page sends.
+    httplib::Result post(const std::string &path, const nlohmann::json &body)
+    {
+      const std::string host = "127.0.0.1:" + std::to_string(port_);
+      return client_->Post(path,
+                           {{"X-Kimp-Request", "1"}, {"Origin", "http://" + host}},
+                           body.dump(),
+                           "application/json");
+    }
+
+    nlohmann::json get_json(const std::string &path)
+    {
+      const auto r = client_->Get(path);
+      return r ? nlohmann::json::parse(r->body, nullptr, false) : nlohmann::json();
+    }
+
+    /// Polls GET /api/runs/ID until `done` holds for it, at most `limit_s`.
+    template <class Predicate>
+    nlohmann::json wait_for_run(const std::string &id, double limit_s, Predicate done)
+    {
+      const auto     deadline = Clock::now() + std::chrono::duration<double>(limit_s);
+      nlohmann::json run;
+      while (Clock::now() < deadline)
+      {
+        run = get_json("/api/runs/" + id);
+        if (done(run))
+          break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      }
+      return run;
+    }
+
+    /// Waits up to `limit_s` for the process to end.
+    Exit wait(double limit_s)
+    {
+      exit_ = wait_for_exit(pid_, limit_s);
+      if (!exit_->exited)
+        exit_.reset();
+      return exit_ ? *exit_ : Exit{};
+    }
+
+  private:
+    bool wait_for_exit_now()
+    {
+      const Exit e = wait_for_exit(pid_, 0.0);
+      if (e.exited)
+        exit_ = e;
+      return e.exited;
+    }
+
+    fs::path                         out_;
+    fs::path                         err_;
+    pid_t                            pid_  = -1;
+    int                              port_ = 0;
+    std::optional<Exit>              exit_;
+    std::unique_ptr<httplib::Client> client_;
+  };
+
+  fs::path binary(const char *name)
+  {
+    return fs::path(KIMP_BINARY_DIR) / name;
+  }
+
+  /// A lumped base scene and a sweep over it of 3000 cases, minutes of work: a run to cancel.
+  const nlohmann::json long_sweep = {
+    {"command", "sweep"},
+    {"scene",
+     "building:\n  n_storeys: 3\nwalls:\n  left:\n    gap: \"8 cm\"\n  right:\n    gap: \"8 cm\"\n"
+     "ground_motion:\n  record: synthetic\n  duration: \"20 s\"\n"},
+    {"sweep",
+     "scene: scene.yaml\ncombine: product\nparameters:\n"
+     "  walls.left.gap: {from: \"1 cm\", to: \"30 cm\", step: \"0.01 cm\"}\n"}};
+
+  /// A running run's child pid, after waiting for the run to be running.
+  int running_pid(GuiProcess &gui, const std::string &id)
+  {
+    const nlohmann::json run =
+      gui.wait_for_run(id, 30, [](const nlohmann::json &r) { return r.contains("pid"); });
+    return run.value("pid", -1);
+  }
+
+  TEST(GuiProcess, CancelStopsTheRunsChildProcessAndTheListShowsIt)
+  {
+    const kimp::testing::TempDir dir{"gui_cancel"};
+    GuiProcess                   gui(binary("kimp"),
+                   dir.path(),
+                   {"--port", "0", "--runs-dir", (dir.path() / "runs").string()});
+    ASSERT_GT(gui.port(), 0) << gui.err();
+    const auto started = gui.post("/api/runs", long_sweep);
+    ASSERT_TRUE(started);
+    ASSERT_EQ(started->status, 201) << started->body;
+    const std::string id  = nlohmann::json::parse(started->body)["id"];
+    const int         pid = running_pid(gui, id);
+    ASSERT_GT(pid, 0);
+    ASSERT_TRUE(process_alive(pid));
+    // The child inherits no blocked signal from the server (which blocks SIGINT and SIGTERM).
+    EXPECT_EQ(blocked_signals(pid), "0000000000000000");
+    // The sweep reports its progress ("(N/M in all ...)" every 2 s) before it is cancelled.
+    const nlohmann::json going =
+      gui.wait_for_run(id,
+                       30,
+                       [](const nlohmann::json &r) { return r.value("progress", 0.0) > 0.0; });
+    EXPECT_GT(going.value("progress", 0.0), 0.0) << going.dump();
+    EXPECT_LT(going.value("progress", 1.0), 0.5) << going.dump();
+
+    const auto cancel = gui.post("/api/runs/" + id + "/cancel", nlohmann::json::object());
+    ASSERT_TRUE(cancel);
+    EXPECT_EQ(cancel->status, 200) << cancel->body;
+    EXPECT_TRUE(nlohmann::json::parse(cancel->body)["cancelled"].get<bool>());
+    // SIGTERM ends a kimp child at once; the check allows for a loaded machine.
+    const auto deadline = Clock::now() + std::chrono::seconds(10);
+    while (process_alive(pid) && Clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    EXPECT_FALSE(process_alive(pid)) << "the sweep child is still running after the cancel";
+    const nlohmann::json run =
+      gui.wait_for_run(id, 10, [](const nlohmann::json &r) { return r["state"] != "running"; });
+    EXPECT_EQ(run["state"], "cancelled") << run.dump();
+    EXPECT_NE(run.value("error", "").find("cancelled after"), std::string::npos) << run.dump();
+
+    // The list of runs keeps the cancelled run, its state and the files it wrote.
+    const nlohmann::json list = gui.get_json("/api/runs");
+    ASSERT_EQ(list.size(), 1u) << list.dump();
+    EXPECT_EQ(list[0]["id"], id);
+    EXPECT_EQ(list[0]["state"], "cancelled");
+    EXPECT_FALSE(list[0].contains("log_from")) << list.dump();
+    EXPECT_FALSE(list[0]["files"].empty()) << "a sweep writes its journal as it goes";
+    const nlohmann::json saved =
+      nlohmann::json::parse(kimp::testing::read_text(dir.path() / "runs" / id / "run.json"));
+    EXPECT_EQ(saved["state"], "cancelled");
+  }
+
+  TEST(GuiProcess, SigtermStopsTheServerAndItsRunsPromptly)
+  {
+    const kimp::testing::TempDir dir{"gui_sigterm"};
+    GuiProcess                   gui(binary("kimp"),
+                   dir.path(),
+                   {"--port", "0", "--runs-dir", (dir.path() / "runs").string()});
+    ASSERT_GT(gui.port(), 0) << gui.err();
+    const auto started = gui.post("/api/runs", long_sweep);
+    ASSERT_TRUE(started);
+    ASSERT_EQ(started->status, 201) << started->body;
+    const std::string id  = nlohmann::json::parse(started->body)["id"];
+    const int         pid = running_pid(gui, id);
+    ASSERT_GT(pid, 0);
+    // A page following the run keeps an event stream open.
+    std::atomic<bool> streaming{false};
+    std::thread       stream(
+      [&]
+      {
+        httplib::Client c("127.0.0.1", gui.port());
+        c.set_read_timeout(30, 0);
+        c.Get("/api/runs/" + id + "/events",
+              [&](const char *, std::size_t)
+              {
+                streaming = true;
+                return true;
+              });
+      });
+    const auto deadline = Clock::now() + std::chrono::seconds(10);
+    while (!streaming && Clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    ASSERT_TRUE(streaming);
+
+    kill(gui.pid(), SIGTERM);
+    // Measured: about 0.2 s (the child ends on SIGTERM at once); the bound allows for a loaded
+    // machine and stays far below the minutes the sweep would take.
+    const Exit e = gui.wait(10.0);
+    stream.join();
+    ASSERT_TRUE(e.exited) << "kimp gui still running 10 s after SIGTERM";
+    RecordProperty("seconds_to_stop", std::to_string(e.seconds));
+    EXPECT_EQ(e.exit_code, 0) << gui.err();
+    EXPECT_LT(e.seconds, 5.0);
+    EXPECT_FALSE(process_alive(pid)) << "the run's child outlived kimp gui";
+    const nlohmann::json saved =
+      nlohmann::json::parse(kimp::testing::read_text(dir.path() / "runs" / id / "run.json"));
+    EXPECT_EQ(saved["state"], "cancelled");
+  }
+
+  /// The fem scene of the quick smoke run, as the page would send it.
+  std::string quick_fem_scene()
+  {
+    return kimp::testing::read_text(kimp::testing::source_dir() / "data/scenes/fem_quick.yaml");
+  }
+
+  /// /api/info and /api/validate of `kimp gui` and `kimp-fem gui`: fem and study are offered
+  /// exactly when kimp-fem is there, and their scenes are validated by it.
+  void check_commands_and_validation(const fs::path &executable)
+  {
+    const kimp::testing::TempDir dir{"gui_commands"};
+    GuiProcess                   gui(executable,
+                   dir.path(),
+                   {"--port", "0", "--runs-dir", (dir.path() / "runs").string()});
+    ASSERT_GT(gui.port(), 0) << gui.err();
+    const bool               with_fem = fs::exists(binary("kimp-fem"));
+    const nlohmann::json     info     = gui.get_json("/api/info");
+    std::vector<std::string> commands;
+    for (const auto &c : info["commands"])
+      commands.push_back(c);
+    const auto offered = [&](const std::string &c)
+    { return std::find(commands.begin(), commands.end(), c) != commands.end(); };
+    EXPECT_TRUE(offered("lumped") && offered("collide") && offered("sweep")) << info.dump();
+    EXPECT_EQ(offered("fem"), with_fem) << info.dump();
+    EXPECT_EQ(offered("study"), with_fem) << info.dump();
+
+    // An unknown command is refused, for validation and for runs.
+    for (const char *path : {"/api/validate", "/api/runs"})
+    {
+      const auto rm = gui.post(path, {{"command", "rm"}, {"scene", "x: 1\n"}});
+      ASSERT_TRUE(rm);
+      EXPECT_EQ(rm->status, 400) << path << ": " << rm->body;
+      EXPECT_NE(rm->body.find("unknown command \\\"rm\\\""), std::string::npos) << rm->body;
+    }
+    if (!with_fem)
+      return;
+    // fem and study scenes are read by the FEM executable as its run would read them.
+    for (const char *command : {"fem", "study"})
+    {
+      const auto bogus = gui.post("/api/validate", {{"command", command}, {"scene", "bogus: 1\n"}});
+      ASSERT_TRUE(bogus);
+      ASSERT_EQ(bogus->status, 200) << bogus->body;
+      const nlohmann::json answer = nlohmann::json::parse(bogus->body);
+      EXPECT_FALSE(answer["ok"].get<bool>()) << command << ": " << bogus->body;
+      EXPECT_NE(answer["error"].get<std::string>().find("scene.yaml:1: "), std::string::npos)
+        << bogus->body;
+      EXPECT_NE(answer["error"].get<std::string>().find("bogus"), std::string::npos) << bogus->body;
+      const auto refused = gui.post("/api/runs", {{"command", command}, {"scene", "bogus: 1\n"}});
+      ASSERT_TRUE(refused);
+      EXPECT_EQ(refused->status, 400) << refused->body;
+    }
+    const auto good = gui.post("/api/validate", {{"command", "fem"}, {"scene", quick_fem_scene()}});
+    ASSERT_TRUE(good);
+    EXPECT_EQ(good->body, R"({"error":"","ok":true})");
+    const auto bad_value =
+      gui.post("/api/validate",
+               {{"command", "fem"},
+                {"scene", "wall_heights: [\"1.25 m\"]\nslab:\n  velocity: \"-1 m/s\"\n"}});
+    ASSERT_TRUE(bad_value);
+    EXPECT_NE(bad_value->body.find("scene.yaml:3: slab.velocity"), std::string::npos)
+      << bad_value->body;
+    const auto schema = gui.get_json("/api/schema/fem");
+    EXPECT_TRUE(schema.contains("keys")) << schema.dump();
+  }
+
+  TEST(GuiProcess, KimpGuiOffersAndValidatesFemAndStudyThroughKimpFem)
+  {
+    check_commands_and_validation(binary("kimp"));
+  }
+
+  TEST(GuiProcess, KimpFemGuiOffersAndValidatesFemAndStudy)
+  {
+    if (!fs::exists(binary("kimp-fem")))
+      GTEST_SKIP() << "a build without the FEM engine has no kimp-fem";
+    check_commands_and_validation(binary("kimp-fem"));
+  }
+
+  TEST(GuiProcess, RunsFindBareRecordNamesInTheRecordsDirectoryOfKimpGui)
+  {
+    const kimp::testing::TempDir dir{"gui_records"};
+    // A 4 s square wave of +-0.3 g as a PEER AT2 file.
+    std::string at2 = "PEER TEST\nStation, 1/2/2003, 90\nACCELERATION TIME SERIES IN UNITS OF G\n"
+                      "NPTS= 400, DT= .0100 SEC\n";
+    for (int i = 0; i < 400; ++i)
+      at2 += (i / 100) % 2 == 0 ? " 0.30\n" : " -0.30\n";
+    fs::create_directories(dir.path() / "records");
+    std::ofstream(dir.path() / "records" / "RSN1_TEST_X000.AT2") << at2;
+    GuiProcess gui(binary("kimp"),
+                   dir.path(),
+                   {"--port",
+                    "0",
+                    "--runs-dir",
+                    (dir.path() / "runs").string(),
+                    "--records-dir",
+                    (dir.path() / "records").string()});
+    ASSERT_GT(gui.port(), 0) << gui.err();
+    EXPECT_EQ(gui.get_json("/api/records"), nlohmann::json::array({"RSN1_TEST_X000"}));
+    const auto started =
+      gui.post("/api/runs",
+               {{"command", "lumped"},
+                {"scene",
+                 "building:\n  n_storeys: 3\nground_motion:\n  record: RSN1_TEST_X000\n"}});
+    ASSERT_TRUE(started);
+    ASSERT_EQ(started->status, 201) << started->body;
+    const std::string    id = nlohmann::json::parse(started->body)["id"];
+    const nlohmann::json run =
+      gui.wait_for_run(id,
+                       60,
+                       [](const nlohmann::json &r)
+                       { return r["state"] != "running" && r["state"] != "queued"; });
+    EXPECT_EQ(run["state"], "done") << run.dump();
+    const nlohmann::json summary =
+      nlohmann::json::parse(kimp::testing::read_text(dir.path() / "runs" / id / "out/summary.json"),
+                            nullptr,
+                            false);
+    ASSERT_TRUE(summary.is_object());
+    // The record's PGA, 0.3 g, as the run read it from the records directory.
+    EXPECT_NEAR(summary["ground_motion"]["pga"].get<double>(), 0.3 * 9.80665, 1e-9)
+      << summary["ground_motion"].dump();
+  }
+
+  TEST(GuiProcess, PortsOutsideTheRangeAndPortsInUseAreRefused)
+  {
+    const kimp::testing::TempDir dir{"gui_ports"};
+    GuiProcess                   first(binary("kimp"),
+                     dir.path(),
+                     {"--port", "0", "--runs-dir", (dir.path() / "runs").string()});
+    ASSERT_GT(first.port(), 0) << first.err();
+    EXPECT_NE(first.out().find("http://127.0.0.1:" + std::to_string(first.port()) + "/"),
+              std::string::npos);
+    EXPECT_EQ(first.get_json("/api/info")["commands"][0], "lumped");
+
+    const fs::path second_dir = dir.path() / "second";
+    fs::create_directories(second_dir);
+    GuiProcess second(
+      binary("kimp"),
+      second_dir,
+      {"--port", std::to_string(first.port()), "--runs-dir", (dir.path() / "runs2").string()},
+      false);
+    const Exit e = second.wait(30);
+    ASSERT_TRUE(e.exited) << "a second kimp gui on a port in use must fail, not serve";
+    EXPECT_EQ(e.exit_code, 1);
+    EXPECT_NE(second.err().find("port is in use"), std::string::npos) << second.err();
+    EXPECT_EQ(second.out().find("http://"), std::string::npos) << second.out();
+
+    const fs::path third_dir = dir.path() / "third";
+    fs::create_directories(third_dir);
+    GuiProcess third(binary("kimp"), third_dir, {"--port", "99999"}, false);
+    const Exit e3 = third.wait(30);
+    ASSERT_TRUE(e3.exited);
+    EXPECT_EQ(e3.exit_code, 2);
+    EXPECT_NE(third.err().find("--port"), std::string::npos) << third.err();
+    EXPECT_EQ(third.out().find("http://"), std::string::npos) << third.out();
+  }
+} // namespace
