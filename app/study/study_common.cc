@@ -73,7 +73,9 @@ namespace kimp::app::study_internal
 
   std::string number(double value)
   {
-    return std::isfinite(value) ? fmt::format("{:.6g}", value) : "";
+    // Shortest text that reads back to the same double, as io::Table writes: a value that stands
+    // in two files (building_response.csv, flexible_wall.csv) reads the same in both.
+    return std::isfinite(value) ? fmt::format("{}", value) : "";
   }
 } // namespace kimp::app::study_internal
 

@@ -39,7 +39,7 @@ namespace kimp::app::study_internal
   double used_penalty(const StudyScene &scene, const StudyHeight &h);
   /// Every value times `factor`.
   std::vector<double> scale(std::vector<double> values, double factor);
-  /// "{:.6g}", or "" for NaN and infinities.
+  /// A CSV cell: the shortest text that reads back to the same double, "" for NaN and infinities.
   std::string number(double value);
 
   // compute: study_heights.cc

@@ -198,6 +198,24 @@ namespace kimp::app
     return column;
   }
 
+  std::vector<SweepParameterColumn> sweep_parameter_columns(const SweepPlan  &plan,
+                                                            const SweepTable &table)
+  {
+    std::set<std::string> taken = {"index", "id", "companion", "status", "wall_time_s"};
+    for (const std::string &metric : table.metric_names)
+      taken.insert(csv_column(metric));
+    std::vector<SweepParameterColumn> columns;
+    for (const SweepParameter &p : plan.parameters())
+    {
+      SweepParameterColumn column = sweep_parameter_column(p);
+      if (taken.count(csv_column(column.name, column.unit)) > 0)
+        column.name = "parameter." + column.name;
+      taken.insert(csv_column(column.name, column.unit));
+      columns.push_back(std::move(column));
+    }
+    return columns;
+  }
+
   std::pair<std::string, std::string> split_metric_unit(const std::string &metric)
   {
     const std::size_t open = metric.rfind(" [");
@@ -410,9 +428,8 @@ namespace kimp::app
     labels.insert(labels.end(), table.metric_names.begin(), table.metric_names.end());
     labels.push_back("wall_time [s]");
 
-    std::vector<SweepParameterColumn> parameter_columns;
-    for (const SweepParameter &p : plan.parameters())
-      parameter_columns.push_back(sweep_parameter_column(p));
+    const std::vector<SweepParameterColumn> parameter_columns =
+      sweep_parameter_columns(plan, table);
     Table csv;
     csv.integer("index").text("id").text("companion");
     for (const SweepParameterColumn &p : parameter_columns)

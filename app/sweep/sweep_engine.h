@@ -114,6 +114,15 @@ namespace kimp::app
   /// The column of `parameter` (see SweepParameterColumn).
   SweepParameterColumn sweep_parameter_column(const SweepParameter &parameter);
 
+  /**
+   * The columns of the plan's parameters in sweep.csv, in plan order: sweep_parameter_column(),
+   * named "parameter.<key paths>" where the CSV column would repeat another one (a metric of the
+   * same name, e.g. the parameter and the metric `building.n_storeys`). dsrss_table.csv uses the
+   * same names.
+   */
+  std::vector<SweepParameterColumn> sweep_parameter_columns(const SweepPlan  &plan,
+                                                            const SweepTable &table);
+
   /// "name [unit]" -> {"name", "unit"}; a name without brackets has unit "1".
   std::pair<std::string, std::string> split_metric_unit(const std::string &metric);
 } // namespace kimp::app

@@ -112,9 +112,10 @@ namespace kimp::app
   DsrssTable dsrss_table(const SweepPlan &plan, const SweepTable &table, const std::string &gap_key)
   {
     // Parameters that set the gap are the abscissa; all others name the configuration.
-    std::vector<std::size_t> kept;
-    bool                     gap_swept = false;
-    DsrssTable               dsrss;
+    std::vector<std::size_t>                kept;
+    bool                                    gap_swept = false;
+    DsrssTable                              dsrss;
+    const std::vector<SweepParameterColumn> columns = sweep_parameter_columns(plan, table);
     for (std::size_t p = 0; p < plan.parameters().size(); ++p)
     {
       const SweepParameter &parameter = plan.parameters()[p];
@@ -127,7 +128,7 @@ namespace kimp::app
       {
         kept.push_back(p);
         dsrss.parameter_names.push_back(parameter.name);
-        dsrss.parameter_columns.push_back(sweep_parameter_column(parameter));
+        dsrss.parameter_columns.push_back(columns.at(p));
       }
     }
     if (!gap_swept)

@@ -74,9 +74,9 @@ TEST(CollideCli, SceneChangesTheSetUpAndBadSceneIsRejected)
     run_kimp("collide " + (dir / "c.yaml").string() + " -o " + (dir / "out").string(), dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json summary = read_json(dir / "out" / "summary.json");
-  ASSERT_EQ(summary["cor_table"].size(), 2u);
+  ASSERT_EQ(summary["cases"].size(), 2u);
   EXPECT_DOUBLE_EQ(summary["setup"]["velocity"].get<double>(), 2.0);
-  for (const auto &row : summary["cor_table"])
+  for (const auto &row : summary["cases"])
     EXPECT_NEAR(row["effective_cor"].get<double>(),
                 row["nominal_cor"].get<double>(),
                 kelvin_voigt_tolerance * row["nominal_cor"].get<double>());

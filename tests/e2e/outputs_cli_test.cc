@@ -11,6 +11,7 @@
 #  include <gtest/gtest.h>
 #  include <nlohmann/json.hpp>
 #  include <regex>
+#  include <set>
 #  include <string>
 #  include <vector>
 
@@ -107,14 +108,16 @@ dynamics: {end_time: "40 ms", output_interval: "0.02 ms"}
     return end == cell.c_str() + cell.size() && std::isfinite(value);
   }
 
-  /// Every header is name_unit (no spaces, commas, slashes, carets or "%"); a column is numeric
-  /// (its first non-empty cell is a number) or text; a numeric column holds numbers only, and no
-  /// cell anywhere is a number with a unit ("4 cm").
+  /// Every header is name_unit (no spaces, commas, slashes, carets or "%") and unique; a column
+  /// is numeric (its first non-empty cell is a number) or text; a numeric column holds numbers
+  /// only, and no cell anywhere is a number with a unit ("4 cm").
   void expect_name_unit_csv(const fs::path &file)
   {
     SCOPED_TRACE(file.string());
     const CsvTable csv = read_csv(file);
     ASSERT_FALSE(csv.header.empty()) << "no header in " << file;
+    const std::set<std::string> unique(csv.header.begin(), csv.header.end());
+    EXPECT_EQ(unique.size(), csv.header.size()) << "a column name is repeated";
     const std::regex name_unit("[A-Za-z][A-Za-z0-9_.+\\[\\]]*");
     const std::regex quantity_text("\\s*[-+]?[0-9.]+([eE][-+]?[0-9]+)?\\s+\\S.*");
     for (std::size_t c = 0; c < csv.header.size(); ++c)
