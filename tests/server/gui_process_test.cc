@@ -234,7 +234,7 @@ namespace
      "ground_motion:\n  record: synthetic\n  duration: \"20 s\"\n"},
     {"sweep",
      "scene: scene.yaml\ncombine: product\nparameters:\n"
-     "  walls.left.gap: {from: \"1 cm\", to: \"30 cm\", step: \"0.01 cm\"}\n"}};
+     "  walls.left.gap: {from: \"1 cm\", to: \"30 cm\", step: \"0.001 cm\"}\n"}};
 
   /// A running run's child pid, after waiting for the run to be running.
   int running_pid(GuiProcess &gui, const std::string &id)
