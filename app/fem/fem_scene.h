@@ -150,6 +150,9 @@ namespace kimp::app
     double       separation_hold_time = fem::ImpactParameters().separation_hold_time; ///< s
     double       output_interval      = fem::ImpactParameters().output_interval;      ///< s
     unsigned int log_interval         = 100; ///< history samples between log lines (0: none)
+    /// Step budget: a case whose estimated steps (end_time / dt) exceed it is refused before it
+    /// is meshed (app/fem/fem_estimate.h).
+    double max_steps = 1e6;
   };
 
   /** Boundary conditions of the backfill block (docs/physics.md §6). */
@@ -501,6 +504,12 @@ namespace kimp::app
                "history samples between log lines (shown with -v; 0: none)",
                0,
                1000000000);
+    io.quantity("max_steps",
+                s.max_steps,
+                "",
+                "step budget: a case of more estimated time steps (end_time / dt) is refused "
+                "before it is meshed, with the estimate (DoFs, steps, time)",
+                io::Range::at_least(1.0));
   }
 
   template <class Io>
