@@ -479,7 +479,8 @@ namespace kimp::app
     return path.is_absolute() ? path : sweep_file.parent_path() / path;
   }
 
-  SweepPlan SweepPlan::from_file(const std::filesystem::path &file)
+  SweepPlan SweepPlan::from_file(const std::filesystem::path &file,
+                                 const CaseCountCheck        &check_count)
   {
     std::string text;
     try
@@ -501,13 +502,14 @@ namespace kimp::app
       YAML::Node root = YAML::Load(text);
       fail_at(file.string(), line_of(root["scene"]), "scene", error.what());
     }
-    return parse(text, file.string(), scene_text, scene.string());
+    return parse(text, file.string(), scene_text, scene.string(), check_count);
   }
 
-  SweepPlan SweepPlan::parse(const std::string &text,
-                             const std::string &file_name,
-                             const std::string &base_scene_text,
-                             const std::string &base_scene_name)
+  SweepPlan SweepPlan::parse(const std::string    &text,
+                             const std::string    &file_name,
+                             const std::string    &base_scene_text,
+                             const std::string    &base_scene_name,
+                             const CaseCountCheck &check_count)
   {
     SweepPlan plan;
     plan.file_name_       = file_name;
@@ -743,6 +745,8 @@ namespace kimp::app
       }
     }
 
+    if (check_count)
+      check_count(n_combinations * (1 + plan.companions_.size()), base_scene_text, base_scene_name);
     YAML::Node base;
     load_root(base_scene_text, base_scene_name, base);
     std::size_t index = 0;

@@ -15,6 +15,7 @@
 #include "app/helper_programs.h"
 #include "app/lumped_scene.h"
 #include "app/sweep/sweep_engine.h"
+#include "app/sweep/sweep_estimate.h"
 #include "app/sweep/sweep_lumped.h"
 #include "app/sweep/sweep_report.h"
 #include "base/logging.h"
@@ -50,6 +51,7 @@ namespace kimp::app
         {
           int provided = 0;
           MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+          io::install_signal_handlers(); // MPI's start-up replaces them (SIGPIPE, SIGTERM)
           owned_      = true;
           initialized = 1;
         }
@@ -153,7 +155,23 @@ namespace kimp::app
     set_rank(mpi.rank());
     logger().info("{}: sweep {} on {} rank(s)", version_line(), options.sweep, mpi.size());
 
-    const SweepPlan plan = SweepPlan::from_file(options.sweep);
+    std::optional<std::filesystem::path> records_dir;
+    if (!options.records_dir.empty())
+      records_dir = options.records_dir;
+    // Said (and refused above the budget) before the cases are enumerated, which takes a while.
+    const SweepPlan plan = SweepPlan::from_file(
+      options.sweep,
+      [&](std::size_t n_cases, const std::string &scene_text, const std::string &scene_name)
+      {
+        const auto estimate = estimate_sweep(n_cases, scene_text, scene_name, records_dir);
+        if (!estimate)
+        {
+          logger().info("sweep: {} cases", n_cases);
+          return;
+        }
+        logger().info("sweep estimate: {}", estimate->text());
+        check_sweep_budget(options.sweep, *estimate, options.max_steps);
+      });
     if (plan.engine() != "lumped")
       throw SweepError(options.sweep + ": engine: '" + plan.engine() +
                        "' (expected lumped, the only engine with a sweep runner)");
@@ -162,9 +180,6 @@ namespace kimp::app
       std::filesystem::path(plan.base_scene_name()).parent_path();
     plan.check_key_paths([&](const std::string &text, const std::string &name)
                          { read_scene_text<LumpedScene>(text, name, scene_directory); });
-    std::optional<std::filesystem::path> records_dir;
-    if (!options.records_dir.empty())
-      records_dir = options.records_dir;
     // Every record before the output directory is made: a misspelt one is an input error.
     plan.check_records(
       [&](const std::string &text, const std::string &name)
