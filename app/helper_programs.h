@@ -18,6 +18,7 @@ namespace kimp::app
   enum class ProgramOutput
   {
     inherit, ///< kimp's own stdout/stderr
+    errors,  ///< stdout to /dev/null, stderr kimp's own (a closed stdout pipe cannot fail it)
     discard, ///< /dev/null
     append   ///< appended to a log file (stderr joined to stdout)
   };

@@ -397,11 +397,13 @@ namespace kimp::app
       e.dt = dt;
       e.duration =
         in.duration.value_or(motion.dt * static_cast<double>(motion.acceleration.size()));
-      e.n_steps             = dt > 0.0 ? std::round(e.duration / dt) : 0.0;
-      e.n_dofs              = n_dofs;
-      e.history_rows        = in.output_interval > 0.0 ?
-                                std::min(e.n_steps, std::round(e.duration / in.output_interval)) :
-                                0.0;
+      e.n_steps = dt > 0.0 ? std::round(e.duration / dt) : 0.0;
+      e.n_dofs  = n_dofs;
+      // A fixed step records every round(interval/dt)-th step; `dt: auto` interpolates a row
+      // every output_interval, also between steps.
+      const double rows =
+        in.output_interval > 0.0 ? std::round(e.duration / in.output_interval) : 0.0;
+      e.history_rows        = variable_time_step(in) ? rows : std::min(e.n_steps, rows);
       const double per_step = in.method == IntegrationMethod::cdm ? cdm_seconds_per_dof_step :
                                                                     newmark_seconds_per_dof_step;
       e.seconds             = static_cast<double>(n_dofs) *
@@ -461,6 +463,18 @@ namespace kimp::app
         name,
         estimate.text(),
         integration.max_steps));
+    const double bytes = 3.0 * estimate.history_rows *
+                         (3.0 * static_cast<double>(estimate.n_dofs) + 8.0) * sizeof(double);
+    if (!(bytes <= history_memory_budget))
+      throw std::runtime_error(fmt::format(
+        "case {}: {:.3g} history rows (integration.output_interval = {:.3g} s over {:.4g} s) need "
+        "~{:.3g} GB of memory, above the budget of {:.3g} GB (a larger output_interval)",
+        name,
+        estimate.history_rows,
+        integration.output_interval,
+        estimate.duration,
+        bytes / 1e9,
+        history_memory_budget / 1e9));
   }
 
   std::string implausibility(const lumped::Response &r, const IntegrationScene &in)

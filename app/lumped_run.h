@@ -63,6 +63,9 @@ namespace kimp::app
   inline constexpr double newmark_seconds_per_dof_step = 2e-7;
   /// Seconds per DoF and recorded history row (integration.output_interval), measured.
   inline constexpr double history_seconds_per_dof_row = 3e-7;
+  /// Memory a case's histories may take, bytes: each row holds about 3 DoFs + 8 values (8 bytes
+  /// each) and exists three times at the end (recorder, in-memory HDF5 file, its image).
+  inline constexpr double history_memory_budget = 2e9;
 
   /// Cost of one case, known before it runs.
   struct RunEstimate
@@ -89,7 +92,9 @@ namespace kimp::app
 
   /**
    * @throws std::runtime_error "case NAME: <estimate> exceeds the step budget
-   *   integration.max_steps = N ..." when estimate.n_steps > integration.max_steps.
+   *   integration.max_steps = N ..." when estimate.n_steps > integration.max_steps, and
+   *   "case NAME: R history rows ... need ~M GB ..." when the histories would need more than
+   *   history_memory_budget.
    */
   void check_run_budget(const std::string      &name,
                         const RunEstimate      &estimate,

@@ -1,6 +1,5 @@
 // kimp-fem: the `kimp` executable with the FEM engine (deal.II, gmsh, MPI). The lean `kimp` execs
 // it, with the same arguments and environment, for the commands mesh, fem and study.
-#include <csignal>
 #include <exception>
 #include <iostream>
 #include <memory>
@@ -10,17 +9,22 @@
 #include "cli/cli.h"
 #include "cli/commands.h"
 #include "cli/main_support.h"
+#include "io/output_dir.h"
 
 int main(int argc, char **argv)
 {
   using kimp::cli::report_error;
-  std::signal(SIGPIPE, SIG_IGN); // outputs are still written when stdout is a closed pipe
+  // SIGPIPE ignored (outputs are still written when stdout is a closed pipe), SIGTERM and SIGINT
+  // remove the run's temporary files and lock (io/output_dir.h).
+  kimp::io::install_signal_handlers();
   // MPI (and p4est) once per process, also under mpirun; only rank 0 logs.
   std::unique_ptr<kimp::app::Session> session;
   try
   {
     session = std::make_unique<kimp::app::Session>(argc, argv);
     kimp::base::set_rank(static_cast<int>(session->rank()));
+    // MPI's start-up installs its own handlers (SIGPIPE back to its default): ours again.
+    kimp::io::install_signal_handlers();
   }
   catch (const std::exception &error)
   {

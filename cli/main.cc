@@ -1,7 +1,6 @@
 // kimp: impact stiffness for pounding of seismically isolated buildings (command-line entry).
 // The lean executable: no deal.II, gmsh or MPI_Init; the FEM commands are run by `kimp-fem`.
 #include <cerrno>
-#include <csignal>
 #include <cstring>
 #include <exception>
 #include <iostream>
@@ -11,6 +10,7 @@
 #include "cli/cli.h"
 #include "cli/commands.h"
 #include "cli/main_support.h"
+#include "io/output_dir.h"
 
 namespace
 {
@@ -64,9 +64,10 @@ namespace
 
 int main(int argc, char **argv)
 {
-  // A closed pipe (`kimp ... | head -1`) must not kill the run before it writes its files: writes
-  // to the pipe then fail quietly instead. Kept across the exec of kimp-fem.
-  std::signal(SIGPIPE, SIG_IGN);
+  // A closed pipe (`kimp ... | head -1`) must not kill the run before it writes its files; a
+  // SIGTERM (the GUI's cancel) or SIGINT removes the run's temporary files and lock. kimp-fem
+  // installs them again after MPI's start-up.
+  kimp::io::install_signal_handlers();
 #ifdef KIMP_FEM_EXECUTABLE
   if (const char *command = command_name(argc, argv); command && is_fem_command(command))
     return exec_fem_executable(argv, command);

@@ -50,6 +50,13 @@ namespace kimp::cli
                       "(the same results, bit for bit; for timing comparisons)");
     command->add_option("--records-dir", options->records_dir, "directory of the PEER records")
       ->type_name("DIR");
+    command
+      ->add_option("--max-steps",
+                   options->max_steps,
+                   "step budget over all runs: a sweep whose estimate (cases x the base scene's "
+                   "steps) exceeds it is refused before planning (default 1e11)")
+      ->type_name("N")
+      ->check(CLI::PositiveNumber);
     command->add_flag("--print-defaults",
                       prints->first,
                       "print an annotated example sweep file (every key with its meaning) and "

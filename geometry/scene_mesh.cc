@@ -6,12 +6,17 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <fcntl.h>
+#include <fstream>
 #include <gmsh.h>
 #include <ostream>
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <unistd.h>
 #include <vector>
 
 #include "geometry/gmsh_session.h"
@@ -188,6 +193,69 @@ namespace kimp::geometry
       gmsh::model::addPhysicalGroup(1, curves, id);
       gmsh::model::setPhysicalName(1, id, name);
     }
+
+    /// Whether `file` ends with a complete MSH section (its last line is "$End<section>").
+    bool ends_with_section_end(const std::filesystem::path &file)
+    {
+      std::ifstream in(file, std::ios::binary | std::ios::ate);
+      if (!in)
+        return false;
+      const std::streamoff size = in.tellg();
+      const std::streamoff tail = std::min<std::streamoff>(size, 256);
+      std::string          text(static_cast<std::size_t>(tail), '\0');
+      in.seekg(size - tail);
+      in.read(text.data(), tail);
+      while (!text.empty() && (text.back() == '\n' || text.back() == '\r'))
+        text.pop_back();
+      const std::size_t line = text.rfind('\n');
+      return in && text.compare(line == std::string::npos ? 0 : line + 1, 4, "$End") == 0;
+    }
+
+    /**
+     * `<file>.tmp-<pid>.msh` (gmsh chooses the format by the extension), written by gmsh and
+     * renamed to `file` by commit() once complete, so a failed or interrupted write never leaves
+     * a partial mesh under the final name. gmsh does not report write errors (a full disk leaves
+     * a short or empty file): commit() checks that the file ends with a section end and syncs it
+     * to disk. Removed at destruction if not renamed.
+     */
+    struct PendingFile
+    {
+      explicit PendingFile(std::filesystem::path final)
+        : final_path(std::move(final))
+        , path(final_path.string() + ".tmp-" + std::to_string(::getpid()) +
+               final_path.extension().string())
+      {
+      }
+      PendingFile(const PendingFile &)            = delete;
+      PendingFile &operator=(const PendingFile &) = delete;
+      ~PendingFile()
+      {
+        std::error_code ignored;
+        std::filesystem::remove(path, ignored);
+      }
+
+      void commit() const
+      {
+        const int fd         = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        const int sync_error = fd < 0 ? errno : (::fsync(fd) == 0 ? 0 : errno);
+        if (fd >= 0)
+          ::close(fd);
+        if (sync_error != 0 || !ends_with_section_end(path))
+          throw std::runtime_error("build_scene_mesh: could not write the mesh file '" +
+                                   final_path.string() + "': " +
+                                   (sync_error != 0 ? std::strerror(sync_error) :
+                                                      "the file gmsh wrote is incomplete (disk "
+                                                      "full?)"));
+        std::error_code error;
+        std::filesystem::rename(path, final_path, error);
+        if (error)
+          throw std::runtime_error("build_scene_mesh: could not rename '" + path.string() +
+                                   "' to '" + final_path.string() + "': " + error.message());
+      }
+
+      std::filesystem::path final_path;
+      std::filesystem::path path;
+    };
   } // namespace
 
 
@@ -309,11 +377,9 @@ namespace kimp::geometry
       std::error_code error;
       if (msh_file.has_parent_path())
         std::filesystem::create_directories(msh_file.parent_path(), error);
-      std::filesystem::remove(msh_file, error);
-      gmsh::write(msh_file.string());
-      if (!std::filesystem::exists(msh_file) || std::filesystem::file_size(msh_file, error) == 0)
-        throw std::runtime_error("build_scene_mesh: could not write the mesh file '" +
-                                 msh_file.string() + "'");
+      const PendingFile temporary(msh_file);
+      gmsh::write(temporary.path.string());
+      temporary.commit();
     }
     catch (const std::exception &)
     {

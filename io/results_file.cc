@@ -9,11 +9,13 @@
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <hdf5.h>
+#include <optional>
 #include <system_error>
 #include <unistd.h>
 
 #include "base/version.h"
 #include "io/hdf5_handle.h"
+#include "io/output_dir.h"
 
 namespace kimp::io
 {
@@ -28,6 +30,7 @@ namespace kimp::io
       std::string                                 name;      ///< final file name, for messages
       std::vector<std::weak_ptr<TimeSeriesState>> series;
       std::string                                 deferred_error;
+      std::optional<TemporaryFile>                temporary; ///< removed by a SIGTERM handler
 
       bool open() const { return file >= 0; }
     };
@@ -747,7 +750,7 @@ namespace kimp::io
     /// Close the in-memory HDF5 file and the temporary file and delete it; never throws. The
     /// HDF5 file lives in memory (core driver without backing store), so closing it does no I/O
     /// and cannot fail on a full disk: no HDF5 id outlives a failed run.
-    void discard(detail::ResultsFileState &state, const std::filesystem::path &temporary)
+    void discard(detail::ResultsFileState &state)
     {
       if (state.open())
       {
@@ -760,8 +763,8 @@ namespace kimp::io
         ::close(state.fd);
         state.fd = -1;
       }
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
+      if (state.temporary)
+        state.temporary->discard();
     }
 
     /// Write `size` bytes to `fd` from its start; returns 0 or the errno of the failure.
@@ -792,6 +795,7 @@ namespace kimp::io
   {
     detail::silence_hdf5_errors();
     state_->name = final_path_.string();
+    state_->temporary.emplace(final_path_);
 
     // The temporary file is created now, so that an unwritable directory is an error before any
     // computation; its bytes are written at commit().
@@ -833,7 +837,7 @@ namespace kimp::io
     }
     catch (...)
     {
-      discard(*state_, temporary_path_);
+      discard(*state_);
       throw;
     }
   }
@@ -850,7 +854,7 @@ namespace kimp::io
   {
     if (!state_ || committed_)
       return;
-    discard(*state_, temporary_path_);
+    discard(*state_);
   }
 
   ResultsGroup ResultsFile::root()
@@ -896,17 +900,18 @@ namespace kimp::io
                       image.size(),
                       temporary_path_.string(),
                       std::strerror(write_error != 0 ? write_error : close_error)));
-      std::error_code error;
-      std::filesystem::rename(temporary_path_, final_path_, error);
-      if (error)
-        throw ResultsError(fmt::format("results file '{}': renaming '{}' to it failed: {}",
-                                       final_path_.string(),
-                                       temporary_path_.string(),
-                                       error.message()));
+      try
+      {
+        state_->temporary->commit();
+      }
+      catch (const OutputError &error)
+      {
+        throw ResultsError(fmt::format("results file {}", error.what()));
+      }
     }
     catch (...)
     {
-      discard(*state_, temporary_path_);
+      discard(*state_);
       throw;
     }
     committed_ = true;

@@ -210,6 +210,8 @@ namespace kimp::io
 
   nlohmann::json results_to_json(const std::filesystem::path &path, std::size_t max_rows)
   {
+    // A damaged file is one ResultsError below, not HDF5's error stack on stderr.
+    detail::silence_hdf5_errors();
     Hdf5Handle file(H5Fopen(path.string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
     if (file.get() < 0)
       throw ResultsError(path.string() + ": cannot open as an HDF5 results file");

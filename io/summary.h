@@ -1,5 +1,5 @@
 // Small result files for scripting: summary.json and CSV tables, written atomically
-// (temporary file in the same directory, then rename), and the output directory of a command.
+// (temporary file in the same directory, then rename; io/output_dir.h).
 #pragma once
 
 #include <filesystem>
@@ -10,22 +10,10 @@
 #include <string_view>
 #include <vector>
 
+#include "io/output_dir.h"
+
 namespace kimp::io
 {
-  /// Failure to create an output directory or to write a file; names the path and the reason.
-  class OutputError : public std::runtime_error
-  {
-  public:
-    using std::runtime_error::runtime_error;
-  };
-
-  /**
-   * Write `text` to `<path>.tmp-<pid>` and rename it to `path`, so readers see either the old
-   * file or the complete new one, never a partial file.
-   * @throws OutputError (the temporary file is removed).
-   */
-  void write_text_atomic(const std::filesystem::path &path, std::string_view text);
-
   /// write_text_atomic() of `value` dumped with 2-space indentation and a final newline.
   void write_json_atomic(const std::filesystem::path &path, const nlohmann::json &value);
 
@@ -53,48 +41,4 @@ namespace kimp::io
   void write_csv_atomic(const std::filesystem::path            &path,
                         const std::vector<std::string>         &header,
                         const std::vector<std::vector<double>> &rows);
-
-  namespace detail
-  {
-    class DirectoryLock;
-  }
-
-  /**
-   * The output directory of a command, created (with parents) on construction and checked
-   * before any computation:
-   * - it must be writable (a probe file is created and removed), else OutputError at once;
-   * - on MPI rank 0 (base::rank()) it is locked for the lifetime of the last OutputDir of this
-   *   process naming it: `flock` on `DIR/.kimp.lock`, which holds the owner's pid and is removed
-   *   on release. Another process finding the lock taken gets OutputError naming that pid, so
-   *   two runs never write into one directory at the same time;
-   * - temporary files `<name>.tmp-<pid>` left below it by a process that no longer runs (a run
-   *   killed while writing) are removed, each with a warning.
-   */
-  class OutputDir
-  {
-  public:
-    /// @throws OutputError if `path` exists and is not a directory, cannot be created, is not
-    /// writable or is locked by another process.
-    explicit OutputDir(std::filesystem::path path);
-    ~OutputDir();
-    OutputDir(const OutputDir &);
-    OutputDir &operator=(const OutputDir &);
-
-    const std::filesystem::path &path() const { return path_; }
-    /// `path() / name`, creating parent directories of `name` inside path() if needed.
-    std::filesystem::path file(const std::filesystem::path &name) const;
-
-  private:
-    std::filesystem::path                  path_;
-    std::shared_ptr<detail::DirectoryLock> lock_;
-  };
-
-  /// Name of the lock file inside a locked output directory.
-  inline constexpr const char *output_lock_name = ".kimp.lock";
-
-  /**
-   * Remove the temporary files `<name>.tmp-<pid>` below `dir` whose process `pid` has ended.
-   * @return the removed files.
-   */
-  std::vector<std::filesystem::path> remove_stale_temporaries(const std::filesystem::path &dir);
 } // namespace kimp::io

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <tuple>
 
+#include "base/errors.h"
+
 namespace kimp::app
 {
   using namespace kimp::io;
@@ -14,7 +16,7 @@ namespace kimp::app
     const std::string marker = "Additional information:";
     const std::size_t begin  = text.find(marker);
     if (begin == std::string::npos)
-      return text;
+      return base::error_text(error); // one line; "out of memory" rather than std::bad_alloc
     // deal.II frames its message with a line of dashes and may append a stack trace.
     std::string       rest = text.substr(begin + marker.size());
     const std::size_t end  = rest.find("\n----");

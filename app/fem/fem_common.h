@@ -14,7 +14,7 @@
 namespace kimp::app
 {
   /** The user-facing part of an exception message: the "Additional information" of a deal.II
-   *  exception, whitespace collapsed; other messages unchanged. */
+   *  exception, whitespace collapsed; other messages as base::error_text() (one line). */
   std::string error_message(const std::exception &error);
 
   /** The scene restricted to one wall height (wall_heights = {wall_height}). */

@@ -14,12 +14,15 @@
 #include <streambuf>
 
 #include "app/fem/fem_common.h"
+#include "app/fem/fem_estimate.h"
 #include "app/fem/fem_scene.h"
+#include "app/fem/mesh_run.h"
 #include "base/logging.h"
 #include "base/version.h"
 #include "fem/impact.h"
 #include "geometry/scene_mesh.h"
 #include "io/fem_results.h"
+#include "io/output_dir.h"
 #include "io/results_file.h"
 #include "io/summary.h"
 
@@ -216,12 +219,17 @@ namespace kimp::app
       const std::filesystem::path vtu_dir  = output.path() / "vtu" / name;
       // Resolved once: the mesher, the solver and the FemCase read the same case.
       const FemCaseSpec spec = resolve_fem_case(scene, height, name, mesh, vtu_dir);
+      // Before meshing (every rank: the same numbers), so that an absurd mesh is refused rather
+      // than allocated.
+      const FemEstimate estimate = estimate_fem_case(spec);
+      logger().info("{}: estimate {}", name, estimate.text());
+      check_fem_budget(name, estimate, spec.scene.max_steps);
       on_rank_zero(rank,
                    name + ": meshing",
                    [&]()
                    {
                      std::ostringstream statistics;
-                     statistics << geometry::build_scene_mesh(spec.geometry, output.file(mesh_rel));
+                     statistics << write_scene_mesh(spec.geometry, output.file(mesh_rel));
                      logger().info("{}: mesh {} ({})", name, mesh.string(), statistics.str());
                      if (scene.output.vtu_interval > 0)
                        std::filesystem::create_directories(vtu_dir);
@@ -244,6 +252,9 @@ namespace kimp::app
       }
       if (rank != 0)
         continue;
+      if (scene.output.vtu_interval > 0)
+        for (const auto &file : std::filesystem::directory_iterator(vtu_dir))
+          note_written(file.path()); // part of the output set: removed if the command fails
 
       const FemCase fem_case = to_fem_case(spec, result);
       write_fem_case(*fem_root, fem_case);

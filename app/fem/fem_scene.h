@@ -198,7 +198,10 @@ namespace kimp::app
     std::string smoothing_window = "auto";
     /// dynamics.dt: "auto" (cfl_safety x stable limit; implicit: implicit_dt_factor x limit)
     /// or a time.
-    std::string  dt = "auto";
+    std::string dt = "auto";
+    /// dynamics.max_steps: a case whose estimated steps (end_time / dt) exceed it is refused
+    /// before it is meshed (app/fem/fem_estimate.h).
+    double       max_steps = 1e6;
     FemOutput    output;
     FemBoundary  boundary;
     FemGeostatic geostatic = FemGeostatic::auto_;
@@ -305,6 +308,12 @@ namespace kimp::app
                "history samples between log lines (shown with -v; 0: none)",
                0,
                1000000000);
+    io.quantity("max_steps",
+                s.max_steps,
+                "",
+                "step budget: a case of more estimated time steps (end_time / dt) is refused "
+                "before it is meshed, with the estimate (DoFs, steps, time)",
+                io::Range::at_least(1.0));
   };
 
   /// Section `interface`: the model, its friction and fem::InterfaceOptions::penalty_factor.

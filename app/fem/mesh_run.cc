@@ -2,11 +2,17 @@
 // statistics and PNG (scripts/plot_mesh.py) and VTU (deal.II GridIn + DataOut) previews.
 #include "app/fem/mesh_run.h"
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <fstream>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string_view>
+#include <unistd.h>
 
 #include "app/fem/fem_common.h"
 #include "app/fem/fem_scene.h"
@@ -15,6 +21,7 @@
 #include "base/version.h"
 #include "fem/impact.h"
 #include "geometry/scene_mesh.h"
+#include "io/output_dir.h"
 #include "io/summary.h"
 
 extern char **environ;
@@ -55,6 +62,34 @@ namespace kimp::app
               {"min_scaled_jacobian", s.min_scaled_jacobian}};
     }
 
+    /// The last bytes of every PNG file: the IEND chunk (length 0, type, CRC).
+    constexpr std::string_view png_end{"\0\0\0\0IEND\xae\x42\x60\x82", 12};
+
+    /**
+     * A file written by a writer that does not report write errors (deal.II's VTU writer
+     * through an ofstream, matplotlib in a child process) is synced to disk and must end with
+     * `end` (after trailing line breaks if `text`): a full disk leaves it short.
+     * @throws OutputError naming the file.
+     */
+    void check_complete(const std::filesystem::path &file, std::string_view end, bool text)
+    {
+      const int fd         = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+      const int sync_error = fd < 0 ? errno : (::fsync(fd) == 0 ? 0 : errno);
+      if (fd >= 0)
+        ::close(fd);
+      if (sync_error != 0)
+        throw OutputError(fmt::format("'{}': {}", file.string(), std::strerror(sync_error)));
+      std::ifstream        in(file, std::ios::binary | std::ios::ate);
+      const std::streamoff size = in ? static_cast<std::streamoff>(in.tellg()) : 0;
+      std::string          tail(static_cast<std::size_t>(std::min<std::streamoff>(size, 64)), '\0');
+      in.seekg(size - static_cast<std::streamoff>(tail.size()));
+      in.read(tail.data(), static_cast<std::streamsize>(tail.size()));
+      while (text && !tail.empty() && (tail.back() == '\n' || tail.back() == '\r'))
+        tail.pop_back();
+      if (!in || tail.size() < end.size() ||
+          tail.compare(tail.size() - end.size(), end.size(), end) != 0)
+        throw OutputError(fmt::format("'{}' is incomplete (is the disk full?)", file.string()));
+    }
   } // namespace
 
   void run_mesh(const LoadedScene<FemScene> &loaded, const OutputDir &output)
@@ -81,16 +116,18 @@ namespace kimp::app
       const std::filesystem::path    msh                 = output.file("mesh/" + name + ".msh");
       const std::filesystem::path    vtu                 = output.file("mesh/" + name + ".vtu");
       const geometry::SceneGeometry  geometry_parameters = scene_geometry(scene, height);
-      const geometry::MeshStatistics statistics =
-        geometry::build_scene_mesh(geometry_parameters, msh);
-      std::ostringstream statistics_text;
+      const geometry::MeshStatistics statistics = write_scene_mesh(geometry_parameters, msh);
+      std::ostringstream             statistics_text;
       statistics_text << statistics;
       logger().info("{}: {} ({})", name, msh.string(), statistics_text.str());
 
       fem::MeshInfo info;
       try
       {
-        info = fem::read_mesh_info(msh, vtu);
+        TemporaryFile temporary(vtu);
+        info = fem::read_mesh_info(msh, temporary.path());
+        check_complete(temporary.path(), "</VTKFile>", true);
+        temporary.commit();
       }
       catch (const std::exception &error)
       {
@@ -113,13 +150,16 @@ namespace kimp::app
       if (no_png.empty())
       {
         const std::filesystem::path png = output.file("mesh/" + name + ".png");
-        if (run_program({python, script.string(), msh.string(), "-o", png.string()},
-                        ProgramOutput::inherit) != 0)
+        TemporaryFile               temporary(png, true); // matplotlib reads the extension
+        if (run_program({python, script.string(), msh.string(), "-o", temporary.path().string()},
+                        ProgramOutput::errors) != 0)
           throw OutputError(fmt::format("{}: '{} {}' failed to draw '{}'",
                                         name,
                                         python,
                                         script.string(),
                                         png.string()));
+        check_complete(temporary.path(), png_end, false);
+        temporary.commit();
         logger().info("{}: PNG preview {}", name, png.string());
         entry["png_preview"] = "mesh/" + name + ".png";
       }
@@ -141,4 +181,13 @@ namespace kimp::app
     write_text_atomic(output.file("summary.json"), summary.dump(2) + "\n");
   }
 
+  geometry::MeshStatistics write_scene_mesh(const geometry::SceneGeometry &geometry,
+                                            const std::filesystem::path   &msh)
+  {
+    // The name build_scene_mesh() writes to before renaming: registered for the signal handler.
+    const TemporaryFile            gmsh_temporary(msh, true);
+    const geometry::MeshStatistics statistics = geometry::build_scene_mesh(geometry, msh);
+    note_written(msh);
+    return statistics;
+  }
 } // namespace kimp::app

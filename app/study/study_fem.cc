@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "app/fem/fem_common.h"
+#include "app/fem/fem_estimate.h"
 #include "app/fit_run.h"
 #include "base/errors.h"
 #include "base/hash.h"
@@ -16,6 +17,7 @@
 #include "base/version.h"
 #include "fem/impact.h"
 #include "geometry/scene_mesh.h"
+#include "io/output_dir.h"
 #include "io/results_file.h"
 
 namespace kimp::app
@@ -121,7 +123,20 @@ namespace kimp::app
 
     if (std::filesystem::is_regular_file(cache_file) && read_key(key_file) == result.cache_key)
     {
-      std::vector<FemCase> cases = read_fem_cases(cache_file);
+      std::vector<FemCase> cases;
+      try
+      {
+        cases = read_fem_cases(cache_file);
+      }
+      catch (const std::exception &error)
+      {
+        // A damaged cache (a truncated copy, a full disk before kimp wrote atomically) is
+        // computed again, not a permanent failure of the study.
+        logger().warn("{}: FEM cache {} is unreadable ({}); computing it again",
+                      name,
+                      cache_file.string(),
+                      error_text(error));
+      }
       if (cases.size() == 1 && cases.front().name == name && cases.front().status == "ok")
       {
         result.fem_case     = std::move(cases.front());
@@ -136,8 +151,11 @@ namespace kimp::app
     }
     std::filesystem::remove(key_file);
 
-    const std::filesystem::path &mesh = spec.mesh_file;
-    fem::ImpactResult            impact;
+    const std::filesystem::path &mesh     = spec.mesh_file;
+    const FemEstimate            estimate = estimate_fem_case(spec);
+    logger().debug("{}: estimate {}", name, estimate.text());
+    check_fem_budget(name, estimate, spec.scene.max_steps);
+    fem::ImpactResult impact;
     try
     {
       std::filesystem::create_directories(mesh.parent_path());
@@ -162,6 +180,9 @@ namespace kimp::app
     write_fem_case(fem_root, result.fem_case);
     file.commit();
     write_text_atomic(key_file, result.cache_key + "\n");
+    // The cache outlives a failed study: a rerun reuses it.
+    keep_on_failure(cache_file);
+    keep_on_failure(key_file);
     result.wall_seconds = seconds_since(start);
     logger().info("{}: FEM {} DoFs, {} steps of {:.3g} s, peak force {:.4g} kN/m, contact "
                   "{:.4g} ms, COR {:.3f}, {:.2f} s",

@@ -65,17 +65,41 @@ namespace kimp::app
 
   SweepJournal::~SweepJournal()
   {
-    if (fd_ >= 0)
-      ::close(fd_);
+    if (fd_ < 0)
+      return;
+    // A journal that never got a line (the sweep failed first, a full disk) is not left behind.
+    struct stat status
+    {
+    };
+    const bool empty = ::fstat(fd_, &status) == 0 && status.st_size == 0;
+    ::close(fd_);
+    if (empty)
+    {
+      std::error_code ignored;
+      std::filesystem::remove(file_, ignored);
+      std::filesystem::remove(file_.parent_path(), ignored); // only if empty
+    }
   }
 
   void SweepJournal::append(const JournalEntry &entry)
   {
     const std::string                 line = to_line(entry) + "\n";
     const std::lock_guard<std::mutex> lock(mutex_);
-    write_all(fd_, line, file_);
-    if (::fsync(fd_) != 0)
-      throw OutputError("cannot fsync sweep journal " + file_.string() + ": " + errno_text());
+    const off_t                       before = ::lseek(fd_, 0, SEEK_END);
+    try
+    {
+      write_all(fd_, line, file_);
+      if (::fsync(fd_) != 0)
+        throw OutputError("cannot fsync sweep journal " + file_.string() + ": " + errno_text());
+    }
+    catch (const OutputError &)
+    {
+      // No torn line from a full disk: the journal stays as it was (and an empty one is removed
+      // at destruction).
+      if (before >= 0 && ::ftruncate(fd_, before) != 0)
+        errno = 0;
+      throw;
+    }
   }
 
   std::filesystem::path SweepJournal::file_of(const std::filesystem::path &dir, int rank)

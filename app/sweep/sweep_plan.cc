@@ -330,7 +330,8 @@ namespace kimp::app
     return path.is_absolute() ? path : sweep_file.parent_path() / path;
   }
 
-  SweepPlan SweepPlan::from_file(const std::filesystem::path &file)
+  SweepPlan SweepPlan::from_file(const std::filesystem::path &file,
+                                 const CaseCountCheck        &check_count)
   {
     std::string text;
     try
@@ -354,13 +355,14 @@ namespace kimp::app
               "scene",
               error.what());
     }
-    return parse(text, file.string(), scene_text, scene.string());
+    return parse(text, file.string(), scene_text, scene.string(), check_count);
   }
 
-  SweepPlan SweepPlan::parse(const std::string &text,
-                             const std::string &file_name,
-                             const std::string &base_scene_text,
-                             const std::string &base_scene_name)
+  SweepPlan SweepPlan::parse(const std::string    &text,
+                             const std::string    &file_name,
+                             const std::string    &base_scene_text,
+                             const std::string    &base_scene_name,
+                             const CaseCountCheck &check_count)
   {
     SweepPlan plan;
     plan.file_name_       = file_name;
@@ -398,11 +400,11 @@ namespace kimp::app
       plan.parameters_.push_back(read_parameter(name, values_text, read));
     for (const auto &[name, overrides_text] : file.companions)
       plan.companions_.push_back(read_companion(name, overrides_text, read));
-    plan.enumerate_cases();
+    plan.enumerate_cases(check_count);
     return plan;
   }
 
-  void SweepPlan::enumerate_cases()
+  void SweepPlan::enumerate_cases(const CaseCountCheck &check_count)
   {
     std::size_t n_combinations = 1;
     if (combination_ == SweepCombination::zip)
@@ -432,6 +434,8 @@ namespace kimp::app
       }
     }
 
+    if (check_count)
+      check_count(n_combinations * (1 + companions_.size()), base_scene_text_, base_scene_name_);
     const YAML::Node base  = sv::load(base_scene_text_, base_scene_name_);
     std::size_t      index = 0;
     for (std::size_t c = 0; c < n_combinations; ++c)

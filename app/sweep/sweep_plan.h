@@ -98,6 +98,12 @@ namespace kimp::app
   /// Loads a scene text (throws SceneError when it is invalid); used to check key paths early.
   using SceneChecker = std::function<void(const std::string &text, const std::string &name)>;
 
+  /// Called by SweepPlan::parse() once the cases are counted (companions included), before they
+  /// are enumerated, which takes a while for many cases: a cost estimate and a budget.
+  using CaseCountCheck = std::function<void(std::size_t        n_cases,
+                                            const std::string &base_scene_text,
+                                            const std::string &base_scene_name)>;
+
   /**
    * A parsed sweep file:
    * @code
@@ -120,14 +126,16 @@ namespace kimp::app
   public:
     /// Parse `text` (named `file_name` in messages); `base_scene_text` is the scene YAML that the
     /// key paths apply to (read by from_file() from `scene:`).
-    static SweepPlan parse(const std::string &text,
-                           const std::string &file_name,
-                           const std::string &base_scene_text,
-                           const std::string &base_scene_name);
+    static SweepPlan parse(const std::string    &text,
+                           const std::string    &file_name,
+                           const std::string    &base_scene_text,
+                           const std::string    &base_scene_name,
+                           const CaseCountCheck &check_count = {});
 
     /// Read the sweep file and its base scene (path relative to the sweep file).
     /// @throws SweepError for a malformed file or a missing scene.
-    static SweepPlan from_file(const std::filesystem::path &file);
+    static SweepPlan from_file(const std::filesystem::path &file,
+                               const CaseCountCheck        &check_count = {});
 
     /// The `scene:` entry of a sweep text, resolved against `sweep_file`'s directory.
     static std::filesystem::path base_scene_path(const std::string           &text,
@@ -182,7 +190,7 @@ namespace kimp::app
     /// `check` of the variant's scene; its error becomes "FILE:LINE: key: <error>".
     void check_variant(const Variant &variant, const SceneChecker &check) const;
     /// Fills cases_ from the parameters and companions.
-    void enumerate_cases();
+    void enumerate_cases(const CaseCountCheck &check_count);
 
     std::string                    file_name_;
     std::string                    text_;

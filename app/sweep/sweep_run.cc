@@ -17,6 +17,7 @@
 #include "app/helper_programs.h"
 #include "app/lumped_scene.h"
 #include "app/sweep/sweep_engine.h"
+#include "app/sweep/sweep_estimate.h"
 #include "app/sweep/sweep_lumped.h"
 #include "app/sweep/sweep_report.h"
 #include "base/logging.h"
@@ -52,6 +53,7 @@ namespace kimp::app
         {
           int provided = 0;
           MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+          io::install_signal_handlers(); // MPI's start-up replaces them (SIGPIPE, SIGTERM)
           owned_      = true;
           initialized = 1;
         }
@@ -196,16 +198,29 @@ namespace kimp::app
     set_rank(mpi.rank());
     logger().info("{}: sweep {} on {} rank(s)", version_line(), options.sweep, mpi.size());
 
-    // The reader refuses an engine other than lumped, at its line.
-    const SweepPlan plan = SweepPlan::from_file(options.sweep);
+    std::optional<std::filesystem::path> records_dir;
+    if (!options.records_dir.empty())
+      records_dir = options.records_dir;
+    // The reader refuses an engine other than lumped, at its line. The estimate is said (and a
+    // sweep above the budget refused) before the cases are enumerated, which takes a while.
+    const SweepPlan plan = SweepPlan::from_file(
+      options.sweep,
+      [&](std::size_t n_cases, const std::string &scene_text, const std::string &scene_name)
+      {
+        const auto estimate = estimate_sweep(n_cases, scene_text, scene_name, records_dir);
+        if (!estimate)
+        {
+          logger().info("sweep: {} cases", n_cases);
+          return;
+        }
+        logger().info("sweep estimate: {}", estimate->text());
+        check_sweep_budget(options.sweep, *estimate, options.max_steps);
+      });
     // Paths of the case scenes (k_table, record files) are relative to the base scene's file.
     const std::filesystem::path scene_directory =
       std::filesystem::path(plan.base_scene_name()).parent_path();
     plan.check_key_paths([&](const std::string &text, const std::string &name)
                          { read_scene_text<LumpedScene>(text, name, scene_directory); });
-    std::optional<std::filesystem::path> records_dir;
-    if (!options.records_dir.empty())
-      records_dir = options.records_dir;
     // Every record before the output directory is made: a misspelt one is an input error.
     plan.check_records(
       [&](const std::string &text, const std::string &name)

@@ -16,6 +16,9 @@ namespace kimp::app
     bool         retry_failed   = false;
     bool         no_charts      = false;
     bool         no_shared_runs = false; ///< every case from t = 0 (no FreeRunCache)
+    /// Budget of time steps over all runs (sweep_estimate.h), refused before planning: about
+    /// 10^4 s of one core at 5 DoFs.
+    double max_steps = 1e11;
   };
 
   /**

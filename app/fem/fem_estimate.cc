@@ -1,0 +1,133 @@
+// Cost estimate and step budget of an FEM case; see fem_estimate.h.
+#include "app/fem/fem_estimate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "fem/impact.h"
+#include "geometry/scene_ids.h"
+#include "geometry/scene_layout.h"
+
+namespace kimp::app
+{
+  namespace
+  {
+    /// The smallest spacing of sorted grid lines (infinity for fewer than two).
+    double min_spacing(const std::vector<double> &lines)
+    {
+      double h = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 1; i < lines.size(); ++i)
+        h = std::min(h, lines[i] - lines[i - 1]);
+      return h;
+    }
+
+    double cell_size(const std::vector<double> &x, const std::vector<double> &y)
+    {
+      return std::min(min_spacing(x), min_spacing(y));
+    }
+  } // namespace
+
+  std::string FemEstimate::text() const
+  {
+    return fmt::format("{:.3g} DoFs, up to {:.3g} steps of {:.3g} s over {:.3g} s = {:.3g} "
+                       "DoF-steps, ~{:.2g} s",
+                       n_dofs,
+                       n_steps,
+                       dt,
+                       end_time,
+                       n_dofs * n_steps,
+                       seconds);
+  }
+
+  FemEstimate estimate_fem_case(const FemCaseSpec &spec)
+  {
+    const geometry::SceneLayout    layout = geometry::SceneLayout::build(spec.geometry);
+    const geometry::SceneGeometry &g      = spec.geometry;
+    const fem::ImpactParameters   &p      = spec.parameters;
+    const bool                     slab   = g.mesh_slab && !p.rigid_slab;
+    const fem::Material           &wall   = p.materials.at(geometry::wall_material);
+
+    // Nodes as build_scene_mesh() numbers them: a bonded soil shares the wall's back column.
+    const auto nodes = [](const std::vector<double> &x, const std::vector<double> &y)
+    { return static_cast<double>(x.size()) * static_cast<double>(y.size()); };
+    double n_nodes = nodes(layout.wall_x, layout.wall_y);
+    if (g.with_backfill)
+      n_nodes += nodes(layout.soil_x, layout.soil_y) -
+                 (g.interface_contact ? 0.0 : static_cast<double>(layout.soil_y.size()));
+    if (g.mesh_slab)
+      n_nodes += nodes(layout.slab_x, layout.slab_y);
+
+    FemEstimate e;
+    e.n_dofs   = 2.0 * n_nodes; // as the solver counts them (a rigid slab's DoF apart)
+    e.end_time = p.end_time;
+
+    // Mesh: omega = 2 c_p / h of the smallest cell of each body.
+    double omega_mesh = 2.0 * fem::p_wave_speed(wall) / cell_size(layout.wall_x, layout.wall_y);
+    if (g.with_backfill)
+      omega_mesh = std::max(omega_mesh,
+                            2.0 * fem::p_wave_speed(p.materials.at(geometry::soil_material)) /
+                              cell_size(layout.soil_x, layout.soil_y));
+    if (slab)
+      omega_mesh = std::max(omega_mesh,
+                            2.0 * fem::p_wave_speed(p.materials.at(geometry::slab_material)) /
+                              cell_size(layout.slab_x, layout.slab_y));
+
+    // Penalty: k = penalty_factor E_wall / h_contact l per node of tributary length l; a face
+    // node's lumped mass is rho h_x l / 2 (h_x: the cell width behind the face), so
+    // k / m = 2 penalty_factor E_wall / (h_contact rho h_x) whatever l is.
+    const double h_contact    = slab ?
+                                  std::min(min_spacing(layout.wall_y), min_spacing(layout.slab_y)) :
+                                  min_spacing(layout.wall_y);
+    const double k_per_length = p.penalty_factor * wall.youngs_modulus / h_contact;
+    const double wall_h_x     = layout.wall_x.size() > 1 ? layout.wall_x[1] - layout.wall_x[0] :
+                                                           std::numeric_limits<double>::infinity();
+    double       k_over_m     = 2.0 * k_per_length / (wall.density * wall_h_x);
+    if (slab)
+    {
+      const fem::Material &slab_material = p.materials.at(geometry::slab_material);
+      const std::size_t    n             = layout.slab_x.size();
+      const double         slab_h_x      = layout.slab_x[n - 1] - layout.slab_x[n - 2];
+      k_over_m += 2.0 * k_per_length / (slab_material.density * slab_h_x);
+    }
+    else if (p.slab_mass > 0.0)
+      k_over_m += k_per_length * h_contact / p.slab_mass;
+    const double omega_penalty = std::sqrt(k_over_m);
+
+    const double omega     = std::hypot(omega_mesh, omega_penalty);
+    const double xi        = p.contact_damping_ratio * omega_penalty / omega;
+    const double dt_stable = 2.0 / omega * (std::sqrt(1.0 + xi * xi) - xi);
+    const bool   implicit  = p.integrator == fem::ImpactParameters::Integrator::implicit_newmark;
+    if (p.dt > 0.0)
+      e.dt = p.dt;
+    else if (implicit)
+      e.dt = p.implicit_options.dt_factor * dt_stable;
+    else if (p.explicit_options.dt_over_limit > 0.0)
+      e.dt = p.explicit_options.dt_over_limit * dt_stable;
+    else
+      e.dt = p.explicit_options.cfl_safety * dt_stable;
+    e.n_steps = std::ceil(e.end_time / e.dt);
+
+    const double per_dof_step = implicit ? fem_implicit_seconds_per_dof_step :
+                                has_inelastic_materials(spec.scene) ?
+                                           fem_inelastic_seconds_per_dof_step :
+                                           fem_explicit_seconds_per_dof_step;
+    e.seconds                 = e.n_dofs * e.n_steps * per_dof_step;
+    return e;
+  }
+
+  void check_fem_budget(const std::string &name, const FemEstimate &estimate, double max_steps)
+  {
+    if (!(estimate.n_steps <= max_steps))
+      throw std::invalid_argument(fmt::format(
+        "{}: the estimate ({}) exceeds the step budget dynamics.max_steps = {:.3g} (a coarser "
+        "mesh.h_contact, a shorter dynamics.end_time, or a larger dynamics.max_steps if the run "
+        "is intended)",
+        name,
+        estimate.text(),
+        max_steps));
+  }
+} // namespace kimp::app

@@ -1,0 +1,67 @@
+// Sweep cost estimate and step budget; see sweep_estimate.h.
+#include "app/sweep/sweep_estimate.h"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <stdexcept>
+
+#include "app/ground_motion_scene.h"
+#include "app/lumped_scene.h"
+#include "base/logging.h"
+
+namespace kimp::app
+{
+  std::string SweepEstimate::text() const
+  {
+    return fmt::format("{} cases x {} run(s) x ({}) = {:.3g} steps, ~{:.2g} s of one core (the "
+                       "base scene's estimate; cases that change dt or the duration differ)",
+                       n_cases,
+                       runs_per_case,
+                       base.text(),
+                       total_steps,
+                       seconds);
+  }
+
+  std::optional<SweepEstimate>
+  estimate_sweep(std::size_t                                 n_cases,
+                 const std::string                          &scene_text,
+                 const std::string                          &scene_name,
+                 const std::optional<std::filesystem::path> &records_dir)
+  {
+    try
+    {
+      const LumpedScene scene =
+        io::load_scene_text<LumpedScene>(scene_text,
+                                         scene_name,
+                                         std::filesystem::path(scene_name).parent_path());
+      SweepEstimate e;
+      e.n_cases = n_cases;
+      // Each of the scene's cases, and again without contacts with integration.companion.
+      e.runs_per_case =
+        std::max<std::size_t>(1, scene.cases.size()) * (scene.integration.companion ? 2 : 1);
+      e.base = estimate_lumped_case(scene, load_ground_motion(scene.ground_motion, records_dir));
+      const double runs = static_cast<double>(n_cases) * static_cast<double>(e.runs_per_case);
+      e.total_steps     = runs * e.base.n_steps;
+      e.seconds         = runs * e.base.seconds;
+      return e;
+    }
+    catch (const std::exception &error)
+    {
+      base::logger().debug("no estimate of the sweep from its base scene: {}", error.what());
+      return std::nullopt;
+    }
+  }
+
+  void
+  check_sweep_budget(const std::string &sweep_file, const SweepEstimate &estimate, double max_steps)
+  {
+    if (!(estimate.total_steps <= max_steps))
+      throw std::invalid_argument(fmt::format(
+        "{}: the estimate ({}) exceeds the step budget of the sweep (--max-steps = {:.3g}; fewer "
+        "values, a shorter duration, a larger dt, or a larger --max-steps if the sweep is "
+        "intended)",
+        sweep_file,
+        estimate.text(),
+        max_steps));
+  }
+} // namespace kimp::app
