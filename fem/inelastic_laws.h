@@ -1,7 +1,7 @@
 // Inelastic plane-strain laws behind the MaterialLaw interface: Mohr-Coulomb with tension cut-off
 // and Drucker-Prager (soil), scalar tension/compression damage with crack band and smeared steel
 // bars (concrete). Plain C++ (no deal.II): allocation-free quadrature-point code that unit tests
-// compile in seconds.
+// compile in seconds. Soil laws in soil_laws.cc, concrete in concrete_damage_law.cc.
 #pragma once
 
 #include <string>
@@ -48,6 +48,37 @@ namespace kimp::fem
   };
 
   /**
+   * What the perfectly plastic soil laws (Mohr-Coulomb, Drucker-Prager) share: the soil
+   * parameters and Lame constants, and a history that starts with the plastic strain {xx, yy,
+   * zz, gamma_xy}, the equivalent plastic strain and the plastic dissipation density (J/m^3).
+   * `Law` provides the return mapping `update(strain, committed, trial, tangent)` (stress, trial
+   * history and, if tangent != nullptr, the consistent tangent), which stress() and tangent()
+   * call.
+   */
+  template <class Law>
+  class PlasticSoilLaw : public BatchedLaw<Law>
+  {
+  public:
+    VoigtStress
+    stress(const VoigtStrain &strain, const double *committed, double *trial) const override
+    {
+      return static_cast<const Law &>(*this).update(strain, committed, trial, nullptr);
+    }
+    VoigtTangent tangent(const VoigtStrain &strain, const double *committed) const override;
+    /** sigma_zz and the stored energy of the elastic strain, the plastic history values. */
+    PointOutput output(const VoigtStrain &strain, const double *history) const override;
+    /** The initial stress enters as an initial elastic strain: the plastic-strain slots start
+     *  at -D^-1 sigma0 (the dissipation and equivalent plastic strain stay zero). */
+    bool set_initial_stress(double *history, const InitialStress &sigma0) const override;
+
+  protected:
+    explicit PlasticSoilLaw(const SoilParameters &p);
+
+    SoilParameters p_;
+    double         lambda_, mu_;
+  };
+
+  /**
    * Mohr-Coulomb with tension cut-off and non-associated flow (dilatancy psi), perfectly plastic.
    * Implicit (backward Euler) return mapping in principal stresses (in-plane pair and sigma_zz):
    * the 6 Mohr-Coulomb planes and 3 cut-off planes are linear in principal space, so each active
@@ -57,7 +88,7 @@ namespace kimp::fem
    * History: plastic strain {xx, yy, zz, gamma_xy}, equivalent plastic strain, plastic
    * dissipation density (J/m^3), return type.
    */
-  class MohrCoulombLaw final : public MaterialLaw
+  class MohrCoulombLaw final : public PlasticSoilLaw<MohrCoulombLaw>
   {
   public:
     /** @p exhaustive: search every active set at every plastic point (the oracle of the
@@ -66,32 +97,17 @@ namespace kimp::fem
     /** History: plastic strain {xx, yy, zz, gamma_xy}, equivalent plastic strain, plastic
      *  dissipation, ReturnType of the last update, bit mask of its active set (0: elastic). */
     unsigned int n_history() const override { return 8; }
-    VoigtStress
-    stress(const VoigtStrain &strain, const double *committed, double *trial) const override;
-    VoigtTangent tangent(const VoigtStrain &strain, const double *committed) const override;
-    PointOutput  output(const VoigtStrain &strain, const double *history) const override;
-    void         update_points(unsigned int           n,
-                               const VoigtStrain     *strain,
-                               const double          *committed,
-                               double                *trial,
-                               unsigned int           stride,
-                               VoigtStress           *stress,
-                               std::array<double, 3> *energy) const override;
-    /** The initial stress enters as an initial elastic strain: the plastic-strain slots start
-     *  at -D^-1 sigma0 (the dissipation and equivalent plastic strain stay zero). */
-    bool set_initial_stress(double *history, const InitialStress &sigma0) const override;
     /** Largest yield function value (Pa) at principal stresses {s1, s2, s3}. */
     double yield_function(const std::array<double, 3> &principal) const;
 
   private:
+    friend PlasticSoilLaw;
     /** Stress, trial history and (if tangent != nullptr) the consistent tangent. */
-    VoigtStress    update(const VoigtStrain &strain,
-                          const double      *committed,
-                          double            *trial,
-                          VoigtTangent      *tangent) const;
-    SoilParameters p_;
-    bool           exhaustive_;
-    double         lambda_, mu_;
+    VoigtStress update(const VoigtStrain &strain,
+                       const double      *committed,
+                       double            *trial,
+                       VoigtTangent      *tangent) const;
+    bool        exhaustive_;
     /** The 9 planes a.sigma <= b in principal space (6 Mohr-Coulomb, 3 cut-off), their flow
      *  directions' images D g: constants of the law, computed once. */
     double a_[9][3], b_[9], dg_[9][3];
@@ -119,24 +135,11 @@ namespace kimp::fem
    * both is t + m sin(phi) = c cos(phi); with dilatancy eta_bar from psi). Perfectly plastic,
    * cone and apex returns (de Souza Neto et al. 2008 Box 8.8). History as MohrCoulombLaw.
    */
-  class DruckerPragerLaw final : public MaterialLaw
+  class DruckerPragerLaw final : public PlasticSoilLaw<DruckerPragerLaw>
   {
   public:
     explicit DruckerPragerLaw(const SoilParameters &p);
     unsigned int n_history() const override { return 7; }
-    VoigtStress
-    stress(const VoigtStrain &strain, const double *committed, double *trial) const override;
-    VoigtTangent tangent(const VoigtStrain &strain, const double *committed) const override;
-    PointOutput  output(const VoigtStrain &strain, const double *history) const override;
-    void         update_points(unsigned int           n,
-                               const VoigtStrain     *strain,
-                               const double          *committed,
-                               double                *trial,
-                               unsigned int           stride,
-                               VoigtStress           *stress,
-                               std::array<double, 3> *energy) const override;
-    /** As MohrCoulombLaw::set_initial_stress(). */
-    bool set_initial_stress(double *history, const InitialStress &sigma0) const override;
     /** f = sqrt(J2) + eta p - xi c (Pa) at the 3D stress {xx, yy, zz, xy}. */
     double yield_function(const std::array<double, 4> &sigma) const;
     double eta() const { return eta_; }
@@ -144,13 +147,16 @@ namespace kimp::fem
     double xi() const { return xi_; }
 
   private:
-    VoigtStress    update(const VoigtStrain &strain,
-                          const double      *committed,
-                          double            *trial,
-                          VoigtTangent      *tangent) const;
-    SoilParameters p_;
-    double         lambda_, mu_, bulk_, eta_, eta_bar_, xi_;
+    friend PlasticSoilLaw;
+    VoigtStress update(const VoigtStrain &strain,
+                       const double      *committed,
+                       double            *trial,
+                       VoigtTangent      *tangent) const;
+    double      bulk_, eta_, eta_bar_, xi_;
   };
+
+  extern template class PlasticSoilLaw<MohrCoulombLaw>;
+  extern template class PlasticSoilLaw<DruckerPragerLaw>;
 
   /** Concrete parameters; ConcreteParameters::from_f_cm() derives them by fib MC2010. */
   struct ConcreteParameters
@@ -267,7 +273,7 @@ namespace kimp::fem
    * uniaxial compression still follows the curve. The history then also holds eps_p {xx, yy,
    * gamma_xy} and its plastic dissipation density (J/m^3) before the bars' values.
    */
-  class ConcreteDamageLaw final : public MaterialLaw
+  class ConcreteDamageLaw final : public BatchedLaw<ConcreteDamageLaw>
   {
   public:
     explicit ConcreteDamageLaw(const ConcreteParameters      &p,
@@ -280,13 +286,6 @@ namespace kimp::fem
     /** Secant tangent (1 - d) D: enough for the virgin-state stiffness the solvers assemble. */
     VoigtTangent tangent(const VoigtStrain &strain, const double *committed) const override;
     PointOutput  output(const VoigtStrain &strain, const double *history) const override;
-    void         update_points(unsigned int           n,
-                               const VoigtStrain     *strain,
-                               const double          *committed,
-                               double                *trial,
-                               unsigned int           stride,
-                               VoigtStress           *stress,
-                               std::array<double, 3> *energy) const override;
     /** Tensile strength used at crack-band length h (reduced if h exceeds the snap-back limit). */
     double                         effective_tensile_strength(double h) const;
     const ConcreteParameters      &parameters() const { return p_; }
@@ -298,6 +297,9 @@ namespace kimp::fem
     /** As concrete_stress() with compressive plastic strain (history slots 0-9). */
     VoigtStress
     plastic_concrete_stress(const VoigtStrain &strain, const double *h0, double *h1) const;
+    /** Tension damage at the tension measure kappa_t (history slot 0) of a crack band h (m):
+     *  exponential softening with the energy G_F / h, 0 up to the tensile strength. */
+    double tension_damage(double kappa_t, double h) const;
     /** b_c times the uniaxial curve's inelastic strain at the compression measure kappa_c. */
     double                  plastic_strain(double kappa_c) const;
     ConcreteParameters      p_;

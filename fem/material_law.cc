@@ -41,27 +41,6 @@ namespace kimp::fem
                                   VoigtStress           *stress,
                                   std::array<double, 3> *energy) const
   {
-    for (unsigned int p = 0; p < n; ++p)
-    {
-      const double *h0 = committed + static_cast<std::size_t>(p) * stride;
-      double       *h1 = trial + static_cast<std::size_t>(p) * stride;
-      stress[p]        = this->stress(strain[p], h0, h1);
-      if (energy != nullptr)
-      {
-        const PointOutput po = output(strain[p], h1);
-        energy[p]            = {{po.stored_energy, po.plastic_dissipation, po.damage_dissipation}};
-      }
-    }
-  }
-
-  void LinearElasticLaw::update_points(unsigned int           n,
-                                       const VoigtStrain     *strain,
-                                       const double          *committed,
-                                       double                *trial,
-                                       unsigned int           stride,
-                                       VoigtStress           *stress,
-                                       std::array<double, 3> *energy) const
-  {
     update_points_of(*this, n, strain, committed, trial, stride, stress, energy);
   }
 
@@ -76,10 +55,8 @@ namespace kimp::fem
 
   LinearElasticLaw::LinearElasticLaw(const Material &m)
   {
-    const double lambda =
-      m.youngs_modulus * m.poisson_ratio / ((1 + m.poisson_ratio) * (1 - 2 * m.poisson_ratio));
-    const double mu = m.youngs_modulus / (2 * (1 + m.poisson_ratio));
-    tangent_        = {{lambda + 2 * mu, lambda, 0, lambda, lambda + 2 * mu, 0, 0, 0, mu}};
+    const auto [lambda, mu] = lame(m.youngs_modulus, m.poisson_ratio);
+    tangent_                = {{lambda + 2 * mu, lambda, 0, lambda, lambda + 2 * mu, 0, 0, 0, mu}};
   }
 
   VoigtStress LinearElasticLaw::stress(const VoigtStrain &e, const double *, double *) const

@@ -95,8 +95,9 @@ namespace kimp::fem
   };
 
   /**
-   * The loop of MaterialLaw::update_points() over a law of final type @p Law, whose stress() and
-   * output() calls the compiler then binds statically and inlines.
+   * The loop of MaterialLaw::update_points() over a law of static type @p Law: for a final Law
+   * the compiler binds its stress() and output() statically and inlines them (BatchedLaw); for
+   * Law = MaterialLaw they are virtual calls (the default update_points()).
    */
   template <class Law>
   void update_points_of(const Law             &law,
@@ -112,17 +113,55 @@ namespace kimp::fem
     {
       const double *h0 = committed + static_cast<std::size_t>(p) * stride;
       double       *h1 = trial + static_cast<std::size_t>(p) * stride;
-      stress[p]        = law.Law::stress(strain[p], h0, h1);
+      stress[p]        = law.stress(strain[p], h0, h1);
       if (energy != nullptr)
       {
-        const PointOutput po = law.Law::output(strain[p], h1);
+        const PointOutput po = law.output(strain[p], h1);
         energy[p]            = {{po.stored_energy, po.plastic_dissipation, po.damage_dissipation}};
       }
     }
   }
 
+  /**
+   * A MaterialLaw of final type Law whose update_points() is the loop update_points_of() over
+   * Law's own stress() and output(), bound statically and inlined where Law defines them.
+   */
+  template <class Law>
+  class BatchedLaw : public MaterialLaw
+  {
+  public:
+    void update_points(unsigned int           n,
+                       const VoigtStrain     *strain,
+                       const double          *committed,
+                       double                *trial,
+                       unsigned int           stride,
+                       VoigtStress           *stress,
+                       std::array<double, 3> *energy) const final
+    {
+      update_points_of(static_cast<const Law &>(*this),
+                       n,
+                       strain,
+                       committed,
+                       trial,
+                       stride,
+                       stress,
+                       energy);
+    }
+  };
+
+  /** Lame constants lambda and mu (Pa) of isotropic elasticity. */
+  struct Lame
+  {
+    double lambda = 0, mu = 0;
+  };
+  /** lambda = E nu / ((1 + nu)(1 - 2 nu)), mu = E / (2 (1 + nu)) from E (Pa) and nu. */
+  inline Lame lame(double E, double nu)
+  {
+    return {E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))};
+  }
+
   /** Isotropic linear elasticity in plane strain (Lame lambda, mu from E, nu). */
-  class LinearElasticLaw final : public MaterialLaw
+  class LinearElasticLaw final : public BatchedLaw<LinearElasticLaw>
   {
   public:
     explicit LinearElasticLaw(const Material &material);
@@ -131,13 +170,6 @@ namespace kimp::fem
     VoigtTangent tangent(const VoigtStrain &, const double *) const override { return tangent_; }
     bool         is_linear() const override { return true; }
     PointOutput  output(const VoigtStrain &strain, const double *) const override;
-    void         update_points(unsigned int           n,
-                               const VoigtStrain     *strain,
-                               const double          *committed,
-                               double                *trial,
-                               unsigned int           stride,
-                               VoigtStress           *stress,
-                               std::array<double, 3> *energy) const override;
 
   private:
     VoigtTangent tangent_{};

@@ -13,7 +13,6 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/grid/grid_generator.h>
-#include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -22,7 +21,9 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include "fem/fe_helpers.h"
 #include "fem/impact.h"
+#include "fem/material_law.h"
 
 namespace kimp::fem
 {
@@ -82,37 +83,20 @@ namespace kimp::fem
       FullMatrix<double>    cell_matrix(n, n);
       Vector<double>        cell_rhs(n);
       std::vector<types::global_dof_index> dof_indices(n);
-      const FEValuesExtractors::Vector     displacement(0);
       const double                         traction = 1.0 / top_length;
       for (const auto &cell : dof_handler.active_cell_iterators())
       {
         const Material &m = materials.at(cell->material_id());
-        const double    lambda =
-          m.youngs_modulus * m.poisson_ratio / ((1 + m.poisson_ratio) * (1 - 2 * m.poisson_ratio));
-        const double mu = m.youngs_modulus / (2 * (1 + m.poisson_ratio));
+        const Lame      l = lame(m.youngs_modulus, m.poisson_ratio);
         fe_values.reinit(cell);
         cell_matrix = 0;
         cell_rhs    = 0;
-        for (unsigned int q = 0; q < quadrature.size(); ++q)
-          for (unsigned int i = 0; i < n; ++i)
-          {
-            const auto eps_i = fe_values[displacement].symmetric_gradient(i, q);
-            for (unsigned int j = 0; j < n; ++j)
-            {
-              const auto eps_j = fe_values[displacement].symmetric_gradient(j, q);
-              cell_matrix(i, j) +=
-                (lambda * trace(eps_i) * trace(eps_j) + 2 * mu * scalar_product(eps_i, eps_j)) *
-                fe_values.JxW(q);
-            }
-          }
+        add_elastic_stiffness(fe_values, l.lambda, l.mu, cell_matrix);
         for (const auto f : cell->face_indices())
           if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == wall_top)
           {
             fe_face.reinit(cell, f);
-            for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-              for (unsigned int i = 0; i < n; ++i)
-                if (fe.system_to_component_index(i).first == 0)
-                  cell_rhs(i) += traction * fe_face.shape_value(i, q) * fe_face.JxW(q);
+            add_x_traction(fe_face, traction, cell_rhs);
           }
         cell->get_dof_indices(dof_indices);
         constraints.distribute_local_to_global(cell_matrix, cell_rhs, dof_indices, matrix, rhs);
@@ -224,10 +208,7 @@ namespace kimp::fem
                 ExcMessage("mesh_file = '" + mesh_file.string() +
                            "' (must be an existing MSH file)"));
     Triangulation<dim> tria;
-    GridIn<dim>        grid_in;
-    grid_in.attach_triangulation(tria);
-    std::ifstream in(mesh_file);
-    grid_in.read_msh(in);
+    read_msh(mesh_file, tria);
 
     MeshInfo info;
     info.n_cells           = tria.n_active_cells();

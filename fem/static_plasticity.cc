@@ -523,13 +523,14 @@ namespace kimp::fem
         force_scale_   = std::max(force_scale_, fixed_norm(r_));
         if (log_ != nullptr)
         {
-          *log_ << "static step " << out.steps.size() << ": load factor " << b << ", "
-                << step.residuals.size() << " Newton iterations, residual "
-                << step.residuals.back();
+          std::ostringstream line; // 4 significant digits
+          line.precision(4);
+          line << "static step " << out.steps.size() << ": load factor " << b << ", "
+               << step.residuals.size() << " Newton iterations, residual " << step.residuals.back();
           for (std::size_t e = 0; e < step.reactions.size(); ++e)
-            *log_ << ", reaction " << e << " (" << step.reactions[e][0] << ", "
-                  << step.reactions[e][1] << ") N/m";
-          *log_ << '\n';
+            line << ", reaction " << e << " (" << step.reactions[e][0] << ", "
+                 << step.reactions[e][1] << ") N/m";
+          *log_ << line.str() << '\n';
         }
         out.steps.push_back(std::move(step));
         return;

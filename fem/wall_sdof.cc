@@ -18,7 +18,6 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -27,6 +26,8 @@
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include "fem/fe_helpers.h"
+#include "fem/material_law.h"
 #include "geometry/scene_ids.h"
 
 namespace kimp::fem
@@ -80,12 +81,7 @@ namespace kimp::fem
     check(p.max_iterations > 0, "max_iterations must be > 0");
 
     Triangulation<dim> tria;
-    {
-      GridIn<dim> grid_in;
-      grid_in.attach_triangulation(tria);
-      std::ifstream in(p.mesh_file);
-      grid_in.read_msh(in);
-    }
+    read_msh(p.mesh_file, tria);
     for (const auto &cell : tria.active_cell_iterators())
     {
       const auto id = cell->material_id();
@@ -131,37 +127,25 @@ namespace kimp::fem
     FullMatrix<double>    ck(nc, nc), cm(nc, nc);
     Vector<double>        cf(nc);
     std::vector<types::global_dof_index> indices(nc);
-    const FEValuesExtractors::Vector     u(0);
     const double                         traction   = 1.0 / (p.band_y1 - p.band_y0);
     double                               total_mass = 0, loaded_length = 0;
     const double                         tol_y = 1e-9 * (p.band_y1 - p.band_y0);
     for (const auto &cell : dofs.active_cell_iterators())
     {
       const Material &m = p.materials.at(cell->material_id());
-      const double    lambda =
-        m.youngs_modulus * m.poisson_ratio / ((1 + m.poisson_ratio) * (1 - 2 * m.poisson_ratio));
-      const double mu = m.youngs_modulus / (2 * (1 + m.poisson_ratio));
+      const Lame      l = lame(m.youngs_modulus, m.poisson_ratio);
       fv.reinit(cell);
       ck = 0;
       cm = 0;
       cf = 0;
+      add_elastic_stiffness(fv, l.lambda, l.mu, ck);
       for (unsigned int q = 0; q < quadrature.size(); ++q)
       {
         total_mass += m.density * fv.JxW(q);
         for (unsigned int i = 0; i < nc; ++i)
-        {
-          const auto         eps_i = fv[u].symmetric_gradient(i, q);
-          const unsigned int ci    = fe.system_to_component_index(i).first;
           for (unsigned int j = 0; j < nc; ++j)
-          {
-            const auto eps_j = fv[u].symmetric_gradient(j, q);
-            ck(i, j) +=
-              (lambda * trace(eps_i) * trace(eps_j) + 2 * mu * scalar_product(eps_i, eps_j)) *
-              fv.JxW(q);
-            if (fe.system_to_component_index(j).first == ci)
+            if (fe.system_to_component_index(j).first == fe.system_to_component_index(i).first)
               cm(i, j) += m.density * fv.shape_value(i, q) * fv.shape_value(j, q) * fv.JxW(q);
-          }
-        }
       }
       for (const auto face : cell->face_indices())
         if (cell->face(face)->at_boundary() &&
@@ -172,10 +156,7 @@ namespace kimp::fem
             continue;
           ffv.reinit(cell, face);
           loaded_length += cell->face(face)->measure();
-          for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-            for (unsigned int i = 0; i < nc; ++i)
-              if (fe.system_to_component_index(i).first == 0)
-                cf(i) += traction * ffv.shape_value(i, q) * ffv.JxW(q);
+          add_x_traction(ffv, traction, cf);
         }
       cell->get_dof_indices(indices);
       constraints.distribute_local_to_global(ck, cf, indices, K, f);

@@ -41,20 +41,12 @@ namespace kimp::fem::internal
                 std::to_string(static_cast<unsigned>(geometry::soil_far_side)) + ")");
     // The constraint a face of an absorbing id keeps when its cell is not soil: u = 0 on the
     // fixed base, u_x = 0 on the far side (as in setup_system()).
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (!cell->is_artificial() && cell->material_id() != geometry::soil_material)
-        for (const auto &face : cell->face_iterators())
-          if (face->at_boundary() && is_absorbing(face->boundary_id()))
-          {
-            const unsigned int n_components = face->boundary_id() == geometry::fixed_base ? 2 : 1;
-            for (unsigned int v = 0; v < face->n_vertices(); ++v)
-              for (unsigned int c = 0; c < n_components; ++c)
-              {
-                const auto i = face->vertex_dof_index(v, c);
-                if (constraints.can_store_line(i) && !constraints.is_constrained(i))
-                  constraints.add_line(i);
-              }
-          }
+    for_each_absorbing_dof(false,
+                           [&](const types::global_dof_index i, unsigned int)
+                           {
+                             if (constraints.can_store_line(i) && !constraints.is_constrained(i))
+                               constraints.add_line(i);
+                           });
   }
 
   void ImpactProblem::assemble_dashpots()
@@ -114,7 +106,7 @@ namespace kimp::fem::internal
     damped_u_prev.clear();
     damped_f_prev.clear();
     radiation_local = 0;
-    log_line("absorbing boundary: " + fmt_double(length) + " m of soil faces with dashpots");
+    log_line("absorbing boundary: " + fmt_sig(length) + " m of soil faces with dashpots");
   }
 
   void

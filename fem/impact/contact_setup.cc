@@ -14,24 +14,14 @@
 
 namespace kimp::fem::internal
 {
-  /** One contact-face segment as gathered from all ranks (reference geometry, global DoFs). */
-  struct FaceSegment
+  std::vector<FaceSegment> ImpactProblem::gather_boundary_faces(const types::boundary_id a,
+                                                                const types::boundary_id b) const
   {
-    unsigned int                           boundary_id = 0;
-    unsigned int                           material_id = 0;
-    Point<dim>                             p0, p1, cell_center;
-    std::array<types::global_dof_index, 4> dofs{}; // p0 x, p0 y, p1 x, p1 y
-  };
-
-  void ImpactProblem::setup_contact()
-  {
-    // Gather every contact-face segment of the locally owned cells to all ranks.
     std::vector<double> local;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const auto &face : cell->face_iterators())
-          if (face->at_boundary() && (face->boundary_id() == geometry::slab_contact ||
-                                      face->boundary_id() == geometry::wall_contact))
+          if (face->at_boundary() && (face->boundary_id() == a || face->boundary_id() == b))
           {
             local.push_back(face->boundary_id());
             local.push_back(cell->material_id());
@@ -59,6 +49,23 @@ namespace kimp::fem::internal
           s.dofs[i] = static_cast<types::global_dof_index>(part[k + 8 + i]);
         segments.push_back(s);
       }
+    return segments;
+  }
+
+  std::vector<double> ImpactProblem::gather_owned(const std::vector<types::global_dof_index> &dofs,
+                                                  const Vec &v) const
+  {
+    std::vector<double> local(dofs.size(), 0.0);
+    for (std::size_t k = 0; k < dofs.size(); ++k)
+      if (locally_owned.is_element(dofs[k]))
+        local[k] = v(dofs[k]);
+    return sum_over_ranks(local, comm);
+  }
+
+  void ImpactProblem::setup_contact()
+  {
+    std::vector<FaceSegment> segments =
+      gather_boundary_faces(geometry::slab_contact, geometry::wall_contact);
     // Deterministic order independent of the partition: by coordinates.
     const auto key = [](const Point<dim> &p) { return std::make_pair(p[0], p[1]); };
     std::sort(segments.begin(),
@@ -271,26 +278,15 @@ namespace kimp::fem::internal
     }
     log_line("contact: " + std::to_string(slaves.size()) + " slave nodes, " +
              std::to_string(master.size()) + " master segments" +
-             (prm.rigid_slab ? " (rigid face)" : "") + ", k/l = " + fmt_double(penalty_per_length) +
-             " N/m^2, h_contact = " + fmt_double(h_contact) +
-             " m, initial gap = " + fmt_double(initial_gap) + " m");
+             (prm.rigid_slab ? " (rigid face)" : "") + ", k/l = " + fmt_sig(penalty_per_length) +
+             " N/m^2, h_contact = " + fmt_sig(h_contact) +
+             " m, initial gap = " + fmt_sig(initial_gap) + " m");
   }
 
   std::vector<double> ImpactProblem::gather_compact(const Vec &v, double rigid_value) const
   {
-    std::vector<double> local(contact_dofs.size() + 1, 0.0), all(contact_dofs.size() + 1);
-    for (unsigned int k = 0; k < contact_dofs.size(); ++k)
-      if (locally_owned.is_element(contact_dofs[k]))
-        local[k] = v(contact_dofs[k]);
-    // Exactly one rank owns each entry, the others add zeros: the sum is exact.
-    const int ierr = MPI_Allreduce(local.data(),
-                                   all.data(),
-                                   static_cast<int>(local.size()),
-                                   MPI_DOUBLE,
-                                   MPI_SUM,
-                                   comm);
-    AssertThrowMPI(ierr);
-    all.back() = rigid_value;
+    std::vector<double> all = gather_owned(contact_dofs, v);
+    all.push_back(rigid_value);
     return all;
   }
 
@@ -305,13 +301,7 @@ namespace kimp::fem::internal
         local[k]     = a(contact_dofs[k]);
         local[n + k] = b(contact_dofs[k]);
       }
-    const int ierr = MPI_Allreduce(local.data(),
-                                   all.data(),
-                                   static_cast<int>(local.size()),
-                                   MPI_DOUBLE,
-                                   MPI_SUM,
-                                   comm);
-    AssertThrowMPI(ierr);
+    reduce_over_ranks(local.data(), all.data(), local.size(), MPI_SUM, comm);
     std::vector<double> ca(all.begin(), all.begin() + n), cb(all.begin() + n, all.end());
     ca.push_back(rigid_a);
     cb.push_back(rigid_b);

@@ -41,13 +41,7 @@ namespace kimp::fem::internal
             local[m] = std::max(local[m], cell->vertex(v)[1]);
         }
       std::vector<double> global(local.size());
-      const int           ierr = MPI_Allreduce(local.data(),
-                                     global.data(),
-                                     static_cast<int>(local.size()),
-                                     MPI_DOUBLE,
-                                     MPI_MAX,
-                                     comm);
-      AssertThrowMPI(ierr);
+      reduce_over_ranks(local.data(), global.data(), local.size(), MPI_MAX, comm);
       std::map<unsigned int, double> tops;
       std::size_t                    m = 0;
       for (const auto &entry : k0)
@@ -158,24 +152,17 @@ namespace kimp::fem::internal
     std::vector<unsigned int>            supported_component;
     if (absorbing)
     {
-      for (const auto &cell : dof_handler.active_cell_iterators())
-        if (!cell->is_artificial() && cell->material_id() == geometry::soil_material)
-          for (const auto &face : cell->face_iterators())
-            if (face->at_boundary() && is_absorbing(face->boundary_id()))
-            {
-              const unsigned int n_components = face->boundary_id() == geometry::fixed_base ? 2 : 1;
-              for (unsigned int v = 0; v < face->n_vertices(); ++v)
-                for (unsigned int c = 0; c < n_components; ++c)
-                {
-                  const auto i = face->vertex_dof_index(v, c);
-                  if (locally_owned.is_element(i) && free_mask(i) > 0 && static_mask(i) > 0)
-                  {
-                    static_mask(i) = 0;
-                    supported.push_back(i);
-                    supported_component.push_back(c);
-                  }
-                }
-            }
+      for_each_absorbing_dof(true,
+                             [&](const types::global_dof_index i, const unsigned int c)
+                             {
+                               if (locally_owned.is_element(i) && free_mask(i) > 0 &&
+                                   static_mask(i) > 0)
+                               {
+                                 static_mask(i) = 0;
+                                 supported.push_back(i);
+                                 supported_component.push_back(c);
+                               }
+                             });
       static_mask.compress(VectorOperation::insert);
     }
 
@@ -362,7 +349,7 @@ namespace kimp::fem::internal
       resultant[0] = Utilities::MPI::sum(resultant[0], comm);
       resultant[1] = Utilities::MPI::sum(resultant[1], comm);
       log_line("geostatic: the absorbing boundary's supports hold the soil with (" +
-               fmt_double(resultant[0]) + ", " + fmt_double(resultant[1]) +
+               fmt_sig(resultant[0]) + ", " + fmt_sig(resultant[1]) +
                ") N/m, applied as constant nodal forces during the impact");
     }
     if (!linear_laws)
@@ -404,11 +391,11 @@ namespace kimp::fem::internal
     geostatic_summary.geostatic_iterations          = k;
     geostatic_summary.geostatic_plastic_dissipation = geostatic_point_energy[1];
     geostatic_summary.geostatic_wall_displacement   = geostatic_wall;
-    log_line("geostatic: weight " + fmt_double(weight) + " N/m, out-of-balance " +
-             fmt_double(residual / weight) + " of it after " + std::to_string(k) + " iterations (" +
+    log_line("geostatic: weight " + fmt_sig(weight) + " N/m, out-of-balance " +
+             fmt_sig(residual / weight) + " of it after " + std::to_string(k) + " iterations (" +
              std::to_string(n_tangent) + " on the consistent tangent, " +
-             fmt_double(geostatic_seconds) + " s), wall face u_x = " + fmt_double(geostatic_wall) +
-             " m, plastic dissipation " + fmt_double(geostatic_point_energy[1]) + " J/m");
+             fmt_sig(geostatic_seconds) + " s), wall face u_x = " + fmt_sig(geostatic_wall) +
+             " m, plastic dissipation " + fmt_sig(geostatic_point_energy[1]) + " J/m");
   }
 
   std::vector<PointStress> ImpactProblem::gather_point_stresses(const Vec &u)

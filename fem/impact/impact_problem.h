@@ -1,6 +1,7 @@
 // Private to fem/impact/: ImpactProblem, the deal.II problem class behind run_impact() for
 // M u_tt + f_int(u) = f_c(u, u_t) (step-18/step-42 layout, one public verb run()). Its phases:
-// setup.cc, contact_setup.cc, implicit.cc (Newmark) and explicit_and_recording.cc.
+// setup.cc, contact_setup.cc, interface_setup.cc, absorbing_boundary.cc, geostatic.cc, the time
+// loops explicit.cc and implicit.cc (Newmark), and recording.cc, which both loops share.
 #pragma once
 
 #include <array>
@@ -33,10 +34,28 @@ namespace kimp::fem::internal
 
   /** x formatted with 6 significant digits (messages). */
   std::string fmt_double(double x);
+  /** x with 4 significant digits (log lines). */
+  std::string fmt_sig(double x);
+  /** global = the entry-wise reduction op (MPI_SUM, MPI_MAX) over the ranks of comm of the n
+   *  values at local. */
+  void
+  reduce_over_ranks(const double *local, double *global, std::size_t n, MPI_Op op, MPI_Comm comm);
+  /** The entry-wise sum of local over the ranks of comm. */
+  std::vector<double> sum_over_ranks(const std::vector<double> &local, MPI_Comm comm);
   /** Throws ExcMessage(message) unless ok. */
   void require(bool ok, const std::string &message);
   /** Compact vector of the contact evaluation with the rigid DoF appended if missing. */
   std::vector<double> padded_force(const PenaltyContact::Evaluation &ev, std::size_t size);
+
+  /** One boundary face of a locally owned cell, as gathered from all ranks (reference geometry,
+   *  global DoFs). */
+  struct FaceSegment
+  {
+    unsigned int                           boundary_id = 0;
+    unsigned int                           material_id = 0;
+    Point<dim>                             p0, p1, cell_center;
+    std::array<types::global_dof_index, 4> dofs{}; // p0 x, p0 y, p1 x, p1 y
+  };
 
   class ImpactProblem
   {
@@ -66,6 +85,17 @@ namespace kimp::fem::internal
     /** The separation test of both time loops: the slab comes in at no more than
      *  separation_velocity_fraction of the impact velocity. */
     bool slab_no_longer_comes_in(double slab_v) const;
+    /** Step counts of both time loops at the step dt: output every vtu_every (write_vtu) and
+     *  frame_every (0: no frames) steps, at most n_max steps, separation after hold_steps. */
+    struct LoopSteps
+    {
+      bool          write_vtu   = false;
+      unsigned long vtu_every   = 0;
+      unsigned long frame_every = 0;
+      unsigned long n_max       = 0;
+      unsigned long hold_steps  = 0;
+    };
+    LoopSteps loop_steps() const;
 
     // residual.cc
     /** After the run, u (and u_r) at its end: the wall face's displacement then and its
@@ -83,6 +113,14 @@ namespace kimp::fem::internal
 
     // contact_setup.cc
     void setup_contact();
+    /** The faces with boundary id a or b of every rank's locally owned cells, in rank order (the
+     *  same list on all ranks). Collective. */
+    std::vector<FaceSegment> gather_boundary_faces(types::boundary_id a,
+                                                   types::boundary_id b) const;
+    /** v at each of dofs, from the rank that owns it (the others add zeros: the sum is exact);
+     *  the same on all ranks. Collective. */
+    std::vector<double> gather_owned(const std::vector<types::global_dof_index> &dofs,
+                                     const Vec                                  &v) const;
     /** Compact contact values (all ranks) of a distributed vector, plus the rigid DoF. */
     std::vector<double> gather_compact(const Vec &v, double rigid_value) const;
     /** Two compact gathers in one reduction: (a, rigid a), (b, rigid b). */
@@ -114,6 +152,23 @@ namespace kimp::fem::internal
     /** Constrains the faces of absorbing ids that are not on soil cells (fixed base: u = 0;
      *  far side: u_x = 0), as the constraint they replace. Before constraints.close(). */
     void constrain_non_absorbing_faces();
+    /** f(i, c) for every vertex DoF i (component c) that the faces of absorbing ids of the
+     *  non-artificial cells on soil (on_soil) or not on soil would hold fixed without dashpots:
+     *  both components on the fixed base, x on the soil's far side. */
+    template <class F>
+    void for_each_absorbing_dof(bool on_soil, const F &f) const
+    {
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (!cell->is_artificial() && (cell->material_id() == geometry::soil_material) == on_soil)
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary() && is_absorbing(face->boundary_id()))
+            {
+              const unsigned int n_components = face->boundary_id() == geometry::fixed_base ? 2 : 1;
+              for (unsigned int v = 0; v < face->n_vertices(); ++v)
+                for (unsigned int c = 0; c < n_components; ++c)
+                  f(face->vertex_dof_index(v, c), c);
+            }
+    }
     /** Lumped Lysmer-Kuhlemeyer dashpots into `damping` and the list of damped free DoFs. */
     void assemble_dashpots();
     /** Explicit: a = M^{-1} (f - K u) on entry; on the damped DoFs it becomes the acceleration
@@ -144,8 +199,10 @@ namespace kimp::fem::internal
     /** Adds the interface's penalty springs to a matrix whose sparsity has their couplings. */
     void add_interface_stiffness(TrilinosWrappers::SparseMatrix &matrix) const;
 
-    // explicit_and_recording.cc
+    // explicit.cc
     void run_explicit();
+
+    // recording.cc
     /** Records histories and energies of step n (time t). */
     void              record(unsigned long                     n,
                              double                            t,
@@ -170,8 +227,6 @@ namespace kimp::fem::internal
      *  that state (collective). */
     void         record_frame(double t, const Vec &u, const PenaltyContact::Evaluation &ev);
     ImpactFrames frames;
-
-    // frames.cc
     /** Appends the contact pressure of ev to frames (and, at the first frame, the contact
      *  nodes' vertices and tributary lengths). ev is the same on every rank. */
     void record_contact_pressure(const PenaltyContact::Evaluation &ev);

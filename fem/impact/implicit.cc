@@ -248,28 +248,14 @@ namespace kimp::fem::internal
         if (locally_owned.is_element(contact_dofs[k]) &&
             !constraints.is_constrained(contact_dofs[k]))
           local[k] = 1;
-      std::vector<double> all(local.size());
-      const int           ierr = MPI_Allreduce(local.data(),
-                                     all.data(),
-                                     static_cast<int>(local.size()),
-                                     MPI_DOUBLE,
-                                     MPI_SUM,
-                                     comm);
-      AssertThrowMPI(ierr);
+      const std::vector<double> all = sum_over_ranks(local, comm);
       for (unsigned int k = 0; k < contact_dofs.size(); ++k)
         compact_free[k] = all[k] > 0.5;
     }
     // Round-off floor of the residual: |K| |u|.
     const double stiffness_norm = stiffness.linfty_norm();
 
-    const bool          write_vtu = !prm.vtu_dir.empty() && prm.vtu_interval > 0;
-    const unsigned long vtu_every =
-      write_vtu ? std::max<unsigned long>(1, std::lround(prm.vtu_interval / dt)) : 0;
-    const unsigned long frame_every =
-      prm.frame_interval > 0 ? std::max<unsigned long>(1, std::lround(prm.frame_interval / dt)) : 0;
-    const unsigned long n_max = static_cast<unsigned long>(std::ceil(prm.end_time / dt));
-    const unsigned long hold_steps =
-      static_cast<unsigned long>(std::ceil(prm.separation_hold_time / dt));
+    const LoopSteps   steps   = loop_steps();
     const std::size_t r_index = contact_dofs.size();
 
     PenaltyContact::Evaluation ev;
@@ -279,9 +265,9 @@ namespace kimp::fem::internal
       ev = contact->evaluate(cu, gather_compact(v, v_r));
       internal_force(u, Ku);
       record(0, 0.0, u, v, Ku, u_r, v_r, ev, cu);
-      if (write_vtu)
+      if (steps.write_vtu)
         output_results(0.0, u, v, padded_force(ev, cu.size()));
-      if (frame_every)
+      if (steps.frame_every)
         record_frame(0.0, u, ev);
     }
 
@@ -407,7 +393,7 @@ namespace kimp::fem::internal
     const unsigned long ticks_per_step = 1UL << max_level;
     unsigned long       ticks          = 0;
     unsigned int        level          = 0;
-    while (n < n_max)
+    while (n < steps.n_max)
     {
       const unsigned long step_ticks = ticks_per_step >> level;
       const double        t_np1 =
@@ -447,9 +433,9 @@ namespace kimp::fem::internal
         continue;
       ++n;
       record(n, t_np1, u, v, Ku, u_r, v_r, ev, cu);
-      if (write_vtu && n % vtu_every == 0)
+      if (steps.write_vtu && n % steps.vtu_every == 0)
         output_results(t_np1, u, v, padded_force(ev, cu.size()));
-      if (frame_every && n % frame_every == 0)
+      if (steps.frame_every && n % steps.frame_every == 0)
         record_frame(t_np1, u, ev);
       if (prm.progress && n % prm.progress_interval == 0 &&
           Utilities::MPI::this_mpi_process(comm) == 0)
@@ -461,7 +447,7 @@ namespace kimp::fem::internal
         zero_since = n + 1;
       }
       // Over as in the explicit loop: zero force for the hold time, the slab not moving in.
-      if (started && n + 1 - zero_since >= hold_steps && ev.total_force == 0 &&
+      if (started && n + 1 - zero_since >= steps.hold_steps && ev.total_force == 0 &&
           slab_no_longer_comes_in(slab_velocity(v, v_r)))
       {
         separated_flag = true;

@@ -25,48 +25,26 @@ namespace kimp::fem::internal
     require(prm.integrator == ImpactParameters::Integrator::explicit_central_difference,
             "wall_soil_interface.contact needs the explicit integrator (the implicit Newton has "
             "no frictional interface tangent)");
-    // Every interface face of the owned cells: boundary id, material, end points, their DoFs.
-    std::vector<double> local;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const auto &face : cell->face_iterators())
-          if (face->at_boundary() && (face->boundary_id() == geometry::wall_back ||
-                                      face->boundary_id() == geometry::soil_front))
-          {
-            local.push_back(face->boundary_id());
-            local.push_back(cell->material_id());
-            for (unsigned int v = 0; v < 2; ++v)
-            {
-              local.push_back(face->vertex(v)[0]);
-              local.push_back(face->vertex(v)[1]);
-              local.push_back(static_cast<double>(face->vertex_dof_index(v, 0)));
-              local.push_back(static_cast<double>(face->vertex_dof_index(v, 1)));
-            }
-          }
-    constexpr unsigned int record = 10;
     // Node by (position, boundary id): compact index, DoFs, tributary length.
     using Key = std::tuple<double, double, unsigned int>;
     std::map<Key, std::array<double, 3>> nodes; // dof x, dof y, tributary length
     double                               h_min  = std::numeric_limits<double>::max();
     double                               e_soil = 0;
-    for (const auto &part : Utilities::MPI::all_gather(comm, local))
-      for (std::size_t k = 0; k + record <= part.size(); k += record)
+    for (const FaceSegment &s : gather_boundary_faces(geometry::wall_back, geometry::soil_front))
+    {
+      const double length = std::hypot(s.p1[0] - s.p0[0], s.p1[1] - s.p0[1]);
+      h_min               = std::min(h_min, length);
+      if (s.boundary_id == geometry::soil_front)
+        e_soil = std::max(e_soil, prm.materials.at(s.material_id).youngs_modulus);
+      for (unsigned int v = 0; v < 2; ++v)
       {
-        const auto   id     = static_cast<unsigned int>(part[k]);
-        const double length = std::hypot(part[k + 6] - part[k + 2], part[k + 7] - part[k + 3]);
-        h_min               = std::min(h_min, length);
-        if (id == geometry::soil_front)
-          e_soil =
-            std::max(e_soil,
-                     prm.materials.at(static_cast<unsigned int>(part[k + 1])).youngs_modulus);
-        for (unsigned int v = 0; v < 2; ++v)
-        {
-          auto &n = nodes[{part[k + 2 + 4 * v], part[k + 3 + 4 * v], id}];
-          n[0]    = part[k + 4 + 4 * v];
-          n[1]    = part[k + 5 + 4 * v];
-          n[2] += 0.5 * length;
-        }
+        const Point<dim> &p = v == 0 ? s.p0 : s.p1;
+        auto             &n = nodes[{p[0], p[1], s.boundary_id}];
+        n[0]                = static_cast<double>(s.dofs[2 * v]);
+        n[1]                = static_cast<double>(s.dofs[2 * v + 1]);
+        n[2] += 0.5 * length;
       }
+    }
     require(!nodes.empty() && e_soil > 0,
             "wall_soil_interface.contact: mesh '" + prm.mesh_file.string() +
               "' has no wall_back / soil_front faces (boundary ids " +
@@ -82,17 +60,7 @@ namespace kimp::fem::internal
       interface_dofs.push_back(static_cast<types::global_dof_index>(n[0]));
       interface_dofs.push_back(static_cast<types::global_dof_index>(n[1]));
     }
-    const std::vector<double> node_mass = [&]
-    {
-      std::vector<double> m(interface_dofs.size(), 0.0), all(m.size());
-      for (std::size_t k = 0; k < interface_dofs.size(); ++k)
-        if (locally_owned.is_element(interface_dofs[k]))
-          m[k] = mass(interface_dofs[k]);
-      const int ierr =
-        MPI_Allreduce(m.data(), all.data(), static_cast<int>(m.size()), MPI_DOUBLE, MPI_SUM, comm);
-      AssertThrowMPI(ierr);
-      return all;
-    }();
+    const std::vector<double>              node_mass = gather_owned(interface_dofs, mass);
     std::vector<FrictionalInterface::Pair> pairs;
     omega_interface = 0;
     for (const auto &[key, n] : nodes)
@@ -119,24 +87,14 @@ namespace kimp::fem::internal
     }
     interface = std::make_unique<FrictionalInterface>(pairs, interface_dofs.size() / 2);
     log_line("wall-soil interface: " + std::to_string(pairs.size()) +
-             " node pairs, mu = " + fmt_double(o.friction) +
-             ", k_N/l = " + fmt_double(o.penalty_factor * e_soil / h_min) + " N/m^2");
+             " node pairs, mu = " + fmt_sig(o.friction) +
+             ", k_N/l = " + fmt_sig(o.penalty_factor * e_soil / h_min) + " N/m^2");
   }
 
   void ImpactProblem::subtract_interface_force(const Vec &u, Vec &f)
   {
-    std::vector<double> local(interface_dofs.size(), 0.0), all(local.size());
-    for (std::size_t k = 0; k < interface_dofs.size(); ++k)
-      if (locally_owned.is_element(interface_dofs[k]))
-        local[k] = u(interface_dofs[k]);
-    const int ierr = MPI_Allreduce(local.data(),
-                                   all.data(),
-                                   static_cast<int>(local.size()),
-                                   MPI_DOUBLE,
-                                   MPI_SUM,
-                                   comm);
-    AssertThrowMPI(ierr);
-    interface_ev = interface->evaluate(all);
+    const std::vector<double> all = gather_owned(interface_dofs, u);
+    interface_ev                  = interface->evaluate(all);
     for (std::size_t k = 0; k < interface_dofs.size(); ++k)
       if (interface_ev.force[k] != 0 && locally_owned.is_element(interface_dofs[k]) &&
           !constraints.is_constrained(interface_dofs[k]))

@@ -17,7 +17,6 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/grid/grid_generator.h>
-#include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
@@ -25,6 +24,7 @@
 #include <deal.II/lac/vector.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include "fem/fe_helpers.h"
 #include "fem/impact/impact_problem.h"
 #include "geometry/scene_ids.h"
 
@@ -32,10 +32,8 @@ namespace kimp::fem
 {
   double p_wave_speed(const Material &m)
   {
-    const double lambda =
-      m.youngs_modulus * m.poisson_ratio / ((1 + m.poisson_ratio) * (1 - 2 * m.poisson_ratio));
-    const double mu = m.youngs_modulus / (2 * (1 + m.poisson_ratio));
-    return std::sqrt((lambda + 2 * mu) / m.density);
+    const Lame l = lame(m.youngs_modulus, m.poisson_ratio);
+    return std::sqrt((l.lambda + 2 * l.mu) / m.density);
   }
 
   ImpactResult run_impact(const ImpactParameters &parameters, MPI_Comm comm, std::ostream *log)
@@ -50,12 +48,39 @@ namespace kimp::fem::internal
   /** Largest ImplicitOptions::max_halvings: time is counted in integer ticks of dt / 2^max. */
   constexpr unsigned int max_step_halvings = 30;
 
+  namespace
+  {
+    std::string with_digits(double x, int digits)
+    {
+      std::ostringstream s;
+      s.precision(digits);
+      s << x;
+      return s.str();
+    }
+  } // namespace
+
   std::string fmt_double(double x)
   {
-    std::ostringstream s;
-    s.precision(6);
-    s << x;
-    return s.str();
+    return with_digits(x, 6);
+  }
+
+  std::string fmt_sig(double x)
+  {
+    return with_digits(x, 4);
+  }
+
+  void
+  reduce_over_ranks(const double *local, double *global, std::size_t n, MPI_Op op, MPI_Comm comm)
+  {
+    const int ierr = MPI_Allreduce(local, global, static_cast<int>(n), MPI_DOUBLE, op, comm);
+    AssertThrowMPI(ierr);
+  }
+
+  std::vector<double> sum_over_ranks(const std::vector<double> &local, MPI_Comm comm)
+  {
+    std::vector<double> global(local.size());
+    reduce_over_ranks(local.data(), global.data(), local.size(), MPI_SUM, comm);
+    return global;
   }
 
   void require(bool ok, const std::string &message)
@@ -104,10 +129,9 @@ namespace kimp::fem::internal
     e0 = 0.5 * slab_total_mass * prm.initial_velocity * prm.initial_velocity;
     log_line("mesh: " + std::to_string(triangulation.n_global_active_cells()) + " cells, " +
              std::to_string(dof_handler.n_dofs()) + " DoFs on " +
-             std::to_string(Utilities::MPI::n_mpi_processes(comm)) +
-             " ranks; dt = " + fmt_double(dt) + " s (stable " + fmt_double(dt_stable) +
-             " s, mesh omega " + fmt_double(omega_mesh) + " rad/s, penalty omega " +
-             fmt_double(omega_penalty) + " rad/s)");
+             std::to_string(Utilities::MPI::n_mpi_processes(comm)) + " ranks; dt = " + fmt_sig(dt) +
+             " s (stable " + fmt_sig(dt_stable) + " s, mesh omega " + fmt_sig(omega_mesh) +
+             " rad/s, penalty omega " + fmt_sig(omega_penalty) + " rad/s)");
     if (prm.integrator == ImpactParameters::Integrator::explicit_central_difference)
       run_explicit();
     else
@@ -116,13 +140,12 @@ namespace kimp::fem::internal
       prm.progress(n_steps_done * dt, prm.end_time);
     ImpactResult result;
     finish(result, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    log_line("done: " + std::to_string(result.summary.n_steps) + " steps, peak force " +
-             fmt_double(result.summary.peak_force) + " N/m, contact " +
-             fmt_double(result.summary.contact_duration) + " s, impulse " +
-             fmt_double(result.summary.impulse) + " N s/m, COR " +
-             fmt_double(result.summary.apparent_cor) + ", max |dE/E0| " +
-             fmt_double(result.summary.energy_error) + ", " +
-             fmt_double(result.summary.wall_seconds) + " s");
+    log_line(
+      "done: " + std::to_string(result.summary.n_steps) + " steps, peak force " +
+      fmt_sig(result.summary.peak_force) + " N/m, contact " +
+      fmt_sig(result.summary.contact_duration) + " s, impulse " + fmt_sig(result.summary.impulse) +
+      " N s/m, COR " + fmt_sig(result.summary.apparent_cor) + ", max |dE/E0| " +
+      fmt_sig(result.summary.energy_error) + ", " + fmt_sig(result.summary.wall_seconds) + " s");
     return result;
   }
 
@@ -197,12 +220,7 @@ namespace kimp::fem::internal
   void ImpactProblem::make_grid()
   {
     Triangulation<dim> serial;
-    {
-      GridIn<dim> grid_in;
-      grid_in.attach_triangulation(serial);
-      std::ifstream in(prm.mesh_file);
-      grid_in.read_msh(in);
-    }
+    read_msh(prm.mesh_file, serial);
     for (const auto &cell : serial.active_cell_iterators())
       require(prm.materials.count(cell->material_id()) > 0,
               "mesh '" + prm.mesh_file.string() + "' has material id " +
@@ -411,6 +429,18 @@ namespace kimp::fem::internal
   double ImpactProblem::slab_velocity(const Vec &v, double v_r) const
   {
     return prm.rigid_slab ? v_r : (slab_mass_x * v) / slab_total_mass;
+  }
+
+  ImpactProblem::LoopSteps ImpactProblem::loop_steps() const
+  {
+    LoopSteps s;
+    s.write_vtu = !prm.vtu_dir.empty() && prm.vtu_interval > 0;
+    s.vtu_every = s.write_vtu ? std::max<unsigned long>(1, std::lround(prm.vtu_interval / dt)) : 0;
+    s.frame_every =
+      prm.frame_interval > 0 ? std::max<unsigned long>(1, std::lround(prm.frame_interval / dt)) : 0;
+    s.n_max      = static_cast<unsigned long>(std::ceil(prm.end_time / dt));
+    s.hold_steps = static_cast<unsigned long>(std::ceil(prm.separation_hold_time / dt));
+    return s;
   }
 
   bool ImpactProblem::slab_no_longer_comes_in(double slab_v) const

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -347,26 +348,36 @@ namespace kimp::lumped
     }
   }
 
+  namespace
+  {
+    /// The pulse's phase 2π·f_p·(t − t_0) at t; none outside its support |t − t_0| <= γ/(2·f_p).
+    std::optional<double> mp_pulse_phase(const SyntheticMotionSpec &spec, double t)
+    {
+      const double fp  = 1.0 / spec.pulse_period;
+      const double tau = t - spec.pulse_time;
+      if (std::abs(tau) > 0.5 * spec.gamma / fp)
+        return std::nullopt;
+      return 2.0 * pi * fp * tau;
+    }
+  } // namespace
+
   double mp_pulse_velocity(const SyntheticMotionSpec &spec, double amplitude, double t)
   {
-    const double fp  = 1.0 / spec.pulse_period;
-    const double tau = t - spec.pulse_time;
-    if (std::abs(tau) > 0.5 * spec.gamma / fp)
+    const std::optional<double> phase = mp_pulse_phase(spec, t);
+    if (!phase)
       return 0.0;
-    const double phase = 2.0 * pi * fp * tau;
-    return 0.5 * amplitude * (1.0 + std::cos(phase / spec.gamma)) * std::cos(phase + spec.nu);
+    return 0.5 * amplitude * (1.0 + std::cos(*phase / spec.gamma)) * std::cos(*phase + spec.nu);
   }
 
   double mp_pulse_acceleration(const SyntheticMotionSpec &spec, double amplitude, double t)
   {
-    const double fp  = 1.0 / spec.pulse_period;
-    const double tau = t - spec.pulse_time;
-    if (std::abs(tau) > 0.5 * spec.gamma / fp)
+    const std::optional<double> phase = mp_pulse_phase(spec, t);
+    if (!phase)
       return 0.0;
-    const double phase = 2.0 * pi * fp * tau;
+    const double fp = 1.0 / spec.pulse_period;
     return -amplitude * pi * fp / spec.gamma *
-           (std::sin(phase / spec.gamma) * std::cos(phase + spec.nu) +
-            spec.gamma * (1.0 + std::cos(phase / spec.gamma)) * std::sin(phase + spec.nu));
+           (std::sin(*phase / spec.gamma) * std::cos(*phase + spec.nu) +
+            spec.gamma * (1.0 + std::cos(*phase / spec.gamma)) * std::sin(*phase + spec.nu));
   }
 
   double mp_pulse_displacement(const SyntheticMotionSpec &spec, double amplitude)

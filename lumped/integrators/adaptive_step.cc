@@ -1,6 +1,9 @@
 // Variable-step central differences (`dt: auto`): the leap-frog step with a changing Δt, the
 // step choice around contacts and the step-factor error estimate over contact windows
-// (docs/physics.md §2, "Variable-step central differences").
+// (docs/physics.md §2, "Variable-step central differences"). One file of ~1000 lines on purpose:
+// the run is one algorithm, the class template AdaptiveRun over the DOF count, whose step choice,
+// step, forces, window bookkeeping and estimate re-run share the run's state and are instantiated
+// together here (N = 1..8 and any N); split across files it would only move into a header.
 #include "lumped/integrators/adaptive_step.h"
 
 #include <Eigen/LU>
@@ -16,6 +19,7 @@
 #include "lumped/integrators/integration_errors.h"
 #include "lumped/integrators/response_recorder.h"
 #include "lumped/isolators/bilinear_isolator.h"
+#include "lumped/parameter_check.h"
 
 namespace kimp::lumped
 {
@@ -23,10 +27,9 @@ namespace kimp::lumped
   {
     constexpr double pi = 3.14159265358979323846;
 
-    /// Everything that evolves during a run: copied (laws cloned) for the error-estimate re-run.
-    /// N: the number of DOFs (Eigen::Dynamic for any).
+    /// The values of State: copied as they are.
     template <int N>
-    struct State
+    struct StateValues
     {
       using Vec      = Eigen::Matrix<double, N, 1>;
       double t       = 0.0;
@@ -48,48 +51,27 @@ namespace kimp::lumped
       std::vector<int>    called;
       double              iso_u1 = 0.0, iso_u2 = 0.0; ///< u_0 at n−1, n−2
       /// Isolator rate u̇_0 at t_n (three-point) and the relative acceleration ü_0 at t_{n−1}.
-      double                                 iso_rate = 0.0, iso_acc = 0.0;
-      std::unique_ptr<Isolator>              iso;
-      std::vector<std::unique_ptr<ForceLaw>> laws;
+      double iso_rate = 0.0, iso_acc = 0.0;
       double w_in = 0.0, w_visc = 0.0, w_contact = 0.0, p_in_prev = 0.0, p_visc_prev = 0.0;
       double tail_until = -std::numeric_limits<double>::infinity();
+    };
+
+    /// Everything that evolves during a run: copied (laws cloned) for the error-estimate re-run.
+    /// N: the number of DOFs (Eigen::Dynamic for any).
+    template <int N>
+    struct State : StateValues<N>
+    {
+      std::unique_ptr<Isolator>              iso;
+      std::vector<std::unique_ptr<ForceLaw>> laws;
 
       State copy() const
       {
         State s;
-        s.t         = t;
-        s.h_prev    = h_prev;
-        s.h_prev2   = h_prev2;
-        s.n         = n;
-        s.u         = u;
-        s.v_half    = v_half;
-        s.cv_half   = cv_half;
-        s.ih_prev   = ih_prev;
-        s.ih_prev2  = ih_prev2;
-        s.w_rate    = w_rate;
-        s.f         = f;
-        s.dp        = dp;
-        s.dpp       = dpp;
-        s.delta     = delta;
-        s.cf        = cf;
-        s.active    = active;
-        s.closing   = closing;
-        s.rate_prev = rate_prev;
-        s.called    = called;
-        s.iso_u1    = iso_u1;
-        s.iso_u2    = iso_u2;
-        s.iso_rate  = iso_rate;
-        s.iso_acc   = iso_acc;
+        static_cast<StateValues<N> &>(s) = *this;
         if (iso)
           s.iso = iso->clone();
         for (const auto &law : laws)
           s.laws.push_back(law->clone());
-        s.w_in        = w_in;
-        s.w_visc      = w_visc;
-        s.w_contact   = w_contact;
-        s.p_in_prev   = p_in_prev;
-        s.p_visc_prev = p_visc_prev;
-        s.tail_until  = tail_until;
         return s;
       }
     };
@@ -884,6 +866,7 @@ namespace kimp::lumped
   std::string AdaptiveStepReport::text() const
   {
     std::ostringstream o;
+    o.precision(4);
     o << "variable step: " << dt_large << " s, " << dt_approach << " s approaching, " << dt_contact
       << " s at contacts (" << windows << " windows, " << steps << " steps of which "
       << contact_steps_taken << " below the large step, +" << estimate_steps
@@ -903,29 +886,37 @@ namespace kimp::lumped
     if (cdm_.dt != 0.0)
       throw std::invalid_argument("variable-step central differences choose dt themselves "
                                   "(central_difference.dt must be 0)");
-    if (!(options_.contact_steps >= 4.0))
-      throw std::invalid_argument(
-        "adaptive contact_steps = " + std::to_string(options_.contact_steps) + " (must be >= 4)");
-    if (!(options_.lookahead >= 1.0))
-      throw std::invalid_argument("adaptive lookahead = " + std::to_string(options_.lookahead) +
-                                  " (must be >= 1)");
-    if (!(options_.approach_steps >= 4.0 && options_.approach_time >= 0.0))
-      throw std::invalid_argument(
-        "adaptive approach_steps = " + std::to_string(options_.approach_steps) +
-        " (must be >= 4), approach_time = " + std::to_string(options_.approach_time) +
-        " s (must be >= 0)");
-    if (!(options_.structure_step > 0.0 && options_.structure_step <= 2.0))
-      throw std::invalid_argument("adaptive structure_step = " +
-                                  std::to_string(options_.structure_step) + " (must be in (0, 2])");
-    if (!(options_.stick_step > 0.0 && options_.stick_step <= 2.0))
-      throw std::invalid_argument("adaptive stick_step = " + std::to_string(options_.stick_step) +
-                                  " (must be in (0, 2])");
-    if (!(options_.estimate_factor >= 2.0))
-      throw std::invalid_argument("adaptive estimate_factor = " +
-                                  std::to_string(options_.estimate_factor) + " (must be >= 2)");
-    if (!(options_.tail >= 0.0))
-      throw std::invalid_argument("adaptive tail = " + std::to_string(options_.tail) +
-                                  " s (must be >= 0)");
+    const ParameterCheck check("adaptive ");
+    check(options_.contact_steps >= 4.0, "contact_steps", options_.contact_steps, "must be >= 4");
+    check(options_.lookahead >= 1.0, "lookahead", options_.lookahead, "must be >= 1");
+    check(options_.approach_steps >= 4.0,
+          "approach_steps",
+          options_.approach_steps,
+          "must be >= 4");
+    require_parameter(options_.approach_time >= 0.0,
+                      "adaptive ",
+                      "approach_time",
+                      options_.approach_time,
+                      "s",
+                      "must be >= 0");
+    check(options_.structure_step > 0.0 && options_.structure_step <= 2.0,
+          "structure_step",
+          options_.structure_step,
+          "must be in (0, 2]");
+    check(options_.stick_step > 0.0 && options_.stick_step <= 2.0,
+          "stick_step",
+          options_.stick_step,
+          "must be in (0, 2]");
+    check(options_.estimate_factor >= 2.0,
+          "estimate_factor",
+          options_.estimate_factor,
+          "must be >= 2");
+    require_parameter(options_.tail >= 0.0,
+                      "adaptive ",
+                      "tail",
+                      options_.tail,
+                      "s",
+                      "must be >= 0");
     // Validates the shared options and gives ω_structure, ω_closed and ω_imp.
     stability_     = CentralDifference(model_, cdm_).stability();
     double contact = std::numeric_limits<double>::infinity();

@@ -15,6 +15,7 @@
 
 #include "lumped/integrators/central_difference_session.h"
 #include "lumped/integrators/integration_errors.h"
+#include "lumped/parameter_check.h"
 
 namespace kimp::lumped
 {
@@ -84,36 +85,36 @@ namespace kimp::lumped
     : model_(std::move(model))
     , options_(std::move(options))
   {
-    const auto fail = [](const char *key, const double v, const char *rule)
-    {
-      std::ostringstream msg;
-      msg << "central_difference." << key << " = " << v << " (" << rule << ')';
-      throw std::invalid_argument(msg.str());
-    };
-    if (!(options_.dt >= 0.0 && std::isfinite(options_.dt)))
-      fail("dt", options_.dt, "must be > 0 s, or 0 for auto");
-    if (!(options_.safety > 0.0 && options_.safety <= 1.0))
-      fail("safety", options_.safety, "must be in (0, 1]");
-    if (!(options_.duration >= 0.0 && std::isfinite(options_.duration)))
-      fail("duration", options_.duration, "must be >= 0 s (0: the record's length)");
-    if (!(options_.output_interval >= 0.0 && std::isfinite(options_.output_interval)))
-      fail("output_interval", options_.output_interval, "must be >= 0 s (0: no histories)");
-    if (!(options_.divergence_energy_factor > 1.0))
-      fail("divergence_energy_factor", options_.divergence_energy_factor, "must be > 1");
-    if (options_.vector_lanes != 0 && options_.vector_lanes != 2 && options_.vector_lanes != 4 &&
-        options_.vector_lanes != 8)
-      fail("vector_lanes",
-           static_cast<double>(options_.vector_lanes),
-           "must be 0 (widest available), 2, 4 or 8");
-    const std::size_t n = model_.n_dofs();
-    if (!options_.initial_displacement.empty() && options_.initial_displacement.size() != n)
-      fail("initial_displacement.size",
-           static_cast<double>(options_.initial_displacement.size()),
-           "must be 0 or the number of DOFs");
-    if (!options_.initial_velocity.empty() && options_.initial_velocity.size() != n)
-      fail("initial_velocity.size",
-           static_cast<double>(options_.initial_velocity.size()),
-           "must be 0 or the number of DOFs");
+    const ParameterCheck check("central_difference.");
+    check(options_.dt >= 0.0 && std::isfinite(options_.dt),
+          "dt",
+          options_.dt,
+          "must be > 0 s, or 0 for auto");
+    check(options_.safety > 0.0 && options_.safety <= 1.0,
+          "safety",
+          options_.safety,
+          "must be in (0, 1]");
+    check(options_.duration >= 0.0 && std::isfinite(options_.duration),
+          "duration",
+          options_.duration,
+          "must be >= 0 s (0: the record's length)");
+    check(options_.output_interval >= 0.0 && std::isfinite(options_.output_interval),
+          "output_interval",
+          options_.output_interval,
+          "must be >= 0 s (0: no histories)");
+    check(options_.divergence_energy_factor > 1.0,
+          "divergence_energy_factor",
+          options_.divergence_energy_factor,
+          "must be > 1");
+    const int lanes = options_.vector_lanes;
+    check(lanes == 0 || lanes == 2 || lanes == 4 || lanes == 8,
+          "vector_lanes",
+          lanes,
+          "must be 0 (widest available), 2, 4 or 8");
+    require_initial_state("central_difference.",
+                          options_.initial_displacement,
+                          options_.initial_velocity,
+                          model_.n_dofs());
     stability_ = stability_limit(model_, options_.expected_max_penetration);
   }
 

@@ -5,24 +5,12 @@
 #include <cstddef>
 #include <utility>
 
-#include "lumped/integrators/central_difference_session.h"
 #include "lumped/integrators/central_difference_simd.h"
-#include "lumped/isolators/bilinear_isolator.h"
 
-namespace kimp::lumped
+namespace kimp::lumped::cdm
 {
   namespace
   {
-    using cdm::block_steps;
-    using cdm::ForceEvaluator;
-    using cdm::fused_contacts;
-    using cdm::Lanes;
-    using cdm::peak_abs;
-    using cdm::Session;
-    using cdm::shift_down;
-    using cdm::shift_up;
-    using cdm::splat;
-
     /**
      * Splats of the four DOFs j..j+3 (j a multiple of 4) of the padded vector at `x` (L-aligned
      * vectors), each from a whole-vector load: a scalar turned into a vector inside this
@@ -95,32 +83,19 @@ namespace kimp::lumped
       const auto at  = [](const double *p) -> const U  &{ return *reinterpret_cast<const U *>(p); };
       const auto put = [](double *p) -> U & { return *reinterpret_cast<U *>(p); };
       ForceEvaluator<IsolatorType> forces(s);
+      const KernelArrays           ka(s);
       const std::size_t            n    = s.n;
       const std::size_t            LD   = s.padded_n;
       const std::size_t            P    = LD / L;
-      const std::size_t            S    = s.col_stride;
       const std::size_t            LD4  = std::max(LD, (n + 3) / 4 * 4);
       const int                   *lo   = s.any_lo.data();
       const int                   *hi   = s.any_hi.data();
-      const double                *agb  = s.ag_block.data();
-      const double                *a_f  = s.dense_f.data();
-      const double                *a_g  = s.dense_g.data();
-      const double                *a_i  = s.dense_inverse.data();
       const double                *am   = s.dense_am.data();
       const double                *mask = s.drift_mask.data();
-      double                      *f    = s.force.data();
-      const int                   *fd   = s.force_dofs.data();
-      const std::size_t            n_fd = s.force_dofs.size();
-      const std::size_t            nc   = s.laws.size();
-      const std::size_t           *c_l  = s.left_row.data();
-      const std::size_t           *c_r  = s.right_row.data();
-      const double                *c_g  = s.gap_skip.data();
-      double                      *ub   = s.u_block.data();
-      const double                 dt   = s.dt;
       const bool                   iso  = forces.has_isolator();
       const V                      zero = V{} * 0.0;
-      const V                      half = zero + 0.5 / dt;
-      const V                      idt2 = zero + 1.0 / (dt * dt);
+      const V                      half = zero + 0.5 / ka.dt;
+      const V                      idt2 = zero + 1.0 / (ka.dt * ka.dt);
 
       // Scratch: [u | Δu (LD4) | Δu (LD4) | v]; the two Δu alternate between Δu_n and Δu_{n+1}.
       double *const wu = s.any_work.data();
@@ -141,7 +116,7 @@ namespace kimp::lumped
 
       const auto one_step = [&](const long k, const bool touched) __attribute__((always_inline))
       {
-        const double ag = agb[k];
+        const double ag = ka.agb[k];
         const double fi = iso ? forces.isolator(k, wu[0]) : 0.0;
         // ü_g and f_iso as vectors: splats of vectors whose lane 0 holds them (see splat4).
         V vg = zero, vf = zero;
@@ -154,8 +129,8 @@ namespace kimp::lumped
           const std::size_t o  = i * L;
           V                 f0 = zero, f1 = zero, f2 = zero, f3 = zero;
           V                 g0 = zero, g1 = zero, g2 = zero, g3 = zero;
-          const double     *F = a_f + o;
-          const double     *G = a_g + o;
+          const double     *F = ka.a_f + o;
+          const double     *G = ka.a_g + o;
           for (std::size_t j = static_cast<std::size_t>(lo[i]); j < static_cast<std::size_t>(hi[i]);
                j += 4)
           {
@@ -173,30 +148,30 @@ namespace kimp::lumped
           const V sf  = (f0 + f1) + (f2 + f3);
           const V sg3 = (g0 + g1) + (g2 + g3);
           const V zo  = at(z + o);
-          put(dn + o) = ((at(wd + o) - zo) - at(am + o) * vg - sf) - at(a_i + o) * vf;
+          put(dn + o) = ((at(wd + o) - zo) - at(am + o) * vg - sf) - at(ka.a_i + o) * vf;
           put(z + o)  = zo + sg3;
         }
         if (touched)
         {
-          for (std::size_t q = 0; q < n_fd; ++q)
+          for (std::size_t q = 0; q < ka.n_fd; ++q)
           {
-            const std::size_t j  = static_cast<std::size_t>(fd[q]);
-            const double      fj = f[j];
+            const std::size_t j  = static_cast<std::size_t>(ka.fd[q]);
+            const double      fj = ka.f[j];
             if (fj != 0.0)
             {
               V vj  = zero;
               vj[0] = fj;
               splat<V, I, 0>(vj, vj);
               for (std::size_t i = 0; i < P; ++i)
-                put(dn + i * L) = at(dn + i * L) - at(a_i + j * LD + i * L) * vj;
+                put(dn + i * L) = at(dn + i * L) - at(ka.a_i + j * LD + i * L) * vj;
             }
-            f[j] = 0.0;
+            ka.f[j] = 0.0;
           }
-          f[n] = 0.0;
+          ka.f[n] = 0.0;
         }
         // Bookkeeping of step n and u_{n+1}, one pass: the drift of vector i needs the old u
         // of vector i − 1, the running sum of v_i·v_{i+1} the new v of vector i + 1.
-        double *next   = ub + static_cast<std::size_t>(k + 3) * S;
+        double *next   = ka.ub + static_cast<std::size_t>(k + 3) * ka.S;
         V       u_prev = zero, v_prev = zero;
         for (std::size_t i = 0; i < P; ++i)
         {
@@ -242,11 +217,7 @@ namespace kimp::lumped
 
       for (long k = 0; k < len; ++k)
       {
-        const double *col = ub + static_cast<std::size_t>(k) * S;
-        bool          hit = s.step + k < 2; // the first steps use the initial δ_{−1}, δ_{−2}
-        for (std::size_t c = 0; c < nc; ++c)
-          hit |= col[c_l[c]] - col[c_r[c]] > c_g[c];
-        if (!hit)
+        if (!ka.contact_possible(s.step, k))
         {
           s.deltas_current = false;
           one_step(k, false);
@@ -257,55 +228,23 @@ namespace kimp::lumped
       std::copy(wu, wu + LD, s.fused_u.begin());
       std::copy(wd, wd + LD, s.fused_d.begin());
       std::copy(wv, wv + LD, s.fused_v.begin());
-      const std::size_t B    = static_cast<std::size_t>(block_steps);
-      const std::size_t last = static_cast<std::size_t>(len - 1);
-      for (std::size_t i = 0; i < n; ++i)
-        s.velocity[i * B + last] = s.fused_v[i];
+      store_last_velocity(s, len);
     }
 
+    /// anysize_body() as a kernel body of kernel_for().
     template <class IsolatorType>
-    __attribute__((optimize("fp-contract=off"))) void anysize_sse2(Session &s, const long len)
+    struct AnySize
     {
-      anysize_body<2, IsolatorType>(s, len);
-    }
-
-#if defined(__x86_64__) && defined(__GNUC__)
-    template <class IsolatorType>
-    __attribute__((target("avx2"), optimize("fp-contract=off"))) void anysize_avx2(Session   &s,
-                                                                                   const long len)
-    {
-      anysize_body<4, IsolatorType>(s, len);
-    }
-
-    template <class IsolatorType>
-    __attribute__((target("avx512f"), optimize("fp-contract=off"))) void
-    anysize_avx512(Session &s, const long len)
-    {
-      anysize_body<8, IsolatorType>(s, len);
-    }
-#endif
-
-    template <class IsolatorType>
-    Session::Kernel anysize_for(const int lanes)
-    {
-#if defined(__x86_64__) && defined(__GNUC__)
-      if (lanes == 8)
-        return anysize_avx512<IsolatorType>;
-      if (lanes == 4)
-        return anysize_avx2<IsolatorType>;
-#endif
-      (void)lanes;
-      return anysize_sse2<IsolatorType>;
-    }
+      template <int L>
+      static inline __attribute__((always_inline)) void run(Session &s, const long len)
+      {
+        anysize_body<L, IsolatorType>(s, len);
+      }
+    };
   } // namespace
 
-  namespace cdm
+  Session::Kernel anysize_kernel(const int lanes, const Isolator *isolator)
   {
-    Session::Kernel anysize_kernel(const int lanes, const Isolator *isolator)
-    {
-      return dynamic_cast<const BilinearIsolator *>(isolator) ?
-               anysize_for<BilinearIsolator>(lanes) :
-               anysize_for<Isolator>(lanes);
-    }
-  } // namespace cdm
-} // namespace kimp::lumped
+    return kernel_for<AnySize>(lanes, isolator);
+  }
+} // namespace kimp::lumped::cdm

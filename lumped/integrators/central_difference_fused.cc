@@ -7,24 +7,12 @@
 #include <type_traits>
 #include <utility>
 
-#include "lumped/integrators/central_difference_session.h"
 #include "lumped/integrators/central_difference_simd.h"
-#include "lumped/isolators/bilinear_isolator.h"
 
-namespace kimp::lumped
+namespace kimp::lumped::cdm
 {
   namespace
   {
-    using cdm::block_steps;
-    using cdm::ForceEvaluator;
-    using cdm::fused_contacts;
-    using cdm::Lanes;
-    using cdm::peak_abs;
-    using cdm::Session;
-    using cdm::shift_down;
-    using cdm::shift_up;
-    using cdm::splat;
-
     /// f(std::integral_constant<int, j>) for j = 0..N−1 (unrolled at compile time).
     template <class F, std::size_t... js>
     inline __attribute__((always_inline)) void for_each_index(F &&f, std::index_sequence<js...>)
@@ -49,27 +37,14 @@ namespace kimp::lumped
       typedef typename Lanes<L>::U U;
       constexpr int                P  = (N + L - 1) / L; // vectors per DOF column
       constexpr std::size_t        LD = static_cast<std::size_t>(P * L);
-      const std::size_t            S  = s.col_stride;
       ForceEvaluator<IsolatorType> forces(s);
       const auto at  = [](const double *p) -> const U  &{ return *reinterpret_cast<const U *>(p); };
       const auto put = [](double *p) -> U & { return *reinterpret_cast<U *>(p); };
-      const double      *agb  = s.ag_block.data();
-      const double      *a_f  = s.dense_f.data();
-      const double      *a_g  = s.dense_g.data();
-      const double      *a_i  = s.dense_inverse.data();
-      double            *f    = s.force.data();
-      const int         *fd   = s.force_dofs.data();
-      const std::size_t  n_fd = s.force_dofs.size();
-      const std::size_t  nc   = s.laws.size();
-      const std::size_t *c_l  = s.left_row.data();
-      const std::size_t *c_r  = s.right_row.data();
-      const double      *c_g  = s.gap_skip.data();
-      double            *ub   = s.u_block.data();
-      const double       dt   = s.dt;
+      const KernelArrays ka(s);
       const bool         iso  = forces.has_isolator();
       const V            zero = V{} * 0.0;
-      const V            half = zero + 0.5 / dt;
-      const V            idt2 = zero + 1.0 / (dt * dt);
+      const V            half = zero + 0.5 / ka.dt;
+      const V            idt2 = zero + 1.0 / (ka.dt * ka.dt);
 
       V          am[P], r0[P], mask[P];
       V          u[P], d[P], z[P], pu[P], pa[P], pd[P], s_agv[P], s_vv[P], s_vx[P], v[P], a[P];
@@ -116,7 +91,7 @@ namespace kimp::lumped
       {
         const std::size_t o = static_cast<std::size_t>(i * L);
         am[i]               = at(s.dense_am.data() + o);
-        r0[i]               = at(a_i + o);
+        r0[i]               = at(ka.a_i + o);
         mask[i]             = at(s.drift_mask.data() + o);
       }
       load_state();
@@ -124,7 +99,7 @@ namespace kimp::lumped
       // One step: isolator, Δu_{n+1}, u_{n+1} (stored as column k + 3), bookkeeping of step n.
       const auto one_step = [&](const long k, const bool touched) __attribute__((always_inline))
       {
-        const double ag = agb[k];
+        const double ag = ka.agb[k];
         const double fi = iso ? forces.isolator(k, u[0][0]) : 0.0;
         V            dn[P], zn[P];
 #pragma GCC unroll 16
@@ -138,9 +113,11 @@ namespace kimp::lumped
               V             dj;
               splat<V, I, j % L>(dj, d[j / L]);
               pf[j] =
-                at(a_f + static_cast<std::size_t>(j) * LD + static_cast<std::size_t>(i * L)) * dj;
+                at(ka.a_f + static_cast<std::size_t>(j) * LD + static_cast<std::size_t>(i * L)) *
+                dj;
               pg[j] =
-                at(a_g + static_cast<std::size_t>(j) * LD + static_cast<std::size_t>(i * L)) * dj;
+                at(ka.a_g + static_cast<std::size_t>(j) * LD + static_cast<std::size_t>(i * L)) *
+                dj;
             },
             std::make_index_sequence<N>{});
 // Pairwise (tree) sums: short dependency chains.
@@ -157,19 +134,19 @@ namespace kimp::lumped
         }
         if (touched)
         {
-          for (std::size_t q = 0; q < n_fd; ++q)
+          for (std::size_t q = 0; q < ka.n_fd; ++q)
           {
-            const std::size_t j  = static_cast<std::size_t>(fd[q]);
-            const double      fj = f[j];
+            const std::size_t j  = static_cast<std::size_t>(ka.fd[q]);
+            const double      fj = ka.f[j];
             if (fj != 0.0)
 #pragma GCC unroll 16
               for (int i = 0; i < P; ++i)
-                dn[i] -= at(a_i + j * LD + static_cast<std::size_t>(i * L)) * fj;
-            f[j] = 0.0;
+                dn[i] -= at(ka.a_i + j * LD + static_cast<std::size_t>(i * L)) * fj;
+            ka.f[j] = 0.0;
           }
-          f[s.n] = 0.0;
+          ka.f[s.n] = 0.0;
         }
-        double *next = ub + static_cast<std::size_t>(k + 3) * S;
+        double *next = ka.ub + static_cast<std::size_t>(k + 3) * ka.S;
 #pragma GCC unroll 16
         for (int i = 0; i < P; ++i)
         {
@@ -209,11 +186,7 @@ namespace kimp::lumped
         const long fast_from = k;
         for (; k < len; ++k)
         {
-          const double *col = ub + static_cast<std::size_t>(k) * S;
-          bool hit = s.step + k < 2; // the first steps use the initial δ_{−1}, δ_{−2}
-          for (std::size_t c = 0; c < nc; ++c)
-            hit |= col[c_l[c]] - col[c_r[c]] > c_g[c];
-          if (hit)
+          if (ka.contact_possible(s.step, k))
             break;
           one_step(k, false);
         }
@@ -228,95 +201,54 @@ namespace kimp::lumped
         ++k;
       }
       store_state();
-      const std::size_t B    = static_cast<std::size_t>(block_steps);
-      const std::size_t last = static_cast<std::size_t>(len - 1);
-      for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i)
-        s.velocity[i * B + last] = s.fused_v[i];
+      store_last_velocity(s, len);
     }
 
-    template <class IsolatorType, int N>
-    __attribute__((optimize("fp-contract=off"))) void fused_sse2(Session &s, const long len)
+    /// fused_body() for N DOFs as a kernel body of kernel_for().
+    template <int N>
+    struct Fused
     {
-      fused_body<2, IsolatorType, N>(s, len);
-    }
-
-#if defined(__x86_64__) && defined(__GNUC__)
-    template <class IsolatorType, int N>
-    __attribute__((target("avx2"), optimize("fp-contract=off"))) void fused_avx2(Session   &s,
-                                                                                 const long len)
-    {
-      fused_body<4, IsolatorType, N>(s, len);
-    }
-
-    template <class IsolatorType, int N>
-    __attribute__((target("avx512f"), optimize("fp-contract=off"))) void
-    fused_avx512(Session &s, const long len)
-    {
-      fused_body<8, IsolatorType, N>(s, len);
-    }
-#endif
-
-    template <class IsolatorType, int N>
-    Session::Kernel fused_for(const int lanes)
-    {
-#if defined(__x86_64__) && defined(__GNUC__)
-      if (lanes == 8)
-        return fused_avx512<IsolatorType, N>;
-      if (lanes == 4)
-        return fused_avx2<IsolatorType, N>;
-#endif
-      (void)lanes;
-      return fused_sse2<IsolatorType, N>;
-    }
-
-    template <class IsolatorType>
-    Session::Kernel fused_kernel_for(const std::size_t n, const int lanes)
-    {
-      switch (n)
+      template <class IsolatorType>
+      struct Body
       {
-        case 1:
-          return fused_for<IsolatorType, 1>(lanes);
-        case 2:
-          return fused_for<IsolatorType, 2>(lanes);
-        case 3:
-          return fused_for<IsolatorType, 3>(lanes);
-        case 4:
-          return fused_for<IsolatorType, 4>(lanes);
-        case 5:
-          return fused_for<IsolatorType, 5>(lanes);
-        case 6:
-          return fused_for<IsolatorType, 6>(lanes);
-        case 7:
-          return fused_for<IsolatorType, 7>(lanes);
-        case 8:
-          return fused_for<IsolatorType, 8>(lanes);
-        default:
-          return nullptr;
-      }
+        template <int L>
+        static inline __attribute__((always_inline)) void run(Session &s, const long len)
+        {
+          fused_body<L, IsolatorType, N>(s, len);
+        }
+      };
+    };
+
+    /// kernel_for<Fused<n>::Body> for n = 1..sizeof...(js), else nullptr.
+    template <std::size_t... js>
+    Session::Kernel fused_kernel_of(const std::size_t n,
+                                    const int         lanes,
+                                    const Isolator   *isolator,
+                                    std::index_sequence<js...>)
+    {
+      using Pick                   = Session::Kernel (*)(int, const Isolator *);
+      static constexpr Pick pick[] = {
+        kernel_for<Fused<static_cast<int>(js) + 1>::template Body>...};
+      return n >= 1 && n <= sizeof...(js) ? pick[n - 1](lanes, isolator) : nullptr;
     }
   } // namespace
 
-  namespace cdm
+  int fused_lanes(const int cap)
   {
-    int fused_lanes(const int cap)
-    {
 #if defined(__x86_64__) && defined(__GNUC__)
-      if (cap == 2)
-        return 2;
-      if ((cap == 0 || cap == 8) && __builtin_cpu_supports("avx512f"))
-        return 8;
-      if (__builtin_cpu_supports("avx2"))
-        return 4;
-#endif
-      (void)cap;
+    if (cap == 2)
       return 2;
-    }
+    if ((cap == 0 || cap == 8) && __builtin_cpu_supports("avx512f"))
+      return 8;
+    if (__builtin_cpu_supports("avx2"))
+      return 4;
+#endif
+    (void)cap;
+    return 2;
+  }
 
-    Session::Kernel fused_kernel(const std::size_t n, const int lanes, const Isolator *isolator)
-    {
-      return dynamic_cast<const BilinearIsolator *>(isolator) ?
-               fused_kernel_for<BilinearIsolator>(n, lanes) :
-               fused_kernel_for<Isolator>(n, lanes);
-    }
-  } // namespace cdm
-} // namespace kimp::lumped
+  Session::Kernel fused_kernel(const std::size_t n, const int lanes, const Isolator *isolator)
+  {
+    return fused_kernel_of(n, lanes, isolator, std::make_index_sequence<8>{});
+  }
+} // namespace kimp::lumped::cdm

@@ -28,39 +28,47 @@ namespace kimp::lumped
     ResponseRecorder          rec;
     std::vector<double>       hi, lo; ///< max and min of u_i over the steps until the next point
 
+    /// f(mine, theirs) for each member that save() and restore() copy as it is, with theirs
+    /// the session's (columns, isolator and recorder need more than a copy).
+    template <class Snap, class Sess, class F>
+    static void each_copied(Snap &snap, Sess &s, const F &f)
+    {
+      f(snap.step, s.step);
+      f(snap.fused_u, s.fused_u);
+      f(snap.fused_d, s.fused_d);
+      f(snap.fused_z, s.fused_z);
+      f(snap.fused_v, s.fused_v);
+      f(snap.last_accel, s.last_accel);
+      f(snap.fused_peaks, s.fused_peaks);
+      f(snap.fused_sums, s.fused_sums);
+      if (!s.fused)
+      {
+        f(snap.lane_peak_u, s.lane_peak_u);
+        f(snap.lane_peak_a, s.lane_peak_a);
+        f(snap.lane_peak_d, s.lane_peak_d);
+      }
+      f(snap.p_in_0, s.p_in_0);
+      f(snap.p_visc_0, s.p_visc_0);
+      f(snap.rec_j, s.rec_j);
+      f(snap.rec_s, s.rec_s);
+      f(snap.w_in, s.w_in);
+      f(snap.w_visc, s.w_visc);
+      f(snap.p_in_prev, s.p_in_prev);
+      f(snap.p_visc_prev, s.p_visc_prev);
+      f(snap.e0, s.e0);
+      f(snap.e_kin, s.e_kin);
+      f(snap.e_strain, s.e_strain);
+    }
+
     void save(CentralDifferenceStepper::Session &s)
     {
-      step = s.step;
+      each_copied(*this, s, [](auto &mine, const auto &theirs) { mine = theirs; });
       columns.resize(3 * (s.n + 1));
       for (std::size_t i = 0; i <= s.n; ++i)
         for (long c = 0; c < 3; ++c)
           columns[3 * i + static_cast<std::size_t>(c)] = *s.column(i, c);
-      fused_u     = s.fused_u;
-      fused_d     = s.fused_d;
-      fused_z     = s.fused_z;
-      fused_v     = s.fused_v;
-      last_accel  = s.last_accel;
-      fused_peaks = s.fused_peaks;
-      fused_sums  = s.fused_sums;
-      if (!s.fused)
-      {
-        lane_peak_u = s.lane_peak_u;
-        lane_peak_a = s.lane_peak_a;
-        lane_peak_d = s.lane_peak_d;
-      }
-      p_in_0      = s.p_in_0;
-      p_visc_0    = s.p_visc_0;
-      rec_j       = s.rec_j;
-      rec_s       = s.rec_s;
-      iso         = s.iso ? s.iso->clone() : nullptr;
-      w_in        = s.w_in;
-      w_visc      = s.w_visc;
-      p_in_prev   = s.p_in_prev;
-      p_visc_prev = s.p_visc_prev;
-      e0          = s.e0;
-      e_kin       = s.e_kin;
-      e_strain    = s.e_strain;
-      rec         = s.rec;
+      iso = s.iso ? s.iso->clone() : nullptr;
+      rec = s.rec;
       hi.assign(s.n, -std::numeric_limits<double>::infinity());
       lo.assign(s.n, std::numeric_limits<double>::infinity());
     }
@@ -70,35 +78,11 @@ namespace kimp::lumped
     /// pre-check armed, δ_{n−1} and δ_{n−2} formed from the displacement columns.
     void restore(CentralDifferenceStepper::Session &s) const
     {
-      s.step = step;
+      each_copied(*this, s, [](const auto &mine, auto &theirs) { theirs = mine; });
       for (std::size_t i = 0; i <= s.n; ++i)
         for (long c = 0; c < 3; ++c)
           *s.column(i, c) = columns[3 * i + static_cast<std::size_t>(c)];
-      s.fused_u     = fused_u;
-      s.fused_d     = fused_d;
-      s.fused_z     = fused_z;
-      s.fused_v     = fused_v;
-      s.last_accel  = last_accel;
-      s.fused_peaks = fused_peaks;
-      s.fused_sums  = fused_sums;
-      if (!s.fused)
-      {
-        s.lane_peak_u = lane_peak_u;
-        s.lane_peak_a = lane_peak_a;
-        s.lane_peak_d = lane_peak_d;
-      }
-      s.p_in_0      = p_in_0;
-      s.p_visc_0    = p_visc_0;
-      s.rec_j       = rec_j;
-      s.rec_s       = rec_s;
-      s.iso         = iso ? iso->clone() : nullptr;
-      s.w_in        = w_in;
-      s.w_visc      = w_visc;
-      s.p_in_prev   = p_in_prev;
-      s.p_visc_prev = p_visc_prev;
-      s.e0          = e0;
-      s.e_kin       = e_kin;
-      s.e_strain    = e_strain;
+      s.iso = iso ? iso->clone() : nullptr;
       s.rec.continue_from(rec);
       s.w_contact = 0.0;
       for (std::size_t c = 0; c < s.laws.size(); ++c)

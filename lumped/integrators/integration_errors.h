@@ -27,40 +27,47 @@ namespace kimp::lumped
     double dt_critical; ///< stability limit, s
   };
 
-  /**
-   * The solution became non-finite or the mechanical energy grew far beyond the energy put in
-   * (a numerical instability, not physics).
-   */
-  class DivergenceError : public std::runtime_error
+  /// A run that stopped at a step; carries where: its time and step index.
+  class StepError : public std::runtime_error
   {
   public:
-    DivergenceError(const std::string &message, double time_, long step_, int dof_)
+    StepError(const std::string &message, double time_, long step_)
       : std::runtime_error(message)
       , time(time_)
       , step(step_)
-      , dof(dof_)
     {
     }
 
     double time; ///< s
-    long   step; ///< step index n (t = n·Δt)
-    int    dof;  ///< global degree of freedom with the offending value
+    long   step; ///< step index n (t = n·Δt; Newmark: the macro step that failed)
+  };
+
+  /**
+   * The solution became non-finite or the mechanical energy grew far beyond the energy put in
+   * (a numerical instability, not physics).
+   */
+  class DivergenceError : public StepError
+  {
+  public:
+    DivergenceError(const std::string &message, double time_, long step_, int dof_)
+      : StepError(message, time_, step_)
+      , dof(dof_)
+    {
+    }
+
+    int dof; ///< global degree of freedom with the offending value
   };
 
   /// Newton did not converge even after the allowed number of step halvings.
-  class ConvergenceError : public std::runtime_error
+  class ConvergenceError : public StepError
   {
   public:
     ConvergenceError(const std::string &message, double time_, long step_, double residual_norm_)
-      : std::runtime_error(message)
-      , time(time_)
-      , step(step_)
+      : StepError(message, time_, step_)
       , residual_norm(residual_norm_)
     {
     }
 
-    double time;          ///< s
-    long   step;          ///< step index of the macro step that failed
     double residual_norm; ///< last residual norm, N
   };
 } // namespace kimp::lumped

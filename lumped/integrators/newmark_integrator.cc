@@ -11,6 +11,7 @@
 
 #include "lumped/integrators/integration_errors.h"
 #include "lumped/integrators/response_recorder.h"
+#include "lumped/parameter_check.h"
 
 namespace kimp::lumped
 {
@@ -18,33 +19,26 @@ namespace kimp::lumped
     : model_(std::move(model))
     , options_(std::move(options))
   {
-    const auto fail = [](const char *key, const double v, const char *rule)
-    {
-      std::ostringstream msg;
-      msg << "newmark." << key << " = " << v << " (" << rule << ')';
-      throw std::invalid_argument(msg.str());
-    };
-    if (!(options_.dt >= 0.0 && std::isfinite(options_.dt)))
-      fail("dt", options_.dt, "must be > 0 s, or 0 for the record's dt");
-    if (!(options_.duration >= 0.0))
-      fail("duration", options_.duration, "must be >= 0 s");
-    if (!(options_.output_interval >= 0.0))
-      fail("output_interval", options_.output_interval, "must be >= 0 s");
-    if (!(options_.displacement_tolerance > 0.0))
-      fail("displacement_tolerance", options_.displacement_tolerance, "must be > 0 m");
-    if (options_.max_iterations < 1)
-      fail("max_iterations", options_.max_iterations, "must be >= 1");
-    if (options_.max_halvings < 0)
-      fail("max_halvings", options_.max_halvings, "must be >= 0");
-    const std::size_t n = model_.n_dofs();
-    if (!options_.initial_displacement.empty() && options_.initial_displacement.size() != n)
-      fail("initial_displacement.size",
-           static_cast<double>(options_.initial_displacement.size()),
-           "must be 0 or the number of DOFs");
-    if (!options_.initial_velocity.empty() && options_.initial_velocity.size() != n)
-      fail("initial_velocity.size",
-           static_cast<double>(options_.initial_velocity.size()),
-           "must be 0 or the number of DOFs");
+    const ParameterCheck check("newmark.");
+    check(options_.dt >= 0.0 && std::isfinite(options_.dt),
+          "dt",
+          options_.dt,
+          "must be > 0 s, or 0 for the record's dt");
+    check(options_.duration >= 0.0, "duration", options_.duration, "must be >= 0 s");
+    check(options_.output_interval >= 0.0,
+          "output_interval",
+          options_.output_interval,
+          "must be >= 0 s");
+    check(options_.displacement_tolerance > 0.0,
+          "displacement_tolerance",
+          options_.displacement_tolerance,
+          "must be > 0 m");
+    check(options_.max_iterations >= 1, "max_iterations", options_.max_iterations, "must be >= 1");
+    check(options_.max_halvings >= 0, "max_halvings", options_.max_halvings, "must be >= 0");
+    require_initial_state("newmark.",
+                          options_.initial_displacement,
+                          options_.initial_velocity,
+                          model_.n_dofs());
   }
 
   namespace

@@ -2,42 +2,25 @@
 #include "lumped/isolators/bilinear_isolator.h"
 
 #include <cmath>
-#include <sstream>
-#include <stdexcept>
 
 namespace kimp::lumped
 {
-  namespace
-  {
-    void
-    require(const bool ok, const char *key, const double value, const char *unit, const char *rule)
-    {
-      if (!ok)
-      {
-        std::ostringstream msg;
-        msg << "isolator." << key << " = " << value << ' ' << unit << " (" << rule << ')';
-        throw std::invalid_argument(msg.str());
-      }
-    }
-  } // namespace
-
   BilinearIsolator::BilinearIsolator(const double K1,
                                      const double K2,
                                      const double Q,
                                      const double c)
-    : K1_(K1)
+    : HystereticIsolator(c)
+    , K1_(K1)
     , K2_(K2)
     , Q_(Q)
-    , c_(c)
   {
-    require(std::isfinite(K1) && K1 > 0.0, "K1", K1, "N/m", "must be > 0 and finite");
-    require(std::isfinite(K2) && K2 >= 0.0 && K2 < K1,
-            "K2",
-            K2,
-            "N/m",
-            "must be >= 0 and smaller than K1");
-    require(std::isfinite(Q) && Q > 0.0, "Q", Q, "N", "must be > 0 and finite");
-    require(std::isfinite(c) && c >= 0.0, "c", c, "N*s/m", "must be >= 0 and finite");
+    require_isolator(std::isfinite(K1) && K1 > 0.0, "K1", K1, "N/m", "must be > 0 and finite");
+    require_isolator(std::isfinite(K2) && K2 >= 0.0 && K2 < K1,
+                     "K2",
+                     K2,
+                     "N/m",
+                     "must be >= 0 and smaller than K1");
+    require_isolator(std::isfinite(Q) && Q > 0.0, "Q", Q, "N", "must be > 0 and finite");
     inv_k_ep_ = 1.0 / (K1_ - K2_);
   }
 } // namespace kimp::lumped

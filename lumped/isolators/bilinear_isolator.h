@@ -7,6 +7,14 @@
 
 namespace kimp::lumped
 {
+  /// History of a BilinearIsolator, held committed and trial.
+  struct BilinearState
+  {
+    double u          = 0.0; ///< displacement, m
+    double f_ep       = 0.0; ///< force of the elastic-perfectly-plastic branch, N (|f_ep| <= Q)
+    double dissipated = 0.0; ///< Q·Σ|Δu_p|, J
+  };
+
   /**
    * Bilinear hysteretic isolator (lead-rubber bearing idealisation), rate independent.
    *
@@ -21,25 +29,20 @@ namespace kimp::lumped
    * Yield force F_y = Q/(1 − K2/K1), yield displacement u_y = F_y/K1 = Q/(K1 − K2). A closed
    * symmetric cycle of amplitude D > u_y dissipates the loop area 4·Q·(D − u_y).
    */
-  class BilinearIsolator final : public Isolator
+  class BilinearIsolator final : public HystereticIsolator<BilinearIsolator, BilinearState>
   {
   public:
     /// @throws std::invalid_argument naming the parameter, its value and the admissible range.
     BilinearIsolator(double K1, double K2, double Q, double c = 0.0);
 
     IsolatorResponse set_trial(double displacement, double velocity) override;
-    void             commit() override { committed_ = trial_; }
-    void             revert_to_last_commit() override { trial_ = committed_; }
-    void             revert_to_start() override { committed_ = trial_ = State{}; }
 
     double initial_stiffness() const override { return K1_; }
-    double viscous_coefficient() const override { return c_; }
     double stored_energy() const override
     {
       return 0.5 * K2_ * committed_.u * committed_.u +
              0.5 * committed_.f_ep * committed_.f_ep * inv_k_ep_;
     }
-    double dissipated_energy() const override { return committed_.dissipated; }
 
     /// Yield force F_y = Q/(1 − K2/K1), N.
     double yield_force() const { return Q_ / (1.0 - K2_ / K1_); }
@@ -48,27 +51,13 @@ namespace kimp::lumped
     /// Force at the committed state, N.
     double committed_force() const override { return K2_ * committed_.u + committed_.f_ep; }
 
-    std::string               name() const override { return "bilinear"; }
-    std::unique_ptr<Isolator> clone() const override
-    {
-      return std::make_unique<BilinearIsolator>(*this);
-    }
+    std::string name() const override { return "bilinear"; }
 
   private:
-    struct State
-    {
-      double u          = 0.0; ///< displacement, m
-      double f_ep       = 0.0; ///< force of the elastic-perfectly-plastic branch, N (|f_ep| <= Q)
-      double dissipated = 0.0; ///< Q·Σ|Δu_p|, J
-    };
-
     double K1_;
     double K2_;
     double Q_;
-    double c_;
     double inv_k_ep_; ///< 1/(K1 − K2)
-    State  committed_;
-    State  trial_;
   };
 
   inline IsolatorResponse BilinearIsolator::set_trial(const double displacement,

@@ -3,24 +3,11 @@
 #include "lumped/isolators/bouc_wen_isolator.h"
 
 #include <cmath>
-#include <sstream>
-#include <stdexcept>
 
 namespace kimp::lumped
 {
   namespace
   {
-    void
-    require(const bool ok, const char *key, const double value, const char *unit, const char *rule)
-    {
-      if (!ok)
-      {
-        std::ostringstream msg;
-        msg << "isolator." << key << " = " << value << ' ' << unit << " (" << rule << ')';
-        throw std::invalid_argument(msg.str());
-      }
-    }
-
     /// Newton iterations before giving up on quadratic convergence (bisection guarantees
     /// progress, so this only bounds the work).
     constexpr int max_iterations = 100;
@@ -34,30 +21,29 @@ namespace kimp::lumped
                                    const double gamma,
                                    const double n,
                                    const double c)
-    : K1_(K1)
+    : HystereticIsolator(c)
+    , K1_(K1)
     , alpha_(alpha)
     , A_(A)
     , beta_(beta)
     , gamma_(gamma)
     , n_(n)
-    , c_(c)
   {
-    require(std::isfinite(K1) && K1 > 0.0, "K1", K1, "N/m", "must be > 0 and finite");
-    require(std::isfinite(alpha) && alpha >= 0.0 && alpha < 1.0,
-            "alpha",
-            alpha,
-            "",
-            "post-yield ratio K2/K1, must be in [0, 1)");
-    require(std::isfinite(F_y) && F_y > 0.0, "F_y", F_y, "N", "yield force, must be > 0");
-    require(std::isfinite(A) && A > 0.0, "bw_A", A, "", "must be > 0");
-    require(std::isfinite(beta) && std::isfinite(gamma) && beta >= std::abs(gamma),
-            "bw_beta",
-            beta,
-            "",
-            "must be >= |bw_gamma| (non-negative dissipation)");
-    require(beta + gamma > 0.0, "bw_gamma", gamma, "", "must give bw_beta + bw_gamma > 0");
-    require(std::isfinite(n) && n >= 1.0, "bw_n", n, "", "must be >= 1");
-    require(std::isfinite(c) && c >= 0.0, "c", c, "N*s/m", "must be >= 0 and finite");
+    require_isolator(std::isfinite(K1) && K1 > 0.0, "K1", K1, "N/m", "must be > 0 and finite");
+    require_isolator(std::isfinite(alpha) && alpha >= 0.0 && alpha < 1.0,
+                     "alpha",
+                     alpha,
+                     "",
+                     "post-yield ratio K2/K1, must be in [0, 1)");
+    require_isolator(std::isfinite(F_y) && F_y > 0.0, "F_y", F_y, "N", "yield force, must be > 0");
+    require_isolator(std::isfinite(A) && A > 0.0, "bw_A", A, "", "must be > 0");
+    require_isolator(std::isfinite(beta) && std::isfinite(gamma) && beta >= std::abs(gamma),
+                     "bw_beta",
+                     beta,
+                     "",
+                     "must be >= |bw_gamma| (non-negative dissipation)");
+    require_isolator(beta + gamma > 0.0, "bw_gamma", gamma, "", "must give bw_beta + bw_gamma > 0");
+    require_isolator(std::isfinite(n) && n >= 1.0, "bw_n", n, "", "must be >= 1");
     Q_     = (1.0 - alpha) * F_y;
     u_y_   = F_y / K1;
     z_max_ = std::pow(A / (beta + gamma), 1.0 / n);

@@ -8,6 +8,14 @@
 
 namespace kimp::lumped
 {
+  /// History of a BoucWenIsolator, held committed and trial.
+  struct BoucWenState
+  {
+    double u          = 0.0; ///< displacement, m
+    double z          = 0.0; ///< hysteretic variable
+    double dissipated = 0.0; ///< J
+  };
+
   /**
    * Bouc-Wen hysteretic isolator, rate independent:
    *   F = α·K1·u + (1 − α)·F_y·z,
@@ -31,7 +39,7 @@ namespace kimp::lumped
    * Stored energy of the hysteretic spring: (1 − α)·F_y·u_y·z²/(2A) (its elastic deformation is
    * u_y·z/A); the rest of its work, Σ (1 − α)·F_y·z·Δu·|z|^n·Ψ/A per step, is dissipated.
    */
-  class BoucWenIsolator final : public Isolator
+  class BoucWenIsolator final : public HystereticIsolator<BoucWenIsolator, BoucWenState>
   {
   public:
     /// @throws std::invalid_argument naming the parameter, its value and the admissible range.
@@ -45,18 +53,13 @@ namespace kimp::lumped
                     double c     = 0.0);
 
     IsolatorResponse set_trial(double displacement, double velocity) override;
-    void             commit() override { committed_ = trial_; }
-    void             revert_to_last_commit() override { trial_ = committed_; }
-    void             revert_to_start() override { committed_ = trial_ = State{}; }
 
     double initial_stiffness() const override { return K1_ * (alpha_ + (1.0 - alpha_) * A_); }
-    double viscous_coefficient() const override { return c_; }
     double stored_energy() const override
     {
       return 0.5 * alpha_ * K1_ * committed_.u * committed_.u +
              0.5 * Q_ * u_y_ * committed_.z * committed_.z / A_;
     }
-    double dissipated_energy() const override { return committed_.dissipated; }
     double committed_force() const override
     {
       return alpha_ * K1_ * committed_.u + Q_ * committed_.z;
@@ -69,27 +72,15 @@ namespace kimp::lumped
     /// Hysteretic variable z at the committed state.
     double committed_z() const { return committed_.z; }
 
-    std::string               name() const override { return "bouc_wen"; }
-    std::unique_ptr<Isolator> clone() const override
-    {
-      return std::make_unique<BoucWenIsolator>(*this);
-    }
+    std::string name() const override { return "bouc_wen"; }
 
   private:
-    struct State
-    {
-      double u          = 0.0; ///< displacement, m
-      double z          = 0.0; ///< hysteretic variable
-      double dissipated = 0.0; ///< J
-    };
-
     double K1_;
     double alpha_;
     double A_;
     double beta_;
     double gamma_;
     double n_;
-    double c_;
     double Q_;     ///< (1 − α)·F_y
     double u_y_;   ///< F_y/K1
     double z_max_; ///< (A/(β + γ))^(1/n), the bound of |z|
@@ -97,7 +88,5 @@ namespace kimp::lumped
 
     /// |z|^n for a = |z| >= 0.
     double power(double a) const;
-    State  committed_;
-    State  trial_;
   };
 } // namespace kimp::lumped

@@ -2,25 +2,9 @@
 #include "lumped/isolators/friction_pendulum_isolator.h"
 
 #include <cmath>
-#include <sstream>
-#include <stdexcept>
 
 namespace kimp::lumped
 {
-  namespace
-  {
-    void
-    require(const bool ok, const char *key, const double value, const char *unit, const char *rule)
-    {
-      if (!ok)
-      {
-        std::ostringstream msg;
-        msg << "isolator." << key << " = " << value << ' ' << unit << " (" << rule << ')';
-        throw std::invalid_argument(msg.str());
-      }
-    }
-  } // namespace
-
   FrictionPendulumIsolator::FrictionPendulumIsolator(const double W,
                                                      const double R,
                                                      const double mu_slow,
@@ -28,32 +12,35 @@ namespace kimp::lumped
                                                      const double rate,
                                                      const double k_init,
                                                      const double c)
-    : W_(W)
+    : HystereticIsolator(c)
+    , W_(W)
     , mu_slow_(mu_slow)
     , mu_fast_(mu_fast)
     , rate_(rate)
     , k_init_(k_init)
-    , c_(c)
   {
-    require(std::isfinite(W) && W > 0.0, "weight", W, "N", "must be > 0 and finite");
-    require(std::isfinite(R) && R > 0.0, "radius", R, "m", "must be > 0 and finite");
-    require(std::isfinite(mu_slow) && mu_slow >= 0.0 && mu_slow < 1.0,
-            "mu_slow",
-            mu_slow,
-            "",
-            "must be in [0, 1)");
-    require(std::isfinite(mu_fast) && mu_fast >= mu_slow && mu_fast < 1.0,
-            "mu_fast",
-            mu_fast,
-            "",
-            "must be in [mu_slow, 1)");
-    require(std::isfinite(rate) && rate >= 0.0, "rate", rate, "s/m", "must be >= 0 and finite");
-    require(std::isfinite(k_init) && k_init > 0.0,
-            "k_init",
-            k_init,
-            "N/m",
-            "must be > 0 and finite");
-    require(std::isfinite(c) && c >= 0.0, "c", c, "N*s/m", "must be >= 0 and finite");
+    require_isolator(std::isfinite(W) && W > 0.0, "weight", W, "N", "must be > 0 and finite");
+    require_isolator(std::isfinite(R) && R > 0.0, "radius", R, "m", "must be > 0 and finite");
+    require_isolator(std::isfinite(mu_slow) && mu_slow >= 0.0 && mu_slow < 1.0,
+                     "mu_slow",
+                     mu_slow,
+                     "",
+                     "must be in [0, 1)");
+    require_isolator(std::isfinite(mu_fast) && mu_fast >= mu_slow && mu_fast < 1.0,
+                     "mu_fast",
+                     mu_fast,
+                     "",
+                     "must be in [mu_slow, 1)");
+    require_isolator(std::isfinite(rate) && rate >= 0.0,
+                     "rate",
+                     rate,
+                     "s/m",
+                     "must be >= 0 and finite");
+    require_isolator(std::isfinite(k_init) && k_init > 0.0,
+                     "k_init",
+                     k_init,
+                     "N/m",
+                     "must be > 0 and finite");
     k_pendulum_ = W / R;
   }
 

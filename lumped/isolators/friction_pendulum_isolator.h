@@ -7,6 +7,15 @@
 
 namespace kimp::lumped
 {
+  /// History of a FrictionPendulumIsolator, held committed and trial.
+  struct FrictionPendulumState
+  {
+    double u          = 0.0;   ///< displacement, m
+    double f_s        = 0.0;   ///< friction force, N (|f_s| <= μ·W)
+    double dissipated = 0.0;   ///< Σ μ·W·|Δu_slip|, J
+    bool   sliding    = false; ///< the last update slipped (f_s = ±μ·W)
+  };
+
   /**
    * Single concave friction pendulum, small-angle approximation:
    *   F = W/R·u + f_s,  f_s elastic-perfectly-plastic with stiffness k_init and yield force
@@ -28,7 +37,8 @@ namespace kimp::lumped
    * Free vibration with μ → 0 has the pendulum period T = 2π·√(R/g) (m = W/g); a closed cycle
    * of amplitude D at constant μ dissipates 4·μ·W·(D − μ·W/k_init) → 4·μ·W·D (rigid-plastic).
    */
-  class FrictionPendulumIsolator final : public Isolator
+  class FrictionPendulumIsolator final
+    : public HystereticIsolator<FrictionPendulumIsolator, FrictionPendulumState>
   {
   public:
     /// @throws std::invalid_argument naming the parameter, its value and the admissible range.
@@ -41,18 +51,13 @@ namespace kimp::lumped
                              double c = 0.0);
 
     IsolatorResponse set_trial(double displacement, double velocity) override;
-    void             commit() override { committed_ = trial_; }
-    void             revert_to_last_commit() override { trial_ = committed_; }
-    void             revert_to_start() override { committed_ = trial_ = State{}; }
 
     double initial_stiffness() const override { return k_init_ + k_pendulum_; }
-    double viscous_coefficient() const override { return c_; }
     double stored_energy() const override
     {
       return 0.5 * k_pendulum_ * committed_.u * committed_.u +
              0.5 * committed_.f_s * committed_.f_s / k_init_;
     }
-    double dissipated_energy() const override { return committed_.dissipated; }
     double committed_force() const override { return k_pendulum_ * committed_.u + committed_.f_s; }
     bool   stick_slip() const override { return true; }
     bool   sticking() const override { return !committed_.sliding; }
@@ -62,29 +67,14 @@ namespace kimp::lumped
     /// Pendulum stiffness W/R, N/m.
     double pendulum_stiffness() const { return k_pendulum_; }
 
-    std::string               name() const override { return "friction_pendulum"; }
-    std::unique_ptr<Isolator> clone() const override
-    {
-      return std::make_unique<FrictionPendulumIsolator>(*this);
-    }
+    std::string name() const override { return "friction_pendulum"; }
 
   private:
-    struct State
-    {
-      double u          = 0.0;   ///< displacement, m
-      double f_s        = 0.0;   ///< friction force, N (|f_s| <= μ·W)
-      double dissipated = 0.0;   ///< Σ μ·W·|Δu_slip|, J
-      bool   sliding    = false; ///< the last update slipped (f_s = ±μ·W)
-    };
-
     double W_;
     double mu_slow_;
     double mu_fast_;
     double rate_;
     double k_init_;
-    double c_;
     double k_pendulum_; ///< W/R
-    State  committed_;
-    State  trial_;
   };
 } // namespace kimp::lumped

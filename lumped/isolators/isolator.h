@@ -3,8 +3,12 @@
 // "Force laws").
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <string>
+#include <string_view>
+
+#include "lumped/parameter_check.h"
 
 namespace kimp::lumped
 {
@@ -60,5 +64,52 @@ namespace kimp::lumped
 
     virtual std::string               name() const  = 0;
     virtual std::unique_ptr<Isolator> clone() const = 0;
+  };
+
+  /// require_parameter() of the isolators: "isolator.<key> = <value> <unit> (<rule>)".
+  inline void require_isolator(const bool             ok,
+                               const std::string_view key,
+                               const double           value,
+                               const std::string_view unit,
+                               const std::string_view rule)
+  {
+    require_parameter(ok, "isolator.", key, value, unit, rule);
+  }
+
+  /**
+   * CRTP base of the hysteretic isolators (bilinear, Bouc-Wen, friction pendulum): the history is
+   * one struct `State` (value-initialised = virgin, with the hysteretic energy `dissipated`, J)
+   * held as committed and trial copies, and the device dashpot c; the trial/commit verbs, the
+   * dissipated energy and clone() follow from that. `Derived` provides set_trial() (from
+   * committed_, writing trial_), the stiffness and energy queries and name().
+   */
+  template <class Derived, class State>
+  class HystereticIsolator : public Isolator
+  {
+  public:
+    void   commit() final { committed_ = trial_; }
+    void   revert_to_last_commit() final { trial_ = committed_; }
+    void   revert_to_start() final { committed_ = trial_ = State{}; }
+    double viscous_coefficient() const final { return c_; }
+    double dissipated_energy() const final { return committed_.dissipated; }
+
+    std::unique_ptr<Isolator> clone() const final
+    {
+      return std::make_unique<Derived>(static_cast<const Derived &>(*this));
+    }
+
+  protected:
+    /// @throws std::invalid_argument unless c (N·s/m) is >= 0 and finite.
+    explicit HystereticIsolator(const double c)
+      : c_(c)
+    {
+      require_isolator(std::isfinite(c) && c >= 0.0, "c", c, "N*s/m", "must be >= 0 and finite");
+    }
+
+    State committed_;
+    State trial_;
+
+  private:
+    double c_;
   };
 } // namespace kimp::lumped

@@ -2,8 +2,6 @@
 #include "lumped/isolators/linear_isolator.h"
 
 #include <cmath>
-#include <sstream>
-#include <stdexcept>
 
 namespace kimp::lumped
 {
@@ -11,17 +9,7 @@ namespace kimp::lumped
     : k_(k)
     , c_(c)
   {
-    if (!(std::isfinite(k) && k > 0.0))
-    {
-      std::ostringstream msg;
-      msg << "isolator.k = " << k << " N/m (must be > 0 and finite)";
-      throw std::invalid_argument(msg.str());
-    }
-    if (!(std::isfinite(c) && c >= 0.0))
-    {
-      std::ostringstream msg;
-      msg << "isolator.c = " << c << " N*s/m (must be >= 0 and finite)";
-      throw std::invalid_argument(msg.str());
-    }
+    require_isolator(std::isfinite(k) && k > 0.0, "k", k, "N/m", "must be > 0 and finite");
+    require_isolator(std::isfinite(c) && c >= 0.0, "c", c, "N*s/m", "must be >= 0 and finite");
   }
 } // namespace kimp::lumped

@@ -19,16 +19,13 @@ namespace kimp::lumped
   }
 
   BumperLaw::BumperLaw(const Params &params)
-    : params_(params)
+    : ContactLaw(params)
   {
     detail::require_positive(name(), "k_b", params_.stiffness, "N/m^n");
     detail::require_exponent(name(), params_.exponent);
     detail::require_positive(name(), "delta_u", params_.ultimate_deformation, "m");
     detail::require_positive(name(), "k_w", params_.wall_stiffness, "N/m");
-    detail::require_cor(name(), params_.cor);
-    detail::require_positive(name(), "m_eff", params_.effective_mass, "kg");
-    if (params_.a1)
-      detail::require_positive(name(), "a1", *params_.a1, "s/m");
+    require_impact_coefficient(name(), params_.cor, params_.effective_mass, params_.a1);
     force_u_  = params_.stiffness * std::pow(params_.ultimate_deformation, params_.exponent);
     energy_u_ = force_u_ * params_.ultimate_deformation / (params_.exponent + 1.0);
   }
@@ -46,49 +43,21 @@ namespace kimp::lumped
 
   void BumperLaw::evaluate(const ContactState &committed, ContactState &trial) const
   {
-    const double x = trial.deformation;
-    if (x <= 0.0)
-    {
-      trial.in_contact = false;
+    if (!enter_impact_contact(law_name, params_, committed, trial))
       return;
-    }
-    if (!committed.in_contact)
-      fix_impact_coefficient("bumper",
-                             params_.cor,
-                             params_.a1,
-                             params_.effective_mass,
-                             committed,
-                             trial);
-    double spring, tangent;
+    const double x = trial.deformation;
     if (x < params_.ultimate_deformation)
     {
       const double n      = params_.exponent;
       const double x_n1   = std::pow(x, n - 1.0);
-      spring              = params_.stiffness * x_n1 * x;
-      tangent             = n * params_.stiffness * x_n1;
+      const double spring = params_.stiffness * x_n1 * x;
       trial.stored_energy = spring * x / (n + 1.0);
-    }
-    else
-    {
-      const double excess = x - params_.ultimate_deformation;
-      spring              = force_u_ + params_.wall_stiffness * excess;
-      tangent             = params_.wall_stiffness;
-      trial.stored_energy =
-        energy_u_ + force_u_ * excess + 0.5 * params_.wall_stiffness * excess * excess;
-    }
-    trial.in_contact    = true;
-    trial.elastic_force = spring;
-    if (trial.rate >= 0.0)
-    {
-      trial.force     = spring;
-      trial.stiffness = tangent;
+      restitution_force(spring, n * params_.stiffness * x_n1, trial);
       return;
     }
-    const double g = 1.0 + trial.impact_coefficient * trial.rate;
-    if (g <= 0.0)
-      return; // clipped: no tension
-    trial.force     = spring * g;
-    trial.stiffness = tangent * g;
-    trial.damping   = spring * trial.impact_coefficient;
+    const double excess = x - params_.ultimate_deformation;
+    trial.stored_energy =
+      energy_u_ + force_u_ * excess + 0.5 * params_.wall_stiffness * excess * excess;
+    restitution_force(force_u_ + params_.wall_stiffness * excess, params_.wall_stiffness, trial);
   }
 } // namespace kimp::lumped

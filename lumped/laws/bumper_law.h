@@ -22,6 +22,18 @@ namespace kimp::lumped
   double
   bumper_stiffness(double area, double modulus, double thickness, double exponent, int count);
 
+  /// Parameters of the BumperLaw.
+  struct BumperParams
+  {
+    double                stiffness            = 0.0;  ///< k_b, N/m^n
+    double                exponent             = 2.65; ///< n
+    double                ultimate_deformation = 0.0;  ///< δ_u, m
+    double                wall_stiffness       = 0.0;  ///< k_w, N/m
+    double                cor                  = 1.0;  ///< nominal COR
+    double                effective_mass       = 0.0;  ///< m_eff, kg
+    std::optional<double> a1;                          ///< C_imp = a1·(1 − COR²), s/m
+  };
+
   /**
    * Rubber bumper(s) in series with a stiff wall; no permanent indentation.
    *
@@ -39,36 +51,24 @@ namespace kimp::lumped
    * clipping, as in law 6. Limitation: the thesis calibrated C_imp for Hertz contact (2.23); it
    * is reused here unchanged.
    */
-  class BumperLaw final : public ContactLaw<BumperLaw>
+  class BumperLaw final : public ContactLaw<BumperLaw, BumperParams>
   {
   public:
-    struct Params
-    {
-      double                stiffness            = 0.0;  ///< k_b, N/m^n
-      double                exponent             = 2.65; ///< n
-      double                ultimate_deformation = 0.0;  ///< δ_u, m
-      double                wall_stiffness       = 0.0;  ///< k_w, N/m
-      double                cor                  = 1.0;  ///< nominal COR
-      double                effective_mass       = 0.0;  ///< m_eff, kg
-      std::optional<double> a1;                          ///< C_imp = a1·(1 − COR²), s/m
-    };
+    static constexpr const char *law_name = "bumper";
 
     /// @throws std::invalid_argument naming the bad parameter.
     explicit BumperLaw(const Params &params);
 
     /// Largest approach tangent up to max_deformation, N/m.
     /// @throws std::invalid_argument if max_deformation <= 0.
-    double        stability_stiffness(double max_deformation) const override;
-    std::string   name() const override { return "bumper"; }
-    const Params &parameters() const { return params_; }
+    double stability_stiffness(double max_deformation) const override;
 
   private:
-    friend class ContactLaw<BumperLaw>;
+    friend ContactLaw;
     /// The law itself, called by ContactLaw::set_trial (see there for the contract).
     void evaluate(const ContactState &committed, ContactState &trial) const;
 
-    const Params params_;
-    double       force_u_;  ///< k_b·δ_u^n, N
-    double       energy_u_; ///< k_b·δ_u^(n+1)/(n+1), J
+    double force_u_;  ///< k_b·δ_u^n, N
+    double energy_u_; ///< k_b·δ_u^(n+1)/(n+1), J
   };
 } // namespace kimp::lumped

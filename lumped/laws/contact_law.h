@@ -12,6 +12,7 @@
 #include <string>
 
 #include "lumped/laws/force_law.h"
+#include "lumped/parameter_check.h"
 
 namespace kimp::lumped
 {
@@ -34,7 +35,9 @@ namespace kimp::lumped
   };
 
   /**
-   * CRTP base implementing the ForceLaw state machine for a law `Derived` that provides
+   * CRTP base implementing the ForceLaw state machine for a law `Derived` with parameters `P`
+   * (held as params_, returned by parameters()) that provides its name as
+   * `static constexpr const char *law_name` and
    * `void evaluate(const ContactState& committed, ContactState& trial) const`.
    * `evaluate` receives `trial` = committed state with the new δ, δ̇ and zeroed force, tangent,
    * elastic force, stored and released energy, and fills them (and any history it changes).
@@ -45,10 +48,12 @@ namespace kimp::lumped
    * increment is >= 0 except at a turning point δ̇ = 0 that falls between two samples, where an
    * increment of order (ω·Δt)² of the step's work may be negative (quadrature error).
    */
-  template <typename Derived>
+  template <typename Derived, typename P>
   class ContactLaw : public ForceLaw
   {
   public:
+    using Params = P;
+
     ForceResponse set_trial(double deformation, double rate) final
     {
       trial_                 = committed_;
@@ -85,19 +90,38 @@ namespace kimp::lumped
     double stored_energy() const final { return committed_.stored_energy; }
     double impact_velocity() const final { return committed_.impact_velocity; }
 
+    std::string               name() const final { return Derived::law_name; }
     std::unique_ptr<ForceLaw> clone() const final
     {
       return std::make_unique<Derived>(static_cast<const Derived &>(*this));
     }
+
+    const Params &parameters() const { return params_; }
 
     /// Last committed state (read-only, for diagnostics and tests).
     const ContactState &committed_state() const { return committed_; }
     /// Current trial state (read-only, for diagnostics and tests).
     const ContactState &trial_state() const { return trial_; }
 
+  protected:
+    explicit ContactLaw(const Params &params)
+      : params_(params)
+    {
+    }
+
+    const Params params_;
+
   private:
     ContactState committed_;
     ContactState trial_;
+  };
+
+  /// Parameters of the laws whose dashpot follows from the COR and the pair's mass (2-4).
+  struct DashpotLawParams
+  {
+    double stiffness      = 0.0; ///< k, N/m (laws 2, 3) or N/m^1.5 (law 4)
+    double cor            = 1.0; ///< nominal COR
+    double effective_mass = 0.0; ///< m_eff, kg
   };
 
   namespace detail
@@ -110,12 +134,8 @@ namespace kimp::lumped
                                   const std::string &unit,
                                   const std::string &expected)
     {
-      if (ok)
-        return;
-      std::ostringstream msg;
-      msg << law << " law: " << name << " = " << value << (unit.empty() ? "" : " ") << unit << " ("
-          << expected << ")";
-      throw std::invalid_argument(msg.str());
+      if (!ok)
+        lumped::require_parameter(false, law + " law: ", name, value, unit, expected);
     }
 
     /**
@@ -152,6 +172,16 @@ namespace kimp::lumped
     inline void require_exponent(const std::string &law, double n)
     {
       require_parameter(std::isfinite(n) && n >= 1.0, law, "exponent n", n, "", "must be >= 1");
+    }
+
+    /// The checks of laws 2-4: k > 0 (in `stiffness_unit`), 0 < COR <= 1, m_eff > 0.
+    inline void require_dashpot_law(const std::string      &law,
+                                    const DashpotLawParams &params,
+                                    const std::string      &stiffness_unit)
+    {
+      require_positive(law, "k", params.stiffness, stiffness_unit);
+      require_cor(law, params.cor);
+      require_positive(law, "m_eff", params.effective_mass, "kg");
     }
 
     /// x^(n−1) with the common exponents 1 and 1.5 (Hertz) done without std::pow.

@@ -44,7 +44,8 @@ namespace kimp::lumped
 
   std::unique_ptr<ForceLaw> make_force_law(const ForceLawSpec &spec)
   {
-    const std::string &law = spec.law;
+    const std::string     &law = spec.law;
+    const DashpotLawParams dashpot{spec.stiffness, spec.cor, spec.effective_mass};
     if (law == "linear")
     {
       require_fixed_exponent(spec, 1.0);
@@ -53,20 +54,17 @@ namespace kimp::lumped
     if (law == "kelvin_voigt")
     {
       require_fixed_exponent(spec, 1.0);
-      return std::make_unique<KelvinVoigtLaw>(
-        KelvinVoigtLaw::Params{spec.stiffness, spec.cor, spec.effective_mass});
+      return std::make_unique<KelvinVoigtLaw>(dashpot);
     }
     if (law == "modified_kelvin_voigt")
     {
       require_fixed_exponent(spec, 1.0);
-      return std::make_unique<ModifiedKelvinVoigtLaw>(
-        ModifiedKelvinVoigtLaw::Params{spec.stiffness, spec.cor, spec.effective_mass});
+      return std::make_unique<ModifiedKelvinVoigtLaw>(dashpot);
     }
     if (law == "jankowski")
     {
       require_fixed_exponent(spec, 1.5);
-      return std::make_unique<JankowskiLaw>(
-        JankowskiLaw::Params{spec.stiffness, spec.cor, spec.effective_mass});
+      return std::make_unique<JankowskiLaw>(dashpot);
     }
     if (law == "hertzdamp")
       return std::make_unique<HertzdampLaw>(HertzdampLaw::Params{spec.stiffness,

@@ -6,7 +6,7 @@
 namespace kimp::lumped
 {
   HertzdampLaw::HertzdampLaw(const Params &params)
-    : params_(params)
+    : ContactLaw(params)
   {
     detail::require_positive(name(), "k", params_.stiffness, "N/m^n");
     detail::require_exponent(name(), params_.exponent);

@@ -9,6 +9,15 @@
 
 namespace kimp::lumped
 {
+  /// Parameters of the HertzdampLaw.
+  struct HertzdampParams
+  {
+    double stiffness = 0.0;   ///< k, N/m^n
+    double exponent  = 1.5;   ///< n
+    double cor       = 1.0;   ///< nominal COR
+    bool   ye        = false; ///< Ye et al. (2009) damping instead of (2.14)
+  };
+
   /**
    * Hertz spring with a deformation-dependent dashpot; v_imp is the rate δ̇ at the first trial
    * that enters contact (the caller's backward difference in the MDOF solver), kept until the
@@ -25,34 +34,25 @@ namespace kimp::lumped
    * Limitations: the Muthukumar-DesRoches coefficient assumes high COR and misses low target
    * CORs badly (a known flaw, kept); F may turn tensile for δ̇ < −v_imp/β (not clipped).
    */
-  class HertzdampLaw final : public ContactLaw<HertzdampLaw>
+  class HertzdampLaw final : public ContactLaw<HertzdampLaw, HertzdampParams>
   {
   public:
-    struct Params
-    {
-      double stiffness = 0.0;   ///< k, N/m^n
-      double exponent  = 1.5;   ///< n
-      double cor       = 1.0;   ///< nominal COR
-      bool   ye        = false; ///< Ye et al. (2009) damping instead of (2.14)
-    };
+    static constexpr const char *law_name = "hertzdamp";
 
     /// @throws std::invalid_argument naming the bad parameter.
     explicit HertzdampLaw(const Params &params);
 
     /// n·k·δ_max^(n−1)·(1 + β), N/m: the largest dF/dδ for |δ̇| <= v_imp.
     /// @throws std::invalid_argument if max_deformation <= 0 and n > 1.
-    double        stability_stiffness(double max_deformation) const override;
-    std::string   name() const override { return "hertzdamp"; }
-    const Params &parameters() const { return params_; }
+    double stability_stiffness(double max_deformation) const override;
     /// β of the header formula.
     double damping_factor() const { return beta_; }
 
   private:
-    friend class ContactLaw<HertzdampLaw>;
+    friend ContactLaw;
     /// The law itself, called by ContactLaw::set_trial (see there for the contract).
     void evaluate(const ContactState &committed, ContactState &trial) const;
 
-    const Params params_;
-    double       beta_;
+    double beta_;
   };
 } // namespace kimp::lumped

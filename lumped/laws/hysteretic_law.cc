@@ -15,28 +15,46 @@ namespace kimp::lumped
             std::pow(impact_velocity, 0.9755));
   }
 
-  void fix_impact_coefficient(const char           *law,
-                              double                cor,
-                              std::optional<double> a1,
-                              double                effective_mass,
-                              const ContactState   &committed,
-                              ContactState         &trial)
+  void require_impact_coefficient(const std::string    &law,
+                                  double                cor,
+                                  double                effective_mass,
+                                  std::optional<double> a1)
   {
-    trial.impact_velocity = detail::impact_velocity_of(law, committed, trial);
-    trial.impact_coefficient =
-      a1 ? *a1 * (1.0 - cor * cor) :
-           impact_damping_coefficient(cor, effective_mass, trial.impact_velocity);
+    detail::require_cor(law, cor);
+    detail::require_positive(law, "m_eff", effective_mass, "kg");
+    if (a1)
+      detail::require_positive(law, "a1", *a1, "s/m");
+  }
+
+  bool enter_impact_contact(const char           *law,
+                            double                cor,
+                            std::optional<double> a1,
+                            double                effective_mass,
+                            const ContactState   &committed,
+                            ContactState         &trial)
+  {
+    if (trial.deformation <= 0.0)
+    {
+      trial.in_contact = false;
+      return false;
+    }
+    if (!committed.in_contact)
+    {
+      trial.impact_velocity = detail::impact_velocity_of(law, committed, trial);
+      trial.impact_coefficient =
+        a1 ? *a1 * (1.0 - cor * cor) :
+             impact_damping_coefficient(cor, effective_mass, trial.impact_velocity);
+    }
+    trial.in_contact = true;
+    return true;
   }
 
   HystereticLaw::HystereticLaw(const Params &params)
-    : params_(params)
+    : ContactLaw(params)
   {
     detail::require_positive(name(), "k", params_.stiffness, "N/m^n");
     detail::require_exponent(name(), params_.exponent);
-    detail::require_cor(name(), params_.cor);
-    detail::require_positive(name(), "m_eff", params_.effective_mass, "kg");
-    if (params_.a1)
-      detail::require_positive(name(), "a1", *params_.a1, "s/m");
+    require_impact_coefficient(name(), params_.cor, params_.effective_mass, params_.a1);
   }
 
   double HystereticLaw::stability_stiffness(double max_deformation) const
@@ -50,37 +68,13 @@ namespace kimp::lumped
 
   void HystereticLaw::evaluate(const ContactState &committed, ContactState &trial) const
   {
-    const double x = trial.deformation;
-    if (x <= 0.0)
-    {
-      trial.in_contact = false;
+    if (!enter_impact_contact(law_name, params_, committed, trial))
       return;
-    }
-    if (!committed.in_contact)
-      fix_impact_coefficient("hysteretic",
-                             params_.cor,
-                             params_.a1,
-                             params_.effective_mass,
-                             committed,
-                             trial);
-    const double n       = params_.exponent;
-    const double x_n1    = detail::power_minus_one(x, n);
-    const double spring  = params_.stiffness * x_n1 * x;
-    const double tangent = n * params_.stiffness * x_n1;
-    trial.in_contact     = true;
-    trial.elastic_force  = spring;
-    trial.stored_energy  = spring * x / (n + 1.0);
-    if (trial.rate >= 0.0)
-    {
-      trial.force     = spring;
-      trial.stiffness = tangent;
-      return;
-    }
-    const double g = 1.0 + trial.impact_coefficient * trial.rate;
-    if (g <= 0.0)
-      return; // clipped: no tension, the bodies separate while δ > 0
-    trial.force     = spring * g;
-    trial.stiffness = tangent * g;
-    trial.damping   = spring * trial.impact_coefficient;
+    const double x      = trial.deformation;
+    const double n      = params_.exponent;
+    const double x_n1   = detail::power_minus_one(x, n);
+    const double spring = params_.stiffness * x_n1 * x;
+    trial.stored_energy = spring * x / (n + 1.0);
+    restitution_force(spring, n * params_.stiffness * x_n1, trial);
   }
 } // namespace kimp::lumped

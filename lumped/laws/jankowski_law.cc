@@ -15,11 +15,9 @@ namespace kimp::lumped
   }
 
   JankowskiLaw::JankowskiLaw(const Params &params)
-    : params_(params)
+    : ContactLaw(params)
   {
-    detail::require_positive(name(), "k", params_.stiffness, "N/m^1.5");
-    detail::require_cor(name(), params_.cor);
-    detail::require_positive(name(), "m_eff", params_.effective_mass, "kg");
+    detail::require_dashpot_law(name(), params_, "N/m^1.5");
     damping_ratio_ = jankowski_damping_ratio(params_.cor);
     damping_scale_ = 2.0 * damping_ratio_ * std::sqrt(params_.stiffness * params_.effective_mass);
   }

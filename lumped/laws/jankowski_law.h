@@ -27,15 +27,10 @@ namespace kimp::lumped
    * Limitation: (2.12) is approximate, the effective COR deviates from the nominal one by a few
    * per cent (measured in tests/lumped/two_body_test.cc).
    */
-  class JankowskiLaw final : public ContactLaw<JankowskiLaw>
+  class JankowskiLaw final : public ContactLaw<JankowskiLaw, DashpotLawParams>
   {
   public:
-    struct Params
-    {
-      double stiffness      = 0.0; ///< k, N/m^1.5
-      double cor            = 1.0; ///< nominal COR
-      double effective_mass = 0.0; ///< m_eff, kg
-    };
+    static constexpr const char *law_name = "jankowski";
 
     /// @throws std::invalid_argument naming the bad parameter.
     explicit JankowskiLaw(const Params &params);
@@ -43,17 +38,14 @@ namespace kimp::lumped
     /// 1.5k·sqrt(δ_max)/(sqrt(1+ξ'²) − ξ')², N/m, with ξ' = ξ/sqrt(1.5) the damping ratio
     /// relative to the tangent stiffness; the δ^−0.75 rate term of the tangent is left out.
     /// @throws std::invalid_argument if max_deformation <= 0.
-    double        stability_stiffness(double max_deformation) const override;
-    std::string   name() const override { return "jankowski"; }
-    const Params &parameters() const { return params_; }
+    double stability_stiffness(double max_deformation) const override;
 
   private:
-    friend class ContactLaw<JankowskiLaw>;
+    friend ContactLaw;
     /// The law itself, called by ContactLaw::set_trial (see there for the contract).
     void evaluate(const ContactState &committed, ContactState &trial) const;
 
-    const Params params_;
-    double       damping_ratio_;
-    double       damping_scale_; ///< 2ξ·sqrt(k·m_eff), c = damping_scale_·δ^0.25
+    double damping_ratio_;
+    double damping_scale_; ///< 2ξ·sqrt(k·m_eff), c = damping_scale_·δ^0.25
   };
 } // namespace kimp::lumped

@@ -29,20 +29,6 @@ namespace kimp::lumped
     return stiffness / (f * f);
   }
 
-  KelvinVoigtLaw::KelvinVoigtLaw(const Params &params)
-    : params_(params)
-  {
-    detail::require_positive(name(), "k", params_.stiffness, "N/m");
-    detail::require_cor(name(), params_.cor);
-    detail::require_positive(name(), "m_eff", params_.effective_mass, "kg");
-    damping_ = kelvin_voigt_dashpot(params_.stiffness, params_.cor, params_.effective_mass);
-  }
-
-  double KelvinVoigtLaw::stability_stiffness(double /*max_deformation*/) const
-  {
-    return kelvin_voigt_stability_stiffness(params_.stiffness, params_.cor);
-  }
-
   void KelvinVoigtLaw::evaluate(const ContactState &committed, ContactState &trial) const
   {
     const double x = trial.deformation;

@@ -24,6 +24,35 @@ namespace kimp::lumped
   double kelvin_voigt_stability_stiffness(double stiffness, double cor);
 
   /**
+   * Laws 2 and 3: a linear spring k and the dashpot c = 2ξ(COR)·sqrt(k·m_eff) of (2.7), with the
+   * damped central-difference limit as stability stiffness; `Derived` provides law_name and
+   * evaluate() (see ContactLaw).
+   */
+  template <typename Derived>
+  class SpringDashpotLaw : public ContactLaw<Derived, DashpotLawParams>
+  {
+  public:
+    /// k/(sqrt(1+ξ²) − ξ)², N/m: k raised so that 2/sqrt(k_t/m_eff) is the damped CDM limit.
+    double stability_stiffness(double /*max_deformation*/) const override
+    {
+      return kelvin_voigt_stability_stiffness(this->params_.stiffness, this->params_.cor);
+    }
+    /// c = 2ξ·sqrt(k·m_eff), N·s/m.
+    double damping_coefficient() const { return damping_; }
+
+    /// @throws std::invalid_argument naming the bad parameter.
+    explicit SpringDashpotLaw(const DashpotLawParams &params)
+      : ContactLaw<Derived, DashpotLawParams>(params)
+    {
+      detail::require_dashpot_law(Derived::law_name, params, "N/m");
+      damping_ = kelvin_voigt_dashpot(params.stiffness, params.cor, params.effective_mass);
+    }
+
+  protected:
+    double damping_ = 0.0; ///< c, N·s/m
+  };
+
+  /**
    * Linear spring with a linear dashpot, active while δ > 0.
    *
    * | parameter | meaning                            | unit | range  |
@@ -35,32 +64,15 @@ namespace kimp::lumped
    * Limitation (reproduced on purpose): the dashpot makes F tensile just before separation,
    * pulling the bodies together; law 3 is the thesis' fix.
    */
-  class KelvinVoigtLaw final : public ContactLaw<KelvinVoigtLaw>
+  class KelvinVoigtLaw final : public SpringDashpotLaw<KelvinVoigtLaw>
   {
   public:
-    struct Params
-    {
-      double stiffness      = 0.0; ///< k, N/m
-      double cor            = 1.0; ///< nominal COR
-      double effective_mass = 0.0; ///< m_eff, kg
-    };
-
-    /// @throws std::invalid_argument naming the bad parameter.
-    explicit KelvinVoigtLaw(const Params &params);
-
-    /// k/(sqrt(1+ξ²) − ξ)², N/m: k raised so that 2/sqrt(k_t/m_eff) is the damped CDM limit.
-    double        stability_stiffness(double max_deformation) const override;
-    std::string   name() const override { return "kelvin_voigt"; }
-    const Params &parameters() const { return params_; }
-    /// c = 2ξ·sqrt(k·m_eff), N·s/m.
-    double damping_coefficient() const { return damping_; }
+    static constexpr const char *law_name = "kelvin_voigt";
+    using SpringDashpotLaw::SpringDashpotLaw;
 
   private:
-    friend class ContactLaw<KelvinVoigtLaw>;
+    friend ContactLaw;
     /// The law itself, called by ContactLaw::set_trial (see there for the contract).
     void evaluate(const ContactState &committed, ContactState &trial) const;
-
-    const Params params_;
-    double       damping_;
   };
 } // namespace kimp::lumped

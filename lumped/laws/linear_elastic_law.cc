@@ -4,7 +4,7 @@
 namespace kimp::lumped
 {
   LinearElasticLaw::LinearElasticLaw(const Params &params)
-    : params_(params)
+    : ContactLaw(params)
   {
     detail::require_positive(name(), "k", params_.stiffness, "N/m");
   }

@@ -8,6 +8,12 @@
 
 namespace kimp::lumped
 {
+  /// Parameters of the LinearElasticLaw.
+  struct LinearElasticParams
+  {
+    double stiffness = 0.0; ///< k, N/m
+  };
+
   /**
    * Linear elastic contact spring.
    *
@@ -17,27 +23,20 @@ namespace kimp::lumped
    *
    * Limitation: no energy loss, so the impact is perfectly elastic whatever the materials.
    */
-  class LinearElasticLaw final : public ContactLaw<LinearElasticLaw>
+  class LinearElasticLaw final : public ContactLaw<LinearElasticLaw, LinearElasticParams>
   {
   public:
-    struct Params
-    {
-      double stiffness = 0.0; ///< k, N/m
-    };
+    static constexpr const char *law_name = "linear";
 
     /// @throws std::invalid_argument if k <= 0.
     explicit LinearElasticLaw(const Params &params);
 
     /// k (N/m) whatever the deformation.
-    double        stability_stiffness(double max_deformation) const override;
-    std::string   name() const override { return "linear"; }
-    const Params &parameters() const { return params_; }
+    double stability_stiffness(double max_deformation) const override;
 
   private:
-    friend class ContactLaw<LinearElasticLaw>;
+    friend ContactLaw;
     /// The law itself, called by ContactLaw::set_trial (see there for the contract).
     void evaluate(const ContactState &committed, ContactState &trial) const;
-
-    const Params params_;
   };
 } // namespace kimp::lumped

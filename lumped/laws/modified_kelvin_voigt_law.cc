@@ -1,26 +1,8 @@
 // Impact law 3, modified Kelvin-Voigt with permanent indentation (thesis eq. 2.16).
 #include "lumped/laws/modified_kelvin_voigt_law.h"
 
-#include <cmath>
-
-#include "lumped/laws/kelvin_voigt_law.h"
-
 namespace kimp::lumped
 {
-  ModifiedKelvinVoigtLaw::ModifiedKelvinVoigtLaw(const Params &params)
-    : params_(params)
-  {
-    detail::require_positive(name(), "k", params_.stiffness, "N/m");
-    detail::require_cor(name(), params_.cor);
-    detail::require_positive(name(), "m_eff", params_.effective_mass, "kg");
-    damping_ = kelvin_voigt_dashpot(params_.stiffness, params_.cor, params_.effective_mass);
-  }
-
-  double ModifiedKelvinVoigtLaw::stability_stiffness(double /*max_deformation*/) const
-  {
-    return kelvin_voigt_stability_stiffness(params_.stiffness, params_.cor);
-  }
-
   void ModifiedKelvinVoigtLaw::evaluate(const ContactState &committed, ContactState &trial) const
   {
     const double x = trial.deformation - committed.permanent_indentation;

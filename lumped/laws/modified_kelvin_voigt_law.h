@@ -2,9 +2,7 @@
 // >= 0; when it would turn tensile the contact ends and δ becomes the permanent indentation δ_p.
 #pragma once
 
-#include <string>
-
-#include "lumped/laws/contact_law.h"
+#include "lumped/laws/kelvin_voigt_law.h"
 
 namespace kimp::lumped
 {
@@ -23,31 +21,15 @@ namespace kimp::lumped
    * Limitations: the effective COR exceeds the nominal one (the tensile phase is cut off);
    * δ_p depends on the time step through the sample at which the force changes sign.
    */
-  class ModifiedKelvinVoigtLaw final : public ContactLaw<ModifiedKelvinVoigtLaw>
+  class ModifiedKelvinVoigtLaw final : public SpringDashpotLaw<ModifiedKelvinVoigtLaw>
   {
   public:
-    struct Params
-    {
-      double stiffness      = 0.0; ///< k, N/m
-      double cor            = 1.0; ///< nominal COR
-      double effective_mass = 0.0; ///< m_eff, kg
-    };
-
-    /// @throws std::invalid_argument naming the bad parameter.
-    explicit ModifiedKelvinVoigtLaw(const Params &params);
-
-    /// k/(sqrt(1+ξ²) − ξ)², N/m (damped CDM limit, see cdm_damping_factor()).
-    double        stability_stiffness(double max_deformation) const override;
-    std::string   name() const override { return "modified_kelvin_voigt"; }
-    const Params &parameters() const { return params_; }
-    double        damping_coefficient() const { return damping_; }
+    static constexpr const char *law_name = "modified_kelvin_voigt";
+    using SpringDashpotLaw::SpringDashpotLaw;
 
   private:
-    friend class ContactLaw<ModifiedKelvinVoigtLaw>;
+    friend ContactLaw;
     /// The law itself, called by ContactLaw::set_trial (see there for the contract).
     void evaluate(const ContactState &committed, ContactState &trial) const;
-
-    const Params params_;
-    double       damping_;
   };
 } // namespace kimp::lumped

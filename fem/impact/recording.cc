@@ -1,11 +1,14 @@
-// ImpactProblem explicit time loop (leap-frog with the Gauss-Lobatto lumped mass, Belytschko et
-// al., Nonlinear Finite Elements, 2014, §6.2) and the recording both time loops share:
-// histories, energies and the divergence guard, VTU output, summary with the smoothed force.
+// ImpactProblem recording, shared by the explicit and the implicit time loop: histories, energies
+// and the divergence guard, VTU output, frames with the contact pressure per node (the penalty
+// forces over each node's tributary length), and the summary with the smoothed force.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <map>
+#include <numeric>
+#include <utility>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -19,101 +22,6 @@ namespace kimp::fem::internal
 {
   /** Divergence guard: relative energy error beyond which the run is stopped. */
   constexpr double divergence_energy_error = 0.5;
-
-  void ImpactProblem::run_explicit()
-  {
-    Vec u(locally_owned, comm), v_half(locally_owned, comm), v_n(locally_owned, comm);
-    Vec Ku(locally_owned, comm), a(locally_owned, comm);
-    if (geostatic_on)
-      u = geostatic_u;
-    // Initial velocity: the slab moves at +initial_velocity in x.
-    double u_r = 0, v_r = prm.initial_velocity;
-    set_initial_slab_velocity(v_half);
-    v_n = v_half;
-
-    const bool          write_vtu = !prm.vtu_dir.empty() && prm.vtu_interval > 0;
-    const unsigned long vtu_every =
-      write_vtu ? std::max<unsigned long>(1, std::lround(prm.vtu_interval / dt)) : 0;
-    const unsigned long frame_every =
-      prm.frame_interval > 0 ? std::max<unsigned long>(1, std::lround(prm.frame_interval / dt)) : 0;
-    const unsigned long n_max = static_cast<unsigned long>(std::ceil(prm.end_time / dt));
-    const unsigned long hold_steps =
-      static_cast<unsigned long>(std::ceil(prm.separation_hold_time / dt));
-    bool          started    = false;
-    unsigned long zero_since = 0;
-    unsigned long n          = 0;
-    separated_flag           = false;
-    for (;; ++n)
-    {
-      const double t = n * dt;
-      // Contact at (u_n, v_{n-1/2}): the damping lags half a step, which keeps the scheme
-      // explicit.
-      const auto [cu, cv]          = gather_compact(u, u_r, v_half, v_r);
-      const auto                ev = contact->evaluate(cu, cv);
-      const std::vector<double> fc = padded_force(ev, cu.size());
-
-      // The points' energies are read at the sampled steps only (record()).
-      point_energy_needed = n % sample_every == 0;
-      internal_force(u, Ku);
-      point_energy_needed = true;
-      // Every evaluated point's trial history was rewritten: swapping commits it without a copy.
-      if (!linear_laws)
-        qp_history.commit_by_swap();
-      if (interface)
-        interface->commit();
-      a.equ(-1.0, Ku);
-      scatter_add(fc, a);
-      a.scale(inverse_mass);
-      if (absorbing)
-        apply_dashpots_explicit(n == 0, v_half, a);
-      const double a_r = prm.rigid_slab ? fc.back() / prm.slab_mass : 0;
-
-      // v_{n+1/2} = v_{n-1/2} + dt a_n (half a step at the start); v_n = mean of the two.
-      const double h = n == 0 ? 0.5 * dt : dt;
-      v_n            = v_half;
-      if (n > 0)
-        v_n.add(0.5 * dt, a);
-      v_half.add(h, a);
-      const double v_r_n = v_r + (n > 0 ? 0.5 * dt * a_r : 0.0);
-      v_r += h * a_r;
-
-      record(n, t, u, v_n, Ku, u_r, v_r_n, ev, cu);
-      if (prm.progress && n % prm.progress_interval == 0 && n > 0 &&
-          Utilities::MPI::this_mpi_process(comm) == 0)
-        prm.progress(t, prm.end_time);
-      if (write_vtu && n % vtu_every == 0)
-        output_results(t, u, v_n, fc);
-      if (frame_every && n % frame_every == 0)
-        record_frame(t, u, ev);
-
-      if (ev.total_force > 0)
-      {
-        started    = true;
-        zero_since = n + 1;
-      }
-      // Over once the force stayed zero for the hold time and the slab no longer comes in
-      // (ImpactParameters::separation_velocity_fraction).
-      if (started && n + 1 - zero_since >= hold_steps && ev.total_force == 0)
-      {
-        slab_v_end = slab_velocity(v_n, v_r_n);
-        if (slab_no_longer_comes_in(slab_v_end))
-        {
-          separated_flag = true;
-          break;
-        }
-      }
-      if (n >= n_max)
-      {
-        slab_v_end = slab_velocity(v_n, v_r_n);
-        break;
-      }
-      u.add(dt, v_half);
-      u_r += dt * v_r;
-    }
-    n_steps_done = n;
-    compute_residual_state(u, u_r);
-  }
-
 
   std::vector<double> padded_force(const PenaltyContact::Evaluation &ev, std::size_t size)
   {
@@ -197,13 +105,7 @@ namespace kimp::fem::internal
       }
     }
     std::array<double, n_values> global{};
-    const int                    ierr = MPI_Allreduce(local.data(),
-                                   global.data(),
-                                   linear_laws ? 4 : n_values,
-                                   MPI_DOUBLE,
-                                   MPI_SUM,
-                                   comm);
-    AssertThrowMPI(ierr);
+    reduce_over_ranks(local.data(), global.data(), linear_laws ? 4 : n_values, MPI_SUM, comm);
     if (geostatic_on)
       for (unsigned int i = 0; i < 3; ++i)
         global[5 + i] -= geostatic_point_energy[i];
@@ -268,10 +170,10 @@ namespace kimp::fem::internal
     history.contact_dissipation.push_back(-contact_work - ev.penalty_energy);
     history.energy_error.push_back(error);
     if (prm.log_interval > 0 && (n / sample_every) % prm.log_interval == 0)
-      log_line("step " + std::to_string(n) + " t = " + fmt_double(t) + " s, F = " +
-               fmt_double(ev.total_force) + " N/m, active = " + std::to_string(ev.active.size()) +
-               ", max penetration = " + fmt_double(ev.max_penetration) +
-               " m, dE/E0 = " + fmt_double(error));
+      log_line(
+        "step " + std::to_string(n) + " t = " + fmt_sig(t) + " s, F = " + fmt_sig(ev.total_force) +
+        " N/m, active = " + std::to_string(ev.active.size()) +
+        ", max penetration = " + fmt_sig(ev.max_penetration) + " m, dE/E0 = " + fmt_sig(error));
   }
 
   void ImpactProblem::throw_divergence(unsigned long n, double t, const Vec &u) const
@@ -486,6 +388,48 @@ namespace kimp::fem::internal
       append(frames.equivalent_plastic_strain, 3);
     }
     record_contact_pressure(ev);
+  }
+
+  void ImpactProblem::record_contact_pressure(const PenaltyContact::Evaluation &ev)
+  {
+    const auto &slaves = contact->slaves();
+    // Slaves in the order of the frames' contact nodes: along the face by (y, x).
+    std::vector<unsigned int> order(slaves.size());
+    std::iota(order.begin(), order.end(), 0u);
+    const auto &nodes = contact->nodes();
+    const auto  where = [&](unsigned int s)
+    { return std::make_pair(nodes[slaves[s].node].y, nodes[slaves[s].node].x); };
+    std::sort(order.begin(),
+              order.end(),
+              [&](unsigned int a, unsigned int b) { return where(a) < where(b); });
+    if (frames.contact_vertices.empty())
+    {
+      // The contact nodes are mesh vertices of the coarse mesh at exactly these coordinates
+      // (setup_contact() took them from the face vertices).
+      std::map<std::pair<double, double>, unsigned int> vertex_of;
+      const auto                                       &vertices = triangulation.get_vertices();
+      for (unsigned int v = 0; v < vertices.size(); ++v)
+        if (triangulation.vertex_used(v))
+          vertex_of[{vertices[v][0], vertices[v][1]}] = v;
+      for (const unsigned int s : order)
+      {
+        const auto &n  = nodes[slaves[s].node];
+        const auto  it = vertex_of.find({n.x, n.y});
+        require(it != vertex_of.end(),
+                "contact node at (" + fmt_double(n.x) + ", " + fmt_double(n.y) +
+                  ") m is no mesh vertex");
+        frames.contact_vertices.push_back(it->second);
+        frames.contact_length.push_back(slave_length[s]);
+      }
+    }
+    // lambda_i >= 0 is the normal force of node i per metre of depth (the dashpot included),
+    // so lambda_i / l_i is the mean normal traction over its tributary length and
+    // sum_i p_i l_i = ev.total_force, the contact force of the histories.
+    std::vector<double> pressure(slaves.size(), 0.0);
+    for (const auto &pair : ev.active)
+      pressure[pair.slave] = pair.force / slave_length[pair.slave];
+    for (const unsigned int s : order)
+      frames.contact_pressure.push_back(pressure[s]);
   }
 
   void ImpactProblem::finish(ImpactResult &result, double wall_seconds)
