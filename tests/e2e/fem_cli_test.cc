@@ -15,6 +15,7 @@
 #  include <vector>
 
 #  include "io/fem_results.h"
+#  include "tests/e2e/fem_scenes.h"
 #  include "tests/support/files.h"
 #  include "tests/support/kimp_run.h"
 #  include "tests/support/temp_dir.h"
@@ -28,15 +29,12 @@ namespace
 
   /// Coarse scene, seconds of run time (rigid slab unless `rigid` is false), written to
   /// `dir`/scene.yaml.
+  /// quick_fem_scene(extra, rigid) written to `dir`/scene.yaml.
   void write_quick_scene(const std::filesystem::path &dir,
                          const std::string           &extra = "",
                          bool                         rigid = true)
   {
-    const std::string slab = rigid ? "slab: {rigid: true}\n" : "slab: {rigid: false}\n";
-    write_text(dir / "scene.yaml",
-               "wall_heights: [\"1.25 m\"]\n"
-               "mesh: {h_contact: \"5 cm\", h_max: \"25 cm\", grading: 1.5}\n" +
-                 slab + extra);
+    write_text(dir / "scene.yaml", quick_fem_scene(extra, rigid));
   }
 
   TEST(FemCli, RigidSlabImpactConservesMomentumAndRebounds)

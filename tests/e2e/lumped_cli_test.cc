@@ -1,7 +1,6 @@
 // End-to-end `kimp lumped`: the built binary on small scenes; exit codes, lumped.h5 (units,
 // status), summary.json, peaks.csv, failed cases, bad scenes leaving no output, --print-defaults.
 #include <filesystem>
-#include <fstream>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -42,15 +41,21 @@ namespace
   /// (~1 m/s) is stopped by k = 2500 kN/mm within v·sqrt(m/k) = 2.5 cm; without walls the base
   /// moves about 23 cm under this motion.
   constexpr double max_overshoot = 0.025;
+
+  /// `kimp lumped <dir>/<file> -o <dir>/out` with `scene` written to `file` in `dir` first.
+  KimpRun run_lumped(const TempDir &dir, const std::string &scene, const std::string &file)
+  {
+    const fs::path out = dir.path() / "out";
+    return run_kimp("lumped " + dir.write(file, scene).string() + " -o " + out.string(),
+                    dir.path());
+  }
 } // namespace
 
 TEST(LumpedCli, WritesResultsFileSummaryAndPeaks)
 {
-  TempDir dir("e2e_lumped_ok");
-  std::ofstream(dir.path() / "scene.yaml") << small_scene;
+  TempDir        dir("e2e_lumped_ok");
+  const KimpRun  run = run_lumped(dir, small_scene, "scene.yaml");
   const fs::path out = dir.path() / "out";
-  const KimpRun  run =
-    run_kimp("lumped " + (dir.path() / "scene.yaml").string() + " -o " + out.string(), dir.path());
   ASSERT_EQ(run.exit_code, 0) << run.err;
 
   Hdf5Reader h5(out / "lumped.h5");
@@ -101,11 +106,9 @@ TEST(LumpedCli, WritesResultsFileSummaryAndPeaks)
 
 TEST(LumpedCli, LabelledHistoriesIsolatorForceAndFullRatePulses)
 {
-  TempDir dir("e2e_lumped_outputs");
-  std::ofstream(dir.path() / "scene.yaml") << small_scene;
+  TempDir        dir("e2e_lumped_outputs");
+  const KimpRun  run = run_lumped(dir, small_scene, "scene.yaml");
   const fs::path out = dir.path() / "out";
-  const KimpRun  run =
-    run_kimp("lumped " + (dir.path() / "scene.yaml").string() + " -o " + out.string(), dir.path());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   Hdf5Reader h5(out / "lumped.h5");
   ASSERT_TRUE(h5.ok());
@@ -178,10 +181,8 @@ TEST(LumpedCli, FailedCaseIsRecordedAndExitsNonZero)
                 "integration:\n  dt: \"5e-4 s\"\n  output_interval: \"0.05 s\"\n"
                 "cases:\n  - name: soft\n    k: \"2500 kN/mm\"\n"
                 "  - name: stiff\n    k: \"1e8 kN/mm\"\n");
-  std::ofstream(dir.path() / "scene.yaml") << scene;
+  const KimpRun  run = run_lumped(dir, scene, "scene.yaml");
   const fs::path out = dir.path() / "out";
-  const KimpRun  run =
-    run_kimp("lumped " + (dir.path() / "scene.yaml").string() + " -o " + out.string(), dir.path());
   EXPECT_NE(run.exit_code, 0);
   EXPECT_NE(run.err.find("stiff"), std::string::npos) << run.err;
   Hdf5Reader h5(out / "lumped.h5");
@@ -196,11 +197,10 @@ TEST(LumpedCli, FailedCaseIsRecordedAndExitsNonZero)
 
 TEST(LumpedCli, BadSceneNamesFileLineKeyAndWritesNothing)
 {
-  TempDir dir("e2e_lumped_bad");
-  std::ofstream(dir.path() / "bad.yaml") << "isolator:\n  K1: \"200 MN/m\"\n  K2: \"300 MN/m\"\n";
+  TempDir       dir("e2e_lumped_bad");
+  const KimpRun run =
+    run_lumped(dir, "isolator:\n  K1: \"200 MN/m\"\n  K2: \"300 MN/m\"\n", "bad.yaml");
   const fs::path out = dir.path() / "out";
-  const KimpRun  run =
-    run_kimp("lumped " + (dir.path() / "bad.yaml").string() + " -o " + out.string(), dir.path());
   EXPECT_NE(run.exit_code, 0);
   EXPECT_NE(run.err.find("bad.yaml:3: isolator.K2 = 300 MN/m"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(out / "lumped.h5"));

@@ -3,7 +3,6 @@
 #ifdef KIMP_WITH_FEM
 
 #  include <cmath>
-#  include <cstdlib>
 #  include <filesystem>
 #  include <gtest/gtest.h>
 #  include <nlohmann/json.hpp>
@@ -21,16 +20,22 @@ namespace
 
   bool matplotlib_available()
   {
-    return std::system("/usr/bin/python3 -c 'import matplotlib, numpy' > /dev/null 2>&1") == 0;
+    return command_succeeds("/usr/bin/python3 -c 'import matplotlib, numpy'");
+  }
+
+  /// `kimp <options> mesh scene.yaml -o out` in `dir`, `scene` written to scene.yaml first.
+  KimpRun run_mesh(const TempDir &dir, const std::string &scene, const std::string &options = "")
+  {
+    dir.write("scene.yaml", scene);
+    return run_kimp(options + "mesh scene.yaml -o out", dir.path());
   }
 
   TEST(MeshCli, WritesMeshesWhoseRegionsHaveTheSceneAreas)
   {
     const TempDir dir("mesh_cli");
-    write_text(dir.path() / "scene.yaml",
-               "wall_heights: [\"1.0 m\", \"1.5 m\"]\n"
-               "mesh: {h_contact: \"5 cm\", h_max: \"20 cm\", grading: 1.5}\n");
-    const KimpRun run = run_kimp("mesh scene.yaml -o out", dir.path());
+    const KimpRun run = run_mesh(dir,
+                                 "wall_heights: [\"1.0 m\", \"1.5 m\"]\n"
+                                 "mesh: {h_contact: \"5 cm\", h_max: \"20 cm\", grading: 1.5}\n");
     ASSERT_EQ(run.exit_code, 0) << run.err;
 
     const nlohmann::json summary = read_json(dir.path() / "out/summary.json");
@@ -83,10 +88,10 @@ namespace
   TEST(MeshCli, RigidSlabMeshHasNoSlabCells)
   {
     const TempDir dir("mesh_cli_rigid");
-    write_text(dir.path() / "scene.yaml",
-               "slab: {rigid: true}\ngeometry: {with_backfill: false}\n"
-               "mesh: {h_contact: \"5 cm\", h_max: \"20 cm\"}\n");
-    const KimpRun run = run_kimp("-q mesh scene.yaml -o out", dir.path());
+    const KimpRun run = run_mesh(dir,
+                                 "slab: {rigid: true}\ngeometry: {with_backfill: false}\n"
+                                 "mesh: {h_contact: \"5 cm\", h_max: \"20 cm\"}\n",
+                                 "-q ");
     ASSERT_EQ(run.exit_code, 0) << run.err;
     const nlohmann::json  summary = read_json(dir.path() / "out/summary.json");
     const nlohmann::json &entry   = summary.at("cases").at(0);
@@ -102,8 +107,7 @@ namespace
   TEST(MeshCli, OverlappingSlabIsRefusedWithFileLineAndKey)
   {
     const TempDir dir("mesh_cli_overlap");
-    write_text(dir.path() / "scene.yaml", "geometry:\n  gap: \"-1 mm\"\n");
-    const KimpRun run = run_kimp("mesh scene.yaml -o out", dir.path());
+    const KimpRun run = run_mesh(dir, "geometry:\n  gap: \"-1 mm\"\n");
     EXPECT_NE(run.exit_code, 0);
     EXPECT_NE(run.err.find("scene.yaml:2: geometry.gap = -1 mm"), std::string::npos) << run.err;
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "out/mesh")) << run.err;

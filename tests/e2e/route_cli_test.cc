@@ -12,6 +12,7 @@
 
 #  include "app/study/study_fem.h"
 #  include "io/fem_results.h"
+#  include "tests/e2e/fem_scenes.h"
 #  include "tests/support/files.h"
 #  include "tests/support/hdf5_reader.h"
 #  include "tests/support/kimp_run.h"
@@ -58,11 +59,8 @@ namespace
   TEST(RouteCli, FitAndStudyGiveTheSameKOnOneFemResult)
   {
     const TempDir dir("route_cli");
-    write_text(dir.path() / "scene.yaml",
-               "wall_heights: [\"1.25 m\"]\n"
-               "mesh: {h_contact: \"5 cm\", h_max: \"25 cm\", grading: 1.5}\n"
-               "slab: {rigid: true}\n"
-               "dynamics: {end_time: \"40 ms\", output_interval: \"0.02 ms\"}\n");
+    dir.write("scene.yaml",
+              quick_fem_scene("dynamics: {end_time: \"40 ms\", output_interval: \"0.02 ms\"}\n"));
     const KimpRun fem = run_kimp("-q fem scene.yaml -o fem", dir.path());
     ASSERT_EQ(fem.exit_code, 0) << fem.err;
 

@@ -17,6 +17,7 @@
 #  include <vector>
 
 #  include "io/fem_results.h"
+#  include "tests/e2e/fem_scenes.h"
 #  include "tests/support/csv.h"
 #  include "tests/support/files.h"
 #  include "tests/support/hdf5_reader.h"
@@ -33,56 +34,25 @@ namespace
                       std::string                 &log)
   {
     const KimpRun run = run_kimp(arguments, dir);
-    log               = run.out + run.err;
+    log               = run.output();
     return run.exit_code;
   }
 
-  constexpr const char *reduced_study = R"(fem:
-  wall_heights: ["1.0 m", "2.0 m"]
-  mesh:
-    h_contact: "5 cm"
-    h_max: "25 cm"
-    grading: 1.5
-  slab:
-    rigid: true
-  dynamics:
-    end_time: "40 ms"
-    output_interval: "0.02 ms"
-  fidelity: fixed
-  velocities: []
-records:
-  - record: synthetic
-    duration: "8 s"
-fit:
-  separation_fraction: 10
-peer_records: false
-charts: true
-stability_map: false
-accuracy_study: false
-)";
+  /// The reduced study with an empty velocity axis and charts.
+  const std::string study_with_charts =
+    reduced_study(R"(["1.0 m", "2.0 m"])", "  velocities: []\n", true);
 
   /// The reduced study with fidelity: auto and every extra study, kept cheap.
-  constexpr const char *auto_study = R"(fem:
+  const std::string auto_study = R"(fem:
   wall_heights: ["1.0 m", "2.0 m"]
   mesh:
     h_max: "25 cm"
     grading: 1.5
-  slab:
-    rigid: true
-  dynamics:
-    end_time: "40 ms"
-    output_interval: "0.02 ms"
-  fidelity: auto
+)" + rigid_slab_40_ms + R"(  fidelity: auto
   fidelity_tolerance: "0.001 %"
   fidelity_h_contact: ["10 cm", "5 cm"]
   velocities: []
-records:
-  - record: synthetic
-    duration: "8 s"
-fit:
-  separation_fraction: 10
-peer_records: false
-charts: true
+)" + one_short_record + R"(charts: true
 accuracy_study: true
 accuracy:
   wall_height: "1.0 m"
@@ -101,7 +71,7 @@ sensitivity_study:
 TEST(StudyCli, ReducedStudyGivesSofterWallsForTallerHeightsAndReusesTheFem)
 {
   const TempDir dir("study_cli");
-  std::ofstream(dir.path() / "study.yaml") << reduced_study;
+  std::ofstream(dir.path() / "study.yaml") << study_with_charts;
   std::string log;
   ASSERT_EQ(run_kimp_logged("study study.yaml -o out", dir.path(), log), 0) << log;
   const std::filesystem::path out = dir.path() / "out";
@@ -308,9 +278,8 @@ TEST(StudyCli, BadSceneFailsWithFileLineAndKey)
 TEST(StudyCliMpi, DISABLED_TwoRanksShareTheHeightsAndGiveTheSameKTable)
 {
   const TempDir dir("study_cli_mpi");
-  std::string   study = reduced_study;
-  study.replace(study.find("charts: true"), 12, "charts: false");
-  std::ofstream(dir.path() / "study.yaml") << study;
+  std::ofstream(dir.path() / "study.yaml")
+    << reduced_study(R"(["1.0 m", "2.0 m"])", "  velocities: []\n", false);
   std::string log;
   ASSERT_EQ(run_kimp_logged("study study.yaml -o one", dir.path(), log), 0) << log;
   const std::string command = "cd '" + dir.path().string() +

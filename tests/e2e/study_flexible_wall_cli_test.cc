@@ -10,45 +10,19 @@
 #  include <gtest/gtest.h>
 #  include <string>
 
+#  include "tests/e2e/fem_scenes.h"
 #  include "tests/support/csv.h"
 #  include "tests/support/files.h"
 #  include "tests/support/hdf5_reader.h"
 #  include "tests/support/kimp_run.h"
 #  include "tests/support/temp_dir.h"
 
-namespace
-{
-  using namespace kimp::testing;
-
-  constexpr const char *reduced_study = R"(fem:
-  wall_heights: ["1.0 m", "2.0 m"]
-  mesh:
-    h_contact: "5 cm"
-    h_max: "25 cm"
-    grading: 1.5
-  slab:
-    rigid: true
-  dynamics:
-    end_time: "40 ms"
-    output_interval: "0.02 ms"
-  fidelity: fixed
-records:
-  - record: synthetic
-    duration: "8 s"
-fit:
-  separation_fraction: 10
-peer_records: false
-charts: false
-stability_map: false
-accuracy_study: false
-)";
-} // namespace
+using namespace kimp::testing;
 
 TEST(StudyFlexibleWallCli, WallSdofPerHeightAndRigidBesideFlexible)
 {
   const TempDir dir("study_flexible_wall_cli");
-  std::ofstream(dir.path() / "study.yaml") << reduced_study;
-  const KimpRun run = run_kimp("study study.yaml -o out", dir.path());
+  const KimpRun run = run_study(reduced_study(), dir.path());
   ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
   const std::filesystem::path out = dir.path() / "out";
 
@@ -106,7 +80,7 @@ TEST(StudyFlexibleWallCli, WallSdofPerHeightAndRigidBesideFlexible)
   EXPECT_NE(read_text(out / "report.md").find("## Flexible moat wall"), std::string::npos);
 
   // walls.flexible: false: the rigid study only.
-  std::ofstream(dir.path() / "rigid.yaml") << reduced_study << "walls:\n  flexible: false\n";
+  std::ofstream(dir.path() / "rigid.yaml") << reduced_study() << "walls:\n  flexible: false\n";
   const KimpRun rigid = run_kimp("study rigid.yaml -o rigid", dir.path());
   ASSERT_EQ(rigid.exit_code, 0) << rigid.out << rigid.err;
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "rigid" / "wall_sdof.csv"));

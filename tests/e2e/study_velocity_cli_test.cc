@@ -13,6 +13,7 @@
 #  include <map>
 #  include <string>
 
+#  include "tests/e2e/fem_scenes.h"
 #  include "tests/support/csv.h"
 #  include "tests/support/files.h"
 #  include "tests/support/hdf5_reader.h"
@@ -31,41 +32,18 @@ namespace
       model: elastic
 )";
 
-  /// The quick study: one height (or two), coarse rigid-slab FEM, fixed fidelity, one record.
+  /// The quick study: the reduced study with `heights`, the `velocities` axis and `materials`.
   std::string quick_study(const std::string &heights,
                           const std::string &velocities,
                           const std::string &materials = linear_materials)
   {
-    return "fem:\n  wall_heights: " + heights + "\n" + materials + R"(  mesh:
-    h_contact: "5 cm"
-    h_max: "25 cm"
-    grading: 1.5
-  slab:
-    rigid: true
-  dynamics:
-    end_time: "40 ms"
-    output_interval: "0.02 ms"
-  fidelity: fixed
-  velocities: )" +
-           velocities +
-           R"(
-records:
-  - record: synthetic
-    duration: "8 s"
-fit:
-  separation_fraction: 10
-peer_records: false
-charts: false
-stability_map: false
-accuracy_study: false
-)";
+    return reduced_study(heights, materials + "  velocities: " + velocities + "\n");
   }
 
   int run_study(const std::string &scene, const std::filesystem::path &dir, std::string &log)
   {
-    std::ofstream(dir / "study.yaml") << scene;
-    const KimpRun run = run_kimp("study study.yaml -o out", dir);
-    log               = run.out + run.err;
+    const KimpRun run = kimp::testing::run_study(scene, dir);
+    log               = run.output();
     return run.exit_code;
   }
 

@@ -41,54 +41,18 @@ namespace
   constexpr double dummy_gap   = 0.1; // m: the contact that run_impact() requires, never touched
   constexpr double dummy_width = 0.1;
 
-  /**
-   * P-wave column along y: soil [0, w] x [0, L], a bonded slab-material segment [L, L + L_s] on
-   * top that starts at v in +y (initial_velocity_along_y), sides on rollers (u_x = 0), base
-   * fixed_base; a free dummy block above to satisfy the contact setup.
-   */
-  ImpactParameters p_column(double L, double L_s, const std::string &name)
+  /** Cells of size h_cell along a column length. */
+  unsigned int cells(double length)
   {
-    const auto file = scratch(name);
-    if (rank() == 0)
-    {
-      const auto n = [](double length)
-      { return static_cast<unsigned>(std::lround(length / h_cell)); };
-      write_blocks_msh({{0,
-                         width,
-                         0,
-                         L,
-                         2,
-                         n(L),
-                         ids::soil_material,
-                         ids::soil_far_side,
-                         ids::soil_far_side,
-                         ids::fixed_base,
-                         0},
-                        {0,
-                         width,
-                         L,
-                         L + L_s,
-                         2,
-                         n(L_s),
-                         ids::slab_material,
-                         ids::soil_far_side,
-                         ids::soil_far_side,
-                         0,
-                         ids::slab_contact},
-                        {0,
-                         width,
-                         L + L_s + dummy_gap,
-                         L + L_s + dummy_gap + dummy_width,
-                         2,
-                         4,
-                         ids::wall_material,
-                         0,
-                         0,
-                         ids::wall_contact,
-                         0}},
-                       file);
-    }
-    MPI_Barrier(MPI_COMM_WORLD);
+    return static_cast<unsigned int>(std::lround(length / h_cell));
+  }
+
+  /**
+   * A soil column of mesh @p file: soil, slab and dummy blocks all of soil, the slab started at
+   * v in +y, no contact ever starting (the run goes to end_time), sampled every 0.1 ms.
+   */
+  ImpactParameters column_parameters(const std::filesystem::path &file)
+  {
     ImpactParameters p;
     p.mesh_file                     = file;
     p.materials[ids::soil_material] = soil;
@@ -101,62 +65,122 @@ namespace
   }
 
   /**
+   * P-wave column along y: soil [0, w] x [0, L], a bonded slab-material segment [L, L + L_s] on
+   * top that starts at v in +y (initial_velocity_along_y), sides on rollers (u_x = 0), base
+   * fixed_base; a free dummy block above to satisfy the contact setup.
+   */
+  ImpactParameters p_column(double L, double L_s, const std::string &name)
+  {
+    return column_parameters(write_blocks({{0,
+                                            width,
+                                            0,
+                                            L,
+                                            2,
+                                            cells(L),
+                                            ids::soil_material,
+                                            ids::soil_far_side,
+                                            ids::soil_far_side,
+                                            ids::fixed_base,
+                                            0},
+                                           {0,
+                                            width,
+                                            L,
+                                            L + L_s,
+                                            2,
+                                            cells(L_s),
+                                            ids::slab_material,
+                                            ids::soil_far_side,
+                                            ids::soil_far_side,
+                                            0,
+                                            ids::slab_contact},
+                                           {0,
+                                            width,
+                                            L + L_s + dummy_gap,
+                                            L + L_s + dummy_gap + dummy_width,
+                                            2,
+                                            4,
+                                            ids::wall_material,
+                                            0,
+                                            0,
+                                            ids::wall_contact,
+                                            0}},
+                                          name));
+  }
+
+  /**
    * S-wave column along x: soil [0, L] x [0, w], a bonded slab-material segment [-L_s, 0] that
    * starts at v in +y, top and bottom on rollers (u_x = 0: the shear traction of a plane S-wave
    * is carried), right end fixed_base; a free dummy block on the left.
    */
   ImpactParameters s_column(double L, double L_s, const std::string &name)
   {
-    const auto file = scratch(name);
+    return column_parameters(write_blocks({{0,
+                                            L,
+                                            0,
+                                            width,
+                                            cells(L),
+                                            2,
+                                            ids::soil_material,
+                                            0,
+                                            ids::fixed_base,
+                                            ids::soil_far_side,
+                                            ids::soil_far_side},
+                                           {-L_s,
+                                            0,
+                                            0,
+                                            width,
+                                            cells(L_s),
+                                            2,
+                                            ids::slab_material,
+                                            ids::slab_contact,
+                                            0,
+                                            ids::soil_far_side,
+                                            ids::soil_far_side},
+                                           {-L_s - dummy_gap - dummy_width,
+                                            -L_s - dummy_gap,
+                                            0,
+                                            width,
+                                            4,
+                                            2,
+                                            ids::wall_material,
+                                            0,
+                                            ids::wall_contact,
+                                            0,
+                                            0}},
+                                          name));
+  }
+
+  /** A run with the end @p end fixed and one with @p end absorbing, measured at t_measure. */
+  struct FixedAndAbsorbing
+  {
+    ImpactResult fixed, absorbed;
+    double       r_fixed, r_abs; ///< energy_left() at t_measure
+  };
+
+  FixedAndAbsorbing
+  run_fixed_and_absorbing(ImpactParameters p, unsigned int end, double t_measure, const char *what)
+  {
+    p.end_time = t_measure;
+    FixedAndAbsorbing runs;
+    runs.fixed             = run_impact(p, MPI_COMM_WORLD, nullptr);
+    p.absorbing_boundaries = {end};
+    runs.absorbed          = run_impact(p, MPI_COMM_WORLD, nullptr);
+    runs.r_fixed           = energy_left(runs.fixed, t_measure);
+    runs.r_abs             = energy_left(runs.absorbed, t_measure);
     if (rank() == 0)
-    {
-      const auto n = [](double length)
-      { return static_cast<unsigned>(std::lround(length / h_cell)); };
-      write_blocks_msh({{0,
-                         L,
-                         0,
-                         width,
-                         n(L),
-                         2,
-                         ids::soil_material,
-                         0,
-                         ids::fixed_base,
-                         ids::soil_far_side,
-                         ids::soil_far_side},
-                        {-L_s,
-                         0,
-                         0,
-                         width,
-                         n(L_s),
-                         2,
-                         ids::slab_material,
-                         ids::slab_contact,
-                         0,
-                         ids::soil_far_side,
-                         ids::soil_far_side},
-                        {-L_s - dummy_gap - dummy_width,
-                         -L_s - dummy_gap,
-                         0,
-                         width,
-                         4,
-                         2,
-                         ids::wall_material,
-                         0,
-                         ids::wall_contact,
-                         0,
-                         0}},
-                       file);
-    }
-    MPI_Barrier(MPI_COMM_WORLD);
-    ImpactParameters p;
-    p.mesh_file                     = file;
-    p.materials[ids::soil_material] = soil;
-    p.materials[ids::slab_material] = soil;
-    p.materials[ids::wall_material] = soil;
-    p.initial_velocity_along_y      = true;
-    p.separation_hold_time          = 1;
-    p.output_interval               = 1e-4;
-    return p;
+      std::cout << what << " (t = " << t_measure * 1e3 << " ms): energy left with the end fixed "
+                << runs.r_fixed << ", absorbing " << runs.r_abs << ", radiated "
+                << runs.absorbed.summary.radiated_energy / runs.absorbed.history.kinetic.front()
+                << ", |dE/E0| " << runs.absorbed.summary.energy_error << '\n';
+    return runs;
+  }
+
+  /** The absorbing end sends back almost nothing, the fixed one almost all; the balance closes. */
+  void expect_absorbed(const FixedAndAbsorbing &runs)
+  {
+    EXPECT_LT(runs.r_abs, max_absorbed_reflection);
+    EXPECT_GT(runs.r_fixed, min_fixed_reflection);
+    EXPECT_LT(runs.absorbed.summary.energy_error, energy_tolerance);
   }
 
   TEST(AbsorbingBoundary, PlanePWaveLeavesThroughTheBaseAndReflectsFromAFixedOne)
@@ -169,28 +193,20 @@ namespace
     for (const auto integrator : {ImpactParameters::Integrator::explicit_central_difference,
                                   ImpactParameters::Integrator::implicit_newmark})
     {
-      auto p                 = p_column(L, L_s, "p_column.msh");
-      p.integrator           = integrator;
-      p.end_time             = t_measure;
-      const auto fixed       = run_impact(p, MPI_COMM_WORLD, nullptr);
-      p.absorbing_boundaries = {ids::fixed_base};
-      const auto   absorbed  = run_impact(p, MPI_COMM_WORLD, nullptr);
-      const double r_fixed   = energy_left(fixed, t_measure),
-                   r_abs     = energy_left(absorbed, t_measure);
-      const double e0        = absorbed.history.kinetic.front();
-      if (rank() == 0)
-        std::cout << (integrator == ImpactParameters::Integrator::implicit_newmark ? "implicit" :
-                                                                                     "explicit")
-                  << " P-wave column (c_p = " << c << " m/s, t = " << t_measure * 1e3
-                  << " ms): energy left with fixed base " << r_fixed << ", absorbing base " << r_abs
-                  << ", radiated " << absorbed.summary.radiated_energy / e0 << ", |dE/E0| "
-                  << absorbed.summary.energy_error << '\n';
-      EXPECT_LT(r_abs, max_absorbed_reflection);
-      EXPECT_GT(r_fixed, min_fixed_reflection);
-      EXPECT_NEAR(absorbed.summary.radiated_energy / e0, 1 - r_abs, energy_tolerance);
-      EXPECT_LT(absorbed.summary.energy_error, energy_tolerance);
-      EXPECT_EQ(fixed.summary.radiated_energy, 0);
-      EXPECT_TRUE(fixed.history.radiation.empty());
+      auto p       = p_column(L, L_s, "p_column.msh");
+      p.integrator = integrator;
+      const auto runs =
+        run_fixed_and_absorbing(p,
+                                ids::fixed_base,
+                                t_measure,
+                                integrator == ImpactParameters::Integrator::implicit_newmark ?
+                                  "implicit P-wave column" :
+                                  "explicit P-wave column");
+      expect_absorbed(runs);
+      const double e0 = runs.absorbed.history.kinetic.front();
+      EXPECT_NEAR(runs.absorbed.summary.radiated_energy / e0, 1 - runs.r_abs, energy_tolerance);
+      EXPECT_EQ(runs.fixed.summary.radiated_energy, 0);
+      EXPECT_TRUE(runs.fixed.history.radiation.empty());
     }
   }
 
@@ -198,52 +214,32 @@ namespace
   {
     const double L = 3.0, L_s = 0.25, c = s_wave_speed(soil);
     const double t_measure = 0.5 * ((L + 2 * L_s) / c + (2 * L + L_s) / c);
-    auto         p         = s_column(L, L_s, "s_column.msh");
-    p.end_time             = t_measure;
-    const auto fixed       = run_impact(p, MPI_COMM_WORLD, nullptr);
-    p.absorbing_boundaries = {ids::fixed_base};
-    const auto   absorbed  = run_impact(p, MPI_COMM_WORLD, nullptr);
-    const double r_fixed = energy_left(fixed, t_measure), r_abs = energy_left(absorbed, t_measure);
-    if (rank() == 0)
-      std::cout << "S-wave column (c_s = " << c << " m/s, t = " << t_measure * 1e3
-                << " ms): energy left with fixed end " << r_fixed << ", absorbing end " << r_abs
-                << ", |dE/E0| " << absorbed.summary.energy_error << '\n';
-    EXPECT_LT(r_abs, max_absorbed_reflection);
-    EXPECT_GT(r_fixed, min_fixed_reflection);
-    EXPECT_LT(absorbed.summary.energy_error, energy_tolerance);
+    expect_absorbed(run_fixed_and_absorbing(s_column(L, L_s, "s_column.msh"),
+                                            ids::fixed_base,
+                                            t_measure,
+                                            "S-wave column"));
   }
 
   TEST(AbsorbingBoundary, ImpactPWaveLeavesThroughTheFarSide)
   {
     // The real contact: a slab bar strikes a soil bar (nu = 0: a free-sided bar is exactly 1D)
     // whose far end is soil_far_side: rollers (u_x = 0, a fixed end for this wave) or dashpots.
-    const Material bar{50e6, 0.0, 1900};
-    const double   L = 4.0, L_s = 0.5, t = 0.05, c = p_wave_speed(bar);
-    const double   t_measure = 0.5 * ((L + 2 * L_s) / c + (2 * L) / c);
-    const auto     file      = scratch("far_bar.msh");
-    if (rank() == 0)
-      write_blocks_msh(
-        {{-0.5e-3 - L_s, -0.5e-3, 0, t, 20, 2, ids::slab_material, 0, ids::slab_contact, 0, 0},
-         {0, L, 0, t, 160, 2, ids::soil_material, ids::wall_contact, ids::soil_far_side, 0, 0}},
-        file);
-    MPI_Barrier(MPI_COMM_WORLD);
+    const Material   bar{50e6, 0.0, 1900};
+    const double     L = 4.0, L_s = 0.5, t = 0.05, c = p_wave_speed(bar);
+    const double     t_measure = 0.5 * ((L + 2 * L_s) / c + (2 * L) / c);
     ImpactParameters p;
-    p.mesh_file                     = file;
+    p.mesh_file = write_blocks(
+      {{-0.5e-3 - L_s, -0.5e-3, 0, t, 20, 2, ids::slab_material, 0, ids::slab_contact, 0, 0},
+       {0, L, 0, t, 160, 2, ids::soil_material, ids::wall_contact, ids::soil_far_side, 0, 0}},
+      "far_bar.msh");
     p.materials[ids::slab_material] = bar;
     p.materials[ids::soil_material] = bar;
     p.separation_hold_time          = 1;
-    p.end_time                      = t_measure;
     p.output_interval               = 1e-4;
-    const auto fixed                = run_impact(p, MPI_COMM_WORLD, nullptr);
-    p.absorbing_boundaries          = {ids::soil_far_side};
-    const auto   absorbed           = run_impact(p, MPI_COMM_WORLD, nullptr);
-    const double r_fixed = energy_left(fixed, t_measure), r_abs = energy_left(absorbed, t_measure);
-    if (rank() == 0)
-      std::cout << "impact P-wave through the far side: energy left with rollers " << r_fixed
-                << ", absorbing " << r_abs << ", |dE/E0| " << absorbed.summary.energy_error << '\n';
-    EXPECT_LT(r_abs, max_absorbed_reflection);
-    EXPECT_GT(r_fixed, min_fixed_reflection);
-    EXPECT_LT(absorbed.summary.energy_error, energy_tolerance);
+    expect_absorbed(run_fixed_and_absorbing(p,
+                                            ids::soil_far_side,
+                                            t_measure,
+                                            "impact P-wave through the far side (rollers)"));
   }
 
   TEST(AbsorbingBoundary, SceneImpactEnergyBalanceClosesWithTheRadiatedEnergy)
@@ -278,17 +274,6 @@ namespace
     auto             p         = scene_parameters(0.05, false, "scene_mpi_absorbing.msh");
     p.absorbing_boundaries     = {ids::fixed_base, ids::soil_far_side};
     p.end_time                 = 0.02;
-    const auto world           = run_impact(p, MPI_COMM_WORLD, nullptr);
-    const auto self            = run_impact(p, MPI_COMM_SELF, nullptr);
-    ASSERT_EQ(world.history.time.size(), self.history.time.size());
-    const auto [max_force, max_difference] = force_history_difference(world, self);
-    ASSERT_GT(max_force, 0);
-    EXPECT_LT(max_difference, tolerance * max_force);
-    EXPECT_NEAR(world.summary.radiated_energy,
-                self.summary.radiated_energy,
-                tolerance * self.history.kinetic.front());
-    if (rank() == 0)
-      std::cout << "MPI absorbing: " << world.summary.n_ranks
-                << " ranks vs 1, max |dF| / max F = " << max_difference / max_force << '\n';
+    expect_same_absorbing_run(p, tolerance, "MPI absorbing");
   }
 } // namespace

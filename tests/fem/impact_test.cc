@@ -408,17 +408,11 @@ namespace
     constexpr double tolerance = 1e-10;
     auto             p         = scene_parameters(0.05, false, "scene_mpi.msh");
     p.end_time                 = 0.004; // the first axial-wave round trip and its force dips
-    const auto world           = run_impact(p, MPI_COMM_WORLD, nullptr);
-    const auto self            = run_impact(p, MPI_COMM_SELF, nullptr);
+    const auto  runs           = run_on_world_and_self(p);
+    const auto &world = runs.world, &self = runs.self;
     ASSERT_EQ(world.history.time.size(), self.history.time.size());
-    double max_force = 0, max_difference = 0;
-    for (const double f : self.history.contact_force)
-      max_force = std::max(max_force, f);
+    const auto [max_force, max_difference] = force_history_difference(world, self);
     ASSERT_GT(max_force, 0);
-    for (std::size_t i = 0; i < world.history.time.size(); ++i)
-      max_difference =
-        std::max(max_difference,
-                 std::abs(world.history.contact_force[i] - self.history.contact_force[i]));
     for (std::size_t i = 0; i < world.history.time.size(); ++i)
     {
       EXPECT_NEAR(world.history.contact_force[i],
@@ -512,15 +506,7 @@ namespace
     auto             p         = scene_parameters(0.05, false, "scene_mpi_implicit.msh");
     p.end_time                 = 0.004;
     p.integrator               = ImpactParameters::Integrator::implicit_newmark;
-    const auto world           = run_impact(p, MPI_COMM_WORLD, nullptr);
-    const auto self            = run_impact(p, MPI_COMM_SELF, nullptr);
-    ASSERT_EQ(world.history.time.size(), self.history.time.size());
-    const auto [max_force, max_difference] = force_history_difference(world, self);
-    ASSERT_GT(max_force, 0);
-    EXPECT_LT(max_difference, tolerance * max_force);
-    if (rank() == 0)
-      std::cout << "MPI implicit: " << world.summary.n_ranks
-                << " ranks vs 1, max |dF| / max F = " << max_difference / max_force << '\n';
+    expect_same_force_history(run_on_world_and_self(p), tolerance, "MPI implicit");
   }
 
   /** A run stops on separation only once the slab comes in at no more than 5 % of its impact
@@ -535,21 +521,33 @@ namespace
       EXPECT_LT(s.apparent_cor, -fraction) << "the end time hides a separation";
   }
 
-  TEST(InelasticImpact, EnergyBalanceClosesWithPlasticAndDamageDissipation)
+  /**
+   * Runs @p p and expects the stop rule, the energy balance (kinetic + internal work - contact
+   * work = E_0) and the bookkeeping (internal work = stored + plastic + damage energy of the
+   * points) to close within 1 % of E_0; rank 0 prints @p label with the energies. The run.
+   */
+  ImpactResult expect_inelastic_balance(const ImpactParameters &p, const std::string &label)
   {
-    // kinetic + internal work (integrated stress power) - contact work = E_0 within 1 %, and
-    // the internal work equals stored + plastic + damage energy of the points within 1 % of E_0.
-    const auto  r = run_impact(inelastic_scene("scene_inelastic.msh"), MPI_COMM_WORLD, nullptr);
+    const auto  r = run_impact(p, MPI_COMM_WORLD, nullptr);
     const auto &s = r.summary;
     if (rank() == 0)
-      std::cout << "inelastic impact: E_0 = " << r.history.kinetic.front() << " J/m, energy error "
+      std::cout << label << ": E_0 = " << r.history.kinetic.front() << " J/m, energy error "
                 << s.energy_error << ", bookkeeping gap " << s.dissipation_gap << ", plastic "
                 << s.plastic_dissipation << " J/m, damage " << s.damage_dissipation << " J/m, COR "
                 << s.apparent_cor << ", peak " << s.peak_force << " N/m\n";
     expect_stop_rule(s);
     EXPECT_LT(s.energy_error, 0.01);
     EXPECT_LT(s.dissipation_gap, 0.01);
-    EXPECT_GT(s.plastic_dissipation, 0);
+    return r;
+  }
+
+  TEST(InelasticImpact, EnergyBalanceClosesWithPlasticAndDamageDissipation)
+  {
+    // kinetic + internal work (integrated stress power) - contact work = E_0 within 1 %, and
+    // the internal work equals stored + plastic + damage energy of the points within 1 % of E_0.
+    const auto r =
+      expect_inelastic_balance(inelastic_scene("scene_inelastic.msh"), "inelastic impact");
+    EXPECT_GT(r.summary.plastic_dissipation, 0);
     ASSERT_FALSE(r.history.internal_work.empty());
   }
 
@@ -557,16 +555,9 @@ namespace
   {
     // As above with the bars: their elastic energy is stored, their plastic work is plastic
     // dissipation; the balance and the bookkeeping close within 1 % of E_0.
-    const auto  r = run_impact(reinforced_scene("scene_reinforced.msh"), MPI_COMM_WORLD, nullptr);
+    const auto r =
+      expect_inelastic_balance(reinforced_scene("scene_reinforced.msh"), "reinforced impact");
     const auto &s = r.summary;
-    if (rank() == 0)
-      std::cout << "reinforced impact: E_0 = " << r.history.kinetic.front() << " J/m, energy error "
-                << s.energy_error << ", bookkeeping gap " << s.dissipation_gap << ", plastic "
-                << s.plastic_dissipation << " J/m, damage " << s.damage_dissipation << " J/m, COR "
-                << s.apparent_cor << ", peak " << s.peak_force << " N/m\n";
-    expect_stop_rule(s);
-    EXPECT_LT(s.energy_error, 0.01);
-    EXPECT_LT(s.dissipation_gap, 0.01);
     EXPECT_GT(s.damage_dissipation, 0);
     // The split by body adds up to the totals (the same point energies, summed per body); the
     // soil has no damage; the wall cracks and its bars yield.
@@ -593,16 +584,7 @@ namespace
     const auto law                      = std::make_shared<const ConcreteDamageLaw>(cp);
     p.material_laws[ids::wall_material] = law;
     p.material_laws[ids::slab_material] = law;
-    const auto  r                       = run_impact(p, MPI_COMM_WORLD, nullptr);
-    const auto &s                       = r.summary;
-    if (rank() == 0)
-      std::cout << "compression plasticity impact: energy error " << s.energy_error
-                << ", bookkeeping gap " << s.dissipation_gap << ", plastic "
-                << s.plastic_dissipation << " J/m, damage " << s.damage_dissipation << " J/m, COR "
-                << s.apparent_cor << '\n';
-    expect_stop_rule(s);
-    EXPECT_LT(s.energy_error, 0.01);
-    EXPECT_LT(s.dissipation_gap, 0.01);
+    expect_inelastic_balance(p, "compression plasticity impact");
   }
 
   TEST(Mpi, DistributedInelasticRunMatchesSerialRun)
@@ -615,18 +597,14 @@ namespace
       auto             p         = bars ? reinforced_scene("scene_mpi_reinforced.msh") :
                                           inelastic_scene("scene_mpi_inelastic.msh");
       p.end_time                 = 0.004;
-      const auto world           = run_impact(p, MPI_COMM_WORLD, nullptr);
-      const auto self            = run_impact(p, MPI_COMM_SELF, nullptr);
-      ASSERT_EQ(world.history.time.size(), self.history.time.size());
-      const auto [max_force, max_difference] = force_history_difference(world, self);
-      ASSERT_GT(max_force, 0);
-      EXPECT_LT(max_difference, tolerance * max_force);
-      EXPECT_NEAR(world.summary.plastic_dissipation,
-                  self.summary.plastic_dissipation,
-                  1e-8 * std::max(self.summary.plastic_dissipation, 1e-30));
-      if (rank() == 0)
-        std::cout << "MPI inelastic" << (bars ? " reinforced" : "") << ": " << world.summary.n_ranks
-                  << " ranks vs 1, max |dF| / max F = " << max_difference / max_force << '\n';
+      const auto runs            = run_on_world_and_self(p);
+      ASSERT_NO_FATAL_FAILURE(
+        expect_same_force_history(runs,
+                                  tolerance,
+                                  bars ? "MPI inelastic reinforced" : "MPI inelastic"));
+      EXPECT_NEAR(runs.world.summary.plastic_dissipation,
+                  runs.self.summary.plastic_dissipation,
+                  1e-8 * std::max(runs.self.summary.plastic_dissipation, 1e-30));
     }
   }
 

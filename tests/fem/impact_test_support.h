@@ -4,11 +4,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <gtest/gtest.h>
+#include <iostream>
 #include <mpi.h>
 #include <sstream>
 #include <string>
 #include <unistd.h>
 #include <utility>
+#include <vector>
 
 #include "fem/impact.h"
 #include "geometry/scene_geometry.h"
@@ -39,6 +42,17 @@ namespace kimp::fem::testing
     return kimp::testing::shared_temp_dir("fem_test", MPI_COMM_WORLD) / name;
   }
 
+  /** The blocks written to scratch(name) by rank 0, every rank waiting for the file; its path. */
+  inline std::filesystem::path write_blocks(const std::vector<Block> &blocks,
+                                            const std::string        &name)
+  {
+    const auto file = scratch(name);
+    if (rank() == 0)
+      write_blocks_msh(blocks, file);
+    MPI_Barrier(MPI_COMM_WORLD);
+    return file;
+  }
+
   /**
    * Two equal bars of length L and thickness t, the left one (slab, material 1) moving at v
    * towards the right one (material 2) at rest, gap g, n_t cells across the thickness.
@@ -46,17 +60,11 @@ namespace kimp::fem::testing
   inline std::filesystem::path
   write_two_bars(double L, double t, double gap, unsigned int n_t, const std::string &name)
   {
-    const auto file = scratch(name);
-    if (rank() == 0)
-    {
-      const unsigned int n_l = static_cast<unsigned int>(std::lround(n_t * L / t));
-      kimp::fem::testing::write_blocks_msh(
-        {{-gap - L, -gap, 0, t, n_l, n_t, ids::slab_material, 0, ids::slab_contact, 0, 0},
-         {0, L, 0, t, n_l, n_t, ids::wall_material, ids::wall_contact, 0, 0, 0}},
-        file);
-    }
-    MPI_Barrier(MPI_COMM_WORLD);
-    return file;
+    const unsigned int n_l = static_cast<unsigned int>(std::lround(n_t * L / t));
+    return write_blocks(
+      {{-gap - L, -gap, 0, t, n_l, n_t, ids::slab_material, 0, ids::slab_contact, 0, 0},
+       {0, L, 0, t, n_l, n_t, ids::wall_material, ids::wall_contact, 0, 0, 0}},
+      name);
   }
 
   inline ImpactParameters bar_parameters(const std::filesystem::path &mesh)
@@ -128,20 +136,72 @@ namespace kimp::fem::testing
   }
 
   /**
+   * Compare two histories sampled alike: {largest value of `reference`, largest
+   * |run - reference|} over the samples of `reference`.
+   */
+  inline std::pair<double, double> history_difference(const std::vector<double> &run,
+                                                      const std::vector<double> &reference)
+  {
+    double max_value = 0, max_difference = 0;
+    for (std::size_t i = 0; i < reference.size(); ++i)
+    {
+      max_value      = std::max(max_value, reference[i]);
+      max_difference = std::max(max_difference, std::abs(run[i] - reference[i]));
+    }
+    return {max_value, max_difference};
+  }
+
+  /**
    * Compare the contact-force histories of two runs sampled alike (e.g. on 1-2 ranks and on
    * MPI_COMM_SELF): {largest force of `reference`, largest |force(run) - force(reference)|}, N/m.
    */
   inline std::pair<double, double> force_history_difference(const ImpactResult &run,
                                                             const ImpactResult &reference)
   {
-    double max_force = 0, max_difference = 0;
-    for (std::size_t i = 0; i < reference.history.time.size(); ++i)
-    {
-      max_force = std::max(max_force, reference.history.contact_force[i]);
-      max_difference =
-        std::max(max_difference,
-                 std::abs(run.history.contact_force[i] - reference.history.contact_force[i]));
-    }
-    return {max_force, max_difference};
+    return history_difference(run.history.contact_force, reference.history.contact_force);
+  }
+
+  /** One problem run on MPI_COMM_WORLD (1 or 2 ranks under ctest) and on MPI_COMM_SELF. */
+  struct WorldAndSelf
+  {
+    ImpactResult world, self;
+  };
+
+  inline WorldAndSelf run_on_world_and_self(const ImpactParameters &p)
+  {
+    return {run_impact(p, MPI_COMM_WORLD, nullptr), run_impact(p, MPI_COMM_SELF, nullptr)};
+  }
+
+  /**
+   * The world run has as many samples as the self run (fatal otherwise), the self run a
+   * contact force (fatal otherwise), and the contact forces agree within `tolerance` of the
+   * largest; rank 0 prints `label` with the relative difference. Call it inside
+   * ASSERT_NO_FATAL_FAILURE() so that a fatal failure ends the test.
+   */
+  inline void
+  expect_same_force_history(const WorldAndSelf &runs, double tolerance, const std::string &label)
+  {
+    ASSERT_EQ(runs.world.history.time.size(), runs.self.history.time.size());
+    const auto [max_force, max_difference] = force_history_difference(runs.world, runs.self);
+    ASSERT_GT(max_force, 0);
+    EXPECT_LT(max_difference, tolerance * max_force);
+    if (rank() == 0)
+      std::cout << label << ": " << runs.world.summary.n_ranks
+                << " ranks vs 1, max |dF| / max F = " << max_difference / max_force << '\n';
+  }
+
+  /**
+   * A run of @p p with absorbing boundaries on MPI_COMM_WORLD and on MPI_COMM_SELF: the same
+   * force history (expect_same_force_history()) and radiated energy, within @p tolerance (of
+   * the largest force and of E_0).
+   */
+  inline void
+  expect_same_absorbing_run(const ImpactParameters &p, double tolerance, const std::string &label)
+  {
+    const auto runs = run_on_world_and_self(p);
+    ASSERT_NO_FATAL_FAILURE(expect_same_force_history(runs, tolerance, label));
+    EXPECT_NEAR(runs.world.summary.radiated_energy,
+                runs.self.summary.radiated_energy,
+                tolerance * runs.self.history.kinetic.front());
   }
 } // namespace kimp::fem::testing

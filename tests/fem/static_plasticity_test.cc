@@ -145,6 +145,15 @@ namespace
     return std::hypot(f[0], f[1]);
   }
 
+  /** The wall thrust P (N/m) of a Rankine run on @p n cells over H, its load path printed. */
+  double rankine_thrust(const char *name, const StaticPlasticityResult &r, unsigned n, double exact)
+  {
+    print_path(name, r, exact, 2);
+    const double P = final_load(r, 2);
+    std::printf("n = %u: P = %.5g N/m, exact %.5g N/m, ratio %.4f\n", n, P, exact, P / exact);
+    return P;
+  }
+
   /** Asserts that P converges monotonically from above to @p exact and ends within @p tol. */
   void expect_converges_from_above(const std::vector<double> &P, double exact, double tol)
   {
@@ -203,53 +212,52 @@ namespace
     EXPECT_GE(2 * steps_with_pairs, r.steps.size() - 1) << "too few steps show the asymptotic rate";
   }
 
+  /**
+   * Rankine runs of the clay @p c (smooth wall H = 2 m pushed by 0.03 H, K0 = 1, rough base,
+   * L = 3 H) with @p law on n = 4, 8 and 16 cells over H: the wall thrust converges from above
+   * to P_p = gamma H^2 / 2 + 2 c H, within 5 % on the finest mesh. Returns the runs.
+   */
+  std::vector<StaticPlasticityResult>
+  expect_rankine_thrust_of_clay(const char                        *name,
+                                std::shared_ptr<const MaterialLaw> law,
+                                const SoilParameters              &c)
+  {
+    constexpr double                    H = 2, tolerance = 0.05;
+    const double                        exact = 0.5 * c.density * g * H * H + 2 * c.cohesion * H;
+    std::vector<double>                 P;
+    std::vector<StaticPlasticityResult> runs;
+    for (const unsigned int n : {4u, 8u, 16u})
+    {
+      auto p    = rankine_problem(c, H, 1.0, 0.03 * H, n, 10, true, 3);
+      p.laws[0] = law;
+      runs.push_back(run_static_plasticity(p));
+      P.push_back(rankine_thrust(name, runs.back(), n, exact));
+    }
+    expect_converges_from_above(P, exact, tolerance);
+    return runs;
+  }
+
   // Rankine passive thrust of clay (phi = 0, c = 20 kPa, E = 5 MPa, nu = 0.45, gravity with
   // K0 = 1 - sin 0 = 1), smooth wall H = 2 m, rough base, L = 3 H (the Rankine wedge reaches
   // H / tan 45 deg = H behind the wall). P_p = gamma H^2 / 2 + 2 c H = 113.4 kN/m; the displacement
   // FE solution converges from above; within 5 % on the finest mesh (the required tolerance).
   TEST(StaticPlasticity, RankinePassivePressureOfCohesiveSoil)
   {
-    constexpr double     H = 2, tolerance = 0.05;
-    const SoilParameters c     = soil(5e6, 0.45, 20e3, 0, 1e9);
-    const double         exact = 0.5 * c.density * g * H * H + 2 * c.cohesion * H;
-    std::vector<double>  P;
-    for (const unsigned int n : {4u, 8u, 16u})
-    {
-      const auto r = run_static_plasticity(rankine_problem(c, H, 1.0, 0.03 * H, n, 10, true, 3));
-      print_path("Rankine, phi = 0, c = 20 kPa", r, exact, 2);
-      P.push_back(final_load(r, 2));
-      std::printf("n = %u: P = %.5g N/m, exact %.5g N/m, ratio %.4f\n",
-                  n,
-                  P.back(),
-                  exact,
-                  P.back() / exact);
+    const SoilParameters c = soil(5e6, 0.45, 20e3, 0, 1e9);
+    for (const auto &r : expect_rankine_thrust_of_clay("Rankine, phi = 0, c = 20 kPa",
+                                                       std::make_shared<MohrCoulombLaw>(c),
+                                                       c))
       EXPECT_LT(r.initial_out_of_balance, 1e-12);
-    }
-    expect_converges_from_above(P, exact, tolerance);
   }
 
   // The same with Drucker-Prager matched to Mohr-Coulomb in plane strain (phi = 0: von Mises,
   // sqrt(J2) = c, Tresca's t = c in steady plane-strain flow).
   TEST(StaticPlasticity, RankinePassivePressureOfCohesiveSoilDruckerPrager)
   {
-    constexpr double     H = 2, tolerance = 0.05;
-    const SoilParameters c     = soil(5e6, 0.45, 20e3, 0, 0);
-    const double         exact = 0.5 * c.density * g * H * H + 2 * c.cohesion * H;
-    std::vector<double>  P;
-    for (const unsigned int n : {4u, 8u, 16u})
-    {
-      auto p       = rankine_problem(c, H, 1.0, 0.03 * H, n, 10, true, 3);
-      p.laws[0]    = std::make_shared<DruckerPragerLaw>(c);
-      const auto r = run_static_plasticity(p);
-      print_path("Rankine, Drucker-Prager, phi = 0, c = 20 kPa", r, exact, 2);
-      P.push_back(final_load(r, 2));
-      std::printf("n = %u: P = %.5g N/m, exact %.5g N/m, ratio %.4f\n",
-                  n,
-                  P.back(),
-                  exact,
-                  P.back() / exact);
-    }
-    expect_converges_from_above(P, exact, tolerance);
+    const SoilParameters c = soil(5e6, 0.45, 20e3, 0, 0);
+    expect_rankine_thrust_of_clay("Rankine, Drucker-Prager, phi = 0, c = 20 kPa",
+                                  std::make_shared<DruckerPragerLaw>(c),
+                                  c);
   }
 
   // Rankine passive thrust of sand (phi = 30 deg, c = 0, associated psi = phi, E = 20 MPa,
@@ -269,13 +277,7 @@ namespace
     for (const unsigned int n : {2u, 4u, 8u})
     {
       const auto r = run_static_plasticity(rankine_problem(s, H, k0, 0.03 * H, n, 10, false, 4));
-      print_path("Rankine, phi = 30 deg, c = 0", r, exact, 2);
-      P.push_back(final_load(r, 2));
-      std::printf("n = %u: P = %.5g N/m, exact %.5g N/m, ratio %.4f\n",
-                  n,
-                  P.back(),
-                  exact,
-                  P.back() / exact);
+      P.push_back(rankine_thrust("Rankine, phi = 30 deg, c = 0", r, n, exact));
       // Step 0: the geostatic state is in equilibrium and the wall carries K0 gamma H^2 / 2.
       EXPECT_LT(r.initial_out_of_balance, 1e-12);
       EXPECT_NEAR(r.steps.front().reactions[2][0] / (0.5 * k0 * s.density * g * H * H), 1, 1e-6);
@@ -284,14 +286,18 @@ namespace
     EXPECT_LT(std::abs(P[2] / P[0] - 1), mesh_spread);
   }
 
-  /** Bearing pressures q (Pa) of the Prandtl problem with @p law at the given mesh levels. */
-  std::vector<double> prandtl_pressures(const char                        *name,
-                                        std::shared_ptr<const MaterialLaw> law,
-                                        const std::vector<double>         &levels,
-                                        double                             exact)
+  /**
+   * The bearing pressures q (Pa) of the Prandtl problem with @p law on mesh levels 1, 1.5 and 2
+   * converge from above to q_u = (2 + pi) c of the soil @p c, within 3 % on the finest.
+   */
+  void expect_prandtl_bearing_capacity(const char                        *name,
+                                       std::shared_ptr<const MaterialLaw> law,
+                                       const SoilParameters              &c)
   {
+    constexpr double    tolerance = 0.03;
+    const double        exact     = (2 + pi) * c.cohesion;
     std::vector<double> q;
-    for (const double level : levels)
+    for (const double level : {1.0, 1.5, 2.0})
     {
       const auto r = run_static_plasticity(prandtl_problem(law, level, 0.05));
       print_path(name, r, exact, 3);
@@ -302,7 +308,7 @@ namespace
                   exact,
                   q.back() / exact);
     }
-    return q;
+    expect_converges_from_above(q, exact, tolerance);
   }
 
   // Prandtl: rigid smooth strip footing on weightless Tresca soil (Mohr-Coulomb with phi = 0,
@@ -310,30 +316,20 @@ namespace
   // within 3 % on the finest of three meshes, from above and monotonically.
   TEST(StaticPlasticity, PrandtlBearingCapacity)
   {
-    constexpr double     tolerance = 0.03;
-    const SoilParameters c         = soil(10e6, 0.45, 20e3, 0, 1e9);
-    const double         exact     = (2 + pi) * c.cohesion;
-    expect_converges_from_above(prandtl_pressures("Prandtl, Mohr-Coulomb",
-                                                  std::make_shared<MohrCoulombLaw>(c),
-                                                  {1, 1.5, 2},
-                                                  exact),
-                                exact,
-                                tolerance);
+    const SoilParameters c = soil(10e6, 0.45, 20e3, 0, 1e9);
+    expect_prandtl_bearing_capacity("Prandtl, Mohr-Coulomb",
+                                    std::make_shared<MohrCoulombLaw>(c),
+                                    c);
   }
 
   // The same with Drucker-Prager matched to Mohr-Coulomb in plane strain (phi = 0: von Mises
   // with sqrt(J2) = c, which in steady plane-strain flow is Tresca's t = c).
   TEST(StaticPlasticity, PrandtlBearingCapacityDruckerPrager)
   {
-    constexpr double     tolerance = 0.03;
-    const SoilParameters c         = soil(10e6, 0.45, 20e3, 0, 0);
-    const double         exact     = (2 + pi) * c.cohesion;
-    expect_converges_from_above(prandtl_pressures("Prandtl, Drucker-Prager",
-                                                  std::make_shared<DruckerPragerLaw>(c),
-                                                  {1, 1.5, 2},
-                                                  exact),
-                                exact,
-                                tolerance);
+    const SoilParameters c = soil(10e6, 0.45, 20e3, 0, 0);
+    expect_prandtl_bearing_capacity("Prandtl, Drucker-Prager",
+                                    std::make_shared<DruckerPragerLaw>(c),
+                                    c);
   }
 } // namespace
 
@@ -377,32 +373,89 @@ namespace
     return c;
   }
 
+  /**
+   * One element [0, a]^2 of @p law, bottom and left smooth, its top pushed down by
+   * strain_end a in 40 steps. Entry 2 of the reactions is the top's.
+   */
+  StaticPlasticityParameters
+  compressed_element(double a, double strain_end, std::shared_ptr<const MaterialLaw> law)
+  {
+    const double               tol = 1e-9 * a;
+    StaticPlasticityParameters p;
+    p.mesh       = tensor_product_mesh({0, a},
+                                 {0, a},
+                                 0,
+                                 [&](double x, double y) {
+                                   return y > a - tol ? footing :
+                                                y < tol     ? base :
+                                                x < tol     ? symmetry :
+                                                              free_surface;
+                                 });
+    p.laws[0]    = std::move(law);
+    p.prescribed = {{base, false, true, 0, 0},
+                    {symmetry, true, false, 0, 0},
+                    {footing, false, true, 0, -strain_end * a}};
+    p.n_steps    = 40;
+    return p;
+  }
+
+  /**
+   * A bar [0, length] x [0, h] of n square elements (h = length / n; left end and base smooth),
+   * the middle element of material 1 (@p weak_law), the others of material 0 (@p law), both
+   * with the numerical tangent; its right end pulled by @p opening in @p n_steps steps. Entry 2
+   * of the reactions is the right end's.
+   */
+  StaticPlasticityParameters tension_bar(double                             length,
+                                         unsigned int                       n,
+                                         std::shared_ptr<const MaterialLaw> law,
+                                         std::shared_ptr<const MaterialLaw> weak_law,
+                                         double                             opening,
+                                         unsigned int                       n_steps)
+  {
+    const double               h = length / n, tol = 1e-9 * h;
+    StaticPlasticityParameters p;
+    p.mesh                       = tensor_product_mesh(uniform(0, length, n),
+                                 {0, h},
+                                 0,
+                                 [&](double x, double y) {
+                                   return x < tol          ? symmetry :
+                                                                x > length - tol ? wall :
+                                                                y < tol          ? base :
+                                                                                   free_surface;
+                                 });
+    p.mesh.cells[n / 2].material = 1;
+    p.laws[0]                    = std::move(law);
+    p.laws[1]                    = std::move(weak_law);
+    p.prescribed                 = {{base, false, true, 0, 0},
+                                    {symmetry, true, false, 0, 0},
+                                    {wall, true, false, opening, 0}};
+    p.n_steps                    = n_steps;
+    p.numerical_tangent          = {0, 1};
+    return p;
+  }
+
+  /** Work of the pulling force of a tension_bar() run (trapezoid over the steps), J/m. */
+  double pulling_work(const StaticPlasticityResult &r, double opening)
+  {
+    double work = 0;
+    for (std::size_t k = 1; k < r.steps.size(); ++k)
+      work += 0.5 * (r.steps[k].reactions[2][0] + r.steps[k - 1].reactions[2][0]) *
+              (r.steps[k].load_factor - r.steps[k - 1].load_factor) * opening;
+    return work;
+  }
+
   // Uniaxial compression of one concrete element through the solver (bottom and left smooth,
   // top pushed down to 1.5 eps_c,lim in 40 steps: past the peak and down the descending
   // branch): the stress -R_y / width follows the input curve (MC2010 eq. 5.1-26, then the linear
   // descent) at every step within 1e-9 f_cm; a step lands within 0.1 % of the peak f_cm.
   TEST(StaticPlasticity, ConcreteUniaxialCompressionFollowsTheInputCurve)
   {
-    constexpr double           a = 0.1, tolerance = 1e-9;
-    const ConcreteParameters   c          = concrete();
-    const double               strain_end = 1.5 * c.eps_c_lim, tol = 1e-9 * a;
-    StaticPlasticityParameters p;
-    p.mesh           = tensor_product_mesh({0, a},
-                                 {0, a},
-                                 0,
-                                 [&](double x, double y) {
-                                   return y > a - tol ? footing :
-                                                    y < tol     ? base :
-                                                    x < tol     ? symmetry :
-                                                                  free_surface;
-                                 });
-    p.laws[0]        = std::make_shared<ConcreteDamageLaw>(c);
-    p.prescribed     = {{base, false, true, 0, 0},
-                        {symmetry, true, false, 0, 0},
-                        {footing, false, true, 0, -strain_end * a}};
-    p.n_steps        = 40;
-    const auto r     = run_static_plasticity(p);
-    double     worst = 0, peak = 0;
+    constexpr double         a = 0.1, tolerance = 1e-9;
+    const ConcreteParameters c          = concrete();
+    const double             strain_end = 1.5 * c.eps_c_lim;
+    const auto               r          = run_static_plasticity(
+      compressed_element(a, strain_end, std::make_shared<ConcreteDamageLaw>(c)));
+    double worst = 0, peak = 0;
     for (const auto &st : r.steps)
     {
       const double e = st.load_factor * strain_end;
@@ -426,26 +479,12 @@ namespace
   TEST(StaticPlasticity, ConcreteWithCompressionPlasticityFollowsTheInputCurve)
   {
     constexpr double   a = 0.1, tolerance = 1e-9;
-    ConcreteParameters c                  = concrete();
-    c.plastic_fraction                    = 0.7;
-    const double               strain_end = 1.5 * c.eps_c_lim, tol = 1e-9 * a;
-    StaticPlasticityParameters p;
-    p.mesh           = tensor_product_mesh({0, a},
-                                 {0, a},
-                                 0,
-                                 [&](double x, double y) {
-                                   return y > a - tol ? footing :
-                                                    y < tol     ? base :
-                                                    x < tol     ? symmetry :
-                                                                  free_surface;
-                                 });
-    p.laws[0]        = std::make_shared<ConcreteDamageLaw>(c);
-    p.prescribed     = {{base, false, true, 0, 0},
-                        {symmetry, true, false, 0, 0},
-                        {footing, false, true, 0, -strain_end * a}};
-    p.n_steps        = 40;
-    const auto r     = run_static_plasticity(p);
-    double     worst = 0;
+    ConcreteParameters c    = concrete();
+    c.plastic_fraction      = 0.7;
+    const double strain_end = 1.5 * c.eps_c_lim;
+    const auto   r          = run_static_plasticity(
+      compressed_element(a, strain_end, std::make_shared<ConcreteDamageLaw>(c)));
+    double worst = 0;
     for (const auto &st : r.steps)
     {
       const double e = st.load_factor * strain_end;
@@ -473,36 +512,19 @@ namespace
     weak.f_ctm                    = 0.99 * c.f_ctm;
     for (const unsigned int n : {3u, 6u, 12u})
     {
-      const double               h = length / n, tol = 1e-9 * h;
-      StaticPlasticityParameters p;
-      p.mesh                       = tensor_product_mesh(uniform(0, length, n),
-                                   {0, h},
-                                   0,
-                                   [&](double x, double y) {
-                                     return x < tol          ? symmetry :
-                                                                  x > length - tol ? wall :
-                                                                  y < tol          ? base :
-                                                                                     free_surface;
-                                   });
-      p.mesh.cells[n / 2].material = 1;
-      p.laws[0]                    = std::make_shared<ConcreteDamageLaw>(c);
-      p.laws[1]                    = std::make_shared<ConcreteDamageLaw>(weak);
+      const double h = length / n;
       // Opened to 10 x the crack's characteristic opening G_F / f_t (the rest of the energy
       // < 1e-4 G_F).
       const double opening = 10 * c.fracture_energy / c.f_ctm;
-      p.prescribed         = {{base, false, true, 0, 0},
-                              {symmetry, true, false, 0, 0},
-                              {wall, true, false, opening, 0}};
-      p.n_steps            = 200;
-      p.numerical_tangent  = {0, 1};
-      const auto r         = run_static_plasticity(p);
-      // Work of the pulling force (trapezoid over the steps; the bar ends unloaded) per unit
-      // crack area; the damage dissipation of the Gauss points beside it.
-      double work = 0;
-      for (std::size_t k = 1; k < r.steps.size(); ++k)
-        work += 0.5 * (r.steps[k].reactions[2][0] + r.steps[k - 1].reactions[2][0]) *
-                (r.steps[k].load_factor - r.steps[k - 1].load_factor) * opening;
-      const double g_f = work / h;
+      const auto   r       = run_static_plasticity(tension_bar(length,
+                                                       n,
+                                                       std::make_shared<ConcreteDamageLaw>(c),
+                                                       std::make_shared<ConcreteDamageLaw>(weak),
+                                                       opening,
+                                                       200));
+      // Work of the pulling force (the bar ends unloaded) per unit crack area; the damage
+      // dissipation of the Gauss points beside it.
+      const double g_f = pulling_work(r, opening) / h;
       std::printf("crack band h = %.4f m: work %.5g N/m, damage dissipation %.5g N/m (G_F "
                   "%.5g), end stress %.3g MPa\n",
                   h,
@@ -541,31 +563,16 @@ namespace
     const double Ec = c.youngs_modulus;
     for (const unsigned int n : {3u, 6u, 12u})
     {
-      const double               h = length / n, tol = 1e-9 * h;
-      StaticPlasticityParameters p;
-      p.mesh                       = tensor_product_mesh(uniform(0, length, n),
-                                   {0, h},
-                                   0,
-                                   [&](double x, double y) {
-                                     return x < tol          ? symmetry :
-                                                                  x > length - tol ? wall :
-                                                                  y < tol          ? base :
-                                                                                     free_surface;
-                                   });
-      p.mesh.cells[n / 2].material = 1;
-      p.laws[0]                    = std::make_shared<ConcreteDamageLaw>(c, bars);
-      p.laws[1]                    = std::make_shared<ConcreteDamageLaw>(weak, bars);
-      const double opening         = eps_end * h + (length - h) * 1e-4;
-      p.prescribed                 = {{base, false, true, 0, 0},
-                                      {symmetry, true, false, 0, 0},
-                                      {wall, true, false, opening, 0}};
-      p.n_steps                    = 2000;
-      p.numerical_tangent          = {0, 1};
-      const auto r                 = run_static_plasticity(p);
-      double     work              = 0;
-      for (std::size_t k = 1; k < r.steps.size(); ++k)
-        work += 0.5 * (r.steps[k].reactions[2][0] + r.steps[k - 1].reactions[2][0]) *
-                (r.steps[k].load_factor - r.steps[k - 1].load_factor) * opening;
+      const double h = length / n, tol = 1e-9 * h;
+      const double opening = eps_end * h + (length - h) * 1e-4;
+      const auto   p       = tension_bar(length,
+                                 n,
+                                 std::make_shared<ConcreteDamageLaw>(c, bars),
+                                 std::make_shared<ConcreteDamageLaw>(weak, bars),
+                                 opening,
+                                 2000);
+      const auto   r       = run_static_plasticity(p);
+      const double work    = pulling_work(r, opening);
       // The cracked element's strain from the x displacements of its bottom nodes.
       double u0 = 0, u1 = 0;
       for (std::size_t v = 0; v < p.mesh.vertices.size(); ++v)

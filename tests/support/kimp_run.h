@@ -1,6 +1,6 @@
 // kimp::testing::run_kimp(): the built `kimp` executable (KIMP_BINARY_DIR "/kimp", a definition
 // every test gets from kimp_add_test) run in a directory with its output captured; and any shell
-// command with its output captured to a log file.
+// command with its output captured to a log file or discarded.
 #pragma once
 
 #include <cstdlib>
@@ -30,12 +30,21 @@ namespace kimp::testing
     return exit_code_of(std::system((command + " > '" + log.string() + "' 2>&1").c_str()));
   }
 
+  /// Whether the shell command `command` exits with 0, its output discarded.
+  inline bool command_succeeds(const std::string &command)
+  {
+    return run_command(command, "/dev/null") == 0;
+  }
+
   /// What a run of `kimp` gave back.
   struct KimpRun
   {
     int         exit_code = -1;
     std::string out; ///< stdout
     std::string err; ///< stderr (the log)
+
+    /// stdout followed by stderr, for a failure message or a search in either.
+    std::string output() const { return out + err; }
   };
 
   /// `kimp <arguments>` run in `dir`, stdout and stderr captured to stdout.txt and stderr.txt
