@@ -21,6 +21,7 @@
 
 #include "app/collide_run.h"
 #include "app/lumped_scene.h"
+#include "app/scene_motion.h"
 #include "base/logging.h"
 #include "base/version.h"
 #include "io/at2_reader.h"
@@ -156,7 +157,10 @@ namespace kimp::server
       return value;
     }
 
-    nlohmann::json record_json(const io::AccelerationRecord &record)
+    /// A record (io::AccelerationRecord) or a motion (lumped::GroundMotion) as the page plots it:
+    /// name, dt (s), pga (m/s²), duration (s) and the acceleration samples (m/s²).
+    template <class Record>
+    nlohmann::json record_json(const Record &record)
     {
       return {{"name", record.name},
               {"dt", record.dt},
@@ -356,8 +360,8 @@ namespace kimp::server
                     throw HttpError(411,
                                     "a POST to " + req.path +
                                       " needs its body with a Content-Length header (a JSON "
-                                      "object for /api/validate and /api/runs, the file for "
-                                      "/api/upload, {} for a cancel)");
+                                      "object for /api/validate, /api/runs and /api/motion, the "
+                                      "file for /api/upload, {} for a cancel)");
                   std::string body;
                   const bool  read = reader(
                     [&](const char *data, std::size_t n)
@@ -477,6 +481,7 @@ namespace kimp::server
                          {{"version", base::version_line()},
                           {"commands", available_commands()},
                           {"max_runs", options.max_runs},
+                          {"motion_preview", true},
                           {"runs_dir", std::filesystem::absolute(options.runs_dir).string()},
                           {"records_dir",
                            options.records_dir ? options.records_dir->string() : std::string()}});
@@ -517,6 +522,25 @@ namespace kimp::server
            catch (const RunQueueFull &error)
            {
              throw HttpError(429, error.what());
+           }
+         });
+    // The scene's ground motion as its run would load, scale and trim it (the synthetic
+    // near-fault motion included), in the shape of GET /api/records/NAME.
+    post("/api/motion",
+         [this](const httplib::Request &, const std::string &text, httplib::Response &res)
+         {
+           const auto body = parse_body(text);
+           try
+           {
+             send_json(res,
+                       record_json(app::scene_ground_motion(text_member(body, "command"),
+                                                            text_member(body, "scene"),
+                                                            "scene.yaml",
+                                                            options.records_dir)));
+           }
+           catch (const io::SceneError &error)
+           {
+             throw HttpError(400, error.what());
            }
          });
     http.Get("/api/runs",

@@ -1,5 +1,6 @@
 // The local web server of `kimp gui` (cpp-httplib): the page, the scene schemas, validation,
-// background runs with progress, results and records, behind loopback-only security checks.
+// background runs with progress, results, records and scenes' ground motions, behind
+// loopback-only security checks.
 #pragma once
 
 #include <cstddef>

@@ -523,7 +523,7 @@
   // ---- ground motion -----------------------------------------------------------------------
   // The chosen record as the server read it (unscaled, m/s²); the scene's scaling is applied here
   // exactly as a run applies it (scale_to_pga, then scale, then trim to round(duration / dt)).
-  const motion = { rec: null, file: null };
+  const motion = { rec: null, file: null, serial: 0 };
   const TWO_COLUMN_UNITS = { g: 9.80665, 'm/s^2': 1, 'cm/s^2': 0.01 };
   const MOTION_KEYS = [
     ['motion-scale-to-pga', 'ground_motion.scale_to_pga'],
@@ -545,6 +545,15 @@
       input.value = value;
       syncYaml();
     }
+  }
+
+  /**
+   * Starts a motion request: the returned function tells whether it is still the latest, so that
+   * a slow answer (the synthetic motion, a record) never replaces the one chosen after it.
+   */
+  function motionRequest() {
+    const serial = ++motion.serial;
+    return () => serial === motion.serial;
   }
 
   function integrate(a, dt) {
@@ -667,6 +676,7 @@
    * (scaled as the run scales it) and draws nothing of its own when the server cannot.
    */
   async function loadSynthetic() {
+    const latest = motionRequest();
     motion.rec = null;
     if (!state.info.motion_preview) {
       document.getElementById('motion-charts').innerHTML = '';
@@ -680,16 +690,23 @@
       headers: { 'Content-Type': 'application/json', 'X-Kimp-Request': '1' },
       body: JSON.stringify({ command: state.command === 'sweep' ? 'lumped' : state.command, scene: sceneYaml() }),
     });
+    const body = await r.json();
+    if (!latest()) return;
     if (r.ok) {
-      motion.rec = Object.assign(await r.json(), { scaled: true });
+      motion.rec = Object.assign(body, { scaled: true });
       plotMotion();
     } else {
+      const info = document.getElementById('motion-info');
       document.getElementById('motion-charts').innerHTML = '';
-      document.getElementById('motion-error').textContent = (await r.json()).error;
+      info.textContent = '';
+      delete info.dataset.pga;
+      delete info.dataset.samples;
+      document.getElementById('motion-error').textContent = body.error;
     }
   }
 
   async function uploadMotion() {
+    const latest = motionRequest();
     const file = motion.file;
     const unit = document.getElementById('motion-unit').value;
     const at2 = /\.at2$/i.test(file.name);
@@ -699,6 +716,7 @@
       body: await file.text(),
     });
     const body = await r.json();
+    if (!latest()) return;
     document.getElementById('motion-error').textContent = r.ok ? '' : body.error;
     if (!r.ok) return;
     // The scene names the uploaded file and, for a two-column file, the unit of its column.
@@ -737,7 +755,10 @@
     const pick = document.getElementById('motion-record');
     if ((!motion.rec || motion.key !== record) && Array.from(pick.options).some((o) => o.value === record)) {
       pick.value = record;
-      motion.rec = await getJson('/api/records/' + encodeURIComponent(record));
+      const latest = motionRequest();
+      const rec = await getJson('/api/records/' + encodeURIComponent(record));
+      if (!latest()) return;
+      motion.rec = rec;
       motion.key = record;
     }
     plotMotion();
@@ -756,7 +777,10 @@
       setSceneValue('ground_motion.record_unit', '');
       if (pick.value === 'synthetic') await loadSynthetic();
       else {
-        motion.rec = await getJson('/api/records/' + encodeURIComponent(pick.value));
+        const latest = motionRequest();
+        const rec = await getJson('/api/records/' + encodeURIComponent(pick.value));
+        if (!latest()) return;
+        motion.rec = rec;
         motion.key = pick.value;
         plotMotion();
       }

@@ -75,7 +75,8 @@ async function main() {
     await page.click('header.top nav button[data-tab="motion"]');
     await page.select('#motion-unit', 'g');
     await (await page.$('#motion-upload')).uploadFile(record2);
-    await page.waitForFunction(() => document.querySelector('#motion-info').dataset.pga);
+    // The upload's plot (not the synthetic motion the tab opened with).
+    await page.waitForFunction(() => /^sine_g\b/.test(document.querySelector('#motion-info').textContent));
     const pga0 = await page.$eval('#motion-info', (e) => Number(e.dataset.pga));
     const peak = Math.max(...lines.map((l) => Math.abs(Number(l.split(' ')[1]))));
     check(Math.abs(pga0 - peak) < 1e-9, `PGA of the upload ${pga0} g = largest sample ${peak} g`);

@@ -462,6 +462,42 @@ namespace
       << summary["ground_motion"].dump();
   }
 
+  TEST(GuiProcess, MotionPreviewIsTheMotionOfTheRun)
+  {
+    const kimp::testing::TempDir dir{"gui_motion"};
+    GuiProcess                   gui(binary("kimp"),
+                   dir.path(),
+                   {"--port", "0", "--runs-dir", (dir.path() / "runs").string()});
+    ASSERT_GT(gui.port(), 0) << gui.err();
+    // The synthetic motion of the scene's own section, scaled to 0.35 g, by -1.2, trimmed to 5 s.
+    const std::string scene   = "building:\n  n_storeys: 3\nground_motion:\n"
+                                "  scale_to_pga: \"0.35 g\"\n  scale: -1.2\n  duration: \"5 s\"\n"
+                                "  synthetic:\n    seed: 7\n    pulse_time: \"3 s\"\n";
+    const auto        preview = gui.post("/api/motion", {{"command", "lumped"}, {"scene", scene}});
+    ASSERT_TRUE(preview);
+    ASSERT_EQ(preview->status, 200) << preview->body;
+    const nlohmann::json motion  = nlohmann::json::parse(preview->body);
+    const auto           started = gui.post("/api/runs", {{"command", "lumped"}, {"scene", scene}});
+    ASSERT_TRUE(started);
+    ASSERT_EQ(started->status, 201) << started->body;
+    const std::string    id = nlohmann::json::parse(started->body)["id"];
+    const nlohmann::json run =
+      gui.wait_for_run(id,
+                       60,
+                       [](const nlohmann::json &r)
+                       { return r["state"] != "running" && r["state"] != "queued"; });
+    ASSERT_EQ(run["state"], "done") << run.dump();
+    const nlohmann::json summary = nlohmann::json::parse(
+      kimp::testing::read_text(dir.path() / "runs" / id / "out/summary.json"))["ground_motion"];
+    // The same samples: name, dt, length and PGA equal to the last bit (JSON keeps doubles).
+    EXPECT_EQ(motion["name"], summary["name"]);
+    EXPECT_EQ(motion["dt"].get<double>(), summary["dt"].get<double>());
+    EXPECT_EQ(motion["duration"].get<double>(), summary["duration"].get<double>());
+    EXPECT_EQ(motion["pga"].get<double>(), summary["pga"].get<double>());
+    EXPECT_NEAR(motion["pga"].get<double>(), 1.2 * 0.35 * 9.80665, 1e-12 * 4.2);
+    EXPECT_EQ(motion["acceleration"].size(), 1000u); // 5 s at the default 5 ms
+  }
+
   TEST(GuiProcess, PortsOutsideTheRangeAndPortsInUseAreRefused)
   {
     const kimp::testing::TempDir dir{"gui_ports"};
