@@ -872,6 +872,8 @@ namespace kimp::app
                       "peak_absolute_acceleration_m_per_s2",
                       "peak_interstorey_drift_m"},
                      rows);
+    // Failed cases are recorded in these files: the command's failure for them keeps the files.
+    output.keep_written();
     return std::move(run.results);
   }
 

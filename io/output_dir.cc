@@ -509,6 +509,16 @@ namespace kimp::io
     return *this;
   }
 
+  void OutputDir::keep_written() const
+  {
+    if (!state_)
+      return;
+    const std::lock_guard<std::mutex> guard(states_mutex());
+    for (auto &w : state_->written)
+      unregister_cleanup(w.slot);
+    state_->written.clear();
+  }
+
   std::filesystem::path OutputDir::file(const std::filesystem::path &name) const
   {
     const std::filesystem::path full = path_ / name;

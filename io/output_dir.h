@@ -122,6 +122,9 @@ namespace kimp::io
     const std::filesystem::path &path() const { return path_; }
     /// `path() / name`, creating parent directories of `name` inside path() if needed.
     std::filesystem::path file(const std::filesystem::path &name) const;
+    /// The files written so far are a complete result (failed cases recorded in it, charts still
+    /// to come): a failure the command reports after this point keeps them.
+    void keep_written() const;
 
   private:
     std::filesystem::path                path_;

@@ -134,6 +134,8 @@ namespace kimp::app
       }
       if (!charts)
         return;
+      // The tables are the sweep's result: a chart script that fails keeps them.
+      output.keep_written();
       const ChartScriptRun run = run_chart_script("sweep_charts.py", output.path());
       if (run.script.empty())
         throw OutputError("charts: scripts/sweep_charts.py not found (set KIMP_DATA_DIR to the "
