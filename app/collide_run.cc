@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "app/table_columns.h"
 #include "base/errors.h"
 #include "base/logging.h"
 #include "base/version.h"
@@ -191,16 +192,15 @@ namespace kimp::app
       {
         if (r.name != law.name)
           continue;
-        const lumped::CorTableRow &x        = r.row;
-        const double               values[] = {x.nominal_cor,
-                                               x.effective_cor,
-                                               x.relative_error,
-                                               x.peak_force,
-                                               x.contact_duration,
-                                               x.max_penetration,
-                                               x.energy_error};
-        for (std::size_t c = 0; c < columns.size(); ++c)
-          columns[c].values.push_back(values[c]);
+        const lumped::CorTableRow &x = r.row;
+        append_row(columns,
+                   {x.nominal_cor,
+                    x.effective_cor,
+                    x.relative_error,
+                    x.peak_force,
+                    x.contact_duration,
+                    x.max_penetration,
+                    x.energy_error});
         if (r.status != "ok")
           status = "failed: COR " + format_quantity(x.nominal_cor, "") + ": " + r.status;
       }
@@ -222,16 +222,15 @@ namespace kimp::app
                                           {"cor_fit", "1", {}}};
       for (const lumped::CalibrationPoint &p : calibration->points)
       {
-        const double values[] = {p.cor,
-                                 p.impact_velocity,
-                                 p.mass,
-                                 p.effective_mass,
-                                 p.a1,
-                                 p.a1_thesis,
-                                 p.cor_thesis,
-                                 p.cor_fit};
-        for (std::size_t c = 0; c < columns.size(); ++c)
-          columns[c].values.push_back(values[c]);
+        append_row(columns,
+                   {p.cor,
+                    p.impact_velocity,
+                    p.mass,
+                    p.effective_mass,
+                    p.a1,
+                    p.a1_thesis,
+                    p.cor_thesis,
+                    p.cor_fit});
       }
       g.write_table("points", columns);
       g.write(

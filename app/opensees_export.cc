@@ -107,6 +107,35 @@ namespace kimp::app
                        number(in.gap)));
       return h;
     }
+
+    /// How a language writes a material command: `open` TYPE `after_type` TAG, then
+    /// `separator` before each argument, then `close`.
+    struct CommandSyntax
+    {
+      const char *open;
+      const char *after_type;
+      const char *separator;
+      const char *close;
+    };
+
+    /// The materials of `in` as commands of `syntax`, each after its comment line, tagged from
+    /// in.first_tag.
+    std::string material_commands(const OpenSeesLawInput   &in,
+                                  const OpenSeesParameters &p,
+                                  const CommandSyntax      &syntax)
+    {
+      std::string out;
+      int         tag = in.first_tag;
+      for (const Material &material : materials(in, p))
+      {
+        out += "\n# " + material.comment + "\n";
+        out += syntax.open + material.type + syntax.after_type + std::to_string(tag++);
+        for (const std::string &a : material.arguments)
+          out += syntax.separator + a;
+        out += syntax.close;
+      }
+      return out;
+    }
   } // namespace
 
   OpenSeesParameters opensees_parameters(const OpenSeesLawInput &in)
@@ -164,35 +193,15 @@ namespace kimp::app
 
   std::string opensees_tcl(const OpenSeesLawInput &in)
   {
-    const OpenSeesParameters p   = opensees_parameters(in);
-    std::string              out = header(in, "#", "Tcl");
-    int                      tag = in.first_tag;
-    for (const Material &material : materials(in, p))
-    {
-      out += "\n# " + material.comment + "\n";
-      out += fmt::format("uniaxialMaterial {} {}", material.type, tag++);
-      for (const std::string &a : material.arguments)
-        out += " " + a;
-      out += "\n";
-    }
-    return out;
+    const OpenSeesParameters p = opensees_parameters(in);
+    return header(in, "#", "Tcl") + material_commands(in, p, {"uniaxialMaterial ", " ", " ", "\n"});
   }
 
   std::string opensees_python(const OpenSeesLawInput &in)
   {
-    const OpenSeesParameters p   = opensees_parameters(in);
-    std::string              out = header(in, "#", "OpenSeesPy");
-    out += "import openseespy.opensees as ops\n";
-    int tag = in.first_tag;
-    for (const Material &material : materials(in, p))
-    {
-      out += "\n# " + material.comment + "\n";
-      out += fmt::format("ops.uniaxialMaterial('{}', {}", material.type, tag++);
-      for (const std::string &a : material.arguments)
-        out += ", " + a;
-      out += ")\n";
-    }
-    return out;
+    const OpenSeesParameters p = opensees_parameters(in);
+    return header(in, "#", "OpenSeesPy") + "import openseespy.opensees as ops\n" +
+           material_commands(in, p, {"ops.uniaxialMaterial('", "', ", ", ", ")\n"});
   }
 
   void run_export_opensees(ExportOpenSeesOptions options)

@@ -17,13 +17,8 @@
 
 namespace kimp::app::study_internal
 {
-  using namespace kimp::base;
-  using namespace kimp::io;
-  using namespace kimp::fit;
   namespace
   {
-    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-
     void fill_peaks(StudyBuildingRun       &run,
                     const LumpedCaseResult &result,
                     unsigned int            top_dof,
@@ -57,14 +52,6 @@ namespace kimp::app::study_internal
         run.amplification_drift =
           run.max_interstorey_drift / std::max(without_walls->max_interstorey_drift(), 1e-300);
       }
-    }
-
-    std::string record_label(const GroundMotionScene &record, std::set<std::string> &used)
-    {
-      std::string label = record.record;
-      for (int i = 2; !used.insert(label).second; ++i)
-        label = fmt::format("{}_{}", record.record, i);
-      return label;
     }
 
     /// The height of the k table nearest to `wall_height` with a Kelvin-Voigt fit (or null).
@@ -117,17 +104,61 @@ namespace kimp::app::study_internal
     };
   } // namespace
 
+  std::vector<std::pair<std::string, GroundMotionScene>> labelled_records(const StudyScene &scene)
+  {
+    std::vector<std::pair<std::string, GroundMotionScene>> records;
+    std::set<std::string>                                  used;
+    for (const GroundMotionScene &record : study_records(scene))
+    {
+      std::string label = record.record;
+      for (int i = 2; !used.insert(label).second; ++i)
+        label = fmt::format("{}_{}", record.record, i);
+      records.emplace_back(label, record);
+    }
+    return records;
+  }
+
+  double wall_gap(const StudyScene &scene, double base_displacement)
+  {
+    return scene.walls.gap.value_or((1.0 - scene.walls.gap_reduction) * base_displacement);
+  }
+
+  std::vector<std::pair<std::string, const std::optional<FitResult> *>>
+  building_laws(const StudyHeight &h)
+  {
+    return {{"modified_kelvin_voigt", &h.kelvin_voigt},
+            {"jankowski", &h.jankowski},
+            {"hysteretic", &h.jankowski}};
+  }
+
+  LumpedScene walled_scene(const LumpedScene &base,
+                           double             gap,
+                           const std::string &law,
+                           double             k_total,
+                           double             cor)
+  {
+    LumpedScene s         = base;
+    s.walls.left.present  = true;
+    s.walls.right.present = true;
+    s.walls.left.gap      = gap;
+    s.walls.right.gap     = gap;
+    s.impact.law          = law;
+    s.impact.k.clear();
+    s.impact.k_si     = k_total;
+    s.impact.exponent = std::nullopt;
+    s.impact.cor      = cor;
+    return s;
+  }
+
   std::vector<StudyBuildingRun> run_building(const StudyScene               &scene,
                                              const std::vector<StudyHeight> &heights)
   {
     std::vector<StudyBuildingRun> runs;
-    std::set<std::string>         labels;
     const unsigned int            top_dof = scene.building.n_storeys;
     VariableStepErrors            errors;
-    for (const GroundMotionScene &record : study_records(scene))
+    for (const auto &[label, record] : labelled_records(scene))
     {
-      const std::string label = record_label(record, labels);
-      StudyBuildingRun  bare;
+      StudyBuildingRun bare;
       bare.record = label;
       bare.law    = "none";
       lumped::GroundMotion motion;
@@ -152,8 +183,7 @@ namespace kimp::app::study_internal
         logger().warn("record {}: run without walls {}", label, none.status);
         continue;
       }
-      const double gap =
-        scene.walls.gap.value_or((1.0 - scene.walls.gap_reduction) * bare.base_displacement);
+      const double gap = wall_gap(scene, bare.base_displacement);
       logger().info("record {} (PGA {:.3f} g): no walls: peak isolation displacement {:.4g} cm, "
                     "top acceleration {:.4g} m/s^2 -> wall gap {:.4g} cm",
                     label,
@@ -164,11 +194,7 @@ namespace kimp::app::study_internal
 
       for (const StudyHeight &h : heights)
       {
-        const std::vector<std::pair<std::string, const std::optional<FitResult> *>> laws = {
-          {"modified_kelvin_voigt", &h.kelvin_voigt},
-          {"jankowski", &h.jankowski},
-          {"hysteretic", &h.jankowski}};
-        for (const auto &[law, fit] : laws)
+        for (const auto &[law, fit] : building_laws(h))
         {
           StudyBuildingRun run;
           run.record      = label;
@@ -181,20 +207,13 @@ namespace kimp::app::study_internal
             runs.push_back(run);
             continue;
           }
-          run.exponent          = (*fit)->exponent.value;
-          run.k_total           = (*fit)->stiffness.value * scene.fit.width;
-          LumpedScene s         = base;
-          s.walls.left.present  = true;
-          s.walls.right.present = true;
-          s.walls.left.gap      = gap;
-          s.walls.right.gap     = gap;
-          s.impact.law          = law;
-          s.impact.k.clear();
-          s.impact.k_si     = run.k_total;
-          s.impact.exponent = std::nullopt;
-          s.impact.cor      = scene.fit.cor;
+          run.exponent = (*fit)->exponent.value;
+          run.k_total  = (*fit)->stiffness.value * scene.fit.width;
           const LumpedCaseResult done =
-            run_lumped_case(h.name + "_" + law, s, motion, record.scale);
+            run_lumped_case(h.name + "_" + law,
+                            walled_scene(base, gap, law, run.k_total, scene.fit.cor),
+                            motion,
+                            record.scale);
           errors.add(label + " " + h.name + " " + law, done);
           fill_peaks(run, done, top_dof, &none.response);
           if (!done.ok())
@@ -226,9 +245,8 @@ namespace kimp::app::study_internal
       if (h && !records.empty() && bare != result.building.end())
       {
         extras.lumped_k_total = k_total;
-        extras.lumped_gap =
-          scene.walls.gap.value_or((1.0 - scene.walls.gap_reduction) * bare->base_displacement);
-        extras.lumped_record = bare->record;
+        extras.lumped_gap     = wall_gap(scene, bare->base_displacement);
+        extras.lumped_record  = bare->record;
         try
         {
           extras.lumped_accuracy =

@@ -10,18 +10,11 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "app/study/study_fem.h"
 #include "app/study/study_internal.h"
 
 namespace kimp::app::study_internal
 {
-  using namespace kimp::io;
-  using namespace kimp::fit;
-
-  namespace
-  {
-    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-  } // namespace
-
   double seconds_since(Clock::time_point start)
   {
     return std::chrono::duration<double>(Clock::now() - start).count();
@@ -62,6 +55,14 @@ namespace kimp::app::study_internal
   double used_penalty(const StudyScene &scene, const StudyHeight &h)
   {
     return h.auto_fidelity ? h.ladder.used_level().penalty_factor : scene.fem.solver.penalty_factor;
+  }
+
+  void set_fits(StudyHeight &h, StudyFits fits)
+  {
+    h.kelvin_voigt        = std::move(fits.kelvin_voigt);
+    h.jankowski           = std::move(fits.jankowski);
+    h.kelvin_voigt_status = std::move(fits.kelvin_voigt_status);
+    h.jankowski_status    = std::move(fits.jankowski_status);
   }
 
   std::vector<double> scale(std::vector<double> values, double factor)

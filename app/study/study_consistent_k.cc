@@ -18,31 +18,11 @@
 
 namespace kimp::app::study_internal
 {
-  using namespace kimp::base;
-  using namespace kimp::io;
-  using namespace kimp::fit;
   namespace
   {
-    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-
     std::string readable(double value)
     {
       return std::isfinite(value) ? base::sig(value) : std::string();
-    }
-
-    /// The labels run_building() gives the records (a repeated record gets "_2", "_3", ...).
-    std::vector<std::pair<std::string, GroundMotionScene>> labelled_records(const StudyScene &scene)
-    {
-      std::vector<std::pair<std::string, GroundMotionScene>> records;
-      std::set<std::string>                                  used;
-      for (const GroundMotionScene &record : study_records(scene))
-      {
-        std::string label = record.record;
-        for (int i = 2; !used.insert(label).second; ++i)
-          label = fmt::format("{}_{}", record.record, i);
-        records.emplace_back(label, record);
-      }
-      return records;
     }
 
     /// The gap run_building() used for `record` (NaN if its run without walls failed).
@@ -50,7 +30,7 @@ namespace kimp::app::study_internal
     {
       for (const StudyBuildingRun &r : result.building)
         if (r.record == record && r.law == "none" && r.status == "ok")
-          return scene.walls.gap.value_or((1.0 - scene.walls.gap_reduction) * r.base_displacement);
+          return wall_gap(scene, r.base_displacement);
       return nan;
     }
 
@@ -95,10 +75,9 @@ namespace kimp::app::study_internal
       }
       const LumpedScene base = study_lumped_scene(scene, record);
       for (const StudyHeight &h : result.heights)
-        for (const char *law : {"modified_kelvin_voigt", "jankowski", "hysteretic"})
+        for (const auto &[law, fit_of_law] : building_laws(h))
         {
-          const bool                      kv  = std::string(law) == "modified_kelvin_voigt";
-          const std::optional<FitResult> &fit = kv ? h.kelvin_voigt : h.jankowski;
+          const std::optional<FitResult> &fit = *fit_of_law;
           if (!fit)
             continue;
           ConsistentKRun run;
@@ -111,19 +90,9 @@ namespace kimp::app::study_internal
           double k        = run.k_reference;
           for (unsigned int i = 0; i < scene.consistent_k.max_iterations; ++i)
           {
-            LumpedScene s         = base;
-            s.walls.left.present  = true;
-            s.walls.right.present = true;
-            s.walls.left.gap      = gap;
-            s.walls.right.gap     = gap;
-            s.impact.law          = law;
-            s.impact.k.clear();
-            s.impact.k_si     = k;
-            s.impact.exponent = std::nullopt;
-            s.impact.cor      = scene.fit.cor;
             const LumpedCaseResult done =
               run_lumped_case(fmt::format("{}_{}_consistent_{}", h.name, law, i + 1),
-                              s,
+                              walled_scene(base, gap, law, k, scene.fit.cor),
                               motion,
                               record.scale);
             if (!done.ok())
@@ -282,15 +251,7 @@ namespace kimp::app::study_internal
       ResultsGroup g = root.group("fit_velocity").group(h.name);
       g.write_scalar("wall_height", h.wall_height, "m");
       g.write_scalar("impact_velocity", h.impact_velocity, "m/s");
-      for (const auto &[law, fit, status] :
-           {std::tuple{"kelvin_voigt", &h.kelvin_voigt, &h.kelvin_voigt_status},
-            std::tuple{"jankowski", &h.jankowski, &h.jankowski_status}})
-      {
-        ResultsGroup f = g.group(law);
-        f.set_status(*status);
-        if (*fit)
-          write_fit_result(f, **fit, scene.fit.width, FitResultLayout::study);
-      }
+      write_study_fits(g, h, scene.fit.width);
     }
 
     // /k_table_velocity: every height and velocity, with the linear k beside.
@@ -310,22 +271,21 @@ namespace kimp::app::study_internal
                                   {"linear_jankowski", "kN/mm^1.5/m", {}}};
     for (const StudyHeight *h : k_table_cases(result))
     {
-      const double v[] = {h->wall_height,
-                          h->impact_velocity,
-                          h->reference_velocity ? 1.0 : 0.0,
-                          h->inelastic ? 1.0 : 0.0,
-                          per_metre(h->kelvin_voigt),
-                          per_metre_bound(h->kelvin_voigt, false),
-                          per_metre_bound(h->kelvin_voigt, true),
-                          numerical_error(*h, 1.0),
-                          per_metre(h->linear_kelvin_voigt),
-                          per_metre(h->jankowski),
-                          per_metre_bound(h->jankowski, false),
-                          per_metre_bound(h->jankowski, true),
-                          numerical_error(*h, 1.5),
-                          per_metre(h->linear_jankowski)};
-      for (std::size_t i = 0; i < k.size(); ++i)
-        k[i].values.push_back(v[i]);
+      append_row(k,
+                 {h->wall_height,
+                  h->impact_velocity,
+                  h->reference_velocity ? 1.0 : 0.0,
+                  h->inelastic ? 1.0 : 0.0,
+                  per_metre(h->kelvin_voigt),
+                  per_metre_bound(h->kelvin_voigt, false),
+                  per_metre_bound(h->kelvin_voigt, true),
+                  numerical_error(*h, 1.0),
+                  per_metre(h->linear_kelvin_voigt),
+                  per_metre(h->jankowski),
+                  per_metre_bound(h->jankowski, false),
+                  per_metre_bound(h->jankowski, true),
+                  numerical_error(*h, 1.5),
+                  per_metre(h->linear_jankowski)});
     }
     root.write_table("k_table_velocity", k);
     root.group("k_table_velocity")
@@ -351,19 +311,18 @@ namespace kimp::app::study_internal
       for (const ConsistentKRun *r : runs)
         for (std::size_t i = 0; i < r->iterations.size(); ++i)
         {
-          const ConsistentKIteration &it  = r->iterations[i];
-          const double                v[] = {r->wall_height,
-                                             static_cast<double>(i + 1),
-                                             it.k_total,
-                                             it.impact_velocity,
-                                             it.velocity_used,
-                                             it.k_next,
-                                             it.change,
-                                             it.peak_impact_force,
-                                             static_cast<double>(it.n_impacts),
-                              r->converged ? 1.0 : 0.0};
-          for (std::size_t j = 0; j < c.size(); ++j)
-            c[j].values.push_back(v[j]);
+          const ConsistentKIteration &it = r->iterations[i];
+          append_row(c,
+                     {r->wall_height,
+                      static_cast<double>(i + 1),
+                      it.k_total,
+                      it.impact_velocity,
+                      it.velocity_used,
+                      it.k_next,
+                      it.change,
+                      it.peak_impact_force,
+                      static_cast<double>(it.n_impacts),
+                      r->converged ? 1.0 : 0.0});
         }
       ResultsGroup group = root.group("consistent_k").group(key.first);
       group.write_table(key.second, c);

@@ -10,13 +10,7 @@
 
 namespace kimp::app
 {
-  using namespace kimp::io;
-  using namespace kimp::fit;
-  using study_internal::number;
-  namespace
-  {
-    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-  } // namespace
+  using namespace study_internal;
 
   void write_study_extras(ResultsGroup &root, const StudyExtras &extras)
   {
@@ -36,18 +30,17 @@ namespace kimp::app
       {
         if (p.series != series)
           continue;
-        const double v[] = {p.h_contact,
-                            p.penalty_factor,
-                            p.ok ? 1.0 : 0.0,
-                            p.seconds,
-                            p.n_dofs,
-                            p.n_steps,
-                            p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan,
-                            p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan,
-                            p.error_kelvin_voigt,
-                            p.error_jankowski};
-        for (std::size_t i = 0; i < c.size(); ++i)
-          c[i].values.push_back(v[i]);
+        append_row(c,
+                   {p.h_contact,
+                    p.penalty_factor,
+                    p.ok ? 1.0 : 0.0,
+                    p.seconds,
+                    p.n_dofs,
+                    p.n_steps,
+                    p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan,
+                    p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan,
+                    p.error_kelvin_voigt,
+                    p.error_jankowski});
       }
       if (!c.front().values.empty())
         root.group("accuracy").group("fem").write_table(series, c);
@@ -65,15 +58,14 @@ namespace kimp::app
       {
         if (p.method != method)
           continue;
-        const double v[] = {p.dt,
-                            p.ok ? 1.0 : 0.0,
-                            p.seconds,
-                            p.ok ? p.peak_impact_force : nan,
-                            p.ok ? p.base_acceleration : nan,
-                            p.error_force,
-                            p.error_acceleration};
-        for (std::size_t i = 0; i < c.size(); ++i)
-          c[i].values.push_back(v[i]);
+        append_row(c,
+                   {p.dt,
+                    p.ok ? 1.0 : 0.0,
+                    p.seconds,
+                    p.ok ? p.peak_impact_force : nan,
+                    p.ok ? p.base_acceleration : nan,
+                    p.error_force,
+                    p.error_acceleration});
       }
       if (!c.front().values.empty())
       {
@@ -96,16 +88,15 @@ namespace kimp::app
                                     {"peak_force", "N", {}}};
       for (const StabilityPoint &p : extras.stability)
       {
-        const double v[] = {p.stiffness,
-                            p.dt,
-                            p.dt_limit,
-                            p.dt_limit_damped,
-                            p.stable ? 1.0 : 0.0,
-                            p.accurate ? 1.0 : 0.0,
-                            p.effective_cor,
-                            p.peak_force};
-        for (std::size_t i = 0; i < c.size(); ++i)
-          c[i].values.push_back(v[i]);
+        append_row(c,
+                   {p.stiffness,
+                    p.dt,
+                    p.dt_limit,
+                    p.dt_limit_damped,
+                    p.stable ? 1.0 : 0.0,
+                    p.accurate ? 1.0 : 0.0,
+                    p.effective_cor,
+                    p.peak_force});
       }
       ResultsGroup stability = root.group("stability");
       stability.write_table("lumped", c);
@@ -123,14 +114,13 @@ namespace kimp::app
                                     {"energy_error", "1", {}}};
       for (const FemStabilityPoint &p : extras.fem_stability)
       {
-        const double v[] = {p.penalty_factor,
-                            p.dt_factor,
-                            p.dt,
-                            p.dt_limit,
-                            p.stable ? 1.0 : 0.0,
-                            p.energy_error > 0 ? p.energy_error : nan};
-        for (std::size_t i = 0; i < c.size(); ++i)
-          c[i].values.push_back(v[i]);
+        append_row(c,
+                   {p.penalty_factor,
+                    p.dt_factor,
+                    p.dt,
+                    p.dt_limit,
+                    p.stable ? 1.0 : 0.0,
+                    p.energy_error > 0 ? p.energy_error : nan});
       }
       ResultsGroup stability = root.group("stability");
       stability.write_table("fem", c);
@@ -151,12 +141,11 @@ namespace kimp::app
         {
           if (p.parameter != parameter)
             continue;
-          const double v[] = {p.factor,
-                              p.ok ? 1.0 : 0.0,
-                              p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan,
-                              p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan};
-          for (std::size_t i = 0; i < c.size(); ++i)
-            c[i].values.push_back(v[i]);
+          append_row(c,
+                     {p.factor,
+                      p.ok ? 1.0 : 0.0,
+                      p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan,
+                      p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan});
         }
         root.group("sensitivity").write_table(parameter, c);
       }

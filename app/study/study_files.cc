@@ -17,13 +17,8 @@
 
 namespace kimp::app::study_internal
 {
-  using namespace kimp::base;
-  using namespace kimp::io;
-  using namespace kimp::fit;
   namespace
   {
-    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-
     /// building_response.csv: one row per building run; k_total in the unit of its law's
     /// exponent (k_total_unit beside it).
     Table building_table(const std::vector<StudyBuildingRun> &runs)
@@ -202,6 +197,19 @@ namespace kimp::app::study_internal
     building_table(runs).write_csv(output.file("building_response.csv"));
   }
 
+  void write_study_fits(ResultsGroup &g, const StudyHeight &h, double width)
+  {
+    for (const auto &[law, fit, status] :
+         {std::tuple{"kelvin_voigt", &h.kelvin_voigt, &h.kelvin_voigt_status},
+          std::tuple{"jankowski", &h.jankowski, &h.jankowski_status}})
+    {
+      ResultsGroup f = g.group(law);
+      f.set_status(*status);
+      if (*fit)
+        write_fit_result(f, **fit, width, FitResultLayout::study);
+    }
+  }
+
   void write_study_h5(const LoadedScene<StudyScene> &loaded,
                       const StudyResult             &result,
                       const OutputDir               &output)
@@ -216,16 +224,7 @@ namespace kimp::app::study_internal
       write_fem_case(fem_root, h.fem_case);
       ResultsGroup g = fit_root.group(h.name);
       g.write_scalar("wall_height", h.wall_height, "m");
-      for (const auto &[law, fit, status] :
-           {std::tuple{"kelvin_voigt", &h.kelvin_voigt, &h.kelvin_voigt_status},
-            std::tuple{"jankowski", &h.jankowski, &h.jankowski_status}})
-      {
-        ResultsGroup f = g.group(law);
-        f.set_status(*status);
-        if (!*fit)
-          continue;
-        write_fit_result(f, **fit, scene.fit.width, FitResultLayout::study);
-      }
+      write_study_fits(g, h, scene.fit.width);
     }
 
     std::vector<const StudyHeight *> heights;
@@ -252,17 +251,16 @@ namespace kimp::app::study_internal
                                          {"used", "1", {}}};
       for (std::size_t i = 0; i < h.ladder.outcomes.size(); ++i)
       {
-        const LevelOutcome &o   = h.ladder.outcomes[i];
-        const double        v[] = {h.ladder.levels[i].h_contact,
-                                   h.ladder.levels[i].penalty_factor,
-                                   stiffness_to_kn_per_mm(o.k_kelvin_voigt, 1.0),
-                                   stiffness_to_kn_per_mm(o.k_jankowski, 1.5),
-                                   o.seconds,
-                            o.ok ? 1.0 : 0.0,
-                            o.from_cache ? 1.0 : 0.0,
-                            i == h.ladder.used ? 1.0 : 0.0};
-        for (std::size_t j = 0; j < levels.size(); ++j)
-          levels[j].values.push_back(v[j]);
+        const LevelOutcome &o = h.ladder.outcomes[i];
+        append_row(levels,
+                   {h.ladder.levels[i].h_contact,
+                    h.ladder.levels[i].penalty_factor,
+                    stiffness_to_kn_per_mm(o.k_kelvin_voigt, 1.0),
+                    stiffness_to_kn_per_mm(o.k_jankowski, 1.5),
+                    o.seconds,
+                    o.ok ? 1.0 : 0.0,
+                    o.from_cache ? 1.0 : 0.0,
+                    i == h.ladder.used ? 1.0 : 0.0});
       }
       ResultsGroup fidelity = root.group("fidelity");
       fidelity.write_table(h.name, levels);
@@ -297,23 +295,22 @@ namespace kimp::app::study_internal
                                          {"amplification_interstorey_drift", "1", {}}};
       for (const StudyBuildingRun *r : rows)
       {
-        const double v[] = {r->wall_height,
-                            r->k_total,
-                            r->gap,
-                            r->base_displacement,
-                            r->top_displacement,
-                            r->base_acceleration,
-                            r->top_acceleration,
-                            r->max_floor_acceleration,
-                            r->max_interstorey_drift,
-                            r->peak_impact_force,
-                            static_cast<double>(r->n_impacts),
-                            r->permanent_indentation,
-                            r->amplification_base_acc,
-                            r->amplification_top_acc,
-                            r->amplification_drift};
-        for (std::size_t i = 0; i < c.size(); ++i)
-          c[i].values.push_back(v[i]);
+        append_row(c,
+                   {r->wall_height,
+                    r->k_total,
+                    r->gap,
+                    r->base_displacement,
+                    r->top_displacement,
+                    r->base_acceleration,
+                    r->top_acceleration,
+                    r->max_floor_acceleration,
+                    r->max_interstorey_drift,
+                    r->peak_impact_force,
+                    static_cast<double>(r->n_impacts),
+                    r->permanent_indentation,
+                    r->amplification_base_acc,
+                    r->amplification_top_acc,
+                    r->amplification_drift});
       }
       root.group("building").group(key.first).write_table(key.second, c);
     }

@@ -37,9 +37,6 @@ namespace kimp::app
 
 namespace kimp::app::study_internal
 {
-  using namespace kimp::base;
-  using namespace kimp::io;
-
   StudyWallSdof
   compute_wall_sdof(const StudyScene &scene, const StudyHeight &h, const OutputDir &output)
   {
@@ -161,17 +158,12 @@ namespace kimp::app::study_internal
         continue;
       }
       const LumpedScene base = study_lumped_scene(scene, records[i]);
-      const double      gap =
-        scene.walls.gap.value_or((1.0 - scene.walls.gap_reduction) * none.base_displacement);
+      const double      gap  = wall_gap(scene, none.base_displacement);
       for (std::size_t j = 0; j < heights.size() && j < sdofs.size(); ++j)
       {
         const StudyHeight   &h    = heights[j];
         const StudyWallSdof &sdof = sdofs[j];
-        const std::vector<std::pair<std::string, const std::optional<fit::FitResult> *>> laws = {
-          {"modified_kelvin_voigt", &h.kelvin_voigt},
-          {"jankowski", &h.jankowski},
-          {"hysteretic", &h.jankowski}};
-        for (const auto &[law, fit] : laws)
+        for (const auto &[law, fit] : building_laws(h))
         {
           StudyBuildingRun run;
           run.record        = none.record;
@@ -187,18 +179,9 @@ namespace kimp::app::study_internal
             continue;
           }
           // The rigid run's scene (run_building()), then both walls flexible.
-          run.exponent          = (*fit)->exponent.value;
-          run.k_total           = (*fit)->stiffness.value * scene.fit.width;
-          LumpedScene s         = base;
-          s.walls.left.present  = true;
-          s.walls.right.present = true;
-          s.walls.left.gap      = gap;
-          s.walls.right.gap     = gap;
-          s.impact.law          = law;
-          s.impact.k.clear();
-          s.impact.k_si               = run.k_total;
-          s.impact.exponent           = std::nullopt;
-          s.impact.cor                = scene.fit.cor;
+          run.exponent                = (*fit)->exponent.value;
+          run.k_total                 = (*fit)->stiffness.value * scene.fit.width;
+          const LumpedScene      s    = walled_scene(base, gap, law, run.k_total, scene.fit.cor);
           const LumpedCaseResult done = run_lumped_case(h.name + "_" + law + "_flexible_wall",
                                                         flexible_wall_scene(s, sdof),
                                                         motion,

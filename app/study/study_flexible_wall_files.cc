@@ -11,11 +11,8 @@
 
 namespace kimp::app::study_internal
 {
-  using namespace kimp::io;
   namespace
   {
-    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-
     /// The rigid run of `r`'s record, height and law (or null).
     const StudyBuildingRun *rigid_twin(const StudyResult &result, const StudyBuildingRun &r)
     {
@@ -198,24 +195,23 @@ namespace kimp::app::study_internal
                                   {"ok", "1", {}}};
     for (const StudyWallSdof &s : result.wall_sdofs)
     {
-      const bool   ok  = s.ok();
-      const double v[] = {s.wall_height,
-                          ok ? s.stiffness_per_metre : nan,
-                          ok ? s.mass_per_metre : nan,
-                          ok ? s.frequency : nan,
-                          ok ? s.participation_mass_per_metre : nan,
-                          ok ? s.modal_sum_mass_per_metre : nan,
-                          ok ? s.mode_frequency : nan,
-                          ok ? s.mode_share : nan,
-                          ok ? s.mode_mass_per_metre : nan,
-                          ok ? s.total_mass_per_metre : nan,
-                          ok ? s.stiffness : nan,
-                          ok ? s.mass : nan,
-                          s.damping_ratio,
-                          s.h_contact,
-                          ok ? 1.0 : 0.0};
-      for (std::size_t i = 0; i < c.size(); ++i)
-        c[i].values.push_back(v[i]);
+      const bool ok = s.ok();
+      append_row(c,
+                 {s.wall_height,
+                  ok ? s.stiffness_per_metre : nan,
+                  ok ? s.mass_per_metre : nan,
+                  ok ? s.frequency : nan,
+                  ok ? s.participation_mass_per_metre : nan,
+                  ok ? s.modal_sum_mass_per_metre : nan,
+                  ok ? s.mode_frequency : nan,
+                  ok ? s.mode_share : nan,
+                  ok ? s.mode_mass_per_metre : nan,
+                  ok ? s.total_mass_per_metre : nan,
+                  ok ? s.stiffness : nan,
+                  ok ? s.mass : nan,
+                  s.damping_ratio,
+                  s.h_contact,
+                  ok ? 1.0 : 0.0});
     }
     root.write_table("wall_sdof", c);
 
@@ -251,8 +247,7 @@ namespace kimp::app::study_internal
         }
         v.push_back(f->peak_wall_displacement);
         v.push_back(f->energy_error);
-        for (std::size_t i = 0; i < t.size(); ++i)
-          t[i].values.push_back(v[i]);
+        append_row(t, v);
       }
       root.group("flexible_wall").group(key.first).write_table(key.second, t);
     }

@@ -13,10 +13,6 @@
 
 namespace kimp::app::study_internal
 {
-  using namespace kimp::base;
-  using namespace kimp::io;
-  using namespace kimp::fit;
-
   StudyHeight run_height(const StudyScene &scene, double wall_height, const OutputDir &output)
   {
     StudyHeight h;
@@ -28,17 +24,14 @@ namespace kimp::app::study_internal
     choose_material_model(scene, wall_height, output, h, &cheap_fits);
     if (scene.fem.fidelity == Fidelity::fixed)
     {
-      StudyFemCase fem      = study_fem_case(scene.fem, wall_height, output);
-      h.fem_case            = std::move(fem.fem_case);
-      h.fem_from_cache      = fem.from_cache;
-      h.fem_seconds         = fem.wall_seconds;
-      StudyFits fits        = fit_study_laws(h.fem_case, scene.fit);
-      h.kelvin_voigt        = std::move(fits.kelvin_voigt);
-      h.jankowski           = std::move(fits.jankowski);
-      h.kelvin_voigt_status = fits.kelvin_voigt_status;
-      h.jankowski_status    = fits.jankowski_status;
-      h.fit_seconds         = fits.seconds;
-      h.fidelity_reason     = "fidelity fixed: numerical error not estimated";
+      StudyFemCase fem = study_fem_case(scene.fem, wall_height, output);
+      h.fem_case       = std::move(fem.fem_case);
+      h.fem_from_cache = fem.from_cache;
+      h.fem_seconds    = fem.wall_seconds;
+      StudyFits fits   = fit_study_laws(h.fem_case, scene.fit);
+      h.fit_seconds    = fits.seconds;
+      set_fits(h, std::move(fits));
+      h.fidelity_reason = "fidelity fixed: numerical error not estimated";
       if (h.inelastic)
         add_linear_counterpart(scene.fem, scene.fit, wall_height, output, h.name + "_linear", h);
       return h;
@@ -114,13 +107,10 @@ namespace kimp::app::study_internal
     if (!h.ladder.has_usable_level())
       throw std::runtime_error(
         fmt::format("{}: no usable FEM level ({})", h.name, h.ladder.outcomes.front().status));
-    Computed &used        = computed.at(h.ladder.used);
-    h.fem_case            = std::move(used.fem_case);
-    h.fem_case.name       = h.name;
-    h.kelvin_voigt        = std::move(used.fits.kelvin_voigt);
-    h.jankowski           = std::move(used.fits.jankowski);
-    h.kelvin_voigt_status = used.fits.kelvin_voigt_status;
-    h.jankowski_status    = used.fits.jankowski_status;
+    Computed &used  = computed.at(h.ladder.used);
+    h.fem_case      = std::move(used.fem_case);
+    h.fem_case.name = h.name;
+    set_fits(h, std::move(used.fits));
     if (h.inelastic)
       add_linear_counterpart(fem_level_scene(material,
                                              h.ladder.used_level().h_contact,

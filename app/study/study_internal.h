@@ -3,6 +3,7 @@
 #pragma once
 
 #include <chrono>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -10,6 +11,8 @@
 
 #include "app/lumped_run.h"
 #include "app/study/study_run.h"
+#include "app/table_columns.h"
+#include "base/format.h"
 
 namespace kimp::io
 {
@@ -17,9 +20,22 @@ namespace kimp::io
   class Table;
 } // namespace kimp::io
 
+namespace kimp::app
+{
+  struct StudyFits;
+} // namespace kimp::app
+
 namespace kimp::app::study_internal
 {
+  // Every stage is written against the names of base, io and fit; declared here once.
+  using namespace kimp::base;
+  using namespace kimp::io;
+  using namespace kimp::fit;
+
   using Clock = std::chrono::steady_clock;
+
+  /// The value of a quantity that was not computed (written as "" in the CSV files).
+  inline constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
   /// s since `start`.
   double seconds_since(Clock::time_point start);
@@ -37,6 +53,8 @@ namespace kimp::app::study_internal
   double used_h_contact(const StudyScene &scene, const StudyHeight &h);
   /// Penalty factor of the FEM level used for `h`.
   double used_penalty(const StudyScene &scene, const StudyHeight &h);
+  /// The fitted laws of `fits` and their statuses into `h` (its fit_seconds is the caller's).
+  void set_fits(StudyHeight &h, StudyFits fits);
   /// Every value times `factor`.
   std::vector<double> scale(std::vector<double> values, double factor);
   /// A CSV cell: the shortest text that reads back to the same double, "" for NaN and infinities.
@@ -54,6 +72,23 @@ namespace kimp::app::study_internal
   void log_k_table(const StudyScene &scene, const std::vector<StudyHeight> &heights);
 
   // compute: study_building.cc
+  /// The study's records with the labels of the building runs (a repeated record gets "_2",
+  /// "_3", ...).
+  std::vector<std::pair<std::string, GroundMotionScene>> labelled_records(const StudyScene &scene);
+  /// The wall gap of a record whose run without walls has the peak isolation displacement
+  /// `base_displacement` (walls.gap, or that peak less walls.gap_reduction), m.
+  double wall_gap(const StudyScene &scene, double base_displacement);
+  /// The laws a height's fits give the building runs, with the fit each takes its k from
+  /// (Kelvin-Voigt; Jankowski's for jankowski and hysteretic).
+  std::vector<std::pair<std::string, const std::optional<fit::FitResult> *>>
+  building_laws(const StudyHeight &h);
+  /// `base` with both walls present at `gap` (m) and the impact law `law` of total stiffness
+  /// `k_total` (N/m^n, the law's own exponent) at COR `cor`.
+  LumpedScene walled_scene(const LumpedScene &base,
+                           double             gap,
+                           const std::string &law,
+                           double             k_total,
+                           double             cor);
   /// Per record: the building without walls, then with walls for every height and law.
   std::vector<StudyBuildingRun> run_building(const StudyScene               &scene,
                                              const std::vector<StudyHeight> &heights);
@@ -98,6 +133,9 @@ namespace kimp::app::study_internal
                          const std::vector<StudyHeight> &velocity_cases = {});
   /// DIR/building_response.csv.
   void write_building_csv(const io::OutputDir &output, const std::vector<StudyBuildingRun> &runs);
+  /// The fits of `h` into `g`: groups kelvin_voigt and jankowski, each with its status and
+  /// (when fitted) its result for a building `width` wide (m).
+  void write_study_fits(io::ResultsGroup &g, const StudyHeight &h, double width);
   /// DIR/study.h5: /fem, /fit, /k_table, extras, /fidelity, /building.
   void write_study_h5(const io::LoadedScene<StudyScene> &loaded,
                       const StudyResult                 &result,

@@ -16,9 +16,6 @@
 
 namespace kimp::app::study_internal
 {
-  using namespace kimp::base;
-  using namespace kimp::io;
-  using namespace kimp::fit;
   namespace
   {
     /// A number of the report: 4 significant figures, empty if not finite (as in the CSV).
@@ -26,8 +23,6 @@ namespace kimp::app::study_internal
     {
       return std::isfinite(value) ? base::sig(value) : std::string();
     }
-
-    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
     std::string extras_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
     {

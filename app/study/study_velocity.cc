@@ -15,13 +15,8 @@
 
 namespace kimp::app::study_internal
 {
-  using namespace kimp::base;
-  using namespace kimp::io;
-  using namespace kimp::fit;
   namespace
   {
-    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-
     bool same_speed(double a, double b)
     {
       return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b));
@@ -81,12 +76,9 @@ namespace kimp::app::study_internal
         logger().warn("{}: {}", c.name, c.kelvin_voigt_status);
         return c;
       }
-      StudyFits fits        = fit_study_laws(c.fem_case, scene.fit);
-      c.kelvin_voigt        = std::move(fits.kelvin_voigt);
-      c.jankowski           = std::move(fits.jankowski);
-      c.kelvin_voigt_status = fits.kelvin_voigt_status;
-      c.jankowski_status    = fits.jankowski_status;
-      c.fit_seconds         = fits.seconds;
+      StudyFits fits = fit_study_laws(c.fem_case, scene.fit);
+      c.fit_seconds  = fits.seconds;
+      set_fits(c, std::move(fits));
       // The ladder ran at the reference velocity only: its relative error is carried over.
       LadderResult &l = c.ladder;
       l.error_kelvin_voigt =

@@ -210,6 +210,30 @@ namespace kimp::app
       out << YAML::DoubleQuoted << resolved;
       return out.c_str();
     }
+
+    void fail_at(const std::string &file, int line, const std::string &key, const std::string &what)
+    {
+      throw SweepError(fmt::format("{}:{}: {}: {}", file, line, key, what));
+    }
+
+    void set_values_at(YAML::Node                                             &root,
+                       const std::vector<std::pair<std::string, std::string>> &settings,
+                       const std::string                                      &file,
+                       const int                                               line,
+                       const std::string                                      &key)
+    {
+      for (const auto &[path, value] : settings)
+      {
+        try
+        {
+          set_node_value(root, path, resolved_value(path, value, file));
+        }
+        catch (const std::exception &error)
+        {
+          fail_at(file, line, key, error.what());
+        }
+      }
+    }
   } // namespace sweep_values
 
   std::string set_yaml_value(const std::string &yaml_text,

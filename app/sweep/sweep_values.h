@@ -5,6 +5,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 #include <yaml-cpp/yaml.h>
 
 namespace kimp::app::sweep_values
@@ -38,4 +40,17 @@ namespace kimp::app::sweep_values
    */
   std::string
   resolved_value(const std::string &key_path, const std::string &value, const std::string &file);
+
+  /// @throws SweepError "FILE:LINE: KEY: WHAT" (an error at a key of the sweep file).
+  [[noreturn]] void
+  fail_at(const std::string &file, int line, const std::string &key, const std::string &what);
+
+  /// Sets every (key path, value of the sweep file `file`) of `settings` inside `root`
+  /// (resolved_value(), set_node_value()).
+  /// @throws SweepError at `line` naming `key` for a path that cannot be followed.
+  void set_values_at(YAML::Node                                             &root,
+                     const std::vector<std::pair<std::string, std::string>> &settings,
+                     const std::string                                      &file,
+                     int                                                     line,
+                     const std::string                                      &key);
 } // namespace kimp::app::sweep_values

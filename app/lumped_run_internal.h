@@ -1,0 +1,45 @@
+// Parts of `kimp lumped` shared by its translation units (not a public API): the integrator
+// options and the cost estimate of a case (lumped_estimate.cc), the k a case takes from a k table
+// and the files of a run (lumped_files.cc).
+#pragma once
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "app/lumped_run.h"
+#include "lumped/integrators/newmark_integrator.h"
+
+namespace kimp::app::lumped_internal
+{
+  using Clock = std::chrono::steady_clock;
+
+  /// s since `start`.
+  double seconds_since(Clock::time_point start);
+
+  // lumped_estimate.cc
+  /// The central difference options of integration (its time step `dt`, nullopt: the
+  /// integrator's own).
+  lumped::CentralDifferenceOptions cdm_options(const IntegrationScene      &in,
+                                               const std::optional<double> &dt);
+  /// The Newmark options of integration (its time step `dt`, nullopt: the record's).
+  lumped::NewmarkOptions newmark_options(const IntegrationScene      &in,
+                                         const std::optional<double> &dt);
+  /// The estimate for a step `dt` chosen by the integrator (the integrators' own rule for N).
+  RunEstimate make_estimate(double                      dt,
+                            const IntegrationScene     &in,
+                            const lumped::GroundMotion &motion,
+                            std::size_t                 n_dofs);
+
+  // lumped_files.cc
+  /// The k a case takes from a study's k table (impact.k_table at impact.wall_height): the
+  /// table, the height, k in SI with its unit and in the display unit; nullopt when the case
+  /// gives k itself or cannot resolve it (run_lumped_case() then records why).
+  std::optional<nlohmann::json> k_from_table(const ImpactScene &impact);
+  /// DIR/lumped.h5, DIR/summary.json (its wall_time counted from `start`) and DIR/peaks.csv of
+  /// the cases of `run`.
+  void write_lumped_files(const io::LoadedScene<LumpedScene> &loaded,
+                          const io::OutputDir                &output,
+                          const LumpedCasesRun               &run,
+                          Clock::time_point                   start);
+} // namespace kimp::app::lumped_internal
