@@ -38,36 +38,32 @@ namespace
     return c;
   }
 
+  /// Expects the verdict on `c` with a well-determined fit to start with `prefix`.
+  void expect_verdict_starts_with(const kimp::io::FemCase &c, const std::string &prefix)
+  {
+    const std::string verdict = kimp::app::fem_fit_verdict(c, good_fit());
+    EXPECT_TRUE(starts_with(verdict, prefix)) << verdict;
+  }
+
   TEST(FemFitVerdict, ABrokenWallFailsAYieldingOneWarns)
   {
     // Plain concrete, measured: cracked through at the base, the slab keeps 80 % of its speed
     // until the end time (a run ends on separation only once the slab comes in at <= 5 % of
     // its impact speed).
-    const std::string broken =
-      kimp::app::fem_fit_verdict(unfinished_case(-0.79, 105.5, 0.0), good_fit());
-    EXPECT_TRUE(starts_with(broken,
-                            "failed: the slab passes through (apparent COR -0.79 at the end time: "
-                            "it keeps 62.4 %"))
-      << broken;
+    expect_verdict_starts_with(unfinished_case(-0.79, 105.5, 0.0),
+                               "failed: the slab passes through (apparent COR -0.79 at the end "
+                               "time: it keeps 62.4 %");
     // Reinforced wall, measured: it yields and stops the slab (1581 of 1920 J/m dissipated) and
     // leaves with 1.7 % of its speed.
-    const std::string yields =
-      kimp::app::fem_fit_verdict(separated_case(0.0174, 613.0, 968.1), good_fit());
-    EXPECT_TRUE(starts_with(yields,
-                            "warning: the wall yields: the slab is stopped, not rebounded "
-                            "(apparent COR 0.0174; material dissipation 82.3 %"))
-      << yields;
+    expect_verdict_starts_with(separated_case(0.0174, 613.0, 968.1),
+                               "warning: the wall yields: the slab is stopped, not rebounded "
+                               "(apparent COR 0.0174; material dissipation 82.3 %");
     // Comes to rest against the wall: no rebound either.
-    EXPECT_TRUE(
-      starts_with(kimp::app::fem_fit_verdict(separated_case(0.0, 608.0, 811.0), good_fit()),
-                  "warning: the wall yields"));
+    expect_verdict_starts_with(separated_case(0.0, 608.0, 811.0), "warning: the wall yields");
     // Still pushing the wall at the end time, slower than half its impact speed.
-    const std::string pushing =
-      kimp::app::fem_fit_verdict(unfinished_case(-0.3, 608.0, 811.0), good_fit());
-    EXPECT_TRUE(starts_with(pushing,
-                            "warning: the wall yields: the slab still moves in at the end time "
-                            "(apparent COR -0.3 at the end time"))
-      << pushing;
+    expect_verdict_starts_with(unfinished_case(-0.3, 608.0, 811.0),
+                               "warning: the wall yields: the slab still moves in at the end "
+                               "time (apparent COR -0.3 at the end time");
     // A fit that fails on its own stays failed.
     FitResult unbounded       = good_fit();
     unbounded.stiffness.upper = std::numeric_limits<double>::infinity();

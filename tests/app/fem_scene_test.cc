@@ -21,10 +21,8 @@
 
 namespace
 {
+  using namespace kimp::io;
   using kimp::app::FemScene;
-  using kimp::io::default_scene_text;
-  using kimp::io::load_scene_text;
-  using kimp::io::SceneError;
   using kimp::testing::source_dir;
   using Integrator = kimp::fem::ImpactParameters::Integrator;
 

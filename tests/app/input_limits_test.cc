@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <initializer_list>
 #include <string>
+#include <utility>
 
 #include "app/ground_motion_scene.h"
 #include "app/lumped_run.h"
@@ -15,6 +16,7 @@
 #include "io/records.h"
 #include "io/scene_io.h"
 #include "io/units.h"
+#include "tests/support/messages.h"
 #include "tests/support/temp_dir.h"
 #ifdef KIMP_WITH_FEM
 #  include "app/study/study_scene.h"
@@ -25,24 +27,12 @@ namespace
   using namespace kimp::app;
   using kimp::io::SceneError;
 
-  void expect_contains(const std::string &text, std::initializer_list<std::string> parts)
-  {
-    for (const std::string &part : parts)
-      EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
-  }
+  using kimp::testing::expect_contains;
 
   template <class F>
   std::string message_of(F &&f)
   {
-    try
-    {
-      f();
-    }
-    catch (const std::exception &error)
-    {
-      return error.what();
-    }
-    return "";
+    return kimp::testing::thrown_message(std::forward<F>(f));
   }
 
   /// A minimal AT2 file of `n` samples at 0.01 s, all `value_g`.

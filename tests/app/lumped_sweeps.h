@@ -1,7 +1,8 @@
-// A lumped sweep run to its table, for the app tests of sweeps.
+// A lumped sweep run to its table, and the base scenes of such sweeps, for the app tests of sweeps.
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include "app/sweep/sweep_engine.h"
 #include "app/sweep/sweep_lumped.h"
@@ -21,5 +22,24 @@ namespace kimp::testing
     app::SweepTable table = app::collect_sweep_table(plan, dir);
     std::filesystem::remove_all(dir);
     return table;
+  }
+
+  /**
+   * A lumped base scene of the sweep tests: an isolated building of `n_storeys`, walls at
+   * `wall_gap` on both sides, the YAML lines `neighbours` (may be empty), `duration` of the
+   * synthetic motion with its pulse at 2 s, integrated by the CDM at `dt` without stored
+   * histories and with the companion run.
+   */
+  inline std::string pulse_sweep_scene(int                n_storeys,
+                                       const std::string &wall_gap,
+                                       const std::string &neighbours,
+                                       const std::string &duration,
+                                       const std::string &dt)
+  {
+    return "building: {kind: isolated, n_storeys: " + std::to_string(n_storeys) +
+           "}\nwalls: {left: {gap: " + wall_gap + "}, right: {gap: " + wall_gap + "}}\n" +
+           neighbours + "ground_motion:\n  record: synthetic\n  synthetic: {duration: " + duration +
+           ", pulse_time: 2 s}\nintegration: {method: cdm, dt: " + dt +
+           ", output_interval: 0 s, companion: true}\n";
   }
 } // namespace kimp::testing

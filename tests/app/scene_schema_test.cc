@@ -15,6 +15,7 @@
 #include "app/opensees_export.h"
 #include "app/sweep/sweep_plan.h"
 #include "io/scene_io.h"
+#include "tests/support/messages.h"
 #ifdef KIMP_WITH_FEM
 #  include "app/fem/fem_scene.h"
 #  include "app/study/study_scene.h"
@@ -113,27 +114,19 @@ namespace
   {
     // One declaration: the range printed in the listing comes from the Range, not the doc text.
     const std::string lumped = kimp::io::default_scene_text<kimp::app::LumpedScene>("lumped");
-    EXPECT_NE(lumped.find(
-                "  K1: \"200 MN/m\"  # bilinear, bouc_wen: initial stiffness [MN/m, > 0]"),
-              std::string::npos)
-      << lumped;
-    EXPECT_NE(lumped.find("  cor: \"0.7\"  # nominal coefficient of restitution [dimensionless, "
-                          "in (0, 1]]"),
-              std::string::npos)
-      << lumped;
-    EXPECT_NE(lumped.find("  scale: \"1\"  # factor applied after scale_to_pga (negative flips "
-                          "it) [dimensionless, != 0]"),
-              std::string::npos)
-      << lumped;
+    kimp::testing::expect_contains(
+      lumped,
+      {"  K1: \"200 MN/m\"  # bilinear, bouc_wen: initial stiffness [MN/m, > 0]",
+       "  cor: \"0.7\"  # nominal coefficient of restitution [dimensionless, in (0, 1]]",
+       "  scale: \"1\"  # factor applied after scale_to_pga (negative flips it) [dimensionless, "
+       "!= 0]"});
 #ifdef KIMP_WITH_FEM
     const std::string fem = kimp::io::default_scene_text<kimp::app::FemScene>("fem");
-    EXPECT_NE(fem.find("  end_time: \"50 ms\"  # largest simulated time [ms, > 0]"),
-              std::string::npos)
-      << fem;
-    EXPECT_NE(fem.find("  penalty_factor: \"1\"  # penalty stiffness per slave node / (E_master / "
-                       "h_contact x tributary length) [dimensionless, > 0]"),
-              std::string::npos)
-      << fem;
+    kimp::testing::expect_contains(
+      fem,
+      {"  end_time: \"50 ms\"  # largest simulated time [ms, > 0]",
+       "  penalty_factor: \"1\"  # penalty stiffness per slave node / (E_master / h_contact x "
+       "tributary length) [dimensionless, > 0]"});
     EXPECT_EQ(fem.find("(> 0)"), std::string::npos) << "a doc text repeats its range:\n" << fem;
 #endif
   }

@@ -9,12 +9,14 @@
 #  include "app/study/study_fem.h"
 #  include "app/study/study_run.h"
 #  include "app/study/study_scene.h"
+#  include "tests/support/messages.h"
 #  include "tests/support/scene_errors.h"
 #  include "tests/support/temp_dir.h"
 
 namespace
 {
   using kimp::app::StudyScene;
+  using kimp::testing::expect_contains;
 
   constexpr double exact = 1e-12; ///< values copied or parsed, relative
 
@@ -64,14 +66,13 @@ TEST(StudyScene, FidelityLadderIsValidatedWithKeyAndValue)
                                           "  fidelity_penalty_factors: [10, 1]\n"
                                           "accuracy:\n"
                                           "  lumped_reference_dt: \"1 s\"\n");
-  EXPECT_NE(message.find("fem.fidelity_tolerance = 0 %"), std::string::npos) << message;
-  EXPECT_NE(message.find("fem.fidelity_h_contact[1] = 5 cm"), std::string::npos) << message;
-  EXPECT_NE(message.find("fem.fidelity_penalty_factors[1] = 1"), std::string::npos) << message;
-  EXPECT_NE(message.find("accuracy.lumped_reference_dt"), std::string::npos) << message;
-  const std::string choice = scene_error("fem:\n  fidelity: sometimes\n");
-  EXPECT_NE(choice.find("fem.fidelity"), std::string::npos) << choice;
-  const std::string coarse = scene_error("fem:\n  fidelity_h_contact: [\"20 cm\"]\n");
-  EXPECT_NE(coarse.find("h_max"), std::string::npos) << coarse;
+  expect_contains(message,
+                  {"fem.fidelity_tolerance = 0 %",
+                   "fem.fidelity_h_contact[1] = 5 cm",
+                   "fem.fidelity_penalty_factors[1] = 1",
+                   "accuracy.lumped_reference_dt"});
+  expect_contains(scene_error("fem:\n  fidelity: sometimes\n"), {"fem.fidelity"});
+  expect_contains(scene_error("fem:\n  fidelity_h_contact: [\"20 cm\"]\n"), {"h_max"});
 }
 
 TEST(StudyScene, VelocityAxisAndConsistentKDefaultsAndRules)
@@ -110,20 +111,18 @@ TEST(StudyScene, ValidationNamesFileLineKeyAndValue)
                                           "  gap_reduction: \"120 %\"\n"
                                           "isolator:\n"
                                           "  K2: \"300 MN/m\"\n");
-  EXPECT_NE(message.find("study.yaml:2: fit.cor = 1.5"), std::string::npos) << message;
-  EXPECT_NE(message.find("study.yaml:4: walls.gap_reduction = 120 %"), std::string::npos)
-    << message;
-  EXPECT_NE(message.find("study.yaml:6: isolator.K2"), std::string::npos) << message;
+  expect_contains(message,
+                  {"study.yaml:2: fit.cor = 1.5",
+                   "study.yaml:4: walls.gap_reduction = 120 %",
+                   "study.yaml:6: isolator.K2"});
 }
 
 TEST(StudyScene, RejectsUnknownKeysAndFixedBaseBuildings)
 {
-  const std::string unknown = scene_error("fit:\n  corr: 0.5\n");
-  EXPECT_NE(unknown.find("corr"), std::string::npos) << unknown;
-  const std::string fixed = scene_error("building:\n  kind: fixed_base\n");
-  EXPECT_NE(fixed.find("building.kind"), std::string::npos) << fixed;
-  const std::string height = scene_error("fem:\n  wall_heights: [\"1 m\", \"1.00 m\"]\n");
-  EXPECT_NE(height.find("fem.wall_heights[1]"), std::string::npos) << height;
+  expect_contains(scene_error("fit:\n  corr: 0.5\n"), {"corr"});
+  expect_contains(scene_error("building:\n  kind: fixed_base\n"), {"building.kind"});
+  expect_contains(scene_error("fem:\n  wall_heights: [\"1 m\", \"1.00 m\"]\n"),
+                  {"fem.wall_heights[1]"});
 }
 
 TEST(StudyScene, LumpedSceneCarriesBuildingAndWallMassWithoutWalls)

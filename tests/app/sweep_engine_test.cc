@@ -103,14 +103,15 @@ namespace
   {
   protected:
     void SetUp() override { kimp::base::set_verbosity(kimp::base::Verbosity::quiet); }
+
+    const SweepPlan plan = toy_plan();
   };
 
   TEST_F(SweepEngine, EveryCaseGivesOneRowSortedByIndexAndFailuresAreRecorded)
   {
-    const SweepPlan plan = toy_plan();
-    const TempDir   temp_dir("sweep_clean");
-    const fs::path  dir     = temp_dir.path() / "sweep";
-    const auto      summary = kimp::app::run_sweep(plan, toy_run, dir, options(2));
+    const TempDir  temp_dir("sweep_clean");
+    const fs::path dir     = temp_dir.path() / "sweep";
+    const auto     summary = kimp::app::run_sweep(plan, toy_run, dir, options(2));
     ASSERT_EQ(plan.cases().size(), 40U);
     EXPECT_EQ(summary.n_run, 40U);
     EXPECT_EQ(summary.n_failed, 4U) << "gap 13 cm x 2 records x 2 COR fail";
@@ -152,9 +153,8 @@ namespace
 
   TEST_F(SweepEngine, Hdf5TableHasOneRowPerCaseWithUnits)
   {
-    const SweepPlan plan = toy_plan();
-    const TempDir   temp_dir("sweep_h5");
-    const fs::path  dir = temp_dir.path() / "sweep";
+    const TempDir  temp_dir("sweep_h5");
+    const fs::path dir = temp_dir.path() / "sweep";
     kimp::app::run_sweep(plan, toy_run, dir, options(1));
     const Hdf5Reader file(dir / "sweep.h5");
     ASSERT_GE(file.id(), 0);
@@ -184,9 +184,8 @@ namespace
 
   TEST_F(SweepEngine, ResumeAfterSigkillGivesTheRowsOfAnUninterruptedRun)
   {
-    const SweepPlan plan = toy_plan();
-    const TempDir   temp_clean("sweep_reference");
-    const fs::path  clean = temp_clean.path() / "sweep";
+    const TempDir  temp_clean("sweep_reference");
+    const fs::path clean = temp_clean.path() / "sweep";
     kimp::app::run_sweep(plan, toy_run, clean, options(2));
 
     const TempDir  temp_killed("sweep_killed");
@@ -261,7 +260,6 @@ namespace
 
   TEST_F(SweepEngine, TornJournalLineIsIgnoredAndItsCaseRerun)
   {
-    const SweepPlan         plan = toy_plan();
     const TempDir           temp_dir("sweep_torn");
     const fs::path          dir  = temp_dir.path() / "sweep";
     const fs::path          file = kimp::app::SweepJournal::file_of(dir, 0);
@@ -304,9 +302,8 @@ namespace
 
   TEST_F(SweepEngine, DuplicateEntriesMergeToOneRowPreferringOk)
   {
-    const SweepPlan plan = toy_plan();
-    const TempDir   temp_dir("sweep_duplicates");
-    const fs::path  dir = temp_dir.path() / "sweep";
+    const TempDir  temp_dir("sweep_duplicates");
+    const fs::path dir = temp_dir.path() / "sweep";
     kimp::app::run_sweep(plan, toy_run, dir, options(1));
     {
       // The same case journaled again by another rank, once failed and once ok.
@@ -332,9 +329,8 @@ namespace
 
   TEST_F(SweepEngine, RetryFailedRerunsOnlyFailedCases)
   {
-    const SweepPlan plan = toy_plan();
-    const TempDir   temp_dir("sweep_retry");
-    const fs::path  dir = temp_dir.path() / "sweep";
+    const TempDir  temp_dir("sweep_retry");
+    const fs::path dir = temp_dir.path() / "sweep";
     kimp::app::run_sweep(plan, toy_run, dir, options(2));
     std::atomic<std::size_t> n_calls{0};
     const auto               healed = [&](const std::string &text, const std::string &name)
@@ -355,9 +351,8 @@ namespace
   /// Two "ranks" as threads of one process, meeting at a barrier before rank 0 merges.
   TEST_F(SweepEngine, OneAndTwoRanksGiveIdenticalRows)
   {
-    const SweepPlan plan = toy_plan();
-    const TempDir   temp_one("sweep_one_rank");
-    const fs::path  one = temp_one.path() / "sweep";
+    const TempDir  temp_one("sweep_one_rank");
+    const fs::path one = temp_one.path() / "sweep";
     kimp::app::run_sweep(plan, toy_run, one, options(1));
 
     const TempDir           temp_two("sweep_two_ranks");
@@ -395,10 +390,9 @@ namespace
 
   TEST_F(SweepEngine, MergeWithoutFinishedCasesWritesEmptyTables)
   {
-    const SweepPlan plan = toy_plan();
-    const TempDir   temp_dir("sweep_empty");
-    const fs::path  dir   = temp_dir.path() / "sweep";
-    const auto      table = kimp::app::collect_sweep_table(plan, dir);
+    const TempDir  temp_dir("sweep_empty");
+    const fs::path dir   = temp_dir.path() / "sweep";
+    const auto     table = kimp::app::collect_sweep_table(plan, dir);
     EXPECT_TRUE(table.rows.empty());
     ASSERT_NO_THROW(kimp::app::write_sweep_results(plan, table, dir));
     EXPECT_EQ(read_lines(dir / "sweep.csv").size(), 1U) << "header only";

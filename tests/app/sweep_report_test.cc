@@ -20,12 +20,7 @@
 namespace
 {
   namespace fs = std::filesystem;
-  using kimp::app::ContactGap;
-  using kimp::app::GapSample;
-  using kimp::app::RequiredGapStatus;
-  using kimp::app::SweepPlan;
-  using kimp::app::SweepTable;
-  using kimp::app::SweepTableRow;
+  using namespace kimp::app;
 
   constexpr double exact     = 1e-15; ///< m, values copied, not computed
   constexpr double round_off = 1e-12; ///< m, a few operations on lengths of order 0.1 m
@@ -219,16 +214,13 @@ namespace
   TEST(DsrssTable, RealSweepUsesTheFreePeaksOfTheFacingFloors)
   {
     kimp::base::set_verbosity(kimp::base::Verbosity::quiet);
-    const std::string scene = "building: {kind: isolated, n_storeys: 3}\n"
-                              "walls: {left: {gap: 8 cm}, right: {gap: 8 cm}}\n"
-                              "neighbours:\n"
-                              "  left: {present: true, n_storeys: 2, separation: 13 cm}\n"
-                              "ground_motion:\n"
-                              "  record: synthetic\n"
-                              "  synthetic: {duration: 4 s, pulse_time: 2 s}\n"
-                              "integration: {method: cdm, dt: auto, output_interval: 0 s, "
-                              "companion: true}\n";
-    const SweepPlan   plan =
+    const std::string scene = kimp::testing::pulse_sweep_scene(
+      3,
+      "8 cm",
+      "neighbours:\n  left: {present: true, n_storeys: 2, separation: 13 cm}\n",
+      "4 s",
+      "auto");
+    const SweepPlan plan =
       SweepPlan::parse("scene: base.yaml\n"
                        "parameters:\n"
                        "  gap_and_separation:\n"

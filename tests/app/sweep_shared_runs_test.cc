@@ -48,13 +48,7 @@ namespace
 TEST(SweepSharedRuns, WallGapsStoreysAndWallsPresentGiveTheSameRows)
 {
   kimp::base::set_verbosity(kimp::base::Verbosity::quiet);
-  const std::string scene = "building: {kind: isolated, n_storeys: 4}\n"
-                            "walls: {left: {gap: 8 cm}, right: {gap: 8 cm}}\n"
-                            "ground_motion:\n"
-                            "  record: synthetic\n"
-                            "  synthetic: {duration: 6 s, pulse_time: 2 s}\n"
-                            "integration: {method: cdm, dt: 2e-4 s, output_interval: 0 s, "
-                            "companion: true}\n";
+  const std::string scene = kimp::testing::pulse_sweep_scene(4, "8 cm", "", "6 s", "2e-4 s");
   const SweepPlan   plan =
     SweepPlan::parse("scene: base.yaml\n"
                      "parameters:\n"
@@ -72,17 +66,15 @@ TEST(SweepSharedRuns, AdjacentBuildingCasesGiveTheSameRows)
 {
   // A sample of the adjacent-building study's topologies: the any-size kernel (up to 17 DOFs).
   kimp::base::set_verbosity(kimp::base::Verbosity::quiet);
-  const std::string scene = "building: {kind: isolated, n_storeys: 4}\n"
-                            "walls: {left: {gap: 15 cm}, right: {gap: 15 cm}}\n"
-                            "neighbours:\n"
-                            "  left: {present: true, n_storeys: 4, separation: 15 cm}\n"
-                            "  right: {present: true, n_storeys: 4, separation: 15 cm}\n"
-                            "ground_motion:\n"
-                            "  record: synthetic\n"
-                            "  synthetic: {duration: 5 s, pulse_time: 2 s}\n"
-                            "integration: {method: cdm, dt: 2e-4 s, output_interval: 0 s, "
-                            "companion: true}\n";
-  const SweepPlan   plan =
+  const std::string scene =
+    kimp::testing::pulse_sweep_scene(4,
+                                     "15 cm",
+                                     "neighbours:\n"
+                                     "  left: {present: true, n_storeys: 4, separation: 15 cm}\n"
+                                     "  right: {present: true, n_storeys: 4, separation: 15 cm}\n",
+                                     "5 s",
+                                     "2e-4 s");
+  const SweepPlan plan =
     SweepPlan::parse("scene: base.yaml\n"
                      "parameters:\n"
                      "  neighbour_side:\n"

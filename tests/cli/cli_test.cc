@@ -45,13 +45,9 @@ namespace cli_scene
 
 namespace
 {
+  using namespace kimp::cli;
+  using namespace kimp::io;
   using kimp::base::Verbosity;
-  using kimp::cli::add_scene_command;
-  using kimp::cli::make_app;
-  using kimp::cli::run_app;
-  using kimp::io::LoadedScene;
-  using kimp::io::OutputDir;
-
   using kimp::testing::TempDir;
 
   /// A `kimp` app with one scene command "demo" that records what it was given.

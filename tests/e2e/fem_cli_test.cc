@@ -27,14 +27,25 @@ namespace
   constexpr double momentum_tolerance = 2e-3;  ///< relative: impulse vs slab momentum change
   constexpr double rank_tolerance     = 1e-10; ///< relative: 1 vs 2 MPI ranks
 
-  /// Coarse scene, seconds of run time (rigid slab unless `rigid` is false), written to
-  /// `dir`/scene.yaml.
-  /// quick_fem_scene(extra, rigid) written to `dir`/scene.yaml.
+  /// quick_fem_scene(extra, rigid) written to `dir`/scene.yaml: a coarse scene, seconds of run
+  /// time.
   void write_quick_scene(const std::filesystem::path &dir,
                          const std::string           &extra = "",
                          bool                         rigid = true)
   {
     write_text(dir / "scene.yaml", quick_fem_scene(extra, rigid));
+  }
+
+  /// The log of `kimp fem` on quick_fem_scene(extra) in `dir`, a run that must fail and write
+  /// neither fem.h5 nor summary.json.
+  std::string refused_scene_log(const TempDir &dir, const std::string &extra)
+  {
+    write_quick_scene(dir.path(), extra);
+    const KimpRun run = run_kimp("fem scene.yaml -o out", dir.path());
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "out/fem.h5"));
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "out/summary.json"));
+    return run.err;
   }
 
   TEST(FemCli, RigidSlabImpactConservesMomentumAndRebounds)
@@ -129,25 +140,17 @@ namespace
 
   TEST(FemCli, OverlappingSceneFailsWithTheKeyAndWritesNoResults)
   {
-    const TempDir dir("fem_cli_overlap");
-    write_quick_scene(dir.path(), "geometry:\n  gap: \"0 mm\"\n");
-    const KimpRun run = run_kimp("fem scene.yaml -o out", dir.path());
-    EXPECT_NE(run.exit_code, 0);
-    EXPECT_NE(run.err.find("scene.yaml:5: geometry.gap = 0 mm"), std::string::npos) << run.err;
-    EXPECT_FALSE(std::filesystem::exists(dir.path() / "out/fem.h5"));
-    EXPECT_FALSE(std::filesystem::exists(dir.path() / "out/summary.json"));
+    const TempDir     dir("fem_cli_overlap");
+    const std::string log = refused_scene_log(dir, "geometry:\n  gap: \"0 mm\"\n");
+    EXPECT_NE(log.find("scene.yaml:5: geometry.gap = 0 mm"), std::string::npos) << log;
   }
 
   TEST(FemCli, TimeStepAboveTheStabilityLimitFailsAndWritesNoResults)
   {
-    const TempDir dir("fem_cli_dt");
-    write_quick_scene(dir.path(), "dynamics: {dt: \"1 ms\"}\n");
-    const KimpRun run = run_kimp("fem scene.yaml -o out", dir.path());
-    EXPECT_NE(run.exit_code, 0);
-    EXPECT_NE(run.err.find("H1.25"), std::string::npos) << run.err;
-    EXPECT_NE(run.err.find("dt"), std::string::npos) << run.err;
-    EXPECT_FALSE(std::filesystem::exists(dir.path() / "out/fem.h5"));
-    EXPECT_FALSE(std::filesystem::exists(dir.path() / "out/summary.json"));
+    const TempDir     dir("fem_cli_dt");
+    const std::string log = refused_scene_log(dir, "dynamics: {dt: \"1 ms\"}\n");
+    EXPECT_NE(log.find("H1.25"), std::string::npos) << log;
+    EXPECT_NE(log.find("dt"), std::string::npos) << log;
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "out/fem_histories.csv"));
     for (const auto &entry : std::filesystem::directory_iterator(dir.path() / "out"))
       EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos)

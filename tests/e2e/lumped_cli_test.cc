@@ -9,6 +9,7 @@
 #include "tests/support/files.h"
 #include "tests/support/hdf5_reader.h"
 #include "tests/support/kimp_run.h"
+#include "tests/support/scene_texts.h"
 #include "tests/support/temp_dir.h"
 
 namespace
@@ -18,23 +19,7 @@ namespace
   using namespace kimp::testing;
 
   /// Isolated 4-storey building, walls at 4 cm, 6 s of the synthetic motion: a few impacts.
-  const char *small_scene = "walls:\n"
-                            "  left:\n"
-                            "    gap: \"4 cm\"\n"
-                            "  right:\n"
-                            "    gap: \"4 cm\"\n"
-                            "ground_motion:\n"
-                            "  record: synthetic\n"
-                            "  duration: \"6 s\"\n"
-                            "integration:\n"
-                            "  dt: \"1e-4 s\"\n"
-                            "  output_interval: \"0.02 s\"\n"
-                            "  companion: true\n"
-                            "cases:\n"
-                            "  - name: mkv\n"
-                            "  - name: hysteretic\n"
-                            "    law: hysteretic\n"
-                            "    k: \"750 kN/mm^1.5\"\n";
+  const std::string small_scene = two_case_walled_scene("0.02 s", "  companion: true\n");
 
   constexpr double energy_balance_tolerance = 0.01; ///< relative error of the energy balance
   /// Penetration bound, m: the whole building (1530 t) arriving at about the peak ground velocity
@@ -49,16 +34,30 @@ namespace
     return run_kimp("lumped " + dir.write(file, scene).string() + " -o " + out.string(),
                     dir.path());
   }
+
+  /// `kimp lumped` of small_scene in a fresh directory, and its lumped.h5 (if it was written).
+  struct SmallSceneRun
+  {
+    explicit SmallSceneRun(const char *name)
+      : dir(name)
+      , run(run_lumped(dir, small_scene, "scene.yaml"))
+      , out(dir.path() / "out")
+      , h5(out / "lumped.h5")
+    {
+    }
+    TempDir    dir;
+    KimpRun    run;
+    fs::path   out;
+    Hdf5Reader h5;
+  };
 } // namespace
 
 TEST(LumpedCli, WritesResultsFileSummaryAndPeaks)
 {
-  TempDir        dir("e2e_lumped_ok");
-  const KimpRun  run = run_lumped(dir, small_scene, "scene.yaml");
-  const fs::path out = dir.path() / "out";
-  ASSERT_EQ(run.exit_code, 0) << run.err;
-
-  Hdf5Reader h5(out / "lumped.h5");
+  const SmallSceneRun small("e2e_lumped_ok");
+  ASSERT_EQ(small.run.exit_code, 0) << small.run.err;
+  const fs::path   &out = small.out;
+  const Hdf5Reader &h5  = small.h5;
   ASSERT_TRUE(h5.ok());
   for (const char *c : {"mkv", "hysteretic"})
   {
@@ -106,11 +105,9 @@ TEST(LumpedCli, WritesResultsFileSummaryAndPeaks)
 
 TEST(LumpedCli, LabelledHistoriesIsolatorForceAndFullRatePulses)
 {
-  TempDir        dir("e2e_lumped_outputs");
-  const KimpRun  run = run_lumped(dir, small_scene, "scene.yaml");
-  const fs::path out = dir.path() / "out";
-  ASSERT_EQ(run.exit_code, 0) << run.err;
-  Hdf5Reader h5(out / "lumped.h5");
+  const SmallSceneRun small("e2e_lumped_outputs");
+  ASSERT_EQ(small.run.exit_code, 0) << small.run.err;
+  const Hdf5Reader &h5 = small.h5;
   ASSERT_TRUE(h5.ok());
   const std::string g = "/lumped/mkv";
   // Columns named, not bare indices.
@@ -166,7 +163,7 @@ TEST(LumpedCli, LabelledHistoriesIsolatorForceAndFullRatePulses)
   ASSERT_FALSE(e_hyst.empty());
   EXPECT_EQ(e_hyst.back(), h5.doubles(g + "/energy/hysteretic").at(0));
   EXPECT_EQ(e_hyst.back(), h5.doubles(g + "/isolator/dissipated_energy").at(0));
-  const nlohmann::json summary = read_json(out / "summary.json");
+  const nlohmann::json summary = read_json(small.out / "summary.json");
   EXPECT_EQ(summary["cases"][0]["isolator"]["peak_force"].get<double>(), peak_f);
 }
 

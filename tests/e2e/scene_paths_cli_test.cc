@@ -11,6 +11,7 @@
 #include "tests/support/csv.h"
 #include "tests/support/files.h"
 #include "tests/support/kimp_run.h"
+#include "tests/support/messages.h"
 #include "tests/support/temp_dir.h"
 
 namespace
@@ -18,11 +19,7 @@ namespace
   namespace fs = std::filesystem;
   using namespace kimp::testing;
 
-  void expect_contains(const std::string &text, std::initializer_list<std::string> parts)
-  {
-    for (const std::string &part : parts)
-      EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in:\n" << text;
-  }
+  using kimp::testing::expect_contains;
 
   void write_file(const fs::path &file, const std::string &text)
   {
@@ -139,25 +136,27 @@ namespace
                "parameters:\n"
                "  walls.left.gap: [4 cm, 8 cm]\n"
                "  ground_motion.record: [synthetic, kobe]\n");
-    const KimpRun bad =
-      run_kimp("sweep ../sweeps/records.yaml --records-dir ../site/records -o bad",
-               temp.path() / "elsewhere");
-    EXPECT_EQ(bad.exit_code, 1) << bad.err;
-    expect_contains(bad.err,
-                    {"records.yaml:4: parameters.ground_motion.record = kobe",
-                     "did you mean 'RSN1106_KOBE_KJM000'?"});
-    EXPECT_FALSE(fs::exists(temp.path() / "elsewhere/bad/sweep.csv"));
+    // `kimp sweep ../sweeps/<name>.yaml` from elsewhere into <name>, refused before any output.
+    const auto refused_sweep =
+      [&](const std::string &name, std::initializer_list<std::string> parts)
+    {
+      const KimpRun run =
+        run_kimp("sweep ../sweeps/" + name + ".yaml --records-dir ../site/records -o " + name,
+                 temp.path() / "elsewhere");
+      EXPECT_EQ(run.exit_code, 1) << run.err;
+      expect_contains(run.err, parts);
+      EXPECT_FALSE(fs::exists(temp.path() / "elsewhere" / name / "sweep.csv"));
+    };
+    refused_sweep("records",
+                  {"records.yaml:4: parameters.ground_motion.record = kobe",
+                   "did you mean 'RSN1106_KOBE_KJM000'?"});
 
     // The base scene's own record, not set by the sweep: the base scene's line.
     write_file(site / "typo.yaml", site_scene("k_table.csv", "synthetik"));
     write_file(temp.path() / "sweeps/typo.yaml",
                "scene: ../site/typo.yaml\nparameters:\n  walls.left.gap: [4 cm, 8 cm]\n");
-    const KimpRun typo = run_kimp("sweep ../sweeps/typo.yaml --records-dir ../site/records -o typo",
-                                  temp.path() / "elsewhere");
-    EXPECT_EQ(typo.exit_code, 1) << typo.err;
-    expect_contains(typo.err,
-                    {"site/typo.yaml:7: ground_motion.record = 'synthetik'",
-                     "did you mean 'synthetic'?"});
-    EXPECT_FALSE(fs::exists(temp.path() / "elsewhere/typo/sweep.csv"));
+    refused_sweep("typo",
+                  {"site/typo.yaml:7: ground_motion.record = 'synthetik'",
+                   "did you mean 'synthetic'?"});
   }
 } // namespace

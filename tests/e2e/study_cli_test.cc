@@ -38,6 +38,21 @@ namespace
     return run.exit_code;
   }
 
+  /// run_study() of `study` in a fresh directory `tag`: the directory, the run and its output
+  /// directory.
+  struct StudyRun
+  {
+    StudyRun(const std::string &tag, const std::string &study)
+      : dir(tag)
+      , run(run_study(study, dir.path()))
+      , out(dir.path() / "out")
+    {
+    }
+    TempDir               dir;
+    KimpRun               run;
+    std::filesystem::path out;
+  };
+
   /// The reduced study with an empty velocity axis and charts.
   const std::string study_with_charts =
     reduced_study(R"(["1.0 m", "2.0 m"])", "  velocities: []\n", true);
@@ -70,11 +85,9 @@ sensitivity_study:
 
 TEST(StudyCli, ReducedStudyGivesSofterWallsForTallerHeightsAndReusesTheFem)
 {
-  const TempDir dir("study_cli");
-  std::ofstream(dir.path() / "study.yaml") << study_with_charts;
-  std::string log;
-  ASSERT_EQ(run_kimp_logged("study study.yaml -o out", dir.path(), log), 0) << log;
-  const std::filesystem::path out = dir.path() / "out";
+  const StudyRun study("study_cli", study_with_charts);
+  ASSERT_EQ(study.run.exit_code, 0) << study.run.output();
+  const std::filesystem::path &out = study.out;
 
   // k table: k(1.0 m) > k(2.0 m) for both laws, per metre and total = per metre x 27.78 m.
   constexpr double total_rounding = 1e-5; // CSV values carry 6 significant digits
@@ -122,8 +135,9 @@ TEST(StudyCli, ReducedStudyGivesSofterWallsForTallerHeightsAndReusesTheFem)
   EXPECT_FALSE(summary.at("k_table").at(0).at("fem_from_cache").get<bool>());
 
   // Re-run: the FEM cases come from the cache, files untouched, same k.
-  const auto cached_time = std::filesystem::last_write_time(out / "fem" / "H1.00.h5");
-  ASSERT_EQ(run_kimp_logged("study study.yaml -o out", dir.path(), log), 0) << log;
+  const auto  cached_time = std::filesystem::last_write_time(out / "fem" / "H1.00.h5");
+  std::string log;
+  ASSERT_EQ(run_kimp_logged("study study.yaml -o out", study.dir.path(), log), 0) << log;
   EXPECT_NE(log.find("H1.00: FEM result reused"), std::string::npos) << log;
   EXPECT_NE(log.find("H2.00: FEM result reused"), std::string::npos) << log;
   EXPECT_EQ(std::filesystem::last_write_time(out / "fem" / "H1.00.h5"), cached_time);
@@ -137,11 +151,10 @@ TEST(StudyCli, ReducedStudyGivesSofterWallsForTallerHeightsAndReusesTheFem)
 
 TEST(StudyCli, AutoFidelityReportsLevelAndErrorAndTheExtraStudiesAreConsistent)
 {
-  const TempDir dir("study_cli_auto");
-  std::ofstream(dir.path() / "study.yaml") << auto_study;
-  std::string log;
-  ASSERT_EQ(run_kimp_logged("study study.yaml -o out", dir.path(), log), 0) << log;
-  const std::filesystem::path out = dir.path() / "out";
+  const StudyRun    study("study_cli_auto", auto_study);
+  const std::string log = study.run.output();
+  ASSERT_EQ(study.run.exit_code, 0) << log;
+  const std::filesystem::path &out = study.out;
 
   // k table: the tolerance (0.001 %) is not met on two levels, so the finest level is used and
   // flagged not converged; its error is |k(5 cm) - k(10 cm)|, from the per-level table.

@@ -1,14 +1,13 @@
 // Physics tests of kimp::fem: closed forms (Timoshenko cantilever, colliding bars rho c A v / 2
-// for 2 L / c), contact consistency, energy balance, penalty convergence, rigid vs elastic slab,
-// MPI agreement and refused input. The mesh study is in convergence_test.cc (label slow).
+// for 2 L / c), contact consistency, energy balance, penalty convergence, rigid vs elastic slab
+// and MPI agreement. Inelastic impacts and refused input are in inelastic_impact_test.cc, the
+// mesh study in convergence_test.cc (label slow).
 #include <gtest/gtest.h>
 #include <iostream>
 #include <random>
 
-#include "fem/inelastic_laws.h"
 #include "fem/penalty_contact.h"
 #include "tests/fem/impact_test_support.h"
-#include "tests/fem/inelastic_scenes.h"
 
 namespace
 {
@@ -507,167 +506,5 @@ namespace
     p.end_time                 = 0.004;
     p.integrator               = ImpactParameters::Integrator::implicit_newmark;
     expect_same_force_history(run_on_world_and_self(p), tolerance, "MPI implicit");
-  }
-
-  /** A run stops on separation only once the slab comes in at no more than 5 % of its impact
-   *  velocity: at 2 m/s the plain wall breaks and the slab still comes in at the end time. */
-  void expect_stop_rule(const ImpactSummary &s)
-  {
-    const double fraction = ImpactParameters().separation_velocity_fraction;
-    EXPECT_EQ(fraction, 0.05);
-    if (s.separated)
-      EXPECT_GE(s.apparent_cor, -fraction) << "stopped while the slab still came in";
-    else
-      EXPECT_LT(s.apparent_cor, -fraction) << "the end time hides a separation";
-  }
-
-  /**
-   * Runs @p p and expects the stop rule, the energy balance (kinetic + internal work - contact
-   * work = E_0) and the bookkeeping (internal work = stored + plastic + damage energy of the
-   * points) to close within 1 % of E_0; rank 0 prints @p label with the energies. The run.
-   */
-  ImpactResult expect_inelastic_balance(const ImpactParameters &p, const std::string &label)
-  {
-    const auto  r = run_impact(p, MPI_COMM_WORLD, nullptr);
-    const auto &s = r.summary;
-    if (rank() == 0)
-      std::cout << label << ": E_0 = " << r.history.kinetic.front() << " J/m, energy error "
-                << s.energy_error << ", bookkeeping gap " << s.dissipation_gap << ", plastic "
-                << s.plastic_dissipation << " J/m, damage " << s.damage_dissipation << " J/m, COR "
-                << s.apparent_cor << ", peak " << s.peak_force << " N/m\n";
-    expect_stop_rule(s);
-    EXPECT_LT(s.energy_error, 0.01);
-    EXPECT_LT(s.dissipation_gap, 0.01);
-    return r;
-  }
-
-  TEST(InelasticImpact, EnergyBalanceClosesWithPlasticAndDamageDissipation)
-  {
-    // kinetic + internal work (integrated stress power) - contact work = E_0 within 1 %, and
-    // the internal work equals stored + plastic + damage energy of the points within 1 % of E_0.
-    const auto r =
-      expect_inelastic_balance(inelastic_scene("scene_inelastic.msh"), "inelastic impact");
-    EXPECT_GT(r.summary.plastic_dissipation, 0);
-    ASSERT_FALSE(r.history.internal_work.empty());
-  }
-
-  TEST(InelasticImpact, EnergyBalanceClosesWithReinforcedConcrete)
-  {
-    // As above with the bars: their elastic energy is stored, their plastic work is plastic
-    // dissipation; the balance and the bookkeeping close within 1 % of E_0.
-    const auto r =
-      expect_inelastic_balance(reinforced_scene("scene_reinforced.msh"), "reinforced impact");
-    const auto &s = r.summary;
-    EXPECT_GT(s.damage_dissipation, 0);
-    // The split by body adds up to the totals (the same point energies, summed per body); the
-    // soil has no damage; the wall cracks and its bars yield.
-    const auto &pb = s.plastic_dissipation_by_body, &db = s.damage_dissipation_by_body;
-    if (rank() == 0)
-      std::cout << "by body: plastic slab " << pb[0] << ", wall " << pb[1] << ", soil " << pb[2]
-                << " J/m; damage slab " << db[0] << ", wall " << db[1] << ", soil " << db[2]
-                << " J/m\n";
-    EXPECT_NEAR(pb[0] + pb[1] + pb[2], s.plastic_dissipation, 1e-9 * s.plastic_dissipation);
-    EXPECT_NEAR(db[0] + db[1] + db[2], s.damage_dissipation, 1e-9 * s.damage_dissipation);
-    EXPECT_EQ(db[2], 0.0);
-    EXPECT_GT(db[1], 0.0);
-    EXPECT_GT(pb[1], 0.0);
-    EXPECT_GT(pb[2], 0.0);
-  }
-
-  TEST(InelasticImpact, EnergyBalanceClosesWithCompressionPlasticity)
-  {
-    // The plain scene with b_c = 0.7 (docs/physics.md §6 "Compression plasticity"): the
-    // concrete's plastic work joins the plastic dissipation; balance and bookkeeping < 1 %.
-    auto p                              = inelastic_scene("scene_compression_plasticity.msh");
-    auto cp                             = ConcreteParameters::from_f_cm(38e6);
-    cp.plastic_fraction                 = 0.7;
-    const auto law                      = std::make_shared<const ConcreteDamageLaw>(cp);
-    p.material_laws[ids::wall_material] = law;
-    p.material_laws[ids::slab_material] = law;
-    expect_inelastic_balance(p, "compression plasticity impact");
-  }
-
-  TEST(Mpi, DistributedInelasticRunMatchesSerialRun)
-  {
-    // Mohr-Coulomb soil and damaged (and, second, reinforced) concrete: 1 or 2 ranks vs
-    // MPI_COMM_SELF (relative 1e-10).
-    for (const bool bars : {false, true})
-    {
-      constexpr double tolerance = 1e-10;
-      auto             p         = bars ? reinforced_scene("scene_mpi_reinforced.msh") :
-                                          inelastic_scene("scene_mpi_inelastic.msh");
-      p.end_time                 = 0.004;
-      const auto runs            = run_on_world_and_self(p);
-      ASSERT_NO_FATAL_FAILURE(
-        expect_same_force_history(runs,
-                                  tolerance,
-                                  bars ? "MPI inelastic reinforced" : "MPI inelastic"));
-      EXPECT_NEAR(runs.world.summary.plastic_dissipation,
-                  runs.self.summary.plastic_dissipation,
-                  1e-8 * std::max(runs.self.summary.plastic_dissipation, 1e-30));
-    }
-  }
-
-  TEST(BadInput, TimeStepAboveTheStabilityLimitIsRefused)
-  {
-    auto       p = bar_parameters(write_two_bars(1.0, 0.1, 1e-4, 8, "bars_dt.msh"));
-    const auto r = run_impact(p, MPI_COMM_WORLD, nullptr);
-    p.dt         = 1.01 * r.summary.dt_stable;
-    try
-    {
-      run_impact(p, MPI_COMM_WORLD, nullptr);
-      FAIL() << "dt = " << p.dt << " s above the limit " << r.summary.dt_stable << " s accepted";
-    }
-    catch (const std::exception &e)
-    {
-      EXPECT_NE(std::string(e.what()).find("above the explicit stability limit"), std::string::npos)
-        << e.what();
-    }
-    p.dt = 0.99 * r.summary.dt_stable;
-    EXPECT_NO_THROW(run_impact(p, MPI_COMM_WORLD, nullptr));
-  }
-
-  TEST(BadInput, OverlappingSlabIsRefused)
-  {
-    const auto p = bar_parameters(write_two_bars(1.0, 0.1, -1e-3, 8, "bars_overlap.msh"));
-    try
-    {
-      run_impact(p, MPI_COMM_WORLD, nullptr);
-      FAIL() << "a slab overlapping the wall by 1 mm was accepted";
-    }
-    catch (const std::exception &e)
-    {
-      EXPECT_NE(std::string(e.what()).find("slab overlaps the wall"), std::string::npos)
-        << e.what();
-    }
-  }
-
-  TEST(BadInput, MissingMaterialAndBadParametersAreNamed)
-  {
-    auto       p              = bar_parameters(write_two_bars(1.0, 0.1, 1e-4, 4, "bars_bad.msh"));
-    const auto expect_message = [](const ImpactParameters &q, const std::string &text)
-    {
-      try
-      {
-        run_impact(q, MPI_COMM_WORLD, nullptr);
-        ADD_FAILURE() << "accepted, expected: " << text;
-      }
-      catch (const std::exception &e)
-      {
-        EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
-      }
-    };
-    auto q = p;
-    q.materials.erase(kimp::geometry::wall_material);
-    expect_message(q, "material id 2");
-    q                = p;
-    q.penalty_factor = -1;
-    expect_message(q, "penalty_factor = -1");
-    q                                                        = p;
-    q.materials[kimp::geometry::slab_material].poisson_ratio = 0.5;
-    expect_message(q, "poisson_ratio = 0.5");
-    q                   = p;
-    q.progress_interval = 0;
-    expect_message(q, "progress_interval = 0");
   }
 } // namespace

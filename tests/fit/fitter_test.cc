@@ -20,10 +20,7 @@
 
 namespace
 {
-  using kimp::fit::FitError;
-  using kimp::fit::FitOptions;
-  using kimp::fit::FitResult;
-  using kimp::fit::ForceHistory;
+  using namespace kimp::fit;
   using kimp::lumped::ForceLawSpec;
 
   constexpr double        slab_mass       = 3840.0; // kg/m, docs/physics.md §4 default slab

@@ -117,6 +117,14 @@ namespace
     return n == 0 ? 0 : std::uniform_int_distribution<std::size_t>(0, n - 1)(rng);
   }
 
+  /// `lines` joined, cut at a random length (0 to all of it) and split into lines again.
+  std::vector<std::string> cut_at_random(const std::vector<std::string> &lines, std::mt19937 &rng)
+  {
+    std::string all = join_lines(lines);
+    all.resize(index(rng, all.size() + 1));
+    return split_lines(all);
+  }
+
   /// One to three mutations of a YAML scene: delete, swap values, replace a value, insert
   /// garbage, duplicate, re-indent, nest deeply, truncate, flip bytes.
   std::string mutate_scene(const std::string &text, std::mt19937 &rng)
@@ -167,12 +175,8 @@ namespace
           }
           break;
         case 7:
-        {
-          std::string all = join_lines(lines);
-          all.resize(index(rng, all.size() + 1));
-          lines = split_lines(all);
+          lines = cut_at_random(lines, rng);
           break;
-        }
         default:
           if (!line.empty())
             line[index(rng, line.size())] = static_cast<char>(index(rng, 256));
@@ -229,12 +233,8 @@ namespace
           lines.erase(lines.begin() + static_cast<std::ptrdiff_t>(index(rng, lines.size())));
           break;
         case 4:
-        {
-          std::string all = join_lines(lines);
-          all.resize(index(rng, all.size() + 1));
-          lines = split_lines(all);
+          lines = cut_at_random(lines, rng);
           break;
-        }
         case 5:
           lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(index(rng, lines.size())),
                        pick(rng, values));

@@ -82,4 +82,41 @@ async function setField(page, fieldPath, value) {
   );
 }
 
-module.exports = { launch, watchedPage, waitForFile, check, startServer, setField };
+/**
+ * `kimp gui` with its runs in ARTEFACTS/runs (emptied first) and a page of it in Chromium, ready
+ * (downloads to ARTEFACTS/downloads, emptied first, if given): runs `test({ page, log, url,
+ * runsDir, downloadDir })`, then checks that the page logged no console error. The browser and the server are
+ * stopped whatever happens.
+ */
+async function withGuiPage(kimpExe, artefacts, { runs, downloads }, test) {
+  const runsDir = path.join(artefacts, runs);
+  fs.rmSync(runsDir, { recursive: true, force: true });
+  fs.mkdirSync(artefacts, { recursive: true });
+  const { child, url } = await startServer(kimpExe, runsDir);
+  const browser = await launch();
+  try {
+    let downloadDir;
+    if (downloads) {
+      downloadDir = path.join(artefacts, downloads);
+      fs.rmSync(downloadDir, { recursive: true, force: true });
+    }
+    const { page, log } = await watchedPage(browser, downloadDir);
+    await page.goto(url, { waitUntil: 'load' });
+    await page.waitForSelector('body[data-ready="1"]', { timeout: 15000 });
+    await test({ page, log, url, runsDir, downloadDir });
+    check(log.errors.length === 0, `no console error (${log.errors.join(' | ') || 'none'})`);
+  } finally {
+    await browser.close();
+    child.kill('SIGTERM');
+  }
+}
+
+/** Runs the async `main`; an error it throws is printed and ends the process with exit 1. */
+function runMain(main) {
+  main().catch((e) => {
+    console.error(e);
+    process.exit(1);
+  });
+}
+
+module.exports = { launch, watchedPage, waitForFile, check, startServer, setField, withGuiPage, runMain };

@@ -7,21 +7,13 @@
 'use strict';
 const fs = require('fs');
 const path = require('path');
-const { launch, watchedPage, check, startServer, setField } = require('./browser.js');
+const { check, setField, withGuiPage, runMain } = require('./browser.js');
 
 const G = 9.80665;
 
 async function main() {
   const [kimpExe, artefacts] = process.argv.slice(2);
-  const runsDir = path.join(artefacts, 'gui_editor_runs');
-  fs.rmSync(runsDir, { recursive: true, force: true });
-  fs.mkdirSync(artefacts, { recursive: true });
-  const { child, url } = await startServer(kimpExe, runsDir);
-  const browser = await launch();
-  try {
-    const { page, log } = await watchedPage(browser);
-    await page.goto(url, { waitUntil: 'load' });
-    await page.waitForSelector('body[data-ready="1"]', { timeout: 15000 });
+  await withGuiPage(kimpExe, artefacts, { runs: 'gui_editor_runs' }, async ({ page, runsDir }) => {
 
     // Import: js-yaml reads the folded block scalar; the misspelt key is reported at walls.left.
     const scene = path.join(artefacts, 'imported_scene.yaml');
@@ -161,14 +153,7 @@ async function main() {
       `two runs on one chart: ${series.labels.join(' | ')}`,
     );
     await page.screenshot({ path: path.join(artefacts, 'gui_overlay.png') });
-    check(log.errors.length === 0, `no console error (${log.errors.join(' | ') || 'none'})`);
-  } finally {
-    await browser.close();
-    child.kill('SIGTERM');
-  }
+  });
 }
 
-main().catch((e) => {
-  console.error(e);
-  process.exit(1);
-});
+runMain(main);

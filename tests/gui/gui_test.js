@@ -5,23 +5,14 @@
 'use strict';
 const fs = require('fs');
 const path = require('path');
-const { launch, watchedPage, waitForFile, check, startServer, setField } = require('./browser.js');
+const { waitForFile, check, setField, withGuiPage, runMain } = require('./browser.js');
 
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
 async function main() {
   const [kimpExe, artefacts] = process.argv.slice(2);
-  const runsDir = path.join(artefacts, 'gui_runs');
-  fs.rmSync(runsDir, { recursive: true, force: true });
-  fs.mkdirSync(artefacts, { recursive: true });
-  const { child, url } = await startServer(kimpExe, runsDir);
-  const browser = await launch();
-  try {
-    const downloads = path.join(artefacts, 'downloads_gui');
-    fs.rmSync(downloads, { recursive: true, force: true });
-    const { page, log } = await watchedPage(browser, downloads);
-    await page.goto(url, { waitUntil: 'load' });
-    await page.waitForSelector('body[data-ready="1"]', { timeout: 15000 });
+  const where = { runs: 'gui_runs', downloads: 'downloads_gui' };
+  await withGuiPage(kimpExe, artefacts, where, async ({ page, runsDir, downloadDir: downloads }) => {
     const nFields = await page.$$eval('#scene-form .field', (f) => f.length);
     check(nFields > 40, `editor form generated from the schema (${nFields} fields)`);
 
@@ -166,14 +157,7 @@ async function main() {
       `sweep chart grouped by the second parameter (${labels.join(' | ')})`,
     );
     await page.screenshot({ path: path.join(artefacts, 'gui_sweep.png'), fullPage: true });
-    check(log.errors.length === 0, `no console error (${log.errors.join(' | ') || 'none'})`);
-  } finally {
-    await browser.close();
-    child.kill('SIGTERM');
-  }
+  });
 }
 
-main().catch((e) => {
-  console.error(e);
-  process.exit(1);
-});
+runMain(main);

@@ -14,6 +14,7 @@
 #include "io/at2_reader.h"
 #include "io/records.h"
 #include "io/units.h"
+#include "tests/support/messages.h"
 #include "tests/support/temp_dir.h"
 
 namespace
@@ -84,12 +85,7 @@ namespace
     return file_error([&] { kimp::io::read_at2(dir.write(name, content)); });
   }
 
-  void ExpectContains(const std::string &message, std::initializer_list<std::string> parts)
-  {
-    for (const std::string &part : parts)
-      EXPECT_NE(message.find(part), std::string::npos)
-        << "message: " << message << "\nmissing: " << part;
-  }
+  using kimp::testing::expect_contains;
 
   const std::string header3 = "PEER NGA STRONG MOTION DATABASE RECORD\n"
                               "Northridge-01, 1/17/1994, Sylmar #74 / 142, 5 POLE @ 30 HZ\n"
@@ -216,7 +212,7 @@ TEST(At2Format, ClassicMacLineEndings)
   const auto motion = kimp::io::read_at2(file);
   ExpectValuesInG(motion, {-0.001, 0.002, 0.003});
   const auto msg = at2_error(dir, "cr_bad.AT2", header3 + "NPTS= 2, DT= .01\r .1\r x\r");
-  ExpectContains(msg, {"cr_bad.AT2:6:", "non-numeric token \"x\""});
+  expect_contains(msg, {"cr_bad.AT2:6:", "non-numeric token \"x\""});
 }
 
 TEST(At2Format, NumbersFirstNptsLine)
@@ -253,7 +249,7 @@ TEST(At2Errors, EmptyFile)
   for (const std::string &content : {std::string(), std::string("  \n\n \r\n")})
   {
     const auto msg = at2_error(dir, "empty.AT2", content);
-    ExpectContains(msg, {"empty.AT2:1:", "empty file", "expected 3 header lines"});
+    expect_contains(msg, {"empty.AT2:1:", "empty file", "expected 3 header lines"});
   }
 }
 
@@ -263,14 +259,14 @@ TEST(At2Errors, BinaryJunk)
   const std::string junk = header3 + "NPTS= 2, DT= .01 SEC\n .1E-02\n" +
                            std::string("\x7f\x45\x4c\x46\x02\x01\x00\x00\xff\xfe", 10);
   const auto msg = at2_error(dir, "junk.AT2", junk);
-  ExpectContains(msg, {"junk.AT2:6:", "binary data", "0x7f", "column 1", "expected a text file"});
+  expect_contains(msg, {"junk.AT2:6:", "binary data", "0x7f", "column 1", "expected a text file"});
 }
 
 TEST(At2Errors, TruncatedBeforeNptsLine)
 {
   const TempDir dir;
   const auto    msg = at2_error(dir, "cut.AT2", "PEER NGA STRONG MOTION DATABASE RECORD\nKobe");
-  ExpectContains(msg, {"cut.AT2:2:", "truncated", "before any NPTS/DT line", "NPTS="});
+  expect_contains(msg, {"cut.AT2:2:", "truncated", "before any NPTS/DT line", "NPTS="});
 }
 
 TEST(At2Errors, TruncatedInsideData)
@@ -280,12 +276,12 @@ TEST(At2Errors, TruncatedInsideData)
   const auto msg = at2_error(dir,
                              "cut_data.AT2",
                              header3 + "NPTS= 6, DT= .01 SEC\n .1E-02 .2E-02 .3E-02\n .4E-02 .51");
-  ExpectContains(msg,
-                 {"cut_data.AT2:6:",
-                  "fewer values than NPTS",
-                  "5 of NPTS = 6",
-                  "expected 1 more",
-                  "last line has no newline"});
+  expect_contains(msg,
+                  {"cut_data.AT2:6:",
+                   "fewer values than NPTS",
+                   "5 of NPTS = 6",
+                   "expected 1 more",
+                   "last line has no newline"});
 }
 
 TEST(At2Errors, FewerValuesThanNpts)
@@ -296,7 +292,7 @@ TEST(At2Errors, FewerValuesThanNpts)
                              header3 + "NPTS= 7, DT= .01 SEC\n"
                                           " .1E-02 .2E-02 .3E-02 .4E-02 .5E-02\n"
                                           " .6E-02\n\n");
-  ExpectContains(msg, {"fewer.AT2:7:", "fewer values than NPTS", "6 of NPTS = 7"});
+  expect_contains(msg, {"fewer.AT2:7:", "fewer values than NPTS", "6 of NPTS = 7"});
   EXPECT_EQ(msg.find("no newline"), std::string::npos) << msg;
 }
 
@@ -308,7 +304,7 @@ TEST(At2Errors, MoreValuesThanNpts)
                              header3 + "NPTS= 5, DT= .01 SEC\n"
                                           " .1E-02 .2E-02 .3E-02 .4E-02 .5E-02\n"
                                           " .6E-02\n");
-  ExpectContains(msg, {"more.AT2:6:", "more values than NPTS = 5", "value 6"});
+  expect_contains(msg, {"more.AT2:6:", "more values than NPTS = 5", "value 6"});
 }
 
 TEST(At2Errors, NonNumericTokenIsQuoted)
@@ -318,11 +314,11 @@ TEST(At2Errors, NonNumericTokenIsQuoted)
   {
     const auto msg =
       at2_error(dir, "text.AT2", header3 + "NPTS= 3, DT= .01 SEC\n .1E-02 " + bad + " .3E-02\n");
-    ExpectContains(msg,
-                   {"text.AT2:5:",
-                    std::string("non-numeric token \"") + bad + "\"",
-                    "column 9",
-                    "expected numbers in Fortran E format"});
+    expect_contains(msg,
+                    {"text.AT2:5:",
+                     std::string("non-numeric token \"") + bad + "\"",
+                     "column 9",
+                     "expected numbers in Fortran E format"});
   }
 }
 
@@ -333,7 +329,7 @@ TEST(At2Errors, NoNptsLine)
   for (int i = 0; i < 10; ++i)
     content += " .1E-02 .2E-02 .3E-02 .4E-02 .5E-02\n";
   const auto msg = at2_error(dir, "headerless.AT2", content);
-  ExpectContains(msg, {"headerless.AT2:10:", "no NPTS/DT line in lines 1-10", "NPTS="});
+  expect_contains(msg, {"headerless.AT2:10:", "no NPTS/DT line in lines 1-10", "NPTS="});
 }
 
 TEST(At2Errors, NptsAndDtMustBePositive)
@@ -353,7 +349,7 @@ TEST(At2Errors, NptsAndDtMustBePositive)
                         Case{"0  0.01  NPTS, DT", "NPTS = \"0\""}})
   {
     const auto msg = at2_error(dir, "bad_header.AT2", header3 + c.line + "\n .1 .2 .3\n");
-    ExpectContains(msg, {"bad_header.AT2:4:", c.expected, "expected a positive"});
+    expect_contains(msg, {"bad_header.AT2:4:", c.expected, "expected a positive"});
   }
 }
 
@@ -361,9 +357,9 @@ TEST(At2Errors, MissingFileAndDirectory)
 {
   const TempDir dir;
   const auto    msg = file_error([&] { kimp::io::read_at2("/nonexistent/x.AT2"); });
-  ExpectContains(msg, {"/nonexistent/x.AT2: cannot open"});
+  expect_contains(msg, {"/nonexistent/x.AT2: cannot open"});
   const auto msg_dir = file_error([&] { kimp::io::read_at2(fs::temp_directory_path()); });
-  ExpectContains(msg_dir, {"is a directory"});
+  expect_contains(msg_dir, {"is a directory"});
 }
 
 TEST(At2Errors, ErrorCarriesFileAndLine)
@@ -415,7 +411,7 @@ TEST(TwoColumn, RejectsNonUniformNonZeroStartAndBadRows)
   {
     const auto msg =
       file_error([&] { kimp::io::read_two_column(dir.write("bad.txt", c.content), 1.0); });
-    ExpectContains(msg, {c.expected});
+    expect_contains(msg, {c.expected});
   }
   EXPECT_THROW(kimp::io::read_two_column(dir.write("ok.txt", "0 1\n1 2\n"), 0.0),
                std::invalid_argument);
@@ -432,9 +428,9 @@ TEST(GroundMotionDispatch, ChoosesTheFormatByContent)
   EXPECT_NEAR(motion.dt, 0.02, 1e-15);
   EXPECT_DOUBLE_EQ(motion.acceleration.at(1), -2.5);
 
-  ExpectContains(file_error([&] { kimp::io::read_ground_motion(two); }),
-                 {"b.AT2:2:", "does not state its unit"});
-  ExpectContains(
+  expect_contains(file_error([&] { kimp::io::read_ground_motion(two); }),
+                  {"b.AT2:2:", "does not state its unit"});
+  expect_contains(
     file_error([&] { kimp::io::read_ground_motion(dir.write("c.txt", "hello world\n1 2 3\n")); }),
     {"c.txt:1:", "neither a PEER AT2 file", "nor two-column text"});
 }

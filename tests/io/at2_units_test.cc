@@ -8,6 +8,7 @@
 
 #include "io/at2_reader.h"
 #include "io/units.h"
+#include "tests/support/messages.h"
 #include "tests/support/temp_dir.h"
 
 namespace
@@ -36,11 +37,7 @@ namespace
     return "";
   }
 
-  void expect_contains(const std::string &text, std::initializer_list<std::string> parts)
-  {
-    for (const std::string &part : parts)
-      EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
-  }
+  using kimp::testing::expect_contains;
 
   TEST(At2Units, HeaderUnitSetsTheConversion)
   {

@@ -15,14 +15,14 @@
 #include "io/output_dir.h"
 #include "io/results_file.h"
 #include "io/summary.h"
+#include "tests/support/files.h"
 #include "tests/support/temp_dir.h"
 
 namespace
 {
   namespace fs = std::filesystem;
-  using kimp::io::OutputDir;
-  using kimp::io::OutputError;
-  using kimp::io::ResultsFile;
+  using namespace kimp::io;
+  using kimp::testing::files_below;
   using kimp::testing::TempDir;
 
   /// A command's run into `dir`: a results file, then a CSV that cannot be written (its
@@ -40,14 +40,6 @@ namespace
     kimp::io::write_csv_atomic(dir / "blocked" / "peaks.csv", {"a"}, {{"1"}});
   }
 
-  std::vector<std::string> files_below(const fs::path &dir)
-  {
-    std::vector<std::string> files;
-    for (const auto &entry : fs::recursive_directory_iterator(dir))
-      if (entry.is_regular_file())
-        files.push_back(fs::relative(entry.path(), dir).string());
-    return files;
-  }
 
   TEST(OutputDir, AFailedRunRemovesTheFilesItHadWritten)
   {
@@ -135,6 +127,7 @@ namespace
     int status = 0;
     ::waitpid(child, &status, 0);
     EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << "status " << status;
+    ASSERT_TRUE(fs::is_directory(out));
     EXPECT_TRUE(files_below(out).empty()) << "left: " << files_below(out).front();
   }
 } // namespace

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <gtest/gtest.h>
 #include <optional>
+#include <ostream>
 #include <string>
 
 #include "io/at2_reader.h"
@@ -46,37 +47,53 @@ namespace
     const kimp::testing::TempDir temp_dir_{"records_test"};
     fs::path                     root_;
   };
+
+  /// One choice of resolve_records_directory() from both trees' repo directories: the flag and
+  /// KIMP_RECORDS_DIR given (directories below the tree root; no flag if null, KIMP_RECORDS_DIR
+  /// set but empty, which counts as unset, if ""), and the directory it must pick.
+  struct Priority
+  {
+    const char *name;
+    const char *flag;
+    const char *env;
+    const char *expected;
+  };
+
+  /// The case's name in the parameter listing of a failed test.
+  void PrintTo(const Priority &p, std::ostream *out)
+  {
+    *out << p.name;
+  }
+
+  class RecordsPriority : public RecordsTree, public ::testing::WithParamInterface<Priority>
+  {
+  };
 } // namespace
 
-TEST_F(RecordsTree, ExplicitFlagWinsOverEverything)
+TEST_P(RecordsPriority, TheFirstSourceGivenWins)
 {
-  const auto dir = kimp::io::resolve_records_directory(root_ / "explicit",
-                                                       (root_ / "from_env").string(),
+  const Priority &p    = GetParam();
+  const auto      flag = p.flag ? std::optional<fs::path>(root_ / p.flag) : std::nullopt;
+  const auto      env  = *p.env ? (root_ / p.env).string() : std::string();
+  const auto      dir  = kimp::io::resolve_records_directory(flag,
+                                                       env,
                                                        root_ / "cwd_tree/repo",
                                                        root_ / "source_tree/repo");
   ASSERT_TRUE(dir.has_value());
-  EXPECT_EQ(*dir, (root_ / "explicit").lexically_normal());
+  EXPECT_EQ(*dir, (root_ / p.expected).lexically_normal());
 }
 
-TEST_F(RecordsTree, EnvironmentWinsOverDefaults)
-{
-  const auto dir = kimp::io::resolve_records_directory(std::nullopt,
-                                                       (root_ / "from_env").string(),
-                                                       root_ / "cwd_tree/repo",
-                                                       root_ / "source_tree/repo");
-  ASSERT_TRUE(dir.has_value());
-  EXPECT_EQ(*dir, (root_ / "from_env").lexically_normal());
-}
-
-TEST_F(RecordsTree, CurrentDirectoryWinsOverSourceDirectory)
-{
-  const auto dir = kimp::io::resolve_records_directory(std::nullopt,
-                                                       std::string(), // set but empty = unset
-                                                       root_ / "cwd_tree/repo",
-                                                       root_ / "source_tree/repo");
-  ASSERT_TRUE(dir.has_value());
-  EXPECT_EQ(*dir, (root_ / "cwd_tree/shared/data/records").lexically_normal());
-}
+INSTANTIATE_TEST_SUITE_P(
+  RecordsTree,
+  RecordsPriority,
+  ::testing::Values(Priority{"ExplicitFlagWinsOverEverything", "explicit", "from_env", "explicit"},
+                    Priority{"EnvironmentWinsOverDefaults", nullptr, "from_env", "from_env"},
+                    Priority{"CurrentDirectoryWinsOverSourceDirectory",
+                             nullptr,
+                             "",
+                             "cwd_tree/shared/data/records"}),
+  [](const ::testing::TestParamInfo<Priority> &instance)
+  { return std::string(instance.param.name); });
 
 TEST_F(RecordsTree, SourceDirectoryIsTheLastResortAndNoneGivesNothing)
 {

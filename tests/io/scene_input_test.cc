@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/scene_io.h"
+#include "tests/support/messages.h"
 #include "tests/support/scene_errors.h"
 #include "tests/support/temp_dir.h"
 
@@ -28,11 +29,7 @@ namespace
     io.quantity_list("heights", s.heights, "m", "heights", kimp::io::Range::positive());
   }
 
-  void expect_contains(const std::string &text, std::initializer_list<std::string> parts)
-  {
-    for (const std::string &part : parts)
-      EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
-  }
+  using kimp::testing::expect_contains;
 
   std::string file_error(const std::filesystem::path &file)
   {

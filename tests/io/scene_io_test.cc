@@ -180,11 +180,7 @@ namespace test_scene
 
 namespace
 {
-  using kimp::io::default_scene_text;
-  using kimp::io::load_scene;
-  using kimp::io::load_scene_text;
-  using kimp::io::read_scene_text;
-  using kimp::io::SceneError;
+  using namespace kimp::io;
   using test_scene::Law;
   using test_scene::Scene;
 

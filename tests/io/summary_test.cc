@@ -17,15 +17,8 @@
 
 namespace
 {
-  using kimp::io::OutputDir;
-  using kimp::io::OutputError;
-  using kimp::io::write_csv_atomic;
-  using kimp::io::write_json_atomic;
-  using kimp::io::write_text_atomic;
-
-  using kimp::testing::read_json;
-  using kimp::testing::read_text;
-  using kimp::testing::TempDir;
+  using namespace kimp::io;
+  using namespace kimp::testing;
 
   std::size_t n_entries(const std::filesystem::path &dir)
   {

@@ -9,12 +9,7 @@
 
 namespace
 {
-  using kimp::io::Dimension;
-  using kimp::io::format_quantity;
-  using kimp::io::parse_quantity;
-  using kimp::io::parse_quantity_as;
-  using kimp::io::parse_unit;
-  using kimp::io::UnitError;
+  using namespace kimp::io;
 
   constexpr double relative_tolerance = 1e-14;
 

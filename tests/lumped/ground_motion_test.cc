@@ -6,10 +6,13 @@
 #include <cstring>
 #include <gtest/gtest.h>
 #include <random>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lumped/excitation/ground_motion.h"
+#include "tests/support/messages.h"
 
 namespace
 {
@@ -66,16 +69,7 @@ namespace
   template <class Function>
   std::string invalid_argument_message(Function &&function)
   {
-    try
-    {
-      function();
-    }
-    catch (const std::invalid_argument &error)
-    {
-      return error.what();
-    }
-    ADD_FAILURE() << "no std::invalid_argument thrown";
-    return {};
+    return kimp::testing::thrown_message<std::invalid_argument>(std::forward<Function>(function));
   }
 
   /// Steady-state amplitude of y (least-squares fit of a·sin + b·cos at frequency f) over the

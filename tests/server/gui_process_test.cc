@@ -236,6 +236,21 @@ namespace
      "scene: scene.yaml\ncombine: product\nparameters:\n"
      "  walls.left.gap: {from: \"1 cm\", to: \"30 cm\", step: \"0.001 cm\"}\n"}};
 
+  /// The arguments of a server on a free port that keeps its runs in `dir`/runs.
+  std::vector<std::string> serving_runs_in(const fs::path &dir)
+  {
+    return {"--port", "0", "--runs-dir", (dir / "runs").string()};
+  }
+
+  /// Posts the run `body` to `gui`, asserts that it is accepted (201) and sets `id` to its id.
+  void start_run(GuiProcess &gui, const nlohmann::json &body, std::string &id)
+  {
+    const auto started = gui.post("/api/runs", body);
+    ASSERT_TRUE(started);
+    ASSERT_EQ(started->status, 201) << started->body;
+    id = nlohmann::json::parse(started->body)["id"].get<std::string>();
+  }
+
   /// A running run's child pid, after waiting for the run to be running.
   int running_pid(GuiProcess &gui, const std::string &id)
   {
@@ -244,101 +259,100 @@ namespace
     return run.value("pid", -1);
   }
 
-  TEST(GuiProcess, CancelStopsTheRunsChildProcessAndTheListShowsIt)
+  /// Runs `stop(gui, id, pid)` on `kimp gui` serving its runs in a fresh directory `tag`, once
+  /// the long sweep `id` runs in its child process `pid` (asserted first); the sweep must then be
+  /// saved as cancelled.
+  template <class Stop>
+  void stop_long_sweep(const char *tag, Stop &&stop)
   {
-    const kimp::testing::TempDir dir{"gui_cancel"};
-    GuiProcess                   gui(binary("kimp"),
-                   dir.path(),
-                   {"--port", "0", "--runs-dir", (dir.path() / "runs").string()});
+    const kimp::testing::TempDir dir{tag};
+    GuiProcess                   gui(binary("kimp"), dir.path(), serving_runs_in(dir.path()));
     ASSERT_GT(gui.port(), 0) << gui.err();
-    const auto started = gui.post("/api/runs", long_sweep);
-    ASSERT_TRUE(started);
-    ASSERT_EQ(started->status, 201) << started->body;
-    const std::string id  = nlohmann::json::parse(started->body)["id"];
-    const int         pid = running_pid(gui, id);
+    std::string id;
+    ASSERT_NO_FATAL_FAILURE(start_run(gui, long_sweep, id));
+    const int pid = running_pid(gui, id);
     ASSERT_GT(pid, 0);
-    ASSERT_TRUE(process_alive(pid));
-    // The child inherits no blocked signal from the server (which blocks SIGINT and SIGTERM).
-    EXPECT_EQ(blocked_signals(pid), "0000000000000000");
-    // The sweep reports its progress ("(N/M in all ...)" every 2 s) before it is cancelled.
-    const nlohmann::json going =
-      gui.wait_for_run(id,
-                       30,
-                       [](const nlohmann::json &r) { return r.value("progress", 0.0) > 0.0; });
-    EXPECT_GT(going.value("progress", 0.0), 0.0) << going.dump();
-    EXPECT_LT(going.value("progress", 1.0), 0.5) << going.dump();
-
-    const auto cancel = gui.post("/api/runs/" + id + "/cancel", nlohmann::json::object());
-    ASSERT_TRUE(cancel);
-    EXPECT_EQ(cancel->status, 200) << cancel->body;
-    EXPECT_TRUE(nlohmann::json::parse(cancel->body)["cancelled"].get<bool>());
-    // SIGTERM ends a kimp child at once; the check allows for a loaded machine.
-    const auto deadline = Clock::now() + std::chrono::seconds(10);
-    while (process_alive(pid) && Clock::now() < deadline)
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    EXPECT_FALSE(process_alive(pid)) << "the sweep child is still running after the cancel";
-    const nlohmann::json run =
-      gui.wait_for_run(id, 10, [](const nlohmann::json &r) { return r["state"] != "running"; });
-    EXPECT_EQ(run["state"], "cancelled") << run.dump();
-    EXPECT_NE(run.value("error", "").find("cancelled after"), std::string::npos) << run.dump();
-
-    // The list of runs keeps the cancelled run, its state and the files it wrote.
-    const nlohmann::json list = gui.get_json("/api/runs");
-    ASSERT_EQ(list.size(), 1u) << list.dump();
-    EXPECT_EQ(list[0]["id"], id);
-    EXPECT_EQ(list[0]["state"], "cancelled");
-    EXPECT_FALSE(list[0].contains("log_from")) << list.dump();
-    EXPECT_FALSE(list[0]["files"].empty()) << "a sweep writes its journal as it goes";
+    ASSERT_NO_FATAL_FAILURE(stop(gui, id, pid));
     const nlohmann::json saved =
       nlohmann::json::parse(kimp::testing::read_text(dir.path() / "runs" / id / "run.json"));
     EXPECT_EQ(saved["state"], "cancelled");
   }
 
+  TEST(GuiProcess, CancelStopsTheRunsChildProcessAndTheListShowsIt)
+  {
+    const auto stop = [](GuiProcess &gui, const std::string &id, int pid)
+    {
+      ASSERT_TRUE(process_alive(pid));
+      // The child inherits no blocked signal from the server (which blocks SIGINT and SIGTERM).
+      EXPECT_EQ(blocked_signals(pid), "0000000000000000");
+      // The sweep reports its progress ("(N/M in all ...)" every 2 s) before it is cancelled.
+      const nlohmann::json going =
+        gui.wait_for_run(id,
+                         30,
+                         [](const nlohmann::json &r) { return r.value("progress", 0.0) > 0.0; });
+      EXPECT_GT(going.value("progress", 0.0), 0.0) << going.dump();
+      EXPECT_LT(going.value("progress", 1.0), 0.5) << going.dump();
+
+      const auto cancel = gui.post("/api/runs/" + id + "/cancel", nlohmann::json::object());
+      ASSERT_TRUE(cancel);
+      EXPECT_EQ(cancel->status, 200) << cancel->body;
+      EXPECT_TRUE(nlohmann::json::parse(cancel->body)["cancelled"].get<bool>());
+      // SIGTERM ends a kimp child at once; the check allows for a loaded machine.
+      const auto deadline = Clock::now() + std::chrono::seconds(10);
+      while (process_alive(pid) && Clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      EXPECT_FALSE(process_alive(pid)) << "the sweep child is still running after the cancel";
+      const nlohmann::json run =
+        gui.wait_for_run(id, 10, [](const nlohmann::json &r) { return r["state"] != "running"; });
+      EXPECT_EQ(run["state"], "cancelled") << run.dump();
+      EXPECT_NE(run.value("error", "").find("cancelled after"), std::string::npos) << run.dump();
+
+      // The list of runs keeps the cancelled run, its state and the files it wrote.
+      const nlohmann::json list = gui.get_json("/api/runs");
+      ASSERT_EQ(list.size(), 1u) << list.dump();
+      EXPECT_EQ(list[0]["id"], id);
+      EXPECT_EQ(list[0]["state"], "cancelled");
+      EXPECT_FALSE(list[0].contains("log_from")) << list.dump();
+      EXPECT_FALSE(list[0]["files"].empty()) << "a sweep writes its journal as it goes";
+    };
+    stop_long_sweep("gui_cancel", stop);
+  }
+
   TEST(GuiProcess, SigtermStopsTheServerAndItsRunsPromptly)
   {
-    const kimp::testing::TempDir dir{"gui_sigterm"};
-    GuiProcess                   gui(binary("kimp"),
-                   dir.path(),
-                   {"--port", "0", "--runs-dir", (dir.path() / "runs").string()});
-    ASSERT_GT(gui.port(), 0) << gui.err();
-    const auto started = gui.post("/api/runs", long_sweep);
-    ASSERT_TRUE(started);
-    ASSERT_EQ(started->status, 201) << started->body;
-    const std::string id  = nlohmann::json::parse(started->body)["id"];
-    const int         pid = running_pid(gui, id);
-    ASSERT_GT(pid, 0);
-    // A page following the run keeps an event stream open.
-    std::atomic<bool> streaming{false};
-    std::thread       stream(
-      [&]
-      {
-        httplib::Client c("127.0.0.1", gui.port());
-        c.set_read_timeout(30, 0);
-        c.Get("/api/runs/" + id + "/events",
-              [&](const char *, std::size_t)
-              {
-                streaming = true;
-                return true;
-              });
-      });
-    const auto deadline = Clock::now() + std::chrono::seconds(10);
-    while (!streaming && Clock::now() < deadline)
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    ASSERT_TRUE(streaming);
+    const auto stop = [](GuiProcess &gui, const std::string &id, int pid)
+    {
+      // A page following the run keeps an event stream open.
+      std::atomic<bool> streaming{false};
+      std::thread       stream(
+        [&]
+        {
+          httplib::Client c("127.0.0.1", gui.port());
+          c.set_read_timeout(30, 0);
+          c.Get("/api/runs/" + id + "/events",
+                [&](const char *, std::size_t)
+                {
+                  streaming = true;
+                  return true;
+                });
+        });
+      const auto deadline = Clock::now() + std::chrono::seconds(10);
+      while (!streaming && Clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      ASSERT_TRUE(streaming);
 
-    kill(gui.pid(), SIGTERM);
-    // Measured: about 0.2 s (the child ends on SIGTERM at once); the bound allows for a loaded
-    // machine and stays far below the minutes the sweep would take.
-    const Exit e = gui.wait(10.0);
-    stream.join();
-    ASSERT_TRUE(e.exited) << "kimp gui still running 10 s after SIGTERM";
-    RecordProperty("seconds_to_stop", std::to_string(e.seconds));
-    EXPECT_EQ(e.exit_code, 0) << gui.err();
-    EXPECT_LT(e.seconds, 5.0);
-    EXPECT_FALSE(process_alive(pid)) << "the run's child outlived kimp gui";
-    const nlohmann::json saved =
-      nlohmann::json::parse(kimp::testing::read_text(dir.path() / "runs" / id / "run.json"));
-    EXPECT_EQ(saved["state"], "cancelled");
+      kill(gui.pid(), SIGTERM);
+      // Measured: about 0.2 s (the child ends on SIGTERM at once); the bound allows
+      // for a loaded machine and stays far below the minutes the sweep would take.
+      const Exit e = gui.wait(10.0);
+      stream.join();
+      ASSERT_TRUE(e.exited) << "kimp gui still running 10 s after SIGTERM";
+      RecordProperty("seconds_to_stop", std::to_string(e.seconds));
+      EXPECT_EQ(e.exit_code, 0) << gui.err();
+      EXPECT_LT(e.seconds, 5.0);
+      EXPECT_FALSE(process_alive(pid)) << "the run's child outlived kimp gui";
+    };
+    stop_long_sweep("gui_sigterm", stop);
   }
 
   /// The fem scene of the quick smoke run, as the page would send it.
@@ -352,9 +366,7 @@ namespace
   void check_commands_and_validation(const fs::path &executable)
   {
     const kimp::testing::TempDir dir{"gui_commands"};
-    GuiProcess                   gui(executable,
-                   dir.path(),
-                   {"--port", "0", "--runs-dir", (dir.path() / "runs").string()});
+    GuiProcess                   gui(executable, dir.path(), serving_runs_in(dir.path()));
     ASSERT_GT(gui.port(), 0) << gui.err();
     const bool               with_fem = fs::exists(binary("kimp-fem"));
     const nlohmann::json     info     = gui.get_json("/api/info");
@@ -428,24 +440,17 @@ namespace
       at2 += (i / 100) % 2 == 0 ? " 0.30\n" : " -0.30\n";
     fs::create_directories(dir.path() / "records");
     std::ofstream(dir.path() / "records" / "RSN1_TEST_X000.AT2") << at2;
-    GuiProcess gui(binary("kimp"),
-                   dir.path(),
-                   {"--port",
-                    "0",
-                    "--runs-dir",
-                    (dir.path() / "runs").string(),
-                    "--records-dir",
-                    (dir.path() / "records").string()});
+    std::vector<std::string> arguments = serving_runs_in(dir.path());
+    arguments.insert(arguments.end(), {"--records-dir", (dir.path() / "records").string()});
+    GuiProcess gui(binary("kimp"), dir.path(), arguments);
     ASSERT_GT(gui.port(), 0) << gui.err();
     EXPECT_EQ(gui.get_json("/api/records"), nlohmann::json::array({"RSN1_TEST_X000"}));
-    const auto started =
-      gui.post("/api/runs",
-               {{"command", "lumped"},
-                {"scene",
-                 "building:\n  n_storeys: 3\nground_motion:\n  record: RSN1_TEST_X000\n"}});
-    ASSERT_TRUE(started);
-    ASSERT_EQ(started->status, 201) << started->body;
-    const std::string    id = nlohmann::json::parse(started->body)["id"];
+    std::string id;
+    ASSERT_NO_FATAL_FAILURE(start_run(
+      gui,
+      {{"command", "lumped"},
+       {"scene", "building:\n  n_storeys: 3\nground_motion:\n  record: RSN1_TEST_X000\n"}},
+      id));
     const nlohmann::json run =
       gui.wait_for_run(id,
                        60,
@@ -501,9 +506,7 @@ namespace
   TEST(GuiProcess, PortsOutsideTheRangeAndPortsInUseAreRefused)
   {
     const kimp::testing::TempDir dir{"gui_ports"};
-    GuiProcess                   first(binary("kimp"),
-                     dir.path(),
-                     {"--port", "0", "--runs-dir", (dir.path() / "runs").string()});
+    GuiProcess                   first(binary("kimp"), dir.path(), serving_runs_in(dir.path()));
     ASSERT_GT(first.port(), 0) << first.err();
     EXPECT_NE(first.out().find("http://127.0.0.1:" + std::to_string(first.port()) + "/"),
               std::string::npos);

@@ -1,0 +1,66 @@
+// kimp::testing checks of error messages: the message of the exception a call throws, a message
+// that must contain every one of some parts, and the one error line of a failed run's log.
+// Needs GoogleTest.
+#pragma once
+
+#include <exception>
+#include <gtest/gtest.h>
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+namespace kimp::testing
+{
+  /// The message of the `Exception` that `function()` throws; a failure of the test, and "", if
+  /// it throws none (an exception of another type is not caught).
+  template <class Exception = std::exception, class Function>
+  std::string thrown_message(Function &&function)
+  {
+    try
+    {
+      function();
+    }
+    catch (const Exception &error)
+    {
+      return error.what();
+    }
+    ADD_FAILURE() << "no exception of the expected type thrown";
+    return {};
+  }
+
+  /// Expects `text` to contain every one of `parts`.
+  inline void expect_contains(const std::string &text, std::initializer_list<std::string> parts)
+  {
+    for (const std::string &part : parts)
+      EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in:\n" << text;
+  }
+
+  /// The lines of `text` that are not "info: ..." log lines.
+  inline std::vector<std::string> non_info_lines(const std::string &text)
+  {
+    std::vector<std::string> lines;
+    std::size_t              begin = 0;
+    while (begin < text.size())
+    {
+      std::size_t end = text.find('\n', begin);
+      if (end == std::string::npos)
+        end = text.size();
+      const std::string line = text.substr(begin, end - begin);
+      if (!line.empty() && line.rfind("info: ", 0) != 0)
+        lines.push_back(line);
+      begin = end + 1;
+    }
+    return lines;
+  }
+
+  /// Expects a run that ended with `exit_code` and wrote `log` to have failed with exit code 1
+  /// and one line besides the info lines: that line in `line` (a fatal failure if there is not
+  /// exactly one).
+  inline void one_error_line(int exit_code, const std::string &log, std::string &line)
+  {
+    EXPECT_EQ(exit_code, 1) << log;
+    const std::vector<std::string> lines = non_info_lines(log);
+    ASSERT_EQ(lines.size(), 1u) << log;
+    line = lines[0];
+  }
+} // namespace kimp::testing
