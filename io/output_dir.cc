@@ -144,7 +144,7 @@ namespace kimp::io
     unregister_cleanup(slot_);
   }
 
-  int write_all_and_sync(const int fd, const void *data, const std::size_t size)
+  int write_all(const int fd, const void *data, const std::size_t size)
   {
     const auto *bytes = static_cast<const char *>(data);
     std::size_t done  = 0;
@@ -159,6 +159,13 @@ namespace kimp::io
       }
       done += static_cast<std::size_t>(n);
     }
+    return 0;
+  }
+
+  int write_all_and_sync(const int fd, const void *data, const std::size_t size)
+  {
+    if (const int error = write_all(fd, data, size); error != 0)
+      return error;
     return ::fsync(fd) == 0 ? 0 : errno;
   }
 

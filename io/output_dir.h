@@ -25,8 +25,11 @@ namespace kimp::io
   std::filesystem::path temporary_path(const std::filesystem::path &path,
                                        bool                         keep_extension = false);
 
-  /// Write all `size` bytes of `data` to the file descriptor `fd` (again after EINTR) and
-  /// fsync it; returns 0, or the errno of the failed write or sync.
+  /// Write all `size` bytes of `data` to the file descriptor `fd` (again after EINTR); returns 0
+  /// or the errno of the failed write.
+  int write_all(int fd, const void *data, std::size_t size);
+
+  /// write_all() and then fsync(fd); returns 0, or the errno of the failed write or sync.
   int write_all_and_sync(int fd, const void *data, std::size_t size);
 
   /**

@@ -1,7 +1,7 @@
 // HDF5 results file (C API, used serially): its groups, datasets and attributes, and the file's
 // life (built in memory, written to a temporary file at commit, renamed); layout in
 // results_file.h and docs/architecture.md "Results files". The time series are in
-// results_series.cc, the HDF5 writing helpers in results_hdf5.cc.
+// results_series.cc, the HDF5 writing helpers in results_hdf5.h.
 #include "io/results_file.h"
 
 #include <array>
