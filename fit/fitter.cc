@@ -314,45 +314,59 @@ namespace kimp::fit
       mutable int                 n_evaluations_ = 0;
     };
 
-    std::string status_text(Eigen::LevenbergMarquardtSpace::Status status)
+    using S = Eigen::LevenbergMarquardtSpace::Status;
+
+    /// A status of Eigen's Levenberg-Marquardt: whether it counts as converged, and its text.
+    struct StatusInfo
     {
-      using S = Eigen::LevenbergMarquardtSpace::Status;
-      switch (status)
-      {
-        case S::NotStarted:
-          return "not started";
-        case S::Running:
-          return "running";
-        case S::ImproperInputParameters:
-          return "improper input parameters";
-        case S::RelativeReductionTooSmall:
-          return "converged: relative reduction of the misfit below ftol";
-        case S::RelativeErrorTooSmall:
-          return "converged: relative change of the parameters below xtol";
-        case S::RelativeErrorAndReductionTooSmall:
-          return "converged: misfit reduction and parameter change below tolerance";
-        case S::CosinusTooSmall:
-          return "converged: residual orthogonal to the Jacobian";
-        case S::TooManyFunctionEvaluation:
-          return "too many function evaluations";
-        case S::FtolTooSmall:
-          return "converged to machine precision: no further misfit reduction possible";
-        case S::XtolTooSmall:
-          return "converged to machine precision: no further parameter improvement possible";
-        case S::GtolTooSmall:
-          return "converged to machine precision: residual orthogonal to the Jacobian";
-        case S::UserAsked:
-          return "stopped by the model";
-      }
-      return "unknown status";
+      S           status;
+      bool        converged;
+      const char *text;
+    };
+
+    constexpr StatusInfo status_table[] = {
+      {S::NotStarted, false, "not started"},
+      {S::Running, false, "running"},
+      {S::ImproperInputParameters, false, "improper input parameters"},
+      {S::RelativeReductionTooSmall,
+       true,
+       "converged: relative reduction of the misfit below ftol"},
+      {S::RelativeErrorTooSmall, true, "converged: relative change of the parameters below xtol"},
+      {S::RelativeErrorAndReductionTooSmall,
+       true,
+       "converged: misfit reduction and parameter change below tolerance"},
+      {S::CosinusTooSmall, true, "converged: residual orthogonal to the Jacobian"},
+      {S::TooManyFunctionEvaluation, false, "too many function evaluations"},
+      {S::FtolTooSmall,
+       true,
+       "converged to machine precision: no further misfit reduction possible"},
+      {S::XtolTooSmall,
+       true,
+       "converged to machine precision: no further parameter improvement possible"},
+      {S::GtolTooSmall,
+       true,
+       "converged to machine precision: residual orthogonal to the Jacobian"},
+      {S::UserAsked, false, "stopped by the model"},
+    };
+
+    const StatusInfo *status_info(S status)
+    {
+      for (const StatusInfo &info : status_table)
+        if (info.status == status)
+          return &info;
+      return nullptr;
     }
 
-    bool converged(Eigen::LevenbergMarquardtSpace::Status status)
+    std::string status_text(S status)
     {
-      using S = Eigen::LevenbergMarquardtSpace::Status;
-      return status == S::RelativeReductionTooSmall || status == S::RelativeErrorTooSmall ||
-             status == S::RelativeErrorAndReductionTooSmall || status == S::CosinusTooSmall ||
-             status == S::FtolTooSmall || status == S::XtolTooSmall || status == S::GtolTooSmall;
+      const StatusInfo *info = status_info(status);
+      return info != nullptr ? info->text : "unknown status";
+    }
+
+    bool converged(S status)
+    {
+      const StatusInfo *info = status_info(status);
+      return info != nullptr && info->converged;
     }
 
     void validate(double                      mass,
