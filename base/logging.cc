@@ -5,6 +5,7 @@
 #include "base/logging.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <cstring>
 #include <fmt/format.h>
@@ -45,24 +46,14 @@ namespace kimp::base
 
   void set_verbosity(Verbosity verbosity)
   {
+    // The level of each Verbosity, in the order of its enumerators.
+    constexpr std::array<spdlog::level::level_enum, 4> levels{spdlog::level::warn,
+                                                              spdlog::level::info,
+                                                              spdlog::level::debug,
+                                                              spdlog::level::trace};
     current_verbosity = verbosity;
-    switch (verbosity)
-    {
-      case Verbosity::quiet:
-        logger().set_level(spdlog::level::warn);
-        break;
-      case Verbosity::normal:
-        logger().set_level(spdlog::level::info);
-        break;
-      case Verbosity::verbose:
-        logger().set_level(spdlog::level::debug);
-        break;
-      case Verbosity::trace:
-        logger().set_level(spdlog::level::trace);
-        break;
-    }
-    if (current_rank != 0)
-      logger().set_level(spdlog::level::err);
+    logger().set_level(current_rank != 0 ? spdlog::level::err :
+                                           levels.at(static_cast<std::size_t>(verbosity)));
   }
 
   void set_rank(int rank)

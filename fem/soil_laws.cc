@@ -1,8 +1,9 @@
-// The perfectly plastic soil laws (see inelastic_laws.h): the soil presets, what Mohr-Coulomb and
-// Drucker-Prager share (PlasticSoilLaw), the Mohr-Coulomb return mapping over the active sets of
-// its 9 planes and the Drucker-Prager cone and apex returns. Everything on the stack: no
-// allocation per quadrature point. One file of ~640 lines: PlasticSoilLaw's members are
-// instantiated here for both laws, next to the return mappings they call (inlined).
+// The perfectly plastic soil laws (see inelastic_laws.h; the soil presets are in
+// soil_presets.cc): what Mohr-Coulomb and Drucker-Prager share (PlasticSoilLaw), the Mohr-Coulomb
+// return mapping over the active sets of its 9 planes and the Drucker-Prager cone and apex returns.
+// Everything on the stack: no allocation per quadrature point. One file of ~600 lines:
+// PlasticSoilLaw's members are instantiated here for both laws, next to the return mappings they
+// call (inlined).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -22,10 +23,6 @@ namespace kimp::fem
     using Mat3 = std::array<double, 9>;
 
     constexpr double pi = 3.14159265358979323846;
-    double           deg(double d)
-    {
-      return d * pi / 180;
-    }
 
     /** Solves the k x k system m x = b (k <= 3, row-major, stride 3) by Gauss with partial
      *  pivoting; false if (nearly) singular relative to @p scale. */
@@ -80,34 +77,6 @@ namespace kimp::fem
       return out;
     }
   } // namespace
-
-  // ---------------------------------------------------------------- presets
-
-  const std::vector<SoilPreset> &soil_presets()
-  {
-    // E, nu, rho, c, phi, psi: docs/physics.md (inelastic materials) gives the sources.
-    static const std::vector<SoilPreset> presets = {
-      {"loose_sand", {20e6, 0.3, 1700, 0, deg(30), deg(0), 0}},
-      {"medium_dense_sand", {40e6, 0.3, 1850, 0, deg(34), deg(4), 0}},
-      {"dense_sand", {70e6, 0.3, 2000, 0, deg(38), deg(8), 0}},
-      {"soft_clay", {5e6, 0.45, 1700, 20e3, deg(0), deg(0), 0}},
-      {"stiff_clay", {40e6, 0.45, 2000, 100e3, deg(0), deg(0), 0}},
-    };
-    return presets;
-  }
-
-  const SoilParameters &soil_preset(const std::string &name)
-  {
-    std::string names;
-    for (const auto &p : soil_presets())
-    {
-      if (p.name == name)
-        return p.parameters;
-      names += (names.empty() ? "" : ", ") + p.name;
-    }
-    throw std::invalid_argument("unknown soil preset '" + name + "' (expected one of: " + names +
-                                ")");
-  }
 
   // ---------------------------------------------------------------- Mohr-Coulomb
 

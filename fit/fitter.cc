@@ -1,5 +1,7 @@
 // Impact-stiffness fitter: lumped two-body model vs FEM force history, Levenberg-Marquardt
-// (Eigen unsupported module, MINPACK lmder) with a central-difference Jacobian.
+// (Eigen unsupported module, MINPACK lmder) with a central-difference Jacobian, and the
+// confidence intervals of the fitted parameters. The contact window of the history is found in
+// contact_window.cc; the units, standard variants and level uncertainty are in fit_results.cc.
 #include "fit/fitter.h"
 
 #include <Eigen/Dense>
@@ -9,8 +11,15 @@
 #include <unsupported/Eigen/LevenbergMarquardt>
 #include <utility>
 
+#include "fit/contact_window.h"
+
 namespace kimp::fit
 {
+  using detail::check_history;
+  using detail::ContactWindow;
+  using detail::find_contact_window;
+  using detail::interpolate;
+
   namespace
   {
     constexpr double pi = 3.14159265358979323846;
@@ -47,157 +56,6 @@ namespace kimp::fit
     double logistic(double x)
     {
       return 1.0 / (1.0 + std::exp(-x));
-    }
-
-    /// Piecewise-linear interpolation of (t, y) at `at`; `t` increasing, at inside [t0, tn].
-    double interpolate(const std::vector<double> &t, const std::vector<double> &y, double at)
-    {
-      const auto   upper = std::upper_bound(t.begin(), t.end(), at);
-      const size_t i     = static_cast<size_t>(std::distance(t.begin(), upper));
-      if (i == 0)
-        return y.front();
-      if (i >= t.size())
-        return y.back();
-      const double s = (at - t[i - 1]) / (t[i] - t[i - 1]);
-      return y[i - 1] + s * (y[i] - y[i - 1]);
-    }
-
-    /// Where the FEM history is in contact and which samples enter the misfit.
-    struct ContactWindow
-    {
-      double      start       = 0.0;   ///< first contact, s (FEM time)
-      double      separation  = 0.0;   ///< end of the first contact phase, s
-      double      peak_force  = 0.0;   ///< N/m
-      double      impulse     = 0.0;   ///< N·s/m
-      std::size_t first       = 0;     ///< first sample of the misfit window
-      std::size_t last        = 0;     ///< last sample of the misfit window (inclusive)
-      bool        open_at_end = false; ///< the contact phase lasts to the last sample
-    };
-
-    void check_history(const ForceHistory &h)
-    {
-      const std::size_t n = h.time.size();
-      if (n == 0 || h.force.empty())
-        throw FitError("force history: empty (no samples)");
-      if (h.force.size() != n)
-        throw FitError(
-          fmt::format("force history: {} force samples for {} times", h.force.size(), n));
-      for (const auto &[name, v] :
-           {std::pair<const char *, const std::vector<double> *>{"indentation", &h.indentation},
-            {"slab_displacement", &h.slab_displacement}})
-        if (!v->empty() && v->size() != n)
-          throw FitError(
-            fmt::format("force history: {} has {} samples for {} times", name, v->size(), n));
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        const bool finite = std::isfinite(h.time[i]) && std::isfinite(h.force[i]) &&
-                            (h.indentation.empty() || std::isfinite(h.indentation[i])) &&
-                            (h.slab_displacement.empty() || std::isfinite(h.slab_displacement[i]));
-        if (!finite)
-          throw FitError(fmt::format("force history: non-finite value at sample {} (t = {} s, "
-                                     "F = {} N/m)",
-                                     i,
-                                     h.time[i],
-                                     h.force[i]));
-        if (i > 0 && !(h.time[i] > h.time[i - 1]))
-          throw FitError(fmt::format("force history: time not increasing at sample {} ({} s "
-                                     "after {} s)",
-                                     i,
-                                     h.time[i],
-                                     h.time[i - 1]));
-      }
-    }
-
-    ContactWindow find_contact_window(const ForceHistory &h, const FitOptions &options)
-    {
-      const std::size_t n      = h.time.size();
-      const bool        by_gap = !h.indentation.empty();
-      const double      peak   = *std::max_element(h.force.begin(), h.force.end());
-      if (!(peak > 0.0))
-        throw FitError(fmt::format("force history: no contact (largest force {} N/m over {} "
-                                   "samples, {} s to {} s)",
-                                   peak,
-                                   n,
-                                   h.time.front(),
-                                   h.time.back()));
-      const auto in_contact = [&](std::size_t i)
-      { return by_gap ? h.indentation[i] > 0.0 : h.force[i] > options.contact_threshold * peak; };
-
-      std::size_t i0 = 0;
-      while (i0 < n && !in_contact(i0))
-        ++i0;
-      if (i0 == n)
-        throw FitError("force history: no contact (indentation never > 0)");
-
-      ContactWindow w;
-      if (i0 == 0)
-        w.start = h.time[0];
-      else if (by_gap)
-      {
-        const double d0 = h.indentation[i0 - 1], d1 = h.indentation[i0];
-        w.start = h.time[i0 - 1] + (h.time[i0] - h.time[i0 - 1]) * (-d0) / (d1 - d0);
-      }
-      else
-      {
-        // Back to the last force-free sample (the force below the threshold may already be
-        // contact); a force rising linearly from zero (penalty contact) then points at the
-        // touch, a force that jumps (viscous contact) points before that sample, which bounds it.
-        std::size_t q = i0 - 1;
-        while (q > 0 && h.force[q] > 0.0)
-          --q;
-        w.start = h.time[q];
-        if (q + 2 < n && h.force[q + 2] > h.force[q + 1])
-        {
-          const double slope = (h.force[q + 2] - h.force[q + 1]) / (h.time[q + 2] - h.time[q + 1]);
-          w.start = std::clamp(h.time[q + 1] - h.force[q + 1] / slope, h.time[q], h.time[q + 1]);
-        }
-      }
-
-      std::size_t last = i0, next = n;
-      for (std::size_t i = i0 + 1; i < n; ++i)
-      {
-        if (in_contact(i))
-        {
-          if (i > last + 2 &&
-              h.time[i] - h.time[last] > options.separation_fraction * (h.time[last] - w.start))
-          {
-            next = i;
-            break;
-          }
-          last = i;
-        }
-      }
-      w.separation  = h.time[last];
-      w.open_at_end = last + 1 == n;
-      if (last + 1 < n)
-      {
-        if (by_gap)
-        {
-          const double d0 = h.indentation[last], d1 = h.indentation[last + 1];
-          w.separation = h.time[last] + (h.time[last + 1] - h.time[last]) * d0 / (d0 - d1);
-        }
-        else
-          w.separation = h.time[last + 1];
-      }
-
-      w.first = i0;
-      while (w.first > 0 && h.time[w.first - 1] >= w.start)
-        --w.first;
-      w.peak_force = 0.0;
-      for (std::size_t i = i0; i <= last; ++i)
-        w.peak_force = std::max(w.peak_force, h.force[i]);
-      if (!(w.peak_force > 0.0))
-        throw FitError(fmt::format("force history: no contact force while the indentation is > 0 "
-                                   "({} s to {} s)",
-                                   w.start,
-                                   w.separation));
-      for (std::size_t i = w.first > 0 ? w.first - 1 : 0; i < std::min(last + 1, n - 1); ++i)
-        w.impulse += 0.5 * (h.force[i] + h.force[i + 1]) * (h.time[i + 1] - h.time[i]);
-      const double end = w.separation + options.tail_fraction * (w.separation - w.start);
-      w.last           = last;
-      while (w.last + 1 < next && h.time[w.last + 1] <= end)
-        ++w.last;
-      return w;
     }
 
     /// Law parameters in physical units (the optimiser works on ln k, logit COR, ln(n − 1)).
@@ -456,45 +314,59 @@ namespace kimp::fit
       mutable int                 n_evaluations_ = 0;
     };
 
-    std::string status_text(Eigen::LevenbergMarquardtSpace::Status status)
+    using S = Eigen::LevenbergMarquardtSpace::Status;
+
+    /// A status of Eigen's Levenberg-Marquardt: whether it counts as converged, and its text.
+    struct StatusInfo
     {
-      using S = Eigen::LevenbergMarquardtSpace::Status;
-      switch (status)
-      {
-        case S::NotStarted:
-          return "not started";
-        case S::Running:
-          return "running";
-        case S::ImproperInputParameters:
-          return "improper input parameters";
-        case S::RelativeReductionTooSmall:
-          return "converged: relative reduction of the misfit below ftol";
-        case S::RelativeErrorTooSmall:
-          return "converged: relative change of the parameters below xtol";
-        case S::RelativeErrorAndReductionTooSmall:
-          return "converged: misfit reduction and parameter change below tolerance";
-        case S::CosinusTooSmall:
-          return "converged: residual orthogonal to the Jacobian";
-        case S::TooManyFunctionEvaluation:
-          return "too many function evaluations";
-        case S::FtolTooSmall:
-          return "converged to machine precision: no further misfit reduction possible";
-        case S::XtolTooSmall:
-          return "converged to machine precision: no further parameter improvement possible";
-        case S::GtolTooSmall:
-          return "converged to machine precision: residual orthogonal to the Jacobian";
-        case S::UserAsked:
-          return "stopped by the model";
-      }
-      return "unknown status";
+      S           status;
+      bool        converged;
+      const char *text;
+    };
+
+    constexpr StatusInfo status_table[] = {
+      {S::NotStarted, false, "not started"},
+      {S::Running, false, "running"},
+      {S::ImproperInputParameters, false, "improper input parameters"},
+      {S::RelativeReductionTooSmall,
+       true,
+       "converged: relative reduction of the misfit below ftol"},
+      {S::RelativeErrorTooSmall, true, "converged: relative change of the parameters below xtol"},
+      {S::RelativeErrorAndReductionTooSmall,
+       true,
+       "converged: misfit reduction and parameter change below tolerance"},
+      {S::CosinusTooSmall, true, "converged: residual orthogonal to the Jacobian"},
+      {S::TooManyFunctionEvaluation, false, "too many function evaluations"},
+      {S::FtolTooSmall,
+       true,
+       "converged to machine precision: no further misfit reduction possible"},
+      {S::XtolTooSmall,
+       true,
+       "converged to machine precision: no further parameter improvement possible"},
+      {S::GtolTooSmall,
+       true,
+       "converged to machine precision: residual orthogonal to the Jacobian"},
+      {S::UserAsked, false, "stopped by the model"},
+    };
+
+    const StatusInfo *status_info(S status)
+    {
+      for (const StatusInfo &info : status_table)
+        if (info.status == status)
+          return &info;
+      return nullptr;
     }
 
-    bool converged(Eigen::LevenbergMarquardtSpace::Status status)
+    std::string status_text(S status)
     {
-      using S = Eigen::LevenbergMarquardtSpace::Status;
-      return status == S::RelativeReductionTooSmall || status == S::RelativeErrorTooSmall ||
-             status == S::RelativeErrorAndReductionTooSmall || status == S::CosinusTooSmall ||
-             status == S::FtolTooSmall || status == S::XtolTooSmall || status == S::GtolTooSmall;
+      const StatusInfo *info = status_info(status);
+      return info != nullptr ? info->text : "unknown status";
+    }
+
+    bool converged(S status)
+    {
+      const StatusInfo *info = status_info(status);
+      return info != nullptr && info->converged;
     }
 
     void validate(double                      mass,
@@ -547,49 +419,6 @@ namespace kimp::fit
           fmt::format("max_function_evaluations = {} (must be >= 10)", o.max_function_evaluations));
     }
   } // namespace
-
-  double stiffness_to_kn_per_mm(double stiffness, double exponent)
-  {
-    return stiffness * std::pow(1.0e-3, exponent + 1.0);
-  }
-
-  namespace
-  {
-    /// "<length>" for n = 1, "<length>^n" otherwise, then "/m" per metre of wall.
-    std::string
-    stiffness_unit(const char *force_per_length, double exponent, bool per_metre_of_wall)
-    {
-      const std::string n = fmt::format("{:.6g}", exponent);
-      const std::string unit =
-        n == "1" ? std::string(force_per_length) : std::string(force_per_length) + "^" + n;
-      return per_metre_of_wall ? unit + "/m" : unit;
-    }
-  } // namespace
-
-  std::string stiffness_display_unit(double exponent, bool per_metre_of_wall)
-  {
-    return stiffness_unit("kN/mm", exponent, per_metre_of_wall);
-  }
-
-  std::string stiffness_si_unit(double exponent, bool per_metre_of_wall)
-  {
-    return stiffness_unit("N/m", exponent, per_metre_of_wall);
-  }
-
-  double FitResult::stiffness_per_metre_display() const
-  {
-    return stiffness_to_kn_per_mm(stiffness.value, exponent.value);
-  }
-
-  double FitResult::total_stiffness_display(double width) const
-  {
-    return stiffness_per_metre_display() * width;
-  }
-
-  std::string FitResult::per_metre_unit() const
-  {
-    return stiffness_display_unit(exponent.value, true);
-  }
 
   FitResult fit_impact_law(const ForceHistory         &history,
                            double                      mass,
@@ -764,68 +593,5 @@ namespace kimp::fit
     }
     result.model_force = std::move(model_force);
     return result;
-  }
-
-  std::vector<FitVariant> standard_fit_variants(const FitOptions &base, double cor)
-  {
-    std::vector<FitVariant> variants;
-    const auto add = [&](std::string name, std::string law, bool fit_cor, bool fit_exponent)
-    {
-      FitVariant variant;
-      variant.name                 = std::move(name);
-      variant.law.law              = std::move(law);
-      variant.law.cor              = cor;
-      variant.options              = base;
-      variant.options.fit_cor      = fit_cor;
-      variant.options.fit_exponent = fit_exponent;
-      variants.push_back(std::move(variant));
-    };
-    add("kelvin_voigt_cor_fixed", "kelvin_voigt", false, false);
-    add("jankowski_cor_fixed", "jankowski", false, false);
-    add("kelvin_voigt_cor_free", "kelvin_voigt", true, false);
-    add("jankowski_cor_free", "jankowski", true, false);
-    add("hertz_free_exponent", "hysteretic", false, true);
-    return variants;
-  }
-
-  LevelEstimate level_uncertainty(const std::vector<double> &values,
-                                  double                     refinement_ratio,
-                                  double                     assumed_order)
-  {
-    if (values.size() < 2)
-      throw std::invalid_argument(
-        fmt::format("level_uncertainty: {} values (need at least two levels)", values.size()));
-    for (std::size_t i = 0; i < values.size(); ++i)
-      if (!std::isfinite(values[i]))
-        throw std::invalid_argument(
-          fmt::format("level_uncertainty: values[{}] = {} (must be finite)", i, values[i]));
-    if (!(refinement_ratio > 1.0))
-      throw std::invalid_argument(
-        fmt::format("level_uncertainty: refinement_ratio = {} (must be > 1)", refinement_ratio));
-    if (!(assumed_order > 0.0))
-      throw std::invalid_argument(
-        fmt::format("level_uncertainty: assumed_order = {} (must be > 0)", assumed_order));
-
-    const std::size_t n = values.size();
-    LevelEstimate     e;
-    e.finest          = values[n - 1];
-    e.previous        = values[n - 2];
-    const double e21  = e.finest - e.previous;
-    e.relative_change = e.finest != 0.0 ? std::abs(e21 / e.finest) : std::abs(e21);
-    e.order_used      = assumed_order;
-    if (n >= 3)
-    {
-      const double e32 = e.previous - values[n - 3];
-      if (e21 != 0.0 && e21 * e32 > 0.0)
-      {
-        e.observed_order = std::log(e32 / e21) / std::log(refinement_ratio);
-        if (e.observed_order >= 0.5 && e.observed_order <= 4.0)
-          e.order_used = e.observed_order;
-      }
-    }
-    e.extrapolated   = e.finest + e21 / (std::pow(refinement_ratio, e.order_used) - 1.0);
-    e.error_estimate = std::abs(e.extrapolated - e.finest);
-    e.relative_error = e.finest != 0.0 ? e.error_estimate / std::abs(e.finest) : e.error_estimate;
-    return e;
   }
 } // namespace kimp::fit

@@ -1,6 +1,7 @@
-// PEER AT2 and two-column ground-motion readers (see at2_reader.h); values in the unit the AT2
-// header states (g = 9.80665 m/s², cm/s², m/s², in/s², ...) → m/s². Format variants:
-// docs/physics.md "Ground-motion records".
+// PEER AT2 reader (see at2_reader.h): the NPTS/DT line, the unit the header states (g =
+// 9.80665 m/s², cm/s², m/s², in/s², ...) → m/s², the values; and read_ground_motion(), which
+// tells AT2 from two-column text (two_column_reader.cc). The text layer both share is
+// record_text.h. Format variants: docs/physics.md "Ground-motion records".
 #include "io/at2_reader.h"
 
 #include <algorithm>
@@ -13,168 +14,15 @@
 #include <sstream>
 #include <vector>
 
+#include "io/record_text.h"
 #include "io/units.h"
 
 namespace kimp::io
 {
+  using namespace detail;
+
   namespace
   {
-    const char *const at2_expectation =
-      "expected 3 header lines, then an NPTS/DT line such as 'NPTS=  4000, DT= .01000 SEC' or "
-      "'4000    0.0100    NPTS, DT', then NPTS values in the unit the header states";
-
-    std::string format_number(double value)
-    {
-      std::ostringstream out;
-      out.precision(10);
-      out << value;
-      return out.str();
-    }
-
-    [[noreturn]] void fail(const std::string &source, std::size_t line, const std::string &message)
-    {
-      throw GroundMotionFileError(source, line, message);
-    }
-
-    bool is_blank(char c)
-    {
-      return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
-    }
-
-    bool is_digit(char c)
-    {
-      return c >= '0' && c <= '9';
-    }
-
-    bool is_word_char(char c)
-    {
-      return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
-    }
-
-    struct Line
-    {
-      std::string_view text;   // without the line terminator
-      std::size_t      number; // 1-based
-    };
-
-    struct SplitText
-    {
-      std::vector<Line> lines;
-      bool              ends_with_newline = false;
-    };
-
-    // Terminators LF, CRLF and a lone CR (classic Mac files) all end a line.
-    SplitText split_lines(std::string_view content)
-    {
-      SplitText   split;
-      std::size_t begin = 0;
-      while (begin < content.size())
-      {
-        std::size_t end         = content.find_first_of("\r\n", begin);
-        const bool  has_newline = end != std::string_view::npos;
-        if (!has_newline)
-          end = content.size();
-        split.lines.push_back({content.substr(begin, end - begin), split.lines.size() + 1});
-        split.ends_with_newline = has_newline;
-        begin                   = end + 1;
-        if (has_newline && content[end] == '\r' && begin < content.size() && content[begin] == '\n')
-          ++begin;
-      }
-      return split;
-    }
-
-    /// Empty content and binary junk are reported before any format decision.
-    void check_text(std::string_view content, const std::string &source)
-    {
-      if (std::all_of(content.begin(),
-                      content.end(),
-                      [](char c) { return is_blank(c) || c == '\n'; }))
-        fail(source, 1, std::string("empty file (") + at2_expectation + ")");
-      std::size_t line = 1, column = 1;
-      for (std::size_t k = 0; k < content.size(); ++k)
-      {
-        const char c    = content[k];
-        const auto byte = static_cast<unsigned char>(c);
-        if (c == '\r' && k + 1 < content.size() && content[k + 1] == '\n')
-          continue;
-        if (c == '\n' || c == '\r')
-        {
-          ++line;
-          column = 1;
-          continue;
-        }
-        if ((byte < 0x20 && !is_blank(c)) || byte == 0x7f)
-        {
-          char hex[8];
-          std::snprintf(hex, sizeof hex, "0x%02x", byte);
-          fail(source,
-               line,
-               "binary data: control byte " + std::string(hex) + " at column " +
-                 std::to_string(column) + " (expected a text file)");
-        }
-        ++column;
-      }
-    }
-
-    /**
-     * Scan one Fortran real starting at `pos` (no leading blanks): [sign] mantissa with at least
-     * one digit and at most one '.', then an optional exponent [EeDd][sign]digits, or a
-     * letterless 3-digit exponent "±ddd" after a mantissa with '.', as Fortran writes |exp| >= 100.
-     * Returns the end position, or npos if no valid number starts at `pos`.
-     */
-    std::size_t scan_real(std::string_view s, std::size_t pos, double &value)
-    {
-      std::size_t p = pos;
-      if (p < s.size() && (s[p] == '+' || s[p] == '-'))
-        ++p;
-      std::size_t n_digits = 0;
-      bool        has_dot  = false;
-      while (p < s.size() && (is_digit(s[p]) || (s[p] == '.' && !has_dot)))
-      {
-        if (s[p] == '.')
-          has_dot = true;
-        else
-          ++n_digits;
-        ++p;
-      }
-      if (n_digits == 0)
-        return std::string_view::npos;
-      const std::size_t mantissa_end = p;
-      std::string       exponent;
-      if (p < s.size() && (s[p] == 'E' || s[p] == 'e' || s[p] == 'D' || s[p] == 'd'))
-      {
-        std::size_t q = p + 1;
-        if (q < s.size() && (s[q] == '+' || s[q] == '-'))
-          ++q;
-        const std::size_t digits_begin = q;
-        while (q < s.size() && is_digit(s[q]))
-          ++q;
-        if (q == digits_begin)
-          return std::string_view::npos;
-        exponent = std::string(s.substr(p + 1, q - p - 1));
-        p        = q;
-      }
-      else if (has_dot && p + 4 <= s.size() && (s[p] == '+' || s[p] == '-') && is_digit(s[p + 1]) &&
-               is_digit(s[p + 2]) && is_digit(s[p + 3]) &&
-               (p + 4 == s.size() || !(is_digit(s[p + 4]) || s[p + 4] == '.')))
-      {
-        exponent = std::string(s.substr(p, 4));
-        p += 4;
-      }
-
-      std::string text(s.substr(pos, mantissa_end - pos));
-      if (!exponent.empty())
-        text += "e" + exponent;
-      const char *first = text.data();
-      if (*first == '+')
-        ++first;
-      const auto result = std::from_chars(first, text.data() + text.size(), value);
-      if (result.ec != std::errc() || result.ptr != text.data() + text.size() ||
-          !std::isfinite(value))
-        return std::string_view::npos;
-      return p;
-    }
-
     std::string token_at(std::string_view s, std::size_t pos)
     {
       std::size_t end = pos;
@@ -387,62 +235,6 @@ namespace kimp::io
              " (expected a line such as 'ACCELERATION TIME SERIES IN UNITS OF G'; kimp never "
              "assumes a unit)");
     }
-
-    std::string read_file(const std::filesystem::path &file)
-    {
-      std::error_code ec;
-      if (std::filesystem::is_directory(file, ec))
-        fail(file.string(), 0, "is a directory (expected a ground-motion file)");
-      std::ifstream in(file, std::ios::binary);
-      if (!in)
-        fail(file.string(), 0, "cannot open (expected a readable ground-motion file)");
-      std::ostringstream buffer;
-      buffer << in.rdbuf();
-      if (in.bad())
-        fail(file.string(), 0, "read error");
-      return buffer.str();
-    }
-
-    /// Numeric tokens of a two-column line (comment already removed); on a non-numeric token,
-    /// `ok` is false and the token is returned in `bad`.
-    std::vector<double> split_numbers(std::string_view s, std::string &bad, bool &ok)
-    {
-      std::vector<double> values;
-      ok            = true;
-      std::size_t p = 0;
-      while (true)
-      {
-        while (p < s.size() && (is_blank(s[p]) || s[p] == ',' || s[p] == ';'))
-          ++p;
-        if (p >= s.size())
-          break;
-        std::size_t end = p;
-        while (end < s.size() && !is_blank(s[end]) && s[end] != ',' && s[end] != ';')
-          ++end;
-        const std::string_view token = s.substr(p, end - p);
-        double                 value = 0.0;
-        if (scan_real(token, 0, value) != token.size())
-        {
-          bad = std::string(token);
-          ok  = false;
-          return values;
-        }
-        values.push_back(value);
-        p = end;
-      }
-      return values;
-    }
-
-    std::string_view strip_comment(std::string_view s)
-    {
-      const std::size_t hash = s.find('#');
-      return hash == std::string_view::npos ? s : s.substr(0, hash);
-    }
-
-    std::string stem_of(const std::string &source)
-    {
-      return std::filesystem::path(source).stem().string();
-    }
   } // namespace
 
   GroundMotionFileError::GroundMotionFileError(const std::string &file,
@@ -549,92 +341,6 @@ namespace kimp::io
   AccelerationRecord read_at2(const std::filesystem::path &file)
   {
     return parse_at2(read_file(file), file.string());
-  }
-
-  AccelerationRecord
-  parse_two_column(std::string_view content, const std::string &source, double acceleration_unit)
-  {
-    if (!(std::isfinite(acceleration_unit) && acceleration_unit > 0.0))
-      throw std::invalid_argument(
-        source + ": two-column acceleration unit = " + format_number(acceleration_unit) +
-        " m/s^2 (must be finite and > 0)");
-    check_text(content, source);
-    const SplitText split = split_lines(content);
-
-    std::vector<double>      times, values;
-    std::vector<std::size_t> line_numbers;
-    for (const Line &line : split.lines)
-    {
-      std::string bad;
-      bool        ok   = true;
-      const auto  nums = split_numbers(strip_comment(line.text), bad, ok);
-      if (!ok)
-        fail(source,
-             line.number,
-             "non-numeric token \"" + bad +
-               "\" (expected 'time acceleration' numbers; comment other lines with '#')");
-      if (nums.empty())
-        continue;
-      if (nums.size() != 2)
-        fail(source,
-             line.number,
-             std::to_string(nums.size()) +
-               " numbers on the line (expected 2: 'time acceleration')");
-      if (!std::isfinite(nums[1] * acceleration_unit))
-        fail(source,
-             line.number,
-             "acceleration " + format_number(nums[1]) +
-               " overflows when converted to m/s^2 (expected a finite acceleration)");
-      times.push_back(nums[0]);
-      values.push_back(nums[1] * acceleration_unit);
-      line_numbers.push_back(line.number);
-    }
-    if (times.size() < 2)
-      fail(source,
-           split.lines.size(),
-           std::to_string(times.size()) +
-             " data row(s) (expected at least 2 'time acceleration' rows)");
-    for (std::size_t i = 1; i < times.size(); ++i)
-      if (!(times[i] > times[i - 1]))
-        fail(source,
-             line_numbers[i],
-             "time " + format_number(times[i]) + " s after " + format_number(times[i - 1]) +
-               " s (expected strictly increasing times)");
-
-    const double dt = (times.back() - times.front()) / static_cast<double>(times.size() - 1);
-    if (!std::isnormal(dt))
-      fail(source,
-           line_numbers.back(),
-           "time step " + format_number(dt) +
-             " s (expected a positive normal number: times spanning more than 1e-300 s)");
-    const double tolerance = two_column_time_tolerance * dt;
-    if (std::abs(times.front()) > tolerance)
-      fail(source,
-           line_numbers.front(),
-           "first time " + format_number(times.front()) +
-             " s (expected 0: samples are taken from t = 0)");
-    for (std::size_t i = 0; i < times.size(); ++i)
-    {
-      const double deviation = times[i] - static_cast<double>(i) * dt;
-      if (std::abs(deviation) > tolerance)
-        fail(source,
-             line_numbers[i],
-             "time " + format_number(times[i]) + " s is " + format_number(deviation) +
-               " s off the uniform grid i*dt with dt = " + format_number(dt) +
-               " s (expected uniform sampling within " + format_number(two_column_time_tolerance) +
-               "*dt)");
-    }
-
-    AccelerationRecord motion;
-    motion.dt           = dt;
-    motion.acceleration = std::move(values);
-    motion.name         = stem_of(source);
-    return motion;
-  }
-
-  AccelerationRecord read_two_column(const std::filesystem::path &file, double acceleration_unit)
-  {
-    return parse_two_column(read_file(file), file.string(), acceleration_unit);
   }
 
   AccelerationRecord read_ground_motion(const std::filesystem::path &file,

@@ -67,24 +67,6 @@ namespace kimp::io
       ::raise(signal_number);
     }
 
-    /// Write all of `text` to `fd` and sync it; returns 0 or the errno of the failure.
-    int write_all(int fd, std::string_view text)
-    {
-      std::size_t done = 0;
-      while (done < text.size())
-      {
-        const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-        if (n < 0)
-        {
-          if (errno == EINTR)
-            continue;
-          return errno;
-        }
-        done += static_cast<std::size_t>(n);
-      }
-      return ::fsync(fd) == 0 ? 0 : errno;
-    }
-
     std::filesystem::path canonical_or_absolute(const std::filesystem::path &path)
     {
       std::error_code       error;
@@ -162,6 +144,31 @@ namespace kimp::io
     unregister_cleanup(slot_);
   }
 
+  int write_all(const int fd, const void *data, const std::size_t size)
+  {
+    const auto *bytes = static_cast<const char *>(data);
+    std::size_t done  = 0;
+    while (done < size)
+    {
+      const ssize_t n = ::write(fd, bytes + done, size - done);
+      if (n < 0)
+      {
+        if (errno == EINTR)
+          continue;
+        return errno;
+      }
+      done += static_cast<std::size_t>(n);
+    }
+    return 0;
+  }
+
+  int write_all_and_sync(const int fd, const void *data, const std::size_t size)
+  {
+    if (const int error = write_all(fd, data, size); error != 0)
+      return error;
+    return ::fsync(fd) == 0 ? 0 : errno;
+  }
+
   void write_text_atomic(const std::filesystem::path &path, std::string_view text)
   {
     TemporaryFile temporary(path);
@@ -171,7 +178,7 @@ namespace kimp::io
                                     path.string(),
                                     temporary.path().string(),
                                     std::strerror(errno)));
-    const int write_error = write_all(fd, text);
+    const int write_error = write_all_and_sync(fd, text.data(), text.size());
     const int close_error = ::close(fd) == 0 ? 0 : errno;
     if (write_error != 0 || close_error != 0)
       throw OutputError(fmt::format("{}: writing '{}' failed: {}",

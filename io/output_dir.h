@@ -3,6 +3,7 @@
 // failed run removes what it wrote), and the SIGTERM/SIGINT cleanup of temporary files.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
@@ -23,6 +24,13 @@ namespace kimp::io
   /// by the extension (gmsh, matplotlib): "mesh/H1.25.msh.tmp-812.msh".
   std::filesystem::path temporary_path(const std::filesystem::path &path,
                                        bool                         keep_extension = false);
+
+  /// Write all `size` bytes of `data` to the file descriptor `fd` (again after EINTR); returns 0
+  /// or the errno of the failed write.
+  int write_all(int fd, const void *data, std::size_t size);
+
+  /// write_all() and then fsync(fd); returns 0, or the errno of the failed write or sync.
+  int write_all_and_sync(int fd, const void *data, std::size_t size);
 
   /**
    * The temporary file temporary_path(final, keep_extension) of a file being written. It is

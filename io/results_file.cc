@@ -1,5 +1,7 @@
-// HDF5 results file (C API, used serially); layout in results_file.h and docs/architecture.md
-// "Results files"
+// HDF5 results file (C API, used serially): its groups, datasets and attributes, and the file's
+// life (built in memory, written to a temporary file at commit, renamed); layout in
+// results_file.h and docs/architecture.md "Results files". The time series are in
+// results_series.cc, the HDF5 writing helpers in results_hdf5.h.
 #include "io/results_file.h"
 
 #include <array>
@@ -14,230 +16,23 @@
 #include <unistd.h>
 
 #include "base/version.h"
-#include "io/hdf5_handle.h"
 #include "io/output_dir.h"
+#include "io/results_hdf5.h"
 
 namespace kimp::io
 {
   static_assert(std::is_same_v<hid_t, std::int64_t>, "kimp stores HDF5 ids as int64_t");
 
-  namespace detail
-  {
-    struct ResultsFileState
-    {
-      hid_t                                       file = -1;
-      int                                         fd   = -1; ///< the temporary file on disk
-      std::string                                 name;      ///< final file name, for messages
-      std::vector<std::weak_ptr<TimeSeriesState>> series;
-      std::string                                 deferred_error;
-      std::optional<TemporaryFile>                temporary; ///< removed by a SIGTERM handler
-
-      bool open() const { return file >= 0; }
-    };
-
-    struct TimeSeriesState
-    {
-      std::shared_ptr<ResultsFileState> file;
-      std::string                       path;
-      hid_t                             step_set  = -1;
-      hid_t                             time_set  = -1;
-      hid_t                             value_set = -1;
-      std::size_t                       width     = 1;
-      bool                              matrix    = false; ///< value is [n][width]
-      bool        writes_clock = true; ///< false: step/time are hard links to another series'
-      std::size_t written      = 0;
-      std::size_t buffer_rows  = 4096;
-      std::vector<std::int64_t> steps;
-      std::vector<double>       times;
-      std::vector<double>       values;
-
-      void flush();
-      ~TimeSeriesState();
-    };
-  } // namespace detail
+  using detail::check;
+  using detail::Closer;
+  using detail::join_path;
+  using detail::utf8_string_type;
+  using detail::write_dataset;
+  using detail::write_numeric_attribute;
+  using detail::write_string_attribute;
 
   namespace
   {
-    /// Descriptions of the HDF5 error stack, outermost first.
-    herr_t collect_error(unsigned int /*n*/, const H5E_error2_t *error, void *data)
-    {
-      auto *descriptions = static_cast<std::vector<std::string> *>(data);
-      if (error->desc != nullptr && error->desc[0] != '\0')
-        descriptions->emplace_back(error->desc);
-      return 0;
-    }
-
-    /// One line from HDF5's error stack: the outermost and the innermost description (the
-    /// whole stack runs to a dozen lines that say the same thing).
-    std::string hdf5_error_text()
-    {
-      std::vector<std::string> descriptions;
-      H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, collect_error, &descriptions);
-      H5Eclear2(H5E_DEFAULT);
-      if (descriptions.empty())
-        return "no HDF5 error detail";
-      std::string text = descriptions.front();
-      if (descriptions.size() > 1 && descriptions.back() != descriptions.front())
-        text += ": " + descriptions.back();
-      for (char &c : text)
-        if (c == '\n' || c == '\r')
-          c = ' ';
-      return text;
-    }
-
-    template <class T>
-    T check(T result, const std::string &file, const std::string &what)
-    {
-      if (result < 0)
-        throw ResultsError(
-          fmt::format("results file '{}': {} failed: {}", file, what, hdf5_error_text()));
-      return result;
-    }
-
-    using Closer = detail::Hdf5Handle;
-    using detail::utf8_string_type;
-
-    std::string join_path(const std::string &parent, std::string_view name)
-    {
-      return parent == "/" ? "/" + std::string(name) : parent + "/" + std::string(name);
-    }
-
-    void delete_attribute_if_present(hid_t object, const std::string &name)
-    {
-      if (H5Aexists(object, name.c_str()) > 0)
-        H5Adelete(object, name.c_str());
-    }
-
-    void write_string_attribute(hid_t              object,
-                                const std::string &name,
-                                std::string_view   value,
-                                const std::string &file,
-                                const std::string &where)
-    {
-      delete_attribute_if_present(object, name);
-      const Closer      type(utf8_string_type(), H5Tclose);
-      const Closer      space(H5Screate(H5S_SCALAR), H5Sclose);
-      const std::string what = fmt::format("attribute '{}' of '{}'", name, where);
-      const Closer      attribute(
-        check(H5Acreate2(object, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
-              file,
-              "creating " + what),
-        H5Aclose);
-      const std::string text(value);
-      const char       *pointer = text.c_str();
-      check(H5Awrite(attribute.get(), type.get(), &pointer), file, "writing " + what);
-    }
-
-    template <class T>
-    void write_numeric_attribute(hid_t              object,
-                                 const std::string &name,
-                                 hid_t              file_type,
-                                 hid_t              memory_type,
-                                 const T           *values,
-                                 hsize_t            n,
-                                 bool               scalar,
-                                 const std::string &file,
-                                 const std::string &where)
-    {
-      delete_attribute_if_present(object, name);
-      const Closer space(scalar ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &n, nullptr),
-                         H5Sclose);
-      const std::string what = fmt::format("attribute '{}' of '{}'", name, where);
-      const Closer      attribute(
-        check(H5Acreate2(object, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
-              file,
-              "creating " + what),
-        H5Aclose);
-      check(H5Awrite(attribute.get(), memory_type, values), file, "writing " + what);
-    }
-
-    /// Create a dataset of `rank` dims, write `data` and its `units` attribute.
-    void write_dataset(hid_t                       group,
-                       const std::string          &group_path,
-                       std::string_view            name,
-                       hid_t                       file_type,
-                       hid_t                       memory_type,
-                       const void                 *data,
-                       const std::vector<hsize_t> &dims,
-                       std::string_view            units,
-                       const std::string          &file)
-    {
-      const std::string path = join_path(group_path, name);
-      const Closer      space(dims.empty() ?
-                           H5Screate(H5S_SCALAR) :
-                           H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
-                         H5Sclose);
-      const Closer dataset(check(H5Dcreate2(group,
-                                            std::string(name).c_str(),
-                                            file_type,
-                                            space.get(),
-                                            H5P_DEFAULT,
-                                            H5P_DEFAULT,
-                                            H5P_DEFAULT),
-                                 file,
-                                 "creating dataset '" + path + "'"),
-                           H5Dclose);
-      check(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
-            file,
-            "writing dataset '" + path + "'");
-      write_string_attribute(dataset.get(), "units", units.empty() ? "1" : units, file, path);
-    }
-
-    /// Chunked dataset [0][width...] extendible along the first dimension.
-    hid_t create_extendible(hid_t              group,
-                            const std::string &path,
-                            const char        *name,
-                            hid_t              type,
-                            std::size_t        width,
-                            bool               matrix,
-                            std::size_t        chunk_rows,
-                            std::string_view   units,
-                            const std::string &file)
-    {
-      const int     rank = matrix ? 2 : 1;
-      const hsize_t dims[2]{0, width};
-      const hsize_t max_dims[2]{H5S_UNLIMITED, width};
-      const hsize_t chunk[2]{std::max<hsize_t>(1, chunk_rows), width};
-      const Closer  space(H5Screate_simple(rank, dims, max_dims), H5Sclose);
-      const Closer  properties(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
-      check(H5Pset_chunk(properties.get(), rank, chunk), file, "chunking '" + path + "'");
-      const hid_t dataset = check(
-        H5Dcreate2(group, name, type, space.get(), H5P_DEFAULT, properties.get(), H5P_DEFAULT),
-        file,
-        "creating dataset '" + path + "/" + name + "'");
-      write_string_attribute(dataset,
-                             "units",
-                             units.empty() ? "1" : units,
-                             file,
-                             path + "/" + name);
-      return dataset;
-    }
-
-    void append_rows(hid_t              dataset,
-                     hid_t              memory_type,
-                     const void        *data,
-                     std::size_t        first_row,
-                     std::size_t        n_rows,
-                     std::size_t        width,
-                     bool               matrix,
-                     const std::string &file,
-                     const std::string &what)
-    {
-      const int     rank = matrix ? 2 : 1;
-      const hsize_t new_dims[2]{first_row + n_rows, width};
-      check(H5Dset_extent(dataset, new_dims), file, "extending " + what);
-      const Closer  file_space(H5Dget_space(dataset), H5Sclose);
-      const hsize_t start[2]{first_row, 0};
-      const hsize_t count[2]{n_rows, width};
-      check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr),
-            file,
-            "selecting rows of " + what);
-      const Closer memory_space(H5Screate_simple(rank, count, nullptr), H5Sclose);
-      check(H5Dwrite(dataset, memory_type, memory_space.get(), file_space.get(), H5P_DEFAULT, data),
-            file,
-            "writing " + what);
-    }
-
     std::string utc_now()
     {
       const std::time_t now = std::time(nullptr);
@@ -248,124 +43,6 @@ namespace kimp::io
       return text.data();
     }
   } // namespace
-
-  // ---------------------------------------------------------------------------------------------
-
-  void detail::TimeSeriesState::flush()
-  {
-    const std::size_t n = steps.size();
-    if (n == 0)
-      return;
-    if (!file->open())
-      throw ResultsError(
-        fmt::format("results file '{}': time series '{}' written after the file was closed",
-                    file->name,
-                    path));
-    if (writes_clock)
-    {
-      append_rows(step_set,
-                  H5T_NATIVE_INT64,
-                  steps.data(),
-                  written,
-                  n,
-                  1,
-                  false,
-                  file->name,
-                  path + "/step");
-      append_rows(time_set,
-                  H5T_NATIVE_DOUBLE,
-                  times.data(),
-                  written,
-                  n,
-                  1,
-                  false,
-                  file->name,
-                  path + "/time");
-    }
-    append_rows(value_set,
-                H5T_NATIVE_DOUBLE,
-                values.data(),
-                written,
-                n,
-                width,
-                matrix,
-                file->name,
-                path + "/value");
-    written += n;
-    steps.clear();
-    times.clear();
-    values.clear();
-  }
-
-  detail::TimeSeriesState::~TimeSeriesState()
-  {
-    try
-    {
-      if (file->open())
-        flush();
-    }
-    catch (const std::exception &error)
-    {
-      if (file->deferred_error.empty())
-        file->deferred_error = error.what();
-    }
-    if (file->open())
-      for (const hid_t id : {step_set, time_set, value_set})
-        if (id >= 0)
-          H5Dclose(id);
-  }
-
-  TimeSeries::TimeSeries(std::shared_ptr<detail::TimeSeriesState> state)
-    : state_(std::move(state))
-  {
-  }
-  TimeSeries::TimeSeries(TimeSeries &&) noexcept            = default;
-  TimeSeries &TimeSeries::operator=(TimeSeries &&) noexcept = default;
-  TimeSeries::~TimeSeries()                                 = default;
-
-  void TimeSeries::append(std::int64_t step, double time, const double *values)
-  {
-    auto &s = *state_;
-    s.steps.push_back(step);
-    s.times.push_back(time);
-    s.values.insert(s.values.end(), values, values + s.width);
-    if (s.steps.size() >= s.buffer_rows)
-      s.flush();
-  }
-
-  void TimeSeries::append(std::int64_t step, double time, const std::vector<double> &values)
-  {
-    if (values.size() != state_->width)
-      throw ResultsError(fmt::format("time series '{}': row of {} values appended, expected {}",
-                                     state_->path,
-                                     values.size(),
-                                     state_->width));
-    append(step, time, values.data());
-  }
-
-  void TimeSeries::append(std::int64_t step, double time, double value)
-  {
-    if (state_->width != 1)
-      throw ResultsError(fmt::format("time series '{}': one value appended, expected {}",
-                                     state_->path,
-                                     state_->width));
-    append(step, time, &value);
-  }
-
-  std::size_t TimeSeries::width() const
-  {
-    return state_->width;
-  }
-
-  std::size_t TimeSeries::size() const
-  {
-    return state_->written + state_->steps.size();
-  }
-
-  void TimeSeries::flush()
-  {
-    state_->flush();
-  }
 
   // ---------------------------------------------------------------------------------------------
 
@@ -558,120 +235,6 @@ namespace kimp::io
       series.append(steps[i], times[i], values.data() + i * width);
     series.flush();
   }
-
-  std::shared_ptr<detail::TimeSeriesState> ResultsGroup::make_series(ResultsGroup    &g,
-                                                                     std::size_t      width,
-                                                                     std::string_view units,
-                                                                     std::size_t      buffer_rows,
-                                                                     const ResultsGroup *clock)
-  {
-    if (width == 0)
-      throw ResultsError(fmt::format("time series '{}': width must be >= 1", g.path()));
-    auto state              = std::make_shared<detail::TimeSeriesState>();
-    state->file             = file_;
-    state->path             = g.path();
-    state->width            = width;
-    state->matrix           = width > 1;
-    state->buffer_rows      = std::max<std::size_t>(buffer_rows, 1);
-    const std::size_t chunk = std::min<std::size_t>(state->buffer_rows, 4096);
-    if (clock == nullptr)
-    {
-      state->step_set = create_extendible(g.id_,
-                                          g.path(),
-                                          "step",
-                                          H5T_STD_I64LE,
-                                          1,
-                                          false,
-                                          chunk,
-                                          "1",
-                                          file_->name);
-      state->time_set = create_extendible(g.id_,
-                                          g.path(),
-                                          "time",
-                                          H5T_IEEE_F64LE,
-                                          1,
-                                          false,
-                                          chunk,
-                                          "s",
-                                          file_->name);
-    }
-    else
-    {
-      state->writes_clock = false;
-      for (const char *name : {"step", "time"})
-        check(H5Lcreate_hard(clock->id_, name, g.id_, name, H5P_DEFAULT, H5P_DEFAULT),
-              file_->name,
-              fmt::format("linking '{}/{}' to '{}/{}'", g.path(), name, clock->path(), name));
-    }
-    state->value_set = create_extendible(g.id_,
-                                         g.path(),
-                                         "value",
-                                         H5T_IEEE_F64LE,
-                                         width,
-                                         state->matrix,
-                                         chunk,
-                                         units,
-                                         file_->name);
-    file_->series.push_back(state);
-    return state;
-  }
-
-  TimeSeries ResultsGroup::time_series(std::string_view name,
-                                       std::size_t      width,
-                                       std::string_view units,
-                                       std::size_t      buffer_rows)
-  {
-    ResultsGroup g = group(name);
-    return TimeSeries(make_series(g, width, units, buffer_rows, nullptr));
-  }
-
-  TimeSeriesSet ResultsGroup::time_series_set(const std::vector<SeriesSpec> &specs,
-                                              std::size_t                    buffer_rows)
-  {
-    if (specs.empty())
-      throw ResultsError(fmt::format("time series set below '{}': no quantities", path_));
-    TimeSeriesSet set;
-    ResultsGroup  clock = group(specs.front().name);
-    for (std::size_t i = 0; i < specs.size(); ++i)
-    {
-      ResultsGroup g = group(specs[i].name);
-      set.states_.push_back(
-        make_series(g, specs[i].width, specs[i].units, buffer_rows, i == 0 ? nullptr : &clock));
-      set.row_width_ += specs[i].width;
-    }
-    return set;
-  }
-
-  void TimeSeriesSet::append(std::int64_t step, double time, const std::vector<double> &values)
-  {
-    if (values.size() != row_width_)
-      throw ResultsError(fmt::format("time series set '{}': row of {} values appended, expected {}",
-                                     states_.front()->path,
-                                     values.size(),
-                                     row_width_));
-    const double *row = values.data();
-    for (const auto &state : states_)
-    {
-      state->steps.push_back(step);
-      state->times.push_back(time);
-      state->values.insert(state->values.end(), row, row + state->width);
-      row += state->width;
-    }
-    if (states_.front()->steps.size() >= states_.front()->buffer_rows)
-      flush();
-  }
-
-  std::size_t TimeSeriesSet::size() const
-  {
-    return states_.empty() ? 0 : states_.front()->written + states_.front()->steps.size();
-  }
-
-  void TimeSeriesSet::flush()
-  {
-    for (const auto &state : states_)
-      state->flush();
-  }
-
   void ResultsGroup::write_table(std::string_view name, const std::vector<TableColumn> &columns)
   {
     ResultsGroup             table = group(name);
@@ -765,24 +328,6 @@ namespace kimp::io
       }
       if (state.temporary)
         state.temporary->discard();
-    }
-
-    /// Write `size` bytes to `fd` from its start; returns 0 or the errno of the failure.
-    int write_all(int fd, const unsigned char *data, std::size_t size)
-    {
-      std::size_t done = 0;
-      while (done < size)
-      {
-        const ssize_t n = ::write(fd, data + done, size - done);
-        if (n < 0)
-        {
-          if (errno == EINTR)
-            continue;
-          return errno;
-        }
-        done += static_cast<std::size_t>(n);
-      }
-      return ::fsync(fd) == 0 ? 0 : errno;
     }
   } // namespace
 
@@ -890,7 +435,7 @@ namespace kimp::io
       const herr_t closed = H5Fclose(state_->file);
       state_->file        = -1;
       check(closed, state_->name, "closing");
-      const int write_error = write_all(state_->fd, image.data(), image.size());
+      const int write_error = write_all_and_sync(state_->fd, image.data(), image.size());
       const int close_error = ::close(state_->fd) == 0 ? 0 : errno;
       state_->fd            = -1;
       if (write_error != 0 || close_error != 0)
