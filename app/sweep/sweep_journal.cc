@@ -13,6 +13,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "io/output_dir.h"
 #include "io/summary.h"
 
 namespace kimp::app
@@ -25,21 +26,11 @@ namespace kimp::app
       return std::strerror(errno);
     }
 
-    void write_all(int fd, const std::string &text, const std::filesystem::path &file)
+    void append_text(int fd, const std::string &text, const std::filesystem::path &file)
     {
-      std::size_t done = 0;
-      while (done < text.size())
-      {
-        const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-        if (n < 0)
-        {
-          if (errno == EINTR)
-            continue;
-          throw OutputError("cannot append to sweep journal " + file.string() + ": " +
-                            errno_text());
-        }
-        done += static_cast<std::size_t>(n);
-      }
+      if (const int error = io::write_all(fd, text.data(), text.size()); error != 0)
+        throw OutputError("cannot append to sweep journal " + file.string() + ": " +
+                          std::strerror(error));
     }
   } // namespace
 
@@ -59,7 +50,7 @@ namespace kimp::app
     {
       char last = '\n';
       if (::pread(fd_, &last, 1, size - 1) == 1 && last != '\n')
-        write_all(fd_, "\n", file_);
+        append_text(fd_, "\n", file_);
     }
   }
 
@@ -88,7 +79,7 @@ namespace kimp::app
     const off_t                       before = ::lseek(fd_, 0, SEEK_END);
     try
     {
-      write_all(fd_, line, file_);
+      append_text(fd_, line, file_);
       if (::fsync(fd_) != 0)
         throw OutputError("cannot fsync sweep journal " + file_.string() + ": " + errno_text());
     }
