@@ -54,6 +54,9 @@ namespace kimp::cli
       "kimp");
     app->set_version_flag("--version", version_line());
     app->fallthrough();
+    // One command per call: a positional that names a command ("kimp export-opensees study", the
+    // default output directory of `kimp study`) is then the argument, not a second command.
+    app->require_subcommand(0, 1);
 
     // Read the flag counts (reset by every parse), not bound variables (kept between parses).
     CLI::Option *verbose = app->add_flag("-v,--verbose", "more log output (-vv: everything)");

@@ -194,6 +194,25 @@ namespace
     EXPECT_EQ(runs, 1);
   }
 
+  TEST(Cli, APositionalThatNamesACommandIsTheArgumentNotASecondCommand)
+  {
+    // `kimp export-opensees study -o x`: `study` is the default output directory of kimp study.
+    std::unique_ptr<CLI::App> app = make_app();
+    std::string               source;
+    int                       exports = 0;
+    int                       studies = 0;
+    CLI::App *export_command = app->add_subcommand("export", "reads a directory (optional)");
+    export_command->add_option("source", source);
+    export_command->callback([&]() { ++exports; });
+    app->add_subcommand("study", "a long computation")->callback([&]() { ++studies; });
+    std::ostringstream out;
+    std::ostringstream err;
+    ASSERT_EQ(run_app(*app, {"export", "study"}, out, err), 0) << err.str();
+    EXPECT_EQ(source, "study");
+    EXPECT_EQ(exports, 1);
+    EXPECT_EQ(studies, 0) << "a directory named like a command must not run that command";
+  }
+
   TEST(Cli, SceneErrorsPropagateToMain)
   {
     const TempDir dir;

@@ -221,7 +221,7 @@ dynamics: {end_time: "40 ms", output_interval: "0.02 ms"}
            {"mesh", "mesh fem.yaml -o mesh"},
            {"fem", "fem fem.yaml -o fem"},
            {"fit", "fit fem/fem.h5 -o fit"},
-           {"export-opensees", "export-opensees ./study --wall-height \"1 m\" -o opensees"}})
+           {"export-opensees", "export-opensees study --wall-height \"1 m\" -o opensees"}})
     {
       const KimpRun run = run_kimp("-q " + arguments, d);
       ASSERT_EQ(run.exit_code, 0) << arguments << "\n" << run.err;
