@@ -321,6 +321,22 @@ ground_motion:
     EXPECT_FALSE(runs[0].contains("log")) << runs.dump();
   }
 
+  TEST_F(ServerFixture, AFailedRunKeepsEveryErrorLineOfItsLog)
+  {
+    // Both cases fail at run time (a peak displacement above 1 mm is "implausible"): kimp logs
+    // an error line per case, then ends with "error: 2 of 2 cases failed ...".
+    const std::string scene = std::string(small_scene) +
+                              "integration:\n  plausible_displacement: \"1 mm\"\n"
+                              "cases:\n  - {name: first}\n  - {name: second}\n";
+    const std::string    id  = start({{"command", "lumped"}, {"scene", scene}});
+    const nlohmann::json run = wait_for_run(id, 60, finished);
+    EXPECT_EQ(run["state"], "failed") << run.dump();
+    const std::string error = run["error"];
+    EXPECT_EQ(error.rfind("case first: failed: implausible result", 0), 0u) << error;
+    EXPECT_NE(error.find("\ncase second: failed: implausible result"), std::string::npos) << error;
+    EXPECT_NE(error.find("\n2 of 2 cases failed"), std::string::npos) << error;
+  }
+
   /// The events of GET /api/runs/ID/events, each the JSON after "data: ", until the stream ends.
   std::vector<nlohmann::json> read_events(int port, const std::string &id)
   {
