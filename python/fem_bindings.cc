@@ -58,45 +58,44 @@ namespace kimp::python
     {
       return text ? std::filesystem::path(*text) : std::filesystem::path();
     }
+
+    /// `m.<python_name>(text, name, output, directory=None)`: the scene text read as the CLI reads
+    /// it, then `run(scene, output)` with the GIL released.
+    template <class Scene, class Run>
+    void def_scene_run(py::module_ &m, const char *python_name, Run run, const char *doc)
+    {
+      m.def(
+        python_name,
+        [run](const std::string                &text,
+              const std::string                &name,
+              const std::string                &output,
+              const std::optional<std::string> &scene_directory)
+        {
+          ensure_session();
+          py::gil_scoped_release release;
+          run(io::read_scene_text<Scene>(text, name, directory(scene_directory)), output);
+        },
+        py::arg("text"),
+        py::arg("name"),
+        py::arg("output"),
+        py::arg("directory") = py::none(),
+        doc);
+    }
   } // namespace
 
   void register_fem(py::module_ &m)
   {
-    m.def(
+    def_scene_run<app::FemScene>(
+      m,
       "run_fem",
-      [](const std::string                &text,
-         const std::string                &name,
-         const std::string                &output,
-         const std::optional<std::string> &scene_directory)
-      {
-        ensure_session();
-        py::gil_scoped_release release;
-        app::run_fem(io::read_scene_text<app::FemScene>(text, name, directory(scene_directory)),
-                     io::OutputDir(output));
-      },
-      py::arg("text"),
-      py::arg("name"),
-      py::arg("output"),
-      py::arg("directory") = py::none(),
+      [](const io::LoadedScene<app::FemScene> &scene, const std::string &output)
+      { app::run_fem(scene, io::OutputDir(output)); },
       "`kimp fem` of a scene text into the directory `output` (fem.h5, summary.json, ...).");
-    m.def(
+    def_scene_run<app::StudyScene>(
+      m,
       "run_study",
-      [](const std::string                &text,
-         const std::string                &name,
-         const std::string                &output,
-         const std::optional<std::string> &scene_directory)
-      {
-        ensure_session();
-        py::gil_scoped_release release;
-        app::run_study_job(io::read_scene_text<app::StudyScene>(text,
-                                                                name,
-                                                                directory(scene_directory)),
-                           output);
-      },
-      py::arg("text"),
-      py::arg("name"),
-      py::arg("output"),
-      py::arg("directory") = py::none(),
+      [](const io::LoadedScene<app::StudyScene> &scene, const std::string &output)
+      { app::run_study_job(scene, output); },
       "`kimp study` of a scene text into the directory `output` (study.h5, k_table.csv, ...).");
   }
 #else
