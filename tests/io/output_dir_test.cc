@@ -76,6 +76,25 @@ namespace
     EXPECT_FALSE(fs::exists(dir.path() / kimp::io::output_lock_name));
   }
 
+  TEST(OutputDir, AResultKeptAsWrittenStaysWhenTheCommandThenFails)
+  {
+    const TempDir dir;
+    try
+    {
+      const OutputDir output(dir.path());
+      kimp::io::write_text_atomic(output.file("summary.json"), "{}\n");
+      output.keep_written(); // a complete result recording a failed case
+      kimp::io::write_text_atomic(output.file("charts.txt"), "x");
+      throw std::runtime_error("1 of 2 cases failed");
+    }
+    catch (const std::runtime_error &)
+    {
+    }
+    EXPECT_TRUE(fs::exists(dir.path() / "summary.json")) << "written before keep_written()";
+    EXPECT_FALSE(fs::exists(dir.path() / "charts.txt")) << "written after it: removed";
+    EXPECT_FALSE(fs::exists(dir.path() / kimp::io::output_lock_name));
+  }
+
   TEST(OutputDir, FilesOutsideEveryOutputDirAreNotTracked)
   {
     const TempDir dir;
