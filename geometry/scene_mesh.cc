@@ -211,51 +211,21 @@ namespace kimp::geometry
       return in && text.compare(line == std::string::npos ? 0 : line + 1, 4, "$End") == 0;
     }
 
-    /**
-     * `<file>.tmp-<pid>.msh` (gmsh chooses the format by the extension), written by gmsh and
-     * renamed to `file` by commit() once complete, so a failed or interrupted write never leaves
-     * a partial mesh under the final name. gmsh does not report write errors (a full disk leaves
-     * a short or empty file): commit() checks that the file ends with a section end and syncs it
-     * to disk. Removed at destruction if not renamed.
-     */
-    struct PendingFile
+    /// gmsh reports no write error (a full disk leaves a short or empty file): `file` must end
+    /// with a section end and reach the disk.
+    void check_written(const std::filesystem::path &file)
     {
-      explicit PendingFile(std::filesystem::path final)
-        : final_path(std::move(final))
-        , path(final_path.string() + ".tmp-" + std::to_string(::getpid()) +
-               final_path.extension().string())
-      {
-      }
-      PendingFile(const PendingFile &)            = delete;
-      PendingFile &operator=(const PendingFile &) = delete;
-      ~PendingFile()
-      {
-        std::error_code ignored;
-        std::filesystem::remove(path, ignored);
-      }
-
-      void commit() const
-      {
-        const int fd         = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-        const int sync_error = fd < 0 ? errno : (::fsync(fd) == 0 ? 0 : errno);
-        if (fd >= 0)
-          ::close(fd);
-        if (sync_error != 0 || !ends_with_section_end(path))
-          throw std::runtime_error("build_scene_mesh: could not write the mesh file '" +
-                                   final_path.string() + "': " +
-                                   (sync_error != 0 ? std::strerror(sync_error) :
-                                                      "the file gmsh wrote is incomplete (disk "
-                                                      "full?)"));
-        std::error_code error;
-        std::filesystem::rename(path, final_path, error);
-        if (error)
-          throw std::runtime_error("build_scene_mesh: could not rename '" + path.string() +
-                                   "' to '" + final_path.string() + "': " + error.message());
-      }
-
-      std::filesystem::path final_path;
-      std::filesystem::path path;
-    };
+      const int fd         = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+      const int sync_error = fd < 0 ? errno : (::fsync(fd) == 0 ? 0 : errno);
+      if (fd >= 0)
+        ::close(fd);
+      if (sync_error != 0 || !ends_with_section_end(file))
+        throw std::runtime_error("build_scene_mesh: could not write the mesh file '" +
+                                 file.string() + "': " +
+                                 (sync_error != 0 ? std::strerror(sync_error) :
+                                                    "the file gmsh wrote is incomplete (disk "
+                                                    "full?)"));
+    }
   } // namespace
 
 
@@ -377,9 +347,8 @@ namespace kimp::geometry
       std::error_code error;
       if (msh_file.has_parent_path())
         std::filesystem::create_directories(msh_file.parent_path(), error);
-      const PendingFile temporary(msh_file);
-      gmsh::write(temporary.path.string());
-      temporary.commit();
+      gmsh::write(msh_file.string());
+      check_written(msh_file);
     }
     catch (const std::exception &)
     {

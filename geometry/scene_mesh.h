@@ -56,9 +56,9 @@ namespace kimp::geometry
    * internal faces) and the free edges (wall top, exposed wall back above H_b, soil top, slab top,
    * bottom and back) get deal.II's default boundary id 0. Every entity has exactly one physical
    * group. Format: MSH 4.1 ASCII, only elements of physical groups (no points, no unused nodes).
-   * Written to `<msh_file>.tmp-<pid>.msh` and renamed to `msh_file` once complete (it ends with a
-   * section end and is synced to disk), so a failed write (a full disk) leaves nothing new under
-   * `msh_file`.
+   * The file is checked complete (it ends with a section end and is synced to disk: gmsh reports
+   * no write error). Writing under a temporary name and renaming is the caller's (app's
+   * write_scene_mesh() through io::TemporaryFile).
    *
    * Not thread safe (gmsh is a global singleton; see GmshSession). Does not print.
    * @throws std::invalid_argument from geometry.validate(); std::runtime_error if the file cannot

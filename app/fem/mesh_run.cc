@@ -184,10 +184,12 @@ namespace kimp::app
   geometry::MeshStatistics write_scene_mesh(const geometry::SceneGeometry &geometry,
                                             const std::filesystem::path   &msh)
   {
-    // The name build_scene_mesh() writes to before renaming: registered for the signal handler.
-    const TemporaryFile            gmsh_temporary(msh, true);
-    const geometry::MeshStatistics statistics = geometry::build_scene_mesh(geometry, msh);
-    note_written(msh);
+    // gmsh writes the temporary name (its extension kept: gmsh chooses the format by it), which a
+    // signal removes; commit() renames it and notes `msh` as written by the run.
+    TemporaryFile                  temporary(msh, true);
+    const geometry::MeshStatistics statistics =
+      geometry::build_scene_mesh(geometry, temporary.path());
+    temporary.commit();
     return statistics;
   }
 } // namespace kimp::app

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <limits>
 
+#include "app/fem/mesh_run.h"
 #include "app/lumped_run.h"
 #include "app/study/study_fem.h"
 #include "app/study/study_ladder.h"
@@ -255,7 +256,7 @@ namespace kimp::app
     const std::string           name = fem_case_name(H) + "_stability";
     const std::filesystem::path mesh = output.file("mesh/" + name + ".msh");
     std::filesystem::create_directories(mesh.parent_path());
-    geometry::build_scene_mesh(
+    write_scene_mesh(
       resolve_fem_case(fem_level_scene(scene.fem, h_contact, 1.0), H, name, mesh).geometry,
       mesh);
     std::vector<FemStabilityPoint> points;

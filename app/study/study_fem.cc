@@ -10,6 +10,7 @@
 
 #include "app/fem/fem_common.h"
 #include "app/fem/fem_estimate.h"
+#include "app/fem/mesh_run.h"
 #include "app/fit_run.h"
 #include "base/errors.h"
 #include "base/hash.h"
@@ -160,7 +161,7 @@ namespace kimp::app
     {
       std::filesystem::create_directories(mesh.parent_path());
       std::ostringstream statistics;
-      statistics << geometry::build_scene_mesh(spec.geometry, mesh);
+      statistics << write_scene_mesh(spec.geometry, mesh);
       logger().info("{}: mesh {} ({})", name, mesh.string(), statistics.str());
       std::ostringstream log;
       impact = fem::run_impact(spec.parameters, MPI_COMM_SELF, &log);

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "app/fem/fem_common.h"
+#include "app/fem/mesh_run.h"
 #include "app/lumped_run.h"
 #include "app/study/study_fem.h"
 #include "app/study/study_internal.h"
@@ -58,7 +59,7 @@ namespace kimp::app::study_internal
                             name);
       spec.geometry.mesh_slab = false;
       std::filesystem::create_directories(spec.mesh_file.parent_path());
-      geometry::build_scene_mesh(spec.geometry, spec.mesh_file);
+      write_scene_mesh(spec.geometry, spec.mesh_file);
       fem::WallSdofParameters p;
       p.mesh_file = spec.mesh_file;
       p.materials = spec.parameters.materials;
