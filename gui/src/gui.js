@@ -1,5 +1,6 @@
 // kimp gui: scene editor generated from the scene schema, ground motions, background runs with
-// progress (server-sent events), the parametric dialog, and results drawn by kimp.js.
+// progress (server-sent events), the parametric dialog, and results drawn by the page script
+// kimp.js (gui/src/kimp/).
 'use strict';
 
 (function () {

@@ -31,7 +31,7 @@ async function main() {
     const name = title.replace(/[^A-Za-z0-9_.-]+/g, '_').replace(/^_+|_+$/g, '') + '.svg';
     const svg = await waitForFile(path.join(downloads, name), 5000);
     check(svg.startsWith('<svg') && svg.includes('<path d="M'), `exported ${name} holds the series as SVG paths`);
-    // The same chart as PDF: a vector page written by kimp.js (paths and Helvetica text).
+    // The same chart as PDF: a vector page written by gui/src/kimp/charts.js (paths and Helvetica text).
     await page.$eval('.chart .export-pdf', (b) => b.click());
     const pdf = await waitForFile(path.join(downloads, name.replace(/\.svg$/, '.pdf')), 5000);
     check(
