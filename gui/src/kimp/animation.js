@@ -6,39 +6,110 @@
   const { el, fmt, download, escapeXml, setTimeCursor } = kimp;
 
   // ---- animation -------------------------------------------------------------------------------
-  function makeAnimation(parent, firstCase) {
+  /**
+   * The player of an animation, appended to `parent`: a row of controls (`o.leading` ones first,
+   * then play, restart, speed, exaggeration, frame export and a time label), a scrub bar and the
+   * SVG canvas of o.width x o.height. Classes are `${o.prefix}-play` etc.; `frameSvg()` is the
+   * frame shown as a standalone SVG document; `run(state, c)` plays it (below).
+   */
+  function makePlayer(parent, o) {
     const NS = 'http://www.w3.org/2000/svg';
-    const W = 900;
-    const H = 420;
-    const svg = document.createElementNS(NS, 'svg');
-    svg.setAttribute('viewBox', `0 0 ${W} ${H}`);
-    svg.setAttribute('class', 'animation');
-    svg.setAttribute('xmlns', NS);
-    const state = { t: 0, playing: false, speed: 1, exaggeration: 10, frame: 0, kase: null };
-    const timeLabel = el('span', { id: 'anim-time', class: 'anim-time', text: 't = 0 s' });
-    const scrub = el('input', { type: 'range', min: 0, max: 1000, value: 0, class: 'anim-scrub' });
-    const play = el('button', { class: 'anim-play', text: 'Play' });
-    const restart = el('button', { class: 'anim-restart', text: 'Restart' });
-    const speed = el(
-      'select',
-      { class: 'anim-speed' },
-      [0.1, 0.25, 0.5, 1, 2, 5].map((s) => el('option', { value: s, text: s + '×' })),
-    );
-    speed.value = '1';
-    const exag = el('input', { type: 'number', min: 1, max: 200, step: 1, value: 10, class: 'anim-exaggeration' });
-    const exportFrame = el('button', { class: 'anim-export', text: 'Frame SVG' });
+    const cls = (name) => ({ class: `${o.prefix}-${name}` });
+    const p = {
+      play: el('button', { ...cls('play'), text: 'Play' }),
+      restart: el('button', { ...cls('restart'), text: 'Restart' }),
+      speed: el('select', cls('speed'), o.speeds.map((s) => el('option', { value: s, text: s + '×' }))),
+      exaggeration: el('input', { type: 'number', min: 1, step: 1, ...o.exaggeration, ...cls('exaggeration') }),
+      exportFrame: el('button', { ...cls('export'), text: 'Frame SVG' }),
+      label: el('span', { ...o.label, ...cls('time') }),
+      scrub: el('input', { type: 'range', min: 0, max: o.scrubMax, value: 0, ...cls('scrub') }),
+      svg: document.createElementNS(NS, 'svg'),
+    };
+    p.speed.value = '1';
     parent.appendChild(
       el('div', { class: 'controls' }, [
-        play,
-        restart,
-        el('label', { text: ' speed ' }, [speed]),
-        el('label', { text: ' exaggeration ×' }, [exag]),
-        exportFrame,
-        timeLabel,
+        ...(o.leading || []),
+        p.play,
+        p.restart,
+        el('label', { text: ' speed ' }, [p.speed]),
+        el('label', { text: ' exaggeration ×' }, [p.exaggeration]),
+        p.exportFrame,
+        p.label,
       ]),
     );
-    parent.appendChild(scrub);
-    parent.appendChild(svg);
+    parent.appendChild(p.scrub);
+    p.svg.setAttribute('viewBox', `0 0 ${o.width} ${o.height}`);
+    p.svg.setAttribute('class', o.svgClass);
+    p.svg.setAttribute('xmlns', NS);
+    parent.appendChild(p.svg);
+    p.frameSvg = () =>
+      `<svg xmlns="${NS}" viewBox="0 0 ${o.width} ${o.height}" width="${o.width}" height="${o.height}" ` +
+      'font-family="Helvetica, Arial, sans-serif">' +
+      `<rect width="${o.width}" height="${o.height}" fill="#fff"/>${p.svg.innerHTML}</svg>`;
+    /**
+     * Play, pause and restart over the caller's `state.playing`: c.step(ms) moves the animation
+     * on by ms of wall time, c.atEnd() says whether it is at its end, c.rewind() goes back to the
+     * start, c.draw() shows the frame, c.onPlay() (optional) runs when playing starts. Wires the
+     * Play and Restart buttons and returns {play, pause}.
+     */
+    p.run = (state, c) => {
+      let last = null;
+      function tick(now) {
+        if (!state.playing) {
+          last = null;
+          return;
+        }
+        if (last !== null) c.step(now - last);
+        last = now;
+        if (c.atEnd()) {
+          state.playing = false;
+          p.play.textContent = 'Play';
+        }
+        c.draw();
+        if (state.playing) requestAnimationFrame(tick);
+      }
+      const controls = {
+        play: () => {
+          if (state.playing) return;
+          if (c.atEnd()) c.rewind();
+          state.playing = true;
+          if (c.onPlay) c.onPlay();
+          p.play.textContent = 'Pause';
+          requestAnimationFrame(tick);
+        },
+        pause: () => {
+          state.playing = false;
+          p.play.textContent = 'Play';
+        },
+      };
+      p.play.addEventListener('click', () => (state.playing ? controls.pause() : controls.play()));
+      p.restart.addEventListener('click', () => {
+        c.rewind();
+        c.draw();
+        controls.play();
+      });
+      return controls;
+    };
+    return p;
+  }
+
+  function makeAnimation(parent, firstCase) {
+    const W = 900;
+    const H = 420;
+    const player = makePlayer(parent, {
+      prefix: 'anim',
+      width: W,
+      height: H,
+      svgClass: 'animation',
+      speeds: [0.1, 0.25, 0.5, 1, 2, 5],
+      exaggeration: { max: 200, value: 10 },
+      label: { id: 'anim-time', text: 't = 0 s' },
+      scrubMax: 1000,
+    });
+    const { svg, speed, scrub, exportFrame } = player;
+    const exag = player.exaggeration;
+    const timeLabel = player.label;
+    const state = { t: 0, playing: false, speed: 1, exaggeration: 10, frame: 0, kase: null };
 
     const times = () => state.kase.history.displacement.time;
     const tEnd = () => times()[times().length - 1];
@@ -179,36 +250,20 @@
       setTimeCursor(state.t);
     }
 
-    let last = null;
-    function tick(now) {
-      if (!state.playing) {
-        last = null;
-        return;
-      }
-      if (last !== null) state.t += ((now - last) / 1000) * state.speed;
-      last = now;
-      if (state.t >= tEnd()) {
-        state.t = tEnd();
-        state.playing = false;
-        play.textContent = 'Play';
-      }
-      draw();
-      if (state.playing) requestAnimationFrame(tick);
-    }
+    const { play: start, pause } = player.run(state, {
+      step: (ms) => {
+        state.t = Math.min(state.t + (ms / 1000) * state.speed, tEnd());
+      },
+      atEnd: () => state.t >= tEnd(),
+      rewind: () => {
+        state.t = 0;
+      },
+      draw: () => draw(),
+    });
     const api = {
       state: state,
-      play: () => {
-        if (!state.playing) {
-          if (state.t >= tEnd()) state.t = 0;
-          state.playing = true;
-          play.textContent = 'Pause';
-          requestAnimationFrame(tick);
-        }
-      },
-      pause: () => {
-        state.playing = false;
-        play.textContent = 'Play';
-      },
+      play: start,
+      pause: pause,
       seek: (t) => {
         state.t = Math.max(0, Math.min(t, tEnd()));
         draw();
@@ -218,17 +273,8 @@
         state.t = Math.min(state.t, tEnd());
         draw();
       },
-      frameSvg: () =>
-        `<svg xmlns="${NS}" viewBox="0 0 ${W} ${H}" width="${W}" height="${H}" ` +
-        'font-family="Helvetica, Arial, sans-serif">' +
-        `<rect width="${W}" height="${H}" fill="#fff"/>${svg.innerHTML}</svg>`,
+      frameSvg: player.frameSvg,
     };
-    play.addEventListener('click', () => (state.playing ? api.pause() : api.play()));
-    restart.addEventListener('click', () => {
-      state.t = 0;
-      draw();
-      api.play();
-    });
     speed.addEventListener('change', () => {
       state.speed = Number(speed.value);
     });
@@ -244,5 +290,5 @@
     return api;
   }
 
-  Object.assign(kimp, { makeAnimation });
+  Object.assign(kimp, { makePlayer, makeAnimation });
 })();

@@ -5,17 +5,7 @@
 
 (function () {
   const {
-    view,
-    COLORS,
-    el,
-    INTEGER_INCRS,
-    tickLabels,
-    fmt,
-    download,
-    slug,
-    niceTicks,
-    csvName,
-    splitUnit,
+    view, COLORS, el, INTEGER_INCRS, tickLabels, fmt, download, slug, niceTicks, csvName, splitUnit,
     escapeXml,
   } = kimp;
 

@@ -3,7 +3,7 @@
 'use strict';
 
 (function () {
-  const { view, el, fmt, download, escapeXml, chart, setTimeCursor, section, table } = kimp;
+  const { view, el, fmt, download, escapeXml, chart, setTimeCursor, section, table, makePlayer } = kimp;
 
   // ---- FEM: the deformed mesh over the impact ------------------------------------------------
   /** Colour of v in [0, 1] on a perceptually ordered blue-green-yellow ramp (viridis stops). */
@@ -37,45 +37,27 @@
       ['damage', 'damage', 1, '-'],
       ['equivalent_plastic_strain', 'equivalent plastic strain', 1, '-'],
     ];
-    const NS = 'http://www.w3.org/2000/svg';
-    const W = 900;
-    const H = 440;
     const caseSel = el(
       'select',
       { class: 'fem-case' },
       names.map((n) => el('option', { value: n, text: n })),
     );
     const fieldSel = el('select', { class: 'fem-field' });
-    const play = el('button', { class: 'fem-play', text: 'Play' });
-    const restart = el('button', { class: 'fem-restart', text: 'Restart' });
-    const speed = el(
-      'select',
-      { class: 'fem-speed' },
-      [0.25, 0.5, 1, 2, 4].map((v) => el('option', { value: v, text: v + '×' })),
-    );
-    speed.value = '1';
-    const exag = el('input', { type: 'number', min: 1, max: 100000, step: 1, value: 1, class: 'fem-exaggeration' });
-    const exportFrame = el('button', { class: 'fem-export', text: 'Frame SVG' });
-    const label = el('span', { class: 'fem-time', text: '' });
-    const scrub = el('input', { type: 'range', min: 0, max: 0, value: 0, class: 'fem-scrub' });
-    body.appendChild(
-      el('div', { class: 'controls' }, [
-        el('label', { text: 'case ' }, [caseSel]),
-        el('label', { text: ' colour by ' }, [fieldSel]),
-        play,
-        restart,
-        el('label', { text: ' speed ' }, [speed]),
-        el('label', { text: ' exaggeration ×' }, [exag]),
-        exportFrame,
-        label,
-      ]),
-    );
-    body.appendChild(scrub);
-    const svg = document.createElementNS(NS, 'svg');
-    svg.setAttribute('viewBox', `0 0 ${W} ${H}`);
-    svg.setAttribute('class', 'fem-animation');
-    svg.setAttribute('xmlns', NS);
-    body.appendChild(svg);
+    const W = 900;
+    const H = 440;
+    const player = makePlayer(body, {
+      prefix: 'fem',
+      width: W,
+      height: H,
+      svgClass: 'fem-animation',
+      speeds: [0.25, 0.5, 1, 2, 4],
+      exaggeration: { max: 100000, value: 1 },
+      label: { text: '' },
+      scrubMax: 0,
+      leading: [el('label', { text: 'case ' }, [caseSel]), el('label', { text: ' colour by ' }, [fieldSel])],
+    });
+    const { svg, speed, scrub, exportFrame, label } = player;
+    const exag = player.exaggeration;
     const state = { frame: 0, playing: false, mesh: null };
     // The case's contact force beside the mesh: its time cursor follows the frame.
     const forceHost = el('div');
@@ -269,42 +251,28 @@
       draw();
     }
 
-    let last = null;
-    let carry = 0;
-    function tick(now) {
-      if (!state.playing) {
-        last = null;
-        return;
-      }
-      // 10 frames per second at speed 1.
-      if (last !== null) carry += ((now - last) / 100) * Number(speed.value);
-      last = now;
-      const n = state.mesh.time.length;
-      while (carry >= 1 && state.frame < n - 1) {
-        carry -= 1;
-        state.frame += 1;
-      }
-      if (state.frame >= n - 1) {
-        state.playing = false;
-        play.textContent = 'Play';
-      }
-      draw();
-      if (state.playing) requestAnimationFrame(tick);
-    }
+    let carry = 0; // frames to advance, 10 per second at speed 1
+    const { play: start, pause } = player.run(state, {
+      step: (ms) => {
+        carry += (ms / 100) * Number(speed.value);
+        while (carry >= 1 && state.frame < state.mesh.time.length - 1) {
+          carry -= 1;
+          state.frame += 1;
+        }
+      },
+      atEnd: () => state.frame >= state.mesh.time.length - 1,
+      rewind: () => {
+        state.frame = 0;
+      },
+      onPlay: () => {
+        carry = 0;
+      },
+      draw: () => draw(),
+    });
     const api = {
       state: state,
-      play: () => {
-        if (state.playing) return;
-        if (state.frame >= state.mesh.time.length - 1) state.frame = 0;
-        state.playing = true;
-        carry = 0;
-        play.textContent = 'Pause';
-        requestAnimationFrame(tick);
-      },
-      pause: () => {
-        state.playing = false;
-        play.textContent = 'Play';
-      },
+      play: start,
+      pause: pause,
       seek: (i) => {
         state.frame = Math.max(0, Math.min(i, state.mesh.time.length - 1));
         draw();
@@ -317,17 +285,8 @@
         api.seek(best);
       },
       time: () => state.mesh.time[state.frame],
-      frameSvg: () =>
-        `<svg xmlns="${NS}" viewBox="0 0 ${W} ${H}" width="${W}" height="${H}" ` +
-        'font-family="Helvetica, Arial, sans-serif">' +
-        `<rect width="${W}" height="${H}" fill="#fff"/>${svg.innerHTML}</svg>`,
+      frameSvg: player.frameSvg,
     };
-    play.addEventListener('click', () => (state.playing ? api.pause() : api.play()));
-    restart.addEventListener('click', () => {
-      state.frame = 0;
-      draw();
-      api.play();
-    });
     caseSel.addEventListener('change', () => setCase(caseSel.value));
     fieldSel.addEventListener('change', draw);
     exag.addEventListener('change', draw);

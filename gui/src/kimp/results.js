@@ -4,23 +4,8 @@
 
 (function () {
   const {
-    view,
-    COLORS,
-    el,
-    fmt,
-    parseCsv,
-    seriesGroups,
-    chart,
-    section,
-    table,
-    cellNumber,
-    cellUnit,
-    columnNumbers,
-    csvSection,
-    seriesSection,
-    lumpedSection,
-    femSection,
-    femSummarySection,
+    view, COLORS, el, fmt, parseCsv, seriesGroups, chart, section, table, cellNumber, cellUnit,
+    columnNumbers, csvSection, seriesSection, lumpedSection, femSection, femSummarySection,
   } = kimp;
 
   // ---- study -----------------------------------------------------------------------------------
