@@ -4,14 +4,26 @@
 # Nothing is fetched at build or run time.
 set(KIMP_GUI_DIR ${PROJECT_SOURCE_DIR}/gui)
 set(KIMP_GUI_ASSET_FILES
-    src/gui.js src/style.css src/gui.html src/report.html
+    src/style.css src/gui.html src/report.html
     node_modules/uplot/dist/uPlot.iife.min.js node_modules/uplot/dist/uPlot.min.css
     node_modules/js-yaml/dist/browser/js-yaml.umd.min.js)
-# The results page's script, embedded as one asset `kimp.js`: the files of gui/src/kimp/ joined in
-# this order (each adds to the namespace `kimp` what the later ones use).
-set(KIMP_PAGE_SCRIPT_PARTS
-    src/kimp/core.js src/kimp/charts.js src/kimp/sections.js src/kimp/animation.js
-    src/kimp/lumped.js src/kimp/fem.js src/kimp/results.js)
+# The two page scripts, each embedded as one asset <name>.js: the files of gui/src/<name>/ joined
+# in this order (each adds to the script's namespace, `kimp` or `kimpGui`, what the later ones
+# use). kimp.js draws results (kimp report and kimp gui), gui.js is the GUI.
+set(KIMP_PAGE_SCRIPTS kimp gui)
+set(KIMP_PAGE_SCRIPT_kimp core charts sections animation lumped fem results)
+set(KIMP_PAGE_SCRIPT_gui core form runs motion parametric start)
+set(KIMP_PAGE_SCRIPT_PARTS)
+set(KIMP_PAGE_SCRIPT_JOINS)
+foreach(script ${KIMP_PAGE_SCRIPTS})
+  set(join)
+  foreach(part ${KIMP_PAGE_SCRIPT_${script}})
+    list(APPEND KIMP_PAGE_SCRIPT_PARTS src/${script}/${part}.js)
+    list(APPEND join src/${script}/${part}.js)
+  endforeach()
+  string(REPLACE ";" "+" join "${join}")
+  list(APPEND KIMP_PAGE_SCRIPT_JOINS "${script}.js=${join}")
+endforeach()
 foreach(asset ${KIMP_GUI_ASSET_FILES} ${KIMP_PAGE_SCRIPT_PARTS})
   if(NOT EXISTS ${KIMP_GUI_DIR}/${asset})
     message(FATAL_ERROR "gui/${asset} is missing: run `npm ci --prefix gui` "
@@ -28,10 +40,10 @@ function(kimp_embed_gui_assets out_var)
     list(APPEND deps ${KIMP_GUI_DIR}/${asset})
   endforeach()
   string(REPLACE ";" "," files "${KIMP_GUI_ASSET_FILES}")
-  string(REPLACE ";" "," parts "${KIMP_PAGE_SCRIPT_PARTS}")
+  string(REPLACE ";" "," joins "${KIMP_PAGE_SCRIPT_JOINS}")
   add_custom_command(OUTPUT ${out}
     COMMAND ${CMAKE_COMMAND} -DOUT=${out} -DROOT=${KIMP_GUI_DIR} -DFILES=${files}
-            -DJOINED_NAME=kimp.js -DJOINED_PARTS=${parts}
+            -DJOINED=${joins}
             -P ${KIMP_GUI_DIR}/embed_assets.cmake
     DEPENDS ${deps} ${KIMP_GUI_DIR}/embed_assets.cmake
     COMMENT "Embedding the page files of kimp gui and kimp report")

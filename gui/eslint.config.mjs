@@ -41,7 +41,7 @@ export default [
     languageOptions: {
       ecmaVersion: 2022,
       sourceType: 'script',
-      globals: { ...globals.browser, uPlot: 'readonly', kimp: 'writable', jsyaml: 'readonly' },
+      globals: { ...globals.browser, uPlot: 'readonly', kimp: 'writable', kimpGui: 'writable', jsyaml: 'readonly' },
     },
     rules: { ...js.configs.recommended.rules, ...style, 'no-console': 'error' },
   },
