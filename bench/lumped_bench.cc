@@ -62,6 +62,16 @@ namespace
     return arg == 0 ? CdmKernel::automatic : arg == 1 ? CdmKernel::reference : CdmKernel::any_size;
   }
 
+  /// Central-difference options at time step `dt` with the kernel of benchmark argument
+  /// `kernel` (kernel_arg()).
+  CentralDifferenceOptions options_at(double dt, const std::int64_t kernel)
+  {
+    CentralDifferenceOptions opt;
+    opt.dt     = dt;
+    opt.kernel = kernel_arg(kernel);
+    return opt;
+  }
+
   /// Runs `model` under the 48 s record with `opt` in the benchmark loop.
   void run_model(benchmark::State               &state,
                  const PoundingModel            &model,
@@ -87,10 +97,8 @@ namespace
   /// none (0); arg 1: kernel (0 fused, 1 reference), side by side.
   void BM_CdmWalls48s(benchmark::State &state)
   {
-    CentralDifferenceOptions opt;
-    opt.dt              = 2e-5;
-    opt.output_interval = state.range(0) ? 0.01 : 0.0;
-    opt.kernel          = kernel_arg(state.range(1));
+    CentralDifferenceOptions opt = options_at(2e-5, state.range(1));
+    opt.output_interval          = state.range(0) ? 0.01 : 0.0;
     run_walled_building(state, opt);
   }
   BENCHMARK(BM_CdmWalls48s)
@@ -121,10 +129,8 @@ namespace
   /// any-size kernel, 1 reference). s_per_dof_step against BM_CdmWalls48s (5 DOFs).
   void BM_CdmNeighbours(benchmark::State &state)
   {
-    CentralDifferenceOptions opt;
-    opt.dt       = 2e-5;
-    opt.duration = 20.0;
-    opt.kernel   = kernel_arg(state.range(2));
+    CentralDifferenceOptions opt = options_at(2e-5, state.range(2));
+    opt.duration                 = 20.0;
     run_model(state,
               building_between_neighbours(static_cast<int>(state.range(0)),
                                           static_cast<int>(state.range(1))),
@@ -145,11 +151,9 @@ namespace
   /// against the reference kernel's Thomas solve.
   void BM_CdmTallBuilding(benchmark::State &state)
   {
-    CentralDifferenceOptions opt;
-    opt.dt              = 2e-5;
-    opt.duration        = 20.0;
-    opt.output_interval = 0.0;
-    opt.kernel          = kernel_arg(state.range(1));
+    CentralDifferenceOptions opt = options_at(2e-5, state.range(1));
+    opt.duration                 = 20.0;
+    opt.output_interval          = 0.0;
     PoundingScene scene;
     scene.building = reference_fixed_base_building(static_cast<int>(state.range(0)));
     run_model(state, PoundingModel(scene), opt);
@@ -180,10 +184,8 @@ namespace
   /// arg 1: kernel (0 fused, 1 reference).
   void BM_CdmSweepRun(benchmark::State &state)
   {
-    CentralDifferenceOptions opt;
-    opt.dt       = 2e-4;
-    opt.duration = static_cast<double>(state.range(0));
-    opt.kernel   = kernel_arg(state.range(1));
+    CentralDifferenceOptions opt = options_at(2e-4, state.range(1));
+    opt.duration                 = static_cast<double>(state.range(0));
     run_walled_building(state, opt);
   }
   BENCHMARK(BM_CdmSweepRun)

@@ -46,6 +46,13 @@ namespace
     return text;
   }
 
+  /// Writes at2(4, `value_g`) to `file` inside `dir`, creating the folders of its path.
+  void write_record(const kimp::testing::TempDir &dir, const std::string &file, double value_g)
+  {
+    std::filesystem::create_directories((dir.path() / file).parent_path());
+    dir.write(file, at2(4, value_g));
+  }
+
   TEST(SweepRange, TinyStepIsRefusedWithTheCountBeforeAnyCast)
   {
     // 10 cm .. 20 cm step 1e-20 cm: 1e21 values, beyond size_t; it used to run one case.
@@ -104,8 +111,8 @@ namespace
   TEST(GroundMotionRecords, MistypedRecordNamesTheKeyAndSuggests)
   {
     const kimp::testing::TempDir dir;
-    dir.write("RSN1106_KOBE_KJM000.AT2", at2(4, 0.1));
-    dir.write("SCS142.AT2", at2(4, 0.2));
+    write_record(dir, "RSN1106_KOBE_KJM000.AT2", 0.1);
+    write_record(dir, "SCS142.AT2", 0.2);
     const std::string text    = "# my building\nground_motion:\n  record: RSN1106_KOBE_KJM00\n";
     const auto        loaded  = kimp::io::read_scene_text<LumpedScene>(text, "scene.yaml");
     const std::string message = message_of(
@@ -140,8 +147,7 @@ namespace
   TEST(GroundMotionRecords, RecordPathsAreRelativeToTheSceneAndMissingOnesSuggest)
   {
     const kimp::testing::TempDir dir;
-    std::filesystem::create_directories(dir.path() / "records");
-    dir.write("records/RSN1106_KOBE_KJM000.AT2", at2(4, 0.1));
+    write_record(dir, "records/RSN1106_KOBE_KJM000.AT2", 0.1);
     const auto scene  = dir.write("scene.yaml",
                                  "ground_motion:\n  record: records/RSN1106_KOBE_KJM000.AT2\n"
                                   "  records_dir: records\n");
@@ -260,7 +266,7 @@ namespace
     ASSERT_EQ(missing.size(), 2u);
     expect_contains(missing[0], {"RSN1106_KOBE_KJM000", "is not run", dir.path().string()});
     expect_contains(missing[1], {"SCS142.AT2 is not in"});
-    dir.write("SCS142.AT2", at2(4, 0.2));
+    write_record(dir, "SCS142.AT2", 0.2);
     missing = missing_study_records(scene);
     ASSERT_EQ(missing.size(), 1u);
     EXPECT_EQ(study_records(scene).size(), 2u); // the synthetic motion and SCS142
@@ -271,8 +277,7 @@ namespace
   TEST(StudyRecords, MisspeltRecordIsAnErrorAtItsKeyBeforeAnyRun)
   {
     const kimp::testing::TempDir dir;
-    std::filesystem::create_directories(dir.path() / "records");
-    dir.write("records/SCS142.AT2", at2(4, 0.2));
+    write_record(dir, "records/SCS142.AT2", 0.2);
     const auto file   = dir.write("study.yaml",
                                 "peer_records: false\n"
                                   "records:\n"

@@ -21,35 +21,36 @@ namespace
 
   /// The columns the reader uses, among others, as `kimp study` writes them (two heights and a
   /// failed row that must be skipped).
-  std::filesystem::path write_k_table(const std::filesystem::path &dir)
-  {
-    return write_text(dir / "k_table.csv",
-                      "wall_height_m,kelvin_voigt_kN_per_mm_per_m,kelvin_voigt_total_kN_per_mm,"
-                      "jankowski_total_kN_per_mm1.5,kelvin_voigt_status\n"
-                      "1,166.827,4634.45,2141.86,ok\n"
-                      "2,25.7031,714.031,208.796,ok\n"
-                      "1.5,,,,\"failed: no contact\"\n");
-  }
+  const std::string height_table =
+    "wall_height_m,kelvin_voigt_kN_per_mm_per_m,kelvin_voigt_total_kN_per_mm,"
+    "jankowski_total_kN_per_mm1.5,kelvin_voigt_status\n"
+    "1,166.827,4634.45,2141.86,ok\n"
+    "2,25.7031,714.031,208.796,ok\n"
+    "1.5,,,,\"failed: no contact\"\n";
 
   /// A k(H, v) table as `kimp study` writes it with fem.velocities: two heights at 0.5, 1 and
   /// 2 m/s, 1 m/s the reference velocity; rows deliberately out of order.
-  std::filesystem::path write_velocity_table(const std::filesystem::path &dir)
+  const std::string velocity_table =
+    "wall_height_m,impact_velocity_m_per_s,kelvin_voigt_total_kN_per_mm,"
+    "jankowski_total_kN_per_mm1.5,reference_velocity\n"
+    "1,1,4000,2000,yes\n"
+    "1,0.5,3000,2400,no\n"
+    "2,0.5,600,300,no\n"
+    "1,2,5000,1600,no\n"
+    "2,1,800,250,yes\n"
+    "2,2,1000,200,no\n";
+
+  /// `dir`/k_table.csv holding `csv`.
+  std::filesystem::path write_k_table(const std::filesystem::path &dir,
+                                      const std::string           &csv = height_table)
   {
-    return write_text(dir / "k_table.csv",
-                      "wall_height_m,impact_velocity_m_per_s,kelvin_voigt_total_kN_per_mm,"
-                      "jankowski_total_kN_per_mm1.5,reference_velocity\n"
-                      "1,1,4000,2000,yes\n"
-                      "1,0.5,3000,2400,no\n"
-                      "2,0.5,600,300,no\n"
-                      "1,2,5000,1600,no\n"
-                      "2,1,800,250,yes\n"
-                      "2,2,1000,200,no\n");
+    return write_text(dir / "k_table.csv", csv);
   }
 
   TEST(KTable, VelocityTableInterpolatesInHeightThenVelocityAndKeepsTheReference)
   {
     const TempDir           dir("k_table_velocity");
-    const auto              file  = write_velocity_table(dir.path());
+    const auto              file  = write_k_table(dir.path(), velocity_table);
     const kimp::app::KTable table = kimp::app::read_k_table(file);
     ASSERT_EQ(table.rows.size(), 6u);
     ASSERT_EQ(table.velocities(), (std::vector<double>{0.5, 1.0, 2.0}));

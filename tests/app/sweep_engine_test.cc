@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
@@ -104,13 +105,20 @@ namespace
   protected:
     void SetUp() override { kimp::base::set_verbosity(kimp::base::Verbosity::quiet); }
 
-    const SweepPlan plan = toy_plan();
+    /// A fresh folder "sweep" in a temporary directory tagged `tag` that lives as long as the
+    /// test: where one sweep writes.
+    fs::path sweep_folder(const std::string &tag)
+    {
+      return temps.emplace_back(tag).path() / "sweep";
+    }
+
+    const SweepPlan     plan = toy_plan();
+    std::deque<TempDir> temps;
   };
 
   TEST_F(SweepEngine, EveryCaseGivesOneRowSortedByIndexAndFailuresAreRecorded)
   {
-    const TempDir  temp_dir("sweep_clean");
-    const fs::path dir     = temp_dir.path() / "sweep";
+    const fs::path dir     = sweep_folder("sweep_clean");
     const auto     summary = kimp::app::run_sweep(plan, toy_run, dir, options(2));
     ASSERT_EQ(plan.cases().size(), 40U);
     EXPECT_EQ(summary.n_run, 40U);
@@ -153,8 +161,7 @@ namespace
 
   TEST_F(SweepEngine, Hdf5TableHasOneRowPerCaseWithUnits)
   {
-    const TempDir  temp_dir("sweep_h5");
-    const fs::path dir = temp_dir.path() / "sweep";
+    const fs::path dir = sweep_folder("sweep_h5");
     kimp::app::run_sweep(plan, toy_run, dir, options(1));
     const Hdf5Reader file(dir / "sweep.h5");
     ASSERT_GE(file.id(), 0);
@@ -184,12 +191,10 @@ namespace
 
   TEST_F(SweepEngine, ResumeAfterSigkillGivesTheRowsOfAnUninterruptedRun)
   {
-    const TempDir  temp_clean("sweep_reference");
-    const fs::path clean = temp_clean.path() / "sweep";
+    const fs::path clean = sweep_folder("sweep_reference");
     kimp::app::run_sweep(plan, toy_run, clean, options(2));
 
-    const TempDir  temp_killed("sweep_killed");
-    const fs::path killed  = temp_killed.path() / "sweep";
+    const fs::path killed  = sweep_folder("sweep_killed");
     const fs::path journal = kimp::app::SweepJournal::file_of(killed, 0);
     const pid_t    child   = ::fork();
     ASSERT_GE(child, 0);
@@ -260,8 +265,7 @@ namespace
 
   TEST_F(SweepEngine, TornJournalLineIsIgnoredAndItsCaseRerun)
   {
-    const TempDir           temp_dir("sweep_torn");
-    const fs::path          dir  = temp_dir.path() / "sweep";
+    const fs::path          dir  = sweep_folder("sweep_torn");
     const fs::path          file = kimp::app::SweepJournal::file_of(dir, 0);
     kimp::app::JournalEntry first;
     first.index = 0;
@@ -302,8 +306,7 @@ namespace
 
   TEST_F(SweepEngine, DuplicateEntriesMergeToOneRowPreferringOk)
   {
-    const TempDir  temp_dir("sweep_duplicates");
-    const fs::path dir = temp_dir.path() / "sweep";
+    const fs::path dir = sweep_folder("sweep_duplicates");
     kimp::app::run_sweep(plan, toy_run, dir, options(1));
     {
       // The same case journaled again by another rank, once failed and once ok.
@@ -329,8 +332,7 @@ namespace
 
   TEST_F(SweepEngine, RetryFailedRerunsOnlyFailedCases)
   {
-    const TempDir  temp_dir("sweep_retry");
-    const fs::path dir = temp_dir.path() / "sweep";
+    const fs::path dir = sweep_folder("sweep_retry");
     kimp::app::run_sweep(plan, toy_run, dir, options(2));
     std::atomic<std::size_t> n_calls{0};
     const auto               healed = [&](const std::string &text, const std::string &name)
@@ -351,12 +353,10 @@ namespace
   /// Two "ranks" as threads of one process, meeting at a barrier before rank 0 merges.
   TEST_F(SweepEngine, OneAndTwoRanksGiveIdenticalRows)
   {
-    const TempDir  temp_one("sweep_one_rank");
-    const fs::path one = temp_one.path() / "sweep";
+    const fs::path one = sweep_folder("sweep_one_rank");
     kimp::app::run_sweep(plan, toy_run, one, options(1));
 
-    const TempDir           temp_two("sweep_two_ranks");
-    const fs::path          two = temp_two.path() / "sweep";
+    const fs::path          two = sweep_folder("sweep_two_ranks");
     std::mutex              mutex;
     std::condition_variable arrived;
     int                     n_arrived = 0;
@@ -390,8 +390,7 @@ namespace
 
   TEST_F(SweepEngine, MergeWithoutFinishedCasesWritesEmptyTables)
   {
-    const TempDir  temp_dir("sweep_empty");
-    const fs::path dir   = temp_dir.path() / "sweep";
+    const fs::path dir   = sweep_folder("sweep_empty");
     const auto     table = kimp::app::collect_sweep_table(plan, dir);
     EXPECT_TRUE(table.rows.empty());
     ASSERT_NO_THROW(kimp::app::write_sweep_results(plan, table, dir));

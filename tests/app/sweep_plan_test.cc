@@ -23,40 +23,43 @@ namespace
     double gap     = 0.15;
     bool   present = true;
   };
-  template <class Io>
-  void visit(Io &io, ToyWall &w)
-  {
-    io.quantity("gap", w.gap, "cm", "gap");
-    io.flag("present", w.present, "is there a wall");
-  }
   struct ToyWalls
   {
     ToyWall left;
     ToyWall right;
   };
-  template <class Io>
-  void visit(Io &io, ToyWalls &w)
-  {
-    io.section("left", w.left, "left wall");
-    io.section("right", w.right, "right wall");
-  }
   struct ToyCase
   {
     std::string name = "case";
     double      cor  = 0.7;
   };
-  template <class Io>
-  void visit(Io &io, ToyCase &c)
-  {
-    io.text("name", c.name, "name");
-    io.quantity("cor", c.cor, "", "coefficient of restitution");
-  }
   struct ToyScene
   {
     ToyWalls             walls;
     std::string          record = "synthetic";
     std::vector<ToyCase> cases;
   };
+  template <class Io>
+  void visit(Io &io, ToyWall &w)
+  {
+    io.quantity("gap", w.gap, "cm", "gap");
+    io.flag("present", w.present, "is there a wall");
+  }
+
+  template <class Io>
+  void visit(Io &io, ToyWalls &w)
+  {
+    io.section("left", w.left, "left wall");
+    io.section("right", w.right, "right wall");
+  }
+
+  template <class Io>
+  void visit(Io &io, ToyCase &c)
+  {
+    io.text("name", c.name, "name");
+    io.quantity("cor", c.cor, "", "coefficient of restitution");
+  }
+
   template <class Io>
   void visit(Io &io, ToyScene &s)
   {
@@ -71,9 +74,20 @@ namespace
                                  "cases:\n"
                                  "  - {name: a, cor: 0.5}\n";
 
+  /// The first two lines of a sweep on base.yaml, up to its parameters.
+  const std::string on_base = "scene: base.yaml\nparameters:\n";
+
   SweepPlan parse(const std::string &sweep)
   {
     return SweepPlan::parse(sweep, "sweep.yaml", base_scene, "base.yaml");
+  }
+
+  /// A sweep of walls.left.gap over 10, 20 and 30 cm and of record over `records` (a YAML list),
+  /// combined by `combine` (the default, product, when empty); record stands on line 4 or 5.
+  std::string gap_and_record_sweep(const std::string &combine, const std::string &records)
+  {
+    return "scene: base.yaml\n" + (combine.empty() ? "" : "combine: " + combine + "\n") +
+           "parameters:\n  walls.left.gap: [10 cm, 20 cm, 30 cm]\n  record: " + records + "\n";
   }
 
   /// `text` parsed must throw SweepError whose message contains every piece of `expected`.
@@ -150,10 +164,7 @@ namespace
 
   TEST(SweepPlan, ProductCountsAndOrderFirstParameterSlowest)
   {
-    const SweepPlan plan = parse("scene: base.yaml\n"
-                                 "parameters:\n"
-                                 "  walls.left.gap: [10 cm, 20 cm, 30 cm]\n"
-                                 "  record: [kobe, sylmar, pacoima, sakarya]\n");
+    const SweepPlan plan = parse(gap_and_record_sweep("", "[kobe, sylmar, pacoima, sakarya]"));
     ASSERT_EQ(plan.cases().size(), 12U);
     EXPECT_EQ(plan.cases()[0].values, (std::vector<std::string>{"10 cm", "kobe"}));
     EXPECT_EQ(plan.cases()[1].values, (std::vector<std::string>{"10 cm", "sylmar"}));
@@ -165,26 +176,19 @@ namespace
 
   TEST(SweepPlan, ZipPairsValuesAndNeedsEqualLengths)
   {
-    const SweepPlan plan = parse("scene: base.yaml\ncombine: zip\n"
-                                 "parameters:\n"
-                                 "  walls.left.gap: [10 cm, 20 cm, 30 cm]\n"
-                                 "  record: [kobe, sylmar, pacoima]\n");
+    const SweepPlan plan = parse(gap_and_record_sweep("zip", "[kobe, sylmar, pacoima]"));
     ASSERT_EQ(plan.cases().size(), 3U);
     EXPECT_EQ(plan.cases()[2].values, (std::vector<std::string>{"30 cm", "pacoima"}));
-    expect_sweep_error("scene: base.yaml\ncombine: zip\n"
-                       "parameters:\n"
-                       "  walls.left.gap: [10 cm, 20 cm, 30 cm]\n"
-                       "  record: [kobe, sylmar]\n",
+    expect_sweep_error(gap_and_record_sweep("zip", "[kobe, sylmar]"),
                        {"sweep.yaml:5", "parameters.record", "equal lengths"});
   }
 
   TEST(SweepPlan, CompanionRunFollowsEachCase)
   {
-    const SweepPlan plan = parse("scene: base.yaml\n"
-                                 "parameters:\n"
-                                 "  walls.left.gap: {from: 10 cm, to: 12 cm, step: 1 cm}\n"
-                                 "companions:\n"
-                                 "  no_contact: {walls.left.present: false}\n");
+    const SweepPlan plan =
+      parse(on_base + "  walls.left.gap: {from: 10 cm, to: 12 cm, step: 1 cm}\n"
+                      "companions:\n"
+                      "  no_contact: {walls.left.present: false}\n");
     ASSERT_EQ(plan.cases().size(), 6U);
     EXPECT_EQ(plan.cases()[0].companion, "");
     EXPECT_EQ(plan.cases()[1].companion, "no_contact");
@@ -202,11 +206,9 @@ namespace
 
   TEST(SweepPlan, KeyPathsReachNestedMapsAndListItems)
   {
-    const SweepPlan plan = parse("scene: base.yaml\n"
-                                 "parameters:\n"
-                                 "  walls.left.gap, walls.right.gap: [25 cm]\n"
-                                 "  cases[0].cor: [0.9]\n"
-                                 "  cases[1].cor: [0.3]\n");
+    const SweepPlan plan = parse(on_base + "  walls.left.gap, walls.right.gap: [25 cm]\n"
+                                           "  cases[0].cor: [0.9]\n"
+                                           "  cases[1].cor: [0.3]\n");
     ASSERT_EQ(plan.cases().size(), 1U);
     const ToyScene scene = kimp::io::load_scene_text<ToyScene>(plan.cases()[0].scene_text, "case");
     constexpr double tolerance = 1e-15;
@@ -221,12 +223,11 @@ namespace
 
   TEST(SweepPlan, MapValuesSetSeveralKeysTogether)
   {
-    const SweepPlan plan = parse("scene: base.yaml\n"
-                                 "parameters:\n"
-                                 "  motion:\n"
-                                 "    - {label: near, walls.left.gap: 10 cm, record: pacoima}\n"
-                                 "    - {walls.left.gap: 20 cm, record: kobe}\n"
-                                 "  cases[0].cor: [0.5, 0.6]\n");
+    const SweepPlan plan =
+      parse(on_base + "  motion:\n"
+                      "    - {label: near, walls.left.gap: 10 cm, record: pacoima}\n"
+                      "    - {walls.left.gap: 20 cm, record: kobe}\n"
+                      "  cases[0].cor: [0.5, 0.6]\n");
     ASSERT_EQ(plan.cases().size(), 4U);
     EXPECT_EQ(plan.cases()[0].values[0], "near");
     EXPECT_EQ(plan.cases()[2].values[0], "{walls.left.gap: 20 cm, record: kobe}");
@@ -274,36 +275,28 @@ namespace
       ids.insert(a.cases()[i].id.substr(a.cases()[i].id.find('-')));
     }
     EXPECT_EQ(ids.size(), a.cases().size()) << "hash parts must differ between value sets";
-    const SweepPlan c = parse("scene: base.yaml\n"
-                              "parameters:\n"
-                              "  walls.left.gap: {from: 10 cm, to: 45 cm, step: 0.5 cm}\n"
-                              "  record: [kobe, pacoima]\n");
+    const SweepPlan c = parse(on_base + "  walls.left.gap: {from: 10 cm, to: 45 cm, step: 0.5 cm}\n"
+                                        "  record: [kobe, pacoima]\n");
     EXPECT_EQ(c.cases()[0].id, a.cases()[0].id);
     EXPECT_NE(c.cases()[1].id, a.cases()[1].id);
   }
 
   TEST(SweepPlan, UnknownKeyPathNamesSweepFileLineAndKey)
   {
-    const SweepPlan plan = parse("scene: base.yaml\n"
-                                 "parameters:\n"
-                                 "  record: [kobe]\n"
-                                 "  walls.left.gapp: [10 cm, 20 cm]\n");
+    const SweepPlan plan = parse(on_base + "  record: [kobe]\n"
+                                           "  walls.left.gapp: [10 cm, 20 cm]\n");
     kimp::testing::expect_contains(key_path_error(plan), {"sweep.yaml:4", "walls.left.gapp"});
   }
 
   TEST(SweepPlan, BadValueNamesSweepFileLineAndValue)
   {
-    const SweepPlan plan = parse("scene: base.yaml\n"
-                                 "parameters:\n"
-                                 "  walls.left.gap: [10 cm, 20 kg]\n"
-                                 "companions:\n"
-                                 "  off: {walls.left.present: maybe}\n");
+    const SweepPlan plan = parse(on_base + "  walls.left.gap: [10 cm, 20 kg]\n"
+                                           "companions:\n"
+                                           "  off: {walls.left.present: maybe}\n");
     kimp::testing::expect_contains(key_path_error(plan), {"sweep.yaml:3", "20 kg"});
-    const SweepPlan good_values = parse("scene: base.yaml\n"
-                                        "parameters:\n"
-                                        "  walls.left.gap: [10 cm]\n"
-                                        "companions:\n"
-                                        "  off: {walls.left.present: maybe}\n");
+    const SweepPlan good_values = parse(on_base + "  walls.left.gap: [10 cm]\n"
+                                                  "companions:\n"
+                                                  "  off: {walls.left.present: maybe}\n");
     kimp::testing::expect_contains(key_path_error(good_values), {"sweep.yaml:5: companions.off"});
   }
 

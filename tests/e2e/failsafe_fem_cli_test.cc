@@ -78,6 +78,21 @@ namespace
     const int   exit_code = run_kimp_with_file_limit(arguments, dir, bytes, log);
     ASSERT_NO_FATAL_FAILURE(one_error_line(exit_code, log, line));
   }
+
+  /// The full-disk tests: the quick FEM scene as scene.yaml in `dir`; they need prlimit
+  /// (util-linux) to limit the size of a file.
+  class FailsafeFullDisk : public ::testing::Test
+  {
+  protected:
+    void SetUp() override
+    {
+      if (!have_program("prlimit"))
+        GTEST_SKIP() << "prlimit (util-linux) is not installed";
+      dir.write("scene.yaml", fem_quick_scene);
+    }
+
+    const TempDir dir{"e2e_failsafe_full_disk"};
+  };
 } // namespace
 
 // The FEM commands run in kimp-fem, whose MPI start-up put SIGPIPE back to its default: `kimp fem
@@ -132,12 +147,8 @@ TEST(FailsafeCli, TerminatedFemRunLeavesNoFile)
 // reports nothing; the file is checked); at 20 kB the mesh (9.7 kB) and its VTU preview (4 kB) fit
 // but the PNG (65 kB) does not, and the mesh and VTU written before are removed again. Before, a
 // 0-byte H1.25.msh (and the VTU and an empty PNG) stayed under the final names.
-TEST(FailsafeCli, MeshOnAFullDiskLeavesNoFile)
+TEST_F(FailsafeFullDisk, MeshLeavesNoFile)
 {
-  if (!have_program("prlimit"))
-    GTEST_SKIP() << "prlimit (util-linux) is not installed";
-  TempDir dir("e2e_failsafe_mesh_full");
-  dir.write("scene.yaml", fem_quick_scene);
   std::string line;
   ASSERT_NO_FATAL_FAILURE(
     one_line_under_file_limit("mesh scene.yaml -o small", dir.path(), 5000, line));
@@ -155,12 +166,8 @@ TEST(FailsafeCli, MeshOnAFullDiskLeavesNoFile)
 
 // `kimp fem` with room for the mesh (9.7 kB) but not for fem.h5 (0.4 MB): the mesh written before
 // is removed, so the command leaves nothing (before: mesh/H1.25.msh stayed).
-TEST(FailsafeCli, FemOnAFullDiskLeavesNoFile)
+TEST_F(FailsafeFullDisk, FemLeavesNoFile)
 {
-  if (!have_program("prlimit"))
-    GTEST_SKIP() << "prlimit (util-linux) is not installed";
-  TempDir dir("e2e_failsafe_fem_full");
-  dir.write("scene.yaml", fem_quick_scene);
   std::string line;
   ASSERT_NO_FATAL_FAILURE(
     one_line_under_file_limit("fem scene.yaml -o out", dir.path(), 100000, line));

@@ -44,20 +44,36 @@ namespace
     return file;
   }
 
+  /// `kimp sweep <sweep><options> -o <out>` with its output in `log`: the exit code.
+  int kimp_sweep(const fs::path    &sweep,
+                 const fs::path    &out,
+                 const fs::path    &log,
+                 const std::string &options = "")
+  {
+    return run_command(kimp + " sweep " + sweep.string() + options + " -o " + out.string(), log);
+  }
+
   const std::string gap_sweep = "parameters:\n"
                                 "  walls.left.gap, walls.right.gap: {from: 4 cm, to: 34 cm, "
                                 "step: 6 cm}\n"
                                 "  impact.cor: [0.5, 0.9]\n";
 
-  TEST(SweepCli, GapSweepRowsFollowThePhysics)
+  /// A temporary directory `dir` for the sweep file, its outputs and its logs.
+  class SweepCli : public ::testing::Test
   {
-    const TempDir  temp_dir("sweep_cli_physics");
-    const fs::path dir   = temp_dir.path();
+  protected:
+    const TempDir  temp_dir{"sweep_cli"};
+    const fs::path dir = temp_dir.path();
+  };
+
+  class SweepCliMpi : public SweepCli
+  {
+  };
+
+  TEST_F(SweepCli, GapSweepRowsFollowThePhysics)
+  {
     const fs::path sweep = write_sweep(dir, gap_sweep);
-    ASSERT_EQ(run_command(kimp + " sweep " + sweep.string() + " -o " + (dir / "out").string(),
-                          dir / "log.txt"),
-              0)
-      << read_text(dir / "log.txt");
+    ASSERT_EQ(kimp_sweep(sweep, dir / "out", dir / "log.txt"), 0) << read_text(dir / "log.txt");
     const Csv csv = read_csv(dir / "out/sweep.csv");
     ASSERT_EQ(csv.rows.size(), 12U) << "6 gaps x 2 COR";
     const std::size_t gap_column    = csv.column("walls.left.gap+walls.right.gap_cm");
@@ -95,16 +111,11 @@ namespace
     fs::remove_all(dir);
   }
 
-  TEST(SweepCli, InterruptedSweepResumesWithoutRecomputingFinishedCases)
+  TEST_F(SweepCli, InterruptedSweepResumesWithoutRecomputingFinishedCases)
   {
-    const TempDir  temp_dir("sweep_cli_resume");
-    const fs::path dir   = temp_dir.path();
     const fs::path sweep = write_sweep(dir, gap_sweep);
     const fs::path out   = dir / "out";
-    ASSERT_EQ(run_command(kimp + " sweep " + sweep.string() + " -o " + out.string(),
-                          dir / "log1.txt"),
-              0)
-      << read_text(dir / "log1.txt");
+    ASSERT_EQ(kimp_sweep(sweep, out, dir / "log1.txt"), 0) << read_text(dir / "log1.txt");
     const auto complete = rows_without_wall_time(out / "sweep.csv");
 
     // The state a SIGKILL leaves: 5 journaled cases, a torn sixth line, no results yet.
@@ -119,10 +130,7 @@ namespace
     fs::remove(out / "sweep.csv");
     fs::remove(out / "sweep.h5");
 
-    ASSERT_EQ(run_command(kimp + " sweep " + sweep.string() + " -o " + out.string(),
-                          dir / "log2.txt"),
-              0)
-      << read_text(dir / "log2.txt");
+    ASSERT_EQ(kimp_sweep(sweep, out, dir / "log2.txt"), 0) << read_text(dir / "log2.txt");
     const std::string log = read_text(dir / "log2.txt");
     EXPECT_NE(log.find("12 cases, 5 already finished, 7 to run"), std::string::npos) << log;
     EXPECT_NE(log.find("ignored 1 incomplete journal line"), std::string::npos) << log;
@@ -130,18 +138,13 @@ namespace
     fs::remove_all(dir);
   }
 
-  TEST(SweepCli, FailingCaseIsRecordedAndTheOthersComplete)
+  TEST_F(SweepCli, FailingCaseIsRecordedAndTheOthersComplete)
   {
-    const TempDir  temp_dir("sweep_cli_failing");
-    const fs::path dir   = temp_dir.path();
     const fs::path sweep = write_sweep(dir,
                                        "parameters:\n"
                                        "  integration.dt: [auto, 0.05 s, auto]\n"
                                        "  walls.left.gap: [10 cm]\n");
-    ASSERT_EQ(run_command(kimp + " sweep " + sweep.string() + " -o " + (dir / "out").string(),
-                          dir / "log.txt"),
-              0)
-      << read_text(dir / "log.txt");
+    ASSERT_EQ(kimp_sweep(sweep, dir / "out", dir / "log.txt"), 0) << read_text(dir / "log.txt");
     const Csv csv = read_csv(dir / "out/sweep.csv");
     ASSERT_EQ(csv.rows.size(), 3U);
     const std::size_t status = csv.column("status");
@@ -153,10 +156,8 @@ namespace
     fs::remove_all(dir);
   }
 
-  TEST(SweepCli, MalformedSweepFilesNameFileLineAndKey)
+  TEST_F(SweepCli, MalformedSweepFilesNameFileLineAndKey)
   {
-    const TempDir                                         temp_dir("sweep_cli_malformed");
-    const fs::path                                        dir   = temp_dir.path();
     const std::map<std::string, std::vector<std::string>> cases = {
       {"parameters:\n  walls.left.gapp: [10 cm]\n", {"sweep.yaml:3", "walls.left.gapp"}},
       {"parameters:\n  impact.cor: [0.5, 2 cm]\n", {"sweep.yaml:3", "impact.cor = 2 cm"}},
@@ -171,10 +172,7 @@ namespace
     {
       const fs::path sweep = write_sweep(dir, body);
       const fs::path log   = dir / ("log" + std::to_string(n++) + ".txt");
-      EXPECT_EQ(run_command(kimp + " sweep " + sweep.string() + " -o " + (dir / "out").string(),
-                            log),
-                1)
-        << body;
+      EXPECT_EQ(kimp_sweep(sweep, dir / "out", log), 1) << body;
       const std::string text = read_text(log);
       for (const std::string &piece : expected)
         EXPECT_NE(text.find(piece), std::string::npos) << "sweep:\n"
@@ -183,10 +181,7 @@ namespace
       EXPECT_FALSE(fs::exists(dir / "out/sweep.csv")) << body;
     }
     std::ofstream(dir / "missing.yaml") << "scene: no_such_scene.yaml\nparameters:\n  a: [1]\n";
-    EXPECT_EQ(run_command(kimp + " sweep " + (dir / "missing.yaml").string() + " -o " +
-                            (dir / "out").string(),
-                          dir / "log_missing.txt"),
-              1);
+    EXPECT_EQ(kimp_sweep(dir / "missing.yaml", dir / "out", dir / "log_missing.txt"), 1);
     EXPECT_NE(read_text(dir / "log_missing.txt").find("missing.yaml:1: scene"), std::string::npos)
       << read_text(dir / "log_missing.txt");
     fs::remove_all(dir);
@@ -213,17 +208,12 @@ namespace
     return std::stod(summary.substr(at + label.size() + 2));
   }
 
-  TEST(SweepCli, ReportWritesChartsSummaryAndRequiredGapTableThatMatchTheCsv)
+  TEST_F(SweepCli, ReportWritesChartsSummaryAndRequiredGapTableThatMatchTheCsv)
   {
-    const TempDir  temp_dir("sweep_cli_report");
-    const fs::path dir = temp_dir.path();
     const fs::path sweep =
       write_sweep(dir, "report: {kind: gap_study, title: Smoke gap study}\n" + gap_sweep);
     const fs::path out = dir / "out";
-    ASSERT_EQ(run_command(kimp + " sweep " + sweep.string() + " -o " + out.string(),
-                          dir / "log.txt"),
-              0)
-      << read_text(dir / "log.txt");
+    ASSERT_EQ(kimp_sweep(sweep, out, dir / "log.txt"), 0) << read_text(dir / "log.txt");
     for (const char *chart : {"response_vs_gap", "amplification_vs_gap"})
       for (const char *ext : {".png", ".svg"})
       {
@@ -274,10 +264,8 @@ namespace
     return n;
   }
 
-  TEST(SweepCli, GapChartsDrawOneLinePerRecordAndConfigurationWithItsRequiredGap)
+  TEST_F(SweepCli, GapChartsDrawOneLinePerRecordAndConfigurationWithItsRequiredGap)
   {
-    const TempDir  temp_dir("sweep_cli_record_lines");
-    const fs::path dir   = temp_dir.path();
     const fs::path sweep = write_sweep(
       dir,
       "report: {kind: gap_study}\n" + gap_sweep +
@@ -285,10 +273,7 @@ namespace
         "    - {label: full, ground_motion.record: synthetic}\n"
         "    - {label: half, ground_motion.record: synthetic, ground_motion.scale: 0.5}\n");
     const fs::path out = dir / "out";
-    ASSERT_EQ(run_command(kimp + " sweep " + sweep.string() + " -o " + out.string(),
-                          dir / "log.txt"),
-              0)
-      << read_text(dir / "log.txt");
+    ASSERT_EQ(kimp_sweep(sweep, out, dir / "log.txt"), 0) << read_text(dir / "log.txt");
     const Csv dsrss = read_csv(out / "dsrss_table.csv");
     ASSERT_EQ(dsrss.rows.size(), 4U) << "2 records x 2 COR";
     const std::string svg = read_text(out / "charts/response_vs_gap.svg");
@@ -314,15 +299,10 @@ namespace
     fs::remove_all(dir);
   }
 
-  TEST(SweepCli, NoChartsSkipsTheScriptAndAFailingScriptIsAnError)
+  TEST_F(SweepCli, NoChartsSkipsTheScriptAndAFailingScriptIsAnError)
   {
-    const TempDir  temp_dir("sweep_cli_nocharts");
-    const fs::path dir   = temp_dir.path();
     const fs::path sweep = write_sweep(dir, "report: {kind: gap_study}\n" + gap_sweep);
-    ASSERT_EQ(run_command(kimp + " sweep " + sweep.string() + " --no-charts -o " +
-                            (dir / "a").string(),
-                          dir / "log_a.txt"),
-              0)
+    ASSERT_EQ(kimp_sweep(sweep, dir / "a", dir / "log_a.txt", " --no-charts"), 0)
       << read_text(dir / "log_a.txt");
     EXPECT_TRUE(fs::exists(dir / "a/sweep.csv"));
     EXPECT_FALSE(fs::exists(dir / "a/summary.md"));
@@ -342,14 +322,10 @@ namespace
     fs::remove_all(dir);
   }
 
-  TEST(SweepCli, UnknownReportKindIsNamedWithFileAndLine)
+  TEST_F(SweepCli, UnknownReportKindIsNamedWithFileAndLine)
   {
-    const TempDir  temp_dir("sweep_cli_badreport");
-    const fs::path dir   = temp_dir.path();
     const fs::path sweep = write_sweep(dir, "report:\n  kind: histogram\n" + gap_sweep);
-    EXPECT_EQ(run_command(kimp + " sweep " + sweep.string() + " -o " + (dir / "out").string(),
-                          dir / "log.txt"),
-              1);
+    EXPECT_EQ(kimp_sweep(sweep, dir / "out", dir / "log.txt"), 1);
     const std::string log = read_text(dir / "log.txt");
     EXPECT_NE(log.find("sweep.yaml:3: report.kind: 'histogram' is not one of: gap_study"),
               std::string::npos)
@@ -358,14 +334,10 @@ namespace
   }
 
   // Run by the ctest entry e2e_sweep_cli_test.mpi (label mpi), which enables disabled tests.
-  TEST(SweepCliMpi, DISABLED_OneAndTwoRanksGiveIdenticalRows)
+  TEST_F(SweepCliMpi, DISABLED_OneAndTwoRanksGiveIdenticalRows)
   {
-    const TempDir  temp_dir("sweep_cli_mpi");
-    const fs::path dir   = temp_dir.path();
     const fs::path sweep = write_sweep(dir, gap_sweep);
-    ASSERT_EQ(run_command(kimp + " sweep " + sweep.string() + " -t 1 -o " + (dir / "one").string(),
-                          dir / "log1.txt"),
-              0)
+    ASSERT_EQ(kimp_sweep(sweep, dir / "one", dir / "log1.txt", " -t 1"), 0)
       << read_text(dir / "log1.txt");
     ASSERT_EQ(run_command("mpirun --allow-run-as-root --oversubscribe -np 2 " + kimp + " sweep " +
                             sweep.string() + " -t 1 -o " + (dir / "two").string(),

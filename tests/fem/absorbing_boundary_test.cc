@@ -47,6 +47,27 @@ namespace
     return static_cast<unsigned int>(std::lround(length / h_cell));
   }
 
+  /** The sides of the soil and slab blocks of a column: rollers (u_x = 0). */
+  constexpr unsigned int rollers = ids::soil_far_side;
+
+  /**
+   * A block of a column: [a0, a1] along it (y if @p along_y, else x) in n cells and
+   * [0, width] across it in 2 cells; @p low and @p high the ids of its ends at a0 and a1,
+   * @p sides the id of its sides.
+   */
+  Block column_block(bool         along_y,
+                     double       a0,
+                     double       a1,
+                     unsigned int n,
+                     unsigned int material,
+                     unsigned int low,
+                     unsigned int high,
+                     unsigned int sides)
+  {
+    return along_y ? Block{0, width, a0, a1, 2, n, material, sides, sides, low, high} :
+                     Block{a0, a1, 0, width, n, 2, material, low, high, sides, sides};
+  }
+
   /**
    * A soil column of mesh @p file: soil, slab and dummy blocks all of soil, the slab started at
    * v in +y, no contact ever starting (the run goes to end_time), sampled every 0.1 ms.
@@ -54,13 +75,12 @@ namespace
   ImpactParameters column_parameters(const std::filesystem::path &file)
   {
     ImpactParameters p;
-    p.mesh_file                     = file;
-    p.materials[ids::soil_material] = soil;
-    p.materials[ids::slab_material] = soil;
-    p.materials[ids::wall_material] = soil;
-    p.initial_velocity_along_y      = true;
-    p.separation_hold_time          = 1; // s: no contact ever starts; run to end_time
-    p.output_interval               = 1e-4;
+    p.mesh_file = file;
+    for (const unsigned int material : {ids::soil_material, ids::slab_material, ids::wall_material})
+      p.materials[material] = soil;
+    p.initial_velocity_along_y = true;
+    p.separation_hold_time     = 1; // s: no contact ever starts; run to end_time
+    p.output_interval          = 1e-4;
     return p;
   }
 
@@ -71,40 +91,12 @@ namespace
    */
   ImpactParameters p_column(double L, double L_s, const std::string &name)
   {
-    return column_parameters(write_blocks({{0,
-                                            width,
-                                            0,
-                                            L,
-                                            2,
-                                            cells(L),
-                                            ids::soil_material,
-                                            ids::soil_far_side,
-                                            ids::soil_far_side,
-                                            ids::fixed_base,
-                                            0},
-                                           {0,
-                                            width,
-                                            L,
-                                            L + L_s,
-                                            2,
-                                            cells(L_s),
-                                            ids::slab_material,
-                                            ids::soil_far_side,
-                                            ids::soil_far_side,
-                                            0,
-                                            ids::slab_contact},
-                                           {0,
-                                            width,
-                                            L + L_s + dummy_gap,
-                                            L + L_s + dummy_gap + dummy_width,
-                                            2,
-                                            4,
-                                            ids::wall_material,
-                                            0,
-                                            0,
-                                            ids::wall_contact,
-                                            0}},
-                                          name));
+    const double top = L + L_s, dummy = top + dummy_gap, dummy_end = dummy + dummy_width;
+    return column_parameters(write_blocks(
+      {column_block(true, 0, L, cells(L), ids::soil_material, ids::fixed_base, 0, rollers),
+       column_block(true, L, top, cells(L_s), ids::slab_material, 0, ids::slab_contact, rollers),
+       column_block(true, dummy, dummy_end, 4, ids::wall_material, ids::wall_contact, 0, 0)},
+      name));
   }
 
   /**
@@ -114,40 +106,12 @@ namespace
    */
   ImpactParameters s_column(double L, double L_s, const std::string &name)
   {
-    return column_parameters(write_blocks({{0,
-                                            L,
-                                            0,
-                                            width,
-                                            cells(L),
-                                            2,
-                                            ids::soil_material,
-                                            0,
-                                            ids::fixed_base,
-                                            ids::soil_far_side,
-                                            ids::soil_far_side},
-                                           {-L_s,
-                                            0,
-                                            0,
-                                            width,
-                                            cells(L_s),
-                                            2,
-                                            ids::slab_material,
-                                            ids::slab_contact,
-                                            0,
-                                            ids::soil_far_side,
-                                            ids::soil_far_side},
-                                           {-L_s - dummy_gap - dummy_width,
-                                            -L_s - dummy_gap,
-                                            0,
-                                            width,
-                                            4,
-                                            2,
-                                            ids::wall_material,
-                                            0,
-                                            ids::wall_contact,
-                                            0,
-                                            0}},
-                                          name));
+    const double dummy_end = -L_s - dummy_gap, dummy = dummy_end - dummy_width;
+    return column_parameters(write_blocks(
+      {column_block(false, 0, L, cells(L), ids::soil_material, 0, ids::fixed_base, rollers),
+       column_block(false, -L_s, 0, cells(L_s), ids::slab_material, ids::slab_contact, 0, rollers),
+       column_block(false, dummy, dummy_end, 4, ids::wall_material, 0, ids::wall_contact, 0)},
+      name));
   }
 
   /** A run with the end @p end fixed and one with @p end absorbing, measured at t_measure. */

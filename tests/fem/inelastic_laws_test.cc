@@ -14,11 +14,11 @@ namespace
   using namespace kimp::fem;
   constexpr double pi = 3.14159265358979323846;
 
-  SoilParameters soil(double c, double phi_deg, double psi_deg, double cutoff)
+  SoilParameters soil(double c, double phi_deg, double psi_deg, double cutoff, double nu = 0.3)
   {
     SoilParameters p;
     p.youngs_modulus = 50e6;
-    p.poisson_ratio  = 0.3;
+    p.poisson_ratio  = nu;
     p.cohesion       = c;
     p.friction_angle = phi_deg * pi / 180;
     p.dilatancy      = psi_deg * pi / 180;
@@ -62,12 +62,15 @@ namespace
     double              err = 0, norm = 0;
     for (unsigned int j = 0; j < 3; ++j)
     {
-      const double d  = 1e-7 * std::max({std::abs(e[0]), std::abs(e[1]), std::abs(e[2])});
-      VoigtStrain  ep = e, em = e;
-      ep[j] += d;
-      em[j] -= d;
-      const VoigtStress sp = law.stress(ep, h, scratch.data());
-      const VoigtStress sm = law.stress(em, h, scratch.data());
+      const double d = 1e-7 * std::max({std::abs(e[0]), std::abs(e[1]), std::abs(e[2])});
+      // The stress at e with its component j moved by `step`.
+      const auto stress_at = [&](double step)
+      {
+        VoigtStrain moved = e;
+        moved[j] += step;
+        return law.stress(moved, h, scratch.data());
+      };
+      const VoigtStress sp = stress_at(d), sm = stress_at(-d);
       for (unsigned int i = 0; i < 3; ++i)
       {
         const double fd = (sp[i] - sm[i]) / (2 * d);
@@ -104,8 +107,7 @@ namespace
     // Uniaxial strain in compression: sigma_yy = sigma_zz, so the return is to an edge; the
     // stress stays on the surface (1 + s) s_lat - (1 - s) s_xx = 2 c cos(phi). nu = 0.1: the
     // elastic K0 = nu / (1 - nu) is below K_a, so the path yields.
-    SoilParameters p = soil(10e3, 30, 10, 1e9);
-    p.poisson_ratio  = 0.1;
+    const SoilParameters p = soil(10e3, 30, 10, 1e9, 0.1);
     const MohrCoulombLaw law(p);
     Driver               d(law);
     const double         s    = std::sin(p.friction_angle);
@@ -134,8 +136,7 @@ namespace
   {
     // eps_xx = eps_yy < 0: sigma_xx = sigma_yy < sigma_zz, the two smallest principal stresses
     // stay equal: the edge opposite to the oedometric one (nu = 0.1 so that it yields).
-    SoilParameters p = soil(10e3, 30, 0, 1e9);
-    p.poisson_ratio  = 0.1;
+    const SoilParameters p = soil(10e3, 30, 0, 1e9, 0.1);
     const MohrCoulombLaw law(p);
     Driver               d(law);
     const double         s = std::sin(p.friction_angle);

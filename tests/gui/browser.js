@@ -70,15 +70,26 @@ function startServer(kimpExe, runsDir) {
   });
 }
 
-/** Set a text field of the scene form and fire its change event. */
-async function setField(page, fieldPath, value) {
+/** Set the input `selector` to `value` and fire its change event (bubbling if `bubbles`). */
+async function setInput(page, selector, value, bubbles = false) {
   await page.$eval(
-    `#scene-form [data-path="${fieldPath}"] input, #scene-form input[data-path="${fieldPath}"]`,
-    (input, v) => {
+    selector,
+    (input, v, b) => {
       input.value = v;
-      input.dispatchEvent(new Event('change', { bubbles: true }));
+      input.dispatchEvent(new Event('change', { bubbles: b }));
     },
     value,
+    bubbles,
+  );
+}
+
+/** Set a text field of the scene form and fire its change event. */
+async function setField(page, fieldPath, value) {
+  await setInput(
+    page,
+    `#scene-form [data-path="${fieldPath}"] input, #scene-form input[data-path="${fieldPath}"]`,
+    value,
+    true,
   );
 }
 
@@ -119,4 +130,4 @@ function runMain(main) {
   });
 }
 
-module.exports = { launch, watchedPage, waitForFile, check, startServer, setField, withGuiPage, runMain };
+module.exports = { launch, watchedPage, waitForFile, check, startServer, setInput, setField, withGuiPage, runMain };

@@ -7,7 +7,7 @@
 'use strict';
 const fs = require('fs');
 const path = require('path');
-const { check, setField, withGuiPage, runMain } = require('./browser.js');
+const { check, setInput, setField, withGuiPage, runMain } = require('./browser.js');
 
 const G = 9.80665;
 
@@ -78,16 +78,8 @@ async function main() {
     for (const [id, v] of [
       ['#motion-scale', '0.5'],
       ['#motion-duration', '5000 ms'],
-    ]) {
-      await page.$eval(
-        id,
-        (input, value) => {
-          input.value = value;
-          input.dispatchEvent(new Event('change'));
-        },
-        v,
-      );
-    }
+    ])
+      await setInput(page, id, v);
     await page.waitForFunction((p) => Number(document.querySelector('#motion-info').dataset.pga) < 0.75 * p, {}, pga0);
     const pga = await page.$eval('#motion-info', (e) => Number(e.dataset.pga));
     const samples = await page.$eval('#motion-info', (e) => Number(e.dataset.samples));

@@ -7,7 +7,7 @@
 'use strict';
 const fs = require('fs');
 const path = require('path');
-const { launch, watchedPage, check, startServer } = require('./browser.js');
+const { launch, watchedPage, check, startServer, setInput } = require('./browser.js');
 
 async function main() {
   const [kimpExe, artefacts] = process.argv.slice(2);
@@ -56,16 +56,8 @@ async function main() {
     for (const [id, v] of [
       ['#motion-scale-to-pga', '0.3 g'],
       ['#motion-duration', '6000 ms'],
-    ]) {
-      await page.$eval(
-        id,
-        (input, value) => {
-          input.value = value;
-          input.dispatchEvent(new Event('change'));
-        },
-        v,
-      );
-    }
+    ])
+      await setInput(page, id, v);
     await page.waitForFunction(() => Number(document.querySelector('#motion-info').dataset.samples) === 1200, {
       timeout: 15000,
     });

@@ -101,6 +101,20 @@ namespace
                   value_rel_tolerance * std::abs(expected_g[i] * standard_gravity))
         << "value " << i << " of " << motion.name;
   }
+
+  /// Expects read_at2() of `content` written to the file `name` to give the time step `dt` (s)
+  /// and the values `expected_g` (in g).
+  void expect_at2(const std::string         &name,
+                  const std::string         &content,
+                  double                     dt,
+                  const std::vector<double> &expected_g)
+  {
+    const TempDir dir;
+    const auto    motion = kimp::io::read_at2(dir.write(name, content));
+    EXPECT_DOUBLE_EQ(motion.dt, dt);
+    ExpectValuesInG(motion, expected_g);
+  }
+
 } // namespace
 
 TEST(At2Records, EveryRecordMatchesItsReadmeRow)
@@ -172,36 +186,30 @@ TEST(At2Records, SixAndSevenDigitElCentroCopiesAgree)
 
 TEST(At2Format, TouchingFortranFieldsAndExponentLetters)
 {
-  const TempDir dir;
-  const auto    file   = dir.write("touching.AT2",
-                              header3 + "NPTS=    8, DT= .0100 SEC\n"
-                                             "-.1E-02-.2E-02 .3E-02.4E-02\n"
-                                             "  .5E-02\t-6.0D-03 +7E+00 .8123-105\n");
-  const auto    motion = kimp::io::read_at2(file);
-  EXPECT_DOUBLE_EQ(motion.dt, 0.01);
-  ExpectValuesInG(motion, {-0.001, -0.002, 0.003, 0.004, 0.005, -0.006, 7.0, 0.8123e-105});
+  expect_at2("touching.AT2",
+             header3 + "NPTS=    8, DT= .0100 SEC\n"
+                       "-.1E-02-.2E-02 .3E-02.4E-02\n"
+                       "  .5E-02\t-6.0D-03 +7E+00 .8123-105\n",
+             0.01,
+             {-0.001, -0.002, 0.003, 0.004, 0.005, -0.006, 7.0, 0.8123e-105});
 }
 
 TEST(At2Format, CrlfNoCommaPaddingAndPartialLastLine)
 {
-  const TempDir dir;
-  const auto    file =
-    dir.write("crlf.AT2",
-              "PEER NGA STRONG MOTION DATABASE RECORD\r\nKobe Japan, 1/16/1995, KJMA, 0\r\n"
-              "ACCELERATION TIME SERIES IN UNITS OF G\r\n"
-              "NPTS=   7  DT=   .0200 SEC,                          \r\n"
-              "  -.1416764E-03  -.1418977E-03  -.1421037E-03  -.1423125E-03  -.1425214E-03\r\n"
-              "   .1735176E-04   .1754978E-04          \r\n");
-  const auto motion = kimp::io::read_at2(file);
-  EXPECT_DOUBLE_EQ(motion.dt, 0.02);
-  ExpectValuesInG(motion,
-                  {-.1416764E-03,
-                   -.1418977E-03,
-                   -.1421037E-03,
-                   -.1423125E-03,
-                   -.1425214E-03,
-                   .1735176E-04,
-                   .1754978E-04});
+  expect_at2("crlf.AT2",
+             "PEER NGA STRONG MOTION DATABASE RECORD\r\nKobe Japan, 1/16/1995, KJMA, 0\r\n"
+             "ACCELERATION TIME SERIES IN UNITS OF G\r\n"
+             "NPTS=   7  DT=   .0200 SEC,                          \r\n"
+             "  -.1416764E-03  -.1418977E-03  -.1421037E-03  -.1423125E-03  -.1425214E-03\r\n"
+             "   .1735176E-04   .1754978E-04          \r\n",
+             0.02,
+             {-.1416764E-03,
+              -.1418977E-03,
+              -.1421037E-03,
+              -.1423125E-03,
+              -.1425214E-03,
+              .1735176E-04,
+              .1754978E-04});
 }
 
 TEST(At2Format, ClassicMacLineEndings)
@@ -217,30 +225,25 @@ TEST(At2Format, ClassicMacLineEndings)
 
 TEST(At2Format, NumbersFirstNptsLine)
 {
-  const TempDir dir;
-  const auto    file   = dir.write("numbers_first.AT2",
-                              "PEER NGA STRONG MOTION DATABASE RECORD\n"
-                                   "IMPERIAL VALLEY 5/19/40 0439, EL CENTRO ARRAY #9, 180\n"
-                                   "ACCELERATION TIME HISTORY IN UNITS OF G\n"
-                                   "3    0.0100    NPTS, DT\n"
-                                   "  -0.640318E-02  -0.602871E-02   0.530416E-03\n");
-  const auto    motion = kimp::io::read_at2(file);
-  EXPECT_DOUBLE_EQ(motion.dt, 0.01);
-  ExpectValuesInG(motion, {-0.640318E-02, -0.602871E-02, 0.530416E-03});
+  expect_at2("numbers_first.AT2",
+             "PEER NGA STRONG MOTION DATABASE RECORD\n"
+             "IMPERIAL VALLEY 5/19/40 0439, EL CENTRO ARRAY #9, 180\n"
+             "ACCELERATION TIME HISTORY IN UNITS OF G\n"
+             "3    0.0100    NPTS, DT\n"
+             "  -0.640318E-02  -0.602871E-02   0.530416E-03\n",
+             0.01,
+             {-0.640318E-02, -0.602871E-02, 0.530416E-03});
 }
 
 TEST(At2Format, FilterTextAfterDtAndDigitsInHeaderAreIgnored)
 {
-  const TempDir dir;
   // Header lines full of numbers; the NPTS line ends with filter corners that are numbers too.
-  const auto file =
-    dir.write("filter.AT2",
-              "PEER 1994 11 22 33\nNorthridge-01, 1/17/1994, 142, 74 # 5\nUNITS OF G 9.81 1.0E+00\n"
-              "NPTS=   2, DT=   .0050 SEC,   4 POLE @    30.00000 HZ,  -5 POLE @      .23000\n"
-              "   .2846611E-02   .2830781E-02");
-  const auto motion = kimp::io::read_at2(file);
-  EXPECT_DOUBLE_EQ(motion.dt, 0.005);
-  ExpectValuesInG(motion, {.2846611E-02, .2830781E-02});
+  expect_at2("filter.AT2",
+             "PEER 1994 11 22 33\nNorthridge-01, 1/17/1994, 142, 74 # 5\nUNITS OF G 9.81 1.0E+00\n"
+             "NPTS=   2, DT=   .0050 SEC,   4 POLE @    30.00000 HZ,  -5 POLE @      .23000\n"
+             "   .2846611E-02   .2830781E-02",
+             0.005,
+             {.2846611E-02, .2830781E-02});
 }
 
 TEST(At2Errors, EmptyFile)
@@ -262,49 +265,48 @@ TEST(At2Errors, BinaryJunk)
   expect_contains(msg, {"junk.AT2:6:", "binary data", "0x7f", "column 1", "expected a text file"});
 }
 
-TEST(At2Errors, TruncatedBeforeNptsLine)
+TEST(At2Errors, TruncatedFilesAndValueCountsOtherThanNpts)
 {
   const TempDir dir;
-  const auto    msg = at2_error(dir, "cut.AT2", "PEER NGA STRONG MOTION DATABASE RECORD\nKobe");
-  expect_contains(msg, {"cut.AT2:2:", "truncated", "before any NPTS/DT line", "NPTS="});
-}
-
-TEST(At2Errors, TruncatedInsideData)
-{
-  const TempDir dir;
-  // Cut in the middle of the 5th value: no final newline; 4.5 of 6 values.
-  const auto msg = at2_error(dir,
-                             "cut_data.AT2",
-                             header3 + "NPTS= 6, DT= .01 SEC\n .1E-02 .2E-02 .3E-02\n .4E-02 .51");
-  expect_contains(msg,
-                  {"cut_data.AT2:6:",
-                   "fewer values than NPTS",
-                   "5 of NPTS = 6",
-                   "expected 1 more",
-                   "last line has no newline"});
-}
-
-TEST(At2Errors, FewerValuesThanNpts)
-{
-  const TempDir dir;
-  const auto    msg = at2_error(dir,
-                             "fewer.AT2",
-                             header3 + "NPTS= 7, DT= .01 SEC\n"
-                                          " .1E-02 .2E-02 .3E-02 .4E-02 .5E-02\n"
-                                          " .6E-02\n\n");
-  expect_contains(msg, {"fewer.AT2:7:", "fewer values than NPTS", "6 of NPTS = 7"});
-  EXPECT_EQ(msg.find("no newline"), std::string::npos) << msg;
-}
-
-TEST(At2Errors, MoreValuesThanNpts)
-{
-  const TempDir dir;
-  const auto    msg = at2_error(dir,
-                             "more.AT2",
-                             header3 + "NPTS= 5, DT= .01 SEC\n"
-                                          " .1E-02 .2E-02 .3E-02 .4E-02 .5E-02\n"
-                                          " .6E-02\n");
-  expect_contains(msg, {"more.AT2:6:", "more values than NPTS = 5", "value 6"});
+  struct Case
+  {
+    std::string              file, content;
+    std::vector<std::string> expected;
+    std::string              absent; ///< a part the message must not contain, if any
+  };
+  const Case cases[] = {
+    {"cut.AT2",
+     "PEER NGA STRONG MOTION DATABASE RECORD\nKobe",
+     {"cut.AT2:2:", "truncated", "before any NPTS/DT line", "NPTS="},
+     ""},
+    // Cut in the middle of the 5th value: no final newline; 4.5 of 6 values.
+    {"cut_data.AT2",
+     header3 + "NPTS= 6, DT= .01 SEC\n .1E-02 .2E-02 .3E-02\n .4E-02 .51",
+     {"cut_data.AT2:6:",
+      "fewer values than NPTS",
+      "5 of NPTS = 6",
+      "expected 1 more",
+      "last line has no newline"},
+     ""},
+    {"fewer.AT2",
+     header3 + "NPTS= 7, DT= .01 SEC\n .1E-02 .2E-02 .3E-02 .4E-02 .5E-02\n .6E-02\n\n",
+     {"fewer.AT2:7:", "fewer values than NPTS", "6 of NPTS = 7"},
+     "no newline"},
+    {"more.AT2",
+     header3 + "NPTS= 5, DT= .01 SEC\n .1E-02 .2E-02 .3E-02 .4E-02 .5E-02\n .6E-02\n",
+     {"more.AT2:6:", "more values than NPTS = 5", "value 6"},
+     ""},
+  };
+  for (const Case &c : cases)
+  {
+    SCOPED_TRACE(c.file);
+    const auto msg = at2_error(dir, c.file, c.content);
+    expect_contains(msg, c.expected);
+    if (!c.absent.empty())
+    {
+      EXPECT_EQ(msg.find(c.absent), std::string::npos) << msg;
+    }
+  }
 }
 
 TEST(At2Errors, NonNumericTokenIsQuoted)

@@ -14,12 +14,12 @@ namespace
   using kimp::lumped::ForceLawSpec;
   using kimp::lumped::make_force_law;
 
+  /// Parameters every law accepts (the COR at its default, 0.7).
   ForceLawSpec valid_spec(const std::string &law)
   {
     ForceLawSpec s;
     s.law                         = law;
     s.stiffness                   = 2.5e9;
-    s.cor                         = 0.7;
     s.effective_mass              = 144.8e3;
     s.bumper_ultimate_deformation = 0.0375;
     s.bumper_wall_stiffness       = 1.5e9;

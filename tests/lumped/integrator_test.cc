@@ -78,6 +78,15 @@ namespace kimp::lumped
       return d;
     }
 
+    /// Options of `kernel` at time step `dt`, the rest at the defaults.
+    CentralDifferenceOptions kernel_options(CdmKernel kernel, double dt)
+    {
+      CentralDifferenceOptions opt;
+      opt.dt     = dt;
+      opt.kernel = kernel;
+      return opt;
+    }
+
     /// The fused kernel (chosen automatically on these models) and the reference kernel.
     const std::pair<CdmKernel, const char *> both_kernels[] = {{CdmKernel::automatic, "fused"},
                                                                {CdmKernel::reference, "reference"}};
@@ -338,11 +347,9 @@ namespace kimp::lumped
     // Both kernels (the fused one carries u, Δu, peaks and sums in its own state).
     for (const auto &[kernel, name] : both_kernels)
     {
-      const GroundMotion       g = kimp::testing::near_fault_motion(10.0);
-      CentralDifferenceOptions opt;
-      opt.dt                   = 1e-4;
-      opt.kernel               = kernel;
-      opt.initial_displacement = {0.01, 0.012, 0.014, 0.016, 0.018};
+      const GroundMotion       g   = kimp::testing::near_fault_motion(10.0);
+      CentralDifferenceOptions opt = kernel_options(kernel, 1e-4);
+      opt.initial_displacement     = {0.01, 0.012, 0.014, 0.016, 0.018};
       const CentralDifference cdm(walled_building(0.10), opt);
       const Response          uninterrupted = cdm.run(g);
       ASSERT_GT(uninterrupted.n_impacts(), 1u) << "the restart must cross impacts to mean much";
@@ -376,11 +383,9 @@ namespace kimp::lumped
     {
       // advance(k) and step() in random chunks give exactly run(); each step moves
       // u_n -> u_{n-1}, t_n = n dt exactly, and stepping past the end is refused.
-      const GroundMotion       g = kimp::testing::near_fault_motion(6.0);
-      CentralDifferenceOptions opt;
-      opt.dt              = 2e-4;
-      opt.kernel          = kernel;
-      opt.output_interval = 0.0126; // not a divisor of the block or of 512 steps
+      const GroundMotion       g   = kimp::testing::near_fault_motion(6.0);
+      CentralDifferenceOptions opt = kernel_options(kernel, 2e-4);
+      opt.output_interval          = 0.0126; // not a divisor of the block or of 512 steps
       const CentralDifference cdm(walled_building(0.06), opt);
       const Response          whole = cdm.run(g);
       ASSERT_GT(whole.n_impacts(), 0u);

@@ -251,6 +251,15 @@ namespace
     id = nlohmann::json::parse(started->body)["id"].get<std::string>();
   }
 
+  /// The run `id` once it is neither running nor queued (at most 60 s).
+  nlohmann::json finished_run(GuiProcess &gui, const std::string &id)
+  {
+    return gui.wait_for_run(id,
+                            60,
+                            [](const nlohmann::json &r)
+                            { return r["state"] != "running" && r["state"] != "queued"; });
+  }
+
   /// A running run's child pid, after waiting for the run to be running.
   int running_pid(GuiProcess &gui, const std::string &id)
   {
@@ -451,11 +460,7 @@ namespace
       {{"command", "lumped"},
        {"scene", "building:\n  n_storeys: 3\nground_motion:\n  record: RSN1_TEST_X000\n"}},
       id));
-    const nlohmann::json run =
-      gui.wait_for_run(id,
-                       60,
-                       [](const nlohmann::json &r)
-                       { return r["state"] != "running" && r["state"] != "queued"; });
+    const nlohmann::json run = finished_run(gui, id);
     EXPECT_EQ(run["state"], "done") << run.dump();
     const nlohmann::json summary =
       nlohmann::json::parse(kimp::testing::read_text(dir.path() / "runs" / id / "out/summary.json"),
@@ -481,16 +486,10 @@ namespace
     const auto        preview = gui.post("/api/motion", {{"command", "lumped"}, {"scene", scene}});
     ASSERT_TRUE(preview);
     ASSERT_EQ(preview->status, 200) << preview->body;
-    const nlohmann::json motion  = nlohmann::json::parse(preview->body);
-    const auto           started = gui.post("/api/runs", {{"command", "lumped"}, {"scene", scene}});
-    ASSERT_TRUE(started);
-    ASSERT_EQ(started->status, 201) << started->body;
-    const std::string    id = nlohmann::json::parse(started->body)["id"];
-    const nlohmann::json run =
-      gui.wait_for_run(id,
-                       60,
-                       [](const nlohmann::json &r)
-                       { return r["state"] != "running" && r["state"] != "queued"; });
+    const nlohmann::json motion = nlohmann::json::parse(preview->body);
+    std::string          id;
+    ASSERT_NO_FATAL_FAILURE(start_run(gui, {{"command", "lumped"}, {"scene", scene}}, id));
+    const nlohmann::json run = finished_run(gui, id);
     ASSERT_EQ(run["state"], "done") << run.dump();
     const nlohmann::json summary = nlohmann::json::parse(
       kimp::testing::read_text(dir.path() / "runs" / id / "out/summary.json"))["ground_motion"];

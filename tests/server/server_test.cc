@@ -1,7 +1,8 @@
 // The server of `kimp gui` through real HTTP requests: DNS-rebinding and cross-site requests
 // refused, paths confined, oversized uploads and malformed JSON answered with 4xx, concurrent
 // runs complete while the server keeps answering, runs beyond the limit queue, progress reaches
-// the page as server-sent events, ports in use and out of range are refused.
+// the page as server-sent events, ports in use and out of range are refused. The ground-motion
+// preview: server_motion_test.cc.
 #include <algorithm>
 #include <arpa/inet.h>
 #include <chrono>
@@ -17,117 +18,16 @@
 #include <thread>
 #include <unistd.h>
 
+#include "tests/server/server_test_support.h"
 #include "tests/support/files.h"
 #include "tests/support/kimp_run.h"
 #include "tests/support/temp_dir.h"
 
-#include "server/server.h"
-
-// Last: <httplib.h> brings <resolv.h>, whose `_res` macro breaks Eigen headers.
-#include <httplib.h>
-
 namespace
 {
   using namespace kimp;
-  using Clock = std::chrono::steady_clock;
-
-  /// A GuiServer on a free loopback port, serving from a thread for the test's lifetime.
-  class ServerFixture : public ::testing::Test
-  {
-  protected:
-    /// Options of the server under test (a fixture may change them).
-    virtual void configure(server::GuiOptions &) {}
-
-    void SetUp() override
-    {
-      server::GuiOptions options;
-      options.port            = 0;
-      options.runs_dir        = dir_.path() / "runs";
-      options.kimp_executable = std::filesystem::path(KIMP_BINARY_DIR) / "kimp";
-      configure(options);
-      server_ = std::make_unique<server::GuiServer>(options);
-      port_   = server_->bind();
-      thread_ = std::thread([this] { server_->listen(); });
-      client_ = std::make_unique<httplib::Client>("127.0.0.1", port_);
-      client_->set_read_timeout(30, 0);
-    }
-    void TearDown() override
-    {
-      server_->stop();
-      thread_.join();
-    }
-    std::string      host() const { return "127.0.0.1:" + std::to_string(port_); }
-    httplib::Headers post_headers() const
-    {
-      return {{"X-Kimp-Request", "1"}, {"Origin", "http://" + host()}};
-    }
-    nlohmann::json json_of(const httplib::Result &r) const
-    {
-      return nlohmann::json::parse(r->body, nullptr, false);
-    }
-    httplib::Result post(const std::string &path, const nlohmann::json &body)
-    {
-      return client_->Post(path, post_headers(), body.dump(), "application/json");
-    }
-    /// Starts a run and returns its id (a failed start fails the test).
-    std::string start(const nlohmann::json &request)
-    {
-      const auto r = post("/api/runs", request);
-      EXPECT_TRUE(r);
-      if (!r)
-        return "";
-      EXPECT_EQ(r->status, 201) << r->body;
-      return json_of(r).value("id", "");
-    }
-    /// Polls the run until `done` holds, at most `limit_s` seconds.
-    template <class Predicate>
-    nlohmann::json wait_for_run(const std::string &id, double limit_s, Predicate done)
-    {
-      const auto     deadline = Clock::now() + std::chrono::duration<double>(limit_s);
-      nlohmann::json run;
-      while (Clock::now() < deadline)
-      {
-        const auto r = client_->Get("/api/runs/" + id);
-        run          = r ? json_of(r) : nlohmann::json();
-        if (done(run))
-          break;
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-      }
-      return run;
-    }
-    static bool finished(const nlohmann::json &run)
-    {
-      const std::string state = run.value("state", "");
-      return state != "running" && state != "queued";
-    }
-    /// The raw answer of the server to the bytes `request` (for requests httplib cannot send).
-    std::string raw_request(const std::string &request) const
-    {
-      const int   sock = socket(AF_INET, SOCK_STREAM, 0);
-      sockaddr_in address{};
-      address.sin_family = AF_INET;
-      address.sin_port   = htons(static_cast<std::uint16_t>(port_));
-      inet_pton(AF_INET, "127.0.0.1", &address.sin_addr);
-      std::string answer;
-      timeval     timeout{10, 0};
-      setsockopt(sock, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof(timeout));
-      if (connect(sock, reinterpret_cast<sockaddr *>(&address), sizeof(address)) == 0 &&
-          send(sock, request.data(), request.size(), 0) == static_cast<ssize_t>(request.size()))
-      {
-        char buffer[4096];
-        for (ssize_t n; (n = recv(sock, buffer, sizeof(buffer), 0)) > 0;)
-          answer.append(buffer, static_cast<std::size_t>(n));
-      }
-      close(sock);
-      return answer;
-    }
-
-    kimp::testing::TempDir             dir_{"server"};
-    std::unique_ptr<server::GuiServer> server_;
-    int                                port_ = 0;
-    std::thread                        thread_;
-    std::unique_ptr<httplib::Client>   client_;
-  };
+  using kimp::testing::Clock;
+  using kimp::testing::ServerFixture;
 
   /// A lumped scene that runs in well under a second (3 storeys, 6 s of synthetic motion).
   constexpr const char *small_scene = R"(building:
@@ -549,196 +449,6 @@ ground_motion:
       server::GuiServer s(bad);
       EXPECT_THROW(s.bind(), std::invalid_argument) << port;
     }
-  }
-
-  constexpr double standard_gravity = 9.80665;
-
-  /// The largest |a| of a motion's acceleration samples, m/s².
-  double peak_of(const nlohmann::json &motion)
-  {
-    double peak = 0.0;
-    for (const auto &a : motion["acceleration"])
-      peak = std::max(peak, std::abs(a.get<double>()));
-    return peak;
-  }
-
-  /// A server whose records directory holds one PEER record: RSN1_TEST_X000.AT2, a 4 s sine of
-  /// 0.3 g amplitude and 1 Hz (400 samples at 0.01 s, written to 5 decimals, in g), the
-  /// AT2 fixture of the gui process test with a waveform whose samples all differ.
-  class RecordsServer : public ServerFixture
-  {
-  protected:
-    void configure(server::GuiOptions &options) override
-    {
-      std::string at2 = "PEER TEST\nStation, 1/2/2003, 90\nACCELERATION TIME SERIES IN UNITS OF G\n"
-                        "NPTS= 400, DT= .0100 SEC\n";
-      for (int i = 0; i < 400; ++i)
-      {
-        char line[32];
-        std::snprintf(line, sizeof(line), " %.5f\n", 0.3 * std::sin(2.0 * M_PI * 0.01 * i));
-        at2 += line;
-      }
-      std::filesystem::create_directories(dir_.path() / "records");
-      kimp::testing::write_text(dir_.path() / "records" / "RSN1_TEST_X000.AT2", at2);
-      options.records_dir = dir_.path() / "records";
-    }
-    /// POST /api/motion of `scene` for `command`.
-    httplib::Result motion(const std::string &scene, const std::string &command = "lumped")
-    {
-      return post("/api/motion", {{"command", command}, {"scene", scene}});
-    }
-  };
-
-  TEST_F(RecordsServer, InfoOffersTheMotionPreview)
-  {
-    const auto info = client_->Get("/api/info");
-    ASSERT_TRUE(info);
-    EXPECT_EQ(json_of(info)["motion_preview"], true) << info->body;
-  }
-
-  TEST_F(RecordsServer, SyntheticMotionHasTheScenesPgaSamplesAndScaling)
-  {
-    // The default scene: the generator's 20 s at 5 ms, its PGA (0.8 g) met exactly.
-    const auto plain = motion("");
-    ASSERT_TRUE(plain);
-    ASSERT_EQ(plain->status, 200) << plain->body;
-    const nlohmann::json m = json_of(plain);
-    EXPECT_EQ(m["name"], "synthetic_near_fault");
-    EXPECT_EQ(m["dt"].get<double>(), 0.005);
-    EXPECT_EQ(m["acceleration"].size(), 4000u);
-    EXPECT_NEAR(peak_of(m), 0.8 * standard_gravity, 1e-12 * 0.8 * standard_gravity);
-    EXPECT_EQ(m["pga"].get<double>(), peak_of(m));
-    EXPECT_NEAR(m["duration"].get<double>(), 20.0, 1e-12);
-
-    // scale_to_pga "0.3 g": the peak is 0.3 g to 1e-12 (relative); the samples are the
-    // unscaled ones times 0.3 g / 0.8 g (scaled_to_pga pins the peak, the rest to rounding).
-    const auto to_pga = motion("ground_motion:\n  scale_to_pga: \"0.3 g\"\n");
-    ASSERT_TRUE(to_pga);
-    ASSERT_EQ(to_pga->status, 200) << to_pga->body;
-    const nlohmann::json s = json_of(to_pga);
-    ASSERT_EQ(s["acceleration"].size(), 4000u);
-    EXPECT_NEAR(peak_of(s), 0.3 * standard_gravity, 1e-12 * 0.3 * standard_gravity);
-    for (std::size_t i = 0; i < 4000; i += 97)
-      EXPECT_NEAR(s["acceleration"][i].get<double>(),
-                  m["acceleration"][i].get<double>() * 0.375,
-                  1e-12 * standard_gravity)
-        << i;
-
-    // The scene's own synthetic section, then scale (after scale_to_pga) and duration: 0.25 g
-    // x -2 = 0.5 g; 6 s at 4 ms = 1500 samples (round(duration / dt), within one).
-    const auto own = motion("ground_motion:\n  scale: -2\n  duration: \"6 s\"\n  synthetic:\n"
-                            "    pga: \"0.25 g\"\n    dt: \"4 ms\"\n    pulse_time: \"3 s\"\n");
-    ASSERT_TRUE(own);
-    ASSERT_EQ(own->status, 200) << own->body;
-    const nlohmann::json o = json_of(own);
-    EXPECT_EQ(o["dt"].get<double>(), 0.004);
-    EXPECT_NEAR(static_cast<double>(o["acceleration"].size()), 6.0 / 0.004, 1.0);
-    EXPECT_NEAR(peak_of(o), 0.5 * standard_gravity, 1e-12 * 0.5 * standard_gravity);
-  }
-
-  TEST_F(RecordsServer, ScaledRecordIsTheRecordTimesTheScale)
-  {
-    const auto raw = client_->Get("/api/records/RSN1_TEST_X000");
-    ASSERT_TRUE(raw);
-    ASSERT_EQ(raw->status, 200) << raw->body;
-    const nlohmann::json r = json_of(raw);
-    ASSERT_EQ(r["acceleration"].size(), 400u);
-    // Its peak, sample 25 (sin = 1, written 0.30000), in m/s².
-    EXPECT_NEAR(r["pga"].get<double>(), 0.3 * standard_gravity, 1e-12 * 0.3 * standard_gravity);
-
-    // A bare record name found in kimp gui's records directory, scaled by 2.5 and trimmed to
-    // 3 s: the first 300 samples of GET /api/records, each times 2.5 (one rounding).
-    const auto scaled =
-      motion("ground_motion:\n  record: RSN1_TEST_X000\n  scale: 2.5\n  duration: \"3 s\"\n");
-    ASSERT_TRUE(scaled);
-    ASSERT_EQ(scaled->status, 200) << scaled->body;
-    const nlohmann::json s = json_of(scaled);
-    EXPECT_EQ(s["name"], r["name"]);
-    EXPECT_EQ(s["dt"].get<double>(), r["dt"].get<double>());
-    ASSERT_EQ(s["acceleration"].size(), 300u);
-    for (std::size_t i = 0; i < 300; ++i)
-    {
-      const double expected = 2.5 * r["acceleration"][i].get<double>();
-      EXPECT_NEAR(s["acceleration"][i].get<double>(), expected, 1e-15 * std::abs(expected)) << i;
-    }
-
-    // scale_to_pga "0.45 g" of the record: its peak 0.45 g to 1e-12 (relative).
-    const auto to_pga = motion("ground_motion:\n  record: RSN1_TEST_X000\n"
-                               "  scale_to_pga: \"0.45 g\"\n");
-    ASSERT_TRUE(to_pga);
-    ASSERT_EQ(to_pga->status, 200) << to_pga->body;
-    EXPECT_EQ(json_of(to_pga)["acceleration"].size(), 400u);
-    EXPECT_NEAR(peak_of(json_of(to_pga)), 0.45 * standard_gravity, 1e-12 * 0.45 * standard_gravity);
-
-    // A scene naming its own records_dir: found there, as the run finds it (kimp gui's
-    // directory is the run's KIMP_RECORDS_DIR, which the scene's key overrides). There the
-    // record is 0.1 g throughout.
-    std::string constant = "PEER TEST\nStation, 1/2/2003, 90\nACCELERATION TIME SERIES IN UNITS "
-                           "OF G\nNPTS= 50, DT= .0200 SEC\n";
-    for (int i = 0; i < 50; ++i)
-      constant += " 0.10000\n";
-    std::filesystem::create_directories(dir_.path() / "own_records");
-    kimp::testing::write_text(dir_.path() / "own_records" / "RSN1_TEST_X000.AT2", constant);
-    const auto own = motion("ground_motion:\n  record: RSN1_TEST_X000\n  records_dir: '" +
-                            (dir_.path() / "own_records").string() + "'\n");
-    ASSERT_TRUE(own);
-    ASSERT_EQ(own->status, 200) << own->body;
-    EXPECT_EQ(json_of(own)["dt"].get<double>(), 0.02);
-    EXPECT_EQ(json_of(own)["acceleration"].size(), 50u);
-    EXPECT_NEAR(peak_of(json_of(own)), 0.1 * standard_gravity, 1e-12 * standard_gravity);
-
-    // A misspelt name: refused at its key as the run refuses it, with the directory's name.
-    const auto missing = motion("building:\n  n_storeys: 3\nground_motion:\n"
-                                "  record: RSN1_TEST_X00\n");
-    ASSERT_TRUE(missing);
-    EXPECT_EQ(missing->status, 400) << missing->body;
-    const std::string error = json_of(missing).value("error", "");
-    EXPECT_EQ(error.rfind("scene.yaml:4: ground_motion.record = 'RSN1_TEST_X00': ", 0), 0u)
-      << error;
-    EXPECT_NE(error.find("did you mean 'RSN1_TEST_X000'?"), std::string::npos) << error;
-  }
-
-  TEST_F(RecordsServer, BadScenesGetTheMessageOfKimpLumpedCheck)
-  {
-    const kimp::testing::TempDir check_dir{"motion_check"};
-    for (const std::string scene :
-         {"building:\n  n_storeys: 3\nground_motion:\n  scale_to_pgaa: \"0.3 g\"\n",
-          "ground_motion:\n  synthetic:\n    dt: \"-5 ms\"\n",
-          "ground_motion:\n  duration: \"30 s\"\n"})
-    {
-      const auto r = motion(scene);
-      ASSERT_TRUE(r);
-      EXPECT_EQ(r->status, 400) << r->body;
-      const std::string error = json_of(r).value("error", "");
-      // `kimp lumped scene.yaml --check` on the same text: "error: <message>" on stderr.
-      kimp::testing::write_text(check_dir.path() / "scene.yaml", scene);
-      const kimp::testing::KimpRun check =
-        kimp::testing::run_kimp("-q lumped scene.yaml --check", check_dir.path());
-      EXPECT_NE(check.exit_code, 0) << check.out;
-      std::string printed = check.err;
-      if (printed.rfind("error: ", 0) == 0)
-        printed.erase(0, 7);
-      while (!printed.empty() && printed.back() == '\n')
-        printed.pop_back();
-      EXPECT_EQ(error, printed) << scene;
-      EXPECT_EQ(error.rfind("scene.yaml:", 0), 0u) << error;
-    }
-  }
-
-  TEST_F(RecordsServer, CommandsWithoutAGroundMotionAreRefusedByName)
-  {
-    for (const std::string command : {"fem", "collide", "study", "sweep", "rm"})
-    {
-      const auto r = motion("", command);
-      ASSERT_TRUE(r) << command;
-      EXPECT_EQ(r->status, 400) << command << ": " << r->body;
-      EXPECT_NE(json_of(r).value("error", "").find(command), std::string::npos) << r->body;
-    }
-    // Without the X-Kimp-Request header, as any other POST: refused.
-    const auto plain =
-      client_->Post("/api/motion", R"({"command": "lumped", "scene": ""})", "application/json");
-    ASSERT_TRUE(plain);
-    EXPECT_EQ(plain->status, 403);
   }
 
   /// A server that runs one run at a time and queues one more.

@@ -5,7 +5,6 @@
 
 #include <exception>
 #include <gtest/gtest.h>
-#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -29,7 +28,7 @@ namespace kimp::testing
   }
 
   /// Expects `text` to contain every one of `parts`.
-  inline void expect_contains(const std::string &text, std::initializer_list<std::string> parts)
+  inline void expect_contains(const std::string &text, const std::vector<std::string> &parts)
   {
     for (const std::string &part : parts)
       EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in:\n" << text;
