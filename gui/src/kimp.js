@@ -1242,37 +1242,124 @@ const kimp = (function () {
   }
 
   // ---- animation -------------------------------------------------------------------------------
-  function makeAnimation(parent, firstCase) {
-    const NS = 'http://www.w3.org/2000/svg';
-    const W = 900;
-    const H = 420;
-    const svg = document.createElementNS(NS, 'svg');
-    svg.setAttribute('viewBox', `0 0 ${W} ${H}`);
-    svg.setAttribute('class', 'animation');
-    svg.setAttribute('xmlns', NS);
-    const state = { t: 0, playing: false, speed: 1, exaggeration: 10, frame: 0, kase: null };
-    const timeLabel = el('span', { id: 'anim-time', class: 'anim-time', text: 't = 0 s' });
-    const scrub = el('input', { type: 'range', min: 0, max: 1000, value: 0, class: 'anim-scrub' });
-    const play = el('button', { class: 'anim-play', text: 'Play' });
-    const restart = el('button', { class: 'anim-restart', text: 'Restart' });
+  // ---- animations: the controls, SVG and playback shared by the building and the FEM mesh ------
+  const SVG_NS = 'http://www.w3.org/2000/svg';
+
+  /** An animation's SVG element, width × height user units, of class `cls`. */
+  function animationSvg(width, height, cls) {
+    const svg = document.createElementNS(SVG_NS, 'svg');
+    svg.setAttribute('viewBox', `0 0 ${width} ${height}`);
+    svg.setAttribute('class', cls);
+    svg.setAttribute('xmlns', SVG_NS);
+    return svg;
+  }
+
+  /** The drawn frame of `svg` as a standalone SVG file (white background). */
+  function frameSvgText(svg, width, height) {
+    return (
+      `<svg xmlns="${SVG_NS}" viewBox="0 0 ${width} ${height}" width="${width}" height="${height}" ` +
+      'font-family="Helvetica, Arial, sans-serif">' +
+      `<rect width="${width}" height="${height}" fill="#fff"/>${svg.innerHTML}</svg>`
+    );
+  }
+
+  /**
+   * The controls of an animation, of classes `${prefix}-play`, ...: Play, Restart, speed (`o.speeds`,
+   * 1× chosen), exaggeration (1 to `o.maxExaggeration`, starting at `o.exaggeration`), Frame SVG, in
+   * that order in `items`, and the scrub bar (0 to `o.scrubMax`).
+   */
+  function animationControls(prefix, o) {
     const speed = el(
       'select',
-      { class: 'anim-speed' },
-      [0.1, 0.25, 0.5, 1, 2, 5].map((s) => el('option', { value: s, text: s + '×' })),
+      { class: `${prefix}-speed` },
+      o.speeds.map((s) => el('option', { value: s, text: s + '×' })),
     );
     speed.value = '1';
-    const exag = el('input', { type: 'number', min: 1, max: 200, step: 1, value: 10, class: 'anim-exaggeration' });
-    const exportFrame = el('button', { class: 'anim-export', text: 'Frame SVG' });
-    parent.appendChild(
-      el('div', { class: 'controls' }, [
-        play,
-        restart,
-        el('label', { text: ' speed ' }, [speed]),
-        el('label', { text: ' exaggeration ×' }, [exag]),
-        exportFrame,
-        timeLabel,
-      ]),
-    );
+    const c = {
+      play: el('button', { class: `${prefix}-play`, text: 'Play' }),
+      restart: el('button', { class: `${prefix}-restart`, text: 'Restart' }),
+      speed: speed,
+      exag: el('input', {
+        type: 'number',
+        min: 1,
+        max: o.maxExaggeration,
+        step: 1,
+        value: o.exaggeration,
+        class: `${prefix}-exaggeration`,
+      }),
+      exportFrame: el('button', { class: `${prefix}-export`, text: 'Frame SVG' }),
+      scrub: el('input', { type: 'range', min: 0, max: o.scrubMax, value: 0, class: `${prefix}-scrub` }),
+    };
+    c.items = [
+      c.play,
+      c.restart,
+      el('label', { text: ' speed ' }, [c.speed]),
+      el('label', { text: ' exaggeration ×' }, [c.exag]),
+      c.exportFrame,
+    ];
+    return c;
+  }
+
+  /**
+   * The playback of an animation whose `state.playing` it keeps: Play/Pause on `controls.play`,
+   * Restart (`h.seek(0)`, which draws, then play), and a frame loop that calls `h.step(ms)` with
+   * the wall time since the last frame, stops when `h.atEnd()` and draws with `h.draw()`.
+   * `h.start()` runs before playing (rewind at the end). Returns the animation's API so far:
+   * { state, play, pause, seek }.
+   */
+  function playback(state, controls, h) {
+    let last = null;
+    function tick(now) {
+      if (!state.playing) {
+        last = null;
+        return;
+      }
+      if (last !== null) h.step(now - last);
+      last = now;
+      if (h.atEnd()) {
+        state.playing = false;
+        controls.play.textContent = 'Play';
+      }
+      h.draw();
+      if (state.playing) requestAnimationFrame(tick);
+    }
+    const player = {
+      state: state,
+      play: () => {
+        if (state.playing) return;
+        h.start();
+        state.playing = true;
+        controls.play.textContent = 'Pause';
+        requestAnimationFrame(tick);
+      },
+      pause: () => {
+        state.playing = false;
+        controls.play.textContent = 'Play';
+      },
+      seek: h.seek,
+    };
+    controls.play.addEventListener('click', () => (state.playing ? player.pause() : player.play()));
+    controls.restart.addEventListener('click', () => {
+      h.seek(0);
+      player.play();
+    });
+    return player;
+  }
+
+  function makeAnimation(parent, firstCase) {
+    const W = 900;
+    const H = 420;
+    const svg = animationSvg(W, H, 'animation');
+    const state = { t: 0, playing: false, speed: 1, exaggeration: 10, frame: 0, kase: null };
+    const timeLabel = el('span', { id: 'anim-time', class: 'anim-time', text: 't = 0 s' });
+    const controls = animationControls('anim', {
+      speeds: [0.1, 0.25, 0.5, 1, 2, 5],
+      exaggeration: 10,
+      maxExaggeration: 200,
+      scrubMax: 1000,
+    });
+    const { speed, exag, exportFrame, scrub } = controls;
+    parent.appendChild(el('div', { class: 'controls' }, [...controls.items, timeLabel]));
     parent.appendChild(scrub);
     parent.appendChild(svg);
 
@@ -1415,55 +1502,27 @@ const kimp = (function () {
       setTimeCursor(state.t);
     }
 
-    let last = null;
-    function tick(now) {
-      if (!state.playing) {
-        last = null;
-        return;
-      }
-      if (last !== null) state.t += ((now - last) / 1000) * state.speed;
-      last = now;
-      if (state.t >= tEnd()) {
-        state.t = tEnd();
-        state.playing = false;
-        play.textContent = 'Play';
-      }
-      draw();
-      if (state.playing) requestAnimationFrame(tick);
-    }
-    const api = {
-      state: state,
-      play: () => {
-        if (!state.playing) {
-          if (state.t >= tEnd()) state.t = 0;
-          state.playing = true;
-          play.textContent = 'Pause';
-          requestAnimationFrame(tick);
-        }
+    const api = playback(state, controls, {
+      step: (ms) => {
+        state.t = Math.min(state.t + (ms / 1000) * state.speed, tEnd());
       },
-      pause: () => {
-        state.playing = false;
-        play.textContent = 'Play';
+      atEnd: () => state.t >= tEnd(),
+      start: () => {
+        if (state.t >= tEnd()) state.t = 0;
       },
       seek: (t) => {
         state.t = Math.max(0, Math.min(t, tEnd()));
         draw();
       },
+      draw: draw,
+    });
+    Object.assign(api, {
       setCase: (c) => {
         state.kase = c;
         state.t = Math.min(state.t, tEnd());
         draw();
       },
-      frameSvg: () =>
-        `<svg xmlns="${NS}" viewBox="0 0 ${W} ${H}" width="${W}" height="${H}" ` +
-        'font-family="Helvetica, Arial, sans-serif">' +
-        `<rect width="${W}" height="${H}" fill="#fff"/>${svg.innerHTML}</svg>`,
-    };
-    play.addEventListener('click', () => (state.playing ? api.pause() : api.play()));
-    restart.addEventListener('click', () => {
-      state.t = 0;
-      draw();
-      api.play();
+      frameSvg: () => frameSvgText(svg, W, H),
     });
     speed.addEventListener('change', () => {
       state.speed = Number(speed.value);
@@ -1512,7 +1571,6 @@ const kimp = (function () {
       ['damage', 'damage', 1, '-'],
       ['equivalent_plastic_strain', 'equivalent plastic strain', 1, '-'],
     ];
-    const NS = 'http://www.w3.org/2000/svg';
     const W = 900;
     const H = 440;
     const caseSel = el(
@@ -1521,35 +1579,24 @@ const kimp = (function () {
       names.map((n) => el('option', { value: n, text: n })),
     );
     const fieldSel = el('select', { class: 'fem-field' });
-    const play = el('button', { class: 'fem-play', text: 'Play' });
-    const restart = el('button', { class: 'fem-restart', text: 'Restart' });
-    const speed = el(
-      'select',
-      { class: 'fem-speed' },
-      [0.25, 0.5, 1, 2, 4].map((v) => el('option', { value: v, text: v + '×' })),
-    );
-    speed.value = '1';
-    const exag = el('input', { type: 'number', min: 1, max: 100000, step: 1, value: 1, class: 'fem-exaggeration' });
-    const exportFrame = el('button', { class: 'fem-export', text: 'Frame SVG' });
+    const controls = animationControls('fem', {
+      speeds: [0.25, 0.5, 1, 2, 4],
+      exaggeration: 1,
+      maxExaggeration: 100000,
+      scrubMax: 0,
+    });
+    const { speed, exag, exportFrame, scrub } = controls;
     const label = el('span', { class: 'fem-time', text: '' });
-    const scrub = el('input', { type: 'range', min: 0, max: 0, value: 0, class: 'fem-scrub' });
     body.appendChild(
       el('div', { class: 'controls' }, [
         el('label', { text: 'case ' }, [caseSel]),
         el('label', { text: ' colour by ' }, [fieldSel]),
-        play,
-        restart,
-        el('label', { text: ' speed ' }, [speed]),
-        el('label', { text: ' exaggeration ×' }, [exag]),
-        exportFrame,
+        ...controls.items,
         label,
       ]),
     );
     body.appendChild(scrub);
-    const svg = document.createElementNS(NS, 'svg');
-    svg.setAttribute('viewBox', `0 0 ${W} ${H}`);
-    svg.setAttribute('class', 'fem-animation');
-    svg.setAttribute('xmlns', NS);
+    const svg = animationSvg(W, H, 'fem-animation');
     body.appendChild(svg);
     const state = { frame: 0, playing: false, mesh: null };
     // The case's contact force beside the mesh: its time cursor follows the frame.
@@ -1744,46 +1791,29 @@ const kimp = (function () {
       draw();
     }
 
-    let last = null;
     let carry = 0;
-    function tick(now) {
-      if (!state.playing) {
-        last = null;
-        return;
-      }
-      // 10 frames per second at speed 1.
-      if (last !== null) carry += ((now - last) / 100) * Number(speed.value);
-      last = now;
-      const n = state.mesh.time.length;
-      while (carry >= 1 && state.frame < n - 1) {
-        carry -= 1;
-        state.frame += 1;
-      }
-      if (state.frame >= n - 1) {
-        state.playing = false;
-        play.textContent = 'Play';
-      }
-      draw();
-      if (state.playing) requestAnimationFrame(tick);
-    }
-    const api = {
-      state: state,
-      play: () => {
-        if (state.playing) return;
-        if (state.frame >= state.mesh.time.length - 1) state.frame = 0;
-        state.playing = true;
-        carry = 0;
-        play.textContent = 'Pause';
-        requestAnimationFrame(tick);
+    const atEnd = () => state.frame >= state.mesh.time.length - 1;
+    const api = playback(state, controls, {
+      step: (ms) => {
+        // 10 frames per second at speed 1.
+        carry += (ms / 100) * Number(speed.value);
+        while (carry >= 1 && !atEnd()) {
+          carry -= 1;
+          state.frame += 1;
+        }
       },
-      pause: () => {
-        state.playing = false;
-        play.textContent = 'Play';
+      atEnd: atEnd,
+      start: () => {
+        if (atEnd()) state.frame = 0;
+        carry = 0;
       },
       seek: (i) => {
         state.frame = Math.max(0, Math.min(i, state.mesh.time.length - 1));
         draw();
       },
+      draw: draw,
+    });
+    Object.assign(api, {
       /** The frame nearest to time t (s). */
       seekTime: (t) => {
         const ts = state.mesh.time;
@@ -1792,16 +1822,7 @@ const kimp = (function () {
         api.seek(best);
       },
       time: () => state.mesh.time[state.frame],
-      frameSvg: () =>
-        `<svg xmlns="${NS}" viewBox="0 0 ${W} ${H}" width="${W}" height="${H}" ` +
-        'font-family="Helvetica, Arial, sans-serif">' +
-        `<rect width="${W}" height="${H}" fill="#fff"/>${svg.innerHTML}</svg>`,
-    };
-    play.addEventListener('click', () => (state.playing ? api.pause() : api.play()));
-    restart.addEventListener('click', () => {
-      state.frame = 0;
-      draw();
-      api.play();
+      frameSvg: () => frameSvgText(svg, W, H),
     });
     caseSel.addEventListener('change', () => setCase(caseSel.value));
     fieldSel.addEventListener('change', draw);
