@@ -11,7 +11,9 @@
 #include <iosfwd>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -62,6 +64,13 @@ namespace kimp::cli
     std::string text_;
   };
 
+  /// Adds `-o,--output DIR` (the output directory, created if missing) bound to `output`.
+  inline CLI::Option *add_output_option(CLI::App &command, std::string &output)
+  {
+    return command.add_option("-o,--output", output, "output directory (created if missing)")
+      ->type_name("DIR");
+  }
+
   /// Adds `--print-schema` (print the JSON schema of the scene's keys and exit) bound to `flag`.
   inline CLI::Option *add_print_schema_flag(CLI::App &command, bool &flag)
   {
@@ -91,16 +100,20 @@ namespace kimp::cli
     std::string default_scene = "";
   };
 
-  /// What a scene command's run function receives: the validated scene (which it may still
-  /// adjust, e.g. from a command-line flag) and the output directory as given.
-  template <class Scene>
-  using ScenePathRunner =
-    std::function<void(io::LoadedScene<Scene> &scene, const std::filesystem::path &output)>;
-
-  /// The usual run function: the output directory created and locked (io::OutputDir).
-  template <class Scene>
-  using SceneRunner =
-    std::function<void(const io::LoadedScene<Scene> &scene, const io::OutputDir &output)>;
+  /// Calls a scene command's run function as run(scene, output) or, when it takes a third
+  /// argument, as run(scene, output, command): the command, whose own options it reads (count(),
+  /// as()).
+  template <class Run, class LoadedScene, class Output>
+  void call_scene_runner(const Run      &run,
+                         LoadedScene    &scene,
+                         const Output   &output,
+                         const CLI::App &command)
+  {
+    if constexpr (std::is_invocable_v<const Run &, LoadedScene &, const Output &, const CLI::App &>)
+      run(scene, output, command);
+    else
+      run(scene, output);
+  }
 
   /**
    * Add command `spec.name`: `kimp <name> [SCENE.yaml] -o DIR` loads and validates the scene
@@ -109,11 +122,13 @@ namespace kimp::cli
    * annotated default scene of Scene and exits 0; `kimp <name> --print-schema` prints the JSON
    * schema of its keys (io::SchemaWriter) and exits 0; `kimp <name> [SCENE.yaml] --check`
    * validates the scene and exits 0 without running (`kimp gui` validates fem and study scenes
-   * so). Command-specific options are added to the returned subcommand unbound (read with
-   * count()/as() in `run`), so every parse starts afresh.
+   * so). `run` receives the validated scene (which it may still adjust, e.g. from a command-line
+   * flag), the output directory as given and, if it takes it, the command
+   * (call_scene_runner()). Command-specific options are added to the returned subcommand unbound
+   * (read with count()/as() of the command in `run`), so every parse starts afresh.
    */
-  template <class Scene>
-  CLI::App *add_scene_command_at(CLI::App &app, SceneCommandSpec spec, ScenePathRunner<Scene> run)
+  template <class Scene, class Run>
+  CLI::App *add_scene_command_at(CLI::App &app, SceneCommandSpec spec, Run run)
   {
     struct Options
     {
@@ -129,8 +144,7 @@ namespace kimp::cli
     std::string what     = optional ? "scene file (YAML; none: the " + spec.default_scene + ")" :
                                       "scene file (YAML); see --print-defaults";
     command->add_option("scene", options->scene, what)->type_name("SCENE.yaml");
-    command->add_option("-o,--output", options->output, "output directory (created if missing)")
-      ->type_name("DIR");
+    add_output_option(*command, options->output);
     command->add_flag("--print-defaults",
                       options->print_defaults,
                       "print the annotated default scene (every key with default, unit and "
@@ -140,7 +154,7 @@ namespace kimp::cli
     // CLI11 keeps bound values between parses of one app: start each use of the command afresh.
     command->preparse_callback([options](std::size_t) { *options = Options{}; });
     command->callback(
-      [options, run, spec, optional]()
+      [options, run, spec, optional, command]()
       {
         if (options->print_defaults)
           throw PrintDefaults(io::default_scene_text<Scene>(
@@ -168,20 +182,39 @@ namespace kimp::cli
           defaults ? io::read_scene_text<Scene>("", "(" + spec.default_scene + ")") :
                      io::read_scene<Scene>(options->scene);
         base::logger().debug("resolved scene (SI):\n{}", scene.resolved_json);
-        run(scene, options->output);
+        call_scene_runner(run, scene, options->output, *command);
       });
     return command;
   }
 
-  /// add_scene_command_at() whose run function gets the output directory created and locked.
-  template <class Scene>
-  CLI::App *add_scene_command(CLI::App &app, SceneCommandSpec spec, SceneRunner<Scene> run)
+  /// add_scene_command_at() whose run function gets the scene as const and the output directory
+  /// created and locked (io::OutputDir).
+  template <class Scene, class Run>
+  CLI::App *add_scene_command(CLI::App &app, SceneCommandSpec spec, Run run)
   {
-    return add_scene_command_at<Scene>(app,
-                                       std::move(spec),
-                                       [run](io::LoadedScene<Scene>      &scene,
-                                             const std::filesystem::path &output)
-                                       { run(scene, io::OutputDir(output)); });
+    return add_scene_command_at<Scene>(
+      app,
+      std::move(spec),
+      [run](const io::LoadedScene<Scene> &scene,
+            const std::filesystem::path  &output,
+            const CLI::App               &command)
+      { call_scene_runner(run, scene, io::OutputDir(output), command); });
+  }
+
+  /// Adds `--records-dir DIR` (a directory of PEER records that overrides those of the scene),
+  /// described by `help`.
+  inline CLI::Option *add_records_dir_option(CLI::App &command, const std::string &help)
+  {
+    return command.add_option("--records-dir", help)->type_name("DIR");
+  }
+
+  /// The --records-dir of a command (add_records_dir_option()) if it was given.
+  inline std::optional<std::string> given_records_dir(const CLI::App &command)
+  {
+    const CLI::Option *option = command.get_option("--records-dir");
+    if (option->count() == 0)
+      return std::nullopt;
+    return option->as<std::string>();
   }
 
   /**

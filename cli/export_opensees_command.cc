@@ -25,9 +25,7 @@ namespace kimp::cli
                    "output directory of `kimp study` or its k_table.csv (omit to give --k-kv "
                    "and/or --k-hertz)")
       ->type_name("STUDY_DIR|k_table.csv");
-    command->add_option("-o,--output", *out, "output directory (created if missing)")
-      ->type_name("DIR")
-      ->required();
+    add_output_option(*command, *out)->required();
     // --wall-height, --k-kv, --k-hertz, --cor, --effective-mass, ...: app::ExportOpenSeesSettings.
     const auto settings = add_key_options<app::ExportOpenSeesSettings>(*command);
     command->preparse_callback(

@@ -30,23 +30,13 @@ int main(int argc, char **argv)
   {
     return report_error(error);
   }
-  try
-  {
-    const auto app = kimp::cli::make_app();
-    kimp::cli::register_fem_commands(*app);
-    kimp::cli::register_commands(*app);
-    const int exit_code = kimp::cli::run_app(*app, argc, argv, std::cout, std::cerr);
-    if (exit_code != 0)
-      kimp::cli::abort_other_ranks(exit_code);
-    return exit_code;
-  }
-  catch (const std::exception &error)
-  {
-    // Before the MPI session ends: MPI_Finalize would wait for ranks that are still running.
-    return report_error(error);
-  }
-  catch (...)
-  {
-    return report_error("unexpected failure (not a standard exception)");
-  }
+  // Within the MPI session: an error is reported (and the other ranks ended) before MPI_Finalize,
+  // which would wait for ranks that are still running.
+  return kimp::cli::run_main(argc,
+                             argv,
+                             [](CLI::App &app)
+                             {
+                               kimp::cli::register_fem_commands(app);
+                               kimp::cli::register_commands(app);
+                             });
 }

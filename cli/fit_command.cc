@@ -7,17 +7,12 @@
 #include "base/version.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
-#include "io/units.h"
 
 namespace kimp::cli
 {
-  using namespace kimp::base;
-  using namespace kimp::io;
-  using namespace kimp::app;
-
   void register_fit_command(CLI::App &app)
   {
-    auto      options = std::make_shared<FitCommandOptions>();
+    auto      options = std::make_shared<app::FitCommandOptions>();
     CLI::App *command = app.add_subcommand(
       "fit",
       "fit impact laws (Kelvin-Voigt, Jankowski, free-exponent Hertz) to FEM force histories");
@@ -26,16 +21,14 @@ namespace kimp::cli
     command->add_option("fem_file", *file, "results file of `kimp fem` (/fem/<case>)")
       ->type_name("FEM.h5")
       ->required();
-    command->add_option("-o,--output", *out, "output directory (created if missing)")
-      ->type_name("DIR")
-      ->required();
+    add_output_option(*command, *out)->required();
     // --cor, --width, --raw-force, --force-only-contact, --separation-fraction, ...: the keys of
     // the study's `fit:` section, declared once (fit::FitConfig's visit()).
     const auto config = add_key_options<fit::FitConfig>(*command);
     command->preparse_callback(
       [options, file, out](std::size_t)
       {
-        *options = FitCommandOptions{};
+        *options = app::FitCommandOptions{};
         file->clear();
         out->clear();
       });
@@ -45,12 +38,12 @@ namespace kimp::cli
         options->config   = config();
         options->fem_file = *file;
         options->output   = *out;
-        logger().info("{}: fit {}", version_line(), *file);
-        const int failures = run_fit_command(*options);
+        base::logger().info("{}: fit {}", base::version_line(), *file);
+        const int failures = app::run_fit_command(*options);
         if (failures > 0)
-          logger().warn("fit: {} fit(s) failed or with a warning (see the status column of "
-                        "fit_table.csv)",
-                        failures);
+          base::logger().warn("fit: {} fit(s) failed or with a warning (see the status column of "
+                              "fit_table.csv)",
+                              failures);
       });
   }
 } // namespace kimp::cli

@@ -72,24 +72,13 @@ int main(int argc, char **argv)
   if (const char *command = command_name(argc, argv); command && is_fem_command(command))
     return exec_fem_executable(argv, command);
 #endif
-  try
-  {
-    const auto app = kimp::cli::make_app();
+  return kimp::cli::run_main(argc,
+                             argv,
+                             [](CLI::App &app)
+                             {
 #ifdef KIMP_FEM_EXECUTABLE
-    register_fem_forwarders(*app);
+                               register_fem_forwarders(app);
 #endif
-    kimp::cli::register_commands(*app);
-    const int exit_code = kimp::cli::run_app(*app, argc, argv, std::cout, std::cerr);
-    if (exit_code != 0)
-      kimp::cli::abort_other_ranks(exit_code);
-    return exit_code;
-  }
-  catch (const std::exception &error)
-  {
-    return kimp::cli::report_error(error);
-  }
-  catch (...)
-  {
-    return kimp::cli::report_error("unexpected failure (not a standard exception)");
-  }
+                               kimp::cli::register_commands(app);
+                             });
 }

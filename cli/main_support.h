@@ -1,14 +1,17 @@
-// What both `kimp` executables do around a command: end every rank of an MPI job on an error
-// (MPI_Abort) and print "error: <what>".
+// What both `kimp` executables do around a command: parse the command line, run the command, end
+// every rank of an MPI job on an error (MPI_Abort) and print "error: <what>".
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <exception>
+#include <functional>
 #include <iostream>
 #include <mpi.h>
 #include <sstream>
 #include <string>
 
 #include "base/errors.h"
+#include "cli/cli.h"
 #include "io/scene_source.h"
 
 namespace kimp::cli
@@ -52,5 +55,29 @@ namespace kimp::cli
     std::cerr << std::flush;
     abort_other_ranks(1);
     return 1;
+  }
+
+  /// The body of main() in both executables: the `kimp` app with the commands `add_commands`
+  /// registers, run on the command line; a failed command or an error ends the other ranks, an
+  /// error is printed (report_error()). Returns main()'s exit code.
+  inline int run_main(int argc, char **argv, const std::function<void(CLI::App &)> &add_commands)
+  {
+    try
+    {
+      const auto app = make_app();
+      add_commands(*app);
+      const int exit_code = run_app(*app, argc, argv, std::cout, std::cerr);
+      if (exit_code != 0)
+        abort_other_ranks(exit_code);
+      return exit_code;
+    }
+    catch (const std::exception &error)
+    {
+      return report_error(error);
+    }
+    catch (...)
+    {
+      return report_error("unexpected failure (not a standard exception)");
+    }
   }
 } // namespace kimp::cli

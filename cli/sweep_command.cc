@@ -6,20 +6,14 @@
 
 #include "app/sweep/sweep_plan.h"
 #include "app/sweep/sweep_run.h"
-#include "base/logging.h"
-#include "base/version.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
 
 namespace kimp::cli
 {
-  using namespace kimp::base;
-  using namespace kimp::io;
-  using namespace kimp::app;
-
   void register_sweep_command(CLI::App &app)
   {
-    auto      options = std::make_shared<SweepRunOptions>();
+    auto      options = std::make_shared<app::SweepRunOptions>();
     auto      prints  = std::make_shared<std::pair<bool, bool>>(); // --print-defaults, -schema
     CLI::App *command = app.add_subcommand(
       "sweep",
@@ -31,8 +25,7 @@ namespace kimp::cli
                    "sweep file (YAML): scene, parameters, combine, "
                    "companions")
       ->type_name("SWEEP.yaml");
-    command->add_option("-o,--output", options->output, "output directory (created if missing)")
-      ->type_name("DIR");
+    add_output_option(*command, options->output);
     command
       ->add_option("-t,--threads",
                    options->threads,
@@ -67,21 +60,21 @@ namespace kimp::cli
     command->preparse_callback(
       [options, prints](std::size_t)
       {
-        *options = SweepRunOptions{};
+        *options = app::SweepRunOptions{};
         *prints  = {false, false};
       });
     command->callback(
       [options, prints]()
       {
         if (prints->first)
-          throw PrintDefaults(sweep_file_defaults_text());
+          throw PrintDefaults(app::sweep_file_defaults_text());
         if (prints->second)
-          throw PrintDefaults(sweep_file_schema_text());
+          throw PrintDefaults(app::sweep_file_schema_text());
         if (options->sweep.empty())
           throw CLI::RequiredError("the sweep file SWEEP.yaml (or --print-defaults)");
         if (options->output.empty())
           throw CLI::RequiredError("the output directory -o/--output DIR");
-        run_sweep_job(*options);
+        app::run_sweep_job(*options);
       });
   }
 } // namespace kimp::cli

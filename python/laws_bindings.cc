@@ -63,6 +63,15 @@ namespace kimp::python
       std::unique_ptr<lumped::ForceLaw> law_;
     };
 
+    /// Law.force, Law.stiffness or Law.damping: `Member` of the first trial from the virgin state,
+    /// elementwise over numpy arrays of δ and δ̇.
+    template <double lumped::ForceResponse::*Member>
+    auto first_trial_of()
+    {
+      return py::vectorize([](Law &l, double delta, double rate)
+                           { return l.first_trial(delta, rate).*Member; });
+    }
+
     lumped::TwoBodySetup two_body(double m1, double m2, double v1, double v2, double dt, bool o2)
     {
       lumped::TwoBodySetup setup;
@@ -143,15 +152,9 @@ namespace kimp::python
            py::arg("delta_u")  = 0.0,
            py::arg("k_w")      = 0.0)
       .def_property_readonly("law", [](const Law &l) { return l.spec().law; })
-      .def("force",
-           py::vectorize([](Law &l, double delta, double rate)
-                         { return l.first_trial(delta, rate).force; }))
-      .def("stiffness",
-           py::vectorize([](Law &l, double delta, double rate)
-                         { return l.first_trial(delta, rate).stiffness; }))
-      .def("damping",
-           py::vectorize([](Law &l, double delta, double rate)
-                         { return l.first_trial(delta, rate).damping; }))
+      .def("force", first_trial_of<&lumped::ForceResponse::force>())
+      .def("stiffness", first_trial_of<&lumped::ForceResponse::stiffness>())
+      .def("damping", first_trial_of<&lumped::ForceResponse::damping>())
       .def("path",
            [](Law &l, const DoubleArray &delta, const DoubleArray &rate)
            { return to_numpy(l.path(to_vector(delta), to_vector(rate))); })

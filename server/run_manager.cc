@@ -264,7 +264,7 @@ namespace kimp::server
   RunManager::RunManager(RunSettings settings)
     : settings_(std::move(settings))
   {
-    settings_.max_running = std::max(1u, settings_.max_running);
+    settings_.max_runs = std::max(1u, settings_.max_runs);
     std::filesystem::create_directories(settings_.runs_dir);
   }
 
@@ -302,9 +302,9 @@ namespace kimp::server
       std::lock_guard<std::mutex> lock(mutex_);
       if (stopping_)
         throw std::runtime_error("kimp gui is stopping: no new runs");
-      if (running_ >= settings_.max_running && queue_.size() >= settings_.max_queued)
+      if (running_ >= settings_.max_runs && queue_.size() >= settings_.max_queued)
         throw RunQueueFull("too many runs: " + std::to_string(running_) + " running (at most " +
-                           std::to_string(settings_.max_running) + ", kimp gui --max-runs) and " +
+                           std::to_string(settings_.max_runs) + ", kimp gui --max-runs) and " +
                            std::to_string(queue_.size()) + " queued (at most " +
                            std::to_string(settings_.max_queued) +
                            "); wait for one to finish or cancel one");
@@ -335,7 +335,7 @@ namespace kimp::server
 
   void RunManager::launch_queued_locked()
   {
-    while (!stopping_ && running_ < settings_.max_running && !queue_.empty())
+    while (!stopping_ && running_ < settings_.max_runs && !queue_.empty())
     {
       std::shared_ptr<Run> run = queue_.front();
       queue_.pop_front();
@@ -362,14 +362,15 @@ namespace kimp::server
       // the child's pid.
       std::lock_guard<std::mutex> lock(mutex_);
       if (!run->cancel)
-        pid = spawn(settings_.kimp,
+        pid = spawn(settings_.kimp_executable,
                     run->arguments,
                     fds[1],
                     fds[1],
                     child_environment(settings_.records_dir));
       run->pid = pid;
       if (pid <= 0 && !run->cancel)
-        run->error = "cannot start " + settings_.kimp.string() + ": " + std::strerror(errno);
+        run->error =
+          "cannot start " + settings_.kimp_executable.string() + ": " + std::strerror(errno);
       changed_.notify_all();
     }
     close(fds[1]);

@@ -1,6 +1,6 @@
 // Background runs of `kimp gui`: each run is a child `kimp <command> SCENE -o DIR` process (its own
 // process group) watched by a thread, so a run can be cancelled (SIGTERM, then SIGKILL) and a crash
-// never takes the server down. At most max_running children at a time; later runs wait in a queue.
+// never takes the server down. At most max_runs children at a time; later runs wait in a queue.
 #pragma once
 
 #include <chrono>
@@ -18,27 +18,11 @@
 #include <utility>
 #include <vector>
 
+#include "server/run_settings.h"
+
 namespace kimp::server
 {
   using SteadyClock = std::chrono::steady_clock;
-
-  /// How runs are started and how many at a time.
-  struct RunSettings
-  {
-    /// Directory of the runs (one sub-directory per run; created).
-    std::filesystem::path runs_dir = "kimp-runs";
-    /// The kimp executable that runs are started with.
-    std::filesystem::path kimp;
-    /// Records directory passed to every run (as KIMP_RECORDS_DIR): a bare record name in a
-    /// scene is looked up there unless the scene names its own records_dir.
-    std::optional<std::filesystem::path> records_dir;
-    /// Runs at a time (at least 1); more wait in the queue, state "queued".
-    unsigned max_running = 2;
-    /// Runs waiting at most; a further start is refused (RunQueueFull).
-    unsigned max_queued = 16;
-    /// Seconds between SIGTERM and SIGKILL when a run is cancelled or the server stops.
-    double kill_grace = 1.0;
-  };
 
   /// Thrown by RunManager::start when max_queued runs are waiting already.
   struct RunQueueFull : std::runtime_error

@@ -30,7 +30,9 @@
 
 #include "report/assets.h"
 #include "report/report.h"
+#include "server/http_error.h"
 #include "server/run_manager.h"
+#include "server/scene_commands.h"
 
 // After the app headers: <httplib.h> brings <resolv.h>, whose `_res` macro breaks Eigen.
 #include <httplib.h>
@@ -41,17 +43,6 @@ namespace kimp::server
 {
   namespace
   {
-    /// A request the server refuses, with its HTTP status and message.
-    struct HttpError : std::runtime_error
-    {
-      HttpError(int status_, const std::string &message)
-        : std::runtime_error(message)
-        , status(status_)
-      {
-      }
-      int status;
-    };
-
     void send_json(httplib::Response &res, const nlohmann::json &value, int status = 200)
     {
       res.status = status;
@@ -86,25 +77,21 @@ namespace kimp::server
 
     std::string mime_type(const std::string &name)
     {
-      const auto ends = [&](const char *ext)
-      {
-        const std::string e(ext);
-        return name.size() >= e.size() && name.compare(name.size() - e.size(), e.size(), e) == 0;
+      static const std::pair<const char *, const char *> types[] = {
+        {".js", "text/javascript; charset=utf-8"},
+        {".css", "text/css; charset=utf-8"},
+        {".html", "text/html; charset=utf-8"},
+        {".json", "application/json"},
+        {".svg", "image/svg+xml"},
+        {".png", "image/png"},
+        {".csv", "text/csv; charset=utf-8"},
       };
-      if (ends(".js"))
-        return "text/javascript; charset=utf-8";
-      if (ends(".css"))
-        return "text/css; charset=utf-8";
-      if (ends(".html"))
-        return "text/html; charset=utf-8";
-      if (ends(".json"))
-        return "application/json";
-      if (ends(".svg"))
-        return "image/svg+xml";
-      if (ends(".png"))
-        return "image/png";
-      if (ends(".csv"))
-        return "text/csv; charset=utf-8";
+      for (const auto &[extension, type] : types)
+      {
+        const std::string_view e(extension);
+        if (name.size() >= e.size() && name.compare(name.size() - e.size(), e.size(), e) == 0)
+          return type;
+      }
       return "text/plain; charset=utf-8";
     }
 
@@ -112,31 +99,6 @@ namespace kimp::server
     {
       static const std::regex ipv4(R"(\d{1,3}(\.\d{1,3}){3})");
       return std::regex_match(host, ipv4) || (host.size() > 2 && host.front() == '[');
-    }
-
-    /// The commands whose scenes the server validates itself (kimp::app_core); fem and study
-    /// are validated by the FEM executable (`kimp fem SCENE --check`).
-    bool validated_here(const std::string &command)
-    {
-      return command == "lumped" || command == "collide";
-    }
-
-    /// The scene `text` of lumped or collide read and validated as the command would: "" when
-    /// valid, else the command's own message ("scene.yaml:12: isolator.K2 = ...: must be < K1").
-    std::string validation_error_here(const std::string &command, const std::string &text)
-    {
-      try
-      {
-        if (command == "lumped")
-          io::read_scene_text<app::LumpedScene>(text, "scene.yaml");
-        else
-          io::read_scene_text<app::CollideScene>(text, "scene.yaml");
-        return {};
-      }
-      catch (const std::exception &error)
-      {
-        return error.what();
-      }
     }
 
     /// The number in query parameter `key` of an upload, or HttpError 400 naming it.
@@ -187,14 +149,11 @@ namespace kimp::server
 
   struct GuiServer::Impl
   {
-    GuiOptions                         options;
-    httplib::Server                    http;
-    RunManager                         runs;
-    int                                port = 0;
-    std::mutex                         cache_mutex;
-    std::map<std::string, std::string> schema_cache;  ///< command + flag -> text
-    std::map<std::string, std::string> schema_errors; ///< command + flag -> why not
-    std::atomic<unsigned>              check_counter{0};
+    GuiOptions      options;
+    httplib::Server http;
+    RunManager      runs;
+    int             port = 0;
+    SceneCommands   commands;
     /// listen() and stop() from different threads, in either order (a stop() before the
     /// server loop runs must still end it): guarded by listen_mutex.
     std::mutex        listen_mutex;
@@ -202,21 +161,10 @@ namespace kimp::server
     bool              listening      = false;
     std::atomic<bool> listen_returned{false};
 
-    static RunSettings run_settings(const GuiOptions &o)
-    {
-      RunSettings s;
-      s.runs_dir    = o.runs_dir;
-      s.kimp        = o.kimp_executable;
-      s.records_dir = o.records_dir;
-      s.max_running = o.max_runs;
-      s.max_queued  = o.max_queued;
-      s.kill_grace  = o.kill_grace;
-      return s;
-    }
-
     explicit Impl(GuiOptions o)
       : options(std::move(o))
-      , runs(run_settings(options))
+      , runs(options)
+      , commands(options.kimp_executable)
     {
     }
 
@@ -236,108 +184,6 @@ namespace kimp::server
       if (name == "127.0.0.1" || name == "localhost" || name == "[::1]")
         return true;
       return !loopback() && (name == options.host || is_ip_literal(name));
-    }
-
-    /// Output of `kimp COMMAND FLAG` (--print-schema or --print-defaults), asked once.
-    /// @throws HttpError 404 when that kimp cannot print it (no such command, or no kimp-fem
-    /// beside a lean kimp for fem and study).
-    std::string schema(const std::string &command, const std::string &flag)
-    {
-      static const std::vector<std::string> scene_commands = {"lumped",
-                                                              "collide",
-                                                              "fem",
-                                                              "study",
-                                                              "sweep"};
-      if (std::find(scene_commands.begin(), scene_commands.end(), command) == scene_commands.end())
-        throw HttpError(404,
-                        "no scene command \"" + command +
-                          "\" (kimp gui edits lumped, collide, fem, study and sweep scenes)");
-      std::lock_guard<std::mutex> lock(cache_mutex);
-      const std::string           key = command + flag;
-      if (const auto it = schema_cache.find(key); it != schema_cache.end())
-        return it->second;
-      if (const auto it = schema_errors.find(key); it != schema_errors.end())
-        throw HttpError(404, it->second);
-      const Captured result = capture_kimp(options.kimp_executable, {command, flag});
-      if (result.exit_code != 0)
-      {
-        std::string why = result.err;
-        while (!why.empty() && (why.back() == '\n' || why.back() == '\r'))
-          why.pop_back();
-        if (why.rfind("error: ", 0) == 0)
-          why.erase(0, 7);
-        throw HttpError(404,
-                        schema_errors[key] = "kimp " + command + " is not available here" +
-                                             (why.empty() ? std::string() : ": " + why));
-      }
-      return schema_cache[key] = result.out;
-    }
-
-    /// The commands this installation runs: lumped, collide and sweep always; fem and study
-    /// when the kimp executable prints their schema (a build with the FEM engine, whose kimp
-    /// finds kimp-fem beside it).
-    nlohmann::json available_commands()
-    {
-      nlohmann::json commands = nlohmann::json::array({"lumped", "collide"});
-      for (const char *command : {"fem", "study"})
-      {
-        try
-        {
-          schema(command, "--print-schema");
-          commands.push_back(command);
-        }
-        catch (const HttpError &)
-        {
-        }
-      }
-      commands.push_back("sweep");
-      return commands;
-    }
-
-    /// "" when `text` is a valid scene of `command`, else the command's own message.
-    /// @throws HttpError 400 for anything but a command whose scenes kimp gui edits and runs
-    std::string validation_error(const std::string &command, const std::string &text)
-    {
-      if (validated_here(command))
-        return validation_error_here(command, text);
-      if (command == "sweep")
-        throw HttpError(400,
-                        "a sweep file is checked by kimp sweep when its run starts; validate "
-                        "its base scene with the base scene's command (lumped)");
-      if (command != "fem" && command != "study")
-        throw HttpError(400,
-                        "unknown command \"" + command +
-                          "\" (expected lumped, collide, fem, study or sweep)");
-      try
-      {
-        schema(command, "--print-schema");
-      }
-      catch (const HttpError &error)
-      {
-        throw HttpError(400, error.what());
-      }
-      // The FEM executable reads the scene as its run would, in a directory of its own so
-      // that its messages name "scene.yaml" as the in-process ones do.
-      const auto dir =
-        std::filesystem::temp_directory_path() /
-        ("kimp-gui-check-" + std::to_string(getpid()) + "-" + std::to_string(++check_counter));
-      std::filesystem::create_directories(dir);
-      io::write_text_atomic(dir / "scene.yaml", text);
-      const Captured result =
-        capture_kimp(options.kimp_executable, {"-q", command, "scene.yaml", "--check"}, dir);
-      std::error_code ec;
-      std::filesystem::remove_all(dir, ec);
-      if (result.exit_code == 0)
-        return {};
-      std::string message = result.err;
-      while (!message.empty() && (message.back() == '\n' || message.back() == '\r'))
-        message.pop_back();
-      if (const std::size_t at = message.find("error: "); at != std::string::npos)
-        message.erase(0, at + 7);
-      if (message.empty())
-        message = "kimp " + command + " --check failed (exit code " +
-                  std::to_string(result.exit_code) + ")";
-      return message;
     }
 
     /// A POST route whose body is read here (not by cpp-httplib, which would refuse a
@@ -479,7 +325,7 @@ namespace kimp::server
              {
                send_json(res,
                          {{"version", base::version_line()},
-                          {"commands", available_commands()},
+                          {"commands", commands.available()},
                           {"max_runs", options.max_runs},
                           {"motion_preview", true},
                           {"runs_dir", std::filesystem::absolute(options.runs_dir).string()},
@@ -490,8 +336,9 @@ namespace kimp::server
              [this](const httplib::Request &req, httplib::Response &res)
              {
                const bool schema_wanted = req.matches[1] == "schema";
-               const auto text          = schema(req.matches[2].str(),
-                                        schema_wanted ? "--print-schema" : "--print-defaults");
+               const auto text =
+                 commands.schema(req.matches[2].str(),
+                                 schema_wanted ? "--print-schema" : "--print-defaults");
                res.set_content(text, schema_wanted ? "application/json" : "text/plain");
              });
     post("/api/validate",
@@ -499,7 +346,7 @@ namespace kimp::server
          {
            const auto        body = parse_body(text);
            const std::string error =
-             validation_error(text_member(body, "command"), text_member(body, "scene"));
+             commands.validation_error(text_member(body, "command"), text_member(body, "scene"));
            send_json(res, {{"ok", error.empty()}, {"error", error}});
          });
     post("/api/runs",
@@ -511,7 +358,7 @@ namespace kimp::server
            const std::string sweep   = text_member(body, "sweep", command == "sweep");
            if (command != "sweep")
            {
-             const std::string error = validation_error(command, scene);
+             const std::string error = commands.validation_error(command, scene);
              if (!error.empty())
                throw HttpError(400, error);
            }

@@ -10,28 +10,19 @@
 #include <optional>
 #include <string>
 
+#include "server/run_settings.h"
+
 namespace kimp::server
 {
-  /// Options of `kimp gui`.
-  struct GuiOptions
+  /// Options of `kimp gui`: where it listens, and its runs (RunSettings).
+  struct GuiOptions : RunSettings
   {
     /// Interface to bind; anything but loopback must be asked for explicitly (--host).
     std::string host = "127.0.0.1";
     /// TCP port, 1-65535; 0 picks a free one.
     int port = 8080;
-    /// Directory of the runs (one sub-directory per run).
-    std::filesystem::path runs_dir = "kimp-runs";
-    /// The PEER records directory, if any (records list, plots; passed to every run).
-    std::optional<std::filesystem::path> records_dir;
-    /// The kimp executable that runs are started with.
-    std::filesystem::path kimp_executable;
     /// Largest accepted request body (uploads, scenes, form-encoded or not), bytes.
     std::size_t max_body = 16u << 20;
-    /// Runs at a time; further runs wait in a queue of at most max_queued.
-    unsigned max_runs   = 2;
-    unsigned max_queued = 16;
-    /// Seconds between SIGTERM and SIGKILL when a run is cancelled or the server stops.
-    double kill_grace = 1.0;
   };
 
   /// The server; listen() blocks until stop() (from another thread or a signal handler's thread).

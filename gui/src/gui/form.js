@@ -242,7 +242,7 @@
   }
 
   Object.assign(kimpGui, {
-    fields, formScene, sceneYaml, loadScene, syncYaml, clearErrors, showError, showProblems,
+    formScene, sceneYaml, loadScene, syncYaml, clearErrors, showError, showProblems,
     loadCommand,
   });
 })();

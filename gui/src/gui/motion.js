@@ -3,12 +3,12 @@
 'use strict';
 
 (function () {
-  const { state, getJson, fields, sceneYaml, syncYaml } = kimpGui;
+  const { state, getJson, sceneYaml, syncYaml } = kimpGui;
   const el = kimp.el;
 
   // ---- ground motion -----------------------------------------------------------------------
-  // The chosen record as the server read it (unscaled, m/s²); the scene's scaling is applied here
-  // exactly as a run applies it (scale_to_pga, then scale, then trim to round(duration / dt)).
+  // The scene's ground motion as the server loaded, scaled and trimmed it for the scene's run
+  // (POST /api/motion, m/s²), the uploaded file and the serial of the latest request.
   const motion = { rec: null, file: null, serial: 0 };
   const TWO_COLUMN_UNITS = { g: 9.80665, 'm/s^2': 1, 'cm/s^2': 0.01 };
   const MOTION_KEYS = [
@@ -19,10 +19,6 @@
 
   function sceneInput(path) {
     return document.querySelector(`#scene-form input[data-path="${path}"], #scene-form select[data-path="${path}"]`);
-  }
-
-  function sceneField(path) {
-    return fields.find((f) => f.key.path === path);
   }
 
   function setSceneValue(path, value) {
@@ -48,35 +44,6 @@
     return v;
   }
 
-  /** The motion as a run would see it: [acceleration (m/s²), description of the scaling]. */
-  function scaledMotion(rec) {
-    const text = (path) => (sceneInput(path) ? sceneInput(path).value.trim() : '');
-    const unitOf = (path) => (sceneField(path) ? sceneField(path).key.unit || '' : '');
-    let a = rec.acceleration.slice();
-    const peak = (xs) => xs.reduce((m, x) => Math.max(m, Math.abs(x)), 0);
-    const notes = [];
-    const toPga = text('ground_motion.scale_to_pga');
-    if (toPga) {
-      const target = kimp.parseQuantity(toPga, unitOf('ground_motion.scale_to_pga'));
-      const factor = target / peak(a);
-      a = a.map((x) => Math.max(-target, Math.min(target, x * factor)));
-      notes.push(`scaled to PGA ${toPga} (×${kimp.fmt(factor, 4)})`);
-    }
-    const scaleText = text('ground_motion.scale');
-    if (scaleText) {
-      const scale = kimp.parseQuantity(scaleText, unitOf('ground_motion.scale'));
-      a = a.map((x) => x * scale);
-      notes.push(`scale ${kimp.fmt(scale, 6)}`);
-    }
-    const durationText = text('ground_motion.duration');
-    if (durationText) {
-      const duration = kimp.parseQuantity(durationText, unitOf('ground_motion.duration'));
-      a = a.slice(0, Math.min(a.length, Math.round(duration / rec.dt)));
-      notes.push(`trimmed to ${kimp.fmt(duration, 6)} s`);
-    }
-    return [a, notes.length ? notes.join(', ') : 'unscaled'];
-  }
-
   function peakAt(xs) {
     let k = 0;
     for (let i = 1; i < xs.length; ++i) if (Math.abs(xs[i]) > Math.abs(xs[k])) k = i;
@@ -92,14 +59,7 @@
     out.textContent = '';
     const rec = motion.rec;
     if (!rec) return;
-    let a;
-    let notes;
-    try {
-      [a, notes] = rec.scaled ? [rec.acceleration, 'as the run scales it'] : scaledMotion(rec);
-    } catch (e) {
-      out.textContent = `ground motion: ${e.message}`;
-      return;
-    }
+    const a = rec.acceleration;
     const t = a.map((_, i) => i * rec.dt);
     const v = integrate(a, rec.dt);
     const d = integrate(v, rec.dt);
@@ -111,64 +71,43 @@
     info.dataset.samples = String(a.length);
     info.textContent =
       `${rec.name}: dt = ${rec.dt} s, ${a.length} samples (${kimp.fmt(a.length * rec.dt, 6)} s), ` +
-      `PGA = ${kimp.fmt(pga, 4)} g, PGV = ${kimp.fmt(pgv, 4)} cm/s, PGD = ${kimp.fmt(pgd, 4)} cm (${notes})`;
+      `PGA = ${kimp.fmt(pga, 4)} g, PGV = ${kimp.fmt(pgv, 4)} cm/s, PGD = ${kimp.fmt(pgd, 4)} cm ` +
+      '(as the run scales it)';
     const marker = (i, ys, label) => {
       const y = new Array(ys.length).fill(null);
       y[i] = ys[i];
       return { label: label, y: y, marker: true, color: '#d62728' };
     };
-    kimp.chart(host, {
-      title: `${rec.name}: ground acceleration, PGA = ${kimp.fmt(pga, 4)} g at ${kimp.fmt(t[ia], 4)} s`,
-      xlabel: 'time (s)',
-      ylabel: 'acceleration (m/s²)',
-      x: t,
-      height: 260,
-      series: [{ label: 'a_g', y: a }, marker(ia, a, `PGA ${kimp.fmt(pga, 4)} g`)],
-    });
-    kimp.chart(host, {
-      title: `${rec.name}: ground velocity, PGV = ${kimp.fmt(pgv, 4)} cm/s at ${kimp.fmt(t[iv], 4)} s`,
-      xlabel: 'time (s)',
-      ylabel: 'velocity (cm/s)',
-      x: t,
-      height: 260,
-      series: [
-        { label: 'v_g', y: v.map((x) => x * 100) },
-        marker(
-          iv,
-          v.map((x) => x * 100),
-          `PGV ${kimp.fmt(pgv, 4)} cm/s`,
-        ),
-      ],
-    });
-    kimp.chart(host, {
-      title: `${rec.name}: ground displacement, PGD = ${kimp.fmt(pgd, 4)} cm at ${kimp.fmt(t[id], 4)} s`,
-      xlabel: 'time (s)',
-      ylabel: 'displacement (cm)',
-      x: t,
-      height: 260,
-      series: [
-        { label: 'd_g', y: d.map((x) => x * 100) },
-        marker(
-          id,
-          d.map((x) => x * 100),
-          `PGD ${kimp.fmt(pgd, 4)} cm`,
-        ),
-      ],
-    });
+    const cm = (xs) => xs.map((x) => x * 100);
+    for (const [what, ys, ylabel, symbol, peak, i, value] of [
+      ['acceleration', a, 'acceleration (m/s²)', 'a_g', 'PGA', ia, `${kimp.fmt(pga, 4)} g`],
+      ['velocity', cm(v), 'velocity (cm/s)', 'v_g', 'PGV', iv, `${kimp.fmt(pgv, 4)} cm/s`],
+      ['displacement', cm(d), 'displacement (cm)', 'd_g', 'PGD', id, `${kimp.fmt(pgd, 4)} cm`],
+    ]) {
+      kimp.chart(host, {
+        title: `${rec.name}: ground ${what}, ${peak} = ${value} at ${kimp.fmt(t[i], 4)} s`,
+        xlabel: 'time (s)',
+        ylabel: ylabel,
+        x: t,
+        height: 260,
+        series: [{ label: symbol, y: ys }, marker(i, ys, `${peak} ${value}`)],
+      });
+    }
   }
 
   /**
-   * The synthetic motion is generated by kimp at run time: the page asks the server for it
-   * (scaled as the run scales it) and draws nothing of its own when the server cannot.
+   * The scene's ground motion (a record, an upload or the synthetic motion) is loaded, scaled and
+   * trimmed by kimp as its run does: the page asks the server for it and draws nothing of its own
+   * when the server cannot.
    */
-  async function loadSynthetic() {
+  async function loadMotion() {
     const latest = motionRequest();
     motion.rec = null;
     if (!state.info.motion_preview) {
       document.getElementById('motion-charts').innerHTML = '';
       document.getElementById('motion-info').textContent =
-        'The synthetic near-fault motion is generated by kimp at ' +
-        'run time (ground_motion.synthetic); this kimp gui cannot draw it before a run.';
+        'The ground motion is loaded, scaled and trimmed (the synthetic near-fault motion generated) ' +
+        'by kimp at run time; this kimp gui cannot draw it before a run.';
       return;
     }
     const r = await fetch('/api/motion', {
@@ -179,7 +118,7 @@
     const body = await r.json();
     if (!latest()) return;
     if (r.ok) {
-      motion.rec = Object.assign(body, { scaled: true });
+      motion.rec = body;
       plotMotion();
     } else {
       const info = document.getElementById('motion-info');
@@ -208,8 +147,6 @@
     // The scene names the uploaded file and, for a two-column file, the unit of its column.
     setSceneValue('ground_motion.record', body.path);
     setSceneValue('ground_motion.record_unit', at2 ? '' : unit);
-    motion.rec = body;
-    motion.key = body.path;
     const pick = document.getElementById('motion-record');
     let option = pick.querySelector('option[data-upload]');
     if (!option) {
@@ -219,7 +156,7 @@
     option.value = body.path;
     option.textContent = `uploaded: ${file.name}${at2 ? '' : ' (' + unit + ')'}`;
     pick.value = body.path;
-    plotMotion();
+    await loadMotion();
   }
 
   /** The motion tab's scaling inputs mirror the scene's keys (both ways). */
@@ -233,21 +170,10 @@
   async function showMotion() {
     syncMotionInputs();
     const record = sceneInput('ground_motion.record') ? sceneInput('ground_motion.record').value.trim() : '';
-    if (!record || record === 'synthetic') {
-      document.getElementById('motion-record').value = 'synthetic';
-      await loadSynthetic();
-      return;
-    }
     const pick = document.getElementById('motion-record');
-    if ((!motion.rec || motion.key !== record) && Array.from(pick.options).some((o) => o.value === record)) {
-      pick.value = record;
-      const latest = motionRequest();
-      const rec = await getJson('/api/records/' + encodeURIComponent(record));
-      if (!latest()) return;
-      motion.rec = rec;
-      motion.key = record;
-    }
-    plotMotion();
+    if (!record || record === 'synthetic') pick.value = 'synthetic';
+    else if (Array.from(pick.options).some((o) => o.value === record)) pick.value = record;
+    await loadMotion();
   }
 
   async function initMotion() {
@@ -261,15 +187,7 @@
       motion.file = null;
       setSceneValue('ground_motion.record', pick.value === 'synthetic' ? '' : pick.value);
       setSceneValue('ground_motion.record_unit', '');
-      if (pick.value === 'synthetic') await loadSynthetic();
-      else {
-        const latest = motionRequest();
-        const rec = await getJson('/api/records/' + encodeURIComponent(pick.value));
-        if (!latest()) return;
-        motion.rec = rec;
-        motion.key = pick.value;
-        plotMotion();
-      }
+      await loadMotion();
     });
     document.getElementById('motion-upload').addEventListener('change', async (e) => {
       motion.file = e.target.files[0] || null;
@@ -281,8 +199,7 @@
     for (const [id, path] of MOTION_KEYS) {
       document.getElementById(id).addEventListener('change', async (e) => {
         setSceneValue(path, e.target.value.trim());
-        if (motion.rec && !motion.rec.scaled) plotMotion();
-        else await showMotion();
+        await loadMotion();
       });
     }
   }
