@@ -9,11 +9,12 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "app/table_columns.h"
+#include "app/table_cells.h"
 #include "base/errors.h"
 #include "base/logging.h"
 #include "base/version.h"
 #include "io/results_file.h"
+#include "io/table.h"
 #include "io/units.h"
 
 namespace kimp::app
@@ -180,59 +181,57 @@ namespace kimp::app
     collide.set_attribute("time_step", scene.time_step);
     for (const CollideLawScene &law : scene.laws)
     {
-      std::vector<TableColumn> columns = {{"nominal_cor", "1", {}},
-                                          {"effective_cor", "1", {}},
-                                          {"relative_error", "1", {}},
-                                          {"peak_force", "N", {}},
-                                          {"contact_duration", "s", {}},
-                                          {"max_penetration", "m", {}},
-                                          {"energy_error", "1", {}}};
-      std::string              status  = "ok";
+      Table       t;
+      std::string status = "ok";
+      t.number("nominal_cor", "1")
+        .number("effective_cor", "1")
+        .number("relative_error", "1")
+        .number("peak_force", "N")
+        .number("contact_duration", "s")
+        .number("max_penetration", "m")
+        .number("energy_error", "1");
       for (const CollideRow &r : rows)
       {
         if (r.name != law.name)
           continue;
         const lumped::CorTableRow &x = r.row;
-        append_row(columns,
-                   {x.nominal_cor,
-                    x.effective_cor,
-                    x.relative_error,
-                    x.peak_force,
-                    x.contact_duration,
-                    x.max_penetration,
-                    x.energy_error});
+        t.add_row(number_cells({x.nominal_cor,
+                                x.effective_cor,
+                                x.relative_error,
+                                x.peak_force,
+                                x.contact_duration,
+                                x.max_penetration,
+                                x.energy_error}));
         if (r.status != "ok")
           status = "failed: COR " + format_quantity(x.nominal_cor, "") + ": " + r.status;
       }
       ResultsGroup g = collide.case_group(law.name);
       g.set_attribute("law", law.law);
-      g.write_table("cor_table", columns);
+      t.write_hdf5(g, "cor_table");
       g.set_status(status);
     }
     if (calibration)
     {
-      ResultsGroup             g       = collide.case_group("calibration");
-      std::vector<TableColumn> columns = {{"cor", "1", {}},
-                                          {"impact_velocity", "m/s", {}},
-                                          {"mass", "kg", {}},
-                                          {"effective_mass", "kg", {}},
-                                          {"a1", "s/m", {}},
-                                          {"a1_thesis", "s/m", {}},
-                                          {"cor_thesis", "1", {}},
-                                          {"cor_fit", "1", {}}};
+      ResultsGroup g = collide.case_group("calibration");
+      Table        t;
+      t.number("cor", "1")
+        .number("impact_velocity", "m/s")
+        .number("mass", "kg")
+        .number("effective_mass", "kg")
+        .number("a1", "s/m")
+        .number("a1_thesis", "s/m")
+        .number("cor_thesis", "1")
+        .number("cor_fit", "1");
       for (const lumped::CalibrationPoint &p : calibration->points)
-      {
-        append_row(columns,
-                   {p.cor,
-                    p.impact_velocity,
-                    p.mass,
-                    p.effective_mass,
-                    p.a1,
-                    p.a1_thesis,
-                    p.cor_thesis,
-                    p.cor_fit});
-      }
-      g.write_table("points", columns);
+        t.add_row(number_cells({p.cor,
+                                p.impact_velocity,
+                                p.mass,
+                                p.effective_mass,
+                                p.a1,
+                                p.a1_thesis,
+                                p.cor_thesis,
+                                p.cor_fit}));
+      t.write_hdf5(g, "points");
       g.write(
         "fit",
         std::vector<double>{calibration->c, calibration->p1, calibration->p2, calibration->p3},

@@ -65,6 +65,41 @@ namespace kimp::app::study_internal
     h.jankowski_status    = std::move(fits.jankowski_status);
   }
 
+  nlohmann::ordered_json
+  law_json(const StudyHeight &h, const StudyLaw &law, std::optional<double> width)
+  {
+    nlohmann::ordered_json f;
+    f["status"] = h.*law.status;
+    if (const std::optional<FitResult> &fit = h.*law.fit)
+    {
+      f["k_per_metre"] = per_metre(fit);
+      f["k_lower"]     = per_metre_bound(fit, false);
+      f["k_upper"]     = per_metre_bound(fit, true);
+      if (width)
+        f["k_total"] = per_metre(fit) * *width;
+      f["unit"] = fit->per_metre_unit();
+      if (width)
+        f["normalised_rms"] = fit->normalised_rms;
+      const double error = numerical_error(h, law.exponent);
+      if (std::isfinite(error))
+        f["k_numerical_error"] = error;
+    }
+    return f;
+  }
+
+  void add_k_columns(Table &t, const StudyLaw &law)
+  {
+    const std::string name = law.name;
+    t.number(name, law.per_metre_unit)
+      .number(name + "_lower", law.per_metre_unit)
+      .number(name + "_upper", law.per_metre_unit);
+  }
+
+  void add_k_cells(std::vector<Cell> &row, const std::optional<FitResult> &fit)
+  {
+    append_numbers(row, {per_metre(fit), per_metre_bound(fit, false), per_metre_bound(fit, true)});
+  }
+
   std::vector<double> scale(std::vector<double> values, double factor)
   {
     for (double &v : values)

@@ -14,6 +14,7 @@
 #include "base/errors.h"
 #include "base/format.h"
 #include "base/logging.h"
+#include "io/table.h"
 #include "lumped/integrators/response.h"
 
 namespace kimp::app::study_internal
@@ -255,77 +256,65 @@ namespace kimp::app::study_internal
     }
 
     // /k_table_velocity: every height and velocity, with the linear k beside.
-    std::vector<TableColumn> k = {{"wall_height", "m", {}},
-                                  {"impact_velocity", "m/s", {}},
-                                  {"reference_velocity", "1", {}},
-                                  {"inelastic", "1", {}},
-                                  {"kelvin_voigt", "kN/mm/m", {}},
-                                  {"kelvin_voigt_lower", "kN/mm/m", {}},
-                                  {"kelvin_voigt_upper", "kN/mm/m", {}},
-                                  {"kelvin_voigt_numerical_error", "kN/mm/m", {}},
-                                  {"linear_kelvin_voigt", "kN/mm/m", {}},
-                                  {"jankowski", "kN/mm^1.5/m", {}},
-                                  {"jankowski_lower", "kN/mm^1.5/m", {}},
-                                  {"jankowski_upper", "kN/mm^1.5/m", {}},
-                                  {"jankowski_numerical_error", "kN/mm^1.5/m", {}},
-                                  {"linear_jankowski", "kN/mm^1.5/m", {}}};
+    Table k;
+    k.number("wall_height", "m")
+      .number("impact_velocity", "m/s")
+      .number("reference_velocity", "1")
+      .number("inelastic", "1");
+    for (const StudyLaw &law : study_laws)
+    {
+      const std::string name = law.name;
+      add_k_columns(k, law);
+      k.number(name + "_numerical_error", law.per_metre_unit)
+        .number("linear_" + name, law.per_metre_unit);
+    }
     for (const StudyHeight *h : k_table_cases(result))
     {
-      append_row(k,
-                 {h->wall_height,
-                  h->impact_velocity,
-                  h->reference_velocity ? 1.0 : 0.0,
-                  h->inelastic ? 1.0 : 0.0,
-                  per_metre(h->kelvin_voigt),
-                  per_metre_bound(h->kelvin_voigt, false),
-                  per_metre_bound(h->kelvin_voigt, true),
-                  numerical_error(*h, 1.0),
-                  per_metre(h->linear_kelvin_voigt),
-                  per_metre(h->jankowski),
-                  per_metre_bound(h->jankowski, false),
-                  per_metre_bound(h->jankowski, true),
-                  numerical_error(*h, 1.5),
-                  per_metre(h->linear_jankowski)});
+      std::vector<Cell> row = number_cells(
+        {h->wall_height, h->impact_velocity, flag(h->reference_velocity), flag(h->inelastic)});
+      for (const StudyLaw &law : study_laws)
+      {
+        add_k_cells(row, h->*law.fit);
+        append_numbers(row, {numerical_error(*h, law.exponent), per_metre(h->*law.linear)});
+      }
+      k.add_row(std::move(row));
     }
-    root.write_table("k_table_velocity", k);
+    k.write_hdf5(root, "k_table_velocity");
     root.group("k_table_velocity")
       .set_attribute("reference_velocity_m_per_s", scene.fem.solver.initial_velocity);
 
     // /consistent_k/<record>/<law>: one row per building run of the iteration.
-    std::map<std::pair<std::string, std::string>, std::vector<const ConsistentKRun *>> tables;
-    for (const ConsistentKRun &r : result.consistent_k)
-      tables[{r.record, r.law}].push_back(&r);
-    for (const auto &[key, runs] : tables)
+    for (const auto &[key, runs] : by_record_and_law(result.consistent_k, false))
     {
-      const std::string        unit = stiffness_si_unit(runs.front()->exponent);
-      std::vector<TableColumn> c    = {{"wall_height", "m", {}},
-                                       {"iteration", "1", {}},
-                                       {"k_total", unit, {}},
-                                       {"impact_velocity", "m/s", {}},
-                                       {"velocity_used", "m/s", {}},
-                                       {"k_next", unit, {}},
-                                       {"change", "1", {}},
-                                       {"peak_impact_force", "N", {}},
-                                       {"n_impacts", "1", {}},
-                                       {"converged", "1", {}}};
+      const std::string unit = stiffness_si_unit(runs.front()->exponent);
+      Table             t;
+      t.number("wall_height", "m")
+        .number("iteration", "1")
+        .number("k_total", unit)
+        .number("impact_velocity", "m/s")
+        .number("velocity_used", "m/s")
+        .number("k_next", unit)
+        .number("change", "1")
+        .number("peak_impact_force", "N")
+        .number("n_impacts", "1")
+        .number("converged", "1");
       for (const ConsistentKRun *r : runs)
         for (std::size_t i = 0; i < r->iterations.size(); ++i)
         {
           const ConsistentKIteration &it = r->iterations[i];
-          append_row(c,
-                     {r->wall_height,
-                      static_cast<double>(i + 1),
-                      it.k_total,
-                      it.impact_velocity,
-                      it.velocity_used,
-                      it.k_next,
-                      it.change,
-                      it.peak_impact_force,
-                      static_cast<double>(it.n_impacts),
-                      r->converged ? 1.0 : 0.0});
+          t.add_row(number_cells({r->wall_height,
+                                  static_cast<double>(i + 1),
+                                  it.k_total,
+                                  it.impact_velocity,
+                                  it.velocity_used,
+                                  it.k_next,
+                                  it.change,
+                                  it.peak_impact_force,
+                                  static_cast<double>(it.n_impacts),
+                                  flag(r->converged)}));
         }
       ResultsGroup group = root.group("consistent_k").group(key.first);
-      group.write_table(key.second, c);
+      t.write_hdf5(group, key.second);
       group.group(key.second).set_attribute("tolerance", scene.consistent_k.tolerance);
     }
   }
@@ -345,28 +334,12 @@ namespace kimp::app::study_internal
       row["material"]           = h->inelastic ? "inelastic" : "linear";
       if (!h->material_reason.empty())
         row["material_reason"] = h->material_reason;
-      for (const auto &[law, fit, linear, status] :
-           {std::tuple{"kelvin_voigt",
-                       &h->kelvin_voigt,
-                       &h->linear_kelvin_voigt,
-                       &h->kelvin_voigt_status},
-            std::tuple{"jankowski", &h->jankowski, &h->linear_jankowski, &h->jankowski_status}})
+      for (const StudyLaw &law : study_laws)
       {
-        nlohmann::ordered_json f;
-        f["status"] = *status;
-        if (*fit)
-        {
-          f["k_per_metre"] = per_metre(*fit);
-          f["k_lower"]     = per_metre_bound(*fit, false);
-          f["k_upper"]     = per_metre_bound(*fit, true);
-          f["unit"]        = (*fit)->per_metre_unit();
-          const double e   = numerical_error(*h, std::string(law) == "kelvin_voigt" ? 1.0 : 1.5);
-          if (std::isfinite(e))
-            f["k_numerical_error"] = e;
-        }
-        if (*linear)
-          f["linear_k_per_metre"] = per_metre(*linear);
-        row[law] = f;
+        nlohmann::ordered_json f = law_json(*h, law);
+        if (const std::optional<FitResult> &linear = h->*law.linear)
+          f["linear_k_per_metre"] = per_metre(linear);
+        row[law.name] = f;
       }
       table.push_back(row);
     }
@@ -425,25 +398,24 @@ namespace kimp::app::study_internal
     {
       const std::optional<ThesisStiffness> t = thesis_row(h->wall_height);
       const bool ok = h->kelvin_voigt_status == "ok" && h->jankowski_status == "ok";
+      md += fmt::format("| {:.2f} | {:g}{} | {} |",
+                        h->wall_height,
+                        h->impact_velocity,
+                        h->reference_velocity ? " (reference)" : "",
+                        h->inelastic ? "inelastic" : "linear");
+      for (const StudyLaw &law : study_laws)
+      {
+        const std::optional<FitResult> &fit = h->*law.fit;
+        md += fmt::format(" {} [{}, {}]{} | {} | {} |",
+                          readable(per_metre(fit)),
+                          readable(per_metre_bound(fit, false)),
+                          readable(per_metre_bound(fit, true)),
+                          plus_minus(numerical_error(*h, law.exponent)),
+                          h->inelastic ? readable(per_metre(h->*law.linear)) : "-",
+                          t && h->reference_velocity ? readable((*t).*law.thesis) : "-");
+      }
       md +=
-        fmt::format("| {:.2f} | {:g}{} | {} | {} [{}, {}]{} | {} | {} | {} [{}, {}]{} | {} | "
-                    "{} | {} |\n",
-                    h->wall_height,
-                    h->impact_velocity,
-                    h->reference_velocity ? " (reference)" : "",
-                    h->inelastic ? "inelastic" : "linear",
-                    readable(per_metre(h->kelvin_voigt)),
-                    readable(per_metre_bound(h->kelvin_voigt, false)),
-                    readable(per_metre_bound(h->kelvin_voigt, true)),
-                    plus_minus(numerical_error(*h, 1.0)),
-                    h->inelastic ? readable(per_metre(h->linear_kelvin_voigt)) : "-",
-                    t && h->reference_velocity ? readable(t->kelvin_voigt) : "-",
-                    readable(per_metre(h->jankowski)),
-                    readable(per_metre_bound(h->jankowski, false)),
-                    readable(per_metre_bound(h->jankowski, true)),
-                    plus_minus(numerical_error(*h, 1.5)),
-                    h->inelastic ? readable(per_metre(h->linear_jankowski)) : "-",
-                    t && h->reference_velocity ? readable(t->jankowski) : "-",
+        fmt::format(" {} |\n",
                     ok ? std::string("ok") : h->kelvin_voigt_status + " / " + h->jankowski_status);
     }
     md += "\n";

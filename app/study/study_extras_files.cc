@@ -7,6 +7,7 @@
 #include "app/study/study_extras.h"
 #include "app/study/study_internal.h"
 #include "fit/fitter.h"
+#include "io/table.h"
 
 namespace kimp::app
 {
@@ -16,61 +17,58 @@ namespace kimp::app
   {
     for (const char *series : {"mesh", "penalty", "implicit"})
     {
-      std::vector<TableColumn> c = {{"h_contact", "m", {}},
-                                    {"penalty_factor", "1", {}},
-                                    {"ok", "1", {}},
-                                    {"seconds", "s", {}},
-                                    {"n_dofs", "1", {}},
-                                    {"n_steps", "1", {}},
-                                    {"kelvin_voigt", "kN/mm/m", {}},
-                                    {"jankowski", "kN/mm^1.5/m", {}},
-                                    {"error_kelvin_voigt", "1", {}},
-                                    {"error_jankowski", "1", {}}};
+      Table t;
+      t.number("h_contact", "m")
+        .number("penalty_factor", "1")
+        .number("ok", "1")
+        .number("seconds", "s")
+        .number("n_dofs", "1")
+        .number("n_steps", "1")
+        .number("kelvin_voigt", "kN/mm/m")
+        .number("jankowski", "kN/mm^1.5/m")
+        .number("error_kelvin_voigt", "1")
+        .number("error_jankowski", "1");
       for (const FemAccuracyPoint &p : extras.fem_accuracy)
+        if (p.series == series)
+          t.add_row(number_cells({p.h_contact,
+                                  p.penalty_factor,
+                                  flag(p.ok),
+                                  p.seconds,
+                                  p.n_dofs,
+                                  p.n_steps,
+                                  p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan,
+                                  p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan,
+                                  p.error_kelvin_voigt,
+                                  p.error_jankowski}));
+      if (t.n_rows() > 0)
       {
-        if (p.series != series)
-          continue;
-        append_row(c,
-                   {p.h_contact,
-                    p.penalty_factor,
-                    p.ok ? 1.0 : 0.0,
-                    p.seconds,
-                    p.n_dofs,
-                    p.n_steps,
-                    p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan,
-                    p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan,
-                    p.error_kelvin_voigt,
-                    p.error_jankowski});
+        ResultsGroup fem = root.group("accuracy").group("fem");
+        t.write_hdf5(fem, series);
       }
-      if (!c.front().values.empty())
-        root.group("accuracy").group("fem").write_table(series, c);
     }
     for (const char *method : {"cdm", "newmark", "cdm_reference"})
     {
-      std::vector<TableColumn> c = {{"dt", "s", {}},
-                                    {"ok", "1", {}},
-                                    {"seconds", "s", {}},
-                                    {"impact_force", "N", {}},
-                                    {"base_acceleration", "m/s^2", {}},
-                                    {"error_impact_force", "1", {}},
-                                    {"error_base_acceleration", "1", {}}};
+      Table t;
+      t.number("dt", "s")
+        .number("ok", "1")
+        .number("seconds", "s")
+        .number("impact_force", "N")
+        .number("base_acceleration", "m/s^2")
+        .number("error_impact_force", "1")
+        .number("error_base_acceleration", "1");
       for (const LumpedAccuracyPoint &p : extras.lumped_accuracy)
-      {
-        if (p.method != method)
-          continue;
-        append_row(c,
-                   {p.dt,
-                    p.ok ? 1.0 : 0.0,
-                    p.seconds,
-                    p.ok ? p.peak_impact_force : nan,
-                    p.ok ? p.base_acceleration : nan,
-                    p.error_force,
-                    p.error_acceleration});
-      }
-      if (!c.front().values.empty())
+        if (p.method == method)
+          t.add_row(number_cells({p.dt,
+                                  flag(p.ok),
+                                  p.seconds,
+                                  p.ok ? p.peak_impact_force : nan,
+                                  p.ok ? p.base_acceleration : nan,
+                                  p.error_force,
+                                  p.error_acceleration}));
+      if (t.n_rows() > 0)
       {
         ResultsGroup lumped = root.group("accuracy").group("lumped");
-        lumped.write_table(method, c);
+        t.write_hdf5(lumped, method);
         lumped.set_attribute("k_total_N_per_m", extras.lumped_k_total);
         lumped.set_attribute("gap_m", extras.lumped_gap);
         lumped.set_attribute("record", extras.lumped_record);
@@ -78,52 +76,48 @@ namespace kimp::app
     }
     if (!extras.stability.empty())
     {
-      std::vector<TableColumn> c = {{"stiffness", "N/m", {}},
-                                    {"dt", "s", {}},
-                                    {"dt_limit", "s", {}},
-                                    {"dt_limit_damped", "s", {}},
-                                    {"stable", "1", {}},
-                                    {"accurate", "1", {}},
-                                    {"effective_cor", "1", {}},
-                                    {"peak_force", "N", {}}};
+      Table t;
+      t.number("stiffness", "N/m")
+        .number("dt", "s")
+        .number("dt_limit", "s")
+        .number("dt_limit_damped", "s")
+        .number("stable", "1")
+        .number("accurate", "1")
+        .number("effective_cor", "1")
+        .number("peak_force", "N");
       for (const StabilityPoint &p : extras.stability)
-      {
-        append_row(c,
-                   {p.stiffness,
-                    p.dt,
-                    p.dt_limit,
-                    p.dt_limit_damped,
-                    p.stable ? 1.0 : 0.0,
-                    p.accurate ? 1.0 : 0.0,
-                    p.effective_cor,
-                    p.peak_force});
-      }
+        t.add_row(number_cells({p.stiffness,
+                                p.dt,
+                                p.dt_limit,
+                                p.dt_limit_damped,
+                                flag(p.stable),
+                                flag(p.accurate),
+                                p.effective_cor,
+                                p.peak_force}));
       ResultsGroup stability = root.group("stability");
-      stability.write_table("lumped", c);
+      t.write_hdf5(stability, "lumped");
       ResultsGroup table = stability.group("lumped");
       table.set_attribute("effective_mass_kg", extras.stability_effective_mass);
       table.set_attribute("study_stiffness_N_per_m", extras.stability_study_k);
     }
     if (!extras.fem_stability.empty())
     {
-      std::vector<TableColumn> c = {{"penalty_factor", "1", {}},
-                                    {"dt_factor", "1", {}},
-                                    {"dt", "s", {}},
-                                    {"dt_limit", "s", {}},
-                                    {"stable", "1", {}},
-                                    {"energy_error", "1", {}}};
+      Table t;
+      t.number("penalty_factor", "1")
+        .number("dt_factor", "1")
+        .number("dt", "s")
+        .number("dt_limit", "s")
+        .number("stable", "1")
+        .number("energy_error", "1");
       for (const FemStabilityPoint &p : extras.fem_stability)
-      {
-        append_row(c,
-                   {p.penalty_factor,
-                    p.dt_factor,
-                    p.dt,
-                    p.dt_limit,
-                    p.stable ? 1.0 : 0.0,
-                    p.energy_error > 0 ? p.energy_error : nan});
-      }
+        t.add_row(number_cells({p.penalty_factor,
+                                p.dt_factor,
+                                p.dt,
+                                p.dt_limit,
+                                flag(p.stable),
+                                p.energy_error > 0 ? p.energy_error : nan}));
       ResultsGroup stability = root.group("stability");
-      stability.write_table("fem", c);
+      t.write_hdf5(stability, "fem");
       ResultsGroup table = stability.group("fem");
       table.set_attribute("h_contact_m", extras.fem_stability_h_contact);
       table.set_attribute("end_time_s", extras.fem_stability_end_time);
@@ -133,21 +127,19 @@ namespace kimp::app
       for (const char *parameter :
            {"base", "soil_modulus", "slab_mass", "impact_velocity", "wall_thickness"})
       {
-        std::vector<TableColumn> c = {{"factor", "1", {}},
-                                      {"ok", "1", {}},
-                                      {"kelvin_voigt", "kN/mm/m", {}},
-                                      {"jankowski", "kN/mm^1.5/m", {}}};
+        Table t;
+        t.number("factor", "1")
+          .number("ok", "1")
+          .number("kelvin_voigt", "kN/mm/m")
+          .number("jankowski", "kN/mm^1.5/m");
         for (const SensitivityPoint &p : extras.sensitivity)
-        {
-          if (p.parameter != parameter)
-            continue;
-          append_row(c,
-                     {p.factor,
-                      p.ok ? 1.0 : 0.0,
-                      p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan,
-                      p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan});
-        }
-        root.group("sensitivity").write_table(parameter, c);
+          if (p.parameter == parameter)
+            t.add_row(number_cells({p.factor,
+                                    flag(p.ok),
+                                    p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan,
+                                    p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan}));
+        ResultsGroup sensitivity = root.group("sensitivity");
+        t.write_hdf5(sensitivity, parameter);
       }
     }
   }

@@ -76,33 +76,27 @@ namespace kimp::app::study_internal
 
   Table k_table(const StudyScene &scene, const std::vector<const StudyHeight *> &cases)
   {
-    const std::string  kv = "kN/mm/m", kv_total = "kN/mm";
-    const std::string  jk = "kN/mm^1.5/m", jk_total = "kN/mm^1.5";
-    const ColumnFormat error_format{2, {}, false};
-    const ColumnFormat short_format{3, {}, true};
-    Table              t;
-    t.number("wall_height", "m", ColumnFormat{3, {}, false})
+    const io::ColumnFormat error_format{2, {}, false};
+    const io::ColumnFormat short_format{3, {}, true};
+    Table                  t;
+    t.number("wall_height", "m", io::ColumnFormat{3, {}, false})
       .number("slab_mass", "kg/m")
       .number("impact_velocity", "m/s")
       .number("fem_peak_force", "kN/m")
-      .number("fem_contact_duration", "ms")
-      .number("kelvin_voigt", kv)
-      .number("kelvin_voigt_lower", kv)
-      .number("kelvin_voigt_upper", kv)
-      .number("kelvin_voigt_total", kv_total)
-      .number("kelvin_voigt_normalised_rms", "1")
-      .number("thesis_kelvin_voigt", kv)
-      .number("jankowski", jk)
-      .number("jankowski_lower", jk)
-      .number("jankowski_upper", jk)
-      .number("jankowski_total", jk_total)
-      .number("jankowski_normalised_rms", "1")
-      .number("thesis_jankowski", jk)
-      .number("kelvin_voigt_numerical_error", kv, error_format)
-      .number("jankowski_numerical_error", jk, error_format)
-      .number("kelvin_voigt_total_numerical_error", kv_total, error_format)
-      .number("jankowski_total_numerical_error", jk_total, error_format)
-      .text("fidelity")
+      .number("fem_contact_duration", "ms");
+    for (const StudyLaw &law : study_laws)
+    {
+      const std::string name = law.name;
+      add_k_columns(t, law);
+      t.number(name + "_total", law.total_unit)
+        .number(name + "_normalised_rms", "1")
+        .number("thesis_" + name, law.per_metre_unit);
+    }
+    for (const StudyLaw &law : study_laws)
+      t.number(std::string(law.name) + "_numerical_error", law.per_metre_unit, error_format);
+    for (const StudyLaw &law : study_laws)
+      t.number(std::string(law.name) + "_total_numerical_error", law.total_unit, error_format);
+    t.text("fidelity")
       .number("fem_h_contact", "cm", short_format)
       .number("fem_penalty_factor", "1", short_format)
       .text("fidelity_converged")
@@ -110,46 +104,46 @@ namespace kimp::app::study_internal
       .text("jankowski_status")
       .text("reference_velocity")
       .text("material")
-      .number("linear_kelvin_voigt", kv)
-      .number("linear_jankowski", jk)
+      .number("linear_kelvin_voigt", "kN/mm/m")
+      .number("linear_jankowski", "kN/mm^1.5/m")
       .text("fem_from_cache");
     for (const StudyHeight *h : cases)
     {
       const std::optional<ThesisStiffness> thesis = thesis_row(h->wall_height);
-      const FemSummary                    &fem    = h->fem_case.summary;
+      const io::FemSummary                &fem    = h->fem_case.summary;
       const double                         width  = scene.fit.width;
-      t.add_row({h->wall_height,
-                 h->fem_case.slab_mass,
-                 h->fem_case.impact_velocity,
-                 fem.peak_force.value_or(nan) / 1e3,
-                 fem.contact_duration.value_or(nan) * 1e3,
-                 per_metre(h->kelvin_voigt),
-                 per_metre_bound(h->kelvin_voigt, false),
-                 per_metre_bound(h->kelvin_voigt, true),
-                 per_metre(h->kelvin_voigt) * width,
-                 h->kelvin_voigt ? h->kelvin_voigt->normalised_rms : nan,
-                 thesis ? thesis->kelvin_voigt : nan,
-                 per_metre(h->jankowski),
-                 per_metre_bound(h->jankowski, false),
-                 per_metre_bound(h->jankowski, true),
-                 per_metre(h->jankowski) * width,
-                 h->jankowski ? h->jankowski->normalised_rms : nan,
-                 thesis ? thesis->jankowski : nan,
-                 numerical_error(*h, 1.0),
-                 numerical_error(*h, 1.5),
-                 total_stiffness_error(0.0, numerical_error(*h, 1.0), width),
-                 total_stiffness_error(0.0, numerical_error(*h, 1.5), width),
-                 std::string(h->auto_fidelity ? "auto" : "fixed"),
-                 used_h_contact(scene, *h) * 100.0,
-                 used_penalty(scene, *h),
-                 std::string(h->auto_fidelity ? (h->ladder.converged ? "yes" : "no") : ""),
-                 h->kelvin_voigt_status,
-                 h->jankowski_status,
-                 std::string(h->reference_velocity ? "yes" : "no"),
-                 std::string(h->inelastic ? "inelastic" : "linear"),
-                 per_metre(h->linear_kelvin_voigt),
-                 per_metre(h->linear_jankowski),
-                 std::string(h->fem_from_cache ? "yes" : "no")});
+      // The cells in the order of the columns above.
+      std::vector<Cell> row = number_cells({h->wall_height,
+                                            h->fem_case.slab_mass,
+                                            h->fem_case.impact_velocity,
+                                            fem.peak_force.value_or(nan) / 1e3,
+                                            fem.contact_duration.value_or(nan) * 1e3});
+      for (const StudyLaw &law : study_laws)
+      {
+        const std::optional<FitResult> &fit = h->*law.fit;
+        add_k_cells(row, fit);
+        append_numbers(row,
+                       {per_metre(fit) * width,
+                        fit ? fit->normalised_rms : nan,
+                        thesis ? (*thesis).*law.thesis : nan});
+      }
+      for (const StudyLaw &law : study_laws)
+        row.push_back(numerical_error(*h, law.exponent));
+      for (const StudyLaw &law : study_laws)
+        row.push_back(total_stiffness_error(0.0, numerical_error(*h, law.exponent), width));
+      row.insert(row.end(),
+                 {std::string(h->auto_fidelity ? "auto" : "fixed"),
+                  used_h_contact(scene, *h) * 100.0,
+                  used_penalty(scene, *h),
+                  std::string(h->auto_fidelity ? (h->ladder.converged ? "yes" : "no") : ""),
+                  h->kelvin_voigt_status,
+                  h->jankowski_status,
+                  std::string(h->reference_velocity ? "yes" : "no"),
+                  std::string(h->inelastic ? "inelastic" : "linear"),
+                  per_metre(h->linear_kelvin_voigt),
+                  per_metre(h->linear_jankowski),
+                  std::string(h->fem_from_cache ? "yes" : "no")});
+      t.add_row(std::move(row));
     }
     return t;
   }
@@ -199,20 +193,18 @@ namespace kimp::app::study_internal
 
   void write_study_fits(ResultsGroup &g, const StudyHeight &h, double width)
   {
-    for (const auto &[law, fit, status] :
-         {std::tuple{"kelvin_voigt", &h.kelvin_voigt, &h.kelvin_voigt_status},
-          std::tuple{"jankowski", &h.jankowski, &h.jankowski_status}})
+    for (const StudyLaw &law : study_laws)
     {
-      ResultsGroup f = g.group(law);
-      f.set_status(*status);
-      if (*fit)
-        write_fit_result(f, **fit, width, FitResultLayout::study);
+      ResultsGroup f = g.group(law.name);
+      f.set_status(h.*law.status);
+      if (const std::optional<FitResult> &fit = h.*law.fit)
+        write_fit_result(f, *fit, width, FitResultLayout::study);
     }
   }
 
-  void write_study_h5(const LoadedScene<StudyScene> &loaded,
-                      const StudyResult             &result,
-                      const OutputDir               &output)
+  void write_study_h5(const io::LoadedScene<StudyScene> &loaded,
+                      const StudyResult                 &result,
+                      const OutputDir                   &output)
   {
     const StudyScene &scene = loaded.scene;
     ResultsFile       file(output.file("study.h5"), loaded.text, loaded.resolved_json);
@@ -241,29 +233,29 @@ namespace kimp::app::study_internal
     {
       if (!h.auto_fidelity)
         continue;
-      std::vector<TableColumn> levels = {{"h_contact", "m", {}},
-                                         {"penalty_factor", "1", {}},
-                                         {"kelvin_voigt", "kN/mm/m", {}},
-                                         {"jankowski", "kN/mm^1.5/m", {}},
-                                         {"seconds", "s", {}},
-                                         {"ok", "1", {}},
-                                         {"from_cache", "1", {}},
-                                         {"used", "1", {}}};
+      Table levels;
+      levels.number("h_contact", "m")
+        .number("penalty_factor", "1")
+        .number("kelvin_voigt", "kN/mm/m")
+        .number("jankowski", "kN/mm^1.5/m")
+        .number("seconds", "s")
+        .number("ok", "1")
+        .number("from_cache", "1")
+        .number("used", "1");
       for (std::size_t i = 0; i < h.ladder.outcomes.size(); ++i)
       {
         const LevelOutcome &o = h.ladder.outcomes[i];
-        append_row(levels,
-                   {h.ladder.levels[i].h_contact,
-                    h.ladder.levels[i].penalty_factor,
-                    stiffness_to_kn_per_mm(o.k_kelvin_voigt, 1.0),
-                    stiffness_to_kn_per_mm(o.k_jankowski, 1.5),
-                    o.seconds,
-                    o.ok ? 1.0 : 0.0,
-                    o.from_cache ? 1.0 : 0.0,
-                    i == h.ladder.used ? 1.0 : 0.0});
+        levels.add_row(number_cells({h.ladder.levels[i].h_contact,
+                                     h.ladder.levels[i].penalty_factor,
+                                     stiffness_to_kn_per_mm(o.k_kelvin_voigt, 1.0),
+                                     stiffness_to_kn_per_mm(o.k_jankowski, 1.5),
+                                     o.seconds,
+                                     flag(o.ok),
+                                     flag(o.from_cache),
+                                     flag(i == h.ladder.used)}));
       }
       ResultsGroup fidelity = root.group("fidelity");
-      fidelity.write_table(h.name, levels);
+      levels.write_hdf5(fidelity, h.name);
       ResultsGroup table = fidelity.group(h.name);
       table.set_attribute("reason", h.fidelity_reason);
       table.set_attribute("converged", h.ladder.converged ? 1.0 : 0.0);
@@ -271,48 +263,42 @@ namespace kimp::app::study_internal
     }
 
     // /building/<record>/<law>: one row per wall height (law "none": the run without walls).
-    std::map<std::pair<std::string, std::string>, std::vector<const StudyBuildingRun *>> tables;
-    for (const StudyBuildingRun &r : result.building)
-      if (r.status == "ok")
-        tables[{r.record, r.law}].push_back(&r);
-    for (const auto &[key, rows] : tables)
+    for (const auto &[key, rows] : by_record_and_law(result.building, true))
     {
-      const std::string        k_unit = stiffness_si_unit(rows.front()->exponent);
-      std::vector<TableColumn> c      = {{"wall_height", "m", {}},
-                                         {"k_total", k_unit, {}},
-                                         {"gap", "m", {}},
-                                         {"base_displacement", "m", {}},
-                                         {"top_displacement", "m", {}},
-                                         {"base_acceleration", "m/s^2", {}},
-                                         {"top_acceleration", "m/s^2", {}},
-                                         {"floor_acceleration", "m/s^2", {}},
-                                         {"interstorey_drift", "m", {}},
-                                         {"impact_force", "N", {}},
-                                         {"n_impacts", "1", {}},
-                                         {"permanent_indentation", "m", {}},
-                                         {"amplification_base_acceleration", "1", {}},
-                                         {"amplification_top_acceleration", "1", {}},
-                                         {"amplification_interstorey_drift", "1", {}}};
+      Table t;
+      t.number("wall_height", "m")
+        .number("k_total", stiffness_si_unit(rows.front()->exponent))
+        .number("gap", "m")
+        .number("base_displacement", "m")
+        .number("top_displacement", "m")
+        .number("base_acceleration", "m/s^2")
+        .number("top_acceleration", "m/s^2")
+        .number("floor_acceleration", "m/s^2")
+        .number("interstorey_drift", "m")
+        .number("impact_force", "N")
+        .number("n_impacts", "1")
+        .number("permanent_indentation", "m")
+        .number("amplification_base_acceleration", "1")
+        .number("amplification_top_acceleration", "1")
+        .number("amplification_interstorey_drift", "1");
       for (const StudyBuildingRun *r : rows)
-      {
-        append_row(c,
-                   {r->wall_height,
-                    r->k_total,
-                    r->gap,
-                    r->base_displacement,
-                    r->top_displacement,
-                    r->base_acceleration,
-                    r->top_acceleration,
-                    r->max_floor_acceleration,
-                    r->max_interstorey_drift,
-                    r->peak_impact_force,
-                    static_cast<double>(r->n_impacts),
-                    r->permanent_indentation,
-                    r->amplification_base_acc,
-                    r->amplification_top_acc,
-                    r->amplification_drift});
-      }
-      root.group("building").group(key.first).write_table(key.second, c);
+        t.add_row(number_cells({r->wall_height,
+                                r->k_total,
+                                r->gap,
+                                r->base_displacement,
+                                r->top_displacement,
+                                r->base_acceleration,
+                                r->top_acceleration,
+                                r->max_floor_acceleration,
+                                r->max_interstorey_drift,
+                                r->peak_impact_force,
+                                static_cast<double>(r->n_impacts),
+                                r->permanent_indentation,
+                                r->amplification_base_acc,
+                                r->amplification_top_acc,
+                                r->amplification_drift}));
+      ResultsGroup record = root.group("building").group(key.first);
+      t.write_hdf5(record, key.second);
     }
     file.commit();
   }
@@ -356,7 +342,7 @@ namespace kimp::app::study_internal
   {
     nlohmann::ordered_json j;
     j["command"]        = "study";
-    j["kimp"]           = version_line();
+    j["kimp"]           = base::version_line();
     j["units"]          = {{"wall_height", "m"},
                            {"k_per_metre", "kN/mm^n/m"},
                            {"k_total", "kN/mm^n"},
@@ -404,8 +390,8 @@ namespace kimp::app::study_internal
         row["fidelity_converged"] = h.ladder.converged;
         row["fidelity_levels"]    = h.ladder.outcomes.size();
       }
-      row["fidelity_reason"] = h.fidelity_reason;
-      const FemSummary &fem  = h.fem_case.summary;
+      row["fidelity_reason"]    = h.fidelity_reason;
+      const io::FemSummary &fem = h.fem_case.summary;
       if (fem.n_dofs)
         row["fem_n_dofs"] = *fem.n_dofs;
       if (fem.n_steps)
@@ -415,33 +401,13 @@ namespace kimp::app::study_internal
                                        std::pair{"contact_duration", fem.contact_duration}})
         if (value)
           row[std::string("fem_") + key] = *value;
-      for (const auto &[law, fit, status, reference] :
-           {std::tuple{"kelvin_voigt",
-                       &h.kelvin_voigt,
-                       &h.kelvin_voigt_status,
-                       thesis ? thesis->kelvin_voigt : nan},
-            std::tuple{"jankowski",
-                       &h.jankowski,
-                       &h.jankowski_status,
-                       thesis ? thesis->jankowski : nan}})
+      for (const StudyLaw &law : study_laws)
       {
-        nlohmann::ordered_json f;
-        f["status"] = *status;
-        if (*fit)
-        {
-          f["k_per_metre"]    = per_metre(*fit);
-          f["k_lower"]        = per_metre_bound(*fit, false);
-          f["k_upper"]        = per_metre_bound(*fit, true);
-          f["k_total"]        = per_metre(*fit) * scene.fit.width;
-          f["unit"]           = (*fit)->per_metre_unit();
-          f["normalised_rms"] = (*fit)->normalised_rms;
-          const double error  = numerical_error(h, std::string(law) == "kelvin_voigt" ? 1.0 : 1.5);
-          if (std::isfinite(error))
-            f["k_numerical_error"] = error;
-        }
+        nlohmann::ordered_json f         = law_json(h, law, scene.fit.width);
+        const double           reference = thesis ? (*thesis).*law.thesis : nan;
         if (std::isfinite(reference))
           f["thesis_table_2_1"] = reference;
-        row[law] = f;
+        row[law.name] = f;
       }
       table.push_back(row);
     }

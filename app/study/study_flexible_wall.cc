@@ -90,8 +90,8 @@ namespace kimp::app::study_internal
         logger().warn("{}: the wall's mode of the largest share ({} Hz) carries only {} % of "
                       "the static deflection at the slab; its SDOF is a rough model",
                       h.name,
-                      sig(fe.mode_frequency),
-                      sig(100 * fe.mode_share, 3));
+                      base::sig(fe.mode_frequency),
+                      base::sig(100 * fe.mode_share, 3));
     }
     catch (const std::exception &error)
     {
@@ -104,18 +104,18 @@ namespace kimp::app::study_internal
                     "mode {} of {} at {} Hz, {} % of the static deflection; wall + backfill {} "
                     "t/m); x W: k = {} MN/m, m = {} t; {} DoFs, {} s",
                     h.name,
-                    sig(sdof.stiffness_per_metre / 1e6),
-                    sig(sdof.mass_per_metre / 1e3),
-                    sig(sdof.frequency),
+                    base::sig(sdof.stiffness_per_metre / 1e6),
+                    base::sig(sdof.mass_per_metre / 1e3),
+                    base::sig(sdof.frequency),
                     sdof.mode + 1,
                     sdof.mode_frequencies.size(),
-                    sig(sdof.mode_frequency),
-                    sig(100 * sdof.mode_share, 3),
-                    sig(sdof.total_mass_per_metre / 1e3),
-                    sig(sdof.stiffness / 1e6),
-                    sig(sdof.mass / 1e3),
+                    base::sig(sdof.mode_frequency),
+                    base::sig(100 * sdof.mode_share, 3),
+                    base::sig(sdof.total_mass_per_metre / 1e3),
+                    base::sig(sdof.stiffness / 1e6),
+                    base::sig(sdof.mass / 1e3),
                     sdof.n_dofs,
-                    sig(sdof.seconds, 2));
+                    base::sig(sdof.seconds, 2));
     return sdof;
   }
 
@@ -155,7 +155,7 @@ namespace kimp::app::study_internal
       }
       catch (const std::exception &error)
       {
-        logger().warn("record {}: {}", none.record, error_text(error));
+        logger().warn("record {}: {}", none.record, base::error_text(error));
         continue;
       }
       const LumpedScene base = study_lumped_scene(scene, records[i]);

@@ -8,6 +8,7 @@
 #include "app/study/study_internal.h"
 #include "base/format.h"
 #include "io/results_file.h"
+#include "io/table.h"
 
 namespace kimp::app::study_internal
 {
@@ -178,68 +179,63 @@ namespace kimp::app::study_internal
   {
     if (result.wall_sdofs.empty())
       return;
-    std::vector<TableColumn> c = {{"wall_height", "m", {}},
-                                  {"stiffness_per_metre", "N/m/m", {}},
-                                  {"mass_per_metre", "kg/m", {}},
-                                  {"frequency", "Hz", {}},
-                                  {"participation_mass_per_metre", "kg/m", {}},
-                                  {"modal_sum_mass_per_metre", "kg/m", {}},
-                                  {"mode_frequency", "Hz", {}},
-                                  {"mode_share", "1", {}},
-                                  {"mode_mass_per_metre", "kg/m", {}},
-                                  {"wall_and_backfill_mass_per_metre", "kg/m", {}},
-                                  {"stiffness", "N/m", {}},
-                                  {"mass", "kg", {}},
-                                  {"damping_ratio", "1", {}},
-                                  {"h_contact", "m", {}},
-                                  {"ok", "1", {}}};
+    Table c;
+    c.number("wall_height", "m")
+      .number("stiffness_per_metre", "N/m/m")
+      .number("mass_per_metre", "kg/m")
+      .number("frequency", "Hz")
+      .number("participation_mass_per_metre", "kg/m")
+      .number("modal_sum_mass_per_metre", "kg/m")
+      .number("mode_frequency", "Hz")
+      .number("mode_share", "1")
+      .number("mode_mass_per_metre", "kg/m")
+      .number("wall_and_backfill_mass_per_metre", "kg/m")
+      .number("stiffness", "N/m")
+      .number("mass", "kg")
+      .number("damping_ratio", "1")
+      .number("h_contact", "m")
+      .number("ok", "1");
     for (const StudyWallSdof &s : result.wall_sdofs)
     {
       const bool ok = s.ok();
-      append_row(c,
-                 {s.wall_height,
-                  ok ? s.stiffness_per_metre : nan,
-                  ok ? s.mass_per_metre : nan,
-                  ok ? s.frequency : nan,
-                  ok ? s.participation_mass_per_metre : nan,
-                  ok ? s.modal_sum_mass_per_metre : nan,
-                  ok ? s.mode_frequency : nan,
-                  ok ? s.mode_share : nan,
-                  ok ? s.mode_mass_per_metre : nan,
-                  ok ? s.total_mass_per_metre : nan,
-                  ok ? s.stiffness : nan,
-                  ok ? s.mass : nan,
-                  s.damping_ratio,
-                  s.h_contact,
-                  ok ? 1.0 : 0.0});
+      c.add_row(number_cells({s.wall_height,
+                              ok ? s.stiffness_per_metre : nan,
+                              ok ? s.mass_per_metre : nan,
+                              ok ? s.frequency : nan,
+                              ok ? s.participation_mass_per_metre : nan,
+                              ok ? s.modal_sum_mass_per_metre : nan,
+                              ok ? s.mode_frequency : nan,
+                              ok ? s.mode_share : nan,
+                              ok ? s.mode_mass_per_metre : nan,
+                              ok ? s.total_mass_per_metre : nan,
+                              ok ? s.stiffness : nan,
+                              ok ? s.mass : nan,
+                              s.damping_ratio,
+                              s.h_contact,
+                              flag(ok)}));
     }
-    root.write_table("wall_sdof", c);
+    c.write_hdf5(root, "wall_sdof");
 
     // /flexible_wall/<record>/<law>: one row per wall height, rigid and flexible side by side.
-    std::map<std::pair<std::string, std::string>, std::vector<const StudyBuildingRun *>> tables;
-    for (const StudyBuildingRun &f : result.flexible_building)
-      if (f.status == "ok")
-        tables[{f.record, f.law}].push_back(&f);
-    for (const auto &[key, runs] : tables)
+    for (const auto &[key, runs] : by_record_and_law(result.flexible_building, true))
     {
-      std::vector<TableColumn> t = {{"wall_height", "m", {}},
-                                    {"wall_stiffness", "N/m", {}},
-                                    {"wall_mass", "kg", {}}};
+      Table t;
+      t.number("wall_height", "m").number("wall_stiffness", "N/m").number("wall_mass", "kg");
       for (const Quantity &q : quantities)
       {
         const std::string unit = std::string(q.csv_unit) == "m_per_s2" ? "m/s^2" :
                                  std::string(q.csv_unit) == "kN"       ? "N" :
                                                                          "m";
-        t.push_back({fmt::format("rigid_{}", q.name), unit, {}});
-        t.push_back({fmt::format("flexible_{}", q.name), unit, {}});
+        t.number(fmt::format("rigid_{}", q.name), unit)
+          .number(fmt::format("flexible_{}", q.name), unit);
       }
-      t.push_back({"peak_wall_displacement", "m", {}});
-      t.push_back({"energy_error", "1", {}});
+      t.number("peak_wall_displacement", "m").number("energy_error", "1");
       for (const StudyBuildingRun *f : runs)
       {
         const StudyBuildingRun *r = rigid_twin(result, *f);
         const StudyWallSdof    *s = sdof_of(result, f->wall_height);
-        std::vector<double>     v = {f->wall_height, s ? s->stiffness : nan, s ? s->mass : nan};
+        std::vector<Cell>       v =
+          number_cells({f->wall_height, s ? s->stiffness : nan, s ? s->mass : nan});
         for (const Quantity &q : quantities)
         {
           v.push_back(r && r->status == "ok" ? q.value(*r) : nan);
@@ -247,9 +243,10 @@ namespace kimp::app::study_internal
         }
         v.push_back(f->peak_wall_displacement);
         v.push_back(f->energy_error);
-        append_row(t, v);
+        t.add_row(std::move(v));
       }
-      root.group("flexible_wall").group(key.first).write_table(key.second, t);
+      ResultsGroup record = root.group("flexible_wall").group(key.first);
+      t.write_hdf5(record, key.second);
     }
   }
 

@@ -40,9 +40,9 @@ namespace kimp::app::study_internal
     // fidelity: auto. Every level keeps its FEM case and fits; the used one is reported.
     struct Computed
     {
-      FemCase   fem_case;
-      StudyFits fits;
-      bool      from_cache = false;
+      io::FemCase fem_case;
+      StudyFits   fits;
+      bool        from_cache = false;
     };
     std::vector<Computed> computed;
     // The material model chosen above (linear for an inelastic scene: cache names "_linear").

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -11,14 +12,14 @@
 
 #include "app/lumped_run.h"
 #include "app/study/study_run.h"
-#include "app/table_columns.h"
+#include "app/table_cells.h"
 #include "base/format.h"
-
-namespace kimp::io
-{
-  class ResultsGroup;
-  class Table;
-} // namespace kimp::io
+#include "base/logging.h"
+#include "fit/fitter.h"
+#include "io/output_dir.h"
+#include "io/results_file.h"
+#include "io/summary.h"
+#include "io/table.h"
 
 namespace kimp::app
 {
@@ -27,10 +28,18 @@ namespace kimp::app
 
 namespace kimp::app::study_internal
 {
-  // Every stage is written against the names of base, io and fit; declared here once.
-  using namespace kimp::base;
-  using namespace kimp::io;
-  using namespace kimp::fit;
+  // The names of base, io and fit every stage is written against.
+  using base::logger;
+  using fit::FitResult;
+  using fit::stiffness_display_unit;
+  using fit::stiffness_si_unit;
+  using fit::stiffness_to_kn_per_mm;
+  using io::Cell;
+  using io::OutputDir;
+  using io::ResultsFile;
+  using io::ResultsGroup;
+  using io::Table;
+  using io::write_csv_atomic;
 
   using Clock = std::chrono::steady_clock;
 
@@ -55,6 +64,67 @@ namespace kimp::app::study_internal
   double used_penalty(const StudyScene &scene, const StudyHeight &h);
   /// The fitted laws of `fits` and their statuses into `h` (its fit_seconds is the caller's).
   void set_fits(StudyHeight &h, StudyFits fits);
+  /// 1 for true, 0 for false (the flag columns of the HDF5 tables).
+  inline double flag(bool value)
+  {
+    return value ? 1.0 : 0.0;
+  }
+
+  /// One of the two laws fitted at every height: where a height and thesis Table 2.1 keep it.
+  struct StudyLaw
+  {
+    const char                   *name;           ///< "kelvin_voigt" or "jankowski"
+    double                        exponent;       ///< n of k in N/m^n
+    const char                   *per_metre_unit; ///< of k per metre, kN/mm^n/m
+    const char                   *total_unit;     ///< of k_total, kN/mm^n
+    std::optional<fit::FitResult> StudyHeight::*fit;
+    std::optional<fit::FitResult> StudyHeight::*linear; ///< the fit with linear materials
+    std::string StudyHeight::*status;
+    double ThesisStiffness::*thesis;
+  };
+
+  /// Kelvin-Voigt, then Jankowski's, in the order of every table and summary.
+  inline const StudyLaw study_laws[] = {{"kelvin_voigt",
+                                         1.0,
+                                         "kN/mm/m",
+                                         "kN/mm",
+                                         &StudyHeight::kelvin_voigt,
+                                         &StudyHeight::linear_kelvin_voigt,
+                                         &StudyHeight::kelvin_voigt_status,
+                                         &ThesisStiffness::kelvin_voigt},
+                                        {"jankowski",
+                                         1.5,
+                                         "kN/mm^1.5/m",
+                                         "kN/mm^1.5",
+                                         &StudyHeight::jankowski,
+                                         &StudyHeight::linear_jankowski,
+                                         &StudyHeight::jankowski_status,
+                                         &ThesisStiffness::jankowski}};
+
+  /// summary.json's object of `law` at `h`: status and, when fitted, k per metre with its 95 %
+  /// interval and unit and the numerical error; with `width` (m) also k_total and the fit's
+  /// normalised RMS.
+  nlohmann::ordered_json
+  law_json(const StudyHeight &h, const StudyLaw &law, std::optional<double> width = {});
+
+  /// Adds the columns `law`, `law`_lower and `law`_upper: k per metre and its 95 % interval.
+  void add_k_columns(Table &t, const StudyLaw &law);
+  /// Appends the cells of add_k_columns() for `fit` (NaN without a fit).
+  void add_k_cells(std::vector<Cell> &row, const std::optional<FitResult> &fit);
+
+  /// The runs by (record, law), the keys in order; with `only_ok`, only the runs whose status
+  /// is "ok" (a study.h5 table per record and law).
+  template <class Run>
+  std::map<std::pair<std::string, std::string>, std::vector<const Run *>>
+  by_record_and_law(const std::vector<Run> &runs, bool only_ok)
+  {
+    std::map<std::pair<std::string, std::string>, std::vector<const Run *>> groups;
+    for (const Run &r : runs)
+      if (!only_ok || r.status == "ok")
+        groups[{r.record, r.law}].push_back(&r);
+    return groups;
+  }
+
   /// Every value times `factor`.
   std::vector<double> scale(std::vector<double> values, double factor);
   /// A CSV cell: the shortest text that reads back to the same double, "" for NaN and infinities.

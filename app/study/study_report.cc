@@ -211,7 +211,7 @@ namespace kimp::app::study_internal
 
   std::string report_markdown(const StudyScene &scene, const StudyResult &result, bool charts)
   {
-    std::string md = "# kimp wall-height study\n\n" + version_line() + "\n\n";
+    std::string md = "# kimp wall-height study\n\n" + base::version_line() + "\n\n";
     for (const std::string &warning : result.warnings)
       md += "**Warning:** " + warning + ".\n\n";
     md += fmt::format("## Impact stiffness per wall height (fitted at COR {}, W = {} m)\n\n",
