@@ -51,9 +51,9 @@ namespace kimp::fem
    * What the perfectly plastic soil laws (Mohr-Coulomb, Drucker-Prager) share: the soil
    * parameters and Lame constants, and a history that starts with the plastic strain {xx, yy,
    * zz, gamma_xy}, the equivalent plastic strain and the plastic dissipation density (J/m^3).
-   * `Law` provides the return mapping `update(strain, committed, trial, tangent)` (stress, trial
-   * history and, if tangent != nullptr, the consistent tangent), which stress() and tangent()
-   * call.
+   * `Law` provides, public, the return mapping `update(strain, committed, trial, tangent)`
+   * (stress, trial history and, if tangent != nullptr, the consistent tangent), which stress() and
+   * tangent() call.
    */
   template <class Law>
   class PlasticSoilLaw : public BatchedLaw<Law>
@@ -99,15 +99,15 @@ namespace kimp::fem
     unsigned int n_history() const override { return 8; }
     /** Largest yield function value (Pa) at principal stresses {s1, s2, s3}. */
     double yield_function(const std::array<double, 3> &principal) const;
-
-  private:
-    friend PlasticSoilLaw;
-    /** Stress, trial history and (if tangent != nullptr) the consistent tangent. */
+    /** The return mapping: stress, trial history and (if tangent != nullptr) the consistent
+     *  tangent (PlasticSoilLaw's stress() and tangent() call it). */
     VoigtStress update(const VoigtStrain &strain,
                        const double      *committed,
                        double            *trial,
                        VoigtTangent      *tangent) const;
-    bool        exhaustive_;
+
+  private:
+    bool exhaustive_;
     /** The 9 planes a.sigma <= b in principal space (6 Mohr-Coulomb, 3 cut-off), their flow
      *  directions' images D g: constants of the law, computed once. */
     double a_[9][3], b_[9], dg_[9][3];
@@ -145,14 +145,14 @@ namespace kimp::fem
     double eta() const { return eta_; }
     double eta_bar() const { return eta_bar_; }
     double xi() const { return xi_; }
-
-  private:
-    friend PlasticSoilLaw;
+    /** The cone and apex returns, as MohrCoulombLaw::update(). */
     VoigtStress update(const VoigtStrain &strain,
                        const double      *committed,
                        double            *trial,
                        VoigtTangent      *tangent) const;
-    double      bulk_, eta_, eta_bar_, xi_;
+
+  private:
+    double bulk_, eta_, eta_bar_, xi_;
   };
 
   extern template class PlasticSoilLaw<MohrCoulombLaw>;

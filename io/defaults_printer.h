@@ -30,7 +30,6 @@ namespace kimp::io
 
     /// Writes the section's key and returns the printer of its keys.
     std::optional<DefaultsPrinter> open_section(std::string_view key, std::string_view doc);
-    void                           finish() {}
 
     /// An absent optional section is listed commented out, with the defaults of T.
     template <class T>

@@ -33,7 +33,6 @@ namespace kimp::io
 
     /// The writer of the object at `key`.
     std::optional<JsonWriter> open_section(std::string_view key, std::string_view doc);
-    void                      finish() {}
 
     template <class T>
     void optional_section(std::string_view key, std::optional<T> &value, std::string_view doc)
@@ -113,7 +112,6 @@ namespace kimp::io
 
     /// Appends a "section" entry and returns the writer of its keys.
     std::optional<SchemaWriter> open_section(std::string_view key, std::string_view doc);
-    void                        finish() {}
 
     /// Its `default` is the resolved JSON of the default value, or null when absent.
     template <class T>

@@ -106,21 +106,15 @@ namespace kimp::io
   public:
     /// Quantity with a unit, stored in SI; `unit` is the display unit (e.g. "MN/m"). A value
     /// written in a file outside `range` is refused by the reader (a default is not checked).
-    void quantity(std::string_view key,
-                  double          &value,
-                  std::string_view unit,
-                  std::string_view doc,
-                  const Range     &range = detail::unbounded())
-    {
-      self().value(Key{key, doc, unit, range}, &value);
-    }
-
-    /// Optional quantity: absent keeps the default, `null` clears it; `range` applies when set.
-    void quantity(std::string_view       key,
-                  std::optional<double> &value,
-                  std::string_view       unit,
-                  std::string_view       doc,
-                  const Range           &range = detail::unbounded())
+    /// `Q` is double, or std::optional<double>: absent keeps the default, `null` clears it;
+    /// `range` applies when set.
+    template <class Q>
+    std::enable_if_t<std::is_same_v<Q, double> || std::is_same_v<Q, std::optional<double>>>
+    quantity(std::string_view key,
+             Q               &value,
+             std::string_view unit,
+             std::string_view doc,
+             const Range     &range = detail::unbounded())
     {
       self().value(Key{key, doc, unit, range}, &value);
     }
@@ -197,6 +191,10 @@ namespace kimp::io
       self().value(Key{key, doc, {}, detail::unbounded()}, Member::Choice{&index, &names});
       value = table.at(index).second;
     }
+
+    /// Ends a section opened by open_section(); an Io with nothing to check or close there keeps
+    /// this one.
+    void finish() {}
 
     /// A section whose keys are those of visit(io, value).
     template <class T>

@@ -76,6 +76,15 @@ namespace kimp::lumped
       }
     };
 
+    /// The step sizes of one run's tiers, s (see AdaptiveCentralDifference).
+    struct StepSizes
+    {
+      double large;    ///< Δt_large: every contact open and far
+      double approach; ///< Δt_a: a gap closes within approach_time
+      double contact;  ///< Δt_c: a contact active or imminent
+      double stick;    ///< Δt_stick: a stick-slip isolator sticks
+    };
+
     /// Peaks inside one contact window.
     struct WindowPeaks
     {
@@ -108,19 +117,16 @@ namespace kimp::lumped
                   const CentralDifferenceOptions &cdm,
                   const AdaptiveStepOptions      &opt,
                   const GroundMotion             &g,
-                  const double                    dt_large,
-                  const double                    dt_approach,
-                  const double                    dt_contact,
-                  const double                    dt_stick)
+                  const StepSizes                &steps)
         : model_(model)
         , cdm_(cdm)
         , opt_(opt)
         , motion_(g)
         , n_(static_cast<Eigen::Index>(model.n_dofs()))
-        , big_(dt_large)
-        , fine_(dt_contact)
-        , approach_(dt_approach)
-        , stick_(dt_stick)
+        , big_(steps.large)
+        , fine_(steps.contact)
+        , approach_(steps.approach)
+        , stick_(steps.stick)
         , est_(opt.estimate_factor)
       {
         mass_          = Eigen::Map<const Vec>(model.masses().data(), n_);
@@ -967,18 +973,18 @@ namespace kimp::lumped
     if (!(motion.dt > 0.0) || motion.acceleration.empty())
       throw std::invalid_argument("ground motion '" + motion.name +
                                   "': dt must be > 0 and the record non-empty");
-    const double big      = large_step(motion.dt);
-    const double approach = std::min(big / 3.0, dt_approach_);
-    const double fine     = std::min(approach, dt_contact_);
-    const double stick =
-      std::min(big, options_.stick_step / std::max(stability_.omega_structure, 1e-300));
+    StepSizes steps;
+    steps.large    = large_step(motion.dt);
+    steps.approach = std::min(steps.large / 3.0, dt_approach_);
+    steps.contact  = std::min(steps.approach, dt_contact_);
+    steps.stick =
+      std::min(steps.large, options_.stick_step / std::max(stability_.omega_structure, 1e-300));
     const auto go = [&](auto &&run) { return run.run(report, replay, taken); };
     if (options_.reference_kernel)
-      return go(AdaptiveRun<Eigen::Dynamic,
-                            false>(model_, cdm_, options_, motion, big, approach, fine, stick));
+      return go(AdaptiveRun<Eigen::Dynamic, false>(model_, cdm_, options_, motion, steps));
 #define KIMP_ADAPTIVE_FIXED(n) \
   case n:                      \
-    return go(AdaptiveRun<n, true>(model_, cdm_, options_, motion, big, approach, fine, stick));
+    return go(AdaptiveRun<n, true>(model_, cdm_, options_, motion, steps));
     switch (model_.n_dofs())
     {
       KIMP_ADAPTIVE_FIXED(1)
@@ -990,8 +996,7 @@ namespace kimp::lumped
       KIMP_ADAPTIVE_FIXED(7)
       KIMP_ADAPTIVE_FIXED(8)
       default:
-        return go(AdaptiveRun<Eigen::Dynamic,
-                              true>(model_, cdm_, options_, motion, big, approach, fine, stick));
+        return go(AdaptiveRun<Eigen::Dynamic, true>(model_, cdm_, options_, motion, steps));
     }
 #undef KIMP_ADAPTIVE_FIXED
   }

@@ -70,8 +70,9 @@ namespace kimp::lumped
     double max_supplied() const { return max_supplied_; }
 
     /**
-     * Energy balance at a check point: stores initial, input, kinetic, strain, viscous,
-     * hysteretic and contact_work of `terms` in the Response and keeps the largest residual.
+     * Energy balance at a check point: stores `terms` (initial, input, kinetic, strain, viscous,
+     * hysteretic, contact_work; its end-of-run fields are set at the end) in the Response and
+     * keeps the largest residual.
      * @return the residual divided by max_supplied() (the history's energy_error)
      */
     double check_energy(const EnergyBalance &terms);

@@ -63,11 +63,10 @@ namespace kimp::lumped
     /// @throws std::invalid_argument if max_deformation <= 0.
     double stability_stiffness(double max_deformation) const override;
 
-  private:
-    friend ContactLaw;
     /// The law itself, called by ContactLaw::set_trial (see there for the contract).
     void evaluate(const ContactState &committed, ContactState &trial) const;
 
+  private:
     double force_u_;  ///< k_b·δ_u^n, N
     double energy_u_; ///< k_b·δ_u^(n+1)/(n+1), J
   };

@@ -36,9 +36,10 @@ namespace kimp::lumped
 
   /**
    * CRTP base implementing the ForceLaw state machine for a law `Derived` with parameters `P`
-   * (held as params_, returned by parameters()) that provides its name as
-   * `static constexpr const char *law_name` and
-   * `void evaluate(const ContactState& committed, ContactState& trial) const`.
+   * (held as params_, returned by parameters()) that provides, public, its name as
+   * `static constexpr const char *law_name` and the law itself as
+   * `void evaluate(const ContactState& committed, ContactState& trial) const` (const: it only
+   * fills the trial state it is given).
    * `evaluate` receives `trial` = committed state with the new δ, δ̇ and zeroed force, tangent,
    * elastic force, stored and released energy, and fills them (and any history it changes).
    *

@@ -44,12 +44,15 @@ namespace kimp::lumped
 
   std::unique_ptr<ForceLaw> make_force_law(const ForceLawSpec &spec)
   {
-    const std::string     &law = spec.law;
-    const DashpotLawParams dashpot{spec.stiffness, spec.cor, spec.effective_mass};
+    const std::string &law = spec.law;
+    // The parameters by their symbols; n(d): the exponent given, or the law's default d.
+    const double           k = spec.stiffness, cor = spec.cor, m_eff = spec.effective_mass;
+    const auto             n = [&](double d) { return spec.exponent.value_or(d); };
+    const DashpotLawParams dashpot{k, cor, m_eff};
     if (law == "linear")
     {
       require_fixed_exponent(spec, 1.0);
-      return std::make_unique<LinearElasticLaw>(LinearElasticLaw::Params{spec.stiffness});
+      return std::make_unique<LinearElasticLaw>(LinearElasticLaw::Params{k});
     }
     if (law == "kelvin_voigt")
     {
@@ -67,24 +70,17 @@ namespace kimp::lumped
       return std::make_unique<JankowskiLaw>(dashpot);
     }
     if (law == "hertzdamp")
-      return std::make_unique<HertzdampLaw>(HertzdampLaw::Params{spec.stiffness,
-                                                                 spec.exponent.value_or(1.5),
-                                                                 spec.cor,
-                                                                 spec.hertzdamp_ye});
+      return std::make_unique<HertzdampLaw>(
+        HertzdampLaw::Params{k, n(1.5), cor, spec.hertzdamp_ye});
     if (law == "hysteretic")
-      return std::make_unique<HystereticLaw>(HystereticLaw::Params{spec.stiffness,
-                                                                   spec.exponent.value_or(1.5),
-                                                                   spec.cor,
-                                                                   spec.effective_mass,
-                                                                   spec.impact_a1});
+      return std::make_unique<HystereticLaw>(
+        HystereticLaw::Params{k, n(1.5), cor, m_eff, spec.impact_a1});
     if (law == "bumper")
-      return std::make_unique<BumperLaw>(BumperLaw::Params{spec.stiffness,
-                                                           spec.exponent.value_or(2.65),
-                                                           spec.bumper_ultimate_deformation,
-                                                           spec.bumper_wall_stiffness,
-                                                           spec.cor,
-                                                           spec.effective_mass,
-                                                           spec.impact_a1});
+    {
+      const double delta_u = spec.bumper_ultimate_deformation, k_w = spec.bumper_wall_stiffness;
+      return std::make_unique<BumperLaw>(
+        BumperLaw::Params{k, n(2.65), delta_u, k_w, cor, m_eff, spec.impact_a1});
+    }
 
     std::ostringstream msg;
     msg << "force law: law = '" << law << "' (must be one of";

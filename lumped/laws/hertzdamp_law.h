@@ -48,11 +48,10 @@ namespace kimp::lumped
     /// β of the header formula.
     double damping_factor() const { return beta_; }
 
-  private:
-    friend ContactLaw;
     /// The law itself, called by ContactLaw::set_trial (see there for the contract).
     void evaluate(const ContactState &committed, ContactState &trial) const;
 
+  private:
     double beta_;
   };
 } // namespace kimp::lumped

@@ -110,8 +110,6 @@ namespace kimp::lumped
     /// @throws std::invalid_argument if max_deformation <= 0 and n > 1.
     double stability_stiffness(double max_deformation) const override;
 
-  private:
-    friend ContactLaw;
     /// The law itself, called by ContactLaw::set_trial (see there for the contract).
     void evaluate(const ContactState &committed, ContactState &trial) const;
   };

@@ -40,11 +40,10 @@ namespace kimp::lumped
     /// @throws std::invalid_argument if max_deformation <= 0.
     double stability_stiffness(double max_deformation) const override;
 
-  private:
-    friend ContactLaw;
     /// The law itself, called by ContactLaw::set_trial (see there for the contract).
     void evaluate(const ContactState &committed, ContactState &trial) const;
 
+  private:
     double damping_ratio_;
     double damping_scale_; ///< 2ξ·sqrt(k·m_eff), c = damping_scale_·δ^0.25
   };

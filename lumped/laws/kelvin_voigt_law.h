@@ -70,8 +70,6 @@ namespace kimp::lumped
     static constexpr const char *law_name = "kelvin_voigt";
     using SpringDashpotLaw::SpringDashpotLaw;
 
-  private:
-    friend ContactLaw;
     /// The law itself, called by ContactLaw::set_trial (see there for the contract).
     void evaluate(const ContactState &committed, ContactState &trial) const;
   };

@@ -9,11 +9,6 @@ namespace kimp::lumped
     detail::require_positive(name(), "k", params_.stiffness, "N/m");
   }
 
-  double LinearElasticLaw::stability_stiffness(double /*max_deformation*/) const
-  {
-    return params_.stiffness;
-  }
-
   void LinearElasticLaw::evaluate(const ContactState &committed, ContactState &trial) const
   {
     const double x = trial.deformation;

@@ -32,10 +32,11 @@ namespace kimp::lumped
     explicit LinearElasticLaw(const Params &params);
 
     /// k (N/m) whatever the deformation.
-    double stability_stiffness(double max_deformation) const override;
+    double stability_stiffness(double /*max_deformation*/) const override
+    {
+      return params_.stiffness;
+    }
 
-  private:
-    friend ContactLaw;
     /// The law itself, called by ContactLaw::set_trial (see there for the contract).
     void evaluate(const ContactState &committed, ContactState &trial) const;
   };
