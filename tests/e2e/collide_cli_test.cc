@@ -89,3 +89,33 @@ TEST(CollideCli, SceneChangesTheSetUpAndBadSceneIsRejected)
   EXPECT_NE(bad.err.find("bad.yaml:4: laws[0].k = 2500 kN/mm"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(dir / "bad" / "cor_table.csv"));
 }
+
+TEST(CollideCli, CalibrateFitsTheImpactCoefficientOnlyWhenAsked)
+{
+  // A 2 x 2 x 2 grid of the C_imp calibration (docs/physics.md, "Calibration of C_imp"): with an
+  // elastic approach branch the loop area scales as v_imp² and m_eff hardly matters, so the fit
+  // a1 = c/(COR^p1 m_eff^p2 v_imp^p3) gives p3 -> 1, p2 -> 0 and reproduces every point.
+  const TempDir   temp_dir("e2e_collide_calibrate");
+  const fs::path &dir = temp_dir.path();
+  write_text(dir / "c.yaml",
+             "laws:\n"
+             "  - name: kv\n"
+             "    law: kelvin_voigt\n"
+             "calibration:\n"
+             "  cor_grid: [0.5, 0.8]\n"
+             "  velocity_grid: [\"0.5 m/s\", \"1.5 m/s\"]\n"
+             "  mass_grid: [\"200 t\", \"600 t\"]\n");
+  const KimpRun with = run_kimp("collide c.yaml -o with --calibrate", dir);
+  ASSERT_EQ(with.exit_code, 0) << with.err;
+  const nlohmann::json c = read_json(dir / "with" / "summary.json").at("calibration");
+  EXPECT_EQ(c["n_points"].get<int>(), 8);
+  EXPECT_GT(c["r_squared"].get<double>(), 0.9999);
+  EXPECT_NEAR(c["fit"]["p3"].get<double>(), 1.0, 0.01);
+  EXPECT_NEAR(c["fit"]["p2"].get<double>(), 0.0, 0.01);
+  EXPECT_LT(c["max_cor_error_fit"].get<double>(), 1e-3);
+  EXPECT_DOUBLE_EQ(c["thesis"]["c"].get<double>(), 1.55);
+
+  const KimpRun without = run_kimp("collide c.yaml -o without", dir);
+  ASSERT_EQ(without.exit_code, 0) << without.err;
+  EXPECT_FALSE(read_json(dir / "without" / "summary.json").contains("calibration"));
+}
