@@ -50,7 +50,7 @@ async function main() {
     for (const [key, value] of Object.entries(expected)) {
       const shown = peaks.find((p) => p.key === key);
       check(
-        shown && Number(shown.text) === Number((value * shown.scale).toPrecision(6)),
+        shown && Number(shown.text) === Number((value * shown.scale).toPrecision(4)),
         `peak ${key} on the page (${shown && shown.text}) equals summary.json (${value})`,
       );
     }

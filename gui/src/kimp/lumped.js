@@ -112,13 +112,14 @@
     ].concat(contactNames.map((n) => `peak force ${n} (MN)`));
     const rows = cases.map((c) => {
       const s = c.summary;
+      // 4 significant figures on the page; the SI value in full in data-si (and in summary.json).
       const cell = (v, scale, key) =>
         el('span', {
           class: 'peak',
           'data-key': key,
           'data-si': String(v),
           'data-scale': String(scale),
-          text: fmt(v * scale, 6),
+          text: fmt(v * scale, 4),
         });
       const top = c.nMain - 1;
       return [
