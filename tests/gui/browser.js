@@ -83,6 +83,19 @@ async function setInput(page, selector, value, bubbles = false) {
   );
 }
 
+/**
+ * Set inputs of the Ground-motion tab in order (each change is one request to POST /api/motion)
+ * and wait for the answer to the last one: the motion drawn has `samples` samples.
+ */
+async function setMotionInputs(page, inputs, samples) {
+  for (const [selector, value] of inputs) await setInput(page, selector, value);
+  await page.waitForFunction(
+    (n) => Number(document.querySelector('#motion-info').dataset.samples) === n,
+    { timeout: 15000 },
+    samples,
+  );
+}
+
 /** Set a text field of the scene form and fire its change event. */
 async function setField(page, fieldPath, value) {
   await setInput(
@@ -130,4 +143,15 @@ function runMain(main) {
   });
 }
 
-module.exports = { launch, watchedPage, waitForFile, check, startServer, setInput, setField, withGuiPage, runMain };
+module.exports = {
+  launch,
+  watchedPage,
+  waitForFile,
+  check,
+  startServer,
+  setInput,
+  setMotionInputs,
+  setField,
+  withGuiPage,
+  runMain,
+};

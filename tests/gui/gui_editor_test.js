@@ -7,7 +7,7 @@
 'use strict';
 const fs = require('fs');
 const path = require('path');
-const { check, setInput, setField, withGuiPage, runMain } = require('./browser.js');
+const { check, setMotionInputs, setField, withGuiPage, runMain } = require('./browser.js');
 
 const G = 9.80665;
 
@@ -74,17 +74,9 @@ async function main() {
     check(Math.abs(pga0 - peak) < 1e-9, `PGA of the upload ${pga0} g = largest sample ${peak} g`);
     const nCharts = await page.$$eval('#motion-charts .chart', (c) => c.length);
     check(nCharts === 3, `acceleration, velocity and displacement drawn (${nCharts} charts)`);
-    // Scale 0.5 and a duration in ms: the page shows what the run will use.
-    for (const [id, v] of [
-      ['#motion-scale', '0.5'],
-      ['#motion-duration', '5000 ms'],
-    ])
-      await setInput(page, id, v);
-    // Two changes, two requests to the server: wait for the answer to the last one (the duration;
-    // the page draws only the latest answer), not for the first that halves the PGA.
-    await page.waitForFunction(() => Number(document.querySelector('#motion-info').dataset.samples) === 500, {
-      timeout: 15000,
-    });
+    // Scale 0.5 and a duration in ms: the page shows what the run will use (the answer to the last
+    // change: the page draws only the latest answer of the server).
+    await setMotionInputs(page, [['#motion-scale', '0.5'], ['#motion-duration', '5000 ms']], 500);
     const pga = await page.$eval('#motion-info', (e) => Number(e.dataset.pga));
     const samples = await page.$eval('#motion-info', (e) => Number(e.dataset.samples));
     check(Math.abs(pga - 0.5 * pga0) < 1e-12, `scale 0.5 halves the PGA shown (${pga0} -> ${pga} g)`);

@@ -9,7 +9,7 @@
 'use strict';
 const fs = require('fs');
 const path = require('path');
-const { launch, watchedPage, check, startServer, setInput } = require('./browser.js');
+const { launch, watchedPage, check, startServer, setMotionInputs } = require('./browser.js');
 
 async function main() {
   const [kimpExe, artefacts] = process.argv.slice(2);
@@ -64,14 +64,7 @@ async function main() {
     );
 
     // Scale to 0.3 g and trim to 6 s: the server scales and trims as the run does.
-    for (const [id, v] of [
-      ['#motion-scale-to-pga', '0.3 g'],
-      ['#motion-duration', '6000 ms'],
-    ])
-      await setInput(page, id, v);
-    await page.waitForFunction(() => Number(document.querySelector('#motion-info').dataset.samples) === 1200, {
-      timeout: 15000,
-    });
+    await setMotionInputs(page, [['#motion-scale-to-pga', '0.3 g'], ['#motion-duration', '6000 ms']], 1200);
     const scaled = await page.$eval('#motion-info', (e) => Number(e.dataset.pga));
     check(Math.abs(scaled - 0.3) <= 1e-12 * 0.3, `scale_to_pga "0.3 g": PGA ${scaled} g`);
     const yaml = await page.$eval('#scene-yaml', (t) => t.value);
@@ -92,23 +85,15 @@ async function main() {
     check(Math.abs(recordPga - 0.3) <= 1e-12 * 0.3, `record scaled to PGA 0.3 g: ${recordPga} g`);
     check(recordSamples === 400, `the record's 4 s kept under a 6 s duration (${recordSamples} samples)`);
     // No scale to PGA, scale 2 and 3 s: twice its peak of 0.3 g, the first 300 samples.
-    for (const [id, v] of [
-      ['#motion-scale-to-pga', ''],
-      ['#motion-scale', '2'],
-      ['#motion-duration', '3 s'],
-    ]) {
-      await page.$eval(
-        id,
-        (input, value) => {
-          input.value = value;
-          input.dispatchEvent(new Event('change'));
-        },
-        v,
-      );
-    }
-    await page.waitForFunction(() => Number(document.querySelector('#motion-info').dataset.samples) === 300, {
-      timeout: 15000,
-    });
+    await setMotionInputs(
+      page,
+      [
+        ['#motion-scale-to-pga', ''],
+        ['#motion-scale', '2'],
+        ['#motion-duration', '3 s'],
+      ],
+      300,
+    );
     const doubled = await page.$eval('#motion-info', (e) => Number(e.dataset.pga));
     check(Math.abs(doubled - 0.6) <= 1e-12 * 0.6, `scale 2 of the 0.3 g record: PGA ${doubled} g`);
     const recordYaml = await page.$eval('#scene-yaml', (t) => t.value);
