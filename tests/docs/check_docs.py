@@ -62,10 +62,12 @@ def spans(text):
             in_block = not in_block
             continue
         if in_block:
-            yield number, line
+            if re.match(r"\s*(\$ )?(\./build/|build/)?(kimp |mpirun )", line):
+                yield number, line
         else:
             for m in re.finditer(r"`([^`]+)`", line):
-                yield number, m.group(1)
+                if re.match(r"(\./build/|build/)?(kimp |mpirun )", m.group(1)):
+                    yield number, m.group(1)
 
 
 def check_commands(path, text, known):
