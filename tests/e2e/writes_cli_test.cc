@@ -106,8 +106,9 @@ TEST(WritesCli, StdoutOnAFullDiskExitsOneWithOneLine)
   printing.emplace_back("lumped scene.yaml --check");
   for (const std::string &arguments : printing)
   {
-    const int exit_code   = run_command("cd '" + dir.path().string() + "' && " + kimp_executable() +
-                                        " " + arguments + " 2> stderr.txt > /dev/full",
+    // In a subshell: run_command()'s own redirection of the output then stays outside.
+    const int exit_code = run_command("(cd '" + dir.path().string() + "' && " + kimp_executable() +
+                                        " " + arguments + " 2> stderr.txt > /dev/full)",
                                       "/dev/null");
     const std::string err = read_text(dir.path() / "stderr.txt");
     std::string       line;
