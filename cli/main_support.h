@@ -122,7 +122,7 @@ namespace kimp::cli
    * for what MPI or a library may still print); returns `exit_code`, or after a failed write or
    * close 1 with the line "error: cannot write to standard output: <reason>", or
    * broken_pipe_exit_code, silently, when the reader of a pipe has gone (EPIPE: SIGPIPE is
-   * ignored so that a run still writes its files).
+   * ignored so that a run still writes its files). A command that failed keeps its exit code.
    */
   inline int finish_stdout(CheckedStdout &buffer, int exit_code)
   {
@@ -142,7 +142,7 @@ namespace kimp::cli
     if (error == 0)
       return exit_code;
     if (error == EPIPE)
-      return broken_pipe_exit_code;
+      return exit_code == 0 ? broken_pipe_exit_code : exit_code;
     if (exit_code == 0)
       std::cerr << "error: cannot write to standard output: " << std::strerror(error) << std::endl;
     return exit_code == 0 ? 1 : exit_code;
