@@ -2,6 +2,7 @@
 #include "lumped/plan/plan_moat.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -116,6 +117,9 @@ namespace kimp::lumped::plan
     const std::size_t ns = slab.size(), nw = wall.size();
     const int         np = moat.points_per_edge;
 
+    // Vertex j of the counter-clockwise wall polygon is convex (seen from inside the moat).
+    const auto convex = [&](const std::size_t j)
+    { return cross(wall[j] - wall[(j + nw - 1) % nw], wall[(j + 1) % nw] - wall[j]) > 0.0; };
     std::vector<PlanContact> contacts;
     for (std::size_t e = 0; e < ns; ++e)
     {
@@ -146,9 +150,12 @@ namespace kimp::lumped::plan
           c.tangent_row                        = t.transpose() * tk;
           c.gap                                = m.dot(wa) - m.dot(c.position);
           c.s_rest                             = t.dot(c.position);
-          c.s_lo                               = t.dot(wa);
-          c.s_hi                               = t.dot(wb);
-          c.weight            = (k == 0 || k == np - 1 ? 0.5 : 1.0) / static_cast<double>(np - 1);
+          // At a convex corner of the wall the next face continues the wall: a point past the
+          // end of this face is inside the corner block and still meets its line. Only a
+          // reflex (re-entrant) corner ends the face.
+          c.s_lo   = convex(j) ? -std::numeric_limits<double>::infinity() : t.dot(wa);
+          c.s_hi   = convex((j + 1) % nw) ? std::numeric_limits<double>::infinity() : t.dot(wb);
+          c.weight = (k == 0 || k == np - 1 ? 0.5 : 1.0) / static_cast<double>(np - 1);
           c.effective_mass    = m_eff;
           const double inv_mt = c.tangent_row(0) * c.tangent_row(0) / m0 +
                                 c.tangent_row(1) * c.tangent_row(1) / m0 +

@@ -55,7 +55,9 @@ namespace kimp::lumped::plan
   /**
    * One contact point of the slab against one wall face. With q_0 the DOFs of level 0:
    * δ = n_row·q_0 − gap (interpenetration, > 0 in contact), s = s_rest + t_row·q_0 its
-   * coordinate along the face (in contact only while s_lo <= s <= s_hi).
+   * coordinate along the face (in contact only while s_lo <= s <= s_hi; a face ends only at a
+   * re-entrant corner of the wall, at a convex one the limit is infinite: past it the point is
+   * inside the corner block and meets both faces).
    */
   struct PlanContact
   {
