@@ -126,9 +126,28 @@ namespace kimp::lumped::plan
 
       // corners of each level at rest and their kinematics
       std::vector<std::vector<Eigen::Matrix<double, 2, 3>>> corner_t_;
-      std::vector<Eigen::Matrix<double, 2, 3>>              cm_t_upper_, cm_t_lower_;
-      std::vector<std::vector<Eigen::Matrix<double, 2, 3>>> corner_t_lower_;
-      std::vector<int>                                      storey_lower_, storey_upper_;
+      std::vector<double>                                   corner_sq_, drift_sq_;
+      /// A corner of a level: the level's first DOF and the corner from its centre of mass.
+      struct CornerRef
+      {
+        int   level = 0;
+        Point r;
+      };
+      /// A point of a storey's upper level (a corner, or its centre of mass if `centre`): the
+      /// first DOFs of the two levels (lower −1: the ground) and the point from their centres.
+      struct CornerDrift
+      {
+        std::size_t storey = 0;
+        int         upper = 0, lower = -1;
+        Point       a, b;
+        bool        centre = false;
+      };
+      std::vector<CornerRef>   corners_;
+      std::vector<CornerDrift> corner_drifts_;
+      /// corners_ of level l: [corner_first_[l], corner_first_[l + 1]); drift_first_ likewise.
+      std::vector<std::size_t> corner_first_, drift_first_;
+      /// C by 3×3 blocks: level l and levels l, l + 1.
+      std::vector<Eigen::Matrix3d> c_diag_, c_upper_;
 
       // energies
       double w_in_ = 0.0, w_visc_ = 0.0, w_contact_ = 0.0, w_friction_ = 0.0;
@@ -198,31 +217,36 @@ namespace kimp::lumped::plan
       called_.assign(nc, 1); // the first step takes the laws as they are (planar integrator)
       wall_force_.assign(model_.moat() ? model_.moat()->wall.size() : 0, 0.0);
 
-      // Kinematics of the corners and of the storeys' reference points.
+      // The corners and the storeys' reference points.
       const PlanBuilding &b = model_.building();
       for (std::size_t l = 0; l < b.n_levels(); ++l)
       {
+        const Point cm = b.levels[l].centre_of_mass();
+        corner_first_.push_back(corners_.size());
         corner_t_.emplace_back();
         for (const Point &p : b.levels[l].outline)
+        {
           corner_t_.back().push_back(level_kinematics(b, l, p));
+          corners_.push_back({static_cast<int>(3 * l), p - cm});
+        }
       }
+      corner_first_.push_back(corners_.size());
       const int offset = b.is_isolated() ? 1 : 0;
       for (std::size_t s = 0; s < b.storeys.size(); ++s)
       {
-        const int   upper = static_cast<int>(s) + offset, lower = upper - 1;
-        const Point cm = b.levels[static_cast<std::size_t>(upper)].centre_of_mass();
-        storey_upper_.push_back(upper);
-        storey_lower_.push_back(lower);
-        cm_t_upper_.push_back(level_kinematics(b, static_cast<std::size_t>(upper), cm));
-        cm_t_lower_.push_back(lower >= 0 ?
-                                level_kinematics(b, static_cast<std::size_t>(lower), cm) :
-                                Eigen::Matrix<double, 2, 3>::Zero());
-        corner_t_lower_.emplace_back();
-        for (const Point &p : b.levels[static_cast<std::size_t>(upper)].outline)
-          corner_t_lower_.back().push_back(
-            lower >= 0 ? level_kinematics(b, static_cast<std::size_t>(lower), p) :
-                         Eigen::Matrix<double, 2, 3>::Zero());
+        drift_first_.push_back(corner_drifts_.size());
+        const int        upper = static_cast<int>(s) + offset, lower = upper - 1;
+        const PlanLevel &lu = b.levels[static_cast<std::size_t>(upper)];
+        const Point      cu = lu.centre_of_mass();
+        const Point      cl =
+          lower >= 0 ? b.levels[static_cast<std::size_t>(lower)].centre_of_mass() : Point::Zero();
+        corner_drifts_.push_back(
+          {s, 3 * upper, lower >= 0 ? 3 * lower : -1, cu - cu, cu - cl, true});
+        for (const Point &p : lu.outline)
+          corner_drifts_.push_back(
+            {s, 3 * upper, lower >= 0 ? 3 * lower : -1, p - cu, p - cl, false});
       }
+      drift_first_.push_back(corner_drifts_.size());
 
       const double ratio = g.dt / dt_;
       sub_               = std::lround(ratio);
@@ -245,6 +269,18 @@ namespace kimp::lumped::plan
       out_.peak_drift_y.assign(b.storeys.size(), 0.0);
       out_.peak_corner_drift.assign(b.storeys.size(), 0.0);
       out_.peak_wall_force.assign(wall_force_.size(), 0.0);
+      corner_sq_.assign(b.n_levels(), 0.0);
+      drift_sq_.assign(b.storeys.size(), 0.0);
+      for (std::size_t l = 0; l < b.n_levels(); ++l)
+      {
+        const auto r = static_cast<Eigen::Index>(3 * l);
+        c_diag_.push_back(c.block<3, 3>(r, r));
+        if (l + 1 < b.n_levels())
+          c_upper_.push_back(c.block<3, 3>(r, r + 3));
+        // Blocks beyond the neighbouring level must vanish (Rayleigh of a block-tridiagonal K).
+        if (r + 6 < nn && !c.block(r, r + 6, 3, nn - r - 6).isZero(0.0))
+          throw std::logic_error("central difference in plan: C is not block-tridiagonal");
+      }
       for (const PlanContact &pc : model_.contacts())
       {
         PlanContactResult r;
@@ -413,30 +449,56 @@ namespace kimp::lumped::plan
         out_.peak_absolute_acceleration[i] =
           std::max(out_.peak_absolute_acceleration[i], std::abs(a_(e)));
       }
-      for (std::size_t l = 0; l < corner_t_.size(); ++l)
+      // Peaks of the corner displacements and drifts as squares (the roots at the end), in
+      // scalars: d = (u_x − θ·r_y, u_y + θ·r_x) with r the corner from the centre of mass.
+      // (Maxima in registers, one store per level: the stores of a running maximum in memory
+      // stall on their own reloads.)
+      const double *u = u_n_.data();
+      for (std::size_t l = 0; l < corner_sq_.size(); ++l)
       {
-        const Eigen::Vector3d q = u_n_.segment<3>(static_cast<Eigen::Index>(3 * l));
-        for (const auto &t : corner_t_[l])
-          out_.peak_corner_displacement[l] =
-            std::max(out_.peak_corner_displacement[l], (t * q).norm());
+        double      m = corner_sq_[l];
+        const auto *c = corners_.data() + corner_first_[l];
+        const auto *e = corners_.data() + corner_first_[l + 1];
+        for (; c != e; ++c)
+        {
+          const double *q  = u + c->level;
+          const double  dx = q[0] - q[2] * c->r.y(), dy = q[1] + q[2] * c->r.x();
+          m = std::max(m, dx * dx + dy * dy);
+        }
+        corner_sq_[l] = m;
       }
-      for (std::size_t s = 0; s < storey_upper_.size(); ++s)
+      for (std::size_t s = 0; s < drift_sq_.size(); ++s)
       {
-        const Eigen::Vector3d qu = u_n_.segment<3>(3 * storey_upper_[s]);
-        const Eigen::Vector3d ql = storey_lower_[s] >= 0 ?
-                                     Eigen::Vector3d(u_n_.segment<3>(3 * storey_lower_[s])) :
-                                     Eigen::Vector3d::Zero();
-        const Point           d  = cm_t_upper_[s] * qu - cm_t_lower_[s] * ql;
-        out_.peak_drift_x[s]     = std::max(out_.peak_drift_x[s], std::abs(d.x()));
-        out_.peak_drift_y[s]     = std::max(out_.peak_drift_y[s], std::abs(d.y()));
-        const auto &tu           = corner_t_[static_cast<std::size_t>(storey_upper_[s])];
-        for (std::size_t k = 0; k < tu.size(); ++k)
-          out_.peak_corner_drift[s] =
-            std::max(out_.peak_corner_drift[s], (tu[k] * qu - corner_t_lower_[s][k] * ql).norm());
+        double      m = drift_sq_[s];
+        const auto *c = corner_drifts_.data() + drift_first_[s];
+        const auto *e = corner_drifts_.data() + drift_first_[s + 1];
+        for (; c != e; ++c)
+        {
+          const double *qu = u + c->upper;
+          const double  lx = c->lower >= 0 ? u[c->lower] - u[c->lower + 2] * c->b.y() : 0.0;
+          const double  ly = c->lower >= 0 ? u[c->lower + 1] + u[c->lower + 2] * c->b.x() : 0.0;
+          const double  dx = qu[0] - qu[2] * c->a.y() - lx, dy = qu[1] + qu[2] * c->a.x() - ly;
+          if (c->centre)
+          {
+            out_.peak_drift_x[s] = std::max(out_.peak_drift_x[s], std::abs(dx));
+            out_.peak_drift_y[s] = std::max(out_.peak_drift_y[s], std::abs(dy));
+          }
+          else
+            m = std::max(m, dx * dx + dy * dy);
+        }
+        drift_sq_[s] = m;
       }
-      // Input and viscous power at t_n, trapezoid sums from t_0.
+      // Input and viscous power at t_n, trapezoid sums from t_0; vᵀCv with C block-tridiagonal
+      // by levels (storeys join consecutive levels).
       const double p_in   = -(rx_m_.dot(v_) * ag_x + ry_m_.dot(v_) * ag_y);
-      const double p_visc = v_.dot(model_.damping() * v_);
+      double       p_visc = 0.0;
+      for (std::size_t l = 0; l < c_diag_.size(); ++l)
+      {
+        const Eigen::Vector3d vl = v_.segment<3>(static_cast<Eigen::Index>(3 * l));
+        p_visc += vl.dot(c_diag_[l] * vl);
+        if (l + 1 < c_diag_.size())
+          p_visc += 2.0 * vl.dot(c_upper_[l] * v_.segment<3>(static_cast<Eigen::Index>(3 * l + 3)));
+      }
       if (n > 0)
       {
         w_in_ += 0.5 * dt_ * (p_in_prev_ + p_in);
@@ -593,6 +655,10 @@ namespace kimp::lumped::plan
           model_.contacts()[c].weight * laws_[c]->dissipated_energy();
         e.impact_dissipated += out_.contacts[c].dissipated_energy;
       }
+      for (std::size_t l = 0; l < corner_sq_.size(); ++l)
+        out_.peak_corner_displacement[l] = std::sqrt(corner_sq_[l]);
+      for (std::size_t q = 0; q < drift_sq_.size(); ++q)
+        out_.peak_corner_drift[q] = std::sqrt(drift_sq_[q]);
       e.relative_error     = last_error_;
       e.max_relative_error = max_residual_ / std::max(max_supplied_, 1e-300);
       return out_;
