@@ -390,13 +390,16 @@ namespace kimp::lumped::plan
       for (std::size_t c = 0; c < laws_.size(); ++c)
       {
         const PlanContact &pc = model_.contacts()[c];
-        const double       s  = pc.s_rest + pc.tangent_row.dot(q0);
-        const double       s1 = pc.s_rest + pc.tangent_row.dot(q1);
+        // The sliding coordinate only where it matters: a face with an end, a contact, friction.
+        const bool ends = pc.s_lo > -std::numeric_limits<double>::infinity() ||
+                          pc.s_hi < std::numeric_limits<double>::infinity();
+        const auto s_at = [&](const Eigen::Vector3d &q)
+        { return pc.s_rest + pc.tangent_row.dot(q); };
         // Beyond the ends of its face a point meets nothing: the law sees the gap at rest.
-        const bool   on_face = s >= pc.s_lo && s <= pc.s_hi;
+        const bool   on_face = !ends || (s_at(q0) >= pc.s_lo && s_at(q0) <= pc.s_hi);
         const double delta   = on_face ? pc.normal_row.dot(q0) - pc.gap : -pc.gap;
         if (delta > 0.0 || active_[c])
-          contact(c, delta, s, s1, t);
+          contact(c, delta, s_at(q0), s_at(q1), t);
         else
         {
           called_[c] = 0;
@@ -407,7 +410,7 @@ namespace kimp::lumped::plan
           }
           if (phi_[c] != 0.0)
           {
-            const double work = 0.5 * phi_[c] * (s - s1);
+            const double work = 0.5 * phi_[c] * (s_at(q0) - s_at(q1));
             w_friction_ += work;
             out_.contacts[c].friction_work += work;
             phi_[c] = 0.0;
