@@ -146,6 +146,17 @@ namespace kimp::lumped::plan
       std::vector<CornerDrift> corner_drifts_;
       /// corners_ of level l: [corner_first_[l], corner_first_[l + 1]); drift_first_ likewise.
       std::vector<std::size_t> corner_first_, drift_first_;
+      /// Per level the largest squared distance of a corner from the centre of mass, m².
+      std::vector<double> corner_r2_;
+      /// Per storey: the levels' first DOFs and the largest squared lever arms from the upper
+      /// and lower centres of mass over the upper level's corners (and its centre), m².
+      struct DriftBound
+      {
+        int    upper = 0, lower = -1;
+        double a2 = 0.0, b2 = 0.0;
+      };
+      std::vector<DriftBound> drift_bound_;
+      Eigen::VectorXd         peak_u_, peak_a_;
       /// C by 3×3 blocks: level l and levels l, l + 1.
       std::vector<Eigen::Matrix3d> c_diag_, c_upper_;
 
@@ -222,13 +233,16 @@ namespace kimp::lumped::plan
       for (std::size_t l = 0; l < b.n_levels(); ++l)
       {
         const Point cm = b.levels[l].centre_of_mass();
+        double      r2 = 0.0;
         corner_first_.push_back(corners_.size());
         corner_t_.emplace_back();
         for (const Point &p : b.levels[l].outline)
         {
           corner_t_.back().push_back(level_kinematics(b, l, p));
           corners_.push_back({static_cast<int>(3 * l), p - cm});
+          r2 = std::max(r2, (p - cm).squaredNorm());
         }
+        corner_r2_.push_back(r2);
       }
       corner_first_.push_back(corners_.size());
       const int offset = b.is_isolated() ? 1 : 0;
@@ -242,9 +256,15 @@ namespace kimp::lumped::plan
           lower >= 0 ? b.levels[static_cast<std::size_t>(lower)].centre_of_mass() : Point::Zero();
         corner_drifts_.push_back(
           {s, 3 * upper, lower >= 0 ? 3 * lower : -1, cu - cu, cu - cl, true});
+        DriftBound bound{3 * upper, lower >= 0 ? 3 * lower : -1, 0.0, (cu - cl).squaredNorm()};
         for (const Point &p : lu.outline)
+        {
           corner_drifts_.push_back(
             {s, 3 * upper, lower >= 0 ? 3 * lower : -1, p - cu, p - cl, false});
+          bound.a2 = std::max(bound.a2, (p - cu).squaredNorm());
+          bound.b2 = std::max(bound.b2, (p - cl).squaredNorm());
+        }
+        drift_bound_.push_back(bound);
       }
       drift_first_.push_back(corner_drifts_.size());
 
@@ -259,7 +279,9 @@ namespace kimp::lumped::plan
 
       u_nm2_ = u_nm1_ = u_n_ = u_np1_ = du_n_ = du_np1_ = z_ = inc_ = v_ = a_ =
         Eigen::VectorXd::Zero(nn);
-      y_ = Eigen::VectorXd::Zero(2 * nn);
+      y_      = Eigen::VectorXd::Zero(2 * nn);
+      peak_u_ = Eigen::VectorXd::Zero(nn);
+      peak_a_ = Eigen::VectorXd::Zero(nn);
 
       out_.n_levels = b.n_levels();
       out_.peak_displacement.assign(n_, 0.0);
@@ -445,13 +467,8 @@ namespace kimp::lumped::plan
         a_(static_cast<Eigen::Index>(i)) += ag_x;
         a_(static_cast<Eigen::Index>(i) + 1) += ag_y;
       }
-      for (std::size_t i = 0; i < n_; ++i)
-      {
-        const auto e              = static_cast<Eigen::Index>(i);
-        out_.peak_displacement[i] = std::max(out_.peak_displacement[i], std::abs(u_n_(e)));
-        out_.peak_absolute_acceleration[i] =
-          std::max(out_.peak_absolute_acceleration[i], std::abs(a_(e)));
-      }
+      peak_u_ = peak_u_.cwiseMax(u_n_.cwiseAbs());
+      peak_a_ = peak_a_.cwiseMax(a_.cwiseAbs());
       // Peaks of the corner displacements and drifts as squares (the roots at the end), in
       // scalars: d = (u_x − θ·r_y, u_y + θ·r_x) with r the corner from the centre of mass.
       // (Maxima in registers, one store per level: the stores of a running maximum in memory
@@ -459,6 +476,10 @@ namespace kimp::lumped::plan
       const double *u = u_n_.data();
       for (std::size_t l = 0; l < corner_sq_.size(); ++l)
       {
+        // |d| <= |u| + |θ|·R: no corner can beat the peak while 2(|u|² + θ²R²) does not.
+        const double *q0 = u + 3 * l;
+        if (2.0 * (q0[0] * q0[0] + q0[1] * q0[1] + q0[2] * q0[2] * corner_r2_[l]) <= corner_sq_[l])
+          continue;
         double      m = corner_sq_[l];
         const auto *c = corners_.data() + corner_first_[l];
         const auto *e = corners_.data() + corner_first_[l + 1];
@@ -472,6 +493,19 @@ namespace kimp::lumped::plan
       }
       for (std::size_t s = 0; s < drift_sq_.size(); ++s)
       {
+        // |d| <= |Δu| + |θ_u|·A + |θ_l|·B (A, B the largest lever arms): skip while
+        // 3(|Δu|² + θ_u²A² + θ_l²B²) cannot beat the peaks (the centre's drift components are
+        // bounded by the same).
+        const DriftBound &db = drift_bound_[s];
+        const double     *bu = u + db.upper;
+        const double      bx = db.lower >= 0 ? u[db.lower] : 0.0;
+        const double      by = db.lower >= 0 ? u[db.lower + 1] : 0.0;
+        const double      tl = db.lower >= 0 ? u[db.lower + 2] : 0.0;
+        const double      ex = bu[0] - bx, ey = bu[1] - by;
+        const double bound = 3.0 * (ex * ex + ey * ey + bu[2] * bu[2] * db.a2 + tl * tl * db.b2);
+        const double px = out_.peak_drift_x[s], py = out_.peak_drift_y[s];
+        if (bound <= drift_sq_[s] && bound <= px * px && bound <= py * py)
+          continue;
         double      m = drift_sq_[s];
         const auto *c = corner_drifts_.data() + drift_first_[s];
         const auto *e = corner_drifts_.data() + drift_first_[s + 1];
@@ -657,6 +691,11 @@ namespace kimp::lumped::plan
         out_.contacts[c].dissipated_energy =
           model_.contacts()[c].weight * laws_[c]->dissipated_energy();
         e.impact_dissipated += out_.contacts[c].dissipated_energy;
+      }
+      for (std::size_t i = 0; i < n_; ++i)
+      {
+        out_.peak_displacement[i]          = peak_u_(static_cast<Eigen::Index>(i));
+        out_.peak_absolute_acceleration[i] = peak_a_(static_cast<Eigen::Index>(i));
       }
       for (std::size_t l = 0; l < corner_sq_.size(); ++l)
         out_.peak_corner_displacement[l] = std::sqrt(corner_sq_[l]);

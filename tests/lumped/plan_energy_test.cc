@@ -122,3 +122,56 @@ namespace kimp::lumped::plan
     }
   }
 } // namespace kimp::lumped::plan
+
+namespace kimp::lumped::plan
+{
+  TEST(PlanPeaks, CornerAndDriftPeaksAreThoseOfEveryStep)
+  {
+    // The engine skips corners that cannot beat the running peak; the histories of every step
+    // give the peaks by brute force.
+    PlanScene scene;
+    scene.building = kimp::testing::plan_reference_building();
+    for (PlanLevel &l : scene.building.levels)
+      l.mass_eccentricity = Point(0.1, -0.05) * kimp::testing::plan_width;
+    scene.moat = kimp::testing::plan_moat(scene.building, "hysteretic", 4e10, 0.08, 0.3);
+    PlanOptions opt;
+    opt.dt               = 1e-4;
+    opt.output_interval  = 1e-4;
+    const PlanResponse r = PlanCentralDifference(PlanModel(scene), opt)
+                             .run(along_angle(kimp::testing::near_fault_motion(6.0), 0.4));
+    ASSERT_GT(r.n_impacts(), 0u);
+    const PlanBuilding &b  = scene.building;
+    const std::size_t   nl = b.n_levels();
+    std::vector<double> corner(nl, 0.0), drift(nl - 1, 0.0), dx(nl - 1, 0.0), dy(nl - 1, 0.0);
+    const auto          at = [&](std::size_t k, std::size_t l, const Point &p)
+    {
+      const double *q = &r.history.displacement[(k * nl + l) * 3];
+      const Point   c = b.levels[l].centre_of_mass();
+      return Point(q[0] - q[2] * (p.y() - c.y()), q[1] + q[2] * (p.x() - c.x()));
+    };
+    for (std::size_t k = 0; k < r.history.time.size(); ++k)
+    {
+      for (std::size_t l = 0; l < nl; ++l)
+        for (const Point &p : b.levels[l].outline)
+          corner[l] = std::max(corner[l], at(k, l, p).norm());
+      for (std::size_t s = 0; s + 1 < nl; ++s)
+      {
+        for (const Point &p : b.levels[s + 1].outline)
+          drift[s] = std::max(drift[s], (at(k, s + 1, p) - at(k, s, p)).norm());
+        const Point c = b.levels[s + 1].centre_of_mass();
+        const Point d = at(k, s + 1, c) - at(k, s, c);
+        dx[s]         = std::max(dx[s], std::abs(d.x()));
+        dy[s]         = std::max(dy[s], std::abs(d.y()));
+      }
+    }
+    for (std::size_t l = 0; l < nl; ++l)
+      EXPECT_NEAR(r.peak_corner_displacement[l], corner[l], 1e-12 * corner[l]) << "level " << l;
+    for (std::size_t s = 0; s + 1 < nl; ++s)
+    {
+      EXPECT_NEAR(r.peak_corner_drift[s], drift[s], 1e-12 * drift[s]) << "storey " << s;
+      EXPECT_NEAR(r.peak_drift_x[s], dx[s], 1e-12 * drift[s]) << "storey " << s;
+      EXPECT_NEAR(r.peak_drift_y[s], dy[s], 1e-12 * drift[s]) << "storey " << s;
+      EXPECT_GT(r.peak_corner_drift[s], std::hypot(dx[s], dy[s]) * 0.999) << "storey " << s;
+    }
+  }
+} // namespace kimp::lumped::plan

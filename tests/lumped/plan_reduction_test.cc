@@ -123,6 +123,24 @@ namespace kimp::lumped::plan
         }
         else
           EXPECT_TRUE(r.impacts.empty()) << r.name;
+      // Peaks over every step of the corners and the drifts (no rotation: the corners move as
+      // the centre, the drift at the centre and at the corners is the planar drift).
+      for (std::size_t i = 0; i < n_levels; ++i)
+        EXPECT_NEAR(p3.peak_corner_displacement[i],
+                    p2.peak_displacement[i],
+                    reproduction_tol * u_peak)
+          << "level " << i;
+      ASSERT_EQ(p3.peak_corner_drift.size(), p2.peak_interstorey_drift.size());
+      for (std::size_t st = 0; st < p2.peak_interstorey_drift.size(); ++st)
+      {
+        const double d = p2.peak_interstorey_drift[st];
+        EXPECT_NEAR(p3.peak_corner_drift[st], d, reproduction_tol * d) << "storey " << st;
+        if (angle == 0.0)
+        {
+          EXPECT_NEAR(p3.peak_drift_x[st], d, reproduction_tol * d) << "storey " << st;
+          EXPECT_LT(p3.peak_drift_y[st], round_off_tol * d) << "storey " << st;
+        }
+      }
       // Peak accelerations along the record over every step (angle 0: the x DOFs).
       if (angle == 0.0)
         for (std::size_t i = 0; i < n_levels; ++i)
