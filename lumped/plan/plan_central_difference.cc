@@ -126,7 +126,7 @@ namespace kimp::lumped::plan
 
       // corners of each level at rest and their kinematics
       std::vector<std::vector<Eigen::Matrix<double, 2, 3>>> corner_t_;
-      std::vector<double>                                   corner_sq_, drift_sq_;
+      std::vector<double>                                   corner_sq_, drift_sq_, accel_sq_;
       /// A corner of a level: the level's first DOF and the corner from its centre of mass.
       struct CornerRef
       {
@@ -287,11 +287,13 @@ namespace kimp::lumped::plan
       out_.peak_displacement.assign(n_, 0.0);
       out_.peak_absolute_acceleration.assign(n_, 0.0);
       out_.peak_corner_displacement.assign(b.n_levels(), 0.0);
+      out_.peak_horizontal_acceleration.assign(b.n_levels(), 0.0);
       out_.peak_drift_x.assign(b.storeys.size(), 0.0);
       out_.peak_drift_y.assign(b.storeys.size(), 0.0);
       out_.peak_corner_drift.assign(b.storeys.size(), 0.0);
       out_.peak_wall_force.assign(wall_force_.size(), 0.0);
       corner_sq_.assign(b.n_levels(), 0.0);
+      accel_sq_.assign(b.n_levels(), 0.0);
       drift_sq_.assign(b.storeys.size(), 0.0);
       for (std::size_t l = 0; l < b.n_levels(); ++l)
       {
@@ -469,6 +471,12 @@ namespace kimp::lumped::plan
       }
       peak_u_ = peak_u_.cwiseMax(u_n_.cwiseAbs());
       peak_a_ = peak_a_.cwiseMax(a_.cwiseAbs());
+      for (std::size_t l = 0; l < accel_sq_.size(); ++l)
+      {
+        const double ax = a_(static_cast<Eigen::Index>(3 * l)),
+                     ay = a_(static_cast<Eigen::Index>(3 * l + 1));
+        accel_sq_[l]    = std::max(accel_sq_[l], ax * ax + ay * ay);
+      }
       // Peaks of the corner displacements and drifts as squares (the roots at the end), in
       // scalars: d = (u_x − θ·r_y, u_y + θ·r_x) with r the corner from the centre of mass.
       // (Maxima in registers, one store per level: the stores of a running maximum in memory
@@ -698,7 +706,10 @@ namespace kimp::lumped::plan
         out_.peak_absolute_acceleration[i] = peak_a_(static_cast<Eigen::Index>(i));
       }
       for (std::size_t l = 0; l < corner_sq_.size(); ++l)
-        out_.peak_corner_displacement[l] = std::sqrt(corner_sq_[l]);
+      {
+        out_.peak_corner_displacement[l]     = std::sqrt(corner_sq_[l]);
+        out_.peak_horizontal_acceleration[l] = std::sqrt(accel_sq_[l]);
+      }
       for (std::size_t q = 0; q < drift_sq_.size(); ++q)
         out_.peak_corner_drift[q] = std::sqrt(drift_sq_[q]);
       e.relative_error     = last_error_;

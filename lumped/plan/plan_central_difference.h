@@ -136,6 +136,8 @@ namespace kimp::lumped::plan
     std::vector<double> peak_absolute_acceleration; ///< per DOF, m/s² and rad/s²
     /// Per level, the largest |T·q| over the outline's corners, m.
     std::vector<double> peak_corner_displacement;
+    /// Per level, the largest |(ü_x + ü_g,x, ü_y + ü_g,y)| at the centre of mass, m/s².
+    std::vector<double> peak_horizontal_acceleration;
     /// Per storey, the drift (upper − lower at the upper level's centre of mass) along x, y, and
     /// the largest drift magnitude over the upper level's corners, m.
     std::vector<double> peak_drift_x, peak_drift_y, peak_corner_drift;
