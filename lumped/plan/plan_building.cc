@@ -195,7 +195,20 @@ namespace kimp::lumped::plan
             kd(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
               k(static_cast<Eigen::Index>(3 * i) + dir, static_cast<Eigen::Index>(3 * j) + dir);
         }
-        const ModalProperties modes = modal_analysis(md, kd);
+        ModalProperties modes;
+        try
+        {
+          modes = modal_analysis(md, kd);
+        }
+        catch (const std::invalid_argument &e)
+        {
+          // A direction without stiffness (no storey or isolator resists it) has no modes.
+          throw std::invalid_argument(b.name + ": the Rayleigh damping along " +
+                                      (dir == 0 ? "x" :
+                                       dir == 1 ? "y" :
+                                                  "theta") +
+                                      " needs stiffness in that direction (" + e.what() + ")");
+        }
         d.rayleigh[dir] =
           rayleigh_coefficients(modes.omega(0), modes.omega(modes.omega.size() - 1), zeta, zeta);
       }

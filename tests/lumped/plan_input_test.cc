@@ -180,3 +180,30 @@ namespace kimp::lumped::plan
     EXPECT_TRUE(mentions(error_of([&] { cdm.time_step(0.01); }), "exceeds the stability limit"));
   }
 } // namespace kimp::lumped::plan
+
+namespace kimp::lumped::plan
+{
+  TEST(PlanInput, ADirectionWithoutStiffnessIsNamed)
+  {
+    PlanBuilding b = kimp::testing::plan_reference_building();
+    for (PlanStorey &s : b.storeys)
+      for (StoreyElement &e : s.elements)
+        e.k_y = 0.0;
+    b.isolators.clear();
+    b.storeys.insert(b.storeys.begin(), storey(600e6, 0.0, 1e10));
+    const std::string message = [&]
+    {
+      try
+      {
+        plan_damping(b);
+      }
+      catch (const std::invalid_argument &e)
+      {
+        return std::string(e.what());
+      }
+      return std::string();
+    }();
+    EXPECT_NE(message.find("the Rayleigh damping along y needs stiffness"), std::string::npos)
+      << message;
+  }
+} // namespace kimp::lumped::plan
