@@ -162,8 +162,43 @@ namespace kimp::lumped::plan
                                 c.tangent_row(2) * c.tangent_row(2) / i0;
           c.tangential_mass = 1.0 / inv_mt;
           c.law             = law;
-          contacts.push_back(std::move(c));
+          // A point behind the face's line (beyond a re-entrant corner) never meets the face.
+          if (c.gap > 0.0)
+            contacts.push_back(std::move(c));
         }
+      }
+      // Re-entrant corners of the wall in front of the edge: the edge's material point facing
+      // the corner meets it, with the normal of the edge and the weight of a slab corner (½ of
+      // the edge's law), while the corner faces the moved edge.
+      for (std::size_t j = 0; j < nw; ++j)
+      {
+        if (convex(j))
+          continue;
+        const double along = (wall[j] - a).dot(de), gap = (wall[j] - a).dot(n_e);
+        if (!(gap > 0.0) || along < 0.0 || along > length)
+          continue;
+        PlanContact c;
+        c.edge     = e;
+        c.point    = static_cast<std::size_t>(np);
+        c.segment  = j;
+        c.name     = "edge" + std::to_string(e) + "_wallcorner" + std::to_string(j);
+        c.position = a + along * de;
+        const Eigen::Matrix<double, 2, 3> tk = level_kinematics(building, 0, c.position);
+        c.normal_row                         = n_e.transpose() * tk;
+        c.tangent_row                        = de.transpose() * tk;
+        c.gap                                = gap;
+        // The edge's point at the corner is at along − s: on the edge while 0 <= along − s <= ℓ.
+        c.s_rest            = 0.0;
+        c.s_lo              = along - length;
+        c.s_hi              = along;
+        c.weight            = 0.5;
+        c.effective_mass    = m_eff;
+        const double inv_mt = c.tangent_row(0) * c.tangent_row(0) / m0 +
+                              c.tangent_row(1) * c.tangent_row(1) / m0 +
+                              c.tangent_row(2) * c.tangent_row(2) / i0;
+        c.tangential_mass = 1.0 / inv_mt;
+        c.law             = law;
+        contacts.push_back(std::move(c));
       }
     }
     return contacts;

@@ -53,15 +53,17 @@ namespace kimp::lumped::plan
   Polygon moat_around(const PlanBuilding &building, const std::vector<double> &gaps);
 
   /**
-   * One contact point of the slab against one wall face. With q_0 the DOFs of level 0:
-   * δ = n_row·q_0 − gap (interpenetration, > 0 in contact), s = s_rest + t_row·q_0 its
-   * coordinate along the face (in contact only while s_lo <= s <= s_hi; a face ends only at a
-   * re-entrant corner of the wall, at a convex one the limit is infinite: past it the point is
-   * inside the corner block and meets both faces).
+   * One contact point of the slab against one wall face, or (`point` = points_per_edge) a
+   * re-entrant corner of the wall against a slab edge: then n_row and t_row are the edge's
+   * normal and direction at the edge's point facing the corner, `segment` the corner's index. With
+   * q_0 the DOFs of level 0: δ = n_row·q_0 − gap (interpenetration, > 0 in contact), s = s_rest +
+   * t_row·q_0 its coordinate along the face (in contact only while s_lo <= s <= s_hi; a face ends
+   * only at a re-entrant corner of the wall, at a convex one the limit is infinite: past it the
+   * point is inside the corner block and meets both faces).
    */
   struct PlanContact
   {
-    std::string        name; ///< "edge<e>_point<k>_wall<j>"
+    std::string        name; ///< "edge<e>_point<k>_wall<j>" or "edge<e>_wallcorner<j>"
     std::size_t        edge = 0, point = 0, segment = 0;
     Point              position;     ///< material point at rest, m
     Eigen::RowVector3d normal_row;   ///< dδ/dq_0 (wall normal away from the slab)

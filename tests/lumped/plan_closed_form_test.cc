@@ -335,3 +335,55 @@ namespace kimp::lumped::plan
     }
   }
 } // namespace kimp::lumped::plan
+
+namespace kimp::lumped::plan
+{
+  TEST(PlanClosedForm, EdgeBouncesElasticallyOffAReentrantWallCorner)
+  {
+    // A 20 m × 10 m slab at 1 m/s towards a buttress whose tip (a re-entrant corner of the
+    // wall) faces the middle of its right edge, 30 cm away: the edge meets the tip on the line
+    // through the centre of mass, a linear law returns the speed (−1 m/s, no spin) and the peak
+    // force is v·√(m·w·k) of the half-edge spring.
+    PlanScene scene;
+    PlanLevel l;
+    l.mass                       = 1e6;
+    l.outline                    = rectangle(20.0, 10.0);
+    scene.building.levels        = {l};
+    scene.building.storeys       = {storey(0.0, 0.0, 0.0)};
+    scene.building.damping_ratio = 0.0;
+    PlanMoat moat;
+    moat.wall  = {Point(-12, -7),
+                  Point(12, -7),
+                  Point(12, -1),
+                  Point(10.3, 0),
+                  Point(12, 1),
+                  Point(12, 7),
+                  Point(-12, 7)};
+    moat.law   = kimp::testing::contact_law("linear", 1e9);
+    scene.moat = moat;
+    const PlanModel model(scene);
+    std::size_t     corners = 0;
+    for (const PlanContact &c : model.contacts())
+      corners += c.name.find("wallcorner") != std::string::npos ? 1 : 0;
+    EXPECT_EQ(corners, 1u);
+    PlanOptions opt;
+    opt.dt               = 1e-5;
+    opt.output_interval  = 1e-3;
+    opt.initial_velocity = {1.0, 0.0, 0.0};
+    const PlanResponse r = PlanCentralDifference(model, opt)
+                             .run(along_angle(kimp::testing::zero_motion(1e-3, 0.6), 0.0));
+    ASSERT_EQ(r.n_impacts(), 1u);
+    const auto       &h    = r.history;
+    const std::size_t last = h.time.size() - 1;
+    const double      dtau = h.time[last] - h.time[last - 1];
+    EXPECT_NEAR((h.displacement[last * 3] - h.displacement[(last - 1) * 3]) / dtau, -1.0, 1e-3);
+    EXPECT_NEAR(r.peak_displacement[2], 0.0, 1e-12);
+    const double k = 1e9 * 10.0;
+    for (const PlanContactResult &c : r.contacts)
+      if (!c.impacts.empty())
+      {
+        EXPECT_NE(c.name.find("wallcorner"), std::string::npos) << c.name;
+        EXPECT_NEAR(c.peak_normal_force, std::sqrt(1e6 * 0.5 * k), 1e-3 * std::sqrt(1e6 * 0.5 * k));
+      }
+  }
+} // namespace kimp::lumped::plan
