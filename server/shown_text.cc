@@ -34,6 +34,24 @@ namespace kimp::server
 
   std::string clip_long_lines(std::string text)
   {
+    constexpr std::size_t longest_word = 100;
+    std::string           words;
+    words.reserve(std::min<std::size_t>(text.size(), 1u << 16));
+    for (std::size_t start = 0; start <= text.size();)
+    {
+      std::size_t end = text.find_first_of(" \n", start);
+      if (end == std::string::npos)
+        end = text.size();
+      const std::string_view word = std::string_view(text).substr(start, end - start);
+      if (word.size() > longest_word)
+        words += clipped(word);
+      else
+        words += word;
+      if (end < text.size())
+        words += text[end];
+      start = end + 1;
+    }
+    text = std::move(words);
     constexpr std::size_t longest = 240, head = 100, tail = 60;
     std::string           out;
     std::size_t           start = 0;

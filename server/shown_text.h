@@ -23,9 +23,10 @@ namespace kimp::server
   /// clipped() `value` in double quotes.
   std::string in_quotes(std::string_view value);
 
-  /// `text` with each line longer than 240 bytes cut to its first 100 and last 60 bytes around
-  /// "[... N bytes left out ...]": a message that echoes a huge value keeps its file, line, key
-  /// and rule, not the value.
+  /// `text` with each word (bytes between spaces and line breaks) longer than 100 bytes cut to
+  /// its first quoted_max bytes and "... (N bytes)", then each line still longer than 240 bytes
+  /// cut to its first 100 and last 60 bytes around "[... N bytes left out ...]": a message that
+  /// echoes a huge value keeps its file, line, key and rule, not the value.
   std::string clip_long_lines(std::string text);
 
   /// Machine paths of the runs and records folders in text shown to the page.
