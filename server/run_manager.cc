@@ -344,6 +344,22 @@ namespace kimp::server
       close(lock_fd_);
   }
 
+  void RunManager::shutdown()
+  {
+    std::vector<std::shared_ptr<Run>> runs;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stopping_ = true;
+      for (auto &[id, run] : runs_)
+        runs.push_back(run);
+    }
+    for (auto &run : runs)
+      cancel(run->id);
+    for (auto &run : runs)
+      if (run->watcher.joinable())
+        run->watcher.join();
+  }
+
   void RunManager::lock_runs_folder()
   {
     const auto path = settings_.runs_dir / ".kimp-gui.lock";

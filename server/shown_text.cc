@@ -51,7 +51,7 @@ namespace kimp::server
         words += text[end];
       start = end + 1;
     }
-    text = std::move(words);
+    text                          = std::move(words);
     constexpr std::size_t longest = 240, head = 100, tail = 60;
     std::string           out;
     std::size_t           start = 0;

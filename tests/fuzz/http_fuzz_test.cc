@@ -48,8 +48,20 @@ namespace
 
     std::string next()
     {
-      const std::string method = pick({"GET", "GET", "GET", "POST", "POST", "POST", "DELETE",
-                                       "PUT", "HEAD", "OPTIONS", "PATCH", "TRACE", "FOO", ""});
+      const std::string method = pick({"GET",
+                                       "GET",
+                                       "GET",
+                                       "POST",
+                                       "POST",
+                                       "POST",
+                                       "DELETE",
+                                       "PUT",
+                                       "HEAD",
+                                       "OPTIONS",
+                                       "PATCH",
+                                       "TRACE",
+                                       "FOO",
+                                       ""});
       std::string       body   = this->body();
       std::string       head   = method + " " + target() + " " +
                          pick({"HTTP/1.1", "HTTP/1.1", "HTTP/1.1", "HTTP/1.0", "HTTP/9", ""}) +
@@ -59,14 +71,17 @@ namespace
       if (chance(0.9))
         headers.push_back("Host: " + (chance(0.9) ? host_ : random_text(1, 40)));
       if (chance(0.8))
-        headers.push_back("X-Kimp-Request: " + (chance(0.9) ? std::string("1") : random_text(0, 5)));
+        headers.push_back("X-Kimp-Request: " +
+                          (chance(0.9) ? std::string("1") : random_text(0, 5)));
       if (chance(0.2))
         headers.push_back("Origin: " + (chance(0.5) ? "http://" + host_ : random_text(0, 60)));
       if (chance(0.5))
-        headers.push_back(
-          "Content-Type: " +
-          pick({"application/json", "text/plain", "application/x-www-form-urlencoded",
-                "multipart/form-data; boundary=xyz", "multipart/form-data", random_text(0, 30)}));
+        headers.push_back("Content-Type: " + pick({"application/json",
+                                                   "text/plain",
+                                                   "application/x-www-form-urlencoded",
+                                                   "multipart/form-data; boundary=xyz",
+                                                   "multipart/form-data",
+                                                   random_text(0, 30)}));
       bool chunked = false;
       if (chance(0.15))
       {
@@ -80,15 +95,18 @@ namespace
       if (!chunked && chance(0.9))
       {
         const std::size_t n = body.size();
-        headers.push_back(
-          "Content-Length: " +
-          (chance(0.85) ? std::to_string(n) :
-                          pick({"0", "-1", "abc", "18446744073709551615", "99999999999",
-                                std::to_string(n + 10), std::to_string(n / 2)})));
+        headers.push_back("Content-Length: " + (chance(0.85) ? std::to_string(n) :
+                                                               pick({"0",
+                                                                     "-1",
+                                                                     "abc",
+                                                                     "18446744073709551615",
+                                                                     "99999999999",
+                                                                     std::to_string(n + 10),
+                                                                     std::to_string(n / 2)})));
       }
       if (chance(0.1))
-        headers.push_back("Range: " + pick({"bytes=0-10", "bytes=-5", "bytes=5-1", "bytes=x",
-                                            random_text(0, 20)}));
+        headers.push_back(
+          "Range: " + pick({"bytes=0-10", "bytes=-5", "bytes=5-1", "bytes=x", random_text(0, 20)}));
       if (chance(0.05))
         headers.push_back("Expect: 100-continue");
       if (chance(0.3))
@@ -140,14 +158,32 @@ namespace
 
     std::string target()
     {
-      static const std::vector<std::string> routes = {
-        "/", "/api/info", "/api/runs", "/api/runs/", "/api/runs/RUN", "/api/runs/RUN/events",
-        "/api/runs/RUN/cancel", "/api/runs/RUN/data", "/api/runs/RUN/report", "/api/files/RUN/",
-        "/api/files/RUN/scene.yaml", "/api/files/RUN/../../../etc/passwd", "/api/records",
-        "/api/records/RSN1", "/api/schema/lumped", "/api/defaults/collide", "/api/schema/x",
-        "/api/validate", "/api/motion", "/api/upload", "/assets/gui.js", "/assets/..%2F..%2Fx",
-        "/%ff", "/%00", "/%2e%2e/%2e%2e/"};
-      std::string path = routes[below(routes.size())];
+      static const std::vector<std::string> routes = {"/",
+                                                      "/api/info",
+                                                      "/api/runs",
+                                                      "/api/runs/",
+                                                      "/api/runs/RUN",
+                                                      "/api/runs/RUN/events",
+                                                      "/api/runs/RUN/cancel",
+                                                      "/api/runs/RUN/data",
+                                                      "/api/runs/RUN/report",
+                                                      "/api/files/RUN/",
+                                                      "/api/files/RUN/scene.yaml",
+                                                      "/api/files/RUN/../../../etc/passwd",
+                                                      "/api/records",
+                                                      "/api/records/RSN1",
+                                                      "/api/schema/lumped",
+                                                      "/api/defaults/collide",
+                                                      "/api/schema/x",
+                                                      "/api/validate",
+                                                      "/api/motion",
+                                                      "/api/upload",
+                                                      "/assets/gui.js",
+                                                      "/assets/..%2F..%2Fx",
+                                                      "/%ff",
+                                                      "/%00",
+                                                      "/%2e%2e/%2e%2e/"};
+      std::string                           path   = routes[below(routes.size())];
       if (const auto at = path.find("RUN"); at != std::string::npos)
         path.replace(at,
                      3,
@@ -167,12 +203,11 @@ namespace
       {
         path += "?";
         for (std::size_t i = 0, n = 1 + below(3); i < n; ++i)
-          path += (i ? "&" : "") +
-                  pick({"name", "unit", "x", percent_bytes(2)}) + "=" +
-                  (chance(0.5) ? pick({"m.txt", "a.AT2", "9.80665", "1e400", "-1", "nan", ".x",
-                                       "../x"}) :
-                   chance(0.5) ? percent_bytes(below(10)) :
-                                 random_text(0, 30));
+          path +=
+            (i ? "&" : "") + pick({"name", "unit", "x", percent_bytes(2)}) + "=" +
+            (chance(0.5) ? pick({"m.txt", "a.AT2", "9.80665", "1e400", "-1", "nan", ".x", "../x"}) :
+             chance(0.5) ? percent_bytes(below(10)) :
+                           random_text(0, 30));
       }
       return path;
     }
@@ -235,8 +270,8 @@ namespace
       if (chance(0.9))
         request["scene"] = chance(0.8) ? scenes[below(scenes.size())] : random_text(0, 200);
       if (chance(0.2))
-        request["sweep"] = chance(0.5) ? std::string("scene: scene.yaml\nparameters: {}\n") :
-                                         random_text(0, 100);
+        request["sweep"] =
+          chance(0.5) ? std::string("scene: scene.yaml\nparameters: {}\n") : random_text(0, 100);
       if (chance(0.1))
         request["command"] = below(5); // not a string
       return request;
@@ -276,9 +311,10 @@ namespace
   TEST(HttpFuzz, KimpGuiAnswersRandomRequestsAndStaysUp)
   {
     const kimp::testing::TempDir dir{"http_fuzz"};
-    GuiProcess                   gui(binary("kimp"),
-                   dir.path(),
-                   {"--port", "0", "--runs-dir", (dir.path() / "runs").string(), "--max-runs", "1"});
+    GuiProcess                   gui(
+      binary("kimp"),
+      dir.path(),
+      {"--port", "0", "--runs-dir", (dir.path() / "runs").string(), "--max-runs", "1"});
     ASSERT_GT(gui.port(), 0) << gui.err();
     const auto info_answers = [&]
     {
@@ -311,10 +347,9 @@ namespace
         answer = c.receive_all(3.0);
       }
       ++statuses[status_of(answer)];
-      ASSERT_TRUE(process_alive(gui.pid()))
-        << "kimp gui died of request " << sent << ":\n"
-        << request.substr(0, 400) << "\n"
-        << gui.err();
+      ASSERT_TRUE(process_alive(gui.pid())) << "kimp gui died of request " << sent << ":\n"
+                                            << request.substr(0, 400) << "\n"
+                                            << gui.err();
       if (sent % check_every == check_every - 1)
       {
         ASSERT_TRUE(info_answers()) << "GET /api/info not answered after request " << sent;
@@ -329,8 +364,9 @@ namespace
     for (const auto &[status, count] : statuses)
       seen += " " + std::to_string(status) + ":" + std::to_string(count);
     RecordProperty("statuses", seen);
-    std::cout << sent << " requests in " << seconds << " s; statuses" << seen << "; resident memory "
-              << memory_before / 1e6 << " -> peak " << memory_peak / 1e6 << " MB\n";
+    std::cout << sent << " requests in " << seconds << " s; statuses" << seen
+              << "; resident memory " << memory_before / 1e6 << " -> peak " << memory_peak / 1e6
+              << " MB\n";
     // Enough requests to mean something, even on a loaded machine.
     EXPECT_GE(sent, 1000);
     // No server error: every refusal is a 4xx (or 501 for a transfer coding it does not read).

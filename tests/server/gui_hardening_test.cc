@@ -112,12 +112,10 @@ namespace
     const kimp::testing::TempDir dir{"gui_utf8"};
     GuiProcess                   gui(binary("kimp"), dir.path(), serving_runs_in(dir.path()));
     ASSERT_GT(gui.port(), 0) << gui.err();
-    const std::string host = "Host: 127.0.0.1:" + std::to_string(gui.port()) + "\r\n";
-    const std::string post = "X-Kimp-Request: 1\r\n";
+    const std::string host      = "Host: 127.0.0.1:" + std::to_string(gui.port()) + "\r\n";
+    const std::string post      = "X-Kimp-Request: 1\r\n";
     const auto        with_body = [](const std::string &body)
-    {
-      return "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body;
-    };
+    { return "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body; };
     // (request, the status it must get)
     const std::vector<std::pair<std::string, int>> requests = {
       // One <img src="http://127.0.0.1:8080/%ff"> on any page killed the server.
@@ -131,8 +129,7 @@ namespace
       {"POST /%ff HTTP/1.1\r\n" + host + post + with_body("{}"), 404},
       {"DELETE /api/runs/%ff HTTP/1.1\r\n" + host + post + "\r\n", 404},
       {"POST /api/upload?name=%ff.txt HTTP/1.1\r\n" + host + post + with_body("0 0\n"), 400},
-      {"POST /api/upload?name=m.txt&unit=%ff HTTP/1.1\r\n" + host + post + with_body("0 0\n"),
-       400},
+      {"POST /api/upload?name=m.txt&unit=%ff HTTP/1.1\r\n" + host + post + with_body("0 0\n"), 400},
       {"POST /api/upload?name=m.txt HTTP/1.1\r\n" + host + post +
          with_body("0 0\n0.01 \xff\xfe\n0.02 1\n"),
        400},
@@ -154,7 +151,9 @@ namespace
       const nlohmann::json body = nlohmann::json::parse(body_of(answer), nullptr, false);
       EXPECT_FALSE(body.is_discarded()) << answer;
       if (status != 200)
+      {
         EXPECT_FALSE(body.value("error", "").empty()) << answer;
+      }
     }
     EXPECT_TRUE(info_answers(gui));
     stop(gui);
@@ -169,9 +168,9 @@ namespace
     const std::size_t before = resident_bytes(gui.pid());
     RawConnection     c(gui.port());
     ASSERT_TRUE(c.connected());
-    ASSERT_TRUE(c.send_all("POST /api/upload?name=big.txt HTTP/1.1\r\nHost: 127.0.0.1:" +
-                           std::to_string(gui.port()) +
-                           "\r\nX-Kimp-Request: 1\r\nTransfer-Encoding: chunked\r\n\r\n"));
+    ASSERT_TRUE(c.send_all(
+      "POST /api/upload?name=big.txt HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(gui.port()) +
+      "\r\nX-Kimp-Request: 1\r\nTransfer-Encoding: chunked\r\n\r\n"));
     // 200 chunks of 1 MB: one number that never ends (the old server echoed all of it back).
     const std::string chunk = "100000\r\n" + std::string(1u << 20, '1') + "\r\n";
     std::string       answer;
@@ -196,8 +195,8 @@ namespace
     const int status = status_of(answer);
     EXPECT_TRUE(status == 413 || status == 411) << answer.substr(0, 300);
     // The limit is 16 MB: the server keeps at most that of a body (and not 200 MB).
-    EXPECT_LT(peak - before, 64u << 20) << "resident memory grew by " << (peak - before) / 1e6
-                                        << " MB after " << sent << " MB sent";
+    EXPECT_LT(peak - before, 64u << 20)
+      << "resident memory grew by " << (peak - before) / 1e6 << " MB after " << sent << " MB sent";
     EXPECT_LT(answer.size(), 2000u) << "the answer echoes the body: " << answer.size() << " bytes";
     EXPECT_FALSE(fs::exists(dir.path() / "runs" / "uploads" / "big.txt"));
     EXPECT_TRUE(process_alive(gui.pid()));
@@ -208,18 +207,16 @@ namespace
   TEST(GuiHardening, TwentyFiveConcurrentRunRequestsNeverPassTheRunCap)
   {
     const kimp::testing::TempDir dir{"gui_cap"};
-    GuiProcess                   gui(binary("kimp"),
-                   dir.path(),
-                   serving_runs_in(dir.path(), {"--max-runs", "2"}));
+    GuiProcess gui(binary("kimp"), dir.path(), serving_runs_in(dir.path(), {"--max-runs", "2"}));
     ASSERT_GT(gui.port(), 0) << gui.err();
     // 2 running and 16 queued at most (kimp gui's default queue).
-    constexpr int    cap     = 2 + 16;
-    nlohmann::json   request = long_sweep;
-    const std::string comment = "# " + std::string(2u << 20, 'x') + "\n";
-    request["sweep"]          = request["sweep"].get<std::string>() + comment;
-    const std::string body    = request.dump();
-    std::vector<int>  statuses(25, 0);
-    std::atomic<int>  ready{0};
+    constexpr int     cap         = 2 + 16;
+    nlohmann::json    request     = long_sweep;
+    const std::string comment     = "# " + std::string(2u << 20, 'x') + "\n";
+    request["sweep"]              = request["sweep"].get<std::string>() + comment;
+    const std::string        body = request.dump();
+    std::vector<int>         statuses(25, 0);
+    std::atomic<int>         ready{0};
     std::vector<std::thread> clients;
     for (std::size_t i = 0; i < statuses.size(); ++i)
       clients.emplace_back(
@@ -327,6 +324,29 @@ namespace
     stop(again);
   }
 
+  TEST(GuiHardening, ASecondServerOnTheRunsFolderOfARunningOneIsRefused)
+  {
+    const kimp::testing::TempDir dir{"gui_second"};
+    GuiProcess                   first(binary("kimp"), dir.path(), serving_runs_in(dir.path()));
+    ASSERT_GT(first.port(), 0) << first.err();
+    const fs::path other = dir.path() / "other";
+    fs::create_directories(other);
+    // The same runs folder: the second would take the first's runs for interrupted ones.
+    GuiProcess second(binary("kimp"),
+                      other,
+                      {"--port", "0", "--runs-dir", (dir.path() / "runs").string()},
+                      false);
+    const auto e = second.wait(30);
+    ASSERT_TRUE(e.exited) << "a second kimp gui on the same runs folder must fail, not serve";
+    EXPECT_EQ(e.exit_code, 1);
+    EXPECT_NE(second.err().find("in use by another kimp gui (pid " + std::to_string(first.pid()) +
+                                ")"),
+              std::string::npos)
+      << second.err();
+    EXPECT_TRUE(info_answers(first));
+    stop(first);
+  }
+
   TEST(GuiHardening, FortyOpenEventStreamsLeaveThreadsForOrdinaryRequests)
   {
     const kimp::testing::TempDir dir{"gui_streams"};
@@ -338,9 +358,9 @@ namespace
     for (int i = 0; i < 40; ++i)
     {
       streams.push_back(std::make_unique<RawConnection>(gui.port()));
-      ASSERT_TRUE(streams.back()->send_all("GET /api/runs/" + id +
-                                           "/events HTTP/1.1\r\nHost: 127.0.0.1:" +
-                                           std::to_string(gui.port()) + "\r\n\r\n"));
+      ASSERT_TRUE(streams.back()->send_all(
+        "GET /api/runs/" + id +
+        "/events HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(gui.port()) + "\r\n\r\n"));
     }
     // Each stream is answered at once: a stream (200), or 503 beyond the cap.
     int                      open = 0, refused = 0;
@@ -429,8 +449,8 @@ namespace
                    serving_runs_in(dir.path(), {"--records-dir", records.string()}));
     ASSERT_GT(gui.port(), 0) << gui.err();
     // Every spelling of the machine path of the test's folder.
-    const std::string machine = dir.path().string();
-    const std::string real    = fs::canonical(dir.path()).string();
+    const std::string                                machine = dir.path().string();
+    const std::string                                real    = fs::canonical(dir.path()).string();
     std::vector<std::pair<std::string, std::string>> answers;
     const auto note = [&](const std::string &what, const std::string &text)
     {
@@ -455,8 +475,7 @@ namespace
     const nlohmann::json uploaded = note("upload", upload->body);
     EXPECT_EQ(uploaded["path"], "../uploads/m.txt");
     const std::string scene = "building:\n  n_storeys: 3\nground_motion:\n  record: \"" +
-                              uploaded["path"].get<std::string>() +
-                              "\"\n  record_unit: \"g\"\n";
+                              uploaded["path"].get<std::string>() + "\"\n  record_unit: \"g\"\n";
     const auto motion = gui.post("/api/motion", {{"command", "lumped"}, {"scene", scene}});
     ASSERT_TRUE(motion);
     ASSERT_EQ(motion->status, 200) << motion->body;
@@ -464,23 +483,25 @@ namespace
     const std::string on_upload = start_run(gui, {{"command", "lumped"}, {"scene", scene}});
     const auto        done      = gui.wait_for_run(on_upload,
                                        60,
-                                       [](const nlohmann::json &r)
-                                       { return r["state"] != "running" && r["state"] != "queued"; });
+                                       [](const nlohmann::json &r) {
+                                         return r["state"] != "running" && r["state"] != "queued";
+                                       });
     EXPECT_EQ(done["state"], "done") << done.dump();
 
     // A record the records folder does not have: the run's message names the folder by name.
-    const std::string missing = start_run(
-      gui,
-      {{"command", "lumped"},
-       {"scene", "building:\n  n_storeys: 3\nground_motion:\n  record: RSN9_NOT_THERE\n"}});
+    const std::string missing =
+      start_run(gui,
+                {{"command", "lumped"},
+                 {"scene",
+                  "building:\n  n_storeys: 3\nground_motion:\n  record: RSN9_NOT_THERE\n"}});
     const auto failed = gui.wait_for_run(missing,
                                          60,
-                                         [](const nlohmann::json &r)
-                                         { return r["state"] == "failed" || r["state"] == "done"; });
+                                         [](const nlohmann::json &r) {
+                                           return r["state"] == "failed" || r["state"] == "done";
+                                         });
     note("failed run", failed.dump());
     EXPECT_EQ(failed["state"], "failed") << failed.dump();
-    EXPECT_NE(failed.value("error", "").find("RSN9_NOT_THERE"), std::string::npos)
-      << failed.dump();
+    EXPECT_NE(failed.value("error", "").find("RSN9_NOT_THERE"), std::string::npos) << failed.dump();
     note("runs", gui.client().Get("/api/runs")->body);
     // The run a dead server left: listed as interrupted; its missing results an error without
     // the machine's path.
