@@ -525,6 +525,9 @@ namespace kimp::server
       changed_.notify_all();
     }
     close(fds[1]);
+    // A server that dies now leaves the run "running" on disk: interrupted at its next start.
+    if (pid > 0)
+      save_state(run->dir, {{"id", run->id}, {"command", run->command}, {"state", "running"}});
     std::ofstream log(run->dir / "run.log");
     std::string   pending;
     char          buffer[4096];

@@ -95,18 +95,6 @@ namespace
     return r && r->status == 200;
   }
 
-  /// The longest run of the byte `c` in `text`.
-  std::size_t longest_run(const std::string &text, char c)
-  {
-    std::size_t longest = 0, run = 0;
-    for (const char x : text)
-    {
-      run     = x == c ? run + 1 : 0;
-      longest = std::max(longest, run);
-    }
-    return longest;
-  }
-
   TEST(GuiHardening, InvalidUtf8InPathsQueriesHeadersAndBodiesIsAnsweredAndTheServerLives)
   {
     const kimp::testing::TempDir dir{"gui_utf8"};
@@ -186,8 +174,8 @@ namespace
       if (peak > before + (400u << 20))
         break;
     }
-    if (answer.empty() && c.send_all("0\r\n\r\n"))
-      c.end_request();
+    if (answer.empty())
+      c.send_all("0\r\n\r\n");
     answer += c.receive_all(60);
     peak = std::max(peak, resident_bytes(gui.pid()));
     RecordProperty("megabytes_sent", sent);
@@ -354,6 +342,9 @@ namespace
     ASSERT_GT(gui.port(), 0) << gui.err();
     const std::string id = start_run(gui, long_sweep);
     ASSERT_GT(running_pid(gui, id), 0);
+    // The first /api/info asks kimp-fem for the fem and study schemas (seconds on a loaded
+    // machine); the answer is kept.
+    ASSERT_TRUE(info_answers(gui, 60));
     std::vector<std::unique_ptr<RawConnection>> streams;
     for (int i = 0; i < 40; ++i)
     {

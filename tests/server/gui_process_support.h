@@ -272,8 +272,6 @@ namespace kimp::testing
       }
       return true;
     }
-    /// No more bytes from this side (the server reads the end of the request at once).
-    void end_request() { shutdown(fd_, SHUT_WR); }
     /// What has arrived, waiting up to `ms` for the first bytes (0: only what is there).
     std::string receive(int ms)
     {
@@ -315,14 +313,14 @@ namespace kimp::testing
     int fd_ = -1;
   };
 
-  /// The answer of the server on `port` to the request `bytes` (sent whole, then the sending
-  /// side closed), at most `seconds` of waiting.
+  /// The answer of the server on `port` to the request `bytes`, read until the server closes
+  /// the connection (it serves one request per connection), at most `seconds` of waiting. (The
+  /// sending side stays open: cpp-httplib writes no answer to a peer that has closed it.)
   inline std::string raw_exchange(int port, const std::string &bytes, double seconds = 10.0)
   {
     RawConnection c(port);
     if (!c.connected() || !c.send_all(bytes))
       return {};
-    c.end_request();
     return c.receive_all(seconds);
   }
 
