@@ -181,8 +181,12 @@ namespace kimp::server
       for (const auto &part : rel)
         if (part == ".." || part == "." || rel.is_absolute())
           throw HttpError(400, "path " + in_quotes(relative) + " leaves its directory");
-      const auto root     = std::filesystem::weakly_canonical(base);
-      const auto path     = std::filesystem::weakly_canonical(base / rel);
+      // A name the file system refuses (too long, ...) names no file of the run.
+      std::error_code ec;
+      const auto      root = std::filesystem::weakly_canonical(base, ec);
+      const auto      path = ec ? root : std::filesystem::weakly_canonical(base / rel, ec);
+      if (ec)
+        throw HttpError(404, "no file " + in_quotes(relative) + " (" + ec.message() + ")");
       const auto mismatch = std::mismatch(root.begin(), root.end(), path.begin(), path.end()).first;
       if (mismatch != root.end())
         throw HttpError(400, "path " + in_quotes(relative) + " leaves its directory");
@@ -623,7 +627,8 @@ namespace kimp::server
                if (!runs.exists(req.matches[1]))
                  throw HttpError(404, "no run " + clipped(req.matches[1].str()));
                const auto path = confined(options.runs_dir / req.matches[1].str(), req.matches[2]);
-               if (!std::filesystem::is_regular_file(path))
+               std::error_code ec;
+               if (!std::filesystem::is_regular_file(path, ec))
                  throw HttpError(404, "no file " + in_quotes(req.matches[2].str()));
                std::ifstream      in(path, std::ios::binary);
                std::ostringstream text;
