@@ -85,8 +85,9 @@ namespace
     EXPECT_TRUE(gui.wait(15).exited) << "kimp gui still running 15 s after SIGTERM";
   }
 
-  /// Whether GET /api/info of `gui` answers 200 within `seconds`.
-  bool info_answers(const GuiProcess &gui, int seconds = 5)
+  /// Whether GET /api/info of `gui` answers 200 within `seconds` (its first answer asks kimp-fem
+  /// for the fem and study schemas: seconds on a loaded machine).
+  bool info_answers(const GuiProcess &gui, int seconds = 30)
   {
     httplib::Client client("127.0.0.1", gui.port());
     client.set_connection_timeout(seconds, 0);
