@@ -269,6 +269,8 @@ namespace kimp::server
     constexpr int poll_ms = 100;
     /// A child's log line is cut after this many bytes (run.log), 240 for the page.
     constexpr std::size_t max_line_bytes = 64u << 10;
+    /// run.log grows no further than this.
+    constexpr std::size_t max_log_file_bytes = 64u << 20;
     /// The error of a run (its "error: " lines) grows no further than this.
     constexpr std::size_t max_error_bytes = 64u << 10;
   } // namespace
@@ -529,6 +531,7 @@ namespace kimp::server
     if (pid > 0)
       save_state(run->dir, {{"id", run->id}, {"command", run->command}, {"state", "running"}});
     std::ofstream log(run->dir / "run.log");
+    std::size_t   logged = 0; // bytes written to run.log
     std::string   pending;
     char          buffer[4096];
     int           status = 0;
@@ -580,7 +583,15 @@ namespace kimp::server
           }
           run->progress_text = line;
         }
-        log << line << '\n' << std::flush;
+        // run.log stops at max_log_file_bytes (a child that writes without end fills no disk).
+        if (logged < max_log_file_bytes)
+        {
+          logged += line.size() + 1;
+          log << line << '\n';
+          if (logged >= max_log_file_bytes)
+            log << "... (run.log stops here, at " << (max_log_file_bytes >> 20) << " MB)\n";
+          log << std::flush;
+        }
         // The page gets long lines clipped, and the first max_log_lines lines.
         line = clip_long_lines(std::move(line));
         if (line.rfind("error: ", 0) == 0 && run->error.size() < max_error_bytes)

@@ -17,7 +17,6 @@
 #include <regex>
 #include <signal.h>
 #include <spawn.h>
-#include <sstream>
 #include <stdexcept>
 #include <strings.h>
 #include <sys/wait.h>
@@ -630,10 +629,32 @@ namespace kimp::server
                std::error_code ec;
                if (!std::filesystem::is_regular_file(path, ec))
                  throw HttpError(404, "no file " + in_quotes(req.matches[2].str()));
-               std::ifstream      in(path, std::ios::binary);
-               std::ostringstream text;
-               text << in.rdbuf();
-               res.set_content(text.str(), mime_type(path.filename().string()).c_str());
+               const std::uintmax_t size = std::filesystem::file_size(path, ec);
+               const std::string    type = mime_type(path.filename().string());
+               if (ec || size == 0)
+                 return res.set_content("", type.c_str());
+               // Streamed from the file (a run's results can be large): 64 kB in memory at a
+               // time, whatever the file's size. Called outside cpp-httplib's exception
+               // handling: nothing may escape.
+               auto in = std::make_shared<std::ifstream>(path, std::ios::binary);
+               res.set_content_provider(
+                 static_cast<std::size_t>(size),
+                 type.c_str(),
+                 [in](std::size_t offset, std::size_t length, httplib::DataSink &sink)
+                 {
+                   try
+                   {
+                     std::vector<char> buffer(std::min<std::size_t>(length, 64u << 10));
+                     in->seekg(static_cast<std::streamoff>(offset));
+                     in->read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+                     const auto n = static_cast<std::size_t>(in->gcount());
+                     return n > 0 && sink.write(buffer.data(), n);
+                   }
+                   catch (...)
+                   {
+                     return false;
+                   }
+                 });
              });
     http.Get("/api/records",
              [this](const httplib::Request &, httplib::Response &res)

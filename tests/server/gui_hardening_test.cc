@@ -389,6 +389,49 @@ namespace
     stop(gui);
   }
 
+  TEST(GuiHardening, ALargeFileOfARunIsStreamedNotHeldInMemory)
+  {
+    const kimp::testing::TempDir dir{"gui_files"};
+    // 96 MB of results in a run a dead server left.
+    const fs::path run = dir.path() / "runs" / "r1";
+    fs::create_directories(run / "out");
+    std::ofstream(run / "scene.yaml") << "building:\n  n_storeys: 3\n";
+    std::string block(1u << 20, '\0');
+    for (std::size_t i = 0; i < block.size(); ++i)
+      block[i] = static_cast<char>('a' + i % 26);
+    {
+      std::ofstream big(run / "out" / "big.bin", std::ios::binary);
+      for (int i = 0; i < 96; ++i)
+        big << block;
+    }
+    GuiProcess gui(binary("kimp"), dir.path(), serving_runs_in(dir.path()));
+    ASSERT_GT(gui.port(), 0) << gui.err();
+    ASSERT_TRUE(info_answers(gui));
+    const std::size_t before = resident_bytes(gui.pid());
+    std::size_t       peak = before, received = 0;
+    bool              same = true;
+    httplib::Client   client("127.0.0.1", gui.port());
+    client.set_read_timeout(60, 0);
+    const auto r = client.Get("/api/files/r1/out/big.bin",
+                              [&](const char *data, std::size_t n)
+                              {
+                                for (std::size_t i = 0; i < n && same; ++i)
+                                  same = data[i] == block[(received + i) % block.size()];
+                                received += n;
+                                if (received % (8u << 20) < n)
+                                  peak = std::max(peak, resident_bytes(gui.pid()));
+                                return true;
+                              });
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 200);
+    EXPECT_EQ(received, 96u << 20);
+    EXPECT_TRUE(same) << "the bytes served differ from the file's";
+    std::cout << "96 MB served; resident memory of kimp gui " << before / 1e6 << " MB, at most "
+              << peak / 1e6 << " MB\n";
+    EXPECT_LT(peak - before, 32u << 20);
+    stop(gui);
+  }
+
   TEST(GuiHardening, AMegabyteBadValueIsQuotedInAtMostAHundredCharacters)
   {
     const kimp::testing::TempDir dir{"gui_echo"};
