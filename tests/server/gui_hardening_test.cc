@@ -382,7 +382,7 @@ namespace
     // With the streams open, ordinary requests are answered at once.
     const auto start = Clock::now();
     EXPECT_TRUE(info_answers(gui, 5)) << "GET /api/info not answered with 40 event streams open";
-    EXPECT_LT(Clock::now() - start, std::chrono::seconds(2));
+    EXPECT_LT(Clock::now() - start, std::chrono::seconds(4)); // a loaded machine; else at once
     const auto run = gui.get_json("/api/runs/" + id);
     EXPECT_EQ(run.value("state", ""), "running") << run.dump();
     streams.clear();
