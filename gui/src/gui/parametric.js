@@ -3,7 +3,7 @@
 'use strict';
 
 (function () {
-  const { state, getJson, toYaml, fromYaml, sceneYaml, startRun } = kimpGui;
+  const { state, getJson, toYaml, fromYaml, sceneYaml, startRun, completeSceneYaml } = kimpGui;
   const el = kimp.el;
 
   // ---- parametric dialog -------------------------------------------------------------------
@@ -151,12 +151,18 @@
     document.getElementById('param-add').addEventListener('click', () => addParamRow());
     document.getElementById('param-make').addEventListener('click', makeSweep);
     document.getElementById('param-both').addEventListener('change', makeSweep);
-    document.getElementById('param-run').addEventListener('click', () => {
+    document.getElementById('param-run').addEventListener('click', async () => {
       const text = document.getElementById('sweep-yaml').value;
+      // Progress, log and errors on this tab (prefix "param").
       startRun(
         'sweep',
-        lumpedSceneForSweep(),
+        await completeSceneYaml('lumped', lumpedSceneForSweep()),
         text.trim() ? text : (makeSweep(), document.getElementById('sweep-yaml').value),
+        {
+          prefix: 'param',
+          name: document.getElementById('run-name').value.trim(),
+          notes: document.getElementById('run-notes').value.trim(),
+        },
       );
     });
     addParamRow('walls.left.gap', 'range', ['10 cm', '20 cm', '5 cm']);
