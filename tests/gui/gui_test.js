@@ -133,7 +133,10 @@ async function main() {
       `sweep results shown (${rows.join(', ')})`,
     );
     // The d_SRSS table (companion runs on): its values are dsrss_table.csv's, one row per COR.
-    const sweepId = await page.$eval('#run-status', (st) => st.textContent.split(':')[0]);
+    // The Parametric tab shows its own run's progress and state.
+    const sweepId = await page.$eval('#param-status', (st) => st.textContent.split(':')[0]);
+    const sweepState = await page.$eval('#param-status', (st) => st.dataset.state);
+    check(/-sweep$/.test(sweepId) && sweepState === 'done', `the sweep's state on the Parametric tab (${sweepId})`);
     const csv = fs
       .readFileSync(path.join(runsDir, sweepId, 'out', 'dsrss_table.csv'), 'utf8')
       .trim()

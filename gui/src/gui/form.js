@@ -45,7 +45,9 @@
   function writeField(k, input, value) {
     if (k.type === 'flag') input.checked = value === undefined ? !!k.default : !!value;
     else if (k.type === 'choice') input.value = value === undefined ? String(k.default) : String(value);
-    else input.value = value === undefined ? '' : Array.isArray(value) ? value.join(', ') : String(value);
+    // null: not set (an optional key of a complete scene), as an empty field.
+    else if (value === undefined || value === null) input.value = '';
+    else input.value = Array.isArray(value) ? value.join(', ') : String(value);
   }
 
   const fields = [];
