@@ -341,8 +341,9 @@
           return m;
         };
         (k.impacts || []).forEach((impact) => {
-          // The pulse that began at (or within one step of) the impact's time.
-          const piece = pieces.find((q) => q.time[q.time.length - 1] >= impact.time && q.start <= impact.time + 1e-9);
+          // The impact's pulse: the first that ends after its time (its force may begin a step
+          // after the first contact step).
+          const piece = pieces.find((q) => q.time[q.time.length - 1] >= impact.time);
           rows.push({
             c: c,
             contact: k.name,
