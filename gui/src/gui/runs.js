@@ -150,7 +150,9 @@
   }
 
   /** Reopen a run's scene in the editor (a sweep: its base scene and its sweep file). */
-  async function editRun(r) {
+  async function editRun(listed) {
+    // The run as it is now (renamed since the list was drawn, perhaps).
+    const r = await getJson(`/api/runs/${listed.id}`);
     const text = async (f) => {
       const res = await fetch(`/api/files/${r.id}/${f}`);
       if (!res.ok) throw new Error(`${r.id}/${f}: ${res.statusText}`);
