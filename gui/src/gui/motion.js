@@ -97,7 +97,9 @@
     let mark = null;
     if (state.command === 'lumped') {
       try {
-        const m = await postJson('/api/preview', { command: 'lumped', scene: sceneYaml() });
+        const scene = sceneYaml();
+        const valid = await postJson('/api/validate', { command: 'lumped', scene: scene });
+        const m = valid.ok ? await postJson('/api/preview', { command: 'lumped', scene: scene }) : {};
         if (m.isolated_period) mark = { T: m.isolated_period, basis: m.isolated_period_basis };
       } catch {
         // An invalid scene: the spectrum without a marker (the Scene tab says why).

@@ -145,7 +145,11 @@
     const asked = ++previewAsked;
     let m;
     try {
-      m = await postJson('/api/preview', { command: 'lumped', scene: sceneYaml() });
+      // An invalid scene (being typed) is said by the validation, not by a refused request.
+      const scene = sceneYaml();
+      const valid = await postJson('/api/validate', { command: 'lumped', scene: scene });
+      if (!valid.ok) throw new Error(valid.error);
+      m = await postJson('/api/preview', { command: 'lumped', scene: scene });
     } catch (e) {
       if (asked !== previewAsked) return;
       host.innerHTML = '';
@@ -185,7 +189,7 @@
     const storey = 28;
     const n = m.building.n_storeys + (m.building.kind === 'isolated' ? 1 : 0);
     const nbMax = Math.max(m.neighbours.left.n_storeys, m.neighbours.right.n_storeys);
-    const H = (Math.max(n, nbMax) + 2) * storey;
+    const H = (Math.max(n, nbMax) + 1) * storey + 20;
     const W = 520;
     svg.setAttribute('viewBox', `0 0 ${W} ${H}`);
     svg.setAttribute('class', 'model-preview');
@@ -196,7 +200,7 @@
       svg.appendChild(e);
       return e;
     };
-    const ground = H - storey;
+    const ground = H - 20;
     add('line', { x1: 0, y1: ground, x2: W, y2: ground, stroke: '#654', 'stroke-width': 3 });
     const x0 = 210;
     const bw = 100;
@@ -223,7 +227,7 @@
         add('rect', { x: x - (side === 'left' ? 8 : 0), y: ground - storey, width: 8, height: storey, fill: '#777' });
         add(
           'text',
-          { x: x + sign * 14, y: ground - storey - 4, 'text-anchor': 'middle', 'font-size': 10, class: 'gap-label' },
+          { x: x + sign * 4, y: ground + 14, 'text-anchor': 'middle', 'font-size': 10, class: 'gap-label' },
           `${kimp.fmt(w.gap * 100, 3)} cm`,
         );
       }

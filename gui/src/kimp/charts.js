@@ -343,6 +343,7 @@
       card: card,
       time: spec.time,
       integerX: !!spec.integerX,
+      categories: spec.xCategories || null,
       units: spec.series.map((s) => s.unit),
       markers: spec.series.map((s) => !!s.marker),
       dashes: spec.series.map((s) => s.dash),
