@@ -142,7 +142,8 @@ async function main() {
     // Reopen the first run in the editor: its scene and name in the form.
     await page.click('header.top nav button[data-tab="runs"]');
     await page.waitForSelector(`#runs-list tr[data-id="${first}"] .run-edit`);
-    await page.click(`#runs-list tr[data-id="${first}"] .run-edit`);
+    // Clicked in the page at once: the tab redraws its table every 2 s.
+    await page.$eval(`#runs-list tr[data-id="${first}"] .run-edit`, (b) => b.click());
     await page.waitForFunction(() => document.querySelector('#pane-scene').classList.contains('active'));
     const reopened = await page.evaluate(() => ({
       storeys: document.querySelector('#scene-form input[data-path="building.n_storeys"]').value,
@@ -157,7 +158,7 @@ async function main() {
     // Delete the cancelled run: its row and its directory go.
     await page.click('header.top nav button[data-tab="runs"]');
     await page.waitForSelector(`#runs-list tr[data-id="${second}"] .run-delete`);
-    await page.click(`#runs-list tr[data-id="${second}"] .run-delete`);
+    await page.$eval(`#runs-list tr[data-id="${second}"] .run-delete`, (b) => b.click());
     await page.waitForFunction((id) => !document.querySelector(`#runs-list tr[data-id="${id}"]`), {}, second);
     check(!fs.existsSync(path.join(runsDir, second)), 'a deleted run leaves no directory');
     const refused = (
