@@ -31,6 +31,8 @@ async function main() {
     await setField(page, 'ground_motion.duration', '6 s');
     const yaml = await page.$eval('#scene-yaml', (t) => t.value);
     check(yaml.includes('n_storeys: 3') && yaml.includes('gap: "8 cm"'), 'the form writes the YAML scene');
+    // The model preview follows the form (after a short pause).
+    await page.waitForFunction(() => /\b3 storeys\b/.test(document.querySelector('#scene-preview').textContent));
     await page.screenshot({ path: path.join(artefacts, 'gui_editor.png') });
     await page.click('#scene-run');
     await page.waitForSelector('#results .peaks', { timeout: 60000 });
