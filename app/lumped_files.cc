@@ -173,6 +173,13 @@ namespace kimp::app
                              contact.pulse_force,
                              1,
                              "N");
+        // The deformation δ at the same steps: each impact's indentation.
+        cg.write_time_series("deformation_full_rate",
+                             pulse_steps,
+                             contact.pulse_time,
+                             contact.pulse_deformation,
+                             1,
+                             "m");
       }
       const lumped::EnergyBalance &e  = r.energy;
       ResultsGroup                 eg = g.group("energy");

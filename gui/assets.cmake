@@ -7,6 +7,9 @@ set(KIMP_GUI_ASSET_FILES
     src/style.css src/gui.html src/report.html
     node_modules/uplot/dist/uPlot.iife.min.js node_modules/uplot/dist/uPlot.min.css
     node_modules/js-yaml/dist/browser/js-yaml.umd.min.js)
+# The shipped scenes (data/scenes), the GUI's examples menu (GET /api/examples, /assets/NAME.yaml).
+file(GLOB KIMP_GUI_EXAMPLE_SCENES CONFIGURE_DEPENDS RELATIVE ${KIMP_GUI_DIR} ${PROJECT_SOURCE_DIR}/data/scenes/*.yaml)
+list(APPEND KIMP_GUI_ASSET_FILES ${KIMP_GUI_EXAMPLE_SCENES})
 # The two page scripts, each embedded as one asset <name>.js: the files of gui/src/<name>/ joined
 # in this order (each adds to the script's namespace, `kimp` or `kimpGui`, what the later ones
 # use). kimp.js draws results (kimp report and kimp gui), gui.js is the GUI.

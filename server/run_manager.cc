@@ -209,7 +209,10 @@ namespace kimp::server
       std::error_code          ec;
       for (std::filesystem::directory_iterator it(run_dir / "out", ec), end; !ec && it != end;
            it.increment(ec))
-        names.push_back("out/" + it->path().filename().string() + (it->is_directory() ? "/" : ""));
+        // Hidden files (the output directory's lock `.kimp.lock`) are not results.
+        if (it->path().filename().string().front() != '.')
+          names.push_back("out/" + it->path().filename().string() +
+                          (it->is_directory() ? "/" : ""));
       std::sort(names.begin(), names.end());
       if (names.size() > 50)
         names.resize(50);
@@ -700,6 +703,21 @@ namespace kimp::server
     return true;
   }
 
+  void
+  RunManager::set_meta(const std::string &id, const std::string &name, const std::string &notes)
+  {
+    if (name.size() > 200)
+      throw std::invalid_argument("run name of " + std::to_string(name.size()) +
+                                  " bytes: at most 200");
+    if (notes.size() > 65536)
+      throw std::invalid_argument("run notes of " + std::to_string(notes.size()) +
+                                  " bytes: at most 64 kB");
+    std::lock_guard<std::mutex> lock(mutex_);
+    io::write_text_atomic(settings_.runs_dir / id / "meta.json",
+                          nlohmann::json{{"name", name}, {"notes", notes}}.dump(1));
+    changed_.notify_all();
+  }
+
   bool RunManager::remove(const std::string &id)
   {
     if (!exists(id))
@@ -804,7 +822,10 @@ namespace kimp::server
         j["log"]      = std::move(log);
       }
     }
-    j["files"] = output_files(settings_.runs_dir / id);
+    j["files"]                = output_files(settings_.runs_dir / id);
+    const nlohmann::json meta = read_json(settings_.runs_dir / id / "meta.json");
+    j["name"]                 = meta.is_object() ? meta.value("name", "") : "";
+    j["notes"]                = meta.is_object() ? meta.value("notes", "") : "";
     return j;
   }
 

@@ -125,6 +125,12 @@ namespace kimp::server
     nlohmann::json describe(const std::string &id, std::size_t from = 0) const;
     /// Every run in runs_dir, newest first (finished ones read from run.json), without logs.
     nlohmann::json list() const;
+    /**
+     * Set a run's name and notes (the page's label of the run and a free text), kept in
+     * `meta.json` of its directory and shown by describe() and list().
+     * @throws std::invalid_argument for a name longer than 200 bytes or notes over 64 kB
+     */
+    void set_meta(const std::string &id, const std::string &name, const std::string &notes);
     /// Whether `id` names a run directory (only [A-Za-z0-9_-] characters).
     bool exists(const std::string &id) const;
     /// Block until the run changed after `seen_lines` log lines or finished, at most `ms` ms.

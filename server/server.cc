@@ -25,6 +25,7 @@
 #include "app/collide_run.h"
 #include "app/lumped_scene.h"
 #include "app/scene_motion.h"
+#include "app/scene_preview.h"
 #include "base/logging.h"
 #include "base/version.h"
 #include "io/at2_reader.h"
@@ -504,7 +505,12 @@ namespace kimp::server
            }
            try
            {
-             send_json(res, {{"id", runs.start(command, scene, sweep)}}, 201);
+             const std::string id = runs.start(command, scene, sweep);
+             if (body.contains("name") || body.contains("notes"))
+               runs.set_meta(id,
+                             text_member(body, "name", false),
+                             text_member(body, "notes", false));
+             send_json(res, {{"id", id}}, 201);
            }
            catch (const RunQueueFull &error)
            {
@@ -525,6 +531,25 @@ namespace kimp::server
                                                             "scene.yaml",
                                                             options.records_dir,
                                                             run_folder())));
+           }
+           catch (const io::SceneError &error)
+           {
+             throw HttpError(400, error.what());
+           }
+         });
+    // The model of a lumped scene (buildings, periods, walls, gaps) as its run would assemble it.
+    post("/api/preview",
+         [](const httplib::Request &, const std::string &text, httplib::Response &res)
+         {
+           const auto        body    = parse_body(text);
+           const std::string command = text_member(body, "command");
+           if (command != "lumped")
+             throw HttpError(400,
+                             "the model preview is drawn for lumped scenes (command \"" + command +
+                               "\")");
+           try
+           {
+             send_json(res, app::scene_model_preview(text_member(body, "scene"), "scene.yaml"));
            }
            catch (const io::SceneError &error)
            {
@@ -563,6 +588,50 @@ namespace kimp::server
              throw HttpError(404, "no run " + clipped(req.matches[1].str()));
            send_json(res, {{"cancelled", runs.cancel(req.matches[1])}});
          });
+    // A run's name and notes (meta.json of its directory), and deleting a finished run.
+    post(R"(/api/runs/([A-Za-z0-9_-]+)/meta)",
+         [this](const httplib::Request &req, const std::string &text, httplib::Response &res)
+         {
+           const std::string id = req.matches[1];
+           if (!runs.exists(id) || !std::filesystem::exists(options.runs_dir / id / "scene.yaml"))
+             throw HttpError(404, "no run " + clipped(id));
+           const auto body = parse_body(text);
+           runs.set_meta(id, text_member(body, "name"), text_member(body, "notes", false));
+           send_json(res, runs.describe(id));
+         });
+    post(R"(/api/runs/([A-Za-z0-9_-]+)/delete)",
+         [this](const httplib::Request &req, const std::string &, httplib::Response &res)
+         {
+           const std::string id = req.matches[1];
+           try
+           {
+             if (!runs.remove(id))
+               throw HttpError(404, "no run " + clipped(id));
+           }
+           catch (const RunBusy &error)
+           {
+             throw HttpError(409, error.what());
+           }
+           send_json(res, {{"deleted", id}});
+         });
+    // The scenes shipped with kimp (data/scenes, embedded at build time): name and the first
+    // line of their leading comment; the text is GET /assets/NAME.
+    http.Get("/api/examples",
+             [](const httplib::Request &, httplib::Response &res)
+             {
+               nlohmann::json list = nlohmann::json::array();
+               for (const auto name : report::asset_names())
+               {
+                 if (name.size() < 6 || name.substr(name.size() - 5) != ".yaml")
+                   continue;
+                 const std::string_view text = *report::asset(name);
+                 std::string            about;
+                 if (text.rfind("# ", 0) == 0)
+                   about = std::string(text.substr(2, text.find('\n') - 2));
+                 list.push_back({{"name", std::string(name)}, {"about", about}});
+               }
+               send_json(res, list);
+             });
     http.Get(R"(/api/runs/([A-Za-z0-9_-]+)/events)",
              [this](const httplib::Request &req, httplib::Response &res)
              {

@@ -7,6 +7,7 @@
 #include <deal.II/base/mpi.h>
 
 #include "fem/impact/impact_problem.h"
+#include "fem/impact/peak_frames.h"
 
 namespace kimp::fem::internal
 {
@@ -24,8 +25,9 @@ namespace kimp::fem::internal
     const LoopSteps steps      = loop_steps();
     bool            started    = false;
     unsigned long   zero_since = 0;
-    unsigned long   n          = 0;
-    separated_flag             = false;
+    PeakFrames      frame_due(steps.frame_every);
+    unsigned long   n = 0;
+    separated_flag    = false;
     for (;; ++n)
     {
       const double t = n * dt;
@@ -66,7 +68,7 @@ namespace kimp::fem::internal
         prm.progress(t, prm.end_time);
       if (steps.write_vtu && n % steps.vtu_every == 0)
         output_results(t, u, v_n, fc);
-      if (steps.frame_every && n % steps.frame_every == 0)
+      if (frame_due(n, t, ev.total_force))
         record_frame(t, u, ev);
 
       if (ev.total_force > 0)

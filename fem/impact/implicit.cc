@@ -14,6 +14,7 @@
 #include <deal.II/lac/vector.h>
 
 #include "fem/impact/impact_problem.h"
+#include "fem/impact/peak_frames.h"
 
 namespace kimp::fem::internal
 {
@@ -387,7 +388,8 @@ namespace kimp::fem::internal
 
     bool          started    = false;
     unsigned long zero_since = 0;
-    unsigned long n          = 0;
+    PeakFrames    frame_due(steps.frame_every);
+    unsigned long n = 0;
     // Time in ticks of the smallest allowed step, dt / 2^max_halvings.
     const unsigned int  max_level      = prm.implicit_options.max_halvings;
     const unsigned long ticks_per_step = 1UL << max_level;
@@ -435,7 +437,7 @@ namespace kimp::fem::internal
       record(n, t_np1, u, v, Ku, u_r, v_r, ev, cu);
       if (steps.write_vtu && n % steps.vtu_every == 0)
         output_results(t_np1, u, v, padded_force(ev, cu.size()));
-      if (steps.frame_every && n % steps.frame_every == 0)
+      if (frame_due(n, t_np1, ev.total_force))
         record_frame(t_np1, u, ev);
       if (prm.progress && n % prm.progress_interval == 0 &&
           Utilities::MPI::this_mpi_process(comm) == 0)

@@ -397,7 +397,7 @@ namespace kimp::lumped
           if constexpr (Fast)
             s.closing[c] = (s.dp[c] - s.dpp[c]) * s.ih_prev;
           if (record)
-            rec_.contact_force(c, force, s.t);
+            rec_.contact_force(c, force, s.t, delta);
           if (cp.left_dof >= 0)
             s.f(cp.left_dof) += force;
           if (cp.right_dof >= 0)

@@ -28,6 +28,9 @@ namespace kimp::lumped
     /// unlike the decimated history which can miss their peaks), s and N.
     std::vector<double> pulse_time;
     std::vector<double> pulse_force;
+    /// The deformation δ (interpenetration beyond the gap, m) at the same steps: an impact's
+    /// indentation is its largest value.
+    std::vector<double> pulse_deformation;
 
     /// The impact velocity of the contact: the largest closing rate at first contact over its
     /// impacts, m/s (0 without impacts).

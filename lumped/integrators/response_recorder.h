@@ -44,15 +44,17 @@ namespace kimp::lumped
       r_.contacts[c].impacts.push_back({t, rate});
     }
 
-    /// Force of contact `c` at a step at time `t` (s), N: its maximum is the peak force, and
-    /// non-zero forces are kept at full rate (ContactResult::pulse_time/pulse_force).
-    void contact_force(const std::size_t c, const double force, const double t)
+    /// Force of contact `c` at a step at time `t` (s), N, at the deformation `delta` (m): its
+    /// maximum is the peak force, and non-zero forces are kept at full rate with their
+    /// deformation (ContactResult::pulse_time/pulse_force/pulse_deformation).
+    void contact_force(const std::size_t c, const double force, const double t, const double delta)
     {
       peak_force_[c] = std::max(peak_force_[c], force);
       if (force != 0.0)
       {
         r_.contacts[c].pulse_time.push_back(t);
         r_.contacts[c].pulse_force.push_back(force);
+        r_.contacts[c].pulse_deformation.push_back(delta);
       }
     }
 

@@ -142,6 +142,14 @@ TEST(LumpedCli, LabelledHistoriesIsolatorForceAndFullRatePulses)
     full_max = std::max(full_max, peak);
     // Consecutive samples of one pulse are one step (1e-4 s) apart.
     EXPECT_NEAR(time[1] - time[0], 1e-4, 1e-12) << wall;
+    // The deformation at the same steps: in contact, so positive (an impact's indentation is
+    // its largest value).
+    const std::vector<double> delta = h5.doubles(c + "/deformation_full_rate/value");
+    EXPECT_EQ(h5.doubles(c + "/deformation_full_rate/time"), time) << wall;
+    EXPECT_EQ(h5.attribute(c + "/deformation_full_rate/value", "units"), "m");
+    ASSERT_EQ(delta.size(), force.size()) << wall;
+    for (std::size_t i = 0; i < delta.size(); ++i)
+      EXPECT_GT(delta[i], 0.0) << wall << " at " << time[i] << " s, force " << force[i] << " N";
   }
   EXPECT_GE(full_max, sampled_max);
 

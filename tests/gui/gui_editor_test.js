@@ -72,7 +72,7 @@ async function main() {
     const pga0 = await page.$eval('#motion-info', (e) => Number(e.dataset.pga));
     const peak = Math.max(...lines.map((l) => Math.abs(Number(l.split(' ')[1]))));
     check(Math.abs(pga0 - peak) < 1e-9, `PGA of the upload ${pga0} g = largest sample ${peak} g`);
-    const nCharts = await page.$$eval('#motion-charts .chart', (c) => c.length);
+    const nCharts = await page.$$eval('#motion-charts > .chart', (c) => c.length);
     check(nCharts === 3, `acceleration, velocity and displacement drawn (${nCharts} charts)`);
     // Scale 0.5 and a duration in ms: the page shows what the run will use (the answer to the last
     // change: the page draws only the latest answer of the server).
@@ -81,7 +81,7 @@ async function main() {
     const samples = await page.$eval('#motion-info', (e) => Number(e.dataset.samples));
     check(Math.abs(pga - 0.5 * pga0) < 1e-12, `scale 0.5 halves the PGA shown (${pga0} -> ${pga} g)`);
     check(samples === 500, `duration "5000 ms" keeps 5 s = ${samples} samples`);
-    const title = await page.$eval('#motion-charts .chart-title', (e) => e.textContent);
+    const title = await page.$eval('#motion-charts > .chart .chart-title', (e) => e.textContent);
     check(title.includes(`PGA = ${Number(pga.toPrecision(4))} g`), `PGA on the acceleration chart: ${title}`);
     await page.screenshot({ path: path.join(artefacts, 'gui_motion.png') });
     const yaml = await page.$eval('#scene-yaml', (t) => t.value);

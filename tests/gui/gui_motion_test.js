@@ -39,7 +39,7 @@ async function main() {
     await page.waitForFunction(() => document.querySelector('#motion-info').dataset.pga, { timeout: 15000 });
     const pick = await page.$eval('#motion-record', (s) => s.value);
     check(pick === 'synthetic', `the synthetic motion is chosen (${pick})`);
-    const nCharts = await page.$$eval('#motion-charts .chart', (c) => c.length);
+    const nCharts = await page.$$eval('#motion-charts > .chart', (c) => c.length);
     check(nCharts === 3, `acceleration, velocity and displacement drawn (${nCharts} charts)`);
     const pga = await page.$eval('#motion-info', (e) => Number(e.dataset.pga));
     const samples = await page.$eval('#motion-info', (e) => Number(e.dataset.samples));
@@ -54,7 +54,7 @@ async function main() {
         text.includes('as the run scales it'),
       `PGA, PGV and PGD shown: ${text}`,
     );
-    const titles = await page.$$eval('#motion-charts .chart-title', (ts) => ts.map((t) => t.textContent));
+    const titles = await page.$$eval('#motion-charts > .chart .chart-title', (ts) => ts.map((t) => t.textContent));
     check(
       titles.length === 3 &&
         titles[0].startsWith('synthetic_near_fault: ground acceleration, PGA = 0.8 g') &&
@@ -109,7 +109,7 @@ async function main() {
     await page.click('header.top nav button[data-tab="motion"]');
     await page.waitForFunction(() => /collide/.test(document.querySelector('#motion-error').textContent));
     const error = await page.$eval('#motion-error', (e) => e.textContent);
-    const left = await page.$$eval('#motion-charts .chart', (c) => c.length);
+    const left = await page.$$eval('#motion-charts > .chart', (c) => c.length);
     check(/kimp collide scene has no ground motion/.test(error) && left === 0, `collide refused: ${error}`);
     // The browser logs the refused request (400) itself; nothing else may be logged.
     const unexpected = log.errors.filter((e) => !/status of 400/.test(e));

@@ -31,6 +31,8 @@ async function main() {
     await setField(page, 'ground_motion.duration', '6 s');
     const yaml = await page.$eval('#scene-yaml', (t) => t.value);
     check(yaml.includes('n_storeys: 3') && yaml.includes('gap: "8 cm"'), 'the form writes the YAML scene');
+    // The model preview follows the form (after a short pause).
+    await page.waitForFunction(() => /\b3 storeys\b/.test(document.querySelector('#scene-preview').textContent));
     await page.screenshot({ path: path.join(artefacts, 'gui_editor.png') });
     await page.click('#scene-run');
     await page.waitForSelector('#results .peaks', { timeout: 60000 });
@@ -133,7 +135,10 @@ async function main() {
       `sweep results shown (${rows.join(', ')})`,
     );
     // The d_SRSS table (companion runs on): its values are dsrss_table.csv's, one row per COR.
-    const sweepId = await page.$eval('#run-status', (st) => st.textContent.split(':')[0]);
+    // The Parametric tab shows its own run's progress and state.
+    const sweepId = await page.$eval('#param-status', (st) => st.textContent.split(':')[0]);
+    const sweepState = await page.$eval('#param-status', (st) => st.dataset.state);
+    check(/-sweep$/.test(sweepId) && sweepState === 'done', `the sweep's state on the Parametric tab (${sweepId})`);
     const csv = fs
       .readFileSync(path.join(runsDir, sweepId, 'out', 'dsrss_table.csv'), 'utf8')
       .trim()

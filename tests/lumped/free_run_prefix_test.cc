@@ -35,6 +35,7 @@ namespace kimp::lumped
         EXPECT_EQ(a.contacts[c].name, b.contacts[c].name) << what;
         EXPECT_EQ(a.contacts[c].dissipated_energy, b.contacts[c].dissipated_energy) << what;
         EXPECT_EQ(a.contacts[c].pulse_force, b.contacts[c].pulse_force) << what;
+        EXPECT_EQ(a.contacts[c].pulse_deformation, b.contacts[c].pulse_deformation) << what;
         for (std::size_t i = 0; i < a.contacts[c].impacts.size(); ++i)
           EXPECT_EQ(a.contacts[c].impacts[i].velocity, b.contacts[c].impacts[i].velocity) << what;
       }

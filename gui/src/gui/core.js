@@ -7,7 +7,10 @@
 const kimpGui = {};
 
 (function () {
-  const state = { command: 'lumped', schema: null, schemas: {}, extra: {}, saved: {}, current: null, info: {} };
+  // `restoring`: the session is not saved until the previous one has been restored (start.js).
+  const state = {
+    command: 'lumped', schema: null, schemas: {}, extra: {}, saved: {}, current: null, info: {}, restoring: true,
+  };
 
   // ---- server access -----------------------------------------------------------------------
   async function getJson(url) {
@@ -36,6 +39,7 @@ const kimpGui = {};
     // Drawn by later files of the namespace, looked up when the tab is shown.
     if (name === 'runs') kimpGui.refreshRuns();
     if (name === 'motion') kimpGui.showMotion();
+    if (kimpGui.saveSession) kimpGui.saveSession();
   }
 
   // ---- YAML: written here (quantities quoted, block maps, flow lists), read by js-yaml ----------

@@ -45,7 +45,9 @@
   function writeField(k, input, value) {
     if (k.type === 'flag') input.checked = value === undefined ? !!k.default : !!value;
     else if (k.type === 'choice') input.value = value === undefined ? String(k.default) : String(value);
-    else input.value = value === undefined ? '' : Array.isArray(value) ? value.join(', ') : String(value);
+    // null: not set (an optional key of a complete scene), as an empty field.
+    else if (value === undefined || value === null) input.value = '';
+    else input.value = Array.isArray(value) ? value.join(', ') : String(value);
   }
 
   const fields = [];
@@ -132,6 +134,68 @@
     return toYaml(formScene(errors), 0) + '\n';
   }
 
+  /** `scene` over `defaults`: maps merged key by key, anything else (lists, values) the scene's. */
+  function overDefaults(defaults, scene) {
+    const out = JSON.parse(JSON.stringify(defaults));
+    for (const [k, v] of Object.entries(scene)) {
+      const isMap = (x) => x && typeof x === 'object' && !Array.isArray(x);
+      out[k] = isMap(v) && isMap(out[k]) ? overDefaults(out[k], v) : v;
+    }
+    return out;
+  }
+
+  /**
+   * The complete scene a run saves: every key of the command's defaults (`--print-defaults`,
+   * which reads back to the same values) with the form's values over them, so that the saved
+   * scene does not depend on the defaults of the version that reads it. A sweep file has no
+   * defaults (its parameters are the user's): it stays as written.
+   */
+  async function completeSceneYaml(command, yaml) {
+    if (command === 'sweep') return yaml;
+    if (!state.defaults) state.defaults = {};
+    if (!state.defaults[command]) {
+      const r = await fetch('/api/defaults/' + command);
+      if (!r.ok) return yaml;
+      state.defaults[command] = fromYaml(await r.text());
+    }
+    return toYaml(overDefaults(state.defaults[command], fromYaml(yaml)), 0) + '\n';
+  }
+
+  // ---- the session: the form's state kept in the browser across a reload -----------------------
+  const SESSION = 'kimp-gui-session';
+
+  function saveSession() {
+    if (!state.schema || state.restoring) return;
+    try {
+      const saved = {};
+      for (const [k, v] of Object.entries(state.saved)) saved[k] = v.yaml;
+      saved[state.command] = sceneYaml();
+      const tab = document.querySelector('header.top nav button.active');
+      localStorage.setItem(
+        SESSION,
+        JSON.stringify({
+          command: state.command,
+          saved: saved,
+          name: document.getElementById('run-name').value,
+          notes: document.getElementById('run-notes').value,
+          sweep: document.getElementById('sweep-yaml').value,
+          tab: tab ? tab.dataset.tab : 'scene',
+          shown: state.shown ? state.shown.id : null,
+        }),
+      );
+    } catch {
+      // No storage: the session is not kept.
+    }
+  }
+
+  function readSession() {
+    try {
+      return JSON.parse(localStorage.getItem(SESSION) || 'null');
+    } catch {
+      return null;
+    }
+  }
+
   /** Fill the form from a scene object; its unknown keys are reported (and kept, as the CLI refuses them). */
   function loadScene(obj, source) {
     for (const f of fields) {
@@ -164,6 +228,8 @@
     document.getElementById('scene-yaml').value = sceneYaml(errors);
     clearErrors();
     if (errors.length) showProblems(errors);
+    saveSession();
+    if (kimpGui.previewModel) kimpGui.previewModel();
   }
 
   function clearErrors() {
@@ -227,6 +293,16 @@
     for (const p of problems) flagAt(p.path, p.message);
   }
 
+  /** Open the scene text `yaml` of `command` in the editor (an example, a past run's scene). */
+  async function openScene(command, yaml) {
+    const select = document.getElementById('scene-command');
+    if (command !== state.command) {
+      select.value = command;
+      await loadCommand(command);
+    }
+    loadScene(fromYaml(yaml));
+  }
+
   async function loadCommand(command) {
     if (state.schema) state.saved[state.command] = { yaml: sceneYaml(), extra: state.extra };
     state.command = command;
@@ -243,6 +319,6 @@
 
   Object.assign(kimpGui, {
     formScene, sceneYaml, loadScene, syncYaml, clearErrors, showError, showProblems,
-    loadCommand,
+    loadCommand, openScene, completeSceneYaml, saveSession, readSession,
   });
 })();

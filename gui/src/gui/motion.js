@@ -3,7 +3,7 @@
 'use strict';
 
 (function () {
-  const { state, getJson, sceneYaml, syncYaml } = kimpGui;
+  const { state, getJson, postJson, sceneYaml, syncYaml } = kimpGui;
   const el = kimp.el;
 
   // ---- ground motion -----------------------------------------------------------------------
@@ -50,6 +50,86 @@
     return k;
   }
 
+  /**
+   * The pseudo-acceleration response spectrum Sa(T) = ω² max|u| of the record `a` (m/s², step
+   * `dt`) at `periods` (s) for the damping ratio `zeta`: each linear SDOF ü + 2ζωu̇ + ω²u = −a_g
+   * stepped by the exact recurrence for a linearly interpolated excitation (Nigam and Jennings;
+   * Chopra, Dynamics of Structures, §5.2), so any dt is exact.
+   */
+  function responseSpectrum(a, dt, periods, zeta) {
+    const root = Math.sqrt(1 - zeta * zeta);
+    return periods.map((T) => {
+      const w = (2 * Math.PI) / T;
+      const wd = w * root;
+      const k = w * w;
+      const e = Math.exp(-zeta * w * dt);
+      const s = Math.sin(wd * dt);
+      const c = Math.cos(wd * dt);
+      const A = e * ((zeta / root) * s + c);
+      const B = e * (s / wd);
+      const z = (2 * zeta) / (w * dt);
+      const C = (z + e * (((1 - 2 * zeta * zeta) / (wd * dt) - zeta / root) * s - (1 + z) * c)) / k;
+      const D = (1 - z + e * (((2 * zeta * zeta - 1) / (wd * dt)) * s + z * c)) / k;
+      const A1 = -e * (w / root) * s;
+      const B1 = e * (c - (zeta / root) * s);
+      const C1 = (-1 / dt + e * ((w / root + zeta / (dt * root)) * s + c / dt)) / k;
+      const D1 = (1 - e * ((zeta / root) * s + c)) / (k * dt);
+      let u = 0;
+      let v = 0;
+      let peak = 0;
+      for (let i = 0; i + 1 < a.length; ++i) {
+        const p0 = -a[i];
+        const p1 = -a[i + 1];
+        const u1 = A * u + B * v + C * p0 + D * p1;
+        v = A1 * u + B1 * v + C1 * p0 + D1 * p1;
+        u = u1;
+        if (Math.abs(u) > peak) peak = Math.abs(u);
+      }
+      return k * peak;
+    });
+  }
+
+  /** The spectrum chart (5 % damping, Sa in g) with the isolated period of the scene's model marked. */
+  async function plotSpectrum(host, rec) {
+    const ZETA = 0.05;
+    const periods = [];
+    for (let i = 0; i <= 120; ++i) periods.push(0.02 * Math.pow(6 / 0.02, i / 120));
+    let mark = null;
+    if (state.command === 'lumped') {
+      try {
+        const scene = sceneYaml();
+        const valid = await postJson('/api/validate', { command: 'lumped', scene: scene });
+        const m = valid.ok ? await postJson('/api/preview', { command: 'lumped', scene: scene }) : {};
+        if (m.isolated_period) mark = { T: m.isolated_period, basis: m.isolated_period_basis };
+      } catch {
+        // An invalid scene: the spectrum without a marker (the Scene tab says why).
+      }
+    }
+    if (mark && !periods.includes(mark.T)) periods.push(mark.T);
+    periods.sort((x, y) => x - y);
+    const sa = responseSpectrum(rec.acceleration, rec.dt, periods, ZETA).map((x) => x / 9.80665);
+    const series = [{ label: 'Sa (5 % damping)', y: sa }];
+    let title = `${rec.name}: pseudo-acceleration response spectrum, 5 % damping`;
+    if (mark) {
+      const i = periods.indexOf(mark.T);
+      const y = new Array(periods.length).fill(null);
+      y[i] = sa[i];
+      series.push({ label: `isolated period ${kimp.fmt(mark.T, 3)} s`, y: y, marker: true, color: '#d62728' });
+      title += `; isolated period T = ${kimp.fmt(mark.T, 3)} s (${mark.basis}): Sa = ${kimp.fmt(sa[i], 4)} g`;
+      host.dataset.isolatedPeriod = String(mark.T);
+      host.dataset.saAtPeriod = String(sa[i] * 9.80665);
+    }
+    const c = kimp.chart(host, {
+      title: title,
+      xlabel: 'period T (s)',
+      ylabel: 'Sa (g)',
+      x: periods,
+      height: 260,
+      series: series,
+    });
+    c.card.classList.add('spectrum');
+  }
+
   function plotMotion() {
     const host = document.getElementById('motion-charts');
     const info = document.getElementById('motion-info');
@@ -93,6 +173,9 @@
         series: [{ label: symbol, y: ys }, marker(i, ys, `${peak} ${value}`)],
       });
     }
+    const spectrum = el('div', { class: 'spectrum-host' });
+    host.appendChild(spectrum);
+    return plotSpectrum(spectrum, rec);
   }
 
   /**

@@ -3,7 +3,7 @@
 'use strict';
 
 (function () {
-  const { state, getJson, toYaml, fromYaml, sceneYaml, startRun } = kimpGui;
+  const { state, getJson, toYaml, fromYaml, sceneYaml, startRun, completeSceneYaml } = kimpGui;
   const el = kimp.el;
 
   // ---- parametric dialog -------------------------------------------------------------------
@@ -19,6 +19,19 @@
     }
     return out;
   }
+
+  /**
+   * The k that goes with an impact law in a sweep over laws (thesis Table 4.3): n = 1 laws in
+   * kN/mm, n = 1.5 laws in kN/mm^1.5; bumper takes its own bumper.k_b (no k).
+   */
+  const LAW_K = {
+    linear: '2500 kN/mm',
+    kelvin_voigt: '2500 kN/mm',
+    modified_kelvin_voigt: '2500 kN/mm',
+    jankowski: '750 kN/mm^1.5',
+    hertzdamp: '750 kN/mm^1.5',
+    hysteretic: '750 kN/mm^1.5',
+  };
 
   /** The sweep file of the dialog's rows; regenerated on every change, so a run never uses a stale one. */
   function makeSweep() {
@@ -43,7 +56,20 @@
           .map((v) => v.trim())
           .filter((v) => v);
         const values = picked.length ? picked : typed;
-        params.push(`  ${keyText}: [${values.map((v) => JSON.stringify(v)).join(', ')}]`);
+        const kOf = (law) => {
+          const box = row.querySelector(`.param-k[data-law="${law}"]`);
+          return box ? box.value.trim() || box.placeholder : '';
+        };
+        if (key.endsWith('.law') && picked.some(kOf)) {
+          // Each law with its k, set together (a list of maps, labelled by the law).
+          const kKey = key.replace(/law$/, 'k');
+          const items = picked.map((law) =>
+            kOf(law)
+              ? `{${key}: ${law}, ${kKey}: ${JSON.stringify(kOf(law))}, label: ${law}}`
+              : `{${key}: ${law}, label: ${law}}`,
+          );
+          params.push(`  ${keyText}: [${items.join(', ')}]`);
+        } else params.push(`  ${keyText}: [${values.map((v) => JSON.stringify(v)).join(', ')}]`);
       }
     }
     if (gap) lines.push('report:', '  kind: gap_study', `  gap: ${gap}`, '  title: "Gap sweep (kimp gui)"');
@@ -102,13 +128,19 @@
       options.innerHTML = '';
       if (choice) {
         const opts = k.type === 'flag' ? ['false', 'true'] : k.options;
-        for (const o of opts)
+        for (const o of opts) {
+          const kBox =
+            k.path.endsWith('.law') && LAW_K[o]
+              ? el('input', { type: 'text', class: 'param-k', 'data-law': o, placeholder: LAW_K[o], size: 12 })
+              : null;
           options.appendChild(
-            el('label', {}, [
+            el('label', { title: kBox ? `${o} with its k (impact.k)` : o }, [
               el('input', { type: 'checkbox', class: 'param-option', value: o }),
               document.createTextNode(' ' + o + ' '),
+              kBox,
             ]),
           );
+        }
       }
     };
     sel.addEventListener('change', () => {
@@ -151,12 +183,18 @@
     document.getElementById('param-add').addEventListener('click', () => addParamRow());
     document.getElementById('param-make').addEventListener('click', makeSweep);
     document.getElementById('param-both').addEventListener('change', makeSweep);
-    document.getElementById('param-run').addEventListener('click', () => {
+    document.getElementById('param-run').addEventListener('click', async () => {
       const text = document.getElementById('sweep-yaml').value;
+      // Progress, log and errors on this tab (prefix "param").
       startRun(
         'sweep',
-        lumpedSceneForSweep(),
+        await completeSceneYaml('lumped', lumpedSceneForSweep()),
         text.trim() ? text : (makeSweep(), document.getElementById('sweep-yaml').value),
+        {
+          prefix: 'param',
+          name: document.getElementById('run-name').value.trim(),
+          notes: document.getElementById('run-notes').value.trim(),
+        },
       );
     });
     addParamRow('walls.left.gap', 'range', ['10 cm', '20 cm', '5 cm']);

@@ -3,22 +3,41 @@
 'use strict';
 
 (function () {
-  const { state, getJson, postJson, showTab, clearErrors, showError } = kimpGui;
+  const { state, getJson, postJson, showTab, clearErrors, showError, saveSession } = kimpGui;
   const el = kimp.el;
 
   // ---- runs --------------------------------------------------------------------------------
-  async function startRun(command, scene, sweep) {
-    clearErrors();
+  /**
+   * Start a run named `opts.name` with `opts.notes`; its progress, log and error go to the
+   * elements of `opts.prefix` ("run": the Scene tab's, "param": the Parametric tab's).
+   */
+  async function startRun(command, scene, sweep, opts) {
+    const o = opts || {};
+    const prefix = o.prefix || 'run';
+    const report = (message) => {
+      if (prefix === 'run') showError(message);
+      else document.getElementById(prefix + '-error').textContent = message;
+    };
+    if (prefix === 'run') clearErrors();
+    else document.getElementById(prefix + '-error').textContent = '';
     let id;
     try {
-      id = (await postJson('/api/runs', { command: command, scene: scene, sweep: sweep })).id;
+      id = (
+        await postJson('/api/runs', {
+          command: command,
+          scene: scene,
+          sweep: sweep,
+          name: o.name || '',
+          notes: o.notes || '',
+        })
+      ).id;
     } catch (e) {
-      showError(e.message);
+      report(e.message);
       return null;
     }
-    const bar = document.getElementById('run-progress');
-    const status = document.getElementById('run-status');
-    const log = document.getElementById('run-log');
+    const bar = document.getElementById(prefix + '-progress');
+    const status = document.getElementById(prefix + '-status');
+    const log = document.getElementById(prefix + '-log');
     log.textContent = '';
     status.textContent = `${id}: running`;
     status.dataset.state = 'running';
@@ -39,7 +58,7 @@
         if (s.state !== 'running' && s.state !== 'queued') {
           events.close();
           if (s.state === 'done') await openResults(id);
-          else if (s.error) showError(s.error);
+          else if (s.error) report(s.error);
           resolve(s.state);
         }
       };
@@ -60,13 +79,17 @@
       .map((l) => l.slice(9));
   }
 
+  /** A run's label: its name, else its id. */
+  const runLabel = (r) => (r && r.name ? r.name : r ? r.id : '');
+
   async function openResults(id, overlay) {
     const data = await getJson(`/api/runs/${id}/data`);
-    data.title = id;
+    const run = await getJson(`/api/runs/${id}`);
+    data.title = runLabel(run);
     const others = [];
     for (const o of overlay || []) {
       const d = await getJson(`/api/runs/${o}/data`);
-      d.title = o;
+      d.title = runLabel(await getJson(`/api/runs/${o}`));
       others.push(d);
     }
     const pane = document.getElementById('results');
@@ -76,7 +99,9 @@
       el('p', {}, [el('a', { href: `/api/runs/${id}/report`, download: `${id}.html`, text: 'download report.html' })]),
       pane.children[1],
     );
+    if (run.notes) pane.insertBefore(el('p', { class: 'run-notes-shown', text: run.notes }), pane.children[1]);
     showTab('results');
+    saveSession();
     await Promise.all([runPicker(id, data, overlay || []), showRunNotes(id, data)]);
   }
 
@@ -108,7 +133,7 @@
     const boxes = list.map((r) => {
       const box = el('input', { type: 'checkbox', value: r.id, class: 'overlay-run' });
       box.checked = overlay.includes(r.id);
-      return el('label', {}, [box, document.createTextNode(' ' + r.id)]);
+      return el('label', { title: r.id }, [box, document.createTextNode(' ' + runLabel(r))]);
     });
     const go = el('button', { class: 'overlay-apply', text: 'Overlay on the charts' });
     go.addEventListener('click', () => {
@@ -124,35 +149,73 @@
     );
   }
 
+  /** Reopen a run's scene in the editor (a sweep: its base scene and its sweep file). */
+  async function editRun(listed) {
+    // The run as it is now (renamed since the list was drawn, perhaps).
+    const r = await getJson(`/api/runs/${listed.id}`);
+    const text = async (f) => {
+      const res = await fetch(`/api/files/${r.id}/${f}`);
+      if (!res.ok) throw new Error(`${r.id}/${f}: ${res.statusText}`);
+      return res.text();
+    };
+    const scene = await text('scene.yaml');
+    if (r.command === 'sweep') {
+      await kimpGui.openScene('lumped', scene);
+      document.getElementById('sweep-yaml').value = await text('sweep.yaml');
+    } else await kimpGui.openScene(r.command, scene);
+    document.getElementById('run-name').value = r.name || '';
+    document.getElementById('run-notes').value = r.notes || '';
+    showTab(r.command === 'sweep' ? 'parametric' : 'scene');
+    saveSession();
+  }
+
   async function refreshRuns() {
     const list = await getJson('/api/runs');
     const host = document.getElementById('runs-list');
+    // Not while the user types a name or notes in the table.
+    if (host.contains(document.activeElement) && document.activeElement.tagName === 'INPUT') return;
     host.innerHTML = '';
-    const t = el('table', { class: 'data' });
+    const t = el('table', { class: 'data runs' });
     t.appendChild(
       el(
         'tr',
         {},
-        ['run', 'command', 'state', ''].map((h) => el('th', { text: h })),
+        ['name', 'notes', 'run', 'command', 'state', ''].map((h) => el('th', { text: h })),
       ),
     );
     for (const r of list) {
       const actions = el('span');
       if (r.state === 'done') actions.appendChild(el('button', { text: 'results', onclick: () => openResults(r.id) }));
+      actions.appendChild(el('button', { class: 'run-edit', text: 'edit', onclick: () => editRun(r) }));
       if (r.state === 'running' || r.state === 'queued')
         actions.appendChild(
           el('button', { text: 'cancel', onclick: () => postJson(`/api/runs/${r.id}/cancel`, {}).then(refreshRuns) }),
+        );
+      else
+        actions.appendChild(
+          el('button', {
+            class: 'run-delete',
+            text: 'delete',
+            onclick: () => postJson(`/api/runs/${r.id}/delete`, {}).then(refreshRuns),
+          }),
         );
       // A cancelled or failed run: why, and what it wrote before it stopped.
       if (r.state !== 'done') {
         for (const f of (r.files || []).filter((x) => !x.endsWith('/')))
           actions.appendChild(el('a', { href: `/api/files/${r.id}/${f}`, text: f.slice(4) + ' ' }));
       }
+      const name = el('input', { type: 'text', class: 'run-name', value: r.name || '', placeholder: r.id });
+      const notes = el('input', { type: 'text', class: 'run-notes', value: r.notes || '' });
+      const save = () => postJson(`/api/runs/${r.id}/meta`, { name: name.value, notes: notes.value });
+      name.addEventListener('change', save);
+      notes.addEventListener('change', save);
       t.appendChild(
-        el('tr', {}, [
+        el('tr', { 'data-id': r.id }, [
+          el('td', {}, [name]),
+          el('td', {}, [notes]),
           el('td', { text: r.id }),
           el('td', { text: r.command || '' }),
-          el('td', { text: r.state + (r.state !== 'done' && r.error ? ` (${r.error})` : '') }),
+          el('td', { class: 'run-state', text: r.state + (r.state !== 'done' && r.error ? ` (${r.error})` : '') }),
           el('td', {}, [actions]),
         ]),
       );
@@ -160,5 +223,10 @@
     host.appendChild(t);
   }
 
-  Object.assign(kimpGui, { startRun, refreshRuns });
+  // The Runs tab follows the runs by itself (every 2 s while it is shown).
+  setInterval(() => {
+    if (document.getElementById('pane-runs').classList.contains('active')) refreshRuns().catch(() => {});
+  }, 2000);
+
+  Object.assign(kimpGui, { startRun, refreshRuns, openResults });
 })();

@@ -292,7 +292,15 @@
       // Tick labels to 6 significant digits: uPlot's default rounds to the tick step's decimals,
       // which repeats labels on narrow ranges (0.001, 0.001, 0.002 for steps of 0.5 ms).
       axes: [
-        { label: spec.xlabel, values: tickLabels, space: 50, incrs: spec.integerX ? INTEGER_INCRS : undefined },
+        {
+          label: spec.xlabel,
+          // A categorical x (a choice such as impact.law): 1..n with the categories as labels.
+          values: spec.xCategories
+            ? (u, splits) => splits.map((v) => (Number.isInteger(v) ? spec.xCategories[v - 1] || '' : ''))
+            : tickLabels,
+          space: 50,
+          incrs: spec.integerX || spec.xCategories ? INTEGER_INCRS : undefined,
+        },
         { label: spec.ylabel, size: 70, values: tickLabels, space: 25 },
       ],
       series: [{ label: spec.xlabel }].concat(
@@ -335,6 +343,7 @@
       card: card,
       time: spec.time,
       integerX: !!spec.integerX,
+      categories: spec.xCategories || null,
       units: spec.series.map((s) => s.unit),
       markers: spec.series.map((s) => !!s.marker),
       dashes: spec.series.map((s) => s.dash),
@@ -378,6 +387,22 @@
     }
     view.charts.push(c);
     return c;
+  }
+
+  // Printing: every chart at most the width of an A4 page's text (about 680 CSS px at the
+  // browser's default margins), its screen width back afterwards.
+  const PRINT_WIDTH = 680;
+  if (typeof window !== 'undefined') {
+    window.addEventListener('beforeprint', () => {
+      for (const c of view.charts) {
+        c.screenWidth = c.plot.width;
+        if (c.plot.width > PRINT_WIDTH) c.plot.setSize({ width: PRINT_WIDTH, height: c.plot.height });
+      }
+    });
+    window.addEventListener('afterprint', () => {
+      for (const c of view.charts)
+        if (c.screenWidth) c.plot.setSize({ width: c.screenWidth, height: c.plot.height });
+    });
   }
 
   function setTimeCursor(t) {

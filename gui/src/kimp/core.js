@@ -23,6 +23,36 @@ const kimp = {};
   /** What the page shows: its charts (for the time cursor) and its animations, if any. */
   const view = { charts: [], animation: null, femAnimation: null };
 
+  // ---- display units: the reader's choice (kept in the browser), values stay SI in the data ----
+  const DISPLAY_UNITS = {
+    acceleration: { 'm/s²': 1, g: 1 / 9.80665 },
+    force: { MN: 1e-6, kN: 1e-3 },
+    length: { cm: 100, mm: 1000 },
+    stiffness: { 'kN/mm': 1e-6, 'MN/m': 1e-6 },
+  };
+  const units = { acceleration: 'm/s²', force: 'MN', length: 'cm', stiffness: 'kN/mm' };
+  try {
+    const saved = JSON.parse(localStorage.getItem('kimp-units') || '{}');
+    for (const [k, v] of Object.entries(saved)) if (DISPLAY_UNITS[k] && DISPLAY_UNITS[k][v]) units[k] = v;
+  } catch {
+    // No storage (a report opened from disk in some browsers): the defaults.
+  }
+
+  /** [factor from SI, unit text] of the chosen display unit of a quantity kind. */
+  function displayUnit(kind) {
+    return [DISPLAY_UNITS[kind][units[kind]], units[kind]];
+  }
+
+  function setDisplayUnit(kind, unit) {
+    if (!DISPLAY_UNITS[kind] || DISPLAY_UNITS[kind][unit] === undefined) throw new Error(`unknown unit ${unit}`);
+    units[kind] = unit;
+    try {
+      localStorage.setItem('kimp-units', JSON.stringify(units));
+    } catch {
+      // Not kept: the choice holds for this page.
+    }
+  }
+
   // ---- small helpers -------------------------------------------------------------------------
   function el(tag, attrs, children) {
     const e = document.createElement(tag);
@@ -239,7 +269,8 @@ const kimp = {};
   }
 
   Object.assign(kimp, {
-    view, COLORS, el, INTEGER_INCRS, tickLabels, fmt, download, slug, niceTicks, parseCsv,
+    view, COLORS, el, DISPLAY_UNITS, units, displayUnit, setDisplayUnit,
+    INTEGER_INCRS, tickLabels, fmt, download, slug, niceTicks, parseCsv,
     parseQuantity, column, seriesGroups, csvName, splitUnit, escapeXml,
   });
 })();

@@ -3,10 +3,12 @@
 'use strict';
 
 (function () {
-  const { view, el, fmt, column, seriesGroups, chart, section, table, makeAnimation } = kimp;
+  const { view, el, fmt, column, seriesGroups, chart, section, table, makeAnimation, displayUnit } = kimp;
 
   // ---- lumped runs -----------------------------------------------------------------------------
-  const SCALE = { m: [100, 'cm'], 'm/s^2': [1, 'm/s²'], N: [1e-6, 'MN'] };
+  /** [factor from SI, unit text] of an SI unit in the reader's display units (kimp.units). */
+  const KIND = { m: 'length', 'm/s^2': 'acceleration', N: 'force' };
+  const scaleOf = (unit) => (KIND[unit] ? displayUnit(KIND[unit]) : [1, unit]);
 
   /**
    * The cases of a lumped run: [{summary, label, run, resolved, nMain, isolated, history,
@@ -31,11 +33,13 @@
         const base = `/lumped/${c.name}/contacts/${k.name}`;
         const v = h5.datasets[`${base}/force_full_rate/value`];
         const t = h5.datasets[`${base}/force_full_rate/time`];
+        const d = h5.datasets[`${base}/deformation_full_rate/value`];
         const at = h5.datasets[`${base}/impact_time`];
         if (v && t && Array.isArray(v.data) && v.data.length) {
           pulses[k.name] = {
             time: t.data,
             force: v.data,
+            deformation: d && Array.isArray(d.data) && d.data.length === v.data.length ? d.data : null,
             stride: v.stride || 1,
             rows: v.shape[0],
             impacts: at && Array.isArray(at.data) ? at.data : [],
@@ -81,11 +85,12 @@
     let cur = null;
     for (let i = 0; i < t.length; ++i) {
       if (!cur || t[i] - t[i - 1] > 10 * typical) {
-        cur = { start: t[i], time: [], force: [] };
+        cur = { start: t[i], time: [], force: [], deformation: [] };
         out.push(cur);
       }
       cur.time.push(t[i]);
       cur.force.push(p.force[i]);
+      if (p.deformation) cur.deformation.push(p.deformation[i]);
     }
     return out;
   }
@@ -97,19 +102,29 @@
     const first = cases[0];
     const { isolated } = first;
 
-    // Peaks table: the numbers of summary.json, in engineering units.
+    // Peaks table: the numbers of summary.json, in the display units. The case and the moat
+    // walls' peak impact forces (the key result; every contact's when there is no wall) come
+    // first and stay pinned while the other columns scroll.
     const body = section(parent, 'Peaks (summary.json)');
-    const firstLevel = isolated ? 'peak isolation displacement (cm)' : 'peak floor 1 displacement (cm)';
-    const contactNames = Array.from(new Set(cases.flatMap((c) => c.summary.contacts.map((k) => k.name))));
-    const header = [
-      'case',
-      'status',
-      firstLevel,
-      'peak top displacement (cm)',
-      'max interstorey drift (cm)',
-      'peak absolute acceleration (m/s²)',
-      'impacts',
-    ].concat(contactNames.map((n) => `peak force ${n} (MN)`));
+    const [L, lengthUnit] = displayUnit('length');
+    const [A, accelerationUnit] = displayUnit('acceleration');
+    const [F, forceUnit] = displayUnit('force');
+    const firstLevel = isolated ? 'peak isolation displacement' : 'peak floor 1 displacement';
+    const allContacts = Array.from(new Set(cases.flatMap((c) => c.summary.contacts.map((k) => k.name))));
+    const walls = allContacts.filter((n) => /_wall$/.test(n));
+    const keyContacts = walls.length ? walls : allContacts.slice(0, 2);
+    const contactNames = keyContacts.concat(allContacts.filter((n) => !keyContacts.includes(n)));
+    const header = ['case']
+      .concat(keyContacts.map((n) => `peak force ${n} (${forceUnit})`))
+      .concat([
+        'status',
+        `${firstLevel} (${lengthUnit})`,
+        `peak top displacement (${lengthUnit})`,
+        `max interstorey drift (${lengthUnit})`,
+        `peak absolute acceleration (${accelerationUnit})`,
+        'impacts',
+      ])
+      .concat(contactNames.slice(keyContacts.length).map((n) => `peak force ${n} (${forceUnit})`));
     const rows = cases.map((c) => {
       const s = c.summary;
       // 4 significant figures on the page; the SI value in full in data-si (and in summary.json).
@@ -122,22 +137,23 @@
           text: fmt(v * scale, 4),
         });
       const top = c.nMain - 1;
-      return [
-        c.label,
-        s.status,
-        cell(s.peaks.displacement[0], 100, `${s.name}.displacement.0`),
-        cell(s.peaks.displacement[top], 100, `${s.name}.displacement.${top}`),
-        cell(s.max_interstorey_drift, 100, `${s.name}.max_interstorey_drift`),
-        cell(Math.max(...s.peaks.absolute_acceleration.slice(0, c.nMain)), 1, `${s.name}.absolute_acceleration.max`),
-        String(s.n_impacts),
-      ].concat(
-        contactNames.map((n) => {
-          const k = s.contacts.find((x) => x.name === n);
-          return k ? cell(k.peak_force, 1e-6, `${s.name}.${n}.peak_force`) : '';
-        }),
-      );
+      const force = (n) => {
+        const k = s.contacts.find((x) => x.name === n);
+        return k ? cell(k.peak_force, F, `${s.name}.${n}.peak_force`) : '';
+      };
+      return [c.label]
+        .concat(keyContacts.map(force))
+        .concat([
+          s.status,
+          cell(s.peaks.displacement[0], L, `${s.name}.displacement.0`),
+          cell(s.peaks.displacement[top], L, `${s.name}.displacement.${top}`),
+          cell(s.max_interstorey_drift, L, `${s.name}.max_interstorey_drift`),
+          cell(Math.max(...s.peaks.absolute_acceleration.slice(0, c.nMain)), A, `${s.name}.absolute_acceleration.max`),
+          String(s.n_impacts),
+        ])
+        .concat(contactNames.slice(keyContacts.length).map(force));
     });
-    table(body, header, rows, 'data peaks');
+    table(body, header, rows, 'data peaks', 1 + keyContacts.length);
 
     // Case chooser shared by the charts below (overlay of several cases, or runs, on one chart).
     const chooser = el('div', { class: 'controls case-chooser' }, [el('span', { text: 'cases: ' })]);
@@ -157,6 +173,9 @@
     const pbody = section(parent, 'Peak profiles over the floors');
     const hostP = el('div');
     pbody.appendChild(hostP);
+    const ebody = section(parent, 'Impact events');
+    const hostE = el('div');
+    ebody.appendChild(hostE);
     const fbody = section(parent, 'Impact force pulses at full rate');
     const hostF = el('div');
     fbody.appendChild(hostF);
@@ -177,7 +196,7 @@
     const picks = {};
     const draw = () => {
       const chosen = Array.from(chooser.querySelectorAll('input:checked')).map((b) => cases[Number(b.value)]);
-      for (const host of [hostH, hostP, hostF, hostL, hostI]) host.innerHTML = '';
+      for (const host of [hostH, hostP, hostE, hostF, hostL, hostI]) host.innerHTML = '';
       view.charts.length = 0;
       if (!chosen.length) return;
       for (const [key, label, unit, names0] of quantities) {
@@ -200,7 +219,7 @@
           picks[key].addEventListener('change', draw);
         }
         const j = Number(picks[key].value);
-        const [scale, shown] = SCALE[unit] || [1, unit];
+        const [scale, shown] = scaleOf(unit);
         // Contacts are matched by name across runs (the column order may differ).
         const column0 = (c) => (key === 'contact_force' ? c.summary.contacts.findIndex((k) => k.name === names[j]) : j);
         const own = !sameTimes(having, key);
@@ -227,7 +246,7 @@
         ['absolute_acceleration', 'peak absolute acceleration', 'm/s^2'],
       ];
       for (const [key, label, unit] of profiles) {
-        const [scale, shown] = SCALE[unit];
+        const [scale, shown] = scaleOf(unit);
         const levels = (c) => {
           const n = key === 'interstorey_drift' ? c.nMain - (c.isolated ? 1 : 0) : c.nMain;
           const from = key === 'interstorey_drift' && c.isolated ? 1 : 0;
@@ -248,6 +267,7 @@
           })),
         });
       }
+      drawEvents(hostE, chosen);
       drawPulses(hostF, chosen);
       drawLoops(hostL, chosen);
       // Isolator hysteresis: its force on the base against the isolation level's displacement.
@@ -256,10 +276,16 @@
         const series = withIsolator.map((c) => {
           const f = column(c.history.isolator_force.values, 0);
           const u = column(c.history.displacement.values, 0);
-          return { label: c.label, pairs: u.map((d, i) => [d * 100, f[i] * 1e-6]) };
+          return { label: c.label, pairs: u.map((d, i) => [d * L, f[i] * F]) };
         });
         const kind = withIsolator[0].summary.isolator ? ` (${withIsolator[0].summary.isolator.kind})` : '';
-        scatterChart(hostI, `isolator hysteresis${kind}`, 'isolation displacement (cm)', 'isolator force (MN)', series);
+        scatterChart(
+          hostI,
+          `isolator hysteresis${kind}`,
+          `isolation displacement (${lengthUnit})`,
+          `isolator force (${forceUnit})`,
+          series,
+        );
       }
       if (view.animation) view.animation.setCase(chosen[0]);
     };
@@ -285,6 +311,89 @@
         return { label: s.label, y: y };
       }),
     });
+  }
+
+  /**
+   * One row per impact of the chosen cases, in time order: its time and contact (wall or
+   * neighbour floor), peak force and indentation (largest force and deformation of its pulse at
+   * full rate, lumped.h5 contacts/<name>/force_full_rate and deformation_full_rate) and closing
+   * velocity at first contact (summary.json).
+   */
+  function drawEvents(host, chosen) {
+    const MAX_ROWS = 500;
+    const [F, forceUnit] = displayUnit('force');
+    const rows = [];
+    let sampled = false;
+    for (const c of chosen) {
+      for (const k of c.summary.contacts || []) {
+        const p = c.pulses[k.name];
+        const pieces = p ? splitPulses(p) : [];
+        // Without the deformation at full rate, the largest indentation of the histories' samples
+        // within the pulse (a lower bound at integration.output_interval).
+        const hist = c.history.displacement;
+        const ind = hist ? indentation(k.name, hist.values, c.resolved, c.nMain) : null;
+        const sampledMax = (piece) => {
+          let m = null;
+          hist.time.forEach((t, i) => {
+            if (t >= piece.start && t <= piece.time[piece.time.length - 1] && (m === null || ind[i] > m)) m = ind[i];
+          });
+          if (m !== null) sampled = true;
+          return m;
+        };
+        (k.impacts || []).forEach((impact) => {
+          // The impact's pulse: the first that ends after its time (its force may begin a step
+          // after the first contact step).
+          const piece = pieces.find((q) => q.time[q.time.length - 1] >= impact.time);
+          rows.push({
+            c: c,
+            contact: k.name,
+            time: impact.time,
+            velocity: impact.velocity,
+            peak: piece ? Math.max(...piece.force) : null,
+            indentation: !piece
+              ? null
+              : piece.deformation.length
+                ? Math.max(...piece.deformation)
+                : ind
+                  ? sampledMax(piece)
+                  : null,
+          });
+        });
+      }
+    }
+    if (!rows.length) {
+      host.appendChild(el('p', { class: 'muted', text: 'No impact in the chosen cases.' }));
+      return;
+    }
+    rows.sort((a, b) => a.time - b.time);
+    const num = (v, scale, cls) =>
+      v === null ? '' : el('span', { class: cls, 'data-si': String(v), text: fmt(v * scale, 4) });
+    const multi = chosen.length > 1;
+    table(
+      host,
+      (multi ? ['case'] : []).concat([
+        'time (s)',
+        'contact',
+        `peak force (${forceUnit})`,
+        'closing velocity (m/s)',
+        sampled ? 'indentation (mm, history samples)' : 'indentation (mm)',
+      ]),
+      rows
+        .slice(0, MAX_ROWS)
+        .map((r) =>
+          (multi ? [r.c.label] : []).concat([
+            num(r.time, 1, 'event-time'),
+            r.contact,
+            num(r.peak, F, 'event-force'),
+            num(r.velocity, 1, 'event-velocity'),
+            num(r.indentation, 1e3, 'event-indentation'),
+          ]),
+        ),
+      'data events',
+      multi ? 1 : 0,
+    );
+    if (rows.length > MAX_ROWS)
+      host.appendChild(el('p', { class: 'muted', text: `first ${MAX_ROWS} of ${rows.length} impacts` }));
   }
 
   /**
@@ -316,7 +425,7 @@
           series.push({
             label: `${c.label} #${k + 1} (t = ${fmt(piece.start, 4)} s)`,
             x: piece.time.map((t) => (t - piece.start) * 1e3),
-            y: piece.force.map((f) => f * 1e-6),
+            y: piece.force.map((f) => f * displayUnit('force')[0]),
           }),
         );
       }
@@ -329,7 +438,7 @@
       chart(host, {
         title: `impact force pulses at full rate: ${name}`,
         xlabel: 'time since the impact began (ms)',
-        ylabel: 'impact force (MN)',
+        ylabel: `impact force (${displayUnit('force')[1]})`,
         x: order[0].x,
         series: order,
       });
@@ -355,7 +464,9 @@
         const ind = k < 0 ? null : indentation(name, c.history.displacement.values, c.resolved, c.nMain);
         if (!ind) continue;
         const f = column(c.history.contact_force.values, k);
-        const pairs = ind.map((d, i) => [d * 1000, f[i] * 1e-6]).filter((p, i) => f[i] > 0 || (i > 0 && f[i - 1] > 0));
+        const pairs = ind
+          .map((d, i) => [d * 1000, f[i] * displayUnit('force')[0]])
+          .filter((p, i) => f[i] > 0 || (i > 0 && f[i - 1] > 0));
         const nImpacts = c.summary.contacts[k].impacts ? c.summary.contacts[k].impacts.length : 0;
         if (!nImpacts) continue;
         const perImpact = pairs.length / nImpacts;
@@ -370,7 +481,13 @@
         series.push({ label: c.label, pairs: pairs });
       }
       if (series.length)
-        scatterChart(host, `force-indentation: ${name}`, 'indentation (mm)', 'impact force (MN)', series);
+        scatterChart(
+          host,
+          `force-indentation: ${name}`,
+          'indentation (mm)',
+          `impact force (${displayUnit('force')[1]})`,
+          series,
+        );
     }
     if (notes.length) {
       host.insertBefore(

@@ -5,7 +5,8 @@
 (function () {
   const {
     view, COLORS, el, fmt, parseCsv, seriesGroups, chart, section, table, cellNumber, cellUnit,
-    columnNumbers, csvSection, seriesSection, lumpedSection, femSection, femSummarySection,
+    columnNumbers, csvSection, seriesSection, lumpedSection, femSection, femSummarySection, DISPLAY_UNITS,
+    units, setDisplayUnit,
   } = kimp;
 
   // ---- study -----------------------------------------------------------------------------------
@@ -122,7 +123,12 @@
     const params = sweepParameters(head);
     // x: the first swept quantity with a unit (a gap), else the first numeric parameter; one
     // series per value of the other parameters (and of the companion runs).
-    const numericParam = params.filter((j) => body.every((r) => r[j] === '' || Number.isFinite(cellNumber(r[j]))));
+    // A parameter whose values carry different units (the k of paired laws: kN/mm, kN/mm^1.5) is
+    // not an axis.
+    const oneUnit = (j) => new Set(body.map((r) => (/[A-Za-z%][^\s]*\s*$/.exec(r[j]) || [''])[0])).size === 1;
+    const numericParam = params.filter(
+      (j) => body.every((r) => r[j] === '' || Number.isFinite(cellNumber(r[j]))) && oneUnit(j),
+    );
     const x = numericParam.find((j) => cellUnit(body, j)) ?? numericParam[0] ?? params[0];
     const group = params.filter((j) => j !== x);
     const comp = head.indexOf('companion');
@@ -187,11 +193,19 @@
       ),
       'data dsrss',
     );
-    // d_req and d_SRSS over a numeric parameter (row number when there is none), one pair of
-    // series per value of the others.
+    // d_req and d_SRSS over a numeric parameter, else over the first parameter's values as
+    // categories (impact.law), one pair of series per value of the others.
     const gx = groupCols.find((j) => body.every((r) => Number.isFinite(cellNumber(r[j]))));
-    const xs = gx === undefined ? body.map((r, i) => i + 1) : columnNumbers(body, gx);
-    const rest = groupCols.filter((j) => j !== gx);
+    const categorical = gx === undefined && groupCols.length ? groupCols[0] : undefined;
+    const categories = categorical === undefined ? null : Array.from(new Set(body.map((r) => r[categorical])));
+    const xs =
+      gx !== undefined
+        ? columnNumbers(body, gx)
+        : categories
+          ? body.map((r) => categories.indexOf(r[categorical]) + 1)
+          : body.map((r, i) => i + 1);
+    const xCol = gx !== undefined ? gx : categorical;
+    const rest = groupCols.filter((j) => j !== xCol);
     const keyOf = (r) => rest.map((j) => `${head[j]} = ${r[j]}`).join(', ');
     const series = [];
     for (const key of Array.from(new Set(body.map(keyOf)))) {
@@ -204,11 +218,14 @@
       series.push({ label: `d_req${suffix}`, x: idx.map((i) => xs[i]), y: yOf('d_req_m') });
       series.push({ label: `d_SRSS${suffix}`, x: idx.map((i) => xs[i]), y: yOf('d_srss_m'), dash: [6, 3] });
     }
+    const xUnit = gx === undefined ? '' : cellUnit(body, gx);
     chart(sec, {
       title: 'required gap d_req and SRSS estimate d_SRSS',
       points: true,
       integerX: gx === undefined,
-      xlabel: gx === undefined ? 'row of dsrss_table.csv' : head[gx],
+      xCategories: categories,
+      xlabel:
+        xCol === undefined ? 'row of dsrss_table.csv' : xUnit ? `${head[xCol]} (${xUnit})` : head[xCol],
       ylabel: 'gap (cm)',
       x: series[0].x,
       series: series,
@@ -371,12 +388,44 @@
     );
   }
 
-  /** A stiffness dataset (N/m^n/m) in the kN/mm^n/m engineers read. */
+  /** A stiffness dataset (N/m^n/m) in the kN/mm^n/m engineers read (MN/m/m when chosen, n = 1). */
   function kUnit(k) {
     const m = /^N\/m(\^([\d.]+))?\/m$/.exec(k.units || '');
     if (!m) return { value: k.data, unit: k.units };
     const n = m[2] ? Number(m[2]) : 1;
-    return { value: k.data * Math.pow(1e-3, n) * 1e-3, unit: n === 1 ? 'kN/mm/m' : `kN/mm^${n}/m` };
+    const linear = units.stiffness === 'MN/m' ? 'MN/m/m' : 'kN/mm/m';
+    return { value: k.data * Math.pow(1e-3, n) * 1e-3, unit: n === 1 ? linear : `kN/mm^${n}/m` };
+  }
+
+  // ---- display units and inputs ---------------------------------------------------------------
+  /** The reader's choice of display units; a change redraws the page (`redraw`). */
+  function unitsBar(container, redraw) {
+    const names = { acceleration: 'acceleration', force: 'force', length: 'displacement', stiffness: 'stiffness' };
+    const picks = Object.keys(DISPLAY_UNITS).map((kind) => {
+      const pick = el(
+        'select',
+        { class: 'unit-pick', 'data-kind': kind },
+        Object.keys(DISPLAY_UNITS[kind]).map((u) => el('option', { value: u, text: u })),
+      );
+      pick.value = units[kind];
+      pick.addEventListener('change', () => {
+        setDisplayUnit(kind, pick.value);
+        redraw();
+      });
+      return el('label', { text: names[kind] + ' ' }, [pick]);
+    });
+    container.appendChild(el('div', { class: 'controls units-bar' }, [el('span', { text: 'units: ' }), ...picks]));
+  }
+
+  /** The inputs of the run: the scene as run (/input/scene of its results file), verbatim. */
+  function inputsSection(container, data) {
+    for (const [file, h5] of Object.entries(data.h5 || {})) {
+      const scene = (h5.datasets || {})['/input/scene'];
+      if (!scene || typeof scene.data !== 'string') continue;
+      const body = section(container, `Inputs: the scene as run (${file} /input/scene)`, false);
+      body.appendChild(el('pre', { class: 'json inputs-scene', text: scene.data }));
+      return;
+    }
   }
 
   // ---- entry point -----------------------------------------------------------------------------
@@ -392,6 +441,8 @@
     const files = Object.keys(data.h5 || {}).concat(Object.keys(data.csv || {}));
     container.appendChild(el('h1', { text: `kimp ${data.kind || 'results'}: ${data.title}` }));
     container.appendChild(el('p', { class: 'muted', text: `files: ${files.join(', ')}` }));
+    unitsBar(container, () => showResults(container, data, others));
+    inputsSection(container, data);
     if (data.h5 && data.h5['lumped.h5']) lumpedSection(container, data, others);
     if (data.kind === 'study') studySection(container, data);
     if (data.kind === 'fem' && data.summary) femSummarySection(container, data.summary);

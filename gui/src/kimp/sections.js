@@ -16,7 +16,11 @@
     return body;
   }
 
-  function table(parent, header, rows, cls) {
+  /**
+   * A table in a horizontally scrolling box; its first `pin` columns (the key ones) stay in view
+   * while the others scroll (sticky cells, their offsets measured once laid out).
+   */
+  function table(parent, header, rows, cls, pin) {
     const t = el('table', { class: cls || 'data' });
     t.appendChild(
       el('thead', {}, [
@@ -38,6 +42,25 @@
       );
     t.appendChild(tb);
     parent.appendChild(el('div', { class: 'table-wrap' }, [t]));
+    if (pin > 0) {
+      t.classList.add('pinned');
+      const place = () => {
+        const first = t.rows[0];
+        if (!first || !first.cells[0].offsetWidth) return;
+        let left = 0;
+        for (let j = 0; j < pin && j < first.cells.length; ++j) {
+          for (const r of t.rows) {
+            const cell = r.cells[j];
+            if (!cell) continue;
+            cell.classList.add('pin');
+            cell.style.left = left + 'px';
+          }
+          left += first.cells[j].offsetWidth;
+        }
+      };
+      if (typeof ResizeObserver !== 'undefined') new ResizeObserver(place).observe(t);
+      place();
+    }
     return t;
   }
 
