@@ -65,8 +65,11 @@ namespace kimp::fem
     , plastic_(p.plastic_fraction > 0)
     , bars_(p.plastic_fraction > 0 ? p_slot + 4 : p_slot)
   {
-    if (!(p.aggregate_size > 0) || !(p.shear_retention_floor >= 0 && p.shear_retention_floor <= 1))
-      throw std::invalid_argument("concrete damage law: need aggregate_size > 0 and 0 <= "
+    // beta falls over the opening d_agg / 2: below 1 mm its slope (a stiffness of the opening
+    // against the shear energy) would outrun the explicit step.
+    if (!(p.aggregate_size >= 1e-3) ||
+        !(p.shear_retention_floor >= 0 && p.shear_retention_floor <= 1))
+      throw std::invalid_argument("concrete damage law: need aggregate_size >= 1 mm and 0 <= "
                                   "shear_retention_floor <= 1");
     if (!(reinforcement.dowel_coefficient >= 0))
       throw std::invalid_argument("reinforcement: need dowel_coefficient >= 0");

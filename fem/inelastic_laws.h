@@ -174,7 +174,7 @@ namespace kimp::fem
      *  [0, 1); 0: secant unloading to the origin. */
     double plastic_fraction = 0;
     /** d_agg, m: largest aggregate size. The shear retention of a crack falls linearly with its
-     *  opening w to shear_retention_floor at w = d_agg / 2 (> 0). */
+     *  opening w to shear_retention_floor at w = d_agg / 2 (>= 1 mm). */
     double aggregate_size = 0.016;
     /** beta_min: shear retention of a crack opened wider than d_agg / 2, in [0, 1]. */
     double shear_retention_floor = 0.01;
