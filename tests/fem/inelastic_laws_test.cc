@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <gtest/gtest.h>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "fem/inelastic_laws.h"
@@ -799,5 +801,34 @@ namespace
                 work,
                 scale);
     EXPECT_LT(std::abs(work), 1e-4 * scale);
+  }
+
+  // Crack parameters outside their range are refused with their name.
+  TEST(Concrete, CrackParametersOutsideTheirRangeAreRefused)
+  {
+    const auto refused =
+      [](const ConcreteParameters &c, const ReinforcementParameters &r, const char *name)
+    {
+      try
+      {
+        const ConcreteDamageLaw law(c, r);
+        ADD_FAILURE() << name << " accepted";
+      }
+      catch (const std::invalid_argument &e)
+      {
+        EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+      }
+    };
+    const ConcreteParameters good = ConcreteParameters::from_f_cm(38e6);
+    ConcreteParameters       c    = good;
+    c.aggregate_size              = 5e-4;
+    refused(c, {}, "aggregate_size");
+    c                       = good;
+    c.shear_retention_floor = 1.5;
+    refused(c, {}, "shear_retention_floor");
+    ReinforcementParameters r;
+    r.ratio_y           = 0.01;
+    r.dowel_coefficient = -1;
+    refused(good, r, "dowel_coefficient");
   }
 } // namespace
