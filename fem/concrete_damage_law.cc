@@ -63,8 +63,16 @@ namespace kimp::fem
     , steel_(reinforcement)
     , reinforced_(reinforcement.any())
     , plastic_(p.plastic_fraction > 0)
-    , bars_(p.plastic_fraction > 0 ? 10 : 6)
+    , bars_(p.plastic_fraction > 0 ? p_slot + 4 : p_slot)
   {
+    // beta falls over the opening d_agg / 2: below 1 mm its slope (a stiffness of the opening
+    // against the shear energy) would outrun the explicit step.
+    if (!(p.aggregate_size >= 1e-3) ||
+        !(p.shear_retention_floor >= 0 && p.shear_retention_floor <= 1))
+      throw std::invalid_argument("concrete damage law: need aggregate_size >= 1 mm and 0 <= "
+                                  "shear_retention_floor <= 1");
+    if (!(reinforcement.dowel_coefficient >= 0))
+      throw std::invalid_argument("reinforcement: need dowel_coefficient >= 0");
     if (!(p.plastic_fraction >= 0 && p.plastic_fraction < 1))
       throw std::invalid_argument("concrete damage law: need 0 <= plastic_fraction < 1");
     const ReinforcementParameters &r = reinforcement;
@@ -91,6 +99,7 @@ namespace kimp::fem
   {
     std::fill(h, h + n_history(), 0.0);
     h[5] = length > 0 ? length : 0.1;
+    h[6] = 1; // crack normal (1, 0) until the point cracks (no effect while d_t = 0)
   }
 
   double ConcreteDamageLaw::effective_tensile_strength(double h) const
@@ -104,6 +113,97 @@ namespace kimp::fem
   namespace
   {
     constexpr double max_damage = 1 - 1e-6;
+
+    /** The strain {xx, yy, gamma_xy} in the crack frame n = (c, s), t = (-s, c): {nn, tt,
+     *  gamma_nt}. The stress of the frame goes back by the transpose (work conjugacy). */
+    VoigtStrain to_crack_frame(const VoigtStrain &e, double c, double s)
+    {
+      const double cc = c * c, ss = s * s, cs = c * s;
+      return {{cc * e[0] + ss * e[1] + cs * e[2],
+               ss * e[0] + cc * e[1] - cs * e[2],
+               -2 * cs * e[0] + 2 * cs * e[1] + (cc - ss) * e[2]}};
+    }
+    VoigtStress from_crack_frame(const VoigtStress &f, double c, double s)
+    {
+      const double cc = c * c, ss = s * s, cs = c * s;
+      return {{cc * f[0] + ss * f[1] - 2 * cs * f[2],
+               ss * f[0] + cc * f[1] + 2 * cs * f[2],
+               cs * f[0] - cs * f[1] + (cc - ss) * f[2]}};
+    }
+  } // namespace
+
+  double ConcreteDamageLaw::shear_retention(double w) const
+  {
+    const double w_max = 0.5 * p_.aggregate_size, b0 = p_.shear_retention_floor;
+    return w >= w_max ? b0 : b0 + (1 - b0) * (1 - w / w_max);
+  }
+
+  ConcreteDamageLaw::Split
+  ConcreteDamageLaw::split(const VoigtStrain &e, double c, double s, double h) const
+  {
+    if (c == 0 && s == 0)
+      c = 1; // a history written before the crack frame existed: any frame, d_t = 0 there
+    // Plane-strain energy in the crack frame: psi_0 = 1/2 (enn, ett) Q (enn, ett) + mu g^2 / 2,
+    // Q = [[a, lam], [lam, a]], a = lam + 2 mu. A fully cracked point keeps the no-tension
+    // energy of the normal block, min over crack strains e_c >= 0 of 1/2 (eps - e_c) Q
+    // (eps - e_c) (four regions: both closed, n open, t open, both open), and beta mu g^2 / 2 of
+    // the shear. The loss L = psi_0 - psi_cracked >= 0 is what the tension damage removes.
+    const double      lam = lambda_, mu = mu_, a = lam + 2 * mu, ep = a - lam * lam / a;
+    const VoigtStrain f   = to_crack_frame(e, c, s);
+    const double      enn = f[0], ett = f[1], g = f[2];
+    const double      snn = a * enn + lam * ett, stt = lam * enn + a * ett;
+    double            kn = 0, kt = 0;         // crack strains of the projection
+    double            rn = snn, rt = stt;     // stress the cracked normal block keeps
+    double            open_n = 0, open_t = 0; // d(opening) / d(enn, ett)
+    if (snn <= 0 && stt <= 0)
+    {
+      // Both cracks closed: the normal block is intact.
+    }
+    else if (enn >= 0 && ett >= 0)
+    {
+      kn = enn;
+      kt = ett;
+      rn = rt                        = 0;
+      (enn >= ett ? open_n : open_t) = 1;
+    }
+    else if (snn > 0 && ett <= 0)
+    {
+      kn     = snn / a;
+      rn     = 0;
+      rt     = ep * ett;
+      open_n = 1;
+      open_t = lam / a;
+    }
+    else
+    {
+      kt     = stt / a;
+      rn     = ep * enn;
+      rt     = 0;
+      open_n = lam / a;
+      open_t = 1;
+    }
+    Split r;
+    r.opening      = std::max(kn, kt);
+    const double w = h * r.opening, beta = shear_retention(w);
+    const double dbw       = w < 0.5 * p_.aggregate_size ?
+                               -(1 - p_.shear_retention_floor) / (0.5 * p_.aggregate_size) :
+                               0.0;
+    const double psi_shear = 0.5 * mu * g * g;
+    r.psi0                 = 0.5 * (snn * enn + stt * ett) + psi_shear;
+    r.loss = 0.5 * (snn * enn + stt * ett) - 0.5 * (rn * (enn - kn) + rt * (ett - kt)) +
+             (1 - beta) * psi_shear;
+    r.sigma0 = from_crack_frame({{snn, stt, mu * g}}, c, s);
+    // dL / d(enn, ett, g): the normal block's released stress, and the shear's, with the
+    // change of beta with the opening (w = h e_open).
+    const double dbeta = -dbw * h * psi_shear;
+    r.dloss            = from_crack_frame(
+      {{snn - rn + dbeta * open_n, stt - rt + dbeta * open_t, (1 - beta) * mu * g}},
+      c,
+      s);
+    r.szz0     = lam * (enn + ett);
+    r.dloss_zz = lam * (kn + kt);
+    r.beta     = beta;
+    return r;
   }
 
   VoigtStress ConcreteDamageLaw::stress(const VoigtStrain &e, const double *h0, double *h1) const
@@ -123,8 +223,43 @@ namespace kimp::fem
       b1[4]               = b0[4] + r_.ratio_x * sx.plastic_work + r_.ratio_y * sy.plastic_work;
       s[0] += r_.ratio_x * sx.stress;
       s[1] += r_.ratio_y * sy.stress;
+      // Dowel action of the bars crossing the crack, once there is one (h1[2] > 0): elastic-
+      // perfectly plastic in the crack's shear strain, from zero at the cracking step.
+      b1[5] = b0[5];
+      if (h1[2] > 0)
+      {
+        const double c = h1[6], sn = h1[7];
+        const double g = to_crack_frame(e, c, sn)[2];
+        if (!(h0[2] > 0))
+          b1[5] = g; // the dowel starts unloaded at the state the crack formed in
+        const Dowel dw  = dowel(c, sn);
+        double      tau = dw.stiffness * (g - b1[5]);
+        if (dw.stiffness > 0 && std::abs(tau) > dw.strength)
+        {
+          const double slip = (std::abs(tau) - dw.strength) / dw.stiffness;
+          b1[5] += std::copysign(slip, tau);
+          b1[4] += dw.strength * slip;
+          tau = std::copysign(dw.strength, tau);
+        }
+        const VoigtStress d = from_crack_frame({{0, 0, tau}}, c, sn);
+        for (unsigned int i = 0; i < 3; ++i)
+          s[i] += d[i];
+      }
     }
     return s;
+  }
+
+  ConcreteDamageLaw::Dowel ConcreteDamageLaw::dowel(double c, double s) const
+  {
+    // Bars along x cross a crack of normal (c, s) with the weight c^2, bars along y with s^2.
+    const double rho = r_.ratio_x * c * c + r_.ratio_y * s * s;
+    const double fy = r_.yield_stress, G_s = r_.youngs_modulus / (2 * (1 + steel_poisson_ratio));
+    constexpr double pi = 3.14159265358979323846;
+    // Per bar D_u = k d_b^2 sqrt(f_c f_y) over its area pi d_b^2 / 4 (no bar diameter left), at
+    // most the bar's shear yield f_y / sqrt(3).
+    const double tau_bar =
+      std::min(fy / std::sqrt(3.0), r_.dowel_coefficient * 4 / pi * std::sqrt(p_.f_cm * fy));
+    return {rho * G_s, rho * tau_bar};
   }
 
   double ConcreteDamageLaw::tension_damage(const double kt, const double h) const
@@ -139,6 +274,34 @@ namespace kimp::fem
   double ConcreteDamageLaw::plastic_strain(double kc) const
   {
     return p_.plastic_fraction * std::max(0.0, kc - p_.compression_curve(kc) / p_.youngs_modulus);
+  }
+
+  VoigtStress ConcreteDamageLaw::damaged_stress(const VoigtStrain &ee,
+                                                const double      *h0,
+                                                double            *h1,
+                                                double             dt,
+                                                double             dc,
+                                                double             sa_x,
+                                                double             sa_y) const
+  {
+    // The crack frame is fixed when the point first cracks: n along the largest principal
+    // effective stress of that step, (sa_x, sa_y).
+    if (dt > 0 && !(h0[2] > 0))
+    {
+      h1[6] = sa_x;
+      h1[7] = sa_y;
+    }
+    h1[2]           = dt;
+    h1[3]           = dc;
+    const Split  sp = split(ee, h1[6], h1[7], h0[5]);
+    const double e0 = (1 - h0[3]) * (sp.psi0 - h0[2] * sp.loss);
+    const double e1 = (1 - dc) * (sp.psi0 - dt * sp.loss);
+    // Dissipation: the energy the damage growth released at the step's strain (>= 0: L >= 0).
+    h1[4]          = h0[4] + (e0 - e1);
+    const double w = 1 - dc;
+    return {{w * (sp.sigma0[0] - dt * sp.dloss[0]),
+             w * (sp.sigma0[1] - dt * sp.dloss[1]),
+             w * (sp.sigma0[2] - dt * sp.dloss[2])}};
   }
 
   VoigtStress ConcreteDamageLaw::plastic_concrete_stress(const VoigtStrain &e,
@@ -160,39 +323,34 @@ namespace kimp::fem
     const double nxx = sn * sn, nyy = c * c, nxy = -2 * c * sn;
     if (dp > 0)
     {
-      h1[6] = h0[6] - dp * nxx;
-      h1[7] = h0[7] - dp * nyy;
-      h1[8] = h0[8] - dp * nxy;
+      h1[p_slot]     = h0[p_slot] - dp * nxx;
+      h1[p_slot + 1] = h0[p_slot + 1] - dp * nyy;
+      h1[p_slot + 2] = h0[p_slot + 2] - dp * nxy;
     }
     // Elastic strain and its (effective) stress; the tension measure acts on that stress.
-    const double exx = e[0] - h1[6], eyy = e[1] - h1[7], gxy = e[2] - h1[8];
-    tr               = exx + eyy;
-    const double sxx = lam * tr + 2 * mu * exx, syy = lam * tr + 2 * mu * eyy, szz = lam * tr,
-                 sxy = mu * gxy;
-    double sa, sb;
-    principal2(sxx, syy, sxy, sa, sb);
+    const VoigtStrain ee{{e[0] - h1[p_slot], e[1] - h1[p_slot + 1], e[2] - h1[p_slot + 2]}};
+    tr               = ee[0] + ee[1];
+    const double sxx = lam * tr + 2 * mu * ee[0], syy = lam * tr + 2 * mu * ee[1], szz = lam * tr,
+                 sxy = mu * ee[2];
+    double sa, sb, ca, sa_n;
+    eigen2(sxx, syy, sxy, sa, sb, ca, sa_n);
     const double kt = std::max(h0[0], std::max(std::max(sa, szz), 0.0) / E);
     h1[0]           = kt;
     h1[1]           = kc;
     double dt       = tension_damage(kt, h0[5]);
     // sigma_c(kappa_c) = (1 - d_c) E (kappa_c - eps_p) in uniaxial compression.
-    const double el = kc - plastic_strain(kc);
-    double       dc = kc > 0 && el > 0 ? 1 - p_.compression_curve(kc) / (E * el) : 0.0;
-    dt              = std::clamp(std::max(dt, h0[2]), 0.0, max_damage);
-    dc              = std::clamp(std::max(dc, h0[3]), 0.0, max_damage);
-    h1[2]           = dt;
-    h1[3]           = dc;
-    const double d0 = 1 - (1 - h0[2]) * (1 - h0[3]), d1 = 1 - (1 - dt) * (1 - dc);
-    const double Y = 0.5 * (sxx * exx + syy * eyy + sxy * gxy);
-    h1[4]          = h0[4] + Y * (d1 - d0);
-    const double w = 1 - d1;
+    const double el     = kc - plastic_strain(kc);
+    double       dc     = kc > 0 && el > 0 ? 1 - p_.compression_curve(kc) / (E * el) : 0.0;
+    dt                  = std::clamp(std::max(dt, h0[2]), 0.0, max_damage);
+    dc                  = std::clamp(std::max(dc, h0[3]), 0.0, max_damage);
+    const VoigtStress s = damaged_stress(ee, h0, h1, dt, dc, ca, sa_n);
     // Plastic work sigma : d eps_p = -dp sigma_nn (sigma_nn < 0 in compression).
     if (dp > 0)
     {
-      const double s_nn = w * (sxx * nxx + syy * nyy + sxy * nxy);
-      h1[9]             = h0[9] - dp * s_nn;
+      const double s_nn = s[0] * nxx + s[1] * nyy + s[2] * nxy;
+      h1[p_slot + 3]    = h0[p_slot + 3] - dp * s_nn;
     }
-    return {{w * sxx, w * syy, w * sxy}};
+    return s;
   }
 
   VoigtStress
@@ -202,68 +360,103 @@ namespace kimp::fem
     const double tr  = e[0] + e[1];
     const double sxx = lam * tr + 2 * mu * e[0], syy = lam * tr + 2 * mu * e[1], szz = lam * tr,
                  sxy = mu * e[2];
-    double sa, sb;
-    principal2(sxx, syy, sxy, sa, sb);
+    double sa, sb, c, s;
+    eigen2(sxx, syy, sxy, sa, sb, c, s);
     const double smax = std::max(sa, szz), smin = std::min(sb, szz);
     std::copy(h0, h0 + n_history(), h1);
-    if (std::max(smax, 0.0) / E <= h0[0] && std::max(-smin, 0.0) / E <= h0[1])
-    {
-      // Neither measure grows: the damage stays. The full update below would recompute the
-      // committed damage from the same kappa (the damage functions are non-decreasing) and add
-      // no dissipation; this gives the same numbers without the softening and curve evaluations.
-      const double d = 1 - (1 - h0[2]) * (1 - h0[3]);
-      const double w = 1 - d;
-      return {{w * sxx, w * syy, w * sxy}};
-    }
     const double kt = std::max(h0[0], std::max(smax, 0.0) / E);
     const double kc = std::max(h0[1], std::max(-smin, 0.0) / E);
     h1[0]           = kt;
     h1[1]           = kc;
-    double dt       = tension_damage(kt, h0[5]);
-    double dc       = kc > 0 ? 1 - p_.compression_curve(kc) / (E * kc) : 0.0;
-    dt              = std::clamp(std::max(dt, h0[2]), 0.0, max_damage);
-    dc              = std::clamp(std::max(dc, h0[3]), 0.0, max_damage);
-    h1[2]           = dt;
-    h1[3]           = dc;
-    const double d0 = 1 - (1 - h0[2]) * (1 - h0[3]), d1 = 1 - (1 - dt) * (1 - dc);
-    // Y = psi_0 = eps : D eps / 2, the energy release rate of the scalar damage.
-    const double Y = 0.5 * (sxx * e[0] + syy * e[1] + sxy * e[2]);
-    h1[4]          = h0[4] + Y * (d1 - d0);
-    const double w = 1 - d1;
-    return {{w * sxx, w * syy, w * sxy}};
+    // Neither measure grows: the damage stays (the damage functions are non-decreasing).
+    double dt = h0[2], dc = h0[3];
+    if (kt > h0[0] || kc > h0[1])
+    {
+      dt = std::clamp(std::max(tension_damage(kt, h0[5]), h0[2]), 0.0, max_damage);
+      dc = std::clamp(std::max(kc > 0 ? 1 - p_.compression_curve(kc) / (E * kc) : 0.0, h0[3]),
+                      0.0,
+                      max_damage);
+    }
+    return damaged_stress(e, h0, h1, dt, dc, c, s);
   }
 
   VoigtTangent ConcreteDamageLaw::tangent(const VoigtStrain &e, const double *h) const
   {
-    const double w   = (1 - h[2]) * (1 - h[3]);
-    const double lam = lambda_, mu = mu_;
-    VoigtTangent t{{w * (lam + 2 * mu), w * lam, 0, w * lam, w * (lam + 2 * mu), 0, 0, 0, w * mu}};
+    // The tangent of the committed damage at e with beta frozen (its change with the opening is
+    // of the order of the shear energy over the opening, left out), and the bars' and dowel's.
+    const double      lam = lambda_, mu = mu_, a = lam + 2 * mu, ep = a - lam * lam / a;
+    const double      dt = h[2], wc = 1 - h[3], c = h[6] == 0 && h[7] == 0 ? 1.0 : h[6], sn = h[7];
+    const VoigtStrain ee =
+      plastic_ ? VoigtStrain{{e[0] - h[p_slot], e[1] - h[p_slot + 1], e[2] - h[p_slot + 2]}} : e;
+    const Split       sp  = split(ee, c, sn, h[5]);
+    const VoigtStrain f   = to_crack_frame(ee, c, sn);
+    const double      snn = a * f[0] + lam * f[1], stt = lam * f[0] + a * f[1];
+    // The cracked normal block's tangent in the frame, by region.
+    double qnn = a, qnt = lam, qtt = a;
+    if (snn <= 0 && stt <= 0)
+    {
+    }
+    else if (f[0] >= 0 && f[1] >= 0)
+      qnn = qnt = qtt = 0;
+    else if (snn > 0 && f[1] <= 0)
+    {
+      qnn = qnt = 0;
+      qtt       = ep;
+    }
+    else
+    {
+      qtt = qnt = 0;
+      qnn       = ep;
+    }
+    const double cnn = wc * ((1 - dt) * a + dt * qnn), cnt = wc * ((1 - dt) * lam + dt * qnt),
+                 ctt = wc * ((1 - dt) * a + dt * qtt), css = wc * mu * (1 - dt * (1 - sp.beta));
+    // T = A^T C' A, A the strain transformation of to_crack_frame().
+    const double cc = c * c, ss = sn * sn, cs = c * sn;
+    const double A[3][3] = {{cc, ss, cs}, {ss, cc, -cs}, {-2 * cs, 2 * cs, cc - ss}};
+    const double C[3][3] = {{cnn, cnt, 0}, {cnt, ctt, 0}, {0, 0, css}};
+    VoigtTangent t{};
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+      {
+        double v = 0;
+        for (unsigned int k = 0; k < 3; ++k)
+          for (unsigned int l = 0; l < 3; ++l)
+            v += A[k][i] * C[k][l] * A[l][j];
+        t[3 * i + j] = v;
+      }
     if (reinforced_)
     {
       const double *b = h + bars_;
       t[0] += r_.ratio_x * steel_.update(e[0], b[0], b[1]).tangent;
       t[4] += r_.ratio_y * steel_.update(e[1], b[2], b[3]).tangent;
+      if (dt > 0)
+      {
+        const Dowel  dw = dowel(c, sn);
+        const double g  = to_crack_frame(e, c, sn)[2];
+        if (std::abs(dw.stiffness * (g - b[5])) <= dw.strength)
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = 0; j < 3; ++j)
+              t[3 * i + j] += A[2][i] * dw.stiffness * A[2][j];
+      }
     }
     return t;
   }
 
   PointOutput ConcreteDamageLaw::output(const VoigtStrain &e, const double *h) const
   {
-    const double w = (1 - h[2]) * (1 - h[3]);
+    const double dt = h[2], wc = 1 - h[3];
     // Elastic strain: the total one less the concrete's compressive plastic strain (if any).
-    const double exx = plastic_ ? e[0] - h[6] : e[0], eyy = plastic_ ? e[1] - h[7] : e[1],
-                 gxy = plastic_ ? e[2] - h[8] : e[2];
-    const double tr  = exx + eyy;
-    const double sxx = lambda_ * tr + 2 * mu_ * exx, syy = lambda_ * tr + 2 * mu_ * eyy,
-                 sxy = mu_ * gxy;
+    const VoigtStrain ee =
+      plastic_ ? VoigtStrain{{e[0] - h[p_slot], e[1] - h[p_slot + 1], e[2] - h[p_slot + 2]}} : e;
+    const Split sp = split(ee, h[6], h[7], h[5]);
     PointOutput o;
-    o.sigma_zz           = w * lambda_ * tr;
-    o.stored_energy      = 0.5 * w * (sxx * exx + syy * eyy + sxy * gxy);
-    o.damage             = 1 - w;
+    o.sigma_zz           = wc * (sp.szz0 - dt * sp.dloss_zz);
+    o.stored_energy      = wc * (sp.psi0 - dt * sp.loss);
+    o.damage             = 1 - (1 - dt) * wc;
     o.damage_dissipation = h[4];
     if (plastic_)
     {
-      o.plastic_dissipation       = h[9];
+      o.plastic_dissipation       = h[p_slot + 3];
       o.equivalent_plastic_strain = plastic_strain(h[1]);
     }
     if (reinforced_)
@@ -272,6 +465,11 @@ namespace kimp::fem
       const double *b  = h + bars_;
       const double  ex = e[0] - b[0], ey = e[1] - b[2], Es = r_.youngs_modulus;
       o.stored_energy += 0.5 * Es * (r_.ratio_x * ex * ex + r_.ratio_y * ey * ey);
+      if (dt > 0)
+      {
+        const double g = to_crack_frame(e, h[6], h[7])[2] - b[5];
+        o.stored_energy += 0.5 * dowel(h[6], h[7]).stiffness * g * g;
+      }
       o.plastic_dissipation += b[4];
       o.equivalent_plastic_strain =
         std::max({o.equivalent_plastic_strain, std::abs(b[0]), std::abs(b[2])});

@@ -227,8 +227,23 @@ namespace kimp::fem
      * rests at round-off speed counts as separated. In [0, 1).
      */
     double separation_velocity_fraction = 0.05;
-    double output_interval              = 1.0e-5; ///< s: history sampling interval (0: every step)
-    double vtu_interval                 = 0;      ///< s: field output interval (0: none)
+    /**
+     * The stop sees the whole system: a run ends on separation only once the energy still
+     * stored in wall and soil (their recoverable strain energy and kinetic energy, less the
+     * kinetic energy of their mean translation, relative to the geostatic state) has come back
+     * to at most this fraction of E_0, or the slab rebounds (rebound_velocity_fraction);
+     * otherwise it goes on, and a run that reaches end_time is reported truncated with the share
+     * still stored (ImpactSummary::stored_energy_share). In (0, 1]; 1: the slab's rule alone.
+     */
+    double stored_energy_fraction = 0.05;
+    /**
+     * A slab that moves away at this fraction of the impact velocity or more has rebounded: the
+     * energy left in wall and soil is then their free vibration, which an undamped elastic wall
+     * on rollers keeps for ever, and the run ends on separation whatever it is. In (0, 1].
+     */
+    double rebound_velocity_fraction = 0.5;
+    double output_interval           = 1.0e-5; ///< s: history sampling interval (0: every step)
+    double vtu_interval              = 0;      ///< s: field output interval (0: none)
     /** s: interval of the deformed-mesh frames of ImpactResult::frames (0: none; >= 0). */
     double                frame_interval = 0;
     std::filesystem::path vtu_dir;          ///< field output directory (empty: none)
@@ -311,8 +326,14 @@ namespace kimp::fem
     double       wall_seconds         = 0;
     unsigned int n_ranks              = 1;
     bool         separated            = false; ///< stopped on separation (else end_time)
-    double       plastic_dissipation  = 0;     ///< J/m at the end (non-linear laws)
-    double       damage_dissipation   = 0;     ///< J/m at the end (non-linear laws)
+    /** Ended at end_time without the stop rule met (the slab still in contact or coming in, or
+     *  more than stored_energy_fraction of E_0 still in wall and soil): a cut record. */
+    bool truncated = false;
+    /** Energy stored in wall and soil at the end over E_0 (the stop rule's measure,
+     *  ImpactParameters::stored_energy_fraction). */
+    double stored_energy_share = 0;
+    double plastic_dissipation = 0; ///< J/m at the end (non-linear laws)
+    double damage_dissipation  = 0; ///< J/m at the end (non-linear laws)
     /// The same split by body: slab, wall, soil (J/m; a material of another id is in neither).
     std::array<double, 3> plastic_dissipation_by_body{}, damage_dissipation_by_body{};
     /** Non-linear laws: max |W_int - (E_stored + D_plastic + D_damage)| / E_0 over the run,
@@ -421,8 +442,9 @@ namespace kimp::fem
   };
 
   /**
-   * Runs the impact until the slab has separated and the contact force stayed zero for
-   * separation_hold_time, or end_time. Collective on comm. Log lines go to *log on rank 0
+   * Runs the impact until the slab has separated, the contact force stayed zero for
+   * separation_hold_time and wall and soil hold at most stored_energy_fraction of E_0 (or the slab
+   * rebounds), or end_time (then truncated). Collective on comm. Log lines go to *log on rank 0
    * (nullptr: silent). Bad input throws (message names the parameter and the bad value);
    * numerical failure throws NumericalError.
    */

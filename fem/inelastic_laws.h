@@ -173,6 +173,11 @@ namespace kimp::fem
     /** b_c: fraction of the compressive inelastic strain that is plastic (irreversible), in
      *  [0, 1); 0: secant unloading to the origin. */
     double plastic_fraction = 0;
+    /** d_agg, m: largest aggregate size. The shear retention of a crack falls linearly with its
+     *  opening w to shear_retention_floor at w = d_agg / 2 (>= 1 mm). */
+    double aggregate_size = 0.016;
+    /** beta_min: shear retention of a crack opened wider than d_agg / 2, in [0, 1]. */
+    double shear_retention_floor = 0.01;
     /**
      * fib Model Code 2010 §5.1.4-5.1.8 from f_cm (Pa): f_ck = f_cm - 8 MPa,
      * E_ci = 21.5 GPa (f_cm / 10 MPa)^(1/3), f_ctm = 0.3 f_ck^(2/3) (<= C50) or
@@ -189,7 +194,8 @@ namespace kimp::fem
   /**
    * Smeared reinforcement of a concrete body: steel bars along x and along y, their area per
    * concrete area ratio_x, ratio_y, perfectly bonded (the bar strain is the concrete's normal
-   * strain eps_xx or eps_yy), no tension stiffening, no dowel action (docs/physics.md §6).
+   * strain eps_xx or eps_yy), no tension stiffening; across a crack they add dowel action
+   * (ConcreteDamageLaw, docs/physics.md §6).
    */
   struct ReinforcementParameters
   {
@@ -198,6 +204,9 @@ namespace kimp::fem
     double yield_stress   = 500e6; ///< f_y, Pa (B500)
     double youngs_modulus = 200e9; ///< E_s, Pa
     double hardening      = 0.01;  ///< b = post-yield tangent / E_s, in [0, 1)
+    /** k of the dowel strength of one bar across a crack, D_u = k d_b^2 sqrt(f_cm f_y)
+     *  (Rasmussen 1963; >= 0, 0: no dowel action). */
+    double dowel_coefficient = 1.3;
     /** True if any bar is present. */
     bool any() const { return ratio_x > 0 || ratio_y > 0; }
     /** Kinematic hardening modulus H = b E_s / (1 - b) (Pa): E_s H / (E_s + H) = b E_s. */
@@ -255,46 +264,90 @@ namespace kimp::fem
   };
 
   /**
-   * Concrete: isotropic scalar damage d = 1 - (1 - d_t)(1 - d_c) on the plane-strain elasticity,
-   * sigma = (1 - d) D eps, with a Rankine tension measure (largest principal effective stress / E)
-   * and a compression measure (-smallest principal effective stress / E). Tension softens
-   * exponentially with the crack-band energy G_F / h (Bazant & Oh 1983), compression follows
-   * compression_curve(); unloading is secant (degraded stiffness). History: kappa_t, kappa_c,
-   * d_t, d_c, damage dissipation density (J/m^3), h (m).
+   * Concrete: tension damage d_t on a fixed crack with unilateral closure and shear retention,
+   * compression damage d_c on top (docs/physics.md §6):
+   *   psi = (1 - d_c) [psi_0(eps) - d_t L(eps)],  sigma = d psi / d eps,
+   * psi_0 = eps : D eps / 2 and L = psi_0 - psi_cracked, where psi_cracked, the energy a fully
+   * cracked point keeps, is in the crack frame (n, t) the no-tension energy of the normal block
+   * (min over crack strains e_c >= 0 of (eps - e_c) : D (eps - e_c) / 2: a crack closed in
+   * compression carries as the intact concrete) plus beta(w) mu gamma_nt^2 / 2 (aggregate
+   * interlock; w = h e_open, the crack opening of the band). n is fixed at the step the point
+   * first cracks, along the largest principal effective stress. Tension measure kappa_t (largest
+   * principal effective stress / E) with exponential crack-band softening G_F / h (Bazant & Oh
+   * 1983), compression measure kappa_c (-smallest principal effective stress / E) along
+   * compression_curve(). History: kappa_t, kappa_c, d_t, d_c, damage dissipation density
+   * (J/m^3), h (m), crack normal (cos, sin).
    *
    * With reinforcement, smeared steel bars (SteelBar) add ratio_i sigma_s(eps_ii) to the normal
-   * stress i = x, y of the damaged concrete and ratio_i E_t to the tangent; the history then
-   * also holds eps_p and alpha of the x bars, of the y bars, and the steel's plastic work
-   * density (J/m^3, reported as plastic dissipation). The steel's elastic energy is stored.
+   * stress i = x, y and ratio_i E_t to the tangent; once cracked, the bars crossing the crack add
+   * dowel action, elastic-perfectly plastic in gamma_nt (dowel()). The history then also holds
+   * eps_p and alpha of the x bars, of the y bars, the steel's plastic work density (J/m^3,
+   * bars and dowels, reported as plastic dissipation) and the dowels' plastic slip strain. The
+   * steel's elastic energy is stored.
    *
    * With plastic_fraction b_c > 0, compression leaves plastic strain: eps_p grows by b_c times
    * the growth of the uniaxial curve's inelastic strain kappa_c - sigma_c(kappa_c) / E along the
-   * direction of the largest compression, sigma = (1 - d) D (eps - eps_p), and d_c is such that
-   * uniaxial compression still follows the curve. The history then also holds eps_p {xx, yy,
-   * gamma_xy} and its plastic dissipation density (J/m^3) before the bars' values.
+   * direction of the largest compression, the law above acts on eps - eps_p, and d_c is such
+   * that uniaxial compression still follows the curve. The history then also holds eps_p {xx,
+   * yy, gamma_xy} and its plastic dissipation density (J/m^3) before the bars' values.
    */
   class ConcreteDamageLaw final : public BatchedLaw<ConcreteDamageLaw>
   {
   public:
     explicit ConcreteDamageLaw(const ConcreteParameters      &p,
                                const ReinforcementParameters &reinforcement = {});
-    unsigned int n_history() const override { return bars_ + (reinforced_ ? 5 : 0); }
+    unsigned int n_history() const override { return bars_ + (reinforced_ ? 6 : 0); }
     void         initialize_point(double *history, double characteristic_length) const override;
     void         initial_history(double *history) const override;
     VoigtStress
     stress(const VoigtStrain &strain, const double *committed, double *trial) const override;
-    /** Secant tangent (1 - d) D: enough for the virgin-state stiffness the solvers assemble. */
+    /** The tangent at the committed damage (beta's change with the opening left out): enough
+     *  for the virgin-state stiffness the solvers assemble. */
     VoigtTangent tangent(const VoigtStrain &strain, const double *committed) const override;
     PointOutput  output(const VoigtStrain &strain, const double *history) const override;
     /** Tensile strength used at crack-band length h (reduced if h exceeds the snap-back limit). */
     double                         effective_tensile_strength(double h) const;
     const ConcreteParameters      &parameters() const { return p_; }
     const ReinforcementParameters &reinforcement() const { return r_; }
+    /**
+     * Shear retention beta(w) of a crack of opening w (m): beta_min + (1 - beta_min)(1 - 2w /
+     * d_agg) up to w = d_agg / 2, beta_min beyond (the aggregate-size-based retention of
+     * smeared-crack codes after Walraven's aggregate interlock tests; 1 for a closed crack).
+     */
+    double shear_retention(double w) const;
+    /** Smeared dowel action across a crack of normal (c, s): shear stiffness rho_n G_s and
+     *  strength rho_n min(f_y / sqrt 3, k (4 / pi) sqrt(f_cm f_y)) (Pa), rho_n = rho_x c^2 +
+     *  rho_y s^2, G_s = E_s / (2 (1 + 0.3)). */
+    struct Dowel
+    {
+      double stiffness = 0, strength = 0;
+    };
+    Dowel dowel(double c, double s) const;
+    /** History slot of the compressive plastic strain (plastic_fraction > 0). */
+    static constexpr unsigned int p_slot = 8;
 
   private:
-    /** The damaged concrete's stress (history slots 0-5). */
+    static constexpr double steel_poisson_ratio = 0.3;
+    /** psi_0, the loss L, their stress d psi_0 / d eps and d L / d eps (x, y), their sigma_zz
+     *  parts, the crack opening strain and beta at strain e in the frame (c, s), band h. */
+    struct Split
+    {
+      VoigtStress sigma0{}, dloss{};
+      double      psi0 = 0, loss = 0, szz0 = 0, dloss_zz = 0, opening = 0, beta = 1;
+    };
+    Split split(const VoigtStrain &e, double c, double s, double h) const;
+    /** The stress at elastic strain @p ee with damage dt, dc (written to h1 with the crack
+     *  frame, set to (sa_x, sa_y) if the point cracks now, and the dissipation). */
+    VoigtStress damaged_stress(const VoigtStrain &ee,
+                               const double      *h0,
+                               double            *h1,
+                               double             dt,
+                               double             dc,
+                               double             sa_x,
+                               double             sa_y) const;
+    /** The damaged concrete's stress (history slots 0-7). */
     VoigtStress concrete_stress(const VoigtStrain &strain, const double *h0, double *h1) const;
-    /** As concrete_stress() with compressive plastic strain (history slots 0-9). */
+    /** As concrete_stress() with compressive plastic strain (history slots 0-11). */
     VoigtStress
     plastic_concrete_stress(const VoigtStrain &strain, const double *h0, double *h1) const;
     /** Tension damage at the tension measure kappa_t (history slot 0) of a crack band h (m):
@@ -307,7 +360,7 @@ namespace kimp::fem
     SteelBar                steel_;
     bool                    reinforced_ = false;
     bool                    plastic_    = false;
-    unsigned int            bars_       = 6; ///< first history slot of the bars
+    unsigned int            bars_       = p_slot; ///< first history slot of the bars
     double                  lambda_, mu_;
   };
 } // namespace kimp::fem

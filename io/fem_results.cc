@@ -100,6 +100,7 @@ namespace kimp::io
         {"dissipation_cor", "1", &S::dissipation_cor},
         {"permanent_indentation", "m", &S::permanent_indentation},
         {"wall_residual_displacement", "m", &S::wall_residual_displacement},
+        {"stored_energy_share", "1", &S::stored_energy_share},
         {"radiated_energy", "J/m", &S::radiated_energy},
         {"plastic_dissipation_slab", "J/m", &S::plastic_dissipation_slab},
         {"plastic_dissipation_wall", "J/m", &S::plastic_dissipation_wall},

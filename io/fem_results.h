@@ -59,6 +59,7 @@ namespace kimp::io
     std::optional<double> dissipation_cor;            ///< COR implied by the dissipation
     std::optional<double> permanent_indentation;      ///< m
     std::optional<double> wall_residual_displacement; ///< m
+    std::optional<double> stored_energy_share;        ///< in wall and soil at the end / E_0
     std::optional<double> radiated_energy;            ///< absorbing far boundary, J/m
     /// Inelastic materials: plastic work and damage dissipation per body, J/m.
     std::optional<double> plastic_dissipation_slab, plastic_dissipation_wall,

@@ -121,6 +121,7 @@ namespace kimp::app
     sum.damage_dissipation         = s.damage_dissipation;
     sum.contact_dissipation        = s.contact_dissipation;
     sum.residual_energy            = s.residual_energy;
+    sum.stored_energy_share        = s.stored_energy_share;
     sum.dissipation_cor            = s.dissipation_cor;
     sum.permanent_indentation      = s.permanent_indentation;
     sum.wall_residual_displacement = s.wall_residual_displacement;

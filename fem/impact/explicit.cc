@@ -76,12 +76,13 @@ namespace kimp::fem::internal
         started    = true;
         zero_since = n + 1;
       }
-      // Over once the force stayed zero for the hold time and the slab no longer comes in
-      // (ImpactParameters::separation_velocity_fraction).
+      // Over once the force stayed zero for the hold time, the slab no longer comes in and wall
+      // and soil have given back their energy or the slab rebounds
+      // (ImpactParameters::stored_energy_fraction).
       if (started && n + 1 - zero_since >= steps.hold_steps && ev.total_force == 0)
       {
         slab_v_end = slab_velocity(v_n, v_r_n);
-        if (slab_no_longer_comes_in(slab_v_end))
+        if (system_released_the_slab(slab_v_end))
         {
           separated_flag = true;
           break;

@@ -85,6 +85,10 @@ namespace kimp::fem::internal
     /** The separation test of both time loops: the slab comes in at no more than
      *  separation_velocity_fraction of the impact velocity. */
     bool slab_no_longer_comes_in(double slab_v) const;
+    /** The stop of both time loops after the hold time: the slab no longer comes in, and wall
+     *  and soil hold at most stored_energy_fraction of E_0 (last sample) or the slab rebounds at
+     *  rebound_velocity_fraction of the impact velocity or more. */
+    bool system_released_the_slab(double slab_v) const;
     /** Step counts of both time loops at the step dt: output every vtu_every (write_vtu) and
      *  frame_every (0: no frames) steps, at most n_max steps, separation after hold_steps. */
     struct LoopSteps
@@ -243,6 +247,16 @@ namespace kimp::fem::internal
     TrilinosWrappers::SparseMatrix            stiffness;
     Vec                                       mass, inverse_mass, slab_mass_x, free_mask;
     double                                    slab_total_mass = 0;
+    // Lumped mass of every body but the slab on the x and y DoFs, and its sums (kg/m) along the
+    // components no support holds (else 0): the energy stored in wall and soil without the
+    // kinetic energy of a free translation (the stop rule).
+    Vec                   body_mass_x, body_mass_y;
+    std::array<double, 2> body_free_mass{{0, 0}};
+    /// Energy stored in wall and soil over E_0 at the last sampled step.
+    double stored_share = 0;
+    /// Stored energy of the slab's points (non-linear laws, this rank), J/m, beside
+    /// point_energy_local.
+    double slab_stored_local = 0;
 
     std::unique_ptr<PenaltyContact>      contact;
     std::vector<types::global_dof_index> contact_dofs; // compact node component -> global DoF

@@ -448,9 +448,10 @@ namespace kimp::fem::internal
         started    = true;
         zero_since = n + 1;
       }
-      // Over as in the explicit loop: zero force for the hold time, the slab not moving in.
+      // Over as in the explicit loop: zero force for the hold time, the slab not moving in, wall
+      // and soil having given back their energy (or the slab rebounding).
       if (started && n + 1 - zero_since >= steps.hold_steps && ev.total_force == 0 &&
-          slab_no_longer_comes_in(slab_velocity(v, v_r)))
+          system_released_the_slab(slab_velocity(v, v_r)))
       {
         separated_flag = true;
         break;

@@ -128,6 +128,7 @@ namespace kimp::fem::internal
     std::fill(fl, fl + n_ghosted, zero);
     point_energy_local     = {{0, 0, 0}};
     body_dissipation_local = {};
+    slab_stored_local      = 0;
 
     constexpr unsigned int                   n_buf = max_batch_cells * 4;
     std::array<VoigtStrain, n_buf>           strain;
@@ -190,6 +191,8 @@ namespace kimp::fem::internal
             point_energy_local[2] += energy[p][2] * jxw;
             body_dissipation_local[fc.body][0] += energy[p][1] * jxw;
             body_dissipation_local[fc.body][1] += energy[p][2] * jxw;
+            if (fc.body == 0)
+              slab_stored_local += energy[p][0] * jxw;
           }
           for (unsigned int a = 0; a < vertices_per_cell; ++a)
           {
@@ -239,6 +242,7 @@ namespace kimp::fem::internal
     std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
     point_energy_local     = {{0, 0, 0}};
     body_dissipation_local = {};
+    slab_stored_local      = 0;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
       {
@@ -259,6 +263,8 @@ namespace kimp::fem::internal
           auto &body = body_dissipation_local[body_of(cell->material_id())];
           body[0] += po.plastic_dissipation * fe_values.JxW(q);
           body[1] += po.damage_dissipation * fe_values.JxW(q);
+          if (body_of(cell->material_id()) == 0)
+            slab_stored_local += po.stored_energy * fe_values.JxW(q);
           for (unsigned int i = 0; i < n; ++i)
           {
             const auto e = fe_values[displacement].symmetric_gradient(i, q);

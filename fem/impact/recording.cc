@@ -74,7 +74,9 @@ namespace kimp::fem::internal
     // kinetic, strain, slab m u, slab m v; internal work, stored, plastic, damage
     // (+ geostatic: the work (f_g - f_0) . (u - u_g) of the loads of the geostatic state);
     // plastic and damage per body (slab, wall, soil, other)
-    constexpr unsigned int       n_values = 9 + 8;
+    // wall and soil (every body but the slab): kinetic, x and y momentum, strain energy of
+    // linear laws; the slab points' stored energy (non-linear laws)
+    constexpr unsigned int       n_values = 9 + 8 + 5;
     std::array<double, n_values> local{{0,
                                         0,
                                         0,
@@ -87,9 +89,10 @@ namespace kimp::fem::internal
     for (unsigned int b = 0; b < 4; ++b)
       for (unsigned int i = 0; i < 2; ++i)
         local[9 + 2 * b + i] = body_dissipation_local[b][i];
+    local[21] = slab_stored_local;
     {
       const double *vp = v_n.begin(), *mp = mass.begin(), *up = u.begin(), *kp = Ku.begin(),
-                   *sp = slab_mass_x.begin();
+                   *sp = slab_mass_x.begin(), *bx = body_mass_x.begin(), *by = body_mass_y.begin();
       // Geostatic: energies and displacements relative to its state (the slab's is zero).
       const double *gp = geostatic_on ? geostatic_u.begin() : nullptr;
       const double *op = geostatic_on ? geostatic_offset.begin() : nullptr;
@@ -102,10 +105,16 @@ namespace kimp::fem::internal
         local[3] += sp[k] * vp[k];
         if (op != nullptr)
           local[8] -= op[k] * du;
+        const double mb = bx[k] + by[k];
+        local[17] += 0.5 * mb * vp[k] * vp[k];
+        local[18] += bx[k] * vp[k];
+        local[19] += by[k] * vp[k];
+        if (mb > 0)
+          local[20] += 0.5 * du * kp[k];
       }
     }
     std::array<double, n_values> global{};
-    reduce_over_ranks(local.data(), global.data(), linear_laws ? 4 : n_values, MPI_SUM, comm);
+    reduce_over_ranks(local.data(), global.data(), n_values, MPI_SUM, comm);
     if (geostatic_on)
       for (unsigned int i = 0; i < 3; ++i)
         global[5 + i] -= geostatic_point_energy[i];
@@ -115,6 +124,18 @@ namespace kimp::fem::internal
           body_dissipation[b][i] =
             global[9 + 2 * b + i] - (geostatic_on ? geostatic_body_dissipation[b][i] : 0.0);
     const double kinetic = global[0] + (prm.rigid_slab ? 0.5 * prm.slab_mass * v_r * v_r : 0);
+    {
+      // Stored in wall and soil: their kinetic energy less that of a free mean translation (a
+      // free body carried away keeps it for ever) and their recoverable strain energy: 1/2 du.f
+      // over their DoFs for linear laws (the bodies share no node with the slab), else the
+      // points' stored energy less the slab's (the slab has none in the geostatic state).
+      double translation = 0;
+      for (unsigned int c = 0; c < 2; ++c)
+        if (body_free_mass[c] > 0)
+          translation += 0.5 * global[18 + c] * global[18 + c] / body_free_mass[c];
+      const double strain_energy = linear_laws ? global[20] : global[5] - global[21];
+      stored_share               = (global[17] - translation + strain_energy) / e0;
+    }
     // Linear laws: 1/2 u.Ku is the strain energy. Otherwise the integrated stress power is the
     // energy the body took, and the points split it into stored, plastic and damage.
     const double work     = linear_laws ? global[1] : global[4];
@@ -493,6 +514,8 @@ namespace kimp::fem::internal
     s.wall_seconds          = wall_seconds;
     s.n_ranks               = Utilities::MPI::n_mpi_processes(comm);
     s.separated             = separated_flag;
+    s.truncated             = !separated_flag;
+    s.stored_energy_share   = stored_share;
     if (!history.plastic_dissipation.empty())
     {
       s.plastic_dissipation = history.plastic_dissipation.back();

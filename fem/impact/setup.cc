@@ -198,6 +198,12 @@ namespace kimp::fem::internal
     require(prm.separation_velocity_fraction >= 0 && prm.separation_velocity_fraction < 1,
             "separation_velocity_fraction = " + fmt_double(prm.separation_velocity_fraction) +
               " (must be in [0, 1))");
+    require(prm.stored_energy_fraction > 0 && prm.stored_energy_fraction <= 1,
+            "stored_energy_fraction = " + fmt_double(prm.stored_energy_fraction) +
+              " (must be in (0, 1])");
+    require(prm.rebound_velocity_fraction > 0 && prm.rebound_velocity_fraction <= 1,
+            "rebound_velocity_fraction = " + fmt_double(prm.rebound_velocity_fraction) +
+              " (must be in (0, 1])");
     require(prm.separation_hold_time >= 0,
             "separation_hold_time = " + fmt_double(prm.separation_hold_time) + " s (must be >= 0)");
     require(prm.output_interval >= 0,
@@ -301,9 +307,11 @@ namespace kimp::fem::internal
     SparsityTools::distribute_sparsity_pattern(dsp, locally_owned, comm, locally_relevant);
     stiffness.reinit(locally_owned, locally_owned, dsp, comm);
 
-    Vec mass_w, slab_w;
+    Vec mass_w, slab_w, body_x_w, body_y_w;
     mass_w.reinit(locally_owned, locally_relevant, comm, true);
     slab_w.reinit(locally_owned, locally_relevant, comm, true);
+    body_x_w.reinit(locally_owned, locally_relevant, comm, true);
+    body_y_w.reinit(locally_owned, locally_relevant, comm, true);
 
     const QGauss<dim>        quadrature(2);
     const QGaussLobatto<dim> lobatto(2);
@@ -311,10 +319,11 @@ namespace kimp::fem::internal
     FEValues<dim>            fe_mass(fe, lobatto, update_values | update_JxW_values);
     const unsigned int       n = fe.n_dofs_per_cell();
     FullMatrix<double>       cell_matrix(n, n);
-    Vector<double>           cell_mass(n), cell_slab(n);
+    Vector<double>           cell_mass(n), cell_slab(n), cell_x(n), cell_y(n);
     std::vector<types::global_dof_index> dof_indices(n);
     const FEValuesExtractors::Vector     displacement(0);
     std::vector<std::array<double, 3>>   b(n);
+    std::array<double, 2>                body_held{{0, 0}}; // a constrained DoF, per component
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
       {
@@ -354,22 +363,46 @@ namespace kimp::fem::internal
             const double phi = fe_mass.shape_value(i, q);
             cell_mass(i) += m.density * phi * phi * fe_mass.JxW(q);
           }
+        cell_x = 0;
+        cell_y = 0;
         if (cell->material_id() == geometry::slab_material)
           for (unsigned int i = 0; i < n; ++i)
             if (fe.system_to_component_index(i).first == 0)
               cell_slab(i) = cell_mass(i);
         cell->get_dof_indices(dof_indices);
+        if (cell->material_id() != geometry::slab_material)
+          for (unsigned int i = 0; i < n; ++i)
+          {
+            const unsigned int c          = fe.system_to_component_index(i).first;
+            (c == 0 ? cell_x : cell_y)(i) = cell_mass(i);
+            if (constraints.is_constrained(dof_indices[i]))
+              body_held[c] = 1;
+          }
         constraints.distribute_local_to_global(cell_matrix, dof_indices, stiffness);
         mass_w.add(dof_indices, cell_mass);
         slab_w.add(dof_indices, cell_slab);
+        body_x_w.add(dof_indices, cell_x);
+        body_y_w.add(dof_indices, cell_y);
       }
     stiffness.compress(VectorOperation::add);
     mass_w.compress(VectorOperation::add);
     slab_w.compress(VectorOperation::add);
+    body_x_w.compress(VectorOperation::add);
+    body_y_w.compress(VectorOperation::add);
     mass.reinit(locally_owned, comm);
     slab_mass_x.reinit(locally_owned, comm);
     mass        = mass_w;
     slab_mass_x = slab_w;
+    body_mass_x.reinit(locally_owned, comm);
+    body_mass_y.reinit(locally_owned, comm);
+    body_mass_x = body_x_w;
+    body_mass_y = body_y_w;
+    // A translation of wall and soil is carried away, not stored, only along a component no
+    // support holds (the free struck bar of the wave checks; never the scene's wall).
+    std::array<double, 2> held{};
+    reduce_over_ranks(body_held.data(), held.data(), 2, MPI_MAX, comm);
+    body_free_mass = {
+      {held[0] > 0 ? 0.0 : body_mass_x.l1_norm(), held[1] > 0 ? 0.0 : body_mass_y.l1_norm()}};
     inverse_mass.reinit(locally_owned, comm);
     free_mask.reinit(locally_owned, comm);
     for (const auto i : locally_owned)
@@ -446,6 +479,13 @@ namespace kimp::fem::internal
   bool ImpactProblem::slab_no_longer_comes_in(double slab_v) const
   {
     return !(slab_v > prm.separation_velocity_fraction * prm.initial_velocity);
+  }
+
+  bool ImpactProblem::system_released_the_slab(double slab_v) const
+  {
+    return slab_no_longer_comes_in(slab_v) &&
+           (stored_share <= prm.stored_energy_fraction ||
+            -slab_v >= prm.rebound_velocity_fraction * prm.initial_velocity);
   }
 
   void ImpactProblem::compute_time_step()

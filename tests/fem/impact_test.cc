@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <iostream>
 #include <random>
+#include <string>
 
 #include "fem/penalty_contact.h"
 #include "tests/fem/impact_test_support.h"
@@ -112,7 +113,9 @@ namespace
     // Momentum exchange: the impulse is m v = rho L t v and the striker stops.
     EXPECT_NEAR(r.summary.impulse / (bar_material.density * L * t * v), 1.0, tolerance);
     EXPECT_NEAR(r.summary.rebound_velocity / v, 0.0, tolerance);
+    // The struck bar carries E_0 away as a free translation: nothing stored, the run ends.
     EXPECT_TRUE(r.summary.separated);
+    EXPECT_LT(r.summary.stored_energy_share, p.stored_energy_fraction);
   }
 
   TEST(TwoEqualBars, ImplicitNewmarkDeviationIsSmall)
@@ -173,6 +176,83 @@ namespace
     EXPECT_NEAR(sum * r.summary.dt / r.summary.impulse, 1.0, tolerance)
       << "window " << r.summary.smoothing_window << " s";
     EXPECT_LE(r.summary.peak_force, r.summary.peak_force_raw);
+  }
+
+  // The stop sees the whole system. A bar of length L strikes a bar of length 2L clamped at its
+  // far end: at 2L/c the striker has handed on all its momentum and rests against the face, the
+  // force is zero and the whole E_0 travels in the struck bar as a compressive pulse (1D wave
+  // solution), which reflects at the clamped end and comes back at 4L/c: the face then strikes
+  // the resting striker, which leaves at -v (COR 1, impulse 2 m v). The slab's rule alone
+  // (stored_energy_fraction 1) ends the run at 2L/c with COR 0 and the energy still stored; the
+  // default rule waits for it. Cut before the pulse is back, the record is truncated with
+  // stored share 1.
+  TEST(StopRule, WaitsUntilWallAndSoilHaveGivenBackTheirEnergy)
+  {
+    constexpr double tolerance = 0.05;
+    const double     L = 1.0, t = 0.1, v = 1.0, gap = 1e-4;
+    const unsigned   n_t  = 8;
+    const auto       mesh = write_blocks(
+      {{-gap - L, -gap, 0, t, 80, n_t, ids::slab_material, 0, ids::slab_contact, 0, 0},
+             {0, 2 * L, 0, t, 160, n_t, ids::wall_material, ids::wall_contact, ids::fixed_base, 0, 0}},
+      "bars_clamped.msh");
+    auto         p         = bar_parameters(mesh);
+    const double c         = std::sqrt(bar_material.youngs_modulus / bar_material.density);
+    const double m_v       = bar_material.density * L * t * v;
+    p.end_time             = 8 * L / c;
+    const auto whole       = run_impact(p, MPI_COMM_WORLD, nullptr);
+    auto       slab_only_p = p;
+    slab_only_p.stored_energy_fraction = 1;
+    const auto slab_only               = run_impact(slab_only_p, MPI_COMM_WORLD, nullptr);
+    auto       cut_p                   = p;
+    cut_p.end_time                     = 3 * L / c;
+    const auto cut                     = run_impact(cut_p, MPI_COMM_WORLD, nullptr);
+    if (rank() == 0)
+      for (const auto *r : {&whole, &slab_only, &cut})
+        std::cout << (r == &whole     ? "stop rule, whole system: " :
+                      r == &slab_only ? "stop rule, slab only:    " :
+                                        "stop rule, cut at 3L/c:  ")
+                  << "end " << r->history.time.back() * c / L << " L/c, COR "
+                  << r->summary.apparent_cor << ", impulse / m v " << r->summary.impulse / m_v
+                  << ", stored share " << r->summary.stored_energy_share << ", separated "
+                  << r->summary.separated << ", truncated " << r->summary.truncated << '\n';
+    EXPECT_TRUE(whole.summary.separated) << summary_line(whole);
+    EXPECT_FALSE(whole.summary.truncated);
+    EXPECT_NEAR(whole.summary.apparent_cor, 1.0, tolerance) << summary_line(whole);
+    EXPECT_NEAR(whole.summary.impulse / m_v, 2.0, 2 * tolerance) << summary_line(whole);
+    EXPECT_LE(whole.summary.stored_energy_share, p.stored_energy_fraction);
+    EXPECT_GT(whole.history.time.back(), 5 * L / c);
+
+    EXPECT_TRUE(slab_only.summary.separated);
+    EXPECT_NEAR(slab_only.summary.apparent_cor, 0.0, tolerance) << summary_line(slab_only);
+    EXPECT_NEAR(slab_only.summary.stored_energy_share, 1.0, tolerance);
+    EXPECT_LT(slab_only.history.time.back(), 3 * L / c);
+
+    EXPECT_FALSE(cut.summary.separated);
+    EXPECT_TRUE(cut.summary.truncated);
+    EXPECT_NEAR(cut.summary.stored_energy_share, 1.0, tolerance) << summary_line(cut);
+  }
+
+  TEST(StopRule, ParametersOutsideTheirRangeAreRefused)
+  {
+    auto p                   = bar_parameters(write_two_bars(1.0, 0.1, 1e-4, 4, "bars_stop.msh"));
+    p.stored_energy_fraction = 0;
+    EXPECT_THROW(
+      {
+        try
+        {
+          run_impact(p, MPI_COMM_WORLD, nullptr);
+        }
+        catch (const std::exception &e)
+        {
+          EXPECT_NE(std::string(e.what()).find("stored_energy_fraction"), std::string::npos)
+            << e.what();
+          throw;
+        }
+      },
+      std::exception);
+    p.stored_energy_fraction    = 0.05;
+    p.rebound_velocity_fraction = 1.5;
+    EXPECT_THROW(run_impact(p, MPI_COMM_WORLD, nullptr), std::exception);
   }
 
   TEST(EnergyBalance, DriftBelowOnePercentWithoutContactDamping)

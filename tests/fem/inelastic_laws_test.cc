@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <gtest/gtest.h>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "fem/inelastic_laws.h"
@@ -461,9 +463,10 @@ namespace
   }
 
   // Smeared bars in the concrete law: the stress is the plain concrete's plus ratio_i
-  // sigma_s(eps_ii) (x, y; no shear), the tangent gains ratio_i E_t, the stored energy the
-  // bars' elastic energy and the plastic dissipation their plastic work; ratio 0 is the plain
-  // law with its 6 history values.
+  // sigma_s(eps_ii) (x, y) plus, once cracked, the dowel shear tau = k_d (gamma_nt - slip) in the
+  // crack frame, the tangent gains ratio_i E_t, the stored energy the bars' and dowels' elastic
+  // energy and the plastic dissipation their plastic work; ratio 0 is the plain law with its 8
+  // history values.
   TEST(Concrete, SmearedBarsAddTheirStressTangentAndEnergy)
   {
     ConcreteParameters      c = ConcreteParameters::from_f_cm(38e6);
@@ -471,8 +474,9 @@ namespace
     r.ratio_x = 0.005;
     r.ratio_y = 0.01;
     const ConcreteDamageLaw plain(c), none(c, ReinforcementParameters{}), rc(c, r);
-    EXPECT_EQ(none.n_history(), 6u);
-    EXPECT_EQ(rc.n_history(), 11u);
+    EXPECT_EQ(none.n_history(), 8u);
+    EXPECT_EQ(rc.n_history(), 14u);
+    const unsigned int  bars = 8;
     const SteelBar      bar(r);
     std::vector<double> hp(plain.n_history()), hp1(plain.n_history()), h0(rc.n_history()),
       h1(rc.n_history());
@@ -487,14 +491,30 @@ namespace
       const VoigtStress sp = plain.stress(e, hp.data(), hp1.data());
       const VoigtStress s  = rc.stress(e, h0.data(), h1.data());
       const SteelState  sx = bar.update(e[0], ep_x, a_x), sy = bar.update(e[1], ep_y, a_y);
-      EXPECT_NEAR(s[0], sp[0] + r.ratio_x * sx.stress, 1e-9 * r.yield_stress) << i;
-      EXPECT_NEAR(s[1], sp[1] + r.ratio_y * sy.stress, 1e-9 * r.yield_stress) << i;
-      EXPECT_DOUBLE_EQ(s[2], sp[2]) << i;
-      for (unsigned int k = 0; k < 6; ++k)
+      // Dowel shear in the crack frame (c, sn), zero before the point cracks.
+      const double cn = h1[6], sn = h1[7];
+      const double g = -2 * cn * sn * e[0] + 2 * cn * sn * e[1] + (cn * cn - sn * sn) * e[2];
+      const ConcreteDamageLaw::Dowel dw  = rc.dowel(cn, sn);
+      const double                   tau = h1[2] > 0 ? dw.stiffness * (g - h1[bars + 5]) : 0.0;
+      EXPECT_LE(std::abs(tau), dw.strength * (1 + 1e-12)) << i;
+      EXPECT_NEAR(s[0], sp[0] + r.ratio_x * sx.stress - 2 * cn * sn * tau, 1e-9 * r.yield_stress)
+        << i;
+      EXPECT_NEAR(s[1], sp[1] + r.ratio_y * sy.stress + 2 * cn * sn * tau, 1e-9 * r.yield_stress)
+        << i;
+      EXPECT_NEAR(s[2], sp[2] + (cn * cn - sn * sn) * tau, 1e-9 * r.yield_stress) << i;
+      for (unsigned int k = 0; k < bars; ++k)
         EXPECT_DOUBLE_EQ(h1[k], hp1[k]) << k;
       const VoigtTangent tp = plain.tangent(e, hp.data()), t = rc.tangent(e, h0.data());
-      EXPECT_NEAR(t[0] - tp[0], r.ratio_x * sx.tangent, 1e-6 * r.youngs_modulus);
-      EXPECT_NEAR(t[4] - tp[4], r.ratio_y * sy.tangent, 1e-6 * r.youngs_modulus);
+      // The dowel's elastic tangent k_d a a^T, a = d gamma_nt / d eps (committed crack only).
+      const double c0 = hp[6], s0 = hp[7];
+      const double a_d[3] = {-2 * c0 * s0, 2 * c0 * s0, c0 * c0 - s0 * s0};
+      const double k_d    = hp[2] > 0 ? rc.dowel(c0, s0).stiffness : 0.0;
+      EXPECT_NEAR(t[0] - tp[0],
+                  r.ratio_x * sx.tangent + k_d * a_d[0] * a_d[0],
+                  1e-6 * r.youngs_modulus);
+      EXPECT_NEAR(t[4] - tp[4],
+                  r.ratio_y * sy.tangent + k_d * a_d[1] * a_d[1],
+                  1e-6 * r.youngs_modulus);
       w += r.ratio_x * sx.plastic_work + r.ratio_y * sy.plastic_work;
       ep_x                 = sx.plastic_strain;
       a_x                  = sx.back_stress;
@@ -502,9 +522,13 @@ namespace
       a_y                  = sy.back_stress;
       const PointOutput op = plain.output(e, hp1.data()), o = rc.output(e, h1.data());
       const double      ex = e[0] - ep_x, eyy = e[1] - ep_y;
+      const double      dowel_energy = dw.stiffness > 0 ? 0.5 * tau * tau / dw.stiffness : 0.0;
       EXPECT_NEAR(o.stored_energy - op.stored_energy,
-                  0.5 * r.youngs_modulus * (r.ratio_x * ex * ex + r.ratio_y * eyy * eyy),
+                  0.5 * r.youngs_modulus * (r.ratio_x * ex * ex + r.ratio_y * eyy * eyy) +
+                    dowel_energy,
                   1e-9 * r.yield_stress * ey);
+      if (h1[2] > 0 && h0[2] > 0)
+        w += dw.strength * std::abs(h1[bars + 5] - h0[bars + 5]);
       EXPECT_NEAR(o.plastic_dissipation, w, 1e-12 * r.yield_stress);
       EXPECT_DOUBLE_EQ(o.damage_dissipation, op.damage_dissipation);
       hp = hp1;
@@ -527,7 +551,7 @@ namespace
     c.poisson_ratio      = 0;
     c.plastic_fraction   = 0.7;
     const ConcreteDamageLaw law(c);
-    EXPECT_EQ(law.n_history(), 10u);
+    EXPECT_EQ(law.n_history(), 12u);
     std::vector<double> h0(law.n_history()), h1(law.n_history());
     law.initialize_point(h0.data(), 0.05);
     const double E = c.youngs_modulus, e_max = 1.5 * c.eps_c1;
@@ -549,8 +573,8 @@ namespace
     }
     EXPECT_LT(worst, 1e-9 * c.f_cm);
     const double eps_p = -0.7 * (e_max - c.compression_curve(e_max) / E);
-    EXPECT_NEAR(h0[6], eps_p, 1e-12);
-    EXPECT_NEAR(h0[7], 0, 1e-15);
+    EXPECT_NEAR(h0[ConcreteDamageLaw::p_slot], eps_p, 1e-12);
+    EXPECT_NEAR(h0[ConcreteDamageLaw::p_slot + 1], 0, 1e-15);
     // Unloading: linear from (-e_max, -sigma_c) to (eps_p, 0).
     const double slope = c.compression_curve(e_max) / (e_max + eps_p);
     double       s     = 0;
@@ -564,7 +588,7 @@ namespace
     const PointOutput o = law.output({{eps_p, 0, 0}}, h0.data());
     std::printf("compression plasticity b_c = 0.7: eps_p = %.4g (closed form %.4g), work %.6g "
                 "J/m^3, damage %.6g + plastic %.6g = %.6g J/m^3, stored %.2g\n",
-                h0[6],
+                h0[ConcreteDamageLaw::p_slot],
                 eps_p,
                 work,
                 o.damage_dissipation,
@@ -582,5 +606,229 @@ namespace
     }
     const double e_more = -1.6 * c.eps_c1;
     EXPECT_NEAR(-step(e_more), c.compression_curve(-e_more), 1e-9 * c.f_cm);
+  }
+
+  /** Pulls a point of @p law (band h) along y (eps_xx = gamma = 0) until the tension damage is
+   *  complete (d_t at its cap 1 - 1e-6); the committed history is left in @p h0. */
+  void crack_fully_along_y(const ConcreteDamageLaw &law, std::vector<double> &h0, double h)
+  {
+    std::vector<double> h1(law.n_history());
+    law.initialize_point(h0.data(), h);
+    const double e0 = law.effective_tensile_strength(h) / law.parameters().youngs_modulus;
+    for (double e = e0 / 100; h0[2] < 1 - 1.0001e-6; e += e0 / 10)
+    {
+      law.stress({{0, e, 0}}, h0.data(), h1.data());
+      h0 = h1;
+      ASSERT_LT(e, 1.0) << "the point never cracked through";
+    }
+  }
+
+  // A band fully cracked in tension (d_t = 1 - 1e-6, crack normal y) and held open at the
+  // normal strain e_n (opening w = h e_n) still carries shear: tau = mu (1 - d_t (1 - beta(w)))
+  // gamma with beta(w) = beta_min + (1 - beta_min)(1 - 2 w / d_agg) up to w = d_agg / 2, beta_min
+  // beyond; the smeared bars crossing it (rho_y) add the dowel tau_d = rho_y G_s gamma up to
+  // rho_y min(f_y / sqrt 3, 1.3 (4 / pi) sqrt(f_cm f_y)). Before the change the law kept 1e-6 of
+  // mu: a frictionless slide.
+  TEST(Concrete, FullyCrackedBandStillCarriesShear)
+  {
+    constexpr double        tolerance = 1e-9;
+    ConcreteParameters      c         = ConcreteParameters::from_f_cm(38e6);
+    const double            h = 0.05, d_agg = c.aggregate_size, b0 = c.shear_retention_floor;
+    const ConcreteDamageLaw law(c);
+    std::vector<double>     h0(law.n_history()), h1(law.n_history());
+    crack_fully_along_y(law, h0, h);
+    EXPECT_NEAR(std::abs(h0[7]), 1.0, 1e-12) << "crack normal along y";
+    const double mu = c.youngs_modulus / (2 * (1 + c.poisson_ratio)), dt = h0[2];
+    for (const double w : {0.0005, 0.002, 0.006, 0.012})
+    {
+      const double en = w / h, gamma = 1e-5;
+      const double beta     = w >= 0.5 * d_agg ? b0 : b0 + (1 - b0) * (1 - 2 * w / d_agg);
+      const double tau_p    = law.stress({{0, en, gamma}}, h0.data(), h1.data())[2];
+      const double tau_m    = law.stress({{0, en, -gamma}}, h0.data(), h1.data())[2];
+      const double G        = (tau_p - tau_m) / (2 * gamma);
+      const double expected = mu * (1 - dt * (1 - beta));
+      std::printf("cracked band, opening w = %.1f mm: shear modulus %.6g MPa, closed form mu (1 "
+                  "- d_t (1 - beta)) = %.6g MPa (beta = %.4f), intact mu = %.6g MPa\n",
+                  w * 1e3,
+                  G / 1e6,
+                  expected / 1e6,
+                  beta,
+                  mu / 1e6);
+      EXPECT_NEAR(G, expected, tolerance * mu) << "w " << w;
+      EXPECT_NEAR(law.shear_retention(w), beta, 1e-15);
+      EXPECT_GE(G, 0.5 * b0 * mu) << "w " << w;
+    }
+
+    // Reinforced: the dowels of the y bars add rho_y G_s, then yield at their strength.
+    ReinforcementParameters r;
+    r.ratio_y = 0.008;
+    const ConcreteDamageLaw rc(c, r);
+    std::vector<double>     g0(rc.n_history()), g1(rc.n_history());
+    crack_fully_along_y(rc, g0, h);
+    const double w = 0.012, en = w / h; // beyond d_agg / 2: only beta_min and the dowels
+    const double G_s = r.youngs_modulus / 2.6, pi = 3.14159265358979323846;
+    const double tau_bar =
+      std::min(r.yield_stress / std::sqrt(3.0), 1.3 * 4 / pi * std::sqrt(c.f_cm * r.yield_stress));
+    const ConcreteDamageLaw::Dowel dw = rc.dowel(0, 1);
+    EXPECT_NEAR(dw.stiffness, r.ratio_y * G_s, 1e-9 * G_s);
+    EXPECT_NEAR(dw.strength, r.ratio_y * tau_bar, 1e-9 * tau_bar);
+    // Open the crack (the dowel started unloaded at the cracking step, gamma = 0 then).
+    rc.stress({{0, en, 0}}, g0.data(), g1.data());
+    g0                  = g1;
+    const double gamma  = 1e-5;
+    const double tau    = rc.stress({{0, en, gamma}}, g0.data(), g1.data())[2];
+    const double expect = (mu * (1 - g0[2] * (1 - b0)) + r.ratio_y * G_s) * gamma;
+    std::printf("reinforced cracked band (rho_y 0.8 %%), w = 12 mm: tau = %.6g kPa at gamma = "
+                "1e-5, closed form (mu beta_min + rho_y G_s) gamma = %.6g kPa; dowel strength "
+                "%.4g MPa\n",
+                tau / 1e3,
+                expect / 1e3,
+                dw.strength / 1e6);
+    EXPECT_NEAR(tau, expect, tolerance * mu * gamma);
+    // Slide 2 % (far past the dowel's yield slip): the dowels carry their strength.
+    const double big     = 0.02;
+    const double tau_big = rc.stress({{0, en, big}}, g0.data(), g1.data())[2];
+    EXPECT_NEAR(tau_big, mu * (1 - g0[2] * (1 - b0)) * big + dw.strength, 1e-9 * dw.strength);
+    EXPECT_NEAR(g1[8 + 4] - g0[8 + 4],
+                dw.strength * (big - dw.strength / dw.stiffness),
+                1e-9 * dw.strength * big)
+      << "plastic work of the dowels";
+  }
+
+  // Load reversal: a point cracked through in tension along x (d_t = 1 - 1e-6), then compressed
+  // along x, has the undamaged stiffness: the crack closes. nu = 0: sigma = -sigma_c(eps), the
+  // virgin compression curve, whose tangent at zero is E; unloading back into tension finds the
+  // crack open again (1e-6 E). nu = 0.2 (uniaxial strain): the plane-strain modulus lambda + 2 mu.
+  TEST(Concrete, CrackClosesUnderLoadReversal)
+  {
+    for (const double nu : {0.0, 0.2})
+    {
+      ConcreteParameters c = ConcreteParameters::from_f_cm(38e6);
+      c.poisson_ratio      = nu;
+      const ConcreteDamageLaw law(c);
+      const double            h = 0.05, E = c.youngs_modulus;
+      std::vector<double>     h0(law.n_history()), h1(law.n_history());
+      law.initialize_point(h0.data(), h);
+      const double e0 = law.effective_tensile_strength(h) / E;
+      double       e  = 0;
+      for (e = e0 / 100; h0[2] < 1 - 1.0001e-6; e += e0 / 10)
+      {
+        law.stress({{e, 0, 0}}, h0.data(), h1.data());
+        h0 = h1;
+      }
+      const double tension_slope =
+        law.stress({{e, 0, 0}}, h0.data(), h1.data())[0] / e; // secant of the open crack
+      const double lam = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
+      // Compression in small steps: the secant at 1e-6 is the tangent at zero.
+      const double de      = 1e-6;
+      const double s_small = law.stress({{-de, 0, 0}}, h0.data(), h1.data())[0];
+      const double modulus = -s_small / de;
+      std::printf("crack closure, nu = %.1f: tension secant after cracking %.4g MPa, "
+                  "compression modulus %.6g MPa vs undamaged lambda + 2 mu = %.6g MPa\n",
+                  nu,
+                  tension_slope / 1e6,
+                  modulus / 1e6,
+                  (lam + 2 * mu) / 1e6);
+      EXPECT_LT(tension_slope, 1e-5 * E);
+      // The first compressive step already damages (d_c ~ 1e-3 eta): 1e-3 relative.
+      EXPECT_NEAR(modulus, lam + 2 * mu, 1e-3 * (lam + 2 * mu));
+      if (nu == 0)
+      {
+        // The whole virgin compression curve, then back to tension: open again.
+        for (int i = 1; i <= 30; ++i)
+        {
+          const double ec = i * 1e-4;
+          const double s  = -law.stress({{-ec, 0, 0}}, h0.data(), h1.data())[0];
+          EXPECT_NEAR(s, c.compression_curve(ec), 1e-9 * c.f_cm) << ec;
+          h0 = h1;
+        }
+        const double s_back = law.stress({{e, 0, 0}}, h0.data(), h1.data())[0];
+        EXPECT_LT(s_back, 1e-5 * E * e);
+        EXPECT_GE(s_back, 0);
+      }
+    }
+  }
+
+  // A cracked point is elastic at fixed damage: the law's stress derives from its stored energy
+  // (a closed strain cycle returns the work it took, central-difference tangent = tangent()
+  // where beta is constant, i.e. beyond d_agg / 2 and for a closed crack).
+  TEST(Concrete, CrackedPointDerivesFromItsStoredEnergy)
+  {
+    ConcreteParameters      c = ConcreteParameters::from_f_cm(38e6);
+    ReinforcementParameters r;
+    r.ratio_x = 0.002;
+    r.ratio_y = 0.008;
+    const ConcreteDamageLaw law(c, r);
+    std::vector<double>     h0(law.n_history()), h1(law.n_history());
+    crack_fully_along_y(law, h0, 0.05);
+    // Crushed a little too, beyond every compression of the checks below (so that d_c is fixed
+    // in them), then the crack frame turned off the axes: a tilted crack (30 degrees).
+    law.stress({{-2.5e-3, -2.5e-3, 0}}, h0.data(), h1.data());
+    h0    = h1;
+    h0[6] = std::cos(pi / 6);
+    h0[7] = std::sin(pi / 6);
+    for (const VoigtStrain &e : {VoigtStrain{{-1e-4, 0.3, 1e-5}},
+                                 VoigtStrain{{-2e-4, -1e-4, 3e-5}},
+                                 VoigtStrain{{0.4, -1e-3, 2e-5}},
+                                 VoigtStrain{{0.3, 0.35, -1e-5}}})
+    {
+      const double err = tangent_error(law, e, h0.data());
+      EXPECT_LT(err, 1e-5) << e[0] << " " << e[1] << " " << e[2];
+    }
+    // A closed loop through open, closed and sheared states: work = change of stored energy = 0.
+    const auto path = [](double t) -> VoigtStrain
+    {
+      const double a = 2 * pi * t;
+      return {{1e-3 * std::cos(a), 1.5e-3 * std::sin(a), 1e-3 * std::sin(2 * a)}};
+    };
+    double      work = 0, scale = 0;
+    const int   n      = 20000;
+    VoigtStrain e_prev = path(0);
+    VoigtStress s_prev = law.stress(e_prev, h0.data(), h1.data());
+    for (int i = 1; i <= n; ++i)
+    {
+      const VoigtStrain e = path(static_cast<double>(i) / n);
+      const VoigtStress s = law.stress(e, h0.data(), h1.data());
+      for (unsigned int k = 0; k < 3; ++k)
+      {
+        work += 0.5 * (s[k] + s_prev[k]) * (e[k] - e_prev[k]);
+        scale += 0.5 * std::abs((s[k] + s_prev[k]) * (e[k] - e_prev[k]));
+      }
+      e_prev = e;
+      s_prev = s;
+    }
+    std::printf("cracked point, closed strain loop: net work %.3g J/m^3 of %.3g J/m^3 gross\n",
+                work,
+                scale);
+    EXPECT_LT(std::abs(work), 1e-4 * scale);
+  }
+
+  // Crack parameters outside their range are refused with their name.
+  TEST(Concrete, CrackParametersOutsideTheirRangeAreRefused)
+  {
+    const auto refused =
+      [](const ConcreteParameters &c, const ReinforcementParameters &r, const char *name)
+    {
+      try
+      {
+        const ConcreteDamageLaw law(c, r);
+        ADD_FAILURE() << name << " accepted";
+      }
+      catch (const std::invalid_argument &e)
+      {
+        EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+      }
+    };
+    const ConcreteParameters good = ConcreteParameters::from_f_cm(38e6);
+    ConcreteParameters       c    = good;
+    c.aggregate_size              = 5e-4;
+    refused(c, {}, "aggregate_size");
+    c                       = good;
+    c.shear_retention_floor = 1.5;
+    refused(c, {}, "shear_retention_floor");
+    ReinforcementParameters r;
+    r.ratio_y           = 0.01;
+    r.dowel_coefficient = -1;
+    refused(good, r, "dowel_coefficient");
   }
 } // namespace

@@ -85,10 +85,13 @@ namespace
   TEST(AfterImpact, InelasticDissipationClosesTheCorBookkeeping)
   {
     // E_0 (1 - COR^2) = plastic + damage + contact dissipation + energy left in the bodies
-    // within 1 % of E_0; the yielded backfill keeps the wall face pushed back (> 0), the
-    // material dissipation alone implies a COR above the apparent one.
+    // within 1 % of E_0; the plastic strain of backfill and bars leaves a permanent indentation
+    // (non-zero), the material dissipation alone implies a COR above the apparent one.
     // A plain wall breaks at these speeds (the slab still comes in at the end time); with bars as
-    // in reinforced_scene() it yields and sends the slab back (measured COR 0.25).
+    // in reinforced_scene() it yields and sends the slab back (measured COR 0.57). Its cracks
+    // close and carry shear, so the bars' plastic strain, unloaded on the virgin stiffness, pulls
+    // the face back towards the slab: the indentation is then negative (measured -0.35 mm; 0.29 mm
+    // when the cracked concrete carried nothing), docs/validation.md.
     auto p             = reinforced_scene("after_inelastic.msh", true);
     p.initial_velocity = 1.0;
     const auto   r     = run_impact(p, MPI_COMM_WORLD, nullptr);
@@ -107,7 +110,7 @@ namespace
     EXPECT_GT(s.apparent_cor, 0); // rebounds
     EXPECT_LT(std::abs(balance), 0.01 * e0);
     EXPECT_GT(s.plastic_dissipation, 0);
-    EXPECT_GT(s.permanent_indentation, 0);
+    EXPECT_NE(s.permanent_indentation, 0);
     EXPECT_LT(s.dissipation_cor, 1.0);
     EXPECT_GE(s.dissipation_cor, std::abs(s.apparent_cor) - 1e-12);
   }
