@@ -6,7 +6,13 @@ listed for it below, and no third-party header of the families listed as foreign
 written from the repository root: a path with ".." (which could reach any layer) is refused, and so is
 an included source file (*.cc): a command (cli/<name>_command.cc) is never included by another file.
 Each module's CMakeLists.txt may link only the kimp targets of the modules it may include, so the
-build graph says what the includes say. Tests and benchmarks are not checked.
+build graph says what the includes say.
+
+Inside app/ and cli/ the rooms are checked too (APP_ROOMS): app's core (the loose files of app/,
+which the lean executable links) includes none of app/fem, app/study or app/sweep; app/sweep
+includes no study; server includes app's core only; only the FEM part of cli/
+(kimp-fem) includes app/fem and app/study. A header named *_internal.h is included only from its
+own room. tests/ and bench/ may include any module, but no module includes tests/ or bench/.
 
     check-layering.py [ROOT]       check the tree at ROOT (default: the repository)
     check-layering.py --self-test  check that deliberate violations are caught
@@ -31,6 +37,44 @@ ALLOWED = {
     "python": {"base", "io", "fit", "lumped", "app"},
 }
 MODULES = set(ALLOWED)
+
+# room -> app rooms it may include. A file's room: app/sweep, app/fem, app/study or app/core (the
+# other files of app/); cli/fem for the commands of kimp-fem, cli/core for the rest of cli/.
+APP_ROOMS = {
+    "app/core": {"app/core"},
+    "app/sweep": {"app/core", "app/sweep"},
+    "app/fem": {"app/core", "app/fem"},
+    "app/study": {"app/core", "app/fem", "app/study"},
+    "server": {"app/core"},
+    "python": {"app/core", "app/sweep", "app/fem", "app/study"},
+    "cli/core": {"app/core", "app/sweep"},
+    "cli/fem": {"app/core", "app/sweep", "app/fem", "app/study"},
+}
+CLI_FEM = {"fem_command.cc", "mesh_command.cc", "study_command.cc", "fem_main.cc", "fem_commands.cc"}
+
+
+def room_of(rel):
+    """The room of a repository-relative path (see APP_ROOMS), or its top directory."""
+    parts = rel.split("/")
+    if parts[0] == "app":
+        return "app/" + parts[1] if len(parts) > 2 and parts[1] in ("sweep", "fem", "study") \
+            else "app/core"
+    if parts[0] == "cli":
+        return "cli/fem" if parts[-1] in CLI_FEM else "cli/core"
+    return parts[0]
+
+
+def room_violation(rel, header):
+    """Why `rel` may not include the kimp header `header` (None when it may)."""
+    room, target = room_of(rel), room_of(header)
+    if header.split("/")[0] in ("tests", "bench"):
+        return f"{rel.split('/')[0]}/ includes nothing of {header.split('/')[0]}/"
+    if os.path.basename(header).endswith("_internal.h") and room != target:
+        return f"{header} is internal to {target}/"
+    if target.startswith("app/") and room in APP_ROOMS and target not in APP_ROOMS[room]:
+        allowed = ", ".join(sorted(APP_ROOMS[room]))
+        return f"{room} may include {allowed} of app/, not {target}"
+    return None
 
 # module -> third-party header prefixes it must not include
 FOREIGN = {
@@ -77,6 +121,10 @@ def violations(root):
                     if kind == '"' and header.endswith(".cc"):
                         found.append(f"{where}: a source file is compiled, never included")
                         continue
+                    if kind == '"' and first in MODULES | {"tests", "bench"} and "/" in header:
+                        why = room_violation(rel, header)
+                        if why:
+                            found.append(f"{where}: {why}")
                     if first in MODULES and "/" in header:
                         if first != module and first not in ALLOWED[module]:
                             allowed = ", ".join(sorted(ALLOWED[module])) or "nothing else of kimp"
@@ -133,6 +181,12 @@ def self_test():
         "cli/commands.cc": '#include "cli/study_command.cc"\n',
         "fit/CMakeLists.txt": "target_link_libraries(kimp_fit PUBLIC kimp::lumped kimp::io)\n",
         "io/CMakeLists.txt": "target_link_libraries(kimp_io PRIVATE kimp::app_core)\n",
+        "server/y.cc": '#include "app/study/study_run.h"\n',
+        "app/y2.cc": '#include "app/fem/fem_run.h"\n',
+        "app/sweep/x.cc": '#include "app/study/study_internal.h"\n',
+        "io/y.cc": '#include "tests/support/kimp_run.h"\n',
+        "app/fem/x.cc": '#include "app/lumped_run_internal.h"\n',
+        "cli/sweep_command.cc": '#include "app/study/study_run.h"\n',
     }
     with tempfile.TemporaryDirectory() as root:
         for rel, text in cases.items():
