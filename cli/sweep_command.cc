@@ -50,6 +50,10 @@ namespace kimp::cli
                    "steps) exceeds it is refused before planning (default 1e11)")
       ->type_name("N")
       ->check(CLI::PositiveNumber);
+    command->add_flag("--accept-cost",
+                      options->accept_cost,
+                      "run although the estimate exceeds --max-steps (a warning instead of the "
+                      "refusal)");
     command->add_flag("--print-defaults",
                       prints->first,
                       "print an annotated example sweep file (every key with its meaning) and "

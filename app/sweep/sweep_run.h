@@ -19,6 +19,8 @@ namespace kimp::app
     /// Budget of time steps over all runs (sweep_estimate.h), refused before planning: about
     /// 10^4 s of one core at 5 DoFs.
     double max_steps = 1e11;
+    /// --accept-cost: a sweep above max_steps runs (with a warning) instead of being refused.
+    bool accept_cost = false;
   };
 
   /**
