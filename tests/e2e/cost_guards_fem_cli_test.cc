@@ -21,7 +21,7 @@ namespace
   using namespace kimp::testing;
 
   /// The default FEM scene (elastic slab, backfill) with a 1 mm contact mesh.
-  const char *one_millimetre_scene = "mesh:\n  h_contact: \"1 mm\"\n";
+  const char *one_millimetre_scene = "mesh:\n  h_contact: \"1 mm\"\n  h_max: \"1 mm\"\n";
 } // namespace
 
 // `kimp fem` with a 1 mm contact mesh logged its own estimate (~1e7 DoFs, ~40 h), then meshed and
@@ -83,7 +83,8 @@ TEST(CostGuardsCli, MeshAndStudyAreGuardedAndTheDefaultsPass)
   EXPECT_EQ(line.rfind("error: kimp mesh: estimated cost above the limits (", 0), 0u) << line;
   EXPECT_EQ(line.find("on one core >"), std::string::npos) << "mesh has no time limit: " << line;
 
-  dir.write("study.yaml", "fem:\n  fidelity: fixed\n  mesh:\n    h_contact: \"1 mm\"\n");
+  dir.write("study.yaml",
+            "fem:\n  fidelity: fixed\n  mesh:\n    h_contact: \"1 mm\"\n    h_max: \"1 mm\"\n");
   run = run_kimp("study study.yaml --check", dir.path());
   ASSERT_NO_FATAL_FAILURE(one_error_line(run.exit_code, run.err, line));
   EXPECT_EQ(line.rfind("error: kimp study: estimated cost above the limits (", 0), 0u) << line;
