@@ -162,7 +162,7 @@ namespace kimp::app
       throw std::invalid_argument(fmt::format(
         "record = '{}' lasts {} s{} (expected {:g} s to {:g} s: a shorter or longer ground motion is "
         "implausible; check the record's DT and ground_motion.duration)",
-        base::excerpt(scene.is_record() ? scene.record : std::string("synthetic")),
+        scene.is_record() ? scene.record : std::string("synthetic"),
         base::sig(length),
         scene.duration ? " after trimming to duration = " + format_quantity(*scene.duration, "s") :
                          std::string(),

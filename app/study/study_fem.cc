@@ -92,9 +92,9 @@ namespace kimp::app
 
   FemCost estimate_study_fem(const StudyScene &scene)
   {
-    FemCost         cost;
-    const FemScene &fem = scene.fem;
-    const auto      add = [&cost](const FemScene &level, double height, const std::string &what)
+    FemCost              cost;
+    const StudyFemScene &fem = scene.fem;
+    const auto add = [&cost](const FemScene &level, double height, const std::string &what)
     {
       const std::string name = fem_case_name(height) + what;
       cost.add(name, estimate_fem_case(resolve_fem_case(level, height, name, {})));
@@ -105,7 +105,7 @@ namespace kimp::app
                         !fem.fidelity_penalty_factors.empty();
     const double penalty =
       ladder ? fem.fidelity_penalty_factors.front() : fem.solver.penalty_factor;
-    const std::size_t n_velocities = study_velocities(scene).size();
+    const std::size_t n_velocities = study_internal::study_velocities(scene).size();
     for (const double height : fem.wall_heights)
     {
       FemScene finest = fem;
