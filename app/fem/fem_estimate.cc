@@ -200,7 +200,8 @@ namespace kimp::app
                                            fem_inelastic_seconds_per_dof_step :
                                            fem_explicit_seconds_per_dof_step;
     e.seconds                 = e.n_dofs * e.n_steps * per_dof_step;
-    e.memory                  = fem_fixed_bytes + e.n_dofs * fem_bytes_per_dof;
+    e.memory =
+      fem_fixed_bytes + e.n_dofs * (implicit ? fem_implicit_bytes_per_dof : fem_bytes_per_dof);
     return e;
   }
 

@@ -16,11 +16,13 @@ namespace kimp::app
   inline constexpr double fem_implicit_seconds_per_dof_step = 6e-7;
 
   /// Measured peak memory of one FEM case per DoF, bytes, beside a fixed part (deal.II, MPI and
-  /// the libraries: docs/performance.md "Cost limits"); the frames of `kimp fem` add 16 bytes per
-  /// DoF and frame (displacements per vertex, stresses per cell).
-  inline constexpr double fem_bytes_per_dof       = 4e3;
-  inline constexpr double fem_fixed_bytes         = 2.5e8;
-  inline constexpr double fem_frame_bytes_per_dof = 16.0;
+  /// the libraries: docs/performance.md "Cost limits"): explicit 0.75 kB, implicit with the
+  /// direct solver 2.8 kB; the frames of `kimp fem` add 16 bytes per DoF and frame
+  /// (displacements per vertex, stresses per cell).
+  inline constexpr double fem_bytes_per_dof          = 1e3;
+  inline constexpr double fem_implicit_bytes_per_dof = 3e3;
+  inline constexpr double fem_fixed_bytes            = 2e8;
+  inline constexpr double fem_frame_bytes_per_dof    = 16.0;
 
   /// Cost of one FEM case, from its grid (geometry::SceneLayout) before it is meshed.
   struct FemEstimate

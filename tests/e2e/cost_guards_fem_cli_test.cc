@@ -99,7 +99,8 @@ TEST(CostGuardsCli, MeshAndStudyAreGuardedAndTheDefaultsPass)
   EXPECT_EQ(line.find(" h > 6 h"), std::string::npos) << "mesh has no time limit: " << line;
 
   dir.write("study.yaml",
-            "fem:\n  fidelity: fixed\n  mesh:\n    h_contact: \"1 mm\"\n    h_max: \"1 mm\"\n");
+            "fem:\n  fidelity_h_contact: [\"1 mm\"]\n  mesh:\n    h_contact: \"1 mm\"\n"
+            "    h_max: \"1 mm\"\naccuracy_study: false\n");
   run = run_kimp("study study.yaml --check", dir.path());
   ASSERT_NO_FATAL_FAILURE(one_error_line(run.exit_code, run.err, line));
   EXPECT_EQ(line.rfind("error: kimp study: estimated cost above the limits (", 0), 0u) << line;
