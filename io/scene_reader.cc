@@ -295,7 +295,20 @@ namespace kimp::io
       double value = 0.0;
       try
       {
-        value = parse_quantity(text).value;
+        const Quantity quantity = parse_quantity(text);
+        // A wrong dimension is validate()'s to explain ("'auto' or a time"); a display unit that
+        // is no unit (N/m^n) leaves the dimension to it as well.
+        std::optional<Quantity> unit;
+        try
+        {
+          unit = parse_unit(key.unit);
+        }
+        catch (const UnitError &)
+        {
+        }
+        if (unit && quantity.dimension != unit->dimension)
+          return;
+        value = quantity.value;
       }
       catch (const UnitError &)
       {
