@@ -100,7 +100,7 @@ TEST(CostGuardsCli, MeshAndStudyAreGuardedAndTheDefaultsPass)
 
   dir.write("study.yaml",
             "fem:\n  fidelity_h_contact: [\"1 mm\"]\n  mesh:\n    h_contact: \"1 mm\"\n"
-            "    h_max: \"1 mm\"\naccuracy_study: false\n");
+            "    h_max: \"1 mm\"\naccuracy_study: false\naccuracy:\n  h_contact: [\"1 mm\"]\n");
   run = run_kimp("study study.yaml --check", dir.path());
   ASSERT_NO_FATAL_FAILURE(one_error_line(run.exit_code, run.err, line));
   EXPECT_EQ(line.rfind("error: kimp study: estimated cost above the limits (", 0), 0u) << line;
