@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <stdexcept>
 
+#include "base/format.h"
 #include "base/logging.h"
 #include "io/records.h"
 #include "io/units.h"
@@ -155,6 +156,18 @@ namespace kimp::app
       motion = lumped::scaled(motion, scene.scale);
     if (scene.duration)
       motion = lumped::trimmed(motion, *scene.duration);
+    // A record read with a wrong sampling interval, or trimmed to nothing, is no ground motion.
+    if (const double length = motion.duration();
+        !(length >= io::min_record_duration && length <= io::max_record_duration))
+      throw std::invalid_argument(fmt::format(
+        "record = '{}' lasts {} s{} (expected {:g} s to {:g} s: a shorter or longer ground motion is "
+        "implausible; check the record's DT and ground_motion.duration)",
+        scene.is_record() ? scene.record : std::string("synthetic"),
+        base::sig(length),
+        scene.duration ? " after trimming to duration = " + format_quantity(*scene.duration, "s") :
+                         std::string(),
+        io::min_record_duration,
+        io::max_record_duration));
     // The largest recorded peaks are below about 4 g: a bigger one is almost surely a wrong scale
     // (the run's plausibility limits then catch the response).
     if (const double pga = motion.pga(); pga > max_credible_pga)

@@ -28,8 +28,16 @@ namespace kimp::lumped
                 "s",
                 "period T_p of the velocity pulse (>= 4 dt)",
                 Range::positive());
-    io.quantity("duration", s.duration, "s", "record length (>= 10 dt)", Range::positive());
-    io.quantity("dt", s.dt, "s", "sampling interval", Range::positive());
+    io.quantity("duration",
+                s.duration,
+                "s",
+                "record length (>= 10 dt)",
+                Range::plausible(1.0, 3600.0, "a ground-motion record"));
+    io.quantity("dt",
+                s.dt,
+                "s",
+                "sampling interval",
+                Range::plausible(1e-4, 0.1, "a ground-motion record"));
     io.quantity("pulse_time",
                 s.pulse_time,
                 "s",
@@ -143,7 +151,7 @@ namespace kimp::app
                 s.duration,
                 "s",
                 "trim the record to its first `duration` seconds",
-                io::Range::positive());
+                io::Range::plausible(1.0, 3600.0, "a ground-motion record"));
     io.section("synthetic",
                s.synthetic,
                "synthetic near-fault motion (used when record = synthetic)");

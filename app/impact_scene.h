@@ -35,10 +35,13 @@ namespace kimp::app
               s.law,
               lumped::force_law_names(),
               "impact law of docs/physics.md §1 (laws 1-7)");
-    io.text("k",
-            s.k,
-            "impact stiffness with a unit of N/m^n for the law's exponent n, e.g. \"2500 kN/mm\" "
-            "(n = 1) or \"750 kN/mm^1.5\" (n = 1.5); unused by law bumper (see bumper.k_b)");
+    io.quantity_text("k",
+                     s.k,
+                     "N/m^n",
+                     "impact stiffness with a unit of N/m^n for the law's exponent n, e.g. "
+                     "\"2500 kN/mm\" (n = 1) or \"750 kN/mm^1.5\" (n = 1.5); unused by law "
+                     "bumper (see bumper.k_b)",
+                     io::Range::positive());
     io.quantity("exponent",
                 s.exponent,
                 "",
@@ -98,9 +101,12 @@ namespace kimp::app
                 "kN/m^2",
                 "rubber constant K_r of k_st = A K_r / t^n (6.2)",
                 io::Range::positive());
-    io.text("k_b",
-            s.k_b,
-            "stiffness of all bumpers, N/m^n (e.g. \"0.36 kN/mm^2.65\"); \"\" = 2.25 k_st count");
+    io.quantity_text("k_b",
+                     s.k_b,
+                     "N/m^n",
+                     "stiffness of all bumpers, N/m^n (e.g. \"0.36 kN/mm^2.65\"); \"\" = 2.25 "
+                     "k_st count",
+                     io::Range::positive());
     io.quantity("wall_stiffness",
                 s.wall_stiffness,
                 "kN/mm",

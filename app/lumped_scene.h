@@ -230,7 +230,7 @@ namespace kimp::app
                 s.gap,
                 "cm",
                 "distance isolation level - wall face (before bumpers)",
-                io::Range::positive());
+                io::Range::positive().and_at_most(10.0).because("a moat gap is not wider"));
     io.quantity("mass",
                 s.mass,
                 "t",
@@ -344,12 +344,14 @@ namespace kimp::app
               {{"cdm", IntegrationMethod::cdm}, {"newmark", IntegrationMethod::newmark}},
               "cdm: central difference (explicit, dt below the contact limit); newmark: average "
               "acceleration with Newton at contacts");
-    io.text("dt",
-            s.dt,
-            "time step: \"auto\" (cdm: variable, large steps between contacts and "
-            "contact_steps steps per contact pulse, with an error estimate; newmark: the record's "
-            "dt), \"stable\" (cdm: the fixed step safety x dt_cr dividing the record's dt) or a "
-            "time such as \"2e-5 s\"");
+    io.quantity_text("dt",
+                     s.dt,
+                     "s",
+                     "time step: \"auto\" (cdm: variable, large steps between contacts and "
+                     "contact_steps steps per contact pulse, with an error estimate; newmark: the "
+                     "record's dt), \"stable\" (cdm: the fixed step safety x dt_cr dividing the "
+                     "record's dt) or a time such as \"2e-5 s\"",
+                     io::Range::plausible(1e-9, 1.0, "a building's time step"));
     io.quantity("safety",
                 s.safety,
                 "",
@@ -424,7 +426,11 @@ namespace kimp::app
   {
     io.text("name", s.name, "case name (HDF5 group /lumped/<name>; letters, digits, _ - .)");
     io.text("law", s.law, "impact law of the walls (\"\" = impact.law)");
-    io.text("k", s.k, "impact stiffness with unit N/m^n (\"\" = impact.k)");
+    io.quantity_text("k",
+                     s.k,
+                     "N/m^n",
+                     "impact stiffness with unit N/m^n (\"\" = impact.k)",
+                     io::Range::positive());
     io.quantity("exponent",
                 s.exponent,
                 "",
@@ -439,17 +445,17 @@ namespace kimp::app
                 s.gap,
                 "cm",
                 "gap of both walls (null = walls.*.gap)",
-                io::Range::positive());
+                io::Range::positive().and_at_most(10.0).because("a moat gap is not wider"));
     io.quantity("left_gap",
                 s.left_gap,
                 "cm",
                 "gap of the left wall (wins over gap)",
-                io::Range::positive());
+                io::Range::positive().and_at_most(10.0).because("a moat gap is not wider"));
     io.quantity("right_gap",
                 s.right_gap,
                 "cm",
                 "gap of the right wall (wins over gap)",
-                io::Range::positive());
+                io::Range::positive().and_at_most(10.0).because("a moat gap is not wider"));
     io.quantity("ground_motion_scale",
                 s.ground_motion_scale,
                 "",

@@ -6,6 +6,7 @@
 #include <ostream>
 #include <string_view>
 
+#include "base/format.h"
 #include "base/version.h"
 
 namespace kimp::cli
@@ -99,11 +100,12 @@ namespace kimp::cli
       if (app.get_subcommands().empty())
         if (const std::string unknown = unknown_command(app, argc, argv); !unknown.empty())
         {
-          err << "error: " << unknown << "\nRun '" << app.get_name()
+          err << "error: " << base::shorten_long_words(unknown) << "\nRun '" << app.get_name()
               << " --help' for more information.\n";
           return 2;
         }
-      err << "error: " << error.what() << "\nRun '" << app.get_name()
+      // CLI11 quotes a bad argument whole: at most base::quoted_value_limit characters of it.
+      err << "error: " << base::shorten_long_words(error.what()) << "\nRun '" << app.get_name()
           << " --help' for more information.\n";
       return 2;
     }

@@ -100,6 +100,15 @@ namespace kimp::cli
     std::string default_scene = "";
   };
 
+  /**
+   * A scene command's cost guard: estimates what the scene would cost (DoFs, steps, memory, time)
+   * and throws above its limits with the estimate and the key to change, unless `accept` (the
+   * command's --accept-cost), then it only warns. Run before the output directory is made, and
+   * by --check, so that --check refuses what a run would refuse.
+   */
+  template <class Scene>
+  using CostCheck = std::function<void(const Scene &scene, bool accept)>;
+
   /// Calls a scene command's run function as run(scene, output) or, when it takes a third
   /// argument, as run(scene, output, command): the command, whose own options it reads (count(),
   /// as()).
@@ -125,10 +134,14 @@ namespace kimp::cli
    * so). `run` receives the validated scene (which it may still adjust, e.g. from a command-line
    * flag), the output directory as given and, if it takes it, the command
    * (call_scene_runner()). Command-specific options are added to the returned subcommand unbound
-   * (read with count()/as() of the command in `run`), so every parse starts afresh.
+   * (read with count()/as() of the command in `run`), so every parse starts afresh. With a
+   * `cost_check` the command has `--accept-cost`, and the check runs before `run` and in --check.
    */
   template <class Scene, class Run>
-  CLI::App *add_scene_command_at(CLI::App &app, SceneCommandSpec spec, Run run)
+  CLI::App *add_scene_command_at(CLI::App        &app,
+                                 SceneCommandSpec spec,
+                                 Run              run,
+                                 CostCheck<Scene> cost_check = {})
   {
     struct Options
     {
@@ -137,6 +150,7 @@ namespace kimp::cli
       bool        print_defaults = false;
       bool        print_schema   = false;
       bool        check          = false;
+      bool        accept_cost    = false;
     };
     auto        options  = std::make_shared<Options>();
     CLI::App   *command  = app.add_subcommand(spec.name, spec.description);
@@ -151,10 +165,15 @@ namespace kimp::cli
                       "meaning) and exit");
     add_print_schema_flag(*command, options->print_schema);
     add_check_flag(*command, options->check);
+    if (cost_check)
+      command->add_flag("--accept-cost",
+                        options->accept_cost,
+                        "run although the estimated cost (DoFs, memory or time) is above the "
+                        "limits, which otherwise refuse the run with the estimate");
     // CLI11 keeps bound values between parses of one app: start each use of the command afresh.
     command->preparse_callback([options](std::size_t) { *options = Options{}; });
     command->callback(
-      [options, run, spec, optional, command]()
+      [options, run, spec, optional, command, cost_check]()
       {
         if (options->print_defaults)
           throw PrintDefaults(io::default_scene_text<Scene>(
@@ -165,8 +184,15 @@ namespace kimp::cli
           throw CLI::RequiredError("the scene file SCENE.yaml (or --print-defaults)");
         if (options->check)
         {
-          if (!options->scene.empty())
-            io::read_scene<Scene>(options->scene);
+          if (!options->scene.empty() || cost_check)
+          {
+            const io::LoadedScene<Scene> checked =
+              options->scene.empty() ?
+                io::read_scene_text<Scene>("", "(" + spec.default_scene + ")") :
+                io::read_scene<Scene>(options->scene);
+            if (cost_check)
+              cost_check(checked.scene, options->accept_cost);
+          }
           throw PrintDefaults(
             (options->scene.empty() ? "(" + spec.default_scene + ")" : options->scene) +
             ": valid\n");
@@ -182,6 +208,8 @@ namespace kimp::cli
           defaults ? io::read_scene_text<Scene>("", "(" + spec.default_scene + ")") :
                      io::read_scene<Scene>(options->scene);
         base::logger().debug("resolved scene (SI):\n{}", scene.resolved_json);
+        if (cost_check)
+          cost_check(scene.scene, options->accept_cost);
         call_scene_runner(run, scene, options->output, *command);
       });
     return command;
@@ -190,7 +218,8 @@ namespace kimp::cli
   /// add_scene_command_at() whose run function gets the scene as const and the output directory
   /// created and locked (io::OutputDir).
   template <class Scene, class Run>
-  CLI::App *add_scene_command(CLI::App &app, SceneCommandSpec spec, Run run)
+  CLI::App *
+  add_scene_command(CLI::App &app, SceneCommandSpec spec, Run run, CostCheck<Scene> cost_check = {})
   {
     return add_scene_command_at<Scene>(
       app,
@@ -198,7 +227,8 @@ namespace kimp::cli
       [run](const io::LoadedScene<Scene> &scene,
             const std::filesystem::path  &output,
             const CLI::App               &command)
-      { call_scene_runner(run, scene, io::OutputDir(output), command); });
+      { call_scene_runner(run, scene, io::OutputDir(output), command); },
+      std::move(cost_check));
   }
 
   /// Adds `--records-dir DIR` (a directory of PEER records that overrides those of the scene),

@@ -2,7 +2,10 @@
 // Parses the command's options and calls kimp::app.
 #include <CLI/CLI.hpp>
 
+#include "app/fem/fem_estimate.h"
+#include "app/study/study_fem.h"
 #include "app/study/study_run.h"
+#include "base/logging.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
 
@@ -27,6 +30,12 @@ namespace kimp::cli
         }
         // On every rank: rank 0 creates the output directory (run_study_job).
         app::run_study_job(scene, output);
+      },
+      [](const app::StudyScene &scene, bool accept)
+      {
+        const app::FemCost cost = app::estimate_study_fem(scene);
+        base::logger().info("study estimate (FEM): {}", cost.text());
+        app::check_cost("kimp study", cost, {}, true, accept);
       });
     add_records_dir_option(*subcommand,
                            "directory of the PEER records (overrides the scene's records_dir, "

@@ -54,6 +54,10 @@ namespace kimp::cli
                       options->check,
                       "plan the sweep and check it (cost, every value and record on the base "
                       "scene), print \"SWEEP.yaml: valid, N cases\" and exit without running");
+    command->add_flag("--accept-cost",
+                      options->accept_cost,
+                      "run although the estimate exceeds --max-steps (a warning instead of the "
+                      "refusal)");
     command->add_flag("--print-defaults",
                       prints->first,
                       "print an annotated example sweep file (every key with its meaning) and "

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <vector>
 
+#include "base/format.h"
 #include "io/record_text.h"
 #include "io/units.h"
 
@@ -109,7 +110,7 @@ namespace kimp::io
       }
 
       Header      header;
-      const auto  context = "NPTS/DT line '" + std::string(s) + "'";
+      const auto  context = "NPTS/DT line '" + base::excerpt(s) + "'";
       std::size_t npts    = 0;
       const auto  npts_result =
         std::from_chars(npts_text.data(), npts_text.data() + npts_text.size(), npts);
@@ -117,7 +118,8 @@ namespace kimp::io
           npts_result.ptr != npts_text.data() + npts_text.size() || npts == 0)
         fail(source,
              line.number,
-             "NPTS = \"" + npts_text + "\" in " + context + " (expected a positive integer)");
+             "NPTS = \"" + base::excerpt(npts_text) + "\" in " + context +
+               " (expected a positive integer)");
       header.npts = npts;
 
       // DT may touch its unit ("DT=.01SEC"): accept a numeric prefix followed by SEC/S only.
@@ -132,8 +134,15 @@ namespace kimp::io
           !(dt > 0.0) || !std::isnormal(dt))
         fail(source,
              line.number,
-             "DT = \"" + dt_text + "\" in " + context +
+             "DT = \"" + base::excerpt(dt_text) + "\" in " + context +
                " (expected a positive time step in seconds)");
+      if (dt < min_record_dt || dt > max_record_dt)
+        fail(source,
+             line.number,
+             "DT = " + format_number(dt) + " s in " + context +
+               " (expected a sampling interval in [" + format_number(min_record_dt) + " s, " +
+               format_number(max_record_dt) +
+               " s]: outside it implausible for a ground-motion record)");
       header.dt = dt;
       return header;
     }
@@ -195,7 +204,7 @@ namespace kimp::io
             fail(source,
                  lines[i].number,
                  std::string("a ") + (kind[0] == 'V' ? "velocity" : "displacement") +
-                   " series: header line '" + std::string(s) +
+                   " series: header line '" + base::excerpt(s) +
                    "' (expected an ACCELERATION time series; kimp reads accelerations only)");
       }
       for (std::size_t i = 0; i < n_header; ++i)
@@ -224,7 +233,7 @@ namespace kimp::io
             return known.value;
         fail(source,
              lines[i].number,
-             "unknown unit \"" + std::string(token) + "\" in header line '" + std::string(s) +
+             "unknown unit \"" + base::excerpt(token) + "\" in header line '" + base::excerpt(s) +
                "' (" + at2_unit_expectation + "; kimp never assumes a unit)");
       }
       fail(source,
@@ -308,7 +317,7 @@ namespace kimp::io
                                               !can_start_number(line.text[end])))
           fail(source,
                line.number,
-               "non-numeric token \"" + token_at(line.text, p) + "\" at column " +
+               "non-numeric token \"" + base::excerpt(token_at(line.text, p)) + "\" at column " +
                  std::to_string(p + 1) +
                  " (expected numbers in Fortran E format such as -.1234567E-02)");
         if (motion.acceleration.size() == header.npts)

@@ -48,6 +48,15 @@ namespace kimp::io
     std::size_t line_;
   };
 
+  /// Sampling interval of a plausible ground-motion record, s: a DT outside [1e-4 s, 0.1 s] is a
+  /// misread header or time column, refused by both readers (DT = 1e-7 s would make a 0.75 ms
+  /// record, DT = 100 s a run of 1e8 steps).
+  inline constexpr double min_record_dt = 1e-4;
+  inline constexpr double max_record_dt = 0.1;
+  /// Length of a plausible ground motion as run (after trimming), s: 1 s to 1 h.
+  inline constexpr double min_record_duration = 1.0;
+  inline constexpr double max_record_duration = 3600.0;
+
   /// Lines searched for the NPTS/DT line of an AT2 file (it is line 4 in every known variant).
   inline constexpr std::size_t at2_max_header_lines = 10;
 
@@ -70,7 +79,8 @@ namespace kimp::io
    *
    * @throws GroundMotionFileError for: a file that cannot be opened, an empty file, binary data
    *   (NUL or control bytes), a file that ends before the NPTS/DT line, no NPTS/DT line, NPTS not
-   *   a positive integer, DT not a positive number, a non-numeric token (quoted), fewer or more
+   *   a positive integer, DT not a positive number or outside [min_record_dt, max_record_dt], a
+   *   non-numeric token (quoted), fewer or more
    *   values than NPTS, a VELOCITY or DISPLACEMENT series, a header without "UNITS OF <unit>"
    *   and an unknown unit (a unit is never assumed). The message names the file and the line
    *   (for the unit: the header line, quoted).
@@ -89,7 +99,8 @@ namespace kimp::io
    * @param[in] acceleration_unit SI value of one unit of the second column, m/s²
    *                              (9.80665 for g, 1 for m/s², 0.01 for cm/s²); > 0
    * @throws GroundMotionFileError naming file and line for fewer than 2 rows, a row without
-   *   exactly 2 numbers, a non-numeric token, non-increasing or non-uniform times, t_0 != 0.
+   *   exactly 2 numbers, a non-numeric token, non-increasing or non-uniform times, t_0 != 0, a
+   *   time step outside [min_record_dt, max_record_dt].
    * @throws std::invalid_argument for acceleration_unit <= 0.
    */
   AccelerationRecord read_two_column(const std::filesystem::path &file, double acceleration_unit);

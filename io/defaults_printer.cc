@@ -94,7 +94,11 @@ namespace kimp::io
 
     Listing listing(const Key &key, Member::Text member)
     {
-      return {yaml_quote(*member.value), std::string(key.doc)};
+      // A quantity typed as text (IoVerbs::quantity_text) lists its unit and range.
+      return {yaml_quote(*member.value),
+              key.range.bounded() ?
+                fmt::format("{} [{}]", key.doc, unit_range_comment(key.unit, key.range)) :
+                std::string(key.doc)};
     }
 
     /// The YAML text as written (flow style), `null` when empty; no comment when `doc` is empty

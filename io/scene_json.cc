@@ -246,6 +246,12 @@ namespace kimp::io
       {
         entry["type"]    = "text";
         entry["default"] = *member.value;
+        // A quantity typed as text (IoVerbs::quantity_text): its unit and range too.
+        if (key.range.bounded())
+        {
+          entry["unit"]  = std::string(key.unit);
+          entry["range"] = range_json(key.range, key.unit);
+        }
       }
       void operator()(Member::Yaml member) const
       {

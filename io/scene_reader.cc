@@ -10,6 +10,7 @@
 #include <variant>
 #include <yaml-cpp/yaml.h>
 
+#include "base/format.h"
 #include "io/units.h"
 
 namespace kimp::io
@@ -26,7 +27,7 @@ namespace kimp::io
       if (!node.IsDefined() || node.IsNull())
         return "(empty)";
       if (node.IsScalar())
-        return "'" + node.Scalar() + "'";
+        return "'" + base::excerpt(node.Scalar()) + "'";
       if (node.IsSequence())
         return "a list";
       return "a map";
@@ -148,7 +149,7 @@ namespace kimp::io
             throw SceneError(fmt::format("{}:{}: duplicate key '{}' (first at line {})",
                                          source->file_name(),
                                          key_line,
-                                         full_path(key),
+                                         base::excerpt(full_path(key)),
                                          e.line));
         entries.push_back({key, it->second, key_line, false});
         source->record(full_path(key), key_line);
@@ -274,14 +275,49 @@ namespace kimp::io
     {
       const std::string &text = scalar(entry, "true or false");
       if (!YAML::convert<bool>::decode(entry.value, *value))
-        fail(entry, fmt::format("'{}' is not true or false", text));
+        fail(entry, fmt::format("'{}' is not true or false", base::excerpt(text)));
     }
 
-    void read(const Entry &entry, const Key & /*key*/, Member::Text member)
+    void read(const Entry &entry, const Key &key, Member::Text member)
     {
       if (entry.value.IsNull())
         fail(entry, "missing value: expected a text");
       *member.value = scalar(entry, "a text");
+      if (key.range.bounded())
+        check_text_range(full_path(key.key), key, *member.value);
+    }
+
+    /// The range of a quantity typed as text (IoVerbs::quantity_text): a text that reads as a
+    /// number with a unit is held to it, and refused when subnormal; a word ("auto") or a text
+    /// that is no quantity is left to validate(), which knows the words and the dimension.
+    void check_text_range(const std::string &path, const Key &key, const std::string &text)
+    {
+      double value = 0.0;
+      try
+      {
+        const Quantity quantity = parse_quantity(text);
+        // A wrong dimension is validate()'s to explain ("'auto' or a time"); a display unit that
+        // is no unit (N/m^n) leaves the dimension to it as well.
+        std::optional<Quantity> unit;
+        try
+        {
+          unit = parse_unit(key.unit);
+        }
+        catch (const UnitError &)
+        {
+        }
+        if (unit && quantity.dimension != unit->dimension)
+          return;
+        value = quantity.value;
+      }
+      catch (const UnitError &)
+      {
+        return;
+      }
+      if (!key.range.contains(value))
+        source->read_failures().fail(path, text, key.range.expectation(key.unit));
+      else if (!is_normal_or_zero(value))
+        source->read_failures().fail(path, text, subnormal_expectation);
     }
 
     void read(const Entry &entry, const Key &key, Member::Yaml member)
@@ -301,7 +337,8 @@ namespace kimp::io
       const auto [end, error] =
         std::from_chars(digits.data(), digits.data() + digits.size(), parsed);
       if (digits.empty() || error != std::errc() || end != digits.data() + digits.size())
-        fail(entry, fmt::format("'{}' is not an integer: expected an {}", text, expected));
+        fail(entry,
+             fmt::format("'{}' is not an integer: expected an {}", base::excerpt(text), expected));
       if (parsed < member.min || parsed > member.max)
         fail(entry, fmt::format("{} is out of range: expected an {}", parsed, expected));
       *member.value = parsed;
@@ -314,7 +351,7 @@ namespace kimp::io
       const std::string              &text     = scalar(entry, expected);
       const auto                      it       = std::find(options.begin(), options.end(), text);
       if (it == options.end())
-        fail(entry, fmt::format("'{}' is not {}", text, expected));
+        fail(entry, fmt::format("'{}' is not {}", base::excerpt(text), expected));
       *member.index = static_cast<std::size_t>(it - options.begin());
     }
   };
@@ -454,7 +491,7 @@ namespace kimp::io
                                       fmt::format("{}:{}: unknown key '{}'{} (known: {}){}",
                                                   state_->source->file_name(),
                                                   e.line,
-                                                  e.key,
+                                                  base::excerpt(e.key),
                                                   state_->path.empty() ? "" : " in " + state_->path,
                                                   state_->known.empty() ? "none" :
                                                                           join(state_->known, ", "),

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <yaml-cpp/yaml.h>
 
+#include "base/format.h"
 #include "io/units.h"
 
 namespace kimp::io
@@ -153,7 +154,9 @@ namespace kimp::io
   void
   ValidationContext::fail(std::string key_path, std::string value_text, std::string expectation)
   {
-    failures_.push_back({prefix_ + key_path, std::move(value_text), std::move(expectation)});
+    // A value is quoted at most base::quoted_value_limit characters long (a 1 MB value in a
+    // file would otherwise be the whole message).
+    failures_.push_back({prefix_ + key_path, base::excerpt(value_text), std::move(expectation)});
   }
 
   bool ValidationContext::check(bool        condition,

@@ -73,6 +73,16 @@ namespace kimp::io
       return r;
     }
 
+    /**
+     * [`min`, `max`]: the values a real moat wall, building or record can have, with `what` in
+     * the message ("must be in [1 cm, 10 m] (implausible outside for a wall thickness)"). For
+     * geometry and material keys, so that a slip of the unit ("5 km") is refused, not meshed.
+     */
+    static Range plausible(double min, double max, const std::string &what)
+    {
+      return at_least(min).and_at_most(max).because("outside it implausible for " + what);
+    }
+
     /// This range with an upper bound: < `bound` (and_less) or <= `bound` (and_at_most).
     Range and_less(double bound) const { return upper(bound, true); }
     Range and_at_most(double bound) const { return upper(bound, false); }

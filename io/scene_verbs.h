@@ -140,6 +140,24 @@ namespace kimp::io
     }
 
     /**
+     * A text holding a quantity or one of the words the key admits ("auto", "" = not set, ...),
+     * kept as written for a caller that interprets the words: a time step "auto" or "1e-4 s", an
+     * impact stiffness whose unit N/m^n depends on the law's exponent. A text written in a file
+     * that reads as a number with a unit is held to `range` (SI bounds) by the reader like a
+     * quantity, and refused when subnormal, so that no key typed as text escapes the range check;
+     * the words and the dimension are rules of validate(). `unit` is the display unit of the
+     * range and the listing ("s", "N/m^n").
+     */
+    void quantity_text(std::string_view key,
+                       std::string     &value,
+                       std::string_view unit,
+                       std::string_view doc,
+                       const Range     &range)
+    {
+      self().value(Key{key, doc, unit, range}, Member::Text{&value});
+    }
+
+    /**
      * Any YAML value (scalar, list or map) kept as one line of flow-style YAML text, for a caller
      * that interprets it itself (e.g. a sweep's list of values or {from, to, step}); `null` gives
      * "~". The reader records the lines of its items as "key[i]" and "key.sub".

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "base/format.h"
 #include "io/at2_reader.h"
 #include "io/record_text.h"
 
@@ -32,7 +33,7 @@ namespace kimp::io
       if (!ok)
         fail(source,
              line.number,
-             "non-numeric token \"" + bad +
+             "non-numeric token \"" + base::excerpt(bad) +
                "\" (expected 'time acceleration' numbers; comment other lines with '#')");
       if (nums.empty())
         continue;
@@ -68,6 +69,12 @@ namespace kimp::io
            line_numbers.back(),
            "time step " + format_number(dt) +
              " s (expected a positive normal number: times spanning more than 1e-300 s)");
+    if (dt < min_record_dt || dt > max_record_dt)
+      fail(source,
+           line_numbers.back(),
+           "time step " + format_number(dt) + " s (expected a sampling interval in [" +
+             format_number(min_record_dt) + " s, " + format_number(max_record_dt) +
+             " s]: outside it implausible for a ground-motion record)");
     const double tolerance = two_column_time_tolerance * dt;
     if (std::abs(times.front()) > tolerance)
       fail(source,

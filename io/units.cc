@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 #include <string>
 
+#include "base/format.h"
+
 namespace kimp::io
 {
   namespace
@@ -90,8 +92,8 @@ namespace kimp::io
       if (!plain_decimal || error != std::errc() || end != text.data() + text.size())
         throw UnitError(fmt::format("bad exponent '^{}' in unit '{}' (expected a decimal number "
                                     "such as ^2, ^-1 or ^1.5)",
-                                    text,
-                                    unit));
+                                    base::excerpt(text),
+                                    base::excerpt(unit)));
       return value;
     }
 
@@ -127,7 +129,7 @@ namespace kimp::io
         if (symbol.empty())
           throw UnitError(fmt::format("malformed unit '{}' (expected symbols joined by '*' or "
                                       "'/', each with an optional ^exponent, like 'kN/mm^1.5')",
-                                      unit));
+                                      base::excerpt(unit)));
         const UnitSymbol *match = nullptr;
         for (const auto &s : symbols)
           if (s.symbol == symbol)
@@ -138,8 +140,8 @@ namespace kimp::io
             symbol == "gram" || symbol == "grams" || (symbol.size() == 2 && symbol[1] == 'g');
           throw UnitError(
             fmt::format("unknown unit '{}' in '{}' (known: {}{})",
-                        symbol,
-                        unit,
+                        base::excerpt(symbol),
+                        base::excerpt(unit),
                         known_symbols(),
                         looks_like_grams ? "; grams are not supported, use kg or t" : ""));
         }
@@ -162,8 +164,8 @@ namespace kimp::io
         if (unit[pos] != '*' && unit[pos] != '/')
           throw UnitError(fmt::format("malformed unit '{}' near '{}' (expected '*' or '/' "
                                       "between unit symbols)",
-                                      unit,
-                                      unit.substr(pos)));
+                                      base::excerpt(unit),
+                                      base::excerpt(unit.substr(pos))));
         sign = unit[pos] == '*' ? 1.0 : -1.0;
         ++pos;
       }
@@ -189,20 +191,21 @@ namespace kimp::io
       const auto [end, error] =
         std::from_chars(number.data(), number.data() + number.size(), value);
       if (error == std::errc::result_out_of_range)
-        throw UnitError(fmt::format("'{}' is not a finite number (out of range)", text));
+        throw UnitError(
+          fmt::format("'{}' is not a finite number (out of range)", base::excerpt(text)));
       if (error != std::errc() || end == number.data())
         throw UnitError(fmt::format("'{}' does not start with a number (expected a number with a "
                                     "unit, like '2500 kN/mm')",
-                                    text));
+                                    base::excerpt(text)));
       if (!std::isfinite(value))
-        throw UnitError(fmt::format("'{}' is not a finite number", text));
+        throw UnitError(fmt::format("'{}' is not a finite number", base::excerpt(text)));
       ParsedQuantity parsed;
       parsed.unit_text      = trim(number.substr(static_cast<std::size_t>(end - number.data())));
       parsed.unit           = parse_unit_detailed(parsed.unit_text);
       parsed.quantity.value = value * parsed.unit.unit.value;
       parsed.quantity.dimension = parsed.unit.unit.dimension;
       if (!std::isfinite(parsed.quantity.value))
-        throw UnitError(fmt::format("'{}' overflows when converted to SI", text));
+        throw UnitError(fmt::format("'{}' overflows when converted to SI", base::excerpt(text)));
       return parsed;
     }
 
@@ -317,13 +320,13 @@ namespace kimp::io
       // A bare number could be a fraction (0.05) or a percentage (5): never guessed.
       throw UnitError(fmt::format("'{}' has no unit: a ratio given in % needs the percent sign "
                                   "(write '{:g} %' for the fraction {}, or '{} %')",
-                                  trim(text),
+                                  base::excerpt(trim(text)),
                                   parsed.quantity.value * 100.0,
-                                  trim(text),
-                                  trim(text)));
+                                  base::excerpt(trim(text)),
+                                  base::excerpt(trim(text))));
     if (parsed.unit_text.empty() && !expected.dimension.dimensionless())
       throw UnitError(fmt::format("'{}' has no unit: {}",
-                                  trim(text),
+                                  base::excerpt(trim(text)),
                                   describe_expected(expected.dimension, expected_unit)));
     if (parsed.quantity.dimension != expected.dimension)
     {
@@ -332,7 +335,7 @@ namespace kimp::io
       if (parsed.unit.uses_gravity && std::abs(expected.dimension.mass) > exponent_tolerance)
         hint = " ('g' is standard gravity 9.80665 m/s^2; grams are not supported, use kg or t)";
       throw UnitError(fmt::format("'{}' has the wrong dimension: {}, got {}{}{}",
-                                  trim(text),
+                                  base::excerpt(trim(text)),
                                   describe_expected(expected.dimension, expected_unit),
                                   got_name.empty() ? std::string() : with_article(got_name) + " ",
                                   "(" + to_string(parsed.quantity.dimension) + ")",

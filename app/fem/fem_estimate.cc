@@ -6,8 +6,10 @@
 #include <fmt/format.h>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "base/logging.h"
 #include "fem/impact.h"
 #include "geometry/scene_ids.h"
 #include "geometry/scene_layout.h"
@@ -34,13 +36,95 @@ namespace kimp::app
   std::string FemEstimate::text() const
   {
     return fmt::format("{:.3g} DoFs, up to {:.3g} steps of {:.3g} s over {:.3g} s = {:.3g} "
-                       "DoF-steps, ~{:.2g} s",
+                       "DoF-steps, ~{:.2g} s, ~{:.2g} GB",
                        n_dofs,
                        n_steps,
                        dt,
                        end_time,
                        n_dofs * n_steps,
-                       seconds);
+                       seconds,
+                       memory / 1e9);
+  }
+
+  void FemCost::add(const std::string &name, const FemEstimate &estimate)
+  {
+    if (n_cases == 0 || estimate.n_dofs > largest_estimate.n_dofs)
+    {
+      largest          = name;
+      largest_estimate = estimate;
+    }
+    ++n_cases;
+    max_memory = std::max(max_memory, estimate.memory);
+    steps += estimate.n_steps;
+    seconds += estimate.seconds;
+  }
+
+  std::string FemCost::text() const
+  {
+    return fmt::format("{} FEM case(s), up to {:.3g} steps, ~{:.2g} s on one core ({:.2g} h), "
+                       "~{:.2g} GB at most; largest {}: {}",
+                       n_cases,
+                       steps,
+                       seconds,
+                       seconds / 3600.0,
+                       max_memory / 1e9,
+                       largest,
+                       largest_estimate.text());
+  }
+
+  void check_cost(const std::string &command,
+                  const FemCost     &cost,
+                  const CostLimits  &limits,
+                  const bool         with_time,
+                  const bool         accept)
+  {
+    std::vector<std::string> passed;
+    if (!(cost.largest_estimate.n_dofs <= limits.max_dofs))
+      passed.push_back(fmt::format("{:.3g} DoFs in {} > {:.3g}",
+                                   cost.largest_estimate.n_dofs,
+                                   cost.largest,
+                                   limits.max_dofs));
+    if (with_time && !(cost.max_memory <= limits.max_memory))
+      passed.push_back(fmt::format("~{:.2g} GB > {:.2g} GB of memory",
+                                   cost.max_memory / 1e9,
+                                   limits.max_memory / 1e9));
+    if (with_time && !(cost.seconds <= limits.max_seconds))
+      passed.push_back(fmt::format("~{:.2g} h > {:.2g} h on one core",
+                                   cost.seconds / 3600.0,
+                                   limits.max_seconds / 3600.0));
+    if (passed.empty())
+      return;
+    std::string which;
+    for (const std::string &p : passed)
+      which += (which.empty() ? "" : ", ") + p;
+    if (accept)
+    {
+      base::logger().warn("{}: estimated cost above the limits ({}), going ahead (--accept-cost)",
+                          command,
+                          which);
+      return;
+    }
+    throw std::invalid_argument(fmt::format(
+      "{}: estimated cost above the limits ({}): {} (a coarser mesh.h_contact or mesh.h_max, "
+      "fewer wall heights or a shorter dynamics.end_time; --accept-cost runs it anyway)",
+      command,
+      which,
+      cost.text()));
+  }
+
+  FemCost estimate_fem_scene(const FemScene &scene)
+  {
+    FemCost cost;
+    for (const double height : scene.wall_heights)
+    {
+      const std::string name = fem_case_name(height);
+      FemEstimate       e    = estimate_fem_case(resolve_fem_case(scene, height, name, {}));
+      if (scene.output.frame_interval > 0.0)
+        e.memory += std::floor(e.end_time / scene.output.frame_interval + 1.0) * e.n_dofs *
+                    fem_frame_bytes_per_dof;
+      cost.add(name, e);
+    }
+    return cost;
   }
 
   FemEstimate estimate_fem_case(const FemCaseSpec &spec)
@@ -116,6 +200,8 @@ namespace kimp::app
                                            fem_inelastic_seconds_per_dof_step :
                                            fem_explicit_seconds_per_dof_step;
     e.seconds                 = e.n_dofs * e.n_steps * per_dof_step;
+    e.memory =
+      fem_fixed_bytes + e.n_dofs * (implicit ? fem_implicit_bytes_per_dof : fem_bytes_per_dof);
     return e;
   }
 

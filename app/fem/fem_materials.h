@@ -56,13 +56,21 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, FemMaterial &s)
   {
-    io.quantity("E", s.youngs_modulus, "GPa", "Young's modulus", io::Range::positive());
+    io.quantity("E",
+                s.youngs_modulus,
+                "GPa",
+                "Young's modulus",
+                io::Range::plausible(1e5, 1e12, "concrete, steel or soil"));
     io.quantity("nu",
                 s.poisson_ratio,
                 "",
                 "Poisson's ratio",
                 io::Range::at_least(0.0).and_less(0.5));
-    io.quantity("rho", s.density, "kg/m^3", "density", io::Range::positive());
+    io.quantity("rho",
+                s.density,
+                "kg/m^3",
+                "density",
+                io::Range::plausible(100.0, 20000.0, "concrete, steel or soil"));
   }
 
   /** Backfill: elasticity plus, for the inelastic models, Mohr-Coulomb strength. */

@@ -29,31 +29,40 @@ namespace kimp::geometry
                 s.wall_thickness,
                 "m",
                 "moat wall thickness",
-                io::Range::positive());
+                io::Range::plausible(0.02, 5.0, "a moat wall"));
     io.flag("with_backfill", s.with_backfill, "soil block behind the wall, bonded to it");
     io.quantity("backfill_width",
                 s.backfill_width,
                 "m",
                 "backfill width behind the wall",
-                io::Range::positive());
+                io::Range::plausible(0.1, 100.0, "a backfill block"));
     io.quantity("backfill_height",
                 s.backfill_height,
                 "m",
                 "backfill height (null: the wall height; must be <= the wall height)",
-                io::Range::positive());
-    io.quantity("slab_length", s.slab_length, "m", "slab length", io::Range::positive());
-    io.quantity("slab_thickness", s.slab_thickness, "m", "slab thickness", io::Range::positive());
+                io::Range::plausible(0.01, 20.0, "a backfill behind a moat wall"));
+    io.quantity("slab_length",
+                s.slab_length,
+                "m",
+                "slab length",
+                io::Range::plausible(0.1, 500.0, "a building's slab"));
+    io.quantity("slab_thickness",
+                s.slab_thickness,
+                "m",
+                "slab thickness",
+                io::Range::plausible(0.02, 5.0, "a building's slab"));
     io.quantity("slab_top",
                 s.slab_top,
                 "m",
                 "height of the slab top above the ground (null: the wall top)",
-                io::Range::positive());
+                io::Range::plausible(0.01, 20.0, "a slab beside a moat wall"));
     io.quantity("gap",
                 s.gap,
                 "mm",
                 "initial clear distance between slab and wall",
-                io::Range::positive().because(
-                  "the slab must not touch or overlap the wall at t = 0"));
+                io::Range::positive().and_at_most(1.0).because(
+                  "the slab must not touch or overlap the wall at t = 0, and a moat gap is not "
+                  "wider"));
   }
 } // namespace kimp::geometry
 
@@ -215,12 +224,12 @@ namespace kimp::app
                 s.geometry.h_contact,
                 "cm",
                 "element size at the contact",
-                io::Range::positive());
+                io::Range::plausible(1e-6, 1.0, "a contact element"));
     io.quantity("h_max",
                 s.geometry.h_max,
                 "cm",
                 "largest element size (>= h_contact)",
-                io::Range::positive());
+                io::Range::plausible(1e-6, 10.0, "an element of a moat wall model"));
     io.quantity("grading",
                 s.geometry.grading,
                 "",
@@ -265,10 +274,12 @@ namespace kimp::app
                 "",
                 "damping of each penalty spring as a fraction of critical",
                 io::Range::at_least(0.0).and_at_most(1.0));
-    io.text("smoothing_window",
-            s.smoothing_window,
-            "width of the impulse-preserving moving average of the force: 'auto' (p-wave "
-            "transit time across the contact) or a time, e.g. '0.05 ms' [s]");
+    io.quantity_text("smoothing_window",
+                     s.smoothing_window,
+                     "ms",
+                     "width of the impulse-preserving moving average of the force: 'auto' (p-wave "
+                     "transit time across the contact) or a time, e.g. '0.05 ms'",
+                     io::Range::plausible(1e-9, 1.0, "a force smoothing window"));
   };
 
   /// Section `dynamics`: fem::ImpactParameters' integrator, times and log, its explicit and
@@ -281,11 +292,13 @@ namespace kimp::app
                {"implicit", fem::ImpactParameters::Integrator::implicit_newmark}},
               "explicit: central difference, lumped mass; implicit: Newmark average "
               "acceleration with Newton on the contact");
-    io.text("dt",
-            s.dt,
-            "time step: 'auto' (explicit: cfl_safety x stable limit; implicit: "
-            "implicit_dt_factor x explicit limit) or a time, e.g. '2e-6 s'; a dt above the "
-            "explicit stability limit is refused [s]");
+    io.quantity_text("dt",
+                     s.dt,
+                     "s",
+                     "time step: 'auto' (explicit: cfl_safety x stable limit; implicit: "
+                     "implicit_dt_factor x explicit limit) or a time, e.g. '2e-6 s'; a dt above "
+                     "the explicit stability limit is refused",
+                     io::Range::plausible(1e-10, 0.01, "an FEM impact time step"));
     visit(io, s.solver.explicit_options);
     visit(io, s.solver.implicit_options);
     io.quantity("end_time",
@@ -345,7 +358,7 @@ namespace kimp::app
                      s.wall_heights,
                      "m",
                      "moat wall heights H, one impact case each, named H<height in m>",
-                     io::Range::positive());
+                     io::Range::plausible(0.1, 20.0, "a moat wall"));
     io.section("geometry", s.geometry, "scene dimensions (docs/physics.md §4)");
     io.section("mesh", s, "bilinear quadrilateral mesh", visit_fem_mesh);
     io.section("materials", s.materials, "materials (linear elastic unless a model is chosen)");

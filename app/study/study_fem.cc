@@ -12,6 +12,7 @@
 #include "app/fem/fem_estimate.h"
 #include "app/fem/mesh_run.h"
 #include "app/fit_run.h"
+#include "app/study/study_velocity.h"
 #include "base/errors.h"
 #include "base/hash.h"
 #include "base/logging.h"
@@ -87,6 +88,61 @@ namespace kimp::app
     scene.mesh_level            = 0;
     scene.solver.penalty_factor = penalty_factor;
     return scene;
+  }
+
+  FemCost estimate_study_fem(const StudyScene &scene)
+  {
+    FemCost              cost;
+    const StudyFemScene &fem = scene.fem;
+    const auto add = [&cost](const FemScene &level, double height, const std::string &what)
+    {
+      const std::string name = fem_case_name(height) + what;
+      cost.add(name, estimate_fem_case(resolve_fem_case(level, height, name, {})));
+    };
+    const auto level_name = [](double h_contact, double penalty)
+    { return fmt::format("_h{:g}cm_p{:g}", h_contact * 100.0, penalty); };
+    const bool ladder = fem.fidelity == Fidelity::auto_ladder && !fem.fidelity_h_contact.empty() &&
+                        !fem.fidelity_penalty_factors.empty();
+    const double penalty =
+      ladder ? fem.fidelity_penalty_factors.front() : fem.solver.penalty_factor;
+    const std::size_t n_velocities = study_internal::study_velocities(scene).size();
+    for (const double height : fem.wall_heights)
+    {
+      FemScene finest = fem;
+      if (ladder)
+      {
+        for (const double h : fem.fidelity_h_contact)
+          add(fem_level_scene(fem, h, penalty), height, level_name(h, penalty));
+        const double h_finest = fem.fidelity_h_contact.back();
+        for (std::size_t j = 1; j < fem.fidelity_penalty_factors.size(); ++j)
+          add(fem_level_scene(fem, h_finest, fem.fidelity_penalty_factors[j]),
+              height,
+              level_name(h_finest, fem.fidelity_penalty_factors[j]));
+        finest = fem_level_scene(fem, h_finest, penalty);
+      }
+      else
+        add(fem, height, "");
+      for (std::size_t v = 1; v < n_velocities; ++v)
+        add(finest, height, fmt::format("_v{}", v));
+    }
+    if (scene.accuracy_study)
+    {
+      const StudyAccuracyScene &a = scene.accuracy;
+      for (const double h : a.h_contact)
+        for (const double p : a.penalty_factors)
+          add(fem_level_scene(fem, h, p), a.wall_height, "_accuracy" + level_name(h, p));
+      if (a.implicit)
+        for (const double h : a.h_contact)
+        {
+          FemScene implicit          = fem_level_scene(fem, h, a.penalty_factors.front());
+          implicit.solver.integrator = fem::ImpactParameters::Integrator::implicit_newmark;
+          add(implicit, a.wall_height, "_implicit" + level_name(h, a.penalty_factors.front()));
+        }
+    }
+    if (scene.sensitivity) // four parameters, each one step down and one up
+      for (int i = 0; i < 8; ++i)
+        add(fem, scene.sensitivity_study.wall_height, fmt::format("_sensitivity{}", i));
+    return cost;
   }
 
   FemCaseSpec study_fem_case_spec(const FemScene    &scene,

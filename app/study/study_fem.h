@@ -6,6 +6,7 @@
 #include <string>
 
 #include "app/fem/fem_common.h"
+#include "app/fem/fem_estimate.h"
 #include "app/fem/fem_scene.h"
 #include "app/study/study_scene.h"
 #include "io/fem_results.h"
@@ -27,6 +28,14 @@ namespace kimp::app
    * scene restricted to that height and of the kimp version. Any parameter change changes it.
    */
   std::string study_fem_cache_key(const FemScene &scene, double wall_height);
+
+  /**
+   * The cost of the FEM cases `kimp study` may run on `scene`, before any: per wall height every
+   * level of the fidelity ladder (auto) or the scene's mesh (fixed), the other impact velocities
+   * at the finest level, and the accuracy and sensitivity studies when on. An upper bound: the
+   * ladder may stop early, a run stops at separation, the cache is not counted.
+   */
+  FemCost estimate_study_fem(const StudyScene &scene);
 
   /** `base` on the FEM level (h_contact, m; penalty factor) without mesh refinement levels. */
   FemScene fem_level_scene(const FemScene &base, double h_contact, double penalty_factor);

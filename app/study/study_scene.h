@@ -63,7 +63,7 @@ namespace kimp::app
                      "cm",
                      "auto: contact element sizes, coarse to fine (each level costs about 4x the "
                      "previous one; 1.25 cm takes about 10 s per height)",
-                     io::Range::positive());
+                     io::Range::plausible(1e-6, 1.0, "a contact element"));
     io.quantity_list("fidelity_penalty_factors",
                      s.fidelity_penalty_factors,
                      "",
@@ -98,13 +98,13 @@ namespace kimp::app
                 s.wall_height,
                 "m",
                 "wall height of the accuracy study",
-                io::Range::positive());
+                io::Range::plausible(0.1, 20.0, "a moat wall"));
     io.quantity_list("h_contact",
                      s.h_contact,
                      "cm",
                      "FEM mesh levels (explicit, first penalty factor); the finest is the "
                      "reference",
-                     io::Range::positive());
+                     io::Range::plausible(1e-6, 1.0, "a contact element"));
     io.quantity_list("penalty_factors",
                      s.penalty_factors,
                      "",
@@ -141,7 +141,7 @@ namespace kimp::app
                 s.wall_height,
                 "m",
                 "wall height of the sensitivity study",
-                io::Range::positive());
+                io::Range::plausible(0.1, 20.0, "a moat wall"));
     io.quantity("variation",
                 s.variation,
                 "%",

@@ -58,8 +58,8 @@ namespace kimp::app
     if (!(estimate.total_steps <= max_steps))
       throw std::invalid_argument(fmt::format(
         "{}: the estimate ({}) exceeds the step budget of the sweep (--max-steps = {:.3g}; fewer "
-        "values, a shorter duration, a larger dt, or a larger --max-steps if the sweep is "
-        "intended)",
+        "values, a shorter duration, a larger dt, or a larger --max-steps or --accept-cost if "
+        "the sweep is intended)",
         sweep_file,
         estimate.text(),
         max_steps));

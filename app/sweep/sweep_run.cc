@@ -201,7 +201,12 @@ namespace kimp::app
           return;
         }
         logger().info("sweep estimate: {}", estimate->text());
-        check_sweep_budget(options.sweep, *estimate, options.max_steps);
+        if (!options.accept_cost)
+          check_sweep_budget(options.sweep, *estimate, options.max_steps);
+        else if (!(estimate->total_steps <= options.max_steps))
+          logger().warn("sweep: the estimate exceeds --max-steps = {:.3g}, going ahead "
+                        "(--accept-cost)",
+                        options.max_steps);
       });
     // Paths of the case scenes (k_table, record files) are relative to the base scene's file.
     const std::filesystem::path scene_directory =

@@ -23,6 +23,8 @@ namespace kimp::app
     /// Plan and check only (`--check`): the sweep file, its cost against the budget, every value
     /// and record on the base scene; no output directory, no case run.
     bool check = false;
+    /// --accept-cost: a sweep above max_steps runs (with a warning) instead of being refused.
+    bool accept_cost = false;
   };
 
   /**

@@ -46,11 +46,12 @@ namespace
     return text;
   }
 
-  /// Writes at2(4, `value_g`) to `file` inside `dir`, creating the folders of its path.
+  /// Writes at2(100, `value_g`) (1 s, the shortest record admitted) to `file` inside `dir`,
+  /// creating the folders of its path.
   void write_record(const kimp::testing::TempDir &dir, const std::string &file, double value_g)
   {
     std::filesystem::create_directories((dir.path() / file).parent_path());
-    dir.write(file, at2(4, value_g));
+    dir.write(file, at2(100, value_g));
   }
 
   TEST(SweepRange, TinyStepIsRefusedWithTheCountBeforeAnyCast)
@@ -69,7 +70,11 @@ namespace
   TEST(GroundMotionRecords, TwoColumnFileUsesTheSceneUnit)
   {
     const kimp::testing::TempDir dir;
-    const auto        file = dir.write("motion.txt", "# t a\n0 0\n0.01 100\n0.02 -50\n0.03 0\n");
+    // 1 s of samples at 0.01 s (a shorter record is refused).
+    std::string rows = "# t a\n0 0\n0.01 100\n0.02 -50\n";
+    for (int i = 3; i < 100; ++i)
+      rows += std::to_string(0.01 * i) + " 0\n";
+    const auto        file = dir.write("motion.txt", rows);
     const std::string scene_text =
       "ground_motion:\n  record: " + file.string() + "\n  record_unit: cm/s^2\n";
     const auto loaded = kimp::io::read_scene_text<LumpedScene>(scene_text, "scene.yaml");
@@ -78,7 +83,7 @@ namespace
                                                                     loaded.file_name,
                                                                     loaded.text,
                                                                     "ground_motion");
-    ASSERT_EQ(motion.acceleration.size(), 4u);
+    ASSERT_EQ(motion.acceleration.size(), 100u);
     EXPECT_DOUBLE_EQ(motion.acceleration[1], 1.0); // 100 cm/s² = 1 m/s²
     EXPECT_DOUBLE_EQ(motion.acceleration[2], -0.5);
     EXPECT_DOUBLE_EQ(motion.dt, 0.01);
@@ -163,7 +168,7 @@ namespace
                                    "  records_dir: records\n");
     const auto by_name = kimp::io::read_scene<LumpedScene>(named);
     EXPECT_EQ(by_name.scene.ground_motion.record, "RSN1106_KOBE_KJM000");
-    EXPECT_EQ(load_ground_motion(by_name.scene.ground_motion).acceleration.size(), 4u);
+    EXPECT_EQ(load_ground_motion(by_name.scene.ground_motion).acceleration.size(), 100u);
     // A misspelt file: "no such file" and the file beside it.
     const std::string typo = "ground_motion:\n  record: records/RSN1106_KOBE_KJM00.AT2\n";
     const auto        bad  = kimp::io::read_scene_text<LumpedScene>(typo, "s.yaml", dir.path());

@@ -1,7 +1,8 @@
 // base::sig: the significant figures of report and log numbers, with the examples of
-// docs/architecture.md "Conventions".
+// docs/architecture.md "Conventions"; base::excerpt: a bad value quoted in at most 80 characters.
 #include <gtest/gtest.h>
 #include <limits>
+#include <string>
 
 #include "base/format.h"
 
@@ -41,5 +42,27 @@ namespace
     EXPECT_EQ(sig(0.0), "0");
     EXPECT_EQ(sig(std::numeric_limits<double>::quiet_NaN()), "nan");
     EXPECT_EQ(sig(-std::numeric_limits<double>::infinity()), "-inf");
+  }
+
+  TEST(QuotedValues, AtMostEightyCharacters)
+  {
+    using kimp::base::excerpt;
+    EXPECT_EQ(excerpt("2500 kN/mm"), "2500 kN/mm");
+    const std::string eighty(80, 'a');
+    EXPECT_EQ(excerpt(eighty), eighty);
+    const std::string huge(1 << 20, 'x');
+    const std::string quoted = excerpt(huge);
+    EXPECT_EQ(quoted.size(), 80u);
+    EXPECT_EQ(quoted, std::string(61, 'x') + "... (1048576 bytes)");
+    // Never cut inside a UTF-8 character: 60 ASCII bytes, then two-byte characters.
+    std::string accents(60, 'a');
+    for (int i = 0; i < 100; ++i)
+      accents += "\xc3\xa9";
+    const std::string cut = excerpt(accents);
+    EXPECT_LE(cut.size(), 80u);
+    EXPECT_EQ(cut, std::string(60, 'a') + "\xc3\xa9\xc3\xa9... (260 bytes)");
+    // A library message: only its long words are shortened.
+    EXPECT_EQ(kimp::base::shorten_long_words("--max-steps: " + huge + " is not a number"),
+              "--max-steps: " + quoted + " is not a number");
   }
 } // namespace

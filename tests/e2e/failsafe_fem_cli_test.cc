@@ -228,8 +228,9 @@ TEST(FailsafeCli, FemEstimateMatchesTheSolver)
 }
 
 // mesh.h_contact: 1e-6 m is about 1e11 DoFs and 3e8 steps: refused before meshing with the
-// estimate. With the budget lifted the mesher runs out of memory, which is one line too (before:
-// "error: H1.25: meshing: std::bad_alloc").
+// estimate and the keys to change, by the cost limits (then the step budget). With both lifted
+// (--accept-cost, dynamics.max_steps) the mesher runs out of memory, which is one line too
+// (before: "error: H1.25: meshing: std::bad_alloc").
 TEST(FailsafeCli, AbsurdFemMeshIsRefusedOrOneLine)
 {
   TempDir     dir("e2e_failsafe_fem_budget");
@@ -239,24 +240,43 @@ TEST(FailsafeCli, AbsurdFemMeshIsRefusedOrOneLine)
   const KimpRun run = run_kimp("fem scene.yaml -o out", dir.path());
   std::string   line;
   ASSERT_NO_FATAL_FAILURE(one_error_line(run.exit_code, run.err, line));
-  EXPECT_EQ(line.rfind("error: H1.25: the estimate (1e+11 DoFs, up to 2.95e+08 steps of ", 0), 0u)
+  EXPECT_EQ(line.rfind("error: kimp fem: estimated cost above the limits (1e+11 DoFs in H1.25 > "
+                       "1e+06, ",
+                       0),
+            0u)
     << line;
-  EXPECT_NE(line.find("exceeds the step budget dynamics.max_steps = 1e+06"), std::string::npos)
+  EXPECT_NE(line.find("largest H1.25: 1e+11 DoFs, up to 2.95e+08 steps of "), std::string::npos)
     << line;
+  EXPECT_NE(line.find("--accept-cost runs it anyway"), std::string::npos) << line;
   EXPECT_TRUE(files_below(dir.path() / "out").empty());
+
+  // Accepted (one warning line), the step budget still refuses it.
+  const KimpRun accepted = run_kimp("fem scene.yaml -o out --accept-cost", dir.path());
+  EXPECT_EQ(accepted.exit_code, 1) << accepted.err;
+  std::vector<std::string> lines = non_info_lines(accepted.err);
+  ASSERT_EQ(lines.size(), 2u) << accepted.err;
+  EXPECT_NE(lines[0].find("going ahead (--accept-cost)"), std::string::npos) << lines[0];
+  EXPECT_EQ(lines[1].rfind("error: H1.25: the estimate (1e+11 DoFs, up to 2.95e+08 steps of ", 0),
+            0u)
+    << lines[1];
+  EXPECT_NE(lines[1].find("exceeds the step budget dynamics.max_steps = 1e+06"), std::string::npos)
+    << lines[1];
 
   if (!have_program("prlimit"))
     GTEST_SKIP() << "prlimit (util-linux) is not installed";
   scene.replace(scene.find("dynamics: {"), 11, "dynamics: {max_steps: 1e30, ");
   dir.write("lifted.yaml", scene);
   // 8 GB of address space at most, so the allocation fails at once whatever the machine.
-  const int exit_code = run_command("cd '" + dir.path().string() + "' && prlimit --as=8000000000 " +
-                                      kimp_executable() + " fem lifted.yaml -o lifted",
-                                    dir.path() / "log.txt");
+  const int exit_code =
+    run_command("cd '" + dir.path().string() + "' && prlimit --as=8000000000 " + kimp_executable() +
+                  " fem lifted.yaml -o lifted --accept-cost",
+                dir.path() / "log.txt");
   const std::string log = read_text(dir.path() / "log.txt");
-  std::string       lifted;
-  ASSERT_NO_FATAL_FAILURE(one_error_line(exit_code, log, lifted));
-  EXPECT_EQ(lifted.rfind("error: H1.25: meshing: out of memory: ", 0), 0u) << lifted;
+  EXPECT_EQ(exit_code, 1) << log;
+  lines = non_info_lines(log);
+  ASSERT_EQ(lines.size(), 2u) << log;
+  EXPECT_NE(lines[0].find("going ahead (--accept-cost)"), std::string::npos) << lines[0];
+  EXPECT_EQ(lines[1].rfind("error: H1.25: meshing: out of memory: ", 0), 0u) << lines[1];
   EXPECT_TRUE(files_below(dir.path() / "lifted").empty());
 }
 
