@@ -142,31 +142,37 @@ namespace kimp::lumped
     // The mass leaves with the energy given back: the line's and the contact spring's.
     const double ke_out = 0.5 * e1 * e1 / p.unloading_stiffness + 0.5 * e1 * e1 / 1e9;
 
-    const Response       r           = run_single_mass(scene, 0.09); // the first impact only
+    const Response       r           = run_single_mass(scene, 0.4); // the first impact only
     const ContactResult &part        = r.contacts[2];
     constexpr double     dynamic_tol = 0.02; // wall inertia (1 % of the mass) and dashpot neglected
     EXPECT_NEAR(part.peak_deformation, w1, dynamic_tol * w1);
     EXPECT_NEAR(part.permanent_indentation, s1, dynamic_tol * w1);
     EXPECT_NEAR(part.peak_force, e1, dynamic_tol * e1 + p.radiation_damping * 1.0);
     // The wall rests at its set (the light dashpot has damped its vibration).
-    EXPECT_NEAR(wall_displacement_at(r, 1, 0.089), part.permanent_indentation, 0.05 * s1);
+    EXPECT_NEAR(wall_displacement_at(r, 1, 0.4), part.permanent_indentation, 0.05 * s1);
     EXPECT_GT(part.plastic_work, 0.0);
     EXPECT_GT(part.radiated_work, 0.0);
     EXPECT_FALSE(part.failure_time);
     EXPECT_TRUE(part.impacts.empty());
     EXPECT_TRUE(part.pulse_time.empty());
-    ASSERT_EQ(r.contacts[1].impacts.size(), 1u);
+    // Contact at 5 cm and 1 m/s (the 1 t wall may rattle against the mass while it is pushed).
+    ASSERT_GE(r.contacts[1].impacts.size(), 1u);
+    EXPECT_NEAR(r.contacts[1].impacts.front().time, 0.05, 1e-4);
 
     // Second impact: the mass comes back from the elastic left wall with ke_out and meets the
-    // wall where it was left, 5 cm + s1 away; the wall goes on from w1 along the envelope.
-    const Response r2 = run_single_mass(scene, 0.6);
-    ASSERT_GE(r2.contacts[1].impacts.size(), 2u);
-    const double w2 = peak_from_energy(law, ke_out, w1, 1e9);
-    EXPECT_GT(w2, w1);
-    EXPECT_NEAR(r2.contacts[2].peak_deformation, w2, 0.05 * (w2 - s1));
-    const double t2 = r2.contacts[1].impacts[1].time;
-    // Before the second impact the wall stands at its set, not at its original place.
+    // wall where it was left, at 5 cm + s1: the gap has grown by the set. It brings back only
+    // what the wall returned, so the wall goes back to w1 along its unloading line and no
+    // farther, and keeps its set.
+    const Response r2 = run_single_mass(scene, 1.6);
+    double         t2 = 0.0; // the second push: the first contact after the mass left the wall
+    for (const ImpactEvent &ev : r2.contacts[1].impacts)
+      if (ev.time > 0.5 && t2 == 0.0)
+        t2 = ev.time;
+    ASSERT_GT(t2, 0.0);
+    EXPECT_NEAR(wall_displacement_at(r2, 0, t2), 0.05 + s1, dynamic_tol * w1);
     EXPECT_NEAR(wall_displacement_at(r2, 1, t2 - 1e-3), s1, dynamic_tol * w1);
+    EXPECT_NEAR(r2.contacts[2].peak_deformation, w1, dynamic_tol * w1);
+    EXPECT_NEAR(r2.contacts[2].permanent_indentation, part.permanent_indentation, 1e-3 * s1);
   }
 
   TEST(YieldingWall, WallPushedPastItsLimitIsReportedFailedWithTheTime)
