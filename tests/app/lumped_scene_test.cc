@@ -348,14 +348,8 @@ TEST(LumpedScene, YieldingWallsTakeFirstGuessesPerMetreTimesWidth)
   const double     f = 5.5 * std::pow(5.5, 2.5) / (1.0 + 2.37 * 5.5) * kip / ft;
   EXPECT_NEAR(k, 28.9e6, 0.001 * 28.9e6); // the 28.9 kN/mm/m of a 1.68 m backwall
   const LumpedScene scene =
-    load("walls:
-  left:
-    sdof_mass: "60 t"
-    yielding:
-      width: "20 m"
-"
-         "      height: "1.6764 m"
-");
+    load("walls:\n  left:\n    sdof_mass: \"60 t\"\n    yielding:\n      width: \"20 m\"\n"
+         "      height: \"1.6764 m\"\n");
   const auto pounding = make_pounding_scene(scene);
   ASSERT_TRUE(pounding.left_wall && pounding.left_wall->yielding);
   EXPECT_FALSE(pounding.right_wall->yielding);
@@ -373,23 +367,11 @@ TEST(LumpedScene, YieldingWallsTakeFirstGuessesPerMetreTimesWidth)
   EXPECT_EQ(model.contacts().back().name, "left_wall_backfill");
 
   // Keys given explicitly, per metre.
-  const LumpedScene given = load(
-    "walls:
-  right:
-    yielding:
-      width: "10 m"
-      envelope: hyperbolic
-"
-    "      stiffness: "20 kN/mm/m"
-      capacity: "300 kN/m"
-      failure_ratio: 0.7
-"
-    "      unloading_stiffness: "40 kN/mm/m"
-      tension_capacity: "0 kN/m"
-"
-    "      radiation_damping: "150 kN*s/m^2"
-      failure_displacement: "8 cm"
-");
+  const LumpedScene given =
+    load("walls:\n  right:\n    yielding:\n      width: \"10 m\"\n      envelope: hyperbolic\n"
+         "      stiffness: \"20 kN/mm/m\"\n      capacity: \"300 kN/m\"\n      failure_ratio: 0.7\n"
+         "      unloading_stiffness: \"40 kN/mm/m\"\n      tension_capacity: \"0 kN/m\"\n"
+         "      radiation_damping: \"150 kN*s/m^2\"\n      failure_displacement: \"8 cm\"\n");
   const kimp::lumped::WallBackfillParams q = *make_pounding_scene(given).right_wall->yielding;
   EXPECT_EQ(q.envelope, kimp::lumped::WallEnvelope::hyperbolic);
   EXPECT_NEAR(q.stiffness, 200e6, exact_tolerance * 200e6);
@@ -399,21 +381,11 @@ TEST(LumpedScene, YieldingWallsTakeFirstGuessesPerMetreTimesWidth)
   EXPECT_NEAR(q.radiation_damping, 1.5e6, exact_tolerance * 1.5e6);
   EXPECT_NEAR(q.failure_displacement, 0.08, exact_tolerance);
 
-  EXPECT_NE(error_of("walls:
-  left:
-    flexible: true
-    yielding:
-      height: "1 m"
-")
+  EXPECT_NE(error_of("walls:\n  left:\n    flexible: true\n    yielding:\n      height: \"1 m\"\n")
               .find("walls.left.flexible = true: must be false for a yielding wall"),
             std::string::npos);
-  EXPECT_NE(error_of("walls:
-  left:
-    yielding:
-      stiffness: "20 kN/mm/m"
-"
-                     "      unloading_stiffness: "10 kN/mm/m"
-")
+  EXPECT_NE(error_of("walls:\n  left:\n    yielding:\n      stiffness: \"20 kN/mm/m\"\n"
+                     "      unloading_stiffness: \"10 kN/mm/m\"\n")
               .find("walls.left.yielding.unloading_stiffness = 10 kN/mm/m: must be >= "
                     "stiffness = 20 kN/mm/m"),
             std::string::npos);

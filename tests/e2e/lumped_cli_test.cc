@@ -263,3 +263,35 @@ TEST(LumpedCli, YieldingWallsReportForceAgainstCapacityDisplacementsAndFailure)
   EXPECT_GT(c["energy"]["wall_radiated"].get<double>(), 0.0);
   EXPECT_LT(c["energy"]["relative_error"].get<double>(), 1e-4);
 }
+
+TEST(LumpedCli, ExportOpenSeesWritesTheYieldingWallsOfALumpedScene)
+{
+  TempDir        dir("e2e_lumped_opensees_walls");
+  const fs::path scene =
+    dir.write("walls.yaml",
+              "walls:\n  right:\n    gap: \"10 cm\"\n    sdof_mass: \"60 t\"\n"
+              "    yielding:\n      width: \"20 m\"\n"
+              "      capacity: \"150 kN/m\"\n      stiffness: \"25 kN/mm/m\"\n");
+  const KimpRun run =
+    run_kimp("-q export-opensees -o os --k-kv \"2496 kN/mm\" --lumped-scene " + scene.string(),
+             dir.path());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string tcl = read_text(dir.path() / "os" / "opensees_walls.tcl");
+  EXPECT_NE(tcl.find("uniaxialMaterial ElasticPPGap 11 500000000 -3000000 0.0 0 damage"),
+            std::string::npos)
+    << tcl;
+  EXPECT_NE(tcl.find("node 1001 0.0 -mass 60000"), std::string::npos) << tcl;
+  EXPECT_NE(read_text(dir.path() / "os" / "opensees_walls.py").find("ops.uniaxialMaterial("),
+            std::string::npos);
+  const nlohmann::json summary = read_json(dir.path() / "os" / "summary.json");
+  EXPECT_EQ(summary["files"].size(), 4u) << summary.dump();
+
+  // A scene without a yielding wall is refused, and nothing is left behind.
+  const fs::path rigid = dir.write("rigid.yaml", "walls:\n  right:\n    gap: \"10 cm\"\n");
+  const KimpRun  none =
+    run_kimp("-q export-opensees -o none --k-kv \"2496 kN/mm\" --lumped-scene " + rigid.string(),
+             dir.path());
+  EXPECT_EQ(none.exit_code, 1);
+  EXPECT_NE(none.err.find("has no yielding wall"), std::string::npos) << none.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "none" / "opensees_impact.tcl"));
+}
