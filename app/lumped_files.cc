@@ -180,7 +180,8 @@ namespace kimp::app
         ResultsGroup                 wg   = g.group("walls/" + w.wall);
         wg.write_scalar("peak_force", part.peak_force, "N");
         wg.write_scalar("capacity", w.capacity, "N");
-        wg.write_scalar("peak_force_ratio", part.peak_force / w.capacity, "1");
+        wg.write_scalar("peak_resistance", part.peak_resistance, "N");
+        wg.write_scalar("peak_resistance_ratio", part.peak_resistance / w.capacity, "1");
         wg.write_scalar("peak_displacement", part.peak_deformation, "m");
         wg.write_scalar("residual_displacement", part.permanent_indentation, "m");
         wg.write_scalar("failure_displacement", w.failure_displacement, "m");
@@ -288,7 +289,8 @@ namespace kimp::app
           nlohmann::json               wj   = {{"name", w.wall},
                                                {"peak_force", part.peak_force},
                                                {"capacity", w.capacity},
-                                               {"peak_force_ratio", part.peak_force / w.capacity},
+                                               {"peak_resistance", part.peak_resistance},
+                                               {"peak_resistance_ratio", part.peak_resistance / w.capacity},
                                                {"peak_displacement", part.peak_deformation},
                                                {"residual_displacement", part.permanent_indentation},
                                                {"failure_displacement", w.failure_displacement},

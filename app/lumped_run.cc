@@ -94,13 +94,14 @@ namespace kimp::app
       for (const YieldingWallLimits &w : r.yielding_walls)
       {
         const lumped::ContactResult &c = r.response.contacts[w.contact];
-        logger().info("case {}: {}: peak force {} MN = {} of its capacity {} MN, peak "
-                      "displacement {} cm, residual {} cm",
+        logger().info("case {}: {}: peak resistance {} MN = {} of its capacity {} MN (with the "
+                      "dashpot {} MN), peak displacement {} cm, residual {} cm",
                       r.name,
                       w.wall,
-                      base::sig(c.peak_force / 1e6),
-                      base::sig(c.peak_force / w.capacity),
+                      base::sig(c.peak_resistance / 1e6),
+                      base::sig(c.peak_resistance / w.capacity),
                       base::sig(w.capacity / 1e6),
+                      base::sig(c.peak_force / 1e6),
                       base::sig(100.0 * c.peak_deformation),
                       base::sig(100.0 * c.permanent_indentation));
         if (c.failure_time)

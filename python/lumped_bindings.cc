@@ -119,6 +119,7 @@ namespace kimp::python
         wd["name"]                  = w.wall;
         wd["peak_force"]            = part.peak_force;
         wd["capacity"]              = w.capacity;
+        wd["peak_resistance"]       = part.peak_resistance;
         wd["peak_displacement"]     = part.peak_deformation;
         wd["residual_displacement"] = part.permanent_indentation;
         wd["failure_displacement"]  = w.failure_displacement;

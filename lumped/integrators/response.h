@@ -31,8 +31,11 @@ namespace kimp::lumped
     double peak_deformation = 0.0; ///< max δ over the run, m (a wall part: peak w)
     /// The time δ first exceeded the pair's failure_deformation, s (unset: never).
     std::optional<double> failure_time;
-    double                plastic_work  = 0.0; ///< a wall part: W_p, J (0 otherwise)
-    double                radiated_work = 0.0; ///< a wall part: ∫c_r·ẇ dw, J (0 otherwise)
+    double                plastic_work = 0.0; ///< a wall part: W_p, J (0 otherwise)
+    /// A wall part: the largest resistance R without its dashpot, N (0 otherwise); peak_force
+    /// is R + c_r·ẇ.
+    double peak_resistance = 0.0;
+    double radiated_work   = 0.0; ///< a wall part: ∫c_r·ẇ dw, J (0 otherwise)
     /// The contact force at full rate: every step at which it is non-zero (the impact pulses,
     /// unlike the decimated history which can miss their peaks), s and N.
     std::vector<double> pulse_time;

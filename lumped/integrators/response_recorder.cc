@@ -106,8 +106,9 @@ namespace kimp::lumped
       cr.dissipated_energy     = laws[q]->dissipated_energy();
       if (const auto *wall = dynamic_cast<const WallBackfillLaw *>(laws[q].get()))
       {
-        cr.plastic_work  = wall->plastic_work();
-        cr.radiated_work = wall->radiated_work();
+        cr.plastic_work    = wall->plastic_work();
+        cr.peak_resistance = wall->peak_resistance();
+        cr.radiated_work   = wall->radiated_work();
         e.wall_plastic += cr.plastic_work;
         e.wall_radiated += cr.radiated_work;
       }

@@ -144,7 +144,8 @@ namespace kimp::lumped
       trial_.spring_force = std::max(line, -p.tension_capacity);
       trial_.stiffness    = line > -p.tension_capacity ? p.unloading_stiffness : 0.0;
     }
-    trial_.force    = trial_.spring_force + p.radiation_damping * rate;
+    trial_.force       = trial_.spring_force + p.radiation_damping * rate;
+    trial_.peak_spring = std::max(committed_.peak_spring, trial_.spring_force);
     trial_.radiated = committed_.radiated + 0.5 * p.radiation_damping * (committed_.rate + rate) *
                                               (deformation - committed_.deformation);
     return {trial_.force, trial_.stiffness, p.radiation_damping};

@@ -61,6 +61,7 @@ namespace kimp::lumped
     double force           = 0.0; ///< R + c_r·ẇ, N
     double stiffness       = 0.0; ///< dR/dw, N/m
     double radiated        = 0.0; ///< ∫c_r·ẇ dw (trapezoid), J
+    double peak_spring     = 0.0; ///< max R over the commits so far, N
   };
 
   /**
@@ -132,6 +133,8 @@ namespace kimp::lumped
     double radiated_work() const { return committed_.radiated; }
     /// w_max of the last commit, m.
     double peak_deformation() const { return committed_.max_deformation; }
+    /// The largest resistance R (without the dashpot) committed so far, N.
+    double peak_resistance() const { return committed_.peak_spring; }
     /// True once the committed w_max exceeds failure_displacement.
     bool failed() const { return committed_.max_deformation > params_.failure_displacement; }
 

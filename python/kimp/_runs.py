@@ -82,13 +82,15 @@ class Contact:
 @dataclass
 class Wall:
     """A yielding moat wall (docs/physics.md §2 "Yielding moat wall"): peak force of its
-    wall-and-backfill part and its capacity (N), peak and residual (permanent set) displacement
+    wall-and-backfill part (resistance and dashpot), its peak resistance without the dashpot and
+    its capacity (N), peak and residual (permanent set) displacement
     into the backfill and the failure limit (m), the time it passed that limit (s; None: it did
     not fail), its plastic and radiated work (J)."""
 
     name: str
     peak_force: float
     capacity: float
+    peak_resistance: float
     peak_displacement: float
     residual_displacement: float
     failure_displacement: float
@@ -101,9 +103,9 @@ class Wall:
         return self.failure_time is not None
 
     @property
-    def peak_force_ratio(self):
-        """Peak force over capacity."""
-        return self.peak_force / self.capacity
+    def peak_resistance_ratio(self):
+        """Peak resistance (without the dashpot) over capacity."""
+        return self.peak_resistance / self.capacity
 
 
 @dataclass

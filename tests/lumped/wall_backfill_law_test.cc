@@ -123,6 +123,8 @@ namespace kimp::lumped
     for (int i = 1; i <= 20; ++i)
       step(law, 0.001 * i, v);
     expect_rel(law.radiated_work(), 3e6 * v * 0.02, tight_tol, "c·v·travel");
+    // The peak resistance leaves the dashpot out: E(0.02 m) of the envelope.
+    expect_rel(law.peak_resistance(), 1e6 + 0.05 * 100e6 * 0.01, tight_tol, "peak R");
     EXPECT_NEAR(law.dissipated_energy(), law.plastic_work() + law.radiated_work(), 1e-9);
   }
 
