@@ -161,7 +161,9 @@ def test_yielding_walls_equal_the_cli(tmp_path):
     wall = {"gap": "4 cm", "sdof_mass": "50 t",
             "yielding": {"width": "20 m", "capacity": "50 kN/m", "stiffness": "10 kN/mm/m",
                          "failure_displacement": "1 cm"}}
-    scene = dict(SHORT_SCENE, walls={"left": wall, "right": wall})
+    scene = dict(SHORT_SCENE, walls={"left": wall, "right": wall},
+                 ground_motion={"record": "synthetic", "duration": "6 s"},
+                 integration={"dt": "1e-4 s"})
     scene_file = tmp_path / "yielding.yaml"
     scene_file.write_text(kimp.Scene.from_dict(scene).to_yaml())
     run_cli("lumped", scene_file, "-o", tmp_path / "out")
