@@ -181,6 +181,23 @@ namespace kimp::app
                              1,
                              "m");
       }
+      for (const YieldingWallLimits &w : c.yielding_walls)
+      {
+        const lumped::ContactResult &part = r.contacts[w.contact];
+        ResultsGroup                 wg   = g.group("walls/" + w.wall);
+        wg.write_scalar("peak_force", part.peak_force, "N");
+        wg.write_scalar("capacity", w.capacity, "N");
+        wg.write_scalar("peak_resistance", part.peak_resistance, "N");
+        wg.write_scalar("peak_resistance_ratio", part.peak_resistance / w.capacity, "1");
+        wg.write_scalar("peak_displacement", part.peak_deformation, "m");
+        wg.write_scalar("residual_displacement", part.permanent_indentation, "m");
+        wg.write_scalar("failure_displacement", w.failure_displacement, "m");
+        wg.set_attribute("failed", static_cast<std::int64_t>(part.failure_time ? 1 : 0));
+        if (part.failure_time)
+          wg.write_scalar("failure_time", *part.failure_time, "s");
+        wg.write_scalar("plastic_work", part.plastic_work, "J");
+        wg.write_scalar("radiated_work", part.radiated_work, "J");
+      }
       const lumped::EnergyBalance &e  = r.energy;
       ResultsGroup                 eg = g.group("energy");
       eg.write_scalar("initial", e.initial, "J");
@@ -191,6 +208,11 @@ namespace kimp::app
       eg.write_scalar("hysteretic", e.hysteretic, "J");
       eg.write_scalar("contact_work", e.contact_work, "J");
       eg.write_scalar("impact_dissipated", e.impact_dissipated, "J");
+      if (!c.yielding_walls.empty())
+      {
+        eg.write_scalar("wall_plastic", e.wall_plastic, "J");
+        eg.write_scalar("wall_radiated", e.wall_radiated, "J");
+      }
       eg.write_scalar("relative_error", e.relative_error, "1");
       eg.write_scalar("max_relative_error", e.max_relative_error, "1");
       if (c.companion)
@@ -263,6 +285,30 @@ namespace kimp::app
                      {"max_relative_error", r.energy.max_relative_error},
                      {"input", r.energy.input},
                      {"impact_dissipated", r.energy.impact_dissipated}};
+      if (!c.yielding_walls.empty())
+      {
+        j["energy"]["wall_plastic"]  = r.energy.wall_plastic;
+        j["energy"]["wall_radiated"] = r.energy.wall_radiated;
+        j["walls"]                   = nlohmann::json::array();
+        for (const YieldingWallLimits &w : c.yielding_walls)
+        {
+          const lumped::ContactResult &part = r.contacts[w.contact];
+          nlohmann::json               wj   = {{"name", w.wall},
+                                               {"peak_force", part.peak_force},
+                                               {"capacity", w.capacity},
+                                               {"peak_resistance", part.peak_resistance},
+                                               {"peak_resistance_ratio", part.peak_resistance / w.capacity},
+                                               {"peak_displacement", part.peak_deformation},
+                                               {"residual_displacement", part.permanent_indentation},
+                                               {"failure_displacement", w.failure_displacement},
+                                               {"failed", part.failure_time.has_value()},
+                                               {"plastic_work", part.plastic_work},
+                                               {"radiated_work", part.radiated_work}};
+          if (part.failure_time)
+            wj["failure_time"] = *part.failure_time;
+          j["walls"].push_back(wj);
+        }
+      }
       if (c.companion)
       {
         j["companion_peaks"]["displacement"]          = c.companion->peak_displacement;

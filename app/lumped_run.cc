@@ -85,6 +85,35 @@ namespace kimp::app
     constexpr double warning_pga = 5.0 * standard_gravity;
   } // namespace
 
+  namespace
+  {
+    /// One line per yielding wall: its peak force against its capacity, its displacements and,
+    /// for a failed wall, a warning with the time.
+    void log_yielding_walls(const LumpedCaseResult &r)
+    {
+      for (const YieldingWallLimits &w : r.yielding_walls)
+      {
+        const lumped::ContactResult &c = r.response.contacts[w.contact];
+        logger().info("case {}: {}: peak resistance {} MN = {} of its capacity {} MN (with the "
+                      "dashpot {} MN), peak displacement {} cm, residual {} cm",
+                      r.name,
+                      w.wall,
+                      base::sig(c.peak_resistance / 1e6),
+                      base::sig(c.peak_resistance / w.capacity),
+                      base::sig(w.capacity / 1e6),
+                      base::sig(c.peak_force / 1e6),
+                      base::sig(100.0 * c.peak_deformation),
+                      base::sig(100.0 * c.permanent_indentation));
+        if (c.failure_time)
+          logger().warn("case {}: {} failed at t = {} s: pushed back beyond {} cm",
+                        r.name,
+                        w.wall,
+                        base::sig(*c.failure_time),
+                        base::sig(100.0 * w.failure_displacement));
+      }
+    }
+  } // namespace
+
   namespace lumped_internal
   {
     double seconds_since(const Clock::time_point start)
@@ -125,7 +154,14 @@ namespace kimp::app
         result.buildings.push_back(std::move(b));
       }
       for (const lumped::ContactPair &c : model.contacts())
+      {
+        if (const auto *wall = dynamic_cast<const lumped::WallBackfillLaw *>(c.law.get()))
+          result.yielding_walls.push_back({c.name.substr(0, c.name.rfind("_backfill")),
+                                           result.contact_names.size(),
+                                           wall->parameters().capacity,
+                                           wall->parameters().failure_displacement});
         result.contact_names.push_back(c.name);
+      }
       for (const lumped::Storey &s : model.storeys())
         result.storey_upper_dofs.push_back(s.upper_dof);
       result.dof_labels = dof_labels(model);
@@ -362,6 +398,8 @@ namespace kimp::app
                       base::sig(r.wall_time, 3));
       else if (!r.ok())
         logger().error("case {}: {}", r.name, r.status);
+      if (r.ok())
+        log_yielding_walls(r);
       progress.update(done + 1, static_cast<double>(done + 1));
     }
     progress.finish();

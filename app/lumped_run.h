@@ -31,6 +31,16 @@ namespace kimp::app
   };
 
   /// Result of one case; `status` is "ok" or "failed: <reason>" (then response is empty).
+  /// A yielding wall's part of a case: its limits, from the model (docs/physics.md §2
+  /// "Yielding moat wall"); the run's values are in the response's contact `contact`.
+  struct YieldingWallLimits
+  {
+    std::string wall;                       ///< "left_wall", "right_wall"
+    std::size_t contact              = 0;   ///< index of its "<wall>_backfill" contact
+    double      capacity             = 0.0; ///< N (bilinear: the cap; hyperbolic: F_ult)
+    double      failure_displacement = 0.0; ///< m
+  };
+
   struct LumpedCaseResult
   {
     std::string                     name;
@@ -53,6 +63,8 @@ namespace kimp::app
     std::string dt_policy;
     /// The variable-step run's steps and estimated errors (dt_policy "variable").
     std::optional<lumped::AdaptiveStepReport> adaptive;
+    /// The yielding walls of the model, left first.
+    std::vector<YieldingWallLimits> yielding_walls;
 
     bool ok() const { return status == "ok"; }
   };

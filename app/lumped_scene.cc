@@ -59,6 +59,26 @@ namespace kimp::app
       one(scene.walls.left, left_gap_key);
       one(scene.walls.right, right_gap_key);
     }
+    /// The yielding walls' rules their ranges cannot say.
+    void validate_yielding(const LumpedScene &scene, ValidationContext &ctx)
+    {
+      for (const auto &[w, side] :
+           {std::pair<const WallScene *, const char *>{&scene.walls.left, "walls.left."},
+            {&scene.walls.right, "walls.right."}})
+      {
+        if (!w->present || !w->yielding)
+          continue;
+        const std::string wall = side;
+        ctx.check(!w->flexible, wall + "flexible", "true", "must be false for a yielding wall");
+        const YieldingWallScene &y = *w->yielding;
+        const double             k = y.stiffness.value_or(y.default_stiffness());
+        if (y.unloading_stiffness)
+          ctx.check(*y.unloading_stiffness >= k,
+                    wall + "yielding.unloading_stiffness",
+                    format_quantity(*y.unloading_stiffness, "kN/mm/m"),
+                    "must be >= stiffness = " + format_quantity(k, "kN/mm/m"));
+      }
+    }
   } // namespace
 
   std::vector<double> StoreysScene::floor_masses() const
@@ -159,6 +179,7 @@ namespace kimp::app
                   "needs an isolated building with a floor above the isolation level");
     }
     validate_walls(scene, ctx, "walls.left.gap", "walls.right.gap");
+    validate_yielding(scene, ctx);
     {
       const auto scope = ctx.section("impact");
       validate_law(with_table_stiffness(scene.impact, ctx, scene.cases.empty()), ctx, true);
@@ -387,6 +408,8 @@ namespace kimp::app
         wall.stiffness        = w.stiffness;
         wall.damping_ratio    = w.damping_ratio;
         wall.sdof_mass        = w.sdof_mass;
+        if (w.yielding)
+          wall.yielding = w.yielding->resolved();
         return wall;
       };
       if (scene.walls.left.present)

@@ -10,6 +10,7 @@
 
 #include "app/ground_motion_scene.h"
 #include "app/impact_scene.h"
+#include "app/yielding_wall_scene.h"
 #include "io/scene_io.h"
 #include "lumped/integrators/central_difference.h"
 #include "lumped/structure/pounding_model.h"
@@ -220,6 +221,9 @@ namespace kimp::app
     double                stiffness     = 1.5e9; ///< SDOF wall, N/m (thesis k_w = 1500 kN/mm)
     double                damping_ratio = 0.05;  ///< SDOF wall ζ
     std::optional<double> sdof_mass; ///< SDOF wall's mass, kg (null: mass; not in m_eff)
+    /// A yielding wall: the wall-and-backfill part behind the impact law (absent: rigid or
+    /// flexible wall).
+    std::optional<YieldingWallScene> yielding;
   };
 
   template <class Io>
@@ -244,8 +248,8 @@ namespace kimp::app
     io.quantity("sdof_mass",
                 s.sdof_mass,
                 "t",
-                "flexible wall: the SDOF's mass (null: mass); the impact law keeps the m_eff of "
-                "mass, so its dashpot is the rigid wall's",
+                "flexible or yielding wall: the DOF's mass (null: mass); the impact law keeps the "
+                "m_eff of mass, so its dashpot is the rigid wall's",
                 io::Range::positive());
     io.quantity("stiffness",
                 s.stiffness,
@@ -257,6 +261,11 @@ namespace kimp::app
                 "%",
                 "flexible wall: damping ratio of the SDOF (c = 2 zeta sqrt(k m))",
                 io::Range::at_least(0.0).and_less(1.0));
+    io.optional_section("yielding",
+                        s.yielding,
+                        "yielding wall: the impact law in series with a wall-and-backfill part "
+                        "(pushover with permanent set, radiation dashpot) on a DOF of sdof_mass "
+                        "(null: mass); excludes flexible");
   }
 
   struct WallsScene

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "app/k_table.h"
+#include "app/opensees_wall_export.h"
 #include "base/logging.h"
 #include "base/version.h"
 #include "io/summary.h"
@@ -229,6 +230,10 @@ namespace kimp::app
     const io::OutputDir output(options.output);
     io::write_text_atomic(output.file("opensees_impact.tcl"), tcl);
     io::write_text_atomic(output.file("opensees_impact.py"), python);
+    if (!options.lumped_scene.empty())
+      write_opensees_walls(options.lumped_scene,
+                           output.file("opensees_walls.tcl"),
+                           output.file("opensees_walls.py"));
 
     const OpenSeesParameters p = opensees_parameters(laws);
     nlohmann::ordered_json   j;
@@ -280,6 +285,8 @@ namespace kimp::app
                        {"k1", p.k1},
                        {"k2", p.k2}};
     j["files"]      = {"opensees_impact.tcl", "opensees_impact.py"};
+    if (!options.lumped_scene.empty())
+      j["files"].insert(j["files"].end(), {"opensees_walls.tcl", "opensees_walls.py"});
     j["wall_time"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     io::write_text_atomic(output.file("summary.json"), j.dump(2) + "\n");

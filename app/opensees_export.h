@@ -117,6 +117,9 @@ namespace kimp::app
     std::filesystem::path  source;   ///< k_table.csv or a study directory ("" = explicit k)
     std::filesystem::path  output;   ///< directory of opensees_impact.tcl / .py
     ExportOpenSeesSettings settings; ///< the flags
+    /// A `kimp lumped` scene whose yielding walls are written too (app/opensees_wall_export.h);
+    /// "" = none.
+    std::filesystem::path lumped_scene;
   };
 
   /**

@@ -26,21 +26,30 @@ namespace kimp::cli
                    "and/or --k-hertz)")
       ->type_name("STUDY_DIR|k_table.csv");
     add_output_option(*command, *out)->required();
+    auto lumped_scene = std::make_shared<std::string>();
+    command
+      ->add_option("--lumped-scene",
+                   *lumped_scene,
+                   "a `kimp lumped` scene: also write its yielding walls as nodes, materials and "
+                   "elements (opensees_walls.tcl, .py)")
+      ->type_name("SCENE.yaml");
     // --wall-height, --k-kv, --k-hertz, --cor, --effective-mass, ...: app::ExportOpenSeesSettings.
     const auto settings = add_key_options<app::ExportOpenSeesSettings>(*command);
     command->preparse_callback(
-      [source, out](std::size_t)
+      [source, out, lumped_scene](std::size_t)
       {
         source->clear();
         out->clear();
+        lumped_scene->clear();
       });
     command->callback(
-      [source, out, settings]()
+      [source, out, settings, lumped_scene]()
       {
         app::ExportOpenSeesOptions options;
-        options.source   = *source;
-        options.output   = *out;
-        options.settings = settings();
+        options.lumped_scene = *lumped_scene;
+        options.source       = *source;
+        options.output       = *out;
+        options.settings     = settings();
         base::logger().info("{}: export-opensees {}", base::version_line(), *source);
         app::run_export_opensees(options);
       });

@@ -110,7 +110,25 @@ namespace kimp::python
         cd["dissipated_energy"]     = contact.dissipated_energy;
         contacts.append(cd);
       }
-      d["contacts"]                  = contacts;
+      d["contacts"] = contacts;
+      py::list walls;
+      for (const app::YieldingWallLimits &w : c.yielding_walls)
+      {
+        const lumped::ContactResult &part = r.contacts[w.contact];
+        py::dict                     wd;
+        wd["name"]                  = w.wall;
+        wd["peak_force"]            = part.peak_force;
+        wd["capacity"]              = w.capacity;
+        wd["peak_resistance"]       = part.peak_resistance;
+        wd["peak_displacement"]     = part.peak_deformation;
+        wd["residual_displacement"] = part.permanent_indentation;
+        wd["failure_displacement"]  = w.failure_displacement;
+        wd["failure_time"]          = part.failure_time ? py::cast(*part.failure_time) : py::none();
+        wd["plastic_work"]          = part.plastic_work;
+        wd["radiated_work"]         = part.radiated_work;
+        walls.append(wd);
+      }
+      d["walls"]                     = walls;
       const lumped::EnergyBalance &e = r.energy;
       py::dict                     ed;
       ed["initial"]            = e.initial;
@@ -121,6 +139,8 @@ namespace kimp::python
       ed["hysteretic"]         = e.hysteretic;
       ed["contact_work"]       = e.contact_work;
       ed["impact_dissipated"]  = e.impact_dissipated;
+      ed["wall_plastic"]       = e.wall_plastic;
+      ed["wall_radiated"]      = e.wall_radiated;
       ed["relative_error"]     = e.relative_error;
       ed["max_relative_error"] = e.max_relative_error;
       d["energy"]              = ed;

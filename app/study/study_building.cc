@@ -9,6 +9,7 @@
 
 #include "app/lumped_run.h"
 #include "app/study/study_internal.h"
+#include "app/study/wall_capacity.h"
 #include "base/errors.h"
 #include "base/format.h"
 #include "base/logging.h"
@@ -52,6 +53,38 @@ namespace kimp::app::study_internal
         run.amplification_drift =
           run.max_interstorey_drift / std::max(without_walls->max_interstorey_drift(), 1e-300);
       }
+    }
+
+    /// One warning for the building runs whose peak impact force exceeds the wall's capacity
+    /// estimate: how many, and the largest ratio with its run.
+    void log_capacity_exceeded(const std::vector<StudyBuildingRun> &runs)
+    {
+      std::size_t             n = 0, n_walled = 0;
+      const StudyBuildingRun *worst = nullptr;
+      for (const StudyBuildingRun &r : runs)
+      {
+        if (!(r.wall_capacity > 0.0) || r.status != "ok")
+          continue;
+        ++n_walled;
+        if (r.peak_impact_force <= r.wall_capacity)
+          continue;
+        ++n;
+        if (!worst ||
+            r.peak_impact_force / r.wall_capacity > worst->peak_impact_force / worst->wall_capacity)
+          worst = &r;
+      }
+      if (worst)
+        logger().warn("{} of {} building runs put more than the wall's capacity estimate "
+                      "(M_p + P_p H/3)/h_c x W on a wall (linear walls do not yield); largest: "
+                      "{} times {} MN, record {}, H = {} m, {} (building_response.csv "
+                      "peak_force_over_capacity)",
+                      n,
+                      n_walled,
+                      base::sig(worst->peak_impact_force / worst->wall_capacity),
+                      base::sig(worst->wall_capacity / 1e6),
+                      worst->record,
+                      base::sig(worst->wall_height),
+                      worst->law);
     }
 
     /// The height of the k table nearest to `wall_height` with a Kelvin-Voigt fit (or null).
@@ -209,6 +242,8 @@ namespace kimp::app::study_internal
           }
           run.exponent = (*fit)->exponent.value;
           run.k_total  = (*fit)->stiffness.value * scene.fit.width;
+          run.wall_capacity =
+            wall_capacity_estimate(scene.fem, h.wall_height).per_metre * scene.fit.width;
           const LumpedCaseResult done =
             run_lumped_case(h.name + "_" + law,
                             walled_scene(base, gap, law, run.k_total, scene.fit.cor),
@@ -223,6 +258,7 @@ namespace kimp::app::study_internal
       }
     }
     errors.log();
+    log_capacity_exceeded(runs);
     return runs;
   }
 

@@ -38,6 +38,8 @@ namespace kimp::app::study_internal
         .number("peak_floor_acceleration", "m/s^2")
         .number("peak_interstorey_drift", "cm")
         .number("peak_impact_force", "kN")
+        .number("wall_capacity_estimate", "kN")
+        .number("peak_force_over_capacity", "1")
         .integer("n_impacts")
         .number("permanent_indentation", "mm")
         .number("amplification_base_acceleration", "1")
@@ -62,6 +64,8 @@ namespace kimp::app::study_internal
                    r.max_floor_acceleration,
                    r.max_interstorey_drift * 100,
                    r.peak_impact_force / 1e3,
+                   r.wall_capacity > 0.0 ? r.wall_capacity / 1e3 : nan,
+                   r.wall_capacity > 0.0 ? r.peak_impact_force / r.wall_capacity : nan,
                    static_cast<std::int64_t>(r.n_impacts),
                    r.permanent_indentation * 1e3,
                    r.amplification_base_acc,
@@ -276,6 +280,7 @@ namespace kimp::app::study_internal
         .number("floor_acceleration", "m/s^2")
         .number("interstorey_drift", "m")
         .number("impact_force", "N")
+        .number("wall_capacity_estimate", "N")
         .number("n_impacts", "1")
         .number("permanent_indentation", "m")
         .number("amplification_base_acceleration", "1")
@@ -292,6 +297,7 @@ namespace kimp::app::study_internal
                                 r->max_floor_acceleration,
                                 r->max_interstorey_drift,
                                 r->peak_impact_force,
+                                r->wall_capacity,
                                 static_cast<double>(r->n_impacts),
                                 r->permanent_indentation,
                                 r->amplification_base_acc,

@@ -237,11 +237,21 @@ namespace kimp::app::study_internal
           "Isolated building of docs/physics.md §3 with moat walls on both sides, gap "
           "from the no-wall peak isolation displacement; modified Kelvin-Voigt with k_KV, "
           "Jankowski and the hysteretic law with k_Jankowski.\n\n"
+          "The walls are linear: the impact force is read against the wall's static collapse "
+          "load estimate (M_p + P_p H/3)/h_c × W (docs/physics.md §2 \"Yielding moat wall\", "
+          "capacity estimate); a ratio above 1 (**bold**) is a force the wall cannot carry.\n\n"
           "| record | H (m) | law | gap (cm) | base acc. (m/s²) | top acc. (m/s²) | drift (cm) | "
-          "impact force (kN) | impacts | top acc. amplification | status |\n"
-          "|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "impact force (kN) | wall capacity est. (kN) | force / capacity | impacts | top acc. "
+          "amplification | status |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const StudyBuildingRun &r : result.building)
-      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+    {
+      const bool        capacity   = r.wall_capacity > 0.0;
+      const double      ratio      = capacity ? r.peak_impact_force / r.wall_capacity : 0.0;
+      const std::string ratio_text = !capacity   ? "-" :
+                                     ratio > 1.0 ? "**" + readable(ratio) + "**" :
+                                                   readable(ratio);
+      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
                         r.record,
                         r.law == "none" ? "-" : readable(r.wall_height),
                         r.law,
@@ -250,9 +260,12 @@ namespace kimp::app::study_internal
                         readable(r.top_acceleration),
                         readable(r.max_interstorey_drift * 100),
                         readable(r.peak_impact_force / 1e3),
+                        capacity ? readable(r.wall_capacity / 1e3) : std::string("-"),
+                        ratio_text,
                         r.n_impacts,
                         readable(r.amplification_top_acc),
                         r.status);
+    }
     md += "\nData: [building_response.csv](building_response.csv), study.h5 "
           "`/building/<record>/<law>`.\n\n";
     if (charts)

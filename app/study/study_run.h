@@ -91,6 +91,8 @@ namespace kimp::app
     double      max_floor_acceleration = 0.0; ///< over the superstructure floors, m/s²
     double      max_interstorey_drift  = 0.0; ///< m
     double      peak_impact_force      = 0.0; ///< N, over both walls
+    /// The wall's static collapse load estimate × W, N (app/study/wall_capacity.h; 0: none).
+    double      wall_capacity          = 0.0;
     std::size_t n_impacts              = 0;
     double      permanent_indentation  = 0.0; ///< m, larger wall
     double      amplification_base_acc = 1.0; ///< peak / peak without walls

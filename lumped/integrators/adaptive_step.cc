@@ -288,6 +288,8 @@ namespace kimp::lumped
         s.delta.assign(nc, 0.0);
         s.cf.assign(nc, 0.0);
         s.active.assign(nc, 0);
+        for (std::size_t c = 0; c < nc; ++c) // permanent pairs: in contact from the start
+          s.active[c] = s.laws[c]->in_contact() ? 1 : 0;
         s.closing.assign(nc, 0.0);
         s.rate_prev.assign(nc, 0.0);
         s.called.assign(nc, 1); // the virgin state is current: nothing to catch up
@@ -397,7 +399,7 @@ namespace kimp::lumped
           if constexpr (Fast)
             s.closing[c] = (s.dp[c] - s.dpp[c]) * s.ih_prev;
           if (record)
-            rec_.contact_force(c, force, s.t, delta);
+            rec_.contact_force(c, force, delta, s.t);
           if (cp.left_dof >= 0)
             s.f(cp.left_dof) += force;
           if (cp.right_dof >= 0)

@@ -205,7 +205,10 @@ namespace kimp::lumped
     // Not armed at first: called_prev starts at 1, so the first step takes the full path.
     gap_skip.assign(nc, -std::numeric_limits<double>::infinity());
     cf.assign(nc, 0.0);
+    // A permanent pair's law is in contact from the start: evaluated at every step.
     active.assign(nc, 0);
+    for (std::size_t q = 0; q < nc; ++q)
+      active[q] = laws[q]->in_contact() ? 1 : 0;
     called_prev.assign(nc, 1);
     delta_prev.assign(nc, 0.0);
     delta_prev2.assign(nc, 0.0);
@@ -245,7 +248,7 @@ namespace kimp::lumped
         v0g[static_cast<std::size_t>(left[q])] - v0g[static_cast<std::size_t>(right[q])];
       delta_prev[q]  = delta - dt * rate;
       delta_prev2[q] = delta - 2.0 * dt * rate;
-      if (delta > 0.0)
+      if (delta > 0.0 || active[q])
       {
         const double fq = laws[q]->set_trial(delta, rate).force;
         laws[q]->revert_to_last_commit();

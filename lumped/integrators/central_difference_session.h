@@ -299,7 +299,7 @@ namespace kimp::lumped
         cf_[c] = force;
         f_[L] += force;
         f_[R] -= force;
-        s_.rec.contact_force(c, force, t, delta);
+        s_.rec.contact_force(c, force, delta, t);
       }
 
     private:

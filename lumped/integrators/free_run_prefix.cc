@@ -267,6 +267,10 @@ namespace kimp::lumped
   {
     const PoundingModel &m      = with_contacts.model();
     const int            ground = static_cast<int>(m.n_dofs());
+    // A permanent pair acts from the start: its state is not the free run's.
+    for (const ContactPair &c : m.contacts())
+      if (c.permanent)
+        return 0;
     // The last point before the first interval in which some contact may close.
     for (std::size_t p = 0; p + 1 < points_.size(); ++p)
     {

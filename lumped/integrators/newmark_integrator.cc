@@ -191,7 +191,7 @@ namespace kimp::lumped
           w_contact_ += 0.5 * (f_prev_[c] + force[c]) * (delta - delta_prev_[c]);
           f_prev_[c]     = force[c];
           delta_prev_[c] = delta;
-          rec_.contact_force(c, force[c], t, delta);
+          rec_.contact_force(c, force[c], delta, t);
         }
       }
 

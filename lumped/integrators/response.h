@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,17 @@ namespace kimp::lumped
     std::vector<ImpactEvent> impacts;
     double                   permanent_indentation = 0.0; ///< m, at the end (law's value)
     double                   dissipated_energy     = 0.0; ///< J, the law's own bookkeeping
+    /// A permanent pair (a yielding wall's backfill part, ContactPair::permanent): no impacts or
+    /// pulses; its permanent_indentation is the wall's permanent set.
+    bool   permanent        = false;
+    double peak_deformation = 0.0; ///< max δ over the run, m (a wall part: peak w)
+    /// The time δ first exceeded the pair's failure_deformation, s (unset: never).
+    std::optional<double> failure_time;
+    double                plastic_work = 0.0; ///< a wall part: W_p, J (0 otherwise)
+    /// A wall part: the largest resistance R without its dashpot, N (0 otherwise); peak_force
+    /// is R + c_r·ẇ.
+    double peak_resistance = 0.0;
+    double radiated_work   = 0.0; ///< a wall part: ∫c_r·ẇ dw, J (0 otherwise)
     /// The contact force at full rate: every step at which it is non-zero (the impact pulses,
     /// unlike the decimated history which can miss their peaks), s and N.
     std::vector<double> pulse_time;
@@ -52,8 +64,12 @@ namespace kimp::lumped
     double viscous           = 0.0; ///< ∫ u̇ᵀ·C·u̇ dt
     double hysteretic        = 0.0; ///< isolator
     double contact_work      = 0.0; ///< W_contact
-    double impact_dissipated = 0.0; ///< Σ laws' dissipated_energy()
-    double relative_error    = 0.0; ///< at the end, see residual_relative_error()
+    double impact_dissipated = 0.0; ///< Σ impact laws' dissipated_energy()
+    /// Σ over yielding walls' backfill parts of the plastic and the radiated work, J (both are
+    /// in contact_work; with impact_dissipated and the stored energies they make it up).
+    double wall_plastic   = 0.0;
+    double wall_radiated  = 0.0;
+    double relative_error = 0.0; ///< at the end, see residual_relative_error()
     /// max over time of the absolute residual divided by the largest energy supplied during the
     /// run, max_t (E_0 + W_in) (checked at the output samples, every 512 steps and the end)
     double max_relative_error = 0.0;

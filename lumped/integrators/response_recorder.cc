@@ -5,6 +5,8 @@
 #include <cmath>
 #include <utility>
 
+#include "lumped/laws/wall_backfill_law.h"
+
 namespace kimp::lumped
 {
   void ResponseRecorder::start(const PoundingModel &model,
@@ -24,10 +26,14 @@ namespace kimp::lumped
     for (const ContactPair &cp : model.contacts())
     {
       ContactResult cr;
-      cr.name = cp.name;
+      cr.name      = cp.name;
+      cr.permanent = cp.permanent;
       r_.contacts.push_back(std::move(cr));
     }
     peak_force_.assign(r_.contacts.size(), 0.0);
+    failure_deformation_.clear();
+    for (const ContactPair &cp : model.contacts())
+      failure_deformation_.push_back(cp.failure_deformation);
     max_supplied_   = 0.0;
     max_residual_   = 0.0;
     isolator_force_ = 0.0;
@@ -90,13 +96,24 @@ namespace kimp::lumped
     e.relative_error     = e.residual_relative_error();
     e.max_relative_error = max_residual_ / std::max(max_supplied_, 1e-300);
     e.impact_dissipated  = 0.0;
+    e.wall_plastic       = 0.0;
+    e.wall_radiated      = 0.0;
     for (std::size_t q = 0; q < laws.size(); ++q)
     {
       ContactResult &cr        = out.contacts[q];
       cr.peak_force            = peak_force_[q];
       cr.permanent_indentation = laws[q]->permanent_indentation();
       cr.dissipated_energy     = laws[q]->dissipated_energy();
-      e.impact_dissipated += cr.dissipated_energy;
+      if (const auto *wall = dynamic_cast<const WallBackfillLaw *>(laws[q].get()))
+      {
+        cr.plastic_work    = wall->plastic_work();
+        cr.peak_resistance = wall->peak_resistance();
+        cr.radiated_work   = wall->radiated_work();
+        e.wall_plastic += cr.plastic_work;
+        e.wall_radiated += cr.radiated_work;
+      }
+      else
+        e.impact_dissipated += cr.dissipated_energy;
     }
   }
 
@@ -104,8 +121,10 @@ namespace kimp::lumped
   {
     std::vector<ContactResult> contacts   = std::move(r_.contacts);
     std::vector<double>        peak_force = std::move(peak_force_);
+    std::vector<double>        failure    = std::move(failure_deformation_);
     *this                                 = prefix;
     r_.contacts                           = std::move(contacts);
     peak_force_                           = std::move(peak_force);
+    failure_deformation_                  = std::move(failure);
   }
 } // namespace kimp::lumped

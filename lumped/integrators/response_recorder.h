@@ -39,22 +39,30 @@ namespace kimp::lumped
     const Response &response() const { return r_; }
 
     /// Contact `c` entered contact at `t` (s) with closing rate `rate` (m/s).
+    /// Not recorded for a permanent pair (ContactPair::permanent).
     void impact(const std::size_t c, const double t, const double rate)
     {
-      r_.contacts[c].impacts.push_back({t, rate});
+      if (!r_.contacts[c].permanent)
+        r_.contacts[c].impacts.push_back({t, rate});
     }
 
-    /// Force of contact `c` at a step at time `t` (s), N, at the deformation `delta` (m): its
-    /// maximum is the peak force, and non-zero forces are kept at full rate with their
-    /// deformation (ContactResult::pulse_time/pulse_force/pulse_deformation).
-    void contact_force(const std::size_t c, const double force, const double t, const double delta)
+    /// Force of contact `c` (N) at deformation δ (m) at a step at time `t` (s): the maxima of
+    /// both are the peak force and deformation, the first δ beyond the pair's
+    /// failure_deformation gives its failure time, and non-zero forces of impact contacts are
+    /// kept at full rate with their deformation
+    /// (ContactResult::pulse_time/pulse_force/pulse_deformation).
+    void contact_force(const std::size_t c, const double force, const double delta, const double t)
     {
-      peak_force_[c] = std::max(peak_force_[c], force);
-      if (force != 0.0)
+      peak_force_[c]      = std::max(peak_force_[c], force);
+      ContactResult &cr   = r_.contacts[c];
+      cr.peak_deformation = std::max(cr.peak_deformation, delta);
+      if (delta > failure_deformation_[c] && !cr.failure_time)
+        cr.failure_time = t;
+      if (force != 0.0 && !cr.permanent)
       {
-        r_.contacts[c].pulse_time.push_back(t);
-        r_.contacts[c].pulse_force.push_back(force);
-        r_.contacts[c].pulse_deformation.push_back(delta);
+        cr.pulse_time.push_back(t);
+        cr.pulse_force.push_back(force);
+        cr.pulse_deformation.push_back(delta);
       }
     }
 
@@ -185,6 +193,7 @@ namespace kimp::lumped
 
     Response            r_;
     std::vector<double> peak_force_;
+    std::vector<double> failure_deformation_; ///< per contact, m (ContactPair)
     double              max_supplied_   = 0.0;
     double              max_residual_   = 0.0;
     double              isolator_force_ = 0.0;

@@ -2,6 +2,7 @@
 // floor-to-floor contacts with neighbours, bumpers (thesis ch. 4-6, docs/physics.md §2).
 #include "lumped/structure/pounding_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -60,6 +61,8 @@ namespace kimp::lumped
         msg << where << ".damping_ratio = " << wall.damping_ratio << " (must be in [0, 1))";
         throw std::invalid_argument(msg.str());
       }
+      if (wall.flexible && wall.yielding)
+        throw std::invalid_argument(where + ": flexible and yielding exclude each other");
       if (!(wall.bumper_thickness >= 0.0 && wall.bumper_thickness < wall.gap))
       {
         std::ostringstream msg;
@@ -140,9 +143,10 @@ namespace kimp::lumped
         // a flexible wall then differs from the rigid one by its compliance and inertia only,
         // not by the law's dashpot constant (docs/physics.md §2 "Flexible moat wall"). The
         // stable step needs the bodies' own masses.
-        c.effective_mass = effective_mass(mass, wall.flexible ? wall.oscillator_mass() : wall.mass);
-        c.law            = make_law(wall.law, effective_mass(mass, wall.mass), where);
-        if (wall.flexible)
+        c.effective_mass =
+          effective_mass(mass, wall.has_dof() ? wall.oscillator_mass() : wall.mass);
+        c.law = make_law(wall.law, effective_mass(mass, wall.mass), where);
+        if (wall.has_dof())
           flexible_contacts.emplace_back(contacts_.size(), &wall, right);
         contacts_.push_back(std::move(c));
       }
@@ -192,12 +196,22 @@ namespace kimp::lumped
 
     // Flexible walls: one fixed-base single-storey block each (stiffness-proportional damping
     // gives exactly ζ for one mode), no storey (its deflection is not an interstorey drift).
+    // Yielding walls: a block of one DOF without stiffness or damping, held by the permanent
+    // pair of its wall-and-backfill part.
     for (const auto &[wall, where] :
          {std::pair<const std::optional<MoatWall> *, const char *>{&scene.left_wall, "left_wall"},
           {&scene.right_wall, "right_wall"}})
     {
-      if (!*wall || !(*wall)->flexible)
+      if (!*wall || !(*wall)->has_dof())
         continue;
+      if ((*wall)->yielding)
+      {
+        const int dof = append_yielding_wall(**wall, where, where == std::string("right_wall"));
+        for (const auto &[index, w, right] : flexible_contacts)
+          if (w == &**wall)
+            (right ? contacts_[index].right_dof : contacts_[index].left_dof) = dof;
+        continue;
+      }
       ShearBuilding sdof;
       sdof.name                    = where;
       sdof.floor_masses            = {(*wall)->oscillator_mass()};
@@ -211,6 +225,38 @@ namespace kimp::lumped
           (right ? contacts_[index].right_dof : contacts_[index].left_dof) = dof;
     }
     check();
+  }
+
+  int PoundingModel::append_yielding_wall(const MoatWall    &wall,
+                                          const std::string &where,
+                                          bool               right)
+  {
+    const int dof = static_cast<int>(masses_.size());
+    masses_.push_back(wall.oscillator_mass());
+    stiffness_.diag.push_back(0.0);
+    damping_.diag.push_back(0.0);
+    stiffness_.upper.push_back(0.0);
+    damping_.upper.push_back(0.0);
+    BuildingBlock block;
+    block.name      = where;
+    block.first_dof = dof;
+    block.n_dofs    = 1;
+    buildings_.push_back(std::move(block));
+
+    WallBackfillParams params = *wall.yielding;
+    params.mass               = wall.oscillator_mass();
+    ContactPair c;
+    c.name = where + "_backfill";
+    // w = the wall's displacement into its backfill: −u_wall on the left, u_wall on the right.
+    c.left_dof            = right ? dof : -1;
+    c.right_dof           = right ? -1 : dof;
+    c.gap                 = 0.0;
+    c.effective_mass      = params.mass;
+    c.law                 = std::make_shared<const WallBackfillLaw>(params);
+    c.permanent           = true;
+    c.failure_deformation = params.failure_displacement;
+    contacts_.push_back(std::move(c));
+    return dof;
   }
 
   PoundingModel::PoundingModel(std::vector<double>             masses,
@@ -281,7 +327,10 @@ namespace kimp::lumped
   PoundingModel PoundingModel::without_contacts() const
   {
     PoundingModel copy = *this;
-    copy.contacts_.clear();
+    copy.contacts_.erase(std::remove_if(copy.contacts_.begin(),
+                                        copy.contacts_.end(),
+                                        [](const ContactPair &c) { return !c.permanent; }),
+                         copy.contacts_.end());
     return copy;
   }
 } // namespace kimp::lumped

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -13,6 +14,7 @@
 #include "lumped/isolators/isolator.h"
 #include "lumped/laws/force_law.h"
 #include "lumped/laws/force_law_factory.h"
+#include "lumped/laws/wall_backfill_law.h"
 #include "lumped/structure/shear_building.h"
 #include "lumped/structure/tridiagonal_matrix.h"
 
@@ -44,6 +46,12 @@ namespace kimp::lumped
    * | flexible         | -    |                | false: rigid; true: SDOF wall                |
    * | stiffness        | N/m  | > 0            | SDOF wall: stiffness to the ground           |
    * | damping_ratio    | -    | [0, 1)         | SDOF wall: ζ (c = 2ζ·sqrt(k·m))              |
+   * | yielding         | -    | set or unset   | yielding wall: its wall-and-backfill part    |
+   *
+   * A yielding wall (docs/physics.md §2 "Yielding moat wall") is a DOF of mass `sdof_mass`
+   * (unset: `mass`) held to the ground by a WallBackfillLaw (`yielding`, its `mass` set by the
+   * model) instead of a linear spring: the impact law is the local contact part in series with
+   * the wall-and-backfill part. `flexible` and `yielding` exclude each other.
    */
   struct MoatWall
   {
@@ -57,6 +65,11 @@ namespace kimp::lumped
     double          damping_ratio = 0.05;
     /// Flexible wall: the SDOF's mass, kg (unset: `mass`); not used by the law's m_eff.
     std::optional<double> sdof_mass;
+    /// Yielding wall: the wall-and-backfill part (its `mass` is set to oscillator_mass()).
+    std::optional<WallBackfillParams> yielding;
+
+    /// True for a wall with a DOF of its own (flexible or yielding).
+    bool has_dof() const { return flexible || yielding.has_value(); }
 
     /// The mass of the wall's DOF, kg: `sdof_mass` if set, else `mass`.
     double oscillator_mass() const { return sdof_mass.value_or(mass); }
@@ -77,8 +90,9 @@ namespace kimp::lumped
   /**
    * A pounding configuration (plain data). The main building is usually isolated; walls act at
    * its DOF 0 (and at DOF 1 too with `basement`, the wall reaching floor 1, same gap). DOFs:
-   * the main building, then the neighbours, then one DOF per flexible wall (left first), each a
-   * block of its own named after the wall ("left_wall") without a storey.
+   * the main building, then the neighbours, then one DOF per flexible or yielding wall (left
+   * first), each a block of its own named after the wall ("left_wall") without a storey. A
+   * yielding wall adds the permanent pair "<wall>_backfill" between its DOF and the ground.
    */
   struct PoundingScene
   {
@@ -106,6 +120,12 @@ namespace kimp::lumped
     /// the wall mass `mass` (MoatWall), this one the SDOF's.
     double                          effective_mass = 0.0;
     std::shared_ptr<const ForceLaw> law; ///< prototype; integrators clone it per run
+    /// A permanent connection, not an impact contact (a yielding wall's backfill part): its law
+    /// is in contact from the start and evaluated at every step; no impacts or pulses are
+    /// recorded for it, and without_contacts() keeps it.
+    bool permanent = false;
+    /// The pair has failed once δ exceeds this, m (the time is recorded; +inf: never).
+    double failure_deformation = std::numeric_limits<double>::infinity();
   };
 
   /// A superstructure storey between `lower_dof` (−1: ground) and `upper_dof`.
@@ -159,11 +179,14 @@ namespace kimp::lumped
     Eigen::MatrixXd initial_stiffness_matrix() const;
     /// Modes of (K with isolator K1, M) of the whole system, contacts open.
     ModalProperties modes() const;
-    /// The same system without any contact (companion run for amplification factors).
+    /// The same system without any impact contact (companion run for amplification factors);
+    /// permanent pairs stay.
     PoundingModel without_contacts() const;
 
   private:
     void check() const;
+    /// Appends the DOF of a yielding wall and its permanent backfill pair; returns the DOF.
+    int append_yielding_wall(const MoatWall &wall, const std::string &where, bool right);
 
     std::vector<double>             masses_;
     TridiagonalMatrix               stiffness_;

@@ -80,6 +80,35 @@ class Contact:
 
 
 @dataclass
+class Wall:
+    """A yielding moat wall (docs/physics.md §2 "Yielding moat wall"): peak force of its
+    wall-and-backfill part (resistance and dashpot), its peak resistance without the dashpot and
+    its capacity (N), peak and residual (permanent set) displacement
+    into the backfill and the failure limit (m), the time it passed that limit (s; None: it did
+    not fail), its plastic and radiated work (J)."""
+
+    name: str
+    peak_force: float
+    capacity: float
+    peak_resistance: float
+    peak_displacement: float
+    residual_displacement: float
+    failure_displacement: float
+    failure_time: Optional[float]
+    plastic_work: float
+    radiated_work: float
+
+    @property
+    def failed(self):
+        return self.failure_time is not None
+
+    @property
+    def peak_resistance_ratio(self):
+        """Peak resistance (without the dashpot) over capacity."""
+        return self.peak_resistance / self.capacity
+
+
+@dataclass
 class Isolator:
     """The isolator of the main building: its kind ("linear", "bilinear", "friction_pendulum",
     "bouc_wen"), peak force (max |f_iso|, N) and the energy it dissipated (J)."""
@@ -104,6 +133,8 @@ class Energy:
     impact_dissipated: float
     relative_error: float
     max_relative_error: float
+    wall_plastic: float = 0.0
+    wall_radiated: float = 0.0
 
 
 @dataclass(repr=False)
@@ -132,6 +163,7 @@ class Result:
     storey_upper_dofs: List[int]
     companion_peaks: Optional[Peaks] = None
     isolator: Optional[Isolator] = None
+    walls: List[Wall] = field(default_factory=list)
 
     @property
     def ok(self):
@@ -195,7 +227,8 @@ def _result(d):
         pga=d["pga"], dt_critical=d["dt_critical"], governing=d["governing"],
         wall_time=d["wall_time"], modes=d["modes"], contact_names=d["contact_names"],
         storey_upper_dofs=d["storey_upper_dofs"], companion_peaks=peaks(d.get("companion_peaks")),
-        isolator=Isolator(**d["isolator"]) if "isolator" in d else None)
+        isolator=Isolator(**d["isolator"]) if "isolator" in d else None,
+        walls=[Wall(**w) for w in d.get("walls", [])])
 
 
 def _scene(scene, kind):
@@ -510,6 +543,6 @@ def study(scene, output=None):
     return _run_into(_kimp.run_study, _scene(scene, "study"), output, "kimp-study-", "study.h5")
 
 
-__all__ = ["Peaks", "History", "Contact", "Energy", "Result", "Results", "lumped", "GroundMotion",
+__all__ = ["Peaks", "History", "Contact", "Wall", "Energy", "Result", "Results", "lumped", "GroundMotion",
            "ground_motion", "Collision", "collide", "CorRow", "cor_table", "Parameter",
            "FitResult", "fit", "fem", "study"]

@@ -339,6 +339,58 @@ TEST(LumpedScene, FlexibleWallSdofMassIsNotTheLawsWallMass)
             std::string::npos);
 }
 
+TEST(LumpedScene, YieldingWallsTakeFirstGuessesPerMetreTimesWidth)
+{
+  // Caltrans-style backfill spring at h = 5.5 ft = 1.6764 m: (5.5·5.5 + 20) kip/in per ft and
+  // 5.5·5.5^2.5/(1 + 2.37·5.5) kip per ft, i.e. 50.25 kip/in/ft and 27.80 kip/ft, per metre:
+  constexpr double kip = 4448.2216152605, ft = 0.3048, in = 0.0254;
+  const double     k = 50.25 * kip / in / ft;
+  const double     f = 5.5 * std::pow(5.5, 2.5) / (1.0 + 2.37 * 5.5) * kip / ft;
+  EXPECT_NEAR(k, 28.9e6, 0.001 * 28.9e6); // the 28.9 kN/mm/m of a 1.68 m backwall
+  const LumpedScene scene =
+    load("walls:\n  left:\n    sdof_mass: \"60 t\"\n    yielding:\n      width: \"20 m\"\n"
+         "      height: \"1.6764 m\"\n");
+  const auto pounding = make_pounding_scene(scene);
+  ASSERT_TRUE(pounding.left_wall && pounding.left_wall->yielding);
+  EXPECT_FALSE(pounding.right_wall->yielding);
+  const kimp::lumped::WallBackfillParams &p = *pounding.left_wall->yielding;
+  EXPECT_NEAR(p.stiffness, 20.0 * k, exact_tolerance * 20.0 * k);
+  EXPECT_NEAR(p.capacity, 20.0 * f, exact_tolerance * 20.0 * f);
+  EXPECT_EQ(p.unloading_stiffness, p.stiffness);
+  EXPECT_EQ(p.tension_capacity, p.capacity);
+  EXPECT_NEAR(p.radiation_damping, 1800.0 * 200.0 * 1.6764 * 20.0, exact_tolerance * 1.2e7);
+  EXPECT_NEAR(p.failure_displacement, 0.16764, exact_tolerance);
+  EXPECT_EQ(p.envelope, kimp::lumped::WallEnvelope::bilinear);
+  const kimp::lumped::PoundingModel model(pounding);
+  ASSERT_EQ(model.n_dofs(), 6u);
+  EXPECT_NEAR(model.masses()[5], 60e3, exact_tolerance * 60e3);
+  EXPECT_EQ(model.contacts().back().name, "left_wall_backfill");
+
+  // Keys given explicitly, per metre.
+  const LumpedScene given =
+    load("walls:\n  right:\n    yielding:\n      width: \"10 m\"\n      envelope: hyperbolic\n"
+         "      stiffness: \"20 kN/mm/m\"\n      capacity: \"300 kN/m\"\n      failure_ratio: 0.7\n"
+         "      unloading_stiffness: \"40 kN/mm/m\"\n      tension_capacity: \"0 kN/m\"\n"
+         "      radiation_damping: \"150 kN*s/m^2\"\n      failure_displacement: \"8 cm\"\n");
+  const kimp::lumped::WallBackfillParams q = *make_pounding_scene(given).right_wall->yielding;
+  EXPECT_EQ(q.envelope, kimp::lumped::WallEnvelope::hyperbolic);
+  EXPECT_NEAR(q.stiffness, 200e6, exact_tolerance * 200e6);
+  EXPECT_NEAR(q.capacity, 3e6, exact_tolerance * 3e6);
+  EXPECT_NEAR(q.unloading_stiffness, 400e6, exact_tolerance * 400e6);
+  EXPECT_EQ(q.tension_capacity, 0.0);
+  EXPECT_NEAR(q.radiation_damping, 1.5e6, exact_tolerance * 1.5e6);
+  EXPECT_NEAR(q.failure_displacement, 0.08, exact_tolerance);
+
+  EXPECT_NE(error_of("walls:\n  left:\n    flexible: true\n    yielding:\n      height: \"1 m\"\n")
+              .find("walls.left.flexible = true: must be false for a yielding wall"),
+            std::string::npos);
+  EXPECT_NE(error_of("walls:\n  left:\n    yielding:\n      stiffness: \"20 kN/mm/m\"\n"
+                     "      unloading_stiffness: \"10 kN/mm/m\"\n")
+              .find("walls.left.yielding.unloading_stiffness = 10 kN/mm/m: must be >= "
+                    "stiffness = 20 kN/mm/m"),
+            std::string::npos);
+}
+
 TEST(LumpedScene, FrictionPendulumAndBoucWenIsolators)
 {
   // Friction pendulum: W = g·Σm unless given; initial stiffness k_init + W/R.

@@ -222,3 +222,85 @@ TEST(LumpedCli, PrintDefaultsReadsBackToTheDefaults)
   const LumpedScene back = kimp::io::load_scene_text<LumpedScene>(run.out, "defaults");
   EXPECT_EQ(kimp::io::to_json_text(back), kimp::io::to_json_text(LumpedScene{}));
 }
+
+TEST(LumpedCli, YieldingWallsReportForceAgainstCapacityDisplacementsAndFailure)
+{
+  // Both walls yielding, 1 MN per wall (50 kN/m over 20 m): the building's impacts push them
+  // back; the left one may go 1 cm before it counts as failed, the right one 1 m.
+  TempDir           dir("e2e_lumped_yielding");
+  const std::string wall  = "    gap: \"4 cm\"\n    sdof_mass: \"50 t\"\n    yielding:\n"
+                            "      width: \"20 m\"\n      capacity: \"50 kN/m\"\n"
+                            "      stiffness: \"10 kN/mm/m\"\n";
+  const std::string scene = "walls:\n  left:\n" + wall +
+                            "      failure_displacement: \"1 cm\"\n  right:\n" + wall +
+                            "      failure_displacement: \"1 m\"\n"
+                            "ground_motion:\n  record: synthetic\n  duration: \"6 s\"\n"
+                            "integration:\n  dt: \"1e-4 s\"\n";
+  const KimpRun run = run_lumped(dir, scene, "yielding.yaml");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const fs::path   out = dir.path() / "out";
+  const Hdf5Reader h5(out / "lumped.h5");
+  ASSERT_TRUE(h5.ok());
+  const nlohmann::json summary = read_json(out / "summary.json");
+  const nlohmann::json c       = summary["cases"][0];
+  ASSERT_EQ(c["walls"].size(), 2u) << c.dump();
+  for (const nlohmann::json &w : c["walls"])
+  {
+    const std::string g =
+      "/lumped/" + c["name"].get<std::string>() + "/walls/" + w["name"].get<std::string>();
+    EXPECT_EQ(h5.doubles(g + "/capacity").at(0), 1e6);
+    EXPECT_EQ(w["capacity"].get<double>(), 1e6);
+    // Pushed to its cap and no farther (no hardening); the dashpot adds to the force.
+    EXPECT_DOUBLE_EQ(w["peak_resistance_ratio"].get<double>(), 1.0) << w.dump();
+    EXPECT_GT(w["peak_force"].get<double>(), w["peak_resistance"].get<double>());
+    EXPECT_EQ(h5.doubles(g + "/peak_force").at(0), w["peak_force"].get<double>());
+    EXPECT_EQ(h5.units(g + "/peak_displacement"), "m");
+    // Beyond the yield displacement 1 MN / 200 MN/m = 5 mm, and a permanent set left behind.
+    EXPECT_GT(w["peak_displacement"].get<double>(), 0.005) << w.dump();
+    EXPECT_GT(w["residual_displacement"].get<double>(), 0.0) << w.dump();
+    EXPECT_LT(w["residual_displacement"].get<double>(), w["peak_displacement"].get<double>());
+  }
+  EXPECT_EQ(c["walls"][0]["name"], "left_wall");
+  const bool left_failed = c["walls"][0]["peak_displacement"].get<double>() > 0.01;
+  EXPECT_EQ(c["walls"][0]["failed"].get<bool>(), left_failed);
+  EXPECT_EQ(c["walls"][0].contains("failure_time"), left_failed);
+  EXPECT_FALSE(c["walls"][1]["failed"].get<bool>());
+  EXPECT_TRUE(left_failed) << "the scene should push the left wall past 1 cm";
+  EXPECT_NE(run.err.find("left_wall failed at t ="), std::string::npos) << run.err;
+  // The walls' plastic and radiated work are in the energy balance, which closes.
+  EXPECT_GT(c["energy"]["wall_plastic"].get<double>(), 0.0);
+  EXPECT_GT(c["energy"]["wall_radiated"].get<double>(), 0.0);
+  EXPECT_LT(c["energy"]["relative_error"].get<double>(), 1e-4);
+}
+
+TEST(LumpedCli, ExportOpenSeesWritesTheYieldingWallsOfALumpedScene)
+{
+  TempDir        dir("e2e_lumped_opensees_walls");
+  const fs::path scene =
+    dir.write("walls.yaml",
+              "walls:\n  right:\n    gap: \"10 cm\"\n    sdof_mass: \"60 t\"\n"
+              "    yielding:\n      width: \"20 m\"\n"
+              "      capacity: \"150 kN/m\"\n      stiffness: \"25 kN/mm/m\"\n");
+  const KimpRun run =
+    run_kimp("-q export-opensees -o os --k-kv \"2496 kN/mm\" --lumped-scene " + scene.string(),
+             dir.path());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string tcl = read_text(dir.path() / "os" / "opensees_walls.tcl");
+  EXPECT_NE(tcl.find("uniaxialMaterial ElasticPPGap 11 500000000 -3000000 0.0 0 damage"),
+            std::string::npos)
+    << tcl;
+  EXPECT_NE(tcl.find("node 1001 0.0 -mass 60000"), std::string::npos) << tcl;
+  EXPECT_NE(read_text(dir.path() / "os" / "opensees_walls.py").find("ops.uniaxialMaterial("),
+            std::string::npos);
+  const nlohmann::json summary = read_json(dir.path() / "os" / "summary.json");
+  EXPECT_EQ(summary["files"].size(), 4u) << summary.dump();
+
+  // A scene without a yielding wall is refused, and nothing is left behind.
+  const fs::path rigid = dir.write("rigid.yaml", "walls:\n  right:\n    gap: \"10 cm\"\n");
+  const KimpRun  none =
+    run_kimp("-q export-opensees -o none --k-kv \"2496 kN/mm\" --lumped-scene " + rigid.string(),
+             dir.path());
+  EXPECT_EQ(none.exit_code, 1);
+  EXPECT_NE(none.err.find("has no yielding wall"), std::string::npos) << none.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "none" / "opensees_impact.tcl"));
+}

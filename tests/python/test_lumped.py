@@ -155,3 +155,29 @@ def test_read_paths_reach_the_datasets_of_a_time_series_and_miss_with_key_error(
         cli["lumped/kv/peaks/displacement/value"]
     with pytest.raises(KeyError, match="members: .*peaks"):
         cli["lumped/kv/nope"]
+
+
+def test_yielding_walls_equal_the_cli(tmp_path):
+    wall = {"gap": "4 cm", "sdof_mass": "50 t",
+            "yielding": {"width": "20 m", "capacity": "50 kN/m", "stiffness": "10 kN/mm/m",
+                         "failure_displacement": "1 cm"}}
+    scene = dict(SHORT_SCENE, walls={"left": wall, "right": wall},
+                 ground_motion={"record": "synthetic", "duration": "6 s"},
+                 integration={"dt": "1e-4 s"})
+    scene_file = tmp_path / "yielding.yaml"
+    scene_file.write_text(kimp.Scene.from_dict(scene).to_yaml())
+    run_cli("lumped", scene_file, "-o", tmp_path / "out")
+    group = kimp.read(tmp_path / "out" / "lumped.h5")["lumped"]["default"]
+    r = kimp.lumped(scene_file)
+    assert [w.name for w in r.walls] == ["left_wall", "right_wall"]
+    assert any(w.peak_resistance_ratio >= 1.0 for w in r.walls), "the scene is meant to yield"
+    for w in r.walls:
+        g = group["walls"][w.name]
+        assert w.peak_force == g["peak_force"] and w.capacity == g["capacity"] == 1e6
+        assert w.peak_resistance == g["peak_resistance"] <= w.peak_force
+        assert w.peak_displacement == g["peak_displacement"]
+        assert w.residual_displacement == g["residual_displacement"]
+        assert w.failed == bool(g.attrs["failed"])
+        assert w.failed == (w.peak_displacement > 0.01)
+    assert r.energy.wall_plastic > 0 and r.energy.wall_radiated > 0
+    assert r.energy.relative_error < 1e-4

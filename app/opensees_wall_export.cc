@@ -1,0 +1,191 @@
+// Yielding moat walls as OpenSees nodes, materials and zeroLength elements (Tcl and OpenSeesPy).
+#include "app/opensees_wall_export.h"
+
+#include <fmt/format.h>
+#include <optional>
+#include <stdexcept>
+#include <tuple>
+
+#include "app/lumped_scene.h"
+#include "io/summary.h"
+
+namespace kimp::app
+{
+  namespace
+  {
+    std::string number(const double value)
+    {
+      return fmt::format("{:.10g}", value);
+    }
+
+    /// One command in either language: `name` with its arguments (numbers, words or variables).
+    struct Command
+    {
+      std::string              name;
+      std::vector<std::string> arguments;
+    };
+
+    /// A word argument ("damage", "-mat"): quoted in Python, bare in Tcl.
+    std::string word(const std::string &w)
+    {
+      return "'" + w + "'";
+    }
+
+    std::string render(const Command &c, const bool python)
+    {
+      std::string out = python ? "ops." + c.name + "(" : c.name;
+      for (std::size_t i = 0; i < c.arguments.size(); ++i)
+      {
+        std::string a = c.arguments[i];
+        if (!python && a.front() == '\'')
+          a = a.substr(1, a.size() - 2);
+        if (!python && a.rfind("kimp", 0) == 0)
+          a = "$" + a; // a variable
+        out += python ? (i == 0 ? "" : ", ") + a : " " + a;
+      }
+      return out + (python ? ")\n" : "\n");
+    }
+
+    std::string comment(const std::string &text)
+    {
+      return "# " + text + "\n";
+    }
+  } // namespace
+
+  std::vector<OpenSeesWall> opensees_walls(const LumpedScene &scene)
+  {
+    const lumped::PoundingScene pounding = make_pounding_scene(scene);
+    std::vector<OpenSeesWall>   out;
+    for (const auto &[wall, name, right] :
+         {std::tuple<const std::optional<lumped::MoatWall> *, const char *, bool>{
+            &pounding.left_wall,
+            "left_wall",
+            false},
+          {&pounding.right_wall, "right_wall", true}})
+      if (*wall && (*wall)->yielding)
+        out.push_back(
+          {name, right, (*wall)->oscillator_mass(), (*wall)->clear_gap(), *(*wall)->yielding});
+    return out;
+  }
+
+  std::string opensees_walls_text(const std::vector<OpenSeesWall> &walls,
+                                  const bool                       python,
+                                  const int                        first_tag,
+                                  const int                        first_node,
+                                  const int                        first_element)
+  {
+    std::string out;
+    out += comment(
+      fmt::format("kimp export-opensees: yielding moat walls ({})", python ? "OpenSeesPy" : "Tcl"));
+    out += comment("Units: N, m, s, kg. A 1D model (model BasicBuilder -ndm 1 -ndf 1) is assumed;");
+    out +=
+      comment("set kimpBuildingNode to the isolation level's node and kimpImpactMaterial to the");
+    out +=
+      comment("contact part, one of the materials of opensees_impact (its gap = the wall's gap).");
+    out += comment("Compression is negative: capacity and gaps are written negative.");
+    out += python ? "import openseespy.opensees as ops\n\nkimpBuildingNode = 1\n"
+                    "kimpImpactMaterial = 1\n" :
+                    "\nset kimpBuildingNode 1\nset kimpImpactMaterial 1\n";
+    int tag = first_tag, node = first_node, element = first_element;
+    for (const OpenSeesWall &w : walls)
+    {
+      const lumped::WallBackfillParams &p         = w.part;
+      const int                         wall_node = node++, ground_node = node++;
+      const int                         spring = tag++, dashpot = tag++, part = tag++;
+      out += "\n" + comment(fmt::format("{}: wall node {} with the wall's mass {} kg, fixed ground "
+                                        "node {}; the contact part acts across a gap of {} m",
+                                        w.name,
+                                        wall_node,
+                                        number(w.mass),
+                                        ground_node,
+                                        number(w.gap)));
+      out +=
+        render({"node", {std::to_string(wall_node), "0.0", word("-mass"), number(w.mass)}}, python);
+      out += render({"node", {std::to_string(ground_node), "0.0"}}, python);
+      out += render({"fix", {std::to_string(ground_node), "1"}}, python);
+      if (p.envelope == lumped::WallEnvelope::bilinear)
+      {
+        out += comment("wall and backfill: ElasticPPGap E = stiffness, Fy = -capacity, gap 0, "
+                       "eta = hardening_ratio, damage (the set is kept); kimp unloads at "
+                       "unloading_stiffness, OpenSees at E");
+        out += render({"uniaxialMaterial",
+                       {word("ElasticPPGap"),
+                        std::to_string(spring),
+                        number(p.stiffness),
+                        number(-p.capacity),
+                        "0.0",
+                        number(p.hardening_ratio),
+                        word("damage")}},
+                      python);
+      }
+      else
+      {
+        out += comment("wall and backfill: HyperbolicGapMaterial Kmax = stiffness, Kur = "
+                       "unloading_stiffness, Rf = failure_ratio, Fult = -capacity, gap 0 (OpenSees "
+                       "warns that a gap of 0 is not negative and keeps it)");
+        out += render({"uniaxialMaterial",
+                       {word("HyperbolicGapMaterial"),
+                        std::to_string(spring),
+                        number(p.stiffness),
+                        number(p.unloading_stiffness),
+                        number(p.failure_ratio),
+                        number(-p.capacity),
+                        "0.0"}},
+                      python);
+      }
+      if (p.tension_capacity > 0.0)
+        out += comment(fmt::format("tension_capacity = {} N (the wall's pull-back) has no "
+                                   "counterpart: the gap materials carry compression only",
+                                   number(p.tension_capacity)));
+      out += comment("radiation dashpot: Viscous C = radiation_damping, alpha = 1, in parallel");
+      out +=
+        render({"uniaxialMaterial",
+                {word("Viscous"), std::to_string(dashpot), number(p.radiation_damping), "1.0"}},
+               python);
+      out += render(
+        {"uniaxialMaterial",
+         {word("Parallel"), std::to_string(part), std::to_string(spring), std::to_string(dashpot)}},
+        python);
+      // Deformation u_j − u_i is negative when closing: into the backfill for the wall part,
+      // towards the wall for the contact part.
+      const std::string building = "kimpBuildingNode";
+      const std::string wn = std::to_string(wall_node), gn = std::to_string(ground_node);
+      out += comment(fmt::format("wall part (wall - ground), then the contact part in series "
+                                 "(building - wall); failure_displacement = {} m is kimp's check",
+                                 number(p.failure_displacement)));
+      out += render({"element",
+                     {word("zeroLength"),
+                      std::to_string(element++),
+                      w.right ? wn : gn,
+                      w.right ? gn : wn,
+                      word("-mat"),
+                      std::to_string(part),
+                      word("-dir"),
+                      "1"}},
+                    python);
+      out += render({"element",
+                     {word("zeroLength"),
+                      std::to_string(element++),
+                      w.right ? building : wn,
+                      w.right ? wn : building,
+                      word("-mat"),
+                      "kimpImpactMaterial",
+                      word("-dir"),
+                      "1"}},
+                    python);
+    }
+    return out;
+  }
+
+  void write_opensees_walls(const std::filesystem::path &scene_file,
+                            const std::filesystem::path &tcl_file,
+                            const std::filesystem::path &python_file)
+  {
+    const std::vector<OpenSeesWall> walls = opensees_walls(io::load_scene<LumpedScene>(scene_file));
+    if (walls.empty())
+      throw std::invalid_argument("export-opensees: " + scene_file.string() +
+                                  " has no yielding wall (walls.<side>.yielding)");
+    io::write_text_atomic(tcl_file, opensees_walls_text(walls, false));
+    io::write_text_atomic(python_file, opensees_walls_text(walls, true));
+  }
+} // namespace kimp::app

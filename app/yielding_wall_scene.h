@@ -1,0 +1,125 @@
+// The `yielding` section of a moat wall in `kimp lumped` scenes (docs/physics.md §2 "Yielding moat
+// wall"): the wall-and-backfill part per metre of wall, its first-guess defaults from a published
+// abutment-backfill curve and the soil's impedance, and its lumped::WallBackfillParams.
+#pragma once
+
+#include <optional>
+
+#include "fit/fitter.h"
+#include "io/scene_io.h"
+#include "lumped/laws/wall_backfill_law.h"
+
+namespace kimp::app
+{
+  /**
+   * The wall-and-backfill part of a yielding wall, per metre of wall (× width for the whole
+   * wall). Keys left null take their first guess from the loaded height h (resolved()):
+   * stiffness and capacity from the Caltrans-style height-dependent abutment backfill spring
+   * (K = w·(5.5h + 20) kip/in, P = w·5.5h^2.5/(1 + 2.37h) kip, w and h in ft, as coded for
+   * ElasticPPGap backfill springs in public OpenSees bridge models; at h = 5.5 ft it gives
+   * 50 kip/in/ft and 5 ksf over the height), the dashpot from the soil's impedance ρ·c·h, the
+   * unloading stiffness equal to the stiffness, the pull-back equal to the capacity, and the
+   * failure limit at 10 % of h.
+   */
+  struct YieldingWallScene
+  {
+    double                width    = fit::thesis_building_width; ///< m
+    double                height   = 1.5;                        ///< loaded height h, m
+    lumped::WallEnvelope  envelope = lumped::WallEnvelope::bilinear;
+    std::optional<double> stiffness; ///< N/m per m
+    std::optional<double> capacity;  ///< N per m
+    double                hardening_ratio = 0.0;
+    double                failure_ratio   = 0.7;
+    std::optional<double> unloading_stiffness;      ///< N/m per m
+    std::optional<double> tension_capacity;         ///< N per m
+    double                soil_density    = 1800.0; ///< kg/m³
+    double                soil_wave_speed = 200.0;  ///< m/s
+    std::optional<double> radiation_damping;        ///< N·s/m per m
+    std::optional<double> failure_displacement;     ///< m
+
+    /// The Caltrans-style first guesses at `height` (per metre): stiffness N/m/m, capacity N/m.
+    double default_stiffness() const;
+    double default_capacity() const;
+
+    /// The engine's parameters of the whole wall (× width), null keys resolved; `mass` is left
+    /// to the model (the wall DOF's mass).
+    lumped::WallBackfillParams resolved() const;
+  };
+
+  template <class Io>
+  void visit(Io &io, YieldingWallScene &s)
+  {
+    io.quantity("width",
+                s.width,
+                "m",
+                "wall length the building hits (k, F × width)",
+                io::Range::positive());
+    io.quantity("height",
+                s.height,
+                "m",
+                "loaded height h of wall and backfill (for the first guesses of null keys)",
+                io::Range::positive());
+    io.choice("envelope",
+              s.envelope,
+              {{"bilinear", lumped::WallEnvelope::bilinear},
+               {"hyperbolic", lumped::WallEnvelope::hyperbolic}},
+              "virgin pushover: bilinear (k up to the capacity, then hardening_ratio*k; OpenSees "
+              "ElasticPPGap) or hyperbolic (w/(1/k + failure_ratio*w/capacity); OpenSees "
+              "HyperbolicGapMaterial)");
+    io.quantity("stiffness",
+                s.stiffness,
+                "kN/mm/m",
+                "initial (cracked) stiffness of wall and backfill per metre (null: Caltrans-style "
+                "(5.5h + 20) kip/in per ft, h in ft)",
+                io::Range::positive());
+    io.quantity("capacity",
+                s.capacity,
+                "kN/m",
+                "bilinear: the force cap; hyperbolic: F_ult; per metre (null: Caltrans-style "
+                "5.5h^2.5/(1 + 2.37h) kip per ft, h in ft)",
+                io::Range::positive());
+    io.quantity("hardening_ratio",
+                s.hardening_ratio,
+                "%",
+                "bilinear: post-cap tangent as a fraction of stiffness",
+                io::Range::at_least(0.0).and_less(1.0));
+    io.quantity("failure_ratio",
+                s.failure_ratio,
+                "",
+                "hyperbolic: R_f, the curve tends to capacity/R_f",
+                io::Range::greater(0.0).and_at_most(1.0));
+    io.quantity("unloading_stiffness",
+                s.unloading_stiffness,
+                "kN/mm/m",
+                "unloading and reloading stiffness per metre (>= stiffness; null: stiffness)",
+                io::Range::positive());
+    io.quantity("tension_capacity",
+                s.tension_capacity,
+                "kN/m",
+                "largest force pulling the wall back towards the building, per metre (its elastic "
+                "spring-back; 0: compression only, like the OpenSees gap materials; null: "
+                "capacity)",
+                io::Range::non_negative());
+    io.quantity("soil_density",
+                s.soil_density,
+                "kg/m^3",
+                "backfill density rho (radiation dashpot first guess)",
+                io::Range::positive());
+    io.quantity("soil_wave_speed",
+                s.soil_wave_speed,
+                "m/s",
+                "backfill wave speed c (radiation dashpot first guess)",
+                io::Range::positive());
+    io.quantity("radiation_damping",
+                s.radiation_damping,
+                "kN*s/m^2",
+                "radiation dashpot to the ground per metre (null: rho*c*height)",
+                io::Range::non_negative());
+    io.quantity("failure_displacement",
+                s.failure_displacement,
+                "cm",
+                "the wall is reported failed once pushed back farther (null: 10 % of height, "
+                "where the published backfill curves end)",
+                io::Range::positive());
+  }
+} // namespace kimp::app

@@ -1,0 +1,381 @@
+// The wall-and-backfill part of a yielding moat wall (lumped/laws/wall_backfill_law.h) against
+// closed forms: yield, hardening, unloading, permanent set, tension cap, failure, plastic and
+// radiated work, the trial/commit contract; and its cap-and-hyperbola variants against OpenSees'
+// ElasticPPGap ("damage") and HyperbolicGapMaterial, written out below from their documented
+// equations, on their documented parameters.
+#include <cmath>
+#include <gtest/gtest.h>
+#include <memory>
+#include <vector>
+
+#include "lumped/laws/wall_backfill_law.h"
+
+namespace kimp::lumped
+{
+  namespace
+  {
+    constexpr double tight_tol    = 1e-12; // closed forms evaluated the same way: round-off
+    constexpr double opensees_tol = 1e-3;  // the issue's 0.1 % on forces
+
+    /// Bilinear wall: k = 100 MN/m, F_y = 1 MN (w_y = 1 cm), α = 5 %, k_ur = 200 MN/m.
+    WallBackfillParams bilinear_params()
+    {
+      WallBackfillParams p;
+      p.envelope            = WallEnvelope::bilinear;
+      p.stiffness           = 100e6;
+      p.capacity            = 1e6;
+      p.hardening_ratio     = 0.05;
+      p.unloading_stiffness = 200e6;
+      p.mass                = 50e3;
+      return p;
+    }
+
+    /// Trial and commit at w (quasi-static: ẇ = 0); returns the force.
+    double step(WallBackfillLaw &law, double w, double rate = 0.0)
+    {
+      const double f = law.set_trial(w, rate).force;
+      law.commit();
+      return f;
+    }
+
+    void expect_rel(double actual, double expected, double tol, const char *what)
+    {
+      EXPECT_NEAR(actual, expected, tol * std::max(std::abs(expected), 1.0)) << what;
+    }
+  } // namespace
+
+  TEST(WallBackfillLaw, ElasticUpToTheCapThenHardens)
+  {
+    WallBackfillLaw law(bilinear_params());
+    expect_rel(step(law, 0.005), 0.5e6, tight_tol, "elastic: k·w");
+    EXPECT_EQ(law.permanent_indentation(), 0.005 - 0.5e6 / 200e6); // k_ur > k: a small set
+    expect_rel(step(law, 0.01), 1e6, tight_tol, "at the cap");
+    // Hardening: F_y + α·k·(w − w_y).
+    expect_rel(step(law, 0.03), 1e6 + 0.05 * 100e6 * 0.02, tight_tol, "hardening");
+    EXPECT_DOUBLE_EQ(law.set_trial(0.031, 0.0).stiffness, 0.05 * 100e6);
+    law.revert_to_last_commit();
+    EXPECT_DOUBLE_EQ(law.peak_deformation(), 0.03);
+  }
+
+  TEST(WallBackfillLaw, UnloadsAtKurToAPermanentSetAndReloadsToTheEnvelope)
+  {
+    WallBackfillLaw law(bilinear_params());
+    step(law, 0.03);
+    const double f_max = 1.1e6;
+    const double w_p   = 0.03 - f_max / 200e6; // the permanent set
+    expect_rel(step(law, 0.028), f_max - 200e6 * 0.002, tight_tol, "unloading at k_ur");
+    EXPECT_DOUBLE_EQ(law.permanent_indentation(), w_p);
+    // Past the set the part carries nothing (F_t = 0) and keeps the set: pushed back stays back.
+    EXPECT_EQ(step(law, 0.0), 0.0);
+    EXPECT_EQ(step(law, -0.01), 0.0);
+    EXPECT_DOUBLE_EQ(law.permanent_indentation(), w_p);
+    // Reloading: nothing until w_p, then the line, then the envelope beyond w_max.
+    EXPECT_EQ(step(law, w_p - 1e-6), 0.0);
+    expect_rel(step(law, 0.029), 200e6 * (0.029 - w_p), tight_tol, "reloading line");
+    expect_rel(step(law, 0.04), 1e6 + 0.05 * 100e6 * 0.03, tight_tol, "back on the envelope");
+  }
+
+  TEST(WallBackfillLaw, PlasticWorkIsTheEnvelopeWorkLessTheRecoverableEnergy)
+  {
+    WallBackfillLaw law(bilinear_params());
+    const double    k = 100e6, fy = 1e6, a = 0.05, kur = 200e6;
+    for (const double w : {0.004, 0.01, 0.02, 0.03, 0.025, 0.0, 0.03, 0.035})
+      step(law, w);
+    const double w_max = 0.035, f = fy + a * k * (w_max - 0.01);
+    // ∫E dw: elastic triangle, then the trapezoid of the hardening branch.
+    const double work = 0.5 * fy * 0.01 + 0.5 * (fy + f) * (w_max - 0.01);
+    expect_rel(law.plastic_work(), work - 0.5 * f * f / kur, tight_tol, "W_p");
+    expect_rel(law.stored_energy(), 0.5 * f * f / kur, tight_tol, "stored on the envelope");
+    step(law, 0.0);
+    EXPECT_EQ(law.stored_energy(), 0.0); // past the set: nothing stored
+    expect_rel(law.dissipated_energy(), work - 0.5 * f * f / kur, tight_tol, "no dashpot");
+  }
+
+  TEST(WallBackfillLaw, TensionCapLimitsThePullBackWithoutMovingTheSet)
+  {
+    WallBackfillParams p = bilinear_params();
+    p.tension_capacity   = 0.2e6;
+    WallBackfillLaw law(p);
+    step(law, 0.03);
+    const double w_p = law.permanent_indentation();
+    expect_rel(step(law, w_p - 0.0005), -200e6 * 0.0005, tight_tol, "elastic pull-back");
+    EXPECT_EQ(step(law, w_p - 0.01), -0.2e6);
+    EXPECT_EQ(law.set_trial(w_p - 0.011, 0.0).stiffness, 0.0);
+    law.revert_to_last_commit();
+    // Stored: the line to the cap, then F_t times the further travel.
+    const double d_t = 0.2e6 / 200e6;
+    expect_rel(law.stored_energy(), 0.5 * 200e6 * d_t * d_t + 0.2e6 * (0.01 - d_t), tight_tol, "U");
+    EXPECT_DOUBLE_EQ(law.permanent_indentation(), w_p); // no reverse yielding
+    expect_rel(step(law, w_p + 0.001), 200e6 * 0.001, tight_tol, "back on the same line");
+  }
+
+  TEST(WallBackfillLaw, RadiatedWorkAtConstantRateIsCTimesVTimesTravel)
+  {
+    WallBackfillParams p = bilinear_params();
+    p.radiation_damping  = 3e6;
+    WallBackfillLaw law(p);
+    const double    v = 0.5;
+    const double    f = law.set_trial(0.001, v).force;
+    EXPECT_DOUBLE_EQ(f, 100e6 * 0.001 + 3e6 * v);
+    EXPECT_EQ(law.set_trial(0.001, v).damping, 3e6);
+    law.revert_to_last_commit();
+    step(law, 0.0, v); // the rate at the start of the travel
+    for (int i = 1; i <= 20; ++i)
+      step(law, 0.001 * i, v);
+    expect_rel(law.radiated_work(), 3e6 * v * 0.02, tight_tol, "c·v·travel");
+    // The peak resistance leaves the dashpot out: E(0.02 m) of the envelope.
+    expect_rel(law.peak_resistance(), 1e6 + 0.05 * 100e6 * 0.01, tight_tol, "peak R");
+    EXPECT_NEAR(law.dissipated_energy(), law.plastic_work() + law.radiated_work(), 1e-9);
+  }
+
+  TEST(WallBackfillLaw, FailsPastTheStatedDisplacement)
+  {
+    WallBackfillParams p   = bilinear_params();
+    p.failure_displacement = 0.05;
+    WallBackfillLaw law(p);
+    step(law, 0.049);
+    EXPECT_FALSE(law.failed());
+    step(law, 0.0);
+    EXPECT_FALSE(law.failed());
+    step(law, 0.051);
+    EXPECT_TRUE(law.failed());
+    step(law, 0.0);
+    EXPECT_TRUE(law.failed()); // a failed wall stays failed
+  }
+
+  TEST(WallBackfillLaw, RepeatedImpactsAccumulateTheSet)
+  {
+    // Three pushes, each 1 cm past the set left by the last: w_max grows by 1 cm + its set
+    // shift, the set after push i is w_max,i − E(w_max,i)/k_ur.
+    WallBackfillLaw law(bilinear_params());
+    double          w_p = 0.0;
+    for (int i = 0; i < 3; ++i)
+    {
+      const double w_max = std::max(law.peak_deformation(), w_p + 0.02);
+      step(law, w_max);
+      step(law, w_p - 0.01); // rebound past the set: the wall comes to rest there
+      const double f = 1e6 + 0.05 * 100e6 * (w_max - 0.01);
+      w_p            = w_max - f / 200e6;
+      EXPECT_DOUBLE_EQ(law.permanent_indentation(), w_p) << "push " << i;
+    }
+    EXPECT_GT(w_p, 0.03);
+  }
+
+  TEST(WallBackfillLaw, KeepsTheTrialCommitContract)
+  {
+    WallBackfillParams p = bilinear_params();
+    p.radiation_damping  = 1e6;
+    p.tension_capacity   = 0.1e6;
+    for (const WallEnvelope env : {WallEnvelope::bilinear, WallEnvelope::hyperbolic})
+    {
+      p.envelope      = env;
+      p.failure_ratio = 0.7;
+      WallBackfillLaw           law(p);
+      const std::vector<double> path = {0.002, 0.012, 0.03, 0.02, -0.01, 0.025, 0.045};
+      double                    w_c  = 0.0;
+      for (const double w : path)
+      {
+        const double        v = (w - w_c) / 0.1; // a rate consistent with the path
+        const ForceResponse a = law.set_trial(w, v);
+        const ForceResponse b = law.set_trial(w, v);
+        EXPECT_EQ(a.force, b.force) << "idempotent at " << w;
+        std::unique_ptr<ForceLaw> copy = law.clone();
+        EXPECT_EQ(copy->set_trial(w, v).force, a.force) << "clone at " << w;
+        // Tangent against a central difference (no kink within ±h of the path's points).
+        const double h  = 1e-8;
+        const double fp = law.set_trial(w + h, v).force;
+        const double fm = law.set_trial(w - h, v).force;
+        EXPECT_NEAR(a.stiffness, (fp - fm) / (2 * h), 1e-4 * std::abs(a.stiffness) + 1.0)
+          << "tangent at " << w;
+        const double before  = law.dissipated_energy();
+        const double plastic = law.plastic_work();
+        law.set_trial(w, v);
+        law.revert_to_last_commit();
+        EXPECT_EQ(law.dissipated_energy(), before) << "a trial leaves the committed state";
+        step(law, w, v);
+        // The plastic work never decreases; the radiated work's trapezoid rule may dip at a
+        // turning point between two samples (as the contact laws' dissipation).
+        EXPECT_GE(law.plastic_work(), plastic) << "at " << w;
+        EXPECT_GE(law.dissipated_energy(), 0.0) << "at " << w;
+        w_c = w;
+      }
+      EXPECT_TRUE(law.in_contact());
+      law.revert_to_start();
+      EXPECT_EQ(law.peak_deformation(), 0.0);
+      EXPECT_EQ(law.dissipated_energy(), 0.0);
+    }
+  }
+
+  TEST(WallBackfillLaw, RefusesBadParameters)
+  {
+    WallBackfillParams p  = bilinear_params();
+    p.unloading_stiffness = 50e6;
+    EXPECT_THROW(WallBackfillLaw{p}, std::invalid_argument);
+    p                 = bilinear_params();
+    p.hardening_ratio = 1.0;
+    EXPECT_THROW(WallBackfillLaw{p}, std::invalid_argument);
+    p      = bilinear_params();
+    p.mass = 0.0;
+    EXPECT_THROW(WallBackfillLaw{p}, std::invalid_argument);
+  }
+
+  // ---- OpenSees' materials, written out from their documentation (sign convention there:
+  // ---- deformation u and force negative in compression, gap < 0; kimp's w = −u − |gap|).
+  namespace
+  {
+    /**
+     * ElasticPPGap, tag E Fy gap eta "damage" (compression form, Fy < 0, gap < 0): zero force
+     * while u > u_min (initially the gap); elastic E·(u − u_min) for u_max <= u <= u_min;
+     * beyond u_max (initially gap + Fy/E) the hardening line Fy + η·E·(u − gap − Fy/E). At a
+     * committed state beyond u_max: u_max := u, u_min := u − F/E. With "damage" u_min is not
+     * moved back when the element re-opens, so the gap grows.
+     */
+    class OpenSeesElasticPPGapDamage
+    {
+    public:
+      OpenSeesElasticPPGapDamage(double e, double fy, double gap, double eta)
+        : e_(e)
+        , fy_(fy)
+        , gap_(gap)
+        , eta_(eta)
+        , u_max_(gap + fy / e)
+        , u_min_(gap)
+      {
+      }
+      double commit(double u)
+      {
+        double f = 0.0;
+        if (u < u_max_)
+          f = fy_ + (u - gap_ - fy_ / e_) * eta_ * e_;
+        else if (u > u_min_)
+          f = 0.0;
+        else
+          f = e_ * (u - u_min_);
+        if (u < u_max_)
+        {
+          u_max_ = u;
+          u_min_ = u - f / e_;
+        }
+        return f;
+      }
+
+    private:
+      double e_, fy_, gap_, eta_, u_max_, u_min_;
+    };
+
+    /**
+     * HyperbolicGapMaterial, tag Kmax Kur Rf Fult gap (Fult < 0, gap < 0): on the envelope
+     * (u <= the most negative u so far) F = (u − gap)/(1/Kmax + Rf·(u − gap)/Fult), 0 for
+     * u >= gap; unloading (du > 0) F = F_c + Kur·du, not above 0; reloading (du < 0) the line
+     * F = Kur·(u − u_r) through the reloading onset u_r = u_min − F(u_min)/Kur, 0 above u_r.
+     */
+    class OpenSeesHyperbolicGap
+    {
+    public:
+      OpenSeesHyperbolicGap(double kmax, double kur, double rf, double fult, double gap)
+        : kmax_(kmax)
+        , kur_(kur)
+        , rf_(rf)
+        , fult_(fult)
+        , gap_(gap)
+      {
+      }
+      double commit(double u)
+      {
+        const double du = u - u_c_;
+        double       f  = f_c_;
+        if (u <= u_min_)
+        {
+          u_min_ = u;
+          f      = u >= gap_ ? 0.0 : (u - gap_) / (1.0 / kmax_ + rf_ * (u - gap_) / fult_);
+          u_r_   = u_min_ - f / kur_;
+        }
+        else if (du > 0.0)
+          f = std::min(f_c_ + kur_ * du, 0.0);
+        else if (du < 0.0)
+          f = u > u_r_ ? 0.0 : kur_ * (u - u_r_);
+        u_c_ = u;
+        f_c_ = f;
+        return f;
+      }
+
+    private:
+      double kmax_, kur_, rf_, fult_, gap_;
+      double u_c_ = 0.0, f_c_ = 0.0, u_min_ = 0.0, u_r_ = 0.0;
+    };
+
+    /// A cyclic closing path u(t) of OpenSees (negative = closing), beyond the gap three times.
+    std::vector<double> cyclic_path(double gap, double amplitude)
+    {
+      std::vector<double> u;
+      const double        pi = 3.14159265358979323846;
+      for (int i = 0; i <= 3000; ++i)
+      {
+        const double s = static_cast<double>(i) / 3000.0;
+        // Growing pushes with partial and full rebounds.
+        u.push_back(-(gap + amplitude * s) * std::abs(std::sin(3.0 * pi * s)) +
+                    0.1 * gap * std::sin(7.0 * pi * s));
+      }
+      return u;
+    }
+  } // namespace
+
+  TEST(WallBackfillLaw, BilinearReproducesOpenSeesElasticPPGapWithDamage)
+  {
+    // Caltrans-style backfill spring of a 1.68 m (5.5 ft) backwall per metre (5 ksf over the
+    // height, 50 kip/in/ft: E = 28.9 kN/mm, Fy = 407 kN), gap 1 in, hardening η = 0 and 0.1.
+    const double gap = 0.0254;
+    for (const double eta : {0.0, 0.1})
+    {
+      OpenSeesElasticPPGapDamage reference(28.9e6, -407e3, -gap, eta);
+      WallBackfillParams         p;
+      p.envelope            = WallEnvelope::bilinear;
+      p.stiffness           = 28.9e6;
+      p.capacity            = 407e3;
+      p.hardening_ratio     = eta;
+      p.unloading_stiffness = 28.9e6;
+      p.mass                = 1e3;
+      WallBackfillLaw law(p);
+      double          peak = 0.0;
+      for (const double u : cyclic_path(gap, 0.08))
+      {
+        const double f_os = -reference.commit(u);
+        const double f    = step(law, -u - gap);
+        peak              = std::max(peak, f_os);
+        EXPECT_NEAR(f, f_os, opensees_tol * 407e3) << "eta " << eta << " u " << u;
+      }
+      EXPECT_GE(peak, 407e3); // the path yields the material
+      EXPECT_GT(law.plastic_work(), 0.0);
+    }
+  }
+
+  TEST(WallBackfillLaw, HyperbolicReproducesOpenSeesHyperbolicGapMaterial)
+  {
+    // The documented parameters: Kmax = 20300 kN/m, Kur = Kmax, Rf = 0.7, Fult = 326 kN,
+    // gap = 2.54 cm (a 1.68 m backwall, 1 m wide).
+    const double          gap = 0.0254;
+    OpenSeesHyperbolicGap reference(20300e3, 20300e3, 0.7, -326e3, -gap);
+    WallBackfillParams    p;
+    p.envelope            = WallEnvelope::hyperbolic;
+    p.stiffness           = 20300e3;
+    p.capacity            = 326e3;
+    p.failure_ratio       = 0.7;
+    p.unloading_stiffness = 20300e3;
+    p.mass                = 1e3;
+    WallBackfillLaw law(p);
+    double          peak = 0.0;
+    for (const double u : cyclic_path(gap, 0.08))
+    {
+      const double f_os = -reference.commit(u);
+      const double f    = step(law, -u - gap);
+      peak              = std::max(peak, f_os);
+      EXPECT_NEAR(f, f_os, opensees_tol * 326e3) << "u " << u;
+    }
+    EXPECT_GT(peak, 326e3); // past Fult: the hyperbola tends to Fult/Rf
+    // The envelope's closed form at 7.64 cm beyond the gap (the documented range of the fit).
+    expect_rel(law.envelope(0.0764),
+               0.0764 / (1.0 / 20300e3 + 0.7 * 0.0764 / 326e3),
+               tight_tol,
+               "hyperbola");
+  }
+} // namespace kimp::lumped
