@@ -87,7 +87,8 @@ namespace kimp::app
     std::string header(const OpenSeesLawInput &in, const char *form)
     {
       std::string h;
-      const auto  line = [&](const std::string &text) { h += "# " + text + "\n"; };
+      const auto  line = [&](const std::string &text)
+      { h += (text.empty() ? std::string("#") : "# " + text) + "\n"; };
       line(fmt::format("kimp export-opensees: fitted impact laws as OpenSees uniaxial materials "
                        "({})",
                        form));
@@ -98,26 +99,24 @@ namespace kimp::app
       line("Parameters and where they come from:");
       const std::string k_source = in.source.empty() ? std::string("given explicitly") : in.source;
       if (in.k_kelvin_voigt)
-        line(fmt::format("  k_KV  = {} N/m (= {:.6g} kN/mm): {}",
+        line(fmt::format("  k_KV = {} N/m (= {:.6g} kN/mm): {}",
                          number(*in.k_kelvin_voigt),
                          *in.k_kelvin_voigt * 1e-6,
                          k_source));
       if (in.k_hertz)
-        line(fmt::format("  k_J   = {} N/m^1.5 (= {:.6g} kN/mm^1.5): {}",
+        line(fmt::format("  k_J = {} N/m^1.5 (= {:.6g} kN/mm^1.5): {}",
                          number(*in.k_hertz),
                          *in.k_hertz * 1e-3 * std::pow(1e-3, 1.5),
                          k_source));
-      line(fmt::format("  e     = {} (coefficient of restitution): {}",
-                       number(in.cor),
-                       in.cor_source));
+      line(fmt::format("  e = {} (coefficient of restitution): {}", number(in.cor), in.cor_source));
       line(fmt::format("  m_eff = {} kg (m1 m2/(m1 + m2) of the contact): {}",
                        number(in.effective_mass),
                        in.effective_mass_source));
       line(fmt::format("  v_imp = {} m/s (impact velocity, for ImpactMaterial's delta_m): {}",
                        number(in.impact_velocity),
                        in.impact_velocity_source));
-      line(fmt::format("  gap   = {} m: {}", number(in.gap), in.gap_source));
-      line(fmt::format("  a     = {} (ImpactMaterial delta_y/delta_m, Muthukumar)",
+      line(fmt::format("  gap = {} m: {}", number(in.gap), in.gap_source));
+      line(fmt::format("  a = {} (ImpactMaterial delta_y/delta_m, Muthukumar)",
                        number(in.yield_ratio)));
       line("");
       return h;

@@ -360,8 +360,19 @@ namespace kimp::app::study_internal
     j["units"]          = {{"wall_height", "m"},
                            {"k_per_metre", "kN/mm^n/m"},
                            {"k_total", "kN/mm^n"},
+                           {"isolation_mass", "kg"},
+                           {"wall_mass", "kg"},
+                           {"effective_mass", "kg"},
                            {"wall_time", "s"}};
     j["building_width"] = scene.fit.width;
+    // The contact the impact laws describe (kimp export-opensees takes m_eff and the COR from
+    // here): the building's isolation level against its wall.
+    const double m_building = scene.building.isolation_mass, m_wall = scene.walls.mass;
+    j["contact"] = {{"isolation_mass", m_building},
+                    {"wall_mass", m_wall},
+                    {"effective_mass", m_building * m_wall / (m_building + m_wall)},
+                    {"cor", scene.fit.cor},
+                    {"peak_tolerance", scene.fit.peak_tolerance}};
     j["wall_time"]      = result.wall_seconds;
     nlohmann::ordered_json stages;
     for (const auto &[stage, seconds] : cost_by_stage(result))

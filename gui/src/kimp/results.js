@@ -423,6 +423,34 @@
     );
   }
 
+  // ---- export-opensees: what was exported, where each value came from, and the files ---------
+  function exportSection(parent, data) {
+    const summary = data.summary || {};
+    const input = summary.input || {};
+    const sources = summary.sources || {};
+    const units = summary.units || {};
+    const sec = section(parent, 'OpenSees materials exported');
+    const rows = [
+      ['k_KV', 'k_kelvin_voigt', 'k'],
+      ['k_J', 'k_hertz', 'k'],
+      ['COR e', 'cor', 'cor'],
+      ['m_eff', 'effective_mass', 'effective_mass'],
+      ['v_imp', 'impact_velocity', 'impact_velocity'],
+      ['gap', 'gap', 'gap'],
+    ]
+      .filter(([, key]) => input[key] !== null && input[key] !== undefined)
+      .map(([label, key, source]) => [
+        label,
+        `${fmt(input[key], 6)} ${units[key] || ''}`.trim(),
+        sources[source] || '',
+      ]);
+    table(sec, ['parameter', 'value (SI)', 'from'], rows, 'data export-parameters');
+    for (const [name, text] of Object.entries(data.text || {})) {
+      const body = section(parent, name);
+      body.appendChild(el('pre', { class: 'export-file', text: text }));
+    }
+  }
+
   /** A stiffness dataset (N/m^n/m) in the kN/mm^n/m engineers read. */
   function kUnit(k) {
     const m = /^N\/m(\^([\d.]+))?\/m$/.exec(k.units || '');
@@ -451,6 +479,7 @@
     if (data.h5 && data.h5['fem.h5']) femSection(container, data);
     if (data.h5 && data.h5['collide.h5']) collideSection(container, data, others);
     if (data.h5 && data.h5['fit.h5']) fitSection(container, data);
+    if (data.kind === 'export-opensees') exportSection(container, data);
     const csv = data.csv || {};
     if (csv['dsrss_table.csv']) dsrssSection(container, data);
     if (csv['sweep.csv']) sweepSection(container, data);
