@@ -276,4 +276,21 @@ namespace
               std::string::npos);
     EXPECT_TRUE(data.at("text").contains("opensees_impact.py"));
   }
+  TEST(KSourceCli, AnUnreadableKTableIsOneErrorAtItsKeyNotOnePerCase)
+  {
+    const TempDir dir("k_source_bad");
+    write_text(dir.path() / "bad.csv", "a,b\n1,2\n");
+    write_text(dir.path() / "scene.yaml",
+               "building:\n  n_storeys: 3\nwalls:\n  left:\n    gap: \"8 cm\"\n  right:\n"
+               "    gap: \"8 cm\"\nimpact:\n  law: kelvin_voigt\n  k_table: bad.csv\n"
+               "ground_motion:\n  record: synthetic\n  duration: \"2 s\"\ncases:\n"
+               "  - name: a\n    wall_height: \"1 m\"\n  - name: b\n    wall_height: \"1.5 m\"\n"
+               "  - name: c\n    wall_height: \"2 m\"\n");
+    const KimpRun run = run_kimp("-q lumped scene.yaml -o out", dir.path());
+    EXPECT_EQ(run.exit_code, 1);
+    EXPECT_EQ(error_lines(run.err), 1) << run.err;
+    EXPECT_NE(run.err.find("scene.yaml:10: impact.k_table = bad.csv: "), std::string::npos)
+      << run.err;
+    EXPECT_NE(run.err.find("no column 'wall_height_m'"), std::string::npos) << run.err;
+  }
 } // namespace
