@@ -472,7 +472,8 @@
     const files = Object.keys(data.h5 || {}).concat(Object.keys(data.csv || {}));
     container.appendChild(el('h1', { text: `kimp ${data.kind || 'results'}: ${data.title}` }));
     container.appendChild(el('p', { class: 'muted', text: `files: ${files.join(', ')}` }));
-    if (data.kind === 'study' && data.csv && data.csv['k_table.csv']) kAnswerSection(container, data.csv['k_table.csv']);
+    const kTable = data.csv && data.csv['k_table.csv'];
+    if (data.kind === 'study' && kTable) kAnswerSection(container, kTable);
     if (data.h5 && data.h5['lumped.h5']) lumpedSection(container, data, others);
     if (data.kind === 'study') studySection(container, data);
     if (data.kind === 'fem' && data.summary) femSummarySection(container, data.summary);
