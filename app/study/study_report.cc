@@ -245,8 +245,9 @@ namespace kimp::app::study_internal
           "Data: [k_table.csv](k_table.csv), [study.h5](study.h5) (`/k_table`, `/fit/<H>`, "
           "`/fem/<H>`, `/fidelity/<H>`).\n\n";
     if (charts)
-      md += "![FEM force histories with the fitted laws](charts/force_histories.png)\n\n"
-            "![k against wall height](charts/k_vs_height.png)\n\n";
+      md += "![FEM force histories with the fitted laws](charts/force_histories.png)\n\n";
+    if (charts && result.heights.size() > 1) // one height: one point, the table says it
+      md += "![k against wall height](charts/k_vs_height.png)\n\n";
     md += velocity_report_markdown(scene, result, charts);
 
     md += "## Building response\n\n"
