@@ -17,6 +17,7 @@
 #include <sys/time.h>
 #include <thread>
 #include <unistd.h>
+#include <vector>
 
 #include "tests/server/server_test_support.h"
 #include "tests/support/files.h"
@@ -504,10 +505,11 @@ ground_motion:
     ASSERT_EQ(wait_for_run(id, 60, finished)["state"], "done");
     client_->set_decompress(false);
     const httplib::Headers offers = {{"Accept-Encoding", "gzip, deflate, br"}};
-    for (const std::string path : {"/api/runs/" + id + "/data",
-                                   "/api/runs/" + id + "/report",
-                                   "/api/files/" + id + "/out/summary.json",
-                                   std::string("/")})
+    for (const std::string &path :
+         std::vector<std::string>{"/api/runs/" + id + "/data",
+                                  "/api/runs/" + id + "/report",
+                                  "/api/files/" + id + "/out/summary.json",
+                                  std::string("/")})
     {
       const auto r = client_->Get(path, offers);
       ASSERT_TRUE(r) << path;
@@ -515,7 +517,9 @@ ground_motion:
       EXPECT_EQ(r->get_header_value("Content-Encoding"), "") << path;
       EXPECT_GT(r->body.size(), 100u) << path;
       if (path.find("/data") != std::string::npos)
+      {
         EXPECT_EQ(json_of(r)["kind"], "lumped");
+      }
     }
   }
 } // namespace
