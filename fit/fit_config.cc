@@ -75,7 +75,7 @@ namespace kimp::fit
     if (std::isfinite(peak) && std::abs(peak - 1.0) > peak_tolerance)
       warnings.push_back(fmt::format("the fitted peak force is {:.3g} % of the FEM's ({:.4g} of "
                                      "{:.4g} kN/m, tolerance {:.3g} %): k reproduces the pulse, "
-                                     "not its peak; size the wall from the FEM peak force",
+                                     "not its peak (size the wall from the FEM peak force)",
                                      100.0 * peak,
                                      1e-3 * fit.model_peak_force,
                                      1e-3 * fit.fem_peak_force,
