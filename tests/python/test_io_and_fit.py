@@ -108,9 +108,9 @@ def test_a_kimp_fit_directory_is_a_k_table_of_a_scene(tmp_path):
         "H2.00,2,1,kelvin_voigt_cor_fixed,kelvin_voigt,2000,ok\n"
         "H2.00,2,1,jankowski_cor_fixed,jankowski,1000,ok\n")
     (tmp_path / "scene.yaml").write_text(
-        'building:\n  n_storeys: 3\nwalls:\n  left:\n    gap: "8 cm"\n  right:\n'
-        '    gap: "8 cm"\nimpact:\n  law: kelvin_voigt\n  k_table: fit\n'
-        '  wall_height: "1.5 m"\nground_motion:\n  record: synthetic\n  duration: "2 s"\n')
+        'building:\n  n_storeys: 3\nwalls:\n  left:\n    gap: "2 cm"\n  right:\n'
+        '    gap: "2 cm"\nimpact:\n  law: kelvin_voigt\n  k_table: fit\n'
+        '  wall_height: "1.5 m"\nground_motion:\n  record: synthetic\n  duration: "6 s"\n')
     scene = kimp.Scene.from_yaml(tmp_path / "scene.yaml")
     result = kimp.lumped(scene)
     assert result.status == "ok"
