@@ -368,12 +368,12 @@ namespace kimp::app::study_internal
     // The contact the impact laws describe (kimp export-opensees takes m_eff and the COR from
     // here): the building's isolation level against its wall.
     const double m_building = scene.building.isolation_mass, m_wall = scene.walls.mass;
-    j["contact"] = {{"isolation_mass", m_building},
-                    {"wall_mass", m_wall},
-                    {"effective_mass", m_building * m_wall / (m_building + m_wall)},
-                    {"cor", scene.fit.cor},
-                    {"peak_tolerance", scene.fit.peak_tolerance}};
-    j["wall_time"]      = result.wall_seconds;
+    j["contact"]   = {{"isolation_mass", m_building},
+                      {"wall_mass", m_wall},
+                      {"effective_mass", m_building * m_wall / (m_building + m_wall)},
+                      {"cor", scene.fit.cor},
+                      {"peak_tolerance", scene.fit.peak_tolerance}};
+    j["wall_time"] = result.wall_seconds;
     nlohmann::ordered_json stages;
     for (const auto &[stage, seconds] : cost_by_stage(result))
       stages[stage] = seconds;
