@@ -12,7 +12,8 @@ namespace kimp::app
   lumped::GroundMotion scene_ground_motion(const std::string                          &command,
                                            const std::string                          &scene_text,
                                            const std::string                          &file_name,
-                                           const std::optional<std::filesystem::path> &records_dir)
+                                           const std::optional<std::filesystem::path> &records_dir,
+                                           const std::filesystem::path &scene_directory)
   {
     if (command == "collide")
       throw std::invalid_argument("a kimp collide scene has no ground motion (two bodies meet at "
@@ -32,7 +33,7 @@ namespace kimp::app
       throw std::invalid_argument("unknown command \"" + command +
                                   "\" (the ground motion is drawn for lumped scenes)");
     const io::LoadedScene<LumpedScene> loaded =
-      io::read_scene_text<LumpedScene>(scene_text, file_name);
+      io::read_scene_text<LumpedScene>(scene_text, file_name, scene_directory);
     const GroundMotionScene &section = loaded.scene.ground_motion;
     // A run gets `records_dir` as KIMP_RECORDS_DIR, below the scene's own records_dir.
     const std::optional<std::filesystem::path> directory =

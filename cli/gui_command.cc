@@ -40,7 +40,11 @@ namespace kimp::cli
                    "interface to listen on; anything but 127.0.0.1 exposes kimp to the network")
       ->capture_default_str();
     command->add_flag("--open", options->open, "open the page in the default browser");
-    command->add_option("--runs-dir", options->gui.runs_dir, "directory of the runs")
+    command
+      ->add_option("--runs-dir",
+                   options->gui.runs_dir,
+                   "directory of the runs (one kimp gui at a time: it is locked; runs a killed "
+                   "server left are listed as interrupted)")
       ->capture_default_str();
     command->add_option("--records-dir",
                         options->records_dir,

@@ -72,13 +72,13 @@ int main(int argc, char **argv)
   if (const char *command = command_name(argc, argv); command && is_fem_command(command))
     return exec_fem_executable(argv, command);
 #endif
-  return kimp::cli::run_main(argc,
-                             argv,
-                             [](CLI::App &app)
-                             {
+  return kimp::cli::end_process(kimp::cli::run_main(argc,
+                                                    argv,
+                                                    [](CLI::App &app)
+                                                    {
 #ifdef KIMP_FEM_EXECUTABLE
-                               register_fem_forwarders(app);
+                                                      register_fem_forwarders(app);
 #endif
-                               kimp::cli::register_commands(app);
-                             });
+                                                      kimp::cli::register_commands(app);
+                                                    }));
 }

@@ -50,6 +50,10 @@ namespace kimp::cli
                    "steps) exceeds it is refused before planning (default 1e11)")
       ->type_name("N")
       ->check(CLI::PositiveNumber);
+    command->add_flag("--check",
+                      options->check,
+                      "plan the sweep and check it (cost, every value and record on the base "
+                      "scene), print \"SWEEP.yaml: valid, N cases\" and exit without running");
     command->add_flag("--print-defaults",
                       prints->first,
                       "print an annotated example sweep file (every key with its meaning) and "
@@ -72,9 +76,11 @@ namespace kimp::cli
           throw PrintDefaults(app::sweep_file_schema_text());
         if (options->sweep.empty())
           throw CLI::RequiredError("the sweep file SWEEP.yaml (or --print-defaults)");
-        if (options->output.empty())
+        if (options->output.empty() && !options->check)
           throw CLI::RequiredError("the output directory -o/--output DIR");
-        app::run_sweep_job(*options);
+        const std::size_t n_cases = app::run_sweep_job(*options);
+        if (options->check)
+          throw PrintDefaults(options->sweep + ": valid, " + std::to_string(n_cases) + " cases\n");
       });
   }
 } // namespace kimp::cli

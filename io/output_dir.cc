@@ -546,6 +546,9 @@ namespace kimp::io
   void install_signal_handlers()
   {
     ::signal(SIGPIPE, SIG_IGN);
+    // A write beyond the file size limit (`ulimit -f`) then fails with EFBIG, reported and
+    // cleaned up as a full disk, instead of killing the process with its files half written.
+    ::signal(SIGXFSZ, SIG_IGN);
     // A signal ignored when the process started stays ignored (nohup, `&` in a script).
     static const std::array<int, 3>  handled{SIGTERM, SIGINT, SIGHUP};
     static const std::array<bool, 3> ignored_at_start = []

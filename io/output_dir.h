@@ -89,7 +89,9 @@ namespace kimp::io
 
   /**
    * Ignore SIGPIPE (a closed pipe, `kimp ... | head -1`, must not stop a run before it writes
-   * its files: writes to the pipe fail quietly instead) and handle SIGTERM, SIGINT and SIGHUP:
+   * its files: writes to the pipe fail quietly instead) and SIGXFSZ (a write beyond the file size
+   * limit, `ulimit -f`, fails with EFBIG and is reported like a full disk, with the temporary
+   * files and the lock removed) and handle SIGTERM, SIGINT and SIGHUP:
    * the handler removes the temporary files being written, the files of the failed run's output
    * set and the lock files of this process (unlink only: async-signal-safe), then ends the
    * process by the same signal (exit status 128 + signal number in a shell). Call at the start

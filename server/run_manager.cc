@@ -1,7 +1,8 @@
-// Child processes of `kimp gui` runs (server/run_manager.h): posix_spawn with default signal
-// dispositions, an empty signal mask and a process group of their own, stderr on a pipe; one
-// watcher thread per run that reads the log, parses progress, escalates a cancel to SIGKILL and
-// records the final state.
+// Child processes of `kimp gui` runs (server/run_manager.h): fork and exec with default signal
+// dispositions, an empty signal mask, a process group of their own and death with the server,
+// stderr on a pipe; one watcher thread per run that reads the log, parses progress, escalates a
+// cancel to SIGKILL and records the final state; the runs folder's lock and the runs a dead server
+// left.
 #include "server/run_manager.h"
 
 #include <algorithm>
@@ -17,13 +18,16 @@
 #include <poll.h>
 #include <regex>
 #include <signal.h>
-#include <spawn.h>
 #include <sstream>
 #include <stdexcept>
+#include <sys/file.h>
+#include <sys/prctl.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "io/summary.h"
+#include "base/logging.h"
+#include "io/output_dir.h"
 
 extern char **environ;
 
@@ -51,11 +55,14 @@ namespace kimp::server
     }
 
     /**
-     * posix_spawn of `kimp` with stdout to `out_fd` and stderr to `err_fd` (-1: /dev/null), in
-     * `cwd` (empty: this one), as the leader of a new process group. The child starts with an
-     * empty signal mask and default SIGINT/SIGTERM/SIGHUP/SIGQUIT/SIGPIPE: `kimp gui` blocks
-     * SIGINT and SIGTERM for its signal thread, and a child that inherited that mask could not
-     * be cancelled.
+     * fork and exec of `kimp` with stdout to `out_fd` and stderr to `err_fd` (-1: /dev/null), in
+     * `cwd` (empty: this one), as the leader of a new process group, killed (SIGKILL) when the
+     * calling thread ends: a server that dies, even of SIGKILL, takes its runs with it. The child
+     * starts with an empty signal mask and default SIGINT/SIGTERM/SIGHUP/SIGQUIT/SIGPIPE (`kimp
+     * gui` blocks SIGINT and SIGTERM for its signal thread, and a child that inherited that mask
+     * could not be cancelled) and with no other descriptor of the server (sockets, locks).
+     * posix_spawn cannot set the parent-death signal; between fork and exec the child makes only
+     * async-signal-safe calls on data prepared before the fork.
      * @return the child's pid, or -1
      */
     int spawn(const std::filesystem::path    &kimp,
@@ -65,35 +72,6 @@ namespace kimp::server
               const std::vector<std::string> &environment,
               const std::filesystem::path    &cwd = {})
     {
-      posix_spawn_file_actions_t actions;
-      posix_spawn_file_actions_init(&actions);
-      if (!cwd.empty())
-        posix_spawn_file_actions_addchdir_np(&actions, cwd.c_str());
-      posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-      if (out_fd >= 0)
-        posix_spawn_file_actions_adddup2(&actions, out_fd, 1);
-      else
-        posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-      if (err_fd >= 0)
-        posix_spawn_file_actions_adddup2(&actions, err_fd, 2);
-      else
-        posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-
-      posix_spawnattr_t attributes;
-      posix_spawnattr_init(&attributes);
-      sigset_t none;
-      sigemptyset(&none);
-      posix_spawnattr_setsigmask(&attributes, &none);
-      sigset_t defaults;
-      sigemptyset(&defaults);
-      for (const int s : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE})
-        sigaddset(&defaults, s);
-      posix_spawnattr_setsigdefault(&attributes, &defaults);
-      posix_spawnattr_setpgroup(&attributes, 0);
-      posix_spawnattr_setflags(&attributes,
-                               POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF |
-                                 POSIX_SPAWN_SETPGROUP);
-
       std::vector<std::string> argv_text = {kimp.string()};
       argv_text.insert(argv_text.end(), arguments.begin(), arguments.end());
       std::vector<char *> argv;
@@ -105,12 +83,73 @@ namespace kimp::server
       for (auto &e : env_text)
         envp.push_back(e.data());
       envp.push_back(nullptr);
-      pid_t     pid = -1;
-      const int status =
-        posix_spawn(&pid, kimp.c_str(), &actions, &attributes, argv.data(), envp.data());
-      posix_spawnattr_destroy(&attributes);
-      posix_spawn_file_actions_destroy(&actions);
-      return status == 0 ? pid : -1;
+      const std::string executable = kimp.string();
+      const std::string directory  = cwd.string();
+      sigset_t          none;
+      sigemptyset(&none);
+      struct sigaction fallback
+      {
+      };
+      fallback.sa_handler = SIG_DFL;
+      sigemptyset(&fallback.sa_mask);
+      const pid_t parent = getpid();
+      // The child reports a failure before or in execve on this pipe (closed by a good exec).
+      int report[2];
+      if (pipe2(report, O_CLOEXEC) != 0)
+        return -1;
+
+      const pid_t pid = fork();
+      if (pid == 0)
+      {
+        // The child: async-signal-safe calls only.
+        const auto fail = [&]
+        {
+          const int                      error = errno;
+          [[maybe_unused]] const ssize_t n     = write(report[1], &error, sizeof(error));
+          _exit(127);
+        };
+        if (setpgid(0, 0) != 0 || prctl(PR_SET_PDEATHSIG, SIGKILL) != 0)
+          fail();
+        // The server died before the signal was set: nobody would kill this child.
+        if (getppid() != parent)
+          _exit(127);
+        for (const int s : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE})
+          sigaction(s, &fallback, nullptr);
+        sigprocmask(SIG_SETMASK, &none, nullptr);
+        // Out of the way of 0-3 first (a server started with a standard stream closed).
+        const int out = out_fd >= 0 ? fcntl(out_fd, F_DUPFD, 4) : open("/dev/null", O_WRONLY);
+        const int err = err_fd >= 0 ? fcntl(err_fd, F_DUPFD, 4) : open("/dev/null", O_WRONLY);
+        const int in  = open("/dev/null", O_RDONLY);
+        if (out < 0 || err < 0 || in < 0 || dup2(in, 0) < 0 || dup2(out, 1) < 0 || dup2(err, 2) < 0)
+          fail();
+        if (report[1] != 3 && dup3(report[1], 3, O_CLOEXEC) < 0)
+          fail();
+        report[1] = 3;
+        if (!directory.empty() && chdir(directory.c_str()) != 0)
+          fail();
+        // Every other descriptor closed (close_range, Linux 5.9; else one by one).
+        if (syscall(SYS_close_range, 4u, ~0u, 0u) != 0)
+          for (int fd = 4; fd < 65536; ++fd)
+            close(fd);
+        execve(executable.c_str(), argv.data(), envp.data());
+        fail();
+      }
+      close(report[1]);
+      int     error = 0;
+      ssize_t n     = -1;
+      do
+        n = read(report[0], &error, sizeof(error));
+      while (n < 0 && errno == EINTR);
+      close(report[0]);
+      if (pid < 0)
+        return -1;
+      if (n == static_cast<ssize_t>(sizeof(error)))
+      {
+        waitpid(pid, nullptr, 0);
+        errno = error;
+        return -1;
+      }
+      return pid;
     }
 
     double seconds_since(SteadyClock::time_point t)
@@ -146,6 +185,23 @@ namespace kimp::server
       return nlohmann::json::parse(in, nullptr, false);
     }
 
+    /// `state` as `dir`/run.json (written atomically; any bytes of a child's message replaced
+    /// where they are not UTF-8); a failure is logged, never thrown into a watcher thread.
+    void save_state(const std::filesystem::path &dir, const nlohmann::json &state) noexcept
+    {
+      try
+      {
+        io::write_text_atomic(dir / "run.json",
+                              state.dump(1, ' ', false, nlohmann::json::error_handler_t::replace));
+      }
+      catch (const std::exception &error)
+      {
+        base::logger().warn("cannot save the state of run {}: {}",
+                            dir.filename().string(),
+                            error.what());
+      }
+    }
+
     /// The top-level entries of a run's output directory ("out/NAME", "out/DIR/"), at most 50.
     nlohmann::json output_files(const std::filesystem::path &run_dir)
     {
@@ -158,6 +214,12 @@ namespace kimp::server
       if (names.size() > 50)
         names.resize(50);
       return names;
+    }
+
+    /// The digits of `text` as a number (inf when too long: no exception from a log line).
+    double number(const std::string &text)
+    {
+      return std::strtod(text.c_str(), nullptr);
     }
 
     /// Progress of `line` for `command`: the fraction done, or nullopt.
@@ -173,13 +235,13 @@ namespace kimp::server
       if (command == "sweep")
       {
         if (std::regex_search(line, m, sweep))
-          return std::stod(m[1]) / std::max(1.0, std::stod(m[2]));
+          return std::clamp(number(m[1]) / std::max(1.0, number(m[2])), 0.0, 1.0);
         return std::nullopt;
       }
       if (std::regex_search(line, m, lines))
         return std::clamp(std::strtod(m[1].str().c_str(), nullptr), 0.0, 1.0);
       if (std::regex_search(line, m, cases))
-        return (std::stod(m[1]) - 1.0) / std::max(1.0, std::stod(m[2]));
+        return std::clamp((number(m[1]) - 1.0) / std::max(1.0, number(m[2])), 0.0, 1.0);
       return std::nullopt;
     }
 
@@ -195,8 +257,8 @@ namespace kimp::server
         run.case_estimates[m[1]] = std::strtod(m[2].str().c_str(), nullptr);
       else if (std::regex_match(line, m, starts))
       {
-        run.case_index    = std::stoi(m[1]);
-        run.case_count    = std::stoi(m[2]);
+        run.case_index    = static_cast<int>(std::min(number(m[1]), 1e9));
+        run.case_count    = static_cast<int>(std::min(number(m[2]), 1e9));
         run.case_started  = SteadyClock::now();
         const auto it     = run.case_estimates.find(m[3]);
         run.case_estimate = it == run.case_estimates.end() ? 0.0 : it->second;
@@ -205,6 +267,12 @@ namespace kimp::server
 
     /// Seconds to wait between polls of a child's pipe (and for a cancel's SIGKILL).
     constexpr int poll_ms = 100;
+    /// A child's log line is cut after this many bytes (run.log), 240 for the page.
+    constexpr std::size_t max_line_bytes = 64u << 10;
+    /// run.log grows no further than this.
+    constexpr std::size_t max_log_file_bytes = 64u << 20;
+    /// The error of a run (its "error: " lines) grows no further than this.
+    constexpr std::size_t max_error_bytes = 64u << 10;
   } // namespace
 
   Captured capture_kimp(const std::filesystem::path    &kimp,
@@ -263,14 +331,19 @@ namespace kimp::server
 
   RunManager::RunManager(RunSettings settings)
     : settings_(std::move(settings))
+    , shown_(settings_.runs_dir, settings_.records_dir)
   {
     settings_.max_runs = std::max(1u, settings_.max_runs);
     std::filesystem::create_directories(settings_.runs_dir);
+    lock_runs_folder();
+    mark_interrupted_runs();
   }
 
   RunManager::~RunManager()
   {
     shutdown();
+    if (lock_fd_ >= 0)
+      close(lock_fd_);
   }
 
   void RunManager::shutdown()
@@ -289,43 +362,122 @@ namespace kimp::server
         run->watcher.join();
   }
 
+  void RunManager::lock_runs_folder()
+  {
+    const auto path = settings_.runs_dir / ".kimp-gui.lock";
+    lock_fd_        = open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (lock_fd_ < 0)
+      throw std::runtime_error("kimp gui: cannot lock the runs folder " +
+                               settings_.runs_dir.string() + ": " + std::strerror(errno));
+    if (flock(lock_fd_, LOCK_EX | LOCK_NB) != 0)
+    {
+      char          pid[32] = {};
+      const ssize_t n       = pread(lock_fd_, pid, sizeof(pid) - 1, 0);
+      close(lock_fd_);
+      lock_fd_ = -1;
+      throw std::runtime_error(
+        "kimp gui: the runs folder " + settings_.runs_dir.string() +
+        " is in use by another kimp gui" +
+        (n > 0 ? " (pid " + std::string(pid, static_cast<std::size_t>(n)) + ")" : std::string()) +
+        "; stop it, or give this one another --runs-dir");
+    }
+    const std::string pid = std::to_string(getpid());
+    if (ftruncate(lock_fd_, 0) != 0 ||
+        pwrite(lock_fd_, pid.data(), pid.size(), 0) != static_cast<ssize_t>(pid.size()))
+      base::logger().warn("cannot write the pid into {}", path.string());
+  }
+
+  void RunManager::mark_interrupted_runs()
+  {
+    std::error_code ec;
+    for (std::filesystem::directory_iterator it(settings_.runs_dir, ec), end; !ec && it != end;
+         it.increment(ec))
+    {
+      const std::string id = it->path().filename().string();
+      if (!valid_id(id) || !std::filesystem::exists(it->path() / "scene.yaml"))
+        continue;
+      nlohmann::json state = read_json(it->path() / "run.json");
+      if (!state.is_object())
+        state = nlohmann::json::object();
+      const std::string was = state.value("state", "");
+      if (was == "done" || was == "failed" || was == "cancelled" || was == "interrupted")
+        continue;
+      // The command is the last part of the id ("20260101-120000-3-lumped").
+      if (!state.contains("command") || !state["command"].is_string())
+        state["command"] = id.substr(id.rfind('-') + 1);
+      state["id"]        = id;
+      state["state"]     = "interrupted";
+      state["exit_code"] = -1;
+      state["error"]     = was == "queued" ?
+                             "interrupted: kimp gui stopped before the run started" :
+                             "interrupted: kimp gui stopped while the run was going (its "
+                             "results are incomplete)";
+      if (!state.contains("progress") || !state["progress"].is_number())
+        state["progress"] = 0.0;
+      save_state(it->path(), state);
+    }
+  }
+
   std::string
   RunManager::start(const std::string &command, const std::string &scene, const std::string &sweep)
   {
     static const std::vector<std::string> commands = {"lumped", "collide", "fem", "study", "sweep"};
     if (std::find(commands.begin(), commands.end(), command) == commands.end())
-      throw std::invalid_argument("unknown command \"" + command +
-                                  "\" (expected lumped, collide, fem, study or sweep)");
+      throw std::invalid_argument("unknown command " + in_quotes(command) +
+                                  " (expected lumped, collide, fem, study or sweep)");
     auto run     = std::make_shared<Run>();
     run->command = command;
     {
+      // The place is taken here, under the lock (reserved_), and the files written after it:
+      // concurrent starts cannot all pass the check before one of them is queued.
       std::lock_guard<std::mutex> lock(mutex_);
       if (stopping_)
         throw std::runtime_error("kimp gui is stopping: no new runs");
-      if (running_ >= settings_.max_runs && queue_.size() >= settings_.max_queued)
-        throw RunQueueFull("too many runs: " + std::to_string(running_) + " running (at most " +
+      const unsigned taken = running_ + static_cast<unsigned>(queue_.size()) + reserved_;
+      if (taken >= settings_.max_runs + settings_.max_queued)
+      {
+        const unsigned going = std::min(taken, settings_.max_runs);
+        throw RunQueueFull("too many runs: " + std::to_string(going) + " running (at most " +
                            std::to_string(settings_.max_runs) + ", kimp gui --max-runs) and " +
-                           std::to_string(queue_.size()) + " queued (at most " +
+                           std::to_string(taken - going) + " queued (at most " +
                            std::to_string(settings_.max_queued) +
                            "); wait for one to finish or cancel one");
-      run->id  = now_id() + "-" + std::to_string(++counter_) + "-" + command;
+      }
+      // A fresh directory: a restarted server's counter starts again within the same second.
+      do
+        run->id = now_id() + "-" + std::to_string(++counter_) + "-" + command;
+      while (runs_.count(run->id) || std::filesystem::exists(settings_.runs_dir / run->id));
       run->dir = settings_.runs_dir / run->id;
+      std::filesystem::create_directories(run->dir);
+      ++reserved_;
     }
-    std::filesystem::create_directories(run->dir);
-    io::write_text_atomic(run->dir / "scene.yaml", scene);
-    std::vector<std::string> arguments = {command};
-    if (command == "sweep")
+    try
     {
-      io::write_text_atomic(run->dir / "sweep.yaml", sweep);
-      arguments.push_back((run->dir / "sweep.yaml").string());
-      arguments.push_back("--no-charts");
+      io::write_text_atomic(run->dir / "scene.yaml", scene);
+      // The child runs in the run's directory: its messages name "scene.yaml", not a machine
+      // path.
+      std::vector<std::string> arguments = {command};
+      if (command == "sweep")
+      {
+        io::write_text_atomic(run->dir / "sweep.yaml", sweep);
+        arguments.insert(arguments.end(), {"sweep.yaml", "--no-charts"});
+      }
+      else
+        arguments.push_back("scene.yaml");
+      arguments.insert(arguments.end(), {"-o", "out"});
+      run->arguments = std::move(arguments);
+      save_state(run->dir, {{"id", run->id}, {"command", command}, {"state", "queued"}});
     }
-    else
-      arguments.push_back((run->dir / "scene.yaml").string());
-    arguments.push_back("-o");
-    arguments.push_back((run->dir / "out").string());
-    run->arguments = std::move(arguments);
+    catch (...)
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      --reserved_;
+      std::error_code ec;
+      std::filesystem::remove_all(run->dir, ec);
+      throw;
+    }
     std::lock_guard<std::mutex> lock(mutex_);
+    --reserved_;
     runs_[run->id] = run;
     queue_.push_back(run);
     launch_queued_locked();
@@ -366,15 +518,20 @@ namespace kimp::server
                     run->arguments,
                     fds[1],
                     fds[1],
-                    child_environment(settings_.records_dir));
+                    child_environment(settings_.records_dir),
+                    run->dir);
       run->pid = pid;
       if (pid <= 0 && !run->cancel)
-        run->error =
-          "cannot start " + settings_.kimp_executable.string() + ": " + std::strerror(errno);
+        run->error = "cannot start " + settings_.kimp_executable.filename().string() + ": " +
+                     std::strerror(errno);
       changed_.notify_all();
     }
     close(fds[1]);
+    // A server that dies now leaves the run "running" on disk: interrupted at its next start.
+    if (pid > 0)
+      save_state(run->dir, {{"id", run->id}, {"command", run->command}, {"state", "running"}});
     std::ofstream log(run->dir / "run.log");
+    std::size_t   logged = 0; // bytes written to run.log
     std::string   pending;
     char          buffer[4096];
     int           status = 0;
@@ -394,10 +551,21 @@ namespace kimp::server
       else if (ready < 0 && errno != EINTR)
         open = false;
       std::lock_guard<std::mutex> lock(mutex_);
-      for (std::size_t end; (end = pending.find_first_of("\r\n")) != std::string::npos;)
+      for (;;)
       {
-        std::string line = pending.substr(0, end);
-        pending.erase(0, end + 1);
+        // A line ends at a line break, or after max_line_bytes (a child that writes without
+        // one cannot grow the server).
+        std::size_t end  = pending.find_first_of("\r\n");
+        std::size_t skip = 1;
+        if (end == std::string::npos)
+        {
+          if (pending.size() < max_line_bytes)
+            break;
+          end  = max_line_bytes;
+          skip = 0;
+        }
+        std::string line = shown_.relative(pending.substr(0, end));
+        pending.erase(0, end + skip);
         if (line.empty())
           continue;
         if (const auto fraction = parse_progress(run->command, line))
@@ -415,12 +583,29 @@ namespace kimp::server
           }
           run->progress_text = line;
         }
-        log << line << '\n' << std::flush;
-        if (line.rfind("error: ", 0) == 0)
+        // run.log stops at max_log_file_bytes (a child that writes without end fills no disk).
+        if (logged < max_log_file_bytes)
+        {
+          logged += line.size() + 1;
+          log << line << '\n';
+          if (logged >= max_log_file_bytes)
+            log << "... (run.log stops here, at " << (max_log_file_bytes >> 20) << " MB)\n";
+          log << std::flush;
+        }
+        // The page gets long lines clipped, and the first max_log_lines lines.
+        line = clip_long_lines(std::move(line));
+        if (line.rfind("error: ", 0) == 0 && run->error.size() < max_error_bytes)
           run->error += (run->error.empty() ? "" : "\n") + line.substr(7);
         if (run->command == "lumped")
           note_lumped_case(*run, line);
-        run->log.push_back(std::move(line));
+        if (run->log.size() < max_log_lines)
+          run->log.push_back(std::move(line));
+        else if (!run->log_full)
+        {
+          run->log.push_back("... (more than " + std::to_string(max_log_lines) +
+                             " lines: the others are in run.log)");
+          run->log_full = true;
+        }
         changed_.notify_all();
       }
       // A cancelled child that is still there after the grace period is killed (with anything
@@ -469,13 +654,13 @@ namespace kimp::server
                                           "exit code " + std::to_string(run.exit_code);
     }
     run.pid = -1;
-    std::ofstream(run.dir / "run.json") << nlohmann::json{
-      {"id", run.id},
-      {"command", run.command},
-      {"state", run.state},
-      {"progress", run.progress},
-      {"exit_code", run.exit_code},
-      {"error", run.error}}.dump(1);
+    save_state(run.dir,
+               {{"id", run.id},
+                {"command", run.command},
+                {"state", run.state},
+                {"progress", run.progress},
+                {"exit_code", run.exit_code},
+                {"error", run.error}});
     // Called once per launched run (by its watcher): its slot is free for the next in the queue.
     --running_;
     launch_queued_locked();
@@ -495,13 +680,13 @@ namespace kimp::server
       run.cancel = true;
       run.state  = "cancelled";
       run.error  = "cancelled before it started";
-      std::ofstream(run.dir / "run.json") << nlohmann::json{
-        {"id", run.id},
-        {"command", run.command},
-        {"state", run.state},
-        {"progress", 0.0},
-        {"exit_code", -1},
-        {"error", run.error}}.dump(1);
+      save_state(run.dir,
+                 {{"id", run.id},
+                  {"command", run.command},
+                  {"state", run.state},
+                  {"progress", 0.0},
+                  {"exit_code", -1},
+                  {"error", run.error}});
       changed_.notify_all();
       return true;
     }
@@ -511,6 +696,42 @@ namespace kimp::server
     run.cancelled_at = SteadyClock::now();
     if (run.pid > 0)
       kill(-run.pid, SIGTERM);
+    changed_.notify_all();
+    return true;
+  }
+
+  bool RunManager::remove(const std::string &id)
+  {
+    if (!exists(id))
+      return false;
+    std::shared_ptr<Run> run;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (stopping_)
+        throw RunBusy("kimp gui is stopping: runs are not removed now");
+      if (const auto it = runs_.find(id); it != runs_.end())
+      {
+        if (it->second->state == "queued" || it->second->state == "running")
+          throw RunBusy("run " + id + " is " + it->second->state + ": cancel it first");
+        run = it->second;
+      }
+      // A child of a server that died before this one could still write there (a process
+      // that outlived it: it holds the output lock).
+      const auto lock_path = settings_.runs_dir / id / "out" / io::output_lock_name;
+      if (const int fd = open(lock_path.c_str(), O_RDONLY | O_CLOEXEC); fd >= 0)
+      {
+        const bool held = flock(fd, LOCK_SH | LOCK_NB) != 0;
+        close(fd);
+        if (held)
+          throw RunBusy("run " + id + " is still written by a process (out/" +
+                        io::output_lock_name + " is held); stop it first");
+      }
+      runs_.erase(id);
+    }
+    // Its watcher has finished the run: it ends at once.
+    if (run && run->watcher.joinable())
+      run->watcher.join();
+    std::filesystem::remove_all(settings_.runs_dir / id);
     changed_.notify_all();
     return true;
   }
@@ -536,6 +757,8 @@ namespace kimp::server
       j = read_json(settings_.runs_dir / id / "run.json");
       if (!j.is_object())
         j = {{"id", id}, {"state", "unknown"}};
+      if (j.contains("error") && j["error"].is_string())
+        j["error"] = shown_(j["error"].get<std::string>());
       if (j.value("state", "") == "done")
         j["progress"] = 1.0;
       else if (!j.contains("progress"))

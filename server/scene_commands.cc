@@ -55,8 +55,10 @@ namespace kimp::server
     }
   } // namespace
 
-  SceneCommands::SceneCommands(std::filesystem::path kimp_executable)
+  SceneCommands::SceneCommands(std::filesystem::path kimp_executable,
+                               std::filesystem::path runs_dir)
     : kimp_(std::move(kimp_executable))
+    , runs_dir_(std::move(runs_dir))
   {
   }
 
@@ -69,8 +71,8 @@ namespace kimp::server
                                                             "sweep"};
     if (std::find(scene_commands.begin(), scene_commands.end(), command) == scene_commands.end())
       throw HttpError(404,
-                      "no scene command \"" + command +
-                        "\" (kimp gui edits lumped, collide, fem, study and sweep scenes)");
+                      "no scene command " + in_quotes(command) +
+                        " (kimp gui edits lumped, collide, fem, study and sweep scenes)");
     std::lock_guard<std::mutex> lock(mutex_);
     const std::string           key = command + flag;
     if (const auto it = cache_.find(key); it != cache_.end())
@@ -118,8 +120,8 @@ namespace kimp::server
                       "its base scene with the base scene's command (lumped)");
     if (command != "fem" && command != "study")
       throw HttpError(400,
-                      "unknown command \"" + command +
-                        "\" (expected lumped, collide, fem, study or sweep)");
+                      "unknown command " + in_quotes(command) +
+                        " (expected lumped, collide, fem, study or sweep)");
     try
     {
       schema(command, "--print-schema");
@@ -128,11 +130,11 @@ namespace kimp::server
     {
       throw HttpError(400, error.what());
     }
-    // The FEM executable reads the scene as its run would, in a directory of its own so
-    // that its messages name "scene.yaml" as the in-process ones do.
+    // The FEM executable reads the scene as its run would: in a folder of its own beside the
+    // runs (not listed: a run's id has no '.'), so that its messages name "scene.yaml" as the
+    // in-process ones do and its relative paths ("../uploads/NAME") mean what they mean to a run.
     const auto dir =
-      std::filesystem::temp_directory_path() /
-      ("kimp-gui-check-" + std::to_string(getpid()) + "-" + std::to_string(++check_counter_));
+      runs_dir_ / (".check-" + std::to_string(getpid()) + "-" + std::to_string(++check_counter_));
     std::filesystem::create_directories(dir);
     io::write_text_atomic(dir / "scene.yaml", text);
     const Captured  result = capture_kimp(kimp_, {"-q", command, "scene.yaml", "--check"}, dir);

@@ -16,7 +16,9 @@ namespace kimp::server
   class SceneCommands
   {
   public:
-    explicit SceneCommands(std::filesystem::path kimp_executable);
+    /// `runs_dir`: the runs folder, in which fem and study scenes are checked (so that their
+    /// relative paths mean what they mean to a run there).
+    SceneCommands(std::filesystem::path kimp_executable, std::filesystem::path runs_dir);
 
     /// Output of `kimp COMMAND FLAG` (--print-schema or --print-defaults), asked once.
     /// @throws HttpError 404 when that kimp cannot print it (no such command, or no kimp-fem
@@ -37,6 +39,7 @@ namespace kimp::server
 
   private:
     std::filesystem::path              kimp_;
+    std::filesystem::path              runs_dir_;
     std::mutex                         mutex_;  ///< guards cache_ and errors_
     std::map<std::string, std::string> cache_;  ///< command + flag -> text
     std::map<std::string, std::string> errors_; ///< command + flag -> why not

@@ -1,5 +1,7 @@
 // The HTTP server of `kimp gui` (server/server.h): routes, the Host/Origin checks against DNS
-// rebinding and cross-site requests, path confinement of file endpoints, JSON errors.
+// rebinding and cross-site requests, path confinement of file endpoints, request bodies read and
+// counted against the limit, a cap on event streams, JSON errors that echo at most 80 bytes of a
+// bad value and no machine path, and nothing a request holds that can escape as an exception.
 #include "server/server.h"
 
 #include <algorithm>
@@ -8,6 +10,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <fcntl.h>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -16,8 +19,8 @@
 #include <regex>
 #include <signal.h>
 #include <spawn.h>
-#include <sstream>
 #include <stdexcept>
+#include <strings.h>
 #include <sys/wait.h>
 #include <thread>
 
@@ -35,6 +38,7 @@
 #include "server/http_error.h"
 #include "server/run_manager.h"
 #include "server/scene_commands.h"
+#include "server/shown_text.h"
 
 // After the app headers: <httplib.h> brings <resolv.h>, whose `_res` macro breaks Eigen.
 #include <httplib.h>
@@ -60,17 +64,56 @@ namespace kimp::server
         { return sink.write(text->data() + offset, std::min(length, text->size() - offset)); });
     }
 
+    /// Threads serving requests, and the event streams among them at most: the others always
+    /// have threads for ordinary requests.
+    constexpr unsigned request_threads   = 32;
+    constexpr unsigned max_event_streams = 16;
+
+    /// `value` as JSON text: any bytes that are not UTF-8 (a request's path, a child's log)
+    /// replaced by U+FFFD, never an exception.
+    std::string json_text(const nlohmann::json &value)
+    {
+      return value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    }
+
     void send_json(httplib::Response &res, const nlohmann::json &value, int status = 200)
     {
       res.status = status;
-      set_body(res, value.dump(), "application/json");
+      // Errors stay in res.body, where the error handler finds them (and they are small);
+      // results go uncompressed (set_body()).
+      if (status >= 400)
+        res.set_content(json_text(value), "application/json");
+      else
+        set_body(res, json_text(value), "application/json");
     }
 
-    /// A small body set in full, so that the error handler sees it (res.body) and keeps it.
-    void send_error(httplib::Response &res, int status, const std::string &message)
+    /// One of the event streams open, for as long as its response lives.
+    class EventStreamSlot
     {
-      res.status = status;
-      res.set_content(nlohmann::json{{"error", message}}.dump(), "application/json");
+    public:
+      explicit EventStreamSlot(std::atomic<unsigned> &open)
+        : open_(open)
+      {
+      }
+      ~EventStreamSlot() { --open_; }
+      EventStreamSlot(const EventStreamSlot &)            = delete;
+      EventStreamSlot &operator=(const EventStreamSlot &) = delete;
+
+    private:
+      std::atomic<unsigned> &open_;
+    };
+
+    /// Whether the body comes in chunks (Transfer-Encoding: chunked, as cpp-httplib reads it).
+    bool chunked(const httplib::Request &req)
+    {
+      return strcasecmp(req.get_header_value("Transfer-Encoding").c_str(), "chunked") == 0;
+    }
+
+    /// The Content-Length of a request; 0 when absent.
+    std::uint64_t content_length(const httplib::Request &req)
+    {
+      const std::string text = req.get_header_value("Content-Length");
+      return text.empty() ? 0 : std::strtoull(text.c_str(), nullptr, 10);
     }
 
     nlohmann::json parse_body(const std::string &text)
@@ -132,8 +175,8 @@ namespace kimp::server
       if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE ||
           !std::isfinite(value) || !(value > 0))
         throw HttpError(400,
-                        std::string(key) + " = \"" + text +
-                          "\": must be a positive finite number (m/s² per unit of the file's "
+                        std::string(key) + " = " + in_quotes(text) +
+                          ": must be a positive finite number (m/s² per unit of the file's "
                           "acceleration values, e.g. 9.80665 for g)");
       return value;
     }
@@ -153,15 +196,21 @@ namespace kimp::server
     /// Contained path: `base`/`relative` when it stays below `base` (no "..", no symlink out).
     std::filesystem::path confined(const std::filesystem::path &base, const std::string &relative)
     {
+      if (relative.find('\0') != std::string::npos)
+        throw HttpError(400, "path " + in_quotes(relative) + " holds a NUL byte");
       const std::filesystem::path rel(relative);
       for (const auto &part : rel)
         if (part == ".." || part == "." || rel.is_absolute())
-          throw HttpError(400, "path \"" + relative + "\" leaves its directory");
-      const auto root     = std::filesystem::weakly_canonical(base);
-      const auto path     = std::filesystem::weakly_canonical(base / rel);
+          throw HttpError(400, "path " + in_quotes(relative) + " leaves its directory");
+      // A name the file system refuses (too long, ...) names no file of the run.
+      std::error_code ec;
+      const auto      root = std::filesystem::weakly_canonical(base, ec);
+      const auto      path = ec ? root : std::filesystem::weakly_canonical(base / rel, ec);
+      if (ec)
+        throw HttpError(404, "no file " + in_quotes(relative) + " (" + ec.message() + ")");
       const auto mismatch = std::mismatch(root.begin(), root.end(), path.begin(), path.end()).first;
       if (mismatch != root.end())
-        throw HttpError(400, "path \"" + relative + "\" leaves its directory");
+        throw HttpError(400, "path " + in_quotes(relative) + " leaves its directory");
       return path;
     }
   } // namespace
@@ -173,6 +222,10 @@ namespace kimp::server
     RunManager      runs;
     int             port = 0;
     SceneCommands   commands;
+    /// The POST routes (post()): the only requests whose body is read.
+    std::vector<std::regex> post_routes;
+    /// Event streams open now (at most max_event_streams).
+    std::atomic<unsigned> event_streams{0};
     /// listen() and stop() from different threads, in either order (a stop() before the
     /// server loop runs must still end it): guarded by listen_mutex.
     std::mutex        listen_mutex;
@@ -183,7 +236,7 @@ namespace kimp::server
     explicit Impl(GuiOptions o)
       : options(std::move(o))
       , runs(options)
-      , commands(options.kimp_executable)
+      , commands(options.kimp_executable, options.runs_dir)
     {
     }
 
@@ -205,72 +258,148 @@ namespace kimp::server
       return !loopback() && (name == options.host || is_ip_literal(name));
     }
 
-    /// A POST route whose body is read here (not by cpp-httplib, which would refuse a
-    /// form-encoded body over 8 KB): up to max_body bytes, 413 beyond.
+    /// The answer {"error": message} with `status`: machine paths of the runs and records
+    /// folders made relative, long lines clipped; nothing thrown (a plain text answer if even
+    /// that fails).
+    void send_error(httplib::Response &res, int status, const std::string &message) const noexcept
+    {
+      try
+      {
+        send_json(res, {{"error", runs.shown()(message)}}, status);
+      }
+      catch (...)
+      {
+        res.status = status;
+        res.body   = "kimp gui: error " + std::to_string(status);
+        res.set_header("Content-Type", "text/plain");
+      }
+    }
+
+    /// The body limit as people read it ("16 MB").
+    std::string body_limit() const
+    {
+      return options.max_body >= (1u << 20) ? std::to_string(options.max_body >> 20) + " MB" :
+                                              std::to_string(options.max_body) + " bytes";
+    }
+
+    /// Whether a POST to `path` has a route (and so may have a body).
+    bool post_route(const std::string &path) const
+    {
+      return std::any_of(post_routes.begin(),
+                         post_routes.end(),
+                         [&](const std::regex &route) { return std::regex_match(path, route); });
+    }
+
+    /**
+     * A POST route whose body is read here, not by cpp-httplib (which would refuse a
+     * form-encoded body over 8 KB, and reads a chunked body without any limit): counted as it
+     * arrives, decompressed if it is, and refused with 413 as soon as it passes max_body.
+     */
     void
     post(const std::string &pattern,
          std::function<void(const httplib::Request &, const std::string &, httplib::Response &)>
            handler)
     {
+      post_routes.emplace_back(pattern);
       http.Post(pattern,
-                [handler](const httplib::Request       &req,
-                          httplib::Response            &res,
-                          const httplib::ContentReader &reader)
+                [this, handler](const httplib::Request       &req,
+                                httplib::Response            &res,
+                                const httplib::ContentReader &reader)
                 {
                   // Without a length the body would be read until the client closes: say
                   // what is missing at once instead.
-                  if (!req.has_header("Content-Length") &&
-                      req.get_header_value("Transfer-Encoding").find("chunked") ==
-                        std::string::npos)
+                  if (!req.has_header("Content-Length") && !chunked(req))
                     throw HttpError(411,
-                                    "a POST to " + req.path +
+                                    "a POST to " + clipped(req.path) +
                                       " needs its body with a Content-Length header (a JSON "
                                       "object for /api/validate, /api/runs and /api/motion, the "
                                       "file for /api/upload, {} for a cancel)");
+                  if (req.is_multipart_form_data())
+                    throw HttpError(415,
+                                    "multipart bodies are not read: send the JSON object or the "
+                                    "file itself as the body");
                   std::string body;
-                  const bool  read = reader(
+                  bool        too_large = false;
+                  const bool  read      = reader(
                     [&](const char *data, std::size_t n)
                     {
+                      if (n > options.max_body - body.size())
+                      {
+                        too_large = true;
+                        return false;
+                      }
                       body.append(data, n);
                       return true;
                     });
+                  if (too_large || res.status == 413)
+                    throw HttpError(413,
+                                    "request body too large (at most " + body_limit() +
+                                      ", kimp gui reads no more of it)");
                   if (!read)
-                    throw HttpError(res.status == 413 ? 413 : 400,
-                                    res.status == 413 ? "request body too large" :
-                                                        "the request body could not be read");
+                    throw HttpError(400, "the request body could not be read");
                   handler(req, body, res);
                 });
     }
+
+    /**
+     * Checks of every request before any of its body is read: the Host and Origin headers, the
+     * custom header of a state-changing request, and where a body may be. Only a POST to one of
+     * the POST routes has a body (read and counted by post()); a body anywhere else, or one in a
+     * transfer coding other than chunked, is refused unread.
+     * @return the refusal's status and message, or status 0
+     */
+    std::pair<int, std::string> refusal(const httplib::Request &req) const
+    {
+      if (!host_allowed(req.get_header_value("Host")))
+        return {403,
+                "foreign Host header " + in_quotes(req.get_header_value("Host")) +
+                  " refused (kimp gui answers only to its own address)"};
+      const std::string origin = req.get_header_value("Origin");
+      if (!origin.empty() && origin != "http://" + req.get_header_value("Host"))
+        return {403, "cross-origin request from " + in_quotes(origin) + " refused"};
+      // A custom header forces a CORS preflight, which this server never grants: no other
+      // site can make a browser send a state-changing request here.
+      if (req.method != "GET" && req.method != "HEAD" &&
+          req.get_header_value("X-Kimp-Request") != "1")
+        return {403, "request without the X-Kimp-Request header refused"};
+      if (req.method != "GET" && req.method != "HEAD" && req.method != "POST" &&
+          req.method != "DELETE")
+        return {405, "method " + in_quotes(req.method) + " not allowed (GET, POST or DELETE)"};
+      const bool        with_body = req.method == "POST" && post_route(req.path);
+      const std::string coding    = req.get_header_value("Transfer-Encoding");
+      if (req.method == "POST" && !with_body)
+        return {404, "no such page or endpoint: POST " + clipped(req.path)};
+      if (!coding.empty() && !chunked(req))
+        return {501,
+                "Transfer-Encoding " + in_quotes(coding) +
+                  " not supported (send the body with a Content-Length, or chunked)"};
+      if (!with_body &&
+          (!coding.empty() || req.has_header("Content-Encoding") || content_length(req) > 0))
+        return {400, "a " + req.method + " request to this server has no body"};
+      return {0, {}};
+    }
+
+    /// A run's folder as scenes sent to the server are read from (its relative paths, such
+    /// as an upload's "../uploads/NAME", mean what they mean to the run's child).
+    std::filesystem::path run_folder() const { return options.runs_dir / "run"; }
 
     void routes();
   };
 
   void GuiServer::Impl::routes()
   {
-    http.new_task_queue = [] { return new httplib::ThreadPool(32); };
+    http.new_task_queue = [] { return new httplib::ThreadPool(request_threads); };
     http.set_payload_max_length(options.max_body);
+    // One request per connection: an idle connection holds no thread, and the rest of a body
+    // that was refused is never read as a next request.
+    http.set_keep_alive_max_count(1);
     http.set_pre_routing_handler(
       [this](const httplib::Request &req, httplib::Response &res)
       {
-        if (!host_allowed(req.get_header_value("Host")))
+        const auto [status, message] = refusal(req);
+        if (status != 0)
         {
-          send_error(res,
-                     403,
-                     "foreign Host header \"" + req.get_header_value("Host") +
-                       "\" refused (kimp gui answers only to its own address)");
-          return httplib::Server::HandlerResponse::Handled;
-        }
-        const std::string origin = req.get_header_value("Origin");
-        if (!origin.empty() && origin != "http://" + req.get_header_value("Host"))
-        {
-          send_error(res, 403, "cross-origin request from \"" + origin + "\" refused");
-          return httplib::Server::HandlerResponse::Handled;
-        }
-        // A custom header forces a CORS preflight, which this server never grants: no other
-        // site can make a browser send a state-changing request here.
-        if (req.method != "GET" && req.get_header_value("X-Kimp-Request") != "1")
-        {
-          send_error(res, 403, "request without the X-Kimp-Request header refused");
+          send_error(res, status, message);
           return httplib::Server::HandlerResponse::Handled;
         }
         res.set_header("X-Content-Type-Options", "nosniff");
@@ -278,7 +407,7 @@ namespace kimp::server
         return httplib::Server::HandlerResponse::Unhandled;
       });
     http.set_exception_handler(
-      [](const httplib::Request &, httplib::Response &res, std::exception_ptr ep)
+      [this](const httplib::Request &, httplib::Response &res, std::exception_ptr ep)
       {
         try
         {
@@ -301,29 +430,37 @@ namespace kimp::server
           send_error(res, 500, "unknown error");
         }
       });
+    // Called for every answer >= 400, outside cpp-httplib's exception handling: nothing may
+    // escape it.
     http.set_error_handler(
       [this](const httplib::Request &req, httplib::Response &res)
       {
         if (!res.body.empty())
           return;
         std::string message;
-        switch (res.status)
+        try
         {
-          case 400:
-            message = "bad request: malformed HTTP request";
-            break;
-          case 404:
-            message = "no such page or endpoint: " + req.method + " " + req.path;
-            break;
-          case 413:
-            message =
-              "request body too large (at most " + std::to_string(options.max_body >> 20) + " MB)";
-            break;
-          case 414:
-            message = "request line too long";
-            break;
-          default:
-            message = "HTTP error " + std::to_string(res.status);
+          switch (res.status)
+          {
+            case 400:
+              message = "bad request: malformed HTTP request";
+              break;
+            case 404:
+              message = "no such page or endpoint: " + req.method + " " + clipped(req.path);
+              break;
+            case 413:
+              message = "request body too large (at most " + body_limit() + ")";
+              break;
+            case 414:
+              message = "request line too long";
+              break;
+            default:
+              message = "HTTP error " + std::to_string(res.status);
+          }
+        }
+        catch (...)
+        {
+          message = "HTTP error " + std::to_string(res.status);
         }
         send_error(res, res.status, message);
       });
@@ -347,9 +484,15 @@ namespace kimp::server
                           {"commands", commands.available()},
                           {"max_runs", options.max_runs},
                           {"motion_preview", true},
-                          {"runs_dir", std::filesystem::absolute(options.runs_dir).string()},
+                          // The folders by their names: no machine path leaves the server.
+                          {"runs_dir", FolderPaths::folder_name(options.runs_dir)},
                           {"records_dir",
-                           options.records_dir ? options.records_dir->string() : std::string()}});
+                           options.records_dir ? FolderPaths::folder_name(*options.records_dir) :
+                                                 std::string()},
+                          {"limits",
+                           {{"max_body", options.max_body},
+                            {"max_queued", options.max_queued},
+                            {"max_event_streams", max_event_streams}}}});
              });
     http.Get(R"(/api/(schema|defaults)/([a-z]+))",
              [this](const httplib::Request &req, httplib::Response &res)
@@ -366,7 +509,7 @@ namespace kimp::server
            const auto        body = parse_body(text);
            const std::string error =
              commands.validation_error(text_member(body, "command"), text_member(body, "scene"));
-           send_json(res, {{"ok", error.empty()}, {"error", error}});
+           send_json(res, {{"ok", error.empty()}, {"error", runs.shown()(error)}});
          });
     post("/api/runs",
          [this](const httplib::Request &, const std::string &text, httplib::Response &res)
@@ -402,7 +545,8 @@ namespace kimp::server
                        record_json(app::scene_ground_motion(text_member(body, "command"),
                                                             text_member(body, "scene"),
                                                             "scene.yaml",
-                                                            options.records_dir)));
+                                                            options.records_dir,
+                                                            run_folder())));
            }
            catch (const io::SceneError &error)
            {
@@ -416,14 +560,29 @@ namespace kimp::server
              [this](const httplib::Request &req, httplib::Response &res)
              {
                if (!runs.exists(req.matches[1]))
-                 throw HttpError(404, "no run " + req.matches[1].str());
+                 throw HttpError(404, "no run " + clipped(req.matches[1].str()));
                send_json(res, runs.describe(req.matches[1]));
              });
+    // A finished run (or one a dead server left, "interrupted") is deleted with its files.
+    http.Delete(R"(/api/runs/([A-Za-z0-9_-]+))",
+                [this](const httplib::Request &req, httplib::Response &res)
+                {
+                  try
+                  {
+                    if (!runs.remove(req.matches[1]))
+                      throw HttpError(404, "no run " + clipped(req.matches[1].str()));
+                  }
+                  catch (const RunBusy &error)
+                  {
+                    throw HttpError(409, error.what());
+                  }
+                  send_json(res, {{"deleted", req.matches[1].str()}});
+                });
     post(R"(/api/runs/([A-Za-z0-9_-]+)/cancel)",
          [this](const httplib::Request &req, const std::string &, httplib::Response &res)
          {
            if (!runs.exists(req.matches[1]))
-             throw HttpError(404, "no run " + req.matches[1].str());
+             throw HttpError(404, "no run " + clipped(req.matches[1].str()));
            send_json(res, {{"cancelled", runs.cancel(req.matches[1])}});
          });
     http.Get(R"(/api/runs/([A-Za-z0-9_-]+)/events)",
@@ -431,30 +590,51 @@ namespace kimp::server
              {
                const std::string id = req.matches[1];
                if (!runs.exists(id))
-                 throw HttpError(404, "no run " + id);
+                 throw HttpError(404, "no run " + clipped(id));
+               // Each stream holds a thread while it is open: past the cap the others are
+               // refused, so that ordinary requests always find a thread.
+               if (++event_streams > max_event_streams)
+               {
+                 --event_streams;
+                 res.set_header("Retry-After", "5");
+                 throw HttpError(503,
+                                 "too many event streams open (at most " +
+                                   std::to_string(max_event_streams) +
+                                   "); close a page that follows a run, or poll GET /api/runs/" +
+                                   clipped(id));
+               }
+               auto slot = std::make_shared<EventStreamSlot>(event_streams);
                auto seen = std::make_shared<std::size_t>(0);
                res.set_header("Cache-Control", "no-cache");
+               // Written outside cpp-httplib's exception handling: nothing may escape.
                res.set_chunked_content_provider(
                  "text/event-stream",
-                 [this, id, seen](std::size_t, httplib::DataSink &sink)
+                 [this, id, seen, slot](std::size_t, httplib::DataSink &sink)
                  {
-                   runs.wait_for_change(id, *seen, 1000);
-                   const nlohmann::json state = runs.describe(id, *seen);
-                   *seen                      = state.value("log_lines", *seen);
-                   const std::string event    = "data: " + state.dump() + "\n\n";
-                   if (!sink.write(event.data(), event.size()))
+                   try
+                   {
+                     runs.wait_for_change(id, *seen, 1000);
+                     const nlohmann::json state = runs.describe(id, *seen);
+                     *seen                      = state.value("log_lines", *seen);
+                     const std::string event    = "data: " + json_text(state) + "\n\n";
+                     if (!sink.write(event.data(), event.size()))
+                       return false;
+                     const std::string s = state.value("state", "");
+                     if (s != "running" && s != "queued")
+                       sink.done();
+                     return true;
+                   }
+                   catch (...)
+                   {
                      return false;
-                   const std::string s = state.value("state", "");
-                   if (s != "running" && s != "queued")
-                     sink.done();
-                   return true;
+                   }
                  });
              });
     http.Get(R"(/api/runs/([A-Za-z0-9_-]+)/(data|report))",
              [this](const httplib::Request &req, httplib::Response &res)
              {
                if (!runs.exists(req.matches[1]))
-                 throw HttpError(404, "no run " + req.matches[1].str());
+                 throw HttpError(404, "no run " + clipped(req.matches[1].str()));
                const auto data =
                  report::report_data(options.runs_dir / req.matches[1].str() / "out");
                if (req.matches[2] == "data")
@@ -466,14 +646,37 @@ namespace kimp::server
              [this](const httplib::Request &req, httplib::Response &res)
              {
                if (!runs.exists(req.matches[1]))
-                 throw HttpError(404, "no run " + req.matches[1].str());
+                 throw HttpError(404, "no run " + clipped(req.matches[1].str()));
                const auto path = confined(options.runs_dir / req.matches[1].str(), req.matches[2]);
-               if (!std::filesystem::is_regular_file(path))
-                 throw HttpError(404, "no file " + req.matches[2].str());
-               std::ifstream      in(path, std::ios::binary);
-               std::ostringstream text;
-               text << in.rdbuf();
-               set_body(res, text.str(), mime_type(path.filename().string()).c_str());
+               std::error_code ec;
+               if (!std::filesystem::is_regular_file(path, ec))
+                 throw HttpError(404, "no file " + in_quotes(req.matches[2].str()));
+               const std::uintmax_t size = std::filesystem::file_size(path, ec);
+               const std::string    type = mime_type(path.filename().string());
+               if (ec || size == 0)
+                 return res.set_content("", type.c_str());
+               // Streamed from the file (a run's results can be large): 64 kB in memory at a
+               // time, whatever the file's size. Called outside cpp-httplib's exception
+               // handling: nothing may escape.
+               auto in = std::make_shared<std::ifstream>(path, std::ios::binary);
+               res.set_content_provider(
+                 static_cast<std::size_t>(size),
+                 type.c_str(),
+                 [in](std::size_t offset, std::size_t length, httplib::DataSink &sink)
+                 {
+                   try
+                   {
+                     std::vector<char> buffer(std::min<std::size_t>(length, 64u << 10));
+                     in->seekg(static_cast<std::streamoff>(offset));
+                     in->read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+                     const auto n = static_cast<std::size_t>(in->gcount());
+                     return n > 0 && sink.write(buffer.data(), n);
+                   }
+                   catch (...)
+                   {
+                     return false;
+                   }
+                 });
              });
     http.Get("/api/records",
              [this](const httplib::Request &, httplib::Response &res)
@@ -494,7 +697,7 @@ namespace kimp::server
                for (const auto &path : io::list_records(*options.records_dir))
                  if (path.stem().string() == req.matches[1].str())
                    return send_json(res, record_json(io::read_at2(path)));
-               throw HttpError(404, "no record " + req.matches[1].str());
+               throw HttpError(404, "no record " + in_quotes(req.matches[1].str()));
              });
     post("/api/upload",
          [this](const httplib::Request &req, const std::string &body, httplib::Response &res)
@@ -503,8 +706,8 @@ namespace kimp::server
            const std::string       name = req.get_param_value("name");
            if (!std::regex_match(name, safe) || name.front() == '.')
              throw HttpError(400,
-                             "upload name \"" + name +
-                               "\" must be 1-100 letters, digits, '_', '-' or '.'");
+                             "upload name " + in_quotes(name) +
+                               " must be 1-100 letters, digits, '_', '-' or '.'");
            const double unit = positive_number_parameter(req, "unit", 9.80665);
            const auto   dir  = options.runs_dir / "uploads";
            std::filesystem::create_directories(dir);
@@ -517,7 +720,9 @@ namespace kimp::server
                                    io::parse_two_column(body, name, unit);
              io::write_text_atomic(path, body);
              nlohmann::json j = record_json(record);
-             j["path"]        = std::filesystem::absolute(path).string();
+             // The record as a run's scene names it: relative to the run's folder (the child
+             // runs there, and the motion preview reads scenes as if from there).
+             j["path"] = "../uploads/" + name;
              send_json(res, j, 201);
            }
            catch (const io::GroundMotionFileError &error)
@@ -551,6 +756,7 @@ namespace kimp::server
       {
         int yes = 1;
         setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+        fcntl(sock, F_SETFD, FD_CLOEXEC);
       });
     const std::string host = impl_->options.host == "localhost" ? "127.0.0.1" : impl_->options.host;
     errno                  = 0;

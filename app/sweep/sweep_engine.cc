@@ -15,6 +15,7 @@
 #include <set>
 #include <thread>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "base/errors.h"
 #include "base/logging.h"
@@ -151,9 +152,9 @@ namespace kimp::app
       column.name += (column.name.empty() ? "" : "+") + path;
     if (column.name.empty())
       column.name = parameter.name;
-    column.values = parameter.values;
+    column.values = parameter.values.to_vector();
     std::vector<std::pair<double, std::string>> parsed;
-    for (const std::string &value : parameter.values)
+    for (const std::string &value : column.values)
     {
       const auto q = number_and_unit(value);
       if (!q)
@@ -176,7 +177,7 @@ namespace kimp::app
     {
       // Several units (or %): SI values, in the SI unit of their one dimension.
       std::optional<Dimension> dimension;
-      for (const std::string &value : parameter.values)
+      for (const std::string &value : column.values)
       {
         const Quantity q = parse_quantity(value);
         if (dimension && *dimension != q.dimension)
@@ -236,7 +237,7 @@ namespace kimp::app
                     options.rank,
                     options.n_ranks));
     SweepSummary summary;
-    summary.n_cases = plan.cases().size();
+    summary.n_cases = plan.n_cases();
 
     const JournalContents journal = SweepJournal::read_all(dir);
     summary.n_torn_lines          = journal.n_torn_lines;
@@ -244,38 +245,40 @@ namespace kimp::app
       logger().warn("sweep: ignored {} incomplete journal line(s) in {} (interrupted run)",
                     journal.n_torn_lines,
                     (dir / "journal").string());
-    std::set<std::string> finished;
+    // The plan's cases finished before, by index: a journal entry is one when the case at its
+    // index has its id (entries of another plan are not).
+    std::unordered_set<std::size_t> finished;
     for (const JournalEntry &entry : journal.entries)
-      if (!options.retry_failed || entry.row.status == "ok")
-        finished.insert(entry.id);
+      if ((!options.retry_failed || entry.row.status == "ok") && entry.index < summary.n_cases &&
+          finished.count(entry.index) == 0 && plan.case_info(entry.index).id == entry.id)
+        finished.insert(entry.index);
+    summary.n_resumed = finished.size();
 
-    std::vector<const SweepCase *> mine;
-    for (const SweepCase &c : plan.cases())
-    {
-      if (finished.count(c.id) > 0)
-      {
-        ++summary.n_resumed;
-        continue;
-      }
-      if (static_cast<int>(c.index % static_cast<std::size_t>(options.n_ranks)) == options.rank)
-        mine.push_back(&c);
-    }
+    // This rank's cases are indices rank, rank + n_ranks, ...; none is stored (a plan may have
+    // millions): a finished case is skipped when its turn comes.
+    const auto n_ranks = static_cast<std::size_t>(options.n_ranks);
+    const auto rank    = static_cast<std::size_t>(options.rank);
+    const auto n_of_rank =
+      summary.n_cases > rank ? (summary.n_cases - rank + n_ranks - 1) / n_ranks : 0;
+    std::size_t n_mine = n_of_rank;
+    for (const std::size_t index : finished)
+      n_mine -= index % n_ranks == rank ? 1 : 0;
 
     unsigned int n_threads = options.threads;
     if (n_threads == 0)
       n_threads =
         std::max(1U,
                  std::thread::hardware_concurrency() / static_cast<unsigned int>(options.n_ranks));
-    n_threads = static_cast<unsigned int>(
-      std::max<std::size_t>(1, std::min<std::size_t>(n_threads, mine.size())));
+    n_threads =
+      static_cast<unsigned int>(std::max<std::size_t>(1, std::min<std::size_t>(n_threads, n_mine)));
     logger().info("sweep: {} cases, {} already finished, {} to run on rank {} with {} thread(s)",
                   summary.n_cases,
                   summary.n_resumed,
-                  mine.size(),
+                  n_mine,
                   options.rank,
                   n_threads);
 
-    if (!mine.empty())
+    if (n_mine > 0)
     {
       SweepJournal             out(SweepJournal::file_of(dir, options.rank));
       std::atomic<std::size_t> next{0};
@@ -284,24 +287,30 @@ namespace kimp::app
       std::size_t              n_finished = 0;
       SweepProgress            progress(summary.n_cases,
                              summary.n_resumed,
-                             mine.size(),
+                             n_mine,
                              options.rank == 0 ? options.progress_interval :
                                                             std::numeric_limits<double>::infinity());
       std::exception_ptr       io_error;
 
       const auto work = [&]()
       {
-        for (std::size_t i = next++; i < mine.size(); i = next++)
+        for (std::size_t k = next++; k < n_of_rank; k = next++)
         {
-          const SweepCase &c = *mine[i];
-          JournalEntry     entry;
+          const std::size_t index = rank + k * n_ranks;
+          if (finished.count(index) > 0)
+            continue;
+          const SweepCase c = plan.case_info(index);
+          JournalEntry    entry;
           entry.index      = c.index;
           entry.id         = c.id;
           entry.rank       = options.rank;
           const auto start = SteadyClock::now();
           try
           {
-            entry.row = runner(c.scene_text, c.scene_name);
+            // The scene is made now, case by case (a key path that cannot be followed fails the
+            // case only).
+            const SweepCase full = plan.case_at(index);
+            entry.row            = runner(full.scene_text, full.scene_name);
           }
           catch (const std::exception &error)
           {
@@ -326,7 +335,7 @@ namespace kimp::app
             const std::lock_guard<std::mutex> lock(progress_mutex);
             if (!io_error)
               io_error = std::current_exception();
-            next = mine.size();
+            next = n_of_rank;
             return;
           }
           const std::lock_guard<std::mutex> lock(progress_mutex);
@@ -382,17 +391,24 @@ namespace kimp::app
     for (const SweepParameter &p : plan.parameters())
       table.parameter_names.push_back(p.name);
     std::map<std::string, std::size_t> metric_column;
-    for (const SweepCase &c : plan.cases())
+    // Each journaled case looked up by its index (the plan's cases are not stored): an entry
+    // belongs to this plan when the case at its index has its id.
+    std::vector<std::pair<SweepCase, const JournalEntry *>> found;
+    for (const auto &[id, entry] : best)
+      if (entry->index < plan.n_cases())
+        if (SweepCase c = plan.case_info(entry->index); c.id == id)
+          found.emplace_back(std::move(c), entry);
+    std::sort(found.begin(),
+              found.end(),
+              [](const auto &a, const auto &b) { return a.first.index < b.first.index; });
+    for (auto &[c, entry_of_case] : found)
     {
-      const auto found = best.find(c.id);
-      if (found == best.end())
-        continue;
-      const JournalEntry &entry = *found->second;
+      const JournalEntry &entry = *entry_of_case;
       SweepTableRow       row;
       row.index     = c.index;
-      row.id        = c.id;
-      row.companion = c.companion;
-      row.values    = c.values;
+      row.id        = std::move(c.id);
+      row.companion = std::move(c.companion);
+      row.values    = std::move(c.values);
       row.status    = entry.row.status;
       row.wall_time = entry.wall_time;
       for (const auto &[name, value] : entry.row.metrics)
@@ -512,7 +528,7 @@ namespace kimp::app
       for (const SweepParameterColumn &p : parameter_columns)
         column_names.push_back(csv_column(p.name, p.unit));
       sweep.write("parameter_columns", column_names);
-      sweep.set_attribute("n_cases", plan.cases().size());
+      sweep.set_attribute("n_cases", plan.n_cases());
       sweep.set_attribute("n_rows", table.rows.size());
 
       std::vector<std::string> ids, companions, statuses;

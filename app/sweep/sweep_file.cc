@@ -1,6 +1,6 @@
 // Sweep file reading (through the scene reader): the sweep file's sections, its parameters (lists,
 // ranges, map values) and companions, checked at the lines of their keys, into a SweepPlan; the
-// cases are enumerated in sweep_plan.cc.
+// cases are counted and made on demand in sweep_plan.cc.
 #include <algorithm>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -182,8 +182,8 @@ namespace kimp::app
         label = out.c_str();
       }
       p.values.push_back(label);
-      p.settings.resize(p.values.size());
-      p.settings.back() = std::move(setting);
+      p.map_settings.resize(p.values.size());
+      p.map_settings.back() = std::move(setting);
     }
 
     /// A parameter: its key paths and values (a list, or a range {from, to, step}).
@@ -232,20 +232,16 @@ namespace kimp::app
                     std::string("range without '") + k + "' (expected {from, to, step})");
         const auto bound = [&](const char *k)
         { return scalar_text(values[k], file_name, key + "." + k, read.line(key + "." + k)); };
-        p.values = expand_range(bound("from"),
-                                bound("to"),
-                                bound("step"),
-                                fmt::format("{}:{}: {}", file_name, p.line, key));
+        // Kept as a range: its values are formatted one at a time when a case needs them.
+        p.values = SweepValues::range(bound("from"),
+                                      bound("to"),
+                                      bound("step"),
+                                      fmt::format("{}:{}: {}", file_name, p.line, key));
       }
       else
         fail_at(file_name, p.line, key, "expected a list of values or a range {from, to, step}");
       if (p.values.empty())
         fail_at(file_name, p.line, key, "no values (expected at least one)");
-      p.settings.resize(p.values.size());
-      for (std::size_t v = 0; v < p.values.size(); ++v)
-        if (p.settings[v].empty())
-          for (const std::string &path : p.key_paths)
-            p.settings[v].emplace_back(path, p.values[v]);
       return p;
     }
 
@@ -382,7 +378,7 @@ namespace kimp::app
       plan.parameters_.push_back(read_parameter(name, values_text, read));
     for (const auto &[name, overrides_text] : file.companions)
       plan.companions_.push_back(read_companion(name, overrides_text, read));
-    plan.enumerate_cases(check_count);
+    plan.count_cases(check_count);
     return plan;
   }
 } // namespace kimp::app

@@ -1,6 +1,7 @@
-// Case enumeration of a sweep: key paths are set on a copy of the base scene's YAML tree
-// (sweep_values.h), so every scene key can be varied without the sweep knowing the schema; the
-// checks of the variants against the base scene and the plan as JSON. The sweep file is read in
+// The cases of a sweep, counted from the parameters' lengths and each made on demand: key paths
+// are set on the base scene's YAML tree (sweep_values.h), so every scene key can be varied
+// without the sweep knowing the schema; the checks of the variants against the base scene and
+// the plan as JSON. The sweep file is read in
 // sweep_file.cc.
 #include "app/sweep/sweep_plan.h"
 
@@ -31,8 +32,36 @@ namespace kimp::app
     }
   } // namespace
 
-  void SweepPlan::enumerate_cases(const CaseCountCheck &check_count)
+  std::vector<std::pair<std::string, std::string>> SweepParameter::settings(std::size_t v) const
   {
+    if (v < map_settings.size() && !map_settings[v].empty())
+      return map_settings[v];
+    std::vector<std::pair<std::string, std::string>> out;
+    const std::string                                value = values[v];
+    for (const std::string &path : key_paths)
+      out.emplace_back(path, value);
+    return out;
+  }
+
+  bool SweepParameter::sets(const std::string &key_path) const
+  {
+    // A value without its own map sets the key paths of the parameter.
+    bool scalar_values = map_settings.size() < values.size();
+    for (const auto &setting : map_settings)
+    {
+      scalar_values = scalar_values || setting.empty();
+      for (const auto &entry : setting)
+        if (entry.first == key_path)
+          return true;
+    }
+    return scalar_values &&
+           std::find(key_paths.begin(), key_paths.end(), key_path) != key_paths.end();
+  }
+
+  void SweepPlan::count_cases(const CaseCountCheck &check_count)
+  {
+    // Counted from the lengths alone (a range is not expanded): a zip of unequal lengths or too
+    // many combinations is refused before any memory is spent on values or cases.
     std::size_t n_combinations = 1;
     if (combination_ == SweepCombination::zip)
     {
@@ -60,79 +89,104 @@ namespace kimp::app
                   fmt::format("more than {} combinations", max_cases));
       }
     }
-
+    n_combinations_ = n_combinations;
     if (check_count)
-      check_count(n_combinations * (1 + companions_.size()), base_scene_text_, base_scene_name_);
-    const YAML::Node base  = sv::load(base_scene_text_, base_scene_name_);
-    std::size_t      index = 0;
-    for (std::size_t c = 0; c < n_combinations; ++c)
-    {
-      std::vector<std::string> values(parameters_.size());
-      std::vector<std::size_t> choice(parameters_.size());
-      std::size_t              rest = c;
-      for (std::size_t i = parameters_.size(); i-- > 0;)
-      {
-        const SweepParameter &p = parameters_[i];
-        if (combination_ == SweepCombination::zip)
-          choice[i] = c;
-        else
-        {
-          choice[i] = rest % p.values.size();
-          rest /= p.values.size();
-        }
-        values[i] = p.values[choice[i]];
-      }
-      YAML::Node  scene = YAML::Clone(base);
-      std::string signature;
-      for (std::size_t i = 0; i < parameters_.size(); ++i)
-      {
-        const SweepParameter &p = parameters_[i];
-        sv::set_values_at(scene, p.settings[choice[i]], file_name_, p.line, "parameters." + p.name);
-        signature += p.name + "=" + values[i] + "\n";
-        for (const auto &[path, value] : p.settings[choice[i]])
-          if (path != p.name || value != values[i])
-            signature += "  " + path + "=" + value + "\n";
-      }
-
-      const auto add_case = [&](const YAML::Node &case_scene, const std::string &companion)
-      {
-        SweepCase sc;
-        sc.index     = index++;
-        sc.companion = companion;
-        sc.values    = values;
-        const std::uint64_t hash =
-          stable_hash(signature + (companion.empty() ? "" : "companion=" + companion + "\n"));
-        sc.id         = fmt::format("{}-{:016x}", sc.index, hash);
-        sc.scene_text = sv::emit(case_scene);
-        sc.scene_name = fmt::format("{} case {}", file_name_, sc.id);
-        cases_.push_back(std::move(sc));
-      };
-      add_case(scene, "");
-      for (const SweepCompanion &companion : companions_)
-      {
-        YAML::Node variant = YAML::Clone(scene);
-        sv::set_values_at(variant,
-                          companion.overrides,
-                          file_name_,
-                          companion.line,
-                          "companions." + companion.name);
-        add_case(variant, companion.name);
-      }
-    }
+      check_count(n_cases(), base_scene_text_, base_scene_name_);
+    // The first combination and its companions made once: a key path that cannot be followed in
+    // the base scene is an error of the sweep file now, not of every case later.
+    for (std::size_t k = 0; k <= companions_.size(); ++k)
+      case_at(k);
   }
 
-  std::vector<SweepPlan::Variant> SweepPlan::variants() const
+  std::vector<std::size_t> SweepPlan::choices(std::size_t c) const
   {
-    std::vector<Variant> out;
+    std::vector<std::size_t> choice(parameters_.size());
+    std::size_t              rest = c;
+    for (std::size_t i = parameters_.size(); i-- > 0;)
+    {
+      if (combination_ == SweepCombination::zip)
+        choice[i] = c;
+      else
+      {
+        choice[i] = rest % parameters_[i].values.size();
+        rest /= parameters_[i].values.size();
+      }
+    }
+    return choice;
+  }
+
+  SweepCase SweepPlan::case_header(std::size_t index, std::vector<std::size_t> &choice) const
+  {
+    if (index >= n_cases())
+      throw std::out_of_range(
+        fmt::format("{}: case {} of a plan of {} cases", file_name_, index, n_cases()));
+    const std::size_t per_combination = 1 + companions_.size();
+    const std::size_t k               = index % per_combination;
+    choice                            = choices(index / per_combination);
+    SweepCase sc;
+    sc.index     = index;
+    sc.companion = k == 0 ? std::string() : companions_[k - 1].name;
+    // The signature of the values (and of what a map value sets) gives the id's hash.
+    std::string signature;
+    sc.values.resize(parameters_.size());
+    for (std::size_t i = 0; i < parameters_.size(); ++i)
+    {
+      const SweepParameter &p = parameters_[i];
+      sc.values[i]            = p.values[choice[i]];
+      signature += p.name + "=" + sc.values[i] + "\n";
+      for (const auto &[path, value] : p.settings(choice[i]))
+        if (path != p.name || value != sc.values[i])
+          signature += "  " + path + "=" + value + "\n";
+    }
+    const std::uint64_t hash =
+      stable_hash(signature + (sc.companion.empty() ? "" : "companion=" + sc.companion + "\n"));
+    sc.id         = fmt::format("{}-{:016x}", sc.index, hash);
+    sc.scene_name = fmt::format("{} case {}", file_name_, sc.id);
+    return sc;
+  }
+
+  SweepCase SweepPlan::case_info(std::size_t index) const
+  {
+    std::vector<std::size_t> choice;
+    return case_header(index, choice);
+  }
+
+  SweepCase SweepPlan::case_at(std::size_t index) const
+  {
+    std::vector<std::size_t> choice;
+    SweepCase                sc = case_header(index, choice);
+    // Parsed for each case (a few kB): no YAML tree is shared between threads.
+    YAML::Node scene = sv::load(base_scene_text_, base_scene_name_);
+    for (std::size_t i = 0; i < parameters_.size(); ++i)
+    {
+      const SweepParameter &p = parameters_[i];
+      sv::set_values_at(scene, p.settings(choice[i]), file_name_, p.line, "parameters." + p.name);
+    }
+    const std::size_t k = index % (1 + companions_.size());
+    if (k > 0)
+    {
+      const SweepCompanion &companion = companions_[k - 1];
+      sv::set_values_at(scene,
+                        companion.overrides,
+                        file_name_,
+                        companion.line,
+                        "companions." + companion.name);
+    }
+    sc.scene_text = sv::emit(scene);
+    return sc;
+  }
+
+  void SweepPlan::for_each_variant(const std::function<void(const Variant &)> &visit) const
+  {
     for (const SweepParameter &p : parameters_)
       for (std::size_t v = 0; v < p.values.size(); ++v)
-        out.push_back({p.name + " = " + p.values[v],
-                       "parameters." + p.name + " = " + p.values[v],
-                       p.line,
-                       p.settings[v]});
+      {
+        const std::string value = p.values[v];
+        visit(
+          {p.name + " = " + value, "parameters." + p.name + " = " + value, p.line, p.settings(v)});
+      }
     for (const SweepCompanion &c : companions_)
-      out.push_back({"companion " + c.name, "companions." + c.name, c.line, c.overrides});
-    return out;
+      visit({"companion " + c.name, "companions." + c.name, c.line, c.overrides});
   }
 
   void SweepPlan::check_variant(const Variant &variant, const SceneChecker &check) const
@@ -151,21 +205,23 @@ namespace kimp::app
 
   void SweepPlan::check_key_paths(const SceneChecker &check) const
   {
-    for (const Variant &variant : variants())
-      check_variant(variant, check);
+    for_each_variant([&](const Variant &variant) { check_variant(variant, check); });
   }
 
   void SweepPlan::check_records(const SceneChecker &check) const
   {
     bool set_here = false;
-    for (const Variant &variant : variants())
-      if (std::any_of(variant.settings.begin(),
-                      variant.settings.end(),
-                      [](const auto &setting) { return sv::is_record_key(setting.first); }))
+    for_each_variant(
+      [&](const Variant &variant)
       {
-        set_here = true;
-        check_variant(variant, check);
-      }
+        if (std::any_of(variant.settings.begin(),
+                        variant.settings.end(),
+                        [](const auto &setting) { return sv::is_record_key(setting.first); }))
+        {
+          set_here = true;
+          check_variant(variant, check);
+        }
+      });
     // The base scene's own records, reported at its lines, when nothing above replaced them.
     if (!set_here)
       check(base_scene_text_, base_scene_name_);
@@ -183,16 +239,16 @@ namespace kimp::app
     {
       // Per value the key paths it sets (map values set their own keys, e.g. gap and separation).
       nlohmann::ordered_json settings = nlohmann::ordered_json::array();
-      for (const auto &setting : p.settings)
+      for (std::size_t v = 0; v < p.values.size(); ++v)
       {
         nlohmann::ordered_json keys = nlohmann::ordered_json::object();
-        for (const auto &[path, value] : setting)
+        for (const auto &[path, value] : p.settings(v))
           keys[path] = value;
         settings.push_back(keys);
       }
       json["parameters"].push_back({{"name", p.name},
                                     {"key_paths", p.key_paths},
-                                    {"values", p.values},
+                                    {"values", p.values.to_vector()},
                                     {"settings", settings}});
     }
     json["companions"] = nlohmann::ordered_json::array();
@@ -207,7 +263,7 @@ namespace kimp::app
       json["report"] = {{"kind", report_->kind},
                         {"gap", report_->gap_key},
                         {"title", report_->title}};
-    json["n_cases"] = cases_.size();
+    json["n_cases"] = n_cases();
     return json.dump(2);
   }
 } // namespace kimp::app

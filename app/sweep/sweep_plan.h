@@ -1,11 +1,14 @@
 // Sweep files of `kimp sweep`: a base scene, parameters varied by scene key path (lists
-// or inclusive ranges, Cartesian product or zipped) and companion runs, expanded into one scene
-// text per case with a stable id (enumeration index + hash of the parameter values).
+// or inclusive ranges, Cartesian product or zipped) and companion runs; each case (one scene text
+// with a stable id: enumeration index + hash of the parameter values) is made on demand, so a
+// plan keeps only its parameters, whatever its number of cases.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <iterator>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -32,6 +35,82 @@ namespace kimp::app
   };
 
   /**
+   * The values of one parameter, in order: a list as written in the sweep file, or an inclusive
+   * range {from, to, step} kept as its first value, step and count, each value formatted only
+   * when asked for (a range of 10 M values takes a few bytes, not 10 M strings).
+   */
+  class SweepValues
+  {
+  public:
+    SweepValues() = default;
+    /// The listed values (scalar text, or the labels of map values).
+    explicit SweepValues(std::vector<std::string> list)
+      : list_(std::move(list))
+    {
+    }
+
+    /**
+     * The range from..to in steps of `step` (inclusive, robust to round-off: 10-45 cm step 0.5 cm
+     * gives 71 values), each value formatted in the unit of `from` ("10.5 cm") or as a plain
+     * number. Nothing is expanded.
+     * @throws SweepError (named by `where`) for mismatched units, step <= 0, to < from, more than
+     *         10 M values or a step below the resolution of `from`.
+     */
+    static SweepValues range(const std::string &from,
+                             const std::string &to,
+                             const std::string &step,
+                             const std::string &where);
+
+    std::size_t size() const { return is_range() ? range_count_ : list_.size(); }
+    bool        empty() const { return size() == 0; }
+    bool        is_range() const { return range_count_ > 0; }
+    /// Value `i` (< size()) as text.
+    std::string operator[](std::size_t i) const;
+    /// Append a value to a list (not to a range).
+    void push_back(std::string value);
+    /// Every value as text (expands a range: for the results files, not for planning).
+    std::vector<std::string> to_vector() const;
+
+    /// Iterates the values by index; dereferencing formats the value.
+    class const_iterator
+    {
+    public:
+      using iterator_category = std::input_iterator_tag;
+      using value_type        = std::string;
+      using difference_type   = std::ptrdiff_t;
+      using pointer           = void;
+      using reference         = std::string;
+
+      const_iterator(const SweepValues *values, std::size_t index)
+        : values_(values)
+        , index_(index)
+      {
+      }
+      std::string     operator*() const { return (*values_)[index_]; }
+      const_iterator &operator++()
+      {
+        ++index_;
+        return *this;
+      }
+      bool operator==(const const_iterator &other) const { return index_ == other.index_; }
+      bool operator!=(const const_iterator &other) const { return index_ != other.index_; }
+
+    private:
+      const SweepValues *values_ = nullptr;
+      std::size_t        index_  = 0;
+    };
+    const_iterator begin() const { return {this, 0}; }
+    const_iterator end() const { return {this, size()}; }
+
+  private:
+    std::vector<std::string> list_;
+    double                   range_from_  = 0.0; ///< SI
+    double                   range_step_  = 0.0; ///< SI
+    std::size_t              range_count_ = 0;   ///< > 0 for a range
+    std::string              range_unit_;        ///< the unit of `from`, "" for plain numbers
+  };
+
+  /**
    * One varied parameter: the scene key paths it sets (usually one, e.g. "walls.left.gap",
    * "cases[0].cor"; several paths receive the same value) and its values as YAML scalar text
    * ("10 cm", "0.7", "kobe").
@@ -40,11 +119,18 @@ namespace kimp::app
   {
     std::string              name;      ///< as written in the sweep file
     std::vector<std::string> key_paths; ///< `name` split at commas
-    std::vector<std::string> values;    ///< scalar text, or the label of a map value
-    /// Per value: the (key path, YAML scalar) pairs it sets; a scalar value sets every key path,
-    /// a map value ({walls.left.gap: 10 cm, walls.right.gap: 20 cm, label: asym}) its own keys.
-    std::vector<std::vector<std::pair<std::string, std::string>>> settings;
+    SweepValues              values;    ///< scalar text, or the label of a map value
+    /// Per map value ({walls.left.gap: 10 cm, walls.right.gap: 20 cm, label: asym}) the
+    /// (key path, YAML scalar) pairs it sets; empty for a parameter of scalar values (see
+    /// settings()).
+    std::vector<std::vector<std::pair<std::string, std::string>>> map_settings;
     int line = 0; ///< line of the key in the sweep file (1-based)
+
+    /// The (key path, YAML scalar) pairs that value `v` sets: a scalar value sets every key path,
+    /// a map value its own keys.
+    std::vector<std::pair<std::string, std::string>> settings(std::size_t v) const;
+    /// Whether some value of the parameter sets `key_path`.
+    bool sets(const std::string &key_path) const;
   };
 
   /// A companion run added to every case: the same scene with fixed overrides (key path, value).
@@ -95,6 +181,60 @@ namespace kimp::app
     std::string              scene_name; ///< for messages: "SWEEP.yaml case <id>"
   };
 
+  class SweepPlan;
+
+  /**
+   * The cases of a SweepPlan as a sequence that is never stored: size() and each case made on
+   * demand (SweepPlan::case_at()), so that a plan of millions of cases takes the memory of its
+   * parameters only.
+   */
+  class SweepCases
+  {
+  public:
+    explicit SweepCases(const SweepPlan &plan)
+      : plan_(&plan)
+    {
+    }
+    std::size_t size() const;
+    bool        empty() const { return size() == 0; }
+    /// Case `index` with its scene text (SweepPlan::case_at()).
+    SweepCase operator[](std::size_t index) const;
+
+    /// Iterates the cases in enumeration order; dereferencing makes the case.
+    class const_iterator
+    {
+    public:
+      using iterator_category = std::input_iterator_tag;
+      using value_type        = SweepCase;
+      using difference_type   = std::ptrdiff_t;
+      using pointer           = void;
+      using reference         = SweepCase;
+
+      const_iterator(const SweepCases *cases, std::size_t index)
+        : cases_(cases)
+        , index_(index)
+      {
+      }
+      SweepCase       operator*() const { return (*cases_)[index_]; }
+      const_iterator &operator++()
+      {
+        ++index_;
+        return *this;
+      }
+      bool operator==(const const_iterator &other) const { return index_ == other.index_; }
+      bool operator!=(const const_iterator &other) const { return index_ != other.index_; }
+
+    private:
+      const SweepCases *cases_ = nullptr;
+      std::size_t       index_ = 0;
+    };
+    const_iterator begin() const { return {this, 0}; }
+    const_iterator end() const { return {this, size()}; }
+
+  private:
+    const SweepPlan *plan_;
+  };
+
   /// Loads a scene text (throws SceneError when it is invalid); used to check key paths early.
   using SceneChecker = std::function<void(const std::string &text, const std::string &name)>;
 
@@ -141,8 +281,19 @@ namespace kimp::app
     static std::filesystem::path base_scene_path(const std::string           &text,
                                                  const std::filesystem::path &sweep_file);
 
-    /// Every case in enumeration order: each combination, followed by its companions.
-    const std::vector<SweepCase> &cases() const { return cases_; }
+    /// Every case in enumeration order: each combination, followed by its companions. Made on
+    /// demand, never stored (SweepCases).
+    SweepCases cases() const { return SweepCases(*this); }
+    /// The number of cases, companions included.
+    std::size_t n_cases() const { return n_combinations_ * (1 + companions_.size()); }
+    /**
+     * Case `index` (< n_cases()) with its scene text: the base scene parsed again and the case's
+     * values set (safe to call from several threads at once).
+     * @throws SweepError at the sweep file's line when a key path cannot be followed.
+     */
+    SweepCase case_at(std::size_t index) const;
+    /// Case `index` without its scene text (index, id, companion, values): cheap, no YAML.
+    SweepCase case_info(std::size_t index) const;
 
     const std::vector<SweepParameter> &parameters() const { return parameters_; }
     const std::vector<SweepCompanion> &companions() const { return companions_; }
@@ -186,11 +337,18 @@ namespace kimp::app
       int         line = 0;
       std::vector<std::pair<std::string, std::string>> settings; ///< (key path, YAML value)
     };
-    std::vector<Variant> variants() const;
+    /// Calls `visit` with each variant in turn (one at a time: a range is not expanded).
+    void for_each_variant(const std::function<void(const Variant &)> &visit) const;
     /// `check` of the variant's scene; its error becomes "FILE:LINE: key: <error>".
     void check_variant(const Variant &variant, const SceneChecker &check) const;
-    /// Fills cases_ from the parameters and companions.
-    void enumerate_cases(const CaseCountCheck &check_count);
+    /// Counts the cases (a zip of lists of unequal length, or too many combinations, is an error
+    /// here, before anything is expanded), calls `check_count` and makes the first case as a
+    /// check of the key paths.
+    void count_cases(const CaseCountCheck &check_count);
+    /// The choice of value of each parameter in combination `c`.
+    std::vector<std::size_t> choices(std::size_t c) const;
+    /// The case `index` without its scene text, and the choices of its combination.
+    SweepCase case_header(std::size_t index, std::vector<std::size_t> &choice) const;
 
     std::string                    file_name_;
     std::string                    text_;
@@ -201,13 +359,22 @@ namespace kimp::app
     std::vector<SweepParameter>    parameters_;
     std::vector<SweepCompanion>    companions_;
     std::optional<SweepReportSpec> report_;
-    std::vector<SweepCase>         cases_;
+    std::size_t                    n_combinations_ = 0;
   };
 
+  inline std::size_t SweepCases::size() const
+  {
+    return plan_->n_cases();
+  }
+
+  inline SweepCase SweepCases::operator[](std::size_t index) const
+  {
+    return plan_->case_at(index);
+  }
+
   /**
-   * Inclusive range from..to in steps of `step`, robust to round-off (10-45 cm step 0.5 cm gives
-   * 71 values); values are formatted in the unit of `from` ("10.5 cm"), or as plain numbers.
-   * @throws SweepError (named by `where`) for mismatched units, step <= 0 or to < from.
+   * The values of SweepValues::range(from, to, step, where), expanded.
+   * @throws SweepError as SweepValues::range().
    */
   std::vector<std::string> expand_range(const std::string &from,
                                         const std::string &to,

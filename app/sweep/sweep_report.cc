@@ -119,11 +119,8 @@ namespace kimp::app
     for (std::size_t p = 0; p < plan.parameters().size(); ++p)
     {
       const SweepParameter &parameter = plan.parameters()[p];
-      bool                  sets_gap  = false;
-      for (const auto &setting : parameter.settings)
-        for (const auto &entry : setting)
-          sets_gap = sets_gap || entry.first == gap_key;
-      gap_swept = gap_swept || sets_gap;
+      const bool            sets_gap  = parameter.sets(gap_key);
+      gap_swept                       = gap_swept || sets_gap;
       if (!sets_gap)
       {
         kept.push_back(p);
@@ -187,13 +184,13 @@ namespace kimp::app
         ++failed_of[values];
         continue;
       }
-      if (row.index >= plan.cases().size())
+      if (row.index >= plan.n_cases())
         throw SweepError(fmt::format("{}: row {} beyond the plan's {} cases",
                                      plan.file_name(),
                                      row.index,
-                                     plan.cases().size()));
+                                     plan.n_cases()));
       const std::optional<std::string> gap_text =
-        get_yaml_value(plan.cases()[row.index].scene_text, gap_key);
+        get_yaml_value(plan.case_at(row.index).scene_text, gap_key);
       if (!gap_text)
         throw SweepError(plan.file_name() + ": report.gap: case " + row.id + " has no value at '" +
                          gap_key + "'");

@@ -98,22 +98,7 @@ namespace kimp::app
       const bool gap_swept =
         std::any_of(plan.parameters().begin(),
                     plan.parameters().end(),
-                    [&](const SweepParameter &p)
-                    {
-                      return std::any_of(p.key_paths.begin(),
-                                         p.key_paths.end(),
-                                         [&](const std::string &k) { return k == spec.gap_key; }) ||
-                             std::any_of(p.settings.begin(),
-                                         p.settings.end(),
-                                         [&](const auto &setting)
-                                         {
-                                           return std::any_of(setting.begin(),
-                                                              setting.end(),
-                                                              [&](const auto &entry) {
-                                                                return entry.first == spec.gap_key;
-                                                              });
-                                         });
-                    });
+                    [&](const SweepParameter &p) { return p.sets(spec.gap_key); });
       if (spec.kind == "adjacent_buildings" || spec.kind == "gap_study" ||
           spec.kind == "wall_location" || (spec.kind == "bumpers" && gap_swept))
       {
@@ -193,7 +178,7 @@ namespace kimp::app
     }
   } // namespace
 
-  void run_sweep_job(const SweepRunOptions &options)
+  std::size_t run_sweep_job(const SweepRunOptions &options)
   {
     const auto     start = std::chrono::steady_clock::now();
     const MpiScope mpi;
@@ -237,6 +222,8 @@ namespace kimp::app
             load_ground_motion_at(own, records_dir, name, text, "cases[" + std::to_string(i) + "]");
           }
       });
+    if (options.check)
+      return plan.n_cases();
     const OutputDir output(options.output);
 
     SweepOptions sweep_options;
@@ -280,6 +267,7 @@ namespace kimp::app
         logger().warn("no HTML report: {}", error.what());
       }
     }
+    return plan.n_cases();
   }
 
 } // namespace kimp::app

@@ -273,10 +273,10 @@ namespace kimp::app
     return node.Scalar();
   }
 
-  std::vector<std::string> expand_range(const std::string &from,
-                                        const std::string &to,
-                                        const std::string &step,
-                                        const std::string &where)
+  SweepValues SweepValues::range(const std::string &from,
+                                 const std::string &to,
+                                 const std::string &step,
+                                 const std::string &where)
   {
     Quantity q_from, q_to, q_step;
     try
@@ -323,14 +323,47 @@ namespace kimp::app
                                    where,
                                    step,
                                    from));
-    const std::string        unit = unit_of(from);
-    std::vector<std::string> values;
-    values.reserve(n_steps + 1);
-    for (std::size_t i = 0; i <= n_steps; ++i)
-    {
-      const double v = q_from.value + static_cast<double>(i) * q_step.value;
-      values.push_back(format_quantity(v, unit));
-    }
+    SweepValues values;
+    values.range_from_  = q_from.value;
+    values.range_step_  = q_step.value;
+    values.range_count_ = n_steps + 1;
+    values.range_unit_  = unit_of(from);
     return values;
+  }
+
+  std::string SweepValues::operator[](std::size_t i) const
+  {
+    if (!is_range())
+      return list_.at(i);
+    if (i >= range_count_)
+      throw std::out_of_range(
+        fmt::format("sweep value {} of a range of {} values", i, range_count_));
+    return format_quantity(range_from_ + static_cast<double>(i) * range_step_, range_unit_);
+  }
+
+  void SweepValues::push_back(std::string value)
+  {
+    if (is_range())
+      throw std::logic_error("SweepValues::push_back on a range");
+    list_.push_back(std::move(value));
+  }
+
+  std::vector<std::string> SweepValues::to_vector() const
+  {
+    if (!is_range())
+      return list_;
+    std::vector<std::string> values;
+    values.reserve(size());
+    for (std::size_t i = 0; i < size(); ++i)
+      values.push_back((*this)[i]);
+    return values;
+  }
+
+  std::vector<std::string> expand_range(const std::string &from,
+                                        const std::string &to,
+                                        const std::string &step,
+                                        const std::string &where)
+  {
+    return SweepValues::range(from, to, step, where).to_vector();
   }
 } // namespace kimp::app

@@ -8,7 +8,7 @@ kimp HDF5 results file.
     >>> kimp.lumped(scene.with_(**{"walls.left.gap": "10 cm"})).n_impacts
 
 Units: SI floats everywhere (m, s, kg, N, N/m^n, J); inputs also accept unit texts parsed by
-kimp's own unit reader ("600 MN/m", "15 cm", "0.4 g"). See README.md, section "Python".
+kimp's own unit reader ("600 MN/m", "15 cm", "0.4 g"). See docs/guide/python.md.
 """
 
 from . import _kimp, laws

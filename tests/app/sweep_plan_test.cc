@@ -162,6 +162,53 @@ namespace
     EXPECT_THROW(kimp::app::expand_range("ten", "45 cm", "1 cm", "w"), SweepError);
   }
 
+  TEST(SweepRange, TenMillionValuesAreKeptAsTheirBounds)
+  {
+    const kimp::app::SweepValues values =
+      kimp::app::SweepValues::range("1 mm", "10000000 mm", "1 mm", "test");
+    EXPECT_TRUE(values.is_range());
+    ASSERT_EQ(values.size(), 10'000'000U);
+    EXPECT_EQ(values[0], "1 mm");
+    EXPECT_EQ(values[4'999'999], "5000000 mm");
+    EXPECT_EQ(values[9'999'999], "10000000 mm");
+    EXPECT_THROW(values[10'000'000], std::out_of_range);
+    // Formatted on demand exactly as the expanded range.
+    EXPECT_EQ(kimp::app::SweepValues::range("10 cm", "45 cm", "0.5 cm", "t").to_vector(),
+              kimp::app::expand_range("10 cm", "45 cm", "0.5 cm", "t"));
+  }
+
+  TEST(SweepPlan, CasesAreMadeOnDemandInEnumerationOrder)
+  {
+    // 10 M cases: counted from the lengths, any case made alone.
+    const SweepPlan plan =
+      parse(on_base + "  walls.left.gap: {from: 1 mm, to: 1000 mm, step: 1 mm}\n"
+                      "  cases[0].cor: {from: 1, to: 10000, step: 1}\n");
+    ASSERT_EQ(plan.n_cases(), 10'000'000U);
+    const kimp::app::SweepCase last = plan.case_at(9'999'999);
+    EXPECT_EQ(last.values, (std::vector<std::string>{"1000 mm", "10000"}));
+    EXPECT_EQ(last.id.rfind("9999999-", 0), 0U) << last.id;
+    const kimp::app::SweepCase middle = plan.case_at(12'345);
+    EXPECT_EQ(middle.values, (std::vector<std::string>{"2 mm", "2346"}));
+    const ToyScene scene = kimp::io::load_scene_text<ToyScene>(middle.scene_text, "middle");
+    EXPECT_NEAR(scene.walls.left.gap, 0.002, 1e-15);
+    EXPECT_NEAR(scene.cases.at(0).cor, 2346.0, 1e-12);
+    const kimp::app::SweepCase info = plan.case_info(12'345);
+    EXPECT_EQ(info.id, middle.id);
+    EXPECT_EQ(info.values, middle.values);
+    EXPECT_TRUE(info.scene_text.empty());
+    EXPECT_TRUE(plan.parameters()[0].sets("walls.left.gap"));
+    EXPECT_FALSE(plan.parameters()[0].sets("walls.right.gap"));
+  }
+
+  TEST(SweepPlan, ZipOfRangesOfUnequalLengthIsRefusedFromTheLengths)
+  {
+    expect_sweep_error("scene: base.yaml\ncombine: zip\nparameters:\n"
+                       "  walls.left.gap: {from: 1 mm, to: 8000000 mm, step: 1 mm}\n"
+                       "  cases[0].cor: {from: 1, to: 10000000, step: 1}\n",
+                       {"sweep.yaml:5: parameters.cases[0].cor: 10000000 values, but "
+                        "walls.left.gap has 8000000 (combine: zip needs equal lengths)"});
+  }
+
   TEST(SweepPlan, ProductCountsAndOrderFirstParameterSlowest)
   {
     const SweepPlan plan = parse(gap_and_record_sweep("", "[kobe, sylmar, pacoima, sakarya]"));

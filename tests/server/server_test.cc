@@ -445,8 +445,10 @@ ground_motion:
     }
     for (const int port : {99999, 65536, -1})
     {
+      // A runs folder of its own: one server per runs folder.
       server::GuiOptions bad = same;
       bad.port               = port;
+      bad.runs_dir           = dir_.path() / ("runs" + std::to_string(port));
       server::GuiServer s(bad);
       EXPECT_THROW(s.bind(), std::invalid_argument) << port;
     }

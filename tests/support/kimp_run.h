@@ -1,13 +1,15 @@
 // kimp::testing::run_kimp(): the built `kimp` executable (KIMP_BINARY_DIR "/kimp", a definition
 // every test gets from kimp_add_test) run in a directory with its output captured, in the
-// background, or under a file size limit; any shell command with its output captured to a log
-// file or discarded.
+// background, under a file size limit, or as a measured process (peak memory, ending signal,
+// stdout a pipe nobody reads); any shell command with its output captured to a log file or
+// discarded.
 #pragma once
 
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <sys/resource.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -120,5 +122,89 @@ namespace kimp::testing
     const int exit_code = run_command("bash -c \"" + command + "\"", dir / "log.txt");
     log                 = read_text(dir / "log.txt");
     return exit_code;
+  }
+
+  /**
+   * `kimp <arguments>` in `dir` under a file size limit of `bytes` as a user sets it (`ulimit -f`,
+   * here prlimit): SIGXFSZ keeps its default action and MPI its usual start-up, unlike
+   * run_kimp_with_file_limit(). Returns the exit code (-1 if killed by a signal), the log (stdout
+   * and stderr) in `log`.
+   */
+  inline int run_kimp_under_ulimit(const std::string           &arguments,
+                                   const std::filesystem::path &dir,
+                                   long                         bytes,
+                                   std::string                 &log)
+  {
+    const std::string command = "cd '" + dir.string() +
+                                "' && prlimit --fsize=" + std::to_string(bytes) + " " +
+                                kimp_executable() + " " + arguments;
+    const int exit_code = run_command(command, dir / "log.txt");
+    log                 = read_text(dir / "log.txt");
+    return exit_code;
+  }
+
+  /// What a process run by run_kimp_process() gave back.
+  struct KimpProcess
+  {
+    int         exit_code  = -1; ///< -1 if ended by a signal
+    int         signal     = 0;  ///< the signal that ended it, 0 if it exited
+    long        max_rss_kb = 0;  ///< peak resident memory (kB)
+    std::string out;             ///< stdout (empty for StdoutTo::closed_pipe)
+    std::string err;             ///< stderr
+  };
+
+  /// Where run_kimp_process() sends stdout.
+  enum class StdoutTo
+  {
+    file,       ///< stdout.txt in the directory
+    closed_pipe ///< a pipe whose read end is closed before kimp starts: every write gets EPIPE
+  };
+
+  /**
+   * `kimp <arguments>` as a child of this process (through `sh -c 'exec ...'`, so the child is
+   * kimp itself), in `dir`, stderr to stderr.txt there; returns its exit code or signal and its
+   * peak resident memory (wait4()).
+   */
+  inline KimpProcess run_kimp_process(const std::string           &arguments,
+                                      const std::filesystem::path &dir,
+                                      StdoutTo                     stdout_to = StdoutTo::file)
+  {
+    int pipe_ends[2] = {-1, -1};
+    if (stdout_to == StdoutTo::closed_pipe)
+    {
+      if (::pipe(pipe_ends) != 0)
+        return {};
+      ::close(pipe_ends[0]); // no reader from the start, whatever the timing
+    }
+    const std::string command = "cd '" + dir.string() + "' && exec " + kimp_executable() + " " +
+                                arguments + " 2> stderr.txt" +
+                                (stdout_to == StdoutTo::file ? " > stdout.txt" : "");
+    const pid_t pid = ::fork();
+    if (pid == 0)
+    {
+      if (stdout_to == StdoutTo::closed_pipe)
+      {
+        ::dup2(pipe_ends[1], STDOUT_FILENO);
+        ::close(pipe_ends[1]);
+      }
+      ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char *>(nullptr));
+      ::_exit(127);
+    }
+    if (stdout_to == StdoutTo::closed_pipe)
+      ::close(pipe_ends[1]);
+    KimpProcess   run;
+    int           status = 0;
+    struct rusage usage
+    {
+    };
+    if (pid < 0 || ::wait4(pid, &status, 0, &usage) != pid)
+      return run;
+    run.exit_code  = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    run.signal     = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+    run.max_rss_kb = usage.ru_maxrss;
+    if (stdout_to == StdoutTo::file)
+      run.out = read_text(dir / "stdout.txt");
+    run.err = read_text(dir / "stderr.txt");
+    return run;
   }
 } // namespace kimp::testing

@@ -1,0 +1,815 @@
+// Central difference method in plan: the model's assembly, the stability limit and the time loop
+// (one step: forces at u_n, the increment, the bookkeeping of step n).
+#include "lumped/plan/plan_central_difference.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+#include "lumped/integrators/integration_errors.h"
+#include "lumped/parameter_check.h"
+
+namespace kimp::lumped::plan
+{
+  namespace
+  {
+    double largest_omega(const Eigen::VectorXd &m, const Eigen::MatrixXd &k)
+    {
+      const Eigen::VectorXd inv_sqrt_m = m.cwiseSqrt().cwiseInverse();
+      const Eigen::MatrixXd a          = inv_sqrt_m.asDiagonal() * k * inv_sqrt_m.asDiagonal();
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(a, Eigen::EigenvaluesOnly);
+      return std::sqrt(std::max(solver.eigenvalues().maxCoeff(), 0.0));
+    }
+
+    StabilityLimit plan_stability(const PlanModel &model, const double penetration)
+    {
+      if (!(penetration > 0.0))
+      {
+        std::ostringstream msg;
+        msg << "expected_max_penetration = " << penetration << " m (must be > 0)";
+        throw std::invalid_argument(msg.str());
+      }
+      StabilityLimit  s;
+      Eigen::MatrixXd k = model.initial_stiffness_matrix();
+      s.omega_structure = largest_omega(model.masses(), k);
+      std::string impact_name;
+      for (const PlanContact &c : model.contacts())
+      {
+        const double kt = c.law->stability_stiffness(penetration);
+        const double w  = std::sqrt(kt / c.effective_mass);
+        if (w > s.omega_impact)
+        {
+          s.omega_impact = w;
+          impact_name    = c.name;
+        }
+        k.topLeftCorner<3, 3>() += c.weight * kt * c.normal_row.transpose() * c.normal_row;
+      }
+      s.omega_closed =
+        model.contacts().empty() ? s.omega_structure : largest_omega(model.masses(), k);
+      const double w_max = std::max({s.omega_structure, s.omega_closed, s.omega_impact});
+      s.dt_critical      = w_max > 0.0 ? 2.0 / w_max : std::numeric_limits<double>::infinity();
+      std::ostringstream g;
+      if (w_max == s.omega_impact && !impact_name.empty())
+        g << "contact '" << impact_name << "': omega_imp = sqrt(k_t/m_eff) = " << s.omega_impact
+          << " rad/s with k_t at a penetration of " << penetration << " m";
+      else if (w_max == s.omega_structure)
+        g << "structure: omega_max = " << s.omega_structure << " rad/s";
+      else
+        g << "structure with all contact points closed: omega_max = " << s.omega_closed << " rad/s";
+      s.governing = g.str();
+      return s;
+    }
+
+    /// Backward (first- or second-order) rate of a quantity from its increments Δx_n, Δx_{n−1}.
+    inline double rate_of(const LawVelocity scheme,
+                          const double      x_n,
+                          const double      x_nm1,
+                          const double      x_nm2,
+                          const double      inv_dt)
+    {
+      return scheme == LawVelocity::backward ? (x_n - x_nm1) * inv_dt :
+                                               (3.0 * x_n - 4.0 * x_nm1 + x_nm2) * (0.5 * inv_dt);
+    }
+
+    /// The state of one run (allocated once; the loop does not allocate).
+    class Run
+    {
+    public:
+      Run(const PlanCentralDifference &cdm, const PlanGroundMotion &g);
+      PlanResponse execute();
+
+    private:
+      void   forces(long                   n,
+                    const Eigen::VectorXd &u,
+                    const Eigen::VectorXd &u_prev,
+                    const Eigen::VectorXd &u_prev2);
+      void   contact(std::size_t c, double delta, double s, double s_prev, double t);
+      void   ground(long n, double &ag_x, double &ag_y);
+      void   bookkeeping(long n, double ag_x, double ag_y);
+      void   checkpoint(long n);
+      double strain_energy() const;
+
+      const PlanModel        &model_;
+      const PlanOptions      &opt_;
+      const PlanGroundMotion &g_;
+      std::size_t             n_  = 0;
+      double                  dt_ = 0.0, inv_dt_ = 0.0;
+      long                    n_steps_ = 0;
+      long                    every_ = 0, check_every_ = 512;
+      // Records' interpolation (as the planar integrator).
+      bool   integer_substeps_ = false;
+      long   sub_              = 1;
+      double inv_sub_          = 1.0;
+
+      Eigen::MatrixXd hg_;      ///< [A⁻¹(C/Δt + K); A⁻¹K], 2n × n
+      Eigen::MatrixXd a_inv_f_; ///< A⁻¹ restricted to level 0's columns, n × 3
+      Eigen::VectorXd am_x_, am_y_;
+      Eigen::VectorXd rx_m_, ry_m_; ///< M·r_x, M·r_y
+
+      // state: u_{n−2}, u_{n−1}, u_n, u_{n+1}, Δu_n, Δu_{n+1}, z_{n−1}, products
+      Eigen::VectorXd u_nm2_, u_nm1_, u_n_, u_np1_, du_n_, du_np1_, z_, y_, inc_, v_, a_;
+      Eigen::Vector3d f0_;
+
+      std::vector<std::unique_ptr<PlanIsolator>> iso_;
+      std::vector<Point>                         iso_force_;
+      std::vector<std::unique_ptr<ForceLaw>>     laws_;
+      std::vector<double> dp_, dpp_, cf_, phi_; ///< δ_{n−1}, δ_{n−2}, w·F, φ
+      std::vector<int>    active_, called_;
+      std::vector<double> wall_force_;
+      double              mu_ = 0.0, v_stick_ = 1.0;
+      LawVelocity         scheme_;
+
+      // corners of each level at rest and their kinematics
+      std::vector<std::vector<Eigen::Matrix<double, 2, 3>>> corner_t_;
+      std::vector<double>                                   corner_sq_, drift_sq_, accel_sq_;
+      /// A corner of a level: the level's first DOF and the corner from its centre of mass.
+      struct CornerRef
+      {
+        int   level = 0;
+        Point r;
+      };
+      /// A point of a storey's upper level (a corner, or its centre of mass if `centre`): the
+      /// first DOFs of the two levels (lower −1: the ground) and the point from their centres.
+      struct CornerDrift
+      {
+        std::size_t storey = 0;
+        int         upper = 0, lower = -1;
+        Point       a, b;
+        bool        centre = false;
+      };
+      std::vector<CornerRef>   corners_;
+      std::vector<CornerDrift> corner_drifts_;
+      /// corners_ of level l: [corner_first_[l], corner_first_[l + 1]); drift_first_ likewise.
+      std::vector<std::size_t> corner_first_, drift_first_;
+      /// Per level the largest squared distance of a corner from the centre of mass, m².
+      std::vector<double> corner_r2_;
+      /// Per storey: the levels' first DOFs and the largest squared lever arms from the upper
+      /// and lower centres of mass over the upper level's corners (and its centre), m².
+      struct DriftBound
+      {
+        int    upper = 0, lower = -1;
+        double a2 = 0.0, b2 = 0.0;
+      };
+      std::vector<DriftBound> drift_bound_;
+      Eigen::VectorXd         peak_u_, peak_a_;
+      /// C by 3×3 blocks: level l and levels l, l + 1.
+      std::vector<Eigen::Matrix3d> c_diag_, c_upper_;
+
+      // energies
+      double w_in_ = 0.0, w_visc_ = 0.0, w_contact_ = 0.0, w_friction_ = 0.0;
+      double p_in_prev_ = 0.0, p_visc_prev_ = 0.0, e0_ = 0.0, e_kin_ = 0.0, e_strain_ = 0.0;
+      double max_supplied_ = 0.0, max_residual_ = 0.0, last_error_ = 0.0;
+
+      PlanResponse out_;
+    };
+
+    Run::Run(const PlanCentralDifference &cdm, const PlanGroundMotion &g)
+      : model_(cdm.model())
+      , opt_(cdm.options())
+      , g_(g)
+      , scheme_(cdm.options().law_velocity)
+    {
+      validate(g);
+      n_      = model_.n_dofs();
+      dt_     = cdm.time_step(g.dt);
+      inv_dt_ = 1.0 / dt_;
+      const double duration =
+        opt_.duration > 0.0 ? opt_.duration : g.dt * static_cast<double>(g.x.size());
+      n_steps_ = std::lround(duration / dt_);
+
+      const auto             nn = static_cast<Eigen::Index>(n_);
+      const Eigen::VectorXd  m  = model_.masses();
+      const Eigen::MatrixXd &k  = model_.stiffness();
+      const Eigen::MatrixXd &c  = model_.damping();
+      const Eigen::MatrixXd  a =
+        Eigen::MatrixXd(m.asDiagonal()) * (inv_dt_ * inv_dt_) + c * (0.5 * inv_dt_);
+      const Eigen::MatrixXd inv = a.partialPivLu().inverse();
+      hg_.resize(2 * nn, nn);
+      hg_.topRows(nn)    = inv * (c * inv_dt_ + k);
+      hg_.bottomRows(nn) = inv * k;
+      a_inv_f_           = inv.leftCols(3);
+      rx_m_              = Eigen::VectorXd::Zero(nn);
+      ry_m_              = Eigen::VectorXd::Zero(nn);
+      for (Eigen::Index i = 0; i < nn; i += 3)
+      {
+        rx_m_(i)     = m(i);
+        ry_m_(i + 1) = m(i + 1);
+      }
+      am_x_ = inv * rx_m_;
+      am_y_ = inv * ry_m_;
+
+      for (const PlanIsolatorSpec &spec : model_.building().isolators)
+      {
+        iso_.push_back(spec.law->clone());
+        iso_.back()->revert_to_start();
+      }
+      iso_force_.assign(iso_.size(), Point::Zero());
+      const std::size_t nc = model_.contacts().size();
+      for (const PlanContact &pc : model_.contacts())
+      {
+        laws_.push_back(pc.law->clone());
+        laws_.back()->revert_to_start();
+      }
+      if (model_.moat())
+      {
+        mu_      = model_.moat()->friction;
+        v_stick_ = model_.moat()->stick_velocity;
+      }
+      dp_.assign(nc, 0.0);
+      dpp_.assign(nc, 0.0);
+      cf_.assign(nc, 0.0);
+      phi_.assign(nc, 0.0);
+      active_.assign(nc, 0);
+      called_.assign(nc, 1); // the first step takes the laws as they are (planar integrator)
+      wall_force_.assign(model_.moat() ? model_.moat()->wall.size() : 0, 0.0);
+
+      // The corners and the storeys' reference points.
+      const PlanBuilding &b = model_.building();
+      for (std::size_t l = 0; l < b.n_levels(); ++l)
+      {
+        const Point cm = b.levels[l].centre_of_mass();
+        double      r2 = 0.0;
+        corner_first_.push_back(corners_.size());
+        corner_t_.emplace_back();
+        for (const Point &p : b.levels[l].outline)
+        {
+          corner_t_.back().push_back(level_kinematics(b, l, p));
+          corners_.push_back({static_cast<int>(3 * l), p - cm});
+          r2 = std::max(r2, (p - cm).squaredNorm());
+        }
+        corner_r2_.push_back(r2);
+      }
+      corner_first_.push_back(corners_.size());
+      const int offset = b.is_isolated() ? 1 : 0;
+      for (std::size_t s = 0; s < b.storeys.size(); ++s)
+      {
+        drift_first_.push_back(corner_drifts_.size());
+        const int        upper = static_cast<int>(s) + offset, lower = upper - 1;
+        const PlanLevel &lu = b.levels[static_cast<std::size_t>(upper)];
+        const Point      cu = lu.centre_of_mass();
+        const Point      cl =
+          lower >= 0 ? b.levels[static_cast<std::size_t>(lower)].centre_of_mass() : Point::Zero();
+        corner_drifts_.push_back(
+          {s, 3 * upper, lower >= 0 ? 3 * lower : -1, cu - cu, cu - cl, true});
+        DriftBound bound{3 * upper, lower >= 0 ? 3 * lower : -1, 0.0, (cu - cl).squaredNorm()};
+        for (const Point &p : lu.outline)
+        {
+          corner_drifts_.push_back(
+            {s, 3 * upper, lower >= 0 ? 3 * lower : -1, p - cu, p - cl, false});
+          bound.a2 = std::max(bound.a2, (p - cu).squaredNorm());
+          bound.b2 = std::max(bound.b2, (p - cl).squaredNorm());
+        }
+        drift_bound_.push_back(bound);
+      }
+      drift_first_.push_back(corner_drifts_.size());
+
+      const double ratio = g.dt / dt_;
+      sub_               = std::lround(ratio);
+      integer_substeps_  = sub_ > 0 && std::abs(ratio - static_cast<double>(sub_)) < 1e-9 * ratio;
+      inv_sub_           = 1.0 / static_cast<double>(sub_ > 0 ? sub_ : 1);
+      every_ =
+        opt_.output_interval > 0.0 ? std::max(1L, std::lround(opt_.output_interval / dt_)) : 0L;
+      if (every_ > 0 && every_ <= 512)
+        check_every_ = every_ * (512 / every_);
+
+      u_nm2_ = u_nm1_ = u_n_ = u_np1_ = du_n_ = du_np1_ = z_ = inc_ = v_ = a_ =
+        Eigen::VectorXd::Zero(nn);
+      y_      = Eigen::VectorXd::Zero(2 * nn);
+      peak_u_ = Eigen::VectorXd::Zero(nn);
+      peak_a_ = Eigen::VectorXd::Zero(nn);
+
+      out_.n_levels = b.n_levels();
+      out_.peak_displacement.assign(n_, 0.0);
+      out_.peak_absolute_acceleration.assign(n_, 0.0);
+      out_.peak_corner_displacement.assign(b.n_levels(), 0.0);
+      out_.peak_horizontal_acceleration.assign(b.n_levels(), 0.0);
+      out_.peak_drift_x.assign(b.storeys.size(), 0.0);
+      out_.peak_drift_y.assign(b.storeys.size(), 0.0);
+      out_.peak_corner_drift.assign(b.storeys.size(), 0.0);
+      out_.peak_wall_force.assign(wall_force_.size(), 0.0);
+      corner_sq_.assign(b.n_levels(), 0.0);
+      accel_sq_.assign(b.n_levels(), 0.0);
+      drift_sq_.assign(b.storeys.size(), 0.0);
+      for (std::size_t l = 0; l < b.n_levels(); ++l)
+      {
+        const auto r = static_cast<Eigen::Index>(3 * l);
+        c_diag_.push_back(c.block<3, 3>(r, r));
+        if (l + 1 < b.n_levels())
+          c_upper_.push_back(c.block<3, 3>(r, r + 3));
+        // Blocks beyond the neighbouring level must vanish (Rayleigh of a block-tridiagonal K).
+        if (r + 6 < nn && !c.block(r, r + 6, 3, nn - r - 6).isZero(0.0))
+          throw std::logic_error("central difference in plan: C is not block-tridiagonal");
+      }
+      for (const PlanContact &pc : model_.contacts())
+      {
+        PlanContactResult r;
+        r.name    = pc.name;
+        r.segment = pc.segment;
+        out_.contacts.push_back(r);
+      }
+      out_.history.interval = every_ > 0 ? static_cast<double>(every_) * dt_ : 0.0;
+    }
+
+    void Run::ground(const long n, double &ag_x, double &ag_y)
+    {
+      // ü_g(t_n) by linear interpolation, as the planar integrator forms it.
+      std::size_t       j;
+      double            frac;
+      const std::size_t n_rec = g_.x.size();
+      if (integer_substeps_)
+      {
+        j    = static_cast<std::size_t>(n / sub_);
+        frac = static_cast<double>(n % sub_) * inv_sub_;
+      }
+      else
+      {
+        const double x = static_cast<double>(n) * dt_ / g_.dt;
+        j              = static_cast<std::size_t>(x);
+        frac           = x - static_cast<double>(j);
+      }
+      const auto at = [&](const std::vector<double> &rec)
+      {
+        if (j + 1 < n_rec)
+          return rec[j] + frac * (rec[j + 1] - rec[j]);
+        return (j + 1 == n_rec && frac == 0.0) ? rec[j] : 0.0;
+      };
+      ag_x = at(g_.x);
+      ag_y = at(g_.y);
+    }
+
+    void Run::contact(const std::size_t c,
+                      const double      delta,
+                      const double      s,
+                      const double      s_prev,
+                      const double      t)
+    {
+      const PlanContact &pc   = model_.contacts()[c];
+      ForceLaw          &law  = *laws_[c];
+      const double       dp   = dp_[c];
+      const double       rate = rate_of(scheme_, delta, dp, dpp_[c], inv_dt_);
+      if (!called_[c])
+      {
+        // Bring the law to the last open state it skipped (planar integrator).
+        law.set_trial(dp, (dp - dpp_[c]) * inv_dt_);
+        law.commit();
+      }
+      const double force = pc.weight * law.set_trial(delta, rate).force;
+      law.commit();
+      const int now_active = law.in_contact() ? 1 : 0;
+      if (now_active && !active_[c])
+        out_.contacts[c].impacts.push_back({t, rate});
+      active_[c] = now_active;
+      called_[c] = 1;
+      w_contact_ += 0.5 * (cf_[c] + force) * (delta - dp);
+      cf_[c] = force;
+      f0_ += force * pc.normal_row.transpose();
+      wall_force_[pc.segment] += force;
+      out_.contacts[c].peak_normal_force = std::max(out_.contacts[c].peak_normal_force, force);
+
+      // Regularised Coulomb friction along the face, resisting the backward sliding velocity.
+      double phi = 0.0;
+      if (mu_ > 0.0 && force > 0.0)
+      {
+        const double v_t   = (s - s_prev) * inv_dt_;
+        const double limit = mu_ * force;
+        const double v_r   = std::max(v_stick_, limit * dt_ / pc.tangential_mass);
+        phi                = limit * std::clamp(v_t / v_r, -1.0, 1.0);
+      }
+      const double work = 0.5 * (phi_[c] + phi) * (s - s_prev);
+      w_friction_ += work;
+      out_.contacts[c].friction_work += work;
+      phi_[c] = phi;
+      f0_ += phi * pc.tangent_row.transpose();
+      out_.contacts[c].peak_friction_force =
+        std::max(out_.contacts[c].peak_friction_force, std::abs(phi));
+    }
+
+    void Run::forces(const long             n,
+                     const Eigen::VectorXd &u,
+                     const Eigen::VectorXd &u_prev,
+                     const Eigen::VectorXd &u_prev2)
+    {
+      const double          t  = static_cast<double>(n) * dt_;
+      const Eigen::Vector3d q0 = u.head<3>();
+      const Eigen::Vector3d q1 = u_prev.head<3>();
+      const Eigen::Vector3d q2 = u_prev2.head<3>();
+      f0_.setZero();
+      const auto &kin = model_.isolator_kinematics();
+      for (std::size_t j = 0; j < iso_.size(); ++j)
+      {
+        const Point uj = kin[j] * q0, uj1 = kin[j] * q1, uj2 = kin[j] * q2;
+        const Point vj(rate_of(scheme_, uj.x(), uj1.x(), uj2.x(), inv_dt_),
+                       rate_of(scheme_, uj.y(), uj1.y(), uj2.y(), inv_dt_));
+        const Point fj = iso_[j]->set_trial(uj, vj);
+        iso_[j]->commit();
+        iso_force_[j] = fj;
+        f0_ += kin[j].transpose() * fj;
+      }
+      std::fill(wall_force_.begin(), wall_force_.end(), 0.0);
+      for (std::size_t c = 0; c < laws_.size(); ++c)
+      {
+        const PlanContact &pc = model_.contacts()[c];
+        // The sliding coordinate only where it matters: a face with an end, a contact, friction.
+        const bool ends = pc.s_lo > -std::numeric_limits<double>::infinity() ||
+                          pc.s_hi < std::numeric_limits<double>::infinity();
+        const auto s_at = [&](const Eigen::Vector3d &q)
+        { return pc.s_rest + pc.tangent_row.dot(q); };
+        // Beyond the ends of its face a point meets nothing: the law sees the gap at rest.
+        const bool   on_face = !ends || (s_at(q0) >= pc.s_lo && s_at(q0) <= pc.s_hi);
+        const double delta   = on_face ? pc.normal_row.dot(q0) - pc.gap : -pc.gap;
+        if (delta > 0.0 || active_[c])
+          contact(c, delta, s_at(q0), s_at(q1), t);
+        else
+        {
+          called_[c] = 0;
+          if (cf_[c] != 0.0)
+          {
+            w_contact_ += 0.5 * cf_[c] * (delta - dp_[c]);
+            cf_[c] = 0.0;
+          }
+          if (phi_[c] != 0.0)
+          {
+            const double work = 0.5 * phi_[c] * (s_at(q0) - s_at(q1));
+            w_friction_ += work;
+            out_.contacts[c].friction_work += work;
+            phi_[c] = 0.0;
+          }
+        }
+        dpp_[c] = dp_[c];
+        dp_[c]  = delta;
+      }
+      for (std::size_t j = 0; j < wall_force_.size(); ++j)
+        out_.peak_wall_force[j] = std::max(out_.peak_wall_force[j], wall_force_[j]);
+      Point resultant = Point::Zero();
+      for (const Point &f : iso_force_)
+        resultant += f;
+      out_.peak_isolator_force = std::max(out_.peak_isolator_force, resultant.norm());
+    }
+
+    double Run::strain_energy() const
+    {
+      double e = 0.5 * u_n_.dot(model_.stiffness() * u_n_);
+      for (const auto &iso : iso_)
+        e += iso->stored_energy();
+      return e;
+    }
+
+    void Run::bookkeeping(const long n, const double ag_x, const double ag_y)
+    {
+      // v_n = (Δu_n + Δu_{n+1})/(2Δt), a_n = (Δu_{n+1} − Δu_n)/Δt² (+ ü_g in x and y).
+      v_ = (du_n_ + du_np1_) * (0.5 * inv_dt_);
+      a_ = inc_ * (inv_dt_ * inv_dt_);
+      for (std::size_t i = 0; i < n_; i += 3)
+      {
+        a_(static_cast<Eigen::Index>(i)) += ag_x;
+        a_(static_cast<Eigen::Index>(i) + 1) += ag_y;
+      }
+      peak_u_ = peak_u_.cwiseMax(u_n_.cwiseAbs());
+      peak_a_ = peak_a_.cwiseMax(a_.cwiseAbs());
+      for (std::size_t l = 0; l < accel_sq_.size(); ++l)
+      {
+        const double ax = a_(static_cast<Eigen::Index>(3 * l)),
+                     ay = a_(static_cast<Eigen::Index>(3 * l + 1));
+        accel_sq_[l]    = std::max(accel_sq_[l], ax * ax + ay * ay);
+      }
+      // Peaks of the corner displacements and drifts as squares (the roots at the end), in
+      // scalars: d = (u_x − θ·r_y, u_y + θ·r_x) with r the corner from the centre of mass.
+      // (Maxima in registers, one store per level: the stores of a running maximum in memory
+      // stall on their own reloads.)
+      const double *u = u_n_.data();
+      for (std::size_t l = 0; l < corner_sq_.size(); ++l)
+      {
+        // |d| <= |u| + |θ|·R: no corner can beat the peak while 2(|u|² + θ²R²) does not.
+        const double *q0 = u + 3 * l;
+        if (2.0 * (q0[0] * q0[0] + q0[1] * q0[1] + q0[2] * q0[2] * corner_r2_[l]) <= corner_sq_[l])
+          continue;
+        double      m = corner_sq_[l];
+        const auto *c = corners_.data() + corner_first_[l];
+        const auto *e = corners_.data() + corner_first_[l + 1];
+        for (; c != e; ++c)
+        {
+          const double *q  = u + c->level;
+          const double  dx = q[0] - q[2] * c->r.y(), dy = q[1] + q[2] * c->r.x();
+          m = std::max(m, dx * dx + dy * dy);
+        }
+        corner_sq_[l] = m;
+      }
+      for (std::size_t s = 0; s < drift_sq_.size(); ++s)
+      {
+        // |d| <= |Δu| + |θ_u|·A + |θ_l|·B (A, B the largest lever arms): skip while
+        // 3(|Δu|² + θ_u²A² + θ_l²B²) cannot beat the peaks (the centre's drift components are
+        // bounded by the same).
+        const DriftBound &db = drift_bound_[s];
+        const double     *bu = u + db.upper;
+        const double      bx = db.lower >= 0 ? u[db.lower] : 0.0;
+        const double      by = db.lower >= 0 ? u[db.lower + 1] : 0.0;
+        const double      tl = db.lower >= 0 ? u[db.lower + 2] : 0.0;
+        const double      ex = bu[0] - bx, ey = bu[1] - by;
+        const double bound = 3.0 * (ex * ex + ey * ey + bu[2] * bu[2] * db.a2 + tl * tl * db.b2);
+        const double px = out_.peak_drift_x[s], py = out_.peak_drift_y[s];
+        if (bound <= drift_sq_[s] && bound <= px * px && bound <= py * py)
+          continue;
+        double      m = drift_sq_[s];
+        const auto *c = corner_drifts_.data() + drift_first_[s];
+        const auto *e = corner_drifts_.data() + drift_first_[s + 1];
+        for (; c != e; ++c)
+        {
+          const double *qu = u + c->upper;
+          const double  lx = c->lower >= 0 ? u[c->lower] - u[c->lower + 2] * c->b.y() : 0.0;
+          const double  ly = c->lower >= 0 ? u[c->lower + 1] + u[c->lower + 2] * c->b.x() : 0.0;
+          const double  dx = qu[0] - qu[2] * c->a.y() - lx, dy = qu[1] + qu[2] * c->a.x() - ly;
+          if (c->centre)
+          {
+            out_.peak_drift_x[s] = std::max(out_.peak_drift_x[s], std::abs(dx));
+            out_.peak_drift_y[s] = std::max(out_.peak_drift_y[s], std::abs(dy));
+          }
+          else
+            m = std::max(m, dx * dx + dy * dy);
+        }
+        drift_sq_[s] = m;
+      }
+      // Input and viscous power at t_n, trapezoid sums from t_0; vᵀCv with C block-tridiagonal
+      // by levels (storeys join consecutive levels).
+      const double p_in   = -(rx_m_.dot(v_) * ag_x + ry_m_.dot(v_) * ag_y);
+      double       p_visc = 0.0;
+      for (std::size_t l = 0; l < c_diag_.size(); ++l)
+      {
+        const Eigen::Vector3d vl = v_.segment<3>(static_cast<Eigen::Index>(3 * l));
+        p_visc += vl.dot(c_diag_[l] * vl);
+        if (l + 1 < c_diag_.size())
+          p_visc += 2.0 * vl.dot(c_upper_[l] * v_.segment<3>(static_cast<Eigen::Index>(3 * l + 3)));
+      }
+      if (n > 0)
+      {
+        w_in_ += 0.5 * dt_ * (p_in_prev_ + p_in);
+        w_visc_ += 0.5 * dt_ * (p_visc_prev_ + p_visc);
+      }
+      p_in_prev_   = p_in;
+      p_visc_prev_ = p_visc;
+    }
+
+    void Run::checkpoint(const long n)
+    {
+      const double t = static_cast<double>(n) * dt_;
+      e_kin_         = 0.5 * v_.dot(model_.masses().cwiseProduct(v_));
+      e_strain_      = strain_energy();
+      if (n == 0)
+        e0_ = e_kin_ + e_strain_;
+      double hysteretic = 0.0;
+      for (const auto &iso : iso_)
+        hysteretic += iso->dissipated_energy();
+      const double supplied = e0_ + w_in_;
+      max_supplied_         = std::max(max_supplied_, supplied);
+      const double residual =
+        std::abs(supplied - (e_kin_ + e_strain_ + w_visc_ + hysteretic + w_contact_ + w_friction_));
+      last_error_   = residual / std::max(max_supplied_, 1e-300);
+      max_residual_ = std::max(max_residual_, residual);
+      for (std::size_t i = 0; i < n_; ++i)
+        if (!std::isfinite(u_np1_(static_cast<Eigen::Index>(i))))
+        {
+          std::ostringstream msg;
+          msg << "central difference in plan diverged: u[" << i
+              << "] is not finite at t = " << t + dt_ << " s (step " << n + 1 << ", dt = " << dt_
+              << " s)";
+          throw DivergenceError(msg.str(), t + dt_, n + 1, static_cast<int>(i));
+        }
+      if (e_kin_ + e_strain_ > opt_.divergence_energy_factor * max_supplied_ &&
+          e_kin_ + e_strain_ > 1e-12)
+      {
+        Eigen::Index worst = 0;
+        v_.cwiseAbs().maxCoeff(&worst);
+        std::ostringstream msg;
+        msg << "central difference in plan diverged: mechanical energy " << e_kin_ + e_strain_
+            << " J exceeds " << opt_.divergence_energy_factor << " x the energy supplied ("
+            << max_supplied_ << " J) at t = " << t << " s (step " << n << ", fastest DoF " << worst
+            << ", dt = " << dt_ << " s)";
+        throw DivergenceError(msg.str(), t, n, static_cast<int>(worst));
+      }
+      if (every_ > 0 && n % every_ == 0)
+      {
+        PlanHistory &h = out_.history;
+        h.time.push_back(t);
+        for (std::size_t i = 0; i < n_; ++i)
+        {
+          h.displacement.push_back(u_n_(static_cast<Eigen::Index>(i)));
+          h.absolute_acceleration.push_back(a_(static_cast<Eigen::Index>(i)));
+        }
+        const Eigen::Vector3d q0 = u_n_.head<3>();
+        for (const auto &tk : corner_t_[0])
+        {
+          const Point d = tk * q0;
+          h.corner_displacement.push_back(d.x());
+          h.corner_displacement.push_back(d.y());
+        }
+        for (std::size_t c = 0; c < laws_.size(); ++c)
+        {
+          h.contact_force.push_back(cf_[c]);
+          h.friction_force.push_back(phi_[c]);
+        }
+        h.energy_error.push_back(last_error_);
+      }
+    }
+
+    PlanResponse Run::execute()
+    {
+      const auto nn = static_cast<Eigen::Index>(n_);
+      // Initial conditions: u_{−1}, u_{−2} by a Taylor expansion with a_0 = M⁻¹(p_0 − C·v_0 −
+      // K·u_0 − f_nl(u_0)), the laws only trialled (the first step commits them).
+      Eigen::VectorXd u0 = Eigen::VectorXd::Zero(nn), v0 = Eigen::VectorXd::Zero(nn);
+      if (!opt_.initial_displacement.empty())
+        u0 = Eigen::Map<const Eigen::VectorXd>(opt_.initial_displacement.data(), nn);
+      if (!opt_.initial_velocity.empty())
+        v0 = Eigen::Map<const Eigen::VectorXd>(opt_.initial_velocity.data(), nn);
+      Eigen::VectorXd f0  = Eigen::VectorXd::Zero(nn);
+      const auto     &kin = model_.isolator_kinematics();
+      for (std::size_t j = 0; j < iso_.size(); ++j)
+      {
+        f0.head<3>() +=
+          kin[j].transpose() * iso_[j]->set_trial(kin[j] * u0.head<3>(), kin[j] * v0.head<3>());
+        iso_[j]->revert_to_last_commit();
+      }
+      for (std::size_t c = 0; c < laws_.size(); ++c)
+      {
+        const PlanContact &pc    = model_.contacts()[c];
+        const double       delta = pc.normal_row.dot(u0.head<3>()) - pc.gap;
+        const double       rate  = pc.normal_row.dot(v0.head<3>());
+        dp_[c]                   = delta - dt_ * rate;
+        dpp_[c]                  = delta - 2.0 * dt_ * rate;
+        if (delta > 0.0)
+        {
+          f0.head<3>() +=
+            pc.weight * laws_[c]->set_trial(delta, rate).force * pc.normal_row.transpose();
+          laws_[c]->revert_to_last_commit();
+        }
+      }
+      double ag_x0, ag_y0;
+      ground(0, ag_x0, ag_y0);
+      const Eigen::VectorXd &m = model_.masses();
+      const Eigen::VectorXd  a0 =
+        (-(rx_m_ * ag_x0 + ry_m_ * ag_y0) - model_.damping() * v0 - model_.stiffness() * u0 - f0)
+          .cwiseQuotient(m);
+      u_n_   = u0;
+      u_nm1_ = u0 - dt_ * v0 + 0.5 * dt_ * dt_ * a0;
+      u_nm2_ = u0 - 2.0 * dt_ * v0 + 2.0 * dt_ * dt_ * a0;
+      du_n_  = dt_ * v0 - 0.5 * dt_ * dt_ * a0;
+      // z_{−1} = A⁻¹K·u_{−1}.
+      z_ = hg_.bottomRows(nn) * (u_n_ - du_n_);
+
+      for (long n = 0; n <= n_steps_; ++n)
+      {
+        double ag_x, ag_y;
+        ground(n, ag_x, ag_y);
+        forces(n, u_n_, u_nm1_, u_nm2_);
+        // Increment: Δu_{n+1} − Δu_n = −(A⁻¹(C/Δt + K)Δu_n + z_{n−1} + A⁻¹M·r·ü_g + A⁻¹f).
+        y_.noalias() = hg_ * du_n_;
+        inc_         = -(y_.head(nn) + z_ + am_x_ * ag_x + am_y_ * ag_y);
+        inc_.noalias() -= a_inv_f_ * f0_;
+        du_np1_ = du_n_ + inc_;
+        z_ += y_.tail(nn);
+        u_np1_ = u_n_ + du_np1_;
+        bookkeeping(n, ag_x, ag_y);
+        if ((every_ > 0 && n % every_ == 0) || n % check_every_ == 0 || n == n_steps_)
+          checkpoint(n);
+        u_nm2_.swap(u_nm1_);
+        u_nm1_.swap(u_n_);
+        u_n_.swap(u_np1_);
+        du_n_.swap(du_np1_);
+      }
+
+      out_.dt       = dt_;
+      out_.n_steps  = n_steps_;
+      out_.duration = static_cast<double>(n_steps_) * dt_;
+      PlanEnergy &e = out_.energy;
+      e.initial     = e0_;
+      e.input       = w_in_;
+      e.kinetic     = e_kin_;
+      e.strain      = e_strain_;
+      e.viscous     = w_visc_;
+      for (const auto &iso : iso_)
+        e.hysteretic += iso->dissipated_energy();
+      e.contact_work = w_contact_;
+      e.friction     = w_friction_;
+      for (std::size_t c = 0; c < laws_.size(); ++c)
+      {
+        out_.contacts[c].dissipated_energy =
+          model_.contacts()[c].weight * laws_[c]->dissipated_energy();
+        e.impact_dissipated += out_.contacts[c].dissipated_energy;
+      }
+      for (std::size_t i = 0; i < n_; ++i)
+      {
+        out_.peak_displacement[i]          = peak_u_(static_cast<Eigen::Index>(i));
+        out_.peak_absolute_acceleration[i] = peak_a_(static_cast<Eigen::Index>(i));
+      }
+      for (std::size_t l = 0; l < corner_sq_.size(); ++l)
+      {
+        out_.peak_corner_displacement[l]     = std::sqrt(corner_sq_[l]);
+        out_.peak_horizontal_acceleration[l] = std::sqrt(accel_sq_[l]);
+      }
+      for (std::size_t q = 0; q < drift_sq_.size(); ++q)
+        out_.peak_corner_drift[q] = std::sqrt(drift_sq_[q]);
+      e.relative_error     = last_error_;
+      e.max_relative_error = max_residual_ / std::max(max_supplied_, 1e-300);
+      return out_;
+    }
+  } // namespace
+
+  PlanModel::PlanModel(const PlanScene &scene)
+    : building_(scene.building)
+    , moat_(scene.moat)
+  {
+    validate(building_);
+    mass_      = plan_masses(building_);
+    stiffness_ = plan_stiffness(building_, false);
+    damping_   = plan_damping(building_);
+    for (const PlanIsolatorSpec &iso : building_.isolators)
+      isolator_t_.push_back(level_kinematics(building_, 0, iso.position));
+    if (moat_)
+      contacts_ = moat_contacts(*moat_, building_);
+  }
+
+  Eigen::MatrixXd PlanModel::initial_stiffness_matrix() const
+  {
+    return plan_stiffness(building_, true);
+  }
+
+  std::size_t PlanResponse::n_impacts() const
+  {
+    std::size_t n = 0;
+    for (const PlanContactResult &c : contacts)
+      n += c.impacts.size();
+    return n;
+  }
+
+  PlanCentralDifference::PlanCentralDifference(PlanModel model, PlanOptions options)
+    : model_(std::move(model))
+    , options_(std::move(options))
+  {
+    const ParameterCheck check("central_difference.");
+    check(options_.dt >= 0.0 && std::isfinite(options_.dt),
+          "dt",
+          options_.dt,
+          "must be > 0 s, or 0 for auto");
+    check(options_.safety > 0.0 && options_.safety <= 1.0,
+          "safety",
+          options_.safety,
+          "must be in (0, 1]");
+    check(options_.duration >= 0.0 && std::isfinite(options_.duration),
+          "duration",
+          options_.duration,
+          "must be >= 0 s (0: the record's length)");
+    check(options_.output_interval >= 0.0 && std::isfinite(options_.output_interval),
+          "output_interval",
+          options_.output_interval,
+          "must be >= 0 s (0: no histories)");
+    check(options_.divergence_energy_factor > 1.0,
+          "divergence_energy_factor",
+          options_.divergence_energy_factor,
+          "must be > 1");
+    require_initial_state("central_difference.",
+                          options_.initial_displacement,
+                          options_.initial_velocity,
+                          model_.n_dofs());
+    stability_ = plan_stability(model_, options_.expected_max_penetration);
+  }
+
+  double PlanCentralDifference::time_step(const double record_dt) const
+  {
+    if (!(record_dt > 0.0 && std::isfinite(record_dt)))
+    {
+      std::ostringstream msg;
+      msg << "ground motion dt = " << record_dt << " s (must be > 0)";
+      throw std::invalid_argument(msg.str());
+    }
+    if (options_.dt > 0.0)
+    {
+      if (options_.dt >= stability_.dt_critical)
+      {
+        std::ostringstream msg;
+        msg << "time step dt = " << options_.dt
+            << " s exceeds the stability limit of the central difference method dt_cr = "
+               "2/omega_max = "
+            << stability_.dt_critical << " s (governed by " << stability_.governing
+            << "); use dt < " << stability_.dt_critical << " s or dt = auto";
+        throw TimeStepError(msg.str(), options_.dt, stability_.dt_critical);
+      }
+      return options_.dt;
+    }
+    if (!std::isfinite(stability_.dt_critical))
+      throw std::invalid_argument("central_difference.dt = auto needs a stability limit, and "
+                                  "this model has no stiffness (give dt > 0)");
+    const double target = options_.safety * stability_.dt_critical;
+    const double n_sub  = std::ceil(record_dt / target * (1.0 - 1e-12));
+    return record_dt / std::max(n_sub, 1.0);
+  }
+
+  PlanResponse PlanCentralDifference::run(const PlanGroundMotion &motion) const
+  {
+    Run run(*this, motion);
+    return run.execute();
+  }
+} // namespace kimp::lumped::plan

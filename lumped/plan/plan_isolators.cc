@@ -1,0 +1,207 @@
+// Bidirectional isolators: radial return of the bilinear and friction pendulum laws, backward
+// Euler of the Park-Wen coupled Bouc-Wen law.
+#include "lumped/plan/plan_isolators.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "lumped/isolators/bilinear_isolator.h"
+#include "lumped/isolators/bouc_wen_isolator.h"
+#include "lumped/isolators/friction_pendulum_isolator.h"
+
+namespace kimp::lumped::plan
+{
+  namespace
+  {
+    /// Newton iterations of one Bouc-Wen increment before it is halved.
+    constexpr int max_newton = 50;
+    /// Halvings of a Bouc-Wen increment before giving up.
+    constexpr int max_halvings = 20;
+  } // namespace
+
+  PlanBilinearIsolator::PlanBilinearIsolator(const double K1,
+                                             const double K2,
+                                             const double Q,
+                                             const double c)
+    : PlanHystereticIsolator(c)
+    , K1_(K1)
+    , K2_(K2)
+    , Q_(Q)
+  {
+    // The planar isolator's checks, with its messages.
+    BilinearIsolator check(K1, K2, Q, c);
+    (void)check;
+  }
+
+  Point PlanBilinearIsolator::set_trial(const Point &displacement, const Point & /*velocity*/)
+  {
+    const double k_ep    = K1_ - K2_;
+    const Point  f_trial = committed_.f_ep + k_ep * (displacement - committed_.u);
+    const double norm    = f_trial.norm();
+    trial_.u             = displacement;
+    trial_.dissipated    = committed_.dissipated;
+    if (norm > Q_)
+    {
+      // Radial return: plastic slip |Δu_p| = (|f_trial| − Q)/k_ep along f_trial.
+      trial_.f_ep = Q_ * (f_trial / norm);
+      trial_.dissipated += Q_ * (norm - Q_) / k_ep;
+    }
+    else
+      trial_.f_ep = f_trial;
+    return K2_ * displacement + trial_.f_ep;
+  }
+
+  double PlanBilinearIsolator::stored_energy() const
+  {
+    return 0.5 * K2_ * committed_.u.squaredNorm() +
+           0.5 * committed_.f_ep.squaredNorm() / (K1_ - K2_);
+  }
+
+  PlanBoucWenIsolator::PlanBoucWenIsolator(const double K1,
+                                           const double alpha,
+                                           const double F_y,
+                                           const double A,
+                                           const double beta,
+                                           const double gamma,
+                                           const double n,
+                                           const double c)
+    : PlanHystereticIsolator(c)
+    , K1_(K1)
+    , alpha_(alpha)
+    , A_(A)
+    , beta_(beta)
+    , gamma_(gamma)
+    , n_(n)
+  {
+    BoucWenIsolator check(K1, alpha, F_y, A, beta, gamma, n, c);
+    (void)check;
+    Q_   = (1.0 - alpha) * F_y;
+    u_y_ = F_y / K1;
+  }
+
+  Point PlanBoucWenIsolator::update(const Point &z_c,
+                                    const Point &du,
+                                    double      &dissipated,
+                                    const int    depth) const
+  {
+    const Point r = du / u_y_;
+    // Bracket w(z) = Σ_i (γ + β·sgn(du_i z_i))·z_i du_i and the residual's pieces at z.
+    const auto factors = [&](const Point &z)
+    {
+      return Point(gamma_ + beta_ * (z.x() * du.x() > 0.0 ? 1.0 :
+                                     z.x() * du.x() < 0.0 ? -1.0 :
+                                                            0.0),
+                   gamma_ + beta_ * (z.y() * du.y() > 0.0 ? 1.0 :
+                                     z.y() * du.y() < 0.0 ? -1.0 :
+                                                            0.0));
+    };
+    const auto scaled_power = [&](const double a, const double p)
+    { return a > 0.0 ? std::pow(a, p) : 0.0; };
+    // Explicit Euler start.
+    Point z;
+    {
+      const Point  f = factors(z_c);
+      const double w = f.x() * z_c.x() * r.x() + f.y() * z_c.y() * r.y();
+      z              = z_c + A_ * r - scaled_power(z_c.norm(), n_ - 2.0) * w * z_c;
+    }
+    bool converged = false;
+    for (int it = 0; it < max_newton; ++it)
+    {
+      const double    a  = z.norm();
+      const Point     f  = factors(z);
+      const double    w  = f.x() * z.x() * r.x() + f.y() * z.y() * r.y();
+      const double    pw = scaled_power(a, n_ - 2.0);
+      const Point     g  = z - z_c - (A_ * r - pw * w * z);
+      Eigen::Matrix2d j  = Eigen::Matrix2d::Identity();
+      if (a > 0.0)
+      {
+        const Point grad_w(f.x() * r.x(), f.y() * r.y());
+        j += pw * (w * Eigen::Matrix2d::Identity() + z * grad_w.transpose()) +
+             (n_ - 2.0) * pw / (a * a) * w * z * z.transpose();
+      }
+      const Point step = j.partialPivLu().solve(g);
+      z -= step;
+      if (step.norm() <= 1e-15 * std::max(1.0, z.norm()))
+      {
+        converged = true;
+        break;
+      }
+    }
+    if (!converged || !z.allFinite())
+    {
+      if (depth >= max_halvings)
+        throw std::runtime_error("bouc_wen isolator in plan: the backward-Euler update did not "
+                                 "converge (displacement increment too large)");
+      double      d_half = 0.0;
+      const Point z_half = update(z_c, 0.5 * du, d_half, depth + 1);
+      const Point z_end  = update(z_half, 0.5 * du, d_half, depth + 1);
+      dissipated += d_half;
+      return z_end;
+    }
+    const Point  f = factors(z);
+    const double w = f.x() * z.x() * du.x() + f.y() * z.y() * du.y();
+    // Work of the hysteretic spring beyond its stored energy, Q/A·|z|^n·w (>= 0 for β >= |γ|).
+    dissipated += Q_ / A_ * scaled_power(z.norm(), n_) * w;
+    return z;
+  }
+
+  Point PlanBoucWenIsolator::set_trial(const Point &displacement, const Point & /*velocity*/)
+  {
+    trial_         = committed_;
+    trial_.u       = displacement;
+    const Point du = displacement - committed_.u;
+    if (du.x() != 0.0 || du.y() != 0.0)
+      trial_.z = update(committed_.z, du, trial_.dissipated, 0);
+    return alpha_ * K1_ * displacement + Q_ * trial_.z;
+  }
+
+  double PlanBoucWenIsolator::stored_energy() const
+  {
+    return 0.5 * alpha_ * K1_ * committed_.u.squaredNorm() +
+           0.5 * Q_ * u_y_ * committed_.z.squaredNorm() / A_;
+  }
+
+  PlanFrictionPendulumIsolator::PlanFrictionPendulumIsolator(const double W,
+                                                             const double R,
+                                                             const double mu_slow,
+                                                             const double mu_fast,
+                                                             const double rate,
+                                                             const double k_init,
+                                                             const double c)
+    : PlanHystereticIsolator(c)
+    , W_(W)
+    , mu_slow_(mu_slow)
+    , mu_fast_(mu_fast)
+    , rate_(rate)
+    , k_init_(k_init)
+  {
+    FrictionPendulumIsolator check(W, R, mu_slow, mu_fast, rate, k_init, c);
+    (void)check;
+    k_pendulum_ = W / R;
+  }
+
+  Point PlanFrictionPendulumIsolator::set_trial(const Point &displacement, const Point &velocity)
+  {
+    const double mu      = mu_fast_ - (mu_fast_ - mu_slow_) * std::exp(-rate_ * velocity.norm());
+    const double q       = mu * W_;
+    const Point  f_trial = committed_.f_s + k_init_ * (displacement - committed_.u);
+    const double norm    = f_trial.norm();
+    trial_.u             = displacement;
+    trial_.dissipated    = committed_.dissipated;
+    if (norm > q)
+    {
+      // Radial return: slip (|f_trial| − q)/k_init along f_trial at the friction force q.
+      trial_.f_s = q * (f_trial / norm);
+      trial_.dissipated += q * (norm - q) / k_init_;
+    }
+    else
+      trial_.f_s = f_trial;
+    return k_pendulum_ * displacement + trial_.f_s;
+  }
+
+  double PlanFrictionPendulumIsolator::stored_energy() const
+  {
+    return 0.5 * k_pendulum_ * committed_.u.squaredNorm() +
+           0.5 * committed_.f_s.squaredNorm() / k_init_;
+  }
+} // namespace kimp::lumped::plan
