@@ -2,6 +2,7 @@
 // Hertzdamp and ImpactMaterial (Muthukumar's bilinear approximation of the Hertz law).
 #include "app/opensees_export.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -263,16 +264,16 @@ namespace kimp::app
   {
     const ExportOpenSeesSettings &s = options.settings;
     OpenSeesLawInput              in;
-    in.k_kelvin_voigt                        = s.k_kelvin_voigt;
-    in.k_hertz                               = s.k_hertz;
-    in.gap                                   = s.gap;
-    in.yield_ratio                           = s.yield_ratio;
-    in.first_tag                             = s.first_tag;
-    in.gap_source                            = "given (--gap, default 15 cm)";
-    const std::optional<double> &wall_height = s.wall_height;
-    nlohmann::json               summary;
-    std::string                  command;
-    std::optional<double>        record_velocity;
+    in.k_kelvin_voigt                 = s.k_kelvin_voigt;
+    in.k_hertz                        = s.k_hertz;
+    in.gap                            = s.gap;
+    in.yield_ratio                    = s.yield_ratio;
+    in.first_tag                      = s.first_tag;
+    in.gap_source                     = "given (--gap, default 15 cm)";
+    std::optional<double> wall_height = s.wall_height;
+    nlohmann::json        summary;
+    std::string           command;
+    std::optional<double> record_velocity;
     if (options.source.empty())
     {
       if (!s.record.empty())
@@ -281,8 +282,23 @@ namespace kimp::app
     else
     {
       if (!wall_height)
-        throw std::invalid_argument("export-opensees: --wall-height is needed with a k source (" +
-                                    options.source.string() + ")");
+      {
+        // A site's study has one wall height: it is the one to export.
+        const KTable        table = read_k_table(options.source);
+        std::vector<double> heights;
+        for (const KTableRow &r : table.rows)
+          if (std::find(heights.begin(), heights.end(), r.wall_height) == heights.end())
+            heights.push_back(r.wall_height);
+        if (heights.size() != 1)
+        {
+          std::string list;
+          for (const double h : heights)
+            list += (list.empty() ? "" : ", ") + fmt::format("{:g} m", h);
+          throw std::invalid_argument("export-opensees: --wall-height is needed: " +
+                                      table.file.string() + " holds the heights " + list);
+        }
+        wall_height = heights.front();
+      }
       summary = source_summary(options.source);
       command = summary.is_object() ? summary.value("command", "") : "";
       if (!s.record.empty())

@@ -86,7 +86,8 @@ namespace kimp::app
     io.quantity("wall_height",
                 s.wall_height,
                 "m",
-                "wall height at which the k table is interpolated (needed with a k source)",
+                "wall height at which the k source is interpolated (needed when it holds several "
+                "heights)",
                 io::Range::positive());
     io.text("record",
             s.record,

@@ -210,6 +210,14 @@ namespace
     EXPECT_NE(k.at("sources").at("k").get<std::string>().find("consistent k of record 'kobe'"),
               std::string::npos);
 
+    // Two heights: which one is for the user to say.
+    const KimpRun which = run_kimp("-q export-opensees study -o which", dir.path());
+    EXPECT_EQ(which.exit_code, 1);
+    EXPECT_NE(which.err.find(
+                "--wall-height is needed: study/k_table.csv holds the heights 1 m, 2 m"),
+              std::string::npos)
+      << which.err;
+
     // Explicit values win; a record that did not converge or is unknown is refused.
     const KimpRun given =
       run_kimp("-q export-opensees study --wall-height \"1 m\" --effective-mass \"100 t\" -o given",
