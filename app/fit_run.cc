@@ -48,6 +48,9 @@ namespace kimp::app
     group.write_scalar("exponent", fit.exponent.value, "1");
     group.write_scalar("normalised_rms", fit.normalised_rms, "1");
     group.write_scalar("model_effective_cor", fit.model_effective_cor, "1");
+    group.write_scalar("peak_force_ratio", fit.peak_force_ratio(), "1");
+    group.write_scalar("impulse_ratio", fit.impulse_ratio(), "1");
+    group.write_scalar("contact_duration_ratio", fit.contact_duration_ratio(), "1");
     if (!full)
     {
       group.write("time", fit.time, "s");
@@ -57,6 +60,10 @@ namespace kimp::app
     }
     group.write_scalar("model_peak_force", fit.model_peak_force, "N/m");
     group.write_scalar("fem_peak_force", fit.fem_peak_force, "N/m");
+    group.write_scalar("model_impulse", fit.model_impulse, "N*s/m");
+    group.write_scalar("fem_impulse", fit.fem_impulse, "N*s/m");
+    group.write_scalar("model_contact_duration", fit.model_contact_duration, "s");
+    group.write_scalar("fem_contact_duration", fit.fem_contact_duration, "s");
     group.write_scalar("contact_start", fit.contact_start, "s");
     group.set_attribute("law", fit.law);
     group.set_attribute("iterations", fit.iterations);
@@ -95,7 +102,8 @@ namespace kimp::app
                           fit_options(config, variant.options));
   }
 
-  std::string fem_fit_verdict(const io::FemCase &fem_case, const fit::FitResult &fit)
+  std::string
+  fem_fit_verdict(const io::FemCase &fem_case, const fit::FitResult &fit, double peak_tolerance)
   {
     // A run ends on separation only once the slab comes in at no more than 5 % of its impact
     // speed (apparent COR >= -0.05); one stopped at its end time may have caught it moving in.
@@ -109,7 +117,7 @@ namespace kimp::app
     const double dissipated = plastic + damage;
     const double energy =
       0.5 * fem_case.slab_mass * fem_case.impact_velocity * fem_case.impact_velocity;
-    const std::string from_fit = fit_verdict(fit);
+    const std::string from_fit = fit_verdict(fit, peak_tolerance);
     if (!cor || !(dissipated > 1.0e-2 * energy))
       return from_fit;
     // At the end time the slab keeps more than a quarter of its kinetic energy moving in: the
@@ -146,6 +154,9 @@ namespace kimp::app
       throw std::invalid_argument(fmt::format("fit: width = {} m (must be > 0)", config.width));
     if (!(config.cor > 0.0 && config.cor <= 1.0))
       throw std::invalid_argument(fmt::format("fit: cor = {} (must be in (0, 1])", config.cor));
+    if (!(config.peak_tolerance > 0.0))
+      throw std::invalid_argument(
+        fmt::format("fit: peak_tolerance = {} (must be > 0)", config.peak_tolerance));
     if (!(config.displacement_weight >= 0.0))
       throw std::invalid_argument(
         fmt::format("fit: displacement_weight = {} (must be >= 0)", config.displacement_weight));
@@ -162,6 +173,7 @@ namespace kimp::app
     const std::vector<FitVariant>         variants = fit_variants(config);
     const std::vector<std::string>        header   = {"case",
                                                       "wall_height_m",
+                                                      "impact_velocity_m_per_s",
                                                       "variant",
                                                       "law",
                                                       "k_per_m",
@@ -175,6 +187,9 @@ namespace kimp::app
                                                       "cor_upper",
                                                       "exponent",
                                                       "normalised_rms",
+                                                      "peak_force_ratio",
+                                                      "impulse_ratio",
+                                                      "contact_duration_ratio",
                                                       "status"};
     std::vector<std::vector<std::string>> rows;
     nlohmann::json                        case_summaries = nlohmann::json::array();
@@ -194,7 +209,7 @@ namespace kimp::app
         try
         {
           const FitResult   fit     = fit_fem_case(fem_case, variant, config);
-          const std::string verdict = fem_fit_verdict(fem_case, fit);
+          const std::string verdict = fem_fit_verdict(fem_case, fit, config.peak_tolerance);
           write_fit_result(group, fit, config.width, FitResultLayout::full);
           group.set_status(verdict);
           if (verdict != "ok")
@@ -205,6 +220,7 @@ namespace kimp::app
           const double scale = stiffness_to_kn_per_mm(1.0, fit.exponent.value);
           rows.push_back({fem_case.name,
                           number(fem_case.wall_height),
+                          number(fem_case.impact_velocity),
                           variant.name,
                           fit.law,
                           number(fit.stiffness_per_metre_display()),
@@ -218,6 +234,9 @@ namespace kimp::app
                           number(fit.cor.upper),
                           number(fit.exponent.value),
                           number(fit.normalised_rms),
+                          number(fit.peak_force_ratio()),
+                          number(fit.impulse_ratio()),
+                          number(fit.contact_duration_ratio()),
                           verdict});
           case_summaries.push_back(
             {{"name", fem_case.name + "/" + variant.name},
@@ -226,14 +245,19 @@ namespace kimp::app
              {"law", fit.law},
              {"status", verdict},
              {"wall_height", fem_case.wall_height},
+             {"impact_velocity", fem_case.impact_velocity},
              {"stiffness_per_metre", fit.stiffness.value},
              {"stiffness_per_metre_unit", stiffness_si_unit(fit.exponent.value, true)},
              {"stiffness_per_metre_lower", fit.stiffness.lower},
              {"stiffness_per_metre_upper", fit.stiffness.upper},
              {"exponent", fit.exponent.value},
              {"cor", fit.cor.value},
-             {"normalised_rms", fit.normalised_rms}});
-          logger().info("fit: {} {}: k = {} {} (total {} {}), COR = {}, RMS/peak = {}",
+             {"normalised_rms", fit.normalised_rms},
+             {"peak_force_ratio", fit.peak_force_ratio()},
+             {"impulse_ratio", fit.impulse_ratio()},
+             {"contact_duration_ratio", fit.contact_duration_ratio()}});
+          logger().info("fit: {} {}: k = {} {} (total {} {}), COR = {}, RMS/peak = {}, fitted/FEM "
+                        "peak force {}, impulse {}, contact duration {}",
                         fem_case.name,
                         variant.name,
                         base::sig(fit.stiffness_per_metre_display()),
@@ -241,7 +265,10 @@ namespace kimp::app
                         base::sig(fit.total_stiffness_display(config.width)),
                         stiffness_display_unit(fit.exponent.value),
                         base::sig(fit.cor.value),
-                        base::sig(fit.normalised_rms, 3));
+                        base::sig(fit.normalised_rms, 3),
+                        base::sig(fit.peak_force_ratio(), 3),
+                        base::sig(fit.impulse_ratio(), 3),
+                        base::sig(fit.contact_duration_ratio(), 3));
         }
         catch (const std::exception &error)
         {
@@ -250,8 +277,12 @@ namespace kimp::app
           group.set_status(status);
           rows.push_back({fem_case.name,
                           number(fem_case.wall_height),
+                          number(fem_case.impact_velocity),
                           variant.name,
                           variant.law.law,
+                          "",
+                          "",
+                          "",
                           "",
                           "",
                           "",
@@ -269,7 +300,8 @@ namespace kimp::app
                                     {"variant", variant.name},
                                     {"law", variant.law.law},
                                     {"status", status},
-                                    {"wall_height", fem_case.wall_height}});
+                                    {"wall_height", fem_case.wall_height},
+                                    {"impact_velocity", fem_case.impact_velocity}});
           logger().warn("fit: {} {}: {}", fem_case.name, variant.name, status);
         }
       }
@@ -284,9 +316,14 @@ namespace kimp::app
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     summary["options"]  = resolved;
     summary["units"]    = {{"wall_height", "m"},
+                           {"impact_velocity", "m/s"},
                            {"width", "m"},
                            {"cor", "1"},
                            {"normalised_rms", "1"},
+                           {"peak_force_ratio", "1"},
+                           {"impulse_ratio", "1"},
+                           {"contact_duration_ratio", "1"},
+                           {"peak_tolerance", "1"},
                            {"wall_time", "s"}};
     summary["n_failed"] = failures;
     summary["cases"]    = case_summaries;

@@ -56,6 +56,12 @@ namespace kimp::fit
                 "weight of the slab-displacement misfit beside the force misfit (0: force "
                 "only, the thesis' choice)",
                 io::Range::non_negative());
+    io.quantity("peak_tolerance",
+                s.peak_tolerance,
+                "%",
+                "a fit whose peak force misses the FEM's peak by more than this is a warning "
+                "(status), since a wall is sized from the peak force",
+                io::Range::positive());
   }
 } // namespace kimp::fit
 
@@ -76,7 +82,8 @@ namespace kimp::app
   /**
    * The one writer of a fitted law below /fit/<case>/<variant> (fit.h5 and study.h5): stiffness,
    * stiffness_lower, stiffness_upper (N/m^n per metre), stiffness_total (N/m^n, k·`width`), cor,
-   * exponent, normalised_rms, model_effective_cor and what `layout` adds. The status is the
+   * exponent, normalised_rms, model_effective_cor, the fitted/FEM ratios peak_force_ratio,
+   * impulse_ratio and contact_duration_ratio, and what `layout` adds. The status is the
    * caller's.
    */
   void write_fit_result(io::ResultsGroup     &group,
@@ -98,7 +105,8 @@ namespace kimp::app
   inline constexpr double yielding_wall_cor = 0.1;
 
   /**
-   * The status of `fit` to `fem_case`: fit::fit_verdict(), after what the FEM run itself says.
+   * The status of `fit` to `fem_case`: fit::fit_verdict() (with `peak_tolerance`), after what
+   * the FEM run itself says.
    * An impact stiffness describes a contact the slab rebounds from; a run ends on separation only
    * once the slab comes in at no more than 5 % of its impact speed (apparent COR >= -0.05).
    * When the materials dissipated more than 1 % of the impact energy: a run stopped at its end time
@@ -108,7 +116,9 @@ namespace kimp::app
    * and stopped the slab: k is the equivalent stiffness of a yielding wall). Used by `kimp fit` and
    * `kimp study`.
    */
-  std::string fem_fit_verdict(const io::FemCase &fem_case, const fit::FitResult &fit);
+  std::string fem_fit_verdict(const io::FemCase    &fem_case,
+                              const fit::FitResult &fit,
+                              double                peak_tolerance = fit::default_peak_tolerance);
 
   /// Settings of one `kimp fit` run (the command-line options).
   struct FitCommandOptions
@@ -120,10 +130,12 @@ namespace kimp::app
 
   /**
    * Fit the standard variants (fit::standard_fit_variants) to every "ok" case of the FEM file and
-   * write DIR/fit.h5 and DIR/fit_table.csv (one row per case and variant, k per metre and total
-   * in kN/mm^n, COR, n, 95 % intervals, normalised RMS misfit, status). A fit that fails, or
-   * whose fit::fit_verdict() is "failed: ..." or "warning: ...", is a row with that status, not
-   * an error of the command.
+   * write DIR/fit.h5 and DIR/fit_table.csv (one row per case and variant: wall height, impact
+   * velocity, k per metre and total in kN/mm^n, COR, n, 95 % intervals, normalised RMS misfit,
+   * fitted/FEM peak force, impulse and contact duration, status). The table is a k source of
+   * its own: app::read_k_table() reads it (`kimp export-opensees`, `impact.k_table`). A fit that
+   * fails, or whose fit::fit_verdict() is "failed: ..." or "warning: ...", is a row with that
+   * status, not an error of the command.
    * @return number of fits whose status is not "ok".
    * @throws ResultsError or OutputError for unreadable input or unwritable output.
    */

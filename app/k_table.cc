@@ -107,25 +107,151 @@ namespace kimp::app
     }
   } // namespace
 
+  namespace
+  {
+    /// Sort by height, then velocity (the order the interpolation needs).
+    void sort_rows(std::vector<KTableRow> &rows)
+    {
+      std::sort(rows.begin(),
+                rows.end(),
+                [](const KTableRow &a, const KTableRow &b)
+                {
+                  return a.wall_height < b.wall_height ||
+                         (a.wall_height == b.wall_height && a.impact_velocity < b.impact_velocity);
+                });
+    }
+
+    /**
+     * The k of a fit_table.csv of `kimp fit`: per FEM case, k_total of the variants
+     * kelvin_voigt_cor_fixed and jankowski_cor_fixed (the study's two laws). A case needs both
+     * (a failed fit leaves it out). Two cases at one height and velocity are ambiguous and
+     * refused.
+     */
+    void read_fit_table(KTable &table, std::istream &in, const std::vector<std::string> &header)
+    {
+      const auto column = [&](const std::string &name)
+      {
+        const auto it = std::find(header.begin(), header.end(), name);
+        if (it == header.end())
+          throw std::invalid_argument(
+            fmt::format("{}: no column '{}' (not a fit_table.csv of `kimp fit`)",
+                        table.file.string(),
+                        name));
+        return static_cast<std::size_t>(std::distance(header.begin(), it));
+      };
+      const std::size_t name = column("case"), height = column("wall_height_m"),
+                        variant = column("variant"), k_total = column("k_total"),
+                        status = column("status");
+      // Tables of `kimp fit` before the velocity column have one velocity per case, unknown.
+      const std::size_t velocity = static_cast<std::size_t>(
+        std::distance(header.begin(),
+                      std::find(header.begin(), header.end(), "impact_velocity_m_per_s")));
+      std::vector<std::string> cases; // in file order
+      std::vector<KTableRow>   rows;
+      std::string              line;
+      int                      number = 1;
+      while (std::getline(in, line))
+      {
+        ++number;
+        if (line.empty())
+          continue;
+        const std::vector<std::string> f = split_csv(line);
+        if (f.size() != header.size())
+          throw std::invalid_argument(fmt::format("{}:{}: {} fields for {} columns",
+                                                  table.file.string(),
+                                                  number,
+                                                  f.size(),
+                                                  header.size()));
+        const bool kv = f[variant] == "kelvin_voigt_cor_fixed";
+        if (!kv && f[variant] != "jankowski_cor_fixed")
+          continue;
+        const auto at = std::find(cases.begin(), cases.end(), f[name]);
+        if (at == cases.end())
+        {
+          cases.push_back(f[name]);
+          KTableRow row;
+          row.wall_height        = to_number(f[height]);
+          row.impact_velocity    = velocity < f.size() ? to_number(f[velocity]) : std::nan("");
+          row.kelvin_voigt_total = row.jankowski_total = std::nan("");
+          rows.push_back(row);
+        }
+        KTableRow &row = rows[static_cast<std::size_t>(
+          std::distance(cases.begin(), std::find(cases.begin(), cases.end(), f[name])))];
+        if (f[status].rfind("failed", 0) == 0)
+          continue;
+        // kN/mm^n -> N/m^n: × 1e3 · 1e3^n.
+        if (kv)
+          row.kelvin_voigt_total = to_number(f[k_total]) * 1e6;
+        else
+          row.jankowski_total = to_number(f[k_total]) * 1e3 * std::pow(1e3, 1.5);
+      }
+      std::vector<std::string> kept; // the case of each row of table.rows
+      for (std::size_t i = 0; i < rows.size(); ++i)
+      {
+        const KTableRow &r = rows[i];
+        if (!(std::isfinite(r.wall_height) && r.kelvin_voigt_total > 0.0 &&
+              r.jankowski_total > 0.0))
+          continue;
+        for (std::size_t j = 0; j < table.rows.size(); ++j)
+          if (table.rows[j].wall_height == r.wall_height &&
+              same_velocity(table.rows[j].impact_velocity, r.impact_velocity))
+            throw std::invalid_argument(
+              fmt::format("{}: cases '{}' and '{}' are both at wall height {} m{}: which k to "
+                          "take is ambiguous (fit one of them, or pass explicit k)",
+                          table.file.string(),
+                          kept[j],
+                          cases[i],
+                          r.wall_height,
+                          std::isnan(r.impact_velocity) ?
+                            std::string() :
+                            fmt::format(" and {} m/s", r.impact_velocity)));
+        table.rows.push_back(r);
+        kept.push_back(cases[i]);
+      }
+      if (table.rows.empty())
+        throw std::invalid_argument(fmt::format("{}: no case with both a Kelvin-Voigt and a "
+                                                "Jankowski k (every fit failed?)",
+                                                table.file.string()));
+      // Several velocities: none is the reference, the velocity must be given.
+      const bool one_velocity = table.velocities().size() <= 1;
+      for (KTableRow &r : table.rows)
+        r.reference = one_velocity;
+      sort_rows(table.rows);
+    }
+  } // namespace
+
   KTable read_k_table(const std::filesystem::path &path)
   {
     KTable table;
-    table.file = std::filesystem::is_directory(path) ? path / "k_table.csv" : path;
+    table.file = path;
+    if (std::filesystem::is_directory(path))
+    {
+      table.file = path / "k_table.csv";
+      if (!std::filesystem::exists(table.file) && std::filesystem::exists(path / "fit_table.csv"))
+        table.file = path / "fit_table.csv";
+    }
     std::ifstream in(table.file);
     if (!in)
       throw std::invalid_argument(
-        fmt::format("{}: cannot read the k table (expected a k_table.csv of `kimp study` or its "
-                    "output directory)",
+        fmt::format("{}: cannot read the k table (expected the k_table.csv of `kimp study`, the "
+                    "fit_table.csv of `kimp fit`, or the output directory of either)",
                     table.file.string()));
     std::string line;
     std::getline(in, line);
     const std::vector<std::string> header = split_csv(line);
-    const auto                     column = [&](const std::string &name)
+    if (std::find(header.begin(), header.end(), "variant") != header.end() &&
+        std::find(header.begin(), header.end(), "wall_height_m") != header.end())
+    {
+      read_fit_table(table, in, header);
+      return table;
+    }
+    const auto column = [&](const std::string &name)
     {
       const auto it = std::find(header.begin(), header.end(), name);
       if (it == header.end())
         throw std::invalid_argument(
-          fmt::format("{}: no column '{}' (not a k table of `kimp study`)",
+          fmt::format("{}: no column '{}' (not a k_table.csv of `kimp study` nor a "
+                      "fit_table.csv of `kimp fit`)",
                       table.file.string(),
                       name));
       return static_cast<std::size_t>(std::distance(header.begin(), it));
@@ -171,14 +297,104 @@ namespace kimp::app
       throw std::invalid_argument(
         fmt::format("{}: no row with a wall height and both k (every fit failed?)",
                     table.file.string()));
-    std::sort(table.rows.begin(),
-              table.rows.end(),
-              [](const KTableRow &a, const KTableRow &b)
-              {
-                return a.wall_height < b.wall_height ||
-                       (a.wall_height == b.wall_height && a.impact_velocity < b.impact_velocity);
-              });
+    sort_rows(table.rows);
     return table;
+  }
+
+  RecordK read_consistent_k(const std::filesystem::path &study_dir,
+                            const std::string           &record,
+                            double                       wall_height)
+  {
+    RecordK k;
+    k.file = study_dir / "consistent_k.csv";
+    std::ifstream in(k.file);
+    if (!in)
+      throw std::invalid_argument(
+        fmt::format("{}: cannot read it (the consistent k of a record needs a study run with "
+                    "consistent_k.enabled: true)",
+                    k.file.string()));
+    std::string line;
+    std::getline(in, line);
+    const std::vector<std::string> header = split_csv(line);
+    const auto                     column = [&](const std::string &name)
+    {
+      const auto it = std::find(header.begin(), header.end(), name);
+      if (it == header.end())
+        throw std::invalid_argument(
+          fmt::format("{}: no column '{}' (not a consistent_k.csv of `kimp study`)",
+                      k.file.string(),
+                      name));
+      return static_cast<std::size_t>(std::distance(header.begin(), it));
+    };
+    const std::size_t c_record = column("record"), c_height = column("wall_height_m"),
+                      c_law = column("law"), c_k = column("k_consistent"),
+                      c_velocity  = column("impact_velocity_m_per_s"),
+                      c_converged = column("converged"), c_status = column("status");
+    std::vector<std::string> records, heights;
+    const auto               add = [](std::vector<std::string> &list, const std::string &text)
+    {
+      if (std::find(list.begin(), list.end(), text) == list.end())
+        list.push_back(text);
+    };
+    int number = 1;
+    while (std::getline(in, line))
+    {
+      ++number;
+      if (line.empty())
+        continue;
+      const std::vector<std::string> f = split_csv(line);
+      if (f.size() != header.size())
+        throw std::invalid_argument(fmt::format("{}:{}: {} fields for {} columns",
+                                                k.file.string(),
+                                                number,
+                                                f.size(),
+                                                header.size()));
+      add(records, f[c_record]);
+      if (f[c_record] != record)
+        continue;
+      add(heights, f[c_height]);
+      const double h = to_number(f[c_height]);
+      if (!(std::abs(h - wall_height) <= 1e-9 * std::max(1.0, wall_height)))
+        continue;
+      const bool kv = f[c_law] == "modified_kelvin_voigt";
+      if (!kv && f[c_law] != "jankowski")
+        continue;
+      if (f[c_converged] != "yes" || f[c_status] != "ok")
+        throw std::invalid_argument(fmt::format("{}:{}: the consistent k of record '{}' at {} m "
+                                                "({}) did not converge (status: {}): no k to "
+                                                "export",
+                                                k.file.string(),
+                                                number,
+                                                record,
+                                                wall_height,
+                                                f[c_law],
+                                                f[c_status]));
+      // kN/mm^n -> N/m^n: × 1e3 · 1e3^n.
+      if (kv)
+        k.kelvin_voigt_total = to_number(f[c_k]) * 1e6;
+      else
+        k.jankowski_total = to_number(f[c_k]) * 1e3 * std::pow(1e3, 1.5);
+      if (!kv || std::isnan(k.impact_velocity))
+        k.impact_velocity = to_number(f[c_velocity]);
+    }
+    const auto joined = [](const std::vector<std::string> &list)
+    {
+      std::string text;
+      for (const std::string &item : list)
+        text += (text.empty() ? "" : ", ") + item;
+      return text.empty() ? std::string("none") : text;
+    };
+    if (std::find(records.begin(), records.end(), record) == records.end())
+      throw std::invalid_argument(
+        fmt::format("{}: no record '{}' (records: {})", k.file.string(), record, joined(records)));
+    if (std::isnan(k.kelvin_voigt_total) && std::isnan(k.jankowski_total))
+      throw std::invalid_argument(fmt::format("{}: record '{}' has no run at wall height {} m "
+                                              "(heights: {} m)",
+                                              k.file.string(),
+                                              record,
+                                              wall_height,
+                                              joined(heights)));
+    return k;
   }
 
   std::vector<double> KTable::velocities() const

@@ -61,4 +61,27 @@ namespace kimp::app
    * @throws std::invalid_argument naming the file (missing, no such column, no usable row).
    */
   KTable read_k_table(const std::filesystem::path &path);
+
+  /// The consistent k of one record at one wall height (consistent_k.csv of `kimp study`), SI.
+  struct RecordK
+  {
+    std::filesystem::path file;
+    /// k_total of the modified Kelvin-Voigt run, N/m (NaN: not in the file).
+    double kelvin_voigt_total = std::numeric_limits<double>::quiet_NaN();
+    /// k_total of the Jankowski run, N/m^1.5 (NaN: not in the file).
+    double jankowski_total = std::numeric_limits<double>::quiet_NaN();
+    /// The impact velocity the converged k belongs to, m/s (the Jankowski run's, else the
+    /// Kelvin-Voigt run's).
+    double impact_velocity = std::numeric_limits<double>::quiet_NaN();
+  };
+
+  /**
+   * The converged k(H, v_imp) of record `record` at wall height `wall_height` (m) from
+   * `study_dir`/consistent_k.csv: the k the building's own impact velocity calls for.
+   * @throws std::invalid_argument naming the file for a missing file, an unknown record or
+   *         height (listing those present), or a run that did not converge.
+   */
+  RecordK read_consistent_k(const std::filesystem::path &study_dir,
+                            const std::string           &record,
+                            double                       wall_height);
 } // namespace kimp::app

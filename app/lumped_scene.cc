@@ -9,6 +9,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "app/k_table.h"
 #include "io/units.h"
 #include "lumped/excitation/ground_motion.h"
 #include "lumped/isolators/bilinear_isolator.h"
@@ -180,6 +181,22 @@ namespace kimp::app
     }
     validate_walls(scene, ctx, "walls.left.gap", "walls.right.gap");
     validate_yielding(scene, ctx);
+    // A k table that cannot be read is one error at impact.k_table, not one more per case.
+    bool table_readable = true;
+    if (!scene.impact.k_table.empty() && !scene.impact.k_si && scene.impact.law != "bumper")
+      try
+      {
+        (void)read_k_table(ctx.resolve_path(scene.impact.k_table));
+      }
+      catch (const std::invalid_argument &error)
+      {
+        table_readable = false;
+        if (!scene.impact.wall_height) // else with_table_stiffness() reports it below
+        {
+          const auto scope = ctx.section("impact");
+          ctx.fail("k_table", scene.impact.k_table, error.what());
+        }
+      }
     {
       const auto scope = ctx.section("impact");
       validate_law(with_table_stiffness(scene.impact, ctx, scene.cases.empty()), ctx, true);
@@ -254,11 +271,12 @@ namespace kimp::app
         table_ctx.set_directory(ctx.directory());
         applied.impact = with_table_stiffness(applied.impact, table_ctx, true);
         for (const auto &failure : table_ctx.failures())
-          ctx.fail(failure.key_path == "wall_height" && c.wall_height ?
-                     "wall_height" :
-                     "impact." + failure.key_path,
-                   failure.value_text,
-                   failure.expectation);
+          if (table_readable || failure.key_path != "k_table")
+            ctx.fail(failure.key_path == "wall_height" && c.wall_height ?
+                       "wall_height" :
+                       "impact." + failure.key_path,
+                     failure.value_text,
+                     failure.expectation);
       }
       // The case's law and stiffness, reported at the case's own keys.
       ValidationContext law_ctx;

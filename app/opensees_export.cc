@@ -2,11 +2,15 @@
 // Hertzdamp and ImpactMaterial (Muthukumar's bilinear approximation of the Hertz law).
 #include "app/opensees_export.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fmt/format.h>
+#include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -82,37 +86,49 @@ namespace kimp::app
       return out;
     }
 
-    std::string header(const OpenSeesLawInput &in, const char *comment, const char *form)
+    std::string header(const OpenSeesLawInput &in, const char *form)
     {
       std::string h;
-      const auto  line = [&](const std::string &text) { h += comment + (" " + text) + "\n"; };
+      const auto  line = [&](const std::string &text)
+      { h += (text.empty() ? std::string("#") : "# " + text) + "\n"; };
       line(fmt::format("kimp export-opensees: fitted impact laws as OpenSees uniaxial materials "
                        "({})",
                        form));
       line("Units: N, m, s (stiffness N/m or N/m^1.5, damping N*s/m, mass kg, energy J).");
       line("Gap and yield displacement are negative: every material is a compression-only gap.");
       line("Use them in a zeroLength element between the isolation level and the moat wall.");
-      line("Source of k: " + (in.source.empty() ? std::string("given explicitly") : in.source));
+      line("");
+      line("Parameters and where they come from:");
+      const std::string k_source = in.source.empty() ? std::string("given explicitly") : in.source;
       if (in.k_kelvin_voigt)
-        line(fmt::format("k_KV = {} N/m (= {:.6g} kN/mm)",
+        line(fmt::format("  k_KV = {} N/m (= {:.6g} kN/mm): {}",
                          number(*in.k_kelvin_voigt),
-                         *in.k_kelvin_voigt * 1e-6));
+                         *in.k_kelvin_voigt * 1e-6,
+                         k_source));
       if (in.k_hertz)
-        line(fmt::format("k_J = {} N/m^1.5 (= {:.6g} kN/mm^1.5)",
+        line(fmt::format("  k_J = {} N/m^1.5 (= {:.6g} kN/mm^1.5): {}",
                          number(*in.k_hertz),
-                         *in.k_hertz * 1e-3 * std::pow(1e-3, 1.5)));
-      line(fmt::format("COR e = {}, m_eff = {} kg, v_imp = {} m/s, gap = {} m",
-                       number(in.cor),
+                         *in.k_hertz * 1e-3 * std::pow(1e-3, 1.5),
+                         k_source));
+      line(fmt::format("  e = {} (coefficient of restitution): {}", number(in.cor), in.cor_source));
+      line(fmt::format("  m_eff = {} kg (m1 m2/(m1 + m2) of the contact): {}",
                        number(in.effective_mass),
+                       in.effective_mass_source));
+      line(fmt::format("  v_imp = {} m/s (impact velocity, for ImpactMaterial's delta_m): {}",
                        number(in.impact_velocity),
-                       number(in.gap)));
+                       in.impact_velocity_source));
+      line(fmt::format("  gap = {} m: {}", number(in.gap), in.gap_source));
+      line(fmt::format("  a = {} (ImpactMaterial delta_y/delta_m, Muthukumar)",
+                       number(in.yield_ratio)));
+      line("");
       return h;
     }
 
-    /// How a language writes a material command: `open` TYPE `after_type` TAG, then
+    /// How a language writes a material command: `indent` `open` TYPE `after_type` TAG, then
     /// `separator` before each argument, then `close`.
     struct CommandSyntax
     {
+      const char *indent;
       const char *open;
       const char *after_type;
       const char *separator;
@@ -129,8 +145,9 @@ namespace kimp::app
       int         tag = in.first_tag;
       for (const Material &material : materials(in, p))
       {
-        out += "\n# " + material.comment + "\n";
-        out += syntax.open + material.type + syntax.after_type + std::to_string(tag++);
+        out += std::string("\n") + syntax.indent + "# " + material.comment + "\n";
+        out +=
+          syntax.indent + (syntax.open + material.type) + syntax.after_type + std::to_string(tag++);
         for (const std::string &a : material.arguments)
           out += syntax.separator + a;
         out += syntax.close;
@@ -151,6 +168,10 @@ namespace kimp::app
     require(!in.k_hertz || (std::isfinite(*in.k_hertz) && *in.k_hertz > 0.0), "k_J must be > 0");
     require(in.k_kelvin_voigt || in.k_hertz, "no k given (neither a k table nor --k-kv/--k-hertz)");
     require(in.cor > 0.0 && in.cor <= 1.0, fmt::format("COR = {} must be in (0, 1]", in.cor));
+    require(!std::isnan(in.effective_mass),
+            "the effective mass of the contact is not known: give --effective-mass (m_eff = m1 "
+            "m2/(m1 + m2) of the building's isolation level and the wall), or export from a "
+            "study directory, whose building gives it");
     require(std::isfinite(in.effective_mass) && in.effective_mass > 0.0,
             "effective mass must be > 0");
     require(std::isfinite(in.impact_velocity) && in.impact_velocity > 0.0,
@@ -195,39 +216,187 @@ namespace kimp::app
   std::string opensees_tcl(const OpenSeesLawInput &in)
   {
     const OpenSeesParameters p = opensees_parameters(in);
-    return header(in, "#", "Tcl") + material_commands(in, p, {"uniaxialMaterial ", " ", " ", "\n"});
+    return header(in, "Tcl") +
+           "# Runs on its own (OpenSees opensees_impact.tcl): it starts a 1-D model. To source it "
+           "into\n# a model of yours, set kimp_own_model 1 first: your model builder is then "
+           "kept.\nif {![info exists kimp_own_model]} {\n    model basic -ndm 1 -ndf 1\n}\n" +
+           material_commands(in, p, {"", "uniaxialMaterial ", " ", " ", "\n"});
   }
 
   std::string opensees_python(const OpenSeesLawInput &in)
   {
     const OpenSeesParameters p = opensees_parameters(in);
-    return header(in, "#", "OpenSeesPy") + "import openseespy.opensees as ops\n" +
-           material_commands(in, p, {"ops.uniaxialMaterial('", "', ", ", ", ")\n"});
+    return header(in, "OpenSeesPy") +
+           "# Runs on its own (python3 opensees_impact.py): it starts a 1-D model. In a model of "
+           "yours:\n# from opensees_impact import define_impact_materials, then call it after "
+           "your ops.model().\nimport openseespy.opensees as ops\n\n\n"
+           "def define_impact_materials():\n"
+           "    \"\"\"Define the impact materials in the current OpenSees model.\"\"\"" +
+           material_commands(in, p, {"    ", "ops.uniaxialMaterial('", "', ", ", ", ")\n"}) +
+           "\n\nif __name__ == \"__main__\":\n    ops.wipe()\n    ops.model('basic', '-ndm', 1, "
+           "'-ndf', 1)\n    define_impact_materials()\n";
+  }
+
+  namespace
+  {
+    /// summary.json of the source's directory (null when it has none or it is unreadable).
+    nlohmann::json source_summary(const std::filesystem::path &source)
+    {
+      const std::filesystem::path dir =
+        std::filesystem::is_directory(source) ? source : source.parent_path();
+      std::ifstream in(dir / "summary.json");
+      if (!in)
+        return nullptr;
+      nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+      return j.is_discarded() || !j.is_object() ? nlohmann::json(nullptr) : j;
+    }
+
+    /// The number at `pointer` of `j`, if there is one.
+    std::optional<double> json_number(const nlohmann::json &j, const char *pointer)
+    {
+      const nlohmann::json::json_pointer at(pointer);
+      if (j.is_object() && j.contains(at) && j.at(at).is_number())
+        return j.at(at).get<double>();
+      return std::nullopt;
+    }
+  } // namespace
+
+  OpenSeesLawInput resolve_export_input(const ExportOpenSeesOptions &options)
+  {
+    const ExportOpenSeesSettings &s = options.settings;
+    OpenSeesLawInput              in;
+    in.k_kelvin_voigt                 = s.k_kelvin_voigt;
+    in.k_hertz                        = s.k_hertz;
+    in.gap                            = s.gap;
+    in.yield_ratio                    = s.yield_ratio;
+    in.first_tag                      = s.first_tag;
+    in.gap_source                     = "given (--gap, default 15 cm)";
+    std::optional<double> wall_height = s.wall_height;
+    nlohmann::json        summary;
+    std::string           command;
+    std::optional<double> record_velocity;
+    if (options.source.empty())
+    {
+      if (!s.record.empty())
+        throw std::invalid_argument("export-opensees: --record needs a study directory");
+    }
+    else
+    {
+      if (!wall_height)
+      {
+        // A site's study has one wall height: it is the one to export.
+        const KTable        table = read_k_table(options.source);
+        std::vector<double> heights;
+        for (const KTableRow &r : table.rows)
+          if (std::find(heights.begin(), heights.end(), r.wall_height) == heights.end())
+            heights.push_back(r.wall_height);
+        if (heights.size() != 1)
+        {
+          std::string list;
+          for (const double h : heights)
+            list += (list.empty() ? "" : ", ") + fmt::format("{:g} m", h);
+          throw std::invalid_argument("export-opensees: --wall-height is needed: " +
+                                      table.file.string() + " holds the heights " + list);
+        }
+        wall_height = heights.front();
+      }
+      summary = source_summary(options.source);
+      command = summary.is_object() ? summary.value("command", "") : "";
+      if (!s.record.empty())
+      {
+        if (command != "study")
+          throw std::invalid_argument("export-opensees: --record needs the output directory of "
+                                      "`kimp study` (" +
+                                      options.source.string() + " is not one)");
+        const std::filesystem::path dir = std::filesystem::is_directory(options.source) ?
+                                            options.source :
+                                            options.source.parent_path();
+        const RecordK               k   = read_consistent_k(dir, s.record, *wall_height);
+        if (!in.k_kelvin_voigt && std::isfinite(k.kelvin_voigt_total))
+          in.k_kelvin_voigt = k.kelvin_voigt_total;
+        if (!in.k_hertz && std::isfinite(k.jankowski_total))
+          in.k_hertz = k.jankowski_total;
+        if (std::isfinite(k.impact_velocity))
+          record_velocity = k.impact_velocity;
+        in.source = fmt::format("the consistent k of record '{}' at wall height {} m ({}: the "
+                                "k(H, v) of the building run's own impact velocity)",
+                                s.record,
+                                *wall_height,
+                                k.file.string());
+      }
+      if (!in.k_kelvin_voigt || !in.k_hertz)
+      {
+        const KTable table = read_k_table(options.source);
+        if (!in.k_kelvin_voigt)
+          in.k_kelvin_voigt = table.stiffness(*wall_height, 1.0);
+        if (!in.k_hertz)
+          in.k_hertz = table.stiffness(*wall_height, 1.5);
+        in.source = (in.source.empty() ? std::string() : in.source + "; the rest from ") +
+                    fmt::format("{} at wall height {} m (k_total = k per metre x building "
+                                "width, linearly interpolated between the table's heights)",
+                                table.file.string(),
+                                *wall_height);
+      }
+    }
+    const std::string file = (std::filesystem::is_directory(options.source) ?
+                                options.source / "summary.json" :
+                                options.source.parent_path() / "summary.json")
+                               .string();
+    // COR: the one the source's k was fitted at.
+    const std::optional<double> fitted_cor =
+      command == "study" ? json_number(summary, "/contact/cor") :
+      command == "fit"   ? json_number(summary, "/options/cor") :
+                           std::nullopt;
+    if (s.cor)
+      in.cor = *s.cor;
+    else if (fitted_cor)
+    {
+      in.cor        = *fitted_cor;
+      in.cor_source = "the COR the k was fitted at (" + file + ")";
+    }
+    else
+      in.cor_source = "default (the thesis' COR)";
+    // m_eff: the study's building against its wall; never a building the user did not give.
+    if (s.effective_mass)
+      in.effective_mass = *s.effective_mass;
+    else if (const auto m = json_number(summary, "/contact/effective_mass"))
+    {
+      in.effective_mass = *m;
+      in.effective_mass_source =
+        fmt::format("the study's isolation level {:.6g} t against its wall {:.6g} t ({})",
+                    json_number(summary, "/contact/isolation_mass").value_or(std::nan("")) / 1e3,
+                    json_number(summary, "/contact/wall_mass").value_or(std::nan("")) / 1e3,
+                    file);
+    }
+    // v_imp: the record's own, else the study's reference velocity.
+    if (s.impact_velocity)
+      in.impact_velocity = *s.impact_velocity;
+    else if (record_velocity)
+    {
+      in.impact_velocity = *record_velocity;
+      in.impact_velocity_source =
+        "the impact velocity of record '" + s.record + "' (" +
+        (std::filesystem::path(file).parent_path() / "consistent_k.csv").string() + ")";
+    }
+    else if (const auto v =
+               command == "study" ? json_number(summary, "/reference_velocity") : std::nullopt)
+    {
+      in.impact_velocity        = *v;
+      in.impact_velocity_source = "the study's reference velocity (" + file + ")";
+    }
+    else
+      in.impact_velocity_source = "default";
+    return in;
   }
 
   void run_export_opensees(ExportOpenSeesOptions options)
   {
     const auto                   start       = std::chrono::steady_clock::now();
-    OpenSeesLawInput            &laws        = options.settings.laws;
+    const OpenSeesLawInput       laws        = resolve_export_input(options);
     const std::optional<double> &wall_height = options.settings.wall_height;
-    if (!options.source.empty())
-    {
-      if (!wall_height)
-        throw std::invalid_argument("export-opensees: --wall-height is needed with a k table (" +
-                                    options.source.string() + ")");
-      const KTable table = read_k_table(options.source);
-      if (!laws.k_kelvin_voigt)
-        laws.k_kelvin_voigt = table.stiffness(*wall_height, 1.0);
-      if (!laws.k_hertz)
-        laws.k_hertz = table.stiffness(*wall_height, 1.5);
-      laws.source = fmt::format("{} at wall height {} m (k_total = k per metre x building width, "
-                                "linearly interpolated between the table's heights)",
-                                table.file.string(),
-                                *wall_height);
-    }
-    const std::string   tcl    = opensees_tcl(laws); // validates before the directory is made
-    const std::string   python = opensees_python(laws);
-    const io::OutputDir output(options.output);
+    const std::string            tcl = opensees_tcl(laws); // validates before the directory is made
+    const std::string            python = opensees_python(laws);
+    const io::OutputDir          output(options.output);
     io::write_text_atomic(output.file("opensees_impact.tcl"), tcl);
     io::write_text_atomic(output.file("opensees_impact.py"), python);
     if (!options.lumped_scene.empty())
@@ -270,7 +439,13 @@ namespace kimp::app
                        {"impact_velocity", laws.impact_velocity},
                        {"gap", laws.gap},
                        {"yield_ratio", laws.yield_ratio},
-                       {"first_tag", laws.first_tag}};
+                       {"first_tag", laws.first_tag},
+                       {"record", options.settings.record}};
+    j["sources"]    = {{"k", laws.source.empty() ? std::string("given") : laws.source},
+                       {"cor", laws.cor_source},
+                       {"effective_mass", laws.effective_mass_source},
+                       {"impact_velocity", laws.impact_velocity_source},
+                       {"gap", laws.gap_source}};
     j["parameters"] = {{"kv_xi", p.kv_xi},
                        {"kv_c", p.kv_c},
                        {"kv_delta_max", p.kv_delta_max},

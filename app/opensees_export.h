@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -16,54 +17,20 @@ namespace kimp::app
     std::optional<double> k_kelvin_voigt; ///< N/m: ViscoelasticGap, ElasticPPGap
     std::optional<double> k_hertz;        ///< N/m^1.5: JankowskiImpact, Hertzdamp, ImpactMaterial
     double                cor = 0.7;      ///< coefficient of restitution, (0, 1]
-    /// m_eff = m1·m2/(m1 + m2), kg; default: the thesis building's isolation level (320 t)
-    /// against a 500 t moat wall.
-    double      effective_mass  = 320e3 * 500e3 / (320e3 + 500e3);
+    /// m_eff = m1·m2/(m1 + m2) of the contact, kg (> 0; NaN: not known, refused).
+    double      effective_mass  = std::numeric_limits<double>::quiet_NaN();
     double      impact_velocity = 1.0;  ///< v_imp, m/s: δ_m of ImpactMaterial
     double      gap             = 0.15; ///< clear gap, m (written negative: compression only)
     double      yield_ratio     = 0.1;  ///< a = δ_y/δ_m of ImpactMaterial (Muthukumar: 0.1)
     int         first_tag       = 1;    ///< tag of the first material
     std::string source;                 ///< where k comes from, for the header comment
+    /// Where each other parameter comes from, for the header comment ("given", "the study's
+    /// building (summary.json)", ...).
+    std::string cor_source             = "given";
+    std::string effective_mass_source  = "given";
+    std::string impact_velocity_source = "given";
+    std::string gap_source             = "given";
   };
-
-  /// The keys of OpenSeesLawInput (the options of `kimp export-opensees`), declared once.
-  template <class Io>
-  void visit(Io &io, OpenSeesLawInput &s)
-  {
-    io.quantity("k_kv",
-                s.k_kelvin_voigt,
-                "kN/mm",
-                "Kelvin-Voigt k for the whole contact (wins over the k table)",
-                io::Range::positive());
-    io.quantity("k_hertz",
-                s.k_hertz,
-                "kN/mm^1.5",
-                "Jankowski/Hertz k (n = 1.5) for the whole contact (wins over the k table)",
-                io::Range::positive());
-    io.quantity("cor",
-                s.cor,
-                "",
-                "coefficient of restitution e",
-                io::Range::greater(0.0).and_at_most(1.0));
-    io.quantity("effective_mass",
-                s.effective_mass,
-                "t",
-                "m_eff = m1 m2/(m1 + m2) of the contact (default: 320 t isolation level against a "
-                "500 t wall)",
-                io::Range::positive());
-    io.quantity("impact_velocity",
-                s.impact_velocity,
-                "m/s",
-                "design impact velocity v_imp (ImpactMaterial's delta_m)",
-                io::Range::positive());
-    io.quantity("gap", s.gap, "cm", "clear gap to the wall", io::Range::positive());
-    io.quantity("yield_ratio",
-                s.yield_ratio,
-                "",
-                "ImpactMaterial a = delta_y/delta_m (Muthukumar: 0.1)",
-                io::Range::greater(0.0).and_less(1.0));
-    io.integer("first_tag", s.first_tag, "tag of the first material", 1, 1000000000);
-  }
 
   /// The material parameters, SI, from the formulas of docs/physics.md §1 and §4.
   struct OpenSeesParameters
@@ -93,11 +60,24 @@ namespace kimp::app
   /// The same as OpenSeesPy calls (`ops.uniaxialMaterial('ViscoelasticGap', 1, ...)`).
   std::string opensees_python(const OpenSeesLawInput &input);
 
-  /// The settings of `kimp export-opensees` (its flags, through visit()).
+  /// The settings of `kimp export-opensees` (its flags). A value not given comes from the k
+  /// source where it holds one (OpenSeesLawInput's *_source says which), else its default.
   struct ExportOpenSeesSettings
   {
     std::optional<double> wall_height; ///< m, where the k table is interpolated
-    OpenSeesLawInput      laws;        ///< explicit k (wins over the table) and the rest
+    /// With a study directory: export the consistent k of this record (consistent_k.csv)
+    /// instead of the k table's k at the reference velocity ("" = the k table).
+    std::string           record;
+    std::optional<double> k_kelvin_voigt;  ///< N/m (wins over the source)
+    std::optional<double> k_hertz;         ///< N/m^1.5 (wins over the source)
+    std::optional<double> cor;             ///< default: the source's fitting COR, else 0.7
+    std::optional<double> effective_mass;  ///< kg; default: the study's building (required
+                                           ///< without one)
+    std::optional<double> impact_velocity; ///< m/s; default: the record's or the study's
+                                           ///< reference velocity, else 1 m/s
+    double gap         = 0.15;
+    double yield_ratio = 0.1;
+    int    first_tag   = 1;
   };
 
   template <class Io>
@@ -106,15 +86,55 @@ namespace kimp::app
     io.quantity("wall_height",
                 s.wall_height,
                 "m",
-                "wall height at which the k table is interpolated (needed with a k table)",
+                "wall height at which the k source is interpolated (needed when it holds several "
+                "heights)",
                 io::Range::positive());
-    visit(io, s.laws);
+    io.text("record",
+            s.record,
+            "with a study directory: export the consistent k of this record at wall_height "
+            "(consistent_k.csv: the k of its own impact velocity) instead of the k table's");
+    io.quantity("k_kv",
+                s.k_kelvin_voigt,
+                "kN/mm",
+                "Kelvin-Voigt k for the whole contact (wins over the k source)",
+                io::Range::positive());
+    io.quantity("k_hertz",
+                s.k_hertz,
+                "kN/mm^1.5",
+                "Jankowski/Hertz k (n = 1.5) for the whole contact (wins over the k source)",
+                io::Range::positive());
+    io.quantity("cor",
+                s.cor,
+                "",
+                "coefficient of restitution e (default: the COR the source's k was fitted at, "
+                "else 0.7)",
+                io::Range::greater(0.0).and_at_most(1.0));
+    io.quantity("effective_mass",
+                s.effective_mass,
+                "t",
+                "m_eff = m1 m2/(m1 + m2) of the contact (default: the study's isolation level "
+                "against its wall; required when the source has no building)",
+                io::Range::positive());
+    io.quantity("impact_velocity",
+                s.impact_velocity,
+                "m/s",
+                "design impact velocity v_imp, ImpactMaterial's delta_m (default: the record's "
+                "with --record, else the study's reference velocity, else 1 m/s)",
+                io::Range::positive());
+    io.quantity("gap", s.gap, "cm", "clear gap to the wall", io::Range::positive());
+    io.quantity("yield_ratio",
+                s.yield_ratio,
+                "",
+                "ImpactMaterial a = delta_y/delta_m (Muthukumar: 0.1)",
+                io::Range::greater(0.0).and_less(1.0));
+    io.integer("first_tag", s.first_tag, "tag of the first material", 1, 1000000000);
   }
 
   /// Options of `kimp export-opensees`.
   struct ExportOpenSeesOptions
   {
-    std::filesystem::path  source;   ///< k_table.csv or a study directory ("" = explicit k)
+    /// k_table.csv or a study directory, fit_table.csv or a `kimp fit` directory ("" = explicit k)
+    std::filesystem::path  source;
     std::filesystem::path  output;   ///< directory of opensees_impact.tcl / .py
     ExportOpenSeesSettings settings; ///< the flags
     /// A `kimp lumped` scene whose yielding walls are written too (app/opensees_wall_export.h);
@@ -123,9 +143,19 @@ namespace kimp::app
   };
 
   /**
-   * Fill the k from the table (at wall_height) where not given explicitly, then write
-   * DIR/opensees_impact.tcl and DIR/opensees_impact.py.
-   * @throws std::invalid_argument for a missing k, an unreadable table or a height outside it.
+   * Resolve the input (k from the source at wall_height, or the record's consistent k, where not
+   * given; COR, m_eff and v_imp from the source's summary.json where not given), then write
+   * DIR/opensees_impact.tcl, DIR/opensees_impact.py and DIR/summary.json.
+   * @throws std::invalid_argument for a missing k or m_eff, an unreadable source or a height
+   *         outside it.
    */
   void run_export_opensees(ExportOpenSeesOptions options);
+
+  /**
+   * The input run_export_opensees() exports: the flags given, the rest from the source (k
+   * table or record's consistent k at wall_height; COR, m_eff and v_imp from its summary.json),
+   * each with where it came from.
+   * @throws std::invalid_argument as run_export_opensees().
+   */
+  OpenSeesLawInput resolve_export_input(const ExportOpenSeesOptions &options);
 } // namespace kimp::app

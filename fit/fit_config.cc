@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <string>
+#include <vector>
 
 namespace kimp::fit
 {
@@ -20,7 +22,7 @@ namespace kimp::fit
     return standard_fit_variants(fit_options(config), config.cor);
   }
 
-  std::string fit_verdict(const FitResult &fit)
+  std::string fit_verdict(const FitResult &fit, double peak_tolerance)
   {
     const auto unbounded = [](const FitParameter &p)
     { return p.fitted && !(std::isfinite(p.lower) && std::isfinite(p.upper)); };
@@ -44,26 +46,45 @@ namespace kimp::fit
                          fit.exponent.value);
     if (fit.cor.fitted && (fit.cor.value < at_bound || fit.cor.value > 1.0 - at_bound))
       return fmt::format("failed: COR = {:.6g} at its bound (0 or 1)", fit.cor.value);
+    std::vector<std::string> warnings;
     if (fit.contact_open_at_end)
-      return fmt::format("warning: the contact lasts to the end of the FEM record ({:.4g} ms "
-                         "after first contact): k fits a truncated contact (raise the FEM end "
-                         "time)",
-                         1e3 * fit.fem_contact_duration);
+      warnings.push_back(
+        fmt::format("the contact lasts to the end of the FEM record ({:.4g} ms "
+                    "after first contact): k fits a truncated contact (raise the FEM end "
+                    "time)",
+                    1e3 * fit.fem_contact_duration));
     if (fit.contact_extent > 0.0 &&
         fit.fem_contact_duration < min_window_coverage * fit.contact_extent)
-      return fmt::format("warning: the misfit window covers {:.3g} % of the contact ({:.4g} of "
-                         "{:.4g} ms; try force_only_contact or a larger separation_fraction)",
-                         100.0 * fit.fem_contact_duration / fit.contact_extent,
-                         1e3 * fit.fem_contact_duration,
-                         1e3 * fit.contact_extent);
+      warnings.push_back(
+        fmt::format("the misfit window covers {:.3g} % of the contact ({:.4g} of "
+                    "{:.4g} ms; try force_only_contact or a larger separation_fraction)",
+                    100.0 * fit.fem_contact_duration / fit.contact_extent,
+                    1e3 * fit.fem_contact_duration,
+                    1e3 * fit.contact_extent));
     // A zero-width interval is no precision: the misfit has a kink at the optimum (e.g. the
     // contact's end moving across a sample), where its curvature says nothing.
     if (fit.stiffness.fitted && std::isfinite(fit.stiffness.value) &&
         fit.stiffness.upper - fit.stiffness.lower <= 1.0e-6 * std::abs(fit.stiffness.value))
-      return fmt::format("warning: confidence interval of k degenerate ([{:.6g}, {:.6g}] N/m^n "
-                         "per m): the misfit has a kink at the optimum, its width is not known",
-                         fit.stiffness.lower,
-                         fit.stiffness.upper);
-    return "ok";
+      warnings.push_back(
+        fmt::format("confidence interval of k degenerate ([{:.6g}, {:.6g}] N/m^n "
+                    "per m): the misfit has a kink at the optimum, its width is not known",
+                    fit.stiffness.lower,
+                    fit.stiffness.upper));
+    // k is fitted to the whole pulse; a wall is sized from its peak force.
+    const double peak = fit.peak_force_ratio();
+    if (std::isfinite(peak) && std::abs(peak - 1.0) > peak_tolerance)
+      warnings.push_back(fmt::format("the fitted peak force is {:.3g} % of the FEM's ({:.4g} of "
+                                     "{:.4g} kN/m, tolerance {:.3g} %): k reproduces the pulse, "
+                                     "not its peak (size the wall from the FEM peak force)",
+                                     100.0 * peak,
+                                     1e-3 * fit.model_peak_force,
+                                     1e-3 * fit.fem_peak_force,
+                                     100.0 * peak_tolerance));
+    if (warnings.empty())
+      return "ok";
+    std::string text = "warning: " + warnings.front();
+    for (std::size_t i = 1; i < warnings.size(); ++i)
+      text += "; " + warnings[i];
+    return text;
   }
 } // namespace kimp::fit

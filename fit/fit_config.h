@@ -14,6 +14,10 @@ namespace kimp::fit
    * ranges and meanings are declared once by visit() (app/fit_run.h): the study's `fit:` section
    * and the flags of `kimp fit` are that declaration.
    */
+  /// Largest relative miss of the FEM peak force by the fitted law's peak (|F_fit/F_FEM − 1|)
+  /// for a fit to be "ok" rather than "warning" (FitConfig::peak_tolerance).
+  inline constexpr double default_peak_tolerance = 0.25;
+
   struct FitConfig
   {
     double cor       = 0.7;                   ///< COR of the fixed-COR fits, (0, 1]
@@ -27,6 +31,8 @@ namespace kimp::fit
     double contact_threshold   = 1.0e-3; ///< FitOptions::contact_threshold, (0, 1)
     /// FitOptions::displacement_weight: also fit the slab's advance since first contact (>= 0).
     double displacement_weight = 0.0;
+    /// fit_verdict(): a fit whose peak force misses the FEM's by more than this is a warning.
+    double peak_tolerance = default_peak_tolerance;
   };
 
   /// `base` with the window and misfit settings of `config`.
@@ -43,9 +49,11 @@ namespace kimp::fit
    * Status of a converged fit (docs/physics.md §4 "Status of a fit"): "failed: <reason>" if a
    * fitted parameter's confidence interval is unbounded (non-finite, or k's lower bound not > 0)
    * or a fitted exponent or COR sits at its bound (n − 1 < 1e-3; COR < 1e-3 or > 1 − 1e-3);
-   * "warning: <reason>" if the FEM contact lasts to the end of its record (a truncated contact)
-   * or the misfit window spans less than min_window_coverage of the contact;
-   * "ok" otherwise.
+   * "warning: <reasons>" (joined by "; ") if the FEM contact lasts to the end of its record (a
+   * truncated contact), the misfit window spans less than min_window_coverage of the contact,
+   * k's confidence interval is degenerate, or the fitted peak force misses the FEM's by more
+   * than `peak_tolerance` (|FitResult::peak_force_ratio() − 1| > peak_tolerance: the law matches
+   * the pulse in the least-squares sense, not the force a wall is sized for); "ok" otherwise.
    */
-  std::string fit_verdict(const FitResult &fit);
+  std::string fit_verdict(const FitResult &fit, double peak_tolerance = default_peak_tolerance);
 } // namespace kimp::fit

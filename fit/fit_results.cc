@@ -2,6 +2,7 @@
 // laws, and the uncertainty of a value over mesh or penalty refinement levels (see fitter.h).
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -36,6 +37,30 @@ namespace kimp::fit
   std::string stiffness_si_unit(double exponent, bool per_metre_of_wall)
   {
     return stiffness_unit("N/m", exponent, per_metre_of_wall);
+  }
+
+  namespace
+  {
+    double ratio(double fitted, double fem)
+    {
+      return fem > 0.0 && std::isfinite(fem) ? fitted / fem :
+                                               std::numeric_limits<double>::quiet_NaN();
+    }
+  } // namespace
+
+  double FitResult::peak_force_ratio() const
+  {
+    return ratio(model_peak_force, fem_peak_force);
+  }
+
+  double FitResult::impulse_ratio() const
+  {
+    return ratio(model_impulse, fem_impulse);
+  }
+
+  double FitResult::contact_duration_ratio() const
+  {
+    return ratio(model_contact_duration, fem_contact_duration);
   }
 
   double FitResult::stiffness_per_metre_display() const

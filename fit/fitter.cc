@@ -241,6 +241,16 @@ namespace kimp::fit
 
       double model_contact_end() const { return contact_end_; }
 
+      /// ∫F dt of the last simulated contact (trapezoids), N·s/m.
+      double model_impulse() const
+      {
+        double impulse = 0.0;
+        for (std::size_t i = 1; i < model_time_.size(); ++i)
+          impulse +=
+            0.5 * (model_force_[i] + model_force_[i - 1]) * (model_time_[i] - model_time_[i - 1]);
+        return impulse;
+      }
+
       /// Width (s) over which the force drop at the model's separation is spread; 0: a jump.
       void set_jump_width(double width) const { jump_width_ = width; }
 
@@ -585,6 +595,7 @@ namespace kimp::fit
     const lumped::TwoBodyResult model = misfit.simulate(p, model_force, model_displacement);
     result.model_peak_force           = model.peak_force;
     result.model_contact_duration     = misfit.model_contact_end();
+    result.model_impulse              = misfit.model_impulse();
     result.model_effective_cor        = model.effective_cor;
     for (std::size_t j = window.first; j <= window.last; ++j)
     {

@@ -103,12 +103,19 @@ namespace kimp::fit
     double contact_start          = 0.0; ///< first contact in FEM time, s
     double model_peak_force       = 0.0; ///< N/m
     double model_contact_duration = 0.0; ///< s
+    double model_impulse          = 0.0; ///< N·s/m, ∫F dt of the model's contact
     double model_effective_cor    = 0.0; ///< separation/approach velocity ratio of the model
 
     /// Misfit window (FEM time) with the FEM and fitted-law forces, for plots.
     std::vector<double> time;
     std::vector<double> fem_force;
     std::vector<double> model_force;
+
+    /// How the fitted law reproduces the FEM impact (1: exactly): fitted / FEM peak force,
+    /// impulse (∫F dt over the contact) and contact duration. NaN without an FEM value.
+    double peak_force_ratio() const;
+    double impulse_ratio() const;
+    double contact_duration_ratio() const;
 
     /// k in kN/mm^n per metre of wall (the thesis' Table 2.1 unit).
     double stiffness_per_metre_display() const;

@@ -128,6 +128,20 @@ namespace kimp::report
       throw std::invalid_argument(dir.string() +
                                   ": no results file (*.h5) nor summary.json (expected the output "
                                   "directory of kimp lumped, collide, fem, fit, study or sweep)");
+    // `kimp export-opensees`: its results are the OpenSees input files, shown as they are.
+    if (data.contains("summary") && data["summary"].is_object() &&
+        data["summary"].value("command", "") == "export-opensees")
+    {
+      data["kind"] = "export-opensees";
+      data["text"] = nlohmann::json::object();
+      for (const char *name : {"opensees_impact.tcl", "opensees_impact.py"})
+        if (std::filesystem::exists(dir / name))
+          data["text"][name] = read_file(dir / name);
+      if (data["text"].empty())
+        throw std::invalid_argument(dir.string() +
+                                    ": an export-opensees directory without its files "
+                                    "opensees_impact.tcl and opensees_impact.py");
+    }
     return data;
   }
 

@@ -12,7 +12,9 @@ namespace kimp::report
    * Everything the page shows about the result directory `dir` of any command (lumped, collide,
    * fem, fit, study, sweep): `{"title", "kind", "summary": summary.json, "csv": {name: text},
    * "h5": {name: io::results_to_json()}}`. Time series are decimated to about 6000 rows; values
-   * are SI. `kind` is the command, found from the results file present ("study" for study.h5...).
+   * are SI. `kind` is the command, found from the results file present ("study" for study.h5...);
+   * an export-opensees directory is kind "export-opensees" with its OpenSees files as
+   * `"text": {name: text}`.
    * @throws std::invalid_argument naming `dir` when it is not a directory or holds no results
    *   file nor summary.json.
    */

@@ -80,7 +80,10 @@ namespace kimp::app::study_internal
       f["unit"] = fit->per_metre_unit();
       if (width)
         f["normalised_rms"] = fit->normalised_rms;
-      const double error = numerical_error(h, law.exponent);
+      f["peak_force_ratio"]       = fit->peak_force_ratio();
+      f["impulse_ratio"]          = fit->impulse_ratio();
+      f["contact_duration_ratio"] = fit->contact_duration_ratio();
+      const double error          = numerical_error(h, law.exponent);
       if (std::isfinite(error))
         f["k_numerical_error"] = error;
     }

@@ -394,7 +394,17 @@ namespace kimp::app::study_internal
       scene.fem.solver.initial_velocity);
     const auto plus_minus = [](double error)
     { return std::isfinite(error) ? " ± " + base::sig(error, 2) : std::string(); };
-    for (const StudyHeight *h : k_table_cases(result))
+    // Per height the reference velocity's row first (the k of the building runs).
+    std::vector<const StudyHeight *> cases = k_table_cases(result);
+    std::stable_sort(cases.begin(),
+                     cases.end(),
+                     [](const StudyHeight *a, const StudyHeight *b)
+                     {
+                       return a->wall_height < b->wall_height ||
+                              (a->wall_height == b->wall_height && a->reference_velocity &&
+                               !b->reference_velocity);
+                     });
+    for (const StudyHeight *h : cases)
     {
       const std::optional<ThesisStiffness> t = thesis_row(h->wall_height);
       const bool ok = h->kelvin_voigt_status == "ok" && h->jankowski_status == "ok";

@@ -58,7 +58,7 @@ namespace kimp::app
       {
         // The same path as `kimp fit` (fit_fem_case), so both give the same k.
         fit    = fit_fem_case(fem_case, variant, settings);
-        status = fem_fit_verdict(fem_case, *fit);
+        status = fem_fit_verdict(fem_case, *fit, settings.peak_tolerance);
         if (status.rfind("failed", 0) == 0)
           fit.reset();
         if (status != "ok")

@@ -83,9 +83,12 @@ namespace kimp::app::study_internal
     const io::ColumnFormat error_format{2, {}, false};
     const io::ColumnFormat short_format{3, {}, true};
     Table                  t;
+    // The answer first: height, velocity (reference or not), k, its fit's honesty; the FEM and
+    // fidelity details after.
     t.number("wall_height", "m", io::ColumnFormat{3, {}, false})
-      .number("slab_mass", "kg/m")
       .number("impact_velocity", "m/s")
+      .text("reference_velocity")
+      .number("slab_mass", "kg/m")
       .number("fem_peak_force", "kN/m")
       .number("fem_contact_duration", "ms");
     for (const StudyLaw &law : study_laws)
@@ -94,6 +97,9 @@ namespace kimp::app::study_internal
       add_k_columns(t, law);
       t.number(name + "_total", law.total_unit)
         .number(name + "_normalised_rms", "1")
+        .number(name + "_peak_force_ratio", "1", short_format)
+        .number(name + "_impulse_ratio", "1", short_format)
+        .number(name + "_contact_duration_ratio", "1", short_format)
         .number("thesis_" + name, law.per_metre_unit);
     }
     for (const StudyLaw &law : study_laws)
@@ -106,7 +112,6 @@ namespace kimp::app::study_internal
       .text("fidelity_converged")
       .text("kelvin_voigt_status")
       .text("jankowski_status")
-      .text("reference_velocity")
       .text("material")
       .number("linear_kelvin_voigt", "kN/mm/m")
       .number("linear_jankowski", "kN/mm^1.5/m")
@@ -117,11 +122,12 @@ namespace kimp::app::study_internal
       const io::FemSummary                &fem    = h->fem_case.summary;
       const double                         width  = scene.fit.width;
       // The cells in the order of the columns above.
-      std::vector<Cell> row = number_cells({h->wall_height,
-                                            h->fem_case.slab_mass,
-                                            h->fem_case.impact_velocity,
-                                            fem.peak_force.value_or(nan) / 1e3,
-                                            fem.contact_duration.value_or(nan) * 1e3});
+      std::vector<Cell> row = number_cells({h->wall_height, h->fem_case.impact_velocity});
+      row.push_back(std::string(h->reference_velocity ? "yes" : "no"));
+      append_numbers(row,
+                     {h->fem_case.slab_mass,
+                      fem.peak_force.value_or(nan) / 1e3,
+                      fem.contact_duration.value_or(nan) * 1e3});
       for (const StudyLaw &law : study_laws)
       {
         const std::optional<FitResult> &fit = h->*law.fit;
@@ -129,6 +135,9 @@ namespace kimp::app::study_internal
         append_numbers(row,
                        {per_metre(fit) * width,
                         fit ? fit->normalised_rms : nan,
+                        fit ? fit->peak_force_ratio() : nan,
+                        fit ? fit->impulse_ratio() : nan,
+                        fit ? fit->contact_duration_ratio() : nan,
                         thesis ? (*thesis).*law.thesis : nan});
       }
       for (const StudyLaw &law : study_laws)
@@ -142,7 +151,6 @@ namespace kimp::app::study_internal
                   std::string(h->auto_fidelity ? (h->ladder.converged ? "yes" : "no") : ""),
                   h->kelvin_voigt_status,
                   h->jankowski_status,
-                  std::string(h->reference_velocity ? "yes" : "no"),
                   std::string(h->inelastic ? "inelastic" : "linear"),
                   per_metre(h->linear_kelvin_voigt),
                   per_metre(h->linear_jankowski),
@@ -160,7 +168,13 @@ namespace kimp::app::study_internal
     StudyResult all; // rows by height, then impact velocity
     all.heights        = heights;
     all.velocity_cases = velocity_cases;
-    k_table(scene, k_table_cases(all)).write_csv(output.file("k_table.csv"));
+    // The reference velocity's rows first (the k of the building runs), then the other
+    // velocities by height and velocity.
+    std::vector<const StudyHeight *> cases = k_table_cases(all);
+    std::stable_partition(cases.begin(),
+                          cases.end(),
+                          [](const StudyHeight *h) { return h->reference_velocity; });
+    k_table(scene, cases).write_csv(output.file("k_table.csv"));
     std::vector<std::vector<std::string>> level_rows;
     for (const StudyHeight &h : heights)
       for (std::size_t i = 0; i < h.ladder.outcomes.size(); ++i)
@@ -352,9 +366,20 @@ namespace kimp::app::study_internal
     j["units"]          = {{"wall_height", "m"},
                            {"k_per_metre", "kN/mm^n/m"},
                            {"k_total", "kN/mm^n"},
+                           {"isolation_mass", "kg"},
+                           {"wall_mass", "kg"},
+                           {"effective_mass", "kg"},
                            {"wall_time", "s"}};
     j["building_width"] = scene.fit.width;
-    j["wall_time"]      = result.wall_seconds;
+    // The contact the impact laws describe (kimp export-opensees takes m_eff and the COR from
+    // here): the building's isolation level against its wall.
+    const double m_building = scene.building.isolation_mass, m_wall = scene.walls.mass;
+    j["contact"]   = {{"isolation_mass", m_building},
+                      {"wall_mass", m_wall},
+                      {"effective_mass", m_building * m_wall / (m_building + m_wall)},
+                      {"cor", scene.fit.cor},
+                      {"peak_tolerance", scene.fit.peak_tolerance}};
+    j["wall_time"] = result.wall_seconds;
     nlohmann::ordered_json stages;
     for (const auto &[stage, seconds] : cost_by_stage(result))
       stages[stage] = seconds;

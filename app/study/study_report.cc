@@ -185,6 +185,10 @@ namespace kimp::app::study_internal
         t[2] == "auto" ? (t[3] == "yes" ? "" : " (not converged)") : " (fixed)";
       return t[0] + " cm, " + t[1] + state;
     };
+    const auto peak_ratios = [](const std::vector<std::string> &t)
+    { return (t[0].empty() ? "-" : t[0]) + ", " + (t[1].empty() ? "-" : t[1]); };
+    const auto fit_status = [](const std::vector<std::string> &t)
+    { return t[0] == "ok" && t[1] == "ok" ? std::string("ok") : "KV: " + t[0] + "; J: " + t[1]; };
     std::vector<const StudyHeight *> cases;
     for (const StudyHeight &h : heights)
       cases.push_back(&h);
@@ -203,6 +207,10 @@ namespace kimp::app::study_internal
                   with_interval},
                  {"Table 2.1", {"thesis_jankowski"}, or_dash},
                  {"J total kN/mm^1.5", {"jankowski_total"}, or_dash},
+                 {"fit/FEM peak force KV, J",
+                  {"kelvin_voigt_peak_force_ratio", "jankowski_peak_force_ratio"},
+                  peak_ratios},
+                 {"fit status", {"kelvin_voigt_status", "jankowski_status"}, fit_status},
                  {"FEM level (h_contact, penalty)",
                   {"fem_h_contact", "fem_penalty_factor", "fidelity", "fidelity_converged"},
                   fem_level},
@@ -214,10 +222,18 @@ namespace kimp::app::study_internal
     std::string md = "# kimp wall-height study\n\n" + base::version_line() + "\n\n";
     for (const std::string &warning : result.warnings)
       md += "**Warning:** " + warning + ".\n\n";
-    md += fmt::format("## Impact stiffness per wall height (fitted at COR {}, W = {} m)\n\n",
+    md += fmt::format("## Impact stiffness per wall height (fitted at COR {}, W = {} m, impact "
+                      "velocity {} m/s)\n\n",
                       scene.fit.cor,
-                      scene.fit.width);
+                      scene.fit.width,
+                      scene.fem.solver.initial_velocity);
     md += k_table_markdown(scene, result.heights);
+    md += fmt::format("\n\"fit/FEM peak force\" is the fitted law's peak force over the FEM's: "
+                      "k reproduces the whole pulse (least squares), so the peak may differ; a "
+                      "fit whose peak misses the FEM's by more than {:.3g} % "
+                      "(`fit.peak_tolerance`) has the status warning. Impulse and contact "
+                      "duration ratios: k_table.csv, summary.json.\n",
+                      100.0 * scene.fit.peak_tolerance);
     md += "\nThe intervals are the fits' own (law misfit). The ± values are the FEM's numerical "
           "error of k with `fem.fidelity: auto`: the change of k from the previous level of the "
           "mesh ladder (and of the penalty ladder, added in quadrature); the climb stops when "
@@ -229,8 +245,9 @@ namespace kimp::app::study_internal
           "Data: [k_table.csv](k_table.csv), [study.h5](study.h5) (`/k_table`, `/fit/<H>`, "
           "`/fem/<H>`, `/fidelity/<H>`).\n\n";
     if (charts)
-      md += "![FEM force histories with the fitted laws](charts/force_histories.png)\n\n"
-            "![k against wall height](charts/k_vs_height.png)\n\n";
+      md += "![FEM force histories with the fitted laws](charts/force_histories.png)\n\n";
+    if (charts && result.heights.size() > 1) // one height: one point, the table says it
+      md += "![k against wall height](charts/k_vs_height.png)\n\n";
     md += velocity_report_markdown(scene, result, charts);
 
     md += "## Building response\n\n"

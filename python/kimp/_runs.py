@@ -408,8 +408,11 @@ class Parameter:
 @dataclass(repr=False)
 class FitResult:
     """A fitted impact law, per metre of wall: stiffness k (N/m^n per m), cor, exponent n;
-    normalised RMS misfits; FEM and model peak force (N/m), contact durations (s), impulse
+    normalised RMS misfits; FEM and model peak force (N/m), contact durations (s), impulses
     (N·s/m), contact start (s); the misfit window time (s), fem_force and model_force (N/m).
+    ``peak_force_ratio``, ``impulse_ratio`` and ``contact_duration_ratio`` are fitted / FEM
+    (1: the law reproduces the FEM impact exactly); a peak off by more than the fit's
+    ``peak_tolerance`` (default 25 %) makes the verdict a warning.
 
     ``status`` is the optimiser's ("RelativeReductionTooSmall", ...); ``verdict`` is the fit's
     quality as ``kimp fit`` judges it (docs/physics.md §4 "Status of a fit"): "ok",
@@ -431,7 +434,11 @@ class FitResult:
     contact_start: float
     model_peak_force: float
     model_contact_duration: float
+    model_impulse: float
     model_effective_cor: float
+    peak_force_ratio: float
+    impulse_ratio: float
+    contact_duration_ratio: float
     time: np.ndarray
     fem_force: np.ndarray
     model_force: np.ndarray
@@ -455,7 +462,8 @@ class FitResult:
         unit = "kN/mm/m" if self.exponent.value == 1.0 else f"kN/mm^{self.exponent.value:g}/m"
         return (f"FitResult(law={self.law!r}, k={self.k_display():.5g} {unit}, "
                 f"cor={self.cor.value:.4g}, n={self.exponent.value:g}, "
-                f"normalised_rms={self.normalised_rms:.3g}, verdict={self.verdict!r})")
+                f"normalised_rms={self.normalised_rms:.3g}, "
+                f"peak_force_ratio={self.peak_force_ratio:.3g}, verdict={self.verdict!r})")
 
 
 def _mass_per_metre(value, name):
@@ -476,7 +484,8 @@ def _mass_per_metre(value, name):
 
 def fit(time, force, velocity, mass, law="kelvin_voigt", *, cor=0.7, exponent=None,
         fit_cor=False, fit_exponent=False, indentation=None, slab_displacement=None,
-        displacement_weight=0.0, wall_mass=math.inf, force_only_contact=True):
+        displacement_weight=0.0, wall_mass=math.inf, force_only_contact=True,
+        peak_tolerance=0.25):
     """Fit an impact law to a measured impact (fit::fit_impact_law, as ``kimp fit``).
 
     time (s), force (N per metre of wall, compressive > 0): arrays of one impact; velocity:
@@ -487,7 +496,9 @@ def fit(time, force, velocity, mass, law="kelvin_voigt", *, cor=0.7, exponent=No
     the FEM results. The misfit window and separation settings are those of ``kimp fit`` and
     ``kimp study`` (one fitting configuration, docs/physics.md §4); as there,
     force_only_contact=True (the default) finds the contact from the force alone and ignores
-    `indentation`. Check the result's ``verdict`` before using its k.
+    `indentation`. peak_tolerance: the largest relative miss of the FEM peak force by the
+    fitted law's peak for an "ok" verdict (``fit.peak_tolerance``). Check the result's
+    ``verdict`` and ``peak_force_ratio`` before using its k.
     """
     from .laws import _si
 
@@ -498,7 +509,8 @@ def fit(time, force, velocity, mass, law="kelvin_voigt", *, cor=0.7, exponent=No
     d = _call(_kimp.fit, np.asarray(time, float), np.asarray(force, float),
               _si(velocity, "m/s"), _mass_per_metre(mass, "mass"), law, _si(cor, ""),
               _si(exponent, ""), fit_cor, fit_exponent, arrays[0], arrays[1],
-              float(displacement_weight), _mass_per_metre(wall_mass, "wall_mass"))
+              float(displacement_weight), _mass_per_metre(wall_mass, "wall_mass"),
+              _si(peak_tolerance, ""))
     for key in ("stiffness", "cor", "exponent"):
         d[key] = Parameter(*d[key])
     return FitResult(**d)

@@ -243,6 +243,13 @@ dynamics: {end_time: "40 ms", output_interval: "0.02 ms"}
       EXPECT_TRUE(fem.at(count).is_number_integer()) << count << " = " << fem.at(count).dump();
     EXPECT_TRUE(fem.at("penalty_factor").is_number()) << fem.at("penalty_factor").dump();
     const nlohmann::json study = read_json(d / "study/summary.json");
+    // The export's contact is the study's own: its isolation level against its wall.
+    const nlohmann::json &contact = study.at("contact");
+    const double          m1 = contact.at("isolation_mass"), m2 = contact.at("wall_mass");
+    EXPECT_NEAR(contact.at("effective_mass").get<double>(), m1 * m2 / (m1 + m2), 1e-9 * m1);
+    const nlohmann::json exported = read_json(d / "opensees/summary.json");
+    EXPECT_EQ(exported.at("input").at("effective_mass"), contact.at("effective_mass"));
+    EXPECT_EQ(exported.at("input").at("cor"), contact.at("cor"));
     for (const char *count : {"fem_n_dofs", "fem_n_steps"})
       EXPECT_TRUE(study.at("k_table").at(0).at(count).is_number_integer()) << count;
     // The study's stages add up to its wall time ("other": files and the rest).

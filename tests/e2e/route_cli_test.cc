@@ -92,9 +92,10 @@ namespace
   TEST(RouteCli, ExportOpenSeesWritesTclAndPythonWithUnits)
   {
     const TempDir dir("route_opensees");
-    const KimpRun run = run_kimp("-q export-opensees -o os --k-kv \"2496 kN/mm\" --k-hertz "
-                                 "\"1018 kN/mm^1.5\" --cor 0.7 --gap \"15 cm\"",
-                                 dir.path());
+    const KimpRun run =
+      run_kimp("-q export-opensees -o os --k-kv \"2496 kN/mm\" --k-hertz "
+               "\"1018 kN/mm^1.5\" --cor 0.7 --gap \"15 cm\" --effective-mass \"195 t\"",
+               dir.path());
     ASSERT_EQ(run.exit_code, 0) << run.err;
     const std::string tcl = read_text(dir.path() / "os" / "opensees_impact.tcl");
     EXPECT_NE(tcl.find("# Units: N, m, s"), std::string::npos) << tcl;

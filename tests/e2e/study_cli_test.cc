@@ -99,8 +99,17 @@ TEST(StudyCli, ReducedStudyGivesSofterWallsForTallerHeightsAndReusesTheFem)
                                                                    "jankowski_kN_per_mm1.5_per_m";
     const std::string total = std::string(law) == "kelvin_voigt" ? "kelvin_voigt_total_kN_per_mm" :
                                                                    "jankowski_total_kN_per_mm1.5";
-    ASSERT_EQ(k_rows[0].at(std::string(law) + "_status"), "ok") << law;
-    ASSERT_EQ(k_rows[1].at(std::string(law) + "_status"), "ok") << law;
+    for (const auto &row : k_rows)
+    {
+      // A fit is ok, or warns that its peak force misses the FEM's by more than 25 % (the
+      // Kelvin-Voigt fit of a rigid slab's sharp peak does): the ratio column says by how much.
+      const std::string status = row.at(std::string(law) + "_status");
+      const double      ratio  = std::stod(row.at(std::string(law) + "_peak_force_ratio"));
+      const bool        missed = status.rfind("warning: the fitted peak force is ", 0) == 0;
+      ASSERT_TRUE(status == "ok" || (missed && status.find(';') == std::string::npos))
+        << law << ": " << status;
+      EXPECT_EQ(missed, std::abs(ratio - 1.0) > 0.25) << law << ": " << status << ", " << ratio;
+    }
     const double k_short = std::stod(k_rows[0].at(per_m));
     const double k_tall  = std::stod(k_rows[1].at(per_m));
     EXPECT_GT(k_short, k_tall) << law << ": k(H = 1 m) = " << k_short

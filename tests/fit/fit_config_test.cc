@@ -165,6 +165,94 @@ namespace
     EXPECT_TRUE(starts_with(v, "warning: the contact lasts to the end of the FEM record")) << v;
   }
 
+  TEST(FitVerdict, PeakForceOffByMoreThanTheToleranceIsAWarning)
+  {
+    // The site case of a Kelvin-Voigt fit: 452 kN/m against the FEM's 1,234 kN/m.
+    FitResult f        = good_fit();
+    f.fem_peak_force   = 1234e3;
+    f.model_peak_force = 452e3;
+    EXPECT_NEAR(f.peak_force_ratio(), 0.3663, 1e-4);
+    const std::string v = fit_verdict(f);
+    EXPECT_TRUE(starts_with(v,
+                            "warning: the fitted peak force is 36.6 % of the FEM's (452 of "
+                            "1234 kN/m, tolerance 25 %)"))
+      << v;
+    EXPECT_EQ(fit_verdict(f, 0.7), "ok"); // a looser tolerance accepts it
+    EXPECT_EQ(kimp::fit::default_peak_tolerance, 0.25);
+    f.model_peak_force = 1.2 * f.fem_peak_force; // within 25 % either way
+    EXPECT_EQ(fit_verdict(f), "ok");
+    f.model_peak_force = 1.3 * f.fem_peak_force;
+    EXPECT_TRUE(starts_with(fit_verdict(f), "warning: the fitted peak force is 130 %"))
+      << fit_verdict(f);
+    // With another warning both are named.
+    f.contact_open_at_end  = true;
+    const std::string both = fit_verdict(f);
+    EXPECT_TRUE(starts_with(both, "warning: the contact lasts to the end")) << both;
+    EXPECT_NE(both.find("; the fitted peak force is 130 %"), std::string::npos) << both;
+  }
+
+  /// A sharp spike on a long, low pulse (a stiff contact ringing on a soft wall): a
+  /// Kelvin-Voigt law fitted to the whole pulse in the least-squares sense follows the body and
+  /// cuts the spike.
+  ForceHistory spike_on_a_pulse()
+  {
+    const double duration = 0.02, rise = duration / 40.0, peak = 1.37e6; // s, s, N/m
+    ForceHistory h;
+    for (int j = -50; j <= 1500; ++j)
+    {
+      const double t = j * 2e-5;
+      double       f = 0.0;
+      if (t > 0.0 && t < duration)
+        f = peak *
+            (0.3 * std::sin(M_PI * t / duration) + 0.7 * (t / rise) * std::exp(1.0 - t / rise));
+      h.time.push_back(t);
+      h.force.push_back(f);
+    }
+    return h;
+  }
+
+  TEST(FitVerdict, KelvinVoigtFittedToASpikeMissesThePeakAndItsStatusSaysSo)
+  {
+    kimp::lumped::ForceLawSpec law;
+    law.law                 = "kelvin_voigt";
+    law.cor                 = 0.7;
+    const FitResult   fit   = kimp::fit::fit_impact_law(spike_on_a_pulse(), 3840.0, 1.0, law);
+    const double      ratio = fit.peak_force_ratio();
+    const std::string state = fit_verdict(fit);
+    EXPECT_LT(ratio, 0.75) << state;
+    EXPECT_NEAR(ratio, fit.model_peak_force / fit.fem_peak_force, 1e-12);
+    EXPECT_NE(state.find("the fitted peak force is"), std::string::npos) << state;
+    EXPECT_TRUE(starts_with(state, "warning: ")) << state;
+    EXPECT_TRUE(std::isfinite(fit.impulse_ratio()));
+    EXPECT_TRUE(std::isfinite(fit.contact_duration_ratio()));
+    // The same fit judged with a tolerance wider than its miss says nothing of the peak.
+    EXPECT_EQ(fit_verdict(fit, 1.0 - ratio + 0.01).find("peak force"), std::string::npos);
+  }
+
+  TEST(FitVerdict, ALawFittedToItsOwnHistoryReproducesPeakImpulseAndDuration)
+  {
+    const ForceHistory h = two_bounces(1.5e8);
+    // Only the first impact: its own force history.
+    ForceHistory first;
+    for (std::size_t i = 0; i < h.time.size() && h.time[i] < 2.5 * M_PI * std::sqrt(3840.0 / 1.5e8);
+         ++i)
+    {
+      first.time.push_back(h.time[i]);
+      first.force.push_back(h.force[i]);
+    }
+    kimp::lumped::ForceLawSpec law;
+    law.law             = "kelvin_voigt";
+    law.cor             = 0.7;
+    const FitResult fit = kimp::fit::fit_impact_law(first, 3840.0, 1.0, law);
+    EXPECT_NEAR(fit.peak_force_ratio(), 1.0, 0.02);
+    EXPECT_NEAR(fit.impulse_ratio(), 1.0, 0.02);
+    // The model's contact lasts until δ = 0, through the Kelvin-Voigt tension the data clip at
+    // zero force: about 8 % longer.
+    EXPECT_GT(fit.contact_duration_ratio(), 1.0);
+    EXPECT_LT(fit.contact_duration_ratio(), 1.1);
+    EXPECT_EQ(fit_verdict(fit).find("peak force"), std::string::npos) << fit_verdict(fit);
+  }
+
   TEST(FitConfig, OptionsAndVariantsCarryTheSharedConfiguration)
   {
     FitConfig config;

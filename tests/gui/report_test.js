@@ -97,6 +97,25 @@ async function main() {
         `k(H) charts per law with their units (${kh.map((x) => x.y).join(', ')})`,
       );
       const rows = fs.readFileSync(path.join(dir, 'k_table.csv'), 'utf8').trim().split('\n');
+      // The answer first: the page's first section is k at the reference velocity, one row per
+      // height with the fit/FEM peak ratio; k_table.csv lists the reference rows first.
+      const rcol = rows[0].split(',').indexOf('reference_velocity');
+      const nReference = rows.slice(1).filter((r) => r.split(',')[rcol] === 'yes').length;
+      check(rcol >= 0 && rows[1].split(',')[rcol] === 'yes', `k_table.csv begins with a reference row`);
+      const answer = await page.evaluate(() => {
+        const first = document.querySelector('details.section');
+        const t = first && first.querySelector('table.k-answer');
+        return {
+          title: first ? first.querySelector('summary').textContent : '',
+          rows: t ? t.querySelectorAll('tbody tr').length : 0,
+          head: t ? Array.from(t.querySelectorAll('th')).map((h) => h.textContent) : [],
+        };
+      });
+      check(
+        answer.title.startsWith('Impact stiffness k (the answer') && answer.rows === nReference &&
+          answer.head.includes('KV fit/FEM peak'),
+        `the first section is the reference k table (${answer.title}, ${answer.rows} of ${nReference} rows)`,
+      );
       const vcol = rows[0].split(',').indexOf('impact_velocity_m_per_s');
       const nv = new Set(rows.slice(1).map((r) => r.split(',')[vcol])).size;
       check(

@@ -74,6 +74,53 @@ def test_fit_recovers_the_kelvin_voigt_stiffness_of_a_collision():
     assert result.k_display() == pytest.approx(400, rel=1e-3)
 
 
+def test_fit_reports_how_well_it_reproduces_the_peak_and_warns_when_it_misses_it():
+    # A sharp spike on a long, low pulse: Kelvin-Voigt fitted to the whole pulse cuts the spike.
+    time = np.arange(-50, 1501) * 2e-5
+    duration, rise = 0.02, 0.02 / 40
+    inside = (time > 0) & (time < duration)
+    force = np.where(inside, 1.37e6 * (0.3 * np.sin(np.pi * time / duration)
+                                       + 0.7 * (time / rise) * np.exp(1 - time / rise)), 0.0)
+    result = kimp.fit(time, force, velocity=1.0, mass=3840.0, law="kelvin_voigt", cor=0.7)
+    assert result.peak_force_ratio == pytest.approx(result.model_peak_force
+                                                    / result.fem_peak_force)
+    assert result.peak_force_ratio < 0.75
+    assert result.verdict.startswith("warning: ") and "fitted peak force" in result.verdict
+    assert not result.ok
+    assert math.isfinite(result.impulse_ratio) and math.isfinite(result.contact_duration_ratio)
+    assert "peak_force_ratio=" in repr(result)
+    loose = kimp.fit(time, force, velocity=1.0, mass=3840.0, law="kelvin_voigt", cor=0.7,
+                     peak_tolerance=1.0 - result.peak_force_ratio + 0.01)
+    assert "peak force" not in loose.verdict
+    with pytest.raises(ValueError):
+        kimp.fit(time, force, velocity=1.0, mass=3840.0, peak_tolerance=0.0)
+
+
+def test_a_kimp_fit_directory_is_a_k_table_of_a_scene(tmp_path):
+    # The fit_table.csv of `kimp fit` (its directory) as impact.k_table: k_total of the
+    # Kelvin-Voigt fit at COR 0.7, linear in the wall height.
+    fit = tmp_path / "fit"
+    fit.mkdir()
+    (fit / "fit_table.csv").write_text(
+        "case,wall_height_m,impact_velocity_m_per_s,variant,law,k_total,status\n"
+        "H1.00,1,1,kelvin_voigt_cor_fixed,kelvin_voigt,4000,ok\n"
+        "H1.00,1,1,jankowski_cor_fixed,jankowski,2000,ok\n"
+        "H2.00,2,1,kelvin_voigt_cor_fixed,kelvin_voigt,2000,ok\n"
+        "H2.00,2,1,jankowski_cor_fixed,jankowski,1000,ok\n")
+    (tmp_path / "scene.yaml").write_text(
+        'building:\n  n_storeys: 3\nwalls:\n  left:\n    gap: "2 cm"\n  right:\n'
+        '    gap: "2 cm"\nimpact:\n  law: kelvin_voigt\n  k_table: fit\n'
+        '  wall_height: "1.5 m"\nground_motion:\n  record: synthetic\n  duration: "6 s"\n')
+    scene = kimp.Scene.from_yaml(tmp_path / "scene.yaml")
+    result = kimp.lumped(scene)
+    assert result.status == "ok"
+    # The same run with k given by hand: (4000 + 2000)/2 kN/mm at H = 1.5 m.
+    by_hand = kimp.lumped(scene.with_(**{"impact.k_table": "", "impact.k": "3000 kN/mm"}))
+    peak = max(c.peak_force for c in result.contacts)
+    assert peak > 0
+    assert peak == pytest.approx(max(c.peak_force for c in by_hand.contacts), rel=1e-12)
+
+
 def test_read_round_trips_a_sweep(tmp_path):
     run_cli("sweep", "data/studies/quick_gap_sweep.yaml", "-o", tmp_path / "out")
     sweep = kimp.read(tmp_path / "out" / "sweep.h5")["sweep"]
@@ -127,6 +174,8 @@ def test_fem_and_fit_round_trip_against_the_cli(tmp_path):
         np.testing.assert_array_equal(mine.time, group["model_force"].time, err_msg=variant)
         np.testing.assert_array_equal(mine.fem_force, group["fem_force"].value, err_msg=variant)
         assert mine.verdict == group.attrs["status"], variant
+        assert mine.peak_force_ratio == group["peak_force_ratio"], variant
+        assert mine.impulse_ratio == group["impulse_ratio"], variant
         assert mine.status == group.attrs["lm_status"], variant
     # The CLI's slab mass is stored per metre of wall with its unit: as a text it reads the same.
     assert case["slab_mass"].units == "kg/m"

@@ -232,6 +232,55 @@
     });
   }
 
+  // ---- study: the answer first, k at the reference velocity per wall height -------------------
+  /**
+   * The study's k at its reference velocity (the k of its building runs), one row per wall
+   * height, with how well each fit reproduces the FEM peak force and the fits' status: the first
+   * section of a study's page.
+   */
+  function kAnswerSection(parent, text) {
+    const rows = parseCsv(text);
+    if (rows.length < 2) return;
+    const head = rows[0];
+    const col = (n) => head.indexOf(n);
+    if (col('wall_height_m') < 0) return;
+    const reference = col('reference_velocity');
+    const body = rows.slice(1).filter((r) => reference < 0 || r[reference] === 'yes');
+    const cell = (r, n, digits) => (col(n) >= 0 && r[col(n)] !== '' ? fmt(parseFloat(r[col(n)]), digits) : '-');
+    const status = (r) => {
+      const kv = r[col('kelvin_voigt_status')] || '';
+      const j = r[col('jankowski_status')] || '';
+      return kv === 'ok' && j === 'ok' ? 'ok' : `Kelvin-Voigt: ${kv}; Jankowski: ${j}`;
+    };
+    const sec = section(parent, 'Impact stiffness k (the answer: reference velocity)');
+    table(
+      sec,
+      [
+        'H (m)',
+        'v (m/s)',
+        'KV k (kN/mm/m)',
+        'KV k total (kN/mm)',
+        'KV fit/FEM peak',
+        'Jankowski k (kN/mm^1.5/m)',
+        'J k total (kN/mm^1.5)',
+        'J fit/FEM peak',
+        'fit status',
+      ],
+      body.map((r) => [
+        cell(r, 'wall_height_m', 4),
+        cell(r, 'impact_velocity_m_per_s', 4),
+        cell(r, 'kelvin_voigt_kN_per_mm_per_m', 4),
+        cell(r, 'kelvin_voigt_total_kN_per_mm', 4),
+        cell(r, 'kelvin_voigt_peak_force_ratio', 3),
+        cell(r, 'jankowski_kN_per_mm1.5_per_m', 4),
+        cell(r, 'jankowski_total_kN_per_mm1.5', 4),
+        cell(r, 'jankowski_peak_force_ratio', 3),
+        status(r),
+      ]),
+      'data k-answer',
+    );
+  }
+
   // ---- study: k(H), one chart per law, one series per impact velocity ---------------------------
   function kTableSection(parent, text) {
     const rows = parseCsv(text);
@@ -240,6 +289,9 @@
     const body = rows.slice(1);
     const col = (n) => head.indexOf(n);
     if (col('wall_height_m') < 0) return;
+    // One wall height (a site): a chart against H would plot one point; the answer table above
+    // holds the values.
+    if (new Set(body.map((r) => r[col('wall_height_m')])).size < 2) return;
     const sec = section(parent, 'Impact stiffness against wall height, k(H)');
     const velocities =
       col('impact_velocity_m_per_s') < 0
@@ -388,6 +440,34 @@
     );
   }
 
+  // ---- export-opensees: what was exported, where each value came from, and the files ---------
+  function exportSection(parent, data) {
+    const summary = data.summary || {};
+    const input = summary.input || {};
+    const sources = summary.sources || {};
+    const units = summary.units || {};
+    const sec = section(parent, 'OpenSees materials exported');
+    const rows = [
+      ['k_KV', 'k_kelvin_voigt', 'k'],
+      ['k_J', 'k_hertz', 'k'],
+      ['COR e', 'cor', 'cor'],
+      ['m_eff', 'effective_mass', 'effective_mass'],
+      ['v_imp', 'impact_velocity', 'impact_velocity'],
+      ['gap', 'gap', 'gap'],
+    ]
+      .filter(([, key]) => input[key] !== null && input[key] !== undefined)
+      .map(([label, key, source]) => [
+        label,
+        `${fmt(input[key], 6)} ${units[key] || ''}`.trim(),
+        sources[source] || '',
+      ]);
+    table(sec, ['parameter', 'value (SI)', 'from'], rows, 'data export-parameters');
+    for (const [name, text] of Object.entries(data.text || {})) {
+      const body = section(parent, name);
+      body.appendChild(el('pre', { class: 'export-file', text: text }));
+    }
+  }
+
   /** A stiffness dataset (N/m^n/m) in the kN/mm^n/m engineers read (MN/m/m when chosen, n = 1). */
   function kUnit(k) {
     const m = /^N\/m(\^([\d.]+))?\/m$/.exec(k.units || '');
@@ -442,6 +522,8 @@
     container.appendChild(el('h1', { text: `kimp ${data.kind || 'results'}: ${data.title}` }));
     container.appendChild(el('p', { class: 'muted', text: `files: ${files.join(', ')}` }));
     unitsBar(container, () => showResults(container, data, others));
+    const kTable = data.csv && data.csv['k_table.csv'];
+    if (data.kind === 'study' && kTable) kAnswerSection(container, kTable);
     inputsSection(container, data);
     if (data.h5 && data.h5['lumped.h5']) lumpedSection(container, data, others);
     if (data.kind === 'study') studySection(container, data);
@@ -449,6 +531,7 @@
     if (data.h5 && data.h5['fem.h5']) femSection(container, data);
     if (data.h5 && data.h5['collide.h5']) collideSection(container, data, others);
     if (data.h5 && data.h5['fit.h5']) fitSection(container, data);
+    if (data.kind === 'export-opensees') exportSection(container, data);
     const csv = data.csv || {};
     if (csv['dsrss_table.csv']) dsrssSection(container, data);
     if (csv['sweep.csv']) sweepSection(container, data);
