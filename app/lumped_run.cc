@@ -114,14 +114,6 @@ namespace kimp::app
     }
   } // namespace
 
-  namespace lumped_internal
-  {
-    double seconds_since(const Clock::time_point start)
-    {
-      return std::chrono::duration<double>(Clock::now() - start).count();
-    }
-  } // namespace lumped_internal
-
   LumpedCaseResult run_lumped_case(const std::string          &name,
                                    const LumpedScene          &scene,
                                    const lumped::GroundMotion &motion,

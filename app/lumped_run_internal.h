@@ -8,14 +8,14 @@
 #include <optional>
 
 #include "app/lumped_run.h"
+#include "base/stopwatch.h"
 #include "lumped/integrators/newmark_integrator.h"
 
 namespace kimp::app::lumped_internal
 {
   using Clock = std::chrono::steady_clock;
 
-  /// s since `start`.
-  double seconds_since(Clock::time_point start);
+  using base::seconds_since;
 
   // lumped_estimate.cc
   /// The central difference options of integration (its time step `dt`, nullopt: the

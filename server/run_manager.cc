@@ -27,6 +27,7 @@
 #include <unistd.h>
 
 #include "base/logging.h"
+#include "base/stopwatch.h"
 #include "io/output_dir.h"
 
 extern char **environ;
@@ -152,10 +153,7 @@ namespace kimp::server
       return pid;
     }
 
-    double seconds_since(SteadyClock::time_point t)
-    {
-      return std::chrono::duration<double>(SteadyClock::now() - t).count();
-    }
+    using base::seconds_since;
 
     std::string now_id()
     {

@@ -15,11 +15,6 @@
 
 namespace kimp::app::study_internal
 {
-  double seconds_since(Clock::time_point start)
-  {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-  }
-
   std::optional<ThesisStiffness> thesis_row(double wall_height)
   {
     for (const ThesisStiffness &row : thesis_table_2_1())

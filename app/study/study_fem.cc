@@ -16,6 +16,7 @@
 #include "base/errors.h"
 #include "base/hash.h"
 #include "base/logging.h"
+#include "base/stopwatch.h"
 #include "base/version.h"
 #include "fem/impact.h"
 #include "geometry/scene_mesh.h"
@@ -29,6 +30,8 @@ namespace kimp::app
   using namespace kimp::fit;
   namespace
   {
+    using base::seconds_since;
+
     std::string read_key(const std::filesystem::path &file)
     {
       std::ifstream in(file);
@@ -37,10 +40,6 @@ namespace kimp::app
       return key;
     }
 
-    double seconds_since(std::chrono::steady_clock::time_point start)
-    {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    }
   } // namespace
 
   StudyFits fit_study_laws(const FemCase &fem_case, const StudyFitScene &settings)

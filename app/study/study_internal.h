@@ -15,6 +15,7 @@
 #include "app/table_cells.h"
 #include "base/format.h"
 #include "base/logging.h"
+#include "base/stopwatch.h"
 #include "fit/fitter.h"
 #include "io/output_dir.h"
 #include "io/results_file.h"
@@ -46,8 +47,7 @@ namespace kimp::app::study_internal
   /// The value of a quantity that was not computed (written as "" in the CSV files).
   inline constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
-  /// s since `start`.
-  double seconds_since(Clock::time_point start);
+  using base::seconds_since;
 
   /// The row of thesis Table 2.1 at `wall_height` (m), if there is one.
   std::optional<ThesisStiffness> thesis_row(double wall_height);

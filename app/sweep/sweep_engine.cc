@@ -19,6 +19,7 @@
 
 #include "base/errors.h"
 #include "base/logging.h"
+#include "base/stopwatch.h"
 #include "io/results_file.h"
 #include "io/summary.h"
 #include "io/table.h"
@@ -32,10 +33,7 @@ namespace kimp::app
   {
     using SteadyClock = std::chrono::steady_clock;
 
-    double seconds_since(SteadyClock::time_point start)
-    {
-      return std::chrono::duration<double>(SteadyClock::now() - start).count();
-    }
+    using base::seconds_since;
 
     /// HDF5 object name from a column name ('/' separates groups).
     std::string dataset_name(std::string name)
