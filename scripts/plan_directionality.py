@@ -50,17 +50,31 @@ def run_one(args, scene, motion, ecc, angle):
     p["second_component"] = "none"
     s.setdefault("integration", {})["output_interval"] = "0 s"
     scene_file = os.path.join(work, "scene.yaml")
-    with open(scene_file, "w") as f:
-        yaml.safe_dump(s, f, sort_keys=False)
+    text = yaml.safe_dump(s, sort_keys=False)
     out = os.path.join(work, "out")
+    summary_file = os.path.join(out, "summary.json")
+    # A run of the same scene text already complete (an interrupted study resumed) is reused.
+    reuse = os.path.exists(summary_file) and os.path.exists(scene_file) and \
+        open(scene_file).read() == text
+    if not reuse:
+        with open(scene_file, "w") as f:
+            f.write(text)
+        run_kimp(args, scene_file, out, name)
+    with open(summary_file) as f:
+        summary = json.load(f)
+    return row_of(motion, ecc, angle, summary)
+
+
+def run_kimp(args, scene_file, out, name):
     command = [args.kimp, "--quiet", "lumped", scene_file, "-o", out]
     if args.records_dir:
         command += ["--records-dir", args.records_dir]
     done = subprocess.run(command, capture_output=True, text=True)
     if done.returncode != 0:
         raise RuntimeError(f"{name}: kimp exited {done.returncode}: {done.stderr.strip()}")
-    with open(os.path.join(out, "summary.json")) as f:
-        summary = json.load(f)
+
+
+def row_of(motion, ecc, angle, summary):
     case = summary["cases"][0]
     row = {"motion": motion, "eccentricity_percent": ecc, "angle_deg": angle,
            "n_impacts": case["n_impacts"],
