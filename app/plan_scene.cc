@@ -149,6 +149,54 @@ namespace kimp::app
         return false;
       }
     }
+
+    /// The moat of a valid plan section: the wall polygon simple and enclosing the slab, or
+    /// the gaps one per edge, and the engine's own checks.
+    void validate_moat(const LumpedScene        &base,
+                       const PlanSection        &p,
+                       const plan::PlanBuilding &building,
+                       ValidationContext        &ctx)
+    {
+      const plan::Polygon slab = plan_outline(p);
+      if (!p.moat.wall.empty())
+      {
+        if (!engine_check(ctx,
+                          "moat.wall",
+                          polygon_text(p.moat.wall),
+                          [&]
+                          { plan::validate_polygon(to_polygon(p.moat.wall), "a simple polygon"); }))
+          return;
+        const plan::Polygon wall = to_polygon(p.moat.wall);
+        for (const plan::Point &corner : slab)
+          if (!plan::strictly_inside(wall, corner, 1e-9))
+          {
+            ctx.fail("moat.wall",
+                     polygon_text(p.moat.wall),
+                     fmt::format("must enclose the slab outline with a clear gap (slab corner "
+                                 "({:.4g}, {:.4g}) m is not inside)",
+                                 corner.x(),
+                                 corner.y()));
+            return;
+          }
+      }
+      else
+      {
+        const std::string key = p.moat.gaps.empty() ? "moat.gap" : "moat.gaps";
+        const std::size_t n   = slab.size();
+        if (!p.moat.gaps.empty() &&
+            !ctx.check(p.moat.gaps.size() == n,
+                       key,
+                       fmt::format("[{} gaps]", p.moat.gaps.size()),
+                       fmt::format("must hold one gap per slab edge ({})", n)))
+          return;
+        if (!engine_check(ctx, key, "", [&] { moat_wall(p, building); }))
+          return;
+      }
+      engine_check(ctx,
+                   p.moat.wall.empty() ? "moat" : "moat.wall",
+                   "",
+                   [&] { make_plan_scene(base, p); });
+    }
   } // namespace
 
   plan::Polygon plan_outline(const PlanSection &p)
@@ -250,45 +298,7 @@ namespace kimp::app
       return;
     if (!isolated || !p.moat.present)
       return;
-    const plan::Polygon slab = plan_outline(p);
-    if (!p.moat.wall.empty())
-    {
-      if (!engine_check(ctx,
-                        "moat.wall",
-                        polygon_text(p.moat.wall),
-                        [&]
-                        { plan::validate_polygon(to_polygon(p.moat.wall), "a simple polygon"); }))
-        return;
-      const plan::Polygon wall = to_polygon(p.moat.wall);
-      for (const plan::Point &corner : slab)
-        if (!plan::strictly_inside(wall, corner, 1e-9))
-        {
-          ctx.fail("moat.wall",
-                   polygon_text(p.moat.wall),
-                   fmt::format("must enclose the slab outline with a clear gap (slab corner "
-                               "({:.4g}, {:.4g}) m is not inside)",
-                               corner.x(),
-                               corner.y()));
-          return;
-        }
-    }
-    else
-    {
-      const std::string key = p.moat.gaps.empty() ? "moat.gap" : "moat.gaps";
-      const std::size_t n   = slab.size();
-      if (!p.moat.gaps.empty() &&
-          !ctx.check(p.moat.gaps.size() == n,
-                     key,
-                     fmt::format("[{} gaps]", p.moat.gaps.size()),
-                     fmt::format("must hold one gap per slab edge ({})", n)))
-        return;
-      if (!engine_check(ctx, key, "", [&] { moat_wall(p, building); }))
-        return;
-    }
-    engine_check(ctx,
-                 p.moat.wall.empty() ? "moat" : "moat.wall",
-                 "",
-                 [&] { make_plan_scene(base, p); });
+    validate_moat(base, p, building, ctx);
   }
 
   void resolve_paths(PlanLumpedScene &scene, const std::filesystem::path &directory)
