@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "app/lumped_run.h"
+#include "app/plan_run.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
 
@@ -11,15 +12,26 @@ namespace kimp::cli
 {
   void register_lumped_command(CLI::App &app)
   {
-    CLI::App *subcommand = add_scene_command<app::LumpedScene>(
+    CLI::App *subcommand = add_scene_command<app::PlanLumpedScene>(
       app,
       {"lumped",
        "pounding analysis of a shear building (isolated or fixed-base) with moat walls, "
-       "neighbours and impact laws 1-7; writes DIR/lumped.h5, summary.json, peaks.csv"},
-      [](const io::LoadedScene<app::LumpedScene> &scene,
-         const io::OutputDir                     &output,
-         const CLI::App                          &command)
+       "neighbours and impact laws 1-7, or (with a plan section) a building in plan in a moat; "
+       "writes DIR/lumped.h5, summary.json, peaks.csv"},
+      [](const io::LoadedScene<app::PlanLumpedScene> &loaded,
+         const io::OutputDir                         &output,
+         const CLI::App                              &command)
       {
+        if (loaded.scene.plan)
+        {
+          app::run_plan_lumped(loaded, output, given_records_dir(command));
+          return;
+        }
+        // A planar scene: exactly the LoadedScene a planar-only reader gives (same resolved JSON).
+        const io::LoadedScene<app::LumpedScene>  scene{loaded.scene.base,
+                                                      loaded.file_name,
+                                                      loaded.text,
+                                                      io::to_json_text(loaded.scene.base)};
         const std::vector<app::LumpedCaseResult> results =
           app::run_lumped(scene, output, given_records_dir(command));
         std::string failed;

@@ -10,6 +10,7 @@
 
 #include "app/collide_run.h"
 #include "app/lumped_scene.h"
+#include "app/plan_scene.h"
 #include "io/output_dir.h"
 #include "io/scene_io.h"
 
@@ -34,7 +35,7 @@ namespace kimp::server
       try
       {
         if (command == "lumped")
-          io::read_scene_text<app::LumpedScene>(text, "scene.yaml");
+          io::read_scene_text<app::PlanLumpedScene>(text, "scene.yaml"); // planar or plan
         else
           io::read_scene_text<app::CollideScene>(text, "scene.yaml");
         return {};

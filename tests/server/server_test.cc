@@ -81,6 +81,21 @@ ground_motion:
     EXPECT_TRUE(json_of(own)["ok"].get<bool>()) << own->body;
   }
 
+  TEST_F(ServerFixture, PlanScenesAreValidatedAsKimpLumpedReadsThem)
+  {
+    const std::string good = R"({"command": "lumped", "scene": "plan:\n  angle: 30\n"})";
+    const auto        ok = client_->Post("/api/validate", post_headers(), good, "application/json");
+    ASSERT_TRUE(ok);
+    EXPECT_EQ(ok->status, 200);
+    EXPECT_TRUE(json_of(ok)["ok"].get<bool>()) << ok->body;
+    const std::string bad =
+      R"({"command": "lumped", "scene": "plan:\n  moat:\n    gaps: [\"4 cm\"]\n"})";
+    const auto refused = client_->Post("/api/validate", post_headers(), bad, "application/json");
+    ASSERT_TRUE(refused);
+    EXPECT_FALSE(json_of(refused)["ok"].get<bool>()) << refused->body;
+    EXPECT_NE(refused->body.find("plan.moat.gaps"), std::string::npos) << refused->body;
+  }
+
   TEST_F(ServerFixture, PathsLeavingTheRunDirectoryAreRefused)
   {
     const auto run = dir_.path() / "runs" / "r1";

@@ -1,0 +1,291 @@
+// `kimp lumped` of a scene in plan: run the plan engine and write its files.
+#include "app/plan_run.h"
+
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "base/logging.h"
+#include "base/version.h"
+#include "io/results_file.h"
+#include "io/summary.h"
+
+namespace kimp::app
+{
+  namespace plan = lumped::plan;
+
+  namespace
+  {
+    using Clock = std::chrono::steady_clock;
+
+    const char *const direction_names[3] = {"x", "y", "theta"};
+
+    std::string level_name(const PlanLumpedScene &scene, std::size_t level)
+    {
+      if (scene.base.building.kind == BuildingKind::isolated)
+        return level == 0 ? "isolation level" : fmt::format("floor {}", level);
+      return fmt::format("floor {}", level + 1);
+    }
+
+    std::string text(double value)
+    {
+      return fmt::format("{}", value);
+    }
+
+    nlohmann::json energy_json(const plan::PlanEnergy &e)
+    {
+      return {{"initial", e.initial},
+              {"input", e.input},
+              {"kinetic", e.kinetic},
+              {"strain", e.strain},
+              {"viscous", e.viscous},
+              {"hysteretic", e.hysteretic},
+              {"contact_work", e.contact_work},
+              {"impact_dissipated", e.impact_dissipated},
+              {"friction", e.friction},
+              {"relative_error", e.relative_error},
+              {"max_relative_error", e.max_relative_error}};
+    }
+  } // namespace
+
+  PlanRun run_plan(const PlanLumpedScene                      &scene,
+                   const std::string                          &file_name,
+                   const std::string                          &scene_text,
+                   const std::optional<std::filesystem::path> &records_dir_override)
+  {
+    const PlanSection &p     = scene.plan.value();
+    const auto         start = Clock::now();
+    PlanRun            out;
+    out.motion = load_plan_motion(scene.base, p, records_dir_override, file_name, scene_text);
+    plan::PlanModel model(make_plan_scene(scene.base, p));
+    for (const plan::PlanContact &c : model.contacts())
+      out.contact_names.push_back(c.name);
+    out.n_corners = model.building().levels.front().outline.size();
+    const plan::PlanCentralDifference integrator(std::move(model),
+                                                 plan_options(scene.base.integration));
+    out.dt_critical            = integrator.stability().dt_critical;
+    const double      dt       = integrator.time_step(out.motion.dt);
+    const double      duration = scene.base.integration.duration.value_or(out.motion.duration());
+    const double      n_steps  = duration / dt;
+    const std::size_t n_dofs   = integrator.model().n_dofs();
+    base::logger().info("plan: {:.3g} steps of {:.3g} s over {:.4g} s x {} DoFs (dt_cr {:.3g} s, "
+                        "{})",
+                        n_steps,
+                        dt,
+                        duration,
+                        n_dofs,
+                        out.dt_critical,
+                        integrator.stability().governing);
+    if (n_steps > scene.base.integration.max_steps)
+      throw std::runtime_error(
+        fmt::format("plan run: {:.3g} steps of {:.3g} s exceed the step budget "
+                    "integration.max_steps = {:.3g} (raise it or shorten integration.duration)",
+                    n_steps,
+                    dt,
+                    scene.base.integration.max_steps));
+    out.response  = integrator.run(out.motion);
+    out.wall_time = std::chrono::duration<double>(Clock::now() - start).count();
+    return out;
+  }
+
+  namespace
+  {
+    /// DIR/lumped.h5 of a plan run: /lumped/default with peaks, energy and histories.
+    void write_plan_h5(const io::LoadedScene<PlanLumpedScene> &loaded,
+                       const io::OutputDir                    &output,
+                       const PlanRun                          &run)
+    {
+      const plan::PlanResponse &r        = run.response;
+      const std::size_t         n_levels = r.n_levels;
+      std::vector<std::string>  dof_labels;
+      for (std::size_t l = 0; l < n_levels; ++l)
+        for (const char *d : direction_names)
+          dof_labels.push_back(level_name(loaded.scene, l) + " " + d);
+      io::ResultsFile  file(output.file("lumped.h5"), loaded.text, loaded.resolved_json);
+      io::ResultsGroup root = file.root();
+      root.group("input").set_attribute("ground_motion", run.motion.name);
+      io::ResultsGroup g = root.group("lumped").case_group("default");
+      g.set_attribute("plan", static_cast<std::int64_t>(1));
+      g.write_scalar("wall_time", run.wall_time, "s");
+      g.write_scalar("dt", r.dt, "s");
+      g.write_scalar("dt_critical", run.dt_critical, "s");
+      g.set_attribute("n_steps", static_cast<std::int64_t>(r.n_steps));
+      g.write_scalar("duration", r.duration, "s");
+      g.write("dof_labels", dof_labels);
+      g.write("contact_names", run.contact_names);
+      {
+        io::ResultsGroup peaks = g.group("peaks");
+        peaks.write("displacement", r.peak_displacement, "m|rad");
+        peaks.write("absolute_acceleration", r.peak_absolute_acceleration, "m/s^2|rad/s^2");
+        peaks.write("corner_displacement", r.peak_corner_displacement, "m");
+        peaks.write("horizontal_acceleration", r.peak_horizontal_acceleration, "m/s^2");
+        peaks.write("drift_x", r.peak_drift_x, "m");
+        peaks.write("drift_y", r.peak_drift_y, "m");
+        peaks.write("corner_drift", r.peak_corner_drift, "m");
+        peaks.write("wall_force", r.peak_wall_force, "N");
+        peaks.write_scalar("isolator_force", r.peak_isolator_force, "N");
+        std::vector<double> normal, friction;
+        for (const plan::PlanContactResult &c : r.contacts)
+        {
+          normal.push_back(c.peak_normal_force);
+          friction.push_back(c.peak_friction_force);
+        }
+        peaks.write("contact_normal_force", normal, "N");
+        peaks.write("contact_friction_force", friction, "N");
+      }
+      {
+        io::ResultsGroup        e     = g.group("energy");
+        const plan::PlanEnergy &en    = r.energy;
+        const nlohmann::json    terms = energy_json(en);
+        for (const auto &[key, value] : terms.items())
+          e.write_scalar(key,
+                         value.get<double>(),
+                         key.find("relative") != std::string::npos ? "1" : "J");
+      }
+      const plan::PlanHistory &h = r.history;
+      if (!h.time.empty())
+      {
+        io::ResultsGroup          hist = g.group("history");
+        std::vector<std::int64_t> steps;
+        for (const double t : h.time)
+          steps.push_back(static_cast<std::int64_t>(std::llround(t / r.dt)));
+        const std::size_t n_dofs    = 3 * n_levels;
+        const std::size_t n_contact = run.contact_names.size();
+        hist.write_time_series("displacement", steps, h.time, h.displacement, n_dofs, "m|rad");
+        hist.write_time_series("absolute_acceleration",
+                               steps,
+                               h.time,
+                               h.absolute_acceleration,
+                               n_dofs,
+                               "m/s^2|rad/s^2");
+        hist.write_time_series("corner_displacement",
+                               steps,
+                               h.time,
+                               h.corner_displacement,
+                               2 * run.n_corners,
+                               "m");
+        if (n_contact > 0)
+        {
+          hist.write_time_series("contact_force", steps, h.time, h.contact_force, n_contact, "N");
+          hist.write_time_series("friction_force", steps, h.time, h.friction_force, n_contact, "N");
+        }
+        hist.write_time_series("energy_error", steps, h.time, h.energy_error, 1, "1");
+      }
+      g.set_status("ok");
+      file.commit();
+    }
+
+    /// DIR/summary.json of a plan run (its wall_time counted from `start`).
+    void write_plan_summary(const io::LoadedScene<PlanLumpedScene> &loaded,
+                            const io::OutputDir                    &output,
+                            const PlanRun                          &run,
+                            Clock::time_point                       start)
+    {
+      const plan::PlanResponse &r = run.response;
+      nlohmann::json            summary;
+      summary["command"]       = "lumped";
+      summary["kimp"]          = base::version_line();
+      summary["scene"]         = loaded.file_name;
+      summary["plan"]          = true;
+      summary["wall_time"]     = std::chrono::duration<double>(Clock::now() - start).count();
+      summary["ground_motion"] = {{"name", run.motion.name},
+                                  {"dt", run.motion.dt},
+                                  {"duration", run.motion.duration()},
+                                  {"angle_deg", loaded.scene.plan->angle}};
+      summary["units"]         = {{"displacement", "m"},
+                                  {"rotation", "rad"},
+                                  {"absolute_acceleration", "m/s^2"},
+                                  {"force", "N"},
+                                  {"time", "s"},
+                                  {"energy", "J"},
+                                  {"wall_time", "s"}};
+      double corner_force = 0.0, friction_force = 0.0, rotation = 0.0, corner_drift = 0.0;
+      for (const plan::PlanContactResult &c : r.contacts)
+      {
+        corner_force   = std::max(corner_force, c.peak_normal_force);
+        friction_force = std::max(friction_force, c.peak_friction_force);
+      }
+      for (std::size_t i = 2; i < r.peak_displacement.size(); i += 3)
+        rotation = std::max(rotation, r.peak_displacement[i]);
+      for (const double d : r.peak_corner_drift)
+        corner_drift = std::max(corner_drift, d);
+      nlohmann::json c;
+      c["name"]        = "default";
+      c["status"]      = "ok";
+      c["dt"]          = r.dt;
+      c["dt_critical"] = run.dt_critical;
+      c["n_steps"]     = r.n_steps;
+      c["n_impacts"]   = r.n_impacts();
+      c["peaks"]       = {{"base_corner_displacement", r.peak_corner_displacement.front()},
+                          {"corner_impact_force", corner_force},
+                          {"friction_force", friction_force},
+                          {"top_acceleration", r.peak_horizontal_acceleration.back()},
+                          {"corner_drift", corner_drift},
+                          {"rotation", rotation},
+                          {"isolator_force", r.peak_isolator_force},
+                          {"displacement", r.peak_displacement},
+                          {"absolute_acceleration", r.peak_absolute_acceleration},
+                          {"corner_displacement", r.peak_corner_displacement},
+                          {"drift_x", r.peak_drift_x},
+                          {"drift_y", r.peak_drift_y},
+                          {"wall_force", r.peak_wall_force}};
+      c["energy"]      = energy_json(r.energy);
+      summary["cases"] = nlohmann::json::array({c});
+      io::write_json_atomic(output.file("summary.json"), summary);
+    }
+
+    /// DIR/peaks.csv of a plan run: one row per level and direction.
+    void write_plan_peaks(const io::LoadedScene<PlanLumpedScene> &loaded,
+                          const io::OutputDir                    &output,
+                          const PlanRun                          &run)
+    {
+      const plan::PlanResponse             &r        = run.response;
+      const std::size_t                     n_levels = r.n_levels;
+      std::vector<std::vector<std::string>> rows;
+      for (std::size_t l = 0; l < n_levels; ++l)
+        for (std::size_t d = 0; d < 3; ++d)
+        {
+          const std::size_t dof = 3 * l + d;
+          const std::size_t s =
+            l - (loaded.scene.base.building.kind == BuildingKind::isolated ? 1 : 0);
+          const bool storey =
+            (l > 0 || loaded.scene.base.building.kind != BuildingKind::isolated) &&
+            s < r.peak_corner_drift.size();
+          rows.push_back({"default",
+                          std::to_string(dof),
+                          level_name(loaded.scene, l),
+                          direction_names[d],
+                          text(r.peak_displacement[dof]),
+                          text(r.peak_absolute_acceleration[dof]),
+                          d == 0 ? text(r.peak_corner_displacement[l]) : "",
+                          storey && d == 0 ? text(r.peak_drift_x[s]) :
+                          storey && d == 1 ? text(r.peak_drift_y[s]) :
+                          storey           ? text(r.peak_corner_drift[s]) :
+                                             ""});
+        }
+      io::write_csv_atomic(output.file("peaks.csv"),
+                           {"case",
+                            "dof",
+                            "level",
+                            "direction",
+                            "peak_displacement_m_or_rad",
+                            "peak_absolute_acceleration_m_per_s2_or_rad_per_s2",
+                            "peak_corner_displacement_m",
+                            "peak_interstorey_drift_m"},
+                           rows);
+    }
+  } // namespace
+
+  PlanRun run_plan_lumped(const io::LoadedScene<PlanLumpedScene>     &loaded,
+                          const io::OutputDir                        &output,
+                          const std::optional<std::filesystem::path> &records_dir_override)
+  {
+    const auto    start = Clock::now();
+    const PlanRun run = run_plan(loaded.scene, loaded.file_name, loaded.text, records_dir_override);
+    write_plan_h5(loaded, output, run);
+    write_plan_summary(loaded, output, run, start);
+    write_plan_peaks(loaded, output, run);
+    return run;
+  }
+} // namespace kimp::app

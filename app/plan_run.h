@@ -1,0 +1,42 @@
+// `kimp lumped` of a scene with a `plan` section (docs/physics.md §7 "Pounding in plan"): one run
+// of the plan engine, written as DIR/lumped.h5, DIR/summary.json and DIR/peaks.csv.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "app/plan_scene.h"
+#include "io/output_dir.h"
+#include "lumped/plan/plan_central_difference.h"
+
+namespace kimp::app
+{
+  /// One plan run in memory.
+  struct PlanRun
+  {
+    lumped::plan::PlanGroundMotion motion;
+    lumped::plan::PlanResponse     response;
+    std::vector<std::string>       contact_names;
+    std::size_t                    n_corners   = 0; ///< of level 0's outline
+    double                         dt_critical = 0.0;
+    double                         wall_time   = 0.0; ///< s
+  };
+
+  /**
+   * Run a scene with a plan section: its motion (load_plan_motion()), its model and options, the
+   * step budget (integration.max_steps) checked before the run.
+   * @throws io::SceneError for a record, std::runtime_error for a run above the budget, what the
+   *         engine throws (TimeStepError, DivergenceError, std::invalid_argument).
+   */
+  PlanRun run_plan(const PlanLumpedScene                      &scene,
+                   const std::string                          &file_name,
+                   const std::string                          &scene_text,
+                   const std::optional<std::filesystem::path> &records_dir_override = {});
+
+  /// run_plan(), then lumped.h5 (/lumped/default, "plan" = 1), summary.json and peaks.csv in
+  /// `output`.
+  PlanRun run_plan_lumped(const io::LoadedScene<PlanLumpedScene>     &loaded,
+                          const io::OutputDir                        &output,
+                          const std::optional<std::filesystem::path> &records_dir_override = {});
+} // namespace kimp::app
