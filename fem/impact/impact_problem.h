@@ -7,6 +7,7 @@
 #include <array>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -192,6 +193,49 @@ namespace kimp::fem::internal
     // geostatic.cc
     /** Gravity, initial stress and the static equilibrium the impact starts from. */
     void run_geostatic_step();
+    /** DoFs the geostatic step holds: the free slab's (by their diagonal) and the owned, free
+     *  DoFs of the absorbing faces (`supported`, with their component), masked out of the
+     *  residual by `static_mask`. */
+    struct GeostaticHold
+    {
+      std::set<types::global_dof_index>    slab_dofs;
+      Vec                                  static_mask;
+      std::vector<types::global_dof_index> supported;
+      std::vector<unsigned int>            supported_component;
+    };
+    /** The Newton iteration's outcome: out-of-balance force (N/m), iterations, of them on the
+     *  consistent tangent, wall-clock seconds. */
+    struct GeostaticIterations
+    {
+      double        residual  = 0;
+      unsigned long k         = 0;
+      unsigned long n_tangent = 0;
+      double        seconds   = 0;
+    };
+    /** Gravity load and the initial-stress force into geostatic_offset (the initial stress
+     *  of the laws that hold it committed to their history); the slab's DoFs into @p hold;
+     *  returns the weight (N/m) of the bodies under gravity. */
+    double geostatic_gravity_load(GeostaticHold &hold);
+    /** The absorbing faces' DoFs held as by rollers during the static step, into @p hold. */
+    void hold_geostatic_supports(GeostaticHold &hold) const;
+    /** Turns an assembled stiffness into the static operator: the slab's diagonal, the
+     *  interface, the supported rows replaced by their diagonal. */
+    void finish_static_operator(TrilinosWrappers::SparseMatrix &matrix,
+                                const GeostaticHold            &hold) const;
+    /** The consistent tangent at @p u from the committed state, regularised, as an operator. */
+    void assemble_geostatic_tangent(const Vec                      &u,
+                                    const GeostaticHold            &hold,
+                                    TrilinosWrappers::SparseMatrix &tangent);
+    /** Modified Newton on the virgin stiffness, then full Newton on the consistent tangent
+     *  with a virgin-stiffness fallback, to g.tolerance x @p weight; @p u is the result. */
+    GeostaticIterations
+    solve_geostatic_equilibrium(const GeostaticHold &hold, double weight, Vec &u);
+    /** The supports' reactions at @p u, applied as constant forces during the impact. */
+    void apply_support_reactions(const Vec &u, const GeostaticHold &hold);
+    /** Commits the geostatic state @p u: histories, interface, energies. */
+    void commit_geostatic_state(const Vec &u);
+    /** The slab-wall gap at the geostatic state @p u (the earth pressure moves the wall face). */
+    void gap_after_geostatic(const Vec &u);
     /** Gauss-point stresses of the geostatic state, gathered to all ranks. */
     std::vector<PointStress> gather_point_stresses(const Vec &u);
 
