@@ -136,6 +136,16 @@ namespace kimp::fem::internal
 
     // implicit.cc
     void run_implicit();
+    /** The implicit loop's state; complete only in implicit.cc. */
+    struct ImplicitState;
+    /** compact_free: the contact DoFs that no constraint holds, the same on all ranks. */
+    void mark_free_contact_dofs();
+    /** One Newmark step of size dt / 2^level from the state's step into its iterate; false if
+     *  Newton fails (the caller halves the step). */
+    bool implicit_newton_step(ImplicitState &s, unsigned int level);
+    /** Accelerations, velocities, contact and residual of the state's iterate, for a step of
+     *  size @p h with Newmark's c1. */
+    void evaluate_implicit_iterate(ImplicitState &s, double h, double c1);
     /** Implicit: K + c1 M of one step size dt / 2^level and its solver. Complete only in
      *  implicit.cc, which alone needs the Trilinos solver headers. */
     struct StepOperator;
