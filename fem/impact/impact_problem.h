@@ -118,6 +118,20 @@ namespace kimp::fem::internal
 
     // contact_setup.cc
     void setup_contact();
+    /** The contact faces, nodes, slaves and masters while setup_contact() builds them;
+     *  complete only in contact_setup.cc. */
+    struct ContactLayout;
+    /** The contact nodes of the sorted faces, numbered by their coordinates, and contact_dofs. */
+    void number_contact_nodes(ContactLayout &c);
+    /** The slave nodes' tributary lengths, the master segments and the master's stiffness. */
+    void measure_contact_faces(ContactLayout &c);
+    /** The slave springs and dashpots (penalty, reduced mass), their lengths and the penalty
+     *  frequency. */
+    void make_contact_slaves(ContactLayout &c);
+    /** initial_gap: the smallest reference gap; an overlap is refused. */
+    void check_initial_gaps(const ContactLayout &c);
+    /** The weights of the mean wall-face and slab-front displacements. */
+    void set_face_weights(const ContactLayout &c);
     /** The faces with boundary id a or b of every rank's locally owned cells, in rank order (the
      *  same list on all ranks). Collective. */
     std::vector<FaceSegment> gather_boundary_faces(types::boundary_id a,
