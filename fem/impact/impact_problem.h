@@ -276,15 +276,26 @@ namespace kimp::fem::internal
 
     // recording.cc
     /** Records histories and energies of step n (time t). */
-    void              record(unsigned long                     n,
-                             double                            t,
-                             const Vec                        &u,
-                             const Vec                        &v_n,
-                             const Vec                        &Ku,
-                             double                            u_r,
-                             double                            v_r,
-                             const PenaltyContact::Evaluation &ev,
-                             const std::vector<double>        &cu);
+    void record(unsigned long                     n,
+                double                            t,
+                const Vec                        &u,
+                const Vec                        &v_n,
+                const Vec                        &Ku,
+                double                            u_r,
+                double                            v_r,
+                const PenaltyContact::Evaluation &ev,
+                const std::vector<double>        &cu);
+    /** Every step: the contact work, force and penetration, the internal work of non-linear
+     *  laws and the dashpots' radiation. */
+    void accumulate_step_work(const Vec                        &u,
+                              const Vec                        &v_n,
+                              const Vec                        &Ku,
+                              const PenaltyContact::Evaluation &ev,
+                              const std::vector<double>        &cu);
+    /** The energy and momentum sums of a sampled step, over the ranks (the layout is listed
+     *  in recording.cc). */
+    static constexpr unsigned int       n_energy_values = 9 + 8 + 5;
+    std::array<double, n_energy_values> sum_energies(const Vec &u, const Vec &v_n, const Vec &Ku);
     [[noreturn]] void throw_divergence(unsigned long n, double t, const Vec &u) const;
     void
     output_results(double t, const Vec &u, const Vec &v, const std::vector<double> &contact_force);
