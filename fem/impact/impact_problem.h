@@ -74,6 +74,10 @@ namespace kimp::fem::internal
     void make_grid();
     void setup_system();
     void assemble_system();
+    /** The stiffness's sparsity: the cells', and the contact and interface couplings. */
+    void make_stiffness_sparsity();
+    /** inverse_mass and free_mask of the unconstrained DoFs with mass; slab_total_mass. */
+    void mark_free_dofs();
     /** Constitutive law per material id: material_laws, else linear elastic. */
     void make_laws();
     /** f = laws_internal_force(u) + the geostatic offset (initial stress - gravity) - the
