@@ -117,6 +117,9 @@ namespace kimp::fem::internal
     /** f = internal force of the laws at u: K u for linear laws, else assembled from the
      *  laws' stress with the committed history (trial history written). */
     void laws_internal_force(const Vec &u, Vec &f);
+    /** f from force_local: the ghost entries added on their owner, then the owned sums;
+     *  constrained DoFs get none. */
+    void add_force_to_owners(Vec &f);
     /** The same by an FEValues loop over the cells at every call: the kernel's reference. */
     void internal_force_reference(const Vec &u, Vec &f);
 
