@@ -207,6 +207,9 @@ namespace kimp::fem
     return f;
   }
 
+  // Long by design: one return mapping in principal stresses. The active-set search, the
+  // plastic strain of the chosen set and its consistent tangent read the same trial stress,
+  // eigenframe and set, and this is the innermost call of every step of an impact.
   VoigtStress MohrCoulombLaw::update(const VoigtStrain &eps,
                                      const double      *h0,
                                      double            *h1,

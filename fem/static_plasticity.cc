@@ -75,6 +75,12 @@ namespace kimp::fem
       return t;
     }
 
+    /** Refuses a parameter the static solve cannot honour. */
+    [[noreturn]] void bad(const std::string &what)
+    {
+      throw std::invalid_argument(what);
+    }
+
     class StaticProblem
     {
     public:
@@ -100,6 +106,13 @@ namespace kimp::fem
                          std::vector<double>  &residuals);
       void        advance(double a, double b, unsigned int depth, StaticPlasticityResult &out);
       VoigtStrain strain(const Vector<double> &u, unsigned int c, unsigned int q) const;
+      /** The triangulation of p.mesh and its DoFs. */
+      void build_mesh();
+      /** The prescribed DoFs (the later entry governs a shared one), their constraints and the
+       *  sparsity of matrix_. */
+      void prescribe_displacements();
+      /** Per Gauss point: B-bar (Voigt), JxW, eigenstrain of the initial stress; body force. */
+      void precompute_points();
 
       const StaticPlasticityParameters    &p_;
       Triangulation<dim>                   tria_;
@@ -128,7 +141,6 @@ namespace kimp::fem
       : p_(p)
       , fe_(FE_Q<dim>(1), dim)
     {
-      const auto bad = [](const std::string &what) { throw std::invalid_argument(what); };
       if (p.mesh.cells.empty())
         bad("static plasticity: the mesh has no cells");
       if (p.n_steps == 0 || !(p.newton_tolerance > 0) || p.max_iterations == 0)
@@ -139,9 +151,18 @@ namespace kimp::fem
         if (!(rho >= 0))
           bad("static plasticity: density of material " + std::to_string(id) + " = " +
               std::to_string(rho) + " (must be >= 0)");
+      build_mesh();
+      prescribe_displacements();
+      precompute_points();
+      const unsigned int n_dofs = dof_handler_.n_dofs();
+      u_.reinit(n_dofs);
+      r_.reinit(n_dofs);
+    }
 
-      // Mesh.
-      std::vector<Point<dim>> vertices;
+    void StaticProblem::build_mesh()
+    {
+      const StaticPlasticityParameters &p = p_;
+      std::vector<Point<dim>>           vertices;
       for (const auto &v : p.mesh.vertices)
         vertices.emplace_back(v[0], v[1]);
       std::vector<CellData<dim>> cells(p.mesh.cells.size());
@@ -169,16 +190,18 @@ namespace kimp::fem
       tria_.create_triangulation(vertices, cells, boundary);
       dof_handler_.reinit(tria_);
       dof_handler_.distribute_dofs(fe_);
-      const unsigned int n_dofs = dof_handler_.n_dofs(), n_cells = tria_.n_active_cells();
+    }
 
-      // Prescribed DoFs: the later entry governs a shared DoF.
+    void StaticProblem::prescribe_displacements()
+    {
+      const unsigned int n_dofs = dof_handler_.n_dofs();
       governed_by_.assign(n_dofs, -1);
       component_.assign(n_dofs, 0);
       target_.reinit(n_dofs);
       std::vector<types::global_dof_index> face_dofs(fe_.n_dofs_per_face());
-      for (std::size_t e = 0; e < p.prescribed.size(); ++e)
+      for (std::size_t e = 0; e < p_.prescribed.size(); ++e)
       {
-        const auto &pd    = p.prescribed[e];
+        const auto &pd    = p_.prescribed[e];
         bool        found = false;
         for (const auto &cell : dof_handler_.active_cell_iterators())
           for (const auto f : cell->face_indices())
@@ -208,9 +231,13 @@ namespace kimp::fem
       DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints_, false);
       pattern_.copy_from(dsp);
       matrix_.reinit(pattern_);
+    }
 
-      // Per Gauss point: B-bar (Voigt), JxW, eigenstrain of the initial stress; body force.
-      unsigned int n_history = 0;
+    void StaticProblem::precompute_points()
+    {
+      const unsigned int n_dofs = dof_handler_.n_dofs(), n_cells = tria_.n_active_cells();
+      const StaticPlasticityParameters &p         = p_;
+      unsigned int                      n_history = 0;
       for (const auto &[id, law] : p.laws)
         n_history = std::max(n_history, law->n_history());
       history_.reinit(n_cells, n_q, n_history);
@@ -279,8 +306,6 @@ namespace kimp::fem
             }
           }
       }
-      u_.reinit(n_dofs);
-      r_.reinit(n_dofs);
     }
 
     VoigtStrain StaticProblem::strain(const Vector<double> &u, unsigned int c, unsigned int q) const

@@ -245,6 +245,121 @@ namespace kimp::geometry
   }
 
 
+  namespace
+  {
+    /** Counts, cell sizes, neighbour and aspect ratios of the blocks that are meshed. */
+    MeshStatistics block_statistics(const SceneGeometry &geometry,
+                                    const Block         &wall,
+                                    const Block         &soil,
+                                    const Block         &slab,
+                                    std::size_t          n_nodes)
+    {
+      MeshStatistics statistics;
+      statistics.n_nodes      = n_nodes;
+      statistics.n_wall_cells = wall.n_cells();
+      statistics.n_soil_cells = geometry.with_backfill ? soil.n_cells() : 0;
+      statistics.n_slab_cells = geometry.mesh_slab ? slab.n_cells() : 0;
+      statistics.n_cells =
+        statistics.n_wall_cells + statistics.n_soil_cells + statistics.n_slab_cells;
+      statistics.n_wall_contact_faces = wall.y.size() - 1;
+      statistics.n_slab_contact_faces = geometry.mesh_slab ? slab.y.size() - 1 : 0;
+      statistics.min_cell_size        = HUGE_VAL;
+      add_block_statistics(wall, statistics);
+      if (geometry.with_backfill)
+        add_block_statistics(soil, statistics);
+      if (geometry.mesh_slab)
+        add_block_statistics(slab, statistics);
+
+      std::vector<double> wall_soil_x = wall.x;
+      if (geometry.with_backfill)
+        wall_soil_x.insert(wall_soil_x.end(), soil.x.begin() + 1, soil.x.end());
+      statistics.max_neighbour_ratio =
+        std::max(max_neighbour_ratio(wall_soil_x), max_neighbour_ratio(wall.y));
+      if (geometry.mesh_slab)
+        statistics.max_neighbour_ratio = std::max({statistics.max_neighbour_ratio,
+                                                   max_neighbour_ratio(slab.x),
+                                                   max_neighbour_ratio(slab.y)});
+
+      statistics.contact_cell_size =
+        column_cell_size(wall, 0, geometry.slab_bottom(), geometry.resolved_slab_top());
+      if (geometry.mesh_slab)
+        statistics.contact_cell_size =
+          std::max(statistics.contact_cell_size,
+                   column_cell_size(slab, slab.x.size() - 2, -HUGE_VAL, HUGE_VAL));
+      return statistics;
+    }
+
+    /** The surfaces, the boundary curves and their physical groups, written to @p msh_file. */
+    void write_scene_msh(const SceneGeometry         &geometry,
+                         const std::filesystem::path &msh_file,
+                         const Block                 &wall,
+                         const Block                 &soil,
+                         const Block                 &slab,
+                         const SurfaceNodes          &wall_nodes,
+                         const SurfaceNodes          &soil_nodes,
+                         const SurfaceNodes          &slab_nodes)
+    {
+      // gmsh 4.8 reports some failures by throwing non-std types (int): translate them.
+      try
+      {
+        GmshSession session("kimp_scene");
+        session.set_option("Mesh.MshFileVersion", 4.1);
+        session.set_option("Mesh.Binary", 0);
+        session.set_option("Mesh.SaveAll", 0);
+        session.set_option("Mesh.SaveParametric", 0);
+
+        std::size_t next_element = 1;
+        if (geometry.mesh_slab)
+          add_surface(slab_material, slab_nodes, slab, next_element, "slab");
+        add_surface(wall_material, wall_nodes, wall, next_element, "wall");
+        if (geometry.with_backfill)
+          add_surface(soil_material, soil_nodes, soil, next_element, "soil");
+
+        add_curve(wall_base_curve, row_lines(wall, 0), next_element);
+        add_curve(wall_front_curve, column_lines(wall, 0), next_element);
+        std::vector<int> base_curves{wall_base_curve};
+        if (geometry.with_backfill)
+        {
+          add_curve(soil_base_curve, row_lines(soil, 0), next_element);
+          add_curve(soil_side_curve, column_lines(soil, soil.x.size() - 1), next_element);
+          base_curves.push_back(soil_base_curve);
+          add_boundary_group(soil_far_side, {soil_side_curve}, "soil_far_side");
+          if (geometry.interface_contact)
+          {
+            std::vector<std::size_t> back = column_lines(wall, wall.x.size() - 1);
+            back.resize(2 * (soil.y.size() - 1)); // up to H_b; above it the wall back is free
+            add_curve(wall_back_curve, back, next_element);
+            add_curve(soil_front_curve, column_lines(soil, 0), next_element);
+            add_boundary_group(wall_back, {wall_back_curve}, "wall_back");
+            add_boundary_group(soil_front, {soil_front_curve}, "soil_front");
+          }
+        }
+        add_boundary_group(fixed_base, base_curves, "fixed_base");
+        if (geometry.mesh_slab)
+        {
+          add_curve(slab_front_curve, column_lines(slab, slab.x.size() - 1), next_element);
+          add_boundary_group(slab_contact, {slab_front_curve}, "slab_contact");
+        }
+        add_boundary_group(wall_contact, {wall_front_curve}, "wall_contact");
+
+        std::error_code error;
+        if (msh_file.has_parent_path())
+          std::filesystem::create_directories(msh_file.parent_path(), error);
+        gmsh::write(msh_file.string());
+        check_written(msh_file);
+      }
+      catch (const std::exception &)
+      {
+        throw;
+      }
+      catch (...)
+      {
+        throw std::runtime_error("build_scene_mesh: gmsh failed while writing '" +
+                                 msh_file.string() + "'");
+      }
+    }
+  } // namespace
+
   MeshStatistics build_scene_mesh(const SceneGeometry         &geometry,
                                   const std::filesystem::path &msh_file)
   {
@@ -269,96 +384,8 @@ namespace kimp::geometry
     if (geometry.mesh_slab)
       slab_nodes = number_nodes(slab, next_node, nullptr);
 
-    MeshStatistics statistics;
-    statistics.n_nodes      = next_node - 1;
-    statistics.n_wall_cells = wall.n_cells();
-    statistics.n_soil_cells = geometry.with_backfill ? soil.n_cells() : 0;
-    statistics.n_slab_cells = geometry.mesh_slab ? slab.n_cells() : 0;
-    statistics.n_cells =
-      statistics.n_wall_cells + statistics.n_soil_cells + statistics.n_slab_cells;
-    statistics.n_wall_contact_faces = wall.y.size() - 1;
-    statistics.n_slab_contact_faces = geometry.mesh_slab ? slab.y.size() - 1 : 0;
-    statistics.min_cell_size        = HUGE_VAL;
-    add_block_statistics(wall, statistics);
-    if (geometry.with_backfill)
-      add_block_statistics(soil, statistics);
-    if (geometry.mesh_slab)
-      add_block_statistics(slab, statistics);
-
-    std::vector<double> wall_soil_x = wall.x;
-    if (geometry.with_backfill)
-      wall_soil_x.insert(wall_soil_x.end(), soil.x.begin() + 1, soil.x.end());
-    statistics.max_neighbour_ratio =
-      std::max(max_neighbour_ratio(wall_soil_x), max_neighbour_ratio(wall.y));
-    if (geometry.mesh_slab)
-      statistics.max_neighbour_ratio = std::max(
-        {statistics.max_neighbour_ratio, max_neighbour_ratio(slab.x), max_neighbour_ratio(slab.y)});
-
-    statistics.contact_cell_size =
-      column_cell_size(wall, 0, geometry.slab_bottom(), geometry.resolved_slab_top());
-    if (geometry.mesh_slab)
-      statistics.contact_cell_size =
-        std::max(statistics.contact_cell_size,
-                 column_cell_size(slab, slab.x.size() - 2, -HUGE_VAL, HUGE_VAL));
-
-    // gmsh 4.8 reports some failures by throwing non-std types (int): translate them.
-    try
-    {
-      GmshSession session("kimp_scene");
-      session.set_option("Mesh.MshFileVersion", 4.1);
-      session.set_option("Mesh.Binary", 0);
-      session.set_option("Mesh.SaveAll", 0);
-      session.set_option("Mesh.SaveParametric", 0);
-
-      std::size_t next_element = 1;
-      if (geometry.mesh_slab)
-        add_surface(slab_material, slab_nodes, slab, next_element, "slab");
-      add_surface(wall_material, wall_nodes, wall, next_element, "wall");
-      if (geometry.with_backfill)
-        add_surface(soil_material, soil_nodes, soil, next_element, "soil");
-
-      add_curve(wall_base_curve, row_lines(wall, 0), next_element);
-      add_curve(wall_front_curve, column_lines(wall, 0), next_element);
-      std::vector<int> base_curves{wall_base_curve};
-      if (geometry.with_backfill)
-      {
-        add_curve(soil_base_curve, row_lines(soil, 0), next_element);
-        add_curve(soil_side_curve, column_lines(soil, soil.x.size() - 1), next_element);
-        base_curves.push_back(soil_base_curve);
-        add_boundary_group(soil_far_side, {soil_side_curve}, "soil_far_side");
-        if (geometry.interface_contact)
-        {
-          std::vector<std::size_t> back = column_lines(wall, wall.x.size() - 1);
-          back.resize(2 * (soil.y.size() - 1)); // up to H_b; above it the wall back is free
-          add_curve(wall_back_curve, back, next_element);
-          add_curve(soil_front_curve, column_lines(soil, 0), next_element);
-          add_boundary_group(wall_back, {wall_back_curve}, "wall_back");
-          add_boundary_group(soil_front, {soil_front_curve}, "soil_front");
-        }
-      }
-      add_boundary_group(fixed_base, base_curves, "fixed_base");
-      if (geometry.mesh_slab)
-      {
-        add_curve(slab_front_curve, column_lines(slab, slab.x.size() - 1), next_element);
-        add_boundary_group(slab_contact, {slab_front_curve}, "slab_contact");
-      }
-      add_boundary_group(wall_contact, {wall_front_curve}, "wall_contact");
-
-      std::error_code error;
-      if (msh_file.has_parent_path())
-        std::filesystem::create_directories(msh_file.parent_path(), error);
-      gmsh::write(msh_file.string());
-      check_written(msh_file);
-    }
-    catch (const std::exception &)
-    {
-      throw;
-    }
-    catch (...)
-    {
-      throw std::runtime_error("build_scene_mesh: gmsh failed while writing '" + msh_file.string() +
-                               "'");
-    }
+    const MeshStatistics statistics = block_statistics(geometry, wall, soil, slab, next_node - 1);
+    write_scene_msh(geometry, msh_file, wall, soil, slab, wall_nodes, soil_nodes, slab_nodes);
     return statistics;
   }
 } // namespace kimp::geometry

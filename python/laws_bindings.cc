@@ -86,7 +86,7 @@ namespace kimp::python
       return setup;
     }
 
-    py::dict fit_dict(fit::FitResult &&r, double peak_tolerance)
+    py::dict fit_dict(fit::FitResult &&r)
     {
       py::dict   d;
       const auto parameter = [](const fit::FitParameter &p)
@@ -99,207 +99,215 @@ namespace kimp::python
       d["normalised_displacement_rms"] = r.normalised_displacement_rms;
       d["function_evaluations"]        = r.function_evaluations;
       d["status"]                      = r.status;
-      d["verdict"]                     = fit::fit_verdict(r, peak_tolerance);
+      d["verdict"]                     = fit::fit_verdict(r);
       d["fem_peak_force"]              = r.fem_peak_force;
       d["fem_contact_duration"]        = r.fem_contact_duration;
       d["fem_impulse"]                 = r.fem_impulse;
       d["contact_start"]               = r.contact_start;
       d["model_peak_force"]            = r.model_peak_force;
       d["model_contact_duration"]      = r.model_contact_duration;
-      d["model_impulse"]               = r.model_impulse;
       d["model_effective_cor"]         = r.model_effective_cor;
-      d["peak_force_ratio"]            = r.peak_force_ratio();
-      d["impulse_ratio"]               = r.impulse_ratio();
-      d["contact_duration_ratio"]      = r.contact_duration_ratio();
       d["time"]                        = to_numpy(std::move(r.time));
       d["fem_force"]                   = to_numpy(std::move(r.fem_force));
       d["model_force"]                 = to_numpy(std::move(r.model_force));
       return d;
     }
+
+    /** force_law_names() and the Law class: a force law's response along a path. */
+    void register_law_class(py::module_ &m)
+    {
+      m.def("force_law_names", &lumped::force_law_names);
+
+      py::class_<Law>(m, "Law")
+        .def(py::init(
+               [](const std::string           &law,
+                  double                       k,
+                  const std::optional<double> &exponent,
+                  double                       cor,
+                  double                       m_eff,
+                  bool                         ye,
+                  const std::optional<double> &a1,
+                  double                       delta_u,
+                  double                       k_w)
+               {
+                 lumped::ForceLawSpec spec;
+                 spec.law                         = law;
+                 spec.stiffness                   = k;
+                 spec.exponent                    = exponent;
+                 spec.cor                         = cor;
+                 spec.effective_mass              = m_eff;
+                 spec.hertzdamp_ye                = ye;
+                 spec.impact_a1                   = a1;
+                 spec.bumper_ultimate_deformation = delta_u;
+                 spec.bumper_wall_stiffness       = k_w;
+                 return Law(spec);
+               }),
+             py::arg("law"),
+             py::arg("k"),
+             py::arg("exponent") = py::none(),
+             py::arg("cor")      = 0.7,
+             py::arg("m_eff")    = 0.0,
+             py::arg("ye")       = false,
+             py::arg("a1")       = py::none(),
+             py::arg("delta_u")  = 0.0,
+             py::arg("k_w")      = 0.0)
+        .def_property_readonly("law", [](const Law &l) { return l.spec().law; })
+        .def("force", first_trial_of<&lumped::ForceResponse::force>())
+        .def("stiffness", first_trial_of<&lumped::ForceResponse::stiffness>())
+        .def("damping", first_trial_of<&lumped::ForceResponse::damping>())
+        .def("path",
+             [](Law &l, const DoubleArray &delta, const DoubleArray &rate)
+             { return to_numpy(l.path(to_vector(delta), to_vector(rate))); })
+        .def("stability_stiffness", &Law::stability_stiffness);
+    }
+
+    /** collide(), effective_mass() and cor_table(): two-body collisions of a law. */
+    void register_collisions(py::module_ &m)
+    {
+      m.def(
+        "collide",
+        [](Law &law, double m1, double m2, double v1, double v2, double dt, bool second_order)
+        {
+          const lumped::TwoBodySetup setup = two_body(m1, m2, v1, v2, dt, second_order);
+          lumped::ForceLawSpec       spec  = law.spec();
+          if (spec.effective_mass <= 0.0)
+            spec.effective_mass = setup.effective_mass();
+          lumped::TwoBodyResult r;
+          {
+            py::gil_scoped_release release;
+            r = lumped::simulate_two_body(*lumped::make_force_law(spec), setup);
+          }
+          py::dict d;
+          d["velocity_1_after"]      = r.velocity_1_after;
+          d["velocity_2_after"]      = r.velocity_2_after;
+          d["effective_cor"]         = r.effective_cor;
+          d["peak_force"]            = r.peak_force;
+          d["min_force"]             = r.min_force;
+          d["contact_duration"]      = r.contact_duration;
+          d["max_penetration"]       = r.max_penetration;
+          d["impact_velocity"]       = r.impact_velocity;
+          d["kinetic_energy_before"] = r.kinetic_energy_before;
+          d["kinetic_energy_loss"]   = r.kinetic_energy_loss;
+          d["dissipated_energy"]     = r.dissipated_energy;
+          d["permanent_indentation"] = r.permanent_indentation;
+          d["momentum_error"]        = r.momentum_error;
+          d["n_steps"]               = r.n_steps;
+          d["effective_mass"]        = spec.effective_mass;
+          d["time"]                  = to_numpy(std::move(r.history.time));
+          d["deformation"]           = to_numpy(std::move(r.history.deformation));
+          d["rate"]                  = to_numpy(std::move(r.history.rate));
+          d["force"]                 = to_numpy(std::move(r.history.force));
+          return d;
+        },
+        py::arg("law"),
+        py::arg("mass_1"),
+        py::arg("mass_2"),
+        py::arg("velocity_1"),
+        py::arg("velocity_2"),
+        py::arg("time_step"),
+        py::arg("second_order"));
+
+      m.def(
+        "effective_mass",
+        [](double m1, double m2)
+        { return two_body(m1, m2, 1.0, 0.0, 1.0, false).effective_mass(); },
+        py::arg("mass_1"),
+        py::arg("mass_2"),
+        "m1·m2/(m1 + m2), kg (m1 against a rigid wall, m2 = inf), as the collision computes it.");
+      m.def(
+        "cor_table",
+        [](const std::string &text, const std::string &name)
+        {
+          std::vector<app::CollideRow> rows;
+          {
+            py::gil_scoped_release release;
+            rows = app::collide_cor_table(io::load_scene_text<app::CollideScene>(text, name));
+          }
+          py::list list;
+          for (const app::CollideRow &r : rows)
+          {
+            py::dict d;
+            d["name"]             = r.name;
+            d["law"]              = r.row.law;
+            d["nominal_cor"]      = r.row.nominal_cor;
+            d["effective_cor"]    = r.row.effective_cor;
+            d["relative_error"]   = r.row.relative_error;
+            d["peak_force"]       = r.row.peak_force;
+            d["contact_duration"] = r.row.contact_duration;
+            d["max_penetration"]  = r.row.max_penetration;
+            d["energy_error"]     = r.row.energy_error;
+            d["status"]           = r.status;
+            list.append(d);
+          }
+          return list;
+        },
+        py::arg("text"),
+        py::arg("name"));
+    }
+
+    /** fit(): a law fitted to a force history. */
+    void register_fit(py::module_ &m)
+    {
+      m.def(
+        "fit",
+        [](const DoubleArray                &time,
+           const DoubleArray                &force,
+           double                            velocity,
+           double                            mass,
+           const std::string                &law,
+           double                            cor,
+           const std::optional<double>      &exponent,
+           bool                              fit_cor,
+           bool                              fit_exponent,
+           const std::optional<DoubleArray> &indentation,
+           const std::optional<DoubleArray> &slab_displacement,
+           double                            displacement_weight,
+           double                            wall_mass)
+        {
+          fit::ForceHistory history;
+          history.time  = to_vector(time);
+          history.force = to_vector(force);
+          if (indentation)
+            history.indentation = to_vector(*indentation);
+          if (slab_displacement)
+            history.slab_displacement = to_vector(*slab_displacement);
+          lumped::ForceLawSpec spec;
+          spec.law      = law;
+          spec.cor      = cor;
+          spec.exponent = exponent;
+          // The window and misfit settings of `kimp fit` and `kimp study` (fit::FitConfig).
+          fit::FitOptions options     = fit::fit_options(fit::FitConfig{});
+          options.fit_cor             = fit_cor;
+          options.fit_exponent        = fit_exponent;
+          options.displacement_weight = displacement_weight;
+          options.wall_mass           = wall_mass;
+          fit::FitResult result;
+          {
+            py::gil_scoped_release release;
+            result = fit::fit_impact_law(history, mass, velocity, spec, options);
+          }
+          return fit_dict(std::move(result));
+        },
+        py::arg("time"),
+        py::arg("force"),
+        py::arg("velocity"),
+        py::arg("mass"),
+        py::arg("law"),
+        py::arg("cor"),
+        py::arg("exponent"),
+        py::arg("fit_cor"),
+        py::arg("fit_exponent"),
+        py::arg("indentation"),
+        py::arg("slab_displacement"),
+        py::arg("displacement_weight"),
+        py::arg("wall_mass"));
+    }
   } // namespace
 
   void register_laws(py::module_ &m)
   {
-    m.def("force_law_names", &lumped::force_law_names);
-
-    py::class_<Law>(m, "Law")
-      .def(py::init(
-             [](const std::string           &law,
-                double                       k,
-                const std::optional<double> &exponent,
-                double                       cor,
-                double                       m_eff,
-                bool                         ye,
-                const std::optional<double> &a1,
-                double                       delta_u,
-                double                       k_w)
-             {
-               lumped::ForceLawSpec spec;
-               spec.law                         = law;
-               spec.stiffness                   = k;
-               spec.exponent                    = exponent;
-               spec.cor                         = cor;
-               spec.effective_mass              = m_eff;
-               spec.hertzdamp_ye                = ye;
-               spec.impact_a1                   = a1;
-               spec.bumper_ultimate_deformation = delta_u;
-               spec.bumper_wall_stiffness       = k_w;
-               return Law(spec);
-             }),
-           py::arg("law"),
-           py::arg("k"),
-           py::arg("exponent") = py::none(),
-           py::arg("cor")      = 0.7,
-           py::arg("m_eff")    = 0.0,
-           py::arg("ye")       = false,
-           py::arg("a1")       = py::none(),
-           py::arg("delta_u")  = 0.0,
-           py::arg("k_w")      = 0.0)
-      .def_property_readonly("law", [](const Law &l) { return l.spec().law; })
-      .def("force", first_trial_of<&lumped::ForceResponse::force>())
-      .def("stiffness", first_trial_of<&lumped::ForceResponse::stiffness>())
-      .def("damping", first_trial_of<&lumped::ForceResponse::damping>())
-      .def("path",
-           [](Law &l, const DoubleArray &delta, const DoubleArray &rate)
-           { return to_numpy(l.path(to_vector(delta), to_vector(rate))); })
-      .def("stability_stiffness", &Law::stability_stiffness);
-
-    m.def(
-      "collide",
-      [](Law &law, double m1, double m2, double v1, double v2, double dt, bool second_order)
-      {
-        const lumped::TwoBodySetup setup = two_body(m1, m2, v1, v2, dt, second_order);
-        lumped::ForceLawSpec       spec  = law.spec();
-        if (spec.effective_mass <= 0.0)
-          spec.effective_mass = setup.effective_mass();
-        lumped::TwoBodyResult r;
-        {
-          py::gil_scoped_release release;
-          r = lumped::simulate_two_body(*lumped::make_force_law(spec), setup);
-        }
-        py::dict d;
-        d["velocity_1_after"]      = r.velocity_1_after;
-        d["velocity_2_after"]      = r.velocity_2_after;
-        d["effective_cor"]         = r.effective_cor;
-        d["peak_force"]            = r.peak_force;
-        d["min_force"]             = r.min_force;
-        d["contact_duration"]      = r.contact_duration;
-        d["max_penetration"]       = r.max_penetration;
-        d["impact_velocity"]       = r.impact_velocity;
-        d["kinetic_energy_before"] = r.kinetic_energy_before;
-        d["kinetic_energy_loss"]   = r.kinetic_energy_loss;
-        d["dissipated_energy"]     = r.dissipated_energy;
-        d["permanent_indentation"] = r.permanent_indentation;
-        d["momentum_error"]        = r.momentum_error;
-        d["n_steps"]               = r.n_steps;
-        d["effective_mass"]        = spec.effective_mass;
-        d["time"]                  = to_numpy(std::move(r.history.time));
-        d["deformation"]           = to_numpy(std::move(r.history.deformation));
-        d["rate"]                  = to_numpy(std::move(r.history.rate));
-        d["force"]                 = to_numpy(std::move(r.history.force));
-        return d;
-      },
-      py::arg("law"),
-      py::arg("mass_1"),
-      py::arg("mass_2"),
-      py::arg("velocity_1"),
-      py::arg("velocity_2"),
-      py::arg("time_step"),
-      py::arg("second_order"));
-
-    m.def(
-      "effective_mass",
-      [](double m1, double m2) { return two_body(m1, m2, 1.0, 0.0, 1.0, false).effective_mass(); },
-      py::arg("mass_1"),
-      py::arg("mass_2"),
-      "m1·m2/(m1 + m2), kg (m1 against a rigid wall, m2 = inf), as the collision computes it.");
-    m.def(
-      "cor_table",
-      [](const std::string &text, const std::string &name)
-      {
-        std::vector<app::CollideRow> rows;
-        {
-          py::gil_scoped_release release;
-          rows = app::collide_cor_table(io::load_scene_text<app::CollideScene>(text, name));
-        }
-        py::list list;
-        for (const app::CollideRow &r : rows)
-        {
-          py::dict d;
-          d["name"]             = r.name;
-          d["law"]              = r.row.law;
-          d["nominal_cor"]      = r.row.nominal_cor;
-          d["effective_cor"]    = r.row.effective_cor;
-          d["relative_error"]   = r.row.relative_error;
-          d["peak_force"]       = r.row.peak_force;
-          d["contact_duration"] = r.row.contact_duration;
-          d["max_penetration"]  = r.row.max_penetration;
-          d["energy_error"]     = r.row.energy_error;
-          d["status"]           = r.status;
-          list.append(d);
-        }
-        return list;
-      },
-      py::arg("text"),
-      py::arg("name"));
-
-    m.def(
-      "fit",
-      [](const DoubleArray                &time,
-         const DoubleArray                &force,
-         double                            velocity,
-         double                            mass,
-         const std::string                &law,
-         double                            cor,
-         const std::optional<double>      &exponent,
-         bool                              fit_cor,
-         bool                              fit_exponent,
-         const std::optional<DoubleArray> &indentation,
-         const std::optional<DoubleArray> &slab_displacement,
-         double                            displacement_weight,
-         double                            wall_mass,
-         double                            peak_tolerance)
-      {
-        if (!(peak_tolerance > 0.0))
-          throw std::invalid_argument("peak_tolerance = " + std::to_string(peak_tolerance) +
-                                      " (must be > 0)");
-        fit::ForceHistory history;
-        history.time  = to_vector(time);
-        history.force = to_vector(force);
-        if (indentation)
-          history.indentation = to_vector(*indentation);
-        if (slab_displacement)
-          history.slab_displacement = to_vector(*slab_displacement);
-        lumped::ForceLawSpec spec;
-        spec.law      = law;
-        spec.cor      = cor;
-        spec.exponent = exponent;
-        // The window and misfit settings of `kimp fit` and `kimp study` (fit::FitConfig).
-        fit::FitOptions options     = fit::fit_options(fit::FitConfig{});
-        options.fit_cor             = fit_cor;
-        options.fit_exponent        = fit_exponent;
-        options.displacement_weight = displacement_weight;
-        options.wall_mass           = wall_mass;
-        fit::FitResult result;
-        {
-          py::gil_scoped_release release;
-          result = fit::fit_impact_law(history, mass, velocity, spec, options);
-        }
-        return fit_dict(std::move(result), peak_tolerance);
-      },
-      py::arg("time"),
-      py::arg("force"),
-      py::arg("velocity"),
-      py::arg("mass"),
-      py::arg("law"),
-      py::arg("cor"),
-      py::arg("exponent"),
-      py::arg("fit_cor"),
-      py::arg("fit_exponent"),
-      py::arg("indentation"),
-      py::arg("slab_displacement"),
-      py::arg("displacement_weight"),
-      py::arg("wall_mass"),
-      py::arg("peak_tolerance"));
+    register_law_class(m);
+    register_collisions(m);
+    register_fit(m);
   }
 } // namespace kimp::python

@@ -384,10 +384,28 @@ namespace kimp::server
     /// as an upload's "../uploads/NAME", mean what they mean to the run's child).
     std::filesystem::path run_folder() const { return options.runs_dir / "run"; }
 
+    /** Registers every handler (the areas below, in turn). */
     void routes();
+    void install_guards();
+    void page_routes();
+    void scene_routes();
+    void run_routes();
+    void run_output_routes();
+    void record_routes();
   };
 
   void GuiServer::Impl::routes()
+  {
+    install_guards();
+    page_routes();
+    scene_routes();
+    run_routes();
+    run_output_routes();
+    record_routes();
+  }
+
+  /** Thread pool, limits, security headers, and the JSON error answers of every failure. */
+  void GuiServer::Impl::install_guards()
   {
     http.new_task_queue = [] { return new httplib::ThreadPool(request_threads); };
     http.set_payload_max_length(options.max_body);
@@ -465,7 +483,11 @@ namespace kimp::server
         }
         send_error(res, res.status, message);
       });
+  }
 
+  /** The page, its assets, the server's info, the commands' schemas and the example scenes. */
+  void GuiServer::Impl::page_routes()
+  {
     http.Get("/",
              [](const httplib::Request &, httplib::Response &res)
              { set_body(res, report::gui_html(), "text/html; charset=utf-8"); });
@@ -504,6 +526,29 @@ namespace kimp::server
                                  schema_wanted ? "--print-schema" : "--print-defaults");
                set_body(res, text, schema_wanted ? "application/json" : "text/plain");
              });
+    // The scenes shipped with kimp (data/scenes, embedded at build time): name and the first
+    // line of their leading comment; the text is GET /assets/NAME.
+    http.Get("/api/examples",
+             [](const httplib::Request &, httplib::Response &res)
+             {
+               nlohmann::json list = nlohmann::json::array();
+               for (const auto name : report::asset_names())
+               {
+                 if (name.size() < 6 || name.substr(name.size() - 5) != ".yaml")
+                   continue;
+                 const std::string_view text = *report::asset(name);
+                 std::string            about;
+                 if (text.rfind("# ", 0) == 0)
+                   about = std::string(text.substr(2, text.find('\n') - 2));
+                 list.push_back({{"name", std::string(name)}, {"about", about}});
+               }
+               send_json(res, list);
+             });
+  }
+
+  /** A scene checked, its ground motion and its lumped model, as its run would read them. */
+  void GuiServer::Impl::scene_routes()
+  {
     post("/api/validate",
          [this](const httplib::Request &, const std::string &text, httplib::Response &res)
          {
@@ -511,33 +556,6 @@ namespace kimp::server
            const std::string error =
              commands.validation_error(text_member(body, "command"), text_member(body, "scene"));
            send_json(res, {{"ok", error.empty()}, {"error", runs.shown()(error)}});
-         });
-    post("/api/runs",
-         [this](const httplib::Request &, const std::string &text, httplib::Response &res)
-         {
-           const auto        body    = parse_body(text);
-           const std::string command = text_member(body, "command");
-           const std::string scene   = text_member(body, "scene");
-           const std::string sweep   = text_member(body, "sweep", command == "sweep");
-           if (command != "sweep")
-           {
-             const std::string error = commands.validation_error(command, scene);
-             if (!error.empty())
-               throw HttpError(400, error);
-           }
-           try
-           {
-             const std::string id = runs.start(command, scene, sweep);
-             if (body.contains("name") || body.contains("notes"))
-               runs.set_meta(id,
-                             text_member(body, "name", false),
-                             text_member(body, "notes", false));
-             send_json(res, {{"id", id}}, 201);
-           }
-           catch (const RunQueueFull &error)
-           {
-             throw HttpError(429, error.what());
-           }
          });
     // The scene's ground motion as its run would load, scale and trim it (the synthetic
     // near-fault motion included), in the shape of GET /api/records/NAME.
@@ -576,6 +594,38 @@ namespace kimp::server
            catch (const io::SceneError &error)
            {
              throw HttpError(400, error.what());
+           }
+         });
+  }
+
+  /** Runs started, listed, described, cancelled, named and deleted. */
+  void GuiServer::Impl::run_routes()
+  {
+    post("/api/runs",
+         [this](const httplib::Request &, const std::string &text, httplib::Response &res)
+         {
+           const auto        body    = parse_body(text);
+           const std::string command = text_member(body, "command");
+           const std::string scene   = text_member(body, "scene");
+           const std::string sweep   = text_member(body, "sweep", command == "sweep");
+           if (command != "sweep")
+           {
+             const std::string error = commands.validation_error(command, scene);
+             if (!error.empty())
+               throw HttpError(400, error);
+           }
+           try
+           {
+             const std::string id = runs.start(command, scene, sweep);
+             if (body.contains("name") || body.contains("notes"))
+               runs.set_meta(id,
+                             text_member(body, "name", false),
+                             text_member(body, "notes", false));
+             send_json(res, {{"id", id}}, 201);
+           }
+           catch (const RunQueueFull &error)
+           {
+             throw HttpError(429, error.what());
            }
          });
     http.Get("/api/runs",
@@ -636,24 +686,11 @@ namespace kimp::server
            }
            send_json(res, {{"deleted", id}});
          });
-    // The scenes shipped with kimp (data/scenes, embedded at build time): name and the first
-    // line of their leading comment; the text is GET /assets/NAME.
-    http.Get("/api/examples",
-             [](const httplib::Request &, httplib::Response &res)
-             {
-               nlohmann::json list = nlohmann::json::array();
-               for (const auto name : report::asset_names())
-               {
-                 if (name.size() < 6 || name.substr(name.size() - 5) != ".yaml")
-                   continue;
-                 const std::string_view text = *report::asset(name);
-                 std::string            about;
-                 if (text.rfind("# ", 0) == 0)
-                   about = std::string(text.substr(2, text.find('\n') - 2));
-                 list.push_back({{"name", std::string(name)}, {"about", about}});
-               }
-               send_json(res, list);
-             });
+  }
+
+  /** A run's progress as server-sent events, its report and data, and its files. */
+  void GuiServer::Impl::run_output_routes()
+  {
     http.Get(R"(/api/runs/([A-Za-z0-9_-]+)/events)",
              [this](const httplib::Request &req, httplib::Response &res)
              {
@@ -747,6 +784,11 @@ namespace kimp::server
                    }
                  });
              });
+  }
+
+  /** The ground-motion records of the records directory, and uploads. */
+  void GuiServer::Impl::record_routes()
+  {
     http.Get("/api/records",
              [this](const httplib::Request &, httplib::Response &res)
              {

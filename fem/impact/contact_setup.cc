@@ -62,85 +62,100 @@ namespace kimp::fem::internal
     return sum_over_ranks(local, comm);
   }
 
-  void ImpactProblem::setup_contact()
+  namespace
   {
-    std::vector<FaceSegment> segments =
-      gather_boundary_faces(geometry::slab_contact, geometry::wall_contact);
-    // Deterministic order independent of the partition: by coordinates.
-    const auto key = [](const Point<dim> &p) { return std::make_pair(p[0], p[1]); };
-    std::sort(segments.begin(),
-              segments.end(),
-              [&](const FaceSegment &a, const FaceSegment &b) {
-                return std::make_pair(key(a.p0), key(a.p1)) < std::make_pair(key(b.p0), key(b.p1));
-              });
+    /** A contact node's key: its coordinates. */
+    std::pair<double, double> key(const Point<dim> &p)
+    {
+      return std::make_pair(p[0], p[1]);
+    }
+  } // namespace
 
-    const unsigned int slave_id = prm.rigid_slab ? geometry::wall_contact : geometry::slab_contact;
+  struct ImpactProblem::ContactLayout
+  {
+    std::vector<FaceSegment> segments; ///< sorted by coordinates
+    unsigned int             slave_id = 0;
+    /// The nodes by key, sorted; each node's boundary id and DoFs.
     std::map<std::pair<double, double>, unsigned int>   node_of;
     std::vector<std::pair<double, double>>              keys;
     std::vector<unsigned int>                           node_boundary;
     std::vector<std::array<types::global_dof_index, 2>> node_dofs;
-    for (const auto &s : segments)
+    std::vector<PenaltyContact::Node>                   nodes;
+    double                                              h_contact = 0;
+    /// Tributary lengths of the slave nodes, the master segments, the master's E.
+    std::vector<double>                  tributary;
+    std::vector<PenaltyContact::Segment> master;
+    double                               e_master           = 0;
+    double                               penalty_per_length = 0;
+    double                               slave_y_min        = std::numeric_limits<double>::max(),
+           slave_y_max                                      = -std::numeric_limits<double>::max();
+    std::vector<PenaltyContact::Slave> slaves;
+  };
+
+  void ImpactProblem::number_contact_nodes(ContactLayout &c)
+  {
+    for (const auto &s : c.segments)
     {
       if (prm.rigid_slab && s.boundary_id != geometry::wall_contact)
         continue;
       for (unsigned int v = 0; v < 2; ++v)
       {
         const auto k = key(v == 0 ? s.p0 : s.p1);
-        if (node_of.count(k) == 0)
+        if (c.node_of.count(k) == 0)
         {
-          node_of[k] = 0;
-          keys.push_back(k);
+          c.node_of[k] = 0;
+          c.keys.push_back(k);
         }
       }
     }
-    std::sort(keys.begin(), keys.end());
-    for (unsigned int i = 0; i < keys.size(); ++i)
-      node_of[keys[i]] = i;
-    node_boundary.assign(keys.size(), 0);
-    node_dofs.assign(keys.size(), {});
-    double h_contact = std::numeric_limits<double>::max();
-    for (const auto &s : segments)
+    std::sort(c.keys.begin(), c.keys.end());
+    for (unsigned int i = 0; i < c.keys.size(); ++i)
+      c.node_of[c.keys[i]] = i;
+    c.node_boundary.assign(c.keys.size(), 0);
+    c.node_dofs.assign(c.keys.size(), {});
+    c.h_contact = std::numeric_limits<double>::max();
+    for (const auto &s : c.segments)
     {
       if (prm.rigid_slab && s.boundary_id != geometry::wall_contact)
         continue;
-      h_contact = std::min(h_contact, s.p0.distance(s.p1));
+      c.h_contact = std::min(c.h_contact, s.p0.distance(s.p1));
       for (unsigned int v = 0; v < 2; ++v)
       {
-        const unsigned int i = node_of[key(v == 0 ? s.p0 : s.p1)];
-        node_boundary[i]     = s.boundary_id;
-        node_dofs[i]         = {{s.dofs[2 * v], s.dofs[2 * v + 1]}};
+        const unsigned int i = c.node_of[key(v == 0 ? s.p0 : s.p1)];
+        c.node_boundary[i]   = s.boundary_id;
+        c.node_dofs[i]       = {{s.dofs[2 * v], s.dofs[2 * v + 1]}};
       }
     }
-    require(!keys.empty(),
+    require(!c.keys.empty(),
             "mesh '" + prm.mesh_file.string() + "' has no contact faces (boundary id " +
               std::to_string(static_cast<unsigned>(geometry::wall_contact)) + " must exist)");
 
-    const unsigned int n_nodes = keys.size();
+    const unsigned int n_nodes = c.keys.size();
     contact_dofs.resize(2 * n_nodes);
-    std::vector<PenaltyContact::Node> nodes(n_nodes);
+    c.nodes.resize(n_nodes);
     for (unsigned int i = 0; i < n_nodes; ++i)
     {
-      nodes[i]                = {keys[i].first, keys[i].second};
-      contact_dofs[2 * i]     = node_dofs[i][0];
-      contact_dofs[2 * i + 1] = node_dofs[i][1];
+      c.nodes[i]              = {c.keys[i].first, c.keys[i].second};
+      contact_dofs[2 * i]     = c.node_dofs[i][0];
+      contact_dofs[2 * i + 1] = c.node_dofs[i][1];
     }
+  }
 
+  void ImpactProblem::measure_contact_faces(ContactLayout &c)
+  {
     // Tributary lengths of the slave nodes (clipped to the rigid face extent) and the wall
     // weights for the mean wall-face displacement.
     const double y_lo = prm.rigid_slab ? prm.slab_face_y0 : -std::numeric_limits<double>::max();
     const double y_hi = prm.rigid_slab ? prm.slab_face_y1 : std::numeric_limits<double>::max();
-    std::vector<double> tributary(n_nodes, 0.0);
-    double              e_master = 0, slave_y_min = std::numeric_limits<double>::max(),
-           slave_y_max = -std::numeric_limits<double>::max();
-    std::vector<PenaltyContact::Segment> master;
-    for (const auto &s : segments)
+    c.tributary.assign(c.keys.size(), 0.0);
+    for (const auto &s : c.segments)
     {
       if (prm.rigid_slab && s.boundary_id != geometry::wall_contact)
         continue;
-      const unsigned int a = node_of[key(s.p0)], b = node_of[key(s.p1)];
+      const unsigned int a = c.node_of[key(s.p0)], b = c.node_of[key(s.p1)];
       if (s.boundary_id == geometry::wall_contact)
       {
-        e_master = std::max(e_master, prm.materials.at(s.material_id).youngs_modulus);
+        c.e_master = std::max(c.e_master, prm.materials.at(s.material_id).youngs_modulus);
         contact_wave_speed =
           std::max(contact_wave_speed, p_wave_speed(prm.materials.at(s.material_id)));
         if (!prm.rigid_slab)
@@ -148,10 +163,10 @@ namespace kimp::fem::internal
           // Outward normal of the master cell: sign of (t_y, -t_x) . (face mid - cell centre).
           const Tensor<1, dim> t   = s.p1 - s.p0;
           const Tensor<1, dim> out = 0.5 * (s.p0 + s.p1) - s.cell_center;
-          master.push_back({a, b, (t[1] * out[0] - t[0] * out[1]) > 0 ? 1.0 : -1.0});
+          c.master.push_back({a, b, (t[1] * out[0] - t[0] * out[1]) > 0 ? 1.0 : -1.0});
         }
       }
-      if (s.boundary_id != slave_id)
+      if (s.boundary_id != c.slave_id)
         continue;
       const Point<dim> mid = 0.5 * (s.p0 + s.p1);
       for (const auto &[node, p] : {std::make_pair(a, s.p0), std::make_pair(b, s.p1)})
@@ -165,25 +180,28 @@ namespace kimp::fem::internal
           frac = std::max(0.0, std::min(hi, y_hi) - std::max(lo, y_lo)) / (hi - lo);
         else if (p[1] < y_lo || p[1] > y_hi)
           frac = 0;
-        tributary[node] += full * frac;
+        c.tributary[node] += full * frac;
       }
     }
-    require(e_master > 0, "mesh '" + prm.mesh_file.string() + "' has no wall contact faces");
+    require(c.e_master > 0, "mesh '" + prm.mesh_file.string() + "' has no wall contact faces");
+  }
 
-    const double              penalty_per_length = prm.penalty_factor * e_master / h_contact;
-    const std::vector<double> node_mass          = [&]
+  void ImpactProblem::make_contact_slaves(ContactLayout &c)
+  {
+    const unsigned int n_nodes          = c.keys.size();
+    c.penalty_per_length                = prm.penalty_factor * c.e_master / c.h_contact;
+    const std::vector<double> node_mass = [&]
     {
       std::vector<double> m = gather_compact(mass, 0.0);
       m.pop_back();
       return m;
     }();
-    std::vector<PenaltyContact::Slave> slaves;
     omega_penalty = 0;
     for (unsigned int i = 0; i < n_nodes; ++i)
     {
-      if (node_boundary[i] != slave_id || tributary[i] <= 0)
+      if (c.node_boundary[i] != c.slave_id || c.tributary[i] <= 0)
         continue;
-      const double k   = penalty_per_length * tributary[i];
+      const double k   = c.penalty_per_length * c.tributary[i];
       const double m_s = node_mass[2 * i];
       double       m_m = prm.slab_mass;
       if (!prm.rigid_slab)
@@ -191,47 +209,45 @@ namespace kimp::fem::internal
         // Master mass: the nearest master node in the reference configuration.
         double best = std::numeric_limits<double>::max();
         for (unsigned int j = 0; j < n_nodes; ++j)
-          if (node_boundary[j] == geometry::wall_contact &&
-              std::abs(keys[j].second - keys[i].second) < best)
+          if (c.node_boundary[j] == geometry::wall_contact &&
+              std::abs(c.keys[j].second - c.keys[i].second) < best)
           {
-            best = std::abs(keys[j].second - keys[i].second);
+            best = std::abs(c.keys[j].second - c.keys[i].second);
             m_m  = node_mass[2 * j];
           }
       }
       require(m_s > 0 && m_m > 0,
-              "contact node at (" + fmt_double(keys[i].first) + ", " + fmt_double(keys[i].second) +
-                ") has no mass");
+              "contact node at (" + fmt_double(c.keys[i].first) + ", " +
+                fmt_double(c.keys[i].second) + ") has no mass");
       const double m_red = 1.0 / (1.0 / m_s + 1.0 / m_m);
       // Implicit: no contact damping. Newton needs a residual with few kinks; a dashpot adds a
       // jump at first touch and a clamp while separating, and Newmark needs no chatter control
       // for stability.
-      const double xi = prm.integrator == ImpactParameters::Integrator::implicit_newmark ?
-                          0.0 :
-                          prm.contact_damping_ratio;
-      const double c  = 2 * xi * std::sqrt(k * m_red);
-      slaves.push_back({i, k, c});
-      slave_length.push_back(tributary[i]);
-      contact_width += tributary[i];
+      const double xi      = prm.integrator == ImpactParameters::Integrator::implicit_newmark ?
+                               0.0 :
+                               prm.contact_damping_ratio;
+      const double damping = 2 * xi * std::sqrt(k * m_red);
+      c.slaves.push_back({i, k, damping});
+      slave_length.push_back(c.tributary[i]);
+      contact_width += c.tributary[i];
       omega_penalty = std::max(omega_penalty, std::sqrt(k / m_red));
-      slave_y_min   = std::min(slave_y_min, keys[i].second);
-      slave_y_max   = std::max(slave_y_max, keys[i].second);
+      c.slave_y_min = std::min(c.slave_y_min, c.keys[i].second);
+      c.slave_y_max = std::max(c.slave_y_max, c.keys[i].second);
     }
-    require(!slaves.empty(),
+    require(!c.slaves.empty(),
             "no slave contact node found (elastic slab: boundary id " +
               std::to_string(static_cast<unsigned>(geometry::slab_contact)) +
               "; rigid slab: wall face within [slab_face_y0, slab_face_y1])");
+  }
 
-    if (prm.rigid_slab)
-      contact = std::make_unique<PenaltyContact>(nodes, slaves, prm.slab_front_x);
-    else
-      contact = std::make_unique<PenaltyContact>(nodes, slaves, master);
-
-    // Initial gaps: an overlap (or a slave that sees no master) is refused.
+  void ImpactProblem::check_initial_gaps(const ContactLayout &c)
+  {
+    // An overlap (or a slave that sees no master) is refused.
     const std::vector<double> gaps = contact->reference_gaps();
     initial_gap                    = std::numeric_limits<double>::max();
     for (unsigned int s = 0; s < gaps.size(); ++s)
     {
-      const auto &n = nodes[slaves[s].node];
+      const auto &n = c.nodes[c.slaves[s].node];
       require(gaps[s] >= 0,
               "slab overlaps the wall: contact node at (" + fmt_double(n.x) + ", " +
                 fmt_double(n.y) + ") m has initial gap " + fmt_double(gaps[s]) +
@@ -241,29 +257,33 @@ namespace kimp::fem::internal
     }
     require(initial_gap < std::numeric_limits<double>::max(),
             "no slave contact node projects onto the wall face");
+  }
 
-    // Weights for the mean wall-face and slab-front displacements (tributary lengths).
+  void ImpactProblem::set_face_weights(const ContactLayout &c)
+  {
+    // Tributary lengths, normalised.
+    const unsigned int n_nodes = c.keys.size();
     wall_weight.assign(2 * n_nodes + 1, 0.0);
     front_weight.assign(2 * n_nodes + 1, 0.0);
     if (prm.rigid_slab)
     {
       front_weight[2 * n_nodes] = 1;
-      for (const auto &s : slaves)
-        wall_weight[2 * s.node] = tributary[s.node];
+      for (const auto &s : c.slaves)
+        wall_weight[2 * s.node] = c.tributary[s.node];
     }
     else
     {
-      for (const auto &s : slaves)
-        front_weight[2 * s.node] = tributary[s.node];
-      for (const auto &s : segments)
+      for (const auto &s : c.slaves)
+        front_weight[2 * s.node] = c.tributary[s.node];
+      for (const auto &s : c.segments)
         if (s.boundary_id == geometry::wall_contact)
         {
-          const double lo = std::max(std::min(s.p0[1], s.p1[1]), slave_y_min);
-          const double hi = std::min(std::max(s.p0[1], s.p1[1]), slave_y_max);
+          const double lo = std::max(std::min(s.p0[1], s.p1[1]), c.slave_y_min);
+          const double hi = std::min(std::max(s.p0[1], s.p1[1]), c.slave_y_max);
           if (hi > lo)
           {
-            wall_weight[2 * node_of[key(s.p0)]] += 0.5 * (hi - lo);
-            wall_weight[2 * node_of[key(s.p1)]] += 0.5 * (hi - lo);
+            wall_weight[2 * c.node_of.at(key(s.p0))] += 0.5 * (hi - lo);
+            wall_weight[2 * c.node_of.at(key(s.p1))] += 0.5 * (hi - lo);
           }
         }
     }
@@ -276,10 +296,32 @@ namespace kimp::fem::internal
         for (double &x : *w)
           x /= sum;
     }
-    log_line("contact: " + std::to_string(slaves.size()) + " slave nodes, " +
-             std::to_string(master.size()) + " master segments" +
-             (prm.rigid_slab ? " (rigid face)" : "") + ", k/l = " + fmt_sig(penalty_per_length) +
-             " N/m^2, h_contact = " + fmt_sig(h_contact) +
+  }
+
+  void ImpactProblem::setup_contact()
+  {
+    ContactLayout c;
+    c.segments = gather_boundary_faces(geometry::slab_contact, geometry::wall_contact);
+    // Deterministic order independent of the partition: by coordinates.
+    std::sort(c.segments.begin(),
+              c.segments.end(),
+              [&](const FaceSegment &a, const FaceSegment &b) {
+                return std::make_pair(key(a.p0), key(a.p1)) < std::make_pair(key(b.p0), key(b.p1));
+              });
+    c.slave_id = prm.rigid_slab ? geometry::wall_contact : geometry::slab_contact;
+    number_contact_nodes(c);
+    measure_contact_faces(c);
+    make_contact_slaves(c);
+    if (prm.rigid_slab)
+      contact = std::make_unique<PenaltyContact>(c.nodes, c.slaves, prm.slab_front_x);
+    else
+      contact = std::make_unique<PenaltyContact>(c.nodes, c.slaves, c.master);
+    check_initial_gaps(c);
+    set_face_weights(c);
+    log_line("contact: " + std::to_string(c.slaves.size()) + " slave nodes, " +
+             std::to_string(c.master.size()) + " master segments" +
+             (prm.rigid_slab ? " (rigid face)" : "") + ", k/l = " + fmt_sig(c.penalty_per_length) +
+             " N/m^2, h_contact = " + fmt_sig(c.h_contact) +
              " m, initial gap = " + fmt_sig(initial_gap) + " m");
   }
 

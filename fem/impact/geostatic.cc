@@ -60,6 +60,32 @@ namespace kimp::fem::internal
       require(k0 >= 0 && prm.materials.count(id) > 0,
               "geostatic.initial_stress_K0[" + std::to_string(id) + "] = " + fmt_double(k0) +
                 " (must be >= 0, for a material id that has an entry in materials)");
+    GeostaticHold hold;
+    const double  weight = geostatic_gravity_load(hold);
+    hold_geostatic_supports(hold);
+    Vec                       u(locally_owned, comm);
+    const GeostaticIterations it = solve_geostatic_equilibrium(hold, weight, u);
+    if (absorbing)
+      apply_support_reactions(u, hold);
+    commit_geostatic_state(u);
+    gap_after_geostatic(u);
+
+    geostatic_stress                                = gather_point_stresses(u);
+    geostatic_summary.geostatic_weight              = weight;
+    geostatic_summary.geostatic_residual            = it.residual / weight;
+    geostatic_summary.geostatic_iterations          = it.k;
+    geostatic_summary.geostatic_plastic_dissipation = geostatic_point_energy[1];
+    geostatic_summary.geostatic_wall_displacement   = geostatic_wall;
+    log_line("geostatic: weight " + fmt_sig(weight) + " N/m, out-of-balance " +
+             fmt_sig(it.residual / weight) + " of it after " + std::to_string(it.k) +
+             " iterations (" + std::to_string(it.n_tangent) + " on the consistent tangent, " +
+             fmt_sig(it.seconds) + " s), wall face u_x = " + fmt_sig(geostatic_wall) +
+             " m, plastic dissipation " + fmt_sig(geostatic_point_energy[1]) + " J/m");
+  }
+
+  double ImpactProblem::geostatic_gravity_load(GeostaticHold &hold)
+  {
+    const GeostaticOptions              &g = prm.geostatic;
     const std::map<unsigned int, double> tops =
       material_tops(dof_handler, g.initial_stress_K0, comm);
     // sigma0 at height y in a material of K0 (tension positive), or false.
@@ -88,7 +114,6 @@ namespace kimp::fem::internal
     Vector<double>                       cell_force(n);
     std::vector<types::global_dof_index> dof_indices(n);
     const FEValuesExtractors::Vector     displacement(0);
-    std::set<types::global_dof_index>    slab_dofs;
     double                               weight_local = 0;
     const bool                           weigh_all    = g.initial_stress_K0.empty();
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -102,7 +127,7 @@ namespace kimp::fem::internal
           // operator (it is free and unloaded, so it stays at rest).
           for (const auto i : dof_indices)
             if (locally_owned.is_element(i))
-              slab_dofs.insert(i);
+              hold.slab_dofs.insert(i);
           continue;
         }
         const double rho = prm.materials.at(mid).density;
@@ -142,113 +167,129 @@ namespace kimp::fem::internal
     geostatic_on        = true;
     const double weight = Utilities::MPI::sum(weight_local, comm);
     require(weight > 0, "geostatic step: the bodies under gravity have no weight");
+    return weight;
+  }
 
+  void ImpactProblem::hold_geostatic_supports(GeostaticHold &hold) const
+  {
     // Absorbing boundaries release the soil's far side and base: the static step holds them as
     // the rollers do (base u = 0, far side u_x = 0), the DoFs of `supported` (owned, free), and
     // their reactions become constant nodal forces of the impact (FLAC's and PLAXIS' way with
     // viscous boundaries), so that the dashpots start from an equilibrium.
-    Vec                                  static_mask(free_mask);
-    std::vector<types::global_dof_index> supported;
-    std::vector<unsigned int>            supported_component;
+    hold.static_mask = Vec(free_mask);
     if (absorbing)
     {
       for_each_absorbing_dof(true,
                              [&](const types::global_dof_index i, const unsigned int c)
                              {
                                if (locally_owned.is_element(i) && free_mask(i) > 0 &&
-                                   static_mask(i) > 0)
+                                   hold.static_mask(i) > 0)
                                {
-                                 static_mask(i) = 0;
-                                 supported.push_back(i);
-                                 supported_component.push_back(c);
+                                 hold.static_mask(i) = 0;
+                                 hold.supported.push_back(i);
+                                 hold.supported_component.push_back(c);
                                }
                              });
-      static_mask.compress(VectorOperation::insert);
+      hold.static_mask.compress(VectorOperation::insert);
     }
+  }
 
-    // Static operator: the virgin stiffness, with the free slab's DoFs held by their diagonal
-    // and the supported rows replaced by their diagonal (their residual is zero, so du = 0
-    // there: the constrained solve).
-    const auto finish_operator = [&](TrilinosWrappers::SparseMatrix &matrix)
-    {
-      for (const auto i : slab_dofs)
-        matrix.add(i, i, stiffness.diag_element(i));
-      if (interface)
-        add_interface_stiffness(matrix);
-      matrix.compress(VectorOperation::add);
-      for (const auto i : supported)
-        matrix.clear_row(i, stiffness.diag_element(i));
-    };
+  void ImpactProblem::finish_static_operator(TrilinosWrappers::SparseMatrix &matrix,
+                                             const GeostaticHold            &hold) const
+  {
+    // The virgin stiffness (or tangent), with the free slab's DoFs held by their diagonal and
+    // the supported rows replaced by their diagonal (their residual is zero, so du = 0 there:
+    // the constrained solve).
+    for (const auto i : hold.slab_dofs)
+      matrix.add(i, i, stiffness.diag_element(i));
+    if (interface)
+      add_interface_stiffness(matrix);
+    matrix.compress(VectorOperation::add);
+    for (const auto i : hold.supported)
+      matrix.clear_row(i, stiffness.diag_element(i));
+  }
+
+  void ImpactProblem::assemble_geostatic_tangent(const Vec                      &u,
+                                                 const GeostaticHold            &hold,
+                                                 TrilinosWrappers::SparseMatrix &tangent)
+  {
+    // The laws' tangent from the committed initial state, which is the whole step's start,
+    // assembled into `tangent` (the sparsity of the stiffness).
+    if (tangent.m() == 0)
+      tangent.reinit(stiffness);
+    tangent = 0;
+    Vec u_g(locally_owned, locally_relevant, comm);
+    u_g = u;
+    const QGauss<dim>                    quadrature(2);
+    const unsigned int                   n = fe.n_dofs_per_cell();
+    std::vector<types::global_dof_index> dof_indices(n);
+    const FEValuesExtractors::Vector     displacement(0);
+    FEValues<dim>                        fe_t(fe, quadrature, update_gradients | update_JxW_values);
+    FullMatrix<double>                   cell_matrix(n, n);
+    std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
+    std::vector<std::array<double, 3>>   b(n);
+    std::vector<double>                  virgin;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+      {
+        const MaterialLaw &law = *laws.at(cell->material_id());
+        const unsigned int c   = cell->active_cell_index();
+        fe_t.reinit(cell);
+        fe_t[displacement].get_function_symmetric_gradients(u_g, eps);
+        cell_matrix = 0;
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+        {
+          const VoigtStrain e{{eps[q][0][0], eps[q][1][1], 2 * eps[q][0][1]}};
+          const double     *h = nullptr;
+          if (!linear_laws && law.n_history() > 0)
+            h = qp_history.committed(c, q);
+          else
+          {
+            virgin.assign(std::max(1u, law.n_history()), 0.0);
+            law.initial_history(virgin.data());
+            h = virgin.data();
+          }
+          const VoigtTangent t = law.tangent(e, h);
+          for (unsigned int i = 0; i < n; ++i)
+          {
+            const auto ei = fe_t[displacement].symmetric_gradient(i, q);
+            b[i]          = {{ei[0][0], ei[1][1], 2 * ei[0][1]}};
+          }
+          for (unsigned int j = 0; j < n; ++j)
+          {
+            const std::array<double, 3> tb{{t[0] * b[j][0] + t[1] * b[j][1] + t[2] * b[j][2],
+                                            t[3] * b[j][0] + t[4] * b[j][1] + t[5] * b[j][2],
+                                            t[6] * b[j][0] + t[7] * b[j][1] + t[8] * b[j][2]}};
+            for (unsigned int i = 0; i < n; ++i)
+              cell_matrix(i, j) +=
+                (b[i][0] * tb[0] + b[i][1] * tb[1] + b[i][2] * tb[2]) * fe_t.JxW(q);
+          }
+        }
+        cell->get_dof_indices(dof_indices);
+        constraints.distribute_local_to_global(cell_matrix, dof_indices, tangent);
+      }
+    tangent.compress(VectorOperation::add);
+    // Points at the apex of the tension cut-off carry a constant stress (zero tangent); nodes
+    // surrounded by them made the matrix singular (Newton steps of 1e11 m). A small share
+    // of the virgin stiffness keeps it regular; it only slows the final quadratic rate by a
+    // linear term of that order.
+    tangent.add(tangent_regularization, stiffness);
+    finish_static_operator(tangent, hold);
+  }
+
+  ImpactProblem::GeostaticIterations
+  ImpactProblem::solve_geostatic_equilibrium(const GeostaticHold &hold, double weight, Vec &u)
+  {
+    const GeostaticOptions &g = prm.geostatic;
+    // Static operator: the virgin stiffness, factorised once.
     TrilinosWrappers::SparseMatrix op;
     op.reinit(stiffness);
     op.copy_from(stiffness);
-    finish_operator(op);
+    finish_static_operator(op, hold);
     SolverControl                  control;
     TrilinosWrappers::SolverDirect direct(control);
     direct.initialize(op);
-
-    // The consistent tangent at u (the laws' tangent from the committed initial state, which
-    // is the whole step's start), assembled into `tangent` (the sparsity of the stiffness).
     TrilinosWrappers::SparseMatrix tangent;
-    const auto                     assemble_tangent = [&](const Vec &u)
-    {
-      if (tangent.m() == 0)
-        tangent.reinit(stiffness);
-      tangent = 0;
-      Vec u_g(locally_owned, locally_relevant, comm);
-      u_g = u;
-      FEValues<dim>      fe_t(fe, quadrature, update_gradients | update_JxW_values);
-      FullMatrix<double> cell_matrix(n, n);
-      std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
-      std::vector<std::array<double, 3>>   b(n);
-      std::vector<double>                  virgin;
-      for (const auto &cell : dof_handler.active_cell_iterators())
-        if (cell->is_locally_owned())
-        {
-          const MaterialLaw &law = *laws.at(cell->material_id());
-          const unsigned int c   = cell->active_cell_index();
-          fe_t.reinit(cell);
-          fe_t[displacement].get_function_symmetric_gradients(u_g, eps);
-          cell_matrix = 0;
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-          {
-            const VoigtStrain e{{eps[q][0][0], eps[q][1][1], 2 * eps[q][0][1]}};
-            const double     *h = nullptr;
-            if (!linear_laws && law.n_history() > 0)
-              h = qp_history.committed(c, q);
-            else
-            {
-              virgin.assign(std::max(1u, law.n_history()), 0.0);
-              law.initial_history(virgin.data());
-              h = virgin.data();
-            }
-            const VoigtTangent t = law.tangent(e, h);
-            for (unsigned int i = 0; i < n; ++i)
-            {
-              const auto ei = fe_t[displacement].symmetric_gradient(i, q);
-              b[i]          = {{ei[0][0], ei[1][1], 2 * ei[0][1]}};
-            }
-            for (unsigned int j = 0; j < n; ++j)
-            {
-              const std::array<double, 3> tb{{t[0] * b[j][0] + t[1] * b[j][1] + t[2] * b[j][2],
-                                              t[3] * b[j][0] + t[4] * b[j][1] + t[5] * b[j][2],
-                                              t[6] * b[j][0] + t[7] * b[j][1] + t[8] * b[j][2]}};
-              for (unsigned int i = 0; i < n; ++i)
-                cell_matrix(i, j) +=
-                  (b[i][0] * tb[0] + b[i][1] * tb[1] + b[i][2] * tb[2]) * fe_t.JxW(q);
-            }
-          }
-          cell->get_dof_indices(dof_indices);
-          constraints.distribute_local_to_global(cell_matrix, dof_indices, tangent);
-        }
-      tangent.compress(VectorOperation::add);
-      // Points at the apex of the tension cut-off carry a constant stress (zero tangent); nodes
-      // surrounded by them made the matrix singular (Newton steps of 1e11 m). A small share
-      // of the virgin stiffness keeps it regular; it only slows the final quadratic rate by a
-      // linear term of that order.
-      tangent.add(tangent_regularization, stiffness);
-      finish_operator(tangent);
-    };
 
     // Modified Newton, u <- u - K0^-1 r(u), r = f_int(u) + f_0 - f_g: one iteration for linear
     // laws and for inelastic ones that stay elastic. Once points yield it converges only
@@ -259,7 +300,7 @@ namespace kimp::fem::internal
     // poor tangent) falls back to the virgin-stiffness step.
     const auto    t_start = std::chrono::steady_clock::now();
     const double  target  = g.tolerance * weight;
-    Vec           u(locally_owned, comm), r(locally_owned, comm), du(locally_owned, comm);
+    Vec           r(locally_owned, comm), du(locally_owned, comm);
     Vec           u0(locally_owned, comm);
     double        residual = 0, previous = 0;
     unsigned long k = 0, n_tangent = 0;
@@ -267,7 +308,7 @@ namespace kimp::fem::internal
     const auto    evaluate    = [&](const Vec &x)
     {
       internal_force(x, r);
-      r.scale(static_mask);
+      r.scale(hold.static_mask);
       return r.l2_norm();
     };
     residual = evaluate(u);
@@ -296,7 +337,7 @@ namespace kimp::fem::internal
       {
         try
         {
-          assemble_tangent(u);
+          assemble_geostatic_tangent(u, hold, tangent);
           TrilinosWrappers::SolverDirect newton(control);
           newton.initialize(tangent);
           newton.solve(du, r);
@@ -331,27 +372,34 @@ namespace kimp::fem::internal
         residual = evaluate(u);
       }
     }
-    const double geostatic_seconds =
+    const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-    if (absorbing)
-    {
-      // The supports' reactions R = r there (f_int + f_0 = f_g + R): applied as constant
-      // forces, f(u_g) = f_int + f_0 - f_g - R vanishes on the released DoFs too.
-      internal_force(u, r);
-      Vec reaction(locally_owned, comm);
-      for (const auto i : supported)
-        reaction(i) = r(i);
-      reaction.compress(VectorOperation::insert);
-      geostatic_offset.add(-1.0, reaction);
-      double resultant[2] = {0, 0}; // the supports' force on the soil, N/m
-      for (std::size_t j = 0; j < supported.size(); ++j)
-        resultant[supported_component[j]] += r(supported[j]);
-      resultant[0] = Utilities::MPI::sum(resultant[0], comm);
-      resultant[1] = Utilities::MPI::sum(resultant[1], comm);
-      log_line("geostatic: the absorbing boundary's supports hold the soil with (" +
-               fmt_sig(resultant[0]) + ", " + fmt_sig(resultant[1]) +
-               ") N/m, applied as constant nodal forces during the impact");
-    }
+    return {residual, k, n_tangent, seconds};
+  }
+
+  void ImpactProblem::apply_support_reactions(const Vec &u, const GeostaticHold &hold)
+  {
+    // The supports' reactions R = r there (f_int + f_0 = f_g + R): applied as constant
+    // forces, f(u_g) = f_int + f_0 - f_g - R vanishes on the released DoFs too.
+    Vec r(locally_owned, comm);
+    internal_force(u, r);
+    Vec reaction(locally_owned, comm);
+    for (const auto i : hold.supported)
+      reaction(i) = r(i);
+    reaction.compress(VectorOperation::insert);
+    geostatic_offset.add(-1.0, reaction);
+    double resultant[2] = {0, 0}; // the supports' force on the soil, N/m
+    for (std::size_t j = 0; j < hold.supported.size(); ++j)
+      resultant[hold.supported_component[j]] += r(hold.supported[j]);
+    resultant[0] = Utilities::MPI::sum(resultant[0], comm);
+    resultant[1] = Utilities::MPI::sum(resultant[1], comm);
+    log_line("geostatic: the absorbing boundary's supports hold the soil with (" +
+             fmt_sig(resultant[0]) + ", " + fmt_sig(resultant[1]) +
+             ") N/m, applied as constant nodal forces during the impact");
+  }
+
+  void ImpactProblem::commit_geostatic_state(const Vec &u)
+  {
     if (!linear_laws)
       qp_history.commit();
     if (interface)
@@ -360,18 +408,17 @@ namespace kimp::fem::internal
       interface_energy0      = interface_ev.penalty_energy + interface_ev.dissipation;
       interface_dissipation0 = interface_ev.dissipation;
     }
-    geostatic_u = u;
-    {
-      const std::array<double, 3> local = point_energy_local;
-      for (unsigned int i = 0; i < 3; ++i)
-        geostatic_point_energy[i] = Utilities::MPI::sum(local[i], comm);
-      for (unsigned int b = 0; b < 4; ++b)
-        for (unsigned int i = 0; i < 2; ++i)
-          geostatic_body_dissipation[b][i] =
-            Utilities::MPI::sum(body_dissipation_local[b][i], comm);
-    }
+    geostatic_u                       = u;
+    const std::array<double, 3> local = point_energy_local;
+    for (unsigned int i = 0; i < 3; ++i)
+      geostatic_point_energy[i] = Utilities::MPI::sum(local[i], comm);
+    for (unsigned int b = 0; b < 4; ++b)
+      for (unsigned int i = 0; i < 2; ++i)
+        geostatic_body_dissipation[b][i] = Utilities::MPI::sum(body_dissipation_local[b][i], comm);
+  }
 
-    // The slab-wall gap at the geostatic state: the earth pressure moves the wall face.
+  void ImpactProblem::gap_after_geostatic(const Vec &u)
+  {
     const std::vector<double> cu = gather_compact(u, 0.0);
     for (std::size_t i = 0; i < cu.size(); ++i)
     {
@@ -384,18 +431,6 @@ namespace kimp::fem::internal
             "penetration " +
               fmt_double(ev.max_penetration) + " m); increase geometry.gap");
     initial_gap += geostatic_wall - geostatic_front;
-
-    geostatic_stress                                = gather_point_stresses(u);
-    geostatic_summary.geostatic_weight              = weight;
-    geostatic_summary.geostatic_residual            = residual / weight;
-    geostatic_summary.geostatic_iterations          = k;
-    geostatic_summary.geostatic_plastic_dissipation = geostatic_point_energy[1];
-    geostatic_summary.geostatic_wall_displacement   = geostatic_wall;
-    log_line("geostatic: weight " + fmt_sig(weight) + " N/m, out-of-balance " +
-             fmt_sig(residual / weight) + " of it after " + std::to_string(k) + " iterations (" +
-             std::to_string(n_tangent) + " on the consistent tangent, " +
-             fmt_sig(geostatic_seconds) + " s), wall face u_x = " + fmt_sig(geostatic_wall) +
-             " m, plastic dissipation " + fmt_sig(geostatic_point_energy[1]) + " J/m");
   }
 
   std::vector<PointStress> ImpactProblem::gather_point_stresses(const Vec &u)

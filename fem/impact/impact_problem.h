@@ -7,6 +7,7 @@
 #include <array>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -73,6 +74,10 @@ namespace kimp::fem::internal
     void make_grid();
     void setup_system();
     void assemble_system();
+    /** The stiffness's sparsity: the cells', and the contact and interface couplings. */
+    void make_stiffness_sparsity();
+    /** inverse_mass and free_mask of the unconstrained DoFs with mass; slab_total_mass. */
+    void mark_free_dofs();
     /** Constitutive law per material id: material_laws, else linear elastic. */
     void make_laws();
     /** f = laws_internal_force(u) + the geostatic offset (initial stress - gravity) - the
@@ -112,11 +117,28 @@ namespace kimp::fem::internal
     /** f = internal force of the laws at u: K u for linear laws, else assembled from the
      *  laws' stress with the committed history (trial history written). */
     void laws_internal_force(const Vec &u, Vec &f);
+    /** f from force_local: the ghost entries added on their owner, then the owned sums;
+     *  constrained DoFs get none. */
+    void add_force_to_owners(Vec &f);
     /** The same by an FEValues loop over the cells at every call: the kernel's reference. */
     void internal_force_reference(const Vec &u, Vec &f);
 
     // contact_setup.cc
     void setup_contact();
+    /** The contact faces, nodes, slaves and masters while setup_contact() builds them;
+     *  complete only in contact_setup.cc. */
+    struct ContactLayout;
+    /** The contact nodes of the sorted faces, numbered by their coordinates, and contact_dofs. */
+    void number_contact_nodes(ContactLayout &c);
+    /** The slave nodes' tributary lengths, the master segments and the master's stiffness. */
+    void measure_contact_faces(ContactLayout &c);
+    /** The slave springs and dashpots (penalty, reduced mass), their lengths and the penalty
+     *  frequency. */
+    void make_contact_slaves(ContactLayout &c);
+    /** initial_gap: the smallest reference gap; an overlap is refused. */
+    void check_initial_gaps(const ContactLayout &c);
+    /** The weights of the mean wall-face and slab-front displacements. */
+    void set_face_weights(const ContactLayout &c);
     /** The faces with boundary id a or b of every rank's locally owned cells, in rank order (the
      *  same list on all ranks). Collective. */
     std::vector<FaceSegment> gather_boundary_faces(types::boundary_id a,
@@ -135,6 +157,16 @@ namespace kimp::fem::internal
 
     // implicit.cc
     void run_implicit();
+    /** The implicit loop's state; complete only in implicit.cc. */
+    struct ImplicitState;
+    /** compact_free: the contact DoFs that no constraint holds, the same on all ranks. */
+    void mark_free_contact_dofs();
+    /** One Newmark step of size dt / 2^level from the state's step into its iterate; false if
+     *  Newton fails (the caller halves the step). */
+    bool implicit_newton_step(ImplicitState &s, unsigned int level);
+    /** Accelerations, velocities, contact and residual of the state's iterate, for a step of
+     *  size @p h with Newmark's c1. */
+    void evaluate_implicit_iterate(ImplicitState &s, double h, double c1);
     /** Implicit: K + c1 M of one step size dt / 2^level and its solver. Complete only in
      *  implicit.cc, which alone needs the Trilinos solver headers. */
     struct StepOperator;
@@ -192,6 +224,49 @@ namespace kimp::fem::internal
     // geostatic.cc
     /** Gravity, initial stress and the static equilibrium the impact starts from. */
     void run_geostatic_step();
+    /** DoFs the geostatic step holds: the free slab's (by their diagonal) and the owned, free
+     *  DoFs of the absorbing faces (`supported`, with their component), masked out of the
+     *  residual by `static_mask`. */
+    struct GeostaticHold
+    {
+      std::set<types::global_dof_index>    slab_dofs;
+      Vec                                  static_mask;
+      std::vector<types::global_dof_index> supported;
+      std::vector<unsigned int>            supported_component;
+    };
+    /** The Newton iteration's outcome: out-of-balance force (N/m), iterations, of them on the
+     *  consistent tangent, wall-clock seconds. */
+    struct GeostaticIterations
+    {
+      double        residual  = 0;
+      unsigned long k         = 0;
+      unsigned long n_tangent = 0;
+      double        seconds   = 0;
+    };
+    /** Gravity load and the initial-stress force into geostatic_offset (the initial stress
+     *  of the laws that hold it committed to their history); the slab's DoFs into @p hold;
+     *  returns the weight (N/m) of the bodies under gravity. */
+    double geostatic_gravity_load(GeostaticHold &hold);
+    /** The absorbing faces' DoFs held as by rollers during the static step, into @p hold. */
+    void hold_geostatic_supports(GeostaticHold &hold) const;
+    /** Turns an assembled stiffness into the static operator: the slab's diagonal, the
+     *  interface, the supported rows replaced by their diagonal. */
+    void finish_static_operator(TrilinosWrappers::SparseMatrix &matrix,
+                                const GeostaticHold            &hold) const;
+    /** The consistent tangent at @p u from the committed state, regularised, as an operator. */
+    void assemble_geostatic_tangent(const Vec                      &u,
+                                    const GeostaticHold            &hold,
+                                    TrilinosWrappers::SparseMatrix &tangent);
+    /** Modified Newton on the virgin stiffness, then full Newton on the consistent tangent
+     *  with a virgin-stiffness fallback, to g.tolerance x @p weight; @p u is the result. */
+    GeostaticIterations
+    solve_geostatic_equilibrium(const GeostaticHold &hold, double weight, Vec &u);
+    /** The supports' reactions at @p u, applied as constant forces during the impact. */
+    void apply_support_reactions(const Vec &u, const GeostaticHold &hold);
+    /** Commits the geostatic state @p u: histories, interface, energies. */
+    void commit_geostatic_state(const Vec &u);
+    /** The slab-wall gap at the geostatic state @p u (the earth pressure moves the wall face). */
+    void gap_after_geostatic(const Vec &u);
     /** Gauss-point stresses of the geostatic state, gathered to all ranks. */
     std::vector<PointStress> gather_point_stresses(const Vec &u);
 
@@ -208,15 +283,26 @@ namespace kimp::fem::internal
 
     // recording.cc
     /** Records histories and energies of step n (time t). */
-    void              record(unsigned long                     n,
-                             double                            t,
-                             const Vec                        &u,
-                             const Vec                        &v_n,
-                             const Vec                        &Ku,
-                             double                            u_r,
-                             double                            v_r,
-                             const PenaltyContact::Evaluation &ev,
-                             const std::vector<double>        &cu);
+    void record(unsigned long                     n,
+                double                            t,
+                const Vec                        &u,
+                const Vec                        &v_n,
+                const Vec                        &Ku,
+                double                            u_r,
+                double                            v_r,
+                const PenaltyContact::Evaluation &ev,
+                const std::vector<double>        &cu);
+    /** Every step: the contact work, force and penetration, the internal work of non-linear
+     *  laws and the dashpots' radiation. */
+    void accumulate_step_work(const Vec                        &u,
+                              const Vec                        &v_n,
+                              const Vec                        &Ku,
+                              const PenaltyContact::Evaluation &ev,
+                              const std::vector<double>        &cu);
+    /** The energy and momentum sums of a sampled step, over the ranks (the layout is listed
+     *  in recording.cc). */
+    static constexpr unsigned int       n_energy_values = 9 + 8 + 5;
+    std::array<double, n_energy_values> sum_energies(const Vec &u, const Vec &v_n, const Vec &Ku);
     [[noreturn]] void throw_divergence(unsigned long n, double t, const Vec &u) const;
     void
     output_results(double t, const Vec &u, const Vec &v, const std::vector<double> &contact_force);

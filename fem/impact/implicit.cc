@@ -231,160 +231,182 @@ namespace kimp::fem::internal
       cg_solve(du, rhs);
   }
 
-  void ImpactProblem::run_implicit()
+  struct ImpactProblem::ImplicitState
   {
-    Vec u(locally_owned, comm), v(locally_owned, comm), acc(locally_owned, comm);
-    Vec u_np1(locally_owned, comm), v_np1(locally_owned, comm), a_np1(locally_owned, comm);
-    Vec Ku(locally_owned, comm), residual(locally_owned, comm), du(locally_owned, comm);
-    Vec rhs(locally_owned, comm), u_start(locally_owned, comm);
-    if (geostatic_on)
-      u = geostatic_u;
-    set_initial_slab_velocity(v);
-    double u_r = 0, v_r = prm.initial_velocity, a_r = 0;
-
-    compact_free.assign(contact_dofs.size(), false);
+    ImplicitState(const IndexSet &owned, MPI_Comm comm)
+      : u(owned, comm)
+      , v(owned, comm)
+      , acc(owned, comm)
+      , u_np1(owned, comm)
+      , v_np1(owned, comm)
+      , a_np1(owned, comm)
+      , Ku(owned, comm)
+      , residual(owned, comm)
+      , du(owned, comm)
+      , rhs(owned, comm)
+      , u_start(owned, comm)
     {
-      std::vector<double> local(contact_dofs.size(), 0.0);
-      for (unsigned int k = 0; k < contact_dofs.size(); ++k)
-        if (locally_owned.is_element(contact_dofs[k]) &&
-            !constraints.is_constrained(contact_dofs[k]))
-          local[k] = 1;
-      const std::vector<double> all = sum_over_ranks(local, comm);
-      for (unsigned int k = 0; k < contact_dofs.size(); ++k)
-        compact_free[k] = all[k] > 0.5;
     }
-    // Round-off floor of the residual: |K| |u|.
-    const double stiffness_norm = stiffness.linfty_norm();
-
-    const LoopSteps   steps   = loop_steps();
-    const std::size_t r_index = contact_dofs.size();
-
+    /// The last converged step, the Newton iterate (_np1), work vectors.
+    Vec    u, v, acc, u_np1, v_np1, a_np1, Ku, residual, du, rhs, u_start;
+    double u_r = 0, v_r = 0, a_r = 0;             ///< the rigid slab at the step
+    double u_r_np1 = 0, v_r_np1 = 0, a_r_np1 = 0; ///< and at the iterate
+    /// The contact at the iterate (after a converged step: at the step).
     PenaltyContact::Evaluation ev;
     std::vector<double>        cu;
-    {
-      cu = gather_compact(u, u_r);
-      ev = contact->evaluate(cu, gather_compact(v, v_r));
-      internal_force(u, Ku);
-      record(0, 0.0, u, v, Ku, u_r, v_r, ev, cu);
-      if (steps.write_vtu)
-        output_results(0.0, u, v, padded_force(ev, cu.size()));
-      if (steps.frame_every)
-        record_frame(0.0, u, ev);
-    }
+    /// Round-off floor of the residual: |K| |u|.
+    double stiffness_norm = 0;
+    /// The iterate's rigid-slab residual, residual scale and norm.
+    double r_rigid = 0, scale = 0, r_norm = 0;
+    /// A failed Newton step's residual and tolerance.
+    double r_fail = 0, tol_fail = 0;
+  };
 
-    // One Newmark step of size dt / 2^level from (u, v, acc) into (u_np1, v_np1, a_np1):
-    // semi-smooth Newton on the incremental potential
-    //   Pi(u) = c1 / 2 |u - u~|_M^2 + u.K u / 2 + sum_i k_i max(0, p_i(u))^2 / 2,
-    // whose gradient is the residual R = M a + K u - f_c. Pi is convex and C1 with a piecewise
-    // constant Hessian: a full Newton step can jump across the kinks of max(0, p) and cycle
-    // between active sets; a line search for the minimum of Pi along the Newton direction
-    // cannot. Returns false if Newton fails (the caller halves the step).
-    double     t_fail = 0, r_fail = 0, tol_fail = 0;
-    double     u_r_np1 = 0, v_r_np1 = 0, a_r_np1 = 0;
-    const auto newton_step = [&](unsigned int level) -> bool
-    {
-      StepOperator &op  = step_operator(level);
-      const double  h   = op.dt;
-      const double  c1  = op.c1;
-      const double  c2  = 1.0 / (2 * newmark_beta) - 1;
-      const double  m_r = prm.rigid_slab ? prm.slab_mass : 0.0;
-      u_np1             = u;
-      u_np1.add(h, v, 0.5 * h * h, acc);
-      u_r_np1              = u_r + h * v_r + 0.5 * h * h * a_r;
-      double       r_rigid = 0, scale = 0, r_norm = 0;
-      const double momentum_rate = slab_total_mass * prm.initial_velocity / h;
-      const auto   evaluate      = [&]()
-      {
-        a_np1 = u_np1;
-        a_np1.add(-1.0, u, -h, v);
-        a_np1.sadd(c1, -c2, acc);
-        v_np1 = v;
-        v_np1.add(h * (1 - newmark_gamma), acc, h * newmark_gamma, a_np1);
-        a_r_np1 = c1 * (u_r_np1 - u_r - h * v_r) - c2 * a_r;
-        v_r_np1 = v_r + h * ((1 - newmark_gamma) * a_r + newmark_gamma * a_r_np1);
+  void ImpactProblem::mark_free_contact_dofs()
+  {
+    compact_free.assign(contact_dofs.size(), false);
+    std::vector<double> local(contact_dofs.size(), 0.0);
+    for (unsigned int k = 0; k < contact_dofs.size(); ++k)
+      if (locally_owned.is_element(contact_dofs[k]) && !constraints.is_constrained(contact_dofs[k]))
+        local[k] = 1;
+    const std::vector<double> all = sum_over_ranks(local, comm);
+    for (unsigned int k = 0; k < contact_dofs.size(); ++k)
+      compact_free[k] = all[k] > 0.5;
+  }
 
-        const auto gathered          = gather_compact(u_np1, u_r_np1, v_np1, v_r_np1);
-        cu                           = gathered.first;
-        ev                           = contact->evaluate(cu, gathered.second);
-        const std::vector<double> fc = padded_force(ev, cu.size());
-        internal_force(u_np1, Ku);
-        residual = a_np1;
-        residual.scale(mass);
-        const double inertia_norm = residual.l2_norm();
-        residual += Ku;
-        if (absorbing)
-          add_dashpot_force(v_np1, residual);
-        rhs = 0;
-        scatter_add(fc, rhs);
-        residual -= rhs;
-        residual.scale(free_mask);
-        r_rigid = prm.rigid_slab ? m_r * a_r_np1 - fc[r_index] : 0.0;
-        scale   = inertia_norm + Ku.l2_norm() + ev.total_force + stiffness_norm * u_np1.l2_norm() +
-                momentum_rate + m_r * std::abs(a_r_np1) + std::numeric_limits<double>::min();
-        r_norm = std::sqrt(residual.norm_sqr() + r_rigid * r_rigid);
-      };
-      evaluate();
-      for (unsigned int k = 0;; ++k)
+  void ImpactProblem::evaluate_implicit_iterate(ImplicitState &s, double h, double c1)
+  {
+    const double c2            = 1.0 / (2 * newmark_beta) - 1;
+    const double m_r           = prm.rigid_slab ? prm.slab_mass : 0.0;
+    const double momentum_rate = slab_total_mass * prm.initial_velocity / h;
+    s.a_np1                    = s.u_np1;
+    s.a_np1.add(-1.0, s.u, -h, s.v);
+    s.a_np1.sadd(c1, -c2, s.acc);
+    s.v_np1 = s.v;
+    s.v_np1.add(h * (1 - newmark_gamma), s.acc, h * newmark_gamma, s.a_np1);
+    s.a_r_np1 = c1 * (s.u_r_np1 - s.u_r - h * s.v_r) - c2 * s.a_r;
+    s.v_r_np1 = s.v_r + h * ((1 - newmark_gamma) * s.a_r + newmark_gamma * s.a_r_np1);
+
+    const auto gathered          = gather_compact(s.u_np1, s.u_r_np1, s.v_np1, s.v_r_np1);
+    s.cu                         = gathered.first;
+    s.ev                         = contact->evaluate(s.cu, gathered.second);
+    const std::vector<double> fc = padded_force(s.ev, s.cu.size());
+    internal_force(s.u_np1, s.Ku);
+    s.residual = s.a_np1;
+    s.residual.scale(mass);
+    const double inertia_norm = s.residual.l2_norm();
+    s.residual += s.Ku;
+    if (absorbing)
+      add_dashpot_force(s.v_np1, s.residual);
+    s.rhs = 0;
+    scatter_add(fc, s.rhs);
+    s.residual -= s.rhs;
+    s.residual.scale(free_mask);
+    s.r_rigid = prm.rigid_slab ? m_r * s.a_r_np1 - fc[contact_dofs.size()] : 0.0;
+    s.scale   = inertia_norm + s.Ku.l2_norm() + s.ev.total_force +
+              s.stiffness_norm * s.u_np1.l2_norm() + momentum_rate + m_r * std::abs(s.a_r_np1) +
+              std::numeric_limits<double>::min();
+    s.r_norm = std::sqrt(s.residual.norm_sqr() + s.r_rigid * s.r_rigid);
+  }
+
+  // Semi-smooth Newton on the incremental potential
+  //   Pi(u) = c1 / 2 |u - u~|_M^2 + u.K u / 2 + sum_i k_i max(0, p_i(u))^2 / 2,
+  // whose gradient is the residual R = M a + K u - f_c. Pi is convex and C1 with a piecewise
+  // constant Hessian: a full Newton step can jump across the kinks of max(0, p) and cycle
+  // between active sets; a line search for the minimum of Pi along the Newton direction
+  // cannot.
+  bool ImpactProblem::implicit_newton_step(ImplicitState &s, unsigned int level)
+  {
+    StepOperator &op = step_operator(level);
+    const double  h  = op.dt;
+    const double  c1 = op.c1;
+    s.u_np1          = s.u;
+    s.u_np1.add(h, s.v, 0.5 * h * h, s.acc);
+    s.u_r_np1 = s.u_r + h * s.v_r + 0.5 * h * h * s.a_r;
+    evaluate_implicit_iterate(s, h, c1);
+    for (unsigned int k = 0;; ++k)
+    {
+      if (s.r_norm <= newton_tolerance * s.scale)
+        return true;
+      if (k == prm.implicit_options.newton_max_iterations)
       {
-        if (r_norm <= newton_tolerance * scale)
-          return true;
-        if (k == prm.implicit_options.newton_max_iterations)
-        {
-          r_fail   = r_norm;
-          tol_fail = newton_tolerance * scale;
-          return false;
-        }
-        ++n_newton;
-        double du_r = 0;
-        solve_newton_system(op, ev, residual, r_rigid, du, du_r);
-        du.scale(free_mask);
-        const double slope = residual * du + r_rigid * du_r;
-        if (!(slope < 0))
-        {
-          // Not a descent direction: only round-off is left in the residual.
-          if (r_norm <= newton_roundoff_tolerance * scale)
-            return true;
-          r_fail   = r_norm;
-          tol_fail = newton_tolerance * scale;
-          return false;
-        }
-        // Line search on phi(alpha) = Pi(u + alpha du), convex, through its derivative
-        // phi'(alpha) = R(u + alpha du) . du, which (unlike Pi itself, a sum of large terms)
-        // stays accurate down to the Newton tolerance: the full step if phi'(1) <= 0 (Pi falls
-        // all the way), else regula falsi (Illinois) for the minimum until |phi'| has fallen
-        // by line_search_reduction. A history law has no Pi; the same search on R . du is
-        // then a heuristic.
-        u_start                = u_np1;
-        const double u_r_start = u_r_np1;
-        const auto   phi_prime = [&](double step)
-        {
-          u_np1 = u_start;
-          u_np1.add(step, du);
-          u_r_np1 = u_r_start + step * du_r;
-          evaluate();
-          return residual * du + r_rigid * du_r;
-        };
-        double alpha = 1, lo = 0, hi = 1, phi_lo = slope, phi_hi = phi_prime(1.0);
-        bool   accepted = phi_hi <= 0 || r_norm <= newton_tolerance * scale;
-        for (unsigned int ls = 0; !accepted && ls < max_line_search; ++ls)
-        {
-          alpha                    = (lo * phi_hi - hi * phi_lo) / (phi_hi - phi_lo);
-          const double phi         = phi_prime(alpha);
-          accepted                 = std::abs(phi) <= line_search_reduction * std::abs(slope);
-          const bool left          = phi < 0;
-          (left ? lo : hi)         = alpha;
-          (left ? phi_lo : phi_hi) = phi;
-          // Illinois: halve the value kept at the end that did not move.
-          (left ? phi_hi : phi_lo) *= 0.5;
-        }
-        if (!accepted)
-        {
-          r_fail   = r_norm;
-          tol_fail = newton_tolerance * scale;
-          return false;
-        }
+        s.r_fail   = s.r_norm;
+        s.tol_fail = newton_tolerance * s.scale;
+        return false;
       }
-    };
+      ++n_newton;
+      double du_r = 0;
+      solve_newton_system(op, s.ev, s.residual, s.r_rigid, s.du, du_r);
+      s.du.scale(free_mask);
+      const double slope = s.residual * s.du + s.r_rigid * du_r;
+      if (!(slope < 0))
+      {
+        // Not a descent direction: only round-off is left in the residual.
+        if (s.r_norm <= newton_roundoff_tolerance * s.scale)
+          return true;
+        s.r_fail   = s.r_norm;
+        s.tol_fail = newton_tolerance * s.scale;
+        return false;
+      }
+      // Line search on phi(alpha) = Pi(u + alpha du), convex, through its derivative
+      // phi'(alpha) = R(u + alpha du) . du, which (unlike Pi itself, a sum of large terms)
+      // stays accurate down to the Newton tolerance: the full step if phi'(1) <= 0 (Pi falls
+      // all the way), else regula falsi (Illinois) for the minimum until |phi'| has fallen
+      // by line_search_reduction. A history law has no Pi; the same search on R . du is
+      // then a heuristic.
+      s.u_start              = s.u_np1;
+      const double u_r_start = s.u_r_np1;
+      const auto   phi_prime = [&](double step)
+      {
+        s.u_np1 = s.u_start;
+        s.u_np1.add(step, s.du);
+        s.u_r_np1 = u_r_start + step * du_r;
+        evaluate_implicit_iterate(s, h, c1);
+        return s.residual * s.du + s.r_rigid * du_r;
+      };
+      double alpha = 1, lo = 0, hi = 1, phi_lo = slope, phi_hi = phi_prime(1.0);
+      bool   accepted = phi_hi <= 0 || s.r_norm <= newton_tolerance * s.scale;
+      for (unsigned int ls = 0; !accepted && ls < max_line_search; ++ls)
+      {
+        alpha                    = (lo * phi_hi - hi * phi_lo) / (phi_hi - phi_lo);
+        const double phi         = phi_prime(alpha);
+        accepted                 = std::abs(phi) <= line_search_reduction * std::abs(slope);
+        const bool left          = phi < 0;
+        (left ? lo : hi)         = alpha;
+        (left ? phi_lo : phi_hi) = phi;
+        // Illinois: halve the value kept at the end that did not move.
+        (left ? phi_hi : phi_lo) *= 0.5;
+      }
+      if (!accepted)
+      {
+        s.r_fail   = s.r_norm;
+        s.tol_fail = newton_tolerance * s.scale;
+        return false;
+      }
+    }
+  }
+
+  void ImpactProblem::run_implicit()
+  {
+    ImplicitState s(locally_owned, comm);
+    if (geostatic_on)
+      s.u = geostatic_u;
+    set_initial_slab_velocity(s.v);
+    s.v_r = prm.initial_velocity;
+    mark_free_contact_dofs();
+    s.stiffness_norm = stiffness.linfty_norm();
+
+    const LoopSteps steps = loop_steps();
+    {
+      s.cu = gather_compact(s.u, s.u_r);
+      s.ev = contact->evaluate(s.cu, gather_compact(s.v, s.v_r));
+      internal_force(s.u, s.Ku);
+      record(0, 0.0, s.u, s.v, s.Ku, s.u_r, s.v_r, s.ev, s.cu);
+      if (steps.write_vtu)
+        output_results(0.0, s.u, s.v, padded_force(s.ev, s.cu.size()));
+      if (steps.frame_every)
+        record_frame(0.0, s.u, s.ev);
+    }
 
     bool          started    = false;
     unsigned long zero_since = 0;
@@ -400,19 +422,19 @@ namespace kimp::fem::internal
       const unsigned long step_ticks = ticks_per_step >> level;
       const double        t_np1 =
         static_cast<double>(ticks + step_ticks) * dt / static_cast<double>(ticks_per_step);
-      if (!newton_step(level))
+      if (!implicit_newton_step(s, level))
       {
         if (!linear_laws)
           qp_history.revert();
-        t_fail = t_np1;
+        const double t_fail = t_np1;
         if (level == max_level)
           throw NumericalError("Newton on the contact did not converge at t = " +
                                  fmt_double(t_fail) + " s (step " + std::to_string(n + 1) +
                                  ", dt halved " + std::to_string(level) + " times to " +
                                  fmt_double(step_operator(level).dt) + " s, the floor; " +
-                                 std::to_string(ev.active.size()) +
-                                 " active contact nodes): residual " + fmt_double(r_fail) +
-                                 " N/m vs tolerance " + fmt_double(tol_fail),
+                                 std::to_string(s.ev.active.size()) +
+                                 " active contact nodes): residual " + fmt_double(s.r_fail) +
+                                 " N/m vs tolerance " + fmt_double(s.tol_fail),
                                t_fail,
                                n + 1);
         ++level;
@@ -421,12 +443,12 @@ namespace kimp::fem::internal
       }
       if (!linear_laws)
         qp_history.commit();
-      u.swap(u_np1);
-      v.swap(v_np1);
-      acc.swap(a_np1);
-      u_r = u_r_np1;
-      v_r = v_r_np1;
-      a_r = a_r_np1;
+      s.u.swap(s.u_np1);
+      s.v.swap(s.v_np1);
+      s.acc.swap(s.a_np1);
+      s.u_r = s.u_r_np1;
+      s.v_r = s.v_r_np1;
+      s.a_r = s.a_r_np1;
       ticks += step_ticks;
       // Grow back once the substeps are aligned with the coarser grid.
       while (level > 0 && ticks % (ticks_per_step >> (level - 1)) == 0)
@@ -434,32 +456,32 @@ namespace kimp::fem::internal
       if (ticks % ticks_per_step != 0)
         continue;
       ++n;
-      record(n, t_np1, u, v, Ku, u_r, v_r, ev, cu);
+      record(n, t_np1, s.u, s.v, s.Ku, s.u_r, s.v_r, s.ev, s.cu);
       if (steps.write_vtu && n % steps.vtu_every == 0)
-        output_results(t_np1, u, v, padded_force(ev, cu.size()));
-      if (frame_due(n, t_np1, ev.total_force))
-        record_frame(t_np1, u, ev);
+        output_results(t_np1, s.u, s.v, padded_force(s.ev, s.cu.size()));
+      if (frame_due(n, t_np1, s.ev.total_force))
+        record_frame(t_np1, s.u, s.ev);
       if (prm.progress && n % prm.progress_interval == 0 &&
           Utilities::MPI::this_mpi_process(comm) == 0)
         prm.progress(t_np1, prm.end_time);
 
-      if (ev.total_force > 0)
+      if (s.ev.total_force > 0)
       {
         started    = true;
         zero_since = n + 1;
       }
       // Over as in the explicit loop: zero force for the hold time, the slab not moving in, wall
       // and soil having given back their energy (or the slab rebounding).
-      if (started && n + 1 - zero_since >= steps.hold_steps && ev.total_force == 0 &&
-          system_released_the_slab(slab_velocity(v, v_r)))
+      if (started && n + 1 - zero_since >= steps.hold_steps && s.ev.total_force == 0 &&
+          system_released_the_slab(slab_velocity(s.v, s.v_r)))
       {
         separated_flag = true;
         break;
       }
     }
-    slab_v_end   = slab_velocity(v, v_r);
+    slab_v_end   = slab_velocity(s.v, s.v_r);
     n_steps_done = n;
-    compute_residual_state(u, u_r);
+    compute_residual_state(s.u, s.u_r);
   }
 
 } // namespace kimp::fem::internal

@@ -102,6 +102,32 @@ namespace kimp::fem::internal
     fast_internal_force = true;
   }
 
+  void ImpactProblem::add_force_to_owners(Vec &f)
+  {
+    const double *fl        = force_local.data();
+    const auto    n_ghosted = force_local.size();
+    // Constrained DoFs get no force (distribute_local_to_global drops them); ghost entries are
+    // added on their owner, after which the owned sums are added (own + imported, as before).
+    double *fp = f.trilinos_vector()[0];
+    if (force_ghost_lid.empty() && Utilities::MPI::n_mpi_processes(comm) == 1)
+    {
+      for (std::size_t k = 0; k < n_ghosted; ++k)
+        if (force_owned_lid[k] >= 0)
+          fp[force_owned_lid[k]] = force_constrained[k] ? 0.0 : fl[k];
+      return;
+    }
+    for (std::size_t j = 0; j < force_ghost_lid.size(); ++j)
+      force_ghost_values[j] = fl[force_ghost_lid[j]];
+    force_writable = 0;
+    force_writable.add(force_ghost_gid.size(), force_ghost_gid.data(), force_ghost_values.data());
+    force_writable.compress(VectorOperation::add);
+    f  = force_writable;
+    fp = f.trilinos_vector()[0];
+    for (std::size_t k = 0; k < n_ghosted; ++k)
+      if (force_owned_lid[k] >= 0 && !force_constrained[k])
+        fp[force_owned_lid[k]] += fl[k];
+  }
+
   void ImpactProblem::laws_internal_force(const Vec &u, Vec &f)
   {
     if (linear_laws)
@@ -206,26 +232,7 @@ namespace kimp::fem::internal
       b0 = b1;
     }
 
-    // Constrained DoFs get no force (distribute_local_to_global drops them); ghost entries are
-    // added on their owner, after which the owned sums are added (own + imported, as before).
-    double *fp = f.trilinos_vector()[0];
-    if (force_ghost_lid.empty() && Utilities::MPI::n_mpi_processes(comm) == 1)
-    {
-      for (std::size_t k = 0; k < n_ghosted; ++k)
-        if (force_owned_lid[k] >= 0)
-          fp[force_owned_lid[k]] = force_constrained[k] ? 0.0 : fl[k];
-      return;
-    }
-    for (std::size_t j = 0; j < force_ghost_lid.size(); ++j)
-      force_ghost_values[j] = fl[force_ghost_lid[j]];
-    force_writable = 0;
-    force_writable.add(force_ghost_gid.size(), force_ghost_gid.data(), force_ghost_values.data());
-    force_writable.compress(VectorOperation::add);
-    f  = force_writable;
-    fp = f.trilinos_vector()[0];
-    for (std::size_t k = 0; k < n_ghosted; ++k)
-      if (force_owned_lid[k] >= 0 && !force_constrained[k])
-        fp[force_owned_lid[k]] += fl[k];
+    add_force_to_owners(f);
   }
 
   void ImpactProblem::internal_force_reference(const Vec &u, Vec &f)

@@ -30,15 +30,11 @@ namespace kimp::fem::internal
     return f;
   }
 
-  void ImpactProblem::record(unsigned long                     n,
-                             double                            t,
-                             const Vec                        &u,
-                             const Vec                        &v_n,
-                             const Vec                        &Ku,
-                             double                            u_r,
-                             double                            v_r,
-                             const PenaltyContact::Evaluation &ev,
-                             const std::vector<double>        &cu)
+  void ImpactProblem::accumulate_step_work(const Vec                        &u,
+                                           const Vec                        &v_n,
+                                           const Vec                        &Ku,
+                                           const PenaltyContact::Evaluation &ev,
+                                           const std::vector<double>        &cu)
   {
     // Contact work by the trapezoid rule over the compact DoFs (the only ones it acts on).
     const std::vector<double> fc = padded_force(ev, cu.size());
@@ -66,26 +62,25 @@ namespace kimp::fem::internal
 
     if (absorbing)
       accumulate_radiation(u, v_n);
+  }
 
-    // Energies and means at the sampled steps only (one reduction): the divergence guard
-    // acts within one output interval.
-    if (n % sample_every != 0)
-      return;
+  std::array<double, ImpactProblem::n_energy_values>
+  ImpactProblem::sum_energies(const Vec &u, const Vec &v_n, const Vec &Ku)
+  {
     // kinetic, strain, slab m u, slab m v; internal work, stored, plastic, damage
     // (+ geostatic: the work (f_g - f_0) . (u - u_g) of the loads of the geostatic state);
     // plastic and damage per body (slab, wall, soil, other)
     // wall and soil (every body but the slab): kinetic, x and y momentum, strain energy of
     // linear laws; the slab points' stored energy (non-linear laws)
-    constexpr unsigned int       n_values = 9 + 8 + 5;
-    std::array<double, n_values> local{{0,
-                                        0,
-                                        0,
-                                        0,
-                                        internal_work_local,
-                                        point_energy_local[0],
-                                        point_energy_local[1],
-                                        point_energy_local[2],
-                                        0}};
+    std::array<double, n_energy_values> local{{0,
+                                               0,
+                                               0,
+                                               0,
+                                               internal_work_local,
+                                               point_energy_local[0],
+                                               point_energy_local[1],
+                                               point_energy_local[2],
+                                               0}};
     for (unsigned int b = 0; b < 4; ++b)
       for (unsigned int i = 0; i < 2; ++i)
         local[9 + 2 * b + i] = body_dissipation_local[b][i];
@@ -113,8 +108,28 @@ namespace kimp::fem::internal
           local[20] += 0.5 * du * kp[k];
       }
     }
-    std::array<double, n_values> global{};
-    reduce_over_ranks(local.data(), global.data(), n_values, MPI_SUM, comm);
+    std::array<double, n_energy_values> global{};
+    reduce_over_ranks(local.data(), global.data(), n_energy_values, MPI_SUM, comm);
+    return global;
+  }
+
+  void ImpactProblem::record(unsigned long                     n,
+                             double                            t,
+                             const Vec                        &u,
+                             const Vec                        &v_n,
+                             const Vec                        &Ku,
+                             double                            u_r,
+                             double                            v_r,
+                             const PenaltyContact::Evaluation &ev,
+                             const std::vector<double>        &cu)
+  {
+    accumulate_step_work(u, v_n, Ku, ev, cu);
+
+    // Energies and means at the sampled steps only (one reduction): the divergence guard
+    // acts within one output interval.
+    if (n % sample_every != 0)
+      return;
+    std::array<double, n_energy_values> global = sum_energies(u, v_n, Ku);
     if (geostatic_on)
       for (unsigned int i = 0; i < 3; ++i)
         global[5 + i] -= geostatic_point_energy[i];

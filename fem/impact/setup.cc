@@ -290,7 +290,7 @@ namespace kimp::fem::internal
     constraints.close();
   }
 
-  void ImpactProblem::assemble_system()
+  void ImpactProblem::make_stiffness_sparsity()
   {
     DynamicSparsityPattern dsp(locally_relevant);
     DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
@@ -306,7 +306,30 @@ namespace kimp::fem::internal
           dsp.add(i, j);
     SparsityTools::distribute_sparsity_pattern(dsp, locally_owned, comm, locally_relevant);
     stiffness.reinit(locally_owned, locally_owned, dsp, comm);
+  }
 
+  void ImpactProblem::mark_free_dofs()
+  {
+    inverse_mass.reinit(locally_owned, comm);
+    free_mask.reinit(locally_owned, comm);
+    for (const auto i : locally_owned)
+      if (!constraints.is_constrained(i) && mass(i) > 0)
+      {
+        inverse_mass(i) = 1.0 / mass(i);
+        free_mask(i)    = 1.0;
+      }
+    inverse_mass.compress(VectorOperation::insert);
+    free_mask.compress(VectorOperation::insert);
+    slab_total_mass = prm.rigid_slab ? prm.slab_mass : slab_mass_x.l1_norm();
+    require(slab_total_mass > 0,
+            "mesh '" + prm.mesh_file.string() + "' has no slab cells (material id " +
+              std::to_string(static_cast<unsigned>(geometry::slab_material)) +
+              ") and rigid_slab is false");
+  }
+
+  void ImpactProblem::assemble_system()
+  {
+    make_stiffness_sparsity();
     Vec mass_w, slab_w, body_x_w, body_y_w;
     mass_w.reinit(locally_owned, locally_relevant, comm, true);
     slab_w.reinit(locally_owned, locally_relevant, comm, true);
@@ -403,21 +426,7 @@ namespace kimp::fem::internal
     reduce_over_ranks(body_held.data(), held.data(), 2, MPI_MAX, comm);
     body_free_mass = {
       {held[0] > 0 ? 0.0 : body_mass_x.l1_norm(), held[1] > 0 ? 0.0 : body_mass_y.l1_norm()}};
-    inverse_mass.reinit(locally_owned, comm);
-    free_mask.reinit(locally_owned, comm);
-    for (const auto i : locally_owned)
-      if (!constraints.is_constrained(i) && mass(i) > 0)
-      {
-        inverse_mass(i) = 1.0 / mass(i);
-        free_mask(i)    = 1.0;
-      }
-    inverse_mass.compress(VectorOperation::insert);
-    free_mask.compress(VectorOperation::insert);
-    slab_total_mass = prm.rigid_slab ? prm.slab_mass : slab_mass_x.l1_norm();
-    require(slab_total_mass > 0,
-            "mesh '" + prm.mesh_file.string() + "' has no slab cells (material id " +
-              std::to_string(static_cast<unsigned>(geometry::slab_material)) +
-              ") and rigid_slab is false");
+    mark_free_dofs();
   }
 
   void ImpactProblem::make_laws()
