@@ -86,7 +86,7 @@ namespace kimp::python
       return setup;
     }
 
-    py::dict fit_dict(fit::FitResult &&r)
+    py::dict fit_dict(fit::FitResult &&r, double peak_tolerance)
     {
       py::dict   d;
       const auto parameter = [](const fit::FitParameter &p)
@@ -99,14 +99,18 @@ namespace kimp::python
       d["normalised_displacement_rms"] = r.normalised_displacement_rms;
       d["function_evaluations"]        = r.function_evaluations;
       d["status"]                      = r.status;
-      d["verdict"]                     = fit::fit_verdict(r);
+      d["verdict"]                     = fit::fit_verdict(r, peak_tolerance);
       d["fem_peak_force"]              = r.fem_peak_force;
       d["fem_contact_duration"]        = r.fem_contact_duration;
       d["fem_impulse"]                 = r.fem_impulse;
       d["contact_start"]               = r.contact_start;
       d["model_peak_force"]            = r.model_peak_force;
       d["model_contact_duration"]      = r.model_contact_duration;
+      d["model_impulse"]               = r.model_impulse;
       d["model_effective_cor"]         = r.model_effective_cor;
+      d["peak_force_ratio"]            = r.peak_force_ratio();
+      d["impulse_ratio"]               = r.impulse_ratio();
+      d["contact_duration_ratio"]      = r.contact_duration_ratio();
       d["time"]                        = to_numpy(std::move(r.time));
       d["fem_force"]                   = to_numpy(std::move(r.fem_force));
       d["model_force"]                 = to_numpy(std::move(r.model_force));
@@ -262,8 +266,12 @@ namespace kimp::python
            const std::optional<DoubleArray> &indentation,
            const std::optional<DoubleArray> &slab_displacement,
            double                            displacement_weight,
-           double                            wall_mass)
+           double                            wall_mass,
+           double                            peak_tolerance)
         {
+          if (!(peak_tolerance > 0.0))
+            throw std::invalid_argument("peak_tolerance = " + std::to_string(peak_tolerance) +
+                                        " (must be > 0)");
           fit::ForceHistory history;
           history.time  = to_vector(time);
           history.force = to_vector(force);
@@ -286,7 +294,7 @@ namespace kimp::python
             py::gil_scoped_release release;
             result = fit::fit_impact_law(history, mass, velocity, spec, options);
           }
-          return fit_dict(std::move(result));
+          return fit_dict(std::move(result), peak_tolerance);
         },
         py::arg("time"),
         py::arg("force"),
@@ -300,7 +308,8 @@ namespace kimp::python
         py::arg("indentation"),
         py::arg("slab_displacement"),
         py::arg("displacement_weight"),
-        py::arg("wall_mass"));
+        py::arg("wall_mass"),
+        py::arg("peak_tolerance"));
     }
   } // namespace
 
