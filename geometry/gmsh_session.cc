@@ -2,82 +2,40 @@
 #include "geometry/gmsh_session.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <fcntl.h>
 #include <gmsh.h>
 #include <stdexcept>
-#include <unistd.h>
 
 namespace kimp::geometry
 {
   namespace
   {
-    /**
-     * Silences file descriptor 2 while alive. gmsh 4.8 reports "Gmsh has not been initialized"
-     * on stderr whenever its API is called after a gmsh::finalize that left General.Terminal = 1
-     * (a verbose session, or a caller's or deal.II's own initialize / finalize pair), and the
-     * probe below must make exactly such a call. Not thread safe, like gmsh itself.
-     */
-    class SilencedStderr
-    {
-    public:
-      SilencedStderr()
-      {
-        std::fflush(stderr);
-        saved_         = ::dup(STDERR_FILENO);
-        const int null = ::open("/dev/null", O_WRONLY);
-        if (saved_ >= 0 && null >= 0)
-          ::dup2(null, STDERR_FILENO);
-        if (null >= 0)
-          ::close(null);
-      }
-      ~SilencedStderr()
-      {
-        std::fflush(stderr);
-        if (saved_ >= 0)
-        {
-          ::dup2(saved_, STDERR_FILENO);
-          ::close(saved_);
-        }
-      }
-      SilencedStderr(const SilencedStderr &)            = delete;
-      SilencedStderr &operator=(const SilencedStderr &) = delete;
-
-    private:
-      int saved_ = -1;
-    };
-
-    // gmsh 4.8 has no gmsh::isInitialized(): model::list() returns no model before the first
-    // gmsh::initialize (which always creates one) and throws after gmsh::finalize.
-    bool gmsh_is_initialized()
-    {
-      const SilencedStderr silenced;
-      try
-      {
-        std::vector<std::string> names;
-        gmsh::model::list(names);
-        return !names.empty();
-      }
-      catch (...)
-      {
-        return false;
-      }
-    }
+    // gmsh 4.8 has no gmsh::isInitialized(), and probing it through its API is not safe: after
+    // a gmsh::finalize (kimp's, or deal.II's own pair inside GridIn::read_msh) such a call can
+    // end the process from inside gmsh's error handler. kimp is the only caller that keeps gmsh
+    // initialized across calls, so the live owning sessions are counted here instead.
+    int live_owning_sessions = 0;
   } // namespace
 
 
   GmshSession::GmshSession(const std::string &model_name, bool verbose)
   {
-    if (!gmsh_is_initialized())
+    std::vector<std::string> names;
+    if (live_owning_sessions == 0)
     {
-      // readConfigFiles = false: a user's ~/.gmshrc must not change the meshes kimp writes.
+      // readConfigFiles = false: a user's ~/.gmshrc must not change the meshes kimp writes. When
+      // the caller has initialised gmsh already this is a no-op (gmsh warns on its terminal,
+      // which a caller that keeps it quiet does not show); then its models are listed below. A
+      // fresh gmsh lists exactly one model, the unnamed one initialize() creates.
       gmsh::initialize(0, nullptr, false);
-      owns_gmsh_ = true;
+      gmsh::model::list(names);
+      owns_gmsh_ = names.size() == 1 && names.front().empty();
     }
     else
-    {
-      std::vector<std::string> names;
       gmsh::model::list(names);
+    if (owns_gmsh_)
+      ++live_owning_sessions;
+    else
+    {
       gmsh::model::getCurrent(previous_model_);
       had_previous_model_ = !names.empty();
     }
@@ -93,6 +51,7 @@ namespace kimp::geometry
     {
       if (owns_gmsh_)
       {
+        --live_owning_sessions;
         // Options are not restored first: General.Terminal = 0 through finalize (also after a
         // verbose session) keeps gmsh quiet when it is probed before the next initialize.
         gmsh::option::setNumber("General.Terminal", 0);

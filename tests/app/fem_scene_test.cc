@@ -274,7 +274,7 @@ namespace
     const FemScene plain =
       load_scene_text<FemScene>("materials: {concrete: {model: damage_plasticity}}\n", file_name);
     const auto p0 = kimp::app::impact_parameters(plain, 1.25, "m.msh");
-    EXPECT_EQ(p0.material_laws.at(ids::wall_material)->n_history(), 6u);
+    EXPECT_EQ(p0.material_laws.at(ids::wall_material)->n_history(), 8u);
     EXPECT_EQ(p0.material_laws.at(ids::wall_material), p0.material_laws.at(ids::slab_material));
     const FemScene s = load_scene_text<FemScene>(
       "materials:\n"
@@ -290,7 +290,7 @@ namespace
       dynamic_cast<const ConcreteDamageLaw *>(p.material_laws.at(ids::slab_material).get());
     ASSERT_NE(wall, nullptr);
     ASSERT_NE(slab, nullptr);
-    EXPECT_EQ(wall->n_history(), 11u);
+    EXPECT_EQ(wall->n_history(), 14u);
     EXPECT_DOUBLE_EQ(wall->reinforcement().ratio_y, 0.008);
     EXPECT_DOUBLE_EQ(wall->reinforcement().ratio_x, 0.002);
     EXPECT_DOUBLE_EQ(wall->reinforcement().yield_stress, 550e6);

@@ -282,7 +282,9 @@ TEST(LumpedCli, ExportOpenSeesWritesTheYieldingWallsOfALumpedScene)
               "    yielding:\n      width: \"20 m\"\n"
               "      capacity: \"150 kN/m\"\n      stiffness: \"25 kN/mm/m\"\n");
   const KimpRun run =
-    run_kimp("-q export-opensees -o os --k-kv \"2496 kN/mm\" --lumped-scene " + scene.string(),
+    run_kimp("-q export-opensees -o os --k-kv \"2496 kN/mm\" --effective-mass \"144.8 t\" "
+             "--lumped-scene " +
+               scene.string(),
              dir.path());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::string tcl = read_text(dir.path() / "os" / "opensees_walls.tcl");
@@ -298,7 +300,9 @@ TEST(LumpedCli, ExportOpenSeesWritesTheYieldingWallsOfALumpedScene)
   // A scene without a yielding wall is refused, and nothing is left behind.
   const fs::path rigid = dir.write("rigid.yaml", "walls:\n  right:\n    gap: \"10 cm\"\n");
   const KimpRun  none =
-    run_kimp("-q export-opensees -o none --k-kv \"2496 kN/mm\" --lumped-scene " + rigid.string(),
+    run_kimp("-q export-opensees -o none --k-kv \"2496 kN/mm\" --effective-mass \"144.8 t\" "
+             "--lumped-scene " +
+               rigid.string(),
              dir.path());
   EXPECT_EQ(none.exit_code, 1);
   EXPECT_NE(none.err.find("has no yielding wall"), std::string::npos) << none.err;

@@ -81,8 +81,14 @@ TEST(StudyVelocityCli, LinearKTableScalesExactlyWithVelocityAndConsistentKConver
     const double v = std::stod(row.at("impact_velocity_m_per_s"));
     EXPECT_EQ(row.at("reference_velocity"), v == 1.0 ? "yes" : "no") << v;
     EXPECT_EQ(row.at("material"), "linear");
-    EXPECT_EQ(row.at("kelvin_voigt_status"), "ok") << v;
-    EXPECT_EQ(row.at("jankowski_status"), "ok") << v;
+    // ok, or only the honest peak warning (the least-squares law misses the FEM's wave peak).
+    for (const char *law : {"kelvin_voigt", "jankowski"})
+    {
+      const std::string status = row.at(std::string(law) + "_status");
+      EXPECT_TRUE(status == "ok" || (status.rfind("warning: the fitted peak force is", 0) == 0 &&
+                                     status.find(';') == std::string::npos))
+        << v << " " << law << ": " << status;
+    }
     by_case[{row.at("wall_height_m"), v}] = row;
   }
   // A linear FE model scales force and indentation with v: the fixed-COR Kelvin-Voigt fit keeps

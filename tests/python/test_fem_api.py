@@ -65,12 +65,16 @@ def test_temporary_directories_are_removed_and_given_ones_kept(tmp_path, monkeyp
     assert list(scratch.iterdir()) == []
 
 
-def test_the_site_study_fits_with_an_ok_verdict():
+def test_the_site_study_fits_with_no_verdict_but_the_peak_warning():
     # The site study's k comes from fits that pass kimp fit's checks (the rigid-slab quick
     # scene's chattering contact would not: its misfit window covers ~2 % of the contact).
     study = kimp.study(kimp.Scene(QUICK_STUDY, kind="study"))
-    assert study["fit/H1.25/kelvin_voigt"].status == "ok"
-    assert study["fit/H1.25/jankowski"].status == "ok"
+    # Their one warning, if any, is the honest one: the least-squares fit reproduces the pulse,
+    # and its peak is below the FEM's first (wave) peak by more than the peak tolerance.
+    for law in ("kelvin_voigt", "jankowski"):
+        status = study[f"fit/H1.25/{law}"].status
+        assert status == "ok" or (status.startswith("warning: the fitted peak force is")
+                                  and ";" not in status), status
     # On the 5 cm contact mesh k_KV is 92.9 kN/mm/m, 3 % above the thesis' 90 (Table 2.1);
     # the 2.5 cm mesh gives 89.9 (the notebook's ladder).
     table = study["k_table"]
