@@ -109,6 +109,41 @@ namespace kimp::app
 
   namespace
   {
+    /// Index of column `name` in `header`; header.size() when there is none.
+    std::size_t find_column(const std::vector<std::string> &header, const std::string &name)
+    {
+      return static_cast<std::size_t>(
+        std::distance(header.begin(), std::find(header.begin(), header.end(), name)));
+    }
+
+    /**
+     * Calls `each(fields)` for every non-empty data row of a CSV file read past its header
+     * `header`; a row with another number of fields is an error naming the file and the line.
+     */
+    template <typename Each>
+    void for_each_row(std::istream                   &in,
+                      const std::vector<std::string> &header,
+                      const std::filesystem::path    &file,
+                      const Each                     &each)
+    {
+      std::string line;
+      int         number = 1;
+      while (std::getline(in, line))
+      {
+        ++number;
+        if (line.empty())
+          continue;
+        const std::vector<std::string> f = split_csv(line);
+        if (f.size() != header.size())
+          throw std::invalid_argument(fmt::format("{}:{}: {} fields for {} columns",
+                                                  file.string(),
+                                                  number,
+                                                  f.size(),
+                                                  header.size()));
+        each(f);
+      }
+    }
+
     /// Sort by height, then velocity (the order the interpolation needs).
     void sort_rows(std::vector<KTableRow> &rows)
     {
@@ -131,60 +166,50 @@ namespace kimp::app
     {
       const auto column = [&](const std::string &name)
       {
-        const auto it = std::find(header.begin(), header.end(), name);
-        if (it == header.end())
+        const std::size_t i = find_column(header, name);
+        if (i == header.size())
           throw std::invalid_argument(
             fmt::format("{}: no column '{}' (not a fit_table.csv of `kimp fit`)",
                         table.file.string(),
                         name));
-        return static_cast<std::size_t>(std::distance(header.begin(), it));
+        return i;
       };
       const std::size_t name = column("case"), height = column("wall_height_m"),
                         variant = column("variant"), k_total = column("k_total"),
                         status = column("status");
       // Tables of `kimp fit` before the velocity column have one velocity per case, unknown.
-      const std::size_t velocity = static_cast<std::size_t>(
-        std::distance(header.begin(),
-                      std::find(header.begin(), header.end(), "impact_velocity_m_per_s")));
+      const std::size_t        velocity = find_column(header, "impact_velocity_m_per_s");
       std::vector<std::string> cases; // in file order
       std::vector<KTableRow>   rows;
-      std::string              line;
-      int                      number = 1;
-      while (std::getline(in, line))
-      {
-        ++number;
-        if (line.empty())
-          continue;
-        const std::vector<std::string> f = split_csv(line);
-        if (f.size() != header.size())
-          throw std::invalid_argument(fmt::format("{}:{}: {} fields for {} columns",
-                                                  table.file.string(),
-                                                  number,
-                                                  f.size(),
-                                                  header.size()));
-        const bool kv = f[variant] == "kelvin_voigt_cor_fixed";
-        if (!kv && f[variant] != "jankowski_cor_fixed")
-          continue;
-        const auto at = std::find(cases.begin(), cases.end(), f[name]);
-        if (at == cases.end())
+      for_each_row(
+        in,
+        header,
+        table.file,
+        [&](const std::vector<std::string> &f)
         {
-          cases.push_back(f[name]);
-          KTableRow row;
-          row.wall_height        = to_number(f[height]);
-          row.impact_velocity    = velocity < f.size() ? to_number(f[velocity]) : std::nan("");
-          row.kelvin_voigt_total = row.jankowski_total = std::nan("");
-          rows.push_back(row);
-        }
-        KTableRow &row = rows[static_cast<std::size_t>(
-          std::distance(cases.begin(), std::find(cases.begin(), cases.end(), f[name])))];
-        if (f[status].rfind("failed", 0) == 0)
-          continue;
-        // kN/mm^n -> N/m^n: × 1e3 · 1e3^n.
-        if (kv)
-          row.kelvin_voigt_total = to_number(f[k_total]) * 1e6;
-        else
-          row.jankowski_total = to_number(f[k_total]) * 1e3 * std::pow(1e3, 1.5);
-      }
+          const bool kv = f[variant] == "kelvin_voigt_cor_fixed";
+          if (!kv && f[variant] != "jankowski_cor_fixed")
+            return;
+          const auto at = std::find(cases.begin(), cases.end(), f[name]);
+          if (at == cases.end())
+          {
+            cases.push_back(f[name]);
+            KTableRow row;
+            row.wall_height        = to_number(f[height]);
+            row.impact_velocity    = velocity < f.size() ? to_number(f[velocity]) : std::nan("");
+            row.kelvin_voigt_total = row.jankowski_total = std::nan("");
+            rows.push_back(row);
+          }
+          KTableRow &row = rows[static_cast<std::size_t>(
+            std::distance(cases.begin(), std::find(cases.begin(), cases.end(), f[name])))];
+          if (f[status].rfind("failed", 0) == 0)
+            return;
+          // kN/mm^n -> N/m^n: × 1e3 · 1e3^n.
+          if (kv)
+            row.kelvin_voigt_total = to_number(f[k_total]) * 1e6;
+          else
+            row.jankowski_total = to_number(f[k_total]) * 1e3 * std::pow(1e3, 1.5);
+        });
       std::vector<std::string> kept; // the case of each row of table.rows
       for (std::size_t i = 0; i < rows.size(); ++i)
       {
@@ -247,52 +272,39 @@ namespace kimp::app
     }
     const auto column = [&](const std::string &name)
     {
-      const auto it = std::find(header.begin(), header.end(), name);
-      if (it == header.end())
+      const std::size_t i = find_column(header, name);
+      if (i == header.size())
         throw std::invalid_argument(
           fmt::format("{}: no column '{}' (not a k_table.csv of `kimp study` nor a "
                       "fit_table.csv of `kimp fit`)",
                       table.file.string(),
                       name));
-      return static_cast<std::size_t>(std::distance(header.begin(), it));
+      return i;
     };
     const std::size_t height = column("wall_height_m");
     const std::size_t kv     = column("kelvin_voigt_total_kN_per_mm");
     const std::size_t jk     = column("jankowski_total_kN_per_mm1.5");
     // Optional columns: tables written before the velocity axis have one velocity (or none).
-    const auto optional_column = [&](const std::string &name)
-    {
-      return static_cast<std::size_t>(
-        std::distance(header.begin(), std::find(header.begin(), header.end(), name)));
-    };
-    const std::size_t velocity  = optional_column("impact_velocity_m_per_s");
-    const std::size_t reference = optional_column("reference_velocity");
-    int               number    = 1;
-    while (std::getline(in, line))
-    {
-      ++number;
-      if (line.empty())
-        continue;
-      const std::vector<std::string> f = split_csv(line);
-      if (f.size() != header.size())
-        throw std::invalid_argument(fmt::format("{}:{}: {} fields for {} columns",
-                                                table.file.string(),
-                                                number,
-                                                f.size(),
-                                                header.size()));
-      KTableRow row;
-      row.wall_height = to_number(f[height]);
-      // kN/mm^n -> N/m^n: × 1e3 · 1e3^n.
-      row.kelvin_voigt_total = to_number(f[kv]) * 1e6;
-      row.jankowski_total    = to_number(f[jk]) * 1e3 * std::pow(1e3, 1.5);
-      if (velocity < f.size())
-        row.impact_velocity = to_number(f[velocity]);
-      if (reference < f.size())
-        row.reference = f[reference] == "yes";
-      if (std::isfinite(row.wall_height) && row.kelvin_voigt_total > 0.0 &&
-          row.jankowski_total > 0.0)
-        table.rows.push_back(row);
-    }
+    const std::size_t velocity  = find_column(header, "impact_velocity_m_per_s");
+    const std::size_t reference = find_column(header, "reference_velocity");
+    for_each_row(in,
+                 header,
+                 table.file,
+                 [&](const std::vector<std::string> &f)
+                 {
+                   KTableRow row;
+                   row.wall_height = to_number(f[height]);
+                   // kN/mm^n -> N/m^n: × 1e3 · 1e3^n.
+                   row.kelvin_voigt_total = to_number(f[kv]) * 1e6;
+                   row.jankowski_total    = to_number(f[jk]) * 1e3 * std::pow(1e3, 1.5);
+                   if (velocity < f.size())
+                     row.impact_velocity = to_number(f[velocity]);
+                   if (reference < f.size())
+                     row.reference = f[reference] == "yes";
+                   if (std::isfinite(row.wall_height) && row.kelvin_voigt_total > 0.0 &&
+                       row.jankowski_total > 0.0)
+                     table.rows.push_back(row);
+                 });
     if (table.rows.empty())
       throw std::invalid_argument(
         fmt::format("{}: no row with a wall height and both k (every fit failed?)",

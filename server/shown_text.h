@@ -37,7 +37,7 @@ namespace kimp::server
                 const std::optional<std::filesystem::path> &records_dir);
 
     /// `text` with every path below the runs or records folder written relative to that folder
-    /// ("/home/u/kimp-runs/ID/scene.yaml" -> "ID/scene.yaml") and either folder itself by its
+    /// ("RUNS_DIR/ID/scene.yaml" -> "ID/scene.yaml") and either folder itself by its
     /// name ("kimp-runs"), long lines clipped (clip_long_lines()).
     std::string operator()(std::string text) const;
     /// `text` with the folders' paths made relative as operator() does, no line clipped.
