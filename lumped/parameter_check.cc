@@ -1,6 +1,7 @@
 // The message of a rejected parameter; see parameter_check.h.
 #include "lumped/parameter_check.h"
 
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -39,5 +40,28 @@ namespace kimp::lumped
     };
     check(initial_displacement, "initial_displacement.size");
     check(initial_velocity, "initial_velocity.size");
+  }
+
+  void check_stepping_options(const double dt,
+                              const double safety,
+                              const double duration,
+                              const double output_interval,
+                              const double divergence_energy_factor)
+  {
+    const ParameterCheck check("central_difference.");
+    check(dt >= 0.0 && std::isfinite(dt), "dt", dt, "must be > 0 s, or 0 for auto");
+    check(safety > 0.0 && safety <= 1.0, "safety", safety, "must be in (0, 1]");
+    check(duration >= 0.0 && std::isfinite(duration),
+          "duration",
+          duration,
+          "must be >= 0 s (0: the record's length)");
+    check(output_interval >= 0.0 && std::isfinite(output_interval),
+          "output_interval",
+          output_interval,
+          "must be >= 0 s (0: no histories)");
+    check(divergence_energy_factor > 1.0,
+          "divergence_energy_factor",
+          divergence_energy_factor,
+          "must be > 1");
   }
 } // namespace kimp::lumped

@@ -45,4 +45,16 @@ namespace kimp::lumped
                              const std::vector<double> &initial_displacement,
                              const std::vector<double> &initial_velocity,
                              std::size_t                n_dofs);
+
+  /**
+   * The time-stepping options every central-difference integrator shares, checked under the
+   * keys "central_difference.<name>": dt (s, > 0, or 0 for auto), safety (0, 1], duration and
+   * output_interval (s, >= 0), divergence_energy_factor (> 1).
+   * @throws std::invalid_argument naming the first key out of range.
+   */
+  void check_stepping_options(double dt,
+                              double safety,
+                              double duration,
+                              double output_interval,
+                              double divergence_energy_factor);
 } // namespace kimp::lumped

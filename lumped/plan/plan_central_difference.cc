@@ -749,27 +749,11 @@ namespace kimp::lumped::plan
     : model_(std::move(model))
     , options_(std::move(options))
   {
-    const ParameterCheck check("central_difference.");
-    check(options_.dt >= 0.0 && std::isfinite(options_.dt),
-          "dt",
-          options_.dt,
-          "must be > 0 s, or 0 for auto");
-    check(options_.safety > 0.0 && options_.safety <= 1.0,
-          "safety",
-          options_.safety,
-          "must be in (0, 1]");
-    check(options_.duration >= 0.0 && std::isfinite(options_.duration),
-          "duration",
-          options_.duration,
-          "must be >= 0 s (0: the record's length)");
-    check(options_.output_interval >= 0.0 && std::isfinite(options_.output_interval),
-          "output_interval",
-          options_.output_interval,
-          "must be >= 0 s (0: no histories)");
-    check(options_.divergence_energy_factor > 1.0,
-          "divergence_energy_factor",
-          options_.divergence_energy_factor,
-          "must be > 1");
+    check_stepping_options(options_.dt,
+                           options_.safety,
+                           options_.duration,
+                           options_.output_interval,
+                           options_.divergence_energy_factor);
     require_initial_state("central_difference.",
                           options_.initial_displacement,
                           options_.initial_velocity,
