@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "app/ground_motion_scene.h"
-#include "app/lumped_run.h"
-#include "app/lumped_scene.h"
+#include "app/lumped/ground_motion_scene.h"
+#include "app/lumped/lumped_run.h"
+#include "app/lumped/lumped_scene.h"
 
 namespace
 {

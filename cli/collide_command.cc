@@ -2,7 +2,7 @@
 // Parses the command's options and calls kimp::app.
 #include <CLI/CLI.hpp>
 
-#include "app/collide_run.h"
+#include "app/lumped/collide_run.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
 

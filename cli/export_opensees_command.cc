@@ -2,7 +2,7 @@
 // input (Tcl and OpenSeesPy). Parses the command's options and calls kimp::app.
 #include <CLI/CLI.hpp>
 
-#include "app/opensees_export.h"
+#include "app/export/opensees_export.h"
 #include "base/logging.h"
 #include "base/version.h"
 #include "cli/cli.h"

@@ -2,7 +2,7 @@
 // Parses the command's options and calls kimp::app.
 #include <CLI/CLI.hpp>
 
-#include "app/fit_run.h"
+#include "app/laws/fit_run.h"
 #include "base/logging.h"
 #include "base/version.h"
 #include "cli/cli.h"

@@ -3,8 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "app/lumped_run.h"
-#include "app/plan_run.h"
+#include "app/lumped/lumped_run.h"
+#include "app/lumped/plan_run.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
 

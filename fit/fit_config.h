@@ -11,8 +11,8 @@ namespace kimp::fit
 {
   /**
    * What both routes to k (`kimp fem` + `kimp fit`, and `kimp study`) fit with. The keys, units,
-   * ranges and meanings are declared once by visit() (app/fit_run.h): the study's `fit:` section
-   * and the flags of `kimp fit` are that declaration.
+   * ranges and meanings are declared once by visit() (app/laws/fit_run.h): the study's `fit:`
+   * section and the flags of `kimp fit` are that declaration.
    */
   /// Largest relative miss of the FEM peak force by the fitted law's peak (|F_fit/F_FEM − 1|)
   /// for a fit to be "ok" rather than "warning" (FitConfig::peak_tolerance).

@@ -5,7 +5,7 @@
 #include <pybind11/stl.h>
 #include <string>
 
-#include "app/collide_run.h"
+#include "app/lumped/collide_run.h"
 #include "fit/fit_config.h"
 #include "fit/fitter.h"
 #include "io/scene_io.h"

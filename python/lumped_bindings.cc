@@ -7,9 +7,9 @@
 #include <pybind11/stl.h>
 #include <string>
 
-#include "app/ground_motion_scene.h"
-#include "app/lumped_run.h"
-#include "app/lumped_scene.h"
+#include "app/lumped/ground_motion_scene.h"
+#include "app/lumped/lumped_run.h"
+#include "app/lumped/lumped_scene.h"
 #include "io/scene_io.h"
 
 #include "python/bindings.h"

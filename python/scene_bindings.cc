@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "app/collide_run.h"
-#include "app/lumped_scene.h"
+#include "app/lumped/collide_run.h"
+#include "app/lumped/lumped_scene.h"
 #include "io/scene_io.h"
 #include "io/units.h"
 

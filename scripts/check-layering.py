@@ -8,10 +8,12 @@ an included source file (*.cc): a command (cli/<name>_command.cc) is never inclu
 Each module's CMakeLists.txt may link only the kimp targets of the modules it may include, so the
 build graph says what the includes say.
 
-Inside app/ and cli/ the rooms are checked too (APP_ROOMS): app's core (the loose files of app/,
-which the lean executable links) includes none of app/fem, app/study or app/sweep; app/sweep
-includes no study; server includes app's core only; only the FEM part of cli/
-(kimp-fem) includes app/fem and app/study. A header named *_internal.h is included only from its
+Inside app/ and cli/ the rooms are checked too (APP_ROOMS). The lean executable links app/core
+(the loose files of app/), app/laws (impact-law scenes, k sources, fits), app/lumped (lumped and
+plan scenes and runs, collide), app/export (OpenSees) and app/sweep; the laws include no lumped
+scene, the lumped runs no export; app/core, app/laws, app/lumped, app/export and app/sweep include
+none of app/fem or app/study; app/sweep includes no study; server includes the lean rooms that
+read and run scenes only; only the FEM part of cli/ (kimp-fem) includes app/fem and app/study. A header named *_internal.h is included only from its
 own room. tests/ and bench/ may include any module, but no module includes tests/ or bench/.
 
     check-layering.py [ROOT]       check the tree at ROOT (default: the repository)
@@ -38,18 +40,23 @@ ALLOWED = {
 }
 MODULES = set(ALLOWED)
 
-# room -> app rooms it may include. A file's room: app/sweep, app/fem, app/study or app/core (the
-# other files of app/); cli/fem for the commands of kimp-fem, cli/core for the rest of cli/.
+# room -> app rooms it may include. A file's room: its sub-directory of app/ (APP_SUBROOMS), or
+# app/core (the loose files of app/); cli/fem for the commands of kimp-fem, cli/core for the rest.
+LEAN = {"app/core", "app/laws", "app/lumped", "app/export", "app/sweep"}
 APP_ROOMS = {
     "app/core": {"app/core"},
-    "app/sweep": {"app/core", "app/sweep"},
-    "app/fem": {"app/core", "app/fem"},
-    "app/study": {"app/core", "app/fem", "app/study"},
-    "server": {"app/core"},
-    "python": {"app/core", "app/sweep", "app/fem", "app/study"},
-    "cli/core": {"app/core", "app/sweep"},
-    "cli/fem": {"app/core", "app/sweep", "app/fem", "app/study"},
+    "app/laws": {"app/core", "app/laws"},
+    "app/lumped": {"app/core", "app/laws", "app/lumped"},
+    "app/export": {"app/core", "app/laws", "app/lumped", "app/export"},
+    "app/sweep": {"app/core", "app/laws", "app/lumped", "app/export", "app/sweep"},
+    "app/fem": {"app/core", "app/laws", "app/fem"},
+    "app/study": {"app/core", "app/laws", "app/lumped", "app/export", "app/fem", "app/study"},
+    "server": {"app/core", "app/laws", "app/lumped"},
+    "python": LEAN | {"app/fem", "app/study"},
+    "cli/core": LEAN,
+    "cli/fem": LEAN | {"app/fem", "app/study"},
 }
+APP_SUBROOMS = ("laws", "lumped", "export", "sweep", "fem", "study")
 CLI_FEM = {"fem_command.cc", "mesh_command.cc", "study_command.cc", "fem_main.cc", "fem_commands.cc"}
 
 
@@ -57,7 +64,7 @@ def room_of(rel):
     """The room of a repository-relative path (see APP_ROOMS), or its top directory."""
     parts = rel.split("/")
     if parts[0] == "app":
-        return "app/" + parts[1] if len(parts) > 2 and parts[1] in ("sweep", "fem", "study") \
+        return "app/" + parts[1] if len(parts) > 2 and parts[1] in APP_SUBROOMS \
             else "app/core"
     if parts[0] == "cli":
         return "cli/fem" if parts[-1] in CLI_FEM else "cli/core"
@@ -169,9 +176,9 @@ def self_test():
         "io/x.cc": '#include "lumped/laws/force_law.h"\n',
         "fit/x.cc": '#include "fem/impact.h"\n',
         "cli/lumped_command.cc": '#include "cli/fit_command.cc"\n',
-        "fem/x.cc": '#include "app/lumped_run.h"\n',
+        "fem/x.cc": '#include "app/lumped/lumped_run.h"\n',
         "lumped/y.cc": "#include <hdf5.h>\n",
-        "report/x.cc": '#include "app/lumped_run.h"\n',
+        "report/x.cc": '#include "app/lumped/lumped_run.h"\n',
         "lumped/z.cc": '#include "server/server.h"\n',
         "app/x.cc": "#include <httplib.h>\n",
         "app/y.cc": '#include "python/bindings.h"\n',
@@ -185,8 +192,11 @@ def self_test():
         "app/y2.cc": '#include "app/fem/fem_run.h"\n',
         "app/sweep/x.cc": '#include "app/study/study_internal.h"\n',
         "io/y.cc": '#include "tests/support/kimp_run.h"\n',
-        "app/fem/x.cc": '#include "app/lumped_run_internal.h"\n',
+        "app/fem/x.cc": '#include "app/lumped/lumped_run_internal.h"\n',
         "cli/sweep_command.cc": '#include "app/study/study_run.h"\n',
+        "app/laws/x.cc": '#include "app/lumped/lumped_scene.h"\n',
+        "app/lumped/x.cc": '#include "app/export/opensees_export.h"\n',
+        "app/lumped/y.cc": '#include "app/fem/fem_scene.h"\n',
     }
     with tempfile.TemporaryDirectory() as root:
         for rel, text in cases.items():

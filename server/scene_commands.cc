@@ -8,9 +8,9 @@
 #include <utility>
 #include <vector>
 
-#include "app/collide_run.h"
-#include "app/lumped_scene.h"
-#include "app/plan_scene.h"
+#include "app/lumped/collide_run.h"
+#include "app/lumped/lumped_scene.h"
+#include "app/lumped/plan_scene.h"
 #include "io/output_dir.h"
 #include "io/scene_io.h"
 

@@ -24,10 +24,10 @@
 #include <sys/wait.h>
 #include <thread>
 
-#include "app/collide_run.h"
-#include "app/lumped_scene.h"
-#include "app/scene_motion.h"
-#include "app/scene_preview.h"
+#include "app/lumped/collide_run.h"
+#include "app/lumped/lumped_scene.h"
+#include "app/lumped/scene_motion.h"
+#include "app/lumped/scene_preview.h"
 #include "base/logging.h"
 #include "base/version.h"
 #include "io/at2_reader.h"

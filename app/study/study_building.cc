@@ -7,7 +7,7 @@
 #include <limits>
 #include <set>
 
-#include "app/lumped_run.h"
+#include "app/lumped/lumped_run.h"
 #include "app/study/study_internal.h"
 #include "app/study/wall_capacity.h"
 #include "base/errors.h"

@@ -8,7 +8,7 @@
 #include <map>
 #include <set>
 
-#include "app/lumped_run.h"
+#include "app/lumped/lumped_run.h"
 #include "app/study/study_internal.h"
 #include "app/study/study_velocity.h"
 #include "base/errors.h"

@@ -10,7 +10,7 @@
 #include <limits>
 
 #include "app/fem/mesh_run.h"
-#include "app/lumped_run.h"
+#include "app/lumped/lumped_run.h"
 #include "app/study/study_fem.h"
 #include "app/study/study_ladder.h"
 #include "base/errors.h"

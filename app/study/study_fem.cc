@@ -11,7 +11,7 @@
 #include "app/fem/fem_common.h"
 #include "app/fem/fem_estimate.h"
 #include "app/fem/mesh_run.h"
-#include "app/fit_run.h"
+#include "app/laws/fit_run.h"
 #include "app/study/study_velocity.h"
 #include "base/errors.h"
 #include "base/hash.h"

@@ -7,7 +7,7 @@
 #include <map>
 #include <tuple>
 
-#include "app/fit_run.h"
+#include "app/laws/fit_run.h"
 #include "app/study/study_internal.h"
 #include "app/study/study_velocity.h"
 #include "base/format.h"

@@ -8,7 +8,7 @@
 
 #include "app/fem/fem_common.h"
 #include "app/fem/mesh_run.h"
-#include "app/lumped_run.h"
+#include "app/lumped/lumped_run.h"
 #include "app/study/study_fem.h"
 #include "app/study/study_internal.h"
 #include "base/errors.h"

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "app/lumped_scene.h"
+#include "app/lumped/lumped_scene.h"
 
 namespace kimp::app
 {

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "app/lumped_run.h"
+#include "app/lumped/lumped_run.h"
 #include "app/study/study_run.h"
 #include "app/table_cells.h"
 #include "base/format.h"

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "app/fem/fem_scene.h"
-#include "app/fit_run.h"
-#include "app/ground_motion_scene.h"
-#include "app/lumped_scene.h"
+#include "app/laws/fit_run.h"
+#include "app/lumped/ground_motion_scene.h"
+#include "app/lumped/lumped_scene.h"
 #include "fit/fit_config.h"
 #include "io/scene_io.h"
 
@@ -151,7 +151,7 @@ namespace kimp::app
   }
 
   /// The fits of every height: the fitting configuration shared with `kimp fit`
-  /// (fit/fit_config.h, keys declared in app/fit_run.h).
+  /// (fit/fit_config.h, keys declared in app/laws/fit_run.h).
   using StudyFitScene = fit::FitConfig;
 
   /** Mass of the flexible wall SDOF (docs/physics.md §4 "Wall SDOF"). */

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "app/k_table.h"
+#include "app/laws/k_table.h"
 #include "app/study/study_fem.h"
 #include "app/study/study_run.h"
 #include "io/results_file.h"

@@ -5,8 +5,8 @@
 #include <fmt/format.h>
 #include <stdexcept>
 
-#include "app/ground_motion_scene.h"
-#include "app/lumped_scene.h"
+#include "app/lumped/ground_motion_scene.h"
+#include "app/lumped/lumped_scene.h"
 #include "base/logging.h"
 
 namespace kimp::app

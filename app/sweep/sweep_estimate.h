@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "app/lumped_run.h"
+#include "app/lumped/lumped_run.h"
 
 namespace kimp::app
 {

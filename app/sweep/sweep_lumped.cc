@@ -11,7 +11,7 @@
 #include <string>
 #include <utility>
 
-#include "app/lumped_scene.h"
+#include "app/lumped/lumped_scene.h"
 #include "io/scene_io.h"
 
 namespace kimp::app

@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "app/lumped_run.h"
+#include "app/lumped/lumped_run.h"
 #include "app/sweep/sweep_engine.h"
 #include "lumped/structure/pounding_model.h"
 

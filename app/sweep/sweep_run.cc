@@ -15,7 +15,7 @@
 #include <string>
 
 #include "app/helper_programs.h"
-#include "app/lumped_scene.h"
+#include "app/lumped/lumped_scene.h"
 #include "app/sweep/sweep_engine.h"
 #include "app/sweep/sweep_estimate.h"
 #include "app/sweep/sweep_lumped.h"

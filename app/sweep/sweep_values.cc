@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "app/ground_motion_scene.h"
+#include "app/lumped/ground_motion_scene.h"
 #include "app/sweep/sweep_plan.h"
 #include "io/scene_io.h"
 #include "io/units.h"

@@ -5,8 +5,8 @@
 #include <iostream>
 #include <string>
 
-#include "app/ground_motion_scene.h"
-#include "app/lumped_scene.h"
+#include "app/lumped/ground_motion_scene.h"
+#include "app/lumped/lumped_scene.h"
 #include "app/sweep/sweep_plan.h"
 #include "lumped/integrators/central_difference.h"
 #include "lumped/isolators/bilinear_isolator.h"

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "app/ground_motion_scene.h"
-#include "app/lumped_scene.h"
+#include "app/lumped/ground_motion_scene.h"
+#include "app/lumped/lumped_scene.h"
 #include "lumped/integrators/adaptive_step.h"
 #include "lumped/structure/pounding_model.h"
 #include "tests/app/shipped_lumped_scenes.h"

@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "app/fit_run.h"
+#include "app/laws/fit_run.h"
 #include "fit/fit_config.h"
 #include "tests/support/fit_results.h"
 

@@ -9,9 +9,9 @@
 #include <string>
 #include <utility>
 
-#include "app/ground_motion_scene.h"
-#include "app/lumped_run.h"
-#include "app/lumped_scene.h"
+#include "app/lumped/ground_motion_scene.h"
+#include "app/lumped/lumped_run.h"
+#include "app/lumped/lumped_scene.h"
 #include "app/sweep/sweep_plan.h"
 #include "io/records.h"
 #include "io/scene_io.h"

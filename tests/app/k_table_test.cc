@@ -1,14 +1,14 @@
-// A study's k_table.csv as the k source of a lumped scene (app/k_table.h, impact.k_table): linear
-// interpolation by wall height, refusal outside the table with file and key, per-case heights
-// and records; a k(H, v) table interpolated in height at each velocity, then in velocity.
+// A study's k_table.csv as the k source of a lumped scene (app/laws/k_table.h, impact.k_table):
+// linear interpolation by wall height, refusal outside the table with file and key, per-case
+// heights and records; a k(H, v) table interpolated in height at each velocity, then in velocity.
 #include <cmath>
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <string>
 #include <vector>
 
-#include "app/k_table.h"
-#include "app/lumped_scene.h"
+#include "app/laws/k_table.h"
+#include "app/lumped/lumped_scene.h"
 #include "tests/support/files.h"
 #include "tests/support/scene_errors.h"
 #include "tests/support/temp_dir.h"

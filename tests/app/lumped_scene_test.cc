@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "app/lumped_scene.h"
+#include "app/lumped/lumped_scene.h"
 #include "io/units.h"
 #include "lumped/isolators/bilinear_isolator.h"
 #include "lumped/isolators/bouc_wen_isolator.h"

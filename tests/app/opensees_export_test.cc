@@ -1,5 +1,5 @@
-// `kimp export-opensees` (app/opensees_export.h): every number written is checked against its
-// formula — Kelvin-Voigt and Jankowski ξ from the COR, Hertzdamp ξ̄, and Muthukumar's bilinear
+// `kimp export-opensees` (app/export/opensees_export.h): every number written is checked against
+// its formula — Kelvin-Voigt and Jankowski ξ from the COR, Hertzdamp ξ̄, and Muthukumar's bilinear
 // ImpactMaterial, whose loop must dissipate the Hertz impact's energy ½·m_eff·v²·(1 − e²).
 #include <cmath>
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "app/opensees_export.h"
+#include "app/export/opensees_export.h"
 
 namespace
 {

@@ -1,5 +1,5 @@
-// Yielding moat walls as OpenSees input (app/opensees_wall_export.h): every number written is
-// the scene's per-metre value × width in OpenSees' argument order and sign convention, the
+// Yielding moat walls as OpenSees input (app/export/opensees_wall_export.h): every number written
+// is the scene's per-metre value × width in OpenSees' argument order and sign convention, the
 // materials are arranged in parallel (wall part) and in series (contact part) with the right
 // element orientation, and Tcl and OpenSeesPy agree.
 #include <gtest/gtest.h>
@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "app/lumped_scene.h"
-#include "app/opensees_wall_export.h"
+#include "app/export/opensees_wall_export.h"
+#include "app/lumped/lumped_scene.h"
 
 namespace
 {

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "app/collide_run.h"
-#include "app/fit_run.h"
-#include "app/lumped_scene.h"
-#include "app/opensees_export.h"
+#include "app/export/opensees_export.h"
+#include "app/laws/fit_run.h"
+#include "app/lumped/collide_run.h"
+#include "app/lumped/lumped_scene.h"
 #include "app/sweep/sweep_plan.h"
 #include "io/scene_io.h"
 #include "tests/support/messages.h"

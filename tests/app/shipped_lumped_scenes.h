@@ -10,8 +10,8 @@
 #include <optional>
 #include <string>
 
-#include "app/ground_motion_scene.h"
-#include "app/lumped_scene.h"
+#include "app/lumped/ground_motion_scene.h"
+#include "app/lumped/lumped_scene.h"
 #include "io/scene_io.h"
 #include "lumped/excitation/ground_motion.h"
 #include "tests/support/files.h"

@@ -7,8 +7,8 @@
 #include <set>
 #include <string>
 
-#include "app/ground_motion_scene.h"
-#include "app/lumped_scene.h"
+#include "app/lumped/ground_motion_scene.h"
+#include "app/lumped/lumped_scene.h"
 #include "app/sweep/sweep_plan.h"
 #include "tests/support/files.h"
 

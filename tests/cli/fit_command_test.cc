@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "app/fit_run.h"
+#include "app/laws/fit_run.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
 #include "io/fem_results.h"

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "app/lumped_scene.h"
+#include "app/lumped/lumped_scene.h"
 #include "tests/support/files.h"
 #include "tests/support/hdf5_reader.h"
 #include "tests/support/kimp_run.h"

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "app/lumped_scene.h"
+#include "app/lumped/lumped_scene.h"
 #include "io/at2_reader.h"
 #include "io/scene_io.h"
 #include "tests/support/files.h"

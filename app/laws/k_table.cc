@@ -1,6 +1,6 @@
 // Reader of a study's k_table.csv (RFC 4180 as written by io/summary.h) and its interpolation in
 // wall height and impact velocity.
-#include "app/k_table.h"
+#include "app/laws/k_table.h"
 
 #include <algorithm>
 #include <cmath>

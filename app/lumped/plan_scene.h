@@ -1,8 +1,8 @@
 // A `kimp lumped` scene in plan (docs/physics.md §7 "Pounding in plan"): the keys of a planar
-// lumped scene (app/lumped_scene.h) plus an optional `plan` section. With `plan`, the building is
-// a stack of rigid diaphragms (u_x, u_y, θ per level) on isolators at plan positions, in a moat
-// wall around its base, under two ground-motion components; without it the scene is planar and
-// runs exactly as before.
+// lumped scene (app/lumped/lumped_scene.h) plus an optional `plan` section. With `plan`, the
+// building is a stack of rigid diaphragms (u_x, u_y, θ per level) on isolators at plan positions,
+// in a moat wall around its base, under two ground-motion components; without it the scene is
+// planar and runs exactly as before.
 #pragma once
 
 #include <filesystem>
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "app/lumped_scene.h"
+#include "app/lumped/lumped_scene.h"
 #include "io/scene_io.h"
 #include "lumped/excitation/ground_motion.h"
 #include "lumped/plan/plan_central_difference.h"

@@ -120,7 +120,7 @@ namespace kimp::app
   {
     BumperScene bumper;
     /// A study's k_table.csv (or its output directory): k from the table at `wall_height`
-    /// instead of the text `k` (app/k_table.h); "" = use `k`.
+    /// instead of the text `k` (app/laws/k_table.h); "" = use `k`.
     std::string           k_table;
     std::optional<double> wall_height; ///< m, where k_table is interpolated
   };

@@ -1,9 +1,9 @@
-// The model of a lumped scene without a run (app/scene_preview.h).
-#include "app/scene_preview.h"
+// The model of a lumped scene without a run (app/lumped/scene_preview.h).
+#include "app/lumped/scene_preview.h"
 
 #include <cmath>
 
-#include "app/lumped_scene.h"
+#include "app/lumped/lumped_scene.h"
 #include "io/scene_io.h"
 #include "io/units.h"
 #include "lumped/structure/pounding_model.h"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "app/lumped_scene.h"
+#include "app/lumped/lumped_scene.h"
 #include "io/scene_io.h"
 #include "io/summary.h"
 #include "lumped/collision/cimp_calibration.h"

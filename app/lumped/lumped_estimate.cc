@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 #include <stdexcept>
 
-#include "app/lumped_run_internal.h"
+#include "app/lumped/lumped_run_internal.h"
 #include "io/units.h"
 #include "lumped/integrators/central_difference.h"
 #include "lumped/structure/pounding_model.h"

@@ -8,9 +8,9 @@
 #include <utility>
 #include <vector>
 
-#include "app/ground_motion_scene.h"
-#include "app/impact_scene.h"
-#include "app/yielding_wall_scene.h"
+#include "app/laws/impact_scene.h"
+#include "app/laws/yielding_wall_scene.h"
+#include "app/lumped/ground_motion_scene.h"
 #include "io/scene_io.h"
 #include "lumped/integrators/central_difference.h"
 #include "lumped/structure/pounding_model.h"

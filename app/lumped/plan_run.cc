@@ -1,5 +1,5 @@
 // `kimp lumped` of a scene in plan: run the plan engine and write its files.
-#include "app/plan_run.h"
+#include "app/lumped/plan_run.h"
 
 #include <chrono>
 #include <cmath>

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "app/lumped_run.h"
+#include "app/lumped/lumped_run.h"
 #include "base/stopwatch.h"
 #include "lumped/integrators/newmark_integrator.h"
 

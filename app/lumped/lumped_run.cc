@@ -1,7 +1,7 @@
 // `kimp lumped`: one pounding analysis per case (central difference or Newmark) and the loop over
 // a scene's cases; failed cases are recorded, not fatal. The cost estimate of a case is in
 // lumped_estimate.cc, the files (lumped.h5, summary.json, peaks.csv) in lumped_files.cc.
-#include "app/lumped_run.h"
+#include "app/lumped/lumped_run.h"
 
 #include <chrono>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "app/lumped_run_internal.h"
+#include "app/lumped/lumped_run_internal.h"
 #include "base/errors.h"
 #include "base/format.h"
 #include "base/logging.h"

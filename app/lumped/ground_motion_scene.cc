@@ -1,5 +1,5 @@
 // Ground-motion scene section: validation, loading (record or synthetic), scaling and trimming.
-#include "app/ground_motion_scene.h"
+#include "app/lumped/ground_motion_scene.h"
 
 #include <cmath>
 #include <fmt/format.h>

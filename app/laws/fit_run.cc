@@ -1,5 +1,5 @@
 // `kimp fit`: FEM force histories -> impact stiffness table (docs/physics.md §4 "Fit").
-#include "app/fit_run.h"
+#include "app/laws/fit_run.h"
 
 #include <chrono>
 #include <cstdint>

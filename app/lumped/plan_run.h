@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "app/plan_scene.h"
+#include "app/lumped/plan_scene.h"
 #include "io/output_dir.h"
 #include "lumped/plan/plan_central_difference.h"
 

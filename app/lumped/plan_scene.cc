@@ -1,5 +1,5 @@
 // A `kimp lumped` scene in plan: validation, the engine's building and moat, the motion.
-#include "app/plan_scene.h"
+#include "app/lumped/plan_scene.h"
 
 #include <cmath>
 #include <fmt/format.h>

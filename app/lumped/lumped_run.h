@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "app/lumped_scene.h"
+#include "app/lumped/lumped_scene.h"
 #include "io/summary.h"
 #include "lumped/excitation/ground_motion.h"
 #include "lumped/integrators/adaptive_step.h"

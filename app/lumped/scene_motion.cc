@@ -1,10 +1,10 @@
-// The ground motion of a scene without a run (app/scene_motion.h).
-#include "app/scene_motion.h"
+// The ground motion of a scene without a run (app/lumped/scene_motion.h).
+#include "app/lumped/scene_motion.h"
 
 #include <stdexcept>
 
-#include "app/ground_motion_scene.h"
-#include "app/lumped_scene.h"
+#include "app/lumped/ground_motion_scene.h"
+#include "app/lumped/lumped_scene.h"
 #include "io/scene_io.h"
 
 namespace kimp::app

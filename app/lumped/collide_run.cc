@@ -1,6 +1,6 @@
 // `kimp collide`: effective COR table of the impact laws (two-body central difference runs,
 // docs/physics.md §1) and the C_imp recalibration (thesis eqs. 2.18-2.23).
-#include "app/collide_run.h"
+#include "app/lumped/collide_run.h"
 
 #include <chrono>
 #include <cmath>

@@ -137,7 +137,8 @@ namespace kimp::app
     std::filesystem::path  source;
     std::filesystem::path  output;   ///< directory of opensees_impact.tcl / .py
     ExportOpenSeesSettings settings; ///< the flags
-    /// A `kimp lumped` scene whose yielding walls are written too (app/opensees_wall_export.h);
+    /// A `kimp lumped` scene whose yielding walls are written too
+    /// (app/export/opensees_wall_export.h);
     /// "" = none.
     std::filesystem::path lumped_scene;
   };

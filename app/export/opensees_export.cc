@@ -1,6 +1,6 @@
 // OpenSees input of the fitted impact laws: ViscoelasticGap, ElasticPPGap, JankowskiImpact,
 // Hertzdamp and ImpactMaterial (Muthukumar's bilinear approximation of the Hertz law).
-#include "app/opensees_export.h"
+#include "app/export/opensees_export.h"
 
 #include <algorithm>
 #include <chrono>
@@ -14,8 +14,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "app/k_table.h"
-#include "app/opensees_wall_export.h"
+#include "app/export/opensees_wall_export.h"
+#include "app/laws/k_table.h"
 #include "base/logging.h"
 #include "base/version.h"
 #include "io/summary.h"

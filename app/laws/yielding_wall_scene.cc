@@ -1,5 +1,5 @@
 // First guesses of a yielding wall's wall-and-backfill part and its engine parameters.
-#include "app/yielding_wall_scene.h"
+#include "app/laws/yielding_wall_scene.h"
 
 #include <cmath>
 

@@ -1,12 +1,12 @@
 // Impact law section: its cross-key rules, exponent, stiffness (text, k table or SI), bumper
 // stiffness k_b = 2.25·N·A·K_r/t^n (thesis eqs. 6.2-6.3) and lumped::ForceLawSpec; see
 // impact_scene.h.
-#include "app/impact_scene.h"
+#include "app/laws/impact_scene.h"
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "app/k_table.h"
+#include "app/laws/k_table.h"
 #include "fit/fitter.h"
 #include "io/units.h"
 #include "lumped/laws/bumper_law.h"

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "app/lumped_run_internal.h"
+#include "app/lumped/lumped_run_internal.h"
 #include "base/version.h"
 #include "fit/fitter.h"
 #include "io/results_file.h"

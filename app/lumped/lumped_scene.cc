@@ -1,6 +1,6 @@
 // `kimp lumped` scene: the rules linking its keys, the cases, and the construction of the lumped
-// model (docs/physics.md §2-3); the impact law section is app/impact_scene.cc.
-#include "app/lumped_scene.h"
+// model (docs/physics.md §2-3); the impact law section is app/laws/impact_scene.cc.
+#include "app/lumped/lumped_scene.h"
 
 #include <algorithm>
 #include <cctype>
@@ -9,7 +9,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "app/k_table.h"
+#include "app/laws/k_table.h"
 #include "io/units.h"
 #include "lumped/excitation/ground_motion.h"
 #include "lumped/isolators/bilinear_isolator.h"

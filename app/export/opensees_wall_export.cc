@@ -1,12 +1,12 @@
 // Yielding moat walls as OpenSees nodes, materials and zeroLength elements (Tcl and OpenSeesPy).
-#include "app/opensees_wall_export.h"
+#include "app/export/opensees_wall_export.h"
 
 #include <fmt/format.h>
 #include <optional>
 #include <stdexcept>
 #include <tuple>
 
-#include "app/lumped_scene.h"
+#include "app/lumped/lumped_scene.h"
 #include "io/summary.h"
 
 namespace kimp::app
