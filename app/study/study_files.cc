@@ -244,6 +244,7 @@ namespace kimp::app::study_internal
     root.group("k_table").set_attribute("building_width_m", scene.fit.width);
     write_study_extras(root, result.extras);
     write_flexible_wall_h5(root, result);
+    write_yielding_wall_h5(root, result);
     write_velocity_h5(root, scene, result);
 
     // /fidelity/<H>: the levels climbed (fidelity: auto).

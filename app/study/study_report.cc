@@ -222,6 +222,7 @@ namespace kimp::app::study_internal
     std::string md = "# kimp wall-height study\n\n" + base::version_line() + "\n\n";
     for (const std::string &warning : result.warnings)
       md += "**Warning:** " + warning + ".\n\n";
+    md += yielding_wall_markdown(scene, result);
     md += fmt::format("## Impact stiffness per wall height (fitted at COR {}, W = {} m, impact "
                       "velocity {} m/s)\n\n",
                       scene.fit.cor,
@@ -252,12 +253,16 @@ namespace kimp::app::study_internal
 
     md += "## Building response\n\n"
           "Isolated building of docs/physics.md §3 with moat walls on both sides, gap "
-          "from the no-wall peak isolation displacement; modified Kelvin-Voigt with k_KV, "
-          "Jankowski and the hysteretic law with k_Jankowski.\n\n"
-          "The walls are linear: the impact force is read against the wall's static collapse "
-          "load estimate (M_p + P_p H/3)/h_c × W (docs/physics.md §2 \"Yielding moat wall\", "
-          "capacity estimate); a ratio above 1 (**bold**) is a force the wall cannot carry.\n\n"
-          "| record | H (m) | law | gap (cm) | base acc. (m/s²) | top acc. (m/s²) | drift (cm) | "
+          "from the no-wall peak isolation displacement; ";
+    md += result.yielding_walls.empty() ?
+            "linear route: modified Kelvin-Voigt with k_KV, Jankowski and the hysteretic law "
+            "with k_Jankowski.\n\n"
+            "The walls are linear: the impact force is read against the wall's static collapse "
+            "load estimate (M_p + P_p H/3)/h_c × W (docs/physics.md §2 \"Yielding moat wall\", "
+            "capacity estimate); a ratio above 1 (**bold**) is a force the wall cannot carry.\n\n" :
+            "inelastic materials: yielding wall elements (section above); the impact force is "
+            "the contact part's, the capacity the wall-and-backfill part's cap.\n\n";
+    md += "| record | H (m) | law | gap (cm) | base acc. (m/s²) | top acc. (m/s²) | drift (cm) | "
           "impact force (kN) | wall capacity est. (kN) | force / capacity | impacts | top acc. "
           "amplification | status |\n"
           "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
