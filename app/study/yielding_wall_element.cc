@@ -29,7 +29,8 @@ namespace kimp::app
     require_positive(in.soil_density, "soil_density");
     require_positive(in.soil_wave_speed, "soil_wave_speed");
     require_positive(in.loaded_height, "loaded_height");
-    require_positive(in.slab_impedance, "slab_impedance");
+    if (!(in.slab_impedance > 0.0)) // +infinity: a rigid slab
+      throw std::invalid_argument("yielding wall element: slab_impedance must be positive");
     require_positive(in.wall_impedance, "wall_impedance");
     require_positive(in.wall_mass, "wall_mass");
     require_positive(in.striker_mass, "striker_mass");

@@ -26,7 +26,7 @@ namespace kimp::app
     double soil_wave_speed = 0.0; ///< c_s, m/s
     double loaded_height   = 0.0; ///< the backfill height the wall pushes, m
     // The first peak (a wave through slab and wall over the contact band).
-    double slab_impedance = 0.0; ///< Z_slab = ρ·c·t_slab, N·s/m per m
+    double slab_impedance = 0.0; ///< Z_slab = ρ·c·t_slab, N·s/m per m (+inf: a rigid slab)
     double wall_impedance = 0.0; ///< Z_wall = ρ·c·(loaded band) through the wall, N·s/m per m
     double wall_mass      = 0.0; ///< the wall DOF's mass, kg/m
     double striker_mass   = 0.0; ///< the mass that hits the wall, kg/m
