@@ -153,15 +153,18 @@ TEST(YieldingWallFem, ElementWithFrozenParametersAgainstTheFemSlabAtHalfAMetrePe
   // The FEM's elastic slab, 8 m x 0.20 m of concrete: 3.84 t/m.
   const Comparison c =
     compare("elastic_0.5", "slab: {velocity: \"0.5 m/s\"}", "100 ms", 3840.0, 0.5, false);
-  // What holds (docs/validation.md): the first peak, from the slab-wall impedance alone.
+  // What holds (docs/validation.md): the first peak, from the slab-wall impedance alone
+  // (measured -8.5 %).
   EXPECT_LT(std::abs(c.error(&Impact::peak_force)), 0.10);
-  // What does not hold yet, bounded so that a change shows: the element's bilinear wall takes
-  // the capacity estimate (M_p + P_p H/3)/h_c as its plateau and the cracked cantilever as its
-  // stiffness, and unloads at that stiffness; the FEM's wall and backfill recover most of their
-  // displacement elastically. The bounds are the measured errors with a margin, not targets.
-  EXPECT_LT(std::abs(c.error(&Impact::slab_peak)), 1.0);
-  EXPECT_LT(std::abs(c.error(&Impact::time_to_stop)), 1.0);
-  EXPECT_GT(c.element.wall_end, 0.0);
+  // What does not hold (measured: slab peak -33 %, time to stop -20 %): the element's wall is
+  // the cracked cantilever alone, stiffer than the FEM's wall with its cracking contact zone,
+  // base and backfill. Bounded so that a change shows; these are not the targets (15 %).
+  EXPECT_LT(std::abs(c.error(&Impact::slab_peak)), 0.45);
+  EXPECT_LT(std::abs(c.error(&Impact::time_to_stop)), 0.30);
+  // 480 J/m do not reach the element's cap: its wall keeps no set; the FEM's wall is still at
+  // 1 mm when the slab leaves (moving back, not a permanent set).
+  EXPECT_LT(c.element.wall_end, 1e-5);
+  EXPECT_GT(c.fem.wall_end, 0.0);
 }
 
 TEST(YieldingWallFem, FullTableOfDocsValidation)
