@@ -50,6 +50,8 @@ namespace kimp::app::study_internal
       for (const StudyBuildingRun &r : runs)
       {
         const bool walls = r.law != "none";
+        // A yielding wall: its own resistance (the contact part's peak is the local wave).
+        const double force = r.yielding_wall ? r.wall_peak_resistance : r.peak_impact_force;
         t.add_row({r.record,
                    walls ? r.wall_height : nan,
                    r.law,
@@ -65,7 +67,7 @@ namespace kimp::app::study_internal
                    r.max_interstorey_drift * 100,
                    r.peak_impact_force / 1e3,
                    r.wall_capacity > 0.0 ? r.wall_capacity / 1e3 : nan,
-                   r.wall_capacity > 0.0 ? r.peak_impact_force / r.wall_capacity : nan,
+                   r.wall_capacity > 0.0 ? force / r.wall_capacity : nan,
                    static_cast<std::int64_t>(r.n_impacts),
                    r.permanent_indentation * 1e3,
                    r.amplification_base_acc,

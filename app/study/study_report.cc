@@ -261,15 +261,18 @@ namespace kimp::app::study_internal
             "load estimate (M_p + P_p H/3)/h_c × W (docs/physics.md §2 \"Yielding moat wall\", "
             "capacity estimate); a ratio above 1 (**bold**) is a force the wall cannot carry.\n\n" :
             "inelastic materials: yielding wall elements (section above); the impact force is "
-            "the contact part's, the capacity the wall-and-backfill part's cap.\n\n";
+            "the contact part's (the local wave), the ratio the wall-and-backfill part's peak "
+            "resistance over its cap.\n\n";
     md += "| record | H (m) | law | gap (cm) | base acc. (m/s²) | top acc. (m/s²) | drift (cm) | "
           "impact force (kN) | wall capacity est. (kN) | force / capacity | impacts | top acc. "
           "amplification | status |\n"
           "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const StudyBuildingRun &r : result.building)
     {
-      const bool        capacity   = r.wall_capacity > 0.0;
-      const double      ratio      = capacity ? r.peak_impact_force / r.wall_capacity : 0.0;
+      const bool capacity = r.wall_capacity > 0.0;
+      // A yielding wall: its own resistance (the contact part's peak is the local wave).
+      const double      wall_force = r.yielding_wall ? r.wall_peak_resistance : r.peak_impact_force;
+      const double      ratio      = capacity ? wall_force / r.wall_capacity : 0.0;
       const std::string ratio_text = !capacity   ? "-" :
                                      ratio > 1.0 ? "**" + readable(ratio) + "**" :
                                                    readable(ratio);
