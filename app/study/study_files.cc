@@ -453,6 +453,8 @@ namespace kimp::app::study_internal
     j["n_building_runs_not_ok"] = n_failed;
     if (!result.wall_sdofs.empty())
       j["flexible_wall"] = flexible_wall_json(result);
+    if (!result.yielding_walls.empty())
+      j["yielding_wall"] = yielding_wall_json(result);
     add_velocity_summary(j, scene, result);
     return j;
   }

@@ -215,6 +215,8 @@ namespace kimp::app::study_internal
   void write_yielding_wall_csv(const io::OutputDir &output, const StudyResult &result);
   /// study.h5 /yielding_wall/element and /yielding_wall/<record>.
   void write_yielding_wall_h5(io::ResultsGroup &root, const StudyResult &result);
+  /// summary.json "yielding_wall" (SI): runs, failed walls, and per run the wall's values.
+  nlohmann::ordered_json yielding_wall_json(const StudyResult &result);
   /// The report.md section (empty without yielding walls).
   std::string yielding_wall_markdown(const StudyScene &scene, const StudyResult &result);
 

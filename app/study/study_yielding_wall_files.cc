@@ -132,6 +132,36 @@ namespace kimp::app::study_internal
     runs_table(result.building).write_hdf5(g, "runs");
   }
 
+  nlohmann::ordered_json yielding_wall_json(const StudyResult &result)
+  {
+    nlohmann::ordered_json runs     = nlohmann::ordered_json::array();
+    std::size_t            n_failed = 0;
+    for (const StudyBuildingRun &r : result.building)
+    {
+      if (!r.yielding_wall)
+        continue;
+      n_failed += r.status == "ok" && r.wall_failed;
+      nlohmann::ordered_json row = {{"record", r.record},
+                                    {"wall_height", r.wall_height},
+                                    {"status", r.status}};
+      if (r.status == "ok")
+      {
+        row["peak_wall_resistance"]       = r.wall_peak_resistance;
+        row["wall_capacity"]              = r.wall_capacity;
+        row["peak_wall_displacement"]     = r.peak_wall_displacement;
+        row["residual_wall_displacement"] = r.wall_residual_displacement;
+        row["failed"]                     = r.wall_failed;
+        if (r.wall_failed)
+          row["failure_time"] = r.wall_failure_time;
+      }
+      runs.push_back(row);
+    }
+    return {{"units", {{"force", "N"}, {"displacement", "m"}, {"wall_height", "m"}, {"time", "s"}}},
+            {"n_runs", runs.size()},
+            {"n_failed", n_failed},
+            {"runs", runs}};
+  }
+
   std::string yielding_wall_markdown(const StudyScene &scene, const StudyResult &result)
   {
     if (result.yielding_walls.empty())

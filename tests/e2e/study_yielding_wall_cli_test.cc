@@ -7,6 +7,7 @@
 
 #  include <filesystem>
 #  include <gtest/gtest.h>
+#  include <nlohmann/json.hpp>
 #  include <string>
 
 #  include "tests/e2e/fem_scenes.h"
@@ -78,6 +79,12 @@ TEST(StudyYieldingWallCli, InelasticStudyRunsEveryHeightAgainstItsYieldingWall)
   EXPECT_EQ(h5.units("/yielding_wall/runs/residual_wall_displacement"), "cm");
   EXPECT_EQ(h5.units("/yielding_wall/element/capacity"), "kN/m");
   EXPECT_EQ(h5.dims("/yielding_wall/runs/peak_wall_resistance").at(0), 2u);
+
+  const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
+  ASSERT_TRUE(summary.contains("yielding_wall"));
+  EXPECT_EQ(summary["yielding_wall"]["n_runs"], 2);
+  EXPECT_EQ(summary["yielding_wall"]["runs"].size(), 2u);
+  EXPECT_TRUE(summary["yielding_wall"]["runs"][0]["failed"].is_boolean());
 
   // The answer comes first in the report: the yielding walls before the k table.
   const std::string report = read_text(out / "report.md");
