@@ -63,7 +63,7 @@ namespace kimp::app::study_internal
       const StudyBuildingRun *worst = nullptr;
       for (const StudyBuildingRun &r : runs)
       {
-        if (!(r.wall_capacity > 0.0) || r.status != "ok")
+        if (!(r.wall_capacity > 0.0) || r.status != "ok" || r.yielding_wall)
           continue;
         ++n_walled;
         if (r.peak_impact_force <= r.wall_capacity)
@@ -183,8 +183,9 @@ namespace kimp::app::study_internal
     return s;
   }
 
-  std::vector<StudyBuildingRun> run_building(const StudyScene               &scene,
-                                             const std::vector<StudyHeight> &heights)
+  std::vector<StudyBuildingRun> run_building(const StudyScene                     &scene,
+                                             const std::vector<StudyHeight>       &heights,
+                                             const std::vector<StudyYieldingWall> &yielding)
   {
     std::vector<StudyBuildingRun> runs;
     const unsigned int            top_dof = scene.building.n_storeys;
@@ -227,6 +228,19 @@ namespace kimp::app::study_internal
 
       for (const StudyHeight &h : heights)
       {
+        if (!yielding.empty())
+        {
+          // Inelastic materials: the height's yielding wall element, no equivalent k.
+          const YieldingWallCase y =
+            run_yielding_wall_case(scene,
+                                   {label, record.scale, gap, motion, base, none.response},
+                                   h,
+                                   yielding);
+          if (y.result)
+            errors.add(label + " " + h.name + " yielding_wall", *y.result);
+          runs.push_back(y.run);
+          continue;
+        }
         for (const auto &[law, fit] : building_laws(h))
         {
           StudyBuildingRun run;
@@ -259,6 +273,7 @@ namespace kimp::app::study_internal
     }
     errors.log();
     log_capacity_exceeded(runs);
+    log_yielding_walls(runs);
     return runs;
   }
 

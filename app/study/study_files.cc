@@ -50,6 +50,8 @@ namespace kimp::app::study_internal
       for (const StudyBuildingRun &r : runs)
       {
         const bool walls = r.law != "none";
+        // A yielding wall: its own resistance (the contact part's peak is the local wave).
+        const double force = r.yielding_wall ? r.wall_peak_resistance : r.peak_impact_force;
         t.add_row({r.record,
                    walls ? r.wall_height : nan,
                    r.law,
@@ -65,7 +67,7 @@ namespace kimp::app::study_internal
                    r.max_interstorey_drift * 100,
                    r.peak_impact_force / 1e3,
                    r.wall_capacity > 0.0 ? r.wall_capacity / 1e3 : nan,
-                   r.wall_capacity > 0.0 ? r.peak_impact_force / r.wall_capacity : nan,
+                   r.wall_capacity > 0.0 ? force / r.wall_capacity : nan,
                    static_cast<std::int64_t>(r.n_impacts),
                    r.permanent_indentation * 1e3,
                    r.amplification_base_acc,
@@ -244,6 +246,7 @@ namespace kimp::app::study_internal
     root.group("k_table").set_attribute("building_width_m", scene.fit.width);
     write_study_extras(root, result.extras);
     write_flexible_wall_h5(root, result);
+    write_yielding_wall_h5(root, result);
     write_velocity_h5(root, scene, result);
 
     // /fidelity/<H>: the levels climbed (fidelity: auto).
@@ -450,6 +453,8 @@ namespace kimp::app::study_internal
     j["n_building_runs_not_ok"] = n_failed;
     if (!result.wall_sdofs.empty())
       j["flexible_wall"] = flexible_wall_json(result);
+    if (!result.yielding_walls.empty())
+      j["yielding_wall"] = yielding_wall_json(result);
     add_velocity_summary(j, scene, result);
     return j;
   }

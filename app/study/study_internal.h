@@ -159,9 +159,11 @@ namespace kimp::app::study_internal
                            const std::string &law,
                            double             k_total,
                            double             cor);
-  /// Per record: the building without walls, then with walls for every height and law.
-  std::vector<StudyBuildingRun> run_building(const StudyScene               &scene,
-                                             const std::vector<StudyHeight> &heights);
+  /// Per record: the building without walls, then with walls for every height and law; with
+  /// `yielding` (inelastic studies) every height's walls are its yielding wall element instead.
+  std::vector<StudyBuildingRun> run_building(const StudyScene                     &scene,
+                                             const std::vector<StudyHeight>       &heights,
+                                             const std::vector<StudyYieldingWall> &yielding = {});
   /// Peaks, status and (with `without_walls`) amplification of one building run into `run`.
   void fill_building_peaks(StudyBuildingRun       &run,
                            const LumpedCaseResult &result,
@@ -182,6 +184,41 @@ namespace kimp::app::study_internal
                              const std::vector<StudyHeight>      &heights,
                              const std::vector<StudyWallSdof>    &sdofs,
                              const std::vector<StudyBuildingRun> &rigid);
+
+  // compute and writers: study_yielding_wall.cc (inelastic materials)
+  /// The element of every height from the scene (yielding_wall_inputs(); a failure is a row).
+  std::vector<StudyYieldingWall>
+  derive_study_yielding_walls(const StudyScene &scene, const std::vector<StudyHeight> &heights);
+  /// What a record's walled runs share with its run without walls.
+  struct RecordRun
+  {
+    const std::string          &label;
+    double                      scale = 1.0; ///< the record's base scale
+    double                      gap   = 0.0; ///< m
+    const lumped::GroundMotion &motion;
+    const LumpedScene          &base;          ///< the building without walls
+    const lumped::Response     &without_walls; ///< its response
+  };
+  /// One building run against a height's yielding walls, and its case result (null: skipped).
+  struct YieldingWallCase
+  {
+    StudyBuildingRun                run;
+    std::optional<LumpedCaseResult> result;
+  };
+  YieldingWallCase run_yielding_wall_case(const StudyScene                     &scene,
+                                          const RecordRun                      &record,
+                                          const StudyHeight                    &h,
+                                          const std::vector<StudyYieldingWall> &yielding);
+  /// One line per yielding-wall study: failed walls and the largest resistance / capacity.
+  void log_yielding_walls(const std::vector<StudyBuildingRun> &runs);
+  /// DIR/yielding_wall_element.csv (per height) and DIR/yielding_wall.csv (per height and record).
+  void write_yielding_wall_csv(const io::OutputDir &output, const StudyResult &result);
+  /// study.h5 /yielding_wall/element and /yielding_wall/<record>.
+  void write_yielding_wall_h5(io::ResultsGroup &root, const StudyResult &result);
+  /// summary.json "yielding_wall" (SI): runs, failed walls, and per run the wall's values.
+  nlohmann::ordered_json yielding_wall_json(const StudyResult &result);
+  /// The report.md section (empty without yielding walls).
+  std::string yielding_wall_markdown(const StudyScene &scene, const StudyResult &result);
 
   // writers: study_flexible_wall_files.cc
   /// DIR/wall_sdof.csv and DIR/flexible_wall.csv (rigid beside flexible, per run).

@@ -222,6 +222,7 @@ namespace kimp::app::study_internal
     std::string md = "# kimp wall-height study\n\n" + base::version_line() + "\n\n";
     for (const std::string &warning : result.warnings)
       md += "**Warning:** " + warning + ".\n\n";
+    md += yielding_wall_markdown(scene, result);
     md += fmt::format("## Impact stiffness per wall height (fitted at COR {}, W = {} m, impact "
                       "velocity {} m/s)\n\n",
                       scene.fit.cor,
@@ -252,19 +253,26 @@ namespace kimp::app::study_internal
 
     md += "## Building response\n\n"
           "Isolated building of docs/physics.md §3 with moat walls on both sides, gap "
-          "from the no-wall peak isolation displacement; modified Kelvin-Voigt with k_KV, "
-          "Jankowski and the hysteretic law with k_Jankowski.\n\n"
-          "The walls are linear: the impact force is read against the wall's static collapse "
-          "load estimate (M_p + P_p H/3)/h_c × W (docs/physics.md §2 \"Yielding moat wall\", "
-          "capacity estimate); a ratio above 1 (**bold**) is a force the wall cannot carry.\n\n"
-          "| record | H (m) | law | gap (cm) | base acc. (m/s²) | top acc. (m/s²) | drift (cm) | "
+          "from the no-wall peak isolation displacement; ";
+    md += result.yielding_walls.empty() ?
+            "linear route: modified Kelvin-Voigt with k_KV, Jankowski and the hysteretic law "
+            "with k_Jankowski.\n\n"
+            "The walls are linear: the impact force is read against the wall's static collapse "
+            "load estimate (M_p + P_p H/3)/h_c × W (docs/physics.md §2 \"Yielding moat wall\", "
+            "capacity estimate); a ratio above 1 (**bold**) is a force the wall cannot carry.\n\n" :
+            "inelastic materials: yielding wall elements (section above); the impact force is "
+            "the contact part's (the local wave), the ratio the wall-and-backfill part's peak "
+            "resistance over its cap.\n\n";
+    md += "| record | H (m) | law | gap (cm) | base acc. (m/s²) | top acc. (m/s²) | drift (cm) | "
           "impact force (kN) | wall capacity est. (kN) | force / capacity | impacts | top acc. "
           "amplification | status |\n"
           "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const StudyBuildingRun &r : result.building)
     {
-      const bool        capacity   = r.wall_capacity > 0.0;
-      const double      ratio      = capacity ? r.peak_impact_force / r.wall_capacity : 0.0;
+      const bool capacity = r.wall_capacity > 0.0;
+      // A yielding wall: its own resistance (the contact part's peak is the local wave).
+      const double      wall_force = r.yielding_wall ? r.wall_peak_resistance : r.peak_impact_force;
+      const double      ratio      = capacity ? wall_force / r.wall_capacity : 0.0;
       const std::string ratio_text = !capacity   ? "-" :
                                      ratio > 1.0 ? "**" + readable(ratio) + "**" :
                                                    readable(ratio);

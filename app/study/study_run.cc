@@ -56,12 +56,18 @@ namespace kimp::app
     write_k_table_csv(output, scene, result.heights, result.velocity_cases);
 
     const Clock::time_point building_start = Clock::now();
-    result.building                        = run_building(scene, result.heights);
-    result.consistent_k                    = run_consistent_k(scene, result);
+    if (has_inelastic_materials(scene.fem))
+      result.yielding_walls = derive_study_yielding_walls(scene, result.heights);
+    result.building     = run_building(scene, result.heights, result.yielding_walls);
+    result.consistent_k = run_consistent_k(scene, result);
     write_consistent_k_csv(output, result);
     result.building_seconds = seconds_since(building_start);
     write_building_csv(output, result.building);
-    if (scene.walls.flexible)
+    write_yielding_wall_csv(output, result);
+    if (scene.walls.flexible && !result.yielding_walls.empty())
+      logger().info("walls.flexible skipped: with inelastic materials the walls are the yielding "
+                    "wall elements (yielding_wall.csv)");
+    else if (scene.walls.flexible)
     {
       const Clock::time_point flexible_start = Clock::now();
       result.wall_sdofs                      = compute_wall_sdofs(scene, result.heights, output);

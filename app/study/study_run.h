@@ -11,6 +11,7 @@
 #include "app/study/study_flexible_wall.h"
 #include "app/study/study_ladder.h"
 #include "app/study/study_scene.h"
+#include "app/study/yielding_wall_element.h"
 #include "fit/fitter.h"
 #include "io/fem_results.h"
 #include "io/summary.h"
@@ -102,7 +103,27 @@ namespace kimp::app
     std::string status                 = "ok";
     bool        flexible_wall          = false; ///< walls: the height's SDOF (else rigid)
     double      peak_wall_displacement = 0.0;   ///< m, flexible walls: larger of the two
-    double      energy_error           = 0.0;   ///< flexible walls: max relative residual
+    double      energy_error = 0.0; ///< flexible and yielding walls: max relative residual
+    /// A yielding wall (inelastic study; law "yielding_wall"): the larger wall's values.
+    bool   yielding_wall              = false;
+    double wall_peak_resistance       = 0.0;   ///< peak R of the wall-and-backfill part, N
+    double wall_residual_displacement = 0.0;   ///< permanent set at the end, m
+    bool   wall_failed                = false; ///< pushed past its failure limit
+    double wall_failure_time          = 0.0;   ///< s (wall_failed only)
+    double wall_plastic_work          = 0.0;   ///< J, both walls
+    double wall_radiated_work         = 0.0;   ///< J, both walls
+    double energy_input               = 0.0;   ///< W_in of the run, J
+  };
+
+  /** The yielding wall element of one wall height (inelastic studies). */
+  struct StudyYieldingWall
+  {
+    double              wall_height = 0.0; ///< m
+    std::string         name;              ///< "H1.25"
+    std::string         status = "ok";     ///< "ok" or "failed: ..."
+    YieldingWallInputs  inputs;            ///< per metre, what it was derived from
+    YieldingWallElement element;           ///< per metre (× width for the wall)
+    bool                ok() const { return status == "ok"; }
   };
 
   /** One building run of the consistent-k iteration: k used and the impact velocity found. */
@@ -141,13 +162,15 @@ namespace kimp::app
     /// `building`, flexible_wall = true, amplification against the same run without walls)
     std::vector<StudyWallSdof>    wall_sdofs;
     std::vector<StudyBuildingRun> flexible_building;
-    double                        flexible_wall_seconds = 0.0; ///< s, SDOFs and their runs
-    double                        fem_seconds           = 0.0; ///< s, all heights
-    double                        fit_seconds           = 0.0; ///< s
-    double                        building_seconds      = 0.0; ///< s
-    double                        charts_seconds        = 0.0; ///< s
-    double                        wall_seconds          = 0.0; ///< s, whole study
-    std::vector<std::string>      warnings; ///< e.g. requested records not found (report.md)
+    /// Inelastic materials: each height's yielding wall element; `building` then runs with it.
+    std::vector<StudyYieldingWall> yielding_walls;
+    double                         flexible_wall_seconds = 0.0; ///< s, SDOFs and their runs
+    double                         fem_seconds           = 0.0; ///< s, all heights
+    double                         fit_seconds           = 0.0; ///< s
+    double                         building_seconds      = 0.0; ///< s
+    double                         charts_seconds        = 0.0; ///< s
+    double                         wall_seconds          = 0.0; ///< s, whole study
+    std::vector<std::string>       warnings; ///< e.g. requested records not found (report.md)
     /// The k(H, v) cases at the velocities other than the reference (study_velocity.h).
     std::vector<StudyHeight> velocity_cases;
     /// The consistent-k iterations of the building runs (study_velocity.h).

@@ -1,0 +1,172 @@
+// The yielding moat wall of an inelastic `kimp study` (docs/physics.md §2 "Yielding moat wall",
+// "Element of a study"): each height's element, the building runs against it, and their files:
+// yielding_wall_element.csv, yielding_wall.csv, study.h5 /yielding_wall and the report section.
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "app/study/study_internal.h"
+#include "app/study/yielding_wall_element.h"
+#include "base/errors.h"
+#include "base/format.h"
+#include "io/results_file.h"
+#include "io/table.h"
+
+namespace kimp::app::study_internal
+{
+  namespace
+  {
+    const StudyYieldingWall *element_of(const std::vector<StudyYieldingWall> &walls, double h)
+    {
+      for (const StudyYieldingWall &w : walls)
+        if (w.wall_height == h)
+          return &w;
+      return nullptr;
+    }
+
+    /// The walls' values of a done run into `run`: the larger wall's peaks, both walls' work.
+    void fill_wall_values(StudyBuildingRun &run, const LumpedCaseResult &done)
+    {
+      const lumped::Response &r = done.response;
+      run.peak_impact_force     = 0.0; // the contact parts only (not the permanent pairs)
+      run.permanent_indentation = 0.0;
+      for (const lumped::ContactResult &c : r.contacts)
+        if (!c.permanent)
+          run.peak_impact_force = std::max(run.peak_impact_force, c.peak_force);
+      for (const YieldingWallLimits &w : done.yielding_walls)
+      {
+        const lumped::ContactResult &c = r.contacts.at(w.contact);
+        run.wall_peak_resistance       = std::max(run.wall_peak_resistance, c.peak_resistance);
+        run.peak_wall_displacement     = std::max(run.peak_wall_displacement, c.peak_deformation);
+        run.wall_residual_displacement =
+          std::max(run.wall_residual_displacement, c.permanent_indentation);
+        run.wall_plastic_work += c.plastic_work;
+        run.wall_radiated_work += c.radiated_work;
+        if (c.failure_time && (!run.wall_failed || *c.failure_time < run.wall_failure_time))
+        {
+          run.wall_failed       = true;
+          run.wall_failure_time = *c.failure_time;
+        }
+      }
+      run.energy_error = r.energy.max_relative_error;
+      run.energy_input = r.energy.input;
+    }
+  } // namespace
+
+  std::vector<StudyYieldingWall>
+  derive_study_yielding_walls(const StudyScene &scene, const std::vector<StudyHeight> &heights)
+  {
+    std::vector<StudyYieldingWall> walls;
+    const double                   striker = scene.building.isolation_mass / scene.fit.width;
+    for (const StudyHeight &h : heights)
+    {
+      StudyYieldingWall w;
+      w.wall_height = h.wall_height;
+      w.name        = h.name;
+      try
+      {
+        w.inputs  = yielding_wall_inputs(scene.fem, h.wall_height, striker);
+        w.element = derive_yielding_wall(w.inputs, scene.fit.width);
+        logger().info("{}: yielding wall element per metre: capacity {} kN/m, cracked stiffness "
+                      "{} kN/mm/m, radiation dashpot {} kN*s/m^2 (rho c = {} kg/m^3 x {} m/s "
+                      "over {} m), contact k_c = Z_c^2/m_red = {} kN/mm/m (Z_c {} kN*s/m^2), "
+                      "wall mass {} t/m",
+                      h.name,
+                      base::sig(w.inputs.capacity / 1e3),
+                      base::sig(w.inputs.stiffness / 1e6),
+                      base::sig(w.element.radiation_damping / 1e3),
+                      base::sig(w.inputs.soil_density),
+                      base::sig(w.inputs.soil_wave_speed),
+                      base::sig(w.inputs.loaded_height),
+                      base::sig(w.element.contact_stiffness / 1e6),
+                      base::sig(w.element.contact_impedance / 1e3),
+                      base::sig(w.element.wall_mass / 1e3));
+      }
+      catch (const std::exception &error)
+      {
+        w.status = "failed: " + base::error_text(error);
+        logger().warn("{}: yielding wall element {}", h.name, w.status);
+      }
+      walls.push_back(w);
+    }
+    return walls;
+  }
+
+  YieldingWallCase run_yielding_wall_case(const StudyScene                     &scene,
+                                          const RecordRun                      &record,
+                                          const StudyHeight                    &h,
+                                          const std::vector<StudyYieldingWall> &yielding)
+  {
+    YieldingWallCase  out;
+    StudyBuildingRun &run      = out.run;
+    run.record                 = record.label;
+    run.wall_height            = h.wall_height;
+    run.law                    = "yielding_wall";
+    run.gap                    = record.gap;
+    run.yielding_wall          = true;
+    const StudyYieldingWall *w = element_of(yielding, h.wall_height);
+    if (!w || !w->ok())
+    {
+      run.status = "skipped: no yielding wall element for " + h.name;
+      return out;
+    }
+    run.k_total                  = w->element.contact_stiffness * scene.fit.width;
+    run.exponent                 = 1.0;
+    run.wall_capacity            = w->element.backfill.capacity.value_or(0.0) * scene.fit.width;
+    out.result                   = run_lumped_case(h.name + "_yielding_wall",
+                                 yielding_walled_scene(record.base, record.gap, w->element),
+                                 record.motion,
+                                 record.scale);
+    const LumpedCaseResult &done = *out.result;
+    fill_building_peaks(run, done, scene.building.n_storeys, nullptr);
+    if (!done.ok())
+    {
+      logger().warn("record {} {} yielding wall: {}", record.label, h.name, done.status);
+      return out;
+    }
+    fill_wall_values(run, done);
+    // Amplification against the run without walls (two more DOFs: the walls').
+    const lumped::Response &none  = record.without_walls;
+    const auto              ratio = [](double a, double b) { return a / std::max(b, 1e-300); };
+    const unsigned int      top   = scene.building.n_storeys;
+    run.amplification_base_acc =
+      ratio(run.base_acceleration, none.peak_absolute_acceleration.at(0));
+    run.amplification_top_acc =
+      ratio(run.top_acceleration, none.peak_absolute_acceleration.at(top));
+    run.amplification_drift = ratio(run.max_interstorey_drift, none.max_interstorey_drift());
+    return out;
+  }
+
+  void log_yielding_walls(const std::vector<StudyBuildingRun> &runs)
+  {
+    std::size_t             n = 0, n_failed = 0;
+    const StudyBuildingRun *worst = nullptr;
+    for (const StudyBuildingRun &r : runs)
+    {
+      if (!r.yielding_wall || r.status != "ok")
+        continue;
+      ++n;
+      n_failed += r.wall_failed ? 1 : 0;
+      if (!worst || r.peak_wall_displacement > worst->peak_wall_displacement)
+        worst = &r;
+    }
+    if (!worst)
+      return;
+    const std::string text = fmt::format(
+      "yielding walls: {} of {} building runs fail a wall (pushed past 10 % of H); largest wall "
+      "displacement {} cm (residual {} cm, peak resistance {} of the capacity {} MN), record {}, "
+      "H = {} m (yielding_wall.csv)",
+      n_failed,
+      n,
+      base::sig(100.0 * worst->peak_wall_displacement),
+      base::sig(100.0 * worst->wall_residual_displacement),
+      base::sig(worst->wall_peak_resistance / worst->wall_capacity),
+      base::sig(worst->wall_capacity / 1e6),
+      worst->record,
+      base::sig(worst->wall_height));
+    if (n_failed > 0)
+      logger().warn("{}", text);
+    else
+      logger().info("{}", text);
+  }
+} // namespace kimp::app::study_internal

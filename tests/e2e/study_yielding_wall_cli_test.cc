@@ -1,0 +1,113 @@
+// `kimp study` with inelastic materials, end to end on a quick scene (coarse rigid-slab FEM, one
+// short synthetic record): every height's walled building run hits its yielding wall element
+// (no equivalent-k run), and the capacity, peak and residual wall displacement and failure of
+// each run are in yielding_wall.csv (with units), study.h5 /yielding_wall and at the top of the
+// report; a linear study keeps the equivalent-k runs and writes no yielding-wall files.
+#ifdef KIMP_WITH_FEM
+
+#  include <filesystem>
+#  include <gtest/gtest.h>
+#  include <nlohmann/json.hpp>
+#  include <string>
+
+#  include "tests/e2e/fem_scenes.h"
+#  include "tests/support/csv.h"
+#  include "tests/support/files.h"
+#  include "tests/support/hdf5_reader.h"
+#  include "tests/support/kimp_run.h"
+#  include "tests/support/temp_dir.h"
+
+namespace
+{
+  using namespace kimp::testing;
+
+  /// Reinforced damaged concrete and a Mohr-Coulomb backfill; no velocity axis.
+  constexpr const char *inelastic = R"(  velocities: []
+  materials:
+    concrete:
+      model: damage_plasticity
+      f_cm: "38 MPa"
+      wall_reinforcement: {ratio_y: "0.8 %", ratio_x: "0.2 %"}
+    soil:
+      model: mohr_coulomb
+      preset: medium_dense_sand
+      c: "5 kPa"
+)";
+
+  constexpr const char *linear = R"(  velocities: []
+  materials:
+    concrete:
+      model: elastic
+    soil:
+      model: elastic
+)";
+} // namespace
+
+TEST(StudyYieldingWallCli, InelasticStudyRunsEveryHeightAgainstItsYieldingWall)
+{
+  const TempDir dir("study_yielding_wall");
+  const KimpRun run = run_study(reduced_study(R"(["1.25 m", "2.0 m"])", inelastic), dir.path());
+  ASSERT_EQ(run.exit_code, 0) << run.output();
+  const std::filesystem::path out = dir.path() / "out";
+
+  // The building runs: one without walls, one yielding-wall run per height, no k law.
+  const auto building = read_csv_records(out / "building_response.csv");
+  ASSERT_EQ(building.size(), 3u) << read_text(out / "building_response.csv");
+  for (const auto &row : building)
+    EXPECT_TRUE(row.at("law") == "none" || row.at("law") == "yielding_wall") << row.at("law");
+
+  const auto elements = read_csv_records(out / "yielding_wall_element.csv");
+  ASSERT_EQ(elements.size(), 2u);
+  const auto runs = read_csv_records(out / "yielding_wall.csv");
+  ASSERT_EQ(runs.size(), 2u) << read_text(out / "yielding_wall.csv");
+  for (const auto &r : runs)
+  {
+    EXPECT_EQ(r.at("status"), "ok");
+    const double resistance = std::stod(r.at("peak_wall_resistance_kN"));
+    const double capacity   = std::stod(r.at("wall_capacity_kN"));
+    const double peak       = std::stod(r.at("peak_wall_displacement_cm"));
+    const double residual   = std::stod(r.at("residual_wall_displacement_cm"));
+    // The cap holds (no hardening), the set lies between 0 and the peak push.
+    EXPECT_LE(resistance, capacity * (1.0 + 1e-9));
+    EXPECT_GE(residual, 0.0);
+    EXPECT_LE(residual, peak);
+    EXPECT_TRUE(r.at("failed") == "0" || r.at("failed") == "1");
+    EXPECT_LT(std::stod(r.at("energy_error")), 1e-4);
+  }
+
+  Hdf5Reader h5(out / "study.h5");
+  EXPECT_EQ(h5.units("/yielding_wall/runs/residual_wall_displacement"), "cm");
+  EXPECT_EQ(h5.units("/yielding_wall/element/capacity"), "kN/m");
+  EXPECT_EQ(h5.dims("/yielding_wall/runs/peak_wall_resistance").at(0), 2u);
+
+  const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
+  ASSERT_TRUE(summary.contains("yielding_wall"));
+  EXPECT_EQ(summary["yielding_wall"]["n_runs"], 2);
+  EXPECT_EQ(summary["yielding_wall"]["runs"].size(), 2u);
+  EXPECT_TRUE(summary["yielding_wall"]["runs"][0]["failed"].is_boolean());
+
+  // The answer comes first in the report: the yielding walls before the k table.
+  const std::string report = read_text(out / "report.md");
+  const auto        walls  = report.find("## Yielding moat walls");
+  ASSERT_NE(walls, std::string::npos);
+  EXPECT_LT(walls, report.find("## Impact stiffness per wall height"));
+  EXPECT_NE(report.find("building runs push a wall past its failure limit"), std::string::npos);
+}
+
+TEST(StudyYieldingWallCli, LinearStudyKeepsTheEquivalentKRoute)
+{
+  const TempDir dir("study_yielding_wall_linear");
+  const KimpRun run = run_study(reduced_study(R"(["1.25 m"])", linear), dir.path());
+  ASSERT_EQ(run.exit_code, 0) << run.output();
+  const std::filesystem::path out = dir.path() / "out";
+  EXPECT_FALSE(std::filesystem::exists(out / "yielding_wall.csv"));
+  const auto building = read_csv_records(out / "building_response.csv");
+  ASSERT_EQ(building.size(), 4u); // none + three laws
+  // Linear walls: the force against the capacity estimate, column and report.
+  EXPECT_FALSE(building.at(1).at("peak_force_over_capacity").empty());
+  const std::string report = read_text(out / "report.md");
+  EXPECT_EQ(report.find("## Yielding moat walls"), std::string::npos);
+  EXPECT_NE(report.find("linear route"), std::string::npos);
+}
+
+#endif

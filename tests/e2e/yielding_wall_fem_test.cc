@@ -1,0 +1,192 @@
+// The yielding wall element, its parameters frozen as an inelastic study derives them
+// (app/study/yielding_wall_element.h), against the dynamic FEM (`kimp fem`, the reinforced 0.25 m
+// moat wall with a geostatic Mohr-Coulomb backfill at H = 1.25 m on the coarse 5 cm mesh):
+// peak contact force, the slab's peak displacement, its time to stop and the wall's residual
+// displacement. The test runs the FEM's own slab at 0.5 m/s; KIMP_YIELDING_WALL_FULL=1 runs the
+// four cases of docs/validation.md (0.5 and 1 m/s; the FEM's elastic slab and a rigid slab
+// carrying the building's 55 t/m) and prints their table. docs/validation.md "Yielding wall
+// element against the dynamic FEM" has the numbers and where the element does not hold.
+#ifdef KIMP_WITH_FEM
+
+#  include <algorithm>
+#  include <cmath>
+#  include <cstdlib>
+#  include <filesystem>
+#  include <fmt/format.h>
+#  include <gtest/gtest.h>
+#  include <iostream>
+#  include <limits>
+#  include <string>
+
+#  include "app/fem/fem_scene.h"
+#  include "app/study/yielding_wall_element.h"
+#  include "app/study/yielding_wall_impact.h"
+#  include "io/scene_io.h"
+#  include "tests/support/csv.h"
+#  include "tests/support/files.h"
+#  include "tests/support/kimp_run.h"
+#  include "tests/support/temp_dir.h"
+
+namespace
+{
+  using namespace kimp;
+  using namespace kimp::testing;
+
+  /// The reinforced moat wall of docs/validation.md at the coarse mesh; `slab` the slab line.
+  std::string fem_scene(const std::string &slab, const std::string &end_time)
+  {
+    return R"(wall_heights: ["1.25 m"]
+mesh: {h_contact: "5 cm", h_max: "25 cm", grading: 1.5}
+)" + slab + "\ndynamics: {end_time: \"" +
+           end_time + R"("}
+materials:
+  concrete:
+    model: damage_plasticity
+    f_cm: "38 MPa"
+    wall_reinforcement: {ratio_y: "0.8 %", ratio_x: "0.2 %"}
+    slab_reinforcement: {ratio_x: "0.5 %"}
+  soil: {model: mohr_coulomb, preset: medium_dense_sand}
+)";
+  }
+
+  /// The four compared quantities, per metre of wall.
+  struct Impact
+  {
+    double peak_force   = 0.0; ///< N/m (FEM: of the smoothed force)
+    double slab_peak    = 0.0; ///< m from the touch
+    double time_to_stop = 0.0; ///< s from the touch
+    double wall_end     = 0.0; ///< the wall's displacement at the end, m
+  };
+
+  /// From `kimp fem`'s histories: the slab displacement integrates its velocity from the touch.
+  Impact fem_impact(const std::filesystem::path &histories)
+  {
+    const auto rows = read_csv_records(histories);
+    Impact     r;
+    double     x = 0.0, t_touch = -1.0, t_prev = 0.0, v_prev = 0.0;
+    bool       stopped = false;
+    for (const auto &row : rows)
+    {
+      const double t = std::stod(row.at("time_s"));
+      // The peak of the smoothed force, as `kimp fem` and the study report it.
+      const double f = std::stod(row.at("smoothed_contact_force_N_per_m"));
+      const double v = std::stod(row.at("slab_velocity_m_per_s"));
+      if (t_touch >= 0.0)
+        x += 0.5 * (v + v_prev) * (t - t_prev);
+      else if (f > 0.0)
+        t_touch = t;
+      if (t_touch >= 0.0 && !stopped && v <= 0.0)
+      {
+        stopped        = true;
+        r.time_to_stop = t - t_touch;
+      }
+      r.peak_force = std::max(r.peak_force, f);
+      r.slab_peak  = std::max(r.slab_peak, x);
+      r.wall_end   = std::stod(row.at("wall_displacement_m"));
+      t_prev       = t;
+      v_prev       = v;
+    }
+    if (!stopped)
+      r.time_to_stop = std::numeric_limits<double>::infinity();
+    return r;
+  }
+
+  /// The element of the scene, parameters frozen: the study's derivation, with the slab's own
+  /// impedance (infinite for the rigid slab) and mass.
+  Impact element_impact(const std::filesystem::path &scene_file,
+                        double                       slab_mass,
+                        double                       velocity,
+                        bool                         rigid)
+  {
+    const app::FemScene     scene = io::load_scene<app::FemScene>(scene_file);
+    app::YieldingWallInputs in    = app::yielding_wall_inputs(scene, 1.25, slab_mass);
+    if (rigid)
+      in.slab_impedance = std::numeric_limits<double>::infinity();
+    const app::YieldingWallElement e = app::derive_yielding_wall(in, 1.0);
+    const app::SlabImpactResult    s = app::slab_impact(e, slab_mass, velocity, 1.0, 1e-6);
+    return {s.peak_contact_force, s.slab_peak_displacement, s.time_to_stop, s.wall_residual};
+  }
+
+  struct Comparison
+  {
+    Impact fem, element;
+    double error(double Impact::*q) const { return element.*q / fem.*q - 1.0; }
+  };
+
+  Comparison compare(const std::string &name,
+                     const std::string &slab,
+                     const std::string &end_time,
+                     double             slab_mass,
+                     double             velocity,
+                     bool               rigid)
+  {
+    const TempDir dir("yielding_wall_fem_" + name);
+    write_text(dir.path() / "scene.yaml", fem_scene(slab, end_time));
+    const KimpRun run = run_kimp("fem scene.yaml -o out", dir.path());
+    EXPECT_EQ(run.exit_code, 0) << run.output();
+    Comparison c;
+    c.fem     = fem_impact(dir.path() / "out" / "fem_histories.csv");
+    c.element = element_impact(dir.path() / "scene.yaml", slab_mass, velocity, rigid);
+    std::cout << fmt::format(
+      "{}: FEM / element: peak force {:.4g} / {:.4g} kN/m ({:+.1f} %), slab peak {:.4g} / {:.4g} "
+      "mm ({:+.1f} %), time to stop {:.4g} / {:.4g} ms ({:+.1f} %), wall at the end {:.4g} / "
+      "{:.4g} mm ({:+.1f} %)\n",
+      name,
+      c.fem.peak_force / 1e3,
+      c.element.peak_force / 1e3,
+      100 * c.error(&Impact::peak_force),
+      1e3 * c.fem.slab_peak,
+      1e3 * c.element.slab_peak,
+      100 * c.error(&Impact::slab_peak),
+      1e3 * c.fem.time_to_stop,
+      1e3 * c.element.time_to_stop,
+      100 * c.error(&Impact::time_to_stop),
+      1e3 * c.fem.wall_end,
+      1e3 * c.element.wall_end,
+      100 * c.error(&Impact::wall_end));
+    return c;
+  }
+} // namespace
+
+TEST(YieldingWallFem, ElementWithFrozenParametersAgainstTheFemSlabAtHalfAMetrePerSecond)
+{
+  // The FEM's elastic slab, 8 m x 0.20 m of concrete: 3.84 t/m.
+  const Comparison c =
+    compare("elastic_0.5", "slab: {velocity: \"0.5 m/s\"}", "100 ms", 3840.0, 0.5, false);
+  // What holds (docs/validation.md): the first peak, from the slab-wall impedance alone
+  // (measured -8.5 %).
+  EXPECT_LT(std::abs(c.error(&Impact::peak_force)), 0.10);
+  // What does not hold (measured: slab peak -33 %, time to stop -20 %): the element's wall is
+  // the cracked cantilever alone, stiffer than the FEM's wall with its cracking contact zone,
+  // base and backfill. Bounded so that a change shows; these are not the targets (15 %).
+  EXPECT_LT(std::abs(c.error(&Impact::slab_peak)), 0.45);
+  EXPECT_LT(std::abs(c.error(&Impact::time_to_stop)), 0.30);
+  // 480 J/m do not reach the element's cap: its wall keeps no set; the FEM's wall is still at
+  // 1 mm when the slab leaves (moving back, not a permanent set).
+  EXPECT_LT(c.element.wall_end, 1e-5);
+  EXPECT_GT(c.fem.wall_end, 0.0);
+}
+
+TEST(YieldingWallFem, FullTableOfDocsValidation)
+{
+  if (!std::getenv("KIMP_YIELDING_WALL_FULL"))
+    GTEST_SKIP() << "set KIMP_YIELDING_WALL_FULL=1 for the four cases of docs/validation.md";
+  for (const double v : {0.5, 1.0})
+  {
+    const std::string speed = fmt::format("{} m/s", v);
+    compare(fmt::format("elastic_{}", v),
+            "slab: {velocity: \"" + speed + "\"}",
+            "100 ms",
+            3840.0,
+            v,
+            false);
+    compare(fmt::format("rigid_55t_{}", v),
+            "slab: {velocity: \"" + speed + "\", rigid: true, mass: \"55 t/m\"}",
+            "400 ms",
+            55e3,
+            v,
+            true);
+  }
+}
+
+#endif
