@@ -164,6 +164,32 @@ namespace kimp::app
           fmt::format("fit: displacement_weight = {} (must be >= 0)", config.displacement_weight));
     }
 
+    /// fit_table.csv's columns.
+    const std::vector<std::string> &fit_table_header()
+    {
+      static const std::vector<std::string> header = {"case",
+                                                      "wall_height_m",
+                                                      "impact_velocity_m_per_s",
+                                                      "variant",
+                                                      "law",
+                                                      "k_per_m",
+                                                      "k_per_m_lower",
+                                                      "k_per_m_upper",
+                                                      "k_per_m_unit",
+                                                      "k_total",
+                                                      "k_total_unit",
+                                                      "cor",
+                                                      "cor_lower",
+                                                      "cor_upper",
+                                                      "exponent",
+                                                      "normalised_rms",
+                                                      "peak_force_ratio",
+                                                      "impulse_ratio",
+                                                      "contact_duration_ratio",
+                                                      "status"};
+      return header;
+    }
+
     /// fit_table.csv's rows, summary.json's cases and the count of fits that are not "ok".
     struct FitOutputs
     {
@@ -250,26 +276,15 @@ namespace kimp::app
         ++out.failures;
         const std::string status = "failed: " + base::error_text(error);
         group.set_status(status);
-        out.rows.push_back({fem_case.name,
-                            number(fem_case.wall_height),
-                            number(fem_case.impact_velocity),
-                            variant.name,
-                            variant.law.law,
-                            "",
-                            "",
-                            "",
-                            "",
-                            "",
-                            "",
-                            "",
-                            "",
-                            "",
-                            "",
-                            "",
-                            "",
-                            "",
-                            "",
-                            status});
+        // No fit: empty cells up to the status.
+        std::vector<std::string> row = {fem_case.name,
+                                        number(fem_case.wall_height),
+                                        number(fem_case.impact_velocity),
+                                        variant.name,
+                                        variant.law.law};
+        row.resize(fit_table_header().size() - 1);
+        row.push_back(status);
+        out.rows.push_back(std::move(row));
         out.cases.push_back({{"name", fem_case.name + "/" + variant.name},
                              {"fem_case", fem_case.name},
                              {"variant", variant.name},
@@ -338,27 +353,7 @@ namespace kimp::app
       for (const FitVariant &variant : variants)
         fit_variant(fem_case, variant, config, case_group, out);
     }
-    const std::vector<std::string> header = {"case",
-                                             "wall_height_m",
-                                             "impact_velocity_m_per_s",
-                                             "variant",
-                                             "law",
-                                             "k_per_m",
-                                             "k_per_m_lower",
-                                             "k_per_m_upper",
-                                             "k_per_m_unit",
-                                             "k_total",
-                                             "k_total_unit",
-                                             "cor",
-                                             "cor_lower",
-                                             "cor_upper",
-                                             "exponent",
-                                             "normalised_rms",
-                                             "peak_force_ratio",
-                                             "impulse_ratio",
-                                             "contact_duration_ratio",
-                                             "status"};
-    write_csv_atomic(output.file("fit_table.csv"), header, out.rows);
+    write_csv_atomic(output.file("fit_table.csv"), fit_table_header(), out.rows);
     file.commit();
     write_json_atomic(output.file("summary.json"), fit_summary(options, resolved, start, out));
     return out.failures;
