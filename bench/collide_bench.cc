@@ -15,7 +15,7 @@ namespace
   {
     kimp::lumped::ForceLawSpec s;
     s.law            = law;
-    s.cor            = 0.7;
+    s.cor            = kimp::lumped::thesis_cor;
     s.effective_mass = 144.8e3;
     s.stiffness = law == "linear" || law.find("kelvin") != std::string::npos ? 2.5e9 : 2.3717e10;
     if (law == "bumper")

@@ -34,7 +34,7 @@ namespace
   }
 
   /// Thesis Table 4.3 configuration: 4-storey isolated building, modified Kelvin-Voigt walls
-  /// (2500 kN/mm, COR 0.7, m_wall 500 t) at 15 cm on both sides.
+  /// (2500 kN/mm, the thesis COR, m_wall 500 t) at 15 cm on both sides.
   PoundingModel walled_building(const std::string &law = "modified_kelvin_voigt")
   {
     const double stiffness = law == "jankowski" ? 750e3 / std::pow(1e-3, 1.5) : 2.5e9;

@@ -14,16 +14,11 @@
 #include <string>
 #include <vector>
 
+#include "fem/material.h"
+#include "fem/numerical_error.h"
+
 namespace kimp::fem
 {
-  /** Linear elastic isotropic material (plane strain). */
-  struct Material
-  {
-    double youngs_modulus = 0; ///< E, Pa (> 0)
-    double poisson_ratio  = 0; ///< nu, - (in [0, 0.5))
-    double density        = 0; ///< rho, kg/m^3 (> 0)
-  };
-
   class MaterialLaw; // fem/material_law.h
 
   /** P-wave speed of a plane-strain continuum, sqrt((lambda + 2 mu) / rho), m/s. */
@@ -425,20 +420,6 @@ namespace kimp::fem
     /** Geostatic step only: the stress of every Gauss point after it, all ranks, sorted by
      *  (material, x, y). */
     std::vector<PointStress> geostatic_stress;
-  };
-
-  /** Numerical failure (divergence, non-convergence) with its context. */
-  class NumericalError : public std::runtime_error
-  {
-  public:
-    NumericalError(const std::string &what, double time, unsigned long step)
-      : std::runtime_error(what)
-      , time(time)
-      , step(step)
-    {
-    }
-    double        time; ///< s
-    unsigned long step;
   };
 
   /**

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "fem/impact.h"
+#include "fem/material.h"
 
 namespace kimp::fem
 {

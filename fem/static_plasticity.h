@@ -11,8 +11,9 @@
 #include <set>
 #include <vector>
 
-#include "fem/impact.h"
+#include "fem/material.h"
 #include "fem/material_law.h"
+#include "fem/numerical_error.h"
 
 namespace kimp::fem
 {

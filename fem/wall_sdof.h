@@ -7,7 +7,8 @@
 #include <map>
 #include <vector>
 
-#include "fem/impact.h"
+#include "fem/material.h"
+#include "fem/numerical_error.h"
 
 namespace kimp::fem
 {

@@ -20,7 +20,7 @@ namespace kimp::fit
 
   struct FitConfig
   {
-    double cor       = 0.7;                   ///< COR of the fixed-COR fits, (0, 1]
+    double cor       = lumped::thesis_cor;    ///< COR of the fixed-COR fits, (0, 1]
     double width     = thesis_building_width; ///< building side W, m: k_total = k_per_m·W
     bool   raw_force = false; ///< fit the raw instead of the smoothed FEM contact force
     /// Contact window from the force alone (the FEM indentation of a chattering rigid slab turns

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "fit/contact_window.h"
+#include "lumped/laws/law_traits.h"
 
 namespace kimp::fit
 {
@@ -24,18 +25,28 @@ namespace kimp::fit
   {
     constexpr double pi = 3.14159265358979323846;
 
-    bool has_free_exponent(const std::string &law)
+    /// "a, b and c": the names of the laws the fitter takes (`free_exponent`: of those whose
+    /// exponent it can fit).
+    std::string fittable_law_names(bool free_exponent = false)
     {
-      return law == "hertzdamp" || law == "hysteretic";
+      std::vector<std::string> names;
+      for (const lumped::LawTraits &t : lumped::law_traits())
+        if (t.fittable && (!free_exponent || !t.fixed_exponent()))
+          names.emplace_back(t.name);
+      std::string text;
+      for (std::size_t i = 0; i < names.size(); ++i)
+        text += (i == 0 ? "" : i + 1 == names.size() ? " and " : ", ") + names[i];
+      return text;
+    }
+
+    std::string free_exponent_law_names()
+    {
+      return fittable_law_names(true);
     }
 
     double default_exponent(const lumped::ForceLawSpec &law)
     {
-      if (law.exponent)
-        return *law.exponent;
-      if (law.law == "linear" || law.law == "kelvin_voigt" || law.law == "modified_kelvin_voigt")
-        return 1.0;
-      return 1.5;
+      return lumped::law_traits(law.law, "fit").exponent(law.exponent);
     }
 
     /// z with Φ(z) = p for p in (0.5, 1) (bisection on erfc; Φ(z) = ½·erfc(−z/√2)).
@@ -145,7 +156,7 @@ namespace kimp::fit
         spec.stiffness            = p.stiffness;
         spec.cor                  = p.cor;
         spec.effective_mass       = effective_mass_;
-        if (has_free_exponent(law_.law))
+        if (!lumped::law_traits(law_.law).fixed_exponent())
           spec.exponent = p.exponent;
         const auto law = lumped::make_force_law(spec);
 
@@ -390,18 +401,15 @@ namespace kimp::fit
         fail(fmt::format("mass = {} kg/m (must be > 0 and finite)", mass));
       if (!(std::isfinite(impact_velocity) && impact_velocity > 0.0))
         fail(fmt::format("impact_velocity = {} m/s (must be > 0 and finite)", impact_velocity));
-      static const std::vector<std::string> laws =
-        {"linear", "kelvin_voigt", "modified_kelvin_voigt", "jankowski", "hertzdamp", "hysteretic"};
-      if (std::find(laws.begin(), laws.end(), law.law) == laws.end())
-        fail(fmt::format("law = '{}' (must be one of linear, kelvin_voigt, "
-                         "modified_kelvin_voigt, jankowski, hertzdamp, hysteretic)",
-                         law.law));
-      if (o.fit_exponent && !has_free_exponent(law.law))
-        fail(fmt::format("fit_exponent = true with law '{}' (only hertzdamp and hysteretic have a "
-                         "free exponent)",
-                         law.law));
-      if (o.fit_cor && law.law == "linear")
-        fail("fit_cor = true with law 'linear' (it has no COR)");
+      const lumped::LawTraits *traits = lumped::find_law_traits(law.law);
+      if (traits == nullptr || !traits->fittable)
+        fail(fmt::format("law = '{}' (must be one of {})", law.law, fittable_law_names()));
+      if (o.fit_exponent && traits->fixed_exponent())
+        fail(fmt::format("fit_exponent = true with law '{}' (only {} have a free exponent)",
+                         law.law,
+                         free_exponent_law_names()));
+      if (o.fit_cor && !traits->uses_cor())
+        fail(fmt::format("fit_cor = true with law '{}' (it has no COR)", law.law));
       if (!(law.cor > 0.0 && law.cor <= 1.0))
         fail(fmt::format("cor = {} (must be in (0, 1])", law.cor));
       if (!(o.displacement_weight >= 0.0 && std::isfinite(o.displacement_weight)))
@@ -428,6 +436,162 @@ namespace kimp::fit
         fail(
           fmt::format("max_function_evaluations = {} (must be >= 10)", o.max_function_evaluations));
     }
+
+    /// Physically based start: the linear oscillator's contact duration π·sqrt(m/k) and the
+    /// energy balance ½·m·v² = F_peak·δ_max/(n + 1); the impulse m·v·(1 + COR) gives the COR.
+    Parameters start_parameters(const ContactWindow        &window,
+                                double                      mass,
+                                double                      v,
+                                const lumped::ForceLawSpec &law,
+                                const FitOptions           &options)
+    {
+      const double wall  = options.wall_mass;
+      const double m_eff = std::isinf(wall) ? mass : mass * wall / (mass + wall);
+      const double dur   = window.separation - window.start;
+      Parameters   start;
+      start.exponent = default_exponent(law);
+      if (options.fit_exponent)
+        start.exponent = std::max(start.exponent, 1.05);
+      start.cor =
+        options.fit_cor ? std::clamp(window.impulse / (m_eff * v) - 1.0, 0.05, 0.95) : law.cor;
+      const double delta_max = (start.exponent + 1.0) * m_eff * v * v / (2.0 * window.peak_force);
+      double       k0        = window.peak_force / std::pow(delta_max, start.exponent);
+      if (start.exponent == 1.0 && dur > 0.0)
+        k0 = std::sqrt(k0 * m_eff * (pi / dur) * (pi / dur));
+      start.stiffness = options.initial_stiffness.value_or(k0);
+      return start;
+    }
+
+    /// Levenberg-Marquardt from `x` in two stages, adding the Jacobian evaluations to
+    /// `iterations`. Sampled at points, a law whose force drops abruptly at separation
+    /// (Kelvin-Voigt's tension) gives a misfit that jumps whenever the drop crosses a sample, and
+    /// LM can stall one sample short of the optimum, or in a ripple of local minima when the data
+    /// jump too. Stage 1 spreads the drop over eight sample intervals `spacing` (a smooth misfit
+    /// whose optimum puts the drop where the data drop, by symmetry), stage 2 restores the jump
+    /// starting from there.
+    Eigen::LevenbergMarquardtSpace::Status minimise(Misfit           &misfit,
+                                                    Eigen::VectorXd  &x,
+                                                    double            spacing,
+                                                    const FitOptions &options,
+                                                    int              &iterations)
+    {
+      Eigen::LevenbergMarquardtSpace::Status status = Eigen::LevenbergMarquardtSpace::NotStarted;
+      for (const double width : {8.0 * spacing, 0.0})
+      {
+        misfit.set_jump_width(width);
+        Eigen::LevenbergMarquardt<Misfit> lm(misfit);
+        // On the sampled misfit LM can only creep along the steps once the smooth optimum is
+        // reached; a looser tolerance there stops it without losing the exact-data optimum.
+        const double tolerance =
+          width > 0.0 ? options.tolerance : std::max(options.tolerance, 1.0e-6);
+        lm.setFtol(tolerance);
+        lm.setXtol(tolerance);
+        lm.setMaxfev(static_cast<Eigen::Index>(options.max_function_evaluations));
+        status = lm.minimize(x);
+        iterations += static_cast<int>(lm.njev());
+        if (!converged(status))
+          break;
+      }
+      return status;
+    }
+
+    /// The fitted k, COR and n of `result` with their confidence intervals, linearised at the
+    /// optimum `x` (residuals `r`, `jacobian`; `start` scales k), and the misfit's RMS parts.
+    void set_fitted_parameters(FitResult             &result,
+                               const Parameters      &p,
+                               const Parameters      &start,
+                               const Eigen::VectorXd &x,
+                               const Eigen::VectorXd &r,
+                               const Eigen::MatrixXd &jacobian,
+                               int                    n_samples,
+                               const FitOptions      &options)
+    {
+      const auto                              n_parameters = static_cast<int>(x.size());
+      const auto                              n_residuals  = static_cast<int>(r.size());
+      const double                            z = normal_quantile(0.5 * (1.0 + options.confidence));
+      const double                            s2 = r.squaredNorm() / (n_residuals - n_parameters);
+      const Eigen::MatrixXd                   normal = jacobian.transpose() * jacobian;
+      const Eigen::FullPivLU<Eigen::MatrixXd> lu(normal);
+      Eigen::VectorXd                         sigma(n_parameters);
+      if (lu.rank() == n_parameters)
+        sigma = (s2 * lu.inverse()).diagonal().cwiseMax(0.0).cwiseSqrt();
+      else
+      {
+        sigma.setConstant(std::numeric_limits<double>::infinity());
+        result.status += " (Jacobian rank-deficient: confidence intervals unbounded)";
+      }
+
+      int i                   = 0;
+      result.stiffness.value  = p.stiffness;
+      result.stiffness.lower  = start.stiffness * std::exp(x[i] - z * sigma[i]);
+      result.stiffness.upper  = start.stiffness * std::exp(x[i] + z * sigma[i]);
+      result.stiffness.fitted = true;
+      ++i;
+      result.cor = {p.cor, p.cor, p.cor, false};
+      if (options.fit_cor)
+      {
+        result.cor = {p.cor, logistic(x[i] - z * sigma[i]), logistic(x[i] + z * sigma[i]), true};
+        ++i;
+      }
+      result.exponent = {p.exponent, p.exponent, p.exponent, false};
+      if (options.fit_exponent && p.exponent - 1.0 < 1.0e-3)
+        result.status += " (n at its lower bound 1: the data are not Hertz-like)";
+      if (options.fit_exponent)
+        result.exponent = {p.exponent,
+                           1.0 + std::exp(x[i] - z * sigma[i]),
+                           1.0 + std::exp(x[i] + z * sigma[i]),
+                           true};
+
+      // Time-RMS of each misfit part (Σ of the weighted squares is the time mean).
+      double force_sq = 0.0, displacement_sq = 0.0;
+      for (int j = 0; j < n_samples; ++j)
+        force_sq += r[j] * r[j];
+      for (int j = n_samples; j < n_residuals; ++j)
+        displacement_sq += r[j] * r[j];
+      result.normalised_rms = std::sqrt(force_sq);
+      if (options.displacement_weight > 0.0)
+        result.normalised_displacement_rms =
+          std::sqrt(displacement_sq / options.displacement_weight);
+    }
+
+    /// What the fit is judged by: the FEM's contact (window, extent above the threshold) and
+    /// the fitted model's (`p`), with both force histories over the window.
+    void set_comparison(FitResult           &result,
+                        const Misfit        &misfit,
+                        const Parameters    &p,
+                        const ForceHistory  &history,
+                        const ContactWindow &window,
+                        const FitOptions    &options)
+    {
+      result.function_evaluations = misfit.n_evaluations();
+      result.fem_peak_force       = window.peak_force;
+      result.fem_contact_duration = window.separation - window.start;
+      {
+        const double peak  = *std::max_element(history.force.begin(), history.force.end());
+        const auto   above = [&](double f) { return f > options.contact_threshold * peak; };
+        const auto   first = std::find_if(history.force.begin(), history.force.end(), above);
+        const auto   last  = std::find_if(history.force.rbegin(), history.force.rend(), above);
+        result.contact_extent =
+          history.time[static_cast<std::size_t>(std::distance(last, history.force.rend())) - 1] -
+          history.time[static_cast<std::size_t>(std::distance(history.force.begin(), first))];
+      }
+      result.fem_impulse         = window.impulse;
+      result.contact_start       = window.start;
+      result.contact_open_at_end = window.open_at_end;
+
+      std::vector<double>         model_force, model_displacement;
+      const lumped::TwoBodyResult model = misfit.simulate(p, model_force, model_displacement);
+      result.model_peak_force           = model.peak_force;
+      result.model_contact_duration     = misfit.model_contact_end();
+      result.model_impulse              = misfit.model_impulse();
+      result.model_effective_cor        = model.effective_cor;
+      for (std::size_t j = window.first; j <= window.last; ++j)
+      {
+        result.time.push_back(history.time[j]);
+        result.fem_force.push_back(history.force[j]);
+      }
+      result.model_force = std::move(model_force);
+    }
   } // namespace
 
   FitResult fit_impact_law(const ForceHistory         &history,
@@ -453,24 +617,8 @@ namespace kimp::fit
                                  window.separation,
                                  n_parameters));
 
-    // Physically based start: the linear oscillator's contact duration π·sqrt(m/k) and the
-    // energy balance ½·m·v² = F_peak·δ_max/(n + 1); the impulse m·v·(1 + COR) gives the COR.
-    const double wall  = options.wall_mass;
-    const double m_eff = std::isinf(wall) ? mass : mass * wall / (mass + wall);
-    const double v     = impact_velocity;
-    const double dur   = window.separation - window.start;
-    Parameters   start;
-    start.exponent = default_exponent(law);
-    if (options.fit_exponent)
-      start.exponent = std::max(start.exponent, 1.05);
-    start.cor =
-      options.fit_cor ? std::clamp(window.impulse / (m_eff * v) - 1.0, 0.05, 0.95) : law.cor;
-    const double delta_max = (start.exponent + 1.0) * m_eff * v * v / (2.0 * window.peak_force);
-    double       k0        = window.peak_force / std::pow(delta_max, start.exponent);
-    if (start.exponent == 1.0 && dur > 0.0)
-      k0 = std::sqrt(k0 * m_eff * (pi / dur) * (pi / dur));
-    start.stiffness = options.initial_stiffness.value_or(k0);
-
+    const double     v     = impact_velocity;
+    const Parameters start = start_parameters(window, mass, v, law, options);
     Misfit misfit(history, window, mass, v, law, options, start, n_parameters, n_residuals);
     Eigen::VectorXd x = Eigen::VectorXd::Zero(n_parameters);
     {
@@ -481,31 +629,11 @@ namespace kimp::fit
         x[i++] = std::log(start.exponent - 1.0);
     }
 
-    // Sampled at points, a law whose force drops abruptly at separation (Kelvin-Voigt's tension)
-    // gives a misfit that jumps whenever the drop crosses a sample, and LM can stall one sample
-    // short of the optimum, or in a ripple of local minima when the data jump too. Stage 1
-    // spreads the drop over eight sample intervals (a smooth misfit whose optimum puts the drop
-    // where the data drop, by symmetry), stage 2 restores the jump starting from there.
     const double spacing = (history.time[window.last] - history.time[window.first]) /
                            static_cast<double>(window.last - window.first);
-    FitResult                              result;
-    Eigen::LevenbergMarquardtSpace::Status status = Eigen::LevenbergMarquardtSpace::NotStarted;
-    for (const double width : {8.0 * spacing, 0.0})
-    {
-      misfit.set_jump_width(width);
-      Eigen::LevenbergMarquardt<Misfit> lm(misfit);
-      // On the sampled misfit LM can only creep along the steps once the smooth optimum is
-      // reached; a looser tolerance there stops it without losing the exact-data optimum.
-      const double tolerance =
-        width > 0.0 ? options.tolerance : std::max(options.tolerance, 1.0e-6);
-      lm.setFtol(tolerance);
-      lm.setXtol(tolerance);
-      lm.setMaxfev(static_cast<Eigen::Index>(options.max_function_evaluations));
-      status = lm.minimize(x);
-      result.iterations += static_cast<int>(lm.njev());
-      if (!converged(status))
-        break;
-    }
+    FitResult                                    result;
+    const Eigen::LevenbergMarquardtSpace::Status status =
+      minimise(misfit, x, spacing, options, result.iterations);
     result.law         = law.law;
     result.status_code = static_cast<int>(status);
     result.status      = status_text(status);
@@ -530,79 +658,8 @@ namespace kimp::fit
       throw FitError(fmt::format("fit of law '{}': the model fails at the optimum (k = {})",
                                  law.law,
                                  p.stiffness));
-
-    const double                            z  = normal_quantile(0.5 * (1.0 + options.confidence));
-    const double                            s2 = r.squaredNorm() / (n_residuals - n_parameters);
-    const Eigen::MatrixXd                   normal = jacobian.transpose() * jacobian;
-    const Eigen::FullPivLU<Eigen::MatrixXd> lu(normal);
-    Eigen::VectorXd                         sigma(n_parameters);
-    if (lu.rank() == n_parameters)
-      sigma = (s2 * lu.inverse()).diagonal().cwiseMax(0.0).cwiseSqrt();
-    else
-    {
-      sigma.setConstant(std::numeric_limits<double>::infinity());
-      result.status += " (Jacobian rank-deficient: confidence intervals unbounded)";
-    }
-
-    int i                   = 0;
-    result.stiffness.value  = p.stiffness;
-    result.stiffness.lower  = start.stiffness * std::exp(x[i] - z * sigma[i]);
-    result.stiffness.upper  = start.stiffness * std::exp(x[i] + z * sigma[i]);
-    result.stiffness.fitted = true;
-    ++i;
-    result.cor = {p.cor, p.cor, p.cor, false};
-    if (options.fit_cor)
-    {
-      result.cor = {p.cor, logistic(x[i] - z * sigma[i]), logistic(x[i] + z * sigma[i]), true};
-      ++i;
-    }
-    result.exponent = {p.exponent, p.exponent, p.exponent, false};
-    if (options.fit_exponent && p.exponent - 1.0 < 1.0e-3)
-      result.status += " (n at its lower bound 1: the data are not Hertz-like)";
-    if (options.fit_exponent)
-      result.exponent = {p.exponent,
-                         1.0 + std::exp(x[i] - z * sigma[i]),
-                         1.0 + std::exp(x[i] + z * sigma[i]),
-                         true};
-
-    // Time-RMS of each misfit part (Σ of the weighted squares is the time mean).
-    double force_sq = 0.0, displacement_sq = 0.0;
-    for (int j = 0; j < n_samples; ++j)
-      force_sq += r[j] * r[j];
-    for (int j = n_samples; j < n_residuals; ++j)
-      displacement_sq += r[j] * r[j];
-    result.normalised_rms = std::sqrt(force_sq);
-    if (options.displacement_weight > 0.0)
-      result.normalised_displacement_rms = std::sqrt(displacement_sq / options.displacement_weight);
-
-    result.function_evaluations = misfit.n_evaluations();
-    result.fem_peak_force       = window.peak_force;
-    result.fem_contact_duration = dur;
-    {
-      const double peak  = *std::max_element(history.force.begin(), history.force.end());
-      const auto   above = [&](double f) { return f > options.contact_threshold * peak; };
-      const auto   first = std::find_if(history.force.begin(), history.force.end(), above);
-      const auto   last  = std::find_if(history.force.rbegin(), history.force.rend(), above);
-      result.contact_extent =
-        history.time[static_cast<std::size_t>(std::distance(last, history.force.rend())) - 1] -
-        history.time[static_cast<std::size_t>(std::distance(history.force.begin(), first))];
-    }
-    result.fem_impulse         = window.impulse;
-    result.contact_start       = window.start;
-    result.contact_open_at_end = window.open_at_end;
-
-    std::vector<double>         model_force, model_displacement;
-    const lumped::TwoBodyResult model = misfit.simulate(p, model_force, model_displacement);
-    result.model_peak_force           = model.peak_force;
-    result.model_contact_duration     = misfit.model_contact_end();
-    result.model_impulse              = misfit.model_impulse();
-    result.model_effective_cor        = model.effective_cor;
-    for (std::size_t j = window.first; j <= window.last; ++j)
-    {
-      result.time.push_back(history.time[j]);
-      result.fem_force.push_back(history.force[j]);
-    }
-    result.model_force = std::move(model_force);
+    set_fitted_parameters(result, p, start, x, r, jacobian, n_samples, options);
+    set_comparison(result, misfit, p, history, window, options);
     return result;
   }
 } // namespace kimp::fit

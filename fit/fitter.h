@@ -170,7 +170,8 @@ namespace kimp::fit
    * and with COR free, and a free-exponent Hertz fit (hysteretic law 6, k and n, COR fixed).
    * @param[in] base options shared by all variants (fit_cor, fit_exponent are overridden)
    */
-  std::vector<FitVariant> standard_fit_variants(const FitOptions &base = {}, double cor = 0.7);
+  std::vector<FitVariant> standard_fit_variants(const FitOptions &base = {},
+                                                double            cor  = lumped::thesis_cor);
 
   /// Estimate of the numerical error of a quantity computed on a sequence of refined levels.
   struct LevelEstimate

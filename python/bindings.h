@@ -33,7 +33,10 @@ namespace kimp::python
   using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
   /// A copy of a numpy array (any float-convertible input) as a std::vector<double>.
-  std::vector<double> to_vector(const DoubleArray &array);
+  inline std::vector<double> to_vector(const DoubleArray &array)
+  {
+    return std::vector<double>(array.data(), array.data() + array.size());
+  }
 
   /// A scene read and validated once: its kind, name (the file name of its messages), text,
   /// resolved JSON (SI) and the scene struct (app::LumpedScene for kind "lumped", ...), so a run

@@ -11,6 +11,7 @@
 #include "io/scene_io.h"
 #include "lumped/collision/two_body.h"
 #include "lumped/laws/force_law_factory.h"
+#include "lumped/laws/law_traits.h"
 
 #include "python/bindings.h"
 
@@ -117,10 +118,55 @@ namespace kimp::python
       return d;
     }
 
-    /** force_law_names() and the Law class: a force law's response along a path. */
+    /// One law's traits (lumped/laws/law_traits.h) as a dict; "parameters" lists (keyword, unit,
+    /// required, default) in the order of the Python class's arguments.
+    py::dict traits_dict(const lumped::LawTraits &t)
+    {
+      py::list parameters;
+      for (const lumped::LawParameter &p : t.parameters)
+      {
+        py::object value = py::none();
+        if (p.name == "exponent")
+          value = py::float_(t.default_exponent);
+        else if (p.unit == "flag")
+          value = py::bool_(p.default_value.value_or(0.0) != 0.0);
+        else if (p.default_value)
+          value = py::float_(*p.default_value);
+        parameters.append(
+          py::make_tuple(std::string(p.name), std::string(p.unit), p.required, value));
+      }
+      py::dict d;
+      d["name"]                = std::string(t.name);
+      d["number"]              = t.number;
+      d["class_name"]          = std::string(t.class_name);
+      d["summary"]             = std::string(t.summary);
+      d["default_exponent"]    = t.default_exponent;
+      d["fixed_exponent"]      = t.fixed_exponent();
+      d["uses_cor"]            = t.uses_cor();
+      d["uses_effective_mass"] = t.uses_effective_mass();
+      d["fittable"]            = t.fittable;
+      d["moat_wall_only"]      = t.moat_wall_only;
+      d["parameters"]          = parameters;
+      return d;
+    }
+
+    /** force_law_names(), law_traits(), thesis_cor and the Law class: a force law's response
+     *  along a path. */
     void register_law_class(py::module_ &m)
     {
       m.def("force_law_names", &lumped::force_law_names);
+      m.def(
+        "law_traits",
+        []
+        {
+          py::list list;
+          for (const lumped::LawTraits &t : lumped::law_traits())
+            list.append(traits_dict(t));
+          return list;
+        },
+        "The impact laws' traits (name, number, class name, default exponent, parameters, ...), "
+        "in the order of docs/physics.md §1.");
+      m.attr("thesis_cor") = lumped::thesis_cor;
 
       py::class_<Law>(m, "Law")
         .def(py::init(
@@ -149,7 +195,7 @@ namespace kimp::python
              py::arg("law"),
              py::arg("k"),
              py::arg("exponent") = py::none(),
-             py::arg("cor")      = 0.7,
+             py::arg("cor")      = lumped::thesis_cor,
              py::arg("m_eff")    = 0.0,
              py::arg("ye")       = false,
              py::arg("a1")       = py::none(),

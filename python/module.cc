@@ -1,5 +1,6 @@
 // The compiled part of the Python module kimp (kimp._kimp): scenes, lumped runs, laws, collisions,
-// ground motions, fits and (FEM build) FEM runs and studies; the package kimp/ wraps it.
+// ground motions, fits and (FEM build) FEM runs and studies; the package kimp/ wraps it. Only
+// this file calls the parts' register_*() functions; the parts call nothing here.
 #include <pybind11/pybind11.h>
 #include <stdexcept>
 #include <string>
@@ -9,14 +10,6 @@
 #include "io/units.h"
 
 #include "python/bindings.h"
-
-namespace kimp::python
-{
-  std::vector<double> to_vector(const DoubleArray &array)
-  {
-    return std::vector<double>(array.data(), array.data() + array.size());
-  }
-} // namespace kimp::python
 
 PYBIND11_MODULE(_kimp, m)
 {

@@ -499,6 +499,89 @@ namespace kimp::server
     }
   }
 
+  int RunManager::start_child(Run &run, int out)
+  {
+    // Under the lock: cancel() sees either no child yet (and the flag stops the spawn) or
+    // the child's pid.
+    std::lock_guard<std::mutex> lock(mutex_);
+    int                         pid = -1;
+    if (!run.cancel)
+      pid = spawn(settings_.kimp_executable,
+                  run.arguments,
+                  out,
+                  out,
+                  child_environment(settings_.records_dir),
+                  run.dir);
+    run.pid = pid;
+    if (pid <= 0 && !run.cancel)
+      run.error = "cannot start " + settings_.kimp_executable.filename().string() + ": " +
+                  std::strerror(errno);
+    changed_.notify_all();
+    return pid;
+  }
+
+  void
+  RunManager::take_lines(Run &run, std::string &pending, std::ostream &log, std::size_t &logged)
+  {
+    for (;;)
+    {
+      // A line ends at a line break, or after max_line_bytes (a child that writes without
+      // one cannot grow the server).
+      std::size_t end  = pending.find_first_of("\r\n");
+      std::size_t skip = 1;
+      if (end == std::string::npos)
+      {
+        if (pending.size() < max_line_bytes)
+          break;
+        end  = max_line_bytes;
+        skip = 0;
+      }
+      std::string line = shown_.relative(pending.substr(0, end));
+      pending.erase(0, end + skip);
+      if (line.empty())
+        continue;
+      if (const auto fraction = parse_progress(run.command, line))
+      {
+        // fem and study report each wall height's simulated time from 0 again; the other
+        // commands' lines count cases, which never go back (a line rounds to 4 digits).
+        const bool per_height = run.command == "fem" || run.command == "study";
+        run.progress          = per_height ? *fraction : std::max(run.progress, *fraction);
+        if (line.rfind("progress: ", 0) == 0)
+        {
+          // Not logged: one a second would bury the messages.
+          run.progress_text = line.substr(10);
+          changed_.notify_all();
+          continue;
+        }
+        run.progress_text = line;
+      }
+      // run.log stops at max_log_file_bytes (a child that writes without end fills no disk).
+      if (logged < max_log_file_bytes)
+      {
+        logged += line.size() + 1;
+        log << line << '\n';
+        if (logged >= max_log_file_bytes)
+          log << "... (run.log stops here, at " << (max_log_file_bytes >> 20) << " MB)\n";
+        log << std::flush;
+      }
+      // The page gets long lines clipped, and the first max_log_lines lines.
+      line = clip_long_lines(std::move(line));
+      if (line.rfind("error: ", 0) == 0 && run.error.size() < max_error_bytes)
+        run.error += (run.error.empty() ? "" : "\n") + line.substr(7);
+      if (run.command == "lumped")
+        note_lumped_case(run, line);
+      if (run.log.size() < max_log_lines)
+        run.log.push_back(std::move(line));
+      else if (!run.log_full)
+      {
+        run.log.push_back("... (more than " + std::to_string(max_log_lines) +
+                          " lines: the others are in run.log)");
+        run.log_full = true;
+      }
+      changed_.notify_all();
+    }
+  }
+
   void RunManager::watch(std::shared_ptr<Run> run)
   {
     int fds[2];
@@ -509,24 +592,7 @@ namespace kimp::server
       finish(*run, 0, false);
       return;
     }
-    int pid = -1;
-    {
-      // Under the lock: cancel() sees either no child yet (and the flag stops the spawn) or
-      // the child's pid.
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (!run->cancel)
-        pid = spawn(settings_.kimp_executable,
-                    run->arguments,
-                    fds[1],
-                    fds[1],
-                    child_environment(settings_.records_dir),
-                    run->dir);
-      run->pid = pid;
-      if (pid <= 0 && !run->cancel)
-        run->error = "cannot start " + settings_.kimp_executable.filename().string() + ": " +
-                     std::strerror(errno);
-      changed_.notify_all();
-    }
+    const int pid = start_child(*run, fds[1]);
     close(fds[1]);
     // A server that dies now leaves the run "running" on disk: interrupted at its next start.
     if (pid > 0)
@@ -552,63 +618,7 @@ namespace kimp::server
       else if (ready < 0 && errno != EINTR)
         open = false;
       std::lock_guard<std::mutex> lock(mutex_);
-      for (;;)
-      {
-        // A line ends at a line break, or after max_line_bytes (a child that writes without
-        // one cannot grow the server).
-        std::size_t end  = pending.find_first_of("\r\n");
-        std::size_t skip = 1;
-        if (end == std::string::npos)
-        {
-          if (pending.size() < max_line_bytes)
-            break;
-          end  = max_line_bytes;
-          skip = 0;
-        }
-        std::string line = shown_.relative(pending.substr(0, end));
-        pending.erase(0, end + skip);
-        if (line.empty())
-          continue;
-        if (const auto fraction = parse_progress(run->command, line))
-        {
-          // fem and study report each wall height's simulated time from 0 again; the other
-          // commands' lines count cases, which never go back (a line rounds to 4 digits).
-          const bool per_height = run->command == "fem" || run->command == "study";
-          run->progress         = per_height ? *fraction : std::max(run->progress, *fraction);
-          if (line.rfind("progress: ", 0) == 0)
-          {
-            // Not logged: one a second would bury the messages.
-            run->progress_text = line.substr(10);
-            changed_.notify_all();
-            continue;
-          }
-          run->progress_text = line;
-        }
-        // run.log stops at max_log_file_bytes (a child that writes without end fills no disk).
-        if (logged < max_log_file_bytes)
-        {
-          logged += line.size() + 1;
-          log << line << '\n';
-          if (logged >= max_log_file_bytes)
-            log << "... (run.log stops here, at " << (max_log_file_bytes >> 20) << " MB)\n";
-          log << std::flush;
-        }
-        // The page gets long lines clipped, and the first max_log_lines lines.
-        line = clip_long_lines(std::move(line));
-        if (line.rfind("error: ", 0) == 0 && run->error.size() < max_error_bytes)
-          run->error += (run->error.empty() ? "" : "\n") + line.substr(7);
-        if (run->command == "lumped")
-          note_lumped_case(*run, line);
-        if (run->log.size() < max_log_lines)
-          run->log.push_back(std::move(line));
-        else if (!run->log_full)
-        {
-          run->log.push_back("... (more than " + std::to_string(max_log_lines) +
-                             " lines: the others are in run.log)");
-          run->log_full = true;
-        }
-        changed_.notify_all();
-      }
+      take_lines(*run, pending, log, logged);
       // A cancelled child that is still there after the grace period is killed (with anything
       // it started: the whole process group).
       if (run->cancel && !run->killed && seconds_since(run->cancelled_at) > settings_.kill_grace)

@@ -15,6 +15,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <thread>
 #include <utility>
@@ -147,9 +148,15 @@ namespace kimp::server
     nlohmann::json describe_locked(const std::string &id, std::optional<std::size_t> from) const;
     void           launch_queued_locked();
     void           watch(std::shared_ptr<Run> run);
-    void           finish(Run &run, int status, bool spawned);
-    void           lock_runs_folder();
-    void           mark_interrupted_runs();
+    /// watch(): the child of `run` with stdout and stderr on `out` (-1: not started, the reason
+    /// in run.error, or cancelled before).
+    int start_child(Run &run, int out);
+    /// watch(), under the lock: the complete lines of `pending` (taken out of it) into `run`:
+    /// progress, run.log (`logged` bytes written so far), errors and the page's log.
+    void take_lines(Run &run, std::string &pending, std::ostream &log, std::size_t &logged);
+    void finish(Run &run, int status, bool spawned);
+    void lock_runs_folder();
+    void mark_interrupted_runs();
 
     RunSettings                                 settings_;
     FolderPaths                                 shown_;

@@ -19,6 +19,7 @@
 #include "base/logging.h"
 #include "base/version.h"
 #include "io/summary.h"
+#include "lumped/laws/law_traits.h"
 
 namespace kimp::app
 {
@@ -37,6 +38,18 @@ namespace kimp::app
     std::string number(double value)
     {
       return fmt::format("{:.10g}", value);
+    }
+
+    /// n of the Hertz materials (JankowskiImpact, Hertzdamp, ImpactMaterial): the Jankowski law's.
+    double hertz_exponent()
+    {
+      return lumped::law_traits("jankowski").default_exponent;
+    }
+
+    /// n of the Kelvin-Voigt materials (ViscoelasticGap, ElasticPPGap).
+    double kelvin_voigt_exponent()
+    {
+      return lumped::law_traits("kelvin_voigt").default_exponent;
     }
 
     std::vector<Material> materials(const OpenSeesLawInput &in, const OpenSeesParameters &p)
@@ -63,11 +76,15 @@ namespace kimp::app
       {
         const double k = *in.k_hertz;
         out.push_back({"JankowskiImpact",
-                       {number(k), number(p.jankowski_xi), number(in.effective_mass), gap, "1.5"},
+                       {number(k),
+                        number(p.jankowski_xi),
+                        number(in.effective_mass),
+                        gap,
+                        number(hertz_exponent())},
                        "Jankowski: Kh = k_J, xi = (9 sqrt(5)/2)(1 - e^2)/(e (e (9 pi - 16) + 16)), "
                        "Meff, n = 1.5"});
         out.push_back({"Hertzdamp",
-                       {number(k), number(p.hertzdamp_xi_norm), gap, "1.5"},
+                       {number(k), number(p.hertzdamp_xi_norm), gap, number(hertz_exponent())},
                        fmt::format("Hertzdamp: Kh = k_J, xiNorm = 3 (1 - e^2)/4 (kimp's hertzdamp "
                                    "law; Ye et al.'s 8 (1 - e)/(5 e) = {:.6g})",
                                    p.hertzdamp_xi_norm_ye)});
@@ -196,7 +213,7 @@ namespace kimp::app
     p.hertzdamp_xi_norm_ye = 8.0 * (1.0 - e) / (5.0 * e);
     if (in.k_hertz)
     {
-      const double k = *in.k_hertz, n = 1.5, a = in.yield_ratio;
+      const double k = *in.k_hertz, n = hertz_exponent(), a = in.yield_ratio;
       p.delta_m = std::pow((n + 1.0) * m * v * v / (2.0 * k), 1.0 / (n + 1.0));
       p.energy  = k * std::pow(p.delta_m, n + 1.0) * (1.0 - e * e) / (n + 1.0);
       p.k_eff   = k * std::sqrt(p.delta_m);
@@ -259,19 +276,143 @@ namespace kimp::app
         return j.at(at).get<double>();
       return std::nullopt;
     }
+
+    /// The one wall height of a site's study (its k table holds one): the one to export.
+    double only_wall_height(const std::filesystem::path &source)
+    {
+      const KTable        table = read_k_table(source);
+      std::vector<double> heights;
+      for (const KTableRow &r : table.rows)
+        if (std::find(heights.begin(), heights.end(), r.wall_height) == heights.end())
+          heights.push_back(r.wall_height);
+      if (heights.size() != 1)
+      {
+        std::string list;
+        for (const double h : heights)
+          list += (list.empty() ? "" : ", ") + fmt::format("{:g} m", h);
+        throw std::invalid_argument("export-opensees: --wall-height is needed: " +
+                                    table.file.string() + " holds the heights " + list);
+      }
+      return heights.front();
+    }
+
+    /// `--record`: the k not given from the record's consistent k at `wall_height` of a study's
+    /// directory; returns the record's impact velocity, if known.
+    std::optional<double> take_record_k(const ExportOpenSeesOptions &options,
+                                        const std::string           &command,
+                                        double                       wall_height,
+                                        OpenSeesLawInput            &in)
+    {
+      const std::string &record = options.settings.record;
+      if (command != "study")
+        throw std::invalid_argument("export-opensees: --record needs the output directory of "
+                                    "`kimp study` (" +
+                                    options.source.string() + " is not one)");
+      const std::filesystem::path dir = std::filesystem::is_directory(options.source) ?
+                                          options.source :
+                                          options.source.parent_path();
+      const RecordK               k   = read_consistent_k(dir, record, wall_height);
+      if (!in.k_kelvin_voigt && std::isfinite(k.kelvin_voigt_total))
+        in.k_kelvin_voigt = k.kelvin_voigt_total;
+      if (!in.k_hertz && std::isfinite(k.jankowski_total))
+        in.k_hertz = k.jankowski_total;
+      in.source = fmt::format("the consistent k of record '{}' at wall height {} m ({}: the "
+                              "k(H, v) of the building run's own impact velocity)",
+                              record,
+                              wall_height,
+                              k.file.string());
+      if (std::isfinite(k.impact_velocity))
+        return k.impact_velocity;
+      return std::nullopt;
+    }
+
+    /// The k neither given nor taken from a record: the k table's at `wall_height`.
+    void take_table_k(const std::filesystem::path &source, double wall_height, OpenSeesLawInput &in)
+    {
+      if (in.k_kelvin_voigt && in.k_hertz)
+        return;
+      const KTable table = read_k_table(source);
+      if (!in.k_kelvin_voigt)
+        in.k_kelvin_voigt = table.stiffness(wall_height, kelvin_voigt_exponent());
+      if (!in.k_hertz)
+        in.k_hertz = table.stiffness(wall_height, hertz_exponent());
+      in.source = (in.source.empty() ? std::string() : in.source + "; the rest from ") +
+                  fmt::format("{} at wall height {} m (k_total = k per metre x building "
+                              "width, linearly interpolated between the table's heights)",
+                              table.file.string(),
+                              wall_height);
+    }
+
+    /// COR, m_eff and v_imp: given, else from the source's summary.json (`command` wrote it) or
+    /// the record, else the defaults.
+    void take_contact(const ExportOpenSeesOptions &options,
+                      const nlohmann::json        &summary,
+                      const std::string           &command,
+                      std::optional<double>        record_velocity,
+                      OpenSeesLawInput            &in)
+    {
+      const ExportOpenSeesSettings &s    = options.settings;
+      const std::string             file = (std::filesystem::is_directory(options.source) ?
+                                              options.source / "summary.json" :
+                                              options.source.parent_path() / "summary.json")
+                                 .string();
+      // COR: the one the source's k was fitted at.
+      const std::optional<double> fitted_cor =
+        command == "study" ? json_number(summary, "/contact/cor") :
+        command == "fit"   ? json_number(summary, "/options/cor") :
+                             std::nullopt;
+      if (s.cor)
+        in.cor = *s.cor;
+      else if (fitted_cor)
+      {
+        in.cor        = *fitted_cor;
+        in.cor_source = "the COR the k was fitted at (" + file + ")";
+      }
+      else
+        in.cor_source = "default (the thesis' COR)";
+      // m_eff: the study's building against its wall; never a building the user did not give.
+      if (s.effective_mass)
+        in.effective_mass = *s.effective_mass;
+      else if (const auto m = json_number(summary, "/contact/effective_mass"))
+      {
+        in.effective_mass = *m;
+        in.effective_mass_source =
+          fmt::format("the study's isolation level {:.6g} t against its wall {:.6g} t ({})",
+                      json_number(summary, "/contact/isolation_mass").value_or(std::nan("")) / 1e3,
+                      json_number(summary, "/contact/wall_mass").value_or(std::nan("")) / 1e3,
+                      file);
+      }
+      // v_imp: the record's own, else the study's reference velocity.
+      if (s.impact_velocity)
+        in.impact_velocity = *s.impact_velocity;
+      else if (record_velocity)
+      {
+        in.impact_velocity = *record_velocity;
+        in.impact_velocity_source =
+          "the impact velocity of record '" + s.record + "' (" +
+          (std::filesystem::path(file).parent_path() / "consistent_k.csv").string() + ")";
+      }
+      else if (const auto v =
+                 command == "study" ? json_number(summary, "/reference_velocity") : std::nullopt)
+      {
+        in.impact_velocity        = *v;
+        in.impact_velocity_source = "the study's reference velocity (" + file + ")";
+      }
+      else
+        in.impact_velocity_source = "default";
+    }
   } // namespace
 
   OpenSeesLawInput resolve_export_input(const ExportOpenSeesOptions &options)
   {
     const ExportOpenSeesSettings &s = options.settings;
     OpenSeesLawInput              in;
-    in.k_kelvin_voigt                 = s.k_kelvin_voigt;
-    in.k_hertz                        = s.k_hertz;
-    in.gap                            = s.gap;
-    in.yield_ratio                    = s.yield_ratio;
-    in.first_tag                      = s.first_tag;
-    in.gap_source                     = "given (--gap, default 15 cm)";
-    std::optional<double> wall_height = s.wall_height;
+    in.k_kelvin_voigt = s.k_kelvin_voigt;
+    in.k_hertz        = s.k_hertz;
+    in.gap            = s.gap;
+    in.yield_ratio    = s.yield_ratio;
+    in.first_tag      = s.first_tag;
+    in.gap_source     = "given (--gap, default 15 cm)";
     nlohmann::json        summary;
     std::string           command;
     std::optional<double> record_velocity;
@@ -282,110 +423,14 @@ namespace kimp::app
     }
     else
     {
-      if (!wall_height)
-      {
-        // A site's study has one wall height: it is the one to export.
-        const KTable        table = read_k_table(options.source);
-        std::vector<double> heights;
-        for (const KTableRow &r : table.rows)
-          if (std::find(heights.begin(), heights.end(), r.wall_height) == heights.end())
-            heights.push_back(r.wall_height);
-        if (heights.size() != 1)
-        {
-          std::string list;
-          for (const double h : heights)
-            list += (list.empty() ? "" : ", ") + fmt::format("{:g} m", h);
-          throw std::invalid_argument("export-opensees: --wall-height is needed: " +
-                                      table.file.string() + " holds the heights " + list);
-        }
-        wall_height = heights.front();
-      }
-      summary = source_summary(options.source);
-      command = summary.is_object() ? summary.value("command", "") : "";
+      const double wall_height = s.wall_height ? *s.wall_height : only_wall_height(options.source);
+      summary                  = source_summary(options.source);
+      command                  = summary.is_object() ? summary.value("command", "") : "";
       if (!s.record.empty())
-      {
-        if (command != "study")
-          throw std::invalid_argument("export-opensees: --record needs the output directory of "
-                                      "`kimp study` (" +
-                                      options.source.string() + " is not one)");
-        const std::filesystem::path dir = std::filesystem::is_directory(options.source) ?
-                                            options.source :
-                                            options.source.parent_path();
-        const RecordK               k   = read_consistent_k(dir, s.record, *wall_height);
-        if (!in.k_kelvin_voigt && std::isfinite(k.kelvin_voigt_total))
-          in.k_kelvin_voigt = k.kelvin_voigt_total;
-        if (!in.k_hertz && std::isfinite(k.jankowski_total))
-          in.k_hertz = k.jankowski_total;
-        if (std::isfinite(k.impact_velocity))
-          record_velocity = k.impact_velocity;
-        in.source = fmt::format("the consistent k of record '{}' at wall height {} m ({}: the "
-                                "k(H, v) of the building run's own impact velocity)",
-                                s.record,
-                                *wall_height,
-                                k.file.string());
-      }
-      if (!in.k_kelvin_voigt || !in.k_hertz)
-      {
-        const KTable table = read_k_table(options.source);
-        if (!in.k_kelvin_voigt)
-          in.k_kelvin_voigt = table.stiffness(*wall_height, 1.0);
-        if (!in.k_hertz)
-          in.k_hertz = table.stiffness(*wall_height, 1.5);
-        in.source = (in.source.empty() ? std::string() : in.source + "; the rest from ") +
-                    fmt::format("{} at wall height {} m (k_total = k per metre x building "
-                                "width, linearly interpolated between the table's heights)",
-                                table.file.string(),
-                                *wall_height);
-      }
+        record_velocity = take_record_k(options, command, wall_height, in);
+      take_table_k(options.source, wall_height, in);
     }
-    const std::string file = (std::filesystem::is_directory(options.source) ?
-                                options.source / "summary.json" :
-                                options.source.parent_path() / "summary.json")
-                               .string();
-    // COR: the one the source's k was fitted at.
-    const std::optional<double> fitted_cor =
-      command == "study" ? json_number(summary, "/contact/cor") :
-      command == "fit"   ? json_number(summary, "/options/cor") :
-                           std::nullopt;
-    if (s.cor)
-      in.cor = *s.cor;
-    else if (fitted_cor)
-    {
-      in.cor        = *fitted_cor;
-      in.cor_source = "the COR the k was fitted at (" + file + ")";
-    }
-    else
-      in.cor_source = "default (the thesis' COR)";
-    // m_eff: the study's building against its wall; never a building the user did not give.
-    if (s.effective_mass)
-      in.effective_mass = *s.effective_mass;
-    else if (const auto m = json_number(summary, "/contact/effective_mass"))
-    {
-      in.effective_mass = *m;
-      in.effective_mass_source =
-        fmt::format("the study's isolation level {:.6g} t against its wall {:.6g} t ({})",
-                    json_number(summary, "/contact/isolation_mass").value_or(std::nan("")) / 1e3,
-                    json_number(summary, "/contact/wall_mass").value_or(std::nan("")) / 1e3,
-                    file);
-    }
-    // v_imp: the record's own, else the study's reference velocity.
-    if (s.impact_velocity)
-      in.impact_velocity = *s.impact_velocity;
-    else if (record_velocity)
-    {
-      in.impact_velocity = *record_velocity;
-      in.impact_velocity_source =
-        "the impact velocity of record '" + s.record + "' (" +
-        (std::filesystem::path(file).parent_path() / "consistent_k.csv").string() + ")";
-    }
-    else if (const auto v =
-               command == "study" ? json_number(summary, "/reference_velocity") : std::nullopt)
-    {
-      in.impact_velocity        = *v;
-      in.impact_velocity_source = "the study's reference velocity (" + file + ")";
-    }
-    else
-      in.impact_velocity_source = "default";
+    take_contact(options, summary, command, record_velocity, in);
     return in;
   }
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "io/scene_io.h"
+#include "lumped/laws/law_traits.h"
 
 namespace kimp::app
 {
@@ -16,7 +17,7 @@ namespace kimp::app
   {
     std::optional<double> k_kelvin_voigt; ///< N/m: ViscoelasticGap, ElasticPPGap
     std::optional<double> k_hertz;        ///< N/m^1.5: JankowskiImpact, Hertzdamp, ImpactMaterial
-    double                cor = 0.7;      ///< coefficient of restitution, (0, 1]
+    double                cor = lumped::thesis_cor; ///< coefficient of restitution, (0, 1]
     /// m_eff = m1·m2/(m1 + m2) of the contact, kg (> 0; NaN: not known, refused).
     double      effective_mass  = std::numeric_limits<double>::quiet_NaN();
     double      impact_velocity = 1.0;  ///< v_imp, m/s: δ_m of ImpactMaterial
@@ -68,9 +69,10 @@ namespace kimp::app
     /// With a study directory: export the consistent k of this record (consistent_k.csv)
     /// instead of the k table's k at the reference velocity ("" = the k table).
     std::string           record;
-    std::optional<double> k_kelvin_voigt;  ///< N/m (wins over the source)
-    std::optional<double> k_hertz;         ///< N/m^1.5 (wins over the source)
-    std::optional<double> cor;             ///< default: the source's fitting COR, else 0.7
+    std::optional<double> k_kelvin_voigt; ///< N/m (wins over the source)
+    std::optional<double> k_hertz;        ///< N/m^1.5 (wins over the source)
+    std::optional<double> cor;            ///< default: the source's fitting COR, else thesis_cor
+
     std::optional<double> effective_mass;  ///< kg; default: the study's building (required
                                            ///< without one)
     std::optional<double> impact_velocity; ///< m/s; default: the record's or the study's
@@ -107,7 +109,7 @@ namespace kimp::app
                 s.cor,
                 "",
                 "coefficient of restitution e (default: the COR the source's k was fitted at, "
-                "else 0.7)",
+                "else the thesis' COR)",
                 io::Range::greater(0.0).and_at_most(1.0));
     io.quantity("effective_mass",
                 s.effective_mass,

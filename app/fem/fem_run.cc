@@ -186,6 +186,104 @@ namespace kimp::app
       return entry;
     }
 
+
+    /// The log lines of a finished case: its impact, then the state and dissipation after it.
+    void log_fem_case(const std::string &name, const fem::ImpactResult &result)
+    {
+      logger().info("{}: peak force {:.4g} kN/m (raw {:.4g}), contact {:.4g} ms, impulse "
+                    "{:.4g} N s/m, COR {:.3f}, {} DoFs, {} steps of {:.3g} s, {:.2f} s",
+                    name,
+                    result.summary.peak_force / 1e3,
+                    result.summary.peak_force_raw / 1e3,
+                    result.summary.contact_duration * 1e3,
+                    result.summary.impulse,
+                    result.summary.apparent_cor,
+                    result.summary.n_dofs,
+                    result.summary.n_steps,
+                    result.summary.dt,
+                    result.summary.wall_seconds);
+      const auto &sm = result.summary;
+      logger().info("{}: after the impact: permanent indentation {:.4g} mm, wall displacement at "
+                    "the end {:.4g} mm; dissipation plastic {:.4g} (soil {:.4g}, wall {:.4g}, "
+                    "slab {:.4g}), damage {:.4g} (wall {:.4g}, slab {:.4g}), contact {:.4g} "
+                    "J/m, left in the bodies {:.4g} J/m; COR implied by the material "
+                    "dissipation {:.3f} (apparent {:.3f})",
+                    name,
+                    result.summary.permanent_indentation * 1e3,
+                    result.summary.wall_residual_displacement * 1e3,
+                    sm.plastic_dissipation,
+                    sm.plastic_dissipation_by_body[2],
+                    sm.plastic_dissipation_by_body[1],
+                    sm.plastic_dissipation_by_body[0],
+                    sm.damage_dissipation,
+                    sm.damage_dissipation_by_body[1],
+                    sm.damage_dissipation_by_body[0],
+                    result.summary.contact_dissipation,
+                    result.summary.residual_energy,
+                    result.summary.dissipation_cor,
+                    result.summary.apparent_cor);
+    }
+
+    /// fem_histories.csv: one row per sample of the case's force history.
+    void add_history_rows(std::vector<std::vector<std::string>> &rows,
+                          const std::string                     &name,
+                          const FemCase                         &fem_case)
+    {
+      for (std::size_t i = 0; i < fem_case.time.size(); ++i)
+        rows.push_back({name,
+                        fmt::format("{}", fem_case.time[i]),
+                        fmt::format("{}", fem_case.contact_force[i]),
+                        fmt::format("{}", fem_case.smoothed_contact_force[i]),
+                        fmt::format("{}", fem_case.indentation[i]),
+                        fmt::format("{}", fem_case.slab_velocity[i]),
+                        fmt::format("{}", fem_case.wall_displacement[i])});
+    }
+
+    /// summary.json of `kimp fem`: ranks, wall time, the units (with those of the keys only some
+    /// cases have, `extra_units`) and the cases.
+    nlohmann::ordered_json fem_summary(int                                          n_ranks,
+                                       const std::chrono::steady_clock::time_point &start,
+                                       const std::map<std::string, std::string>    &extra_units,
+                                       const nlohmann::ordered_json                &cases)
+    {
+      nlohmann::ordered_json summary;
+      summary["command"] = "fem";
+      summary["kimp"]    = version_line();
+      summary["n_ranks"] = n_ranks;
+      summary["wall_time"] =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      summary["units"] = {{"wall_height", "m"},
+                          {"slab_mass", "kg/m"},
+                          {"impact_velocity", "m/s"},
+                          {"peak_force", "N/m"},
+                          {"peak_force_raw", "N/m"},
+                          {"impulse", "N*s/m"},
+                          {"contact_start", "s"},
+                          {"contact_duration", "s"},
+                          {"rebound_velocity", "m/s"},
+                          {"max_penetration", "m"},
+                          {"mean_penetration", "m"},
+                          {"initial_gap", "m"},
+                          {"penalty_stiffness", "N/m/m"},
+                          {"smoothing_window", "s"},
+                          {"dt", "s"},
+                          {"dt_stable", "s"},
+                          {"wall_time", "s"},
+                          {"plastic_dissipation", "J/m"},
+                          {"damage_dissipation", "J/m"},
+                          {"contact_dissipation", "J/m"},
+                          {"residual_energy", "J/m"},
+                          {"dissipation_cor", "1"},
+                          {"permanent_indentation", "m"},
+                          {"wall_residual_displacement", "m"}};
+      // The units of the keys only some cases have (geostatic step, interface, dissipation by
+      // body).
+      for (const auto &[key, unit] : extra_units)
+        if (!summary["units"].contains(key))
+          summary["units"][key] = unit;
+      summary["cases"] = cases;
+      return summary;
+    }
   } // namespace
 
   void run_fem(const LoadedScene<FemScene> &loaded, const OutputDir &output)
@@ -269,46 +367,8 @@ namespace kimp::app
       cases.push_back(entry);
       for (const auto &[key, value] : fem_case.summary.entries())
         extra_units.emplace(key, fem_summary_units(fem_case, key));
-      for (std::size_t i = 0; i < fem_case.time.size(); ++i)
-        rows.push_back({name,
-                        fmt::format("{}", fem_case.time[i]),
-                        fmt::format("{}", fem_case.contact_force[i]),
-                        fmt::format("{}", fem_case.smoothed_contact_force[i]),
-                        fmt::format("{}", fem_case.indentation[i]),
-                        fmt::format("{}", fem_case.slab_velocity[i]),
-                        fmt::format("{}", fem_case.wall_displacement[i])});
-      logger().info("{}: peak force {:.4g} kN/m (raw {:.4g}), contact {:.4g} ms, impulse "
-                    "{:.4g} N s/m, COR {:.3f}, {} DoFs, {} steps of {:.3g} s, {:.2f} s",
-                    name,
-                    result.summary.peak_force / 1e3,
-                    result.summary.peak_force_raw / 1e3,
-                    result.summary.contact_duration * 1e3,
-                    result.summary.impulse,
-                    result.summary.apparent_cor,
-                    result.summary.n_dofs,
-                    result.summary.n_steps,
-                    result.summary.dt,
-                    result.summary.wall_seconds);
-      const auto &sm = result.summary;
-      logger().info("{}: after the impact: permanent indentation {:.4g} mm, wall displacement at "
-                    "the end {:.4g} mm; dissipation plastic {:.4g} (soil {:.4g}, wall {:.4g}, "
-                    "slab {:.4g}), damage {:.4g} (wall {:.4g}, slab {:.4g}), contact {:.4g} "
-                    "J/m, left in the bodies {:.4g} J/m; COR implied by the material "
-                    "dissipation {:.3f} (apparent {:.3f})",
-                    name,
-                    result.summary.permanent_indentation * 1e3,
-                    result.summary.wall_residual_displacement * 1e3,
-                    sm.plastic_dissipation,
-                    sm.plastic_dissipation_by_body[2],
-                    sm.plastic_dissipation_by_body[1],
-                    sm.plastic_dissipation_by_body[0],
-                    sm.damage_dissipation,
-                    sm.damage_dissipation_by_body[1],
-                    sm.damage_dissipation_by_body[0],
-                    result.summary.contact_dissipation,
-                    result.summary.residual_energy,
-                    result.summary.dissipation_cor,
-                    result.summary.apparent_cor);
+      add_history_rows(rows, name, fem_case);
+      log_fem_case(name, result);
     }
     if (rank != 0)
       return;
@@ -323,41 +383,7 @@ namespace kimp::app
                       "slab_velocity_m_per_s",
                       "wall_displacement_m"},
                      rows);
-    nlohmann::ordered_json summary;
-    summary["command"] = "fem";
-    summary["kimp"]    = version_line();
-    summary["n_ranks"] = n_ranks;
-    summary["wall_time"] =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    summary["units"] = {{"wall_height", "m"},
-                        {"slab_mass", "kg/m"},
-                        {"impact_velocity", "m/s"},
-                        {"peak_force", "N/m"},
-                        {"peak_force_raw", "N/m"},
-                        {"impulse", "N*s/m"},
-                        {"contact_start", "s"},
-                        {"contact_duration", "s"},
-                        {"rebound_velocity", "m/s"},
-                        {"max_penetration", "m"},
-                        {"mean_penetration", "m"},
-                        {"initial_gap", "m"},
-                        {"penalty_stiffness", "N/m/m"},
-                        {"smoothing_window", "s"},
-                        {"dt", "s"},
-                        {"dt_stable", "s"},
-                        {"wall_time", "s"},
-                        {"plastic_dissipation", "J/m"},
-                        {"damage_dissipation", "J/m"},
-                        {"contact_dissipation", "J/m"},
-                        {"residual_energy", "J/m"},
-                        {"dissipation_cor", "1"},
-                        {"permanent_indentation", "m"},
-                        {"wall_residual_displacement", "m"}};
-    // The units of the keys only some cases have (geostatic step, interface, dissipation by body).
-    for (const auto &[key, unit] : extra_units)
-      if (!summary["units"].contains(key))
-        summary["units"][key] = unit;
-    summary["cases"] = cases;
+    const nlohmann::ordered_json summary = fem_summary(n_ranks, start, extra_units, cases);
     write_text_atomic(output.file("summary.json"), summary.dump(2) + "\n");
     logger().info("wrote {}, {}, {}",
                   results->final_path().string(),

@@ -147,31 +147,27 @@ namespace kimp::app
     return from_fit;
   }
 
-  int run_fit_command(const FitCommandOptions &options)
+  namespace
   {
-    const FitConfig &config = options.config;
-    if (!(config.width > 0.0))
-      throw std::invalid_argument(fmt::format("fit: width = {} m (must be > 0)", config.width));
-    if (!(config.cor > 0.0 && config.cor <= 1.0))
-      throw std::invalid_argument(fmt::format("fit: cor = {} (must be in (0, 1])", config.cor));
-    if (!(config.peak_tolerance > 0.0))
-      throw std::invalid_argument(
-        fmt::format("fit: peak_tolerance = {} (must be > 0)", config.peak_tolerance));
-    if (!(config.displacement_weight >= 0.0))
-      throw std::invalid_argument(
-        fmt::format("fit: displacement_weight = {} (must be >= 0)", config.displacement_weight));
-    const auto                 start = std::chrono::steady_clock::now();
-    const std::vector<FemCase> cases = read_fem_cases(options.fem_file);
-    const OutputDir            output(options.output);
+    /// The settings of `kimp fit` that its keys' ranges do not hold.
+    void check_fit_config(const FitConfig &config)
+    {
+      if (!(config.width > 0.0))
+        throw std::invalid_argument(fmt::format("fit: width = {} m (must be > 0)", config.width));
+      if (!(config.cor > 0.0 && config.cor <= 1.0))
+        throw std::invalid_argument(fmt::format("fit: cor = {} (must be in (0, 1])", config.cor));
+      if (!(config.peak_tolerance > 0.0))
+        throw std::invalid_argument(
+          fmt::format("fit: peak_tolerance = {} (must be > 0)", config.peak_tolerance));
+      if (!(config.displacement_weight >= 0.0))
+        throw std::invalid_argument(
+          fmt::format("fit: displacement_weight = {} (must be >= 0)", config.displacement_weight));
+    }
 
-    nlohmann::json resolved = nlohmann::json::parse(to_json_text(config, 0));
-    resolved["fem_file"]    = options.fem_file.string();
-    ResultsFile  file(output.file("fit.h5"), "", resolved.dump());
-    ResultsGroup root     = file.root();
-    ResultsGroup fit_root = root.group("fit");
-
-    const std::vector<FitVariant>         variants = fit_variants(config);
-    const std::vector<std::string>        header   = {"case",
+    /// fit_table.csv's columns.
+    const std::vector<std::string> &fit_table_header()
+    {
+      static const std::vector<std::string> header = {"case",
                                                       "wall_height_m",
                                                       "impact_velocity_m_per_s",
                                                       "variant",
@@ -191,9 +187,160 @@ namespace kimp::app
                                                       "impulse_ratio",
                                                       "contact_duration_ratio",
                                                       "status"};
-    std::vector<std::vector<std::string>> rows;
-    nlohmann::json                        case_summaries = nlohmann::json::array();
-    int                                   failures       = 0;
+      return header;
+    }
+
+    /// fit_table.csv's rows, summary.json's cases and the count of fits that are not "ok".
+    struct FitOutputs
+    {
+      std::vector<std::vector<std::string>> rows;
+      nlohmann::json                        cases    = nlohmann::json::array();
+      int                                   failures = 0;
+    };
+
+    /// One variant fitted to one FEM case: its group of fit.h5 below `case_group`, its row, its
+    /// summary case and its log line.
+    void fit_variant(const FemCase    &fem_case,
+                     const FitVariant &variant,
+                     const FitConfig  &config,
+                     ResultsGroup     &case_group,
+                     FitOutputs       &out)
+    {
+      ResultsGroup group = case_group.case_group(variant.name);
+      try
+      {
+        const FitResult   fit     = fit_fem_case(fem_case, variant, config);
+        const std::string verdict = fem_fit_verdict(fem_case, fit, config.peak_tolerance);
+        write_fit_result(group, fit, config.width, FitResultLayout::full);
+        group.set_status(verdict);
+        if (verdict != "ok")
+        {
+          ++out.failures;
+          logger().warn("fit: {} {}: {}", fem_case.name, variant.name, verdict);
+        }
+        const double scale = stiffness_to_kn_per_mm(1.0, fit.exponent.value);
+        out.rows.push_back({fem_case.name,
+                            number(fem_case.wall_height),
+                            number(fem_case.impact_velocity),
+                            variant.name,
+                            fit.law,
+                            number(fit.stiffness_per_metre_display()),
+                            number(fit.stiffness.lower * scale),
+                            number(fit.stiffness.upper * scale),
+                            fit.per_metre_unit(),
+                            number(fit.total_stiffness_display(config.width)),
+                            stiffness_display_unit(fit.exponent.value),
+                            number(fit.cor.value),
+                            number(fit.cor.lower),
+                            number(fit.cor.upper),
+                            number(fit.exponent.value),
+                            number(fit.normalised_rms),
+                            number(fit.peak_force_ratio()),
+                            number(fit.impulse_ratio()),
+                            number(fit.contact_duration_ratio()),
+                            verdict});
+        out.cases.push_back(
+          {{"name", fem_case.name + "/" + variant.name},
+           {"fem_case", fem_case.name},
+           {"variant", variant.name},
+           {"law", fit.law},
+           {"status", verdict},
+           {"wall_height", fem_case.wall_height},
+           {"impact_velocity", fem_case.impact_velocity},
+           {"stiffness_per_metre", fit.stiffness.value},
+           {"stiffness_per_metre_unit", stiffness_si_unit(fit.exponent.value, true)},
+           {"stiffness_per_metre_lower", fit.stiffness.lower},
+           {"stiffness_per_metre_upper", fit.stiffness.upper},
+           {"exponent", fit.exponent.value},
+           {"cor", fit.cor.value},
+           {"normalised_rms", fit.normalised_rms},
+           {"peak_force_ratio", fit.peak_force_ratio()},
+           {"impulse_ratio", fit.impulse_ratio()},
+           {"contact_duration_ratio", fit.contact_duration_ratio()}});
+        logger().info("fit: {} {}: k = {} {} (total {} {}), COR = {}, RMS/peak = {}, fitted/FEM "
+                      "peak force {}, impulse {}, contact duration {}",
+                      fem_case.name,
+                      variant.name,
+                      base::sig(fit.stiffness_per_metre_display()),
+                      fit.per_metre_unit(),
+                      base::sig(fit.total_stiffness_display(config.width)),
+                      stiffness_display_unit(fit.exponent.value),
+                      base::sig(fit.cor.value),
+                      base::sig(fit.normalised_rms, 3),
+                      base::sig(fit.peak_force_ratio(), 3),
+                      base::sig(fit.impulse_ratio(), 3),
+                      base::sig(fit.contact_duration_ratio(), 3));
+      }
+      catch (const std::exception &error)
+      {
+        ++out.failures;
+        const std::string status = "failed: " + base::error_text(error);
+        group.set_status(status);
+        // No fit: empty cells up to the status.
+        std::vector<std::string> row = {fem_case.name,
+                                        number(fem_case.wall_height),
+                                        number(fem_case.impact_velocity),
+                                        variant.name,
+                                        variant.law.law};
+        row.resize(fit_table_header().size() - 1);
+        row.push_back(status);
+        out.rows.push_back(std::move(row));
+        out.cases.push_back({{"name", fem_case.name + "/" + variant.name},
+                             {"fem_case", fem_case.name},
+                             {"variant", variant.name},
+                             {"law", variant.law.law},
+                             {"status", status},
+                             {"wall_height", fem_case.wall_height},
+                             {"impact_velocity", fem_case.impact_velocity}});
+        logger().warn("fit: {} {}: {}", fem_case.name, variant.name, status);
+      }
+    }
+
+    /// summary.json of `kimp fit`.
+    nlohmann::json fit_summary(const FitCommandOptions                     &options,
+                               const nlohmann::json                        &resolved,
+                               const std::chrono::steady_clock::time_point &start,
+                               const FitOutputs                            &out)
+    {
+      nlohmann::json summary;
+      summary["command"]  = "fit";
+      summary["kimp"]     = version_line();
+      summary["fem_file"] = options.fem_file.string();
+      summary["wall_time"] =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      summary["options"]  = resolved;
+      summary["units"]    = {{"wall_height", "m"},
+                             {"impact_velocity", "m/s"},
+                             {"width", "m"},
+                             {"cor", "1"},
+                             {"normalised_rms", "1"},
+                             {"peak_force_ratio", "1"},
+                             {"impulse_ratio", "1"},
+                             {"contact_duration_ratio", "1"},
+                             {"peak_tolerance", "1"},
+                             {"wall_time", "s"}};
+      summary["n_failed"] = out.failures;
+      summary["cases"]    = out.cases;
+      return summary;
+    }
+  } // namespace
+
+  int run_fit_command(const FitCommandOptions &options)
+  {
+    const FitConfig &config = options.config;
+    check_fit_config(config);
+    const auto                 start = std::chrono::steady_clock::now();
+    const std::vector<FemCase> cases = read_fem_cases(options.fem_file);
+    const OutputDir            output(options.output);
+
+    nlohmann::json resolved = nlohmann::json::parse(to_json_text(config, 0));
+    resolved["fem_file"]    = options.fem_file.string();
+    ResultsFile  file(output.file("fit.h5"), "", resolved.dump());
+    ResultsGroup root     = file.root();
+    ResultsGroup fit_root = root.group("fit");
+
+    const std::vector<FitVariant> variants = fit_variants(config);
+    FitOutputs                    out;
     for (const FemCase &fem_case : cases)
     {
       if (fem_case.status != "ok")
@@ -204,131 +351,12 @@ namespace kimp::app
       ResultsGroup case_group = fit_root.group(fem_case.name);
       case_group.write_scalar("wall_height", fem_case.wall_height, "m");
       for (const FitVariant &variant : variants)
-      {
-        ResultsGroup group = case_group.case_group(variant.name);
-        try
-        {
-          const FitResult   fit     = fit_fem_case(fem_case, variant, config);
-          const std::string verdict = fem_fit_verdict(fem_case, fit, config.peak_tolerance);
-          write_fit_result(group, fit, config.width, FitResultLayout::full);
-          group.set_status(verdict);
-          if (verdict != "ok")
-          {
-            ++failures;
-            logger().warn("fit: {} {}: {}", fem_case.name, variant.name, verdict);
-          }
-          const double scale = stiffness_to_kn_per_mm(1.0, fit.exponent.value);
-          rows.push_back({fem_case.name,
-                          number(fem_case.wall_height),
-                          number(fem_case.impact_velocity),
-                          variant.name,
-                          fit.law,
-                          number(fit.stiffness_per_metre_display()),
-                          number(fit.stiffness.lower * scale),
-                          number(fit.stiffness.upper * scale),
-                          fit.per_metre_unit(),
-                          number(fit.total_stiffness_display(config.width)),
-                          stiffness_display_unit(fit.exponent.value),
-                          number(fit.cor.value),
-                          number(fit.cor.lower),
-                          number(fit.cor.upper),
-                          number(fit.exponent.value),
-                          number(fit.normalised_rms),
-                          number(fit.peak_force_ratio()),
-                          number(fit.impulse_ratio()),
-                          number(fit.contact_duration_ratio()),
-                          verdict});
-          case_summaries.push_back(
-            {{"name", fem_case.name + "/" + variant.name},
-             {"fem_case", fem_case.name},
-             {"variant", variant.name},
-             {"law", fit.law},
-             {"status", verdict},
-             {"wall_height", fem_case.wall_height},
-             {"impact_velocity", fem_case.impact_velocity},
-             {"stiffness_per_metre", fit.stiffness.value},
-             {"stiffness_per_metre_unit", stiffness_si_unit(fit.exponent.value, true)},
-             {"stiffness_per_metre_lower", fit.stiffness.lower},
-             {"stiffness_per_metre_upper", fit.stiffness.upper},
-             {"exponent", fit.exponent.value},
-             {"cor", fit.cor.value},
-             {"normalised_rms", fit.normalised_rms},
-             {"peak_force_ratio", fit.peak_force_ratio()},
-             {"impulse_ratio", fit.impulse_ratio()},
-             {"contact_duration_ratio", fit.contact_duration_ratio()}});
-          logger().info("fit: {} {}: k = {} {} (total {} {}), COR = {}, RMS/peak = {}, fitted/FEM "
-                        "peak force {}, impulse {}, contact duration {}",
-                        fem_case.name,
-                        variant.name,
-                        base::sig(fit.stiffness_per_metre_display()),
-                        fit.per_metre_unit(),
-                        base::sig(fit.total_stiffness_display(config.width)),
-                        stiffness_display_unit(fit.exponent.value),
-                        base::sig(fit.cor.value),
-                        base::sig(fit.normalised_rms, 3),
-                        base::sig(fit.peak_force_ratio(), 3),
-                        base::sig(fit.impulse_ratio(), 3),
-                        base::sig(fit.contact_duration_ratio(), 3));
-        }
-        catch (const std::exception &error)
-        {
-          ++failures;
-          const std::string status = "failed: " + base::error_text(error);
-          group.set_status(status);
-          rows.push_back({fem_case.name,
-                          number(fem_case.wall_height),
-                          number(fem_case.impact_velocity),
-                          variant.name,
-                          variant.law.law,
-                          "",
-                          "",
-                          "",
-                          "",
-                          "",
-                          "",
-                          "",
-                          "",
-                          "",
-                          "",
-                          "",
-                          "",
-                          "",
-                          "",
-                          status});
-          case_summaries.push_back({{"name", fem_case.name + "/" + variant.name},
-                                    {"fem_case", fem_case.name},
-                                    {"variant", variant.name},
-                                    {"law", variant.law.law},
-                                    {"status", status},
-                                    {"wall_height", fem_case.wall_height},
-                                    {"impact_velocity", fem_case.impact_velocity}});
-          logger().warn("fit: {} {}: {}", fem_case.name, variant.name, status);
-        }
-      }
+        fit_variant(fem_case, variant, config, case_group, out);
     }
-    write_csv_atomic(output.file("fit_table.csv"), header, rows);
+    write_csv_atomic(output.file("fit_table.csv"), fit_table_header(), out.rows);
     file.commit();
-    nlohmann::json summary;
-    summary["command"]  = "fit";
-    summary["kimp"]     = version_line();
-    summary["fem_file"] = options.fem_file.string();
-    summary["wall_time"] =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    summary["options"]  = resolved;
-    summary["units"]    = {{"wall_height", "m"},
-                           {"impact_velocity", "m/s"},
-                           {"width", "m"},
-                           {"cor", "1"},
-                           {"normalised_rms", "1"},
-                           {"peak_force_ratio", "1"},
-                           {"impulse_ratio", "1"},
-                           {"contact_duration_ratio", "1"},
-                           {"peak_tolerance", "1"},
-                           {"wall_time", "s"}};
-    summary["n_failed"] = failures;
-    summary["cases"]    = case_summaries;
-    write_json_atomic(output.file("summary.json"), summary);
-    return failures;
+    write_json_atomic(output.file("summary.json"), fit_summary(options, resolved, start, out));
+    return out.failures;
   }
 
 } // namespace kimp::app

@@ -3,25 +3,19 @@
 // impact_scene.h.
 #include "app/laws/impact_scene.h"
 
-#include <algorithm>
 #include <stdexcept>
 
 #include "app/laws/k_table.h"
 #include "fit/fitter.h"
 #include "io/units.h"
 #include "lumped/laws/bumper_law.h"
+#include "lumped/laws/law_traits.h"
 
 namespace kimp::app
 {
   using namespace kimp::io;
   namespace
   {
-    bool law_has_fixed_exponent(const std::string &law)
-    {
-      return law == "linear" || law == "kelvin_voigt" || law == "modified_kelvin_voigt" ||
-             law == "jankowski";
-    }
-
     /// Dimension of N/m^n: kg·m^(1−n)·s^−2.
     Dimension stiffness_dimension(const double exponent)
     {
@@ -31,19 +25,15 @@ namespace kimp::app
 
   void validate_law(const ImpactLawScene &law, ValidationContext &ctx, const bool bumper_allowed)
   {
-    const auto &names = lumped::force_law_names();
-    if (!ctx.check(std::find(names.begin(), names.end(), law.law) != names.end(),
-                   "law",
-                   law.law,
-                   "must be one of linear, kelvin_voigt, modified_kelvin_voigt, jankowski, "
-                   "hertzdamp, hysteretic, bumper"))
+    const lumped::LawTraits *traits = lumped::find_law_traits(law.law);
+    if (!ctx.check(traits != nullptr, "law", law.law, "must be one of " + lumped::law_name_list()))
       return;
     if (!bumper_allowed)
-      ctx.check(law.law != "bumper",
+      ctx.check(!traits->moat_wall_only,
                 "law",
                 law.law,
-                "bumper acts only at the moat walls (use another law for floor contacts)");
-    if (law.exponent && law_has_fixed_exponent(law.law))
+                law.law + " acts only at the moat walls (use another law for floor contacts)");
+    if (law.exponent && traits->fixed_exponent())
       ctx.fail("exponent",
                format_quantity(*law.exponent, ""),
                "must be null: law " + law.law + " has a fixed exponent");
@@ -143,13 +133,9 @@ namespace kimp::app
 
   double impact_exponent(const ImpactLawScene &law)
   {
-    if (law.exponent)
-      return *law.exponent;
-    if (law.law == "linear" || law.law == "kelvin_voigt" || law.law == "modified_kelvin_voigt")
-      return 1.0;
-    if (law.law == "bumper")
-      return 2.65;
-    return 1.5;
+    // An unknown law (refused by validate_law) keeps a given exponent, else n = 1.
+    const lumped::LawTraits *traits = lumped::find_law_traits(law.law);
+    return traits ? traits->exponent(law.exponent) : law.exponent.value_or(1.0);
   }
 
   double impact_stiffness(const ImpactLawScene &law)
@@ -204,7 +190,7 @@ namespace kimp::app
   {
     lumped::ForceLawSpec spec;
     spec.law = impact.law;
-    if (!law_has_fixed_exponent(impact.law))
+    if (!lumped::law_traits(impact.law, "impact").fixed_exponent())
       spec.exponent = impact_exponent(impact);
     spec.cor          = impact.cor;
     spec.hertzdamp_ye = impact.hertzdamp_ye;

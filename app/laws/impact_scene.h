@@ -23,7 +23,7 @@ namespace kimp::app
     /// instead of the text `k`, so the number is not rounded through text. Not a scene key.
     std::optional<double> k_si;
     std::optional<double> exponent;
-    double                cor          = 0.7;
+    double                cor          = lumped::thesis_cor;
     bool                  hertzdamp_ye = false;
     std::optional<double> a1;
   };

@@ -116,6 +116,34 @@ namespace kimp::app
         std::distance(header.begin(), std::find(header.begin(), header.end(), name)));
     }
 
+    /// The header of the CSV file `file` opened into `in` (its first line, split); `unreadable`
+    /// says what was expected when the file cannot be read.
+    std::vector<std::string>
+    open_csv(std::ifstream &in, const std::filesystem::path &file, const std::string &unreadable)
+    {
+      in.open(file);
+      if (!in)
+        throw std::invalid_argument(fmt::format("{}: {}", file.string(), unreadable));
+      std::string line;
+      std::getline(in, line);
+      return split_csv(line);
+    }
+
+    /// The index of column `name` of `file`'s `header`.
+    /// @throws std::invalid_argument naming the file, the column and what the file is not
+    ///         (`not_a`).
+    std::size_t required_column(const std::vector<std::string> &header,
+                                const std::string              &name,
+                                const std::filesystem::path    &file,
+                                const std::string              &not_a)
+    {
+      const std::size_t i = find_column(header, name);
+      if (i == header.size())
+        throw std::invalid_argument(
+          fmt::format("{}: no column '{}' ({})", file.string(), name, not_a));
+      return i;
+    }
+
     /**
      * Calls `each(fields)` for every non-empty data row of a CSV file read past its header
      * `header`; a row with another number of fields is an error naming the file and the line.
@@ -255,15 +283,12 @@ namespace kimp::app
       if (!std::filesystem::exists(table.file) && std::filesystem::exists(path / "fit_table.csv"))
         table.file = path / "fit_table.csv";
     }
-    std::ifstream in(table.file);
-    if (!in)
-      throw std::invalid_argument(
-        fmt::format("{}: cannot read the k table (expected the k_table.csv of `kimp study`, the "
-                    "fit_table.csv of `kimp fit`, or the output directory of either)",
-                    table.file.string()));
-    std::string line;
-    std::getline(in, line);
-    const std::vector<std::string> header = split_csv(line);
+    std::ifstream                  in;
+    const std::vector<std::string> header =
+      open_csv(in,
+               table.file,
+               "cannot read the k table (expected the k_table.csv of `kimp study`, the "
+               "fit_table.csv of `kimp fit`, or the output directory of either)");
     if (std::find(header.begin(), header.end(), "variant") != header.end() &&
         std::find(header.begin(), header.end(), "wall_height_m") != header.end())
     {
@@ -272,14 +297,10 @@ namespace kimp::app
     }
     const auto column = [&](const std::string &name)
     {
-      const std::size_t i = find_column(header, name);
-      if (i == header.size())
-        throw std::invalid_argument(
-          fmt::format("{}: no column '{}' (not a k_table.csv of `kimp study` nor a "
-                      "fit_table.csv of `kimp fit`)",
-                      table.file.string(),
-                      name));
-      return i;
+      return required_column(header,
+                             name,
+                             table.file,
+                             "not a k_table.csv of `kimp study` nor a fit_table.csv of `kimp fit`");
     };
     const std::size_t height = column("wall_height_m");
     const std::size_t kv     = column("kelvin_voigt_total_kN_per_mm");
@@ -319,25 +340,14 @@ namespace kimp::app
   {
     RecordK k;
     k.file = study_dir / "consistent_k.csv";
-    std::ifstream in(k.file);
-    if (!in)
-      throw std::invalid_argument(
-        fmt::format("{}: cannot read it (the consistent k of a record needs a study run with "
-                    "consistent_k.enabled: true)",
-                    k.file.string()));
-    std::string line;
-    std::getline(in, line);
-    const std::vector<std::string> header = split_csv(line);
-    const auto                     column = [&](const std::string &name)
-    {
-      const auto it = std::find(header.begin(), header.end(), name);
-      if (it == header.end())
-        throw std::invalid_argument(
-          fmt::format("{}: no column '{}' (not a consistent_k.csv of `kimp study`)",
-                      k.file.string(),
-                      name));
-      return static_cast<std::size_t>(std::distance(header.begin(), it));
-    };
+    std::ifstream                  in;
+    const std::vector<std::string> header =
+      open_csv(in,
+               k.file,
+               "cannot read it (the consistent k of a record needs a study run with "
+               "consistent_k.enabled: true)");
+    const auto column = [&](const std::string &name)
+    { return required_column(header, name, k.file, "not a consistent_k.csv of `kimp study`"); };
     const std::size_t c_record = column("record"), c_height = column("wall_height_m"),
                       c_law = column("law"), c_k = column("k_consistent"),
                       c_velocity  = column("impact_velocity_m_per_s"),
@@ -348,7 +358,8 @@ namespace kimp::app
       if (std::find(list.begin(), list.end(), text) == list.end())
         list.push_back(text);
     };
-    int number = 1;
+    std::string line;
+    int         number = 1;
     while (std::getline(in, line))
     {
       ++number;

@@ -90,8 +90,10 @@ namespace kimp::app
                 "name",
                 "\"" + law.name + "\"",
                 "must be non-empty and unique");
-      ctx.check(law.law != "bumper", "law", law.law, "bumper is not part of the COR table");
-      if (law.law == "bumper")
+      const lumped::LawTraits *traits    = lumped::find_law_traits(law.law);
+      const bool               wall_only = traits != nullptr && traits->moat_wall_only;
+      ctx.check(!wall_only, "law", law.law, law.law + " is not part of the COR table");
+      if (wall_only)
         continue;
       // The same law/k rules as a lumped scene's impact section.
       validate_law(law, ctx, false);
@@ -135,16 +137,11 @@ namespace kimp::app
     return rows;
   }
 
-  void run_collide(const LoadedScene<CollideScene> &loaded,
-                   const OutputDir                 &output,
-                   const bool                       calibrate)
+  namespace
   {
-    const CollideScene           &scene = loaded.scene;
-    const auto                    start = std::chrono::steady_clock::now();
-    const std::vector<CollideRow> rows  = collide_cor_table(scene);
-
-    std::optional<lumped::CalibrationResult> calibration;
-    if (calibrate)
+    /// The recalibration of C_imp (`--calibrate`) over the scene's grids, logged beside the
+    /// thesis' values.
+    lumped::CalibrationResult calibrate_cimp(const CollideScene &scene)
     {
       lumped::CalibrationOptions options;
       options.cor_grid          = scene.calibration.cor_grid;
@@ -158,28 +155,23 @@ namespace kimp::app
       logger().info("calibrating C_imp over {} points",
                     options.cor_grid.size() * options.velocity_grid.size() *
                       options.mass_grid.size());
-      calibration = lumped::calibrate_impact_coefficient(options);
+      lumped::CalibrationResult calibration = lumped::calibrate_impact_coefficient(options);
       logger().info("C_imp = c (1 - COR^2) / (COR^p1 m_eff^p2 v^p3), m_eff in kg, v in m/s:");
-      logger().info("  c  = {:.4g} (thesis {})", calibration->c, ThesisCimp::c);
-      logger().info("  p1 = {:.4f} (thesis {})", calibration->p1, ThesisCimp::p1);
-      logger().info("  p2 = {:.4f} (thesis {})", calibration->p2, ThesisCimp::p2);
-      logger().info("  p3 = {:.4f} (thesis {})", calibration->p3, ThesisCimp::p3);
+      logger().info("  c  = {:.4g} (thesis {})", calibration.c, ThesisCimp::c);
+      logger().info("  p1 = {:.4f} (thesis {})", calibration.p1, ThesisCimp::p1);
+      logger().info("  p2 = {:.4f} (thesis {})", calibration.p2, ThesisCimp::p2);
+      logger().info("  p3 = {:.4f} (thesis {})", calibration.p3, ThesisCimp::p3);
       logger().info("  R^2 = {:.5f}; max COR error: thesis law {:.2f} %, refit {:.2f} %",
-                    calibration->r_squared,
-                    100.0 * calibration->max_cor_error_thesis,
-                    100.0 * calibration->max_cor_error_fit);
+                    calibration.r_squared,
+                    100.0 * calibration.max_cor_error_thesis,
+                    100.0 * calibration.max_cor_error_fit);
+      return calibration;
     }
-    const double wall_time =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    // HDF5: one table group per law.
-    ResultsFile  file(output.file("collide.h5"), loaded.text, loaded.resolved_json);
-    ResultsGroup collide = file.root().group("collide");
-    collide.set_attribute("mass_1", scene.mass_1);
-    collide.set_attribute("mass_2", scene.mass_2);
-    collide.set_attribute("velocity", scene.velocity);
-    collide.set_attribute("time_step", scene.time_step);
-    for (const CollideLawScene &law : scene.laws)
+    /// collide.h5 `/collide/<law>`: the law's COR table and its status.
+    void write_law_table(ResultsGroup                  &collide,
+                         const CollideLawScene         &law,
+                         const std::vector<CollideRow> &rows)
     {
       Table       t;
       std::string status = "ok";
@@ -210,7 +202,9 @@ namespace kimp::app
       t.write_hdf5(g, "cor_table");
       g.set_status(status);
     }
-    if (calibration)
+
+    /// collide.h5 `/collide/calibration`: the calibration points, the fit and the thesis' law.
+    void write_calibration(ResultsGroup &collide, const lumped::CalibrationResult &calibration)
     {
       ResultsGroup g = collide.case_group("calibration");
       Table        t;
@@ -222,7 +216,7 @@ namespace kimp::app
         .number("a1_thesis", "s/m")
         .number("cor_thesis", "1")
         .number("cor_fit", "1");
-      for (const lumped::CalibrationPoint &p : calibration->points)
+      for (const lumped::CalibrationPoint &p : calibration.points)
         t.add_row(number_cells({p.cor,
                                 p.impact_velocity,
                                 p.mass,
@@ -232,86 +226,134 @@ namespace kimp::app
                                 p.cor_thesis,
                                 p.cor_fit}));
       t.write_hdf5(g, "points");
-      g.write(
-        "fit",
-        std::vector<double>{calibration->c, calibration->p1, calibration->p2, calibration->p3},
-        "1");
+      g.write("fit",
+              std::vector<double>{calibration.c, calibration.p1, calibration.p2, calibration.p3},
+              "1");
       g.write("thesis",
               std::vector<double>{ThesisCimp::c, ThesisCimp::p1, ThesisCimp::p2, ThesisCimp::p3},
               "1");
-      g.write_scalar("r_squared", calibration->r_squared, "1");
-      g.write_scalar("max_cor_error_thesis", calibration->max_cor_error_thesis, "1");
-      g.write_scalar("max_cor_error_fit", calibration->max_cor_error_fit, "1");
+      g.write_scalar("r_squared", calibration.r_squared, "1");
+      g.write_scalar("max_cor_error_thesis", calibration.max_cor_error_thesis, "1");
+      g.write_scalar("max_cor_error_fit", calibration.max_cor_error_fit, "1");
       g.set_status("ok");
     }
-    file.commit();
 
-    std::vector<std::vector<std::string>> csv;
-    for (const CollideRow &r : rows)
+    /// collide.h5: the setup, one COR table per law and the calibration, if any.
+    void write_collide_h5(const LoadedScene<CollideScene>                &loaded,
+                          const OutputDir                                &output,
+                          const std::vector<CollideRow>                  &rows,
+                          const std::optional<lumped::CalibrationResult> &calibration)
     {
-      const lumped::CorTableRow &x = r.row;
-      csv.push_back({r.name,
-                     format_quantity(x.nominal_cor, ""),
-                     format_quantity(x.effective_cor, ""),
-                     format_quantity(x.relative_error, ""),
-                     format_quantity(x.peak_force, ""),
-                     format_quantity(x.contact_duration, ""),
-                     format_quantity(x.max_penetration, ""),
-                     format_quantity(x.energy_error, ""),
-                     r.status});
+      const CollideScene &scene = loaded.scene;
+      ResultsFile         file(output.file("collide.h5"), loaded.text, loaded.resolved_json);
+      ResultsGroup        collide = file.root().group("collide");
+      collide.set_attribute("mass_1", scene.mass_1);
+      collide.set_attribute("mass_2", scene.mass_2);
+      collide.set_attribute("velocity", scene.velocity);
+      collide.set_attribute("time_step", scene.time_step);
+      for (const CollideLawScene &law : scene.laws)
+        write_law_table(collide, law, rows);
+      if (calibration)
+        write_calibration(collide, *calibration);
+      file.commit();
     }
-    write_csv_atomic(output.file("cor_table.csv"),
-                     {"law",
-                      "nominal_cor",
-                      "effective_cor",
-                      "relative_error",
-                      "peak_force_N",
-                      "contact_duration_s",
-                      "max_penetration_m",
-                      "energy_error",
-                      "status"},
-                     csv);
 
-    nlohmann::json summary;
-    summary["command"]   = "collide";
-    summary["kimp"]      = version_line();
-    summary["scene"]     = loaded.file_name;
-    summary["wall_time"] = wall_time;
-    summary["units"]     = {{"mass_1", "kg"},
-                            {"mass_2", "kg"},
-                            {"velocity", "m/s"},
-                            {"time_step", "s"},
-                            {"peak_force", "N"},
-                            {"wall_time", "s"}};
-    summary["setup"]     = {{"mass_1", scene.mass_1},
-                            {"mass_2", scene.mass_2},
-                            {"velocity", scene.velocity},
-                            {"time_step", scene.time_step}};
-    // One case per law, in the shape of every command's summary.json (name, status).
-    summary["cases"] = nlohmann::json::array();
-    for (const CollideRow &r : rows)
-      summary["cases"].push_back({{"name", r.name},
-                                  {"nominal_cor", r.row.nominal_cor},
-                                  {"effective_cor", r.row.effective_cor},
-                                  {"relative_error", r.row.relative_error},
-                                  {"peak_force", r.row.peak_force},
-                                  {"status", r.status}});
-    if (calibration)
-      summary["calibration"] = {{"fit",
-                                 {{"c", calibration->c},
-                                  {"p1", calibration->p1},
-                                  {"p2", calibration->p2},
-                                  {"p3", calibration->p3}}},
-                                {"thesis",
-                                 {{"c", ThesisCimp::c},
-                                  {"p1", ThesisCimp::p1},
-                                  {"p2", ThesisCimp::p2},
-                                  {"p3", ThesisCimp::p3}}},
-                                {"r_squared", calibration->r_squared},
-                                {"max_cor_error_thesis", calibration->max_cor_error_thesis},
-                                {"max_cor_error_fit", calibration->max_cor_error_fit},
-                                {"n_points", calibration->points.size()}};
-    write_json_atomic(output.file("summary.json"), summary);
+    /// cor_table.csv: one row per law and COR.
+    void write_cor_table_csv(const OutputDir &output, const std::vector<CollideRow> &rows)
+    {
+      std::vector<std::vector<std::string>> csv;
+      for (const CollideRow &r : rows)
+      {
+        const lumped::CorTableRow &x = r.row;
+        csv.push_back({r.name,
+                       format_quantity(x.nominal_cor, ""),
+                       format_quantity(x.effective_cor, ""),
+                       format_quantity(x.relative_error, ""),
+                       format_quantity(x.peak_force, ""),
+                       format_quantity(x.contact_duration, ""),
+                       format_quantity(x.max_penetration, ""),
+                       format_quantity(x.energy_error, ""),
+                       r.status});
+      }
+      write_csv_atomic(output.file("cor_table.csv"),
+                       {"law",
+                        "nominal_cor",
+                        "effective_cor",
+                        "relative_error",
+                        "peak_force_N",
+                        "contact_duration_s",
+                        "max_penetration_m",
+                        "energy_error",
+                        "status"},
+                       csv);
+    }
+
+    /// summary.json: the setup, one case per law and COR, the calibration.
+    nlohmann::json collide_summary(const LoadedScene<CollideScene>                &loaded,
+                                   const std::vector<CollideRow>                  &rows,
+                                   const std::optional<lumped::CalibrationResult> &calibration,
+                                   double                                          wall_time)
+    {
+      const CollideScene &scene = loaded.scene;
+      nlohmann::json      summary;
+      summary["command"]   = "collide";
+      summary["kimp"]      = version_line();
+      summary["scene"]     = loaded.file_name;
+      summary["wall_time"] = wall_time;
+      summary["units"]     = {{"mass_1", "kg"},
+                              {"mass_2", "kg"},
+                              {"velocity", "m/s"},
+                              {"time_step", "s"},
+                              {"peak_force", "N"},
+                              {"wall_time", "s"}};
+      summary["setup"]     = {{"mass_1", scene.mass_1},
+                              {"mass_2", scene.mass_2},
+                              {"velocity", scene.velocity},
+                              {"time_step", scene.time_step}};
+      // One case per law, in the shape of every command's summary.json (name, status).
+      summary["cases"] = nlohmann::json::array();
+      for (const CollideRow &r : rows)
+        summary["cases"].push_back({{"name", r.name},
+                                    {"nominal_cor", r.row.nominal_cor},
+                                    {"effective_cor", r.row.effective_cor},
+                                    {"relative_error", r.row.relative_error},
+                                    {"peak_force", r.row.peak_force},
+                                    {"status", r.status}});
+      if (calibration)
+        summary["calibration"] = {{"fit",
+                                   {{"c", calibration->c},
+                                    {"p1", calibration->p1},
+                                    {"p2", calibration->p2},
+                                    {"p3", calibration->p3}}},
+                                  {"thesis",
+                                   {{"c", ThesisCimp::c},
+                                    {"p1", ThesisCimp::p1},
+                                    {"p2", ThesisCimp::p2},
+                                    {"p3", ThesisCimp::p3}}},
+                                  {"r_squared", calibration->r_squared},
+                                  {"max_cor_error_thesis", calibration->max_cor_error_thesis},
+                                  {"max_cor_error_fit", calibration->max_cor_error_fit},
+                                  {"n_points", calibration->points.size()}};
+      return summary;
+    }
+  } // namespace
+
+  void run_collide(const LoadedScene<CollideScene> &loaded,
+                   const OutputDir                 &output,
+                   const bool                       calibrate)
+  {
+    const auto                               start = std::chrono::steady_clock::now();
+    const std::vector<CollideRow>            rows  = collide_cor_table(loaded.scene);
+    std::optional<lumped::CalibrationResult> calibration;
+    if (calibrate)
+      calibration = calibrate_cimp(loaded.scene);
+    const double wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    write_collide_h5(loaded, output, rows, calibration);
+    write_cor_table_csv(output, rows);
+    write_json_atomic(output.file("summary.json"),
+                      collide_summary(loaded, rows, calibration, wall_time));
 
     for (const CollideRow &r : rows)
       if (r.status != "ok")

@@ -97,6 +97,111 @@ namespace kimp::app
           write_labels(g.group(column->name), *column->labels);
     }
 
+    /// The step of the case: dt, the critical step, the policy and, with variable steps, the
+    /// report of dt: auto.
+    void write_step(ResultsGroup &g, const LumpedCaseResult &c)
+    {
+      const lumped::Response &r = c.response;
+      g.write_scalar("dt", r.dt, "s");
+      g.write_scalar("dt_critical", c.dt_critical, "s");
+      g.set_attribute("dt_governing", c.governing);
+      g.set_attribute("dt_policy", c.dt_policy);
+      if (c.adaptive)
+      {
+        // Variable steps (dt: auto): dt above is the large step.
+        const lumped::AdaptiveStepReport &a = *c.adaptive;
+        g.set_attribute("dt_approach", a.dt_approach);
+        g.set_attribute("dt_contact", a.dt_contact);
+        g.set_attribute("dt_min", a.dt_min);
+        g.set_attribute("windows", static_cast<std::int64_t>(a.windows));
+        g.set_attribute("estimate_steps", static_cast<std::int64_t>(a.estimate_steps));
+        g.set_attribute("estimated_error_peak_force", a.force_error);
+        g.set_attribute("estimated_error_peak_acceleration", a.acceleration_error);
+        g.set_attribute("estimated_error_peak_displacement", a.displacement_error);
+      }
+    }
+
+    /// `contacts/<contact>`: its impacts, peak force, indentation, dissipation and the pulses at
+    /// full rate (step size `dt`, s).
+    void write_contact(ResultsGroup &g, const lumped::ContactResult &contact, double dt)
+    {
+      ResultsGroup        cg = g.group("contacts/" + contact.name);
+      std::vector<double> times, velocities;
+      for (const lumped::ImpactEvent &e : contact.impacts)
+      {
+        times.push_back(e.time);
+        velocities.push_back(e.velocity);
+      }
+      cg.write("impact_time", times, "s");
+      cg.write("impact_velocity", velocities, "m/s");
+      cg.set_attribute("n_impacts", static_cast<std::int64_t>(contact.impacts.size()));
+      cg.write_scalar("peak_force", contact.peak_force, "N");
+      cg.write_scalar("permanent_indentation", contact.permanent_indentation, "m");
+      cg.write_scalar("dissipated_energy", contact.dissipated_energy, "J");
+      // Every step with a non-zero force: the impact pulses at full rate.
+      std::vector<std::int64_t> pulse_steps;
+      pulse_steps.reserve(contact.pulse_time.size());
+      for (const double t : contact.pulse_time)
+        pulse_steps.push_back(static_cast<std::int64_t>(std::llround(t / dt)));
+      cg.write_time_series("force_full_rate",
+                           pulse_steps,
+                           contact.pulse_time,
+                           contact.pulse_force,
+                           1,
+                           "N");
+      // The deformation δ at the same steps: each impact's indentation.
+      cg.write_time_series("deformation_full_rate",
+                           pulse_steps,
+                           contact.pulse_time,
+                           contact.pulse_deformation,
+                           1,
+                           "m");
+    }
+
+    /// `walls/<wall>`: a yielding wall's peaks, capacity, residual and failure (its part's
+    /// contact result `part`).
+    void write_yielding_wall(ResultsGroup                &g,
+                             const YieldingWallLimits    &w,
+                             const lumped::ContactResult &part)
+    {
+      ResultsGroup wg = g.group("walls/" + w.wall);
+      wg.write_scalar("peak_force", part.peak_force, "N");
+      wg.write_scalar("capacity", w.capacity, "N");
+      wg.write_scalar("peak_resistance", part.peak_resistance, "N");
+      wg.write_scalar("peak_resistance_ratio", part.peak_resistance / w.capacity, "1");
+      wg.write_scalar("peak_displacement", part.peak_deformation, "m");
+      wg.write_scalar("residual_displacement", part.permanent_indentation, "m");
+      wg.write_scalar("failure_displacement", w.failure_displacement, "m");
+      wg.set_attribute("failed", static_cast<std::int64_t>(part.failure_time ? 1 : 0));
+      if (part.failure_time)
+        wg.write_scalar("failure_time", *part.failure_time, "s");
+      wg.write_scalar("plastic_work", part.plastic_work, "J");
+      wg.write_scalar("radiated_work", part.radiated_work, "J");
+    }
+
+    /// `energy`: the energy balance's terms (the walls' works with yielding walls).
+    void write_energy(ResultsGroup &g, const LumpedCaseResult &c)
+    {
+      const lumped::Response      &r  = c.response;
+      const lumped::EnergyBalance &e  = r.energy;
+      ResultsGroup                 eg = g.group("energy");
+      eg.write_scalar("initial", e.initial, "J");
+      eg.write_scalar("input", e.input, "J");
+      eg.write_scalar("kinetic", e.kinetic, "J");
+      eg.write_scalar("strain", e.strain, "J");
+      eg.write_scalar("viscous", e.viscous, "J");
+      eg.write_scalar("hysteretic", e.hysteretic, "J");
+      eg.write_scalar("contact_work", e.contact_work, "J");
+      eg.write_scalar("impact_dissipated", e.impact_dissipated, "J");
+      if (!c.yielding_walls.empty())
+      {
+        eg.write_scalar("wall_plastic", e.wall_plastic, "J");
+        eg.write_scalar("wall_radiated", e.wall_radiated, "J");
+      }
+      eg.write_scalar("relative_error", e.relative_error, "1");
+      eg.write_scalar("max_relative_error", e.max_relative_error, "1");
+    }
+
     void write_case(ResultsGroup &lumped_group, const LumpedCaseResult &c)
     {
       ResultsGroup g = lumped_group.case_group(c.name);
@@ -116,23 +221,7 @@ namespace kimp::app
         return;
       }
       const lumped::Response &r = c.response;
-      g.write_scalar("dt", r.dt, "s");
-      g.write_scalar("dt_critical", c.dt_critical, "s");
-      g.set_attribute("dt_governing", c.governing);
-      g.set_attribute("dt_policy", c.dt_policy);
-      if (c.adaptive)
-      {
-        // Variable steps (dt: auto): dt above is the large step.
-        const lumped::AdaptiveStepReport &a = *c.adaptive;
-        g.set_attribute("dt_approach", a.dt_approach);
-        g.set_attribute("dt_contact", a.dt_contact);
-        g.set_attribute("dt_min", a.dt_min);
-        g.set_attribute("windows", static_cast<std::int64_t>(a.windows));
-        g.set_attribute("estimate_steps", static_cast<std::int64_t>(a.estimate_steps));
-        g.set_attribute("estimated_error_peak_force", a.force_error);
-        g.set_attribute("estimated_error_peak_acceleration", a.acceleration_error);
-        g.set_attribute("estimated_error_peak_displacement", a.displacement_error);
-      }
+      write_step(g, c);
       g.write("n_steps", std::vector<std::int64_t>{static_cast<std::int64_t>(r.n_steps)}, "1");
       g.set_attribute("n_steps", static_cast<std::int64_t>(r.n_steps));
       g.write_scalar("duration", r.duration, "s");
@@ -148,73 +237,10 @@ namespace kimp::app
         ig.write_scalar("dissipated_energy", r.energy.hysteretic, "J");
       }
       for (const lumped::ContactResult &contact : r.contacts)
-      {
-        ResultsGroup        cg = g.group("contacts/" + contact.name);
-        std::vector<double> times, velocities;
-        for (const lumped::ImpactEvent &e : contact.impacts)
-        {
-          times.push_back(e.time);
-          velocities.push_back(e.velocity);
-        }
-        cg.write("impact_time", times, "s");
-        cg.write("impact_velocity", velocities, "m/s");
-        cg.set_attribute("n_impacts", static_cast<std::int64_t>(contact.impacts.size()));
-        cg.write_scalar("peak_force", contact.peak_force, "N");
-        cg.write_scalar("permanent_indentation", contact.permanent_indentation, "m");
-        cg.write_scalar("dissipated_energy", contact.dissipated_energy, "J");
-        // Every step with a non-zero force: the impact pulses at full rate.
-        std::vector<std::int64_t> pulse_steps;
-        pulse_steps.reserve(contact.pulse_time.size());
-        for (const double t : contact.pulse_time)
-          pulse_steps.push_back(static_cast<std::int64_t>(std::llround(t / r.dt)));
-        cg.write_time_series("force_full_rate",
-                             pulse_steps,
-                             contact.pulse_time,
-                             contact.pulse_force,
-                             1,
-                             "N");
-        // The deformation δ at the same steps: each impact's indentation.
-        cg.write_time_series("deformation_full_rate",
-                             pulse_steps,
-                             contact.pulse_time,
-                             contact.pulse_deformation,
-                             1,
-                             "m");
-      }
+        write_contact(g, contact, r.dt);
       for (const YieldingWallLimits &w : c.yielding_walls)
-      {
-        const lumped::ContactResult &part = r.contacts[w.contact];
-        ResultsGroup                 wg   = g.group("walls/" + w.wall);
-        wg.write_scalar("peak_force", part.peak_force, "N");
-        wg.write_scalar("capacity", w.capacity, "N");
-        wg.write_scalar("peak_resistance", part.peak_resistance, "N");
-        wg.write_scalar("peak_resistance_ratio", part.peak_resistance / w.capacity, "1");
-        wg.write_scalar("peak_displacement", part.peak_deformation, "m");
-        wg.write_scalar("residual_displacement", part.permanent_indentation, "m");
-        wg.write_scalar("failure_displacement", w.failure_displacement, "m");
-        wg.set_attribute("failed", static_cast<std::int64_t>(part.failure_time ? 1 : 0));
-        if (part.failure_time)
-          wg.write_scalar("failure_time", *part.failure_time, "s");
-        wg.write_scalar("plastic_work", part.plastic_work, "J");
-        wg.write_scalar("radiated_work", part.radiated_work, "J");
-      }
-      const lumped::EnergyBalance &e  = r.energy;
-      ResultsGroup                 eg = g.group("energy");
-      eg.write_scalar("initial", e.initial, "J");
-      eg.write_scalar("input", e.input, "J");
-      eg.write_scalar("kinetic", e.kinetic, "J");
-      eg.write_scalar("strain", e.strain, "J");
-      eg.write_scalar("viscous", e.viscous, "J");
-      eg.write_scalar("hysteretic", e.hysteretic, "J");
-      eg.write_scalar("contact_work", e.contact_work, "J");
-      eg.write_scalar("impact_dissipated", e.impact_dissipated, "J");
-      if (!c.yielding_walls.empty())
-      {
-        eg.write_scalar("wall_plastic", e.wall_plastic, "J");
-        eg.write_scalar("wall_radiated", e.wall_radiated, "J");
-      }
-      eg.write_scalar("relative_error", e.relative_error, "1");
-      eg.write_scalar("max_relative_error", e.max_relative_error, "1");
+        write_yielding_wall(g, w, r.contacts[w.contact]);
+      write_energy(g, c);
       if (c.companion)
       {
         write_peaks(g.group("companion/peaks"), *c.companion);

@@ -112,28 +112,11 @@ namespace kimp::app
                         base::sig(100.0 * w.failure_displacement));
       }
     }
-  } // namespace
 
-  LumpedCaseResult run_lumped_case(const std::string          &name,
-                                   const LumpedScene          &scene,
-                                   const lumped::GroundMotion &motion,
-                                   const double                base_scale)
-  {
-    return run_lumped_case(name, scene, motion, base_scale, FreeRunSource());
-  }
-
-  LumpedCaseResult run_lumped_case(const std::string          &name,
-                                   const LumpedScene          &scene,
-                                   const lumped::GroundMotion &motion,
-                                   const double                base_scale,
-                                   const FreeRunSource        &free_runs)
-  {
-    LumpedCaseResult        result;
-    const Clock::time_point start = Clock::now();
-    result.name                   = name;
-    try
+    /// The model's buildings (periods, damping), contacts, storeys, DOF labels and isolator, as
+    /// the case's files name them.
+    void describe_model(const lumped::PoundingModel &model, LumpedCaseResult &result)
     {
-      const lumped::PoundingModel model(make_pounding_scene(scene));
       for (const lumped::BuildingBlock &block : model.buildings())
       {
         BuildingModes b;
@@ -162,6 +145,161 @@ namespace kimp::app
           storey_label(result.dof_labels[static_cast<std::size_t>(s.upper_dof)]));
       if (model.isolator())
         result.isolator = model.isolator()->name();
+    }
+
+    /// One case's run: its model, scene, motion and result; check_budget(step) estimates the
+    /// run at the step the integrator takes and refuses it above the budget.
+    struct CaseRun
+    {
+      const std::string           &name;
+      const lumped::PoundingModel &model;
+      const IntegrationScene      &in;
+      const lumped::GroundMotion  &used;
+      LumpedCaseResult            &result;
+
+      void check_budget(const double step) const
+      {
+        const RunEstimate estimate = make_estimate(step, in, used, model.n_dofs());
+        result.estimated_steps     = estimate.n_steps;
+        if (logger().should_log(spdlog::level::debug))
+          logger().debug("case {}: {}", name, estimate.text());
+        check_run_budget(name, estimate, in);
+      }
+    };
+
+    /// Central differences with variable steps (dt: auto) and their companion run.
+    void run_variable_step(const CaseRun &run, const lumped::CentralDifferenceOptions &options)
+    {
+      const IntegrationScene     &in     = run.in;
+      LumpedCaseResult           &result = run.result;
+      lumped::AdaptiveStepOptions adaptive_options;
+      adaptive_options.contact_steps = in.contact_steps;
+      const lumped::AdaptiveCentralDifference adaptive(run.model, options, adaptive_options);
+      run.check_budget(adaptive.large_step(run.used.dt));
+      lumped::AdaptiveStepReport report;
+      result.response = adaptive.run(run.used, &report);
+      result.adaptive = report;
+      if (in.companion)
+      {
+        // The companion chooses its own steps (independent of the walls). A run in which no
+        // contact closed is the companion run (its steps differ only where a gap approached),
+        // so that amplification factors are then exactly 1.
+        result.companion =
+          lumped::AdaptiveCentralDifference(run.model.without_contacts(), options, adaptive_options)
+            .run(run.used);
+        bool touched = result.response.n_impacts() > 0;
+        for (const lumped::ContactResult &c : result.response.contacts)
+          touched = touched || c.peak_force != 0.0;
+        if (!touched)
+        {
+          lumped::Response same      = *result.companion;
+          same.contacts              = result.response.contacts;
+          same.history.contact_force = result.response.history.contact_force;
+          result.response            = std::move(same);
+        }
+      }
+      // Per case at -v; the study and the summary.json give the largest errors.
+      logger().debug("case {}: {}", run.name, variable_step_text(report));
+      if (report.force_error > variable_step_warning)
+        logger().warn("case {}: dt auto estimates the peak impact force within {:.2g} %, "
+                      "above {:.2g} %: raise integration.contact_steps or use a fixed dt",
+                      run.name,
+                      100.0 * report.force_error,
+                      100.0 * variable_step_warning);
+    }
+
+    /// Central differences at a fixed step, from a shared free run's prefix when `free_runs`
+    /// gives one, and their companion run.
+    void run_fixed_step(const CaseRun                   &run,
+                        lumped::CentralDifferenceOptions options,
+                        const lumped::CentralDifference &integrator,
+                        const FreeRunSource             &free_runs)
+    {
+      LumpedCaseResult &result = run.result;
+      run.check_budget(integrator.time_step(run.used.dt));
+      std::shared_ptr<const lumped::FreeRunPrefix> prefix;
+      if (free_runs && !(options.output_interval > 0.0))
+      {
+        lumped::CentralDifferenceOptions free_options = options;
+        free_options.dt                               = integrator.time_step(run.used.dt);
+        prefix = free_runs(lumped::CentralDifference(run.model.without_contacts(), free_options),
+                           free_options.dt,
+                           run.used);
+      }
+      if (prefix)
+      {
+        result.response = prefix->run(integrator, run.used);
+        if (run.in.companion)
+          result.companion = prefix->response();
+      }
+      else
+      {
+        result.response = integrator.run(run.used);
+        if (run.in.companion)
+        {
+          options.dt = result.response.dt;
+          result.companion =
+            lumped::CentralDifference(run.model.without_contacts(), options).run(run.used);
+        }
+      }
+    }
+
+    /// The integration of integration.method (and the companion run without contacts).
+    void
+    integrate(const CaseRun &run, const std::optional<double> &dt, const FreeRunSource &free_runs)
+    {
+      const IntegrationScene &in     = run.in;
+      LumpedCaseResult       &result = run.result;
+      if (in.method == IntegrationMethod::cdm)
+      {
+        lumped::CentralDifferenceOptions options = cdm_options(in, dt);
+        const lumped::CentralDifference  integrator(run.model, options);
+        result.dt_critical = integrator.stability().dt_critical;
+        result.governing   = integrator.stability().governing;
+        result.dt_policy   = dt ? "fixed" : variable_time_step(in) ? "variable" : "stable";
+        logger().debug("case {}: dt_cr = {} s ({})",
+                       run.name,
+                       result.dt_critical,
+                       result.governing);
+        if (variable_time_step(in))
+          run_variable_step(run, options);
+        else
+          run_fixed_step(run, options, integrator, free_runs);
+      }
+      else
+      {
+        const lumped::NewmarkOptions options = newmark_options(in, dt);
+        result.dt_policy                     = dt ? "fixed" : "record";
+        run.check_budget(options.dt > 0.0 ? options.dt : run.used.dt);
+        result.response = lumped::NewmarkIntegrator(run.model, options).run(run.used);
+        if (in.companion)
+          result.companion =
+            lumped::NewmarkIntegrator(run.model.without_contacts(), options).run(run.used);
+      }
+    }
+  } // namespace
+
+  LumpedCaseResult run_lumped_case(const std::string          &name,
+                                   const LumpedScene          &scene,
+                                   const lumped::GroundMotion &motion,
+                                   const double                base_scale)
+  {
+    return run_lumped_case(name, scene, motion, base_scale, FreeRunSource());
+  }
+
+  LumpedCaseResult run_lumped_case(const std::string          &name,
+                                   const LumpedScene          &scene,
+                                   const lumped::GroundMotion &motion,
+                                   const double                base_scale,
+                                   const FreeRunSource        &free_runs)
+  {
+    LumpedCaseResult        result;
+    const Clock::time_point start = Clock::now();
+    result.name                   = name;
+    try
+    {
+      const lumped::PoundingModel model(make_pounding_scene(scene));
+      describe_model(model, result);
 
       const double         factor = scene.ground_motion.scale / base_scale;
       lumped::GroundMotion used   = factor != 1.0 ? lumped::scaled(motion, factor) : motion;
@@ -174,101 +312,8 @@ namespace kimp::app
                       result.pga / standard_gravity,
                       warning_pga / standard_gravity);
 
-      const IntegrationScene     &in = scene.integration;
-      const std::optional<double> dt = requested_time_step(in);
-      // The estimate of the run at the step `step` the integrator takes, refused above the budget.
-      const auto check_budget = [&](const double step)
-      {
-        const RunEstimate estimate = make_estimate(step, in, used, model.n_dofs());
-        result.estimated_steps     = estimate.n_steps;
-        if (logger().should_log(spdlog::level::debug))
-          logger().debug("case {}: {}", name, estimate.text());
-        check_run_budget(name, estimate, in);
-      };
-      if (in.method == IntegrationMethod::cdm)
-      {
-        lumped::CentralDifferenceOptions options = cdm_options(in, dt);
-        const lumped::CentralDifference  integrator(model, options);
-        result.dt_critical = integrator.stability().dt_critical;
-        result.governing   = integrator.stability().governing;
-        result.dt_policy   = dt ? "fixed" : variable_time_step(in) ? "variable" : "stable";
-        logger().debug("case {}: dt_cr = {} s ({})", name, result.dt_critical, result.governing);
-        if (variable_time_step(in))
-        {
-          lumped::AdaptiveStepOptions adaptive_options;
-          adaptive_options.contact_steps = in.contact_steps;
-          const lumped::AdaptiveCentralDifference adaptive(model, options, adaptive_options);
-          check_budget(adaptive.large_step(used.dt));
-          lumped::AdaptiveStepReport report;
-          result.response = adaptive.run(used, &report);
-          result.adaptive = report;
-          if (in.companion)
-          {
-            // The companion chooses its own steps (independent of the walls). A run in which no
-            // contact closed is the companion run (its steps differ only where a gap approached),
-            // so that amplification factors are then exactly 1.
-            result.companion =
-              lumped::AdaptiveCentralDifference(model.without_contacts(), options, adaptive_options)
-                .run(used);
-            bool touched = result.response.n_impacts() > 0;
-            for (const lumped::ContactResult &c : result.response.contacts)
-              touched = touched || c.peak_force != 0.0;
-            if (!touched)
-            {
-              lumped::Response same      = *result.companion;
-              same.contacts              = result.response.contacts;
-              same.history.contact_force = result.response.history.contact_force;
-              result.response            = std::move(same);
-            }
-          }
-          // Per case at -v; the study and the summary.json give the largest errors.
-          logger().debug("case {}: {}", name, variable_step_text(report));
-          if (report.force_error > variable_step_warning)
-            logger().warn("case {}: dt auto estimates the peak impact force within {:.2g} %, "
-                          "above {:.2g} %: raise integration.contact_steps or use a fixed dt",
-                          name,
-                          100.0 * report.force_error,
-                          100.0 * variable_step_warning);
-        }
-        else
-        {
-          check_budget(integrator.time_step(used.dt));
-          std::shared_ptr<const lumped::FreeRunPrefix> prefix;
-          if (free_runs && !(options.output_interval > 0.0))
-          {
-            lumped::CentralDifferenceOptions free_options = options;
-            free_options.dt                               = integrator.time_step(used.dt);
-            prefix = free_runs(lumped::CentralDifference(model.without_contacts(), free_options),
-                               free_options.dt,
-                               used);
-          }
-          if (prefix)
-          {
-            result.response = prefix->run(integrator, used);
-            if (in.companion)
-              result.companion = prefix->response();
-          }
-          else
-          {
-            result.response = integrator.run(used);
-            if (in.companion)
-            {
-              options.dt = result.response.dt;
-              result.companion =
-                lumped::CentralDifference(model.without_contacts(), options).run(used);
-            }
-          }
-        }
-      }
-      else
-      {
-        const lumped::NewmarkOptions options = newmark_options(in, dt);
-        result.dt_policy                     = dt ? "fixed" : "record";
-        check_budget(options.dt > 0.0 ? options.dt : used.dt);
-        result.response = lumped::NewmarkIntegrator(model, options).run(used);
-        if (in.companion)
-          result.companion = lumped::NewmarkIntegrator(model.without_contacts(), options).run(used);
-      }
+      const IntegrationScene &in = scene.integration;
+      integrate(CaseRun{name, model, in, used, result}, requested_time_step(in), free_runs);
       if (const std::string why = implausibility(result.response, in); !why.empty())
         throw std::runtime_error("implausible result: " + why);
     }

@@ -110,12 +110,12 @@ namespace kimp::app
     return integration.dt == "auto" && integration.method == IntegrationMethod::cdm;
   }
 
-  void validate(const LumpedScene &scene, ValidationContext &ctx)
+  namespace
   {
-    const bool isolated = scene.building.kind == BuildingKind::isolated;
-    // building: single-key ranges are declared in visit() and enforced by the reader; masses
-    // below 1 kg (a slip of the unit, or a denormal that passes "> 0") are no storey, and the
-    // modal analysis cannot take them.
+    /// building: masses below 1 kg (a slip of the unit, or a denormal that passes "> 0") are no
+    /// storey, and the modal analysis cannot take them (single-key ranges are declared in
+    /// visit() and enforced by the reader).
+    void validate_building(const LumpedScene &scene, ValidationContext &ctx)
     {
       const auto           scope = ctx.section("building");
       const BuildingScene &b     = scene.building;
@@ -127,7 +127,10 @@ namespace kimp::app
                   fmt::format("{:.4g} t", mass / 1e3), // a denormal has no 15 true digits
                   "must be >= 1 kg (a storey)");
     }
-    if (isolated)
+
+    /// isolator (of an isolated building): K2 < K1, Bouc-Wen's dissipation, μ_fast >= μ_slow,
+    /// its damping >= the building's.
+    void validate_isolator(const LumpedScene &scene, ValidationContext &ctx)
     {
       const auto           scope = ctx.section("isolator");
       const IsolatorScene &iso   = scene.isolator;
@@ -160,6 +163,9 @@ namespace kimp::app
                 percent(iso.damping_ratio),
                 "must be >= building.damping_ratio = " + percent(scene.building.damping_ratio));
     }
+
+    /// walls: none at a fixed-base building; a basement needs a floor above the isolation level.
+    void validate_wall_keys(const LumpedScene &scene, const bool isolated, ValidationContext &ctx)
     {
       const auto scope = ctx.section("walls");
       if (!isolated)
@@ -179,30 +185,38 @@ namespace kimp::app
                   "true",
                   "needs an isolated building with a floor above the isolation level");
     }
-    validate_walls(scene, ctx, "walls.left.gap", "walls.right.gap");
-    validate_yielding(scene, ctx);
-    // A k table that cannot be read is one error at impact.k_table, not one more per case.
-    bool table_readable = true;
-    if (!scene.impact.k_table.empty() && !scene.impact.k_si && scene.impact.law != "bumper")
-      try
-      {
-        (void)read_k_table(ctx.resolve_path(scene.impact.k_table));
-      }
-      catch (const std::invalid_argument &error)
-      {
-        table_readable = false;
-        if (!scene.impact.wall_height) // else with_table_stiffness() reports it below
-        {
-          const auto scope = ctx.section("impact");
-          ctx.fail("k_table", scene.impact.k_table, error.what());
-        }
-      }
+
+    /// impact: the walls' law (k from its k table if any) and bumpers; returns whether the k
+    /// table (if any) can be read, so that the cases do not report it again.
+    bool validate_impact(const LumpedScene &scene, ValidationContext &ctx)
     {
-      const auto scope = ctx.section("impact");
-      validate_law(with_table_stiffness(scene.impact, ctx, scene.cases.empty()), ctx, true);
-      if (scene.impact.law == "bumper")
-        validate_bumper(scene.impact, ctx);
+      // A k table that cannot be read is one error at impact.k_table, not one more per case.
+      bool table_readable = true;
+      if (!scene.impact.k_table.empty() && !scene.impact.k_si && scene.impact.law != "bumper")
+        try
+        {
+          (void)read_k_table(ctx.resolve_path(scene.impact.k_table));
+        }
+        catch (const std::invalid_argument &error)
+        {
+          table_readable = false;
+          if (!scene.impact.wall_height) // else with_table_stiffness() reports it below
+          {
+            const auto scope = ctx.section("impact");
+            ctx.fail("k_table", scene.impact.k_table, error.what());
+          }
+        }
+      {
+        const auto scope = ctx.section("impact");
+        validate_law(with_table_stiffness(scene.impact, ctx, scene.cases.empty()), ctx, true);
+        if (scene.impact.law == "bumper")
+          validate_bumper(scene.impact, ctx);
+      }
+      return table_readable;
     }
+
+    /// neighbours: each present one's own law; the walls' bumper law does not act at them.
+    void validate_neighbours(const LumpedScene &scene, ValidationContext &ctx)
     {
       const auto scope = ctx.section("neighbours");
       for (const auto &[key, nb] :
@@ -221,10 +235,9 @@ namespace kimp::app
           ctx.fail("impact", "null", "must be given: impact.law = bumper acts only at the walls");
       }
     }
-    {
-      const auto scope = ctx.section("ground_motion");
-      validate(scene.ground_motion, ctx);
-    }
+
+    /// integration: dt "auto", "stable" or a time > 0.
+    void validate_integration(const LumpedScene &scene, ValidationContext &ctx)
     {
       const auto              scope = ctx.section("integration");
       const IntegrationScene &in    = scene.integration;
@@ -245,11 +258,17 @@ namespace kimp::app
       }
     }
 
-    std::set<std::string> names;
-    for (std::size_t i = 0; i < scene.cases.size(); ++i)
+    /// cases[i]: a unique name, gaps only with isolation, its wall height, law, record and
+    /// walls, reported at the case's own keys; `names` collects the names so far.
+    void validate_case(const LumpedScene     &scene,
+                       const std::size_t      i,
+                       const bool             table_readable,
+                       std::set<std::string> &names,
+                       ValidationContext     &ctx)
     {
-      const CaseScene &c     = scene.cases[i];
-      const auto       scope = ctx.section("cases[" + std::to_string(i) + "]");
+      const bool       isolated = scene.building.kind == BuildingKind::isolated;
+      const CaseScene &c        = scene.cases[i];
+      const auto       scope    = ctx.section("cases[" + std::to_string(i) + "]");
       if (ctx.check(is_valid_case_name(c.name),
                     "name",
                     "\"" + c.name + "\"",
@@ -298,6 +317,27 @@ namespace kimp::app
                      c.left_gap ? "left_gap" : "gap",
                      c.right_gap ? "right_gap" : "gap");
     }
+  } // namespace
+
+  void validate(const LumpedScene &scene, ValidationContext &ctx)
+  {
+    const bool isolated = scene.building.kind == BuildingKind::isolated;
+    validate_building(scene, ctx);
+    if (isolated)
+      validate_isolator(scene, ctx);
+    validate_wall_keys(scene, isolated, ctx);
+    validate_walls(scene, ctx, "walls.left.gap", "walls.right.gap");
+    validate_yielding(scene, ctx);
+    const bool table_readable = validate_impact(scene, ctx);
+    validate_neighbours(scene, ctx);
+    {
+      const auto scope = ctx.section("ground_motion");
+      validate(scene.ground_motion, ctx);
+    }
+    validate_integration(scene, ctx);
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < scene.cases.size(); ++i)
+      validate_case(scene, i, table_readable, names, ctx);
   }
 
   LumpedScene apply_case(const LumpedScene &scene, const CaseScene &c)

@@ -11,6 +11,8 @@
 
 namespace kimp::fem::internal
 {
+  using namespace dealii;
+
   namespace
   {
     /** |n_x n_y| above which a face counts as not axis-parallel (C would not be diagonal). */

@@ -14,6 +14,8 @@
 
 namespace kimp::fem::internal
 {
+  using namespace dealii;
+
   std::vector<FaceSegment> ImpactProblem::gather_boundary_faces(const types::boundary_id a,
                                                                 const types::boundary_id b) const
   {

@@ -11,6 +11,8 @@
 
 namespace kimp::fem::internal
 {
+  using namespace dealii;
+
   void ImpactProblem::run_explicit()
   {
     Vec u(locally_owned, comm), v_half(locally_owned, comm), v_n(locally_owned, comm);

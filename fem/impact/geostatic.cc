@@ -19,6 +19,8 @@
 
 namespace kimp::fem::internal
 {
+  using namespace dealii;
+
   namespace
   {
     /** Share of the virgin stiffness added to the consistent tangent of the geostatic step. */

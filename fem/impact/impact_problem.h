@@ -29,9 +29,18 @@
 
 namespace kimp::fem::internal
 {
-  using namespace dealii;
-  constexpr int dim = 2;
-  using Vec         = TrilinosWrappers::MPI::Vector;
+  // The deal.II names of this header (each source file of fem/impact/ opens dealii itself).
+  using dealii::AffineConstraints;
+  using dealii::DoFHandler;
+  using dealii::FESystem;
+  using dealii::IndexSet;
+  using dealii::Point;
+  using dealii::Vector;
+  namespace parallel         = dealii::parallel;
+  namespace TrilinosWrappers = dealii::TrilinosWrappers;
+  namespace types            = dealii::types;
+  constexpr int dim          = 2;
+  using Vec                  = TrilinosWrappers::MPI::Vector;
 
   /** x formatted with 6 significant digits (messages). */
   std::string fmt_double(double x);

@@ -18,6 +18,8 @@
 
 namespace kimp::fem::internal
 {
+  using namespace dealii;
+
   /** Newmark average acceleration. */
   constexpr double newmark_beta  = 0.25;
   constexpr double newmark_gamma = 0.5;

@@ -14,6 +14,8 @@
 
 namespace kimp::fem::internal
 {
+  using namespace dealii;
+
   void ImpactProblem::setup_interface()
   {
     const InterfaceOptions &o = prm.wall_soil_interface;

@@ -13,6 +13,8 @@
 
 namespace kimp::fem::internal
 {
+  using namespace dealii;
+
   namespace
   {
     /** Cells per law call: bounds the stack buffers of strains, stresses and energies. */

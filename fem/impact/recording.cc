@@ -20,6 +20,8 @@
 
 namespace kimp::fem::internal
 {
+  using namespace dealii;
+
   /** Divergence guard: relative energy error beyond which the run is stopped. */
   constexpr double divergence_energy_error = 0.5;
 

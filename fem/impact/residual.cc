@@ -11,6 +11,8 @@
 
 namespace kimp::fem::internal
 {
+  using namespace dealii;
+
   namespace
   {
     /** Relative residual of the unloading solve. */

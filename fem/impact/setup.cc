@@ -45,6 +45,8 @@ namespace kimp::fem
 
 namespace kimp::fem::internal
 {
+  using namespace dealii;
+
   /** Largest ImplicitOptions::max_halvings: time is counted in integer ticks of dt / 2^max. */
   constexpr unsigned int max_step_halvings = 30;
 

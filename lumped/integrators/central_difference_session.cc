@@ -14,25 +14,8 @@
 
 namespace kimp::lumped
 {
-  void CentralDifferenceStepper::Session::init(const CentralDifference &cdm, const GroundMotion &g)
+  TridiagonalMatrix CentralDifferenceStepper::Session::prepare_reference_matrices()
   {
-    model  = &cdm.model();
-    opt    = &cdm.options();
-    motion = &g;
-    if (!(g.dt > 0.0) || g.acceleration.empty())
-      throw std::invalid_argument("ground motion '" + g.name +
-                                  "': dt must be > 0 and the record non-empty");
-    dt = cdm.time_step(g.dt);
-    const double duration =
-      opt->duration > 0.0 ? opt->duration : g.dt * static_cast<double>(g.acceleration.size());
-    n_steps = std::lround(duration / dt);
-    step    = 0;
-    scheme  = opt->law_velocity;
-    n       = model->n_dofs();
-    mass    = model->masses();
-    k       = &model->stiffness();
-    c       = &model->damping();
-
     const double      inv_dt2     = 1.0 / (dt * dt);
     const double      half_inv_dt = 0.5 / dt;
     TridiagonalMatrix a(n);
@@ -55,13 +38,11 @@ namespace kimp::lumped
     }
     a_inverse = std::make_unique<cdm::EffectiveMatrixInverse>(a);
 
-    const Isolator *proto = model->isolator();
-    iso.reset();
-    if (proto)
-    {
-      iso = proto->clone();
-      iso->revert_to_start();
-    }
+    return a;
+  }
+
+  void CentralDifferenceStepper::Session::choose_kernel()
+  {
     // The fused kernels (up to 8 DOFs, or any size): every storey between DOF i − 1 and DOF i or
     // between the ground and DOF i (its drift is then lane i of u − shifted u).
     bool fits = n >= 1;
@@ -103,52 +84,56 @@ namespace kimp::lumped
     fused_sums.assign(3 * padded_n, 0.0);
     drift_mask.resize(padded_n, 0.0);
     p_in_0 = p_visc_0 = 0.0;
-    if (fused)
-    {
-      const std::size_t     p   = padded_n;
-      const Eigen::MatrixXd inv = a.to_dense().inverse();
-      const Eigen::MatrixXd kg  = inv * k->to_dense();
-      const Eigen::MatrixXd h   = inv * (c->to_dense() * (1.0 / dt) + k->to_dense());
-      const Eigen::VectorXd am =
-        inv * Eigen::Map<const Eigen::VectorXd>(mass.data(), static_cast<Eigen::Index>(n));
-      // Columns up to a multiple of 4 (zero): the any-size kernel sums four columns at a time.
-      const auto pad = [&](const Eigen::MatrixXd &x, std::vector<double> &out)
-      {
-        out.assign(p * ((static_cast<std::size_t>(x.cols()) + 3) / 4 * 4), 0.0);
-        for (Eigen::Index j = 0; j < x.cols(); ++j)
-          for (Eigen::Index i = 0; i < x.rows(); ++i)
-            out[static_cast<std::size_t>(j) * p + static_cast<std::size_t>(i)] = x(i, j);
-      };
-      pad(inv, dense_inverse);
-      pad(h, dense_f);
-      pad(kg, dense_g);
-      pad(am, dense_am);
-      // Any-size kernel: the columns each row vector needs (its buildings' blocks).
-      const std::size_t n_vectors = p / static_cast<std::size_t>(lanes);
-      any_lo.assign(n_vectors, 0);
-      any_hi.assign(n_vectors, 0);
-      for (std::size_t v = 0; v < n_vectors; ++v)
-      {
-        std::size_t first = n, end = 0;
-        for (std::size_t i = v * static_cast<std::size_t>(lanes);
-             i < std::min(n, (v + 1) * static_cast<std::size_t>(lanes));
-             ++i)
-          for (std::size_t j = 0; j < n; ++j)
-          {
-            const std::size_t at = j * p + i;
-            if (dense_inverse[at] != 0.0 || dense_f[at] != 0.0 || dense_g[at] != 0.0)
-            {
-              first = std::min(first, j);
-              end   = std::max(end, j + 1);
-            }
-          }
-        any_lo[v] = static_cast<int>(first < end ? first / 4 * 4 : 0);
-        any_hi[v] = static_cast<int>(first < end ? (end + 3) / 4 * 4 : 0);
-      }
-      // u, Δu twice (the any-size kernel's double buffer, up to a multiple of 4), v.
-      any_work.assign(p + 2 * std::max(p, (n + 3) / 4 * 4) + p, 0.0);
-    }
+  }
 
+  void CentralDifferenceStepper::Session::prepare_fused_matrices(const TridiagonalMatrix &a)
+  {
+    const std::size_t     p   = padded_n;
+    const Eigen::MatrixXd inv = a.to_dense().inverse();
+    const Eigen::MatrixXd kg  = inv * k->to_dense();
+    const Eigen::MatrixXd h   = inv * (c->to_dense() * (1.0 / dt) + k->to_dense());
+    const Eigen::VectorXd am =
+      inv * Eigen::Map<const Eigen::VectorXd>(mass.data(), static_cast<Eigen::Index>(n));
+    // Columns up to a multiple of 4 (zero): the any-size kernel sums four columns at a time.
+    const auto pad = [&](const Eigen::MatrixXd &x, std::vector<double> &out)
+    {
+      out.assign(p * ((static_cast<std::size_t>(x.cols()) + 3) / 4 * 4), 0.0);
+      for (Eigen::Index j = 0; j < x.cols(); ++j)
+        for (Eigen::Index i = 0; i < x.rows(); ++i)
+          out[static_cast<std::size_t>(j) * p + static_cast<std::size_t>(i)] = x(i, j);
+    };
+    pad(inv, dense_inverse);
+    pad(h, dense_f);
+    pad(kg, dense_g);
+    pad(am, dense_am);
+    // Any-size kernel: the columns each row vector needs (its buildings' blocks).
+    const std::size_t n_vectors = p / static_cast<std::size_t>(lanes);
+    any_lo.assign(n_vectors, 0);
+    any_hi.assign(n_vectors, 0);
+    for (std::size_t v = 0; v < n_vectors; ++v)
+    {
+      std::size_t first = n, end = 0;
+      for (std::size_t i = v * static_cast<std::size_t>(lanes);
+           i < std::min(n, (v + 1) * static_cast<std::size_t>(lanes));
+           ++i)
+        for (std::size_t j = 0; j < n; ++j)
+        {
+          const std::size_t at = j * p + i;
+          if (dense_inverse[at] != 0.0 || dense_f[at] != 0.0 || dense_g[at] != 0.0)
+          {
+            first = std::min(first, j);
+            end   = std::max(end, j + 1);
+          }
+        }
+      any_lo[v] = static_cast<int>(first < end ? first / 4 * 4 : 0);
+      any_hi[v] = static_cast<int>(first < end ? (end + 3) / 4 * 4 : 0);
+    }
+    // u, Δu twice (the any-size kernel's double buffer, up to a multiple of 4), v.
+    any_work.assign(p + 2 * std::max(p, (n + 3) / 4 * 4) + p, 0.0);
+  }
+
+  void CentralDifferenceStepper::Session::prepare_buffers()
+  {
     width = static_cast<std::size_t>(cdm::block_steps) + 3;
     if (fused)
     {
@@ -170,7 +155,10 @@ namespace kimp::lumped
     force.assign(n + 1, 0.0); // [n]: the ground, absorbs wall reactions
     rhs.assign(n, 0.0);
     solution.assign(n, 0.0);
+  }
 
+  void CentralDifferenceStepper::Session::prepare_contacts()
+  {
     const int ground_slot = static_cast<int>(n);
     laws.clear();
     left.clear();
@@ -222,9 +210,13 @@ namespace kimp::lumped
     lane_peak_u.assign(n * static_cast<std::size_t>(cdm::block_steps), 0.0);
     lane_peak_a.assign(n * static_cast<std::size_t>(cdm::block_steps), 0.0);
     lane_peak_d.assign(storey_low.size() * static_cast<std::size_t>(cdm::block_steps), 0.0);
+  }
 
+  void CentralDifferenceStepper::Session::initial_conditions(const GroundMotion &g)
+  {
     // Initial conditions: u_{−1}, u_{−2} from a Taylor expansion with a_0 = M⁻¹(p_0 − C·v_0 −
     // K·u_0 − f_nl(u_0)); the laws are only trialled here, the first step commits them.
+    const std::size_t   nc = laws.size();
     std::vector<double> u0(n, 0.0), v0(n, 0.0);
     if (!opt->initial_displacement.empty())
       u0 = opt->initial_displacement;
@@ -272,7 +264,10 @@ namespace kimp::lumped
       for (std::size_t i = 0; i < n; ++i)
         for (std::size_t j = 0; j < n; ++j) // z_{−1} = A⁻¹K·u_{−1}
           fused_z[i] += dense_g[j * padded_n + i] * (fused_u[j] - fused_d[j]);
+  }
 
+  void CentralDifferenceStepper::Session::prepare_recording(const GroundMotion &g)
+  {
     const double ratio = g.dt / dt;
     sub                = std::lround(ratio);
     integer_substeps   = sub > 0 && std::abs(ratio - static_cast<double>(sub)) < 1e-9 * ratio;
@@ -293,6 +288,42 @@ namespace kimp::lumped
     rec.start(*model, dt, n_steps, every);
     w_in = w_visc = w_contact = p_in_prev = p_visc_prev = 0.0;
     e0 = e_kin = e_strain = 0.0;
+  }
+
+  void CentralDifferenceStepper::Session::init(const CentralDifference &cdm, const GroundMotion &g)
+  {
+    model  = &cdm.model();
+    opt    = &cdm.options();
+    motion = &g;
+    if (!(g.dt > 0.0) || g.acceleration.empty())
+      throw std::invalid_argument("ground motion '" + g.name +
+                                  "': dt must be > 0 and the record non-empty");
+    dt = cdm.time_step(g.dt);
+    const double duration =
+      opt->duration > 0.0 ? opt->duration : g.dt * static_cast<double>(g.acceleration.size());
+    n_steps = std::lround(duration / dt);
+    step    = 0;
+    scheme  = opt->law_velocity;
+    n       = model->n_dofs();
+    mass    = model->masses();
+    k       = &model->stiffness();
+    c       = &model->damping();
+
+    const TridiagonalMatrix a     = prepare_reference_matrices();
+    const Isolator         *proto = model->isolator();
+    iso.reset();
+    if (proto)
+    {
+      iso = proto->clone();
+      iso->revert_to_start();
+    }
+    choose_kernel();
+    if (fused)
+      prepare_fused_matrices(a);
+    prepare_buffers();
+    prepare_contacts();
+    initial_conditions(g);
+    prepare_recording(g);
 
     // Up to 8 DOFs the fused kernel keeps the whole state in registers (unless the any-size
     // kernel is requested, for comparisons).

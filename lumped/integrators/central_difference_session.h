@@ -162,8 +162,24 @@ namespace kimp::lumped
       return u_block.data() + row * row_stride + static_cast<std::size_t>(c) * col_stride;
     }
 
-    /// Set up for a run under `g` (central_difference_session.cc).
+    /// Set up for a run under `g` (central_difference_session.cc), in the steps below.
     void init(const CentralDifference &cdm, const GroundMotion &g);
+    /// Reference kernel: b, d and the effective matrix A = M/Δt² + C/(2Δt); returns A.
+    TridiagonalMatrix prepare_reference_matrices();
+    /// Which kernel runs (fused: DOFs in storey order and, automatic, blocks the dense products
+    /// pay for), its lanes and the fused state vectors.
+    void choose_kernel();
+    /// Fused kernels: A⁻¹, A⁻¹(C/Δt + K), A⁻¹K, A⁻¹M padded to the lanes, and each row vector's
+    /// columns.
+    void prepare_fused_matrices(const TridiagonalMatrix &a);
+    /// The displacement block and the per-step buffers of the chosen kernel.
+    void prepare_buffers();
+    /// Fresh clones of the contact laws, their DOFs and gaps, the storeys' DOFs and the peaks.
+    void prepare_contacts();
+    /// u_{−1}, u_{−2} (and the fused z_{−1}) from u_0, v_0 and a_0 of the first ground step.
+    void initial_conditions(const GroundMotion &g);
+    /// Substeps of the record, the output and check intervals, the recorder and the works.
+    void prepare_recording(const GroundMotion &g);
     /// Up to `count` steps in blocks ending at the check points (central_difference.cc).
     void advance(long count);
     /// Reference kernel: velocities, accelerations, peaks and powers of a block, vectorised over

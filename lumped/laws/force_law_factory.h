@@ -8,36 +8,31 @@
 #include <vector>
 
 #include "lumped/laws/force_law.h"
+#include "lumped/laws/law_traits.h"
 
 namespace kimp::lumped
 {
   /**
-   * Parameters of any contact law; a law reads only the fields it needs (table below).
-   *
-   * | law                     | k unit | n (default)  | cor | m_eff | other               |
-   * |-------------------------|--------|--------------|-----|-------|---------------------|
-   * | "linear"                | N/m    | 1 (fixed)    | -   | -     |                     |
-   * | "kelvin_voigt"          | N/m    | 1 (fixed)    | yes | yes   |                     |
-   * | "modified_kelvin_voigt" | N/m    | 1 (fixed)    | yes | yes   |                     |
-   * | "jankowski"             | N/m^1.5| 1.5 (fixed)  | yes | yes   |                     |
-   * | "hertzdamp"             | N/m^n  | 1.5          | yes | -     | hertzdamp_ye        |
-   * | "hysteretic"            | N/m^n  | 1.5          | yes | yes   | impact_a1           |
-   * | "bumper"                | N/m^n  | 2.65         | yes | yes   | bumper_*, impact_a1 |
+   * Parameters of any contact law; a law reads only the fields of its LawTraits::parameters
+   * (lumped/laws/law_traits.h: k = stiffness, cor, m_eff = effective_mass, exponent,
+   * ye = hertzdamp_ye, a1 = impact_a1, delta_u = bumper_ultimate_deformation,
+   * k_w = bumper_wall_stiffness); k's unit is N/m^n with the law's exponent n.
    */
   struct ForceLawSpec
   {
-    std::string           law       = "linear";   ///< one of force_law_names()
-    double                stiffness = 0.0;        ///< k (bumper: k_b of all bumpers), N/m^n
-    std::optional<double> exponent;               ///< n; unset: the law's default
-    double                cor            = 0.7;   ///< nominal COR, (0, 1]; thesis default 0.7
-    double                effective_mass = 0.0;   ///< m_eff = m1·m2/(m1 + m2), kg
-    bool                  hertzdamp_ye   = false; ///< Hertzdamp with Ye et al.'s damping
+    std::string           law       = "linear";        ///< one of force_law_names()
+    double                stiffness = 0.0;             ///< k (bumper: k_b of all bumpers), N/m^n
+    std::optional<double> exponent;                    ///< n; unset: the law's default
+    double                cor            = thesis_cor; ///< nominal COR, (0, 1]
+    double                effective_mass = 0.0;        ///< m_eff = m1·m2/(m1 + m2), kg
+    bool                  hertzdamp_ye   = false;      ///< Hertzdamp with Ye et al.'s damping
     std::optional<double> impact_a1; ///< laws 6-7: C_imp = a1·(1 − COR²) (s/m) instead of 2.23
     double                bumper_ultimate_deformation = 0.0; ///< δ_u = ε_u·t, m
     double                bumper_wall_stiffness       = 0.0; ///< k_w, N/m
   };
 
-  /// The names make_force_law() accepts, in the order of docs/physics.md §1.
+  /// The names make_force_law() accepts (the names of law_traits()), in the order of
+  /// docs/physics.md §1.
   const std::vector<std::string> &force_law_names();
 
   /**

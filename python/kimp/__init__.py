@@ -18,6 +18,9 @@ from ._runs import (Collision, Contact, CorRow, Energy, FitResult, GroundMotion,
                     ground_motion, lumped, study)
 from ._scene import Scene, SceneError
 
+#: The thesis' nominal coefficient of restitution, the default COR of every law and fit.
+thesis_cor = float(_kimp.thesis_cor)
+
 #: True when this build has the FEM engine (kimp.fem, kimp.study).
 with_fem = bool(_kimp.with_fem)
 
@@ -44,5 +47,5 @@ def format_quantity(value, unit):
 __all__ = ["Scene", "SceneError", "lumped", "Result", "Results", "Peaks", "History", "Contact", "Wall",
            "Energy", "ground_motion", "GroundMotion", "collide", "Collision", "cor_table", "CorRow", "fit",
            "FitResult", "Parameter", "fem", "study", "read", "ResultsFile", "Group",
-           "TimeSeries", "Array", "Float", "Int", "laws", "with_fem", "parse_quantity",
+           "TimeSeries", "Array", "Float", "Int", "laws", "thesis_cor", "with_fem", "parse_quantity",
            "format_quantity", "set_verbosity"]

@@ -482,7 +482,7 @@ def _mass_per_metre(value, name):
             raise _kimp.UnitError(f"{name}: {per_length}") from None
 
 
-def fit(time, force, velocity, mass, law="kelvin_voigt", *, cor=0.7, exponent=None,
+def fit(time, force, velocity, mass, law="kelvin_voigt", *, cor=_kimp.thesis_cor, exponent=None,
         fit_cor=False, fit_exponent=False, indentation=None, slab_displacement=None,
         displacement_weight=0.0, wall_mass=math.inf, force_only_contact=True,
         peak_tolerance=0.25):

@@ -33,8 +33,13 @@ _KEY = re.compile(r"^(?:unknown key '(?P<unknown>[^']*)'(?: in (?P<parent>[\w.\[
                   r"|duplicate key '(?P<duplicate>[^']*)'"
                   r"|(?P<key>[\w]+(?:[.\[][\w\]]*)*)(?: = |: ))")
 
-# Default exponent n of each law (the unit N/m^n of a bare SI k), docs/physics.md §1.
-_LAW_EXPONENT = {"hertzdamp": 1.5, "hysteretic": 1.5, "jankowski": 1.5, "bumper": 2.65}
+# Default exponent n of each law (the unit N/m^n of a bare SI k): the laws' traits.
+_LAW_EXPONENT = {traits["name"]: traits["default_exponent"] for traits in _kimp.law_traits()}
+
+
+def stiffness_si_unit(n):
+    """The SI unit N/m^n of a stiffness of exponent n ("N/m" for n = 1), as the scenes read it."""
+    return f"N/m^{float(n)!r}" if float(n) != 1.0 else "N/m"
 
 
 class SceneError(ValueError):
@@ -131,7 +136,7 @@ def _stiffness_unit(section):
     n = section.get("exponent") if isinstance(section, dict) else None
     if not _number(n):
         n = _LAW_EXPONENT.get(law, 1.0)
-    return f"N/m^{float(n)!r}" if float(n) != 1.0 else "N/m"
+    return stiffness_si_unit(n)
 
 
 def _to_text_values(kind, data, prefix=""):

@@ -1,20 +1,21 @@
 """The impact laws 1-7 of docs/physics.md §1 as Python objects over the C++ laws.
 
-Each class makes the law through the engine's factory (lumped::make_force_law), so the numbers are
-the solver's. Stiffness k is in N/m^n (n = the law's exponent) or a unit text ("2500 kN/mm",
+Each class is made from the law's traits (lumped/laws/law_traits.h, through kimp._kimp.law_traits:
+name, parameters and their defaults) and makes the law through the engine's factory
+(lumped::make_force_law), so the numbers are the solver's. Stiffness k is in N/m^n (n = the law's exponent) or a unit text ("2500 kN/mm",
 "750 kN/mm^1.5"); m_eff in kg or "144.8 t". Sign convention of kimp: δ = interpenetration (m,
 > 0 in contact), δ̇ > 0 while closing (m/s), F ≥ 0 compressive (N).
 
-    >>> kv = kimp.laws.KelvinVoigt(k="2500 kN/mm", cor=0.7, m_eff=144.8e3)
+    >>> kv = kimp.laws.KelvinVoigt(k="2500 kN/mm", cor=kimp.thesis_cor, m_eff=144.8e3)
     >>> kv.force(np.linspace(0, 0.01, 5), 0.5)     # vectorised over numpy arrays
 """
+
+import inspect
 
 import numpy as np
 
 from . import _kimp
-
-__all__ = ["Law", "Linear", "KelvinVoigt", "ModifiedKelvinVoigt", "Jankowski", "Hertzdamp",
-           "Hysteretic", "Bumper", "make", "names"]
+from ._scene import stiffness_si_unit
 
 
 def _si(value, unit):
@@ -23,10 +24,6 @@ def _si(value, unit):
     if isinstance(value, str):
         return _kimp.parse_quantity(value, unit)
     return float(value)
-
-
-def _stiffness_unit(n):
-    return "N/m" if n == 1.0 else f"N/m^{n!r}"
 
 
 class Law:
@@ -40,11 +37,12 @@ class Law:
 
     law = ""
     default_exponent = 1.0
+    _traits = {"parameters": []}
 
-    def __init__(self, k, cor=0.7, m_eff=0.0, exponent=None, ye=False, a1=None, delta_u=0.0,
-                 k_w=0.0):
+    def __init__(self, k, cor=_kimp.thesis_cor, m_eff=0.0, exponent=None, ye=False, a1=None,
+                 delta_u=0.0, k_w=0.0):
         self.exponent = float(exponent) if exponent is not None else self.default_exponent
-        self.k = _si(k, _stiffness_unit(self.exponent))
+        self.k = _si(k, stiffness_si_unit(self.exponent))
         self.cor = _si(cor, "")
         self.m_eff = _si(m_eff, "kg")
         self.ye = bool(ye)
@@ -87,104 +85,45 @@ class Law:
         """k_t (N/m) bounding the central-difference step up to `max_deformation` (m)."""
         return self._law.stability_stiffness(float(max_deformation))
 
-    def _parameters(self):
-        return {"k": self.k, "cor": self.cor, "m_eff": self.m_eff}
-
     def __repr__(self):
-        parameters = self._parameters()
+        # The law's parameters in the order of its traits; the exponent is shown as n.
+        shown = [("n" if name == "exponent" else name, getattr(self, name),
+                  stiffness_si_unit(self.exponent) if unit == "N/m^n" else unit)
+                 for name, unit, _required, _default in self._traits["parameters"]]
+        shown = [(key, value, unit) for key, value, unit in shown if value is not None]
         text = ", ".join(f"{key}={value!r}" if isinstance(value, bool) else f"{key}={value:.6g}"
-                         for key, value in parameters.items() if value is not None)
-        units = {"k": _stiffness_unit(self.exponent), "m_eff": "kg", "a1": "s/m", "delta_u": "m",
-                 "k_w": "N/m"}
-        told = ", ".join(f"{key} in {unit}" for key, unit in units.items()
-                         if parameters.get(key) is not None)
+                         for key, value, _unit in shown)
+        told = ", ".join(f"{key} in {unit}" for key, _value, unit in shown
+                         if unit not in ("", "flag"))
         return f"{type(self).__name__}({text}) [{told}]"
 
 
-class Linear(Law):
-    """Law 1, linear spring: F = kδ (k in N/m)."""
+def _law_class(traits):
+    """The class of one law, made from its traits (lumped/laws/law_traits.h): its keyword
+    arguments are the law's parameters in order, with their defaults."""
+    signature = inspect.Signature(
+        [inspect.Parameter("self", inspect.Parameter.POSITIONAL_OR_KEYWORD)] +
+        [inspect.Parameter(name, inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                           **({} if required else {"default": default}))
+         for name, _unit, required, default in traits["parameters"]])
 
-    law = "linear"
+    def __init__(self, *args, **kwargs):
+        bound = signature.bind(self, *args, **kwargs)
+        bound.apply_defaults()
+        values = dict(bound.arguments)
+        del values["self"]
+        Law.__init__(self, **values)
 
-    def __init__(self, k):
-        super().__init__(k)
-
-    def _parameters(self):
-        return {"k": self.k}
-
-
-class KelvinVoigt(Law):
-    """Law 2, Kelvin-Voigt: F = kδ + cδ̇, c = 2ξ√(k·m_eff), ξ = −ln e/√(π² + ln² e) (k in N/m)."""
-
-    law = "kelvin_voigt"
-
-    def __init__(self, k, cor=0.7, m_eff=0.0):
-        super().__init__(k, cor, m_eff)
-
-
-class ModifiedKelvinVoigt(Law):
-    """Law 3, Kelvin-Voigt without tension (ends the contact, keeps a permanent set)."""
-
-    law = "modified_kelvin_voigt"
-
-    def __init__(self, k, cor=0.7, m_eff=0.0):
-        super().__init__(k, cor, m_eff)
+    __init__.__signature__ = signature
+    return type(traits["class_name"], (Law,), {
+        "__doc__": traits["summary"], "__init__": __init__, "__module__": __name__,
+        "law": traits["name"], "default_exponent": traits["default_exponent"],
+        "_traits": traits})
 
 
-class Jankowski(Law):
-    """Law 4, Jankowski's non-linear viscoelastic law: k in N/m^1.5, damping only on approach."""
-
-    law = "jankowski"
-    default_exponent = 1.5
-
-    def __init__(self, k, cor=0.7, m_eff=0.0):
-        super().__init__(k, cor, m_eff)
-
-
-class Hertzdamp(Law):
-    """Law 5, Hertzdamp (Muthukumar & DesRoches): F = kδ^n·(1 + β·δ̇/v_imp), k in N/m^n, n = 1.5
-    by default, β = 3(1 − e²)/4 (ye=True: Ye et al.'s β = 8(1 − e)/(5e)); no m_eff."""
-
-    law = "hertzdamp"
-    default_exponent = 1.5
-
-    def __init__(self, k, cor=0.7, exponent=1.5, ye=False):
-        super().__init__(k, cor, 0.0, exponent, ye)
-
-    def _parameters(self):
-        return {"k": self.k, "cor": self.cor, "n": self.exponent, "ye": self.ye}
-
-
-class Hysteretic(Law):
-    """Law 6, hysteretic (C_imp of eq. 2.23, or a1·(1 − e²)): k in N/m^n, n = 1.5 by default."""
-
-    law = "hysteretic"
-    default_exponent = 1.5
-
-    def __init__(self, k, cor=0.7, m_eff=0.0, exponent=1.5, a1=None):
-        super().__init__(k, cor, m_eff, exponent, a1=a1)
-
-    def _parameters(self):
-        return {"k": self.k, "cor": self.cor, "m_eff": self.m_eff, "n": self.exponent,
-                "a1": self.a1}
-
-
-class Bumper(Law):
-    """Law 7, rubber bumper: hysteretic with n = 2.65 up to δ_u (m), then the wall k_w (N/m)."""
-
-    law = "bumper"
-    default_exponent = 2.65
-
-    def __init__(self, k, cor=0.7, m_eff=0.0, delta_u=0.0375, k_w=1.5e9, exponent=2.65, a1=None):
-        super().__init__(k, cor, m_eff, exponent, a1=a1, delta_u=delta_u, k_w=k_w)
-
-    def _parameters(self):
-        return {"k": self.k, "cor": self.cor, "m_eff": self.m_eff, "n": self.exponent,
-                "delta_u": self.delta_u, "k_w": self.k_w}
-
-
-_CLASSES = {cls.law: cls for cls in (Linear, KelvinVoigt, ModifiedKelvinVoigt, Jankowski,
-                                      Hertzdamp, Hysteretic, Bumper)}
+_CLASSES = {traits["name"]: _law_class(traits) for traits in _kimp.law_traits()}
+globals().update({cls.__name__: cls for cls in _CLASSES.values()})
+__all__ = ["Law"] + [cls.__name__ for cls in _CLASSES.values()] + ["make", "names"]
 
 
 def names():

@@ -254,6 +254,18 @@ namespace
     expect_force_law_invariants(*law, make_path(c.amplitude, c.period, 0.2, 2));
   }
 
+  /// A new law of law_traits() comes with its contract case above.
+  TEST(ForceLawContract, EveryLawOfTheTraitsHasAContractCase)
+  {
+    for (const kimp::lumped::LawTraits &t : kimp::lumped::law_traits())
+    {
+      bool found = false;
+      for (const ContractCase &c : contract_cases())
+        found = found || c.spec.law == t.name;
+      EXPECT_TRUE(found) << "law " << t.name << " has no case in contract_cases()";
+    }
+  }
+
   INSTANTIATE_TEST_SUITE_P(AllLaws,
                            ForceLawContract,
                            ::testing::ValuesIn(contract_cases()),

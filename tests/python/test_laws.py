@@ -74,6 +74,32 @@ def test_every_law_is_available_by_its_scene_name():
         kimp.laws.make("nope", k=1.0)
 
 
+def test_the_law_classes_are_made_from_the_traits_alone():
+    # Every law of the C++ traits (lumped/laws/law_traits.h) is a class of kimp.laws with the
+    # traits' name, keyword arguments and defaults: a new law needs no edit of the package.
+    import inspect
+    traits = kimp._kimp.law_traits()
+    assert [t["name"] for t in traits] == kimp.laws.names()
+    assert [t["number"] for t in traits] == list(range(1, len(traits) + 1))
+    for t in traits:
+        cls = getattr(kimp.laws, t["class_name"])
+        assert cls.law == t["name"] and t["class_name"] in kimp.laws.__all__
+        assert kimp.laws.make(t["name"], k=1e9).__class__ is cls
+        parameters = list(inspect.signature(cls.__init__).parameters.values())[1:]
+        assert [p.name for p in parameters] == [p[0] for p in t["parameters"]]
+        for p, (name, _unit, required, default) in zip(parameters, t["parameters"]):
+            assert (p.default is inspect.Parameter.empty) == required, name
+            if not required:
+                assert p.default == default, name
+        law = cls(1e9)
+        assert law.exponent == t["default_exponent"]
+        assert ("cor" in [p.name for p in parameters]) == t["uses_cor"]
+        if t["uses_cor"]:
+            assert law.cor == kimp.thesis_cor == 0.7
+        with pytest.raises(TypeError):
+            cls(1e9, no_such_parameter=1.0)
+
+
 def test_collide_matches_the_cli_cor_table(tmp_path):
     run_cli("collide", "-o", tmp_path / "out")
     cli = kimp.read(tmp_path / "out" / "collide.h5")
