@@ -129,44 +129,63 @@ namespace kimp::lumped::plan
     struct StepArrays
     {
       std::size_t   n = 0, rows = 0;
-      const double *hg = nullptr, *af = nullptr, *amx = nullptr, *amy = nullptr, *un = nullptr;
-      double       *y = nullptr, *du = nullptr, *z = nullptr, *inc = nullptr, *dun = nullptr,
+      const double *hg = nullptr, *af = nullptr, *amx = nullptr, *amy = nullptr, *un = nullptr,
+                   *rx = nullptr, *ry = nullptr, *mx = nullptr, *my = nullptr;
+      double *y = nullptr, *du = nullptr, *z = nullptr, *inc = nullptr, *dun = nullptr,
              *unp = nullptr, *v = nullptr, *a = nullptr, *pu = nullptr, *pa = nullptr;
       double f[3] = {0.0, 0.0, 0.0}, ag_x = 0.0, ag_y = 0.0, half_inv_dt = 0.0, inv_dt2 = 0.0;
+      double p_in = 0.0; ///< out: −(r_xᵀM·v·ü_g,x + r_yᵀM·v·ü_g,y), W
     };
 
-    /// The increment of one step from y (Run::advance); element-wise, the same for any width.
-    inline __attribute__((always_inline)) void update_body(const StepArrays &k)
+    /**
+     * The increment of one step from y (Run::advance), v_n, a_n (r_x, r_y pick the DOFs that
+     * ü_g,x and ü_g,y add to: 1·ü_g + 0·ü_g is ü_g exactly), the peaks of |u_n| and |a_n| and
+     * the input power; element-wise but for the power's two sums.
+     */
+    inline __attribute__((always_inline)) void update_body(StepArrays &k)
     {
       const std::size_t n        = k.n;
       const double *__restrict y = k.y, *__restrict du = k.du, *__restrict af = k.af,
                                *__restrict amx = k.amx, *__restrict amy = k.amy,
-                               *__restrict un = k.un;
+                               *__restrict un = k.un, *__restrict rx = k.rx, *__restrict ry = k.ry,
+                               *__restrict mx = k.mx, *__restrict my = k.my;
       double *__restrict z = k.z, *__restrict inc = k.inc, *__restrict dun = k.dun,
-                         *__restrict unp = k.unp, *__restrict v = k.v, *__restrict a = k.a;
+                         *__restrict unp = k.unp, *__restrict v = k.v, *__restrict a = k.a,
+                         *__restrict pu = k.pu, *__restrict pa = k.pa;
+      // Scalars in locals: read through `k` they could alias the stores.
+      const double ag_x = k.ag_x, ag_y = k.ag_y, f0 = k.f[0], f1 = k.f[1], f2 = k.f[2];
+      const double h = k.half_inv_dt, i2 = k.inv_dt2;
+      double       p_x = 0.0, p_y = 0.0;
       for (std::size_t i = 0; i < n; ++i)
       {
-        const double d = -(y[i] + z[i] + amx[i] * k.ag_x + amy[i] * k.ag_y) -
-                         (af[i] * k.f[0] + af[n + i] * k.f[1] + af[2 * n + i] * k.f[2]);
+        const double d = -(y[i] + z[i] + amx[i] * ag_x + amy[i] * ag_y) -
+                         (af[i] * f0 + af[n + i] * f1 + af[2 * n + i] * f2);
         const double next = du[i] + d;
         inc[i]            = d;
         dun[i]            = next;
         z[i] += y[n + i];
-        unp[i] = un[i] + next;
-        v[i]   = (du[i] + next) * k.half_inv_dt;
-        a[i]   = d * k.inv_dt2;
+        unp[i]          = un[i] + next;
+        const double vi = (du[i] + next) * h;
+        const double ai = d * i2 + (rx[i] * ag_x + ry[i] * ag_y);
+        v[i]            = vi;
+        a[i]            = ai;
+        pu[i]           = std::max(pu[i], std::abs(un[i]));
+        pa[i]           = std::max(pa[i], std::abs(ai));
+        p_x += mx[i] * vi;
+        p_y += my[i] * vi;
       }
+      k.p_in = -(p_x * ag_x + p_y * ag_y);
     }
 
-    using StepKernel = void (*)(const StepArrays &);
+    using StepKernel = void (*)(StepArrays &);
 
-    void step_base(const StepArrays &k)
+    void step_base(StepArrays &k)
     {
       dense_product_body(k.hg, k.du, k.y, k.rows, k.n);
       update_body(k);
     }
 
-    __attribute__((target("avx2"))) void step_avx2(const StepArrays &k)
+    __attribute__((target("avx2"))) void step_avx2(StepArrays &k)
     {
       dense_product_body(k.hg, k.du, k.y, k.rows, k.n);
       update_body(k);
@@ -186,6 +205,8 @@ namespace kimp::lumped::plan
                     const Eigen::VectorXd &u_prev2);
       void   contact(std::size_t c, double delta, double s, double s_prev, double t);
       bool   contacts_far(long n, const double *q0);
+      void   set_up_matrices();
+      void   set_up_points();
       void   ground(long n, double &ag_x, double &ag_y);
       void   advance(double ag_x, double ag_y);
       void   bookkeeping(long n);
@@ -209,6 +230,7 @@ namespace kimp::lumped::plan
       StepKernel      step_    = nullptr;
       Eigen::MatrixXd a_inv_f_; ///< A⁻¹ restricted to level 0's columns, n × 3
       Eigen::VectorXd am_x_, am_y_;
+      Eigen::VectorXd r_x_, r_y_;   ///< the DOFs along x and along y (1, else 0)
       Eigen::VectorXd rx_m_, ry_m_; ///< M·r_x, M·r_y
 
       // state: u_{n−2}, u_{n−1}, u_n, u_{n+1}, Δu_n, Δu_{n+1}, z_{n−1}, products
@@ -290,29 +312,9 @@ namespace kimp::lumped::plan
         opt_.duration > 0.0 ? opt_.duration : g.dt * static_cast<double>(g.x.size());
       n_steps_ = std::lround(duration / dt_);
 
+      set_up_matrices();
       const auto             nn = static_cast<Eigen::Index>(n_);
-      const Eigen::VectorXd  m  = model_.masses();
-      const Eigen::MatrixXd &k  = model_.stiffness();
       const Eigen::MatrixXd &c  = model_.damping();
-      const Eigen::MatrixXd  a =
-        Eigen::MatrixXd(m.asDiagonal()) * (inv_dt_ * inv_dt_) + c * (0.5 * inv_dt_);
-      const Eigen::MatrixXd inv = a.partialPivLu().inverse();
-      // [A⁻¹(C/Δt + K); A⁻¹K], its rows padded with zeros to a multiple of 16.
-      hg_rows_               = (2 * n_ + 15) / 16 * 16;
-      step_                  = __builtin_cpu_supports("avx2") ? step_avx2 : step_base;
-      hg_                    = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(hg_rows_), nn);
-      hg_.topRows(nn)        = inv * (c * inv_dt_ + k);
-      hg_.middleRows(nn, nn) = inv * k;
-      a_inv_f_               = inv.leftCols(3);
-      rx_m_                  = Eigen::VectorXd::Zero(nn);
-      ry_m_                  = Eigen::VectorXd::Zero(nn);
-      for (Eigen::Index i = 0; i < nn; i += 3)
-      {
-        rx_m_(i)     = m(i);
-        ry_m_(i + 1) = m(i + 1);
-      }
-      am_x_ = inv * rx_m_;
-      am_y_ = inv * ry_m_;
 
       for (const PlanIsolatorSpec &spec : model_.building().isolators)
       {
@@ -348,6 +350,89 @@ namespace kimp::lumped::plan
       called_.assign(nc, 1); // the first step takes the laws as they are (planar integrator)
       wall_force_.assign(model_.moat() ? model_.moat()->wall.size() : 0, 0.0);
 
+      set_up_points();
+
+      const double ratio = g.dt / dt_;
+      sub_               = std::lround(ratio);
+      integer_substeps_  = sub_ > 0 && std::abs(ratio - static_cast<double>(sub_)) < 1e-9 * ratio;
+      inv_sub_           = 1.0 / static_cast<double>(sub_ > 0 ? sub_ : 1);
+      every_ =
+        opt_.output_interval > 0.0 ? std::max(1L, std::lround(opt_.output_interval / dt_)) : 0L;
+      if (every_ > 0 && every_ <= 512)
+        check_every_ = every_ * (512 / every_);
+
+      u_nm2_ = u_nm1_ = u_n_ = u_np1_ = du_n_ = du_np1_ = z_ = inc_ = v_ = a_ =
+        Eigen::VectorXd::Zero(nn);
+      y_      = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(hg_rows_));
+      peak_u_ = Eigen::VectorXd::Zero(nn);
+      peak_a_ = Eigen::VectorXd::Zero(nn);
+
+      const PlanBuilding &b = model_.building();
+      out_.n_levels         = b.n_levels();
+      out_.peak_displacement.assign(n_, 0.0);
+      out_.peak_absolute_acceleration.assign(n_, 0.0);
+      out_.peak_corner_displacement.assign(b.n_levels(), 0.0);
+      out_.peak_horizontal_acceleration.assign(b.n_levels(), 0.0);
+      out_.peak_drift_x.assign(b.storeys.size(), 0.0);
+      out_.peak_drift_y.assign(b.storeys.size(), 0.0);
+      out_.peak_corner_drift.assign(b.storeys.size(), 0.0);
+      out_.peak_wall_force.assign(wall_force_.size(), 0.0);
+      corner_sq_.assign(b.n_levels(), 0.0);
+      accel_sq_.assign(b.n_levels(), 0.0);
+      drift_sq_.assign(b.storeys.size(), 0.0);
+      for (std::size_t l = 0; l < b.n_levels(); ++l)
+      {
+        const auto r = static_cast<Eigen::Index>(3 * l);
+        c_diag_.push_back(c.block<3, 3>(r, r));
+        if (l + 1 < b.n_levels())
+          c_upper_.push_back(c.block<3, 3>(r, r + 3));
+        // Blocks beyond the neighbouring level must vanish (Rayleigh of a block-tridiagonal K).
+        if (r + 6 < nn && !c.block(r, r + 6, 3, nn - r - 6).isZero(0.0))
+          throw std::logic_error("central difference in plan: C is not block-tridiagonal");
+      }
+      for (const PlanContact &pc : model_.contacts())
+      {
+        PlanContactResult r;
+        r.name    = pc.name;
+        r.segment = pc.segment;
+        out_.contacts.push_back(r);
+      }
+      out_.history.interval = every_ > 0 ? static_cast<double>(every_) * dt_ : 0.0;
+    }
+
+    void Run::set_up_matrices()
+    {
+      const auto             nn = static_cast<Eigen::Index>(n_);
+      const Eigen::VectorXd  m  = model_.masses();
+      const Eigen::MatrixXd &k  = model_.stiffness();
+      const Eigen::MatrixXd &c  = model_.damping();
+      const Eigen::MatrixXd  a =
+        Eigen::MatrixXd(m.asDiagonal()) * (inv_dt_ * inv_dt_) + c * (0.5 * inv_dt_);
+      const Eigen::MatrixXd inv = a.partialPivLu().inverse();
+      // [A⁻¹(C/Δt + K); A⁻¹K], its rows padded with zeros to a multiple of 16.
+      hg_rows_               = (2 * n_ + 15) / 16 * 16;
+      step_                  = __builtin_cpu_supports("avx2") ? step_avx2 : step_base;
+      hg_                    = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(hg_rows_), nn);
+      hg_.topRows(nn)        = inv * (c * inv_dt_ + k);
+      hg_.middleRows(nn, nn) = inv * k;
+      a_inv_f_               = inv.leftCols(3);
+      r_x_                   = Eigen::VectorXd::Zero(nn);
+      r_y_                   = Eigen::VectorXd::Zero(nn);
+      rx_m_                  = Eigen::VectorXd::Zero(nn);
+      ry_m_                  = Eigen::VectorXd::Zero(nn);
+      for (Eigen::Index i = 0; i < nn; i += 3)
+      {
+        r_x_(i)      = 1.0;
+        r_y_(i + 1)  = 1.0;
+        rx_m_(i)     = m(i);
+        ry_m_(i + 1) = m(i + 1);
+      }
+      am_x_ = inv * rx_m_;
+      am_y_ = inv * ry_m_;
+    }
+
+    void Run::set_up_points()
+    {
       // The corners and the storeys' reference points.
       const PlanBuilding &b = model_.building();
       for (std::size_t l = 0; l < b.n_levels(); ++l)
@@ -385,52 +470,6 @@ namespace kimp::lumped::plan
         drift_bound_.push_back(bound);
       }
       drift_first_.push_back(corner_drifts_.size());
-
-      const double ratio = g.dt / dt_;
-      sub_               = std::lround(ratio);
-      integer_substeps_  = sub_ > 0 && std::abs(ratio - static_cast<double>(sub_)) < 1e-9 * ratio;
-      inv_sub_           = 1.0 / static_cast<double>(sub_ > 0 ? sub_ : 1);
-      every_ =
-        opt_.output_interval > 0.0 ? std::max(1L, std::lround(opt_.output_interval / dt_)) : 0L;
-      if (every_ > 0 && every_ <= 512)
-        check_every_ = every_ * (512 / every_);
-
-      u_nm2_ = u_nm1_ = u_n_ = u_np1_ = du_n_ = du_np1_ = z_ = inc_ = v_ = a_ =
-        Eigen::VectorXd::Zero(nn);
-      y_      = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(hg_rows_));
-      peak_u_ = Eigen::VectorXd::Zero(nn);
-      peak_a_ = Eigen::VectorXd::Zero(nn);
-
-      out_.n_levels = b.n_levels();
-      out_.peak_displacement.assign(n_, 0.0);
-      out_.peak_absolute_acceleration.assign(n_, 0.0);
-      out_.peak_corner_displacement.assign(b.n_levels(), 0.0);
-      out_.peak_horizontal_acceleration.assign(b.n_levels(), 0.0);
-      out_.peak_drift_x.assign(b.storeys.size(), 0.0);
-      out_.peak_drift_y.assign(b.storeys.size(), 0.0);
-      out_.peak_corner_drift.assign(b.storeys.size(), 0.0);
-      out_.peak_wall_force.assign(wall_force_.size(), 0.0);
-      corner_sq_.assign(b.n_levels(), 0.0);
-      accel_sq_.assign(b.n_levels(), 0.0);
-      drift_sq_.assign(b.storeys.size(), 0.0);
-      for (std::size_t l = 0; l < b.n_levels(); ++l)
-      {
-        const auto r = static_cast<Eigen::Index>(3 * l);
-        c_diag_.push_back(c.block<3, 3>(r, r));
-        if (l + 1 < b.n_levels())
-          c_upper_.push_back(c.block<3, 3>(r, r + 3));
-        // Blocks beyond the neighbouring level must vanish (Rayleigh of a block-tridiagonal K).
-        if (r + 6 < nn && !c.block(r, r + 6, 3, nn - r - 6).isZero(0.0))
-          throw std::logic_error("central difference in plan: C is not block-tridiagonal");
-      }
-      for (const PlanContact &pc : model_.contacts())
-      {
-        PlanContactResult r;
-        r.name    = pc.name;
-        r.segment = pc.segment;
-        out_.contacts.push_back(r);
-      }
-      out_.history.interval = every_ > 0 ? static_cast<double>(every_) * dt_ : 0.0;
     }
 
     void Run::ground(const long n, double &ag_x, double &ag_y)
@@ -635,28 +674,20 @@ namespace kimp::lumped::plan
       k.ag_y        = ag_y;
       k.half_inv_dt = 0.5 * inv_dt_;
       k.inv_dt2     = inv_dt_ * inv_dt_;
+      k.rx          = r_x_.data();
+      k.ry          = r_y_.data();
+      k.mx          = rx_m_.data();
+      k.my          = ry_m_.data();
+      k.pu          = peak_u_.data();
+      k.pa          = peak_a_.data();
       step_(k);
-      const std::size_t n        = n_;
-      double *__restrict a       = a_.data();
-      const double *__restrict v = v_.data(), *__restrict un = u_n_.data();
-      double *__restrict pu = peak_u_.data(), *__restrict pa = peak_a_.data();
-      double p_x = 0.0, p_y = 0.0;
-      const double *__restrict m = model_.masses().data();
+      p_in_ = k.p_in;
       for (std::size_t l = 0; l < accel_sq_.size(); ++l)
       {
-        const std::size_t i = 3 * l;
-        a[i] += ag_x;
-        a[i + 1] += ag_y;
-        accel_sq_[l] = std::max(accel_sq_[l], a[i] * a[i] + a[i + 1] * a[i + 1]);
-        p_x += m[i] * v[i];
-        p_y += m[i + 1] * v[i + 1];
+        const double ax = a_(static_cast<Eigen::Index>(3 * l)),
+                     ay = a_(static_cast<Eigen::Index>(3 * l + 1));
+        accel_sq_[l]    = std::max(accel_sq_[l], ax * ax + ay * ay);
       }
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        pu[i] = std::max(pu[i], std::abs(un[i]));
-        pa[i] = std::max(pa[i], std::abs(a[i]));
-      }
-      p_in_ = -(p_x * ag_x + p_y * ag_y);
     }
 
     void Run::bookkeeping(const long n)
