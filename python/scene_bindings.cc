@@ -10,6 +10,7 @@
 
 #include "app/collide_run.h"
 #include "app/lumped_scene.h"
+#include "app/plan_scene.h"
 #include "io/scene_io.h"
 #include "io/units.h"
 
@@ -63,7 +64,7 @@ namespace kimp::python
     const std::map<std::string, SceneKind> &scene_kinds()
     {
       static const std::map<std::string, SceneKind> kinds = {
-        {"lumped", scene_kind<app::LumpedScene>("kimp lumped scene")},
+        {"lumped", scene_kind<app::PlanLumpedScene>("kimp lumped scene")},
         {"collide", scene_kind<app::CollideScene>("kimp collide scene")},
 #ifdef KIMP_WITH_FEM
         {"fem", scene_kind<app::FemScene>("kimp fem scene")},
