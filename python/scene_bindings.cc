@@ -24,6 +24,20 @@ namespace kimp::python
 {
   namespace
   {
+    /// A scene's resolved JSON as its command writes it.
+    template <class Scene>
+    std::string resolved_json(io::LoadedScene<Scene> &loaded)
+    {
+      return std::move(loaded.resolved_json);
+    }
+
+    /// `kimp lumped`: a scene without `plan` resolves as the planar scene it is (no `plan: null`).
+    std::string resolved_json(io::LoadedScene<app::PlanLumpedScene> &loaded)
+    {
+      return loaded.scene.plan ? std::move(loaded.resolved_json) :
+                                 io::to_json_text(loaded.scene.base);
+    }
+
     /// What Python needs of one scene kind.
     struct SceneKind
     {
@@ -50,11 +64,12 @@ namespace kimp::python
                   given_directory ? std::filesystem::path(*given_directory) :
                   std::filesystem::is_regular_file(file, ec) ? file.parent_path() :
                                                                std::filesystem::path();
-                io::LoadedScene<Scene> loaded = io::read_scene_text<Scene>(text, name, directory);
+                io::LoadedScene<Scene> loaded   = io::read_scene_text<Scene>(text, name, directory);
+                std::string            resolved = resolved_json(loaded);
                 return ParsedScene{"",
                                    name,
                                    text,
-                                   std::move(loaded.resolved_json),
+                                   std::move(resolved),
                                    std::make_shared<const Scene>(std::move(loaded.scene))};
               },
               [] { return io::schema_text<Scene>(); },
