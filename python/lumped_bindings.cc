@@ -10,6 +10,7 @@
 #include "app/lumped/ground_motion_scene.h"
 #include "app/lumped/lumped_run.h"
 #include "app/lumped/lumped_scene.h"
+#include "app/lumped/plan_run.h"
 #include "io/scene_io.h"
 
 #include "python/bindings.h"
@@ -35,11 +36,95 @@ namespace kimp::python
       return d;
     }
 
-    const app::LumpedScene &lumped_scene(const ParsedScene &parsed)
+    const app::PlanLumpedScene &full_scene(const ParsedScene &parsed)
     {
       if (parsed.kind != "lumped")
         throw std::invalid_argument(parsed.name + " is a " + parsed.kind + " scene, not lumped");
-      return parsed.as<app::LumpedScene>();
+      return parsed.as<app::PlanLumpedScene>();
+    }
+
+    const app::LumpedScene &lumped_scene(const ParsedScene &parsed)
+    {
+      return full_scene(parsed).base;
+    }
+
+    /// A run in plan as plain Python objects: per level arrays of (x, y, θ), the corners of
+    /// level 0, the contacts; histories (n samples) shaped (n, levels, 3), (n, corners, 2) and
+    /// (n, contacts).
+    py::dict plan_dict(app::PlanRun &&run)
+    {
+      lumped::plan::PlanResponse &r  = run.response;
+      const auto                  nl = static_cast<py::ssize_t>(r.n_levels);
+      const auto                  nc = static_cast<py::ssize_t>(run.contact_names.size());
+      py::dict                    d;
+      d["name"]             = "default";
+      d["status"]           = "ok";
+      d["ground_motion"]    = run.motion.name;
+      d["dt"]               = r.dt;
+      d["dt_critical"]      = run.dt_critical;
+      d["n_steps"]          = r.n_steps;
+      d["n_levels"]         = r.n_levels;
+      d["n_impacts"]        = r.n_impacts();
+      d["wall_time"]        = run.wall_time;
+      d["contact_names"]    = run.contact_names;
+      double   corner_force = 0.0, friction_force = 0.0;
+      py::list contacts;
+      for (const lumped::plan::PlanContactResult &c : r.contacts)
+      {
+        corner_force   = std::max(corner_force, c.peak_normal_force);
+        friction_force = std::max(friction_force, c.peak_friction_force);
+        py::dict cd;
+        cd["name"]                = c.name;
+        cd["segment"]             = c.segment;
+        cd["peak_normal_force"]   = c.peak_normal_force;
+        cd["peak_friction_force"] = c.peak_friction_force;
+        cd["n_impacts"]           = c.impacts.size();
+        cd["dissipated_energy"]   = c.dissipated_energy;
+        cd["friction_work"]       = c.friction_work;
+        contacts.append(cd);
+      }
+      d["contacts"] = contacts;
+      py::dict p;
+      p["base_corner_displacement"] = r.peak_corner_displacement.front();
+      p["corner_impact_force"]      = corner_force;
+      p["friction_force"]           = friction_force;
+      p["top_acceleration"]         = r.peak_horizontal_acceleration.back();
+      p["isolator_force"]           = r.peak_isolator_force;
+      p["displacement"]             = to_numpy(std::move(r.peak_displacement), {nl, 3});
+      p["absolute_acceleration"]    = to_numpy(std::move(r.peak_absolute_acceleration), {nl, 3});
+      p["corner_displacement"]      = to_numpy(std::move(r.peak_corner_displacement));
+      p["horizontal_acceleration"]  = to_numpy(std::move(r.peak_horizontal_acceleration));
+      p["drift_x"]                  = to_numpy(std::move(r.peak_drift_x));
+      p["drift_y"]                  = to_numpy(std::move(r.peak_drift_y));
+      p["corner_drift"]             = to_numpy(std::move(r.peak_corner_drift));
+      p["wall_force"]               = to_numpy(std::move(r.peak_wall_force));
+      d["peaks"]                    = p;
+      lumped::plan::PlanHistory &h  = r.history;
+      const auto                 n  = static_cast<py::ssize_t>(h.time.size());
+      const auto                 corners = static_cast<py::ssize_t>(
+        n > 0 ? h.corner_displacement.size() / (2 * static_cast<std::size_t>(n)) : run.n_corners);
+      py::dict hd;
+      hd["time"]                  = to_numpy(std::move(h.time));
+      hd["displacement"]          = to_numpy(std::move(h.displacement), {n, nl, 3});
+      hd["absolute_acceleration"] = to_numpy(std::move(h.absolute_acceleration), {n, nl, 3});
+      hd["corner_displacement"]   = to_numpy(std::move(h.corner_displacement), {n, corners, 2});
+      hd["contact_force"]         = to_numpy(std::move(h.contact_force), {n, nc});
+      hd["friction_force"]        = to_numpy(std::move(h.friction_force), {n, nc});
+      hd["energy_error"]          = to_numpy(std::move(h.energy_error));
+      d["history"]                = hd;
+      const lumped::plan::PlanEnergy &e = r.energy;
+      d["energy"]                       = py::dict(py::arg("initial")            = e.initial,
+                             py::arg("input")              = e.input,
+                             py::arg("kinetic")            = e.kinetic,
+                             py::arg("strain")             = e.strain,
+                             py::arg("viscous")            = e.viscous,
+                             py::arg("hysteretic")         = e.hysteretic,
+                             py::arg("contact_work")       = e.contact_work,
+                             py::arg("impact_dissipated")  = e.impact_dissipated,
+                             py::arg("friction")           = e.friction,
+                             py::arg("relative_error")     = e.relative_error,
+                             py::arg("max_relative_error") = e.max_relative_error);
+      return d;
     }
 
     /// The case as plain Python objects; its vectors are moved into the arrays.
@@ -190,6 +275,9 @@ namespace kimp::python
          const std::optional<std::string> &records_dir,
          const std::optional<std::string> &only_case)
       {
+        if (full_scene(parsed).plan)
+          throw std::invalid_argument(parsed.name +
+                                      " has a plan section: run it with run_plan (kimp.lumped)");
         app::LumpedCasesRun run;
         {
           // Everything below is C++ only: other Python threads run meanwhile.
@@ -212,6 +300,28 @@ namespace kimp::python
       py::arg("case")        = py::none(),
       "Run the cases of a lumped scene as `kimp lumped` does (app::run_lumped_cases: the same "
       "records, step budget and messages); a list of plain dicts.");
+
+    m.def(
+      "has_plan",
+      [](const ParsedScene &parsed) { return full_scene(parsed).plan.has_value(); },
+      py::arg("scene"),
+      "Whether a lumped scene has a `plan` section (pounding in plan).");
+
+    m.def(
+      "run_plan",
+      [](const ParsedScene &parsed, const std::optional<std::string> &records_dir)
+      {
+        app::PlanRun run;
+        {
+          py::gil_scoped_release release;
+          run = app::run_plan(full_scene(parsed), parsed.name, parsed.text, directory(records_dir));
+        }
+        return plan_dict(std::move(run));
+      },
+      py::arg("scene"),
+      py::arg("records_dir") = py::none(),
+      "Run a lumped scene with a `plan` section as `kimp lumped` does (app::run_plan); a plain "
+      "dict.");
 
     m.def(
       "ground_motion",

@@ -10,6 +10,7 @@
 
 #include "app/lumped/collide_run.h"
 #include "app/lumped/lumped_scene.h"
+#include "app/lumped/plan_scene.h"
 #include "io/scene_io.h"
 #include "io/units.h"
 
@@ -23,6 +24,20 @@ namespace kimp::python
 {
   namespace
   {
+    /// A scene's resolved JSON as its command writes it.
+    template <class Scene>
+    std::string resolved_json(io::LoadedScene<Scene> &loaded)
+    {
+      return std::move(loaded.resolved_json);
+    }
+
+    /// `kimp lumped`: a scene without `plan` resolves as the planar scene it is (no `plan: null`).
+    std::string resolved_json(io::LoadedScene<app::PlanLumpedScene> &loaded)
+    {
+      return loaded.scene.plan ? std::move(loaded.resolved_json) :
+                                 io::to_json_text(loaded.scene.base);
+    }
+
     /// What Python needs of one scene kind.
     struct SceneKind
     {
@@ -49,11 +64,12 @@ namespace kimp::python
                   given_directory ? std::filesystem::path(*given_directory) :
                   std::filesystem::is_regular_file(file, ec) ? file.parent_path() :
                                                                std::filesystem::path();
-                io::LoadedScene<Scene> loaded = io::read_scene_text<Scene>(text, name, directory);
+                io::LoadedScene<Scene> loaded   = io::read_scene_text<Scene>(text, name, directory);
+                std::string            resolved = resolved_json(loaded);
                 return ParsedScene{"",
                                    name,
                                    text,
-                                   std::move(loaded.resolved_json),
+                                   std::move(resolved),
                                    std::make_shared<const Scene>(std::move(loaded.scene))};
               },
               [] { return io::schema_text<Scene>(); },
@@ -63,7 +79,7 @@ namespace kimp::python
     const std::map<std::string, SceneKind> &scene_kinds()
     {
       static const std::map<std::string, SceneKind> kinds = {
-        {"lumped", scene_kind<app::LumpedScene>("kimp lumped scene")},
+        {"lumped", scene_kind<app::PlanLumpedScene>("kimp lumped scene")},
         {"collide", scene_kind<app::CollideScene>("kimp collide scene")},
 #ifdef KIMP_WITH_FEM
         {"fem", scene_kind<app::FemScene>("kimp fem scene")},

@@ -23,6 +23,41 @@ from sweep_plots import (AMPLIFICATIONS, PEAK_FORCE, RESPONSES, describe, gap_ch
                          panels_vs, property_charts, save, shown)
 
 # ---------------------------------------------------------------------------------------- kinds
+# Peaks of a sweep of scenes in plan (the metric names of kimp's plan rows).
+PLAN_RESPONSES = [
+    ("base_corner_displacement", "peak base corner displacement [cm]",
+     lambda s, r: 100 * s.value(r, "base_corner_displacement [m]")),
+    ("corner_impact_force", "peak corner impact force [MN]",
+     lambda s, r: s.value(r, "corner_impact_force [N]") / 1e6),
+    ("top_acceleration", "top-floor acceleration [m/s²]",
+     lambda s, r: s.value(r, "top_acceleration [m/s^2]")),
+    ("corner_drift", "peak corner drift [mm]", lambda s, r: 1000 * s.value(r, "corner_drift [m]")),
+    ("rotation", "peak rotation [mrad]", lambda s, r: 1000 * s.value(r, "rotation [rad]")),
+    ("n_impacts", "number of impacts", lambda s, r: s.value(r, "n_impacts")),
+]
+
+
+def chart_directionality(sweep, written, lines):
+    """Peaks against the angle of incidence (the parameter that sets plan.angle), one line per
+    value of the other swept parameters (e.g. the eccentricity); the largest of each peak and its
+    case in the summary."""
+    angle = next((p["name"] for p in sweep.params
+                  if any("plan.angle" in s for s in p.get("settings", []))), None)
+    if angle is None:
+        raise ValueError("report kind directionality: no parameter sets plan.angle")
+    series = [n for n in sweep.names if n != angle]
+    panels_vs(sweep, sweep.ok, lambda r: number(r[angle]), "angle of incidence [deg from x]",
+              series, PLAN_RESPONSES, "directionality", f"{sweep.title}: peaks against the angle",
+              written)
+    for key, label, fun in PLAN_RESPONSES[:-1]:
+        vals = [(fun(sweep, r), r) for r in sweep.ok if math.isfinite(fun(sweep, r))]
+        if vals:
+            best = max(vals, key=lambda t: t[0])
+            unit = re.search(r"\[(.*)\]", label).group(1)
+            text = re.sub(r"\s*\[.*\]", "", label)
+            lines.append(f"- largest {text}: {fmt(best[0])} {unit} at {describe(sweep, best[1])}")
+
+
 def chart_gap_study(sweep, written, lines):
     gap_charts(sweep, sweep.ok, other_params(sweep), written)
     add_dreq_lines(sweep, lines)
@@ -279,6 +314,7 @@ KINDS = {
     "impact_parameters": chart_impact_parameters,
     "adjacent_buildings": chart_adjacent,
     "bumpers": chart_bumpers,
+    "directionality": chart_directionality,
 }
 
 

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "app/lumped/lumped_run_internal.h"
 #include "base/logging.h"
 #include "base/version.h"
 #include "io/results_file.h"
@@ -87,6 +88,21 @@ namespace kimp::app
     out.response  = integrator.run(out.motion);
     out.wall_time = std::chrono::duration<double>(Clock::now() - start).count();
     return out;
+  }
+
+  RunEstimate estimate_plan_case(const PlanLumpedScene                &scene,
+                                 const lumped::plan::PlanGroundMotion &motion)
+  {
+    const plan::PlanCentralDifference integrator(plan::PlanModel(
+                                                   make_plan_scene(scene.base, scene.plan.value())),
+                                                 plan_options(scene.base.integration));
+    lumped::GroundMotion              length; // make_estimate() reads the record's dt and length
+    length.dt = motion.dt;
+    length.acceleration.assign(motion.x.size(), 0.0);
+    return lumped_internal::make_estimate(integrator.time_step(motion.dt),
+                                          scene.base.integration,
+                                          length,
+                                          integrator.model().n_dofs());
   }
 
   namespace

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "app/lumped/lumped_run.h"
 #include "app/lumped/plan_scene.h"
 #include "io/output_dir.h"
 #include "lumped/plan/plan_central_difference.h"
@@ -33,6 +34,15 @@ namespace kimp::app
                    const std::string                          &file_name,
                    const std::string                          &scene_text,
                    const std::optional<std::filesystem::path> &records_dir_override = {});
+
+  /**
+   * The cost of a plan scene's run under `motion`, known before it runs: its engine's step, the
+   * steps over integration.duration (or the motion's), 3 DoFs per level and the cost per
+   * DoF-step of lumped_run.h (the plan engine's measured cost is within it).
+   * @throws std::invalid_argument what the engine refuses.
+   */
+  RunEstimate estimate_plan_case(const PlanLumpedScene                &scene,
+                                 const lumped::plan::PlanGroundMotion &motion);
 
   /// run_plan(), then lumped.h5 (/lumped/default, "plan" = 1), summary.json and peaks.csv in
   /// `output`.

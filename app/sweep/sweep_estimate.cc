@@ -7,6 +7,7 @@
 
 #include "app/lumped/ground_motion_scene.h"
 #include "app/lumped/lumped_scene.h"
+#include "app/lumped/plan_run.h"
 #include "base/logging.h"
 
 namespace kimp::app
@@ -30,12 +31,24 @@ namespace kimp::app
   {
     try
     {
-      const LumpedScene scene =
-        io::load_scene_text<LumpedScene>(scene_text,
-                                         scene_name,
-                                         std::filesystem::path(scene_name).parent_path());
+      const PlanLumpedScene read =
+        io::load_scene_text<PlanLumpedScene>(scene_text,
+                                             scene_name,
+                                             std::filesystem::path(scene_name).parent_path());
       SweepEstimate e;
       e.n_cases = n_cases;
+      if (read.plan)
+      {
+        // One run of the plan engine per case.
+        e.runs_per_case = 1;
+        e.base          = estimate_plan_case(
+          read,
+          load_plan_motion(read.base, *read.plan, records_dir, scene_name, scene_text));
+        e.total_steps = static_cast<double>(n_cases) * e.base.n_steps;
+        e.seconds     = static_cast<double>(n_cases) * e.base.seconds;
+        return e;
+      }
+      const LumpedScene &scene = read.base;
       // Each of the scene's cases, and again without contacts with integration.companion.
       e.runs_per_case =
         std::max<std::size_t>(1, scene.cases.size()) * (scene.integration.companion ? 2 : 1);

@@ -297,7 +297,8 @@ namespace kimp::app
                                                 "wall_location",
                                                 "impact_parameters",
                                                 "adjacent_buildings",
-                                                "bumpers"};
+                                                "bumpers",
+                                                "directionality"};
     return kinds;
   }
 

@@ -12,6 +12,8 @@
 #include <utility>
 
 #include "app/lumped/lumped_scene.h"
+#include "app/lumped/plan_run.h"
+#include "app/lumped/plan_scene.h"
 #include "io/scene_io.h"
 
 namespace kimp::app
@@ -58,6 +60,63 @@ namespace kimp::app
       for (std::size_t s = 0; s < amplification.interstorey_drift.size(); ++s)
         add(fmt::format("amp_drift_storey{}", s), amplification.interstorey_drift[s]);
     }
+  }
+
+  void append_plan_metrics(const PlanRun &run, const std::string &prefix, CaseRow &row)
+  {
+    const lumped::plan::PlanResponse &r   = run.response;
+    const auto                        add = [&](const std::string &name, double value)
+    { row.metrics.emplace_back(prefix + name, value); };
+    double corner_force = 0.0, friction_force = 0.0, rotation = 0.0, corner_drift = 0.0;
+    for (const lumped::plan::PlanContactResult &c : r.contacts)
+    {
+      corner_force   = std::max(corner_force, c.peak_normal_force);
+      friction_force = std::max(friction_force, c.peak_friction_force);
+    }
+    for (std::size_t i = 2; i < r.peak_displacement.size(); i += 3)
+      rotation = std::max(rotation, r.peak_displacement[i]);
+    for (const double d : r.peak_corner_drift)
+      corner_drift = std::max(corner_drift, d);
+    add("dt [s]", r.dt);
+    add("n_steps", static_cast<double>(r.n_steps));
+    // The peaks of the directionality chart first (summary.json's names of `kimp lumped`).
+    add("base_corner_displacement [m]", r.peak_corner_displacement.front());
+    add("corner_impact_force [N]", corner_force);
+    add("friction_force [N]", friction_force);
+    add("top_acceleration [m/s^2]", r.peak_horizontal_acceleration.back());
+    add("corner_drift [m]", corner_drift);
+    add("rotation [rad]", rotation);
+    add("isolator_force [N]", r.peak_isolator_force);
+    add("n_impacts", static_cast<double>(r.n_impacts()));
+    static const char *const direction[3] = {"x", "y", "theta"};
+    for (std::size_t i = 0; i < r.peak_displacement.size(); ++i)
+    {
+      const std::size_t level = i / 3, d = i % 3;
+      add(
+        fmt::format("peak_displacement_level{}_{} [{}]", level, direction[d], d == 2 ? "rad" : "m"),
+        r.peak_displacement[i]);
+      add(fmt::format("peak_abs_acceleration_level{}_{} [{}]",
+                      level,
+                      direction[d],
+                      d == 2 ? "rad/s^2" : "m/s^2"),
+          r.peak_absolute_acceleration[i]);
+    }
+    for (std::size_t l = 0; l < r.peak_corner_displacement.size(); ++l)
+    {
+      add(fmt::format("peak_corner_displacement_level{} [m]", l), r.peak_corner_displacement[l]);
+      add(fmt::format("peak_horizontal_acceleration_level{} [m/s^2]", l),
+          r.peak_horizontal_acceleration[l]);
+    }
+    for (std::size_t s = 0; s < r.peak_corner_drift.size(); ++s)
+    {
+      add(fmt::format("peak_drift_x_storey{} [m]", s), r.peak_drift_x[s]);
+      add(fmt::format("peak_drift_y_storey{} [m]", s), r.peak_drift_y[s]);
+      add(fmt::format("peak_corner_drift_storey{} [m]", s), r.peak_corner_drift[s]);
+    }
+    for (std::size_t j = 0; j < r.peak_wall_force.size(); ++j)
+      add(fmt::format("peak_wall_force_face{} [N]", j), r.peak_wall_force[j]);
+    add("friction_work [J]", r.energy.friction);
+    add("energy_error", r.energy.max_relative_error);
   }
 
   void append_model_metrics(const lumped::PoundingModel &model,
@@ -219,7 +278,16 @@ namespace kimp::app
     return [records_dir_override, motions, source, scene_directory](const std::string &text,
                                                                     const std::string &name)
     {
-      const LumpedScene scene = load_scene_text<LumpedScene>(text, name, scene_directory);
+      const PlanLumpedScene read = load_scene_text<PlanLumpedScene>(text, name, scene_directory);
+      if (read.plan)
+      {
+        // A scene in plan: one run of the plan engine (its motion, both components, loaded
+        // per case: an angle of incidence turns them).
+        CaseRow row;
+        append_plan_metrics(run_plan(read, name, text, records_dir_override), "", row);
+        return row;
+      }
+      const LumpedScene                                &scene = read.base;
       const std::shared_ptr<const lumped::GroundMotion> motion =
         motions->get(scene.ground_motion, records_dir_override, name, text);
       const auto cases = resolve_cases(scene);

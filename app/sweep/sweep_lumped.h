@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/lumped/lumped_run.h"
+#include "app/lumped/plan_run.h"
 #include "app/sweep/sweep_engine.h"
 #include "lumped/structure/pounding_model.h"
 
@@ -26,6 +27,20 @@ namespace kimp::app
    */
   void
   append_lumped_metrics(const LumpedCaseResult &result, const std::string &prefix, CaseRow &row);
+
+  /**
+   * Metrics of one run in plan (units in brackets): dt [s], n_steps, the peaks of the
+   * directionality chart with the names of `kimp lumped`'s summary.json
+   * (base_corner_displacement [m], corner_impact_force [N], friction_force [N],
+   * top_acceleration [m/s^2], corner_drift [m], rotation [rad], isolator_force [N]), n_impacts,
+   * per level l and direction d (x, y, theta) peak_displacement_level<l>_<d> [m or rad] and
+   * peak_abs_acceleration_level<l>_<d> [m/s^2 or rad/s^2], per level
+   * peak_corner_displacement_level<l> [m] and peak_horizontal_acceleration_level<l> [m/s^2], per
+   * storey peak_drift_x_storey<s>, peak_drift_y_storey<s> and peak_corner_drift_storey<s> [m],
+   * per wall face peak_wall_force_face<j> [N], friction_work [J] and energy_error. `prefix` is
+   * put before every name.
+   */
+  void append_plan_metrics(const PlanRun &run, const std::string &prefix, CaseRow &row);
 
   /**
    * Metrics of the assembled model: per building block <block>.first_dof, <block>.n_dofs and
@@ -69,8 +84,9 @@ namespace kimp::app
   };
 
   /**
-   * CaseRunner for LumpedScene texts. A scene with several `cases` gives one row whose metric
-   * names start with "<case name>."; the row fails with the first failing case's status.
+   * CaseRunner for LumpedScene texts (with an optional `plan` section: such a scene is one run
+   * of the plan engine, append_plan_metrics()). A scene with several `cases` gives one row whose
+   * metric names start with "<case name>."; the row fails with the first failing case's status.
    * Cases share recorded ground motions (loaded once per record, scaling and trimming) and,
    * when `share_free_runs` is set, contact-free runs through a FreeRunCache: each central
    * difference case without histories starts at its first possible contact and takes its

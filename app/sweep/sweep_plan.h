@@ -147,7 +147,8 @@ namespace kimp::app
    * @code
    *   report:
    *     kind: adjacent_buildings   # gap_study, isolation_flexibility, wall_location,
-   *                                # impact_parameters, adjacent_buildings or bumpers
+   *                                # impact_parameters, adjacent_buildings, bumpers or
+   *                                # directionality (scenes in plan: peaks against plan.angle)
    *     gap: walls.left.gap        # scene key path of the swept gap (default walls.left.gap)
    *     title: "Study 5: ..."      # optional chart and summary title
    * @endcode

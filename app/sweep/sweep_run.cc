@@ -16,6 +16,7 @@
 
 #include "app/helper_programs.h"
 #include "app/lumped/lumped_scene.h"
+#include "app/lumped/plan_scene.h"
 #include "app/sweep/sweep_engine.h"
 #include "app/sweep/sweep_estimate.h"
 #include "app/sweep/sweep_lumped.h"
@@ -212,12 +213,19 @@ namespace kimp::app
     const std::filesystem::path scene_directory =
       std::filesystem::path(plan.base_scene_name()).parent_path();
     plan.check_key_paths([&](const std::string &text, const std::string &name)
-                         { read_scene_text<LumpedScene>(text, name, scene_directory); });
+                         { read_scene_text<PlanLumpedScene>(text, name, scene_directory); });
     // Every record before the output directory is made: a misspelt one is an input error.
     plan.check_records(
       [&](const std::string &text, const std::string &name)
       {
-        const LumpedScene scene = load_scene_text<LumpedScene>(text, name, scene_directory);
+        const PlanLumpedScene read = load_scene_text<PlanLumpedScene>(text, name, scene_directory);
+        if (read.plan)
+        {
+          // Both components of a scene in plan (plan.second_record).
+          load_plan_motion(read.base, *read.plan, records_dir, name, text);
+          return;
+        }
+        const LumpedScene &scene = read.base;
         load_ground_motion_at(scene.ground_motion, records_dir, name, text, "ground_motion");
         for (std::size_t i = 0; i < scene.cases.size(); ++i)
           if (!scene.cases[i].record.empty() && scene.cases[i].record != scene.ground_motion.record)

@@ -76,6 +76,121 @@ namespace kimp::lumped::plan
                                                (3.0 * x_n - 4.0 * x_nm1 + x_nm2) * (0.5 * inv_dt);
     }
 
+    /**
+     * y = H·x for a column-major H of `rows` rows (a multiple of 16) and n columns: each row
+     * summed as (Σ over even j) + (Σ over odd j), each over ascending j, so that the two chains
+     * of additions overlap and every vector width gives bitwise the same y. Vectors of four
+     * doubles (GCC vector extensions: two SSE2 registers each in the baseline build, one AVX2
+     * register in the AVX2 build; no FMA, so no contraction).
+     */
+    inline __attribute__((always_inline)) void dense_product_body(const double *__restrict h,
+                                                                  const double *__restrict x,
+                                                                  double *__restrict y,
+                                                                  const std::size_t rows,
+                                                                  const std::size_t n)
+    {
+      typedef double V __attribute__((vector_size(32)));
+      typedef double U __attribute__((vector_size(32), aligned(8), may_alias));
+      for (std::size_t r = 0; r < rows; r += 16)
+      {
+        V           e0 = {}, e1 = {}, e2 = {}, e3 = {}, o0 = {}, o1 = {}, o2 = {}, o3 = {};
+        std::size_t j = 0;
+        for (; j + 1 < n; j += 2)
+        {
+          const U *c  = reinterpret_cast<const U *>(h + j * rows + r);
+          const U *c1 = reinterpret_cast<const U *>(h + (j + 1) * rows + r);
+          const V  d = V{} + x[j], d1 = V{} + x[j + 1];
+          e0 += c[0] * d;
+          e1 += c[1] * d;
+          e2 += c[2] * d;
+          e3 += c[3] * d;
+          o0 += c1[0] * d1;
+          o1 += c1[1] * d1;
+          o2 += c1[2] * d1;
+          o3 += c1[3] * d1;
+        }
+        if (j < n)
+        {
+          const U *c = reinterpret_cast<const U *>(h + j * rows + r);
+          const V  d = V{} + x[j];
+          e0 += c[0] * d;
+          e1 += c[1] * d;
+          e2 += c[2] * d;
+          e3 += c[3] * d;
+        }
+        *reinterpret_cast<U *>(y + r)      = e0 + o0;
+        *reinterpret_cast<U *>(y + r + 4)  = e1 + o1;
+        *reinterpret_cast<U *>(y + r + 8)  = e2 + o2;
+        *reinterpret_cast<U *>(y + r + 12) = e3 + o3;
+      }
+    }
+
+    /// What one increment reads and writes (see Run::advance), as plain pointers.
+    struct StepArrays
+    {
+      std::size_t   n = 0, rows = 0;
+      const double *hg = nullptr, *af = nullptr, *amx = nullptr, *amy = nullptr, *un = nullptr,
+                   *rx = nullptr, *ry = nullptr, *mx = nullptr, *my = nullptr;
+      double *y = nullptr, *du = nullptr, *z = nullptr, *inc = nullptr, *dun = nullptr,
+             *unp = nullptr, *v = nullptr, *a = nullptr, *pu = nullptr, *pa = nullptr;
+      double f[3] = {0.0, 0.0, 0.0}, ag_x = 0.0, ag_y = 0.0, half_inv_dt = 0.0, inv_dt2 = 0.0;
+      double p_in = 0.0; ///< out: −(r_xᵀM·v·ü_g,x + r_yᵀM·v·ü_g,y), W
+    };
+
+    /**
+     * The increment of one step from y (Run::advance), v_n, a_n (r_x, r_y pick the DOFs that
+     * ü_g,x and ü_g,y add to: 1·ü_g + 0·ü_g is ü_g exactly), the peaks of |u_n| and |a_n| and
+     * the input power; element-wise but for the power's two sums.
+     */
+    inline __attribute__((always_inline)) void update_body(StepArrays &k)
+    {
+      const std::size_t n        = k.n;
+      const double *__restrict y = k.y, *__restrict du = k.du, *__restrict af = k.af,
+                               *__restrict amx = k.amx, *__restrict amy = k.amy,
+                               *__restrict un = k.un, *__restrict rx = k.rx, *__restrict ry = k.ry,
+                               *__restrict mx = k.mx, *__restrict my = k.my;
+      double *__restrict z = k.z, *__restrict inc = k.inc, *__restrict dun = k.dun,
+                         *__restrict unp = k.unp, *__restrict v = k.v, *__restrict a = k.a,
+                         *__restrict pu = k.pu, *__restrict pa = k.pa;
+      // Scalars in locals: read through `k` they could alias the stores.
+      const double ag_x = k.ag_x, ag_y = k.ag_y, f0 = k.f[0], f1 = k.f[1], f2 = k.f[2];
+      const double h = k.half_inv_dt, i2 = k.inv_dt2;
+      double       p_x = 0.0, p_y = 0.0;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const double d = -(y[i] + z[i] + amx[i] * ag_x + amy[i] * ag_y) -
+                         (af[i] * f0 + af[n + i] * f1 + af[2 * n + i] * f2);
+        const double next = du[i] + d;
+        inc[i]            = d;
+        dun[i]            = next;
+        z[i] += y[n + i];
+        unp[i]          = un[i] + next;
+        const double vi = (du[i] + next) * h;
+        const double ai = d * i2 + (rx[i] * ag_x + ry[i] * ag_y);
+        v[i]            = vi;
+        a[i]            = ai;
+        pu[i]           = std::max(pu[i], std::abs(un[i]));
+        pa[i]           = std::max(pa[i], std::abs(ai));
+        p_x += mx[i] * vi;
+        p_y += my[i] * vi;
+      }
+      k.p_in = -(p_x * ag_x + p_y * ag_y);
+    }
+
+    using StepKernel = void (*)(StepArrays &);
+
+    void step_base(StepArrays &k)
+    {
+      dense_product_body(k.hg, k.du, k.y, k.rows, k.n);
+      update_body(k);
+    }
+
+    __attribute__((target("avx2"))) void step_avx2(StepArrays &k)
+    {
+      dense_product_body(k.hg, k.du, k.y, k.rows, k.n);
+      update_body(k);
+    }
+
     /// The state of one run (allocated once; the loop does not allocate).
     class Run
     {
@@ -89,8 +204,12 @@ namespace kimp::lumped::plan
                     const Eigen::VectorXd &u_prev,
                     const Eigen::VectorXd &u_prev2);
       void   contact(std::size_t c, double delta, double s, double s_prev, double t);
+      bool   contacts_far(long n, const double *q0);
+      void   set_up_matrices();
+      void   set_up_points();
       void   ground(long n, double &ag_x, double &ag_y);
-      void   bookkeeping(long n, double ag_x, double ag_y);
+      void   advance(double ag_x, double ag_y);
+      void   bookkeeping(long n);
       void   checkpoint(long n);
       double strain_energy() const;
 
@@ -106,9 +225,12 @@ namespace kimp::lumped::plan
       long   sub_              = 1;
       double inv_sub_          = 1.0;
 
-      Eigen::MatrixXd hg_;      ///< [A⁻¹(C/Δt + K); A⁻¹K], 2n × n
+      Eigen::MatrixXd hg_; ///< [A⁻¹(C/Δt + K); A⁻¹K; 0], hg_rows_ × n
+      std::size_t     hg_rows_ = 0;
+      StepKernel      step_    = nullptr;
       Eigen::MatrixXd a_inv_f_; ///< A⁻¹ restricted to level 0's columns, n × 3
       Eigen::VectorXd am_x_, am_y_;
+      Eigen::VectorXd r_x_, r_y_;   ///< the DOFs along x and along y (1, else 0)
       Eigen::VectorXd rx_m_, ry_m_; ///< M·r_x, M·r_y
 
       // state: u_{n−2}, u_{n−1}, u_n, u_{n+1}, Δu_n, Δu_{n+1}, z_{n−1}, products
@@ -123,6 +245,14 @@ namespace kimp::lumped::plan
       std::vector<double> wall_force_;
       double              mu_ = 0.0, v_stick_ = 1.0;
       LawVelocity         scheme_;
+      /// Contacts skipped as a whole: no point can reach its face while 2(|u_0|² + θ_0²·R²) <
+      /// g_min² (R the largest lever arm of a normal row, g_min the smallest gap), once every
+      /// contact is open and carries no force (quiet_).
+      double contact_r2_ = 0.0, contact_g2_ = 0.0;
+      bool   quiet_ = false, skipped_ = false;
+      double iso_peak_sq_ = 0.0; ///< max |Σ_j f_j|², N²
+      /// Per contact: the face has an end (the sliding coordinate is needed).
+      std::vector<char> ends_;
 
       // corners of each level at rest and their kinematics
       std::vector<std::vector<Eigen::Matrix<double, 2, 3>>> corner_t_;
@@ -133,14 +263,13 @@ namespace kimp::lumped::plan
         int   level = 0;
         Point r;
       };
-      /// A point of a storey's upper level (a corner, or its centre of mass if `centre`): the
+      /// A point of a storey's upper level (its centre of mass first, then its corners): the
       /// first DOFs of the two levels (lower −1: the ground) and the point from their centres.
       struct CornerDrift
       {
         std::size_t storey = 0;
         int         upper = 0, lower = -1;
         Point       a, b;
-        bool        centre = false;
       };
       std::vector<CornerRef>   corners_;
       std::vector<CornerDrift> corner_drifts_;
@@ -162,7 +291,8 @@ namespace kimp::lumped::plan
 
       // energies
       double w_in_ = 0.0, w_visc_ = 0.0, w_contact_ = 0.0, w_friction_ = 0.0;
-      double p_in_prev_ = 0.0, p_visc_prev_ = 0.0, e0_ = 0.0, e_kin_ = 0.0, e_strain_ = 0.0;
+      double p_in_ = 0.0, p_in_prev_ = 0.0, p_visc_prev_ = 0.0, e0_ = 0.0, e_kin_ = 0.0,
+             e_strain_     = 0.0;
       double max_supplied_ = 0.0, max_residual_ = 0.0, last_error_ = 0.0;
 
       PlanResponse out_;
@@ -182,26 +312,9 @@ namespace kimp::lumped::plan
         opt_.duration > 0.0 ? opt_.duration : g.dt * static_cast<double>(g.x.size());
       n_steps_ = std::lround(duration / dt_);
 
+      set_up_matrices();
       const auto             nn = static_cast<Eigen::Index>(n_);
-      const Eigen::VectorXd  m  = model_.masses();
-      const Eigen::MatrixXd &k  = model_.stiffness();
       const Eigen::MatrixXd &c  = model_.damping();
-      const Eigen::MatrixXd  a =
-        Eigen::MatrixXd(m.asDiagonal()) * (inv_dt_ * inv_dt_) + c * (0.5 * inv_dt_);
-      const Eigen::MatrixXd inv = a.partialPivLu().inverse();
-      hg_.resize(2 * nn, nn);
-      hg_.topRows(nn)    = inv * (c * inv_dt_ + k);
-      hg_.bottomRows(nn) = inv * k;
-      a_inv_f_           = inv.leftCols(3);
-      rx_m_              = Eigen::VectorXd::Zero(nn);
-      ry_m_              = Eigen::VectorXd::Zero(nn);
-      for (Eigen::Index i = 0; i < nn; i += 3)
-      {
-        rx_m_(i)     = m(i);
-        ry_m_(i + 1) = m(i + 1);
-      }
-      am_x_ = inv * rx_m_;
-      am_y_ = inv * ry_m_;
 
       for (const PlanIsolatorSpec &spec : model_.building().isolators)
       {
@@ -214,6 +327,15 @@ namespace kimp::lumped::plan
       {
         laws_.push_back(pc.law->clone());
         laws_.back()->revert_to_start();
+      }
+      contact_g2_ = std::numeric_limits<double>::infinity();
+      for (const PlanContact &pc : model_.contacts())
+      {
+        // |n·q_0| <= |(u_x, u_y)| + |θ|·|n_θ| for a unit normal n.
+        contact_r2_ = std::max(contact_r2_, pc.normal_row(2) * pc.normal_row(2));
+        contact_g2_ = std::min(contact_g2_, pc.gap * pc.gap);
+        ends_.push_back(pc.s_lo > -std::numeric_limits<double>::infinity() ||
+                        pc.s_hi < std::numeric_limits<double>::infinity());
       }
       if (model_.moat())
       {
@@ -228,45 +350,7 @@ namespace kimp::lumped::plan
       called_.assign(nc, 1); // the first step takes the laws as they are (planar integrator)
       wall_force_.assign(model_.moat() ? model_.moat()->wall.size() : 0, 0.0);
 
-      // The corners and the storeys' reference points.
-      const PlanBuilding &b = model_.building();
-      for (std::size_t l = 0; l < b.n_levels(); ++l)
-      {
-        const Point cm = b.levels[l].centre_of_mass();
-        double      r2 = 0.0;
-        corner_first_.push_back(corners_.size());
-        corner_t_.emplace_back();
-        for (const Point &p : b.levels[l].outline)
-        {
-          corner_t_.back().push_back(level_kinematics(b, l, p));
-          corners_.push_back({static_cast<int>(3 * l), p - cm});
-          r2 = std::max(r2, (p - cm).squaredNorm());
-        }
-        corner_r2_.push_back(r2);
-      }
-      corner_first_.push_back(corners_.size());
-      const int offset = b.is_isolated() ? 1 : 0;
-      for (std::size_t s = 0; s < b.storeys.size(); ++s)
-      {
-        drift_first_.push_back(corner_drifts_.size());
-        const int        upper = static_cast<int>(s) + offset, lower = upper - 1;
-        const PlanLevel &lu = b.levels[static_cast<std::size_t>(upper)];
-        const Point      cu = lu.centre_of_mass();
-        const Point      cl =
-          lower >= 0 ? b.levels[static_cast<std::size_t>(lower)].centre_of_mass() : Point::Zero();
-        corner_drifts_.push_back(
-          {s, 3 * upper, lower >= 0 ? 3 * lower : -1, cu - cu, cu - cl, true});
-        DriftBound bound{3 * upper, lower >= 0 ? 3 * lower : -1, 0.0, (cu - cl).squaredNorm()};
-        for (const Point &p : lu.outline)
-        {
-          corner_drifts_.push_back(
-            {s, 3 * upper, lower >= 0 ? 3 * lower : -1, p - cu, p - cl, false});
-          bound.a2 = std::max(bound.a2, (p - cu).squaredNorm());
-          bound.b2 = std::max(bound.b2, (p - cl).squaredNorm());
-        }
-        drift_bound_.push_back(bound);
-      }
-      drift_first_.push_back(corner_drifts_.size());
+      set_up_points();
 
       const double ratio = g.dt / dt_;
       sub_               = std::lround(ratio);
@@ -279,11 +363,12 @@ namespace kimp::lumped::plan
 
       u_nm2_ = u_nm1_ = u_n_ = u_np1_ = du_n_ = du_np1_ = z_ = inc_ = v_ = a_ =
         Eigen::VectorXd::Zero(nn);
-      y_      = Eigen::VectorXd::Zero(2 * nn);
+      y_      = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(hg_rows_));
       peak_u_ = Eigen::VectorXd::Zero(nn);
       peak_a_ = Eigen::VectorXd::Zero(nn);
 
-      out_.n_levels = b.n_levels();
+      const PlanBuilding &b = model_.building();
+      out_.n_levels         = b.n_levels();
       out_.peak_displacement.assign(n_, 0.0);
       out_.peak_absolute_acceleration.assign(n_, 0.0);
       out_.peak_corner_displacement.assign(b.n_levels(), 0.0);
@@ -313,6 +398,78 @@ namespace kimp::lumped::plan
         out_.contacts.push_back(r);
       }
       out_.history.interval = every_ > 0 ? static_cast<double>(every_) * dt_ : 0.0;
+    }
+
+    void Run::set_up_matrices()
+    {
+      const auto             nn = static_cast<Eigen::Index>(n_);
+      const Eigen::VectorXd  m  = model_.masses();
+      const Eigen::MatrixXd &k  = model_.stiffness();
+      const Eigen::MatrixXd &c  = model_.damping();
+      const Eigen::MatrixXd  a =
+        Eigen::MatrixXd(m.asDiagonal()) * (inv_dt_ * inv_dt_) + c * (0.5 * inv_dt_);
+      const Eigen::MatrixXd inv = a.partialPivLu().inverse();
+      // [A⁻¹(C/Δt + K); A⁻¹K], its rows padded with zeros to a multiple of 16.
+      hg_rows_               = (2 * n_ + 15) / 16 * 16;
+      step_                  = __builtin_cpu_supports("avx2") ? step_avx2 : step_base;
+      hg_                    = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(hg_rows_), nn);
+      hg_.topRows(nn)        = inv * (c * inv_dt_ + k);
+      hg_.middleRows(nn, nn) = inv * k;
+      a_inv_f_               = inv.leftCols(3);
+      r_x_                   = Eigen::VectorXd::Zero(nn);
+      r_y_                   = Eigen::VectorXd::Zero(nn);
+      rx_m_                  = Eigen::VectorXd::Zero(nn);
+      ry_m_                  = Eigen::VectorXd::Zero(nn);
+      for (Eigen::Index i = 0; i < nn; i += 3)
+      {
+        r_x_(i)      = 1.0;
+        r_y_(i + 1)  = 1.0;
+        rx_m_(i)     = m(i);
+        ry_m_(i + 1) = m(i + 1);
+      }
+      am_x_ = inv * rx_m_;
+      am_y_ = inv * ry_m_;
+    }
+
+    void Run::set_up_points()
+    {
+      // The corners and the storeys' reference points.
+      const PlanBuilding &b = model_.building();
+      for (std::size_t l = 0; l < b.n_levels(); ++l)
+      {
+        const Point cm = b.levels[l].centre_of_mass();
+        double      r2 = 0.0;
+        corner_first_.push_back(corners_.size());
+        corner_t_.emplace_back();
+        for (const Point &p : b.levels[l].outline)
+        {
+          corner_t_.back().push_back(level_kinematics(b, l, p));
+          corners_.push_back({static_cast<int>(3 * l), p - cm});
+          r2 = std::max(r2, (p - cm).squaredNorm());
+        }
+        corner_r2_.push_back(r2);
+      }
+      corner_first_.push_back(corners_.size());
+      const int offset = b.is_isolated() ? 1 : 0;
+      for (std::size_t s = 0; s < b.storeys.size(); ++s)
+      {
+        drift_first_.push_back(corner_drifts_.size());
+        const int        upper = static_cast<int>(s) + offset, lower = upper - 1;
+        const PlanLevel &lu = b.levels[static_cast<std::size_t>(upper)];
+        const Point      cu = lu.centre_of_mass();
+        const Point      cl =
+          lower >= 0 ? b.levels[static_cast<std::size_t>(lower)].centre_of_mass() : Point::Zero();
+        corner_drifts_.push_back({s, 3 * upper, lower >= 0 ? 3 * lower : -1, cu - cu, cu - cl});
+        DriftBound bound{3 * upper, lower >= 0 ? 3 * lower : -1, 0.0, (cu - cl).squaredNorm()};
+        for (const Point &p : lu.outline)
+        {
+          corner_drifts_.push_back({s, 3 * upper, lower >= 0 ? 3 * lower : -1, p - cu, p - cl});
+          bound.a2 = std::max(bound.a2, (p - cu).squaredNorm());
+          bound.b2 = std::max(bound.b2, (p - cl).squaredNorm());
+        }
+        drift_bound_.push_back(bound);
+      }
+      drift_first_.push_back(corner_drifts_.size());
     }
 
     void Run::ground(const long n, double &ag_x, double &ag_y)
@@ -389,6 +546,16 @@ namespace kimp::lumped::plan
         std::max(out_.contacts[c].peak_friction_force, std::abs(phi));
     }
 
+    bool Run::contacts_far(const long n, const double *q0)
+    {
+      // The first two steps use the initial δ_{−1}, δ_{−2}; later a resumed pass recomputes
+      // them from u_{n−1}, u_{n−2} (what the skipped passes would have stored).
+      if (n < 2 || !quiet_)
+        return false;
+      const double r2 = 2.0 * (q0[0] * q0[0] + q0[1] * q0[1] + q0[2] * q0[2] * contact_r2_);
+      return r2 < contact_g2_ * (1.0 - 1e-9);
+    }
+
     void Run::forces(const long             n,
                      const Eigen::VectorXd &u,
                      const Eigen::VectorXd &u_prev,
@@ -399,7 +566,8 @@ namespace kimp::lumped::plan
       const Eigen::Vector3d q1 = u_prev.head<3>();
       const Eigen::Vector3d q2 = u_prev2.head<3>();
       f0_.setZero();
-      const auto &kin = model_.isolator_kinematics();
+      const auto &kin       = model_.isolator_kinematics();
+      Point       resultant = Point::Zero();
       for (std::size_t j = 0; j < iso_.size(); ++j)
       {
         const Point uj = kin[j] * q0, uj1 = kin[j] * q1, uj2 = kin[j] * q2;
@@ -408,22 +576,42 @@ namespace kimp::lumped::plan
         const Point fj = iso_[j]->set_trial(uj, vj);
         iso_[j]->commit();
         iso_force_[j] = fj;
+        resultant += fj;
         f0_ += kin[j].transpose() * fj;
       }
+      iso_peak_sq_ = std::max(iso_peak_sq_, resultant.squaredNorm());
+      if (contacts_far(n, q0.data()))
+      {
+        skipped_ = true;
+        return;
+      }
+      const bool resumed = skipped_;
+      skipped_           = false;
+      quiet_             = true;
       std::fill(wall_force_.begin(), wall_force_.end(), 0.0);
       for (std::size_t c = 0; c < laws_.size(); ++c)
       {
-        const PlanContact &pc = model_.contacts()[c];
-        // The sliding coordinate only where it matters: a face with an end, a contact, friction.
-        const bool ends = pc.s_lo > -std::numeric_limits<double>::infinity() ||
-                          pc.s_hi < std::numeric_limits<double>::infinity();
-        const auto s_at = [&](const Eigen::Vector3d &q)
+        const PlanContact &pc   = model_.contacts()[c];
+        const auto         s_at = [&](const Eigen::Vector3d &q)
         { return pc.s_rest + pc.tangent_row.dot(q); };
         // Beyond the ends of its face a point meets nothing: the law sees the gap at rest.
-        const bool   on_face = !ends || (s_at(q0) >= pc.s_lo && s_at(q0) <= pc.s_hi);
-        const double delta   = on_face ? pc.normal_row.dot(q0) - pc.gap : -pc.gap;
+        // The sliding coordinate only where it matters: a face with an end, a contact, friction.
+        const auto delta_at = [&](const Eigen::Vector3d &q)
+        {
+          const bool on_face = !ends_[c] || (s_at(q) >= pc.s_lo && s_at(q) <= pc.s_hi);
+          return on_face ? pc.normal_row.dot(q) - pc.gap : -pc.gap;
+        };
+        if (resumed)
+        {
+          dp_[c]  = delta_at(q1);
+          dpp_[c] = delta_at(q2);
+        }
+        const double delta = delta_at(q0);
         if (delta > 0.0 || active_[c])
+        {
           contact(c, delta, s_at(q0), s_at(q1), t);
+          quiet_ = false;
+        }
         else
         {
           called_[c] = 0;
@@ -445,10 +633,6 @@ namespace kimp::lumped::plan
       }
       for (std::size_t j = 0; j < wall_force_.size(); ++j)
         out_.peak_wall_force[j] = std::max(out_.peak_wall_force[j], wall_force_[j]);
-      Point resultant = Point::Zero();
-      for (const Point &f : iso_force_)
-        resultant += f;
-      out_.peak_isolator_force = std::max(out_.peak_isolator_force, resultant.norm());
     }
 
     double Run::strain_energy() const
@@ -459,24 +643,55 @@ namespace kimp::lumped::plan
       return e;
     }
 
-    void Run::bookkeeping(const long n, const double ag_x, const double ag_y)
+    void Run::advance(const double ag_x, const double ag_y)
     {
-      // v_n = (Δu_n + Δu_{n+1})/(2Δt), a_n = (Δu_{n+1} − Δu_n)/Δt² (+ ü_g in x and y).
-      v_ = (du_n_ + du_np1_) * (0.5 * inv_dt_);
-      a_ = inc_ * (inv_dt_ * inv_dt_);
-      for (std::size_t i = 0; i < n_; i += 3)
-      {
-        a_(static_cast<Eigen::Index>(i)) += ag_x;
-        a_(static_cast<Eigen::Index>(i) + 1) += ag_y;
-      }
-      peak_u_ = peak_u_.cwiseMax(u_n_.cwiseAbs());
-      peak_a_ = peak_a_.cwiseMax(a_.cwiseAbs());
+      // Increment: Δu_{n+1} − Δu_n = −(A⁻¹(C/Δt + K)Δu_n + z_{n−1} + A⁻¹M·r·ü_g + A⁻¹f), with
+      // y = [A⁻¹(C/Δt + K); A⁻¹K]·Δu_n by columns (each row summed over ascending columns),
+      // then per DOF in one pass: Δu_{n+1}, z_n, u_{n+1}, v_n = (Δu_n + Δu_{n+1})/(2Δt),
+      // a_n = (Δu_{n+1} − Δu_n)/Δt² (+ ü_g in x and y), the peaks of u_n and a_n and the input
+      // power. Raw loops over the DOFs: the products and updates of a 15-DOF step cost less
+      // than the set-up of Eigen's dynamic-size kernels.
+      StepArrays k;
+      k.n           = n_;
+      k.rows        = hg_rows_;
+      k.hg          = hg_.data();
+      k.af          = a_inv_f_.data();
+      k.amx         = am_x_.data();
+      k.amy         = am_y_.data();
+      k.un          = u_n_.data();
+      k.y           = y_.data();
+      k.du          = du_n_.data();
+      k.z           = z_.data();
+      k.inc         = inc_.data();
+      k.dun         = du_np1_.data();
+      k.unp         = u_np1_.data();
+      k.v           = v_.data();
+      k.a           = a_.data();
+      k.f[0]        = f0_(0);
+      k.f[1]        = f0_(1);
+      k.f[2]        = f0_(2);
+      k.ag_x        = ag_x;
+      k.ag_y        = ag_y;
+      k.half_inv_dt = 0.5 * inv_dt_;
+      k.inv_dt2     = inv_dt_ * inv_dt_;
+      k.rx          = r_x_.data();
+      k.ry          = r_y_.data();
+      k.mx          = rx_m_.data();
+      k.my          = ry_m_.data();
+      k.pu          = peak_u_.data();
+      k.pa          = peak_a_.data();
+      step_(k);
+      p_in_ = k.p_in;
       for (std::size_t l = 0; l < accel_sq_.size(); ++l)
       {
         const double ax = a_(static_cast<Eigen::Index>(3 * l)),
                      ay = a_(static_cast<Eigen::Index>(3 * l + 1));
         accel_sq_[l]    = std::max(accel_sq_[l], ax * ax + ay * ay);
       }
+    }
+
+    void Run::bookkeeping(const long n)
+    {
       // Peaks of the corner displacements and drifts as squares (the roots at the end), in
       // scalars: d = (u_x − θ·r_y, u_y + θ·r_x) with r the corner from the centre of mass.
       // (Maxima in registers, one store per level: the stores of a running maximum in memory
@@ -501,9 +716,9 @@ namespace kimp::lumped::plan
       }
       for (std::size_t s = 0; s < drift_sq_.size(); ++s)
       {
-        // |d| <= |Δu| + |θ_u|·A + |θ_l|·B (A, B the largest lever arms): skip while
-        // 3(|Δu|² + θ_u²A² + θ_l²B²) cannot beat the peaks (the centre's drift components are
-        // bounded by the same).
+        // The drift at the centre of mass (the storey's first entry) every step; the corners'
+        // only when |d| <= |Δu| + |θ_u|·A + |θ_l|·B (A, B the largest lever arms) could beat
+        // their peak: 3(|Δu|² + θ_u²A² + θ_l²B²) > the peak².
         const DriftBound &db = drift_bound_[s];
         const double     *bu = u + db.upper;
         const double      bx = db.lower >= 0 ? u[db.lower] : 0.0;
@@ -511,38 +726,41 @@ namespace kimp::lumped::plan
         const double      tl = db.lower >= 0 ? u[db.lower + 2] : 0.0;
         const double      ex = bu[0] - bx, ey = bu[1] - by;
         const double bound = 3.0 * (ex * ex + ey * ey + bu[2] * bu[2] * db.a2 + tl * tl * db.b2);
-        const double px = out_.peak_drift_x[s], py = out_.peak_drift_y[s];
-        if (bound <= drift_sq_[s] && bound <= px * px && bound <= py * py)
-          continue;
-        double      m = drift_sq_[s];
+        const auto   drift = [&](const CornerDrift &c, double &dx, double &dy)
+        {
+          const double *qu = u + c.upper;
+          const double  lx = c.lower >= 0 ? u[c.lower] - u[c.lower + 2] * c.b.y() : 0.0;
+          const double  ly = c.lower >= 0 ? u[c.lower + 1] + u[c.lower + 2] * c.b.x() : 0.0;
+          dx               = qu[0] - qu[2] * c.a.y() - lx;
+          dy               = qu[1] + qu[2] * c.a.x() - ly;
+        };
         const auto *c = corner_drifts_.data() + drift_first_[s];
         const auto *e = corner_drifts_.data() + drift_first_[s + 1];
-        for (; c != e; ++c)
+        double      dx, dy;
+        drift(*c, dx, dy); // the centre
+        out_.peak_drift_x[s] = std::max(out_.peak_drift_x[s], std::abs(dx));
+        out_.peak_drift_y[s] = std::max(out_.peak_drift_y[s], std::abs(dy));
+        if (bound <= drift_sq_[s])
+          continue;
+        double m = drift_sq_[s];
+        for (++c; c != e; ++c)
         {
-          const double *qu = u + c->upper;
-          const double  lx = c->lower >= 0 ? u[c->lower] - u[c->lower + 2] * c->b.y() : 0.0;
-          const double  ly = c->lower >= 0 ? u[c->lower + 1] + u[c->lower + 2] * c->b.x() : 0.0;
-          const double  dx = qu[0] - qu[2] * c->a.y() - lx, dy = qu[1] + qu[2] * c->a.x() - ly;
-          if (c->centre)
-          {
-            out_.peak_drift_x[s] = std::max(out_.peak_drift_x[s], std::abs(dx));
-            out_.peak_drift_y[s] = std::max(out_.peak_drift_y[s], std::abs(dy));
-          }
-          else
-            m = std::max(m, dx * dx + dy * dy);
+          drift(*c, dx, dy);
+          m = std::max(m, dx * dx + dy * dy);
         }
         drift_sq_[s] = m;
       }
       // Input and viscous power at t_n, trapezoid sums from t_0; vᵀCv with C block-tridiagonal
       // by levels (storeys join consecutive levels).
-      const double p_in   = -(rx_m_.dot(v_) * ag_x + ry_m_.dot(v_) * ag_y);
-      double       p_visc = 0.0;
+      const double  p_in   = p_in_;
+      double        p_visc = 0.0;
+      const double *vp     = v_.data();
       for (std::size_t l = 0; l < c_diag_.size(); ++l)
       {
-        const Eigen::Vector3d vl = v_.segment<3>(static_cast<Eigen::Index>(3 * l));
+        const Eigen::Map<const Eigen::Vector3d> vl(vp + 3 * l);
         p_visc += vl.dot(c_diag_[l] * vl);
         if (l + 1 < c_diag_.size())
-          p_visc += 2.0 * vl.dot(c_upper_[l] * v_.segment<3>(static_cast<Eigen::Index>(3 * l + 3)));
+          p_visc += 2.0 * vl.dot(c_upper_[l] * Eigen::Map<const Eigen::Vector3d>(vp + 3 * l + 3));
       }
       if (n > 0)
       {
@@ -658,21 +876,15 @@ namespace kimp::lumped::plan
       u_nm2_ = u0 - 2.0 * dt_ * v0 + 2.0 * dt_ * dt_ * a0;
       du_n_  = dt_ * v0 - 0.5 * dt_ * dt_ * a0;
       // z_{−1} = A⁻¹K·u_{−1}.
-      z_ = hg_.bottomRows(nn) * (u_n_ - du_n_);
+      z_ = hg_.middleRows(nn, nn) * (u_n_ - du_n_);
 
       for (long n = 0; n <= n_steps_; ++n)
       {
         double ag_x, ag_y;
         ground(n, ag_x, ag_y);
         forces(n, u_n_, u_nm1_, u_nm2_);
-        // Increment: Δu_{n+1} − Δu_n = −(A⁻¹(C/Δt + K)Δu_n + z_{n−1} + A⁻¹M·r·ü_g + A⁻¹f).
-        y_.noalias() = hg_ * du_n_;
-        inc_         = -(y_.head(nn) + z_ + am_x_ * ag_x + am_y_ * ag_y);
-        inc_.noalias() -= a_inv_f_ * f0_;
-        du_np1_ = du_n_ + inc_;
-        z_ += y_.tail(nn);
-        u_np1_ = u_n_ + du_np1_;
-        bookkeeping(n, ag_x, ag_y);
+        advance(ag_x, ag_y);
+        bookkeeping(n);
         if ((every_ > 0 && n % every_ == 0) || n % check_every_ == 0 || n == n_steps_)
           checkpoint(n);
         u_nm2_.swap(u_nm1_);
@@ -692,8 +904,9 @@ namespace kimp::lumped::plan
       e.viscous     = w_visc_;
       for (const auto &iso : iso_)
         e.hysteretic += iso->dissipated_energy();
-      e.contact_work = w_contact_;
-      e.friction     = w_friction_;
+      e.contact_work           = w_contact_;
+      out_.peak_isolator_force = std::sqrt(iso_peak_sq_);
+      e.friction               = w_friction_;
       for (std::size_t c = 0; c < laws_.size(); ++c)
       {
         out_.contacts[c].dissipated_energy =

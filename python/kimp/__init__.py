@@ -14,8 +14,8 @@ kimp's own unit reader ("600 MN/m", "15 cm", "0.4 g"). See docs/guide/python.md.
 from . import _kimp, laws
 from ._read import Array, Float, Group, Int, ResultsFile, TimeSeries, read
 from ._runs import (Collision, Contact, CorRow, Energy, FitResult, GroundMotion, History,
-                    Parameter, Peaks, Result, Results, Wall, collide, cor_table, fem, fit,
-                    ground_motion, lumped, study)
+                    Parameter, Peaks, PlanResult, Result, Results, Wall, collide, cor_table, fem,
+                    fit, ground_motion, lumped, study)
 from ._scene import Scene, SceneError
 
 #: The thesis' nominal coefficient of restitution, the default COR of every law and fit.
@@ -44,7 +44,7 @@ def format_quantity(value, unit):
     return _kimp.format_quantity(float(value), unit)
 
 
-__all__ = ["Scene", "SceneError", "lumped", "Result", "Results", "Peaks", "History", "Contact", "Wall",
+__all__ = ["Scene", "SceneError", "lumped", "PlanResult", "Result", "Results", "Peaks", "History", "Contact", "Wall",
            "Energy", "ground_motion", "GroundMotion", "collide", "Collision", "cor_table", "CorRow", "fit",
            "FitResult", "Parameter", "fem", "study", "read", "ResultsFile", "Group",
            "TimeSeries", "Array", "Float", "Int", "laws", "thesis_cor", "with_fem", "parse_quantity",

@@ -231,6 +231,67 @@ def _result(d):
         walls=[Wall(**w) for w in d.get("walls", [])])
 
 
+@dataclass(repr=False)
+class PlanResult:
+    """One run of a scene in plan (rigid diaphragms: u_x, u_y, θ per level, isolation level
+    first). Arrays: ``peaks["displacement"]`` and ``peaks["absolute_acceleration"]`` (levels, 3)
+    in m, rad and m/s², rad/s²; ``peaks["corner_displacement"]`` and
+    ``peaks["horizontal_acceleration"]`` per level; ``peaks["drift_x"]``, ``["drift_y"]``,
+    ``["corner_drift"]`` per storey (m); ``peaks["wall_force"]`` per wall face (N); the headline
+    peaks of summary.json (``base_corner_displacement``, ``corner_impact_force``,
+    ``friction_force``, ``top_acceleration``, ``isolator_force``). ``history``: ``time`` (n),
+    ``displacement`` and ``absolute_acceleration`` (n, levels, 3), ``corner_displacement``
+    (n, corners of level 0, 2), ``contact_force`` and ``friction_force`` (n, contacts),
+    ``energy_error`` (n). ``contacts``: one dict per contact point; ``energy``: J, with the
+    friction work."""
+
+    name: str
+    status: str
+    ground_motion: str
+    dt: float
+    dt_critical: float
+    n_steps: int
+    n_levels: int
+    n_impacts: int
+    wall_time: float
+    contact_names: List[str]
+    contacts: List[dict]
+    peaks: dict
+    history: dict
+    energy: dict
+
+    @property
+    def ok(self):
+        return self.status == "ok"
+
+    @property
+    def x(self):
+        """History of u_x per level, m: (n, levels)."""
+        return self.history["displacement"][:, :, 0]
+
+    @property
+    def y(self):
+        """History of u_y per level, m: (n, levels)."""
+        return self.history["displacement"][:, :, 1]
+
+    @property
+    def rotation(self):
+        """History of θ per level, rad: (n, levels)."""
+        return self.history["displacement"][:, :, 2]
+
+    @property
+    def corners(self):
+        """History of the displacements of level 0's corners, m: (n, corners, 2)."""
+        return self.history["corner_displacement"]
+
+    def __repr__(self):
+        return (f"PlanResult({self.n_levels} levels, {self.n_steps} steps of {self.dt:.4g} s, "
+                f"{self.n_impacts} impacts, peak base corner displacement "
+                f"{self.peaks['base_corner_displacement']:.4g} m, peak rotation "
+                f"{float(np.max(self.peaks['displacement'][:, 2])):.4g} rad, energy error "
+                f"{self.energy['max_relative_error']:.2g})")
+
+
 def _scene(scene, kind):
     if isinstance(scene, (str, os.PathLike)):
         scene = Scene.from_yaml(scene, kind)
@@ -258,9 +319,16 @@ def lumped(scene, case=None, records_dir=None):
     scene: a kimp.Scene, a scene file path or a dict. case: run only the case of that name.
     records_dir: PEER records directory (like --records-dir). Returns the Result of the single
     case (a scene without `cases`, or `case` given), else Results (a list in case order with
-    ``results["case"]`` and ``results.peaks``, {case: Peaks}).
+    ``results["case"]`` and ``results.peaks``, {case: Peaks}); a scene with a `plan` section
+    (pounding in plan) returns a PlanResult.
     """
     scene = _scene(scene, "lumped")
+    if _kimp.has_plan(scene._parsed):
+        if case is not None:
+            raise ValueError("a scene in plan has no cases")
+        return PlanResult(**_call(_kimp.run_plan, scene._parsed,
+                                  os.fspath(records_dir) if records_dir else None,
+                                  file=scene.name))
     cases = _call(_kimp.run_lumped, scene._parsed,
                   os.fspath(records_dir) if records_dir else None, case, file=scene.name)
     results = Results(_result(c) for c in cases)

@@ -9,6 +9,7 @@
 
 #include "app/lumped/ground_motion_scene.h"
 #include "app/lumped/lumped_scene.h"
+#include "app/lumped/plan_scene.h"
 #include "app/sweep/sweep_plan.h"
 #include "tests/support/files.h"
 
@@ -33,6 +34,7 @@ namespace
       {"study6_bumpers_gap.yaml", 2 * 3 * 31 * 3},
       {"study6_bumper_properties.yaml", 4 * 3 * 2 * 3},
       {"study6_bumper_cor.yaml", 8 * 3 * 2},
+      {"plan_directionality.yaml", 13 * 3},
     };
     std::set<std::string> seen;
     for (const auto &item : fs::directory_iterator(studies_dir()))
@@ -48,7 +50,7 @@ namespace
       EXPECT_EQ(plan.cases().size(), found->second);
       EXPECT_NO_THROW(plan.check_key_paths(
         [](const std::string &text, const std::string &scene_name)
-        { kimp::io::read_scene_text<kimp::app::LumpedScene>(text, scene_name); }));
+        { kimp::io::read_scene_text<kimp::app::PlanLumpedScene>(text, scene_name); }));
       // Every case of the small studies, a regular sample of the large ones (test time).
       constexpr std::size_t max_loaded = 1000;
       const std::size_t     stride     = 1 + plan.cases().size() / max_loaded;
@@ -60,7 +62,7 @@ namespace
           continue;
         try
         {
-          kimp::io::read_scene_text<kimp::app::LumpedScene>(c.scene_text, c.scene_name);
+          kimp::io::read_scene_text<kimp::app::PlanLumpedScene>(c.scene_text, c.scene_name);
         }
         catch (const std::exception &error)
         {

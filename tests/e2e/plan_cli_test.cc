@@ -166,3 +166,32 @@ TEST(PlanCli, PrintDefaultsAndSchemaDeclareThePlanKeys)
   const nlohmann::json json = nlohmann::json::parse(schema.out);
   EXPECT_NE(json.dump().find("k_length"), std::string::npos);
 }
+
+// `kimp sweep` of a scene in plan over the angle of incidence and the eccentricity with the
+// directionality report: every case ok, the peaks in sweep.csv, the chart and the summary's
+// largest peaks.
+TEST(PlanCli, SweepDrawsTheDirectionalityChart)
+{
+  const TempDir dir("e2e_plan_sweep");
+  dir.write("base.yaml", small_plan_scene());
+  const fs::path sweep = dir.write("sweep.yaml",
+                                   "scene: base.yaml\n"
+                                   "report: {kind: directionality, title: Small moat}\n"
+                                   "parameters:\n"
+                                   "  plan.angle: {from: 0, to: 180, step: 45}\n"
+                                   "  plan.eccentricity_x: [0 m, 2 m]\n");
+  const KimpRun  run =
+    run_kimp("sweep " + sweep.string() + " -o " + (dir.path() / "out").string() + " --threads 2",
+             dir.path());
+  ASSERT_EQ(run.exit_code, 0) << run.output();
+  const std::string csv = read_text(dir.path() / "out" / "sweep.csv");
+  EXPECT_NE(csv.find("base_corner_displacement"), std::string::npos);
+  EXPECT_NE(csv.find("corner_impact_force"), std::string::npos);
+  EXPECT_EQ(csv.find("failed"), std::string::npos) << csv;
+  EXPECT_TRUE(fs::exists(dir.path() / "out" / "charts" / "directionality.png"));
+  EXPECT_TRUE(fs::exists(dir.path() / "out" / "charts" / "directionality.svg"));
+  const std::string summary = read_text(dir.path() / "out" / "summary.md");
+  EXPECT_NE(summary.find("10 cases (10 ok, 0 failed)"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("largest peak base corner displacement"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("largest peak rotation"), std::string::npos) << summary;
+}
