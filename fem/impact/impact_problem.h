@@ -336,6 +336,7 @@ namespace kimp::fem::internal
       double                                 y = 0;
     };
     std::vector<BarPoint> bar_points;
+    Vec                   bar_u_ghosted; // several ranks: u with the wall cells' ghost DoFs
     bool                  bar_points_ready = false;
     double                bar_ratio_x = 0, bar_ratio_y = 0, bar_yield_strain = 0;
     double                bar_max_ratio = -1, bar_max_y = 0, bar_max_time = 0; // this rank

@@ -253,14 +253,21 @@ namespace kimp::fem::internal
     }
     if (bar_yield_strain <= 0)
       return;
-    // Every rank takes part in the ghost exchange, with or without wall cells.
-    Vec u_g(locally_owned, locally_relevant, comm);
-    u_g = u;
+    // One rank owns every DoF in order: read u's own array. Otherwise every rank takes part in
+    // the ghost exchange, with or without wall cells.
+    const bool serial = Utilities::MPI::n_mpi_processes(comm) == 1;
+    if (!serial)
+    {
+      if (bar_u_ghosted.size() == 0)
+        bar_u_ghosted.reinit(locally_owned, locally_relevant, comm);
+      bar_u_ghosted = u;
+    }
+    const double *up = u.begin();
     for (const BarPoint &p : bar_points)
     {
       std::array<double, 2> e{{0, 0}};
       for (unsigned int i = 0; i < 8; ++i)
-        e[p.component[i]] += p.gradients[i] * u_g(p.dofs[i]);
+        e[p.component[i]] += p.gradients[i] * (serial ? up[p.dofs[i]] : bar_u_ghosted(p.dofs[i]));
       const double ratio =
         std::max(bar_ratio_x > 0 ? std::abs(e[0]) : 0.0, bar_ratio_y > 0 ? std::abs(e[1]) : 0.0) /
         bar_yield_strain;
