@@ -3,12 +3,15 @@
 # concrete): data/scenes/fem_inelastic.yaml (the default scene at H = 1.25 m, 2.5 cm contact
 # elements, 1 m/s) on 1 and 2 MPI ranks, and the same materials on the quick scene (rigid slab,
 # 5 cm), and the reinforced moat wall (geostatic sand, bars) at 5 cm. Prints wall and CPU time per
-# run and the solver's steps and time per step.
-# Usage: bench/fem_inelastic.sh [BUILD_DIR (default: build)] [RUNS (default: 3)]
+# run and the solver's steps and time per step. With LADDER as third argument: only the reinforced
+# moat wall at H = 1.25 and 2.0 m on each level of the study's fidelity ladder (5 / 2.5 / 1.25 cm),
+# one rank, with the engineer's quantities of each run.
+# Usage: bench/fem_inelastic.sh [BUILD_DIR (default: build)] [RUNS (default: 3)] [ladder]
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$root/build}"
 runs="${2:-3}"
+mode="${3:-}"
 kimp="$build/kimp"
 [[ -x "$kimp" && -x "$build/kimp-fem" ]] || { echo "fem_inelastic.sh: build the target kimp (with FEM) in $build" >&2; exit 1; }
 [[ -x /usr/bin/time ]] || { echo "fem_inelastic.sh: needs /usr/bin/time (Debian package time)" >&2; exit 1; }
@@ -55,13 +58,30 @@ name, time_file, summary = sys.argv[1:4]
 wall, user, sys_ = (float(x) for x in open(time_file).read().split()[-3:])
 c = json.load(open(summary))["cases"][0]
 steps = c["n_steps"]
-print(f"{name:34s} wall {wall:6.2f} s  cpu {user + sys_:6.2f} s  solver {c['wall_seconds']:6.2f} s  "
-      f"{int(steps)} steps  {1e6 * c['wall_seconds'] / steps:7.1f} us/step  "
+print(f"{name:34s} wall {wall:6.2f} s  cpu {user + sys_:6.2f} s  solver {c['wall_time']:6.2f} s  "
+      f"{int(steps)} steps  {1e6 * c['wall_time'] / steps:7.1f} us/step  "
       f"peak {c['peak_force'] / 1e3:.6g} kN/m  COR {c['apparent_cor']:.6g}")
+q = lambda key, scale=1.0: f"{c[key] * scale:.4g}" if key in c else "-"
+print(f"{'':34s} first peak {q('first_peak_force', 1e-3)} kN/m, impulse {q('first_peak_impulse')} "
+      f"N s/m, R_e {q('energy_equivalent_resistance', 1e-3)} kN/m, slab {q('max_slab_displacement', 1e3)} "
+      f"mm, wall {q('max_wall_displacement', 1e3)} mm, stop {q('time_to_stop', 1e3)} ms, end "
+      f"{q('wall_residual_displacement', 1e3)} mm, bars {q('max_bar_strain_ratio')} at "
+      f"{q('max_bar_strain_height')} m, I/mv {q('impulse_momentum_ratio')}, {c.get('stopped_on', '')}")
 PY
   done
 }
 
+if [[ "$mode" == ladder ]]; then
+  echo "kimp fem, reinforced moat wall on the fidelity ladder, $runs runs each ($(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg))"
+  for height in 1.25 2.0; do
+    for h in 5 2.5 1.25; do
+      sed -e "s/\"1.25 m\"/\"$height m\"/" -e "s/h_contact: \"5 cm\"/h_contact: \"$h cm\"/" \
+        "$work/moat_wall.yaml" > "$work/level.yaml"
+      measure "moat wall, H $height m, $h cm, 1 rank" 1 "$work/level.yaml"
+    done
+  done
+  exit 0
+fi
 echo "kimp fem, inelastic materials, $runs runs each ($(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg))"
 measure "quick scene (rigid slab, 5 cm), 1 rank" 1 "$work/quick.yaml"
 measure "fem_inelastic.yaml, 1 rank" 1 "$root/data/scenes/fem_inelastic.yaml"

@@ -6,6 +6,7 @@
 #include <array>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mpi.h>
@@ -346,6 +347,16 @@ namespace kimp::fem
     /** m: x displacement of the wall face in the contact range at the end of the run (the
      *  permanent part plus the free vibration at that instant). */
     double wall_residual_displacement = 0;
+    /**
+     * Reinforced wall (bars in the wall's concrete law): the largest bar strain of the run over
+     * the yield strain, max |eps| / eps_y (eps_y = f_y / E_s; the x bars' eps_xx and the y bars'
+     * eps_yy at the wall's Gauss points, perfect bond, sampled at the history's steps), the
+     * height y (m, ground at y = 0) of that point and the time (s). >= 1: the bars yield there.
+     * NaN without bars in the wall.
+     */
+    double max_bar_strain_ratio  = std::numeric_limits<double>::quiet_NaN();
+    double max_bar_strain_height = std::numeric_limits<double>::quiet_NaN();
+    double max_bar_strain_time   = std::numeric_limits<double>::quiet_NaN();
     /** J/m: work of the contact damping at the end. */
     double contact_dissipation = 0;
     /**

@@ -65,6 +65,18 @@ namespace kimp::io
     std::optional<double> plastic_dissipation_slab, plastic_dissipation_wall,
       plastic_dissipation_soil;
     std::optional<double> damage_dissipation_slab, damage_dissipation_wall, damage_dissipation_soil;
+    // The engineer's quantities of the record (app/fem/fem_quantities.h, docs/physics.md
+    // "Engineer's quantities"); a quantity the record does not show is not set.
+    std::optional<double> first_peak_force;             ///< N/m, of the smoothed force
+    std::optional<double> first_peak_time;              ///< s after the first contact
+    std::optional<double> first_peak_impulse;           ///< N·s/m, ∫F dt of the first pulse
+    std::optional<double> max_slab_displacement;        ///< m, slab travel after first contact
+    std::optional<double> max_wall_displacement;        ///< m, wall face in the contact range
+    std::optional<double> energy_equivalent_resistance; ///< E_0 / max slab travel, N/m
+    std::optional<double> time_to_stop;                 ///< s from first contact to slab at rest
+    std::optional<double> max_bar_strain_ratio;         ///< max bar strain / yield strain
+    std::optional<double> max_bar_strain_height;        ///< m above the ground
+    std::optional<double> impulse_momentum_ratio;       ///< ∫F dt / (m (v_in + v_out))
     // The geostatic step before the impact.
     std::optional<double>       geostatic_weight;   ///< N/m
     std::optional<double>       geostatic_residual; ///< relative

@@ -1,10 +1,12 @@
 // Helpers shared by `kimp mesh`, `kimp fem` and `kimp study`; see fem_commands.h.
 #include "app/fem/fem_common.h"
 
+#include <cmath>
 #include <fmt/format.h>
 #include <sstream>
 #include <tuple>
 
+#include "app/fem/fem_quantities.h"
 #include "base/errors.h"
 
 namespace kimp::app
@@ -150,6 +152,15 @@ namespace kimp::app
       sum.interface_normal_force = s.interface_normal_force;
       sum.friction_dissipation   = s.friction_dissipation;
     }
+    // The engineer's quantities of the record and its impulse-momentum check.
+    if (std::isfinite(s.max_bar_strain_ratio))
+    {
+      sum.max_bar_strain_ratio  = s.max_bar_strain_ratio;
+      sum.max_bar_strain_height = s.max_bar_strain_height;
+      c.labels["bars_yield"]    = s.max_bar_strain_ratio >= 1.0 ? "yes" : "no";
+    }
+    set_engineer_quantities(c);
+    c.labels["impulse_momentum"] = impulse_momentum_status(c);
     return c;
   }
 } // namespace kimp::app

@@ -15,6 +15,7 @@
 
 #include "app/fem/fem_common.h"
 #include "app/fem/fem_estimate.h"
+#include "app/fem/fem_quantities.h"
 #include "app/fem/fem_scene.h"
 #include "app/fem/mesh_run.h"
 #include "base/logging.h"
@@ -284,6 +285,72 @@ namespace kimp::app
       summary["cases"] = cases;
       return summary;
     }
+
+    /** The engineer's quantities of a case (app/fem/fem_quantities.h) as a log line, and a
+     *  warning if its record fails the impulse-momentum check. */
+    void log_engineer_quantities(const FemCase &c)
+    {
+      const FemSummary &s   = c.summary;
+      const auto        val = [](const std::optional<double> &x, double scale)
+      { return x ? fmt::format("{:.4g}", *x * scale) : std::string("-"); };
+      logger().info("{}: first peak {} kN/m at {} ms, its impulse {} N s/m; slab travel {} mm, "
+                    "wall {} mm, energy-equivalent resistance {} kN/m, time to stop {} ms, wall "
+                    "at the end {} mm, bar strain / yield strain {} at {} m; impulse / momentum "
+                    "{}",
+                    c.name,
+                    val(s.first_peak_force, 1e-3),
+                    val(s.first_peak_time, 1e3),
+                    val(s.first_peak_impulse, 1.0),
+                    val(s.max_slab_displacement, 1e3),
+                    val(s.max_wall_displacement, 1e3),
+                    val(s.energy_equivalent_resistance, 1e-3),
+                    val(s.time_to_stop, 1e3),
+                    val(s.wall_residual_displacement, 1e3),
+                    val(s.max_bar_strain_ratio, 1.0),
+                    val(s.max_bar_strain_height, 1.0),
+                    val(s.impulse_momentum_ratio, 1.0));
+      const std::string status = impulse_momentum_status(c);
+      if (status != "ok")
+        logger().warn("{}: impulse-momentum check: {}", c.name, status);
+    }
+
+    std::vector<std::string> engineer_quantity_header()
+    {
+      return {"case",
+              "first_peak_force_N_per_m",
+              "first_peak_time_s",
+              "first_peak_impulse_N_s_per_m",
+              "max_slab_displacement_m",
+              "max_wall_displacement_m",
+              "energy_equivalent_resistance_N_per_m",
+              "time_to_stop_s",
+              "wall_residual_displacement_m",
+              "max_bar_strain_ratio",
+              "max_bar_strain_height_m",
+              "impulse_momentum_ratio",
+              "impulse_momentum"};
+    }
+
+    /** One row of fem_quantities.csv (an empty cell: not shown by the record). */
+    std::vector<std::string> engineer_quantity_row(const FemCase &c)
+    {
+      const FemSummary &s   = c.summary;
+      const auto        val = [](const std::optional<double> &x)
+      { return x ? fmt::format("{}", *x) : std::string(); };
+      return {c.name,
+              val(s.first_peak_force),
+              val(s.first_peak_time),
+              val(s.first_peak_impulse),
+              val(s.max_slab_displacement),
+              val(s.max_wall_displacement),
+              val(s.energy_equivalent_resistance),
+              val(s.time_to_stop),
+              val(s.wall_residual_displacement),
+              val(s.max_bar_strain_ratio),
+              val(s.max_bar_strain_height),
+              val(s.impulse_momentum_ratio),
+              impulse_momentum_status(c)};
+    }
   } // namespace
 
   void run_fem(const LoadedScene<FemScene> &loaded, const OutputDir &output)
@@ -308,7 +375,7 @@ namespace kimp::app
 
     nlohmann::ordered_json                cases = nlohmann::ordered_json::array();
     std::map<std::string, std::string>    extra_units; // of the cases' optional summary keys
-    std::vector<std::vector<std::string>> rows;
+    std::vector<std::vector<std::string>> rows, quantity_rows;
     for (const double height : scene.wall_heights)
     {
       const std::string           name     = fem_case_name(height);
@@ -369,6 +436,8 @@ namespace kimp::app
         extra_units.emplace(key, fem_summary_units(fem_case, key));
       add_history_rows(rows, name, fem_case);
       log_fem_case(name, result);
+      log_engineer_quantities(fem_case);
+      quantity_rows.push_back(engineer_quantity_row(fem_case));
     }
     if (rank != 0)
       return;
@@ -383,6 +452,7 @@ namespace kimp::app
                       "slab_velocity_m_per_s",
                       "wall_displacement_m"},
                      rows);
+    write_csv_atomic(output.file("fem_quantities.csv"), engineer_quantity_header(), quantity_rows);
     const nlohmann::ordered_json summary = fem_summary(n_ranks, start, extra_units, cases);
     write_text_atomic(output.file("summary.json"), summary.dump(2) + "\n");
     logger().info("wrote {}, {}, {}",

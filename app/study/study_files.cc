@@ -6,6 +6,8 @@
 #include <limits>
 #include <map>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include "app/laws/fit_run.h"
 #include "app/study/study_internal.h"
@@ -162,6 +164,66 @@ namespace kimp::app::study_internal
     return t;
   }
 
+  namespace
+  {
+    /// A column name of fidelity_levels.csv for a quantity: key_unit ("N/m" -> "N_per_m").
+    std::string quantity_column(const std::string &key, const std::string &unit)
+    {
+      if (unit == "1")
+        return key;
+      std::string u = unit;
+      for (const auto &[from, to] :
+           std::vector<std::pair<std::string, std::string>>{{"N*s/m", "N_s_per_m"},
+                                                            {"N/m", "N_per_m"}})
+        if (u == from)
+          u = to;
+      return key + "_" + u;
+    }
+
+    /// DIR/fidelity_quantities.csv: per height the engineer's quantities of the reported level
+    /// against the second finest level ("numerical error") and against the other far side
+    /// (fem.fidelity_far_side_spread), their change and the verdict against the 5 % target.
+    void write_quantity_convergence_csv(const OutputDir                &output,
+                                        const std::vector<StudyHeight> &heights)
+    {
+      std::vector<std::vector<std::string>> rows;
+      const auto add = [&](double height, const std::string &comparison, const QuantityError &e)
+      {
+        rows.push_back({number(height),
+                        comparison,
+                        e.key,
+                        e.unit,
+                        number(e.coarse),
+                        number(e.fine),
+                        number(100.0 * e.relative),
+                        number(100.0 * ladder_quantity_tolerance),
+                        e.verdict});
+      };
+      for (const StudyHeight &h : heights)
+      {
+        for (const QuantityError &e : h.ladder.quantity_errors)
+          add(h.wall_height, "numerical error", e);
+        for (const QuantityError &e : h.ladder.far_side_spread)
+          add(h.wall_height, "far side " + h.ladder.other_far_side, e);
+      }
+      if (rows.empty())
+        return;
+      // "other": the second finest level, or the run with the other far side; "reported": the
+      // reported level.
+      write_csv_atomic(output.file("fidelity_quantities.csv"),
+                       {"wall_height_m",
+                        "comparison",
+                        "quantity",
+                        "unit",
+                        "other",
+                        "reported",
+                        "change_percent",
+                        "target_percent",
+                        "verdict"},
+                       rows);
+    }
+  } // namespace
+
   void write_k_table_csv(const OutputDir                &output,
                          const StudyScene               &scene,
                          const std::vector<StudyHeight> &heights,
@@ -181,29 +243,39 @@ namespace kimp::app::study_internal
     for (const StudyHeight &h : heights)
       for (std::size_t i = 0; i < h.ladder.outcomes.size(); ++i)
       {
-        const LevelOutcome &o = h.ladder.outcomes[i];
-        level_rows.push_back({number(h.wall_height),
-                              number(h.ladder.levels[i].h_contact * 100.0),
-                              number(h.ladder.levels[i].penalty_factor),
-                              number(stiffness_to_kn_per_mm(o.k_kelvin_voigt, 1.0)),
-                              number(stiffness_to_kn_per_mm(o.k_jankowski, 1.5)),
-                              number(o.seconds),
-                              o.from_cache ? "yes" : "no",
-                              i == h.ladder.used ? "yes" : "no",
-                              o.status});
+        const LevelOutcome      &o   = h.ladder.outcomes[i];
+        std::vector<std::string> row = {number(h.wall_height),
+                                        number(h.ladder.levels[i].h_contact * 100.0),
+                                        number(h.ladder.levels[i].penalty_factor),
+                                        number(stiffness_to_kn_per_mm(o.k_kelvin_voigt, 1.0)),
+                                        number(stiffness_to_kn_per_mm(o.k_jankowski, 1.5)),
+                                        number(o.seconds),
+                                        o.from_cache ? "yes" : "no",
+                                        i == h.ladder.used ? "yes" : "no",
+                                        o.status};
+        // The engineer's quantities of the level's record (SI; empty: not shown).
+        for (const LadderQuantity &q : ladder_quantities())
+        {
+          const auto it = o.quantities.find(q.key);
+          row.push_back(it == o.quantities.end() ? std::string() : number(it->second));
+        }
+        level_rows.push_back(std::move(row));
       }
-    if (!level_rows.empty())
-      write_csv_atomic(output.file("fidelity_levels.csv"),
-                       {"wall_height_m",
-                        "h_contact_cm",
-                        "penalty_factor",
-                        "kelvin_voigt_kN_per_mm_per_m",
-                        "jankowski_kN_per_mm1.5_per_m",
-                        "wall_time_s",
-                        "fem_from_cache",
-                        "used",
-                        "status"},
-                       level_rows);
+    if (level_rows.empty())
+      return;
+    std::vector<std::string> header = {"wall_height_m",
+                                       "h_contact_cm",
+                                       "penalty_factor",
+                                       "kelvin_voigt_kN_per_mm_per_m",
+                                       "jankowski_kN_per_mm1.5_per_m",
+                                       "wall_time_s",
+                                       "fem_from_cache",
+                                       "used",
+                                       "status"};
+    for (const LadderQuantity &q : ladder_quantities())
+      header.push_back(quantity_column(q.key, q.unit));
+    write_csv_atomic(output.file("fidelity_levels.csv"), header, level_rows);
+    write_quantity_convergence_csv(output, heights);
   }
 
   void write_building_csv(const OutputDir &output, const std::vector<StudyBuildingRun> &runs)

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
+#include <map>
+#include <string>
 
 #include "app/study/study_fem.h"
 #include "app/study/study_internal.h"
@@ -13,6 +15,81 @@
 
 namespace kimp::app::study_internal
 {
+  namespace
+  {
+    /// The ladder's engineer's quantities of a record (LevelOutcome::quantities).
+    std::map<std::string, double> record_quantities(const io::FemCase &fem_case)
+    {
+      std::map<std::string, double>       quantities;
+      const std::map<std::string, double> entries = fem_case.summary.entries();
+      for (const LadderQuantity &q : ladder_quantities())
+        if (const auto it = entries.find(q.key); it != entries.end())
+          quantities[q.key] = it->second;
+      return quantities;
+    }
+
+    void log_quantity_errors(const std::string                &name,
+                             const char                       *what,
+                             const std::vector<QuantityError> &errors)
+    {
+      for (const QuantityError &e : errors)
+        logger().info("{}: {} of {}: {:.3g} % ({:.4g} -> {:.4g} {}): {}",
+                      name,
+                      what,
+                      e.key,
+                      100.0 * e.relative,
+                      e.coarse,
+                      e.fine,
+                      e.unit,
+                      e.verdict);
+    }
+
+    /**
+     * fem.fidelity_far_side_spread: the reported level once more with the other far side
+     * (rollers <-> absorbing), and the change of the engineer's quantities from the scene's
+     * far side to it (h.ladder.far_side_spread, "coarse" = the other far side).
+     */
+    void add_far_side_spread(const FemScene    &material,
+                             double             wall_height,
+                             const OutputDir   &output,
+                             const std::string &prefix,
+                             StudyHeight       &h)
+    {
+      const FidelityLevel &level = h.ladder.used_level();
+      FemScene             other = fem_level_scene(material, level.h_contact, level.penalty_factor);
+      const bool           absorbing = other.boundary.far == FemBoundary::Far::absorbing;
+      other.boundary.far      = absorbing ? FemBoundary::Far::rollers : FemBoundary::Far::absorbing;
+      h.ladder.other_far_side = absorbing ? "rollers" : "absorbing";
+      StudyFemCase fem =
+        study_fem_case(other,
+                       wall_height,
+                       output,
+                       prefix + "_" + level.label() + "_far_" + h.ladder.other_far_side);
+      h.fem_seconds += fem.wall_seconds;
+      LevelOutcome scene_side, other_side;
+      scene_side.quantities    = h.ladder.used_outcome().quantities;
+      other_side.quantities    = record_quantities(fem.fem_case);
+      h.ladder.far_side_spread = quantity_errors(other_side, scene_side);
+      log_quantity_errors(h.name,
+                          ("spread to the " + h.ladder.other_far_side + " far side").c_str(),
+                          h.ladder.far_side_spread);
+    }
+
+    /// The ladder's numerical error of the engineer's quantities to the log; the far-side
+    /// spread if the scene asks for it.
+    void quantities_on_the_ladder(const StudyFemScene &scene,
+                                  const FemScene      &material,
+                                  double               wall_height,
+                                  const OutputDir     &output,
+                                  const std::string   &prefix,
+                                  StudyHeight         &h)
+    {
+      log_quantity_errors(h.name, "numerical error", h.ladder.quantity_errors);
+      if (scene.fidelity_far_side_spread)
+        add_far_side_spread(material, wall_height, output, prefix, h);
+    }
+  } // namespace
+
   StudyHeight run_height(const StudyScene &scene, double wall_height, const OutputDir &output)
   {
     StudyHeight h;
@@ -73,6 +150,7 @@ namespace kimp::app::study_internal
           c.fits = fit_study_laws(c.fem_case, scene.fit);
           h.fit_seconds += c.fits.seconds;
         }
+        outcome.quantities = record_quantities(c.fem_case);
         outcome.seconds    = fem.wall_seconds + c.fits.seconds;
         outcome.from_cache = fem.from_cache;
         outcome.ok         = c.fits.ok();
@@ -128,6 +206,7 @@ namespace kimp::app::study_internal
                   h.ladder.converged ? "converged" : "NOT converged",
                   stiffness_to_kn_per_mm(h.ladder.error_kelvin_voigt, 1.0),
                   stiffness_to_kn_per_mm(h.ladder.error_jankowski, 1.5));
+    quantities_on_the_ladder(scene.fem, material, wall_height, output, prefix, h);
     return h;
   }
 

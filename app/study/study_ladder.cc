@@ -2,6 +2,7 @@
 // change below the tolerance, error = change to the previous level.
 #include "app/study/study_ladder.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <stdexcept>
@@ -44,6 +45,53 @@ namespace kimp::app
       return std::hypot(a, b);
     }
   } // namespace
+
+  const std::vector<LadderQuantity> &ladder_quantities()
+  {
+    // Floors: 0.01 mm of displacement, 0.1 ms of time (ten samples of the default output
+    // interval), 0.01 of the bar strain ratio, 5 cm of the height where the bar strain peaks
+    // (two elements of the finest default level; a height near the ground has no relative
+    // error); forces, impulses and resistances have none.
+    static const std::vector<LadderQuantity> quantities = {
+      {"first_peak_force", "N/m", 0.0},
+      {"first_peak_impulse", "N*s/m", 0.0},
+      {"energy_equivalent_resistance", "N/m", 0.0},
+      {"max_slab_displacement", "m", 1e-5},
+      {"max_wall_displacement", "m", 1e-5},
+      {"time_to_stop", "s", 1e-4},
+      {"wall_residual_displacement", "m", 1e-5},
+      {"max_bar_strain_ratio", "1", 0.01},
+      {"max_bar_strain_height", "m", 0.05}};
+    return quantities;
+  }
+
+  std::vector<QuantityError> quantity_errors(const LevelOutcome &coarse, const LevelOutcome &fine)
+  {
+    std::vector<QuantityError> errors;
+    for (const LadderQuantity &q : ladder_quantities())
+    {
+      QuantityError e;
+      e.key        = q.key;
+      e.unit       = q.unit;
+      const auto a = coarse.quantities.find(q.key), b = fine.quantities.find(q.key);
+      if (a == coarse.quantities.end() || b == fine.quantities.end())
+      {
+        // Shown by neither level (no bars, a slab that never stops): nothing to converge.
+        if (a == coarse.quantities.end() && b == fine.quantities.end())
+          continue;
+        e.verdict = "not shown";
+        errors.push_back(e);
+        continue;
+      }
+      e.coarse   = a->second;
+      e.fine     = b->second;
+      e.relative = relative_change(e.coarse, e.fine);
+      e.pass    = e.relative <= ladder_quantity_tolerance || std::abs(e.coarse - e.fine) <= q.floor;
+      e.verdict = e.pass ? "pass" : "fail";
+      errors.push_back(e);
+    }
+    return errors;
+  }
 
   std::string FidelityLevel::label() const
   {
@@ -168,6 +216,20 @@ namespace kimp::app
       quadrature(result.mesh_error_kelvin_voigt, result.penalty_error_kelvin_voigt);
     result.error_jankowski =
       quadrature(result.mesh_error_jankowski, result.penalty_error_jankowski);
+    if (result.used > 0)
+    {
+      // The two finest levels: the reported one and the usable level before it.
+      std::size_t before = result.used - 1;
+      while (before > 0 && !result.outcomes[before].ok)
+        --before;
+      if (result.outcomes[before].ok)
+        result.quantity_errors =
+          quantity_errors(result.outcomes[before], result.outcomes[result.used]);
+    }
+    result.quantities_converged =
+      !result.quantity_errors.empty() && std::all_of(result.quantity_errors.begin(),
+                                                     result.quantity_errors.end(),
+                                                     [](const QuantityError &e) { return e.pass; });
     return result;
   }
 } // namespace kimp::app

@@ -1,11 +1,14 @@
 // `fidelity: auto` of `kimp study`: climb a ladder of FEM mesh sizes h_contact and then
 // penalty factors until the fitted k of both laws changes by less than a tolerance between
-// consecutive levels; the numerical error of k is the change to the previous level.
+// consecutive levels; the numerical error of k is the change to the previous level. Beside k,
+// the engineer's quantities of the records (first peak, resistance, displacements, time to stop,
+// bar strain) and their change between the two finest levels, against a 5 % target.
 #pragma once
 
 #include <cstddef>
 #include <functional>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -21,6 +24,37 @@ namespace kimp::app
     std::string label() const;
   };
 
+  /**
+   * One of the engineer's quantities the ladder converges on (docs/physics.md "Engineer's
+   * quantities"): its key in io::FemSummary, SI unit, and the absolute difference below which
+   * two levels agree whatever their relative change (a quantity near zero, or one that the
+   * record resolves only to its sampling).
+   */
+  struct LadderQuantity
+  {
+    const char *key;
+    const char *unit;
+    double      floor;
+  };
+
+  /** The quantities of the ladder, in the order of its tables. */
+  const std::vector<LadderQuantity> &ladder_quantities();
+
+  /** The target of the quantities' numerical error between the two finest levels: 5 %. */
+  constexpr double ladder_quantity_tolerance = 0.05;
+
+  /** The numerical error of one quantity: its change between two levels. */
+  struct QuantityError
+  {
+    std::string key, unit;
+    double      coarse   = std::numeric_limits<double>::quiet_NaN(); ///< SI
+    double      fine     = std::numeric_limits<double>::quiet_NaN(); ///< SI, the finer level
+    double      relative = std::numeric_limits<double>::quiet_NaN(); ///< |coarse - fine| / |fine|
+    /// Within the target: relative <= ladder_quantity_tolerance, or |coarse - fine| <= floor.
+    bool        pass = false;
+    std::string verdict; ///< "pass", "fail" or "not shown" (a level lacks the quantity)
+  };
+
   /** What the caller computed on one level (FEM + both fits). */
   struct LevelOutcome
   {
@@ -30,6 +64,9 @@ namespace kimp::app
     double      k_jankowski    = std::numeric_limits<double>::quiet_NaN(); ///< N/m^1.5 per m
     double      seconds        = 0.0;   ///< s spent on the level (FEM + fits)
     bool        from_cache     = false; ///< FEM read from the study's cache
+    /// The engineer's quantities of the level's record (ladder_quantities() keys, SI); a key
+    /// the record does not show is absent.
+    std::map<std::string, double> quantities;
   };
 
   /** The ladder as climbed. */
@@ -50,6 +87,16 @@ namespace kimp::app
     double penalty_error_jankowski    = std::numeric_limits<double>::quiet_NaN();
     double error_kelvin_voigt         = std::numeric_limits<double>::quiet_NaN();
     double error_jankowski            = std::numeric_limits<double>::quiet_NaN();
+
+    /// The engineer's quantities between the two finest levels run (the reported level and
+    /// the one before it in the climb), one per ladder_quantities() entry; empty with one level.
+    std::vector<QuantityError> quantity_errors;
+    /// Every quantity_errors entry passes.
+    bool quantities_converged = false;
+    /// fidelity_far_side_spread: the quantities of the reported level with the other far side
+    /// (QuantityError::coarse) against the scene's own (fine), and that far side's name.
+    std::vector<QuantityError> far_side_spread;
+    std::string                other_far_side;
 
     bool                 has_usable_level() const { return used < outcomes.size(); }
     const LevelOutcome  &used_outcome() const { return outcomes.at(used); }
@@ -74,6 +121,12 @@ namespace kimp::app
                                      const std::vector<double> &penalty_levels,
                                      double                     tolerance,
                                      const std::function<LevelOutcome(const FidelityLevel &)> &run);
+
+  /**
+   * The numerical error of each of ladder_quantities() between a coarse and a fine level, with
+   * its verdict against ladder_quantity_tolerance.
+   */
+  std::vector<QuantityError> quantity_errors(const LevelOutcome &coarse, const LevelOutcome &fine);
 
   /**
    * Relative difference |a − b| / |b| (b the finer level); infinity if b == 0 and a != b.

@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 #include <limits>
 #include <map>
+#include <optional>
+#include <string>
 
 #include "app/helper_programs.h"
 #include "app/study/study_internal.h"
@@ -217,6 +219,84 @@ namespace kimp::app::study_internal
                  {"FEM from cache", {"fem_from_cache"}, {}}});
   }
 
+  namespace
+  {
+    /// "Engineer's quantities": per height the quantities of the reported FEM record and, with
+    /// `fidelity: auto`, their change between the two finest levels against the 5 % target.
+    std::string quantities_report_markdown(const StudyResult &result)
+    {
+      std::string md = "## Engineer's quantities of the FEM records\n\n"
+                       "Per height, of the reported level (docs/physics.md \"Engineer's "
+                       "quantities\"): the first peak force and the impulse of its pulse, the "
+                       "energy-equivalent resistance E_0 / largest slab travel, the largest wall "
+                       "displacement, the time to stop the slab, the wall face at the end, the "
+                       "largest bar strain over the yield strain (>= 1: the bars yield; the "
+                       "height of that point above the ground) and the impulse-momentum check of "
+                       "the record.\n\n"
+                       "| H (m) | first peak (kN/m) | its impulse (N·s/m) | R_e (kN/m) | slab "
+                       "travel (mm) | wall (mm) | time to stop (ms) | wall at the end (mm) | bar "
+                       "strain / ε_y (at y m) | ∫F dt / m(v_in + v_out) |\n"
+                       "|---|---|---|---|---|---|---|---|---|---|\n";
+      const auto  v  = [](const std::optional<double> &x, double scale)
+      { return x ? base::sig(*x * scale, 4) : std::string("-"); };
+      for (const StudyHeight &h : result.heights)
+      {
+        const io::FemSummary &s     = h.fem_case.summary;
+        const auto            check = h.fem_case.labels.find("impulse_momentum");
+        const std::string     flag  = check != h.fem_case.labels.end() && check->second != "ok" ?
+                                        " **" + check->second + "**" :
+                                        std::string();
+        md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {}{} |\n",
+                          base::sig(h.wall_height, 3),
+                          v(s.first_peak_force, 1e-3),
+                          v(s.first_peak_impulse, 1.0),
+                          v(s.energy_equivalent_resistance, 1e-3),
+                          v(s.max_slab_displacement, 1e3),
+                          v(s.max_wall_displacement, 1e3),
+                          v(s.time_to_stop, 1e3),
+                          v(s.wall_residual_displacement, 1e3),
+                          s.max_bar_strain_ratio ? v(s.max_bar_strain_ratio, 1.0) + " (" +
+                                                     v(s.max_bar_strain_height, 1.0) + ")" :
+                                                   std::string("no bars"),
+                          v(s.impulse_momentum_ratio, 1.0),
+                          flag);
+      }
+      bool any = false;
+      for (const StudyHeight &h : result.heights)
+        any = any || !h.ladder.quantity_errors.empty() || !h.ladder.far_side_spread.empty();
+      if (!any)
+        return md + "\n";
+      md += fmt::format("\nNumerical error: the change between the two finest levels of the "
+                        "fidelity ladder; far side: the change to a run of the reported level "
+                        "with the other far side (`fem.fidelity_far_side_spread`). Target <= "
+                        "{:.3g} % (a change within a quantity's resolution passes too), "
+                        "[fidelity_quantities.csv](fidelity_quantities.csv):\n\n"
+                        "| H (m) | comparison | quantity | other | reported | change (%) | "
+                        "verdict |\n|---|---|---|---|---|---|---|\n",
+                        100.0 * ladder_quantity_tolerance);
+      const auto row = [&](double height, const std::string &what, const QuantityError &e)
+      {
+        md += fmt::format("| {} | {} | {} ({}) | {} | {} | {} | {} |\n",
+                          base::sig(height, 3),
+                          what,
+                          e.key,
+                          e.unit,
+                          base::sig(e.coarse, 4),
+                          base::sig(e.fine, 4),
+                          base::sig(100.0 * e.relative, 3),
+                          e.verdict == "pass" ? e.verdict : "**" + e.verdict + "**");
+      };
+      for (const StudyHeight &h : result.heights)
+      {
+        for (const QuantityError &e : h.ladder.quantity_errors)
+          row(h.wall_height, "numerical error", e);
+        for (const QuantityError &e : h.ladder.far_side_spread)
+          row(h.wall_height, "far side " + h.ladder.other_far_side, e);
+      }
+      return md + "\n";
+    }
+  } // namespace
+
   std::string report_markdown(const StudyScene &scene, const StudyResult &result, bool charts)
   {
     std::string md = "# kimp wall-height study\n\n" + base::version_line() + "\n\n";
@@ -249,6 +329,7 @@ namespace kimp::app::study_internal
       md += "![FEM force histories with the fitted laws](charts/force_histories.png)\n\n";
     if (charts && result.heights.size() > 1) // one height: one point, the table says it
       md += "![k against wall height](charts/k_vs_height.png)\n\n";
+    md += quantities_report_markdown(result);
     md += velocity_report_markdown(scene, result, charts);
 
     md += "## Building response\n\n"

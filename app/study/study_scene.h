@@ -37,6 +37,9 @@ namespace kimp::app
     double              fidelity_tolerance       = 0.01; ///< relative change of k, > 0
     std::vector<double> fidelity_h_contact       = {0.05, 0.025, 0.0125}; ///< m, decreasing
     std::vector<double> fidelity_penalty_factors = {1.0};                 ///< increasing
+    /// auto: also run the reported level with the other far side (rollers <-> absorbing) and
+    /// report the spread of the engineer's quantities (one more run of the finest level).
+    bool fidelity_far_side_spread = false;
     /// Impact velocities of the k(H, v) table, m/s (> 0, increasing); slab.velocity, the
     /// reference velocity of the fidelity ladder and the building runs, is always added.
     std::vector<double> velocities = {0.5, 1.0, 2.0};
@@ -70,6 +73,11 @@ namespace kimp::app
                      "auto: penalty factors tried at the mesh reached, increasing (the first "
                      "one is used for the mesh ladder)",
                      io::Range::positive());
+    io.flag("fidelity_far_side_spread",
+            s.fidelity_far_side_spread,
+            "auto: also run the reported level with the other far side (boundary.far rollers "
+            "<-> absorbing) and report the spread of the engineer's quantities between the two "
+            "(one more run of the finest level per height)");
     io.quantity_list("velocities",
                      s.velocities,
                      "m/s",

@@ -329,7 +329,27 @@ namespace kimp::fem::internal
     /** Appends the contact pressure of ev to frames (and, at the first frame, the contact
      *  nodes' vertices and tributary lengths). ev is the same on every rank. */
     void record_contact_pressure(const PenaltyContact::Evaluation &ev);
-    void finish(ImpactResult &result, double wall_seconds);
+    /** Sampled steps: the largest bar strain of a reinforced wall so far (|eps_xx| of the x
+     *  bars, |eps_yy| of the y bars over eps_y = f_y / E_s at the wall's Gauss points; this
+     *  rank's cells; collective). Does nothing without bars in the wall's law. */
+    void track_bar_strain(double t, const Vec &u);
+    /** The largest bar strain over the ranks into @p s (collective). */
+    void summarise_bar_strain(ImpactSummary &s) const;
+    /** Gauss points of this rank's wall cells for track_bar_strain(): the 8 DoFs of the cell,
+     *  the 4 shape gradients (d/dx then d/dy) and y of each point. */
+    struct BarPoint
+    {
+      std::array<types::global_dof_index, 8> dofs{};
+      std::array<double, 8>                  gradients{}; // d/dx of an x DoF, d/dy of a y DoF
+      std::array<unsigned char, 8>           component{};
+      double                                 y = 0;
+    };
+    std::vector<BarPoint> bar_points;
+    Vec                   bar_u_ghosted; // several ranks: u with the wall cells' ghost DoFs
+    bool                  bar_points_ready = false;
+    double                bar_ratio_x = 0, bar_ratio_y = 0, bar_yield_strain = 0;
+    double                bar_max_ratio = -1, bar_max_y = 0, bar_max_time = 0; // this rank
+    void                  finish(ImpactResult &result, double wall_seconds);
 
     const ImpactParameters                    prm;
     MPI_Comm                                  comm;

@@ -17,6 +17,7 @@
 #include <deal.II/numerics/data_out.h>
 
 #include "fem/impact/impact_problem.h"
+#include "fem/inelastic_laws.h"
 
 namespace kimp::fem::internal
 {
@@ -132,6 +133,7 @@ namespace kimp::fem::internal
     if (n % sample_every != 0)
       return;
     std::array<double, n_energy_values> global = sum_energies(u, v_n, Ku);
+    track_bar_strain(t, u);
     if (geostatic_on)
       for (unsigned int i = 0; i < 3; ++i)
         global[5 + i] -= geostatic_point_energy[i];
@@ -212,6 +214,88 @@ namespace kimp::fem::internal
         "step " + std::to_string(n) + " t = " + fmt_sig(t) + " s, F = " + fmt_sig(ev.total_force) +
         " N/m, active = " + std::to_string(ev.active.size()) +
         ", max penetration = " + fmt_sig(ev.max_penetration) + " m, dE/E0 = " + fmt_sig(error));
+  }
+
+  void ImpactProblem::track_bar_strain(double t, const Vec &u)
+  {
+    if (!bar_points_ready)
+    {
+      bar_points_ready = true;
+      const auto  it   = laws.find(geometry::wall_material);
+      const auto *concrete =
+        it == laws.end() ? nullptr : dynamic_cast<const ConcreteDamageLaw *>(it->second.get());
+      if (concrete == nullptr || !concrete->reinforcement().any())
+        return;
+      const ReinforcementParameters &r = concrete->reinforcement();
+      bar_ratio_x                      = r.ratio_x;
+      bar_ratio_y                      = r.ratio_y;
+      bar_yield_strain                 = r.yield_stress / r.youngs_modulus;
+      const QGauss<dim> quadrature(2);
+      FEValues<dim>     fe_values(fe, quadrature, update_gradients | update_quadrature_points);
+      std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned() && cell->material_id() == geometry::wall_material)
+        {
+          fe_values.reinit(cell);
+          cell->get_dof_indices(dofs);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+          {
+            BarPoint p;
+            p.y = fe_values.quadrature_point(q)[1];
+            for (unsigned int i = 0; i < dofs.size() && i < 8; ++i)
+            {
+              const unsigned int c = fe.system_to_component_index(i).first;
+              p.dofs[i]            = dofs[i];
+              p.component[i]       = static_cast<unsigned char>(c);
+              p.gradients[i]       = fe_values.shape_grad_component(i, q, c)[c];
+            }
+            bar_points.push_back(p);
+          }
+        }
+    }
+    if (bar_yield_strain <= 0)
+      return;
+    // One rank owns every DoF in order: read u's own array. Otherwise every rank takes part in
+    // the ghost exchange, with or without wall cells.
+    const bool serial = Utilities::MPI::n_mpi_processes(comm) == 1;
+    if (!serial)
+    {
+      if (bar_u_ghosted.size() == 0)
+        bar_u_ghosted.reinit(locally_owned, locally_relevant, comm);
+      bar_u_ghosted = u;
+    }
+    const double *up = u.begin();
+    for (const BarPoint &p : bar_points)
+    {
+      std::array<double, 2> e{{0, 0}};
+      for (unsigned int i = 0; i < 8; ++i)
+        e[p.component[i]] += p.gradients[i] * (serial ? up[p.dofs[i]] : bar_u_ghosted(p.dofs[i]));
+      const double ratio =
+        std::max(bar_ratio_x > 0 ? std::abs(e[0]) : 0.0, bar_ratio_y > 0 ? std::abs(e[1]) : 0.0) /
+        bar_yield_strain;
+      if (ratio > bar_max_ratio)
+      {
+        bar_max_ratio = ratio;
+        bar_max_y     = p.y;
+        bar_max_time  = t;
+      }
+    }
+  }
+
+  void ImpactProblem::summarise_bar_strain(ImpactSummary &s) const
+  {
+    // The largest bar strain over the ranks, with its height and time.
+    const auto all =
+      Utilities::MPI::all_gather(comm, std::vector<double>{bar_max_ratio, bar_max_y, bar_max_time});
+    std::vector<double> worst{-1, 0, 0};
+    for (const auto &a : all)
+      if (a[0] > worst[0])
+        worst = a;
+    if (worst[0] < 0)
+      return;
+    s.max_bar_strain_ratio  = worst[0];
+    s.max_bar_strain_height = worst[1];
+    s.max_bar_strain_time   = worst[2];
   }
 
   void ImpactProblem::throw_divergence(unsigned long n, double t, const Vec &u) const
@@ -546,6 +630,8 @@ namespace kimp::fem::internal
     }
     if (!history.radiation.empty())
       s.radiated_energy = history.radiation.back();
+    if (bar_yield_strain > 0)
+      summarise_bar_strain(s);
     // After the impact: the wall's state and where the slab's energy went (last sample).
     s.permanent_indentation      = permanent_wall_indentation;
     s.wall_residual_displacement = wall_end_displacement;

@@ -7,6 +7,7 @@
 #  include <gtest/gtest.h>
 #  include <map>
 #  include <stdexcept>
+#  include <string>
 #  include <vector>
 
 #  include "app/study/study_ladder.h"
@@ -188,6 +189,55 @@ TEST(FidelityLadder, RejectsBadLaddersNamingTheKey)
   EXPECT_THROW(kimp::app::climb_fidelity_ladder({}, {1.0}, 0.01, std::ref(fem)),
                std::invalid_argument);
   EXPECT_EQ(fem.calls, 0);
+}
+
+TEST(FidelityLadder, QuantitiesBetweenTheTwoFinestLevelsPassOrFailAgainstFivePercent)
+{
+  // Quantities converging as q_inf (1 + c h): at h = 2.5 / 1.25 cm with c = 1 /m the change is
+  // 0.0125 / 1.0125 = 1.23 % (pass); with c = 4 /m, 4.76 % (pass); c = 5 /m: 5.88 % (fail).
+  const auto run = [](const FidelityLevel &level)
+  {
+    LevelOutcome o;
+    o.ok                                         = true;
+    o.k_kelvin_voigt                             = 1e11 * (1 + level.h_contact); // tolerance 1 %
+    o.k_jankowski                                = 3e13 * (1 + level.h_contact);
+    o.quantities["first_peak_force"]             = 1.0e6 * (1 + 1 * level.h_contact);
+    o.quantities["energy_equivalent_resistance"] = 1.0e5 * (1 + 4 * level.h_contact);
+    o.quantities["max_wall_displacement"]        = 0.01 * (1 + 5 * level.h_contact);
+    // Near zero: 3 µm apart, below the 0.01 mm floor.
+    o.quantities["wall_residual_displacement"] = 1e-6 + 1.2e-4 * level.h_contact;
+    if (level.h_contact < 0.03)
+      o.quantities["max_bar_strain_ratio"] = 0.5; // only the finer levels show it
+    return o;
+  };
+  const kimp::app::LadderResult r =
+    kimp::app::climb_fidelity_ladder({0.05, 0.025, 0.0125}, {1.0}, 1e-3, run);
+  ASSERT_EQ(r.outcomes.size(), 3u);
+  std::map<std::string, kimp::app::QuantityError> by_key;
+  for (const auto &e : r.quantity_errors)
+    by_key[e.key] = e;
+  EXPECT_NEAR(by_key.at("first_peak_force").relative, 0.0125 / 1.0125, exact);
+  EXPECT_EQ(by_key.at("first_peak_force").verdict, "pass");
+  EXPECT_NEAR(by_key.at("energy_equivalent_resistance").relative, 0.05 / 1.05, exact);
+  EXPECT_EQ(by_key.at("energy_equivalent_resistance").verdict, "pass");
+  EXPECT_NEAR(by_key.at("max_wall_displacement").relative, 0.0625 / 1.0625, exact);
+  EXPECT_EQ(by_key.at("max_wall_displacement").verdict, "fail");
+  EXPECT_GT(by_key.at("wall_residual_displacement").relative, 0.5);
+  EXPECT_EQ(by_key.at("wall_residual_displacement").verdict, "pass") << "below its floor";
+  EXPECT_EQ(by_key.at("max_bar_strain_ratio").verdict, "pass") << "both finest levels show it";
+  EXPECT_EQ(by_key.count("time_to_stop"), 0u) << "shown by no level: not listed";
+  EXPECT_FALSE(r.quantities_converged);
+  // The coarse and fine values are those of the two finest levels.
+  EXPECT_NEAR(by_key.at("first_peak_force").fine, 1.0e6 * 1.0125, 1e-6);
+  EXPECT_NEAR(by_key.at("first_peak_force").coarse, 1.0e6 * 1.025, 1e-6);
+
+  // A quantity one of the two levels lacks is "not shown" and fails.
+  LevelOutcome coarse, fine;
+  coarse.quantities["time_to_stop"] = 0.02;
+  const auto errors                 = kimp::app::quantity_errors(coarse, fine);
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0].verdict, "not shown");
+  EXPECT_FALSE(errors[0].pass);
 }
 
 TEST(FidelityLadder, TotalStiffnessErrorPropagatesLinearlyInKAndWidth)
