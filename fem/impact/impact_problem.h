@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <deal.II/base/index_set.h>
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
@@ -122,6 +123,14 @@ namespace kimp::fem::internal
     void add_force_to_owners(Vec &f);
     /** The same by an FEValues loop over the cells at every call: the kernel's reference. */
     void internal_force_reference(const Vec &u, Vec &f);
+    /** Cells of this material id get the mean-dilatation B-bar: soil cells of a non-linear law
+     *  (ImpactParameters::mean_dilatation). */
+    bool mean_dilatation(types::material_id id) const;
+    /** The Gauss-point strains eps (from FEValues symmetric gradients) of a cell of material
+     *  id as Voigt vectors, with the mean dilatation where mean_dilatation(id) (weights jxw). */
+    std::array<VoigtStrain, 4> cell_strains(types::material_id                          id,
+                                            const std::vector<SymmetricTensor<2, dim>> &eps,
+                                            const std::array<double, 4>                &jxw) const;
 
     // contact_setup.cc
     void setup_contact();
@@ -408,9 +417,10 @@ namespace kimp::fem::internal
     struct ForceCell
     {
       const MaterialLaw *law    = nullptr;
-      unsigned int       cell   = 0;  // active cell index (history)
-      unsigned int       body   = 3;  // body_of(material id)
-      int                lid[8] = {}; // positions in u_ghosted's local (owned + ghost) array
+      unsigned int       cell   = 0;     // active cell index (history)
+      unsigned int       body   = 3;     // body_of(material id)
+      bool               bbar   = false; // mean_dilatation(material id)
+      int                lid[8] = {};    // positions in u_ghosted's local (owned + ghost) array
     };
     double                      wall_end_displacement = 0, permanent_wall_indentation = 0; // m
     unsigned long               unloading_iterations = 0;
