@@ -238,28 +238,12 @@ namespace kimp::fem::internal
         fe_t.reinit(cell);
         fe_t[displacement].get_function_symmetric_gradients(u_g, eps);
         cell_matrix = 0;
-        // B-bar cells: the strains and each DoF's strain column with the mean dilatation.
+        // B-bar cells: the strains and the B rows with the mean dilatation.
         std::array<double, 4> jxw{};
         for (unsigned int q = 0; q < quadrature.size(); ++q)
           jxw[q] = fe_t.JxW(q);
         const std::array<VoigtStrain, 4> strain = cell_strains(cell->material_id(), eps, jxw);
-        for (unsigned int i = 0; i < n; ++i)
-        {
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-          {
-            const auto ei = fe_t[displacement].symmetric_gradient(i, q);
-            b[q * n + i]  = {{ei[0][0], ei[1][1], 2 * ei[0][1]}};
-          }
-          if (mean_dilatation(cell->material_id()))
-          {
-            std::array<VoigtStrain, 4> column{};
-            for (unsigned int q = 0; q < quadrature.size(); ++q)
-              column[q] = b[q * n + i];
-            average_in_plane_trace(column.data(), jxw.data(), 4);
-            for (unsigned int q = 0; q < quadrature.size(); ++q)
-              b[q * n + i] = column[q];
-          }
-        }
+        strain_columns(cell->material_id(), fe_t, b);
         for (unsigned int q = 0; q < quadrature.size(); ++q)
         {
           const VoigtStrain &e = strain[q];

@@ -17,6 +17,7 @@
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
@@ -126,6 +127,13 @@ namespace kimp::fem::internal
     /** Cells of this material id get the mean-dilatation B-bar: soil cells of a non-linear law
      *  (ImpactParameters::mean_dilatation). */
     bool mean_dilatation(types::material_id id) const;
+    /** b[q n + i]: the Voigt strain of DoF i's shape function at Gauss point q (n DoFs per
+     *  cell) of the cell fv was reinit()ed on, with the mean dilatation where
+     *  mean_dilatation(id): the rows of the cell's B (B-bar) operator. fv: 2 x 2 Gauss points,
+     *  gradients and JxW. */
+    void strain_columns(types::material_id                  id,
+                        const FEValues<dim>                &fv,
+                        std::vector<std::array<double, 3>> &b) const;
     /** The Gauss-point strains eps (from FEValues symmetric gradients) of a cell of material
      *  id as Voigt vectors, with the mean dilatation where mean_dilatation(id) (weights jxw). */
     std::array<VoigtStrain, 4> cell_strains(types::material_id                          id,

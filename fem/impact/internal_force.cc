@@ -46,6 +46,34 @@ namespace kimp::fem::internal
     return e;
   }
 
+  void ImpactProblem::strain_columns(const types::material_id            id,
+                                     const FEValues<dim>                &fv,
+                                     std::vector<std::array<double, 3>> &b) const
+  {
+    const FEValuesExtractors::Vector displacement(0);
+    const unsigned int               n = fe.n_dofs_per_cell(), n_q = fv.n_quadrature_points;
+    b.resize(static_cast<std::size_t>(n_q) * n);
+    for (unsigned int q = 0; q < n_q; ++q)
+      for (unsigned int i = 0; i < n; ++i)
+      {
+        const auto e = fv[displacement].symmetric_gradient(i, q);
+        b[q * n + i] = {{e[0][0], e[1][1], 2 * e[0][1]}};
+      }
+    if (!mean_dilatation(id))
+      return;
+    Assert(n_q == 4, ExcInternalError());
+    const std::array<double, 4> jxw{{fv.JxW(0), fv.JxW(1), fv.JxW(2), fv.JxW(3)}};
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      std::array<VoigtStrain, 4> column{};
+      for (unsigned int q = 0; q < 4; ++q)
+        column[q] = b[q * n + i];
+      average_in_plane_trace(column.data(), jxw.data(), 4);
+      for (unsigned int q = 0; q < 4; ++q)
+        b[q * n + i] = column[q];
+    }
+  }
+
   void ImpactProblem::setup_internal_force()
   {
     force_cells.clear();
