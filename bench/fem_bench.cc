@@ -1,10 +1,14 @@
 // Cost of the docs/physics.md §4 impact (H = 1.25 m) in kimp::fem: explicit vs implicit, rigid vs
 // elastic slab, two mesh sizes. Fixed single iterations so that `mpirun -np N` stays collective.
+#include <algorithm>
 #include <benchmark/benchmark.h>
+#include <cmath>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "fem/impact.h"
+#include "fem/inelastic_laws.h"
 #include "fem/mpi_session.h"
 #include "geometry/scene_geometry.h"
 #include "geometry/scene_ids.h"
@@ -94,8 +98,89 @@ namespace
     p.implicit_options.dt_factor = static_cast<double>(state.range(1));
     run(state, p);
   }
+
+  /**
+   * The reinforced moat wall of docs/validation.md on contact elements of h_contact: geostatic
+   * medium_dense_sand Mohr-Coulomb, concrete damage from f_cm = 38 MPa with the wall's and the
+   * slab's bars, elastic slab at 1 m/s.
+   */
+  ImpactParameters moat_wall(double h_contact)
+  {
+    using namespace kimp::fem;
+    namespace ids                       = kimp::geometry;
+    auto                 p              = scene(h_contact, false);
+    const SoilParameters sp             = soil_preset("medium_dense_sand");
+    p.materials[ids::soil_material]     = {sp.youngs_modulus, sp.poisson_ratio, sp.density};
+    p.material_laws[ids::soil_material] = std::make_shared<const MohrCoulombLaw>(sp);
+    const auto              cp          = ConcreteParameters::from_f_cm(38e6);
+    ReinforcementParameters wall, slab;
+    wall.ratio_x                        = 0.002;
+    wall.ratio_y                        = 0.008;
+    slab.ratio_x                        = 0.005;
+    p.materials[ids::wall_material]     = {cp.youngs_modulus, cp.poisson_ratio, 2400};
+    p.materials[ids::slab_material]     = {cp.youngs_modulus, cp.poisson_ratio, 2400};
+    p.material_laws[ids::wall_material] = std::make_shared<const ConcreteDamageLaw>(cp, wall);
+    p.material_laws[ids::slab_material] = std::make_shared<const ConcreteDamageLaw>(cp, slab);
+    p.geostatic.enabled                 = true;
+    p.geostatic.initial_stress_K0[ids::soil_material] = 1 - std::sin(sp.friction_angle);
+    p.initial_velocity                                = 1.0;
+    return p;
+  }
+
+  /** moat_wall() for a fixed 40 ms with (range 1 = 1) or without the soil's mean-dilatation
+   *  B-bar: its cost per step (CPU time of the run; docs/performance.md). */
+  void ExplicitInelasticMeanDilatation(benchmark::State &state)
+  {
+    auto p                 = moat_wall(state.range(0) * 1e-4);
+    p.end_time             = 0.04;
+    p.separation_hold_time = p.end_time;
+    p.mean_dilatation      = state.range(1) != 0;
+    run(state, p);
+  }
+
+  /** moat_wall() for a fixed 300 ms: the wall face's displacement at the end (mm) and its change
+   *  over the last 50 ms (mm), the permanent displacement and whether it has settled
+   *  (docs/validation.md). */
+  void ImpactPermanentDisplacement(benchmark::State &state)
+  {
+    auto p                 = moat_wall(state.range(0) * 1e-4);
+    p.end_time             = 0.3;
+    p.separation_hold_time = p.end_time;
+    p.output_interval      = 1e-4;
+    kimp::fem::ImpactResult r;
+    for (auto _ : state)
+      r = kimp::fem::run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto &w = r.history.wall_displacement;
+    const auto &t = r.history.time;
+    std::size_t k = 0;
+    while (k + 1 < t.size() && t[k] < t.back() - 0.05)
+      ++k;
+    state.counters["dofs"]              = r.summary.n_dofs;
+    state.counters["steps"]             = r.summary.n_steps;
+    state.counters["wall_end_mm"]       = r.summary.wall_residual_displacement * 1e3;
+    state.counters["wall_last_50ms_mm"] = (w.back() - w[k]) * 1e3;
+    state.counters["wall_max_mm"]       = *std::max_element(w.begin(), w.end()) * 1e3;
+    state.counters["permanent_ind_mm"]  = r.summary.permanent_indentation * 1e3;
+    state.counters["peak_kN_m"]         = r.summary.peak_force / 1e3;
+    state.counters["cor"]               = r.summary.apparent_cor;
+  }
 } // namespace
 
+// Arguments: contact element size in 0.1 mm; B-bar on (1) or off (0).
+BENCHMARK(ExplicitInelasticMeanDilatation)
+  ->Args({500, 1})
+  ->Args({500, 0})
+  ->Args({250, 1})
+  ->Args({250, 0})
+  ->Iterations(1)
+  ->Unit(benchmark::kSecond);
+// Argument: contact element size in 0.1 mm (the three ladder levels).
+BENCHMARK(ImpactPermanentDisplacement)
+  ->Arg(500)
+  ->Arg(250)
+  ->Arg(125)
+  ->Iterations(1)
+  ->Unit(benchmark::kSecond);
 // Argument: contact element size in 0.1 mm (250 = 2.5 cm, the default scene).
 BENCHMARK(ExplicitElasticSlab)->Arg(250)->Arg(125)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(ExplicitRigidSlab)->Arg(250)->Iterations(1)->Unit(benchmark::kSecond);

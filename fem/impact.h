@@ -141,6 +141,13 @@ namespace kimp::fem
      * reference in tests.
      */
     bool reference_internal_force = false;
+    /**
+     * Mean-dilatation B-bar (Q1/P0, as the static solver's StaticPlasticityParameters::bbar) in
+     * the soil cells of a law that is not MaterialLaw::is_linear(): their volumetric strain is
+     * the cell mean, so that near-isochoric plastic flow does not lock the Q1 element
+     * (docs/physics.md §6). false: the plain Q1 strain everywhere (comparison runs).
+     */
+    bool mean_dilatation = true;
 
     /**
      * Rigid slab: the slab is one translational DoF of mass slab_mass (kg per metre of depth)

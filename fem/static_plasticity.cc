@@ -24,6 +24,8 @@
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include "fem/mean_dilatation.h"
+
 namespace kimp::fem
 {
   namespace
@@ -266,12 +268,10 @@ namespace kimp::fem
         history_.initialize_cell(c, law, std::sqrt(cell->measure()));
         const auto   rho_it = p.densities.find(cell->material_id());
         const double gamma  = (rho_it == p.densities.end() ? 0.0 : rho_it->second) * p.gravity;
-        double       div[n_q][n_d], mean_div[n_d] = {}, area = 0;
         for (unsigned int q = 0; q < n_q; ++q)
         {
           const double w    = fv.JxW(q);
           jxw_[c * n_q + q] = w;
-          area += w;
           weight_ += gamma * w;
           double *B = &bbar_[(c * n_q + q) * n_d * 3];
           for (unsigned int i = 0; i < n_d; ++i)
@@ -282,8 +282,6 @@ namespace kimp::fem
             B[3 * i + 0]            = comp == 0 ? g[0] : 0.0;
             B[3 * i + 1]            = comp == 1 ? g[1] : 0.0;
             B[3 * i + 2]            = comp == 0 ? g[1] : g[0];
-            div[q][i]               = g[comp];
-            mean_div[i] += g[comp] * w;
             if (comp == 1)
               f_ext_[dofs[i]] -= gamma * fv.shape_value_component(i, q, comp) * w;
           }
@@ -295,15 +293,15 @@ namespace kimp::fem
           }
         }
         if (p.bbar)
-          for (unsigned int q = 0; q < n_q; ++q)
+          for (unsigned int i = 0; i < n_d; ++i)
           {
-            double *B = &bbar_[(c * n_q + q) * n_d * 3];
-            for (unsigned int i = 0; i < n_d; ++i)
-            {
-              const double shift = 0.5 * (mean_div[i] / area - div[q][i]);
-              B[3 * i + 0] += shift;
-              B[3 * i + 1] += shift;
-            }
+            // The B-bar column of DoF i: its strain at the points with the mean dilatation.
+            std::array<VoigtStrain, n_q> column;
+            for (unsigned int q = 0; q < n_q; ++q)
+              std::copy_n(&bbar_[((c * n_q + q) * n_d + i) * 3], 3, column[q].begin());
+            average_in_plane_trace(column.data(), &jxw_[c * n_q], n_q);
+            for (unsigned int q = 0; q < n_q; ++q)
+              std::copy_n(column[q].begin(), 3, &bbar_[((c * n_q + q) * n_d + i) * 3]);
           }
       }
     }

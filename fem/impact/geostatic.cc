@@ -15,6 +15,7 @@
 #include <deal.II/lac/vector.h>
 
 #include "fem/impact/impact_problem.h"
+#include "fem/mean_dilatation.h"
 #include "geometry/scene_ids.h"
 
 namespace kimp::fem::internal
@@ -229,7 +230,7 @@ namespace kimp::fem::internal
     FEValues<dim>                        fe_t(fe, quadrature, update_gradients | update_JxW_values);
     FullMatrix<double>                   cell_matrix(n, n);
     std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
-    std::vector<std::array<double, 3>>   b(n);
+    std::vector<std::array<double, 3>>   b(4 * n); // by point, then DoF
     std::vector<double>                  virgin;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -239,10 +240,16 @@ namespace kimp::fem::internal
         fe_t.reinit(cell);
         fe_t[displacement].get_function_symmetric_gradients(u_g, eps);
         cell_matrix = 0;
+        // B-bar cells: the strains and the B rows with the mean dilatation.
+        std::array<double, 4> jxw{};
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+          jxw[q] = fe_t.JxW(q);
+        const std::array<VoigtStrain, 4> strain = cell_strains(cell->material_id(), eps, jxw);
+        strain_columns(cell->material_id(), fe_t, b);
         for (unsigned int q = 0; q < quadrature.size(); ++q)
         {
-          const VoigtStrain e{{eps[q][0][0], eps[q][1][1], 2 * eps[q][0][1]}};
-          const double     *h = nullptr;
+          const VoigtStrain &e = strain[q];
+          const double      *h = nullptr;
           if (!linear_laws && law.n_history() > 0)
             h = qp_history.committed(c, q);
           else
@@ -251,20 +258,16 @@ namespace kimp::fem::internal
             law.initial_history(virgin.data());
             h = virgin.data();
           }
-          const VoigtTangent t = law.tangent(e, h);
-          for (unsigned int i = 0; i < n; ++i)
-          {
-            const auto ei = fe_t[displacement].symmetric_gradient(i, q);
-            b[i]          = {{ei[0][0], ei[1][1], 2 * ei[0][1]}};
-          }
+          const VoigtTangent           t  = law.tangent(e, h);
+          const std::array<double, 3> *bq = &b[q * n];
           for (unsigned int j = 0; j < n; ++j)
           {
-            const std::array<double, 3> tb{{t[0] * b[j][0] + t[1] * b[j][1] + t[2] * b[j][2],
-                                            t[3] * b[j][0] + t[4] * b[j][1] + t[5] * b[j][2],
-                                            t[6] * b[j][0] + t[7] * b[j][1] + t[8] * b[j][2]}};
+            const std::array<double, 3> tb{{t[0] * bq[j][0] + t[1] * bq[j][1] + t[2] * bq[j][2],
+                                            t[3] * bq[j][0] + t[4] * bq[j][1] + t[5] * bq[j][2],
+                                            t[6] * bq[j][0] + t[7] * bq[j][1] + t[8] * bq[j][2]}};
             for (unsigned int i = 0; i < n; ++i)
               cell_matrix(i, j) +=
-                (b[i][0] * tb[0] + b[i][1] * tb[1] + b[i][2] * tb[2]) * fe_t.JxW(q);
+                (bq[i][0] * tb[0] + bq[i][1] * tb[1] + bq[i][2] * tb[2]) * jxw[q];
           }
         }
         cell->get_dof_indices(dof_indices);
@@ -441,8 +444,10 @@ namespace kimp::fem::internal
     const auto              tops = material_tops(dof_handler, g.initial_stress_K0, comm);
     Vec                     u_g(locally_owned, locally_relevant, comm);
     u_g = u;
-    const QGauss<dim> quadrature(2);
-    FEValues<dim>     fe_values(fe, quadrature, update_gradients | update_quadrature_points);
+    const QGauss<dim>                    quadrature(2);
+    FEValues<dim>                        fe_values(fe,
+                            quadrature,
+                            update_gradients | update_quadrature_points | update_JxW_values);
     const FEValuesExtractors::Vector     displacement(0);
     std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
     std::vector<double>                  local, scratch, probe;
@@ -456,17 +461,21 @@ namespace kimp::fem::internal
         fe_values.reinit(cell);
         fe_values[displacement].get_function_symmetric_gradients(u_g, eps);
         scratch.assign(std::max(1u, law.n_history()), 0.0);
+        std::array<double, 4> jxw{};
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+          jxw[q] = fe_values.JxW(q);
+        const std::array<VoigtStrain, 4> strain = cell_strains(mid, eps, jxw);
         for (unsigned int q = 0; q < quadrature.size(); ++q)
         {
-          const VoigtStrain e{{eps[q][0][0], eps[q][1][1], 2 * eps[q][0][1]}};
-          const bool        history = !linear_laws && law.n_history() > 0;
-          const double     *h       = history ? qp_history.committed(c, q) : scratch.data();
-          VoigtStress       s       = law.stress(e, h, scratch.data());
-          const PointOutput po      = law.output(e, history ? scratch.data() : nullptr);
-          double            szz     = po.sigma_zz;
-          max_plastic               = std::max(max_plastic, po.equivalent_plastic_strain);
-          const auto point          = fe_values.quadrature_point(q);
-          const auto it             = g.initial_stress_K0.find(mid);
+          const VoigtStrain &e       = strain[q];
+          const bool         history = !linear_laws && law.n_history() > 0;
+          const double      *h       = history ? qp_history.committed(c, q) : scratch.data();
+          VoigtStress        s       = law.stress(e, h, scratch.data());
+          const PointOutput  po      = law.output(e, history ? scratch.data() : nullptr);
+          double             szz     = po.sigma_zz;
+          max_plastic                = std::max(max_plastic, po.equivalent_plastic_strain);
+          const auto point           = fe_values.quadrature_point(q);
+          const auto it              = g.initial_stress_K0.find(mid);
           probe.assign(scratch.size(), 0.0);
           if (it != g.initial_stress_K0.end() &&
               !(history && law.set_initial_stress(probe.data(), InitialStress{})))

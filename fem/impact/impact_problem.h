@@ -13,9 +13,11 @@
 #include <vector>
 
 #include <deal.II/base/index_set.h>
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
@@ -131,6 +133,21 @@ namespace kimp::fem::internal
     void add_force_to_owners(Vec &f);
     /** The same by an FEValues loop over the cells at every call: the kernel's reference. */
     void internal_force_reference(const Vec &u, Vec &f);
+    /** Cells of this material id get the mean-dilatation B-bar: soil cells of a non-linear law
+     *  (ImpactParameters::mean_dilatation). */
+    bool mean_dilatation(types::material_id id) const;
+    /** b[q n + i]: the Voigt strain of DoF i's shape function at Gauss point q (n DoFs per
+     *  cell) of the cell fv was reinit()ed on, with the mean dilatation where
+     *  mean_dilatation(id): the rows of the cell's B (B-bar) operator. fv: 2 x 2 Gauss points,
+     *  gradients and JxW. */
+    void strain_columns(types::material_id                  id,
+                        const FEValues<dim>                &fv,
+                        std::vector<std::array<double, 3>> &b) const;
+    /** The Gauss-point strains eps (from FEValues symmetric gradients) of a cell of material
+     *  id as Voigt vectors, with the mean dilatation where mean_dilatation(id) (weights jxw). */
+    std::array<VoigtStrain, 4> cell_strains(types::material_id                          id,
+                                            const std::vector<SymmetricTensor<2, dim>> &eps,
+                                            const std::array<double, 4>                &jxw) const;
 
     // contact_setup.cc
     void setup_contact();
@@ -437,9 +454,10 @@ namespace kimp::fem::internal
     struct ForceCell
     {
       const MaterialLaw *law    = nullptr;
-      unsigned int       cell   = 0;  // active cell index (history)
-      unsigned int       body   = 3;  // body_of(material id)
-      int                lid[8] = {}; // positions in u_ghosted's local (owned + ghost) array
+      unsigned int       cell   = 0;     // active cell index (history)
+      unsigned int       body   = 3;     // body_of(material id)
+      bool               bbar   = false; // mean_dilatation(material id)
+      int                lid[8] = {};    // positions in u_ghosted's local (owned + ghost) array
     };
     double                      wall_end_displacement = 0, permanent_wall_indentation = 0; // m
     unsigned long               unloading_iterations = 0;

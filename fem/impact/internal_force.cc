@@ -10,6 +10,7 @@
 #include <deal.II/lac/vector.h>
 
 #include "fem/impact/impact_problem.h"
+#include "fem/mean_dilatation.h"
 
 namespace kimp::fem::internal
 {
@@ -19,7 +20,61 @@ namespace kimp::fem::internal
   {
     /** Cells per law call: bounds the stack buffers of strains, stresses and energies. */
     constexpr unsigned int max_batch_cells = 32;
+
+    /** The JxW of the four points of a cell's kernel data g (per point 4 d/dx, 4 d/dy, JxW). */
+    std::array<double, 4> cell_weights(const double *g)
+    {
+      constexpr unsigned int width = 9;
+      return {{g[8], g[width + 8], g[2 * width + 8], g[3 * width + 8]}};
+    }
   } // namespace
+
+  bool ImpactProblem::mean_dilatation(const types::material_id id) const
+  {
+    return prm.mean_dilatation && !linear_laws && id == geometry::soil_material &&
+           !laws.at(id)->is_linear();
+  }
+
+  std::array<VoigtStrain, 4>
+  ImpactProblem::cell_strains(const types::material_id                    id,
+                              const std::vector<SymmetricTensor<2, dim>> &eps,
+                              const std::array<double, 4>                &jxw) const
+  {
+    std::array<VoigtStrain, 4> e{};
+    for (unsigned int q = 0; q < 4; ++q)
+      e[q] = {{eps[q][0][0], eps[q][1][1], 2 * eps[q][0][1]}};
+    if (mean_dilatation(id))
+      average_in_plane_trace(e.data(), jxw.data(), 4);
+    return e;
+  }
+
+  void ImpactProblem::strain_columns(const types::material_id            id,
+                                     const FEValues<dim>                &fv,
+                                     std::vector<std::array<double, 3>> &b) const
+  {
+    const FEValuesExtractors::Vector displacement(0);
+    const unsigned int               n = fe.n_dofs_per_cell(), n_q = fv.n_quadrature_points;
+    b.resize(static_cast<std::size_t>(n_q) * n);
+    for (unsigned int q = 0; q < n_q; ++q)
+      for (unsigned int i = 0; i < n; ++i)
+      {
+        const auto e = fv[displacement].symmetric_gradient(i, q);
+        b[q * n + i] = {{e[0][0], e[1][1], 2 * e[0][1]}};
+      }
+    if (!mean_dilatation(id))
+      return;
+    Assert(n_q == 4, ExcInternalError());
+    const std::array<double, 4> jxw{{fv.JxW(0), fv.JxW(1), fv.JxW(2), fv.JxW(3)}};
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      std::array<VoigtStrain, 4> column{};
+      for (unsigned int q = 0; q < 4; ++q)
+        column[q] = b[q * n + i];
+      average_in_plane_trace(column.data(), jxw.data(), 4);
+      for (unsigned int q = 0; q < 4; ++q)
+        b[q * n + i] = column[q];
+    }
+  }
 
   void ImpactProblem::setup_internal_force()
   {
@@ -54,6 +109,7 @@ namespace kimp::fem::internal
         fc.law  = laws.at(cell->material_id()).get();
         fc.cell = cell->active_cell_index();
         fc.body = body_of(cell->material_id());
+        fc.bbar = mean_dilatation(cell->material_id());
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
         {
           fc.lid[i] = ghosted_map.LID(static_cast<int>(dof_indices[i]));
@@ -163,6 +219,7 @@ namespace kimp::fem::internal
     std::array<VoigtStress, n_buf>           stress;
     std::array<std::array<double, 3>, n_buf> energy;
     static_assert(points_per_cell == 4, "buffers sized for four Gauss points per cell");
+    static_assert(gradient_width == 9, "cell_weights() reads JxW at offset 8 of 9 per point");
     const unsigned int n_values = qp_history.n_values();
     for (std::size_t b0 = 0; b0 < n_cells;)
     {
@@ -192,6 +249,10 @@ namespace kimp::fem::internal
           }
           strain[(k - b0) * points_per_cell + q] = {{exx, eyy, gxy}};
         }
+        if (fc.bbar)
+          average_in_plane_trace(&strain[(k - b0) * points_per_cell],
+                                 cell_weights(gradients + k * cell_width).data(),
+                                 points_per_cell);
       }
       const unsigned int n_points = static_cast<unsigned int>((b1 - b0) * points_per_cell);
       law->update_points(n_points,
@@ -206,6 +267,11 @@ namespace kimp::fem::internal
         const ForceCell &fc                      = force_cells[k];
         double           fe_local[dofs_per_cell] = {};
         const double    *g                       = gradients + k * cell_width;
+        // B-bar: sum_q B_bar^T sigma w = sum_q B^T sigma_hat w, sigma_hat the same trace mean.
+        if (fc.bbar)
+          average_in_plane_trace(&stress[(k - b0) * points_per_cell],
+                                 cell_weights(g).data(),
+                                 points_per_cell);
         for (unsigned int q = 0; q < points_per_cell; ++q, g += gradient_width)
         {
           const unsigned int p  = static_cast<unsigned int>((k - b0) * points_per_cell + q);
@@ -259,28 +325,35 @@ namespace kimp::fem::internal
         const unsigned int c   = cell->active_cell_index();
         fe_values.reinit(cell);
         fe_values[displacement].get_function_symmetric_gradients(u_ghosted, eps);
+        std::array<double, 4> jxw{};
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+          jxw[q] = fe_values.JxW(q);
+        const std::array<VoigtStrain, 4> strain = cell_strains(cell->material_id(), eps, jxw);
+        std::array<VoigtStress, 4>       sigma{};
         cell_force = 0;
         for (unsigned int q = 0; q < quadrature.size(); ++q)
         {
-          const VoigtStrain strain{{eps[q][0][0], eps[q][1][1], 2 * eps[q][0][1]}};
-          const VoigtStress sigma =
-            law.stress(strain, qp_history.committed(c, q), qp_history.trial(c, q));
-          const PointOutput po = law.output(strain, qp_history.trial(c, q));
-          point_energy_local[0] += po.stored_energy * fe_values.JxW(q);
-          point_energy_local[1] += po.plastic_dissipation * fe_values.JxW(q);
-          point_energy_local[2] += po.damage_dissipation * fe_values.JxW(q);
+          sigma[q] = law.stress(strain[q], qp_history.committed(c, q), qp_history.trial(c, q));
+          const PointOutput po = law.output(strain[q], qp_history.trial(c, q));
+          point_energy_local[0] += po.stored_energy * jxw[q];
+          point_energy_local[1] += po.plastic_dissipation * jxw[q];
+          point_energy_local[2] += po.damage_dissipation * jxw[q];
           auto &body = body_dissipation_local[body_of(cell->material_id())];
-          body[0] += po.plastic_dissipation * fe_values.JxW(q);
-          body[1] += po.damage_dissipation * fe_values.JxW(q);
+          body[0] += po.plastic_dissipation * jxw[q];
+          body[1] += po.damage_dissipation * jxw[q];
           if (body_of(cell->material_id()) == 0)
-            slab_stored_local += po.stored_energy * fe_values.JxW(q);
+            slab_stored_local += po.stored_energy * jxw[q];
+        }
+        // B-bar: the force of the mean-dilatation strain is B^T of the stress's trace mean.
+        if (mean_dilatation(cell->material_id()))
+          average_in_plane_trace(sigma.data(), jxw.data(), 4);
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
           for (unsigned int i = 0; i < n; ++i)
           {
             const auto e = fe_values[displacement].symmetric_gradient(i, q);
             cell_force(i) +=
-              (sigma[0] * e[0][0] + sigma[1] * e[1][1] + 2 * sigma[2] * e[0][1]) * fe_values.JxW(q);
+              (sigma[q][0] * e[0][0] + sigma[q][1] * e[1][1] + 2 * sigma[q][2] * e[0][1]) * jxw[q];
           }
-        }
         cell->get_dof_indices(dof_indices);
         constraints.distribute_local_to_global(cell_force, dof_indices, force_writable);
       }

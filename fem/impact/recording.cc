@@ -342,8 +342,8 @@ namespace kimp::fem::internal
          {&m.sxx, &m.syy, &m.sxy, &m.mean_stress, &m.von_mises, &m.damage, &m.eq_plastic})
       v->reinit(n_cells);
     // Cell means over the Gauss points of the stiffness, each from its committed history.
-    const QGauss<dim>                    quadrature(2);
-    FEValues<dim>                        fe_values(fe, quadrature, update_gradients);
+    const QGauss<dim> quadrature(2);
+    FEValues<dim>     fe_values(fe, quadrature, update_gradients | update_JxW_values);
     const FEValuesExtractors::Vector     displacement(0);
     std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
     std::vector<double>                  scratch;
@@ -356,14 +356,18 @@ namespace kimp::fem::internal
         fe_values[displacement].get_function_symmetric_gradients(u_g, eps);
         const MaterialLaw &law = *laws.at(cell->material_id());
         scratch.assign(std::max(1u, law.n_history()), 0.0);
+        std::array<double, 4> jxw{};
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+          jxw[q] = fe_values.JxW(q);
+        const std::array<VoigtStrain, 4> strain = cell_strains(cell->material_id(), eps, jxw);
         for (unsigned int q = 0; q < quadrature.size(); ++q)
         {
-          const VoigtStrain e{{eps[q][0][0], eps[q][1][1], 2 * eps[q][0][1]}};
-          const double     *committed = linear_laws ? scratch.data() : qp_history.committed(c, q);
-          const VoigtStress sigma     = law.stress(e, committed, scratch.data());
-          const PointOutput po        = law.output(e, linear_laws ? nullptr : scratch.data());
-          const double      p         = (sigma[0] + sigma[1] + po.sigma_zz) / 3;
-          const double      j2 =
+          const VoigtStrain &e         = strain[q];
+          const double      *committed = linear_laws ? scratch.data() : qp_history.committed(c, q);
+          const VoigtStress  sigma     = law.stress(e, committed, scratch.data());
+          const PointOutput  po        = law.output(e, linear_laws ? nullptr : scratch.data());
+          const double       p         = (sigma[0] + sigma[1] + po.sigma_zz) / 3;
+          const double       j2 =
             0.5 * ((sigma[0] - p) * (sigma[0] - p) + (sigma[1] - p) * (sigma[1] - p) +
                    (po.sigma_zz - p) * (po.sigma_zz - p)) +
             sigma[2] * sigma[2];

@@ -346,8 +346,7 @@ namespace kimp::fem::internal
     FullMatrix<double>       cell_matrix(n, n);
     Vector<double>           cell_mass(n), cell_slab(n), cell_x(n), cell_y(n);
     std::vector<types::global_dof_index> dof_indices(n);
-    const FEValuesExtractors::Vector     displacement(0);
-    std::vector<std::array<double, 3>>   b(n);
+    std::vector<std::array<double, 3>>   b(4 * n);          // by Gauss point, then DoF
     std::array<double, 2>                body_held{{0, 0}}; // a constrained DoF, per component
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -363,22 +362,19 @@ namespace kimp::fem::internal
         cell_matrix = 0;
         cell_mass   = 0;
         cell_slab   = 0;
+        strain_columns(cell->material_id(), fe_values, b); // B-bar in the soil's cells
         for (unsigned int q = 0; q < quadrature.size(); ++q)
         {
-          for (unsigned int i = 0; i < n; ++i)
-          {
-            const auto eps = fe_values[displacement].symmetric_gradient(i, q);
-            b[i]           = {{eps[0][0], eps[1][1], 2 * eps[0][1]}};
-          }
+          const std::array<double, 3> *bq = &b[q * n];
           for (unsigned int i = 0; i < n; ++i)
           {
             std::array<double, 3> db{};
             for (unsigned int r = 0; r < 3; ++r)
               for (unsigned int c = 0; c < 3; ++c)
-                db[c] += b[i][r] * d[3 * r + c];
+                db[c] += bq[i][r] * d[3 * r + c];
             for (unsigned int j = 0; j < n; ++j)
               cell_matrix(i, j) +=
-                (db[0] * b[j][0] + db[1] * b[j][1] + db[2] * b[j][2]) * fe_values.JxW(q);
+                (db[0] * bq[j][0] + db[1] * bq[j][1] + db[2] * bq[j][2]) * fe_values.JxW(q);
           }
         }
         // Gauss-Lobatto points are the vertices: the mass matrix is diagonal.
