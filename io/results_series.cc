@@ -136,13 +136,19 @@ namespace kimp::io
   {
     if (width == 0)
       throw ResultsError(fmt::format("time series '{}': width must be >= 1", g.path()));
-    auto state              = std::make_shared<detail::TimeSeriesState>();
-    state->file             = file_;
-    state->path             = g.path();
-    state->width            = width;
-    state->matrix           = width > 1;
-    state->buffer_rows      = std::max<std::size_t>(buffer_rows, 1);
-    const std::size_t chunk = std::min<std::size_t>(state->buffer_rows, 4096);
+    auto state         = std::make_shared<detail::TimeSeriesState>();
+    state->file        = file_;
+    state->path        = g.path();
+    state->width       = width;
+    state->matrix      = width > 1;
+    state->buffer_rows = std::max<std::size_t>(buffer_rows, 1);
+    // One chunk holds the buffered rows: a whole series written at once (buffer_rows = its
+    // length) is one chunk of its exact size, with no padding to a round number of rows. Chunks
+    // stay below 1 MiB beyond 4096 rows (HDF5's chunk cache).
+    constexpr std::size_t chunk_bytes = std::size_t(1) << 20;
+    const std::size_t     chunk =
+      std::min<std::size_t>(state->buffer_rows,
+                            std::max<std::size_t>(4096, chunk_bytes / (sizeof(double) * width)));
     if (clock == nullptr)
     {
       state->step_set = create_extendible(g.id_,
