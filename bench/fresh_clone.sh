@@ -3,7 +3,8 @@
 # directory and run `bash scripts/main.sh` there (install the run-time dependencies, build `kimp`,
 # run the default wall-height study), without ccache. Prints each phase's wall time (clone,
 # dependencies, configure, build, study), the machine's cores and load before and after, and the
-# ten slowest build steps (from ninja's log). With the dependencies installed, the install phase
+# ten slowest build steps (from ninja's log), and the CPU time of main.sh's processes (on a
+# shared machine, CPU time / cores estimates the wall time on idle cores). With the dependencies installed, the install phase
 # only checks them (and installs gui/'s npm packages into the clone, from npm's cache).
 # Usage: bench/fresh_clone.sh [KEEP_DIR]   (KEEP_DIR: clone there and keep it; default: a
 #        temporary directory, removed at the end). Goal: <= 6 min on 2 cores.
@@ -11,6 +12,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 commit="$(git -C "$root" rev-parse HEAD)"
+[[ -x /usr/bin/time ]] || { echo "fresh_clone.sh: needs /usr/bin/time (Debian package time)" >&2; exit 1; }
 if [[ $# -gt 0 ]]; then
   work="$1"
   mkdir -p "$work"
@@ -34,7 +36,8 @@ cloned="$EPOCHREALTIME"
 log="$work/main.log"
 main_start="$EPOCHREALTIME"
 set +e
-(cd "$work/kimp" && bash scripts/main.sh "$work/kimp/out/study" 2>&1) |
+(cd "$work/kimp" &&
+  /usr/bin/time -o "$work/main.cpu" -f "%U %S" bash scripts/main.sh "$work/kimp/out/study" 2>&1) |
   while IFS= read -r line; do
     printf '%s %s\n' "$(awk -v a="$main_start" -v b="$EPOCHREALTIME" 'BEGIN{printf "%.1f", b - a}')" "$line"
   done > "$log"
@@ -67,6 +70,11 @@ printf "%-34s %7.1f s\n" "study (kimp study)" "$(awk -v a="$study_start" -v b="$
 printf "%-34s %7.1f s  (%.2f min)\n" "total: clone to study written" \
   "$(awk -v a="$start" -v b="$end" 'BEGIN{print b - a}')" \
   "$(awk -v a="$start" -v b="$end" 'BEGIN{print (b - a) / 60}')"
+# CPU time of main.sh and every process it started: on a shared machine, the wall time an idle
+# machine of these cores would need is about this over the cores (the build runs -j cores).
+cpu=$(awk '{printf "%.0f", $1 + $2}' "$work/main.cpu")
+printf "%-34s %7d s  (user + system; / %d cores = %.1f min)\n" "cpu time of scripts/main.sh" \
+  "$cpu" "$(nproc)" "$(awk -v c="$cpu" -v n="$(nproc)" 'BEGIN{print c / n / 60}')"
 echo "load after: $(load)"
 ninja_log="$work/kimp/build/.ninja_log"
 if [[ -f "$ninja_log" ]]; then
