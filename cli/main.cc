@@ -1,5 +1,6 @@
 // kimp: impact stiffness for pounding of seismically isolated buildings (command-line entry).
-// The lean executable: no deal.II, gmsh or MPI_Init; the FEM commands are run by `kimp-fem`.
+// The lean executable: no deal.II, gmsh or MPI; the FEM commands and MPI jobs are run by
+// `kimp-fem`.
 #include <cerrno>
 #include <cstring>
 #include <exception>
@@ -7,6 +8,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "app/mpi_ranks.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
 #include "cli/main_support.h"
@@ -69,8 +71,10 @@ int main(int argc, char **argv)
   // installs them again after MPI's start-up.
   kimp::io::install_signal_handlers();
 #ifdef KIMP_FEM_EXECUTABLE
-  if (const char *command = command_name(argc, argv); command && is_fem_command(command))
-    return exec_fem_executable(argv, command);
+  // An MPI job (`mpirun -np N kimp sweep`) runs in kimp-fem too: this executable has no MPI.
+  if (const char *command = command_name(argc, argv);
+      (command && is_fem_command(command)) || kimp::app::launched_by_mpi())
+    return exec_fem_executable(argv, command ? command : "under MPI");
 #endif
   return kimp::cli::end_process(kimp::cli::run_main(argc,
                                                     argv,

@@ -13,12 +13,12 @@
 #include <fcntl.h>
 #include <functional>
 #include <iostream>
-#include <mpi.h>
 #include <sstream>
 #include <streambuf>
 #include <string>
 #include <unistd.h>
 
+#include "app/mpi_ranks.h"
 #include "base/errors.h"
 #include "cli/cli.h"
 #include "io/output_dir.h"
@@ -26,28 +26,11 @@
 
 namespace kimp::cli
 {
-  /// An error on one rank of a multi-rank job would leave the others waiting in a collective
-  /// call (a barrier, MPI_Finalize) forever: end the whole job instead. Finished sweep cases
-  /// are journaled, so a rerun resumes. Does nothing where MPI was never initialised.
-  inline void abort_other_ranks(int exit_code)
-  {
-    int initialized = 0;
-    int finalized   = 0;
-    MPI_Initialized(&initialized);
-    MPI_Finalized(&finalized);
-    if (!initialized || finalized)
-      return;
-    int size = 1;
-    MPI_Comm_size(MPI_COMM_WORLD, &size);
-    if (size > 1)
-      MPI_Abort(MPI_COMM_WORLD, exit_code);
-  }
-
   /// Prints "error: <message>", ends the other ranks and returns exit code 1.
   inline int report_error(const std::string &message)
   {
     std::cerr << "error: " << message << std::endl;
-    abort_other_ranks(1);
+    kimp::app::abort_other_ranks(1);
     return 1;
   }
 
@@ -63,7 +46,7 @@ namespace kimp::cli
       if (!line.empty())
         std::cerr << "error: " << line << '\n';
     std::cerr << std::flush;
-    abort_other_ranks(1);
+    kimp::app::abort_other_ranks(1);
     return 1;
   }
 
@@ -175,7 +158,7 @@ namespace kimp::cli
       add_commands(*app);
       exit_code = run_app(*app, argc, argv, std::cout, std::cerr);
       if (exit_code != 0)
-        abort_other_ranks(exit_code);
+        kimp::app::abort_other_ranks(exit_code);
     }
     catch (const std::exception &error)
     {

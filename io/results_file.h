@@ -151,8 +151,11 @@ namespace kimp::io
                            std::size_t      buffer_rows = 4096);
 
     /// Quantities sampled together below this group (see TimeSeriesSet); names must differ.
+    /// `expected_rows` (0: unknown), when the caller knows the series' length: chunks of that
+    /// length (at most 1 MiB beyond 4096 rows), so that the file holds no padding rows.
     TimeSeriesSet time_series_set(const std::vector<SeriesSpec> &specs,
-                                  std::size_t                    buffer_rows = 4096);
+                                  std::size_t                    buffer_rows   = 4096,
+                                  std::size_t                    expected_rows = 0);
 
     /// Small table: group `name` with one dataset per column (equal lengths) and an attribute
     /// `columns` listing their order.
@@ -179,6 +182,7 @@ namespace kimp::io
                                                          std::size_t         width,
                                                          std::string_view    units,
                                                          std::size_t         buffer_rows,
+                                                         std::size_t         expected_rows,
                                                          const ResultsGroup *clock);
 
     std::shared_ptr<detail::ResultsFileState> file_;

@@ -132,17 +132,24 @@ namespace kimp::io
                                                                      std::size_t      width,
                                                                      std::string_view units,
                                                                      std::size_t      buffer_rows,
+                                                                     std::size_t      expected_rows,
                                                                      const ResultsGroup *clock)
   {
     if (width == 0)
       throw ResultsError(fmt::format("time series '{}': width must be >= 1", g.path()));
-    auto state              = std::make_shared<detail::TimeSeriesState>();
-    state->file             = file_;
-    state->path             = g.path();
-    state->width            = width;
-    state->matrix           = width > 1;
-    state->buffer_rows      = std::max<std::size_t>(buffer_rows, 1);
-    const std::size_t chunk = std::min<std::size_t>(state->buffer_rows, 4096);
+    auto state         = std::make_shared<detail::TimeSeriesState>();
+    state->file        = file_;
+    state->path        = g.path();
+    state->width       = width;
+    state->matrix      = width > 1;
+    state->buffer_rows = std::max<std::size_t>(buffer_rows, 1);
+    // One chunk holds the series' expected length, or else the buffered rows: a whole series
+    // is one chunk of its exact size, with no padding to a round number of rows. Chunks stay
+    // below 1 MiB beyond 4096 rows (HDF5's chunk cache).
+    constexpr std::size_t chunk_bytes = std::size_t(1) << 20;
+    const std::size_t     chunk =
+      std::min<std::size_t>(expected_rows > 0 ? expected_rows : state->buffer_rows,
+                            std::max<std::size_t>(4096, chunk_bytes / (sizeof(double) * width)));
     if (clock == nullptr)
     {
       state->step_set = create_extendible(g.id_,
@@ -191,11 +198,12 @@ namespace kimp::io
                                        std::size_t      buffer_rows)
   {
     ResultsGroup g = group(name);
-    return TimeSeries(make_series(g, width, units, buffer_rows, nullptr));
+    return TimeSeries(make_series(g, width, units, buffer_rows, 0, nullptr));
   }
 
   TimeSeriesSet ResultsGroup::time_series_set(const std::vector<SeriesSpec> &specs,
-                                              std::size_t                    buffer_rows)
+                                              std::size_t                    buffer_rows,
+                                              std::size_t                    expected_rows)
   {
     if (specs.empty())
       throw ResultsError(fmt::format("time series set below '{}': no quantities", path_));
@@ -204,8 +212,12 @@ namespace kimp::io
     for (std::size_t i = 0; i < specs.size(); ++i)
     {
       ResultsGroup g = group(specs[i].name);
-      set.states_.push_back(
-        make_series(g, specs[i].width, specs[i].units, buffer_rows, i == 0 ? nullptr : &clock));
+      set.states_.push_back(make_series(g,
+                                        specs[i].width,
+                                        specs[i].units,
+                                        buffer_rows,
+                                        expected_rows,
+                                        i == 0 ? nullptr : &clock));
       set.row_width_ += specs[i].width;
     }
     return set;

@@ -101,7 +101,8 @@ FOREIGN = {
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
 COMMAND = re.compile(r"^cli/(\w+)_command\.(cc|h)$")
 # kimp::<target> -> the module it belongs to (a module may build several targets)
-TARGET_MODULE = {"app_core": "app", "cli_core": "cli", "test_support": "tests"}
+TARGET_MODULE = {"app_core": "app", "app_mpi_ranks": "app", "app_single_rank": "app",
+                 "cli_core": "cli", "test_support": "tests"}
 KIMP_TARGET = re.compile(r"\bkimp::(\w+)")
 
 

@@ -22,7 +22,7 @@ runtime=(
   libdeal.ii-dev            # brings Trilinos, p4est, OpenMPI
   libgmsh-dev gmsh
   libeigen3-dev
-  libhdf5-dev
+  libhdf5-dev               # the lean kimp's serial HDF5 (deal.II brings OpenMPI's)
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev
   openmpi-bin
   python3 python3-matplotlib python3-numpy python3-h5py  # the study's charts

@@ -80,7 +80,8 @@ namespace kimp::app
           specs.push_back({c.name, c.values->size() / n, c.units});
           used.push_back(&c);
         }
-      TimeSeriesSet                   set   = g.time_series_set(specs);
+      // Chunks of the series' exact length (n rows): no padding rows in the file.
+      TimeSeriesSet                   set   = g.time_series_set(specs, 4096, n);
       const std::vector<std::int64_t> steps = history_steps(r);
       std::vector<double>             row(set.row_width());
       for (std::size_t i = 0; i < n; ++i)

@@ -9,7 +9,6 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <memory>
-#include <mpi.h>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -17,6 +16,7 @@
 #include "app/helper_programs.h"
 #include "app/lumped/lumped_scene.h"
 #include "app/lumped/plan_scene.h"
+#include "app/mpi_ranks.h"
 #include "app/sweep/sweep_engine.h"
 #include "app/sweep/sweep_estimate.h"
 #include "app/sweep/sweep_lumped.h"
@@ -33,59 +33,6 @@ namespace kimp::app
   using namespace kimp::io;
   namespace
   {
-    /// True when started by an MPI launcher (mpirun/srun), so that MPI is worth initializing.
-    bool launched_by_mpi()
-    {
-      for (const char *name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "MPI_LOCALNRANKS"})
-        if (std::getenv(name) != nullptr)
-          return true;
-      return false;
-    }
-
-    /// MPI for the duration of the command, unless main() already initialized it.
-    class MpiScope
-    {
-    public:
-      MpiScope()
-      {
-        int initialized = 0;
-        MPI_Initialized(&initialized);
-        if (!initialized && launched_by_mpi())
-        {
-          int provided = 0;
-          MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
-          io::install_signal_handlers(); // MPI's start-up replaces them (SIGPIPE, SIGTERM)
-          owned_      = true;
-          initialized = 1;
-        }
-        if (initialized)
-        {
-          active_ = true;
-          MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-          MPI_Comm_size(MPI_COMM_WORLD, &size_);
-        }
-      }
-      MpiScope(const MpiScope &) = delete;
-      ~MpiScope()
-      {
-        int finalized = 0;
-        MPI_Finalized(&finalized);
-        // While an exception unwinds, MPI_Finalize would wait for the other ranks; main()
-        // reports the error and aborts the job instead.
-        if (owned_ && !finalized && std::uncaught_exceptions() == 0)
-          MPI_Finalize();
-      }
-      int  rank() const { return rank_; }
-      int  size() const { return size_; }
-      bool active() const { return active_; }
-
-    private:
-      bool owned_  = false;
-      bool active_ = false;
-      int  rank_   = 0;
-      int  size_   = 1;
-    };
-
     /**
      * The d_SRSS table (report kinds gap_study, wall_location, adjacent_buildings, and bumpers
      * when the sweep varies the report's gap; needs companion metrics), then
@@ -182,7 +129,7 @@ namespace kimp::app
   std::size_t run_sweep_job(const SweepRunOptions &options)
   {
     const auto     start = std::chrono::steady_clock::now();
-    const MpiScope mpi;
+    const MpiRanks mpi;
     set_rank(mpi.rank());
     logger().info("{}: sweep {} on {} rank(s)", version_line(), options.sweep, mpi.size());
 
@@ -244,8 +191,7 @@ namespace kimp::app
     sweep_options.rank         = mpi.rank();
     sweep_options.n_ranks      = mpi.size();
     sweep_options.retry_failed = options.retry_failed;
-    if (mpi.active() && mpi.size() > 1)
-      sweep_options.barrier = []() { MPI_Barrier(MPI_COMM_WORLD); };
+    sweep_options.barrier      = mpi.barrier();
     const SweepSummary summary =
       run_sweep(plan,
                 make_lumped_case_runner(records_dir, !options.no_shared_runs, scene_directory),

@@ -109,6 +109,36 @@ namespace
       EXPECT_NE(r.attribute(name, "units"), "<missing>") << "dataset without units: " << name;
   }
 
+  // A whole series written at once (the lumped history, 48 s at 0.01 s: 4801 rows) is stored in
+  // chunks of its own length: the file holds the values, not 8192 rows of which 3391 are padding.
+  TEST(ResultsFile, WholeTimeSeriesIsStoredWithoutChunkPadding)
+  {
+    const TempDir             dir;
+    const auto                final_path = dir.path() / "whole.h5";
+    constexpr std::size_t     n_rows     = 4801;
+    constexpr std::size_t     width      = 20;
+    std::vector<std::int64_t> steps(n_rows);
+    std::vector<double>       times(n_rows), values(n_rows * width);
+    for (std::size_t i = 0; i < n_rows; ++i)
+    {
+      steps[i] = static_cast<std::int64_t>(500 * i);
+      times[i] = 0.01 * static_cast<double>(i);
+      for (std::size_t j = 0; j < width; ++j)
+        values[i * width + j] = std::sin(times[i] + static_cast<double>(j));
+    }
+    {
+      ResultsFile  file(final_path, "", "{}");
+      ResultsGroup g = file.root().group("history");
+      g.write_time_series("response", steps, times, values, width, "m");
+      file.commit();
+    }
+    const Reader r(final_path);
+    EXPECT_EQ(r.read<double>("/history/response/value", H5T_NATIVE_DOUBLE), values);
+    const double data_bytes = static_cast<double>(n_rows * (width + 2) * sizeof(double));
+    const double file_bytes = static_cast<double>(std::filesystem::file_size(final_path));
+    EXPECT_LT(file_bytes, data_bytes + 64 * 1024) << "chunks padded beyond the series' length";
+  }
+
   TEST(ResultsFile, IncrementalTimeSeriesMatchesWhatWasAppended)
   {
     const TempDir         dir;
