@@ -35,8 +35,10 @@ namespace kimp::fem::internal
   using dealii::AffineConstraints;
   using dealii::DoFHandler;
   using dealii::FESystem;
+  using dealii::FEValues;
   using dealii::IndexSet;
   using dealii::Point;
+  using dealii::SymmetricTensor;
   using dealii::Vector;
   namespace parallel         = dealii::parallel;
   namespace TrilinosWrappers = dealii::TrilinosWrappers;
