@@ -627,12 +627,23 @@ namespace kimp::fem
       const Vector<double> zero(u.size());
       Vector<double>       best_u;
       double               best_rel = std::numeric_limits<double>::infinity(), best_load = 0;
-      double               damping = 0; // Levenberg-Marquardt factor on the diagonal
+      double               damping  = 0; // Levenberg-Marquardt factor on the diagonal
+      double               baseline = std::numeric_limits<double>::infinity();
+      bool                 lifted   = false;
       try
       {
+        if (p_.damped_newton)
+        {
+          // The prescribed increment applied first: the damped iteration then only accepts
+          // updates that improve on that state.
+          u += lift;
+          residual(u, r);
+          baseline = relative_residual(r);
+          lifted   = true;
+        }
         for (unsigned int k = 0; k < p_.max_iterations; ++k)
         {
-          const Vector<double> &l = k == 0 ? lift : zero;
+          const Vector<double> &l = k == 0 && !lifted ? lift : zero;
           assemble(u, r, l, rhs);
           if (damping > 0)
             for (unsigned int d = 0; d < u.size(); ++d)
@@ -651,10 +662,9 @@ namespace kimp::fem
           }
           // Backtracking on the residual norm: full steps near the solution (quadratic rate),
           // shorter ones while the active sets of the return mappings still switch.
-          const Vector<double> u0 = u;
-          const double         previous =
-            k == 0 ? std::numeric_limits<double>::infinity() : residuals.back();
-          double rel = 0;
+          const Vector<double> u0       = u;
+          const double         previous = k == 0 ? baseline : residuals.back();
+          double               rel      = 0;
           for (unsigned int cut = 0;; ++cut)
           {
             const double alpha = std::pow(0.5, cut);
