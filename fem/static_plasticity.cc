@@ -638,7 +638,9 @@ namespace kimp::fem
           // updates that improve on that state.
           u += lift;
           residual(u, r);
-          baseline = relative_residual(r);
+          // A band whose mean is not yet at its target is no state to keep.
+          baseline = controlled_mean_reached(u) ? relative_residual(r) :
+                                                  std::numeric_limits<double>::infinity();
           lifted   = true;
         }
         for (unsigned int k = 0; k < p_.max_iterations; ++k)
