@@ -5,6 +5,7 @@
 #include <cmath>
 #include <gtest/gtest.h>
 #include <iostream>
+#include <vector>
 
 #include "fem/pushover.h"
 #include "fem/wall_sdof.h"
@@ -144,6 +145,40 @@ namespace
     EXPECT_NEAR(capacity[1] / capacity[0], 1.0, 0.03);
     std::cout << "capacity h = 10 cm: " << capacity[0] / 1e3 << " kN/m, 5 cm: " << capacity[1] / 1e3
               << " kN/m (" << 100 * (capacity[1] / capacity[0] - 1) << " %)\n";
+  }
+
+  TEST(Pushover, HingeLengthMakesTheBarsPostYieldForceThatOfTheHinge)
+  {
+    // A point of crack band h stretched along y past the bars' yield: with L_p, its bar stress
+    // is that of a hinge of length L_p carrying the same plastic elongation eps_p h, i.e. it
+    // hardens with H h / L_p (closed form of the linear kinematic hardening bar).
+    const ConcreteParameters c = ConcreteParameters::from_f_cm(38e6);
+    ReinforcementParameters  r;
+    r.ratio_y                     = 0.01;
+    r.hardening                   = 0.05;
+    r.hinge_length                = 0.2;
+    ReinforcementParameters plain = r;
+    plain.hinge_length            = 0;
+    const ConcreteDamageLaw with_hinge(c, r), without(c, plain);
+    const double            eps = 5 * r.yield_stress / r.youngs_modulus;
+    for (const double h : {0.025, 0.05, 0.1})
+    {
+      std::vector<double> h0(with_hinge.n_history()), h1(h0.size()), g0(h0), g1(h0);
+      with_hinge.initialize_point(h0.data(), h);
+      without.initialize_point(g0.data(), h);
+      const double d_sigma = with_hinge.stress({{0, eps, 0}}, h0.data(), h1.data())[1] -
+                             without.stress({{0, eps, 0}}, g0.data(), g1.data())[1];
+      const auto bar = [&](double H)
+      {
+        const double Es = r.youngs_modulus, ep = (Es * eps - r.yield_stress) / (Es + H);
+        return r.yield_stress + H * ep;
+      };
+      const double H = r.hardening_modulus();
+      EXPECT_NEAR(d_sigma,
+                  r.ratio_y * (bar(H * h / r.hinge_length) - bar(H)),
+                  1e-6 * r.yield_stress)
+        << "h = " << h;
+    }
   }
 
   TEST(Pushover, RefusesBadParameters)
