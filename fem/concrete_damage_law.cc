@@ -71,8 +71,9 @@ namespace kimp::fem
         !(p.shear_retention_floor >= 0 && p.shear_retention_floor <= 1))
       throw std::invalid_argument("concrete damage law: need aggregate_size >= 1 mm and 0 <= "
                                   "shear_retention_floor <= 1");
-    if (!(reinforcement.dowel_coefficient >= 0))
-      throw std::invalid_argument("reinforcement: need dowel_coefficient >= 0");
+    if (!(reinforcement.dowel_coefficient >= 0) || !(reinforcement.hinge_length >= 0))
+      throw std::invalid_argument("reinforcement: need dowel_coefficient >= 0 and hinge_length "
+                                  ">= 0");
     if (!(p.plastic_fraction >= 0 && p.plastic_fraction < 1))
       throw std::invalid_argument("concrete damage law: need 0 <= plastic_fraction < 1");
     const ReinforcementParameters &r = reinforcement;
@@ -88,6 +89,14 @@ namespace kimp::fem
     const Lame l = lame(p.youngs_modulus, p.poisson_ratio);
     lambda_      = l.lambda;
     mu_          = l.mu;
+  }
+
+  SteelBar ConcreteDamageLaw::steel_at(double h) const
+  {
+    SteelBar s = steel_;
+    if (r_.hinge_length > 0)
+      s.H = r_.hardening_modulus() * h / r_.hinge_length;
+    return s;
   }
 
   void ConcreteDamageLaw::initial_history(double *h) const
@@ -212,15 +221,16 @@ namespace kimp::fem
     if (reinforced_)
     {
       // Bars along x and y strained as the concrete (perfect bond), in parallel with it.
-      const double    *b0 = h0 + bars_;
-      double          *b1 = h1 + bars_;
-      const SteelState sx = steel_.update(e[0], b0[0], b0[1]);
-      const SteelState sy = steel_.update(e[1], b0[2], b0[3]);
-      b1[0]               = sx.plastic_strain;
-      b1[1]               = sx.back_stress;
-      b1[2]               = sy.plastic_strain;
-      b1[3]               = sy.back_stress;
-      b1[4]               = b0[4] + r_.ratio_x * sx.plastic_work + r_.ratio_y * sy.plastic_work;
+      const double    *b0    = h0 + bars_;
+      double          *b1    = h1 + bars_;
+      const SteelBar   steel = steel_at(h0[5]);
+      const SteelState sx    = steel.update(e[0], b0[0], b0[1]);
+      const SteelState sy    = steel.update(e[1], b0[2], b0[3]);
+      b1[0]                  = sx.plastic_strain;
+      b1[1]                  = sx.back_stress;
+      b1[2]                  = sy.plastic_strain;
+      b1[3]                  = sy.back_stress;
+      b1[4]                  = b0[4] + r_.ratio_x * sx.plastic_work + r_.ratio_y * sy.plastic_work;
       s[0] += r_.ratio_x * sx.stress;
       s[1] += r_.ratio_y * sy.stress;
       // Dowel action of the bars crossing the crack, once there is one (h1[2] > 0): elastic-
@@ -426,9 +436,10 @@ namespace kimp::fem
       }
     if (reinforced_)
     {
-      const double *b = h + bars_;
-      t[0] += r_.ratio_x * steel_.update(e[0], b[0], b[1]).tangent;
-      t[4] += r_.ratio_y * steel_.update(e[1], b[2], b[3]).tangent;
+      const double  *b     = h + bars_;
+      const SteelBar steel = steel_at(h[5]);
+      t[0] += r_.ratio_x * steel.update(e[0], b[0], b[1]).tangent;
+      t[4] += r_.ratio_y * steel.update(e[1], b[2], b[3]).tangent;
       if (dt > 0)
       {
         const Dowel  dw = dowel(c, sn);

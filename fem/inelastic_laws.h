@@ -207,6 +207,13 @@ namespace kimp::fem
     /** k of the dowel strength of one bar across a crack, D_u = k d_b^2 sqrt(f_cm f_y)
      *  (Rasmussen 1963; >= 0, 0: no dowel action). */
     double dowel_coefficient = 1.3;
+    /**
+     * L_p, m: plastic hinge length over which a yielding bar's plastic elongation is spread
+     * (0: off). A point of crack band h then hardens with H h / L_p instead of H, so that the
+     * post-yield force of a hinge that localises in one row of cells is that of a hinge of
+     * length L_p on every mesh (docs/physics.md §6 "Mesh-objective bar yielding"; >= 0).
+     */
+    double hinge_length = 0;
     /** True if any bar is present. */
     bool any() const { return ratio_x > 0 || ratio_y > 0; }
     /** Kinematic hardening modulus H = b E_s / (1 - b) (Pa): E_s H / (E_s + H) = b E_s. */
@@ -354,7 +361,10 @@ namespace kimp::fem
      *  exponential softening with the energy G_F / h, 0 up to the tensile strength. */
     double tension_damage(double kappa_t, double h) const;
     /** b_c times the uniaxial curve's inelastic strain at the compression measure kappa_c. */
-    double                  plastic_strain(double kappa_c) const;
+    double plastic_strain(double kappa_c) const;
+    /** The bars' steel at a point of crack band @p h (m): H scaled by h / L_p with a hinge
+     *  length, else steel_. */
+    SteelBar                steel_at(double h) const;
     ConcreteParameters      p_;
     ReinforcementParameters r_;
     SteelBar                steel_;

@@ -24,6 +24,7 @@
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include "fem/frictional_interface.h"
 #include "fem/mean_dilatation.h"
 
 namespace kimp::fem
@@ -101,12 +102,17 @@ namespace kimp::fem
       /** |r| over the prescribed DoFs (N/m). */
       double                             fixed_norm(const Vector<double> &r) const;
       std::vector<std::array<double, 2>> reactions(const Vector<double> &r) const;
-      /** Newton from u (residual r) with the prescribed increment lift; false if it fails. */
-      bool        newton(Vector<double>       &u,
-                         Vector<double>       &r,
-                         const Vector<double> &lift,
-                         std::vector<double>  &residuals);
-      void        advance(double a, double b, unsigned int depth, StaticPlasticityResult &out);
+      /** Newton from u (residual r) with the prescribed increment lift; false if it fails.
+       *  With @p loose, a stalled iteration ends at its best iterate if that one is within
+       *  loose_tolerance. */
+      bool newton(Vector<double>       &u,
+                  Vector<double>       &r,
+                  const Vector<double> &lift,
+                  std::vector<double>  &residuals,
+                  bool                  loose = false);
+      void advance(double a, double b, unsigned int depth, StaticPlasticityResult &out);
+      /** The segments of p.load_path in load steps of at most 1 / n_steps. */
+      void        walk_load_path(StaticPlasticityResult &out);
       VoigtStrain strain(const Vector<double> &u, unsigned int c, unsigned int q) const;
       /** The triangulation of p.mesh and its DoFs. */
       void build_mesh();
@@ -115,6 +121,23 @@ namespace kimp::fem
       void prescribe_displacements();
       /** Per Gauss point: B-bar (Voigt), JxW, eigenstrain of the initial stress; body force. */
       void precompute_points();
+      /** The interface of p.interface on the vertices' DoFs (none if empty). */
+      void setup_interface();
+      /** The interface's displacements (compact node numbering) at u. */
+      std::vector<double> interface_displacements(const Vector<double> &u) const;
+      /** Adds the interface's tangent (central differences of its forces per pair) to matrix_
+       *  and its lift term to rhs. */
+      void
+      assemble_interface(const Vector<double> &u, const Vector<double> &lift, Vector<double> &rhs);
+      void commit();
+      void revert();
+      /** The unit-resultant band traction vector g_ of p.controlled_load. */
+      void setup_controlled_load();
+      /** Adds the bordered part of a Newton update: du += dP b with K b = g, dP such that the
+       *  band's mean displacement at u + lift + du is its target; returns dP. */
+      double border(SparseDirectUMFPACK &solver, const Vector<double> &u, Vector<double> &du) const;
+      /** |g.u - target| within round-off of the controlled displacement. */
+      bool controlled_mean_reached(const Vector<double> &u) const;
 
       const StaticPlasticityParameters    &p_;
       Triangulation<dim>                   tria_;
@@ -133,6 +156,12 @@ namespace kimp::fem
       SparsityPattern                      pattern_;
       SparseMatrix<double>                 matrix_;
       QuadraturePointHistory               history_;
+      std::unique_ptr<FrictionalInterface> interface_;
+      std::vector<types::global_dof_index> interface_dofs_; // 2 per compact node
+      std::size_t                          segment_ = 0;
+      Vector<double>                       g_;               // controlled load, unit resultant
+      double                               load_        = 0; // its resultant P, N/m
+      double                               target_mean_ = 0; // m
       double                               weight_      = 0;
       double                               force_scale_ = 0; // largest converged |reactions|
       unsigned long                        step_        = 0;
@@ -154,8 +183,10 @@ namespace kimp::fem
           bad("static plasticity: density of material " + std::to_string(id) + " = " +
               std::to_string(rho) + " (must be >= 0)");
       build_mesh();
+      setup_interface();
       prescribe_displacements();
       precompute_points();
+      setup_controlled_load();
       const unsigned int n_dofs = dof_handler_.n_dofs();
       u_.reinit(n_dofs);
       r_.reinit(n_dofs);
@@ -231,6 +262,10 @@ namespace kimp::fem
       constraints_.close();
       DynamicSparsityPattern dsp(n_dofs);
       DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints_, false);
+      for (std::size_t k = 0; k < p_.interface.size(); ++k)
+        for (unsigned int i = 0; i < 4; ++i)
+          for (unsigned int j = 0; j < 4; ++j)
+            dsp.add(interface_dofs_[4 * k + i], interface_dofs_[4 * k + j]);
       pattern_.copy_from(dsp);
       matrix_.reinit(pattern_);
     }
@@ -338,6 +373,165 @@ namespace kimp::fem
             r[dofs[i]] += (B[3 * i] * s[0] + B[3 * i + 1] * s[1] + B[3 * i + 2] * s[2]) * w;
         }
       }
+      if (p_.controlled_load)
+        r.add(-load_, g_);
+      if (interface_)
+      {
+        // The pairs' forces act on the nodes like external forces.
+        const FrictionalInterface::Evaluation e = interface_->evaluate(interface_displacements(u));
+        for (std::size_t d = 0; d < interface_dofs_.size(); ++d)
+          r[interface_dofs_[d]] -= e.force[d];
+      }
+    }
+
+    void StaticProblem::setup_interface()
+    {
+      if (p_.interface.empty())
+        return;
+      std::vector<std::array<types::global_dof_index, 2>> vertex_dofs(
+        tria_.n_vertices(),
+        {{numbers::invalid_dof_index, numbers::invalid_dof_index}});
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+        for (const auto v : cell->vertex_indices())
+          for (unsigned int comp = 0; comp < dim; ++comp)
+            vertex_dofs[cell->vertex_index(v)][comp] = cell->vertex_dof_index(v, comp);
+      std::vector<FrictionalInterface::Pair> pairs;
+      for (std::size_t k = 0; k < p_.interface.size(); ++k)
+      {
+        const StaticInterfacePair &sp = p_.interface[k];
+        for (const unsigned int v : {sp.vertex_a, sp.vertex_b})
+          if (v >= vertex_dofs.size() || vertex_dofs[v][0] == numbers::invalid_dof_index)
+            bad("static plasticity: interface pair " + std::to_string(k) + " names vertex " +
+                std::to_string(v) + ", which no cell uses");
+        for (const unsigned int v : {sp.vertex_a, sp.vertex_b})
+          for (unsigned int comp = 0; comp < dim; ++comp)
+            interface_dofs_.push_back(vertex_dofs[v][comp]);
+        FrictionalInterface::Pair pair;
+        pair.a                    = static_cast<unsigned int>(2 * k);
+        pair.b                    = static_cast<unsigned int>(2 * k + 1);
+        pair.nx                   = sp.nx;
+        pair.ny                   = sp.ny;
+        pair.normal_stiffness     = sp.normal_stiffness;
+        pair.tangential_stiffness = sp.tangential_stiffness;
+        pair.friction             = sp.friction;
+        pairs.push_back(pair);
+      }
+      interface_ =
+        std::make_unique<FrictionalInterface>(std::move(pairs),
+                                              static_cast<unsigned int>(2 * p_.interface.size()));
+    }
+
+    std::vector<double> StaticProblem::interface_displacements(const Vector<double> &u) const
+    {
+      std::vector<double> out(interface_dofs_.size());
+      for (std::size_t d = 0; d < out.size(); ++d)
+        out[d] = u[interface_dofs_[d]];
+      return out;
+    }
+
+    void StaticProblem::assemble_interface(const Vector<double> &u,
+                                           const Vector<double> &lift,
+                                           Vector<double>       &rhs)
+    {
+      // Each pair's forces depend on its own four DoFs only: a central difference per DoF.
+      std::vector<double>                  uc = interface_displacements(u);
+      FullMatrix<double>                   k(4, 4);
+      Vector<double>                       k_lift(4);
+      std::vector<types::global_dof_index> dofs(4);
+      for (std::size_t pair = 0; pair < p_.interface.size(); ++pair)
+      {
+        for (unsigned int j = 0; j < 4; ++j)
+        {
+          const std::size_t d          = 4 * pair + j;
+          const double      delta      = 1e-9 * std::max(1e-3, std::abs(uc[d]));
+          const double      u0         = uc[d];
+          uc[d]                        = u0 + delta;
+          const std::vector<double> fp = interface_->evaluate(uc).force;
+          uc[d]                        = u0 - delta;
+          const std::vector<double> fm = interface_->evaluate(uc).force;
+          uc[d]                        = u0;
+          for (unsigned int i = 0; i < 4; ++i)
+            k(i, j) = -(fp[4 * pair + i] - fm[4 * pair + i]) / (2 * delta);
+        }
+        for (unsigned int i = 0; i < 4; ++i)
+        {
+          dofs[i]   = interface_dofs_[4 * pair + i];
+          k_lift[i] = 0;
+          for (unsigned int j = 0; j < 4; ++j)
+            k_lift[i] -= k(i, j) * lift[interface_dofs_[4 * pair + j]];
+        }
+        constraints_.distribute_local_to_global(k, k_lift, dofs, matrix_, rhs);
+      }
+    }
+
+    void StaticProblem::setup_controlled_load()
+    {
+      if (!p_.controlled_load)
+        return;
+      g_.reinit(dof_handler_.n_dofs());
+      const QGauss<dim - 1>                quadrature(2);
+      FEFaceValues<dim>                    fv(fe_, quadrature, update_values | update_JxW_values);
+      std::vector<types::global_dof_index> dofs(n_d);
+      double                               length = 0;
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+        for (const auto f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              cell->face(f)->boundary_id() == p_.controlled_load->boundary_id)
+          {
+            fv.reinit(cell, f);
+            cell->get_dof_indices(dofs);
+            for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              length += fv.JxW(q);
+              for (unsigned int i = 0; i < n_d; ++i)
+                if (fe_.system_to_component_index(i).first == 0)
+                  g_[dofs[i]] += fv.shape_value_component(i, q, 0) * fv.JxW(q);
+            }
+          }
+      if (!(length > 0))
+        bad("static plasticity: controlled load on boundary id " +
+            std::to_string(p_.controlled_load->boundary_id) + ", which has no edge in the mesh");
+      g_ /= length;
+      for (unsigned int d = 0; d < g_.size(); ++d)
+        if (governed_by_[d] >= 0 && g_[d] != 0)
+          bad("static plasticity: the controlled load's edges have prescribed displacements");
+    }
+
+    double StaticProblem::border(SparseDirectUMFPACK  &solver,
+                                 const Vector<double> &u,
+                                 Vector<double>       &du) const
+    {
+      Vector<double> b(u.size());
+      solver.vmult(b, g_);
+      const double gb = g_ * b;
+      // gb < 0 is a softening structure (a falling band force), which the control follows.
+      if (!(std::abs(gb) > 0) || !std::isfinite(gb))
+        throw NumericalError("static plasticity: the controlled load meets no stiffness", 0, 0);
+      const double dp = (target_mean_ - g_ * u - g_ * du) / gb;
+      du.add(dp, b);
+      return dp;
+    }
+
+    bool StaticProblem::controlled_mean_reached(const Vector<double> &u) const
+    {
+      if (!p_.controlled_load)
+        return true;
+      return std::abs(g_ * u - target_mean_) <=
+             1e-9 * std::max(std::abs(p_.controlled_load->displacement), 1e-12);
+    }
+
+    void StaticProblem::commit()
+    {
+      history_.commit();
+      if (interface_)
+        interface_->commit();
+    }
+
+    void StaticProblem::revert()
+    {
+      history_.revert();
+      if (interface_)
+        interface_->revert();
     }
 
     void StaticProblem::assemble(const Vector<double> &u,
@@ -382,6 +576,8 @@ namespace kimp::fem
         }
         constraints_.distribute_local_to_global(k, k_lift, dofs, matrix_, rhs);
       }
+      if (interface_)
+        assemble_interface(u, lift, rhs);
       for (unsigned int d = 0; d < rhs.size(); ++d)
         rhs[d] = governed_by_[d] >= 0 ? 0.0 : rhs[d] - r[d];
     }
@@ -393,7 +589,8 @@ namespace kimp::fem
         (governed_by_[d] >= 0 ? fixed : free) += r[d] * r[d];
       // The largest reaction of the run so far keeps the reference when a softening body unloads
       // (its reactions fall to zero while round-off stays at the scale of the peak force).
-      const double reference = std::max({f_ext_.l2_norm(), std::sqrt(fixed), force_scale_});
+      const double reference =
+        std::max({f_ext_.l2_norm(), std::sqrt(fixed), force_scale_, std::abs(load_)});
       if (free == 0)
         return 0;
       return reference > 0 ? std::sqrt(free) / reference : std::numeric_limits<double>::infinity();
@@ -420,41 +617,95 @@ namespace kimp::fem
     bool StaticProblem::newton(Vector<double>       &u,
                                Vector<double>       &r,
                                const Vector<double> &lift,
-                               std::vector<double>  &residuals)
+                               std::vector<double>  &residuals,
+                               bool                  loose)
     {
       Vector<double>       rhs, du(u.size());
       const Vector<double> zero(u.size());
+      Vector<double>       best_u;
+      double               best_rel = std::numeric_limits<double>::infinity(), best_load = 0;
+      double               damping  = 0; // Levenberg-Marquardt factor on the diagonal
+      double               baseline = std::numeric_limits<double>::infinity();
+      bool                 lifted   = false;
       try
       {
+        if (p_.damped_newton)
+        {
+          // The prescribed increment applied first: the damped iteration then only accepts
+          // updates that improve on that state.
+          u += lift;
+          residual(u, r);
+          // A band whose mean is not yet at its target is no state to keep.
+          baseline = controlled_mean_reached(u) ? relative_residual(r) :
+                                                  std::numeric_limits<double>::infinity();
+          lifted   = true;
+        }
         for (unsigned int k = 0; k < p_.max_iterations; ++k)
         {
-          const Vector<double> &l = k == 0 ? lift : zero;
+          const Vector<double> &l = k == 0 && !lifted ? lift : zero;
           assemble(u, r, l, rhs);
+          if (damping > 0)
+            for (unsigned int d = 0; d < u.size(); ++d)
+              if (governed_by_[d] < 0)
+                matrix_.set(d, d, matrix_.diag_element(d) * (1 + damping));
           SparseDirectUMFPACK solver;
           solver.initialize(matrix_);
           solver.vmult(du, rhs);
+          const double load0 = load_;
+          double       dp    = 0;
+          if (p_.controlled_load)
+          {
+            Vector<double> shifted = u;
+            shifted += l;
+            dp = border(solver, shifted, du);
+          }
           // Backtracking on the residual norm: full steps near the solution (quadratic rate),
           // shorter ones while the active sets of the return mappings still switch.
-          const Vector<double> u0 = u;
-          const double         previous =
-            k == 0 ? std::numeric_limits<double>::infinity() : residuals.back();
-          double rel = 0;
+          const Vector<double> u0       = u;
+          const double         previous = k == 0 ? baseline : residuals.back();
+          double               rel      = 0;
           for (unsigned int cut = 0;; ++cut)
           {
             const double alpha = std::pow(0.5, cut);
             u                  = u0;
             u.add(alpha, du);
             u += l;
+            load_ = load0 + alpha * dp;
             residual(u, r);
             rel = relative_residual(r);
             if ((std::isfinite(rel) && rel < previous) || cut == p_.max_line_search)
               break;
           }
+          if (p_.damped_newton && !(rel < previous))
+          {
+            // Levenberg-Marquardt: reject the update, damp the next one harder.
+            u     = u0;
+            load_ = load0;
+            residual(u, r);
+            rel     = previous;
+            damping = damping == 0 ? 1e-2 : 4 * damping;
+          }
+          else if (p_.damped_newton)
+            damping = damping < 1e-4 ? 0.0 : damping / 4;
           residuals.push_back(rel);
           if (!std::isfinite(rel))
             return false;
-          if (rel <= p_.newton_tolerance)
+          if (rel <= p_.newton_tolerance && controlled_mean_reached(u))
             return true;
+          if (loose && rel < best_rel && controlled_mean_reached(u))
+          {
+            best_rel  = rel;
+            best_u    = u;
+            best_load = load_;
+          }
+        }
+        if (loose && best_rel <= p_.loose_tolerance)
+        {
+          u     = best_u;
+          load_ = best_load;
+          residual(u, r); // the trial history of that iterate
+          residuals.push_back(best_rel);
+          return true;
         }
       }
       catch (const std::exception &)
@@ -468,23 +719,35 @@ namespace kimp::fem
     void StaticProblem::advance(double a, double b, unsigned int depth, StaticPlasticityResult &out)
     {
       const Vector<double> u_save = u_, r_save = r_;
-      Vector<double>       lift(u_.size());
+      const double         load_save = load_;
+      target_mean_ = p_.controlled_load ? b * p_.controlled_load->displacement : 0.0;
+      Vector<double> lift(u_.size());
       for (unsigned int d = 0; d < lift.size(); ++d)
         if (governed_by_[d] >= 0)
           lift[d] = target_[d] * (b - a);
       StaticStep step;
       step.load_factor = b;
-      if (newton(u_, r_, lift, step.residuals))
+      step.segment     = segment_;
+      const bool loose = p_.loose_tolerance > 0 && depth >= p_.max_cuts;
+      if (newton(u_, r_, lift, step.residuals, loose))
       {
-        history_.commit();
-        step.reactions = reactions(r_);
-        force_scale_   = std::max(force_scale_, fixed_norm(r_));
+        if (step.residuals.back() > p_.newton_tolerance)
+        {
+          ++out.n_loose_steps;
+          out.largest_loose_residual = std::max(out.largest_loose_residual, step.residuals.back());
+        }
+        commit();
+        step.reactions        = reactions(r_);
+        step.controlled_force = load_;
+        force_scale_          = std::max({force_scale_, fixed_norm(r_), std::abs(load_)});
         if (log_ != nullptr)
         {
           std::ostringstream line; // 4 significant digits
           line.precision(4);
           line << "static step " << out.steps.size() << ": load factor " << b << ", "
                << step.residuals.size() << " Newton iterations, residual " << step.residuals.back();
+          if (p_.controlled_load)
+            line << ", controlled load " << step.controlled_force << " N/m";
           for (std::size_t e = 0; e < step.reactions.size(); ++e)
             line << ", reaction " << e << " (" << step.reactions[e][0] << ", "
                  << step.reactions[e][1] << ") N/m";
@@ -493,9 +756,10 @@ namespace kimp::fem
         out.steps.push_back(std::move(step));
         return;
       }
-      history_.revert();
-      u_ = u_save;
-      r_ = r_save;
+      revert();
+      load_ = load_save;
+      u_    = u_save;
+      r_    = r_save;
       if (depth >= p_.max_cuts)
       {
         std::ostringstream msg;
@@ -509,6 +773,29 @@ namespace kimp::fem
       const double mid = 0.5 * (a + b);
       advance(a, mid, depth + 1, out);
       advance(mid, b, depth + 1, out);
+    }
+
+    void StaticProblem::walk_load_path(StaticPlasticityResult &out)
+    {
+      const std::vector<double> path =
+        p_.load_path.empty() ? std::vector<double>{1.0} : p_.load_path;
+      double factor = 0;
+      step_         = 1;
+      for (segment_ = 0; segment_ < path.size(); ++segment_)
+      {
+        const double       start = factor, end = path[segment_];
+        const unsigned int n =
+          std::max(1u,
+                   static_cast<unsigned int>(std::ceil(p_.n_steps * std::abs(end - start) - 1e-9)));
+        for (unsigned int k = 1; k <= n; ++k, ++step_)
+        {
+          const double a = start + (end - start) * (k - 1) / n, b = start + (end - start) * k / n;
+          advance(a, b, 0, out);
+          factor = b;
+          if (p_.end_segment && p_.end_segment(out.steps, segment_))
+            break;
+        }
+      }
     }
 
     StaticPlasticityResult StaticProblem::run(std::ostream *log)
@@ -537,11 +824,11 @@ namespace kimp::fem
                                0.0,
                                0);
       }
-      history_.commit();
-      step0.reactions = reactions(r_);
+      commit();
+      step0.reactions        = reactions(r_);
+      step0.controlled_force = load_;
       out.steps.push_back(step0);
-      for (step_ = 1; step_ <= p_.n_steps; ++step_)
-        advance(double(step_ - 1) / p_.n_steps, double(step_) / p_.n_steps, 0, out);
+      walk_load_path(out);
 
       // Totals and vertex displacements.
       for (unsigned int c = 0; c < cell_law_.size(); ++c)

@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <set>
 #include <vector>
@@ -78,6 +79,35 @@ namespace kimp::fem
    */
   InitialStressField geostatic_stress(double surface_y, double unit_weight, double k0);
 
+  struct StaticStep;
+
+  /**
+   * One node pair of a unilateral frictional interface between two bodies of the mesh whose
+   * vertices coincide (fem/frictional_interface.h): vertex a on the first body, vertex b on the
+   * second, (nx, ny) the unit normal from a's body into b's body.
+   */
+  struct StaticInterfacePair
+  {
+    unsigned int vertex_a = 0, vertex_b = 0;
+    double       nx = 1, ny = 0;
+    double       normal_stiffness     = 0; ///< N/m per metre of depth (> 0)
+    double       tangential_stiffness = 0; ///< N/m per metre of depth (> 0)
+    double       friction             = 0; ///< Coulomb mu (>= 0)
+  };
+
+  /**
+   * Displacement control of a distributed load: a uniform traction along x on the edges of one
+   * boundary id, whose resultant P (N/m, unknown) makes the load-weighted mean u_x of those
+   * edges equal to load factor times `displacement` (a bordered Newton system: two solves with
+   * one factorisation). P and that mean are work-conjugate, so P / mean is the stiffness of
+   * the uniform band load (fem::timoshenko_band_stiffness()).
+   */
+  struct ControlledLoad
+  {
+    unsigned int boundary_id  = 0;
+    double       displacement = 0; ///< m, at load factor 1
+  };
+
   /** Everything run_static_plasticity() needs. */
   struct StaticPlasticityParameters
   {
@@ -97,14 +127,32 @@ namespace kimp::fem
      */
     InitialStressField                  initial_stress;
     std::vector<PrescribedDisplacement> prescribed;
+    /** A displacement-controlled uniform band load (none if not set); its edges' DoFs must not
+     *  be prescribed. */
+    std::optional<ControlledLoad> controlled_load;
     /**
      * Material ids whose tangent is taken as a central difference of the law's stress (the
      * algorithmic tangent) instead of MaterialLaw::tangent(): for laws whose tangent() is only a
      * secant (ConcreteDamageLaw), with which Newton converges linearly and stalls in softening.
      */
     std::set<unsigned int> numerical_tangent;
-    /** Load steps from load factor 0 to 1 (> 0), after the equilibrium step 0. */
+    /** Load steps per unit change of the load factor (> 0), after the equilibrium step 0 (each
+     *  segment of load_path gets at least one). */
     unsigned int n_steps = 20;
+    /**
+     * The load factor at the end of each segment, walked from 0 in order (empty: one segment
+     * to 1). A segment that goes back (unloading) or past 1 is allowed: the prescribed
+     * displacements are load factor times their values.
+     */
+    std::vector<double> load_path;
+    /**
+     * Called after each converged step with the steps so far (the last one just converged) and
+     * the segment's index; true ends that segment at this step (the next segment starts from
+     * here), e.g. an unloading that reached zero force.
+     */
+    std::function<bool(const std::vector<StaticStep> &steps, std::size_t segment)> end_segment;
+    /** Frictional interface pairs (empty: none); their history is committed per step. */
+    std::vector<StaticInterfacePair> interface;
     /**
      * Mean-dilatation B-bar: the volumetric strain of each cell is its mean (Q1/P0), so that
      * isochoric or dilatant plastic flow does not lock the Q1 element (Nagtegaal, Parks & Rice
@@ -115,6 +163,21 @@ namespace kimp::fem
     double newton_tolerance = 1e-10;
     /** Newton iterations per (sub)step before it is cut (> 0). */
     unsigned int max_iterations = 25;
+    /**
+     * A step whose Newton iteration has not reached newton_tolerance after max_iterations, and
+     * cannot be halved any more, is still accepted at its best iterate if that iterate's relative
+     * residual is at most this (0: never; counted in StaticPlasticityResult::n_loose_steps).
+     * For damage laws whose cracking points make Newton cycle just above the tolerance.
+     */
+    double loose_tolerance = 0;
+    /**
+     * Levenberg-Marquardt damping: an update that does not lower the residual (after the line
+     * search) is rejected and the next one solved with the tangent's free diagonal times
+     * (1 + lambda), lambda growing 4 times per rejection from 1e-2 and shrinking 4 times per
+     * success. For cracking concrete, whose points switch between loading and unloading from
+     * one iteration to the next and make plain Newton cycle.
+     */
+    bool damped_newton = false;
     /**
      * Backtracking line search: a Newton update is halved at most this many times until the
      * residual falls (0: plain Newton). Full updates are taken once Newton converges.
@@ -133,6 +196,8 @@ namespace kimp::fem
     std::vector<std::array<double, 2>> reactions;
     /** |R_free| / reference force after each Newton solve (the last one <= tolerance). */
     std::vector<double> residuals;
+    std::size_t         segment          = 0; ///< index in load_path of the segment of this step
+    double              controlled_force = 0; ///< resultant P of the controlled load, N/m (0: none)
   };
 
   struct StaticPlasticityResult
@@ -143,6 +208,9 @@ namespace kimp::fem
     double       initial_out_of_balance = 0;
     double       weight                 = 0; ///< total body weight, N/m
     unsigned int n_dofs                 = 0;
+    /** Steps accepted at loose_tolerance, and the largest relative residual among them. */
+    unsigned int n_loose_steps          = 0;
+    double       largest_loose_residual = 0;
     double       plastic_dissipation    = 0; ///< total at the end, J/m
     double       damage_dissipation     = 0; ///< total at the end, J/m
     /** Final displacement at each mesh vertex (m), in mesh.vertices order. */

@@ -11,6 +11,7 @@
 #ifdef KIMP_WITH_FEM
 #  include "app/fem/fem_run.h"
 #  include "app/fem/fem_scene.h"
+#  include "app/fem/pushover_run.h"
 #  include "app/session.h"
 #  include "app/study/study_run.h"
 #  include "app/study/study_scene.h"
@@ -91,6 +92,13 @@ namespace kimp::python
       [](const io::LoadedScene<app::FemScene> &scene, const std::string &output)
       { app::run_fem(scene, io::OutputDir(output)); },
       "`kimp fem` of a scene text into the directory `output` (fem.h5, summary.json, ...).");
+    def_scene_run<app::FemScene>(
+      m,
+      "run_fem_pushover",
+      [](const io::LoadedScene<app::FemScene> &scene, const std::string &output)
+      { app::run_fem_pushover(scene, io::OutputDir(output)); },
+      "`kimp fem --pushover` of a scene text into the directory `output` (pushover.h5, "
+      "pushover.csv, pushover_summary.csv, charts/).");
     def_scene_run<app::StudyScene>(
       m,
       "run_study",

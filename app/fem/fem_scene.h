@@ -173,6 +173,49 @@ namespace kimp::app
     std::optional<double> friction;
   };
 
+  /** Section `pushover`: the static pushover of `kimp fem --pushover` (docs/guide/fem.md). */
+  struct FemPushover
+  {
+    std::optional<double> displacement;     ///< m; default 5 % of the wall height
+    std::vector<double>   unload_at;        ///< m: push to each, unload to zero force, go on
+    double                increment = 1e-3; ///< largest band displacement step, m
+    double                cover     = 0.05; ///< bar centre to the wall face, m
+    std::optional<double> hinge_length;     ///< L_p, m; default half the wall thickness
+  };
+
+  template <class Io>
+  void visit(Io &io, FemPushover &s)
+  {
+    io.quantity("displacement",
+                s.displacement,
+                "mm",
+                "largest band displacement of the push (null: 5 % of the wall height)",
+                io::Range::positive());
+    io.quantity_list("unload_at",
+                     s.unload_at,
+                     "mm",
+                     "cyclic push: band displacements at which the push unloads to zero force "
+                     "and reloads (increasing, below displacement; empty: monotonic)",
+                     io::Range::positive());
+    io.quantity("increment",
+                s.increment,
+                "mm",
+                "largest band displacement step",
+                io::Range::positive());
+    io.quantity("cover",
+                s.cover,
+                "mm",
+                "damage_plasticity: distance of the wall's vertical bars from each face; ratio_y "
+                "of wall_reinforcement is the whole section's, half at each face",
+                io::Range::positive());
+    io.quantity("hinge_length",
+                s.hinge_length,
+                "m",
+                "plastic hinge length L_p over which a yielding bar's hardening is spread "
+                "(null: half the wall thickness)",
+                io::Range::positive());
+  }
+
   /** Geostatic initial state before the impact (docs/physics.md §6). */
   enum class FemGeostatic
   {
@@ -215,6 +258,7 @@ namespace kimp::app
     FemBoundary  boundary;
     FemGeostatic geostatic = FemGeostatic::auto_;
     FemInterface interface;
+    FemPushover  pushover;
   };
 
   /// Section `mesh`: the element sizes of FemScene::geometry and the refinement level.
@@ -379,6 +423,9 @@ namespace kimp::app
               "(a linear body's impact does not depend on the preload) or the wall-soil "
               "interface is a contact");
     io.section("interface", s, "wall-soil interface", visit_fem_interface);
+    io.section("pushover",
+               s.pushover,
+               "static pushover of wall and backfill (kimp fem --pushover)");
   }
 
   /** Whether the case runs the geostatic step (FemScene::geostatic resolved). */

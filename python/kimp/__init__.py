@@ -15,7 +15,7 @@ from . import _kimp, laws
 from ._read import Array, Float, Group, Int, ResultsFile, TimeSeries, read
 from ._runs import (Collision, Contact, CorRow, Energy, FitResult, GroundMotion, History,
                     Parameter, Peaks, PlanResult, Result, Results, Wall, collide, cor_table, fem,
-                    fit, ground_motion, lumped, study)
+                    fit, ground_motion, lumped, pushover, study)
 from ._scene import Scene, SceneError
 
 #: The thesis' nominal coefficient of restitution, the default COR of every law and fit.
@@ -46,6 +46,6 @@ def format_quantity(value, unit):
 
 __all__ = ["Scene", "SceneError", "lumped", "PlanResult", "Result", "Results", "Peaks", "History", "Contact", "Wall",
            "Energy", "ground_motion", "GroundMotion", "collide", "Collision", "cor_table", "CorRow", "fit",
-           "FitResult", "Parameter", "fem", "study", "read", "ResultsFile", "Group",
+           "FitResult", "Parameter", "fem", "pushover", "study", "read", "ResultsFile", "Group",
            "TimeSeries", "Array", "Float", "Int", "laws", "thesis_cor", "with_fem", "parse_quantity",
            "format_quantity", "set_verbosity"]

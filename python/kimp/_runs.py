@@ -614,6 +614,17 @@ def fem(scene, output=None):
     return _run_into(_kimp.run_fem, _scene(scene, "fem"), output, "kimp-fem-", "fem.h5")
 
 
+def pushover(scene, output=None):
+    """Run ``kimp fem --pushover`` on a FEM scene (section ``pushover``: displacement,
+    unload_at, increment, cover, hinge_length) and return kimp.read() of its pushover.h5: per
+    wall height /pushover/<case>/curve (displacement m, force N/m, segment, unloading) and
+    /pushover/summary (capacity, initial, cracked and unloading stiffness, permanent set, ...).
+    Files go to `output` (kept) or to a temporary directory. Needs the FEM engine."""
+    _need_fem()
+    return _run_into(_kimp.run_fem_pushover, _scene(scene, "fem"), output, "kimp-pushover-",
+                     "pushover.h5")
+
+
 def study(scene, output=None):
     """Run ``kimp study`` and return kimp.read() of its study.h5 (k table, fits, building
     response). The command's files (study.h5, k_table.csv, report.md, ...) are written to
@@ -625,4 +636,4 @@ def study(scene, output=None):
 
 __all__ = ["Peaks", "History", "Contact", "Wall", "Energy", "Result", "Results", "lumped", "GroundMotion",
            "ground_motion", "Collision", "collide", "CorRow", "cor_table", "Parameter",
-           "FitResult", "fit", "fem", "study"]
+           "FitResult", "fit", "fem", "pushover", "study"]

@@ -80,3 +80,32 @@ def test_the_site_study_fits_with_no_verdict_but_the_peak_warning():
     table = study["k_table"]
     assert float(table["kelvin_voigt"][0]) == pytest.approx(90.0, rel=0.05)
     assert float(table["thesis_kelvin_voigt"][0]) == 90.0
+
+
+PUSHOVER_SCENE = """
+wall_heights: ["1.25 m"]
+mesh: {h_contact: "10 cm", h_max: "40 cm", grading: 1.3}
+geometry: {backfill_width: "4 m"}
+interface: {model: contact}
+materials:
+  soil: {model: mohr_coulomb, phi: 30, c: "1 kPa", psi: 0, tension_cutoff: "1 kPa"}
+pushover: {displacement: "12 mm", unload_at: ["6 mm"], increment: "2 mm"}
+"""
+
+
+def test_pushover_writes_the_curve_and_its_summary(tmp_path):
+    result = kimp.pushover(kimp.Scene(PUSHOVER_SCENE, kind="fem"), tmp_path / "out")
+    curve = result["pushover"]["H1.25"]["curve"]
+    force = np.asarray(curve["force"])
+    displacement = np.asarray(curve["displacement"])
+    assert displacement.max() == pytest.approx(0.012)
+    # A wall pushed into sand resists: the force grows on the first push, and the unloading
+    # reached zero force at a permanent set below 6 mm.
+    summary = result["pushover"]["summary"]
+    assert float(summary["capacity"][0]) > 10e3
+    assert 0 < float(summary["permanent_set"][0]) < 0.006
+    with open(tmp_path / "out" / "pushover.csv") as f:
+        header = f.readline().strip().split(",")
+    assert header[:4] == ["case", "wall_height_m", "displacement_m", "force_N_per_m"]
+    assert (tmp_path / "out" / "pushover_summary.csv").exists()
+    assert len(force) == len(displacement)

@@ -1,0 +1,193 @@
+// Static pushover of wall and backfill (fem/pushover.h): the bare reinforced wall against a
+// Timoshenko cantilever and a section analysis; a rigid wall pushed into the backfill between
+// the Rankine and Coulomb passive resultants; a cyclic push (permanent set, reload on the
+// envelope); the capacity on two mesh levels. Numbers: docs/validation.md "Static pushover".
+#include <cmath>
+#include <gtest/gtest.h>
+#include <iostream>
+#include <vector>
+
+#include "fem/pushover.h"
+#include "fem/wall_sdof.h"
+
+namespace
+{
+  using namespace kimp::fem;
+  constexpr double pi = 3.14159265358979323846;
+
+  /** The bare 1.25 m x 0.25 m wall, 0.5 % vertical steel (half at each face, 50 mm cover),
+   *  elastic-perfectly plastic bars; concrete tension cut to 10 % so that the section analysis
+   *  (no concrete in tension) describes it. */
+  PushoverParameters bare_wall(double element_size)
+  {
+    PushoverParameters p;
+    p.with_backfill  = false;
+    p.concrete       = ConcreteParameters::from_f_cm(38e6);
+    p.concrete.f_ctm = 0.1 * p.concrete.f_ctm;
+    p.bars.ratio_y   = 0.005;
+    p.bars.hardening = 0;
+    p.element_size   = element_size;
+    p.path           = {0.0125};
+    p.increment      = 5e-4;
+    return p;
+  }
+
+  /** A rigid wall translated into medium sand: phi = 30 deg, psi = 0, c = 1 kPa, mu = tan 20. */
+  PushoverParameters rigid_wall(double element_size)
+  {
+    PushoverParameters p;
+    p.wall                = PushoverParameters::Wall::rigid;
+    p.soil.friction_angle = 30 * pi / 180;
+    p.soil.cohesion       = 1e3;
+    p.soil.tension_cutoff = p.soil.cohesion / std::tan(p.soil.friction_angle);
+    p.friction            = std::tan(20 * pi / 180);
+    p.backfill_width      = 6;
+    p.element_size        = element_size;
+    p.max_element_size    = 4 * element_size;
+    p.path                = {0.02};
+    p.increment           = 2e-3;
+    return p;
+  }
+
+  TEST(Pushover, BareWallStiffnessIsTimoshenkoAndYieldIsTheSectionsPlasticMoment)
+  {
+    const PushoverParameters p = bare_wall(0.05);
+    const PushoverResult     r = run_pushover(p);
+    const PushoverSummary    s = summarise_pushover(r.curve);
+
+    // Timoshenko cantilever under the uniform band load (load-weighted mean deflection).
+    const Material concrete{p.concrete.youngs_modulus, p.concrete.poisson_ratio, 2400};
+    const double   k_beam = timoshenko_band_stiffness(p.wall_height,
+                                                    p.wall_thickness,
+                                                    concrete,
+                                                    p.band_top - p.band_bottom);
+    EXPECT_NEAR(s.initial_stiffness / k_beam, 1.0, 0.05);
+
+    // Section at the base, per metre: A_s = rho t / 2 at each face, d = t - cover, d' = cover.
+    // Both layers yield in tension when the compression block is shallower than the cover
+    // (checked below); block 0.85 f_cm over 0.8 x; axial force N = the wall's weight.
+    const double t = p.wall_thickness, cover = p.cover, fy = p.bars.yield_stress;
+    const double as = p.bars.ratio_y * t / 2, d = t - cover, d2 = cover;
+    const double n = p.wall_density * p.gravity * t * p.wall_height;
+    const double x = (2 * as * fy + n) / (0.85 * p.concrete.f_cm * 0.8);
+    ASSERT_LT(x, d2) << "the top layer is in tension";
+    const double lever_1 = d - 0.4 * x, lever_2 = d2 - 0.4 * x; // about the block's resultant
+    const double m_p = as * fy * (lever_1 + lever_2) + n * (t / 2 - 0.4 * x);
+    const double h_c = 0.5 * (p.band_bottom + p.band_top);
+    const double f_p = m_p / h_c;
+    // The yield force: the band force at the knee of the curve, a drift of 0.6 % (past it the
+    // force still rises, 8 % by 0.8 %: docs/validation.md).
+    const double f_drift = envelope_force(r.curve, 0.006 * p.wall_height);
+    EXPECT_NEAR(f_drift / f_p, 1.0, 0.05);
+    std::cout << "bare wall: k0 = " << s.initial_stiffness / 1e6 << " kN/mm/m, Timoshenko "
+              << k_beam / 1e6 << " (ratio " << s.initial_stiffness / k_beam << "); x = " << x
+              << " m, M_p = " << m_p / 1e3 << " kNm/m, M_p / h_c = " << f_p / 1e3
+              << " kN/m; F at 0.4 / 0.6 / 0.8 % drift = "
+              << envelope_force(r.curve, 0.004 * p.wall_height) / 1e3 << " / " << f_drift / 1e3
+              << " / " << envelope_force(r.curve, 0.008 * p.wall_height) / 1e3 << " kN/m (ratio "
+              << f_drift / f_p << "); loose steps " << r.n_loose_steps << '\n';
+  }
+
+  TEST(Pushover, RigidWallInSandLiesBetweenRankineAndCoulomb)
+  {
+    const PushoverParameters p = rigid_wall(0.05);
+    const PushoverResult     r = run_pushover(p);
+    const PushoverSummary    s = summarise_pushover(r.curve);
+    const double phi = p.soil.friction_angle, c = p.soil.cohesion, H = p.backfill_height;
+    const double gamma = p.soil.density * p.gravity, delta = std::atan(p.friction);
+    // Rankine (smooth wall): K_p = tan^2(45 + phi / 2); P = K_p gamma H^2 / 2 + 2 c sqrt(K_p) H.
+    const double kp_r    = std::pow(std::tan(pi / 4 + phi / 2), 2);
+    const double rankine = 0.5 * kp_r * gamma * H * H + 2 * c * std::sqrt(kp_r) * H;
+    // Coulomb (wall friction delta, vertical wall, level fill), horizontal component.
+    const double kp_c =
+      std::pow(std::cos(phi), 2) /
+      (std::cos(delta) *
+       std::pow(1 - std::sqrt(std::sin(phi + delta) * std::sin(phi) / std::cos(delta)), 2));
+    const double coulomb =
+      (0.5 * kp_c * gamma * H * H + 2 * c * std::sqrt(kp_c) * H) * std::cos(delta);
+    EXPECT_GT(s.capacity, rankine);
+    EXPECT_LT(s.capacity, coulomb);
+    std::cout << "rigid wall: capacity " << s.capacity / 1e3 << " kN/m at "
+              << s.displacement_at_capacity * 1e3 << " mm; Rankine " << rankine / 1e3
+              << ", Coulomb " << coulomb / 1e3 << " kN/m; k0 = " << s.initial_stiffness / 1e6
+              << " kN/mm/m, F(1 cm) = " << s.force_at_1cm / 1e3 << " kN/m\n";
+  }
+
+  TEST(Pushover, CyclicPushLeavesASetAndReloadsOntoTheEnvelope)
+  {
+    // The bare wall past the yield of its bars (0.6 % drift = 7.5 mm), unloaded and reloaded.
+    PushoverParameters p           = bare_wall(0.05);
+    p.path                         = {0.011};
+    const PushoverResult monotonic = run_pushover(p);
+    p.path                         = {0.009, 0.0, 0.011};
+    const PushoverResult  cyclic   = run_pushover(p);
+    const PushoverSummary s        = summarise_pushover(cyclic.curve);
+    ASSERT_TRUE(std::isfinite(s.permanent_set));
+    // The bars yielded: a permanent set, and the unloading is stiffer than the loading secant.
+    EXPECT_GT(s.permanent_set, 0.1 * s.unloaded_from);
+    EXPECT_LT(s.permanent_set, s.unloaded_from);
+    EXPECT_GT(s.unloading_stiffness, envelope_force(monotonic.curve, 0.009) / 0.009);
+    // The reload meets the monotonic envelope at the end of the push.
+    const double end_force = cyclic.curve.back().force;
+    EXPECT_NEAR(end_force / envelope_force(monotonic.curve, 0.011), 1.0, 0.03);
+    std::cout << "cyclic: unloaded from " << s.unloaded_from * 1e3
+              << " mm, K_ur = " << s.unloading_stiffness / 1e6 << " kN/mm/m, set "
+              << s.permanent_set * 1e3 << " mm; F(11 mm) cyclic " << end_force / 1e3
+              << ", monotonic " << envelope_force(monotonic.curve, 0.011) / 1e3 << " kN/m\n";
+  }
+
+  TEST(Pushover, CapacityConvergesBetweenTwoMeshLevels)
+  {
+    double capacity[2];
+    for (int level = 0; level < 2; ++level)
+      capacity[level] =
+        summarise_pushover(run_pushover(rigid_wall(0.1 / (1 << level))).curve).capacity;
+    EXPECT_NEAR(capacity[1] / capacity[0], 1.0, 0.03);
+    std::cout << "capacity h = 10 cm: " << capacity[0] / 1e3 << " kN/m, 5 cm: " << capacity[1] / 1e3
+              << " kN/m (" << 100 * (capacity[1] / capacity[0] - 1) << " %)\n";
+  }
+
+  TEST(Pushover, HingeLengthMakesTheBarsPostYieldForceThatOfTheHinge)
+  {
+    // A point of crack band h stretched along y past the bars' yield: with L_p, its bar stress
+    // is that of a hinge of length L_p carrying the same plastic elongation eps_p h, i.e. it
+    // hardens with H h / L_p (closed form of the linear kinematic hardening bar).
+    const ConcreteParameters c = ConcreteParameters::from_f_cm(38e6);
+    ReinforcementParameters  r;
+    r.ratio_y                     = 0.01;
+    r.hardening                   = 0.05;
+    r.hinge_length                = 0.2;
+    ReinforcementParameters plain = r;
+    plain.hinge_length            = 0;
+    const ConcreteDamageLaw with_hinge(c, r), without(c, plain);
+    const double            eps = 5 * r.yield_stress / r.youngs_modulus;
+    for (const double h : {0.025, 0.05, 0.1})
+    {
+      std::vector<double> h0(with_hinge.n_history()), h1(h0.size()), g0(h0), g1(h0);
+      with_hinge.initialize_point(h0.data(), h);
+      without.initialize_point(g0.data(), h);
+      const double d_sigma = with_hinge.stress({{0, eps, 0}}, h0.data(), h1.data())[1] -
+                             without.stress({{0, eps, 0}}, g0.data(), g1.data())[1];
+      const auto bar = [&](double H)
+      {
+        const double Es = r.youngs_modulus, ep = (Es * eps - r.yield_stress) / (Es + H);
+        return r.yield_stress + H * ep;
+      };
+      const double H = r.hardening_modulus();
+      EXPECT_NEAR(d_sigma,
+                  r.ratio_y * (bar(H * h / r.hinge_length) - bar(H)),
+                  1e-6 * r.yield_stress)
+        << "h = " << h;
+    }
+  }
+
+  TEST(Pushover, RefusesBadParameters)
+  {
+    PushoverParameters p = bare_wall(0.05);
+    p.band_top           = 2.0;
+    EXPECT_THROW(run_pushover(p), std::invalid_argument);
+    p      = bare_wall(0.05);
+    p.path = {};
+    EXPECT_THROW(run_pushover(p), std::invalid_argument);
+  }
+} // namespace
