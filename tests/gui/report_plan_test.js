@@ -2,12 +2,13 @@
 // slab at its displaced position and the moat wall, a contact point lit at the frame of the
 // largest impact force, sitting on the drawn wall; histories per direction and rotation instead
 // of 15 "levels"; the energy balance with friction work. A planar run keeps its old view.
-// node report_plan_test.js KIMP PLAN_RESULT_DIR PLANAR_RESULT_DIR ARTEFACT_DIR
+// The GUI's results view (the same page code, served by `kimp gui`) shows a plan run's plan view.
+// node report_plan_test.js KIMP PLAN_RESULT_DIR PLANAR_RESULT_DIR ARTEFACT_DIR PLAN_SCENE
 'use strict';
 const fs = require('fs');
 const path = require('path');
 const { execFileSync } = require('child_process');
-const { launch, watchedPage, check, runMain } = require('./browser.js');
+const { launch, watchedPage, check, runMain, withGuiPage } = require('./browser.js');
 
 /** Distance of point p from the closed polygon `poly` (its edges). */
 function distanceToPolygon(poly, p) {
@@ -135,8 +136,30 @@ async function checkPlanar(browser, kimpExe, dir, artefacts) {
   check(log.errors.length === 0, `no console error (${log.errors.join(' | ') || 'none'})`);
 }
 
+/** A plan scene run from the GUI (POST /api/runs) opens in its results view with the plan view. */
+async function checkGui(kimpExe, artefacts, sceneFile) {
+  await withGuiPage(kimpExe, artefacts, { runs: 'plan_runs' }, async ({ page }) => {
+    const scene = fs.readFileSync(sceneFile, 'utf8');
+    const id = await page.evaluate(
+      async (text) => (await window.kimpGui.postJson('/api/runs', { command: 'lumped', scene: text, name: 'plan' })).id,
+      scene,
+    );
+    await page.waitForFunction(
+      async (run) => ['done', 'failed'].includes((await (await fetch(`/api/runs/${run}`)).json()).state),
+      { timeout: 30000, polling: 200 },
+      id,
+    );
+    await page.evaluate((run) => window.kimpGui.openResults(run), id);
+    await page.waitForSelector('#results svg.plan-view polygon.slab', { timeout: 10000 });
+    const drawn = await page.$$eval('#results svg.plan-view polygon.wall, #results svg.plan-view circle.contact', (x) =>
+      x.length,
+    );
+    check(drawn === 9, `GUI results view: the plan view with its wall and 8 contact points (${drawn} shapes)`);
+  });
+}
+
 async function main() {
-  const [kimpExe, planDir, planarDir, artefacts] = process.argv.slice(2);
+  const [kimpExe, planDir, planarDir, artefacts, sceneFile] = process.argv.slice(2);
   fs.mkdirSync(artefacts, { recursive: true });
   const browser = await launch();
   try {
@@ -145,6 +168,7 @@ async function main() {
   } finally {
     await browser.close();
   }
+  await checkGui(kimpExe, artefacts, sceneFile);
 }
 
 runMain(main);
