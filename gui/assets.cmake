@@ -14,7 +14,7 @@ list(APPEND KIMP_GUI_ASSET_FILES ${KIMP_GUI_EXAMPLE_SCENES})
 # in this order (each adds to the script's namespace, `kimp` or `kimpGui`, what the later ones
 # use). kimp.js draws results (kimp report and kimp gui), gui.js is the GUI.
 set(KIMP_PAGE_SCRIPTS kimp gui)
-set(KIMP_PAGE_SCRIPT_kimp core charts sections animation lumped fem results)
+set(KIMP_PAGE_SCRIPT_kimp core charts sections animation plan lumped fem results)
 set(KIMP_PAGE_SCRIPT_gui core form runs motion parametric start)
 set(KIMP_PAGE_SCRIPT_PARTS)
 set(KIMP_PAGE_SCRIPT_JOINS)

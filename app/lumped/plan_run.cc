@@ -61,8 +61,16 @@ namespace kimp::app
     out.motion = load_plan_motion(scene.base, p, records_dir_override, file_name, scene_text);
     plan::PlanModel model(make_plan_scene(scene.base, p));
     for (const plan::PlanContact &c : model.contacts())
+    {
       out.contact_names.push_back(c.name);
-    out.n_corners = model.building().levels.front().outline.size();
+      out.contact_positions.push_back(c.position);
+    }
+    const plan::PlanLevel &slab = model.building().levels.front();
+    out.n_corners               = slab.outline.size();
+    out.slab_outline            = slab.outline;
+    out.slab_reference          = slab.centre_of_mass();
+    if (model.moat())
+      out.wall = model.moat()->wall;
     const plan::PlanCentralDifference integrator(std::move(model),
                                                  plan_options(scene.base.integration));
     out.dt_critical            = integrator.stability().dt_critical;
@@ -107,6 +115,40 @@ namespace kimp::app
 
   namespace
   {
+    /// Points as an n × 2 matrix (x, y per row), row-major.
+    std::vector<double> xy_rows(const std::vector<plan::Point> &points)
+    {
+      std::vector<double> rows;
+      for (const plan::Point &p : points)
+      {
+        rows.push_back(p.x());
+        rows.push_back(p.y());
+      }
+      return rows;
+    }
+
+    /// /lumped/default/plan: the geometry at rest that the plan view draws (PlanRun).
+    void write_plan_geometry(io::ResultsGroup &g, const PlanRun &run)
+    {
+      io::ResultsGroup geometry = g.group("plan");
+      geometry.write_matrix("slab_outline",
+                            xy_rows(run.slab_outline),
+                            run.slab_outline.size(),
+                            2,
+                            "m");
+      geometry.write("slab_reference",
+                     std::vector<double>{run.slab_reference.x(), run.slab_reference.y()},
+                     "m");
+      if (!run.wall.empty())
+        geometry.write_matrix("wall", xy_rows(run.wall), run.wall.size(), 2, "m");
+      if (!run.contact_positions.empty())
+        geometry.write_matrix("contact_position",
+                              xy_rows(run.contact_positions),
+                              run.contact_positions.size(),
+                              2,
+                              "m");
+    }
+
     /// DIR/lumped.h5 of a plan run: /lumped/default with peaks, energy and histories.
     void write_plan_h5(const io::LoadedScene<PlanLumpedScene> &loaded,
                        const io::OutputDir                    &output,
@@ -130,6 +172,7 @@ namespace kimp::app
       g.write_scalar("duration", r.duration, "s");
       g.write("dof_labels", dof_labels);
       g.write("contact_names", run.contact_names);
+      write_plan_geometry(g, run);
       {
         io::ResultsGroup peaks = g.group("peaks");
         peaks.write("displacement", r.peak_displacement, "m|rad");

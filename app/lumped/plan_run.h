@@ -19,9 +19,16 @@ namespace kimp::app
     lumped::plan::PlanGroundMotion motion;
     lumped::plan::PlanResponse     response;
     std::vector<std::string>       contact_names;
-    std::size_t                    n_corners   = 0; ///< of level 0's outline
-    double                         dt_critical = 0.0;
-    double                         wall_time   = 0.0; ///< s
+    std::size_t                    n_corners = 0; ///< of level 0's outline
+    /// The geometry drawn by the results page's plan view (SI, at rest): level 0's outline and
+    /// the point its DoFs refer to (its centre of mass), the moat wall (empty without a moat)
+    /// and each contact's material point on the slab.
+    lumped::plan::Polygon            slab_outline;
+    lumped::plan::Point              slab_reference = lumped::plan::Point::Zero();
+    lumped::plan::Polygon            wall;
+    std::vector<lumped::plan::Point> contact_positions;
+    double                           dt_critical = 0.0;
+    double                           wall_time   = 0.0; ///< s
   };
 
   /**

@@ -5,7 +5,7 @@
 (function () {
   const {
     view, COLORS, el, fmt, parseCsv, seriesGroups, chart, section, table, cellNumber, cellUnit,
-    columnNumbers, csvSection, seriesSection, lumpedSection, femSection, femSummarySection, DISPLAY_UNITS,
+    columnNumbers, csvSection, seriesSection, lumpedSection, planSection, femSection, femSummarySection, DISPLAY_UNITS,
     units, setDisplayUnit,
   } = kimp;
 
@@ -525,7 +525,9 @@
     const kTable = data.csv && data.csv['k_table.csv'];
     if (data.kind === 'study' && kTable) kAnswerSection(container, kTable);
     inputsSection(container, data);
-    if (data.h5 && data.h5['lumped.h5']) lumpedSection(container, data, others);
+    // A run in plan (a scene with `plan:`) has its own view: directions, rotation, the plan view.
+    const inPlan = data.summary && data.summary.plan;
+    if (data.h5 && data.h5['lumped.h5']) (inPlan ? planSection : lumpedSection)(container, data, others);
     if (data.kind === 'study') studySection(container, data);
     if (data.kind === 'fem' && data.summary) femSummarySection(container, data.summary);
     if (data.h5 && data.h5['fem.h5']) femSection(container, data);

@@ -1,0 +1,331 @@
+// kimp results page: a lumped run in plan (a scene with `plan:`): headline peaks, histories per
+// direction (x, y) and rotation per level, the base corners' displacements, contact forces, the
+// energy balance with friction work, and the plan view (slab, moat wall, contact points) animated.
+'use strict';
+
+(function () {
+  const { view, el, fmt, column, seriesGroups, chart, section, table, displayUnit, makePlayer, escapeXml } = kimp;
+  const { setTimeCursor, download } = kimp;
+
+  /** The plan run's one case: {summary, label, history, geometry} from lumped.h5 and summary.json. */
+  function planCase(data) {
+    const h5 = data.h5['lumped.h5'];
+    const s = data.summary.cases[0];
+    const prefix = `/lumped/${s.name}/`;
+    const history = {};
+    for (const g of seriesGroups(h5)) {
+      if (g.path.startsWith(prefix + 'history/')) {
+        const v = g.series.find((x) => x.name === 'value');
+        if (v) history[g.path.slice(prefix.length + 8)] = { time: g.time, values: v.values };
+      }
+    }
+    const ds = (name) => h5.datasets[prefix + name];
+    const data2 = (name) => (ds(name) && Array.isArray(ds(name).data) ? ds(name).data : null);
+    const names = data2('contact_names') || [];
+    return {
+      summary: s,
+      label: s.name,
+      history: history,
+      labels: data2('dof_labels') || [],
+      contacts: names,
+      geometry: {
+        slab: data2('plan/slab_outline'),
+        reference: data2('plan/slab_reference') || [0, 0],
+        wall: data2('plan/wall'),
+        contacts: data2('plan/contact_position') || [],
+      },
+    };
+  }
+
+  /** Displacement (x, y) of the material point p of level 0 under its DoFs q = [u_x, u_y, θ]. */
+  function pointDisplacement(p, ref, q) {
+    return [q[0] - (p[1] - ref[1]) * q[2], q[1] + (p[0] - ref[0]) * q[2]];
+  }
+
+  /** The point of the closed polygon `poly` nearest to p. */
+  function nearestOnPolygon(poly, p) {
+    let best = null;
+    let bestD = Infinity;
+    for (let i = 0; i < poly.length; ++i) {
+      const a = poly[i];
+      const b = poly[(i + 1) % poly.length];
+      const dx = b[0] - a[0];
+      const dy = b[1] - a[1];
+      const t = Math.max(0, Math.min(1, ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy || 1)));
+      const q = [a[0] + t * dx, a[1] + t * dy];
+      const d = Math.hypot(p[0] - q[0], p[1] - q[1]);
+      if (d < bestD) {
+        bestD = d;
+        best = q;
+      }
+    }
+    return best;
+  }
+
+  function peaksSection(parent, c) {
+    const s = c.summary;
+    const [L, lengthUnit] = displayUnit('length');
+    const [A, accelerationUnit] = displayUnit('acceleration');
+    const [F, forceUnit] = displayUnit('force');
+    const cell = (v, scale, key) =>
+      el('span', {
+        class: 'peak',
+        'data-key': key,
+        'data-si': String(v),
+        'data-scale': String(scale),
+        text: fmt(v * scale, 4),
+      });
+    const p = s.peaks;
+    const columns = [
+      [`peak corner impact force (${forceUnit})`, p.corner_impact_force, F, 'corner_impact_force'],
+      [`peak friction force (${forceUnit})`, p.friction_force, F, 'friction_force'],
+      [`peak base corner displacement (${lengthUnit})`, p.base_corner_displacement, L, 'base_corner_displacement'],
+      ['peak rotation (rad)', p.rotation, 1, 'rotation'],
+      [`max corner drift (${lengthUnit})`, p.corner_drift, L, 'corner_drift'],
+      [`peak top acceleration (${accelerationUnit})`, p.top_acceleration, A, 'top_acceleration'],
+      [`peak isolator force (${forceUnit})`, p.isolator_force, F, 'isolator_force'],
+    ];
+    table(
+      section(parent, 'Peaks in plan (summary.json)'),
+      ['case', 'status'].concat(columns.map((x) => x[0])).concat(['impacts']),
+      [
+        [c.label, s.status]
+          .concat(columns.map(([, v, scale, key]) => cell(v, scale, `${s.name}.${key}`)))
+          .concat([String(s.n_impacts)]),
+      ],
+      'data peaks',
+      1,
+    );
+  }
+
+  /** Histories: x and y per level, rotation per level, base corners, contact and friction forces. */
+  function historySection(parent, c) {
+    const body = section(parent, 'Histories in plan');
+    const [L, lengthUnit] = displayUnit('length');
+    const [F, forceUnit] = displayUnit('force');
+    const d = c.history.displacement;
+    const nLevels = d.values[0].length / 3;
+    const level = (l) => c.labels[3 * l].replace(/ x$/, '');
+    const perLevel = (dir, scale) =>
+      Array.from({ length: nLevels }, (_, l) => ({
+        label: level(l),
+        y: column(d.values, 3 * l + dir).map((v) => v * scale),
+      }));
+    const opts = { xlabel: 'time (s)', time: true, x: d.time };
+    chart(body, { ...opts, title: 'displacement along x', ylabel: `u_x (${lengthUnit})`, series: perLevel(0, L) });
+    chart(body, { ...opts, title: 'displacement along y', ylabel: `u_y (${lengthUnit})`, series: perLevel(1, L) });
+    chart(body, { ...opts, title: 'rotation', ylabel: 'θ (rad)', series: perLevel(2, 1) });
+    const corners = c.history.corner_displacement;
+    if (corners) {
+      const n = corners.values[0].length / 2;
+      chart(body, {
+        xlabel: 'time (s)',
+        time: true,
+        x: corners.time,
+        title: 'base corner displacements',
+        ylabel: `|u| of the corner (${lengthUnit})`,
+        series: Array.from({ length: n }, (_, k) => ({
+          label: `corner ${k}`,
+          y: corners.values.map((row) => Math.hypot(row[2 * k], row[2 * k + 1]) * L),
+        })),
+      });
+    }
+    for (const [key, title] of [
+      ['contact_force', 'contact normal force'],
+      ['friction_force', 'contact friction force'],
+    ]) {
+      const h = c.history[key];
+      if (!h) continue;
+      chart(body, {
+        xlabel: 'time (s)',
+        time: true,
+        x: h.time,
+        title: title,
+        ylabel: `${title} (${forceUnit})`,
+        series: c.contacts.map((name, k) => ({ label: name, y: column(h.values, k).map((v) => v * F) })),
+      });
+    }
+  }
+
+  /** Where the input energy went (summary.json), friction work as its own term when present. */
+  function energySection(parent, c) {
+    const e = c.summary.energy;
+    if (!e) return;
+    const terms = [
+      ['input', e.input],
+      ['kinetic', e.kinetic],
+      ['strain', e.strain],
+      ['viscous', e.viscous],
+      ['hysteretic', e.hysteretic],
+      ['impact dissipated', e.impact_dissipated],
+    ];
+    if (e.friction !== undefined) terms.push(['friction work', e.friction]);
+    const body = section(parent, 'Energy balance');
+    chart(body, {
+      title: 'energy balance',
+      xlabel: 'term',
+      ylabel: 'energy (MJ)',
+      points: true,
+      xCategories: terms.map((t) => t[0]),
+      x: terms.map((_, i) => i + 1),
+      series: [{ label: c.label, y: terms.map((t) => t[1] * 1e-6) }],
+    });
+    body.appendChild(
+      el('p', {
+        class: 'muted',
+        text: `balance residual ${fmt(e.relative_error, 3)} of the input energy (largest over the run ${fmt(
+          e.max_relative_error,
+          3,
+        )})`,
+      }),
+    );
+  }
+
+  /** The plan view: level 0's outline displaced, the moat wall, contact points flashing in contact. */
+  function planAnimation(parent, c) {
+    const W = 900;
+    const H = 560;
+    const player = makePlayer(parent, {
+      prefix: 'anim',
+      width: W,
+      height: H,
+      svgClass: 'animation plan-view',
+      speeds: [0.1, 0.25, 0.5, 1, 2, 5],
+      exaggeration: { max: 200, value: 20 },
+      label: { id: 'anim-time', text: 't = 0 s' },
+      scrubMax: 1000,
+    });
+    const state = { t: 0, playing: false, speed: 1, exaggeration: 20, frame: 0, kase: c };
+    const g = c.geometry;
+    const times = c.history.displacement.time;
+    const tEnd = times[times.length - 1];
+    const all = g.slab.concat(g.wall || []);
+    const [x0, x1] = [Math.min(...all.map((p) => p[0])), Math.max(...all.map((p) => p[0]))];
+    const [y0, y1] = [Math.min(...all.map((p) => p[1])), Math.max(...all.map((p) => p[1]))];
+    const margin = 0.25 * Math.max(x1 - x0, y1 - y0);
+    const scale = Math.min((W - 40) / (x1 - x0 + 2 * margin), (H - 60) / (y1 - y0 + 2 * margin));
+    const cx = (x0 + x1) / 2;
+    const cy = (y0 + y1) / 2;
+    // Plan coordinates (y up) to the canvas.
+    const px = (p) => [W / 2 + (p[0] - cx) * scale, 30 + (H - 30) / 2 - (p[1] - cy) * scale];
+    const pts = (poly) => poly.map((p) => px(p).map((v) => v.toFixed(1)).join(',')).join(' ');
+    const frameAt = (t) => {
+      let lo = 0;
+      let hi = times.length - 1;
+      while (hi - lo > 1) {
+        const mid = (lo + hi) >> 1;
+        if (times[mid] <= t) lo = mid;
+        else hi = mid;
+      }
+      return times[hi] <= t ? hi : lo;
+    };
+
+    function draw() {
+      const i = frameAt(state.t);
+      state.frame = i;
+      const e = state.exaggeration;
+      const q = c.history.displacement.values[i].slice(0, 3);
+      const moved = (p) => {
+        const u = pointDisplacement(p, g.reference, q);
+        return [p[0] + e * u[0], p[1] + e * u[1]];
+      };
+      const parts = [];
+      if (g.wall) {
+        // The wall's clear gap drawn `exaggeration` times wider, as the displacements are.
+        const wall = g.wall.map((w) => {
+          const n = nearestOnPolygon(g.slab, w);
+          return [n[0] + e * (w[0] - n[0]), n[1] + e * (w[1] - n[1])];
+        });
+        parts.push(`<polygon class="wall" points="${pts(wall)}" fill="none" stroke="#777" stroke-width="8"/>`);
+      }
+      parts.push(
+        `<polygon class="slab-rest" points="${pts(g.slab)}" fill="none" stroke="#bbb" stroke-dasharray="6 4"/>`,
+      );
+      parts.push(
+        `<polygon class="slab" points="${pts(g.slab.map(moved))}" fill="#cde" fill-opacity="0.6" stroke="#123" ` +
+          'stroke-width="3"/>',
+      );
+      const f = c.history.contact_force ? c.history.contact_force.values[i] : [];
+      const peaks = c.summary.peaks;
+      g.contacts.forEach((p, k) => {
+        const [x, y] = px(moved(p));
+        const force = f[k] || 0;
+        const on = force > 0;
+        const r = on ? 5 + 20 * Math.sqrt(force / Math.max(peaks.corner_impact_force, 1)) : 4;
+        parts.push(
+          `<circle class="contact${on ? ' active' : ''}" data-contact="${escapeXml(c.contacts[k] || '')}" ` +
+            `cx="${x.toFixed(1)}" cy="${y.toFixed(1)}" r="${r.toFixed(1)}" fill="${on ? '#e00' : '#555'}" ` +
+            `fill-opacity="${on ? 0.6 : 1}"/>`,
+        );
+        if (on) {
+          parts.push(
+            `<text class="impact-label" x="${(x + r + 3).toFixed(1)}" y="${(y + 4).toFixed(1)}" font-size="13" ` +
+              `fill="#b00">${fmt(force * 1e-6, 3)} MN</text>`,
+          );
+        }
+      });
+      const dt = times.length > 1 ? times[1] - times[0] : 0.01;
+      const tText = times[i].toFixed(Math.min(6, Math.max(2, Math.ceil(-Math.log10(dt) - 1e-9))));
+      parts.push(
+        `<text x="10" y="20" font-size="14">${escapeXml(c.label)} in plan: t = ${tText} s, level 0 ` +
+          `displacements and gaps ×${e}</text>`,
+      );
+      player.svg.innerHTML = parts.join('');
+      player.label.textContent = `t = ${tText} s`;
+      player.scrub.value = String(Math.round((state.t / tEnd) * 1000));
+      setTimeCursor(state.t);
+    }
+
+    const { play, pause } = player.run(state, {
+      step: (ms) => {
+        state.t = Math.min(state.t + (ms / 1000) * state.speed, tEnd);
+      },
+      atEnd: () => state.t >= tEnd,
+      rewind: () => {
+        state.t = 0;
+      },
+      draw: draw,
+    });
+    const api = {
+      state: state,
+      play: play,
+      pause: pause,
+      seek: (t) => {
+        state.t = Math.max(0, Math.min(t, tEnd));
+        draw();
+      },
+      setCase: () => draw(),
+      frameSvg: player.frameSvg,
+    };
+    player.speed.addEventListener('change', () => {
+      state.speed = Number(player.speed.value);
+    });
+    player.exaggeration.addEventListener('change', () => {
+      state.exaggeration = Math.max(1, Number(player.exaggeration.value) || 1);
+      draw();
+    });
+    player.scrub.addEventListener('input', () => api.seek((Number(player.scrub.value) / 1000) * tEnd));
+    player.exportFrame.addEventListener('click', () =>
+      download(`plan_frame_t${times[state.frame].toFixed(3)}.svg`, api.frameSvg(), 'image/svg+xml'),
+    );
+    draw();
+    return api;
+  }
+
+  /** The results of a lumped run in plan (summary.json `plan: true`). */
+  function planSection(parent, data) {
+    const c = planCase(data);
+    if (!c.history.displacement || !c.geometry.slab) {
+      section(parent, 'Run in plan').appendChild(
+        el('p', { text: 'This plan run has no histories or no slab outline (plan/slab_outline) to draw.' }),
+      );
+      return;
+    }
+    peaksSection(parent, c);
+    view.animation = planAnimation(section(parent, 'Plan view'), c);
+    historySection(parent, c);
+    energySection(parent, c);
+  }
+
+  Object.assign(kimp, { planSection });
+})();
