@@ -4,8 +4,8 @@
 #pragma once
 
 #include "app/fem/fem_scene.h"
-#include "app/lumped/lumped_scene.h"
 #include "app/laws/yielding_wall_scene.h"
+#include "app/lumped/lumped_scene.h"
 
 namespace kimp::app
 {
