@@ -1,4 +1,5 @@
-// `kimp study`: FEM per wall height -> k fitted with laws 2 and 4 at COR 0.7 (docs/physics.md §4)
+// `kimp study`: FEM per wall height -> k fitted with laws 2 and 4 at the thesis COR
+// (lumped::thesis_cor; docs/physics.md §4)
 // -> k_total = k_per_m·W -> isolated building pounding on moat walls (docs/physics.md §2-3).
 #include "app/study/study_run.h"
 
