@@ -112,6 +112,29 @@ namespace kimp::app
     return std::hypot(width * k_error, k_per_metre * width_error);
   }
 
+  namespace
+  {
+    /** The engineer's quantities' change between the two finest usable levels of `result` (the
+     *  reported one and the usable level before it), and whether all of them pass. */
+    void add_quantity_errors(LadderResult &result)
+    {
+      if (result.used > 0)
+      {
+        // The two finest levels: the reported one and the usable level before it.
+        std::size_t before = result.used - 1;
+        while (before > 0 && !result.outcomes[before].ok)
+          --before;
+        if (result.outcomes[before].ok)
+          result.quantity_errors =
+            quantity_errors(result.outcomes[before], result.outcomes[result.used]);
+      }
+      result.quantities_converged = !result.quantity_errors.empty() &&
+                                    std::all_of(result.quantity_errors.begin(),
+                                                result.quantity_errors.end(),
+                                                [](const QuantityError &e) { return e.pass; });
+    }
+  } // namespace
+
   LadderResult climb_fidelity_ladder(const std::vector<double> &h_contact_levels,
                                      const std::vector<double> &penalty_levels,
                                      double                     tolerance,
@@ -216,20 +239,7 @@ namespace kimp::app
       quadrature(result.mesh_error_kelvin_voigt, result.penalty_error_kelvin_voigt);
     result.error_jankowski =
       quadrature(result.mesh_error_jankowski, result.penalty_error_jankowski);
-    if (result.used > 0)
-    {
-      // The two finest levels: the reported one and the usable level before it.
-      std::size_t before = result.used - 1;
-      while (before > 0 && !result.outcomes[before].ok)
-        --before;
-      if (result.outcomes[before].ok)
-        result.quantity_errors =
-          quantity_errors(result.outcomes[before], result.outcomes[result.used]);
-    }
-    result.quantities_converged =
-      !result.quantity_errors.empty() && std::all_of(result.quantity_errors.begin(),
-                                                     result.quantity_errors.end(),
-                                                     [](const QuantityError &e) { return e.pass; });
+    add_quantity_errors(result);
     return result;
   }
 } // namespace kimp::app
