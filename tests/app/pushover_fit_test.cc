@@ -1,0 +1,195 @@
+// The wall-and-backfill part from a pushover curve (app/study/pushover_fit.h) on synthetic curves
+// with closed-form answers: a bilinear gives its own parameters back, an elastic-perfectly plastic
+// curve with noise its yield force and stiffness, OpenSees' HyperbolicGapMaterial envelope the
+// equal-energy equivalents written out here, and a cyclic curve its unloading stiffness and set.
+#include <cmath>
+#include <gtest/gtest.h>
+#include <iostream>
+#include <random>
+#include <stdexcept>
+
+#include "app/study/pushover_fit.h"
+
+namespace kimp::app
+{
+  namespace
+  {
+    using Curve = std::vector<fem::PushoverPoint>;
+
+    void push(Curve &c, double w, double f, bool unloading = false)
+    {
+      c.push_back({w, f, 0u, unloading});
+    }
+
+    /// E(w) of a bilinear k, F_y, α.
+    double bilinear(double k, double f_y, double alpha, double w)
+    {
+      return w <= f_y / k ? k * w : f_y + alpha * k * (w - f_y / k);
+    }
+
+    constexpr double k_b = 40e6, f_y_b = 100e3, alpha_b = 0.05; // u_y = 2.5 mm
+
+    /// The bilinear on a 0.5 mm grid (its knee on a grid point) from 0 to `w_end`, appended.
+    void bilinear_push(Curve &c, double from, double w_end)
+    {
+      for (double w = from; w <= w_end + 1e-12; w += 5e-4)
+        push(c, w, bilinear(k_b, f_y_b, alpha_b, w));
+    }
+  } // namespace
+
+  TEST(PushoverFit, BilinearCurveGivesItsOwnParametersBack)
+  {
+    Curve c;
+    bilinear_push(c, 0.0, 0.06);
+    const PushoverFit fit = fit_pushover(c);
+    EXPECT_NEAR(fit.capacity / f_y_b, 1.0, 1e-9);
+    EXPECT_NEAR(fit.stiffness / k_b, 1.0, 1e-9);
+    EXPECT_NEAR(fit.hardening_ratio, alpha_b, 1e-9);
+    EXPECT_NEAR(fit.target_displacement, 0.06, 1e-12);
+    EXPECT_NEAR(fit.target_force / bilinear(k_b, f_y_b, alpha_b, 0.06), 1.0, 1e-12);
+    // No unloading: k_ur = k, said so.
+    EXPECT_EQ(fit.unloading_stiffness, fit.stiffness);
+    EXPECT_TRUE(std::isnan(fit.pushover_permanent_set));
+    EXPECT_NE(fit.note.find("no unloading"), std::string::npos);
+  }
+
+  TEST(PushoverFit, CyclicBilinearGivesItsUnloadingStiffnessAndSet)
+  {
+    // Push to 30 mm, unload at k_ur = 2k to zero force, reload along the same line, push to
+    // 60 mm: the envelope is the virgin loading, k_ur and the set those of the unloading.
+    constexpr double k_ur = 2.0 * k_b, w_un = 0.03;
+    const double     f_un = bilinear(k_b, f_y_b, alpha_b, w_un);
+    const double     w_p  = w_un - f_un / k_ur;
+    Curve            c;
+    bilinear_push(c, 0.0, w_un);
+    for (int i = 1; i <= 10; ++i)
+    {
+      const double f = f_un * (1.0 - 0.1 * i);
+      push(c, w_p + f / k_ur, f, true);
+    }
+    for (int i = 1; i <= 10; ++i)
+    {
+      const double f = f_un * 0.1 * i;
+      push(c, w_p + f / k_ur, f);
+    }
+    bilinear_push(c, w_un + 5e-4, 0.06);
+    const PushoverFit fit = fit_pushover(c);
+    EXPECT_NEAR(fit.capacity / f_y_b, 1.0, 1e-9);
+    EXPECT_NEAR(fit.stiffness / k_b, 1.0, 1e-9);
+    EXPECT_NEAR(fit.hardening_ratio, alpha_b, 1e-9);
+    EXPECT_NEAR(fit.unloading_stiffness / k_ur, 1.0, 1e-9);
+    EXPECT_NEAR(fit.unloaded_from, w_un, 1e-12);
+    EXPECT_NEAR(fit.pushover_permanent_set / w_p, 1.0, 1e-9);
+    EXPECT_NEAR(fit.permanent_set / w_p, 1.0, 1e-9);
+    EXPECT_TRUE(fit.note.empty()) << fit.note;
+  }
+
+  TEST(PushoverFit, UnloadingSofterThanTheLoadingStiffnessIsClampedAndSaid)
+  {
+    // A wall that springs back more than its loading secant allows (an RC cantilever): the
+    // element's law needs k_ur >= k, so k_ur = k and the set is larger than the curve's.
+    constexpr double w_un = 0.03;
+    const double     f_un = bilinear(k_b, f_y_b, alpha_b, w_un);
+    const double     w_p  = 1e-3;
+    Curve            c;
+    bilinear_push(c, 0.0, w_un);
+    push(c, 0.5 * (w_un + w_p), 0.5 * f_un, true);
+    push(c, w_p, 0.0, true);
+    const PushoverFit fit = fit_pushover(c);
+    EXPECT_EQ(fit.unloading_stiffness, fit.stiffness);
+    EXPECT_NEAR(fit.permanent_set, w_un - f_un / k_b, 1e-12);
+    EXPECT_NEAR(fit.pushover_permanent_set, w_p, 1e-12);
+    EXPECT_NE(fit.note.find("unloads softer"), std::string::npos) << fit.note;
+  }
+
+  TEST(PushoverFit, ElasticPerfectlyPlasticWithNoise)
+  {
+    // ±1 % multiplicative noise on every point of k 40 kN/mm/m, F_y 100 kN/m, to 50 mm.
+    std::mt19937                           random(7);
+    std::uniform_real_distribution<double> noise(-0.01, 0.01);
+    Curve                                  c;
+    for (int i = 0; i <= 200; ++i)
+    {
+      const double w = 2.5e-4 * i;
+      push(c, w, bilinear(k_b, f_y_b, 0.0, w) * (1.0 + (i > 0 ? noise(random) : 0.0)));
+    }
+    const PushoverFit fit = fit_pushover(c);
+    std::cout << "EPP with noise: F_y " << fit.capacity / 1e3 << " kN/m, k " << fit.stiffness / 1e6
+              << " kN/mm/m, alpha " << fit.hardening_ratio << "\n";
+    EXPECT_NEAR(fit.capacity / f_y_b, 1.0, 0.015);
+    EXPECT_NEAR(fit.stiffness / k_b, 1.0, 0.02);
+    EXPECT_LT(fit.hardening_ratio, 0.005);
+  }
+
+  TEST(PushoverFit, HyperbolicGapEnvelopeGivesItsEqualEnergyEquivalents)
+  {
+    // OpenSees HyperbolicGapMaterial on its documented parameters (K_max 20 300 kN/m,
+    // R_f 0.7, F_ult 326 kN, no gap) as a curve per metre, E(w) = w/(a + b·w), a = 1/K_max,
+    // b = R_f/F_ult, pushed to 50 mm on 5000 steps.
+    constexpr double k_max = 20.3e6, r_f = 0.7, f_ult = 326e3, w_d = 0.05;
+    constexpr double a = 1.0 / k_max, b = r_f / f_ult;
+    const auto       envelope = [&](double w) { return w / (a + b * w); };
+    Curve            c;
+    constexpr int    n = 5000;
+    for (int i = 0; i <= n; ++i)
+      push(c, w_d * i / n, envelope(w_d * i / n));
+    // Closed form. Area A = w_d/b − (a/b²)·ln(1 + b·w_d/a); the curve reaches 0.6·V at
+    // w = 0.6·a·V/(1 − 0.6·b·V), so K_e = (1 − 0.6·b·V)/a; equal area
+    // V·w_d + F_d·w_d − F_d·V/K_e = 2A is the quadratic
+    // −β·w_d·V² + (w_d − β·c0 − F_d·a)·V + c0 = 0, β = 0.6·b, c0 = F_d·w_d − 2A.
+    const double      f_d  = envelope(w_d);
+    const double      area = w_d / b - a / (b * b) * std::log(1.0 + b * w_d / a);
+    const double      beta = 0.6 * b, c0 = f_d * w_d - 2.0 * area;
+    const double      qa = -beta * w_d, qb = w_d - beta * c0 - f_d * a, qc = c0;
+    const double      v_y   = (-qb + std::sqrt(qb * qb - 4.0 * qa * qc)) / (2.0 * qa);
+    const double      k_e   = (1.0 - beta * v_y) / a;
+    const double      alpha = (f_d - v_y) / (w_d - v_y / k_e) / k_e;
+    const PushoverFit fit   = fit_pushover(c);
+    std::cout << "HyperbolicGap to 50 mm: V_y " << v_y / 1e3 << " kN/m (fit " << fit.capacity / 1e3
+              << "), K_e " << k_e / 1e6 << " kN/mm/m (fit " << fit.stiffness / 1e6 << "), alpha "
+              << alpha << " (fit " << fit.hardening_ratio << ")\n";
+    ASSERT_GT(v_y, 0.0);
+    ASSERT_LT(v_y, f_d);
+    EXPECT_NEAR(fit.capacity / v_y, 1.0, 1e-5);
+    EXPECT_NEAR(fit.stiffness / k_e, 1.0, 1e-5);
+    EXPECT_NEAR(fit.hardening_ratio / alpha, 1.0, 1e-4);
+    EXPECT_NEAR(fit.target_force / f_d, 1.0, 1e-12);
+    EXPECT_NEAR(fit.curve_work / area, 1.0, 1e-6);
+  }
+
+  TEST(PushoverFit, SofteningPastTheLargestForceIsCutAndSaid)
+  {
+    Curve c;
+    bilinear_push(c, 0.0, 0.02);
+    const double f_d = bilinear(k_b, f_y_b, alpha_b, 0.02);
+    push(c, 0.03, 0.8 * f_d);
+    const PushoverFit fit = fit_pushover(c);
+    EXPECT_NEAR(fit.target_displacement, 0.02, 1e-12);
+    EXPECT_NEAR(fit.capacity / f_y_b, 1.0, 1e-9);
+    EXPECT_NE(fit.note.find("softens"), std::string::npos) << fit.note;
+  }
+
+  TEST(PushoverFit, CurvesThatCannotBeFittedAreRefused)
+  {
+    Curve too_short;
+    push(too_short, 0.0, 0.0);
+    push(too_short, 1e-3, 1e3);
+    EXPECT_THROW(fit_pushover(too_short), std::invalid_argument);
+    Curve elastic; // never yields: no bilinear with a knee before its end
+    for (int i = 0; i <= 10; ++i)
+      push(elastic, 1e-4 * i, 40e6 * 1e-4 * i);
+    try
+    {
+      fit_pushover(elastic);
+      FAIL() << "an elastic curve was fitted";
+    }
+    catch (const std::invalid_argument &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("does not yield"), std::string::npos) << e.what();
+    }
+    Curve negative;
+    for (int i = 0; i <= 5; ++i)
+      push(negative, 1e-3 * i, -1e3 * i);
+    EXPECT_THROW(fit_pushover(negative), std::invalid_argument);
+  }
+} // namespace kimp::app
