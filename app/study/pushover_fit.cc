@@ -47,7 +47,7 @@ namespace kimp::app
       for (std::size_t k = 1; k <= target; ++k)
         area += 0.5 * (env[k].f + env[k - 1].f) * (env[k].w - env[k - 1].w);
       double v_y = f_d, k_e = 0.0;
-      bool   converged = false;
+      bool   converged = false, capped = false;
       for (int iteration = 0; iteration < 500 && !converged; ++iteration)
       {
         k_e                = 0.6 * v_y / first_crossing(env, target, 0.6 * v_y);
@@ -60,7 +60,9 @@ namespace kimp::app
                         f_d / 1e3,
                         w_d * 1e3,
                         f_d / k_e * 1e3));
-        const double next = std::clamp((2.0 * area - f_d * w_d) / denom, 1e-9 * f_d, f_d);
+        const double raw  = (2.0 * area - f_d * w_d) / denom;
+        const double next = std::clamp(raw, 1e-9 * f_d, f_d);
+        capped            = raw >= f_d;
         converged         = std::abs(next - v_y) <= 1e-13 * f_d;
         v_y               = next;
       }
@@ -76,6 +78,11 @@ namespace kimp::app
       fit.curve_work          = area;
       const double slope      = (f_d - v_y) / (w_d - fit.yield_displacement);
       fit.hardening_ratio     = std::clamp(slope / k_e, 0.0, 1.0 - 1e-9);
+      if (capped && area < 0.99 * (f_d * w_d - 0.5 * f_d * f_d / k_e))
+        fit.note = fmt::format("the curve encloses less work than a bilinear through its end "
+                               "point: F_y = its largest force, alpha = 0 (it did not yield "
+                               "within the push, {:.4g} mm)",
+                               w_d * 1e3);
     }
 
     /// The bilinear envelope of `fit` at w >= 0.

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "app/study/pushover_fit.h"
 #include "app/study/study_extras.h"
 #include "app/study/study_flexible_wall.h"
 #include "app/study/study_ladder.h"
@@ -123,7 +124,16 @@ namespace kimp::app
     std::string         status = "ok";     ///< "ok" or "failed: ..."
     YieldingWallInputs  inputs;            ///< per metre, what it was derived from
     YieldingWallElement element;           ///< per metre (× width for the wall)
-    bool                ok() const { return status == "ok"; }
+    /** Where the wall-and-backfill part comes from: "pushover" (the height's static pushover,
+     *  fitted by fit_pushover()) or "estimate" (yielding_wall_inputs(): the capacity estimate
+     *  and the cracked cantilever), and why (the pushover's failure, or what the fit assumed). */
+    std::string   source = "estimate";
+    std::string   source_reason;
+    double        estimate_capacity = 0.0; ///< the capacity estimate, N/m (for comparison)
+    PushoverFit   fit;                     ///< source "pushover": the fit and its target point
+    double        pushover_seconds = 0.0;  ///< wall time of the pushover (also when it failed), s
+    unsigned long pushover_cells   = 0;    ///< cells of the pushover's mesh
+    bool          ok() const { return status == "ok"; }
   };
 
   /** One building run of the consistent-k iteration: k used and the impact velocity found. */

@@ -1,6 +1,7 @@
 // Writers of `kimp study`'s yielding walls: yielding_wall_element.csv (per height),
 // yielding_wall.csv (per height and record), study.h5 /yielding_wall and the report section.
 #include <fmt/format.h>
+#include <functional>
 
 #include "app/study/study_internal.h"
 #include "base/format.h"
@@ -11,76 +12,181 @@ namespace kimp::app::study_internal
 {
   namespace
   {
-    /// Per height: the element and what it was derived from (per metre, display units).
-    Table element_table(const std::vector<StudyYieldingWall> &walls)
+    /// A number column: its name, its display unit and the factor from SI to it, its SI unit,
+    /// and its SI value of a row.
+    template <class Row>
+    struct Column
     {
-      Table t;
-      t.number("wall_height", "m")
-        .number("capacity", "kN/m")
-        .number("stiffness", "kN/mm/m")
-        .number("unloading_stiffness", "kN/mm/m")
-        .number("hardening_ratio", "1")
-        .number("failure_displacement", "cm")
-        .number("soil_density", "kg/m^3")
-        .number("soil_wave_speed", "m/s")
-        .number("loaded_height", "m")
-        .number("radiation_damping", "kN*s/m^2")
-        .number("slab_impedance", "kN*s/m^2")
-        .number("wall_impedance", "kN*s/m^2")
-        .number("contact_impedance", "kN*s/m^2")
-        .number("wall_mass", "t/m")
-        .number("striker_mass", "t/m")
-        .number("contact_stiffness", "kN/mm/m")
-        .number("width", "m")
-        .text("status");
+      const char                        *name;
+      const char                        *display_unit;
+      double                             factor;
+      const char                        *si_unit;
+      std::function<double(const Row &)> value;
+    };
+
+    /// Appends `columns` to `t` (SI in study.h5, display units in the CSV files).
+    template <class Row>
+    void add_number_columns(Table &t, const std::vector<Column<Row>> &columns, bool si)
+    {
+      for (const Column<Row> &c : columns)
+        t.number(c.name, si ? c.si_unit : c.display_unit);
+    }
+
+    template <class Row>
+    std::vector<Cell>
+    number_row(const std::vector<Column<Row>> &columns, const Row &row, bool si, bool ok)
+    {
+      std::vector<Cell> cells;
+      for (const Column<Row> &c : columns)
+        cells.emplace_back(ok ? c.value(row) * (si ? 1.0 : c.factor) : nan);
+      return cells;
+    }
+
+    /// Per height: the element, what it was derived from and where its resistance comes from.
+    std::vector<Column<StudyYieldingWall>> element_columns()
+    {
+      using W = StudyYieldingWall;
+      return {
+        {"capacity", "kN/m", 1e-3, "N/m", [](const W &w) { return w.inputs.capacity; }},
+        {"stiffness", "kN/mm/m", 1e-6, "N/m/m", [](const W &w) { return w.inputs.stiffness; }},
+        {"unloading_stiffness",
+         "kN/mm/m",
+         1e-6,
+         "N/m/m",
+         [](const W &w) { return w.inputs.unloading_stiffness; }},
+        {"hardening_ratio", "1", 1.0, "1", [](const W &w) { return w.inputs.hardening_ratio; }},
+        {"failure_displacement",
+         "cm",
+         100.0,
+         "m",
+         [](const W &w) { return w.element.backfill.resolved().failure_displacement; }},
+        {"estimate_capacity", "kN/m", 1e-3, "N/m", [](const W &w) { return w.estimate_capacity; }},
+        {"pushover_force",
+         "kN/m",
+         1e-3,
+         "N/m",
+         [](const W &w) { return w.source == "pushover" ? w.fit.target_force : nan; }},
+        {"pushover_displacement",
+         "mm",
+         1e3,
+         "m",
+         [](const W &w) { return w.source == "pushover" ? w.fit.target_displacement : nan; }},
+        {"pushover_permanent_set",
+         "mm",
+         1e3,
+         "m",
+         [](const W &w) { return w.source == "pushover" ? w.fit.pushover_permanent_set : nan; }},
+        {"element_permanent_set",
+         "mm",
+         1e3,
+         "m",
+         [](const W &w) { return w.source == "pushover" ? w.fit.permanent_set : nan; }},
+        {"pushover_time", "s", 1.0, "s", [](const W &w) { return w.pushover_seconds; }},
+        {"soil_density", "kg/m^3", 1.0, "kg/m^3", [](const W &w) { return w.inputs.soil_density; }},
+        {"soil_wave_speed", "m/s", 1.0, "m/s", [](const W &w) { return w.inputs.soil_wave_speed; }},
+        {"loaded_height", "m", 1.0, "m", [](const W &w) { return w.inputs.loaded_height; }},
+        {"radiation_damping",
+         "kN*s/m^2",
+         1e-3,
+         "N*s/m^2",
+         [](const W &w) { return w.element.radiation_damping; }},
+        {"slab_impedance",
+         "kN*s/m^2",
+         1e-3,
+         "N*s/m^2",
+         [](const W &w) { return w.inputs.slab_impedance; }},
+        {"wall_impedance",
+         "kN*s/m^2",
+         1e-3,
+         "N*s/m^2",
+         [](const W &w) { return w.inputs.wall_impedance; }},
+        {"contact_impedance",
+         "kN*s/m^2",
+         1e-3,
+         "N*s/m^2",
+         [](const W &w) { return w.element.contact_impedance; }},
+        {"wall_mass", "t/m", 1e-3, "kg/m", [](const W &w) { return w.element.wall_mass; }},
+        {"striker_mass", "t/m", 1e-3, "kg/m", [](const W &w) { return w.inputs.striker_mass; }},
+        {"contact_stiffness",
+         "kN/mm/m",
+         1e-6,
+         "N/m/m",
+         [](const W &w) { return w.element.contact_stiffness; }},
+        {"width", "m", 1.0, "m", [](const W &w) { return w.element.width; }},
+      };
+    }
+
+    Table element_table(const std::vector<StudyYieldingWall> &walls, bool si)
+    {
+      const auto columns = element_columns();
+      Table      t;
+      t.number("wall_height", "m").text("source");
+      add_number_columns(t, columns, si);
+      t.text("source_reason").text("status");
       for (const StudyYieldingWall &w : walls)
       {
-        const auto                 v  = [&](double x) { return Cell(w.ok() ? x : nan); };
-        const YieldingWallInputs  &in = w.inputs;
-        const YieldingWallElement &e  = w.element;
-        t.add_row({w.wall_height,
-                   v(in.capacity / 1e3),
-                   v(in.stiffness / 1e6),
-                   v(in.unloading_stiffness / 1e6),
-                   v(in.hardening_ratio),
-                   v(100.0 * e.backfill.resolved().failure_displacement),
-                   v(in.soil_density),
-                   v(in.soil_wave_speed),
-                   v(in.loaded_height),
-                   v(e.radiation_damping / 1e3),
-                   v(in.slab_impedance / 1e3),
-                   v(in.wall_impedance / 1e3),
-                   v(e.contact_impedance / 1e3),
-                   v(e.wall_mass / 1e3),
-                   v(in.striker_mass / 1e3),
-                   v(e.contact_stiffness / 1e6),
-                   v(e.width),
-                   w.status});
+        std::vector<Cell> row{w.wall_height, w.source};
+        for (Cell &c : number_row(columns, w, si, w.ok()))
+          row.push_back(std::move(c));
+        row.insert(row.end(), {w.source_reason, w.status});
+        t.add_row(row);
       }
       return t;
     }
 
-    /// Per height and record: the walls against their capacity (display units).
-    Table runs_table(const std::vector<StudyBuildingRun> &runs)
+    /// Per height and record: the walls against their capacity.
+    std::vector<Column<StudyBuildingRun>> run_columns()
     {
-      Table t;
-      t.text("record")
-        .number("wall_height", "m")
-        .number("gap", "cm")
-        .number("peak_wall_resistance", "kN")
-        .number("wall_capacity", "kN")
-        .number("resistance_over_capacity", "1")
-        .number("peak_contact_force", "kN")
-        .number("peak_wall_displacement", "cm")
-        .number("residual_wall_displacement", "cm")
-        .integer("failed")
+      using R = StudyBuildingRun;
+      return {
+        {"gap", "cm", 100.0, "m", [](const R &r) { return r.gap; }},
+        {"peak_wall_resistance",
+         "kN",
+         1e-3,
+         "N",
+         [](const R &r) { return r.wall_peak_resistance; }},
+        {"resistance_over_capacity",
+         "1",
+         1.0,
+         "1",
+         [](const R &r)
+         { return r.wall_capacity > 0 ? r.wall_peak_resistance / r.wall_capacity : nan; }},
+        {"peak_contact_force", "kN", 1e-3, "N", [](const R &r) { return r.peak_impact_force; }},
+        {"peak_wall_displacement",
+         "cm",
+         100.0,
+         "m",
+         [](const R &r) { return r.peak_wall_displacement; }},
+        {"residual_wall_displacement",
+         "cm",
+         100.0,
+         "m",
+         [](const R &r) { return r.wall_residual_displacement; }},
+        {"wall_plastic_work", "kJ", 1e-3, "J", [](const R &r) { return r.wall_plastic_work; }},
+        {"wall_radiated_work", "kJ", 1e-3, "J", [](const R &r) { return r.wall_radiated_work; }},
+        {"energy_input", "kJ", 1e-3, "J", [](const R &r) { return r.energy_input; }},
+        {"energy_error", "1", 1.0, "1", [](const R &r) { return r.energy_error; }},
+        {"peak_top_acceleration",
+         "m/s^2",
+         1.0,
+         "m/s^2",
+         [](const R &r) { return r.top_acceleration; }},
+        {"peak_interstorey_drift",
+         "cm",
+         100.0,
+         "m",
+         [](const R &r) { return r.max_interstorey_drift; }},
+      };
+    }
+
+    Table runs_table(const std::vector<StudyBuildingRun> &runs, bool si)
+    {
+      const auto columns = run_columns();
+      Table      t;
+      t.text("record").number("wall_height", "m").number("wall_capacity", si ? "N" : "kN");
+      add_number_columns(t, columns, si);
+      t.integer("failed")
         .number("failure_time", "s")
-        .number("wall_plastic_work", "kJ")
-        .number("wall_radiated_work", "kJ")
-        .number("energy_input", "kJ")
-        .number("energy_error", "1")
-        .number("peak_top_acceleration", "m/s^2")
-        .number("peak_interstorey_drift", "cm")
         .integer("n_impacts")
         .number("wall_time", "s")
         .text("status");
@@ -88,28 +194,16 @@ namespace kimp::app::study_internal
       {
         if (!r.yielding_wall)
           continue;
-        const bool ok = r.status == "ok";
-        const auto v  = [&](double x) { return Cell(ok ? x : nan); };
-        t.add_row({r.record,
-                   r.wall_height,
-                   r.gap * 100,
-                   v(r.wall_peak_resistance / 1e3),
-                   r.wall_capacity / 1e3,
-                   v(r.wall_capacity > 0 ? r.wall_peak_resistance / r.wall_capacity : nan),
-                   v(r.peak_impact_force / 1e3),
-                   v(100.0 * r.peak_wall_displacement),
-                   v(100.0 * r.wall_residual_displacement),
-                   static_cast<std::int64_t>(r.wall_failed ? 1 : 0),
-                   r.wall_failed ? r.wall_failure_time : nan,
-                   v(r.wall_plastic_work / 1e3),
-                   v(r.wall_radiated_work / 1e3),
-                   v(r.energy_input / 1e3),
-                   v(r.energy_error),
-                   v(r.top_acceleration),
-                   v(100.0 * r.max_interstorey_drift),
-                   static_cast<std::int64_t>(r.n_impacts),
-                   r.wall_seconds,
-                   r.status});
+        std::vector<Cell> row{r.record, r.wall_height, r.wall_capacity * (si ? 1.0 : 1e-3)};
+        for (Cell &c : number_row(columns, r, si, r.status == "ok"))
+          row.push_back(std::move(c));
+        row.insert(row.end(),
+                   {static_cast<std::int64_t>(r.wall_failed ? 1 : 0),
+                    r.wall_failed ? r.wall_failure_time : nan,
+                    static_cast<std::int64_t>(r.n_impacts),
+                    r.wall_seconds,
+                    r.status});
+        t.add_row(row);
       }
       return t;
     }
@@ -119,8 +213,8 @@ namespace kimp::app::study_internal
   {
     if (result.yielding_walls.empty())
       return;
-    element_table(result.yielding_walls).write_csv(output.file("yielding_wall_element.csv"));
-    runs_table(result.building).write_csv(output.file("yielding_wall.csv"));
+    element_table(result.yielding_walls, false).write_csv(output.file("yielding_wall_element.csv"));
+    runs_table(result.building, false).write_csv(output.file("yielding_wall.csv"));
   }
 
   void write_yielding_wall_h5(ResultsGroup &root, const StudyResult &result)
@@ -128,8 +222,8 @@ namespace kimp::app::study_internal
     if (result.yielding_walls.empty())
       return;
     ResultsGroup g = root.group("yielding_wall");
-    element_table(result.yielding_walls).write_hdf5(g, "element");
-    runs_table(result.building).write_hdf5(g, "runs");
+    element_table(result.yielding_walls, true).write_hdf5(g, "element");
+    runs_table(result.building, true).write_hdf5(g, "runs");
   }
 
   nlohmann::ordered_json yielding_wall_json(const StudyResult &result)
@@ -156,11 +250,72 @@ namespace kimp::app::study_internal
       }
       runs.push_back(row);
     }
-    return {{"units", {{"force", "N"}, {"displacement", "m"}, {"wall_height", "m"}, {"time", "s"}}},
+    nlohmann::ordered_json elements = nlohmann::ordered_json::array();
+    for (const StudyYieldingWall &w : result.yielding_walls)
+    {
+      nlohmann::ordered_json e = {{"wall_height", w.wall_height},
+                                  {"status", w.status},
+                                  {"source", w.source},
+                                  {"source_reason", w.source_reason},
+                                  {"estimate_capacity", w.estimate_capacity}};
+      if (w.ok())
+      {
+        e["capacity"]            = w.inputs.capacity;
+        e["stiffness"]           = w.inputs.stiffness;
+        e["hardening_ratio"]     = w.inputs.hardening_ratio;
+        e["unloading_stiffness"] = w.inputs.unloading_stiffness;
+        e["radiation_damping"]   = w.element.radiation_damping;
+        e["contact_stiffness"]   = w.element.contact_stiffness;
+      }
+      if (w.source == "pushover")
+      {
+        e["pushover_force"]        = w.fit.target_force;
+        e["pushover_displacement"] = w.fit.target_displacement;
+      }
+      elements.push_back(e);
+    }
+    return {{"units",
+             {{"force", "N"},
+              {"displacement", "m"},
+              {"wall_height", "m"},
+              {"time", "s"},
+              {"per_metre",
+               "capacity and forces of elements: N/m, stiffness: N/m per m, "
+               "radiation_damping: N*s/m per m"}}},
             {"n_runs", runs.size()},
             {"n_failed", n_failed},
+            {"elements", elements},
             {"runs", runs}};
   }
+
+  namespace
+  {
+    /// Per height: where the wall-and-backfill part comes from and its parameters.
+    std::string element_markdown(const std::vector<StudyYieldingWall> &walls)
+    {
+      std::string md = "| H (m) | source | F_y (kN/m) | estimate (kN/m) | k (kN/mm/m) | alpha | "
+                       "k_ur (kN/mm/m) | pushover: largest force (kN/m) at (mm) | note |\n"
+                       "|---|---|---|---|---|---|---|---|---|\n";
+      for (const StudyYieldingWall &w : walls)
+      {
+        const bool ok = w.ok(), po = ok && w.source == "pushover";
+        const auto s = [](bool show, double x) { return show ? base::sig(x) : std::string("-"); };
+        md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+                          base::sig(w.wall_height),
+                          ok ? w.source : w.status,
+                          s(ok, w.inputs.capacity / 1e3),
+                          s(true, w.estimate_capacity / 1e3),
+                          s(ok, w.inputs.stiffness / 1e6),
+                          s(ok, w.inputs.hardening_ratio),
+                          s(ok, w.inputs.unloading_stiffness / 1e6),
+                          po ? base::sig(w.fit.target_force / 1e3) + " at " +
+                                 base::sig(w.fit.target_displacement * 1e3) :
+                               std::string("-"),
+                          w.source_reason.empty() ? std::string("-") : w.source_reason);
+      }
+      return md + "\n";
+    }
+  } // namespace
 
   std::string yielding_wall_markdown(const StudyScene &scene, const StudyResult &result)
   {
@@ -178,15 +333,19 @@ namespace kimp::app::study_internal
       "**{} of {} building runs push a wall past its failure limit (10 % of H).** With inelastic "
       "materials every building run hits each height's yielding wall element (docs/physics.md "
       "§2 \"Yielding moat wall\", element of a study): a contact spring with the first peak of "
-      "the slab-wall impedance, in series with the cracked wall capped at its collapse load "
-      "estimate (M_p + P_p H/3)/h_c and the backfill's radiation dashpot rho c h; W = {} m. The "
-      "equivalent k of the k table is the comparison with Table 2.1 only.\n\n"
+      "the slab-wall impedance, in series with the wall and its backfill and the backfill's "
+      "radiation dashpot rho c h; W = {} m. The wall-and-backfill part is the equal-energy "
+      "bilinear of the height's static pushover (source pushover) or, where the pushover fails, "
+      "the cracked cantilever capped at the collapse load estimate (M_p + P_p H/3)/h_c (source "
+      "estimate). The equivalent k of the k table is the comparison with Table 2.1 only.\n\n"
+      "{}"
       "| record | H (m) | gap (cm) | peak wall resistance (kN) | capacity (kN) | resistance / "
       "capacity | peak contact force (kN) | peak wall displacement (cm) | residual (cm) | failed "
       "| status |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
       n_failed,
       n,
-      scene.fit.width);
+      scene.fit.width,
+      element_markdown(result.yielding_walls));
     for (const StudyBuildingRun &r : result.building)
     {
       if (!r.yielding_wall)

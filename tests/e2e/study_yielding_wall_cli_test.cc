@@ -1,8 +1,11 @@
 // `kimp study` with inelastic materials, end to end on a quick scene (coarse rigid-slab FEM, one
 // short synthetic record): every height's walled building run hits its yielding wall element
 // (no equivalent-k run), and the capacity, peak and residual wall displacement and failure of
-// each run are in yielding_wall.csv (with units), study.h5 /yielding_wall and at the top of the
-// report; a linear study keeps the equivalent-k runs and writes no yielding-wall files.
+// each run are in yielding_wall.csv (with units), study.h5 /yielding_wall (SI) and at the top of
+// the report; each element's resistance comes from its height's static pushover where it runs
+// (source pushover: the same curve as `kimp fem --pushover`) and from the capacity estimate where
+// it fails (source estimate, with the reason); a linear study keeps the equivalent-k runs and
+// writes no yielding-wall files.
 #ifdef KIMP_WITH_FEM
 
 #  include <filesystem>
@@ -75,9 +78,26 @@ TEST(StudyYieldingWallCli, InelasticStudyRunsEveryHeightAgainstItsYieldingWall)
     EXPECT_LT(std::stod(r.at("energy_error")), 1e-4);
   }
 
+  // The reinforced wall against its backfill: the static pushover stalls at the first cracks
+  // (docs/validation.md "Static pushover of wall and backfill"), so each element falls back to
+  // the capacity estimate and says why.
+  for (const auto &e : elements)
+  {
+    EXPECT_EQ(e.at("source"), "estimate");
+    EXPECT_EQ(e.at("source_reason").rfind("pushover failed: ", 0), 0u) << e.at("source_reason");
+    EXPECT_EQ(e.at("capacity_kN_per_m"), e.at("estimate_capacity_kN_per_m"));
+    EXPECT_TRUE(e.at("pushover_force_kN_per_m").empty());
+  }
+
+  // study.h5 in SI, a units attribute per column.
   Hdf5Reader h5(out / "study.h5");
-  EXPECT_EQ(h5.units("/yielding_wall/runs/residual_wall_displacement"), "cm");
-  EXPECT_EQ(h5.units("/yielding_wall/element/capacity"), "kN/m");
+  EXPECT_EQ(h5.units("/yielding_wall/runs/residual_wall_displacement"), "m");
+  EXPECT_EQ(h5.units("/yielding_wall/runs/wall_capacity"), "N");
+  EXPECT_EQ(h5.units("/yielding_wall/element/capacity"), "N/m");
+  EXPECT_EQ(h5.units("/yielding_wall/element/stiffness"), "N/m/m");
+  EXPECT_NEAR(h5.doubles("/yielding_wall/element/capacity").at(0),
+              1e3 * std::stod(elements.at(0).at("capacity_kN_per_m")),
+              1e-6);
   EXPECT_EQ(h5.dims("/yielding_wall/runs/peak_wall_resistance").at(0), 2u);
 
   const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
@@ -85,6 +105,8 @@ TEST(StudyYieldingWallCli, InelasticStudyRunsEveryHeightAgainstItsYieldingWall)
   EXPECT_EQ(summary["yielding_wall"]["n_runs"], 2);
   EXPECT_EQ(summary["yielding_wall"]["runs"].size(), 2u);
   EXPECT_TRUE(summary["yielding_wall"]["runs"][0]["failed"].is_boolean());
+  ASSERT_EQ(summary["yielding_wall"]["elements"].size(), 2u);
+  EXPECT_EQ(summary["yielding_wall"]["elements"][0]["source"], "estimate");
 
   // The answer comes first in the report: the yielding walls before the k table.
   const std::string report = read_text(out / "report.md");
@@ -92,6 +114,60 @@ TEST(StudyYieldingWallCli, InelasticStudyRunsEveryHeightAgainstItsYieldingWall)
   ASSERT_NE(walls, std::string::npos);
   EXPECT_LT(walls, report.find("## Impact stiffness per wall height"));
   EXPECT_NE(report.find("building runs push a wall past its failure limit"), std::string::npos);
+  EXPECT_NE(report.find("| estimate |"), std::string::npos);
+  EXPECT_NE(report.find("pushover failed: "), std::string::npos);
+}
+
+TEST(StudyYieldingWallCli, ElementTakesItsResistanceFromTheHeightsPushover)
+{
+  // An elastic wall against Mohr-Coulomb sand with the contact interface: the pushover runs, the
+  // element is its equal-energy bilinear, and its curve is the one `kimp fem --pushover` gives
+  // for the same scene on the study's pushover mesh (5 cm, at most 25 cm).
+  constexpr const char *materials = R"(  velocities: []
+  interface: {model: contact}
+  materials:
+    concrete: {model: elastic}
+    soil: {model: mohr_coulomb, preset: medium_dense_sand}
+)";
+  const TempDir         dir("study_yielding_wall_pushover");
+  const KimpRun         run = run_study(reduced_study(R"(["1.25 m"])", materials), dir.path());
+  ASSERT_EQ(run.exit_code, 0) << run.output();
+  const std::filesystem::path out      = dir.path() / "out";
+  const auto                  elements = read_csv_records(out / "yielding_wall_element.csv");
+  ASSERT_EQ(elements.size(), 1u);
+  const auto &e = elements.at(0);
+  EXPECT_EQ(e.at("source"), "pushover") << e.at("source_reason");
+  const double cap   = 1e3 * std::stod(e.at("capacity_kN_per_m"));
+  const double k     = 1e6 * std::stod(e.at("stiffness_kN_per_mm_per_m"));
+  const double alpha = std::stod(e.at("hardening_ratio"));
+  const double w_d   = 1e-3 * std::stod(e.at("pushover_displacement_mm"));
+  const double f_d   = 1e3 * std::stod(e.at("pushover_force_kN_per_m"));
+  // The element's envelope ends at the pushover's largest force.
+  EXPECT_LE(cap, f_d * (1 + 1e-12));
+  EXPECT_NEAR((cap + alpha * k * (w_d - cap / k)) / f_d, 1.0, 1e-9);
+  EXPECT_NE(std::stod(e.at("estimate_capacity_kN_per_m")) * 1e3, cap);
+
+  // The same pushover through `kimp fem --pushover`.
+  write_text(dir.path() / "pushover.yaml",
+             "wall_heights: [\"1.25 m\"]\n"
+             "mesh: {h_contact: \"5 cm\", h_max: \"25 cm\", grading: 1.5}\n"
+             "slab: {rigid: true}\n"
+             "interface: {model: contact}\n"
+             "materials:\n"
+             "  concrete: {model: elastic}\n"
+             "  soil: {model: mohr_coulomb, preset: medium_dense_sand}\n");
+  const KimpRun pushover = run_kimp("fem --pushover pushover.yaml -o po", dir.path());
+  ASSERT_EQ(pushover.exit_code, 0) << pushover.output();
+  const auto summary = read_csv_records(dir.path() / "po" / "pushover_summary.csv");
+  ASSERT_EQ(summary.size(), 1u);
+  EXPECT_NEAR(f_d / std::stod(summary.at(0).at("capacity_N_per_m")), 1.0, 1e-9);
+  EXPECT_NEAR(w_d / std::stod(summary.at(0).at("displacement_at_capacity_m")), 1.0, 1e-9);
+
+  // The report and summary.json name the source.
+  const auto json = nlohmann::json::parse(read_text(out / "summary.json"));
+  EXPECT_EQ(json["yielding_wall"]["elements"][0]["source"], "pushover");
+  EXPECT_NEAR(json["yielding_wall"]["elements"][0]["capacity"].get<double>() / cap, 1.0, 1e-9);
+  EXPECT_NE(read_text(out / "report.md").find("| pushover |"), std::string::npos);
 }
 
 TEST(StudyYieldingWallCli, LinearStudyKeepsTheEquivalentKRoute)
