@@ -3,10 +3,14 @@
 #include "app/study/pushover_fit.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
 #include <stdexcept>
+
+#include "app/fem/pushover_run.h"
+#include "base/errors.h"
 
 namespace kimp::app
 {
@@ -151,5 +155,48 @@ namespace kimp::app
                          env.back().w * 1e3));
     fit_unloading(curve, fit);
     return fit;
+  }
+
+  namespace
+  {
+    /// The first sentence of a pushover's error (its Newton residuals left out).
+    std::string short_reason(const std::string &text)
+    {
+      const auto cut = text.find("; relative residuals");
+      return cut == std::string::npos ? text : text.substr(0, cut);
+    }
+  } // namespace
+
+  PushoverResistance
+  pushover_resistance(const FemScene &scene, const double wall_height, YieldingWallInputs &in)
+  {
+    FemScene coarse           = scene;
+    coarse.geometry.h_contact = study_pushover_h_contact;
+    coarse.geometry.h_max     = study_pushover_h_max;
+    coarse.mesh_level         = 0;
+    PushoverResistance r;
+    const auto         start = std::chrono::steady_clock::now();
+    const auto         since = [&]
+    { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+    try
+    {
+      const ScenePushover p = run_scene_pushover(coarse, wall_height);
+      r.cells               = p.result.n_cells;
+      r.seconds             = since();
+      r.fit                 = fit_pushover(p.result.curve);
+    }
+    catch (const std::exception &error)
+    {
+      r.seconds = since();
+      r.reason  = "pushover failed: " + short_reason(base::error_text(error));
+      return r;
+    }
+    r.source               = "pushover";
+    r.reason               = r.fit.note;
+    in.capacity            = r.fit.capacity;
+    in.stiffness           = r.fit.stiffness;
+    in.hardening_ratio     = r.fit.hardening_ratio;
+    in.unloading_stiffness = r.fit.unloading_stiffness;
+    return r;
   }
 } // namespace kimp::app

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "app/fem/fem_scene.h"
+#include "app/study/yielding_wall_element.h"
 #include "fem/pushover.h"
 
 namespace kimp::app
@@ -50,4 +52,30 @@ namespace kimp::app
    *   points, no positive force, or a curve that does not yield before its target), naming why.
    */
   PushoverFit fit_pushover(const std::vector<fem::PushoverPoint> &curve);
+
+  /// Where a yielding wall element's wall-and-backfill part came from (see pushover_resistance()).
+  struct PushoverResistance
+  {
+    std::string   source = "estimate"; ///< "pushover" or "estimate"
+    std::string   reason;              ///< the pushover's failure, or the fit's note
+    PushoverFit   fit;                 ///< source "pushover" only
+    double        seconds = 0.0;       ///< the pushover's wall time (also when it failed), s
+    unsigned long cells   = 0;         ///< cells of the pushover's mesh
+  };
+
+  /// The mesh of a study's pushover, m: 5 cells through a 0.25 m wall, where the pushover's
+  /// closed forms hold within 3 % and a height takes seconds; independent of the impact's mesh.
+  inline constexpr double study_pushover_h_contact = 0.05;
+  inline constexpr double study_pushover_h_max     = 0.25;
+
+  /**
+   * The static pushover of `scene` at `wall_height` (run_scene_pushover() on the mesh
+   * study_pushover_h_contact / study_pushover_h_max, mesh level 0, the scene's `pushover`
+   * section for the path), fitted by fit_pushover(): on success the capacity, stiffness,
+   * hardening ratio and unloading stiffness of `in` are the fit's (source "pushover"); when the
+   * pushover or the fit fails `in` is left as it is (the estimate) and the reason says why
+   * (source "estimate"). Never throws for a pushover that fails.
+   */
+  PushoverResistance
+  pushover_resistance(const FemScene &scene, double wall_height, YieldingWallInputs &in);
 } // namespace kimp::app

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "app/fem/pushover_run.h"
 #include "app/study/pushover_fit.h"
 #include "app/study/study_internal.h"
 #include "app/study/yielding_wall_element.h"
@@ -54,46 +53,18 @@ namespace kimp::app::study_internal
       run.energy_input = r.energy.input;
     }
 
-    /// The study's pushover mesh, m: 5 cells through a 0.25 m wall, where the pushover's closed
-    /// forms hold within 3 % and a height takes seconds (docs/physics.md §2 "Yielding moat wall",
-    /// parameters from a pushover); independent of the impact's contact mesh.
-    constexpr double pushover_h_contact = 0.05;
-    constexpr double pushover_h_max     = 0.25;
-
-    /// The FEM scene of the study's pushovers: the scene's, on the fixed pushover mesh.
-    FemScene pushover_scene(const FemScene &fem)
-    {
-      FemScene s           = fem;
-      s.geometry.h_contact = pushover_h_contact;
-      s.geometry.h_max     = pushover_h_max;
-      s.mesh_level         = 0;
-      return s;
-    }
-
-    /// The first sentence of a pushover's error (its Newton residuals left out).
-    std::string short_reason(const std::string &text)
-    {
-      const auto cut = text.find("; relative residuals");
-      return cut == std::string::npos ? text : text.substr(0, cut);
-    }
-
     /// w's wall-and-backfill terms from the height's pushover and its fit; on failure w keeps
     /// the estimate and says why (source, source_reason, one warning).
     void apply_pushover(const StudyScene &scene, StudyYieldingWall &w)
     {
-      const Clock::time_point start = Clock::now();
-      try
+      const PushoverResistance r = pushover_resistance(scene.fem, w.wall_height, w.inputs);
+      w.source                   = r.source;
+      w.source_reason            = r.reason;
+      w.fit                      = r.fit;
+      w.pushover_seconds         = r.seconds;
+      w.pushover_cells           = r.cells;
+      if (r.source != "pushover")
       {
-        const ScenePushover p = run_scene_pushover(pushover_scene(scene.fem), w.wall_height);
-        w.pushover_cells      = p.result.n_cells;
-        w.pushover_seconds    = seconds_since(start);
-        w.fit                 = fit_pushover(p.result.curve);
-      }
-      catch (const std::exception &error)
-      {
-        w.pushover_seconds = seconds_since(start);
-        w.source           = "estimate";
-        w.source_reason    = "pushover failed: " + short_reason(base::error_text(error));
         logger().warn("{}: yielding wall element from the capacity estimate ({} kN/m, cracked "
                       "cantilever): {}",
                       w.name,
@@ -101,12 +72,6 @@ namespace kimp::app::study_internal
                       w.source_reason);
         return;
       }
-      w.source                     = "pushover";
-      w.source_reason              = w.fit.note;
-      w.inputs.capacity            = w.fit.capacity;
-      w.inputs.stiffness           = w.fit.stiffness;
-      w.inputs.hardening_ratio     = w.fit.hardening_ratio;
-      w.inputs.unloading_stiffness = w.fit.unloading_stiffness;
       logger().info("{}: pushover ({} cells, {} s): largest force {} kN/m at {} mm; equal-energy "
                     "bilinear F_y {} kN/m (estimate {}), k {} kN/mm/m, alpha {}, k_ur {} kN/mm/m{}",
                     w.name,

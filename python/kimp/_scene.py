@@ -152,6 +152,9 @@ def _to_text_values(kind, data, prefix=""):
 
 def _text_value(kind, section, key, value, path):
     """`value` of `key` in the dict `section` (at key path `path`) as the scene text holds it."""
+    if isinstance(value, list) and _schema(kind).get(path, ("", ""))[0] == "quantity_list":
+        unit = _schema(kind)[path][1]
+        return [_si_text(v, unit) if _number(v) else v for v in value]
     if isinstance(value, (dict, list)):
         return _to_text_values(kind, value, path)
     if not _number(value):

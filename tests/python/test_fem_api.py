@@ -109,3 +109,40 @@ def test_pushover_writes_the_curve_and_its_summary(tmp_path):
     assert header[:4] == ["case", "wall_height_m", "displacement_m", "force_N_per_m"]
     assert (tmp_path / "out" / "pushover_summary.csv").exists()
     assert len(force) == len(displacement)
+
+
+def test_study_yielding_wall_keys_through_the_scene_builder(tmp_path):
+    # The keys an inelastic study's yielding wall element reads, set as SI numbers through the
+    # scene builder: the materials that make the study inelastic, the interface, the pushover's
+    # path (its cyclic unloading gives k_ur), the building's mass and width.
+    scene = kimp.Scene(QUICK_STUDY, kind="study").with_(**{
+        "fem.slab.rigid": True,
+        "fem.interface.model": "contact",
+        "fem.materials.concrete.model": "elastic",
+        "fem.materials.soil.model": "mohr_coulomb",
+        "fem.materials.soil.preset": "medium_dense_sand",
+        "fem.pushover.displacement": 0.04,
+        "fem.pushover.increment": 0.002,
+        "fem.pushover.unload_at": [0.02],
+        "fit.width": 27.78,
+    })
+    fem = scene.resolved["fem"]
+    assert fem["pushover"]["displacement"] == pytest.approx(0.04, rel=1e-12)
+    assert fem["pushover"]["unload_at"] == pytest.approx([0.02], rel=1e-12)
+    assert fem["pushover"]["increment"] == pytest.approx(0.002, rel=1e-12)
+    result = kimp.study(scene, tmp_path / "out")
+    element = result["yielding_wall"]["element"]
+    # The element's resistance is its height's pushover, in SI with units per column.
+    assert element["source"] == ["pushover"], element["source_reason"]
+    assert element["capacity"].units == "N/m"
+    assert element["stiffness"].units == "N/m/m"
+    assert element["pushover_displacement"].units == "m"
+    cap, k = float(element["capacity"][0]), float(element["stiffness"][0])
+    alpha, w_d = float(element["hardening_ratio"][0]), float(element["pushover_displacement"][0])
+    assert w_d == pytest.approx(0.04, rel=1e-9)
+    assert cap + alpha * k * (w_d - cap / k) == pytest.approx(float(element["pushover_force"][0]),
+                                                               rel=1e-9)
+    # The cyclic path was run: the curve's set at 20 mm is read.
+    assert float(element["pushover_permanent_set"][0]) >= 0.0
+    runs = result["yielding_wall"]["runs"]
+    assert runs["residual_wall_displacement"].units == "m"

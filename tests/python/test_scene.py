@@ -161,3 +161,25 @@ def test_with_errors_name_the_generated_text_not_the_file(pounding_scene_file):
     twice = scene.with_(**{"walls.left.gap": "9 cm"}).with_(**{"walls.right.gap": "9 cm"})
     assert twice.name == f"{pounding_scene_file} (with_)"
     assert twice.directory == str(pounding_scene_file.parent)
+
+
+def test_yielding_wall_law_and_study_lists_in_si():
+    # The lumped `yielding` wall law's parameters as SI numbers resolve as their unit texts do.
+    si = {"envelope": "hyperbolic", "width": 27.78, "height": 1.25, "stiffness": 20.3e6,
+          "capacity": 326e3, "failure_ratio": 0.7, "unloading_stiffness": 30e6,
+          "tension_capacity": 0.0, "radiation_damping": 395e3, "failure_displacement": 0.1}
+    text = {"envelope": "hyperbolic", "width": "27.78 m", "height": "1.25 m",
+            "stiffness": "20.3 kN/mm/m", "capacity": "326 kN/m", "failure_ratio": 0.7,
+            "unloading_stiffness": "30 kN/mm/m", "tension_capacity": "0 kN/m",
+            "radiation_damping": "395 kN*s/m^2", "failure_displacement": "10 cm"}
+    a = kimp.Scene.from_dict({"walls": {"left": {"gap": 0.1, "yielding": si}}})
+    b = kimp.Scene.from_dict({"walls": {"left": {"gap": "10 cm", "yielding": text}}})
+    ya, yb = a.resolved["walls"]["left"]["yielding"], b.resolved["walls"]["left"]["yielding"]
+    for key in si:
+        assert ya[key] == pytest.approx(yb[key], rel=1e-12), key
+    # A list of quantities (the study's wall heights, the pushover's unloading points) in SI.
+    study = kimp.Scene.default("study").with_(**{"fem.wall_heights": [1.25, 2.0],
+                                                 "fem.pushover.unload_at": [0.01, 0.02]})
+    assert study.resolved["fem"]["wall_heights"] == pytest.approx([1.25, 2.0], rel=1e-12)
+    assert study.resolved["fem"]["pushover"]["unload_at"] == pytest.approx([0.01, 0.02],
+                                                                           rel=1e-12)
