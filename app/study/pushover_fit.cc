@@ -82,10 +82,10 @@ namespace kimp::app
       fit.curve_work          = area;
       const double slope      = (f_d - v_y) / (w_d - fit.yield_displacement);
       fit.hardening_ratio     = std::clamp(slope / k_e, 0.0, 1.0 - 1e-9);
-      if (capped && area < 0.99 * (f_d * w_d - 0.5 * f_d * f_d / k_e))
-        fit.note = fmt::format("the curve encloses less work than a bilinear through its end "
-                               "point: F_y = its largest force, alpha = 0 (it did not yield "
-                               "within the push, {:.4g} mm)",
+      if (capped)
+        fit.note = fmt::format("F_y = the curve's largest force, alpha = 0 (its equal-energy "
+                               "yield force reaches it: a flat curve, or one that has not "
+                               "yielded at the end of the push, {:.4g} mm)",
                                w_d * 1e3);
     }
 

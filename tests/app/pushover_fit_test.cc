@@ -1,14 +1,18 @@
 // The wall-and-backfill part from a pushover curve (app/study/pushover_fit.h) on synthetic curves
 // with closed-form answers: a bilinear gives its own parameters back, an elastic-perfectly plastic
 // curve with noise its yield force and stiffness, OpenSees' HyperbolicGapMaterial envelope the
-// equal-energy equivalents written out here, and a cyclic curve its unloading stiffness and set.
+// equal-energy equivalents written out here, and a cyclic curve its unloading stiffness and set;
+// and the study's pushover of a bare reinforced wall against its section analysis, and of a wall
+// whose pushover fails falling back to the estimate.
 #include <cmath>
 #include <gtest/gtest.h>
 #include <iostream>
 #include <random>
 #include <stdexcept>
 
+#include "app/fem/fem_scene.h"
 #include "app/study/pushover_fit.h"
+#include "io/scene_io.h"
 
 namespace kimp::app
 {
@@ -191,5 +195,63 @@ namespace kimp::app
     for (int i = 0; i <= 5; ++i)
       push(negative, 1e-3 * i, -1e3 * i);
     EXPECT_THROW(fit_pushover(negative), std::invalid_argument);
+  }
+
+  TEST(PushoverResistance, BareReinforcedWallYieldsAtItsSectionAnalysis)
+  {
+    // The bare wall of docs/validation.md "Static pushover" (0.5 % vertical bars, f_ctm cut to
+    // 10 % so that the section analysis without concrete in tension describes it), pushed to
+    // 20 mm with an unloading at 12 mm: M_p/h_c = 63.35 kN/m by the section analysis there.
+    const FemScene     scene = io::load_scene_text<FemScene>(R"(wall_heights: ["1.25 m"]
+geometry: {with_backfill: false}
+mesh: {h_contact: "2.5 cm", grading: 1.5}
+materials:
+  concrete:
+    model: damage_plasticity
+    f_cm: "38 MPa"
+    f_ctm: "0.29 MPa"
+    wall_reinforcement: {ratio_y: "0.5 %"}
+pushover: {displacement: "20 mm", unload_at: ["12 mm"]}
+)",
+                                                         "bare_wall.yaml");
+    YieldingWallInputs in;
+    in.capacity                = 1.0; // the estimate's place: replaced
+    const PushoverResistance r = pushover_resistance(scene, 1.25, in);
+    ASSERT_EQ(r.source, "pushover") << r.reason;
+    std::cout << "bare wall: F_y " << in.capacity / 1e3 << " kN/m, k " << in.stiffness / 1e6
+              << " kN/mm/m, alpha " << in.hardening_ratio << ", k_ur "
+              << in.unloading_stiffness / 1e6 << " kN/mm/m; " << r.reason << "\n";
+    EXPECT_EQ(r.cells, 150u); // the study's 5 cm mesh, not the scene's 2.5 cm
+    EXPECT_NEAR(in.capacity / 63.35e3, 1.0, 0.06);
+    EXPECT_EQ(in.capacity, r.fit.capacity);
+    EXPECT_GT(in.hardening_ratio, 0.0);
+    // The wall springs back softer than its loading secant: k_ur = k, said so.
+    EXPECT_EQ(in.unloading_stiffness, in.stiffness);
+    EXPECT_NE(r.reason.find("unloads softer"), std::string::npos) << r.reason;
+    EXPECT_GT(r.fit.permanent_set, r.fit.pushover_permanent_set);
+  }
+
+  TEST(PushoverResistance, AFailedPushoverLeavesTheEstimateAndSaysWhy)
+  {
+    // The same wall with MC2010's full tensile strength stalls at the first cracks.
+    const FemScene     scene = io::load_scene_text<FemScene>(R"(wall_heights: ["1.25 m"]
+geometry: {with_backfill: false}
+materials:
+  concrete:
+    model: damage_plasticity
+    f_cm: "38 MPa"
+    wall_reinforcement: {ratio_y: "0.5 %"}
+pushover: {displacement: "20 mm"}
+)",
+                                                         "bare_wall_full_f_ctm.yaml");
+    YieldingWallInputs in;
+    in.capacity                = 123.0;
+    in.stiffness               = 456.0;
+    const PushoverResistance r = pushover_resistance(scene, 1.25, in);
+    EXPECT_EQ(r.source, "estimate");
+    EXPECT_EQ(r.reason.rfind("pushover failed: ", 0), 0u) << r.reason;
+    EXPECT_EQ(r.reason.find("relative residuals"), std::string::npos) << r.reason;
+    EXPECT_EQ(in.capacity, 123.0);
+    EXPECT_EQ(in.stiffness, 456.0);
   }
 } // namespace kimp::app
