@@ -184,6 +184,7 @@ namespace kimp::app
       r.cells               = p.result.n_cells;
       r.seconds             = since();
       r.fit                 = fit_pushover(p.result.curve);
+      r.curve               = p.result.curve;
     }
     catch (const std::exception &error)
     {

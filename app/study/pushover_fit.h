@@ -56,11 +56,12 @@ namespace kimp::app
   /// Where a yielding wall element's wall-and-backfill part came from (see pushover_resistance()).
   struct PushoverResistance
   {
-    std::string   source = "estimate"; ///< "pushover" or "estimate"
-    std::string   reason;              ///< the pushover's failure, or the fit's note
-    PushoverFit   fit;                 ///< source "pushover" only
-    double        seconds = 0.0;       ///< the pushover's wall time (also when it failed), s
-    unsigned long cells   = 0;         ///< cells of the pushover's mesh
+    std::string                     source = "estimate"; ///< "pushover" or "estimate"
+    std::string                     reason; ///< the pushover's failure, or the fit's note
+    PushoverFit                     fit;    ///< source "pushover" only
+    std::vector<fem::PushoverPoint> curve;  ///< the pushover's curve (source "pushover" only)
+    double        seconds = 0.0;            ///< the pushover's wall time (also when it failed), s
+    unsigned long cells   = 0;              ///< cells of the pushover's mesh
   };
 
   /// The mesh of a study's pushover, m: 5 cells through a 0.25 m wall, where the pushover's

@@ -213,7 +213,8 @@ namespace kimp::app::study_internal
   void log_yielding_walls(const std::vector<StudyBuildingRun> &runs);
   /// DIR/yielding_wall_element.csv (per height) and DIR/yielding_wall.csv (per height and record).
   void write_yielding_wall_csv(const io::OutputDir &output, const StudyResult &result);
-  /// study.h5 /yielding_wall/element and /yielding_wall/<record>.
+  /// study.h5 /yielding_wall/element, /yielding_wall/runs (SI) and /yielding_wall/pushover/<H>
+  /// (the curve each pushover-derived element was fitted to).
   void write_yielding_wall_h5(io::ResultsGroup &root, const StudyResult &result);
   /// summary.json "yielding_wall" (SI): runs, failed walls, and per run the wall's values.
   nlohmann::ordered_json yielding_wall_json(const StudyResult &result);

@@ -127,12 +127,13 @@ namespace kimp::app
     /** Where the wall-and-backfill part comes from: "pushover" (the height's static pushover,
      *  fitted by fit_pushover()) or "estimate" (yielding_wall_inputs(): the capacity estimate
      *  and the cracked cantilever), and why (the pushover's failure, or what the fit assumed). */
-    std::string   source = "estimate";
-    std::string   source_reason;
-    double        estimate_capacity = 0.0; ///< the capacity estimate, N/m (for comparison)
-    PushoverFit   fit;                     ///< source "pushover": the fit and its target point
-    double        pushover_seconds = 0.0;  ///< wall time of the pushover (also when it failed), s
-    unsigned long pushover_cells   = 0;    ///< cells of the pushover's mesh
+    std::string source = "estimate";
+    std::string source_reason;
+    double      estimate_capacity = 0.0; ///< the capacity estimate, N/m (for comparison)
+    PushoverFit fit;                     ///< source "pushover": the fit and its target point
+    std::vector<fem::PushoverPoint> pushover_curve; ///< source "pushover": the curve fitted
+    double        pushover_seconds = 0.0; ///< wall time of the pushover (also when it failed), s
+    unsigned long pushover_cells   = 0;   ///< cells of the pushover's mesh
     bool          ok() const { return status == "ok"; }
   };
 

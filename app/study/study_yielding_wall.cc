@@ -61,6 +61,7 @@ namespace kimp::app::study_internal
       w.source                   = r.source;
       w.source_reason            = r.reason;
       w.fit                      = r.fit;
+      w.pushover_curve           = r.curve;
       w.pushover_seconds         = r.seconds;
       w.pushover_cells           = r.cells;
       if (r.source != "pushover")

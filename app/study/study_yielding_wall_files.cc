@@ -224,6 +224,18 @@ namespace kimp::app::study_internal
     ResultsGroup g = root.group("yielding_wall");
     element_table(result.yielding_walls, true).write_hdf5(g, "element");
     runs_table(result.building, true).write_hdf5(g, "runs");
+    // The pushover curve each element was fitted to (source pushover).
+    for (const StudyYieldingWall &w : result.yielding_walls)
+    {
+      if (w.source != "pushover")
+        continue;
+      Table curve;
+      curve.number("displacement", "m").number("force", "N/m").integer("unloading");
+      for (const fem::PushoverPoint &p : w.pushover_curve)
+        curve.add_row({p.displacement, p.force, std::int64_t(p.unloading ? 1 : 0)});
+      ResultsGroup pushover = g.group("pushover");
+      curve.write_hdf5(pushover, w.name);
+    }
   }
 
   nlohmann::ordered_json yielding_wall_json(const StudyResult &result)

@@ -8,6 +8,7 @@
 // writes no yielding-wall files.
 #ifdef KIMP_WITH_FEM
 
+#  include <algorithm>
 #  include <filesystem>
 #  include <gtest/gtest.h>
 #  include <nlohmann/json.hpp>
@@ -162,6 +163,14 @@ TEST(StudyYieldingWallCli, ElementTakesItsResistanceFromTheHeightsPushover)
   ASSERT_EQ(summary.size(), 1u);
   EXPECT_NEAR(f_d / std::stod(summary.at(0).at("capacity_N_per_m")), 1.0, 1e-9);
   EXPECT_NEAR(w_d / std::stod(summary.at(0).at("displacement_at_capacity_m")), 1.0, 1e-9);
+
+  // study.h5 keeps the curve the element was fitted to.
+  Hdf5Reader h5(out / "study.h5");
+  const auto force = h5.doubles("/yielding_wall/pushover/H1.25/force");
+  EXPECT_EQ(h5.units("/yielding_wall/pushover/H1.25/force"), "N/m");
+  EXPECT_EQ(h5.units("/yielding_wall/pushover/H1.25/displacement"), "m");
+  ASSERT_FALSE(force.empty());
+  EXPECT_NEAR(*std::max_element(force.begin(), force.end()) / f_d, 1.0, 1e-9);
 
   // The report and summary.json name the source.
   const auto json = nlohmann::json::parse(read_text(out / "summary.json"));
