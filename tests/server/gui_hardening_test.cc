@@ -25,15 +25,7 @@
 namespace
 {
   namespace fs = std::filesystem;
-  using kimp::testing::binary;
-  using kimp::testing::body_of;
-  using kimp::testing::Clock;
-  using kimp::testing::GuiProcess;
-  using kimp::testing::process_alive;
-  using kimp::testing::raw_exchange;
-  using kimp::testing::RawConnection;
-  using kimp::testing::resident_bytes;
-  using kimp::testing::status_of;
+  using namespace kimp::testing;
 
   /// The arguments of a server on a free port that keeps its runs in `dir`/runs, then `more`.
   std::vector<std::string> serving_runs_in(const fs::path                 &dir,

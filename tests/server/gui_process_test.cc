@@ -28,12 +28,7 @@
 namespace
 {
   namespace fs = std::filesystem;
-  using kimp::testing::binary;
-  using kimp::testing::blocked_signals;
-  using kimp::testing::Clock;
-  using kimp::testing::Exit;
-  using kimp::testing::GuiProcess;
-  using kimp::testing::process_alive;
+  using namespace kimp::testing;
 
   /// A lumped base scene and a sweep over it of 3000 cases, minutes of work: a run to cancel.
   const nlohmann::json long_sweep = {

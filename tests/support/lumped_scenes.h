@@ -77,6 +77,21 @@ namespace kimp::testing
     return lumped::synthetic_near_fault(spec);
   }
 
+  /// The 48 s synthetic near-fault record sampled at 0.01 s (Kobe KJMA length and sampling) of
+  /// the benchmarks, made once.
+  inline const lumped::GroundMotion &kobe_length_motion()
+  {
+    static const lumped::GroundMotion g = []
+    {
+      lumped::SyntheticMotionSpec spec;
+      spec.duration          = 48.0;
+      spec.dt                = 0.01;
+      spec.envelope_duration = 30.0;
+      return lumped::synthetic_near_fault(spec);
+    }();
+    return g;
+  }
+
   /// A record of zero acceleration, step `dt` [s], `duration` [s] long (for free vibration).
   inline lumped::GroundMotion zero_motion(double dt, double duration)
   {
