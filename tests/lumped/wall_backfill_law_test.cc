@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "lumped/laws/wall_backfill_law.h"
+#include "tests/support/lumped_scenes.h"
 
 namespace kimp::lumped
 {
@@ -21,13 +22,8 @@ namespace kimp::lumped
     /// Bilinear wall: k = 100 MN/m, F_y = 1 MN (w_y = 1 cm), α = 5 %, k_ur = 200 MN/m.
     WallBackfillParams bilinear_params()
     {
-      WallBackfillParams p;
-      p.envelope            = WallEnvelope::bilinear;
-      p.stiffness           = 100e6;
-      p.capacity            = 1e6;
-      p.hardening_ratio     = 0.05;
-      p.unloading_stiffness = 200e6;
-      p.mass                = 50e3;
+      WallBackfillParams p = kimp::testing::bilinear_wall_part(100e6, 1e6, 0.05, 200e6);
+      p.mass               = 50e3;
       return p;
     }
 
@@ -347,13 +343,8 @@ namespace kimp::lumped
     for (const double eta : {0.0, 0.1})
     {
       OpenSeesElasticPPGapDamage reference(28.9e6, -407e3, -gap, eta);
-      WallBackfillParams         p;
-      p.envelope            = WallEnvelope::bilinear;
-      p.stiffness           = 28.9e6;
-      p.capacity            = 407e3;
-      p.hardening_ratio     = eta;
-      p.unloading_stiffness = 28.9e6;
-      p.mass                = 1e3;
+      WallBackfillParams         p = kimp::testing::bilinear_wall_part(28.9e6, 407e3, eta, 28.9e6);
+      p.mass                       = 1e3;
       WallBackfillLaw law(p);
       SCOPED_TRACE("eta " + std::to_string(eta));
       const double peak = follow_cyclic_path(reference, law, gap, 407e3);
