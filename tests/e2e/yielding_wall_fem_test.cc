@@ -32,21 +32,13 @@ namespace
   using namespace kimp;
   using namespace kimp::testing;
 
-  /// The reinforced moat wall of docs/validation.md at the coarse mesh; `slab` the slab line.
+  /// The reinforced moat wall of docs/validation.md (data/scenes/fem_reinforced_wall.yaml) at the
+  /// coarse mesh; `slab` the slab line.
   std::string fem_scene(const std::string &slab, const std::string &end_time)
   {
-    return R"(wall_heights: ["1.25 m"]
-mesh: {h_contact: "5 cm", h_max: "25 cm", grading: 1.5}
-)" + slab + "\ndynamics: {end_time: \"" +
-           end_time + R"("}
-materials:
-  concrete:
-    model: damage_plasticity
-    f_cm: "38 MPa"
-    wall_reinforcement: {ratio_y: "0.8 %", ratio_x: "0.2 %"}
-    slab_reinforcement: {ratio_x: "0.5 %"}
-  soil: {model: mohr_coulomb, preset: medium_dense_sand}
-)";
+    return read_text(source_dir() / "data/scenes/fem_reinforced_wall.yaml") +
+           "mesh: {h_contact: \"5 cm\", h_max: \"25 cm\", grading: 1.5}\n" + slab +
+           "\ndynamics: {end_time: \"" + end_time + "\"}\n";
   }
 
   /// The four compared quantities, per metre of wall.
