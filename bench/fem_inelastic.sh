@@ -29,20 +29,11 @@ materials:
   concrete: {model: damage_plasticity, f_cm: "38 MPa"}
   soil: {model: mohr_coulomb, preset: medium_dense_sand, c: "5 kPa"}
 YAML
-cat > "$work/moat_wall.yaml" <<'YAML'
-# The reinforced moat wall of docs/validation.md (geostatic cohesionless backfill, bars in wall
-# and slab) at 5 cm: the wall yields, the contact lasts 35 ms, the backfill stays plastic.
-wall_heights: ["1.25 m"]
-mesh: {h_contact: "5 cm"}
-slab: {velocity: "1.0 m/s"}
-materials:
-  concrete:
-    model: damage_plasticity
-    f_cm: "38 MPa"
-    wall_reinforcement: {ratio_y: "0.8 %", ratio_x: "0.2 %"}
-    slab_reinforcement: {ratio_x: "0.5 %"}
-  soil: {model: mohr_coulomb, preset: medium_dense_sand}
-YAML
+# The reinforced moat wall of docs/validation.md (data/scenes/fem_reinforced_wall.yaml: geostatic
+# cohesionless backfill, bars in wall and slab) at 5 cm: the wall yields, the contact lasts 35 ms,
+# the backfill stays plastic.
+{ cat "$root/data/scenes/fem_reinforced_wall.yaml"
+  printf '%s\n' 'mesh: {h_contact: "5 cm"}' 'slab: {velocity: "1.0 m/s"}'; } > "$work/moat_wall.yaml"
 
 # measure NAME RANKS SCENE: RUNS runs of `kimp fem`; one line per run.
 measure() {

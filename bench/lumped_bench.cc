@@ -22,15 +22,7 @@ namespace
   /// 48 s synthetic near-fault record sampled at 0.01 s (Kobe KJMA length and sampling).
   const GroundMotion &record_48s()
   {
-    static const GroundMotion g = []
-    {
-      SyntheticMotionSpec spec;
-      spec.duration          = 48.0;
-      spec.dt                = 0.01;
-      spec.envelope_duration = 30.0;
-      return synthetic_near_fault(spec);
-    }();
-    return g;
+    return kimp::testing::kobe_length_motion();
   }
 
   /// Thesis Table 4.3 configuration: 4-storey isolated building, modified Kelvin-Voigt walls

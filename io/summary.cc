@@ -4,8 +4,18 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "base/version.h"
+
 namespace kimp::io
 {
+  nlohmann::ordered_json summary_preamble(std::string_view command)
+  {
+    nlohmann::ordered_json preamble;
+    preamble["command"] = command;
+    preamble["kimp"]    = base::version_line();
+    return preamble;
+  }
+
   namespace
   {
     std::string csv_field(const std::string &field)

@@ -14,6 +14,12 @@
 
 namespace kimp::io
 {
+  /**
+   * The first keys of every command's summary.json, in this order: "command" (`command`, as
+   * typed after kimp) and "kimp" (base::version_line()). The caller adds its own keys after them.
+   */
+  nlohmann::ordered_json summary_preamble(std::string_view command);
+
   /// write_text_atomic() of `value` dumped with 2-space indentation and a final newline.
   void write_json_atomic(const std::filesystem::path &path, const nlohmann::json &value);
 

@@ -17,7 +17,6 @@
 #include "app/export/opensees_wall_export.h"
 #include "app/laws/k_table.h"
 #include "base/logging.h"
-#include "base/version.h"
 #include "io/summary.h"
 #include "lumped/laws/law_traits.h"
 
@@ -450,9 +449,7 @@ namespace kimp::app
                            output.file("opensees_walls.py"));
 
     const OpenSeesParameters p = opensees_parameters(laws);
-    nlohmann::ordered_json   j;
-    j["command"] = "export-opensees";
-    j["kimp"]    = base::version_line();
+    nlohmann::ordered_json   j = io::summary_preamble("export-opensees");
     j["source"] =
       laws.source.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(laws.source);
     j["k_table"] = options.source.empty() ? nlohmann::ordered_json() :

@@ -19,7 +19,6 @@
 #include "app/fem/fem_scene.h"
 #include "app/fem/mesh_run.h"
 #include "base/logging.h"
-#include "base/version.h"
 #include "fem/impact.h"
 #include "geometry/scene_mesh.h"
 #include "io/fem_results.h"
@@ -247,10 +246,8 @@ namespace kimp::app
                                        const std::map<std::string, std::string>    &extra_units,
                                        const nlohmann::ordered_json                &cases)
     {
-      nlohmann::ordered_json summary;
-      summary["command"] = "fem";
-      summary["kimp"]    = version_line();
-      summary["n_ranks"] = n_ranks;
+      nlohmann::ordered_json summary = io::summary_preamble("fem");
+      summary["n_ranks"]             = n_ranks;
       summary["wall_time"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       summary["units"] = {{"wall_height", "m"},

@@ -18,7 +18,6 @@
 #include "app/fem/fem_scene.h"
 #include "app/helper_programs.h"
 #include "base/logging.h"
-#include "base/version.h"
 #include "fem/impact.h"
 #include "geometry/scene_mesh.h"
 #include "io/output_dir.h"
@@ -171,9 +170,7 @@ namespace kimp::app
       cases.push_back(entry);
     }
 
-    nlohmann::ordered_json summary;
-    summary["command"] = "mesh";
-    summary["kimp"]    = version_line();
+    nlohmann::ordered_json summary = io::summary_preamble("mesh");
     summary["wall_time"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     summary["units"] = {{"lengths", "m"}, {"areas", "m^2 per metre of depth"}, {"wall_time", "s"}};

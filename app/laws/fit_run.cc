@@ -10,7 +10,6 @@
 #include "base/errors.h"
 #include "base/format.h"
 #include "base/logging.h"
-#include "base/version.h"
 #include "io/results_file.h"
 #include "io/summary.h"
 
@@ -302,10 +301,8 @@ namespace kimp::app
                                const std::chrono::steady_clock::time_point &start,
                                const FitOutputs                            &out)
     {
-      nlohmann::json summary;
-      summary["command"]  = "fit";
-      summary["kimp"]     = version_line();
-      summary["fem_file"] = options.fem_file.string();
+      nlohmann::json summary = io::summary_preamble("fit");
+      summary["fem_file"]    = options.fem_file.string();
       summary["wall_time"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       summary["options"]  = resolved;

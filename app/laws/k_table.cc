@@ -145,8 +145,9 @@ namespace kimp::app
     }
 
     /**
-     * Calls `each(fields)` for every non-empty data row of a CSV file read past its header
-     * `header`; a row with another number of fields is an error naming the file and the line.
+     * Calls `each(fields, line)` for every non-empty data row of a CSV file read past its header
+     * `header` (`line`: its line number); a row with another number of fields is an error naming
+     * the file and the line.
      */
     template <typename Each>
     void for_each_row(std::istream                   &in,
@@ -168,7 +169,7 @@ namespace kimp::app
                                                   number,
                                                   f.size(),
                                                   header.size()));
-        each(f);
+        each(f, number);
       }
     }
 
@@ -213,7 +214,7 @@ namespace kimp::app
         in,
         header,
         table.file,
-        [&](const std::vector<std::string> &f)
+        [&](const std::vector<std::string> &f, int)
         {
           const bool kv = f[variant] == "kelvin_voigt_cor_fixed";
           if (!kv && f[variant] != "jankowski_cor_fixed")
@@ -311,7 +312,7 @@ namespace kimp::app
     for_each_row(in,
                  header,
                  table.file,
-                 [&](const std::vector<std::string> &f)
+                 [&](const std::vector<std::string> &f, int)
                  {
                    KTableRow row;
                    row.wall_height = to_number(f[height]);
@@ -358,48 +359,40 @@ namespace kimp::app
       if (std::find(list.begin(), list.end(), text) == list.end())
         list.push_back(text);
     };
-    std::string line;
-    int         number = 1;
-    while (std::getline(in, line))
-    {
-      ++number;
-      if (line.empty())
-        continue;
-      const std::vector<std::string> f = split_csv(line);
-      if (f.size() != header.size())
-        throw std::invalid_argument(fmt::format("{}:{}: {} fields for {} columns",
-                                                k.file.string(),
-                                                number,
-                                                f.size(),
-                                                header.size()));
-      add(records, f[c_record]);
-      if (f[c_record] != record)
-        continue;
-      add(heights, f[c_height]);
-      const double h = to_number(f[c_height]);
-      if (!(std::abs(h - wall_height) <= 1e-9 * std::max(1.0, wall_height)))
-        continue;
-      const bool kv = f[c_law] == "modified_kelvin_voigt";
-      if (!kv && f[c_law] != "jankowski")
-        continue;
-      if (f[c_converged] != "yes" || f[c_status] != "ok")
-        throw std::invalid_argument(fmt::format("{}:{}: the consistent k of record '{}' at {} m "
-                                                "({}) did not converge (status: {}): no k to "
-                                                "export",
-                                                k.file.string(),
-                                                number,
-                                                record,
-                                                wall_height,
-                                                f[c_law],
-                                                f[c_status]));
-      // kN/mm^n -> N/m^n: × 1e3 · 1e3^n.
-      if (kv)
-        k.kelvin_voigt_total = to_number(f[c_k]) * 1e6;
-      else
-        k.jankowski_total = to_number(f[c_k]) * 1e3 * std::pow(1e3, 1.5);
-      if (!kv || std::isnan(k.impact_velocity))
-        k.impact_velocity = to_number(f[c_velocity]);
-    }
+    for_each_row(in,
+                 header,
+                 k.file,
+                 [&](const std::vector<std::string> &f, int number)
+                 {
+                   add(records, f[c_record]);
+                   if (f[c_record] != record)
+                     return;
+                   add(heights, f[c_height]);
+                   const double h = to_number(f[c_height]);
+                   if (!(std::abs(h - wall_height) <= 1e-9 * std::max(1.0, wall_height)))
+                     return;
+                   const bool kv = f[c_law] == "modified_kelvin_voigt";
+                   if (!kv && f[c_law] != "jankowski")
+                     return;
+                   if (f[c_converged] != "yes" || f[c_status] != "ok")
+                     throw std::invalid_argument(
+                       fmt::format("{}:{}: the consistent k of record '{}' at {} m "
+                                   "({}) did not converge (status: {}): no k to "
+                                   "export",
+                                   k.file.string(),
+                                   number,
+                                   record,
+                                   wall_height,
+                                   f[c_law],
+                                   f[c_status]));
+                   // kN/mm^n -> N/m^n: × 1e3 · 1e3^n.
+                   if (kv)
+                     k.kelvin_voigt_total = to_number(f[c_k]) * 1e6;
+                   else
+                     k.jankowski_total = to_number(f[c_k]) * 1e3 * std::pow(1e3, 1.5);
+                   if (!kv || std::isnan(k.impact_velocity))
+                     k.impact_velocity = to_number(f[c_velocity]);
+                 });
     const auto joined = [](const std::vector<std::string> &list)
     {
       std::string text;

@@ -12,8 +12,8 @@
 #include "app/table_cells.h"
 #include "base/errors.h"
 #include "base/logging.h"
-#include "base/version.h"
 #include "io/results_file.h"
+#include "io/summary.h"
 #include "io/table.h"
 #include "io/units.h"
 
@@ -294,22 +294,20 @@ namespace kimp::app
                                    const std::optional<lumped::CalibrationResult> &calibration,
                                    double                                          wall_time)
     {
-      const CollideScene &scene = loaded.scene;
-      nlohmann::json      summary;
-      summary["command"]   = "collide";
-      summary["kimp"]      = version_line();
-      summary["scene"]     = loaded.file_name;
-      summary["wall_time"] = wall_time;
-      summary["units"]     = {{"mass_1", "kg"},
-                              {"mass_2", "kg"},
-                              {"velocity", "m/s"},
-                              {"time_step", "s"},
-                              {"peak_force", "N"},
-                              {"wall_time", "s"}};
-      summary["setup"]     = {{"mass_1", scene.mass_1},
-                              {"mass_2", scene.mass_2},
-                              {"velocity", scene.velocity},
-                              {"time_step", scene.time_step}};
+      const CollideScene &scene   = loaded.scene;
+      nlohmann::json      summary = io::summary_preamble("collide");
+      summary["scene"]            = loaded.file_name;
+      summary["wall_time"]        = wall_time;
+      summary["units"]            = {{"mass_1", "kg"},
+                                     {"mass_2", "kg"},
+                                     {"velocity", "m/s"},
+                                     {"time_step", "s"},
+                                     {"peak_force", "N"},
+                                     {"wall_time", "s"}};
+      summary["setup"]            = {{"mass_1", scene.mass_1},
+                                     {"mass_2", scene.mass_2},
+                                     {"velocity", scene.velocity},
+                                     {"time_step", scene.time_step}};
       // One case per law, in the shape of every command's summary.json (name, status).
       summary["cases"] = nlohmann::json::array();
       for (const CollideRow &r : rows)

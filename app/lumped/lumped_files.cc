@@ -4,9 +4,9 @@
 #include <nlohmann/json.hpp>
 
 #include "app/lumped/lumped_run_internal.h"
-#include "base/version.h"
 #include "fit/fitter.h"
 #include "io/results_file.h"
+#include "io/summary.h"
 #include "io/units.h"
 
 namespace kimp::app
@@ -389,9 +389,7 @@ namespace kimp::app
         write_case(lumped_group, r);
       file.commit();
 
-      nlohmann::json summary;
-      summary["command"]       = "lumped";
-      summary["kimp"]          = base::version_line();
+      nlohmann::json summary   = io::summary_preamble("lumped");
       summary["scene"]         = loaded.file_name;
       summary["wall_time"]     = seconds_since(start);
       summary["ground_motion"] = {{"name", motion.name},

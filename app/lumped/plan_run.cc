@@ -50,6 +50,21 @@ namespace kimp::app
     }
   } // namespace
 
+  PlanPeaks plan_peaks(const plan::PlanResponse &r)
+  {
+    PlanPeaks peaks;
+    for (const plan::PlanContactResult &c : r.contacts)
+    {
+      peaks.corner_force   = std::max(peaks.corner_force, c.peak_normal_force);
+      peaks.friction_force = std::max(peaks.friction_force, c.peak_friction_force);
+    }
+    for (std::size_t i = 2; i < r.peak_displacement.size(); i += 3)
+      peaks.rotation = std::max(peaks.rotation, r.peak_displacement[i]);
+    for (const double d : r.peak_corner_drift)
+      peaks.corner_drift = std::max(peaks.corner_drift, d);
+    return peaks;
+  }
+
   PlanRun run_plan(const PlanLumpedScene                      &scene,
                    const std::string                          &file_name,
                    const std::string                          &scene_text,
@@ -259,17 +274,8 @@ namespace kimp::app
                                   {"time", "s"},
                                   {"energy", "J"},
                                   {"wall_time", "s"}};
-      double corner_force = 0.0, friction_force = 0.0, rotation = 0.0, corner_drift = 0.0;
-      for (const plan::PlanContactResult &c : r.contacts)
-      {
-        corner_force   = std::max(corner_force, c.peak_normal_force);
-        friction_force = std::max(friction_force, c.peak_friction_force);
-      }
-      for (std::size_t i = 2; i < r.peak_displacement.size(); i += 3)
-        rotation = std::max(rotation, r.peak_displacement[i]);
-      for (const double d : r.peak_corner_drift)
-        corner_drift = std::max(corner_drift, d);
-      nlohmann::json c;
+      const PlanPeaks peaks    = plan_peaks(r);
+      nlohmann::json  c;
       c["name"]        = "default";
       c["status"]      = "ok";
       c["dt"]          = r.dt;
@@ -277,11 +283,11 @@ namespace kimp::app
       c["n_steps"]     = r.n_steps;
       c["n_impacts"]   = r.n_impacts();
       c["peaks"]       = {{"base_corner_displacement", r.peak_corner_displacement.front()},
-                          {"corner_impact_force", corner_force},
-                          {"friction_force", friction_force},
+                          {"corner_impact_force", peaks.corner_force},
+                          {"friction_force", peaks.friction_force},
                           {"top_acceleration", r.peak_horizontal_acceleration.back()},
-                          {"corner_drift", corner_drift},
-                          {"rotation", rotation},
+                          {"corner_drift", peaks.corner_drift},
+                          {"rotation", peaks.rotation},
                           {"isolator_force", r.peak_isolator_force},
                           {"displacement", r.peak_displacement},
                           {"absolute_acceleration", r.peak_absolute_acceleration},

@@ -31,6 +31,16 @@ namespace kimp::app
     double                           wall_time   = 0.0; ///< s
   };
 
+  /// The headline peaks of a plan run (summary.json of `kimp lumped`, the sweep's metrics).
+  struct PlanPeaks
+  {
+    double corner_force   = 0.0; ///< largest contact normal force, N
+    double friction_force = 0.0; ///< largest contact friction force, N
+    double rotation       = 0.0; ///< largest peak rotation of any level, rad
+    double corner_drift   = 0.0; ///< largest peak corner drift, m
+  };
+  PlanPeaks plan_peaks(const lumped::plan::PlanResponse &response);
+
   /**
    * Run a scene with a plan section: its motion (load_plan_motion()), its model and options, the
    * step budget (integration.max_steps) checked before the run.

@@ -44,6 +44,103 @@ namespace kimp::app::study_internal
     {
       return std::isfinite(k) ? stiffness_to_kn_per_mm(k, exponent) : nan;
     }
+
+    /// What the consistent-k runs of one record share.
+    struct RecordRuns
+    {
+      const StudyScene           &scene;
+      const KTable               &table;
+      const std::vector<double>  &velocities; ///< of `table`, m/s
+      const LumpedScene          &base;       ///< the study's building for the record
+      const lumped::GroundMotion &motion;
+      double                      scale; ///< of the record
+    };
+
+    /// Repeats the building run of `run` (record, height, law, gap and reference k set) with
+    /// k(H, v_imp) of its own impact velocity until k changes by less than the tolerance; each run
+    /// is an iteration of `run`, a failure its status.
+    void
+    iterate_consistent_k(ConsistentKRun &run, const RecordRuns &in, const std::string &height_name)
+    {
+      double k = run.k_reference;
+      for (unsigned int i = 0; i < in.scene.consistent_k.max_iterations; ++i)
+      {
+        const LumpedCaseResult done =
+          run_lumped_case(fmt::format("{}_{}_consistent_{}", height_name, run.law, i + 1),
+                          walled_scene(in.base, run.gap, run.law, k, in.scene.fit.cor),
+                          in.motion,
+                          in.scale);
+        if (!done.ok())
+        {
+          run.status = "failed: building run " + std::to_string(i + 1) + ": " + done.status;
+          break;
+        }
+        ConsistentKIteration it;
+        it.k_total   = k;
+        it.n_impacts = done.response.n_impacts();
+        for (const lumped::ContactResult &c : done.response.contacts)
+        {
+          it.impact_velocity   = std::max(it.impact_velocity, c.largest_impact_velocity());
+          it.peak_impact_force = std::max(it.peak_impact_force, c.peak_force);
+        }
+        if (it.n_impacts == 0)
+        {
+          // Nothing to be consistent with: the reference k stands.
+          it.velocity_used = nan;
+          it.k_next        = k;
+          run.iterations.push_back(it);
+          run.converged = true;
+          run.status    = "ok: no impact";
+          break;
+        }
+        // k is not extrapolated: a velocity outside the table takes its nearest end.
+        it.velocity_used =
+          in.velocities.empty() ?
+            it.impact_velocity :
+            std::clamp(it.impact_velocity, in.velocities.front(), in.velocities.back());
+        try
+        {
+          it.k_next = in.table.stiffness(run.wall_height, run.exponent, it.velocity_used);
+        }
+        catch (const std::exception &error)
+        {
+          run.status = std::string("failed: ") + error.what();
+          run.iterations.push_back(it);
+          break;
+        }
+        it.change = relative_change(it.k_next, k);
+        run.iterations.push_back(it);
+        if (it.change < in.scene.consistent_k.tolerance)
+        {
+          run.converged = true;
+          break;
+        }
+        k = it.k_next;
+      }
+      if (!run.converged && run.status == "ok")
+        run.status = fmt::format("not converged: k changed by {:.3g} % in run {} of {} "
+                                 "(tolerance {:.3g} %)",
+                                 100.0 * run.iterations.back().change,
+                                 run.iterations.size(),
+                                 in.scene.consistent_k.max_iterations,
+                                 100.0 * in.scene.consistent_k.tolerance);
+    }
+
+    /// The log line of one finished consistent-k run.
+    void log_consistent_k(const ConsistentKRun &run, const std::string &height_name)
+    {
+      logger().info("consistent k, record {} {} {}: {} run(s), v_imp {} m/s, k {} -> {} {} "
+                    "({})",
+                    run.record,
+                    height_name,
+                    run.law,
+                    run.iterations.size(),
+                    base::sig(run.iterations.empty() ? nan : run.iterations.back().impact_velocity),
+                    base::sig(k_display(run.k_reference, run.exponent)),
+                    base::sig(k_display(final_k(run), run.exponent)),
+                    stiffness_display_unit(run.exponent),
+                    run.status);
+    }
   } // namespace
 
   std::vector<ConsistentKRun> run_consistent_k(const StudyScene &scene, const StudyResult &result)
@@ -58,7 +155,6 @@ namespace kimp::app::study_internal
       return runs;
     }
     const std::vector<double> velocities = table.velocities();
-    const double              tolerance  = scene.consistent_k.tolerance;
     for (const auto &[label, record] : labelled_records(scene))
     {
       const double gap = record_gap(scene, result, label);
@@ -75,6 +171,7 @@ namespace kimp::app::study_internal
         continue;
       }
       const LumpedScene base = study_lumped_scene(scene, record);
+      const RecordRuns  in{scene, table, velocities, base, motion, record.scale};
       for (const StudyHeight &h : result.heights)
         for (const auto &[law, fit_of_law] : building_laws(h))
         {
@@ -88,80 +185,8 @@ namespace kimp::app::study_internal
           run.exponent    = fit->exponent.value;
           run.gap         = gap;
           run.k_reference = fit->stiffness.value * scene.fit.width;
-          double k        = run.k_reference;
-          for (unsigned int i = 0; i < scene.consistent_k.max_iterations; ++i)
-          {
-            const LumpedCaseResult done =
-              run_lumped_case(fmt::format("{}_{}_consistent_{}", h.name, law, i + 1),
-                              walled_scene(base, gap, law, k, scene.fit.cor),
-                              motion,
-                              record.scale);
-            if (!done.ok())
-            {
-              run.status = "failed: building run " + std::to_string(i + 1) + ": " + done.status;
-              break;
-            }
-            ConsistentKIteration it;
-            it.k_total   = k;
-            it.n_impacts = done.response.n_impacts();
-            for (const lumped::ContactResult &c : done.response.contacts)
-            {
-              it.impact_velocity   = std::max(it.impact_velocity, c.largest_impact_velocity());
-              it.peak_impact_force = std::max(it.peak_impact_force, c.peak_force);
-            }
-            if (it.n_impacts == 0)
-            {
-              // Nothing to be consistent with: the reference k stands.
-              it.velocity_used = nan;
-              it.k_next        = k;
-              run.iterations.push_back(it);
-              run.converged = true;
-              run.status    = "ok: no impact";
-              break;
-            }
-            // k is not extrapolated: a velocity outside the table takes its nearest end.
-            it.velocity_used =
-              velocities.empty() ?
-                it.impact_velocity :
-                std::clamp(it.impact_velocity, velocities.front(), velocities.back());
-            try
-            {
-              it.k_next = table.stiffness(h.wall_height, run.exponent, it.velocity_used);
-            }
-            catch (const std::exception &error)
-            {
-              run.status = std::string("failed: ") + error.what();
-              run.iterations.push_back(it);
-              break;
-            }
-            it.change = relative_change(it.k_next, k);
-            run.iterations.push_back(it);
-            if (it.change < tolerance)
-            {
-              run.converged = true;
-              break;
-            }
-            k = it.k_next;
-          }
-          if (!run.converged && run.status == "ok")
-            run.status = fmt::format("not converged: k changed by {:.3g} % in run {} of {} "
-                                     "(tolerance {:.3g} %)",
-                                     100.0 * run.iterations.back().change,
-                                     run.iterations.size(),
-                                     scene.consistent_k.max_iterations,
-                                     100.0 * tolerance);
-          logger().info("consistent k, record {} {} {}: {} run(s), v_imp {} m/s, k {} -> {} {} "
-                        "({})",
-                        label,
-                        h.name,
-                        law,
-                        run.iterations.size(),
-                        base::sig(run.iterations.empty() ? nan :
-                                                           run.iterations.back().impact_velocity),
-                        base::sig(k_display(run.k_reference, run.exponent)),
-                        base::sig(k_display(final_k(run), run.exponent)),
-                        stiffness_display_unit(run.exponent),
-                        run.status);
+          iterate_consistent_k(run, in, h.name);
+          log_consistent_k(run, h.name);
           runs.push_back(std::move(run));
         }
     }

@@ -13,69 +13,83 @@ namespace kimp::app
 {
   using namespace study_internal;
 
-  void write_study_extras(ResultsGroup &root, const StudyExtras &extras)
+  namespace
   {
-    for (const char *series : {"mesh", "penalty", "implicit"})
+    /// study.h5 /accuracy/fem/<series>: k against the contact mesh, the penalty and the implicit
+    /// solver.
+    void write_fem_accuracy(ResultsGroup &root, const StudyExtras &extras)
     {
-      Table t;
-      t.number("h_contact", "m")
-        .number("penalty_factor", "1")
-        .number("ok", "1")
-        .number("seconds", "s")
-        .number("n_dofs", "1")
-        .number("n_steps", "1")
-        .number("kelvin_voigt", "kN/mm/m")
-        .number("jankowski", "kN/mm^1.5/m")
-        .number("error_kelvin_voigt", "1")
-        .number("error_jankowski", "1");
-      for (const FemAccuracyPoint &p : extras.fem_accuracy)
-        if (p.series == series)
-          t.add_row(number_cells({p.h_contact,
-                                  p.penalty_factor,
-                                  flag(p.ok),
-                                  p.seconds,
-                                  p.n_dofs,
-                                  p.n_steps,
-                                  p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan,
-                                  p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan,
-                                  p.error_kelvin_voigt,
-                                  p.error_jankowski}));
-      if (t.n_rows() > 0)
+      for (const char *series : {"mesh", "penalty", "implicit"})
       {
-        ResultsGroup fem = root.group("accuracy").group("fem");
-        t.write_hdf5(fem, series);
+        Table t;
+        t.number("h_contact", "m")
+          .number("penalty_factor", "1")
+          .number("ok", "1")
+          .number("seconds", "s")
+          .number("n_dofs", "1")
+          .number("n_steps", "1")
+          .number("kelvin_voigt", "kN/mm/m")
+          .number("jankowski", "kN/mm^1.5/m")
+          .number("error_kelvin_voigt", "1")
+          .number("error_jankowski", "1");
+        for (const FemAccuracyPoint &p : extras.fem_accuracy)
+          if (p.series == series)
+            t.add_row(number_cells({p.h_contact,
+                                    p.penalty_factor,
+                                    flag(p.ok),
+                                    p.seconds,
+                                    p.n_dofs,
+                                    p.n_steps,
+                                    p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan,
+                                    p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan,
+                                    p.error_kelvin_voigt,
+                                    p.error_jankowski}));
+        if (t.n_rows() > 0)
+        {
+          ResultsGroup fem = root.group("accuracy").group("fem");
+          t.write_hdf5(fem, series);
+        }
       }
     }
-    for (const char *method : {"cdm", "newmark", "cdm_reference"})
+
+    /// study.h5 /accuracy/lumped/<method>: peaks of one building run against the time step.
+    void write_lumped_accuracy(ResultsGroup &root, const StudyExtras &extras)
     {
-      Table t;
-      t.number("dt", "s")
-        .number("ok", "1")
-        .number("seconds", "s")
-        .number("impact_force", "N")
-        .number("base_acceleration", "m/s^2")
-        .number("error_impact_force", "1")
-        .number("error_base_acceleration", "1");
-      for (const LumpedAccuracyPoint &p : extras.lumped_accuracy)
-        if (p.method == method)
-          t.add_row(number_cells({p.dt,
-                                  flag(p.ok),
-                                  p.seconds,
-                                  p.ok ? p.peak_impact_force : nan,
-                                  p.ok ? p.base_acceleration : nan,
-                                  p.error_force,
-                                  p.error_acceleration}));
-      if (t.n_rows() > 0)
+      for (const char *method : {"cdm", "newmark", "cdm_reference"})
       {
-        ResultsGroup lumped = root.group("accuracy").group("lumped");
-        t.write_hdf5(lumped, method);
-        lumped.set_attribute("k_total_N_per_m", extras.lumped_k_total);
-        lumped.set_attribute("gap_m", extras.lumped_gap);
-        lumped.set_attribute("record", extras.lumped_record);
+        Table t;
+        t.number("dt", "s")
+          .number("ok", "1")
+          .number("seconds", "s")
+          .number("impact_force", "N")
+          .number("base_acceleration", "m/s^2")
+          .number("error_impact_force", "1")
+          .number("error_base_acceleration", "1");
+        for (const LumpedAccuracyPoint &p : extras.lumped_accuracy)
+          if (p.method == method)
+            t.add_row(number_cells({p.dt,
+                                    flag(p.ok),
+                                    p.seconds,
+                                    p.ok ? p.peak_impact_force : nan,
+                                    p.ok ? p.base_acceleration : nan,
+                                    p.error_force,
+                                    p.error_acceleration}));
+        if (t.n_rows() > 0)
+        {
+          ResultsGroup lumped = root.group("accuracy").group("lumped");
+          t.write_hdf5(lumped, method);
+          lumped.set_attribute("k_total_N_per_m", extras.lumped_k_total);
+          lumped.set_attribute("gap_m", extras.lumped_gap);
+          lumped.set_attribute("record", extras.lumped_record);
+        }
       }
     }
-    if (!extras.stability.empty())
+
+    /// study.h5 /stability/lumped: the explicit lumped time step against k.
+    void write_lumped_stability(ResultsGroup &root, const StudyExtras &extras)
     {
+      if (extras.stability.empty())
+        return;
       Table t;
       t.number("stiffness", "N/m")
         .number("dt", "s")
@@ -100,8 +114,12 @@ namespace kimp::app
       table.set_attribute("effective_mass_kg", extras.stability_effective_mass);
       table.set_attribute("study_stiffness_N_per_m", extras.stability_study_k);
     }
-    if (!extras.fem_stability.empty())
+
+    /// study.h5 /stability/fem: the explicit FEM time step against the penalty.
+    void write_fem_stability(ResultsGroup &root, const StudyExtras &extras)
     {
+      if (extras.fem_stability.empty())
+        return;
       Table t;
       t.number("penalty_factor", "1")
         .number("dt_factor", "1")
@@ -122,8 +140,12 @@ namespace kimp::app
       table.set_attribute("h_contact_m", extras.fem_stability_h_contact);
       table.set_attribute("end_time_s", extras.fem_stability_end_time);
     }
-    if (!extras.sensitivity.empty())
+
+    /// study.h5 /sensitivity/<parameter>: k against one scene parameter.
+    void write_sensitivity(ResultsGroup &root, const StudyExtras &extras)
     {
+      if (extras.sensitivity.empty())
+        return;
       for (const char *parameter :
            {"base", "soil_modulus", "slab_mass", "impact_velocity", "wall_thickness"})
       {
@@ -142,6 +164,15 @@ namespace kimp::app
         t.write_hdf5(sensitivity, parameter);
       }
     }
+  } // namespace
+
+  void write_study_extras(ResultsGroup &root, const StudyExtras &extras)
+  {
+    write_fem_accuracy(root, extras);
+    write_lumped_accuracy(root, extras);
+    write_lumped_stability(root, extras);
+    write_fem_stability(root, extras);
+    write_sensitivity(root, extras);
   }
 
   void write_study_extras_csv(const OutputDir &output, const StudyExtras &extras)

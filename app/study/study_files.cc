@@ -13,8 +13,8 @@
 #include "app/study/study_internal.h"
 #include "app/study/study_velocity.h"
 #include "base/format.h"
-#include "base/version.h"
 #include "io/results_file.h"
+#include "io/summary.h"
 #include "io/table.h"
 
 namespace kimp::app::study_internal
@@ -435,17 +435,15 @@ namespace kimp::app::study_internal
 
   nlohmann::ordered_json summary_json(const StudyScene &scene, const StudyResult &result)
   {
-    nlohmann::ordered_json j;
-    j["command"]        = "study";
-    j["kimp"]           = base::version_line();
-    j["units"]          = {{"wall_height", "m"},
-                           {"k_per_metre", "kN/mm^n/m"},
-                           {"k_total", "kN/mm^n"},
-                           {"isolation_mass", "kg"},
-                           {"wall_mass", "kg"},
-                           {"effective_mass", "kg"},
-                           {"wall_time", "s"}};
-    j["building_width"] = scene.fit.width;
+    nlohmann::ordered_json j = io::summary_preamble("study");
+    j["units"]               = {{"wall_height", "m"},
+                                {"k_per_metre", "kN/mm^n/m"},
+                                {"k_total", "kN/mm^n"},
+                                {"isolation_mass", "kg"},
+                                {"wall_mass", "kg"},
+                                {"effective_mass", "kg"},
+                                {"wall_time", "s"}};
+    j["building_width"]      = scene.fit.width;
     // The contact the impact laws describe (kimp export-opensees takes m_eff and the COR from
     // here): the building's isolation level against its wall.
     const double m_building = scene.building.isolation_mass, m_wall = scene.walls.mass;

@@ -26,146 +26,178 @@ namespace kimp::app::study_internal
       return std::isfinite(value) ? base::sig(value) : std::string();
     }
 
-    std::string extras_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
+    /// The "Accuracy against cost: FEM" section: k against mesh, penalty and implicit solver. Empty
+    /// without its points.
+    std::string fem_accuracy_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
     {
       std::string md;
-      if (!e.fem_accuracy.empty())
-      {
-        md += fmt::format(
-          "## Accuracy against cost: FEM (H = {} m)\n\nError of k against the finest "
-          "explicit mesh level; seconds are the FEM wall time of each run.\n\n"
-          "| series | h_contact (cm) | penalty | FEM s | k_KV kN/mm/m | error KV | "
-          "k_J kN/mm^1.5/m | error J | status |\n|---|---|---|---|---|---|---|---|---|\n",
-          scene.accuracy.wall_height);
-        for (const FemAccuracyPoint &p : e.fem_accuracy)
-          md += fmt::format("| {} | {:g} | {:g} | {} | {} | {} | {} | {} | {} |\n",
-                            p.series,
-                            p.h_contact * 100,
-                            p.penalty_factor,
-                            readable(p.seconds),
-                            readable(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
-                            p.ok ? fmt::format("{:.3g} %", 100 * p.error_kelvin_voigt) : "",
-                            readable(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
-                            p.ok ? fmt::format("{:.3g} %", 100 * p.error_jankowski) : "",
-                            p.status);
-        md += "\nData: [accuracy_fem.csv](accuracy_fem.csv), study.h5 `/accuracy/fem`.\n\n";
-        if (charts)
-          md += "![FEM accuracy against cost](charts/accuracy_fem.png)\n\n";
-      }
-      if (!e.lumped_accuracy.empty())
-      {
-        md += fmt::format("## Accuracy against cost: building time step (thesis Figs 3.3-3.4)\n\n"
-                          "Record {}, walls at {:.4g} cm, modified Kelvin-Voigt k = {:.5g} kN/mm; "
-                          "errors against central difference at {:g} s.\n\n"
-                          "| method | dt (s) | s | peak impact force (kN) | error | peak base acc. "
-                          "(m/s²) | error | status |\n|---|---|---|---|---|---|---|---|\n",
-                          e.lumped_record,
-                          e.lumped_gap * 100,
-                          stiffness_to_kn_per_mm(e.lumped_k_total, 1.0),
-                          scene.accuracy.lumped_reference_dt);
-        for (const LumpedAccuracyPoint &p : e.lumped_accuracy)
-          md += fmt::format("| {} | {:g} | {} | {} | {} | {} | {} | {} |\n",
-                            p.method,
-                            p.dt,
-                            readable(p.seconds),
-                            readable(p.ok ? p.peak_impact_force / 1e3 : nan),
-                            p.ok ? fmt::format("{:.3g} %", 100 * p.error_force) : "",
-                            readable(p.ok ? p.base_acceleration : nan),
-                            p.ok ? fmt::format("{:.3g} %", 100 * p.error_acceleration) : "",
-                            p.status);
-        md +=
-          "\nData: [accuracy_lumped.csv](accuracy_lumped.csv), study.h5 `/accuracy/lumped`.\n\n";
-        if (charts)
-          md += "![building time step accuracy against cost](charts/accuracy_lumped.png)\n\n";
-      }
-      if (!e.stability.empty())
-      {
-        std::size_t n_stable = 0, n_accurate = 0, stable_above = 0, unstable_below = 0;
-        for (const StabilityPoint &p : e.stability)
-        {
-          n_stable += p.stable;
-          n_accurate += p.accurate;
-          stable_above += p.stable && p.dt > p.dt_limit_damped;
-          unstable_below += !p.stable && p.dt < p.dt_limit_damped;
-        }
-        md +=
-          fmt::format("## Stability map of the central difference method\n\nTwo-body "
-                      "collisions (isolation level {:.0f} t against the wall {:.0f} t, m_eff = "
-                      "{:.4g} t, modified Kelvin-Voigt at COR {}), no stability guard: {} runs, "
-                      "{} stable (energy gain < 0.1 %), {} of them accurate (effective COR within "
-                      "5 % of nominal); {} stable above the damped limit "
-                      "2(sqrt(1+ξ²)−ξ)/ω_imp, {} unstable below it.\n\n"
-                      "Data: [stability_lumped.csv](stability_lumped.csv), study.h5 "
-                      "`/stability/lumped`.\n\n",
-                      scene.building.isolation_mass / 1e3,
-                      scene.walls.mass / 1e3,
-                      e.stability_effective_mass / 1e3,
-                      scene.fit.cor,
-                      e.stability.size(),
-                      n_stable,
-                      n_accurate,
-                      stable_above,
-                      unstable_below);
-        if (charts)
-          md += "![stability map](charts/stability_map.png)\n\n";
-      }
-      if (!e.fem_stability.empty())
-      {
-        std::size_t stable_above = 0, unstable_below = 0, n_stable = 0;
-        for (const FemStabilityPoint &p : e.fem_stability)
-        {
-          n_stable += p.stable;
-          stable_above += p.stable && p.dt_factor > 1;
-          unstable_below += !p.stable && p.dt_factor < 1;
-        }
-        md += fmt::format(
-          "## Stability map of the explicit FEM\n\nH = {} m, contact elements {:g} cm, the "
-          "first {:g} ms of the impact, Δt = factor × the computed limit 2(sqrt(1+ξ²)−ξ)/ω "
-          "(ω from the mesh's CFL bound and the penalty spring, ξ its contact damping), no "
-          "refusal; unstable: diverged, or energy error above 1 %: {} runs, {} stable; {} stable above the limit (the bound is conservative "
-          "there), {} unstable below it.\n\n| penalty factor | Δt limit (µs) | "
-          "stable at Δt / limit |\n|---|---|---|\n",
-          scene.accuracy.wall_height,
-          e.fem_stability_h_contact * 100,
-          e.fem_stability_end_time * 1e3,
-          e.fem_stability.size(),
-          n_stable,
-          stable_above,
-          unstable_below);
-        std::map<double, std::pair<double, std::string>> rows;
-        for (const FemStabilityPoint &p : e.fem_stability)
-        {
-          auto &row = rows[p.penalty_factor];
-          row.first = p.dt_limit;
-          row.second += fmt::format("{}{:g}: {}",
-                                    row.second.empty() ? "" : ", ",
-                                    p.dt_factor,
-                                    p.stable ? "yes" : "no");
-        }
-        for (const auto &[penalty, row] : rows)
-          md += fmt::format("| {:g} | {:.4g} | {} |\n", penalty, row.first * 1e6, row.second);
-        md += "\nData: [stability_fem.csv](stability_fem.csv), study.h5 `/stability/fem`.\n\n";
-        if (charts)
-          md += "![FEM stability map](charts/stability_map_fem.png)\n\n";
-      }
-      if (!e.sensitivity.empty())
-      {
-        md += fmt::format("## Sensitivity of k (H = {} m, ±{:g} %)\n\n| parameter | factor | k_KV "
-                          "kN/mm/m | k_J kN/mm^1.5/m | status |\n|---|---|---|---|---|\n",
-                          scene.sensitivity_study.wall_height,
-                          scene.sensitivity_study.variation * 100);
-        for (const SensitivityPoint &p : e.sensitivity)
-          md += fmt::format("| {} | {:g} | {} | {} | {} |\n",
-                            p.parameter,
-                            p.factor,
-                            readable(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
-                            readable(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
-                            p.status);
-        md += "\nData: [sensitivity.csv](sensitivity.csv), study.h5 `/sensitivity`.\n\n";
-        if (charts)
-          md += "![sensitivity of k](charts/sensitivity.png)\n\n";
-      }
+      if (e.fem_accuracy.empty())
+        return md;
+      md +=
+        fmt::format("## Accuracy against cost: FEM (H = {} m)\n\nError of k against the finest "
+                    "explicit mesh level; seconds are the FEM wall time of each run.\n\n"
+                    "| series | h_contact (cm) | penalty | FEM s | k_KV kN/mm/m | error KV | "
+                    "k_J kN/mm^1.5/m | error J | status |\n|---|---|---|---|---|---|---|---|---|\n",
+                    scene.accuracy.wall_height);
+      for (const FemAccuracyPoint &p : e.fem_accuracy)
+        md += fmt::format("| {} | {:g} | {:g} | {} | {} | {} | {} | {} | {} |\n",
+                          p.series,
+                          p.h_contact * 100,
+                          p.penalty_factor,
+                          readable(p.seconds),
+                          readable(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
+                          p.ok ? fmt::format("{:.3g} %", 100 * p.error_kelvin_voigt) : "",
+                          readable(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
+                          p.ok ? fmt::format("{:.3g} %", 100 * p.error_jankowski) : "",
+                          p.status);
+      md += "\nData: [accuracy_fem.csv](accuracy_fem.csv), study.h5 `/accuracy/fem`.\n\n";
+      if (charts)
+        md += "![FEM accuracy against cost](charts/accuracy_fem.png)\n\n";
       return md;
+    }
+
+    /// The "Accuracy against cost: building time step" section. Empty without its points.
+    std::string lumped_accuracy_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
+    {
+      std::string md;
+      if (e.lumped_accuracy.empty())
+        return md;
+      md += fmt::format("## Accuracy against cost: building time step (thesis Figs 3.3-3.4)\n\n"
+                        "Record {}, walls at {:.4g} cm, modified Kelvin-Voigt k = {:.5g} kN/mm; "
+                        "errors against central difference at {:g} s.\n\n"
+                        "| method | dt (s) | s | peak impact force (kN) | error | peak base acc. "
+                        "(m/s²) | error | status |\n|---|---|---|---|---|---|---|---|\n",
+                        e.lumped_record,
+                        e.lumped_gap * 100,
+                        stiffness_to_kn_per_mm(e.lumped_k_total, 1.0),
+                        scene.accuracy.lumped_reference_dt);
+      for (const LumpedAccuracyPoint &p : e.lumped_accuracy)
+        md += fmt::format("| {} | {:g} | {} | {} | {} | {} | {} | {} |\n",
+                          p.method,
+                          p.dt,
+                          readable(p.seconds),
+                          readable(p.ok ? p.peak_impact_force / 1e3 : nan),
+                          p.ok ? fmt::format("{:.3g} %", 100 * p.error_force) : "",
+                          readable(p.ok ? p.base_acceleration : nan),
+                          p.ok ? fmt::format("{:.3g} %", 100 * p.error_acceleration) : "",
+                          p.status);
+      md += "\nData: [accuracy_lumped.csv](accuracy_lumped.csv), study.h5 `/accuracy/lumped`.\n\n";
+      if (charts)
+        md += "![building time step accuracy against cost](charts/accuracy_lumped.png)\n\n";
+      return md;
+    }
+
+    /// The "Stability map of the central difference method" section. Empty without its points.
+    std::string
+    lumped_stability_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
+    {
+      std::string md;
+      if (e.stability.empty())
+        return md;
+      std::size_t n_stable = 0, n_accurate = 0, stable_above = 0, unstable_below = 0;
+      for (const StabilityPoint &p : e.stability)
+      {
+        n_stable += p.stable;
+        n_accurate += p.accurate;
+        stable_above += p.stable && p.dt > p.dt_limit_damped;
+        unstable_below += !p.stable && p.dt < p.dt_limit_damped;
+      }
+      md +=
+        fmt::format("## Stability map of the central difference method\n\nTwo-body "
+                    "collisions (isolation level {:.0f} t against the wall {:.0f} t, m_eff = "
+                    "{:.4g} t, modified Kelvin-Voigt at COR {}), no stability guard: {} runs, "
+                    "{} stable (energy gain < 0.1 %), {} of them accurate (effective COR within "
+                    "5 % of nominal); {} stable above the damped limit "
+                    "2(sqrt(1+ξ²)−ξ)/ω_imp, {} unstable below it.\n\n"
+                    "Data: [stability_lumped.csv](stability_lumped.csv), study.h5 "
+                    "`/stability/lumped`.\n\n",
+                    scene.building.isolation_mass / 1e3,
+                    scene.walls.mass / 1e3,
+                    e.stability_effective_mass / 1e3,
+                    scene.fit.cor,
+                    e.stability.size(),
+                    n_stable,
+                    n_accurate,
+                    stable_above,
+                    unstable_below);
+      if (charts)
+        md += "![stability map](charts/stability_map.png)\n\n";
+      return md;
+    }
+
+    /// The "Stability map of the explicit FEM" section. Empty without its points.
+    std::string fem_stability_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
+    {
+      std::string md;
+      if (e.fem_stability.empty())
+        return md;
+      std::size_t stable_above = 0, unstable_below = 0, n_stable = 0;
+      for (const FemStabilityPoint &p : e.fem_stability)
+      {
+        n_stable += p.stable;
+        stable_above += p.stable && p.dt_factor > 1;
+        unstable_below += !p.stable && p.dt_factor < 1;
+      }
+      md += fmt::format(
+        "## Stability map of the explicit FEM\n\nH = {} m, contact elements {:g} cm, the "
+        "first {:g} ms of the impact, Δt = factor × the computed limit 2(sqrt(1+ξ²)−ξ)/ω "
+        "(ω from the mesh's CFL bound and the penalty spring, ξ its contact damping), no "
+        "refusal; unstable: diverged, or energy error above 1 %: {} runs, {} stable; {} stable above the limit (the bound is conservative "
+        "there), {} unstable below it.\n\n| penalty factor | Δt limit (µs) | "
+        "stable at Δt / limit |\n|---|---|---|\n",
+        scene.accuracy.wall_height,
+        e.fem_stability_h_contact * 100,
+        e.fem_stability_end_time * 1e3,
+        e.fem_stability.size(),
+        n_stable,
+        stable_above,
+        unstable_below);
+      std::map<double, std::pair<double, std::string>> rows;
+      for (const FemStabilityPoint &p : e.fem_stability)
+      {
+        auto &row = rows[p.penalty_factor];
+        row.first = p.dt_limit;
+        row.second += fmt::format("{}{:g}: {}",
+                                  row.second.empty() ? "" : ", ",
+                                  p.dt_factor,
+                                  p.stable ? "yes" : "no");
+      }
+      for (const auto &[penalty, row] : rows)
+        md += fmt::format("| {:g} | {:.4g} | {} |\n", penalty, row.first * 1e6, row.second);
+      md += "\nData: [stability_fem.csv](stability_fem.csv), study.h5 `/stability/fem`.\n\n";
+      if (charts)
+        md += "![FEM stability map](charts/stability_map_fem.png)\n\n";
+      return md;
+    }
+
+    /// The "Sensitivity of k" section. Empty without its points.
+    std::string sensitivity_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
+    {
+      std::string md;
+      if (e.sensitivity.empty())
+        return md;
+      md += fmt::format("## Sensitivity of k (H = {} m, ±{:g} %)\n\n| parameter | factor | k_KV "
+                        "kN/mm/m | k_J kN/mm^1.5/m | status |\n|---|---|---|---|---|\n",
+                        scene.sensitivity_study.wall_height,
+                        scene.sensitivity_study.variation * 100);
+      for (const SensitivityPoint &p : e.sensitivity)
+        md += fmt::format("| {} | {:g} | {} | {} | {} |\n",
+                          p.parameter,
+                          p.factor,
+                          readable(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
+                          readable(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
+                          p.status);
+      md += "\nData: [sensitivity.csv](sensitivity.csv), study.h5 `/sensitivity`.\n\n";
+      if (charts)
+        md += "![sensitivity of k](charts/sensitivity.png)\n\n";
+      return md;
+    }
+
+    std::string extras_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
+    {
+      return fem_accuracy_markdown(scene, e, charts) + lumped_accuracy_markdown(scene, e, charts) +
+             lumped_stability_markdown(scene, e, charts) +
+             fem_stability_markdown(scene, e, charts) + sensitivity_markdown(scene, e, charts);
     }
   } // namespace
 

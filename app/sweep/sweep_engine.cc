@@ -224,6 +224,169 @@ namespace kimp::app
     return {metric.substr(0, open), unit.empty() ? "1" : unit};
   }
 
+  namespace
+  {
+    /// The plan's cases finished before, by index: a journal entry is one when the case at its
+    /// index has its id (entries of another plan are not); with `retry_failed` only the ok ones.
+    std::unordered_set<std::size_t>
+    finished_cases(const SweepPlan &plan, const JournalContents &journal, bool retry_failed)
+    {
+      const std::size_t               n_cases = plan.n_cases();
+      std::unordered_set<std::size_t> finished;
+      for (const JournalEntry &entry : journal.entries)
+        if ((!retry_failed || entry.row.status == "ok") && entry.index < n_cases &&
+            finished.count(entry.index) == 0 && plan.case_info(entry.index).id == entry.id)
+          finished.insert(entry.index);
+      return finished;
+    }
+
+    /// This rank's share of the plan: indices rank, rank + n_ranks, ...; none is stored (a plan
+    /// may have millions): a finished case is skipped when its turn comes.
+    struct RankShare
+    {
+      std::size_t  rank      = 0;
+      std::size_t  n_ranks   = 1;
+      std::size_t  n_of_rank = 0; ///< indices of this rank in the plan
+      std::size_t  n_mine    = 0; ///< of them still to run
+      unsigned int n_threads = 1;
+
+      std::size_t index(std::size_t k) const { return rank + k * n_ranks; }
+    };
+
+    RankShare rank_share(std::size_t                            n_cases,
+                         const std::unordered_set<std::size_t> &finished,
+                         const SweepOptions                    &options)
+    {
+      RankShare share;
+      share.n_ranks = static_cast<std::size_t>(options.n_ranks);
+      share.rank    = static_cast<std::size_t>(options.rank);
+      share.n_of_rank =
+        n_cases > share.rank ? (n_cases - share.rank + share.n_ranks - 1) / share.n_ranks : 0;
+      share.n_mine = share.n_of_rank;
+      for (const std::size_t index : finished)
+        share.n_mine -= index % share.n_ranks == share.rank ? 1 : 0;
+      unsigned int n_threads = options.threads;
+      if (n_threads == 0)
+        n_threads = std::max(1U,
+                             std::thread::hardware_concurrency() /
+                               static_cast<unsigned int>(options.n_ranks));
+      share.n_threads = static_cast<unsigned int>(
+        std::max<std::size_t>(1, std::min<std::size_t>(n_threads, share.n_mine)));
+      return share;
+    }
+
+    /// Case `index` run by `runner`, timed; an exception fails the case only.
+    JournalEntry
+    run_case(const SweepPlan &plan, const CaseRunner &runner, std::size_t index, int rank)
+    {
+      const SweepCase c = plan.case_info(index);
+      JournalEntry    entry;
+      entry.index      = c.index;
+      entry.id         = c.id;
+      entry.rank       = rank;
+      const auto start = SteadyClock::now();
+      try
+      {
+        // The scene is made now, case by case (a key path that cannot be followed fails the
+        // case only).
+        const SweepCase full = plan.case_at(index);
+        entry.row            = runner(full.scene_text, full.scene_name);
+      }
+      catch (const std::exception &error)
+      {
+        entry.row = CaseRow{{}, "failed: " + base::error_text(error)};
+      }
+      catch (...)
+      {
+        entry.row = CaseRow{{}, "failed: unknown exception"};
+      }
+      entry.wall_time = seconds_since(start);
+      if (entry.row.status != "ok")
+        logger().warn("sweep: case {} {}", c.id, entry.row.status);
+      return entry;
+    }
+
+    /// Runs this rank's unfinished cases on a pool of `share.n_threads` threads pulling indices
+    /// from an atomic counter, each journaled as it ends; sets summary.n_run and n_failed.
+    /// @throws the first journal write error (the other threads stop taking cases).
+    void run_rank_cases(const SweepPlan                       &plan,
+                        const CaseRunner                      &runner,
+                        const std::filesystem::path           &dir,
+                        const SweepOptions                    &options,
+                        const std::unordered_set<std::size_t> &finished,
+                        const RankShare                       &share,
+                        SweepSummary                          &summary)
+    {
+      SweepJournal             out(SweepJournal::file_of(dir, options.rank));
+      std::atomic<std::size_t> next{0};
+      std::atomic<std::size_t> n_failed{0};
+      std::mutex               progress_mutex;
+      std::size_t              n_finished = 0;
+      SweepProgress            progress(summary.n_cases,
+                             summary.n_resumed,
+                             share.n_mine,
+                             options.rank == 0 ? options.progress_interval :
+                                                            std::numeric_limits<double>::infinity());
+      std::exception_ptr       io_error;
+
+      const auto work = [&]()
+      {
+        for (std::size_t k = next++; k < share.n_of_rank; k = next++)
+        {
+          const std::size_t index = share.index(k);
+          if (finished.count(index) > 0)
+            continue;
+          const JournalEntry entry = run_case(plan, runner, index, options.rank);
+          if (entry.row.status != "ok")
+            ++n_failed;
+          try
+          {
+            out.append(entry);
+          }
+          catch (...)
+          {
+            const std::lock_guard<std::mutex> lock(progress_mutex);
+            if (!io_error)
+              io_error = std::current_exception();
+            next = share.n_of_rank;
+            return;
+          }
+          const std::lock_guard<std::mutex> lock(progress_mutex);
+          progress.case_finished(++n_finished);
+        }
+      };
+
+      std::vector<std::thread> pool;
+      for (unsigned int t = 1; t < share.n_threads; ++t)
+        pool.emplace_back(work);
+      work();
+      for (std::thread &thread : pool)
+        thread.join();
+      if (io_error)
+        std::rethrow_exception(io_error);
+      summary.n_run    = n_finished;
+      summary.n_failed = n_failed;
+    }
+
+    /// Rank 0 after the barrier: merges every rank's journal into sweep.h5 and sweep.csv.
+    void merge_sweep_results(const SweepPlan             &plan,
+                             const std::filesystem::path &dir,
+                             SweepSummary                &summary)
+    {
+      const SweepTable table = collect_sweep_table(plan, dir);
+      summary.n_rows         = table.rows.size();
+      write_sweep_results(plan, table, dir);
+      if (summary.n_rows < summary.n_cases)
+        logger().warn("sweep: {} of {} cases not finished (run the command again to complete)",
+                      summary.n_cases - summary.n_rows,
+                      summary.n_cases);
+      logger().info("sweep: wrote {} rows to {} and {}",
+                    summary.n_rows,
+                    (dir / "sweep.h5").string(),
+                    (dir / "sweep.csv").string());
+    }
+  } // namespace
+
   SweepSummary run_sweep(const SweepPlan             &plan,
                          const CaseRunner            &runner,
                          const std::filesystem::path &dir,
@@ -243,132 +406,24 @@ namespace kimp::app
       logger().warn("sweep: ignored {} incomplete journal line(s) in {} (interrupted run)",
                     journal.n_torn_lines,
                     (dir / "journal").string());
-    // The plan's cases finished before, by index: a journal entry is one when the case at its
-    // index has its id (entries of another plan are not).
-    std::unordered_set<std::size_t> finished;
-    for (const JournalEntry &entry : journal.entries)
-      if ((!options.retry_failed || entry.row.status == "ok") && entry.index < summary.n_cases &&
-          finished.count(entry.index) == 0 && plan.case_info(entry.index).id == entry.id)
-        finished.insert(entry.index);
+    const std::unordered_set<std::size_t> finished =
+      finished_cases(plan, journal, options.retry_failed);
     summary.n_resumed = finished.size();
 
-    // This rank's cases are indices rank, rank + n_ranks, ...; none is stored (a plan may have
-    // millions): a finished case is skipped when its turn comes.
-    const auto n_ranks = static_cast<std::size_t>(options.n_ranks);
-    const auto rank    = static_cast<std::size_t>(options.rank);
-    const auto n_of_rank =
-      summary.n_cases > rank ? (summary.n_cases - rank + n_ranks - 1) / n_ranks : 0;
-    std::size_t n_mine = n_of_rank;
-    for (const std::size_t index : finished)
-      n_mine -= index % n_ranks == rank ? 1 : 0;
-
-    unsigned int n_threads = options.threads;
-    if (n_threads == 0)
-      n_threads =
-        std::max(1U,
-                 std::thread::hardware_concurrency() / static_cast<unsigned int>(options.n_ranks));
-    n_threads =
-      static_cast<unsigned int>(std::max<std::size_t>(1, std::min<std::size_t>(n_threads, n_mine)));
+    const RankShare share = rank_share(summary.n_cases, finished, options);
     logger().info("sweep: {} cases, {} already finished, {} to run on rank {} with {} thread(s)",
                   summary.n_cases,
                   summary.n_resumed,
-                  n_mine,
+                  share.n_mine,
                   options.rank,
-                  n_threads);
-
-    if (n_mine > 0)
-    {
-      SweepJournal             out(SweepJournal::file_of(dir, options.rank));
-      std::atomic<std::size_t> next{0};
-      std::atomic<std::size_t> n_failed{0};
-      std::mutex               progress_mutex;
-      std::size_t              n_finished = 0;
-      SweepProgress            progress(summary.n_cases,
-                             summary.n_resumed,
-                             n_mine,
-                             options.rank == 0 ? options.progress_interval :
-                                                            std::numeric_limits<double>::infinity());
-      std::exception_ptr       io_error;
-
-      const auto work = [&]()
-      {
-        for (std::size_t k = next++; k < n_of_rank; k = next++)
-        {
-          const std::size_t index = rank + k * n_ranks;
-          if (finished.count(index) > 0)
-            continue;
-          const SweepCase c = plan.case_info(index);
-          JournalEntry    entry;
-          entry.index      = c.index;
-          entry.id         = c.id;
-          entry.rank       = options.rank;
-          const auto start = SteadyClock::now();
-          try
-          {
-            // The scene is made now, case by case (a key path that cannot be followed fails the
-            // case only).
-            const SweepCase full = plan.case_at(index);
-            entry.row            = runner(full.scene_text, full.scene_name);
-          }
-          catch (const std::exception &error)
-          {
-            entry.row = CaseRow{{}, "failed: " + base::error_text(error)};
-          }
-          catch (...)
-          {
-            entry.row = CaseRow{{}, "failed: unknown exception"};
-          }
-          entry.wall_time = seconds_since(start);
-          if (entry.row.status != "ok")
-          {
-            ++n_failed;
-            logger().warn("sweep: case {} {}", c.id, entry.row.status);
-          }
-          try
-          {
-            out.append(entry);
-          }
-          catch (...)
-          {
-            const std::lock_guard<std::mutex> lock(progress_mutex);
-            if (!io_error)
-              io_error = std::current_exception();
-            next = n_of_rank;
-            return;
-          }
-          const std::lock_guard<std::mutex> lock(progress_mutex);
-          progress.case_finished(++n_finished);
-        }
-      };
-
-      std::vector<std::thread> pool;
-      for (unsigned int t = 1; t < n_threads; ++t)
-        pool.emplace_back(work);
-      work();
-      for (std::thread &thread : pool)
-        thread.join();
-      if (io_error)
-        std::rethrow_exception(io_error);
-      summary.n_run    = n_finished;
-      summary.n_failed = n_failed;
-    }
+                  share.n_threads);
+    if (share.n_mine > 0)
+      run_rank_cases(plan, runner, dir, options, finished, share, summary);
 
     if (options.barrier)
       options.barrier();
     if (options.rank == 0)
-    {
-      const SweepTable table = collect_sweep_table(plan, dir);
-      summary.n_rows         = table.rows.size();
-      write_sweep_results(plan, table, dir);
-      if (summary.n_rows < summary.n_cases)
-        logger().warn("sweep: {} of {} cases not finished (run the command again to complete)",
-                      summary.n_cases - summary.n_rows,
-                      summary.n_cases);
-      logger().info("sweep: wrote {} rows to {} and {}",
-                    summary.n_rows,
-                    (dir / "sweep.h5").string(),
-                    (dir / "sweep.csv").string());
-    }
+      merge_sweep_results(plan, dir, summary);
     return summary;
   }
 
@@ -428,65 +483,46 @@ namespace kimp::app
     return table;
   }
 
-  void write_sweep_results(const SweepPlan             &plan,
-                           const SweepTable            &table,
-                           const std::filesystem::path &dir)
+  namespace
   {
-    const OutputDir output(dir);
-
-    // sweep.h5 keeps the metric labels "name [unit]" in its `columns` attribute; sweep.csv
-    // follows the CSV convention name_unit, with numbers only in numeric columns.
-    std::vector<std::string> labels{"index", "id", "companion"};
-    labels.insert(labels.end(), table.parameter_names.begin(), table.parameter_names.end());
-    labels.push_back("status");
-    labels.insert(labels.end(), table.metric_names.begin(), table.metric_names.end());
-    labels.push_back("wall_time [s]");
-
-    const std::vector<SweepParameterColumn> parameter_columns =
-      sweep_parameter_columns(plan, table);
-    Table csv;
-    csv.integer("index").text("id").text("companion");
-    for (const SweepParameterColumn &p : parameter_columns)
-      if (p.numeric)
-        csv.number(p.name, p.unit);
-      else
-        csv.text(p.name);
-    csv.text("status");
-    for (const std::string &metric : table.metric_names)
+    /// sweep.csv: the CSV convention name_unit, with numbers only in numeric columns.
+    Table sweep_csv_table(const std::vector<SweepParameterColumn> &parameter_columns,
+                          const SweepTable                        &table)
     {
-      const auto [name, unit] = split_metric_unit(metric);
-      csv.number(name, unit);
-    }
-    csv.number("wall_time", "s");
-    for (const SweepTableRow &r : table.rows)
-    {
-      std::vector<Cell> row{static_cast<std::int64_t>(r.index), r.id, r.companion};
-      for (std::size_t p = 0; p < parameter_columns.size(); ++p)
-        if (parameter_columns[p].numeric)
-          row.emplace_back(parameter_columns[p].number(r.values.at(p)));
+      Table csv;
+      csv.integer("index").text("id").text("companion");
+      for (const SweepParameterColumn &p : parameter_columns)
+        if (p.numeric)
+          csv.number(p.name, p.unit);
         else
-          row.emplace_back(r.values.at(p));
-      row.emplace_back(r.status);
-      for (const double m : r.metrics)
-        row.emplace_back(m);
-      row.emplace_back(r.wall_time);
-      csv.add_row(std::move(row));
-    }
-    csv.write_csv(output.file("sweep.csv"));
-
-    // Numeric and text columns, meta and input through ResultsFile (temporary file, then rename).
-    {
-      ResultsFile               file(output.file("sweep.h5"), plan.text(), plan.to_json_text());
-      ResultsGroup              sweep = file.root().group("sweep");
-      std::vector<std::int64_t> index;
-      std::vector<double>       wall_time;
+          csv.text(p.name);
+      csv.text("status");
+      for (const std::string &metric : table.metric_names)
+      {
+        const auto [name, unit] = split_metric_unit(metric);
+        csv.number(name, unit);
+      }
+      csv.number("wall_time", "s");
       for (const SweepTableRow &r : table.rows)
       {
-        index.push_back(static_cast<std::int64_t>(r.index));
-        wall_time.push_back(r.wall_time);
+        std::vector<Cell> row{static_cast<std::int64_t>(r.index), r.id, r.companion};
+        for (std::size_t p = 0; p < parameter_columns.size(); ++p)
+          if (parameter_columns[p].numeric)
+            row.emplace_back(parameter_columns[p].number(r.values.at(p)));
+          else
+            row.emplace_back(r.values.at(p));
+        row.emplace_back(r.status);
+        for (const double m : r.metrics)
+          row.emplace_back(m);
+        row.emplace_back(r.wall_time);
+        csv.add_row(std::move(row));
       }
-      sweep.write("index", index, "1");
-      sweep.write("wall_time", wall_time, "s");
+      return csv;
+    }
+
+    /// sweep.h5 /sweep/metrics: one dataset per metric with its unit.
+    void write_metrics(ResultsGroup &sweep, const SweepTable &table)
+    {
       ResultsGroup metrics = sweep.group("metrics");
       for (std::size_t m = 0; m < table.metric_names.size(); ++m)
       {
@@ -496,6 +532,12 @@ namespace kimp::app
         const auto [name, unit] = split_metric_unit(table.metric_names[m]);
         metrics.write(dataset_name(name), values, unit);
       }
+    }
+
+    /// sweep.h5 /sweep/parameters_si: the parameters whose every value is a quantity of one
+    /// dimension, in SI.
+    void write_parameters_si(ResultsGroup &sweep, const SweepTable &table)
+    {
       ResultsGroup si = sweep.group("parameters_si");
       for (std::size_t p = 0; p < table.parameter_names.size(); ++p)
       {
@@ -522,13 +564,11 @@ namespace kimp::app
         if (numeric && dimension)
           si.write(dataset_name(table.parameter_names[p]), values, to_string(*dimension));
       }
-      std::vector<std::string> column_names;
-      for (const SweepParameterColumn &p : parameter_columns)
-        column_names.push_back(csv_column(p.name, p.unit));
-      sweep.write("parameter_columns", column_names);
-      sweep.set_attribute("n_cases", plan.n_cases());
-      sweep.set_attribute("n_rows", table.rows.size());
+    }
 
+    /// sweep.h5 /sweep: id, companion and status, and /sweep/parameters (the values as text).
+    void write_text_columns(ResultsGroup &sweep, const SweepTable &table)
+    {
       std::vector<std::string> ids, companions, statuses;
       for (const SweepTableRow &r : table.rows)
       {
@@ -547,11 +587,62 @@ namespace kimp::app
           values.push_back(r.values[p]);
         parameters.write(dataset_name(table.parameter_names[p]), values);
       }
+    }
+
+    /// The `columns` attribute of /sweep: the metric labels "name [unit]" as the journal has them.
+    std::string column_labels(const SweepTable &table)
+    {
+      std::vector<std::string> labels{"index", "id", "companion"};
+      labels.insert(labels.end(), table.parameter_names.begin(), table.parameter_names.end());
+      labels.push_back("status");
+      labels.insert(labels.end(), table.metric_names.begin(), table.metric_names.end());
+      labels.push_back("wall_time [s]");
       std::string columns;
       for (const std::string &h : labels)
         columns += (columns.empty() ? "" : "\n") + h;
-      sweep.set_attribute("columns", columns);
+      return columns;
+    }
+
+    /// sweep.h5: numeric and text columns, meta and input through ResultsFile (temporary file,
+    /// then rename).
+    void write_sweep_h5(const SweepPlan                         &plan,
+                        const SweepTable                        &table,
+                        const std::vector<SweepParameterColumn> &parameter_columns,
+                        const std::filesystem::path             &path)
+    {
+      ResultsFile               file(path, plan.text(), plan.to_json_text());
+      ResultsGroup              sweep = file.root().group("sweep");
+      std::vector<std::int64_t> index;
+      std::vector<double>       wall_time;
+      for (const SweepTableRow &r : table.rows)
+      {
+        index.push_back(static_cast<std::int64_t>(r.index));
+        wall_time.push_back(r.wall_time);
+      }
+      sweep.write("index", index, "1");
+      sweep.write("wall_time", wall_time, "s");
+      write_metrics(sweep, table);
+      write_parameters_si(sweep, table);
+      std::vector<std::string> column_names;
+      for (const SweepParameterColumn &p : parameter_columns)
+        column_names.push_back(csv_column(p.name, p.unit));
+      sweep.write("parameter_columns", column_names);
+      sweep.set_attribute("n_cases", plan.n_cases());
+      sweep.set_attribute("n_rows", table.rows.size());
+      write_text_columns(sweep, table);
+      sweep.set_attribute("columns", column_labels(table));
       file.commit();
     }
+  } // namespace
+
+  void write_sweep_results(const SweepPlan             &plan,
+                           const SweepTable            &table,
+                           const std::filesystem::path &dir)
+  {
+    const OutputDir                         output(dir);
+    const std::vector<SweepParameterColumn> parameter_columns =
+      sweep_parameter_columns(plan, table);
+    sweep_csv_table(parameter_columns, table).write_csv(output.file("sweep.csv"));
+    write_sweep_h5(plan, table, parameter_columns, output.file("sweep.h5"));
   }
 } // namespace kimp::app

@@ -67,25 +67,16 @@ namespace kimp::app
     const lumped::plan::PlanResponse &r   = run.response;
     const auto                        add = [&](const std::string &name, double value)
     { row.metrics.emplace_back(prefix + name, value); };
-    double corner_force = 0.0, friction_force = 0.0, rotation = 0.0, corner_drift = 0.0;
-    for (const lumped::plan::PlanContactResult &c : r.contacts)
-    {
-      corner_force   = std::max(corner_force, c.peak_normal_force);
-      friction_force = std::max(friction_force, c.peak_friction_force);
-    }
-    for (std::size_t i = 2; i < r.peak_displacement.size(); i += 3)
-      rotation = std::max(rotation, r.peak_displacement[i]);
-    for (const double d : r.peak_corner_drift)
-      corner_drift = std::max(corner_drift, d);
+    const PlanPeaks peaks = plan_peaks(r);
     add("dt [s]", r.dt);
     add("n_steps", static_cast<double>(r.n_steps));
     // The peaks of the directionality chart first (summary.json's names of `kimp lumped`).
     add("base_corner_displacement [m]", r.peak_corner_displacement.front());
-    add("corner_impact_force [N]", corner_force);
-    add("friction_force [N]", friction_force);
+    add("corner_impact_force [N]", peaks.corner_force);
+    add("friction_force [N]", peaks.friction_force);
     add("top_acceleration [m/s^2]", r.peak_horizontal_acceleration.back());
-    add("corner_drift [m]", corner_drift);
-    add("rotation [rad]", rotation);
+    add("corner_drift [m]", peaks.corner_drift);
+    add("rotation [rad]", peaks.rotation);
     add("isolator_force [N]", r.peak_isolator_force);
     add("n_impacts", static_cast<double>(r.n_impacts()));
     static const char *const direction[3] = {"x", "y", "theta"};

@@ -35,6 +35,39 @@ namespace kimp::app
   };
 
   /**
+   * An input iterator over the positions 0, 1, ... of a `Container` whose `operator[]` makes
+   * its `Value` on demand (a value of a range, a case of a plan): nothing is expanded.
+   */
+  template <class Container, class Value>
+  class IndexIterator
+  {
+  public:
+    using iterator_category = std::input_iterator_tag;
+    using value_type        = Value;
+    using difference_type   = std::ptrdiff_t;
+    using pointer           = void;
+    using reference         = Value;
+
+    IndexIterator(const Container *container, std::size_t index)
+      : container_(container)
+      , index_(index)
+    {
+    }
+    Value          operator*() const { return (*container_)[index_]; }
+    IndexIterator &operator++()
+    {
+      ++index_;
+      return *this;
+    }
+    bool operator==(const IndexIterator &other) const { return index_ == other.index_; }
+    bool operator!=(const IndexIterator &other) const { return index_ != other.index_; }
+
+  private:
+    const Container *container_ = nullptr;
+    std::size_t      index_     = 0;
+  };
+
+  /**
    * The values of one parameter, in order: a list as written in the sweep file, or an inclusive
    * range {from, to, step} kept as its first value, step and count, each value formatted only
    * when asked for (a range of 10 M values takes a few bytes, not 10 M strings).
@@ -72,33 +105,7 @@ namespace kimp::app
     std::vector<std::string> to_vector() const;
 
     /// Iterates the values by index; dereferencing formats the value.
-    class const_iterator
-    {
-    public:
-      using iterator_category = std::input_iterator_tag;
-      using value_type        = std::string;
-      using difference_type   = std::ptrdiff_t;
-      using pointer           = void;
-      using reference         = std::string;
-
-      const_iterator(const SweepValues *values, std::size_t index)
-        : values_(values)
-        , index_(index)
-      {
-      }
-      std::string     operator*() const { return (*values_)[index_]; }
-      const_iterator &operator++()
-      {
-        ++index_;
-        return *this;
-      }
-      bool operator==(const const_iterator &other) const { return index_ == other.index_; }
-      bool operator!=(const const_iterator &other) const { return index_ != other.index_; }
-
-    private:
-      const SweepValues *values_ = nullptr;
-      std::size_t        index_  = 0;
-    };
+    using const_iterator = IndexIterator<SweepValues, std::string>;
     const_iterator begin() const { return {this, 0}; }
     const_iterator end() const { return {this, size()}; }
 
@@ -202,33 +209,7 @@ namespace kimp::app
     SweepCase operator[](std::size_t index) const;
 
     /// Iterates the cases in enumeration order; dereferencing makes the case.
-    class const_iterator
-    {
-    public:
-      using iterator_category = std::input_iterator_tag;
-      using value_type        = SweepCase;
-      using difference_type   = std::ptrdiff_t;
-      using pointer           = void;
-      using reference         = SweepCase;
-
-      const_iterator(const SweepCases *cases, std::size_t index)
-        : cases_(cases)
-        , index_(index)
-      {
-      }
-      SweepCase       operator*() const { return (*cases_)[index_]; }
-      const_iterator &operator++()
-      {
-        ++index_;
-        return *this;
-      }
-      bool operator==(const const_iterator &other) const { return index_ == other.index_; }
-      bool operator!=(const const_iterator &other) const { return index_ != other.index_; }
-
-    private:
-      const SweepCases *cases_ = nullptr;
-      std::size_t       index_ = 0;
-    };
+    using const_iterator = IndexIterator<SweepCases, SweepCase>;
     const_iterator begin() const { return {this, 0}; }
     const_iterator end() const { return {this, size()}; }
 

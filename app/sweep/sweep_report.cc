@@ -109,127 +109,170 @@ namespace kimp::app
              nan;
   }
 
-  DsrssTable dsrss_table(const SweepPlan &plan, const SweepTable &table, const std::string &gap_key)
+  namespace
   {
-    // Parameters that set the gap are the abscissa; all others name the configuration.
-    std::vector<std::size_t>                kept;
-    bool                                    gap_swept = false;
-    DsrssTable                              dsrss;
-    const std::vector<SweepParameterColumn> columns = sweep_parameter_columns(plan, table);
-    for (std::size_t p = 0; p < plan.parameters().size(); ++p)
+    /// The sweep parameters that do not set the gap (they name a configuration; the gap is the
+    /// abscissa), their names and columns added to `dsrss`.
+    /// @throws SweepError if no parameter sets `gap_key`.
+    std::vector<std::size_t> configuration_parameters(const SweepPlan   &plan,
+                                                      const SweepTable  &table,
+                                                      const std::string &gap_key,
+                                                      DsrssTable        &dsrss)
     {
-      const SweepParameter &parameter = plan.parameters()[p];
-      const bool            sets_gap  = parameter.sets(gap_key);
-      gap_swept                       = gap_swept || sets_gap;
-      if (!sets_gap)
+      std::vector<std::size_t>                kept;
+      bool                                    gap_swept = false;
+      const std::vector<SweepParameterColumn> columns   = sweep_parameter_columns(plan, table);
+      for (std::size_t p = 0; p < plan.parameters().size(); ++p)
       {
-        kept.push_back(p);
-        dsrss.parameter_names.push_back(parameter.name);
-        dsrss.parameter_columns.push_back(columns.at(p));
+        const SweepParameter &parameter = plan.parameters()[p];
+        const bool            sets_gap  = parameter.sets(gap_key);
+        gap_swept                       = gap_swept || sets_gap;
+        if (!sets_gap)
+        {
+          kept.push_back(p);
+          dsrss.parameter_names.push_back(parameter.name);
+          dsrss.parameter_columns.push_back(columns.at(p));
+        }
       }
+      if (!gap_swept)
+        throw SweepError(
+          fmt::format("{}:{}: report.gap: no parameter sets '{}' (expected the scene "
+                      "key path of the swept gap)",
+                      plan.file_name(),
+                      plan.report() ? plan.report()->line : 1,
+                      gap_key));
+      return kept;
     }
-    if (!gap_swept)
-      throw SweepError(fmt::format("{}:{}: report.gap: no parameter sets '{}' (expected the scene "
-                                   "key path of the swept gap)",
-                                   plan.file_name(),
-                                   plan.report() ? plan.report()->line : 1,
-                                   gap_key));
 
-    std::vector<ContactColumns> contacts;
-    std::size_t                 n_impacts_column = table.metric_names.size();
-    for (std::size_t m = 0; m < table.metric_names.size(); ++m)
+    /// The metric columns d_SRSS reads: the contacts' clearance and SRSS gap, and n_impacts.
+    struct ContactMetrics
     {
-      const std::string &name = table.metric_names[m];
-      if (name == "n_impacts")
-        n_impacts_column = m;
-      if (!ends_with(name, srss_suffix))
-        continue;
-      const std::string contact = name.substr(0, name.size() - srss_suffix.size());
-      const auto        clearance =
-        std::find(table.metric_names.begin(), table.metric_names.end(), contact + clearance_suffix);
-      if (clearance != table.metric_names.end())
-        contacts.push_back(
-          {contact, static_cast<std::size_t>(clearance - table.metric_names.begin()), m});
-    }
-    if (contacts.empty() || n_impacts_column == table.metric_names.size())
-      throw SweepError(plan.file_name() +
-                       ": d_SRSS needs the metrics n_impacts, <contact>.clearance [m] and "
-                       "<contact>.srss_gap [m] (set integration.companion: true in the scene)");
+      std::vector<ContactColumns> contacts;
+      std::size_t                 n_impacts = 0;
+    };
 
+    /// @throws SweepError without n_impacts or any contact with both metrics.
+    ContactMetrics contact_metrics(const SweepPlan &plan, const SweepTable &table)
+    {
+      ContactMetrics metrics;
+      metrics.n_impacts = table.metric_names.size();
+      for (std::size_t m = 0; m < table.metric_names.size(); ++m)
+      {
+        const std::string &name = table.metric_names[m];
+        if (name == "n_impacts")
+          metrics.n_impacts = m;
+        if (!ends_with(name, srss_suffix))
+          continue;
+        const std::string contact   = name.substr(0, name.size() - srss_suffix.size());
+        const auto        clearance = std::find(table.metric_names.begin(),
+                                         table.metric_names.end(),
+                                         contact + clearance_suffix);
+        if (clearance != table.metric_names.end())
+          metrics.contacts.push_back(
+            {contact, static_cast<std::size_t>(clearance - table.metric_names.begin()), m});
+      }
+      if (metrics.contacts.empty() || metrics.n_impacts == table.metric_names.size())
+        throw SweepError(plan.file_name() +
+                         ": d_SRSS needs the metrics n_impacts, <contact>.clearance [m] and "
+                         "<contact>.srss_gap [m] (set integration.companion: true in the scene)");
+      return metrics;
+    }
+
+    /// One main run (not a companion) of the sweep: its gap sample and SRSS gap.
     struct Sample
     {
       GapSample   gap;
       SrssGap     srss;
       std::size_t row = 0;
     };
+    /// The runs of one configuration (and one set of clearance offsets) over the swept gaps.
     struct Group
     {
       DsrssRow            row;
       std::vector<Sample> samples;
     };
-    std::vector<Group>                                                      groups;
-    std::map<std::pair<std::vector<std::string>, std::string>, std::size_t> index_of;
-    std::map<std::vector<std::string>, std::size_t>                         failed_of;
-
-    for (std::size_t r = 0; r < table.rows.size(); ++r)
+    /// The groups of the ok runs, and per configuration the number of failed runs.
+    struct Groups
     {
-      const SweepTableRow &row = table.rows[r];
-      if (!row.companion.empty())
-        continue;
-      std::vector<std::string> values;
-      for (const std::size_t p : kept)
-        values.push_back(row.values.at(p));
-      if (row.status != "ok")
-      {
-        ++failed_of[values];
-        continue;
-      }
-      if (row.index >= plan.n_cases())
-        throw SweepError(fmt::format("{}: row {} beyond the plan's {} cases",
-                                     plan.file_name(),
-                                     row.index,
-                                     plan.n_cases()));
-      const std::optional<std::string> gap_text =
-        get_yaml_value(plan.case_at(row.index).scene_text, gap_key);
-      if (!gap_text)
-        throw SweepError(plan.file_name() + ": report.gap: case " + row.id + " has no value at '" +
-                         gap_key + "'");
-      const double gap = parse_quantity_as(*gap_text, "m");
+      std::vector<Group>                              groups;
+      std::map<std::vector<std::string>, std::size_t> failed_of;
+    };
 
-      std::vector<ContactGap> present;
-      std::string             offsets; // the group key part: contact=offset in µm
-      double                  max_offset = -std::numeric_limits<double>::infinity();
-      for (const ContactColumns &c : contacts)
+    Groups group_runs(const SweepPlan                &plan,
+                      const SweepTable               &table,
+                      const std::string              &gap_key,
+                      const std::vector<std::size_t> &kept,
+                      const ContactMetrics           &metrics)
+    {
+      Groups                                           grouped;
+      std::vector<Group>                              &groups    = grouped.groups;
+      std::map<std::vector<std::string>, std::size_t> &failed_of = grouped.failed_of;
+      std::map<std::pair<std::vector<std::string>, std::string>, std::size_t> index_of;
+      const std::vector<ContactColumns> &contacts         = metrics.contacts;
+      const std::size_t                  n_impacts_column = metrics.n_impacts;
+      for (std::size_t r = 0; r < table.rows.size(); ++r)
       {
-        const double clearance = row.metrics.at(c.clearance);
-        const double srss      = row.metrics.at(c.srss);
-        if (!std::isfinite(clearance) || !std::isfinite(srss))
-          continue; // contact absent in this configuration
-        present.push_back({c.name, clearance, srss});
-        const double offset = clearance - gap;
-        max_offset          = std::max(max_offset, offset);
-        offsets += fmt::format("{}={};", c.name, std::llround(offset * 1e6));
+        const SweepTableRow &row = table.rows[r];
+        if (!row.companion.empty())
+          continue;
+        std::vector<std::string> values;
+        for (const std::size_t p : kept)
+          values.push_back(row.values.at(p));
+        if (row.status != "ok")
+        {
+          ++failed_of[values];
+          continue;
+        }
+        if (row.index >= plan.n_cases())
+          throw SweepError(fmt::format("{}: row {} beyond the plan's {} cases",
+                                       plan.file_name(),
+                                       row.index,
+                                       plan.n_cases()));
+        const std::optional<std::string> gap_text =
+          get_yaml_value(plan.case_at(row.index).scene_text, gap_key);
+        if (!gap_text)
+          throw SweepError(plan.file_name() + ": report.gap: case " + row.id +
+                           " has no value at '" + gap_key + "'");
+        const double gap = parse_quantity_as(*gap_text, "m");
+
+        std::vector<ContactGap> present;
+        std::string             offsets; // the group key part: contact=offset in µm
+        double                  max_offset = -std::numeric_limits<double>::infinity();
+        for (const ContactColumns &c : contacts)
+        {
+          const double clearance = row.metrics.at(c.clearance);
+          const double srss      = row.metrics.at(c.srss);
+          if (!std::isfinite(clearance) || !std::isfinite(srss))
+            continue; // contact absent in this configuration
+          present.push_back({c.name, clearance, srss});
+          const double offset = clearance - gap;
+          max_offset          = std::max(max_offset, offset);
+          offsets += fmt::format("{}={};", c.name, std::llround(offset * 1e6));
+        }
+        if (present.empty())
+          continue;
+        const auto key = std::make_pair(values, offsets);
+        auto       it  = index_of.find(key);
+        if (it == index_of.end())
+        {
+          it = index_of.emplace(key, groups.size()).first;
+          Group group;
+          group.row.values           = values;
+          group.row.clearance_offset = max_offset;
+          groups.push_back(std::move(group));
+        }
+        Sample sample;
+        sample.gap  = {gap, row.metrics.at(n_impacts_column) > 0.0, true};
+        sample.srss = srss_required_gap(present, gap);
+        sample.row  = r;
+        groups[it->second].samples.push_back(sample);
       }
-      if (present.empty())
-        continue;
-      const auto key = std::make_pair(values, offsets);
-      auto       it  = index_of.find(key);
-      if (it == index_of.end())
-      {
-        it = index_of.emplace(key, groups.size()).first;
-        Group group;
-        group.row.values           = values;
-        group.row.clearance_offset = max_offset;
-        groups.push_back(std::move(group));
-      }
-      Sample sample;
-      sample.gap  = {gap, row.metrics.at(n_impacts_column) > 0.0, true};
-      sample.srss = srss_required_gap(present, gap);
-      sample.row  = r;
-      groups[it->second].samples.push_back(sample);
+      return grouped;
     }
 
-    for (Group &group : groups)
+    /// The table row of one group: the required gap, d_SRSS of its smallest gap and the spread.
+    DsrssRow group_row(Group                                                 &group,
+                       const std::map<std::vector<std::string>, std::size_t> &failed_of)
     {
       DsrssRow              &out = group.row;
       std::vector<GapSample> gaps;
@@ -268,8 +311,18 @@ namespace kimp::app
       out.d_srss        = smallest->srss.gap;
       out.governing     = smallest->srss.governing;
       out.d_srss_spread = srss_max - srss_min;
-      dsrss.rows.push_back(std::move(out));
+      return std::move(out);
     }
+  } // namespace
+
+  DsrssTable dsrss_table(const SweepPlan &plan, const SweepTable &table, const std::string &gap_key)
+  {
+    DsrssTable                     dsrss;
+    const std::vector<std::size_t> kept    = configuration_parameters(plan, table, gap_key, dsrss);
+    const ContactMetrics           metrics = contact_metrics(plan, table);
+    Groups                         grouped = group_runs(plan, table, gap_key, kept, metrics);
+    for (Group &group : grouped.groups)
+      dsrss.rows.push_back(group_row(group, grouped.failed_of));
     return dsrss;
   }
 

@@ -93,21 +93,19 @@ namespace kimp::app
                              double              wall_time)
     {
       const SweepTable       table = collect_sweep_table(plan, output.path());
-      nlohmann::ordered_json j;
-      j["command"]         = "sweep";
-      j["kimp"]            = version_line();
-      j["sweep"]           = plan.file_name();
-      j["scene"]           = plan.base_scene_name();
-      j["n_ranks"]         = n_ranks;
-      j["wall_time"]       = wall_time;
-      j["units"]           = {{"wall_time", "s"}};
-      j["n_cases"]         = summary.n_cases;
-      j["n_resumed"]       = summary.n_resumed;
-      j["n_run"]           = summary.n_run;
-      j["n_failed"]        = summary.n_failed;
-      j["n_rows"]          = summary.n_rows;
-      std::size_t n_not_ok = 0;
-      j["cases"]           = nlohmann::ordered_json::array();
+      nlohmann::ordered_json j     = io::summary_preamble("sweep");
+      j["sweep"]                   = plan.file_name();
+      j["scene"]                   = plan.base_scene_name();
+      j["n_ranks"]                 = n_ranks;
+      j["wall_time"]               = wall_time;
+      j["units"]                   = {{"wall_time", "s"}};
+      j["n_cases"]                 = summary.n_cases;
+      j["n_resumed"]               = summary.n_resumed;
+      j["n_run"]                   = summary.n_run;
+      j["n_failed"]                = summary.n_failed;
+      j["n_rows"]                  = summary.n_rows;
+      std::size_t n_not_ok         = 0;
+      j["cases"]                   = nlohmann::ordered_json::array();
       for (const SweepTableRow &r : table.rows)
       {
         n_not_ok += r.status != "ok";

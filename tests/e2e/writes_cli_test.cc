@@ -46,6 +46,22 @@ namespace
 
   /// A small lumped scene (two cases, 6 s): lumped.h5 is about 1.4 MB.
   const std::string small_scene = two_case_walled_scene("0.002 s");
+
+  /// `kimp <command> scene.yaml -o out` in `dir` under a file size limit of `limit_bytes` fails
+  /// in one line naming the results file and EFBIG, and leaves nothing in out/.
+  void
+  expect_results_file_too_large(const fs::path &dir, const std::string &command, long limit_bytes)
+  {
+    std::string log;
+    const int   exit_code =
+      run_kimp_under_ulimit(command + " scene.yaml -o out", dir, limit_bytes, log);
+    std::string line;
+    ASSERT_NO_FATAL_FAILURE(one_error_line(exit_code, log, line));
+    EXPECT_EQ(line.rfind("error: results file '", 0), 0u) << line;
+    EXPECT_NE(line.find("File too large"), std::string::npos) << line;
+    EXPECT_TRUE(files_below(dir / "out").empty())
+      << "left behind: " << files_below(dir / "out").front();
+  }
 } // namespace
 
 // `ulimit -f` as a user sets it: the write that crosses the limit used to kill kimp by SIGXFSZ
@@ -57,14 +73,7 @@ TEST(WritesCli, LumpedUnderAFileSizeLimitFailsWithOneLine)
     GTEST_SKIP() << "prlimit (util-linux) is not installed";
   TempDir dir("e2e_writes_ulimit");
   dir.write("scene.yaml", small_scene);
-  std::string log;
-  const int   exit_code = run_kimp_under_ulimit("lumped scene.yaml -o out", dir.path(), 60000, log);
-  std::string line;
-  ASSERT_NO_FATAL_FAILURE(one_error_line(exit_code, log, line));
-  EXPECT_EQ(line.rfind("error: results file '", 0), 0u) << line;
-  EXPECT_NE(line.find("File too large"), std::string::npos) << line;
-  EXPECT_TRUE(files_below(dir.path() / "out").empty())
-    << "left behind: " << files_below(dir.path() / "out").front();
+  ASSERT_NO_FATAL_FAILURE(expect_results_file_too_large(dir.path(), "lumped", 60000));
 }
 
 #ifdef KIMP_WITH_FEM
@@ -81,14 +90,7 @@ TEST(WritesCli, FemUnderAFileSizeLimitFailsWithOneLine)
             "mesh: {h_contact: \"5 cm\", h_max: \"25 cm\", grading: 1.5}\n"
             "slab: {rigid: true, velocity: \"1.0 m/s\"}\n"
             "dynamics: {end_time: \"40 ms\", output_interval: \"0.02 ms\"}\n");
-  std::string log;
-  const int   exit_code = run_kimp_under_ulimit("fem scene.yaml -o out", dir.path(), 100000, log);
-  std::string line;
-  ASSERT_NO_FATAL_FAILURE(one_error_line(exit_code, log, line));
-  EXPECT_EQ(line.rfind("error: results file '", 0), 0u) << line;
-  EXPECT_NE(line.find("File too large"), std::string::npos) << line;
-  EXPECT_TRUE(files_below(dir.path() / "out").empty())
-    << "left behind: " << files_below(dir.path() / "out").front();
+  ASSERT_NO_FATAL_FAILURE(expect_results_file_too_large(dir.path(), "fem", 100000));
 }
 #endif
 

@@ -35,33 +35,28 @@ namespace
   using namespace kimp;
   using namespace kimp::testing;
 
-  /// The reinforced moat wall of docs/validation.md: damaged concrete with bars, geostatic
-  /// Mohr-Coulomb sand (its pushover stalls: the element takes the estimate).
-  constexpr const char *reinforced = R"(materials:
-  concrete:
-    model: damage_plasticity
-    f_cm: "38 MPa"
-    wall_reinforcement: {ratio_y: "0.8 %", ratio_x: "0.2 %"}
-    slab_reinforcement: {ratio_x: "0.5 %"}
-  soil: {model: mohr_coulomb, preset: medium_dense_sand}
-)";
+  /// The reinforced moat wall of docs/validation.md (data/scenes/fem_reinforced_wall.yaml):
+  /// damaged concrete with bars, geostatic Mohr-Coulomb sand.
+  std::string reinforced_scene()
+  {
+    return read_text(source_dir() / "data/scenes/fem_reinforced_wall.yaml");
+  }
 
-  /// An elastic wall against the same sand with the contact interface (its pushover runs: the
-  /// element takes its resistance from it).
-  constexpr const char *elastic_wall = R"(interface: {model: contact}
+  /// An elastic wall against the same sand with the contact interface.
+  constexpr const char *elastic_wall = R"(wall_heights: ["1.25 m"]
+interface: {model: contact}
 materials:
   concrete: {model: elastic}
   soil: {model: mohr_coulomb, preset: medium_dense_sand}
 )";
 
-  /// The scene at the coarse mesh; `slab` the slab line, then `materials`.
+  /// The scene at the coarse mesh: `materials` (wall height and materials), then `slab` the slab
+  /// line.
   std::string
   fem_scene(const std::string &slab, const std::string &end_time, const std::string &materials)
   {
-    return R"(wall_heights: ["1.25 m"]
-mesh: {h_contact: "5 cm", h_max: "25 cm", grading: 1.5}
-)" + slab + "\ndynamics: {end_time: \"" +
-           end_time + "\"}\n" + materials;
+    return materials + "\nmesh: {h_contact: \"5 cm\", h_max: \"25 cm\", grading: 1.5}\n" + slab +
+           "\ndynamics: {end_time: \"" + end_time + "\"}\n";
   }
 
   /// The four compared quantities, per metre of wall.
@@ -146,7 +141,7 @@ mesh: {h_contact: "5 cm", h_max: "25 cm", grading: 1.5}
                      double             slab_mass,
                      double             velocity,
                      bool               rigid,
-                     const std::string &materials = reinforced)
+                     const std::string &materials = reinforced_scene())
   {
     const TempDir dir("yielding_wall_fem_" + name);
     write_text(dir.path() / "scene.yaml", fem_scene(slab, end_time, materials));
@@ -200,8 +195,8 @@ TEST(YieldingWallFem, FullTableOfDocsValidation)
 {
   if (!std::getenv("KIMP_YIELDING_WALL_FULL"))
     GTEST_SKIP() << "set KIMP_YIELDING_WALL_FULL=1 for the eight cases of docs/validation.md";
-  for (const auto &[wall, materials] :
-       {std::pair{"reinforced", reinforced}, std::pair{"elastic_wall", elastic_wall}})
+  for (const auto &[wall, materials] : {std::pair{"reinforced", reinforced_scene()},
+                                        std::pair{"elastic_wall", std::string(elastic_wall)}})
     for (const double v : {0.5, 1.0})
     {
       const std::string speed = fmt::format("{} m/s", v);

@@ -22,13 +22,7 @@
 namespace
 {
   namespace fs = std::filesystem;
-  using kimp::testing::binary;
-  using kimp::testing::Clock;
-  using kimp::testing::GuiProcess;
-  using kimp::testing::process_alive;
-  using kimp::testing::RawConnection;
-  using kimp::testing::resident_bytes;
-  using kimp::testing::status_of;
+  using namespace kimp::testing;
 
   constexpr unsigned seed     = 20260526;
   constexpr int      requests = 6000;

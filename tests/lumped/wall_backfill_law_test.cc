@@ -6,9 +6,11 @@
 #include <cmath>
 #include <gtest/gtest.h>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "lumped/laws/wall_backfill_law.h"
+#include "tests/support/lumped_scenes.h"
 
 namespace kimp::lumped
 {
@@ -20,13 +22,8 @@ namespace kimp::lumped
     /// Bilinear wall: k = 100 MN/m, F_y = 1 MN (w_y = 1 cm), α = 5 %, k_ur = 200 MN/m.
     WallBackfillParams bilinear_params()
     {
-      WallBackfillParams p;
-      p.envelope            = WallEnvelope::bilinear;
-      p.stiffness           = 100e6;
-      p.capacity            = 1e6;
-      p.hardening_ratio     = 0.05;
-      p.unloading_stiffness = 200e6;
-      p.mass                = 50e3;
+      WallBackfillParams p = kimp::testing::bilinear_wall_part(100e6, 1e6, 0.05, 200e6);
+      p.mass               = 50e3;
       return p;
     }
 
@@ -318,6 +315,24 @@ namespace kimp::lumped
       }
       return u;
     }
+
+    /// Drives `law` and the OpenSees `reference` along cyclic_path(gap, 0.08) and expects the
+    /// same force at every step (within opensees_tol of `capacity`, N). Returns the peak force of
+    /// the reference, N.
+    template <class Reference>
+    double
+    follow_cyclic_path(Reference &reference, WallBackfillLaw &law, double gap, double capacity)
+    {
+      double peak = 0.0;
+      for (const double u : cyclic_path(gap, 0.08))
+      {
+        const double f_os = -reference.commit(u);
+        const double f    = step(law, -u - gap);
+        peak              = std::max(peak, f_os);
+        EXPECT_NEAR(f, f_os, opensees_tol * capacity) << "u " << u;
+      }
+      return peak;
+    }
   } // namespace
 
   TEST(WallBackfillLaw, BilinearReproducesOpenSeesElasticPPGapWithDamage)
@@ -328,22 +343,11 @@ namespace kimp::lumped
     for (const double eta : {0.0, 0.1})
     {
       OpenSeesElasticPPGapDamage reference(28.9e6, -407e3, -gap, eta);
-      WallBackfillParams         p;
-      p.envelope            = WallEnvelope::bilinear;
-      p.stiffness           = 28.9e6;
-      p.capacity            = 407e3;
-      p.hardening_ratio     = eta;
-      p.unloading_stiffness = 28.9e6;
-      p.mass                = 1e3;
+      WallBackfillParams         p = kimp::testing::bilinear_wall_part(28.9e6, 407e3, eta, 28.9e6);
+      p.mass                       = 1e3;
       WallBackfillLaw law(p);
-      double          peak = 0.0;
-      for (const double u : cyclic_path(gap, 0.08))
-      {
-        const double f_os = -reference.commit(u);
-        const double f    = step(law, -u - gap);
-        peak              = std::max(peak, f_os);
-        EXPECT_NEAR(f, f_os, opensees_tol * 407e3) << "eta " << eta << " u " << u;
-      }
+      SCOPED_TRACE("eta " + std::to_string(eta));
+      const double peak = follow_cyclic_path(reference, law, gap, 407e3);
       EXPECT_GE(peak, 407e3); // the path yields the material
       EXPECT_GT(law.plastic_work(), 0.0);
     }
@@ -363,14 +367,7 @@ namespace kimp::lumped
     p.unloading_stiffness = 20300e3;
     p.mass                = 1e3;
     WallBackfillLaw law(p);
-    double          peak = 0.0;
-    for (const double u : cyclic_path(gap, 0.08))
-    {
-      const double f_os = -reference.commit(u);
-      const double f    = step(law, -u - gap);
-      peak              = std::max(peak, f_os);
-      EXPECT_NEAR(f, f_os, opensees_tol * 326e3) << "u " << u;
-    }
+    const double    peak = follow_cyclic_path(reference, law, gap, 326e3);
     EXPECT_GT(peak, 326e3); // past Fult: the hyperbola tends to Fult/Rf
     // The envelope's closed form at 7.64 cm beyond the gap (the documented range of the fit).
     expect_rel(law.envelope(0.0764),

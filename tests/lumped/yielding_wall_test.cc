@@ -26,13 +26,9 @@ namespace kimp::lumped
     /// pull-back up to 1 MN, a light dashpot (ζ ≈ 1 % of the 1 t wall on k_ur).
     WallBackfillParams wall_part()
     {
-      WallBackfillParams p;
-      p.stiffness           = 100e6;
-      p.capacity            = 1e6;
-      p.hardening_ratio     = 0.05;
-      p.unloading_stiffness = 200e6;
-      p.tension_capacity    = 1e6;
-      p.radiation_damping   = 1e4;
+      WallBackfillParams p = kimp::testing::bilinear_wall_part(100e6, 1e6, 0.05, 200e6);
+      p.tension_capacity   = 1e6;
+      p.radiation_damping  = 1e4;
       return p;
     }
 
@@ -199,13 +195,9 @@ namespace kimp::lumped
     PoundingScene yielding_building_scene()
     {
       PoundingScene      scene = kimp::testing::walled_scene("modified_kelvin_voigt", 2.5e9, 0.10);
-      WallBackfillParams p;
-      p.stiffness           = 500e6;
-      p.capacity            = 3e6;
-      p.hardening_ratio     = 0.02;
-      p.unloading_stiffness = 1e9;
-      p.tension_capacity    = 3e6;
-      p.radiation_damping   = 10e6;
+      WallBackfillParams p     = kimp::testing::bilinear_wall_part(500e6, 3e6, 0.02, 1e9);
+      p.tension_capacity       = 3e6;
+      p.radiation_damping      = 10e6;
       for (auto *wall : {&scene.left_wall, &scene.right_wall})
       {
         (*wall)->yielding  = p;

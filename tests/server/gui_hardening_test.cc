@@ -25,15 +25,7 @@
 namespace
 {
   namespace fs = std::filesystem;
-  using kimp::testing::binary;
-  using kimp::testing::body_of;
-  using kimp::testing::Clock;
-  using kimp::testing::GuiProcess;
-  using kimp::testing::process_alive;
-  using kimp::testing::raw_exchange;
-  using kimp::testing::RawConnection;
-  using kimp::testing::resident_bytes;
-  using kimp::testing::status_of;
+  using namespace kimp::testing;
 
   /// The arguments of a server on a free port that keeps its runs in `dir`/runs, then `more`.
   std::vector<std::string> serving_runs_in(const fs::path                 &dir,
@@ -44,16 +36,7 @@ namespace
     return arguments;
   }
 
-  /// A lumped base scene and a sweep over it of 30000 cases, many minutes of work: a run that
-  /// is still going when the test looks at it.
-  const nlohmann::json long_sweep = {
-    {"command", "sweep"},
-    {"scene",
-     "building:\n  n_storeys: 3\nwalls:\n  left:\n    gap: \"8 cm\"\n  right:\n    gap: \"8 cm\"\n"
-     "ground_motion:\n  record: synthetic\n  duration: \"20 s\"\n"},
-    {"sweep",
-     "scene: scene.yaml\ncombine: product\nparameters:\n"
-     "  walls.left.gap: {from: \"1 cm\", to: \"30 cm\", step: \"0.001 cm\"}\n"}};
+  const nlohmann::json long_sweep = long_sweep_request();
 
   /// The headers of a state-changing request of the page to `gui`.
   httplib::Headers page_headers(const GuiProcess &gui)

@@ -36,6 +36,20 @@ namespace kimp::testing
   namespace fs = std::filesystem;
   using Clock  = std::chrono::steady_clock;
 
+  /// A run request of a lumped base scene and a sweep over it of 29 001 cases (the left gap from
+  /// 1 to 30 cm in steps of 0.001 cm), many minutes of work: a run that is still going when a
+  /// test looks at it, or one to cancel.
+  inline nlohmann::json long_sweep_request()
+  {
+    return {{"command", "sweep"},
+            {"scene",
+             "building:\n  n_storeys: 3\nwalls:\n  left:\n    gap: \"8 cm\"\n  right:\n    gap: "
+             "\"8 cm\"\nground_motion:\n  record: synthetic\n  duration: \"20 s\"\n"},
+            {"sweep",
+             "scene: scene.yaml\ncombine: product\nparameters:\n"
+             "  walls.left.gap: {from: \"1 cm\", to: \"30 cm\", step: \"0.001 cm\"}\n"}};
+  }
+
   /// Whether process `pid` still exists as a running (not zombie) process.
   inline bool process_alive(int pid)
   {

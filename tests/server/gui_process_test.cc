@@ -28,22 +28,9 @@
 namespace
 {
   namespace fs = std::filesystem;
-  using kimp::testing::binary;
-  using kimp::testing::blocked_signals;
-  using kimp::testing::Clock;
-  using kimp::testing::Exit;
-  using kimp::testing::GuiProcess;
-  using kimp::testing::process_alive;
+  using namespace kimp::testing;
 
-  /// A lumped base scene and a sweep over it of 3000 cases, minutes of work: a run to cancel.
-  const nlohmann::json long_sweep = {
-    {"command", "sweep"},
-    {"scene",
-     "building:\n  n_storeys: 3\nwalls:\n  left:\n    gap: \"8 cm\"\n  right:\n    gap: \"8 cm\"\n"
-     "ground_motion:\n  record: synthetic\n  duration: \"20 s\"\n"},
-    {"sweep",
-     "scene: scene.yaml\ncombine: product\nparameters:\n"
-     "  walls.left.gap: {from: \"1 cm\", to: \"30 cm\", step: \"0.001 cm\"}\n"}};
+  const nlohmann::json long_sweep = long_sweep_request();
 
   /// The arguments of a server on a free port that keeps its runs in `dir`/runs.
   std::vector<std::string> serving_runs_in(const fs::path &dir)

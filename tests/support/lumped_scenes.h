@@ -1,7 +1,7 @@
 // kimp::testing lumped scenes and records: the contact-law spec, moat wall and bumper wall the
 // lumped tests build again and again, walled_scene() (the thesis building between two equal moat
 // walls, shared with bench/lumped_bench.cc), the synthetic near-fault record of a given length and
-// a record of zeros. Only for targets linking kimp::lumped.
+// a record of zeros, a bilinear wall-and-backfill part. Only for targets linking kimp::lumped.
 #pragma once
 
 #include <cmath>
@@ -10,6 +10,7 @@
 
 #include "lumped/excitation/ground_motion.h"
 #include "lumped/laws/force_law_factory.h"
+#include "lumped/laws/wall_backfill_law.h"
 #include "lumped/structure/pounding_model.h"
 #include "lumped/structure/shear_building.h"
 
@@ -69,12 +70,46 @@ namespace kimp::testing
     return scene;
   }
 
+  /**
+   * A bilinear wall-and-backfill part: pushover stiffness `stiffness` [N/m], capacity
+   * `capacity` [N], hardening ratio `hardening_ratio` and unloading stiffness
+   * `unloading_stiffness` [N/m]; no pull-back, dashpot or mass (the tests add theirs).
+   */
+  inline lumped::WallBackfillParams bilinear_wall_part(double stiffness,
+                                                       double capacity,
+                                                       double hardening_ratio,
+                                                       double unloading_stiffness)
+  {
+    lumped::WallBackfillParams p;
+    p.envelope            = lumped::WallEnvelope::bilinear;
+    p.stiffness           = stiffness;
+    p.capacity            = capacity;
+    p.hardening_ratio     = hardening_ratio;
+    p.unloading_stiffness = unloading_stiffness;
+    return p;
+  }
+
   /// The synthetic near-fault record of default parameters, `duration` [s] long.
   inline lumped::GroundMotion near_fault_motion(double duration)
   {
     lumped::SyntheticMotionSpec spec;
     spec.duration = duration;
     return lumped::synthetic_near_fault(spec);
+  }
+
+  /// The 48 s synthetic near-fault record sampled at 0.01 s (Kobe KJMA length and sampling) of
+  /// the benchmarks, made once.
+  inline const lumped::GroundMotion &kobe_length_motion()
+  {
+    static const lumped::GroundMotion g = []
+    {
+      lumped::SyntheticMotionSpec spec;
+      spec.duration          = 48.0;
+      spec.dt                = 0.01;
+      spec.envelope_duration = 30.0;
+      return lumped::synthetic_near_fault(spec);
+    }();
+    return g;
   }
 
   /// A record of zero acceleration, step `dt` [s], `duration` [s] long (for free vibration).

@@ -3,7 +3,7 @@
 'use strict';
 
 (function () {
-  const { view, el, fmt, column, seriesGroups, chart, section, table, makeAnimation, displayUnit } = kimp;
+  const { view, el, fmt, column, seriesGroups, chart, section, table, makeAnimation, displayUnit, peakCell } = kimp;
 
   // ---- lumped runs -----------------------------------------------------------------------------
   /** [factor from SI, unit text] of an SI unit in the reader's display units (kimp.units). */
@@ -128,14 +128,7 @@
     const rows = cases.map((c) => {
       const s = c.summary;
       // 4 significant figures on the page; the SI value in full in data-si (and in summary.json).
-      const cell = (v, scale, key) =>
-        el('span', {
-          class: 'peak',
-          'data-key': key,
-          'data-si': String(v),
-          'data-scale': String(scale),
-          text: fmt(v * scale, 4),
-        });
+      const cell = peakCell;
       const top = c.nMain - 1;
       const force = (n) => {
         const k = s.contacts.find((x) => x.name === n);

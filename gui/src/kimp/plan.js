@@ -5,7 +5,7 @@
 
 (function () {
   const { view, el, fmt, column, seriesGroups, chart, section, table, displayUnit, makePlayer, escapeXml } = kimp;
-  const { setTimeCursor, download } = kimp;
+  const { setTimeCursor, download, peakCell } = kimp;
 
   /** The plan run's one case: {summary, label, history, geometry} from lumped.h5 and summary.json. */
   function planCase(data) {
@@ -67,14 +67,7 @@
     const [L, lengthUnit] = displayUnit('length');
     const [A, accelerationUnit] = displayUnit('acceleration');
     const [F, forceUnit] = displayUnit('force');
-    const cell = (v, scale, key) =>
-      el('span', {
-        class: 'peak',
-        'data-key': key,
-        'data-si': String(v),
-        'data-scale': String(scale),
-        text: fmt(v * scale, 4),
-      });
+    const cell = peakCell;
     const p = s.peaks;
     const columns = [
       [`peak corner impact force (${forceUnit})`, p.corner_impact_force, F, 'corner_impact_force'],

@@ -254,5 +254,19 @@
     draw();
   }
 
-  Object.assign(kimp, { section, table, cellNumber, cellUnit, columnNumbers, csvSection, seriesSection });
+  /**
+   * A peak of a results table: 4 significant figures of `v × scale` on the page, the SI value in
+   * full in data-si (as in summary.json), `key` naming it for the tests and the unit switch.
+   */
+  function peakCell(v, scale, key) {
+    return el('span', {
+      class: 'peak',
+      'data-key': key,
+      'data-si': String(v),
+      'data-scale': String(scale),
+      text: fmt(v * scale, 4),
+    });
+  }
+
+  Object.assign(kimp, { section, table, cellNumber, cellUnit, columnNumbers, csvSection, seriesSection, peakCell });
 })();
