@@ -10,6 +10,7 @@
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "lumped/integrators/integration_errors.h"
 #include "lumped/parameter_check.h"
@@ -81,16 +82,20 @@ namespace kimp::lumped::plan
      * summed as (Σ over even j) + (Σ over odd j), each over ascending j, so that the two chains
      * of additions overlap and every vector width gives bitwise the same y. Vectors of four
      * doubles (GCC vector extensions: two SSE2 registers each in the baseline build, one AVX2
-     * register in the AVX2 build; no FMA, so no contraction).
+     * register in the AVX2 build; no FMA, so no contraction). NC > 0: n = NC known at compile
+     * time (the loops unrolled); NC = 0: n at run time.
      */
+    template <std::size_t NC>
     inline __attribute__((always_inline)) void dense_product_body(const double *__restrict h,
                                                                   const double *__restrict x,
                                                                   double *__restrict y,
-                                                                  const std::size_t rows,
-                                                                  const std::size_t n)
+                                                                  const std::size_t rows_rt,
+                                                                  const std::size_t n_rt)
     {
-      typedef double V __attribute__((vector_size(32)));
-      typedef double U __attribute__((vector_size(32), aligned(8), may_alias));
+      typedef double    V __attribute__((vector_size(32)));
+      typedef double    U __attribute__((vector_size(32), aligned(8), may_alias));
+      const std::size_t n    = NC > 0 ? NC : n_rt;
+      const std::size_t rows = NC > 0 ? (2 * NC + 15) / 16 * 16 : rows_rt;
       for (std::size_t r = 0; r < rows; r += 16)
       {
         V           e0 = {}, e1 = {}, e2 = {}, e3 = {}, o0 = {}, o1 = {}, o2 = {}, o3 = {};
@@ -132,31 +137,63 @@ namespace kimp::lumped::plan
       const double *hg = nullptr, *af = nullptr, *amx = nullptr, *amy = nullptr, *un = nullptr,
                    *rx = nullptr, *ry = nullptr, *mx = nullptr, *my = nullptr;
       double *y = nullptr, *du = nullptr, *z = nullptr, *inc = nullptr, *dun = nullptr,
-             *unp = nullptr, *v = nullptr, *a = nullptr, *pu = nullptr, *pa = nullptr;
+             *unp = nullptr, *v = nullptr, *a = nullptr, *pu = nullptr, *pa = nullptr,
+             *acc2 = nullptr; ///< per level max (ü_x + ü_g,x)² + (ü_y + ü_g,y)²
       double f[3] = {0.0, 0.0, 0.0}, ag_x = 0.0, ag_y = 0.0, half_inv_dt = 0.0, inv_dt2 = 0.0;
       double p_in = 0.0; ///< out: −(r_xᵀM·v·ü_g,x + r_yᵀM·v·ü_g,y), W
     };
 
     /**
      * The increment of one step from y (Run::advance), v_n, a_n (r_x, r_y pick the DOFs that
-     * ü_g,x and ü_g,y add to: 1·ü_g + 0·ü_g is ü_g exactly), the peaks of |u_n| and |a_n| and
-     * the input power; element-wise but for the power's two sums.
+     * ü_g,x and ü_g,y add to: 1·ü_g + 0·ü_g is ü_g exactly), the peaks of |u_n| and |a_n|, of
+     * the levels' horizontal acceleration and the input power. The element-wise pass has no
+     * reduction (so it vectorises); the power's two sums then run over the DOFs along x and y
+     * in ascending order (the others add exact zeros). NC as dense_product_body.
      */
+    template <std::size_t NC>
     inline __attribute__((always_inline)) void update_body(StepArrays &k)
     {
-      const std::size_t n        = k.n;
+      const std::size_t n        = NC > 0 ? NC : k.n;
       const double *__restrict y = k.y, *__restrict du = k.du, *__restrict af = k.af,
                                *__restrict amx = k.amx, *__restrict amy = k.amy,
                                *__restrict un = k.un, *__restrict rx = k.rx, *__restrict ry = k.ry,
                                *__restrict mx = k.mx, *__restrict my = k.my;
       double *__restrict z = k.z, *__restrict inc = k.inc, *__restrict dun = k.dun,
                          *__restrict unp = k.unp, *__restrict v = k.v, *__restrict a = k.a,
-                         *__restrict pu = k.pu, *__restrict pa = k.pa;
+                         *__restrict pu = k.pu, *__restrict pa = k.pa, *__restrict acc2 = k.acc2;
       // Scalars in locals: read through `k` they could alias the stores.
       const double ag_x = k.ag_x, ag_y = k.ag_y, f0 = k.f[0], f1 = k.f[1], f2 = k.f[2];
       const double h = k.half_inv_dt, i2 = k.inv_dt2;
-      double       p_x = 0.0, p_y = 0.0;
-      for (std::size_t i = 0; i < n; ++i)
+      // Four DOFs at a time (vectors of four doubles, unaligned; element-wise, so bitwise the
+      // scalar results), then the rest one by one.
+      typedef double V __attribute__((vector_size(32)));
+      typedef double U __attribute__((vector_size(32), aligned(8), may_alias));
+      std::size_t    i = 0;
+      for (; i + 4 <= n; i += 4)
+      {
+        const V yi = *reinterpret_cast<const U *>(y + i), zi = *reinterpret_cast<const U *>(z + i);
+        const V d = -(yi + zi + *reinterpret_cast<const U *>(amx + i) * ag_x +
+                      *reinterpret_cast<const U *>(amy + i) * ag_y) -
+                    (*reinterpret_cast<const U *>(af + i) * f0 +
+                     *reinterpret_cast<const U *>(af + n + i) * f1 +
+                     *reinterpret_cast<const U *>(af + 2 * n + i) * f2);
+        const V dui = *reinterpret_cast<const U *>(du + i), next = dui + d;
+        *reinterpret_cast<U *>(inc + i) = d;
+        *reinterpret_cast<U *>(dun + i) = next;
+        *reinterpret_cast<U *>(z + i)   = zi + *reinterpret_cast<const U *>(y + n + i);
+        const V uni                     = *reinterpret_cast<const U *>(un + i);
+        *reinterpret_cast<U *>(unp + i) = uni + next;
+        const V ai                      = d * i2 + (*reinterpret_cast<const U *>(rx + i) * ag_x +
+                               *reinterpret_cast<const U *>(ry + i) * ag_y);
+        *reinterpret_cast<U *>(v + i)   = (dui + next) * h;
+        *reinterpret_cast<U *>(a + i)   = ai;
+        const V aun = uni < 0.0 ? -uni : uni, aai = ai < 0.0 ? -ai : ai;
+        const V pui                    = *reinterpret_cast<const U *>(pu + i),
+                pai                    = *reinterpret_cast<const U *>(pa + i);
+        *reinterpret_cast<U *>(pu + i) = pui < aun ? aun : pui;
+        *reinterpret_cast<U *>(pa + i) = pai < aai ? aai : pai;
+      }
+      for (; (NC == 0 || NC % 4 != 0) && i < n; ++i)
       {
         const double d = -(y[i] + z[i] + amx[i] * ag_x + amy[i] * ag_y) -
                          (af[i] * f0 + af[n + i] * f1 + af[2 * n + i] * f2);
@@ -165,30 +202,46 @@ namespace kimp::lumped::plan
         dun[i]            = next;
         z[i] += y[n + i];
         unp[i]          = un[i] + next;
-        const double vi = (du[i] + next) * h;
         const double ai = d * i2 + (rx[i] * ag_x + ry[i] * ag_y);
-        v[i]            = vi;
+        v[i]            = (du[i] + next) * h;
         a[i]            = ai;
         pu[i]           = std::max(pu[i], std::abs(un[i]));
         pa[i]           = std::max(pa[i], std::abs(ai));
-        p_x += mx[i] * vi;
-        p_y += my[i] * vi;
+      }
+      double p_x = 0.0, p_y = 0.0;
+      for (std::size_t l = 0; 3 * l + 2 < n; ++l)
+      {
+        p_x += mx[3 * l] * v[3 * l];
+        p_y += my[3 * l + 1] * v[3 * l + 1];
+        const double ax = a[3 * l], ay = a[3 * l + 1];
+        acc2[l] = std::max(acc2[l], ax * ax + ay * ay);
       }
       k.p_in = -(p_x * ag_x + p_y * ag_y);
     }
 
     using StepKernel = void (*)(StepArrays &);
 
+    template <std::size_t NC>
     void step_base(StepArrays &k)
     {
-      dense_product_body(k.hg, k.du, k.y, k.rows, k.n);
-      update_body(k);
+      dense_product_body<NC>(k.hg, k.du, k.y, k.rows, k.n);
+      update_body<NC>(k);
     }
 
+    template <std::size_t NC>
     __attribute__((target("avx2"))) void step_avx2(StepArrays &k)
     {
-      dense_product_body(k.hg, k.du, k.y, k.rows, k.n);
-      update_body(k);
+      dense_product_body<NC>(k.hg, k.du, k.y, k.rows, k.n);
+      update_body<NC>(k);
+    }
+
+    /// The kernel for n DOFs: unrolled for buildings of up to 8 levels, else the run-time loop.
+    template <std::size_t... L>
+    StepKernel pick_kernel(const std::size_t n, const bool avx2, std::index_sequence<L...>)
+    {
+      StepKernel k = avx2 ? step_avx2<0> : step_base<0>;
+      ((n == 3 * (L + 1) ? (k = avx2 ? step_avx2<3 * (L + 1)> : step_base<3 * (L + 1)>) : k), ...);
+      return k;
     }
 
     /// The state of one run (allocated once; the loop does not allocate).
@@ -410,9 +463,9 @@ namespace kimp::lumped::plan
         Eigen::MatrixXd(m.asDiagonal()) * (inv_dt_ * inv_dt_) + c * (0.5 * inv_dt_);
       const Eigen::MatrixXd inv = a.partialPivLu().inverse();
       // [A⁻¹(C/Δt + K); A⁻¹K], its rows padded with zeros to a multiple of 16.
-      hg_rows_               = (2 * n_ + 15) / 16 * 16;
-      step_                  = __builtin_cpu_supports("avx2") ? step_avx2 : step_base;
-      hg_                    = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(hg_rows_), nn);
+      hg_rows_ = (2 * n_ + 15) / 16 * 16;
+      step_    = pick_kernel(n_, __builtin_cpu_supports("avx2"), std::make_index_sequence<8>{});
+      hg_      = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(hg_rows_), nn);
       hg_.topRows(nn)        = inv * (c * inv_dt_ + k);
       hg_.middleRows(nn, nn) = inv * k;
       a_inv_f_               = inv.leftCols(3);
@@ -680,14 +733,9 @@ namespace kimp::lumped::plan
       k.my          = ry_m_.data();
       k.pu          = peak_u_.data();
       k.pa          = peak_a_.data();
+      k.acc2        = accel_sq_.data();
       step_(k);
       p_in_ = k.p_in;
-      for (std::size_t l = 0; l < accel_sq_.size(); ++l)
-      {
-        const double ax = a_(static_cast<Eigen::Index>(3 * l)),
-                     ay = a_(static_cast<Eigen::Index>(3 * l + 1));
-        accel_sq_[l]    = std::max(accel_sq_[l], ax * ax + ay * ay);
-      }
     }
 
     void Run::bookkeeping(const long n)
