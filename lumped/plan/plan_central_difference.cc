@@ -83,9 +83,10 @@ namespace kimp::lumped::plan
      * of additions overlap and every vector width gives bitwise the same y. Vectors of four
      * doubles (GCC vector extensions: two SSE2 registers each in the baseline build, one AVX2
      * register in the AVX2 build; no FMA, so no contraction). NC > 0: n = NC known at compile
-     * time (the loops unrolled); NC = 0: n at run time.
+     * time (the loops unrolled) and rows = R·NC rounded up to 16; NC = 0: n and rows at run
+     * time.
      */
-    template <std::size_t NC>
+    template <std::size_t NC, std::size_t R = 2>
     inline __attribute__((always_inline)) void dense_product_body(const double *__restrict h,
                                                                   const double *__restrict x,
                                                                   double *__restrict y,
@@ -95,7 +96,7 @@ namespace kimp::lumped::plan
       typedef double    V __attribute__((vector_size(32)));
       typedef double    U __attribute__((vector_size(32), aligned(8), may_alias));
       const std::size_t n    = NC > 0 ? NC : n_rt;
-      const std::size_t rows = NC > 0 ? (2 * NC + 15) / 16 * 16 : rows_rt;
+      const std::size_t rows = NC > 0 ? (R * NC + 15) / 16 * 16 : rows_rt;
       for (std::size_t r = 0; r < rows; r += 16)
       {
         V           e0 = {}, e1 = {}, e2 = {}, e3 = {}, o0 = {}, o1 = {}, o2 = {}, o3 = {};
@@ -133,14 +134,17 @@ namespace kimp::lumped::plan
     /// What one increment reads and writes (see Run::advance), as plain pointers.
     struct StepArrays
     {
-      std::size_t   n = 0, rows = 0;
+      std::size_t   n = 0, rows = 0, c_rows = 0;
+      const double *cm = nullptr; ///< C, c_rows × n column-major (rows padded with zeros to 16)
+      double       *cv = nullptr; ///< C·v_n, c_rows
       const double *hg = nullptr, *af = nullptr, *amx = nullptr, *amy = nullptr, *un = nullptr,
                    *rx = nullptr, *ry = nullptr, *mx = nullptr, *my = nullptr;
       double *y = nullptr, *du = nullptr, *z = nullptr, *inc = nullptr, *dun = nullptr,
              *unp = nullptr, *v = nullptr, *a = nullptr, *pu = nullptr, *pa = nullptr,
              *acc2 = nullptr; ///< per level max (ü_x + ü_g,x)² + (ü_y + ü_g,y)²
       double f[3] = {0.0, 0.0, 0.0}, ag_x = 0.0, ag_y = 0.0, half_inv_dt = 0.0, inv_dt2 = 0.0;
-      double p_in = 0.0; ///< out: −(r_xᵀM·v·ü_g,x + r_yᵀM·v·ü_g,y), W
+      double p_in   = 0.0; ///< out: −(r_xᵀM·v·ü_g,x + r_yᵀM·v·ü_g,y), W
+      double p_visc = 0.0; ///< out: v_nᵀC·v_n, W
     };
 
     /**
@@ -221,11 +225,24 @@ namespace kimp::lumped::plan
 
     using StepKernel = void (*)(StepArrays &);
 
+    /// The viscous power v_nᵀ(C·v_n), the sum in four lanes (i mod 4) then added up.
+    template <std::size_t NC>
+    inline __attribute__((always_inline)) void viscous_body(StepArrays &k)
+    {
+      const std::size_t n = NC > 0 ? NC : k.n;
+      dense_product_body<NC, 1>(k.cm, k.v, k.cv, k.c_rows, n);
+      double lane[4] = {0.0, 0.0, 0.0, 0.0};
+      for (std::size_t i = 0; i < n; ++i)
+        lane[i % 4] += k.v[i] * k.cv[i];
+      k.p_visc = (lane[0] + lane[1]) + (lane[2] + lane[3]);
+    }
+
     template <std::size_t NC>
     void step_base(StepArrays &k)
     {
       dense_product_body<NC>(k.hg, k.du, k.y, k.rows, k.n);
       update_body<NC>(k);
+      viscous_body<NC>(k);
     }
 
     template <std::size_t NC>
@@ -233,6 +250,7 @@ namespace kimp::lumped::plan
     {
       dense_product_body<NC>(k.hg, k.du, k.y, k.rows, k.n);
       update_body<NC>(k);
+      viscous_body<NC>(k);
     }
 
     /// The kernel for n DOFs: unrolled for buildings of up to 8 levels, else the run-time loop.
@@ -278,7 +296,10 @@ namespace kimp::lumped::plan
       long   sub_              = 1;
       double inv_sub_          = 1.0;
 
-      Eigen::MatrixXd hg_; ///< [A⁻¹(C/Δt + K); A⁻¹K; 0], hg_rows_ × n
+      Eigen::MatrixXd hg_;    ///< [A⁻¹(C/Δt + K); A⁻¹K; 0], hg_rows_ × n
+      Eigen::MatrixXd c_pad_; ///< [C; 0], c_rows_ × n
+      Eigen::VectorXd cv_;    ///< C·v_n (c_rows_)
+      std::size_t     c_rows_  = 0;
       std::size_t     hg_rows_ = 0;
       StepKernel      step_    = nullptr;
       Eigen::MatrixXd a_inv_f_; ///< A⁻¹ restricted to level 0's columns, n × 3
@@ -292,7 +313,9 @@ namespace kimp::lumped::plan
 
       std::vector<std::unique_ptr<PlanIsolator>> iso_;
       std::vector<Point>                         iso_force_;
-      std::vector<std::unique_ptr<ForceLaw>>     laws_;
+      /// iso_ as bilinear isolators when every one is (else empty).
+      std::vector<PlanBilinearIsolator *>    bilinear_;
+      std::vector<std::unique_ptr<ForceLaw>> laws_;
       std::vector<double> dp_, dpp_, cf_, phi_; ///< δ_{n−1}, δ_{n−2}, w·F, φ
       std::vector<int>    active_, called_;
       std::vector<double> wall_force_;
@@ -339,11 +362,10 @@ namespace kimp::lumped::plan
       };
       std::vector<DriftBound> drift_bound_;
       Eigen::VectorXd         peak_u_, peak_a_;
-      /// C by 3×3 blocks: level l and levels l, l + 1.
-      std::vector<Eigen::Matrix3d> c_diag_, c_upper_;
 
       // energies
       double w_in_ = 0.0, w_visc_ = 0.0, w_contact_ = 0.0, w_friction_ = 0.0;
+      double p_visc_ = 0.0; ///< v_nᵀC·v_n from the step kernel
       double p_in_ = 0.0, p_in_prev_ = 0.0, p_visc_prev_ = 0.0, e0_ = 0.0, e_kin_ = 0.0,
              e_strain_     = 0.0;
       double max_supplied_ = 0.0, max_residual_ = 0.0, last_error_ = 0.0;
@@ -366,8 +388,7 @@ namespace kimp::lumped::plan
       n_steps_ = std::lround(duration / dt_);
 
       set_up_matrices();
-      const auto             nn = static_cast<Eigen::Index>(n_);
-      const Eigen::MatrixXd &c  = model_.damping();
+      const auto nn = static_cast<Eigen::Index>(n_);
 
       for (const PlanIsolatorSpec &spec : model_.building().isolators)
       {
@@ -375,6 +396,11 @@ namespace kimp::lumped::plan
         iso_.back()->revert_to_start();
       }
       iso_force_.assign(iso_.size(), Point::Zero());
+      for (const auto &iso : iso_)
+        if (auto *b = dynamic_cast<PlanBilinearIsolator *>(iso.get()))
+          bilinear_.push_back(b);
+      if (bilinear_.size() != iso_.size())
+        bilinear_.clear();
       const std::size_t nc = model_.contacts().size();
       for (const PlanContact &pc : model_.contacts())
       {
@@ -433,16 +459,6 @@ namespace kimp::lumped::plan
       corner_sq_.assign(b.n_levels(), 0.0);
       accel_sq_.assign(b.n_levels(), 0.0);
       drift_sq_.assign(b.storeys.size(), 0.0);
-      for (std::size_t l = 0; l < b.n_levels(); ++l)
-      {
-        const auto r = static_cast<Eigen::Index>(3 * l);
-        c_diag_.push_back(c.block<3, 3>(r, r));
-        if (l + 1 < b.n_levels())
-          c_upper_.push_back(c.block<3, 3>(r, r + 3));
-        // Blocks beyond the neighbouring level must vanish (Rayleigh of a block-tridiagonal K).
-        if (r + 6 < nn && !c.block(r, r + 6, 3, nn - r - 6).isZero(0.0))
-          throw std::logic_error("central difference in plan: C is not block-tridiagonal");
-      }
       for (const PlanContact &pc : model_.contacts())
       {
         PlanContactResult r;
@@ -469,6 +485,10 @@ namespace kimp::lumped::plan
       hg_.topRows(nn)        = inv * (c * inv_dt_ + k);
       hg_.middleRows(nn, nn) = inv * k;
       a_inv_f_               = inv.leftCols(3);
+      c_rows_                = (n_ + 15) / 16 * 16;
+      c_pad_                 = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(c_rows_), nn);
+      c_pad_.topRows(nn)     = c;
+      cv_                    = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(c_rows_));
       r_x_                   = Eigen::VectorXd::Zero(nn);
       r_y_                   = Eigen::VectorXd::Zero(nn);
       rx_m_                  = Eigen::VectorXd::Zero(nn);
@@ -621,17 +641,31 @@ namespace kimp::lumped::plan
       f0_.setZero();
       const auto &kin       = model_.isolator_kinematics();
       Point       resultant = Point::Zero();
-      for (std::size_t j = 0; j < iso_.size(); ++j)
+      if (!bilinear_.empty())
       {
-        const Point uj = kin[j] * q0, uj1 = kin[j] * q1, uj2 = kin[j] * q2;
-        const Point vj(rate_of(scheme_, uj.x(), uj1.x(), uj2.x(), inv_dt_),
-                       rate_of(scheme_, uj.y(), uj1.y(), uj2.y(), inv_dt_));
-        const Point fj = iso_[j]->set_trial(uj, vj);
-        iso_[j]->commit();
-        iso_force_[j] = fj;
-        resultant += fj;
-        f0_ += kin[j].transpose() * fj;
+        // Bilinear isolators (the law needs no velocity): called directly, inlined.
+        for (std::size_t j = 0; j < bilinear_.size(); ++j)
+        {
+          const Point uj = kin[j] * q0;
+          const Point fj = bilinear_[j]->set_trial(uj, uj);
+          bilinear_[j]->commit();
+          iso_force_[j] = fj;
+          resultant += fj;
+          f0_ += kin[j].transpose() * fj;
+        }
       }
+      else
+        for (std::size_t j = 0; j < iso_.size(); ++j)
+        {
+          const Point uj = kin[j] * q0, uj1 = kin[j] * q1, uj2 = kin[j] * q2;
+          const Point vj(rate_of(scheme_, uj.x(), uj1.x(), uj2.x(), inv_dt_),
+                         rate_of(scheme_, uj.y(), uj1.y(), uj2.y(), inv_dt_));
+          const Point fj = iso_[j]->set_trial(uj, vj);
+          iso_[j]->commit();
+          iso_force_[j] = fj;
+          resultant += fj;
+          f0_ += kin[j].transpose() * fj;
+        }
       iso_peak_sq_ = std::max(iso_peak_sq_, resultant.squaredNorm());
       if (contacts_far(n, q0.data()))
       {
@@ -734,8 +768,12 @@ namespace kimp::lumped::plan
       k.pu          = peak_u_.data();
       k.pa          = peak_a_.data();
       k.acc2        = accel_sq_.data();
+      k.c_rows      = c_rows_;
+      k.cm          = c_pad_.data();
+      k.cv          = cv_.data();
       step_(k);
-      p_in_ = k.p_in;
+      p_in_   = k.p_in;
+      p_visc_ = k.p_visc;
     }
 
     void Run::bookkeeping(const long n)
@@ -798,18 +836,9 @@ namespace kimp::lumped::plan
         }
         drift_sq_[s] = m;
       }
-      // Input and viscous power at t_n, trapezoid sums from t_0; vᵀCv with C block-tridiagonal
-      // by levels (storeys join consecutive levels).
-      const double  p_in   = p_in_;
-      double        p_visc = 0.0;
-      const double *vp     = v_.data();
-      for (std::size_t l = 0; l < c_diag_.size(); ++l)
-      {
-        const Eigen::Map<const Eigen::Vector3d> vl(vp + 3 * l);
-        p_visc += vl.dot(c_diag_[l] * vl);
-        if (l + 1 < c_diag_.size())
-          p_visc += 2.0 * vl.dot(c_upper_[l] * Eigen::Map<const Eigen::Vector3d>(vp + 3 * l + 3));
-      }
+      // Input and viscous power at t_n (from the step kernel), trapezoid sums from t_0.
+      const double p_in   = p_in_;
+      const double p_visc = p_visc_;
       if (n > 0)
       {
         w_in_ += 0.5 * dt_ * (p_in_prev_ + p_in);
