@@ -278,6 +278,7 @@ namespace kimp::lumped::plan
       bool   contacts_far(long n, const double *q0);
       void   set_up_matrices();
       void   set_up_points();
+      void   set_up_kernel();
       void   ground(long n, double &ag_x, double &ag_y);
       void   advance(double ag_x, double ag_y);
       void   bookkeeping(long n);
@@ -295,6 +296,7 @@ namespace kimp::lumped::plan
       bool   integer_substeps_ = false;
       long   sub_              = 1;
       double inv_sub_          = 1.0;
+      long   sub_n_ = -1, sub_j_ = 0, sub_r_ = 0; ///< the next n expected, its n / sub_, n % sub_
 
       Eigen::MatrixXd hg_;    ///< [A⁻¹(C/Δt + K); A⁻¹K; 0], hg_rows_ × n
       Eigen::MatrixXd c_pad_; ///< [C; 0], c_rows_ × n
@@ -302,6 +304,7 @@ namespace kimp::lumped::plan
       std::size_t     c_rows_  = 0;
       std::size_t     hg_rows_ = 0;
       StepKernel      step_    = nullptr;
+      StepArrays      k_;
       Eigen::MatrixXd a_inv_f_; ///< A⁻¹ restricted to level 0's columns, n × 3
       Eigen::VectorXd am_x_, am_y_;
       Eigen::VectorXd r_x_, r_y_;   ///< the DOFs along x and along y (1, else 0)
@@ -504,6 +507,34 @@ namespace kimp::lumped::plan
       am_y_ = inv * ry_m_;
     }
 
+    void Run::set_up_kernel()
+    {
+      StepArrays &k = k_;
+      k.n           = n_;
+      k.rows        = hg_rows_;
+      k.hg          = hg_.data();
+      k.af          = a_inv_f_.data();
+      k.amx         = am_x_.data();
+      k.amy         = am_y_.data();
+      k.y           = y_.data();
+      k.z           = z_.data();
+      k.inc         = inc_.data();
+      k.v           = v_.data();
+      k.a           = a_.data();
+      k.half_inv_dt = 0.5 * inv_dt_;
+      k.inv_dt2     = inv_dt_ * inv_dt_;
+      k.rx          = r_x_.data();
+      k.ry          = r_y_.data();
+      k.mx          = rx_m_.data();
+      k.my          = ry_m_.data();
+      k.pu          = peak_u_.data();
+      k.pa          = peak_a_.data();
+      k.acc2        = accel_sq_.data();
+      k.c_rows      = c_rows_;
+      k.cm          = c_pad_.data();
+      k.cv          = cv_.data();
+    }
+
     void Run::set_up_points()
     {
       // The corners and the storeys' reference points.
@@ -553,8 +584,20 @@ namespace kimp::lumped::plan
       const std::size_t n_rec = g_.x.size();
       if (integer_substeps_)
       {
-        j    = static_cast<std::size_t>(n / sub_);
-        frac = static_cast<double>(n % sub_) * inv_sub_;
+        // n = j·sub + r, kept by counting (n / sub_ and n % sub_ without a division per step).
+        if (n != sub_n_)
+        {
+          sub_j_ = n / sub_;
+          sub_r_ = n % sub_;
+        }
+        j      = static_cast<std::size_t>(sub_j_);
+        frac   = static_cast<double>(sub_r_) * inv_sub_;
+        sub_n_ = n + 1;
+        if (++sub_r_ == sub_)
+        {
+          sub_r_ = 0;
+          ++sub_j_;
+        }
       }
       else
       {
@@ -738,39 +781,16 @@ namespace kimp::lumped::plan
       // a_n = (Δu_{n+1} − Δu_n)/Δt² (+ ü_g in x and y), the peaks of u_n and a_n and the input
       // power. Raw loops over the DOFs: the products and updates of a 15-DOF step cost less
       // than the set-up of Eigen's dynamic-size kernels.
-      StepArrays k;
-      k.n           = n_;
-      k.rows        = hg_rows_;
-      k.hg          = hg_.data();
-      k.af          = a_inv_f_.data();
-      k.amx         = am_x_.data();
-      k.amy         = am_y_.data();
+      StepArrays &k = k_; // the fixed pointers set once (set_up_kernel)
       k.un          = u_n_.data();
-      k.y           = y_.data();
       k.du          = du_n_.data();
-      k.z           = z_.data();
-      k.inc         = inc_.data();
       k.dun         = du_np1_.data();
       k.unp         = u_np1_.data();
-      k.v           = v_.data();
-      k.a           = a_.data();
       k.f[0]        = f0_(0);
       k.f[1]        = f0_(1);
       k.f[2]        = f0_(2);
       k.ag_x        = ag_x;
       k.ag_y        = ag_y;
-      k.half_inv_dt = 0.5 * inv_dt_;
-      k.inv_dt2     = inv_dt_ * inv_dt_;
-      k.rx          = r_x_.data();
-      k.ry          = r_y_.data();
-      k.mx          = rx_m_.data();
-      k.my          = ry_m_.data();
-      k.pu          = peak_u_.data();
-      k.pa          = peak_a_.data();
-      k.acc2        = accel_sq_.data();
-      k.c_rows      = c_rows_;
-      k.cm          = c_pad_.data();
-      k.cv          = cv_.data();
       step_(k);
       p_in_   = k.p_in;
       p_visc_ = k.p_visc;
@@ -954,7 +974,13 @@ namespace kimp::lumped::plan
       du_n_  = dt_ * v0 - 0.5 * dt_ * dt_ * a0;
       // z_{−1} = A⁻¹K·u_{−1}.
       z_ = hg_.middleRows(nn, nn) * (u_n_ - du_n_);
+      set_up_kernel();
 
+      // The check points (n a multiple of every_ or of check_every_, and the last step) by
+      // counting down, not by a division per step; every_ divides check_every_ when both are set.
+      const long period = every_ > 0 && check_every_ % every_ == 0 ? every_ : check_every_;
+      const bool exact  = every_ == 0 || check_every_ % every_ == 0;
+      long       to_go  = 0;
       for (long n = 0; n <= n_steps_; ++n)
       {
         double ag_x, ag_y;
@@ -962,7 +988,10 @@ namespace kimp::lumped::plan
         forces(n, u_n_, u_nm1_, u_nm2_);
         advance(ag_x, ag_y);
         bookkeeping(n);
-        if ((every_ > 0 && n % every_ == 0) || n % check_every_ == 0 || n == n_steps_)
+        const bool due =
+          exact ? to_go == 0 : (every_ > 0 && n % every_ == 0) || n % check_every_ == 0;
+        to_go = to_go == 0 ? period - 1 : to_go - 1;
+        if (due || n == n_steps_)
           checkpoint(n);
         u_nm2_.swap(u_nm1_);
         u_nm1_.swap(u_n_);

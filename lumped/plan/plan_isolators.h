@@ -5,6 +5,7 @@
 // one axis.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <string>
 
@@ -115,9 +116,16 @@ namespace kimp::lumped::plan
   {
     const double k_ep    = K1_ - K2_;
     const Point  f_trial = committed_.f_ep + k_ep * (displacement - committed_.u);
-    const double norm    = f_trial.norm();
     trial_.u             = displacement;
     trial_.dissipated    = committed_.dissipated;
+    // |f_trial| <= 0.9·Q for sure (no root needed) while |f_trial|² <= 0.81·Q².
+    const double sq = f_trial.squaredNorm();
+    if (sq <= 0.81 * Q_ * Q_)
+    {
+      trial_.f_ep = f_trial;
+      return K2_ * displacement + trial_.f_ep;
+    }
+    const double norm = std::sqrt(sq);
     if (norm > Q_)
     {
       // Radial return: plastic slip |Δu_p| = (|f_trial| − Q)/k_ep along f_trial.
