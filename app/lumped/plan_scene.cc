@@ -49,7 +49,8 @@ namespace kimp::app
       const plan::Polygon  outline  = plan_outline(p);
       const plan::Point    centre   = plan::centroid(outline);
 
-      plan::PlanBuilding  building;
+      plan::PlanBuilding building;
+      building.damping = p.damping;
       std::vector<double> masses;
       if (isolated)
         masses.push_back(b.isolation_mass);

@@ -126,21 +126,22 @@ namespace kimp::app
    */
   struct PlanSection
   {
-    double                        width = 20.0;
-    double                        depth = 20.0;
-    std::vector<PlanPointScene>   outline;
-    double                        eccentricity_x = 0.0;
-    double                        eccentricity_y = 0.0;
-    std::optional<double>         k_x;
-    std::optional<double>         k_y;
-    std::optional<double>         k_theta;
-    std::vector<PlanElementScene> elements;
-    std::vector<PlanPointScene>   isolators;
-    PlanMoatScene                 moat;
-    double                        angle            = 0.0; ///< degrees
-    SecondComponent               second_component = SecondComponent::none;
-    std::string                   second_record    = "";
-    double                        second_scale     = 1.0;
+    double                         width = 20.0;
+    double                         depth = 20.0;
+    std::vector<PlanPointScene>    outline;
+    double                         eccentricity_x = 0.0;
+    double                         eccentricity_y = 0.0;
+    std::optional<double>          k_x;
+    std::optional<double>          k_y;
+    std::optional<double>          k_theta;
+    std::vector<PlanElementScene>  elements;
+    std::vector<PlanPointScene>    isolators;
+    lumped::plan::PlanDampingModel damping = lumped::plan::PlanDampingModel::rayleigh;
+    PlanMoatScene                  moat;
+    double                         angle            = 0.0; ///< degrees
+    SecondComponent                second_component = SecondComponent::none;
+    std::string                    second_record    = "";
+    double                         second_scale     = 1.0;
   };
 
   template <class Io>
@@ -193,6 +194,13 @@ namespace kimp::app
             s.isolators,
             "isolator positions (empty: one at each outline corner); the isolator section's law "
             "is shared equally among them");
+    io.choice("damping",
+              s.damping,
+              {{"rayleigh", lumped::plan::PlanDampingModel::rayleigh},
+               {"modal", lumped::plan::PlanDampingModel::modal}},
+              "superstructure damping: rayleigh (per direction, first and last mode of each "
+              "direction) or modal (the building's damping ratio in every mode of the coupled "
+              "building)");
     io.section("moat", s.moat, "moat wall around the isolation level");
     io.quantity("angle",
                 s.angle,
