@@ -52,6 +52,20 @@ namespace kimp::lumped::plan
       }
       s.omega_closed =
         model.contacts().empty() ? s.omega_structure : largest_omega(model.masses(), k);
+      // A yielding face's DOF between its wall-and-backfill part and its closed contact points.
+      for (const PlanWallDof &wd : model.wall_dofs())
+      {
+        double kt = wd.law->stability_stiffness(penetration);
+        for (const PlanContact &c : model.contacts())
+          if (c.segment == wd.segment)
+            kt += c.weight * c.law->stability_stiffness(penetration);
+        const double w = std::sqrt(kt / wd.mass);
+        if (w > s.omega_impact)
+        {
+          s.omega_impact = w;
+          impact_name    = "yielding wall " + std::to_string(wd.segment);
+        }
+      }
       const double w_max = std::max({s.omega_structure, s.omega_closed, s.omega_impact});
       s.dt_critical      = w_max > 0.0 ? 2.0 / w_max : std::numeric_limits<double>::infinity();
       std::ostringstream g;
@@ -333,6 +347,25 @@ namespace kimp::lumped::plan
       /// Per contact: the face has an end (the sliding coordinate is needed).
       std::vector<char> ends_;
 
+      /// The DOF of a yielding face (PlanWallDof) and its state: w_{n−2}, w_{n−1}, w_n, w_{n+1},
+      /// Δw_n, Δw_{n+1}, ẇ_n, the wall-and-backfill force F(w_n, ẇ_n) and Σ w_c·F_c at step n.
+      struct WallState
+      {
+        std::size_t               segment = 0;
+        double                    nx = 0.0, ny = 0.0, mass = 0.0, a_inv = 0.0, am = 0.0;
+        std::unique_ptr<ForceLaw> owner;
+        WallBackfillLaw          *law = nullptr;
+        double w2 = 0.0, w1 = 0.0, w = 0.0, w_next = 0.0, dw = 0.0, dw_next = 0.0, v = 0.0;
+        double fb = 0.0, contact = 0.0;
+        std::optional<double> failure_time;
+      };
+      std::vector<WallState> walls_;
+      std::vector<int>       wall_of_segment_; ///< per face: index in walls_, or −1 (rigid)
+      double                 w_wall_ = 0.0;    ///< Σ ∫F dw
+      void                   wall_forces(long n);
+      void                   advance_walls(double ag_x, double ag_y);
+      double                 wall_at(std::size_t c, int lag) const;
+
       // corners of each level at rest and their kinematics
       std::vector<std::vector<Eigen::Matrix<double, 2, 3>>> corner_t_;
       std::vector<double>                                   corner_sq_, drift_sq_, accel_sq_;
@@ -409,6 +442,22 @@ namespace kimp::lumped::plan
       {
         laws_.push_back(pc.law->clone());
         laws_.back()->revert_to_start();
+      }
+      wall_of_segment_.assign(model_.moat() ? model_.moat()->wall.size() : 0, -1);
+      for (const PlanWallDof &wd : model_.wall_dofs())
+      {
+        WallState st;
+        st.segment = wd.segment;
+        st.nx      = wd.normal.x();
+        st.ny      = wd.normal.y();
+        st.mass    = wd.mass;
+        st.a_inv   = 1.0 / (wd.mass * (inv_dt_ * inv_dt_)); // A = m/Δt² (no C, no K)
+        st.am      = st.a_inv * wd.mass;
+        st.owner   = wd.law->clone();
+        st.owner->revert_to_start();
+        st.law                       = static_cast<WallBackfillLaw *>(st.owner.get());
+        wall_of_segment_[wd.segment] = static_cast<int>(walls_.size());
+        walls_.push_back(std::move(st));
       }
       contact_g2_ = std::numeric_limits<double>::infinity();
       for (const PlanContact &pc : model_.contacts())
@@ -642,6 +691,8 @@ namespace kimp::lumped::plan
       cf_[c] = force;
       f0_ += force * pc.normal_row.transpose();
       wall_force_[pc.segment] += force;
+      if (!walls_.empty() && wall_of_segment_[pc.segment] >= 0)
+        walls_[static_cast<std::size_t>(wall_of_segment_[pc.segment])].contact += force;
       out_.contacts[c].peak_normal_force = std::max(out_.contacts[c].peak_normal_force, force);
 
       // Regularised Coulomb friction along the face, resisting the backward sliding velocity.
@@ -662,6 +713,47 @@ namespace kimp::lumped::plan
         std::max(out_.contacts[c].peak_friction_force, std::abs(phi));
     }
 
+    double Run::wall_at(const std::size_t c, const int lag) const
+    {
+      const int k = wall_of_segment_.empty() ? -1 : wall_of_segment_[model_.contacts()[c].segment];
+      if (k < 0)
+        return 0.0;
+      const WallState &wd = walls_[static_cast<std::size_t>(k)];
+      return lag == 0 ? wd.w : lag == 1 ? wd.w1 : wd.w2;
+    }
+
+    void Run::wall_forces(const long n)
+    {
+      // The wall-and-backfill parts at w_n (committed every step: permanently attached), their
+      // work ∫F dw by the trapezoid rule, the failure time.
+      const double t = static_cast<double>(n) * dt_;
+      for (WallState &wd : walls_)
+      {
+        const double rate = rate_of(scheme_, wd.w, wd.w1, wd.w2, inv_dt_);
+        const double f    = wd.law->set_trial(wd.w, rate).force;
+        wd.law->commit();
+        w_wall_ += 0.5 * (wd.fb + f) * (wd.w - wd.w1);
+        wd.fb      = f;
+        wd.contact = 0.0;
+        if (!wd.failure_time && wd.law->failed())
+          wd.failure_time = t;
+      }
+    }
+
+    void Run::advance_walls(const double ag_x, const double ag_y)
+    {
+      // m·ẅ = −m·(n·ü_g) − (F − Σ w_c·F_c): the planar step of a DOF without C and K.
+      for (WallState &wd : walls_)
+      {
+        const double f = wd.fb - wd.contact;
+        const double d = -(wd.am * wd.nx * ag_x + wd.am * wd.ny * ag_y) - wd.a_inv * f;
+        wd.dw_next     = wd.dw + d;
+        wd.w_next      = wd.w + wd.dw_next;
+        wd.v           = (wd.dw + wd.dw_next) * (0.5 * inv_dt_);
+        p_in_ -= wd.mass * (wd.nx * ag_x + wd.ny * ag_y) * wd.v;
+      }
+    }
+
     bool Run::contacts_far(const long n, const double *q0)
     {
       // The first two steps use the initial δ_{−1}, δ_{−2}; later a resumed pass recomputes
@@ -669,7 +761,13 @@ namespace kimp::lumped::plan
       if (n < 2 || !quiet_)
         return false;
       const double r2 = 2.0 * (q0[0] * q0[0] + q0[1] * q0[1] + q0[2] * q0[2] * contact_r2_);
-      return r2 < contact_g2_ * (1.0 - 1e-9);
+      if (walls_.empty())
+        return r2 < contact_g2_ * (1.0 - 1e-9);
+      // A yielding face moved towards the slab (w < 0) narrows its gaps.
+      double g = std::sqrt(contact_g2_);
+      for (const WallState &wd : walls_)
+        g = std::min(g, std::sqrt(contact_g2_) + wd.w);
+      return g > 0.0 && r2 < g * g * (1.0 - 1e-9);
     }
 
     void Run::forces(const long             n,
@@ -710,6 +808,7 @@ namespace kimp::lumped::plan
           f0_ += kin[j].transpose() * fj;
         }
       iso_peak_sq_ = std::max(iso_peak_sq_, resultant.squaredNorm());
+      wall_forces(n);
       if (contacts_far(n, q0.data()))
       {
         skipped_ = true;
@@ -726,17 +825,19 @@ namespace kimp::lumped::plan
         { return pc.s_rest + pc.tangent_row.dot(q); };
         // Beyond the ends of its face a point meets nothing: the law sees the gap at rest.
         // The sliding coordinate only where it matters: a face with an end, a contact, friction.
-        const auto delta_at = [&](const Eigen::Vector3d &q)
+        // A yielding face's displacement w (at the same step as q) widens the gap.
+        const auto delta_at = [&](const Eigen::Vector3d &q, const int lag)
         {
-          const bool on_face = !ends_[c] || (s_at(q) >= pc.s_lo && s_at(q) <= pc.s_hi);
-          return on_face ? pc.normal_row.dot(q) - pc.gap : -pc.gap;
+          const bool   on_face = !ends_[c] || (s_at(q) >= pc.s_lo && s_at(q) <= pc.s_hi);
+          const double gap     = walls_.empty() ? pc.gap : pc.gap + wall_at(c, lag);
+          return on_face ? pc.normal_row.dot(q) - gap : -gap;
         };
         if (resumed)
         {
-          dp_[c]  = delta_at(q1);
-          dpp_[c] = delta_at(q2);
+          dp_[c]  = delta_at(q1, 1);
+          dpp_[c] = delta_at(q2, 2);
         }
-        const double delta = delta_at(q0);
+        const double delta = delta_at(q0, 0);
         if (delta > 0.0 || active_[c])
         {
           contact(c, delta, s_at(q0), s_at(q1), t);
@@ -794,6 +895,8 @@ namespace kimp::lumped::plan
       step_(k);
       p_in_   = k.p_in;
       p_visc_ = k.p_visc;
+      if (!walls_.empty())
+        advance_walls(ag_x, ag_y);
     }
 
     void Run::bookkeeping(const long n)
@@ -872,7 +975,9 @@ namespace kimp::lumped::plan
     {
       const double t = static_cast<double>(n) * dt_;
       e_kin_         = 0.5 * v_.dot(model_.masses().cwiseProduct(v_));
-      e_strain_      = strain_energy();
+      for (const WallState &wd : walls_)
+        e_kin_ += 0.5 * wd.mass * wd.v * wd.v;
+      e_strain_ = strain_energy();
       if (n == 0)
         e0_ = e_kin_ + e_strain_;
       double hysteretic = 0.0;
@@ -880,10 +985,19 @@ namespace kimp::lumped::plan
         hysteretic += iso->dissipated_energy();
       const double supplied = e0_ + w_in_;
       max_supplied_         = std::max(max_supplied_, supplied);
-      const double residual =
-        std::abs(supplied - (e_kin_ + e_strain_ + w_visc_ + hysteretic + w_contact_ + w_friction_));
-      last_error_   = residual / std::max(max_supplied_, 1e-300);
-      max_residual_ = std::max(max_residual_, residual);
+      const double residual = std::abs(supplied - (e_kin_ + e_strain_ + w_visc_ + hysteretic +
+                                                   w_contact_ + w_friction_ + w_wall_));
+      last_error_           = residual / std::max(max_supplied_, 1e-300);
+      max_residual_         = std::max(max_residual_, residual);
+      for (const WallState &wd : walls_)
+        if (!std::isfinite(wd.w_next))
+        {
+          std::ostringstream msg;
+          msg << "central difference in plan diverged: the yielding wall of face " << wd.segment
+              << " is not finite at t = " << t + dt_ << " s (step " << n + 1 << ", dt = " << dt_
+              << " s)";
+          throw DivergenceError(msg.str(), t + dt_, n + 1, static_cast<int>(n_ + wd.segment));
+        }
       for (std::size_t i = 0; i < n_; ++i)
         if (!std::isfinite(u_np1_(static_cast<Eigen::Index>(i))))
         {
@@ -957,9 +1071,11 @@ namespace kimp::lumped::plan
         dpp_[c]                  = delta - 2.0 * dt_ * rate;
         if (delta > 0.0)
         {
-          f0.head<3>() +=
-            pc.weight * laws_[c]->set_trial(delta, rate).force * pc.normal_row.transpose();
+          const double fc = pc.weight * laws_[c]->set_trial(delta, rate).force;
+          f0.head<3>() += fc * pc.normal_row.transpose();
           laws_[c]->revert_to_last_commit();
+          if (!walls_.empty() && wall_of_segment_[pc.segment] >= 0)
+            walls_[static_cast<std::size_t>(wall_of_segment_[pc.segment])].contact += fc;
         }
       }
       double ag_x0, ag_y0;
@@ -968,6 +1084,18 @@ namespace kimp::lumped::plan
       const Eigen::VectorXd  a0 =
         (-(rx_m_ * ag_x0 + ry_m_ * ag_y0) - model_.damping() * v0 - model_.stiffness() * u0 - f0)
           .cwiseQuotient(m);
+      // The yielding walls start at rest at w = 0 (the law trialled, the first step commits it).
+      for (WallState &wd : walls_)
+      {
+        const double fb = wd.law->set_trial(0.0, 0.0).force;
+        wd.law->revert_to_last_commit();
+        const double aw =
+          (-wd.mass * (wd.nx * ag_x0 + wd.ny * ag_y0) - (fb - wd.contact)) / wd.mass;
+        wd.contact = 0.0;
+        wd.w1      = 0.5 * dt_ * dt_ * aw;
+        wd.w2      = 2.0 * dt_ * dt_ * aw;
+        wd.dw      = -0.5 * dt_ * dt_ * aw;
+      }
       u_n_   = u0;
       u_nm1_ = u0 - dt_ * v0 + 0.5 * dt_ * dt_ * a0;
       u_nm2_ = u0 - 2.0 * dt_ * v0 + 2.0 * dt_ * dt_ * a0;
@@ -997,6 +1125,13 @@ namespace kimp::lumped::plan
         u_nm1_.swap(u_n_);
         u_n_.swap(u_np1_);
         du_n_.swap(du_np1_);
+        for (WallState &wd : walls_)
+        {
+          wd.w2 = wd.w1;
+          wd.w1 = wd.w;
+          wd.w  = wd.w_next;
+          wd.dw = wd.dw_next;
+        }
       }
 
       out_.dt       = dt_;
@@ -1031,6 +1166,22 @@ namespace kimp::lumped::plan
       }
       for (std::size_t q = 0; q < drift_sq_.size(); ++q)
         out_.peak_corner_drift[q] = std::sqrt(drift_sq_[q]);
+      e.wall_work = w_wall_;
+      for (const WallState &wd : walls_)
+      {
+        PlanYieldingWallResult y;
+        y.segment            = wd.segment;
+        y.peak_resistance    = wd.law->peak_resistance();
+        y.peak_displacement  = wd.law->peak_deformation();
+        y.permanent_set      = wd.law->permanent_indentation();
+        y.final_displacement = wd.w;
+        y.plastic_work       = wd.law->plastic_work();
+        y.radiated_work      = wd.law->radiated_work();
+        y.failure_time       = wd.failure_time;
+        e.wall_plastic += y.plastic_work;
+        e.wall_radiated += y.radiated_work;
+        out_.yielding_walls.push_back(y);
+      }
       e.relative_error     = last_error_;
       e.max_relative_error = max_residual_ / std::max(max_supplied_, 1e-300);
       return out_;
@@ -1048,7 +1199,21 @@ namespace kimp::lumped::plan
     for (const PlanIsolatorSpec &iso : building_.isolators)
       isolator_t_.push_back(level_kinematics(building_, 0, iso.position));
     if (moat_)
+    {
       contacts_ = moat_contacts(*moat_, building_);
+      // The yielding faces' DOFs: w along the face's normal away from the slab (the wall
+      // counter-clockwise, as the contacts number its faces).
+      const Polygon     wall = counter_clockwise(moat_->wall);
+      const std::size_t nw   = wall.size();
+      for (const PlanYieldingWall &y : moat_->yielding)
+      {
+        const Point t = (wall[(y.segment + 1) % nw] - wall[y.segment]).normalized();
+        walls_.push_back({y.segment,
+                          Point(t.y(), -t.x()),
+                          y.params.mass,
+                          std::make_shared<const WallBackfillLaw>(y.params)});
+      }
+    }
   }
 
   Eigen::MatrixXd PlanModel::initial_stiffness_matrix() const
