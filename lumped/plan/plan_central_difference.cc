@@ -296,6 +296,8 @@ namespace kimp::lumped::plan
       void   ground(long n, double &ag_x, double &ag_y);
       void   advance(double ag_x, double ag_y);
       void   bookkeeping(long n);
+      void   initial_conditions();
+      void   collect_results();
       void   checkpoint(long n);
       double strain_energy() const;
 
@@ -1044,7 +1046,7 @@ namespace kimp::lumped::plan
       }
     }
 
-    PlanResponse Run::execute()
+    void Run::initial_conditions()
     {
       const auto nn = static_cast<Eigen::Index>(n_);
       // Initial conditions: u_{−1}, u_{−2} by a Taylor expansion with a_0 = M⁻¹(p_0 − C·v_0 −
@@ -1103,37 +1105,10 @@ namespace kimp::lumped::plan
       // z_{−1} = A⁻¹K·u_{−1}.
       z_ = hg_.middleRows(nn, nn) * (u_n_ - du_n_);
       set_up_kernel();
+    }
 
-      // The check points (n a multiple of every_ or of check_every_, and the last step) by
-      // counting down, not by a division per step; every_ divides check_every_ when both are set.
-      const long period = every_ > 0 && check_every_ % every_ == 0 ? every_ : check_every_;
-      const bool exact  = every_ == 0 || check_every_ % every_ == 0;
-      long       to_go  = 0;
-      for (long n = 0; n <= n_steps_; ++n)
-      {
-        double ag_x, ag_y;
-        ground(n, ag_x, ag_y);
-        forces(n, u_n_, u_nm1_, u_nm2_);
-        advance(ag_x, ag_y);
-        bookkeeping(n);
-        const bool due =
-          exact ? to_go == 0 : (every_ > 0 && n % every_ == 0) || n % check_every_ == 0;
-        to_go = to_go == 0 ? period - 1 : to_go - 1;
-        if (due || n == n_steps_)
-          checkpoint(n);
-        u_nm2_.swap(u_nm1_);
-        u_nm1_.swap(u_n_);
-        u_n_.swap(u_np1_);
-        du_n_.swap(du_np1_);
-        for (WallState &wd : walls_)
-        {
-          wd.w2 = wd.w1;
-          wd.w1 = wd.w;
-          wd.w  = wd.w_next;
-          wd.dw = wd.dw_next;
-        }
-      }
-
+    void Run::collect_results()
+    {
       out_.dt       = dt_;
       out_.n_steps  = n_steps_;
       out_.duration = static_cast<double>(n_steps_) * dt_;
@@ -1184,6 +1159,42 @@ namespace kimp::lumped::plan
       }
       e.relative_error     = last_error_;
       e.max_relative_error = max_residual_ / std::max(max_supplied_, 1e-300);
+    }
+
+    PlanResponse Run::execute()
+    {
+      initial_conditions();
+      // The check points (n a multiple of every_ or of check_every_, and the last step) by
+      // counting down, not by a division per step; every_ divides check_every_ when both are set.
+      const long period = every_ > 0 && check_every_ % every_ == 0 ? every_ : check_every_;
+      const bool exact  = every_ == 0 || check_every_ % every_ == 0;
+      long       to_go  = 0;
+      for (long n = 0; n <= n_steps_; ++n)
+      {
+        double ag_x, ag_y;
+        ground(n, ag_x, ag_y);
+        forces(n, u_n_, u_nm1_, u_nm2_);
+        advance(ag_x, ag_y);
+        bookkeeping(n);
+        const bool due =
+          exact ? to_go == 0 : (every_ > 0 && n % every_ == 0) || n % check_every_ == 0;
+        to_go = to_go == 0 ? period - 1 : to_go - 1;
+        if (due || n == n_steps_)
+          checkpoint(n);
+        u_nm2_.swap(u_nm1_);
+        u_nm1_.swap(u_n_);
+        u_n_.swap(u_np1_);
+        du_n_.swap(du_np1_);
+        for (WallState &wd : walls_)
+        {
+          wd.w2 = wd.w1;
+          wd.w1 = wd.w;
+          wd.w  = wd.w_next;
+          wd.dw = wd.dw_next;
+        }
+      }
+
+      collect_results();
       return out_;
     }
   } // namespace
