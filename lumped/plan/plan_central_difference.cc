@@ -331,7 +331,6 @@ namespace kimp::lumped::plan
       Eigen::Vector3d f0_;
 
       std::vector<std::unique_ptr<PlanIsolator>> iso_;
-      std::vector<Point>                         iso_force_;
       /// iso_ as bilinear isolators when every one is (else empty).
       std::vector<PlanBilinearIsolator *>    bilinear_;
       std::vector<std::unique_ptr<ForceLaw>> laws_;
@@ -433,7 +432,6 @@ namespace kimp::lumped::plan
         iso_.push_back(spec.law->clone());
         iso_.back()->revert_to_start();
       }
-      iso_force_.assign(iso_.size(), Point::Zero());
       for (const auto &iso : iso_)
         if (auto *b = dynamic_cast<PlanBilinearIsolator *>(iso.get()))
           bilinear_.push_back(b);
@@ -786,16 +784,24 @@ namespace kimp::lumped::plan
       Point       resultant = Point::Zero();
       if (!bilinear_.empty())
       {
-        // Bilinear isolators (the law needs no velocity): called directly, inlined.
+        // Bilinear isolators (the law needs no velocity): called directly, inlined; T_j =
+        // [1, 0, t_x; 0, 1, t_y] written out (the same sums as T_j·q and T_jᵀ·f), the sums in
+        // registers.
+        double fx = 0.0, fy = 0.0, ft = 0.0, rx = 0.0, ry = 0.0;
         for (std::size_t j = 0; j < bilinear_.size(); ++j)
         {
-          const Point uj = kin[j] * q0;
-          const Point fj = bilinear_[j]->set_trial(uj, uj);
+          const double tx = kin[j](0, 2), ty = kin[j](1, 2);
+          const Point  uj(q0(0) + tx * q0(2), q0(1) + ty * q0(2));
+          const Point  fj = bilinear_[j]->set_trial(uj, uj);
           bilinear_[j]->commit();
-          iso_force_[j] = fj;
-          resultant += fj;
-          f0_ += kin[j].transpose() * fj;
+          rx += fj.x();
+          ry += fj.y();
+          fx += fj.x();
+          fy += fj.y();
+          ft += tx * fj.x() + ty * fj.y();
         }
+        f0_       = Eigen::Vector3d(fx, fy, ft);
+        resultant = Point(rx, ry);
       }
       else
         for (std::size_t j = 0; j < iso_.size(); ++j)
@@ -805,7 +811,6 @@ namespace kimp::lumped::plan
                          rate_of(scheme_, uj.y(), uj1.y(), uj2.y(), inv_dt_));
           const Point fj = iso_[j]->set_trial(uj, vj);
           iso_[j]->commit();
-          iso_force_[j] = fj;
           resultant += fj;
           f0_ += kin[j].transpose() * fj;
         }
