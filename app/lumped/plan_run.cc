@@ -34,6 +34,24 @@ namespace kimp::app
       return fmt::format("{}", value);
     }
 
+    /// The yielding wall faces: peaks, permanent set, work and failure (time, or null).
+    nlohmann::json yielding_json(const plan::PlanResponse &r)
+    {
+      nlohmann::json out = nlohmann::json::array();
+      for (const plan::PlanYieldingWallResult &y : r.yielding_walls)
+        out.push_back(
+          {{"face", y.segment},
+           {"peak_resistance", y.peak_resistance},
+           {"peak_displacement", y.peak_displacement},
+           {"permanent_set", y.permanent_set},
+           {"final_displacement", y.final_displacement},
+           {"plastic_work", y.plastic_work},
+           {"radiated_work", y.radiated_work},
+           {"failed", y.failure_time.has_value()},
+           {"failure_time", y.failure_time ? nlohmann::json(*y.failure_time) : nlohmann::json()}});
+      return out;
+    }
+
     nlohmann::json energy_json(const plan::PlanEnergy &e)
     {
       return {{"initial", e.initial},
@@ -45,6 +63,9 @@ namespace kimp::app
               {"contact_work", e.contact_work},
               {"impact_dissipated", e.impact_dissipated},
               {"friction", e.friction},
+              {"wall_work", e.wall_work},
+              {"wall_plastic", e.wall_plastic},
+              {"wall_radiated", e.wall_radiated},
               {"relative_error", e.relative_error},
               {"max_relative_error", e.max_relative_error}};
     }
@@ -296,6 +317,8 @@ namespace kimp::app
                           {"drift_y", r.peak_drift_y},
                           {"wall_force", r.peak_wall_force}};
       c["energy"]      = energy_json(r.energy);
+      if (!r.yielding_walls.empty())
+        c["yielding_walls"] = yielding_json(r);
       summary["cases"] = nlohmann::json::array({c});
       io::write_json_atomic(output.file("summary.json"), summary);
     }

@@ -49,7 +49,8 @@ namespace kimp::app
       const plan::Polygon  outline  = plan_outline(p);
       const plan::Point    centre   = plan::centroid(outline);
 
-      plan::PlanBuilding  building;
+      plan::PlanBuilding building;
+      building.damping = p.damping;
       std::vector<double> masses;
       if (isolated)
         masses.push_back(b.isolation_mass);
@@ -199,6 +200,35 @@ namespace kimp::app
     }
   } // namespace
 
+  namespace
+  {
+    /// The yielding faces: per metre × the face's length (the wall counter-clockwise), the DOF
+    /// mass (null: moat.mass). Faces outside the wall are left to the engine's check.
+    std::vector<plan::PlanYieldingWall> yielding_faces(const PlanMoatScene &m,
+                                                       const plan::Polygon &wall_polygon)
+    {
+      const plan::Polygon                 wall = plan::counter_clockwise(wall_polygon);
+      std::vector<plan::PlanYieldingWall> out;
+      for (std::size_t i = 0; i < m.yielding.size(); ++i)
+      {
+        const PlanYieldingFaceScene &f = m.yielding[i];
+        if (f.wall.width != YieldingWallScene{}.width)
+          throw std::invalid_argument("moat.yielding[" + std::to_string(i) +
+                                      "].width does not apply in plan (each face takes its "
+                                      "own length)");
+        YieldingWallScene w = f.wall;
+        if (f.face < wall.size())
+          w.width = (wall[(f.face + 1) % wall.size()] - wall[f.face]).norm();
+        plan::PlanYieldingWall y;
+        y.segment     = f.face;
+        y.params      = w.resolved();
+        y.params.mass = f.mass.value_or(m.mass);
+        out.push_back(y);
+      }
+      return out;
+    }
+  } // namespace
+
   plan::Polygon plan_outline(const PlanSection &p)
   {
     if (!p.outline.empty())
@@ -332,6 +362,7 @@ namespace kimp::app
       moat.friction        = p.moat.friction;
       moat.stick_velocity  = p.moat.stick_velocity;
       moat.points_per_edge = static_cast<int>(p.moat.points_per_edge);
+      moat.yielding        = yielding_faces(p.moat, moat.wall);
       plan::validate(moat, scene.building);
       scene.moat = moat;
     }

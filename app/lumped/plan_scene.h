@@ -58,18 +58,46 @@ namespace kimp::app
     synthetic ///< the synthetic motion of ground_motion.synthetic with seed + 1 along angle + 90°
   };
 
+  /// A yielding wall face of the moat (lumped::plan::PlanYieldingWall): the `yielding` keys of a
+  /// planar wall (per metre), times the face's length, on a DOF of `mass`.
+  struct PlanYieldingFaceScene
+  {
+    unsigned int          face = 0;
+    std::optional<double> mass; ///< kg (null: moat.mass)
+    YieldingWallScene     wall;
+  };
+
+  template <class Io>
+  void visit(Io &io, PlanYieldingFaceScene &s)
+  {
+    io.integer("face",
+               s.face,
+               "wall face k: wall corner k to k + 1 counter-clockwise (with gaps: the face of "
+               "slab edge k)",
+               0,
+               1000);
+    io.quantity("mass",
+                s.mass,
+                "t",
+                "the face's DOF mass (null: moat.mass); the impact law keeps the m_eff of "
+                "moat.mass",
+                io::Range::positive());
+    visit(io, s.wall);
+  }
+
   /// The moat wall around the isolation level in plan (lumped::plan::PlanMoat).
   struct PlanMoatScene
   {
-    bool                        present = true;
-    double                      gap     = 0.15;
-    std::vector<double>         gaps;
-    std::vector<PlanPointScene> wall;
-    double                      mass            = 500e3;
-    double                      friction        = 0.0;
-    double                      stick_velocity  = 1e-3;
-    unsigned int                points_per_edge = 2;
-    std::optional<double>       k_length;
+    bool                               present = true;
+    double                             gap     = 0.15;
+    std::vector<double>                gaps;
+    std::vector<PlanPointScene>        wall;
+    double                             mass            = 500e3;
+    double                             friction        = 0.0;
+    double                             stick_velocity  = 1e-3;
+    unsigned int                       points_per_edge = 2;
+    std::optional<double>              k_length;
+    std::vector<PlanYieldingFaceScene> yielding;
   };
 
   template <class Io>
@@ -117,6 +145,10 @@ namespace kimp::app
                 "edge length over which impact.k acts (k per metre = impact.k / k_length; null: "
                 "the outline's extent along y, the face of the planar model's walls)",
                 io::Range::positive());
+    io.list("yielding",
+            s.yielding,
+            "yielding wall faces: per face the planar yielding-wall keys (per metre, times the "
+            "face's length; width does not apply) on a DOF of its own (convex wall)");
   }
 
   /**
@@ -126,21 +158,22 @@ namespace kimp::app
    */
   struct PlanSection
   {
-    double                        width = 20.0;
-    double                        depth = 20.0;
-    std::vector<PlanPointScene>   outline;
-    double                        eccentricity_x = 0.0;
-    double                        eccentricity_y = 0.0;
-    std::optional<double>         k_x;
-    std::optional<double>         k_y;
-    std::optional<double>         k_theta;
-    std::vector<PlanElementScene> elements;
-    std::vector<PlanPointScene>   isolators;
-    PlanMoatScene                 moat;
-    double                        angle            = 0.0; ///< degrees
-    SecondComponent               second_component = SecondComponent::none;
-    std::string                   second_record    = "";
-    double                        second_scale     = 1.0;
+    double                         width = 20.0;
+    double                         depth = 20.0;
+    std::vector<PlanPointScene>    outline;
+    double                         eccentricity_x = 0.0;
+    double                         eccentricity_y = 0.0;
+    std::optional<double>          k_x;
+    std::optional<double>          k_y;
+    std::optional<double>          k_theta;
+    std::vector<PlanElementScene>  elements;
+    std::vector<PlanPointScene>    isolators;
+    lumped::plan::PlanDampingModel damping = lumped::plan::PlanDampingModel::rayleigh;
+    PlanMoatScene                  moat;
+    double                         angle            = 0.0; ///< degrees
+    SecondComponent                second_component = SecondComponent::none;
+    std::string                    second_record    = "";
+    double                         second_scale     = 1.0;
   };
 
   template <class Io>
@@ -193,6 +226,13 @@ namespace kimp::app
             s.isolators,
             "isolator positions (empty: one at each outline corner); the isolator section's law "
             "is shared equally among them");
+    io.choice("damping",
+              s.damping,
+              {{"rayleigh", lumped::plan::PlanDampingModel::rayleigh},
+               {"modal", lumped::plan::PlanDampingModel::modal}},
+              "superstructure damping: rayleigh (per direction, first and last mode of each "
+              "direction) or modal (the building's damping ratio in every mode of the coupled "
+              "building)");
     io.section("moat", s.moat, "moat wall around the isolation level");
     io.quantity("angle",
                 s.angle,

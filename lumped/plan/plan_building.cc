@@ -172,86 +172,115 @@ namespace kimp::lumped::plan
     return k;
   }
 
+  namespace
+  {
+    /// Per-direction Rayleigh damping (PlanDamping::matrix), its coefficients into d.rayleigh.
+    Eigen::MatrixXd rayleigh_matrix(const PlanBuilding    &b,
+                                    const Eigen::VectorXd &m,
+                                    const Eigen::MatrixXd &k,
+                                    PlanDamping           &d)
+    {
+      const std::size_t n    = b.n_levels();
+      const double      zeta = b.damping_ratio;
+      Eigen::VectorXd   sb   = Eigen::VectorXd::Zero(m.size());
+      for (int dir = 0; dir < 3; ++dir)
+      {
+        if (zeta > 0.0)
+        {
+          // The direction's block: DOFs 3i + dir.
+          Eigen::VectorXd md(static_cast<Eigen::Index>(n));
+          Eigen::MatrixXd kd(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+          for (std::size_t i = 0; i < n; ++i)
+          {
+            md(static_cast<Eigen::Index>(i)) = m(static_cast<Eigen::Index>(3 * i) + dir);
+            for (std::size_t j = 0; j < n; ++j)
+              kd(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
+                k(static_cast<Eigen::Index>(3 * i) + dir, static_cast<Eigen::Index>(3 * j) + dir);
+          }
+          ModalProperties modes;
+          try
+          {
+            modes = modal_analysis(md, kd);
+          }
+          catch (const std::invalid_argument &e)
+          {
+            // A direction without stiffness (no storey or isolator resists it) has no modes.
+            throw std::invalid_argument(b.name + ": the Rayleigh damping along " +
+                                        (dir == 0 ? "x" :
+                                         dir == 1 ? "y" :
+                                                    "theta") +
+                                        " needs stiffness in that direction (" + e.what() + ")");
+          }
+          d.rayleigh[dir] =
+            rayleigh_coefficients(modes.omega(0), modes.omega(modes.omega.size() - 1), zeta, zeta);
+        }
+        for (std::size_t i = 0; i < n; ++i)
+        {
+          sb(static_cast<Eigen::Index>(3 * i) + dir) = std::sqrt(d.rayleigh[dir].b);
+        }
+      }
+      // a_d·m and b_d·K_ij within a direction exactly as the planar model forms them;
+      // √(b_i·b_j)·K_ij between directions.
+      Eigen::MatrixXd c = Eigen::MatrixXd::Zero(m.size(), m.size());
+      for (Eigen::Index i = 0; i < m.size(); ++i)
+      {
+        c(i, i) = d.rayleigh[i % 3].a * m(i);
+        for (Eigen::Index j = 0; j < m.size(); ++j)
+          c(i, j) += (i % 3 == j % 3 ? d.rayleigh[i % 3].b : sb(i) * sb(j)) * k(i, j);
+      }
+      return c;
+    }
+
+    /// c_iso per direction at level 0 and the devices' dashpots (isolated buildings).
+    void add_isolation_damping(const PlanBuilding &b, PlanDamping &d)
+    {
+      const double zeta = b.damping_ratio;
+      if (b.is_isolated())
+      {
+        const Point c0    = b.levels[0].centre_of_mass();
+        double      m_tot = 0.0, j_tot = 0.0, k_iso = 0.0, k_iso_theta = 0.0;
+        for (const PlanLevel &l : b.levels)
+        {
+          m_tot += l.mass;
+          j_tot += l.inertia() + l.mass * (l.centre_of_mass() - c0).squaredNorm();
+        }
+        for (const PlanIsolatorSpec &iso : b.isolators)
+        {
+          const double k1 = iso.law->initial_stiffness();
+          k_iso += k1;
+          k_iso_theta += k1 * (iso.position - c0).squaredNorm();
+          const Eigen::Matrix<double, 2, 3> t = level_kinematics(b, 0, iso.position);
+          d.matrix.topLeftCorner<3, 3>() += iso.law->viscous_coefficient() * t.transpose() * t;
+        }
+        const double extra = b.isolation_damping_ratio - zeta;
+        d.c_iso[0]         = 2.0 * extra * std::sqrt(m_tot * k_iso);
+        d.c_iso[1]         = d.c_iso[0];
+        d.c_iso[2]         = 2.0 * extra * std::sqrt(j_tot * k_iso_theta);
+        for (int dir = 0; dir < 3; ++dir)
+          d.matrix(dir, dir) += d.c_iso[dir];
+      }
+    }
+  } // namespace
+
   PlanDamping plan_damping(const PlanBuilding &b)
   {
     validate(b);
-    const std::size_t     n    = b.n_levels();
     const Eigen::VectorXd m    = plan_masses(b);
     const Eigen::MatrixXd k    = plan_stiffness(b, true);
     const double          zeta = b.damping_ratio;
     PlanDamping           d;
-    Eigen::VectorXd       sb = Eigen::VectorXd::Zero(m.size());
-    for (int dir = 0; dir < 3; ++dir)
+    if (b.damping == PlanDampingModel::modal)
     {
-      if (zeta > 0.0)
-      {
-        // The direction's block: DOFs 3i + dir.
-        Eigen::VectorXd md(static_cast<Eigen::Index>(n));
-        Eigen::MatrixXd kd(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
-        for (std::size_t i = 0; i < n; ++i)
-        {
-          md(static_cast<Eigen::Index>(i)) = m(static_cast<Eigen::Index>(3 * i) + dir);
-          for (std::size_t j = 0; j < n; ++j)
-            kd(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
-              k(static_cast<Eigen::Index>(3 * i) + dir, static_cast<Eigen::Index>(3 * j) + dir);
-        }
-        ModalProperties modes;
-        try
-        {
-          modes = modal_analysis(md, kd);
-        }
-        catch (const std::invalid_argument &e)
-        {
-          // A direction without stiffness (no storey or isolator resists it) has no modes.
-          throw std::invalid_argument(b.name + ": the Rayleigh damping along " +
-                                      (dir == 0 ? "x" :
-                                       dir == 1 ? "y" :
-                                                  "theta") +
-                                      " needs stiffness in that direction (" + e.what() + ")");
-        }
-        d.rayleigh[dir] =
-          rayleigh_coefficients(modes.omega(0), modes.omega(modes.omega.size() - 1), zeta, zeta);
-      }
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        sb(static_cast<Eigen::Index>(3 * i) + dir) = std::sqrt(d.rayleigh[dir].b);
-      }
+      // Modes of the coupled building (x, y and θ together), ζ in every one.
+      d.modes  = modal_analysis(m, k);
+      d.matrix = modal_damping_matrix(m, d.modes, Eigen::VectorXd::Constant(m.size(), zeta));
     }
-    // a_d·m and b_d·K_ij within a direction exactly as the planar model forms them;
-    // √(b_i·b_j)·K_ij between directions.
-    d.matrix = Eigen::MatrixXd::Zero(m.size(), m.size());
-    for (Eigen::Index i = 0; i < m.size(); ++i)
-    {
-      d.matrix(i, i) = d.rayleigh[i % 3].a * m(i);
-      for (Eigen::Index j = 0; j < m.size(); ++j)
-        d.matrix(i, j) += (i % 3 == j % 3 ? d.rayleigh[i % 3].b : sb(i) * sb(j)) * k(i, j);
-    }
-    if (b.is_isolated())
-    {
-      const Point c0    = b.levels[0].centre_of_mass();
-      double      m_tot = 0.0, j_tot = 0.0, k_iso = 0.0, k_iso_theta = 0.0;
-      for (const PlanLevel &l : b.levels)
-      {
-        m_tot += l.mass;
-        j_tot += l.inertia() + l.mass * (l.centre_of_mass() - c0).squaredNorm();
-      }
-      for (const PlanIsolatorSpec &iso : b.isolators)
-      {
-        const double k1 = iso.law->initial_stiffness();
-        k_iso += k1;
-        k_iso_theta += k1 * (iso.position - c0).squaredNorm();
-        const Eigen::Matrix<double, 2, 3> t = level_kinematics(b, 0, iso.position);
-        d.matrix.topLeftCorner<3, 3>() += iso.law->viscous_coefficient() * t.transpose() * t;
-      }
-      const double extra = b.isolation_damping_ratio - zeta;
-      d.c_iso[0]         = 2.0 * extra * std::sqrt(m_tot * k_iso);
-      d.c_iso[1]         = d.c_iso[0];
-      d.c_iso[2]         = 2.0 * extra * std::sqrt(j_tot * k_iso_theta);
-      for (int dir = 0; dir < 3; ++dir)
-        d.matrix(dir, dir) += d.c_iso[dir];
-    }
+    else
+      d.matrix = rayleigh_matrix(b, m, k, d);
+    add_isolation_damping(b, d);
     return d;
   }
+
 
   ModalProperties plan_modes(const PlanBuilding &b)
   {

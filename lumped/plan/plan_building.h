@@ -81,16 +81,26 @@ namespace kimp::lumped::plan
    *
    * | field                   | unit | admissible | meaning                                   |
    * |-------------------------|------|------------|-------------------------------------------|
-   * | damping_ratio           | -    | [0, 1)     | ζ per direction (Rayleigh, see            |
-   * |                         |      |            | plan_damping())                           |
+   * | damping                 | -    | rayleigh,  | the superstructure's damping model        |
+   * |                         |      | modal      | (plan_damping())                          |
+   * | damping_ratio           | -    | [0, 1)     | ζ per direction (Rayleigh) or of every    |
+   * |                         |      |            | mode (modal), see plan_damping()          |
    * | isolation_damping_ratio | -    | >= ζ, < 1  | ζ_iso; c_iso per direction at level 0     |
    */
+  /// The superstructure's damping model (plan_damping()).
+  enum class PlanDampingModel
+  {
+    rayleigh, ///< per direction, fitted at the direction's first and last modes
+    modal     ///< classical damping, ζ in every mode of the coupled building
+  };
+
   struct PlanBuilding
   {
     std::string                   name = "building";
     std::vector<PlanLevel>        levels;
     std::vector<PlanStorey>       storeys;
     std::vector<PlanIsolatorSpec> isolators;
+    PlanDampingModel              damping                 = PlanDampingModel::rayleigh;
     double                        damping_ratio           = 0.02;
     double                        isolation_damping_ratio = 0.05;
 
@@ -119,14 +129,17 @@ namespace kimp::lumped::plan
   struct PlanDamping
   {
     /// Rayleigh coefficients per direction x, y, θ, fitted at the first and last modes of that
-    /// direction's block (K with isolators, M) with damping_ratio.
+    /// direction's block (K with isolators, M) with damping_ratio (zero with modal damping).
     RayleighCoefficients rayleigh[3];
+    /// Modal damping: the modes of (K with isolators, M) whose ratios C keeps (else empty).
+    ModalProperties modes;
     /// c_iso per direction at level 0: 2(ζ_iso − ζ)·√(m_tot·k_iso) in x and y (N·s/m), and
     /// 2(ζ_iso − ζ)·√(J_tot·k_iso,θ) in θ (N·m·s/rad), about the centre of mass of level 0.
     double c_iso[3] = {0.0, 0.0, 0.0};
-    /// C = S_a·M·S_a + S_b·K·S_b + c_iso + Σ devices' c·TᵀT, S = diag(√a_d), diag(√b_d) by
-    /// direction: per-direction Rayleigh, symmetric and positive semi-definite also when the
-    /// directions couple.
+    /// Rayleigh: C = S_a·M·S_a + S_b·K·S_b + c_iso + Σ devices' c·TᵀT, S = diag(√a_d),
+    /// diag(√b_d) by direction: per-direction Rayleigh, symmetric and positive semi-definite also
+    /// when the directions couple. Modal: C = M·Φ·diag(2ζω_k)·Φᵀ·M + c_iso + Σ devices' c·TᵀT
+    /// (lumped::modal_damping_matrix, ζ = damping_ratio in every mode; dense).
     Eigen::MatrixXd matrix;
   };
 

@@ -10,6 +10,7 @@
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "lumped/integrators/integration_errors.h"
 #include "lumped/parameter_check.h"
@@ -51,6 +52,20 @@ namespace kimp::lumped::plan
       }
       s.omega_closed =
         model.contacts().empty() ? s.omega_structure : largest_omega(model.masses(), k);
+      // A yielding face's DOF between its wall-and-backfill part and its closed contact points.
+      for (const PlanWallDof &wd : model.wall_dofs())
+      {
+        double kt = wd.law->stability_stiffness(penetration);
+        for (const PlanContact &c : model.contacts())
+          if (c.segment == wd.segment)
+            kt += c.weight * c.law->stability_stiffness(penetration);
+        const double w = std::sqrt(kt / wd.mass);
+        if (w > s.omega_impact)
+        {
+          s.omega_impact = w;
+          impact_name    = "yielding wall " + std::to_string(wd.segment);
+        }
+      }
       const double w_max = std::max({s.omega_structure, s.omega_closed, s.omega_impact});
       s.dt_critical      = w_max > 0.0 ? 2.0 / w_max : std::numeric_limits<double>::infinity();
       std::ostringstream g;
@@ -81,16 +96,21 @@ namespace kimp::lumped::plan
      * summed as (Σ over even j) + (Σ over odd j), each over ascending j, so that the two chains
      * of additions overlap and every vector width gives bitwise the same y. Vectors of four
      * doubles (GCC vector extensions: two SSE2 registers each in the baseline build, one AVX2
-     * register in the AVX2 build; no FMA, so no contraction).
+     * register in the AVX2 build; no FMA, so no contraction). NC > 0: n = NC known at compile
+     * time (the loops unrolled) and rows = R·NC rounded up to 16; NC = 0: n and rows at run
+     * time.
      */
+    template <std::size_t NC, std::size_t R = 2>
     inline __attribute__((always_inline)) void dense_product_body(const double *__restrict h,
                                                                   const double *__restrict x,
                                                                   double *__restrict y,
-                                                                  const std::size_t rows,
-                                                                  const std::size_t n)
+                                                                  const std::size_t rows_rt,
+                                                                  const std::size_t n_rt)
     {
-      typedef double V __attribute__((vector_size(32)));
-      typedef double U __attribute__((vector_size(32), aligned(8), may_alias));
+      typedef double    V __attribute__((vector_size(32)));
+      typedef double    U __attribute__((vector_size(32), aligned(8), may_alias));
+      const std::size_t n    = NC > 0 ? NC : n_rt;
+      const std::size_t rows = NC > 0 ? (R * NC + 15) / 16 * 16 : rows_rt;
       for (std::size_t r = 0; r < rows; r += 16)
       {
         V           e0 = {}, e1 = {}, e2 = {}, e3 = {}, o0 = {}, o1 = {}, o2 = {}, o3 = {};
@@ -128,35 +148,70 @@ namespace kimp::lumped::plan
     /// What one increment reads and writes (see Run::advance), as plain pointers.
     struct StepArrays
     {
-      std::size_t   n = 0, rows = 0;
+      std::size_t   n = 0, rows = 0, c_rows = 0;
+      const double *cm = nullptr; ///< C, c_rows × n column-major (rows padded with zeros to 16)
+      double       *cv = nullptr; ///< C·v_n, c_rows
       const double *hg = nullptr, *af = nullptr, *amx = nullptr, *amy = nullptr, *un = nullptr,
                    *rx = nullptr, *ry = nullptr, *mx = nullptr, *my = nullptr;
       double *y = nullptr, *du = nullptr, *z = nullptr, *inc = nullptr, *dun = nullptr,
-             *unp = nullptr, *v = nullptr, *a = nullptr, *pu = nullptr, *pa = nullptr;
+             *unp = nullptr, *v = nullptr, *a = nullptr, *pu = nullptr, *pa = nullptr,
+             *acc2 = nullptr; ///< per level max (ü_x + ü_g,x)² + (ü_y + ü_g,y)²
       double f[3] = {0.0, 0.0, 0.0}, ag_x = 0.0, ag_y = 0.0, half_inv_dt = 0.0, inv_dt2 = 0.0;
-      double p_in = 0.0; ///< out: −(r_xᵀM·v·ü_g,x + r_yᵀM·v·ü_g,y), W
+      double p_in   = 0.0; ///< out: −(r_xᵀM·v·ü_g,x + r_yᵀM·v·ü_g,y), W
+      double p_visc = 0.0; ///< out: v_nᵀC·v_n, W
     };
 
     /**
      * The increment of one step from y (Run::advance), v_n, a_n (r_x, r_y pick the DOFs that
-     * ü_g,x and ü_g,y add to: 1·ü_g + 0·ü_g is ü_g exactly), the peaks of |u_n| and |a_n| and
-     * the input power; element-wise but for the power's two sums.
+     * ü_g,x and ü_g,y add to: 1·ü_g + 0·ü_g is ü_g exactly), the peaks of |u_n| and |a_n|, of
+     * the levels' horizontal acceleration and the input power. The element-wise pass has no
+     * reduction (so it vectorises); the power's two sums then run over the DOFs along x and y
+     * in ascending order (the others add exact zeros). NC as dense_product_body.
      */
+    template <std::size_t NC>
     inline __attribute__((always_inline)) void update_body(StepArrays &k)
     {
-      const std::size_t n        = k.n;
+      const std::size_t n        = NC > 0 ? NC : k.n;
       const double *__restrict y = k.y, *__restrict du = k.du, *__restrict af = k.af,
                                *__restrict amx = k.amx, *__restrict amy = k.amy,
                                *__restrict un = k.un, *__restrict rx = k.rx, *__restrict ry = k.ry,
                                *__restrict mx = k.mx, *__restrict my = k.my;
       double *__restrict z = k.z, *__restrict inc = k.inc, *__restrict dun = k.dun,
                          *__restrict unp = k.unp, *__restrict v = k.v, *__restrict a = k.a,
-                         *__restrict pu = k.pu, *__restrict pa = k.pa;
+                         *__restrict pu = k.pu, *__restrict pa = k.pa, *__restrict acc2 = k.acc2;
       // Scalars in locals: read through `k` they could alias the stores.
       const double ag_x = k.ag_x, ag_y = k.ag_y, f0 = k.f[0], f1 = k.f[1], f2 = k.f[2];
       const double h = k.half_inv_dt, i2 = k.inv_dt2;
-      double       p_x = 0.0, p_y = 0.0;
-      for (std::size_t i = 0; i < n; ++i)
+      // Four DOFs at a time (vectors of four doubles, unaligned; element-wise, so bitwise the
+      // scalar results), then the rest one by one.
+      typedef double V __attribute__((vector_size(32)));
+      typedef double U __attribute__((vector_size(32), aligned(8), may_alias));
+      std::size_t    i = 0;
+      for (; i + 4 <= n; i += 4)
+      {
+        const V yi = *reinterpret_cast<const U *>(y + i), zi = *reinterpret_cast<const U *>(z + i);
+        const V d = -(yi + zi + *reinterpret_cast<const U *>(amx + i) * ag_x +
+                      *reinterpret_cast<const U *>(amy + i) * ag_y) -
+                    (*reinterpret_cast<const U *>(af + i) * f0 +
+                     *reinterpret_cast<const U *>(af + n + i) * f1 +
+                     *reinterpret_cast<const U *>(af + 2 * n + i) * f2);
+        const V dui = *reinterpret_cast<const U *>(du + i), next = dui + d;
+        *reinterpret_cast<U *>(inc + i) = d;
+        *reinterpret_cast<U *>(dun + i) = next;
+        *reinterpret_cast<U *>(z + i)   = zi + *reinterpret_cast<const U *>(y + n + i);
+        const V uni                     = *reinterpret_cast<const U *>(un + i);
+        *reinterpret_cast<U *>(unp + i) = uni + next;
+        const V ai                      = d * i2 + (*reinterpret_cast<const U *>(rx + i) * ag_x +
+                               *reinterpret_cast<const U *>(ry + i) * ag_y);
+        *reinterpret_cast<U *>(v + i)   = (dui + next) * h;
+        *reinterpret_cast<U *>(a + i)   = ai;
+        const V aun = uni < 0.0 ? -uni : uni, aai = ai < 0.0 ? -ai : ai;
+        const V pui                    = *reinterpret_cast<const U *>(pu + i),
+                pai                    = *reinterpret_cast<const U *>(pa + i);
+        *reinterpret_cast<U *>(pu + i) = pui < aun ? aun : pui;
+        *reinterpret_cast<U *>(pa + i) = pai < aai ? aai : pai;
+      }
+      for (; (NC == 0 || NC % 4 != 0) && i < n; ++i)
       {
         const double d = -(y[i] + z[i] + amx[i] * ag_x + amy[i] * ag_y) -
                          (af[i] * f0 + af[n + i] * f1 + af[2 * n + i] * f2);
@@ -165,30 +220,60 @@ namespace kimp::lumped::plan
         dun[i]            = next;
         z[i] += y[n + i];
         unp[i]          = un[i] + next;
-        const double vi = (du[i] + next) * h;
         const double ai = d * i2 + (rx[i] * ag_x + ry[i] * ag_y);
-        v[i]            = vi;
+        v[i]            = (du[i] + next) * h;
         a[i]            = ai;
         pu[i]           = std::max(pu[i], std::abs(un[i]));
         pa[i]           = std::max(pa[i], std::abs(ai));
-        p_x += mx[i] * vi;
-        p_y += my[i] * vi;
+      }
+      double p_x = 0.0, p_y = 0.0;
+      for (std::size_t l = 0; 3 * l + 2 < n; ++l)
+      {
+        p_x += mx[3 * l] * v[3 * l];
+        p_y += my[3 * l + 1] * v[3 * l + 1];
+        const double ax = a[3 * l], ay = a[3 * l + 1];
+        acc2[l] = std::max(acc2[l], ax * ax + ay * ay);
       }
       k.p_in = -(p_x * ag_x + p_y * ag_y);
     }
 
     using StepKernel = void (*)(StepArrays &);
 
-    void step_base(StepArrays &k)
+    /// The viscous power v_nᵀ(C·v_n), the sum in four lanes (i mod 4) then added up.
+    template <std::size_t NC>
+    inline __attribute__((always_inline)) void viscous_body(StepArrays &k)
     {
-      dense_product_body(k.hg, k.du, k.y, k.rows, k.n);
-      update_body(k);
+      const std::size_t n = NC > 0 ? NC : k.n;
+      dense_product_body<NC, 1>(k.cm, k.v, k.cv, k.c_rows, n);
+      double lane[4] = {0.0, 0.0, 0.0, 0.0};
+      for (std::size_t i = 0; i < n; ++i)
+        lane[i % 4] += k.v[i] * k.cv[i];
+      k.p_visc = (lane[0] + lane[1]) + (lane[2] + lane[3]);
     }
 
+    template <std::size_t NC>
+    void step_base(StepArrays &k)
+    {
+      dense_product_body<NC>(k.hg, k.du, k.y, k.rows, k.n);
+      update_body<NC>(k);
+      viscous_body<NC>(k);
+    }
+
+    template <std::size_t NC>
     __attribute__((target("avx2"))) void step_avx2(StepArrays &k)
     {
-      dense_product_body(k.hg, k.du, k.y, k.rows, k.n);
-      update_body(k);
+      dense_product_body<NC>(k.hg, k.du, k.y, k.rows, k.n);
+      update_body<NC>(k);
+      viscous_body<NC>(k);
+    }
+
+    /// The kernel for n DOFs: unrolled for buildings of up to 8 levels, else the run-time loop.
+    template <std::size_t... L>
+    StepKernel pick_kernel(const std::size_t n, const bool avx2, std::index_sequence<L...>)
+    {
+      StepKernel k = avx2 ? step_avx2<0> : step_base<0>;
+      ((n == 3 * (L + 1) ? (k = avx2 ? step_avx2<3 * (L + 1)> : step_base<3 * (L + 1)>) : k), ...);
+      return k;
     }
 
     /// The state of one run (allocated once; the loop does not allocate).
@@ -207,9 +292,12 @@ namespace kimp::lumped::plan
       bool   contacts_far(long n, const double *q0);
       void   set_up_matrices();
       void   set_up_points();
+      void   set_up_kernel();
       void   ground(long n, double &ag_x, double &ag_y);
       void   advance(double ag_x, double ag_y);
       void   bookkeeping(long n);
+      void   initial_conditions();
+      void   collect_results();
       void   checkpoint(long n);
       double strain_energy() const;
 
@@ -224,10 +312,15 @@ namespace kimp::lumped::plan
       bool   integer_substeps_ = false;
       long   sub_              = 1;
       double inv_sub_          = 1.0;
+      long   sub_n_ = -1, sub_j_ = 0, sub_r_ = 0; ///< the next n expected, its n / sub_, n % sub_
 
-      Eigen::MatrixXd hg_; ///< [A⁻¹(C/Δt + K); A⁻¹K; 0], hg_rows_ × n
+      Eigen::MatrixXd hg_;    ///< [A⁻¹(C/Δt + K); A⁻¹K; 0], hg_rows_ × n
+      Eigen::MatrixXd c_pad_; ///< [C; 0], c_rows_ × n
+      Eigen::VectorXd cv_;    ///< C·v_n (c_rows_)
+      std::size_t     c_rows_  = 0;
       std::size_t     hg_rows_ = 0;
       StepKernel      step_    = nullptr;
+      StepArrays      k_;
       Eigen::MatrixXd a_inv_f_; ///< A⁻¹ restricted to level 0's columns, n × 3
       Eigen::VectorXd am_x_, am_y_;
       Eigen::VectorXd r_x_, r_y_;   ///< the DOFs along x and along y (1, else 0)
@@ -238,8 +331,9 @@ namespace kimp::lumped::plan
       Eigen::Vector3d f0_;
 
       std::vector<std::unique_ptr<PlanIsolator>> iso_;
-      std::vector<Point>                         iso_force_;
-      std::vector<std::unique_ptr<ForceLaw>>     laws_;
+      /// iso_ as bilinear isolators when every one is (else empty).
+      std::vector<PlanBilinearIsolator *>    bilinear_;
+      std::vector<std::unique_ptr<ForceLaw>> laws_;
       std::vector<double> dp_, dpp_, cf_, phi_; ///< δ_{n−1}, δ_{n−2}, w·F, φ
       std::vector<int>    active_, called_;
       std::vector<double> wall_force_;
@@ -253,6 +347,25 @@ namespace kimp::lumped::plan
       double iso_peak_sq_ = 0.0; ///< max |Σ_j f_j|², N²
       /// Per contact: the face has an end (the sliding coordinate is needed).
       std::vector<char> ends_;
+
+      /// The DOF of a yielding face (PlanWallDof) and its state: w_{n−2}, w_{n−1}, w_n, w_{n+1},
+      /// Δw_n, Δw_{n+1}, ẇ_n, the wall-and-backfill force F(w_n, ẇ_n) and Σ w_c·F_c at step n.
+      struct WallState
+      {
+        std::size_t               segment = 0;
+        double                    nx = 0.0, ny = 0.0, mass = 0.0, a_inv = 0.0, am = 0.0;
+        std::unique_ptr<ForceLaw> owner;
+        WallBackfillLaw          *law = nullptr;
+        double w2 = 0.0, w1 = 0.0, w = 0.0, w_next = 0.0, dw = 0.0, dw_next = 0.0, v = 0.0;
+        double fb = 0.0, contact = 0.0;
+        std::optional<double> failure_time;
+      };
+      std::vector<WallState> walls_;
+      std::vector<int>       wall_of_segment_; ///< per face: index in walls_, or −1 (rigid)
+      double                 w_wall_ = 0.0;    ///< Σ ∫F dw
+      void                   wall_forces(long n);
+      void                   advance_walls(double ag_x, double ag_y);
+      double                 wall_at(std::size_t c, int lag) const;
 
       // corners of each level at rest and their kinematics
       std::vector<std::vector<Eigen::Matrix<double, 2, 3>>> corner_t_;
@@ -286,11 +399,10 @@ namespace kimp::lumped::plan
       };
       std::vector<DriftBound> drift_bound_;
       Eigen::VectorXd         peak_u_, peak_a_;
-      /// C by 3×3 blocks: level l and levels l, l + 1.
-      std::vector<Eigen::Matrix3d> c_diag_, c_upper_;
 
       // energies
       double w_in_ = 0.0, w_visc_ = 0.0, w_contact_ = 0.0, w_friction_ = 0.0;
+      double p_visc_ = 0.0; ///< v_nᵀC·v_n from the step kernel
       double p_in_ = 0.0, p_in_prev_ = 0.0, p_visc_prev_ = 0.0, e0_ = 0.0, e_kin_ = 0.0,
              e_strain_     = 0.0;
       double max_supplied_ = 0.0, max_residual_ = 0.0, last_error_ = 0.0;
@@ -313,20 +425,39 @@ namespace kimp::lumped::plan
       n_steps_ = std::lround(duration / dt_);
 
       set_up_matrices();
-      const auto             nn = static_cast<Eigen::Index>(n_);
-      const Eigen::MatrixXd &c  = model_.damping();
+      const auto nn = static_cast<Eigen::Index>(n_);
 
       for (const PlanIsolatorSpec &spec : model_.building().isolators)
       {
         iso_.push_back(spec.law->clone());
         iso_.back()->revert_to_start();
       }
-      iso_force_.assign(iso_.size(), Point::Zero());
+      for (const auto &iso : iso_)
+        if (auto *b = dynamic_cast<PlanBilinearIsolator *>(iso.get()))
+          bilinear_.push_back(b);
+      if (bilinear_.size() != iso_.size())
+        bilinear_.clear();
       const std::size_t nc = model_.contacts().size();
       for (const PlanContact &pc : model_.contacts())
       {
         laws_.push_back(pc.law->clone());
         laws_.back()->revert_to_start();
+      }
+      wall_of_segment_.assign(model_.moat() ? model_.moat()->wall.size() : 0, -1);
+      for (const PlanWallDof &wd : model_.wall_dofs())
+      {
+        WallState st;
+        st.segment = wd.segment;
+        st.nx      = wd.normal.x();
+        st.ny      = wd.normal.y();
+        st.mass    = wd.mass;
+        st.a_inv   = 1.0 / (wd.mass * (inv_dt_ * inv_dt_)); // A = m/Δt² (no C, no K)
+        st.am      = st.a_inv * wd.mass;
+        st.owner   = wd.law->clone();
+        st.owner->revert_to_start();
+        st.law                       = static_cast<WallBackfillLaw *>(st.owner.get());
+        wall_of_segment_[wd.segment] = static_cast<int>(walls_.size());
+        walls_.push_back(std::move(st));
       }
       contact_g2_ = std::numeric_limits<double>::infinity();
       for (const PlanContact &pc : model_.contacts())
@@ -380,16 +511,6 @@ namespace kimp::lumped::plan
       corner_sq_.assign(b.n_levels(), 0.0);
       accel_sq_.assign(b.n_levels(), 0.0);
       drift_sq_.assign(b.storeys.size(), 0.0);
-      for (std::size_t l = 0; l < b.n_levels(); ++l)
-      {
-        const auto r = static_cast<Eigen::Index>(3 * l);
-        c_diag_.push_back(c.block<3, 3>(r, r));
-        if (l + 1 < b.n_levels())
-          c_upper_.push_back(c.block<3, 3>(r, r + 3));
-        // Blocks beyond the neighbouring level must vanish (Rayleigh of a block-tridiagonal K).
-        if (r + 6 < nn && !c.block(r, r + 6, 3, nn - r - 6).isZero(0.0))
-          throw std::logic_error("central difference in plan: C is not block-tridiagonal");
-      }
       for (const PlanContact &pc : model_.contacts())
       {
         PlanContactResult r;
@@ -410,12 +531,16 @@ namespace kimp::lumped::plan
         Eigen::MatrixXd(m.asDiagonal()) * (inv_dt_ * inv_dt_) + c * (0.5 * inv_dt_);
       const Eigen::MatrixXd inv = a.partialPivLu().inverse();
       // [A⁻¹(C/Δt + K); A⁻¹K], its rows padded with zeros to a multiple of 16.
-      hg_rows_               = (2 * n_ + 15) / 16 * 16;
-      step_                  = __builtin_cpu_supports("avx2") ? step_avx2 : step_base;
-      hg_                    = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(hg_rows_), nn);
+      hg_rows_ = (2 * n_ + 15) / 16 * 16;
+      step_    = pick_kernel(n_, __builtin_cpu_supports("avx2"), std::make_index_sequence<8>{});
+      hg_      = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(hg_rows_), nn);
       hg_.topRows(nn)        = inv * (c * inv_dt_ + k);
       hg_.middleRows(nn, nn) = inv * k;
       a_inv_f_               = inv.leftCols(3);
+      c_rows_                = (n_ + 15) / 16 * 16;
+      c_pad_                 = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(c_rows_), nn);
+      c_pad_.topRows(nn)     = c;
+      cv_                    = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(c_rows_));
       r_x_                   = Eigen::VectorXd::Zero(nn);
       r_y_                   = Eigen::VectorXd::Zero(nn);
       rx_m_                  = Eigen::VectorXd::Zero(nn);
@@ -429,6 +554,34 @@ namespace kimp::lumped::plan
       }
       am_x_ = inv * rx_m_;
       am_y_ = inv * ry_m_;
+    }
+
+    void Run::set_up_kernel()
+    {
+      StepArrays &k = k_;
+      k.n           = n_;
+      k.rows        = hg_rows_;
+      k.hg          = hg_.data();
+      k.af          = a_inv_f_.data();
+      k.amx         = am_x_.data();
+      k.amy         = am_y_.data();
+      k.y           = y_.data();
+      k.z           = z_.data();
+      k.inc         = inc_.data();
+      k.v           = v_.data();
+      k.a           = a_.data();
+      k.half_inv_dt = 0.5 * inv_dt_;
+      k.inv_dt2     = inv_dt_ * inv_dt_;
+      k.rx          = r_x_.data();
+      k.ry          = r_y_.data();
+      k.mx          = rx_m_.data();
+      k.my          = ry_m_.data();
+      k.pu          = peak_u_.data();
+      k.pa          = peak_a_.data();
+      k.acc2        = accel_sq_.data();
+      k.c_rows      = c_rows_;
+      k.cm          = c_pad_.data();
+      k.cv          = cv_.data();
     }
 
     void Run::set_up_points()
@@ -480,8 +633,20 @@ namespace kimp::lumped::plan
       const std::size_t n_rec = g_.x.size();
       if (integer_substeps_)
       {
-        j    = static_cast<std::size_t>(n / sub_);
-        frac = static_cast<double>(n % sub_) * inv_sub_;
+        // n = j·sub + r, kept by counting (n / sub_ and n % sub_ without a division per step).
+        if (n != sub_n_)
+        {
+          sub_j_ = n / sub_;
+          sub_r_ = n % sub_;
+        }
+        j      = static_cast<std::size_t>(sub_j_);
+        frac   = static_cast<double>(sub_r_) * inv_sub_;
+        sub_n_ = n + 1;
+        if (++sub_r_ == sub_)
+        {
+          sub_r_ = 0;
+          ++sub_j_;
+        }
       }
       else
       {
@@ -526,6 +691,8 @@ namespace kimp::lumped::plan
       cf_[c] = force;
       f0_ += force * pc.normal_row.transpose();
       wall_force_[pc.segment] += force;
+      if (!walls_.empty() && wall_of_segment_[pc.segment] >= 0)
+        walls_[static_cast<std::size_t>(wall_of_segment_[pc.segment])].contact += force;
       out_.contacts[c].peak_normal_force = std::max(out_.contacts[c].peak_normal_force, force);
 
       // Regularised Coulomb friction along the face, resisting the backward sliding velocity.
@@ -546,6 +713,47 @@ namespace kimp::lumped::plan
         std::max(out_.contacts[c].peak_friction_force, std::abs(phi));
     }
 
+    double Run::wall_at(const std::size_t c, const int lag) const
+    {
+      const int k = wall_of_segment_.empty() ? -1 : wall_of_segment_[model_.contacts()[c].segment];
+      if (k < 0)
+        return 0.0;
+      const WallState &wd = walls_[static_cast<std::size_t>(k)];
+      return lag == 0 ? wd.w : lag == 1 ? wd.w1 : wd.w2;
+    }
+
+    void Run::wall_forces(const long n)
+    {
+      // The wall-and-backfill parts at w_n (committed every step: permanently attached), their
+      // work ∫F dw by the trapezoid rule, the failure time.
+      const double t = static_cast<double>(n) * dt_;
+      for (WallState &wd : walls_)
+      {
+        const double rate = rate_of(scheme_, wd.w, wd.w1, wd.w2, inv_dt_);
+        const double f    = wd.law->set_trial(wd.w, rate).force;
+        wd.law->commit();
+        w_wall_ += 0.5 * (wd.fb + f) * (wd.w - wd.w1);
+        wd.fb      = f;
+        wd.contact = 0.0;
+        if (!wd.failure_time && wd.law->failed())
+          wd.failure_time = t;
+      }
+    }
+
+    void Run::advance_walls(const double ag_x, const double ag_y)
+    {
+      // m·ẅ = −m·(n·ü_g) − (F − Σ w_c·F_c): the planar step of a DOF without C and K.
+      for (WallState &wd : walls_)
+      {
+        const double f = wd.fb - wd.contact;
+        const double d = -(wd.am * wd.nx * ag_x + wd.am * wd.ny * ag_y) - wd.a_inv * f;
+        wd.dw_next     = wd.dw + d;
+        wd.w_next      = wd.w + wd.dw_next;
+        wd.v           = (wd.dw + wd.dw_next) * (0.5 * inv_dt_);
+        p_in_ -= wd.mass * (wd.nx * ag_x + wd.ny * ag_y) * wd.v;
+      }
+    }
+
     bool Run::contacts_far(const long n, const double *q0)
     {
       // The first two steps use the initial δ_{−1}, δ_{−2}; later a resumed pass recomputes
@@ -553,7 +761,13 @@ namespace kimp::lumped::plan
       if (n < 2 || !quiet_)
         return false;
       const double r2 = 2.0 * (q0[0] * q0[0] + q0[1] * q0[1] + q0[2] * q0[2] * contact_r2_);
-      return r2 < contact_g2_ * (1.0 - 1e-9);
+      if (walls_.empty())
+        return r2 < contact_g2_ * (1.0 - 1e-9);
+      // A yielding face moved towards the slab (w < 0) narrows its gaps.
+      double g = std::sqrt(contact_g2_);
+      for (const WallState &wd : walls_)
+        g = std::min(g, std::sqrt(contact_g2_) + wd.w);
+      return g > 0.0 && r2 < g * g * (1.0 - 1e-9);
     }
 
     void Run::forces(const long             n,
@@ -568,18 +782,40 @@ namespace kimp::lumped::plan
       f0_.setZero();
       const auto &kin       = model_.isolator_kinematics();
       Point       resultant = Point::Zero();
-      for (std::size_t j = 0; j < iso_.size(); ++j)
+      if (!bilinear_.empty())
       {
-        const Point uj = kin[j] * q0, uj1 = kin[j] * q1, uj2 = kin[j] * q2;
-        const Point vj(rate_of(scheme_, uj.x(), uj1.x(), uj2.x(), inv_dt_),
-                       rate_of(scheme_, uj.y(), uj1.y(), uj2.y(), inv_dt_));
-        const Point fj = iso_[j]->set_trial(uj, vj);
-        iso_[j]->commit();
-        iso_force_[j] = fj;
-        resultant += fj;
-        f0_ += kin[j].transpose() * fj;
+        // Bilinear isolators (the law needs no velocity): called directly, inlined; T_j =
+        // [1, 0, t_x; 0, 1, t_y] written out (the same sums as T_j·q and T_jᵀ·f), the sums in
+        // registers.
+        double fx = 0.0, fy = 0.0, ft = 0.0, rx = 0.0, ry = 0.0;
+        for (std::size_t j = 0; j < bilinear_.size(); ++j)
+        {
+          const double tx = kin[j](0, 2), ty = kin[j](1, 2);
+          const Point  uj(q0(0) + tx * q0(2), q0(1) + ty * q0(2));
+          const Point  fj = bilinear_[j]->set_trial(uj, uj);
+          bilinear_[j]->commit();
+          rx += fj.x();
+          ry += fj.y();
+          fx += fj.x();
+          fy += fj.y();
+          ft += tx * fj.x() + ty * fj.y();
+        }
+        f0_       = Eigen::Vector3d(fx, fy, ft);
+        resultant = Point(rx, ry);
       }
+      else
+        for (std::size_t j = 0; j < iso_.size(); ++j)
+        {
+          const Point uj = kin[j] * q0, uj1 = kin[j] * q1, uj2 = kin[j] * q2;
+          const Point vj(rate_of(scheme_, uj.x(), uj1.x(), uj2.x(), inv_dt_),
+                         rate_of(scheme_, uj.y(), uj1.y(), uj2.y(), inv_dt_));
+          const Point fj = iso_[j]->set_trial(uj, vj);
+          iso_[j]->commit();
+          resultant += fj;
+          f0_ += kin[j].transpose() * fj;
+        }
       iso_peak_sq_ = std::max(iso_peak_sq_, resultant.squaredNorm());
+      wall_forces(n);
       if (contacts_far(n, q0.data()))
       {
         skipped_ = true;
@@ -596,17 +832,19 @@ namespace kimp::lumped::plan
         { return pc.s_rest + pc.tangent_row.dot(q); };
         // Beyond the ends of its face a point meets nothing: the law sees the gap at rest.
         // The sliding coordinate only where it matters: a face with an end, a contact, friction.
-        const auto delta_at = [&](const Eigen::Vector3d &q)
+        // A yielding face's displacement w (at the same step as q) widens the gap.
+        const auto delta_at = [&](const Eigen::Vector3d &q, const int lag)
         {
-          const bool on_face = !ends_[c] || (s_at(q) >= pc.s_lo && s_at(q) <= pc.s_hi);
-          return on_face ? pc.normal_row.dot(q) - pc.gap : -pc.gap;
+          const bool   on_face = !ends_[c] || (s_at(q) >= pc.s_lo && s_at(q) <= pc.s_hi);
+          const double gap     = walls_.empty() ? pc.gap : pc.gap + wall_at(c, lag);
+          return on_face ? pc.normal_row.dot(q) - gap : -gap;
         };
         if (resumed)
         {
-          dp_[c]  = delta_at(q1);
-          dpp_[c] = delta_at(q2);
+          dp_[c]  = delta_at(q1, 1);
+          dpp_[c] = delta_at(q2, 2);
         }
-        const double delta = delta_at(q0);
+        const double delta = delta_at(q0, 0);
         if (delta > 0.0 || active_[c])
         {
           contact(c, delta, s_at(q0), s_at(q1), t);
@@ -651,43 +889,21 @@ namespace kimp::lumped::plan
       // a_n = (Δu_{n+1} − Δu_n)/Δt² (+ ü_g in x and y), the peaks of u_n and a_n and the input
       // power. Raw loops over the DOFs: the products and updates of a 15-DOF step cost less
       // than the set-up of Eigen's dynamic-size kernels.
-      StepArrays k;
-      k.n           = n_;
-      k.rows        = hg_rows_;
-      k.hg          = hg_.data();
-      k.af          = a_inv_f_.data();
-      k.amx         = am_x_.data();
-      k.amy         = am_y_.data();
+      StepArrays &k = k_; // the fixed pointers set once (set_up_kernel)
       k.un          = u_n_.data();
-      k.y           = y_.data();
       k.du          = du_n_.data();
-      k.z           = z_.data();
-      k.inc         = inc_.data();
       k.dun         = du_np1_.data();
       k.unp         = u_np1_.data();
-      k.v           = v_.data();
-      k.a           = a_.data();
       k.f[0]        = f0_(0);
       k.f[1]        = f0_(1);
       k.f[2]        = f0_(2);
       k.ag_x        = ag_x;
       k.ag_y        = ag_y;
-      k.half_inv_dt = 0.5 * inv_dt_;
-      k.inv_dt2     = inv_dt_ * inv_dt_;
-      k.rx          = r_x_.data();
-      k.ry          = r_y_.data();
-      k.mx          = rx_m_.data();
-      k.my          = ry_m_.data();
-      k.pu          = peak_u_.data();
-      k.pa          = peak_a_.data();
       step_(k);
-      p_in_ = k.p_in;
-      for (std::size_t l = 0; l < accel_sq_.size(); ++l)
-      {
-        const double ax = a_(static_cast<Eigen::Index>(3 * l)),
-                     ay = a_(static_cast<Eigen::Index>(3 * l + 1));
-        accel_sq_[l]    = std::max(accel_sq_[l], ax * ax + ay * ay);
-      }
+      p_in_   = k.p_in;
+      p_visc_ = k.p_visc;
+      if (!walls_.empty())
+        advance_walls(ag_x, ag_y);
     }
 
     void Run::bookkeeping(const long n)
@@ -750,18 +966,9 @@ namespace kimp::lumped::plan
         }
         drift_sq_[s] = m;
       }
-      // Input and viscous power at t_n, trapezoid sums from t_0; vᵀCv with C block-tridiagonal
-      // by levels (storeys join consecutive levels).
-      const double  p_in   = p_in_;
-      double        p_visc = 0.0;
-      const double *vp     = v_.data();
-      for (std::size_t l = 0; l < c_diag_.size(); ++l)
-      {
-        const Eigen::Map<const Eigen::Vector3d> vl(vp + 3 * l);
-        p_visc += vl.dot(c_diag_[l] * vl);
-        if (l + 1 < c_diag_.size())
-          p_visc += 2.0 * vl.dot(c_upper_[l] * Eigen::Map<const Eigen::Vector3d>(vp + 3 * l + 3));
-      }
+      // Input and viscous power at t_n (from the step kernel), trapezoid sums from t_0.
+      const double p_in   = p_in_;
+      const double p_visc = p_visc_;
       if (n > 0)
       {
         w_in_ += 0.5 * dt_ * (p_in_prev_ + p_in);
@@ -775,7 +982,9 @@ namespace kimp::lumped::plan
     {
       const double t = static_cast<double>(n) * dt_;
       e_kin_         = 0.5 * v_.dot(model_.masses().cwiseProduct(v_));
-      e_strain_      = strain_energy();
+      for (const WallState &wd : walls_)
+        e_kin_ += 0.5 * wd.mass * wd.v * wd.v;
+      e_strain_ = strain_energy();
       if (n == 0)
         e0_ = e_kin_ + e_strain_;
       double hysteretic = 0.0;
@@ -783,10 +992,19 @@ namespace kimp::lumped::plan
         hysteretic += iso->dissipated_energy();
       const double supplied = e0_ + w_in_;
       max_supplied_         = std::max(max_supplied_, supplied);
-      const double residual =
-        std::abs(supplied - (e_kin_ + e_strain_ + w_visc_ + hysteretic + w_contact_ + w_friction_));
-      last_error_   = residual / std::max(max_supplied_, 1e-300);
-      max_residual_ = std::max(max_residual_, residual);
+      const double residual = std::abs(supplied - (e_kin_ + e_strain_ + w_visc_ + hysteretic +
+                                                   w_contact_ + w_friction_ + w_wall_));
+      last_error_           = residual / std::max(max_supplied_, 1e-300);
+      max_residual_         = std::max(max_residual_, residual);
+      for (const WallState &wd : walls_)
+        if (!std::isfinite(wd.w_next))
+        {
+          std::ostringstream msg;
+          msg << "central difference in plan diverged: the yielding wall of face " << wd.segment
+              << " is not finite at t = " << t + dt_ << " s (step " << n + 1 << ", dt = " << dt_
+              << " s)";
+          throw DivergenceError(msg.str(), t + dt_, n + 1, static_cast<int>(n_ + wd.segment));
+        }
       for (std::size_t i = 0; i < n_; ++i)
         if (!std::isfinite(u_np1_(static_cast<Eigen::Index>(i))))
         {
@@ -833,7 +1051,7 @@ namespace kimp::lumped::plan
       }
     }
 
-    PlanResponse Run::execute()
+    void Run::initial_conditions()
     {
       const auto nn = static_cast<Eigen::Index>(n_);
       // Initial conditions: u_{−1}, u_{−2} by a Taylor expansion with a_0 = M⁻¹(p_0 − C·v_0 −
@@ -860,9 +1078,11 @@ namespace kimp::lumped::plan
         dpp_[c]                  = delta - 2.0 * dt_ * rate;
         if (delta > 0.0)
         {
-          f0.head<3>() +=
-            pc.weight * laws_[c]->set_trial(delta, rate).force * pc.normal_row.transpose();
+          const double fc = pc.weight * laws_[c]->set_trial(delta, rate).force;
+          f0.head<3>() += fc * pc.normal_row.transpose();
           laws_[c]->revert_to_last_commit();
+          if (!walls_.empty() && wall_of_segment_[pc.segment] >= 0)
+            walls_[static_cast<std::size_t>(wall_of_segment_[pc.segment])].contact += fc;
         }
       }
       double ag_x0, ag_y0;
@@ -871,28 +1091,29 @@ namespace kimp::lumped::plan
       const Eigen::VectorXd  a0 =
         (-(rx_m_ * ag_x0 + ry_m_ * ag_y0) - model_.damping() * v0 - model_.stiffness() * u0 - f0)
           .cwiseQuotient(m);
+      // The yielding walls start at rest at w = 0 (the law trialled, the first step commits it).
+      for (WallState &wd : walls_)
+      {
+        const double fb = wd.law->set_trial(0.0, 0.0).force;
+        wd.law->revert_to_last_commit();
+        const double aw =
+          (-wd.mass * (wd.nx * ag_x0 + wd.ny * ag_y0) - (fb - wd.contact)) / wd.mass;
+        wd.contact = 0.0;
+        wd.w1      = 0.5 * dt_ * dt_ * aw;
+        wd.w2      = 2.0 * dt_ * dt_ * aw;
+        wd.dw      = -0.5 * dt_ * dt_ * aw;
+      }
       u_n_   = u0;
       u_nm1_ = u0 - dt_ * v0 + 0.5 * dt_ * dt_ * a0;
       u_nm2_ = u0 - 2.0 * dt_ * v0 + 2.0 * dt_ * dt_ * a0;
       du_n_  = dt_ * v0 - 0.5 * dt_ * dt_ * a0;
       // z_{−1} = A⁻¹K·u_{−1}.
       z_ = hg_.middleRows(nn, nn) * (u_n_ - du_n_);
+      set_up_kernel();
+    }
 
-      for (long n = 0; n <= n_steps_; ++n)
-      {
-        double ag_x, ag_y;
-        ground(n, ag_x, ag_y);
-        forces(n, u_n_, u_nm1_, u_nm2_);
-        advance(ag_x, ag_y);
-        bookkeeping(n);
-        if ((every_ > 0 && n % every_ == 0) || n % check_every_ == 0 || n == n_steps_)
-          checkpoint(n);
-        u_nm2_.swap(u_nm1_);
-        u_nm1_.swap(u_n_);
-        u_n_.swap(u_np1_);
-        du_n_.swap(du_np1_);
-      }
-
+    void Run::collect_results()
+    {
       out_.dt       = dt_;
       out_.n_steps  = n_steps_;
       out_.duration = static_cast<double>(n_steps_) * dt_;
@@ -925,8 +1146,60 @@ namespace kimp::lumped::plan
       }
       for (std::size_t q = 0; q < drift_sq_.size(); ++q)
         out_.peak_corner_drift[q] = std::sqrt(drift_sq_[q]);
+      e.wall_work = w_wall_;
+      for (const WallState &wd : walls_)
+      {
+        PlanYieldingWallResult y;
+        y.segment            = wd.segment;
+        y.peak_resistance    = wd.law->peak_resistance();
+        y.peak_displacement  = wd.law->peak_deformation();
+        y.permanent_set      = wd.law->permanent_indentation();
+        y.final_displacement = wd.w;
+        y.plastic_work       = wd.law->plastic_work();
+        y.radiated_work      = wd.law->radiated_work();
+        y.failure_time       = wd.failure_time;
+        e.wall_plastic += y.plastic_work;
+        e.wall_radiated += y.radiated_work;
+        out_.yielding_walls.push_back(y);
+      }
       e.relative_error     = last_error_;
       e.max_relative_error = max_residual_ / std::max(max_supplied_, 1e-300);
+    }
+
+    PlanResponse Run::execute()
+    {
+      initial_conditions();
+      // The check points (n a multiple of every_ or of check_every_, and the last step) by
+      // counting down, not by a division per step; every_ divides check_every_ when both are set.
+      const long period = every_ > 0 && check_every_ % every_ == 0 ? every_ : check_every_;
+      const bool exact  = every_ == 0 || check_every_ % every_ == 0;
+      long       to_go  = 0;
+      for (long n = 0; n <= n_steps_; ++n)
+      {
+        double ag_x, ag_y;
+        ground(n, ag_x, ag_y);
+        forces(n, u_n_, u_nm1_, u_nm2_);
+        advance(ag_x, ag_y);
+        bookkeeping(n);
+        const bool due =
+          exact ? to_go == 0 : (every_ > 0 && n % every_ == 0) || n % check_every_ == 0;
+        to_go = to_go == 0 ? period - 1 : to_go - 1;
+        if (due || n == n_steps_)
+          checkpoint(n);
+        u_nm2_.swap(u_nm1_);
+        u_nm1_.swap(u_n_);
+        u_n_.swap(u_np1_);
+        du_n_.swap(du_np1_);
+        for (WallState &wd : walls_)
+        {
+          wd.w2 = wd.w1;
+          wd.w1 = wd.w;
+          wd.w  = wd.w_next;
+          wd.dw = wd.dw_next;
+        }
+      }
+
+      collect_results();
       return out_;
     }
   } // namespace
@@ -942,7 +1215,21 @@ namespace kimp::lumped::plan
     for (const PlanIsolatorSpec &iso : building_.isolators)
       isolator_t_.push_back(level_kinematics(building_, 0, iso.position));
     if (moat_)
+    {
       contacts_ = moat_contacts(*moat_, building_);
+      // The yielding faces' DOFs: w along the face's normal away from the slab (the wall
+      // counter-clockwise, as the contacts number its faces).
+      const Polygon     wall = counter_clockwise(moat_->wall);
+      const std::size_t nw   = wall.size();
+      for (const PlanYieldingWall &y : moat_->yielding)
+      {
+        const Point t = (wall[(y.segment + 1) % nw] - wall[y.segment]).normalized();
+        walls_.push_back({y.segment,
+                          Point(t.y(), -t.x()),
+                          y.params.mass,
+                          std::make_shared<const WallBackfillLaw>(y.params)});
+      }
+    }
   }
 
   Eigen::MatrixXd PlanModel::initial_stiffness_matrix() const

@@ -25,9 +25,18 @@ namespace kimp::lumped::plan
     std::optional<PlanMoat> moat;
   };
 
+  /// The DOF of a yielding wall face (PlanYieldingWall): w along `normal`, away from the slab.
+  struct PlanWallDof
+  {
+    std::size_t                            segment = 0;
+    Point                                  normal  = Point::Zero();
+    double                                 mass    = 0.0; ///< kg
+    std::shared_ptr<const WallBackfillLaw> law;           ///< prototype
+  };
+
   /**
-   * The assembled system: diagonal M, dense K (storeys) and C, the isolators at level 0 and the
-   * contact points of the moat.
+   * The assembled system: diagonal M, dense K (storeys) and C, the isolators at level 0, the
+   * contact points of the moat and the DOFs of its yielding faces.
    */
   class PlanModel
   {
@@ -43,6 +52,7 @@ namespace kimp::lumped::plan
     const PlanDamping     &damping_model() const { return damping_; }
     const std::vector<PlanContact> &contacts() const { return contacts_; }
     const std::optional<PlanMoat>  &moat() const { return moat_; }
+    const std::vector<PlanWallDof> &wall_dofs() const { return walls_; }
     /// T_j (2 × 3) of each isolator relative to level 0's DOFs.
     const std::vector<Eigen::Matrix<double, 2, 3>> &isolator_kinematics() const
     {
@@ -58,6 +68,7 @@ namespace kimp::lumped::plan
     Eigen::MatrixXd                          stiffness_;
     PlanDamping                              damping_;
     std::vector<PlanContact>                 contacts_;
+    std::vector<PlanWallDof>                 walls_;
     std::vector<Eigen::Matrix<double, 2, 3>> isolator_t_;
   };
 
@@ -92,9 +103,25 @@ namespace kimp::lumped::plan
     double                   friction_work     = 0.0; ///< ∫ φ ds, J
   };
 
+  /// Results of one yielding wall face.
+  struct PlanYieldingWallResult
+  {
+    std::size_t segment            = 0;
+    double      peak_resistance    = 0.0; ///< max R(w) of the wall-and-backfill part, N
+    double      peak_displacement  = 0.0; ///< w_max, m
+    double      permanent_set      = 0.0; ///< w_p at the end, m
+    double      final_displacement = 0.0; ///< w at the end, m
+    double      plastic_work       = 0.0; ///< J
+    double      radiated_work      = 0.0; ///< J
+    /// Time at which w_max first exceeded failure_displacement (unset: not failed), s.
+    std::optional<double> failure_time;
+  };
+
   /**
-   * Energy terms, J (relative formulation as lumped::EnergyBalance), with the friction work:
-   *   E_0 + W_in = E_kin + E_strain + E_viscous + E_hysteretic + W_contact + W_friction.
+   * Energy terms, J (relative formulation as lumped::EnergyBalance), with the friction work and
+   * the work done on the yielding walls' wall-and-backfill parts:
+   *   E_0 + W_in = E_kin + E_strain + E_viscous + E_hysteretic + W_contact + W_friction + W_wall
+   * (E_kin and W_in include the walls' DOFs).
    */
   struct PlanEnergy
   {
@@ -107,6 +134,9 @@ namespace kimp::lumped::plan
     double contact_work      = 0.0;
     double impact_dissipated = 0.0;
     double friction          = 0.0;
+    double wall_work         = 0.0; ///< Σ ∫F dw of the wall-and-backfill parts (trapezoid)
+    double wall_plastic      = 0.0; ///< their plastic work
+    double wall_radiated     = 0.0; ///< their radiated work
     /// |residual| / max over the check points of (E_0 + W_in), at the end and its maximum.
     double relative_error     = 0.0;
     double max_relative_error = 0.0;
@@ -142,8 +172,9 @@ namespace kimp::lumped::plan
     /// the largest drift magnitude over the upper level's corners, m.
     std::vector<double> peak_drift_x, peak_drift_y, peak_corner_drift;
     /// max |Σ_j f_j|, the resultant of the isolators, N.
-    double                         peak_isolator_force = 0.0;
-    std::vector<PlanContactResult> contacts;
+    double                              peak_isolator_force = 0.0;
+    std::vector<PlanContactResult>      contacts;
+    std::vector<PlanYieldingWallResult> yielding_walls;
     /// Per wall face, max over time of Σ w·F of its contact points, N.
     std::vector<double> peak_wall_force;
     PlanEnergy          energy;

@@ -33,23 +33,6 @@ namespace kimp::lumped::plan
     (void)check;
   }
 
-  Point PlanBilinearIsolator::set_trial(const Point &displacement, const Point & /*velocity*/)
-  {
-    const double k_ep    = K1_ - K2_;
-    const Point  f_trial = committed_.f_ep + k_ep * (displacement - committed_.u);
-    const double norm    = f_trial.norm();
-    trial_.u             = displacement;
-    trial_.dissipated    = committed_.dissipated;
-    if (norm > Q_)
-    {
-      // Radial return: plastic slip |Δu_p| = (|f_trial| − Q)/k_ep along f_trial.
-      trial_.f_ep = Q_ * (f_trial / norm);
-      trial_.dissipated += Q_ * (norm - Q_) / k_ep;
-    }
-    else
-      trial_.f_ep = f_trial;
-    return K2_ * displacement + trial_.f_ep;
-  }
 
   double PlanBilinearIsolator::stored_energy() const
   {

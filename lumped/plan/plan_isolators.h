@@ -5,6 +5,7 @@
 // one axis.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <string>
 
@@ -109,6 +110,32 @@ namespace kimp::lumped::plan
   };
 
   /// History of a PlanBoucWenIsolator.
+  // In the header, so that a caller holding a PlanBilinearIsolator can inline it.
+  inline Point PlanBilinearIsolator::set_trial(const Point &displacement,
+                                               const Point & /*velocity*/)
+  {
+    const double k_ep    = K1_ - K2_;
+    const Point  f_trial = committed_.f_ep + k_ep * (displacement - committed_.u);
+    trial_.u             = displacement;
+    trial_.dissipated    = committed_.dissipated;
+    // |f_trial| <= 0.9·Q for sure (no root needed) while |f_trial|² <= 0.81·Q².
+    const double sq = f_trial.squaredNorm();
+    if (sq <= 0.81 * Q_ * Q_)
+    {
+      trial_.f_ep = f_trial;
+      return K2_ * displacement + trial_.f_ep;
+    }
+    const double norm = std::sqrt(sq);
+    if (norm > Q_)
+    {
+      // Radial return: plastic slip |Δu_p| = (|f_trial| − Q)/k_ep along f_trial.
+      trial_.f_ep = Q_ * (f_trial / norm);
+      trial_.dissipated += Q_ * (norm - Q_) / k_ep;
+    }
+    else
+      trial_.f_ep = f_trial;
+    return K2_ * displacement + trial_.f_ep;
+  }
   struct PlanBoucWenState
   {
     Point  u          = Point::Zero(); ///< m

@@ -49,6 +49,51 @@ namespace kimp::lumped::plan
     return moat_polygon(building.levels[0].outline, gaps);
   }
 
+  namespace
+  {
+    /// The yielding faces: existing, each once, on a convex wall (no re-entrant corner, whose
+    /// contact would belong to two faces), with valid wall-and-backfill parameters.
+    void validate_yielding(const PlanMoat &moat)
+    {
+      if (moat.yielding.empty())
+        return;
+      const Polygon     wall = counter_clockwise(moat.wall);
+      const std::size_t nw   = wall.size();
+      for (std::size_t j = 0; j < nw; ++j)
+      {
+        const Point a = wall[(j + nw - 1) % nw], b = wall[j], c = wall[(j + 1) % nw];
+        const Point u = b - a, v = c - b;
+        if (u.x() * v.y() - u.y() * v.x() < 0.0)
+          throw std::invalid_argument("moat.yielding: needs a convex wall polygon (vertex " +
+                                      std::to_string(j) + " " + point_text(b) +
+                                      " is a re-entrant corner)");
+      }
+      std::vector<char> seen(nw, 0);
+      for (std::size_t i = 0; i < moat.yielding.size(); ++i)
+      {
+        const PlanYieldingWall &y     = moat.yielding[i];
+        const std::string       where = "moat.yielding[" + std::to_string(i) + "]";
+        if (y.segment >= nw)
+          throw std::invalid_argument(where + ".segment = " + std::to_string(y.segment) +
+                                      " (the wall has faces 0 to " + std::to_string(nw - 1) + ")");
+        if (seen[y.segment]++)
+          throw std::invalid_argument(where + ".segment = " + std::to_string(y.segment) +
+                                      " (that face already has a yielding wall)");
+        if (!(std::isfinite(y.params.mass) && y.params.mass > 0.0))
+          throw std::invalid_argument(where + ".mass = " + std::to_string(y.params.mass) +
+                                      " kg (the wall DOF's mass, must be > 0)");
+        try
+        {
+          (void)WallBackfillLaw(y.params);
+        }
+        catch (const std::invalid_argument &e)
+        {
+          throw std::invalid_argument(where + ": " + e.what());
+        }
+      }
+    }
+  } // namespace
+
   void validate(const PlanMoat &moat, const PlanBuilding &building)
   {
     validate(building);
@@ -103,6 +148,7 @@ namespace kimp::lumped::plan
     {
       throw std::invalid_argument(std::string("moat.law: ") + e.what());
     }
+    validate_yielding(moat);
   }
 
   std::vector<PlanContact> moat_contacts(const PlanMoat &moat, const PlanBuilding &building)

@@ -11,6 +11,7 @@
 
 #include "lumped/laws/force_law.h"
 #include "lumped/laws/force_law_factory.h"
+#include "lumped/laws/wall_backfill_law.h"
 #include "lumped/plan/plan_building.h"
 
 namespace kimp::lumped::plan
@@ -36,7 +37,26 @@ namespace kimp::lumped::plan
    * | points_per_edge | -    | >= 2             | contact points per slab edge               |
    * | facing_cosine   | -    | (0, 1]           | an edge meets a wall face whose normal is  |
    * |                 |      |                  | within acos(this) of its own (default 0.5) |
+   * | yielding        | SI   | PlanYieldingWall | faces with a yielding wall (convex wall    |
+   * |                 |      |                  | polygon only)                              |
    */
+  /**
+   * A yielding wall face: the contact law of its points in series with a wall-and-backfill part
+   * (lumped::WallBackfillLaw, docs/physics.md §2 "Yielding moat wall") on a DOF of its own, w,
+   * the face's displacement along its normal away from the slab, relative to the ground:
+   *   m·ẅ = −m·(n·ü_g) + Σ_c w_c·F_c − F(w, ẇ),   δ_c = n_c·q_0 − gap_c − w,
+   * so the permanent set moves that face back (the next impact comes at a larger gap).
+   * `params` are the whole face's (stiffness, capacity and dashpot of the face, not per metre);
+   * params.mass is the DOF's mass m (> 0).
+   */
+  struct PlanYieldingWall
+  {
+    /// Wall face j: vertex j to j + 1 of `wall` ordered counter-clockwise (the contacts'
+    /// `segment`).
+    std::size_t        segment = 0;
+    WallBackfillParams params;
+  };
+
   struct PlanMoat
   {
     Polygon      wall;
@@ -46,6 +66,8 @@ namespace kimp::lumped::plan
     double       stick_velocity  = 1e-3;
     int          points_per_edge = 2;
     double       facing_cosine   = 0.5;
+    /// Faces carrying a yielding wall (at most one entry per face; the others are rigid).
+    std::vector<PlanYieldingWall> yielding;
   };
 
   /// The moat polygon at `gaps` (one per slab edge, or one for all; m) around level 0's outline

@@ -79,4 +79,33 @@ namespace kimp::lumped
     const double b   = (zeta_j / (2.0 * omega_i) - zeta_i / (2.0 * omega_j)) / det;
     return {a, b};
   }
+
+  Eigen::MatrixXd modal_damping_matrix(const Eigen::VectorXd &mass,
+                                       const ModalProperties &modes,
+                                       const Eigen::VectorXd &zeta)
+  {
+    const Eigen::Index n = mass.size();
+    if (modes.omega.size() != n || modes.shapes.rows() != n || modes.shapes.cols() != n ||
+        zeta.size() != n)
+    {
+      std::ostringstream msg;
+      msg << "modal damping: " << n << " masses, " << modes.omega.size() << " modes ("
+          << modes.shapes.rows() << "x" << modes.shapes.cols() << " shapes) and " << zeta.size()
+          << " damping ratios (must all be " << n << ")";
+      throw std::invalid_argument(msg.str());
+    }
+    for (Eigen::Index k = 0; k < n; ++k)
+      if (!(zeta(k) >= 0.0 && zeta(k) < 1.0))
+      {
+        std::ostringstream msg;
+        msg << "modal damping: damping ratio of mode " << k + 1 << " = " << zeta(k)
+            << " (must be in [0, 1))";
+        throw std::invalid_argument(msg.str());
+      }
+    // M·Φ, then (M·Φ)·diag(2ζω)·(M·Φ)ᵀ, symmetrised against round-off.
+    const Eigen::MatrixXd mphi  = mass.asDiagonal() * modes.shapes;
+    const Eigen::VectorXd coeff = 2.0 * zeta.cwiseProduct(modes.omega);
+    const Eigen::MatrixXd c     = mphi * coeff.asDiagonal() * mphi.transpose();
+    return 0.5 * (c + c.transpose());
+  }
 } // namespace kimp::lumped

@@ -1,5 +1,6 @@
 // Undamped modal analysis K·φ = ω²·M·φ of the lumped models and Rayleigh damping C = a·M + b·K
-// fitted to damping ratios at two modes (thesis eq. 3.1-3.2; Chopra, Dynamics of Structures §11.4).
+// fitted to damping ratios at two modes (thesis eq. 3.1-3.2; Chopra, Dynamics of Structures §11.4),
+// or classical damping given mode by mode (Chopra §11.5).
 #pragma once
 
 #include <Eigen/Dense>
@@ -37,4 +38,17 @@ namespace kimp::lumped
    */
   RayleighCoefficients
   rayleigh_coefficients(double omega_i, double omega_j, double zeta_i, double zeta_j);
+
+  /**
+   * Classical damping with ratio ζ_k in mode k (Chopra, Dynamics of Structures §11.5):
+   *   C = M·Φ·diag(2·ζ_k·ω_k)·Φᵀ·M,
+   * Φ the mass-normalised shapes of `modes` (modal_analysis of the same `mass`), so that
+   * Φᵀ·C·Φ = diag(2·ζ_k·ω_k): every mode keeps its own ratio, whatever the frequencies (unlike
+   * Rayleigh damping, exact at two modes only). Symmetric, positive semi-definite for ζ >= 0.
+   * @param[in] zeta one ratio per mode (size of modes.omega), each in [0, 1)
+   * @throws std::invalid_argument for a size mismatch or a ratio outside [0, 1).
+   */
+  Eigen::MatrixXd modal_damping_matrix(const Eigen::VectorXd &mass,
+                                       const ModalProperties &modes,
+                                       const Eigen::VectorXd &zeta);
 } // namespace kimp::lumped

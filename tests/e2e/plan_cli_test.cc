@@ -117,6 +117,39 @@ TEST(PlanCli, SyntheticTwoComponentsRun)
   EXPECT_LT(c.at("energy").at("max_relative_error").get<double>(), 1e-3);
 }
 
+TEST(PlanCli, YieldingFacesAndModalDampingRun)
+{
+  // Faces 0 and 1 yield (a weak wall-and-backfill part: 5 kN/mm per m, 20 kN per m, failure at
+  // 2 mm), modal damping: the run closes its energy balance with the walls' work and reports
+  // the struck face's set and failure with its time.
+  const TempDir dir("e2e_plan_yielding");
+  const KimpRun run = run_scene(dir,
+                                small_plan_scene("    yielding:\n"
+                                                 "      - {face: 0, stiffness: \"5 kN/mm/m\", "
+                                                 "capacity: \"20 kN/m\", failure_displacement: "
+                                                 "\"0.2 cm\"}\n"
+                                                 "      - {face: 1, mass: \"50 t\"}\n"
+                                                 "  damping: modal\n"));
+  ASSERT_EQ(run.exit_code, 0) << run.output();
+  const nlohmann::json c = read_json(dir.path() / "out" / "summary.json").at("cases").at(0);
+  EXPECT_GT(c.at("n_impacts").get<int>(), 0);
+  EXPECT_LT(c.at("energy").at("max_relative_error").get<double>(), 1e-3);
+  const nlohmann::json &y = c.at("yielding_walls");
+  ASSERT_EQ(y.size(), 2u);
+  EXPECT_EQ(y.at(0).at("face").get<int>(), 0);
+  EXPECT_GE(c.at("energy").at("wall_work").get<double>(),
+            c.at("energy").at("wall_plastic").get<double>());
+  bool failed = false;
+  for (const nlohmann::json &f : y)
+    if (f.at("failed").get<bool>())
+    {
+      failed = true;
+      EXPECT_GT(f.at("failure_time").get<double>(), 0.0);
+      EXPECT_GT(f.at("permanent_set").get<double>(), 0.0);
+    }
+  EXPECT_TRUE(failed) << y.dump();
+}
+
 namespace
 {
   struct BadPlan
@@ -141,6 +174,15 @@ TEST(PlanCli, BadPlanInputNamesFileLineAndKeyAndWritesNothing)
     {"gap <= 0", "    gaps: [\"4 cm\", \"0 cm\", \"4 cm\", \"4 cm\"]\n", ":12: plan.moat.gaps[1]"},
     {"wrong number of gaps", "    gaps: [\"4 cm\", \"4 cm\"]\n", ":12: plan.moat.gaps"},
     {"missing second component", "  second_component: record\n", "plan.second_record"},
+    {"yielding face outside the wall",
+     "    yielding: [{face: 9}]\n",
+     "moat.yielding[0].segment = 9"},
+    {"yielding face twice",
+     "    yielding: [{face: 1}, {face: 1}]\n",
+     "already has a yielding wall"},
+    {"yielding width in plan",
+     "    yielding: [{face: 1, width: \"5 m\"}]\n",
+     "moat.yielding[0].width does not apply"},
   };
   for (const BadPlan &b : cases)
   {
