@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -129,6 +130,9 @@ namespace kimp::fem
        *  and its lift term to rhs. */
       void
       assemble_interface(const Vector<double> &u, const Vector<double> &lift, Vector<double> &rhs);
+      /** MaterialLaw::begin_step() on every committed point for a step of @p increment of
+       *  the load factor. */
+      void begin_step(double increment);
       void commit();
       void revert();
       /** The unit-resultant band traction vector g_ of p.controlled_load. */
@@ -163,6 +167,7 @@ namespace kimp::fem
       double                               load_        = 0; // its resultant P, N/m
       double                               target_mean_ = 0; // m
       double                               weight_      = 0;
+      double last_increment_ = 0; // load factor increment of the last converged step
       double                               force_scale_ = 0; // largest converged |reactions|
       unsigned long                        step_        = 0;
       std::ostream                        *log_         = nullptr;
@@ -520,6 +525,18 @@ namespace kimp::fem
              1e-9 * std::max(std::abs(p_.controlled_load->displacement), 1e-12);
     }
 
+    void StaticProblem::begin_step(double increment)
+    {
+      // Ratio of this increment to the last converged one; none to extrapolate from at the
+      // first step or at a reversal of the load path.
+      const double ratio =
+        last_increment_ != 0 ? std::max(0.0, increment / last_increment_) : 0.0;
+      for (unsigned int c = 0; c < cell_law_.size(); ++c)
+        for (unsigned int q = 0; q < n_q; ++q)
+          cell_law_[c]->begin_step(history_.committed_for_step(c, q), ratio);
+      history_.revert(); // the trial history starts from the extrapolated one
+    }
+
     void StaticProblem::commit()
     {
       history_.commit();
@@ -729,8 +746,10 @@ namespace kimp::fem
       step.load_factor = b;
       step.segment     = segment_;
       const bool loose = p_.loose_tolerance > 0 && depth >= p_.max_cuts;
+      begin_step(b - a);
       if (newton(u_, r_, lift, step.residuals, loose))
       {
+        last_increment_ = b - a;
         if (step.residuals.back() > p_.newton_tolerance)
         {
           ++out.n_loose_steps;
@@ -748,6 +767,13 @@ namespace kimp::fem
                << step.residuals.size() << " Newton iterations, residual " << step.residuals.back();
           if (p_.controlled_load)
             line << ", controlled load " << step.controlled_force << " N/m";
+          if (std::getenv("KIMP_DEBUG_RESIDUALS"))
+          {
+            line << " [";
+            for (const double x : step.residuals)
+              line << ' ' << x;
+            line << " ]";
+          }
           for (std::size_t e = 0; e < step.reactions.size(); ++e)
             line << ", reaction " << e << " (" << step.reactions[e][0] << ", "
                  << step.reactions[e][1] << ") N/m";
