@@ -160,8 +160,8 @@ namespace kimp::fem
     h1[implex_ + 3] = h0[1];
     const double kt = h0[implex_], kc = h0[implex_ + 1];
     const double el = kc - plastic_strain(kc);
-    const double dc = kc > 0 && el > 0 ? 1 - p_.compression_curve(kc) / (p_.youngs_modulus * el) :
-                                         0.0;
+    const double dc =
+      kc > 0 && el > 0 ? 1 - p_.compression_curve(kc) / (p_.youngs_modulus * el) : 0.0;
     return {{std::clamp(std::max(tension_damage(kt, h0[5]), h0[2]), 0.0, max_damage),
              std::clamp(std::max(dc, h0[3]), 0.0, max_damage)}};
   }

@@ -322,8 +322,8 @@ namespace kimp::fem
     unsigned int n_history() const override { return implex_ + (implex_on_ ? 4 : 0); }
     /** IMPL-EX: extrapolates kappa_t, kappa_c to the coming step (no-op when implicit). */
     void begin_step(double *committed, double step_ratio) const override;
-    void         initialize_point(double *history, double characteristic_length) const override;
-    void         initial_history(double *history) const override;
+    void initialize_point(double *history, double characteristic_length) const override;
+    void initial_history(double *history) const override;
     VoigtStress
     stress(const VoigtStrain &strain, const double *committed, double *trial) const override;
     /** The tangent at the committed damage (beta's change with the opening left out): enough
@@ -385,8 +385,8 @@ namespace kimp::fem
     SteelBar steel_at(double h) const;
     /** IMPL-EX: the damage (d_t, d_c) of the measures extrapolated in h0, never below the
      *  committed one; writes the committed measures as the previous ones to h1. */
-    std::array<double, 2> implex_damage(const double *h0, double *h1) const;
-    ConcreteParameters    p_;
+    std::array<double, 2>   implex_damage(const double *h0, double *h1) const;
+    ConcreteParameters      p_;
     ReinforcementParameters r_;
     SteelBar                steel_;
     bool                    reinforced_ = false;

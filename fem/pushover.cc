@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <map>
 #include <memory>
@@ -236,10 +235,10 @@ namespace kimp::fem
         check(barred.ratio_y < 1,
               "the bars' area exceeds their column of cells (ratio_y = " + num(p.bars.ratio_y) +
                 ")");
-        const auto update = p.implex ? ConcreteDamageLaw::DamageUpdate::implex :
-                                       ConcreteDamageLaw::DamageUpdate::implicit;
-        s.laws[plain_id]  = std::make_shared<ConcreteDamageLaw>(p.concrete, plain, update);
-        s.laws[bar_id]    = std::make_shared<ConcreteDamageLaw>(p.concrete, barred, update);
+        const auto update   = p.implex ? ConcreteDamageLaw::DamageUpdate::implex :
+                                         ConcreteDamageLaw::DamageUpdate::implicit;
+        s.laws[plain_id]    = std::make_shared<ConcreteDamageLaw>(p.concrete, plain, update);
+        s.laws[bar_id]      = std::make_shared<ConcreteDamageLaw>(p.concrete, barred, update);
         s.numerical_tangent = {plain_id, bar_id};
       }
       else
@@ -317,7 +316,7 @@ namespace kimp::fem
     s.newton_tolerance                  = p.tolerance;
     s.loose_tolerance                   = p.loose_tolerance;
     s.max_iterations                    = 40;
-    s.damped_newton                     = std::getenv("PO_NODAMP") == nullptr;
+    s.damped_newton                     = true;
     const StaticPlasticityResult solved = run_static_plasticity(s, log);
 
     PushoverResult out;

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -167,10 +166,10 @@ namespace kimp::fem
       double                               load_        = 0; // its resultant P, N/m
       double                               target_mean_ = 0; // m
       double                               weight_      = 0;
-      double last_increment_ = 0; // load factor increment of the last converged step
-      double                               force_scale_ = 0; // largest converged |reactions|
-      unsigned long                        step_        = 0;
-      std::ostream                        *log_         = nullptr;
+      double        last_increment_ = 0; // load factor increment of the last converged step
+      double        force_scale_    = 0; // largest converged |reactions|
+      unsigned long step_           = 0;
+      std::ostream *log_            = nullptr;
     };
 
     StaticProblem::StaticProblem(const StaticPlasticityParameters &p)
@@ -529,8 +528,7 @@ namespace kimp::fem
     {
       // Ratio of this increment to the last converged one; none to extrapolate from at the
       // first step or at a reversal of the load path.
-      const double ratio =
-        last_increment_ != 0 ? std::max(0.0, increment / last_increment_) : 0.0;
+      const double ratio = last_increment_ != 0 ? std::max(0.0, increment / last_increment_) : 0.0;
       for (unsigned int c = 0; c < cell_law_.size(); ++c)
         for (unsigned int q = 0; q < n_q; ++q)
           cell_law_[c]->begin_step(history_.committed_for_step(c, q), ratio);
@@ -767,13 +765,6 @@ namespace kimp::fem
                << step.residuals.size() << " Newton iterations, residual " << step.residuals.back();
           if (p_.controlled_load)
             line << ", controlled load " << step.controlled_force << " N/m";
-          if (std::getenv("KIMP_DEBUG_RESIDUALS"))
-          {
-            line << " [";
-            for (const double x : step.residuals)
-              line << ' ' << x;
-            line << " ]";
-          }
           for (std::size_t e = 0; e < step.reactions.size(); ++e)
             line << ", reaction " << e << " (" << step.reactions[e][0] << ", "
                  << step.reactions[e][1] << ") N/m";
