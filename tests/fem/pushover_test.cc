@@ -1,7 +1,9 @@
 // Static pushover of wall and backfill (fem/pushover.h): the bare reinforced wall against a
 // Timoshenko cantilever and a section analysis; a rigid wall pushed into the backfill between
-// the Rankine and Coulomb passive resultants; a cyclic push (permanent set, reload on the
-// envelope); the capacity on two mesh levels. Numbers: docs/validation.md "Static pushover".
+// the Rankine and Coulomb passive resultants; the reinforced wall with its backfill (IMPL-EX
+// damage) between hand bounds, monotonic and cyclic; a cyclic push of the bare wall (permanent
+// set, reload on the envelope); the capacity on two mesh levels. Numbers: docs/validation.md
+// "Static pushover".
 #include <array>
 #include <cmath>
 #include <gtest/gtest.h>
@@ -206,6 +208,37 @@ namespace
               << " mm, K_ur = " << s.unloading_stiffness / 1e6 << " kN/mm/m, set "
               << s.permanent_set * 1e3 << " mm; F(11 mm) cyclic " << end_force / 1e3
               << ", monotonic " << envelope_force(monotonic.curve, 0.011) / 1e3 << " kN/m\n";
+  }
+
+  TEST(Pushover, CyclicPushOfTheWallWithItsBackfillUnloadsStifferAndKeepsASet)
+  {
+    // The reinforced wall with its backfill of the test above, pushed to 2 cm, unloaded to
+    // zero force and pushed on to 3 cm.
+    PushoverParameters p    = rigid_wall(0.1);
+    p.wall                  = PushoverParameters::Wall::reinforced;
+    p.concrete              = ConcreteParameters::from_f_cm(38e6);
+    p.bars.ratio_y          = 0.005;
+    p.bars.hardening        = 0.01;
+    p.bars.hinge_length     = 0.5 * p.wall_thickness;
+    p.max_element_size      = 0.2;
+    p.path                  = {0.02, 0.0, 0.03};
+    p.increment             = 1e-3;
+    const PushoverResult  r = run_pushover(p);
+    const PushoverSummary s = summarise_pushover(r.curve);
+    ASSERT_TRUE(std::isfinite(s.permanent_set)) << "the unloading reaches zero force";
+    const double top    = envelope_force(r.curve, s.unloaded_from);
+    const double secant = top / s.unloaded_from;
+    EXPECT_GT(s.unloading_stiffness, secant);
+    EXPECT_GT(s.permanent_set, 0.0);
+    EXPECT_LT(s.permanent_set, s.unloaded_from);
+    EXPECT_NEAR(r.curve.back().displacement, 0.03, 1e-9);
+    // The reload passes the force of the unloading point.
+    EXPECT_GT(r.curve.back().force, top);
+    std::cout << "wall with backfill cyclic: unloaded from " << s.unloaded_from * 1e3 << " mm (F "
+              << top / 1e3 << " kN/m, loading secant " << secant / 1e6
+              << " kN/mm/m), K_ur = " << s.unloading_stiffness / 1e6 << " kN/mm/m, set "
+              << s.permanent_set * 1e3 << " mm; F(30 mm) " << r.curve.back().force / 1e3
+              << " kN/m\n";
   }
 
   TEST(Pushover, CapacityConvergesBetweenTwoMeshLevels)
