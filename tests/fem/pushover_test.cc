@@ -212,8 +212,8 @@ namespace
 
   TEST(Pushover, CyclicPushOfTheWallWithItsBackfillUnloadsStifferAndKeepsASet)
   {
-    // The reinforced wall with its backfill of the test above, pushed to 2 cm, unloaded to
-    // zero force and pushed on to 3 cm.
+    // The reinforced wall with its backfill of the test above, pushed to 1 cm, unloaded to
+    // zero force and pushed on to 1.5 cm.
     PushoverParameters p    = rigid_wall(0.1);
     p.wall                  = PushoverParameters::Wall::reinforced;
     p.concrete              = ConcreteParameters::from_f_cm(38e6);
@@ -221,7 +221,7 @@ namespace
     p.bars.hardening        = 0.01;
     p.bars.hinge_length     = 0.5 * p.wall_thickness;
     p.max_element_size      = 0.2;
-    p.path                  = {0.02, 0.0, 0.03};
+    p.path                  = {0.01, 0.0, 0.015};
     p.increment             = 1e-3;
     const PushoverResult  r = run_pushover(p);
     const PushoverSummary s = summarise_pushover(r.curve);
@@ -231,13 +231,13 @@ namespace
     EXPECT_GT(s.unloading_stiffness, secant);
     EXPECT_GT(s.permanent_set, 0.0);
     EXPECT_LT(s.permanent_set, s.unloaded_from);
-    EXPECT_NEAR(r.curve.back().displacement, 0.03, 1e-9);
+    EXPECT_NEAR(r.curve.back().displacement, 0.015, 1e-9);
     // The reload passes the force of the unloading point.
     EXPECT_GT(r.curve.back().force, top);
     std::cout << "wall with backfill cyclic: unloaded from " << s.unloaded_from * 1e3 << " mm (F "
               << top / 1e3 << " kN/m, loading secant " << secant / 1e6
               << " kN/mm/m), K_ur = " << s.unloading_stiffness / 1e6 << " kN/mm/m, set "
-              << s.permanent_set * 1e3 << " mm; F(30 mm) " << r.curve.back().force / 1e3
+              << s.permanent_set * 1e3 << " mm; F(15 mm) " << r.curve.back().force / 1e3
               << " kN/m\n";
   }
 
