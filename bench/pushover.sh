@@ -1,15 +1,21 @@
 #!/usr/bin/env bash
-# Whole-process timing of `kimp fem --pushover` per wall height (1.25 m, pushed to 5 % of it):
-# the bare reinforced 0.25 m wall (damage_plasticity, 0.5 % vertical bars, tensile strength cut
-# to 10 %: with the full one the push stalls at the first cracks) and the elastic wall
-# against Mohr-Coulomb sand (geostatic state, contact interface), each on the coarse (5 cm) and
-# medium (2.5 cm) mesh; the sand case cyclic (unload at 1 cm); and the reinforced wall with sand
-# (reported as failed while its Newton stalls). Prints wall and CPU time per run and per height.
+# Whole-process timing of `kimp fem --pushover`, one process per case and wall height, pushed to
+# 5 % of the height: the reinforced 0.25 m wall (damage_plasticity with MC2010's full tensile
+# strength, 0.5 % vertical bars with 1 % hardening, IMPL-EX damage update) against Mohr-Coulomb
+# sand (phi 30, c 1 kPa, psi 0; geostatic state; contact interface) at H = 1.25, 1.50 and
+# 2.00 m on the 5 cm and 2.5 cm meshes (the capacity's convergence between the two finest
+# levels); at H = 1.25 m, 5 cm, the same with 0.25 mm steps (the IMPL-EX step error); the bare
+# wall with MC2010's full tensile strength; the elastic wall against the sand, monotonic and
+# cyclic (unload at 1 cm). Prints capacity, steps and CPU (user) time per run.
 # Usage: bench/pushover.sh [BUILD_DIR (default: build)] [RUNS (default: 1)]
+# KIMP_PUSHOVER_LEVELS (default "5cm 2.5cm") and KIMP_PUSHOVER_HEIGHTS (default "1.25 1.50
+# 2.00") restrict the convergence study (the 2.5 cm level takes minutes of CPU per height).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$root/build}"
 runs="${2:-1}"
+levels="${KIMP_PUSHOVER_LEVELS:-5cm 2.5cm}"
+heights="${KIMP_PUSHOVER_HEIGHTS:-1.25 1.50 2.00}"
 kimp="$build/kimp"
 [[ -x "$kimp" && -x "$build/kimp-fem" ]] || { echo "pushover.sh: build the target kimp (with FEM) in $build" >&2; exit 1; }
 [[ -x /usr/bin/time ]] || { echo "pushover.sh: needs /usr/bin/time (Debian package time)" >&2; exit 1; }
@@ -18,35 +24,44 @@ export KIMP_DATA_DIR="$root"
 
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
-scene() { # $1: h_contact, $2: unload_at list, $3: concrete model, $4: with_backfill
-  local concrete="{model: damage_plasticity, f_cm: \"38 MPa\", f_ctm: \"0.29 MPa\", wall_reinforcement: {ratio_y: \"0.5 %\", hardening: 0.01}}"
+scene() { # $1: h_contact, $2: unload_at list, $3: concrete model, $4: with_backfill, $5: height, $6: increment
+  local concrete="{model: damage_plasticity, f_cm: \"38 MPa\", wall_reinforcement: {ratio_y: \"0.5 %\", hardening: 0.01}}"
   [[ "$3" == elastic ]] && concrete="{model: elastic}"
   local interface=contact
   [[ "$4" == false ]] && interface=bonded
   cat <<YAML
-wall_heights: ["1.25 m"]
+wall_heights: ["$5 m"]
 mesh: {h_contact: "$1", h_max: "20 cm", grading: 1.2}
 geometry: {backfill_width: "6 m", with_backfill: $4}
 interface: {model: $interface}
 materials:
   concrete: $concrete
   soil: {model: mohr_coulomb, phi: 30, c: "1 kPa", psi: 0, tension_cutoff: "1 kPa"}
-pushover: {increment: "1 mm", unload_at: $2}
+pushover: {increment: "$6", unload_at: $2}
 YAML
 }
-scene "5 cm" "[]" damage_plasticity false > "$work/bare_coarse.yaml"
-scene "2.5 cm" "[]" damage_plasticity false > "$work/bare_medium.yaml"
-scene "5 cm" "[]" elastic true > "$work/sand_coarse.yaml"
-scene "2.5 cm" "[]" elastic true > "$work/sand_medium.yaml"
-scene "5 cm" '["10 mm"]' elastic true > "$work/sand_cyclic.yaml"
-scene "5 cm" "[]" damage_plasticity true > "$work/reinforced_sand.yaml"
-for name in bare_coarse bare_medium sand_coarse sand_medium sand_cyclic reinforced_sand; do
+cases=()
+for height in $heights; do
+  for level in $levels; do
+    name="reinforced_sand_H${height}_${level}"
+    scene "${level%cm} cm" "[]" damage_plasticity true "$height" "1 mm" > "$work/$name.yaml"
+    cases+=("$name")
+  done
+done
+scene "5 cm" "[]" damage_plasticity true 1.25 "0.25 mm" > "$work/reinforced_sand_H1.25_5cm_step0.25mm.yaml"
+scene "5 cm" "[]" damage_plasticity false 1.25 "1 mm" > "$work/bare_full_ft.yaml"
+scene "5 cm" "[]" elastic true 1.25 "1 mm" > "$work/elastic_sand.yaml"
+scene "5 cm" '["10 mm"]' elastic true 1.25 "1 mm" > "$work/elastic_sand_cyclic.yaml"
+cases+=(reinforced_sand_H1.25_5cm_step0.25mm bare_full_ft elastic_sand elastic_sand_cyclic)
+for name in "${cases[@]}"; do
   for ((i = 1; i <= runs; ++i)); do
     rm -rf "$work/out"
     if /usr/bin/time -f "$name run $i: %e s wall, %U s user, %M kB" \
       "$kimp" fem "$work/$name.yaml" --pushover -o "$work/out" > /dev/null 2>"$work/err"; then
       tail -1 "$work/err"
-      grep -h "^H" "$work/out/pushover_summary.csv" | awk -F, '{printf "  %s: capacity %.4g kN/m, k0 %.4g kN/mm/m, %s cells, %.3g s\n", $1, $3/1e3, $5/1e6, $11, $14}'
+      grep -h "^H" "$work/out/pushover_summary.csv" | awk -F, 'function g(x, s) { return x ~ /nan/ ? "-" : sprintf("%.4g", x * s) }
+        {printf "  %s: capacity %s kN/m at %s mm, k0 %s, cracked %s, K_ur %s kN/mm/m, set %s mm, %s cells\n", $1, g($3, 1e-3), g($4, 1e3), g($5, 1e-6), g($6, 1e-6), g($8, 1e-6), g($9, 1e3), $11}'
+      echo "  steps: $(($(grep -c "^H" "$work/out/pushover.csv") - 1))"
     else
       echo "$name run $i: failed: $(grep -m1 error "$work/err" | cut -c1-160)"
     fi

@@ -57,13 +57,16 @@ namespace kimp::fem
   }
 
   ConcreteDamageLaw::ConcreteDamageLaw(const ConcreteParameters      &p,
-                                       const ReinforcementParameters &reinforcement)
+                                       const ReinforcementParameters &reinforcement,
+                                       DamageUpdate                   update)
     : p_(p)
     , r_(reinforcement)
     , steel_(reinforcement)
     , reinforced_(reinforcement.any())
     , plastic_(p.plastic_fraction > 0)
     , bars_(p.plastic_fraction > 0 ? p_slot + 4 : p_slot)
+    , implex_on_(update == DamageUpdate::implex)
+    , implex_(bars_ + (reinforced_ ? 6 : 0))
   {
     // beta falls over the opening d_agg / 2: below 1 mm its slope (a stiffness of the opening
     // against the shear energy) would outrun the explicit step.
@@ -140,6 +143,28 @@ namespace kimp::fem
                cs * f[0] - cs * f[1] + (cc - ss) * f[2]}};
     }
   } // namespace
+
+  void ConcreteDamageLaw::begin_step(double *h, double step_ratio) const
+  {
+    if (!implex_on_)
+      return;
+    // kappa~_n+1 = kappa_n + (dlambda_n+1 / dlambda_n) (kappa_n - kappa_n-1).
+    h[implex_]     = h[0] + step_ratio * (h[0] - h[implex_ + 2]);
+    h[implex_ + 1] = h[1] + step_ratio * (h[1] - h[implex_ + 3]);
+  }
+
+  std::array<double, 2> ConcreteDamageLaw::implex_damage(const double *h0, double *h1) const
+  {
+    // The committed (implicit) measures become the previous ones once this step is committed.
+    h1[implex_ + 2] = h0[0];
+    h1[implex_ + 3] = h0[1];
+    const double kt = h0[implex_], kc = h0[implex_ + 1];
+    const double el = kc - plastic_strain(kc);
+    const double dc =
+      kc > 0 && el > 0 ? 1 - p_.compression_curve(kc) / (p_.youngs_modulus * el) : 0.0;
+    return {{std::clamp(std::max(tension_damage(kt, h0[5]), h0[2]), 0.0, max_damage),
+             std::clamp(std::max(dc, h0[3]), 0.0, max_damage)}};
+  }
 
   double ConcreteDamageLaw::shear_retention(double w) const
   {
@@ -296,7 +321,9 @@ namespace kimp::fem
   {
     // The crack frame is fixed when the point first cracks: n along the largest principal
     // effective stress of that step, (sa_x, sa_y).
-    if (dt > 0 && !(h0[2] > 0))
+    // IMPL-EX: the frame of the converged step before the point cracks (tracked while
+    // uncracked), so that the stress stays piecewise linear in the strain within a step.
+    if (!(h0[2] > 0) && (implex_on_ ? !(dt > 0) : dt > 0))
     {
       h1[6] = sa_x;
       h1[7] = sa_y;
@@ -349,10 +376,16 @@ namespace kimp::fem
     h1[1]           = kc;
     double dt       = tension_damage(kt, h0[5]);
     // sigma_c(kappa_c) = (1 - d_c) E (kappa_c - eps_p) in uniaxial compression.
-    const double el     = kc - plastic_strain(kc);
-    double       dc     = kc > 0 && el > 0 ? 1 - p_.compression_curve(kc) / (E * el) : 0.0;
-    dt                  = std::clamp(std::max(dt, h0[2]), 0.0, max_damage);
-    dc                  = std::clamp(std::max(dc, h0[3]), 0.0, max_damage);
+    const double el = kc - plastic_strain(kc);
+    double       dc = kc > 0 && el > 0 ? 1 - p_.compression_curve(kc) / (E * el) : 0.0;
+    dt              = std::clamp(std::max(dt, h0[2]), 0.0, max_damage);
+    dc              = std::clamp(std::max(dc, h0[3]), 0.0, max_damage);
+    if (implex_on_)
+    {
+      const std::array<double, 2> d = implex_damage(h0, h1);
+      dt                            = d[0];
+      dc                            = d[1];
+    }
     const VoigtStress s = damaged_stress(ee, h0, h1, dt, dc, ca, sa_n);
     // Plastic work sigma : d eps_p = -dp sigma_nn (sigma_nn < 0 in compression).
     if (dp > 0)
@@ -380,7 +413,13 @@ namespace kimp::fem
     h1[1]           = kc;
     // Neither measure grows: the damage stays (the damage functions are non-decreasing).
     double dt = h0[2], dc = h0[3];
-    if (kt > h0[0] || kc > h0[1])
+    if (implex_on_)
+    {
+      const std::array<double, 2> d = implex_damage(h0, h1);
+      dt                            = d[0];
+      dc                            = d[1];
+    }
+    else if (kt > h0[0] || kc > h0[1])
     {
       dt = std::clamp(std::max(tension_damage(kt, h0[5]), h0[2]), 0.0, max_damage);
       dc = std::clamp(std::max(kc > 0 ? 1 - p_.compression_curve(kc) / (E * kc) : 0.0, h0[3]),

@@ -301,11 +301,29 @@ namespace kimp::fem
   class ConcreteDamageLaw final : public BatchedLaw<ConcreteDamageLaw>
   {
   public:
+    /**
+     * How the damage of a step is found. implicit: from the measures kappa_t, kappa_c at the
+     * step's own strain (backward Euler; the impact solver). implex: IMPL-EX (Oliver, Huespe &
+     * Cante, CMAME 197, 2008): the stress of step n+1 uses the damage of the measures
+     * extrapolated from steps n and n-1 (begin_step()), so it is piecewise linear in the strain
+     * within a step and Newton needs 1-2 iterations; the implicit measures at the converged
+     * strain are stored for the next extrapolation. Damage never decreases. For the static
+     * solver (docs/physics.md §6 "Static pushover"); the history then has 4 more values
+     * (extrapolated kappa_t, kappa_c; kappa_t, kappa_c of the step before), the last ones.
+     */
+    enum class DamageUpdate
+    {
+      implicit,
+      implex
+    };
     explicit ConcreteDamageLaw(const ConcreteParameters      &p,
-                               const ReinforcementParameters &reinforcement = {});
-    unsigned int n_history() const override { return bars_ + (reinforced_ ? 6 : 0); }
-    void         initialize_point(double *history, double characteristic_length) const override;
-    void         initial_history(double *history) const override;
+                               const ReinforcementParameters &reinforcement = {},
+                               DamageUpdate                   update = DamageUpdate::implicit);
+    unsigned int n_history() const override { return implex_ + (implex_on_ ? 4 : 0); }
+    /** IMPL-EX: extrapolates kappa_t, kappa_c to the coming step (no-op when implicit). */
+    void begin_step(double *committed, double step_ratio) const override;
+    void initialize_point(double *history, double characteristic_length) const override;
+    void initial_history(double *history) const override;
     VoigtStress
     stress(const VoigtStrain &strain, const double *committed, double *trial) const override;
     /** The tangent at the committed damage (beta's change with the opening left out): enough
@@ -364,13 +382,18 @@ namespace kimp::fem
     double plastic_strain(double kappa_c) const;
     /** The bars' steel at a point of crack band @p h (m): H scaled by h / L_p with a hinge
      *  length, else steel_. */
-    SteelBar                steel_at(double h) const;
+    SteelBar steel_at(double h) const;
+    /** IMPL-EX: the damage (d_t, d_c) of the measures extrapolated in h0, never below the
+     *  committed one; writes the committed measures as the previous ones to h1. */
+    std::array<double, 2>   implex_damage(const double *h0, double *h1) const;
     ConcreteParameters      p_;
     ReinforcementParameters r_;
     SteelBar                steel_;
     bool                    reinforced_ = false;
     bool                    plastic_    = false;
     unsigned int            bars_       = p_slot; ///< first history slot of the bars
+    bool                    implex_on_  = false;
+    unsigned int            implex_     = p_slot; ///< first history slot of IMPL-EX
     double                  lambda_, mu_;
   };
 } // namespace kimp::fem

@@ -18,6 +18,8 @@ namespace kimp::fem
     initial_history(history);
   }
 
+  void MaterialLaw::begin_step(double *, double) const {}
+
   bool MaterialLaw::set_initial_stress(double *, const InitialStress &) const
   {
     return false;

@@ -74,6 +74,15 @@ namespace kimp::fem
      */
     virtual bool set_initial_stress(double *history, const InitialStress &sigma0) const;
     /**
+     * Called by a load-stepping solver on the committed history of every point before it solves
+     * the next step (and again before a retry of a halved step), with @p step_ratio =
+     * increment of the coming step / increment of the last converged one (>= 0; 0: nothing to
+     * extrapolate from, e.g. the first step). A law with an IMPL-EX update (Oliver, Huespe &
+     * Cante 2008) writes its extrapolated internal variables here; the others ignore it
+     * (default). Only the static solver calls it.
+     */
+    virtual void begin_step(double *committed, double step_ratio) const;
+    /**
      * Out-of-plane stress, stored energy and dissipation at @p strain with the history
      * @p history that stress() wrote for it. Default: sigma_zz = 0, stored = sigma : eps / 2.
      */
@@ -191,6 +200,11 @@ namespace kimp::fem
     void initialize_cell(unsigned int cell, const MaterialLaw &law, double h);
 
     const double *committed(unsigned int cell, unsigned int q) const
+    {
+      return committed_.data() + offset(cell, q);
+    }
+    /** The committed history, writable: for MaterialLaw::begin_step() between steps. */
+    double *committed_for_step(unsigned int cell, unsigned int q)
     {
       return committed_.data() + offset(cell, q);
     }

@@ -235,8 +235,10 @@ namespace kimp::fem
         check(barred.ratio_y < 1,
               "the bars' area exceeds their column of cells (ratio_y = " + num(p.bars.ratio_y) +
                 ")");
-        s.laws[plain_id]    = std::make_shared<ConcreteDamageLaw>(p.concrete, plain);
-        s.laws[bar_id]      = std::make_shared<ConcreteDamageLaw>(p.concrete, barred);
+        const auto update   = p.implex ? ConcreteDamageLaw::DamageUpdate::implex :
+                                         ConcreteDamageLaw::DamageUpdate::implicit;
+        s.laws[plain_id]    = std::make_shared<ConcreteDamageLaw>(p.concrete, plain, update);
+        s.laws[bar_id]      = std::make_shared<ConcreteDamageLaw>(p.concrete, barred, update);
         s.numerical_tangent = {plain_id, bar_id};
       }
       else

@@ -36,6 +36,13 @@ namespace kimp::fem
     ConcreteParameters      concrete;
     ReinforcementParameters bars;
     double                  cover = 0.05; ///< bar centre to the wall face, m (0 < cover < t / 2)
+    /**
+     * The concrete's damage update: IMPL-EX (true; ConcreteDamageLaw::DamageUpdate::implex,
+     * docs/physics.md §6 "Static pushover": Newton converges in few iterations through cracking,
+     * at an extrapolation error controlled by `increment`) or implicit (false: backward Euler,
+     * which stalls at the first cracks of a wall under earth pressure).
+     */
+    bool implex = true;
     /** Wall::elastic and Wall::rigid (the rigid wall is this material stiffened 1000 times). */
     Material wall_elastic{30e9, 0.2, 2400};
     double   wall_density = 2400; ///< kg/m^3 (gravity of the wall)

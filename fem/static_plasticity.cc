@@ -129,6 +129,9 @@ namespace kimp::fem
        *  and its lift term to rhs. */
       void
       assemble_interface(const Vector<double> &u, const Vector<double> &lift, Vector<double> &rhs);
+      /** MaterialLaw::begin_step() on every committed point for a step of @p increment of
+       *  the load factor. */
+      void begin_step(double increment);
       void commit();
       void revert();
       /** The unit-resultant band traction vector g_ of p.controlled_load. */
@@ -163,9 +166,10 @@ namespace kimp::fem
       double                               load_        = 0; // its resultant P, N/m
       double                               target_mean_ = 0; // m
       double                               weight_      = 0;
-      double                               force_scale_ = 0; // largest converged |reactions|
-      unsigned long                        step_        = 0;
-      std::ostream                        *log_         = nullptr;
+      double        last_increment_ = 0; // load factor increment of the last converged step
+      double        force_scale_    = 0; // largest converged |reactions|
+      unsigned long step_           = 0;
+      std::ostream *log_            = nullptr;
     };
 
     StaticProblem::StaticProblem(const StaticPlasticityParameters &p)
@@ -520,6 +524,17 @@ namespace kimp::fem
              1e-9 * std::max(std::abs(p_.controlled_load->displacement), 1e-12);
     }
 
+    void StaticProblem::begin_step(double increment)
+    {
+      // Ratio of this increment to the last converged one; none to extrapolate from at the
+      // first step or at a reversal of the load path.
+      const double ratio = last_increment_ != 0 ? std::max(0.0, increment / last_increment_) : 0.0;
+      for (unsigned int c = 0; c < cell_law_.size(); ++c)
+        for (unsigned int q = 0; q < n_q; ++q)
+          cell_law_[c]->begin_step(history_.committed_for_step(c, q), ratio);
+      history_.revert(); // the trial history starts from the extrapolated one
+    }
+
     void StaticProblem::commit()
     {
       history_.commit();
@@ -729,8 +744,10 @@ namespace kimp::fem
       step.load_factor = b;
       step.segment     = segment_;
       const bool loose = p_.loose_tolerance > 0 && depth >= p_.max_cuts;
+      begin_step(b - a);
       if (newton(u_, r_, lift, step.residuals, loose))
       {
+        last_increment_ = b - a;
         if (step.residuals.back() > p_.newton_tolerance)
         {
           ++out.n_loose_steps;
