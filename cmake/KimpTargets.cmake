@@ -67,3 +67,25 @@ function(kimp_link target)
     target_link_libraries(${target} PUBLIC ${ARGN})
   endif()
 endfunction()
+
+# The glue layers (base, io, report, app, server, cli and the two executables) parse scenes,
+# dispatch commands and write files; the physics is computed in the engines (lumped, fit,
+# geometry, fem), which keep the build type's optimisation. Compiled at -O1 the glue takes about a
+# quarter less compile time and runs no measurably slower (docs/performance.md "Build time").
+# Without -ffast-math and without FMA in the target architecture, the optimisation level changes
+# no floating-point result. Empty: the build type's level everywhere.
+set(KIMP_GLUE_OPTIMIZATION "-O1" CACHE STRING
+    "Optimisation flag of the glue layers in Release builds (empty: the build type's)")
+
+# kimp_glue_target(targets...): compile these targets at KIMP_GLUE_OPTIMIZATION (Release only).
+function(kimp_glue_target)
+  if(NOT KIMP_GLUE_OPTIMIZATION)
+    return()
+  endif()
+  foreach(target ${ARGN})
+    get_target_property(type ${target} TYPE)
+    if(NOT type STREQUAL "INTERFACE_LIBRARY")
+      target_compile_options(${target} PRIVATE $<$<CONFIG:Release>:${KIMP_GLUE_OPTIMIZATION}>)
+    endif()
+  endforeach()
+endfunction()
