@@ -25,7 +25,8 @@ export KIMP_RECORDS_DIR="${KIMP_RECORDS_DIR:-$root/../shared/data/records}"
 # A fresh machine has no compiler cache. The launcher only records each step's CPU time.
 unset CMAKE_C_COMPILER_LAUNCHER KIMP_BUILD_DIR KIMP_TARGETS
 export CCACHE_DISABLE=1
-export CMAKE_CXX_COMPILER_LAUNCHER="$root/bench/step_cpu.sh" CMAKE_CXX_LINKER_LAUNCHER="$root/bench/step_cpu.sh"
+export CMAKE_CXX_COMPILER_LAUNCHER="$root/bench/step_cpu.sh"
+export CMAKE_CXX_LINKER_LAUNCHER="$root/bench/step_cpu.sh"
 export KIMP_STEP_CPU_LOG="$work/steps.cpu"
 : > "$KIMP_STEP_CPU_LOG"
 

@@ -2,8 +2,9 @@
 # Compiler and linker launcher that records the CPU time (user + system, s) of each build step:
 # appends "<seconds> <output file>" to $KIMP_STEP_CPU_LOG, then exits with the step's status.
 # bench/fresh_clone.sh configures the clone's build with it; by hand:
-#   KIMP_STEP_CPU_LOG=/tmp/steps.log cmake -B build -DCMAKE_CXX_COMPILER_LAUNCHER=$PWD/bench/step_cpu.sh \
+#   cmake -B build -DCMAKE_CXX_COMPILER_LAUNCHER=$PWD/bench/step_cpu.sh \
 #     -DCMAKE_CXX_LINKER_LAUNCHER=$PWD/bench/step_cpu.sh ...
+#   KIMP_STEP_CPU_LOG=/tmp/steps.log ninja -C build kimp
 # On a shared machine the wall time of a step says little; its CPU time is what it costs.
 output=""
 previous=""

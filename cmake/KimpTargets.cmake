@@ -70,8 +70,9 @@ endfunction()
 
 # The glue layers (base, io, report, app, server, cli and the two executables) parse scenes,
 # dispatch commands and write files; the physics is computed in the engines (lumped, fit,
-# geometry, fem), which keep the build type's optimisation. Compiled at -O1 the glue takes about a
-# quarter less compile time and runs no measurably slower (docs/performance.md "Build time").
+# geometry, fem), which keep the build type's optimisation. Compiled at -O1 the glue takes about
+# 30 % less compile time and runs no measurably slower (docs/performance.md, "Build CPU of `kimp`
+# and `kimp-fem`").
 # Without -ffast-math and without FMA in the target architecture, the optimisation level changes
 # no floating-point result. Empty: the build type's level everywhere.
 set(KIMP_GLUE_OPTIMIZATION "-O1" CACHE STRING
