@@ -3,8 +3,9 @@
 # directory and run `bash scripts/main.sh` there (install the run-time dependencies, build `kimp`,
 # run the default wall-height study), without ccache. Prints each phase's wall time (clone,
 # dependencies, configure, build, study), the machine's cores and load before and after, and the
-# ten slowest build steps (from ninja's log), and the CPU time of main.sh's processes (on a
-# shared machine, CPU time / cores estimates the wall time on idle cores). With the dependencies installed, the install phase
+# build's CPU time and its ten most expensive steps (each step's user + system time, recorded by
+# bench/step_cpu.sh as the compiler and linker launcher), and the CPU time of main.sh's processes
+# (on a shared machine, CPU time / cores estimates the wall time on idle cores). With the dependencies installed, the install phase
 # only checks them (and installs gui/'s npm packages into the clone, from npm's cache).
 # Usage: bench/fresh_clone.sh [KEEP_DIR]   (KEEP_DIR: clone there and keep it; default: a
 #        temporary directory, removed at the end). Goal: <= 6 min on 2 cores.
@@ -21,9 +22,13 @@ else
   trap 'rm -rf "$work"' EXIT
 fi
 export KIMP_RECORDS_DIR="${KIMP_RECORDS_DIR:-$root/../shared/data/records}"
-# A fresh machine has no compiler cache.
-unset CMAKE_CXX_COMPILER_LAUNCHER CMAKE_C_COMPILER_LAUNCHER KIMP_BUILD_DIR KIMP_TARGETS
+# A fresh machine has no compiler cache. The launcher only records each step's CPU time.
+unset CMAKE_C_COMPILER_LAUNCHER KIMP_BUILD_DIR KIMP_TARGETS
 export CCACHE_DISABLE=1
+export CMAKE_CXX_COMPILER_LAUNCHER="$root/bench/step_cpu.sh"
+export CMAKE_CXX_LINKER_LAUNCHER="$root/bench/step_cpu.sh"
+export KIMP_STEP_CPU_LOG="$work/steps.cpu"
+: > "$KIMP_STEP_CPU_LOG"
 
 load() { cut -d' ' -f1-3 /proc/loadavg; }
 echo "fresh_clone: commit ${commit:0:12}, $(nproc) cores, load $(load) (1, 5, 15 min)"
@@ -76,8 +81,9 @@ cpu=$(awk '{printf "%.0f", $1 + $2}' "$work/main.cpu")
 printf "%-34s %7d s  (user + system; / %d cores = %.1f min)\n" "cpu time of scripts/main.sh" \
   "$cpu" "$(nproc)" "$(awk -v c="$cpu" -v n="$(nproc)" 'BEGIN{print c / n / 60}')"
 echo "load after: $(load)"
-ninja_log="$work/kimp/build/.ninja_log"
-if [[ -f "$ninja_log" ]]; then
-  echo "slowest build steps (s):"
-  awk 'NR > 1 {printf "%8.1f  %s\n", ($2 - $1) / 1000, $4}' "$ninja_log" | sort -rn | head -10
-fi
+build_cpu=$(awk '{s += $1} END {printf "%.0f", s}' "$KIMP_STEP_CPU_LOG")
+printf "%-34s %7d s  (%d compile and link steps; / %d cores = %.1f min)\n" "cpu time of the build" \
+  "$build_cpu" "$(wc -l < "$KIMP_STEP_CPU_LOG")" "$(nproc)" \
+  "$(awk -v c="$build_cpu" -v n="$(nproc)" 'BEGIN{print c / n / 60}')"
+echo "most expensive build steps (CPU s):"
+sort -rn "$KIMP_STEP_CPU_LOG" | head -10 | awk '{printf "%8.1f  %s\n", $1, $2}'
