@@ -72,7 +72,11 @@ namespace kimp::app
   /**
    * The static pushover of `scene` at `wall_height` (run_scene_pushover() on the mesh
    * study_pushover_h_contact / study_pushover_h_max, mesh level 0, the scene's `pushover`
-   * section for the path), fitted by fit_pushover(): on success the capacity, stiffness,
+   * section for the path), fitted by fit_pushover(). A reinforced wall is pushed with the
+   * implicit damage update first and, only where Newton stalls with it, again with IMPL-EX at the
+   * scene's `pushover.increment` (docs/physics.md §6 "Static pushover": IMPL-EX's lagging damage
+   * puts a cracking wall's knee high, the implicit update does not); the reason names the
+   * fallback and the stall. On success the capacity, stiffness,
    * hardening ratio and unloading stiffness of `in` are the fit's (source "pushover"); when the
    * pushover or the fit fails `in` is left as it is (the estimate) and the reason says why
    * (source "estimate"). Never throws for a pushover that fails.
