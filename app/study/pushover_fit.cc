@@ -185,10 +185,11 @@ namespace kimp::app
       {
         fallback = fmt::format("IMPL-EX damage update at {:.4g} mm steps (the implicit update "
                                "stalled: {})",
-                               p.increment * 1e3,
+                               std::min(p.increment, study_pushover_implex_increment) * 1e3,
                                short_reason(stall.what()));
       }
-      p.implex = true;
+      p.implex    = true;
+      p.increment = std::min(p.increment, study_pushover_implex_increment);
       return fem::run_pushover(p);
     }
   } // namespace

@@ -71,7 +71,7 @@ TEST(StudyYieldingWallCli, InelasticStudyRunsEveryHeightAgainstItsYieldingWall)
   {
     EXPECT_EQ(e.at("source"), "pushover") << e.at("source_reason");
     EXPECT_EQ(e.at("source_reason")
-                .rfind("IMPL-EX damage update at 1 mm steps (the implicit "
+                .rfind("IMPL-EX damage update at 0.25 mm steps (the implicit "
                        "update stalled: ",
                        0),
               0u)

@@ -177,19 +177,19 @@ TEST(YieldingWallFem, ElementWithFrozenParametersAgainstTheFemSlabAtHalfAMetrePe
   const Comparison c =
     compare("elastic_0.5", "slab: {velocity: \"0.5 m/s\"}", "100 ms", 3840.0, 0.5, false);
   // The reinforced wall is on its pushover: the implicit damage update stalls at the first
-  // cracks, IMPL-EX runs (F_y 128 kN/m, k 90.05 kN/mm/m, alpha 0.017).
+  // cracks, IMPL-EX at 0.25 mm steps runs (F_y 113.1 kN/m, k 86.85 kN/mm/m, alpha 0.023).
   EXPECT_EQ(c.source.rfind("pushover (IMPL-EX damage update", 0), 0u) << c.source;
   // What holds (docs/validation.md): the first peak, from the slab-wall impedance alone
   // (measured -8.3 %).
   EXPECT_LT(std::abs(c.error(&Impact::peak_force)), 0.10);
-  // What does not hold (measured: slab peak -43 %, time to stop -36 %): the element, with the
+  // What does not hold (measured: slab peak -41.5 %, time to stop -32.6 %): the element, with the
   // pushover's secant at 0.6 F_y, is stiffer than the FEM's wall under the slab (the static push
   // spreads the band load that the slab's impact concentrates). Pinned so that a change shows,
   // either way; these are not the targets (15 %).
-  EXPECT_NEAR(c.error(&Impact::slab_peak), -0.43, 0.07);
-  EXPECT_NEAR(c.error(&Impact::time_to_stop), -0.36, 0.07);
+  EXPECT_NEAR(c.error(&Impact::slab_peak), -0.415, 0.07);
+  EXPECT_NEAR(c.error(&Impact::time_to_stop), -0.326, 0.07);
   // 480 J/m push both walls past their yield: each keeps a set when the slab leaves, the
-  // element's (0.69 mm) below the FEM's (1.1 mm, still moving back).
+  // element's (0.89 mm) below the FEM's (1.1 mm, still moving back).
   EXPECT_GT(c.element.wall_end, 0.0);
   EXPECT_LT(c.element.wall_end, c.fem.wall_end);
 }
