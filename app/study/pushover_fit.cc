@@ -11,6 +11,7 @@
 
 #include "app/fem/pushover_run.h"
 #include "base/errors.h"
+#include "fem/numerical_error.h"
 
 namespace kimp::app
 {
@@ -165,6 +166,32 @@ namespace kimp::app
       const auto cut = text.find("; relative residuals");
       return cut == std::string::npos ? text : text.substr(0, cut);
     }
+
+    /// The study's pushover of `scene` (see pushover_resistance()): the implicit damage update
+    /// first; IMPL-EX only when Newton stalls with it. `fallback` says why IMPL-EX ran ("" when
+    /// it did not).
+    fem::PushoverResult
+    implicit_then_implex(const FemScene &scene, double wall_height, std::string &fallback)
+    {
+      fem::PushoverParameters p = pushover_parameters(scene, wall_height);
+      if (p.wall != fem::PushoverParameters::Wall::reinforced)
+        return fem::run_pushover(p);
+      p.implex = false;
+      try
+      {
+        return fem::run_pushover(p);
+      }
+      catch (const fem::NumericalError &stall)
+      {
+        fallback = fmt::format("IMPL-EX damage update at {:.4g} mm steps (the implicit update "
+                               "stalled: {})",
+                               std::min(p.increment, study_pushover_implex_increment) * 1e3,
+                               short_reason(stall.what()));
+      }
+      p.implex    = true;
+      p.increment = std::min(p.increment, study_pushover_implex_increment);
+      return fem::run_pushover(p);
+    }
   } // namespace
 
   PushoverResistance
@@ -178,22 +205,26 @@ namespace kimp::app
     const auto         start = std::chrono::steady_clock::now();
     const auto         since = [&]
     { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+    std::string fallback;
     try
     {
-      const ScenePushover p = run_scene_pushover(coarse, wall_height);
-      r.cells               = p.result.n_cells;
-      r.seconds             = since();
-      r.fit                 = fit_pushover(p.result.curve);
-      r.curve               = p.result.curve;
+      const fem::PushoverResult p = implicit_then_implex(coarse, wall_height, fallback);
+      r.cells                     = p.n_cells;
+      r.seconds                   = since();
+      r.fit                       = fit_pushover(p.curve);
+      r.curve                     = p.curve;
     }
     catch (const std::exception &error)
     {
       r.seconds = since();
       r.reason  = "pushover failed: " + short_reason(base::error_text(error));
+      if (!fallback.empty())
+        r.reason += " (with the " + fallback + ")";
       return r;
     }
-    r.source               = "pushover";
-    r.reason               = r.fit.note;
+    r.source = "pushover";
+    r.reason = fallback;
+    append(r.reason, r.fit.note);
     in.capacity            = r.fit.capacity;
     in.stiffness           = r.fit.stiffness;
     in.hardening_ratio     = r.fit.hardening_ratio;

@@ -68,14 +68,22 @@ namespace kimp::app
   /// closed forms hold within 3 % and a height takes seconds; independent of the impact's mesh.
   inline constexpr double study_pushover_h_contact = 0.05;
   inline constexpr double study_pushover_h_max     = 0.25;
+  /// The largest step of the IMPL-EX fallback, m: the reinforced wall with its backfill at
+  /// H = 1.25 m has F_y 128.1 / 116.2 / 113.1 kN/m at 1 / 0.5 / 0.25 mm steps (docs/physics.md
+  /// §2 "element of a study"), so the scene's 1 mm default would overstate it by 13 %.
+  inline constexpr double study_pushover_implex_increment = 0.25e-3;
 
   /**
    * The static pushover of `scene` at `wall_height` (run_scene_pushover() on the mesh
    * study_pushover_h_contact / study_pushover_h_max, mesh level 0, the scene's `pushover`
-   * section for the path), fitted by fit_pushover(): on success the capacity, stiffness,
-   * hardening ratio and unloading stiffness of `in` are the fit's (source "pushover"); when the
-   * pushover or the fit fails `in` is left as it is (the estimate) and the reason says why
-   * (source "estimate"). Never throws for a pushover that fails.
+   * section for the path), fitted by fit_pushover(). A reinforced wall is pushed with the
+   * implicit damage update first and, only where Newton stalls with it, again with IMPL-EX at
+   * steps of at most study_pushover_implex_increment (docs/physics.md §6 "Static pushover":
+   * IMPL-EX's lagging damage puts a cracking wall's knee high, the implicit update does not);
+   * the reason names the fallback and the stall. On success the capacity, stiffness, hardening
+   * ratio and unloading stiffness of `in` are the fit's (source "pushover"); when the pushover or
+   * the fit fails `in` is left as it is (the estimate) and the reason says why (source "estimate").
+   * Never throws for a pushover that fails.
    */
   PushoverResistance
   pushover_resistance(const FemScene &scene, double wall_height, YieldingWallInputs &in);

@@ -176,19 +176,22 @@ TEST(YieldingWallFem, ElementWithFrozenParametersAgainstTheFemSlabAtHalfAMetrePe
   // The FEM's elastic slab, 8 m x 0.20 m of concrete: 3.84 t/m.
   const Comparison c =
     compare("elastic_0.5", "slab: {velocity: \"0.5 m/s\"}", "100 ms", 3840.0, 0.5, false);
+  // The reinforced wall is on its pushover: the implicit damage update stalls at the first
+  // cracks, IMPL-EX at 0.25 mm steps runs (F_y 113.1 kN/m, k 86.85 kN/mm/m, alpha 0.023).
+  EXPECT_EQ(c.source.rfind("pushover (IMPL-EX damage update", 0), 0u) << c.source;
   // What holds (docs/validation.md): the first peak, from the slab-wall impedance alone
-  // (measured -8.5 %).
+  // (measured -8.3 %).
   EXPECT_LT(std::abs(c.error(&Impact::peak_force)), 0.10);
-  // What does not hold (measured: slab peak -33 %, time to stop -21 %): while the reinforced
-  // wall's pushover with its backfill stalls, the element's wall is the estimate's cracked
-  // cantilever alone, stiffer than the FEM's wall with its cracking contact zone, base and
-  // backfill. Bounded so that a change shows; these are not the targets (15 %).
-  EXPECT_LT(std::abs(c.error(&Impact::slab_peak)), 0.45);
-  EXPECT_LT(std::abs(c.error(&Impact::time_to_stop)), 0.30);
-  // 480 J/m do not reach the element's cap: its wall keeps no set; the FEM's wall is still at
-  // 1 mm when the slab leaves (moving back, not a permanent set).
-  EXPECT_LT(c.element.wall_end, 1e-5);
-  EXPECT_GT(c.fem.wall_end, 0.0);
+  // What does not hold (measured: slab peak -41.5 %, time to stop -32.6 %): the element, with the
+  // pushover's secant at 0.6 F_y, is stiffer than the FEM's wall under the slab (the static push
+  // spreads the band load that the slab's impact concentrates). Pinned so that a change shows,
+  // either way; these are not the targets (15 %).
+  EXPECT_NEAR(c.error(&Impact::slab_peak), -0.415, 0.07);
+  EXPECT_NEAR(c.error(&Impact::time_to_stop), -0.326, 0.07);
+  // 480 J/m push both walls past their yield: each keeps a set when the slab leaves, the
+  // element's (0.89 mm) below the FEM's (1.1 mm, still moving back).
+  EXPECT_GT(c.element.wall_end, 0.0);
+  EXPECT_LT(c.element.wall_end, c.fem.wall_end);
 }
 
 TEST(YieldingWallFem, FullTableOfDocsValidation)
