@@ -18,6 +18,7 @@
 #  include <gtest/gtest.h>
 #  include <iostream>
 #  include <limits>
+#  include <stdexcept>
 #  include <string>
 
 #  include "app/fem/fem_scene.h"
@@ -37,9 +38,16 @@ namespace
 
   /// The reinforced moat wall of docs/validation.md (data/scenes/fem_reinforced_wall.yaml):
   /// damaged concrete with bars, geostatic Mohr-Coulomb sand.
+  /// Throws when the file cannot be read (run from the repository root or under ctest), so that
+  /// a missing scene never turns into a comparison of the elastic defaults.
   std::string reinforced_scene()
   {
-    return read_text(source_dir() / "data/scenes/fem_reinforced_wall.yaml");
+    const auto        file = source_dir() / "data/scenes/fem_reinforced_wall.yaml";
+    const std::string text = read_text(file);
+    if (text.find("damage_plasticity") == std::string::npos)
+      throw std::runtime_error(file.string() + ": cannot read the reinforced wall's scene (run "
+                                               "from the repository root or set KIMP_SOURCE_DIR)");
+    return text;
   }
 
   /// An elastic wall against the same sand with the contact interface.
