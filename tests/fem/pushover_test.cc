@@ -52,6 +52,21 @@ namespace
     return p;
   }
 
+  /** The reinforced wall (MC2010's full tensile strength, 0.5 % bars with 1 % hardening over a
+   *  hinge of t / 2) against the sand of rigid_wall() with the contact interface, on 10 cm cells.
+   */
+  PushoverParameters reinforced_wall_with_backfill()
+  {
+    PushoverParameters p = rigid_wall(0.1);
+    p.wall               = PushoverParameters::Wall::reinforced;
+    p.concrete           = ConcreteParameters::from_f_cm(38e6);
+    p.bars.ratio_y       = 0.005;
+    p.bars.hardening     = 0.01;
+    p.bars.hinge_length  = 0.5 * p.wall_thickness;
+    p.max_element_size   = 0.2;
+    return p;
+  }
+
   TEST(Pushover, BareWallStiffnessIsTimoshenkoAndYieldIsTheSectionsPlasticMoment)
   {
     // The implicit damage update: with IMPL-EX the knee lies 10 % above M_p / h_c at 0.1 mm
@@ -130,13 +145,7 @@ namespace
     // The reinforced wall (MC2010's full tensile strength, 0.5 % bars with 1 % hardening over
     // a hinge of t / 2) against the sand of rigid_wall() with the contact interface and the
     // geostatic state: the implicit damage update stalls at ~1 mm; IMPL-EX runs.
-    PushoverParameters p    = rigid_wall(0.1);
-    p.wall                  = PushoverParameters::Wall::reinforced;
-    p.concrete              = ConcreteParameters::from_f_cm(38e6);
-    p.bars.ratio_y          = 0.005;
-    p.bars.hardening        = 0.01;
-    p.bars.hinge_length     = 0.5 * p.wall_thickness;
-    p.max_element_size      = 0.2;
+    PushoverParameters p    = reinforced_wall_with_backfill();
     p.path                  = {0.05 * p.wall_height};
     p.increment             = 1e-3;
     const PushoverResult  r = run_pushover(p);
@@ -214,13 +223,7 @@ namespace
   {
     // The reinforced wall with its backfill of the test above, pushed to 1 cm, unloaded to
     // zero force and pushed on to 1.5 cm.
-    PushoverParameters p    = rigid_wall(0.1);
-    p.wall                  = PushoverParameters::Wall::reinforced;
-    p.concrete              = ConcreteParameters::from_f_cm(38e6);
-    p.bars.ratio_y          = 0.005;
-    p.bars.hardening        = 0.01;
-    p.bars.hinge_length     = 0.5 * p.wall_thickness;
-    p.max_element_size      = 0.2;
+    PushoverParameters p    = reinforced_wall_with_backfill();
     p.path                  = {0.01, 0.0, 0.015};
     p.increment             = 1e-3;
     const PushoverResult  r = run_pushover(p);

@@ -64,15 +64,7 @@ namespace kimp::lumped::plan
           theta.push_back(u[2]);
           a_along.push_back(c * a[0] + s * a[1]);
         }
-        double right = 0.0, left = 0.0;
-        for (std::size_t q = 0; q < p3.contacts.size(); ++q)
-        {
-          const double f = p3.history.contact_force[k * p3.contacts.size() + q];
-          if (p3.contacts[q].segment == 1)
-            right += f;
-          else if (p3.contacts[q].segment == 3)
-            left += f;
-        }
+        const auto [left, right] = kimp::testing::plan_side_forces(p3, k);
         f_left.push_back(left);
         f_right.push_back(right);
       }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lumped/isolators/bilinear_isolator.h"
@@ -74,6 +75,22 @@ namespace kimp::testing
   }
 
   /// Largest |a_i − b_i| over the largest |b_i| (0/0 := 0).
+  /// The plan run's contact force on wall segments 3 (left, x < 0) and 1 (right) at record `k`.
+  template <class PlanRun>
+  std::pair<double, double> plan_side_forces(const PlanRun &p3, const std::size_t k)
+  {
+    double right = 0.0, left = 0.0;
+    for (std::size_t q = 0; q < p3.contacts.size(); ++q)
+    {
+      const double f = p3.history.contact_force[k * p3.contacts.size() + q];
+      if (p3.contacts[q].segment == 1)
+        right += f;
+      else if (p3.contacts[q].segment == 3)
+        left += f;
+    }
+    return {left, right};
+  }
+
   inline double relative_difference(const std::vector<double> &a, const std::vector<double> &b)
   {
     double diff = 0.0, scale = 0.0;

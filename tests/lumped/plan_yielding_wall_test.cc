@@ -88,15 +88,7 @@ namespace kimp::lumped::plan
         u2.push_back(p2.history.displacement[k * p2.n_dofs + i]);
         u3.push_back(p3.history.displacement[(k * nl + i) * 3]);
       }
-      double right = 0.0, left = 0.0;
-      for (std::size_t q = 0; q < p3.contacts.size(); ++q)
-      {
-        const double f = p3.history.contact_force[k * p3.contacts.size() + q];
-        if (p3.contacts[q].segment == 1)
-          right += f;
-        else if (p3.contacts[q].segment == 3)
-          left += f;
-      }
+      const auto [left, right] = kimp::testing::plan_side_forces(p3, k);
       f3.push_back(left);
       f3.push_back(right);
       f2.push_back(p2.history.contact_force[k * 4]);
