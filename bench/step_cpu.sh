@@ -4,7 +4,7 @@
 # bench/fresh_clone.sh configures the clone's build with it; by hand:
 #   cmake -B build -DCMAKE_CXX_COMPILER_LAUNCHER=$PWD/bench/step_cpu.sh \
 #     -DCMAKE_CXX_LINKER_LAUNCHER=$PWD/bench/step_cpu.sh ...
-#   KIMP_STEP_CPU_LOG=/tmp/steps.log ninja -C build kimp
+#   KIMP_STEP_CPU_LOG="$PWD/build/step-cpu.log" ninja -C build kimp
 # On a shared machine the wall time of a step says little; its CPU time is what it costs.
 output=""
 previous=""

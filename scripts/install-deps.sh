@@ -35,6 +35,7 @@ tests=(
   pybind11-dev python3-dev python3-pytest python3-yaml  # the Python module `kimp` and its tests
   jupyter-nbconvert python3-nbformat python3-nbclient python3-ipykernel  # the example notebook, run in CI
   chromium                                  # headless browser tests of the web interface
+  time                                      # /usr/bin/time: the whole-process timings of bench/
 )
 packages=("${runtime[@]}")
 if [ "$group" = all ]; then packages+=("${tests[@]}"); fi
