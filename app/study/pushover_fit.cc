@@ -3,7 +3,6 @@
 #include "app/study/pushover_fit.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
@@ -11,6 +10,7 @@
 
 #include "app/fem/pushover_run.h"
 #include "base/errors.h"
+#include "base/stopwatch.h"
 #include "fem/numerical_error.h"
 
 namespace kimp::app
@@ -202,21 +202,19 @@ namespace kimp::app
     coarse.geometry.h_max     = study_pushover_h_max;
     coarse.mesh_level         = 0;
     PushoverResistance r;
-    const auto         start = std::chrono::steady_clock::now();
-    const auto         since = [&]
-    { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-    std::string fallback;
+    const auto         start = base::SteadyClock::now();
+    std::string        fallback;
     try
     {
       const fem::PushoverResult p = implicit_then_implex(coarse, wall_height, fallback);
       r.cells                     = p.n_cells;
-      r.seconds                   = since();
+      r.seconds                   = base::seconds_since(start);
       r.fit                       = fit_pushover(p.curve);
       r.curve                     = p.curve;
     }
     catch (const std::exception &error)
     {
-      r.seconds = since();
+      r.seconds = base::seconds_since(start);
       r.reason  = "pushover failed: " + short_reason(base::error_text(error));
       if (!fallback.empty())
         r.reason += " (with the " + fallback + ")";
