@@ -102,15 +102,37 @@ async function main() {
       const rcol = rows[0].split(',').indexOf('reference_velocity');
       const nReference = rows.slice(1).filter((r) => r.split(',')[rcol] === 'yes').length;
       check(rcol >= 0 && rows[1].split(',')[rcol] === 'yes', `k_table.csv begins with a reference row`);
-      const answer = await page.evaluate(() => {
-        const first = document.querySelector('details.section');
+      // With inelastic materials the yielding walls come first (one row per building run with a
+      // wall, as in yielding_wall.csv), then the k table as the comparison with Table 2.1.
+      const yieldingCsv = path.join(dir, 'yielding_wall.csv');
+      const yielding = fs.existsSync(yieldingCsv);
+      if (yielding) {
+        const runs = fs.readFileSync(yieldingCsv, 'utf8').trim().split('\n');
+        const shown = await page.evaluate(() => {
+          const first = document.querySelector('details.section');
+          const t = first && first.querySelector('table.yielding-answer');
+          return {
+            title: first ? first.querySelector('summary').textContent : '',
+            rows: t ? Array.from(t.querySelectorAll('tbody tr')).map((r) => r.children[2].textContent) : [],
+          };
+        });
+        check(
+          shown.title.startsWith('Yielding moat walls') &&
+            shown.rows.length === runs.length - 1 &&
+            shown.rows.every((s) => s === 'pushover' || s === 'estimate'),
+          `the first section is the yielding walls (${shown.title}, ${shown.rows.length} of ` +
+            `${runs.length - 1} runs, element from ${shown.rows.join(', ')})`,
+        );
+      }
+      const answer = await page.evaluate((second) => {
+        const first = document.querySelectorAll('details.section')[second ? 1 : 0];
         const t = first && first.querySelector('table.k-answer');
         return {
           title: first ? first.querySelector('summary').textContent : '',
           rows: t ? t.querySelectorAll('tbody tr').length : 0,
           head: t ? Array.from(t.querySelectorAll('th')).map((h) => h.textContent) : [],
         };
-      });
+      }, yielding);
       check(
         answer.title.startsWith('Impact stiffness k (the answer') && answer.rows === nReference &&
           answer.head.includes('KV fit/FEM peak'),

@@ -281,6 +281,70 @@
     );
   }
 
+  // ---- study with inelastic materials: the yielding walls first ---------------------------------
+  /**
+   * With inelastic materials the study's answer is each building run's wall against its yielding
+   * wall element: the element's source (pushover or estimate) and yield force, the peak wall
+   * resistance against it, the peak and residual wall displacement and whether the wall failed
+   * (yielding_wall.csv, yielding_wall_element.csv). The k table then follows as the comparison
+   * with Table 2.1.
+   */
+  function yieldingWallAnswerSection(parent, runsText, elementsText) {
+    const runs = parseCsv(runsText);
+    if (runs.length < 2) return;
+    const head = runs[0];
+    const col = (n) => head.indexOf(n);
+    if (col('wall_height_m') < 0) return;
+    const elements = elementsText ? parseCsv(elementsText) : [];
+    const eHead = elements[0] || [];
+    const source = (h) => {
+      const row = elements.slice(1).find((r) => r[eHead.indexOf('wall_height_m')] === h);
+      return row && eHead.indexOf('source') >= 0 ? row[eHead.indexOf('source')] : '-';
+    };
+    const cell = (r, n, digits) => (col(n) >= 0 && r[col(n)] !== '' ? fmt(parseFloat(r[col(n)]), digits) : '-');
+    const sec = section(parent, 'Yielding moat walls (the answer with inelastic materials)');
+    table(
+      sec,
+      [
+        'record',
+        'H (m)',
+        'element from',
+        'F_y W (kN)',
+        'peak wall resistance (kN)',
+        'resistance / F_y W',
+        'peak wall displacement (cm)',
+        'residual (cm)',
+        'failed',
+        'status',
+      ],
+      runs
+        .slice(1)
+        .map((r) => [
+          r[col('record')],
+          cell(r, 'wall_height_m', 4),
+          source(r[col('wall_height_m')]),
+          cell(r, 'wall_capacity_kN', 4),
+          cell(r, 'peak_wall_resistance_kN', 4),
+          cell(r, 'resistance_over_capacity', 3),
+          cell(r, 'peak_wall_displacement_cm', 4),
+          cell(r, 'residual_wall_displacement_cm', 4),
+          r[col('failed')] === '1' ? `yes, at ${cell(r, 'failure_time_s', 4)} s` : 'no',
+          r[col('status')],
+        ]),
+      'data yielding-answer',
+      2,
+    );
+    sec.appendChild(
+      el('p', {
+        class: 'muted',
+        text:
+          'F_y W: the element\'s yield force over the building width; past it the wall hardens ' +
+          'with the pushover\'s slope, so the ratio may exceed 1 without failure. The k table below ' +
+          'is the comparison with Table 2.1.',
+      }),
+    );
+  }
+
   // ---- study: k(H), one chart per law, one series per impact velocity ---------------------------
   function kTableSection(parent, text) {
     const rows = parseCsv(text);
@@ -523,6 +587,9 @@
     container.appendChild(el('p', { class: 'muted', text: `files: ${files.join(', ')}` }));
     unitsBar(container, () => showResults(container, data, others));
     const kTable = data.csv && data.csv['k_table.csv'];
+    const yielding = data.csv && data.csv['yielding_wall.csv'];
+    if (data.kind === 'study' && yielding)
+      yieldingWallAnswerSection(container, yielding, data.csv['yielding_wall_element.csv']);
     if (data.kind === 'study' && kTable) kAnswerSection(container, kTable);
     inputsSection(container, data);
     // A run in plan (a scene with `plan:`) has its own view: directions, rotation, the plan view.
