@@ -204,7 +204,7 @@ namespace kimp::fem
       return committed_.data() + offset(cell, q);
     }
     /** The committed history, writable: for MaterialLaw::begin_step() between steps. */
-    double *committed_for_step(unsigned int cell, unsigned int q)
+    double *committed(unsigned int cell, unsigned int q)
     {
       return committed_.data() + offset(cell, q);
     }

@@ -531,7 +531,7 @@ namespace kimp::fem
       const double ratio = last_increment_ != 0 ? std::max(0.0, increment / last_increment_) : 0.0;
       for (unsigned int c = 0; c < cell_law_.size(); ++c)
         for (unsigned int q = 0; q < n_q; ++q)
-          cell_law_[c]->begin_step(history_.committed_for_step(c, q), ratio);
+          cell_law_[c]->begin_step(history_.committed(c, q), ratio);
       history_.revert(); // the trial history starts from the extrapolated one
     }
 
