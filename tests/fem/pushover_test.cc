@@ -105,9 +105,9 @@ namespace
     std::cout << "bare wall: k0 = " << s.initial_stiffness / 1e6 << " kN/mm/m, Timoshenko "
               << k_beam / 1e6 << " (ratio " << s.initial_stiffness / k_beam << "); x = " << x
               << " m, M_p = " << m_p / 1e3 << " kNm/m, M_p / h_c = " << f_p / 1e3
-              << " kN/m; F at 0.6 / 0.8 / 1.0 % drift = "
+              << " kN/m; F at 0.6 / 0.8 / 0.99 % drift = "
               << envelope_force(r.curve, 0.006 * p.wall_height) / 1e3 << " / " << f_drift / 1e3
-              << " / " << envelope_force(r.curve, 0.01 * p.wall_height) / 1e3 << " kN/m (ratio "
+              << " / " << envelope_force(r.curve, 0.0099 * p.wall_height) / 1e3 << " kN/m (ratio "
               << f_drift / f_p << "); loose steps " << r.n_loose_steps << '\n';
   }
 
