@@ -61,6 +61,7 @@ namespace kimp::fem
             "friction = " + num(p.friction) + ", interface_penalty = " + num(p.interface_penalty) +
               ", K0 = " + num(p.k0) + ", gravity = " + num(p.gravity) +
               " (need >= 0, > 0, >= 0, >= 0)");
+      check(p.max_iterations > 0, "max_iterations must be > 0");
       check(p.step_error_tolerance >= 0,
             "step_error_tolerance = " + num(p.step_error_tolerance) + " (must be >= 0)");
       check(p.tolerance > 0 && p.loose_tolerance >= p.tolerance && p.loose_tolerance < 1,
@@ -319,7 +320,7 @@ namespace kimp::fem
     s.max_cuts                          = 3;
     s.newton_tolerance                  = p.tolerance;
     s.loose_tolerance                   = p.loose_tolerance;
-    s.max_iterations                    = 40;
+    s.max_iterations                    = p.max_iterations;
     s.damped_newton                     = true;
     s.step_error_tolerance              = p.implex ? p.step_error_tolerance : 0.0;
     const StaticPlasticityResult solved = run_static_plasticity(s, log);

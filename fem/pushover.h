@@ -102,6 +102,8 @@ namespace kimp::fem
     /** A step that cannot meet `tolerance` even halved is accepted within this (> 0, >=
      *  tolerance); PushoverResult counts such steps. */
     double loose_tolerance = 1e-3;
+    /** Newton iterations per (sub)step before it is halved (> 0). */
+    unsigned int max_iterations = 40;
   };
 
   /** One converged step of the pushover. */
