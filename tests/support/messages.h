@@ -1,12 +1,16 @@
 // kimp::testing checks of error messages: the message of the exception a call throws, a message
-// that must contain every one of some parts, and the one error line of a failed run's log.
+// that must contain every one of some parts, the one error line of a failed run's log and that
+// line when the results file met a file size limit.
 // Needs GoogleTest.
 #pragma once
 
 #include <exception>
+#include <filesystem>
 #include <gtest/gtest.h>
 #include <string>
 #include <vector>
+
+#include "tests/support/files.h"
 
 namespace kimp::testing
 {
@@ -61,5 +65,15 @@ namespace kimp::testing
     const std::vector<std::string> lines = non_info_lines(log);
     ASSERT_EQ(lines.size(), 1u) << log;
     line = lines[0];
+  }
+
+  /// Expects the one error line of a run that wrote its results across a file size limit to name
+  /// the results file and EFBIG ("File too large"), and the run to have left nothing below `out`.
+  inline void expect_results_file_too_large_error(const std::string           &line,
+                                                  const std::filesystem::path &out)
+  {
+    EXPECT_EQ(line.rfind("error: results file '", 0), 0u) << line;
+    EXPECT_NE(line.find("File too large"), std::string::npos) << line;
+    EXPECT_TRUE(files_below(out).empty()) << "left behind: " << files_below(out).front();
   }
 } // namespace kimp::testing
