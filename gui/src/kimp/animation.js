@@ -94,15 +94,24 @@
   }
 
   /**
-   * The player of a case's displacement history (the building, the plan view): makePlayer's
-   * controls as 'anim-*' (speeds 0.1× to 5×, exaggeration up to 200, a scrub bar of 1000 steps)
-   * on o.width x o.height, SVG class o.svgClass, exaggeration o.exaggeration at first. The frame
-   * at state.t is the last history sample i at or before t; o.draw(i, tText) returns its SVG
-   * elements (tText: the sample's time to the digits its sampling needs). The frame export saves
-   * o.frameFile(t, tText). Returns {state, play, pause, seek, setCase, frameSvg}: nothing is drawn
-   * until setCase(c) gives the case (state.kase).
+   * The views of a case's displacement history: canvas (px), SVG class, exaggeration at first and
+   * the stem of an exported frame's file name (STEM_t<time>.svg).
    */
-  function historyPlayer(parent, o) {
+  const historyViews = {
+    building: { width: 900, height: 420, svgClass: 'animation', exaggeration: 10, frameName: 'frame' },
+    plan: { width: 900, height: 560, svgClass: 'animation plan-view', exaggeration: 20, frameName: 'plan_frame' },
+  };
+
+  /**
+   * The player of a case's displacement history in historyViews[view]: makePlayer's controls as
+   * 'anim-*' (speeds 0.1× to 5×, exaggeration up to 200, a scrub bar of 1000 steps). The frame at
+   * state.t is the last history sample i at or before t; drawFrame(i, tText) returns its SVG
+   * elements (tText: the sample's time to the digits its sampling needs, as the time label and the
+   * exported frame's name show it). Returns {state, play, pause, seek, setCase, frameSvg}: nothing
+   * is drawn until setCase(c) gives the case (state.kase).
+   */
+  function historyPlayer(parent, view, drawFrame) {
+    const o = historyViews[view];
     const player = makePlayer(parent, {
       prefix: 'anim',
       width: o.width,
@@ -142,7 +151,7 @@
       if (!state.kase) return;
       state.frame = frameAt(state.t);
       const tText = timeText(frameTime());
-      player.svg.innerHTML = o.draw(state.frame, tText);
+      player.svg.innerHTML = drawFrame(state.frame, tText);
       player.label.textContent = `t = ${tText} s`;
       scrub.value = String(Math.round((state.t / tEnd()) * 1000));
       setTimeCursor(state.t);
@@ -182,15 +191,14 @@
     });
     scrub.addEventListener('input', () => api.seek((Number(scrub.value) / 1000) * tEnd()));
     exportFrame.addEventListener('click', () =>
-      download(o.frameFile(frameTime(), timeText(frameTime())), api.frameSvg(), 'image/svg+xml'),
+      download(`${o.frameName}_t${timeText(frameTime())}.svg`, api.frameSvg(), 'image/svg+xml'),
     );
     return api;
   }
 
   /** The building of a lumped run: floors, isolator, walls, neighbours and impact flashes. */
   function makeAnimation(parent, firstCase) {
-    const W = 900;
-    const H = 420;
+    const { width: W, height: H } = historyViews.building;
     const groundY = H - 40;
     const widthMain = 160;
     /** The building at history sample i. */
@@ -303,18 +311,11 @@
       return parts.join('');
     }
 
-    const api = historyPlayer(parent, {
-      width: W,
-      height: H,
-      svgClass: 'animation',
-      exaggeration: 10,
-      draw: frame,
-      frameFile: (t, tText) => `frame_t${tText}.svg`,
-    });
+    const api = historyPlayer(parent, 'building', frame);
     const state = api.state;
     api.setCase(firstCase);
     return api;
   }
 
-  Object.assign(kimp, { makePlayer, historyPlayer, makeAnimation });
+  Object.assign(kimp, { makePlayer, historyViews, historyPlayer, makeAnimation });
 })();

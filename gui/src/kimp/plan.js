@@ -4,8 +4,8 @@
 'use strict';
 
 (function () {
-  const { view, el, fmt, column, seriesGroups, chart, section, table, displayUnit, historyPlayer, escapeXml } = kimp;
-  const { peakCell } = kimp;
+  const { view, el, fmt, column, seriesGroups, chart, section, table, displayUnit, escapeXml } = kimp;
+  const { peakCell, historyViews, historyPlayer } = kimp;
 
   /** The plan run's one case: {summary, label, history, geometry} from lumped.h5 and summary.json. */
   function planCase(data) {
@@ -176,8 +176,7 @@
 
   /** The plan view: level 0's outline displaced, the moat wall, contact points flashing in contact. */
   function planAnimation(parent, c) {
-    const W = 900;
-    const H = 560;
+    const { width: W, height: H } = historyViews.plan;
     const g = c.geometry;
     const all = g.slab.concat(g.wall || []);
     const [x0, x1] = [Math.min(...all.map((p) => p[0])), Math.max(...all.map((p) => p[0]))];
@@ -239,14 +238,7 @@
       return parts.join('');
     }
 
-    const api = historyPlayer(parent, {
-      width: W,
-      height: H,
-      svgClass: 'animation plan-view',
-      exaggeration: 20,
-      draw: frame,
-      frameFile: (t) => `plan_frame_t${t.toFixed(3)}.svg`,
-    });
+    const api = historyPlayer(parent, 'plan', frame);
     api.setCase(c);
     return api;
   }
