@@ -68,18 +68,6 @@ namespace
     return found;
   }
 
-  /// `kimp <arguments>` in `dir` under a file size limit of `bytes`, which must exit 1 with one
-  /// line besides the info lines: that line in `line`.
-  void one_line_under_file_limit(const std::string &arguments,
-                                 const fs::path    &dir,
-                                 long               bytes,
-                                 std::string       &line)
-  {
-    std::string log;
-    const int   exit_code = run_kimp_with_file_limit(arguments, dir, bytes, log);
-    ASSERT_NO_FATAL_FAILURE(one_error_line(exit_code, log, line));
-  }
-
   /// The full-disk tests: the quick FEM scene as scene.yaml in `dir`; they need prlimit
   /// (util-linux) to limit the size of a file.
   class FailsafeFullDisk : public ::testing::Test
