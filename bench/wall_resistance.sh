@@ -11,7 +11,8 @@
 #     the wall's cells grow to 5 x 22 cm at its base), on a 5 -> 10 cm grading and on a uniform
 #     5 cm mesh;
 #   - with and without the backfill, with the concrete's tensile strength cut to 10 % (the section
-#     analysis' assumption), and with an elastic wall (stiffness).
+#     analysis' assumption), with a frictional wall-sand contact instead of the bonded interface,
+#     on a uniform 2.5 cm mesh (the bare wall), and with an elastic wall (stiffness).
 # Prints the mean force over 10 mm windows of band displacement, the hand calculations (M_p / h_c
 # of the smeared section, Rankine and Coulomb passive) and the CPU time of each run.
 # KIMP_WALL_RESISTANCE_ROWS=1 also runs the four impact rows of the yielding-wall test (the FEM's
@@ -29,7 +30,8 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
-# scene NAME CONCRETE(rc|rc_ft10|elastic) BACKFILL(true|false) MESH(graded|graded10|uniform) SLAB END
+# scene NAME CONCRETE(rc|rc_ft10|elastic) BACKFILL(true|false) MESH(graded|graded10|uniform|
+#   uniform2.5) SLAB END [INTERFACE (default bonded)]
 # (the impact rows keep the test's 0.01 ms history interval: their first peak is 0.1 ms long)
 scene() {
   local concrete
@@ -46,12 +48,14 @@ scene() {
     graded) mesh='{h_contact: "5 cm", h_max: "25 cm", grading: 1.5}' ;;
     graded10) mesh='{h_contact: "5 cm", h_max: "10 cm", grading: 1.5}' ;;
     uniform) mesh='{h_contact: "5 cm", h_max: "5 cm", grading: 1.0}' ;;
+    uniform2.5) mesh='{h_contact: "2.5 cm", h_max: "2.5 cm", grading: 1.0}' ;;
   esac
   local interval="0.5 ms"
   [[ "$1" == row_* ]] && interval="0.01 ms"
   cat > "$work/$1.yaml" <<YAML
 wall_heights: ["1.25 m"]
 geometry: {with_backfill: $3}
+interface: {model: ${7:-bonded}}
 materials:
   concrete: $concrete
   soil: {model: mohr_coulomb, preset: medium_dense_sand}
@@ -79,21 +83,28 @@ scene pushover_soil rc true graded "$push" "400 ms"
 scene pushover_bare rc false graded "$push" "400 ms"
 scene pushover_bare_ft10 rc_ft10 false graded "$push" "400 ms"
 scene pushover_elastic_soil elastic true graded "$push" "400 ms"
-for name in pushover_soil pushover_bare pushover_bare_ft10 pushover_elastic_soil; do
+scene pushover_elastic_bare elastic false graded "$push" "400 ms"
+for name in pushover_soil pushover_bare pushover_bare_ft10 pushover_elastic_soil \
+  pushover_elastic_bare; do
   run "$name" --pushover
 done
 scene push_soil_graded rc true graded "$push" "400 ms"
 scene push_soil_uniform rc true uniform "$push" "400 ms"
+scene push_soil_uniform_contact rc true uniform "$push" "400 ms" contact
 scene push_bare_graded rc false graded "$push" "400 ms"
 scene push_bare_graded10 rc false graded10 "$push" "400 ms"
 scene push_bare_uniform rc false uniform "$push" "400 ms"
+scene push_bare_uniform2.5 rc false uniform2.5 "$push" "400 ms"
 scene push_bare_ft10_graded rc_ft10 false graded "$push" "400 ms"
 scene push_bare_ft10_uniform rc_ft10 false uniform "$push" "400 ms"
 scene push_elastic_soil_graded elastic true graded "$push" "100 ms"
 scene push_elastic_soil_uniform elastic true uniform "$push" "100 ms"
-for name in push_soil_graded push_soil_uniform push_bare_graded push_bare_graded10 \
-  push_bare_uniform push_bare_ft10_graded push_bare_ft10_uniform push_elastic_soil_graded \
-  push_elastic_soil_uniform; do
+scene push_elastic_bare_graded elastic false graded "$push" "100 ms"
+scene push_elastic_bare_uniform elastic false uniform "$push" "100 ms"
+for name in push_soil_graded push_soil_uniform push_soil_uniform_contact push_bare_graded \
+  push_bare_graded10 push_bare_uniform push_bare_uniform2.5 push_bare_ft10_graded \
+  push_bare_ft10_uniform push_elastic_soil_graded push_elastic_soil_uniform \
+  push_elastic_bare_graded push_elastic_bare_uniform; do
   run "$name"
 done
 rows=()
@@ -161,10 +172,12 @@ def window(c, a, b):
 print("\nmean force (kN/m) over band-displacement windows (the explicit pushes drop and recover as")
 print("cracks and crushing pass a row); secant stiffness at 5 mm (kN/mm/m)")
 print(f"{'case':28s} {'0-10 mm':>8s} {'10-20':>8s} {'20-30':>8s} {'30-40':>8s} {'k(5mm)':>8s}")
-for name in ['pushover_soil', 'push_soil_graded', 'push_soil_uniform', 'pushover_bare', 'push_bare_graded',
-             'push_bare_graded10', 'push_bare_uniform', 'pushover_bare_ft10', 'push_bare_ft10_graded',
+for name in ['pushover_soil', 'push_soil_graded', 'push_soil_uniform', 'push_soil_uniform_contact',
+             'pushover_bare', 'push_bare_graded', 'push_bare_graded10', 'push_bare_uniform',
+             'push_bare_uniform2.5', 'pushover_bare_ft10', 'push_bare_ft10_graded',
              'push_bare_ft10_uniform', 'pushover_elastic_soil', 'push_elastic_soil_graded',
-             'push_elastic_soil_uniform']:
+             'push_elastic_soil_uniform', 'pushover_elastic_bare', 'push_elastic_bare_graded',
+             'push_elastic_bare_uniform']:
     c = curve(name)
     if not c:
         print(f"{name:28s} (no result)"); continue
