@@ -21,15 +21,10 @@
 # About 3 minutes of CPU with the rows (one process at a time).
 # Usage: bench/wall_resistance.sh [BUILD_DIR (default: build)]
 set -euo pipefail
-root="$(cd "$(dirname "$0")/.." && pwd)"
-build="${1:-$root/build}"
-kimp="$build/kimp"
-[[ -x "$kimp" ]] || { echo "wall_resistance.sh: build the target kimp (with FEM) in $build" >&2; exit 1; }
-[[ -x /usr/bin/time ]] || { echo "wall_resistance.sh: needs /usr/bin/time (Debian package time)" >&2; exit 1; }
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
-
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/lib.sh"
+bench_init wall_resistance.sh 1 "$@"
+bench_require fem time
+bench_workdir
 
 # scene NAME CONCRETE(rc|rc_ft10|elastic) BACKFILL(true|false) MESH(graded|graded10|uniform|
 #   uniform2.5) SLAB END [INTERFACE (default bonded)]
