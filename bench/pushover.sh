@@ -12,19 +12,13 @@
 # KIMP_PUSHOVER_LEVELS (default "10cm 5cm 2.5cm") and KIMP_PUSHOVER_HEIGHTS (default "1.25 1.50
 # 2.00") restrict the convergence study (the 2.5 cm level takes minutes of CPU per height).
 set -euo pipefail
-root="$(cd "$(dirname "$0")/.." && pwd)"
-build="${1:-$root/build}"
-runs="${2:-1}"
+source "$(dirname "$0")/lib.sh"
+bench_init pushover.sh 1 "$@"
 levels="${KIMP_PUSHOVER_LEVELS:-10cm 5cm 2.5cm}"
 heights="${KIMP_PUSHOVER_HEIGHTS:-1.25 1.50 2.00}"
-kimp="$build/kimp"
-[[ -x "$kimp" && -x "$build/kimp-fem" ]] || { echo "pushover.sh: build the target kimp (with FEM) in $build" >&2; exit 1; }
-[[ -x /usr/bin/time ]] || { echo "pushover.sh: needs /usr/bin/time (Debian package time)" >&2; exit 1; }
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+bench_require fem time
 export KIMP_DATA_DIR="$root"
-
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+bench_workdir
 scene() { # $1: h_contact, $2: unload_at list, $3: concrete model, $4: with_backfill, $5: height, $6: increment
   local concrete="{model: damage_plasticity, f_cm: \"38 MPa\", wall_reinforcement: {ratio_y: \"0.5 %\", hardening: 0.01}}"
   [[ "$3" == elastic ]] && concrete="{model: elastic}"
