@@ -8,17 +8,11 @@
 # one rank, with the engineer's quantities of each run.
 # Usage: bench/fem_inelastic.sh [BUILD_DIR (default: build)] [RUNS (default: 3)] [ladder]
 set -euo pipefail
-root="$(cd "$(dirname "$0")/.." && pwd)"
-build="${1:-$root/build}"
-runs="${2:-3}"
+source "$(dirname "$0")/lib.sh"
+bench_init fem_inelastic.sh 3 "$@"
 mode="${3:-}"
-kimp="$build/kimp"
-[[ -x "$kimp" && -x "$build/kimp-fem" ]] || { echo "fem_inelastic.sh: build the target kimp (with FEM) in $build" >&2; exit 1; }
-[[ -x /usr/bin/time ]] || { echo "fem_inelastic.sh: needs /usr/bin/time (Debian package time)" >&2; exit 1; }
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
-
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+bench_require fem time
+bench_workdir
 cat > "$work/quick.yaml" <<'YAML'
 # data/scenes/fem_quick.yaml (rigid slab, 5 cm) with the materials of fem_inelastic.yaml.
 wall_heights: ["1.25 m"]

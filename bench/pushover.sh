@@ -3,27 +3,22 @@
 # 5 % of the height: the reinforced 0.25 m wall (damage_plasticity with MC2010's full tensile
 # strength, 0.5 % vertical bars with 1 % hardening, IMPL-EX damage update) against Mohr-Coulomb
 # sand (phi 30, c 1 kPa, psi 0; geostatic state; contact interface) at H = 1.25, 1.50 and
-# 2.00 m on the 5 cm and 2.5 cm meshes (the capacity's convergence between the two finest
-# levels); at H = 1.25 m, 5 cm, the same with 0.25 mm steps (the IMPL-EX step error); the bare
-# wall with MC2010's full tensile strength; the elastic wall against the sand, monotonic and
-# cyclic (unload at 1 cm). Prints capacity, steps and CPU (user) time per run.
+# 2.00 m on the 10 cm, 5 cm and 2.5 cm meshes (the capacity's convergence between the two
+# finest levels; rotating crack frame and IMPL-EX step control, the pushover's defaults); at
+# H = 1.25 m, 5 cm, the same with 0.25 mm steps (the IMPL-EX step error); the bare wall with
+# MC2010's full tensile strength; the elastic wall against the sand, monotonic and cyclic
+# (unload at 1 cm). Prints capacity, steps and CPU (user) time per run.
 # Usage: bench/pushover.sh [BUILD_DIR (default: build)] [RUNS (default: 1)]
-# KIMP_PUSHOVER_LEVELS (default "5cm 2.5cm") and KIMP_PUSHOVER_HEIGHTS (default "1.25 1.50
+# KIMP_PUSHOVER_LEVELS (default "10cm 5cm 2.5cm") and KIMP_PUSHOVER_HEIGHTS (default "1.25 1.50
 # 2.00") restrict the convergence study (the 2.5 cm level takes minutes of CPU per height).
 set -euo pipefail
-root="$(cd "$(dirname "$0")/.." && pwd)"
-build="${1:-$root/build}"
-runs="${2:-1}"
-levels="${KIMP_PUSHOVER_LEVELS:-5cm 2.5cm}"
+source "$(dirname "$0")/lib.sh"
+bench_init pushover.sh 1 "$@"
+levels="${KIMP_PUSHOVER_LEVELS:-10cm 5cm 2.5cm}"
 heights="${KIMP_PUSHOVER_HEIGHTS:-1.25 1.50 2.00}"
-kimp="$build/kimp"
-[[ -x "$kimp" && -x "$build/kimp-fem" ]] || { echo "pushover.sh: build the target kimp (with FEM) in $build" >&2; exit 1; }
-[[ -x /usr/bin/time ]] || { echo "pushover.sh: needs /usr/bin/time (Debian package time)" >&2; exit 1; }
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+bench_require fem time
 export KIMP_DATA_DIR="$root"
-
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+bench_workdir
 scene() { # $1: h_contact, $2: unload_at list, $3: concrete model, $4: with_backfill, $5: height, $6: increment
   local concrete="{model: damage_plasticity, f_cm: \"38 MPa\", wall_reinforcement: {ratio_y: \"0.5 %\", hardening: 0.01}}"
   [[ "$3" == elastic ]] && concrete="{model: elastic}"

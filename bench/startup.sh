@@ -8,16 +8,10 @@
 # Usage: bench/startup.sh [BUILD_DIR (default: build)] [RUNS (default: 20)]
 #   KIMP_RECORDS_DIR (default: ../shared/data/records beside the repository): the Kobe record.
 set -euo pipefail
-root="$(cd "$(dirname "$0")/.." && pwd)"
-build="${1:-$root/build}"
-runs="${2:-20}"
-kimp="$build/kimp"
-[[ -x "$kimp" ]] || { echo "startup.sh: $kimp not found (build the target kimp)" >&2; exit 1; }
-[[ -x /usr/bin/time ]] || { echo "startup.sh: needs /usr/bin/time (Debian package time)" >&2; exit 1; }
-records="${KIMP_RECORDS_DIR:-$root/../shared/data/records}"
-
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/lib.sh"
+bench_init startup.sh 20 "$@"
+bench_require time
+bench_workdir
 cat > "$work/one_second.yaml" <<'EOF'
 # The default building between walls under the synthetic record trimmed to 1 s.
 ground_motion:

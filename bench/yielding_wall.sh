@@ -10,19 +10,10 @@
 # The record is read in place: --records-dir from KIMP_RECORDS_DIR, else ../shared/data/records
 # beside the source tree.
 set -euo pipefail
-root="$(cd "$(dirname "$0")/.." && pwd)"
-build="${1:-$root/build}"
-runs="${2:-3}"
-kimp="$build/kimp"
-records="${KIMP_RECORDS_DIR:-$root/../shared/data/records}"
-[[ -x "$kimp" ]] || { echo "yielding_wall.sh: build the target kimp in $build" >&2; exit 1; }
-[[ -f "$records/RSN1106_KOBE_KJM000.AT2" ]] || {
-  echo "yielding_wall.sh: RSN1106_KOBE_KJM000.AT2 not in $records (set KIMP_RECORDS_DIR)" >&2
-  exit 1
-}
-
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/lib.sh"
+bench_init yielding_wall.sh 3 "$@"
+bench_require records RSN1106_KOBE_KJM000.AT2
+bench_workdir
 common='building: {kind: isolated, n_storeys: 4}
 ground_motion: {record: RSN1106_KOBE_KJM000, duration: "48 s"}
 integration: {method: cdm, dt: "2e-5 s", output_interval: "0.01 s"}'

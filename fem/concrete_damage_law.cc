@@ -153,6 +153,15 @@ namespace kimp::fem
     h[implex_ + 1] = h[1] + step_ratio * (h[1] - h[implex_ + 3]);
   }
 
+  double ConcreteDamageLaw::step_error(const double *h) const
+  {
+    if (!implex_on_)
+      return 0;
+    const double kt = h[0], band = h[5];
+    const double lag = std::clamp(tension_damage(kt, band), 0.0, max_damage) - h[2];
+    return std::max(0.0, lag) * p_.youngs_modulus * kt / effective_tensile_strength(band);
+  }
+
   std::array<double, 2> ConcreteDamageLaw::implex_damage(const double *h0, double *h1) const
   {
     // The committed (implicit) measures become the previous ones once this step is committed.
@@ -261,7 +270,7 @@ namespace kimp::fem
       // Dowel action of the bars crossing the crack, once there is one (h1[2] > 0): elastic-
       // perfectly plastic in the crack's shear strain, from zero at the cracking step.
       b1[5] = b0[5];
-      if (h1[2] > 0)
+      if (h1[2] > 0 && !p_.rotating_crack)
       {
         const double c = h1[6], sn = h1[7];
         const double g = to_crack_frame(e, c, sn)[2];
@@ -323,14 +332,19 @@ namespace kimp::fem
     // effective stress of that step, (sa_x, sa_y).
     // IMPL-EX: the frame of the converged step before the point cracks (tracked while
     // uncracked), so that the stress stays piecewise linear in the strain within a step.
-    if (!(h0[2] > 0) && (implex_on_ ? !(dt > 0) : dt > 0))
+    // A rotating crack follows the principal direction (IMPL-EX: that of the converged step,
+    // so that the frame is fixed within a step).
+    const bool rotating = p_.rotating_crack;
+    if (rotating || (!(h0[2] > 0) && (implex_on_ ? !(dt > 0) : dt > 0)))
     {
       h1[6] = sa_x;
       h1[7] = sa_y;
     }
+    const double c  = rotating && implex_on_ ? h0[6] : h1[6];
+    const double s  = rotating && implex_on_ ? h0[7] : h1[7];
     h1[2]           = dt;
     h1[3]           = dc;
-    const Split  sp = split(ee, h1[6], h1[7], h0[5]);
+    const Split  sp = split(ee, c, s, h0[5]);
     const double e0 = (1 - h0[3]) * (sp.psi0 - h0[2] * sp.loss);
     const double e1 = (1 - dc) * (sp.psi0 - dt * sp.loss);
     // Dissipation: the energy the damage growth released at the step's strain (>= 0: L >= 0).
@@ -479,7 +493,7 @@ namespace kimp::fem
       const SteelBar steel = steel_at(h[5]);
       t[0] += r_.ratio_x * steel.update(e[0], b[0], b[1]).tangent;
       t[4] += r_.ratio_y * steel.update(e[1], b[2], b[3]).tangent;
-      if (dt > 0)
+      if (dt > 0 && !p_.rotating_crack)
       {
         const Dowel  dw = dowel(c, sn);
         const double g  = to_crack_frame(e, c, sn)[2];
@@ -515,7 +529,7 @@ namespace kimp::fem
       const double *b  = h + bars_;
       const double  ex = e[0] - b[0], ey = e[1] - b[2], Es = r_.youngs_modulus;
       o.stored_energy += 0.5 * Es * (r_.ratio_x * ex * ex + r_.ratio_y * ey * ey);
-      if (dt > 0)
+      if (dt > 0 && !p_.rotating_crack)
       {
         const double g = to_crack_frame(e, h[6], h[7])[2] - b[5];
         o.stored_energy += 0.5 * dowel(h[6], h[7]).stiffness * g * g;

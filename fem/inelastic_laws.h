@@ -179,6 +179,14 @@ namespace kimp::fem
     /** beta_min: shear retention of a crack opened wider than d_agg / 2, in [0, 1]. */
     double shear_retention_floor = 0.01;
     /**
+     * The crack frame: false, fixed at the point's first crack (shear retention and dowels act
+     * in it); true, rotating with the principal directions (coaxial: no shear in the frame, no
+     * dowels; the shear goes by the rotated compression). A fixed frame locks tension across
+     * the cracks of a wall's plastic hinge (docs/physics.md §6 "Crack frame of the pushover").
+     * With IMPL-EX the rotating frame of a step is the converged step's principal direction.
+     */
+    bool rotating_crack = false;
+    /**
      * fib Model Code 2010 §5.1.4-5.1.8 from f_cm (Pa): f_ck = f_cm - 8 MPa,
      * E_ci = 21.5 GPa (f_cm / 10 MPa)^(1/3), f_ctm = 0.3 f_ck^(2/3) (<= C50) or
      * 2.12 ln(1 + 0.1 f_cm), G_F = 73 f_cm^0.18 N/m; eps_c1, eps_c,lim by EN 1992-1-1 Table 3.1.
@@ -322,8 +330,11 @@ namespace kimp::fem
     unsigned int n_history() const override { return implex_ + (implex_on_ ? 4 : 0); }
     /** IMPL-EX: extrapolates kappa_t, kappa_c to the coming step (no-op when implicit). */
     void begin_step(double *committed, double step_ratio) const override;
-    void initialize_point(double *history, double characteristic_length) const override;
-    void initial_history(double *history) const override;
+    /** IMPL-EX: (d_t(kappa_t) - d_t used) E kappa_t / f_t, the tensile stress the lagging
+     *  damage let through beyond the implicit update's, over f_t (>= 0; 0 when implicit). */
+    double step_error(const double *trial) const override;
+    void   initialize_point(double *history, double characteristic_length) const override;
+    void   initial_history(double *history) const override;
     VoigtStress
     stress(const VoigtStrain &strain, const double *committed, double *trial) const override;
     /** The tangent at the committed damage (beta's change with the opening left out): enough

@@ -83,6 +83,14 @@ namespace kimp::fem
      */
     virtual void begin_step(double *committed, double step_ratio) const;
     /**
+     * The IMPL-EX error of a point after a converged step, from the @p trial history that
+     * stress() wrote at the converged strain: how far the extrapolated internal variables that
+     * the step used lag the implicit ones, in units of the law's strength (ConcreteDamageLaw:
+     * the tensile stress overshoot / f_t). A load-stepping solver halves a step whose largest
+     * error exceeds its tolerance. Default (no IMPL-EX): 0.
+     */
+    virtual double step_error(const double * /*trial*/) const { return 0; }
+    /**
      * Out-of-plane stress, stored energy and dissipation at @p strain with the history
      * @p history that stress() wrote for it. Default: sigma_zz = 0, stored = sigma : eps / 2.
      */

@@ -61,6 +61,9 @@ namespace kimp::fem
             "friction = " + num(p.friction) + ", interface_penalty = " + num(p.interface_penalty) +
               ", K0 = " + num(p.k0) + ", gravity = " + num(p.gravity) +
               " (need >= 0, > 0, >= 0, >= 0)");
+      check(p.max_iterations > 0, "max_iterations must be > 0");
+      check(p.step_error_tolerance >= 0,
+            "step_error_tolerance = " + num(p.step_error_tolerance) + " (must be >= 0)");
       check(p.tolerance > 0 && p.loose_tolerance >= p.tolerance && p.loose_tolerance < 1,
             "tolerance = " + num(p.tolerance) + ", loose_tolerance = " + num(p.loose_tolerance) +
               " (need 0 < tolerance <= loose_tolerance < 1)");
@@ -235,11 +238,13 @@ namespace kimp::fem
         check(barred.ratio_y < 1,
               "the bars' area exceeds their column of cells (ratio_y = " + num(p.bars.ratio_y) +
                 ")");
-        const auto update   = p.implex ? ConcreteDamageLaw::DamageUpdate::implex :
-                                         ConcreteDamageLaw::DamageUpdate::implicit;
-        s.laws[plain_id]    = std::make_shared<ConcreteDamageLaw>(p.concrete, plain, update);
-        s.laws[bar_id]      = std::make_shared<ConcreteDamageLaw>(p.concrete, barred, update);
-        s.numerical_tangent = {plain_id, bar_id};
+        const auto         update   = p.implex ? ConcreteDamageLaw::DamageUpdate::implex :
+                                                 ConcreteDamageLaw::DamageUpdate::implicit;
+        ConcreteParameters concrete = p.concrete;
+        concrete.rotating_crack     = p.rotating_crack;
+        s.laws[plain_id]            = std::make_shared<ConcreteDamageLaw>(concrete, plain, update);
+        s.laws[bar_id]              = std::make_shared<ConcreteDamageLaw>(concrete, barred, update);
+        s.numerical_tangent         = {plain_id, bar_id};
       }
       else
       {
@@ -315,8 +320,9 @@ namespace kimp::fem
     s.max_cuts                          = 3;
     s.newton_tolerance                  = p.tolerance;
     s.loose_tolerance                   = p.loose_tolerance;
-    s.max_iterations                    = 40;
+    s.max_iterations                    = p.max_iterations;
     s.damped_newton                     = true;
+    s.step_error_tolerance              = p.implex ? p.step_error_tolerance : 0.0;
     const StaticPlasticityResult solved = run_static_plasticity(s, log);
 
     PushoverResult out;
@@ -328,6 +334,15 @@ namespace kimp::fem
     out.n_interface_pairs      = static_cast<unsigned int>(s.interface.size());
     out.n_loose_steps          = solved.n_loose_steps;
     out.largest_loose_residual = solved.largest_loose_residual;
+    out.n_error_cuts           = solved.n_error_cuts;
+    out.n_large_error_steps    = solved.n_large_error_steps;
+    out.largest_step_error     = solved.largest_step_error;
+    for (const auto &cell : solved.cell_states)
+      out.cells.push_back({cell.centre[0],
+                           cell.centre[1],
+                           cell.centre[0] < p.wall_thickness,
+                           cell.damage,
+                           cell.plastic_strain});
     out.curve.push_back({0, 0, 0, false});
     for (std::size_t k = 1; k < solved.steps.size(); ++k)
     {

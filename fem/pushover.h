@@ -43,6 +43,20 @@ namespace kimp::fem
      * which stalls at the first cracks of a wall under earth pressure).
      */
     bool implex = true;
+    /**
+     * The wall concrete's crack frame (ConcreteParameters::rotating_crack, which this
+     * overrides): rotating (true) or fixed at the first crack. A fixed frame locks tension
+     * across the cracks of the wall's hinge and makes the capacity mesh-dependent
+     * (docs/physics.md §6 "Crack frame of the pushover").
+     */
+    bool rotating_crack = true;
+    /**
+     * IMPL-EX step control (with implex): a step after which some point of the concrete let
+     * through more than this many f_t of tensile stress beyond the implicit update's (the
+     * extrapolated damage lagging a new crack) is halved, at most max_cuts = 3 times
+     * (StaticPlasticityParameters::step_error_tolerance; 0: off, >= 0).
+     */
+    double step_error_tolerance = 1;
     /** Wall::elastic and Wall::rigid (the rigid wall is this material stiffened 1000 times). */
     Material wall_elastic{30e9, 0.2, 2400};
     double   wall_density = 2400; ///< kg/m^3 (gravity of the wall)
@@ -88,6 +102,8 @@ namespace kimp::fem
     /** A step that cannot meet `tolerance` even halved is accepted within this (> 0, >=
      *  tolerance); PushoverResult counts such steps. */
     double loose_tolerance = 1e-3;
+    /** Newton iterations per (sub)step before it is halved (> 0). */
+    unsigned int max_iterations = 40;
   };
 
   /** One converged step of the pushover. */
@@ -97,6 +113,15 @@ namespace kimp::fem
     double       force        = 0; ///< band force beyond the geostatic state, N/m
     unsigned int segment      = 0; ///< index in PushoverParameters::path
     bool         unloading    = false;
+  };
+
+  /** The final state of one cell of the pushover mesh: where the wall cracked and yielded. */
+  struct PushoverCell
+  {
+    double x = 0, y = 0; ///< centre, m (the wall is x in [0, t])
+    bool   in_wall        = false;
+    double damage         = 0; ///< mean over the cell, -
+    double plastic_strain = 0; ///< largest equivalent plastic strain (bars, soil), -
   };
 
   struct PushoverResult
@@ -112,6 +137,12 @@ namespace kimp::fem
     /** Steps accepted at loose_tolerance and their largest relative out-of-balance force. */
     unsigned int n_loose_steps          = 0;
     double       largest_loose_residual = 0;
+    /** IMPL-EX step control: steps halved, steps accepted above the tolerance at the last
+     *  halving and the largest error among them (in f_t). */
+    unsigned int              n_error_cuts        = 0;
+    unsigned int              n_large_error_steps = 0;
+    double                    largest_step_error  = 0;
+    std::vector<PushoverCell> cells; ///< the final state, one per cell
   };
 
   /**

@@ -134,6 +134,8 @@ namespace kimp::fem
       void begin_step(double increment);
       void commit();
       void revert();
+      /** The largest MaterialLaw::step_error() of the trial history (the converged iterate). */
+      double largest_step_error() const;
       /** The unit-resultant band traction vector g_ of p.controlled_load. */
       void setup_controlled_load();
       /** Adds the bordered part of a Newton update: du += dP b with K b = g, dP such that the
@@ -542,6 +544,15 @@ namespace kimp::fem
         interface_->commit();
     }
 
+    double StaticProblem::largest_step_error() const
+    {
+      double error = 0;
+      for (unsigned int c = 0; c < cell_law_.size(); ++c)
+        for (unsigned int q = 0; q < n_q; ++q)
+          error = std::max(error, cell_law_[c]->step_error(history_.trial(c, q)));
+      return error;
+    }
+
     void StaticProblem::revert()
     {
       history_.revert();
@@ -745,7 +756,22 @@ namespace kimp::fem
       step.segment     = segment_;
       const bool loose = p_.loose_tolerance > 0 && depth >= p_.max_cuts;
       begin_step(b - a);
-      if (newton(u_, r_, lift, step.residuals, loose))
+      bool converged = newton(u_, r_, lift, step.residuals, loose);
+      if (converged && p_.step_error_tolerance > 0)
+      {
+        const double error = largest_step_error();
+        if (error > p_.step_error_tolerance && depth < p_.max_cuts)
+        {
+          converged = false; // halved below
+          ++out.n_error_cuts;
+        }
+        else if (error > p_.step_error_tolerance)
+        {
+          ++out.n_large_error_steps;
+          out.largest_step_error = std::max(out.largest_step_error, error);
+        }
+      }
+      if (converged)
       {
         last_increment_ = b - a;
         if (step.residuals.back() > p_.newton_tolerance)
@@ -847,14 +873,23 @@ namespace kimp::fem
       out.steps.push_back(step0);
       walk_load_path(out);
 
-      // Totals and vertex displacements.
-      for (unsigned int c = 0; c < cell_law_.size(); ++c)
+      // Totals, cell states and vertex displacements.
+      out.cell_states.resize(cell_law_.size());
+      for (const auto &cell : tria_.active_cell_iterators())
+      {
+        const unsigned int c     = cell->active_cell_index();
+        const Point<dim>   x     = cell->center();
+        auto              &state = out.cell_states[c];
+        state.centre             = {{x[0], x[1]}};
         for (unsigned int q = 0; q < n_q; ++q)
         {
           const PointOutput o = cell_law_[c]->output(strain(u_, c, q), history_.committed(c, q));
           out.plastic_dissipation += o.plastic_dissipation * jxw_[c * n_q + q];
           out.damage_dissipation += o.damage_dissipation * jxw_[c * n_q + q];
+          state.damage += o.damage / n_q;
+          state.plastic_strain = std::max(state.plastic_strain, o.equivalent_plastic_strain);
         }
+      }
       out.vertex_displacements.assign(tria_.n_vertices(), {{0.0, 0.0}});
       for (const auto &cell : dof_handler_.active_cell_iterators())
         for (const auto v : cell->vertex_indices())

@@ -185,6 +185,12 @@ namespace kimp::fem
     unsigned int max_line_search = 4;
     /** A step that does not converge is halved at most this many times; then NumericalError. */
     unsigned int max_cuts = 4;
+    /**
+     * IMPL-EX step control (0: off): a converged step whose largest MaterialLaw::step_error()
+     * exceeds this is halved (at most max_cuts times; past that it is accepted and counted in
+     * StaticPlasticityResult::n_large_error_steps).
+     */
+    double step_error_tolerance = 0;
   };
 
   /** One converged load (sub)step. */
@@ -211,10 +217,23 @@ namespace kimp::fem
     /** Steps accepted at loose_tolerance, and the largest relative residual among them. */
     unsigned int n_loose_steps          = 0;
     double       largest_loose_residual = 0;
-    double       plastic_dissipation    = 0; ///< total at the end, J/m
-    double       damage_dissipation     = 0; ///< total at the end, J/m
+    /** Steps halved for their IMPL-EX error; steps accepted above step_error_tolerance (at the
+     *  last halving) and the largest error among them. */
+    unsigned int n_error_cuts        = 0;
+    unsigned int n_large_error_steps = 0;
+    double       largest_step_error  = 0;
+    double       plastic_dissipation = 0; ///< total at the end, J/m
+    double       damage_dissipation  = 0; ///< total at the end, J/m
     /** Final displacement at each mesh vertex (m), in mesh.vertices order. */
     std::vector<std::array<double, 2>> vertex_displacements;
+    /** The final state of one cell: where it is, its damage and plastic strain. */
+    struct CellState
+    {
+      std::array<double, 2> centre{};   ///< m
+      double                damage = 0; ///< mean over the cell's quadrature points, -
+      double plastic_strain        = 0; ///< largest equivalent plastic strain of its points, -
+    };
+    std::vector<CellState> cell_states; ///< one per cell (mesh.cells order)
   };
 
   /**

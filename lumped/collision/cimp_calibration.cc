@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "lumped/laws/hysteretic_law.h"
 
@@ -34,6 +35,20 @@ namespace kimp::lumped
                                   value,
                                   "",
                                   range);
+    }
+
+    /// The two bodies of a grid point: m1 at v_imp against the other mass at rest.
+    TwoBodySetup grid_setup(const CalibrationOptions &options, double mass, double velocity)
+    {
+      TwoBodySetup setup;
+      setup.mass_1            = mass;
+      setup.mass_2            = options.other_mass;
+      setup.velocity_1        = velocity;
+      setup.velocity_2        = 0.0;
+      setup.time_step         = options.time_step;
+      setup.velocity_estimate = options.velocity_estimate;
+      setup.record_history    = false;
+      return setup;
     }
 
     /// Simulate one collision of the hysteretic law with the given a1 (unset: eq. 2.23).
@@ -71,14 +86,10 @@ namespace kimp::lumped
   }
 
   double brent_root(const std::function<double(double)> &f,
-                    double                               a,
-                    double                               b,
-                    double                               f_a,
-                    double                               f_b,
-                    double                               x_tolerance,
-                    double                               f_tolerance,
-                    std::size_t                          max_iterations)
+                    const RootBracket                   &bracket,
+                    const RootTolerance                 &tolerance)
   {
+    auto [a, b, f_a, f_b] = bracket;
     if ((f_a > 0.0 && f_b > 0.0) || (f_a < 0.0 && f_b < 0.0))
     {
       std::ostringstream msg;
@@ -88,7 +99,7 @@ namespace kimp::lumped
     }
     constexpr double eps = std::numeric_limits<double>::epsilon();
     double           c = b, f_c = f_b, d = b - a, e = d;
-    for (std::size_t it = 0; it < max_iterations; ++it)
+    for (std::size_t it = 0; it < tolerance.max_iterations; ++it)
     {
       if ((f_b > 0.0 && f_c > 0.0) || (f_b < 0.0 && f_c < 0.0))
       {
@@ -98,16 +109,15 @@ namespace kimp::lumped
       }
       if (std::abs(f_c) < std::abs(f_b))
       {
-        a   = b;
-        b   = c;
-        c   = a;
-        f_a = f_b;
-        f_b = f_c;
-        f_c = f_a;
+        // b becomes the best estimate; a and c the previous one.
+        std::swap(b, c);
+        std::swap(f_b, f_c);
+        a   = c;
+        f_a = f_c;
       }
-      const double tol = 2.0 * eps * std::abs(b) + 0.5 * x_tolerance;
+      const double tol = 2.0 * eps * std::abs(b) + 0.5 * tolerance.x;
       const double xm  = 0.5 * (c - b);
-      if (std::abs(xm) <= tol || std::abs(f_b) <= f_tolerance)
+      if (std::abs(xm) <= tol || std::abs(f_b) <= tolerance.f)
         return b;
       if (std::abs(e) >= tol && std::abs(f_a) > std::abs(f_b))
       {
@@ -150,8 +160,8 @@ namespace kimp::lumped
       f_b = f(b);
     }
     std::ostringstream msg;
-    msg << "brent_root: no convergence in " << max_iterations << " iterations (bracket around " << b
-        << ", f = " << f_b << ")";
+    msg << "brent_root: no convergence in " << tolerance.max_iterations
+        << " iterations (bracket around " << b << ", f = " << f_b << ")";
     throw std::runtime_error(msg.str());
   }
 
@@ -164,14 +174,7 @@ namespace kimp::lumped
       for (const double v : options.velocity_grid)
         for (const double cor : options.cor_grid)
         {
-          TwoBodySetup setup;
-          setup.mass_1            = mass;
-          setup.mass_2            = options.other_mass;
-          setup.velocity_1        = v;
-          setup.velocity_2        = 0.0;
-          setup.time_step         = options.time_step;
-          setup.velocity_estimate = options.velocity_estimate;
-          setup.record_history    = false;
+          const TwoBodySetup setup = grid_setup(options, mass, v);
 
           CalibrationPoint point;
           point.cor             = cor;
@@ -200,8 +203,9 @@ namespace kimp::lumped
             hi *= 2.0;
             f_hi = excess(hi);
           }
-          point.a1 =
-            brent_root(excess, 0.0, hi, -target, f_hi, 1e-12 * hi, options.tolerance * target, 200);
+          point.a1         = brent_root(excess,
+                                {0.0, hi, -target, f_hi},
+                                {1e-12 * hi, options.tolerance * target, 200});
           point.cor_thesis = collide(options, setup, cor, std::nullopt).effective_cor;
           result.points.push_back(point);
         }
@@ -227,14 +231,8 @@ namespace kimp::lumped
 
     for (CalibrationPoint &p : result.points)
     {
-      TwoBodySetup setup;
-      setup.mass_1            = p.mass;
-      setup.mass_2            = options.other_mass;
-      setup.velocity_1        = p.impact_velocity;
-      setup.time_step         = options.time_step;
-      setup.velocity_estimate = options.velocity_estimate;
-      setup.record_history    = false;
-      const double a1_fit =
+      const TwoBodySetup setup = grid_setup(options, p.mass, p.impact_velocity);
+      const double       a1_fit =
         result.c / (std::pow(p.cor, result.p1) * std::pow(p.effective_mass, result.p2) *
                     std::pow(p.impact_velocity, result.p3));
       p.cor_fit = collide(options, setup, p.cor, a1_fit).effective_cor;

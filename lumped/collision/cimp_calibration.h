@@ -67,17 +67,30 @@ namespace kimp::lumped
    */
   CalibrationResult calibrate_impact_coefficient(const CalibrationOptions &options);
 
+  /// An interval [a, b] with f(a) and f(b), of opposite signs for a root to be bracketed.
+  struct RootBracket
+  {
+    double a   = 0.0;
+    double b   = 0.0;
+    double f_a = 0.0;
+    double f_b = 0.0;
+  };
+
+  /// When a root search stops: the bracket is below `x` or |f| <= `f`; after `max_iterations`
+  /// it fails.
+  struct RootTolerance
+  {
+    double      x              = 0.0;
+    double      f              = 0.0;
+    std::size_t max_iterations = 100;
+  };
+
   /**
-   * Root of f in [a, b] by Brent's method (inverse quadratic interpolation, secant and bisection),
-   * given f(a) and f(b) of opposite signs; stops when the bracket is below x_tolerance or
-   * |f| <= f_tolerance. @throws std::invalid_argument if the root is not bracketed.
+   * Root of f in the bracket by Brent's method (inverse quadratic interpolation, secant and
+   * bisection). @throws std::invalid_argument if the root is not bracketed; std::runtime_error
+   * without convergence in tolerance.max_iterations.
    */
   double brent_root(const std::function<double(double)> &f,
-                    double                               a,
-                    double                               b,
-                    double                               f_a,
-                    double                               f_b,
-                    double                               x_tolerance,
-                    double                               f_tolerance,
-                    std::size_t                          max_iterations);
+                    const RootBracket                   &bracket,
+                    const RootTolerance                 &tolerance);
 } // namespace kimp::lumped

@@ -75,18 +75,11 @@ TEST(FailsafeCli, FullDiskExitsOneWithOneLineAndLeavesNoFile)
     GTEST_SKIP() << "prlimit (util-linux) is not installed";
   TempDir dir("e2e_failsafe_full");
   dir.write("scene.yaml", small_scene);
-  const fs::path out = dir.path() / "out";
   // SIGXFSZ ignored: the write that crosses the 60 kB limit returns EFBIG instead of killing.
-  const std::string command = "cd '" + dir.path().string() + "' && trap '' XFSZ && prlimit " +
-                              "--fsize=60000 " + kimp_executable() + " lumped scene.yaml -o " +
-                              out.string();
-  const int         exit_code = run_command("bash -c \"" + command + "\"", dir.path() / "log.txt");
-  const std::string log       = read_text(dir.path() / "log.txt");
-  std::string       line;
-  ASSERT_NO_FATAL_FAILURE(one_error_line(exit_code, log, line));
-  EXPECT_EQ(line.rfind("error: results file '", 0), 0u) << line;
-  EXPECT_NE(line.find("File too large"), std::string::npos) << line;
-  EXPECT_TRUE(files_below(out).empty()) << "left behind: " << files_below(out).front();
+  std::string line;
+  ASSERT_NO_FATAL_FAILURE(
+    one_line_under_file_limit("lumped scene.yaml -o out", dir.path(), 60000, line));
+  expect_results_file_too_large_error(line, dir.path() / "out");
 }
 
 // A read-only output directory is an error before any computation, in one line. As root the
@@ -261,11 +254,9 @@ TEST(FailsafeCli, DamagedResultsFileIsOneLineInTheReport)
 // filled the memory (4.6 GB in 8 s); now the case is refused with the numbers.
 TEST(FailsafeCli, HistoryRowsAboveTheMemoryBudgetAreRefused)
 {
-  TempDir     dir("e2e_failsafe_rows");
-  std::string scene = small_scene;
-  scene.replace(scene.find("dt: \"1e-4 s\""), 12, "dt: auto");
-  scene.replace(scene.find("0.002 s"), 7, "1e-20 s");
-  dir.write("scene.yaml", scene);
+  TempDir dir("e2e_failsafe_rows");
+  dir.write("scene.yaml",
+            replaced(replaced(small_scene, "dt: \"1e-4 s\"", "dt: auto"), "0.002 s", "1e-20 s"));
   const KimpRun run = run_kimp("lumped scene.yaml -o out", dir.path());
   std::string   line;
   ASSERT_NO_FATAL_FAILURE(one_error_line(run.exit_code, run.err, line));

@@ -17,6 +17,7 @@
 #include "tests/support/files.h"
 #include "tests/support/kimp_run.h"
 #include "tests/support/messages.h"
+#include "tests/support/scene_texts.h"
 #include "tests/support/temp_dir.h"
 
 namespace
@@ -65,18 +66,6 @@ namespace
       if (file.find(".tmp-") != std::string::npos || file.find(".kimp.lock") != std::string::npos)
         found.push_back(file);
     return found;
-  }
-
-  /// `kimp <arguments>` in `dir` under a file size limit of `bytes`, which must exit 1 with one
-  /// line besides the info lines: that line in `line`.
-  void one_line_under_file_limit(const std::string &arguments,
-                                 const fs::path    &dir,
-                                 long               bytes,
-                                 std::string       &line)
-  {
-    std::string log;
-    const int   exit_code = run_kimp_with_file_limit(arguments, dir, bytes, log);
-    ASSERT_NO_FATAL_FAILURE(one_error_line(exit_code, log, line));
   }
 
   /// The full-disk tests: the quick FEM scene as scene.yaml in `dir`; they need prlimit
@@ -171,10 +160,7 @@ TEST_F(FailsafeFullDisk, FemLeavesNoFile)
   std::string line;
   ASSERT_NO_FATAL_FAILURE(
     one_line_under_file_limit("fem scene.yaml -o out", dir.path(), 100000, line));
-  EXPECT_EQ(line.rfind("error: results file '", 0), 0u) << line;
-  EXPECT_NE(line.find("File too large"), std::string::npos) << line;
-  EXPECT_TRUE(files_below(dir.path() / "out").empty())
-    << "left: " << files_below(dir.path() / "out").front();
+  expect_results_file_too_large_error(line, dir.path() / "out");
 }
 
 namespace
@@ -208,11 +194,9 @@ TEST(FailsafeCli, FemEstimateMatchesTheSolver)
   constexpr double digits = 5e-3; // relative: the log prints 3 significant digits
   for (const bool rigid : {true, false})
   {
-    TempDir     dir("e2e_failsafe_estimate");
-    std::string scene = fem_quick_scene;
-    if (!rigid)
-      scene.replace(scene.find("rigid: true"), 11, "rigid: false");
-    dir.write("scene.yaml", scene);
+    TempDir dir("e2e_failsafe_estimate");
+    dir.write("scene.yaml",
+              rigid ? fem_quick_scene : replaced(fem_quick_scene, "rigid: true", "rigid: false"));
     const KimpRun run = run_kimp("fem scene.yaml -o out", dir.path());
     ASSERT_EQ(run.exit_code, 0) << run.err;
     const LoggedEstimate  e       = logged_estimate(run.err, "H1.25");
@@ -233,9 +217,8 @@ TEST(FailsafeCli, FemEstimateMatchesTheSolver)
 // (before: "error: H1.25: meshing: std::bad_alloc").
 TEST(FailsafeCli, AbsurdFemMeshIsRefusedOrOneLine)
 {
-  TempDir     dir("e2e_failsafe_fem_budget");
-  std::string scene = fem_quick_scene;
-  scene.replace(scene.find("\"5 cm\""), 6, "\"1e-6 m\"");
+  TempDir           dir("e2e_failsafe_fem_budget");
+  const std::string scene = replaced(fem_quick_scene, "\"5 cm\"", "\"1e-6 m\"");
   dir.write("scene.yaml", scene);
   const KimpRun run = run_kimp("fem scene.yaml -o out", dir.path());
   std::string   line;
@@ -264,8 +247,7 @@ TEST(FailsafeCli, AbsurdFemMeshIsRefusedOrOneLine)
 
   if (!have_program("prlimit"))
     GTEST_SKIP() << "prlimit (util-linux) is not installed";
-  scene.replace(scene.find("dynamics: {"), 11, "dynamics: {max_steps: 1e30, ");
-  dir.write("lifted.yaml", scene);
+  dir.write("lifted.yaml", replaced(scene, "dynamics: {", "dynamics: {max_steps: 1e30, "));
   // 8 GB of address space at most, so the allocation fails at once whatever the machine.
   const int exit_code =
     run_command("cd '" + dir.path().string() + "' && prlimit --as=8000000000 " + kimp_executable() +

@@ -48,11 +48,9 @@ namespace
   /// The lumped scene of two walled cases, run on `record` instead of the synthetic motion.
   std::string scene_on_record(const std::string &record)
   {
-    std::string scene = two_case_walled_scene("0.01 s");
-    scene.replace(scene.find("  record: synthetic\n  duration: \"6 s\"\n"),
-                  38,
-                  "  record: " + record + "\n");
-    return scene;
+    return replaced(two_case_walled_scene("0.01 s"),
+                    "  record: synthetic\n  duration: \"6 s\"\n",
+                    "  record: " + record + "\n");
   }
 
   /// The longest run of `c` in `text`.
@@ -128,35 +126,38 @@ TEST(InputGuardsCli, SubnormalSweptValueIsRefusedBeforeRunning)
 TEST(InputGuardsCli, ImplausibleRecordsAreRefusedWithTheFileAndTheValue)
 {
   TempDir dir("e2e_guards_records");
-  dir.write("fast.AT2", at2(7500, "1e-7"));
-  dir.write("fast.yaml", scene_on_record("fast.AT2"));
-  expect_refused("lumped fast.yaml -o out",
-                 dir,
-                 {"fast.yaml:7: ground_motion.record = '",
-                  "fast.AT2:4: DT = 1e-07 s",
-                  "expected a sampling interval in [0.0001 s, 0.1 s]"});
-
-  dir.write("slow.AT2", at2(100, ".1000E+03"));
-  dir.write("slow.yaml", scene_on_record("slow.AT2"));
-  expect_refused("lumped slow.yaml -o out",
-                 dir,
-                 {"slow.yaml:7: ground_motion.record = '", "slow.AT2:4: DT = 100 s"});
-
-  dir.write("short.AT2", at2(50, ".0100"));
-  dir.write("short.yaml", scene_on_record("short.AT2"));
-  expect_refused("lumped short.yaml -o out",
-                 dir,
-                 {"short.yaml:7: ground_motion.record = '",
-                  "short.AT2': lasts 0.5000 s",
-                  "expected 1 s to 3600 s"});
+  struct RecordCase
+  {
+    std::string              name;
+    std::size_t              npts;
+    std::string              dt_text;
+    std::vector<std::string> parts; ///< besides "<name>.yaml:7: ground_motion.record = '"
+  };
+  const std::vector<RecordCase> records{
+    {"fast",
+     7500,
+     "1e-7",
+     {"fast.AT2:4: DT = 1e-07 s", "expected a sampling interval in [0.0001 s, 0.1 s]"}},
+    {"slow", 100, ".1000E+03", {"slow.AT2:4: DT = 100 s"}},
+    {"short", 50, ".0100", {"short.AT2': lasts 0.5000 s", "expected 1 s to 3600 s"}},
+  };
+  for (const RecordCase &c : records)
+  {
+    dir.write(c.name + ".AT2", at2(c.npts, c.dt_text));
+    dir.write(c.name + ".yaml", scene_on_record(c.name + ".AT2"));
+    std::vector<std::string> parts{c.name + ".yaml:7: ground_motion.record = '"};
+    parts.insert(parts.end(), c.parts.begin(), c.parts.end());
+    expect_refused("lumped " + c.name + ".yaml -o out", dir, parts);
+  }
 
   std::string two_column = "# t a\n";
   for (int i = 0; i < 200; ++i)
     two_column += std::to_string(i * 1e-5) + " 0.1\n";
   dir.write("fine.txt", two_column);
-  std::string fine = scene_on_record("fine.txt");
-  fine.replace(fine.find("  record: fine.txt\n"), 19, "  record: fine.txt\n  record_unit: g\n");
-  dir.write("fine.yaml", fine);
+  dir.write("fine.yaml",
+            replaced(scene_on_record("fine.txt"),
+                     "  record: fine.txt\n",
+                     "  record: fine.txt\n  record_unit: g\n"));
   expect_refused("lumped fine.yaml -o out",
                  dir,
                  {"fine.yaml:7: ground_motion.record = '", "fine.txt:201: time step "});

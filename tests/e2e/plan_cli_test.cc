@@ -11,6 +11,7 @@
 #include "tests/support/files.h"
 #include "tests/support/hdf5_reader.h"
 #include "tests/support/kimp_run.h"
+#include "tests/support/scene_texts.h"
 #include "tests/support/temp_dir.h"
 
 namespace
@@ -23,16 +24,6 @@ namespace
   {
     const char *env = std::getenv("KIMP_RECORDS_DIR");
     return env != nullptr ? fs::path(env) : source_dir() / ".." / "shared" / "data" / "records";
-  }
-
-  /// `text` with the first occurrence of `from` replaced by `to`.
-  std::string replaced(std::string text, const std::string &from, const std::string &to)
-  {
-    const std::size_t at = text.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    if (at != std::string::npos)
-      text.replace(at, from.size(), to);
-    return text;
   }
 
   /// A small plan scene: the default building in a moat at 4 cm, 6 s of the synthetic motion at

@@ -57,10 +57,7 @@ namespace
       run_kimp_under_ulimit(command + " scene.yaml -o out", dir, limit_bytes, log);
     std::string line;
     ASSERT_NO_FATAL_FAILURE(one_error_line(exit_code, log, line));
-    EXPECT_EQ(line.rfind("error: results file '", 0), 0u) << line;
-    EXPECT_NE(line.find("File too large"), std::string::npos) << line;
-    EXPECT_TRUE(files_below(dir / "out").empty())
-      << "left behind: " << files_below(dir / "out").front();
+    expect_results_file_too_large_error(line, dir / "out");
   }
 } // namespace
 

@@ -10,9 +10,8 @@
 #include <string>
 
 #include "fem/inelastic_laws.h"
-#include "geometry/scene_geometry.h"
-#include "geometry/scene_mesh.h"
 #include "tests/fem/impact_test_support.h"
+#include "tests/fem/inelastic_scenes.h"
 
 namespace
 {
@@ -23,34 +22,19 @@ namespace
    *  5 cm away at 1 cm/s (contact after 5 s: none in the run), interface contact or bonded. */
   ImpactParameters resting_wall(const std::string &name, bool interface)
   {
-    auto                          p = scene_parameters(0.05, true, name);
-    kimp::geometry::SceneGeometry geometry;
-    geometry.h_contact         = 0.05;
-    geometry.h_max             = 0.2;
-    geometry.mesh_slab         = false;
-    geometry.interface_contact = interface;
-    if (rank() == 0)
-      kimp::geometry::build_scene_mesh(geometry, p.mesh_file);
-    MPI_Barrier(MPI_COMM_WORLD);
-    const SoilParameters sp             = soil_preset("medium_dense_sand");
-    p.materials[ids::soil_material]     = Material{sp.youngs_modulus, sp.poisson_ratio, sp.density};
-    p.material_laws[ids::soil_material] = std::make_shared<const MohrCoulombLaw>(sp);
-    const auto              cp          = ConcreteParameters::from_f_cm(38e6);
+    auto                    p  = geostatic_scene(name, true, 0.05, interface);
+    const auto              cp = ConcreteParameters::from_f_cm(38e6);
     ReinforcementParameters bars;
     bars.ratio_x                        = 0.002;
     bars.ratio_y                        = 0.008;
     p.materials[ids::wall_material]     = Material{cp.youngs_modulus, cp.poisson_ratio, 2400};
     p.material_laws[ids::wall_material] = std::make_shared<const ConcreteDamageLaw>(cp, bars);
-    p.geostatic.enabled                 = true;
-    p.geostatic.initial_stress_K0[ids::soil_material] = 1 - std::sin(sp.friction_angle);
-    p.wall_soil_interface.contact                     = interface;
-    p.wall_soil_interface.friction                    = std::tan(2.0 / 3.0 * sp.friction_angle);
-    p.slab_mass                                       = 1e9;
-    p.slab_front_x                                    = -0.05;
-    p.initial_velocity                                = 0.01;
-    p.end_time                                        = 1.0;
-    p.separation_hold_time                            = p.end_time;
-    p.output_interval                                 = 1e-3;
+    p.slab_mass                         = 1e9;
+    p.slab_front_x                      = -0.05;
+    p.initial_velocity                  = 0.01;
+    p.end_time                          = 1.0;
+    p.separation_hold_time              = p.end_time;
+    p.output_interval                   = 1e-3;
     return p;
   }
 

@@ -9,25 +9,13 @@
 #include "fem/inelastic_laws.h"
 #include "geometry/scene_layout.h"
 #include "tests/fem/impact_test_support.h"
+#include "tests/fem/inelastic_scenes.h"
 
 namespace kimp::fem::testing
 {
   namespace
   {
     constexpr double g = 9.80665;
-
-    /** The §4 scene (H = 1.25 m, backfill 2 m) with the medium_dense_sand Mohr-Coulomb
-     *  backfill and the geostatic state, K0 = 1 - sin(phi). */
-    ImpactParameters geostatic_scene(const std::string &name, bool rigid, double h = 0.05)
-    {
-      auto                 p          = scene_parameters(h, rigid, name);
-      const SoilParameters sp         = soil_preset("medium_dense_sand");
-      p.materials[ids::soil_material] = Material{sp.youngs_modulus, sp.poisson_ratio, sp.density};
-      p.material_laws[ids::soil_material] = std::make_shared<const MohrCoulombLaw>(sp);
-      p.geostatic.enabled                 = true;
-      p.geostatic.initial_stress_K0[ids::soil_material] = 1 - std::sin(sp.friction_angle);
-      return p;
-    }
   } // namespace
 
   /** Max relative deviations of the soil points below the top 10 cm from the Jaky state. */
@@ -304,23 +292,10 @@ namespace kimp::fem::testing
     expect_same_absorbing_run(p, tolerance, "MPI geostatic absorbing");
   }
 
-  /** geostatic_scene() meshed with separate wall and soil interface nodes, joined by the
-   *  frictional contact interface with mu = tan(2 phi / 3). */
+  /** geostatic_scene() with the rigid slab and the frictional contact interface. */
   ImpactParameters interface_scene(const std::string &name)
   {
-    auto                          p = geostatic_scene(name, true);
-    kimp::geometry::SceneGeometry geometry;
-    geometry.h_contact         = 0.05;
-    geometry.h_max             = 0.2;
-    geometry.mesh_slab         = false;
-    geometry.interface_contact = true;
-    if (rank() == 0)
-      kimp::geometry::build_scene_mesh(geometry, p.mesh_file);
-    MPI_Barrier(MPI_COMM_WORLD);
-    const SoilParameters sp        = soil_preset("medium_dense_sand");
-    p.wall_soil_interface.contact  = true;
-    p.wall_soil_interface.friction = std::tan(2.0 / 3.0 * sp.friction_angle);
-    return p;
+    return geostatic_scene(name, true, 0.05, true);
   }
 
   TEST(WallSoilInterface, ClosedUnderTheGeostaticPressureAndTransmitsIt)

@@ -108,15 +108,20 @@ namespace kimp::fem::testing
   }
 
 
-  /** The docs/physics.md §4 scene (H = 1.25 m) meshed by geometry/ with contact size h. */
-  inline ImpactParameters
-  scene_parameters(double h_contact, bool rigid, const std::string &name, double h_max = 0.2)
+  /** The docs/physics.md §4 scene (H = 1.25 m) meshed by geometry/ with contact size h; with
+   *  `interface_contact`, separate wall and soil nodes along the wall's back. */
+  inline ImpactParameters scene_parameters(double             h_contact,
+                                           bool               rigid,
+                                           const std::string &name,
+                                           double             h_max             = 0.2,
+                                           bool               interface_contact = false)
   {
     kimp::geometry::SceneGeometry g;
-    g.h_contact     = h_contact;
-    g.h_max         = std::max(h_max, h_contact);
-    g.mesh_slab     = !rigid;
-    const auto file = scratch(name);
+    g.h_contact         = h_contact;
+    g.h_max             = std::max(h_max, h_contact);
+    g.mesh_slab         = !rigid;
+    g.interface_contact = interface_contact;
+    const auto file     = scratch(name);
     if (rank() == 0)
       kimp::geometry::build_scene_mesh(g, file);
     MPI_Barrier(MPI_COMM_WORLD);

@@ -1,8 +1,9 @@
 // The inelastic test scenes shared by the kimp::fem impact tests: the docs/physics.md §4 scene
 // (H = 1.25 m, 5 cm at the contact) with Mohr-Coulomb backfill and damaged concrete, plain or
-// with smeared bars.
+// with smeared bars; and with a cohesionless backfill in its geostatic state.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <string>
 
@@ -46,6 +47,26 @@ namespace kimp::fem::testing
     slab.ratio_x                        = 0.005;
     p.material_laws[ids::wall_material] = std::make_shared<const ConcreteDamageLaw>(cp, wall);
     p.material_laws[ids::slab_material] = std::make_shared<const ConcreteDamageLaw>(cp, slab);
+    return p;
+  }
+
+  /** The §4 scene (H = 1.25 m, backfill 2 m) at contact size h with the medium_dense_sand
+   *  Mohr-Coulomb backfill and the geostatic state, K0 = 1 - sin(phi). With
+   *  `interface_contact`, wall and soil have separate nodes along the wall's back, joined by the
+   *  frictional contact interface with mu = tan(2 phi / 3); else they are bonded. */
+  inline ImpactParameters geostatic_scene(const std::string &name,
+                                          bool               rigid,
+                                          double             h                 = 0.05,
+                                          bool               interface_contact = false)
+  {
+    auto                 p              = scene_parameters(h, rigid, name, 0.2, interface_contact);
+    const SoilParameters sp             = soil_preset("medium_dense_sand");
+    p.materials[ids::soil_material]     = Material{sp.youngs_modulus, sp.poisson_ratio, sp.density};
+    p.material_laws[ids::soil_material] = std::make_shared<const MohrCoulombLaw>(sp);
+    p.geostatic.enabled                 = true;
+    p.geostatic.initial_stress_K0[ids::soil_material] = 1 - std::sin(sp.friction_angle);
+    p.wall_soil_interface.contact                     = interface_contact;
+    p.wall_soil_interface.friction                    = std::tan(2.0 / 3.0 * sp.friction_angle);
     return p;
   }
 } // namespace kimp::fem::testing

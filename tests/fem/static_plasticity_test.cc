@@ -61,12 +61,7 @@ namespace
     p.mesh           = tensor_product_mesh(uniform(0, L, length_over_height * n),
                                  uniform(0, H, n),
                                  0,
-                                 [&](double x, double y) {
-                                   return x < tol     ? wall :
-                                                    x > L - tol ? far_side :
-                                                    y < tol     ? base :
-                                                                  free_surface;
-                                 });
+                                 backfill_sides(L, tol));
     p.laws[0]        = std::make_shared<MohrCoulombLaw>(s);
     p.densities[0]   = s.density;
     p.gravity        = g;

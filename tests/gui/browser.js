@@ -107,6 +107,27 @@ async function setField(page, fieldPath, value) {
 }
 
 /**
+ * Click `button`, then wait up to `timeout` ms for the status element `status` to show a new run
+ * that is done, with `result` (a selector) in the results; returns the run's id (the status text
+ * before ':').
+ */
+async function runAndWait(page, { button, status, result, timeout }) {
+  const before = await page.$eval(status, (s) => s.textContent);
+  await page.click(button);
+  await page.waitForFunction(
+    (statusSelector, prev, resultSelector) => {
+      const s = document.querySelector(statusSelector);
+      return s.textContent !== prev && s.dataset.state === 'done' && document.querySelector(resultSelector);
+    },
+    { timeout },
+    status,
+    before,
+    result,
+  );
+  return page.$eval(status, (s) => s.textContent.split(':')[0]);
+}
+
+/**
  * `kimp gui` with its runs in ARTEFACTS/runs (emptied first) and a page of it in Chromium, ready
  * (downloads to ARTEFACTS/downloads, emptied first, if given): runs `test({ page, log, url,
  * runsDir, downloadDir })`, then checks that the page logged no console error. The browser and the server are
@@ -152,6 +173,7 @@ module.exports = {
   setInput,
   setMotionInputs,
   setField,
+  runAndWait,
   withGuiPage,
   runMain,
 };

@@ -7,7 +7,7 @@
 'use strict';
 const fs = require('fs');
 const path = require('path');
-const { check, setField, withGuiPage, runMain } = require('./browser.js');
+const { check, setField, setInput, runAndWait, withGuiPage, runMain } = require('./browser.js');
 const jsyaml = require(path.join(__dirname, '..', '..', 'gui', 'node_modules', 'js-yaml'));
 
 const SMALL =
@@ -27,29 +27,22 @@ function leafPaths(obj, prefix, out) {
 const at = (obj, p) => p.split('.').reduce((o, k) => (o && typeof o === 'object' ? o[k] : undefined), obj);
 
 async function runScene(page, yaml, name, notes) {
-  const before = await page.$eval('#run-status', (s) => s.textContent);
   await page.$eval('#scene-yaml', (t, y) => {
     t.value = y;
   }, yaml);
   await page.$eval('#scene-apply', (b) => b.click());
-  await page.$eval('#run-name', (i, v) => {
-    i.value = v;
-    i.dispatchEvent(new Event('change'));
-  }, name);
-  await page.$eval('#run-notes', (i, v) => {
-    i.value = v;
-    i.dispatchEvent(new Event('change'));
-  }, notes);
-  await page.click('#scene-run');
-  await page.waitForFunction(
-    (prev) => {
-      const s = document.querySelector('#run-status');
-      return s.textContent !== prev && s.dataset.state === 'done' && document.querySelector('#results .peaks');
-    },
-    { timeout: 60000 },
-    before,
-  );
-  return page.$eval('#run-status', (s) => s.textContent.split(':')[0]);
+  await setInput(page, '#run-name', name);
+  await setInput(page, '#run-notes', notes);
+  return runAndWait(page, { button: '#scene-run', status: '#run-status', result: '#results .peaks', timeout: 60000 });
+}
+
+/** What the editor shows of the small scene: its storeys, left gap and run name. */
+function editorState(page) {
+  return page.evaluate(() => ({
+    storeys: document.querySelector('#scene-form input[data-path="building.n_storeys"]').value,
+    gap: document.querySelector('#scene-form input[data-path="walls.left.gap"]').value,
+    name: document.querySelector('#run-name').value,
+  }));
 }
 
 async function main() {
@@ -145,11 +138,7 @@ async function main() {
     // Clicked in the page at once: the tab redraws its table every 2 s.
     await page.$eval(`#runs-list tr[data-id="${first}"] .run-edit`, (b) => b.click());
     await page.waitForFunction(() => document.querySelector('#pane-scene').classList.contains('active'));
-    const reopened = await page.evaluate(() => ({
-      storeys: document.querySelector('#scene-form input[data-path="building.n_storeys"]').value,
-      gap: document.querySelector('#scene-form input[data-path="walls.left.gap"]').value,
-      name: document.querySelector('#run-name').value,
-    }));
+    const reopened = await editorState(page);
     check(
       reopened.storeys === '3' && reopened.gap === '8 cm' && reopened.name === 'gap 8 cm (renamed)',
       `run reopened in the editor (n_storeys ${reopened.storeys}, gap ${reopened.gap}, name "${reopened.name}")`,
@@ -169,17 +158,10 @@ async function main() {
     // The session survives a reload: the form, the run name and the tab.
     await page.click('header.top nav button[data-tab="scene"]');
     await setField(page, 'building.n_storeys', '5');
-    await page.$eval('#run-name', (i) => {
-      i.value = 'after reload';
-      i.dispatchEvent(new Event('change'));
-    });
+    await setInput(page, '#run-name', 'after reload');
     await page.reload({ waitUntil: 'load' });
     await page.waitForSelector('body[data-ready="1"]', { timeout: 15000 });
-    const kept = await page.evaluate(() => ({
-      storeys: document.querySelector('#scene-form input[data-path="building.n_storeys"]').value,
-      gap: document.querySelector('#scene-form input[data-path="walls.left.gap"]').value,
-      name: document.querySelector('#run-name').value,
-    }));
+    const kept = await editorState(page);
     check(
       kept.storeys === '5' && kept.gap === '8 cm' && kept.name === 'after reload',
       `the form kept across a reload (n_storeys ${kept.storeys}, gap ${kept.gap}, name "${kept.name}")`,

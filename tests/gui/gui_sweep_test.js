@@ -6,7 +6,7 @@
 'use strict';
 const fs = require('fs');
 const path = require('path');
-const { check, setField, withGuiPage, runMain } = require('./browser.js');
+const { check, setField, runAndWait, withGuiPage, runMain } = require('./browser.js');
 
 /** Tick the laws of the impact.law row and type a k for `typed` (law -> k). */
 async function chooseLaws(page, laws, typed) {
@@ -55,17 +55,12 @@ async function main() {
       ),
       'each law paired with its k in the sweep file',
     );
-    const before = await page.$eval('#param-status', (e) => e.textContent);
-    await page.click('#param-run');
-    await page.waitForFunction(
-      (prev) => {
-        const s = document.querySelector('#param-status');
-        return s.textContent !== prev && s.dataset.state === 'done' && document.querySelector('#results table.dsrss');
-      },
-      { timeout: 90000 },
-      before,
-    );
-    const id = await page.$eval('#param-status', (e) => e.textContent.split(':')[0]);
+    const id = await runAndWait(page, {
+      button: '#param-run',
+      status: '#param-status',
+      result: '#results table.dsrss',
+      timeout: 90000,
+    });
     const progress = await page.$eval('#param-progress', (e) => e.value);
     check(progress === 1, `the sweep's progress on the Parametric tab (${id}: ${progress})`);
     const errorAfter = await page.$eval('#param-error', (e) => e.textContent);

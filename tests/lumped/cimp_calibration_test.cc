@@ -32,10 +32,11 @@ namespace
       ++n;
       return std::cos(x) - x;
     };
-    const double x = brent_root(f, 0.0, 1.0, f(0.0), f(1.0), 1e-14, 0.0, 100);
+    const double x = brent_root(f, {0.0, 1.0, f(0.0), f(1.0)}, {1e-14, 0.0, 100});
     EXPECT_NEAR(x, root, 1e-13);
     EXPECT_LT(n, 15u) << "superlinear convergence expected";
-    EXPECT_THROW(brent_root(f, 2.0, 3.0, f(2.0), f(3.0), 1e-12, 0.0, 100), std::invalid_argument);
+    EXPECT_THROW(brent_root(f, {2.0, 3.0, f(2.0), f(3.0)}, {1e-12, 0.0, 100}),
+                 std::invalid_argument);
   }
 
   TEST(CimpCalibration, CalibratedA1MatchesTheEnergyLossAndTheCor)

@@ -102,16 +102,21 @@ def test_memory_stays_flat_over_1000_runs():
     assert r.peaks.displacement.shape == (5,)
 
 
+def _cli_and_python(tmp_path, name, scene):
+    """The scene (a dict) written as NAME.yaml and run by the CLI and by kimp.lumped: the CLI's
+    case 'default' of lumped.h5 and the Python result."""
+    scene_file = tmp_path / f"{name}.yaml"
+    scene_file.write_text(kimp.Scene.from_dict(scene).to_yaml())
+    run_cli("lumped", scene_file, "-o", tmp_path / "out")
+    return kimp.read(tmp_path / "out" / "lumped.h5")["lumped"]["default"], kimp.lumped(scene_file)
+
+
 def test_isolator_force_history_equals_the_cli_and_its_loop_dissipates(tmp_path):
     scene = dict(SHORT_SCENE, isolator={"kind": "bouc_wen", "K1": "200 MN/m", "K2": "25 MN/m",
                                         "Q_ratio": "10 %", "A": 1, "beta": 0.5, "gamma": 0.5,
                                         "n": 2},
                  integration={"output_interval": "1 ms"})
-    scene_file = tmp_path / "bouc_wen.yaml"
-    scene_file.write_text(kimp.Scene.from_dict(scene).to_yaml())
-    run_cli("lumped", scene_file, "-o", tmp_path / "out")
-    group = kimp.read(tmp_path / "out" / "lumped.h5")["lumped"]["default"]
-    r = kimp.lumped(scene_file)
+    group, r = _cli_and_python(tmp_path, "bouc_wen", scene)
     np.testing.assert_array_equal(r.history.isolator_force, group["history"]["isolator_force"].value)
     np.testing.assert_array_equal(r.history.hysteretic_energy,
                                   group["history"]["hysteretic_energy"].value)
@@ -164,11 +169,7 @@ def test_yielding_walls_equal_the_cli(tmp_path):
     scene = dict(SHORT_SCENE, walls={"left": wall, "right": wall},
                  ground_motion={"record": "synthetic", "duration": "6 s"},
                  integration={"dt": "1e-4 s"})
-    scene_file = tmp_path / "yielding.yaml"
-    scene_file.write_text(kimp.Scene.from_dict(scene).to_yaml())
-    run_cli("lumped", scene_file, "-o", tmp_path / "out")
-    group = kimp.read(tmp_path / "out" / "lumped.h5")["lumped"]["default"]
-    r = kimp.lumped(scene_file)
+    group, r = _cli_and_python(tmp_path, "yielding", scene)
     assert [w.name for w in r.walls] == ["left_wall", "right_wall"]
     assert any(w.peak_resistance_ratio >= 1.0 for w in r.walls), "the scene is meant to yield"
     for w in r.walls:

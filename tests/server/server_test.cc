@@ -22,6 +22,7 @@
 #include "tests/server/server_test_support.h"
 #include "tests/support/files.h"
 #include "tests/support/kimp_run.h"
+#include "tests/support/scene_texts.h"
 #include "tests/support/temp_dir.h"
 
 namespace
@@ -203,12 +204,10 @@ ground_motion:
   /// 3e-6 s / dt seconds of work (measured: 0.63 s at 5e-6 s on the 2-core test machine).
   std::string long_scene(const std::string &dt)
   {
-    std::string       scene = small_scene;
-    const std::string six   = "duration: \"6 s\"";
-    scene.replace(scene.find(six),
-                  six.size(),
-                  "duration: \"60 s\"\n  synthetic:\n    duration: \"60 s\"");
-    return scene + "integration:\n  dt: \"" + dt + "\"\n";
+    return kimp::testing::replaced(small_scene,
+                                   "duration: \"6 s\"",
+                                   "duration: \"60 s\"\n  synthetic:\n    duration: \"60 s\"") +
+           "integration:\n  dt: \"" + dt + "\"\n";
   }
 
   /// A lumped base scene and a sweep over it of 3000 cases, minutes of work: a run to cancel.

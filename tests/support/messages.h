@@ -1,12 +1,17 @@
 // kimp::testing checks of error messages: the message of the exception a call throws, a message
-// that must contain every one of some parts, and the one error line of a failed run's log.
+// that must contain every one of some parts, the one error line of a failed run's log (also of a
+// run under a file size limit) and that line when the results file met the limit.
 // Needs GoogleTest.
 #pragma once
 
 #include <exception>
+#include <filesystem>
 #include <gtest/gtest.h>
 #include <string>
 #include <vector>
+
+#include "tests/support/files.h"
+#include "tests/support/kimp_run.h"
 
 namespace kimp::testing
 {
@@ -61,5 +66,27 @@ namespace kimp::testing
     const std::vector<std::string> lines = non_info_lines(log);
     ASSERT_EQ(lines.size(), 1u) << log;
     line = lines[0];
+  }
+
+  /// `kimp <arguments>` in `dir` under a file size limit of `bytes` (run_kimp_with_file_limit()),
+  /// which must exit 1 with one line besides the info lines: that line in `line`.
+  inline void one_line_under_file_limit(const std::string           &arguments,
+                                        const std::filesystem::path &dir,
+                                        long                         bytes,
+                                        std::string                 &line)
+  {
+    std::string log;
+    const int   exit_code = run_kimp_with_file_limit(arguments, dir, bytes, log);
+    ASSERT_NO_FATAL_FAILURE(one_error_line(exit_code, log, line));
+  }
+
+  /// Expects the one error line of a run that wrote its results across a file size limit to name
+  /// the results file and EFBIG ("File too large"), and the run to have left nothing below `out`.
+  inline void expect_results_file_too_large_error(const std::string           &line,
+                                                  const std::filesystem::path &out)
+  {
+    EXPECT_EQ(line.rfind("error: results file '", 0), 0u) << line;
+    EXPECT_NE(line.find("File too large"), std::string::npos) << line;
+    EXPECT_TRUE(files_below(out).empty()) << "left behind: " << files_below(out).front();
   }
 } // namespace kimp::testing

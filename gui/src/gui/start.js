@@ -45,13 +45,17 @@
       a.click();
       a.remove();
     });
-    document.getElementById('scene-validate').addEventListener('click', async () => {
+    /** The form's scene as YAML, or null once its problems are shown. */
+    const checkedSceneYaml = () => {
       const errors = [];
       const text = sceneYaml(errors);
-      if (errors.length) {
-        showProblems(errors);
-        return;
-      }
+      if (!errors.length) return text;
+      showProblems(errors);
+      return null;
+    };
+    document.getElementById('scene-validate').addEventListener('click', async () => {
+      const text = checkedSceneYaml();
+      if (text === null) return;
       const r = await postJson('/api/validate', { command: state.command, scene: text });
       if (r.ok) {
         clearErrors();
@@ -64,12 +68,8 @@
     });
     for (const id of ['run-name', 'run-notes']) document.getElementById(id).addEventListener('change', saveSession);
     document.getElementById('scene-run').addEventListener('click', async () => {
-      const errors = [];
-      const text = sceneYaml(errors);
-      if (errors.length) {
-        showProblems(errors);
-        return;
-      }
+      const text = checkedSceneYaml();
+      if (text === null) return;
       if (state.command !== 'sweep') {
         startRun(state.command, await completeSceneYaml(state.command, text), '', runOptions());
         return;

@@ -93,23 +93,38 @@
     return p;
   }
 
-  function makeAnimation(parent, firstCase) {
-    const W = 900;
-    const H = 420;
+  /**
+   * The views of a case's displacement history: canvas (px), SVG class, exaggeration at first and
+   * the stem of an exported frame's file name (STEM_t<time>.svg).
+   */
+  const historyViews = {
+    building: { width: 900, height: 420, svgClass: 'animation', exaggeration: 10, frameName: 'frame' },
+    plan: { width: 900, height: 560, svgClass: 'animation plan-view', exaggeration: 20, frameName: 'plan_frame' },
+  };
+
+  /**
+   * The player of a case's displacement history in historyViews[view]: makePlayer's controls as
+   * 'anim-*' (speeds 0.1× to 5×, exaggeration up to 200, a scrub bar of 1000 steps). The frame at
+   * state.t is the last history sample i at or before t; drawFrame(i, tText) returns its SVG
+   * elements (tText: the sample's time to the digits its sampling needs, as the time label and the
+   * exported frame's name show it). Returns {state, play, pause, seek, setCase, frameSvg}: nothing
+   * is drawn until setCase(c) gives the case (state.kase).
+   */
+  function historyPlayer(parent, view, drawFrame) {
+    const o = historyViews[view];
     const player = makePlayer(parent, {
       prefix: 'anim',
-      width: W,
-      height: H,
-      svgClass: 'animation',
+      width: o.width,
+      height: o.height,
+      svgClass: o.svgClass,
       speeds: [0.1, 0.25, 0.5, 1, 2, 5],
-      exaggeration: { max: 200, value: 10 },
+      exaggeration: { max: 200, value: o.exaggeration },
       label: { id: 'anim-time', text: 't = 0 s' },
       scrubMax: 1000,
     });
-    const { svg, speed, scrub, exportFrame } = player;
+    const { speed, scrub, exportFrame } = player;
     const exag = player.exaggeration;
-    const timeLabel = player.label;
-    const state = { t: 0, playing: false, speed: 1, exaggeration: 10, frame: 0, kase: null };
+    const state = { t: 0, playing: false, speed: 1, exaggeration: o.exaggeration, frame: 0, kase: null };
 
     const times = () => state.kase.history.displacement.time;
     const tEnd = () => times()[times().length - 1];
@@ -124,8 +139,6 @@
       }
       return ts[hi] <= t ? hi : lo;
     };
-    const groundY = H - 40;
-    const widthMain = 160;
     // The drawn frame's own time (the history sample), to the digits its sampling needs.
     const frameTime = () => times()[state.frame];
     const timeText = (t) => {
@@ -136,13 +149,65 @@
 
     function draw() {
       if (!state.kase) return;
+      state.frame = frameAt(state.t);
+      const tText = timeText(frameTime());
+      player.svg.innerHTML = drawFrame(state.frame, tText);
+      player.label.textContent = `t = ${tText} s`;
+      scrub.value = String(Math.round((state.t / tEnd()) * 1000));
+      setTimeCursor(state.t);
+    }
+
+    const { play, pause } = player.run(state, {
+      step: (ms) => {
+        state.t = Math.min(state.t + (ms / 1000) * state.speed, tEnd());
+      },
+      atEnd: () => state.t >= tEnd(),
+      rewind: () => {
+        state.t = 0;
+      },
+      draw: draw,
+    });
+    const api = {
+      state: state,
+      play: play,
+      pause: pause,
+      seek: (t) => {
+        state.t = Math.max(0, Math.min(t, tEnd()));
+        draw();
+      },
+      setCase: (c) => {
+        state.kase = c || state.kase;
+        state.t = Math.min(state.t, tEnd());
+        draw();
+      },
+      frameSvg: player.frameSvg,
+    };
+    speed.addEventListener('change', () => {
+      state.speed = Number(speed.value);
+    });
+    exag.addEventListener('change', () => {
+      state.exaggeration = Math.max(1, Number(exag.value) || 1);
+      draw();
+    });
+    scrub.addEventListener('input', () => api.seek((Number(scrub.value) / 1000) * tEnd()));
+    exportFrame.addEventListener('click', () =>
+      download(`${o.frameName}_t${timeText(frameTime())}.svg`, api.frameSvg(), 'image/svg+xml'),
+    );
+    return api;
+  }
+
+  /** The building of a lumped run: floors, isolator, walls, neighbours and impact flashes. */
+  function makeAnimation(parent, firstCase) {
+    const { width: W, height: H } = historyViews.building;
+    const groundY = H - 40;
+    const widthMain = 160;
+    /** The building at history sample i. */
+    function frame(i, tText) {
       // The case's own model (cases of overlaid runs may differ).
       const { resolved: r, nMain, isolated } = state.kase;
       const storeyH = 300 / (Math.max(nMain, 4) + 0.5);
       // Drawing scale: a storey is 3 m; displacements and gaps are drawn `exaggeration` times larger.
       const pxPerM = storeyH / 3;
-      const i = frameAt(state.t);
-      state.frame = i;
       const u = state.kase.history.displacement.values[i];
       const e = state.exaggeration * pxPerM;
       const cx = W / 2;
@@ -239,56 +304,18 @@
           );
         });
       }
-      const tFrame = frameTime();
       parts.push(
-        `<text x="10" y="20" font-size="14">${escapeXml(state.kase.label)}: t = ${timeText(tFrame)} s, ` +
+        `<text x="10" y="20" font-size="14">${escapeXml(state.kase.label)}: t = ${tText} s, ` +
           `displacements ×${state.exaggeration}</text>`,
       );
-      svg.innerHTML = parts.join('');
-      timeLabel.textContent = `t = ${timeText(tFrame)} s`;
-      scrub.value = String(Math.round((state.t / tEnd()) * 1000));
-      setTimeCursor(state.t);
+      return parts.join('');
     }
 
-    const { play: start, pause } = player.run(state, {
-      step: (ms) => {
-        state.t = Math.min(state.t + (ms / 1000) * state.speed, tEnd());
-      },
-      atEnd: () => state.t >= tEnd(),
-      rewind: () => {
-        state.t = 0;
-      },
-      draw: () => draw(),
-    });
-    const api = {
-      state: state,
-      play: start,
-      pause: pause,
-      seek: (t) => {
-        state.t = Math.max(0, Math.min(t, tEnd()));
-        draw();
-      },
-      setCase: (c) => {
-        state.kase = c;
-        state.t = Math.min(state.t, tEnd());
-        draw();
-      },
-      frameSvg: player.frameSvg,
-    };
-    speed.addEventListener('change', () => {
-      state.speed = Number(speed.value);
-    });
-    exag.addEventListener('change', () => {
-      state.exaggeration = Math.max(1, Number(exag.value) || 1);
-      draw();
-    });
-    scrub.addEventListener('input', () => api.seek((Number(scrub.value) / 1000) * tEnd()));
-    exportFrame.addEventListener('click', () =>
-      download(`frame_t${timeText(frameTime())}.svg`, api.frameSvg(), 'image/svg+xml'),
-    );
+    const api = historyPlayer(parent, 'building', frame);
+    const state = api.state;
     api.setCase(firstCase);
     return api;
   }
 
-  Object.assign(kimp, { makePlayer, makeAnimation });
+  Object.assign(kimp, { makePlayer, historyViews, historyPlayer, makeAnimation });
 })();

@@ -4,8 +4,8 @@
 'use strict';
 
 (function () {
-  const { view, el, fmt, column, seriesGroups, chart, section, table, displayUnit, makePlayer, escapeXml } = kimp;
-  const { setTimeCursor, download, peakCell } = kimp;
+  const { view, el, fmt, column, seriesGroups, chart, section, table, displayUnit, escapeXml } = kimp;
+  const { peakCell, historyViews, historyPlayer } = kimp;
 
   /** The plan run's one case: {summary, label, history, geometry} from lumped.h5 and summary.json. */
   function planCase(data) {
@@ -176,22 +176,8 @@
 
   /** The plan view: level 0's outline displaced, the moat wall, contact points flashing in contact. */
   function planAnimation(parent, c) {
-    const W = 900;
-    const H = 560;
-    const player = makePlayer(parent, {
-      prefix: 'anim',
-      width: W,
-      height: H,
-      svgClass: 'animation plan-view',
-      speeds: [0.1, 0.25, 0.5, 1, 2, 5],
-      exaggeration: { max: 200, value: 20 },
-      label: { id: 'anim-time', text: 't = 0 s' },
-      scrubMax: 1000,
-    });
-    const state = { t: 0, playing: false, speed: 1, exaggeration: 20, frame: 0, kase: c };
+    const { width: W, height: H } = historyViews.plan;
     const g = c.geometry;
-    const times = c.history.displacement.time;
-    const tEnd = times[times.length - 1];
     const all = g.slab.concat(g.wall || []);
     const [x0, x1] = [Math.min(...all.map((p) => p[0])), Math.max(...all.map((p) => p[0]))];
     const [y0, y1] = [Math.min(...all.map((p) => p[1])), Math.max(...all.map((p) => p[1]))];
@@ -202,21 +188,9 @@
     // Plan coordinates (y up) to the canvas.
     const px = (p) => [W / 2 + (p[0] - cx) * scale, 30 + (H - 30) / 2 - (p[1] - cy) * scale];
     const pts = (poly) => poly.map((p) => px(p).map((v) => v.toFixed(1)).join(',')).join(' ');
-    const frameAt = (t) => {
-      let lo = 0;
-      let hi = times.length - 1;
-      while (hi - lo > 1) {
-        const mid = (lo + hi) >> 1;
-        if (times[mid] <= t) lo = mid;
-        else hi = mid;
-      }
-      return times[hi] <= t ? hi : lo;
-    };
-
-    function draw() {
-      const i = frameAt(state.t);
-      state.frame = i;
-      const e = state.exaggeration;
+    /** Level 0 at history sample i. */
+    function frame(i, tText) {
+      const e = api.state.exaggeration;
       const q = c.history.displacement.values[i].slice(0, 3);
       const moved = (p) => {
         const u = pointDisplacement(p, g.reference, q);
@@ -257,51 +231,15 @@
           );
         }
       });
-      const dt = times.length > 1 ? times[1] - times[0] : 0.01;
-      const tText = times[i].toFixed(Math.min(6, Math.max(2, Math.ceil(-Math.log10(dt) - 1e-9))));
       parts.push(
         `<text x="10" y="20" font-size="14">${escapeXml(c.label)} in plan: t = ${tText} s, level 0 ` +
           `displacements and gaps ×${e}</text>`,
       );
-      player.svg.innerHTML = parts.join('');
-      player.label.textContent = `t = ${tText} s`;
-      player.scrub.value = String(Math.round((state.t / tEnd) * 1000));
-      setTimeCursor(state.t);
+      return parts.join('');
     }
 
-    const { play, pause } = player.run(state, {
-      step: (ms) => {
-        state.t = Math.min(state.t + (ms / 1000) * state.speed, tEnd);
-      },
-      atEnd: () => state.t >= tEnd,
-      rewind: () => {
-        state.t = 0;
-      },
-      draw: draw,
-    });
-    const api = {
-      state: state,
-      play: play,
-      pause: pause,
-      seek: (t) => {
-        state.t = Math.max(0, Math.min(t, tEnd));
-        draw();
-      },
-      setCase: () => draw(),
-      frameSvg: player.frameSvg,
-    };
-    player.speed.addEventListener('change', () => {
-      state.speed = Number(player.speed.value);
-    });
-    player.exaggeration.addEventListener('change', () => {
-      state.exaggeration = Math.max(1, Number(player.exaggeration.value) || 1);
-      draw();
-    });
-    player.scrub.addEventListener('input', () => api.seek((Number(player.scrub.value) / 1000) * tEnd));
-    player.exportFrame.addEventListener('click', () =>
-      download(`plan_frame_t${times[state.frame].toFixed(3)}.svg`, api.frameSvg(), 'image/svg+xml'),
-    );
-    draw();
+    const api = historyPlayer(parent, 'plan', frame);
+    api.setCase(c);
     return api;
   }
 
