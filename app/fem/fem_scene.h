@@ -180,7 +180,7 @@ namespace kimp::app
     std::vector<double>   unload_at;        ///< m: push to each, unload to zero force, go on
     double                increment = 1e-3; ///< largest band displacement step, m
     double                cover     = 0.05; ///< bar centre to the wall face, m
-    std::optional<double> hinge_length;     ///< L_p, m; default half the wall thickness
+    std::optional<double> hinge_length;     ///< L_p, m; default none (per-cell hardening)
   };
 
   template <class Io>
@@ -212,7 +212,8 @@ namespace kimp::app
                 s.hinge_length,
                 "m",
                 "plastic hinge length L_p over which a yielding bar's hardening is spread "
-                "(null: half the wall thickness)",
+                "(null: none, each cell hardens by its own strain, which converges where the "
+                "moment gradient spreads the yielding over several rows)",
                 io::Range::positive());
   }
 
