@@ -5,6 +5,7 @@
 #include <limits>
 #include <map>
 
+#include "app/study/study_columns.h"
 #include "app/study/study_internal.h"
 #include "base/format.h"
 #include "io/results_file.h"
@@ -66,6 +67,63 @@ namespace kimp::app::study_internal
        [](const StudyBuildingRun &r) { return r.max_interstorey_drift; }},
     };
 
+    /// The wall's SDOF per height: its stiffness and mass (per metre and for the wall's width),
+    /// the dominant mode, and the FEM model it came from.
+    std::vector<StudyColumn<StudyWallSdof>> wall_sdof_columns()
+    {
+      using S = StudyWallSdof;
+      return {
+        same_column<S>("wall_height", "m", [](const S &s) { return s.wall_height; }),
+        number_column<S>({"stiffness_per_metre", "N/m/m"},
+                         {"stiffness", "MN/m/m"},
+                         divided_by(1e6),
+                         [](const S &s) { return s.ok() ? s.stiffness_per_metre : nan; }),
+        number_column<S>({"mass_per_metre", "kg/m"},
+                         {"mass", "t/m"},
+                         divided_by(1e3),
+                         [](const S &s) { return s.ok() ? s.mass_per_metre : nan; }),
+        same_column<S>("frequency", "Hz", [](const S &s) { return s.ok() ? s.frequency : nan; }),
+        number_column<S>({"participation_mass_per_metre", "kg/m"},
+                         {"participation_mass", "t/m"},
+                         divided_by(1e3),
+                         [](const S &s) { return s.ok() ? s.participation_mass_per_metre : nan; }),
+        number_column<S>({"modal_sum_mass_per_metre", "kg/m"},
+                         {"modal_sum_mass", "t/m"},
+                         divided_by(1e3),
+                         [](const S &s) { return s.ok() ? s.modal_sum_mass_per_metre : nan; }),
+        csv_text_column<S>("mode",
+                           [](const S &s) { return s.ok() ? std::to_string(s.mode + 1) : ""; }),
+        same_column<S>("mode_frequency",
+                       "Hz",
+                       [](const S &s) { return s.ok() ? s.mode_frequency : nan; }),
+        same_column<S>("mode_share", "1", [](const S &s) { return s.ok() ? s.mode_share : nan; }),
+        number_column<S>({"mode_mass_per_metre", "kg/m"},
+                         {"mode_mass", "t/m"},
+                         divided_by(1e3),
+                         [](const S &s) { return s.ok() ? s.mode_mass_per_metre : nan; }),
+        number_column<S>({"wall_and_backfill_mass_per_metre", "kg/m"},
+                         {"wall_and_backfill_mass", "t/m"},
+                         divided_by(1e3),
+                         [](const S &s) { return s.ok() ? s.total_mass_per_metre : nan; }),
+        number_column<S>({"stiffness", "N/m"},
+                         {"stiffness_total", "MN/m"},
+                         divided_by(1e6),
+                         [](const S &s) { return s.ok() ? s.stiffness : nan; }),
+        number_column<S>({"mass", "kg"},
+                         {"mass_total", "t"},
+                         divided_by(1e3),
+                         [](const S &s) { return s.ok() ? s.mass : nan; }),
+        same_column<S>("damping_ratio", "1", [](const S &s) { return s.damping_ratio; }),
+        number_column<S>({"h_contact", "m"},
+                         {"h_contact", "cm"},
+                         times(100),
+                         [](const S &s) { return s.h_contact; }),
+        hdf5_column<S>("ok", "1", [](const S &s) { return flag(s.ok()); }),
+        integer_column<S>("n_dofs", false, true, [](const S &s) { return std::int64_t(s.n_dofs); }),
+        number_column<S>({}, {"wall_time", "s"}, {}, [](const S &s) { return s.seconds; }),
+        csv_text_column<S>("status", [](const S &s) { return s.status; })};
+    }
+
     std::string readable(double value)
     {
       return std::isfinite(value) ? base::sig(value) : std::string();
@@ -74,49 +132,8 @@ namespace kimp::app::study_internal
 
   void write_flexible_wall_csv(const OutputDir &output, const StudyResult &result)
   {
-    std::vector<std::vector<std::string>> sdof_rows;
-    for (const StudyWallSdof &s : result.wall_sdofs)
-    {
-      const auto v = [&](double x) { return number(s.ok() ? x : nan); };
-      sdof_rows.push_back({number(s.wall_height),
-                           v(s.stiffness_per_metre / 1e6),
-                           v(s.mass_per_metre / 1e3),
-                           v(s.frequency),
-                           v(s.participation_mass_per_metre / 1e3),
-                           v(s.modal_sum_mass_per_metre / 1e3),
-                           s.ok() ? std::to_string(s.mode + 1) : "",
-                           v(s.mode_frequency),
-                           v(s.mode_share),
-                           v(s.mode_mass_per_metre / 1e3),
-                           v(s.total_mass_per_metre / 1e3),
-                           v(s.stiffness / 1e6),
-                           v(s.mass / 1e3),
-                           number(s.damping_ratio),
-                           number(s.h_contact * 100),
-                           std::to_string(s.n_dofs),
-                           number(s.seconds),
-                           s.status});
-    }
-    write_csv_atomic(output.file("wall_sdof.csv"),
-                     {"wall_height_m",
-                      "stiffness_MN_per_m_per_m",
-                      "mass_t_per_m",
-                      "frequency_Hz",
-                      "participation_mass_t_per_m",
-                      "modal_sum_mass_t_per_m",
-                      "mode",
-                      "mode_frequency_Hz",
-                      "mode_share",
-                      "mode_mass_t_per_m",
-                      "wall_and_backfill_mass_t_per_m",
-                      "stiffness_total_MN_per_m",
-                      "mass_total_t",
-                      "damping_ratio",
-                      "h_contact_cm",
-                      "n_dofs",
-                      "wall_time_s",
-                      "status"},
-                     sdof_rows);
+    study_table(wall_sdof_columns(), result.wall_sdofs, StudyFile::csv)
+      .write_csv(output.file("wall_sdof.csv"));
 
     std::vector<std::string> header = {"record",
                                        "wall_height_m",
@@ -179,42 +196,8 @@ namespace kimp::app::study_internal
   {
     if (result.wall_sdofs.empty())
       return;
-    Table c;
-    c.number("wall_height", "m")
-      .number("stiffness_per_metre", "N/m/m")
-      .number("mass_per_metre", "kg/m")
-      .number("frequency", "Hz")
-      .number("participation_mass_per_metre", "kg/m")
-      .number("modal_sum_mass_per_metre", "kg/m")
-      .number("mode_frequency", "Hz")
-      .number("mode_share", "1")
-      .number("mode_mass_per_metre", "kg/m")
-      .number("wall_and_backfill_mass_per_metre", "kg/m")
-      .number("stiffness", "N/m")
-      .number("mass", "kg")
-      .number("damping_ratio", "1")
-      .number("h_contact", "m")
-      .number("ok", "1");
-    for (const StudyWallSdof &s : result.wall_sdofs)
-    {
-      const bool ok = s.ok();
-      c.add_row(number_cells({s.wall_height,
-                              ok ? s.stiffness_per_metre : nan,
-                              ok ? s.mass_per_metre : nan,
-                              ok ? s.frequency : nan,
-                              ok ? s.participation_mass_per_metre : nan,
-                              ok ? s.modal_sum_mass_per_metre : nan,
-                              ok ? s.mode_frequency : nan,
-                              ok ? s.mode_share : nan,
-                              ok ? s.mode_mass_per_metre : nan,
-                              ok ? s.total_mass_per_metre : nan,
-                              ok ? s.stiffness : nan,
-                              ok ? s.mass : nan,
-                              s.damping_ratio,
-                              s.h_contact,
-                              flag(ok)}));
-    }
-    c.write_hdf5(root, "wall_sdof");
+    study_table(wall_sdof_columns(), result.wall_sdofs, StudyFile::hdf5)
+      .write_hdf5(root, "wall_sdof");
 
     // /flexible_wall/<record>/<law>: one row per wall height, rigid and flexible side by side.
     for (const auto &[key, runs] : by_record_and_law(result.flexible_building, true))
