@@ -11,13 +11,13 @@
 
 namespace kimp::app
 {
+  std::string opensees_number(const double value)
+  {
+    return fmt::format("{:.10g}", value);
+  }
+
   namespace
   {
-    std::string number(const double value)
-    {
-      return fmt::format("{:.10g}", value);
-    }
-
     /// One command in either language: `name` with its arguments (numbers, words or variables).
     struct Command
     {
@@ -96,11 +96,12 @@ namespace kimp::app
                                         "node {}; the contact part acts across a gap of {} m",
                                         w.name,
                                         wall_node,
-                                        number(w.mass),
+                                        opensees_number(w.mass),
                                         ground_node,
-                                        number(w.gap)));
+                                        opensees_number(w.gap)));
       out +=
-        render({"node", {std::to_string(wall_node), "0.0", word("-mass"), number(w.mass)}}, python);
+        render({"node", {std::to_string(wall_node), "0.0", word("-mass"), opensees_number(w.mass)}},
+               python);
       out += render({"node", {std::to_string(ground_node), "0.0"}}, python);
       out += render({"fix", {std::to_string(ground_node), "1"}}, python);
       if (p.envelope == lumped::WallEnvelope::bilinear)
@@ -111,10 +112,10 @@ namespace kimp::app
         out += render({"uniaxialMaterial",
                        {word("ElasticPPGap"),
                         std::to_string(spring),
-                        number(p.stiffness),
-                        number(-p.capacity),
+                        opensees_number(p.stiffness),
+                        opensees_number(-p.capacity),
                         "0.0",
-                        number(p.hardening_ratio),
+                        opensees_number(p.hardening_ratio),
                         word("damage")}},
                       python);
       }
@@ -126,22 +127,22 @@ namespace kimp::app
         out += render({"uniaxialMaterial",
                        {word("HyperbolicGapMaterial"),
                         std::to_string(spring),
-                        number(p.stiffness),
-                        number(p.unloading_stiffness),
-                        number(p.failure_ratio),
-                        number(-p.capacity),
+                        opensees_number(p.stiffness),
+                        opensees_number(p.unloading_stiffness),
+                        opensees_number(p.failure_ratio),
+                        opensees_number(-p.capacity),
                         "0.0"}},
                       python);
       }
       if (p.tension_capacity > 0.0)
         out += comment(fmt::format("tension_capacity = {} N (the wall's pull-back) has no "
                                    "counterpart: the gap materials carry compression only",
-                                   number(p.tension_capacity)));
+                                   opensees_number(p.tension_capacity)));
       out += comment("radiation dashpot: Viscous C = radiation_damping, alpha = 1, in parallel");
-      out +=
-        render({"uniaxialMaterial",
-                {word("Viscous"), std::to_string(dashpot), number(p.radiation_damping), "1.0"}},
-               python);
+      out += render(
+        {"uniaxialMaterial",
+         {word("Viscous"), std::to_string(dashpot), opensees_number(p.radiation_damping), "1.0"}},
+        python);
       out += render(
         {"uniaxialMaterial",
          {word("Parallel"), std::to_string(part), std::to_string(spring), std::to_string(dashpot)}},
@@ -152,7 +153,7 @@ namespace kimp::app
       const std::string wn = std::to_string(wall_node), gn = std::to_string(ground_node);
       out += comment(fmt::format("wall part (wall - ground), then the contact part in series "
                                  "(building - wall); failure_displacement = {} m is kimp's check",
-                                 number(p.failure_displacement)));
+                                 opensees_number(p.failure_displacement)));
       out += render({"element",
                      {word("zeroLength"),
                       std::to_string(element++),

@@ -111,6 +111,11 @@ namespace kimp::app::study_internal
     // in two files (building_response.csv, flexible_wall.csv) reads the same in both.
     return std::isfinite(value) ? fmt::format("{}", value) : "";
   }
+
+  std::string readable(double value)
+  {
+    return std::isfinite(value) ? base::sig(value) : std::string();
+  }
 } // namespace kimp::app::study_internal
 
 namespace kimp::app

@@ -2,6 +2,7 @@
 // accuracy_fem.csv, accuracy_lumped.csv, stability_lumped.csv, stability_fem.csv, sensitivity.csv.
 #include <cmath>
 #include <fmt/format.h>
+#include <functional>
 #include <limits>
 
 #include "app/study/study_columns.h"
@@ -16,44 +17,57 @@ namespace kimp::app
 
   namespace
   {
-    /// k per metre of a fitted law in kN/mm^n/m (NaN unless `ok`).
-    double k_display(bool ok, double k, double exponent)
+    /// A relative error: NAME (1) in study.h5, NAME_percent in the CSV file.
+    template <class P>
+    StudyColumn<P> error_column(const std::string &name, double P::*error)
     {
-      return ok ? stiffness_to_kn_per_mm(k, exponent) : nan;
+      return number_column<P>({name, "1"},
+                              {name + "_percent", "1"},
+                              times(100),
+                              [error](const P &p) { return p.*error; });
+    }
+
+    /// The two fitted laws' k per metre in kN/mm^n/m (NaN unless the point is ok), as in the k
+    /// table.
+    template <class P>
+    void append_k_columns(std::vector<StudyColumn<P>> &columns)
+    {
+      double P::*const k[] = {&P::k_kelvin_voigt, &P::k_jankowski}; // in study_laws' order
+      for (std::size_t i = 0; i < std::size(study_laws); ++i)
+      {
+        const double exponent = study_laws[i].exponent;
+        columns.push_back(same_column<P>(study_laws[i].name,
+                                         study_laws[i].per_metre_unit,
+                                         [k = k[i], exponent](const P &p) {
+                                           return p.ok ? stiffness_to_kn_per_mm(p.*k, exponent) :
+                                                         nan;
+                                         }));
+      }
     }
 
     /// The FEM accuracy points: k against the contact mesh, the penalty and the implicit solver.
     std::vector<StudyColumn<FemAccuracyPoint>> fem_accuracy_columns()
     {
       using P = FemAccuracyPoint;
-      return {csv_text_column<P>("series", [](const P &p) { return p.series; }),
-              number_column<P>({"h_contact", "m"},
-                               {"h_contact", "cm"},
-                               times(100),
-                               [](const P &p) { return p.h_contact; }),
-              same_column<P>("penalty_factor", "1", [](const P &p) { return p.penalty_factor; }),
-              hdf5_column<P>("ok", "1", [](const P &p) { return flag(p.ok); }),
-              number_column<P>({"seconds", "s"},
-                               {"fem_wall_time", "s"},
-                               {},
-                               [](const P &p) { return p.seconds; }),
-              same_column<P>("n_dofs", "1", [](const P &p) { return p.n_dofs; }),
-              hdf5_column<P>("n_steps", "1", [](const P &p) { return p.n_steps; }),
-              same_column<P>("kelvin_voigt",
-                             "kN/mm/m",
-                             [](const P &p) { return k_display(p.ok, p.k_kelvin_voigt, 1.0); }),
-              same_column<P>("jankowski",
-                             "kN/mm^1.5/m",
-                             [](const P &p) { return k_display(p.ok, p.k_jankowski, 1.5); }),
-              number_column<P>({"error_kelvin_voigt", "1"},
-                               {"error_kelvin_voigt_percent", "1"},
-                               times(100),
-                               [](const P &p) { return p.error_kelvin_voigt; }),
-              number_column<P>({"error_jankowski", "1"},
-                               {"error_jankowski_percent", "1"},
-                               times(100),
-                               [](const P &p) { return p.error_jankowski; }),
-              csv_text_column<P>("status", [](const P &p) { return p.status; })};
+      std::vector<StudyColumn<P>> columns{
+        csv_text_column<P>("series", [](const P &p) { return p.series; }),
+        number_column<P>({"h_contact", "m"},
+                         {"h_contact", "cm"},
+                         times(100),
+                         [](const P &p) { return p.h_contact; }),
+        same_column<P>("penalty_factor", "1", [](const P &p) { return p.penalty_factor; }),
+        hdf5_column<P>("ok", "1", [](const P &p) { return flag(p.ok); }),
+        number_column<P>({"seconds", "s"},
+                         {"fem_wall_time", "s"},
+                         {},
+                         [](const P &p) { return p.seconds; }),
+        same_column<P>("n_dofs", "1", [](const P &p) { return p.n_dofs; }),
+        hdf5_column<P>("n_steps", "1", [](const P &p) { return p.n_steps; })};
+      append_k_columns(columns);
+      columns.push_back(error_column("error_kelvin_voigt", &P::error_kelvin_voigt));
+      columns.push_back(error_column("error_jankowski", &P::error_jankowski));
+      columns.push_back(csv_text_column<P>("status", [](const P &p) { return p.status; }));
+      return columns;
     }
 
     /// The lumped accuracy points: peaks of one building run against the time step.
@@ -75,14 +89,8 @@ namespace kimp::app
                                {"peak_base_acceleration", "m/s^2"},
                                {},
                                [](const P &p) { return p.ok ? p.base_acceleration : nan; }),
-              number_column<P>({"error_impact_force", "1"},
-                               {"error_impact_force_percent", "1"},
-                               times(100),
-                               [](const P &p) { return p.error_force; }),
-              number_column<P>({"error_base_acceleration", "1"},
-                               {"error_base_acceleration_percent", "1"},
-                               times(100),
-                               [](const P &p) { return p.error_acceleration; }),
+              error_column("error_impact_force", &P::error_force),
+              error_column("error_base_acceleration", &P::error_acceleration),
               csv_text_column<P>("status", [](const P &p) { return p.status; })};
     }
 
@@ -131,76 +139,94 @@ namespace kimp::app
     std::vector<StudyColumn<SensitivityPoint>> sensitivity_columns()
     {
       using P = SensitivityPoint;
-      return {csv_text_column<P>("parameter", [](const P &p) { return p.parameter; }),
-              same_column<P>("factor", "1", [](const P &p) { return p.factor; }),
-              hdf5_column<P>("ok", "1", [](const P &p) { return flag(p.ok); }),
-              same_column<P>("kelvin_voigt",
-                             "kN/mm/m",
-                             [](const P &p) { return k_display(p.ok, p.k_kelvin_voigt, 1.0); }),
-              same_column<P>("jankowski",
-                             "kN/mm^1.5/m",
-                             [](const P &p) { return k_display(p.ok, p.k_jankowski, 1.5); }),
-              csv_text_column<P>("status", [](const P &p) { return p.status; })};
+      std::vector<StudyColumn<P>> columns{
+        csv_text_column<P>("parameter", [](const P &p) { return p.parameter; }),
+        same_column<P>("factor", "1", [](const P &p) { return p.factor; }),
+        hdf5_column<P>("ok", "1", [](const P &p) { return flag(p.ok); })};
+      append_k_columns(columns);
+      columns.push_back(csv_text_column<P>("status", [](const P &p) { return p.status; }));
+      return columns;
     }
 
-    /// study.h5 /accuracy/fem/<series>.
-    void write_fem_accuracy(ResultsGroup &root, const StudyExtras &extras)
+    /**
+     * study.h5 /accuracy/`kind`/<series>: for each of `series`, the table of the rows whose
+     * `series_of` it is (no group for a series without rows); `annotate` then sets the
+     * attributes of /accuracy/`kind`.
+     */
+    template <class Row>
+    void write_accuracy(ResultsGroup                        &root,
+                        const char                          *kind,
+                        const std::vector<StudyColumn<Row>> &columns,
+                        const std::vector<Row>              &rows,
+                        std::string Row::                         *series_of,
+                        std::initializer_list<const char *>        series,
+                        const std::function<void(ResultsGroup &)> &annotate)
     {
-      for (const std::string series : {"mesh", "penalty", "implicit"})
+      for (const std::string name : series)
       {
-        const Table t = study_table(fem_accuracy_columns(),
-                                    extras.fem_accuracy,
+        const Table t = study_table(columns,
+                                    rows,
                                     StudyFile::hdf5,
-                                    [&](const FemAccuracyPoint &p) { return p.series == series; });
-        if (t.n_rows() > 0)
-        {
-          ResultsGroup fem = root.group("accuracy").group("fem");
-          t.write_hdf5(fem, series);
-        }
+                                    [&](const Row &p) { return p.*series_of == name; });
+        if (t.n_rows() == 0)
+          continue;
+        ResultsGroup group = root.group("accuracy").group(kind);
+        t.write_hdf5(group, name);
+        annotate(group);
       }
     }
 
-    /// study.h5 /accuracy/lumped/<method>.
-    void write_lumped_accuracy(ResultsGroup &root, const StudyExtras &extras)
+    /// study.h5 /accuracy/fem/<series> and /accuracy/lumped/<method>.
+    void write_accuracy(ResultsGroup &root, const StudyExtras &extras)
     {
-      for (const std::string method : {"cdm", "newmark", "cdm_reference"})
-      {
-        const Table t =
-          study_table(lumped_accuracy_columns(),
-                      extras.lumped_accuracy,
-                      StudyFile::hdf5,
-                      [&](const LumpedAccuracyPoint &p) { return p.method == method; });
-        if (t.n_rows() > 0)
-        {
-          ResultsGroup lumped = root.group("accuracy").group("lumped");
-          t.write_hdf5(lumped, method);
-          lumped.set_attribute("k_total_N_per_m", extras.lumped_k_total);
-          lumped.set_attribute("gap_m", extras.lumped_gap);
-          lumped.set_attribute("record", extras.lumped_record);
-        }
-      }
+      write_accuracy(root,
+                     "fem",
+                     fem_accuracy_columns(),
+                     extras.fem_accuracy,
+                     &FemAccuracyPoint::series,
+                     {"mesh", "penalty", "implicit"},
+                     [](ResultsGroup &) {});
+      write_accuracy(root,
+                     "lumped",
+                     lumped_accuracy_columns(),
+                     extras.lumped_accuracy,
+                     &LumpedAccuracyPoint::method,
+                     {"cdm", "newmark", "cdm_reference"},
+                     [&](ResultsGroup &lumped)
+                     {
+                       lumped.set_attribute("k_total_N_per_m", extras.lumped_k_total);
+                       lumped.set_attribute("gap_m", extras.lumped_gap);
+                       lumped.set_attribute("record", extras.lumped_record);
+                     });
     }
 
-    /// study.h5 /stability/lumped and /stability/fem.
+    /// study.h5 /stability/lumped and /stability/fem, each with the attributes of its set-up.
     void write_stability(ResultsGroup &root, const StudyExtras &extras)
     {
-      if (!extras.stability.empty())
+      struct StabilityMap
       {
-        ResultsGroup stability = root.group("stability");
-        study_table(lumped_stability_columns(), extras.stability, StudyFile::hdf5)
-          .write_hdf5(stability, "lumped");
-        ResultsGroup table = stability.group("lumped");
-        table.set_attribute("effective_mass_kg", extras.stability_effective_mass);
-        table.set_attribute("study_stiffness_N_per_m", extras.stability_study_k);
-      }
-      if (!extras.fem_stability.empty())
+        const char                                  *name;
+        Table                                        table;
+        std::vector<std::pair<const char *, double>> attributes;
+      };
+      const StabilityMap maps[] = {
+        {"lumped",
+         study_table(lumped_stability_columns(), extras.stability, StudyFile::hdf5),
+         {{"effective_mass_kg", extras.stability_effective_mass},
+          {"study_stiffness_N_per_m", extras.stability_study_k}}},
+        {"fem",
+         study_table(fem_stability_columns(), extras.fem_stability, StudyFile::hdf5),
+         {{"h_contact_m", extras.fem_stability_h_contact},
+          {"end_time_s", extras.fem_stability_end_time}}}};
+      for (const StabilityMap &map : maps)
       {
+        if (map.table.n_rows() == 0)
+          continue;
         ResultsGroup stability = root.group("stability");
-        study_table(fem_stability_columns(), extras.fem_stability, StudyFile::hdf5)
-          .write_hdf5(stability, "fem");
-        ResultsGroup table = stability.group("fem");
-        table.set_attribute("h_contact_m", extras.fem_stability_h_contact);
-        table.set_attribute("end_time_s", extras.fem_stability_end_time);
+        map.table.write_hdf5(stability, map.name);
+        ResultsGroup group = stability.group(map.name);
+        for (const auto &[attribute, value] : map.attributes)
+          group.set_attribute(attribute, value);
       }
     }
 
@@ -235,8 +261,7 @@ namespace kimp::app
 
   void write_study_extras(ResultsGroup &root, const StudyExtras &extras)
   {
-    write_fem_accuracy(root, extras);
-    write_lumped_accuracy(root, extras);
+    write_accuracy(root, extras);
     write_stability(root, extras);
     write_sensitivity(root, extras);
   }
