@@ -47,29 +47,14 @@ namespace kimp::app::study_internal
       const char *unit;
       const char *display_unit;
       double      factor;
-      double (*value)(const StudyBuildingRun &);
+      double StudyBuildingRun::*value;
     };
+    using R                     = StudyBuildingRun;
     const Quantity quantities[] = {
-      {"peak_base_acceleration",
-       "m/s^2",
-       "m/s^2",
-       1.0,
-       [](const StudyBuildingRun &r) { return r.base_acceleration; }},
-      {"peak_top_acceleration",
-       "m/s^2",
-       "m/s^2",
-       1.0,
-       [](const StudyBuildingRun &r) { return r.top_acceleration; }},
-      {"peak_impact_force",
-       "N",
-       "kN",
-       1e-3,
-       [](const StudyBuildingRun &r) { return r.peak_impact_force; }},
-      {"peak_interstorey_drift",
-       "m",
-       "cm",
-       100.0,
-       [](const StudyBuildingRun &r) { return r.max_interstorey_drift; }},
+      {"peak_base_acceleration", "m/s^2", "m/s^2", 1.0, &R::base_acceleration},
+      {"peak_top_acceleration", "m/s^2", "m/s^2", 1.0, &R::top_acceleration},
+      {"peak_impact_force", "N", "kN", 1e-3, &R::peak_impact_force},
+      {"peak_interstorey_drift", "m", "cm", 100.0, &R::max_interstorey_drift},
     };
 
     /// One flexible run with its rigid twin and its wall's SDOF (each may be missing).
@@ -149,7 +134,7 @@ namespace kimp::app::study_internal
                                              [side, value = q.value](const F &x)
                                              {
                                                const StudyBuildingRun *run = x.ok_run(side);
-                                               return run ? value(*run) : nan;
+                                               return run ? run->*value : nan;
                                              }));
       for (const Quantity &q : quantities)
         columns.push_back(number_column<F>({},
@@ -158,8 +143,8 @@ namespace kimp::app::study_internal
                                            [value = q.value](const F &x) {
                                              return ratio(x.rigid,
                                                           *x.flexible,
-                                                          x.rigid_ok() ? value(*x.rigid) : nan,
-                                                          value(*x.flexible));
+                                                          x.rigid_ok() ? x.rigid->*value : nan,
+                                                          x.flexible->*value);
                                            }));
       append_amplification_columns(columns);
       columns.push_back(
@@ -312,7 +297,7 @@ namespace kimp::app::study_internal
       row["status"]      = f.status;
       for (const Quantity &q : quantities)
       {
-        const double x = ratio(r, f, r ? q.value(*r) : nan, q.value(f));
+        const double x = ratio(r, f, r ? r->*q.value : nan, f.*q.value);
         if (std::isfinite(x))
           row[std::string("ratio_") + q.name] = x;
       }
@@ -386,10 +371,10 @@ namespace kimp::app::study_internal
       for (std::size_t i = 0; i < 4; ++i)
       {
         const Quantity &q = quantities[i];
-        const double    x = ratio(r, f, ok ? q.value(*r) : nan, q.value(f));
+        const double    x = ratio(r, f, ok ? r->*q.value : nan, f.*q.value);
         cells += fmt::format(" {} / {} | {} |",
-                             readable(ok ? q.value(*r) * q.factor : nan),
-                             readable(ok ? q.value(f) * q.factor : nan),
+                             readable(ok ? r->*q.value * q.factor : nan),
+                             readable(ok ? f.*q.value * q.factor : nan),
                              readable(x));
         if (ok && std::isfinite(x) && x > 0)
           log_sum[i] += std::log(x);
