@@ -104,36 +104,32 @@ namespace kimp::app
                python);
       out += render({"node", {std::to_string(ground_node), "0.0"}}, python);
       out += render({"fix", {std::to_string(ground_node), "1"}}, python);
-      if (p.envelope == lumped::WallEnvelope::bilinear)
-      {
-        out += comment("wall and backfill: ElasticPPGap E = stiffness, Fy = -capacity, gap 0, "
+      // The wall-and-backfill gap material: its tag and E, then the envelope's parameters.
+      const bool bilinear = p.envelope == lumped::WallEnvelope::bilinear;
+      out += comment(bilinear ?
+                       "wall and backfill: ElasticPPGap E = stiffness, Fy = -capacity, gap 0, "
                        "eta = hardening_ratio, damage (the set is kept); kimp unloads at "
-                       "unloading_stiffness, OpenSees at E");
-        out += render({"uniaxialMaterial",
-                       {word("ElasticPPGap"),
-                        std::to_string(spring),
-                        opensees_number(p.stiffness),
-                        opensees_number(-p.capacity),
-                        "0.0",
-                        opensees_number(p.hardening_ratio),
-                        word("damage")}},
-                      python);
-      }
-      else
-      {
-        out += comment("wall and backfill: HyperbolicGapMaterial Kmax = stiffness, Kur = "
+                       "unloading_stiffness, OpenSees at E" :
+                       "wall and backfill: HyperbolicGapMaterial Kmax = stiffness, Kur = "
                        "unloading_stiffness, Rf = failure_ratio, Fult = -capacity, gap 0 (OpenSees "
                        "warns that a gap of 0 is not negative and keeps it)");
-        out += render({"uniaxialMaterial",
-                       {word("HyperbolicGapMaterial"),
-                        std::to_string(spring),
-                        opensees_number(p.stiffness),
-                        opensees_number(p.unloading_stiffness),
-                        opensees_number(p.failure_ratio),
-                        opensees_number(-p.capacity),
-                        "0.0"}},
-                      python);
-      }
+      std::vector<std::string> backfill = {word(bilinear ? "ElasticPPGap" :
+                                                           "HyperbolicGapMaterial"),
+                                           std::to_string(spring),
+                                           opensees_number(p.stiffness)};
+      if (bilinear)
+        backfill.insert(backfill.end(),
+                        {opensees_number(-p.capacity),
+                         "0.0",
+                         opensees_number(p.hardening_ratio),
+                         word("damage")});
+      else
+        backfill.insert(backfill.end(),
+                        {opensees_number(p.unloading_stiffness),
+                         opensees_number(p.failure_ratio),
+                         opensees_number(-p.capacity),
+                         "0.0"});
+      out += render({"uniaxialMaterial", backfill}, python);
       if (p.tension_capacity > 0.0)
         out += comment(fmt::format("tension_capacity = {} N (the wall's pull-back) has no "
                                    "counterpart: the gap materials carry compression only",
@@ -154,26 +150,22 @@ namespace kimp::app
       out += comment(fmt::format("wall part (wall - ground), then the contact part in series "
                                  "(building - wall); failure_displacement = {} m is kimp's check",
                                  opensees_number(p.failure_displacement)));
-      out += render({"element",
-                     {word("zeroLength"),
-                      std::to_string(element++),
-                      w.right ? wn : gn,
-                      w.right ? gn : wn,
-                      word("-mat"),
-                      std::to_string(part),
-                      word("-dir"),
-                      "1"}},
-                    python);
-      out += render({"element",
-                     {word("zeroLength"),
-                      std::to_string(element++),
-                      w.right ? building : wn,
-                      w.right ? wn : building,
-                      word("-mat"),
-                      "kimpImpactMaterial",
-                      word("-dir"),
-                      "1"}},
-                    python);
+      // A zeroLength element in x of `material` from node `i` to node `j` (swapped on the right).
+      const auto zero_length = [&](const std::string &i, const std::string &j, std::string material)
+      {
+        return render({"element",
+                       {word("zeroLength"),
+                        std::to_string(element++),
+                        w.right ? i : j,
+                        w.right ? j : i,
+                        word("-mat"),
+                        std::move(material),
+                        word("-dir"),
+                        "1"}},
+                      python);
+      };
+      out += zero_length(wn, gn, std::to_string(part));
+      out += zero_length(building, wn, "kimpImpactMaterial");
     }
     return out;
   }
