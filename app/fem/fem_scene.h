@@ -110,6 +110,12 @@ namespace kimp::fem
 
 namespace kimp::app
 {
+  /// The heights of a moat wall kimp accepts (a height outside is refused as implausible), m.
+  inline io::Range moat_wall_height_range()
+  {
+    return io::Range::plausible(0.1, 20.0, "a moat wall");
+  }
+
   /** Field output of `kimp fem` (the study records neither). */
   struct FemOutput
   {
@@ -403,7 +409,7 @@ namespace kimp::app
                      s.wall_heights,
                      "m",
                      "moat wall heights H, one impact case each, named H<height in m>",
-                     io::Range::plausible(0.1, 20.0, "a moat wall"));
+                     moat_wall_height_range());
     io.section("geometry", s.geometry, "scene dimensions (docs/physics.md §4)");
     io.section("mesh", s, "bilinear quadrilateral mesh", visit_fem_mesh);
     io.section("materials", s.materials, "materials (linear elastic unless a model is chosen)");

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/laws/cor_key.h"
 #include "app/laws/impact_scene.h"
 #include "app/laws/yielding_wall_scene.h"
 #include "app/lumped/ground_motion_scene.h"
@@ -445,11 +446,7 @@ namespace kimp::app
                 "",
                 "impact exponent n (null = the law's default)",
                 io::Range::at_least(1.0));
-    io.quantity("cor",
-                s.cor,
-                "",
-                "coefficient of restitution (null = impact.cor)",
-                io::Range::greater(0.0).and_at_most(1.0));
+    visit_cor(io, s.cor, "coefficient of restitution (null = impact.cor)");
     io.quantity("gap",
                 s.gap,
                 "cm",
