@@ -27,9 +27,17 @@ namespace kimp::app
     lumped::plan::Point              slab_reference = lumped::plan::Point::Zero();
     lumped::plan::Polygon            wall;
     std::vector<lumped::plan::Point> contact_positions;
-    double                           dt_critical = 0.0;
-    double                           wall_time   = 0.0; ///< s
+    /// The superstructure's damping model, ζ (every mode with modal damping, per direction with
+    /// Rayleigh) and ζ_iso of the isolation level (lumped::plan::PlanBuilding).
+    lumped::plan::PlanDampingModel damping       = lumped::plan::PlanDampingModel::rayleigh;
+    double                         damping_ratio = 0.0;
+    double                         isolation_damping_ratio = 0.0;
+    double                         dt_critical             = 0.0;
+    double                         wall_time               = 0.0; ///< s
   };
+
+  /// "rayleigh" or "modal" (the scene's `plan.damping`).
+  const char *damping_name(lumped::plan::PlanDampingModel model);
 
   /// The headline peaks of a plan run (summary.json of `kimp lumped`, the sweep's metrics).
   struct PlanPeaks

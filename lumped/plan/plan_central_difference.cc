@@ -1150,14 +1150,16 @@ namespace kimp::lumped::plan
       for (const WallState &wd : walls_)
       {
         PlanYieldingWallResult y;
-        y.segment            = wd.segment;
-        y.peak_resistance    = wd.law->peak_resistance();
-        y.peak_displacement  = wd.law->peak_deformation();
-        y.permanent_set      = wd.law->permanent_indentation();
-        y.final_displacement = wd.w;
-        y.plastic_work       = wd.law->plastic_work();
-        y.radiated_work      = wd.law->radiated_work();
-        y.failure_time       = wd.failure_time;
+        y.segment              = wd.segment;
+        y.capacity             = wd.law->parameters().capacity;
+        y.failure_displacement = wd.law->parameters().failure_displacement;
+        y.peak_resistance      = wd.law->peak_resistance();
+        y.peak_displacement    = wd.law->peak_deformation();
+        y.permanent_set        = wd.law->permanent_indentation();
+        y.final_displacement   = wd.w;
+        y.plastic_work         = wd.law->plastic_work();
+        y.radiated_work        = wd.law->radiated_work();
+        y.failure_time         = wd.failure_time;
         e.wall_plastic += y.plastic_work;
         e.wall_radiated += y.radiated_work;
         out_.yielding_walls.push_back(y);

@@ -106,13 +106,16 @@ namespace kimp::lumped::plan
   /// Results of one yielding wall face.
   struct PlanYieldingWallResult
   {
-    std::size_t segment            = 0;
-    double      peak_resistance    = 0.0; ///< max R(w) of the wall-and-backfill part, N
-    double      peak_displacement  = 0.0; ///< w_max, m
-    double      permanent_set      = 0.0; ///< w_p at the end, m
-    double      final_displacement = 0.0; ///< w at the end, m
-    double      plastic_work       = 0.0; ///< J
-    double      radiated_work      = 0.0; ///< J
+    std::size_t segment  = 0;
+    double      capacity = 0.0; ///< the part's capacity (WallBackfillParams), N
+    /// w_max beyond which the wall has failed (WallBackfillParams), m.
+    double failure_displacement = 0.0;
+    double peak_resistance      = 0.0; ///< max R(w) of the wall-and-backfill part, N
+    double peak_displacement    = 0.0; ///< w_max, m
+    double permanent_set        = 0.0; ///< w_p at the end, m
+    double final_displacement   = 0.0; ///< w at the end, m
+    double plastic_work         = 0.0; ///< J
+    double radiated_work        = 0.0; ///< J
     /// Time at which w_max first exceeded failure_displacement (unset: not failed), s.
     std::optional<double> failure_time;
   };
