@@ -101,23 +101,24 @@ namespace kimp::app
           case IsolatorKind::bouc_wen:
           {
             const double alpha = iso.K2 / iso.K1;
-            law                = std::make_shared<plan::PlanBoucWenIsolator>(iso.K1 / n,
-                                                              alpha,
-                                                              Q / n / (1.0 - alpha),
-                                                              iso.bw_A,
-                                                              iso.bw_beta,
-                                                              iso.bw_gamma,
-                                                              iso.bw_n);
+            law                = std::make_shared<plan::PlanBoucWenIsolator>(
+              lumped::BoucWenParameters{iso.K1 / n,
+                                        alpha,
+                                        Q / n / (1.0 - alpha),
+                                        iso.bw_A,
+                                        iso.bw_beta,
+                                        iso.bw_gamma,
+                                        iso.bw_n});
             break;
           }
           case IsolatorKind::friction_pendulum:
             law = std::make_shared<plan::PlanFrictionPendulumIsolator>(
-              iso.weight.value_or(g * total_mass) / n,
-              iso.radius,
-              iso.mu_slow,
-              iso.mu_fast,
-              iso.rate,
-              iso.k_init / n);
+              lumped::FrictionPendulumParameters{iso.weight.value_or(g * total_mass) / n,
+                                                 iso.radius,
+                                                 iso.mu_slow,
+                                                 iso.mu_fast,
+                                                 iso.rate,
+                                                 iso.k_init / n});
             break;
           case IsolatorKind::linear:
             throw std::invalid_argument(

@@ -13,21 +13,7 @@ namespace kimp::lumped
     constexpr int max_iterations = 100;
   } // namespace
 
-  BoucWenIsolator::BoucWenIsolator(const double K1,
-                                   const double alpha,
-                                   const double F_y,
-                                   const double A,
-                                   const double beta,
-                                   const double gamma,
-                                   const double n,
-                                   const double c)
-    : HystereticIsolator(c)
-    , K1_(K1)
-    , alpha_(alpha)
-    , A_(A)
-    , beta_(beta)
-    , gamma_(gamma)
-    , n_(n)
+  void BoucWenParameters::check() const
   {
     require_isolator(std::isfinite(K1) && K1 > 0.0, "K1", K1, "N/m", "must be > 0 and finite");
     require_isolator(std::isfinite(alpha) && alpha >= 0.0 && alpha < 1.0,
@@ -44,6 +30,25 @@ namespace kimp::lumped
                      "must be >= |bw_gamma| (non-negative dissipation)");
     require_isolator(beta + gamma > 0.0, "bw_gamma", gamma, "", "must give bw_beta + bw_gamma > 0");
     require_isolator(std::isfinite(n) && n >= 1.0, "bw_n", n, "", "must be >= 1");
+  }
+
+  BoucWenIsolator::BoucWenIsolator(const double K1,
+                                   const double alpha,
+                                   const double F_y,
+                                   const double A,
+                                   const double beta,
+                                   const double gamma,
+                                   const double n,
+                                   const double c)
+    : HystereticLaw(c)
+    , K1_(K1)
+    , alpha_(alpha)
+    , A_(A)
+    , beta_(beta)
+    , gamma_(gamma)
+    , n_(n)
+  {
+    BoucWenParameters{K1, alpha, F_y, A, beta, gamma, n}.check();
     Q_     = (1.0 - alpha) * F_y;
     u_y_   = F_y / K1;
     z_max_ = std::pow(A / (beta + gamma), 1.0 / n);

@@ -8,6 +8,22 @@
 
 namespace kimp::lumped
 {
+  /// The parameters of the Bouc-Wen law (BoucWenIsolator, plan::PlanBoucWenIsolator; table
+  /// below).
+  struct BoucWenParameters
+  {
+    double K1    = 0.0; ///< N/m
+    double alpha = 0.0; ///< K2/K1
+    double F_y   = 0.0; ///< N
+    double A     = 1.0;
+    double beta  = 0.5;
+    double gamma = 0.5;
+    double n     = 1.0;
+
+    /// @throws std::invalid_argument naming the parameter, its value and the admissible range.
+    void check() const;
+  };
+
   /// History of a BoucWenIsolator, held committed and trial.
   struct BoucWenState
   {

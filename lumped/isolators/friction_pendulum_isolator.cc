@@ -5,19 +5,7 @@
 
 namespace kimp::lumped
 {
-  FrictionPendulumIsolator::FrictionPendulumIsolator(const double W,
-                                                     const double R,
-                                                     const double mu_slow,
-                                                     const double mu_fast,
-                                                     const double rate,
-                                                     const double k_init,
-                                                     const double c)
-    : HystereticIsolator(c)
-    , W_(W)
-    , mu_slow_(mu_slow)
-    , mu_fast_(mu_fast)
-    , rate_(rate)
-    , k_init_(k_init)
+  void FrictionPendulumParameters::check() const
   {
     require_isolator(std::isfinite(W) && W > 0.0, "weight", W, "N", "must be > 0 and finite");
     require_isolator(std::isfinite(R) && R > 0.0, "radius", R, "m", "must be > 0 and finite");
@@ -41,6 +29,23 @@ namespace kimp::lumped
                      k_init,
                      "N/m",
                      "must be > 0 and finite");
+  }
+
+  FrictionPendulumIsolator::FrictionPendulumIsolator(const double W,
+                                                     const double R,
+                                                     const double mu_slow,
+                                                     const double mu_fast,
+                                                     const double rate,
+                                                     const double k_init,
+                                                     const double c)
+    : HystereticLaw(c)
+    , W_(W)
+    , mu_slow_(mu_slow)
+    , mu_fast_(mu_fast)
+    , rate_(rate)
+    , k_init_(k_init)
+  {
+    FrictionPendulumParameters{W, R, mu_slow, mu_fast, rate, k_init}.check();
     k_pendulum_ = W / R;
   }
 

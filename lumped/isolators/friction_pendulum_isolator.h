@@ -7,6 +7,27 @@
 
 namespace kimp::lumped
 {
+  /// The parameters of the friction pendulum (FrictionPendulumIsolator,
+  /// plan::PlanFrictionPendulumIsolator; table below).
+  struct FrictionPendulumParameters
+  {
+    double W       = 0.0; ///< N
+    double R       = 0.0; ///< m
+    double mu_slow = 0.0;
+    double mu_fast = 0.0;
+    double rate    = 0.0; ///< s/m
+    double k_init  = 0.0; ///< N/m
+
+    /// μ(v) = μ_fast − (μ_fast − μ_slow)·exp(−a·v) at the sliding speed v >= 0 (m/s).
+    double mu(const double speed) const
+    {
+      return mu_fast - (mu_fast - mu_slow) * std::exp(-rate * speed);
+    }
+
+    /// @throws std::invalid_argument naming the parameter, its value and the admissible range.
+    void check() const;
+  };
+
   /// History of a FrictionPendulumIsolator, held committed and trial.
   struct FrictionPendulumState
   {
