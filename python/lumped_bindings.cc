@@ -87,24 +87,9 @@ namespace kimp::python
       d["damping"]  = py::dict(py::arg("model")                   = app::damping_name(run.damping),
                               py::arg("damping_ratio")           = run.damping_ratio,
                               py::arg("isolation_damping_ratio") = run.isolation_damping_ratio);
-      py::list walls;
-      for (const lumped::plan::PlanYieldingWallResult &y : r.yielding_walls)
-        walls.append(py::dict(py::arg("face")                  = y.segment,
-                              py::arg("peak_force")            = r.peak_wall_force[y.segment],
-                              py::arg("capacity")              = y.capacity,
-                              py::arg("peak_resistance")       = y.peak_resistance,
-                              py::arg("peak_resistance_ratio") = y.peak_resistance / y.capacity,
-                              py::arg("peak_displacement")     = y.peak_displacement,
-                              py::arg("residual_displacement") = y.permanent_set,
-                              py::arg("final_displacement")    = y.final_displacement,
-                              py::arg("failure_displacement")  = y.failure_displacement,
-                              py::arg("plastic_work")          = y.plastic_work,
-                              py::arg("radiated_work")         = y.radiated_work,
-                              py::arg("failed")                = y.failure_time.has_value(),
-                              py::arg("failure_time")          = y.failure_time ?
-                                                                   py::object(py::float_(*y.failure_time)) :
-                                                                   py::object(py::none())));
-      d["yielding_walls"] = walls;
+      // As summary.json has them (the same JSON, so the same keys and values).
+      d["yielding_walls"] =
+        py::module_::import("json").attr("loads")(app::yielding_walls_json(r).dump());
       py::dict p;
       p["base_corner_displacement"] = r.peak_corner_displacement.front();
       p["corner_impact_force"]      = corner_force;

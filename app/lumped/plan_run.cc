@@ -35,30 +35,23 @@ namespace kimp::app
       return fmt::format("{}", value);
     }
 
-    /// The yielding wall faces: the face's peak contact force, the wall-and-backfill part's
-    /// peak resistance against its capacity, displacements, work and failure (time, or null).
-    nlohmann::json yielding_json(const plan::PlanResponse &r)
+    /// A yielding wall face as the planar walls' record: the face's peak contact force and the
+    /// wall-and-backfill part's capacity, peak resistance, displacements, failure and work.
+    lumped_internal::YieldingWallRecord yielding_record(const plan::PlanResponse           &r,
+                                                        const plan::PlanYieldingWallResult &y)
     {
-      nlohmann::json out = nlohmann::json::array();
-      for (const plan::PlanYieldingWallResult &y : r.yielding_walls)
-        out.push_back(
-          {{"face", y.segment},
-           {"peak_force", r.peak_wall_force[y.segment]},
-           {"capacity", y.capacity},
-           {"peak_resistance", y.peak_resistance},
-           {"peak_resistance_ratio", y.peak_resistance / y.capacity},
-           {"peak_displacement", y.peak_displacement},
-           {"residual_displacement", y.permanent_set},
-           {"final_displacement", y.final_displacement},
-           {"failure_displacement", y.failure_displacement},
-           {"plastic_work", y.plastic_work},
-           {"radiated_work", y.radiated_work},
-           {"failed", y.failure_time.has_value()},
-           {"failure_time", y.failure_time ? nlohmann::json(*y.failure_time) : nlohmann::json()}});
-      return out;
+      return {r.peak_wall_force[y.segment],
+              y.capacity,
+              y.peak_resistance,
+              y.peak_displacement,
+              y.permanent_set,
+              y.failure_displacement,
+              y.failure_time,
+              y.plastic_work,
+              y.radiated_work};
     }
 
-    /// The units of yielding_json()'s quantities (summary.json `units.yielding_walls`).
+    /// The units of yielding_walls_json()'s quantities (summary.json `units.yielding_walls`).
     nlohmann::json yielding_units()
     {
       return {{"peak_force", "N"},
@@ -104,6 +97,21 @@ namespace kimp::app
   const char *damping_name(plan::PlanDampingModel model)
   {
     return model == plan::PlanDampingModel::modal ? "modal" : "rayleigh";
+  }
+
+  nlohmann::json yielding_walls_json(const plan::PlanResponse &r)
+  {
+    nlohmann::json out = nlohmann::json::array();
+    for (const plan::PlanYieldingWallResult &y : r.yielding_walls)
+    {
+      nlohmann::json j        = lumped_internal::yielding_wall_json(yielding_record(r, y));
+      j["face"]               = y.segment;
+      j["final_displacement"] = y.final_displacement;
+      if (!y.failure_time)
+        j["failure_time"] = nullptr;
+      out.push_back(j);
+    }
+    return out;
   }
 
   PlanPeaks plan_peaks(const plan::PlanResponse &r)
@@ -223,27 +231,16 @@ namespace kimp::app
                               "m");
     }
 
-    /// `walls/face_<k>` per yielding wall face (as the planar `walls/<wall>`): the face's peak
-    /// force, the part's capacity, peak resistance, displacements, failure and work.
+    /// `walls/face_<k>` per yielding wall face (as the planar `walls/<wall>`, with the face and
+    /// its final displacement).
     void write_plan_yielding(io::ResultsGroup &g, const plan::PlanResponse &r)
     {
       for (const plan::PlanYieldingWallResult &y : r.yielding_walls)
       {
         io::ResultsGroup wg = g.group(fmt::format("walls/face_{}", y.segment));
         wg.set_attribute("face", static_cast<std::int64_t>(y.segment));
-        wg.write_scalar("peak_force", r.peak_wall_force[y.segment], "N");
-        wg.write_scalar("capacity", y.capacity, "N");
-        wg.write_scalar("peak_resistance", y.peak_resistance, "N");
-        wg.write_scalar("peak_resistance_ratio", y.peak_resistance / y.capacity, "1");
-        wg.write_scalar("peak_displacement", y.peak_displacement, "m");
-        wg.write_scalar("residual_displacement", y.permanent_set, "m");
+        lumped_internal::write_yielding_wall(wg, yielding_record(r, y));
         wg.write_scalar("final_displacement", y.final_displacement, "m");
-        wg.write_scalar("failure_displacement", y.failure_displacement, "m");
-        wg.set_attribute("failed", static_cast<std::int64_t>(y.failure_time ? 1 : 0));
-        if (y.failure_time)
-          wg.write_scalar("failure_time", *y.failure_time, "s");
-        wg.write_scalar("plastic_work", y.plastic_work, "J");
-        wg.write_scalar("radiated_work", y.radiated_work, "J");
       }
     }
 
@@ -386,7 +383,7 @@ namespace kimp::app
       c["damping"]     = damping_json(run);
       if (!r.yielding_walls.empty())
       {
-        c["yielding_walls"]                = yielding_json(r);
+        c["yielding_walls"]                = yielding_walls_json(r);
         summary["units"]["yielding_walls"] = yielding_units();
       }
       summary["cases"] = nlohmann::json::array({c});

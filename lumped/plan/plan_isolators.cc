@@ -43,8 +43,6 @@ namespace kimp::lumped::plan
     , p_(parameters)
   {
     p_.check();
-    Q_   = (1.0 - p_.alpha) * p_.F_y;
-    u_y_ = p_.F_y / p_.K1;
   }
 
   Point PlanBoucWenIsolator::update(const Point &z_c,
@@ -52,7 +50,7 @@ namespace kimp::lumped::plan
                                     double      &dissipated,
                                     const int    depth) const
   {
-    const Point r = du / u_y_;
+    const Point r = du / p_.yield_displacement();
     // Bracket w(z) = Σ_i (γ + β·sgn(du_i z_i))·z_i du_i and the residual's pieces at z.
     const auto factors = [&](const Point &z)
     {
@@ -109,7 +107,7 @@ namespace kimp::lumped::plan
     const Point  f = factors(z);
     const double w = f.x() * z.x() * du.x() + f.y() * z.y() * du.y();
     // Work of the hysteretic spring beyond its stored energy, Q/A·|z|^n·w (>= 0 for β >= |γ|).
-    dissipated += Q_ / p_.A * scaled_power(z.norm(), p_.n) * w;
+    dissipated += p_.strength() / p_.A * scaled_power(z.norm(), p_.n) * w;
     return z;
   }
 
@@ -120,13 +118,13 @@ namespace kimp::lumped::plan
     const Point du = displacement - committed_.u;
     if (du.x() != 0.0 || du.y() != 0.0)
       trial_.z = update(committed_.z, du, trial_.dissipated, 0);
-    return p_.alpha * p_.K1 * displacement + Q_ * trial_.z;
+    return p_.alpha * p_.K1 * displacement + p_.strength() * trial_.z;
   }
 
   double PlanBoucWenIsolator::stored_energy() const
   {
     return 0.5 * p_.alpha * p_.K1 * committed_.u.squaredNorm() +
-           0.5 * Q_ * u_y_ * committed_.z.squaredNorm() / p_.A;
+           0.5 * p_.strength() * p_.yield_displacement() * committed_.z.squaredNorm() / p_.A;
   }
 
   PlanFrictionPendulumIsolator::PlanFrictionPendulumIsolator(

@@ -146,7 +146,7 @@ namespace kimp::lumped::plan
     double stored_energy() const override;
     Point  committed_force() const override
     {
-      return p_.alpha * p_.K1 * committed_.u + Q_ * committed_.z;
+      return p_.alpha * p_.K1 * committed_.u + p_.strength() * committed_.z;
     }
     /// z at the committed state.
     Point       committed_z() const { return committed_.z; }
@@ -157,7 +157,6 @@ namespace kimp::lumped::plan
     Point update(const Point &z_c, const Point &du, double &dissipated, int depth) const;
 
     BoucWenParameters p_;
-    double            Q_, u_y_;
   };
 
   /// History of a PlanFrictionPendulumIsolator.

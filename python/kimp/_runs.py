@@ -248,7 +248,8 @@ class PlanResult:
     ``isolation_damping_ratio``. ``yielding_walls``: one dict per yielding wall face (the
     scene's ``plan.moat.yielding``): ``face``, the face's ``peak_force`` and the part's
     ``capacity`` and ``peak_resistance`` (N), ``peak_resistance_ratio``, ``peak_displacement``,
-    ``residual_displacement``, ``final_displacement`` and ``failure_displacement`` (m),
+    ``residual_displacement``, ``final_displacement`` and ``failure_displacement`` (m, None: no
+    limit),
     ``plastic_work`` and ``radiated_work`` (J), ``failed`` and ``failure_time`` (s, or None)."""
 
     name: str

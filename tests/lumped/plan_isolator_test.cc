@@ -91,11 +91,11 @@ namespace kimp::lumped::plan
       expect_uniaxial(b1, b2, angle, 1.5e6);
       for (const double n : {1.0, 2.0, 3.5})
       {
-        BoucWenIsolator     w1(200e6, 0.125, 1.7e6, 1.0, 0.6, 0.4, n);
+        BoucWenIsolator     w1({200e6, 0.125, 1.7e6, 1.0, 0.6, 0.4, n});
         PlanBoucWenIsolator w2({200e6, 0.125, 1.7e6, 1.0, 0.6, 0.4, n});
         expect_uniaxial(w1, w2, angle, 1.7e6);
       }
-      FrictionPendulumIsolator     p1(15e6, 2.2, 0.04, 0.08, 30.0, 5e8);
+      FrictionPendulumIsolator     p1({15e6, 2.2, 0.04, 0.08, 30.0, 5e8});
       PlanFrictionPendulumIsolator p2({15e6, 2.2, 0.04, 0.08, 30.0, 5e8});
       expect_uniaxial(p1, p2, angle, 15e6);
     }
