@@ -15,21 +15,20 @@
 
 #include "lumped/integrators/central_difference_session.h"
 #include "lumped/integrators/integration_errors.h"
+#include "lumped/integrators/largest_omega.h"
 #include "lumped/parameter_check.h"
 
 namespace kimp::lumped
 {
   namespace
   {
-    double largest_omega(const std::vector<double> &masses, const Eigen::MatrixXd &k)
+    /// largest_omega() of the model's masses and the stiffness `k`.
+    double largest_omega(const PoundingModel &model, const Eigen::MatrixXd &k)
     {
-      const auto      n = static_cast<Eigen::Index>(masses.size());
-      Eigen::VectorXd inv_sqrt_m(n);
-      for (Eigen::Index i = 0; i < n; ++i)
-        inv_sqrt_m(i) = 1.0 / std::sqrt(masses[static_cast<std::size_t>(i)]);
-      const Eigen::MatrixXd a = inv_sqrt_m.asDiagonal() * k * inv_sqrt_m.asDiagonal();
-      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(a, Eigen::EigenvaluesOnly);
-      return std::sqrt(std::max(solver.eigenvalues().maxCoeff(), 0.0));
+      const std::vector<double> &m = model.masses();
+      return lumped::largest_omega(
+        Eigen::Map<const Eigen::VectorXd>(m.data(), static_cast<Eigen::Index>(m.size())),
+        k);
     }
   } // namespace
 
@@ -43,7 +42,7 @@ namespace kimp::lumped
     }
     StabilityLimit  s;
     Eigen::MatrixXd k = model.initial_stiffness_matrix();
-    s.omega_structure = largest_omega(model.masses(), k);
+    s.omega_structure = largest_omega(model, k);
     std::string impact_name;
     for (const ContactPair &c : model.contacts())
     {
@@ -64,8 +63,7 @@ namespace kimp::lumped
         k(c.right_dof, c.left_dof) -= kt;
       }
     }
-    s.omega_closed =
-      model.contacts().empty() ? s.omega_structure : largest_omega(model.masses(), k);
+    s.omega_closed     = model.contacts().empty() ? s.omega_structure : largest_omega(model, k);
     const double w_max = std::max({s.omega_structure, s.omega_closed, s.omega_impact});
     s.dt_critical      = 2.0 / w_max;
     std::ostringstream g;

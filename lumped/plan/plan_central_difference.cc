@@ -13,20 +13,13 @@
 #include <utility>
 
 #include "lumped/integrators/integration_errors.h"
+#include "lumped/integrators/largest_omega.h"
 #include "lumped/parameter_check.h"
 
 namespace kimp::lumped::plan
 {
   namespace
   {
-    double largest_omega(const Eigen::VectorXd &m, const Eigen::MatrixXd &k)
-    {
-      const Eigen::VectorXd inv_sqrt_m = m.cwiseSqrt().cwiseInverse();
-      const Eigen::MatrixXd a          = inv_sqrt_m.asDiagonal() * k * inv_sqrt_m.asDiagonal();
-      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(a, Eigen::EigenvaluesOnly);
-      return std::sqrt(std::max(solver.eigenvalues().maxCoeff(), 0.0));
-    }
-
     StabilityLimit plan_stability(const PlanModel &model, const double penetration)
     {
       if (!(penetration > 0.0))
