@@ -84,6 +84,12 @@ namespace kimp::python
         contacts.append(cd);
       }
       d["contacts"] = contacts;
+      d["damping"]  = py::dict(py::arg("model")                   = app::damping_name(run.damping),
+                              py::arg("damping_ratio")           = run.damping_ratio,
+                              py::arg("isolation_damping_ratio") = run.isolation_damping_ratio);
+      // As summary.json has them (the same JSON, so the same keys and values).
+      d["yielding_walls"] =
+        py::module_::import("json").attr("loads")(app::yielding_walls_json(r).dump());
       py::dict p;
       p["base_corner_displacement"] = r.peak_corner_displacement.front();
       p["corner_impact_force"]      = corner_force;
@@ -122,6 +128,9 @@ namespace kimp::python
                              py::arg("contact_work")       = e.contact_work,
                              py::arg("impact_dissipated")  = e.impact_dissipated,
                              py::arg("friction")           = e.friction,
+                             py::arg("wall_work")          = e.wall_work,
+                             py::arg("wall_plastic")       = e.wall_plastic,
+                             py::arg("wall_radiated")      = e.wall_radiated,
                              py::arg("relative_error")     = e.relative_error,
                              py::arg("max_relative_error") = e.max_relative_error);
       return d;

@@ -34,11 +34,6 @@ namespace kimp::app
       std::string              comment;
     };
 
-    std::string number(double value)
-    {
-      return fmt::format("{:.10g}", value);
-    }
-
     /// n of the Hertz materials (JankowskiImpact, Hertzdamp, ImpactMaterial): the Jankowski law's.
     double hertz_exponent()
     {
@@ -54,18 +49,18 @@ namespace kimp::app
     std::vector<Material> materials(const OpenSeesLawInput &in, const OpenSeesParameters &p)
     {
       std::vector<Material> out;
-      const std::string     gap = number(-in.gap);
+      const std::string     gap = opensees_number(-in.gap);
       if (in.k_kelvin_voigt)
       {
         const double k = *in.k_kelvin_voigt;
         out.push_back({"ViscoelasticGap",
-                       {number(k), number(p.kv_c), gap},
+                       {opensees_number(k), opensees_number(p.kv_c), gap},
                        fmt::format("Kelvin-Voigt: K = k_KV, C = 2 xi sqrt(K m_eff), xi = -ln(e)/"
                                    "sqrt(pi^2 + ln^2 e) = {:.6g}",
                                    p.kv_xi)});
         out.push_back(
           {"ElasticPPGap",
-           {number(k), number(-p.pp_yield_force), gap, "0.0"},
+           {opensees_number(k), opensees_number(-p.pp_yield_force), gap, "0.0"},
            fmt::format("Kelvin-Voigt spring without dashpot: E = k_KV, Fy = k_KV x 10 "
                        "x {:.4g} m (10 x the undamped peak indentation v sqrt(m_eff/k): "
                        "stays elastic), eta = 0",
@@ -75,29 +70,33 @@ namespace kimp::app
       {
         const double k = *in.k_hertz;
         out.push_back({"JankowskiImpact",
-                       {number(k),
-                        number(p.jankowski_xi),
-                        number(in.effective_mass),
+                       {opensees_number(k),
+                        opensees_number(p.jankowski_xi),
+                        opensees_number(in.effective_mass),
                         gap,
-                        number(hertz_exponent())},
+                        opensees_number(hertz_exponent())},
                        "Jankowski: Kh = k_J, xi = (9 sqrt(5)/2)(1 - e^2)/(e (e (9 pi - 16) + 16)), "
                        "Meff, n = 1.5"});
         out.push_back({"Hertzdamp",
-                       {number(k), number(p.hertzdamp_xi_norm), gap, number(hertz_exponent())},
+                       {opensees_number(k),
+                        opensees_number(p.hertzdamp_xi_norm),
+                        gap,
+                        opensees_number(hertz_exponent())},
                        fmt::format("Hertzdamp: Kh = k_J, xiNorm = 3 (1 - e^2)/4 (kimp's hertzdamp "
                                    "law; Ye et al.'s 8 (1 - e)/(5 e) = {:.6g})",
                                    p.hertzdamp_xi_norm_ye)});
-        out.push_back({"ImpactMaterial",
-                       {number(p.k1), number(p.k2), number(-p.delta_y), gap},
-                       fmt::format("Muthukumar: delta_m = (5 m_eff v^2/(4 k_J))^(2/5) = {:.6g} m, "
-                                   "K_eff = k_J sqrt(delta_m) = {:.6g} N/m, dE = k_J delta_m^2.5 "
-                                   "(1 - e^2)/2.5 = {:.6g} J, delta_y = a delta_m (a = {:.3g}), "
-                                   "K1 = K_eff + dE/(a delta_m^2), K2 = K_eff - dE/((1 - a) "
-                                   "delta_m^2)",
-                                   p.delta_m,
-                                   p.k_eff,
-                                   p.energy,
-                                   in.yield_ratio)});
+        out.push_back(
+          {"ImpactMaterial",
+           {opensees_number(p.k1), opensees_number(p.k2), opensees_number(-p.delta_y), gap},
+           fmt::format("Muthukumar: delta_m = (5 m_eff v^2/(4 k_J))^(2/5) = {:.6g} m, "
+                       "K_eff = k_J sqrt(delta_m) = {:.6g} N/m, dE = k_J delta_m^2.5 "
+                       "(1 - e^2)/2.5 = {:.6g} J, delta_y = a delta_m (a = {:.3g}), "
+                       "K1 = K_eff + dE/(a delta_m^2), K2 = K_eff - dE/((1 - a) "
+                       "delta_m^2)",
+                       p.delta_m,
+                       p.k_eff,
+                       p.energy,
+                       in.yield_ratio)});
       }
       return out;
     }
@@ -118,24 +117,26 @@ namespace kimp::app
       const std::string k_source = in.source.empty() ? std::string("given explicitly") : in.source;
       if (in.k_kelvin_voigt)
         line(fmt::format("  k_KV = {} N/m (= {:.6g} kN/mm): {}",
-                         number(*in.k_kelvin_voigt),
+                         opensees_number(*in.k_kelvin_voigt),
                          *in.k_kelvin_voigt * 1e-6,
                          k_source));
       if (in.k_hertz)
         line(fmt::format("  k_J = {} N/m^1.5 (= {:.6g} kN/mm^1.5): {}",
-                         number(*in.k_hertz),
+                         opensees_number(*in.k_hertz),
                          *in.k_hertz * 1e-3 * std::pow(1e-3, 1.5),
                          k_source));
-      line(fmt::format("  e = {} (coefficient of restitution): {}", number(in.cor), in.cor_source));
+      line(fmt::format("  e = {} (coefficient of restitution): {}",
+                       opensees_number(in.cor),
+                       in.cor_source));
       line(fmt::format("  m_eff = {} kg (m1 m2/(m1 + m2) of the contact): {}",
-                       number(in.effective_mass),
+                       opensees_number(in.effective_mass),
                        in.effective_mass_source));
       line(fmt::format("  v_imp = {} m/s (impact velocity, for ImpactMaterial's delta_m): {}",
-                       number(in.impact_velocity),
+                       opensees_number(in.impact_velocity),
                        in.impact_velocity_source));
-      line(fmt::format("  gap = {} m: {}", number(in.gap), in.gap_source));
+      line(fmt::format("  gap = {} m: {}", opensees_number(in.gap), in.gap_source));
       line(fmt::format("  a = {} (ImpactMaterial delta_y/delta_m, Muthukumar)",
-                       number(in.yield_ratio)));
+                       opensees_number(in.yield_ratio)));
       line("");
       return h;
     }

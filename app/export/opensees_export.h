@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "app/laws/cor_key.h"
 #include "io/scene_io.h"
 #include "lumped/laws/law_traits.h"
 
@@ -105,12 +106,10 @@ namespace kimp::app
                 "kN/mm^1.5",
                 "Jankowski/Hertz k (n = 1.5) for the whole contact (wins over the k source)",
                 io::Range::positive());
-    io.quantity("cor",
-                s.cor,
-                "",
-                "coefficient of restitution e (default: the COR the source's k was fitted at, "
-                "else the thesis' COR)",
-                io::Range::greater(0.0).and_at_most(1.0));
+    visit_cor(io,
+              s.cor,
+              "coefficient of restitution e (default: the COR the source's k was fitted at, "
+              "else the thesis' COR)");
     io.quantity("effective_mass",
                 s.effective_mass,
                 "t",

@@ -11,13 +11,13 @@
 
 namespace kimp::app
 {
+  std::string opensees_number(const double value)
+  {
+    return fmt::format("{:.10g}", value);
+  }
+
   namespace
   {
-    std::string number(const double value)
-    {
-      return fmt::format("{:.10g}", value);
-    }
-
     /// One command in either language: `name` with its arguments (numbers, words or variables).
     struct Command
     {
@@ -96,52 +96,49 @@ namespace kimp::app
                                         "node {}; the contact part acts across a gap of {} m",
                                         w.name,
                                         wall_node,
-                                        number(w.mass),
+                                        opensees_number(w.mass),
                                         ground_node,
-                                        number(w.gap)));
+                                        opensees_number(w.gap)));
       out +=
-        render({"node", {std::to_string(wall_node), "0.0", word("-mass"), number(w.mass)}}, python);
+        render({"node", {std::to_string(wall_node), "0.0", word("-mass"), opensees_number(w.mass)}},
+               python);
       out += render({"node", {std::to_string(ground_node), "0.0"}}, python);
       out += render({"fix", {std::to_string(ground_node), "1"}}, python);
-      if (p.envelope == lumped::WallEnvelope::bilinear)
-      {
-        out += comment("wall and backfill: ElasticPPGap E = stiffness, Fy = -capacity, gap 0, "
+      // The wall-and-backfill gap material: its tag and E, then the envelope's parameters.
+      const bool bilinear = p.envelope == lumped::WallEnvelope::bilinear;
+      out += comment(bilinear ?
+                       "wall and backfill: ElasticPPGap E = stiffness, Fy = -capacity, gap 0, "
                        "eta = hardening_ratio, damage (the set is kept); kimp unloads at "
-                       "unloading_stiffness, OpenSees at E");
-        out += render({"uniaxialMaterial",
-                       {word("ElasticPPGap"),
-                        std::to_string(spring),
-                        number(p.stiffness),
-                        number(-p.capacity),
-                        "0.0",
-                        number(p.hardening_ratio),
-                        word("damage")}},
-                      python);
-      }
-      else
-      {
-        out += comment("wall and backfill: HyperbolicGapMaterial Kmax = stiffness, Kur = "
+                       "unloading_stiffness, OpenSees at E" :
+                       "wall and backfill: HyperbolicGapMaterial Kmax = stiffness, Kur = "
                        "unloading_stiffness, Rf = failure_ratio, Fult = -capacity, gap 0 (OpenSees "
                        "warns that a gap of 0 is not negative and keeps it)");
-        out += render({"uniaxialMaterial",
-                       {word("HyperbolicGapMaterial"),
-                        std::to_string(spring),
-                        number(p.stiffness),
-                        number(p.unloading_stiffness),
-                        number(p.failure_ratio),
-                        number(-p.capacity),
-                        "0.0"}},
-                      python);
-      }
+      std::vector<std::string> backfill = {word(bilinear ? "ElasticPPGap" :
+                                                           "HyperbolicGapMaterial"),
+                                           std::to_string(spring),
+                                           opensees_number(p.stiffness)};
+      if (bilinear)
+        backfill.insert(backfill.end(),
+                        {opensees_number(-p.capacity),
+                         "0.0",
+                         opensees_number(p.hardening_ratio),
+                         word("damage")});
+      else
+        backfill.insert(backfill.end(),
+                        {opensees_number(p.unloading_stiffness),
+                         opensees_number(p.failure_ratio),
+                         opensees_number(-p.capacity),
+                         "0.0"});
+      out += render({"uniaxialMaterial", backfill}, python);
       if (p.tension_capacity > 0.0)
         out += comment(fmt::format("tension_capacity = {} N (the wall's pull-back) has no "
                                    "counterpart: the gap materials carry compression only",
-                                   number(p.tension_capacity)));
+                                   opensees_number(p.tension_capacity)));
       out += comment("radiation dashpot: Viscous C = radiation_damping, alpha = 1, in parallel");
-      out +=
-        render({"uniaxialMaterial",
-                {word("Viscous"), std::to_string(dashpot), number(p.radiation_damping), "1.0"}},
-               python);
+      out += render(
+        {"uniaxialMaterial",
+         {word("Viscous"), std::to_string(dashpot), opensees_number(p.radiation_damping), "1.0"}},
+        python);
       out += render(
         {"uniaxialMaterial",
          {word("Parallel"), std::to_string(part), std::to_string(spring), std::to_string(dashpot)}},
@@ -152,27 +149,23 @@ namespace kimp::app
       const std::string wn = std::to_string(wall_node), gn = std::to_string(ground_node);
       out += comment(fmt::format("wall part (wall - ground), then the contact part in series "
                                  "(building - wall); failure_displacement = {} m is kimp's check",
-                                 number(p.failure_displacement)));
-      out += render({"element",
-                     {word("zeroLength"),
-                      std::to_string(element++),
-                      w.right ? wn : gn,
-                      w.right ? gn : wn,
-                      word("-mat"),
-                      std::to_string(part),
-                      word("-dir"),
-                      "1"}},
-                    python);
-      out += render({"element",
-                     {word("zeroLength"),
-                      std::to_string(element++),
-                      w.right ? building : wn,
-                      w.right ? wn : building,
-                      word("-mat"),
-                      "kimpImpactMaterial",
-                      word("-dir"),
-                      "1"}},
-                    python);
+                                 opensees_number(p.failure_displacement)));
+      // A zeroLength element in x of `material` from node `i` to node `j` (swapped on the right).
+      const auto zero_length = [&](const std::string &i, const std::string &j, std::string material)
+      {
+        return render({"element",
+                       {word("zeroLength"),
+                        std::to_string(element++),
+                        w.right ? i : j,
+                        w.right ? j : i,
+                        word("-mat"),
+                        std::move(material),
+                        word("-dir"),
+                        "1"}},
+                      python);
+      };
+      out += zero_length(wn, gn, std::to_string(part));
+      out += zero_length(building, wn, "kimpImpactMaterial");
     }
     return out;
   }

@@ -25,6 +25,9 @@ namespace kimp::app
     lumped::WallBackfillParams part;
   };
 
+  /// A number of the OpenSees files (Tcl and Python): 10 significant figures.
+  std::string opensees_number(double value);
+
   /// The yielding walls of `scene` (left first; none: empty).
   std::vector<OpenSeesWall> opensees_walls(const LumpedScene &scene);
 

@@ -110,6 +110,12 @@ namespace kimp::fem
 
 namespace kimp::app
 {
+  /// The heights of a moat wall kimp accepts (a height outside is refused as implausible), m.
+  inline io::Range moat_wall_height_range()
+  {
+    return io::Range::plausible(0.1, 20.0, "a moat wall");
+  }
+
   /** Field output of `kimp fem` (the study records neither). */
   struct FemOutput
   {
@@ -180,7 +186,7 @@ namespace kimp::app
     std::vector<double>   unload_at;        ///< m: push to each, unload to zero force, go on
     double                increment = 1e-3; ///< largest band displacement step, m
     double                cover     = 0.05; ///< bar centre to the wall face, m
-    std::optional<double> hinge_length;     ///< L_p, m; default half the wall thickness
+    std::optional<double> hinge_length;     ///< L_p, m; default none (per-cell hardening)
   };
 
   template <class Io>
@@ -212,7 +218,8 @@ namespace kimp::app
                 s.hinge_length,
                 "m",
                 "plastic hinge length L_p over which a yielding bar's hardening is spread "
-                "(null: half the wall thickness)",
+                "(null: none, each cell hardens by its own strain, which converges where the "
+                "moment gradient spreads the yielding over several rows)",
                 io::Range::positive());
   }
 
@@ -402,7 +409,7 @@ namespace kimp::app
                      s.wall_heights,
                      "m",
                      "moat wall heights H, one impact case each, named H<height in m>",
-                     io::Range::plausible(0.1, 20.0, "a moat wall"));
+                     moat_wall_height_range());
     io.section("geometry", s.geometry, "scene dimensions (docs/physics.md §4)");
     io.section("mesh", s, "bilinear quadrilateral mesh", visit_fem_mesh);
     io.section("materials", s.materials, "materials (linear elastic unless a model is chosen)");

@@ -65,7 +65,7 @@ namespace kimp::app
       p.wall              = fem::PushoverParameters::Wall::reinforced;
       p.concrete          = concrete_parameters(c);
       p.bars              = c.wall_reinforcement;
-      p.bars.hinge_length = scene.pushover.hinge_length.value_or(0.5 * g.wall_thickness);
+      p.bars.hinge_length = scene.pushover.hinge_length.value_or(0.0);
       p.cover             = scene.pushover.cover;
     }
     else

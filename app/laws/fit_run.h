@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "app/laws/cor_key.h"
 #include "fit/fit_config.h"
 #include "fit/fitter.h"
 #include "io/fem_results.h"
@@ -17,11 +18,7 @@ namespace kimp::fit
   template <class Io>
   void visit(Io &io, FitConfig &s)
   {
-    io.quantity("cor",
-                s.cor,
-                "",
-                "COR of the fixed-COR Kelvin-Voigt and Jankowski fits",
-                io::Range::greater(0.0).and_at_most(1.0));
+    app::visit_cor(io, s.cor, "COR of the fixed-COR Kelvin-Voigt and Jankowski fits");
     io.quantity("width",
                 s.width,
                 "m",

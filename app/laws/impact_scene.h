@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "app/laws/cor_key.h"
 #include "io/scene_io.h"
 #include "lumped/laws/force_law_factory.h"
 
@@ -47,11 +48,7 @@ namespace kimp::app
                 "",
                 "n for hertzdamp/hysteretic (1.5) and bumper (2.65); fixed for the others",
                 io::Range::at_least(1.0));
-    io.quantity("cor",
-                s.cor,
-                "",
-                "nominal coefficient of restitution",
-                io::Range::greater(0.0).and_at_most(1.0));
+    visit_cor(io, s.cor, "nominal coefficient of restitution");
     io.flag("hertzdamp_ye", s.hertzdamp_ye, "hertzdamp: Ye et al. (2009) damping instead");
     io.quantity("a1",
                 s.a1,

@@ -6,40 +6,14 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
+
+#include "app/csv_reader.h"
 
 namespace kimp::app
 {
   namespace
   {
-    /// One CSV record (quoted fields with "" escapes; no newlines inside fields in k tables).
-    std::vector<std::string> split_csv(const std::string &line)
-    {
-      std::vector<std::string> fields(1);
-      bool                     quoted = false;
-      for (std::size_t i = 0; i < line.size(); ++i)
-      {
-        const char c = line[i];
-        if (quoted)
-        {
-          if (c == '"' && i + 1 < line.size() && line[i + 1] == '"')
-            fields.back() += '"', ++i;
-          else if (c == '"')
-            quoted = false;
-          else
-            fields.back() += c;
-        }
-        else if (c == '"')
-          quoted = true;
-        else if (c == ',')
-          fields.emplace_back();
-        else if (c != '\r')
-          fields.back() += c;
-      }
-      return fields;
-    }
-
     double to_number(const std::string &text)
     {
       if (text.empty())
@@ -126,7 +100,7 @@ namespace kimp::app
         throw std::invalid_argument(fmt::format("{}: {}", file.string(), unreadable));
       std::string line;
       std::getline(in, line);
-      return split_csv(line);
+      return split_csv_record(line);
     }
 
     /// The index of column `name` of `file`'s `header`.
@@ -142,35 +116,6 @@ namespace kimp::app
         throw std::invalid_argument(
           fmt::format("{}: no column '{}' ({})", file.string(), name, not_a));
       return i;
-    }
-
-    /**
-     * Calls `each(fields, line)` for every non-empty data row of a CSV file read past its header
-     * `header` (`line`: its line number); a row with another number of fields is an error naming
-     * the file and the line.
-     */
-    template <typename Each>
-    void for_each_row(std::istream                   &in,
-                      const std::vector<std::string> &header,
-                      const std::filesystem::path    &file,
-                      const Each                     &each)
-    {
-      std::string line;
-      int         number = 1;
-      while (std::getline(in, line))
-      {
-        ++number;
-        if (line.empty())
-          continue;
-        const std::vector<std::string> f = split_csv(line);
-        if (f.size() != header.size())
-          throw std::invalid_argument(fmt::format("{}:{}: {} fields for {} columns",
-                                                  file.string(),
-                                                  number,
-                                                  f.size(),
-                                                  header.size()));
-        each(f, number);
-      }
     }
 
     /// Sort by height, then velocity (the order the interpolation needs).
@@ -210,9 +155,9 @@ namespace kimp::app
       const std::size_t        velocity = find_column(header, "impact_velocity_m_per_s");
       std::vector<std::string> cases; // in file order
       std::vector<KTableRow>   rows;
-      for_each_row(
+      for_each_csv_row(
         in,
-        header,
+        header.size(),
         table.file,
         [&](const std::vector<std::string> &f, int)
         {
@@ -309,24 +254,24 @@ namespace kimp::app
     // Optional columns: tables written before the velocity axis have one velocity (or none).
     const std::size_t velocity  = find_column(header, "impact_velocity_m_per_s");
     const std::size_t reference = find_column(header, "reference_velocity");
-    for_each_row(in,
-                 header,
-                 table.file,
-                 [&](const std::vector<std::string> &f, int)
-                 {
-                   KTableRow row;
-                   row.wall_height = to_number(f[height]);
-                   // kN/mm^n -> N/m^n: × 1e3 · 1e3^n.
-                   row.kelvin_voigt_total = to_number(f[kv]) * 1e6;
-                   row.jankowski_total    = to_number(f[jk]) * 1e3 * std::pow(1e3, 1.5);
-                   if (velocity < f.size())
-                     row.impact_velocity = to_number(f[velocity]);
-                   if (reference < f.size())
-                     row.reference = f[reference] == "yes";
-                   if (std::isfinite(row.wall_height) && row.kelvin_voigt_total > 0.0 &&
-                       row.jankowski_total > 0.0)
-                     table.rows.push_back(row);
-                 });
+    for_each_csv_row(in,
+                     header.size(),
+                     table.file,
+                     [&](const std::vector<std::string> &f, int)
+                     {
+                       KTableRow row;
+                       row.wall_height = to_number(f[height]);
+                       // kN/mm^n -> N/m^n: × 1e3 · 1e3^n.
+                       row.kelvin_voigt_total = to_number(f[kv]) * 1e6;
+                       row.jankowski_total    = to_number(f[jk]) * 1e3 * std::pow(1e3, 1.5);
+                       if (velocity < f.size())
+                         row.impact_velocity = to_number(f[velocity]);
+                       if (reference < f.size())
+                         row.reference = f[reference] == "yes";
+                       if (std::isfinite(row.wall_height) && row.kelvin_voigt_total > 0.0 &&
+                           row.jankowski_total > 0.0)
+                         table.rows.push_back(row);
+                     });
     if (table.rows.empty())
       throw std::invalid_argument(
         fmt::format("{}: no row with a wall height and both k (every fit failed?)",
@@ -359,40 +304,40 @@ namespace kimp::app
       if (std::find(list.begin(), list.end(), text) == list.end())
         list.push_back(text);
     };
-    for_each_row(in,
-                 header,
-                 k.file,
-                 [&](const std::vector<std::string> &f, int number)
-                 {
-                   add(records, f[c_record]);
-                   if (f[c_record] != record)
-                     return;
-                   add(heights, f[c_height]);
-                   const double h = to_number(f[c_height]);
-                   if (!(std::abs(h - wall_height) <= 1e-9 * std::max(1.0, wall_height)))
-                     return;
-                   const bool kv = f[c_law] == "modified_kelvin_voigt";
-                   if (!kv && f[c_law] != "jankowski")
-                     return;
-                   if (f[c_converged] != "yes" || f[c_status] != "ok")
-                     throw std::invalid_argument(
-                       fmt::format("{}:{}: the consistent k of record '{}' at {} m "
-                                   "({}) did not converge (status: {}): no k to "
-                                   "export",
-                                   k.file.string(),
-                                   number,
-                                   record,
-                                   wall_height,
-                                   f[c_law],
-                                   f[c_status]));
-                   // kN/mm^n -> N/m^n: × 1e3 · 1e3^n.
-                   if (kv)
-                     k.kelvin_voigt_total = to_number(f[c_k]) * 1e6;
-                   else
-                     k.jankowski_total = to_number(f[c_k]) * 1e3 * std::pow(1e3, 1.5);
-                   if (!kv || std::isnan(k.impact_velocity))
-                     k.impact_velocity = to_number(f[c_velocity]);
-                 });
+    for_each_csv_row(in,
+                     header.size(),
+                     k.file,
+                     [&](const std::vector<std::string> &f, int number)
+                     {
+                       add(records, f[c_record]);
+                       if (f[c_record] != record)
+                         return;
+                       add(heights, f[c_height]);
+                       const double h = to_number(f[c_height]);
+                       if (!(std::abs(h - wall_height) <= 1e-9 * std::max(1.0, wall_height)))
+                         return;
+                       const bool kv = f[c_law] == "modified_kelvin_voigt";
+                       if (!kv && f[c_law] != "jankowski")
+                         return;
+                       if (f[c_converged] != "yes" || f[c_status] != "ok")
+                         throw std::invalid_argument(
+                           fmt::format("{}:{}: the consistent k of record '{}' at {} m "
+                                       "({}) did not converge (status: {}): no k to "
+                                       "export",
+                                       k.file.string(),
+                                       number,
+                                       record,
+                                       wall_height,
+                                       f[c_law],
+                                       f[c_status]));
+                       // kN/mm^n -> N/m^n: × 1e3 · 1e3^n.
+                       if (kv)
+                         k.kelvin_voigt_total = to_number(f[c_k]) * 1e6;
+                       else
+                         k.jankowski_total = to_number(f[c_k]) * 1e3 * std::pow(1e3, 1.5);
+                       if (!kv || std::isnan(k.impact_velocity))
+                         k.impact_velocity = to_number(f[c_velocity]);
+                     });
     const auto joined = [](const std::vector<std::string> &list)
     {
       std::string text;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "app/laws/cor_key.h"
 #include "app/lumped/lumped_scene.h"
 #include "io/scene_io.h"
 #include "io/summary.h"
@@ -46,11 +47,7 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, CalibrationScene &s)
   {
-    io.quantity_list("cor_grid",
-                     s.cor_grid,
-                     "",
-                     "nominal COR values (at least 2)",
-                     io::Range::greater(0.0).and_at_most(1.0));
+    io.quantity_list("cor_grid", s.cor_grid, "", "nominal COR values (at least 2)", cor_range());
     io.quantity_list("velocity_grid",
                      s.velocity_grid,
                      "m/s",
@@ -116,11 +113,7 @@ namespace kimp::app
               {{"backward", lumped::VelocityEstimate::backward_difference},
                {"second_order", lumped::VelocityEstimate::second_order}},
               "rate given to the law: (d_n - d_n-1)/dt (thesis) or second order");
-    io.quantity_list("cor_grid",
-                     s.cor_grid,
-                     "",
-                     "nominal COR values of the table",
-                     io::Range::greater(0.0).and_at_most(1.0));
+    io.quantity_list("cor_grid", s.cor_grid, "", "nominal COR values of the table", cor_range());
     io.list("laws", s.laws, "laws of the table (their cor is replaced by the grid)");
     io.section("calibration", s.calibration, "C_imp calibration (--calibrate)");
   }

@@ -159,25 +159,20 @@ namespace kimp::app
                            "m");
     }
 
-    /// `walls/<wall>`: a yielding wall's peaks, capacity, residual and failure (its part's
-    /// contact result `part`).
-    void write_yielding_wall(ResultsGroup                &g,
-                             const YieldingWallLimits    &w,
-                             const lumped::ContactResult &part)
+    /// A yielding wall's peaks, capacity, residual and failure (its part's contact result
+    /// `part`).
+    lumped_internal::YieldingWallRecord yielding_record(const YieldingWallLimits    &w,
+                                                        const lumped::ContactResult &part)
     {
-      ResultsGroup wg = g.group("walls/" + w.wall);
-      wg.write_scalar("peak_force", part.peak_force, "N");
-      wg.write_scalar("capacity", w.capacity, "N");
-      wg.write_scalar("peak_resistance", part.peak_resistance, "N");
-      wg.write_scalar("peak_resistance_ratio", part.peak_resistance / w.capacity, "1");
-      wg.write_scalar("peak_displacement", part.peak_deformation, "m");
-      wg.write_scalar("residual_displacement", part.permanent_indentation, "m");
-      wg.write_scalar("failure_displacement", w.failure_displacement, "m");
-      wg.set_attribute("failed", static_cast<std::int64_t>(part.failure_time ? 1 : 0));
-      if (part.failure_time)
-        wg.write_scalar("failure_time", *part.failure_time, "s");
-      wg.write_scalar("plastic_work", part.plastic_work, "J");
-      wg.write_scalar("radiated_work", part.radiated_work, "J");
+      return {part.peak_force,
+              w.capacity,
+              part.peak_resistance,
+              part.peak_deformation,
+              part.permanent_indentation,
+              w.failure_displacement,
+              part.failure_time,
+              part.plastic_work,
+              part.radiated_work};
     }
 
     /// `energy`: the energy balance's terms (the walls' works with yielding walls).
@@ -240,7 +235,10 @@ namespace kimp::app
       for (const lumped::ContactResult &contact : r.contacts)
         write_contact(g, contact, r.dt);
       for (const YieldingWallLimits &w : c.yielding_walls)
-        write_yielding_wall(g, w, r.contacts[w.contact]);
+      {
+        ResultsGroup wg = g.group("walls/" + w.wall);
+        lumped_internal::write_yielding_wall(wg, yielding_record(w, r.contacts[w.contact]));
+      }
       write_energy(g, c);
       if (c.companion)
       {
@@ -319,20 +317,9 @@ namespace kimp::app
         j["walls"]                   = nlohmann::json::array();
         for (const YieldingWallLimits &w : c.yielding_walls)
         {
-          const lumped::ContactResult &part = r.contacts[w.contact];
-          nlohmann::json               wj   = {{"name", w.wall},
-                                               {"peak_force", part.peak_force},
-                                               {"capacity", w.capacity},
-                                               {"peak_resistance", part.peak_resistance},
-                                               {"peak_resistance_ratio", part.peak_resistance / w.capacity},
-                                               {"peak_displacement", part.peak_deformation},
-                                               {"residual_displacement", part.permanent_indentation},
-                                               {"failure_displacement", w.failure_displacement},
-                                               {"failed", part.failure_time.has_value()},
-                                               {"plastic_work", part.plastic_work},
-                                               {"radiated_work", part.radiated_work}};
-          if (part.failure_time)
-            wj["failure_time"] = *part.failure_time;
+          nlohmann::json wj =
+            lumped_internal::yielding_wall_json(yielding_record(w, r.contacts[w.contact]));
+          wj["name"] = w.wall;
           j["walls"].push_back(wj);
         }
       }
@@ -352,6 +339,39 @@ namespace kimp::app
 
   namespace lumped_internal
   {
+    void write_yielding_wall(ResultsGroup &g, const YieldingWallRecord &w)
+    {
+      g.write_scalar("peak_force", w.peak_force, "N");
+      g.write_scalar("capacity", w.capacity, "N");
+      g.write_scalar("peak_resistance", w.peak_resistance, "N");
+      g.write_scalar("peak_resistance_ratio", w.peak_resistance / w.capacity, "1");
+      g.write_scalar("peak_displacement", w.peak_displacement, "m");
+      g.write_scalar("residual_displacement", w.residual_displacement, "m");
+      g.write_scalar("failure_displacement", w.failure_displacement, "m");
+      g.set_attribute("failed", static_cast<std::int64_t>(w.failure_time ? 1 : 0));
+      if (w.failure_time)
+        g.write_scalar("failure_time", *w.failure_time, "s");
+      g.write_scalar("plastic_work", w.plastic_work, "J");
+      g.write_scalar("radiated_work", w.radiated_work, "J");
+    }
+
+    nlohmann::json yielding_wall_json(const YieldingWallRecord &w)
+    {
+      nlohmann::json j = {{"peak_force", w.peak_force},
+                          {"capacity", w.capacity},
+                          {"peak_resistance", w.peak_resistance},
+                          {"peak_resistance_ratio", w.peak_resistance / w.capacity},
+                          {"peak_displacement", w.peak_displacement},
+                          {"residual_displacement", w.residual_displacement},
+                          {"failure_displacement", w.failure_displacement},
+                          {"failed", w.failure_time.has_value()},
+                          {"plastic_work", w.plastic_work},
+                          {"radiated_work", w.radiated_work}};
+      if (w.failure_time)
+        j["failure_time"] = *w.failure_time;
+      return j;
+    }
+
     std::optional<nlohmann::json> k_from_table(const ImpactScene &impact)
     {
       if (impact.k_table.empty() || impact.k_si || impact.law == "bumper" || !impact.wall_height)

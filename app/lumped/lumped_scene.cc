@@ -387,6 +387,30 @@ namespace kimp::app
     return out;
   }
 
+  lumped::BoucWenParameters
+  bouc_wen_parameters(const IsolatorScene &isolator, const double Q, const double n)
+  {
+    const double alpha = isolator.K2 / isolator.K1;
+    return {isolator.K1 / n,
+            alpha,
+            Q / n / (1.0 - alpha),
+            isolator.bw_A,
+            isolator.bw_beta,
+            isolator.bw_gamma,
+            isolator.bw_n};
+  }
+
+  lumped::FrictionPendulumParameters
+  friction_pendulum_parameters(const IsolatorScene &isolator, const double weight, const double n)
+  {
+    return {isolator.weight.value_or(weight) / n,
+            isolator.radius,
+            isolator.mu_slow,
+            isolator.mu_fast,
+            isolator.rate,
+            isolator.k_init / n};
+  }
+
   lumped::ShearBuilding make_building(const LumpedScene &scene)
   {
     const BuildingScene  &b = scene.building;
@@ -414,26 +438,13 @@ namespace kimp::app
           building.isolator = std::make_shared<lumped::LinearIsolator>(iso.k);
           break;
         case IsolatorKind::friction_pendulum:
-          building.isolator =
-            std::make_shared<lumped::FrictionPendulumIsolator>(iso.weight.value_or(weight),
-                                                               iso.radius,
-                                                               iso.mu_slow,
-                                                               iso.mu_fast,
-                                                               iso.rate,
-                                                               iso.k_init);
+          building.isolator = std::make_shared<lumped::FrictionPendulumIsolator>(
+            friction_pendulum_parameters(iso, weight));
           break;
         case IsolatorKind::bouc_wen:
-        {
-          const double alpha = iso.K2 / iso.K1;
-          building.isolator  = std::make_shared<lumped::BoucWenIsolator>(iso.K1,
-                                                                        alpha,
-                                                                        Q / (1.0 - alpha),
-                                                                        iso.bw_A,
-                                                                        iso.bw_beta,
-                                                                        iso.bw_gamma,
-                                                                        iso.bw_n);
+          building.isolator =
+            std::make_shared<lumped::BoucWenIsolator>(bouc_wen_parameters(iso, Q));
           break;
-        }
       }
     }
     else

@@ -8,11 +8,14 @@
 #include <utility>
 #include <vector>
 
+#include "app/laws/cor_key.h"
 #include "app/laws/impact_scene.h"
 #include "app/laws/yielding_wall_scene.h"
 #include "app/lumped/ground_motion_scene.h"
 #include "io/scene_io.h"
 #include "lumped/integrators/central_difference.h"
+#include "lumped/isolators/bouc_wen_isolator.h"
+#include "lumped/isolators/friction_pendulum_isolator.h"
 #include "lumped/structure/pounding_model.h"
 #include "lumped/structure/shear_building.h"
 
@@ -445,11 +448,7 @@ namespace kimp::app
                 "",
                 "impact exponent n (null = the law's default)",
                 io::Range::at_least(1.0));
-    io.quantity("cor",
-                s.cor,
-                "",
-                "coefficient of restitution (null = impact.cor)",
-                io::Range::greater(0.0).and_at_most(1.0));
+    visit_cor(io, s.cor, "coefficient of restitution (null = impact.cor)");
     io.quantity("gap",
                 s.gap,
                 "cm",
@@ -513,6 +512,17 @@ namespace kimp::app
 
   /// The main building as a lumped::ShearBuilding (isolator included when isolated).
   lumped::ShearBuilding make_building(const LumpedScene &scene);
+
+  /// The Bouc-Wen parameters of `isolator` shared equally by n devices (planar: one; in plan:
+  /// every isolator position): K1/n, α = K2/K1 and F_y = Q/n/(1 − α), Q the isolation system's
+  /// characteristic strength, N.
+  lumped::BoucWenParameters
+  bouc_wen_parameters(const IsolatorScene &isolator, double Q, double n = 1.0);
+
+  /// The friction pendulum parameters of `isolator` shared equally by n devices: the weight
+  /// (isolator.weight, else `weight`, N)/n, R, μ_slow, μ_fast, a and k_init/n.
+  lumped::FrictionPendulumParameters
+  friction_pendulum_parameters(const IsolatorScene &isolator, double weight, double n = 1.0);
 
   /// The complete configuration: building, walls (isolated only), neighbours, laws.
   lumped::PoundingScene make_pounding_scene(const LumpedScene &scene);

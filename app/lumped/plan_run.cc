@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/lumped/lumped_run_internal.h"
+#include "base/format.h"
 #include "base/logging.h"
 #include "base/version.h"
 #include "io/results_file.h"
@@ -34,22 +35,44 @@ namespace kimp::app
       return fmt::format("{}", value);
     }
 
-    /// The yielding wall faces: peaks, permanent set, work and failure (time, or null).
-    nlohmann::json yielding_json(const plan::PlanResponse &r)
+    /// A yielding wall face as the planar walls' record: the face's peak contact force and the
+    /// wall-and-backfill part's capacity, peak resistance, displacements, failure and work.
+    lumped_internal::YieldingWallRecord yielding_record(const plan::PlanResponse           &r,
+                                                        const plan::PlanYieldingWallResult &y)
     {
-      nlohmann::json out = nlohmann::json::array();
-      for (const plan::PlanYieldingWallResult &y : r.yielding_walls)
-        out.push_back(
-          {{"face", y.segment},
-           {"peak_resistance", y.peak_resistance},
-           {"peak_displacement", y.peak_displacement},
-           {"permanent_set", y.permanent_set},
-           {"final_displacement", y.final_displacement},
-           {"plastic_work", y.plastic_work},
-           {"radiated_work", y.radiated_work},
-           {"failed", y.failure_time.has_value()},
-           {"failure_time", y.failure_time ? nlohmann::json(*y.failure_time) : nlohmann::json()}});
-      return out;
+      return {r.peak_wall_force[y.segment],
+              y.capacity,
+              y.peak_resistance,
+              y.peak_displacement,
+              y.permanent_set,
+              y.failure_displacement,
+              y.failure_time,
+              y.plastic_work,
+              y.radiated_work};
+    }
+
+    /// The units of yielding_walls_json()'s quantities (summary.json `units.yielding_walls`).
+    nlohmann::json yielding_units()
+    {
+      return {{"peak_force", "N"},
+              {"capacity", "N"},
+              {"peak_resistance", "N"},
+              {"peak_resistance_ratio", "1"},
+              {"peak_displacement", "m"},
+              {"residual_displacement", "m"},
+              {"final_displacement", "m"},
+              {"failure_displacement", "m"},
+              {"plastic_work", "J"},
+              {"radiated_work", "J"},
+              {"failure_time", "s"}};
+    }
+
+    /// The damping model: its name, ζ and ζ_iso (summary.json `damping`).
+    nlohmann::json damping_json(const PlanRun &run)
+    {
+      return {{"model", damping_name(run.damping)},
+              {"damping_ratio", run.damping_ratio},
+              {"isolation_damping_ratio", run.isolation_damping_ratio}};
     }
 
     nlohmann::json energy_json(const plan::PlanEnergy &e)
@@ -70,6 +93,26 @@ namespace kimp::app
               {"max_relative_error", e.max_relative_error}};
     }
   } // namespace
+
+  const char *damping_name(plan::PlanDampingModel model)
+  {
+    return model == plan::PlanDampingModel::modal ? "modal" : "rayleigh";
+  }
+
+  nlohmann::json yielding_walls_json(const plan::PlanResponse &r)
+  {
+    nlohmann::json out = nlohmann::json::array();
+    for (const plan::PlanYieldingWallResult &y : r.yielding_walls)
+    {
+      nlohmann::json j        = lumped_internal::yielding_wall_json(yielding_record(r, y));
+      j["face"]               = y.segment;
+      j["final_displacement"] = y.final_displacement;
+      if (!y.failure_time)
+        j["failure_time"] = nullptr;
+      out.push_back(j);
+    }
+    return out;
+  }
 
   PlanPeaks plan_peaks(const plan::PlanResponse &r)
   {
@@ -101,6 +144,9 @@ namespace kimp::app
       out.contact_names.push_back(c.name);
       out.contact_positions.push_back(c.position);
     }
+    out.damping                 = model.building().damping;
+    out.damping_ratio           = model.building().damping_ratio;
+    out.isolation_damping_ratio = model.building().isolation_damping_ratio;
     const plan::PlanLevel &slab = model.building().levels.front();
     out.n_corners               = slab.outline.size();
     out.slab_outline            = slab.outline;
@@ -185,6 +231,19 @@ namespace kimp::app
                               "m");
     }
 
+    /// `walls/face_<k>` per yielding wall face (as the planar `walls/<wall>`, with the face and
+    /// its final displacement).
+    void write_plan_yielding(io::ResultsGroup &g, const plan::PlanResponse &r)
+    {
+      for (const plan::PlanYieldingWallResult &y : r.yielding_walls)
+      {
+        io::ResultsGroup wg = g.group(fmt::format("walls/face_{}", y.segment));
+        wg.set_attribute("face", static_cast<std::int64_t>(y.segment));
+        lumped_internal::write_yielding_wall(wg, yielding_record(r, y));
+        wg.write_scalar("final_displacement", y.final_displacement, "m");
+      }
+    }
+
     /// DIR/lumped.h5 of a plan run: /lumped/default with peaks, energy and histories.
     void write_plan_h5(const io::LoadedScene<PlanLumpedScene> &loaded,
                        const io::OutputDir                    &output,
@@ -208,7 +267,11 @@ namespace kimp::app
       g.write_scalar("duration", r.duration, "s");
       g.write("dof_labels", dof_labels);
       g.write("contact_names", run.contact_names);
+      g.set_attribute("damping", damping_name(run.damping));
+      g.write_scalar("damping_ratio", run.damping_ratio, "1");
+      g.write_scalar("isolation_damping_ratio", run.isolation_damping_ratio, "1");
       write_plan_geometry(g, run);
+      write_plan_yielding(g, r);
       {
         io::ResultsGroup peaks = g.group("peaks");
         peaks.write("displacement", r.peak_displacement, "m|rad");
@@ -317,8 +380,12 @@ namespace kimp::app
                           {"drift_y", r.peak_drift_y},
                           {"wall_force", r.peak_wall_force}};
       c["energy"]      = energy_json(r.energy);
+      c["damping"]     = damping_json(run);
       if (!r.yielding_walls.empty())
-        c["yielding_walls"] = yielding_json(r);
+      {
+        c["yielding_walls"]                = yielding_walls_json(r);
+        summary["units"]["yielding_walls"] = yielding_units();
+      }
       summary["cases"] = nlohmann::json::array({c});
       io::write_json_atomic(output.file("summary.json"), summary);
     }
@@ -363,6 +430,31 @@ namespace kimp::app
                             "peak_interstorey_drift_m"},
                            rows);
     }
+
+    /// One line per yielding wall face: its peak resistance against its capacity, its
+    /// displacements and, for a failed face, a warning with the time.
+    void log_yielding_faces(const plan::PlanResponse &r)
+    {
+      for (const plan::PlanYieldingWallResult &y : r.yielding_walls)
+      {
+        base::logger().info("plan: yielding wall face {}: peak resistance {} MN = {} of its "
+                            "capacity {} MN (face force {} MN), peak displacement {} cm, "
+                            "residual {} cm",
+                            y.segment,
+                            base::sig(y.peak_resistance / 1e6),
+                            base::sig(y.peak_resistance / y.capacity),
+                            base::sig(y.capacity / 1e6),
+                            base::sig(r.peak_wall_force[y.segment] / 1e6),
+                            base::sig(100.0 * y.peak_displacement),
+                            base::sig(100.0 * y.permanent_set));
+        if (y.failure_time)
+          base::logger().warn("plan: yielding wall face {} failed at t = {} s: pushed back "
+                              "beyond {} cm",
+                              y.segment,
+                              base::sig(*y.failure_time),
+                              base::sig(100.0 * y.failure_displacement));
+      }
+    }
   } // namespace
 
   PlanRun run_plan_lumped(const io::LoadedScene<PlanLumpedScene>     &loaded,
@@ -374,6 +466,7 @@ namespace kimp::app
     write_plan_h5(loaded, output, run);
     write_plan_summary(loaded, output, run, start);
     write_plan_peaks(loaded, output, run);
+    log_yielding_faces(run.response);
     return run;
   }
 } // namespace kimp::app

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
@@ -27,9 +28,24 @@ namespace kimp::app
     lumped::plan::Point              slab_reference = lumped::plan::Point::Zero();
     lumped::plan::Polygon            wall;
     std::vector<lumped::plan::Point> contact_positions;
-    double                           dt_critical = 0.0;
-    double                           wall_time   = 0.0; ///< s
+    /// The superstructure's damping model, ζ (every mode with modal damping, per direction with
+    /// Rayleigh) and ζ_iso of the isolation level (lumped::plan::PlanBuilding).
+    lumped::plan::PlanDampingModel damping       = lumped::plan::PlanDampingModel::rayleigh;
+    double                         damping_ratio = 0.0;
+    double                         isolation_damping_ratio = 0.0;
+    double                         dt_critical             = 0.0;
+    double                         wall_time               = 0.0; ///< s
   };
+
+  /// The yielding wall faces of a run (summary.json `yielding_walls`): per face, as the planar
+  /// walls, its peak contact force `peak_force` and the wall-and-backfill part's `capacity`,
+  /// `peak_resistance` (N) and their ratio, `peak_displacement`, `residual_displacement`,
+  /// `failure_displacement` (m; null: no limit), `plastic_work`, `radiated_work` (J), `failed`,
+  /// `failure_time` (s, null while standing), with its `face` and `final_displacement` (m).
+  nlohmann::json yielding_walls_json(const lumped::plan::PlanResponse &response);
+
+  /// "rayleigh" or "modal" (the scene's `plan.damping`).
+  const char *damping_name(lumped::plan::PlanDampingModel model);
 
   /// The headline peaks of a plan run (summary.json of `kimp lumped`, the sweep's metrics).
   struct PlanPeaks

@@ -99,25 +99,11 @@ namespace kimp::app
             law = std::make_shared<plan::PlanBilinearIsolator>(iso.K1 / n, iso.K2 / n, Q / n);
             break;
           case IsolatorKind::bouc_wen:
-          {
-            const double alpha = iso.K2 / iso.K1;
-            law                = std::make_shared<plan::PlanBoucWenIsolator>(iso.K1 / n,
-                                                              alpha,
-                                                              Q / n / (1.0 - alpha),
-                                                              iso.bw_A,
-                                                              iso.bw_beta,
-                                                              iso.bw_gamma,
-                                                              iso.bw_n);
+            law = std::make_shared<plan::PlanBoucWenIsolator>(bouc_wen_parameters(iso, Q, n));
             break;
-          }
           case IsolatorKind::friction_pendulum:
             law = std::make_shared<plan::PlanFrictionPendulumIsolator>(
-              iso.weight.value_or(g * total_mass) / n,
-              iso.radius,
-              iso.mu_slow,
-              iso.mu_fast,
-              iso.rate,
-              iso.k_init / n);
+              friction_pendulum_parameters(iso, g * total_mass, n));
             break;
           case IsolatorKind::linear:
             throw std::invalid_argument(

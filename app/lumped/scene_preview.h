@@ -15,7 +15,10 @@ namespace kimp::app
    * friction pendulum; null for a fixed base), `buildings` [{name, n_dofs, periods (s), from the
    * modal analysis with the isolator's initial stiffness}], `contacts` [{name, gap (m)}],
    * `walls` and `neighbours` {left, right: {present, gap or separation, n_storeys}}, and `cases`
-   * (names). The scene is read and validated as `kimp lumped` reads it.
+   * (names). A scene in plan has one building of 3 DoFs per level (periods of the coupled modes),
+   * the moat's contact points as `contacts`, no planar walls or neighbours, and `plan` {damping
+   * ("rayleigh" or "modal"), damping_ratio, faces (of the moat wall), yielding_faces [face]}.
+   * The scene is read and validated as `kimp lumped` reads it.
    * @throws io::SceneError for an invalid scene (the message of `kimp lumped --check`)
    */
   nlohmann::json scene_model_preview(const std::string &scene_text, const std::string &file_name);

@@ -7,9 +7,9 @@
 #include <fmt/ranges.h>
 #include <fstream>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 
+#include "app/csv_reader.h"
 #include "app/study/study_fem.h"
 #include "app/study/study_internal.h"
 
@@ -111,6 +111,11 @@ namespace kimp::app::study_internal
     // in two files (building_response.csv, flexible_wall.csv) reads the same in both.
     return std::isfinite(value) ? fmt::format("{}", value) : "";
   }
+
+  std::string readable(double value)
+  {
+    return std::isfinite(value) ? base::sig(value) : std::string();
+  }
 } // namespace kimp::app::study_internal
 
 namespace kimp::app
@@ -135,15 +140,6 @@ namespace kimp::app
         throw std::runtime_error(
           fmt::format("{}:{}: '{}' is not a number", file.string(), line, cell));
       return value;
-    }
-
-    std::vector<std::string> split_csv_line(const std::string &line)
-    {
-      std::vector<std::string> cells;
-      std::stringstream        in(line);
-      for (std::string cell; std::getline(in, cell, ',');)
-        cells.push_back(cell);
-      return cells;
     }
   } // namespace
 
@@ -171,7 +167,7 @@ namespace kimp::app
                                               "jankowski_kN_per_mm1.5_per_m"};
     std::string                    line;
     std::getline(in, line);
-    const std::vector<std::string> header = split_csv_line(line);
+    const std::vector<std::string> header = split_csv_record(line);
     if (header.size() < columns.size() ||
         !std::equal(columns.begin(), columns.end(), header.begin()))
       throw std::runtime_error(fmt::format("{}:1: header '{}' (expected the columns {}, ...)",
@@ -179,21 +175,16 @@ namespace kimp::app
                                            line,
                                            fmt::join(columns, ",")));
     std::vector<ThesisStiffness> table;
-    for (std::size_t number = 2; std::getline(in, line); ++number)
-    {
-      if (line.empty())
-        continue;
-      const std::vector<std::string> cells = split_csv_line(line);
-      if (cells.size() != header.size())
-        throw std::runtime_error(fmt::format("{}:{}: {} columns (the header has {})",
-                                             file.string(),
-                                             number,
-                                             cells.size(),
-                                             header.size()));
-      table.push_back({table_number(file, number, cells[0]),
-                       table_number(file, number, cells[1]),
-                       table_number(file, number, cells[2])});
-    }
+    for_each_csv_row(in,
+                     header.size(),
+                     file,
+                     [&](const std::vector<std::string> &cells, int number)
+                     {
+                       const auto line_number = static_cast<std::size_t>(number);
+                       table.push_back({table_number(file, line_number, cells[0]),
+                                        table_number(file, line_number, cells[1]),
+                                        table_number(file, line_number, cells[2])});
+                     });
     if (table.empty())
       throw std::runtime_error(fmt::format("{}: no rows", file.string()));
     return table;

@@ -21,11 +21,6 @@ namespace kimp::app::study_internal
 {
   namespace
   {
-    std::string readable(double value)
-    {
-      return std::isfinite(value) ? base::sig(value) : std::string();
-    }
-
     /// The gap run_building() used for `record` (NaN if its run without walls failed).
     double record_gap(const StudyScene &scene, const StudyResult &result, const std::string &record)
     {

@@ -2,8 +2,10 @@
 // accuracy_fem.csv, accuracy_lumped.csv, stability_lumped.csv, stability_fem.csv, sensitivity.csv.
 #include <cmath>
 #include <fmt/format.h>
+#include <functional>
 #include <limits>
 
+#include "app/study/study_columns.h"
 #include "app/study/study_extras.h"
 #include "app/study/study_internal.h"
 #include "fit/fitter.h"
@@ -15,276 +17,261 @@ namespace kimp::app
 
   namespace
   {
-    /// study.h5 /accuracy/fem/<series>: k against the contact mesh, the penalty and the implicit
-    /// solver.
-    void write_fem_accuracy(ResultsGroup &root, const StudyExtras &extras)
+    /// A relative error: NAME (1) in study.h5, NAME_percent in the CSV file.
+    template <class P>
+    StudyColumn<P> error_column(const std::string &name, double P::*error)
     {
-      for (const char *series : {"mesh", "penalty", "implicit"})
+      return number_column<P>({name, "1"},
+                              {name + "_percent", "1"},
+                              times(100),
+                              [error](const P &p) { return p.*error; });
+    }
+
+    /// The two fitted laws' k per metre in kN/mm^n/m (NaN unless the point is ok), as in the k
+    /// table.
+    template <class P>
+    void append_k_columns(std::vector<StudyColumn<P>> &columns)
+    {
+      double P::*const k[] = {&P::k_kelvin_voigt, &P::k_jankowski}; // in study_laws' order
+      for (std::size_t i = 0; i < std::size(study_laws); ++i)
       {
-        Table t;
-        t.number("h_contact", "m")
-          .number("penalty_factor", "1")
-          .number("ok", "1")
-          .number("seconds", "s")
-          .number("n_dofs", "1")
-          .number("n_steps", "1")
-          .number("kelvin_voigt", "kN/mm/m")
-          .number("jankowski", "kN/mm^1.5/m")
-          .number("error_kelvin_voigt", "1")
-          .number("error_jankowski", "1");
-        for (const FemAccuracyPoint &p : extras.fem_accuracy)
-          if (p.series == series)
-            t.add_row(number_cells({p.h_contact,
-                                    p.penalty_factor,
-                                    flag(p.ok),
-                                    p.seconds,
-                                    p.n_dofs,
-                                    p.n_steps,
-                                    p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan,
-                                    p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan,
-                                    p.error_kelvin_voigt,
-                                    p.error_jankowski}));
-        if (t.n_rows() > 0)
-        {
-          ResultsGroup fem = root.group("accuracy").group("fem");
-          t.write_hdf5(fem, series);
-        }
+        const double exponent = study_laws[i].exponent;
+        columns.push_back(same_column<P>(study_laws[i].name,
+                                         study_laws[i].per_metre_unit,
+                                         [k = k[i], exponent](const P &p) {
+                                           return p.ok ? stiffness_to_kn_per_mm(p.*k, exponent) :
+                                                         nan;
+                                         }));
       }
     }
 
-    /// study.h5 /accuracy/lumped/<method>: peaks of one building run against the time step.
-    void write_lumped_accuracy(ResultsGroup &root, const StudyExtras &extras)
+    /// The FEM accuracy points: k against the contact mesh, the penalty and the implicit solver.
+    std::vector<StudyColumn<FemAccuracyPoint>> fem_accuracy_columns()
     {
-      for (const char *method : {"cdm", "newmark", "cdm_reference"})
+      using P = FemAccuracyPoint;
+      std::vector<StudyColumn<P>> columns{
+        csv_text_column<P>("series", [](const P &p) { return p.series; }),
+        number_column<P>({"h_contact", "m"},
+                         {"h_contact", "cm"},
+                         times(100),
+                         [](const P &p) { return p.h_contact; }),
+        same_column<P>("penalty_factor", "1", [](const P &p) { return p.penalty_factor; }),
+        hdf5_column<P>("ok", "1", [](const P &p) { return flag(p.ok); }),
+        number_column<P>({"seconds", "s"},
+                         {"fem_wall_time", "s"},
+                         {},
+                         [](const P &p) { return p.seconds; }),
+        same_column<P>("n_dofs", "1", [](const P &p) { return p.n_dofs; }),
+        hdf5_column<P>("n_steps", "1", [](const P &p) { return p.n_steps; })};
+      append_k_columns(columns);
+      columns.push_back(error_column("error_kelvin_voigt", &P::error_kelvin_voigt));
+      columns.push_back(error_column("error_jankowski", &P::error_jankowski));
+      columns.push_back(csv_text_column<P>("status", [](const P &p) { return p.status; }));
+      return columns;
+    }
+
+    /// The lumped accuracy points: peaks of one building run against the time step.
+    std::vector<StudyColumn<LumpedAccuracyPoint>> lumped_accuracy_columns()
+    {
+      using P = LumpedAccuracyPoint;
+      return {csv_text_column<P>("method", [](const P &p) { return p.method; }),
+              same_column<P>("dt", "s", [](const P &p) { return p.dt; }),
+              hdf5_column<P>("ok", "1", [](const P &p) { return flag(p.ok); }),
+              number_column<P>({"seconds", "s"},
+                               {"wall_time", "s"},
+                               {},
+                               [](const P &p) { return p.seconds; }),
+              number_column<P>({"impact_force", "N"},
+                               {"peak_impact_force", "kN"},
+                               divided_by(1e3),
+                               [](const P &p) { return p.ok ? p.peak_impact_force : nan; }),
+              number_column<P>({"base_acceleration", "m/s^2"},
+                               {"peak_base_acceleration", "m/s^2"},
+                               {},
+                               [](const P &p) { return p.ok ? p.base_acceleration : nan; }),
+              error_column("error_impact_force", &P::error_force),
+              error_column("error_base_acceleration", &P::error_acceleration),
+              csv_text_column<P>("status", [](const P &p) { return p.status; })};
+    }
+
+    /// The stability map: the explicit lumped time step against k.
+    std::vector<StudyColumn<StabilityPoint>> lumped_stability_columns()
+    {
+      using P = StabilityPoint;
+      return {number_column<P>(
+                {"stiffness", "N/m"},
+                {"k_imp", "kN/mm"},
+                [](double k) { return stiffness_to_kn_per_mm(k, 1.0); },
+                [](const P &p) { return p.stiffness; }),
+              same_column<P>("dt", "s", [](const P &p) { return p.dt; }),
+              number_column<P>({"dt_limit", "s"},
+                               {"dt_limit_2_over_omega", "s"},
+                               {},
+                               [](const P &p) { return p.dt_limit; }),
+              same_column<P>("dt_limit_damped", "s", [](const P &p) { return p.dt_limit_damped; }),
+              same_column<P>("stable", "1", [](const P &p) { return flag(p.stable); }),
+              same_column<P>("accurate", "1", [](const P &p) { return flag(p.accurate); }),
+              same_column<P>("effective_cor", "1", [](const P &p) { return p.effective_cor; }),
+              hdf5_column<P>("peak_force", "N", [](const P &p) { return p.peak_force; })};
+    }
+
+    /// The FEM stability map: the explicit FEM time step against the penalty.
+    std::vector<StudyColumn<FemStabilityPoint>> fem_stability_columns()
+    {
+      using P = FemStabilityPoint;
+      return {same_column<P>("penalty_factor", "1", [](const P &p) { return p.penalty_factor; }),
+              number_column<P>({"dt_factor", "1"},
+                               {"dt_over_limit", "1"},
+                               {},
+                               [](const P &p) { return p.dt_factor; }),
+              same_column<P>("dt", "s", [](const P &p) { return p.dt; }),
+              same_column<P>("dt_limit", "s", [](const P &p) { return p.dt_limit; }),
+              same_column<P>("stable", "1", [](const P &p) { return flag(p.stable); }),
+              number_column<P>({"energy_error", "1"},
+                               {"max_energy_error", "1"},
+                               {},
+                               [](const P &p)
+                               { return p.energy_error > 0 ? p.energy_error : nan; }),
+              csv_text_column<P>("status", [](const P &p) { return p.status; })};
+    }
+
+    /// The sensitivity study: k against one scene parameter.
+    std::vector<StudyColumn<SensitivityPoint>> sensitivity_columns()
+    {
+      using P = SensitivityPoint;
+      std::vector<StudyColumn<P>> columns{
+        csv_text_column<P>("parameter", [](const P &p) { return p.parameter; }),
+        same_column<P>("factor", "1", [](const P &p) { return p.factor; }),
+        hdf5_column<P>("ok", "1", [](const P &p) { return flag(p.ok); })};
+      append_k_columns(columns);
+      columns.push_back(csv_text_column<P>("status", [](const P &p) { return p.status; }));
+      return columns;
+    }
+
+    /**
+     * study.h5 /accuracy/`kind`/<series>: for each of `series`, the table of the rows whose
+     * `series_of` it is (no group for a series without rows); `annotate` then sets the
+     * attributes of /accuracy/`kind`.
+     */
+    template <class Row>
+    void write_accuracy(ResultsGroup                        &root,
+                        const char                          *kind,
+                        const std::vector<StudyColumn<Row>> &columns,
+                        const std::vector<Row>              &rows,
+                        std::string Row::                         *series_of,
+                        std::initializer_list<const char *>        series,
+                        const std::function<void(ResultsGroup &)> &annotate)
+    {
+      for (const std::string name : series)
       {
-        Table t;
-        t.number("dt", "s")
-          .number("ok", "1")
-          .number("seconds", "s")
-          .number("impact_force", "N")
-          .number("base_acceleration", "m/s^2")
-          .number("error_impact_force", "1")
-          .number("error_base_acceleration", "1");
-        for (const LumpedAccuracyPoint &p : extras.lumped_accuracy)
-          if (p.method == method)
-            t.add_row(number_cells({p.dt,
-                                    flag(p.ok),
-                                    p.seconds,
-                                    p.ok ? p.peak_impact_force : nan,
-                                    p.ok ? p.base_acceleration : nan,
-                                    p.error_force,
-                                    p.error_acceleration}));
-        if (t.n_rows() > 0)
-        {
-          ResultsGroup lumped = root.group("accuracy").group("lumped");
-          t.write_hdf5(lumped, method);
-          lumped.set_attribute("k_total_N_per_m", extras.lumped_k_total);
-          lumped.set_attribute("gap_m", extras.lumped_gap);
-          lumped.set_attribute("record", extras.lumped_record);
-        }
+        const Table t = study_table(columns,
+                                    rows,
+                                    StudyFile::hdf5,
+                                    [&](const Row &p) { return p.*series_of == name; });
+        if (t.n_rows() == 0)
+          continue;
+        ResultsGroup group = root.group("accuracy").group(kind);
+        t.write_hdf5(group, name);
+        annotate(group);
       }
     }
 
-    /// study.h5 /stability/lumped: the explicit lumped time step against k.
-    void write_lumped_stability(ResultsGroup &root, const StudyExtras &extras)
+    /// study.h5 /accuracy/fem/<series> and /accuracy/lumped/<method>.
+    void write_accuracy(ResultsGroup &root, const StudyExtras &extras)
     {
-      if (extras.stability.empty())
-        return;
-      Table t;
-      t.number("stiffness", "N/m")
-        .number("dt", "s")
-        .number("dt_limit", "s")
-        .number("dt_limit_damped", "s")
-        .number("stable", "1")
-        .number("accurate", "1")
-        .number("effective_cor", "1")
-        .number("peak_force", "N");
-      for (const StabilityPoint &p : extras.stability)
-        t.add_row(number_cells({p.stiffness,
-                                p.dt,
-                                p.dt_limit,
-                                p.dt_limit_damped,
-                                flag(p.stable),
-                                flag(p.accurate),
-                                p.effective_cor,
-                                p.peak_force}));
-      ResultsGroup stability = root.group("stability");
-      t.write_hdf5(stability, "lumped");
-      ResultsGroup table = stability.group("lumped");
-      table.set_attribute("effective_mass_kg", extras.stability_effective_mass);
-      table.set_attribute("study_stiffness_N_per_m", extras.stability_study_k);
+      write_accuracy(root,
+                     "fem",
+                     fem_accuracy_columns(),
+                     extras.fem_accuracy,
+                     &FemAccuracyPoint::series,
+                     {"mesh", "penalty", "implicit"},
+                     [](ResultsGroup &) {});
+      write_accuracy(root,
+                     "lumped",
+                     lumped_accuracy_columns(),
+                     extras.lumped_accuracy,
+                     &LumpedAccuracyPoint::method,
+                     {"cdm", "newmark", "cdm_reference"},
+                     [&](ResultsGroup &lumped)
+                     {
+                       lumped.set_attribute("k_total_N_per_m", extras.lumped_k_total);
+                       lumped.set_attribute("gap_m", extras.lumped_gap);
+                       lumped.set_attribute("record", extras.lumped_record);
+                     });
     }
 
-    /// study.h5 /stability/fem: the explicit FEM time step against the penalty.
-    void write_fem_stability(ResultsGroup &root, const StudyExtras &extras)
+    /// study.h5 /stability/lumped and /stability/fem, each with the attributes of its set-up.
+    void write_stability(ResultsGroup &root, const StudyExtras &extras)
     {
-      if (extras.fem_stability.empty())
-        return;
-      Table t;
-      t.number("penalty_factor", "1")
-        .number("dt_factor", "1")
-        .number("dt", "s")
-        .number("dt_limit", "s")
-        .number("stable", "1")
-        .number("energy_error", "1");
-      for (const FemStabilityPoint &p : extras.fem_stability)
-        t.add_row(number_cells({p.penalty_factor,
-                                p.dt_factor,
-                                p.dt,
-                                p.dt_limit,
-                                flag(p.stable),
-                                p.energy_error > 0 ? p.energy_error : nan}));
-      ResultsGroup stability = root.group("stability");
-      t.write_hdf5(stability, "fem");
-      ResultsGroup table = stability.group("fem");
-      table.set_attribute("h_contact_m", extras.fem_stability_h_contact);
-      table.set_attribute("end_time_s", extras.fem_stability_end_time);
+      struct StabilityMap
+      {
+        const char                                  *name;
+        Table                                        table;
+        std::vector<std::pair<const char *, double>> attributes;
+      };
+      const StabilityMap maps[] = {
+        {"lumped",
+         study_table(lumped_stability_columns(), extras.stability, StudyFile::hdf5),
+         {{"effective_mass_kg", extras.stability_effective_mass},
+          {"study_stiffness_N_per_m", extras.stability_study_k}}},
+        {"fem",
+         study_table(fem_stability_columns(), extras.fem_stability, StudyFile::hdf5),
+         {{"h_contact_m", extras.fem_stability_h_contact},
+          {"end_time_s", extras.fem_stability_end_time}}}};
+      for (const StabilityMap &map : maps)
+      {
+        if (map.table.n_rows() == 0)
+          continue;
+        ResultsGroup stability = root.group("stability");
+        map.table.write_hdf5(stability, map.name);
+        ResultsGroup group = stability.group(map.name);
+        for (const auto &[attribute, value] : map.attributes)
+          group.set_attribute(attribute, value);
+      }
     }
 
-    /// study.h5 /sensitivity/<parameter>: k against one scene parameter.
+    /// study.h5 /sensitivity/<parameter>.
     void write_sensitivity(ResultsGroup &root, const StudyExtras &extras)
     {
       if (extras.sensitivity.empty())
         return;
-      for (const char *parameter :
+      for (const std::string parameter :
            {"base", "soil_modulus", "slab_mass", "impact_velocity", "wall_thickness"})
       {
-        Table t;
-        t.number("factor", "1")
-          .number("ok", "1")
-          .number("kelvin_voigt", "kN/mm/m")
-          .number("jankowski", "kN/mm^1.5/m");
-        for (const SensitivityPoint &p : extras.sensitivity)
-          if (p.parameter == parameter)
-            t.add_row(number_cells({p.factor,
-                                    flag(p.ok),
-                                    p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan,
-                                    p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan}));
         ResultsGroup sensitivity = root.group("sensitivity");
-        t.write_hdf5(sensitivity, parameter);
+        study_table(sensitivity_columns(),
+                    extras.sensitivity,
+                    StudyFile::hdf5,
+                    [&](const SensitivityPoint &p) { return p.parameter == parameter; })
+          .write_hdf5(sensitivity, parameter);
       }
+    }
+
+    /// DIR/`file` of `columns` over `rows`, unless there are none.
+    template <class Row>
+    void write_csv_of(const OutputDir                     &output,
+                      const char                          *file,
+                      const std::vector<StudyColumn<Row>> &columns,
+                      const std::vector<Row>              &rows)
+    {
+      if (!rows.empty())
+        study_table(columns, rows, StudyFile::csv).write_csv(output.file(file));
     }
   } // namespace
 
   void write_study_extras(ResultsGroup &root, const StudyExtras &extras)
   {
-    write_fem_accuracy(root, extras);
-    write_lumped_accuracy(root, extras);
-    write_lumped_stability(root, extras);
-    write_fem_stability(root, extras);
+    write_accuracy(root, extras);
+    write_stability(root, extras);
     write_sensitivity(root, extras);
   }
 
   void write_study_extras_csv(const OutputDir &output, const StudyExtras &extras)
   {
-    if (!extras.fem_accuracy.empty())
-    {
-      std::vector<std::vector<std::string>> rows;
-      for (const FemAccuracyPoint &p : extras.fem_accuracy)
-        rows.push_back({p.series,
-                        number(p.h_contact * 100),
-                        number(p.penalty_factor),
-                        number(p.seconds),
-                        number(p.n_dofs),
-                        number(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
-                        number(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
-                        number(p.error_kelvin_voigt * 100),
-                        number(p.error_jankowski * 100),
-                        p.status});
-      write_csv_atomic(output.file("accuracy_fem.csv"),
-                       {"series",
-                        "h_contact_cm",
-                        "penalty_factor",
-                        "fem_wall_time_s",
-                        "n_dofs",
-                        "kelvin_voigt_kN_per_mm_per_m",
-                        "jankowski_kN_per_mm1.5_per_m",
-                        "error_kelvin_voigt_percent",
-                        "error_jankowski_percent",
-                        "status"},
-                       rows);
-    }
-    if (!extras.lumped_accuracy.empty())
-    {
-      std::vector<std::vector<std::string>> rows;
-      for (const LumpedAccuracyPoint &p : extras.lumped_accuracy)
-        rows.push_back({p.method,
-                        number(p.dt),
-                        number(p.seconds),
-                        number(p.ok ? p.peak_impact_force / 1e3 : nan),
-                        number(p.ok ? p.base_acceleration : nan),
-                        number(p.error_force * 100),
-                        number(p.error_acceleration * 100),
-                        p.status});
-      write_csv_atomic(output.file("accuracy_lumped.csv"),
-                       {"method",
-                        "dt_s",
-                        "wall_time_s",
-                        "peak_impact_force_kN",
-                        "peak_base_acceleration_m_per_s2",
-                        "error_impact_force_percent",
-                        "error_base_acceleration_percent",
-                        "status"},
-                       rows);
-    }
-    if (!extras.stability.empty())
-    {
-      std::vector<std::vector<double>> rows;
-      for (const StabilityPoint &p : extras.stability)
-        rows.push_back({stiffness_to_kn_per_mm(p.stiffness, 1.0),
-                        p.dt,
-                        p.dt_limit,
-                        p.dt_limit_damped,
-                        p.stable ? 1.0 : 0.0,
-                        p.accurate ? 1.0 : 0.0,
-                        p.effective_cor});
-      write_csv_atomic(output.file("stability_lumped.csv"),
-                       {"k_imp_kN_per_mm",
-                        "dt_s",
-                        "dt_limit_2_over_omega_s",
-                        "dt_limit_damped_s",
-                        "stable",
-                        "accurate",
-                        "effective_cor"},
-                       rows);
-    }
-    if (!extras.fem_stability.empty())
-    {
-      std::vector<std::vector<std::string>> rows;
-      for (const FemStabilityPoint &p : extras.fem_stability)
-        rows.push_back({number(p.penalty_factor),
-                        number(p.dt_factor),
-                        number(p.dt),
-                        number(p.dt_limit),
-                        p.stable ? "1" : "0",
-                        number(p.energy_error > 0 ? p.energy_error : nan),
-                        p.status});
-      write_csv_atomic(output.file("stability_fem.csv"),
-                       {"penalty_factor",
-                        "dt_over_limit",
-                        "dt_s",
-                        "dt_limit_s",
-                        "stable",
-                        "max_energy_error",
-                        "status"},
-                       rows);
-    }
-    if (!extras.sensitivity.empty())
-    {
-      std::vector<std::vector<std::string>> rows;
-      for (const SensitivityPoint &p : extras.sensitivity)
-        rows.push_back({p.parameter,
-                        number(p.factor),
-                        number(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
-                        number(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
-                        p.status});
-      write_csv_atomic(output.file("sensitivity.csv"),
-                       {"parameter",
-                        "factor",
-                        "kelvin_voigt_kN_per_mm_per_m",
-                        "jankowski_kN_per_mm1.5_per_m",
-                        "status"},
-                       rows);
-    }
+    write_csv_of(output, "accuracy_fem.csv", fem_accuracy_columns(), extras.fem_accuracy);
+    write_csv_of(output, "accuracy_lumped.csv", lumped_accuracy_columns(), extras.lumped_accuracy);
+    write_csv_of(output, "stability_lumped.csv", lumped_stability_columns(), extras.stability);
+    write_csv_of(output, "stability_fem.csv", fem_stability_columns(), extras.fem_stability);
+    write_csv_of(output, "sensitivity.csv", sensitivity_columns(), extras.sensitivity);
   }
 } // namespace kimp::app

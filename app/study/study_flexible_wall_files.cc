@@ -5,6 +5,7 @@
 #include <limits>
 #include <map>
 
+#include "app/study/study_columns.h"
 #include "app/study/study_internal.h"
 #include "base/format.h"
 #include "io/results_file.h"
@@ -39,214 +40,214 @@ namespace kimp::app::study_internal
       return rigid && rigid->status == "ok" && flexible.status == "ok" && a > 0 ? b / a : nan;
     }
 
-    /// The compared quantities: name, unit, scale to the CSV unit, value.
+    /// The compared quantities: name, SI unit, display unit and the factor from SI to it, value.
     struct Quantity
     {
       const char *name;
-      const char *csv_unit;
-      double      scale;
-      double (*value)(const StudyBuildingRun &);
+      const char *unit;
+      const char *display_unit;
+      double      factor;
+      double StudyBuildingRun::*value;
     };
+    using R                     = StudyBuildingRun;
     const Quantity quantities[] = {
-      {"peak_base_acceleration",
-       "m_per_s2",
-       1.0,
-       [](const StudyBuildingRun &r) { return r.base_acceleration; }},
-      {"peak_top_acceleration",
-       "m_per_s2",
-       1.0,
-       [](const StudyBuildingRun &r) { return r.top_acceleration; }},
-      {"peak_impact_force",
-       "kN",
-       1e-3,
-       [](const StudyBuildingRun &r) { return r.peak_impact_force; }},
-      {"peak_interstorey_drift",
-       "cm",
-       100.0,
-       [](const StudyBuildingRun &r) { return r.max_interstorey_drift; }},
+      {"peak_base_acceleration", "m/s^2", "m/s^2", 1.0, &R::base_acceleration},
+      {"peak_top_acceleration", "m/s^2", "m/s^2", 1.0, &R::top_acceleration},
+      {"peak_impact_force", "N", "kN", 1e-3, &R::peak_impact_force},
+      {"peak_interstorey_drift", "m", "cm", 100.0, &R::max_interstorey_drift},
     };
 
-    std::string readable(double value)
+    /// One flexible run with its rigid twin and its wall's SDOF (each may be missing).
+    struct FlexibleRow
     {
-      return std::isfinite(value) ? base::sig(value) : std::string();
+      const StudyBuildingRun *flexible;
+      const StudyBuildingRun *rigid;
+      const StudyWallSdof    *sdof;
+
+      bool flexible_ok() const { return flexible->status == "ok"; }
+      bool rigid_ok() const { return rigid && rigid->status == "ok"; }
+      bool sdof_ok() const { return sdof && sdof->ok(); }
+      /// The run of `side` ("rigid" or "flexible") if it is ok, else null.
+      const StudyBuildingRun *ok_run(const std::string &side) const
+      {
+        return side == "rigid" ? (rigid_ok() ? rigid : nullptr) :
+                                 (flexible_ok() ? flexible : nullptr);
+      }
+    };
+
+    /// The rows of `runs` (flexible runs of `result`).
+    std::vector<FlexibleRow> flexible_rows(const StudyResult                           &result,
+                                           const std::vector<const StudyBuildingRun *> &runs)
+    {
+      std::vector<FlexibleRow> rows;
+      for (const StudyBuildingRun *f : runs)
+        rows.push_back({f, rigid_twin(result, *f), sdof_of(result, f->wall_height)});
+      return rows;
     }
+
+    /// SIDE_amplification_QUANTITY of the CSV file: a peak against the run without walls.
+    void append_amplification_columns(std::vector<StudyColumn<FlexibleRow>> &columns)
+    {
+      const std::pair<const char *, double StudyBuildingRun::*> amplifications[] = {
+        {"base_acceleration", &StudyBuildingRun::amplification_base_acc},
+        {"top_acceleration", &StudyBuildingRun::amplification_top_acc},
+        {"interstorey_drift", &StudyBuildingRun::amplification_drift}};
+      for (const std::string side : {"rigid", "flexible"})
+        for (const auto &[name, amplification] : amplifications)
+          columns.push_back(
+            number_column<FlexibleRow>({},
+                                       {side + "_amplification_" + name, "1"},
+                                       {},
+                                       [side, amplification = amplification](const FlexibleRow &x)
+                                       {
+                                         const StudyBuildingRun *run = x.ok_run(side);
+                                         return run ? run->*amplification : nan;
+                                       }));
+    }
+
+    /// Rigid beside flexible per run: the wall's SDOF, each quantity on both sides and their
+    /// ratio, the amplifications against the run without walls, the wall's displacement.
+    std::vector<StudyColumn<FlexibleRow>> flexible_wall_columns()
+    {
+      using F = FlexibleRow;
+      std::vector<StudyColumn<F>> columns{
+        csv_text_column<F>("record", [](const F &x) { return x.flexible->record; }),
+        same_column<F>("wall_height", "m", [](const F &x) { return x.flexible->wall_height; }),
+        csv_text_column<F>("law", [](const F &x) { return x.flexible->law; }),
+        number_column<F>({"wall_stiffness", "N/m"},
+                         {"wall_stiffness", "MN/m"},
+                         divided_by(1e6),
+                         [](const F &x) { return x.sdof_ok() ? x.sdof->stiffness : nan; }),
+        number_column<F>({"wall_mass", "kg"},
+                         {"wall_mass", "t"},
+                         divided_by(1e3),
+                         [](const F &x) { return x.sdof_ok() ? x.sdof->mass : nan; }),
+        number_column<F>({},
+                         {"wall_frequency", "Hz"},
+                         {},
+                         [](const F &x) { return x.sdof_ok() ? x.sdof->frequency : nan; })};
+      for (const Quantity &q : quantities)
+        for (const std::string side : {"rigid", "flexible"})
+          columns.push_back(number_column<F>({side + "_" + q.name, q.unit},
+                                             {side + "_" + q.name, q.display_unit},
+                                             times(q.factor),
+                                             [side, value = q.value](const F &x)
+                                             {
+                                               const StudyBuildingRun *run = x.ok_run(side);
+                                               return run ? run->*value : nan;
+                                             }));
+      for (const Quantity &q : quantities)
+        columns.push_back(number_column<F>({},
+                                           {std::string("ratio_") + q.name, "1"},
+                                           {},
+                                           [value = q.value](const F &x) {
+                                             return ratio(x.rigid,
+                                                          *x.flexible,
+                                                          x.rigid_ok() ? x.rigid->*value : nan,
+                                                          x.flexible->*value);
+                                           }));
+      append_amplification_columns(columns);
+      columns.push_back(
+        number_column<F>({"peak_wall_displacement", "m"},
+                         {"peak_wall_displacement", "mm"},
+                         times(1e3),
+                         [](const F &x)
+                         { return x.flexible_ok() ? x.flexible->peak_wall_displacement : nan; }));
+      columns.push_back(same_column<F>("energy_error",
+                                       "1",
+                                       [](const F &x) {
+                                         return x.flexible_ok() ? x.flexible->energy_error : nan;
+                                       }));
+      for (const std::string side : {"rigid", "flexible"})
+        columns.push_back(csv_text_column<F>(side + "_n_impacts",
+                                             [side](const F &x)
+                                             {
+                                               const StudyBuildingRun *run = x.ok_run(side);
+                                               return run ? std::to_string(run->n_impacts) : "";
+                                             }));
+      columns.push_back(
+        csv_text_column<F>("status", [](const F &x) { return x.flexible->status; }));
+      return columns;
+    }
+
+    /// A quantity of a computed SDOF (NaN where it failed).
+    std::function<double(const StudyWallSdof &)> computed(double StudyWallSdof::*quantity)
+    {
+      return [quantity](const StudyWallSdof &s) { return s.ok() ? s.*quantity : nan; };
+    }
+
+    /// A mass per metre of wall: NAME_per_metre in kg/m in study.h5, NAME in t/m in the CSV.
+    StudyColumn<StudyWallSdof> mass_per_metre_column(const std::string &name,
+                                                     double StudyWallSdof::*quantity)
+    {
+      return number_column<StudyWallSdof>({name + "_per_metre", "kg/m"},
+                                          {name, "t/m"},
+                                          divided_by(1e3),
+                                          computed(quantity));
+    }
+
+    std::vector<StudyColumn<StudyWallSdof>> wall_sdof_columns()
+    {
+      using S = StudyWallSdof;
+      return {
+        same_column<S>("wall_height", "m", [](const S &s) { return s.wall_height; }),
+        number_column<S>({"stiffness_per_metre", "N/m/m"},
+                         {"stiffness", "MN/m/m"},
+                         divided_by(1e6),
+                         computed(&S::stiffness_per_metre)),
+        mass_per_metre_column("mass", &S::mass_per_metre),
+        same_column<S>("frequency", "Hz", computed(&S::frequency)),
+        mass_per_metre_column("participation_mass", &S::participation_mass_per_metre),
+        mass_per_metre_column("modal_sum_mass", &S::modal_sum_mass_per_metre),
+        csv_text_column<S>("mode",
+                           [](const S &s) { return s.ok() ? std::to_string(s.mode + 1) : ""; }),
+        same_column<S>("mode_frequency", "Hz", computed(&S::mode_frequency)),
+        same_column<S>("mode_share", "1", computed(&S::mode_share)),
+        mass_per_metre_column("mode_mass", &S::mode_mass_per_metre),
+        mass_per_metre_column("wall_and_backfill_mass", &S::total_mass_per_metre),
+        number_column<S>({"stiffness", "N/m"},
+                         {"stiffness_total", "MN/m"},
+                         divided_by(1e6),
+                         computed(&S::stiffness)),
+        number_column<S>({"mass", "kg"}, {"mass_total", "t"}, divided_by(1e3), computed(&S::mass)),
+        same_column<S>("damping_ratio", "1", [](const S &s) { return s.damping_ratio; }),
+        number_column<S>({"h_contact", "m"},
+                         {"h_contact", "cm"},
+                         times(100),
+                         [](const S &s) { return s.h_contact; }),
+        hdf5_column<S>("ok", "1", [](const S &s) { return flag(s.ok()); }),
+        integer_column<S>("n_dofs", false, true, [](const S &s) { return std::int64_t(s.n_dofs); }),
+        number_column<S>({}, {"wall_time", "s"}, {}, [](const S &s) { return s.seconds; }),
+        csv_text_column<S>("status", [](const S &s) { return s.status; })};
+    }
+
   } // namespace
 
   void write_flexible_wall_csv(const OutputDir &output, const StudyResult &result)
   {
-    std::vector<std::vector<std::string>> sdof_rows;
-    for (const StudyWallSdof &s : result.wall_sdofs)
-    {
-      const auto v = [&](double x) { return number(s.ok() ? x : nan); };
-      sdof_rows.push_back({number(s.wall_height),
-                           v(s.stiffness_per_metre / 1e6),
-                           v(s.mass_per_metre / 1e3),
-                           v(s.frequency),
-                           v(s.participation_mass_per_metre / 1e3),
-                           v(s.modal_sum_mass_per_metre / 1e3),
-                           s.ok() ? std::to_string(s.mode + 1) : "",
-                           v(s.mode_frequency),
-                           v(s.mode_share),
-                           v(s.mode_mass_per_metre / 1e3),
-                           v(s.total_mass_per_metre / 1e3),
-                           v(s.stiffness / 1e6),
-                           v(s.mass / 1e3),
-                           number(s.damping_ratio),
-                           number(s.h_contact * 100),
-                           std::to_string(s.n_dofs),
-                           number(s.seconds),
-                           s.status});
-    }
-    write_csv_atomic(output.file("wall_sdof.csv"),
-                     {"wall_height_m",
-                      "stiffness_MN_per_m_per_m",
-                      "mass_t_per_m",
-                      "frequency_Hz",
-                      "participation_mass_t_per_m",
-                      "modal_sum_mass_t_per_m",
-                      "mode",
-                      "mode_frequency_Hz",
-                      "mode_share",
-                      "mode_mass_t_per_m",
-                      "wall_and_backfill_mass_t_per_m",
-                      "stiffness_total_MN_per_m",
-                      "mass_total_t",
-                      "damping_ratio",
-                      "h_contact_cm",
-                      "n_dofs",
-                      "wall_time_s",
-                      "status"},
-                     sdof_rows);
+    study_table(wall_sdof_columns(), result.wall_sdofs, StudyFile::csv)
+      .write_csv(output.file("wall_sdof.csv"));
 
-    std::vector<std::string> header = {"record",
-                                       "wall_height_m",
-                                       "law",
-                                       "wall_stiffness_MN_per_m",
-                                       "wall_mass_t",
-                                       "wall_frequency_Hz"};
-    for (const Quantity &q : quantities)
-      for (const char *which : {"rigid", "flexible"})
-        header.push_back(fmt::format("{}_{}_{}", which, q.name, q.csv_unit));
-    for (const Quantity &q : quantities)
-      header.push_back(fmt::format("ratio_{}", q.name));
-    for (const char *which : {"rigid", "flexible"})
-      for (const char *a : {"base_acceleration", "top_acceleration", "interstorey_drift"})
-        header.push_back(fmt::format("{}_amplification_{}", which, a));
-    for (const std::string column :
-         {"peak_wall_displacement_mm", "energy_error", "rigid_n_impacts", "flexible_n_impacts"})
-      header.push_back(column);
-    header.push_back("status");
-
-    std::vector<std::vector<std::string>> rows;
+    std::vector<const StudyBuildingRun *> runs;
     for (const StudyBuildingRun &f : result.flexible_building)
-    {
-      const StudyBuildingRun  *r   = rigid_twin(result, f);
-      const StudyWallSdof     *s   = sdof_of(result, f.wall_height);
-      const bool               sok = s && s->ok();
-      const bool               rok = r && r->status == "ok";
-      const bool               fok = f.status == "ok";
-      std::vector<std::string> row = {f.record,
-                                      number(f.wall_height),
-                                      f.law,
-                                      number(sok ? s->stiffness / 1e6 : nan),
-                                      number(sok ? s->mass / 1e3 : nan),
-                                      number(sok ? s->frequency : nan)};
-      for (const Quantity &q : quantities)
-      {
-        row.push_back(number(rok ? q.value(*r) * q.scale : nan));
-        row.push_back(number(fok ? q.value(f) * q.scale : nan));
-      }
-      for (const Quantity &q : quantities)
-        row.push_back(number(ratio(r, f, rok ? q.value(*r) : nan, q.value(f))));
-      for (const StudyBuildingRun *run : {r, static_cast<const StudyBuildingRun *>(&f)})
-      {
-        const bool ok = run && run->status == "ok";
-        row.push_back(number(ok ? run->amplification_base_acc : nan));
-        row.push_back(number(ok ? run->amplification_top_acc : nan));
-        row.push_back(number(ok ? run->amplification_drift : nan));
-      }
-      row.push_back(number(fok ? f.peak_wall_displacement * 1e3 : nan));
-      row.push_back(number(fok ? f.energy_error : nan));
-      row.push_back(rok ? std::to_string(r->n_impacts) : "");
-      row.push_back(fok ? std::to_string(f.n_impacts) : "");
-      row.push_back(f.status);
-      rows.push_back(row);
-    }
-    write_csv_atomic(output.file("flexible_wall.csv"), header, rows);
+      runs.push_back(&f);
+    study_table(flexible_wall_columns(), flexible_rows(result, runs), StudyFile::csv)
+      .write_csv(output.file("flexible_wall.csv"));
   }
 
   void write_flexible_wall_h5(ResultsGroup &root, const StudyResult &result)
   {
     if (result.wall_sdofs.empty())
       return;
-    Table c;
-    c.number("wall_height", "m")
-      .number("stiffness_per_metre", "N/m/m")
-      .number("mass_per_metre", "kg/m")
-      .number("frequency", "Hz")
-      .number("participation_mass_per_metre", "kg/m")
-      .number("modal_sum_mass_per_metre", "kg/m")
-      .number("mode_frequency", "Hz")
-      .number("mode_share", "1")
-      .number("mode_mass_per_metre", "kg/m")
-      .number("wall_and_backfill_mass_per_metre", "kg/m")
-      .number("stiffness", "N/m")
-      .number("mass", "kg")
-      .number("damping_ratio", "1")
-      .number("h_contact", "m")
-      .number("ok", "1");
-    for (const StudyWallSdof &s : result.wall_sdofs)
-    {
-      const bool ok = s.ok();
-      c.add_row(number_cells({s.wall_height,
-                              ok ? s.stiffness_per_metre : nan,
-                              ok ? s.mass_per_metre : nan,
-                              ok ? s.frequency : nan,
-                              ok ? s.participation_mass_per_metre : nan,
-                              ok ? s.modal_sum_mass_per_metre : nan,
-                              ok ? s.mode_frequency : nan,
-                              ok ? s.mode_share : nan,
-                              ok ? s.mode_mass_per_metre : nan,
-                              ok ? s.total_mass_per_metre : nan,
-                              ok ? s.stiffness : nan,
-                              ok ? s.mass : nan,
-                              s.damping_ratio,
-                              s.h_contact,
-                              flag(ok)}));
-    }
-    c.write_hdf5(root, "wall_sdof");
+    study_table(wall_sdof_columns(), result.wall_sdofs, StudyFile::hdf5)
+      .write_hdf5(root, "wall_sdof");
 
     // /flexible_wall/<record>/<law>: one row per wall height, rigid and flexible side by side.
     for (const auto &[key, runs] : by_record_and_law(result.flexible_building, true))
     {
-      Table t;
-      t.number("wall_height", "m").number("wall_stiffness", "N/m").number("wall_mass", "kg");
-      for (const Quantity &q : quantities)
-      {
-        const std::string unit = std::string(q.csv_unit) == "m_per_s2" ? "m/s^2" :
-                                 std::string(q.csv_unit) == "kN"       ? "N" :
-                                                                         "m";
-        t.number(fmt::format("rigid_{}", q.name), unit)
-          .number(fmt::format("flexible_{}", q.name), unit);
-      }
-      t.number("peak_wall_displacement", "m").number("energy_error", "1");
-      for (const StudyBuildingRun *f : runs)
-      {
-        const StudyBuildingRun *r = rigid_twin(result, *f);
-        const StudyWallSdof    *s = sdof_of(result, f->wall_height);
-        std::vector<Cell>       v =
-          number_cells({f->wall_height, s ? s->stiffness : nan, s ? s->mass : nan});
-        for (const Quantity &q : quantities)
-        {
-          v.push_back(r && r->status == "ok" ? q.value(*r) : nan);
-          v.push_back(q.value(*f));
-        }
-        v.push_back(f->peak_wall_displacement);
-        v.push_back(f->energy_error);
-        t.add_row(std::move(v));
-      }
       ResultsGroup record = root.group("flexible_wall").group(key.first);
-      t.write_hdf5(record, key.second);
+      study_table(flexible_wall_columns(), flexible_rows(result, runs), StudyFile::hdf5)
+        .write_hdf5(record, key.second);
     }
   }
 
@@ -296,7 +297,7 @@ namespace kimp::app::study_internal
       row["status"]      = f.status;
       for (const Quantity &q : quantities)
       {
-        const double x = ratio(r, f, r ? q.value(*r) : nan, q.value(f));
+        const double x = ratio(r, f, r ? r->*q.value : nan, f.*q.value);
         if (std::isfinite(x))
           row[std::string("ratio_") + q.name] = x;
       }
@@ -370,10 +371,10 @@ namespace kimp::app::study_internal
       for (std::size_t i = 0; i < 4; ++i)
       {
         const Quantity &q = quantities[i];
-        const double    x = ratio(r, f, ok ? q.value(*r) : nan, q.value(f));
+        const double    x = ratio(r, f, ok ? r->*q.value : nan, f.*q.value);
         cells += fmt::format(" {} / {} | {} |",
-                             readable(ok ? q.value(*r) * q.scale : nan),
-                             readable(ok ? q.value(f) * q.scale : nan),
+                             readable(ok ? r->*q.value * q.factor : nan),
+                             readable(ok ? f.*q.value * q.factor : nan),
                              readable(x));
         if (ok && std::isfinite(x) && x > 0)
           log_sum[i] += std::log(x);

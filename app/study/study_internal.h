@@ -129,6 +129,8 @@ namespace kimp::app::study_internal
   std::vector<double> scale(std::vector<double> values, double factor);
   /// A CSV cell: the shortest text that reads back to the same double, "" for NaN and infinities.
   std::string number(double value);
+  /// A report cell: base::sig() (4 significant figures), "" for NaN and infinities.
+  std::string readable(double value);
 
   // compute: study_heights.cc
   /// FEM (fixed level, or the fidelity ladder) and both fits of one wall height.

@@ -20,12 +20,6 @@ namespace kimp::app::study_internal
 {
   namespace
   {
-    /// A number of the report: 4 significant figures, empty if not finite (as in the CSV).
-    std::string readable(double value)
-    {
-      return std::isfinite(value) ? base::sig(value) : std::string();
-    }
-
     /// The "Accuracy against cost: FEM" section: k against mesh, penalty and implicit solver. Empty
     /// without its points.
     std::string fem_accuracy_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "app/fem/fem_scene.h"
@@ -88,6 +89,13 @@ namespace kimp::app
                      io::Range::positive());
   }
 
+  /// The key wall_height of an extra study run at one wall height; `doc` names the study.
+  template <class Io>
+  void visit_study_wall_height(Io &io, double &wall_height, std::string_view doc)
+  {
+    io.quantity("wall_height", wall_height, "m", doc, moat_wall_height_range());
+  }
+
   /** FEM accuracy-vs-cost and lumped time-step studies at one wall height. */
   struct StudyAccuracyScene
   {
@@ -102,11 +110,7 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, StudyAccuracyScene &s)
   {
-    io.quantity("wall_height",
-                s.wall_height,
-                "m",
-                "wall height of the accuracy study",
-                io::Range::plausible(0.1, 20.0, "a moat wall"));
+    visit_study_wall_height(io, s.wall_height, "wall height of the accuracy study");
     io.quantity_list("h_contact",
                      s.h_contact,
                      "cm",
@@ -145,11 +149,7 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, StudySensitivityScene &s)
   {
-    io.quantity("wall_height",
-                s.wall_height,
-                "m",
-                "wall height of the sensitivity study",
-                io::Range::plausible(0.1, 20.0, "a moat wall"));
+    visit_study_wall_height(io, s.wall_height, "wall height of the sensitivity study");
     io.quantity("variation",
                 s.variation,
                 "%",

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <functional>
 
+#include "app/study/study_columns.h"
 #include "app/study/study_internal.h"
 #include "base/format.h"
 #include "io/results_file.h"
@@ -12,10 +13,10 @@ namespace kimp::app::study_internal
 {
   namespace
   {
-    /// A number column: its name, its display unit and the factor from SI to it, its SI unit,
-    /// and its SI value of a row.
+    /// A number column in short: its name, its display unit and the factor from SI to it, its
+    /// SI unit, and its SI value of a row.
     template <class Row>
-    struct Column
+    struct Scaled
     {
       const char                        *name;
       const char                        *display_unit;
@@ -24,26 +25,22 @@ namespace kimp::app::study_internal
       std::function<double(const Row &)> value;
     };
 
-    /// Appends `columns` to `t` (SI in study.h5, display units in the CSV files).
+    /// Appends `scaled` to `columns`, each NaN in a row that `ok` refuses.
     template <class Row>
-    void add_number_columns(Table &t, const std::vector<Column<Row>> &columns, bool si)
+    void append_scaled(std::vector<StudyColumn<Row>>   &columns,
+                       const std::vector<Scaled<Row>>  &scaled,
+                       std::function<bool(const Row &)> ok)
     {
-      for (const Column<Row> &c : columns)
-        t.number(c.name, si ? c.si_unit : c.display_unit);
-    }
-
-    template <class Row>
-    std::vector<Cell>
-    number_row(const std::vector<Column<Row>> &columns, const Row &row, bool si, bool ok)
-    {
-      std::vector<Cell> cells;
-      for (const Column<Row> &c : columns)
-        cells.emplace_back(ok ? c.value(row) * (si ? 1.0 : c.factor) : nan);
-      return cells;
+      for (const Scaled<Row> &c : scaled)
+        columns.push_back(number_column<Row>({c.name, c.si_unit},
+                                             {c.name, c.display_unit},
+                                             times(c.factor),
+                                             [ok, value = c.value](const Row &row)
+                                             { return ok(row) ? value(row) : nan; }));
     }
 
     /// Per height: the element, what it was derived from and where its resistance comes from.
-    std::vector<Column<StudyYieldingWall>> element_columns()
+    std::vector<Scaled<StudyYieldingWall>> element_quantities()
     {
       using W = StudyYieldingWall;
       return {
@@ -116,26 +113,22 @@ namespace kimp::app::study_internal
       };
     }
 
-    Table element_table(const std::vector<StudyYieldingWall> &walls, bool si)
+    /// The element table: the height and source, the quantities, why that source, the status.
+    std::vector<StudyColumn<StudyYieldingWall>> element_columns()
     {
-      const auto columns = element_columns();
-      Table      t;
-      t.number("wall_height", "m").text("source");
-      add_number_columns(t, columns, si);
-      t.text("source_reason").text("status");
-      for (const StudyYieldingWall &w : walls)
-      {
-        std::vector<Cell> row{w.wall_height, w.source};
-        for (Cell &c : number_row(columns, w, si, w.ok()))
-          row.push_back(std::move(c));
-        row.insert(row.end(), {w.source_reason, w.status});
-        t.add_row(row);
-      }
-      return t;
+      using W = StudyYieldingWall;
+      std::vector<StudyColumn<W>> columns{
+        same_column<W>("wall_height", "m", [](const W &w) { return w.wall_height; }),
+        text_column<W>("source", [](const W &w) { return w.source; })};
+      append_scaled<W>(columns, element_quantities(), [](const W &w) { return w.ok(); });
+      columns.push_back(
+        text_column<W>("source_reason", [](const W &w) { return w.source_reason; }));
+      columns.push_back(text_column<W>("status", [](const W &w) { return w.status; }));
+      return columns;
     }
 
     /// Per height and record: the walls against their capacity.
-    std::vector<Column<StudyBuildingRun>> run_columns()
+    std::vector<Scaled<StudyBuildingRun>> run_quantities()
     {
       using R = StudyBuildingRun;
       return {
@@ -179,33 +172,41 @@ namespace kimp::app::study_internal
       };
     }
 
-    Table runs_table(const std::vector<StudyBuildingRun> &runs, bool si)
+    /// The runs table: record, height and capacity, the quantities, failure, impacts, status.
+    std::vector<StudyColumn<StudyBuildingRun>> run_columns()
     {
-      const auto columns = run_columns();
-      Table      t;
-      t.text("record").number("wall_height", "m").number("wall_capacity", si ? "N" : "kN");
-      add_number_columns(t, columns, si);
-      t.integer("failed")
-        .number("failure_time", "s")
-        .integer("n_impacts")
-        .number("wall_time", "s")
-        .text("status");
-      for (const StudyBuildingRun &r : runs)
-      {
-        if (!r.yielding_wall)
-          continue;
-        std::vector<Cell> row{r.record, r.wall_height, r.wall_capacity * (si ? 1.0 : 1e-3)};
-        for (Cell &c : number_row(columns, r, si, r.status == "ok"))
-          row.push_back(std::move(c));
-        row.insert(row.end(),
-                   {static_cast<std::int64_t>(r.wall_failed ? 1 : 0),
-                    r.wall_failed ? r.wall_failure_time : nan,
-                    static_cast<std::int64_t>(r.n_impacts),
-                    r.wall_seconds,
-                    r.status});
-        t.add_row(row);
-      }
-      return t;
+      using R = StudyBuildingRun;
+      std::vector<StudyColumn<R>> columns{
+        text_column<R>("record", [](const R &r) { return r.record; }),
+        same_column<R>("wall_height", "m", [](const R &r) { return r.wall_height; }),
+        number_column<R>({"wall_capacity", "N"},
+                         {"wall_capacity", "kN"},
+                         times(1e-3),
+                         [](const R &r) { return r.wall_capacity; })};
+      append_scaled<R>(columns, run_quantities(), [](const R &r) { return r.status == "ok"; });
+      columns.push_back(integer_column<R>("failed",
+                                          true,
+                                          true,
+                                          [](const R &r)
+                                          { return std::int64_t(r.wall_failed ? 1 : 0); }));
+      columns.push_back(same_column<R>("failure_time",
+                                       "s",
+                                       [](const R &r)
+                                       { return r.wall_failed ? r.wall_failure_time : nan; }));
+      columns.push_back(integer_column<R>("n_impacts",
+                                          true,
+                                          true,
+                                          [](const R &r) { return std::int64_t(r.n_impacts); }));
+      columns.push_back(
+        same_column<R>("wall_time", "s", [](const R &r) { return r.wall_seconds; }));
+      columns.push_back(text_column<R>("status", [](const R &r) { return r.status; }));
+      return columns;
+    }
+
+    /// The runs of a yielding wall.
+    bool yielding(const StudyBuildingRun &r)
+    {
+      return r.yielding_wall;
     }
   } // namespace
 
@@ -213,8 +214,10 @@ namespace kimp::app::study_internal
   {
     if (result.yielding_walls.empty())
       return;
-    element_table(result.yielding_walls, false).write_csv(output.file("yielding_wall_element.csv"));
-    runs_table(result.building, false).write_csv(output.file("yielding_wall.csv"));
+    study_table(element_columns(), result.yielding_walls, StudyFile::csv)
+      .write_csv(output.file("yielding_wall_element.csv"));
+    study_table(run_columns(), result.building, StudyFile::csv, yielding)
+      .write_csv(output.file("yielding_wall.csv"));
   }
 
   void write_yielding_wall_h5(ResultsGroup &root, const StudyResult &result)
@@ -222,8 +225,8 @@ namespace kimp::app::study_internal
     if (result.yielding_walls.empty())
       return;
     ResultsGroup g = root.group("yielding_wall");
-    element_table(result.yielding_walls, true).write_hdf5(g, "element");
-    runs_table(result.building, true).write_hdf5(g, "runs");
+    study_table(element_columns(), result.yielding_walls, StudyFile::hdf5).write_hdf5(g, "element");
+    study_table(run_columns(), result.building, StudyFile::hdf5, yielding).write_hdf5(g, "runs");
     // The pushover curve each element was fitted to (source pushover).
     for (const StudyYieldingWall &w : result.yielding_walls)
     {

@@ -15,21 +15,20 @@
 
 #include "lumped/integrators/central_difference_session.h"
 #include "lumped/integrators/integration_errors.h"
+#include "lumped/integrators/largest_omega.h"
 #include "lumped/parameter_check.h"
 
 namespace kimp::lumped
 {
   namespace
   {
-    double largest_omega(const std::vector<double> &masses, const Eigen::MatrixXd &k)
+    /// largest_omega() of the model's masses and the stiffness `k`.
+    double largest_omega(const PoundingModel &model, const Eigen::MatrixXd &k)
     {
-      const auto      n = static_cast<Eigen::Index>(masses.size());
-      Eigen::VectorXd inv_sqrt_m(n);
-      for (Eigen::Index i = 0; i < n; ++i)
-        inv_sqrt_m(i) = 1.0 / std::sqrt(masses[static_cast<std::size_t>(i)]);
-      const Eigen::MatrixXd a = inv_sqrt_m.asDiagonal() * k * inv_sqrt_m.asDiagonal();
-      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(a, Eigen::EigenvaluesOnly);
-      return std::sqrt(std::max(solver.eigenvalues().maxCoeff(), 0.0));
+      const std::vector<double> &m = model.masses();
+      return lumped::largest_omega(
+        Eigen::Map<const Eigen::VectorXd>(m.data(), static_cast<Eigen::Index>(m.size())),
+        k);
     }
   } // namespace
 
@@ -43,7 +42,7 @@ namespace kimp::lumped
     }
     StabilityLimit  s;
     Eigen::MatrixXd k = model.initial_stiffness_matrix();
-    s.omega_structure = largest_omega(model.masses(), k);
+    s.omega_structure = largest_omega(model, k);
     std::string impact_name;
     for (const ContactPair &c : model.contacts())
     {
@@ -64,8 +63,7 @@ namespace kimp::lumped
         k(c.right_dof, c.left_dof) -= kt;
       }
     }
-    s.omega_closed =
-      model.contacts().empty() ? s.omega_structure : largest_omega(model.masses(), k);
+    s.omega_closed     = model.contacts().empty() ? s.omega_structure : largest_omega(model, k);
     const double w_max = std::max({s.omega_structure, s.omega_closed, s.omega_impact});
     s.dt_critical      = 2.0 / w_max;
     std::ostringstream g;
@@ -85,25 +83,32 @@ namespace kimp::lumped
     : model_(std::move(model))
     , options_(std::move(options))
   {
+    check_stepping(options_, model_.n_dofs());
     const ParameterCheck check("central_difference.");
-    check_stepping_options(options_.dt,
-                           options_.safety,
-                           options_.duration,
-                           options_.output_interval,
-                           options_.divergence_energy_factor);
-    const int lanes = options_.vector_lanes;
+    const int            lanes = options_.vector_lanes;
     check(lanes == 0 || lanes == 2 || lanes == 4 || lanes == 8,
           "vector_lanes",
           lanes,
           "must be 0 (widest available), 2, 4 or 8");
-    require_initial_state("central_difference.",
-                          options_.initial_displacement,
-                          options_.initial_velocity,
-                          model_.n_dofs());
     stability_ = stability_limit(model_, options_.expected_max_penetration);
   }
 
-  double CentralDifference::time_step(const double record_dt) const
+  void check_stepping(const SteppingOptions &options, const std::size_t n_dofs)
+  {
+    check_stepping_options(options.dt,
+                           options.safety,
+                           options.duration,
+                           options.output_interval,
+                           options.divergence_energy_factor);
+    require_initial_state("central_difference.",
+                          options.initial_displacement,
+                          options.initial_velocity,
+                          n_dofs);
+  }
+
+  double central_difference_step(const double           record_dt,
+                                 const SteppingOptions &options,
+                                 const StabilityLimit  &stability)
   {
     if (!(record_dt > 0.0 && std::isfinite(record_dt)))
     {
@@ -111,23 +116,31 @@ namespace kimp::lumped
       msg << "ground motion dt = " << record_dt << " s (must be > 0)";
       throw std::invalid_argument(msg.str());
     }
-    if (options_.dt > 0.0)
+    if (options.dt > 0.0)
     {
-      if (options_.dt >= stability_.dt_critical)
+      if (options.dt >= stability.dt_critical)
       {
         std::ostringstream msg;
-        msg << "time step dt = " << options_.dt
+        msg << "time step dt = " << options.dt
             << " s exceeds the stability limit of the central difference method dt_cr = "
                "2/omega_max = "
-            << stability_.dt_critical << " s (governed by " << stability_.governing
-            << "); use dt < " << stability_.dt_critical << " s or dt = auto";
-        throw TimeStepError(msg.str(), options_.dt, stability_.dt_critical);
+            << stability.dt_critical << " s (governed by " << stability.governing << "); use dt < "
+            << stability.dt_critical << " s or dt = auto";
+        throw TimeStepError(msg.str(), options.dt, stability.dt_critical);
       }
-      return options_.dt;
+      return options.dt;
     }
-    const double target = options_.safety * stability_.dt_critical;
+    if (!std::isfinite(stability.dt_critical))
+      throw std::invalid_argument("central_difference.dt = auto needs a stability limit, and "
+                                  "this model has no stiffness (give dt > 0)");
+    const double target = options.safety * stability.dt_critical;
     const double n_sub  = std::ceil(record_dt / target * (1.0 - 1e-12));
     return record_dt / std::max(n_sub, 1.0);
+  }
+
+  double CentralDifference::time_step(const double record_dt) const
+  {
+    return central_difference_step(record_dt, options_, stability_);
   }
 
 

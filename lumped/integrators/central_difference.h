@@ -27,6 +27,18 @@ namespace kimp::lumped
     backward_second_order
   };
 
+  /// The rate of a quantity x handed to a law at step n, from x_n, x_{n−1} and x_{n−2}
+  /// (LawVelocity; inv_dt = 1/Δt).
+  inline double law_rate(const LawVelocity scheme,
+                         const double      x_n,
+                         const double      x_nm1,
+                         const double      x_nm2,
+                         const double      inv_dt)
+  {
+    return scheme == LawVelocity::backward ? (x_n - x_nm1) * inv_dt :
+                                             (3.0 * x_n - 4.0 * x_nm1 + x_nm2) * (0.5 * inv_dt);
+  }
+
   /**
    * Time-loop kernel of the central difference method.
    *  - automatic: when every storey joins DOF i − 1 and DOF i or the ground and DOF i (true for
@@ -49,6 +61,9 @@ namespace kimp::lumped
   };
 
   /**
+   * The stepping options of every central difference integrator (CentralDifferenceOptions, the
+   * plan engine's lumped::plan::PlanOptions):
+   *
    * | option                   | unit | default | meaning                                     |
    * |--------------------------|------|---------|---------------------------------------------|
    * | dt                       | s    | 0       | time step; 0 = auto: safety·Δt_cr, reduced  |
@@ -63,13 +78,8 @@ namespace kimp::lumped
    * | initial_velocity         | m/s  | zeros   | u̇(0), empty or one per DOF                  |
    * | divergence_energy_factor | -    | 10      | stop when E_kin + E_strain exceeds this     |
    * |                          |      |         | times max(E_0 + W_in)                       |
-   * | kernel                   | -    | auto    | see CdmKernel                               |
-   * | vector_lanes             | -    | 0       | cap on the fused kernel's vector width in   |
-   * |                          |      |         | doubles: 0 = widest available (AVX-512: 8,  |
-   * |                          |      |         | AVX2: 4, SSE2: 2), or 4 or 2; bitwise equal |
-   * |                          |      |         | results for every width                     |
    */
-  struct CentralDifferenceOptions
+  struct SteppingOptions
   {
     double              dt                       = 0.0;
     double              safety                   = 0.5;
@@ -80,8 +90,29 @@ namespace kimp::lumped
     std::vector<double> initial_displacement;
     std::vector<double> initial_velocity;
     double              divergence_energy_factor = 10.0;
-    CdmKernel           kernel                   = CdmKernel::automatic;
-    int                 vector_lanes             = 0;
+  };
+
+  /**
+   * The checks of SteppingOptions for a model of n_dofs DOFs.
+   * @throws std::invalid_argument naming the option ("central_difference.<key> = ...").
+   */
+  void check_stepping(const SteppingOptions &options, std::size_t n_dofs);
+
+  /**
+   * SteppingOptions and the kernel of the planar integrator:
+   *
+   * | option                   | unit | default | meaning                                     |
+   * |--------------------------|------|---------|---------------------------------------------|
+   * | kernel                   | -    | auto    | see CdmKernel                               |
+   * | vector_lanes             | -    | 0       | cap on the fused kernel's vector width in   |
+   * |                          |      |         | doubles: 0 = widest available (AVX-512: 8,  |
+   * |                          |      |         | AVX2: 4, SSE2: 2), or 4 or 2; bitwise equal |
+   * |                          |      |         | results for every width                     |
+   */
+  struct CentralDifferenceOptions : SteppingOptions
+  {
+    CdmKernel kernel       = CdmKernel::automatic;
+    int       vector_lanes = 0;
   };
 
   /// Stability limit of the central difference method for a model.
@@ -99,6 +130,17 @@ namespace kimp::lumped
    * @param[in] expected_max_penetration δ_max, m (> 0)
    */
   StabilityLimit stability_limit(const PoundingModel &model, double expected_max_penetration);
+
+  /**
+   * The step of the central difference method for a record sampled every `record_dt` s:
+   * options.dt when given (> 0), else (auto) record_dt divided into the fewest equal steps of at
+   * most options.safety·Δt_cr.
+   * @throws std::invalid_argument for record_dt <= 0, or auto without a stability limit (no
+   * stiffness); TimeStepError when options.dt >= Δt_cr (both numbers named).
+   */
+  double central_difference_step(double                 record_dt,
+                                 const SteppingOptions &options,
+                                 const StabilityLimit  &stability);
 
   /**
    * Fixed-step central difference integrator with an allocation-free time loop. The effective

@@ -49,16 +49,6 @@ namespace kimp::lumped
     /// Steps per bookkeeping block: the dynamics runs a block, then velocities, accelerations,
     /// energies and peaks are evaluated for the whole block in loops over the steps (vectorised).
     constexpr long block_steps = 64;
-
-    inline double law_rate(const LawVelocity scheme,
-                           const double      x_n,
-                           const double      x_nm1,
-                           const double      x_nm2,
-                           const double      inv_dt)
-    {
-      return scheme == LawVelocity::backward ? (x_n - x_nm1) * inv_dt :
-                                               (3.0 * x_n - 4.0 * x_nm1 + x_nm2) * (0.5 * inv_dt);
-    }
   } // namespace cdm
 
   /**

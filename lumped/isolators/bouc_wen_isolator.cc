@@ -13,21 +13,7 @@ namespace kimp::lumped
     constexpr int max_iterations = 100;
   } // namespace
 
-  BoucWenIsolator::BoucWenIsolator(const double K1,
-                                   const double alpha,
-                                   const double F_y,
-                                   const double A,
-                                   const double beta,
-                                   const double gamma,
-                                   const double n,
-                                   const double c)
-    : HystereticIsolator(c)
-    , K1_(K1)
-    , alpha_(alpha)
-    , A_(A)
-    , beta_(beta)
-    , gamma_(gamma)
-    , n_(n)
+  void BoucWenParameters::check() const
   {
     require_isolator(std::isfinite(K1) && K1 > 0.0, "K1", K1, "N/m", "must be > 0 and finite");
     require_isolator(std::isfinite(alpha) && alpha >= 0.0 && alpha < 1.0,
@@ -44,16 +30,23 @@ namespace kimp::lumped
                      "must be >= |bw_gamma| (non-negative dissipation)");
     require_isolator(beta + gamma > 0.0, "bw_gamma", gamma, "", "must give bw_beta + bw_gamma > 0");
     require_isolator(std::isfinite(n) && n >= 1.0, "bw_n", n, "", "must be >= 1");
-    Q_     = (1.0 - alpha) * F_y;
-    u_y_   = F_y / K1;
-    z_max_ = std::pow(A / (beta + gamma), 1.0 / n);
-    n_int_ = (n == std::floor(n) && n <= 64.0) ? static_cast<int>(n) : 0;
+  }
+
+  BoucWenIsolator::BoucWenIsolator(const BoucWenParameters &parameters, const double c)
+    : HystereticLaw(c)
+    , p_(parameters)
+  {
+    p_.check();
+    Q_     = p_.strength();
+    u_y_   = p_.yield_displacement();
+    z_max_ = std::pow(p_.A / (p_.beta + p_.gamma), 1.0 / p_.n);
+    n_int_ = (p_.n == std::floor(p_.n) && p_.n <= 64.0) ? static_cast<int>(p_.n) : 0;
   }
 
   double BoucWenIsolator::power(const double a) const
   {
     if (n_int_ == 0)
-      return std::pow(a, n_);
+      return std::pow(a, p_.n);
     double p = a;
     for (int i = 1; i < n_int_; ++i)
       p *= a;
@@ -66,16 +59,16 @@ namespace kimp::lumped
     trial_          = committed_;
     trial_.u        = displacement;
     const double du = displacement - committed_.u;
-    const double K2 = alpha_ * K1_;
+    const double K2 = p_.alpha * p_.K1;
     const double zc = committed_.z;
     if (du == 0.0)
       return {K2 * displacement + Q_ * zc,
-              K2 + Q_ / u_y_ * (A_ - power(std::abs(zc)) * (gamma_ + beta_)),
+              K2 + Q_ / u_y_ * (p_.A - power(std::abs(zc)) * (p_.gamma + p_.beta)),
               0.0};
     const double ratio = du / u_y_;
     // Ψ(z) = γ + β·sgn(z·du); |z|^n vanishes where Ψ jumps, so the residual is continuous and,
     // for β >= |γ|, increasing in z.
-    const double psi_with = gamma_ + beta_, psi_against = gamma_ - beta_;
+    const double psi_with = p_.gamma + p_.beta, psi_against = p_.gamma - p_.beta;
     // Root bracket: g(z_c) <= 0 <= g(z_max) for du > 0, g(−z_max) <= 0 <= g(z_c) for du < 0.
     double lo = du > 0.0 ? zc : -z_max_;
     double hi = du > 0.0 ? z_max_ : zc;
@@ -90,12 +83,12 @@ namespace kimp::lumped
       const double zn  = power(az);
       zn_psi           = zn * psi;
       // n·|z|^(n−1)·sgn(z) = n·|z|^n / z (0 at z = 0 for n >= 1).
-      dg = 1.0 + ratio * (az > 0.0 ? n_ * zn / z : 0.0) * psi;
-      return z - zc - ratio * (A_ - zn_psi);
+      dg = 1.0 + ratio * (az > 0.0 ? p_.n * zn / z : 0.0) * psi;
+      return z - zc - ratio * (p_.A - zn_psi);
     };
     // Start from the explicit Euler step.
-    double z = std::min(std::max(zc + ratio * (A_ - power(std::abs(zc)) *
-                                                      (zc * du > 0.0 ? psi_with : psi_against)),
+    double z = std::min(std::max(zc + ratio * (p_.A - power(std::abs(zc)) *
+                                                        (zc * du > 0.0 ? psi_with : psi_against)),
                                  lo),
                         hi);
     for (int it = 0; it < max_iterations; ++it)
@@ -116,9 +109,9 @@ namespace kimp::lumped
     }
     evaluate(z);
     trial_.z           = z;
-    const double dz_du = (A_ - zn_psi) / u_y_ / dg;
+    const double dz_du = (p_.A - zn_psi) / u_y_ / dg;
     // Work of the hysteretic spring beyond its stored energy (>= 0 for β >= |γ|).
-    trial_.dissipated += Q_ * z * du * zn_psi / A_;
+    trial_.dissipated += Q_ * z * du * zn_psi / p_.A;
     return {K2 * displacement + Q_ * z, K2 + Q_ * dz_du, 0.0};
   }
 } // namespace kimp::lumped

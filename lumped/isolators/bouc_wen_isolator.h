@@ -8,6 +8,27 @@
 
 namespace kimp::lumped
 {
+  /// The parameters of the Bouc-Wen law (BoucWenIsolator, plan::PlanBoucWenIsolator; table
+  /// below).
+  struct BoucWenParameters
+  {
+    double K1    = 0.0; ///< N/m
+    double alpha = 0.0; ///< K2/K1
+    double F_y   = 0.0; ///< N
+    double A     = 1.0;
+    double beta  = 0.5;
+    double gamma = 0.5;
+    double n     = 1.0;
+
+    /// Characteristic strength Q = (1 − α)·F_y, N.
+    double strength() const { return (1.0 - alpha) * F_y; }
+    /// Yield displacement u_y = F_y/K1, m.
+    double yield_displacement() const { return F_y / K1; }
+
+    /// @throws std::invalid_argument naming the parameter, its value and the admissible range.
+    void check() const;
+  };
+
   /// History of a BoucWenIsolator, held committed and trial.
   struct BoucWenState
   {
@@ -43,26 +64,22 @@ namespace kimp::lumped
   {
   public:
     /// @throws std::invalid_argument naming the parameter, its value and the admissible range.
-    BoucWenIsolator(double K1,
-                    double alpha,
-                    double F_y,
-                    double A     = 1.0,
-                    double beta  = 0.5,
-                    double gamma = 0.5,
-                    double n     = 1.0,
-                    double c     = 0.0);
+    explicit BoucWenIsolator(const BoucWenParameters &parameters, double c = 0.0);
 
     IsolatorResponse set_trial(double displacement, double velocity) override;
 
-    double initial_stiffness() const override { return K1_ * (alpha_ + (1.0 - alpha_) * A_); }
+    double initial_stiffness() const override
+    {
+      return p_.K1 * (p_.alpha + (1.0 - p_.alpha) * p_.A);
+    }
     double stored_energy() const override
     {
-      return 0.5 * alpha_ * K1_ * committed_.u * committed_.u +
-             0.5 * Q_ * u_y_ * committed_.z * committed_.z / A_;
+      return 0.5 * p_.alpha * p_.K1 * committed_.u * committed_.u +
+             0.5 * Q_ * u_y_ * committed_.z * committed_.z / p_.A;
     }
     double committed_force() const override
     {
-      return alpha_ * K1_ * committed_.u + Q_ * committed_.z;
+      return p_.alpha * p_.K1 * committed_.u + Q_ * committed_.z;
     }
 
     /// Characteristic strength Q = (1 − α)·F_y, N.
@@ -75,16 +92,11 @@ namespace kimp::lumped
     std::string name() const override { return "bouc_wen"; }
 
   private:
-    double K1_;
-    double alpha_;
-    double A_;
-    double beta_;
-    double gamma_;
-    double n_;
-    double Q_;     ///< (1 − α)·F_y
-    double u_y_;   ///< F_y/K1
-    double z_max_; ///< (A/(β + γ))^(1/n), the bound of |z|
-    int    n_int_; ///< n when it is a small integer (|z|^n by multiplication), else 0
+    BoucWenParameters p_;
+    double            Q_;     ///< (1 − α)·F_y
+    double            u_y_;   ///< F_y/K1
+    double            z_max_; ///< (A/(β + γ))^(1/n), the bound of |z|
+    int               n_int_; ///< n when it is a small integer (|z|^n by multiplication), else 0
 
     /// |z|^n for a = |z| >= 0.
     double power(double a) const;

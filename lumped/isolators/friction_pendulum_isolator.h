@@ -7,6 +7,27 @@
 
 namespace kimp::lumped
 {
+  /// The parameters of the friction pendulum (FrictionPendulumIsolator,
+  /// plan::PlanFrictionPendulumIsolator; table below).
+  struct FrictionPendulumParameters
+  {
+    double W       = 0.0; ///< N
+    double R       = 0.0; ///< m
+    double mu_slow = 0.0;
+    double mu_fast = 0.0;
+    double rate    = 0.0; ///< s/m
+    double k_init  = 0.0; ///< N/m
+
+    /// μ(v) = μ_fast − (μ_fast − μ_slow)·exp(−a·v) at the sliding speed v >= 0 (m/s).
+    double mu(const double speed) const
+    {
+      return mu_fast - (mu_fast - mu_slow) * std::exp(-rate * speed);
+    }
+
+    /// @throws std::invalid_argument naming the parameter, its value and the admissible range.
+    void check() const;
+  };
+
   /// History of a FrictionPendulumIsolator, held committed and trial.
   struct FrictionPendulumState
   {
@@ -42,21 +63,15 @@ namespace kimp::lumped
   {
   public:
     /// @throws std::invalid_argument naming the parameter, its value and the admissible range.
-    FrictionPendulumIsolator(double W,
-                             double R,
-                             double mu_slow,
-                             double mu_fast,
-                             double rate,
-                             double k_init,
-                             double c = 0.0);
+    explicit FrictionPendulumIsolator(const FrictionPendulumParameters &parameters, double c = 0.0);
 
     IsolatorResponse set_trial(double displacement, double velocity) override;
 
-    double initial_stiffness() const override { return k_init_ + k_pendulum_; }
+    double initial_stiffness() const override { return p_.k_init + k_pendulum_; }
     double stored_energy() const override
     {
       return 0.5 * k_pendulum_ * committed_.u * committed_.u +
-             0.5 * committed_.f_s * committed_.f_s / k_init_;
+             0.5 * committed_.f_s * committed_.f_s / p_.k_init;
     }
     double committed_force() const override { return k_pendulum_ * committed_.u + committed_.f_s; }
     bool   stick_slip() const override { return true; }
@@ -70,11 +85,7 @@ namespace kimp::lumped
     std::string name() const override { return "friction_pendulum"; }
 
   private:
-    double W_;
-    double mu_slow_;
-    double mu_fast_;
-    double rate_;
-    double k_init_;
-    double k_pendulum_; ///< W/R
+    FrictionPendulumParameters p_;
+    double                     k_pendulum_; ///< W/R
   };
 } // namespace kimp::lumped

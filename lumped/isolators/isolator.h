@@ -77,14 +77,15 @@ namespace kimp::lumped
   }
 
   /**
-   * CRTP base of the hysteretic isolators (bilinear, Bouc-Wen, friction pendulum): the history is
-   * one struct `State` (value-initialised = virgin, with the hysteretic energy `dissipated`, J)
-   * held as committed and trial copies, and the device dashpot c; the trial/commit verbs, the
+   * CRTP base of the hysteretic isolators (bilinear, Bouc-Wen, friction pendulum), planar
+   * (`Base` = Isolator, HystereticIsolator) and in plan (`Base` = plan::PlanIsolator): the history
+   * is one struct `State` (value-initialised = virgin, with the hysteretic energy `dissipated`,
+   * J) held as committed and trial copies, and the device dashpot c; the trial/commit verbs, the
    * dissipated energy and clone() follow from that. `Derived` provides set_trial() (from
    * committed_, writing trial_), the stiffness and energy queries and name().
    */
-  template <class Derived, class State>
-  class HystereticIsolator : public Isolator
+  template <class Base, class Derived, class State>
+  class HystereticLaw : public Base
   {
   public:
     void   commit() final { committed_ = trial_; }
@@ -93,14 +94,14 @@ namespace kimp::lumped
     double viscous_coefficient() const final { return c_; }
     double dissipated_energy() const final { return committed_.dissipated; }
 
-    std::unique_ptr<Isolator> clone() const final
+    std::unique_ptr<Base> clone() const final
     {
       return std::make_unique<Derived>(static_cast<const Derived &>(*this));
     }
 
   protected:
     /// @throws std::invalid_argument unless c (N·s/m) is >= 0 and finite.
-    explicit HystereticIsolator(const double c)
+    explicit HystereticLaw(const double c)
       : c_(c)
     {
       require_isolator(std::isfinite(c) && c >= 0.0, "c", c, "N*s/m", "must be >= 0 and finite");
@@ -112,4 +113,8 @@ namespace kimp::lumped
   private:
     double c_;
   };
+
+  /// The planar hysteretic isolators' base.
+  template <class Derived, class State>
+  using HystereticIsolator = HystereticLaw<Isolator, Derived, State>;
 } // namespace kimp::lumped

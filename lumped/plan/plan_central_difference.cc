@@ -13,20 +13,13 @@
 #include <utility>
 
 #include "lumped/integrators/integration_errors.h"
+#include "lumped/integrators/largest_omega.h"
 #include "lumped/parameter_check.h"
 
 namespace kimp::lumped::plan
 {
   namespace
   {
-    double largest_omega(const Eigen::VectorXd &m, const Eigen::MatrixXd &k)
-    {
-      const Eigen::VectorXd inv_sqrt_m = m.cwiseSqrt().cwiseInverse();
-      const Eigen::MatrixXd a          = inv_sqrt_m.asDiagonal() * k * inv_sqrt_m.asDiagonal();
-      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(a, Eigen::EigenvaluesOnly);
-      return std::sqrt(std::max(solver.eigenvalues().maxCoeff(), 0.0));
-    }
-
     StabilityLimit plan_stability(const PlanModel &model, const double penetration)
     {
       if (!(penetration > 0.0))
@@ -78,17 +71,6 @@ namespace kimp::lumped::plan
         g << "structure with all contact points closed: omega_max = " << s.omega_closed << " rad/s";
       s.governing = g.str();
       return s;
-    }
-
-    /// Backward (first- or second-order) rate of a quantity from its increments Δx_n, Δx_{n−1}.
-    inline double rate_of(const LawVelocity scheme,
-                          const double      x_n,
-                          const double      x_nm1,
-                          const double      x_nm2,
-                          const double      inv_dt)
-    {
-      return scheme == LawVelocity::backward ? (x_n - x_nm1) * inv_dt :
-                                               (3.0 * x_n - 4.0 * x_nm1 + x_nm2) * (0.5 * inv_dt);
     }
 
     /**
@@ -673,7 +655,7 @@ namespace kimp::lumped::plan
       const PlanContact &pc   = model_.contacts()[c];
       ForceLaw          &law  = *laws_[c];
       const double       dp   = dp_[c];
-      const double       rate = rate_of(scheme_, delta, dp, dpp_[c], inv_dt_);
+      const double       rate = law_rate(scheme_, delta, dp, dpp_[c], inv_dt_);
       if (!called_[c])
       {
         // Bring the law to the last open state it skipped (planar integrator).
@@ -729,7 +711,7 @@ namespace kimp::lumped::plan
       const double t = static_cast<double>(n) * dt_;
       for (WallState &wd : walls_)
       {
-        const double rate = rate_of(scheme_, wd.w, wd.w1, wd.w2, inv_dt_);
+        const double rate = law_rate(scheme_, wd.w, wd.w1, wd.w2, inv_dt_);
         const double f    = wd.law->set_trial(wd.w, rate).force;
         wd.law->commit();
         w_wall_ += 0.5 * (wd.fb + f) * (wd.w - wd.w1);
@@ -807,8 +789,8 @@ namespace kimp::lumped::plan
         for (std::size_t j = 0; j < iso_.size(); ++j)
         {
           const Point uj = kin[j] * q0, uj1 = kin[j] * q1, uj2 = kin[j] * q2;
-          const Point vj(rate_of(scheme_, uj.x(), uj1.x(), uj2.x(), inv_dt_),
-                         rate_of(scheme_, uj.y(), uj1.y(), uj2.y(), inv_dt_));
+          const Point vj(law_rate(scheme_, uj.x(), uj1.x(), uj2.x(), inv_dt_),
+                         law_rate(scheme_, uj.y(), uj1.y(), uj2.y(), inv_dt_));
           const Point fj = iso_[j]->set_trial(uj, vj);
           iso_[j]->commit();
           resultant += fj;
@@ -1150,14 +1132,16 @@ namespace kimp::lumped::plan
       for (const WallState &wd : walls_)
       {
         PlanYieldingWallResult y;
-        y.segment            = wd.segment;
-        y.peak_resistance    = wd.law->peak_resistance();
-        y.peak_displacement  = wd.law->peak_deformation();
-        y.permanent_set      = wd.law->permanent_indentation();
-        y.final_displacement = wd.w;
-        y.plastic_work       = wd.law->plastic_work();
-        y.radiated_work      = wd.law->radiated_work();
-        y.failure_time       = wd.failure_time;
+        y.segment              = wd.segment;
+        y.capacity             = wd.law->parameters().capacity;
+        y.failure_displacement = wd.law->parameters().failure_displacement;
+        y.peak_resistance      = wd.law->peak_resistance();
+        y.peak_displacement    = wd.law->peak_deformation();
+        y.permanent_set        = wd.law->permanent_indentation();
+        y.final_displacement   = wd.w;
+        y.plastic_work         = wd.law->plastic_work();
+        y.radiated_work        = wd.law->radiated_work();
+        y.failure_time         = wd.failure_time;
         e.wall_plastic += y.plastic_work;
         e.wall_radiated += y.radiated_work;
         out_.yielding_walls.push_back(y);
@@ -1249,46 +1233,13 @@ namespace kimp::lumped::plan
     : model_(std::move(model))
     , options_(std::move(options))
   {
-    check_stepping_options(options_.dt,
-                           options_.safety,
-                           options_.duration,
-                           options_.output_interval,
-                           options_.divergence_energy_factor);
-    require_initial_state("central_difference.",
-                          options_.initial_displacement,
-                          options_.initial_velocity,
-                          model_.n_dofs());
+    check_stepping(options_, model_.n_dofs());
     stability_ = plan_stability(model_, options_.expected_max_penetration);
   }
 
   double PlanCentralDifference::time_step(const double record_dt) const
   {
-    if (!(record_dt > 0.0 && std::isfinite(record_dt)))
-    {
-      std::ostringstream msg;
-      msg << "ground motion dt = " << record_dt << " s (must be > 0)";
-      throw std::invalid_argument(msg.str());
-    }
-    if (options_.dt > 0.0)
-    {
-      if (options_.dt >= stability_.dt_critical)
-      {
-        std::ostringstream msg;
-        msg << "time step dt = " << options_.dt
-            << " s exceeds the stability limit of the central difference method dt_cr = "
-               "2/omega_max = "
-            << stability_.dt_critical << " s (governed by " << stability_.governing
-            << "); use dt < " << stability_.dt_critical << " s or dt = auto";
-        throw TimeStepError(msg.str(), options_.dt, stability_.dt_critical);
-      }
-      return options_.dt;
-    }
-    if (!std::isfinite(stability_.dt_critical))
-      throw std::invalid_argument("central_difference.dt = auto needs a stability limit, and "
-                                  "this model has no stiffness (give dt > 0)");
-    const double target = options_.safety * stability_.dt_critical;
-    const double n_sub  = std::ceil(record_dt / target * (1.0 - 1e-12));
-    return record_dt / std::max(n_sub, 1.0);
+    return central_difference_step(record_dt, options_, stability_);
   }
 
   PlanResponse PlanCentralDifference::run(const PlanGroundMotion &motion) const

@@ -73,23 +73,12 @@ namespace kimp::lumped::plan
   };
 
   /**
-   * Options as lumped::CentralDifferenceOptions (same meaning and defaults): dt (0 = auto),
-   * safety, expected_max_penetration, duration (0 = the record's), output_interval, law_velocity,
-   * initial_displacement and initial_velocity (empty or one value per DOF), and
-   * divergence_energy_factor.
+   * Options as lumped::CentralDifferenceOptions without its kernel (lumped::SteppingOptions: dt
+   * (0 = auto), safety, expected_max_penetration, duration (0 = the record's), output_interval,
+   * law_velocity, initial_displacement and initial_velocity (empty or one value per DOF), and
+   * divergence_energy_factor).
    */
-  struct PlanOptions
-  {
-    double              dt                       = 0.0;
-    double              safety                   = 0.5;
-    double              expected_max_penetration = 0.05;
-    double              duration                 = 0.0;
-    double              output_interval          = 0.01;
-    LawVelocity         law_velocity             = LawVelocity::backward;
-    std::vector<double> initial_displacement;
-    std::vector<double> initial_velocity;
-    double              divergence_energy_factor = 10.0;
-  };
+  using PlanOptions = SteppingOptions;
 
   /// Results of one contact point.
   struct PlanContactResult
@@ -106,13 +95,16 @@ namespace kimp::lumped::plan
   /// Results of one yielding wall face.
   struct PlanYieldingWallResult
   {
-    std::size_t segment            = 0;
-    double      peak_resistance    = 0.0; ///< max R(w) of the wall-and-backfill part, N
-    double      peak_displacement  = 0.0; ///< w_max, m
-    double      permanent_set      = 0.0; ///< w_p at the end, m
-    double      final_displacement = 0.0; ///< w at the end, m
-    double      plastic_work       = 0.0; ///< J
-    double      radiated_work      = 0.0; ///< J
+    std::size_t segment  = 0;
+    double      capacity = 0.0; ///< the part's capacity (WallBackfillParams), N
+    /// w_max beyond which the wall has failed (WallBackfillParams), m.
+    double failure_displacement = 0.0;
+    double peak_resistance      = 0.0; ///< max R(w) of the wall-and-backfill part, N
+    double peak_displacement    = 0.0; ///< w_max, m
+    double permanent_set        = 0.0; ///< w_p at the end, m
+    double final_displacement   = 0.0; ///< w at the end, m
+    double plastic_work         = 0.0; ///< J
+    double radiated_work        = 0.0; ///< J
     /// Time at which w_max first exceeded failure_displacement (unset: not failed), s.
     std::optional<double> failure_time;
   };

@@ -6,8 +6,6 @@
 #include <stdexcept>
 
 #include "lumped/isolators/bilinear_isolator.h"
-#include "lumped/isolators/bouc_wen_isolator.h"
-#include "lumped/isolators/friction_pendulum_isolator.h"
 
 namespace kimp::lumped::plan
 {
@@ -23,7 +21,7 @@ namespace kimp::lumped::plan
                                              const double K2,
                                              const double Q,
                                              const double c)
-    : PlanHystereticIsolator(c)
+    : HystereticLaw(c)
     , K1_(K1)
     , K2_(K2)
     , Q_(Q)
@@ -40,26 +38,11 @@ namespace kimp::lumped::plan
            0.5 * committed_.f_ep.squaredNorm() / (K1_ - K2_);
   }
 
-  PlanBoucWenIsolator::PlanBoucWenIsolator(const double K1,
-                                           const double alpha,
-                                           const double F_y,
-                                           const double A,
-                                           const double beta,
-                                           const double gamma,
-                                           const double n,
-                                           const double c)
-    : PlanHystereticIsolator(c)
-    , K1_(K1)
-    , alpha_(alpha)
-    , A_(A)
-    , beta_(beta)
-    , gamma_(gamma)
-    , n_(n)
+  PlanBoucWenIsolator::PlanBoucWenIsolator(const BoucWenParameters &parameters, const double c)
+    : HystereticLaw(c)
+    , p_(parameters)
   {
-    BoucWenIsolator check(K1, alpha, F_y, A, beta, gamma, n, c);
-    (void)check;
-    Q_   = (1.0 - alpha) * F_y;
-    u_y_ = F_y / K1;
+    p_.check();
   }
 
   Point PlanBoucWenIsolator::update(const Point &z_c,
@@ -67,16 +50,16 @@ namespace kimp::lumped::plan
                                     double      &dissipated,
                                     const int    depth) const
   {
-    const Point r = du / u_y_;
+    const Point r = du / p_.yield_displacement();
     // Bracket w(z) = Σ_i (γ + β·sgn(du_i z_i))·z_i du_i and the residual's pieces at z.
     const auto factors = [&](const Point &z)
     {
-      return Point(gamma_ + beta_ * (z.x() * du.x() > 0.0 ? 1.0 :
-                                     z.x() * du.x() < 0.0 ? -1.0 :
-                                                            0.0),
-                   gamma_ + beta_ * (z.y() * du.y() > 0.0 ? 1.0 :
-                                     z.y() * du.y() < 0.0 ? -1.0 :
-                                                            0.0));
+      return Point(p_.gamma + p_.beta * (z.x() * du.x() > 0.0 ? 1.0 :
+                                         z.x() * du.x() < 0.0 ? -1.0 :
+                                                                0.0),
+                   p_.gamma + p_.beta * (z.y() * du.y() > 0.0 ? 1.0 :
+                                         z.y() * du.y() < 0.0 ? -1.0 :
+                                                                0.0));
     };
     const auto scaled_power = [&](const double a, const double p)
     { return a > 0.0 ? std::pow(a, p) : 0.0; };
@@ -85,7 +68,7 @@ namespace kimp::lumped::plan
     {
       const Point  f = factors(z_c);
       const double w = f.x() * z_c.x() * r.x() + f.y() * z_c.y() * r.y();
-      z              = z_c + A_ * r - scaled_power(z_c.norm(), n_ - 2.0) * w * z_c;
+      z              = z_c + p_.A * r - scaled_power(z_c.norm(), p_.n - 2.0) * w * z_c;
     }
     bool converged = false;
     for (int it = 0; it < max_newton; ++it)
@@ -93,14 +76,14 @@ namespace kimp::lumped::plan
       const double    a  = z.norm();
       const Point     f  = factors(z);
       const double    w  = f.x() * z.x() * r.x() + f.y() * z.y() * r.y();
-      const double    pw = scaled_power(a, n_ - 2.0);
-      const Point     g  = z - z_c - (A_ * r - pw * w * z);
+      const double    pw = scaled_power(a, p_.n - 2.0);
+      const Point     g  = z - z_c - (p_.A * r - pw * w * z);
       Eigen::Matrix2d j  = Eigen::Matrix2d::Identity();
       if (a > 0.0)
       {
         const Point grad_w(f.x() * r.x(), f.y() * r.y());
         j += pw * (w * Eigen::Matrix2d::Identity() + z * grad_w.transpose()) +
-             (n_ - 2.0) * pw / (a * a) * w * z * z.transpose();
+             (p_.n - 2.0) * pw / (a * a) * w * z * z.transpose();
       }
       const Point step = j.partialPivLu().solve(g);
       z -= step;
@@ -124,7 +107,7 @@ namespace kimp::lumped::plan
     const Point  f = factors(z);
     const double w = f.x() * z.x() * du.x() + f.y() * z.y() * du.y();
     // Work of the hysteretic spring beyond its stored energy, Q/A·|z|^n·w (>= 0 for β >= |γ|).
-    dissipated += Q_ / A_ * scaled_power(z.norm(), n_) * w;
+    dissipated += p_.strength() / p_.A * scaled_power(z.norm(), p_.n) * w;
     return z;
   }
 
@@ -135,39 +118,30 @@ namespace kimp::lumped::plan
     const Point du = displacement - committed_.u;
     if (du.x() != 0.0 || du.y() != 0.0)
       trial_.z = update(committed_.z, du, trial_.dissipated, 0);
-    return alpha_ * K1_ * displacement + Q_ * trial_.z;
+    return p_.alpha * p_.K1 * displacement + p_.strength() * trial_.z;
   }
 
   double PlanBoucWenIsolator::stored_energy() const
   {
-    return 0.5 * alpha_ * K1_ * committed_.u.squaredNorm() +
-           0.5 * Q_ * u_y_ * committed_.z.squaredNorm() / A_;
+    return 0.5 * p_.alpha * p_.K1 * committed_.u.squaredNorm() +
+           0.5 * p_.strength() * p_.yield_displacement() * committed_.z.squaredNorm() / p_.A;
   }
 
-  PlanFrictionPendulumIsolator::PlanFrictionPendulumIsolator(const double W,
-                                                             const double R,
-                                                             const double mu_slow,
-                                                             const double mu_fast,
-                                                             const double rate,
-                                                             const double k_init,
-                                                             const double c)
-    : PlanHystereticIsolator(c)
-    , W_(W)
-    , mu_slow_(mu_slow)
-    , mu_fast_(mu_fast)
-    , rate_(rate)
-    , k_init_(k_init)
+  PlanFrictionPendulumIsolator::PlanFrictionPendulumIsolator(
+    const FrictionPendulumParameters &parameters,
+    const double                      c)
+    : HystereticLaw(c)
+    , p_(parameters)
   {
-    FrictionPendulumIsolator check(W, R, mu_slow, mu_fast, rate, k_init, c);
-    (void)check;
-    k_pendulum_ = W / R;
+    p_.check();
+    k_pendulum_ = p_.W / p_.R;
   }
 
   Point PlanFrictionPendulumIsolator::set_trial(const Point &displacement, const Point &velocity)
   {
-    const double mu      = mu_fast_ - (mu_fast_ - mu_slow_) * std::exp(-rate_ * velocity.norm());
-    const double q       = mu * W_;
-    const Point  f_trial = committed_.f_s + k_init_ * (displacement - committed_.u);
+    const double mu      = p_.mu(velocity.norm());
+    const double q       = mu * p_.W;
+    const Point  f_trial = committed_.f_s + p_.k_init * (displacement - committed_.u);
     const double norm    = f_trial.norm();
     trial_.u             = displacement;
     trial_.dissipated    = committed_.dissipated;
@@ -175,7 +149,7 @@ namespace kimp::lumped::plan
     {
       // Radial return: slip (|f_trial| − q)/k_init along f_trial at the friction force q.
       trial_.f_s = q * (f_trial / norm);
-      trial_.dissipated += q * (norm - q) / k_init_;
+      trial_.dissipated += q * (norm - q) / p_.k_init;
     }
     else
       trial_.f_s = f_trial;
@@ -185,6 +159,6 @@ namespace kimp::lumped::plan
   double PlanFrictionPendulumIsolator::stored_energy() const
   {
     return 0.5 * k_pendulum_ * committed_.u.squaredNorm() +
-           0.5 * committed_.f_s.squaredNorm() / k_init_;
+           0.5 * committed_.f_s.squaredNorm() / p_.k_init;
   }
 } // namespace kimp::lumped::plan

@@ -9,6 +9,9 @@
 #include <memory>
 #include <string>
 
+#include "lumped/isolators/bouc_wen_isolator.h"
+#include "lumped/isolators/friction_pendulum_isolator.h"
+#include "lumped/isolators/isolator.h"
 #include "lumped/plan/plan_geometry.h"
 
 namespace kimp::lumped::plan
@@ -48,35 +51,10 @@ namespace kimp::lumped::plan
     virtual std::unique_ptr<PlanIsolator> clone() const = 0;
   };
 
-  /// CRTP base: one history struct `State` (value-initialised = virgin, with `dissipated`, J)
-  /// held committed and trial, and the device dashpot c (N·s/m).
+  /// The hysteretic isolators' base in plan (lumped::HystereticLaw: committed and trial `State`,
+  /// the device dashpot c).
   template <class Derived, class State>
-  class PlanHystereticIsolator : public PlanIsolator
-  {
-  public:
-    void   commit() final { committed_ = trial_; }
-    void   revert_to_last_commit() final { trial_ = committed_; }
-    void   revert_to_start() final { committed_ = trial_ = State{}; }
-    double viscous_coefficient() const final { return c_; }
-    double dissipated_energy() const final { return committed_.dissipated; }
-
-    std::unique_ptr<PlanIsolator> clone() const final
-    {
-      return std::make_unique<Derived>(static_cast<const Derived &>(*this));
-    }
-
-  protected:
-    explicit PlanHystereticIsolator(const double c)
-      : c_(c)
-    {
-    }
-
-    State committed_;
-    State trial_;
-
-  private:
-    double c_;
-  };
+  using PlanHystereticIsolator = HystereticLaw<PlanIsolator, Derived, State>;
 
   /// History of a PlanBilinearIsolator.
   struct PlanBilinearState
@@ -157,22 +135,18 @@ namespace kimp::lumped::plan
     : public PlanHystereticIsolator<PlanBoucWenIsolator, PlanBoucWenState>
   {
   public:
-    /// @throws std::invalid_argument naming the parameter (lumped::BoucWenIsolator's checks).
-    PlanBoucWenIsolator(double K1,
-                        double alpha,
-                        double F_y,
-                        double A     = 1.0,
-                        double beta  = 0.5,
-                        double gamma = 0.5,
-                        double n     = 1.0,
-                        double c     = 0.0);
+    /// @throws std::invalid_argument naming the parameter (BoucWenParameters::check()).
+    explicit PlanBoucWenIsolator(const BoucWenParameters &parameters, double c = 0.0);
 
     Point  set_trial(const Point &displacement, const Point &velocity) override;
-    double initial_stiffness() const override { return K1_ * (alpha_ + (1.0 - alpha_) * A_); }
+    double initial_stiffness() const override
+    {
+      return p_.K1 * (p_.alpha + (1.0 - p_.alpha) * p_.A);
+    }
     double stored_energy() const override;
     Point  committed_force() const override
     {
-      return alpha_ * K1_ * committed_.u + Q_ * committed_.z;
+      return p_.alpha * p_.K1 * committed_.u + p_.strength() * committed_.z;
     }
     /// z at the committed state.
     Point       committed_z() const { return committed_.z; }
@@ -182,7 +156,7 @@ namespace kimp::lumped::plan
     /// z after the increment du from z_c (backward Euler); adds the dissipation to `dissipated`.
     Point update(const Point &z_c, const Point &du, double &dissipated, int depth) const;
 
-    double K1_, alpha_, A_, beta_, gamma_, n_, Q_, u_y_;
+    BoucWenParameters p_;
   };
 
   /// History of a PlanFrictionPendulumIsolator.
@@ -203,22 +177,18 @@ namespace kimp::lumped::plan
     : public PlanHystereticIsolator<PlanFrictionPendulumIsolator, PlanFrictionPendulumState>
   {
   public:
-    /// @throws std::invalid_argument naming the parameter.
-    PlanFrictionPendulumIsolator(double W,
-                                 double R,
-                                 double mu_slow,
-                                 double mu_fast,
-                                 double rate,
-                                 double k_init,
-                                 double c = 0.0);
+    /// @throws std::invalid_argument naming the parameter (FrictionPendulumParameters::check()).
+    explicit PlanFrictionPendulumIsolator(const FrictionPendulumParameters &parameters,
+                                          double                            c = 0.0);
 
     Point  set_trial(const Point &displacement, const Point &velocity) override;
-    double initial_stiffness() const override { return k_init_ + k_pendulum_; }
+    double initial_stiffness() const override { return p_.k_init + k_pendulum_; }
     double stored_energy() const override;
     Point  committed_force() const override { return k_pendulum_ * committed_.u + committed_.f_s; }
     std::string name() const override { return "friction_pendulum"; }
 
   private:
-    double W_, mu_slow_, mu_fast_, rate_, k_init_, k_pendulum_;
+    FrictionPendulumParameters p_;
+    double                     k_pendulum_; ///< W/R
   };
 } // namespace kimp::lumped::plan

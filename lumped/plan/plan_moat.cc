@@ -92,6 +92,14 @@ namespace kimp::lumped::plan
         }
       }
     }
+
+    /// The mass the sliding along a face meets at a contact point of level 0 (mass m0, inertia
+    /// i0 about its centre of mass): 1/(t_x²/m0 + t_y²/m0 + t_θ²/i0), t = ds/dq_0.
+    double tangential_mass(const Eigen::RowVector3d &t, const double m0, const double i0)
+    {
+      const double inv_mt = t(0) * t(0) / m0 + t(1) * t(1) / m0 + t(2) * t(2) / i0;
+      return 1.0 / inv_mt;
+    }
   } // namespace
 
   void validate(const PlanMoat &moat, const PlanBuilding &building)
@@ -202,11 +210,8 @@ namespace kimp::lumped::plan
           c.s_lo   = convex(j) ? -std::numeric_limits<double>::infinity() : t.dot(wa);
           c.s_hi   = convex((j + 1) % nw) ? std::numeric_limits<double>::infinity() : t.dot(wb);
           c.weight = (k == 0 || k == np - 1 ? 0.5 : 1.0) / static_cast<double>(np - 1);
-          c.effective_mass    = m_eff;
-          const double inv_mt = c.tangent_row(0) * c.tangent_row(0) / m0 +
-                                c.tangent_row(1) * c.tangent_row(1) / m0 +
-                                c.tangent_row(2) * c.tangent_row(2) / i0;
-          c.tangential_mass = 1.0 / inv_mt;
+          c.effective_mass  = m_eff;
+          c.tangential_mass = tangential_mass(c.tangent_row, m0, i0);
           c.law             = law;
           // A point behind the face's line (beyond a re-entrant corner) never meets the face.
           if (c.gap > 0.0)
@@ -234,15 +239,12 @@ namespace kimp::lumped::plan
         c.tangent_row                        = de.transpose() * tk;
         c.gap                                = gap;
         // The edge's point at the corner is at along − s: on the edge while 0 <= along − s <= ℓ.
-        c.s_rest            = 0.0;
-        c.s_lo              = along - length;
-        c.s_hi              = along;
-        c.weight            = 0.5;
-        c.effective_mass    = m_eff;
-        const double inv_mt = c.tangent_row(0) * c.tangent_row(0) / m0 +
-                              c.tangent_row(1) * c.tangent_row(1) / m0 +
-                              c.tangent_row(2) * c.tangent_row(2) / i0;
-        c.tangential_mass = 1.0 / inv_mt;
+        c.s_rest          = 0.0;
+        c.s_lo            = along - length;
+        c.s_hi            = along;
+        c.weight          = 0.5;
+        c.effective_mass  = m_eff;
+        c.tangential_mass = tangential_mass(c.tangent_row, m0, i0);
         c.law             = law;
         contacts.push_back(std::move(c));
       }

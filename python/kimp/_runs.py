@@ -243,7 +243,14 @@ class PlanResult:
     ``displacement`` and ``absolute_acceleration`` (n, levels, 3), ``corner_displacement``
     (n, corners of level 0, 2), ``contact_force`` and ``friction_force`` (n, contacts),
     ``energy_error`` (n). ``contacts``: one dict per contact point; ``energy``: J, with the
-    friction work."""
+    friction work and the work on yielding walls. ``damping``: the superstructure's damping
+    model (``"rayleigh"`` or ``"modal"``, the scene's ``plan.damping``), ``damping_ratio`` and
+    ``isolation_damping_ratio``. ``yielding_walls``: one dict per yielding wall face (the
+    scene's ``plan.moat.yielding``): ``face``, the face's ``peak_force`` and the part's
+    ``capacity`` and ``peak_resistance`` (N), ``peak_resistance_ratio``, ``peak_displacement``,
+    ``residual_displacement``, ``final_displacement`` and ``failure_displacement`` (m, None: no
+    limit),
+    ``plastic_work`` and ``radiated_work`` (J), ``failed`` and ``failure_time`` (s, or None)."""
 
     name: str
     status: str
@@ -259,6 +266,8 @@ class PlanResult:
     peaks: dict
     history: dict
     energy: dict
+    damping: dict
+    yielding_walls: List[dict]
 
     @property
     def ok(self):

@@ -136,9 +136,10 @@ namespace kimp::lumped
       opt.output_interval      = 1e-3;
       opt.initial_displacement = {u0};
       opt.kernel               = kernel;
-      const auto  iso = std::make_shared<FrictionPendulumIsolator>(W, R, 0.0, 0.0, 0.0, 1e9);
-      const auto  r   = CentralDifference(sdof_isolated(m, iso), opt).run(zero_motion(0.01, 10.0));
-      const auto &h   = r.history;
+      const auto iso           = std::make_shared<FrictionPendulumIsolator>(
+        FrictionPendulumParameters{W, R, 0.0, 0.0, 0.0, 1e9});
+      const auto  r = CentralDifference(sdof_isolated(m, iso), opt).run(zero_motion(0.01, 10.0));
+      const auto &h = r.history;
       // Upward zero crossings of u, linearly interpolated.
       std::vector<double> crossings;
       for (std::size_t i = 1; i < h.time.size(); ++i)
@@ -159,7 +160,7 @@ namespace kimp::lumped
     // Constant μ: the loop is the elastic-plastic one, area 4μW(D − u_y), u_y = μW/k_init, which
     // tends to the rigid-plastic 4μW·D. The pendulum spring W/R is conservative.
     const double             W = 15e6, R = 2.236, mu = 0.06, k_init = 1e10, D = 0.2;
-    FrictionPendulumIsolator iso(W, R, mu, mu, 20.0, k_init);
+    FrictionPendulumIsolator iso({W, R, mu, mu, 20.0, k_init});
     const double             uy     = mu * W / k_init;
     const double             exact  = 4.0 * mu * W * (D - uy);
     const double             before = iso.dissipated_energy();
@@ -175,7 +176,7 @@ namespace kimp::lumped
   TEST(FrictionPendulum, VelocityDependentFriction)
   {
     const double             W = 10e6;
-    FrictionPendulumIsolator iso(W, 2.0, 0.03, 0.09, 25.0, 1e9);
+    FrictionPendulumIsolator iso({W, 2.0, 0.03, 0.09, 25.0, 1e9});
     EXPECT_DOUBLE_EQ(iso.friction_coefficient(0.0), 0.03);
     EXPECT_NEAR(iso.friction_coefficient(1.0), 0.09 - 0.06 * std::exp(-25.0), 1e-15);
     EXPECT_DOUBLE_EQ(iso.friction_coefficient(-0.04), iso.friction_coefficient(0.04));
@@ -194,7 +195,7 @@ namespace kimp::lumped
   TEST(FrictionPendulum, StickSlipStateOfTheCommittedUpdate)
   {
     // μ·W/k_init = 0.04·15e6/1e9 = 0.6 mm of elastic travel from rest (μ_slow at v = 0).
-    FrictionPendulumIsolator iso(15e6, 2.236, 0.04, 0.04, 20.0, 1e9);
+    FrictionPendulumIsolator iso({15e6, 2.236, 0.04, 0.04, 20.0, 1e9});
     EXPECT_TRUE(iso.stick_slip());
     EXPECT_TRUE(iso.sticking()); // virgin state: elastic
     iso.set_trial(0.5e-3, 0.01);
@@ -218,7 +219,7 @@ namespace kimp::lumped
 
   TEST(FrictionPendulum, Contract)
   {
-    FrictionPendulumIsolator iso(15e6, 2.236, 0.04, 0.08, 20.0, 1e9, 1e4);
+    FrictionPendulumIsolator iso({15e6, 2.236, 0.04, 0.08, 20.0, 1e9}, 1e4);
     expect_contract(iso, "friction_pendulum");
     EXPECT_EQ(iso.viscous_coefficient(), 1e4);
     EXPECT_EQ(iso.initial_stiffness(), 1e9 + 15e6 / 2.236);
@@ -229,7 +230,7 @@ namespace kimp::lumped
   {
     try
     {
-      FrictionPendulumIsolator iso(15e6, 2.0, 0.08, 0.04, 20.0, 1e9);
+      FrictionPendulumIsolator iso({15e6, 2.0, 0.08, 0.04, 20.0, 1e9});
       FAIL() << "mu_fast < mu_slow accepted";
     }
     catch (const std::invalid_argument &e)
@@ -237,11 +238,16 @@ namespace kimp::lumped
       EXPECT_NE(std::string(e.what()).find("isolator.mu_fast = 0.04"), std::string::npos)
         << e.what();
     }
-    EXPECT_THROW(FrictionPendulumIsolator(0.0, 2.0, 0.04, 0.08, 20.0, 1e9), std::invalid_argument);
-    EXPECT_THROW(FrictionPendulumIsolator(1e6, 0.0, 0.04, 0.08, 20.0, 1e9), std::invalid_argument);
-    EXPECT_THROW(FrictionPendulumIsolator(1e6, 2.0, -0.1, 0.08, 20.0, 1e9), std::invalid_argument);
-    EXPECT_THROW(FrictionPendulumIsolator(1e6, 2.0, 0.04, 0.08, -1.0, 1e9), std::invalid_argument);
-    EXPECT_THROW(FrictionPendulumIsolator(1e6, 2.0, 0.04, 0.08, 20.0, 0.0), std::invalid_argument);
+    EXPECT_THROW(FrictionPendulumIsolator({0.0, 2.0, 0.04, 0.08, 20.0, 1e9}),
+                 std::invalid_argument);
+    EXPECT_THROW(FrictionPendulumIsolator({1e6, 0.0, 0.04, 0.08, 20.0, 1e9}),
+                 std::invalid_argument);
+    EXPECT_THROW(FrictionPendulumIsolator({1e6, 2.0, -0.1, 0.08, 20.0, 1e9}),
+                 std::invalid_argument);
+    EXPECT_THROW(FrictionPendulumIsolator({1e6, 2.0, 0.04, 0.08, -1.0, 1e9}),
+                 std::invalid_argument);
+    EXPECT_THROW(FrictionPendulumIsolator({1e6, 2.0, 0.04, 0.08, 20.0, 0.0}),
+                 std::invalid_argument);
   }
 
   TEST(BoucWen, LargeExponentGivesTheBilinearLoop)
@@ -255,7 +261,7 @@ namespace kimp::lumped
     double       previous_error = INFINITY;
     for (const double n : {2.0, 10.0, 50.0, 200.0})
     {
-      BoucWenIsolator iso(K1, alpha, Fy, 1.0, 0.5, 0.5, n);
+      BoucWenIsolator iso({K1, alpha, Fy, 1.0, 0.5, 0.5, n});
       const double    loop  = last_cycle_work(iso, D, 2.0, 3, 20000);
       const double    error = std::abs(loop - bilinear) / bilinear;
       EXPECT_LT(error, previous_error) << "n = " << n;
@@ -280,7 +286,7 @@ namespace kimp::lumped
       zm = 1.0 - std::exp(-(2.0 * D - zm * uy) / uy);
     const double     L     = 2.0 * D - zm * uy;
     const double     exact = 2.0 * Q * (L - uy * zm - 0.5 * uy * zm * zm);
-    BoucWenIsolator  iso(K1, alpha, Fy, 1.0, 0.5, 0.5, 1.0);
+    BoucWenIsolator  iso({K1, alpha, Fy, 1.0, 0.5, 0.5, 1.0});
     const double     loop     = last_cycle_work(iso, D, 2.0, 4, 40000);
     constexpr double loop_tol = 1e-4; // backward Euler in z, O(Δu): measured −3.6e-5
     EXPECT_NEAR(loop, exact, loop_tol * exact);
@@ -293,7 +299,7 @@ namespace kimp::lumped
   TEST(BoucWen, InitialStiffnessTangentsAndContract)
   {
     const double    K1 = 200e6, alpha = 0.125, Fy = 1.7e6;
-    BoucWenIsolator iso(K1, alpha, Fy, 1.0, 0.6, 0.4, 2.0);
+    BoucWenIsolator iso({K1, alpha, Fy, 1.0, 0.6, 0.4, 2.0});
     EXPECT_DOUBLE_EQ(iso.initial_stiffness(), K1);
     EXPECT_NEAR(iso.set_trial(1e-7, 0.0).force, K1 * 1e-7, 1e-6 * K1 * 1e-7);
     iso.revert_to_last_commit();
@@ -311,11 +317,11 @@ namespace kimp::lumped
 
   TEST(BoucWen, RejectsInvalidParameters)
   {
-    EXPECT_THROW(BoucWenIsolator(0.0, 0.1, 1e6), std::invalid_argument);
-    EXPECT_THROW(BoucWenIsolator(1e8, 1.0, 1e6), std::invalid_argument);
-    EXPECT_THROW(BoucWenIsolator(1e8, 0.1, 0.0), std::invalid_argument);
-    EXPECT_THROW(BoucWenIsolator(1e8, 0.1, 1e6, 1.0, 0.2, 0.8), std::invalid_argument);
-    EXPECT_THROW(BoucWenIsolator(1e8, 0.1, 1e6, 1.0, 0.5, 0.5, 0.5), std::invalid_argument);
+    EXPECT_THROW(BoucWenIsolator({0.0, 0.1, 1e6}), std::invalid_argument);
+    EXPECT_THROW(BoucWenIsolator({1e8, 1.0, 1e6}), std::invalid_argument);
+    EXPECT_THROW(BoucWenIsolator({1e8, 0.1, 0.0}), std::invalid_argument);
+    EXPECT_THROW(BoucWenIsolator({1e8, 0.1, 1e6, 1.0, 0.2, 0.8}), std::invalid_argument);
+    EXPECT_THROW(BoucWenIsolator({1e8, 0.1, 1e6, 1.0, 0.5, 0.5, 0.5}), std::invalid_argument);
   }
 
   TEST(HystereticIsolators, BothKernelsAgreeAndEnergyBalances)
@@ -327,8 +333,10 @@ namespace kimp::lumped
     const ShearBuilding base   = reference_isolated_building(4);
     const double        W      = standard_gravity * base.total_mass();
     const std::vector<std::shared_ptr<const Isolator>> isolators = {
-      std::make_shared<FrictionPendulumIsolator>(W, 2.236, 0.04, 0.08, 20.0, 1e9),
-      std::make_shared<BoucWenIsolator>(200e6, 0.125, 0.1 * W / 0.875, 1.0, 0.5, 0.5, 2.0)};
+      std::make_shared<FrictionPendulumIsolator>(
+        FrictionPendulumParameters{W, 2.236, 0.04, 0.08, 20.0, 1e9}),
+      std::make_shared<BoucWenIsolator>(
+        BoucWenParameters{200e6, 0.125, 0.1 * W / 0.875, 1.0, 0.5, 0.5, 2.0})};
     for (const auto &iso : isolators)
     {
       PoundingScene scene;

@@ -105,9 +105,11 @@ namespace kimp::lumped::plan
     PlanBuilding fp = bw;
     const double w  = standard_gravity * 1530e3 / 4.0;
     for (PlanIsolatorSpec &iso : bw.isolators)
-      iso.law = std::make_shared<PlanBoucWenIsolator>(50e6, 0.125, 1.7e6 / 4, 1.0, 0.5, 0.5, 2.0);
+      iso.law = std::make_shared<PlanBoucWenIsolator>(
+        BoucWenParameters{50e6, 0.125, 1.7e6 / 4, 1.0, 0.5, 0.5, 2.0});
     for (PlanIsolatorSpec &iso : fp.isolators)
-      iso.law = std::make_shared<PlanFrictionPendulumIsolator>(w, 2.2, 0.04, 0.08, 30.0, 2e8);
+      iso.law = std::make_shared<PlanFrictionPendulumIsolator>(
+        FrictionPendulumParameters{w, 2.2, 0.04, 0.08, 30.0, 2e8});
     for (const auto &[b, name] :
          {std::pair<const PlanBuilding &, const char *>{bw, "bouc_wen"}, {fp, "friction_pendulum"}})
     {

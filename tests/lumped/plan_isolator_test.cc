@@ -91,12 +91,12 @@ namespace kimp::lumped::plan
       expect_uniaxial(b1, b2, angle, 1.5e6);
       for (const double n : {1.0, 2.0, 3.5})
       {
-        BoucWenIsolator     w1(200e6, 0.125, 1.7e6, 1.0, 0.6, 0.4, n);
-        PlanBoucWenIsolator w2(200e6, 0.125, 1.7e6, 1.0, 0.6, 0.4, n);
+        BoucWenIsolator     w1({200e6, 0.125, 1.7e6, 1.0, 0.6, 0.4, n});
+        PlanBoucWenIsolator w2({200e6, 0.125, 1.7e6, 1.0, 0.6, 0.4, n});
         expect_uniaxial(w1, w2, angle, 1.7e6);
       }
-      FrictionPendulumIsolator     p1(15e6, 2.2, 0.04, 0.08, 30.0, 5e8);
-      PlanFrictionPendulumIsolator p2(15e6, 2.2, 0.04, 0.08, 30.0, 5e8);
+      FrictionPendulumIsolator     p1({15e6, 2.2, 0.04, 0.08, 30.0, 5e8});
+      PlanFrictionPendulumIsolator p2({15e6, 2.2, 0.04, 0.08, 30.0, 5e8});
       expect_uniaxial(p1, p2, angle, 15e6);
     }
   }
@@ -117,7 +117,7 @@ namespace kimp::lumped::plan
                 1e-3 * Q);
     // Friction pendulum at constant speed |u̇| = ω·D: μ(|u̇|)·W on the same circle.
     const double                 W = 15e6, k0 = 5e8;
-    PlanFrictionPendulumIsolator p(W, 2.2, 0.06, 0.06, 0.0, k0);
+    PlanFrictionPendulumIsolator p({W, 2.2, 0.06, 0.06, 0.0, k0});
     const double                 us = 0.06 * W / k0;
     EXPECT_NEAR(circular_dissipation(p, D, 20000),
                 0.06 * W * 2 * pi * std::sqrt(D * D - us * us),
@@ -128,7 +128,7 @@ namespace kimp::lumped::plan
   {
     for (const double n : {1.0, 2.0, 4.0})
     {
-      PlanBoucWenIsolator              iso(200e6, 0.125, 1.7e6, 1.0, 0.5, 0.5, n);
+      PlanBoucWenIsolator              iso({200e6, 0.125, 1.7e6, 1.0, 0.5, 0.5, n});
       double                           previous = 0.0, z_max = 0.0;
       std::mt19937                     rng(3);
       std::uniform_real_distribution<> step(-0.004, 0.004);
@@ -152,9 +152,9 @@ namespace kimp::lumped::plan
   {
     std::vector<std::unique_ptr<PlanIsolator>> laws;
     laws.push_back(std::make_unique<PlanBilinearIsolator>(200e6, 25e6, 1.5e6, 1e5));
-    laws.push_back(std::make_unique<PlanBoucWenIsolator>(200e6, 0.125, 1.7e6));
-    laws.push_back(
-      std::make_unique<PlanFrictionPendulumIsolator>(15e6, 2.2, 0.04, 0.08, 30.0, 5e8));
+    laws.push_back(std::make_unique<PlanBoucWenIsolator>(BoucWenParameters{200e6, 0.125, 1.7e6}));
+    laws.push_back(std::make_unique<PlanFrictionPendulumIsolator>(
+      FrictionPendulumParameters{15e6, 2.2, 0.04, 0.08, 30.0, 5e8}));
     for (auto &law : laws)
     {
       law->set_trial(Point(0.05, -0.03), Point(0.2, 0.1));
@@ -188,10 +188,16 @@ namespace kimp::lumped::plan
     };
     EXPECT_NE(message([] { PlanBilinearIsolator(200e6, 250e6, 1e6); }).find("isolator.K2"),
               std::string::npos);
-    EXPECT_NE(
-      message([] { PlanBoucWenIsolator(200e6, 0.1, 1e6, 1.0, 0.2, 0.5); }).find("isolator.bw_beta"),
-      std::string::npos);
-    EXPECT_NE(message([] { PlanFrictionPendulumIsolator(15e6, -1.0, 0.04, 0.08, 30, 5e8); })
+    EXPECT_NE(message(
+                [] {
+                  PlanBoucWenIsolator({200e6, 0.1, 1e6, 1.0, 0.2, 0.5});
+                })
+                .find("isolator.bw_beta"),
+              std::string::npos);
+    EXPECT_NE(message(
+                [] {
+                  PlanFrictionPendulumIsolator({15e6, -1.0, 0.04, 0.08, 30, 5e8});
+                })
                 .find("isolator.radius"),
               std::string::npos);
   }

@@ -174,6 +174,12 @@
       );
     for (const x of m.buildings)
       lines.push(`${x.name}: periods ${x.periods.map((p) => fmt(p, 3)).join(', ')} s`);
+    if (m.plan)
+      lines.push(
+        `in plan: ${m.plan.faces} wall faces, ${m.plan.damping} damping (ζ = ${fmt(100 * m.plan.damping_ratio, 3)} %` +
+          `${m.plan.damping === 'modal' ? ' in every mode' : ' per direction'}), yielding faces: ` +
+          `${m.plan.yielding_faces.length ? m.plan.yielding_faces.join(', ') : 'none'}`,
+      );
     for (const c of m.contacts) lines.push(`contact ${c.name}: gap ${fmt(c.gap * 100, 4)} cm`);
     if (m.cases.length) lines.push(`cases: ${m.cases.join(', ')} (their overrides are not drawn)`);
     const list = el('ul', { class: 'preview-facts' });

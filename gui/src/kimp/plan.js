@@ -78,8 +78,9 @@
       [`peak top acceleration (${accelerationUnit})`, p.top_acceleration, A, 'top_acceleration'],
       [`peak isolator force (${forceUnit})`, p.isolator_force, F, 'isolator_force'],
     ];
+    const body = section(parent, 'Peaks in plan (summary.json)');
     table(
-      section(parent, 'Peaks in plan (summary.json)'),
+      body,
       ['case', 'status'].concat(columns.map((x) => x[0])).concat(['impacts']),
       [
         [c.label, s.status]
@@ -88,6 +89,73 @@
       ],
       'data peaks',
       1,
+    );
+    return body;
+  }
+
+  /** The superstructure's damping model (summary.json `damping`: model, ζ, ζ_iso), one line. */
+  function dampingLine(parent, c) {
+    const d = c.summary.damping;
+    if (!d) return;
+    const zeta = `ζ = ${fmt(100 * d.damping_ratio, 3)} %`;
+    const text =
+      d.model === 'modal'
+        ? `Damping: modal, ${zeta} in every mode of the coupled building (x, y and θ together)`
+        : `Damping: Rayleigh per direction, ${zeta} at the first and last mode of each direction`;
+    parent.appendChild(
+      el('p', {
+        class: 'muted damping',
+        'data-model': d.model,
+        text: `${text}; isolation level ζ_iso = ${fmt(100 * d.isolation_damping_ratio, 3)} %.`,
+      }),
+    );
+  }
+
+  /**
+   * The yielding wall faces (summary.json `yielding_walls`): per face its peak contact force, the
+   * wall-and-backfill part's peak resistance against its capacity, peak and residual displacement,
+   * and whether (and when) it failed.
+   */
+  function yieldingSection(parent, c) {
+    const faces = c.summary.yielding_walls;
+    if (!faces || !faces.length) return;
+    const [F, forceUnit] = displayUnit('force');
+    const [L, lengthUnit] = displayUnit('length');
+    const cell = peakCell;
+    const sec = section(parent, 'Yielding wall faces');
+    table(
+      sec,
+      [
+        'face',
+        `peak face force (${forceUnit})`,
+        `capacity (${forceUnit})`,
+        `peak resistance (${forceUnit})`,
+        'resistance / capacity',
+        `peak wall displacement (${lengthUnit})`,
+        `residual (${lengthUnit})`,
+        'failed',
+      ],
+      faces.map((w) => [
+        String(w.face),
+        cell(w.peak_force, F, `face_${w.face}.peak_force`),
+        cell(w.capacity, F, `face_${w.face}.capacity`),
+        cell(w.peak_resistance, F, `face_${w.face}.peak_resistance`),
+        fmt(w.peak_resistance_ratio, 3),
+        cell(w.peak_displacement, L, `face_${w.face}.peak_displacement`),
+        cell(w.residual_displacement, L, `face_${w.face}.residual_displacement`),
+        w.failed ? `yes, at ${fmt(w.failure_time, 4)} s` : 'no',
+      ]),
+      'data yielding-faces',
+      1,
+    );
+    sec.appendChild(
+      el('p', {
+        class: 'muted',
+        text:
+          'Face k: wall corner k to k + 1 counter-clockwise. Capacity and resistance are the ' +
+          "wall-and-backfill part's (per metre × the face's length); past the capacity the wall " +
+          'hardens, so the ratio may exceed 1 without failure.',
+      }),
     );
   }
 
@@ -153,6 +221,8 @@
       ['impact dissipated', e.impact_dissipated],
     ];
     if (e.friction !== undefined) terms.push(['friction work', e.friction]);
+    if (c.summary.yielding_walls && c.summary.yielding_walls.length)
+      terms.push(['wall plastic', e.wall_plastic], ['wall radiated', e.wall_radiated]);
     const body = section(parent, 'Energy balance');
     chart(body, {
       title: 'energy balance',
@@ -252,7 +322,8 @@
       );
       return;
     }
-    peaksSection(parent, c);
+    dampingLine(peaksSection(parent, c), c);
+    yieldingSection(parent, c);
     view.animation = planAnimation(section(parent, 'Plan view'), c);
     historySection(parent, c);
     energySection(parent, c);
