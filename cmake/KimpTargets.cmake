@@ -78,16 +78,42 @@ endfunction()
 set(KIMP_GLUE_OPTIMIZATION "-O1" CACHE STRING
     "Optimisation flag of the glue layers in Release builds (empty: the build type's)")
 
-# kimp_glue_target(targets...): compile these targets at KIMP_GLUE_OPTIMIZATION (Release only).
-function(kimp_glue_target)
-  if(NOT KIMP_GLUE_OPTIMIZATION)
-    return()
+# Unity builds of the glue layers and of lumped/: CMake compiles a target's sources in batches of
+# KIMP_UNITY_BATCH_SIZE, one translation unit per batch, so that the heavy headers every such
+# source includes (nlohmann-json, fmt, spdlog, yaml-cpp, CLI11, Eigen) are parsed once per batch
+# instead of once per source (docs/performance.md, "Unity builds"). A source whose file-scope
+# names (anonymous namespace, static) clash with another source's of its target is kept out of
+# the batches with kimp_unity_exclude(). A source with source-file compile definitions is
+# compiled on its own by CMake.
+option(KIMP_UNITY_BUILD "Compile the glue layers and lumped/ in batches (unity builds)" ON)
+set(KIMP_UNITY_BATCH_SIZE "8" CACHE STRING "Sources per unity translation unit")
+
+# kimp_unity_exclude(sources...): compile these sources on their own in a unity build (called in
+# the directory that makes their target).
+function(kimp_unity_exclude)
+  set_source_files_properties(${ARGN} PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
+endfunction()
+
+# kimp_unity_target(targets...): compile these targets in unity batches when KIMP_UNITY_BUILD is on.
+function(kimp_unity_target)
+  if(KIMP_UNITY_BUILD)
+    set_target_properties(${ARGN} PROPERTIES UNITY_BUILD ON
+                                             UNITY_BUILD_BATCH_SIZE ${KIMP_UNITY_BATCH_SIZE})
   endif()
+endfunction()
+
+# kimp_glue_target(targets...): compile these targets at KIMP_GLUE_OPTIMIZATION (Release only),
+# in unity batches.
+function(kimp_glue_target)
   foreach(target ${ARGN})
     get_target_property(type ${target} TYPE)
-    if(NOT type STREQUAL "INTERFACE_LIBRARY")
+    if(type STREQUAL "INTERFACE_LIBRARY")
+      continue()
+    endif()
+    if(KIMP_GLUE_OPTIMIZATION)
       target_compile_options(${target} PRIVATE $<$<CONFIG:Release>:${KIMP_GLUE_OPTIMIZATION}>)
     endif()
+    kimp_unity_target(${target})
   endforeach()
 endfunction()
 

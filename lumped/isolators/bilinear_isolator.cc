@@ -9,7 +9,7 @@ namespace kimp::lumped
                                      const double K2,
                                      const double Q,
                                      const double c)
-    : HystereticLaw(c)
+    : HystereticIsolatorLaw(c)
     , K1_(K1)
     , K2_(K2)
     , Q_(Q)

@@ -33,7 +33,7 @@ namespace kimp::lumped
   }
 
   BoucWenIsolator::BoucWenIsolator(const BoucWenParameters &parameters, const double c)
-    : HystereticLaw(c)
+    : HystereticIsolatorLaw(c)
     , p_(parameters)
   {
     p_.check();

@@ -33,7 +33,7 @@ namespace kimp::lumped
 
   FrictionPendulumIsolator::FrictionPendulumIsolator(const FrictionPendulumParameters &parameters,
                                                      const double                      c)
-    : HystereticLaw(c)
+    : HystereticIsolatorLaw(c)
     , p_(parameters)
   {
     p_.check();

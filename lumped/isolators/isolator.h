@@ -85,7 +85,7 @@ namespace kimp::lumped
    * committed_, writing trial_), the stiffness and energy queries and name().
    */
   template <class Base, class Derived, class State>
-  class HystereticLaw : public Base
+  class HystereticIsolatorLaw : public Base
   {
   public:
     void   commit() final { committed_ = trial_; }
@@ -101,7 +101,7 @@ namespace kimp::lumped
 
   protected:
     /// @throws std::invalid_argument unless c (N·s/m) is >= 0 and finite.
-    explicit HystereticLaw(const double c)
+    explicit HystereticIsolatorLaw(const double c)
       : c_(c)
     {
       require_isolator(std::isfinite(c) && c >= 0.0, "c", c, "N*s/m", "must be >= 0 and finite");
@@ -116,5 +116,5 @@ namespace kimp::lumped
 
   /// The planar hysteretic isolators' base.
   template <class Derived, class State>
-  using HystereticIsolator = HystereticLaw<Isolator, Derived, State>;
+  using HystereticIsolator = HystereticIsolatorLaw<Isolator, Derived, State>;
 } // namespace kimp::lumped

@@ -21,7 +21,7 @@ namespace kimp::lumped::plan
                                              const double K2,
                                              const double Q,
                                              const double c)
-    : HystereticLaw(c)
+    : HystereticIsolatorLaw(c)
     , K1_(K1)
     , K2_(K2)
     , Q_(Q)
@@ -39,7 +39,7 @@ namespace kimp::lumped::plan
   }
 
   PlanBoucWenIsolator::PlanBoucWenIsolator(const BoucWenParameters &parameters, const double c)
-    : HystereticLaw(c)
+    : HystereticIsolatorLaw(c)
     , p_(parameters)
   {
     p_.check();
@@ -130,7 +130,7 @@ namespace kimp::lumped::plan
   PlanFrictionPendulumIsolator::PlanFrictionPendulumIsolator(
     const FrictionPendulumParameters &parameters,
     const double                      c)
-    : HystereticLaw(c)
+    : HystereticIsolatorLaw(c)
     , p_(parameters)
   {
     p_.check();

@@ -51,10 +51,10 @@ namespace kimp::lumped::plan
     virtual std::unique_ptr<PlanIsolator> clone() const = 0;
   };
 
-  /// The hysteretic isolators' base in plan (lumped::HystereticLaw: committed and trial `State`,
-  /// the device dashpot c).
+  /// The hysteretic isolators' base in plan (lumped::HystereticIsolatorLaw: committed and trial
+  /// `State`, the device dashpot c).
   template <class Derived, class State>
-  using PlanHystereticIsolator = HystereticLaw<PlanIsolator, Derived, State>;
+  using PlanHystereticIsolator = HystereticIsolatorLaw<PlanIsolator, Derived, State>;
 
   /// History of a PlanBilinearIsolator.
   struct PlanBilinearState
