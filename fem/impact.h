@@ -462,20 +462,24 @@ namespace kimp::fem
                                   const Material &material,
                                   unsigned int    n_thickness);
 
+  /// A cantilever wall with a bonded backfill block on its back (+x) side (SI).
+  struct BackfilledWall
+  {
+    double       height    = 0.0;
+    double       thickness = 0.0;
+    Material     wall;
+    double       backfill_width  = 0.0; ///< 0: the bare cantilever (soil ignored)
+    double       backfill_height = 0.0; ///< <= height
+    Material     soil;
+    unsigned int n_thickness = 4; ///< cells across the wall; soil cells have the wall's size
+  };
+
   /**
-   * Static horizontal stiffness (N/m per metre of depth) of the same cantilever wall with a
-   * bonded backfill block on its back (+x) side, backfill_width wide and backfill_height high
-   * (<= height), base of wall and soil clamped, far soil side u_x = 0 (the scene's boundary
-   * conditions), loaded and measured as in cantilever_tip_stiffness(). backfill_width = 0: the
-   * bare cantilever (soil ignored). Soil cells have the wall's size. Serial.
+   * Static horizontal stiffness (N/m per metre of depth) of the cantilever wall `w` with its
+   * backfill, base of wall and soil clamped, far soil side u_x = 0 (the scene's boundary
+   * conditions), loaded and measured as in cantilever_tip_stiffness(). Serial.
    */
-  double backfilled_wall_tip_stiffness(double          height,
-                                       double          thickness,
-                                       const Material &wall,
-                                       double          backfill_width,
-                                       double          backfill_height,
-                                       const Material &soil,
-                                       unsigned int    n_thickness);
+  double backfilled_wall_tip_stiffness(const BackfilledWall &w);
 
   /**
    * Timoshenko plane-strain tip stiffness of the same cantilever: 1 / (H^3 / (3 E' I) +

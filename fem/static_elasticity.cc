@@ -127,17 +127,15 @@ namespace kimp::fem
                                   const Material &m,
                                   unsigned int    n_thickness)
   {
-    return backfilled_wall_tip_stiffness(height, thickness, m, 0, 0, Material{}, n_thickness);
+    return backfilled_wall_tip_stiffness({height, thickness, m, 0, 0, Material{}, n_thickness});
   }
 
-  double backfilled_wall_tip_stiffness(double          height,
-                                       double          thickness,
-                                       const Material &wall,
-                                       double          backfill_width,
-                                       double          backfill_height,
-                                       const Material &soil,
-                                       unsigned int    n_thickness)
+  double backfilled_wall_tip_stiffness(const BackfilledWall &w)
   {
+    const double       height = w.height, thickness = w.thickness;
+    const double       backfill_width = w.backfill_width, backfill_height = w.backfill_height;
+    const Material    &wall = w.wall, &soil = w.soil;
+    const unsigned int n_thickness = w.n_thickness;
     AssertThrow(height > 0 && thickness > 0 && n_thickness > 0,
                 ExcMessage("wall: height = " + std::to_string(height) +
                            " m, thickness = " + std::to_string(thickness) + " m, n_thickness = " +

@@ -96,7 +96,8 @@ namespace kimp::app
         switch (iso.kind)
         {
           case IsolatorKind::bilinear:
-            law = std::make_shared<plan::PlanBilinearIsolator>(iso.K1 / n, iso.K2 / n, Q / n);
+            law = std::make_shared<plan::PlanBilinearIsolator>(
+              lumped::BilinearParameters{iso.K1 / n, iso.K2 / n, Q / n});
             break;
           case IsolatorKind::bouc_wen:
             law = std::make_shared<plan::PlanBoucWenIsolator>(bouc_wen_parameters(iso, Q, n));

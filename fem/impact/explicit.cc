@@ -64,7 +64,7 @@ namespace kimp::fem::internal
       const double v_r_n = v_r + (n > 0 ? 0.5 * dt * a_r : 0.0);
       v_r += h * a_r;
 
-      record(n, t, u, v_n, Ku, u_r, v_r_n, ev, cu);
+      record({n, t, u, v_n, Ku, u_r, v_r_n, ev, cu});
       if (prm.progress && n % prm.progress_interval == 0 && n > 0 &&
           Utilities::MPI::this_mpi_process(comm) == 0)
         prm.progress(t, prm.end_time);

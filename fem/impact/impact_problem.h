@@ -310,16 +310,21 @@ namespace kimp::fem::internal
     void run_explicit();
 
     // recording.cc
-    /** Records histories and energies of step n (time t). */
-    void record(unsigned long                     n,
-                double                            t,
-                const Vec                        &u,
-                const Vec                        &v_n,
-                const Vec                        &Ku,
-                double                            u_r,
-                double                            v_r,
-                const PenaltyContact::Evaluation &ev,
-                const std::vector<double>        &cu);
+    /** What record() reads of step n (time t): the state and its contact evaluation. */
+    struct RecordedStep
+    {
+      unsigned long                     n;
+      double                            t;
+      const Vec                        &u;
+      const Vec                        &v_n;
+      const Vec                        &Ku;
+      double                            u_r;
+      double                            v_r;
+      const PenaltyContact::Evaluation &ev;
+      const std::vector<double>        &cu; ///< the contact points' compact displacements
+    };
+    /** Records histories and energies of one step. */
+    void record(const RecordedStep &step);
     /** Every step: the contact work, force and penetration, the internal work of non-linear
      *  laws and the dashpots' radiation. */
     void accumulate_step_work(const Vec                        &u,

@@ -116,16 +116,9 @@ namespace kimp::fem::internal
     return global;
   }
 
-  void ImpactProblem::record(unsigned long                     n,
-                             double                            t,
-                             const Vec                        &u,
-                             const Vec                        &v_n,
-                             const Vec                        &Ku,
-                             double                            u_r,
-                             double                            v_r,
-                             const PenaltyContact::Evaluation &ev,
-                             const std::vector<double>        &cu)
+  void ImpactProblem::record(const RecordedStep &step)
   {
+    const auto &[n, t, u, v_n, Ku, u_r, v_r, ev, cu] = step;
     accumulate_step_work(u, v_n, Ku, ev, cu);
 
     // Energies and means at the sampled steps only (one reduction): the divergence guard

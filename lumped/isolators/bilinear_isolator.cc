@@ -5,6 +5,17 @@
 
 namespace kimp::lumped
 {
+  void BilinearParameters::check() const
+  {
+    require_isolator(std::isfinite(K1) && K1 > 0.0, "K1", K1, "N/m", "must be > 0 and finite");
+    require_isolator(std::isfinite(K2) && K2 >= 0.0 && K2 < K1,
+                     "K2",
+                     K2,
+                     "N/m",
+                     "must be >= 0 and smaller than K1");
+    require_isolator(std::isfinite(Q) && Q > 0.0, "Q", Q, "N", "must be > 0 and finite");
+  }
+
   BilinearIsolator::BilinearIsolator(const double K1,
                                      const double K2,
                                      const double Q,
@@ -14,13 +25,7 @@ namespace kimp::lumped
     , K2_(K2)
     , Q_(Q)
   {
-    require_isolator(std::isfinite(K1) && K1 > 0.0, "K1", K1, "N/m", "must be > 0 and finite");
-    require_isolator(std::isfinite(K2) && K2 >= 0.0 && K2 < K1,
-                     "K2",
-                     K2,
-                     "N/m",
-                     "must be >= 0 and smaller than K1");
-    require_isolator(std::isfinite(Q) && Q > 0.0, "Q", Q, "N", "must be > 0 and finite");
+    BilinearParameters{K1, K2, Q}.check();
     inv_k_ep_ = 1.0 / (K1_ - K2_);
   }
 } // namespace kimp::lumped

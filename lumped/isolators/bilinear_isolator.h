@@ -7,6 +7,18 @@
 
 namespace kimp::lumped
 {
+  /// The parameters of the bilinear law (BilinearIsolator, plan::PlanBilinearIsolator; table
+  /// below).
+  struct BilinearParameters
+  {
+    double K1 = 0.0; ///< N/m
+    double K2 = 0.0; ///< N/m
+    double Q  = 0.0; ///< N
+
+    /// @throws std::invalid_argument naming the parameter, its value and the admissible range.
+    void check() const;
+  };
+
   /// History of a BilinearIsolator, held committed and trial.
   struct BilinearState
   {

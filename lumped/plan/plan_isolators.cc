@@ -17,25 +17,17 @@ namespace kimp::lumped::plan
     constexpr int max_halvings = 20;
   } // namespace
 
-  PlanBilinearIsolator::PlanBilinearIsolator(const double K1,
-                                             const double K2,
-                                             const double Q,
-                                             const double c)
+  PlanBilinearIsolator::PlanBilinearIsolator(const BilinearParameters &parameters, const double c)
     : HystereticIsolatorLaw(c)
-    , K1_(K1)
-    , K2_(K2)
-    , Q_(Q)
+    , p_(parameters)
   {
-    // The planar isolator's checks, with its messages.
-    BilinearIsolator check(K1, K2, Q, c);
-    (void)check;
+    p_.check(); // the planar isolator's checks, with its messages
   }
-
 
   double PlanBilinearIsolator::stored_energy() const
   {
-    return 0.5 * K2_ * committed_.u.squaredNorm() +
-           0.5 * committed_.f_ep.squaredNorm() / (K1_ - K2_);
+    return 0.5 * p_.K2 * committed_.u.squaredNorm() +
+           0.5 * committed_.f_ep.squaredNorm() / (p_.K1 - p_.K2);
   }
 
   PlanBoucWenIsolator::PlanBoucWenIsolator(const BoucWenParameters &parameters, const double c)

@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "lumped/isolators/bilinear_isolator.h"
 #include "lumped/isolators/bouc_wen_isolator.h"
 #include "lumped/isolators/friction_pendulum_isolator.h"
 #include "lumped/isolators/isolator.h"
@@ -75,16 +76,16 @@ namespace kimp::lumped::plan
   {
   public:
     /// @throws std::invalid_argument naming the parameter (lumped::BilinearIsolator's checks).
-    PlanBilinearIsolator(double K1, double K2, double Q, double c = 0.0);
+    explicit PlanBilinearIsolator(const BilinearParameters &parameters, double c = 0.0);
 
     Point       set_trial(const Point &displacement, const Point &velocity) override;
-    double      initial_stiffness() const override { return K1_; }
+    double      initial_stiffness() const override { return p_.K1; }
     double      stored_energy() const override;
-    Point       committed_force() const override { return K2_ * committed_.u + committed_.f_ep; }
+    Point       committed_force() const override { return p_.K2 * committed_.u + committed_.f_ep; }
     std::string name() const override { return "bilinear"; }
 
   private:
-    double K1_, K2_, Q_;
+    BilinearParameters p_;
   };
 
   /// History of a PlanBoucWenIsolator.
@@ -92,27 +93,27 @@ namespace kimp::lumped::plan
   inline Point PlanBilinearIsolator::set_trial(const Point &displacement,
                                                const Point & /*velocity*/)
   {
-    const double k_ep    = K1_ - K2_;
+    const double k_ep    = p_.K1 - p_.K2;
     const Point  f_trial = committed_.f_ep + k_ep * (displacement - committed_.u);
     trial_.u             = displacement;
     trial_.dissipated    = committed_.dissipated;
     // |f_trial| <= 0.9·Q for sure (no root needed) while |f_trial|² <= 0.81·Q².
     const double sq = f_trial.squaredNorm();
-    if (sq <= 0.81 * Q_ * Q_)
+    if (sq <= 0.81 * p_.Q * p_.Q)
     {
       trial_.f_ep = f_trial;
-      return K2_ * displacement + trial_.f_ep;
+      return p_.K2 * displacement + trial_.f_ep;
     }
     const double norm = std::sqrt(sq);
-    if (norm > Q_)
+    if (norm > p_.Q)
     {
       // Radial return: plastic slip |Δu_p| = (|f_trial| − Q)/k_ep along f_trial.
-      trial_.f_ep = Q_ * (f_trial / norm);
-      trial_.dissipated += Q_ * (norm - Q_) / k_ep;
+      trial_.f_ep = p_.Q * (f_trial / norm);
+      trial_.dissipated += p_.Q * (norm - p_.Q) / k_ep;
     }
     else
       trial_.f_ep = f_trial;
-    return K2_ * displacement + trial_.f_ep;
+    return p_.K2 * displacement + trial_.f_ep;
   }
   struct PlanBoucWenState
   {

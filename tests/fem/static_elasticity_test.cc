@@ -18,7 +18,7 @@ namespace
     constexpr double   height = 1.25, thickness = 0.25, width = 2.0;
     constexpr unsigned n_thickness = 8;
     const double       k_bare =
-      backfilled_wall_tip_stiffness(height, thickness, concrete, 0, 0, soil, n_thickness);
+      backfilled_wall_tip_stiffness({height, thickness, concrete, 0, 0, soil, n_thickness});
     // Without soil the wall is the bare cantilever.
     EXPECT_DOUBLE_EQ(k_bare, cantilever_tip_stiffness(height, thickness, concrete, n_thickness));
     double k_previous = k_bare;
@@ -28,13 +28,8 @@ namespace
     {
       Material backfill       = soil;
       backfill.youngs_modulus = e_soil;
-      const double k          = backfilled_wall_tip_stiffness(height,
-                                                     thickness,
-                                                     concrete,
-                                                     width,
-                                                     height,
-                                                     backfill,
-                                                     n_thickness);
+      const double k          = backfilled_wall_tip_stiffness(
+        {height, thickness, concrete, width, height, backfill, n_thickness});
       if (rank() == 0)
         std::cout << "wall tip stiffness, soil E = " << e_soil / 1e6 << " MPa: " << k
                   << " N/m per m (x" << k / k_bare << " bare)\n";
@@ -51,7 +46,7 @@ namespace
     const double     k_bare    = cantilever_tip_stiffness(1.25, 0.25, concrete, 8);
     Material         backfill  = soil;
     backfill.youngs_modulus    = 1e3;
-    const double k = backfilled_wall_tip_stiffness(1.25, 0.25, concrete, 2.0, 1.25, backfill, 8);
+    const double k = backfilled_wall_tip_stiffness({1.25, 0.25, concrete, 2.0, 1.25, backfill, 8});
     EXPECT_NEAR(k / k_bare, 1.0, tolerance) << "k = " << k << ", bare " << k_bare;
     EXPECT_GT(k, k_bare);
   }

@@ -138,7 +138,7 @@ namespace kimp::lumped::plan
     // added as with Rayleigh damping, so C − c_iso projects on the modes as diag(2ζω).
     PlanBuilding b = eccentric_three_storeys(PlanDampingModel::modal);
     b.storeys.pop_back(); // isolated: n − 1 storeys
-    const auto iso = std::make_shared<PlanBilinearIsolator>(50e6, 6e6, 2e5);
+    const auto iso = std::make_shared<PlanBilinearIsolator>(BilinearParameters{50e6, 6e6, 2e5});
     for (const Point &p : rectangle(16.0, 10.0))
       b.isolators.push_back({p, iso});
     b.isolation_damping_ratio = 0.1;

@@ -87,7 +87,7 @@ namespace kimp::lumped::plan
     for (const double angle : {0.0, 0.5 * pi, 0.7})
     {
       BilinearIsolator     b1(200e6, 25e6, 1.5e6);
-      PlanBilinearIsolator b2(200e6, 25e6, 1.5e6);
+      PlanBilinearIsolator b2({200e6, 25e6, 1.5e6});
       expect_uniaxial(b1, b2, angle, 1.5e6);
       for (const double n : {1.0, 2.0, 3.5})
       {
@@ -107,7 +107,7 @@ namespace kimp::lumped::plan
     // the plastic displacement runs on a circle of radius √(D² − u_y²): Q·2π·√(D² − u_y²) per
     // revolution; the force has the radial part K2·D + Q·u_y/D and the tangential Q·√(D² − u_y²)/D.
     const double         K1 = 200e6, K2 = 25e6, Q = 1.5e6, D = 0.2;
-    PlanBilinearIsolator b(K1, K2, Q);
+    PlanBilinearIsolator b({K1, K2, Q});
     const double         uy = Q / (K1 - K2);
     EXPECT_NEAR(circular_dissipation(b, D, 20000),
                 Q * 2 * pi * std::sqrt(D * D - uy * uy),
@@ -151,7 +151,8 @@ namespace kimp::lumped::plan
   TEST(PlanIsolator, TrialsAreIdempotentAndRevertAndCloneKeepTheState)
   {
     std::vector<std::unique_ptr<PlanIsolator>> laws;
-    laws.push_back(std::make_unique<PlanBilinearIsolator>(200e6, 25e6, 1.5e6, 1e5));
+    laws.push_back(
+      std::make_unique<PlanBilinearIsolator>(BilinearParameters{200e6, 25e6, 1.5e6}, 1e5));
     laws.push_back(std::make_unique<PlanBoucWenIsolator>(BoucWenParameters{200e6, 0.125, 1.7e6}));
     laws.push_back(std::make_unique<PlanFrictionPendulumIsolator>(
       FrictionPendulumParameters{15e6, 2.2, 0.04, 0.08, 30.0, 5e8}));
@@ -186,7 +187,11 @@ namespace kimp::lumped::plan
       }
       return std::string();
     };
-    EXPECT_NE(message([] { PlanBilinearIsolator(200e6, 250e6, 1e6); }).find("isolator.K2"),
+    EXPECT_NE(message(
+                [] {
+                  PlanBilinearIsolator(BilinearParameters{200e6, 250e6, 1e6});
+                })
+                .find("isolator.K2"),
               std::string::npos);
     EXPECT_NE(message(
                 [] {

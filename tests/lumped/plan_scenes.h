@@ -50,10 +50,11 @@ namespace kimp::testing
       b.storeys.push_back(storey(k, k, k * plan_width * plan_width / 6.0));
     // Bilinear: K1 = 200 MN/m, K2 = 25 MN/m, Q = 0.1·W_tot formed as the planar building forms
     // it; a quarter at each corner.
-    const double K1      = bilinear.initial_stiffness();
-    const double K2      = 25e6;
-    const double Q       = 0.1 * lumped::standard_gravity * planar.total_mass();
-    auto         quarter = std::make_shared<PlanBilinearIsolator>(K1 / 4, K2 / 4, Q / 4);
+    const double K1 = bilinear.initial_stiffness();
+    const double K2 = 25e6;
+    const double Q  = 0.1 * lumped::standard_gravity * planar.total_mass();
+    auto         quarter =
+      std::make_shared<PlanBilinearIsolator>(lumped::BilinearParameters{K1 / 4, K2 / 4, Q / 4});
     for (const Point &p : rectangle(16.0, 16.0))
       b.isolators.push_back({rotated(p, angle), quarter});
     return b;
