@@ -805,7 +805,8 @@ namespace kimp::fem
       r_    = r_save;
       if (depth >= p_.max_cuts)
       {
-        std::ostringstream msg;
+        std::ostringstream msg; // 4 significant digits: the message reaches reports
+        msg.precision(4);
         msg << "static plasticity: load step " << step_ << " (load factor " << a << " -> " << b
             << ") did not converge in " << p_.max_iterations << " Newton iterations after " << depth
             << " halvings; relative residuals:";
