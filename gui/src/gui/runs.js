@@ -82,17 +82,115 @@
   /** A run's label: its name, else its id. */
   const runLabel = (r) => (r && r.name ? r.name : r ? r.id : '');
 
-  async function openResults(id, overlay) {
-    const data = await getJson(`/api/runs/${id}/data`);
-    const run = await getJson(`/api/runs/${id}`);
-    data.title = runLabel(run);
-    const others = [];
-    for (const o of overlay || []) {
-      const d = await getJson(`/api/runs/${o}/data`);
-      d.title = runLabel(await getJson(`/api/runs/${o}`));
-      others.push(d);
+  /** The next frame painted: what changed on the page before is shown before a long task runs. */
+  const painted = () => new Promise((resolve) => requestAnimationFrame(() => setTimeout(resolve, 0)));
+  const megabytes = (bytes) => (bytes / 1e6).toFixed(1);
+
+  /**
+   * The progress of opening results in `pane`: a spinner, a progress bar and a line ("loading the
+   * results of NAME: 3.2 of 17.1 MB", role status), the pane aria-busy until done() or fail().
+   */
+  function loadingIndicator(pane, id) {
+    const bar = el('progress', { class: 'loading-bar' });
+    const line = el('span', { class: 'loading-text', text: `opening the results of ${id}…` });
+    pane.innerHTML = '';
+    pane.setAttribute('aria-busy', 'true');
+    delete pane.dataset.loaded;
+    pane.appendChild(
+      el('div', { class: 'results-loading', role: 'status', 'aria-live': 'polite' }, [
+        el('span', { class: 'spinner', 'aria-hidden': 'true' }),
+        line,
+        bar,
+      ]),
+    );
+    return {
+      say: (text) => {
+        line.textContent = text;
+      },
+      bytes: (label, received, total) => {
+        const known = total >= received;
+        line.textContent = `loading the results of ${label}: ${megabytes(received)}${
+          known ? ` of ${megabytes(total)}` : ''
+        } MB`;
+        if (known) {
+          bar.max = total;
+          bar.value = received;
+        }
+      },
+      done: (id) => {
+        pane.setAttribute('aria-busy', 'false');
+        pane.dataset.loaded = id;
+      },
+      fail: (message) => {
+        pane.setAttribute('aria-busy', 'false');
+        pane.innerHTML = '';
+        pane.appendChild(el('div', { class: 'run-error', text: message }));
+      },
+    };
+  }
+
+  /**
+   * GET `url` (a run's results) as JSON, its bytes counted in `loading` against their
+   * Content-Length as they arrive (the server sends results uncompressed, their size known), then
+   * parsed once the indicator says so on screen.
+   */
+  async function loadResults(url, label, loading) {
+    loading.say(`loading the results of ${label}: kimp reads the results files…`);
+    const r = await fetch(url);
+    if (!r.ok) throw new Error((await r.json().catch(() => ({}))).error || r.statusText);
+    const total = Number(r.headers.get('Content-Length')) || 0;
+    const chunks = [];
+    let received = 0;
+    const reader = r.body.getReader();
+    for (;;) {
+      const { done, value } = await reader.read();
+      if (done) break;
+      chunks.push(value);
+      received += value.length;
+      loading.bytes(label, received, total);
     }
+    loading.say(`reading the ${megabytes(received)} MB of results of ${label}…`);
+    await painted();
+    const bytes = new Uint8Array(received);
+    let at = 0;
+    for (const c of chunks) {
+      bytes.set(c, at);
+      at += c.length;
+    }
+    return JSON.parse(new TextDecoder().decode(bytes));
+  }
+
+  let opening = 0;
+
+  /**
+   * Show the results of run `id` (with the runs `overlay` on its charts) in the Results tab, a
+   * progress indicator there until its charts are drawn (then #results has data-loaded = id).
+   */
+  async function openResults(id, overlay) {
+    const ticket = ++opening;
     const pane = document.getElementById('results');
+    const loading = loadingIndicator(pane, id);
+    showTab('results');
+    const load = async (runId) => {
+      const run = await getJson(`/api/runs/${runId}`);
+      const data = await loadResults(`/api/runs/${runId}/data`, runLabel(run), loading);
+      data.title = runLabel(run);
+      return { run, data };
+    };
+    let shown;
+    const others = [];
+    try {
+      shown = await load(id);
+      for (const o of overlay || []) others.push((await load(o)).data);
+      loading.say('drawing the charts…');
+      await painted();
+    } catch (e) {
+      if (ticket === opening) loading.fail(`results of ${id}: ${e.message}`);
+      throw e;
+    }
+    // Another run was opened meanwhile: it is the one shown.
+    if (ticket !== opening) return;
+    const { run, data } = shown;
     state.shown = { id: id, overlay: overlay || [] };
     kimp.showResults(pane, data, others);
     pane.insertBefore(
@@ -100,8 +198,10 @@
       pane.children[1],
     );
     if (run.notes) pane.insertBefore(el('p', { class: 'run-notes-shown', text: run.notes }), pane.children[1]);
-    showTab('results');
     saveSession();
+    await painted();
+    if (ticket !== opening) return;
+    loading.done(id);
     await Promise.all([runPicker(id, data, overlay || []), showRunNotes(id, data)]);
   }
 
