@@ -73,7 +73,10 @@ async function openFromRunsTab(page, id) {
     },
     id,
   );
-  await page.waitForFunction(() => window.kimpOpen.loadedAt !== null, { timeout: 60000, polling: 50 });
+  const patience = 10 * MAX_OPEN_MS;
+  await page
+    .waitForFunction(() => window.kimpOpen.loadedAt !== null, { timeout: patience, polling: 50 })
+    .catch(() => check(false, `the result opened within ${patience} ms of the click`));
   return page.evaluate(() => ({ ms: window.kimpOpen.loadedAt - window.kimpOpen.t0, frames: window.kimpOpen.frames }));
 }
 
