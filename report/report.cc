@@ -2,8 +2,8 @@
 #include "report/report.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -43,7 +43,9 @@ namespace kimp::report
     }
 
     /// Seven significant digits are far below what a chart or a CSV export of a chart shows,
-    /// and keep the report a few MB instead of tens.
+    /// and keep the report a few MB instead of tens. std::to_chars and std::from_chars give
+    /// what "%.7g" and strtod give, several times faster (a 17 MB result holds millions of
+    /// numbers, and kimp gui rounds them for every request of its data).
     void round_values(nlohmann::json &value)
     {
       if (value.is_number_float())
@@ -51,9 +53,12 @@ namespace kimp::report
         const double x = value.get<double>();
         if (std::isfinite(x))
         {
-          char text[32];
-          std::snprintf(text, sizeof(text), "%.7g", x);
-          value = std::strtod(text, nullptr);
+          char       text[32];
+          const auto end =
+            std::to_chars(text, text + sizeof(text), x, std::chars_format::general, 7).ptr;
+          double rounded = x;
+          std::from_chars(text, end, rounded);
+          value = rounded;
         }
         else
           value = nullptr;
