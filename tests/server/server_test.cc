@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
@@ -19,6 +20,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "io/results_json.h"
 #include "tests/server/server_test_support.h"
 #include "tests/support/files.h"
 #include "tests/support/kimp_run.h"
@@ -537,5 +539,41 @@ ground_motion:
         EXPECT_EQ(json_of(r)["kind"], "lumped");
       }
     }
+  }
+
+  // The data the page draws is the results file's, each number to 7 significant digits (what
+  // "%.7g" then strtod give): rounded, not truncated, shortened or left at full precision.
+  TEST_F(ServerFixture, ResultsDataHoldsTheResultsFileToSevenSignificantDigits)
+  {
+    const std::string id = start({{"command", "lumped"}, {"scene", small_scene}});
+    ASSERT_EQ(wait_for_run(id, 60, finished)["state"], "done");
+    const auto r = client_->Get("/api/runs/" + id + "/data");
+    ASSERT_TRUE(r);
+    const nlohmann::json shown = json_of(r)["h5"]["lumped.h5"]["datasets"];
+    const nlohmann::json file =
+      io::results_to_json(dir_.path() / "runs" / id / "out" / "lumped.h5")["datasets"];
+    std::size_t numbers = 0;
+    std::size_t changed = 0;
+    for (const auto &[path, dataset] : file.items())
+    {
+      const nlohmann::json &values = dataset.value("data", nlohmann::json());
+      const nlohmann::json  flat =
+        values.is_array() ? values.flatten() : nlohmann::json{{"", values}};
+      const nlohmann::json got    = shown.at(path).value("data", nlohmann::json());
+      const nlohmann::json gotten = got.is_array() ? got.flatten() : nlohmann::json{{"", got}};
+      for (const auto &[at, value] : flat.items())
+      {
+        if (!value.is_number_float() || !std::isfinite(value.get<double>()))
+          continue;
+        char text[32];
+        std::snprintf(text, sizeof(text), "%.7g", value.get<double>());
+        const double expected = std::strtod(text, nullptr);
+        ASSERT_EQ(gotten.at(at).get<double>(), expected) << path << at;
+        ++numbers;
+        changed += expected != value.get<double>() ? 1 : 0;
+      }
+    }
+    EXPECT_GT(numbers, 1000u);
+    EXPECT_GT(changed, numbers / 2) << "the results file's numbers have more than 7 digits";
   }
 } // namespace
