@@ -36,7 +36,8 @@ echo "browser, click to charts drawn:        $(median_best "$work/opens")"
 
 # The server's part: the same run's data by curl, from a kimp gui on the test's runs folder.
 runs_dir="$work/gui_big_result_runs"
-id="$(ls "$runs_dir" | grep -- '-lumped$' | head -1)"
+runs_found=("$runs_dir"/*-lumped)
+id="$(basename "${runs_found[0]}")"
 "$kimp" gui --port 0 --runs-dir "$runs_dir" > "$work/gui.out" 2>&1 &
 server=$!
 trap 'kill "$server" 2> /dev/null; rm -rf "$work"' EXIT
