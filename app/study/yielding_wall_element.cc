@@ -39,6 +39,9 @@ namespace kimp::app
     if (in.unloading_stiffness < in.stiffness)
       throw std::invalid_argument(
         "yielding wall element: unloading_stiffness must be at least stiffness");
+    if (!(in.ultimate_capacity >= in.capacity))
+      throw std::invalid_argument(
+        "yielding wall element: ultimate_capacity must be at least capacity");
     if (!(in.hardening_ratio >= 0.0 && in.hardening_ratio < 1.0))
       throw std::invalid_argument("yielding wall element: hardening_ratio must be in [0, 1)");
 
@@ -50,13 +53,15 @@ namespace kimp::app
     e.reduced_mass      = in.wall_mass * in.striker_mass / (in.wall_mass + in.striker_mass);
     e.contact_stiffness = e.contact_impedance * e.contact_impedance / e.reduced_mass;
 
-    YieldingWallScene &b  = e.backfill;
-    b.width               = width;
-    b.height              = in.wall_height; // failure limit: 10 % of it (the scene's default)
-    b.envelope            = lumped::WallEnvelope::bilinear;
-    b.stiffness           = in.stiffness;
-    b.capacity            = in.capacity;
-    b.hardening_ratio     = in.hardening_ratio;
+    YieldingWallScene &b = e.backfill;
+    b.width              = width;
+    b.height             = in.wall_height; // failure limit: 10 % of it (the scene's default)
+    b.envelope           = lumped::WallEnvelope::bilinear;
+    b.stiffness          = in.stiffness;
+    b.capacity           = in.capacity;
+    b.hardening_ratio    = in.hardening_ratio;
+    if (std::isfinite(in.ultimate_capacity))
+      b.ultimate_capacity = in.ultimate_capacity;
     b.unloading_stiffness = in.unloading_stiffness;
     b.soil_density        = in.soil_density;
     b.soil_wave_speed     = in.soil_wave_speed;

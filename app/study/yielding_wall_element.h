@@ -3,6 +3,8 @@
 // a pushover curve can replace the capacity estimate without touching the building runs.
 #pragma once
 
+#include <limits>
+
 #include "app/fem/fem_scene.h"
 #include "app/laws/yielding_wall_scene.h"
 #include "app/lumped/lumped_scene.h"
@@ -20,7 +22,9 @@ namespace kimp::app
     double capacity            = 0.0; ///< F_y, N/m
     double stiffness           = 0.0; ///< k, initial (cracked) tangent, N/m per m
     double unloading_stiffness = 0.0; ///< k_ur (>= k), N/m per m
-    double hardening_ratio     = 0.0; ///< α of the post-cap tangent α·k
+    double hardening_ratio     = 0.0; ///< α of the post-yield tangent α·k
+    /// F_u, N/m: the force the hardening stops at (a pushover's largest force; +inf: no cap)
+    double ultimate_capacity = std::numeric_limits<double>::infinity();
     // Radiation into the backfill.
     double soil_density    = 0.0; ///< ρ_s, kg/m³
     double soil_wave_speed = 0.0; ///< c_s, m/s
@@ -47,8 +51,8 @@ namespace kimp::app
 
   /**
    * The element of `in` for a wall `width` wide:
-   * - wall-and-backfill part: bilinear, k, F_y, α and k_ur of `in`, the pull-back equal to the
-   *   capacity, the failure limit 10 % of H;
+   * - wall-and-backfill part: bilinear, k, F_y, α, F_u and k_ur of `in`, the pull-back equal to
+   *   the capacity, the failure limit 10 % of H;
    * - radiation dashpot: c_r = ρ_s·c_s·h (the backfill's plane-wave impedance over the loaded
    *   height);
    * - contact part: a linear spring whose first peak against the wall's mass is the impedance's,
