@@ -81,9 +81,11 @@ namespace kimp::app
     const double                  nu_s     = soil.poisson_ratio;
     const double                  m_s =
       soil.youngs_modulus * (1.0 - nu_s) / ((1.0 + nu_s) * (1.0 - 2.0 * nu_s)); // P-wave modulus
+    const double nu_c = concrete.poisson_ratio;
     const double c_ps =
-      std::sqrt(concrete.youngs_modulus /
-                (concrete.density * (1.0 - concrete.poisson_ratio * concrete.poisson_ratio)));
+      std::sqrt(concrete.youngs_modulus / (concrete.density * (1.0 - nu_c * nu_c))); // bar
+    const double c_pc = std::sqrt(concrete.youngs_modulus * (1.0 - nu_c) /
+                                  ((1.0 + nu_c) * (1.0 - 2.0 * nu_c) * concrete.density)); // P
 
     YieldingWallInputs in;
     in.capacity  = estimate.per_metre;
@@ -94,7 +96,7 @@ namespace kimp::app
     in.soil_wave_speed     = std::sqrt(m_s / soil.density);
     in.loaded_height       = g.resolved_backfill_height();
     in.slab_impedance      = concrete.density * c_ps * g.slab_thickness;
-    in.wall_impedance      = in.slab_impedance;
+    in.wall_impedance      = concrete.density * c_pc * t;
     in.wall_mass           = concrete.density * t * wall_height;
     in.striker_mass        = striker_mass;
     in.wall_height         = wall_height;

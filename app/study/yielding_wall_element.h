@@ -31,7 +31,7 @@ namespace kimp::app
     double loaded_height   = 0.0; ///< the backfill height the wall pushes, m
     // The first peak (a wave through slab and wall over the contact band).
     double slab_impedance = 0.0; ///< Z_slab = ρ·c·t_slab, N·s/m per m (+inf: a rigid slab)
-    double wall_impedance = 0.0; ///< Z_wall = ρ·c·(loaded band) through the wall, N·s/m per m
+    double wall_impedance = 0.0; ///< Z_wall = ρ·c_p·t_w through the wall, N·s/m per m
     double wall_mass      = 0.0; ///< the wall DOF's mass, kg/m
     double striker_mass   = 0.0; ///< the mass that hits the wall, kg/m
     double wall_height    = 0.0; ///< H, m (the failure limit is 10 % of it)
@@ -68,8 +68,11 @@ namespace kimp::app
    * - stiffness: the cracked cantilever loaded at h_c, 3·(½E·I_g)/h_c³, I_g = t³/12 (half the
    *   gross stiffness for a cracked section, EN 1998-1 §4.3.1(7)); k_ur = k; α = 0;
    * - soil: ρ and the P-wave speed √(E(1 − ν)/((1 + ν)(1 − 2ν))/ρ) of materials.soil, h = H_b;
-   * - impedances: concrete ρ·c_ps·t_slab for both slab and wall (the wave crosses the wall over
-   *   the slab's band), c_ps = √(E/(ρ(1 − ν²))) the plane-strain bar speed;
+   * - impedances: the slab a plane-strain bar, ρ·c_ps·t_slab with c_ps = √(E/(ρ(1 − ν²))); the
+   *   wall ρ·c_p·t_w, the P-wave speed c_p = √(E(1 − ν)/((1 + ν)(1 − 2ν))/ρ) (1D strain: the wall
+   *   continues above and below the band) over the wall's thickness, the width the wave has
+   *   spread over when the force peaks, after it crossed the wall and back (docs/physics.md:
+   *   the dynamic FEM's first peak against a rigid face is ρ·c_p·t_w·v within 1 %);
    * - wall mass: the concrete of the wall above its base, ρ·t·H (the backfill's inertia is the
    *   dashpot's).
    */
