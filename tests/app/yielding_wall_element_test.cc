@@ -164,7 +164,8 @@ namespace kimp::app
     const double travel = w_max + f_y / e.contact_stiffness;
     std::cout << "slab travel " << r.slab_peak_displacement * 1e3 << " mm (closed form "
               << travel * 1e3 << "), time to stop " << r.time_to_stop * 1e3 << " ms (closed form "
-              << ((m + in.wall_mass) * v / f_y + w_y / (2.0 * v)) * 1e3 << "), wall set " << r.wall_residual * 1e3 << " mm\n";
+              << ((m + in.wall_mass) * v / f_y + w_y / (2.0 * v)) * 1e3 << "), wall set "
+              << r.wall_residual * 1e3 << " mm\n";
     EXPECT_NEAR(r.slab_peak_displacement, travel, 0.01 * travel);
     const double t_stop = (m + in.wall_mass) * v / f_y + w_y / (2.0 * v);
     EXPECT_NEAR(r.time_to_stop, t_stop, 0.02 * t_stop);
