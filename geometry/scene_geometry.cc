@@ -113,6 +113,11 @@ namespace kimp::geometry
              grading,
              "",
              "must be >= 1 and finite: size ratio of neighbouring elements");
+    if (wall_aspect_max && (!(*wall_aspect_max >= 1.0) || !std::isfinite(*wall_aspect_max)))
+      reject("wall_aspect_max",
+             *wall_aspect_max,
+             "",
+             "must be >= 1 and finite: largest height/width of the wall's cells");
   }
 
 

@@ -48,6 +48,14 @@ namespace kimp::geometry
     double h_contact = 0.025; ///< element size at the contact, m
     double h_max     = 0.10;  ///< largest element size away from the contact, m
     double grading   = 1.15;  ///< largest size ratio of neighbouring elements, >= 1
+    /**
+     * Largest height/width of the wall's cells (and so of the backfill's rows beside them,
+     * which share the wall's horizontal grid lines), >= 1; unset: the rows grow to h_max.
+     * Plain Q1 cells much taller than wide lock in bending (parasitic shear), and a cracked,
+     * reinforced wall on them resists about twice its section's capacity (docs/validation.md
+     * "What the dynamic FEM's wall resists").
+     */
+    std::optional<double> wall_aspect_max;
 
     /** H_b in m: backfill_height if given, else wall_height. */
     double resolved_backfill_height() const;
@@ -64,7 +72,7 @@ namespace kimp::geometry
     /**
      * Checks every parameter and the cross-field rules (positive sizes, slab between the ground
      * and the wall top, no overlap (gap > 0), backfill not above the wall, h_contact <= h_max,
-     * h_contact not larger than the wall or slab thickness, grading >= 1).
+     * h_contact not larger than the wall or slab thickness, grading >= 1, wall_aspect_max >= 1).
      * @throws std::invalid_argument whose message names the parameter (`geometry.<name>`), its
      *         value with unit and the admissible range.
      */
@@ -72,8 +80,8 @@ namespace kimp::geometry
   };
 
   /**
-   * The mesh ladder: @p geometry with h_contact and h_max divided by 2^level (grading kept), so
-   * every element size halves per level.
+   * The mesh ladder: @p geometry with h_contact and h_max divided by 2^level (grading and
+   * wall_aspect_max kept), so every element size halves per level.
    * @param[in] level >= 0; 0 returns @p geometry unchanged.
    * @throws std::invalid_argument if level < 0 or level > 10.
    */

@@ -38,15 +38,22 @@ namespace kimp::geometry
     // Horizontal lines of wall and soil: fine in the band the slab front can touch, with grid
     // lines at the band edges so that the slab's nodes face wall nodes, unless forcing them breaks
     // the grading (band edges within about h_max of H_b or the wall ends; see GradedSpacing).
+    // The wall's rows are at most wall_aspect_max times its (uniform) column width; the slab's
+    // rows keep h_max.
+    const double        wall_width = layout.wall_x[1] - layout.wall_x[0];
+    const double        h_rows     = geometry.wall_aspect_max ?
+                                       std::min(h_max, std::max(h_c, *geometry.wall_aspect_max * wall_width)) :
+                                       h_max;
     const GradedSpacing vertical(y_bottom, y_top, h_c, h_max, grading);
+    const GradedSpacing wall_vertical(y_bottom, y_top, h_c, h_rows, grading);
     std::vector<double> forced;
     if (geometry.with_backfill)
       forced.push_back(geometry.resolved_backfill_height());
     std::vector<double> with_band = forced;
     with_band.insert(with_band.end(), {y_bottom, y_top});
-    layout.wall_y = vertical.nodes(0.0, height, with_band);
+    layout.wall_y = wall_vertical.nodes(0.0, height, with_band);
     if (max_neighbour_ratio(layout.wall_y) > grading * (1.0 + 1e-12))
-      layout.wall_y = vertical.nodes(0.0, height, forced);
+      layout.wall_y = wall_vertical.nodes(0.0, height, forced);
     if (geometry.with_backfill)
     {
       const double h_b = geometry.resolved_backfill_height();

@@ -2,6 +2,7 @@
 #include "app/export/opensees_wall_export.h"
 
 #include <fmt/format.h>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <tuple>
@@ -130,6 +131,10 @@ namespace kimp::app
                          opensees_number(-p.capacity),
                          "0.0"});
       out += render({"uniaxialMaterial", backfill}, python);
+      if (p.ultimate_capacity < std::numeric_limits<double>::infinity())
+        out += comment(fmt::format("ultimate_capacity = {} N (the cap of the hardening) has no "
+                                   "counterpart: ElasticPPGap hardens on past it",
+                                   opensees_number(p.ultimate_capacity)));
       if (p.tension_capacity > 0.0)
         out += comment(fmt::format("tension_capacity = {} N (the wall's pull-back) has no "
                                    "counterpart: the gap materials carry compression only",

@@ -286,6 +286,13 @@ namespace kimp::app
                 "",
                 "largest size ratio of neighbouring elements",
                 io::Range::at_least(1.0));
+    io.quantity("wall_aspect_max",
+                s.geometry.wall_aspect_max,
+                "",
+                "largest height/width of the wall's cells (and the backfill rows beside them); "
+                "null: the rows grow to h_max. Set 1 for a cracking reinforced wall: plain Q1 "
+                "cells taller than wide lock in bending",
+                io::Range::at_least(1.0).and_at_most(20.0));
     io.integer("level",
                s.mesh_level,
                "refinement level: every element size divided by 2^level",

@@ -35,9 +35,11 @@ namespace kimp::app
     p.stiffness                  = k * width;
     p.capacity                   = f * width;
     p.hardening_ratio            = hardening_ratio;
-    p.failure_ratio              = failure_ratio;
-    p.unloading_stiffness        = unloading_stiffness.value_or(k) * width;
-    p.tension_capacity           = tension_capacity.value_or(f) * width;
+    if (ultimate_capacity)
+      p.ultimate_capacity = *ultimate_capacity * width;
+    p.failure_ratio       = failure_ratio;
+    p.unloading_stiffness = unloading_stiffness.value_or(k) * width;
+    p.tension_capacity    = tension_capacity.value_or(f) * width;
     p.radiation_damping =
       radiation_damping.value_or(soil_density * soil_wave_speed * height) * width;
     p.failure_displacement = failure_displacement.value_or(failure_drift * height);

@@ -29,7 +29,8 @@ namespace kimp::app
     std::optional<double> stiffness; ///< N/m per m
     std::optional<double> capacity;  ///< N per m
     double                hardening_ratio = 0.0;
-    double                failure_ratio   = 0.7;
+    std::optional<double> ultimate_capacity; ///< N per m (null: no cap)
+    double                failure_ratio = 0.7;
     std::optional<double> unloading_stiffness;      ///< N/m per m
     std::optional<double> tension_capacity;         ///< N per m
     double                soil_density    = 1800.0; ///< kg/m³
@@ -81,8 +82,14 @@ namespace kimp::app
     io.quantity("hardening_ratio",
                 s.hardening_ratio,
                 "%",
-                "bilinear: post-cap tangent as a fraction of stiffness",
+                "bilinear: post-yield tangent as a fraction of stiffness",
                 io::Range::at_least(0.0).and_less(1.0));
+    io.quantity("ultimate_capacity",
+                s.ultimate_capacity,
+                "kN/m",
+                "bilinear: the force the hardening stops at, per metre (>= capacity; a pushover's "
+                "largest force; null: no cap)",
+                io::Range::positive());
     io.quantity("failure_ratio",
                 s.failure_ratio,
                 "",

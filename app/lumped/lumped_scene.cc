@@ -78,6 +78,18 @@ namespace kimp::app
                     wall + "yielding.unloading_stiffness",
                     format_quantity(*y.unloading_stiffness, "kN/mm/m"),
                     "must be >= stiffness = " + format_quantity(k, "kN/mm/m"));
+        if (y.ultimate_capacity)
+        {
+          const double f = y.capacity.value_or(y.default_capacity());
+          ctx.check(y.envelope == lumped::WallEnvelope::bilinear,
+                    wall + "yielding.ultimate_capacity",
+                    format_quantity(*y.ultimate_capacity, "kN/m"),
+                    "is the bilinear envelope's cap (the hyperbolic one has none): leave it null");
+          ctx.check(*y.ultimate_capacity >= f,
+                    wall + "yielding.ultimate_capacity",
+                    format_quantity(*y.ultimate_capacity, "kN/m"),
+                    "must be >= capacity = " + format_quantity(f, "kN/m"));
+        }
       }
     }
   } // namespace

@@ -90,12 +90,15 @@ namespace kimp::app
                                w_d * 1e3);
     }
 
-    /// The bilinear envelope of `fit` at w >= 0.
+    /// The bilinear envelope of `fit` at w >= 0, capped at the curve's largest force (the
+    /// element's ultimate_capacity).
     double bilinear(const PushoverFit &fit, double w)
     {
       return w <= fit.yield_displacement ?
                fit.stiffness * w :
-               fit.capacity + fit.hardening_ratio * fit.stiffness * (w - fit.yield_displacement);
+               std::min(fit.capacity +
+                          fit.hardening_ratio * fit.stiffness * (w - fit.yield_displacement),
+                        fit.target_force);
     }
 
     void append(std::string &note, const std::string &text)
@@ -226,6 +229,7 @@ namespace kimp::app
     in.capacity            = r.fit.capacity;
     in.stiffness           = r.fit.stiffness;
     in.hardening_ratio     = r.fit.hardening_ratio;
+    in.ultimate_capacity   = r.fit.target_force; // the curve's largest force: the cap
     in.unloading_stiffness = r.fit.unloading_stiffness;
     return r;
   }

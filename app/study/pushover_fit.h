@@ -25,8 +25,9 @@ namespace kimp::app
     double unloading_stiffness = 0.0; ///< k_ur (>= k), N/m per m
     double yield_displacement  = 0.0; ///< F_y/k, m
     double target_displacement = 0.0; ///< Δ_d: the envelope's largest force is reached here, m
-    double target_force        = 0.0; ///< V_d: the curve's capacity (largest force), N/m
-    double curve_work          = 0.0; ///< ∫₀^Δ_d F dw of the curve (= the bilinear's), J/m
+    double target_force        = 0.0; ///< V_d: the curve's capacity (largest force), N/m; the
+                               ///< element's cap (ultimate_capacity): it does not harden past it
+    double curve_work = 0.0; ///< ∫₀^Δ_d F dw of the curve (= the bilinear's), J/m
     /** The first unloading of a cyclic curve (NaN without one): where it starts, the curve's
      *  permanent set there and the element's (w_un − E(w_un)/k_ur), m. */
     double unloaded_from          = 0.0;
@@ -81,7 +82,8 @@ namespace kimp::app
    * steps of at most study_pushover_implex_increment (docs/physics.md §6 "Static pushover":
    * IMPL-EX's lagging damage puts a cracking wall's knee high, the implicit update does not);
    * the reason names the fallback and the stall. On success the capacity, stiffness, hardening
-   * ratio and unloading stiffness of `in` are the fit's (source "pushover"); when the pushover or
+   * ratio, unloading stiffness and cap (ultimate_capacity = V_d) of `in` are the fit's (source
+   * "pushover"); when the pushover or
    * the fit fails `in` is left as it is (the estimate) and the reason says why (source "estimate").
    * Never throws for a pushover that fails.
    */

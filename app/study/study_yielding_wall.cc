@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
 
 #include "app/study/pushover_fit.h"
 #include "app/study/study_internal.h"
 #include "app/study/yielding_wall_element.h"
+#include "app/study/yielding_wall_impact.h"
 #include "base/errors.h"
 #include "base/format.h"
 #include "io/results_file.h"
@@ -87,6 +89,44 @@ namespace kimp::app::study_internal
                     base::sig(w.fit.unloading_stiffness / 1e6),
                     w.fit.note.empty() ? std::string() : " (" + w.fit.note + ")");
     }
+
+    /// w's radiation dashpot fitted to the slab travel of the height's FEM record at the
+    /// reference velocity (fit_radiation_damping(): the one parameter of the element fitted to
+    /// the dynamic FEM, docs/validation.md "Yielding wall element against the dynamic FEM"), for
+    /// an element of the FEM's own slab (mass, impedance); without a record's travel w keeps
+    /// rho c_p H_b. The reason joins source_reason.
+    void fit_dashpot(const StudyScene &scene, const StudyHeight &h, StudyYieldingWall &w)
+    {
+      const io::FemCase &fem    = h.fem_case;
+      const auto         travel = fem.summary.max_slab_displacement;
+      if (!travel || !(*travel > 0.0) || !(fem.slab_mass > 0.0) || !(fem.impact_velocity > 0.0) ||
+          fem.time.empty())
+        return;
+      YieldingWallInputs in = w.inputs;
+      in.striker_mass       = fem.slab_mass;
+      if (scene.fem.solver.rigid_slab)
+        in.slab_impedance = std::numeric_limits<double>::infinity();
+      const YieldingWallElement e   = derive_yielding_wall(in, 1.0);
+      const double              end = std::max(0.05, 2.0 * fem.time.back());
+      const DashpotFit          fit = fit_radiation_damping(e,
+                                                   fem.slab_mass,
+                                                   fem.impact_velocity,
+                                                   *travel,
+                                                   e.radiation_damping,
+                                                   end,
+                                                   1e-6);
+      w.element                     = with_radiation_damping(w.element, fit.damping);
+      const std::string reason =
+        fmt::format("radiation dashpot {} kN*s/m^2 fitted to the FEM slab's travel {} mm at {} "
+                    "m/s (rho c_p H_b = {}){}",
+                    base::sig(fit.damping / 1e3),
+                    base::sig(*travel * 1e3),
+                    base::sig(fem.impact_velocity),
+                    base::sig(e.radiation_damping / 1e3),
+                    fit.note.empty() ? std::string() : ": " + fit.note);
+      w.source_reason += (w.source_reason.empty() ? "" : "; ") + reason;
+      logger().info("{}: {}", w.name, reason);
+    }
   } // namespace
 
   std::vector<StudyYieldingWall>
@@ -105,20 +145,25 @@ namespace kimp::app::study_internal
         w.estimate_capacity = w.inputs.capacity;
         apply_pushover(scene, w);
         w.element = derive_yielding_wall(w.inputs, scene.fit.width);
-        logger().info("{}: yielding wall element per metre: capacity {} kN/m, cracked stiffness "
-                      "{} kN/mm/m, radiation dashpot {} kN*s/m^2 (rho c = {} kg/m^3 x {} m/s "
-                      "over {} m), contact k_c = Z_c^2/m_red = {} kN/mm/m (Z_c {} kN*s/m^2), "
-                      "wall mass {} t/m",
-                      h.name,
-                      base::sig(w.inputs.capacity / 1e3),
-                      base::sig(w.inputs.stiffness / 1e6),
-                      base::sig(w.element.radiation_damping / 1e3),
-                      base::sig(w.inputs.soil_density),
-                      base::sig(w.inputs.soil_wave_speed),
-                      base::sig(w.inputs.loaded_height),
-                      base::sig(w.element.contact_stiffness / 1e6),
-                      base::sig(w.element.contact_impedance / 1e3),
-                      base::sig(w.element.wall_mass / 1e3));
+        if (h.inelastic)
+          fit_dashpot(scene, h, w);
+        logger().info(
+          "{}: yielding wall element per metre: capacity {} kN/m, cracked stiffness "
+          "{} kN/mm/m, radiation dashpot {} kN*s/m^2 (rho c = {} kg/m^3 x {} m/s "
+          "over {} m: {} kN*s/m^2), contact k_c = Z_c^2/m_red = {} kN/mm/m (Z_c {} kN*s/m^2), "
+          "wall mass {} t/m",
+          h.name,
+          base::sig(w.inputs.capacity / 1e3),
+          base::sig(w.inputs.stiffness / 1e6),
+          base::sig(w.element.radiation_damping / 1e3),
+          base::sig(w.inputs.soil_density),
+          base::sig(w.inputs.soil_wave_speed),
+          base::sig(w.inputs.loaded_height),
+          base::sig(w.inputs.soil_density * w.inputs.soil_wave_speed * w.inputs.loaded_height /
+                    1e3),
+          base::sig(w.element.contact_stiffness / 1e6),
+          base::sig(w.element.contact_impedance / 1e3),
+          base::sig(w.element.wall_mass / 1e3));
       }
       catch (const std::exception &error)
       {

@@ -39,6 +39,9 @@ namespace kimp::app
     if (in.unloading_stiffness < in.stiffness)
       throw std::invalid_argument(
         "yielding wall element: unloading_stiffness must be at least stiffness");
+    if (!(in.ultimate_capacity >= in.capacity))
+      throw std::invalid_argument(
+        "yielding wall element: ultimate_capacity must be at least capacity");
     if (!(in.hardening_ratio >= 0.0 && in.hardening_ratio < 1.0))
       throw std::invalid_argument("yielding wall element: hardening_ratio must be in [0, 1)");
 
@@ -50,13 +53,15 @@ namespace kimp::app
     e.reduced_mass      = in.wall_mass * in.striker_mass / (in.wall_mass + in.striker_mass);
     e.contact_stiffness = e.contact_impedance * e.contact_impedance / e.reduced_mass;
 
-    YieldingWallScene &b  = e.backfill;
-    b.width               = width;
-    b.height              = in.wall_height; // failure limit: 10 % of it (the scene's default)
-    b.envelope            = lumped::WallEnvelope::bilinear;
-    b.stiffness           = in.stiffness;
-    b.capacity            = in.capacity;
-    b.hardening_ratio     = in.hardening_ratio;
+    YieldingWallScene &b = e.backfill;
+    b.width              = width;
+    b.height             = in.wall_height; // failure limit: 10 % of it (the scene's default)
+    b.envelope           = lumped::WallEnvelope::bilinear;
+    b.stiffness          = in.stiffness;
+    b.capacity           = in.capacity;
+    b.hardening_ratio    = in.hardening_ratio;
+    if (std::isfinite(in.ultimate_capacity))
+      b.ultimate_capacity = in.ultimate_capacity;
     b.unloading_stiffness = in.unloading_stiffness;
     b.soil_density        = in.soil_density;
     b.soil_wave_speed     = in.soil_wave_speed;
@@ -76,9 +81,11 @@ namespace kimp::app
     const double                  nu_s     = soil.poisson_ratio;
     const double                  m_s =
       soil.youngs_modulus * (1.0 - nu_s) / ((1.0 + nu_s) * (1.0 - 2.0 * nu_s)); // P-wave modulus
+    const double nu_c = concrete.poisson_ratio;
     const double c_ps =
-      std::sqrt(concrete.youngs_modulus /
-                (concrete.density * (1.0 - concrete.poisson_ratio * concrete.poisson_ratio)));
+      std::sqrt(concrete.youngs_modulus / (concrete.density * (1.0 - nu_c * nu_c))); // bar
+    const double c_pc = std::sqrt(concrete.youngs_modulus * (1.0 - nu_c) /
+                                  ((1.0 + nu_c) * (1.0 - 2.0 * nu_c) * concrete.density)); // P
 
     YieldingWallInputs in;
     in.capacity  = estimate.per_metre;
@@ -89,7 +96,7 @@ namespace kimp::app
     in.soil_wave_speed     = std::sqrt(m_s / soil.density);
     in.loaded_height       = g.resolved_backfill_height();
     in.slab_impedance      = concrete.density * c_ps * g.slab_thickness;
-    in.wall_impedance      = in.slab_impedance;
+    in.wall_impedance      = concrete.density * c_pc * t;
     in.wall_mass           = concrete.density * t * wall_height;
     in.striker_mass        = striker_mass;
     in.wall_height         = wall_height;

@@ -3,6 +3,8 @@
 // a pushover curve can replace the capacity estimate without touching the building runs.
 #pragma once
 
+#include <limits>
+
 #include "app/fem/fem_scene.h"
 #include "app/laws/yielding_wall_scene.h"
 #include "app/lumped/lumped_scene.h"
@@ -20,14 +22,16 @@ namespace kimp::app
     double capacity            = 0.0; ///< F_y, N/m
     double stiffness           = 0.0; ///< k, initial (cracked) tangent, N/m per m
     double unloading_stiffness = 0.0; ///< k_ur (>= k), N/m per m
-    double hardening_ratio     = 0.0; ///< α of the post-cap tangent α·k
+    double hardening_ratio     = 0.0; ///< α of the post-yield tangent α·k
+    /// F_u, N/m: the force the hardening stops at (a pushover's largest force; +inf: no cap)
+    double ultimate_capacity = std::numeric_limits<double>::infinity();
     // Radiation into the backfill.
     double soil_density    = 0.0; ///< ρ_s, kg/m³
     double soil_wave_speed = 0.0; ///< c_s, m/s
     double loaded_height   = 0.0; ///< the backfill height the wall pushes, m
     // The first peak (a wave through slab and wall over the contact band).
     double slab_impedance = 0.0; ///< Z_slab = ρ·c·t_slab, N·s/m per m (+inf: a rigid slab)
-    double wall_impedance = 0.0; ///< Z_wall = ρ·c·(loaded band) through the wall, N·s/m per m
+    double wall_impedance = 0.0; ///< Z_wall = ρ·c_p·t_w through the wall, N·s/m per m
     double wall_mass      = 0.0; ///< the wall DOF's mass, kg/m
     double striker_mass   = 0.0; ///< the mass that hits the wall, kg/m
     double wall_height    = 0.0; ///< H, m (the failure limit is 10 % of it)
@@ -47,8 +51,8 @@ namespace kimp::app
 
   /**
    * The element of `in` for a wall `width` wide:
-   * - wall-and-backfill part: bilinear, k, F_y, α and k_ur of `in`, the pull-back equal to the
-   *   capacity, the failure limit 10 % of H;
+   * - wall-and-backfill part: bilinear, k, F_y, α, F_u and k_ur of `in`, the pull-back equal to
+   *   the capacity, the failure limit 10 % of H;
    * - radiation dashpot: c_r = ρ_s·c_s·h (the backfill's plane-wave impedance over the loaded
    *   height);
    * - contact part: a linear spring whose first peak against the wall's mass is the impedance's,
@@ -64,8 +68,11 @@ namespace kimp::app
    * - stiffness: the cracked cantilever loaded at h_c, 3·(½E·I_g)/h_c³, I_g = t³/12 (half the
    *   gross stiffness for a cracked section, EN 1998-1 §4.3.1(7)); k_ur = k; α = 0;
    * - soil: ρ and the P-wave speed √(E(1 − ν)/((1 + ν)(1 − 2ν))/ρ) of materials.soil, h = H_b;
-   * - impedances: concrete ρ·c_ps·t_slab for both slab and wall (the wave crosses the wall over
-   *   the slab's band), c_ps = √(E/(ρ(1 − ν²))) the plane-strain bar speed;
+   * - impedances: the slab a plane-strain bar, ρ·c_ps·t_slab with c_ps = √(E/(ρ(1 − ν²))); the
+   *   wall ρ·c_p·t_w, the P-wave speed c_p = √(E(1 − ν)/((1 + ν)(1 − 2ν))/ρ) (1D strain: the wall
+   *   continues above and below the band) over the wall's thickness, the width the wave has
+   *   spread over when the force peaks, after it crossed the wall and back (docs/physics.md:
+   *   the dynamic FEM's first peak against a rigid face is ρ·c_p·t_w·v within 1 %);
    * - wall mass: the concrete of the wall above its base, ρ·t·H (the backfill's inertia is the
    *   dashpot's).
    */

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 #include <memory>
 #include <stdexcept>
 
@@ -94,5 +95,64 @@ namespace kimp::app
                                            (r.history.time[last] - r.history.time[last - 1]) :
                                          0.0;
     return out;
+  }
+
+  YieldingWallElement with_radiation_damping(const YieldingWallElement &element,
+                                             const double               damping)
+  {
+    YieldingWallElement e        = element;
+    e.radiation_damping          = damping;
+    e.backfill.radiation_damping = damping;
+    return e;
+  }
+
+  DashpotFit fit_radiation_damping(const YieldingWallElement &element,
+                                   const double               slab_mass,
+                                   const double               velocity,
+                                   const double               travel,
+                                   const double               largest,
+                                   const double               duration,
+                                   const double               dt)
+  {
+    if (!(travel > 0.0) || !(largest > 0.0))
+      throw std::invalid_argument("fit_radiation_damping: the travel and the largest dashpot "
+                                  "must be positive");
+    const auto travel_with = [&](double c)
+    {
+      return slab_impact(with_radiation_damping(element, c), slab_mass, velocity, duration, dt)
+        .slab_peak_displacement;
+    };
+    DashpotFit   fit;
+    const double free_travel = travel_with(0.0);
+    if (free_travel <= travel)
+    {
+      fit.travel = free_travel;
+      fit.note   = fmt::format("without a dashpot the slab travels {:.4g} mm, not farther than "
+                               "the target {:.4g} mm: c_r = 0",
+                             free_travel * 1e3,
+                             travel * 1e3);
+      return fit;
+    }
+    const double damped_travel = travel_with(largest);
+    if (damped_travel >= travel)
+    {
+      fit.damping = largest;
+      fit.travel  = damped_travel;
+      fit.note    = fmt::format("with the largest dashpot {:.4g} kN*s/m^2 the slab still travels "
+                                "{:.4g} mm, farther than the target {:.4g} mm",
+                             largest / 1e3,
+                             damped_travel * 1e3,
+                             travel * 1e3);
+      return fit;
+    }
+    double low = 0.0, high = largest; // travel(low) > target > travel(high)
+    fit.travel = damped_travel;
+    for (int i = 0; i < 60 && std::abs(fit.travel - travel) > 1e-4 * travel; ++i)
+    {
+      fit.damping                        = 0.5 * (low + high);
+      fit.travel                         = travel_with(fit.damping);
+      (fit.travel > travel ? low : high) = fit.damping;
+    }
+    return fit;
   }
 } // namespace kimp::app

@@ -3,6 +3,8 @@
 // element's parameters, frozen, against the FE model.
 #pragma once
 
+#include <string>
+
 #include "app/study/yielding_wall_element.h"
 
 namespace kimp::app
@@ -29,4 +31,32 @@ namespace kimp::app
                                double                     velocity,
                                double                     duration,
                                double                     dt);
+  /// `element` with its radiation dashpot replaced by `damping` N·s/m per m (the element's and
+  /// its wall-and-backfill part's).
+  YieldingWallElement with_radiation_damping(const YieldingWallElement &element, double damping);
+
+  /// The dashpot fitted to one impact's slab travel (fit_radiation_damping()).
+  struct DashpotFit
+  {
+    double damping = 0.0; ///< c_r, N·s/m per m
+    double travel  = 0.0; ///< the element's slab travel with it, m
+    /// "" when the travel is matched; else why not (the target is outside the travels of
+    /// c_r = 0 and of the largest c_r, which is then returned).
+    std::string note;
+  };
+
+  /**
+   * The radiation dashpot c_r in [0, `largest`] N·s/m per m with which the slab of `slab_mass`
+   * kg/m striking `element` at `velocity` m/s travels `travel` m (the dynamic FEM's slab travel),
+   * by bisection to 1e-4 of `travel` (the travel falls as c_r grows); every other parameter of
+   * `element` frozen. slab_impact() runs each trial for `duration` s at `dt` s.
+   * @throws std::invalid_argument for a non-positive travel or largest c_r.
+   */
+  DashpotFit fit_radiation_damping(const YieldingWallElement &element,
+                                   double                     slab_mass,
+                                   double                     velocity,
+                                   double                     travel,
+                                   double                     largest,
+                                   double                     duration,
+                                   double                     dt);
 } // namespace kimp::app

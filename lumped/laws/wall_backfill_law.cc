@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "lumped/laws/kelvin_voigt_law.h"
 #include "lumped/parameter_check.h"
@@ -45,6 +46,19 @@ namespace kimp::lumped
                       p.hardening_ratio,
                       "",
                       "must be in [0, 1)");
+    require_parameter(p.ultimate_capacity >= p.capacity,
+                      owner,
+                      "ultimate_capacity",
+                      p.ultimate_capacity,
+                      "N",
+                      "must be >= capacity (+inf: no cap)");
+    require_parameter(p.envelope == WallEnvelope::bilinear ||
+                        p.ultimate_capacity == std::numeric_limits<double>::infinity(),
+                      owner,
+                      "ultimate_capacity",
+                      p.ultimate_capacity,
+                      "N",
+                      "is the bilinear envelope's (the hyperbolic one has no cap)");
     require_parameter(p.failure_ratio > 0.0 && p.failure_ratio <= 1.0,
                       owner,
                       "failure_ratio",
@@ -89,7 +103,9 @@ namespace kimp::lumped
     if (p.envelope == WallEnvelope::hyperbolic)
       return w / (1.0 / p.stiffness + p.failure_ratio * w / p.capacity);
     const double w_y = p.capacity / p.stiffness;
-    return w <= w_y ? p.stiffness * w : p.capacity + p.hardening_ratio * p.stiffness * (w - w_y);
+    return w <= w_y ? p.stiffness * w :
+                      std::min(p.capacity + p.hardening_ratio * p.stiffness * (w - w_y),
+                               p.ultimate_capacity);
   }
 
   double WallBackfillLaw::envelope_tangent(const double w) const
@@ -100,7 +116,20 @@ namespace kimp::lumped
       const double d = 1.0 / p.stiffness + p.failure_ratio * w / p.capacity;
       return 1.0 / (p.stiffness * d * d);
     }
-    return w < p.capacity / p.stiffness ? p.stiffness : p.hardening_ratio * p.stiffness;
+    if (w < p.capacity / p.stiffness)
+      return p.stiffness;
+    return w < cap_displacement() ? p.hardening_ratio * p.stiffness : 0.0;
+  }
+
+  double WallBackfillLaw::cap_displacement() const
+  {
+    const Params &p   = params_;
+    const double  w_y = p.capacity / p.stiffness;
+    if (p.ultimate_capacity == std::numeric_limits<double>::infinity())
+      return std::numeric_limits<double>::infinity();
+    if (p.ultimate_capacity <= p.capacity || p.hardening_ratio == 0.0)
+      return w_y; // the cap is the yield force, or hardening never reaches it
+    return w_y + (p.ultimate_capacity - p.capacity) / (p.hardening_ratio * p.stiffness);
   }
 
   double WallBackfillLaw::envelope_work(const double w) const
@@ -116,9 +145,10 @@ namespace kimp::lumped
     const double w_y = p.capacity / p.stiffness;
     if (w <= w_y)
       return 0.5 * p.stiffness * w * w;
-    const double dw = w - w_y;
+    const double w_u = std::max(w_y, cap_displacement());
+    const double dw  = std::min(w, w_u) - w_y; // hardening part
     return 0.5 * p.capacity * w_y + p.capacity * dw +
-           0.5 * p.hardening_ratio * p.stiffness * dw * dw;
+           0.5 * p.hardening_ratio * p.stiffness * dw * dw + envelope(w) * std::max(0.0, w - w_u);
   }
 
   double WallBackfillLaw::permanent_set(const WallBackfillState &s) const

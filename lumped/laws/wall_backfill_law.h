@@ -14,7 +14,8 @@ namespace kimp::lumped
   /// Virgin-loading curve of the wall and its backfill.
   enum class WallEnvelope
   {
-    bilinear,  ///< E(w) = k·w up to F_y, then F_y + α·k·(w − F_y/k) (OpenSees ElasticPPGap)
+    bilinear,  ///< E(w) = k·w up to F_y, then F_y + α·k·(w − F_y/k) up to the cap F_u
+               ///< (OpenSees ElasticPPGap without a cap)
     hyperbolic ///< E(w) = w/(1/k + R_f·w/F_ult) (Duncan-Mokwa; OpenSees HyperbolicGapMaterial)
   };
 
@@ -27,7 +28,9 @@ namespace kimp::lumped
    * | stiffness            | k: initial tangent of the envelope (cracked wall  | N/m   | > 0      |
    * |                      | with its backfill)                                |       |          |
    * | capacity             | bilinear: F_y, the cap; hyperbolic: F_ult         | N     | > 0      |
-   * | hardening_ratio      | α: bilinear post-cap tangent α·k                  | -     | [0, 1)   |
+   * | hardening_ratio      | α: bilinear post-yield tangent α·k                | -     | [0, 1)   |
+   * | ultimate_capacity    | F_u: bilinear, the force the hardening stops at   | N     | >= F_y   |
+   * |                      | (+inf: no cap)                                    |       |          |
    * | failure_ratio        | R_f: hyperbolic, the curve tends to F_ult/R_f     | -     | (0, 1]   |
    * | unloading_stiffness  | k_ur: unloading and reloading stiffness           | N/m   | >= k     |
    * | tension_capacity     | F_t: largest force pulling the wall towards the   | N     | >= 0     |
@@ -43,6 +46,7 @@ namespace kimp::lumped
     double       stiffness            = 0.0;
     double       capacity             = 0.0;
     double       hardening_ratio      = 0.0;
+    double       ultimate_capacity    = std::numeric_limits<double>::infinity();
     double       failure_ratio        = 1.0;
     double       unloading_stiffness  = 0.0;
     double       tension_capacity     = 0.0;
@@ -73,11 +77,13 @@ namespace kimp::lumped
    *           = max(k_ur·(w − w_p), −F_t)       for w <  w_max (unloading and reloading),
    *   w_p     = w_max − E(w_max)/k_ur           (the permanent set: where R returns to 0).
    *
-   * The envelope E (WallEnvelope) is concave with E' <= k <= k_ur, so the unloading line lies
-   * below it and meets it at w_max: reloading rejoins the envelope there (hardening continues).
-   * A wall pushed back keeps its set: with F_t = 0 it rests at w_p with R = 0 (the next impact
-   * comes at a larger gap); F_t > 0 is the wall's elastic pull-back, limited to F_t without
-   * changing w_p (no reverse yielding).
+   * The bilinear envelope stops hardening at F_u: E = min(F_y + α·k·(w − w_y), F_u), w_y = F_y/k,
+   * flat from w_u = w_y + (F_u − F_y)/(α·k) (the pushover's largest force; a wall does not
+   * harden without bound). The envelope E (WallEnvelope) is concave with E' <= k <= k_ur, so the
+   * unloading line lies below it and meets it at w_max: reloading rejoins the envelope there
+   * (hardening continues). A wall pushed back keeps its set: with F_t = 0 it rests at w_p with R =
+   * 0 (the next impact comes at a larger gap); F_t > 0 is the wall's elastic pull-back, limited to
+   * F_t without changing w_p (no reverse yielding).
    *
    * Energy: the spring's dissipated (plastic) work is path-independent,
    *   W_p(w_max) = ∫₀^w_max E dw − E(w_max)²/(2k_ur),
@@ -144,6 +150,9 @@ namespace kimp::lumped
     double envelope_tangent(double w) const;
     /// ∫₀^w E dw', J (w >= 0).
     double envelope_work(double w) const;
+    /// w_u, m: where the bilinear envelope reaches its cap F_u and turns flat (w_y when α = 0 or
+    /// F_u = F_y; +inf without a cap or for the hyperbolic envelope).
+    double cap_displacement() const;
 
     const Params            &parameters() const { return params_; }
     const WallBackfillState &committed_state() const { return committed_; }

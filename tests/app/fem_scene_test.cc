@@ -439,6 +439,7 @@ namespace
        3,
        "slab_thickness"},
       {"mesh:\n  grading: 0.9\n", "mesh.grading", 2, ">= 1"},
+      {"mesh:\n  wall_aspect_max: 0.5\n", "mesh.wall_aspect_max", 2, "in [1, 20]"},
       {"materials:\n  concrete:\n    E: \"0 GPa\"\n",
        "materials.concrete.E",
        3,

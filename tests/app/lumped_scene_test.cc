@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -380,6 +381,20 @@ TEST(LumpedScene, YieldingWallsTakeFirstGuessesPerMetreTimesWidth)
   EXPECT_EQ(q.tension_capacity, 0.0);
   EXPECT_NEAR(q.radiation_damping, 1.5e6, exact_tolerance * 1.5e6);
   EXPECT_NEAR(q.failure_displacement, 0.08, exact_tolerance);
+
+  // The cap of the bilinear envelope, per metre; refused below the capacity.
+  const LumpedScene capped =
+    load("walls:\n  left:\n    yielding:\n      width: \"10 m\"\n      capacity: \"110 kN/m\"\n"
+         "      hardening_ratio: \"2 %\"\n      ultimate_capacity: \"143 kN/m\"\n");
+  EXPECT_NEAR(make_pounding_scene(capped).left_wall->yielding->ultimate_capacity,
+              1.43e6,
+              exact_tolerance * 1.43e6);
+  EXPECT_EQ(q.ultimate_capacity, std::numeric_limits<double>::infinity()); // null: no cap
+  EXPECT_NE(error_of("walls:\n  left:\n    yielding:\n      capacity: \"110 kN/m\"\n"
+                     "      ultimate_capacity: \"100 kN/m\"\n")
+              .find("walls.left.yielding.ultimate_capacity = 100 kN/m: must be >= capacity = "
+                    "110 kN/m"),
+            std::string::npos);
 
   EXPECT_NE(error_of("walls:\n  left:\n    flexible: true\n    yielding:\n      height: \"1 m\"\n")
               .find("walls.left.flexible = true: must be false for a yielding wall"),

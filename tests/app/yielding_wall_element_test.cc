@@ -1,7 +1,8 @@
 // The yielding wall element of an inelastic study (app/study/yielding_wall_element.h): each
 // formula of the derivation against its closed form written out here, the inputs of a scene,
 // and a building run against the derived walls closing its energy balance with the walls'
-// plastic and radiated work.
+// plastic and radiated work; a slab striking the element against the rigid-plastic closed forms
+// (energy and impulse-momentum), and the dashpot fitted back to a slab travel.
 #include <cmath>
 #include <gtest/gtest.h>
 #include <iostream>
@@ -11,6 +12,7 @@
 #include "app/study/study_scene.h"
 #include "app/study/wall_capacity.h"
 #include "app/study/yielding_wall_element.h"
+#include "app/study/yielding_wall_impact.h"
 
 namespace kimp::app
 {
@@ -134,9 +136,69 @@ namespace kimp::app
     const double z = 2400.0 * std::sqrt(30e9 / (2400.0 * 0.96)) * 0.20;
     EXPECT_NEAR(in.slab_impedance, z, exact * z);
     EXPECT_NEAR(z, 1.732e6, 0.001e6);
-    EXPECT_EQ(in.wall_impedance, in.slab_impedance);
+    // The wall: the P-wave speed √(E(1 − ν)/((1 + ν)(1 − 2ν))/ρ) = 3727 m/s (1D strain: the wall
+    // continues above and below the band) over the wall's thickness: Z = 2.236 MN·s/m per m.
+    const double zw = 2400.0 * std::sqrt(30e9 * 0.8 / (1.2 * 0.6 * 2400.0)) * 0.25;
+    EXPECT_NEAR(in.wall_impedance, zw, exact * zw);
+    EXPECT_NEAR(zw, 2.236e6, 0.001e6);
     EXPECT_NEAR(in.wall_mass, 2400.0 * 0.25 * 1.25, exact * 750.0);
     EXPECT_EQ(in.striker_mass, 20e3);
+  }
+
+  // A heavy slab against an elastic-perfectly plastic wall without a dashpot (α = 0: the cap is
+  // F_y): the slab's energy goes into the plateau, ½mv² = F_y·(w_max − w_y/2) + F_y²/(2k_c)
+  // (the wall's and the contact's springs at F_y; the light wall's kinetic energy neglected),
+  // and its momentum, with the wall's that moves with it, into the plateau's impulse:
+  // (m + m_w)·v = F_y·(t_stop − w_y/(2v)), the rise to F_y taking w_y/v at half the force.
+  TEST(YieldingWallElement, HeavySlabStopsByTheRigidPlasticEnergyAndImpulse)
+  {
+    YieldingWallInputs in       = inputs();
+    in.hardening_ratio          = 0.0;
+    in.ultimate_capacity        = in.capacity;
+    in.striker_mass             = 55e3;
+    const YieldingWallElement e = with_radiation_damping(derive_yielding_wall(in, 1.0), 0.0);
+    const double              m = 55e3, v = 1.0, f_y = in.capacity;
+    const SlabImpactResult    r   = slab_impact(e, m, v, 1.0, 1e-5);
+    const double              w_y = f_y / in.stiffness;
+    const double w_max  = 0.5 * m * v * v / f_y + 0.5 * w_y - f_y / (2.0 * e.contact_stiffness);
+    const double travel = w_max + f_y / e.contact_stiffness;
+    std::cout << "slab travel " << r.slab_peak_displacement * 1e3 << " mm (closed form "
+              << travel * 1e3 << "), time to stop " << r.time_to_stop * 1e3 << " ms (closed form "
+              << ((m + in.wall_mass) * v / f_y + w_y / (2.0 * v)) * 1e3 << "), wall set "
+              << r.wall_residual * 1e3 << " mm\n";
+    EXPECT_NEAR(r.slab_peak_displacement, travel, 0.01 * travel);
+    const double t_stop = (m + in.wall_mass) * v / f_y + w_y / (2.0 * v);
+    EXPECT_NEAR(r.time_to_stop, t_stop, 0.02 * t_stop);
+    // The set: w_max less the spring-back F_y/k_ur.
+    EXPECT_NEAR(r.wall_residual, w_max - f_y / in.unloading_stiffness, 0.01 * w_max);
+    EXPECT_LT(r.peak_contact_force, in.slab_impedance * v); // below the rigid-slab impact
+  }
+
+  // The dashpot fitted to the slab travel of an element with a known dashpot gives that dashpot
+  // back; a target beyond the travels of c_r = 0 or of the largest c_r is returned with a note.
+  TEST(YieldingWallElement, DashpotFittedToASlabTravelIsRecovered)
+  {
+    YieldingWallInputs in       = inputs();
+    in.striker_mass             = 3840.0;
+    in.ultimate_capacity        = 150e3;
+    const YieldingWallElement e = derive_yielding_wall(in, 1.0);
+    const double              c = 60e3;
+    const double              travel =
+      slab_impact(with_radiation_damping(e, c), 3840.0, 1.0, 0.2, 1e-6).slab_peak_displacement;
+    const DashpotFit fit = fit_radiation_damping(e, 3840.0, 1.0, travel, 400e3, 0.2, 1e-6);
+    std::cout << "dashpot " << c / 1e3 << " kN*s/m^2 (travel " << travel * 1e3
+              << " mm) fitted back: " << fit.damping / 1e3 << " kN*s/m^2\n";
+    EXPECT_TRUE(fit.note.empty()) << fit.note;
+    EXPECT_NEAR(fit.damping, c, 0.01 * c);
+    EXPECT_NEAR(fit.travel, travel, 1e-4 * travel);
+    const DashpotFit far = fit_radiation_damping(e, 3840.0, 1.0, 10.0 * travel, 400e3, 0.2, 1e-6);
+    EXPECT_EQ(far.damping, 0.0);
+    EXPECT_FALSE(far.note.empty());
+    const DashpotFit near = fit_radiation_damping(e, 3840.0, 1.0, 0.01 * travel, 400e3, 0.2, 1e-6);
+    EXPECT_EQ(near.damping, 400e3);
+    EXPECT_FALSE(near.note.empty());
+    EXPECT_THROW(fit_radiation_damping(e, 3840.0, 1.0, 0.0, 400e3, 0.2, 1e-6),
+                 std::invalid_argument);
   }
 
   TEST(YieldingWallElement, BuildingRunClosesTheEnergyBalanceWithPlasticAndRadiatedWork)

@@ -85,6 +85,17 @@ TEST(StudyYieldingWallCli, InelasticStudyRunsEveryHeightAgainstItsYieldingWall)
     EXPECT_LT(cap, f_d);
     EXPECT_NEAR((cap + alpha * k * (w_d - cap / k)) / f_d, 1.0, 1e-9);
     EXPECT_NE(e.at("capacity_kN_per_m"), e.at("estimate_capacity_kN_per_m"));
+    // The dashpot is fitted to the height's FEM record (its slab travel), below its bound, the
+    // backfill's plane-wave rho c_p H_b.
+    EXPECT_NE(e.at("source_reason").find("kN*s/m^2 fitted to the FEM slab's travel"),
+              std::string::npos)
+      << e.at("source_reason");
+    const double c_r   = std::stod(e.at("radiation_damping_kN_s_per_m2"));
+    const double bound = 1e-3 * std::stod(e.at("soil_density_kg_per_m3")) *
+                         std::stod(e.at("soil_wave_speed_m_per_s")) *
+                         std::stod(e.at("loaded_height_m"));
+    EXPECT_GE(c_r, 0.0);
+    EXPECT_LE(c_r, bound * (1.0 + 1e-6));
   }
   const auto runs = read_csv_records(out / "yielding_wall.csv");
   ASSERT_EQ(runs.size(), 2u) << read_text(out / "yielding_wall.csv");

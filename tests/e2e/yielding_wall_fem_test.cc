@@ -1,13 +1,18 @@
 // The yielding wall element, its parameters frozen as an inelastic study derives them
-// (app/study/yielding_wall_element.h: the resistance from the scene's static pushover where it
-// runs, else the estimate; app/study/pushover_fit.h), against the dynamic FEM (`kimp fem`, H =
-// 1.25 m, geostatic Mohr-Coulomb backfill, coarse 5 cm mesh): peak contact force, the slab's peak
-// displacement, its time to stop and the wall's residual displacement. The test runs the
-// reinforced 0.25 m wall with the FEM's own slab at 0.5 m/s; KIMP_YIELDING_WALL_FULL=1 runs the
-// eight cases of docs/validation.md (the reinforced wall and an elastic wall with the contact
-// interface; 0.5 and 1 m/s; the FEM's elastic slab and a rigid slab carrying the building's
-// 55 t/m) and prints their table with each element's source. docs/validation.md "Yielding wall
-// element against the dynamic FEM" has the numbers and where the element does not hold.
+// (app/study/yielding_wall_element.h: the resistance and its cap from the scene's static pushover
+// where it runs, else the estimate; app/study/pushover_fit.h), against the dynamic FEM (`kimp
+// fem`, H = 1.25 m, the reinforced 0.25 m wall, geostatic Mohr-Coulomb backfill; 5 cm at the
+// contact graded to 25 cm, the wall's cells no taller than wide; absorbing far side, and the
+// thesis' rollered block for comparison): peak contact force, the slab's peak displacement, its
+// time to stop and the wall's residual displacement, against the criterion (peak force <= 10 %,
+// the others <= 15 %) on the rows where it holds. The radiation dashpot is the one parameter
+// fitted to the dynamic FEM (app::fit_radiation_damping(), on the FEM's slab at 1 m/s), then
+// frozen. The test fits it and runs the slab carrying the building's 55 t/m at 0.5 m/s;
+// KIMP_YIELDING_WALL_FULL=1 runs the four rows of docs/validation.md (the FEM's slab and the heavy
+// slab, 0.5 and 1 m/s) against both far sides and checks the absorbing ones;
+// KIMP_YIELDING_WALL_FEM_DIR=DIR keeps each FEM run in DIR/<row>_<far side> (with VTU fields every
+// 50 ms) and reuses a finished one there. docs/validation.md "Yielding wall element against the
+// dynamic FEM" has the numbers and why the other rows miss.
 #ifdef KIMP_WITH_FEM
 
 #  include <algorithm>
@@ -18,8 +23,10 @@
 #  include <gtest/gtest.h>
 #  include <iostream>
 #  include <limits>
+#  include <optional>
 #  include <stdexcept>
 #  include <string>
+#  include <utility>
 
 #  include "app/fem/fem_scene.h"
 #  include "app/study/pushover_fit.h"
@@ -50,21 +57,14 @@ namespace
     return text;
   }
 
-  /// An elastic wall against the same sand with the contact interface.
-  constexpr const char *elastic_wall = R"(wall_heights: ["1.25 m"]
-interface: {model: contact}
-materials:
-  concrete: {model: elastic}
-  soil: {model: mohr_coulomb, preset: medium_dense_sand}
-)";
-
-  /// The scene at the coarse mesh: `materials` (wall height and materials), then `slab` the slab
-  /// line.
-  std::string
-  fem_scene(const std::string &slab, const std::string &end_time, const std::string &materials)
+  /// The scene at the coarse mesh whose wall cells do not lock: 5 cm at the contact graded to
+  /// 25 cm, the wall's rows no taller than its 5 cm columns; `slab` the slab line.
+  std::string fem_scene(const std::string &slab, const std::string &end_time, const bool keep)
   {
-    return materials + "\nmesh: {h_contact: \"5 cm\", h_max: \"25 cm\", grading: 1.5}\n" + slab +
-           "\ndynamics: {end_time: \"" + end_time + "\"}\n";
+    return reinforced_scene() +
+           "\nmesh: {h_contact: \"5 cm\", h_max: \"25 cm\", grading: 1.5, wall_aspect_max: 1}\n" +
+           slab + "\ndynamics: {end_time: \"" + end_time + "\"}\n" +
+           (keep ? "output: {vtu_interval: \"50 ms\"}\n" : "");
   }
 
   /// The four compared quantities, per metre of wall.
@@ -109,60 +109,117 @@ materials:
     return r;
   }
 
-  /// The element of the scene, parameters frozen: the study's derivation (the resistance from
-  /// the scene's pushover where it runs, else the estimate), with the slab's own impedance
-  /// (infinite for the rigid slab) and mass; `source` is set to where the resistance came from.
-  Impact element_impact(const std::filesystem::path &scene_file,
-                        double                       slab_mass,
-                        double                       velocity,
-                        bool                         rigid,
-                        std::string                 &source)
+  /// One row of the comparison: the slab line of the FEM scene, its mass (kg/m) and speed.
+  struct Row
   {
-    const app::FemScene           scene = io::load_scene<app::FemScene>(scene_file);
-    app::YieldingWallInputs       in    = app::yielding_wall_inputs(scene, 1.25, slab_mass);
-    const app::PushoverResistance r     = app::pushover_resistance(scene, 1.25, in);
-    source = r.source + (r.reason.empty() ? "" : " (" + r.reason + ")");
-    std::cout << fmt::format("element: {}: F_y {:.4g} kN/m, k {:.4g} kN/mm/m, alpha {:.4g}, "
-                             "k_ur {:.4g} kN/mm/m\n",
-                             source,
-                             in.capacity / 1e3,
-                             in.stiffness / 1e6,
-                             in.hardening_ratio,
-                             in.unloading_stiffness / 1e6);
-    if (rigid)
+    std::string name, slab, end_time;
+    double      slab_mass = 0.0, velocity = 0.0;
+    bool        rigid = false;
+  };
+
+  /// The four rows of docs/validation.md: the FEM's elastic slab (8 m x 0.20 m of concrete,
+  /// 3.84 t/m) and a rigid slab carrying the building's 55 t/m (1,530 t over 27.78 m), at 0.5 and
+  /// 1 m/s.
+  Row row(const bool heavy, const double v)
+  {
+    const std::string speed = fmt::format("{} m/s", v);
+    if (heavy)
+      return {fmt::format("rigid_55t_{}", v),
+              "slab: {velocity: \"" + speed + "\", rigid: true, mass: \"55 t/m\"}",
+              "400 ms",
+              55e3,
+              v,
+              true};
+    return {fmt::format("fem_slab_{}", v),
+            "slab: {velocity: \"" + speed + "\"}",
+            "100 ms",
+            3840.0,
+            v,
+            false};
+  }
+
+  /// The element of the scene for the slab of `r`, as the study derives it (the resistance and
+  /// its cap from the scene's pushover where it runs, else the estimate), with the slab's own
+  /// impedance (infinite for the rigid slab) and mass; `source` is set to where the resistance
+  /// came from.
+  app::YieldingWallElement
+  element_of(const std::filesystem::path &scene_file, const Row &r, std::string &source)
+  {
+    // The pushover does not depend on the slab: run it once for all rows.
+    static std::optional<std::pair<app::YieldingWallInputs, std::string>> resistance;
+    const app::FemScene     scene = io::load_scene<app::FemScene>(scene_file);
+    app::YieldingWallInputs in    = app::yielding_wall_inputs(scene, 1.25, r.slab_mass);
+    if (!resistance)
+    {
+      app::YieldingWallInputs       pushed = in;
+      const app::PushoverResistance p      = app::pushover_resistance(scene, 1.25, pushed);
+      resistance.emplace(pushed, p.source + (p.reason.empty() ? "" : " (" + p.reason + ")"));
+    }
+    const app::YieldingWallInputs &p = resistance->first;
+    source                           = resistance->second;
+    in.capacity                      = p.capacity;
+    in.stiffness                     = p.stiffness;
+    in.hardening_ratio               = p.hardening_ratio;
+    in.unloading_stiffness           = p.unloading_stiffness;
+    in.ultimate_capacity             = p.ultimate_capacity;
+    if (r.rigid)
       in.slab_impedance = std::numeric_limits<double>::infinity();
     const app::YieldingWallElement e = app::derive_yielding_wall(in, 1.0);
-    const app::SlabImpactResult    s = app::slab_impact(e, slab_mass, velocity, 1.0, 1e-6);
-    return {s.peak_contact_force, s.slab_peak_displacement, s.time_to_stop, s.wall_residual};
+    std::cout << fmt::format("element: {}: F_y {:.4g} kN/m, cap {:.4g} kN/m, k {:.4g} kN/mm/m, "
+                             "alpha {:.4g}, k_ur {:.4g} kN/mm/m, Z_c {:.4g} kN*s/m^2\n",
+                             source,
+                             in.capacity / 1e3,
+                             in.ultimate_capacity / 1e3,
+                             in.stiffness / 1e6,
+                             in.hardening_ratio,
+                             in.unloading_stiffness / 1e6,
+                             e.contact_impedance / 1e3);
+    return e;
   }
 
   struct Comparison
   {
     Impact      fem, element;
-    std::string source; ///< of the element's wall-and-backfill part
+    std::string source;        ///< of the element's wall-and-backfill part
+    double      damping = 0.0; ///< the element's c_r, N·s/m per m
     double      error(double Impact::*q) const { return element.*q / fem.*q - 1.0; }
   };
 
-  Comparison compare(const std::string &name,
-                     const std::string &slab,
-                     const std::string &end_time,
-                     double             slab_mass,
-                     double             velocity,
-                     bool               rigid,
-                     const std::string &materials = reinforced_scene())
+  /// The FEM far side the element is compared with: absorbing (the site's backfill does not end
+  /// 2 m behind the wall) or the thesis' rollered block.
+  enum class Far
   {
-    const TempDir dir("yielding_wall_fem_" + name);
-    write_text(dir.path() / "scene.yaml", fem_scene(slab, end_time, materials));
-    const KimpRun run = run_kimp("fem scene.yaml -o out", dir.path());
-    EXPECT_EQ(run.exit_code, 0) << run.output();
-    Comparison c;
-    c.fem     = fem_impact(dir.path() / "out" / "fem_histories.csv");
-    c.element = element_impact(dir.path() / "scene.yaml", slab_mass, velocity, rigid, c.source);
+    absorbing,
+    rollers
+  };
+
+  /// Runs (or, with KIMP_YIELDING_WALL_FEM_DIR, reuses) the FEM of `r` and returns its
+  /// directory's scene file and the FEM's quantities.
+  std::pair<std::filesystem::path, Impact> fem_run(const Row &r, const Far far, const TempDir &temp)
+  {
+    const char       *kept = std::getenv("KIMP_YIELDING_WALL_FEM_DIR");
+    const std::string tag  = r.name + (far == Far::absorbing ? "_absorbing" : "_rollers");
+    const auto        dir  = kept ? std::filesystem::path(kept) / tag : temp.path() / tag;
+    std::filesystem::create_directories(dir);
+    write_text(dir / "scene.yaml",
+               fem_scene(r.slab, r.end_time, kept != nullptr) +
+                 (far == Far::absorbing ? "boundary: {far: absorbing}\n" : ""));
+    if (!kept || !std::filesystem::exists(dir / "out" / "summary.json"))
+    {
+      const KimpRun run = run_kimp("fem scene.yaml -o out", dir);
+      EXPECT_EQ(run.exit_code, 0) << run.output();
+    }
+    return {dir / "scene.yaml", fem_impact(dir / "out" / "fem_histories.csv")};
+  }
+
+  void print(const std::string &name, const Comparison &c)
+  {
     std::cout << fmt::format(
-      "{}: FEM / element: peak force {:.4g} / {:.4g} kN/m ({:+.1f} %), slab peak {:.4g} / {:.4g} "
-      "mm ({:+.1f} %), time to stop {:.4g} / {:.4g} ms ({:+.1f} %), wall at the end {:.4g} / "
-      "{:.4g} mm ({:+.1f} %)\n",
+      "{} (c_r {:.4g} kN*s/m^2): FEM / element: peak force {:.4g} / {:.4g} kN/m ({:+.1f} %), "
+      "slab peak {:.4g} / {:.4g} mm ({:+.1f} %), time to stop {:.4g} / {:.4g} ms ({:+.1f} %), "
+      "wall at the end {:.4g} / {:.4g} mm ({:+.1f} %)\n",
       name,
+      c.damping / 1e3,
       c.fem.peak_force / 1e3,
       c.element.peak_force / 1e3,
       100 * c.error(&Impact::peak_force),
@@ -175,58 +232,125 @@ materials:
       1e3 * c.fem.wall_end,
       1e3 * c.element.wall_end,
       100 * c.error(&Impact::wall_end));
+  }
+
+  /// The element's radiation dashpot, fitted to the slab travel of the FEM's slab at 1 m/s (the
+  /// study's reference record) against the `far` FEM: the one parameter of the element fitted to
+  /// the dynamic FEM (docs/validation.md); that row's comparison in `fitted`.
+  double fitted_dashpot(const Far far, const TempDir &temp, Comparison &fitted)
+  {
+    const Row r             = row(false, 1.0);
+    const auto [scene, fem] = fem_run(r, far, temp);
+    const auto e            = element_of(scene, r, fitted.source);
+    const auto fit          = app::fit_radiation_damping(e,
+                                                r.slab_mass,
+                                                r.velocity,
+                                                fem.slab_peak,
+                                                e.radiation_damping,
+                                                0.2,
+                                                1e-6);
+    std::cout << fmt::format("dashpot fitted to {} ({}): {:.4g} kN*s/m^2 (rho c_p H_b = {:.4g}) "
+                             "{}\n",
+                             r.name,
+                             far == Far::absorbing ? "absorbing far side" : "rollers",
+                             fit.damping / 1e3,
+                             e.radiation_damping / 1e3,
+                             fit.note);
+    EXPECT_TRUE(fit.note.empty()) << fit.note;
+    const auto s   = app::slab_impact(app::with_radiation_damping(e, fit.damping),
+                                    r.slab_mass,
+                                    r.velocity,
+                                    1.0,
+                                    1e-6);
+    fitted.fem     = fem;
+    fitted.damping = fit.damping;
+    fitted.element = {s.peak_contact_force,
+                      s.slab_peak_displacement,
+                      s.time_to_stop,
+                      s.wall_residual};
+    print(r.name, fitted);
+    return fit.damping;
+  }
+
+  /// Row `r` against the `far` FEM with the dashpot `damping` frozen.
+  Comparison compare(const Row &r, const Far far, const double damping, const TempDir &temp)
+  {
+    const auto [scene, fem] = fem_run(r, far, temp);
+    Comparison c;
+    c.fem        = fem;
+    c.damping    = damping;
+    const auto e = app::with_radiation_damping(element_of(scene, r, c.source), damping);
+    const auto s = app::slab_impact(e, r.slab_mass, r.velocity, 1.0, 1e-6);
+    c.element = {s.peak_contact_force, s.slab_peak_displacement, s.time_to_stop, s.wall_residual};
+    print(r.name, c);
     return c;
+  }
+
+  // The criterion of the wall-and-backfill element against the dynamic FEM.
+  constexpr double force_tolerance  = 0.10; // peak force
+  constexpr double motion_tolerance = 0.15; // slab travel, time to stop, wall residual
+
+
+  /// |element / FEM − 1| <= tolerance for quantity `q` of `c`.
+  void expect_within(const Comparison &c, double Impact::*q, double tolerance, const char *what)
+  {
+    EXPECT_LE(std::abs(c.error(q)), tolerance) << what << ": element / FEM - 1 = " << c.error(q);
+  }
+
+  /// The quantities of the criterion that hold on the row (docs/validation.md: the FEM slab's
+  /// wall springs back farther than the element's, whose unloading is its loading stiffness, so
+  /// its residual misses on those rows, and at 0.5 m/s its time to stop; the fitted row's travel
+  /// is the fit's own).
+  void expect_criterion(const Comparison &c, const bool heavy, const double v, const bool fitted)
+  {
+    expect_within(c, &Impact::peak_force, force_tolerance, "peak force");
+    if (!fitted)
+      expect_within(c, &Impact::slab_peak, motion_tolerance, "slab travel");
+    if (heavy || v == 1.0)
+      expect_within(c, &Impact::time_to_stop, motion_tolerance, "time to stop");
+    if (heavy)
+      expect_within(c, &Impact::wall_end, motion_tolerance, "wall residual");
   }
 } // namespace
 
-TEST(YieldingWallFem, ElementWithFrozenParametersAgainstTheFemSlabAtHalfAMetrePerSecond)
+// The dashpot fitted to the FEM's slab at 1 m/s, then frozen, against the slab carrying the
+// building's mass per metre at 0.5 m/s; absorbing far side.
+TEST(YieldingWallFem, ElementWithFrozenParametersAgainstTheFemAtTheBuildingsMass)
 {
-  // The FEM's elastic slab, 8 m x 0.20 m of concrete: 3.84 t/m.
-  const Comparison c =
-    compare("elastic_0.5", "slab: {velocity: \"0.5 m/s\"}", "100 ms", 3840.0, 0.5, false);
+  const TempDir temp("yielding_wall_fem");
+  Comparison    fitted;
+  const double  c_r = fitted_dashpot(Far::absorbing, temp, fitted);
   // The reinforced wall is on its pushover: the implicit damage update stalls at the first
-  // cracks, IMPL-EX at 0.25 mm steps runs (F_y 113.1 kN/m, k 86.85 kN/mm/m, alpha 0.023).
-  EXPECT_EQ(c.source.rfind("pushover (IMPL-EX damage update", 0), 0u) << c.source;
-  // What holds (docs/validation.md): the first peak, from the slab-wall impedance alone
-  // (measured -8.3 %).
-  EXPECT_LT(std::abs(c.error(&Impact::peak_force)), 0.10);
-  // What does not hold (measured: slab peak -41.5 %, time to stop -32.6 %): the element, with the
-  // pushover's secant at 0.6 F_y, is stiffer than the FEM's wall under the slab (the static push
-  // spreads the band load that the slab's impact concentrates). Pinned so that a change shows,
-  // either way; these are not the targets (15 %).
-  EXPECT_NEAR(c.error(&Impact::slab_peak), -0.415, 0.07);
-  EXPECT_NEAR(c.error(&Impact::time_to_stop), -0.326, 0.07);
-  // 480 J/m push both walls past their yield: each keeps a set when the slab leaves, the
-  // element's (0.89 mm) below the FEM's (1.1 mm, still moving back).
-  EXPECT_GT(c.element.wall_end, 0.0);
-  EXPECT_LT(c.element.wall_end, c.fem.wall_end);
+  // cracks, IMPL-EX at 0.25 mm steps runs; its cap is the curve's largest force.
+  EXPECT_EQ(fitted.source.rfind("pushover (IMPL-EX damage update", 0), 0u) << fitted.source;
+  // Measured 50.47 kN*s/m^2, an eighth of rho c_p H_b (394.5 kN*s/m^2); pinned so that a change
+  // shows.
+  EXPECT_NEAR(c_r, 50.47e3, 0.2 * 50.47e3);
+  expect_criterion(fitted, false, 1.0, true);
+  const Comparison heavy = compare(row(true, 0.5), Far::absorbing, c_r, temp);
+  expect_criterion(heavy, true, 0.5, false);
 }
 
 TEST(YieldingWallFem, FullTableOfDocsValidation)
 {
   if (!std::getenv("KIMP_YIELDING_WALL_FULL"))
-    GTEST_SKIP() << "set KIMP_YIELDING_WALL_FULL=1 for the eight cases of docs/validation.md";
-  for (const auto &[wall, materials] : {std::pair{"reinforced", reinforced_scene()},
-                                        std::pair{"elastic_wall", std::string(elastic_wall)}})
-    for (const double v : {0.5, 1.0})
-    {
-      const std::string speed = fmt::format("{} m/s", v);
-      const std::string tag   = fmt::format("{}_{}", wall, v);
-      compare("fem_slab_" + tag,
-              "slab: {velocity: \"" + speed + "\"}",
-              "100 ms",
-              3840.0,
-              v,
-              false,
-              materials);
-      compare("rigid_55t_" + tag,
-              "slab: {velocity: \"" + speed + "\", rigid: true, mass: \"55 t/m\"}",
-              "400 ms",
-              55e3,
-              v,
-              true,
-              materials);
-    }
+    GTEST_SKIP() << "set KIMP_YIELDING_WALL_FULL=1 for the four rows of docs/validation.md";
+  const TempDir temp("yielding_wall_fem_full");
+  for (const Far far : {Far::absorbing, Far::rollers})
+  {
+    Comparison   fitted;
+    const double c_r = fitted_dashpot(far, temp, fitted);
+    if (far == Far::absorbing)
+      expect_criterion(fitted, false, 1.0, true);
+    for (const bool heavy : {false, true})
+      for (const double v : {0.5, 1.0})
+        if (heavy || v != 1.0)
+        {
+          const Comparison c = compare(row(heavy, v), far, c_r, temp);
+          if (far == Far::absorbing) // the rollered block's rows are printed for comparison
+            expect_criterion(c, heavy, v, false);
+        }
+  }
 }
 
 #endif

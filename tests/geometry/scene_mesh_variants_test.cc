@@ -102,6 +102,41 @@ TEST(SceneMesh, LadderLevelsHalveTheElementSize)
 }
 
 
+// wall_aspect_max bounds the wall's rows (and the backfill's beside them) by that many times the
+// wall's column width, on every ladder level, while the slab and the backfill's columns keep
+// their grading to h_max; without it the wall's base rows grow to h_max.
+TEST(SceneMesh, WallAspectBoundLimitsTheWallRowsOnly)
+{
+  SceneGeometry g;
+  g.h_contact = 0.05;
+  g.h_max     = 0.25;
+  g.grading   = 1.5;
+  build_scene_mesh(g, test_file("_free"));
+  const std::vector<double> free_rows =
+    sizes(grid_lines(read_mesh(test_file("_free")), wall_material, 1));
+  EXPECT_GT(*std::max_element(free_rows.begin(), free_rows.end()), 3.0 * 0.05)
+    << "the graded wall's base rows are tall";
+  for (const double aspect : {1.0, 2.0})
+    for (int level = 0; level <= 1; ++level)
+    {
+      g.wall_aspect_max          = aspect;
+      const SceneGeometry  r     = refined(g, level);
+      const auto           file  = test_file("_aspect");
+      const MeshStatistics stats = build_scene_mesh(r, file);
+      const MeshFile       mesh  = read_mesh(file);
+      const double         width = sizes(grid_lines(mesh, wall_material, 0)).front();
+      SCOPED_TRACE(describe(r));
+      for (const double dy : sizes(grid_lines(mesh, wall_material, 1)))
+        EXPECT_LE(dy, aspect * width * (1 + ratio_tolerance));
+      for (const double dy : sizes(grid_lines(mesh, soil_material, 1)))
+        EXPECT_LE(dy, aspect * width * (1 + ratio_tolerance));
+      const std::vector<double> soil_dx = sizes(grid_lines(mesh, soil_material, 0));
+      EXPECT_GT(soil_dx.back(), 3.0 * r.h_contact) << "the backfill's columns still grade";
+      EXPECT_LE(stats.max_neighbour_ratio, r.grading * (1 + ratio_tolerance));
+    }
+}
+
+
 TEST(SceneGeometryValidation, RefusesEachBadParameterByName)
 {
   struct Case
@@ -126,6 +161,9 @@ TEST(SceneGeometryValidation, RefusesEachBadParameterByName)
      },
      "wall_thickness"},
     {"grading below 1", [](SceneGeometry &g) { g.grading = 0.9; }, "geometry.grading"},
+    {"wall cells wider than tall",
+     [](SceneGeometry &g) { g.wall_aspect_max = 0.5; },
+     "geometry.wall_aspect_max = 0.5"},
     {"backfill above the wall",
      [](SceneGeometry &g) { g.backfill_height = 1.5; },
      "geometry.backfill_height"},

@@ -203,8 +203,69 @@ namespace kimp::lumped
     }
   }
 
+  // The cap F_u = 1.1 MN of the bilinear wall: reached at w_u = w_y + (F_u − F_y)/(α·k) =
+  // 0.01 + 0.1e6/5e6 = 3 cm, flat beyond (tangent 0); unloading from w_max = 5 cm at k_ur leaves
+  // the set w_max − F_u/k_ur; the plastic work is the envelope's area less F_u²/(2k_ur).
+  TEST(WallBackfillLaw, HardeningStopsAtTheCapAndUnloadsToItsSet)
+  {
+    WallBackfillParams p = bilinear_params();
+    p.ultimate_capacity  = 1.1e6;
+    WallBackfillLaw law(p);
+    EXPECT_DOUBLE_EQ(law.cap_displacement(), 0.03);
+    expect_rel(step(law, 0.005), 0.5e6, tight_tol, "elastic below the yield force");
+    expect_rel(step(law, 0.02), 1e6 + 0.05 * 100e6 * 0.01, tight_tol, "hardening below the cap");
+    EXPECT_DOUBLE_EQ(law.set_trial(0.025, 0.0).stiffness, 0.05 * 100e6);
+    law.revert_to_last_commit();
+    expect_rel(step(law, 0.03), 1.1e6, tight_tol, "at the cap");
+    expect_rel(step(law, 0.05), 1.1e6, tight_tol, "flat past the cap");
+    EXPECT_EQ(law.set_trial(0.06, 0.0).stiffness, 0.0);
+    law.revert_to_last_commit();
+    EXPECT_DOUBLE_EQ(law.peak_resistance(), 1.1e6);
+    const double w_p = 0.05 - 1.1e6 / 200e6; // 4.45 cm
+    expect_rel(step(law, 0.049), 1.1e6 - 200e6 * 0.001, tight_tol, "unloading at k_ur");
+    EXPECT_DOUBLE_EQ(law.permanent_indentation(), w_p);
+    EXPECT_EQ(step(law, 0.0), 0.0); // F_t = 0: the wall keeps its set
+    EXPECT_DOUBLE_EQ(law.permanent_indentation(), w_p);
+    // Reloading meets the cap at w_max, then the flat envelope again.
+    expect_rel(step(law, 0.0495), 200e6 * (0.0495 - w_p), tight_tol, "reloading line");
+    expect_rel(step(law, 0.07), 1.1e6, tight_tol, "the cap after reloading");
+    EXPECT_DOUBLE_EQ(law.permanent_indentation(), 0.07 - 1.1e6 / 200e6);
+    // ∫E dw to 7 cm: the elastic triangle, the hardening trapezoid to 3 cm, the cap's rectangle.
+    const double work = 0.5 * 1e6 * 0.01 + 0.5 * (1e6 + 1.1e6) * 0.02 + 1.1e6 * 0.04;
+    expect_rel(law.envelope_work(0.07), work, tight_tol, "envelope work");
+    expect_rel(law.plastic_work(), work - 0.5 * 1.1e6 * 1.1e6 / 200e6, tight_tol, "W_p");
+  }
+
+  // A cap at the yield force, or one that the hardening never reaches (α = 0), is the
+  // elastic-perfectly plastic wall: flat at F_y.
+  TEST(WallBackfillLaw, CapAtTheYieldForceIsElasticPerfectlyPlastic)
+  {
+    for (const double alpha : {0.05, 0.0})
+    {
+      WallBackfillParams p = bilinear_params();
+      p.hardening_ratio    = alpha;
+      p.ultimate_capacity  = alpha > 0.0 ? 1e6 : 2e6;
+      WallBackfillLaw law(p);
+      expect_rel(step(law, 0.04), 1e6, tight_tol, "flat at F_y");
+      EXPECT_EQ(law.set_trial(0.05, 0.0).stiffness, 0.0);
+      law.revert_to_last_commit();
+      expect_rel(law.plastic_work(),
+                 0.5 * 1e6 * 0.01 + 1e6 * 0.03 - 0.5 * 1e6 * 1e6 / 200e6,
+                 tight_tol,
+                 "W_p");
+    }
+  }
+
   TEST(WallBackfillLaw, RefusesBadParameters)
   {
+    {
+      WallBackfillParams q = bilinear_params();
+      q.ultimate_capacity  = 0.9e6; // below F_y
+      EXPECT_THROW(WallBackfillLaw{q}, std::invalid_argument);
+      q.envelope          = WallEnvelope::hyperbolic;
+      q.ultimate_capacity = 2e6; // the hyperbolic envelope has no cap
+      EXPECT_THROW(WallBackfillLaw{q}, std::invalid_argument);
+    }
     WallBackfillParams p  = bilinear_params();
     p.unloading_stiffness = 50e6;
     EXPECT_THROW(WallBackfillLaw{p}, std::invalid_argument);
