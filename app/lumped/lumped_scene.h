@@ -432,16 +432,8 @@ namespace kimp::app
   {
     io.text("name", s.name, "case name (HDF5 group /lumped/<name>; letters, digits, _ - .)");
     io.text("law", s.law, "impact law of the walls (\"\" = impact.law)");
-    io.quantity_text("k",
-                     s.k,
-                     "N/m^n",
-                     "impact stiffness with unit N/m^n (\"\" = impact.k)",
-                     io::Range::positive());
-    io.quantity("exponent",
-                s.exponent,
-                "",
-                "impact exponent n (null = the law's default)",
-                io::Range::at_least(1.0));
+    visit_impact_stiffness(io, "k", s.k, "impact stiffness with unit N/m^n (\"\" = impact.k)");
+    visit_exponent(io, s.exponent, "impact exponent n (null = the law's default)");
     visit_cor(io, s.cor, "coefficient of restitution (null = impact.cor)");
     visit_moat_gap(io, "gap", s.gap, "gap of both walls (null = walls.*.gap)");
     visit_moat_gap(io, "left_gap", s.left_gap, "gap of the left wall (wins over gap)");
