@@ -20,7 +20,8 @@ namespace kimp::lumped
                          std::string_view unit,
                          std::string_view rule);
 
-  /// require_parameter() of one owner for parameters without a unit: check(ok, key, value, rule).
+  /// require_parameter() of one owner: check(ok, key, value, rule) for a parameter without a
+  /// unit, check(ok, key, value, unit, rule) for one with.
   class ParameterCheck
   {
   public:
@@ -31,6 +32,14 @@ namespace kimp::lumped
     void operator()(bool ok, std::string_view key, double value, std::string_view rule) const
     {
       require_parameter(ok, owner_, key, value, "", rule);
+    }
+    void operator()(bool             ok,
+                    std::string_view key,
+                    double           value,
+                    std::string_view unit,
+                    std::string_view rule) const
+    {
+      require_parameter(ok, owner_, key, value, unit, rule);
     }
 
   private:

@@ -36,6 +36,12 @@ namespace kimp::python
       return d;
     }
 
+    /// A JSON value of app as the Python objects json.loads() makes of it.
+    py::object from_json(const nlohmann::json &value)
+    {
+      return py::module_::import("json").attr("loads")(value.dump());
+    }
+
     const app::PlanLumpedScene &full_scene(const ParsedScene &parsed)
     {
       if (parsed.kind != "lumped")
@@ -84,12 +90,10 @@ namespace kimp::python
         contacts.append(cd);
       }
       d["contacts"] = contacts;
-      d["damping"]  = py::dict(py::arg("model")                   = app::damping_name(run.damping),
-                              py::arg("damping_ratio")           = run.damping_ratio,
-                              py::arg("isolation_damping_ratio") = run.isolation_damping_ratio);
-      // As summary.json has them (the same JSON, so the same keys and values).
-      d["yielding_walls"] =
-        py::module_::import("json").attr("loads")(app::yielding_walls_json(r).dump());
+      // Damping, yielding walls and energy as summary.json has them (the same JSON, so the same
+      // keys and values).
+      d["damping"]        = from_json(app::plan_damping_json(run));
+      d["yielding_walls"] = from_json(app::yielding_walls_json(r));
       py::dict p;
       p["base_corner_displacement"] = r.peak_corner_displacement.front();
       p["corner_impact_force"]      = corner_force;
@@ -118,21 +122,7 @@ namespace kimp::python
       hd["friction_force"]        = to_numpy(std::move(h.friction_force), {n, nc});
       hd["energy_error"]          = to_numpy(std::move(h.energy_error));
       d["history"]                = hd;
-      const lumped::plan::PlanEnergy &e = r.energy;
-      d["energy"]                       = py::dict(py::arg("initial")            = e.initial,
-                             py::arg("input")              = e.input,
-                             py::arg("kinetic")            = e.kinetic,
-                             py::arg("strain")             = e.strain,
-                             py::arg("viscous")            = e.viscous,
-                             py::arg("hysteretic")         = e.hysteretic,
-                             py::arg("contact_work")       = e.contact_work,
-                             py::arg("impact_dissipated")  = e.impact_dissipated,
-                             py::arg("friction")           = e.friction,
-                             py::arg("wall_work")          = e.wall_work,
-                             py::arg("wall_plastic")       = e.wall_plastic,
-                             py::arg("wall_radiated")      = e.wall_radiated,
-                             py::arg("relative_error")     = e.relative_error,
-                             py::arg("max_relative_error") = e.max_relative_error);
+      d["energy"]                 = from_json(app::plan_energy_json(r.energy));
       return d;
     }
 

@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "app/laws/cor_key.h"
 #include "io/scene_io.h"
@@ -29,6 +30,21 @@ namespace kimp::app
     std::optional<double> a1;
   };
 
+  /// An impact stiffness key: a text with a unit of N/m^n, n the law's exponent (the unit is
+  /// checked by validate_law() and validate_bumper()), > 0; "" where the key admits it (`doc`).
+  template <class Io>
+  void visit_impact_stiffness(Io &io, std::string_view key, std::string &k, std::string_view doc)
+  {
+    io.quantity_text(key, k, "N/m^n", doc, io::Range::positive());
+  }
+
+  /// The key `exponent`: the impact exponent n (no unit, >= 1); `doc` says whose.
+  template <class Io>
+  void visit_exponent(Io &io, std::optional<double> &exponent, std::string_view doc)
+  {
+    io.quantity("exponent", exponent, "", doc, io::Range::at_least(1.0));
+  }
+
   template <class Io>
   void visit_law(Io &io, ImpactLawScene &s)
   {
@@ -36,18 +52,15 @@ namespace kimp::app
               s.law,
               lumped::force_law_names(),
               "impact law of docs/physics.md §1 (laws 1-7)");
-    io.quantity_text("k",
-                     s.k,
-                     "N/m^n",
-                     "impact stiffness with a unit of N/m^n for the law's exponent n, e.g. "
-                     "\"2500 kN/mm\" (n = 1) or \"750 kN/mm^1.5\" (n = 1.5); unused by law "
-                     "bumper (see bumper.k_b)",
-                     io::Range::positive());
-    io.quantity("exponent",
-                s.exponent,
-                "",
-                "n for hertzdamp/hysteretic (1.5) and bumper (2.65); fixed for the others",
-                io::Range::at_least(1.0));
+    visit_impact_stiffness(io,
+                           "k",
+                           s.k,
+                           "impact stiffness with a unit of N/m^n for the law's exponent n, e.g. "
+                           "\"2500 kN/mm\" (n = 1) or \"750 kN/mm^1.5\" (n = 1.5); unused by "
+                           "law bumper (see bumper.k_b)");
+    visit_exponent(io,
+                   s.exponent,
+                   "n for hertzdamp/hysteretic (1.5) and bumper (2.65); fixed for the others");
     visit_cor(io, s.cor, "nominal coefficient of restitution");
     io.flag("hertzdamp_ye", s.hertzdamp_ye, "hertzdamp: Ye et al. (2009) damping instead");
     io.quantity("a1",
@@ -98,12 +111,11 @@ namespace kimp::app
                 "kN/m^2",
                 "rubber constant K_r of k_st = A K_r / t^n (6.2)",
                 io::Range::positive());
-    io.quantity_text("k_b",
-                     s.k_b,
-                     "N/m^n",
-                     "stiffness of all bumpers, N/m^n (e.g. \"0.36 kN/mm^2.65\"); \"\" = 2.25 "
-                     "k_st count",
-                     io::Range::positive());
+    visit_impact_stiffness(io,
+                           "k_b",
+                           s.k_b,
+                           "stiffness of all bumpers, N/m^n (e.g. \"0.36 kN/mm^2.65\"); \"\" = "
+                           "2.25 k_st count");
     io.quantity("wall_stiffness",
                 s.wall_stiffness,
                 "kN/mm",

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
+#include <functional>
 #include <stdexcept>
 
 #include "app/csv_reader.h"
@@ -83,39 +84,66 @@ namespace kimp::app
 
   namespace
   {
-    /// Index of column `name` in `header`; header.size() when there is none.
-    std::size_t find_column(const std::vector<std::string> &header, const std::string &name)
+    /// A CSV file of kimp opened for reading: its header, its columns by name, then its rows.
+    class CsvFile
     {
-      return static_cast<std::size_t>(
-        std::distance(header.begin(), std::find(header.begin(), header.end(), name)));
+    public:
+      /// @throws std::invalid_argument "<file>: <unreadable>" when the file cannot be read
+      ///         (`unreadable` says what was expected).
+      CsvFile(const std::filesystem::path &file, const std::string &unreadable)
+        : file_(file)
+        , in_(file)
+      {
+        if (!in_)
+          throw std::invalid_argument(fmt::format("{}: {}", file.string(), unreadable));
+        std::string line;
+        std::getline(in_, line);
+        header_ = split_csv_record(line);
+      }
+
+      /// Index of column `name`; header size (past every row's fields) when there is none.
+      std::size_t find(const std::string &name) const
+      {
+        return static_cast<std::size_t>(
+          std::distance(header_.begin(), std::find(header_.begin(), header_.end(), name)));
+      }
+
+      bool has(const std::string &name) const { return find(name) < header_.size(); }
+
+      /// The index of column `name`.
+      /// @throws std::invalid_argument naming the file, the column and what the file is not
+      ///         (`not_a`).
+      std::size_t column(const std::string &name, const std::string &not_a) const
+      {
+        const std::size_t i = find(name);
+        if (i == header_.size())
+          throw std::invalid_argument(
+            fmt::format("{}: no column '{}' ({})", file_.string(), name, not_a));
+        return i;
+      }
+
+      /// for_each_csv_row() of the rows after the header.
+      void for_each_row(const std::function<void(const std::vector<std::string> &, int)> &each)
+      {
+        for_each_csv_row(in_, header_.size(), file_, each);
+      }
+
+    private:
+      std::filesystem::path    file_;
+      std::ifstream            in_;
+      std::vector<std::string> header_;
+    };
+
+    /// A Kelvin-Voigt k_total as the tables write it (kN/mm), in N/m.
+    double kelvin_voigt_si(const std::string &kn_per_mm)
+    {
+      return to_number(kn_per_mm) * 1e6;
     }
 
-    /// The header of the CSV file `file` opened into `in` (its first line, split); `unreadable`
-    /// says what was expected when the file cannot be read.
-    std::vector<std::string>
-    open_csv(std::ifstream &in, const std::filesystem::path &file, const std::string &unreadable)
+    /// A Jankowski k_total as the tables write it (kN/mm^1.5), in N/m^1.5: × 1e3 · 1e3^1.5.
+    double jankowski_si(const std::string &kn_per_mm_1_5)
     {
-      in.open(file);
-      if (!in)
-        throw std::invalid_argument(fmt::format("{}: {}", file.string(), unreadable));
-      std::string line;
-      std::getline(in, line);
-      return split_csv_record(line);
-    }
-
-    /// The index of column `name` of `file`'s `header`.
-    /// @throws std::invalid_argument naming the file, the column and what the file is not
-    ///         (`not_a`).
-    std::size_t required_column(const std::vector<std::string> &header,
-                                const std::string              &name,
-                                const std::filesystem::path    &file,
-                                const std::string              &not_a)
-    {
-      const std::size_t i = find_column(header, name);
-      if (i == header.size())
-        throw std::invalid_argument(
-          fmt::format("{}: no column '{}' ({})", file.string(), name, not_a));
-      return i;
+      return to_number(kn_per_mm_1_5) * 1e3 * std::pow(1e3, 1.5);
     }
 
     /// Sort by height, then velocity (the order the interpolation needs).
@@ -136,29 +164,18 @@ namespace kimp::app
      * (a failed fit leaves it out). Two cases at one height and velocity are ambiguous and
      * refused.
      */
-    void read_fit_table(KTable &table, std::istream &in, const std::vector<std::string> &header)
+    void read_fit_table(KTable &table, CsvFile &csv)
     {
       const auto column = [&](const std::string &name)
-      {
-        const std::size_t i = find_column(header, name);
-        if (i == header.size())
-          throw std::invalid_argument(
-            fmt::format("{}: no column '{}' (not a fit_table.csv of `kimp fit`)",
-                        table.file.string(),
-                        name));
-        return i;
-      };
+      { return csv.column(name, "not a fit_table.csv of `kimp fit`"); };
       const std::size_t name = column("case"), height = column("wall_height_m"),
                         variant = column("variant"), k_total = column("k_total"),
                         status = column("status");
       // Tables of `kimp fit` before the velocity column have one velocity per case, unknown.
-      const std::size_t        velocity = find_column(header, "impact_velocity_m_per_s");
+      const std::size_t        velocity = csv.find("impact_velocity_m_per_s");
       std::vector<std::string> cases; // in file order
       std::vector<KTableRow>   rows;
-      for_each_csv_row(
-        in,
-        header.size(),
-        table.file,
+      csv.for_each_row(
         [&](const std::vector<std::string> &f, int)
         {
           const bool kv = f[variant] == "kelvin_voigt_cor_fixed";
@@ -178,11 +195,10 @@ namespace kimp::app
             std::distance(cases.begin(), std::find(cases.begin(), cases.end(), f[name])))];
           if (f[status].rfind("failed", 0) == 0)
             return;
-          // kN/mm^n -> N/m^n: × 1e3 · 1e3^n.
           if (kv)
-            row.kelvin_voigt_total = to_number(f[k_total]) * 1e6;
+            row.kelvin_voigt_total = kelvin_voigt_si(f[k_total]);
           else
-            row.jankowski_total = to_number(f[k_total]) * 1e3 * std::pow(1e3, 1.5);
+            row.jankowski_total = jankowski_si(f[k_total]);
         });
       std::vector<std::string> kept; // the case of each row of table.rows
       for (std::size_t i = 0; i < rows.size(); ++i)
@@ -229,49 +245,39 @@ namespace kimp::app
       if (!std::filesystem::exists(table.file) && std::filesystem::exists(path / "fit_table.csv"))
         table.file = path / "fit_table.csv";
     }
-    std::ifstream                  in;
-    const std::vector<std::string> header =
-      open_csv(in,
-               table.file,
-               "cannot read the k table (expected the k_table.csv of `kimp study`, the "
-               "fit_table.csv of `kimp fit`, or the output directory of either)");
-    if (std::find(header.begin(), header.end(), "variant") != header.end() &&
-        std::find(header.begin(), header.end(), "wall_height_m") != header.end())
+    CsvFile csv(table.file,
+                "cannot read the k table (expected the k_table.csv of `kimp study`, the "
+                "fit_table.csv of `kimp fit`, or the output directory of either)");
+    if (csv.has("variant") && csv.has("wall_height_m"))
     {
-      read_fit_table(table, in, header);
+      read_fit_table(table, csv);
       return table;
     }
-    const auto column = [&](const std::string &name)
-    {
-      return required_column(header,
-                             name,
-                             table.file,
-                             "not a k_table.csv of `kimp study` nor a fit_table.csv of `kimp fit`");
+    const auto column = [&](const std::string &name) {
+      return csv.column(name,
+                        "not a k_table.csv of `kimp study` nor a fit_table.csv of `kimp fit`");
     };
     const std::size_t height = column("wall_height_m");
     const std::size_t kv     = column("kelvin_voigt_total_kN_per_mm");
     const std::size_t jk     = column("jankowski_total_kN_per_mm1.5");
     // Optional columns: tables written before the velocity axis have one velocity (or none).
-    const std::size_t velocity  = find_column(header, "impact_velocity_m_per_s");
-    const std::size_t reference = find_column(header, "reference_velocity");
-    for_each_csv_row(in,
-                     header.size(),
-                     table.file,
-                     [&](const std::vector<std::string> &f, int)
-                     {
-                       KTableRow row;
-                       row.wall_height = to_number(f[height]);
-                       // kN/mm^n -> N/m^n: × 1e3 · 1e3^n.
-                       row.kelvin_voigt_total = to_number(f[kv]) * 1e6;
-                       row.jankowski_total    = to_number(f[jk]) * 1e3 * std::pow(1e3, 1.5);
-                       if (velocity < f.size())
-                         row.impact_velocity = to_number(f[velocity]);
-                       if (reference < f.size())
-                         row.reference = f[reference] == "yes";
-                       if (std::isfinite(row.wall_height) && row.kelvin_voigt_total > 0.0 &&
-                           row.jankowski_total > 0.0)
-                         table.rows.push_back(row);
-                     });
+    const std::size_t velocity  = csv.find("impact_velocity_m_per_s");
+    const std::size_t reference = csv.find("reference_velocity");
+    csv.for_each_row(
+      [&](const std::vector<std::string> &f, int)
+      {
+        KTableRow row;
+        row.wall_height        = to_number(f[height]);
+        row.kelvin_voigt_total = kelvin_voigt_si(f[kv]);
+        row.jankowski_total    = jankowski_si(f[jk]);
+        if (velocity < f.size())
+          row.impact_velocity = to_number(f[velocity]);
+        if (reference < f.size())
+          row.reference = f[reference] == "yes";
+        if (std::isfinite(row.wall_height) && row.kelvin_voigt_total > 0.0 &&
+            row.jankowski_total > 0.0)
+          table.rows.push_back(row);
+      });
     if (table.rows.empty())
       throw std::invalid_argument(
         fmt::format("{}: no row with a wall height and both k (every fit failed?)",
@@ -286,14 +292,11 @@ namespace kimp::app
   {
     RecordK k;
     k.file = study_dir / "consistent_k.csv";
-    std::ifstream                  in;
-    const std::vector<std::string> header =
-      open_csv(in,
-               k.file,
-               "cannot read it (the consistent k of a record needs a study run with "
-               "consistent_k.enabled: true)");
+    CsvFile    csv(k.file,
+                "cannot read it (the consistent k of a record needs a study run with "
+                   "consistent_k.enabled: true)");
     const auto column = [&](const std::string &name)
-    { return required_column(header, name, k.file, "not a consistent_k.csv of `kimp study`"); };
+    { return csv.column(name, "not a consistent_k.csv of `kimp study`"); };
     const std::size_t c_record = column("record"), c_height = column("wall_height_m"),
                       c_law = column("law"), c_k = column("k_consistent"),
                       c_velocity  = column("impact_velocity_m_per_s"),
@@ -304,40 +307,36 @@ namespace kimp::app
       if (std::find(list.begin(), list.end(), text) == list.end())
         list.push_back(text);
     };
-    for_each_csv_row(in,
-                     header.size(),
-                     k.file,
-                     [&](const std::vector<std::string> &f, int number)
-                     {
-                       add(records, f[c_record]);
-                       if (f[c_record] != record)
-                         return;
-                       add(heights, f[c_height]);
-                       const double h = to_number(f[c_height]);
-                       if (!(std::abs(h - wall_height) <= 1e-9 * std::max(1.0, wall_height)))
-                         return;
-                       const bool kv = f[c_law] == "modified_kelvin_voigt";
-                       if (!kv && f[c_law] != "jankowski")
-                         return;
-                       if (f[c_converged] != "yes" || f[c_status] != "ok")
-                         throw std::invalid_argument(
-                           fmt::format("{}:{}: the consistent k of record '{}' at {} m "
-                                       "({}) did not converge (status: {}): no k to "
-                                       "export",
-                                       k.file.string(),
-                                       number,
-                                       record,
-                                       wall_height,
-                                       f[c_law],
-                                       f[c_status]));
-                       // kN/mm^n -> N/m^n: × 1e3 · 1e3^n.
-                       if (kv)
-                         k.kelvin_voigt_total = to_number(f[c_k]) * 1e6;
-                       else
-                         k.jankowski_total = to_number(f[c_k]) * 1e3 * std::pow(1e3, 1.5);
-                       if (!kv || std::isnan(k.impact_velocity))
-                         k.impact_velocity = to_number(f[c_velocity]);
-                     });
+    csv.for_each_row(
+      [&](const std::vector<std::string> &f, int number)
+      {
+        add(records, f[c_record]);
+        if (f[c_record] != record)
+          return;
+        add(heights, f[c_height]);
+        const double h = to_number(f[c_height]);
+        if (!(std::abs(h - wall_height) <= 1e-9 * std::max(1.0, wall_height)))
+          return;
+        const bool kv = f[c_law] == "modified_kelvin_voigt";
+        if (!kv && f[c_law] != "jankowski")
+          return;
+        if (f[c_converged] != "yes" || f[c_status] != "ok")
+          throw std::invalid_argument(fmt::format("{}:{}: the consistent k of record '{}' at {} m "
+                                                  "({}) did not converge (status: {}): no k to "
+                                                  "export",
+                                                  k.file.string(),
+                                                  number,
+                                                  record,
+                                                  wall_height,
+                                                  f[c_law],
+                                                  f[c_status]));
+        if (kv)
+          k.kelvin_voigt_total = kelvin_voigt_si(f[c_k]);
+        else
+          k.jankowski_total = jankowski_si(f[c_k]);
+        if (!kv || std::isnan(k.impact_velocity))
+          k.impact_velocity = to_number(f[c_velocity]);
+      });
     const auto joined = [](const std::vector<std::string> &list)
     {
       std::string text;

@@ -7,8 +7,26 @@
 #include <optional>
 #include <string>
 
+#include "io/at2_reader.h"
 #include "io/scene_io.h"
 #include "lumped/excitation/ground_motion.h"
+
+namespace kimp::app
+{
+  /// The lengths a ground motion may have as run (after trimming): io's plausible record length.
+  inline io::Range record_duration_range()
+  {
+    return io::Range::plausible(io::min_record_duration,
+                                io::max_record_duration,
+                                "a ground-motion record");
+  }
+
+  /// The sampling intervals of a plausible record: those the record readers accept.
+  inline io::Range record_dt_range()
+  {
+    return io::Range::plausible(io::min_record_dt, io::max_record_dt, "a ground-motion record");
+  }
+} // namespace kimp::app
 
 namespace kimp::lumped
 {
@@ -32,12 +50,8 @@ namespace kimp::lumped
                 s.duration,
                 "s",
                 "record length (>= 10 dt)",
-                Range::plausible(1.0, 3600.0, "a ground-motion record"));
-    io.quantity("dt",
-                s.dt,
-                "s",
-                "sampling interval",
-                Range::plausible(1e-4, 0.1, "a ground-motion record"));
+                app::record_duration_range());
+    io.quantity("dt", s.dt, "s", "sampling interval", app::record_dt_range());
     io.quantity("pulse_time",
                 s.pulse_time,
                 "s",
@@ -151,7 +165,7 @@ namespace kimp::app
                 s.duration,
                 "s",
                 "trim the record to its first `duration` seconds",
-                io::Range::plausible(1.0, 3600.0, "a ground-motion record"));
+                record_duration_range());
     io.section("synthetic",
                s.synthetic,
                "synthetic near-fault motion (used when record = synthetic)");

@@ -11,6 +11,7 @@
 #include "app/laws/cor_key.h"
 #include "app/laws/impact_scene.h"
 #include "app/laws/yielding_wall_scene.h"
+#include "app/lumped/building_keys.h"
 #include "app/lumped/ground_motion_scene.h"
 #include "io/scene_io.h"
 #include "lumped/integrators/central_difference.h"
@@ -93,16 +94,15 @@ namespace kimp::app
                 "t",
                 "mass of the isolation level (base mat)",
                 io::Range::positive());
-    io.quantity("damping_ratio",
-                s.damping_ratio,
-                "%",
-                "superstructure damping of an isolated building (Rayleigh, first and last mode)",
-                io::Range::at_least(0.0).and_less(1.0));
-    io.quantity("fixed_base_damping_ratio",
-                s.fixed_base_damping_ratio,
-                "%",
-                "damping of a fixed-base building (Rayleigh, first and last mode)",
-                io::Range::at_least(0.0).and_less(1.0));
+    visit_damping_ratio(
+      io,
+      "damping_ratio",
+      s.damping_ratio,
+      "superstructure damping of an isolated building (Rayleigh, first and last mode)");
+    visit_damping_ratio(io,
+                        "fixed_base_damping_ratio",
+                        s.fixed_base_damping_ratio,
+                        "damping of a fixed-base building (Rayleigh, first and last mode)");
   }
 
   /// Isolation system: linear (k), bilinear (K1, K2, Q), friction pendulum (radius, friction) or
@@ -159,12 +159,12 @@ namespace kimp::app
                 "bilinear, bouc_wen: characteristic strength (overrides Q_ratio)",
                 io::Range::positive());
     io.quantity("k", s.k, "MN/m", "linear: stiffness", io::Range::positive());
-    io.quantity("damping_ratio",
-                s.damping_ratio,
-                "%",
-                "isolation damping zeta_iso (>= building.damping_ratio); c_iso = 2(zeta_iso - "
-                "zeta_sstr)sqrt(m_tot k), k = initial stiffness",
-                io::Range::at_least(0.0).and_less(1.0));
+    visit_damping_ratio(
+      io,
+      "damping_ratio",
+      s.damping_ratio,
+      "isolation damping zeta_iso (>= building.damping_ratio); c_iso = 2(zeta_iso - "
+      "zeta_sstr)sqrt(m_tot k), k = initial stiffness");
     io.quantity("weight",
                 s.weight,
                 "kN",
@@ -233,11 +233,7 @@ namespace kimp::app
   void visit(Io &io, WallScene &s)
   {
     io.flag("present", s.present, "is there a wall on this side");
-    io.quantity("gap",
-                s.gap,
-                "cm",
-                "distance isolation level - wall face (before bumpers)",
-                io::Range::positive().and_at_most(10.0).because("a moat gap is not wider"));
+    visit_moat_gap(io, "gap", s.gap, "distance isolation level - wall face (before bumpers)");
     io.quantity("mass",
                 s.mass,
                 "t",
@@ -259,11 +255,10 @@ namespace kimp::app
                 "MN/m",
                 "flexible wall: stiffness to the ground at the slab level",
                 io::Range::positive());
-    io.quantity("damping_ratio",
-                s.damping_ratio,
-                "%",
-                "flexible wall: damping ratio of the SDOF (c = 2 zeta sqrt(k m))",
-                io::Range::at_least(0.0).and_less(1.0));
+    visit_damping_ratio(io,
+                        "damping_ratio",
+                        s.damping_ratio,
+                        "flexible wall: damping ratio of the SDOF (c = 2 zeta sqrt(k m))");
     io.optional_section("yielding",
                         s.yielding,
                         "yielding wall: the impact law in series with a wall-and-backfill part "
@@ -305,11 +300,10 @@ namespace kimp::app
                 "clear distance between facing floors",
                 io::Range::positive());
     visit(io, static_cast<StoreysScene &>(s));
-    io.quantity("damping_ratio",
-                s.damping_ratio,
-                "%",
-                "Rayleigh damping, first and last mode",
-                io::Range::at_least(0.0).and_less(1.0));
+    visit_damping_ratio(io,
+                        "damping_ratio",
+                        s.damping_ratio,
+                        "Rayleigh damping, first and last mode");
     io.optional_section("impact", s.impact, "impact law of the floor contacts (default: impact)");
   }
 
@@ -438,32 +432,12 @@ namespace kimp::app
   {
     io.text("name", s.name, "case name (HDF5 group /lumped/<name>; letters, digits, _ - .)");
     io.text("law", s.law, "impact law of the walls (\"\" = impact.law)");
-    io.quantity_text("k",
-                     s.k,
-                     "N/m^n",
-                     "impact stiffness with unit N/m^n (\"\" = impact.k)",
-                     io::Range::positive());
-    io.quantity("exponent",
-                s.exponent,
-                "",
-                "impact exponent n (null = the law's default)",
-                io::Range::at_least(1.0));
+    visit_impact_stiffness(io, "k", s.k, "impact stiffness with unit N/m^n (\"\" = impact.k)");
+    visit_exponent(io, s.exponent, "impact exponent n (null = the law's default)");
     visit_cor(io, s.cor, "coefficient of restitution (null = impact.cor)");
-    io.quantity("gap",
-                s.gap,
-                "cm",
-                "gap of both walls (null = walls.*.gap)",
-                io::Range::positive().and_at_most(10.0).because("a moat gap is not wider"));
-    io.quantity("left_gap",
-                s.left_gap,
-                "cm",
-                "gap of the left wall (wins over gap)",
-                io::Range::positive().and_at_most(10.0).because("a moat gap is not wider"));
-    io.quantity("right_gap",
-                s.right_gap,
-                "cm",
-                "gap of the right wall (wins over gap)",
-                io::Range::positive().and_at_most(10.0).because("a moat gap is not wider"));
+    visit_moat_gap(io, "gap", s.gap, "gap of both walls (null = walls.*.gap)");
+    visit_moat_gap(io, "left_gap", s.left_gap, "gap of the left wall (wins over gap)");
+    visit_moat_gap(io, "right_gap", s.right_gap, "gap of the right wall (wins over gap)");
     io.quantity("ground_motion_scale",
                 s.ground_motion_scale,
                 "",

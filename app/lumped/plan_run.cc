@@ -67,36 +67,36 @@ namespace kimp::app
               {"failure_time", "s"}};
     }
 
-    /// The damping model: its name, ζ and ζ_iso (summary.json `damping`).
-    nlohmann::json damping_json(const PlanRun &run)
-    {
-      return {{"model", damping_name(run.damping)},
-              {"damping_ratio", run.damping_ratio},
-              {"isolation_damping_ratio", run.isolation_damping_ratio}};
-    }
-
-    nlohmann::json energy_json(const plan::PlanEnergy &e)
-    {
-      return {{"initial", e.initial},
-              {"input", e.input},
-              {"kinetic", e.kinetic},
-              {"strain", e.strain},
-              {"viscous", e.viscous},
-              {"hysteretic", e.hysteretic},
-              {"contact_work", e.contact_work},
-              {"impact_dissipated", e.impact_dissipated},
-              {"friction", e.friction},
-              {"wall_work", e.wall_work},
-              {"wall_plastic", e.wall_plastic},
-              {"wall_radiated", e.wall_radiated},
-              {"relative_error", e.relative_error},
-              {"max_relative_error", e.max_relative_error}};
-    }
   } // namespace
 
   const char *damping_name(plan::PlanDampingModel model)
   {
     return model == plan::PlanDampingModel::modal ? "modal" : "rayleigh";
+  }
+
+  nlohmann::json plan_damping_json(const PlanRun &run)
+  {
+    return {{"model", damping_name(run.damping)},
+            {"damping_ratio", run.damping_ratio},
+            {"isolation_damping_ratio", run.isolation_damping_ratio}};
+  }
+
+  nlohmann::json plan_energy_json(const plan::PlanEnergy &e)
+  {
+    return {{"initial", e.initial},
+            {"input", e.input},
+            {"kinetic", e.kinetic},
+            {"strain", e.strain},
+            {"viscous", e.viscous},
+            {"hysteretic", e.hysteretic},
+            {"contact_work", e.contact_work},
+            {"impact_dissipated", e.impact_dissipated},
+            {"friction", e.friction},
+            {"wall_work", e.wall_work},
+            {"wall_plastic", e.wall_plastic},
+            {"wall_radiated", e.wall_radiated},
+            {"relative_error", e.relative_error},
+            {"max_relative_error", e.max_relative_error}};
   }
 
   nlohmann::json yielding_walls_json(const plan::PlanResponse &r)
@@ -295,7 +295,7 @@ namespace kimp::app
       {
         io::ResultsGroup        e     = g.group("energy");
         const plan::PlanEnergy &en    = r.energy;
-        const nlohmann::json    terms = energy_json(en);
+        const nlohmann::json    terms = plan_energy_json(en);
         for (const auto &[key, value] : terms.items())
           e.write_scalar(key,
                          value.get<double>(),
@@ -379,8 +379,8 @@ namespace kimp::app
                           {"drift_x", r.peak_drift_x},
                           {"drift_y", r.peak_drift_y},
                           {"wall_force", r.peak_wall_force}};
-      c["energy"]      = energy_json(r.energy);
-      c["damping"]     = damping_json(run);
+      c["energy"]      = plan_energy_json(r.energy);
+      c["damping"]     = plan_damping_json(run);
       if (!r.yielding_walls.empty())
       {
         c["yielding_walls"]                = yielding_walls_json(r);

@@ -47,6 +47,14 @@ namespace kimp::app
   /// "rayleigh" or "modal" (the scene's `plan.damping`).
   const char *damping_name(lumped::plan::PlanDampingModel model);
 
+  /// The damping model of a run (summary.json `damping`): `model` (damping_name()),
+  /// `damping_ratio` and `isolation_damping_ratio`.
+  nlohmann::json plan_damping_json(const PlanRun &run);
+
+  /// The energy terms of a run by their names in lumped::plan::PlanEnergy (summary.json `energy`,
+  /// the group /lumped/default/energy of lumped.h5), J; the relative errors without unit.
+  nlohmann::json plan_energy_json(const lumped::plan::PlanEnergy &energy);
+
   /// The headline peaks of a plan run (summary.json of `kimp lumped`, the sweep's metrics).
   struct PlanPeaks
   {

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <stdexcept>
 
+#include "app/lumped/lumped_run_internal.h"
 #include "lumped/isolators/isolator.h"
 #include "lumped/plan/plan_geometry.h"
 #include "lumped/plan/plan_isolators.h"
@@ -358,14 +359,8 @@ namespace kimp::app
 
   plan::PlanOptions plan_options(const IntegrationScene &in)
   {
-    plan::PlanOptions o;
-    o.dt                       = requested_time_step(in).value_or(0.0);
-    o.safety                   = in.safety;
-    o.expected_max_penetration = in.expected_max_penetration;
-    o.duration                 = in.duration.value_or(0.0);
-    o.output_interval          = in.output_interval;
-    o.law_velocity             = in.law_velocity;
-    return o;
+    // The stepping options of a planar run of the same integration section.
+    return lumped_internal::cdm_options(in, requested_time_step(in));
   }
 
   plan::PlanGroundMotion load_plan_motion(const LumpedScene                          &base,

@@ -32,11 +32,9 @@ namespace kimp::app
     io.quantity("y", s.y, "m", "y coordinate in plan");
   }
 
-  /// A column or wall of every storey at a plan position, with its lateral stiffnesses.
-  struct PlanElementScene
+  /// A column or wall of every storey at a plan position (x, y), with its lateral stiffnesses.
+  struct PlanElementScene : PlanPointScene
   {
-    double x   = 0.0;
-    double y   = 0.0;
     double k_x = 0.0;
     double k_y = 0.0;
   };
@@ -44,8 +42,7 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, PlanElementScene &s)
   {
-    io.quantity("x", s.x, "m", "x of the element in plan");
-    io.quantity("y", s.y, "m", "y of the element in plan");
+    visit(io, static_cast<PlanPointScene &>(s));
     io.quantity("k_x", s.k_x, "MN/m", "lateral stiffness along x", io::Range::non_negative());
     io.quantity("k_y", s.k_y, "MN/m", "lateral stiffness along y", io::Range::non_negative());
   }

@@ -901,12 +901,11 @@ namespace kimp::lumped
           "approach_steps",
           options_.approach_steps,
           "must be >= 4");
-    require_parameter(options_.approach_time >= 0.0,
-                      "adaptive ",
-                      "approach_time",
-                      options_.approach_time,
-                      "s",
-                      "must be >= 0");
+    check(options_.approach_time >= 0.0,
+          "approach_time",
+          options_.approach_time,
+          "s",
+          "must be >= 0");
     check(options_.structure_step > 0.0 && options_.structure_step <= 2.0,
           "structure_step",
           options_.structure_step,
@@ -919,12 +918,7 @@ namespace kimp::lumped
           "estimate_factor",
           options_.estimate_factor,
           "must be >= 2");
-    require_parameter(options_.tail >= 0.0,
-                      "adaptive ",
-                      "tail",
-                      options_.tail,
-                      "s",
-                      "must be >= 0");
+    check(options_.tail >= 0.0, "tail", options_.tail, "s", "must be >= 0");
     // Validates the shared options and gives ω_structure, ω_closed and ω_imp.
     stability_     = CentralDifference(model_, cdm_).stability();
     double contact = std::numeric_limits<double>::infinity();

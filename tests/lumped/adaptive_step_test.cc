@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <gtest/gtest.h>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -241,4 +242,36 @@ TEST(AdaptiveStep, HistoryRowsAreInterpolatedAndDoNotConstrainTheSteps)
   std::printf("rows against 1e-5 s: displacement %.3g, acceleration %.3g of the peaks\n", du, da);
   EXPECT_LT(du, 5e-3);
   EXPECT_LT(da, 5e-2);
+}
+
+// Every option out of its range is refused before a step, naming the option, its value with its
+// unit and the rule.
+TEST(AdaptiveStep, OptionsOutOfRangeAreRefusedNamingTheOption)
+{
+  const PoundingModel model(kimp::testing::walled_scene("linear", k_linear, gap));
+  struct Bad
+  {
+    double AdaptiveStepOptions::*option;
+    double                       value;
+    std::string                  message;
+  };
+  const std::vector<Bad> cases = {
+    {&AdaptiveStepOptions::contact_steps, 2.0, "adaptive contact_steps = 2 (must be >= 4)"},
+    {&AdaptiveStepOptions::approach_time, -1.0, "adaptive approach_time = -1 s (must be >= 0)"},
+    {&AdaptiveStepOptions::structure_step, 3.0, "adaptive structure_step = 3 (must be in (0, 2])"},
+    {&AdaptiveStepOptions::tail, -0.5, "adaptive tail = -0.5 s (must be >= 0)"}};
+  for (const Bad &bad : cases)
+  {
+    AdaptiveStepOptions options;
+    options.*bad.option = bad.value;
+    try
+    {
+      AdaptiveCentralDifference(model, CentralDifferenceOptions{}, options);
+      ADD_FAILURE() << "accepted " << bad.message;
+    }
+    catch (const std::invalid_argument &error)
+    {
+      EXPECT_EQ(std::string(error.what()), bad.message);
+    }
+  }
 }
