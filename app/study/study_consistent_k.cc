@@ -281,21 +281,21 @@ namespace kimp::app::study_internal
       .number("impact_velocity", "m/s")
       .number("reference_velocity", "1")
       .number("inelastic", "1");
-    for (const StudyLaw &law : study_laws)
+    for (const StudyLaw &law : study_laws())
     {
-      const std::string name = law.name;
+      const std::string name = law.name();
       add_k_columns(k, law);
-      k.number(name + "_numerical_error", law.per_metre_unit)
-        .number("linear_" + name, law.per_metre_unit);
+      k.number(name + "_numerical_error", law.per_metre_unit())
+        .number("linear_" + name, law.per_metre_unit());
     }
     for (const StudyHeight *h : k_table_cases(result))
     {
       std::vector<Cell> row = number_cells(
         {h->wall_height, h->impact_velocity, flag(h->reference_velocity), flag(h->inelastic)});
-      for (const StudyLaw &law : study_laws)
+      for (const StudyLawFit &law : h->laws)
       {
-        add_k_cells(row, h->*law.fit);
-        append_numbers(row, {numerical_error(*h, law.exponent), per_metre(h->*law.linear)});
+        add_k_cells(row, law.fit);
+        append_numbers(row, {numerical_error(*h, *law.law), per_metre(law.linear)});
       }
       k.add_row(std::move(row));
     }
@@ -354,12 +354,12 @@ namespace kimp::app::study_internal
       row["material"]           = h->inelastic ? "inelastic" : "linear";
       if (!h->material_reason.empty())
         row["material_reason"] = h->material_reason;
-      for (const StudyLaw &law : study_laws)
+      for (const StudyLawFit &law : h->laws)
       {
         nlohmann::ordered_json f = law_json(*h, law);
-        if (const std::optional<FitResult> &linear = h->*law.linear)
+        if (const std::optional<FitResult> &linear = law.linear)
           f["linear_k_per_metre"] = per_metre(linear);
-        row[law.name] = f;
+        row[law.law->name()] = f;
       }
       table.push_back(row);
     }
@@ -408,10 +408,18 @@ namespace kimp::app::study_internal
       "at the other velocities, whose numerical error (±) is the reference's relative error "
       "times their k (carried over, not measured). The linear k is the same FEM case with "
       "linear-elastic materials of the same initial stiffness.\n\n"
-      "| H (m) | v (m/s) | materials | KV kN/mm/m [95 % CI] ± numerical | linear KV | Table 2.1 "
-      "| Jankowski kN/mm^1.5/m [95 % CI] ± numerical | linear J | Table 2.1 | status |\n"
-      "|---|---|---|---|---|---|---|---|---|---|\n",
+      "| H (m) | v (m/s) | materials |",
       scene.fem.solver.initial_velocity);
+    std::string rule = "|---|---|---|";
+    for (const StudyLaw &law : study_laws())
+    {
+      md += fmt::format(" {} {} [95 % CI] ± numerical | linear {} | Table 2.1 |",
+                        law.short_name,
+                        law.per_metre_unit(),
+                        law.symbol);
+      rule += "---|---|---|";
+    }
+    md += " status |\n" + rule + "---|\n";
     const auto plus_minus = [](double error)
     { return std::isfinite(error) ? " ± " + base::sig(error, 2) : std::string(); };
     // Per height the reference velocity's row first (the k of the building runs).
@@ -427,26 +435,24 @@ namespace kimp::app::study_internal
     for (const StudyHeight *h : cases)
     {
       const std::optional<ThesisStiffness> t = thesis_row(h->wall_height);
-      const bool ok = h->kelvin_voigt_status == "ok" && h->jankowski_status == "ok";
       md += fmt::format("| {:.2f} | {:g}{} | {} |",
                         h->wall_height,
                         h->impact_velocity,
                         h->reference_velocity ? " (reference)" : "",
                         h->inelastic ? "inelastic" : "linear");
-      for (const StudyLaw &law : study_laws)
+      for (const StudyLawFit &law : h->laws)
       {
-        const std::optional<FitResult> &fit = h->*law.fit;
+        const std::optional<FitResult> &fit = law.fit;
+        const double thesis                 = h->reference_velocity ? thesis_k(t, *law.law) : nan;
         md += fmt::format(" {} [{}, {}]{} | {} | {} |",
                           readable(per_metre(fit)),
                           readable(per_metre_bound(fit, false)),
                           readable(per_metre_bound(fit, true)),
-                          plus_minus(numerical_error(*h, law.exponent)),
-                          h->inelastic ? readable(per_metre(h->*law.linear)) : "-",
-                          t && h->reference_velocity ? readable((*t).*law.thesis) : "-");
+                          plus_minus(numerical_error(*h, *law.law)),
+                          h->inelastic ? readable(per_metre(law.linear)) : "-",
+                          std::isfinite(thesis) ? readable(thesis) : "-");
       }
-      md +=
-        fmt::format(" {} |\n",
-                    ok ? std::string("ok") : h->kelvin_voigt_status + " / " + h->jankowski_status);
+      md += fmt::format(" {} |\n", all_ok(h->laws) ? std::string("ok") : joined_status(h->laws));
     }
     md += "\n";
     for (const StudyHeight &h : result.heights)

@@ -58,11 +58,11 @@ namespace kimp::app
         if (from_cache)
           *from_cache = c.from_cache;
         point.ok     = fits.ok();
-        point.status = point.ok ? "ok" : fits.kelvin_voigt_status + " / " + fits.jankowski_status;
+        point.status = point.ok ? "ok" : joined_status(fits.laws);
         if (point.ok)
         {
-          point.k_kelvin_voigt = fits.kelvin_voigt->stiffness.value;
-          point.k_jankowski    = fits.jankowski->stiffness.value;
+          point.k_kelvin_voigt = fits.law("kelvin_voigt").fit->stiffness.value;
+          point.k_jankowski    = fits.law("jankowski").fit->stiffness.value;
         }
       }
       catch (const std::exception &error)

@@ -33,11 +33,12 @@ namespace kimp::app
     void append_k_columns(std::vector<StudyColumn<P>> &columns)
     {
       double P::*const k[] = {&P::k_kelvin_voigt, &P::k_jankowski}; // in study_laws' order
-      for (std::size_t i = 0; i < std::size(study_laws); ++i)
+      for (std::size_t i = 0; i < std::size(k); ++i)
       {
-        const double exponent = study_laws[i].exponent;
-        columns.push_back(same_column<P>(study_laws[i].name,
-                                         study_laws[i].per_metre_unit,
+        const StudyLaw &law      = study_laws().at(i);
+        const double    exponent = law.exponent();
+        columns.push_back(same_column<P>(law.name(),
+                                         law.per_metre_unit(),
                                          [k = k[i], exponent](const P &p) {
                                            return p.ok ? stiffness_to_kn_per_mm(p.*k, exponent) :
                                                          nan;

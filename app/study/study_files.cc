@@ -95,31 +95,31 @@ namespace kimp::app::study_internal
       .number("slab_mass", "kg/m")
       .number("fem_peak_force", "kN/m")
       .number("fem_contact_duration", "ms");
-    for (const StudyLaw &law : study_laws)
+    for (const StudyLaw &law : study_laws())
     {
-      const std::string name = law.name;
+      const std::string name = law.name();
       add_k_columns(t, law);
-      t.number(name + "_total", law.total_unit)
+      t.number(name + "_total", law.total_unit())
         .number(name + "_normalised_rms", "1")
         .number(name + "_peak_force_ratio", "1", short_format)
         .number(name + "_impulse_ratio", "1", short_format)
         .number(name + "_contact_duration_ratio", "1", short_format)
-        .number("thesis_" + name, law.per_metre_unit);
+        .number("thesis_" + name, law.per_metre_unit());
     }
-    for (const StudyLaw &law : study_laws)
-      t.number(std::string(law.name) + "_numerical_error", law.per_metre_unit, error_format);
-    for (const StudyLaw &law : study_laws)
-      t.number(std::string(law.name) + "_total_numerical_error", law.total_unit, error_format);
+    for (const StudyLaw &law : study_laws())
+      t.number(law.name() + "_numerical_error", law.per_metre_unit(), error_format);
+    for (const StudyLaw &law : study_laws())
+      t.number(law.name() + "_total_numerical_error", law.total_unit(), error_format);
     t.text("fidelity")
       .number("fem_h_contact", "cm", short_format)
       .number("fem_penalty_factor", "1", short_format)
-      .text("fidelity_converged")
-      .text("kelvin_voigt_status")
-      .text("jankowski_status")
-      .text("material")
-      .number("linear_kelvin_voigt", "kN/mm/m")
-      .number("linear_jankowski", "kN/mm^1.5/m")
-      .text("fem_from_cache");
+      .text("fidelity_converged");
+    for (const StudyLaw &law : study_laws())
+      t.text(law.name() + "_status");
+    t.text("material");
+    for (const StudyLaw &law : study_laws())
+      t.number("linear_" + law.name(), law.per_metre_unit());
+    t.text("fem_from_cache");
     for (const StudyHeight *h : cases)
     {
       const std::optional<ThesisStiffness> thesis = thesis_row(h->wall_height);
@@ -132,9 +132,9 @@ namespace kimp::app::study_internal
                      {h->fem_case.slab_mass,
                       fem.peak_force.value_or(nan) / 1e3,
                       fem.contact_duration.value_or(nan) * 1e3});
-      for (const StudyLaw &law : study_laws)
+      for (const StudyLawFit &law : h->laws)
       {
-        const std::optional<FitResult> &fit = h->*law.fit;
+        const std::optional<FitResult> &fit = law.fit;
         add_k_cells(row, fit);
         append_numbers(row,
                        {per_metre(fit) * width,
@@ -142,23 +142,23 @@ namespace kimp::app::study_internal
                         fit ? fit->peak_force_ratio() : nan,
                         fit ? fit->impulse_ratio() : nan,
                         fit ? fit->contact_duration_ratio() : nan,
-                        thesis ? (*thesis).*law.thesis : nan});
+                        thesis_k(thesis, *law.law)});
       }
-      for (const StudyLaw &law : study_laws)
-        row.push_back(numerical_error(*h, law.exponent));
-      for (const StudyLaw &law : study_laws)
-        row.push_back(total_stiffness_error(0.0, numerical_error(*h, law.exponent), width));
+      for (const StudyLaw &law : study_laws())
+        row.push_back(numerical_error(*h, law));
+      for (const StudyLaw &law : study_laws())
+        row.push_back(total_stiffness_error(0.0, numerical_error(*h, law), width));
       row.insert(row.end(),
                  {std::string(h->auto_fidelity ? "auto" : "fixed"),
                   used_h_contact(scene, *h) * 100.0,
                   used_penalty(scene, *h),
-                  std::string(h->auto_fidelity ? (h->ladder.converged ? "yes" : "no") : ""),
-                  h->kelvin_voigt_status,
-                  h->jankowski_status,
-                  std::string(h->inelastic ? "inelastic" : "linear"),
-                  per_metre(h->linear_kelvin_voigt),
-                  per_metre(h->linear_jankowski),
-                  std::string(h->fem_from_cache ? "yes" : "no")});
+                  std::string(h->auto_fidelity ? (h->ladder.converged ? "yes" : "no") : "")});
+      for (const StudyLawFit &law : h->laws)
+        row.push_back(law.status);
+      row.push_back(std::string(h->inelastic ? "inelastic" : "linear"));
+      for (const StudyLawFit &law : h->laws)
+        row.push_back(per_metre(law.linear));
+      row.push_back(std::string(h->fem_from_cache ? "yes" : "no"));
       t.add_row(std::move(row));
     }
     return t;
@@ -285,11 +285,11 @@ namespace kimp::app::study_internal
 
   void write_study_fits(ResultsGroup &g, const StudyHeight &h, double width)
   {
-    for (const StudyLaw &law : study_laws)
+    for (const StudyLawFit &law : h.laws)
     {
-      ResultsGroup f = g.group(law.name);
-      f.set_status(h.*law.status);
-      if (const std::optional<FitResult> &fit = h.*law.fit)
+      ResultsGroup f = g.group(law.law->name());
+      f.set_status(law.status);
+      if (const std::optional<FitResult> &fit = law.fit)
         write_fit_result(f, *fit, width, FitResultLayout::study);
     }
   }
@@ -433,6 +433,25 @@ namespace kimp::app::study_internal
     return text + fmt::format("total {} s", base::sig(result.wall_seconds, 3));
   }
 
+  namespace
+  {
+    /// summary.json's status of a height: "ok", else "warning: " or (a fit failed) "failed: "
+    /// and each law's status ("Kelvin-Voigt: ...; Jankowski: ...").
+    std::string height_status(const StudyHeight &h)
+    {
+      if (all_ok(h.laws))
+        return "ok";
+      bool        failed = false;
+      std::string laws;
+      for (const StudyLawFit &law : h.laws)
+      {
+        failed = failed || law.status.rfind("failed", 0) == 0;
+        laws += fmt::format("{}{}: {}", laws.empty() ? "" : "; ", law.law->title, law.status);
+      }
+      return (failed ? "failed: " : "warning: ") + laws;
+    }
+  } // namespace
+
   nlohmann::ordered_json summary_json(const StudyScene &scene, const StudyResult &result)
   {
     nlohmann::ordered_json j = io::summary_preamble("study");
@@ -461,18 +480,8 @@ namespace kimp::app::study_internal
     j["cases"] = nlohmann::ordered_json::array();
     for (const StudyHeight &h : result.heights)
     {
-      const bool        both_ok = h.kelvin_voigt_status == "ok" && h.jankowski_status == "ok";
-      const std::string status  = both_ok ?
-                                    "ok" :
-                                    fmt::format("{}Kelvin-Voigt: {}; Jankowski: {}",
-                                               h.kelvin_voigt_status.rfind("failed", 0) == 0 ||
-                                                   h.jankowski_status.rfind("failed", 0) == 0 ?
-                                                  "failed: " :
-                                                  "warning: ",
-                                               h.kelvin_voigt_status,
-                                               h.jankowski_status);
       j["cases"].push_back({{"name", h.name},
-                            {"status", status},
+                            {"status", height_status(h)},
                             {"wall_height", h.wall_height},
                             {"wall_time", h.fem_seconds + h.fit_seconds}});
     }
@@ -505,13 +514,13 @@ namespace kimp::app::study_internal
                                        std::pair{"contact_duration", fem.contact_duration}})
         if (value)
           row[std::string("fem_") + key] = *value;
-      for (const StudyLaw &law : study_laws)
+      for (const StudyLawFit &law : h.laws)
       {
         nlohmann::ordered_json f         = law_json(h, law, scene.fit.width);
-        const double           reference = thesis ? (*thesis).*law.thesis : nan;
+        const double           reference = thesis_k(thesis, *law.law);
         if (std::isfinite(reference))
           f["thesis_table_2_1"] = reference;
-        row[law.name] = f;
+        row[law.law->name()] = f;
       }
       table.push_back(row);
     }

@@ -154,12 +154,11 @@ namespace kimp::app::study_internal
         outcome.seconds    = fem.wall_seconds + c.fits.seconds;
         outcome.from_cache = fem.from_cache;
         outcome.ok         = c.fits.ok();
-        outcome.status =
-          outcome.ok ? "ok" : "fit " + c.fits.kelvin_voigt_status + " / " + c.fits.jankowski_status;
+        outcome.status     = outcome.ok ? "ok" : "fit " + joined_status(c.fits.laws);
         if (outcome.ok)
         {
-          outcome.k_kelvin_voigt = c.fits.kelvin_voigt->stiffness.value;
-          outcome.k_jankowski    = c.fits.jankowski->stiffness.value;
+          outcome.k_kelvin_voigt = c.fits.law("kelvin_voigt").fit->stiffness.value;
+          outcome.k_jankowski    = c.fits.law("jankowski").fit->stiffness.value;
         }
       }
       catch (const std::exception &error)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <limits>
 #include <map>
 #include <optional>
@@ -213,36 +214,51 @@ namespace kimp::app::study_internal
         t[2] == "auto" ? (t[3] == "yes" ? "" : " (not converged)") : " (fixed)";
       return t[0] + " cm, " + t[1] + state;
     };
+    // Per law its cells joined: "a, b" and "ok", or "KV: ...; J: ...".
     const auto peak_ratios = [](const std::vector<std::string> &t)
-    { return (t[0].empty() ? "-" : t[0]) + ", " + (t[1].empty() ? "-" : t[1]); };
+    {
+      std::string text;
+      for (const std::string &cell : t)
+        text += (text.empty() ? "" : ", ") + (cell.empty() ? std::string("-") : cell);
+      return text;
+    };
     const auto fit_status = [](const std::vector<std::string> &t)
-    { return t[0] == "ok" && t[1] == "ok" ? std::string("ok") : "KV: " + t[0] + "; J: " + t[1]; };
+    {
+      if (std::all_of(t.begin(), t.end(), [](const std::string &cell) { return cell == "ok"; }))
+        return std::string("ok");
+      std::string text;
+      for (std::size_t i = 0; i < t.size(); ++i)
+        text += fmt::format("{}{}: {}", i ? "; " : "", study_laws()[i].symbol, t[i]);
+      return text;
+    };
     std::vector<const StudyHeight *> cases;
     for (const StudyHeight &h : heights)
       cases.push_back(&h);
-    return k_table(scene, cases)
-      .markdown({{"H (m)", {"wall_height"}, {}},
-                 {"KV kN/mm/m [95 % CI] ± numerical",
-                  {"kelvin_voigt",
-                   "kelvin_voigt_lower",
-                   "kelvin_voigt_upper",
-                   "kelvin_voigt_numerical_error"},
-                  with_interval},
-                 {"Table 2.1", {"thesis_kelvin_voigt"}, or_dash},
-                 {"KV total kN/mm", {"kelvin_voigt_total"}, or_dash},
-                 {"Jankowski kN/mm^1.5/m [95 % CI] ± numerical",
-                  {"jankowski", "jankowski_lower", "jankowski_upper", "jankowski_numerical_error"},
-                  with_interval},
-                 {"Table 2.1", {"thesis_jankowski"}, or_dash},
-                 {"J total kN/mm^1.5", {"jankowski_total"}, or_dash},
-                 {"fit/FEM peak force KV, J",
-                  {"kelvin_voigt_peak_force_ratio", "jankowski_peak_force_ratio"},
-                  peak_ratios},
-                 {"fit status", {"kelvin_voigt_status", "jankowski_status"}, fit_status},
-                 {"FEM level (h_contact, penalty)",
+    std::vector<io::MarkdownColumn> view = {{"H (m)", {"wall_height"}, {}}};
+    std::vector<std::string>        symbols, ratios, statuses;
+    for (const StudyLaw &law : study_laws())
+    {
+      const std::string name = law.name();
+      view.push_back(
+        {fmt::format("{} {} [95 % CI] ± numerical", law.short_name, law.per_metre_unit()),
+         {name, name + "_lower", name + "_upper", name + "_numerical_error"},
+         with_interval});
+      view.push_back({"Table 2.1", {"thesis_" + name}, or_dash});
+      view.push_back(
+        {fmt::format("{} total {}", law.symbol, law.total_unit()), {name + "_total"}, or_dash});
+      symbols.emplace_back(law.symbol);
+      ratios.push_back(name + "_peak_force_ratio");
+      statuses.push_back(name + "_status");
+    }
+    view.push_back(
+      {fmt::format("fit/FEM peak force {}", fmt::join(symbols, ", ")), ratios, peak_ratios});
+    view.push_back({"fit status", statuses, fit_status});
+    view.insert(view.end(),
+                {{"FEM level (h_contact, penalty)",
                   {"fem_h_contact", "fem_penalty_factor", "fidelity", "fidelity_converged"},
                   fem_level},
                  {"FEM from cache", {"fem_from_cache"}, {}}});
+    return k_table(scene, cases).markdown(view);
   }
 
   namespace
