@@ -36,7 +36,23 @@ namespace kimp::app::study_internal
 
   double numerical_error(const StudyHeight &h, const StudyLaw &law)
   {
-    return stiffness_to_kn_per_mm(h.ladder.*law.numerical_error, law.exponent());
+    return stiffness_to_kn_per_mm(h.ladder.error_of(study_law_index(law)), law.exponent());
+  }
+
+  std::string k_text(const std::vector<double> &k, std::string_view prefix)
+  {
+    std::string text;
+    for (const StudyLaw &law : study_laws())
+    {
+      const std::size_t i = study_law_index(law);
+      text += fmt::format("{}{}{} {:.4g} {}",
+                          text.empty() ? "" : ", ",
+                          prefix,
+                          law.short_name,
+                          stiffness_to_kn_per_mm(i < k.size() ? k[i] : nan, law.exponent()),
+                          law.per_metre_unit());
+    }
+    return text;
   }
 
   double thesis_k(const std::optional<ThesisStiffness> &row, const StudyLaw &law)
@@ -130,16 +146,19 @@ namespace kimp::app
                                                 "KV",
                                                 "KV",
                                                 {"modified_kelvin_voigt"},
-                                                &ThesisStiffness::kelvin_voigt,
-                                                &LadderResult::error_kelvin_voigt},
+                                                &ThesisStiffness::kelvin_voigt},
                                                {&lumped::law_traits("jankowski"),
                                                 "Jankowski",
                                                 "Jankowski",
                                                 "J",
                                                 {"jankowski", "hysteretic"},
-                                                &ThesisStiffness::jankowski,
-                                                &LadderResult::error_jankowski}};
+                                                &ThesisStiffness::jankowski}};
     return laws;
+  }
+
+  std::size_t study_law_index(const StudyLaw &law)
+  {
+    return static_cast<std::size_t>(&law - study_laws().data());
   }
 
   std::vector<StudyLawFit> unfitted_study_laws()

@@ -14,7 +14,6 @@
 namespace kimp::app
 {
   struct ThesisStiffness;
-  struct LadderResult;
 
   /** One law the study fits at every wall height, and where the study's inputs keep it. */
   struct StudyLaw
@@ -27,8 +26,6 @@ namespace kimp::app
     std::vector<std::string_view> building_laws;
     /// Its k in thesis Table 2.1, kN/mm^n per metre (nullptr: the thesis gives none).
     double ThesisStiffness::*thesis = nullptr;
-    /// The numerical error of its k from the fidelity ladder, N/m^n per metre.
-    double LadderResult::*numerical_error = nullptr;
 
     /// "kelvin_voigt": the name of its columns, groups and keys.
     std::string name() const { return std::string(traits->name); }
@@ -44,6 +41,9 @@ namespace kimp::app
 
   /// Kelvin-Voigt, then Jankowski's, in the order of every table and summary.
   const std::vector<StudyLaw> &study_laws();
+  /// The position of `law` (an entry of study_laws()) in that list: the index of its values in
+  /// per-law vectors (LevelOutcome::k, LadderResult::error).
+  std::size_t study_law_index(const StudyLaw &law);
 
   /** The fit of one study law to one FEM case. */
   struct StudyLawFit

@@ -81,25 +81,21 @@ namespace kimp::app::study_internal
       c.fit_seconds  = fits.seconds;
       set_fits(c, std::move(fits));
       // The ladder ran at the reference velocity only: its relative error is carried over.
-      LadderResult       &l        = c.ladder;
-      const LadderResult &r        = reference.ladder;
-      const auto         &ref_kv   = reference.law("kelvin_voigt").fit;
-      const auto         &ref_j    = reference.law("jankowski").fit;
-      const auto         &kv       = c.law("kelvin_voigt").fit;
-      const auto         &j        = c.law("jankowski").fit;
-      l.error_kelvin_voigt         = scaled_error(r.error_kelvin_voigt, ref_kv, kv);
-      l.error_jankowski            = scaled_error(r.error_jankowski, ref_j, j);
-      l.mesh_error_kelvin_voigt    = scaled_error(r.mesh_error_kelvin_voigt, ref_kv, kv);
-      l.mesh_error_jankowski       = scaled_error(r.mesh_error_jankowski, ref_j, j);
-      l.penalty_error_kelvin_voigt = scaled_error(r.penalty_error_kelvin_voigt, ref_kv, kv);
-      l.penalty_error_jankowski    = scaled_error(r.penalty_error_jankowski, ref_j, j);
+      for (const auto &[errors, of_reference] :
+           {std::pair{&c.ladder.error, &reference.ladder.error},
+            std::pair{&c.ladder.mesh_error, &reference.ladder.mesh_error},
+            std::pair{&c.ladder.penalty_error, &reference.ladder.penalty_error}})
+      {
+        errors->assign(c.laws.size(), nan);
+        for (std::size_t i = 0; i < c.laws.size() && i < of_reference->size(); ++i)
+          (*errors)[i] = scaled_error((*of_reference)[i], reference.laws[i].fit, c.laws[i].fit);
+      }
       if (c.inelastic)
         add_linear_counterpart(fem, scene.fit, c.wall_height, output, c.name + "_linear", c);
-      logger().info("{}: k_KV {:.4g} kN/mm/m, k_Jankowski {:.4g} kN/mm^1.5/m at {} m/s",
-                    c.name,
-                    per_metre(c.law("kelvin_voigt").fit),
-                    per_metre(c.law("jankowski").fit),
-                    velocity);
+      std::vector<double> k;
+      for (const StudyLawFit &law : c.laws)
+        k.push_back(law.fit ? law.fit->stiffness.value : nan);
+      logger().info("{}: {} at {} m/s", c.name, k_text(k, "k_"), velocity);
       return c;
     }
   } // namespace
