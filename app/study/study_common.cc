@@ -39,21 +39,6 @@ namespace kimp::app::study_internal
     return stiffness_to_kn_per_mm(h.ladder.error_of(study_law_index(law)), law.exponent());
   }
 
-  std::string k_text(const std::vector<double> &k, std::string_view prefix)
-  {
-    std::string text;
-    for (const StudyLaw &law : study_laws())
-    {
-      const std::size_t i = study_law_index(law);
-      text += fmt::format("{}{}{} {:.4g} {}",
-                          text.empty() ? "" : ", ",
-                          prefix,
-                          law.short_name,
-                          stiffness_to_kn_per_mm(i < k.size() ? k[i] : nan, law.exponent()),
-                          law.per_metre_unit());
-    }
-    return text;
-  }
 
   double thesis_k(const std::optional<ThesisStiffness> &row, const StudyLaw &law)
   {
@@ -161,6 +146,24 @@ namespace kimp::app
     return static_cast<std::size_t>(&law - study_laws().data());
   }
 
+  std::string k_text(const std::vector<double> &k, std::string_view prefix)
+  {
+    std::string text;
+    for (const StudyLaw &law : study_laws())
+    {
+      const std::size_t i = study_law_index(law);
+      text += fmt::format("{}{}{} {:.4g} {}",
+                          text.empty() ? "" : ", ",
+                          prefix,
+                          law.short_name,
+                          fit::stiffness_to_kn_per_mm(i < k.size() ?
+                                                        k[i] :
+                                                        std::numeric_limits<double>::quiet_NaN(),
+                                                      law.exponent()),
+                          law.per_metre_unit());
+    }
+    return text;
+  }
   std::vector<StudyLawFit> unfitted_study_laws()
   {
     std::vector<StudyLawFit> fits;

@@ -59,9 +59,6 @@ namespace kimp::app::study_internal
   /// Numerical error of the k of `law` (fidelity ladder) in kN/mm^n per metre; NaN if not
   /// estimated.
   double numerical_error(const StudyHeight &h, const StudyLaw &law);
-  /// "k_KV 123.4 kN/mm/m, k_Jankowski 5678 kN/mm^1.5/m": `k` per study law (N/m^n per m, NaN or
-  /// missing: not known) in display units, each named `prefix` and the law's short name.
-  std::string k_text(const std::vector<double> &k, std::string_view prefix);
   /// k of `law` in thesis Table 2.1 at `row` in kN/mm^n per metre (NaN: no row or no value).
   double thesis_k(const std::optional<ThesisStiffness> &row, const StudyLaw &law);
   /// Contact element size of the FEM level used for `h`, m.

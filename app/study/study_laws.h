@@ -57,6 +57,10 @@ namespace kimp::app
     bool ok() const { return status == "ok"; }
   };
 
+  /// "k_KV 123.4 kN/mm/m, k_Jankowski 5678 kN/mm^1.5/m": `k` per study law (N/m^n per m, NaN or
+  /// missing: not known) in display units, each named `prefix` and the law's short name.
+  std::string k_text(const std::vector<double> &k, std::string_view prefix);
+
   /// One unfitted entry per study law, in the order of study_laws().
   std::vector<StudyLawFit> unfitted_study_laws();
 

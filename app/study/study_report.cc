@@ -21,6 +21,13 @@ namespace kimp::app::study_internal
 {
   namespace
   {
+    /// k of `law` in `k` (SI, per study law) in kN/mm^n per metre; NaN when missing.
+    double law_k_display(const std::vector<double> &k, const StudyLaw &law)
+    {
+      const std::size_t i = study_law_index(law);
+      return i < k.size() ? stiffness_to_kn_per_mm(k[i], law.exponent()) : nan;
+    }
+
     /// The "Accuracy against cost: FEM" section: k against mesh, penalty and implicit solver. Empty
     /// without its points.
     std::string fem_accuracy_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
@@ -28,23 +35,34 @@ namespace kimp::app::study_internal
       std::string md;
       if (e.fem_accuracy.empty())
         return md;
-      md +=
-        fmt::format("## Accuracy against cost: FEM (H = {} m)\n\nError of k against the finest "
-                    "explicit mesh level; seconds are the FEM wall time of each run.\n\n"
-                    "| series | h_contact (cm) | penalty | FEM s | k_KV kN/mm/m | error KV | "
-                    "k_J kN/mm^1.5/m | error J | status |\n|---|---|---|---|---|---|---|---|---|\n",
-                    scene.accuracy.wall_height);
+      md += fmt::format("## Accuracy against cost: FEM (H = {} m)\n\nError of k against the finest "
+                        "explicit mesh level; seconds are the FEM wall time of each run.\n\n"
+                        "| series | h_contact (cm) | penalty | FEM s |",
+                        scene.accuracy.wall_height);
+      std::string rule = "|---|---|---|---|";
+      for (const StudyLaw &law : study_laws())
+      {
+        md += fmt::format(" k_{} {} | error {} |", law.symbol, law.per_metre_unit(), law.symbol);
+        rule += "---|---|";
+      }
+      md += " status |\n" + rule + "---|\n";
       for (const FemAccuracyPoint &p : e.fem_accuracy)
-        md += fmt::format("| {} | {:g} | {:g} | {} | {} | {} | {} | {} | {} |\n",
+      {
+        md += fmt::format("| {} | {:g} | {:g} | {} |",
                           p.series,
                           p.h_contact * 100,
                           p.penalty_factor,
-                          readable(p.seconds),
-                          readable(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
-                          p.ok ? fmt::format("{:.3g} %", 100 * p.error_kelvin_voigt) : "",
-                          readable(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
-                          p.ok ? fmt::format("{:.3g} %", 100 * p.error_jankowski) : "",
-                          p.status);
+                          readable(p.seconds));
+        for (const StudyLaw &law : study_laws())
+        {
+          const std::size_t i = study_law_index(law);
+          md += fmt::format(" {} | {} |",
+                            readable(p.ok ? law_k_display(p.k, law) : nan),
+                            p.ok && i < p.error.size() ? fmt::format("{:.3g} %", 100 * p.error[i]) :
+                                                         "");
+        }
+        md += fmt::format(" {} |\n", p.status);
+      }
       md += "\nData: [accuracy_fem.csv](accuracy_fem.csv), study.h5 `/accuracy/fem`.\n\n";
       if (charts)
         md += "![FEM accuracy against cost](charts/accuracy_fem.png)\n\n";
@@ -171,17 +189,23 @@ namespace kimp::app::study_internal
       std::string md;
       if (e.sensitivity.empty())
         return md;
-      md += fmt::format("## Sensitivity of k (H = {} m, ±{:g} %)\n\n| parameter | factor | k_KV "
-                        "kN/mm/m | k_J kN/mm^1.5/m | status |\n|---|---|---|---|---|\n",
+      md += fmt::format("## Sensitivity of k (H = {} m, ±{:g} %)\n\n| parameter | factor |",
                         scene.sensitivity_study.wall_height,
                         scene.sensitivity_study.variation * 100);
+      std::string rule = "|---|---|";
+      for (const StudyLaw &law : study_laws())
+      {
+        md += fmt::format(" k_{} {} |", law.symbol, law.per_metre_unit());
+        rule += "---|";
+      }
+      md += " status |\n" + rule + "---|\n";
       for (const SensitivityPoint &p : e.sensitivity)
-        md += fmt::format("| {} | {:g} | {} | {} | {} |\n",
-                          p.parameter,
-                          p.factor,
-                          readable(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
-                          readable(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
-                          p.status);
+      {
+        md += fmt::format("| {} | {:g} |", p.parameter, p.factor);
+        for (const StudyLaw &law : study_laws())
+          md += fmt::format(" {} |", readable(p.ok ? law_k_display(p.k, law) : nan));
+        md += fmt::format(" {} |\n", p.status);
+      }
       md += "\nData: [sensitivity.csv](sensitivity.csv), study.h5 `/sensitivity`.\n\n";
       if (charts)
         md += "![sensitivity of k](charts/sensitivity.png)\n\n";
