@@ -102,6 +102,24 @@ namespace kimp::app::study_internal
     append_numbers(row, {per_metre(fit), per_metre_bound(fit, false), per_metre_bound(fit, true)});
   }
 
+  std::string law_table_header(const std::string                                  &lead,
+                               std::size_t                                         lead_columns,
+                               std::size_t                                         law_columns,
+                               const std::function<std::string(const StudyLaw &)> &titles)
+  {
+    std::string header = lead;
+    std::size_t n      = lead_columns + 1; // and the status
+    for (const StudyLaw &law : study_laws())
+    {
+      header += titles(law);
+      n += law_columns;
+    }
+    std::string rule = "|";
+    for (std::size_t i = 0; i < n; ++i)
+      rule += "---|";
+    return header + " status |\n" + rule + "\n";
+  }
+
   std::vector<double> scale(std::vector<double> values, double factor)
   {
     for (double &v : values)

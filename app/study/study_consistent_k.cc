@@ -453,19 +453,19 @@ namespace kimp::app::study_internal
       "at the reference velocity {} m/s; the FEM level (and material model) it chose is reused "
       "at the other velocities, whose numerical error (±) is the reference's relative error "
       "times their k (carried over, not measured). The linear k is the same FEM case with "
-      "linear-elastic materials of the same initial stiffness.\n\n"
-      "| H (m) | v (m/s) | materials |",
+      "linear-elastic materials of the same initial stiffness.\n\n",
       scene.fem.solver.initial_velocity);
-    std::string rule = "|---|---|---|";
-    for (const StudyLaw &law : study_laws())
-    {
-      md += fmt::format(" {} {} [95 % CI] ± numerical | linear {} | Table 2.1 |",
-                        law.short_name,
-                        law.per_metre_unit(),
-                        law.symbol);
-      rule += "---|---|---|";
-    }
-    md += " status |\n" + rule + "---|\n";
+    md += law_table_header("| H (m) | v (m/s) | materials |",
+                           3,
+                           3,
+                           [](const StudyLaw &law)
+                           {
+                             return fmt::format(" {} {} [95 % CI] ± numerical | linear {} | "
+                                                "Table 2.1 |",
+                                                law.short_name,
+                                                law.per_metre_unit(),
+                                                law.symbol);
+                           });
     const auto plus_minus = [](double error)
     { return std::isfinite(error) ? " ± " + base::sig(error, 2) : std::string(); };
     // Per height the reference velocity's row first (the k of the building runs).

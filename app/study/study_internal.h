@@ -3,6 +3,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -96,6 +97,14 @@ namespace kimp::app::study_internal
         groups[{r.record, r.law}].push_back(&r);
     return groups;
   }
+
+  /// The header and rule of a Markdown table with a group of columns per study law: `lead` (its
+  /// `lead_columns` column titles, "| H (m) | v (m/s) |"), the `law_columns` titles `titles(law)`
+  /// of each law (" k_KV kN/mm/m | error KV |"), then "status".
+  std::string law_table_header(const std::string                                  &lead,
+                               std::size_t                                         lead_columns,
+                               std::size_t                                         law_columns,
+                               const std::function<std::string(const StudyLaw &)> &titles);
 
   /// Every value times `factor`.
   std::vector<double> scale(std::vector<double> values, double factor);

@@ -36,16 +36,17 @@ namespace kimp::app::study_internal
       if (e.fem_accuracy.empty())
         return md;
       md += fmt::format("## Accuracy against cost: FEM (H = {} m)\n\nError of k against the finest "
-                        "explicit mesh level; seconds are the FEM wall time of each run.\n\n"
-                        "| series | h_contact (cm) | penalty | FEM s |",
+                        "explicit mesh level; seconds are the FEM wall time of each run.\n\n",
                         scene.accuracy.wall_height);
-      std::string rule = "|---|---|---|---|";
-      for (const StudyLaw &law : study_laws())
-      {
-        md += fmt::format(" k_{} {} | error {} |", law.symbol, law.per_metre_unit(), law.symbol);
-        rule += "---|---|";
-      }
-      md += " status |\n" + rule + "---|\n";
+      md += law_table_header("| series | h_contact (cm) | penalty | FEM s |",
+                             4,
+                             2,
+                             [](const StudyLaw &law) {
+                               return fmt::format(" k_{} {} | error {} |",
+                                                  law.symbol,
+                                                  law.per_metre_unit(),
+                                                  law.symbol);
+                             });
       for (const FemAccuracyPoint &p : e.fem_accuracy)
       {
         md += fmt::format("| {} | {:g} | {:g} | {} |",
@@ -189,16 +190,15 @@ namespace kimp::app::study_internal
       std::string md;
       if (e.sensitivity.empty())
         return md;
-      md += fmt::format("## Sensitivity of k (H = {} m, ±{:g} %)\n\n| parameter | factor |",
+      md += fmt::format("## Sensitivity of k (H = {} m, ±{:g} %)\n\n",
                         scene.sensitivity_study.wall_height,
                         scene.sensitivity_study.variation * 100);
-      std::string rule = "|---|---|";
-      for (const StudyLaw &law : study_laws())
-      {
-        md += fmt::format(" k_{} {} |", law.symbol, law.per_metre_unit());
-        rule += "---|";
-      }
-      md += " status |\n" + rule + "---|\n";
+      md += law_table_header("| parameter | factor |",
+                             2,
+                             1,
+                             [](const StudyLaw &law) {
+                               return fmt::format(" k_{} {} |", law.symbol, law.per_metre_unit());
+                             });
       for (const SensitivityPoint &p : e.sensitivity)
       {
         md += fmt::format("| {} | {:g} |", p.parameter, p.factor);
