@@ -8,6 +8,7 @@
 #include "app/lumped/lumped_run_internal.h"
 #include "io/units.h"
 #include "lumped/integrators/central_difference.h"
+#include "lumped/integrators/newmark_integrator.h"
 #include "lumped/structure/pounding_model.h"
 
 namespace kimp::app
@@ -37,6 +38,56 @@ namespace kimp::app
       options.duration        = in.duration.value_or(0.0);
       options.output_interval = in.output_interval;
       return options;
+    }
+
+    Integration integration_of(const IntegrationScene &in, const std::optional<double> &dt)
+    {
+      Integration integration;
+      integration.method                 = in.method;
+      integration.variable               = variable_time_step(in);
+      integration.cdm                    = cdm_options(in, dt);
+      integration.adaptive.contact_steps = in.contact_steps;
+      integration.newmark                = newmark_options(in, dt);
+      return integration;
+    }
+
+    Integration companion_integration(Integration integration, const lumped::Response &main)
+    {
+      if (integration.method == IntegrationMethod::cdm && !integration.variable)
+        integration.cdm.dt = main.dt;
+      return integration;
+    }
+
+    double planned_step(const lumped::PoundingModel &model,
+                        const Integration           &integration,
+                        double                       record_dt)
+    {
+      if (integration.method == IntegrationMethod::newmark)
+        return integration.newmark.dt > 0.0 ? integration.newmark.dt : record_dt;
+      if (integration.variable)
+        return lumped::AdaptiveCentralDifference(model, integration.cdm, integration.adaptive)
+          .large_step(record_dt);
+      return lumped::CentralDifference(model, integration.cdm).time_step(record_dt);
+    }
+
+    Integrated integrate(const lumped::PoundingModel &model,
+                         const Integration           &integration,
+                         const lumped::GroundMotion  &motion)
+    {
+      Integrated run;
+      if (integration.method == IntegrationMethod::newmark)
+        run.response = lumped::NewmarkIntegrator(model, integration.newmark).run(motion);
+      else if (integration.variable)
+      {
+        lumped::AdaptiveStepReport report;
+        run.response =
+          lumped::AdaptiveCentralDifference(model, integration.cdm, integration.adaptive)
+            .run(motion, &report);
+        run.adaptive = report;
+      }
+      else
+        run.response = lumped::CentralDifference(model, integration.cdm).run(motion);
+      return run;
     }
 
     RunEstimate make_estimate(double                      dt,
@@ -81,22 +132,11 @@ namespace kimp::app
     const lumped::PoundingModel model(make_pounding_scene(scene));
     const IntegrationScene     &in = scene.integration;
     const std::optional<double> dt = requested_time_step(in);
-    if (in.method == IntegrationMethod::cdm)
-    {
-      if (variable_time_step(in))
-        return lumped_internal::make_estimate(
-          lumped::AdaptiveCentralDifference(model, lumped_internal::cdm_options(in, dt))
-            .large_step(motion.dt),
-          in,
-          motion,
-          model.n_dofs());
-      const lumped::CentralDifference integrator(model, lumped_internal::cdm_options(in, dt));
-      return lumped_internal::make_estimate(integrator.time_step(motion.dt),
-                                            in,
-                                            motion,
-                                            model.n_dofs());
-    }
-    return lumped_internal::make_estimate(dt.value_or(motion.dt), in, motion, model.n_dofs());
+    return lumped_internal::make_estimate(
+      lumped_internal::planned_step(model, lumped_internal::integration_of(in, dt), motion.dt),
+      in,
+      motion,
+      model.n_dofs());
   }
 
   void check_run_budget(const std::string      &name,

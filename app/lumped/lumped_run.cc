@@ -167,114 +167,98 @@ namespace kimp::app
       }
     };
 
-    /// Central differences with variable steps (dt: auto) and their companion run.
-    void run_variable_step(const CaseRun &run, const lumped::CentralDifferenceOptions &options)
+    /// A variable-step run in which no contact closed is its companion run (its steps differ
+    /// only where a gap approached), so that amplification factors are then exactly 1.
+    void take_companion_if_untouched(LumpedCaseResult &result)
     {
-      const IntegrationScene     &in     = run.in;
-      LumpedCaseResult           &result = run.result;
-      lumped::AdaptiveStepOptions adaptive_options;
-      adaptive_options.contact_steps = in.contact_steps;
-      const lumped::AdaptiveCentralDifference adaptive(run.model, options, adaptive_options);
-      run.check_budget(adaptive.large_step(run.used.dt));
-      lumped::AdaptiveStepReport report;
-      result.response = adaptive.run(run.used, &report);
-      result.adaptive = report;
-      if (in.companion)
-      {
-        // The companion chooses its own steps (independent of the walls). A run in which no
-        // contact closed is the companion run (its steps differ only where a gap approached),
-        // so that amplification factors are then exactly 1.
-        result.companion =
-          lumped::AdaptiveCentralDifference(run.model.without_contacts(), options, adaptive_options)
-            .run(run.used);
-        bool touched = result.response.n_impacts() > 0;
-        for (const lumped::ContactResult &c : result.response.contacts)
-          touched = touched || c.peak_force != 0.0;
-        if (!touched)
-        {
-          lumped::Response same      = *result.companion;
-          same.contacts              = result.response.contacts;
-          same.history.contact_force = result.response.history.contact_force;
-          result.response            = std::move(same);
-        }
-      }
+      bool touched = result.response.n_impacts() > 0;
+      for (const lumped::ContactResult &c : result.response.contacts)
+        touched = touched || c.peak_force != 0.0;
+      if (touched)
+        return;
+      lumped::Response same      = *result.companion;
+      same.contacts              = result.response.contacts;
+      same.history.contact_force = result.response.history.contact_force;
+      result.response            = std::move(same);
+    }
+
+    /// The variable step's report of a case at -v, and a warning when its force error is large.
+    void report_variable_step(const std::string &name, const lumped::AdaptiveStepReport &report)
+    {
       // Per case at -v; the study and the summary.json give the largest errors.
-      logger().debug("case {}: {}", run.name, variable_step_text(report));
+      logger().debug("case {}: {}", name, variable_step_text(report));
       if (report.force_error > variable_step_warning)
         logger().warn("case {}: dt auto estimates the peak impact force within {:.2g} %, "
                       "above {:.2g} %: raise integration.contact_steps or use a fixed dt",
-                      run.name,
+                      name,
                       100.0 * report.force_error,
                       100.0 * variable_step_warning);
     }
 
-    /// Central differences at a fixed step, from a shared free run's prefix when `free_runs`
-    /// gives one, and their companion run.
-    void run_fixed_step(const CaseRun                   &run,
-                        lumped::CentralDifferenceOptions options,
-                        const lumped::CentralDifference &integrator,
-                        const FreeRunSource             &free_runs)
+    /// A fixed central-difference step from a shared free run's prefix when `free_runs` gives
+    /// one (and histories are not recorded): the response, and the prefix's companion run.
+    bool run_from_free_prefix(const CaseRun       &run,
+                              const Integration   &integration,
+                              const FreeRunSource &free_runs)
     {
-      LumpedCaseResult &result = run.result;
-      run.check_budget(integrator.time_step(run.used.dt));
-      std::shared_ptr<const lumped::FreeRunPrefix> prefix;
-      if (free_runs && !(options.output_interval > 0.0))
-      {
-        lumped::CentralDifferenceOptions free_options = options;
-        free_options.dt                               = integrator.time_step(run.used.dt);
-        prefix = free_runs(lumped::CentralDifference(run.model.without_contacts(), free_options),
-                           free_options.dt,
-                           run.used);
-      }
-      if (prefix)
-      {
-        result.response = prefix->run(integrator, run.used);
-        if (run.in.companion)
-          result.companion = prefix->response();
-      }
-      else
-      {
-        result.response = integrator.run(run.used);
-        if (run.in.companion)
-        {
-          options.dt = result.response.dt;
-          result.companion =
-            lumped::CentralDifference(run.model.without_contacts(), options).run(run.used);
-        }
-      }
+      if (!free_runs || integration.method != IntegrationMethod::cdm || integration.variable ||
+          integration.cdm.output_interval > 0.0)
+        return false;
+      lumped::CentralDifferenceOptions free_options = integration.cdm;
+      const lumped::CentralDifference  integrator(run.model, integration.cdm);
+      free_options.dt = integrator.time_step(run.used.dt);
+      const std::shared_ptr<const lumped::FreeRunPrefix> prefix =
+        free_runs(lumped::CentralDifference(run.model.without_contacts(), free_options),
+                  free_options.dt,
+                  run.used);
+      if (!prefix)
+        return false;
+      run.result.response = prefix->run(integrator, run.used);
+      if (run.in.companion)
+        run.result.companion = prefix->response();
+      return true;
     }
 
-    /// The integration of integration.method (and the companion run without contacts).
-    void
-    integrate(const CaseRun &run, const std::optional<double> &dt, const FreeRunSource &free_runs)
+    /// The main run of integration.method and its companion run without contacts, both through
+    /// integrate().
+    void integrate_case(const CaseRun               &run,
+                        const std::optional<double> &dt,
+                        const FreeRunSource         &free_runs)
     {
-      const IntegrationScene &in     = run.in;
-      LumpedCaseResult       &result = run.result;
+      const IntegrationScene &in          = run.in;
+      LumpedCaseResult       &result      = run.result;
+      const Integration       integration = integration_of(in, dt);
       if (in.method == IntegrationMethod::cdm)
       {
-        lumped::CentralDifferenceOptions options = cdm_options(in, dt);
-        const lumped::CentralDifference  integrator(run.model, options);
+        const lumped::CentralDifference integrator(run.model, integration.cdm);
         result.dt_critical = integrator.stability().dt_critical;
         result.governing   = integrator.stability().governing;
-        result.dt_policy   = dt ? "fixed" : variable_time_step(in) ? "variable" : "stable";
+        result.dt_policy   = dt ? "fixed" : integration.variable ? "variable" : "stable";
         logger().debug("case {}: dt_cr = {} s ({})",
                        run.name,
                        result.dt_critical,
                        result.governing);
-        if (variable_time_step(in))
-          run_variable_step(run, options);
-        else
-          run_fixed_step(run, options, integrator, free_runs);
       }
       else
+        result.dt_policy = dt ? "fixed" : "record";
+      run.check_budget(planned_step(run.model, integration, run.used.dt));
+      if (run_from_free_prefix(run, integration, free_runs))
+        return;
+      Integrated main = integrate(run.model, integration, run.used);
+      result.response = std::move(main.response);
+      result.adaptive = main.adaptive;
+      if (in.companion)
+        // The companion chooses its own variable steps (independent of the walls); a fixed step
+        // is the main run's.
+        result.companion = integrate(run.model.without_contacts(),
+                                     companion_integration(integration, result.response),
+                                     run.used)
+                             .response;
+      if (integration.variable)
       {
-        const lumped::NewmarkOptions options = newmark_options(in, dt);
-        result.dt_policy                     = dt ? "fixed" : "record";
-        run.check_budget(options.dt > 0.0 ? options.dt : run.used.dt);
-        result.response = lumped::NewmarkIntegrator(run.model, options).run(run.used);
-        if (in.companion)
-          result.companion =
-            lumped::NewmarkIntegrator(run.model.without_contacts(), options).run(run.used);
+        if (result.companion)
+          take_companion_if_untouched(result);
+        report_variable_step(run.name, *result.adaptive);
       }
     }
   } // namespace
@@ -313,7 +297,7 @@ namespace kimp::app
                       warning_pga / standard_gravity);
 
       const IntegrationScene &in = scene.integration;
-      integrate(CaseRun{name, model, in, used, result}, requested_time_step(in), free_runs);
+      integrate_case(CaseRun{name, model, in, used, result}, requested_time_step(in), free_runs);
       if (const std::string why = implausibility(result.response, in); !why.empty())
         throw std::runtime_error("implausible result: " + why);
     }

@@ -30,6 +30,38 @@ namespace kimp::app::lumped_internal
   /// The Newmark options of integration (its time step `dt`, nullopt: the record's).
   lumped::NewmarkOptions newmark_options(const IntegrationScene      &in,
                                          const std::optional<double> &dt);
+  /// The integrator of an integration section: its method and options. One entry point,
+  /// integrate(), runs it for the main run, the companion run without contacts and (through
+  /// planned_step()) the cost estimate, so that these cannot take different paths.
+  struct Integration
+  {
+    IntegrationMethod                method   = IntegrationMethod::cdm;
+    bool                             variable = false; ///< cdm with dt: auto (variable steps)
+    lumped::CentralDifferenceOptions cdm;              ///< cdm (fixed and variable steps)
+    lumped::AdaptiveStepOptions      adaptive;         ///< cdm with variable steps
+    lumped::NewmarkOptions           newmark;          ///< newmark
+  };
+  /// The integration of `in` at the step `dt` (nullopt: the integrator's own).
+  Integration integration_of(const IntegrationScene &in, const std::optional<double> &dt);
+  /// The same integration for the companion run of a main run that gave `main`: a fixed
+  /// central-difference step is the main run's (variable steps choose their own).
+  Integration companion_integration(Integration integration, const lumped::Response &main);
+  /// The (largest) step `integration` takes on `model` under a record sampled at `record_dt`, s:
+  /// the step the cost estimate and the step budget count.
+  double planned_step(const lumped::PoundingModel &model,
+                      const Integration           &integration,
+                      double                       record_dt);
+  /// What one run gives: the response and, with variable steps, their report.
+  struct Integrated
+  {
+    lumped::Response                          response;
+    std::optional<lumped::AdaptiveStepReport> adaptive;
+  };
+  /// `model` under `motion` with `integration`.
+  Integrated integrate(const lumped::PoundingModel &model,
+                       const Integration           &integration,
+                       const lumped::GroundMotion  &motion);
+
   /// The estimate for a step `dt` chosen by the integrator (the integrators' own rule for N).
   RunEstimate make_estimate(double                      dt,
                             const IntegrationScene     &in,

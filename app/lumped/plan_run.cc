@@ -9,7 +9,6 @@
 #include "app/lumped/lumped_run_internal.h"
 #include "base/format.h"
 #include "base/logging.h"
-#include "base/version.h"
 #include "io/results_file.h"
 #include "io/summary.h"
 
@@ -340,12 +339,10 @@ namespace kimp::app
                             const PlanRun                          &run,
                             Clock::time_point                       start)
     {
-      const plan::PlanResponse &r = run.response;
-      nlohmann::json            summary;
-      summary["command"]       = "lumped";
-      summary["kimp"]          = base::version_line();
-      summary["scene"]         = loaded.file_name;
-      summary["plan"]          = true;
+      const plan::PlanResponse &r       = run.response;
+      nlohmann::json            summary = io::summary_preamble("lumped");
+      summary["scene"]                  = loaded.file_name;
+      summary["plan"]                   = true;
       summary["wall_time"]     = std::chrono::duration<double>(Clock::now() - start).count();
       summary["ground_motion"] = {{"name", run.motion.name},
                                   {"dt", run.motion.dt},

@@ -92,8 +92,8 @@ namespace kimp::app::study_internal
     {
       const StudyHeight *best = nullptr;
       for (const StudyHeight &h : heights)
-        if (h.kelvin_voigt && (!best || std::abs(h.wall_height - wall_height) <
-                                          std::abs(best->wall_height - wall_height)))
+        if (h.law("kelvin_voigt").fit && (!best || std::abs(h.wall_height - wall_height) <
+                                                     std::abs(best->wall_height - wall_height)))
           best = &h;
       return best;
     }
@@ -159,9 +159,11 @@ namespace kimp::app::study_internal
   std::vector<std::pair<std::string, const std::optional<FitResult> *>>
   building_laws(const StudyHeight &h)
   {
-    return {{"modified_kelvin_voigt", &h.kelvin_voigt},
-            {"jankowski", &h.jankowski},
-            {"hysteretic", &h.jankowski}};
+    std::vector<std::pair<std::string, const std::optional<FitResult> *>> laws;
+    for (const StudyLawFit &law : h.laws)
+      for (const std::string_view building_law : law.law->building_laws)
+        laws.emplace_back(std::string(building_law), &law.fit);
+    return laws;
   }
 
   LumpedScene walled_scene(const LumpedScene &base,
@@ -281,8 +283,8 @@ namespace kimp::app::study_internal
   run_extras(const StudyScene &scene, const StudyResult &result, const OutputDir &output)
   {
     StudyExtras        extras;
-    const StudyHeight *h       = nearest_height(result.heights, scene.accuracy.wall_height);
-    const double       k_total = h ? h->kelvin_voigt->stiffness.value * scene.fit.width : nan;
+    const StudyHeight *h = nearest_height(result.heights, scene.accuracy.wall_height);
+    const double k_total = h ? h->law("kelvin_voigt").fit->stiffness.value * scene.fit.width : nan;
     if (scene.accuracy_study)
     {
       logger().info("accuracy study at H = {} m (FEM levels, then the building's time step)",

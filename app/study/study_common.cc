@@ -34,11 +34,15 @@ namespace kimp::app::study_internal
                  nan;
   }
 
-  double numerical_error(const StudyHeight &h, double exponent)
+  double numerical_error(const StudyHeight &h, const StudyLaw &law)
   {
-    return stiffness_to_kn_per_mm(exponent == 1.0 ? h.kelvin_voigt_numerical_error() :
-                                                    h.jankowski_numerical_error(),
-                                  exponent);
+    return stiffness_to_kn_per_mm(h.ladder.error_of(study_law_index(law)), law.exponent());
+  }
+
+
+  double thesis_k(const std::optional<ThesisStiffness> &row, const StudyLaw &law)
+  {
+    return row && law.thesis ? (*row).*law.thesis : nan;
   }
 
   double used_h_contact(const StudyScene &scene, const StudyHeight &h)
@@ -54,18 +58,19 @@ namespace kimp::app::study_internal
 
   void set_fits(StudyHeight &h, StudyFits fits)
   {
-    h.kelvin_voigt        = std::move(fits.kelvin_voigt);
-    h.jankowski           = std::move(fits.jankowski);
-    h.kelvin_voigt_status = std::move(fits.kelvin_voigt_status);
-    h.jankowski_status    = std::move(fits.jankowski_status);
+    for (std::size_t i = 0; i < h.laws.size(); ++i)
+    {
+      h.laws[i].fit    = std::move(fits.laws[i].fit);
+      h.laws[i].status = std::move(fits.laws[i].status);
+    }
   }
 
   nlohmann::ordered_json
-  law_json(const StudyHeight &h, const StudyLaw &law, std::optional<double> width)
+  law_json(const StudyHeight &h, const StudyLawFit &law, std::optional<double> width)
   {
     nlohmann::ordered_json f;
-    f["status"] = h.*law.status;
-    if (const std::optional<FitResult> &fit = h.*law.fit)
+    f["status"] = law.status;
+    if (const std::optional<FitResult> &fit = law.fit)
     {
       f["k_per_metre"] = per_metre(fit);
       f["k_lower"]     = per_metre_bound(fit, false);
@@ -78,7 +83,7 @@ namespace kimp::app::study_internal
       f["peak_force_ratio"]       = fit->peak_force_ratio();
       f["impulse_ratio"]          = fit->impulse_ratio();
       f["contact_duration_ratio"] = fit->contact_duration_ratio();
-      const double error          = numerical_error(h, law.exponent);
+      const double error          = numerical_error(h, *law.law);
       if (std::isfinite(error))
         f["k_numerical_error"] = error;
     }
@@ -87,15 +92,32 @@ namespace kimp::app::study_internal
 
   void add_k_columns(Table &t, const StudyLaw &law)
   {
-    const std::string name = law.name;
-    t.number(name, law.per_metre_unit)
-      .number(name + "_lower", law.per_metre_unit)
-      .number(name + "_upper", law.per_metre_unit);
+    const std::string name = law.name();
+    const std::string unit = law.per_metre_unit();
+    t.number(name, unit).number(name + "_lower", unit).number(name + "_upper", unit);
   }
 
   void add_k_cells(std::vector<Cell> &row, const std::optional<FitResult> &fit)
   {
     append_numbers(row, {per_metre(fit), per_metre_bound(fit, false), per_metre_bound(fit, true)});
+  }
+
+  std::string law_table_header(const std::string                                  &lead,
+                               std::size_t                                         lead_columns,
+                               std::size_t                                         law_columns,
+                               const std::function<std::string(const StudyLaw &)> &titles)
+  {
+    std::string header = lead;
+    std::size_t n      = lead_columns + 1; // and the status
+    for (const StudyLaw &law : study_laws())
+    {
+      header += titles(law);
+      n += law_columns;
+    }
+    std::string rule = "|";
+    for (std::size_t i = 0; i < n; ++i)
+      rule += "---|";
+    return header + " status |\n" + rule + "\n";
   }
 
   std::vector<double> scale(std::vector<double> values, double factor)
@@ -120,6 +142,82 @@ namespace kimp::app::study_internal
 
 namespace kimp::app
 {
+  const std::vector<StudyLaw> &study_laws()
+  {
+    static const std::vector<StudyLaw> laws = {{&lumped::law_traits("kelvin_voigt"),
+                                                "Kelvin-Voigt",
+                                                "KV",
+                                                "KV",
+                                                {"modified_kelvin_voigt"},
+                                                &ThesisStiffness::kelvin_voigt},
+                                               {&lumped::law_traits("jankowski"),
+                                                "Jankowski",
+                                                "Jankowski",
+                                                "J",
+                                                {"jankowski", "hysteretic"},
+                                                &ThesisStiffness::jankowski}};
+    return laws;
+  }
+
+  std::size_t study_law_index(const StudyLaw &law)
+  {
+    return static_cast<std::size_t>(&law - study_laws().data());
+  }
+
+  std::string k_text(const std::vector<double> &k, std::string_view prefix)
+  {
+    std::string text;
+    for (const StudyLaw &law : study_laws())
+    {
+      const std::size_t i = study_law_index(law);
+      text += fmt::format("{}{}{} {:.4g} {}",
+                          text.empty() ? "" : ", ",
+                          prefix,
+                          law.short_name,
+                          fit::stiffness_to_kn_per_mm(i < k.size() ?
+                                                        k[i] :
+                                                        std::numeric_limits<double>::quiet_NaN(),
+                                                      law.exponent()),
+                          law.per_metre_unit());
+    }
+    return text;
+  }
+  std::vector<StudyLawFit> unfitted_study_laws()
+  {
+    std::vector<StudyLawFit> fits;
+    for (const StudyLaw &law : study_laws())
+      fits.push_back({&law, std::nullopt, "ok", std::nullopt});
+    return fits;
+  }
+
+  bool all_fitted(const std::vector<StudyLawFit> &laws)
+  {
+    return std::all_of(laws.begin(),
+                       laws.end(),
+                       [](const StudyLawFit &l) { return l.fit.has_value(); });
+  }
+
+  bool all_ok(const std::vector<StudyLawFit> &laws)
+  {
+    return std::all_of(laws.begin(), laws.end(), [](const StudyLawFit &l) { return l.ok(); });
+  }
+
+  std::string joined_status(const std::vector<StudyLawFit> &laws)
+  {
+    std::string text;
+    for (const StudyLawFit &l : laws)
+      text += (text.empty() ? "" : " / ") + l.status;
+    return text;
+  }
+
+  const StudyLawFit &law_fit(const std::vector<StudyLawFit> &laws, std::string_view name)
+  {
+    for (const StudyLawFit &l : laws)
+      if (l.law->traits->name == name)
+        return l;
+    throw std::out_of_range("no study law '" + std::string(name) + "'");
+  }
+
   namespace
   {
     /// One number of the table; the whole cell must be a finite number.

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "app/lumped/lumped_run.h"
+#include "app/study/study_columns.h"
 #include "app/study/study_internal.h"
 #include "app/study/study_velocity.h"
 #include "base/errors.h"
@@ -188,77 +189,145 @@ namespace kimp::app::study_internal
     return runs;
   }
 
+  namespace
+  {
+    /// One building run of a consistent-k iteration: the run and the iteration's index.
+    struct ConsistentKStep
+    {
+      const ConsistentKRun *run   = nullptr;
+      std::size_t           index = 0;
+
+      const ConsistentKIteration &it() const { return run->iterations[index]; }
+    };
+
+    /// The columns of consistent_k.csv: one row per record, height and law.
+    std::vector<StudyColumn<ConsistentKRun>> consistent_k_columns()
+    {
+      using R = ConsistentKRun;
+      // The last (first) iteration's value, NaN without iterations.
+      const auto last = [](double ConsistentKIteration::*value) {
+        return [value](const R &r)
+        { return r.iterations.empty() ? nan : r.iterations.back().*value; };
+      };
+      const auto first_force = [](const R &r)
+      { return r.iterations.empty() ? nan : r.iterations.front().peak_impact_force; };
+      return {
+        csv_text_column<R>("record", [](const R &r) { return r.record; }),
+        same_column<R>("wall_height", "m", [](const R &r) { return r.wall_height; }),
+        csv_text_column<R>("law", [](const R &r) { return r.law; }),
+        same_column<R>("k_reference",
+                       "",
+                       [](const R &r) { return k_display(r.k_reference, r.exponent); }),
+        same_column<R>("k_consistent",
+                       "",
+                       [](const R &r) { return k_display(final_k(r), r.exponent); }),
+        csv_text_column<R>("k_unit", [](const R &r) { return stiffness_display_unit(r.exponent); }),
+        same_column<R>("change_percent",
+                       "1",
+                       [](const R &r) { return 100.0 * (final_k(r) / r.k_reference - 1.0); }),
+        same_column<R>("impact_velocity", "m/s", last(&ConsistentKIteration::impact_velocity)),
+        same_column<R>("velocity_used", "m/s", last(&ConsistentKIteration::velocity_used)),
+        integer_column<R>("iterations",
+                          false,
+                          true,
+                          [](const R &r)
+                          { return static_cast<std::int64_t>(r.iterations.size()); }),
+        csv_text_column<R>("converged",
+                           [](const R &r) { return std::string(r.converged ? "yes" : "no"); }),
+        number_column<R>({"peak_impact_force_reference", "N"},
+                         {"peak_impact_force_reference", "kN"},
+                         divided_by(1e3),
+                         first_force),
+        number_column<R>({"peak_impact_force_consistent", "N"},
+                         {"peak_impact_force_consistent", "kN"},
+                         divided_by(1e3),
+                         last(&ConsistentKIteration::peak_impact_force)),
+        csv_text_column<R>("status", [](const R &r) { return r.status; })};
+    }
+
+    /// The columns of consistent_k_iterations.csv and study.h5 /consistent_k/<record>/<law>
+    /// (one row per building run; k in `k_si_unit`, the law's N/m^n, in study.h5).
+    std::vector<StudyColumn<ConsistentKStep>>
+    consistent_k_step_columns(const std::string &k_si_unit)
+    {
+      using S = ConsistentKStep;
+      // k in the law's display unit in the CSV file (its unit in the column k_unit), SI in
+      // study.h5.
+      const auto k_columns = [&](const std::string &name, double ConsistentKIteration::*k)
+      {
+        return std::vector<StudyColumn<S>>{
+          hdf5_column<S>(name, k_si_unit, [k](const S &s) { return s.it().*k; }),
+          number_column<S>({},
+                           {name, ""},
+                           {},
+                           [k](const S &s) { return k_display(s.it().*k, s.run->exponent); })};
+      };
+      const auto index = [](const S &s) { return static_cast<double>(s.index + 1); };
+      const auto count = [](const S &s) { return static_cast<double>(s.it().n_impacts); };
+      std::vector<StudyColumn<S>> columns = {
+        csv_text_column<S>("record", [](const S &s) { return s.run->record; }),
+        same_column<S>("wall_height", "m", [](const S &s) { return s.run->wall_height; }),
+        csv_text_column<S>("law", [](const S &s) { return s.run->law; }),
+        hdf5_column<S>("iteration", "1", index),
+        integer_column<S>("iteration",
+                          false,
+                          true,
+                          [](const S &s) { return static_cast<std::int64_t>(s.index + 1); })};
+      for (StudyColumn<S> &c : k_columns("k_total", &ConsistentKIteration::k_total))
+        columns.push_back(std::move(c));
+      columns.push_back(csv_text_column<S>("k_unit",
+                                           [](const S &s)
+                                           { return stiffness_display_unit(s.run->exponent); }));
+      columns.push_back(same_column<S>("impact_velocity",
+                                       "m/s",
+                                       [](const S &s) { return s.it().impact_velocity; }));
+      columns.push_back(
+        same_column<S>("velocity_used", "m/s", [](const S &s) { return s.it().velocity_used; }));
+      for (StudyColumn<S> &c : k_columns("k_next", &ConsistentKIteration::k_next))
+        columns.push_back(std::move(c));
+      columns.push_back(number_column<S>({"change", "1"},
+                                         {"change_percent", "1"},
+                                         times(100),
+                                         [](const S &s) { return s.it().change; }));
+      columns.push_back(number_column<S>({"peak_impact_force", "N"},
+                                         {"peak_impact_force", "kN"},
+                                         divided_by(1e3),
+                                         [](const S &s) { return s.it().peak_impact_force; }));
+      columns.push_back(hdf5_column<S>("n_impacts", "1", count));
+      columns.push_back(integer_column<S>("n_impacts",
+                                          false,
+                                          true,
+                                          [](const S &s)
+                                          { return static_cast<std::int64_t>(s.it().n_impacts); }));
+      columns.push_back(
+        hdf5_column<S>("converged", "1", [](const S &s) { return flag(s.run->converged); }));
+      return columns;
+    }
+
+    /// Every building run of `runs`, in order.
+    std::vector<ConsistentKStep> consistent_k_steps(const std::vector<const ConsistentKRun *> &runs)
+    {
+      std::vector<ConsistentKStep> steps;
+      for (const ConsistentKRun *r : runs)
+        for (std::size_t i = 0; i < r->iterations.size(); ++i)
+          steps.push_back({r, i});
+      return steps;
+    }
+  } // namespace
+
   void write_consistent_k_csv(const OutputDir &output, const StudyResult &result)
   {
     if (result.consistent_k.empty())
       return;
-    std::vector<std::vector<std::string>> rows, iteration_rows;
+    study_table(consistent_k_columns(), result.consistent_k, StudyFile::csv)
+      .write_csv(output.file("consistent_k.csv"));
+    std::vector<const ConsistentKRun *> runs;
     for (const ConsistentKRun &r : result.consistent_k)
-    {
-      const ConsistentKIteration *last  = r.iterations.empty() ? nullptr : &r.iterations.back();
-      const ConsistentKIteration *first = r.iterations.empty() ? nullptr : &r.iterations.front();
-      rows.push_back({r.record,
-                      number(r.wall_height),
-                      r.law,
-                      number(k_display(r.k_reference, r.exponent)),
-                      number(k_display(final_k(r), r.exponent)),
-                      stiffness_display_unit(r.exponent),
-                      number(100.0 * (final_k(r) / r.k_reference - 1.0)),
-                      number(last ? last->impact_velocity : nan),
-                      number(last ? last->velocity_used : nan),
-                      std::to_string(r.iterations.size()),
-                      r.converged ? "yes" : "no",
-                      number(first ? first->peak_impact_force / 1e3 : nan),
-                      number(last ? last->peak_impact_force / 1e3 : nan),
-                      r.status});
-      for (std::size_t i = 0; i < r.iterations.size(); ++i)
-      {
-        const ConsistentKIteration &it = r.iterations[i];
-        iteration_rows.push_back({r.record,
-                                  number(r.wall_height),
-                                  r.law,
-                                  std::to_string(i + 1),
-                                  number(k_display(it.k_total, r.exponent)),
-                                  stiffness_display_unit(r.exponent),
-                                  number(it.impact_velocity),
-                                  number(it.velocity_used),
-                                  number(k_display(it.k_next, r.exponent)),
-                                  number(100.0 * it.change),
-                                  number(it.peak_impact_force / 1e3),
-                                  std::to_string(it.n_impacts)});
-      }
-    }
-    write_csv_atomic(output.file("consistent_k.csv"),
-                     {"record",
-                      "wall_height_m",
-                      "law",
-                      "k_reference",
-                      "k_consistent",
-                      "k_unit",
-                      "change_percent",
-                      "impact_velocity_m_per_s",
-                      "velocity_used_m_per_s",
-                      "iterations",
-                      "converged",
-                      "peak_impact_force_reference_kN",
-                      "peak_impact_force_consistent_kN",
-                      "status"},
-                     rows);
-    write_csv_atomic(output.file("consistent_k_iterations.csv"),
-                     {"record",
-                      "wall_height_m",
-                      "law",
-                      "iteration",
-                      "k_total",
-                      "k_unit",
-                      "impact_velocity_m_per_s",
-                      "velocity_used_m_per_s",
-                      "k_next",
-                      "change_percent",
-                      "peak_impact_force_kN",
-                      "n_impacts"},
-                     iteration_rows);
+      runs.push_back(&r);
+    study_table(consistent_k_step_columns(""), consistent_k_steps(runs), StudyFile::csv)
+      .write_csv(output.file("consistent_k_iterations.csv"));
   }
+
 
   void write_velocity_h5(ResultsGroup &root, const StudyScene &scene, const StudyResult &result)
   {
@@ -281,21 +350,21 @@ namespace kimp::app::study_internal
       .number("impact_velocity", "m/s")
       .number("reference_velocity", "1")
       .number("inelastic", "1");
-    for (const StudyLaw &law : study_laws)
+    for (const StudyLaw &law : study_laws())
     {
-      const std::string name = law.name;
+      const std::string name = law.name();
       add_k_columns(k, law);
-      k.number(name + "_numerical_error", law.per_metre_unit)
-        .number("linear_" + name, law.per_metre_unit);
+      k.number(name + "_numerical_error", law.per_metre_unit())
+        .number("linear_" + name, law.per_metre_unit());
     }
     for (const StudyHeight *h : k_table_cases(result))
     {
       std::vector<Cell> row = number_cells(
         {h->wall_height, h->impact_velocity, flag(h->reference_velocity), flag(h->inelastic)});
-      for (const StudyLaw &law : study_laws)
+      for (const StudyLawFit &law : h->laws)
       {
-        add_k_cells(row, h->*law.fit);
-        append_numbers(row, {numerical_error(*h, law.exponent), per_metre(h->*law.linear)});
+        add_k_cells(row, law.fit);
+        append_numbers(row, {numerical_error(*h, *law.law), per_metre(law.linear)});
       }
       k.add_row(std::move(row));
     }
@@ -306,33 +375,10 @@ namespace kimp::app::study_internal
     // /consistent_k/<record>/<law>: one row per building run of the iteration.
     for (const auto &[key, runs] : by_record_and_law(result.consistent_k, false))
     {
-      const std::string unit = stiffness_si_unit(runs.front()->exponent);
-      Table             t;
-      t.number("wall_height", "m")
-        .number("iteration", "1")
-        .number("k_total", unit)
-        .number("impact_velocity", "m/s")
-        .number("velocity_used", "m/s")
-        .number("k_next", unit)
-        .number("change", "1")
-        .number("peak_impact_force", "N")
-        .number("n_impacts", "1")
-        .number("converged", "1");
-      for (const ConsistentKRun *r : runs)
-        for (std::size_t i = 0; i < r->iterations.size(); ++i)
-        {
-          const ConsistentKIteration &it = r->iterations[i];
-          t.add_row(number_cells({r->wall_height,
-                                  static_cast<double>(i + 1),
-                                  it.k_total,
-                                  it.impact_velocity,
-                                  it.velocity_used,
-                                  it.k_next,
-                                  it.change,
-                                  it.peak_impact_force,
-                                  static_cast<double>(it.n_impacts),
-                                  flag(r->converged)}));
-        }
+      const Table t =
+        study_table(consistent_k_step_columns(stiffness_si_unit(runs.front()->exponent)),
+                    consistent_k_steps(runs),
+                    StudyFile::hdf5);
       ResultsGroup group = root.group("consistent_k").group(key.first);
       t.write_hdf5(group, key.second);
       group.group(key.second).set_attribute("tolerance", scene.consistent_k.tolerance);
@@ -354,12 +400,12 @@ namespace kimp::app::study_internal
       row["material"]           = h->inelastic ? "inelastic" : "linear";
       if (!h->material_reason.empty())
         row["material_reason"] = h->material_reason;
-      for (const StudyLaw &law : study_laws)
+      for (const StudyLawFit &law : h->laws)
       {
         nlohmann::ordered_json f = law_json(*h, law);
-        if (const std::optional<FitResult> &linear = h->*law.linear)
+        if (const std::optional<FitResult> &linear = law.linear)
           f["linear_k_per_metre"] = per_metre(linear);
-        row[law.name] = f;
+        row[law.law->name()] = f;
       }
       table.push_back(row);
     }
@@ -407,11 +453,19 @@ namespace kimp::app::study_internal
       "at the reference velocity {} m/s; the FEM level (and material model) it chose is reused "
       "at the other velocities, whose numerical error (±) is the reference's relative error "
       "times their k (carried over, not measured). The linear k is the same FEM case with "
-      "linear-elastic materials of the same initial stiffness.\n\n"
-      "| H (m) | v (m/s) | materials | KV kN/mm/m [95 % CI] ± numerical | linear KV | Table 2.1 "
-      "| Jankowski kN/mm^1.5/m [95 % CI] ± numerical | linear J | Table 2.1 | status |\n"
-      "|---|---|---|---|---|---|---|---|---|---|\n",
+      "linear-elastic materials of the same initial stiffness.\n\n",
       scene.fem.solver.initial_velocity);
+    md += law_table_header("| H (m) | v (m/s) | materials |",
+                           3,
+                           3,
+                           [](const StudyLaw &law)
+                           {
+                             return fmt::format(" {} {} [95 % CI] ± numerical | linear {} | "
+                                                "Table 2.1 |",
+                                                law.short_name,
+                                                law.per_metre_unit(),
+                                                law.symbol);
+                           });
     const auto plus_minus = [](double error)
     { return std::isfinite(error) ? " ± " + base::sig(error, 2) : std::string(); };
     // Per height the reference velocity's row first (the k of the building runs).
@@ -427,26 +481,24 @@ namespace kimp::app::study_internal
     for (const StudyHeight *h : cases)
     {
       const std::optional<ThesisStiffness> t = thesis_row(h->wall_height);
-      const bool ok = h->kelvin_voigt_status == "ok" && h->jankowski_status == "ok";
       md += fmt::format("| {:.2f} | {:g}{} | {} |",
                         h->wall_height,
                         h->impact_velocity,
                         h->reference_velocity ? " (reference)" : "",
                         h->inelastic ? "inelastic" : "linear");
-      for (const StudyLaw &law : study_laws)
+      for (const StudyLawFit &law : h->laws)
       {
-        const std::optional<FitResult> &fit = h->*law.fit;
+        const std::optional<FitResult> &fit = law.fit;
+        const double thesis                 = h->reference_velocity ? thesis_k(t, *law.law) : nan;
         md += fmt::format(" {} [{}, {}]{} | {} | {} |",
                           readable(per_metre(fit)),
                           readable(per_metre_bound(fit, false)),
                           readable(per_metre_bound(fit, true)),
-                          plus_minus(numerical_error(*h, law.exponent)),
-                          h->inelastic ? readable(per_metre(h->*law.linear)) : "-",
-                          t && h->reference_velocity ? readable((*t).*law.thesis) : "-");
+                          plus_minus(numerical_error(*h, *law.law)),
+                          h->inelastic ? readable(per_metre(law.linear)) : "-",
+                          std::isfinite(thesis) ? readable(thesis) : "-");
       }
-      md +=
-        fmt::format(" {} |\n",
-                    ok ? std::string("ok") : h->kelvin_voigt_status + " / " + h->jankowski_status);
+      md += fmt::format(" {} |\n", all_ok(h->laws) ? std::string("ok") : joined_status(h->laws));
     }
     md += "\n";
     for (const StudyHeight &h : result.heights)

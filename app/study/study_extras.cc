@@ -58,11 +58,11 @@ namespace kimp::app
         if (from_cache)
           *from_cache = c.from_cache;
         point.ok     = fits.ok();
-        point.status = point.ok ? "ok" : fits.kelvin_voigt_status + " / " + fits.jankowski_status;
+        point.status = point.ok ? "ok" : joined_status(fits.laws);
         if (point.ok)
         {
-          point.k_kelvin_voigt = fits.kelvin_voigt->stiffness.value;
-          point.k_jankowski    = fits.jankowski->stiffness.value;
+          for (const StudyLawFit &law : fits.laws)
+            point.k.push_back(law.fit->stiffness.value);
         }
       }
       catch (const std::exception &error)
@@ -104,10 +104,10 @@ namespace kimp::app
                     &p.n_dofs,
                     &p.n_steps,
                     &p.from_cache);
-      logger().info("accuracy {} {}: k_KV {:.4g} kN/mm/m, {:.3g} s ({})",
+      logger().info("accuracy {} {}: {}, {:.3g} s ({})",
                     series,
                     name,
-                    stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0),
+                    k_text(p.k, "k_"),
                     p.seconds,
                     p.status);
       points.push_back(p);
@@ -135,9 +135,9 @@ namespace kimp::app
     for (FemAccuracyPoint &p : points)
     {
       const bool usable = p.ok && reference.ok;
-      p.error_kelvin_voigt =
-        usable ? std::abs(p.k_kelvin_voigt / reference.k_kelvin_voigt - 1.0) : nan;
-      p.error_jankowski = usable ? std::abs(p.k_jankowski / reference.k_jankowski - 1.0) : nan;
+      p.error.assign(study_laws().size(), nan);
+      for (std::size_t i = 0; usable && i < p.error.size(); ++i)
+        p.error[i] = std::abs(p.k.at(i) / reference.k.at(i) - 1.0);
     }
     return points;
   }

@@ -23,8 +23,9 @@ namespace kimp::app
     double      seconds    = 0.0; ///< wall time of the FEM run (as computed, not the cache read)
     bool        from_cache = false;
     double      n_dofs = 0.0, n_steps = 0.0;
-    double      k_kelvin_voigt = 0.0, k_jankowski = 0.0;         ///< N/m^n per metre
-    double      error_kelvin_voigt = 0.0, error_jankowski = 0.0; ///< |k/k_ref − 1|
+    /// Per study law (study_laws() order; empty unless ok): k, N/m^n per metre, and its error
+    /// |k/k_ref − 1| against the reference level (NaN: not usable).
+    std::vector<double> k, error;
   };
 
   /** One building run of the time-step study. */
@@ -67,11 +68,11 @@ namespace kimp::app
   /** One FEM run of the sensitivity study. */
   struct SensitivityPoint
   {
-    std::string parameter; ///< "soil_modulus", "slab_mass", "impact_velocity", "wall_thickness"
-    double      factor         = 1.0; ///< parameter / its scene value
-    bool        ok             = false;
-    std::string status         = "ok";
-    double      k_kelvin_voigt = 0.0, k_jankowski = 0.0; ///< N/m^n per metre
+    std::string parameter;    ///< "soil_modulus", "slab_mass", "impact_velocity", "wall_thickness"
+    double      factor = 1.0; ///< parameter / its scene value
+    bool        ok     = false;
+    std::string status = "ok";
+    std::vector<double> k; ///< per study law (study_laws() order; empty unless ok), N/m^n per m
   };
 
   struct StudyExtras

@@ -32,17 +32,13 @@ namespace kimp::app
     template <class P>
     void append_k_columns(std::vector<StudyColumn<P>> &columns)
     {
-      double P::*const k[] = {&P::k_kelvin_voigt, &P::k_jankowski}; // in study_laws' order
-      for (std::size_t i = 0; i < std::size(study_laws); ++i)
-      {
-        const double exponent = study_laws[i].exponent;
-        columns.push_back(same_column<P>(study_laws[i].name,
-                                         study_laws[i].per_metre_unit,
-                                         [k = k[i], exponent](const P &p) {
-                                           return p.ok ? stiffness_to_kn_per_mm(p.*k, exponent) :
-                                                         nan;
-                                         }));
-      }
+      for (const StudyLaw &law : study_laws())
+        columns.push_back(
+          same_column<P>(law.name(),
+                         law.per_metre_unit(),
+                         [i = study_law_index(law), n = law.exponent()](const P &p) {
+                           return p.ok && i < p.k.size() ? stiffness_to_kn_per_mm(p.k[i], n) : nan;
+                         }));
     }
 
     /// The FEM accuracy points: k against the contact mesh, the penalty and the implicit solver.
@@ -64,8 +60,13 @@ namespace kimp::app
         same_column<P>("n_dofs", "1", [](const P &p) { return p.n_dofs; }),
         hdf5_column<P>("n_steps", "1", [](const P &p) { return p.n_steps; })};
       append_k_columns(columns);
-      columns.push_back(error_column("error_kelvin_voigt", &P::error_kelvin_voigt));
-      columns.push_back(error_column("error_jankowski", &P::error_jankowski));
+      // Each law's error of k: error_<law> (1) in study.h5, error_<law>_percent in the CSV file.
+      for (const StudyLaw &law : study_laws())
+        columns.push_back(number_column<P>({"error_" + law.name(), "1"},
+                                           {"error_" + law.name() + "_percent", "1"},
+                                           times(100),
+                                           [i = study_law_index(law)](const P &p)
+                                           { return i < p.error.size() ? p.error[i] : nan; }));
       columns.push_back(csv_text_column<P>("status", [](const P &p) { return p.status; }));
       return columns;
     }

@@ -1,6 +1,7 @@
 // One wall height of `kimp study`: mesh + FEM impact (docs/physics.md §4) with a per-height cache.
 #include "app/study/study_fem.h"
 
+#include <algorithm>
 #include <chrono>
 #include <fmt/format.h>
 #include <fstream>
@@ -48,11 +49,14 @@ namespace kimp::app
     StudyFits  fits;
     for (const FitVariant &variant : fit_variants(settings))
     {
-      const bool kv = variant.name == "kelvin_voigt_cor_fixed";
-      if (!kv && variant.name != "jankowski_cor_fixed")
+      const auto law =
+        std::find_if(fits.laws.begin(),
+                     fits.laws.end(),
+                     [&](const StudyLawFit &l) { return l.law->fit_variant() == variant.name; });
+      if (law == fits.laws.end())
         continue;
-      std::optional<FitResult> &fit    = kv ? fits.kelvin_voigt : fits.jankowski;
-      std::string              &status = kv ? fits.kelvin_voigt_status : fits.jankowski_status;
+      std::optional<FitResult> &fit    = law->fit;
+      std::string              &status = law->status;
       try
       {
         // The same path as `kimp fit` (fit_fem_case), so both give the same k.

@@ -4,10 +4,12 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/fem/fem_common.h"
 #include "app/fem/fem_estimate.h"
 #include "app/fem/fem_scene.h"
+#include "app/study/study_laws.h"
 #include "app/study/study_scene.h"
 #include "io/fem_results.h"
 #include "io/summary.h"
@@ -71,21 +73,21 @@ namespace kimp::app
                               const io::OutputDir &output,
                               const std::string   &case_name = "");
 
-  /** The study's two fits of one FEM case (laws 2 and 4 at the study COR). */
+  /** The study's fits of one FEM case (study_laws() at the study COR). */
   struct StudyFits
   {
-    std::optional<fit::FitResult> kelvin_voigt;
-    std::optional<fit::FitResult> jankowski;
-    /// "ok", "warning: ..." (fit kept) or "failed: ..." (no fit), see fit::fit_verdict()
-    std::string kelvin_voigt_status = "ok";
-    std::string jankowski_status    = "ok";
-    double      seconds             = 0.0; ///< s
+    /// Per study law: "ok", "warning: ..." (fit kept) or "failed: ..." (no fit), see
+    /// fit::fit_verdict()
+    std::vector<StudyLawFit> laws    = unfitted_study_laws();
+    double                   seconds = 0.0; ///< s
 
-    bool ok() const { return kelvin_voigt && jankowski; }
+    bool ok() const { return all_fitted(laws); }
+    /// The entry of the study law named `law` ("kelvin_voigt").
+    const StudyLawFit &law(std::string_view name) const { return law_fit(laws, name); }
   };
 
   /**
-   * Fit Kelvin-Voigt and Jankowski at settings.cor to `fem_case` through fit_fem_case(), the
+   * Fit each of study_laws() at settings.cor to `fem_case` through fit_fem_case(), the
    * path `kimp fit` takes. A failed fit is logged and reported in its status, not thrown.
    */
   StudyFits fit_study_laws(const io::FemCase &fem_case, const StudyFitScene &settings);

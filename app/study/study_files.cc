@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/laws/fit_run.h"
+#include "app/study/study_columns.h"
 #include "app/study/study_internal.h"
 #include "app/study/study_velocity.h"
 #include "base/format.h"
@@ -95,31 +96,31 @@ namespace kimp::app::study_internal
       .number("slab_mass", "kg/m")
       .number("fem_peak_force", "kN/m")
       .number("fem_contact_duration", "ms");
-    for (const StudyLaw &law : study_laws)
+    for (const StudyLaw &law : study_laws())
     {
-      const std::string name = law.name;
+      const std::string name = law.name();
       add_k_columns(t, law);
-      t.number(name + "_total", law.total_unit)
+      t.number(name + "_total", law.total_unit())
         .number(name + "_normalised_rms", "1")
         .number(name + "_peak_force_ratio", "1", short_format)
         .number(name + "_impulse_ratio", "1", short_format)
         .number(name + "_contact_duration_ratio", "1", short_format)
-        .number("thesis_" + name, law.per_metre_unit);
+        .number("thesis_" + name, law.per_metre_unit());
     }
-    for (const StudyLaw &law : study_laws)
-      t.number(std::string(law.name) + "_numerical_error", law.per_metre_unit, error_format);
-    for (const StudyLaw &law : study_laws)
-      t.number(std::string(law.name) + "_total_numerical_error", law.total_unit, error_format);
+    for (const StudyLaw &law : study_laws())
+      t.number(law.name() + "_numerical_error", law.per_metre_unit(), error_format);
+    for (const StudyLaw &law : study_laws())
+      t.number(law.name() + "_total_numerical_error", law.total_unit(), error_format);
     t.text("fidelity")
       .number("fem_h_contact", "cm", short_format)
       .number("fem_penalty_factor", "1", short_format)
-      .text("fidelity_converged")
-      .text("kelvin_voigt_status")
-      .text("jankowski_status")
-      .text("material")
-      .number("linear_kelvin_voigt", "kN/mm/m")
-      .number("linear_jankowski", "kN/mm^1.5/m")
-      .text("fem_from_cache");
+      .text("fidelity_converged");
+    for (const StudyLaw &law : study_laws())
+      t.text(law.name() + "_status");
+    t.text("material");
+    for (const StudyLaw &law : study_laws())
+      t.number("linear_" + law.name(), law.per_metre_unit());
+    t.text("fem_from_cache");
     for (const StudyHeight *h : cases)
     {
       const std::optional<ThesisStiffness> thesis = thesis_row(h->wall_height);
@@ -132,9 +133,9 @@ namespace kimp::app::study_internal
                      {h->fem_case.slab_mass,
                       fem.peak_force.value_or(nan) / 1e3,
                       fem.contact_duration.value_or(nan) * 1e3});
-      for (const StudyLaw &law : study_laws)
+      for (const StudyLawFit &law : h->laws)
       {
-        const std::optional<FitResult> &fit = h->*law.fit;
+        const std::optional<FitResult> &fit = law.fit;
         add_k_cells(row, fit);
         append_numbers(row,
                        {per_metre(fit) * width,
@@ -142,23 +143,23 @@ namespace kimp::app::study_internal
                         fit ? fit->peak_force_ratio() : nan,
                         fit ? fit->impulse_ratio() : nan,
                         fit ? fit->contact_duration_ratio() : nan,
-                        thesis ? (*thesis).*law.thesis : nan});
+                        thesis_k(thesis, *law.law)});
       }
-      for (const StudyLaw &law : study_laws)
-        row.push_back(numerical_error(*h, law.exponent));
-      for (const StudyLaw &law : study_laws)
-        row.push_back(total_stiffness_error(0.0, numerical_error(*h, law.exponent), width));
+      for (const StudyLaw &law : study_laws())
+        row.push_back(numerical_error(*h, law));
+      for (const StudyLaw &law : study_laws())
+        row.push_back(total_stiffness_error(0.0, numerical_error(*h, law), width));
       row.insert(row.end(),
                  {std::string(h->auto_fidelity ? "auto" : "fixed"),
                   used_h_contact(scene, *h) * 100.0,
                   used_penalty(scene, *h),
-                  std::string(h->auto_fidelity ? (h->ladder.converged ? "yes" : "no") : ""),
-                  h->kelvin_voigt_status,
-                  h->jankowski_status,
-                  std::string(h->inelastic ? "inelastic" : "linear"),
-                  per_metre(h->linear_kelvin_voigt),
-                  per_metre(h->linear_jankowski),
-                  std::string(h->fem_from_cache ? "yes" : "no")});
+                  std::string(h->auto_fidelity ? (h->ladder.converged ? "yes" : "no") : "")});
+      for (const StudyLawFit &law : h->laws)
+        row.push_back(law.status);
+      row.push_back(std::string(h->inelastic ? "inelastic" : "linear"));
+      for (const StudyLawFit &law : h->laws)
+        row.push_back(per_metre(law.linear));
+      row.push_back(std::string(h->fem_from_cache ? "yes" : "no"));
       t.add_row(std::move(row));
     }
     return t;
@@ -166,19 +167,85 @@ namespace kimp::app::study_internal
 
   namespace
   {
-    /// A column name of fidelity_levels.csv for a quantity: key_unit ("N/m" -> "N_per_m").
-    std::string quantity_column(const std::string &key, const std::string &unit)
+    /// One level of a height's fidelity ladder.
+    struct FidelityRow
     {
-      if (unit == "1")
-        return key;
-      std::string u = unit;
-      for (const auto &[from, to] :
-           std::vector<std::pair<std::string, std::string>>{{"N*s/m", "N_s_per_m"},
-                                                            {"N/m", "N_per_m"}})
-        if (u == from)
-          u = to;
-      return key + "_" + u;
+      const StudyHeight *h     = nullptr;
+      std::size_t        level = 0;
+
+      const LevelOutcome  &outcome() const { return h->ladder.outcomes[level]; }
+      const FidelityLevel &fem_level() const { return h->ladder.levels[level]; }
+      bool                 used() const { return level == h->ladder.used; }
+    };
+
+    /// The columns of fidelity_levels.csv (every height) and study.h5 /fidelity/<H> (one
+    /// height): the level, k of each study law, cost, state and (CSV) its engineer's quantities.
+    std::vector<StudyColumn<FidelityRow>> fidelity_columns()
+    {
+      using R           = FidelityRow;
+      const auto yes_no = [](bool value) { return std::string(value ? "yes" : "no"); };
+      std::vector<StudyColumn<R>> columns = {
+        number_column<R>({}, {"wall_height", "m"}, {}, [](const R &r) { return r.h->wall_height; }),
+        number_column<R>({"h_contact", "m"},
+                         {"h_contact", "cm"},
+                         times(100),
+                         [](const R &r) { return r.fem_level().h_contact; }),
+        same_column<R>("penalty_factor",
+                       "1",
+                       [](const R &r) { return r.fem_level().penalty_factor; })};
+      for (const StudyLaw &law : study_laws())
+        columns.push_back(same_column<R>(law.name(),
+                                         law.per_metre_unit(),
+                                         [i = study_law_index(law), n = law.exponent()](const R &r)
+                                         {
+                                           const std::vector<double> &k = r.outcome().k;
+                                           return stiffness_to_kn_per_mm(i < k.size() ? k[i] : nan,
+                                                                         n);
+                                         }));
+      columns.insert(
+        columns.end(),
+        {number_column<R>({"seconds", "s"},
+                          {"wall_time", "s"},
+                          {},
+                          [](const R &r) { return r.outcome().seconds; }),
+         hdf5_column<R>("ok", "1", [](const R &r) { return flag(r.outcome().ok); }),
+         hdf5_column<R>("from_cache", "1", [](const R &r) { return flag(r.outcome().from_cache); }),
+         csv_text_column<R>("fem_from_cache",
+                            [yes_no](const R &r) { return yes_no(r.outcome().from_cache); }),
+         hdf5_column<R>("used", "1", [](const R &r) { return flag(r.used()); }),
+         csv_text_column<R>("used", [yes_no](const R &r) { return yes_no(r.used()); }),
+         csv_text_column<R>("status", [](const R &r) { return r.outcome().status; })});
+      // The engineer's quantities of the level's record (SI; empty: not shown).
+      for (const LadderQuantity &q : ladder_quantities())
+        columns.push_back(number_column<R>({},
+                                           {q.key, q.unit},
+                                           {},
+                                           [key = q.key](const R &r)
+                                           {
+                                             const auto &values = r.outcome().quantities;
+                                             const auto  it     = values.find(key);
+                                             return it == values.end() ? nan : it->second;
+                                           }));
+      return columns;
     }
+
+    /// Every level climbed by the heights `heights`, in order.
+    std::vector<FidelityRow> fidelity_rows(const std::vector<const StudyHeight *> &heights)
+    {
+      std::vector<FidelityRow> rows;
+      for (const StudyHeight *h : heights)
+        for (std::size_t i = 0; i < h->ladder.outcomes.size(); ++i)
+          rows.push_back({h, i});
+      return rows;
+    }
+
+    /// One engineer's quantity of a height against a comparison run.
+    struct QuantityRow
+    {
+      double               wall_height = 0.0; ///< m
+      std::string          comparison;        ///< "numerical error", "far side absorbing"
+      const QuantityError *error = nullptr;
+    };
 
     /// DIR/fidelity_quantities.csv: per height the engineer's quantities of the reported level
     /// against the second finest level ("numerical error") and against the other far side
@@ -186,41 +253,32 @@ namespace kimp::app::study_internal
     void write_quantity_convergence_csv(const OutputDir                &output,
                                         const std::vector<StudyHeight> &heights)
     {
-      std::vector<std::vector<std::string>> rows;
-      const auto add = [&](double height, const std::string &comparison, const QuantityError &e)
-      {
-        rows.push_back({number(height),
-                        comparison,
-                        e.key,
-                        e.unit,
-                        number(e.coarse),
-                        number(e.fine),
-                        number(100.0 * e.relative),
-                        number(100.0 * ladder_quantity_tolerance),
-                        e.verdict});
-      };
+      std::vector<QuantityRow> rows;
       for (const StudyHeight &h : heights)
       {
         for (const QuantityError &e : h.ladder.quantity_errors)
-          add(h.wall_height, "numerical error", e);
+          rows.push_back({h.wall_height, "numerical error", &e});
         for (const QuantityError &e : h.ladder.far_side_spread)
-          add(h.wall_height, "far side " + h.ladder.other_far_side, e);
+          rows.push_back({h.wall_height, "far side " + h.ladder.other_far_side, &e});
       }
       if (rows.empty())
         return;
+      using R = QuantityRow;
       // "other": the second finest level, or the run with the other far side; "reported": the
       // reported level.
-      write_csv_atomic(output.file("fidelity_quantities.csv"),
-                       {"wall_height_m",
-                        "comparison",
-                        "quantity",
-                        "unit",
-                        "other",
-                        "reported",
-                        "change_percent",
-                        "target_percent",
-                        "verdict"},
-                       rows);
+      const std::vector<StudyColumn<R>> columns = {
+        same_column<R>("wall_height", "m", [](const R &r) { return r.wall_height; }),
+        csv_text_column<R>("comparison", [](const R &r) { return r.comparison; }),
+        csv_text_column<R>("quantity", [](const R &r) { return r.error->key; }),
+        csv_text_column<R>("unit", [](const R &r) { return r.error->unit; }),
+        same_column<R>("other", "", [](const R &r) { return r.error->coarse; }),
+        same_column<R>("reported", "", [](const R &r) { return r.error->fine; }),
+        same_column<R>("change_percent", "1", [](const R &r) { return 100.0 * r.error->relative; }),
+        same_column<R>("target_percent",
+                       "1",
+                       [](const R &) { return 100.0 * ladder_quantity_tolerance; }),
+        csv_text_column<R>("verdict", [](const R &r) { return r.error->verdict; })};
+      study_table(columns, rows, StudyFile::csv).write_csv(output.file("fidelity_quantities.csv"));
     }
   } // namespace
 
@@ -239,42 +297,14 @@ namespace kimp::app::study_internal
                           cases.end(),
                           [](const StudyHeight *h) { return h->reference_velocity; });
     k_table(scene, cases).write_csv(output.file("k_table.csv"));
-    std::vector<std::vector<std::string>> level_rows;
+    std::vector<const StudyHeight *> climbed;
     for (const StudyHeight &h : heights)
-      for (std::size_t i = 0; i < h.ladder.outcomes.size(); ++i)
-      {
-        const LevelOutcome      &o   = h.ladder.outcomes[i];
-        std::vector<std::string> row = {number(h.wall_height),
-                                        number(h.ladder.levels[i].h_contact * 100.0),
-                                        number(h.ladder.levels[i].penalty_factor),
-                                        number(stiffness_to_kn_per_mm(o.k_kelvin_voigt, 1.0)),
-                                        number(stiffness_to_kn_per_mm(o.k_jankowski, 1.5)),
-                                        number(o.seconds),
-                                        o.from_cache ? "yes" : "no",
-                                        i == h.ladder.used ? "yes" : "no",
-                                        o.status};
-        // The engineer's quantities of the level's record (SI; empty: not shown).
-        for (const LadderQuantity &q : ladder_quantities())
-        {
-          const auto it = o.quantities.find(q.key);
-          row.push_back(it == o.quantities.end() ? std::string() : number(it->second));
-        }
-        level_rows.push_back(std::move(row));
-      }
-    if (level_rows.empty())
+      climbed.push_back(&h);
+    const std::vector<FidelityRow> levels = fidelity_rows(climbed);
+    if (levels.empty())
       return;
-    std::vector<std::string> header = {"wall_height_m",
-                                       "h_contact_cm",
-                                       "penalty_factor",
-                                       "kelvin_voigt_kN_per_mm_per_m",
-                                       "jankowski_kN_per_mm1.5_per_m",
-                                       "wall_time_s",
-                                       "fem_from_cache",
-                                       "used",
-                                       "status"};
-    for (const LadderQuantity &q : ladder_quantities())
-      header.push_back(quantity_column(q.key, q.unit));
-    write_csv_atomic(output.file("fidelity_levels.csv"), header, level_rows);
+    study_table(fidelity_columns(), levels, StudyFile::csv)
+      .write_csv(output.file("fidelity_levels.csv"));
     write_quantity_convergence_csv(output, heights);
   }
 
@@ -285,11 +315,11 @@ namespace kimp::app::study_internal
 
   void write_study_fits(ResultsGroup &g, const StudyHeight &h, double width)
   {
-    for (const StudyLaw &law : study_laws)
+    for (const StudyLawFit &law : h.laws)
     {
-      ResultsGroup f = g.group(law.name);
-      f.set_status(h.*law.status);
-      if (const std::optional<FitResult> &fit = h.*law.fit)
+      ResultsGroup f = g.group(law.law->name());
+      f.set_status(law.status);
+      if (const std::optional<FitResult> &fit = law.fit)
         write_fit_result(f, *fit, width, FitResultLayout::study);
     }
   }
@@ -326,27 +356,7 @@ namespace kimp::app::study_internal
     {
       if (!h.auto_fidelity)
         continue;
-      Table levels;
-      levels.number("h_contact", "m")
-        .number("penalty_factor", "1")
-        .number("kelvin_voigt", "kN/mm/m")
-        .number("jankowski", "kN/mm^1.5/m")
-        .number("seconds", "s")
-        .number("ok", "1")
-        .number("from_cache", "1")
-        .number("used", "1");
-      for (std::size_t i = 0; i < h.ladder.outcomes.size(); ++i)
-      {
-        const LevelOutcome &o = h.ladder.outcomes[i];
-        levels.add_row(number_cells({h.ladder.levels[i].h_contact,
-                                     h.ladder.levels[i].penalty_factor,
-                                     stiffness_to_kn_per_mm(o.k_kelvin_voigt, 1.0),
-                                     stiffness_to_kn_per_mm(o.k_jankowski, 1.5),
-                                     o.seconds,
-                                     flag(o.ok),
-                                     flag(o.from_cache),
-                                     flag(i == h.ladder.used)}));
-      }
+      const Table  levels   = study_table(fidelity_columns(), fidelity_rows({&h}), StudyFile::hdf5);
       ResultsGroup fidelity = root.group("fidelity");
       levels.write_hdf5(fidelity, h.name);
       ResultsGroup table = fidelity.group(h.name);
@@ -433,6 +443,25 @@ namespace kimp::app::study_internal
     return text + fmt::format("total {} s", base::sig(result.wall_seconds, 3));
   }
 
+  namespace
+  {
+    /// summary.json's status of a height: "ok", else "warning: " or (a fit failed) "failed: "
+    /// and each law's status ("Kelvin-Voigt: ...; Jankowski: ...").
+    std::string height_status(const StudyHeight &h)
+    {
+      if (all_ok(h.laws))
+        return "ok";
+      bool        failed = false;
+      std::string laws;
+      for (const StudyLawFit &law : h.laws)
+      {
+        failed = failed || law.status.rfind("failed", 0) == 0;
+        laws += fmt::format("{}{}: {}", laws.empty() ? "" : "; ", law.law->title, law.status);
+      }
+      return (failed ? "failed: " : "warning: ") + laws;
+    }
+  } // namespace
+
   nlohmann::ordered_json summary_json(const StudyScene &scene, const StudyResult &result)
   {
     nlohmann::ordered_json j = io::summary_preamble("study");
@@ -461,18 +490,8 @@ namespace kimp::app::study_internal
     j["cases"] = nlohmann::ordered_json::array();
     for (const StudyHeight &h : result.heights)
     {
-      const bool        both_ok = h.kelvin_voigt_status == "ok" && h.jankowski_status == "ok";
-      const std::string status  = both_ok ?
-                                    "ok" :
-                                    fmt::format("{}Kelvin-Voigt: {}; Jankowski: {}",
-                                               h.kelvin_voigt_status.rfind("failed", 0) == 0 ||
-                                                   h.jankowski_status.rfind("failed", 0) == 0 ?
-                                                  "failed: " :
-                                                  "warning: ",
-                                               h.kelvin_voigt_status,
-                                               h.jankowski_status);
       j["cases"].push_back({{"name", h.name},
-                            {"status", status},
+                            {"status", height_status(h)},
                             {"wall_height", h.wall_height},
                             {"wall_time", h.fem_seconds + h.fit_seconds}});
     }
@@ -505,13 +524,13 @@ namespace kimp::app::study_internal
                                        std::pair{"contact_duration", fem.contact_duration}})
         if (value)
           row[std::string("fem_") + key] = *value;
-      for (const StudyLaw &law : study_laws)
+      for (const StudyLawFit &law : h.laws)
       {
         nlohmann::ordered_json f         = law_json(h, law, scene.fit.width);
-        const double           reference = thesis ? (*thesis).*law.thesis : nan;
+        const double           reference = thesis_k(thesis, *law.law);
         if (std::isfinite(reference))
           f["thesis_table_2_1"] = reference;
-        row[law.name] = f;
+        row[law.law->name()] = f;
       }
       table.push_back(row);
     }

@@ -129,7 +129,8 @@ namespace kimp::app::study_internal
     const auto run             = [&](const FidelityLevel &level)
     {
       LevelOutcome outcome;
-      Computed     c;
+      outcome.k.assign(study_laws().size(), nan);
+      Computed c;
       try
       {
         StudyFemCase fem =
@@ -154,12 +155,11 @@ namespace kimp::app::study_internal
         outcome.seconds    = fem.wall_seconds + c.fits.seconds;
         outcome.from_cache = fem.from_cache;
         outcome.ok         = c.fits.ok();
-        outcome.status =
-          outcome.ok ? "ok" : "fit " + c.fits.kelvin_voigt_status + " / " + c.fits.jankowski_status;
+        outcome.status     = outcome.ok ? "ok" : "fit " + joined_status(c.fits.laws);
         if (outcome.ok)
         {
-          outcome.k_kelvin_voigt = c.fits.kelvin_voigt->stiffness.value;
-          outcome.k_jankowski    = c.fits.jankowski->stiffness.value;
+          for (std::size_t i = 0; i < c.fits.laws.size(); ++i)
+            outcome.k[i] = c.fits.laws[i].fit->stiffness.value;
         }
       }
       catch (const std::exception &error)
@@ -168,11 +168,10 @@ namespace kimp::app::study_internal
         logger().warn("{}: level {} {}", h.name, level.label(), outcome.status);
       }
       computed.push_back(std::move(c));
-      logger().info("{}: level {}: k_KV {:.4g} kN/mm/m, k_Jankowski {:.4g} kN/mm^1.5/m ({})",
+      logger().info("{}: level {}: {} ({})",
                     h.name,
                     level.label(),
-                    stiffness_to_kn_per_mm(outcome.k_kelvin_voigt, 1.0),
-                    stiffness_to_kn_per_mm(outcome.k_jankowski, 1.5),
+                    k_text(outcome.k, "k_"),
                     outcome.status);
       return outcome;
     };
@@ -198,14 +197,12 @@ namespace kimp::app::study_internal
                              output,
                              h.name + "_linear_" + h.ladder.used_level().label(),
                              h);
-    logger().info("{}: fidelity auto: {} -> level {} ({}); numerical error of k: KV {:.3g} "
-                  "kN/mm/m, Jankowski {:.3g} kN/mm^1.5/m",
+    logger().info("{}: fidelity auto: {} -> level {} ({}); numerical error of k: {}",
                   h.name,
                   h.ladder.reason,
                   h.ladder.used_level().label(),
                   h.ladder.converged ? "converged" : "NOT converged",
-                  stiffness_to_kn_per_mm(h.ladder.error_kelvin_voigt, 1.0),
-                  stiffness_to_kn_per_mm(h.ladder.error_jankowski, 1.5));
+                  k_text(h.ladder.error, ""));
     quantities_on_the_ladder(scene.fem, material, wall_height, output, prefix, h);
     return h;
   }

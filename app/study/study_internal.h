@@ -3,6 +3,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -56,8 +57,11 @@ namespace kimp::app::study_internal
   double per_metre(const std::optional<fit::FitResult> &fit);
   /// Lower or upper end of the 95 % interval of k in kN/mm^n per metre (or NaN).
   double per_metre_bound(const std::optional<fit::FitResult> &fit, bool upper);
-  /// Numerical error of k (fidelity ladder) in kN/mm^n per metre; NaN if not estimated.
-  double numerical_error(const StudyHeight &h, double exponent);
+  /// Numerical error of the k of `law` (fidelity ladder) in kN/mm^n per metre; NaN if not
+  /// estimated.
+  double numerical_error(const StudyHeight &h, const StudyLaw &law);
+  /// k of `law` in thesis Table 2.1 at `row` in kN/mm^n per metre (NaN: no row or no value).
+  double thesis_k(const std::optional<ThesisStiffness> &row, const StudyLaw &law);
   /// Contact element size of the FEM level used for `h`, m.
   double used_h_contact(const StudyScene &scene, const StudyHeight &h);
   /// Penalty factor of the FEM level used for `h`.
@@ -70,42 +74,11 @@ namespace kimp::app::study_internal
     return value ? 1.0 : 0.0;
   }
 
-  /// One of the two laws fitted at every height: where a height and thesis Table 2.1 keep it.
-  struct StudyLaw
-  {
-    const char                   *name;           ///< "kelvin_voigt" or "jankowski"
-    double                        exponent;       ///< n of k in N/m^n
-    const char                   *per_metre_unit; ///< of k per metre, kN/mm^n/m
-    const char                   *total_unit;     ///< of k_total, kN/mm^n
-    std::optional<fit::FitResult> StudyHeight::*fit;
-    std::optional<fit::FitResult> StudyHeight::*linear; ///< the fit with linear materials
-    std::string StudyHeight::*status;
-    double ThesisStiffness::*thesis;
-  };
-
-  /// Kelvin-Voigt, then Jankowski's, in the order of every table and summary.
-  inline const StudyLaw study_laws[] = {{"kelvin_voigt",
-                                         1.0,
-                                         "kN/mm/m",
-                                         "kN/mm",
-                                         &StudyHeight::kelvin_voigt,
-                                         &StudyHeight::linear_kelvin_voigt,
-                                         &StudyHeight::kelvin_voigt_status,
-                                         &ThesisStiffness::kelvin_voigt},
-                                        {"jankowski",
-                                         1.5,
-                                         "kN/mm^1.5/m",
-                                         "kN/mm^1.5",
-                                         &StudyHeight::jankowski,
-                                         &StudyHeight::linear_jankowski,
-                                         &StudyHeight::jankowski_status,
-                                         &ThesisStiffness::jankowski}};
-
   /// summary.json's object of `law` at `h`: status and, when fitted, k per metre with its 95 %
   /// interval and unit and the numerical error; with `width` (m) also k_total and the fit's
   /// normalised RMS.
   nlohmann::ordered_json
-  law_json(const StudyHeight &h, const StudyLaw &law, std::optional<double> width = {});
+  law_json(const StudyHeight &h, const StudyLawFit &law, std::optional<double> width = {});
 
   /// Adds the columns `law`, `law`_lower and `law`_upper: k per metre and its 95 % interval.
   void add_k_columns(Table &t, const StudyLaw &law);
@@ -124,6 +97,14 @@ namespace kimp::app::study_internal
         groups[{r.record, r.law}].push_back(&r);
     return groups;
   }
+
+  /// The header and rule of a Markdown table with a group of columns per study law: `lead` (its
+  /// `lead_columns` column titles, "| H (m) | v (m/s) |"), the `law_columns` titles `titles(law)`
+  /// of each law (" k_KV kN/mm/m | error KV |"), then "status".
+  std::string law_table_header(const std::string                                  &lead,
+                               std::size_t                                         lead_columns,
+                               std::size_t                                         law_columns,
+                               const std::function<std::string(const StudyLaw &)> &titles);
 
   /// Every value times `factor`.
   std::vector<double> scale(std::vector<double> values, double factor);

@@ -6,6 +6,9 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <stdexcept>
+#include <string_view>
+
+#include "app/study/study_laws.h"
 
 namespace kimp::app
 {
@@ -32,8 +35,29 @@ namespace kimp::app
 
     bool within(const LevelOutcome &coarse, const LevelOutcome &fine, double tolerance)
     {
-      return relative_change(coarse.k_kelvin_voigt, fine.k_kelvin_voigt) <= tolerance &&
-             relative_change(coarse.k_jankowski, fine.k_jankowski) <= tolerance;
+      for (std::size_t i = 0; i < fine.k.size(); ++i)
+        if (!(relative_change(coarse.k.at(i), fine.k[i]) <= tolerance))
+          return false;
+      return true;
+    }
+
+    /// Every law's k is known.
+    bool all_finite(const std::vector<double> &k)
+    {
+      return std::all_of(k.begin(), k.end(), [](double v) { return std::isfinite(v); });
+    }
+
+    /// "4.1 % (KV) and 2.3 % (Jankowski)": the change of each law's k (named by study_laws()).
+    std::string changes_text(const LevelOutcome &before, const LevelOutcome &after)
+    {
+      std::string text;
+      for (std::size_t i = 0; i < after.k.size(); ++i)
+        text += fmt::format("{}{:.3g} % ({})",
+                            i ? " and " : "",
+                            100.0 * relative_change(before.k.at(i), after.k[i]),
+                            i < study_laws().size() ? study_laws()[i].short_name :
+                                                      std::string_view("law"));
+      return text;
     }
 
     double quadrature(double a, double b)
@@ -151,8 +175,7 @@ namespace kimp::app
     // `first_known`: index of an already computed level that starts the phase (npos: none).
     const auto phase = [&](const std::vector<FidelityLevel> &levels,
                            std::size_t                       first_known,
-                           double                           &error_kv,
-                           double                           &error_j,
+                           std::vector<double>              &errors,
                            const char                       *what)
     {
       std::size_t previous = first_known;
@@ -162,8 +185,7 @@ namespace kimp::app
         result.outcomes.push_back(run(level));
         const std::size_t   i       = result.outcomes.size() - 1;
         const LevelOutcome &outcome = result.outcomes[i];
-        if (!outcome.ok || !std::isfinite(outcome.k_kelvin_voigt) ||
-            !std::isfinite(outcome.k_jankowski))
+        if (!outcome.ok || outcome.k.empty() || !all_finite(outcome.k))
         {
           result.reason = fmt::format("{} level {} unusable ({}): reporting the previous level",
                                       what,
@@ -175,19 +197,18 @@ namespace kimp::app
         if (previous < i)
         {
           const LevelOutcome &before = result.outcomes[previous];
-          error_kv                   = std::abs(outcome.k_kelvin_voigt - before.k_kelvin_voigt);
-          error_j                    = std::abs(outcome.k_jankowski - before.k_jankowski);
+          errors.assign(outcome.k.size(), 0.0);
+          for (std::size_t law = 0; law < outcome.k.size(); ++law)
+            errors[law] = std::abs(outcome.k[law] - before.k.at(law));
           if (within(before, outcome, tolerance))
           {
-            result.reason =
-              fmt::format("{} converged at {}: k changed by {:.3g} % (KV) and "
-                          "{:.3g} % (Jankowski) from {} (tolerance {:.3g} %)",
-                          what,
-                          level.label(),
-                          100.0 * relative_change(before.k_kelvin_voigt, outcome.k_kelvin_voigt),
-                          100.0 * relative_change(before.k_jankowski, outcome.k_jankowski),
-                          result.levels[previous].label(),
-                          100.0 * tolerance);
+            result.reason = fmt::format("{} converged at {}: k changed by {} from {} (tolerance "
+                                        "{:.3g} %)",
+                                        what,
+                                        level.label(),
+                                        changes_text(before, outcome),
+                                        result.levels[previous].label(),
+                                        100.0 * tolerance);
             return true;
           }
         }
@@ -208,11 +229,8 @@ namespace kimp::app
     std::vector<FidelityLevel> mesh;
     for (const double h : h_contact_levels)
       mesh.push_back({h, penalty_levels.front()});
-    const bool mesh_converged = phase(mesh,
-                                      std::numeric_limits<std::size_t>::max(),
-                                      result.mesh_error_kelvin_voigt,
-                                      result.mesh_error_jankowski,
-                                      "mesh");
+    const bool mesh_converged =
+      phase(mesh, std::numeric_limits<std::size_t>::max(), result.mesh_error, "mesh");
     if (!result.has_usable_level())
       return result;
     // A level that failed after a usable one ends the climb.
@@ -226,19 +244,18 @@ namespace kimp::app
       const double               h = result.used_level().h_contact;
       for (std::size_t j = 1; j < penalty_levels.size(); ++j)
         penalty.push_back({h, penalty_levels[j]});
-      penalty_converged = phase(penalty,
-                                result.used,
-                                result.penalty_error_kelvin_voigt,
-                                result.penalty_error_jankowski,
-                                "penalty");
+      penalty_converged = phase(penalty, result.used, result.penalty_error, "penalty");
       result.reason     = mesh_reason + "; " + result.reason;
     }
     result.converged = mesh_converged && penalty_converged && !mesh_failed &&
                        result.used + 1 == result.outcomes.size();
-    result.error_kelvin_voigt =
-      quadrature(result.mesh_error_kelvin_voigt, result.penalty_error_kelvin_voigt);
-    result.error_jankowski =
-      quadrature(result.mesh_error_jankowski, result.penalty_error_jankowski);
+    // Per law, NaN where a phase did not estimate its error.
+    const std::size_t n_laws = result.used_outcome().k.size();
+    result.mesh_error.resize(n_laws, std::numeric_limits<double>::quiet_NaN());
+    result.penalty_error.resize(n_laws, std::numeric_limits<double>::quiet_NaN());
+    result.error.resize(n_laws);
+    for (std::size_t law = 0; law < n_laws; ++law)
+      result.error[law] = quadrature(result.mesh_error[law], result.penalty_error[law]);
     add_quantity_errors(result);
     return result;
   }

@@ -58,12 +58,12 @@ namespace kimp::app
   /** What the caller computed on one level (FEM + both fits). */
   struct LevelOutcome
   {
-    bool        ok             = false;
-    std::string status         = "ok"; ///< "ok" or why the level is unusable
-    double      k_kelvin_voigt = std::numeric_limits<double>::quiet_NaN(); ///< N/m per m
-    double      k_jankowski    = std::numeric_limits<double>::quiet_NaN(); ///< N/m^1.5 per m
-    double      seconds        = 0.0;   ///< s spent on the level (FEM + fits)
-    bool        from_cache     = false; ///< FEM read from the study's cache
+    bool        ok     = false;
+    std::string status = "ok"; ///< "ok" or why the level is unusable
+    /// k of each study law (study_laws() order), N/m^n per m; NaN: not fitted
+    std::vector<double> k;
+    double              seconds    = 0.0;   ///< s spent on the level (FEM + fits)
+    bool                from_cache = false; ///< FEM read from the study's cache
     /// The engineer's quantities of the level's record (ladder_quantities() keys, SI); a key
     /// the record does not show is absent.
     std::map<std::string, double> quantities;
@@ -78,15 +78,13 @@ namespace kimp::app
     std::size_t used      = std::numeric_limits<std::size_t>::max();
     bool        converged = false; ///< the tolerance was met in the mesh and the penalty phase
     std::string reason;            ///< why the climb stopped (for the log and the report)
-    /// Numerical error estimates of the reported k, N/m^n per m: change to the previous mesh level
-    /// and to the previous penalty level (NaN: not estimated, a phase with one level), and their
-    /// quadrature sum (NaN if neither phase could estimate it).
-    double mesh_error_kelvin_voigt    = std::numeric_limits<double>::quiet_NaN();
-    double mesh_error_jankowski       = std::numeric_limits<double>::quiet_NaN();
-    double penalty_error_kelvin_voigt = std::numeric_limits<double>::quiet_NaN();
-    double penalty_error_jankowski    = std::numeric_limits<double>::quiet_NaN();
-    double error_kelvin_voigt         = std::numeric_limits<double>::quiet_NaN();
-    double error_jankowski            = std::numeric_limits<double>::quiet_NaN();
+    /// Numerical error estimates of the reported k of each law (the order of LevelOutcome::k),
+    /// N/m^n per m: change to the previous mesh level and to the previous penalty level (NaN: not
+    /// estimated, a phase with one level), and their quadrature sum (NaN if neither phase could
+    /// estimate it). Empty before the ladder ran; error_of() reads them.
+    std::vector<double> mesh_error;
+    std::vector<double> penalty_error;
+    std::vector<double> error;
 
     /// The engineer's quantities between the two finest levels run (the reported level and
     /// the one before it in the climb), one per ladder_quantities() entry; empty with one level.
@@ -98,15 +96,20 @@ namespace kimp::app
     std::vector<QuantityError> far_side_spread;
     std::string                other_far_side;
 
-    bool                 has_usable_level() const { return used < outcomes.size(); }
+    bool has_usable_level() const { return used < outcomes.size(); }
+    /// error[law], NaN when not estimated.
+    double error_of(std::size_t law) const
+    {
+      return law < error.size() ? error[law] : std::numeric_limits<double>::quiet_NaN();
+    }
     const LevelOutcome  &used_outcome() const { return outcomes.at(used); }
     const FidelityLevel &used_level() const { return levels.at(used); }
   };
 
   /**
    * Climb the fidelity ladder. Mesh phase: run (h, p₀) for h in `h_contact_levels` (coarse to
-   * fine, p₀ = penalty_levels[0]) and stop at the first level whose k_KV and k_Jankowski both
-   * differ by at most `tolerance` (relative to the finer value) from the previous level. Penalty
+   * fine, p₀ = penalty_levels[0]) and stop at the first level whose k of every law
+   * differs by at most `tolerance` (relative to the finer value) from the previous level. Penalty
    * phase (if more than one penalty level): at the mesh level reached, run the further penalty
    * factors with the same rule. The reported level is the last one run; its error per phase is
    * |k − k_previous| (not a Richardson extrapolation: convergence need not be monotone, and for

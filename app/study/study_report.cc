@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <limits>
 #include <map>
 #include <optional>
@@ -20,6 +21,13 @@ namespace kimp::app::study_internal
 {
   namespace
   {
+    /// k of `law` in `k` (SI, per study law) in kN/mm^n per metre; NaN when missing.
+    double law_k_display(const std::vector<double> &k, const StudyLaw &law)
+    {
+      const std::size_t i = study_law_index(law);
+      return i < k.size() ? stiffness_to_kn_per_mm(k[i], law.exponent()) : nan;
+    }
+
     /// The "Accuracy against cost: FEM" section: k against mesh, penalty and implicit solver. Empty
     /// without its points.
     std::string fem_accuracy_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
@@ -27,23 +35,35 @@ namespace kimp::app::study_internal
       std::string md;
       if (e.fem_accuracy.empty())
         return md;
-      md +=
-        fmt::format("## Accuracy against cost: FEM (H = {} m)\n\nError of k against the finest "
-                    "explicit mesh level; seconds are the FEM wall time of each run.\n\n"
-                    "| series | h_contact (cm) | penalty | FEM s | k_KV kN/mm/m | error KV | "
-                    "k_J kN/mm^1.5/m | error J | status |\n|---|---|---|---|---|---|---|---|---|\n",
-                    scene.accuracy.wall_height);
+      md += fmt::format("## Accuracy against cost: FEM (H = {} m)\n\nError of k against the finest "
+                        "explicit mesh level; seconds are the FEM wall time of each run.\n\n",
+                        scene.accuracy.wall_height);
+      md += law_table_header("| series | h_contact (cm) | penalty | FEM s |",
+                             4,
+                             2,
+                             [](const StudyLaw &law) {
+                               return fmt::format(" k_{} {} | error {} |",
+                                                  law.symbol,
+                                                  law.per_metre_unit(),
+                                                  law.symbol);
+                             });
       for (const FemAccuracyPoint &p : e.fem_accuracy)
-        md += fmt::format("| {} | {:g} | {:g} | {} | {} | {} | {} | {} | {} |\n",
+      {
+        md += fmt::format("| {} | {:g} | {:g} | {} |",
                           p.series,
                           p.h_contact * 100,
                           p.penalty_factor,
-                          readable(p.seconds),
-                          readable(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
-                          p.ok ? fmt::format("{:.3g} %", 100 * p.error_kelvin_voigt) : "",
-                          readable(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
-                          p.ok ? fmt::format("{:.3g} %", 100 * p.error_jankowski) : "",
-                          p.status);
+                          readable(p.seconds));
+        for (const StudyLaw &law : study_laws())
+        {
+          const std::size_t i = study_law_index(law);
+          md += fmt::format(" {} | {} |",
+                            readable(p.ok ? law_k_display(p.k, law) : nan),
+                            p.ok && i < p.error.size() ? fmt::format("{:.3g} %", 100 * p.error[i]) :
+                                                         "");
+        }
+        md += fmt::format(" {} |\n", p.status);
+      }
       md += "\nData: [accuracy_fem.csv](accuracy_fem.csv), study.h5 `/accuracy/fem`.\n\n";
       if (charts)
         md += "![FEM accuracy against cost](charts/accuracy_fem.png)\n\n";
@@ -170,17 +190,22 @@ namespace kimp::app::study_internal
       std::string md;
       if (e.sensitivity.empty())
         return md;
-      md += fmt::format("## Sensitivity of k (H = {} m, ±{:g} %)\n\n| parameter | factor | k_KV "
-                        "kN/mm/m | k_J kN/mm^1.5/m | status |\n|---|---|---|---|---|\n",
+      md += fmt::format("## Sensitivity of k (H = {} m, ±{:g} %)\n\n",
                         scene.sensitivity_study.wall_height,
                         scene.sensitivity_study.variation * 100);
+      md += law_table_header("| parameter | factor |",
+                             2,
+                             1,
+                             [](const StudyLaw &law) {
+                               return fmt::format(" k_{} {} |", law.symbol, law.per_metre_unit());
+                             });
       for (const SensitivityPoint &p : e.sensitivity)
-        md += fmt::format("| {} | {:g} | {} | {} | {} |\n",
-                          p.parameter,
-                          p.factor,
-                          readable(p.ok ? stiffness_to_kn_per_mm(p.k_kelvin_voigt, 1.0) : nan),
-                          readable(p.ok ? stiffness_to_kn_per_mm(p.k_jankowski, 1.5) : nan),
-                          p.status);
+      {
+        md += fmt::format("| {} | {:g} |", p.parameter, p.factor);
+        for (const StudyLaw &law : study_laws())
+          md += fmt::format(" {} |", readable(p.ok ? law_k_display(p.k, law) : nan));
+        md += fmt::format(" {} |\n", p.status);
+      }
       md += "\nData: [sensitivity.csv](sensitivity.csv), study.h5 `/sensitivity`.\n\n";
       if (charts)
         md += "![sensitivity of k](charts/sensitivity.png)\n\n";
@@ -213,36 +238,51 @@ namespace kimp::app::study_internal
         t[2] == "auto" ? (t[3] == "yes" ? "" : " (not converged)") : " (fixed)";
       return t[0] + " cm, " + t[1] + state;
     };
+    // Per law its cells joined: "a, b" and "ok", or "KV: ...; J: ...".
     const auto peak_ratios = [](const std::vector<std::string> &t)
-    { return (t[0].empty() ? "-" : t[0]) + ", " + (t[1].empty() ? "-" : t[1]); };
+    {
+      std::string text;
+      for (const std::string &cell : t)
+        text += (text.empty() ? "" : ", ") + (cell.empty() ? std::string("-") : cell);
+      return text;
+    };
     const auto fit_status = [](const std::vector<std::string> &t)
-    { return t[0] == "ok" && t[1] == "ok" ? std::string("ok") : "KV: " + t[0] + "; J: " + t[1]; };
+    {
+      if (std::all_of(t.begin(), t.end(), [](const std::string &cell) { return cell == "ok"; }))
+        return std::string("ok");
+      std::string text;
+      for (std::size_t i = 0; i < t.size(); ++i)
+        text += fmt::format("{}{}: {}", i ? "; " : "", study_laws()[i].symbol, t[i]);
+      return text;
+    };
     std::vector<const StudyHeight *> cases;
     for (const StudyHeight &h : heights)
       cases.push_back(&h);
-    return k_table(scene, cases)
-      .markdown({{"H (m)", {"wall_height"}, {}},
-                 {"KV kN/mm/m [95 % CI] ± numerical",
-                  {"kelvin_voigt",
-                   "kelvin_voigt_lower",
-                   "kelvin_voigt_upper",
-                   "kelvin_voigt_numerical_error"},
-                  with_interval},
-                 {"Table 2.1", {"thesis_kelvin_voigt"}, or_dash},
-                 {"KV total kN/mm", {"kelvin_voigt_total"}, or_dash},
-                 {"Jankowski kN/mm^1.5/m [95 % CI] ± numerical",
-                  {"jankowski", "jankowski_lower", "jankowski_upper", "jankowski_numerical_error"},
-                  with_interval},
-                 {"Table 2.1", {"thesis_jankowski"}, or_dash},
-                 {"J total kN/mm^1.5", {"jankowski_total"}, or_dash},
-                 {"fit/FEM peak force KV, J",
-                  {"kelvin_voigt_peak_force_ratio", "jankowski_peak_force_ratio"},
-                  peak_ratios},
-                 {"fit status", {"kelvin_voigt_status", "jankowski_status"}, fit_status},
-                 {"FEM level (h_contact, penalty)",
+    std::vector<io::MarkdownColumn> view = {{"H (m)", {"wall_height"}, {}}};
+    std::vector<std::string>        symbols, ratios, statuses;
+    for (const StudyLaw &law : study_laws())
+    {
+      const std::string name = law.name();
+      view.push_back(
+        {fmt::format("{} {} [95 % CI] ± numerical", law.short_name, law.per_metre_unit()),
+         {name, name + "_lower", name + "_upper", name + "_numerical_error"},
+         with_interval});
+      view.push_back({"Table 2.1", {"thesis_" + name}, or_dash});
+      view.push_back(
+        {fmt::format("{} total {}", law.symbol, law.total_unit()), {name + "_total"}, or_dash});
+      symbols.emplace_back(law.symbol);
+      ratios.push_back(name + "_peak_force_ratio");
+      statuses.push_back(name + "_status");
+    }
+    view.push_back(
+      {fmt::format("fit/FEM peak force {}", fmt::join(symbols, ", ")), ratios, peak_ratios});
+    view.push_back({"fit status", statuses, fit_status});
+    view.insert(view.end(),
+                {{"FEM level (h_contact, penalty)",
                   {"fem_h_contact", "fem_penalty_factor", "fidelity", "fidelity_converged"},
                   fem_level},
                  {"FEM from cache", {"fem_from_cache"}, {}}});
+    return k_table(scene, cases).markdown(view);
   }
 
   namespace

@@ -11,6 +11,7 @@
 #include "app/study/study_extras.h"
 #include "app/study/study_flexible_wall.h"
 #include "app/study/study_ladder.h"
+#include "app/study/study_laws.h"
 #include "app/study/study_scene.h"
 #include "app/study/yielding_wall_element.h"
 #include "fit/fitter.h"
@@ -46,19 +47,17 @@ namespace kimp::app
   /** One row of the k table: the fits of one wall height. */
   struct StudyHeight
   {
-    double                        wall_height = 0.0; ///< m
-    std::string                   name;              ///< "H1.25"
-    io::FemCase                   fem_case;
-    bool                          fem_from_cache = false;
-    double                        fem_seconds    = 0.0;       ///< s
-    double                        fit_seconds    = 0.0;       ///< s
-    std::optional<fit::FitResult> kelvin_voigt;               ///< law 2 at the study COR
-    std::optional<fit::FitResult> jankowski;                  ///< law 4 at the study COR
-    std::string                   kelvin_voigt_status = "ok"; ///< "ok" or "failed: ..."
-    std::string                   jankowski_status    = "ok";
-    bool                          auto_fidelity       = false; ///< fidelity: auto (ladder below)
-    LadderResult                  ladder;                      ///< levels climbed (fidelity: auto)
-    std::string                   fidelity_reason; ///< why this level (for the log and report)
+    double      wall_height = 0.0; ///< m
+    std::string name;              ///< "H1.25"
+    io::FemCase fem_case;
+    bool        fem_from_cache = false;
+    double      fem_seconds    = 0.0; ///< s
+    double      fit_seconds    = 0.0; ///< s
+    /// The fit of each study law, in the order of study_laws() (with the linear counterpart).
+    std::vector<StudyLawFit> laws          = unfitted_study_laws();
+    bool                     auto_fidelity = false; ///< fidelity: auto (ladder below)
+    LadderResult             ladder;                ///< levels climbed (fidelity: auto)
+    std::string              fidelity_reason;       ///< why this level (for the log and report)
     /// The k(H, v) axis (app/study/study_velocity.h): impact velocity of the FEM case, m/s, and
     /// whether it is the reference velocity (fem.slab.velocity, where the ladder ran).
     double impact_velocity    = 0.0;
@@ -67,13 +66,9 @@ namespace kimp::app
     /// linear for an inelastic scene), true = the scene's inelastic soil/concrete models.
     bool        inelastic = false;
     std::string material_reason; ///< why this material model (fidelity: auto), for the report
-    /// k of the linear-elastic counterpart at the same FEM level (inelastic cases only).
-    std::optional<fit::FitResult> linear_kelvin_voigt;
-    std::optional<fit::FitResult> linear_jankowski;
 
-    /// Numerical error of k from the FEM levels, N/m^n per m (NaN: not estimated).
-    double kelvin_voigt_numerical_error() const { return ladder.error_kelvin_voigt; }
-    double jankowski_numerical_error() const { return ladder.error_jankowski; }
+    /// The entry of the study law named `law` ("kelvin_voigt").
+    const StudyLawFit &law(std::string_view name) const { return law_fit(laws, name); }
   };
 
   /** One building run: a record, a wall height (0: no walls) and a law. */

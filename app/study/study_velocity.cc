@@ -72,36 +72,30 @@ namespace kimp::app::study_internal
       catch (const std::exception &error)
       {
         // A velocity case that fails is a row with its status; the reference k stays usable.
-        c.kelvin_voigt_status = c.jankowski_status = std::string("failed: FEM: ") + error.what();
-        logger().warn("{}: {}", c.name, c.kelvin_voigt_status);
+        for (StudyLawFit &law : c.laws)
+          law.status = std::string("failed: FEM: ") + error.what();
+        logger().warn("{}: failed: FEM: {}", c.name, error.what());
         return c;
       }
       StudyFits fits = fit_study_laws(c.fem_case, scene.fit);
       c.fit_seconds  = fits.seconds;
       set_fits(c, std::move(fits));
       // The ladder ran at the reference velocity only: its relative error is carried over.
-      LadderResult &l = c.ladder;
-      l.error_kelvin_voigt =
-        scaled_error(reference.ladder.error_kelvin_voigt, reference.kelvin_voigt, c.kelvin_voigt);
-      l.error_jankowski =
-        scaled_error(reference.ladder.error_jankowski, reference.jankowski, c.jankowski);
-      l.mesh_error_kelvin_voigt = scaled_error(reference.ladder.mesh_error_kelvin_voigt,
-                                               reference.kelvin_voigt,
-                                               c.kelvin_voigt);
-      l.mesh_error_jankowski =
-        scaled_error(reference.ladder.mesh_error_jankowski, reference.jankowski, c.jankowski);
-      l.penalty_error_kelvin_voigt = scaled_error(reference.ladder.penalty_error_kelvin_voigt,
-                                                  reference.kelvin_voigt,
-                                                  c.kelvin_voigt);
-      l.penalty_error_jankowski =
-        scaled_error(reference.ladder.penalty_error_jankowski, reference.jankowski, c.jankowski);
+      for (const auto &[errors, of_reference] :
+           {std::pair{&c.ladder.error, &reference.ladder.error},
+            std::pair{&c.ladder.mesh_error, &reference.ladder.mesh_error},
+            std::pair{&c.ladder.penalty_error, &reference.ladder.penalty_error}})
+      {
+        errors->assign(c.laws.size(), nan);
+        for (std::size_t i = 0; i < c.laws.size() && i < of_reference->size(); ++i)
+          (*errors)[i] = scaled_error((*of_reference)[i], reference.laws[i].fit, c.laws[i].fit);
+      }
       if (c.inelastic)
         add_linear_counterpart(fem, scene.fit, c.wall_height, output, c.name + "_linear", c);
-      logger().info("{}: k_KV {:.4g} kN/mm/m, k_Jankowski {:.4g} kN/mm^1.5/m at {} m/s",
-                    c.name,
-                    per_metre(c.kelvin_voigt),
-                    per_metre(c.jankowski),
-                    velocity);
+      std::vector<double> k;
+      for (const StudyLawFit &law : c.laws)
+        k.push_back(law.fit ? law.fit->stiffness.value : nan);
+      logger().info("{}: {} at {} m/s", c.name, k_text(k, "k_"), velocity);
       return c;
     }
   } // namespace
@@ -189,27 +183,33 @@ namespace kimp::app::study_internal
       *inelastic_cheap_fits = fits[1];
     if (!fits[0].ok() || !fits[1].ok())
     {
-      h.material_reason = fmt::format("at {} a fit failed (linear: {} / {}; inelastic: {} / {}): "
+      h.material_reason = fmt::format("at {} a fit failed (linear: {}; inelastic: {}): "
                                       "the ladder climbs with the inelastic materials",
                                       cheap.label(),
-                                      fits[0].kelvin_voigt_status,
-                                      fits[0].jankowski_status,
-                                      fits[1].kelvin_voigt_status,
-                                      fits[1].jankowski_status);
+                                      joined_status(fits[0].laws),
+                                      joined_status(fits[1].laws));
       return;
     }
-    const double change_kv =
-      relative_change(fits[0].kelvin_voigt->stiffness.value, fits[1].kelvin_voigt->stiffness.value);
-    const double change_j =
-      relative_change(fits[0].jankowski->stiffness.value, fits[1].jankowski->stiffness.value);
-    h.inelastic =
-      !(change_kv <= scene.fem.fidelity_tolerance && change_j <= scene.fem.fidelity_tolerance);
+    // The change of each law's k, "4.1 % (KV) and 2.3 % (Jankowski)".
+    bool        within = true;
+    std::string changes;
+    for (std::size_t i = 0; i < fits[0].laws.size(); ++i)
+    {
+      const StudyLaw &law = *fits[0].laws[i].law;
+      const double    change =
+        relative_change(fits[0].laws[i].fit->stiffness.value, fits[1].laws[i].fit->stiffness.value);
+      within = within && change <= scene.fem.fidelity_tolerance;
+      changes += fmt::format("{}{:.3g} % ({})",
+                             changes.empty() ? "" : " and ",
+                             100.0 * change,
+                             law.short_name);
+    }
+    h.inelastic = !within;
     h.material_reason =
-      fmt::format("at {} the linear k differs from the inelastic one by {:.3g} % (KV) and "
-                  "{:.3g} % (Jankowski), {} the tolerance {:.3g} %: {}",
+      fmt::format("at {} the linear k differs from the inelastic one by {}, {} the tolerance "
+                  "{:.3g} %: {}",
                   cheap.label(),
-                  100.0 * change_kv,
-                  100.0 * change_j,
+                  changes,
                   h.inelastic ? "above" : "within",
                   100.0 * scene.fem.fidelity_tolerance,
                   h.inelastic ? "the ladder climbs with the inelastic materials" :
@@ -231,8 +231,8 @@ namespace kimp::app::study_internal
       h.fem_seconds += fem.wall_seconds;
       StudyFits fits = fit_study_laws(fem.fem_case, fit);
       h.fit_seconds += fits.seconds;
-      h.linear_kelvin_voigt = std::move(fits.kelvin_voigt);
-      h.linear_jankowski    = std::move(fits.jankowski);
+      for (std::size_t i = 0; i < h.laws.size(); ++i)
+        h.laws[i].linear = std::move(fits.laws[i].fit);
     }
     catch (const std::exception &error)
     {
@@ -299,10 +299,10 @@ namespace kimp::app::study_internal
     KTable table;
     table.file = "the study's k table";
     for (const StudyHeight *h : k_table_cases(result))
-      if (h->kelvin_voigt && h->jankowski)
+      if (const auto &kv = h->law("kelvin_voigt").fit, &j = h->law("jankowski").fit; kv && j)
         table.rows.push_back({h->wall_height,
-                              h->kelvin_voigt->stiffness.value * scene.fit.width,
-                              h->jankowski->stiffness.value * scene.fit.width,
+                              kv->stiffness.value * scene.fit.width,
+                              j->stiffness.value * scene.fit.width,
                               h->impact_velocity,
                               h->reference_velocity});
     return table;
@@ -326,9 +326,9 @@ namespace kimp::app::study_internal
                     h->wall_height,
                     base::sig(h->impact_velocity, 3),
                     h->inelastic ? "inelastic" : "linear",
-                    k(per_metre(h->kelvin_voigt)),
-                    k(per_metre(h->linear_kelvin_voigt)),
-                    k(per_metre(h->jankowski)),
-                    k(per_metre(h->linear_jankowski)));
+                    k(per_metre(h->law("kelvin_voigt").fit)),
+                    k(per_metre(h->law("kelvin_voigt").linear)),
+                    k(per_metre(h->law("jankowski").fit)),
+                    k(per_metre(h->law("jankowski").linear)));
   }
 } // namespace kimp::app::study_internal

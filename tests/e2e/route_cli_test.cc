@@ -41,15 +41,13 @@ namespace
     for (const auto &fem_case : cases)
     {
       const kimp::app::StudyFits study = kimp::app::fit_study_laws(fem_case, config);
-      for (const auto &[variant, fit_result, status] :
-           {std::tuple{"kelvin_voigt_cor_fixed", &study.kelvin_voigt, &study.kelvin_voigt_status},
-            std::tuple{"jankowski_cor_fixed", &study.jankowski, &study.jankowski_status}})
+      for (const kimp::app::StudyLawFit &law : study.laws)
       {
-        const std::string group = "/fit/" + fem_case.name + "/" + variant;
-        EXPECT_EQ(h5.attribute(group, "status"), *status) << group << " " << flags;
-        if (!*fit_result)
+        const std::string group = "/fit/" + fem_case.name + "/" + law.law->fit_variant();
+        EXPECT_EQ(h5.attribute(group, "status"), law.status) << group << " " << flags;
+        if (!law.fit)
           continue;
-        const double k_study = (*fit_result)->stiffness.value;
+        const double k_study = law.fit->stiffness.value;
         const double k_fit   = h5.doubles(group + "/stiffness").at(0);
         EXPECT_NEAR(k_fit, k_study, same_k * k_study) << group << " " << flags;
       }
