@@ -49,7 +49,7 @@ namespace kimp::app::study_internal
 
   /**
    * For an inelastic case: fit the linear counterpart of `level_scene` (the FEM level the case
-   * used) into h.linear_kelvin_voigt and h.linear_jankowski. `case_name` names its cache files.
+   * used) into the `linear` fit of each of h's study laws. `case_name` names its cache files.
    */
   void add_linear_counterpart(const FemScene      &level_scene,
                               const StudyFitScene &fit,
