@@ -4,8 +4,10 @@
 // damage) between hand bounds and converging from 10 cm to 5 cm cells, monotonic and cyclic;
 // the bare wall to 5 % drift under its section's ceiling on two meshes; the rotating crack
 // against the fixed one's locked tension; the IMPL-EX step error; a cyclic push of the bare
-// wall (permanent set, reload on the envelope); the capacity on two mesh levels. Numbers:
+// wall (permanent set, reload on the envelope); the rigid wall's unloading and reload on the fine
+// mesh; the capacity on two mesh levels. Numbers:
 // docs/validation.md "Static pushover".
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <gtest/gtest.h>
@@ -368,6 +370,47 @@ namespace
               << " kN/mm/m), K_ur = " << s.unloading_stiffness / 1e6 << " kN/mm/m, set "
               << s.permanent_set * 1e3 << " mm; F(15 mm) " << r.curve.back().force / 1e3
               << " kN/m\n";
+  }
+
+  TEST(Pushover, RigidWallInSandUnloadsOnTheFineMeshAndReloads)
+  {
+    // The rigid wall of the test above on 5 cm cells, pushed to 1 cm, unloaded to zero force
+    // and pushed on to 1.5 cm. The soil unloads elastically, so the unloading starts at about
+    // the initial (elastic) stiffness; the passive wedge's plastic strain leaves a set; and the
+    // wall never pulls: the force beyond the at-rest state falls to zero before the soil's
+    // thrust would (the active state lies below the at-rest one). Newton used to stall
+    // mid-unloading here (a singular tangent: soil at its yield surface's apex next to open
+    // interface pairs).
+    PushoverParameters p    = rigid_wall(0.05);
+    p.path                  = {0.01, 0.0, 0.015};
+    p.increment             = 1e-3;
+    const PushoverResult  r = run_pushover(p);
+    const PushoverSummary s = summarise_pushover(r.curve);
+    ASSERT_TRUE(std::isfinite(s.permanent_set)) << "the unloading reaches zero force";
+    EXPECT_GT(s.permanent_set, 0.0);
+    EXPECT_LT(s.permanent_set, s.unloaded_from);
+    // The first unloading step's secant against the initial stiffness.
+    std::size_t first = 0;
+    while (!r.curve[first].unloading)
+      ++first;
+    const PushoverPoint &top = r.curve[first - 1], &next = r.curve[first];
+    const double k_unload = (top.force - next.force) / (top.displacement - next.displacement);
+    EXPECT_NEAR(k_unload / s.initial_stiffness, 1.0, 0.2);
+    EXPECT_GT(s.unloading_stiffness, top.force / top.displacement); // stiffer than the loading
+    double lowest = 0;
+    for (const PushoverPoint &point : r.curve)
+      lowest = std::min(lowest, point.force);
+    EXPECT_GT(lowest + r.geostatic_force, 0.0) << "the wall pulls on the soil";
+    // The reload climbs back onto the plateau.
+    EXPECT_NEAR(r.curve.back().displacement, 0.015, 1e-9);
+    EXPECT_NEAR(r.curve.back().force / envelope_force(r.curve, s.unloaded_from), 1.0, 0.03);
+    std::cout << "rigid wall, 5 cm, cyclic: unloaded from " << s.unloaded_from * 1e3 << " mm (F "
+              << top.force / 1e3 << " kN/m), first unloading step " << k_unload / 1e6
+              << " kN/mm/m against k0 " << s.initial_stiffness / 1e6 << ", secant to zero "
+              << s.unloading_stiffness / 1e6 << " kN/mm/m, set " << s.permanent_set * 1e3
+              << " mm; lowest force " << lowest / 1e3 << " kN/m (at rest "
+              << r.geostatic_force / 1e3 << "); F(15 mm) " << r.curve.back().force / 1e3
+              << " kN/m; " << r.curve.size() - 1 << " steps\n";
   }
 
   TEST(Pushover, CapacityConvergesBetweenTwoMeshLevels)
