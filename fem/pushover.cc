@@ -65,6 +65,8 @@ namespace kimp::fem
               ", K0 = " + num(p.k0) + ", gravity = " + num(p.gravity) +
               " (need >= 0, > 0, >= 0, >= 0)");
       check(p.max_iterations > 0, "max_iterations must be > 0");
+      check(p.compression_band >= 0,
+            "compression_band = " + num(p.compression_band) + " m (must be >= 0)");
       check(p.step_error_tolerance >= 0,
             "step_error_tolerance = " + num(p.step_error_tolerance) + " (must be >= 0)");
       check(p.tolerance > 0 && p.loose_tolerance >= p.tolerance && p.loose_tolerance < 1,
@@ -245,6 +247,7 @@ namespace kimp::fem
                                                  ConcreteDamageLaw::DamageUpdate::implicit;
         ConcreteParameters concrete = p.concrete;
         concrete.rotating_crack     = p.rotating_crack;
+        concrete.compression_band   = p.compression_band;
         s.laws[plain_id]            = std::make_shared<ConcreteDamageLaw>(concrete, plain, update);
         s.laws[bar_id]              = std::make_shared<ConcreteDamageLaw>(concrete, barred, update);
         s.numerical_tangent         = {plain_id, bar_id};
