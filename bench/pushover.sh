@@ -10,7 +10,7 @@
 # (unload at 1 cm). Prints capacity, steps and CPU (user) time per run.
 # Usage: bench/pushover.sh [BUILD_DIR (default: build)] [RUNS (default: 1)]
 # KIMP_PUSHOVER_LEVELS (default "10cm 5cm 2.5cm") and KIMP_PUSHOVER_HEIGHTS (default "1.25 1.50
-# 2.00") restrict the convergence study (the 2.5 cm level takes minutes of CPU per height).
+# 2.00") restrict the convergence study (the 2.5 cm level takes 1-3 minutes of CPU per height).
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 bench_init pushover.sh 1 "$@"

@@ -56,6 +56,13 @@ namespace kimp::fem
     return dif_compression * std::max(0.0, s);
   }
 
+  double ConcreteParameters::compression_curve(double e, double band) const
+  {
+    if (!(compression_band > 0) || !(band > 0) || e <= eps_c1)
+      return compression_curve(e);
+    return compression_curve(eps_c1 + (e - eps_c1) * band / compression_band);
+  }
+
   ConcreteDamageLaw::ConcreteDamageLaw(const ConcreteParameters      &p,
                                        const ReinforcementParameters &reinforcement,
                                        DamageUpdate                   update)
@@ -86,9 +93,9 @@ namespace kimp::fem
                                   "E_s > 0, 0 <= hardening < 1");
     if (!(p.youngs_modulus > 0) || !(p.poisson_ratio >= 0 && p.poisson_ratio < 0.5) ||
         !(p.f_ctm > 0) || !(p.fracture_energy > 0) || !(p.eps_c1 > 0) ||
-        !(p.eps_c_lim > p.eps_c1) || !(p.f_cm > 0))
+        !(p.eps_c_lim > p.eps_c1) || !(p.f_cm > 0) || !(p.compression_band >= 0))
       throw std::invalid_argument("concrete damage law: need E, f_cm, f_ctm, G_F, eps_c1 > 0, "
-                                  "eps_c_lim > eps_c1, 0 <= nu < 0.5");
+                                  "eps_c_lim > eps_c1, 0 <= nu < 0.5, compression_band >= 0");
     const Lame l = lame(p.youngs_modulus, p.poisson_ratio);
     lambda_      = l.lambda;
     mu_          = l.mu;
@@ -168,9 +175,9 @@ namespace kimp::fem
     h1[implex_ + 2] = h0[0];
     h1[implex_ + 3] = h0[1];
     const double kt = h0[implex_], kc = h0[implex_ + 1];
-    const double el = kc - plastic_strain(kc);
+    const double el = kc - plastic_strain(kc, h0[5]);
     const double dc =
-      kc > 0 && el > 0 ? 1 - p_.compression_curve(kc) / (p_.youngs_modulus * el) : 0.0;
+      kc > 0 && el > 0 ? 1 - p_.compression_curve(kc, h0[5]) / (p_.youngs_modulus * el) : 0.0;
     return {{std::clamp(std::max(tension_damage(kt, h0[5]), h0[2]), 0.0, max_damage),
              std::clamp(std::max(dc, h0[3]), 0.0, max_damage)}};
   }
@@ -315,9 +322,10 @@ namespace kimp::fem
     return 1 - k0 / kt * std::exp(-(kt - k0) / ef);
   }
 
-  double ConcreteDamageLaw::plastic_strain(double kc) const
+  double ConcreteDamageLaw::plastic_strain(double kc, double band) const
   {
-    return p_.plastic_fraction * std::max(0.0, kc - p_.compression_curve(kc) / p_.youngs_modulus);
+    return p_.plastic_fraction *
+           std::max(0.0, kc - p_.compression_curve(kc, band) / p_.youngs_modulus);
   }
 
   VoigtStress ConcreteDamageLaw::damaged_stress(const VoigtStrain &ee,
@@ -369,7 +377,7 @@ namespace kimp::fem
     double ta, tb, c, sn;
     eigen2(txx, tyy, txy, ta, tb, c, sn);
     const double kc = std::max(h0[1], std::max(-std::min(tb, tzz), 0.0) / E);
-    const double dp = plastic_strain(kc) - plastic_strain(h0[1]);
+    const double dp = plastic_strain(kc, h0[5]) - plastic_strain(h0[1], h0[5]);
     // n = (-s, c), the eigenvector of tb: n (x) n = {s^2, c^2, -2 c s} (engineering shear).
     const double nxx = sn * sn, nyy = c * c, nxy = -2 * c * sn;
     if (dp > 0)
@@ -390,8 +398,8 @@ namespace kimp::fem
     h1[1]           = kc;
     double dt       = tension_damage(kt, h0[5]);
     // sigma_c(kappa_c) = (1 - d_c) E (kappa_c - eps_p) in uniaxial compression.
-    const double el = kc - plastic_strain(kc);
-    double       dc = kc > 0 && el > 0 ? 1 - p_.compression_curve(kc) / (E * el) : 0.0;
+    const double el = kc - plastic_strain(kc, h0[5]);
+    double       dc = kc > 0 && el > 0 ? 1 - p_.compression_curve(kc, h0[5]) / (E * el) : 0.0;
     dt              = std::clamp(std::max(dt, h0[2]), 0.0, max_damage);
     dc              = std::clamp(std::max(dc, h0[3]), 0.0, max_damage);
     if (implex_on_)
@@ -436,9 +444,10 @@ namespace kimp::fem
     else if (kt > h0[0] || kc > h0[1])
     {
       dt = std::clamp(std::max(tension_damage(kt, h0[5]), h0[2]), 0.0, max_damage);
-      dc = std::clamp(std::max(kc > 0 ? 1 - p_.compression_curve(kc) / (E * kc) : 0.0, h0[3]),
-                      0.0,
-                      max_damage);
+      dc =
+        std::clamp(std::max(kc > 0 ? 1 - p_.compression_curve(kc, h0[5]) / (E * kc) : 0.0, h0[3]),
+                   0.0,
+                   max_damage);
     }
     return damaged_stress(e, h0, h1, dt, dc, c, s);
   }
@@ -521,7 +530,7 @@ namespace kimp::fem
     if (plastic_)
     {
       o.plastic_dissipation       = h[p_slot + 3];
-      o.equivalent_plastic_strain = plastic_strain(h[1]);
+      o.equivalent_plastic_strain = plastic_strain(h[1], h[5]);
     }
     if (reinforced_)
     {

@@ -187,6 +187,14 @@ namespace kimp::fem
      */
     bool rotating_crack = false;
     /**
+     * Crack band in compression, m (0: the local curve at every point). With l_c > 0 the
+     * descending branch of compression_curve() past eps_c1 is read at a point of crack band h
+     * as that of a crush band of l_c: the strain beyond eps_c1 is scaled by h / l_c, so the
+     * energy of crushing per unit area (post-peak energy density times h) is that of the curve
+     * over l_c on every mesh, as the tensile crack band keeps G_F (docs/physics.md §6).
+     */
+    double compression_band = 0;
+    /**
      * fib Model Code 2010 §5.1.4-5.1.8 from f_cm (Pa): f_ck = f_cm - 8 MPa,
      * E_ci = 21.5 GPa (f_cm / 10 MPa)^(1/3), f_ctm = 0.3 f_ck^(2/3) (<= C50) or
      * 2.12 ln(1 + 0.1 f_cm), G_F = 73 f_cm^0.18 N/m; eps_c1, eps_c,lim by EN 1992-1-1 Table 3.1.
@@ -197,6 +205,9 @@ namespace kimp::fem
     /** MC2010 / EN 1992-1-1 eq. 3.14 compressive stress (Pa, > 0) at compressive strain e > 0:
      *  the curve to eps_c_lim, then a linear descent to zero at 2 eps_c_lim. */
     double compression_curve(double e) const;
+    /** compression_curve() at a point of crack band @p band (m) with compression_band (the
+     *  local curve when either is 0). */
+    double compression_curve(double e, double band) const;
   };
 
   /**
@@ -390,7 +401,7 @@ namespace kimp::fem
      *  exponential softening with the energy G_F / h, 0 up to the tensile strength. */
     double tension_damage(double kappa_t, double h) const;
     /** b_c times the uniaxial curve's inelastic strain at the compression measure kappa_c. */
-    double plastic_strain(double kappa_c) const;
+    double plastic_strain(double kappa_c, double band) const;
     /** The bars' steel at a point of crack band @p h (m): H scaled by h / L_p with a hinge
      *  length, else steel_. */
     SteelBar steel_at(double h) const;

@@ -22,6 +22,9 @@ namespace kimp::fem
                            wall_base = 7;
     /// Material ids: plain concrete (or the elastic wall), the bar columns, the soil.
     constexpr unsigned int plain_id = 0, bar_id = 1, soil_id = 2;
+    /// The Newton matrix's floor: this fraction of each point's virgin stiffness and of each
+    /// interface pair's springs (StaticPlasticityParameters::tangent_floor).
+    constexpr double tangent_floor = 1e-3;
     /// Entries of StaticPlasticityParameters::prescribed.
     constexpr std::size_t wall_base_entry = 2;
 
@@ -62,6 +65,8 @@ namespace kimp::fem
               ", K0 = " + num(p.k0) + ", gravity = " + num(p.gravity) +
               " (need >= 0, > 0, >= 0, >= 0)");
       check(p.max_iterations > 0, "max_iterations must be > 0");
+      check(p.compression_band >= 0,
+            "compression_band = " + num(p.compression_band) + " m (must be >= 0)");
       check(p.step_error_tolerance >= 0,
             "step_error_tolerance = " + num(p.step_error_tolerance) + " (must be >= 0)");
       check(p.tolerance > 0 && p.loose_tolerance >= p.tolerance && p.loose_tolerance < 1,
@@ -242,6 +247,7 @@ namespace kimp::fem
                                                  ConcreteDamageLaw::DamageUpdate::implicit;
         ConcreteParameters concrete = p.concrete;
         concrete.rotating_crack     = p.rotating_crack;
+        concrete.compression_band   = p.compression_band;
         s.laws[plain_id]            = std::make_shared<ConcreteDamageLaw>(concrete, plain, update);
         s.laws[bar_id]              = std::make_shared<ConcreteDamageLaw>(concrete, barred, update);
         s.numerical_tangent         = {plain_id, bar_id};
@@ -317,12 +323,18 @@ namespace kimp::fem
       return unloading[segment] &&
              band_force(steps.back(), rigid) - band_force(steps.front(), rigid) <= 0;
     };
-    s.max_cuts                          = 3;
-    s.newton_tolerance                  = p.tolerance;
-    s.loose_tolerance                   = p.loose_tolerance;
-    s.max_iterations                    = p.max_iterations;
-    s.damped_newton                     = true;
-    s.step_error_tolerance              = p.implex ? p.step_error_tolerance : 0.0;
+    s.max_cuts             = 3;
+    s.newton_tolerance     = p.tolerance;
+    s.loose_tolerance      = p.loose_tolerance;
+    s.max_iterations       = p.max_iterations;
+    s.damped_newton        = true;
+    s.step_error_tolerance = p.implex ? p.step_error_tolerance : 0.0;
+    // A step starts from the last one's increment carried on (the soil's passive mechanism,
+    // the hinge's rotation), and the Newton matrix keeps a floor of the virgin stiffness where
+    // the soil sits at the apex of its yield surface and interface pairs open (an unloading
+    // wall): docs/physics.md §6 "Static pushover", "Newton".
+    s.extrapolated_predictor            = true;
+    s.tangent_floor                     = tangent_floor;
     const StaticPlasticityResult solved = run_static_plasticity(s, log);
 
     PushoverResult out;

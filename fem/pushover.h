@@ -51,6 +51,13 @@ namespace kimp::fem
      */
     bool rotating_crack = true;
     /**
+     * The wall concrete's crack band in compression, m (ConcreteParameters::compression_band,
+     * which this overrides; 0: the local curve). The MC2010 curve's descending branch read as
+     * measured over a 0.3 m crush band, the standard cylinder's height, so that crushing at the
+     * hinge's toe dissipates the same energy per unit area on every mesh.
+     */
+    double compression_band = 0.3;
+    /**
      * IMPL-EX step control (with implex): a step after which some point of the concrete let
      * through more than this many f_t of tensile stress beyond the implicit update's (the
      * extrapolated damage lagging a new crack) is halved, at most max_cuts = 3 times

@@ -100,7 +100,9 @@ namespace kimp::fem
                       Vector<double>       &rhs);
       double relative_residual(const Vector<double> &r) const;
       /** |r| over the prescribed DoFs (N/m). */
-      double                             fixed_norm(const Vector<double> &r) const;
+      double fixed_norm(const Vector<double> &r) const;
+      /** |r| over the free DoFs (N/m). */
+      double                             free_norm(const Vector<double> &r) const;
       std::vector<std::array<double, 2>> reactions(const Vector<double> &r) const;
       /** Newton from u (residual r) with the prescribed increment lift; false if it fails.
        *  With @p loose, a stalled iteration ends at its best iterate if that one is within
@@ -111,6 +113,11 @@ namespace kimp::fem
                   std::vector<double>  &residuals,
                   bool                  loose = false);
       void advance(double a, double b, unsigned int depth, StaticPlasticityResult &out);
+      /** The extrapolated predictor (StaticPlasticityParameters::extrapolated_predictor): from
+       *  the lifted state @p u, the free DoFs and the controlled load moved on by the last
+       *  converged step's increments times predictor_ratio_; kept (u, r and the baseline)
+       *  if its out-of-balance force is lower. */
+      void extrapolate(Vector<double> &u, Vector<double> &r, double &baseline, double &norm);
       /** The segments of p.load_path in load steps of at most 1 / n_steps. */
       void        walk_load_path(StaticPlasticityResult &out);
       VoigtStrain strain(const Vector<double> &u, unsigned int c, unsigned int q) const;
@@ -154,6 +161,7 @@ namespace kimp::fem
       std::vector<double>                  bbar_;        // n_cells x n_q x n_d x 3
       std::vector<double>                  jxw_;         // n_cells x n_q
       std::vector<VoigtStrain>             eps0_;        // n_cells x n_q
+      std::vector<VoigtTangent>            virgin_;      // per cell: its law's virgin tangent
       std::vector<int>                     governed_by_; // per DoF: entry or -1
       std::vector<unsigned int>            component_;   // per DoF
       Vector<double>                       f_ext_, target_, u_, r_;
@@ -164,14 +172,18 @@ namespace kimp::fem
       std::unique_ptr<FrictionalInterface> interface_;
       std::vector<types::global_dof_index> interface_dofs_; // 2 per compact node
       std::size_t                          segment_ = 0;
-      Vector<double>                       g_;               // controlled load, unit resultant
-      double                               load_        = 0; // its resultant P, N/m
-      double                               target_mean_ = 0; // m
-      double                               weight_      = 0;
-      double        last_increment_ = 0; // load factor increment of the last converged step
-      double        force_scale_    = 0; // largest converged |reactions|
-      unsigned long step_           = 0;
-      std::ostream *log_            = nullptr;
+      bool segment_ended_ = false; // p.end_segment ended the segment at the last converged step
+      Vector<double> g_;           // controlled load, unit resultant
+      double         load_           = 0; // its resultant P, N/m
+      double         target_mean_    = 0; // m
+      double         weight_         = 0;
+      double         last_increment_ = 0;  // load factor increment of the last converged step
+      Vector<double> last_du_;             // displacement increment of the last converged step
+      double         last_dload_      = 0; // its change of the controlled load, N/m
+      double         predictor_ratio_ = 0; // this step's increment over the last one (0: none)
+      double         force_scale_     = 0; // largest converged |reactions|
+      unsigned long  step_            = 0;
+      std::ostream  *log_             = nullptr;
     };
 
     StaticProblem::StaticProblem(const StaticPlasticityParameters &p)
@@ -180,6 +192,9 @@ namespace kimp::fem
     {
       if (p.mesh.cells.empty())
         bad("static plasticity: the mesh has no cells");
+      if (!(p.tangent_floor >= 0 && p.tangent_floor < 1))
+        bad("static plasticity: tangent_floor = " + std::to_string(p.tangent_floor) +
+            " (must be in [0, 1))");
       if (p.n_steps == 0 || !(p.newton_tolerance > 0) || p.max_iterations == 0)
         bad("static plasticity: n_steps, newton_tolerance and max_iterations must be > 0");
       if (!(p.gravity >= 0))
@@ -307,6 +322,7 @@ namespace kimp::fem
         cell_law_[c]           = &law;
         cell_fd_[c]            = p.numerical_tangent.count(cell->material_id()) > 0;
         history_.initialize_cell(c, law, std::sqrt(cell->measure()));
+        virgin_.push_back(law.tangent(VoigtStrain{}, history_.committed(c, 0)));
         const auto   rho_it = p.densities.find(cell->material_id());
         const double gamma  = (rho_it == p.densities.end() ? 0.0 : rho_it->second) * p.gravity;
         for (unsigned int q = 0; q < n_q; ++q)
@@ -459,6 +475,20 @@ namespace kimp::fem
           for (unsigned int i = 0; i < 4; ++i)
             k(i, j) = -(fp[4 * pair + i] - fm[4 * pair + i]) / (2 * delta);
         }
+        if (p_.tangent_floor > 0)
+        {
+          // An open (or sliding) pair keeps a floor of its springs in the Newton matrix.
+          const StaticInterfacePair &sp = p_.interface[pair];
+          const double               kn = p_.tangent_floor * sp.normal_stiffness,
+                       kt               = p_.tangent_floor * sp.tangential_stiffness;
+          const double n[2] = {sp.nx, sp.ny}, tv[2] = {-sp.ny, sp.nx};
+          for (unsigned int i = 0; i < 4; ++i)
+            for (unsigned int j = 0; j < 4; ++j)
+            {
+              const double sign = (i < 2) == (j < 2) ? 1.0 : -1.0;
+              k(i, j) += sign * (kn * n[i % 2] * n[j % 2] + kt * tv[i % 2] * tv[j % 2]);
+            }
+        }
         for (unsigned int i = 0; i < 4; ++i)
         {
           dofs[i]   = interface_dofs_[4 * pair + i];
@@ -577,10 +607,13 @@ namespace kimp::fem
         std::copy(&cell_dofs_[c * n_d], &cell_dofs_[c * n_d] + n_d, dofs.begin());
         for (unsigned int q = 0; q < n_q; ++q)
         {
-          const VoigtStrain  e = strain(u, c, q);
-          const VoigtTangent t =
+          const VoigtStrain e = strain(u, c, q);
+          VoigtTangent      t =
             cell_fd_[c] ? difference_tangent(*cell_law_[c], e, history_.committed(c, q), scratch) :
-                          cell_law_[c]->tangent(e, history_.committed(c, q));
+                               cell_law_[c]->tangent(e, history_.committed(c, q));
+          if (p_.tangent_floor > 0)
+            for (unsigned int a = 0; a < 9; ++a)
+              t[a] += p_.tangent_floor * virgin_[c][a];
           const double *B = &bbar_[(c * n_q + q) * n_d * 3];
           const double  w = jxw_[c * n_q + q];
           for (unsigned int j = 0; j < n_d; ++j)
@@ -631,6 +664,15 @@ namespace kimp::fem
       return std::sqrt(fixed);
     }
 
+    double StaticProblem::free_norm(const Vector<double> &r) const
+    {
+      double free = 0;
+      for (unsigned int d = 0; d < r.size(); ++d)
+        if (governed_by_[d] < 0)
+          free += r[d] * r[d];
+      return std::sqrt(free);
+    }
+
     std::vector<std::array<double, 2>> StaticProblem::reactions(const Vector<double> &r) const
     {
       std::vector<std::array<double, 2>> out(p_.prescribed.size(), {{0.0, 0.0}});
@@ -638,6 +680,32 @@ namespace kimp::fem
         if (governed_by_[d] >= 0)
           out[governed_by_[d]][component_[d]] += r[d];
       return out;
+    }
+
+    void
+    StaticProblem::extrapolate(Vector<double> &u, Vector<double> &r, double &baseline, double &norm)
+    {
+      if (!p_.extrapolated_predictor || !(predictor_ratio_ > 0) || last_du_.size() != u.size())
+        return;
+      Vector<double> trial = u;
+      for (unsigned int d = 0; d < u.size(); ++d)
+        if (governed_by_[d] < 0)
+          trial[d] += predictor_ratio_ * last_du_[d];
+      const double load0 = load_;
+      load_ += predictor_ratio_ * last_dload_;
+      Vector<double> r_trial(u.size());
+      residual(trial, r_trial);
+      const double trial_norm = free_norm(r_trial);
+      if (controlled_mean_reached(trial) && std::isfinite(trial_norm) && trial_norm < norm)
+      {
+        u        = trial;
+        r        = r_trial;
+        baseline = relative_residual(r);
+        norm     = trial_norm;
+        return;
+      }
+      load_ = load0;
+      residual(u, r); // the trial history of the lifted state
     }
 
     bool StaticProblem::newton(Vector<double>       &u,
@@ -650,9 +718,13 @@ namespace kimp::fem
       const Vector<double> zero(u.size());
       Vector<double>       best_u;
       double               best_rel = std::numeric_limits<double>::infinity(), best_load = 0;
-      double               damping  = 0; // Levenberg-Marquardt factor on the diagonal
-      double               baseline = std::numeric_limits<double>::infinity();
-      bool                 lifted   = false;
+      double               damping = 0; // Levenberg-Marquardt factor on the diagonal
+      // The acceptance of an update compares the free out-of-balance force itself (N/m): the
+      // relative residual's reference moves with the iterate's reactions (a lifted state's are
+      // large), so comparing relative values could reject an update that lowers the force.
+      double baseline = std::numeric_limits<double>::infinity(), baseline_norm = baseline;
+      double last_norm = baseline;
+      bool   lifted    = false;
       try
       {
         if (p_.damped_newton)
@@ -662,9 +734,13 @@ namespace kimp::fem
           u += lift;
           residual(u, r);
           // A band whose mean is not yet at its target is no state to keep.
-          baseline = controlled_mean_reached(u) ? relative_residual(r) :
-                                                  std::numeric_limits<double>::infinity();
-          lifted   = true;
+          if (controlled_mean_reached(u))
+          {
+            baseline      = relative_residual(r);
+            baseline_norm = free_norm(r);
+          }
+          lifted = true;
+          extrapolate(u, r, baseline, baseline_norm);
         }
         for (unsigned int k = 0; k < p_.max_iterations; ++k)
         {
@@ -687,9 +763,10 @@ namespace kimp::fem
           }
           // Backtracking on the residual norm: full steps near the solution (quadratic rate),
           // shorter ones while the active sets of the return mappings still switch.
-          const Vector<double> u0       = u;
-          const double         previous = k == 0 ? baseline : residuals.back();
-          double               rel      = 0;
+          const Vector<double> u0            = u;
+          const double         previous      = k == 0 ? baseline : residuals.back();
+          const double         previous_norm = k == 0 ? baseline_norm : last_norm;
+          double               rel = 0, norm = 0;
           for (unsigned int cut = 0;; ++cut)
           {
             const double alpha = std::pow(0.5, cut);
@@ -699,20 +776,24 @@ namespace kimp::fem
             load_ = load0 + alpha * dp;
             residual(u, r);
             rel = relative_residual(r);
-            if ((std::isfinite(rel) && rel < previous) || cut == p_.max_line_search)
+            // Plain Newton keeps its line search on the relative residual.
+            norm = p_.damped_newton ? free_norm(r) : rel;
+            if ((std::isfinite(norm) && norm < previous_norm) || cut == p_.max_line_search)
               break;
           }
-          if (p_.damped_newton && !(rel < previous))
+          if (p_.damped_newton && !(norm < previous_norm))
           {
             // Levenberg-Marquardt: reject the update, damp the next one harder.
             u     = u0;
             load_ = load0;
             residual(u, r);
             rel     = previous;
+            norm    = previous_norm;
             damping = damping == 0 ? 1e-2 : 4 * damping;
           }
           else if (p_.damped_newton)
             damping = damping < 1e-4 ? 0.0 : damping / 4;
+          last_norm = norm;
           residuals.push_back(rel);
           if (!std::isfinite(rel))
             return false;
@@ -756,7 +837,8 @@ namespace kimp::fem
       step.segment     = segment_;
       const bool loose = p_.loose_tolerance > 0 && depth >= p_.max_cuts;
       begin_step(b - a);
-      bool converged = newton(u_, r_, lift, step.residuals, loose);
+      predictor_ratio_ = last_increment_ != 0 ? (b - a) / last_increment_ : 0.0;
+      bool converged   = newton(u_, r_, lift, step.residuals, loose);
       if (converged && p_.step_error_tolerance > 0)
       {
         const double error = largest_step_error();
@@ -774,6 +856,9 @@ namespace kimp::fem
       if (converged)
       {
         last_increment_ = b - a;
+        last_du_        = u_;
+        last_du_ -= u_save;
+        last_dload_ = load_ - load_save;
         if (step.residuals.back() > p_.newton_tolerance)
         {
           ++out.n_loose_steps;
@@ -797,6 +882,7 @@ namespace kimp::fem
           *log_ << line.str() << '\n';
         }
         out.steps.push_back(std::move(step));
+        segment_ended_ = p_.end_segment && p_.end_segment(out.steps, segment_);
         return;
       }
       revert();
@@ -816,7 +902,8 @@ namespace kimp::fem
       }
       const double mid = 0.5 * (a + b);
       advance(a, mid, depth + 1, out);
-      advance(mid, b, depth + 1, out);
+      if (!segment_ended_) // a halved unloading may reach zero force in its first half
+        advance(mid, b, depth + 1, out);
     }
 
     void StaticProblem::walk_load_path(StaticPlasticityResult &out)
@@ -834,9 +921,10 @@ namespace kimp::fem
         for (unsigned int k = 1; k <= n; ++k, ++step_)
         {
           const double a = start + (end - start) * (k - 1) / n, b = start + (end - start) * k / n;
+          segment_ended_ = false;
           advance(a, b, 0, out);
-          factor = b;
-          if (p_.end_segment && p_.end_segment(out.steps, segment_))
+          factor = out.steps.back().load_factor;
+          if (segment_ended_)
             break;
         }
       }

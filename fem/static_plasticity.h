@@ -179,6 +179,24 @@ namespace kimp::fem
      */
     bool damped_newton = false;
     /**
+     * Newton matrix only (the residual, hence the converged state, is unchanged): this
+     * fraction (>= 0, < 1) of each point's virgin tangent and of each interface pair's normal
+     * and tangential springs is added to the assembled tangent. A perfectly plastic point at
+     * the apex of its yield surface has no stiffness, an open pair none either, so a soil node
+     * next to an unloading wall can have a singular tangent (Newton's update then runs to
+     * 1e12 m); the floor bounds it. 0: the consistent tangent alone.
+     */
+    double tangent_floor = 0;
+    /**
+     * With damped_newton: the first iterate of a step may also be the converged state moved on
+     * by the last step's increment (free displacements and controlled load) scaled to this
+     * step's, kept when its out-of-balance force is lower than that of the state with only the
+     * prescribed increment applied (none at the first step and at a reversal of the path). The
+     * same tolerance ends the iteration, so the converged state is the same within it; a
+     * plastic mechanism that continues from one step to the next then starts near its end.
+     */
+    bool extrapolated_predictor = false;
+    /**
      * Backtracking line search: a Newton update is halved at most this many times until the
      * residual falls (0: plain Newton). Full updates are taken once Newton converges.
      */

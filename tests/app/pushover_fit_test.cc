@@ -234,12 +234,14 @@ pushover: {displacement: "20 mm", unload_at: ["12 mm"]}
     EXPECT_GT(r.fit.permanent_set, r.fit.pushover_permanent_set);
   }
 
-  TEST(PushoverResistance, AFailedPushoverLeavesTheEstimateAndSaysWhy)
+  TEST(PushoverResistance, AnImplicitStallFallsBackToImplexWhichUnloads)
   {
     // The reinforced wall with its backfill and the contact interface, unloaded from 20 mm on
-    // the study's 5 cm mesh: with either damage update the push reaches 20 mm and Newton stalls
-    // mid-unloading, while the interface pairs open (docs/validation.md "Static pushover of
-    // wall and backfill").
+    // the study's 5 cm mesh. The implicit damage update stalls; IMPL-EX runs, and its
+    // unloading now reaches zero force (it stalled mid-unloading while interface pairs opened
+    // next to soil at the apex of its yield surface, before the static solver's tangent floor:
+    // docs/validation.md "Static pushover of wall and backfill"). The reason names the
+    // fallback, without the Newton residuals.
     const FemScene     scene = io::load_scene_text<FemScene>(R"(wall_heights: ["1.25 m"]
 interface: {model: contact}
 materials:
@@ -256,13 +258,15 @@ pushover: {displacement: "30 mm", unload_at: ["20 mm"]}
     in.stiffness               = 456.0;
     const PushoverResistance r = pushover_resistance(scene, 1.25, in);
     std::cout << "wall and backfill unloaded: " << r.reason << "\n";
-    EXPECT_EQ(r.source, "estimate");
-    EXPECT_EQ(r.reason.rfind("pushover failed: ", 0), 0u) << r.reason;
+    EXPECT_EQ(r.source, "pushover");
+    EXPECT_EQ(r.reason.rfind("IMPL-EX damage update at 0.25 mm steps (the implicit update "
+                             "stalled: ",
+                             0),
+              0u)
+      << r.reason;
     EXPECT_EQ(r.reason.find("relative residuals"), std::string::npos) << r.reason;
-    // Both updates were tried: the reason names the implicit stall and the IMPL-EX one.
-    EXPECT_NE(r.reason.find("(with the IMPL-EX damage update"), std::string::npos) << r.reason;
-    EXPECT_NE(r.reason.find("the implicit update stalled"), std::string::npos) << r.reason;
-    EXPECT_EQ(in.capacity, 123.0);
-    EXPECT_EQ(in.stiffness, 456.0);
+    EXPECT_GT(r.fit.pushover_permanent_set, 0.0);
+    EXPECT_LT(r.fit.pushover_permanent_set, 0.02);
+    EXPECT_EQ(in.capacity, r.fit.capacity);
   }
 } // namespace kimp::app
