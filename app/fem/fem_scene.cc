@@ -223,6 +223,8 @@ namespace kimp::app
     g.wall_height             = wall_height;
     g.mesh_slab               = !scene.solver.rigid_slab;
     g.interface_contact = g.with_backfill && scene.interface.model == FemInterface::Model::contact;
+    if (!g.wall_aspect_max && scene.materials.concrete.model != FemConcrete::Model::elastic)
+      g.wall_aspect_max = inelastic_wall_aspect_max;
     return geometry::refined(g, scene.mesh_level);
   }
 

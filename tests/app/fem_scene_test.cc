@@ -3,6 +3,7 @@
 // translation to geometry/ and fem/ parameters.
 #ifdef KIMP_WITH_FEM
 
+#  include <algorithm>
 #  include <cmath>
 #  include <cstdlib>
 #  include <filesystem>
@@ -15,6 +16,7 @@
 #  include "app/fem/fem_scene.h"
 #  include "app/helper_programs.h"
 #  include "geometry/scene_ids.h"
+#  include "geometry/scene_layout.h"
 #  include "io/scene_io.h"
 #  include "tests/support/files.h"
 #  include "tests/support/scene_errors.h"
@@ -362,6 +364,50 @@ namespace
     EXPECT_NE(scene_error("interface: {model: contact}\ndynamics: {integrator: implicit}\n")
                 .find("interface.model"),
               std::string::npos);
+  }
+
+  /// Largest height/width of the wall's cells of the case meshed from @p scene at 1.25 m.
+  double wall_cell_aspect(const FemScene &scene)
+  {
+    const auto layout  = kimp::geometry::SceneLayout::build(kimp::app::scene_geometry(scene, 1.25));
+    const double width = layout.wall_x[1] - layout.wall_x[0];
+    double       aspect = 0.0;
+    for (std::size_t i = 1; i < layout.wall_y.size(); ++i)
+      aspect = std::max(aspect, (layout.wall_y[i] - layout.wall_y[i - 1]) / width);
+    return aspect;
+  }
+
+  TEST(FemScene, InelasticConcreteBoundsTheWallCellsUnlessTheSceneSaysOtherwise)
+  {
+    // Inelastic concrete without mesh.wall_aspect_max: square wall cells on every mesh level
+    // (tall plain-Q1 cells lock once the wall cracks). Elastic concrete keeps the graded rows,
+    // with or without an inelastic backfill, so the linear default scene meshes as before; a
+    // value in the scene wins.
+    const std::string graded = "mesh: {h_contact: \"5 cm\", h_max: \"25 cm\", grading: 1.5";
+    const std::string damaged =
+      "materials: {concrete: {model: damage_plasticity, f_cm: \"38 MPa\"}, soil: {model: "
+      "mohr_coulomb, preset: medium_dense_sand}}\n";
+    const FemScene inelastic = load_scene_text<FemScene>(graded + "}\n" + damaged, file_name);
+    EXPECT_EQ(kimp::app::scene_geometry(inelastic, 1.25).wall_aspect_max, 1.0);
+    EXPECT_LE(wall_cell_aspect(inelastic), 1.0 + 1e-9);
+    FemScene refined   = inelastic;
+    refined.mesh_level = 1;
+    EXPECT_EQ(kimp::app::scene_geometry(refined, 1.25).wall_aspect_max, 1.0);
+    EXPECT_LE(wall_cell_aspect(refined), 1.0 + 1e-9);
+
+    const FemScene linear = load_scene_text<FemScene>(graded + "}\n", file_name);
+    EXPECT_FALSE(kimp::app::scene_geometry(linear, 1.25).wall_aspect_max.has_value());
+    EXPECT_GT(wall_cell_aspect(linear), 3.0) << "the graded wall's base rows stay tall";
+    const FemScene soil_only = load_scene_text<FemScene>(
+      graded + "}\nmaterials: {soil: {model: mohr_coulomb, preset: medium_dense_sand}}\n",
+      file_name);
+    EXPECT_FALSE(kimp::app::scene_geometry(soil_only, 1.25).wall_aspect_max.has_value());
+
+    const FemScene given =
+      load_scene_text<FemScene>(graded + ", wall_aspect_max: 3}\n" + damaged, file_name);
+    EXPECT_EQ(kimp::app::scene_geometry(given, 1.25).wall_aspect_max, 3.0);
+    EXPECT_GT(wall_cell_aspect(given), 1.5);
+    EXPECT_LE(wall_cell_aspect(given), 3.0 + 1e-9);
   }
 
   TEST(FemScene, AutomaticTimesBecomeZeroForTheSolver)
