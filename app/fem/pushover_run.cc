@@ -67,6 +67,7 @@ namespace kimp::app
       p.bars              = c.wall_reinforcement;
       p.bars.hinge_length = scene.pushover.hinge_length.value_or(0.0);
       p.cover             = scene.pushover.cover;
+      p.compression_band  = scene.pushover.compression_band;
     }
     else
     {
