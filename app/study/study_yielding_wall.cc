@@ -94,14 +94,21 @@ namespace kimp::app::study_internal
     /// reference velocity (fit_radiation_damping(): the one parameter of the element fitted to
     /// the dynamic FEM, docs/validation.md "Yielding wall element against the dynamic FEM"), for
     /// an element of the FEM's own slab (mass, impedance); without a record's travel w keeps
-    /// rho c_p H_b. The reason joins source_reason.
+    /// rho c_p H_b, and says so. The reason joins source_reason.
     void fit_dashpot(const StudyScene &scene, const StudyHeight &h, StudyYieldingWall &w)
     {
       const io::FemCase &fem    = h.fem_case;
       const auto         travel = fem.summary.max_slab_displacement;
       if (!travel || !(*travel > 0.0) || !(fem.slab_mass > 0.0) || !(fem.impact_velocity > 0.0) ||
           fem.time.empty())
+      {
+        const std::string reason = "radiation dashpot not fitted (the height's FEM record has no "
+                                   "slab travel): rho c_p H_b kept, about ten times the fitted "
+                                   "dashpots of docs/validation.md";
+        w.source_reason += (w.source_reason.empty() ? "" : "; ") + reason;
+        logger().warn("{}: {}", w.name, reason);
         return;
+      }
       YieldingWallInputs in = w.inputs;
       in.striker_mass       = fem.slab_mass;
       if (scene.fem.solver.rigid_slab)
@@ -125,7 +132,10 @@ namespace kimp::app::study_internal
                     base::sig(e.radiation_damping / 1e3),
                     fit.note.empty() ? std::string() : ": " + fit.note);
       w.source_reason += (w.source_reason.empty() ? "" : "; ") + reason;
-      logger().info("{}: {}", w.name, reason);
+      if (fit.damping >= e.radiation_damping) // the bound, not a fit
+        logger().warn("{}: {}", w.name, reason);
+      else
+        logger().info("{}: {}", w.name, reason);
     }
   } // namespace
 

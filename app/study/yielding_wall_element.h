@@ -45,7 +45,7 @@ namespace kimp::app
     double            reduced_mass      = 0.0; ///< m_w·m_s/(m_w + m_s), kg/m
     double            contact_stiffness = 0.0; ///< k_c = Z_c²/m_red, N/m per m
     double            wall_mass         = 0.0; ///< kg/m
-    double            radiation_damping = 0.0; ///< c_r = ρ_s·c_s·h, N·s/m per m
+    double            radiation_damping = 0.0; ///< c_r, N·s/m per m: ρ_s·c_p·H_b, or fitted
     double            width             = 0.0; ///< W, m
   };
 
