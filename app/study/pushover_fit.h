@@ -100,7 +100,9 @@ namespace kimp::app
   /**
    * The static pushover of `scene` at `wall_height` (run_scene_pushover() on the mesh
    * study_pushover_h_contact / study_pushover_h_max, mesh level 0, the scene's `pushover`
-   * section for the path), fitted by fit_pushover(). A reinforced wall is pushed with the
+   * section for the path; a reinforced wall's path without `unload_at` unloads to zero force at
+   * study_pushover_unload_drifts of H, for k_ur), fitted by fit_pushover(). A reinforced wall is
+   * pushed with the
    * implicit damage update first and, only where Newton stalls with it, again with IMPL-EX at
    * steps of at most study_pushover_implex_increment (docs/physics.md §6 "Static pushover":
    * IMPL-EX's lagging damage puts a cracking wall's knee high, the implicit update does not);
