@@ -136,6 +136,8 @@ namespace kimp::app
     if (c.strain_rate > 0)
       p.apply_strain_rate(c.strain_rate);
     p.plastic_fraction = c.plastic_fraction;
+    p.rotating_crack   = c.crack_frame == FemConcrete::CrackFrame::rotating;
+    p.compression_band = c.compression_band;
     return p;
   }
 
