@@ -66,6 +66,15 @@ namespace kimp::app
                 "concrete.plastic_fraction",
                 format_quantity(materials.concrete.plastic_fraction, ""),
                 "needs materials.concrete.model: damage_plasticity");
+      const FemConcrete defaults;
+      ctx.check(materials.concrete.compression_band == defaults.compression_band,
+                "concrete.compression_band",
+                format_quantity(materials.concrete.compression_band, "m"),
+                "needs materials.concrete.model: damage_plasticity");
+      ctx.check(materials.concrete.crack_frame == defaults.crack_frame,
+                "concrete.crack_frame",
+                "fixed",
+                "needs materials.concrete.model: damage_plasticity");
     }
   }
 

@@ -195,6 +195,19 @@ namespace
     EXPECT_THROW(kimp::io::load_scene_text<FemScene>(concrete + ", crack_frame: smeared}}\n",
                                                      file_name),
                  std::exception);
+    // On an elastic concrete (no cracks, no crushing) a set value is refused, not ignored.
+    for (const std::string key : {"compression_band: \"20 cm\"", "crack_frame: fixed"})
+    {
+      try
+      {
+        kimp::io::load_scene_text<FemScene>("materials: {concrete: {" + key + "}}\n", file_name);
+        ADD_FAILURE() << key << " on an elastic concrete was accepted";
+      }
+      catch (const std::exception &e)
+      {
+        EXPECT_NE(std::string(e.what()).find("damage_plasticity"), std::string::npos) << e.what();
+      }
+    }
   }
 } // namespace
 
