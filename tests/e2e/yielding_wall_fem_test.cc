@@ -27,7 +27,9 @@
 #  include <stdexcept>
 #  include <string>
 #  include <utility>
+#  include <vector>
 
+#  include "app/fem/fem_quantities.h"
 #  include "app/fem/fem_scene.h"
 #  include "app/study/pushover_fit.h"
 #  include "app/study/yielding_wall_element.h"
@@ -72,17 +74,31 @@ namespace
   {
     double peak_force   = 0.0; ///< N/m (FEM: of the smoothed force)
     double slab_peak    = 0.0; ///< m from the touch
-    double time_to_stop = 0.0; ///< s from the touch
+    double time_to_stop = 0.0; ///< s from the touch to the slab's velocity zero
     double wall_end     = 0.0; ///< the wall's displacement at the end, m
+    /// s from the touch to 95 % of the slab's largest travel (app::stop_travel_fraction)
+    double time_to_95_travel = 0.0;
   };
+
+  /// The first time at which `x` reaches app::stop_travel_fraction of its largest value,
+  /// interpolated between the samples `t`.
+  double time_to_travel_fraction(const std::vector<double> &t, const std::vector<double> &x)
+  {
+    const double target = app::stop_travel_fraction * *std::max_element(x.begin(), x.end());
+    for (std::size_t i = 1; i < x.size(); ++i)
+      if (x[i] >= target)
+        return t[i - 1] + (t[i] - t[i - 1]) * (target - x[i - 1]) / (x[i] - x[i - 1]);
+    return std::numeric_limits<double>::infinity();
+  }
 
   /// From `kimp fem`'s histories: the slab displacement integrates its velocity from the touch.
   Impact fem_impact(const std::filesystem::path &histories)
   {
-    const auto rows = read_csv_records(histories);
-    Impact     r;
-    double     x = 0.0, t_touch = -1.0, t_prev = 0.0, v_prev = 0.0;
-    bool       stopped = false;
+    const auto          rows = read_csv_records(histories);
+    Impact              r;
+    double              x = 0.0, t_touch = -1.0, t_prev = 0.0, v_prev = 0.0;
+    bool                stopped = false;
+    std::vector<double> since_touch, travel; // from the touch
     for (const auto &row : rows)
     {
       const double t = std::stod(row.at("time_s"));
@@ -98,6 +114,11 @@ namespace
         stopped        = true;
         r.time_to_stop = t - t_touch;
       }
+      if (t_touch >= 0.0)
+      {
+        since_touch.push_back(t - t_touch);
+        travel.push_back(x);
+      }
       r.peak_force = std::max(r.peak_force, f);
       r.slab_peak  = std::max(r.slab_peak, x);
       r.wall_end   = std::stod(row.at("wall_displacement_m"));
@@ -106,6 +127,7 @@ namespace
     }
     if (!stopped)
       r.time_to_stop = std::numeric_limits<double>::infinity();
+    r.time_to_95_travel = time_to_travel_fraction(since_touch, travel);
     return r;
   }
 
@@ -216,8 +238,9 @@ namespace
   {
     std::cout << fmt::format(
       "{} (c_r {:.4g} kN*s/m^2): FEM / element: peak force {:.4g} / {:.4g} kN/m ({:+.1f} %), "
-      "slab peak {:.4g} / {:.4g} mm ({:+.1f} %), time to stop {:.4g} / {:.4g} ms ({:+.1f} %), "
-      "wall at the end {:.4g} / {:.4g} mm ({:+.1f} %)\n",
+      "slab peak {:.4g} / {:.4g} mm ({:+.1f} %), time to 95 % of the travel {:.4g} / {:.4g} ms "
+      "({:+.1f} %), slab velocity zero {:.4g} / {:.4g} ms ({:+.1f} %), wall at the end {:.4g} / "
+      "{:.4g} mm ({:+.1f} %)\n",
       name,
       c.damping / 1e3,
       c.fem.peak_force / 1e3,
@@ -226,6 +249,9 @@ namespace
       1e3 * c.fem.slab_peak,
       1e3 * c.element.slab_peak,
       100 * c.error(&Impact::slab_peak),
+      1e3 * c.fem.time_to_95_travel,
+      1e3 * c.element.time_to_95_travel,
+      100 * c.error(&Impact::time_to_95_travel),
       1e3 * c.fem.time_to_stop,
       1e3 * c.element.time_to_stop,
       100 * c.error(&Impact::time_to_stop),
@@ -267,7 +293,8 @@ namespace
     fitted.element = {s.peak_contact_force,
                       s.slab_peak_displacement,
                       s.time_to_stop,
-                      s.wall_residual};
+                      s.wall_residual,
+                      s.time_to_95_travel};
     print(r.name, fitted);
     return fit.damping;
   }
@@ -281,7 +308,11 @@ namespace
     c.damping    = damping;
     const auto e = app::with_radiation_damping(element_of(scene, r, c.source), damping);
     const auto s = app::slab_impact(e, r.slab_mass, r.velocity, 1.0, 1e-6);
-    c.element = {s.peak_contact_force, s.slab_peak_displacement, s.time_to_stop, s.wall_residual};
+    c.element    = {s.peak_contact_force,
+                    s.slab_peak_displacement,
+                    s.time_to_stop,
+                    s.wall_residual,
+                    s.time_to_95_travel};
     print(r.name, c);
     return c;
   }
