@@ -14,18 +14,20 @@ namespace kimp::fem
     constexpr double same_line = 1e-9; ///< m: segments this close in x are one vertical line
 
     /** ∫ε dy from the line's lowest end to y (clamped to the line), `cumulative[k]` the
-     *  integral up to ends[k]. */
+     *  integral up to ends[k]; `k` a segment index at or below y's, advanced to y's (the
+     *  windows' ends move up monotonically: one pass per line). */
     double integral_to(const std::vector<double> &ends,
                        const std::vector<double> &cumulative,
                        const std::vector<double> &strain_by_y,
-                       double                     y)
+                       double                     y,
+                       std::size_t               &k)
     {
       if (y <= ends.front())
         return 0.0;
       if (y >= ends.back())
         return cumulative.back();
-      const auto k =
-        static_cast<std::size_t>(std::upper_bound(ends.begin(), ends.end(), y) - ends.begin()) - 1;
+      while (k + 2 < ends.size() && ends[k + 1] <= y)
+        ++k;
       return cumulative[k] + strain_by_y[k] * (y - ends[k]);
     }
   } // namespace
@@ -81,21 +83,22 @@ namespace kimp::fem
         cumulative.push_back(cumulative.back() + by_y[k] * (line.ends[k + 1] - line.ends[k]));
       }
       const double bottom = line.ends.front(), top = line.ends.back();
-      const double span       = std::min(gauge_length, top - bottom);
-      const auto   try_window = [&](double lo)
+      const double span = std::min(gauge_length, top - bottom);
+      // Windows from each segment end up, then windows down to each segment end: within each
+      // sweep both ends of the window move up, so each keeps its own segment pointer.
+      for (int sweep = 0; sweep < 2; ++sweep)
       {
-        lo                = std::clamp(lo, bottom, top - span);
-        const double hi   = lo + span;
-        const double mean = (integral_to(line.ends, cumulative, by_y, hi) -
-                             integral_to(line.ends, cumulative, by_y, lo)) /
-                            span;
-        if (std::abs(mean) > best.strain)
-          best = {std::abs(mean), lo + 0.5 * span};
-      };
-      for (const double y : line.ends)
-      {
-        try_window(y);
-        try_window(y - span);
+        std::size_t k_lo = 0, k_hi = 0;
+        for (const double y : line.ends)
+        {
+          const double lo   = std::clamp(sweep == 0 ? y : y - span, bottom, top - span);
+          const double hi   = lo + span;
+          const double mean = (integral_to(line.ends, cumulative, by_y, hi, k_hi) -
+                               integral_to(line.ends, cumulative, by_y, lo, k_lo)) /
+                              span;
+          if (std::abs(mean) > best.strain)
+            best = {std::abs(mean), lo + 0.5 * span};
+        }
       }
     }
     return best;

@@ -114,7 +114,12 @@ namespace kimp::app
       for (std::size_t i = start; i < t.size(); ++i)
         travel = std::max(travel, c.slab_displacement[i] - x_c);
       s.max_slab_displacement = travel;
-      if (travel > 0)
+      // Only once the slab has stopped: before, the largest travel is the last sample's.
+      const bool stopped = c.slab_velocity.size() == t.size() &&
+                           std::any_of(c.slab_velocity.begin() + static_cast<std::ptrdiff_t>(start),
+                                       c.slab_velocity.end(),
+                                       [](double u) { return u <= 0; });
+      if (travel > 0 && stopped)
         s.time_to_95_travel = time_to_travel(t, c.slab_displacement, start, x_c, travel) - t_c;
       if (travel > 0 && m > 0 && v_in > 0)
         s.energy_equivalent_resistance = 0.5 * m * v_in * v_in / travel;

@@ -42,7 +42,8 @@ namespace kimp::app
    * - time_to_stop: first contact to the first sample at which the slab's velocity is <= 0
    *   (the zero-velocity instant; ill-conditioned when the slab creeps to rest);
    * - time_to_95_travel: first contact to the instant the slab's travel first reaches
-   *   stop_travel_fraction of max_slab_displacement (linear interpolation between samples);
+   *   stop_travel_fraction of max_slab_displacement (linear interpolation between samples;
+   *   unset, like time_to_stop, when the slab has not stopped within the record);
    * - impulse_momentum_ratio: the trapezoid ∫F dt over the record over m (v_in − v_end),
    *   v_end the slab's velocity at the end (−v_out for a rebound).
    */

@@ -127,6 +127,20 @@ namespace
     EXPECT_LT(std::abs(t95[1] - t95[0]) / t95[1], 0.03) << "t_95 stays within 3 %";
     EXPECT_LT(std::abs(t95[1] - t95[0]), 0.3 * std::abs(t_stop[1] - t_stop[0]));
     EXPECT_GT(std::abs(t_stop[1] - t_stop[0]) / t_stop[1], 0.07);
+
+    // A record cut before the slab stops shows neither time (its largest travel is its last).
+    FemCase cut = creeping_record(a, creep, 3e-3);
+    cut.time.resize(15000);
+    for (auto *h : {&cut.contact_force,
+                    &cut.smoothed_contact_force,
+                    &cut.slab_displacement,
+                    &cut.slab_velocity,
+                    &cut.wall_displacement})
+      h->resize(15000);
+    kimp::app::set_engineer_quantities(cut);
+    EXPECT_TRUE(cut.summary.max_slab_displacement.has_value());
+    EXPECT_FALSE(cut.summary.time_to_stop.has_value());
+    EXPECT_FALSE(cut.summary.time_to_95_travel.has_value());
   }
 
   TEST(FemQuantities, FirstPulseIsNotTheLaterPush)
