@@ -6,6 +6,7 @@
 // No deal.II: a piecewise-constant strain per vertical line.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 namespace kimp::fem

@@ -3,6 +3,7 @@
 // pulse is followed by a larger push, and broken records that the impulse-momentum check flags.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <gtest/gtest.h>
 #include <string>
 
@@ -122,6 +123,13 @@ namespace
       EXPECT_NEAR(c.summary.time_to_95_travel.value(), closed, 1e-3 * dt);
       t95[i]    = c.summary.time_to_95_travel.value();
       t_stop[i] = c.summary.time_to_stop.value();
+      std::printf("creep over %.0f ms: travel %.4g mm, t_95 %.4g ms (closed form %.4g), velocity "
+                  "zero at %.4g ms\n",
+                  creep_time * 1e3,
+                  x_max * 1e3,
+                  t95[i] * 1e3,
+                  closed * 1e3,
+                  t_stop[i] * 1e3);
     }
     EXPECT_NEAR(t_stop[1] - t_stop[0], 2e-3, 2 * dt) << "the zero-velocity instant moves";
     EXPECT_LT(std::abs(t95[1] - t95[0]) / t95[1], 0.03) << "t_95 stays within 3 %";

@@ -82,22 +82,20 @@ namespace
 
   /// The reinforced moat wall (data/scenes/fem_reinforced_wall.yaml) on a coarse mesh for the
   /// first 15 ms of its impact, with the bars' gauge `gauge` long; its record.
-  kimp::io::FemCase reinforced_record(const TempDir &dir, const std::string &gauge)
+  kimp::io::FemCase
+  reinforced_record(const TempDir &dir, const std::string &tag, const std::string &gauge)
   {
-    const std::string tag = "gauge_" + gauge;
     std::filesystem::create_directories(dir.path() / tag);
     write_text(dir.path() / tag / "scene.yaml",
                read_text(source_dir() / "data/scenes/fem_reinforced_wall.yaml") +
-                 "
-mesh: {
-    h_contact: \"5 cm\", h_max: \"25 cm\", grading: 1.5, "
+                 "\nmesh: {h_contact: \"5 cm\", h_max: \"25 cm\", grading: 1.5, "
                  "wall_aspect_max: 1}\ndynamics: {end_time: \"15 ms\", bar_gauge_length: \"" +
                  gauge + "\"}\noutput: {frame_interval: \"0 ms\"}\n");
-      const KimpRun run = run_kimp("fem scene.yaml -o out", dir.path() / tag);
-      EXPECT_EQ(run.exit_code, 0) << run.err;
-      const auto cases = kimp::io::read_fem_cases(dir.path() / tag / "out/fem.h5");
-      EXPECT_EQ(cases.size(), 1u);
-      return cases.at(0);
+    const KimpRun run = run_kimp("fem scene.yaml -o out", dir.path() / tag);
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    const auto cases = kimp::io::read_fem_cases(dir.path() / tag / "out/fem.h5");
+    EXPECT_EQ(cases.size(), 1u);
+    return cases.at(0);
   }
 
   // The bars' strain over a gauge through `kimp fem`: a gauge shorter than any half cell reads
@@ -106,29 +104,29 @@ mesh: {
   // thickness) averages it down near the base, where the wall bends most.
   TEST(FemQuantitiesCli, BarGaugeReadsThePointStrainWhenShortAndAveragesWhenLong)
   {
-      const TempDir           dir("fem_quantities_gauge");
-      const kimp::io::FemCase point = reinforced_record(dir, "0.1 mm");
-      const kimp::io::FemCase gauge = reinforced_record(dir, "0 cm");
-      const auto             &p = point.summary, &g = gauge.summary;
-      std::cout << "reinforced wall, 5 cm, 15 ms: point bar strain / eps_y "
-                << p.max_bar_strain_ratio.value() << " at " << p.max_bar_strain_height.value()
-                << " m; 0.1 mm gauge " << p.max_bar_gauge_strain_ratio.value() << " at "
-                << p.max_bar_gauge_strain_height.value() << " m; default gauge "
-                << g.bar_gauge_length.value() << " m: " << g.max_bar_gauge_strain_ratio.value()
-                << " centred at " << g.max_bar_gauge_strain_height.value() << " m\n";
-      EXPECT_NEAR(p.bar_gauge_length.value(), 1e-4, 1e-12);
-      EXPECT_NEAR(g.bar_gauge_length.value(), 0.125, 1e-9) << "half the wall's thickness";
-      EXPECT_NEAR(p.max_bar_gauge_strain_ratio.value(),
-                  p.max_bar_strain_ratio.value(),
-                  1e-9 * p.max_bar_strain_ratio.value());
-      EXPECT_NEAR(p.max_bar_gauge_strain_height.value(), p.max_bar_strain_height.value(), 0.05);
-      EXPECT_LT(g.max_bar_gauge_strain_ratio.value(), p.max_bar_strain_ratio.value());
-      EXPECT_GT(g.max_bar_gauge_strain_ratio.value(), 0.0);
-      EXPECT_LT(g.max_bar_gauge_strain_height.value(), 0.5) << "near the base";
-      // The same run otherwise: the gauge only reads.
-      EXPECT_EQ(p.max_bar_strain_ratio.value(), g.max_bar_strain_ratio.value());
-      EXPECT_TRUE(gauge.labels.count("bars_yield_over_gauge"));
+    const TempDir           dir("fem_quantities_gauge");
+    const kimp::io::FemCase point = reinforced_record(dir, "short", "0.1 mm");
+    const kimp::io::FemCase gauge = reinforced_record(dir, "default", "0 cm");
+    const auto             &p = point.summary, &g = gauge.summary;
+    std::cout << "reinforced wall, 5 cm, 15 ms: point bar strain / eps_y "
+              << p.max_bar_strain_ratio.value() << " at " << p.max_bar_strain_height.value()
+              << " m; 0.1 mm gauge " << p.max_bar_gauge_strain_ratio.value() << " at "
+              << p.max_bar_gauge_strain_height.value() << " m; default gauge "
+              << g.bar_gauge_length.value() << " m: " << g.max_bar_gauge_strain_ratio.value()
+              << " centred at " << g.max_bar_gauge_strain_height.value() << " m\n";
+    EXPECT_NEAR(p.bar_gauge_length.value(), 1e-4, 1e-12);
+    EXPECT_NEAR(g.bar_gauge_length.value(), 0.125, 1e-9) << "half the wall's thickness";
+    EXPECT_NEAR(p.max_bar_gauge_strain_ratio.value(),
+                p.max_bar_strain_ratio.value(),
+                1e-9 * p.max_bar_strain_ratio.value());
+    EXPECT_NEAR(p.max_bar_gauge_strain_height.value(), p.max_bar_strain_height.value(), 0.05);
+    EXPECT_LT(g.max_bar_gauge_strain_ratio.value(), p.max_bar_strain_ratio.value());
+    EXPECT_GT(g.max_bar_gauge_strain_ratio.value(), 0.0);
+    EXPECT_LT(g.max_bar_gauge_strain_height.value(), 0.5) << "near the base";
+    // The same run otherwise: the gauge only reads.
+    EXPECT_EQ(p.max_bar_strain_ratio.value(), g.max_bar_strain_ratio.value());
+    EXPECT_TRUE(gauge.labels.count("bars_yield_over_gauge"));
   }
-  } // namespace
+} // namespace
 
 #endif
