@@ -1,9 +1,9 @@
-// The bars' strain over a gauge length (docs/physics.md §6 "Engineer's quantities: the bars'
-// strain over a gauge length"): the mean strain of a vertical line of the wall over a window of
-// given length, the elongation a strain gauge of that length reads. Perfectly bonded smeared
-// bars localise their plastic strain in the one row of cells where the crack forms, so the
-// largest point strain grows as the row shrinks; the elongation over a fixed length does not.
-// No deal.II: a piecewise-constant strain per vertical line.
+// The bars' strain over a gauge length (docs/physics.md "Engineer's quantities"): the mean
+// strain of a vertical line of the wall over a window of given length, the elongation a strain
+// gauge of that length reads. Perfectly bonded smeared bars localise their plastic strain in the
+// one row of cells where the crack forms, so the largest point strain grows as the row shrinks; the
+// elongation over a fixed length does not. No deal.II: a piecewise-constant strain per vertical
+// line.
 #pragma once
 
 #include <cstddef>

@@ -100,7 +100,7 @@ namespace
 
   // The slab creeps to rest, as on the yielding moat wall of docs/validation.md: over its last 3
   // or 5 ms it moves at under 0.1 m/s (0.15 or 0.25 mm, 1.3 or 2.2 % of its 11.3 mm travel; the
-  // FEM's creep covers the last 1.3-1.8 %). The instant its velocity reaches zero moves with the
+  // FEM's creep covers the last 1.2-1.9 %). The instant its velocity reaches zero moves with the
   // creep's length (by 2 ms, 8 %); the time it reaches 95 % of its travel is read before the
   // creep, at 0.2 m/s, and moves only as the creep's 0.1 mm moves the 95 % mark (2.5 %): closed
   // form t_95 from x(t) of the constant deceleration, x(t_95) = 0.95 x_max.
