@@ -119,6 +119,12 @@ for name in names:
         ch = change(x, y)
         print(f"  {label:38s} {x:10.4g} {y:10.4g} {ch:7.1f} % {'pass' if ch <= 5.0 else 'FAIL'}")
     for far in fars[1:]:
+        print(f"  far side {far}: its own change from 2.5 to 1.25 cm:")
+        for label, key, scale in rows:
+            x, y = (val(runs[(far, h)][name], key, scale) if name in runs[(far, h)] else None
+                    for h in levels)
+            if x is not None and y is not None:
+                print(f"  {label:38s} {x:10.4g} {y:10.4g} {change(x, y):7.1f} %")
         print(f"  far side {ref} against {far} (spread = |{ref} - {far}| / {far}):")
         print(f"  {'quantity':38s} {'level':>7s} {ref:>10s} {far:>10s} {'spread':>8s}")
         for label, key, scale in rows:
@@ -128,4 +134,34 @@ for name in names:
                 if x is None or y is None:
                     continue
                 print(f"  {label:38s} {h + ' cm':>7s} {x:10.4g} {y:10.4g} {change(x, y):7.1f} %")
+
+# The slab's creep to rest, from the histories (the slab's travel integrates its velocity from
+# the first contact): where it falls under 0.1 m/s, as a share of its largest travel, and its
+# speed when it reaches 95 % of the travel (time_to_95_travel).
+import csv
+from collections import defaultdict
+print("\ncreep to rest (slab under 0.1 m/s from ... of its travel; its speed at 95 % of it):")
+for far in fars:
+    for h in levels:
+        path = os.path.join(work, f"out_{far}_{h}", "fem_histories.csv")
+        if not os.path.exists(path):
+            continue
+        cases = defaultdict(list)
+        for r in csv.DictReader(open(path)):
+            cases[r["case"]].append((float(r["time_s"]), float(r["smoothed_contact_force_N_per_m"]),
+                                     float(r["slab_velocity_m_per_s"])))
+        for case, hist in cases.items():
+            touch = next((i for i, (_, f, _) in enumerate(hist) if f > 0), None)
+            if touch is None:
+                continue
+            x = [0.0]
+            for i in range(touch + 1, len(hist)):
+                x.append(x[-1] + 0.5 * (hist[i][2] + hist[i - 1][2]) * (hist[i][0] - hist[i - 1][0]))
+            v = [hv for _, _, hv in hist[touch:]]
+            top = max(x)
+            slow = next((i for i in range(len(v)) if v[i] <= 0.1), None)
+            at95 = next(i for i in range(len(x)) if x[i] >= 0.95 * top)
+            print(f"  {far:10s} {h:>4s} cm {case}: under 0.1 m/s from "
+                  f"{'-' if slow is None else f'{100 * x[slow] / top:.1f} %'}, "
+                  f"{v[at95]:.3f} m/s at 95 %")
 PY

@@ -4,10 +4,10 @@
 // fem`, H = 1.25 m, the reinforced 0.25 m wall, geostatic Mohr-Coulomb backfill; 5 cm at the
 // contact graded to 25 cm, the wall's cells no taller than wide; absorbing far side, and the
 // thesis' rollered block for comparison): peak contact force, the slab's peak displacement, its
-// time to stop and the wall's residual displacement, against the criterion (peak force <= 10 %,
-// the others <= 15 %) on the rows where it holds. The radiation dashpot is the one parameter
-// fitted to the dynamic FEM (app::fit_radiation_damping(), on the FEM's slab at 1 m/s), then
-// frozen. The test fits it and runs the slab carrying the building's 55 t/m at 0.5 m/s;
+// time to stop (to 95 % of its travel) and the wall's residual displacement, against the criterion
+// (peak force <= 10 %, the others <= 15 %) on the rows where it holds. The radiation dashpot is the
+// one parameter fitted to the dynamic FEM (app::fit_radiation_damping(), on the FEM's slab at 1
+// m/s), then frozen. The test fits it and runs the slab carrying the building's 55 t/m at 0.5 m/s;
 // KIMP_YIELDING_WALL_FULL=1 runs the four rows of docs/validation.md (the FEM's slab and the heavy
 // slab, 0.5 and 1 m/s) against both far sides and checks the absorbing ones;
 // KIMP_YIELDING_WALL_FEM_DIR=DIR keeps each FEM run in DIR/<row>_<far side> (with VTU fields every
@@ -330,15 +330,17 @@ namespace
 
   /// The quantities of the criterion that hold on the row (docs/validation.md: the FEM slab's
   /// wall springs back farther than the element's, whose unloading is its loading stiffness, so
-  /// its residual misses on those rows, and at 0.5 m/s its travel, by 0.3-0.7 points, and its
-  /// time to stop; the fitted row's travel is the fit's own).
+  /// its residual misses on those rows, and at 0.5 m/s its travel, by 0.3-0.7 points; the fitted
+  /// row's travel is the fit's own).
   void expect_criterion(const Comparison &c, const bool heavy, const double v, const bool fitted)
   {
     expect_within(c, &Impact::peak_force, force_tolerance, "peak force");
     if (!fitted && (heavy || v == 1.0))
       expect_within(c, &Impact::slab_peak, motion_tolerance, "slab travel");
-    if (heavy || v == 1.0)
-      expect_within(c, &Impact::time_to_stop, motion_tolerance, "time to stop");
+    // The time to stop the slab as the time to 95 % of its travel on both sides (the instant
+    // its velocity is zero is ill-conditioned where it creeps to rest: the FEM slab at 0.5 m/s
+    // misses by 20 % on it and meets the criterion on this one).
+    expect_within(c, &Impact::time_to_95_travel, motion_tolerance, "time to 95 % of the travel");
     if (heavy)
       expect_within(c, &Impact::wall_end, motion_tolerance, "wall residual");
   }
