@@ -98,7 +98,9 @@ namespace kimp::app
     io.quantity("unloading_stiffness",
                 s.unloading_stiffness,
                 "kN/mm/m",
-                "unloading and reloading stiffness per metre (>= stiffness; null: stiffness)",
+                "unloading and reloading stiffness per metre (null: stiffness; below it, a "
+                "cracked wall's spring-back: the element unloads at the larger of it and the "
+                "envelope's secant, never leaving a negative set)",
                 io::Range::positive());
     io.quantity("tension_capacity",
                 s.tension_capacity,

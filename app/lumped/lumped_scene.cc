@@ -72,12 +72,6 @@ namespace kimp::app
         const std::string wall = side;
         ctx.check(!w->flexible, wall + "flexible", "true", "must be false for a yielding wall");
         const YieldingWallScene &y = *w->yielding;
-        const double             k = y.stiffness.value_or(y.default_stiffness());
-        if (y.unloading_stiffness)
-          ctx.check(*y.unloading_stiffness >= k,
-                    wall + "yielding.unloading_stiffness",
-                    format_quantity(*y.unloading_stiffness, "kN/mm/m"),
-                    "must be >= stiffness = " + format_quantity(k, "kN/mm/m"));
         if (y.ultimate_capacity)
         {
           const double f = y.capacity.value_or(y.default_capacity());

@@ -106,31 +106,87 @@ namespace kimp::app
       note += (note.empty() ? "" : "; ") + text;
     }
 
-    /// k_ur and the permanent set from the first unloading of `curve` (see the header).
+    /// Every unloading of `curve` that reaches zero force: where it starts, its force there and
+    /// the displacement at zero force (linear between the points that bracket it).
+    std::vector<PushoverUnloading> curve_unloadings(const std::vector<fem::PushoverPoint> &curve)
+    {
+      std::vector<PushoverUnloading> out;
+      for (std::size_t k = 1; k < curve.size(); ++k)
+      {
+        if (!curve[k].unloading || curve[k - 1].unloading)
+          continue;
+        std::size_t j = k;
+        while (j + 1 < curve.size() && curve[j + 1].unloading && curve[j].force > 0)
+          ++j;
+        const fem::PushoverPoint &a = curve[j - 1], &b = curve[j];
+        if (b.force <= 0 && a.force > 0)
+          out.push_back(
+            {curve[k - 1].displacement,
+             curve[k - 1].force,
+             a.displacement + (b.displacement - a.displacement) * a.force / (a.force - b.force),
+             0.0});
+      }
+      return out;
+    }
+
+    /// The element's set after unloading from w_un at k_ur (docs/physics.md §2: never steeper
+    /// than the envelope's secant there, so never below 0).
+    double element_set(const PushoverFit &fit, double w_un, double k_ur)
+    {
+      const double e = bilinear(fit, w_un);
+      return w_un - e / std::max(k_ur, e / w_un);
+    }
+
+    /// k_ur and the permanent sets from the unloadings of `curve` (see the header).
     void fit_unloading(const std::vector<fem::PushoverPoint> &curve, PushoverFit &fit)
     {
-      const fem::PushoverSummary s = fem::summarise_pushover(curve);
-      fit.unloaded_from            = s.unloaded_from;
-      fit.pushover_permanent_set   = s.permanent_set;
-      fit.unloading_stiffness      = fit.stiffness;
-      if (std::isnan(s.permanent_set) || std::isnan(s.unloaded_from))
+      fit.unloadings          = curve_unloadings(curve);
+      fit.unloading_stiffness = fit.stiffness;
+      fit.unloaded_from = fit.pushover_permanent_set = fit.permanent_set =
+        std::numeric_limits<double>::quiet_NaN();
+      if (fit.unloadings.empty())
       {
-        fit.permanent_set = std::numeric_limits<double>::quiet_NaN();
         append(fit.note, "no unloading to zero force in the curve: k_ur = k");
         return;
       }
-      const double e_un = bilinear(fit, s.unloaded_from);
-      const double k_ur = e_un / (s.unloaded_from - s.permanent_set);
-      if (k_ur >= fit.stiffness)
-        fit.unloading_stiffness = k_ur;
-      fit.permanent_set = s.unloaded_from - e_un / fit.unloading_stiffness;
-      if (k_ur < fit.stiffness)
+      // Least squares on 1/k_ur of the sets w_un − E(w_un)/k_ur over the unloadings that leave
+      // one (more than a tenth of w_un); if none does, the smallest unloading secant.
+      double num = 0.0, den = 0.0, smallest_secant = std::numeric_limits<double>::infinity();
+      for (const PushoverUnloading &u : fit.unloadings)
+      {
+        const double e  = bilinear(fit, u.from);
+        smallest_secant = std::min(smallest_secant, e / (u.from - u.permanent_set));
+        if (u.permanent_set > 0.1 * u.from)
+        {
+          num += e * (u.from - u.permanent_set);
+          den += e * e;
+        }
+      }
+      fit.unloading_stiffness = den > 0.0 ? den / num : smallest_secant;
+      if (den == 0.0)
         append(fit.note,
-               fmt::format("the curve unloads softer ({:.4g} kN/mm/m) than k: k_ur = k, the "
-                           "element's set {:.4g} mm against the curve's {:.4g} mm",
-                           k_ur / 1e6,
-                           fit.permanent_set * 1e3,
-                           s.permanent_set * 1e3));
+               fmt::format("every unloading springs back to within a tenth of its start: k_ur "
+                           "= the smallest unloading secant, {:.4g} kN/mm/m",
+                           smallest_secant / 1e6));
+      std::string sets;
+      for (PushoverUnloading &u : fit.unloadings)
+      {
+        u.element_set = element_set(fit, u.from, fit.unloading_stiffness);
+        sets += fmt::format("{}{:.3g}: {:.3g} / {:.3g}",
+                            sets.empty() ? "" : ", ",
+                            u.from * 1e3,
+                            u.permanent_set * 1e3,
+                            u.element_set * 1e3);
+      }
+      fit.unloaded_from          = fit.unloadings.front().from;
+      fit.pushover_permanent_set = fit.unloadings.front().permanent_set;
+      fit.permanent_set          = fit.unloadings.front().element_set;
+      if (fit.unloading_stiffness < fit.stiffness)
+        append(fit.note,
+               fmt::format("k_ur {:.4g} kN/mm/m < k: the wall springs back softer than it was "
+                           "loaded (set after unloading from w_un mm, curve / element: {} mm)",
+                           fit.unloading_stiffness / 1e6,
+                           sets));
     }
   } // namespace
 
@@ -204,6 +260,12 @@ namespace kimp::app
     coarse.geometry.h_contact = study_pushover_h_contact;
     coarse.geometry.h_max     = study_pushover_h_max;
     coarse.mesh_level         = 0;
+    if (coarse.materials.concrete.model == FemConcrete::Model::damage_plasticity &&
+        coarse.pushover.unload_at.empty())
+      for (const double drift : study_pushover_unload_drifts)
+        if (drift * wall_height <
+            coarse.pushover.displacement.value_or(study_pushover_drift * wall_height))
+          coarse.pushover.unload_at.push_back(drift * wall_height);
     PushoverResistance r;
     const auto         start = base::SteadyClock::now();
     std::string        fallback;

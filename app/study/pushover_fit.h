@@ -12,6 +12,15 @@
 
 namespace kimp::app
 {
+  /** One unloading of a cyclic pushover curve to zero force, m and N/m. */
+  struct PushoverUnloading
+  {
+    double from          = 0.0; ///< w_un, the band displacement where it starts
+    double force         = 0.0; ///< the curve's force there
+    double permanent_set = 0.0; ///< the curve's displacement at zero force
+    double element_set   = 0.0; ///< the fitted element's (w_un − E(w_un)/k̃, k̃ >= E/w_un)
+  };
+
   /**
    * The bilinear wall-and-backfill part fitted to a pushover curve, per metre of wall (SI).
    * The bilinear E(w) = k·w up to F_y, then F_y + α·k·(w − F_y/k), ends at the curve's target
@@ -22,17 +31,19 @@ namespace kimp::app
     double capacity            = 0.0; ///< F_y = V_y, the bilinear's yield force, N/m
     double stiffness           = 0.0; ///< k = K_e, secant of the curve at 0.6·V_y, N/m per m
     double hardening_ratio     = 0.0; ///< α: post-yield tangent α·k through (Δ_d, V_d)
-    double unloading_stiffness = 0.0; ///< k_ur (>= k), N/m per m
+    double unloading_stiffness = 0.0; ///< k_ur (> 0; below k: a cracked wall), N/m per m
     double yield_displacement  = 0.0; ///< F_y/k, m
     double target_displacement = 0.0; ///< Δ_d: the envelope's largest force is reached here, m
     double target_force        = 0.0; ///< V_d: the curve's capacity (largest force), N/m; the
                                ///< element's cap (ultimate_capacity): it does not harden past it
     double curve_work = 0.0; ///< ∫₀^Δ_d F dw of the curve (= the bilinear's), J/m
     /** The first unloading of a cyclic curve (NaN without one): where it starts, the curve's
-     *  permanent set there and the element's (w_un − E(w_un)/k_ur), m. */
+     *  permanent set there and the element's (w_un − E(w_un)/k̃), m. */
     double unloaded_from          = 0.0;
     double pushover_permanent_set = 0.0;
     double permanent_set          = 0.0;
+    /** Every unloading of the curve that reaches zero force, in order. */
+    std::vector<PushoverUnloading> unloadings;
     /** What the fit had to assume or clamp, in words ("" when nothing). */
     std::string note;
   };
@@ -46,9 +57,13 @@ namespace kimp::app
    *   K_e = 0.6·V_y / w(0.6·V_y) (the curve's secant where it first reaches 0.6·V_y) and the
    *   post-yield line through (Δ_d, V_d) has the curve's area up to Δ_d; fixed-point iteration on
    *   V_y = (2A − V_d·Δ_d)/(Δ_d − V_d/K_e). V_y is at most V_d (then α = 0);
-   * - unloading: the first unloading's measured permanent set w_p gives k_ur = E(w_un)/(w_un −
-   * w_p), so that the element leaves the curve's set; k_ur is at least k (the element's law), which
-   *   the note states with the set the element leaves instead. Without unloading k_ur = k.
+   * - unloading: the unloadings' measured permanent sets w_p give k_ur, the least-squares fit of
+   *   1/k_ur to w_un − w_p = E(w_un)/k_ur over the unloadings that leave a set of more than a
+   *   tenth of w_un (one: k_ur = E(w_un)/(w_un − w_p) exactly); without such an unloading the
+   *   smallest unloading secant E(w_un)/(w_un − w_p). k_ur may be below k (a cracked wall springs
+   *   back softer than it was loaded; the element then unloads at max(k_ur, E/w_max), never
+   *   leaving a negative set), which the note states with each unloading's set, the curve's and
+   *   the element's. Without unloading k_ur = k.
    * @throws std::invalid_argument when the curve cannot be fitted (fewer than three envelope
    *   points, no positive force, or a curve that does not yield before its target), naming why.
    */
@@ -73,11 +88,21 @@ namespace kimp::app
   /// H = 1.25 m has F_y 128.1 / 116.2 / 113.1 kN/m at 1 / 0.5 / 0.25 mm steps (docs/physics.md
   /// §2 "element of a study"), so the scene's 1 mm default would overstate it by 13 %.
   inline constexpr double study_pushover_implex_increment = 0.25e-3;
+  /// The push of a study's pushover without `pushover.displacement`: 5 % of H (the scene's
+  /// default, app/fem/pushover_run.cc).
+  inline constexpr double study_pushover_drift = 0.05;
+  /// Where a study's pushover of a reinforced wall unloads to zero force and reloads when the
+  /// scene's `pushover.unload_at` is empty, as drifts (fractions of H): the cracked wall's spring
+  /// back, k_ur (docs/physics.md §2 "element of a study"; at H = 1.25 m 12.5 and 25 mm, where an
+  /// impact of the isolation's mass pushes the wall).
+  inline constexpr double study_pushover_unload_drifts[] = {0.01, 0.02};
 
   /**
    * The static pushover of `scene` at `wall_height` (run_scene_pushover() on the mesh
    * study_pushover_h_contact / study_pushover_h_max, mesh level 0, the scene's `pushover`
-   * section for the path), fitted by fit_pushover(). A reinforced wall is pushed with the
+   * section for the path; a reinforced wall's path without `unload_at` unloads to zero force at
+   * study_pushover_unload_drifts of H, for k_ur), fitted by fit_pushover(). A reinforced wall is
+   * pushed with the
    * implicit damage update first and, only where Newton stalls with it, again with IMPL-EX at
    * steps of at most study_pushover_implex_increment (docs/physics.md §6 "Static pushover":
    * IMPL-EX's lagging damage puts a cracking wall's knee high, the implicit update does not);

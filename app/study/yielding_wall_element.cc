@@ -36,9 +36,6 @@ namespace kimp::app
     require_positive(in.striker_mass, "striker_mass");
     require_positive(in.wall_height, "wall_height");
     require_positive(width, "width");
-    if (in.unloading_stiffness < in.stiffness)
-      throw std::invalid_argument(
-        "yielding wall element: unloading_stiffness must be at least stiffness");
     if (!(in.ultimate_capacity >= in.capacity))
       throw std::invalid_argument(
         "yielding wall element: ultimate_capacity must be at least capacity");

@@ -21,7 +21,7 @@ namespace kimp::app
     // Wall-and-backfill resistance (the static pushover or its estimate).
     double capacity            = 0.0; ///< F_y, N/m
     double stiffness           = 0.0; ///< k, initial (cracked) tangent, N/m per m
-    double unloading_stiffness = 0.0; ///< k_ur (>= k), N/m per m
+    double unloading_stiffness = 0.0; ///< k_ur (> 0; below k: a cracked wall), N/m per m
     double hardening_ratio     = 0.0; ///< α of the post-yield tangent α·k
     /// F_u, N/m: the force the hardening stops at (a pushover's largest force; +inf: no cap)
     double ultimate_capacity = std::numeric_limits<double>::infinity();

@@ -65,12 +65,12 @@ namespace kimp::lumped
                       p.failure_ratio,
                       "",
                       "must be in (0, 1]");
-    require_parameter(std::isfinite(p.unloading_stiffness) && p.unloading_stiffness >= p.stiffness,
+    require_parameter(std::isfinite(p.unloading_stiffness) && p.unloading_stiffness > 0.0,
                       owner,
                       "unloading_stiffness",
                       p.unloading_stiffness,
                       "N/m",
-                      "must be >= stiffness");
+                      "must be > 0");
     require_parameter(std::isfinite(p.tension_capacity) && p.tension_capacity >= 0.0,
                       owner,
                       "tension_capacity",
@@ -151,9 +151,18 @@ namespace kimp::lumped
            0.5 * p.hardening_ratio * p.stiffness * dw * dw + envelope(w) * std::max(0.0, w - w_u);
   }
 
+  double WallBackfillLaw::unloading_stiffness_at(const double w_max) const
+  {
+    const double k_ur = params_.unloading_stiffness;
+    if (!(w_max > 0.0))
+      return std::max(k_ur, params_.stiffness); // the envelope's tangent at 0 is k
+    return std::max(k_ur, envelope(w_max) / w_max);
+  }
+
   double WallBackfillLaw::permanent_set(const WallBackfillState &s) const
   {
-    return s.max_deformation - envelope(s.max_deformation) / params_.unloading_stiffness;
+    return s.max_deformation -
+           envelope(s.max_deformation) / unloading_stiffness_at(s.max_deformation);
   }
 
   ForceResponse WallBackfillLaw::set_trial(const double deformation, const double rate)
@@ -170,9 +179,10 @@ namespace kimp::lumped
     }
     else
     {
-      const double line   = p.unloading_stiffness * (deformation - permanent_set(committed_));
+      const double k_ur   = unloading_stiffness_at(committed_.max_deformation);
+      const double line   = k_ur * (deformation - permanent_set(committed_));
       trial_.spring_force = std::max(line, -p.tension_capacity);
-      trial_.stiffness    = line > -p.tension_capacity ? p.unloading_stiffness : 0.0;
+      trial_.stiffness    = line > -p.tension_capacity ? k_ur : 0.0;
     }
     trial_.force       = trial_.spring_force + p.radiation_damping * rate;
     trial_.peak_spring = std::max(committed_.peak_spring, trial_.spring_force);
@@ -193,12 +203,12 @@ namespace kimp::lumped
   {
     const double w_max = committed_.max_deformation;
     const double e     = envelope(w_max);
-    return envelope_work(w_max) - 0.5 * e * e / params_.unloading_stiffness;
+    return envelope_work(w_max) - 0.5 * e * e / unloading_stiffness_at(w_max);
   }
 
   double WallBackfillLaw::stored_energy() const
   {
-    const double k_ur = params_.unloading_stiffness;
+    const double k_ur = unloading_stiffness_at(committed_.max_deformation);
     const double d    = committed_.deformation - permanent_set(committed_);
     const double d_t  = -params_.tension_capacity / k_ur; // where the tension cap begins
     if (d >= d_t)

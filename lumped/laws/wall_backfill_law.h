@@ -32,7 +32,8 @@ namespace kimp::lumped
    * | ultimate_capacity    | F_u: bilinear, the force the hardening stops at   | N     | >= F_y   |
    * |                      | (+inf: no cap)                                    |       |          |
    * | failure_ratio        | R_f: hyperbolic, the curve tends to F_ult/R_f     | -     | (0, 1]   |
-   * | unloading_stiffness  | k_ur: unloading and reloading stiffness           | N/m   | >= k     |
+   * | unloading_stiffness  | k_ur: unloading and reloading stiffness (the line | N/m   | > 0      |
+   * |                      | is never steeper than needed: at least E/w_max)   |       |          |
    * | tension_capacity     | F_t: largest force pulling the wall towards the   | N     | >= 0     |
    * |                      | building (0: the part acts in compression only)   |       |          |
    * | radiation_damping    | c_r: dashpot to the ground (soil ρ·c over the     | N·s/m | >= 0     |
@@ -74,23 +75,28 @@ namespace kimp::lumped
    *
    *   F(w, ẇ) = R(w) + c_r·ẇ,
    *   R(w)    = E(w)                            for w >= w_max (virgin loading; w_max := w),
-   *           = max(k_ur·(w − w_p), −F_t)       for w <  w_max (unloading and reloading),
-   *   w_p     = w_max − E(w_max)/k_ur           (the permanent set: where R returns to 0).
+   *           = max(k̃·(w − w_p), −F_t)         for w <  w_max (unloading and reloading),
+   *   k̃       = max(k_ur, E(w_max)/w_max)       (never below the envelope's secant),
+   *   w_p     = w_max − E(w_max)/k̃ >= 0        (the permanent set: where R returns to 0).
    *
    * The bilinear envelope stops hardening at F_u: E = min(F_y + α·k·(w − w_y), F_u), w_y = F_y/k,
    * flat from w_u = w_y + (F_u − F_y)/(α·k) (the pushover's largest force; a wall does not
-   * harden without bound). The envelope E (WallEnvelope) is concave with E' <= k <= k_ur, so the
-   * unloading line lies below it and meets it at w_max: reloading rejoins the envelope there
-   * (hardening continues). A wall pushed back keeps its set: with F_t = 0 it rests at w_p with R =
-   * 0 (the next impact comes at a larger gap); F_t > 0 is the wall's elastic pull-back, limited to
-   * F_t without changing w_p (no reverse yielding).
+   * harden without bound). The envelope E (WallEnvelope) is concave with E(0) = 0, so its chords
+   * ending at w_max are at most as steep as its secant E(w_max)/w_max; a line through
+   * (w_max, E(w_max)) at k̃ >= that secant therefore lies below the envelope and meets it at
+   * w_max: reloading rejoins the envelope there (hardening continues). k_ur >= k keeps k̃ = k_ur
+   * (OpenSees' materials); k_ur < k is a cracked wall that springs back softer than it was
+   * first loaded: elastic back to w = 0 (no set) while the secant is steeper than k_ur, a set
+   * w_max − E/k_ur once it is not. A wall pushed back keeps its set: with F_t = 0 it rests at w_p
+   * with R = 0 (the next impact comes at a larger gap); F_t > 0 is the wall's elastic pull-back,
+   * limited to F_t without changing w_p (no reverse yielding).
    *
    * Energy: the spring's dissipated (plastic) work is path-independent,
-   *   W_p(w_max) = ∫₀^w_max E dw − E(w_max)²/(2k_ur),
+   *   W_p(w_max) = ∫₀^w_max E dw − E(w_max)²/(2k̃(w_max)),
    * its stored energy the potential of the current unloading branch about w_p; the radiated work
    * is the trapezoid rule on c_r·ẇ over w. dissipated_energy() = W_p + radiated.
    *
-   * Tangent: dF/dw = E'(w) on the envelope, k_ur on the line, 0 on the tension cap; dF/dẇ = c_r.
+   * Tangent: dF/dw = E'(w) on the envelope, k̃ on the line, 0 on the tension cap; dF/dẇ = c_r.
    * The part is permanently attached: in_contact() is always true (it is evaluated at every step).
    *
    * With F_t = 0 and c_r = 0 the bilinear envelope is OpenSees' ElasticPPGap (E, F_y, η = α,
@@ -159,6 +165,8 @@ namespace kimp::lumped
 
   private:
     double permanent_set(const WallBackfillState &s) const;
+    /// k̃(w_max) = max(k_ur, E(w_max)/w_max) (max(k_ur, k) at w_max = 0), N/m.
+    double unloading_stiffness_at(double w_max) const;
 
     const Params      params_;
     WallBackfillState committed_;

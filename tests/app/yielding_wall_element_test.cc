@@ -111,8 +111,11 @@ namespace kimp::app
       EXPECT_NE(std::string(error.what()).find("soil_wave_speed"), std::string::npos);
     }
     in                     = inputs();
-    in.unloading_stiffness = 0.5 * in.stiffness;
+    in.unloading_stiffness = 0.0;
     EXPECT_THROW(derive_yielding_wall(in, 27.78), std::invalid_argument);
+    // Softer than the loading (a cracked wall springing back) is the element's k_ur as given.
+    in.unloading_stiffness = 0.5 * in.stiffness;
+    EXPECT_EQ(derive_yielding_wall(in, 27.78).backfill.unloading_stiffness, 0.5 * in.stiffness);
   }
 
   TEST(YieldingWallElement, SceneInputsAreTheCapacityEstimateCrackedCantileverAndImpedances)

@@ -76,6 +76,7 @@ namespace
     double slab_peak    = 0.0; ///< m from the touch
     double time_to_stop = 0.0; ///< s from the touch to the slab's velocity zero
     double wall_end     = 0.0; ///< the wall's displacement at the end, m
+    double wall_peak    = 0.0; ///< the wall's largest displacement, m
     /// s from the touch to 95 % of the slab's largest travel (app::stop_travel_fraction)
     double time_to_95_travel = 0.0;
   };
@@ -122,6 +123,7 @@ namespace
       r.peak_force = std::max(r.peak_force, f);
       r.slab_peak  = std::max(r.slab_peak, x);
       r.wall_end   = std::stod(row.at("wall_displacement_m"));
+      r.wall_peak  = std::max(r.wall_peak, r.wall_end);
       t_prev       = t;
       v_prev       = v;
     }
@@ -205,6 +207,9 @@ namespace
     std::string source;        ///< of the element's wall-and-backfill part
     double      damping = 0.0; ///< the element's c_r, N·s/m per m
     double      error(double Impact::*q) const { return element.*q / fem.*q - 1.0; }
+    /// The residual's error over the FEM wall's largest displacement (where the FEM's residual
+    /// is a small remainder of a wall that sprang back, its relative error says nothing).
+    double residual_over_peak() const { return (element.wall_end - fem.wall_end) / fem.wall_peak; }
   };
 
   /// The FEM far side the element is compared with: absorbing (the site's backfill does not end
@@ -240,7 +245,7 @@ namespace
       "{} (c_r {:.4g} kN*s/m^2): FEM / element: peak force {:.4g} / {:.4g} kN/m ({:+.1f} %), "
       "slab peak {:.4g} / {:.4g} mm ({:+.1f} %), time to 95 % of the travel {:.4g} / {:.4g} ms "
       "({:+.1f} %), slab velocity zero {:.4g} / {:.4g} ms ({:+.1f} %), wall at the end {:.4g} / "
-      "{:.4g} mm ({:+.1f} %)\n",
+      "{:.4g} mm ({:+.1f} %; {:+.1f} % of the FEM wall's largest {:.4g} mm)\n",
       name,
       c.damping / 1e3,
       c.fem.peak_force / 1e3,
@@ -257,7 +262,9 @@ namespace
       100 * c.error(&Impact::time_to_stop),
       1e3 * c.fem.wall_end,
       1e3 * c.element.wall_end,
-      100 * c.error(&Impact::wall_end));
+      100 * c.error(&Impact::wall_end),
+      100 * c.residual_over_peak(),
+      1e3 * c.fem.wall_peak);
   }
 
   /// The element's radiation dashpot, fitted to the slab travel of the FEM's slab at 1 m/s (the
@@ -294,6 +301,7 @@ namespace
                       s.slab_peak_displacement,
                       s.time_to_stop,
                       s.wall_residual,
+                      s.wall_peak_displacement,
                       s.time_to_95_travel};
     print(r.name, fitted);
     return fit.damping;
@@ -312,9 +320,30 @@ namespace
                     s.slab_peak_displacement,
                     s.time_to_stop,
                     s.wall_residual,
+                    s.wall_peak_displacement,
                     s.time_to_95_travel};
     print(r.name, c);
     return c;
+  }
+
+  /// The dashpot that row `r` alone would need (fitted to its own FEM travel), printed: how far
+  /// the one fitted at 1 m/s is from being a property of the wall (docs/validation.md).
+  void print_own_dashpot(const Row &r, const Far far, const TempDir &temp)
+  {
+    const auto [scene, fem] = fem_run(r, far, temp);
+    std::string source;
+    const auto  e   = element_of(scene, r, source);
+    const auto  fit = app::fit_radiation_damping(e,
+                                                r.slab_mass,
+                                                r.velocity,
+                                                fem.slab_peak,
+                                                4.0 * e.radiation_damping,
+                                                1.0,
+                                                1e-6);
+    std::cout << fmt::format("{}: the dashpot fitted to this row alone: {:.4g} kN*s/m^2 {}\n",
+                             r.name,
+                             fit.damping / 1e3,
+                             fit.note);
   }
 
   // The criterion of the wall-and-backfill element against the dynamic FEM.
@@ -328,21 +357,27 @@ namespace
     EXPECT_LE(std::abs(c.error(q)), tolerance) << what << ": element / FEM - 1 = " << c.error(q);
   }
 
-  /// The quantities of the criterion that hold on the row (docs/validation.md: the FEM slab's
-  /// wall springs back farther than the element's, whose unloading is its loading stiffness, so
-  /// its residual misses on those rows, and at 0.5 m/s its travel, by 0.3-0.7 points; the fitted
-  /// row's travel is the fit's own).
+  /// The quantities of the criterion that hold on the row (docs/validation.md): all of them on
+  /// the heavy slab's rows and the FEM slab's at 1 m/s (the fitted row's travel is the fit's
+  /// own); at 0.5 m/s the FEM slab's travel and peak force, and its residual over the FEM wall's
+  /// largest displacement (the FEM wall springs back to 0.1 mm of 4.8, the element's to 0: a
+  /// relative error of −100 % that says nothing), not its time to stop (−20 %: the element's
+  /// bilinear holds 24 % more work than the pushover curve over the first 4-5 mm).
   void expect_criterion(const Comparison &c, const bool heavy, const double v, const bool fitted)
   {
     expect_within(c, &Impact::peak_force, force_tolerance, "peak force");
-    if (!fitted && (heavy || v == 1.0))
+    if (!fitted)
       expect_within(c, &Impact::slab_peak, motion_tolerance, "slab travel");
     // The time to stop the slab as the time to 95 % of its travel on both sides (the instant
-    // its velocity is zero is ill-conditioned where it creeps to rest: the FEM slab at 0.5 m/s
-    // misses by 20 % on it and meets the criterion on this one).
+    // its velocity is zero is ill-conditioned where the slab creeps to rest).
     expect_within(c, &Impact::time_to_95_travel, motion_tolerance, "time to 95 % of the travel");
-    if (heavy)
+    if (heavy || v == 1.0)
+    {
       expect_within(c, &Impact::wall_end, motion_tolerance, "wall residual");
+    }
+    else
+      EXPECT_LE(std::abs(c.residual_over_peak()), motion_tolerance)
+        << "wall residual over the FEM wall's largest displacement";
   }
 } // namespace
 
@@ -356,9 +391,11 @@ TEST(YieldingWallFem, ElementWithFrozenParametersAgainstTheFemAtTheBuildingsMass
   // The reinforced wall is on its pushover: the implicit damage update stalls at the first
   // cracks, IMPL-EX at 0.25 mm steps runs; its cap is the curve's largest force.
   EXPECT_EQ(fitted.source.rfind("pushover (IMPL-EX damage update", 0), 0u) << fitted.source;
-  // Measured 39.88 kN*s/m^2, a tenth of rho c_p H_b (394.5 kN*s/m^2); pinned so that a change
-  // shows.
-  EXPECT_NEAR(c_r, 39.88e3, 0.2 * 39.88e3);
+  // Measured 36.51 kN*s/m^2, a tenth of rho c_p H_b (394.5 kN*s/m^2); pinned so that a change
+  // shows. (39.88 before the pushover unloaded at 1 % and 2 % of H: its reloads change the
+  // envelope a little, F_y 123.6 against 123.1 kN/m and k 75.53 against 75.96 kN/mm/m, and the
+  // element now unloads at the curve's k_ur, 14.86 kN/mm/m, instead of at k.)
+  EXPECT_NEAR(c_r, 36.51e3, 0.1 * 36.51e3);
   expect_criterion(fitted, false, 1.0, true);
   const Comparison heavy = compare(row(true, 0.5), Far::absorbing, c_r, temp);
   expect_criterion(heavy, true, 0.5, false);
@@ -381,7 +418,10 @@ TEST(YieldingWallFem, FullTableOfDocsValidation)
         {
           const Comparison c = compare(row(heavy, v), far, c_r, temp);
           if (far == Far::absorbing) // the rollered block's rows are printed for comparison
+          {
             expect_criterion(c, heavy, v, false);
+            print_own_dashpot(row(heavy, v), far, temp);
+          }
         }
   }
 }

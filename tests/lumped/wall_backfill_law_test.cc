@@ -72,6 +72,59 @@ namespace kimp::lumped
     expect_rel(step(law, 0.04), 1e6 + 0.05 * 100e6 * 0.03, tight_tol, "back on the envelope");
   }
 
+  TEST(WallBackfillLaw, UnloadingSofterThanTheLoadingNeverLeavesANegativeSet)
+  {
+    // A cracked wall that springs back softer than it was loaded: k_ur = 20 MN/m < k = 100 MN/m.
+    // The line unloads at k̃ = max(k_ur, E(w_max)/w_max): elastic back to 0 while the envelope's
+    // secant is the steeper, the set w_max − E/k_ur once it is not.
+    WallBackfillParams p  = bilinear_params();
+    p.unloading_stiffness = 20e6;
+    WallBackfillLaw law(p);
+    step(law, 0.005); // elastic: the secant is k
+    expect_rel(step(law, 0.0025), 100e6 * 0.0025, tight_tol, "back along k");
+    EXPECT_EQ(law.permanent_indentation(), 0.0);
+    // 30 mm: E = 1.1 MN, secant 36.67 MN/m > k_ur: the line through the origin, no set.
+    step(law, 0.03);
+    expect_rel(step(law, 0.015), 1.1e6 / 0.03 * 0.015, tight_tol, "along the secant");
+    EXPECT_NEAR(law.permanent_indentation(), 0.0, tight_tol);
+    EXPECT_DOUBLE_EQ(law.set_trial(0.015, 0.0).stiffness, 1.1e6 / 0.03);
+    law.revert_to_last_commit();
+    // 100 mm: E = 1.45 MN, secant 14.5 MN/m < k_ur: set 0.1 − 1.45/20 = 27.5 mm.
+    step(law, 0.1);
+    const double w_p = 0.1 - 1.45e6 / 20e6;
+    expect_rel(step(law, 0.09), 1.45e6 - 20e6 * 0.01, tight_tol, "unloading at k_ur");
+    expect_rel(law.permanent_indentation(), w_p, tight_tol, "set");
+    EXPECT_EQ(step(law, 0.02), 0.0);
+    // Reloading along the line rejoins the envelope at w_max.
+    expect_rel(step(law, 0.1), 1.45e6, tight_tol, "reloaded to w_max");
+    expect_rel(step(law, 0.11), 1.5e6, tight_tol, "on the envelope");
+  }
+
+  TEST(WallBackfillLaw, SoftUnloadingKeepsTheWorkBalance)
+  {
+    // The work put in along a cyclic path (trapezoid over 1 µm steps) equals the plastic work
+    // W_p = ∫E − E²/(2k̃) plus the stored energy, with k_ur < k (k̃ changes with w_max).
+    WallBackfillParams p  = bilinear_params();
+    p.unloading_stiffness = 20e6;
+    WallBackfillLaw law(p);
+    double          work = 0.0, w = 0.0, f = 0.0;
+    for (const double target : {0.03, 0.0, 0.1, 0.05, 0.12, 0.1})
+    {
+      const double dw = target > w ? 1e-6 : -1e-6;
+      while (std::abs(target - w) > 0.5e-6)
+      {
+        const double f_next = step(law, w + dw);
+        work += 0.5 * (f + f_next) * dw;
+        f = f_next;
+        w += dw;
+      }
+    }
+    expect_rel(law.plastic_work() + law.stored_energy(), work, 1e-6, "work balance");
+    const double e = 1.5e6 + 0.05 * 100e6 * 0.01; // E(0.12)
+    EXPECT_GT(law.plastic_work(), 0.0);
+    expect_rel(law.plastic_work(), law.envelope_work(0.12) - 0.5 * e * e / 20e6, 1e-10, "W_p");
+  }
+
   TEST(WallBackfillLaw, PlasticWorkIsTheEnvelopeWorkLessTheRecoverableEnergy)
   {
     WallBackfillLaw law(bilinear_params());
@@ -267,7 +320,7 @@ namespace kimp::lumped
       EXPECT_THROW(WallBackfillLaw{q}, std::invalid_argument);
     }
     WallBackfillParams p  = bilinear_params();
-    p.unloading_stiffness = 50e6;
+    p.unloading_stiffness = 0.0;
     EXPECT_THROW(WallBackfillLaw{p}, std::invalid_argument);
     p                 = bilinear_params();
     p.hardening_ratio = 1.0;
