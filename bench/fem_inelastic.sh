@@ -49,9 +49,12 @@ print(f"{name:34s} wall {wall:6.2f} s  cpu {user + sys_:6.2f} s  solver {c['wall
 q = lambda key, scale=1.0: f"{c[key] * scale:.4g}" if key in c else "-"
 print(f"{'':34s} first peak {q('first_peak_force', 1e-3)} kN/m, impulse {q('first_peak_impulse')} "
       f"N s/m, R_e {q('energy_equivalent_resistance', 1e-3)} kN/m, slab {q('max_slab_displacement', 1e3)} "
-      f"mm, wall {q('max_wall_displacement', 1e3)} mm, stop {q('time_to_stop', 1e3)} ms, end "
+      f"mm, wall {q('max_wall_displacement', 1e3)} mm, stop {q('time_to_95_travel', 1e3)} ms "
+      f"(velocity zero {q('time_to_stop', 1e3)} ms), end "
       f"{q('wall_residual_displacement', 1e3)} mm, bars {q('max_bar_strain_ratio')} at "
-      f"{q('max_bar_strain_height')} m, I/mv {q('impulse_momentum_ratio')}, {c.get('stopped_on', '')}")
+      f"{q('max_bar_strain_height')} m (point), {q('max_bar_gauge_strain_ratio')} at "
+      f"{q('max_bar_gauge_strain_height')} m (gauge), I/mv {q('impulse_momentum_ratio')}, "
+      f"{c.get('stopped_on', '')}")
 PY
   done
 }

@@ -248,7 +248,14 @@ namespace kimp::fem
     double output_interval           = 1.0e-5; ///< s: history sampling interval (0: every step)
     double vtu_interval              = 0;      ///< s: field output interval (0: none)
     /** s: interval of the deformed-mesh frames of ImpactResult::frames (0: none; >= 0). */
-    double                frame_interval = 0;
+    double frame_interval = 0;
+    /**
+     * m: the gauge length over which the vertical bars' strain is averaged for
+     * ImpactSummary::max_bar_gauge_strain_ratio (reinforced walls only; >= 0). 0: half the
+     * wall's thickness, the plastic hinge length Park and Paulay estimate (about half the
+     * section depth; docs/physics.md "Engineer's quantities").
+     */
+    double                bar_gauge_length = 0;
     std::filesystem::path vtu_dir;          ///< field output directory (empty: none)
     unsigned int          log_interval = 0; ///< steps between log lines (0: none)
     /**
@@ -364,6 +371,17 @@ namespace kimp::fem
     double max_bar_strain_ratio  = std::numeric_limits<double>::quiet_NaN();
     double max_bar_strain_height = std::numeric_limits<double>::quiet_NaN();
     double max_bar_strain_time   = std::numeric_limits<double>::quiet_NaN();
+    /**
+     * Reinforced wall with vertical bars: the largest mean of their strain eps_yy over a gauge
+     * of ImpactParameters::bar_gauge_length (the elongation between the gauge's ends over its
+     * length, along a vertical line of Gauss points, any position within the wall, sampled at
+     * the history's steps) over eps_y, and the height (m) of that gauge's centre. Unlike the
+     * point strain it does not grow as the cells shrink around a localised crack. NaN without
+     * vertical bars.
+     */
+    double max_bar_gauge_strain_ratio  = std::numeric_limits<double>::quiet_NaN();
+    double max_bar_gauge_strain_height = std::numeric_limits<double>::quiet_NaN();
+    double bar_gauge_length            = std::numeric_limits<double>::quiet_NaN(); ///< m used
     /** J/m: work of the contact damping at the end. */
     double contact_dissipation = 0;
     /**

@@ -73,10 +73,14 @@ namespace kimp::io
     std::optional<double> max_slab_displacement;        ///< m, slab travel after first contact
     std::optional<double> max_wall_displacement;        ///< m, wall face in the contact range
     std::optional<double> energy_equivalent_resistance; ///< E_0 / max slab travel, N/m
-    std::optional<double> time_to_stop;                 ///< s from first contact to slab at rest
-    std::optional<double> max_bar_strain_ratio;         ///< max bar strain / yield strain
-    std::optional<double> max_bar_strain_height;        ///< m above the ground
-    std::optional<double> impulse_momentum_ratio;       ///< ∫F dt / (m (v_in + v_out))
+    std::optional<double> time_to_stop;          ///< s from first contact to slab velocity zero
+    std::optional<double> time_to_95_travel;     ///< s from first contact to 95 % of the travel
+    std::optional<double> max_bar_strain_ratio;  ///< max point bar strain / yield strain
+    std::optional<double> max_bar_strain_height; ///< m above the ground
+    /// The vertical bars' largest strain averaged over bar_gauge_length / yield strain, the
+    /// height of the gauge's centre (m) and the gauge length (m).
+    std::optional<double> max_bar_gauge_strain_ratio, max_bar_gauge_strain_height, bar_gauge_length;
+    std::optional<double> impulse_momentum_ratio; ///< ∫F dt / (m (v_in + v_out))
     // The geostatic step before the impact.
     std::optional<double>       geostatic_weight;   ///< N/m
     std::optional<double>       geostatic_residual; ///< relative

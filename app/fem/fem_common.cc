@@ -159,6 +159,13 @@ namespace kimp::app
       sum.max_bar_strain_height = s.max_bar_strain_height;
       c.labels["bars_yield"]    = s.max_bar_strain_ratio >= 1.0 ? "yes" : "no";
     }
+    if (std::isfinite(s.max_bar_gauge_strain_ratio))
+    {
+      sum.max_bar_gauge_strain_ratio    = s.max_bar_gauge_strain_ratio;
+      sum.max_bar_gauge_strain_height   = s.max_bar_gauge_strain_height;
+      sum.bar_gauge_length              = s.bar_gauge_length;
+      c.labels["bars_yield_over_gauge"] = s.max_bar_gauge_strain_ratio >= 1.0 ? "yes" : "no";
+    }
     set_engineer_quantities(c);
     c.labels["impulse_momentum"] = impulse_momentum_status(c);
     return c;

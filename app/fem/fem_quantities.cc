@@ -60,6 +60,28 @@ namespace kimp::app
       }
       return p;
     }
+
+    /**
+     * The first instant after sample `start` at which `x` − `x_c` reaches
+     * stop_travel_fraction × `travel` (linear interpolation between the samples).
+     */
+    double time_to_travel(const std::vector<double> &t,
+                          const std::vector<double> &x,
+                          std::size_t                start,
+                          double                     x_c,
+                          double                     travel)
+    {
+      const double target = x_c + stop_travel_fraction * travel;
+      for (std::size_t i = std::max<std::size_t>(start, 1); i < t.size(); ++i)
+        if (x[i] >= target)
+        {
+          if (x[i - 1] >= target || x[i] == x[i - 1])
+            return t[i];
+          const double w = (target - x[i - 1]) / (x[i] - x[i - 1]);
+          return t[i - 1] + w * (t[i] - t[i - 1]);
+        }
+      return t.back();
+    }
   } // namespace
 
   void set_engineer_quantities(io::FemCase &c)
@@ -92,6 +114,13 @@ namespace kimp::app
       for (std::size_t i = start; i < t.size(); ++i)
         travel = std::max(travel, c.slab_displacement[i] - x_c);
       s.max_slab_displacement = travel;
+      // Only once the slab has stopped: before, the largest travel is the last sample's.
+      const bool stopped = c.slab_velocity.size() == t.size() &&
+                           std::any_of(c.slab_velocity.begin() + static_cast<std::ptrdiff_t>(start),
+                                       c.slab_velocity.end(),
+                                       [](double u) { return u <= 0; });
+      if (travel > 0 && stopped)
+        s.time_to_95_travel = time_to_travel(t, c.slab_displacement, start, x_c, travel) - t_c;
       if (travel > 0 && m > 0 && v_in > 0)
         s.energy_equivalent_resistance = 0.5 * m * v_in * v_in / travel;
     }

@@ -15,6 +15,15 @@ namespace kimp::app
   constexpr double impulse_momentum_tolerance = 0.02;
 
   /**
+   * The fraction of its largest travel at which the slab counts as stopped for
+   * time_to_95_travel: the slab covers the last 5 % of its travel while it creeps to rest (a
+   * yielding wall brings it in at under 0.1 m/s over the last 3-5 ms), so the time it reaches
+   * 95 % is read while it still moves at a fraction of v_in and is insensitive to that tail
+   * (docs/physics.md "Engineer's quantities").
+   */
+  constexpr double stop_travel_fraction = 0.95;
+
+  /**
    * Sets the engineer's quantities of `fem_case.summary` from its histories (time, the smoothed
    * contact force, else the raw one, slab displacement and velocity, wall displacement),
    * slab_mass and impact_velocity. Each is left unset when the record cannot show it (no
@@ -30,7 +39,11 @@ namespace kimp::app
    *   constant force that stops the slab over the same travel);
    * - max_wall_displacement: the largest displacement of the wall face in the contact range
    *   (+x, away from the slab);
-   * - time_to_stop: first contact to the first sample at which the slab's velocity is <= 0;
+   * - time_to_stop: first contact to the first sample at which the slab's velocity is <= 0
+   *   (the zero-velocity instant; ill-conditioned when the slab creeps to rest);
+   * - time_to_95_travel: first contact to the instant the slab's travel first reaches
+   *   stop_travel_fraction of max_slab_displacement (linear interpolation between samples;
+   *   unset, like time_to_stop, when the slab has not stopped within the record);
    * - impulse_momentum_ratio: the trapezoid ∫F dt over the record over m (v_in − v_end),
    *   v_end the slab's velocity at the end (−v_out for a rebound).
    */

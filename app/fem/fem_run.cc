@@ -291,9 +291,10 @@ namespace kimp::app
       const auto        val = [](const std::optional<double> &x, double scale)
       { return x ? fmt::format("{:.4g}", *x * scale) : std::string("-"); };
       logger().info("{}: first peak {} kN/m at {} ms, its impulse {} N s/m; slab travel {} mm, "
-                    "wall {} mm, energy-equivalent resistance {} kN/m, time to stop {} ms, wall "
-                    "at the end {} mm, bar strain / yield strain {} at {} m; impulse / momentum "
-                    "{}",
+                    "wall {} mm, energy-equivalent resistance {} kN/m, time to 95 % of the "
+                    "travel {} ms (slab velocity zero at {} ms), wall at the end {} mm, bar strain "
+                    "/ yield strain {} at {} m (at a point, mesh-dependent), over a {} m gauge {} "
+                    "centred at {} m; impulse / momentum {}",
                     c.name,
                     val(s.first_peak_force, 1e-3),
                     val(s.first_peak_time, 1e3),
@@ -301,10 +302,14 @@ namespace kimp::app
                     val(s.max_slab_displacement, 1e3),
                     val(s.max_wall_displacement, 1e3),
                     val(s.energy_equivalent_resistance, 1e-3),
+                    val(s.time_to_95_travel, 1e3),
                     val(s.time_to_stop, 1e3),
                     val(s.wall_residual_displacement, 1e3),
                     val(s.max_bar_strain_ratio, 1.0),
                     val(s.max_bar_strain_height, 1.0),
+                    val(s.bar_gauge_length, 1.0),
+                    val(s.max_bar_gauge_strain_ratio, 1.0),
+                    val(s.max_bar_gauge_strain_height, 1.0),
                     val(s.impulse_momentum_ratio, 1.0));
       const std::string status = impulse_momentum_status(c);
       if (status != "ok")
@@ -321,9 +326,13 @@ namespace kimp::app
               "max_wall_displacement_m",
               "energy_equivalent_resistance_N_per_m",
               "time_to_stop_s",
+              "time_to_95_travel_s",
               "wall_residual_displacement_m",
               "max_bar_strain_ratio",
               "max_bar_strain_height_m",
+              "max_bar_gauge_strain_ratio",
+              "max_bar_gauge_strain_height_m",
+              "bar_gauge_length_m",
               "impulse_momentum_ratio",
               "impulse_momentum"};
     }
@@ -342,9 +351,13 @@ namespace kimp::app
               val(s.max_wall_displacement),
               val(s.energy_equivalent_resistance),
               val(s.time_to_stop),
+              val(s.time_to_95_travel),
               val(s.wall_residual_displacement),
               val(s.max_bar_strain_ratio),
               val(s.max_bar_strain_height),
+              val(s.max_bar_gauge_strain_ratio),
+              val(s.max_bar_gauge_strain_height),
+              val(s.bar_gauge_length),
               val(s.impulse_momentum_ratio),
               impulse_momentum_status(c)};
     }

@@ -374,6 +374,13 @@ namespace kimp::app
                 "ms",
                 "history sampling interval (0: every step)",
                 io::Range::non_negative());
+    io.quantity("bar_gauge_length",
+                s.solver.bar_gauge_length,
+                "cm",
+                "reinforced wall: the gauge length over which the vertical bars' strain is "
+                "averaged for max_bar_gauge_strain_ratio (0: half the wall's thickness, Park and "
+                "Paulay's plastic hinge length)",
+                io::Range::non_negative());
     io.integer("log_interval",
                s.solver.log_interval,
                "history samples between log lines (shown with -v; 0: none)",

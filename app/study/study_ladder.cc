@@ -83,9 +83,12 @@ namespace kimp::app
       {"max_slab_displacement", "m", 1e-5},
       {"max_wall_displacement", "m", 1e-5},
       {"time_to_stop", "s", 1e-4},
+      {"time_to_95_travel", "s", 1e-4},
       {"wall_residual_displacement", "m", 1e-5},
       {"max_bar_strain_ratio", "1", 0.01},
-      {"max_bar_strain_height", "m", 0.05}};
+      {"max_bar_strain_height", "m", 0.05},
+      {"max_bar_gauge_strain_ratio", "1", 0.01},
+      {"max_bar_gauge_strain_height", "m", 0.05}};
     return quantities;
   }
 

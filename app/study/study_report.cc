@@ -295,14 +295,18 @@ namespace kimp::app::study_internal
                        "Per height, of the reported level (docs/physics.md \"Engineer's "
                        "quantities\"): the first peak force and the impulse of its pulse, the "
                        "energy-equivalent resistance E_0 / largest slab travel, the largest wall "
-                       "displacement, the time to stop the slab, the wall face at the end, the "
-                       "largest bar strain over the yield strain (>= 1: the bars yield; the "
-                       "height of that point above the ground) and the impulse-momentum check of "
-                       "the record.\n\n"
+                       "displacement, the time to stop the slab (to 95 % of its travel; in "
+                       "brackets the instant its velocity is zero, ill-conditioned when it "
+                       "creeps to rest), the wall face at the end, the largest bar strain over "
+                       "the yield strain (>= 1: the bars yield) at a point (mesh-dependent once "
+                       "they yield) and over a gauge length (the vertical bars; the heights of "
+                       "the point and of the gauge's centre above the ground) and the "
+                       "impulse-momentum check of the record.\n\n"
                        "| H (m) | first peak (kN/m) | its impulse (N·s/m) | R_e (kN/m) | slab "
                        "travel (mm) | wall (mm) | time to stop (ms) | wall at the end (mm) | bar "
-                       "strain / ε_y (at y m) | ∫F dt / m(v_in + v_out) |\n"
-                       "|---|---|---|---|---|---|---|---|---|---|\n";
+                       "strain / ε_y at a point (at y m) | over the gauge (at y m) | ∫F dt / "
+                       "m(v_in + v_out) |\n"
+                       "|---|---|---|---|---|---|---|---|---|---|---|\n";
       const auto  v  = [](const std::optional<double> &x, double scale)
       { return x ? base::sig(*x * scale, 4) : std::string("-"); };
       for (const StudyHeight &h : result.heights)
@@ -312,20 +316,25 @@ namespace kimp::app::study_internal
         const std::string     flag  = check != h.fem_case.labels.end() && check->second != "ok" ?
                                         " **" + check->second + "**" :
                                         std::string();
-        md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {}{} |\n",
-                          base::sig(h.wall_height, 3),
-                          v(s.first_peak_force, 1e-3),
-                          v(s.first_peak_impulse, 1.0),
-                          v(s.energy_equivalent_resistance, 1e-3),
-                          v(s.max_slab_displacement, 1e3),
-                          v(s.max_wall_displacement, 1e3),
-                          v(s.time_to_stop, 1e3),
-                          v(s.wall_residual_displacement, 1e3),
-                          s.max_bar_strain_ratio ? v(s.max_bar_strain_ratio, 1.0) + " (" +
-                                                     v(s.max_bar_strain_height, 1.0) + ")" :
-                                                   std::string("no bars"),
-                          v(s.impulse_momentum_ratio, 1.0),
-                          flag);
+        md +=
+          fmt::format("| {} | {} | {} | {} | {} | {} | {} ({}) | {} | {} | {} | {}{} |\n",
+                      base::sig(h.wall_height, 3),
+                      v(s.first_peak_force, 1e-3),
+                      v(s.first_peak_impulse, 1.0),
+                      v(s.energy_equivalent_resistance, 1e-3),
+                      v(s.max_slab_displacement, 1e3),
+                      v(s.max_wall_displacement, 1e3),
+                      v(s.time_to_95_travel, 1e3),
+                      v(s.time_to_stop, 1e3),
+                      v(s.wall_residual_displacement, 1e3),
+                      s.max_bar_strain_ratio ? v(s.max_bar_strain_ratio, 1.0) + " (" +
+                                                 v(s.max_bar_strain_height, 1.0) + ")" :
+                                               std::string("no bars"),
+                      s.max_bar_gauge_strain_ratio ? v(s.max_bar_gauge_strain_ratio, 1.0) + " (" +
+                                                       v(s.max_bar_gauge_strain_height, 1.0) + ")" :
+                                                     std::string("-"),
+                      v(s.impulse_momentum_ratio, 1.0),
+                      flag);
       }
       bool any = false;
       for (const StudyHeight &h : result.heights)

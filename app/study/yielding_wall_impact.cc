@@ -8,6 +8,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "app/fem/fem_quantities.h"
 #include "lumped/integrators/central_difference.h"
 #include "lumped/isolators/linear_isolator.h"
 #include "lumped/laws/force_law_factory.h"
@@ -80,6 +81,17 @@ namespace kimp::app
         stop = i;
     out.slab_peak_displacement = u[stop * n_dofs];
     out.time_to_stop           = r.history.time.at(stop);
+    // The first sample at 95 % of the travel, interpolated back to the crossing.
+    const double target = stop_travel_fraction * out.slab_peak_displacement;
+    for (std::size_t i = 1; i <= stop; ++i)
+      if (u[i * n_dofs] >= target)
+      {
+        const double x0 = u[(i - 1) * n_dofs], x1 = u[i * n_dofs];
+        const double w = x1 > x0 ? std::clamp((target - x0) / (x1 - x0), 0.0, 1.0) : 1.0;
+        out.time_to_95_travel =
+          r.history.time[i - 1] + w * (r.history.time[i] - r.history.time[i - 1]);
+        break;
+      }
     for (const lumped::ContactResult &c : r.contacts)
     {
       if (c.permanent)

@@ -15,6 +15,9 @@ namespace kimp::app
     double peak_contact_force     = 0.0; ///< N/m, the contact part's
     double slab_peak_displacement = 0.0; ///< m, from the first touch
     double time_to_stop           = 0.0; ///< s from the first touch to the slab's first stop
+    /// s from the first touch to 95 % of the slab's largest travel (the FEM's
+    /// time_to_95_travel, app/fem/fem_quantities.h stop_travel_fraction)
+    double time_to_95_travel      = 0.0;
     double wall_peak_displacement = 0.0; ///< m
     double wall_residual          = 0.0; ///< the wall's permanent set at the end, m
     double slab_velocity_after    = 0.0; ///< m/s at the end (< 0: rebounding)

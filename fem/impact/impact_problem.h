@@ -23,6 +23,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include "fem/bar_gauge.h"
 #include "fem/frictional_interface.h"
 #include "fem/impact.h"
 #include "fem/material_law.h"
@@ -369,11 +370,21 @@ namespace kimp::fem::internal
       double                                 y = 0;
     };
     std::vector<BarPoint> bar_points;
-    Vec                   bar_u_ghosted; // several ranks: u with the wall cells' ghost DoFs
-    bool                  bar_points_ready = false;
-    double                bar_ratio_x = 0, bar_ratio_y = 0, bar_yield_strain = 0;
-    double                bar_max_ratio = -1, bar_max_y = 0, bar_max_time = 0; // this rank
-    void                  finish(ImpactResult &result, double wall_seconds);
+    /** The vertical bars' gauge (ImpactParameters::bar_gauge_length) over the Gauss points of
+     *  every rank's wall cells (rank by rank; this rank's from bar_gauge_offset), their strains
+     *  for one sample, and its largest reading so far. */
+    std::unique_ptr<BarGauge> bar_gauge;
+    std::size_t               bar_gauge_offset = 0;
+    std::vector<double>       bar_gauge_strain;
+    GaugeStrain               bar_gauge_max;
+    /** Sets up bar_gauge from this rank's wall cells (collective). */
+    void
+    setup_bar_gauge(const std::vector<GaugeSegment> &local, double wall_x_min, double wall_x_max);
+    Vec    bar_u_ghosted; // several ranks: u with the wall cells' ghost DoFs
+    bool   bar_points_ready = false;
+    double bar_ratio_x = 0, bar_ratio_y = 0, bar_yield_strain = 0;
+    double bar_max_ratio = -1, bar_max_y = 0, bar_max_time = 0; // this rank
+    void   finish(ImpactResult &result, double wall_seconds);
 
     const ImpactParameters                    prm;
     MPI_Comm                                  comm;

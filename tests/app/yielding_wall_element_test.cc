@@ -172,6 +172,13 @@ namespace kimp::app
     EXPECT_NEAR(r.slab_peak_displacement, travel, 0.01 * travel);
     const double t_stop = (m + in.wall_mass) * v / f_y + w_y / (2.0 * v);
     EXPECT_NEAR(r.time_to_stop, t_stop, 0.02 * t_stop);
+    // On the plateau slab and wall decelerate together at F_y/(m + m_w): the last 5 % of the
+    // travel takes √(2 · 0.05 · travel · (m + m_w)/F_y), and 95 % of it is reached that much
+    // earlier (the FEM's time_to_95_travel, the same definition).
+    const double t_95 = t_stop - std::sqrt(0.1 * travel * (m + in.wall_mass) / f_y);
+    std::cout << "time to 95 % of the travel " << r.time_to_95_travel * 1e3 << " ms (closed form "
+              << t_95 * 1e3 << ")\n";
+    EXPECT_NEAR(r.time_to_95_travel, t_95, 0.02 * t_95);
     // The set: w_max less the spring-back F_y/k_ur.
     EXPECT_NEAR(r.wall_residual, w_max - f_y / in.unloading_stiffness, 0.01 * w_max);
     EXPECT_LT(r.peak_contact_force, in.slab_impedance * v); // below the rigid-slab impact

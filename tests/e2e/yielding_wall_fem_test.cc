@@ -4,10 +4,10 @@
 // fem`, H = 1.25 m, the reinforced 0.25 m wall, geostatic Mohr-Coulomb backfill; 5 cm at the
 // contact graded to 25 cm, the wall's cells no taller than wide; absorbing far side, and the
 // thesis' rollered block for comparison): peak contact force, the slab's peak displacement, its
-// time to stop and the wall's residual displacement, against the criterion (peak force <= 10 %,
-// the others <= 15 %) on the rows where it holds. The radiation dashpot is the one parameter
-// fitted to the dynamic FEM (app::fit_radiation_damping(), on the FEM's slab at 1 m/s), then
-// frozen. The test fits it and runs the slab carrying the building's 55 t/m at 0.5 m/s;
+// time to stop (to 95 % of its travel) and the wall's residual displacement, against the criterion
+// (peak force <= 10 %, the others <= 15 %) on the rows where it holds. The radiation dashpot is the
+// one parameter fitted to the dynamic FEM (app::fit_radiation_damping(), on the FEM's slab at 1
+// m/s), then frozen. The test fits it and runs the slab carrying the building's 55 t/m at 0.5 m/s;
 // KIMP_YIELDING_WALL_FULL=1 runs the four rows of docs/validation.md (the FEM's slab and the heavy
 // slab, 0.5 and 1 m/s) against both far sides and checks the absorbing ones;
 // KIMP_YIELDING_WALL_FEM_DIR=DIR keeps each FEM run in DIR/<row>_<far side> (with VTU fields every
@@ -27,7 +27,9 @@
 #  include <stdexcept>
 #  include <string>
 #  include <utility>
+#  include <vector>
 
+#  include "app/fem/fem_quantities.h"
 #  include "app/fem/fem_scene.h"
 #  include "app/study/pushover_fit.h"
 #  include "app/study/yielding_wall_element.h"
@@ -72,18 +74,32 @@ namespace
   {
     double peak_force   = 0.0; ///< N/m (FEM: of the smoothed force)
     double slab_peak    = 0.0; ///< m from the touch
-    double time_to_stop = 0.0; ///< s from the touch
+    double time_to_stop = 0.0; ///< s from the touch to the slab's velocity zero
     double wall_end     = 0.0; ///< the wall's displacement at the end, m
     double wall_peak    = 0.0; ///< the wall's largest displacement, m
+    /// s from the touch to 95 % of the slab's largest travel (app::stop_travel_fraction)
+    double time_to_95_travel = 0.0;
   };
+
+  /// The first time at which `x` reaches app::stop_travel_fraction of its largest value,
+  /// interpolated between the samples `t`.
+  double time_to_travel_fraction(const std::vector<double> &t, const std::vector<double> &x)
+  {
+    const double target = app::stop_travel_fraction * *std::max_element(x.begin(), x.end());
+    for (std::size_t i = 1; i < x.size(); ++i)
+      if (x[i] >= target)
+        return t[i - 1] + (t[i] - t[i - 1]) * (target - x[i - 1]) / (x[i] - x[i - 1]);
+    return std::numeric_limits<double>::infinity();
+  }
 
   /// From `kimp fem`'s histories: the slab displacement integrates its velocity from the touch.
   Impact fem_impact(const std::filesystem::path &histories)
   {
-    const auto rows = read_csv_records(histories);
-    Impact     r;
-    double     x = 0.0, t_touch = -1.0, t_prev = 0.0, v_prev = 0.0;
-    bool       stopped = false;
+    const auto          rows = read_csv_records(histories);
+    Impact              r;
+    double              x = 0.0, t_touch = -1.0, t_prev = 0.0, v_prev = 0.0;
+    bool                stopped = false;
+    std::vector<double> since_touch, travel; // from the touch
     for (const auto &row : rows)
     {
       const double t = std::stod(row.at("time_s"));
@@ -99,6 +115,11 @@ namespace
         stopped        = true;
         r.time_to_stop = t - t_touch;
       }
+      if (t_touch >= 0.0)
+      {
+        since_touch.push_back(t - t_touch);
+        travel.push_back(x);
+      }
       r.peak_force = std::max(r.peak_force, f);
       r.slab_peak  = std::max(r.slab_peak, x);
       r.wall_end   = std::stod(row.at("wall_displacement_m"));
@@ -108,6 +129,7 @@ namespace
     }
     if (!stopped)
       r.time_to_stop = std::numeric_limits<double>::infinity();
+    r.time_to_95_travel = time_to_travel_fraction(since_touch, travel);
     return r;
   }
 
@@ -221,9 +243,9 @@ namespace
   {
     std::cout << fmt::format(
       "{} (c_r {:.4g} kN*s/m^2): FEM / element: peak force {:.4g} / {:.4g} kN/m ({:+.1f} %), "
-      "slab peak {:.4g} / {:.4g} mm ({:+.1f} %), time to stop {:.4g} / {:.4g} ms ({:+.1f} %), "
-      "wall at the end {:.4g} / {:.4g} mm ({:+.1f} %; {:+.1f} % of the FEM wall's largest "
-      "{:.4g} mm)\n",
+      "slab peak {:.4g} / {:.4g} mm ({:+.1f} %), time to 95 % of the travel {:.4g} / {:.4g} ms "
+      "({:+.1f} %), slab velocity zero {:.4g} / {:.4g} ms ({:+.1f} %), wall at the end {:.4g} / "
+      "{:.4g} mm ({:+.1f} %; {:+.1f} % of the FEM wall's largest {:.4g} mm)\n",
       name,
       c.damping / 1e3,
       c.fem.peak_force / 1e3,
@@ -232,6 +254,9 @@ namespace
       1e3 * c.fem.slab_peak,
       1e3 * c.element.slab_peak,
       100 * c.error(&Impact::slab_peak),
+      1e3 * c.fem.time_to_95_travel,
+      1e3 * c.element.time_to_95_travel,
+      100 * c.error(&Impact::time_to_95_travel),
       1e3 * c.fem.time_to_stop,
       1e3 * c.element.time_to_stop,
       100 * c.error(&Impact::time_to_stop),
@@ -276,7 +301,8 @@ namespace
                       s.slab_peak_displacement,
                       s.time_to_stop,
                       s.wall_residual,
-                      s.wall_peak_displacement};
+                      s.wall_peak_displacement,
+                      s.time_to_95_travel};
     print(r.name, fitted);
     return fit.damping;
   }
@@ -294,7 +320,8 @@ namespace
                     s.slab_peak_displacement,
                     s.time_to_stop,
                     s.wall_residual,
-                    s.wall_peak_displacement};
+                    s.wall_peak_displacement,
+                    s.time_to_95_travel};
     print(r.name, c);
     return c;
   }
@@ -341,9 +368,11 @@ namespace
     expect_within(c, &Impact::peak_force, force_tolerance, "peak force");
     if (!fitted)
       expect_within(c, &Impact::slab_peak, motion_tolerance, "slab travel");
+    // The time to stop the slab as the time to 95 % of its travel on both sides (the instant
+    // its velocity is zero is ill-conditioned where the slab creeps to rest).
+    expect_within(c, &Impact::time_to_95_travel, motion_tolerance, "time to 95 % of the travel");
     if (heavy || v == 1.0)
     {
-      expect_within(c, &Impact::time_to_stop, motion_tolerance, "time to stop");
       expect_within(c, &Impact::wall_end, motion_tolerance, "wall residual");
     }
     else
