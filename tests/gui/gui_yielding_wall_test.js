@@ -7,7 +7,7 @@
 'use strict';
 const fs = require('fs');
 const path = require('path');
-const { check, setField, setInput, runAndWait, withGuiPage, runMain } = require('./browser.js');
+const { check, setField, setInput, withGuiPage, runMain } = require('./browser.js');
 
 /** Set the select of the scene form at `fieldPath` to `value` and fire its change event. */
 async function setChoice(page, fieldPath, value) {
@@ -74,7 +74,17 @@ async function main() {
     }
     const curveYaml = await page.$eval('#scene-yaml', (t) => t.value);
     check(/envelope: "?curve"?/.test(curveYaml) && /force: "?60 kN\/m"?/.test(curveYaml), `the form writes the curve:\n${curveYaml}`);
-    const curveRun = await runAndWait(page, { button: '#scene-run', status: '#run-status', result: '#results .peaks', timeout: 60000 });
+    const before = await page.$eval('#run-status', (s) => s.textContent);
+    await page.$eval('#scene-run', (b) => b.click());
+    await page.waitForFunction(
+      (prev) => {
+        const s = document.querySelector('#run-status');
+        return s.textContent !== prev && s.dataset.state === 'done' && document.querySelector('#results .peaks');
+      },
+      { timeout: 60000 },
+      before,
+    );
+    const curveRun = await page.$eval('#run-status', (s) => s.textContent.split(':')[0]);
     const curveSummary = JSON.parse(fs.readFileSync(path.join(runsDir, curveRun, 'out', 'summary.json'), 'utf8'));
     for (const w of curveSummary.cases[0].walls || [])
       check(Math.abs(w.capacity - 1.2e6) < 1e-3, `${w.name}: the curve's capacity 60 kN/m x 20 m (${w.capacity} N)`);
