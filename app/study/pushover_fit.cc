@@ -118,7 +118,7 @@ namespace kimp::app
 
     /// The element's envelope of `fit` at w >= 0: its concave hull (flat at V_d past it), or,
     /// without one, the bilinear capped at the curve's largest force.
-    double bilinear(const PushoverFit &fit, double w)
+    double element_envelope(const PushoverFit &fit, double w)
     {
       const std::vector<double> &x = fit.hull_displacements, &f = fit.hull_forces;
       if (x.size() >= 2)
@@ -168,7 +168,7 @@ namespace kimp::app
     /// than the envelope's secant there, so never below 0).
     double element_set(const PushoverFit &fit, double w_un, double k_ur)
     {
-      const double e = bilinear(fit, w_un);
+      const double e = element_envelope(fit, w_un);
       return w_un - e / std::max(k_ur, e / w_un);
     }
 
@@ -189,7 +189,7 @@ namespace kimp::app
       double num = 0.0, den = 0.0, smallest_secant = std::numeric_limits<double>::infinity();
       for (const PushoverUnloading &u : fit.unloadings)
       {
-        const double e  = bilinear(fit, u.from);
+        const double e  = element_envelope(fit, u.from);
         smallest_secant = std::min(smallest_secant, e / (u.from - u.permanent_set));
         if (u.permanent_set > 0.1 * u.from)
         {

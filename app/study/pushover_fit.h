@@ -1,6 +1,7 @@
 // The yielding wall element's wall-and-backfill part from a static pushover curve
-// (docs/physics.md §2 "Yielding moat wall", "Parameters from a pushover"): the equal-energy
-// bilinear idealisation of ASCE 41 / FEMA 356 for the envelope, the first unloading for k_ur.
+// (docs/physics.md §2 "Yielding moat wall", "Parameters from a pushover"): the curve's concave
+// hull for the envelope, the equal-energy bilinear idealisation of ASCE 41 / FEMA 356 beside it
+// (reported), the unloadings for k_ur.
 #pragma once
 
 #include <string>
