@@ -114,13 +114,13 @@ namespace kimp::app
                 s.stiffness,
                 "kN/mm/m",
                 "initial (cracked) stiffness of wall and backfill per metre (null: Caltrans-style "
-                "(5.5h + 20) kip/in per ft, h in ft)",
+                "(5.5h + 20) kip/in per ft, h in ft; curve: its first slope, leave null)",
                 io::Range::positive());
     io.quantity("capacity",
                 s.capacity,
                 "kN/m",
                 "bilinear: the force cap; hyperbolic: F_ult; per metre (null: Caltrans-style "
-                "5.5h^2.5/(1 + 2.37h) kip per ft, h in ft)",
+                "5.5h^2.5/(1 + 2.37h) kip per ft, h in ft; curve: its last force, leave null)",
                 io::Range::positive());
     io.quantity("hardening_ratio",
                 s.hardening_ratio,
