@@ -66,6 +66,15 @@ namespace kimp::app
                 "concrete.plastic_fraction",
                 format_quantity(materials.concrete.plastic_fraction, ""),
                 "needs materials.concrete.model: damage_plasticity");
+      const FemConcrete defaults;
+      ctx.check(materials.concrete.compression_band == defaults.compression_band,
+                "concrete.compression_band",
+                format_quantity(materials.concrete.compression_band, "m"),
+                "needs materials.concrete.model: damage_plasticity");
+      ctx.check(materials.concrete.crack_frame == defaults.crack_frame,
+                "concrete.crack_frame",
+                "fixed",
+                "needs materials.concrete.model: damage_plasticity");
     }
   }
 
@@ -136,6 +145,8 @@ namespace kimp::app
     if (c.strain_rate > 0)
       p.apply_strain_rate(c.strain_rate);
     p.plastic_fraction = c.plastic_fraction;
+    p.rotating_crack   = c.crack_frame == FemConcrete::CrackFrame::rotating;
+    p.compression_band = c.compression_band;
     return p;
   }
 

@@ -156,6 +156,16 @@ namespace kimp::app
     double strain_rate = 0; ///< 1/s for the MC2010 dynamic increase factors (0: none)
     /// b_c: plastic fraction of the compressive inelastic strain (0: secant unloading).
     double plastic_fraction = 0;
+    /// The crack frame of the damage law (fem::ConcreteParameters::rotating_crack).
+    enum class CrackFrame
+    {
+      rotating, ///< coaxial with the principal directions: no stress locking in a hinge
+      fixed     ///< fixed at the first crack, with shear retention and dowels in it
+    };
+    CrackFrame crack_frame = CrackFrame::rotating;
+    /// l_c, m: the crack band in compression (fem::ConcreteParameters::compression_band) of the
+    /// impact model and the pushover alike; 0: the local curve.
+    double compression_band = 0.3;
     /// Smeared bars of the wall (damage_plasticity only; default none).
     fem::ReinforcementParameters wall_reinforcement;
     /// Smeared bars of the meshed slab (damage_plasticity only; default none).
@@ -199,6 +209,22 @@ namespace kimp::app
                 "as plastic strain on unloading (0: secant unloading; Abaqus CDP calibrations "
                 "~0.7)",
                 io::Range::at_least(0.0).and_less(1.0));
+    io.choice("crack_frame",
+              s.crack_frame,
+              {{"rotating", FemConcrete::CrackFrame::rotating},
+               {"fixed", FemConcrete::CrackFrame::fixed}},
+              "damage_plasticity: the cracks' frame; rotating: it turns with the principal "
+              "directions (no tension locked across the cracks of a hinge, so the yielding wall "
+              "converges with the mesh); fixed: set at the first crack, with shear retention "
+              "and dowel action in it");
+    io.quantity("compression_band",
+                s.compression_band,
+                "m",
+                "damage_plasticity: length over which crushing past the compressive peak "
+                "dissipates its energy, so that every mesh crushes alike, in the impact run and "
+                "the pushover (0: each cell follows the local stress-strain curve, which softens "
+                "with the mesh)",
+                io::Range::at_least(0.0));
     io.section("wall_reinforcement",
                s.wall_reinforcement,
                "damage_plasticity: smeared, perfectly bonded steel bars of the wall (ratio_y: "

@@ -187,8 +187,6 @@ namespace kimp::app
     double                increment = 1e-3; ///< largest band displacement step, m
     double                cover     = 0.05; ///< bar centre to the wall face, m
     std::optional<double> hinge_length;     ///< L_p, m; default none (per-cell hardening)
-    /// The concrete's crack band in compression, m: fem::PushoverParameters' default (tested).
-    double compression_band = 0.3;
   };
 
   template <class Io>
@@ -223,13 +221,6 @@ namespace kimp::app
                 "(null: none, each cell hardens by its own strain, which converges where the "
                 "moment gradient spreads the yielding over several rows)",
                 io::Range::positive());
-    io.quantity("compression_band",
-                s.compression_band,
-                "m",
-                "damage_plasticity: length over which crushing past the compressive peak "
-                "dissipates its energy, so that every mesh crushes alike (0: each cell follows "
-                "the local stress-strain curve, which softens with the mesh)",
-                io::Range::at_least(0.0));
   }
 
   /** Geostatic initial state before the impact (docs/physics.md §6). */

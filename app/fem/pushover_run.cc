@@ -67,7 +67,9 @@ namespace kimp::app
       p.bars              = c.wall_reinforcement;
       p.bars.hinge_length = scene.pushover.hinge_length.value_or(0.0);
       p.cover             = scene.pushover.cover;
-      p.compression_band  = scene.pushover.compression_band;
+      // The concrete's crack frame and crush band are the impact model's (one key each).
+      p.rotating_crack   = c.crack_frame == FemConcrete::CrackFrame::rotating;
+      p.compression_band = c.compression_band;
     }
     else
     {

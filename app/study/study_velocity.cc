@@ -125,10 +125,13 @@ namespace kimp::app::study_internal
       linear.materials.concrete.youngs_modulus =
         concrete_parameters(scene.materials.concrete).youngs_modulus;
       linear.materials.concrete.model = FemConcrete::Model::elastic;
-      // The linear reference is the plain concrete's: bars and b_c act in the damage law only.
+      // The linear reference is the plain concrete's: bars, b_c, the crack frame and the crush
+      // band act in the damage law only.
       linear.materials.concrete.wall_reinforcement = fem::ReinforcementParameters{};
       linear.materials.concrete.slab_reinforcement = fem::ReinforcementParameters{};
       linear.materials.concrete.plastic_fraction   = 0;
+      linear.materials.concrete.compression_band   = FemConcrete{}.compression_band;
+      linear.materials.concrete.crack_frame        = FemConcrete{}.crack_frame;
     }
     // An elastic soil keeps its preset's E, nu and rho (soil_parameters()).
     linear.materials.soil.model = FemSoil::Model::elastic;

@@ -410,29 +410,4 @@ materials:
     EXPECT_LT(in.unloading_stiffness, in.stiffness);
     EXPECT_NE(r.reason.find("springs back softer"), std::string::npos) << r.reason;
   }
-
-  // pushover.compression_band reaches the pushover: the default is fem::PushoverParameters' own,
-  // a scene's value is taken in its unit, and a negative length is refused naming the key.
-  TEST(PushoverScene, CompressionBandReachesThePushover)
-  {
-    const std::string reinforced = "materials: {concrete: {model: damage_plasticity}}\n";
-    const FemScene    fallback   = io::load_scene_text<FemScene>(reinforced, "scene.yaml");
-    EXPECT_EQ(pushover_parameters(fallback, 1.25).compression_band,
-              fem::PushoverParameters().compression_band);
-    const FemScene set =
-      io::load_scene_text<FemScene>(reinforced + "pushover: {compression_band: \"20 cm\"}\n",
-                                    "scene.yaml");
-    EXPECT_NEAR(pushover_parameters(set, 1.25).compression_band, 0.2, 1e-15);
-    try
-    {
-      io::load_scene_text<FemScene>(reinforced + "pushover: {compression_band: \"-1 cm\"}\n",
-                                    "scene.yaml");
-      ADD_FAILURE() << "a negative crush band was accepted";
-    }
-    catch (const std::exception &e)
-    {
-      EXPECT_NE(std::string(e.what()).find("compression_band"), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find("scene.yaml"), std::string::npos) << e.what();
-    }
-  }
 } // namespace kimp::app
