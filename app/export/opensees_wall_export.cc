@@ -90,9 +90,18 @@ namespace kimp::app
     int tag = first_tag, node = first_node, element = first_element;
     for (const OpenSeesWall &w : walls)
     {
-      const lumped::WallBackfillParams &p         = w.part;
-      const int                         wall_node = node++, ground_node = node++;
-      const int                         spring = tag++, dashpot = tag++, part = tag++;
+      const lumped::WallBackfillParams &p = w.part;
+      if (p.envelope == lumped::WallEnvelope::curve)
+        throw std::invalid_argument(fmt::format(
+          "export-opensees: {}: the curve envelope ({} points) has no exact OpenSees material: "
+          "ElasticPPGap and HyperbolicGapMaterial are a bilinear and a hyperbola, MultiLinear "
+          "is symmetric and keeps no permanent set, Hysteretic has at most 3 envelope points "
+          "and unloads at a stiffness that follows the ductility, not at max(k_ur, E/w_max) to "
+          "the set. Export a bilinear or hyperbolic envelope (envelope: bilinear or hyperbolic)",
+          w.name,
+          p.curve_displacements.size()));
+      const int wall_node = node++, ground_node = node++;
+      const int spring = tag++, dashpot = tag++, part = tag++;
       out += "\n" + comment(fmt::format("{}: wall node {} with the wall's mass {} kg, fixed ground "
                                         "node {}; the contact part acts across a gap of {} m",
                                         w.name,

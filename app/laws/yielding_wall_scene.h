@@ -4,6 +4,8 @@
 #pragma once
 
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "fit/fitter.h"
 #include "io/scene_io.h"
@@ -21,31 +23,65 @@ namespace kimp::app
    * unloading stiffness equal to the stiffness, the pull-back equal to the capacity, and the
    * failure limit at 10 % of h.
    */
+  /// One point of a curve envelope: the wall's displacement and its force per metre.
+  struct WallCurvePointScene
+  {
+    double displacement = 0.0; ///< m
+    double force        = 0.0; ///< N per m
+  };
+
+  template <class Io>
+  void visit(Io &io, WallCurvePointScene &s)
+  {
+    io.quantity("displacement",
+                s.displacement,
+                "mm",
+                "the wall's displacement into its backfill",
+                io::Range::non_negative());
+    io.quantity("force",
+                s.force,
+                "kN/m",
+                "the pushover force per metre",
+                io::Range::non_negative());
+  }
+
   struct YieldingWallScene
   {
-    double                width    = fit::thesis_building_width; ///< m
-    double                height   = 1.5;                        ///< loaded height h, m
-    lumped::WallEnvelope  envelope = lumped::WallEnvelope::bilinear;
-    std::optional<double> stiffness; ///< N/m per m
-    std::optional<double> capacity;  ///< N per m
-    double                hardening_ratio = 0.0;
-    std::optional<double> ultimate_capacity; ///< N per m (null: no cap)
-    double                failure_ratio = 0.7;
-    std::optional<double> unloading_stiffness;      ///< N/m per m
-    std::optional<double> tension_capacity;         ///< N per m
-    double                soil_density    = 1800.0; ///< kg/m³
-    double                soil_wave_speed = 200.0;  ///< m/s
-    std::optional<double> radiation_damping;        ///< N·s/m per m
-    std::optional<double> failure_displacement;     ///< m
+    double                           width    = fit::thesis_building_width; ///< m
+    double                           height   = 1.5;                        ///< loaded height h, m
+    lumped::WallEnvelope             envelope = lumped::WallEnvelope::bilinear;
+    std::optional<double>            stiffness; ///< N/m per m
+    std::optional<double>            capacity;  ///< N per m
+    double                           hardening_ratio = 0.0;
+    std::optional<double>            ultimate_capacity; ///< N per m (null: no cap)
+    double                           failure_ratio = 0.7;
+    std::optional<double>            unloading_stiffness;      ///< N/m per m
+    std::optional<double>            tension_capacity;         ///< N per m
+    double                           soil_density    = 1800.0; ///< kg/m³
+    double                           soil_wave_speed = 200.0;  ///< m/s
+    std::optional<double>            radiation_damping;        ///< N·s/m per m
+    std::optional<double>            failure_displacement;     ///< m
+    std::vector<WallCurvePointScene> curve; ///< envelope curve: the points, from (0, 0)
 
     /// The Caltrans-style first guesses at `height` (per metre): stiffness N/m/m, capacity N/m.
     double default_stiffness() const;
     double default_capacity() const;
+    /// The capacity per metre, N/m: the curve's last force, or `capacity` (null: the first
+    /// guess).
+    double capacity_per_metre() const;
 
     /// The engine's parameters of the whole wall (× width), null keys resolved; `mass` is left
     /// to the model (the wall DOF's mass).
     lumped::WallBackfillParams resolved() const;
   };
+
+  /// The rules of a yielding section its ranges cannot say, with keys under `prefix` (e.g.
+  /// "walls.left.yielding."): the curve envelope's points (concave, monotone, from (0, 0), the
+  /// failing point's index named) and the keys it sets itself (stiffness, capacity,
+  /// hardening_ratio, ultimate_capacity) left out; points refused without the curve envelope.
+  void validate_yielding_wall(const YieldingWallScene &y,
+                              const std::string       &prefix,
+                              io::ValidationContext   &ctx);
 
   template <class Io>
   void visit(Io &io, YieldingWallScene &s)
@@ -63,21 +99,28 @@ namespace kimp::app
     io.choice("envelope",
               s.envelope,
               {{"bilinear", lumped::WallEnvelope::bilinear},
-               {"hyperbolic", lumped::WallEnvelope::hyperbolic}},
+               {"hyperbolic", lumped::WallEnvelope::hyperbolic},
+               {"curve", lumped::WallEnvelope::curve}},
               "virgin pushover: bilinear (k up to the capacity, then hardening_ratio*k; OpenSees "
-              "ElasticPPGap) or hyperbolic (w/(1/k + failure_ratio*w/capacity); OpenSees "
-              "HyperbolicGapMaterial)");
+              "ElasticPPGap), hyperbolic (w/(1/k + failure_ratio*w/capacity); OpenSees "
+              "HyperbolicGapMaterial) or curve (piecewise linear through `curve`, flat past its "
+              "last point)");
+    io.list("curve",
+            s.curve,
+            "envelope curve: points {displacement, force per metre} from {0 mm, 0 kN/m}, "
+            "displacements increasing, forces not decreasing, slopes not increasing (concave); "
+            "k is the first slope and the capacity the last force");
     io.quantity("stiffness",
                 s.stiffness,
                 "kN/mm/m",
                 "initial (cracked) stiffness of wall and backfill per metre (null: Caltrans-style "
-                "(5.5h + 20) kip/in per ft, h in ft)",
+                "(5.5h + 20) kip/in per ft, h in ft; curve: its first slope, leave null)",
                 io::Range::positive());
     io.quantity("capacity",
                 s.capacity,
                 "kN/m",
                 "bilinear: the force cap; hyperbolic: F_ult; per metre (null: Caltrans-style "
-                "5.5h^2.5/(1 + 2.37h) kip per ft, h in ft)",
+                "5.5h^2.5/(1 + 2.37h) kip per ft, h in ft; curve: its last force, leave null)",
                 io::Range::positive());
     io.quantity("hardening_ratio",
                 s.hardening_ratio,

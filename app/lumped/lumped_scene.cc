@@ -72,7 +72,8 @@ namespace kimp::app
         const std::string wall = side;
         ctx.check(!w->flexible, wall + "flexible", "true", "must be false for a yielding wall");
         const YieldingWallScene &y = *w->yielding;
-        if (y.ultimate_capacity)
+        validate_yielding_wall(y, wall + "yielding.", ctx);
+        if (y.ultimate_capacity && y.envelope != lumped::WallEnvelope::curve)
         {
           const double f = y.capacity.value_or(y.default_capacity());
           ctx.check(y.envelope == lumped::WallEnvelope::bilinear,

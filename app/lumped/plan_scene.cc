@@ -270,6 +270,10 @@ namespace kimp::app
                       polygon_text(p.outline),
                       [&] { plan::validate_polygon(to_polygon(p.outline), "a simple polygon"); }))
       return;
+    for (std::size_t i = 0; i < p.moat.yielding.size(); ++i)
+      validate_yielding_wall(p.moat.yielding[i].wall,
+                             "moat.yielding[" + std::to_string(i) + "].",
+                             ctx);
     if (!isolated)
       ctx.check(!p.moat.present,
                 "moat.present",

@@ -90,10 +90,45 @@ namespace kimp::app
                                w_d * 1e3);
     }
 
-    /// The bilinear envelope of `fit` at w >= 0, capped at the curve's largest force (the
-    /// element's ultimate_capacity).
-    double bilinear(const PushoverFit &fit, double w)
+    /// The upper concave hull of env[0..target] (monotone chain; collinear points dropped).
+    void concave_hull(const std::vector<Point> &env, std::size_t target, PushoverFit &fit)
     {
+      std::vector<Point> hull;
+      for (std::size_t k = 0; k <= target; ++k)
+      {
+        const Point &p = env[k];
+        while (hull.size() >= 2)
+        {
+          const Point &a = hull[hull.size() - 2], &b = hull.back();
+          if ((b.w - a.w) * (p.f - a.f) - (b.f - a.f) * (p.w - a.w) >= 0.0)
+            hull.pop_back(); // b lies on or below the chord a-p
+          else
+            break;
+        }
+        hull.push_back(p);
+      }
+      fit.hull_displacements.clear();
+      fit.hull_forces.clear();
+      for (const Point &p : hull)
+      {
+        fit.hull_displacements.push_back(p.w);
+        fit.hull_forces.push_back(p.f);
+      }
+    }
+
+    /// The element's envelope of `fit` at w >= 0: its concave hull (flat at V_d past it), or,
+    /// without one, the bilinear capped at the curve's largest force.
+    double element_envelope(const PushoverFit &fit, double w)
+    {
+      const std::vector<double> &x = fit.hull_displacements, &f = fit.hull_forces;
+      if (x.size() >= 2)
+      {
+        if (w >= x.back())
+          return f.back();
+        const std::size_t i =
+          static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), w) - x.begin()) - 1;
+        return f[i] + (f[i + 1] - f[i]) * ((w - x[i]) / (x[i + 1] - x[i]));
+      }
       return w <= fit.yield_displacement ?
                fit.stiffness * w :
                std::min(fit.capacity +
@@ -133,7 +168,7 @@ namespace kimp::app
     /// than the envelope's secant there, so never below 0).
     double element_set(const PushoverFit &fit, double w_un, double k_ur)
     {
-      const double e = bilinear(fit, w_un);
+      const double e = element_envelope(fit, w_un);
       return w_un - e / std::max(k_ur, e / w_un);
     }
 
@@ -154,7 +189,7 @@ namespace kimp::app
       double num = 0.0, den = 0.0, smallest_secant = std::numeric_limits<double>::infinity();
       for (const PushoverUnloading &u : fit.unloadings)
       {
-        const double e  = bilinear(fit, u.from);
+        const double e  = element_envelope(fit, u.from);
         smallest_secant = std::min(smallest_secant, e / (u.from - u.permanent_set));
         if (u.permanent_set > 0.1 * u.from)
         {
@@ -205,6 +240,7 @@ namespace kimp::app
       throw std::invalid_argument("pushover fit: the curve has no positive force");
     PushoverFit fit;
     fit_envelope(env, target, fit);
+    concave_hull(env, target, fit);
     if (env.back().f < 0.97 * env[target].f)
       append(fit.note,
              fmt::format("the curve softens past its largest force ({:.4g} kN/m at {:.4g} mm, "
@@ -288,11 +324,13 @@ namespace kimp::app
     r.source = "pushover";
     r.reason = fallback;
     append(r.reason, r.fit.note);
-    in.capacity            = r.fit.capacity;
-    in.stiffness           = r.fit.stiffness;
-    in.hardening_ratio     = r.fit.hardening_ratio;
-    in.ultimate_capacity   = r.fit.target_force; // the curve's largest force: the cap
-    in.unloading_stiffness = r.fit.unloading_stiffness;
+    in.capacity               = r.fit.capacity;
+    in.stiffness              = r.fit.stiffness;
+    in.hardening_ratio        = r.fit.hardening_ratio;
+    in.ultimate_capacity      = r.fit.target_force; // the curve's largest force: the cap
+    in.unloading_stiffness    = r.fit.unloading_stiffness;
+    in.envelope_displacements = r.fit.hull_displacements;
+    in.envelope_forces        = r.fit.hull_forces;
     return r;
   }
 } // namespace kimp::app

@@ -1,6 +1,7 @@
 // The yielding wall element's wall-and-backfill part from a static pushover curve
-// (docs/physics.md §2 "Yielding moat wall", "Parameters from a pushover"): the equal-energy
-// bilinear idealisation of ASCE 41 / FEMA 356 for the envelope, the first unloading for k_ur.
+// (docs/physics.md §2 "Yielding moat wall", "Parameters from a pushover"): the curve's concave
+// hull for the envelope, the equal-energy bilinear idealisation of ASCE 41 / FEMA 356 beside it
+// (reported), the unloadings for k_ur.
 #pragma once
 
 #include <string>
@@ -37,6 +38,11 @@ namespace kimp::app
     double target_force        = 0.0; ///< V_d: the curve's capacity (largest force), N/m; the
                                ///< element's cap (ultimate_capacity): it does not harden past it
     double curve_work = 0.0; ///< ∫₀^Δ_d F dw of the curve (= the bilinear's), J/m
+    /** The element's envelope: the concave hull of the virgin loading points from (0, 0) up to
+     *  Δ_d (the least concave curve above them; flat at V_d past Δ_d), m and N/m. k_ur and the
+     *  element's sets are fitted against it. */
+    std::vector<double> hull_displacements;
+    std::vector<double> hull_forces;
     /** The first unloading of a cyclic curve (NaN without one): where it starts, the curve's
      *  permanent set there and the element's (w_un − E(w_un)/k̃), m. */
     double unloaded_from          = 0.0;
@@ -57,7 +63,10 @@ namespace kimp::app
    *   K_e = 0.6·V_y / w(0.6·V_y) (the curve's secant where it first reaches 0.6·V_y) and the
    *   post-yield line through (Δ_d, V_d) has the curve's area up to Δ_d; fixed-point iteration on
    *   V_y = (2A − V_d·Δ_d)/(Δ_d − V_d/K_e). V_y is at most V_d (then α = 0);
-   * - unloading: the unloadings' measured permanent sets w_p give k_ur, the least-squares fit of
+   * - hull: the concave hull of the envelope points up to Δ_d (the element's curve envelope; the
+   *   bilinear above is kept for the report and the bilinear element);
+   * - unloading, against the hull E: the unloadings' measured permanent sets w_p give k_ur, the
+   *   least-squares fit of
    *   1/k_ur to w_un − w_p = E(w_un)/k_ur over the unloadings that leave a set of more than a
    *   tenth of w_un (one: k_ur = E(w_un)/(w_un − w_p) exactly); without such an unloading the
    *   smallest unloading secant E(w_un)/(w_un − w_p). k_ur may be below k (a cracked wall springs
@@ -107,8 +116,8 @@ namespace kimp::app
    * steps of at most study_pushover_implex_increment (docs/physics.md §6 "Static pushover":
    * IMPL-EX's lagging damage puts a cracking wall's knee high, the implicit update does not);
    * the reason names the fallback and the stall. On success the capacity, stiffness, hardening
-   * ratio, unloading stiffness and cap (ultimate_capacity = V_d) of `in` are the fit's (source
-   * "pushover"); when the pushover or
+   * ratio, unloading stiffness and cap (ultimate_capacity = V_d) of `in` are the fit's, and its
+   * envelope the fit's concave hull (source "pushover"); when the pushover or
    * the fit fails `in` is left as it is (the estimate) and the reason says why (source "estimate").
    * Never throws for a pushover that fails.
    */

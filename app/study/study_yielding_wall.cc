@@ -205,7 +205,7 @@ namespace kimp::app::study_internal
     }
     run.k_total                  = w->element.contact_stiffness * scene.fit.width;
     run.exponent                 = 1.0;
-    run.wall_capacity            = w->element.backfill.capacity.value_or(0.0) * scene.fit.width;
+    run.wall_capacity            = w->element.backfill.capacity_per_metre() * scene.fit.width;
     out.result                   = run_lumped_case(h.name + "_yielding_wall",
                                  yielding_walled_scene(record.base, record.gap, w->element),
                                  record.motion,

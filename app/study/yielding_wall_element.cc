@@ -60,9 +60,23 @@ namespace kimp::app
     if (std::isfinite(in.ultimate_capacity))
       b.ultimate_capacity = in.ultimate_capacity;
     b.unloading_stiffness = in.unloading_stiffness;
-    b.soil_density        = in.soil_density;
-    b.soil_wave_speed     = in.soil_wave_speed;
-    b.radiation_damping   = e.radiation_damping;
+    b.tension_capacity    = in.capacity;
+    if (!in.envelope_displacements.empty())
+    {
+      if (in.envelope_displacements.size() != in.envelope_forces.size())
+        throw std::invalid_argument(
+          "yielding wall element: the envelope's displacements and forces differ in count");
+      b.envelope = lumped::WallEnvelope::curve;
+      b.stiffness.reset();
+      b.capacity.reset();
+      b.hardening_ratio = 0.0;
+      b.ultimate_capacity.reset();
+      for (std::size_t i = 0; i < in.envelope_displacements.size(); ++i)
+        b.curve.push_back({in.envelope_displacements[i], in.envelope_forces[i]});
+    }
+    b.soil_density      = in.soil_density;
+    b.soil_wave_speed   = in.soil_wave_speed;
+    b.radiation_damping = e.radiation_damping;
     return e;
   }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <limits>
+#include <vector>
 
 #include "app/fem/fem_scene.h"
 #include "app/laws/yielding_wall_scene.h"
@@ -25,6 +26,10 @@ namespace kimp::app
     double hardening_ratio     = 0.0; ///< α of the post-yield tangent α·k
     /// F_u, N/m: the force the hardening stops at (a pushover's largest force; +inf: no cap)
     double ultimate_capacity = std::numeric_limits<double>::infinity();
+    /// The envelope as a curve (a pushover's concave hull), from (0, 0), m and N/m; empty: the
+    /// bilinear of capacity, stiffness, hardening_ratio and ultimate_capacity.
+    std::vector<double> envelope_displacements;
+    std::vector<double> envelope_forces;
     // Radiation into the backfill.
     double soil_density    = 0.0; ///< ρ_s, kg/m³
     double soil_wave_speed = 0.0; ///< c_s, m/s
@@ -51,8 +56,9 @@ namespace kimp::app
 
   /**
    * The element of `in` for a wall `width` wide:
-   * - wall-and-backfill part: bilinear, k, F_y, α, F_u and k_ur of `in`, the pull-back equal to
-   *   the capacity, the failure limit 10 % of H;
+   * - wall-and-backfill part: the curve envelope of `in` (its pushover's concave hull) or else
+   *   the bilinear of k, F_y, α, F_u; k_ur of `in`, the pull-back equal to the capacity F_y, the
+   *   failure limit 10 % of H;
    * - radiation dashpot: c_r = ρ_s·c_s·h (the backfill's plane-wave impedance over the loaded
    *   height);
    * - contact part: a linear spring whose first peak against the wall's mass is the impedance's,

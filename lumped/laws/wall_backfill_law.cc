@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "lumped/laws/kelvin_voigt_law.h"
 #include "lumped/parameter_check.h"
@@ -22,10 +24,64 @@ namespace kimp::lumped
         return y * y * (0.5 - y * (1.0 / 3.0 - 0.25 * y));
       return y - std::log1p(y);
     }
+
+    /// The parameters with a curve envelope's k (first slope) and capacity (last force) set.
+    /// @throws std::invalid_argument naming the bad point.
+    WallBackfillParams with_curve_derived(WallBackfillParams p)
+    {
+      if (p.envelope != WallEnvelope::curve)
+      {
+        if (!p.curve_displacements.empty() || !p.curve_forces.empty())
+          throw std::invalid_argument(std::string(owner) +
+                                      "curve points are the curve envelope's (envelope is not "
+                                      "curve)");
+        return p;
+      }
+      const std::string problem = wall_curve_problem(p.curve_displacements, p.curve_forces);
+      if (!problem.empty())
+        throw std::invalid_argument(std::string(owner) + "curve envelope: " + problem);
+      p.stiffness = p.curve_forces[1] / p.curve_displacements[1];
+      p.capacity  = p.curve_forces.back();
+      return p;
+    }
   } // namespace
 
+  std::string wall_curve_problem(const std::vector<double> &w, const std::vector<double> &f)
+  {
+    if (w.size() != f.size())
+      return "the displacements and forces differ in count (" + std::to_string(w.size()) + " and " +
+             std::to_string(f.size()) + ")";
+    if (w.size() < 2)
+      return "needs at least two points, (0, 0) and one more";
+    if (w[0] != 0.0 || f[0] != 0.0)
+      return "point 0: must be (0, 0)";
+    double first_slope = 0.0;
+    double slope       = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 1; i < w.size(); ++i)
+    {
+      const std::string at = "point " + std::to_string(i) + ": ";
+      if (!std::isfinite(w[i]) || !std::isfinite(f[i]))
+        return at + "must be finite";
+      if (!(w[i] > w[i - 1]))
+        return at + "displacement must be larger than the previous point's (increasing)";
+      if (f[i] < f[i - 1])
+        return at + "force must not be below the previous point's (monotone)";
+      const double s = (f[i] - f[i - 1]) / (w[i] - w[i - 1]);
+      if (i == 1)
+      {
+        if (!(s > 0.0))
+          return at + "the first segment must rise (a positive stiffness)";
+        first_slope = s;
+      }
+      else if (s > slope + 1e-9 * first_slope)
+        return at + "the slope rises from the previous segment's (the curve must be concave)";
+      slope = s;
+    }
+    return "";
+  }
+
   WallBackfillLaw::WallBackfillLaw(const Params &params)
-    : params_(params)
+    : params_(with_curve_derived(params))
   {
     const Params &p = params_;
     require_parameter(std::isfinite(p.stiffness) && p.stiffness > 0.0,
@@ -52,13 +108,15 @@ namespace kimp::lumped
                       p.ultimate_capacity,
                       "N",
                       "must be >= capacity (+inf: no cap)");
-    require_parameter(p.envelope == WallEnvelope::bilinear ||
-                        p.ultimate_capacity == std::numeric_limits<double>::infinity(),
-                      owner,
-                      "ultimate_capacity",
-                      p.ultimate_capacity,
-                      "N",
-                      "is the bilinear envelope's (the hyperbolic one has no cap)");
+    require_parameter(
+      p.envelope == WallEnvelope::bilinear ||
+        p.ultimate_capacity == std::numeric_limits<double>::infinity(),
+      owner,
+      "ultimate_capacity",
+      p.ultimate_capacity,
+      "N",
+      "is the bilinear envelope's (the hyperbolic one has no cap, the curve's is its "
+      "last force)");
     require_parameter(p.failure_ratio > 0.0 && p.failure_ratio <= 1.0,
                       owner,
                       "failure_ratio",
@@ -95,11 +153,40 @@ namespace kimp::lumped
                       p.failure_displacement,
                       "m",
                       "must be > 0");
+    require_parameter(p.envelope != WallEnvelope::curve || p.hardening_ratio == 0.0,
+                      owner,
+                      "hardening_ratio",
+                      p.hardening_ratio,
+                      "",
+                      "is the bilinear envelope's (the curve gives its own slopes)");
+    if (p.envelope == WallEnvelope::curve)
+    {
+      curve_work_.assign(p.curve_displacements.size(), 0.0);
+      for (std::size_t i = 1; i < curve_work_.size(); ++i)
+        curve_work_[i] =
+          curve_work_[i - 1] + 0.5 * (p.curve_forces[i - 1] + p.curve_forces[i]) *
+                                 (p.curve_displacements[i] - p.curve_displacements[i - 1]);
+    }
+  }
+
+  std::size_t WallBackfillLaw::curve_segment(const double w) const
+  {
+    const std::vector<double> &x = params_.curve_displacements;
+    return static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), w) - x.begin()) - 1;
   }
 
   double WallBackfillLaw::envelope(const double w) const
   {
     const Params &p = params_;
+    if (p.envelope == WallEnvelope::curve)
+    {
+      const std::size_t i = curve_segment(w);
+      if (i + 1 >= p.curve_displacements.size())
+        return p.curve_forces.back();
+      const double *x = p.curve_displacements.data();
+      const double *f = p.curve_forces.data();
+      return f[i] + (f[i + 1] - f[i]) * ((w - x[i]) / (x[i + 1] - x[i]));
+    }
     if (p.envelope == WallEnvelope::hyperbolic)
       return w / (1.0 / p.stiffness + p.failure_ratio * w / p.capacity);
     const double w_y = p.capacity / p.stiffness;
@@ -111,6 +198,14 @@ namespace kimp::lumped
   double WallBackfillLaw::envelope_tangent(const double w) const
   {
     const Params &p = params_;
+    if (p.envelope == WallEnvelope::curve)
+    {
+      const std::size_t i = curve_segment(w);
+      if (i + 1 >= p.curve_displacements.size())
+        return 0.0;
+      return (p.curve_forces[i + 1] - p.curve_forces[i]) /
+             (p.curve_displacements[i + 1] - p.curve_displacements[i]);
+    }
     if (p.envelope == WallEnvelope::hyperbolic)
     {
       const double d = 1.0 / p.stiffness + p.failure_ratio * w / p.capacity;
@@ -123,8 +218,10 @@ namespace kimp::lumped
 
   double WallBackfillLaw::cap_displacement() const
   {
-    const Params &p   = params_;
-    const double  w_y = p.capacity / p.stiffness;
+    const Params &p = params_;
+    if (p.envelope == WallEnvelope::curve)
+      return p.curve_displacements.back();
+    const double w_y = p.capacity / p.stiffness;
     if (p.ultimate_capacity == std::numeric_limits<double>::infinity())
       return std::numeric_limits<double>::infinity();
     if (p.ultimate_capacity <= p.capacity || p.hardening_ratio == 0.0)
@@ -135,6 +232,12 @@ namespace kimp::lumped
   double WallBackfillLaw::envelope_work(const double w) const
   {
     const Params &p = params_;
+    if (p.envelope == WallEnvelope::curve)
+    {
+      const std::size_t i = curve_segment(w);
+      const double      x = p.curve_displacements[i];
+      return curve_work_[i] + 0.5 * (p.curve_forces[i] + envelope(w)) * (w - x);
+    }
     if (p.envelope == WallEnvelope::hyperbolic)
     {
       // ∫ x/(a + b·x) dx = (a/b²)·(y − ln(1 + y)), y = b·x/a.

@@ -6,6 +6,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "lumped/laws/force_law.h"
 
@@ -14,9 +15,11 @@ namespace kimp::lumped
   /// Virgin-loading curve of the wall and its backfill.
   enum class WallEnvelope
   {
-    bilinear,  ///< E(w) = k·w up to F_y, then F_y + α·k·(w − F_y/k) up to the cap F_u
-               ///< (OpenSees ElasticPPGap without a cap)
-    hyperbolic ///< E(w) = w/(1/k + R_f·w/F_ult) (Duncan-Mokwa; OpenSees HyperbolicGapMaterial)
+    bilinear,   ///< E(w) = k·w up to F_y, then F_y + α·k·(w − F_y/k) up to the cap F_u
+                ///< (OpenSees ElasticPPGap without a cap)
+    hyperbolic, ///< E(w) = w/(1/k + R_f·w/F_ult) (Duncan-Mokwa; OpenSees HyperbolicGapMaterial)
+    curve ///< piecewise linear through the points (w_i, F_i) from (0, 0), concave and monotone,
+          ///< flat at the last force past the last point (a pushover curve's concave hull)
   };
 
   /**
@@ -24,10 +27,14 @@ namespace kimp::lumped
    *
    * | parameter            | meaning                                           | unit  | range    |
    * |----------------------|---------------------------------------------------|-------|----------|
-   * | envelope             | bilinear (cap with hardening) or hyperbolic       | -     |          |
+   * | envelope             | bilinear (cap with hardening), hyperbolic, curve  | -     |          |
    * | stiffness            | k: initial tangent of the envelope (cracked wall  | N/m   | > 0      |
-   * |                      | with its backfill)                                |       |          |
-   * | capacity             | bilinear: F_y, the cap; hyperbolic: F_ult         | N     | > 0      |
+   * |                      | with its backfill; curve: set from its first      |       |          |
+   * |                      | segment)                                          |       |          |
+   * | capacity             | bilinear: F_y, the cap; hyperbolic: F_ult; curve: | N     | > 0      |
+   * |                      | set to its last force                             |       |          |
+   * | curve_displacements  | curve: w_i, from 0, increasing                    | m     |          |
+   * | curve_forces         | curve: F_i, from 0, non-decreasing, concave       | N     |          |
    * | hardening_ratio      | α: bilinear post-yield tangent α·k                | -     | [0, 1)   |
    * | ultimate_capacity    | F_u: bilinear, the force the hardening stops at   | N     | >= F_y   |
    * |                      | (+inf: no cap)                                    |       |          |
@@ -43,18 +50,27 @@ namespace kimp::lumped
    */
   struct WallBackfillParams
   {
-    WallEnvelope envelope             = WallEnvelope::bilinear;
-    double       stiffness            = 0.0;
-    double       capacity             = 0.0;
-    double       hardening_ratio      = 0.0;
-    double       ultimate_capacity    = std::numeric_limits<double>::infinity();
-    double       failure_ratio        = 1.0;
-    double       unloading_stiffness  = 0.0;
-    double       tension_capacity     = 0.0;
-    double       radiation_damping    = 0.0;
-    double       mass                 = 0.0;
-    double       failure_displacement = std::numeric_limits<double>::infinity();
+    WallEnvelope        envelope             = WallEnvelope::bilinear;
+    double              stiffness            = 0.0;
+    double              capacity             = 0.0;
+    double              hardening_ratio      = 0.0;
+    double              ultimate_capacity    = std::numeric_limits<double>::infinity();
+    double              failure_ratio        = 1.0;
+    double              unloading_stiffness  = 0.0;
+    double              tension_capacity     = 0.0;
+    double              radiation_damping    = 0.0;
+    double              mass                 = 0.0;
+    double              failure_displacement = std::numeric_limits<double>::infinity();
+    std::vector<double> curve_displacements; ///< curve envelope: w_i, m (first 0)
+    std::vector<double> curve_forces;        ///< curve envelope: F_i, N (first 0)
   };
+
+  /// Checks the points of a curve envelope: at least two, the same count, (w_0, F_0) = (0, 0),
+  /// w increasing, F non-decreasing, slopes non-increasing (concave; a relative 1e-9 of the first
+  /// slope allowed for round-off). Returns "" when valid, else what is wrong, naming the index
+  /// ("point 3: ...").
+  std::string wall_curve_problem(const std::vector<double> &displacements,
+                                 const std::vector<double> &forces);
 
   /// Trial/committed state of the wall-and-backfill part.
   struct WallBackfillState
@@ -79,6 +95,9 @@ namespace kimp::lumped
    *   k̃       = max(k_ur, E(w_max)/w_max)       (never below the envelope's secant),
    *   w_p     = w_max − E(w_max)/k̃ >= 0        (the permanent set: where R returns to 0).
    *
+   * The curve envelope is piecewise linear through (w_i, F_i), i = 0..n, (w_0, F_0) = (0, 0),
+   * and flat at F_n past w_n; its k is the first slope and its capacity F_n. Two segments
+   * (0, 0), (F_y/k, F_y), (w_u, F_u) are the bilinear envelope with its cap.
    * The bilinear envelope stops hardening at F_u: E = min(F_y + α·k·(w − w_y), F_u), w_y = F_y/k,
    * flat from w_u = w_y + (F_u − F_y)/(α·k) (the pushover's largest force; a wall does not
    * harden without bound). The envelope E (WallEnvelope) is concave with E(0) = 0, so its chords
@@ -157,7 +176,7 @@ namespace kimp::lumped
     /// ∫₀^w E dw', J (w >= 0).
     double envelope_work(double w) const;
     /// w_u, m: where the bilinear envelope reaches its cap F_u and turns flat (w_y when α = 0 or
-    /// F_u = F_y; +inf without a cap or for the hyperbolic envelope).
+    /// F_u = F_y; +inf without a cap or for the hyperbolic envelope); the curve's last w_i.
     double cap_displacement() const;
 
     const Params            &parameters() const { return params_; }
@@ -168,8 +187,12 @@ namespace kimp::lumped
     /// k̃(w_max) = max(k_ur, E(w_max)/w_max) (max(k_ur, k) at w_max = 0), N/m.
     double unloading_stiffness_at(double w_max) const;
 
-    const Params      params_;
-    WallBackfillState committed_;
-    WallBackfillState trial_;
+    /// The segment of the curve envelope holding w (w_i <= w < w_{i+1}; n past the last point).
+    std::size_t curve_segment(double w) const;
+
+    const Params        params_;
+    std::vector<double> curve_work_; ///< curve: ∫₀^w_i E dw at each point, J
+    WallBackfillState   committed_;
+    WallBackfillState   trial_;
   };
 } // namespace kimp::lumped

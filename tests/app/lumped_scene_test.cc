@@ -406,6 +406,61 @@ TEST(LumpedScene, YieldingWallsTakeFirstGuessesPerMetreTimesWidth)
             "");
 }
 
+TEST(LumpedScene, YieldingWallCurveEnvelopeFromPointsPerMetre)
+{
+  // Points {displacement, force per metre} × width; k = the first slope, capacity = the last
+  // force, the pull-back (null) = the capacity, k_ur (null) = k.
+  const LumpedScene scene =
+    load("walls:\n  left:\n    yielding:\n      width: \"10 m\"\n      envelope: curve\n"
+         "      curve:\n        - {displacement: \"0 mm\", force: \"0 kN/m\"}\n"
+         "        - {displacement: \"2 mm\", force: \"100 kN/m\"}\n"
+         "        - {displacement: \"1 cm\", force: \"140 kN/m\"}\n");
+  const kimp::lumped::WallBackfillParams p = *make_pounding_scene(scene).left_wall->yielding;
+  EXPECT_EQ(p.envelope, kimp::lumped::WallEnvelope::curve);
+  ASSERT_EQ(p.curve_displacements.size(), 3u);
+  EXPECT_NEAR(p.curve_displacements[2], 0.01, exact_tolerance);
+  EXPECT_NEAR(p.curve_forces[1], 1e6, exact_tolerance * 1e6);
+  EXPECT_NEAR(p.curve_forces[2], 1.4e6, exact_tolerance * 1.4e6);
+  EXPECT_NEAR(p.capacity, 1.4e6, exact_tolerance * 1.4e6);
+  EXPECT_NEAR(p.stiffness, 500e6, exact_tolerance * 500e6);
+  EXPECT_NEAR(p.unloading_stiffness, 500e6, exact_tolerance * 500e6);
+  EXPECT_NEAR(p.tension_capacity, 1.4e6, exact_tolerance * 1.4e6);
+  const kimp::lumped::PoundingModel model(make_pounding_scene(scene)); // the law accepts it
+
+  // Refused: a convex kink (naming the point), a curve not from the origin, points without the
+  // curve envelope, a curve envelope without points, and the keys the curve sets itself.
+  const std::string head = "walls:\n  left:\n    yielding:\n      envelope: curve\n";
+  const std::string pts  = "      curve:\n        - {displacement: 0 mm, force: 0 kN/m}\n"
+                           "        - {displacement: 2 mm, force: 100 kN/m}\n";
+  EXPECT_NE(
+    error_of(head + pts + "        - {displacement: 3 mm, force: 160 kN/m}\n")
+      .find("walls.left.yielding.curve[2] = {3 mm, 160 kN/m}: the slope rises from the previous "
+            "segment's (the curve must be concave)"),
+    std::string::npos);
+  EXPECT_NE(error_of(head + pts + "        - {displacement: 1 mm, force: 160 kN/m}\n")
+              .find("walls.left.yielding.curve[2] = {1 mm, 160 kN/m}: displacement must be larger"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + pts + "        - {displacement: 3 mm, force: 90 kN/m}\n")
+              .find("walls.left.yielding.curve[2] = {3 mm, 90 kN/m}: force must not be below"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "      curve:\n        - {displacement: 1 mm, force: 0 kN/m}\n"
+                            "        - {displacement: 2 mm, force: 100 kN/m}\n")
+              .find("walls.left.yielding.curve[0]"),
+            std::string::npos);
+  EXPECT_NE(error_of(head).find(
+              "walls.left.yielding.curve = 0 points (default): needs at least two"),
+            std::string::npos);
+  EXPECT_NE(error_of("walls:\n  left:\n    yielding:\n" + pts)
+              .find("walls.left.yielding.curve = 2 points: is the curve envelope's"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + pts + "      capacity: 100 kN/m\n")
+              .find("walls.left.yielding.capacity = set: is given by the curve envelope's points"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + pts + "      hardening_ratio: 2 %\n")
+              .find("walls.left.yielding.hardening_ratio = set"),
+            std::string::npos);
+}
+
 TEST(LumpedScene, FrictionPendulumAndBoucWenIsolators)
 {
   // Friction pendulum: W = g·Σm unless given; initial stiffness k_init + W/R.

@@ -4,6 +4,7 @@
 // element orientation, and Tcl and OpenSeesPy agree.
 #include <gtest/gtest.h>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -133,4 +134,34 @@ TEST(OpenSeesWallExport, MaterialsCarryTheSceneTimesWidthInArgumentOrder)
             std::string::npos)
     << py;
   EXPECT_NE(py.find("ops.node(1001, 0.0, '-mass', 60000)"), std::string::npos) << py;
+}
+
+// No OpenSees material is exact for the curve envelope: the export refuses it, naming the wall
+// and what is missing, and writes no file.
+TEST(OpenSeesWallExport, RefusesTheCurveEnvelope)
+{
+  const auto walls = kimp::app::opensees_walls(kimp::io::load_scene_text<LumpedScene>(
+    "walls:\n  left:\n    yielding:\n      envelope: curve\n      curve:\n"
+    "        - {displacement: 0 mm, force: 0 kN/m}\n"
+    "        - {displacement: 2 mm, force: 100 kN/m}\n"
+    "        - {displacement: 1 cm, force: 140 kN/m}\n",
+    "scene.yaml"));
+  ASSERT_EQ(walls.size(), 1u);
+  for (const bool python : {false, true})
+  {
+    try
+    {
+      kimp::app::opensees_walls_text(walls, python);
+      ADD_FAILURE() << "the curve envelope was exported";
+    }
+    catch (const std::invalid_argument &e)
+    {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("left_wall: the curve envelope (3 points) has no exact OpenSees "
+                          "material"),
+                std::string::npos)
+        << what;
+      EXPECT_NE(what.find("envelope: bilinear or hyperbolic"), std::string::npos) << what;
+    }
+  }
 }

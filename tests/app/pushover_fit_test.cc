@@ -10,6 +10,7 @@
 #include <iostream>
 #include <random>
 #include <stdexcept>
+#include <vector>
 
 #include "app/fem/fem_scene.h"
 #include "app/fem/pushover_run.h"
@@ -57,6 +58,41 @@ namespace kimp::app
     EXPECT_EQ(fit.unloading_stiffness, fit.stiffness);
     EXPECT_TRUE(std::isnan(fit.pushover_permanent_set));
     EXPECT_NE(fit.note.find("no unloading"), std::string::npos);
+  }
+
+  TEST(PushoverFit, TheElementsEnvelopeIsTheCurvesConcaveHull)
+  {
+    // Points (mm, kN/m) 1: 40 (below the chord 0-2), 2: 90, 3: 96, 4: 100, 5: 95 (softening
+    // past the largest force, cut): the hull is (0, 0), (2, 90), (3, 96), (4, 100). An unloading
+    // from 4 mm to a set of 2 mm gives k_ur = E(4 mm)/2 mm = 50 kN/mm/m against the hull.
+    Curve c;
+    push(c, 1e-3, 40e3);
+    push(c, 2e-3, 90e3);
+    push(c, 3e-3, 96e3);
+    push(c, 4e-3, 100e3);
+    push(c, 3e-3, 50e3, true);
+    push(c, 2e-3, 0.0, true);
+    push(c, 3e-3, 50e3);
+    push(c, 5e-3, 95e3);
+    const PushoverFit         fit = fit_pushover(c);
+    const std::vector<double> w = {0.0, 2e-3, 3e-3, 4e-3}, f = {0.0, 90e3, 96e3, 100e3};
+    ASSERT_EQ(fit.hull_displacements.size(), w.size());
+    for (std::size_t i = 0; i < w.size(); ++i)
+    {
+      EXPECT_NEAR(fit.hull_displacements[i], w[i], 1e-15) << i;
+      EXPECT_NEAR(fit.hull_forces[i], f[i], 1e-9) << i;
+    }
+    EXPECT_NEAR(fit.unloading_stiffness / 50e6, 1.0, 1e-12);
+    EXPECT_NEAR(fit.permanent_set, 2e-3, 1e-15);
+    // A bilinear curve is its own hull: the hull's forces are the bilinear's at its points.
+    Curve b;
+    bilinear_push(b, 0.0, 0.06);
+    const PushoverFit bf = fit_pushover(b);
+    for (std::size_t i = 0; i < bf.hull_displacements.size(); ++i)
+      EXPECT_NEAR(bf.hull_forces[i],
+                  bilinear(k_b, f_y_b, alpha_b, bf.hull_displacements[i]),
+                  1e-9 * f_y_b);
+    EXPECT_NEAR(bf.hull_displacements.back(), 0.06, 1e-12);
   }
 
   TEST(PushoverFit, CyclicBilinearGivesItsUnloadingStiffnessAndSet)

@@ -97,6 +97,29 @@ namespace kimp::app
     EXPECT_NEAR(p.failure_displacement, 0.125, exact);               // 10 % of H
   }
 
+  TEST(YieldingWallElement, PushoverHullBecomesTheCurveEnvelope)
+  {
+    // With an envelope curve (a pushover's concave hull) the part's envelope is that curve × W,
+    // its capacity the last force, its k the first slope; the pull-back stays the capacity F_y
+    // of the inputs, k_ur the inputs'.
+    YieldingWallInputs in        = inputs();
+    in.envelope_displacements    = {0.0, 2e-3, 10e-3};
+    in.envelope_forces           = {0.0, 100e3, 140e3};
+    const YieldingWallElement  e = derive_yielding_wall(in, 10.0);
+    lumped::WallBackfillParams p = e.backfill.resolved();
+    p.mass                       = e.wall_mass * 10.0; // the model's
+    EXPECT_EQ(p.envelope, lumped::WallEnvelope::curve);
+    ASSERT_EQ(p.curve_forces.size(), 3u);
+    EXPECT_NEAR(p.curve_forces[2], 10.0 * 140e3, exact * 1.4e6);
+    EXPECT_EQ(p.curve_displacements[1], 2e-3);
+    EXPECT_NEAR(e.backfill.capacity_per_metre(), 140e3, exact * 140e3);
+    EXPECT_NEAR(p.tension_capacity, 10.0 * 120e3, exact * 1.2e6);
+    EXPECT_NEAR(p.unloading_stiffness, 10.0 * 30e6, exact * 3e8);
+    const lumped::WallBackfillLaw law(p); // a valid curve for the law: k = 50 kN/mm/m × W
+    EXPECT_NEAR(law.parameters().stiffness, 10.0 * 50e6, exact * 5e8);
+    EXPECT_NEAR(law.parameters().capacity, 1.4e6, exact * 1.4e6);
+  }
+
   TEST(YieldingWallElement, RefusesAnInputThatIsNotPositiveAndNamesIt)
   {
     YieldingWallInputs in = inputs();

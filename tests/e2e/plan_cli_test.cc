@@ -174,6 +174,10 @@ TEST(PlanCli, BadPlanInputNamesFileLineAndKeyAndWritesNothing)
     {"yielding width in plan",
      "    yielding: [{face: 1, width: \"5 m\"}]\n",
      "moat.yielding[0].width does not apply"},
+    {"convex curve envelope of a face",
+     "    yielding: [{face: 1, envelope: curve, curve: [{displacement: 0 mm, force: 0 kN/m}, "
+     "{displacement: 2 mm, force: 100 kN/m}, {displacement: 3 mm, force: 160 kN/m}]}]\n",
+     "plan.moat.yielding[0].curve[2] = {3 mm, 160 kN/m}: the slope rises"},
   };
   for (const BadPlan &b : cases)
   {

@@ -5,6 +5,7 @@
 // equations, on their documented parameters.
 #include <cmath>
 #include <gtest/gtest.h>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -488,5 +489,152 @@ namespace kimp::lumped
                0.0764 / (1.0 / 20300e3 + 0.7 * 0.0764 / 326e3),
                tight_tol,
                "hyperbola");
+  }
+
+  // The curve envelope (a pushover's concave hull). Three segments: (0, 0), (1 cm, 1 MN),
+  // (3 cm, 1.5 MN), (5 cm, 1.6 MN), flat at 1.6 MN past 5 cm; k = 100 MN/m, k_ur = 200 MN/m.
+  namespace
+  {
+    WallBackfillParams curve_params()
+    {
+      WallBackfillParams p  = bilinear_params();
+      p.envelope            = WallEnvelope::curve;
+      p.hardening_ratio     = 0.0;
+      p.curve_displacements = {0.0, 0.01, 0.03, 0.05};
+      p.curve_forces        = {0.0, 1e6, 1.5e6, 1.6e6};
+      return p;
+    }
+  } // namespace
+
+  TEST(WallBackfillLaw, CurveOfTwoSegmentsIsTheBilinearWithItsCap)
+  {
+    // The bilinear wall with the cap F_u = 1.1 MN at w_u = 3 cm as the points (0, 0), (w_y, F_y),
+    // (w_u, F_u): the same forces, tangents, sets and works along a cyclic path, to round-off.
+    WallBackfillParams b  = bilinear_params();
+    b.ultimate_capacity   = 1.1e6;
+    b.tension_capacity    = 0.2e6;
+    b.unloading_stiffness = 40e6; // below k: the secant and the set branches both occur
+    WallBackfillParams c  = b;
+    c.envelope            = WallEnvelope::curve;
+    c.ultimate_capacity   = std::numeric_limits<double>::infinity();
+    c.hardening_ratio     = 0.0;
+    c.stiffness           = 0.0; // set by the curve
+    c.capacity            = 0.0;
+    c.curve_displacements = {0.0, 0.01, 0.03};
+    c.curve_forces        = {0.0, 1e6, 1.1e6};
+    WallBackfillLaw lb(b), lc(c);
+    expect_rel(lc.parameters().stiffness, 100e6, tight_tol, "k: the first slope");
+    EXPECT_EQ(lc.parameters().capacity, 1.1e6);
+    expect_rel(lc.cap_displacement(), lb.cap_displacement(), tight_tol, "w_u");
+    for (const double w : {0.004, 0.0, 0.0101, 0.015, 0.012, -0.01, 0.02, 0.031, 0.045, 0.01, 0.06})
+    {
+      const ForceResponse rb = lb.set_trial(w, 0.0), rc = lc.set_trial(w, 0.0);
+      expect_rel(rc.force, rb.force, tight_tol, "force");
+      expect_rel(rc.stiffness, rb.stiffness, tight_tol, "tangent");
+      lb.commit();
+      lc.commit();
+      expect_rel(lc.permanent_indentation(), lb.permanent_indentation(), tight_tol, "set");
+      expect_rel(lc.plastic_work(), lb.plastic_work(), tight_tol, "plastic work");
+      expect_rel(lc.stored_energy(), lb.stored_energy(), tight_tol, "stored energy");
+      expect_rel(lc.envelope_work(w > 0 ? w : 0.0),
+                 lb.envelope_work(w > 0 ? w : 0.0),
+                 tight_tol,
+                 "envelope work");
+    }
+  }
+
+  TEST(WallBackfillLaw, CurveYieldsAlongItsSegmentsAndIsFlatPastTheLastPoint)
+  {
+    WallBackfillLaw law(curve_params());
+    expect_rel(step(law, 0.005), 0.5e6, tight_tol, "first segment: k·w");
+    expect_rel(step(law, 0.02), 1e6 + 0.25e8 * 0.01, tight_tol, "second segment");
+    EXPECT_DOUBLE_EQ(law.set_trial(0.025, 0.0).stiffness, 0.25e8);
+    law.revert_to_last_commit();
+    expect_rel(step(law, 0.04), 1.5e6 + 0.05e8 * 0.01, tight_tol, "third segment");
+    expect_rel(step(law, 0.08), 1.6e6, tight_tol, "flat past the last point");
+    EXPECT_EQ(law.set_trial(0.09, 0.0).stiffness, 0.0);
+    law.revert_to_last_commit();
+    EXPECT_DOUBLE_EQ(law.peak_resistance(), 1.6e6);
+    EXPECT_EQ(law.cap_displacement(), 0.05);
+  }
+
+  TEST(WallBackfillLaw, CurveUnloadsToItsSetAndRemembersItAcrossImpacts)
+  {
+    // Push to 2 cm (E = 1.25 MN), unload at k_ur = 200 MN/m to w_p = 2 cm − 1.25/200 m; reload
+    // along the line to the envelope at w_max; push to 4 cm; the set moves to 4 cm − 1.55/200.
+    WallBackfillLaw law(curve_params());
+    step(law, 0.02);
+    const double w_p = 0.02 - 1.25e6 / 200e6;
+    expect_rel(step(law, 0.019), 1.25e6 - 200e6 * 0.001, tight_tol, "unloading at k_ur");
+    EXPECT_DOUBLE_EQ(law.permanent_indentation(), w_p);
+    EXPECT_EQ(step(law, 0.0), 0.0); // F_t = 0: rests at its set
+    expect_rel(step(law, 0.0195), 200e6 * (0.0195 - w_p), tight_tol, "reloading line");
+    expect_rel(step(law, 0.04), 1.55e6, tight_tol, "back on the envelope");
+    EXPECT_DOUBLE_EQ(law.permanent_indentation(), 0.04 - 1.55e6 / 200e6);
+    // A cracked wall's k_ur = 20 MN/m < k: the secant 62.5 MN/m at 2 cm is steeper (elastic
+    // back to 0, no set); at 5 cm the secant 32 MN/m still is; past 8 cm (20 MN/m) a set.
+    WallBackfillParams p  = curve_params();
+    p.unloading_stiffness = 20e6;
+    WallBackfillLaw soft(p);
+    step(soft, 0.02);
+    EXPECT_NEAR(soft.permanent_indentation(), 0.0, 1e-15);
+    step(soft, 0.1);
+    expect_rel(soft.permanent_indentation(), 0.1 - 1.6e6 / 20e6, tight_tol, "set past 8 cm");
+  }
+
+  TEST(WallBackfillLaw, CurveWorkIsTheAreaUnderItsPoints)
+  {
+    WallBackfillLaw law(curve_params());
+    for (const double w : {0.01, 0.0, 0.045, 0.03, 0.07})
+      step(law, w);
+    // ∫E dw to 7 cm: the triangle, two trapezoids, the flat rectangle.
+    const double work =
+      0.5 * 1e6 * 0.01 + 0.5 * (1e6 + 1.5e6) * 0.02 + 0.5 * (1.5e6 + 1.6e6) * 0.02 + 1.6e6 * 0.02;
+    expect_rel(law.envelope_work(0.07), work, tight_tol, "envelope work");
+    expect_rel(law.plastic_work(), work - 0.5 * 1.6e6 * 1.6e6 / 200e6, tight_tol, "W_p");
+    // The work put in along a cyclic path (1 µm steps) is W_p plus the stored energy.
+    WallBackfillParams p  = curve_params();
+    p.unloading_stiffness = 20e6;
+    p.tension_capacity    = 0.3e6;
+    WallBackfillLaw cyc(p);
+    double          in = 0.0, w = 0.0, f = 0.0;
+    for (const double target : {0.02, -0.01, 0.045, 0.03, 0.09, 0.06})
+    {
+      const double dw = target > w ? 1e-6 : -1e-6;
+      while (std::abs(target - w) > 0.5e-6)
+      {
+        const double f_next = step(cyc, w + dw);
+        in += 0.5 * (f + f_next) * dw;
+        f = f_next;
+        w += dw;
+      }
+    }
+    expect_rel(cyc.plastic_work() + cyc.stored_energy(), in, 1e-6, "work balance");
+  }
+
+  TEST(WallBackfillLaw, CurveRefusesPointsThatAreNotAConcaveMonotoneCurveFromTheOrigin)
+  {
+    const auto problem = [](std::vector<double> w, std::vector<double> f)
+    { return wall_curve_problem(w, f); };
+    EXPECT_EQ(problem({0, 0.01, 0.03}, {0, 1e6, 1.5e6}), "");
+    EXPECT_EQ(problem({0, 0.01, 0.03}, {0, 1e6, 1e6}), ""); // flat last segment
+    EXPECT_NE(problem({0}, {0}).find("at least two"), std::string::npos);
+    EXPECT_NE(problem({0, 0.01}, {0, 1e6, 2e6}).find("count"), std::string::npos);
+    EXPECT_NE(problem({0.001, 0.01}, {0, 1e6}).find("point 0"), std::string::npos);
+    EXPECT_NE(problem({0, 0.01, 0.01}, {0, 1e6, 1.1e6}).find("point 2: displacement"),
+              std::string::npos);
+    EXPECT_NE(problem({0, 0.01, 0.02}, {0, 1e6, 0.9e6}).find("point 2: force"), std::string::npos);
+    EXPECT_NE(problem({0, 0.01, 0.02, 0.03}, {0, 1e6, 1.2e6, 1.5e6}).find("point 3: the slope"),
+              std::string::npos);
+    EXPECT_NE(problem({0, 0.01}, {0, 0}).find("point 1"), std::string::npos);
+    WallBackfillParams p = curve_params();
+    p.curve_forces[2]    = 2.5e6; // a convex kink at point 2
+    EXPECT_THROW(WallBackfillLaw{p}, std::invalid_argument);
+    p                 = curve_params();
+    p.hardening_ratio = 0.05; // the curve's slopes are its own
+    EXPECT_THROW(WallBackfillLaw{p}, std::invalid_argument);
+    p              = bilinear_params();
+    p.curve_forces = {0.0, 1e6}; // points without the curve envelope
+    EXPECT_THROW(WallBackfillLaw{p}, std::invalid_argument);
   }
 } // namespace kimp::lumped

@@ -182,3 +182,33 @@ def test_yielding_walls_equal_the_cli(tmp_path):
         assert w.failed == (w.peak_displacement > 0.01)
     assert r.energy.wall_plastic > 0 and r.energy.wall_radiated > 0
     assert r.energy.relative_error < 1e-4
+
+
+def test_yielding_walls_with_a_curve_envelope_equal_the_cli(tmp_path):
+    # The curve envelope given as a list of {displacement, force} points; its capacity is the
+    # last force (60 kN/m × 20 m), the run is the CLI's and closes its energy balance.
+    curve = [{"displacement": "0 mm", "force": "0 kN/m"},
+             {"displacement": "4 mm", "force": "40 kN/m"},
+             {"displacement": "2 cm", "force": "60 kN/m"}]
+    wall = {"gap": "4 cm", "sdof_mass": "50 t",
+            "yielding": {"width": "20 m", "envelope": "curve", "curve": curve,
+                         "unloading_stiffness": "5 kN/mm/m"}}
+    scene = dict(SHORT_SCENE, walls={"left": wall, "right": wall},
+                 ground_motion={"record": "synthetic", "duration": "6 s"},
+                 integration={"dt": "1e-4 s"})
+    group, r = _cli_and_python(tmp_path, "yielding_curve", scene)
+    assert any(w.peak_resistance > 40e3 * 20 for w in r.walls), "the scene is meant to yield"
+    for w in r.walls:
+        g = group["walls"][w.name]
+        assert w.capacity == g["capacity"] == pytest.approx(1.2e6, rel=1e-12)
+        assert w.peak_force == g["peak_force"]
+        assert w.residual_displacement == g["residual_displacement"]
+    assert r.energy.wall_plastic > 0
+    assert r.energy.relative_error < 1e-4
+    # A convex point is refused with its key and index.
+    bad = dict(wall, yielding=dict(wall["yielding"], curve=curve + [
+        {"displacement": "3 cm", "force": "90 kN/m"}]))
+    with pytest.raises(kimp.SceneError) as caught:
+        kimp.Scene.from_dict(dict(scene, walls={"left": bad, "right": wall}))
+    assert caught.value.key == "walls.left.yielding.curve[3]"
+    assert "concave" in str(caught.value)
