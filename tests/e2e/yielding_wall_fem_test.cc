@@ -5,14 +5,14 @@
 // contact graded to 25 cm, the wall's cells no taller than wide; absorbing far side, and the
 // thesis' rollered block for comparison): peak contact force, the slab's peak displacement, its
 // time to stop (to 95 % of its travel) and the wall's residual displacement, against the criterion
-// (peak force <= 10 %, the others <= 15 %) on the rows where it holds. The radiation dashpot is the
+// (peak force <= 10 %, the others <= 15 %) on every row. The radiation dashpot is the
 // one parameter fitted to the dynamic FEM (app::fit_radiation_damping(), on the FEM's slab at 1
 // m/s), then frozen. The test fits it and runs the slab carrying the building's 55 t/m at 0.5 m/s;
 // KIMP_YIELDING_WALL_FULL=1 runs the four rows of docs/validation.md (the FEM's slab and the heavy
 // slab, 0.5 and 1 m/s) against both far sides and checks the absorbing ones;
 // KIMP_YIELDING_WALL_FEM_DIR=DIR keeps each FEM run in DIR/<row>_<far side> (with VTU fields every
 // 50 ms) and reuses a finished one there. docs/validation.md "Yielding wall element against the
-// dynamic FEM" has the numbers and why the other rows miss.
+// dynamic FEM" has the numbers.
 #ifdef KIMP_WITH_FEM
 
 #  include <algorithm>
@@ -60,12 +60,16 @@ namespace
   }
 
   /// The scene at the coarse mesh whose wall cells do not lock: 5 cm at the contact graded to
-  /// 25 cm, the wall's rows no taller than its 5 cm columns; `slab` the slab line.
-  std::string fem_scene(const std::string &slab, const std::string &end_time, const bool keep)
+  /// 25 cm, the wall's rows no taller than its 5 cm columns; `slab` the slab line. With `hold`
+  /// the stop rule is off and the run goes on to `end_time`, so that the wall at the end is the
+  /// settled set, not a wall still springing back when the slab has left.
+  std::string
+  fem_scene(const std::string &slab, const std::string &end_time, const bool hold, const bool keep)
   {
+    const std::string held = hold ? ", separation_hold_time: \"" + end_time + "\"" : "";
     return reinforced_scene() +
            "\nmesh: {h_contact: \"5 cm\", h_max: \"25 cm\", grading: 1.5, wall_aspect_max: 1}\n" +
-           slab + "\ndynamics: {end_time: \"" + end_time + "\"}\n" +
+           slab + "\ndynamics: {end_time: \"" + end_time + "\"" + held + "}\n" +
            (keep ? "output: {vtu_interval: \"50 ms\"}\n" : "");
   }
 
@@ -139,6 +143,7 @@ namespace
     std::string name, slab, end_time;
     double      slab_mass = 0.0, velocity = 0.0;
     bool        rigid = false;
+    bool        hold  = false; ///< run to end_time with the stop rule off
   };
 
   /// The four rows of docs/validation.md: the FEM's elastic slab (8 m x 0.20 m of concrete,
@@ -153,13 +158,17 @@ namespace
               "400 ms",
               55e3,
               v,
-              true};
+              true,
+              false};
+    // The light slab leaves while the wall still springs back (at 0.5 m/s from 4.9 mm through
+    // 1.9 mm when the stop rule would end the run, to rest at 0.0 mm): held for 300 ms.
     return {fmt::format("fem_slab_{}", v),
             "slab: {velocity: \"" + speed + "\"}",
-            "100 ms",
+            "300 ms",
             3840.0,
             v,
-            false};
+            false,
+            true};
   }
 
   /// The element of the scene for the slab of `r`, as the study derives it (the resistance and
@@ -237,7 +246,7 @@ namespace
     const auto        dir  = kept ? std::filesystem::path(kept) / tag : temp.path() / tag;
     std::filesystem::create_directories(dir);
     write_text(dir / "scene.yaml",
-               fem_scene(r.slab, r.end_time, kept != nullptr) +
+               fem_scene(r.slab, r.end_time, r.hold, kept != nullptr) +
                  (far == Far::absorbing ? "boundary: {far: absorbing}\n" : ""));
     if (!kept || !std::filesystem::exists(dir / "out" / "summary.json"))
     {
@@ -365,22 +374,23 @@ namespace
     EXPECT_LE(std::abs(c.error(q)), tolerance) << what << ": element / FEM - 1 = " << c.error(q);
   }
 
-  /// The quantities of the criterion that hold on the row (docs/validation.md, with the impact
-  /// model's rotating crack frame and crush band): all of them on the heavy slab's rows; on the
-  /// FEM slab at 1 m/s (the fitted row) the peak force and the residual, not the time to stop
-  /// (+15.3 %); at 0.5 m/s the peak force, travel and time to stop, not the residual (the FEM
-  /// wall keeps 1.86 mm of its largest 4.89, the element's springs back to 0 along the hull's
-  /// secant).
-  void expect_criterion(const Comparison &c, const bool heavy, const double v, const bool fitted)
+  /// The criterion on every row: peak force, slab travel (not on the fitted row), time to stop
+  /// (to 95 % of the travel on both sides: the instant the slab's velocity is zero is
+  /// ill-conditioned where the slab creeps to rest) and the wall's residual. Where the FEM wall
+  /// comes back to rest (the FEM slab at 0.5 m/s: a set of a few micrometres) the residual's
+  /// relative error says nothing; there its error over the FEM wall's largest displacement is
+  /// checked instead (docs/validation.md says so).
+  void expect_criterion(const Comparison &c, const bool fitted)
   {
     expect_within(c, &Impact::peak_force, force_tolerance, "peak force");
     if (!fitted)
       expect_within(c, &Impact::slab_peak, motion_tolerance, "slab travel");
-    // The time to stop the slab as the time to 95 % of its travel on both sides (the instant
-    // its velocity is zero is ill-conditioned where the slab creeps to rest).
     expect_within(c, &Impact::time_to_95_travel, motion_tolerance, "time to 95 % of the travel");
-    if (heavy || v == 1.0)
+    if (std::abs(c.fem.wall_end) > 0.05 * c.fem.wall_peak)
       expect_within(c, &Impact::wall_end, motion_tolerance, "wall residual");
+    else
+      EXPECT_LE(std::abs(c.residual_over_peak()), motion_tolerance)
+        << "wall residual over the FEM wall's largest displacement";
   }
 } // namespace
 
@@ -399,9 +409,9 @@ TEST(YieldingWallFem, ElementWithFrozenParametersAgainstTheFemAtTheBuildingsMass
   // whose wall was stiffer: its slab travelled 11.77 instead of 12.53 mm; 36.51 there with the
   // equal-energy bilinear as the envelope.)
   EXPECT_NEAR(c_r, 24.18e3, 0.1 * 24.18e3);
-  expect_criterion(fitted, false, 1.0, true);
+  expect_criterion(fitted, true);
   const Comparison heavy = compare(row(true, 0.5), Far::absorbing, c_r, temp);
-  expect_criterion(heavy, true, 0.5, false);
+  expect_criterion(heavy, false);
 }
 
 TEST(YieldingWallFem, FullTableOfDocsValidation)
@@ -414,7 +424,7 @@ TEST(YieldingWallFem, FullTableOfDocsValidation)
     Comparison   fitted;
     const double c_r = fitted_dashpot(far, temp, fitted);
     if (far == Far::absorbing)
-      expect_criterion(fitted, false, 1.0, true);
+      expect_criterion(fitted, true);
     for (const bool heavy : {false, true})
       for (const double v : {0.5, 1.0})
         if (heavy || v != 1.0)
@@ -422,7 +432,7 @@ TEST(YieldingWallFem, FullTableOfDocsValidation)
           const Comparison c = compare(row(heavy, v), far, c_r, temp);
           if (far == Far::absorbing) // the rollered block's rows are printed for comparison
           {
-            expect_criterion(c, heavy, v, false);
+            expect_criterion(c, false);
             print_own_dashpot(row(heavy, v), far, temp);
           }
         }
