@@ -71,8 +71,7 @@ namespace kimp::fem
   {
     if (strain.size() != n_segments)
       throw std::invalid_argument("bar gauge: one strain per segment expected");
-    GaugeStrain         best;
-    std::vector<double> by_y, cumulative;
+    GaugeStrain best;
     for (const Line &line : lines)
     {
       by_y.resize(line.order.size());

@@ -53,5 +53,8 @@ namespace kimp::fem
     std::vector<Line> lines;
     double            gauge_length;
     std::size_t       n_segments;
+    /// Scratch of largest_mean() (one line's strains by y and their running integral), kept so
+    /// that the reading at every sampled step does not allocate.
+    mutable std::vector<double> by_y, cumulative;
   };
 } // namespace kimp::fem
