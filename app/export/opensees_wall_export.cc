@@ -53,6 +53,25 @@ namespace kimp::app
     }
   } // namespace
 
+  std::vector<OpenSeesGapSpring> opensees_curve_springs(const lumped::WallBackfillParams &part)
+  {
+    if (part.envelope != lumped::WallEnvelope::curve)
+      throw std::invalid_argument("opensees_curve_springs: the envelope is not a curve");
+    const std::vector<double>     &w = part.curve_displacements;
+    const std::vector<double>     &f = part.curve_forces;
+    std::vector<OpenSeesGapSpring> out;
+    for (std::size_t i = 0; i + 1 < w.size(); ++i)
+    {
+      const double slope = (f[i + 1] - f[i]) / (w[i + 1] - w[i]);
+      const double next =
+        i + 2 < w.size() ? (f[i + 2] - f[i + 1]) / (w[i + 2] - w[i + 1]) : 0.0; // flat past w_n
+      const double e = slope - next;
+      if (e > 0.0)
+        out.push_back({e, e * w[i + 1]});
+    }
+    return out;
+  }
+
   std::vector<OpenSeesWall> opensees_walls(const LumpedScene &scene)
   {
     const lumped::PoundingScene pounding = make_pounding_scene(scene);
@@ -68,6 +87,121 @@ namespace kimp::app
           {name, right, (*wall)->oscillator_mass(), (*wall)->clear_gap(), *(*wall)->yielding});
     return out;
   }
+
+  namespace
+  {
+    /// The ElasticPPGap or HyperbolicGapMaterial of a bilinear or hyperbolic envelope, with its
+    /// comment, at `tag`.
+    std::string
+    single_gap_material(const lumped::WallBackfillParams &p, const int tag, const bool python)
+    {
+      const bool  bilinear = p.envelope == lumped::WallEnvelope::bilinear;
+      std::string out      = comment(
+        bilinear ? "wall and backfill: ElasticPPGap E = stiffness, Fy = -capacity, gap 0, "
+                        "eta = hardening_ratio, damage (the set is kept); kimp unloads at "
+                        "unloading_stiffness, OpenSees at E" :
+                   "wall and backfill: HyperbolicGapMaterial Kmax = stiffness, Kur = "
+                        "unloading_stiffness, Rf = failure_ratio, Fult = -capacity, gap 0 (OpenSees "
+                        "warns that a gap of 0 is not negative and keeps it)");
+      std::vector<std::string> backfill = {word(bilinear ? "ElasticPPGap" :
+                                                           "HyperbolicGapMaterial"),
+                                           std::to_string(tag),
+                                           opensees_number(p.stiffness)};
+      if (bilinear)
+        backfill.insert(backfill.end(),
+                        {opensees_number(-p.capacity),
+                         "0.0",
+                         opensees_number(p.hardening_ratio),
+                         word("damage")});
+      else
+        backfill.insert(backfill.end(),
+                        {opensees_number(p.unloading_stiffness),
+                         opensees_number(p.failure_ratio),
+                         opensees_number(-p.capacity),
+                         "0.0"});
+      return out + render({"uniaxialMaterial", backfill}, python);
+    }
+
+    /// The ElasticPPGap springs of a curve envelope (opensees_curve_springs()) from `tag` on,
+    /// with the comments that say how they add up and how their unloading differs from kimp's.
+    std::string
+    curve_gap_materials(const OpenSeesWall &w, int &tag, std::vector<int> &tags, const bool python)
+    {
+      const lumped::WallBackfillParams    &p       = w.part;
+      // Never empty: the E_i add up to the first slope, which is positive.
+      const std::vector<OpenSeesGapSpring> springs = opensees_curve_springs(p);
+      const double k   = p.curve_forces[1] / p.curve_displacements[1];
+      const double w_c = springs.back().yield_force / springs.back().stiffness;
+      std::string  out = comment(fmt::format(
+        "wall and backfill: the curve envelope ({} points) as {} ElasticPPGap springs in "
+         "parallel (gap 0, eta 0, damage): spring i has E = s_i - s_(i+1), the fall of the "
+         "envelope's slope at its point i+1 (s = 0 past the last point), and Fy = -E*w_(i+1); "
+         "their sum is the envelope exactly, k = {} N/m at 0, flat at {} N from w = {} m",
+        p.curve_displacements.size(),
+        springs.size(),
+        opensees_number(k),
+        opensees_number(p.curve_forces.back()),
+        opensees_number(w_c)));
+      out += comment(fmt::format(
+        "unloading differs: kimp unloads from w_max at max(unloading_stiffness = {} N/m, "
+        "E(w_max)/w_max) to the set w_max - E(w_max)/that; the springs unload at k, softer as "
+        "each goes slack at its own set w_max - w_(i+1), and keep a set only past the last kink: "
+        "max(0, w_max - {} m)",
+        opensees_number(p.unloading_stiffness),
+        opensees_number(w_c)));
+      for (const OpenSeesGapSpring &s : springs)
+      {
+        tags.push_back(tag);
+        out += render({"uniaxialMaterial",
+                       {word("ElasticPPGap"),
+                        std::to_string(tag++),
+                        opensees_number(s.stiffness),
+                        opensees_number(-s.yield_force),
+                        "0.0",
+                        opensees_number(0.0),
+                        word("damage")}},
+                      python);
+      }
+      return out;
+    }
+
+    /// The wall-and-backfill part of `w` from `tag` on: its gap materials, what has no
+    /// counterpart, the dashpot and the Parallel of them all; `part` is the Parallel's tag.
+    std::string
+    wall_backfill_materials(const OpenSeesWall &w, int &tag, int &part, const bool python)
+    {
+      const lumped::WallBackfillParams &p = w.part;
+      std::string                       out;
+      std::vector<int>                  tags;
+      if (p.envelope == lumped::WallEnvelope::curve)
+        out += curve_gap_materials(w, tag, tags, python);
+      else
+      {
+        tags.push_back(tag);
+        out += single_gap_material(p, tag++, python);
+      }
+      if (p.ultimate_capacity < std::numeric_limits<double>::infinity())
+        out += comment(fmt::format("ultimate_capacity = {} N (the cap of the hardening) has no "
+                                   "counterpart: ElasticPPGap hardens on past it",
+                                   opensees_number(p.ultimate_capacity)));
+      if (p.tension_capacity > 0.0)
+        out += comment(fmt::format("tension_capacity = {} N (the wall's pull-back) has no "
+                                   "counterpart: the gap materials carry compression only",
+                                   opensees_number(p.tension_capacity)));
+      const int dashpot = tag++;
+      part              = tag++;
+      out += comment("radiation dashpot: Viscous C = radiation_damping, alpha = 1, in parallel");
+      out += render(
+        {"uniaxialMaterial",
+         {word("Viscous"), std::to_string(dashpot), opensees_number(p.radiation_damping), "1.0"}},
+        python);
+      std::vector<std::string> parallel = {word("Parallel"), std::to_string(part)};
+      for (const int t : tags)
+        parallel.push_back(std::to_string(t));
+      parallel.push_back(std::to_string(dashpot));
+      return out + render({"uniaxialMaterial", parallel}, python);
+    }
+  } // namespace
 
   std::string opensees_walls_text(const std::vector<OpenSeesWall> &walls,
                                   const bool                       python,
@@ -90,18 +224,8 @@ namespace kimp::app
     int tag = first_tag, node = first_node, element = first_element;
     for (const OpenSeesWall &w : walls)
     {
-      const lumped::WallBackfillParams &p = w.part;
-      if (p.envelope == lumped::WallEnvelope::curve)
-        throw std::invalid_argument(fmt::format(
-          "export-opensees: {}: the curve envelope ({} points) has no exact OpenSees material: "
-          "ElasticPPGap and HyperbolicGapMaterial are a bilinear and a hyperbola, MultiLinear "
-          "is symmetric and keeps no permanent set, Hysteretic has at most 3 envelope points "
-          "and unloads at a stiffness that follows the ductility, not at max(k_ur, E/w_max) to "
-          "the set. Export a bilinear or hyperbolic envelope (envelope: bilinear or hyperbolic)",
-          w.name,
-          p.curve_displacements.size()));
-      const int wall_node = node++, ground_node = node++;
-      const int spring = tag++, dashpot = tag++, part = tag++;
+      const lumped::WallBackfillParams &p         = w.part;
+      const int                         wall_node = node++, ground_node = node++;
       out += "\n" + comment(fmt::format("{}: wall node {} with the wall's mass {} kg, fixed ground "
                                         "node {}; the contact part acts across a gap of {} m",
                                         w.name,
@@ -114,49 +238,8 @@ namespace kimp::app
                python);
       out += render({"node", {std::to_string(ground_node), "0.0"}}, python);
       out += render({"fix", {std::to_string(ground_node), "1"}}, python);
-      // The wall-and-backfill gap material: its tag and E, then the envelope's parameters.
-      const bool bilinear = p.envelope == lumped::WallEnvelope::bilinear;
-      out += comment(bilinear ?
-                       "wall and backfill: ElasticPPGap E = stiffness, Fy = -capacity, gap 0, "
-                       "eta = hardening_ratio, damage (the set is kept); kimp unloads at "
-                       "unloading_stiffness, OpenSees at E" :
-                       "wall and backfill: HyperbolicGapMaterial Kmax = stiffness, Kur = "
-                       "unloading_stiffness, Rf = failure_ratio, Fult = -capacity, gap 0 (OpenSees "
-                       "warns that a gap of 0 is not negative and keeps it)");
-      std::vector<std::string> backfill = {word(bilinear ? "ElasticPPGap" :
-                                                           "HyperbolicGapMaterial"),
-                                           std::to_string(spring),
-                                           opensees_number(p.stiffness)};
-      if (bilinear)
-        backfill.insert(backfill.end(),
-                        {opensees_number(-p.capacity),
-                         "0.0",
-                         opensees_number(p.hardening_ratio),
-                         word("damage")});
-      else
-        backfill.insert(backfill.end(),
-                        {opensees_number(p.unloading_stiffness),
-                         opensees_number(p.failure_ratio),
-                         opensees_number(-p.capacity),
-                         "0.0"});
-      out += render({"uniaxialMaterial", backfill}, python);
-      if (p.ultimate_capacity < std::numeric_limits<double>::infinity())
-        out += comment(fmt::format("ultimate_capacity = {} N (the cap of the hardening) has no "
-                                   "counterpart: ElasticPPGap hardens on past it",
-                                   opensees_number(p.ultimate_capacity)));
-      if (p.tension_capacity > 0.0)
-        out += comment(fmt::format("tension_capacity = {} N (the wall's pull-back) has no "
-                                   "counterpart: the gap materials carry compression only",
-                                   opensees_number(p.tension_capacity)));
-      out += comment("radiation dashpot: Viscous C = radiation_damping, alpha = 1, in parallel");
-      out += render(
-        {"uniaxialMaterial",
-         {word("Viscous"), std::to_string(dashpot), opensees_number(p.radiation_damping), "1.0"}},
-        python);
-      out += render(
-        {"uniaxialMaterial",
-         {word("Parallel"), std::to_string(part), std::to_string(spring), std::to_string(dashpot)}},
-        python);
+      int part = 0;
+      out += wall_backfill_materials(w, tag, part, python);
       // Deformation u_j − u_i is negative when closing: into the backfill for the wall part,
       // towards the wall for the contact part.
       const std::string building = "kimpBuildingNode";
