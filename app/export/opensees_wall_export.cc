@@ -127,10 +127,10 @@ namespace kimp::app
     std::string
     curve_gap_materials(const OpenSeesWall &w, int &tag, std::vector<int> &tags, const bool python)
     {
-      const lumped::WallBackfillParams    &p       = w.part;
+      const lumped::WallBackfillParams &p = w.part;
       // Never empty: the E_i add up to the first slope, which is positive.
       const std::vector<OpenSeesGapSpring> springs = opensees_curve_springs(p);
-      const double k   = p.curve_forces[1] / p.curve_displacements[1];
+      const double                         k       = p.curve_forces[1] / p.curve_displacements[1];
       const double w_c = springs.back().yield_force / springs.back().stiffness;
       std::string  out = comment(fmt::format(
         "wall and backfill: the curve envelope ({} points) as {} ElasticPPGap springs in "
