@@ -1,7 +1,11 @@
 // Writers of `kimp study`'s yielding walls: yielding_wall_element.csv (per height),
-// yielding_wall.csv (per height and record), study.h5 /yielding_wall and the report section.
+// yielding_wall_envelope.csv (the hull points each element runs on), yielding_wall.csv (per
+// height and record), study.h5 /yielding_wall and the report section.
+#include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
 #include <functional>
+#include <limits>
 
 #include "app/study/study_columns.h"
 #include "app/study/study_internal.h"
@@ -39,19 +43,75 @@ namespace kimp::app::study_internal
                                              { return ok(row) ? value(row) : nan; }));
     }
 
+    /// True when the element runs on a curve envelope (a pushover's concave hull).
+    bool runs_on_curve(const StudyYieldingWall &w)
+    {
+      return !w.element.backfill.curve.empty();
+    }
+
+    /// The largest force of the element's envelope, N/m: the curve's last force, or the
+    /// bilinear's cap (+inf without one).
+    double element_envelope_force(const StudyYieldingWall &w)
+    {
+      if (runs_on_curve(w))
+        return w.element.backfill.curve.back().force;
+      return w.inputs.ultimate_capacity;
+    }
+
+    /// Where the element's envelope turns flat, m: the curve's last point, or the bilinear's w_u.
+    double element_envelope_displacement(const StudyYieldingWall &w)
+    {
+      if (runs_on_curve(w))
+        return w.element.backfill.curve.back().displacement;
+      const YieldingWallInputs &in  = w.inputs;
+      const double              w_y = in.capacity / in.stiffness;
+      if (!std::isfinite(in.ultimate_capacity))
+        return std::numeric_limits<double>::infinity();
+      if (in.ultimate_capacity <= in.capacity || in.hardening_ratio == 0.0)
+        return w_y;
+      return w_y + (in.ultimate_capacity - in.capacity) / (in.hardening_ratio * in.stiffness);
+    }
+
     /// Per height: the element, what it was derived from and where its resistance comes from.
     std::vector<Scaled<StudyYieldingWall>> element_quantities()
     {
       using W = StudyYieldingWall;
       return {
-        {"capacity", "kN/m", 1e-3, "N/m", [](const W &w) { return w.inputs.capacity; }},
-        {"stiffness", "kN/mm/m", 1e-6, "N/m/m", [](const W &w) { return w.inputs.stiffness; }},
+        // The envelope the element runs on: the hull's first slope, its last force and where
+        // it turns flat (the bilinear's k, F_y and its cap or +inf without a curve).
+        {"envelope_stiffness",
+         "kN/mm/m",
+         1e-6,
+         "N/m/m",
+         [](const W &w) { return w.element.backfill.resolved().stiffness / w.element.width; }},
+        {"envelope_force",
+         "kN/m",
+         1e-3,
+         "N/m",
+         [](const W &w) { return element_envelope_force(w); }},
+        {"envelope_displacement",
+         "mm",
+         1e3,
+         "m",
+         [](const W &w) { return element_envelope_displacement(w); }},
         {"unloading_stiffness",
          "kN/mm/m",
          1e-6,
          "N/m/m",
          [](const W &w) { return w.inputs.unloading_stiffness; }},
-        {"hardening_ratio", "1", 1.0, "1", [](const W &w) { return w.inputs.hardening_ratio; }},
+        // The equal-energy bilinear of the pushover: the element's envelope only without a hull
+        // (source estimate), else the comparison (ASCE 41 / FEMA 356).
+        {"bilinear_capacity", "kN/m", 1e-3, "N/m", [](const W &w) { return w.inputs.capacity; }},
+        {"bilinear_stiffness",
+         "kN/mm/m",
+         1e-6,
+         "N/m/m",
+         [](const W &w) { return w.inputs.stiffness; }},
+        {"bilinear_hardening_ratio",
+         "1",
+         1.0,
+         "1",
+         [](const W &w) { return w.inputs.hardening_ratio; }},
         {"failure_displacement",
          "cm",
          100.0,
@@ -119,7 +179,16 @@ namespace kimp::app::study_internal
       using W = StudyYieldingWall;
       std::vector<StudyColumn<W>> columns{
         same_column<W>("wall_height", "m", [](const W &w) { return w.wall_height; }),
-        text_column<W>("source", [](const W &w) { return w.source; })};
+        text_column<W>("source", [](const W &w) { return w.source; }),
+        text_column<W>("envelope",
+                       [](const W &w) {
+                         return !w.ok() ? "" : runs_on_curve(w) ? "hull" : "bilinear";
+                       }),
+        integer_column<W>("envelope_points",
+                          true,
+                          true,
+                          [](const W &w)
+                          { return std::int64_t(w.ok() ? w.element.backfill.curve.size() : 0); })};
       append_scaled<W>(columns, element_quantities(), [](const W &w) { return w.ok(); });
       columns.push_back(
         text_column<W>("source_reason", [](const W &w) { return w.source_reason; }));
@@ -210,6 +279,41 @@ namespace kimp::app::study_internal
     }
   } // namespace
 
+  namespace
+  {
+    /// The points of the curve envelope each element runs on (its pushover's concave hull), per
+    /// metre: with the height (`with_height`, one table of every height) or without (one table
+    /// per height); SI in HDF5, mm and kN/m in the CSV.
+    Table envelope_table(const std::vector<StudyYieldingWall> &walls,
+                         const bool                            with_height,
+                         const StudyYieldingWall              *only = nullptr)
+    {
+      Table t;
+      if (with_height)
+        t.number("wall_height", "m")
+          .integer("point")
+          .number("displacement", "mm")
+          .number("force", "kN/m");
+      else
+        t.integer("point").number("displacement", "m").number("force", "N/m");
+      for (const StudyYieldingWall &w : walls)
+      {
+        if ((only && &w != only) || !w.ok() || !runs_on_curve(w))
+          continue;
+        const auto &curve = w.element.backfill.curve;
+        for (std::size_t i = 0; i < curve.size(); ++i)
+        {
+          if (with_height)
+            t.add_row(
+              {w.wall_height, std::int64_t(i), curve[i].displacement * 1e3, curve[i].force * 1e-3});
+          else
+            t.add_row({std::int64_t(i), curve[i].displacement, curve[i].force});
+        }
+      }
+      return t;
+    }
+  } // namespace
+
   void write_yielding_wall_csv(const OutputDir &output, const StudyResult &result)
   {
     if (result.yielding_walls.empty())
@@ -218,6 +322,9 @@ namespace kimp::app::study_internal
       .write_csv(output.file("yielding_wall_element.csv"));
     study_table(run_columns(), result.building, StudyFile::csv, yielding)
       .write_csv(output.file("yielding_wall.csv"));
+    const Table envelope = envelope_table(result.yielding_walls, true);
+    if (envelope.n_rows() > 0)
+      envelope.write_csv(output.file("yielding_wall_envelope.csv"));
   }
 
   void write_yielding_wall_h5(ResultsGroup &root, const StudyResult &result)
@@ -239,6 +346,13 @@ namespace kimp::app::study_internal
       ResultsGroup pushover = g.group("pushover");
       curve.write_hdf5(pushover, w.name);
     }
+    // The curve envelope each element runs on (its pushover's concave hull).
+    for (const StudyYieldingWall &w : result.yielding_walls)
+      if (w.ok() && runs_on_curve(w))
+      {
+        ResultsGroup envelope = g.group("envelope");
+        envelope_table(result.yielding_walls, false, &w).write_hdf5(envelope, w.name);
+      }
   }
 
   nlohmann::ordered_json yielding_wall_json(const StudyResult &result)
@@ -305,24 +419,38 @@ namespace kimp::app::study_internal
 
   namespace
   {
-    /// Per height: where the wall-and-backfill part comes from and its parameters.
+    /// Per height: where the wall-and-backfill part comes from, the envelope it runs on and the
+    /// equal-energy bilinear beside it.
     std::string element_markdown(const std::vector<StudyYieldingWall> &walls)
     {
-      std::string md = "| H (m) | source | F_y (kN/m) | estimate (kN/m) | k (kN/mm/m) | alpha | "
-                       "k_ur (kN/mm/m) | pushover: largest force (kN/m) at (mm) | note |\n"
-                       "|---|---|---|---|---|---|---|---|---|\n";
+      std::string md =
+        "| H (m) | source | element envelope | k_ur (kN/mm/m) | bilinear (comparison): F_y "
+        "(kN/m) | k (kN/mm/m) | alpha | estimate (kN/m) | pushover: largest force (kN/m) at (mm) "
+        "| note |\n|---|---|---|---|---|---|---|---|---|---|\n";
       for (const StudyYieldingWall &w : walls)
       {
-        const bool ok = w.ok(), po = ok && w.source == "pushover";
-        const auto s = [](bool show, double x) { return show ? base::sig(x) : std::string("-"); };
-        md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+        const bool  ok = w.ok(), po = ok && w.source == "pushover";
+        const auto  s = [](bool show, double x) { return show ? base::sig(x) : std::string("-"); };
+        std::string envelope = "-";
+        if (ok && runs_on_curve(w))
+          envelope =
+            fmt::format("hull of {} points: k {} kN/mm/m, flat at {} kN/m from {} mm "
+                        "(yielding_wall_envelope.csv)",
+                        w.element.backfill.curve.size(),
+                        base::sig(w.element.backfill.resolved().stiffness / w.element.width / 1e6),
+                        base::sig(element_envelope_force(w) / 1e3),
+                        base::sig(element_envelope_displacement(w) * 1e3));
+        else if (ok)
+          envelope = "the bilinear";
+        md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
                           base::sig(w.wall_height),
                           ok ? w.source : w.status,
+                          envelope,
+                          s(ok, w.inputs.unloading_stiffness / 1e6),
                           s(ok, w.inputs.capacity / 1e3),
-                          s(true, w.estimate_capacity / 1e3),
                           s(ok, w.inputs.stiffness / 1e6),
                           s(ok, w.inputs.hardening_ratio),
-                          s(ok, w.inputs.unloading_stiffness / 1e6),
+                          s(true, w.estimate_capacity / 1e3),
                           po ? base::sig(w.fit.target_force / 1e3) + " at " +
                                  base::sig(w.fit.target_displacement * 1e3) :
                                std::string("-"),
@@ -349,10 +477,11 @@ namespace kimp::app::study_internal
       "materials every building run hits each height's yielding wall element (docs/physics.md "
       "§2 \"Yielding moat wall\", element of a study): a contact spring with the first peak of "
       "the slab-wall impedance, in series with the wall and its backfill and the backfill's "
-      "radiation dashpot rho c h; W = {} m. The wall-and-backfill part is the equal-energy "
-      "bilinear of the height's static pushover (source pushover) or, where the pushover fails, "
-      "the cracked cantilever capped at the collapse load estimate (M_p + P_p H/3)/h_c (source "
-      "estimate). The equivalent k of the k table is the comparison with Table 2.1 only.\n\n"
+      "radiation dashpot rho c h; W = {} m. The wall-and-backfill part runs on the concave hull "
+      "of the height's static pushover (source pushover; its equal-energy bilinear is shown "
+      "beside it as the comparison) or, where the pushover fails, on the cracked cantilever "
+      "capped at the collapse load estimate (M_p + P_p H/3)/h_c (source estimate). The "
+      "equivalent k of the k table is the comparison with Table 2.1 only.\n\n"
       "{}"
       "| record | H (m) | gap (cm) | peak wall resistance (kN) | capacity (kN) | resistance / "
       "capacity | peak contact force (kN) | peak wall displacement (cm) | residual (cm) | failed "
@@ -383,9 +512,17 @@ namespace kimp::app::study_internal
                               std::string("no"),
                         r.status);
     }
-    md += "\nThe element per height (capacity, cracked stiffness, dashpot, contact part): "
-          "[yielding_wall_element.csv](yielding_wall_element.csv); per run: "
-          "[yielding_wall.csv](yielding_wall.csv), study.h5 `/yielding_wall`.\n\n";
+    const bool any_hull =
+      std::any_of(result.yielding_walls.begin(),
+                  result.yielding_walls.end(),
+                  [](const StudyYieldingWall &w) { return w.ok() && runs_on_curve(w); });
+    md += "\nThe element per height (envelope, bilinear comparison, dashpot, contact part): "
+          "[yielding_wall_element.csv](yielding_wall_element.csv); ";
+    if (any_hull)
+      md += "the hull points each element runs on: "
+            "[yielding_wall_envelope.csv](yielding_wall_envelope.csv), study.h5 "
+            "`/yielding_wall/envelope`; ";
+    md += "per run: [yielding_wall.csv](yielding_wall.csv), study.h5 `/yielding_wall`.\n\n";
     return md;
   }
 } // namespace kimp::app::study_internal

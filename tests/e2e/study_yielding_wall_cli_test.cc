@@ -14,6 +14,7 @@
 #  include <gtest/gtest.h>
 #  include <nlohmann/json.hpp>
 #  include <string>
+#  include <vector>
 
 #  include "tests/e2e/fem_scenes.h"
 #  include "tests/support/csv.h"
@@ -77,15 +78,18 @@ TEST(StudyYieldingWallCli, InelasticStudyRunsEveryHeightAgainstItsYieldingWall)
                        0),
               0u)
       << e.at("source_reason");
-    const double cap   = 1e3 * std::stod(e.at("capacity_kN_per_m"));
-    const double k     = 1e6 * std::stod(e.at("stiffness_kN_per_mm_per_m"));
-    const double alpha = std::stod(e.at("hardening_ratio"));
+    const double cap   = 1e3 * std::stod(e.at("bilinear_capacity_kN_per_m"));
+    const double k     = 1e6 * std::stod(e.at("bilinear_stiffness_kN_per_mm_per_m"));
+    const double alpha = std::stod(e.at("bilinear_hardening_ratio"));
     const double w_d   = 1e-3 * std::stod(e.at("pushover_displacement_mm"));
     const double f_d   = 1e3 * std::stod(e.at("pushover_force_kN_per_m"));
     EXPECT_GT(alpha, 0.0);
     EXPECT_LT(cap, f_d);
     EXPECT_NEAR((cap + alpha * k * (w_d - cap / k)) / f_d, 1.0, 1e-9);
-    EXPECT_NE(e.at("capacity_kN_per_m"), e.at("estimate_capacity_kN_per_m"));
+    EXPECT_NE(e.at("bilinear_capacity_kN_per_m"), e.at("estimate_capacity_kN_per_m"));
+    // The element runs on the hull, which ends at the pushover's largest force.
+    EXPECT_EQ(e.at("envelope"), "hull");
+    EXPECT_NEAR(1e3 * std::stod(e.at("envelope_force_kN_per_m")) / f_d, 1.0, 1e-9);
     // The dashpot is fitted to the height's FEM record (its slab travel), below its bound, the
     // backfill's plane-wave rho c_p H_b.
     EXPECT_NE(e.at("source_reason").find("kN*s/m^2 fitted to the FEM slab's travel"),
@@ -129,10 +133,10 @@ TEST(StudyYieldingWallCli, InelasticStudyRunsEveryHeightAgainstItsYieldingWall)
   Hdf5Reader h5(out / "study.h5");
   EXPECT_EQ(h5.units("/yielding_wall/runs/residual_wall_displacement"), "m");
   EXPECT_EQ(h5.units("/yielding_wall/runs/wall_capacity"), "N");
-  EXPECT_EQ(h5.units("/yielding_wall/element/capacity"), "N/m");
-  EXPECT_EQ(h5.units("/yielding_wall/element/stiffness"), "N/m/m");
-  EXPECT_NEAR(h5.doubles("/yielding_wall/element/capacity").at(0),
-              1e3 * std::stod(elements.at(0).at("capacity_kN_per_m")),
+  EXPECT_EQ(h5.units("/yielding_wall/element/bilinear_capacity"), "N/m");
+  EXPECT_EQ(h5.units("/yielding_wall/element/bilinear_stiffness"), "N/m/m");
+  EXPECT_NEAR(h5.doubles("/yielding_wall/element/bilinear_capacity").at(0),
+              1e3 * std::stod(elements.at(0).at("bilinear_capacity_kN_per_m")),
               1e-6);
   EXPECT_EQ(h5.dims("/yielding_wall/runs/peak_wall_resistance").at(0), 2u);
 
@@ -157,8 +161,9 @@ TEST(StudyYieldingWallCli, InelasticStudyRunsEveryHeightAgainstItsYieldingWall)
 TEST(StudyYieldingWallCli, ElementTakesItsResistanceFromTheHeightsPushover)
 {
   // An elastic wall against Mohr-Coulomb sand with the contact interface: the pushover runs, the
-  // element is its equal-energy bilinear, and its curve is the one `kimp fem --pushover` gives
-  // for the same scene on the study's pushover mesh (5 cm, at most 25 cm).
+  // element runs on its concave hull (the equal-energy bilinear beside it), and its curve is the
+  // one `kimp fem --pushover` gives for the same scene on the study's pushover mesh (5 cm, at most
+  // 25 cm).
   constexpr const char *materials = R"(  velocities: []
   interface: {model: contact}
   materials:
@@ -173,15 +178,44 @@ TEST(StudyYieldingWallCli, ElementTakesItsResistanceFromTheHeightsPushover)
   ASSERT_EQ(elements.size(), 1u);
   const auto &e = elements.at(0);
   EXPECT_EQ(e.at("source"), "pushover") << e.at("source_reason");
-  const double cap   = 1e3 * std::stod(e.at("capacity_kN_per_m"));
-  const double k     = 1e6 * std::stod(e.at("stiffness_kN_per_mm_per_m"));
-  const double alpha = std::stod(e.at("hardening_ratio"));
+  const double cap   = 1e3 * std::stod(e.at("bilinear_capacity_kN_per_m"));
+  const double k     = 1e6 * std::stod(e.at("bilinear_stiffness_kN_per_mm_per_m"));
+  const double alpha = std::stod(e.at("bilinear_hardening_ratio"));
   const double w_d   = 1e-3 * std::stod(e.at("pushover_displacement_mm"));
   const double f_d   = 1e3 * std::stod(e.at("pushover_force_kN_per_m"));
-  // The element's envelope ends at the pushover's largest force.
+  // The equal-energy bilinear (the comparison) ends at the pushover's largest force.
   EXPECT_LE(cap, f_d * (1 + 1e-12));
   EXPECT_NEAR((cap + alpha * k * (w_d - cap / k)) / f_d, 1.0, 1e-9);
   EXPECT_NE(std::stod(e.at("estimate_capacity_kN_per_m")) * 1e3, cap);
+
+  // The element runs on the curve's concave hull: its points are in yielding_wall_envelope.csv,
+  // from (0, 0) to the largest force (Δ_d, V_d), concave, and the element's columns are the
+  // hull's first slope, last force and where it turns flat.
+  EXPECT_EQ(e.at("envelope"), "hull");
+  const auto hull = read_csv_records(out / "yielding_wall_envelope.csv");
+  ASSERT_GE(hull.size(), 2u);
+  EXPECT_EQ(std::to_string(hull.size()), e.at("envelope_points"));
+  std::vector<double> hw, hf;
+  for (const auto &row : hull)
+  {
+    EXPECT_EQ(row.at("wall_height_m"), e.at("wall_height_m"));
+    EXPECT_EQ(row.at("point"), std::to_string(hw.size()));
+    hw.push_back(1e-3 * std::stod(row.at("displacement_mm")));
+    hf.push_back(1e3 * std::stod(row.at("force_kN_per_m")));
+  }
+  EXPECT_EQ(hw.front(), 0.0);
+  EXPECT_EQ(hf.front(), 0.0);
+  EXPECT_NEAR(hw.back() / w_d, 1.0, 1e-9);
+  EXPECT_NEAR(hf.back() / f_d, 1.0, 1e-9);
+  for (std::size_t i = 2; i < hw.size(); ++i)
+    EXPECT_LE((hf[i] - hf[i - 1]) / (hw[i] - hw[i - 1]),
+              (hf[i - 1] - hf[i - 2]) / (hw[i - 1] - hw[i - 2]) * (1 + 1e-9))
+      << "point " << i;
+  EXPECT_NEAR(1e6 * std::stod(e.at("envelope_stiffness_kN_per_mm_per_m")) / (hf[1] / hw[1]),
+              1.0,
+              1e-9);
+  EXPECT_NEAR(1e3 * std::stod(e.at("envelope_force_kN_per_m")) / f_d, 1.0, 1e-9);
+  EXPECT_NEAR(1e-3 * std::stod(e.at("envelope_displacement_mm")) / w_d, 1.0, 1e-9);
 
   // The same pushover through `kimp fem --pushover`.
   write_text(dir.path() / "pushover.yaml",
@@ -206,12 +240,24 @@ TEST(StudyYieldingWallCli, ElementTakesItsResistanceFromTheHeightsPushover)
   EXPECT_EQ(h5.units("/yielding_wall/pushover/H1.25/displacement"), "m");
   ASSERT_FALSE(force.empty());
   EXPECT_NEAR(*std::max_element(force.begin(), force.end()) / f_d, 1.0, 1e-9);
+  // ... and the hull the element runs on, in SI.
+  EXPECT_EQ(h5.units("/yielding_wall/envelope/H1.25/force"), "N/m");
+  EXPECT_EQ(h5.units("/yielding_wall/envelope/H1.25/displacement"), "m");
+  const auto h5_hull = h5.doubles("/yielding_wall/envelope/H1.25/displacement");
+  ASSERT_EQ(h5_hull.size(), hw.size());
+  EXPECT_NEAR(h5_hull.back() / w_d, 1.0, 1e-12);
 
   // The report and summary.json name the source.
   const auto json = nlohmann::json::parse(read_text(out / "summary.json"));
   EXPECT_EQ(json["yielding_wall"]["elements"][0]["source"], "pushover");
   EXPECT_NEAR(json["yielding_wall"]["elements"][0]["capacity"].get<double>() / cap, 1.0, 1e-9);
-  EXPECT_NE(read_text(out / "report.md").find("| pushover |"), std::string::npos);
+  const std::string report = read_text(out / "report.md");
+  EXPECT_NE(report.find("| pushover | hull of " + std::to_string(hw.size()) + " points: k "),
+            std::string::npos)
+    << report;
+  EXPECT_NE(report.find("bilinear (comparison): F_y (kN/m)"), std::string::npos);
+  EXPECT_NE(report.find("[yielding_wall_envelope.csv](yielding_wall_envelope.csv)"),
+            std::string::npos);
 }
 
 TEST(StudyYieldingWallCli, LinearStudyKeepsTheEquivalentKRoute)

@@ -134,14 +134,21 @@ def test_study_yielding_wall_keys_through_the_scene_builder(tmp_path):
     element = result["yielding_wall"]["element"]
     # The element's resistance is its height's pushover, in SI with units per column.
     assert element["source"] == ["pushover"], element["source_reason"]
-    assert element["capacity"].units == "N/m"
-    assert element["stiffness"].units == "N/m/m"
+    assert element["bilinear_capacity"].units == "N/m"
+    assert element["bilinear_stiffness"].units == "N/m/m"
     assert element["pushover_displacement"].units == "m"
-    cap, k = float(element["capacity"][0]), float(element["stiffness"][0])
-    alpha, w_d = float(element["hardening_ratio"][0]), float(element["pushover_displacement"][0])
+    cap, k = float(element["bilinear_capacity"][0]), float(element["bilinear_stiffness"][0])
+    alpha = float(element["bilinear_hardening_ratio"][0])
+    w_d = float(element["pushover_displacement"][0])
     assert w_d == pytest.approx(0.04, rel=1e-9)
     assert cap + alpha * k * (w_d - cap / k) == pytest.approx(float(element["pushover_force"][0]),
                                                                rel=1e-9)
+    # The element runs on the curve's concave hull, which ends at the largest force; the
+    # bilinear above is the comparison.
+    assert element["envelope"] == ["hull"]
+    assert float(element["envelope_force"][0]) == pytest.approx(
+        float(element["pushover_force"][0]), rel=1e-12)
+    assert float(element["envelope_displacement"][0]) == pytest.approx(w_d, rel=1e-12)
     # The cyclic path was run: the curve's set at 20 mm is read.
     assert float(element["pushover_permanent_set"][0]) >= 0.0
     runs = result["yielding_wall"]["runs"]
