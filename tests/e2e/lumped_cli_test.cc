@@ -297,6 +297,28 @@ TEST(LumpedCli, ExportOpenSeesWritesTheYieldingWallsOfALumpedScene)
   const nlohmann::json summary = read_json(dir.path() / "os" / "summary.json");
   EXPECT_EQ(summary["files"].size(), 4u) << summary.dump();
 
+  // A curve envelope (a pushover's hull) is one ElasticPPGap per kink in the Parallel.
+  const fs::path curve = dir.write("curve.yaml",
+                                   "walls:\n  right:\n    gap: \"10 cm\"\n"
+                                   "    yielding:\n      width: \"20 m\"\n"
+                                   "      envelope: curve\n      curve:\n"
+                                   "        - {displacement: 0 mm, force: 0 kN/m}\n"
+                                   "        - {displacement: 6 mm, force: 150 kN/m}\n"
+                                   "        - {displacement: 30 mm, force: 198 kN/m}\n");
+  const KimpRun  curve_run =
+    run_kimp("-q export-opensees -o curve --k-kv \"2496 kN/mm\" --effective-mass \"144.8 t\" "
+             "--lumped-scene " +
+               curve.string(),
+             dir.path());
+  ASSERT_EQ(curve_run.exit_code, 0) << curve_run.err;
+  const std::string curve_tcl = read_text(dir.path() / "curve" / "opensees_walls.tcl");
+  EXPECT_NE(curve_tcl.find("uniaxialMaterial ElasticPPGap 11 460000000 -2760000 0.0 0 damage\n"
+                           "uniaxialMaterial ElasticPPGap 12 40000000 -1200000 0.0 0 damage"),
+            std::string::npos)
+    << curve_tcl;
+  EXPECT_NE(curve_tcl.find("uniaxialMaterial Parallel 14 11 12 13\n"), std::string::npos)
+    << curve_tcl;
+
   // A scene without a yielding wall is refused, and nothing is left behind.
   const fs::path rigid = dir.write("rigid.yaml", "walls:\n  right:\n    gap: \"10 cm\"\n");
   const KimpRun  none =
