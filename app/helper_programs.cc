@@ -7,6 +7,8 @@
 #include <system_error>
 #include <unistd.h>
 
+#include "base/logging.h"
+
 extern char **environ;
 
 namespace kimp::app
@@ -85,5 +87,25 @@ namespace kimp::app
                              ProgramOutput::append,
                              run.log);
     return run;
+  }
+
+  bool draw_optional_charts(const std::string           &script_name,
+                            const std::filesystem::path &output_dir,
+                            const std::string_view       what)
+  {
+    const ChartScriptRun run = run_chart_script(script_name, output_dir);
+    if (run.script.empty())
+      base::logger().warn("{} skipped: scripts/{} not found (set KIMP_DATA_DIR to the kimp source "
+                          "tree)",
+                          what,
+                          script_name);
+    else if (run.status != 0)
+      base::logger().warn("{} skipped: {} exited with {} (needs /usr/bin/python3 with matplotlib "
+                          "and h5py; Debian python3-matplotlib python3-h5py); see {}",
+                          what,
+                          run.script.string(),
+                          run.status,
+                          run.log.string());
+    return !run.script.empty() && run.status == 0;
   }
 } // namespace kimp::app

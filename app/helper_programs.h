@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace kimp::app
@@ -46,4 +47,12 @@ namespace kimp::app
    */
   ChartScriptRun run_chart_script(const std::string           &script_name,
                                   const std::filesystem::path &output_dir);
+
+  /**
+   * run_chart_script() for charts that are a bonus: a script not found or failed is a warning
+   * "<what> skipped: <why>" (naming the script, its exit status and log); true when it drew them.
+   */
+  bool draw_optional_charts(const std::string           &script_name,
+                            const std::filesystem::path &output_dir,
+                            std::string_view             what);
 } // namespace kimp::app

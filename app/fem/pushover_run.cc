@@ -14,7 +14,6 @@
 #include "app/fem/fem_materials.h"
 #include "app/helper_programs.h"
 #include "base/logging.h"
-#include "base/version.h"
 #include "io/results_file.h"
 #include "io/summary.h"
 #include "io/table.h"
@@ -138,20 +137,6 @@ namespace kimp::app
       return t;
     }
 
-    /** Charts by scripts/pushover_charts.py; a failure is a warning. */
-    void draw_chart(const OutputDir &output)
-    {
-      const ChartScriptRun run = run_chart_script("pushover_charts.py", output.path());
-      if (run.script.empty())
-        logger().warn("pushover chart skipped: scripts/pushover_charts.py not found (set "
-                      "KIMP_DATA_DIR to the kimp source tree)");
-      else if (run.status != 0)
-        logger().warn("pushover chart skipped: {} exited with {} (needs /usr/bin/python3 with "
-                      "matplotlib and h5py); see {}",
-                      run.script.string(),
-                      run.status,
-                      run.log.string());
-    }
   } // namespace
 
   void run_fem_pushover(const LoadedScene<FemScene> &loaded, const OutputDir &output)
@@ -217,12 +202,11 @@ namespace kimp::app
     results.commit();
     curves.write_csv(output.file("pushover.csv"));
     summary.write_csv(output.file("pushover_summary.csv"));
-    nlohmann::ordered_json json;
-    json["command"] = "fem --pushover";
-    json["kimp"]    = version_line();
-    json["files"]   = {"pushover.h5", "pushover.csv", "pushover_summary.csv"};
+    nlohmann::ordered_json json = summary_preamble("fem --pushover");
+    json["files"]               = {"pushover.h5", "pushover.csv", "pushover_summary.csv"};
     write_text_atomic(output.file("summary.json"), json.dump(2) + "\n");
     output.keep_written();
-    draw_chart(output);
+    // The charts of scripts/pushover_charts.py: a failure is a warning.
+    draw_optional_charts("pushover_charts.py", output.path(), "pushover chart");
   }
 } // namespace kimp::app

@@ -461,22 +461,8 @@ namespace kimp::app::study_internal
   /// Draw the charts; false (with a warning) if they could not be drawn.
   bool draw_charts(const OutputDir &output)
   {
-    const ChartScriptRun run = run_chart_script("study_charts.py", output.path());
-    if (run.script.empty())
-    {
-      logger().warn("charts skipped: scripts/study_charts.py not found (set KIMP_DATA_DIR to "
-                    "the kimp source tree)");
+    if (!draw_optional_charts("study_charts.py", output.path(), "charts"))
       return false;
-    }
-    if (run.status != 0)
-    {
-      logger().warn("charts skipped: {} exited with {} (needs /usr/bin/python3 with matplotlib "
-                    "and h5py; Debian python3-matplotlib python3-h5py); see {}",
-                    run.script.string(),
-                    run.status,
-                    run.log.string());
-      return false;
-    }
     logger().info("charts written to {}", output.file("charts").string());
     return true;
   }

@@ -34,12 +34,7 @@ namespace kimp::lumped
 
   StabilityLimit stability_limit(const PoundingModel &model, const double expected_max_penetration)
   {
-    if (!(expected_max_penetration > 0.0))
-    {
-      std::ostringstream msg;
-      msg << "expected_max_penetration = " << expected_max_penetration << " m (must be > 0)";
-      throw std::invalid_argument(msg.str());
-    }
+    require_expected_penetration(expected_max_penetration);
     StabilityLimit  s;
     Eigen::MatrixXd k = model.initial_stiffness_matrix();
     s.omega_structure = largest_omega(model, k);
@@ -47,12 +42,7 @@ namespace kimp::lumped
     for (const ContactPair &c : model.contacts())
     {
       const double kt = c.law->stability_stiffness(expected_max_penetration);
-      const double w  = std::sqrt(kt / c.effective_mass);
-      if (w > s.omega_impact)
-      {
-        s.omega_impact = w;
-        impact_name    = c.name;
-      }
+      note_impact(s, impact_name, kt, c.effective_mass, c.name);
       if (c.left_dof >= 0)
         k(c.left_dof, c.left_dof) += kt;
       if (c.right_dof >= 0)
@@ -63,19 +53,11 @@ namespace kimp::lumped
         k(c.right_dof, c.left_dof) -= kt;
       }
     }
-    s.omega_closed     = model.contacts().empty() ? s.omega_structure : largest_omega(model, k);
-    const double w_max = std::max({s.omega_structure, s.omega_closed, s.omega_impact});
-    s.dt_critical      = 2.0 / w_max;
-    std::ostringstream g;
-    if (w_max == s.omega_impact && !impact_name.empty())
-      g << "contact '" << impact_name << "': omega_imp = sqrt(k_t/m_eff) = " << s.omega_impact
-        << " rad/s with k_t at a penetration of " << expected_max_penetration << " m";
-    else if (w_max == s.omega_structure)
-      g << "structure: omega_max = " << s.omega_structure << " rad/s";
-    else
-      g << "structure with all contacts closed: omega_max = " << s.omega_closed
-        << " rad/s with k_t at a penetration of " << expected_max_penetration << " m";
-    s.governing = g.str();
+    s.omega_closed = model.contacts().empty() ? s.omega_structure : largest_omega(model, k);
+    std::ostringstream closed;
+    closed << "structure with all contacts closed: omega_max = " << s.omega_closed
+           << " rad/s with k_t at a penetration of " << expected_max_penetration << " m";
+    set_critical_step(s, impact_name, expected_max_penetration, closed.str());
     return s;
   }
 

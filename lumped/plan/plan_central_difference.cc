@@ -22,12 +22,7 @@ namespace kimp::lumped::plan
   {
     StabilityLimit plan_stability(const PlanModel &model, const double penetration)
     {
-      if (!(penetration > 0.0))
-      {
-        std::ostringstream msg;
-        msg << "expected_max_penetration = " << penetration << " m (must be > 0)";
-        throw std::invalid_argument(msg.str());
-      }
+      require_expected_penetration(penetration);
       StabilityLimit  s;
       Eigen::MatrixXd k = model.initial_stiffness_matrix();
       s.omega_structure = largest_omega(model.masses(), k);
@@ -35,12 +30,7 @@ namespace kimp::lumped::plan
       for (const PlanContact &c : model.contacts())
       {
         const double kt = c.law->stability_stiffness(penetration);
-        const double w  = std::sqrt(kt / c.effective_mass);
-        if (w > s.omega_impact)
-        {
-          s.omega_impact = w;
-          impact_name    = c.name;
-        }
+        note_impact(s, impact_name, kt, c.effective_mass, c.name);
         k.topLeftCorner<3, 3>() += c.weight * kt * c.normal_row.transpose() * c.normal_row;
       }
       s.omega_closed =
@@ -52,24 +42,12 @@ namespace kimp::lumped::plan
         for (const PlanContact &c : model.contacts())
           if (c.segment == wd.segment)
             kt += c.weight * c.law->stability_stiffness(penetration);
-        const double w = std::sqrt(kt / wd.mass);
-        if (w > s.omega_impact)
-        {
-          s.omega_impact = w;
-          impact_name    = "yielding wall " + std::to_string(wd.segment);
-        }
+        note_impact(s, impact_name, kt, wd.mass, "yielding wall " + std::to_string(wd.segment));
       }
-      const double w_max = std::max({s.omega_structure, s.omega_closed, s.omega_impact});
-      s.dt_critical      = w_max > 0.0 ? 2.0 / w_max : std::numeric_limits<double>::infinity();
-      std::ostringstream g;
-      if (w_max == s.omega_impact && !impact_name.empty())
-        g << "contact '" << impact_name << "': omega_imp = sqrt(k_t/m_eff) = " << s.omega_impact
-          << " rad/s with k_t at a penetration of " << penetration << " m";
-      else if (w_max == s.omega_structure)
-        g << "structure: omega_max = " << s.omega_structure << " rad/s";
-      else
-        g << "structure with all contact points closed: omega_max = " << s.omega_closed << " rad/s";
-      s.governing = g.str();
+      std::ostringstream closed;
+      closed << "structure with all contact points closed: omega_max = " << s.omega_closed
+             << " rad/s";
+      set_critical_step(s, impact_name, penetration, closed.str());
       return s;
     }
 

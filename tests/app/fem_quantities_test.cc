@@ -9,6 +9,7 @@
 
 #include "app/fem/fem_quantities.h"
 #include "io/fem_results.h"
+#include "tests/support/fem_cases.h"
 
 namespace
 {
@@ -39,10 +40,7 @@ namespace
       const double x =
         s <= 0 ? v * t : (on ? v * t0 + v / omega * std::sin(omega * s) : v * t0 - v * (s - half));
       const double u = s <= 0 ? v : (on ? v * std::cos(omega * s) : -v);
-      c.time.push_back(t);
-      c.contact_force.push_back(f);
-      c.smoothed_contact_force.push_back(f);
-      c.slab_displacement.push_back(x);
+      kimp::testing::add_sample(c, t, f, x);
       c.slab_velocity.push_back(u);
       c.wall_displacement.push_back(0.0);
       c.indentation.push_back(std::max(0.0, x - v * t0));
@@ -88,10 +86,7 @@ namespace
       const double x =
         t < t1 ? v * t - 0.5 * a * t * t : x1 + creep * (s - 0.5 * s * s / creep_time);
       const double f = m * (t < t1 ? a : (s < creep_time ? creep / creep_time : 0.0));
-      c.time.push_back(t);
-      c.contact_force.push_back(f);
-      c.smoothed_contact_force.push_back(f);
-      c.slab_displacement.push_back(x);
+      kimp::testing::add_sample(c, t, f, x);
       c.slab_velocity.push_back(u);
       c.wall_displacement.push_back(x);
     }

@@ -59,11 +59,8 @@ namespace
     c.impact_velocity = 1.0;
     const auto add    = [&](double t, double force, double delta)
     {
-      c.time.push_back(0.001 + t);
-      c.contact_force.push_back(force);
-      c.smoothed_contact_force.push_back(force);
+      kimp::testing::add_sample(c, 0.001 + t, force, delta);
       c.indentation.push_back(delta);
-      c.slab_displacement.push_back(delta);
     };
     for (int j = -20; j <= 0; ++j)
       add(j * dt, 0.0, j * dt);

@@ -59,11 +59,8 @@ namespace
       // Measurement noise of 1 % (deterministic): an exact history gives a zero-width
       // confidence interval, which is a warning of its own.
       force *= 1.0 + 0.01 * std::sin(12.9898 * j);
-      fem.time.push_back(t);
-      fem.contact_force.push_back(force);
-      fem.smoothed_contact_force.push_back(force);
+      kimp::testing::add_sample(fem, t, force, x);
       fem.indentation.push_back(x);
-      fem.slab_displacement.push_back(x);
     }
     return fem;
   }

@@ -256,27 +256,32 @@ namespace
     return {dir / "scene.yaml", fem_impact(dir / "out" / "fem_histories.csv")};
   }
 
+  /// "label FEM / element unit (error %)" of the quantity q, shown times `scale`.
+  std::string compared(const Comparison &c,
+                       const char       *label,
+                       double Impact::*q,
+                       double          scale,
+                       const char     *unit)
+  {
+    return fmt::format("{} {:.4g} / {:.4g} {} ({:+.1f} %)",
+                       label,
+                       scale * (c.fem.*q),
+                       scale * (c.element.*q),
+                       unit,
+                       100 * c.error(q));
+  }
+
   void print(const std::string &name, const Comparison &c)
   {
     std::cout << fmt::format(
-      "{} (c_r {:.4g} kN*s/m^2): FEM / element: peak force {:.4g} / {:.4g} kN/m ({:+.1f} %), "
-      "slab peak {:.4g} / {:.4g} mm ({:+.1f} %), time to 95 % of the travel {:.4g} / {:.4g} ms "
-      "({:+.1f} %), slab velocity zero {:.4g} / {:.4g} ms ({:+.1f} %), wall at the end {:.4g} / "
-      "{:.4g} mm ({:+.1f} %; {:+.1f} % of the FEM wall's largest {:.4g} mm)\n",
+      "{} (c_r {:.4g} kN*s/m^2): FEM / element: {}, {}, {}, {}, wall at the end {:.4g} / {:.4g} "
+      "mm ({:+.1f} %; {:+.1f} % of the FEM wall's largest {:.4g} mm)\n",
       name,
       c.damping / 1e3,
-      c.fem.peak_force / 1e3,
-      c.element.peak_force / 1e3,
-      100 * c.error(&Impact::peak_force),
-      1e3 * c.fem.slab_peak,
-      1e3 * c.element.slab_peak,
-      100 * c.error(&Impact::slab_peak),
-      1e3 * c.fem.time_to_95_travel,
-      1e3 * c.element.time_to_95_travel,
-      100 * c.error(&Impact::time_to_95_travel),
-      1e3 * c.fem.time_to_stop,
-      1e3 * c.element.time_to_stop,
-      100 * c.error(&Impact::time_to_stop),
+      compared(c, "peak force", &Impact::peak_force, 1e-3, "kN/m"),
+      compared(c, "slab peak", &Impact::slab_peak, 1e3, "mm"),
+      compared(c, "time to 95 % of the travel", &Impact::time_to_95_travel, 1e3, "ms"),
+      compared(c, "slab velocity zero", &Impact::time_to_stop, 1e3, "ms"),
       1e3 * c.fem.wall_end,
       1e3 * c.element.wall_end,
       100 * c.error(&Impact::wall_end),

@@ -5,6 +5,7 @@
 // equations, on their documented parameters.
 #include <cmath>
 #include <gtest/gtest.h>
+#include <initializer_list>
 #include <limits>
 #include <memory>
 #include <string>
@@ -39,6 +40,25 @@ namespace kimp::lumped
     void expect_rel(double actual, double expected, double tol, const char *what)
     {
       EXPECT_NEAR(actual, expected, tol * std::max(std::abs(expected), 1.0)) << what;
+    }
+
+    /// Walks `law` from w = 0 through `targets` in 1 µm quasi-static steps; returns the work put
+    /// in (trapezoid rule), J.
+    double work_along(WallBackfillLaw &law, std::initializer_list<double> targets)
+    {
+      double work = 0.0, w = 0.0, f = 0.0;
+      for (const double target : targets)
+      {
+        const double dw = target > w ? 1e-6 : -1e-6;
+        while (std::abs(target - w) > 0.5e-6)
+        {
+          const double f_next = step(law, w + dw);
+          work += 0.5 * (f + f_next) * dw;
+          f = f_next;
+          w += dw;
+        }
+      }
+      return work;
     }
   } // namespace
 
@@ -108,18 +128,7 @@ namespace kimp::lumped
     WallBackfillParams p  = bilinear_params();
     p.unloading_stiffness = 20e6;
     WallBackfillLaw law(p);
-    double          work = 0.0, w = 0.0, f = 0.0;
-    for (const double target : {0.03, 0.0, 0.1, 0.05, 0.12, 0.1})
-    {
-      const double dw = target > w ? 1e-6 : -1e-6;
-      while (std::abs(target - w) > 0.5e-6)
-      {
-        const double f_next = step(law, w + dw);
-        work += 0.5 * (f + f_next) * dw;
-        f = f_next;
-        w += dw;
-      }
-    }
+    const double    work = work_along(law, {0.03, 0.0, 0.1, 0.05, 0.12, 0.1});
     expect_rel(law.plastic_work() + law.stored_energy(), work, 1e-6, "work balance");
     const double e = 1.5e6 + 0.05 * 100e6 * 0.01; // E(0.12)
     EXPECT_GT(law.plastic_work(), 0.0);
@@ -597,18 +606,7 @@ namespace kimp::lumped
     p.unloading_stiffness = 20e6;
     p.tension_capacity    = 0.3e6;
     WallBackfillLaw cyc(p);
-    double          in = 0.0, w = 0.0, f = 0.0;
-    for (const double target : {0.02, -0.01, 0.045, 0.03, 0.09, 0.06})
-    {
-      const double dw = target > w ? 1e-6 : -1e-6;
-      while (std::abs(target - w) > 0.5e-6)
-      {
-        const double f_next = step(cyc, w + dw);
-        in += 0.5 * (f + f_next) * dw;
-        f = f_next;
-        w += dw;
-      }
-    }
+    const double    in = work_along(cyc, {0.02, -0.01, 0.045, 0.03, 0.09, 0.06});
     expect_rel(cyc.plastic_work() + cyc.stored_energy(), in, 1e-6, "work balance");
   }
 
