@@ -557,6 +557,24 @@ namespace
                 << " samples, max |dF| / max F = " << max_difference / max_force << '\n';
   }
 
+  TEST(Mpi, ScaledPenaltyIsTheSameOnEveryPartition)
+  {
+    // penalty_step_ratio takes the cells' largest omega and the slaves' masses over all ranks:
+    // 1 or 2 ranks choose the same factor and step as one rank alone.
+    constexpr double tolerance = 1e-12;
+    auto             p         = scene_parameters(0.05, false, "scene_mpi_step_ratio.msh");
+    p.end_time                 = 0.002;
+    p.penalty_step_ratio       = 0.7;
+    const auto runs            = run_on_world_and_self(p);
+    EXPECT_NEAR(runs.world.summary.penalty_factor / runs.self.summary.penalty_factor,
+                1.0,
+                tolerance);
+    EXPECT_NEAR(runs.world.summary.dt / runs.self.summary.dt, 1.0, tolerance);
+    const auto [max_force, max_difference] = force_history_difference(runs.world, runs.self);
+    ASSERT_GT(max_force, 0);
+    EXPECT_LT(max_difference, 1e-10 * max_force);
+  }
+
   TEST(Mpi, FramesGatherTheWholeMeshOnRankZeroAsOnOneRank)
   {
     // The deformed-mesh frames of the report's animation: gathered from 1 or 2 ranks they equal
