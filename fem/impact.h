@@ -334,18 +334,16 @@ namespace kimp::fem
     double max_penetration  = 0; ///< m, largest slave penetration (dynamic node impacts)
     /** m: stiffness-weighted mean slave penetration averaged over the contact duration. Since
      *  k p = lambda - c dp/dt, it equals impulse / (T sum k_i): it falls as 1 / penalty. */
-    double mean_penetration  = 0;
-    double initial_gap       = 0; ///< m
-    double penalty_stiffness = 0; ///< N/m per metre, largest slave-node penalty k_i
-    /** The penalty factor used: ImpactParameters::penalty_factor, or the one chosen by
-     *  ImpactParameters::penalty_step_ratio. */
-    double        penalty_factor  = 0;
-    unsigned long n_dofs          = 0;
-    unsigned long n_cells         = 0;
-    unsigned long n_steps         = 0;
-    unsigned long n_newton        = 0; ///< implicit: total Newton iterations
-    unsigned long n_step_halvings = 0; ///< implicit: steps retried with half the step
-    unsigned long n_linear_solves = 0; ///< implicit: Newton linear solves
+    double        mean_penetration  = 0;
+    double        initial_gap       = 0; ///< m
+    double        penalty_stiffness = 0; ///< N/m per metre, largest slave-node penalty k_i
+    double        penalty_factor    = 0; ///< used: penalty_factor or penalty_step_ratio's
+    unsigned long n_dofs            = 0;
+    unsigned long n_cells           = 0;
+    unsigned long n_steps           = 0;
+    unsigned long n_newton          = 0; ///< implicit: total Newton iterations
+    unsigned long n_step_halvings   = 0; ///< implicit: steps retried with half the step
+    unsigned long n_linear_solves   = 0; ///< implicit: Newton linear solves
     /** s, implicit: wall time of the linear solver (setup, factorizations and solves). */
     double linear_solver_seconds = 0;
     /** s, implicit: wall time of the setups (factorization or AMG hierarchy), included above. */

@@ -52,8 +52,11 @@ namespace kimp::fem
     double lo = 0, hi = std::sqrt(1 / (step_ratio * step_ratio) - 1);
     for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i)
     {
-      const double mid                    = 0.5 * (lo + hi);
-      (ratio(mid) > step_ratio ? lo : hi) = mid;
+      const double mid = 0.5 * (lo + hi);
+      if (ratio(mid) > step_ratio)
+        lo = mid;
+      else
+        hi = mid;
     }
     return 0.5 * (lo + hi);
   }
