@@ -14,7 +14,8 @@
 # KIMP_LADDER_HEIGHTS (default "1.25 1.5 2.0", in m) picks the heights; KIMP_LADDER_FAR
 # (default "rollers absorbing") the far sides (the first is the reference of the convergence
 # table). KIMP_LADDER_OUT (a directory) keeps the runs there and reuses a run whose scene is
-# unchanged and whose summary.json exists (delete the directory to rerun).
+# unchanged and whose summary.json exists (delete the directory to rerun). KIMP_LADDER_EXTRA
+# (YAML lines) is appended to every scene, e.g. 'contact: {penalty_step_ratio: 0.8}'.
 # Usage: bench/fem_ladder.sh [BUILD_DIR (default: build)] [RANKS (default: 1)] [HOLD_MS]
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
@@ -46,6 +47,7 @@ for far in "${fars[@]}"; do
       else
         printf '%s\n' 'dynamics: {end_time: "100 ms"}'
       fi
+      if [[ -n "${KIMP_LADDER_EXTRA:-}" ]]; then printf '%s\n' "$KIMP_LADDER_EXTRA"; fi
     } > "$work/scene_$run.yaml.new"
     if [[ -f "$work/out_$run/summary.json" && -f "$work/scene_$run.yaml" ]] &&
        cmp -s "$work/scene_$run.yaml.new" "$work/scene_$run.yaml"; then

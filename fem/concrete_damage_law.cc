@@ -348,10 +348,24 @@ namespace kimp::fem
       h1[6] = sa_x;
       h1[7] = sa_y;
     }
-    const double c  = rotating && implex_on_ ? h0[6] : h1[6];
-    const double s  = rotating && implex_on_ ? h0[7] : h1[7];
-    h1[2]           = dt;
-    h1[3]           = dc;
+    const double c = rotating && implex_on_ ? h0[6] : h1[6];
+    const double s = rotating && implex_on_ ? h0[7] : h1[7];
+    h1[2]          = dt;
+    h1[3]          = dc;
+    if (dt == 0 && h0[2] == 0)
+    {
+      // Uncracked before and after the step: the tension split does not enter (d_t = 0), so the
+      // stress is (1 - d_c) times the effective one, and the energy released below is
+      // (d_c - d_c,0) psi_0 with psi_0 = sigma_0 : eps / 2. The split's rotation into the crack
+      // frame and back gives the same up to round-off and is most of an uncracked point's cost.
+      const double      tr = ee[0] + ee[1];
+      const VoigtStress s0{
+        {lambda_ * tr + 2 * mu_ * ee[0], lambda_ * tr + 2 * mu_ * ee[1], mu_ * ee[2]}};
+      const double psi0 = 0.5 * (s0[0] * ee[0] + s0[1] * ee[1] + s0[2] * ee[2]);
+      h1[4]             = h0[4] + ((1 - h0[3]) * psi0 - (1 - dc) * psi0);
+      const double w    = 1 - dc;
+      return {{w * s0[0], w * s0[1], w * s0[2]}};
+    }
     const Split  sp = split(ee, c, s, h0[5]);
     const double e0 = (1 - h0[3]) * (sp.psi0 - h0[2] * sp.loss);
     const double e1 = (1 - dc) * (sp.psi0 - dt * sp.loss);

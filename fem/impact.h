@@ -25,6 +25,14 @@ namespace kimp::fem
   /** P-wave speed of a plane-strain continuum, sqrt((lambda + 2 mu) / rho), m/s. */
   double p_wave_speed(const Material &material);
 
+  /**
+   * omega_p / omega_mesh at which the damped explicit stable step of mesh and penalty together,
+   * 2 / omega (sqrt(1 + xi^2) - xi) with omega^2 = omega_mesh^2 + omega_p^2 and
+   * xi = damping_ratio omega_p / omega, is `step_ratio` times the mesh's own 2 / omega_mesh
+   * (step_ratio in (0, 1), damping_ratio >= 0; the ratio falls monotonically in omega_p).
+   */
+  double penalty_omega_ratio_for_step(double step_ratio, double damping_ratio);
+
   /** Options of the explicit central-difference integrator (ImpactParameters::explicit_options). */
   struct ExplicitOptions
   {
@@ -193,6 +201,14 @@ namespace kimp::fem
      */
     double penalty_factor = 1.0;
     /**
+     * If > 0: the penalty scaled to the mesh's stable step. penalty_factor is replaced by the
+     * factor whose springs (with their contact damping) leave the explicit stable step at this
+     * fraction of the cells' own limit 2 / omega_mesh (the wall-soil interface springs not
+     * counted), so the stiffest penalty the mesh's step affords; the factor used is
+     * ImpactSummary::penalty_factor. 0 (the default): off. In [0, 1).
+     */
+    double penalty_step_ratio = 0;
+    /**
      * Contact damping as a fraction of the critical damping of each penalty spring with its
      * reduced node mass, c_i = 2 xi sqrt(k_i m_i). It removes the penalty-spring chatter; its
      * dissipation vanishes as 1/sqrt(k) when the penalty grows and is reported in the history.
@@ -321,6 +337,7 @@ namespace kimp::fem
     double        mean_penetration  = 0;
     double        initial_gap       = 0; ///< m
     double        penalty_stiffness = 0; ///< N/m per metre, largest slave-node penalty k_i
+    double        penalty_factor    = 0; ///< used: penalty_factor or penalty_step_ratio's
     unsigned long n_dofs            = 0;
     unsigned long n_cells           = 0;
     unsigned long n_steps           = 0;

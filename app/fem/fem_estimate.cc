@@ -179,7 +179,12 @@ namespace kimp::app
     }
     else if (p.slab_mass > 0.0)
       k_over_m += k_per_length * h_contact / p.slab_mass;
-    const double omega_penalty = std::sqrt(k_over_m);
+    // penalty_step_ratio: the penalty whose omega is r omega_mesh (the factor above ignored).
+    const double omega_penalty =
+      p.penalty_step_ratio > 0.0 ?
+        fem::penalty_omega_ratio_for_step(p.penalty_step_ratio, p.contact_damping_ratio) *
+          omega_mesh :
+        std::sqrt(k_over_m);
 
     const double omega     = std::hypot(omega_mesh, omega_penalty);
     const double xi        = p.contact_damping_ratio * omega_penalty / omega;

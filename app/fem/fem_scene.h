@@ -327,6 +327,12 @@ namespace kimp::app
                 "",
                 "penalty stiffness per slave node / (E_master / h_contact x tributary length)",
                 io::Range::positive());
+    io.quantity("penalty_step_ratio",
+                s.solver.penalty_step_ratio,
+                "",
+                "0: off; in (0, 1): penalty_factor replaced by the penalty whose springs (with "
+                "their damping) leave the explicit stable step at this fraction of the mesh's own",
+                io::Range::at_least(0.0).and_less(1.0));
     io.quantity("contact_damping_ratio",
                 s.solver.contact_damping_ratio,
                 "",

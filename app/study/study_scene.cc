@@ -66,6 +66,11 @@ namespace kimp::app
                    0.0);
       if (!scene.fem.velocities.empty())
         check_ladder(ctx, "velocities", scene.fem.velocities, "m/s", false, 0.0);
+      ctx.check(scene.fem.solver.penalty_step_ratio == 0.0,
+                "contact.penalty_step_ratio",
+                format_quantity(scene.fem.solver.penalty_step_ratio, ""),
+                "must be 0 in a study: its levels set the penalty factor "
+                "(fidelity_penalty_factors, accuracy.penalty_factors)");
     }
     {
       const auto scope = ctx.section("accuracy");

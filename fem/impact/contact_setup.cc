@@ -190,20 +190,19 @@ namespace kimp::fem::internal
 
   void ImpactProblem::make_contact_slaves(ContactLayout &c)
   {
-    const unsigned int n_nodes          = c.keys.size();
-    c.penalty_per_length                = prm.penalty_factor * c.e_master / c.h_contact;
+    const unsigned int        n_nodes   = c.keys.size();
     const std::vector<double> node_mass = [&]
     {
       std::vector<double> m = gather_compact(mass, 0.0);
       m.pop_back();
       return m;
     }();
-    omega_penalty = 0;
+    // The slave nodes and their reduced masses; the penalty per length is chosen after them.
+    std::vector<std::pair<unsigned int, double>> slave_mass;
     for (unsigned int i = 0; i < n_nodes; ++i)
     {
       if (c.node_boundary[i] != c.slave_id || c.tributary[i] <= 0)
         continue;
-      const double k   = c.penalty_per_length * c.tributary[i];
       const double m_s = node_mass[2 * i];
       double       m_m = prm.slab_mass;
       if (!prm.rigid_slab)
@@ -221,13 +220,24 @@ namespace kimp::fem::internal
       require(m_s > 0 && m_m > 0,
               "contact node at (" + fmt_double(c.keys[i].first) + ", " +
                 fmt_double(c.keys[i].second) + ") has no mass");
-      const double m_red = 1.0 / (1.0 / m_s + 1.0 / m_m);
-      // Implicit: no contact damping. Newton needs a residual with few kinks; a dashpot adds a
-      // jump at first touch and a clamp while separating, and Newmark needs no chatter control
-      // for stability.
-      const double xi      = prm.integrator == ImpactParameters::Integrator::implicit_newmark ?
-                               0.0 :
-                               prm.contact_damping_ratio;
+      slave_mass.emplace_back(i, 1.0 / (1.0 / m_s + 1.0 / m_m));
+    }
+    require(!slave_mass.empty(),
+            "no slave contact node found (elastic slab: boundary id " +
+              std::to_string(static_cast<unsigned>(geometry::slab_contact)) +
+              "; rigid slab: wall face within [slab_face_y0, slab_face_y1])");
+    penalty_factor_used  = contact_penalty_factor(c, slave_mass);
+    c.penalty_per_length = penalty_factor_used * c.e_master / c.h_contact;
+    // Implicit: no contact damping. Newton needs a residual with few kinks; a dashpot adds a
+    // jump at first touch and a clamp while separating, and Newmark needs no chatter control
+    // for stability.
+    const double xi = prm.integrator == ImpactParameters::Integrator::implicit_newmark ?
+                        0.0 :
+                        prm.contact_damping_ratio;
+    omega_penalty   = 0;
+    for (const auto &[i, m_red] : slave_mass)
+    {
+      const double k       = c.penalty_per_length * c.tributary[i];
       const double damping = 2 * xi * std::sqrt(k * m_red);
       c.slaves.push_back({i, k, damping});
       slave_length.push_back(c.tributary[i]);
@@ -236,10 +246,24 @@ namespace kimp::fem::internal
       c.slave_y_min = std::min(c.slave_y_min, c.keys[i].second);
       c.slave_y_max = std::max(c.slave_y_max, c.keys[i].second);
     }
-    require(!c.slaves.empty(),
-            "no slave contact node found (elastic slab: boundary id " +
-              std::to_string(static_cast<unsigned>(geometry::slab_contact)) +
-              "; rigid slab: wall face within [slab_face_y0, slab_face_y1])");
+  }
+
+  double ImpactProblem::contact_penalty_factor(
+    const ContactLayout                                &c,
+    const std::vector<std::pair<unsigned int, double>> &slave_mass) const
+  {
+    if (prm.penalty_step_ratio <= 0)
+      return prm.penalty_factor;
+    // k_i = factor E / h l_i, so omega_p = sqrt(factor) omega_p(1): the factor that puts the
+    // highest slave's omega_p at r omega_cells, r from the damped limit's step ratio.
+    double omega_unit = 0;
+    for (const auto &[i, m_red] : slave_mass)
+      omega_unit =
+        std::max(omega_unit, std::sqrt(c.e_master / c.h_contact * c.tributary[i] / m_red));
+    const double r =
+      penalty_omega_ratio_for_step(prm.penalty_step_ratio, prm.contact_damping_ratio);
+    const double omega_p = r * cells_omega();
+    return omega_p * omega_p / (omega_unit * omega_unit);
   }
 
   void ImpactProblem::check_initial_gaps(const ContactLayout &c)
@@ -323,7 +347,11 @@ namespace kimp::fem::internal
     log_line("contact: " + std::to_string(c.slaves.size()) + " slave nodes, " +
              std::to_string(c.master.size()) + " master segments" +
              (prm.rigid_slab ? " (rigid face)" : "") + ", k/l = " + fmt_sig(c.penalty_per_length) +
-             " N/m^2, h_contact = " + fmt_sig(c.h_contact) +
+             " N/m^2 (penalty factor " + fmt_sig(penalty_factor_used) +
+             (prm.penalty_step_ratio > 0 ?
+                ", from penalty_step_ratio " + fmt_sig(prm.penalty_step_ratio) :
+                std::string()) +
+             "), h_contact = " + fmt_sig(c.h_contact) +
              " m, initial gap = " + fmt_sig(initial_gap) + " m");
   }
 

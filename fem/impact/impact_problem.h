@@ -98,7 +98,9 @@ namespace kimp::fem::internal
      *  wall-soil interface force: the force the time loops balance with the inertia. */
     void internal_force(const Vec &u, Vec &f);
     void compute_time_step();
-    void log_line(const std::string &s) const;
+    /** Largest 2 c_p / h over the cells (h: a cell's shortest edge), over all ranks. */
+    double cells_omega() const;
+    void   log_line(const std::string &s) const;
     /** The slab's mean velocity along the impact: v_r (rigid) or the mass-weighted mean of v. */
     double slab_velocity(const Vec &v, double v_r) const;
     /** The separation test of both time loops: the slab comes in at no more than
@@ -164,6 +166,12 @@ namespace kimp::fem::internal
     /** The slave springs and dashpots (penalty, reduced mass), their lengths and the penalty
      *  frequency. */
     void make_contact_slaves(ContactLayout &c);
+    /** ImpactParameters::penalty_factor, or with penalty_step_ratio > 0 the factor that leaves
+     *  the damped stable step of cells and penalty at that fraction of the cells' own; slave_mass
+     *  holds each slave node and its reduced mass. */
+    double
+    contact_penalty_factor(const ContactLayout                                &c,
+                           const std::vector<std::pair<unsigned int, double>> &slave_mass) const;
     /** initial_gap: the smallest reference gap; an overlap is refused. */
     void check_initial_gaps(const ContactLayout &c);
     /** The weights of the mean wall-face and slab-front displacements. */
@@ -415,6 +423,8 @@ namespace kimp::fem::internal
     double                               initial_gap = 0;
     double contact_width = 0, contact_wave_speed = 0; // slave face length (m), wall c_p (m/s)
     double omega_penalty = 0, omega_mesh = 0;
+    /** The contact's penalty factor (ImpactParameters::penalty_factor or the step ratio's). */
+    double penalty_factor_used = 0;
     double dt = 0, dt_stable = 0;
 
     // Bookkeeping of the run.

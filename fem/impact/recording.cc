@@ -663,6 +663,7 @@ namespace kimp::fem::internal
     s.initial_gap      = initial_gap;
     for (const auto &sl : contact->slaves())
       s.penalty_stiffness = std::max(s.penalty_stiffness, sl.stiffness);
+    s.penalty_factor        = penalty_factor_used;
     s.n_dofs                = dof_handler.n_dofs();
     s.n_cells               = triangulation.n_global_active_cells();
     s.n_steps               = n_steps_done;

@@ -36,6 +36,31 @@ namespace kimp::fem
     return std::sqrt((l.lambda + 2 * l.mu) / m.density);
   }
 
+  double penalty_omega_ratio_for_step(double step_ratio, double damping_ratio)
+  {
+    internal::require(step_ratio > 0 && step_ratio < 1,
+                      "penalty_step_ratio = " + internal::fmt_double(step_ratio) +
+                        " (must be in (0, 1))");
+    // Step of mesh and penalty over the mesh's own at omega_p = r omega_mesh.
+    const auto ratio = [damping_ratio](double r)
+    {
+      const double q  = std::sqrt(1 + r * r);
+      const double xi = damping_ratio * r / q;
+      return (std::sqrt(1 + xi * xi) - xi) / q;
+    };
+    // ratio(r) <= 1 / sqrt(1 + r^2), so the root lies in [0, sqrt(1 / step_ratio^2 - 1)].
+    double lo = 0, hi = std::sqrt(1 / (step_ratio * step_ratio) - 1);
+    for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i)
+    {
+      const double mid = 0.5 * (lo + hi);
+      if (ratio(mid) > step_ratio)
+        lo = mid;
+      else
+        hi = mid;
+    }
+    return 0.5 * (lo + hi);
+  }
+
   ImpactResult run_impact(const ImpactParameters &parameters, MPI_Comm comm, std::ostream *log)
   {
     internal::ImpactProblem problem(parameters, comm, log);
@@ -181,6 +206,9 @@ namespace kimp::fem::internal
             "initial_velocity = " + fmt_double(prm.initial_velocity) + " m/s (must be > 0)");
     require(prm.penalty_factor > 0,
             "penalty_factor = " + fmt_double(prm.penalty_factor) + " (must be > 0)");
+    require(prm.penalty_step_ratio >= 0 && prm.penalty_step_ratio < 1,
+            "penalty_step_ratio = " + fmt_double(prm.penalty_step_ratio) +
+              " (must be in [0, 1); 0 = off)");
     require(prm.contact_damping_ratio >= 0 && prm.contact_damping_ratio <= 1,
             "contact_damping_ratio = " + fmt_double(prm.contact_damping_ratio) +
               " (must be in [0, 1])");
@@ -495,12 +523,8 @@ namespace kimp::fem::internal
             -slab_v >= prm.rebound_velocity_fraction * prm.initial_velocity);
   }
 
-  void ImpactProblem::compute_time_step()
+  double ImpactProblem::cells_omega() const
   {
-    // Q1 with a lumped mass: the highest mode of a cell of smallest edge h is omega = 2 c_p / h
-    // (exact in 1D); a contact spring adds omega_c^2 = k (1/m_s + 1/m_m) at its nodes. The
-    // damped central-difference limit is dt = 2 / omega (sqrt(1 + xi^2) - xi) (Belytschko
-    // et al. 2014, eq. 6.3.14) with xi the contact damping seen by the highest mode.
     double local_omega = 0;
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -511,7 +535,16 @@ namespace kimp::fem::internal
         local_omega =
           std::max(local_omega, 2 * p_wave_speed(prm.materials.at(cell->material_id())) / h);
       }
-    omega_mesh = Utilities::MPI::max(local_omega, comm);
+    return Utilities::MPI::max(local_omega, comm);
+  }
+
+  void ImpactProblem::compute_time_step()
+  {
+    // Q1 with a lumped mass: the highest mode of a cell of smallest edge h is omega = 2 c_p / h
+    // (exact in 1D); a contact spring adds omega_c^2 = k (1/m_s + 1/m_m) at its nodes. The
+    // damped central-difference limit is dt = 2 / omega (sqrt(1 + xi^2) - xi) (Belytschko
+    // et al. 2014, eq. 6.3.14) with xi the contact damping seen by the highest mode.
+    omega_mesh = cells_omega();
     if (omega_interface > 0) // the wall-soil interface springs
       omega_mesh = std::sqrt(omega_mesh * omega_mesh + omega_interface * omega_interface);
     const double omega = std::sqrt(omega_mesh * omega_mesh + omega_penalty * omega_penalty);

@@ -73,6 +73,9 @@ TEST(StudyScene, FidelityLadderIsValidatedWithKeyAndValue)
                    "accuracy.lumped_reference_dt"});
   expect_contains(scene_error("fem:\n  fidelity: sometimes\n"), {"fem.fidelity"});
   expect_contains(scene_error("fem:\n  fidelity_h_contact: [\"20 cm\"]\n"), {"h_max"});
+  // The study's levels set the penalty factor: a penalty scaled to the step is refused there.
+  expect_contains(scene_error("fem:\n  contact: {penalty_step_ratio: 0.7}\n"),
+                  {"study.yaml:2", "fem.contact.penalty_step_ratio = 0.7", "must be 0 in a study"});
 }
 
 TEST(StudyScene, VelocityAxisAndConsistentKDefaultsAndRules)

@@ -2,6 +2,7 @@
 // for 2 L / c), contact consistency, energy balance, penalty convergence, rigid vs elastic slab
 // and MPI agreement. Inelastic impacts and refused input are in inelastic_impact_test.cc, the
 // mesh study in convergence_test.cc (label slow).
+#include <cmath>
 #include <gtest/gtest.h>
 #include <iostream>
 #include <random>
@@ -310,6 +311,56 @@ namespace
     EXPECT_NEAR(r10.summary.impulse / r1.summary.impulse, 1.0, result_tolerance);
   }
 
+  TEST(Penalty, StepRatioGivesTheStatedStepAndKeepsTheImpact)
+  {
+    // penalty_step_ratio r: the penalty whose springs, with their damping, leave the explicit
+    // stable step at r times the cells' own 2 / omega_mesh. Undamped the root is closed-form:
+    // 1 / sqrt(1 + (omega_p / omega_mesh)^2) = r.
+    EXPECT_NEAR(penalty_omega_ratio_for_step(0.8, 0.0), std::sqrt(1 / (0.8 * 0.8) - 1), 1e-12);
+    constexpr double step_tolerance             = 1e-5; // the reference's penalty is 1e-12
+    constexpr double peak_tolerance             = 0.02; // the smoothed (first) peak
+    constexpr double result_tolerance           = 0.02; // impulse, duration, COR
+    constexpr double impulse_momentum_tolerance = 0.02; // |impulse / m (v_in + v_out) - 1|
+    constexpr double ratio                      = 0.6;
+    auto             p     = scene_parameters(0.025, false, "scene_step_ratio.msh");
+    const auto       stiff = run_impact(p, MPI_COMM_WORLD, nullptr);
+    // The cells' own limit: a vanishing penalty, stopped before the slab reaches the wall.
+    auto cells            = p;
+    cells.penalty_factor  = 1e-12;
+    cells.end_time        = 1e-4;
+    const double dt_cells = run_impact(cells, MPI_COMM_WORLD, nullptr).summary.dt_stable;
+    p.penalty_step_ratio  = ratio;
+    const auto scaled     = run_impact(p, MPI_COMM_WORLD, nullptr);
+    if (rank() == 0)
+      std::cout << "penalty factor 1:            " << summary_line(stiff) << "\npenalty_step_ratio "
+                << ratio << " (factor " << scaled.summary.penalty_factor
+                << "): " << summary_line(scaled) << "\ncells' own stable step " << dt_cells
+                << " s, with the factor-1 penalty " << stiff.summary.dt_stable << " s, scaled "
+                << scaled.summary.dt_stable << " s\n";
+    EXPECT_NEAR(scaled.summary.dt_stable / dt_cells, ratio, ratio * step_tolerance);
+    EXPECT_LT(stiff.summary.dt_stable / dt_cells, 0.6) << "the factor-1 penalty halves the step";
+    EXPECT_EQ(stiff.summary.penalty_factor, 1.0);
+    EXPECT_GT(scaled.summary.penalty_factor, 0.0);
+    EXPECT_LT(scaled.summary.penalty_factor, 1.0);
+    EXPECT_NEAR(scaled.summary.penalty_stiffness / stiff.summary.penalty_stiffness,
+                scaled.summary.penalty_factor,
+                1e-12);
+    EXPECT_NEAR(scaled.summary.peak_force / stiff.summary.peak_force, 1.0, peak_tolerance);
+    EXPECT_NEAR(scaled.summary.impulse / stiff.summary.impulse, 1.0, result_tolerance);
+    EXPECT_NEAR(scaled.summary.contact_duration / stiff.summary.contact_duration,
+                1.0,
+                result_tolerance);
+    EXPECT_NEAR(scaled.summary.apparent_cor / stiff.summary.apparent_cor, 1.0, result_tolerance);
+    for (const ImpactResult *r : {&stiff, &scaled})
+    {
+      const double momentum = p.slab_mass * p.initial_velocity * (1 + r->summary.apparent_cor);
+      EXPECT_NEAR(r->summary.impulse / momentum, 1.0, impulse_momentum_tolerance)
+        << summary_line(*r);
+    }
+    p.penalty_step_ratio = 1; // no penalty at all would give the mesh's own step: refused
+    EXPECT_ANY_THROW(run_impact(p, MPI_COMM_WORLD, nullptr));
+  }
+
   TEST(Scene, RigidSlabDoublesPeakForceAndKeepsImpulseAndLocalStiffness)
   {
     // A rigid slab has no axial wave: the force is not capped by rho c A v / 2, so the peak is
@@ -504,6 +555,24 @@ namespace
     if (rank() == 0)
       std::cout << "MPI: " << world.summary.n_ranks << " ranks vs 1, " << world.history.time.size()
                 << " samples, max |dF| / max F = " << max_difference / max_force << '\n';
+  }
+
+  TEST(Mpi, ScaledPenaltyIsTheSameOnEveryPartition)
+  {
+    // penalty_step_ratio takes the cells' largest omega and the slaves' masses over all ranks:
+    // 1 or 2 ranks choose the same factor and step as one rank alone.
+    constexpr double tolerance = 1e-12;
+    auto             p         = scene_parameters(0.05, false, "scene_mpi_step_ratio.msh");
+    p.end_time                 = 0.002;
+    p.penalty_step_ratio       = 0.7;
+    const auto runs            = run_on_world_and_self(p);
+    EXPECT_NEAR(runs.world.summary.penalty_factor / runs.self.summary.penalty_factor,
+                1.0,
+                tolerance);
+    EXPECT_NEAR(runs.world.summary.dt / runs.self.summary.dt, 1.0, tolerance);
+    const auto [max_force, max_difference] = force_history_difference(runs.world, runs.self);
+    ASSERT_GT(max_force, 0);
+    EXPECT_LT(max_difference, 1e-10 * max_force);
   }
 
   TEST(Mpi, FramesGatherTheWholeMeshOnRankZeroAsOnOneRank)
