@@ -62,6 +62,7 @@ for name in "${cases[@]}"; do
     if /usr/bin/time -f "$name run $i: %e s wall, %U s user, %M kB" \
       "$kimp" fem "$work/$name.yaml" --pushover -o "$work/out" > /dev/null 2>"$work/err"; then
       tail -1 "$work/err"
+      grep -ho "[0-9]* steps, [0-9]* Newton iterations" "$work/err" | sed 's/^/  /' || true
       grep -h "^H" "$work/out/pushover_summary.csv" | awk -F, 'function g(x, s) { return x ~ /nan/ ? "-" : sprintf("%.4g", x * s) }
         {printf "  %s: capacity %s kN/m at %s mm, k0 %s, cracked %s, K_ur %s kN/mm/m, set %s mm, %s cells\n", $1, g($3, 1e-3), g($4, 1e3), g($5, 1e-6), g($6, 1e-6), g($8, 1e-6), g($9, 1e3), $11}'
       echo "  steps: $(($(grep -c "^H" "$work/out/pushover.csv") - 1))"

@@ -479,8 +479,10 @@ namespace
     // thrust would (the active state lies below the at-rest one). Newton used to stall
     // mid-unloading here (a singular tangent: soil at its yield surface's apex next to open
     // interface pairs).
+    // The first unloading step is 0.25 mm (path entry 9.75 mm): its secant is the unloading's
+    // initial stiffness whatever halvings the step control makes after it.
     PushoverParameters p    = rigid_wall(0.05);
-    p.path                  = {0.01, 0.0, 0.015};
+    p.path                  = {0.01, 0.00975, 0.0, 0.015};
     p.increment             = 1e-3;
     const PushoverResult  r = run_pushover(p);
     const PushoverSummary s = summarise_pushover(r.curve);
