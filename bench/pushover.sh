@@ -14,7 +14,9 @@
 # 2.00") choose the convergence study (the 2.5 cm level takes 1-3 minutes of CPU per height; the
 # 1.25 cm level 3-17 minutes, and it stops short of 5 % drift: at 47.6 mm at H = 1.25 m and at
 # 6.5 mm at 1.50 m, docs/validation.md; the study's two finest levels:
-# KIMP_PUSHOVER_LEVELS="2.5cm 1.25cm"). Each run prints its steps and Newton iterations.
+# KIMP_PUSHOVER_LEVELS="2.5cm 1.25cm"; in 0.5 mm steps, KIMP_PUSHOVER_INCREMENT="0.5 mm", the
+# 1.25 cm level runs to 5 % drift at H = 1.25 m). KIMP_PUSHOVER_INCREMENT (default "1 mm") is
+# the step of the convergence study. Each run prints its steps and Newton iterations.
 # KIMP_PUSHOVER_EXTRAS=0 skips the cases after the convergence study.
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
@@ -22,6 +24,7 @@ bench_init pushover.sh 1 "$@"
 levels="${KIMP_PUSHOVER_LEVELS:-10cm 5cm 2.5cm}"
 heights="${KIMP_PUSHOVER_HEIGHTS:-1.25 1.50 2.00}"
 extras="${KIMP_PUSHOVER_EXTRAS:-1}"
+increment="${KIMP_PUSHOVER_INCREMENT:-1 mm}"
 bench_require fem time
 export KIMP_DATA_DIR="$root"
 bench_workdir
@@ -45,7 +48,7 @@ cases=()
 for height in $heights; do
   for level in $levels; do
     name="reinforced_sand_H${height}_${level}"
-    scene "${level%cm} cm" "[]" damage_plasticity true "$height" "1 mm" > "$work/$name.yaml"
+    scene "${level%cm} cm" "[]" damage_plasticity true "$height" "$increment" > "$work/$name.yaml"
     cases+=("$name")
   done
 done
