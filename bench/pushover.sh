@@ -15,8 +15,8 @@
 # 1.25 cm level 3-17 minutes, and it stops short of 5 % drift: at 47.6 mm at H = 1.25 m and at
 # 6.5 mm at 1.50 m, docs/validation.md; the study's two finest levels:
 # KIMP_PUSHOVER_LEVELS="2.5cm 1.25cm"; in 0.5 mm steps, KIMP_PUSHOVER_INCREMENT="0.5 mm", the
-# 1.25 cm level runs to 5 % drift at H = 1.25 and 1.50 m). KIMP_PUSHOVER_INCREMENT (default "1 mm") is
-# the step of the convergence study. Each run prints its steps and Newton iterations.
+# 1.25 cm level runs to 5 % drift at H = 1.25 and 1.50 m). KIMP_PUSHOVER_INCREMENT (default
+# "1 mm") is the step of the convergence study. Each run prints its steps and Newton iterations.
 # KIMP_PUSHOVER_EXTRAS=0 skips the cases after the convergence study.
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
