@@ -333,8 +333,11 @@ namespace kimp::fem
     // the hinge's rotation), and the Newton matrix keeps a floor of the virgin stiffness where
     // the soil sits at the apex of its yield surface and interface pairs open (an unloading
     // wall): docs/physics.md §6 "Static pushover", "Newton".
-    s.extrapolated_predictor            = true;
-    s.tangent_floor                     = tangent_floor;
+    s.extrapolated_predictor = true;
+    s.tangent_floor          = tangent_floor;
+    // The floor falls with the out-of-balance force: the consistent tangent's quadratic rate
+    // near the solution (docs/physics.md §6 "Static pushover", "Newton").
+    s.floor_follows_residual            = true;
     const StaticPlasticityResult solved = run_static_plasticity(s, log);
 
     PushoverResult out;
@@ -349,6 +352,7 @@ namespace kimp::fem
     out.n_error_cuts           = solved.n_error_cuts;
     out.n_large_error_steps    = solved.n_large_error_steps;
     out.largest_step_error     = solved.largest_step_error;
+    out.n_newton_iterations    = solved.n_newton_iterations;
     for (const auto &cell : solved.cell_states)
       out.cells.push_back({cell.centre[0],
                            cell.centre[1],
@@ -365,6 +369,7 @@ namespace kimp::fem
       point.segment      = static_cast<unsigned int>(step.segment == 0 ? 0 : step.segment - 1);
       point.unloading    = unloading[step.segment];
       out.curve.push_back(point);
+      out.step_residuals.push_back(step.residuals);
     }
     return out;
   }

@@ -150,6 +150,11 @@ namespace kimp::fem
     unsigned int              n_large_error_steps = 0;
     double                    largest_step_error  = 0;
     std::vector<PushoverCell> cells; ///< the final state, one per cell
+    /** Newton iterations of the run (failed, halved attempts included). */
+    unsigned long n_newton_iterations = 0;
+    /** Per converged step (curve[k] for k >= 1): its relative out-of-balance force after each
+     *  Newton solve (the last one within `tolerance`). */
+    std::vector<std::vector<double>> step_residuals;
   };
 
   /**

@@ -184,6 +184,8 @@ namespace kimp::fem
       double         force_scale_     = 0; // largest converged |reactions|
       unsigned long  step_            = 0;
       std::ostream  *log_             = nullptr;
+      double         floor_           = 0; // the tangent floor of the current Newton solve
+      unsigned long  n_iterations_    = 0; // Newton iterations of the run
     };
 
     StaticProblem::StaticProblem(const StaticPlasticityParameters &p)
@@ -475,12 +477,11 @@ namespace kimp::fem
           for (unsigned int i = 0; i < 4; ++i)
             k(i, j) = -(fp[4 * pair + i] - fm[4 * pair + i]) / (2 * delta);
         }
-        if (p_.tangent_floor > 0)
+        if (floor_ > 0)
         {
           // An open (or sliding) pair keeps a floor of its springs in the Newton matrix.
           const StaticInterfacePair &sp = p_.interface[pair];
-          const double               kn = p_.tangent_floor * sp.normal_stiffness,
-                       kt               = p_.tangent_floor * sp.tangential_stiffness;
+          const double kn = floor_ * sp.normal_stiffness, kt = floor_ * sp.tangential_stiffness;
           const double n[2] = {sp.nx, sp.ny}, tv[2] = {-sp.ny, sp.nx};
           for (unsigned int i = 0; i < 4; ++i)
             for (unsigned int j = 0; j < 4; ++j)
@@ -611,9 +612,9 @@ namespace kimp::fem
           VoigtTangent      t =
             cell_fd_[c] ? difference_tangent(*cell_law_[c], e, history_.committed(c, q), scratch) :
                                cell_law_[c]->tangent(e, history_.committed(c, q));
-          if (p_.tangent_floor > 0)
+          if (floor_ > 0)
             for (unsigned int a = 0; a < 9; ++a)
-              t[a] += p_.tangent_floor * virgin_[c][a];
+              t[a] += floor_ * virgin_[c][a];
           const double *B = &bbar_[(c * n_q + q) * n_d * 3];
           const double  w = jxw_[c * n_q + q];
           for (unsigned int j = 0; j < n_d; ++j)
@@ -745,6 +746,12 @@ namespace kimp::fem
         for (unsigned int k = 0; k < p_.max_iterations; ++k)
         {
           const Vector<double> &l = k == 0 && !lifted ? lift : zero;
+          // The floor: fixed, or the iterate's relative out-of-balance force below it.
+          const double current = k == 0 ? baseline : residuals.back();
+          floor_               = p_.floor_follows_residual && std::isfinite(current) ?
+                                   std::min(p_.tangent_floor, current) :
+                                   p_.tangent_floor;
+          ++n_iterations_;
           assemble(u, r, l, rhs);
           if (damping > 0)
             for (unsigned int d = 0; d < u.size(); ++d)
@@ -979,6 +986,7 @@ namespace kimp::fem
           state.plastic_strain = std::max(state.plastic_strain, o.equivalent_plastic_strain);
         }
       }
+      out.n_newton_iterations = n_iterations_;
       out.vertex_displacements.assign(tria_.n_vertices(), {{0.0, 0.0}});
       for (const auto &cell : dof_handler_.active_cell_iterators())
         for (const auto v : cell->vertex_indices())

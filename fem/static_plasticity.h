@@ -188,6 +188,16 @@ namespace kimp::fem
      */
     double tangent_floor = 0;
     /**
+     * The floor of each Newton solve follows the out-of-balance force: min(tangent_floor, the
+     * iterate's relative residual) instead of tangent_floor throughout (a Levenberg-Marquardt
+     * parameter proportional to the residual, Yamashita & Fukushima 2001). It still bounds the
+     * update where the tangent is singular, but vanishes as Newton converges, so the rate near
+     * the solution is that of the consistent tangent (quadratic) instead of linear; a fixed
+     * floor leaves an error of about floor x virgin / tangent stiffness per iteration in the
+     * soft modes of a plastic zone.
+     */
+    bool floor_follows_residual = false;
+    /**
      * With damped_newton: the first iterate of a step may also be the converged state moved on
      * by the last step's increment (free displacements and controlled load) scaled to this
      * step's, kept when its out-of-balance force is lower than that of the state with only the
@@ -232,6 +242,8 @@ namespace kimp::fem
     double       initial_out_of_balance = 0;
     double       weight                 = 0; ///< total body weight, N/m
     unsigned int n_dofs                 = 0;
+    /** Newton iterations of the whole run, those of failed (halved) attempts included. */
+    unsigned long n_newton_iterations = 0;
     /** Steps accepted at loose_tolerance, and the largest relative residual among them. */
     unsigned int n_loose_steps          = 0;
     double       largest_loose_residual = 0;

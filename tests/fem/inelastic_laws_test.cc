@@ -270,6 +270,114 @@ namespace
     EXPECT_LT(tangent_error(law, {{-3.5e-4, 1.2e-4, 4.5e-4}}, h1.data()), 1e-6);
   }
 
+  TEST(MohrCoulomb, ConsistentTangentOfEveryReturnTypeEqualsFiniteDifference)
+  {
+    // The tangent of the return mapping (what a Newton solver assembles) against a central
+    // difference of its stress, at every committed state of random strain walks from an
+    // at-rest state: elastic points, the main plane, both edges (sigma_1 = sigma_2, the
+    // extension edge, and sigma_2 = sigma_3, the compression edge), the apex, the cut-off and
+    // the mixed corners. A point whose +-d neighbours end on another active set is skipped
+    // (the return mapping has a kink there; the tangent is one-sided).
+    const SoilParameters cases[] = {soil(0, 34, 4, 0),
+                                    soil(1e3, 30, 0, 1e3),
+                                    soil(10e3, 30, 10, 2e3),
+                                    soil(20e3, 0, 0, 1e9)};
+    unsigned int         seed    = 424242;
+    const auto           uniform = [&seed]() // [-1, 1), a fixed linear congruential sequence
+    {
+      seed = 1103515245u * seed + 12345u;
+      return static_cast<double>((seed >> 8) & 0xffffff) / 8388608.0 - 1.0;
+    };
+    // Per kind: 0 elastic, 1 main, 2 extension edge, 3 compression edge, 4 apex, 5 cut-off,
+    // 6 mixed.
+    const char *names[7] =
+      {"elastic", "main", "extension edge", "compression edge", "apex", "cut-off", "mixed"};
+    unsigned int counted[7] = {}, skipped = 0;
+    double       worst[7] = {};
+    for (const SoilParameters &p : cases)
+    {
+      const MohrCoulombLaw law(p);
+      const double         sp = std::sin(p.friction_angle);
+      for (int point = 0; point < 40; ++point)
+      {
+        Driver              a(law);
+        const double        sv = -20e3 * (1 + point % 5), k0 = 1 - sp;
+        const InitialStress s0{{k0 * sv, sv, k0 * sv, 0}};
+        law.set_initial_stress(a.h0.data(), s0);
+        VoigtStrain e{{0, 0, 0}};
+        for (int step = 0; step < 300; ++step)
+        {
+          for (double &x : e)
+            x += 1.5e-4 * uniform();
+          // The state at e from the committed history a.h0, then commit it.
+          std::vector<double> h1(law.n_history()), hp(law.n_history()), hm(law.n_history());
+          const VoigtStress   s     = law.stress(e, a.h0.data(), h1.data());
+          const VoigtTangent  t     = law.tangent(e, a.h0.data());
+          const double        scale = std::max(
+            {std::abs(e[0] - a.h0[0]), std::abs(e[1] - a.h0[1]), std::abs(e[2] - a.h0[3]), 1e-9});
+          const double d   = 1e-5 * scale;
+          double       err = 0, norm = 0;
+          bool         kink = false;
+          for (unsigned int j = 0; j < 3; ++j)
+          {
+            VoigtStrain ep = e, em = e;
+            ep[j] += d;
+            em[j] -= d;
+            const VoigtStress sp_ = law.stress(ep, a.h0.data(), hp.data());
+            const VoigtStress sm_ = law.stress(em, a.h0.data(), hm.data());
+            kink                  = kink || hp[7] != h1[7] || hm[7] != h1[7];
+            for (unsigned int i = 0; i < 3; ++i)
+            {
+              const double fd = (sp_[i] - sm_[i]) / (2 * d);
+              err             = std::max(err, std::abs(fd - t[3 * i + j]));
+            }
+          }
+          for (unsigned int k = 0; k < 9; ++k)
+            norm = std::max(norm, std::abs(t[k]));
+          norm = std::max(norm, 1e-3 * p.youngs_modulus); // an apex tangent is zero
+          a.h0 = h1;
+          if (kink)
+          {
+            ++skipped;
+            continue;
+          }
+          const auto type = static_cast<ReturnType>(static_cast<int>(h1[6]));
+          int        kind = 0;
+          if (type == ReturnType::main)
+            kind = 1;
+          else if (type == ReturnType::edge)
+          {
+            // Which pair of principal stresses is equal: the largest two (extension edge) or
+            // the smallest two (compression edge).
+            auto ps = principal(s, law.output(e, h1.data()).sigma_zz);
+            std::sort(ps.begin(), ps.end());
+            kind = std::abs(ps[2] - ps[1]) < std::abs(ps[1] - ps[0]) ? 2 : 3;
+          }
+          else if (type == ReturnType::apex)
+            kind = 4;
+          else if (type == ReturnType::tension)
+            kind = 5;
+          else if (type == ReturnType::mixed)
+            kind = 6;
+          (void)sp;
+          ++counted[kind];
+          worst[kind] = std::max(worst[kind], err / norm);
+        }
+      }
+    }
+    for (unsigned int k = 0; k < 7; ++k)
+      std::printf("%-16s %5u points, largest relative error of the tangent %.2e\n",
+                  names[k],
+                  counted[k],
+                  worst[k]);
+    std::printf("skipped (a kink within +-d): %u\n", skipped);
+    for (unsigned int k = 0; k < 7; ++k)
+    {
+      EXPECT_GT(counted[k], 20u) << names[k];
+      EXPECT_LT(worst[k], 1e-6) << names[k];
+    }
+  }
+
   TEST(DruckerPrager, ConsistentTangentAndSurface)
   {
     const SoilParameters   p = soil(10e3, 30, 10, 0);

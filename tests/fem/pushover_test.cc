@@ -13,6 +13,7 @@
 #include <cmath>
 #include <gtest/gtest.h>
 #include <iostream>
+#include <limits>
 #include <set>
 #include <vector>
 
@@ -377,6 +378,50 @@ namespace
               << " kN/mm/m, F(1 cm) = " << s.force_at_1cm / 1e3 << " kN/m\n";
   }
 
+  TEST(Pushover, NewtonConvergesSuperlinearlyInThePlasticBackfill)
+  {
+    // An elastic wall pushed 5 mm into the sand of rigid_wall() (contact interface, geostatic
+    // state) on 10 cm cells, with a tolerance tight enough to show Newton's rate: the passive
+    // wedge is plastic from the first millimetre. Every pair of successive relative residuals
+    // r_k, r_k+1 in the asymptotic range (r_k <= 1e-5, r_k+1 above the round-off floor 1e-11)
+    // must contract by at least 20 times (superlinear: the ratio falls with r_k). With the
+    // Newton matrix's tangent floor fixed at 1e-3 the rate was linear, r_k+1 / r_k = 0.26-0.33
+    // in every such pair, and the push took 87 Newton iterations instead of 46.
+    PushoverParameters p   = rigid_wall(0.1);
+    p.wall                 = PushoverParameters::Wall::elastic;
+    p.max_element_size     = 0.2;
+    p.path                 = {0.005};
+    p.increment            = 1e-3;
+    p.tolerance            = 1e-10;
+    p.loose_tolerance      = 1e-3;
+    const PushoverResult r = run_pushover(p);
+    ASSERT_NEAR(r.curve.back().displacement, 0.005, 1e-9);
+    EXPECT_EQ(r.n_loose_steps, 0u);
+    unsigned int n_pairs = 0, n_slow = 0;
+    double       largest = 0; // the largest r_k+1 / r_k of the asymptotic pairs
+    for (std::size_t k = 0; k < r.step_residuals.size(); ++k)
+    {
+      const std::vector<double> &res = r.step_residuals[k];
+      std::cout << "step " << k + 1 << " (" << r.curve[k + 1].displacement * 1e3 << " mm):";
+      for (const double x : res)
+        std::cout << ' ' << x;
+      std::cout << '\n';
+      for (std::size_t i = 0; i + 1 < res.size(); ++i)
+        if (res[i] <= 1e-5 && res[i + 1] > 1e-11 && res[i + 1] < res[i])
+        {
+          const double ratio = res[i + 1] / res[i];
+          largest            = std::max(largest, ratio);
+          ++n_pairs;
+          n_slow += ratio > 0.05 ? 1 : 0;
+        }
+    }
+    std::cout << "asymptotic pairs " << n_pairs << ", largest r_k+1 / r_k " << largest
+              << ", above 0.05: " << n_slow << "; " << r.n_newton_iterations
+              << " Newton iterations\n";
+    EXPECT_GE(n_pairs, 3u);
+    EXPECT_EQ(n_slow, 0u);
+  }
+
   TEST(Pushover, CyclicPushLeavesASetAndReloadsOntoTheEnvelope)
   {
     // The bare wall past the yield of its bars (0.6 % drift = 7.5 mm), unloaded and reloaded.
@@ -434,8 +479,10 @@ namespace
     // thrust would (the active state lies below the at-rest one). Newton used to stall
     // mid-unloading here (a singular tangent: soil at its yield surface's apex next to open
     // interface pairs).
+    // The first unloading step is 0.25 mm (path entry 9.75 mm): its secant is the unloading's
+    // initial stiffness whatever halvings the step control makes after it.
     PushoverParameters p    = rigid_wall(0.05);
-    p.path                  = {0.01, 0.0, 0.015};
+    p.path                  = {0.01, 0.00975, 0.0, 0.015};
     p.increment             = 1e-3;
     const PushoverResult  r = run_pushover(p);
     const PushoverSummary s = summarise_pushover(r.curve);
