@@ -114,14 +114,17 @@ async function main() {
           return {
             title: first ? first.querySelector('summary').textContent : '',
             rows: t ? Array.from(t.querySelectorAll('tbody tr')).map((r) => r.children[2].textContent) : [],
+            envelopes: t ? Array.from(t.querySelectorAll('tbody tr')).map((r) => r.children[3].textContent) : [],
           };
         });
         check(
           shown.title.startsWith('Yielding moat walls') &&
             shown.rows.length === runs.length - 1 &&
-            shown.rows.every((s) => s === 'pushover' || s === 'estimate'),
+            shown.rows.every((s) => s === 'pushover' || s === 'estimate') &&
+            shown.envelopes.every((s) => s === 'hull' || s === 'bilinear'),
           `the first section is the yielding walls (${shown.title}, ${shown.rows.length} of ` +
-            `${runs.length - 1} runs, element from ${shown.rows.join(', ')})`,
+            `${runs.length - 1} runs, element from ${shown.rows.join(', ')}, envelope ` +
+            `${shown.envelopes.join(', ')})`,
         );
       }
       const answer = await page.evaluate((second) => {

@@ -297,10 +297,11 @@
     if (col('wall_height_m') < 0) return;
     const elements = elementsText ? parseCsv(elementsText) : [];
     const eHead = elements[0] || [];
-    const source = (h) => {
+    const elementValue = (h, name) => {
       const row = elements.slice(1).find((r) => r[eHead.indexOf('wall_height_m')] === h);
-      return row && eHead.indexOf('source') >= 0 ? row[eHead.indexOf('source')] : '-';
+      return row && eHead.indexOf(name) >= 0 ? row[eHead.indexOf(name)] : '-';
     };
+    const source = (h) => elementValue(h, 'source');
     const cell = (r, n, digits) => (col(n) >= 0 && r[col(n)] !== '' ? fmt(parseFloat(r[col(n)]), digits) : '-');
     const sec = section(parent, 'Yielding moat walls (the answer with inelastic materials)');
     table(
@@ -309,9 +310,10 @@
         'record',
         'H (m)',
         'element from',
-        'F_y W (kN)',
+        'envelope',
+        'capacity W (kN)',
         'peak wall resistance (kN)',
-        'resistance / F_y W',
+        'resistance / capacity W',
         'peak wall displacement (cm)',
         'residual (cm)',
         'failed',
@@ -323,6 +325,7 @@
           r[col('record')],
           cell(r, 'wall_height_m', 4),
           source(r[col('wall_height_m')]),
+          elementValue(r[col('wall_height_m')], 'envelope'),
           cell(r, 'wall_capacity_kN', 4),
           cell(r, 'peak_wall_resistance_kN', 4),
           cell(r, 'resistance_over_capacity', 3),
@@ -338,9 +341,10 @@
       el('p', {
         class: 'muted',
         text:
-          'F_y W: the element\'s yield force over the building width; past it the wall hardens ' +
-          'with the pushover\'s slope, so the ratio may exceed 1 without failure. The k table below ' +
-          'is the comparison with Table 2.1.',
+          'capacity W: the wall-and-backfill part\'s capacity over the building width. On a hull ' +
+          '(the pushover\'s concave hull) it is the largest force, flat past it; on a bilinear it ' +
+          'is F_y, past which the wall hardens with the pushover\'s slope, so the ratio may exceed 1 ' +
+          'without failure. The k table below is the comparison with Table 2.1.',
       }),
     );
   }
