@@ -9,6 +9,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <gtest/gtest.h>
 #include <iostream>
 #include <memory>
@@ -198,18 +199,27 @@ namespace
     std::vector<int>         statuses(25, 0);
     std::atomic<int>         ready{0};
     std::vector<std::thread> clients;
+    // One POST on its own connection: the HTTP status, or -100 - httplib::Error without one.
+    const auto post = [&](const std::function<void()> &before_sending)
+    {
+      httplib::Client client("127.0.0.1", gui.port());
+      client.set_read_timeout(60, 0);
+      client.set_write_timeout(60, 0);
+      before_sending();
+      const auto r = client.Post("/api/runs", page_headers(gui), body, "application/json");
+      return r ? r->status : -100 - static_cast<int>(r.error());
+    };
     for (std::size_t i = 0; i < statuses.size(); ++i)
       clients.emplace_back(
         [&, i]
         {
-          httplib::Client client("127.0.0.1", gui.port());
-          client.set_read_timeout(60, 0);
-          client.set_write_timeout(60, 0);
-          ++ready;
-          while (ready < static_cast<int>(statuses.size()))
-            std::this_thread::yield();
-          const auto r = client.Post("/api/runs", page_headers(gui), body, "application/json");
-          statuses[i]  = r ? r->status : -100 - static_cast<int>(r.error());
+          statuses[i] = post(
+            [&]
+            {
+              ++ready;
+              while (ready < static_cast<int>(statuses.size()))
+                std::this_thread::yield();
+            });
         });
     for (auto &t : clients)
       t.join();
@@ -217,15 +227,16 @@ namespace
     // connection at the transport level (httplib's Write or Read error, no HTTP answer; the cause
     // is not established). A client retries such a request once, after the burst; the checks
     // below still hold every answer to 201 or 429, the cap, and the run list to the 201s.
+    int retried = 0;
     for (int &status : statuses)
       if (status < 0)
       {
-        httplib::Client client("127.0.0.1", gui.port());
-        client.set_read_timeout(60, 0);
-        client.set_write_timeout(60, 0);
-        const auto r = client.Post("/api/runs", page_headers(gui), body, "application/json");
-        status       = r ? r->status : -100 - static_cast<int>(r.error());
+        ++retried;
+        status = post([] {});
       }
+    // A lost connection now and then, not a server that drops a burst.
+    RecordProperty("retried", retried);
+    EXPECT_LE(retried, 3) << "requests without an HTTP answer in the burst";
     const auto accepted = std::count(statuses.begin(), statuses.end(), 201);
     const auto refused  = std::count(statuses.begin(), statuses.end(), 429);
     RecordProperty("accepted", static_cast<int>(accepted));
