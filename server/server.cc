@@ -69,6 +69,11 @@ namespace kimp::server
     /// have threads for ordinary requests.
     constexpr unsigned request_threads   = 32;
     constexpr unsigned max_event_streams = 16;
+    /// Connections the kernel holds until a thread accepts them. Debian's compiled cpp-httplib
+    /// listens with a backlog of 5: a burst past that (a page's parallel requests, many clients
+    /// at once) overflows it, the kernel falls back to SYN cookies, and each connection whose
+    /// cookie fails is reset without an answer. listen() again on the bound socket raises it.
+    constexpr int listen_backlog = 1024;
 
     /// `value` as JSON text: any bytes that are not UTF-8 (a request's path, a child's log)
     /// replaced by U+FFFD, never an exception.
@@ -221,7 +226,8 @@ namespace kimp::server
     GuiOptions      options;
     httplib::Server http;
     RunManager      runs;
-    int             port = 0;
+    int             port          = 0;
+    int             listen_socket = -1; ///< the bound socket (its backlog raised after bind)
     SceneCommands   commands;
     /// The POST routes (post()): the only requests whose body is read.
     std::vector<std::regex> post_routes;
@@ -863,11 +869,12 @@ namespace kimp::server
     // SO_REUSEADDR only: cpp-httplib's default SO_REUSEPORT would let a second kimp gui bind the
     // port of a running one (and the kernel share the connections between them).
     impl_->http.set_socket_options(
-      [](socket_t sock)
+      [this](socket_t sock)
       {
         int yes = 1;
         setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
         fcntl(sock, F_SETFD, FD_CLOEXEC);
+        impl_->listen_socket = sock;
       });
     const std::string host = impl_->options.host == "localhost" ? "127.0.0.1" : impl_->options.host;
     errno                  = 0;
@@ -877,6 +884,9 @@ namespace kimp::server
       impl_->port = requested;
     else
       impl_->port = -1;
+    if (impl_->port > 0 && ::listen(impl_->listen_socket, listen_backlog) != 0)
+      throw std::runtime_error(std::string("kimp gui: cannot raise the listen backlog: ") +
+                               std::strerror(errno));
     if (impl_->port <= 0)
     {
       const int error = errno;

@@ -199,44 +199,23 @@ namespace
     std::vector<int>         statuses(25, 0);
     std::atomic<int>         ready{0};
     std::vector<std::thread> clients;
-    // One POST on its own connection: the HTTP status, or -100 - httplib::Error without one.
-    const auto post = [&](const std::function<void()> &before_sending)
-    {
-      httplib::Client client("127.0.0.1", gui.port());
-      client.set_read_timeout(60, 0);
-      client.set_write_timeout(60, 0);
-      before_sending();
-      const auto r = client.Post("/api/runs", page_headers(gui), body, "application/json");
-      return r ? r->status : -100 - static_cast<int>(r.error());
-    };
+    // Each POST on its own connection, all sent at once: the HTTP status, or -100 -
+    // httplib::Error where there was no answer (a connection reset: none may be).
     for (std::size_t i = 0; i < statuses.size(); ++i)
       clients.emplace_back(
         [&, i]
         {
-          statuses[i] = post(
-            [&]
-            {
-              ++ready;
-              while (ready < static_cast<int>(statuses.size()))
-                std::this_thread::yield();
-            });
+          httplib::Client client("127.0.0.1", gui.port());
+          client.set_read_timeout(60, 0);
+          client.set_write_timeout(60, 0);
+          ++ready;
+          while (ready < static_cast<int>(statuses.size()))
+            std::this_thread::yield();
+          const auto r = client.Post("/api/runs", page_headers(gui), body, "application/json");
+          statuses[i]  = r ? r->status : -100 - static_cast<int>(r.error());
         });
     for (auto &t : clients)
       t.join();
-    // On an overloaded machine (the suite in parallel on 2 cores) about one burst in ten loses a
-    // connection at the transport level (httplib's Write or Read error, no HTTP answer; the cause
-    // is not established). A client retries such a request once, after the burst; the checks
-    // below still hold every answer to 201 or 429, the cap, and the run list to the 201s.
-    int retried = 0;
-    for (int &status : statuses)
-      if (status < 0)
-      {
-        ++retried;
-        status = post([] {});
-      }
-    // A lost connection now and then, not a server that drops a burst.
-    RecordProperty("retried", retried);
-    EXPECT_LE(retried, 3) << "requests without an HTTP answer in the burst";
     const auto accepted = std::count(statuses.begin(), statuses.end(), 201);
     const auto refused  = std::count(statuses.begin(), statuses.end(), 429);
     RecordProperty("accepted", static_cast<int>(accepted));
@@ -257,6 +236,39 @@ namespace
     }
     EXPECT_LE(running, 2);
     EXPECT_LE(queued, 16);
+    stop(gui);
+  }
+
+  // Connections that arrive while no thread accepts (a burst, a server busy or stopped for a
+  // moment) wait in the kernel's listen queue. cpp-httplib's own backlog of 5 overflowed: the
+  // kernel answered with SYN cookies and reset the connections whose cookie failed, and an
+  // earlier version of this suite lost one request in ten bursts of 25.
+  TEST(GuiHardening, ABurstOfConnectionsToAStoppedServerIsAnsweredInFullWhenItResumes)
+  {
+    const kimp::testing::TempDir dir{"gui_backlog"};
+    GuiProcess                   gui(binary("kimp"), dir.path(), serving_runs_in(dir.path()));
+    ASSERT_GT(gui.port(), 0) << gui.err();
+    ASSERT_TRUE(info_answers(gui));
+    // Below the 128 a kernel's somaxconn may cap the backlog at.
+    constexpr int     clients = 120;
+    const std::string request =
+      "GET /api/info HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(gui.port()) + "\r\n\r\n";
+    for (int round = 0; round < 2; ++round)
+    {
+      ASSERT_EQ(kill(gui.pid(), SIGSTOP), 0);
+      std::vector<int>         statuses(clients, 0);
+      std::vector<std::thread> threads;
+      for (int i = 0; i < clients; ++i)
+        threads.emplace_back([&, i]
+                             { statuses[i] = status_of(raw_exchange(gui.port(), request)); });
+      std::this_thread::sleep_for(std::chrono::seconds(2));
+      ASSERT_EQ(kill(gui.pid(), SIGCONT), 0);
+      for (auto &t : threads)
+        t.join();
+      EXPECT_EQ(std::count(statuses.begin(), statuses.end(), 200), clients)
+        << "round " << round << ": connections without an answer (reset or timed out)";
+    }
+    EXPECT_TRUE(info_answers(gui));
     stop(gui);
   }
 
