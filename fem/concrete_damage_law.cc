@@ -72,8 +72,9 @@ namespace kimp::fem
     , reinforced_(reinforcement.any())
     , plastic_(p.plastic_fraction > 0)
     , bars_(p.plastic_fraction > 0 ? p_slot + 4 : p_slot)
+    , bar_slots_(reinforced_ ? (reinforcement.strain_penetration > 0 ? 7 : 6) : 0)
     , implex_on_(update == DamageUpdate::implex)
-    , implex_(bars_ + (reinforced_ ? 6 : 0))
+    , implex_(bars_ + bar_slots_)
   {
     // beta falls over the opening d_agg / 2: below 1 mm its slope (a stiffness of the opening
     // against the shear energy) would outrun the explicit step.
@@ -81,9 +82,10 @@ namespace kimp::fem
         !(p.shear_retention_floor >= 0 && p.shear_retention_floor <= 1))
       throw std::invalid_argument("concrete damage law: need aggregate_size >= 1 mm and 0 <= "
                                   "shear_retention_floor <= 1");
-    if (!(reinforcement.dowel_coefficient >= 0) || !(reinforcement.hinge_length >= 0))
-      throw std::invalid_argument("reinforcement: need dowel_coefficient >= 0 and hinge_length "
-                                  ">= 0");
+    if (!(reinforcement.dowel_coefficient >= 0) || !(reinforcement.hinge_length >= 0) ||
+        !(reinforcement.strain_penetration >= 0))
+      throw std::invalid_argument("reinforcement: need dowel_coefficient, hinge_length and "
+                                  "strain_penetration >= 0");
     if (!(p.plastic_fraction >= 0 && p.plastic_fraction < 1))
       throw std::invalid_argument("concrete damage law: need 0 <= plastic_fraction < 1");
     const ReinforcementParameters &r = reinforcement;
@@ -119,6 +121,15 @@ namespace kimp::fem
     std::fill(h, h + n_history(), 0.0);
     h[5] = length > 0 ? length : 0.1;
     h[6] = 1; // crack normal (1, 0) until the point cracks (no effect while d_t = 0)
+    if (bar_slots_ > 6)
+      h[bars_ + 6] = 1; // the y bars read the point's strain
+  }
+
+  void ConcreteDamageLaw::initialize_anchored_point(double *h, double length, double height) const
+  {
+    initialize_point(h, length);
+    if (bar_slots_ > 6)
+      h[bars_ + 6] = height / (height + r_.strain_penetration);
   }
 
   double ConcreteDamageLaw::effective_tensile_strength(double h) const
@@ -262,16 +273,21 @@ namespace kimp::fem
     if (reinforced_)
     {
       // Bars along x and y strained as the concrete (perfect bond), in parallel with it.
-      const double    *b0    = h0 + bars_;
-      double          *b1    = h1 + bars_;
-      const SteelBar   steel = steel_at(h0[5]);
-      const SteelState sx    = steel.update(e[0], b0[0], b0[1]);
-      const SteelState sy    = steel.update(e[1], b0[2], b0[3]);
-      b1[0]                  = sx.plastic_strain;
-      b1[1]                  = sx.back_stress;
-      b1[2]                  = sy.plastic_strain;
-      b1[3]                  = sy.back_stress;
-      b1[4]                  = b0[4] + r_.ratio_x * sx.plastic_work + r_.ratio_y * sy.plastic_work;
+      const double  *b0    = h0 + bars_;
+      double        *b1    = h1 + bars_;
+      const SteelBar steel = steel_at(h0[5]);
+      // The y bars of a point on the base stretch over h + L_sp: their strain, and the work
+      // density per unit of the row's volume, scale by 1 / (that over h).
+      const double     ys = bar_slots_ > 6 ? b0[6] : 1.0;
+      const SteelState sx = steel.update(e[0], b0[0], b0[1]);
+      const SteelState sy = steel.update(ys * e[1], b0[2], b0[3]);
+      b1[0]               = sx.plastic_strain;
+      b1[1]               = sx.back_stress;
+      b1[2]               = sy.plastic_strain;
+      b1[3]               = sy.back_stress;
+      b1[4] = b0[4] + r_.ratio_x * sx.plastic_work + r_.ratio_y * sy.plastic_work / ys;
+      if (bar_slots_ > 6)
+        b1[6] = ys;
       s[0] += r_.ratio_x * sx.stress;
       s[1] += r_.ratio_y * sy.stress;
       // Dowel action of the bars crossing the crack, once there is one (h1[2] > 0): elastic-
@@ -515,7 +531,8 @@ namespace kimp::fem
       const double  *b     = h + bars_;
       const SteelBar steel = steel_at(h[5]);
       t[0] += r_.ratio_x * steel.update(e[0], b[0], b[1]).tangent;
-      t[4] += r_.ratio_y * steel.update(e[1], b[2], b[3]).tangent;
+      const double ys = bar_slots_ > 6 ? b[6] : 1.0;
+      t[4] += r_.ratio_y * ys * steel.update(ys * e[1], b[2], b[3]).tangent;
       if (dt > 0 && !p_.rotating_crack)
       {
         const Dowel  dw = dowel(c, sn);
@@ -550,8 +567,9 @@ namespace kimp::fem
     {
       // The bars' elastic energy is stored; their plastic work (hardening included) dissipated.
       const double *b  = h + bars_;
-      const double  ex = e[0] - b[0], ey = e[1] - b[2], Es = r_.youngs_modulus;
-      o.stored_energy += 0.5 * Es * (r_.ratio_x * ex * ex + r_.ratio_y * ey * ey);
+      const double  ys = bar_slots_ > 6 ? b[6] : 1.0;
+      const double  ex = e[0] - b[0], ey = ys * e[1] - b[2], Es = r_.youngs_modulus;
+      o.stored_energy += 0.5 * Es * (r_.ratio_x * ex * ex + r_.ratio_y * ey * ey / ys);
       if (dt > 0 && !p_.rotating_crack)
       {
         const double g = to_crack_frame(e, h[6], h[7])[2] - b[5];

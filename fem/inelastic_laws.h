@@ -233,6 +233,18 @@ namespace kimp::fem
      * length L_p on every mesh (docs/physics.md §6 "Mesh-objective bar yielding"; >= 0).
      */
     double hinge_length = 0;
+    /**
+     * L_sp, m: strain penetration of the vertical bars into the clamped base (0: off, perfect
+     * bond up to the base). A bar anchored in the base slips out of it as it is pulled; with
+     * the slip linearised as s = sigma L_sp / E_s (the elastic part of Zhao and Sritharan's
+     * bond-slip law, ACI Struct. J. 104(2), 2007), the opening at the base, h eps_yy of a row
+     * of height h, stretches the bar over h + L_sp. The points of the cells on the base
+     * (initialize_anchored_point(), h the cell's height) read their y bars at the strain
+     * eps_yy h / (h + L_sp),
+     * so the opening at which they yield and the elongation per unit of plastic strain no
+     * longer depend on h (docs/physics.md §6 "Strain penetration at the base"; >= 0).
+     */
+    double strain_penetration = 0;
     /** True if any bar is present. */
     bool any() const { return ratio_x > 0 || ratio_y > 0; }
     /** Kinematic hardening modulus H = b E_s / (1 - b) (Pa): E_s H / (E_s + H) = b E_s. */
@@ -345,7 +357,13 @@ namespace kimp::fem
      *  damage let through beyond the implicit update's, over f_t (>= 0; 0 when implicit). */
     double step_error(const double *trial) const override;
     void   initialize_point(double *history, double characteristic_length) const override;
-    void   initial_history(double *history) const override;
+    /** As initialize_point(), for a point of a cell of @p height on the clamped base: its y
+     *  bars see the strain scaled by height / (height + L_sp)
+     *  (ReinforcementParameters::strain_penetration). */
+    void initialize_anchored_point(double *history,
+                                   double  characteristic_length,
+                                   double  height) const override;
+    void initial_history(double *history) const override;
     VoigtStress
     stress(const VoigtStrain &strain, const double *committed, double *trial) const override;
     /** The tangent at the committed damage (beta's change with the opening left out): enough
@@ -414,8 +432,11 @@ namespace kimp::fem
     bool                    reinforced_ = false;
     bool                    plastic_    = false;
     unsigned int            bars_       = p_slot; ///< first history slot of the bars
-    bool                    implex_on_  = false;
-    unsigned int            implex_     = p_slot; ///< first history slot of IMPL-EX
-    double                  lambda_, mu_;
+    /** History slots of the bars: eps_p and alpha of x and y, plastic work, dowel slip, and
+     *  with strain penetration the y bars' strain scale (1 off the base). */
+    unsigned int bar_slots_ = 0;
+    bool         implex_on_ = false;
+    unsigned int implex_    = p_slot; ///< first history slot of IMPL-EX
+    double       lambda_, mu_;
   };
 } // namespace kimp::fem

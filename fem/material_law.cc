@@ -18,6 +18,11 @@ namespace kimp::fem
     initial_history(history);
   }
 
+  void MaterialLaw::initialize_anchored_point(double *history, double h, double) const
+  {
+    initialize_point(history, h);
+  }
+
   void MaterialLaw::begin_step(double *, double) const {}
 
   bool MaterialLaw::set_initial_stress(double *, const InitialStress &) const
@@ -84,11 +89,22 @@ namespace kimp::fem
 
   void QuadraturePointHistory::initialize_cell(unsigned int cell, const MaterialLaw &law, double h)
   {
+    initialize_cell(cell, law, h, 0.0);
+  }
+
+  void QuadraturePointHistory::initialize_cell(unsigned int       cell,
+                                               const MaterialLaw &law,
+                                               double             h,
+                                               double             height)
+  {
     if (law.n_history() == 0)
       return;
     for (unsigned int q = 0; q < n_points_per_cell_; ++q)
     {
-      law.initialize_point(trial(cell, q), h);
+      if (height > 0)
+        law.initialize_anchored_point(trial(cell, q), h, height);
+      else
+        law.initialize_point(trial(cell, q), h);
       std::copy(trial(cell, q),
                 trial(cell, q) + law.n_history(),
                 committed_.data() + offset(cell, q));

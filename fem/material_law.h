@@ -52,6 +52,12 @@ namespace kimp::fem
      */
     virtual void initialize_point(double *history, double h) const;
     /**
+     * As initialize_point(), for a point of a cell of height @p height (m, along y) on the
+     * clamped base whose bars are anchored in it (a law may model their slip out of it).
+     * Default: initialize_point().
+     */
+    virtual void initialize_anchored_point(double *history, double h, double height) const;
+    /**
      * Stress at the total strain @p strain from the @p committed history; writes the history
      * that results to @p trial (both n_history() values; unused when 0).
      */
@@ -206,6 +212,9 @@ namespace kimp::fem
     void initialize_cell(unsigned int cell, const MaterialLaw &law);
     /** As initialize_cell(), for an element of characteristic length @p h (m). */
     void initialize_cell(unsigned int cell, const MaterialLaw &law, double h);
+    /** As initialize_cell(), with initialize_anchored_point() for a cell of @p height (m) on
+     *  the clamped base (0: not on it). */
+    void initialize_cell(unsigned int cell, const MaterialLaw &law, double h, double height);
 
     const double *committed(unsigned int cell, unsigned int q) const
     {

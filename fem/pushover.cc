@@ -251,6 +251,7 @@ namespace kimp::fem
         s.laws[plain_id]            = std::make_shared<ConcreteDamageLaw>(concrete, plain, update);
         s.laws[bar_id]              = std::make_shared<ConcreteDamageLaw>(concrete, barred, update);
         s.numerical_tangent         = {plain_id, bar_id};
+        s.anchoring_boundaries      = {wall_base};
       }
       else
       {

@@ -323,7 +323,12 @@ namespace kimp::fem
         const MaterialLaw &law = *p.laws.at(cell->material_id());
         cell_law_[c]           = &law;
         cell_fd_[c]            = p.numerical_tangent.count(cell->material_id()) > 0;
-        history_.initialize_cell(c, law, std::sqrt(cell->measure()));
+        double anchored_height = 0;
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              p.anchoring_boundaries.count(cell->face(f)->boundary_id()) > 0)
+            anchored_height = cell->extent_in_direction(1);
+        history_.initialize_cell(c, law, std::sqrt(cell->measure()), anchored_height);
         virgin_.push_back(law.tangent(VoigtStrain{}, history_.committed(c, 0)));
         const auto   rho_it = p.densities.find(cell->material_id());
         const double gamma  = (rho_it == p.densities.end() ? 0.0 : rho_it->second) * p.gravity;

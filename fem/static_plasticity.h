@@ -136,6 +136,9 @@ namespace kimp::fem
      * secant (ConcreteDamageLaw), with which Newton converges linearly and stalls in softening.
      */
     std::set<unsigned int> numerical_tangent;
+    /** Boundary ids of a clamped base that anchors bars: the points of the cells with an edge
+     *  on one are initialised by MaterialLaw::initialize_anchored_point(). */
+    std::set<unsigned int> anchoring_boundaries;
     /** Load steps per unit change of the load factor (> 0), after the equilibrium step 0 (each
      *  segment of load_path gets at least one). */
     unsigned int n_steps = 20;

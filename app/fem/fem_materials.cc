@@ -76,6 +76,19 @@ namespace kimp::app
                 "fixed",
                 "needs materials.concrete.model: damage_plasticity");
     }
+    // Strain penetration acts on the wall's vertical bars at its clamped base, nowhere else.
+    const fem::ReinforcementParameters &wall = materials.concrete.wall_reinforcement;
+    ctx.check(wall.strain_penetration == 0 ||
+                (materials.concrete.model != FemConcrete::Model::elastic && wall.ratio_y > 0),
+              "concrete.wall_reinforcement.strain_penetration",
+              format_quantity(wall.strain_penetration, "m"),
+              "needs vertical bars (wall_reinforcement.ratio_y > 0) in a damage_plasticity "
+              "concrete");
+    ctx.check(materials.concrete.slab_reinforcement.strain_penetration == 0,
+              "concrete.slab_reinforcement.strain_penetration",
+              format_quantity(materials.concrete.slab_reinforcement.strain_penetration, "m"),
+              "must be 0: the slab has no clamped base to anchor its bars in (the wall's "
+              "vertical bars take it, wall_reinforcement.strain_penetration)");
   }
 
   fem::SoilParameters soil_parameters(const FemSoil &s)

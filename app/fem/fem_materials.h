@@ -40,6 +40,14 @@ namespace kimp::fem
                 "",
                 "post-yield (linear kinematic hardening) tangent / E_s",
                 io::Range::at_least(0.0).and_less(1.0));
+    io.quantity("strain_penetration",
+                s.strain_penetration,
+                "m",
+                "L_sp of the vertical bars into the wall's clamped base: the bars of the base "
+                "row stretch over the row's height + L_sp (their slip out of the base, "
+                "linearised; 0.022 f_y d_b with f_y in MPa, e.g. 0.13 m for 12 mm B500 bars); "
+                "0: perfect bond to the base",
+                io::Range::at_least(0.0).and_at_most(1.0));
   }
 } // namespace kimp::fem
 

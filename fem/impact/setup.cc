@@ -476,10 +476,20 @@ namespace kimp::fem::internal
     qp_history.reinit(triangulation.n_active_cells(), QGauss<dim>(2).size(), n_values);
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
+      {
+        // The wall's cells on the clamped base anchor its bars (strain penetration).
+        double anchored_height = 0;
+        if (cell->material_id() == geometry::wall_material)
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                cell->face(f)->boundary_id() == geometry::fixed_base)
+              anchored_height = cell->extent_in_direction(1);
         // Crack-band length of a quadrilateral: the square root of its area.
         qp_history.initialize_cell(cell->active_cell_index(),
                                    *laws.at(cell->material_id()),
-                                   std::sqrt(cell->measure()));
+                                   std::sqrt(cell->measure()),
+                                   anchored_height);
+      }
     u_ghosted.reinit(locally_owned, locally_relevant, comm);
     force_writable.reinit(locally_owned, locally_relevant, comm, true);
     setup_internal_force();

@@ -209,6 +209,41 @@ namespace
       }
     }
   }
+
+  // wall_reinforcement.strain_penetration reaches the wall's law in SI; it is refused where
+  // nothing could honour it: without vertical bars, on an elastic concrete, on the slab's bars.
+  TEST(FemConcreteScene, StrainPenetrationReachesTheWallsLawAndIsRefusedWhereNothingAnchors)
+  {
+    const std::string bars = ", wall_reinforcement: {ratio_y: \"0.8 %\", strain_penetration: ";
+    EXPECT_DOUBLE_EQ(
+      wall_law(concrete + bars + "\"13 cm\"}}}\n")->reinforcement().strain_penetration,
+      0.13);
+    EXPECT_DOUBLE_EQ(wall_law(concrete + ", wall_reinforcement: {ratio_y: \"0.8 %\"}}}\n")
+                       ->reinforcement()
+                       .strain_penetration,
+                     0.0);
+    const std::vector<std::pair<std::string, std::string>> refused = {
+      {concrete + ", wall_reinforcement: {strain_penetration: \"13 cm\"}}}\n",
+       "concrete.wall_reinforcement.strain_penetration"},
+      {"materials: {concrete: {wall_reinforcement: {strain_penetration: \"13 cm\"}}}\n",
+       "concrete.wall_reinforcement.strain_penetration"},
+      {concrete + ", slab_reinforcement: {ratio_x: \"0.5 %\", strain_penetration: \"13 cm\"}}}\n",
+       "concrete.slab_reinforcement.strain_penetration"},
+      {concrete + bars + "\"-1 cm\"}}}\n", "strain_penetration"}};
+    for (const auto &[text, key] : refused)
+    {
+      try
+      {
+        kimp::io::load_scene_text<FemScene>(text, file_name);
+        ADD_FAILURE() << text << " was accepted";
+      }
+      catch (const std::exception &e)
+      {
+        EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(file_name), std::string::npos) << e.what();
+      }
+    }
+  }
 } // namespace
 
 #endif

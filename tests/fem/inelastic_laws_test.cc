@@ -647,6 +647,89 @@ namespace
     EXPECT_GT(h0[2], 0.9);     // the concrete cracked
   }
 
+  // Strain penetration (ReinforcementParameters::strain_penetration): the y bars of a point on
+  // the clamped base stretch over h + L_sp. Pulled along y (the concrete cracked through), a
+  // row of height h opens by h eps_yy: its bars yield at the opening eps_y (h + L_sp) on two
+  // rows (perfect bond: eps_y h), their force follows the opening, not h, and the work of the
+  // row's stress is the bars' stored energy plus their plastic work on a load-unload path. A
+  // point off the base, and every point without L_sp, is unchanged.
+  TEST(Concrete, StrainPenetrationMakesTheBaseRowsBarsYieldAtAnOpeningIndependentOfTheRow)
+  {
+    const ConcreteParameters c = ConcreteParameters::from_f_cm(38e6);
+    ReinforcementParameters  r;
+    r.ratio_y                  = 0.01;
+    ReinforcementParameters rp = r;
+    rp.strain_penetration      = 0.13;
+    const ConcreteDamageLaw plain(c), bonded(c, r), anchored(c, rp);
+    EXPECT_EQ(anchored.n_history(), bonded.n_history() + 1);
+    const double ey = r.yield_stress / r.youngs_modulus, l_sp = rp.strain_penetration;
+    for (const double h : {0.025, 0.0125})
+    {
+      std::vector<double> hp(plain.n_history()), hp1(hp), hb(bonded.n_history()), hb1(hb),
+        ha(anchored.n_history()), ha1(ha), ho(ha), ho1(ha);
+      plain.initialize_point(hp.data(), h);
+      bonded.initialize_point(hb.data(), h);
+      anchored.initialize_anchored_point(ha.data(), h, h);
+      anchored.initialize_point(ho.data(), h);
+      // Opening w of the row: out to 3 eps_y (h + L_sp), then closed by eps_y (h + L_sp), an
+      // elastic unloading that leaves the bars in tension; the work of the bars' part of
+      // sigma_yy over the row, per unit volume, by the trapezoid rule.
+      const double w_y = ey * (h + l_sp), w_max = 3 * w_y;
+      const int    n    = 600;
+      double       work = 0, previous_bar = 0, previous_e = 0, opening_at_yield = -1;
+      for (int i = 1; i <= n; ++i)
+      {
+        const double w = i <= n / 2 ? w_max * 2.0 * i / n : w_max - w_y * 2.0 * (i - n / 2) / n;
+        const VoigtStrain e   = {{0, w / h, 0}};
+        const VoigtStress sp  = plain.stress(e, hp.data(), hp1.data());
+        const VoigtStress sb  = bonded.stress(e, hb.data(), hb1.data());
+        const VoigtStress sa  = anchored.stress(e, ha.data(), ha1.data());
+        const VoigtStress so  = anchored.stress(e, ho.data(), ho1.data());
+        const double      bar = (sa[1] - sp[1]) / r.ratio_y; // the bars' stress, Pa
+        EXPECT_DOUBLE_EQ(so[1], sb[1]) << "a point off the base is perfectly bonded, " << i;
+        // Below yield the bar's stress is E_s w / (h + L_sp).
+        if (w < ey * (h + l_sp) * (1 - 1e-9) && i <= n / 2)
+        {
+          EXPECT_NEAR(bar, r.youngs_modulus * w / (h + l_sp), 1e-9 * r.yield_stress) << i;
+        }
+        // The y bars' plastic strain: slot 2 of the bars' block (at p_slot without b_c).
+        if (opening_at_yield < 0 && ha1[ConcreteDamageLaw::p_slot + 2] != 0)
+          opening_at_yield = w;
+        // The consistent tangent of the bars' part: dsigma/deps_yy = rho E_t h / (h + L_sp).
+        const VoigtTangent ta = anchored.tangent(e, ha.data()), tp = plain.tangent(e, hp.data());
+        const double       scale = h / (h + l_sp);
+        const bool         yielding =
+          ha1[ConcreteDamageLaw::p_slot + 2] != ha[ConcreteDamageLaw::p_slot + 2];
+        const double e_t = yielding ? SteelBar(r).update(0.1, 0, 0).tangent : r.youngs_modulus;
+        if (i <= n / 2)
+        {
+          EXPECT_NEAR(ta[4] - tp[4], r.ratio_y * e_t * scale, 1e-6 * r.youngs_modulus) << i;
+        }
+        work += 0.5 * (bar + previous_bar) * r.ratio_y * (e[1] - previous_e);
+        previous_bar = bar;
+        previous_e   = e[1];
+        hp = hp1, hb = hb1, ha = ha1, ho = ho1;
+      }
+      // Yield at the opening eps_y (h + L_sp): at the first step past it.
+      EXPECT_NEAR(opening_at_yield, ey * (h + l_sp), 1.5 * 2 * w_max / n) << "h = " << h;
+      // Work of the row = the bars' stored energy + plastic work (per unit volume of the row).
+      const VoigtStrain end{{0, (w_max - w_y) / h, 0}};
+      const PointOutput oa = anchored.output(end, ha.data()), op = plain.output(end, hp.data());
+      const double      stored  = oa.stored_energy - op.stored_energy;
+      const double      plastic = oa.plastic_dissipation - op.plastic_dissipation;
+      EXPECT_GT(plastic, 0);
+      EXPECT_NEAR(work, stored + plastic, 1e-3 * plastic) << "h = " << h;
+      // The plastic work per unit area of the row, h (stored + plastic): the bars' f_y times
+      // their plastic elongation, the same on both rows (up to the 1 % hardening's share).
+      const double elongation_work = h * plastic / r.ratio_y;
+      const double expected        = r.yield_stress * (w_max - ey * (h + l_sp));
+      EXPECT_NEAR(elongation_work / expected, 1.0, 0.03) << "h = " << h;
+      std::cout << "h = " << h << " m: yield at opening " << opening_at_yield * 1e3
+                << " mm (eps_y (h + L_sp) = " << ey * (h + l_sp) * 1e3 << " mm), plastic work "
+                << elongation_work << " J/m^2 (f_y x plastic opening " << expected << ")\n";
+    }
+  }
+
   // Compression plasticity (b_c = 0.7, Birtel & Mark 2006): uniaxial compression (nu = 0) to
   // 1.5 eps_c1, past the peak, follows the MC2010 curve as with b_c = 0; unloading is linear,
   // sigma = (1 - d) E (eps - eps_p), and reaches zero stress at the permanent strain
