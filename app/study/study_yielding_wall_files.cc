@@ -508,10 +508,12 @@ namespace kimp::app::study_internal
           "radiation dashpot rho c_p H_b, in series with a contact spring of the slab-wall "
           "impedance; W = {} m. The dashpot is the backfill's plane-wave bound: the dynamic FEM "
           "radiates 1/35-1/20 of it and the element meets the FEM with about 1/11 of it "
-          "(docs/validation.md \"Yielding wall element against the dynamic FEM\"), so here it "
-          "carries most of the contact force and the wall displacements below are low. These are "
-          "estimates: an inelastic study (`fem.materials`) derives each height's element from its "
-          "static pushover and fits the dashpot to its FEM.\n\n",
+          "(docs/validation.md \"Yielding wall element against the dynamic FEM\"), so the wall "
+          "displacements below are lower than with a fitted dashpot (docs/validation.md \"What "
+          "the default study reads\": its effect on the default study). The peak contact force is "
+          "the local wave against the wall's mass, not a force on the wall-and-backfill part. "
+          "These are estimates: an inelastic study (`fem.materials`) derives each height's element "
+          "from its static pushover and fits the dashpot to its FEM.\n\n",
           failed,
           scene.fit.width);
       return fmt::format(
