@@ -324,6 +324,12 @@ TEST(StudyYieldingWallCli, LinearStudyRunsTheEstimateElementBesideItsSprings)
 
   const auto elements = read_csv_records(out / "yielding_wall_element.csv");
   ASSERT_EQ(elements.size(), 1u);
+  // The estimate is elastic-perfectly plastic, unloading at its loading stiffness: the wall
+  // springs back by F_y/k from its largest push, so residual = max(0, peak - F_y/k).
+  const double k_wall = 1e6 * std::stod(elements.at(0).at("bilinear_stiffness_kN_per_mm_per_m"));
+  EXPECT_EQ(elements.at(0).at("unloading_stiffness_kN_per_mm_per_m"),
+            elements.at(0).at("bilinear_stiffness_kN_per_mm_per_m"));
+  EXPECT_NEAR(residual, std::max(0.0, peak - by_hand / k_wall), 1e-6 * peak);
   EXPECT_EQ(elements.at(0).at("source"), "estimate");
   EXPECT_EQ(elements.at(0).at("envelope"), "bilinear");
   EXPECT_EQ(elements.at(0).at("source_reason").rfind("linear study: the estimate element", 0), 0u)
