@@ -105,19 +105,19 @@ namespace kimp::app::study_internal
       double      force = 0.0, acceleration = 0.0, displacement = 0.0;
       std::string force_case;
 
-      void add(const std::string &name, const LumpedCaseResult &result)
+      void add(const std::string &name, const std::optional<lumped::AdaptiveStepReport> &adaptive)
       {
         ++n_runs;
-        if (!result.adaptive)
+        if (!adaptive)
           return;
         ++n_variable;
-        if (result.adaptive->force_error >= force)
+        if (adaptive->force_error >= force)
         {
-          force      = result.adaptive->force_error;
+          force      = adaptive->force_error;
           force_case = name;
         }
-        acceleration = std::max(acceleration, result.adaptive->acceleration_error);
-        displacement = std::max(displacement, result.adaptive->displacement_error);
+        acceleration = std::max(acceleration, adaptive->acceleration_error);
+        displacement = std::max(displacement, adaptive->displacement_error);
       }
 
       void log() const
@@ -135,6 +135,7 @@ namespace kimp::app::study_internal
                       base::sig(100.0 * displacement, 2));
       }
     };
+
   } // namespace
 
   std::vector<std::pair<std::string, GroundMotionScene>> labelled_records(const StudyScene &scene)
@@ -185,97 +186,147 @@ namespace kimp::app::study_internal
     return s;
   }
 
-  std::vector<StudyBuildingRun> run_building(const StudyScene                     &scene,
-                                             const std::vector<StudyHeight>       &heights,
-                                             const std::vector<StudyYieldingWall> &yielding)
+  namespace
   {
-    std::vector<StudyBuildingRun> runs;
-    const unsigned int            top_dof = scene.building.n_storeys;
-    VariableStepErrors            errors;
-    for (const auto &[label, record] : labelled_records(scene))
+    /// The run without walls of `record` labelled `label`: its row; when it is ok, its context
+    /// is appended to `records`.
+    StudyBuildingRun run_without_walls(const StudyScene           &scene,
+                                       const std::string          &label,
+                                       const GroundMotionScene    &record,
+                                       std::vector<RecordContext> &records,
+                                       VariableStepErrors         &errors)
     {
       StudyBuildingRun bare;
       bare.record = label;
       bare.law    = "none";
-      lumped::GroundMotion motion;
+      RecordContext context;
       try
       {
-        motion = load_ground_motion(record);
+        context.motion = load_ground_motion(record);
       }
       catch (const std::exception &error)
       {
         bare.status = "failed: " + base::error_text(error);
         logger().warn("record {}: {}", label, bare.status);
-        runs.push_back(bare);
-        continue;
+        return bare;
       }
-      const LumpedScene      base = study_lumped_scene(scene, record);
-      const LumpedCaseResult none = run_lumped_case("no_walls", base, motion, record.scale);
-      errors.add(label + " no_walls", none);
-      fill_peaks(bare, none, top_dof, nullptr);
-      runs.push_back(bare);
+      context.base = study_lumped_scene(scene, record);
+      const LumpedCaseResult none =
+        run_lumped_case("no_walls", context.base, context.motion, record.scale);
+      errors.add(label + " no_walls", none.adaptive);
+      fill_peaks(bare, none, scene.building.n_storeys, nullptr);
       if (!none.ok())
       {
         logger().warn("record {}: run without walls {}", label, none.status);
-        continue;
+        return bare;
       }
-      const double gap = wall_gap(scene, bare.base_displacement);
+      context.label         = label;
+      context.scale         = record.scale;
+      context.gap           = wall_gap(scene, bare.base_displacement);
+      context.without_walls = none.response;
       logger().info("record {} (PGA {:.3f} g): no walls: peak isolation displacement {:.4g} cm, "
                     "top acceleration {:.4g} m/s^2 -> wall gap {:.4g} cm",
                     label,
                     none.pga / lumped::standard_gravity,
                     bare.base_displacement * 100,
                     bare.top_acceleration,
-                    gap * 100);
+                    context.gap * 100);
+      records.push_back(std::move(context));
+      return bare;
+    }
 
-      for (const StudyHeight &h : heights)
+    /// The runs of every law of `h` against `record`'s walls (a linear study).
+    std::vector<StudyBuildingRun> run_law_walls(const StudyScene    &scene,
+                                                const RecordContext &record,
+                                                const StudyHeight   &h,
+                                                VariableStepErrors  &errors)
+    {
+      std::vector<StudyBuildingRun> runs;
+      for (const auto &[law, fit] : building_laws(h))
       {
-        if (!yielding.empty())
+        StudyBuildingRun run;
+        run.record      = record.label;
+        run.wall_height = h.wall_height;
+        run.law         = law;
+        run.gap         = record.gap;
+        if (!*fit)
         {
-          // Inelastic materials: the height's yielding wall element, no equivalent k.
-          const YieldingWallCase y =
-            run_yielding_wall_case(scene,
-                                   {label, record.scale, gap, motion, base, none.response},
-                                   h,
-                                   yielding);
-          if (y.result)
-            errors.add(label + " " + h.name + " yielding_wall", *y.result);
-          runs.push_back(y.run);
+          run.status = "skipped: no fitted k for " + h.name;
+          runs.push_back(run);
           continue;
         }
-        for (const auto &[law, fit] : building_laws(h))
-        {
-          StudyBuildingRun run;
-          run.record      = label;
-          run.wall_height = h.wall_height;
-          run.law         = law;
-          run.gap         = gap;
-          if (!*fit)
-          {
-            run.status = "skipped: no fitted k for " + h.name;
-            runs.push_back(run);
-            continue;
-          }
-          run.exponent = (*fit)->exponent.value;
-          run.k_total  = (*fit)->stiffness.value * scene.fit.width;
-          run.wall_capacity =
-            wall_capacity_estimate(scene.fem, h.wall_height).per_metre * scene.fit.width;
-          const LumpedCaseResult done =
-            run_lumped_case(h.name + "_" + law,
-                            walled_scene(base, gap, law, run.k_total, scene.fit.cor),
-                            motion,
-                            record.scale);
-          errors.add(label + " " + h.name + " " + law, done);
-          fill_peaks(run, done, top_dof, &none.response);
-          if (!done.ok())
-            logger().warn("record {} {} {}: {}", label, h.name, law, done.status);
-          runs.push_back(run);
-        }
+        run.exponent = (*fit)->exponent.value;
+        run.k_total  = (*fit)->stiffness.value * scene.fit.width;
+        run.wall_capacity =
+          wall_capacity_estimate(scene.fem, h.wall_height).per_metre * scene.fit.width;
+        const LumpedCaseResult done =
+          run_lumped_case(h.name + "_" + law,
+                          walled_scene(record.base, record.gap, law, run.k_total, scene.fit.cor),
+                          record.motion,
+                          record.scale);
+        errors.add(record.label + " " + h.name + " " + law, done.adaptive);
+        fill_peaks(run, done, scene.building.n_storeys, &record.without_walls);
+        if (!done.ok())
+          logger().warn("record {} {} {}: {}", record.label, h.name, law, done.status);
+        runs.push_back(run);
       }
+      return runs;
+    }
+  } // namespace
+
+  std::vector<StudyBuildingRun> run_building(const StudyScene                     &scene,
+                                             const std::vector<StudyHeight>       &heights,
+                                             const std::vector<StudyYieldingWall> &yielding)
+  {
+    VariableStepErrors errors;
+    // Per record its run without walls (a failed one ends its record's rows).
+    std::vector<std::vector<StudyBuildingRun>> rows;
+    std::vector<RecordContext>                 records;
+    for (const auto &[label, record] : labelled_records(scene))
+    {
+      rows.push_back({run_without_walls(scene, label, record, records, errors)});
+    }
+    // The laws' runs (a linear study) beside the yielding walls' runs, which run on a pool.
+    const bool instead = has_inelastic_materials(scene.fem);
+    std::vector<std::vector<std::vector<StudyBuildingRun>>> laws(records.size());
+    const auto                                              run_laws = [&]()
+    {
+      if (instead)
+        return;
+      for (std::size_t i = 0; i < records.size(); ++i)
+        for (const StudyHeight &h : heights)
+          laws[i].push_back(run_law_walls(scene, records[i], h, errors));
+    };
+    const std::vector<YieldingWallCase> cases =
+      yielding.empty() ? (run_laws(), std::vector<YieldingWallCase>()) :
+                         run_yielding_wall_cases(scene, records, heights, yielding, run_laws);
+    // The rows record by record: without walls, then per height its laws and its yielding wall.
+    std::vector<StudyBuildingRun> runs;
+    std::size_t                   i = 0;
+    for (const std::vector<StudyBuildingRun> &record : rows)
+    {
+      runs.insert(runs.end(), record.begin(), record.end());
+      if (record.front().status != "ok")
+        continue;
+      for (std::size_t j = 0; j < heights.size(); ++j)
+      {
+        if (!instead)
+          runs.insert(runs.end(), laws[i][j].begin(), laws[i][j].end());
+        if (cases.empty())
+          continue;
+        const YieldingWallCase &y = cases[i * heights.size() + j];
+        if (y.ran)
+          errors.add(records[i].label + " " + heights[j].name + " yielding_wall", y.adaptive);
+        runs.push_back(y.run);
+      }
+      ++i;
     }
     errors.log();
     log_capacity_exceeded(runs);
-    log_yielding_walls(runs);
+    log_yielding_walls(runs,
+                       instead ? "yielding walls" :
+                                 "estimate element beside the linear springs (capacity "
+                                 "(M_p + P_p H/3)/h_c, cracked cantilever, rho c dashpot)");
     return runs;
   }
 

@@ -348,7 +348,7 @@ namespace kimp::app::study_internal
     root.group("k_table").set_attribute("building_width_m", scene.fit.width);
     write_study_extras(root, result.extras);
     write_flexible_wall_h5(root, result);
-    write_yielding_wall_h5(root, result);
+    write_yielding_wall_h5(root, scene, result);
     write_velocity_h5(root, scene, result);
 
     // /fidelity/<H>: the levels climbed (fidelity: auto).
@@ -543,7 +543,7 @@ namespace kimp::app::study_internal
     if (!result.wall_sdofs.empty())
       j["flexible_wall"] = flexible_wall_json(result);
     if (!result.yielding_walls.empty())
-      j["yielding_wall"] = yielding_wall_json(result);
+      j["yielding_wall"] = yielding_wall_json(scene, result);
     add_velocity_summary(j, scene, result);
     return j;
   }

@@ -142,8 +142,10 @@ namespace kimp::app::study_internal
                            const std::string &law,
                            double             k_total,
                            double             cor);
-  /// Per record: the building without walls, then with walls for every height and law; with
-  /// `yielding` (inelastic studies) every height's walls are its yielding wall element instead.
+  /// Per record: the building without walls, then with walls for every height and law. With
+  /// `yielding` every height also gets a run against its yielding wall element: instead of the
+  /// laws with inelastic materials, beside them in a linear study (the estimate element); these
+  /// runs share a pool of threads with the laws' runs (run_yielding_wall_cases()).
   std::vector<StudyBuildingRun> run_building(const StudyScene                     &scene,
                                              const std::vector<StudyHeight>       &heights,
                                              const std::vector<StudyYieldingWall> &yielding = {});
@@ -182,25 +184,60 @@ namespace kimp::app::study_internal
     const LumpedScene          &base;          ///< the building without walls
     const lumped::Response     &without_walls; ///< its response
   };
-  /// One building run against a height's yielding walls, and its case result (null: skipped).
+  /// A record's run without walls, kept for its walled runs (record() refers to it).
+  struct RecordContext
+  {
+    std::string          label;
+    double               scale = 1.0; ///< the record's base scale
+    double               gap   = 0.0; ///< m
+    lumped::GroundMotion motion;
+    LumpedScene          base;          ///< the building without walls
+    lumped::Response     without_walls; ///< its response
+
+    RecordRun record() const { return {label, scale, gap, motion, base, without_walls}; }
+  };
+  /// One building run against a height's yielding walls: its row, and whether it ran (false:
+  /// skipped) with its variable-step errors (dt: auto).
   struct YieldingWallCase
   {
-    StudyBuildingRun                run;
-    std::optional<LumpedCaseResult> result;
+    StudyBuildingRun                          run;
+    bool                                      ran = false;
+    std::optional<lumped::AdaptiveStepReport> adaptive;
   };
   YieldingWallCase run_yielding_wall_case(const StudyScene                     &scene,
                                           const RecordRun                      &record,
                                           const StudyHeight                    &h,
                                           const std::vector<StudyYieldingWall> &yielding);
-  /// One line per yielding-wall study: failed walls and the largest resistance / capacity.
-  void log_yielding_walls(const std::vector<StudyBuildingRun> &runs);
+  /**
+   * run_yielding_wall_case() of every record of `records` and height of `heights`, record by
+   * record (index: record × heights.size() + height), on a pool of threads pulling cases from a
+   * counter: hardware_concurrency() − 1 threads start at once, the caller joins them once it has
+   * run `beside` (a linear study's runs of the laws), so both share the cores.
+   * A case that throws is a row with its status; an exception of `beside` is rethrown after the
+   * pool has stopped.
+   */
+  std::vector<YieldingWallCase>
+  run_yielding_wall_cases(const StudyScene                     &scene,
+                          const std::vector<RecordContext>     &records,
+                          const std::vector<StudyHeight>       &heights,
+                          const std::vector<StudyYieldingWall> &yielding,
+                          const std::function<void()>          &beside);
+  /// One line per yielding-wall study: failed walls and the largest resistance / capacity; `what`
+  /// names the runs ("yielding walls").
+  void log_yielding_walls(const std::vector<StudyBuildingRun> &runs, const std::string &what);
   /// DIR/yielding_wall_element.csv (per height) and DIR/yielding_wall.csv (per height and record).
   void write_yielding_wall_csv(const io::OutputDir &output, const StudyResult &result);
-  /// study.h5 /yielding_wall/element, /yielding_wall/runs (SI) and /yielding_wall/pushover/<H>
-  /// (the curve each pushover-derived element was fitted to).
-  void write_yielding_wall_h5(io::ResultsGroup &root, const StudyResult &result);
-  /// summary.json "yielding_wall" (SI): runs, failed walls, and per run the wall's values.
-  nlohmann::ordered_json yielding_wall_json(const StudyResult &result);
+  /// What a study's yielding wall runs are: "inelastic" (the walls of every building run, instead
+  /// of the laws) or "linear" (the estimate element, run beside the laws' impact springs).
+  std::string yielding_wall_route(const StudyScene &scene);
+  /// study.h5 /yielding_wall/element, /yielding_wall/runs (SI; the group's attribute `route`) and
+  /// /yielding_wall/pushover/<H> (the curve each pushover-derived element was fitted to).
+  void write_yielding_wall_h5(io::ResultsGroup  &root,
+                              const StudyScene  &scene,
+                              const StudyResult &result);
+  /// summary.json "yielding_wall" (SI): its route, runs, failed walls, and per run the wall's
+  /// values.
+  nlohmann::ordered_json yielding_wall_json(const StudyScene &scene, const StudyResult &result);
   /// The report.md section (empty without yielding walls).
   std::string yielding_wall_markdown(const StudyScene &scene, const StudyResult &result);
 

@@ -410,12 +410,15 @@ namespace kimp::app::study_internal
     md += "## Building response\n\n"
           "Isolated building of docs/physics.md §3 with moat walls on both sides, gap "
           "from the no-wall peak isolation displacement; ";
-    md += result.yielding_walls.empty() ?
+    md += yielding_wall_route(scene) == "linear" ?
             "linear route: modified Kelvin-Voigt with k_KV, Jankowski and the hysteretic law "
             "with k_Jankowski.\n\n"
             "The walls are linear: the impact force is read against the wall's static collapse "
             "load estimate (M_p + P_p H/3)/h_c × W (docs/physics.md §2 \"Yielding moat wall\", "
-            "capacity estimate); a ratio above 1 (**bold**) is a force the wall cannot carry.\n\n" :
+            "capacity estimate); a ratio above 1 (**bold**) is a force the wall cannot carry. "
+            "The rows `yielding_wall` are the same runs against each height's estimate element "
+            "(first section): their impact force is the contact part's (the local wave), the "
+            "ratio the wall-and-backfill part's peak resistance over its cap.\n\n" :
             "inelastic materials: yielding wall elements (section above); the impact force is "
             "the contact part's (the local wave), the ratio the wall-and-backfill part's peak "
             "resistance over its cap.\n\n";

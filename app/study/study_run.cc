@@ -57,15 +57,16 @@ namespace kimp::app
     write_k_table_csv(output, scene, result.heights, result.velocity_cases);
 
     const Clock::time_point building_start = Clock::now();
-    if (has_inelastic_materials(scene.fem))
-      result.yielding_walls = derive_study_yielding_walls(scene, result.heights);
-    result.building     = run_building(scene, result.heights, result.yielding_walls);
-    result.consistent_k = run_consistent_k(scene, result);
+    // Inelastic materials: the walls of every building run; linear: the estimate element, run
+    // beside the laws so that the report reads each wall's capacity and permanent set.
+    result.yielding_walls = derive_study_yielding_walls(scene, result.heights);
+    result.building       = run_building(scene, result.heights, result.yielding_walls);
+    result.consistent_k   = run_consistent_k(scene, result);
     write_consistent_k_csv(output, result);
     result.building_seconds = seconds_since(building_start);
     write_building_csv(output, result.building);
     write_yielding_wall_csv(output, result);
-    if (scene.walls.flexible && !result.yielding_walls.empty())
+    if (scene.walls.flexible && has_inelastic_materials(scene.fem))
       logger().info("walls.flexible skipped: with inelastic materials the walls are the yielding "
                     "wall elements (yielding_wall.csv)");
     else if (scene.walls.flexible)

@@ -100,15 +100,18 @@ namespace kimp::app
     bool        flexible_wall          = false; ///< walls: the height's SDOF (else rigid)
     double      peak_wall_displacement = 0.0;   ///< m, flexible walls: larger of the two
     double      energy_error = 0.0; ///< flexible and yielding walls: max relative residual
-    /// A yielding wall (inelastic study; law "yielding_wall"): the larger wall's values.
-    bool   yielding_wall              = false;
-    double wall_peak_resistance       = 0.0;   ///< peak R of the wall-and-backfill part, N
-    double wall_residual_displacement = 0.0;   ///< permanent set at the end, m
-    bool   wall_failed                = false; ///< pushed past its failure limit
-    double wall_failure_time          = 0.0;   ///< s (wall_failed only)
-    double wall_plastic_work          = 0.0;   ///< J, both walls
-    double wall_radiated_work         = 0.0;   ///< J, both walls
-    double energy_input               = 0.0;   ///< W_in of the run, J
+    /// A yielding wall (law "yielding_wall": an inelastic study's walls, or a linear study's
+    /// estimate element beside its laws): the larger wall's values.
+    bool        yielding_wall = false;
+    std::string wall_source;                        ///< its element's source: pushover or estimate
+    double      wall_capacity_per_metre    = 0.0;   ///< its element's capacity, N/m
+    double      wall_peak_resistance       = 0.0;   ///< peak R of the wall-and-backfill part, N
+    double      wall_residual_displacement = 0.0;   ///< permanent set at the end, m
+    bool        wall_failed                = false; ///< pushed past its failure limit
+    double      wall_failure_time          = 0.0;   ///< s (wall_failed only)
+    double      wall_plastic_work          = 0.0;   ///< J, both walls
+    double      wall_radiated_work         = 0.0;   ///< J, both walls
+    double      energy_input               = 0.0;   ///< W_in of the run, J
   };
 
   /** The yielding wall element of one wall height (inelastic studies). */
@@ -168,7 +171,8 @@ namespace kimp::app
     /// `building`, flexible_wall = true, amplification against the same run without walls)
     std::vector<StudyWallSdof>    wall_sdofs;
     std::vector<StudyBuildingRun> flexible_building;
-    /// Inelastic materials: each height's yielding wall element; `building` then runs with it.
+    /// Each height's yielding wall element: with inelastic materials `building` runs with it
+    /// instead of the laws; in a linear study it is the estimate, run beside the laws.
     std::vector<StudyYieldingWall> yielding_walls;
     double                         flexible_wall_seconds = 0.0; ///< s, SDOFs and their runs
     double                         fem_seconds           = 0.0; ///< s, all heights

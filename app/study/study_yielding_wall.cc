@@ -2,9 +2,12 @@
 // "Element of a study"): each height's element, the building runs against it, and their files:
 // yielding_wall_element.csv, yielding_wall.csv, study.h5 /yielding_wall and the report section.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <fmt/format.h>
 #include <limits>
+#include <thread>
 
 #include "app/study/pushover_fit.h"
 #include "app/study/study_internal.h"
@@ -137,13 +140,20 @@ namespace kimp::app::study_internal
       else
         logger().info("{}: {}", w.name, reason);
     }
+
+    /// Why a linear study's element is the estimate: it has no inelastic FE model to push.
+    constexpr const char *linear_study_reason =
+      "linear study: the estimate element beside the linear springs (capacity (M_p + P_p H/3)/h_c "
+      "from the section and Rankine's passive resistance, cracked cantilever 3(EI/2)/h_c^3, "
+      "radiation dashpot rho c_p H_b; no FEM pushover, no dashpot fitted)";
   } // namespace
 
   std::vector<StudyYieldingWall>
   derive_study_yielding_walls(const StudyScene &scene, const std::vector<StudyHeight> &heights)
   {
     std::vector<StudyYieldingWall> walls;
-    const double                   striker = scene.building.isolation_mass / scene.fit.width;
+    const double                   striker   = scene.building.isolation_mass / scene.fit.width;
+    const bool                     inelastic = has_inelastic_materials(scene.fem);
     for (const StudyHeight &h : heights)
     {
       StudyYieldingWall w;
@@ -153,7 +163,10 @@ namespace kimp::app::study_internal
       {
         w.inputs            = yielding_wall_inputs(scene.fem, h.wall_height, striker);
         w.estimate_capacity = w.inputs.capacity;
-        apply_pushover(scene, w);
+        if (inelastic)
+          apply_pushover(scene, w);
+        else
+          w.source_reason = linear_study_reason;
         w.element = derive_yielding_wall(w.inputs, scene.fit.width);
         if (h.inelastic)
           fit_dashpot(scene, h, w);
@@ -203,14 +216,18 @@ namespace kimp::app::study_internal
       run.status = "skipped: no yielding wall element for " + h.name;
       return out;
     }
-    run.k_total                  = w->element.contact_stiffness * scene.fit.width;
-    run.exponent                 = 1.0;
-    run.wall_capacity            = w->element.backfill.capacity_per_metre() * scene.fit.width;
-    out.result                   = run_lumped_case(h.name + "_yielding_wall",
-                                 yielding_walled_scene(record.base, record.gap, w->element),
-                                 record.motion,
-                                 record.scale);
-    const LumpedCaseResult &done = *out.result;
+    run.k_total                 = w->element.contact_stiffness * scene.fit.width;
+    run.exponent                = 1.0;
+    run.wall_source             = w->source;
+    run.wall_capacity_per_metre = w->element.backfill.capacity_per_metre();
+    run.wall_capacity           = run.wall_capacity_per_metre * scene.fit.width;
+    const LumpedCaseResult done =
+      run_lumped_case(h.name + "_yielding_wall",
+                      yielding_walled_scene(record.base, record.gap, w->element),
+                      record.motion,
+                      record.scale);
+    out.ran      = true;
+    out.adaptive = done.adaptive;
     fill_building_peaks(run, done, scene.building.n_storeys, nullptr);
     if (!done.ok())
     {
@@ -230,7 +247,67 @@ namespace kimp::app::study_internal
     return out;
   }
 
-  void log_yielding_walls(const std::vector<StudyBuildingRun> &runs)
+  std::vector<YieldingWallCase>
+  run_yielding_wall_cases(const StudyScene                     &scene,
+                          const std::vector<RecordContext>     &records,
+                          const std::vector<StudyHeight>       &heights,
+                          const std::vector<StudyYieldingWall> &yielding,
+                          const std::function<void()>          &beside)
+  {
+    const std::size_t             n = records.size() * heights.size();
+    std::vector<YieldingWallCase> cases(n);
+    std::atomic<std::size_t>      next{0};
+    const auto                    work = [&]()
+    {
+      for (std::size_t i = next++; i < n; i = next++)
+      {
+        const RecordContext &record = records[i / heights.size()];
+        const StudyHeight   &h      = heights[i % heights.size()];
+        try
+        {
+          cases[i] = run_yielding_wall_case(scene, record.record(), h, yielding);
+        }
+        catch (const std::exception &error)
+        {
+          cases[i].run.record        = record.label;
+          cases[i].run.wall_height   = h.wall_height;
+          cases[i].run.law           = "yielding_wall";
+          cases[i].run.gap           = record.gap;
+          cases[i].run.yielding_wall = true;
+          cases[i].run.status        = "failed: " + base::error_text(error);
+          logger().warn("record {} {} yielding wall: {}",
+                        record.label,
+                        h.name,
+                        cases[i].run.status);
+        }
+      }
+    };
+    const unsigned int       cores     = std::max(1U, std::thread::hardware_concurrency());
+    const std::size_t        n_threads = std::max<std::size_t>(1, std::min<std::size_t>(cores, n));
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < n_threads; ++t)
+      pool.emplace_back(work);
+    std::exception_ptr failure;
+    try
+    {
+      if (beside)
+        beside();
+    }
+    catch (...)
+    {
+      failure = std::current_exception();
+      next    = n; // the pool takes no further case
+    }
+    if (!failure)
+      work();
+    for (std::thread &thread : pool)
+      thread.join();
+    if (failure)
+      std::rethrow_exception(failure);
+    return cases;
+  }
+
+  void log_yielding_walls(const std::vector<StudyBuildingRun> &runs, const std::string &what)
   {
     std::size_t             n = 0, n_failed = 0;
     const StudyBuildingRun *worst = nullptr;
@@ -246,9 +323,10 @@ namespace kimp::app::study_internal
     if (!worst)
       return;
     const std::string text = fmt::format(
-      "yielding walls: {} of {} building runs fail a wall (pushed past 10 % of H); largest wall "
+      "{}: {} of {} building runs fail a wall (pushed past 10 % of H); largest wall "
       "displacement {} cm (residual {} cm, peak resistance {} of the capacity {} MN), record {}, "
       "H = {} m (yielding_wall.csv)",
+      what,
       n_failed,
       n,
       base::sig(100.0 * worst->peak_wall_displacement),

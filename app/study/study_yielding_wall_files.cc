@@ -248,6 +248,11 @@ namespace kimp::app::study_internal
       std::vector<StudyColumn<R>> columns{
         text_column<R>("record", [](const R &r) { return r.record; }),
         same_column<R>("wall_height", "m", [](const R &r) { return r.wall_height; }),
+        text_column<R>("source", [](const R &r) { return r.wall_source; }),
+        number_column<R>({"wall_capacity_per_metre", "N/m"},
+                         {"wall_capacity_per_metre", "kN/m"},
+                         times(1e-3),
+                         [](const R &r) { return r.wall_capacity_per_metre; }),
         number_column<R>({"wall_capacity", "N"},
                          {"wall_capacity", "kN"},
                          times(1e-3),
@@ -327,11 +332,18 @@ namespace kimp::app::study_internal
       envelope.write_csv(output.file("yielding_wall_envelope.csv"));
   }
 
-  void write_yielding_wall_h5(ResultsGroup &root, const StudyResult &result)
+  std::string yielding_wall_route(const StudyScene &scene)
+  {
+    return has_inelastic_materials(scene.fem) ? "inelastic" : "linear";
+  }
+
+  void
+  write_yielding_wall_h5(ResultsGroup &root, const StudyScene &scene, const StudyResult &result)
   {
     if (result.yielding_walls.empty())
       return;
     ResultsGroup g = root.group("yielding_wall");
+    g.set_attribute("route", yielding_wall_route(scene));
     study_table(element_columns(), result.yielding_walls, StudyFile::hdf5).write_hdf5(g, "element");
     study_table(run_columns(), result.building, StudyFile::hdf5, yielding).write_hdf5(g, "runs");
     // The pushover curve each element was fitted to (source pushover).
@@ -355,7 +367,7 @@ namespace kimp::app::study_internal
       }
   }
 
-  nlohmann::ordered_json yielding_wall_json(const StudyResult &result)
+  nlohmann::ordered_json yielding_wall_json(const StudyScene &scene, const StudyResult &result)
   {
     nlohmann::ordered_json runs     = nlohmann::ordered_json::array();
     std::size_t            n_failed = 0;
@@ -366,16 +378,19 @@ namespace kimp::app::study_internal
       n_failed += r.status == "ok" && r.wall_failed;
       nlohmann::ordered_json row = {{"record", r.record},
                                     {"wall_height", r.wall_height},
+                                    {"source", r.wall_source},
                                     {"status", r.status}};
       if (r.status == "ok")
       {
         row["peak_wall_resistance"]       = r.wall_peak_resistance;
+        row["wall_capacity_per_metre"]    = r.wall_capacity_per_metre;
         row["wall_capacity"]              = r.wall_capacity;
         row["peak_wall_displacement"]     = r.peak_wall_displacement;
         row["residual_wall_displacement"] = r.wall_residual_displacement;
         row["failed"]                     = r.wall_failed;
         if (r.wall_failed)
           row["failure_time"] = r.wall_failure_time;
+        row["energy_error"] = r.energy_error;
       }
       runs.push_back(row);
     }
@@ -403,14 +418,24 @@ namespace kimp::app::study_internal
       }
       elements.push_back(e);
     }
-    return {{"units",
+    const bool linear = yielding_wall_route(scene) == "linear";
+    return {{"route", yielding_wall_route(scene)},
+            {"route_text",
+             linear ?
+               "linear study: each height's estimate element (capacity from the section and "
+               "Rankine's passive resistance, cracked stiffness, radiation dashpot rho c; no "
+               "FEM pushover), run beside the linear springs, which stay the comparison with "
+               "Table 2.1" :
+               "inelastic study: the walls of every building run, instead of the laws"},
+            {"units",
              {{"force", "N"},
               {"displacement", "m"},
               {"wall_height", "m"},
               {"time", "s"},
+              {"energy_error", "1"},
               {"per_metre",
-               "capacity and forces of elements: N/m, stiffness: N/m per m, "
-               "radiation_damping: N*s/m per m"}}},
+               "capacity and forces of elements, wall_capacity_per_metre: N/m, stiffness: N/m per "
+               "m, radiation_damping: N*s/m per m"}}},
             {"n_runs", runs.size()},
             {"n_failed", n_failed},
             {"elements", elements},
@@ -424,9 +449,9 @@ namespace kimp::app::study_internal
     std::string element_markdown(const std::vector<StudyYieldingWall> &walls)
     {
       std::string md =
-        "| H (m) | source | element envelope | k_ur (kN/mm/m) | bilinear (comparison): F_y "
-        "(kN/m) | k (kN/mm/m) | alpha | estimate (kN/m) | pushover: largest force (kN/m) at (mm) "
-        "| note |\n|---|---|---|---|---|---|---|---|---|---|\n";
+        "| H (m) | source | element envelope | k_ur (kN/mm/m) | dashpot c_r (kN*s/m^2) | "
+        "bilinear (comparison): F_y (kN/m) | k (kN/mm/m) | alpha | estimate (kN/m) | pushover: "
+        "largest force (kN/m) at (mm) | note |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
       for (const StudyYieldingWall &w : walls)
       {
         const bool  ok = w.ok(), po = ok && w.source == "pushover";
@@ -442,11 +467,12 @@ namespace kimp::app::study_internal
                         base::sig(element_envelope_displacement(w) * 1e3));
         else if (ok)
           envelope = "the bilinear";
-        md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+        md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
                           base::sig(w.wall_height),
                           ok ? w.source : w.status,
                           envelope,
                           s(ok, w.inputs.unloading_stiffness / 1e6),
+                          s(ok, w.element.radiation_damping / 1e3),
                           s(ok, w.inputs.capacity / 1e3),
                           s(ok, w.inputs.stiffness / 1e6),
                           s(ok, w.inputs.hardening_ratio),
@@ -457,6 +483,51 @@ namespace kimp::app::study_internal
                           w.source_reason.empty() ? std::string("-") : w.source_reason);
       }
       return md + "\n";
+    }
+  } // namespace
+
+  namespace
+  {
+    /// The section's title and first paragraph: what the element is, by route.
+    std::string yielding_wall_intro(const StudyScene &scene, std::size_t n_failed, std::size_t n)
+    {
+      const std::string failed =
+        fmt::format("**{} of {} building runs push a wall past its failure limit (10 % of H).** ",
+                    n_failed,
+                    n);
+      if (yielding_wall_route(scene) == "linear")
+        return fmt::format(
+          "## Moat walls as yielding elements (estimate, beside the linear springs): capacity "
+          "and permanent displacement\n\n{}"
+          "This study is linear: its building runs hit impact springs with the equivalent k "
+          "(below, the comparison with Table 2.1), which never yield. Beside each of them the same "
+          "building, record and gap hit each height's *estimate* element (docs/physics.md §2 "
+          "\"Yielding moat wall\", element of a study): the wall and its backfill as the cracked "
+          "cantilever 3(EI/2)/h_c^3 capped at the collapse load estimate (M_p + P_p H/3)/h_c (the "
+          "wall's section and Rankine's passive resistance; no FEM pushover), the backfill's "
+          "radiation dashpot rho c_p H_b, in series with a contact spring of the slab-wall "
+          "impedance; W = {} m. The dashpot is the backfill's plane-wave bound: the dynamic FEM "
+          "radiates 1/35-1/20 of it and the element meets the FEM with about 1/11 of it "
+          "(docs/validation.md \"Yielding wall element against the dynamic FEM\"), so the wall "
+          "displacements below are lower than with a fitted dashpot (docs/validation.md \"What "
+          "the default study reads\": its effect on the default study). The peak contact force is "
+          "the local wave against the wall's mass, not a force on the wall-and-backfill part. "
+          "These are estimates: an inelastic study (`fem.materials`) derives each height's element "
+          "from its static pushover and fits the dashpot to its FEM.\n\n",
+          failed,
+          scene.fit.width);
+      return fmt::format(
+        "## Yielding moat walls: capacity and permanent displacement\n\n{}"
+        "With inelastic materials every building run hits each height's yielding wall element "
+        "(docs/physics.md §2 \"Yielding moat wall\", element of a study): a contact spring with "
+        "the first peak of the slab-wall impedance, in series with the wall and its backfill and "
+        "the backfill's radiation dashpot rho c h; W = {} m. The wall-and-backfill part runs on "
+        "the concave hull of the height's static pushover (source pushover; its equal-energy "
+        "bilinear is shown beside it as the comparison) or, where the pushover fails, on the "
+        "cracked cantilever capped at the collapse load estimate (M_p + P_p H/3)/h_c (source "
+        "estimate). The equivalent k of the k table is the comparison with Table 2.1 only.\n\n",
+        failed,
+        scene.fit.width);
     }
   } // namespace
 
@@ -471,37 +542,25 @@ namespace kimp::app::study_internal
         ++n;
         n_failed += r.wall_failed ? 1 : 0;
       }
-    std::string md = fmt::format(
-      "## Yielding moat walls: capacity and permanent displacement\n\n"
-      "**{} of {} building runs push a wall past its failure limit (10 % of H).** With inelastic "
-      "materials every building run hits each height's yielding wall element (docs/physics.md "
-      "§2 \"Yielding moat wall\", element of a study): a contact spring with the first peak of "
-      "the slab-wall impedance, in series with the wall and its backfill and the backfill's "
-      "radiation dashpot rho c h; W = {} m. The wall-and-backfill part runs on the concave hull "
-      "of the height's static pushover (source pushover; its equal-energy bilinear is shown "
-      "beside it as the comparison) or, where the pushover fails, on the cracked cantilever "
-      "capped at the collapse load estimate (M_p + P_p H/3)/h_c (source estimate). The "
-      "equivalent k of the k table is the comparison with Table 2.1 only.\n\n"
-      "{}"
-      "| record | H (m) | gap (cm) | peak wall resistance (kN) | capacity (kN) | resistance / "
-      "capacity | peak contact force (kN) | peak wall displacement (cm) | residual (cm) | failed "
-      "| status |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
-      n_failed,
-      n,
-      scene.fit.width,
-      element_markdown(result.yielding_walls));
+    std::string md = yielding_wall_intro(scene, n_failed, n) +
+                     element_markdown(result.yielding_walls) +
+                     "| record | H (m) | gap (cm) | capacity (kN/m) | capacity W (kN) | peak wall "
+                     "resistance (kN) | resistance / capacity | peak contact force (kN) | peak "
+                     "wall displacement (cm) | residual (cm) | failed | energy error | status "
+                     "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const StudyBuildingRun &r : result.building)
     {
       if (!r.yielding_wall)
         continue;
       const bool ok = r.status == "ok";
       const auto s  = [&](double x) { return ok ? base::sig(x) : std::string("-"); };
-      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
                         r.record,
                         base::sig(r.wall_height),
                         base::sig(r.gap * 100),
-                        s(r.wall_peak_resistance / 1e3),
+                        base::sig(r.wall_capacity_per_metre / 1e3),
                         base::sig(r.wall_capacity / 1e3),
+                        s(r.wall_peak_resistance / 1e3),
                         s(r.wall_peak_resistance / r.wall_capacity),
                         s(r.peak_impact_force / 1e3),
                         s(100.0 * r.peak_wall_displacement),
@@ -510,6 +569,7 @@ namespace kimp::app::study_internal
                         r.wall_failed ?
                               fmt::format("**yes** (t = {} s)", base::sig(r.wall_failure_time)) :
                               std::string("no"),
+                        ok ? fmt::format("{:.2g}", r.energy_error) : std::string("-"),
                         r.status);
     }
     const bool any_hull =

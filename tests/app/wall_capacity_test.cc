@@ -1,11 +1,13 @@
 // The linear study's wall capacity estimate (app/study/wall_capacity.h) against its closed form,
 // written out here: the base hinge of a reinforced section plus the Rankine passive moment, over
-// the height of the slab's mid-thickness.
+// the height of the slab's mid-thickness; the default study's capacity worked by hand, which the
+// linear study's estimate element runs on.
 #include <cmath>
 #include <gtest/gtest.h>
 
 #include "app/study/study_scene.h"
 #include "app/study/wall_capacity.h"
+#include "app/study/yielding_wall_element.h"
 
 namespace
 {
@@ -56,4 +58,28 @@ TEST(WallCapacity, PlainSectionTakesItsCrackingMoment)
   EXPECT_NEAR(e.plastic_moment, f_ctm * 0.25 * 0.25 / 6.0, 1e-3 * e.plastic_moment);
   EXPECT_NEAR(e.contact_height, 1.9, exact);
   EXPECT_GT(e.per_metre, 0.0);
+}
+
+TEST(WallCapacity, DefaultStudyByHandIsTheEstimateElementsCapacity)
+{
+  // The default study (a plain 0.25 m wall, f_cm 38 MPa; an elastic backfill of 1900 kg/m^3 read
+  // with phi = 30 deg and c = 0; slab top at the wall top, 0.20 m slab) at H = 1.25 m, by hand:
+  //   f_ctm = 0.3 (38 - 8)^(2/3) MPa = 2.896 MPa; M_p = f_ctm t^2/6 = 30.17 kN m/m;
+  //   K_p = 3; gamma = 1900 x 9.80665 = 18.63 kN/m^3; P_p = K_p gamma H_b^2/2 = 43.67 kN/m,
+  //   its moment P_p H_b/3 = 18.20 kN m/m; h_c = 1.25 - 0.10 = 1.15 m;
+  //   (M_p + P_p H_b/3)/h_c = 48.37/1.15 = 42.06 kN/m; over W = 27.78 m: 1168 kN.
+  const kimp::app::StudyScene s;
+  const auto                  e = kimp::app::wall_capacity_estimate(s.fem, 1.25);
+  EXPECT_NEAR(e.plastic_moment, 30.17e3, 0.01e3);
+  EXPECT_NEAR(e.passive_force, 43.67e3, 0.01e3);
+  EXPECT_NEAR(e.passive_moment, 18.20e3, 0.01e3);
+  EXPECT_NEAR(e.contact_height, 1.15, exact);
+  EXPECT_NEAR(e.per_metre, 42.06e3, 0.01e3);
+  EXPECT_NEAR(e.per_metre * s.fit.width, 1168e3, 1e3);
+  // The linear study's estimate element runs on this capacity (its report's "capacity (kN/m)").
+  const kimp::app::YieldingWallInputs in =
+    kimp::app::yielding_wall_inputs(s.fem, 1.25, s.building.isolation_mass / s.fit.width);
+  EXPECT_EQ(in.capacity, e.per_metre);
+  const kimp::app::YieldingWallElement element = kimp::app::derive_yielding_wall(in, s.fit.width);
+  EXPECT_NEAR(element.backfill.capacity_per_metre(), e.per_metre, exact * e.per_metre);
 }

@@ -6,16 +6,19 @@
 // (source pushover: the same curve as `kimp fem --pushover`) and from the capacity estimate where
 // it fails (source estimate, with the reason; the reinforced wall's pushover falls back from the
 // implicit damage update to IMPL-EX and says so); a linear study keeps the equivalent-k runs and
-// writes no yielding-wall files.
+// runs the same building beside them against each height's estimate element (capacity by hand,
+// residual displacement, failure, energy balance; labelled as the estimate in every file).
 #ifdef KIMP_WITH_FEM
 
 #  include <algorithm>
+#  include <cmath>
 #  include <filesystem>
 #  include <gtest/gtest.h>
 #  include <nlohmann/json.hpp>
 #  include <string>
 #  include <vector>
 
+#  include "base/format.h"
 #  include "tests/e2e/fem_scenes.h"
 #  include "tests/support/csv.h"
 #  include "tests/support/files.h"
@@ -260,19 +263,112 @@ TEST(StudyYieldingWallCli, ElementTakesItsResistanceFromTheHeightsPushover)
             std::string::npos);
 }
 
-TEST(StudyYieldingWallCli, LinearStudyKeepsTheEquivalentKRoute)
+TEST(StudyYieldingWallCli, LinearStudyRunsTheEstimateElementBesideItsSprings)
 {
   const TempDir dir("study_yielding_wall_linear");
   const KimpRun run = run_study(reduced_study(R"(["1.25 m"])", linear), dir.path());
   ASSERT_EQ(run.exit_code, 0) << run.output();
   const std::filesystem::path out = dir.path() / "out";
-  EXPECT_FALSE(std::filesystem::exists(out / "yielding_wall.csv"));
+  // The linear route stays: the three laws' runs, read against the capacity estimate; beside
+  // them the same building, record and gap against the height's estimate element.
   const auto building = read_csv_records(out / "building_response.csv");
-  ASSERT_EQ(building.size(), 4u); // none + three laws
-  // Linear walls: the force against the capacity estimate, column and report.
-  EXPECT_FALSE(building.at(1).at("peak_force_over_capacity").empty());
+  ASSERT_EQ(building.size(), 5u); // none + three laws + the estimate element
+  EXPECT_EQ(building.at(4).at("law"), "yielding_wall");
+  for (std::size_t i = 1; i < 4; ++i)
+  {
+    EXPECT_NE(building.at(i).at("law"), "yielding_wall");
+    EXPECT_FALSE(building.at(i).at("peak_force_over_capacity").empty());
+  }
+
+  // The capacity by hand, from the default scene's values at H = 1.25 m (plain 0.25 m wall,
+  // f_cm 38 MPa; elastic backfill of 1900 kg/m^3 read with phi = 30 deg, c = 0; slab top at the
+  // wall top, 0.20 m slab):
+  //   f_ctm = 0.3 (38 - 8)^(2/3) = 2.896 MPa, M_p = f_ctm t^2/6 = 30.17 kN m/m;
+  //   K_p = (1 + sin 30)/(1 - sin 30) = 3, P_p = K_p gamma H_b^2/2 = 3 x 18.63 x 1.25^2/2
+  //   = 43.67 kN/m at H_b/3; h_c = 1.25 - 0.10 = 1.15 m;
+  //   (M_p + P_p H_b/3)/h_c = (30.17 + 18.20)/1.15 = 42.06 kN/m, x 27.78 m = 1168 kN.
+  const double f_ctm   = 0.3 * std::pow(30.0, 2.0 / 3.0) * 1e6;
+  const double m_p     = f_ctm * 0.25 * 0.25 / 6.0;
+  const double p_p     = 0.5 * 3.0 * 1900.0 * 9.80665 * 1.25 * 1.25;
+  const double by_hand = (m_p + p_p * 1.25 / 3.0) / 1.15;
+  EXPECT_NEAR(by_hand, 42.06e3, 0.01e3);
+
+  const auto runs = read_csv_records(out / "yielding_wall.csv");
+  ASSERT_EQ(runs.size(), 1u) << read_text(out / "yielding_wall.csv");
+  const auto &r = runs.at(0);
+  EXPECT_EQ(r.at("record"), building.at(4).at("record"));
+  EXPECT_EQ(r.at("source"), "estimate");
+  EXPECT_EQ(r.at("status"), "ok");
+  const double capacity = 1e3 * std::stod(r.at("wall_capacity_per_metre_kN_per_m"));
+  EXPECT_NEAR(capacity / by_hand, 1.0, 1e-5);
+  EXPECT_NEAR(1e3 * std::stod(r.at("wall_capacity_kN")) / (by_hand * 27.78), 1.0, 1e-5);
+  // Physical: the residual is a permanent set in the push direction, at most the peak; failed
+  // exactly when the wall was pushed past 10 % of H, with a time inside the record; the run
+  // closes its energy balance with the walls' plastic and radiated work.
+  const double peak     = 1e-2 * std::stod(r.at("peak_wall_displacement_cm"));
+  const double residual = 1e-2 * std::stod(r.at("residual_wall_displacement_cm"));
+  EXPECT_GT(peak, 0.0);
+  EXPECT_GE(residual, 0.0);
+  EXPECT_LE(residual, peak);
+  const bool failed = r.at("failed") == "1";
+  EXPECT_EQ(failed, peak > 0.1 * 1.25) << "peak " << peak << " m";
+  EXPECT_EQ(r.at("failure_time_s").empty(), !failed);
+  if (failed)
+  {
+    EXPECT_LE(std::stod(r.at("failure_time_s")), 8.0);
+  }
+  EXPECT_LE(1e3 * std::stod(r.at("peak_wall_resistance_kN")),
+            1e3 * std::stod(r.at("wall_capacity_kN")) * (1.0 + 1e-9));
+  EXPECT_GT(std::stod(r.at("wall_plastic_work_kJ")), 0.0); // the wall yields
+  EXPECT_LE(std::stod(r.at("energy_error")), 1e-4);
+
+  const auto elements = read_csv_records(out / "yielding_wall_element.csv");
+  ASSERT_EQ(elements.size(), 1u);
+  // The estimate is elastic-perfectly plastic, unloading at its loading stiffness: the wall
+  // springs back by F_y/k from its largest push, so residual = max(0, peak - F_y/k).
+  const double k_wall = 1e6 * std::stod(elements.at(0).at("bilinear_stiffness_kN_per_mm_per_m"));
+  EXPECT_EQ(elements.at(0).at("unloading_stiffness_kN_per_mm_per_m"),
+            elements.at(0).at("bilinear_stiffness_kN_per_mm_per_m"));
+  EXPECT_NEAR(residual, std::max(0.0, peak - by_hand / k_wall), 1e-6 * peak);
+  EXPECT_EQ(elements.at(0).at("source"), "estimate");
+  EXPECT_EQ(elements.at(0).at("envelope"), "bilinear");
+  EXPECT_EQ(elements.at(0).at("source_reason").rfind("linear study: the estimate element", 0), 0u)
+    << elements.at(0).at("source_reason");
+  EXPECT_NEAR(1e3 * std::stod(elements.at(0).at("bilinear_capacity_kN_per_m")) / by_hand,
+              1.0,
+              1e-5);
+
+  // study.h5 in SI with units, the route named; summary.json the same.
+  Hdf5Reader h5(out / "study.h5");
+  EXPECT_EQ(h5.attribute("/yielding_wall", "route"), "linear");
+  EXPECT_EQ(h5.units("/yielding_wall/runs/residual_wall_displacement"), "m");
+  EXPECT_EQ(h5.units("/yielding_wall/runs/wall_capacity_per_metre"), "N/m");
+  EXPECT_NEAR(h5.doubles("/yielding_wall/runs/wall_capacity_per_metre").at(0) / by_hand,
+              1.0,
+              1e-12);
+  const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
+  ASSERT_TRUE(summary.contains("yielding_wall"));
+  EXPECT_EQ(summary["yielding_wall"]["route"], "linear");
+  EXPECT_EQ(summary["yielding_wall"]["runs"].size(), 1u);
+  EXPECT_EQ(summary["yielding_wall"]["runs"][0]["source"], "estimate");
+  EXPECT_NEAR(summary["yielding_wall"]["runs"][0]["wall_capacity_per_metre"].get<double>() /
+                by_hand,
+              1.0,
+              1e-12);
+  EXPECT_NEAR(summary["yielding_wall"]["runs"][0]["residual_wall_displacement"].get<double>(),
+              residual,
+              1e-6 * peak);
+
+  // The report: the estimate's section first, labelled as such, with the capacity by hand and
+  // the residual of the CSV; the linear route below it.
   const std::string report = read_text(out / "report.md");
+  const auto        walls =
+    report.find("## Moat walls as yielding elements (estimate, beside the linear springs)");
+  ASSERT_NE(walls, std::string::npos) << report;
+  EXPECT_LT(walls, report.find("## Impact stiffness per wall height"));
   EXPECT_EQ(report.find("## Yielding moat walls"), std::string::npos);
+  EXPECT_NE(report.find("| 42.06 | 1168 |"), std::string::npos) << report;
+  EXPECT_NE(report.find(" | " + kimp::base::sig(residual * 100) + " | "), std::string::npos);
   EXPECT_NE(report.find("linear route"), std::string::npos);
 }
 

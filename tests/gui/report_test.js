@@ -102,29 +102,53 @@ async function main() {
       const rcol = rows[0].split(',').indexOf('reference_velocity');
       const nReference = rows.slice(1).filter((r) => r.split(',')[rcol] === 'yes').length;
       check(rcol >= 0 && rows[1].split(',')[rcol] === 'yes', `k_table.csv begins with a reference row`);
-      // With inelastic materials the yielding walls come first (one row per building run with a
-      // wall, as in yielding_wall.csv), then the k table as the comparison with Table 2.1.
+      // The yielding walls come first (one row per building run with a wall, as in
+      // yielding_wall.csv), then the k table as the comparison with Table 2.1: with inelastic
+      // materials the walls of every run; in a linear study the estimate element run beside the
+      // impact springs, titled so, every row's element from the estimate.
       const yieldingCsv = path.join(dir, 'yielding_wall.csv');
       const yielding = fs.existsSync(yieldingCsv);
       if (yielding) {
         const runs = fs.readFileSync(yieldingCsv, 'utf8').trim().split('\n');
+        const linear = summary.yielding_wall && summary.yielding_wall.route === 'linear';
+        const head = runs[0].split(',');
+        const residualCsv = runs
+          .slice(1)
+          .map((r) => r.split(',')[head.indexOf('residual_wall_displacement_cm')]);
         const shown = await page.evaluate(() => {
           const first = document.querySelector('details.section');
           const t = first && first.querySelector('table.yielding-answer');
+          const column = (name) => {
+            const i = t ? Array.from(t.querySelectorAll('th')).findIndex((h) => h.textContent === name) : -1;
+            return t ? Array.from(t.querySelectorAll('tbody tr')).map((r) => (i < 0 ? null : r.children[i].textContent)) : [];
+          };
           return {
             title: first ? first.querySelector('summary').textContent : '',
-            rows: t ? Array.from(t.querySelectorAll('tbody tr')).map((r) => r.children[2].textContent) : [],
-            envelopes: t ? Array.from(t.querySelectorAll('tbody tr')).map((r) => r.children[3].textContent) : [],
+            rows: column('element from'),
+            envelopes: column('envelope'),
+            capacity: column('capacity (kN/m)'),
+            residual: column('residual (cm)'),
           };
         });
         check(
-          shown.title.startsWith('Yielding moat walls') &&
+          (linear
+            ? shown.title.startsWith('Moat walls as yielding elements (estimate, beside the linear springs)') &&
+              shown.rows.every((s) => s === 'estimate')
+            : shown.title.startsWith('Yielding moat walls') &&
+              shown.rows.every((s) => s === 'pushover' || s === 'estimate')) &&
             shown.rows.length === runs.length - 1 &&
-            shown.rows.every((s) => s === 'pushover' || s === 'estimate') &&
             shown.envelopes.every((s) => s === 'hull' || s === 'bilinear'),
           `the first section is the yielding walls (${shown.title}, ${shown.rows.length} of ` +
             `${runs.length - 1} runs, element from ${shown.rows.join(', ')}, envelope ` +
             `${shown.envelopes.join(', ')})`,
+        );
+        // Each row shows its capacity per metre and its residual displacement, as in the CSV.
+        check(
+          shown.capacity.length === runs.length - 1 &&
+            shown.capacity.every((c) => c !== null && Number(c) > 0) &&
+            shown.residual.every((c, i) => c !== null && Math.abs(Number(c) - Number(residualCsv[i])) <= 1e-3 * Math.abs(Number(residualCsv[i])) + 1e-9),
+          `capacity (kN/m) ${shown.capacity.join(', ')} and residual (cm) ${shown.residual.join(', ')} ` +
+            `as in yielding_wall.csv (${residualCsv.join(', ')})`,
         );
       }
       const answer = await page.evaluate((second) => {

@@ -281,15 +281,17 @@
     );
   }
 
-  // ---- study with inelastic materials: the yielding walls first ---------------------------------
+  // ---- study: the yielding walls first ----------------------------------------------------------
   /**
    * With inelastic materials the study's answer is each building run's wall against its yielding
    * wall element: the element's source (pushover or estimate) and yield force, the peak wall
    * resistance against it, the peak and residual wall displacement and whether the wall failed
    * (yielding_wall.csv, yielding_wall_element.csv). The k table then follows as the comparison
-   * with Table 2.1.
+   * with Table 2.1. A linear study (`route` "linear" in summary.json) runs the same building
+   * runs against each height's estimate element beside its impact springs: the same table,
+   * titled as the estimate.
    */
-  function yieldingWallAnswerSection(parent, runsText, elementsText) {
+  function yieldingWallAnswerSection(parent, runsText, elementsText, route) {
     const runs = parseCsv(runsText);
     if (runs.length < 2) return;
     const head = runs[0];
@@ -303,7 +305,13 @@
     };
     const source = (h) => elementValue(h, 'source');
     const cell = (r, n, digits) => (col(n) >= 0 && r[col(n)] !== '' ? fmt(parseFloat(r[col(n)]), digits) : '-');
-    const sec = section(parent, 'Yielding moat walls (the answer with inelastic materials)');
+    const linear = route === 'linear';
+    const sec = section(
+      parent,
+      linear
+        ? 'Moat walls as yielding elements (estimate, beside the linear springs): capacity and residual displacement'
+        : 'Yielding moat walls (the answer with inelastic materials)',
+    );
     table(
       sec,
       [
@@ -311,6 +319,7 @@
         'H (m)',
         'element from',
         'envelope',
+        'capacity (kN/m)',
         'capacity W (kN)',
         'peak wall resistance (kN)',
         'resistance / capacity W',
@@ -326,6 +335,7 @@
           cell(r, 'wall_height_m', 4),
           source(r[col('wall_height_m')]),
           elementValue(r[col('wall_height_m')], 'envelope'),
+          cell(r, 'wall_capacity_per_metre_kN_per_m', 4),
           cell(r, 'wall_capacity_kN', 4),
           cell(r, 'peak_wall_resistance_kN', 4),
           cell(r, 'resistance_over_capacity', 3),
@@ -341,6 +351,12 @@
       el('p', {
         class: 'muted',
         text:
+          (linear
+            ? 'A linear study: its building runs hit impact springs that never yield; these are the ' +
+              'same runs against each height\'s estimate element (capacity (M_p + P_p H/3)/h_c from ' +
+              'the wall\'s section and the passive resistance of its backfill, cracked cantilever ' +
+              'stiffness, radiation dashpot rho c; no FEM pushover). '
+            : '') +
           'capacity W: the wall-and-backfill part\'s capacity over the building width. On a hull ' +
           '(the pushover\'s concave hull) it is the largest force, flat past it; on a bilinear it ' +
           'is F_y, past which the wall hardens with the pushover\'s slope, so the ratio may exceed 1 ' +
@@ -593,7 +609,12 @@
     const kTable = data.csv && data.csv['k_table.csv'];
     const yielding = data.csv && data.csv['yielding_wall.csv'];
     if (data.kind === 'study' && yielding)
-      yieldingWallAnswerSection(container, yielding, data.csv['yielding_wall_element.csv']);
+      yieldingWallAnswerSection(
+        container,
+        yielding,
+        data.csv['yielding_wall_element.csv'],
+        data.summary && data.summary.yielding_wall && data.summary.yielding_wall.route,
+      );
     if (data.kind === 'study' && kTable) kAnswerSection(container, kTable);
     inputsSection(container, data);
     // A run in plan (a scene with `plan:`) has its own view: directions, rotation, the plan view.
