@@ -161,8 +161,7 @@ namespace kimp::fem::internal
       accumulate_contact_work(fc, s.u);
       force_sum += ev.total_force;
       penetration_sum += ev.mean_penetration;
-      max_penetration     = std::max(max_penetration, ev.max_penetration);
-      subcycle_peak_force = std::max(subcycle_peak_force, ev.total_force);
+      max_penetration = std::max(max_penetration, ev.max_penetration);
       for (std::size_t k = 0; k < m; ++k)
       {
         const double a_c = contact_inverse_mass[k] * fc[k];

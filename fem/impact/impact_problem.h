@@ -457,13 +457,11 @@ namespace kimp::fem::internal
     /** The contact's penalty factor (ImpactParameters::penalty_factor or the step ratio's). */
     double penalty_factor_used = 0;
     double dt = 0, dt_stable = 0;
-    /** Contact sub-cycling: sub-steps per step (1: off), their step dt / contact_substeps, the
-     *  contact nodes' compact inverse masses (the rigid slab's last), and the largest raw force
-     *  of any sub-step. */
+    /** Contact sub-cycling: sub-steps per step (1: off), their step dt / contact_substeps and
+     *  the contact nodes' compact inverse masses (the rigid slab's last). */
     unsigned int        contact_substeps = 1;
     double              dt_contact       = 0;
     std::vector<double> contact_inverse_mass;
-    double              subcycle_peak_force = 0;
 
     // Bookkeeping of the run.
     double                                      e0 = 0, contact_work = 0, damping_work = 0;

@@ -675,7 +675,6 @@ namespace kimp::fem::internal
       s.penalty_stiffness = std::max(s.penalty_stiffness, sl.stiffness);
     s.penalty_factor        = penalty_factor_used;
     s.contact_subcycles     = contact_substeps;
-    s.peak_force_raw        = std::max(s.peak_force_raw, subcycle_peak_force);
     s.n_dofs                = dof_handler.n_dofs();
     s.n_cells               = triangulation.n_global_active_cells();
     s.n_steps               = n_steps_done;
