@@ -107,7 +107,9 @@ for name in names:
     print(f"\n{name}, far side {ref}:")
     for lvl, c in (("2.5 cm", a), ("1.25 cm", b)):
         if c:
-            print(f"  {lvl}: {c['n_dofs']} DoFs, {c['n_steps']} steps, solver {c['wall_time']:.1f} s, "
+            print(f"  {lvl}: {c['n_dofs']} DoFs, {c['n_steps']} steps "
+                  f"({c.get('contact_subcycles', '?')} contact sub-steps each), "
+                  f"solver {c['wall_time']:.1f} s, "
                   f"stopped on {c.get('stopped_on')}, stored share "
                   f"{c.get('stored_energy_share', float('nan')):.3f}, impulse-momentum "
                   f"{c.get('impulse_momentum_ratio', float('nan')):.4f} "
