@@ -75,7 +75,6 @@ namespace kimp::fem
     return s;
   }
 
-
   ImpactResult run_impact(const ImpactParameters &parameters, MPI_Comm comm, std::ostream *log)
   {
     internal::ImpactProblem problem(parameters, comm, log);
