@@ -15,7 +15,8 @@
 # (default "rollers absorbing") the far sides (the first is the reference of the convergence
 # table). KIMP_LADDER_OUT (a directory) keeps the runs there and reuses a run whose scene is
 # unchanged and whose summary.json exists (delete the directory to rerun). KIMP_LADDER_EXTRA
-# (YAML lines) is appended to every scene, e.g. 'contact: {penalty_step_ratio: 0.8}'.
+# (YAML lines) is appended to every scene, e.g. 'contact: {penalty_step_ratio: 0.8}' or
+# 'contact: {subcycles: 0}'. KIMP_LADDER_LEVELS (default "2.5 1.25", in cm) picks the levels run.
 # Usage: bench/fem_ladder.sh [BUILD_DIR (default: build)] [RANKS (default: 1)] [HOLD_MS]
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
@@ -35,7 +36,7 @@ fi
 echo "kimp fem, reinforced moat wall, wall_aspect_max 1, 2.5 / 1.25 cm, far side ${fars[*]}," \
   "$ranks rank(s) ($(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg))"
 for far in "${fars[@]}"; do
-  for h in 2.5 1.25; do
+  for h in ${KIMP_LADDER_LEVELS:-2.5 1.25}; do
     run="${far}_$h"
     {
       grep -v '^wall_heights:' "$root/data/scenes/fem_reinforced_wall.yaml"
@@ -106,7 +107,9 @@ for name in names:
     print(f"\n{name}, far side {ref}:")
     for lvl, c in (("2.5 cm", a), ("1.25 cm", b)):
         if c:
-            print(f"  {lvl}: {c['n_dofs']} DoFs, {c['n_steps']} steps, solver {c['wall_time']:.1f} s, "
+            print(f"  {lvl}: {c['n_dofs']} DoFs, {c['n_steps']} steps "
+                  f"({c.get('contact_subcycles', '?')} contact sub-steps each), "
+                  f"solver {c['wall_time']:.1f} s, "
                   f"stopped on {c.get('stopped_on')}, stored share "
                   f"{c.get('stored_energy_share', float('nan')):.3f}, impulse-momentum "
                   f"{c.get('impulse_momentum_ratio', float('nan')):.4f} "

@@ -33,6 +33,31 @@ namespace kimp::fem
    */
   double penalty_omega_ratio_for_step(double step_ratio, double damping_ratio);
 
+  /**
+   * Contact sub-cycling (ImpactParameters::contact_subcycles), its stability limit
+   * min(subcycle_mesh_fraction 2 / omega_mesh, subcycle_phase_limit / omega_p): the largest
+   * phase omega_p dt of the penalty over one mesh step, and the fraction of the cells' own limit,
+   * that the impulse scheme keeps stable (docs/physics.md §4: the amplification matrix of two
+   * bars in contact, 2-4 sub-steps, contact damping 0 and 0.5, omega_p / omega_mesh 0.3-3).
+   */
+  inline constexpr double subcycle_phase_limit   = 1.75;
+  inline constexpr double subcycle_mesh_fraction = 0.95;
+  /** Step of mesh and contact with the contact sub-cycled, its stability limit (s) and the
+   *  sub-steps per step. */
+  struct SubcycledStep
+  {
+    double       limit    = 0; ///< as at subcycle_phase_limit
+    unsigned int substeps = 1;
+  };
+  /**
+   * The sub-cycled step's limit for the cells' omega_mesh and the penalty's omega_penalty
+   * (rad/s), and its sub-steps: `subcycles` if >= 2, else (0, automatic) the fewest whose
+   * sub-step of the limit is not above dt_stable, the limit of mesh and damped penalty together
+   * (ceil(limit / dt_stable), at least 2).
+   */
+  SubcycledStep
+  subcycled_step(double omega_mesh, double omega_penalty, double dt_stable, unsigned int subcycles);
+
   /** Options of the explicit central-difference integrator (ImpactParameters::explicit_options). */
   struct ExplicitOptions
   {
@@ -209,6 +234,15 @@ namespace kimp::fem
      */
     double penalty_step_ratio = 0;
     /**
+     * Contact sub-cycling (explicit only; docs/physics.md §4): 1 (the default) off; N >= 2 the
+     * contact nodes (slave and master face nodes, and the rigid slab) advance their penalty
+     * interaction in N sub-steps dt / N per mesh step, their internal force applied as the mesh
+     * step's impulse (a multiple-time-step "impulse" scheme), so that dt is the mesh's own step
+     * min(2 / omega_mesh, subcycle_phase_limit / omega_p) times the safety; 0: automatic, the
+     * fewest sub-steps whose step is not above the step without sub-cycling. In [0, 64].
+     */
+    unsigned int contact_subcycles = 1;
+    /**
      * Contact damping as a fraction of the critical damping of each penalty spring with its
      * reduced node mass, c_i = 2 xi sqrt(k_i m_i). It removes the penalty-spring chatter; its
      * dissipation vanishes as 1/sqrt(k) when the penalty grows and is reported in the history.
@@ -334,10 +368,12 @@ namespace kimp::fem
     double max_penetration  = 0; ///< m, largest slave penetration (dynamic node impacts)
     /** m: stiffness-weighted mean slave penetration averaged over the contact duration. Since
      *  k p = lambda - c dp/dt, it equals impulse / (T sum k_i): it falls as 1 / penalty. */
-    double        mean_penetration  = 0;
-    double        initial_gap       = 0; ///< m
-    double        penalty_stiffness = 0; ///< N/m per metre, largest slave-node penalty k_i
-    double        penalty_factor    = 0; ///< used: penalty_factor or penalty_step_ratio's
+    double mean_penetration  = 0;
+    double initial_gap       = 0; ///< m
+    double penalty_stiffness = 0; ///< N/m per metre, largest slave-node penalty k_i
+    double penalty_factor    = 0; ///< used: penalty_factor or penalty_step_ratio's
+    /** Contact sub-steps per step (1: no sub-cycling); the contact's step is dt / this. */
+    unsigned int  contact_subcycles = 1;
     unsigned long n_dofs            = 0;
     unsigned long n_cells           = 0;
     unsigned long n_steps           = 0;

@@ -81,6 +81,7 @@ namespace kimp::io
         {"penalty_stiffness", "N/m/m", &S::penalty_stiffness},
         {"mesh_level", "1", nullptr, &S::mesh_level},
         {"penalty_factor", "1", &S::penalty_factor},
+        {"contact_subcycles", "1", nullptr, &S::contact_subcycles},
         {"n_dofs", "1", nullptr, &S::n_dofs},
         {"n_cells", "1", nullptr, &S::n_cells},
         {"n_steps", "1", nullptr, &S::n_steps},

@@ -37,8 +37,9 @@ namespace kimp::io
     std::optional<double> initial_gap;       ///< m
     std::optional<double> penalty_stiffness; ///< contact penalty, N/m per m
     // The run.
-    std::optional<std::int64_t> mesh_level;     ///< refinement level of the mesh
-    std::optional<double>       penalty_factor; ///< contact penalty factor of the run
+    std::optional<std::int64_t> mesh_level;        ///< refinement level of the mesh
+    std::optional<double>       penalty_factor;    ///< contact penalty factor of the run
+    std::optional<std::int64_t> contact_subcycles; ///< contact sub-steps per step (1: off)
     std::optional<std::int64_t> n_dofs;
     std::optional<std::int64_t> n_cells;
     std::optional<std::int64_t> n_steps;

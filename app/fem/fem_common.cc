@@ -91,6 +91,7 @@ namespace kimp::app
     c.summary.penalty_stiffness     = s.penalty_stiffness;
     c.summary.mesh_level            = scene.mesh_level;
     c.summary.penalty_factor        = s.penalty_factor;
+    c.summary.contact_subcycles     = static_cast<std::int64_t>(s.contact_subcycles);
     c.summary.n_dofs                = static_cast<std::int64_t>(s.n_dofs);
     c.summary.n_cells               = static_cast<std::int64_t>(s.n_cells);
     c.summary.n_steps               = static_cast<std::int64_t>(s.n_steps);

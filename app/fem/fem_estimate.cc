@@ -190,14 +190,19 @@ namespace kimp::app
     const double xi        = p.contact_damping_ratio * omega_penalty / omega;
     const double dt_stable = 2.0 / omega * (std::sqrt(1.0 + xi * xi) - xi);
     const bool   implicit  = p.integrator == fem::ImpactParameters::Integrator::implicit_newmark;
+    // Contact sub-cycling: the mesh's step (the sub-steps cost little: the contact alone).
+    const double limit =
+      p.contact_subcycles != 1 && !implicit ?
+        fem::subcycled_step(omega_mesh, omega_penalty, dt_stable, p.contact_subcycles).limit :
+        dt_stable;
     if (p.dt > 0.0)
       e.dt = p.dt;
     else if (implicit)
       e.dt = p.implicit_options.dt_factor * dt_stable;
     else if (p.explicit_options.dt_over_limit > 0.0)
-      e.dt = p.explicit_options.dt_over_limit * dt_stable;
+      e.dt = p.explicit_options.dt_over_limit * limit;
     else
-      e.dt = p.explicit_options.cfl_safety * dt_stable;
+      e.dt = p.explicit_options.cfl_safety * limit;
     e.n_steps = std::ceil(e.end_time / e.dt);
 
     const double per_dof_step = implicit ? fem_implicit_seconds_per_dof_step :

@@ -154,6 +154,12 @@ namespace kimp::app
     {
       const auto scope = ctx.section("contact");
       validate_auto_time(s.smoothing_window, "smoothing_window", ctx);
+      ctx.check(s.solver.contact_subcycles == 1 ||
+                  s.solver.integrator ==
+                    fem::ImpactParameters::Integrator::explicit_central_difference,
+                "subcycles",
+                std::to_string(s.solver.contact_subcycles),
+                "must be 1 (off) with dynamics.integrator: implicit (sub-cycling is explicit)");
     }
     {
       const auto scope = ctx.section("dynamics");

@@ -333,6 +333,13 @@ namespace kimp::app
                 "0: off; in (0, 1): penalty_factor replaced by the penalty whose springs (with "
                 "their damping) leave the explicit stable step at this fraction of the mesh's own",
                 io::Range::at_least(0.0).and_less(1.0));
+    io.integer("subcycles",
+               s.solver.contact_subcycles,
+               "contact sub-cycling (explicit only): 1 off; N >= 2 penalty sub-steps per mesh "
+               "step, whose step is then the mesh's own; 0 automatic (the fewest sub-steps not "
+               "longer than the step without sub-cycling)",
+               0,
+               64);
     io.quantity("contact_damping_ratio",
                 s.solver.contact_damping_ratio,
                 "",

@@ -98,6 +98,8 @@ namespace kimp::fem::internal
      *  wall-soil interface force: the force the time loops balance with the inertia. */
     void internal_force(const Vec &u, Vec &f);
     void compute_time_step();
+    /** compute_time_step() with the contact sub-cycled: dt, contact_substeps, the limit. */
+    void compute_subcycled_step();
     /** Largest 2 c_p / h over the cells (h: a cell's shortest edge), over all ranks. */
     double cells_omega() const;
     void   log_line(const std::string &s) const;
@@ -317,6 +319,32 @@ namespace kimp::fem::internal
 
     // explicit.cc
     void run_explicit();
+    /** Contact sub-cycling, the contact nodes' compact state over one step from t_n: u_c, v_c
+     *  (v at t_n - dt_contact / 2) and the step's held acceleration a_c = M^-1 (f - f_int)(u_n)
+     *  on them. */
+    struct SubcycleState
+    {
+      std::vector<double> u, v, a;
+    };
+    /** The contact nodes' compact velocity at t_n of step n (fc: the penalty force at u_n). */
+    std::vector<double> subcycled_velocity_at_step(unsigned long              n,
+                                                   const std::vector<double> &fc,
+                                                   const SubcycleState       &s) const;
+    /**
+     * Advances s over the step n in contact_substeps sub-steps (leap-frog at dt_contact with the
+     * penalty force at every sub-step, a_c's impulse dt a_c at the first; the first step starts
+     * with half kicks). The first sub-step's evaluation is ev0 (at u_n). Accumulates the contact
+     * work, raw force (the step's mean) and penetration of every sub-step.
+     */
+    void advance_subcycled_contact(unsigned long                     n,
+                                   const PenaltyContact::Evaluation &ev0,
+                                   SubcycleState                    &s);
+    /** Writes the owned entries of compact values into a distributed vector (and the rigid
+     *  DoF into rigid). Collective. */
+    void write_compact(const std::vector<double> &compact, Vec &v, double &rigid) const;
+    /** The contact work of the trapezoid rule from the last call to compact forces fc at
+     *  compact displacements cu (explicit: per step, or per sub-step when sub-cycled). */
+    void accumulate_contact_work(const std::vector<double> &fc, const std::vector<double> &cu);
 
     // recording.cc
     /** What record() reads of step n (time t): the state and its contact evaluation. */
@@ -331,6 +359,8 @@ namespace kimp::fem::internal
       double                            v_r;
       const PenaltyContact::Evaluation &ev;
       const std::vector<double>        &cu; ///< the contact points' compact displacements
+      /// The contact's work, raw force and penetration were accumulated by the sub-steps.
+      bool contact_subcycled = false;
     };
     /** Records histories and energies of one step. */
     void record(const RecordedStep &step);
@@ -340,7 +370,8 @@ namespace kimp::fem::internal
                               const Vec                        &v_n,
                               const Vec                        &Ku,
                               const PenaltyContact::Evaluation &ev,
-                              const std::vector<double>        &cu);
+                              const std::vector<double>        &cu,
+                              bool                              contact_subcycled);
     /** The energy and momentum sums of a sampled step, over the ranks (the layout is listed
      *  in recording.cc). */
     static constexpr unsigned int       n_energy_values = 9 + 8 + 5;
@@ -426,6 +457,11 @@ namespace kimp::fem::internal
     /** The contact's penalty factor (ImpactParameters::penalty_factor or the step ratio's). */
     double penalty_factor_used = 0;
     double dt = 0, dt_stable = 0;
+    /** Contact sub-cycling: sub-steps per step (1: off), their step dt / contact_substeps and
+     *  the contact nodes' compact inverse masses (the rigid slab's last). */
+    unsigned int        contact_substeps = 1;
+    double              dt_contact       = 0;
+    std::vector<double> contact_inverse_mass;
 
     // Bookkeeping of the run.
     double                                      e0 = 0, contact_work = 0, damping_work = 0;

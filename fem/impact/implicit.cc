@@ -403,7 +403,7 @@ namespace kimp::fem::internal
       s.cu = gather_compact(s.u, s.u_r);
       s.ev = contact->evaluate(s.cu, gather_compact(s.v, s.v_r));
       internal_force(s.u, s.Ku);
-      record({0, 0.0, s.u, s.v, s.Ku, s.u_r, s.v_r, s.ev, s.cu});
+      record({0, 0.0, s.u, s.v, s.Ku, s.u_r, s.v_r, s.ev, s.cu, false});
       if (steps.write_vtu)
         output_results(0.0, s.u, s.v, padded_force(s.ev, s.cu.size()));
       if (steps.frame_every)
@@ -458,7 +458,7 @@ namespace kimp::fem::internal
       if (ticks % ticks_per_step != 0)
         continue;
       ++n;
-      record({n, t_np1, s.u, s.v, s.Ku, s.u_r, s.v_r, s.ev, s.cu});
+      record({n, t_np1, s.u, s.v, s.Ku, s.u_r, s.v_r, s.ev, s.cu, false});
       if (steps.write_vtu && n % steps.vtu_every == 0)
         output_results(t_np1, s.u, s.v, padded_force(s.ev, s.cu.size()));
       if (frame_due(n, t_np1, s.ev.total_force))

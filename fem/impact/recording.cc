@@ -33,22 +33,32 @@ namespace kimp::fem::internal
     return f;
   }
 
-  void ImpactProblem::accumulate_step_work(const Vec                        &u,
-                                           const Vec                        &v_n,
-                                           const Vec                        &Ku,
-                                           const PenaltyContact::Evaluation &ev,
-                                           const std::vector<double>        &cu)
+  void ImpactProblem::accumulate_contact_work(const std::vector<double> &fc,
+                                              const std::vector<double> &cu)
   {
-    // Contact work by the trapezoid rule over the compact DoFs (the only ones it acts on).
-    const std::vector<double> fc = padded_force(ev, cu.size());
     if (!cu_prev.empty())
       for (std::size_t k = 0; k < cu.size(); ++k)
         contact_work += 0.5 * (fc[k] + fc_prev[k]) * (cu[k] - cu_prev[k]);
     cu_prev = cu;
     fc_prev = fc;
-    raw_force.push_back(ev.total_force);
-    penetration_integral += ev.mean_penetration * dt;
-    max_penetration = std::max(max_penetration, ev.max_penetration);
+  }
+
+  void ImpactProblem::accumulate_step_work(const Vec                        &u,
+                                           const Vec                        &v_n,
+                                           const Vec                        &Ku,
+                                           const PenaltyContact::Evaluation &ev,
+                                           const std::vector<double>        &cu,
+                                           bool                              contact_subcycled)
+  {
+    // Contact work by the trapezoid rule over the compact DoFs (the only ones it acts on);
+    // sub-cycled, the sub-steps accumulated it.
+    if (!contact_subcycled)
+    {
+      accumulate_contact_work(padded_force(ev, cu.size()), cu);
+      raw_force.push_back(ev.total_force);
+      penetration_integral += ev.mean_penetration * dt;
+      max_penetration = std::max(max_penetration, ev.max_penetration);
+    }
 
     // Non-linear laws: internal work by the trapezoid rule, this rank's owned entries (the sum
     // over ranks is taken with the energies below).
@@ -118,8 +128,8 @@ namespace kimp::fem::internal
 
   void ImpactProblem::record(const RecordedStep &step)
   {
-    const auto &[n, t, u, v_n, Ku, u_r, v_r, ev, cu] = step;
-    accumulate_step_work(u, v_n, Ku, ev, cu);
+    const auto &[n, t, u, v_n, Ku, u_r, v_r, ev, cu, subcycled] = step;
+    accumulate_step_work(u, v_n, Ku, ev, cu, subcycled);
 
     // Energies and means at the sampled steps only (one reduction): the divergence guard
     // acts within one output interval.
@@ -664,6 +674,7 @@ namespace kimp::fem::internal
     for (const auto &sl : contact->slaves())
       s.penalty_stiffness = std::max(s.penalty_stiffness, sl.stiffness);
     s.penalty_factor        = penalty_factor_used;
+    s.contact_subcycles     = contact_substeps;
     s.n_dofs                = dof_handler.n_dofs();
     s.n_cells               = triangulation.n_global_active_cells();
     s.n_steps               = n_steps_done;

@@ -61,6 +61,20 @@ namespace kimp::fem
     return 0.5 * (lo + hi);
   }
 
+  SubcycledStep
+  subcycled_step(double omega_mesh, double omega_penalty, double dt_stable, unsigned int subcycles)
+  {
+    SubcycledStep s;
+    s.limit = subcycle_mesh_fraction * 2 / omega_mesh;
+    if (omega_penalty > 0)
+      s.limit = std::min(s.limit, subcycle_phase_limit / omega_penalty);
+    s.substeps =
+      subcycles >= 2 ?
+        subcycles :
+        std::max(2u, static_cast<unsigned int>(std::ceil(s.limit / dt_stable * (1 - 1e-12))));
+    return s;
+  }
+
   ImpactResult run_impact(const ImpactParameters &parameters, MPI_Comm comm, std::ostream *log)
   {
     internal::ImpactProblem problem(parameters, comm, log);
@@ -209,6 +223,11 @@ namespace kimp::fem::internal
     require(prm.penalty_step_ratio >= 0 && prm.penalty_step_ratio < 1,
             "penalty_step_ratio = " + fmt_double(prm.penalty_step_ratio) +
               " (must be in [0, 1); 0 = off)");
+    require(prm.contact_subcycles <= 64 &&
+              (prm.contact_subcycles == 1 ||
+               prm.integrator == ImpactParameters::Integrator::explicit_central_difference),
+            "contact_subcycles = " + std::to_string(prm.contact_subcycles) +
+              " (must be in [0, 64]: 1 off, 0 automatic, N sub-steps; explicit integrator only)");
     require(prm.contact_damping_ratio >= 0 && prm.contact_damping_ratio <= 1,
             "contact_damping_ratio = " + fmt_double(prm.contact_damping_ratio) +
               " (must be in [0, 1])");
@@ -560,7 +579,9 @@ namespace kimp::fem::internal
     const double omega = std::sqrt(omega_mesh * omega_mesh + omega_penalty * omega_penalty);
     const double xi    = prm.contact_damping_ratio * omega_penalty / omega;
     dt_stable          = 2 / omega * (std::sqrt(1 + xi * xi) - xi);
-    if (prm.integrator == ImpactParameters::Integrator::explicit_central_difference)
+    if (prm.contact_subcycles != 1)
+      compute_subcycled_step();
+    else if (prm.integrator == ImpactParameters::Integrator::explicit_central_difference)
     {
       require(prm.dt <= dt_stable,
               "dt = " + fmt_double(prm.dt) + " s is above the explicit stability limit " +
@@ -572,8 +593,39 @@ namespace kimp::fem::internal
     }
     else
       dt = prm.dt > 0 ? prm.dt : prm.implicit_options.dt_factor * dt_stable;
+    dt_contact   = dt / contact_substeps;
     sample_every = prm.output_interval > 0 ?
                      std::max<unsigned long>(1, std::lround(prm.output_interval / dt)) :
                      1;
+  }
+
+  void ImpactProblem::compute_subcycled_step()
+  {
+    // The contact nodes feel the mesh as an impulse per step and the penalty at every sub-step:
+    // the step is the cells' own unless the penalty turns by more than subcycle_phase_limit in
+    // it; each sub-step must keep the damped penalty spring alone stable.
+    const SubcycledStep s =
+      subcycled_step(omega_mesh, omega_penalty, dt_stable, prm.contact_subcycles);
+    require(prm.dt <= s.limit,
+            "dt = " + fmt_double(prm.dt) + " s is above the sub-cycled stability limit " +
+              fmt_double(s.limit) + " s (mesh omega = " + fmt_double(omega_mesh) +
+              " rad/s, contact penalty omega = " + fmt_double(omega_penalty) + " rad/s)");
+    dt                    = prm.dt > 0                             ? prm.dt :
+                            prm.explicit_options.dt_over_limit > 0 ? prm.explicit_options.dt_over_limit * s.limit :
+                                                                     prm.explicit_options.cfl_safety * s.limit;
+    contact_substeps      = s.substeps;
+    const double xi       = prm.contact_damping_ratio;
+    const double dt_alone = omega_penalty > 0 ? 2 / omega_penalty * (std::sqrt(1 + xi * xi) - xi) :
+                                                std::numeric_limits<double>::infinity();
+    require(dt / contact_substeps <= dt_alone,
+            "contact_subcycles = " + std::to_string(contact_substeps) + ": the sub-step " +
+              fmt_double(dt / contact_substeps) +
+              " s is above the damped penalty spring's own limit " + fmt_double(dt_alone) +
+              " s (more sub-steps, or 0 for automatic)");
+    dt_stable = s.limit;
+    log_line("contact sub-cycling: " + std::to_string(contact_substeps) + " sub-steps of " +
+             fmt_sig(dt / contact_substeps) + " s per step of " + fmt_sig(dt) +
+             " s (sub-cycled limit " + fmt_sig(s.limit) +
+             " s, omega_p dt = " + fmt_sig(omega_penalty * dt) + ")");
   }
 } // namespace kimp::fem::internal

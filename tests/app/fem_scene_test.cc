@@ -501,6 +501,10 @@ namespace
       {"slab:\n  velocity: \"0 m/s\"\n", "slab.velocity", 2, "> 0"},
       {"contact:\n  penalty_factor: 0\n", "contact.penalty_factor", 2, "> 0"},
       {"contact:\n  contact_damping_ratio: 1.5\n", "contact.contact_damping_ratio", 2, "[0, 1]"},
+      {"contact:\n  subcycles: 2\ndynamics:\n  integrator: implicit\n",
+       "contact.subcycles",
+       2,
+       "must be 1 (off) with dynamics.integrator: implicit"},
       {"contact:\n  smoothing_window: soon\n", "contact.smoothing_window", 2, "'auto'"},
       {"contact:\n  smoothing_window: \"0 s\"\n",
        "contact.smoothing_window",
@@ -543,6 +547,9 @@ namespace
     const std::string wrong_choice = scene_error("dynamics:\n  integrator: rk4\n");
     EXPECT_NE(wrong_choice.find(file_name + ":2: dynamics.integrator"), std::string::npos)
       << wrong_choice;
+    const std::string subcycles = scene_error("contact:\n  subcycles: 65\n");
+    EXPECT_NE(subcycles.find(file_name + ":2: contact.subcycles"), std::string::npos) << subcycles;
+    EXPECT_NE(subcycles.find("integer in [0, 64]"), std::string::npos) << subcycles;
   }
 
   TEST(FemScene, ShippedScenesLoad)

@@ -361,6 +361,71 @@ namespace
     EXPECT_ANY_THROW(run_impact(p, MPI_COMM_WORLD, nullptr));
   }
 
+  TEST(Subcycling, ContactSubStepsTakeTheMeshStepAndKeepTheImpact)
+  {
+    // contact_subcycles 0 (automatic): the penalty springs advance in sub-steps, the mesh at
+    // its own step min(0.95 x 2 / omega_mesh, 1.75 / omega_p) x cfl_safety instead of the
+    // step of mesh and damped penalty together (about half the cells' own). The impact must
+    // not see the difference: peak, impulse, duration and COR of the elastic and the rigid
+    // slab as without sub-cycling, the impulse equal to the slab's momentum change.
+    constexpr double peak_tolerance             = 0.02; // the smoothed (first) peak
+    constexpr double result_tolerance           = 0.02; // impulse, duration, COR
+    constexpr double impulse_momentum_tolerance = 0.02; // |impulse / m (v_in + v_out) - 1|
+    constexpr double energy_error_bound         = 0.01; // max |dE / E0| of the sub-cycled run
+    // The step over the step without: 1.79 elastic, 1.51 rigid (whose heavy slab leaves the
+    // penalty's omega lower, so it halves the step less).
+    constexpr double min_step_gain = 1.4;
+    for (const bool rigid : {false, true})
+    {
+      auto p = scene_parameters(0.025, rigid, rigid ? "scene_sub_rigid.msh" : "scene_sub.msh");
+      const auto reference = run_impact(p, MPI_COMM_WORLD, nullptr);
+      // The cells' own limit: a vanishing penalty, stopped before the slab reaches the wall.
+      auto cells            = p;
+      cells.penalty_factor  = 1e-12;
+      cells.end_time        = 1e-4;
+      const double dt_cells = run_impact(cells, MPI_COMM_WORLD, nullptr).summary.dt_stable;
+      p.contact_subcycles   = 0;
+      const auto  sub       = run_impact(p, MPI_COMM_WORLD, nullptr);
+      const auto &r = reference.summary, &s = sub.summary;
+      if (rank() == 0)
+        std::cout << (rigid ? "rigid" : "elastic")
+                  << " slab, without sub-cycling: " << summary_line(reference) << "\n  sub-cycled ("
+                  << s.contact_subcycles << " sub-steps): " << summary_line(sub)
+                  << "\n  cells' own limit " << dt_cells << " s; dt " << r.dt << " -> " << s.dt
+                  << " s (x" << s.dt / r.dt << "), limit " << r.dt_stable << " -> " << s.dt_stable
+                  << " s\n";
+      EXPECT_EQ(r.contact_subcycles, 1u);
+      EXPECT_GE(s.contact_subcycles, 2u);
+      EXPECT_NEAR(s.dt, p.explicit_options.cfl_safety * s.dt_stable, 1e-12 * s.dt);
+      EXPECT_LE(s.dt_stable, 0.95 * dt_cells * (1 + 1e-5)); // the vanishing penalty damps 5e-7
+      EXPECT_GT(s.dt_stable, 0.85 * dt_cells) << "the sub-cycled step is the mesh's";
+      EXPECT_GT(s.dt / r.dt, min_step_gain);
+      EXPECT_LE(s.dt / s.contact_subcycles, r.dt * (1 + 1e-12)) << "the contact's sub-step";
+      EXPECT_NEAR(s.peak_force / r.peak_force, 1.0, peak_tolerance);
+      EXPECT_NEAR(s.impulse / r.impulse, 1.0, result_tolerance);
+      EXPECT_NEAR(s.contact_duration / r.contact_duration, 1.0, result_tolerance);
+      EXPECT_NEAR(s.apparent_cor / r.apparent_cor, 1.0, result_tolerance);
+      EXPECT_LT(s.energy_error, energy_error_bound);
+      const double mass = p.slab_mass; // the meshed slab's too
+      for (const ImpactSummary *m : {&r, &s})
+        EXPECT_NEAR(m->impulse / (mass * p.initial_velocity * (1 + m->apparent_cor)),
+                    1.0,
+                    impulse_momentum_tolerance)
+          << (m == &s ? "sub-cycled" : "reference");
+    }
+  }
+
+  TEST(Subcycling, RefusedWithTheImplicitIntegratorAndAboveItsRange)
+  {
+    auto p              = scene_parameters(0.05, true, "scene_sub_refused.msh");
+    p.end_time          = 1e-4;
+    p.contact_subcycles = 65;
+    EXPECT_ANY_THROW(run_impact(p, MPI_COMM_WORLD, nullptr));
+    p.contact_subcycles = 2;
+    p.integrator        = ImpactParameters::Integrator::implicit_newmark;
+    EXPECT_ANY_THROW(run_impact(p, MPI_COMM_WORLD, nullptr));
+  }
+
   TEST(Scene, RigidSlabDoublesPeakForceAndKeepsImpulseAndLocalStiffness)
   {
     // A rigid slab has no axial wave: the force is not capped by rho c A v / 2, so the peak is
@@ -573,6 +638,23 @@ namespace
     const auto [max_force, max_difference] = force_history_difference(runs.world, runs.self);
     ASSERT_GT(max_force, 0);
     EXPECT_LT(max_difference, 1e-10 * max_force);
+  }
+
+  TEST(Mpi, SubcycledContactIsTheSameOnEveryPartition)
+  {
+    // The contact nodes' sub-steps run on the gathered compact state, the same on every rank:
+    // 1 or 2 ranks give the same step, sub-steps and force history as one rank alone.
+    constexpr double tolerance = 1e-10;
+    auto             p         = scene_parameters(0.05, false, "scene_mpi_subcycles.msh");
+    p.end_time                 = 0.002;
+    p.contact_subcycles        = 0;
+    const auto runs            = run_on_world_and_self(p);
+    EXPECT_EQ(runs.world.summary.contact_subcycles, runs.self.summary.contact_subcycles);
+    EXPECT_GE(runs.world.summary.contact_subcycles, 2u);
+    EXPECT_NEAR(runs.world.summary.dt / runs.self.summary.dt, 1.0, 1e-12);
+    const auto [max_force, max_difference] = force_history_difference(runs.world, runs.self);
+    ASSERT_GT(max_force, 0);
+    EXPECT_LT(max_difference, tolerance * max_force);
   }
 
   TEST(Mpi, FramesGatherTheWholeMeshOnRankZeroAsOnOneRank)
