@@ -282,11 +282,15 @@ TEST(LumpedCli, ExportOpenSeesWritesTheYieldingWallsOfALumpedScene)
               "walls:\n  right:\n    gap: \"10 cm\"\n    sdof_mass: \"60 t\"\n"
               "    yielding:\n      width: \"20 m\"\n"
               "      capacity: \"150 kN/m\"\n      stiffness: \"25 kN/mm/m\"\n");
-  const KimpRun run =
-    run_kimp("-q export-opensees -o os --k-kv \"2496 kN/mm\" --effective-mass \"144.8 t\" "
-             "--lumped-scene " +
-               scene.string(),
-             dir.path());
+  // The laws' k and m_eff given, the walls from `lumped_scene`, into the directory `out`.
+  const auto export_walls = [&dir](const std::string &out, const fs::path &lumped_scene)
+  {
+    return run_kimp("-q export-opensees -o " + out +
+                      " --k-kv \"2496 kN/mm\" --effective-mass \"144.8 t\" --lumped-scene " +
+                      lumped_scene.string(),
+                    dir.path());
+  };
+  const KimpRun run = export_walls("os", scene);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::string tcl = read_text(dir.path() / "os" / "opensees_walls.tcl");
   expect_contains(tcl,
@@ -298,18 +302,14 @@ TEST(LumpedCli, ExportOpenSeesWritesTheYieldingWallsOfALumpedScene)
   EXPECT_EQ(summary["files"].size(), 4u) << summary.dump();
 
   // A curve envelope (a pushover's hull) is one ElasticPPGap per kink in the Parallel.
-  const fs::path curve = dir.write("curve.yaml",
+  const fs::path curve     = dir.write("curve.yaml",
                                    "walls:\n  right:\n    gap: \"10 cm\"\n"
-                                   "    yielding:\n      width: \"20 m\"\n"
-                                   "      envelope: curve\n      curve:\n"
-                                   "        - {displacement: 0 mm, force: 0 kN/m}\n"
-                                   "        - {displacement: 6 mm, force: 150 kN/m}\n"
-                                   "        - {displacement: 30 mm, force: 198 kN/m}\n");
-  const KimpRun  curve_run =
-    run_kimp("-q export-opensees -o curve --k-kv \"2496 kN/mm\" --effective-mass \"144.8 t\" "
-             "--lumped-scene " +
-               curve.string(),
-             dir.path());
+                                       "    yielding:\n      width: \"20 m\"\n"
+                                       "      envelope: curve\n      curve:\n"
+                                       "        - {displacement: 0 mm, force: 0 kN/m}\n"
+                                       "        - {displacement: 6 mm, force: 150 kN/m}\n"
+                                       "        - {displacement: 30 mm, force: 198 kN/m}\n");
+  const KimpRun  curve_run = export_walls("curve", curve);
   ASSERT_EQ(curve_run.exit_code, 0) << curve_run.err;
   const std::string curve_tcl = read_text(dir.path() / "curve" / "opensees_walls.tcl");
   expect_contains(curve_tcl,
@@ -319,11 +319,7 @@ TEST(LumpedCli, ExportOpenSeesWritesTheYieldingWallsOfALumpedScene)
 
   // A scene without a yielding wall is refused, and nothing is left behind.
   const fs::path rigid = dir.write("rigid.yaml", "walls:\n  right:\n    gap: \"10 cm\"\n");
-  const KimpRun  none =
-    run_kimp("-q export-opensees -o none --k-kv \"2496 kN/mm\" --effective-mass \"144.8 t\" "
-             "--lumped-scene " +
-               rigid.string(),
-             dir.path());
+  const KimpRun  none  = export_walls("none", rigid);
   EXPECT_EQ(none.exit_code, 1);
   expect_contains(none.err, {"has no yielding wall"});
   EXPECT_FALSE(fs::exists(dir.path() / "none" / "opensees_impact.tcl"));
