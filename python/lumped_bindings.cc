@@ -180,10 +180,10 @@ namespace kimp::python
       for (lumped::ContactResult &contact : r.contacts)
       {
         py::dict cd;
-        cd["name"]                  = contact.name;
-        cd["peak_force"]            = contact.peak_force;
-        cd["impact_time"]           = to_numpy(contact.impact_times());
-        cd["impact_velocity"]       = to_numpy(contact.impact_velocities());
+        cd["name"]            = contact.name;
+        cd["peak_force"]      = contact.peak_force;
+        cd["impact_time"]     = to_numpy(contact.impact_column(&lumped::ImpactEvent::time));
+        cd["impact_velocity"] = to_numpy(contact.impact_column(&lumped::ImpactEvent::velocity));
         cd["permanent_indentation"] = contact.permanent_indentation;
         cd["dissipated_energy"]     = contact.dissipated_energy;
         contacts.append(cd);

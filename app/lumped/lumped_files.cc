@@ -127,8 +127,8 @@ namespace kimp::app
     void write_contact(ResultsGroup &g, const lumped::ContactResult &contact, double dt)
     {
       ResultsGroup cg = g.group("contacts/" + contact.name);
-      cg.write("impact_time", contact.impact_times(), "s");
-      cg.write("impact_velocity", contact.impact_velocities(), "m/s");
+      cg.write("impact_time", contact.impact_column(&lumped::ImpactEvent::time), "s");
+      cg.write("impact_velocity", contact.impact_column(&lumped::ImpactEvent::velocity), "m/s");
       cg.set_attribute("n_impacts", static_cast<std::int64_t>(contact.impacts.size()));
       cg.write_scalar("peak_force", contact.peak_force, "N");
       cg.write_scalar("permanent_indentation", contact.permanent_indentation, "m");

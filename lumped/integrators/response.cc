@@ -34,22 +34,13 @@ namespace kimp::lumped
     return v;
   }
 
-  std::vector<double> ContactResult::impact_times() const
+  std::vector<double> ContactResult::impact_column(double ImpactEvent::*column) const
   {
-    std::vector<double> times;
-    times.reserve(impacts.size());
+    std::vector<double> values;
+    values.reserve(impacts.size());
     for (const ImpactEvent &impact : impacts)
-      times.push_back(impact.time);
-    return times;
-  }
-
-  std::vector<double> ContactResult::impact_velocities() const
-  {
-    std::vector<double> velocities;
-    velocities.reserve(impacts.size());
-    for (const ImpactEvent &impact : impacts)
-      velocities.push_back(impact.velocity);
-    return velocities;
+      values.push_back(impact.*column);
+    return values;
   }
 
   std::size_t Response::n_impacts() const
