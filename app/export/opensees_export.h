@@ -8,6 +8,7 @@
 #include <string>
 
 #include "app/laws/cor_key.h"
+#include "app/laws/impact_scene.h"
 #include "app/lumped/building_keys.h"
 #include "io/scene_io.h"
 #include "lumped/laws/law_traits.h"
@@ -87,12 +88,10 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, ExportOpenSeesSettings &s)
   {
-    io.quantity("wall_height",
-                s.wall_height,
-                "m",
-                "wall height at which the k source is interpolated (needed when it holds several "
-                "heights)",
-                io::Range::positive());
+    visit_k_source_height(io,
+                          s.wall_height,
+                          "wall height at which the k source is interpolated (needed when it "
+                          "holds several heights)");
     io.text("record",
             s.record,
             "with a study directory: export the consistent k of this record at wall_height "

@@ -433,11 +433,10 @@ namespace kimp::app
                 "",
                 "extra factor on the ground motion of this case (negative flips it)",
                 io::Range::nonzero());
-    io.quantity("wall_height",
-                s.wall_height,
-                "m",
-                "wall height at which impact.k_table is interpolated (null = impact.wall_height)",
-                io::Range::positive());
+    visit_k_source_height(
+      io,
+      s.wall_height,
+      "wall height at which impact.k_table is interpolated (null = impact.wall_height)");
     io.text("record", s.record, "ground motion record of this case (\"\" = ground_motion.record)");
   }
 
