@@ -513,19 +513,7 @@ namespace kimp::fem
     const double cnn = wc * ((1 - dt) * a + dt * qnn), cnt = wc * ((1 - dt) * lam + dt * qnt),
                  ctt = wc * ((1 - dt) * a + dt * qtt), css = wc * mu * (1 - dt * (1 - sp.beta));
     // T = A^T C' A, A the strain transformation of to_crack_frame().
-    const double cc = c * c, ss = sn * sn, cs = c * sn;
-    const double A[3][3] = {{cc, ss, cs}, {ss, cc, -cs}, {-2 * cs, 2 * cs, cc - ss}};
-    const double C[3][3] = {{cnn, cnt, 0}, {cnt, ctt, 0}, {0, 0, css}};
-    VoigtTangent t{};
-    for (unsigned int i = 0; i < 3; ++i)
-      for (unsigned int j = 0; j < 3; ++j)
-      {
-        double v = 0;
-        for (unsigned int k = 0; k < 3; ++k)
-          for (unsigned int l = 0; l < 3; ++l)
-            v += A[k][i] * C[k][l] * A[l][j];
-        t[3 * i + j] = v;
-      }
+    VoigtTangent t = detail::tangent_from_frame({{cnn, cnt, 0, cnt, ctt, 0, 0, 0, css}}, c, sn);
     if (reinforced_)
     {
       const double  *b     = h + bars_;
@@ -535,12 +523,14 @@ namespace kimp::fem
       t[4] += r_.ratio_y * ys * steel.update(ys * e[1], b[2], b[3]).tangent;
       if (dt > 0 && !p_.rotating_crack)
       {
+        // The dowel's shear stiffness on g = a2 . e, a2 the shear row of to_crack_frame().
         const Dowel  dw = dowel(c, sn);
         const double g  = to_crack_frame(e, c, sn)[2];
+        const double cs = c * sn, a2[3] = {-2 * cs, 2 * cs, c * c - sn * sn};
         if (std::abs(dw.stiffness * (g - b[5])) <= dw.strength)
           for (unsigned int i = 0; i < 3; ++i)
             for (unsigned int j = 0; j < 3; ++j)
-              t[3 * i + j] += A[2][i] * dw.stiffness * A[2][j];
+              t[3 * i + j] += a2[i] * dw.stiffness * a2[j];
       }
     }
     return t;

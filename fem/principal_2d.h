@@ -1,8 +1,11 @@
-// The in-plane eigen-decomposition of a symmetric 2 x 2 tensor that the inelastic plane-strain
-// laws share (soil_laws.cc, concrete_damage_law.cc). Allocation-free, plain C++.
+// The in-plane eigen-decomposition of a symmetric 2 x 2 tensor and the rotation of a Voigt tangent
+// out of a rotated frame, which the inelastic plane-strain laws share (soil_laws.cc,
+// concrete_damage_law.cc). Allocation-free, plain C++.
 #pragma once
 
 #include <cmath>
+
+#include "fem/material_law.h"
 
 namespace kimp::fem::detail
 {
@@ -41,5 +44,25 @@ namespace kimp::fem::detail
     const double r = std::sqrt(d * d + xy * xy);
     a              = m + r;
     b              = m - r;
+  }
+
+  /** The plane-strain Voigt tangent in x, y of a tangent `frame` given in the frame of unit
+   *  vectors (c, s) and (-s, c): C = R^T C' R, R the engineering-strain rotation into the frame
+   *  (the strain {xx, yy, gamma_xy} -> {aa, bb, gamma_ab}). */
+  inline VoigtTangent tangent_from_frame(const VoigtTangent &frame, double c, double s)
+  {
+    const double cc = c * c, ss = s * s, cs = c * s;
+    const double R[3][3] = {{cc, ss, cs}, {ss, cc, -cs}, {-2 * cs, 2 * cs, cc - ss}};
+    VoigtTangent out{};
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+      {
+        double v = 0;
+        for (unsigned int k = 0; k < 3; ++k)
+          for (unsigned int l = 0; l < 3; ++l)
+            v += R[k][i] * frame[3 * k + l] * R[l][j];
+        out[3 * i + j] = v;
+      }
+    return out;
   }
 } // namespace kimp::fem::detail

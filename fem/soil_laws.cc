@@ -56,26 +56,6 @@ namespace kimp::fem
       }
       return true;
     }
-
-    /** Plane-strain Voigt tangent from an eigenframe tangent: C = R^T C' R with R the
-     *  engineering-strain rotation into the frame (c, s). */
-    VoigtTangent rotate_back(const VoigtTangent &cp, double c, double s)
-    {
-      const double R[3][3] = {{c * c, s * s, c * s},
-                              {s * s, c * c, -c * s},
-                              {-2 * c * s, 2 * c * s, c * c - s * s}};
-      VoigtTangent out{};
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int j = 0; j < 3; ++j)
-        {
-          double v = 0;
-          for (unsigned int k = 0; k < 3; ++k)
-            for (unsigned int l = 0; l < 3; ++l)
-              v += R[k][i] * cp[3 * k + l] * R[l][j];
-          out[3 * i + j] = v;
-        }
-      return out;
-    }
   } // namespace
 
   // ---------------------------------------------------------------- Mohr-Coulomb
@@ -405,7 +385,7 @@ namespace kimp::fem
                              0.5 * (sig[0] - sig[1]) / gap :
                              0.25 * (T[0] - T[1] - T[3] + T[4]);
       const VoigtTangent cp{{T[0], T[1], 0, T[3], T[4], 0, 0, 0, shear}};
-      *tangent = rotate_back(cp, c, s);
+      *tangent = detail::tangent_from_frame(cp, c, s);
     }
     return {{c * c * sig[0] + s * s * sig[1],
              s * s * sig[0] + c * c * sig[1],

@@ -179,17 +179,11 @@ namespace kimp::python
       py::list contacts;
       for (lumped::ContactResult &contact : r.contacts)
       {
-        std::vector<double> times, velocities;
-        for (const lumped::ImpactEvent &e : contact.impacts)
-        {
-          times.push_back(e.time);
-          velocities.push_back(e.velocity);
-        }
         py::dict cd;
-        cd["name"]                  = contact.name;
-        cd["peak_force"]            = contact.peak_force;
-        cd["impact_time"]           = to_numpy(std::move(times));
-        cd["impact_velocity"]       = to_numpy(std::move(velocities));
+        cd["name"]            = contact.name;
+        cd["peak_force"]      = contact.peak_force;
+        cd["impact_time"]     = to_numpy(contact.impact_column(&lumped::ImpactEvent::time));
+        cd["impact_velocity"] = to_numpy(contact.impact_column(&lumped::ImpactEvent::velocity));
         cd["permanent_indentation"] = contact.permanent_indentation;
         cd["dissipated_energy"]     = contact.dissipated_energy;
         contacts.append(cd);

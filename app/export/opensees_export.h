@@ -8,6 +8,8 @@
 #include <string>
 
 #include "app/laws/cor_key.h"
+#include "app/laws/impact_scene.h"
+#include "app/lumped/building_keys.h"
 #include "io/scene_io.h"
 #include "lumped/laws/law_traits.h"
 
@@ -86,12 +88,10 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, ExportOpenSeesSettings &s)
   {
-    io.quantity("wall_height",
-                s.wall_height,
-                "m",
-                "wall height at which the k source is interpolated (needed when it holds several "
-                "heights)",
-                io::Range::positive());
+    visit_k_source_height(io,
+                          s.wall_height,
+                          "wall height at which the k source is interpolated (needed when it "
+                          "holds several heights)");
     io.text("record",
             s.record,
             "with a study directory: export the consistent k of this record at wall_height "
@@ -110,19 +110,18 @@ namespace kimp::app
               s.cor,
               "coefficient of restitution e (default: the COR the source's k was fitted at, "
               "else the thesis' COR)");
-    io.quantity("effective_mass",
-                s.effective_mass,
-                "t",
-                "m_eff = m1 m2/(m1 + m2) of the contact (default: the study's isolation level "
-                "against its wall; required when the source has no building)",
-                io::Range::positive());
+    visit_mass(io,
+               "effective_mass",
+               s.effective_mass,
+               "m_eff = m1 m2/(m1 + m2) of the contact (default: the study's isolation level "
+               "against its wall; required when the source has no building)");
     io.quantity("impact_velocity",
                 s.impact_velocity,
                 "m/s",
                 "design impact velocity v_imp, ImpactMaterial's delta_m (default: the record's "
                 "with --record, else the study's reference velocity, else 1 m/s)",
                 io::Range::positive());
-    io.quantity("gap", s.gap, "cm", "clear gap to the wall", io::Range::positive());
+    visit_moat_gap(io, "gap", s.gap, "clear gap to the wall");
     io.quantity("yield_ratio",
                 s.yield_ratio,
                 "",

@@ -45,6 +45,14 @@ namespace kimp::app
     io.quantity("exponent", exponent, "", doc, io::Range::at_least(1.0));
   }
 
+  /// The key `wall_height`: the height of the moat wall (m, > 0) at which a k source
+  /// (app/laws/k_table.h) is interpolated; `doc` says which source and what a null means.
+  template <class Io>
+  void visit_k_source_height(Io &io, std::optional<double> &wall_height, std::string_view doc)
+  {
+    io.quantity("wall_height", wall_height, "m", doc, io::Range::positive());
+  }
+
   template <class Io>
   void visit_law(Io &io, ImpactLawScene &s)
   {
@@ -144,12 +152,10 @@ namespace kimp::app
             "a study's k_table.csv (or its output directory), path relative to the scene file's "
             "directory: k = k_total of the law's column (n = 1: Kelvin-Voigt, n = 1.5: Jankowski) "
             "interpolated at wall_height, instead of k (\"\" = use k)");
-    io.quantity("wall_height",
-                s.wall_height,
-                "m",
-                "with k_table: wall height at which k is interpolated (linearly; refused outside "
-                "the table's heights)",
-                io::Range::positive());
+    visit_k_source_height(io,
+                          s.wall_height,
+                          "with k_table: wall height at which k is interpolated (linearly; "
+                          "refused outside the table's heights)");
   }
 
   /// Exponent n the law will use: the given one or the law's default (1, 1.5 or 2.65).

@@ -1,5 +1,5 @@
 // Scene keys of a building scene that stand in several sections, each kind declared once with its
-// display unit and range: a viscous damping ratio and the gap of a moat wall.
+// display unit and range: a viscous damping ratio, the gap of a moat wall and a mass.
 #pragma once
 
 #include <string_view>
@@ -32,5 +32,12 @@ namespace kimp::app
   void visit_moat_gap(Io &io, std::string_view key, Q &gap, std::string_view doc)
   {
     io.quantity(key, gap, "cm", doc, moat_gap_range());
+  }
+
+  /// A mass key: a floor, a wall, a body of a collision (shown in t, > 0); `doc` says whose.
+  template <class Io, class Q>
+  void visit_mass(Io &io, std::string_view key, Q &mass, std::string_view doc)
+  {
+    io.quantity(key, mass, "t", doc, io::Range::positive());
   }
 } // namespace kimp::app

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/laws/cor_key.h"
+#include "app/lumped/building_keys.h"
 #include "app/lumped/lumped_scene.h"
 #include "io/scene_io.h"
 #include "io/summary.h"
@@ -58,11 +59,7 @@ namespace kimp::app
                      "t",
                      "mass m1 of the striking body (at least 2)",
                      io::Range::greater(0.0).and_at_most(1e12));
-    io.quantity("other_mass",
-                s.other_mass,
-                "t",
-                "mass m2 of the struck body (at rest)",
-                io::Range::positive());
+    visit_mass(io, "other_mass", s.other_mass, "mass m2 of the struck body (at rest)");
     io.quantity("stiffness",
                 s.stiffness,
                 "kN/mm^1.5",
@@ -100,8 +97,8 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, CollideScene &s)
   {
-    io.quantity("mass_1", s.mass_1, "t", "striking mass m1", io::Range::positive());
-    io.quantity("mass_2", s.mass_2, "t", "struck mass m2 (at rest)", io::Range::positive());
+    visit_mass(io, "mass_1", s.mass_1, "striking mass m1");
+    visit_mass(io, "mass_2", s.mass_2, "struck mass m2 (at rest)");
     io.quantity("velocity", s.velocity, "m/s", "approach velocity of m1", io::Range::positive());
     io.quantity("time_step",
                 s.time_step,

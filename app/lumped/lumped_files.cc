@@ -126,15 +126,9 @@ namespace kimp::app
     /// full rate (step size `dt`, s).
     void write_contact(ResultsGroup &g, const lumped::ContactResult &contact, double dt)
     {
-      ResultsGroup        cg = g.group("contacts/" + contact.name);
-      std::vector<double> times, velocities;
-      for (const lumped::ImpactEvent &e : contact.impacts)
-      {
-        times.push_back(e.time);
-        velocities.push_back(e.velocity);
-      }
-      cg.write("impact_time", times, "s");
-      cg.write("impact_velocity", velocities, "m/s");
+      ResultsGroup cg = g.group("contacts/" + contact.name);
+      cg.write("impact_time", contact.impact_column(&lumped::ImpactEvent::time), "s");
+      cg.write("impact_velocity", contact.impact_column(&lumped::ImpactEvent::velocity), "m/s");
       cg.set_attribute("n_impacts", static_cast<std::int64_t>(contact.impacts.size()));
       cg.write_scalar("peak_force", contact.peak_force, "N");
       cg.write_scalar("permanent_indentation", contact.permanent_indentation, "m");

@@ -59,12 +59,8 @@ namespace kimp::app
   void visit(Io &io, StoreysScene &s)
   {
     io.integer("n_storeys", s.n_storeys, "storeys above the isolation level or the ground", 1, 100);
-    io.quantity("floor_mass",
-                s.floor_mass,
-                "t",
-                "mass of every floor below the top",
-                io::Range::positive());
-    io.quantity("top_mass", s.top_mass, "t", "mass of the top floor", io::Range::positive());
+    visit_mass(io, "floor_mass", s.floor_mass, "mass of every floor below the top");
+    visit_mass(io, "top_mass", s.top_mass, "mass of the top floor");
     io.quantity("storey_stiffness",
                 s.storey_stiffness,
                 "MN/m",
@@ -89,11 +85,7 @@ namespace kimp::app
               {{"isolated", BuildingKind::isolated}, {"fixed_base", BuildingKind::fixed_base}},
               "isolated (isolation level = DOF 0) or fixed_base (floors on the ground)");
     visit(io, static_cast<StoreysScene &>(s));
-    io.quantity("isolation_mass",
-                s.isolation_mass,
-                "t",
-                "mass of the isolation level (base mat)",
-                io::Range::positive());
+    visit_mass(io, "isolation_mass", s.isolation_mass, "mass of the isolation level (base mat)");
     visit_damping_ratio(
       io,
       "damping_ratio",
@@ -234,22 +226,20 @@ namespace kimp::app
   {
     io.flag("present", s.present, "is there a wall on this side");
     visit_moat_gap(io, "gap", s.gap, "distance isolation level - wall face (before bumpers)");
-    io.quantity("mass",
-                s.mass,
-                "t",
-                "wall mass for m_eff in the impact law (and the SDOF mass of a flexible wall "
-                "without sdof_mass)",
-                io::Range::positive());
+    visit_mass(io,
+               "mass",
+               s.mass,
+               "wall mass for m_eff in the impact law (and the SDOF mass of a flexible wall "
+               "without sdof_mass)");
     io.flag("flexible",
             s.flexible,
             "false: rigid wall moving with the ground; true: SDOF wall (sdof_mass or mass, "
             "stiffness, damping_ratio) attached to the ground");
-    io.quantity("sdof_mass",
-                s.sdof_mass,
-                "t",
-                "flexible or yielding wall: the DOF's mass (null: mass); the impact law keeps the "
-                "m_eff of mass, so its dashpot is the rigid wall's",
-                io::Range::positive());
+    visit_mass(io,
+               "sdof_mass",
+               s.sdof_mass,
+               "flexible or yielding wall: the DOF's mass (null: mass); the impact law keeps the "
+               "m_eff of mass, so its dashpot is the rigid wall's");
     io.quantity("stiffness",
                 s.stiffness,
                 "MN/m",
@@ -443,11 +433,10 @@ namespace kimp::app
                 "",
                 "extra factor on the ground motion of this case (negative flips it)",
                 io::Range::nonzero());
-    io.quantity("wall_height",
-                s.wall_height,
-                "m",
-                "wall height at which impact.k_table is interpolated (null = impact.wall_height)",
-                io::Range::positive());
+    visit_k_source_height(
+      io,
+      s.wall_height,
+      "wall height at which impact.k_table is interpolated (null = impact.wall_height)");
     io.text("record", s.record, "ground motion record of this case (\"\" = ground_motion.record)");
   }
 

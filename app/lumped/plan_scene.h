@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "app/lumped/building_keys.h"
 #include "app/lumped/lumped_scene.h"
 #include "io/scene_io.h"
 #include "lumped/excitation/ground_motion.h"
@@ -73,12 +74,11 @@ namespace kimp::app
                "slab edge k)",
                0,
                1000);
-    io.quantity("mass",
-                s.mass,
-                "t",
-                "the face's DOF mass (null: moat.mass); the impact law keeps the m_eff of "
-                "moat.mass",
-                io::Range::positive());
+    visit_mass(io,
+               "mass",
+               s.mass,
+               "the face's DOF mass (null: moat.mass); the impact law keeps the m_eff of "
+               "moat.mass");
     visit(io, s.wall);
   }
 
@@ -101,26 +101,21 @@ namespace kimp::app
   void visit(Io &io, PlanMoatScene &s)
   {
     io.flag("present", s.present, "is there a moat wall around the isolation level");
-    io.quantity("gap",
-                s.gap,
-                "cm",
-                "clear gap between every slab edge and its wall face (convex outline)",
-                io::Range::positive());
+    visit_moat_gap(io,
+                   "gap",
+                   s.gap,
+                   "clear gap between every slab edge and its wall face (convex outline)");
     io.quantity_list("gaps",
                      s.gaps,
                      "cm",
                      "one gap per slab edge, edge k from outline corner k to k + 1 counter-"
                      "clockwise (empty: gap for every edge)",
-                     io::Range::positive());
+                     moat_gap_range());
     io.list("wall",
             s.wall,
             "wall polygon (at least 3 corners; empty: the outline's edges moved out by the gaps); "
             "must enclose the slab with a clear gap");
-    io.quantity("mass",
-                s.mass,
-                "t",
-                "wall mass for m_eff in the impact law",
-                io::Range::positive());
+    visit_mass(io, "mass", s.mass, "wall mass for m_eff in the impact law");
     io.quantity("friction",
                 s.friction,
                 "",

@@ -9,6 +9,7 @@
 
 #include "app/fem/fem_scene.h"
 #include "app/laws/fit_run.h"
+#include "app/lumped/building_keys.h"
 #include "app/lumped/ground_motion_scene.h"
 #include "app/lumped/lumped_scene.h"
 #include "fit/fit_config.h"
@@ -183,22 +184,17 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, StudyWallsScene &s)
   {
-    io.quantity("mass",
-                s.mass,
-                "t",
-                "wall mass for m_eff in the impact laws (rigid and flexible walls)",
-                io::Range::positive());
+    visit_mass(io,
+               "mass",
+               s.mass,
+               "wall mass for m_eff in the impact laws (rigid and flexible walls)");
     io.quantity("gap_reduction",
                 s.gap_reduction,
                 "%",
                 "gap = (1 - gap_reduction) x the no-wall peak isolation displacement of each "
                 "record",
                 io::Range::at_least(0.0).and_less(1.0));
-    io.quantity("gap",
-                s.gap,
-                "cm",
-                "fixed gap of both walls (null: from gap_reduction)",
-                io::Range::positive());
+    visit_moat_gap(io, "gap", s.gap, "fixed gap of both walls (null: from gap_reduction)");
     io.flag("flexible",
             s.flexible,
             "also derive each height's wall as a SDOF from its FE model (static stiffness at "

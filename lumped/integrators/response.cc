@@ -34,6 +34,15 @@ namespace kimp::lumped
     return v;
   }
 
+  std::vector<double> ContactResult::impact_column(double ImpactEvent::*column) const
+  {
+    std::vector<double> values;
+    values.reserve(impacts.size());
+    for (const ImpactEvent &impact : impacts)
+      values.push_back(impact.*column);
+    return values;
+  }
+
   std::size_t Response::n_impacts() const
   {
     std::size_t n = 0;

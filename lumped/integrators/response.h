@@ -47,6 +47,9 @@ namespace kimp::lumped
     /// The impact velocity of the contact: the largest closing rate at first contact over its
     /// impacts, m/s (0 without impacts).
     double largest_impact_velocity() const;
+    /// One column of `impacts`, in order: `&ImpactEvent::time` (s) or `&ImpactEvent::velocity`
+    /// (m/s).
+    std::vector<double> impact_column(double ImpactEvent::*column) const;
   };
 
   /**

@@ -15,7 +15,7 @@ namespace kimp::lumped
 
   void BoucWenParameters::check() const
   {
-    require_isolator(std::isfinite(K1) && K1 > 0.0, "K1", K1, "N/m", "must be > 0 and finite");
+    require_positive_isolator("K1", K1, "N/m");
     require_isolator(std::isfinite(alpha) && alpha >= 0.0 && alpha < 1.0,
                      "alpha",
                      alpha,

@@ -7,8 +7,8 @@ namespace kimp::lumped
 {
   void FrictionPendulumParameters::check() const
   {
-    require_isolator(std::isfinite(W) && W > 0.0, "weight", W, "N", "must be > 0 and finite");
-    require_isolator(std::isfinite(R) && R > 0.0, "radius", R, "m", "must be > 0 and finite");
+    require_positive_isolator("weight", W, "N");
+    require_positive_isolator("radius", R, "m");
     require_isolator(std::isfinite(mu_slow) && mu_slow >= 0.0 && mu_slow < 1.0,
                      "mu_slow",
                      mu_slow,
@@ -19,16 +19,8 @@ namespace kimp::lumped
                      mu_fast,
                      "",
                      "must be in [mu_slow, 1)");
-    require_isolator(std::isfinite(rate) && rate >= 0.0,
-                     "rate",
-                     rate,
-                     "s/m",
-                     "must be >= 0 and finite");
-    require_isolator(std::isfinite(k_init) && k_init > 0.0,
-                     "k_init",
-                     k_init,
-                     "N/m",
-                     "must be > 0 and finite");
+    require_non_negative_isolator("rate", rate, "s/m");
+    require_positive_isolator("k_init", k_init, "N/m");
   }
 
   FrictionPendulumIsolator::FrictionPendulumIsolator(const FrictionPendulumParameters &parameters,

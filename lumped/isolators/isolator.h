@@ -76,6 +76,30 @@ namespace kimp::lumped
     require_parameter(ok, "isolator.", key, value, unit, rule);
   }
 
+  /// require_isolator() of a parameter that must be > 0 and finite (NaN fails).
+  inline void require_positive_isolator(const std::string_view key,
+                                        const double           value,
+                                        const std::string_view unit)
+  {
+    require_isolator(std::isfinite(value) && value > 0.0,
+                     key,
+                     value,
+                     unit,
+                     "must be > 0 and finite");
+  }
+
+  /// require_isolator() of a parameter that must be >= 0 and finite (NaN fails).
+  inline void require_non_negative_isolator(const std::string_view key,
+                                            const double           value,
+                                            const std::string_view unit)
+  {
+    require_isolator(std::isfinite(value) && value >= 0.0,
+                     key,
+                     value,
+                     unit,
+                     "must be >= 0 and finite");
+  }
+
   /**
    * CRTP base of the hysteretic isolators (bilinear, Bouc-Wen, friction pendulum), planar
    * (`Base` = Isolator, HystereticIsolator) and in plan (`Base` = plan::PlanIsolator): the history
@@ -104,7 +128,7 @@ namespace kimp::lumped
     explicit HystereticIsolatorLaw(const double c)
       : c_(c)
     {
-      require_isolator(std::isfinite(c) && c >= 0.0, "c", c, "N*s/m", "must be >= 0 and finite");
+      require_non_negative_isolator("c", c, "N*s/m");
     }
 
     State committed_;

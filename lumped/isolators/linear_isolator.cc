@@ -9,7 +9,7 @@ namespace kimp::lumped
     : k_(k)
     , c_(c)
   {
-    require_isolator(std::isfinite(k) && k > 0.0, "k", k, "N/m", "must be > 0 and finite");
-    require_isolator(std::isfinite(c) && c >= 0.0, "c", c, "N*s/m", "must be >= 0 and finite");
+    require_positive_isolator("k", k, "N/m");
+    require_non_negative_isolator("c", c, "N*s/m");
   }
 } // namespace kimp::lumped

@@ -15,10 +15,12 @@
 #include "app/export/opensees_wall_export.h"
 #include "app/lumped/lumped_scene.h"
 #include "lumped/laws/wall_backfill_law.h"
+#include "tests/support/messages.h"
 
 namespace
 {
   using kimp::app::LumpedScene;
+  using kimp::testing::expect_contains;
 
   constexpr double text = 1e-9; // relative: numbers written with 10 significant digits
 
@@ -94,9 +96,7 @@ TEST(OpenSeesWallExport, MaterialsCarryTheSceneTimesWidthInArgumentOrder)
   EXPECT_EQ(pa[0], (std::vector<std::string>{"uniaxialMaterial", "Parallel", "13", "11", "12"}));
   EXPECT_EQ(pa[1], (std::vector<std::string>{"uniaxialMaterial", "Parallel", "16", "14", "15"}));
   // The left wall's default pull-back has no counterpart; it is said, not hidden.
-  EXPECT_NE(tcl.find("tension_capacity = 3000000 N (the wall's pull-back) has no counterpart"),
-            std::string::npos)
-    << tcl;
+  expect_contains(tcl, {"tension_capacity = 3000000 N (the wall's pull-back) has no counterpart"});
 
   // Nodes: each wall's mass, a fixed ground node.
   const auto nodes = lines_of(tcl, "node");
@@ -126,19 +126,16 @@ TEST(OpenSeesWallExport, MaterialsCarryTheSceneTimesWidthInArgumentOrder)
   EXPECT_EQ(el[2][4], "1004");
   EXPECT_EQ(el[3][3], "$kimpBuildingNode");
   EXPECT_EQ(el[3][4], "1003");
-  EXPECT_NE(tcl.find("the contact part acts across a gap of 0.1 m"), std::string::npos);
+  expect_contains(tcl, {"the contact part acts across a gap of 0.1 m"});
 
   const std::string py = kimp::app::opensees_walls_text(walls, true);
-  EXPECT_NE(py.find("import openseespy.opensees as ops"), std::string::npos);
-  EXPECT_NE(py.find("ops.uniaxialMaterial('ElasticPPGap', 11, 500000000, -3000000, 0.0, 0.02, "
-                    "'damage')"),
-            std::string::npos)
-    << py;
-  EXPECT_NE(py.find("ops.element('zeroLength', 1002, 1001, kimpBuildingNode, '-mat', "
-                    "kimpImpactMaterial, '-dir', 1)"),
-            std::string::npos)
-    << py;
-  EXPECT_NE(py.find("ops.node(1001, 0.0, '-mass', 60000)"), std::string::npos) << py;
+  expect_contains(py,
+                  {"import openseespy.opensees as ops",
+                   "ops.uniaxialMaterial('ElasticPPGap', 11, 500000000, -3000000, 0.0, 0.02, "
+                   "'damage')",
+                   "ops.element('zeroLength', 1002, 1001, kimpBuildingNode, '-mat', "
+                   "kimpImpactMaterial, '-dir', 1)",
+                   "ops.node(1001, 0.0, '-mass', 60000)"});
 }
 
 namespace
@@ -288,29 +285,19 @@ TEST(OpenSeesWallExport, CurveEnvelopeIsElasticPPGapSpringsInParallel)
   EXPECT_EQ(el[0][6], "16");
   EXPECT_EQ(el[2][6], "20");
   // What differs is said: the unloading, the set past the last kink, the pull-back.
-  EXPECT_NE(tcl.find("the curve envelope (5 points) as 4 ElasticPPGap springs in parallel"),
-            std::string::npos)
-    << tcl;
-  EXPECT_NE(tcl.find("keep a set only past the last kink: max(0, w_max - 0.02 m)"),
-            std::string::npos)
-    << tcl;
-  EXPECT_NE(tcl.find("max(unloading_stiffness = 600000000 N/m, E(w_max)/w_max)"), std::string::npos)
-    << tcl;
-  EXPECT_NE(tcl.find("tension_capacity = 4000000 N (the wall's pull-back) has no counterpart"),
-            std::string::npos)
-    << tcl;
+  expect_contains(tcl,
+                  {"the curve envelope (5 points) as 4 ElasticPPGap springs in parallel",
+                   "keep a set only past the last kink: max(0, w_max - 0.02 m)",
+                   "max(unloading_stiffness = 600000000 N/m, E(w_max)/w_max)",
+                   "tension_capacity = 4000000 N (the wall's pull-back) has no counterpart"});
 
   const std::string py = kimp::app::opensees_walls_text(walls, true);
-  EXPECT_NE(py.find("ops.uniaxialMaterial('ElasticPPGap', 11, 600000000, -1200000, 0.0, 0, "
-                    "'damage')"),
-            std::string::npos)
-    << py;
-  EXPECT_NE(py.find("ops.uniaxialMaterial('ElasticPPGap', 18, 40000000, -1200000, 0.0, 0, "
-                    "'damage')"),
-            std::string::npos)
-    << py;
-  EXPECT_NE(py.find("ops.uniaxialMaterial('Parallel', 16, 11, 12, 13, 14, 15)"), std::string::npos)
-    << py;
+  expect_contains(py,
+                  {"ops.uniaxialMaterial('ElasticPPGap', 11, 600000000, -1200000, 0.0, 0, "
+                   "'damage')",
+                   "ops.uniaxialMaterial('ElasticPPGap', 18, 40000000, -1200000, 0.0, 0, "
+                   "'damage')",
+                   "ops.uniaxialMaterial('Parallel', 16, 11, 12, 13, 14, 15)"});
   EXPECT_EQ(lines_of(tcl, "uniaxialMaterial").size(), 10u);
 }
 
@@ -413,10 +400,9 @@ TEST(OpenSeesWallExport, FlatTwoSegmentCurveIsTheBilinearWithoutHardening)
       return out;
     };
     EXPECT_EQ(commands(a), commands(b)) << a << "\n" << b;
-    EXPECT_NE(a.find(python ? "('ElasticPPGap', 11, 500000000, -3000000, 0.0, 0, 'damage')" :
-                              "ElasticPPGap 11 500000000 -3000000 0.0 0 damage"),
-              std::string::npos)
-      << a;
+    expect_contains(a,
+                    {python ? "('ElasticPPGap', 11, 500000000, -3000000, 0.0, 0, 'damage')" :
+                              "ElasticPPGap 11 500000000 -3000000 0.0 0 damage"});
   }
 }
 

@@ -35,6 +35,32 @@ namespace
     return {{m + r, m - r, szz}};
   }
 
+  /** A fixed linear congruential sequence in [-1, 1): the random strain walks repeat run to run. */
+  class UniformSequence
+  {
+  public:
+    explicit UniformSequence(unsigned int seed)
+      : seed_(seed)
+    {
+    }
+    double operator()()
+    {
+      seed_ = 1103515245u * seed_ + 12345u;
+      return static_cast<double>((seed_ >> 8) & 0xffffff) / 8388608.0 - 1.0;
+    }
+
+  private:
+    unsigned int seed_;
+  };
+
+  /** The at-rest state (K0 = 1 - sin(phi), as the geostatic step) at which the random strain
+   *  walk of `point` starts: one of five depths, sigma_v = -20 kPa to -100 kPa. */
+  InitialStress at_rest(const SoilParameters &p, int point)
+  {
+    const double sv = -20e3 * (1 + point % 5), k0 = 1 - std::sin(p.friction_angle);
+    return {{k0 * sv, sv, k0 * sv, 0}};
+  }
+
   /** Drives @p law along strain = k * step (k = 1..n), committing each step. */
   struct Driver
   {
@@ -194,12 +220,7 @@ namespace
     const SoilParameters cases[] = {soil(0, 34, 4, 0),
                                     soil(10e3, 30, 10, 2e3),
                                     soil(20e3, 0, 0, 1e9)};
-    unsigned int         seed    = 12345;
-    const auto           uniform = [&seed]() // [-1, 1), a fixed linear congruential sequence
-    {
-      seed = 1103515245u * seed + 12345u;
-      return static_cast<double>((seed >> 8) & 0xffffff) / 8388608.0 - 1.0;
-    };
+    UniformSequence      uniform(12345);
     for (const SoilParameters &p : cases)
     {
       const MohrCoulombLaw fast(p), exhaustive(p, true);
@@ -208,8 +229,7 @@ namespace
       for (int point = 0; point < 40; ++point)
       {
         Driver              a(fast), b(exhaustive);
-        const double        sv = -20e3 * (1 + point % 5), k0 = 1 - std::sin(p.friction_angle);
-        const InitialStress s0{{k0 * sv, sv, k0 * sv, 0}};
+        const InitialStress s0 = at_rest(p, point);
         fast.set_initial_stress(a.h0.data(), s0);
         exhaustive.set_initial_stress(b.h0.data(), s0);
         VoigtStrain e{{0, 0, 0}};
@@ -282,12 +302,7 @@ namespace
                                     soil(1e3, 30, 0, 1e3),
                                     soil(10e3, 30, 10, 2e3),
                                     soil(20e3, 0, 0, 1e9)};
-    unsigned int         seed    = 424242;
-    const auto           uniform = [&seed]() // [-1, 1), a fixed linear congruential sequence
-    {
-      seed = 1103515245u * seed + 12345u;
-      return static_cast<double>((seed >> 8) & 0xffffff) / 8388608.0 - 1.0;
-    };
+    UniformSequence      uniform(424242);
     // Per kind: 0 elastic, 1 main, 2 extension edge, 3 compression edge, 4 apex, 5 cut-off,
     // 6 mixed.
     const char *names[7] =
@@ -297,12 +312,10 @@ namespace
     for (const SoilParameters &p : cases)
     {
       const MohrCoulombLaw law(p);
-      const double         sp = std::sin(p.friction_angle);
       for (int point = 0; point < 40; ++point)
       {
         Driver              a(law);
-        const double        sv = -20e3 * (1 + point % 5), k0 = 1 - sp;
-        const InitialStress s0{{k0 * sv, sv, k0 * sv, 0}};
+        const InitialStress s0 = at_rest(p, point);
         law.set_initial_stress(a.h0.data(), s0);
         VoigtStrain e{{0, 0, 0}};
         for (int step = 0; step < 300; ++step)
@@ -359,7 +372,6 @@ namespace
             kind = 5;
           else if (type == ReturnType::mixed)
             kind = 6;
-          (void)sp;
           ++counted[kind];
           worst[kind] = std::max(worst[kind], err / norm);
         }

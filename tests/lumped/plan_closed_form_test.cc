@@ -8,6 +8,7 @@
 
 #include "lumped/laws/kelvin_voigt_law.h"
 #include "lumped/plan/plan_central_difference.h"
+#include "tests/lumped/plan_scenes.h"
 #include "tests/support/lumped_scenes.h"
 
 namespace kimp::lumped::plan
@@ -352,13 +353,7 @@ namespace kimp::lumped::plan
     scene.building.storeys       = {storey(0.0, 0.0, 0.0)};
     scene.building.damping_ratio = 0.0;
     PlanMoat moat;
-    moat.wall  = {Point(-12, -7),
-                  Point(12, -7),
-                  Point(12, -1),
-                  Point(10.3, 0),
-                  Point(12, 1),
-                  Point(12, 7),
-                  Point(-12, 7)};
+    moat.wall  = kimp::testing::notched_wall(12.0, 7.0, 10.3);
     moat.law   = kimp::testing::contact_law("linear", 1e9);
     scene.moat = moat;
     const PlanModel model(scene);

@@ -1,6 +1,6 @@
 // Scenes of the tests of the 3D (plan) lumped engine: the thesis' isolated building as rigid
 // diaphragms, rotated by an angle, with four quarter isolators at the corners of a square and a
-// moat at equal gaps; the planar scene it must reproduce.
+// moat at equal gaps; the planar scene it must reproduce; a moat wall with a re-entrant corner.
 #pragma once
 
 #include <algorithm>
@@ -20,6 +20,23 @@ namespace kimp::testing
 {
   /// Plan width (and depth) of the slabs of the reference building, m.
   inline constexpr double plan_width = 20.0;
+
+  /**
+   * A rectangular moat wall about the origin, half extents `half_x` and `half_y` (m), with a
+   * buttress in its +x face: its tip, a re-entrant corner of the wall, at (tip_x, 0), its flanks
+   * meeting the face at y = ±1 m.
+   */
+  inline lumped::plan::Polygon notched_wall(double half_x, double half_y, double tip_x)
+  {
+    using lumped::plan::Point;
+    return {Point(-half_x, -half_y),
+            Point(half_x, -half_y),
+            Point(half_x, -1.0),
+            Point(tip_x, 0.0),
+            Point(half_x, 1.0),
+            Point(half_x, half_y),
+            Point(-half_x, half_y)};
+  }
 
   /**
    * The thesis' 4-storey isolated building (reference_isolated_building(4)) in plan, turned by

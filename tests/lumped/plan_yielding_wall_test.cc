@@ -177,13 +177,7 @@ namespace kimp::lumped::plan
     refused(bad, "moat.yielding[1]");
     // A wall with a re-entrant corner (a notch in the +x face).
     bad            = plan_scene(1.0);
-    bad.moat->wall = {Point(-10.1, -10.1),
-                      Point(10.1, -10.1),
-                      Point(10.1, -1.0),
-                      Point(10.05, 0.0),
-                      Point(10.1, 1.0),
-                      Point(10.1, 10.1),
-                      Point(-10.1, 10.1)};
+    bad.moat->wall = kimp::testing::notched_wall(10.1, 10.1, 10.05);
     refused(bad, "needs a convex wall polygon");
   }
 } // namespace kimp::lumped::plan
