@@ -119,8 +119,9 @@ async function main() {
           const first = document.querySelector('details.section');
           const t = first && first.querySelector('table.yielding-answer');
           const column = (name) => {
-            const i = t ? Array.from(t.querySelectorAll('th')).findIndex((h) => h.textContent === name) : -1;
-            return t ? Array.from(t.querySelectorAll('tbody tr')).map((r) => (i < 0 ? null : r.children[i].textContent)) : [];
+            if (!t) return [];
+            const i = Array.from(t.querySelectorAll('th')).findIndex((h) => h.textContent === name);
+            return Array.from(t.querySelectorAll('tbody tr')).map((r) => (i < 0 ? null : r.children[i].textContent));
           };
           return {
             title: first ? first.querySelector('summary').textContent : '',
@@ -146,7 +147,10 @@ async function main() {
         check(
           shown.capacity.length === runs.length - 1 &&
             shown.capacity.every((c) => c !== null && Number(c) > 0) &&
-            shown.residual.every((c, i) => c !== null && Math.abs(Number(c) - Number(residualCsv[i])) <= 1e-3 * Math.abs(Number(residualCsv[i])) + 1e-9),
+            shown.residual.every((c, i) => {
+              const expected = Number(residualCsv[i]);
+              return c !== null && Math.abs(Number(c) - expected) <= 1e-3 * Math.abs(expected) + 1e-9;
+            }),
           `capacity (kN/m) ${shown.capacity.join(', ')} and residual (cm) ${shown.residual.join(', ')} ` +
             `as in yielding_wall.csv (${residualCsv.join(', ')})`,
         );
