@@ -191,13 +191,16 @@ namespace kimp::app
                        std::int64_t(run.result.n_loose_steps),
                        seconds});
       logger().info("pushover {}: capacity {:.4g} kN/m at {:.4g} mm, initial stiffness {:.4g} "
-                    "kN/mm/m, {} steps, {} Newton iterations, {:.3g} s",
+                    "kN/mm/m, {} steps, {} Newton iterations, {} steps halved for Newton "
+                    "(smallest step {:.3g} mm), {:.3g} s",
                     name,
                     s.capacity / 1e3,
                     s.displacement_at_capacity * 1e3,
                     s.initial_stiffness / 1e6,
                     run.result.curve.size() - 1,
                     run.result.n_newton_iterations,
+                    run.result.n_newton_cuts,
+                    run.result.smallest_increment * 1e3,
                     seconds);
     }
     summary.write_hdf5(root, "summary");
