@@ -20,7 +20,9 @@
 # KIMP_PUSHOVER_EXTRAS=0 skips the cases after the convergence study. KIMP_PUSHOVER_UNLOAD_DRIFTS
 # (e.g. "1 2"; default none) unloads the convergence study's pushes to zero force and reloads at
 # those drifts (% of H), the study's element's unloadings; each unloading's secant is printed.
-# KIMP_PUSHOVER_KEEP=DIR keeps each run's output directory in DIR/<case>.
+# KIMP_PUSHOVER_KEEP=DIR keeps each run's output directory and log in DIR/<case> (with
+# KIMP_PUSHOVER_VERBOSE=1, the default when keeping, the log has the static solver's line per
+# step and per halved step).
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 bench_init pushover.sh 1 "$@"
@@ -30,6 +32,8 @@ extras="${KIMP_PUSHOVER_EXTRAS:-1}"
 increment="${KIMP_PUSHOVER_INCREMENT:-1 mm}"
 unload_drifts="${KIMP_PUSHOVER_UNLOAD_DRIFTS:-}"
 keep="${KIMP_PUSHOVER_KEEP:-}"
+verbose=()
+[[ "${KIMP_PUSHOVER_VERBOSE:-${keep:+1}}" == 1 ]] && verbose=(-v)
 bench_require fem time
 export KIMP_DATA_DIR="$root"
 bench_workdir
@@ -70,7 +74,7 @@ for name in "${cases[@]}"; do
   for ((i = 1; i <= runs; ++i)); do
     rm -rf "$work/out"
     if /usr/bin/time -f "$name run $i: %e s wall, %U s user, %M kB" \
-      "$kimp" fem "$work/$name.yaml" --pushover -o "$work/out" > /dev/null 2>"$work/err"; then
+      "$kimp" fem "$work/$name.yaml" --pushover "${verbose[@]}" -o "$work/out" > /dev/null 2>"$work/err"; then
       tail -1 "$work/err"
       grep -ho "[0-9]* steps, [0-9]* Newton iterations, [0-9]* steps halved for Newton (smallest step [^)]*)" "$work/err" | sed 's/^/  /' || true
       # Each unloading: from its first point's predecessor to zero force (the secant).
@@ -88,6 +92,7 @@ for name in "${cases[@]}"; do
       force_1cm[$name]="$(grep -h "^H" "$work/out/pushover_summary.csv" | cut -d, -f7)"
     else
       echo "$name run $i: failed: $(grep -m1 error "$work/err" | cut -c1-160)"
+      [[ -n "$keep" ]] && mkdir -p "$keep/$name" && cp "$work/err" "$keep/$name/log"
     fi
   done
 done

@@ -207,9 +207,8 @@ namespace kimp::fem
             " (must be in [0, 1))");
       if (p.n_steps == 0 || !(p.newton_tolerance > 0) || p.max_iterations == 0)
         bad("static plasticity: n_steps, newton_tolerance and max_iterations must be > 0");
-      if (p.max_cuts > 30 || p.max_error_cuts > p.max_cuts)
-        bad("static plasticity: max_cuts = " + std::to_string(p.max_cuts) + ", max_error_cuts = " +
-            std::to_string(p.max_error_cuts) + " (need max_error_cuts <= max_cuts <= 30)");
+      if (p.max_cuts > 30)
+        bad("static plasticity: max_cuts = " + std::to_string(p.max_cuts) + " (must be <= 30)");
       if (!(p.gravity >= 0))
         bad("static plasticity: gravity = " + std::to_string(p.gravity) + " (must be >= 0)");
       for (const auto &[id, rho] : p.densities)
@@ -861,7 +860,7 @@ namespace kimp::fem
       if (converged && p_.step_error_tolerance > 0)
       {
         const double error = largest_step_error();
-        if (error > p_.step_error_tolerance && depth < p_.max_error_cuts)
+        if (error > p_.step_error_tolerance && depth < std::min(p_.max_error_cuts, p_.max_cuts))
         {
           converged = false; // halved below
           ++out.n_error_cuts;

@@ -230,7 +230,7 @@ namespace kimp::fem
      * past that it is accepted and counted in StaticPlasticityResult::n_large_error_steps).
      */
     double step_error_tolerance = 0;
-    /** Halvings for the IMPL-EX error at most (<= max_cuts). */
+    /** Halvings for the IMPL-EX error at most (and at most max_cuts). */
     unsigned int max_error_cuts = 4;
   };
 
