@@ -11,12 +11,12 @@
 # of the capacity and of the force at 1 cm from each level to the next finer one.
 # Usage: bench/pushover.sh [BUILD_DIR (default: build)] [RUNS (default: 1)]
 # KIMP_PUSHOVER_LEVELS (default "10cm 5cm 2.5cm") and KIMP_PUSHOVER_HEIGHTS (default "1.25 1.50
-# 2.00") choose the convergence study (the 2.5 cm level takes 1-3 minutes of CPU per height; the
-# 1.25 cm level 3-17 minutes, and it stops short of 5 % drift: at 47.6 mm at H = 1.25 m and at
-# 6.5 mm at 1.50 m, docs/validation.md; the study's two finest levels:
-# KIMP_PUSHOVER_LEVELS="2.5cm 1.25cm"; in 0.5 mm steps, KIMP_PUSHOVER_INCREMENT="0.5 mm", the
-# 1.25 cm level runs to 5 % drift at H = 1.25 and 1.50 m). KIMP_PUSHOVER_INCREMENT (default
-# "1 mm") is the step of the convergence study. Each run prints its steps and Newton iterations.
+# 2.00") choose the convergence study (the 2.5 cm level takes 1-6 minutes of CPU per height; the
+# 1.25 cm level 9-17 minutes or more; with the automatic step control the 1.25 cm level runs to 5 %
+# drift in 1 mm steps, docs/validation.md "The study's two finest levels"; the study's two
+# finest levels: KIMP_PUSHOVER_LEVELS="2.5cm 1.25cm"). KIMP_PUSHOVER_INCREMENT (default "1 mm")
+# is the largest step of the convergence study. Each run prints its steps, Newton iterations,
+# steps halved for Newton and the smallest step.
 # KIMP_PUSHOVER_EXTRAS=0 skips the cases after the convergence study. KIMP_PUSHOVER_UNLOAD_DRIFTS
 # (e.g. "1 2"; default none) unloads the convergence study's pushes to zero force and reloads at
 # those drifts (% of H), the study's element's unloadings; each unloading's secant is printed.
