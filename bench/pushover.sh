@@ -11,13 +11,18 @@
 # of the capacity and of the force at 1 cm from each level to the next finer one.
 # Usage: bench/pushover.sh [BUILD_DIR (default: build)] [RUNS (default: 1)]
 # KIMP_PUSHOVER_LEVELS (default "10cm 5cm 2.5cm") and KIMP_PUSHOVER_HEIGHTS (default "1.25 1.50
-# 2.00") choose the convergence study (the 2.5 cm level takes 1-3 minutes of CPU per height; the
-# 1.25 cm level 3-17 minutes, and it stops short of 5 % drift: at 47.6 mm at H = 1.25 m and at
-# 6.5 mm at 1.50 m, docs/validation.md; the study's two finest levels:
-# KIMP_PUSHOVER_LEVELS="2.5cm 1.25cm"; in 0.5 mm steps, KIMP_PUSHOVER_INCREMENT="0.5 mm", the
-# 1.25 cm level runs to 5 % drift at H = 1.25 and 1.50 m). KIMP_PUSHOVER_INCREMENT (default
-# "1 mm") is the step of the convergence study. Each run prints its steps and Newton iterations.
-# KIMP_PUSHOVER_EXTRAS=0 skips the cases after the convergence study.
+# 2.00") choose the convergence study (the 2.5 cm level takes 1-6 minutes of CPU per height; the
+# 1.25 cm level 9-17 minutes or more; with the automatic step control the 1.25 cm level runs to 5 %
+# drift in 1 mm steps, docs/validation.md "The study's two finest levels"; the study's two
+# finest levels: KIMP_PUSHOVER_LEVELS="2.5cm 1.25cm"). KIMP_PUSHOVER_INCREMENT (default "1 mm")
+# is the largest step of the convergence study. Each run prints its steps, Newton iterations,
+# steps halved for Newton and the smallest step.
+# KIMP_PUSHOVER_EXTRAS=0 skips the cases after the convergence study. KIMP_PUSHOVER_UNLOAD_DRIFTS
+# (e.g. "1 2"; default none) unloads the convergence study's pushes to zero force and reloads at
+# those drifts (% of H), the study's element's unloadings; each unloading's secant is printed.
+# KIMP_PUSHOVER_KEEP=DIR keeps each run's output directory and log in DIR/<case> (with
+# KIMP_PUSHOVER_VERBOSE=1, the default when keeping, the log has the static solver's line per
+# step and per halved step).
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 bench_init pushover.sh 1 "$@"
@@ -25,6 +30,10 @@ levels="${KIMP_PUSHOVER_LEVELS:-10cm 5cm 2.5cm}"
 heights="${KIMP_PUSHOVER_HEIGHTS:-1.25 1.50 2.00}"
 extras="${KIMP_PUSHOVER_EXTRAS:-1}"
 increment="${KIMP_PUSHOVER_INCREMENT:-1 mm}"
+unload_drifts="${KIMP_PUSHOVER_UNLOAD_DRIFTS:-}"
+keep="${KIMP_PUSHOVER_KEEP:-}"
+verbose=()
+[[ "${KIMP_PUSHOVER_VERBOSE:-${keep:+1}}" == 1 ]] && verbose=(-v)
 bench_require fem time
 export KIMP_DATA_DIR="$root"
 bench_workdir
@@ -48,7 +57,8 @@ cases=()
 for height in $heights; do
   for level in $levels; do
     name="reinforced_sand_H${height}_${level}"
-    scene "${level%cm} cm" "[]" damage_plasticity true "$height" "$increment" > "$work/$name.yaml"
+    unload="[$(for d in $unload_drifts; do awk -v h="$height" -v d="$d" 'BEGIN { printf "\"%.6g mm\", ", h * d * 10 }'; done | sed 's/, $//')]"
+    scene "${level%cm} cm" "$unload" damage_plasticity true "$height" "$increment" > "$work/$name.yaml"
     cases+=("$name")
   done
 done
@@ -64,16 +74,25 @@ for name in "${cases[@]}"; do
   for ((i = 1; i <= runs; ++i)); do
     rm -rf "$work/out"
     if /usr/bin/time -f "$name run $i: %e s wall, %U s user, %M kB" \
-      "$kimp" fem "$work/$name.yaml" --pushover -o "$work/out" > /dev/null 2>"$work/err"; then
+      "$kimp" fem "$work/$name.yaml" --pushover "${verbose[@]}" -o "$work/out" > /dev/null 2>"$work/err"; then
       tail -1 "$work/err"
-      grep -ho "[0-9]* steps, [0-9]* Newton iterations" "$work/err" | sed 's/^/  /' || true
+      grep -ho "[0-9]* steps, [0-9]* Newton iterations, [0-9]* steps halved for Newton (smallest step [^)]*)" "$work/err" | sed 's/^/  /' || true
+      # Each unloading: from its first point's predecessor to zero force (the secant).
+      awk -F, '/^H/ { u = $3 * 1e3; f = $4 * 1e-3
+          if ($6 == 1 && !un) { un = 1; u0 = pu; f0 = pf }
+          if ($6 == 1 && un && f <= 0 && pf > 0) { set = pu + (u - pu) * pf / (pf - f)
+            printf "  unloading from %.4g mm (%.4g kN/m): set %.4g mm, secant %.4g kN/mm/m\n", u0, f0, set, f0 / (u0 - set) }
+          if ($6 == 0) un = 0
+          pu = u; pf = f }' "$work/out/pushover.csv"
       grep -h "^H" "$work/out/pushover_summary.csv" | awk -F, 'function g(x, s) { return x ~ /nan/ ? "-" : sprintf("%.4g", x * s) }
         {printf "  %s: capacity %s kN/m at %s mm, k0 %s, cracked %s, K_ur %s kN/mm/m, set %s mm, %s cells\n", $1, g($3, 1e-3), g($4, 1e3), g($5, 1e-6), g($6, 1e-6), g($8, 1e-6), g($9, 1e3), $11}'
       echo "  steps: $(($(grep -c "^H" "$work/out/pushover.csv") - 1))"
+      [[ -n "$keep" ]] && mkdir -p "$keep" && rm -rf "${keep:?}/$name" && cp -r "$work/out" "$keep/$name" && cp "$work/err" "$keep/$name/log"
       capacity[$name]="$(grep -h "^H" "$work/out/pushover_summary.csv" | cut -d, -f3)"
       force_1cm[$name]="$(grep -h "^H" "$work/out/pushover_summary.csv" | cut -d, -f7)"
     else
       echo "$name run $i: failed: $(grep -m1 error "$work/err" | cut -c1-160)"
+      [[ -n "$keep" ]] && mkdir -p "$keep/$name" && cp "$work/err" "$keep/$name/log"
     fi
   done
 done

@@ -25,6 +25,9 @@ namespace kimp::fem
     /// The Newton matrix's floor: this fraction of each point's virgin stiffness and of each
     /// interface pair's springs (StaticPlasticityParameters::tangent_floor).
     constexpr double tangent_floor = 1e-3;
+    /// Halvings of a step for the IMPL-EX error at most (StaticPlasticityParameters::
+    /// max_error_cuts): the concrete's extrapolation error is bounded from increment / 8 on.
+    constexpr unsigned int max_error_halvings = 3;
     /// Entries of StaticPlasticityParameters::prescribed.
     constexpr std::size_t wall_base_entry = 2;
 
@@ -65,6 +68,9 @@ namespace kimp::fem
               ", K0 = " + num(p.k0) + ", gravity = " + num(p.gravity) +
               " (need >= 0, > 0, >= 0, >= 0)");
       check(p.max_iterations > 0, "max_iterations must be > 0");
+      check(p.min_increment > 0 && p.min_increment <= p.increment,
+            "min_increment = " + num(p.min_increment) +
+              " m (must be in (0, increment = " + num(p.increment) + " m])");
       check(p.compression_band >= 0,
             "compression_band = " + num(p.compression_band) + " m (must be >= 0)");
       check(p.step_error_tolerance >= 0,
@@ -81,6 +87,15 @@ namespace kimp::fem
             "increment = " + num(p.increment) + " m, first_increment = " + num(p.first_increment) +
               " m (need 0 < first_increment < increment and < the "
               "first path entry)");
+    }
+
+    /** Halvings of `increment` down to the smallest not below `min_increment`. */
+    unsigned int step_halvings(const PushoverParameters &p)
+    {
+      unsigned int cuts = 0;
+      while (cuts < 30 && p.increment * std::pow(0.5, cuts + 1) >= p.min_increment * (1 - 1e-12))
+        ++cuts;
+      return cuts;
     }
 
     /** Grid lines over [a, b] through every break point in it, cells of at most @p h. */
@@ -324,7 +339,9 @@ namespace kimp::fem
       return unloading[segment] &&
              band_force(steps.back(), rigid) - band_force(steps.front(), rigid) <= 0;
     };
-    s.max_cuts             = 3;
+    s.max_cuts             = step_halvings(p);
+    s.max_error_cuts       = std::min(s.max_cuts, max_error_halvings);
+    s.grow_after           = p.grow_after;
     s.newton_tolerance     = p.tolerance;
     s.loose_tolerance      = p.loose_tolerance;
     s.max_iterations       = p.max_iterations;
@@ -354,6 +371,7 @@ namespace kimp::fem
     out.n_large_error_steps    = solved.n_large_error_steps;
     out.largest_step_error     = solved.largest_step_error;
     out.n_newton_iterations    = solved.n_newton_iterations;
+    out.n_newton_cuts          = solved.n_newton_cuts;
     for (const auto &cell : solved.cell_states)
       out.cells.push_back({cell.centre[0],
                            cell.centre[1],
@@ -369,6 +387,12 @@ namespace kimp::fem
       point.force        = band_force(step, rigid) - out.geostatic_force;
       point.segment      = static_cast<unsigned int>(step.segment == 0 ? 0 : step.segment - 1);
       point.unloading    = unloading[step.segment];
+      if (step.segment > 0)
+      {
+        const double du = std::abs(point.displacement - out.curve.back().displacement);
+        out.smallest_increment =
+          out.smallest_increment > 0 ? std::min(out.smallest_increment, du) : du;
+      }
       out.curve.push_back(point);
       out.step_residuals.push_back(step.residuals);
     }

@@ -60,7 +60,7 @@ namespace kimp::fem
     /**
      * IMPL-EX step control (with implex): a step after which some point of the concrete let
      * through more than this many f_t of tensile stress beyond the implicit update's (the
-     * extrapolated damage lagging a new crack) is halved, at most max_cuts = 3 times
+     * extrapolated damage lagging a new crack) is halved while the step is above increment / 8
      * (StaticPlasticityParameters::step_error_tolerance; 0: off, >= 0).
      */
     double step_error_tolerance = 1;
@@ -98,6 +98,21 @@ namespace kimp::fem
      */
     std::vector<double> path{0.05};
     double              increment = 1e-3; ///< largest band displacement step, m (> 0)
+    /**
+     * Automatic step control (docs/physics.md §6 "Static pushover", "Steps"): a step whose
+     * Newton iteration does not converge is halved, down to the smallest halving of
+     * `increment` not below this (m, > 0, <= increment: increment itself never halves); a
+     * step that still fails there is accepted within loose_tolerance or ends the push with
+     * NumericalError.
+     */
+    double min_increment = 2e-5;
+    /**
+     * A halved step is kept and doubled again after this many consecutive easy steps (each
+     * within max_iterations / 4 Newton iterations), up to `increment`
+     * (StaticPlasticityParameters::grow_after); 0: the halves of a halved step are walked and
+     * the next step is `increment` again (bisection).
+     */
+    unsigned int grow_after = 2;
     /** First step (m, > 0, < increment): the initial stiffness is its secant. */
     double first_increment = 2e-5;
     /**
@@ -150,6 +165,10 @@ namespace kimp::fem
     unsigned int              n_large_error_steps = 0;
     double                    largest_step_error  = 0;
     std::vector<PushoverCell> cells; ///< the final state, one per cell
+    /** Steps halved because Newton did not converge; the smallest converged step of the band
+     *  displacement after the first one (m). */
+    unsigned int n_newton_cuts      = 0;
+    double       smallest_increment = 0;
     /** Newton iterations of the run (failed, halved attempts included). */
     unsigned long n_newton_iterations = 0;
     /** Per converged step (curve[k] for k >= 1): its relative out-of-balance force after each

@@ -112,14 +112,20 @@ namespace kimp::fem
                   const Vector<double> &lift,
                   std::vector<double>  &residuals,
                   bool                  loose = false);
-      void advance(double a, double b, unsigned int depth, StaticPlasticityResult &out);
+      /** One attempt at the step from load factor a to b, halved @p depth times: true if it
+       *  converged (committed and appended to out.steps); false, the state restored, if it is
+       *  to be halved. One that cannot be halved any more throws NumericalError. */
+      bool attempt(double a, double b, unsigned int depth, StaticPlasticityResult &out);
       /** The extrapolated predictor (StaticPlasticityParameters::extrapolated_predictor): from
        *  the lifted state @p u, the free DoFs and the controlled load moved on by the last
        *  converged step's increments times predictor_ratio_; kept (u, r and the baseline)
        *  if its out-of-balance force is lower. */
       void extrapolate(Vector<double> &u, Vector<double> &r, double &baseline, double &norm);
-      /** The segments of p.load_path in load steps of at most 1 / n_steps. */
-      void        walk_load_path(StaticPlasticityResult &out);
+      /** The segments of p.load_path in load steps of at most 1 / n_steps, halved and grown
+       *  back by the step control (StaticPlasticityParameters::grow_after). */
+      void walk_load_path(StaticPlasticityResult &out);
+      /** One segment from load factor @p start to @p end in @p n full steps. */
+      void walk_segment(double start, double end, unsigned int n, StaticPlasticityResult &out);
       VoigtStrain strain(const Vector<double> &u, unsigned int c, unsigned int q) const;
       /** The triangulation of p.mesh and its DoFs. */
       void build_mesh();
@@ -186,6 +192,8 @@ namespace kimp::fem
       std::ostream  *log_             = nullptr;
       double         floor_           = 0; // the tangent floor of the current Newton solve
       unsigned long  n_iterations_    = 0; // Newton iterations of the run
+      unsigned int   depth_           = 0; // halvings of the current step size
+      unsigned int   n_easy_          = 0; // consecutive easy steps at that size
     };
 
     StaticProblem::StaticProblem(const StaticPlasticityParameters &p)
@@ -199,6 +207,8 @@ namespace kimp::fem
             " (must be in [0, 1))");
       if (p.n_steps == 0 || !(p.newton_tolerance > 0) || p.max_iterations == 0)
         bad("static plasticity: n_steps, newton_tolerance and max_iterations must be > 0");
+      if (p.max_cuts > 30)
+        bad("static plasticity: max_cuts = " + std::to_string(p.max_cuts) + " (must be <= 30)");
       if (!(p.gravity >= 0))
         bad("static plasticity: gravity = " + std::to_string(p.gravity) + " (must be >= 0)");
       for (const auto &[id, rho] : p.densities)
@@ -835,8 +845,9 @@ namespace kimp::fem
       return false;
     }
 
-    void StaticProblem::advance(double a, double b, unsigned int depth, StaticPlasticityResult &out)
+    bool StaticProblem::attempt(double a, double b, unsigned int depth, StaticPlasticityResult &out)
     {
+      step_                       = out.steps.size();
       const Vector<double> u_save = u_, r_save = r_;
       const double         load_save = load_;
       target_mean_ = p_.controlled_load ? b * p_.controlled_load->displacement : 0.0;
@@ -854,7 +865,7 @@ namespace kimp::fem
       if (converged && p_.step_error_tolerance > 0)
       {
         const double error = largest_step_error();
-        if (error > p_.step_error_tolerance && depth < p_.max_cuts)
+        if (error > p_.step_error_tolerance && depth < std::min(p_.max_error_cuts, p_.max_cuts))
         {
           converged = false; // halved below
           ++out.n_error_cuts;
@@ -895,7 +906,7 @@ namespace kimp::fem
         }
         out.steps.push_back(std::move(step));
         segment_ended_ = p_.end_segment && p_.end_segment(out.steps, segment_);
-        return;
+        return true;
       }
       revert();
       load_ = load_save;
@@ -912,10 +923,64 @@ namespace kimp::fem
           msg << ' ' << x;
         throw NumericalError(msg.str(), b, step_);
       }
-      const double mid = 0.5 * (a + b);
-      advance(a, mid, depth + 1, out);
-      if (!segment_ended_) // a halved unloading may reach zero force in its first half
-        advance(mid, b, depth + 1, out);
+      if (log_ != nullptr && !step.residuals.empty())
+      {
+        std::ostringstream line;
+        line.precision(4);
+        line << "static step " << out.steps.size() << ": load factor " << a << " -> " << b
+             << " halved after " << step.residuals.size() << " Newton iterations; residuals "
+             << step.residuals.front() << " ... "
+             << *std::min_element(step.residuals.begin(), step.residuals.end()) << " (least) ... "
+             << step.residuals.back();
+        *log_ << line.str() << '\n';
+      }
+      return false;
+    }
+
+    void StaticProblem::walk_segment(double                  start,
+                                     double                  end,
+                                     unsigned int            n,
+                                     StaticPlasticityResult &out)
+    {
+      // Positions in units of the smallest step: a step of depth d spans fine >> d of them and
+      // starts on a multiple of that, so halving and doubling keep the walk on the grid.
+      const unsigned long fine = 1ul << p_.max_cuts, total = n * fine;
+      unsigned long       pos = 0;
+      while (pos < total)
+      {
+        const unsigned long next = pos + (fine >> depth_);
+        const double        a    = start + (end - start) * static_cast<double>(pos) / total;
+        const double        b    = start + (end - start) * static_cast<double>(next) / total;
+        segment_ended_           = false;
+        const std::size_t n_cuts = out.n_error_cuts;
+        if (!attempt(a, b, depth_, out))
+        {
+          if (out.n_error_cuts == n_cuts)
+            ++out.n_newton_cuts;
+          ++depth_;
+          n_easy_ = 0;
+          continue;
+        }
+        pos                        = next;
+        const std::size_t n_newton = out.steps.back().residuals.size();
+        const bool        easy     = n_newton <= std::max(1u, p_.max_iterations / 4) &&
+                          out.steps.back().residuals.back() <= p_.newton_tolerance;
+        n_easy_ = easy ? n_easy_ + 1 : 0;
+        if (segment_ended_) // an unloading that reached zero force
+          return;
+        // Growing back: bisection (grow_after 0) returns to the largest step whose grid the
+        // walk is on; the step control doubles once after grow_after easy steps.
+        while (depth_ > 0 && pos % (fine >> (depth_ - 1)) == 0 &&
+               (p_.grow_after == 0 || n_easy_ >= p_.grow_after))
+        {
+          --depth_;
+          if (p_.grow_after > 0)
+          {
+            n_easy_ = 0;
+            break;
+          }
+        }
+      }
     }
 
     void StaticProblem::walk_load_path(StaticPlasticityResult &out)
@@ -923,22 +988,16 @@ namespace kimp::fem
       const std::vector<double> path =
         p_.load_path.empty() ? std::vector<double>{1.0} : p_.load_path;
       double factor = 0;
-      step_         = 1;
       for (segment_ = 0; segment_ < path.size(); ++segment_)
       {
         const double       start = factor, end = path[segment_];
         const unsigned int n =
           std::max(1u,
                    static_cast<unsigned int>(std::ceil(p_.n_steps * std::abs(end - start) - 1e-9)));
-        for (unsigned int k = 1; k <= n; ++k, ++step_)
-        {
-          const double a = start + (end - start) * (k - 1) / n, b = start + (end - start) * k / n;
-          segment_ended_ = false;
-          advance(a, b, 0, out);
-          factor = out.steps.back().load_factor;
-          if (segment_ended_)
-            break;
-        }
+        if (p_.grow_after == 0) // bisection: every segment starts with a full step
+          depth_ = 0;
+        walk_segment(start, end, n, out);
+        factor = out.steps.back().load_factor;
       }
     }
 

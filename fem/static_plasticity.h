@@ -214,14 +214,27 @@ namespace kimp::fem
      * residual falls (0: plain Newton). Full updates are taken once Newton converges.
      */
     unsigned int max_line_search = 4;
-    /** A step that does not converge is halved at most this many times; then NumericalError. */
+    /** A step that does not converge is halved at most this many times (at most 30); then
+     *  NumericalError. The smallest step is 1 / (n_steps 2^max_cuts). */
     unsigned int max_cuts = 4;
     /**
+     * Growing a halved step back. 0: a halved step's halves are walked and the next step is
+     * full size again as soon as the walk is back on the grid of full steps (bisection). n > 0
+     * (automatic step control): the step size is kept after a halving and doubled after n
+     * consecutive easy steps, each converged within max_iterations / 4 Newton iterations at
+     * the tolerance (not loose, not halved for the IMPL-EX error), once the load factor lies
+     * on the grid of the doubled step; never above 1 / n_steps. A push through a hard range
+     * then goes on at the step that converged there instead of failing the full step again.
+     */
+    unsigned int grow_after = 0;
+    /**
      * IMPL-EX step control (0: off): a converged step whose largest MaterialLaw::step_error()
-     * exceeds this is halved (at most max_cuts times; past that it is accepted and counted in
-     * StaticPlasticityResult::n_large_error_steps).
+     * exceeds this is halved (while the step has been halved fewer than max_error_cuts times;
+     * past that it is accepted and counted in StaticPlasticityResult::n_large_error_steps).
      */
     double step_error_tolerance = 0;
+    /** Halvings for the IMPL-EX error at most (and at most max_cuts). */
+    unsigned int max_error_cuts = 4;
   };
 
   /** One converged load (sub)step. */
@@ -252,7 +265,9 @@ namespace kimp::fem
     double       largest_loose_residual = 0;
     /** Steps halved for their IMPL-EX error; steps accepted above step_error_tolerance (at the
      *  last halving) and the largest error among them. */
-    unsigned int n_error_cuts        = 0;
+    unsigned int n_error_cuts = 0;
+    /** Steps halved because Newton did not converge. */
+    unsigned int n_newton_cuts       = 0;
     unsigned int n_large_error_steps = 0;
     double       largest_step_error  = 0;
     double       plastic_dissipation = 0; ///< total at the end, J/m
@@ -276,7 +291,7 @@ namespace kimp::fem
    * tangents (a direct sparse solve per iteration). History is committed per converged step.
    * Serial. Log lines (one per step) go to *log if not nullptr. Bad input throws
    * std::invalid_argument; a step that does not converge after max_cuts halvings throws
-   * NumericalError (time = load factor, step = load step).
+   * NumericalError (time = load factor, step = index the step would have had in steps).
    */
   StaticPlasticityResult run_static_plasticity(const StaticPlasticityParameters &parameters,
                                                std::ostream                     *log = nullptr);

@@ -7,8 +7,11 @@
 #include <cstdint>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
+#include <ostream>
 #include <stdexcept>
+#include <streambuf>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/fem/fem_materials.h"
@@ -94,10 +97,10 @@ namespace kimp::app
     return p;
   }
 
-  ScenePushover run_scene_pushover(const FemScene &scene, double wall_height)
+  ScenePushover run_scene_pushover(const FemScene &scene, double wall_height, std::ostream *log)
   {
     ScenePushover out;
-    out.result  = fem::run_pushover(pushover_parameters(scene, wall_height));
+    out.result  = fem::run_pushover(pushover_parameters(scene, wall_height), log);
     out.summary = fem::summarise_pushover(out.result.curve);
     return out;
   }
@@ -124,6 +127,36 @@ namespace kimp::app
       t.number("wall_time", "s");
       return t;
     }
+
+    /** The static solver's lines (one per step) to the kimp logger at debug level (`-v`),
+     *  prefixed by the case name. */
+    class PushoverLog : public std::streambuf
+    {
+    public:
+      explicit PushoverLog(std::string case_name)
+        : case_name_(std::move(case_name))
+      {
+      }
+
+    protected:
+      int_type overflow(int_type c) override
+      {
+        if (traits_type::eq_int_type(c, traits_type::eof()))
+          return traits_type::not_eof(c);
+        if (traits_type::to_char_type(c) == '\n')
+        {
+          logger().debug("pushover {}: {}", case_name_, line_);
+          line_.clear();
+        }
+        else
+          line_ += traits_type::to_char_type(c);
+        return c;
+      }
+
+    private:
+      std::string case_name_;
+      std::string line_;
+    };
 
     Table curve_table()
     {
@@ -154,8 +187,13 @@ namespace kimp::app
       const std::string name  = fem_case_name(height);
       const auto        start = std::chrono::steady_clock::now();
       logger().info("pushover {}: wall height {} m", name, height);
-      const ScenePushover run = run_scene_pushover(scene, height);
-      const double        seconds =
+      PushoverLog         log_buffer(name);
+      std::ostream        log(&log_buffer);
+      const ScenePushover run =
+        run_scene_pushover(scene,
+                           height,
+                           logger().should_log(spdlog::level::debug) ? &log : nullptr);
+      const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       Table curve = curve_table();
       for (const fem::PushoverPoint &point : run.result.curve)
@@ -191,13 +229,16 @@ namespace kimp::app
                        std::int64_t(run.result.n_loose_steps),
                        seconds});
       logger().info("pushover {}: capacity {:.4g} kN/m at {:.4g} mm, initial stiffness {:.4g} "
-                    "kN/mm/m, {} steps, {} Newton iterations, {:.3g} s",
+                    "kN/mm/m, {} steps, {} Newton iterations, {} steps halved for Newton "
+                    "(smallest step {:.3g} mm), {:.3g} s",
                     name,
                     s.capacity / 1e3,
                     s.displacement_at_capacity * 1e3,
                     s.initial_stiffness / 1e6,
                     run.result.curve.size() - 1,
                     run.result.n_newton_iterations,
+                    run.result.n_newton_cuts,
+                    run.result.smallest_increment * 1e3,
                     seconds);
     }
     summary.write_hdf5(root, "summary");

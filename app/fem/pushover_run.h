@@ -4,6 +4,8 @@
 // backfill element is fitted to its summary).
 #pragma once
 
+#include <ostream>
+
 #include "app/fem/fem_scene.h"
 #include "fem/pushover.h"
 #include "io/output_dir.h"
@@ -29,7 +31,9 @@ namespace kimp::app
     fem::PushoverResult  result;
     fem::PushoverSummary summary;
   };
-  ScenePushover run_scene_pushover(const FemScene &scene, double wall_height);
+  /** With @p log: the static solver's line per step (and per halved step) to it. */
+  ScenePushover
+  run_scene_pushover(const FemScene &scene, double wall_height, std::ostream *log = nullptr);
 
   /**
    * Every wall height on rank 0 (serial; the other ranks return): DIR/pushover.h5
