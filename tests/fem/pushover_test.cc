@@ -610,83 +610,83 @@ namespace
     std::cout << "strain penetration 0.13 m: at M_p / (2 h_c) = " << f / 1e3 << " kN/m the wall "
               << "moves " << moved * 1e3 << " mm further (hand: bar stress " << sigma_s / 1e6
               << " MPa, slip " << slip * 1e3 << " mm, x = " << x * 1e3 << " mm, " << extra * 1e3
-              << " mm); force at 12.5 mm " << fa / 1e3 << " against " << fb / 1e3
+              << " mm); force at 12 mm " << fa / 1e3 << " against " << fb / 1e3
               << " kN/m bonded, M_p / h_c = " << f_p / 1e3 << " kN/m\n";
+  }
 
-    // The automatic step control (docs/physics.md §6 "Static pushover", "Steps"): a push whose
-    // Newton iteration cannot finish a step cuts it below what bisection reaches and grows it back
-    // after easy steps. The scene: the reinforced wall with its backfill on 10 cm cells (L_p = 0),
-    // pushed to 5 % of H in steps of at most 8 mm with 10 Newton iterations per attempt: the first
-    // cracks then need steps below 1 mm (increment / 8, the bisection's three halvings), as the
-    // 1.25 cm mesh's do below 0.125 mm at 1 mm steps and 40 iterations.
-    TEST(Pushover, StepControlCutsBelowTheBisectionAndMatchesAFineFixedStepPush)
-    {
-      PushoverParameters p    = reinforced_wall_with_backfill();
-      p.bars.hinge_length     = 0;
-      p.path                  = {0.05 * p.wall_height};
-      PushoverParameters hard = p;
-      hard.increment          = 8e-3;
-      hard.max_iterations     = 10;
+  // The automatic step control (docs/physics.md §6 "Static pushover", "Steps"): a push whose
+  // Newton iteration cannot finish a step cuts it below what bisection reaches and grows it back
+  // after easy steps. The scene: the reinforced wall with its backfill on 10 cm cells (L_p = 0),
+  // pushed to 5 % of H in steps of at most 8 mm with 10 Newton iterations per attempt: the first
+  // cracks then need steps below 1 mm (increment / 8, the bisection's three halvings), as the
+  // 1.25 cm mesh's do below 0.125 mm at 1 mm steps and 40 iterations.
+  TEST(Pushover, StepControlCutsBelowTheBisectionAndMatchesAFineFixedStepPush)
+  {
+    PushoverParameters p    = reinforced_wall_with_backfill();
+    p.bars.hinge_length     = 0;
+    p.path                  = {0.05 * p.wall_height};
+    PushoverParameters hard = p;
+    hard.increment          = 8e-3;
+    hard.max_iterations     = 10;
 
-      PushoverParameters fixed = hard; // no halving at all
-      fixed.min_increment      = fixed.increment;
-      EXPECT_THROW(run_pushover(fixed), NumericalError);
-      PushoverParameters bisection = hard; // three halvings, back to 8 mm after them
-      bisection.min_increment      = bisection.increment / 8;
-      bisection.grow_after         = 0;
-      EXPECT_THROW(run_pushover(bisection), NumericalError);
+    PushoverParameters fixed = hard; // no halving at all
+    fixed.min_increment      = fixed.increment;
+    EXPECT_THROW(run_pushover(fixed), NumericalError);
+    PushoverParameters bisection = hard; // three halvings, back to 8 mm after them
+    bisection.min_increment      = bisection.increment / 8;
+    bisection.grow_after         = 0;
+    EXPECT_THROW(run_pushover(bisection), NumericalError);
 
-      const PushoverResult  controlled = run_pushover(hard); // the defaults: 20 um, grow after 2
-      const PushoverSummary c          = summarise_pushover(controlled.curve);
-      PushoverParameters    fine       = p; // 0.25 mm steps, never halved, 40 iterations
-      fine.increment                   = 2.5e-4;
-      fine.min_increment               = fine.increment;
-      const PushoverResult  reference  = run_pushover(fine);
-      const PushoverSummary f          = summarise_pushover(reference.curve);
+    const PushoverResult  controlled = run_pushover(hard); // the defaults: 20 um, grow after 2
+    const PushoverSummary c          = summarise_pushover(controlled.curve);
+    PushoverParameters    fine       = p; // 0.25 mm steps, never halved, 40 iterations
+    fine.increment                   = 2.5e-4;
+    fine.min_increment               = fine.increment;
+    const PushoverResult  reference  = run_pushover(fine);
+    const PushoverSummary f          = summarise_pushover(reference.curve);
 
-      ASSERT_NEAR(controlled.curve.back().displacement, 0.05 * p.wall_height, 1e-9);
-      EXPECT_GT(controlled.n_newton_cuts, 0u);
-      EXPECT_LT(controlled.smallest_increment, hard.increment / 8);
-      // Grown back: far fewer steps than the smallest step would take.
-      EXPECT_LT(controlled.curve.size(), 0.05 * p.wall_height / controlled.smallest_increment / 2);
-      EXPECT_EQ(controlled.n_loose_steps, 0u);
-      EXPECT_NEAR(c.capacity / f.capacity, 1.0, 0.03);
-      EXPECT_NEAR(c.force_at_1cm / f.force_at_1cm, 1.0, 0.02);
-      for (const double u : {0.005, 0.02, 0.04})
-        EXPECT_NEAR(envelope_force(controlled.curve, u) / envelope_force(reference.curve, u),
-                    1.0,
-                    0.02)
-          << "at " << u * 1e3 << " mm";
-      std::cout << "step control (8 mm, 10 iterations): " << controlled.curve.size() - 1
-                << " steps, " << controlled.n_newton_cuts << " halved for Newton, smallest "
-                << controlled.smallest_increment * 1e3 << " mm, " << controlled.n_newton_iterations
-                << " iterations; capacity " << c.capacity / 1e3 << " kN/m, at 1 cm "
-                << c.force_at_1cm / 1e3 << ", at 5 / 20 / 40 mm "
-                << envelope_force(controlled.curve, 0.005) / 1e3 << " / "
-                << envelope_force(controlled.curve, 0.02) / 1e3 << " / "
-                << envelope_force(controlled.curve, 0.04) / 1e3
-                << " kN/m; fixed 0.25 mm steps: " << reference.curve.size() - 1
-                << " steps, capacity " << f.capacity / 1e3 << " kN/m, at 1 cm "
-                << f.force_at_1cm / 1e3 << ", at 5 / 20 / 40 mm "
-                << envelope_force(reference.curve, 0.005) / 1e3 << " / "
-                << envelope_force(reference.curve, 0.02) / 1e3 << " / "
-                << envelope_force(reference.curve, 0.04) / 1e3 << " kN/m (ratio capacity "
-                << c.capacity / f.capacity << ", at 1 cm " << c.force_at_1cm / f.force_at_1cm
-                << ")\n";
-    }
+    ASSERT_NEAR(controlled.curve.back().displacement, 0.05 * p.wall_height, 1e-9);
+    EXPECT_GT(controlled.n_newton_cuts, 0u);
+    EXPECT_LT(controlled.smallest_increment, hard.increment / 8);
+    // Grown back: far fewer steps than the smallest step would take.
+    EXPECT_LT(controlled.curve.size(), 0.05 * p.wall_height / controlled.smallest_increment / 2);
+    EXPECT_EQ(controlled.n_loose_steps, 0u);
+    EXPECT_NEAR(c.capacity / f.capacity, 1.0, 0.03);
+    EXPECT_NEAR(c.force_at_1cm / f.force_at_1cm, 1.0, 0.02);
+    for (const double u : {0.005, 0.02, 0.04})
+      EXPECT_NEAR(envelope_force(controlled.curve, u) / envelope_force(reference.curve, u),
+                  1.0,
+                  0.02)
+        << "at " << u * 1e3 << " mm";
+    std::cout << "step control (8 mm, 10 iterations): " << controlled.curve.size() - 1 << " steps, "
+              << controlled.n_newton_cuts << " halved for Newton, smallest "
+              << controlled.smallest_increment * 1e3 << " mm, " << controlled.n_newton_iterations
+              << " iterations; capacity " << c.capacity / 1e3 << " kN/m, at 1 cm "
+              << c.force_at_1cm / 1e3 << ", at 5 / 20 / 40 mm "
+              << envelope_force(controlled.curve, 0.005) / 1e3 << " / "
+              << envelope_force(controlled.curve, 0.02) / 1e3 << " / "
+              << envelope_force(controlled.curve, 0.04) / 1e3
+              << " kN/m; fixed 0.25 mm steps: " << reference.curve.size() - 1 << " steps, capacity "
+              << f.capacity / 1e3 << " kN/m, at 1 cm " << f.force_at_1cm / 1e3
+              << ", at 5 / 20 / 40 mm " << envelope_force(reference.curve, 0.005) / 1e3 << " / "
+              << envelope_force(reference.curve, 0.02) / 1e3 << " / "
+              << envelope_force(reference.curve, 0.04) / 1e3 << " kN/m (ratio capacity "
+              << c.capacity / f.capacity << ", at 1 cm " << c.force_at_1cm / f.force_at_1cm
+              << ")\n";
+  }
 
-    TEST(Pushover, RefusesBadParameters)
-    {
-      PushoverParameters p = bare_wall(0.05);
-      p.band_top           = 2.0;
-      EXPECT_THROW(run_pushover(p), std::invalid_argument);
-      p      = bare_wall(0.05);
-      p.path = {};
-      EXPECT_THROW(run_pushover(p), std::invalid_argument);
-      p               = bare_wall(0.05);
-      p.min_increment = 2 * p.increment;
-      EXPECT_THROW(run_pushover(p), std::invalid_argument);
-      p.min_increment = 0;
-      EXPECT_THROW(run_pushover(p), std::invalid_argument);
-    }
-  } // namespace
+  TEST(Pushover, RefusesBadParameters)
+  {
+    PushoverParameters p = bare_wall(0.05);
+    p.band_top           = 2.0;
+    EXPECT_THROW(run_pushover(p), std::invalid_argument);
+    p      = bare_wall(0.05);
+    p.path = {};
+    EXPECT_THROW(run_pushover(p), std::invalid_argument);
+    p               = bare_wall(0.05);
+    p.min_increment = 2 * p.increment;
+    EXPECT_THROW(run_pushover(p), std::invalid_argument);
+    p.min_increment = 0;
+    EXPECT_THROW(run_pushover(p), std::invalid_argument);
+  }
+} // namespace
