@@ -11,6 +11,21 @@
 
 namespace kimp::app
 {
+  LogLines::int_type LogLines::overflow(int_type c)
+  {
+    if (traits_type::eq_int_type(c, traits_type::eof()))
+      return traits_type::not_eof(c);
+    if (traits_type::to_char_type(c) != '\n')
+    {
+      line_ += traits_type::to_char_type(c);
+      return c;
+    }
+    const std::string line = std::move(line_);
+    line_.clear();
+    sink_(line);
+    return c;
+  }
+
   using namespace kimp::io;
   std::string error_message(const std::exception &error)
   {

@@ -5,6 +5,8 @@
 
 #include <exception>
 #include <filesystem>
+#include <functional>
+#include <streambuf>
 #include <string>
 
 #include "app/fem/fem_scene.h"
@@ -16,6 +18,27 @@ namespace kimp::app
   /** The user-facing part of an exception message: the "Additional information" of a deal.II
    *  exception, whitespace collapsed; other messages as base::error_text() (one line). */
   std::string error_message(const std::exception &error);
+
+  /**
+   * A log stream for an engine (fem::run_impact(), the pushover's static solver): each
+   * complete line written to it goes to `sink` without its newline (the caller prefixes the
+   * case and picks the level).
+   */
+  class LogLines : public std::streambuf
+  {
+  public:
+    explicit LogLines(std::function<void(const std::string &)> sink)
+      : sink_(std::move(sink))
+    {
+    }
+
+  protected:
+    int_type overflow(int_type c) override;
+
+  private:
+    std::function<void(const std::string &)> sink_;
+    std::string                              line_;
+  };
 
   /** The scene restricted to one wall height (wall_heights = {wall_height}). */
   FemScene single_height_scene(const FemScene &scene, double wall_height);

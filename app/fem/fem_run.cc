@@ -11,7 +11,6 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
-#include <streambuf>
 
 #include "app/fem/fem_common.h"
 #include "app/fem/fem_estimate.h"
@@ -37,45 +36,6 @@ namespace kimp::app
     {
     public:
       using std::runtime_error::runtime_error;
-    };
-
-    /**
-     * The log stream handed to fem::run_impact(): each line goes to the kimp logger prefixed by
-     * the case name ("step ..." lines at debug level, the others at info).
-     */
-    class ImpactLog : public std::streambuf
-    {
-    public:
-      explicit ImpactLog(std::string case_name)
-        : case_name_(std::move(case_name))
-      {
-      }
-
-    protected:
-      int_type overflow(int_type c) override
-      {
-        if (traits_type::eq_int_type(c, traits_type::eof()))
-          return traits_type::not_eof(c);
-        if (traits_type::to_char_type(c) == '\n')
-          line_done();
-        else
-          line_ += traits_type::to_char_type(c);
-        return c;
-      }
-
-    private:
-      void line_done()
-      {
-        const std::string line = std::move(line_);
-        line_.clear();
-        if (line.rfind("step ", 0) == 0)
-          logger().debug("{}: {}", case_name_, line);
-        else
-          logger().info("{}: {}", case_name_, line);
-      }
-
-      std::string case_name_;
-      std::string line_;
     };
 
     /// Rank 0 runs `work`; every rank then learns whether it succeeded and throws if not, so no
@@ -413,7 +373,16 @@ namespace kimp::app
       fem::ImpactResult result;
       try
       {
-        ImpactLog             log_buffer(name);
+        // Each line to the kimp logger prefixed by the case name: "step ..." lines at debug
+        // level, the others at info.
+        LogLines log_buffer(
+          [&name](const std::string &line)
+          {
+            if (line.rfind("step ", 0) == 0)
+              logger().debug("{}: {}", name, line);
+            else
+              logger().info("{}: {}", name, line);
+          });
         std::ostream          log(&log_buffer);
         Progress              progress(0, scene.solver.end_time);
         fem::ImpactParameters parameters = spec.parameters;

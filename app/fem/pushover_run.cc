@@ -9,11 +9,11 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <stdexcept>
-#include <streambuf>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "app/fem/fem_common.h"
 #include "app/fem/fem_materials.h"
 #include "app/helper_programs.h"
 #include "base/logging.h"
@@ -128,36 +128,6 @@ namespace kimp::app
       return t;
     }
 
-    /** The static solver's lines (one per step) to the kimp logger at debug level (`-v`),
-     *  prefixed by the case name. */
-    class PushoverLog : public std::streambuf
-    {
-    public:
-      explicit PushoverLog(std::string case_name)
-        : case_name_(std::move(case_name))
-      {
-      }
-
-    protected:
-      int_type overflow(int_type c) override
-      {
-        if (traits_type::eq_int_type(c, traits_type::eof()))
-          return traits_type::not_eof(c);
-        if (traits_type::to_char_type(c) == '\n')
-        {
-          logger().debug("pushover {}: {}", case_name_, line_);
-          line_.clear();
-        }
-        else
-          line_ += traits_type::to_char_type(c);
-        return c;
-      }
-
-    private:
-      std::string case_name_;
-      std::string line_;
-    };
-
     Table curve_table()
     {
       Table t;
@@ -187,7 +157,9 @@ namespace kimp::app
       const std::string name  = fem_case_name(height);
       const auto        start = std::chrono::steady_clock::now();
       logger().info("pushover {}: wall height {} m", name, height);
-      PushoverLog         log_buffer(name);
+      // The static solver's lines (one per step) to the kimp logger at debug level (`-v`).
+      LogLines            log_buffer([&name](const std::string &line)
+                          { logger().debug("pushover {}: {}", name, line); });
       std::ostream        log(&log_buffer);
       const ScenePushover run =
         run_scene_pushover(scene,
