@@ -297,9 +297,11 @@ namespace kimp::app::study_internal
         for (const StudyHeight &h : heights)
           laws[i].push_back(run_law_walls(scene, records[i], h, errors));
     };
-    const std::vector<YieldingWallCase> cases =
-      yielding.empty() ? (run_laws(), std::vector<YieldingWallCase>()) :
-                         run_yielding_wall_cases(scene, records, heights, yielding, run_laws);
+    std::vector<YieldingWallCase> cases;
+    if (yielding.empty())
+      run_laws();
+    else
+      cases = run_yielding_wall_cases(scene, records, heights, yielding, run_laws);
     // The rows record by record: without walls, then per height its laws and its yielding wall.
     std::vector<StudyBuildingRun> runs;
     std::size_t                   i = 0;

@@ -210,9 +210,9 @@ namespace kimp::app::study_internal
                                           const std::vector<StudyYieldingWall> &yielding);
   /**
    * run_yielding_wall_case() of every record of `records` and height of `heights`, record by
-   * record (index: record × heights.size() + height), on a pool of threads pulling cases from a
-   * counter: hardware_concurrency() − 1 threads start at once, the caller joins them once it has
-   * run `beside` (a linear study's runs of the laws), so both share the cores.
+   * record (index: record × heights.size() + height), on base::for_each_index() with
+   * hardware_concurrency() threads; the caller runs `beside` (a linear study's runs of the laws)
+   * first, so both share the cores.
    * A case that throws is a row with its status; an exception of `beside` is rethrown after the
    * pool has stopped.
    */

@@ -2,7 +2,6 @@
 // "Element of a study"): each height's element, the building runs against it, and their files:
 // yielding_wall_element.csv, yielding_wall.csv, study.h5 /yielding_wall and the report section.
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <exception>
 #include <fmt/format.h>
@@ -15,6 +14,7 @@
 #include "app/study/yielding_wall_impact.h"
 #include "base/errors.h"
 #include "base/format.h"
+#include "base/thread_pool.h"
 #include "io/results_file.h"
 #include "io/table.h"
 
@@ -256,54 +256,28 @@ namespace kimp::app::study_internal
   {
     const std::size_t             n = records.size() * heights.size();
     std::vector<YieldingWallCase> cases(n);
-    std::atomic<std::size_t>      next{0};
-    const auto                    work = [&]()
+    const auto                    work = [&](std::size_t i)
     {
-      for (std::size_t i = next++; i < n; i = next++)
+      const RecordContext &record = records[i / heights.size()];
+      const StudyHeight   &h      = heights[i % heights.size()];
+      try
       {
-        const RecordContext &record = records[i / heights.size()];
-        const StudyHeight   &h      = heights[i % heights.size()];
-        try
-        {
-          cases[i] = run_yielding_wall_case(scene, record.record(), h, yielding);
-        }
-        catch (const std::exception &error)
-        {
-          cases[i].run.record        = record.label;
-          cases[i].run.wall_height   = h.wall_height;
-          cases[i].run.law           = "yielding_wall";
-          cases[i].run.gap           = record.gap;
-          cases[i].run.yielding_wall = true;
-          cases[i].run.status        = "failed: " + base::error_text(error);
-          logger().warn("record {} {} yielding wall: {}",
-                        record.label,
-                        h.name,
-                        cases[i].run.status);
-        }
+        cases[i] = run_yielding_wall_case(scene, record.record(), h, yielding);
       }
+      catch (const std::exception &error)
+      {
+        cases[i].run.record        = record.label;
+        cases[i].run.wall_height   = h.wall_height;
+        cases[i].run.law           = "yielding_wall";
+        cases[i].run.gap           = record.gap;
+        cases[i].run.yielding_wall = true;
+        cases[i].run.status        = "failed: " + base::error_text(error);
+        logger().warn("record {} {} yielding wall: {}", record.label, h.name, cases[i].run.status);
+      }
+      return true;
     };
-    const unsigned int       cores     = std::max(1U, std::thread::hardware_concurrency());
-    const std::size_t        n_threads = std::max<std::size_t>(1, std::min<std::size_t>(cores, n));
-    std::vector<std::thread> pool;
-    for (std::size_t t = 1; t < n_threads; ++t)
-      pool.emplace_back(work);
-    std::exception_ptr failure;
-    try
-    {
-      if (beside)
-        beside();
-    }
-    catch (...)
-    {
-      failure = std::current_exception();
-      next    = n; // the pool takes no further case
-    }
-    if (!failure)
-      work();
-    for (std::thread &thread : pool)
-      thread.join();
-    if (failure)
-      std::rethrow_exception(failure);
+    const std::size_t cores = std::max(1U, std::thread::hardware_concurrency());
+    base::for_each_index(n, std::min(cores, n), work, beside);
     return cases;
   }
 

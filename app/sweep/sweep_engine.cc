@@ -20,6 +20,7 @@
 #include "base/errors.h"
 #include "base/logging.h"
 #include "base/stopwatch.h"
+#include "base/thread_pool.h"
 #include "io/results_file.h"
 #include "io/summary.h"
 #include "io/table.h"
@@ -318,7 +319,6 @@ namespace kimp::app
                         SweepSummary                          &summary)
     {
       SweepJournal             out(SweepJournal::file_of(dir, options.rank));
-      std::atomic<std::size_t> next{0};
       std::atomic<std::size_t> n_failed{0};
       std::mutex               progress_mutex;
       std::size_t              n_finished = 0;
@@ -327,43 +327,22 @@ namespace kimp::app
                              share.n_mine,
                              options.rank == 0 ? options.progress_interval :
                                                             std::numeric_limits<double>::infinity());
-      std::exception_ptr       io_error;
 
-      const auto work = [&]()
+      // A journal write error stops the other threads taking cases and is rethrown.
+      const auto work = [&](std::size_t k)
       {
-        for (std::size_t k = next++; k < share.n_of_rank; k = next++)
-        {
-          const std::size_t index = share.index(k);
-          if (finished.count(index) > 0)
-            continue;
-          const JournalEntry entry = run_case(plan, runner, index, options.rank);
-          if (entry.row.status != "ok")
-            ++n_failed;
-          try
-          {
-            out.append(entry);
-          }
-          catch (...)
-          {
-            const std::lock_guard<std::mutex> lock(progress_mutex);
-            if (!io_error)
-              io_error = std::current_exception();
-            next = share.n_of_rank;
-            return;
-          }
-          const std::lock_guard<std::mutex> lock(progress_mutex);
-          progress.case_finished(++n_finished);
-        }
+        const std::size_t index = share.index(k);
+        if (finished.count(index) > 0)
+          return true;
+        const JournalEntry entry = run_case(plan, runner, index, options.rank);
+        if (entry.row.status != "ok")
+          ++n_failed;
+        const std::lock_guard<std::mutex> lock(progress_mutex);
+        out.append(entry);
+        progress.case_finished(++n_finished);
+        return true;
       };
-
-      std::vector<std::thread> pool;
-      for (unsigned int t = 1; t < share.n_threads; ++t)
-        pool.emplace_back(work);
-      work();
-      for (std::thread &thread : pool)
-        thread.join();
-      if (io_error)
-        std::rethrow_exception(io_error);
+      base::for_each_index(share.n_of_rank, share.n_threads, work);
       summary.n_run    = n_finished;
       summary.n_failed = n_failed;
     }
