@@ -564,10 +564,11 @@ namespace
   // slip out of the clamped base by s = sigma_s L_sp / E_s. The bare wall keeps its section's
   // plastic force, and at half of it moves further by the rotation the tension bars'
   // slip gives the base, s / (d - x) with x the cracked elastic section's neutral axis, times
-  // the band's height: that hand rotation about the cracked section's neutral axis (no concrete
-  // in tension, the whole base turning as a plane) is an upper estimate; the wall moves 0.59
-  // of it (0.83 against 1.39 mm), and the test holds it to 0.4-1.0 of it, well away from the
-  // 0 of a base whose bars did not slip.
+  // the band's height (no concrete in tension, the whole base turning as a plane). The wall
+  // moves 0.59 of that hand value (0.83 against 1.39 mm); why it moves less was not separated
+  // (the concrete's residual tension, the slip of the top layer, the neutral axis of the FE
+  // section are candidates). The test holds it to 0.4-1.0 of it, well away from the 0 of a base
+  // whose bars did not slip.
   TEST(Pushover, StrainPenetrationTurnsTheBaseByTheBarsSlipAndKeepsTheCapacity)
   {
     PushoverParameters bonded = bare_wall(0.05), anchored = bare_wall(0.05);
