@@ -25,6 +25,25 @@
 
 extern char **environ;
 
+namespace kimp::geometry
+{
+  // summary.json's "statistics" of a mesh: every member under its own name.
+  NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(MeshStatistics,
+                                     n_nodes,
+                                     n_cells,
+                                     n_slab_cells,
+                                     n_wall_cells,
+                                     n_soil_cells,
+                                     n_slab_contact_faces,
+                                     n_wall_contact_faces,
+                                     min_cell_size,
+                                     max_cell_size,
+                                     contact_cell_size,
+                                     max_neighbour_ratio,
+                                     max_aspect_ratio,
+                                     min_scaled_jacobian)
+} // namespace kimp::geometry
+
 namespace kimp::app
 {
   using namespace kimp::base;
@@ -42,23 +61,6 @@ namespace kimp::app
         return std::string(python) + " with matplotlib and numpy is not available "
                                      "(Debian: python3-matplotlib)";
       return "";
-    }
-
-    nlohmann::json statistics_json(const geometry::MeshStatistics &s)
-    {
-      return {{"n_nodes", s.n_nodes},
-              {"n_cells", s.n_cells},
-              {"n_slab_cells", s.n_slab_cells},
-              {"n_wall_cells", s.n_wall_cells},
-              {"n_soil_cells", s.n_soil_cells},
-              {"n_slab_contact_faces", s.n_slab_contact_faces},
-              {"n_wall_contact_faces", s.n_wall_contact_faces},
-              {"min_cell_size", s.min_cell_size},
-              {"max_cell_size", s.max_cell_size},
-              {"contact_cell_size", s.contact_cell_size},
-              {"max_neighbour_ratio", s.max_neighbour_ratio},
-              {"max_aspect_ratio", s.max_aspect_ratio},
-              {"min_scaled_jacobian", s.min_scaled_jacobian}};
     }
 
     /// The last bytes of every PNG file: the IEND chunk (length 0, type, CRC).
@@ -162,7 +164,7 @@ namespace kimp::app
         logger().info("{}: PNG preview {}", name, png.string());
         entry["png_preview"] = "mesh/" + name + ".png";
       }
-      entry["statistics"] = statistics_json(statistics);
+      entry["statistics"] = nlohmann::json(statistics);
       nlohmann::ordered_json areas;
       for (const auto &[id, area] : info.area_by_material)
         areas[std::to_string(id)] = area;
