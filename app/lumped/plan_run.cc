@@ -12,6 +12,26 @@
 #include "io/results_file.h"
 #include "io/summary.h"
 
+namespace kimp::lumped::plan
+{
+  // plan_energy_json(): every term under its member's name.
+  NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(PlanEnergy,
+                                     initial,
+                                     input,
+                                     kinetic,
+                                     strain,
+                                     viscous,
+                                     hysteretic,
+                                     contact_work,
+                                     impact_dissipated,
+                                     friction,
+                                     wall_work,
+                                     wall_plastic,
+                                     wall_radiated,
+                                     relative_error,
+                                     max_relative_error)
+} // namespace kimp::lumped::plan
+
 namespace kimp::app
 {
   namespace plan = lumped::plan;
@@ -82,20 +102,7 @@ namespace kimp::app
 
   nlohmann::json plan_energy_json(const plan::PlanEnergy &e)
   {
-    return {{"initial", e.initial},
-            {"input", e.input},
-            {"kinetic", e.kinetic},
-            {"strain", e.strain},
-            {"viscous", e.viscous},
-            {"hysteretic", e.hysteretic},
-            {"contact_work", e.contact_work},
-            {"impact_dissipated", e.impact_dissipated},
-            {"friction", e.friction},
-            {"wall_work", e.wall_work},
-            {"wall_plastic", e.wall_plastic},
-            {"wall_radiated", e.wall_radiated},
-            {"relative_error", e.relative_error},
-            {"max_relative_error", e.max_relative_error}};
+    return e;
   }
 
   nlohmann::json yielding_walls_json(const plan::PlanResponse &r)
