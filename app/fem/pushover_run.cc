@@ -107,36 +107,38 @@ namespace kimp::app
 
   namespace
   {
-    /** The columns of pushover_summary.csv and /pushover/summary. */
-    Table summary_table()
+    /** The leading columns of every pushover table: the case and its wall height. */
+    Table case_table()
     {
       Table t;
-      t.text("case");
-      t.number("wall_height", "m");
-      t.number("capacity", "N/m");
-      t.number("displacement_at_capacity", "m");
-      t.number("initial_stiffness", "N/m/m");
-      t.number("cracked_stiffness", "N/m/m");
-      t.number("force_at_1cm", "N/m");
-      t.number("unloading_stiffness", "N/m/m");
-      t.number("permanent_set", "m");
-      t.number("unloaded_from", "m");
-      t.integer("n_cells");
-      t.integer("n_dofs");
-      t.integer("n_loose_steps");
-      t.number("wall_time", "s");
+      t.text("case").number("wall_height", "m");
       return t;
     }
 
+    /** The columns of pushover_summary.csv and /pushover/summary. */
+    Table summary_table()
+    {
+      Table t = case_table();
+      t.number("capacity", "N/m")
+        .number("displacement_at_capacity", "m")
+        .number("initial_stiffness", "N/m/m")
+        .number("cracked_stiffness", "N/m/m")
+        .number("force_at_1cm", "N/m")
+        .number("unloading_stiffness", "N/m/m")
+        .number("permanent_set", "m")
+        .number("unloaded_from", "m")
+        .integer("n_cells")
+        .integer("n_dofs")
+        .integer("n_loose_steps")
+        .number("wall_time", "s");
+      return t;
+    }
+
+    /** The columns of a case's /pushover/<case>/curve and of pushover.csv (all cases). */
     Table curve_table()
     {
-      Table t;
-      t.text("case");
-      t.number("wall_height", "m");
-      t.number("displacement", "m");
-      t.number("force", "N/m");
-      t.integer("segment");
-      t.integer("unloading");
+      Table t = case_table();
+      t.number("displacement", "m").number("force", "N/m").integer("segment").integer("unloading");
       return t;
     }
 
