@@ -277,16 +277,11 @@ namespace kimp::python
           for (const app::CollideRow &r : rows)
           {
             py::dict d;
-            d["name"]             = r.name;
-            d["law"]              = r.row.law;
-            d["nominal_cor"]      = r.row.nominal_cor;
-            d["effective_cor"]    = r.row.effective_cor;
-            d["relative_error"]   = r.row.relative_error;
-            d["peak_force"]       = r.row.peak_force;
-            d["contact_duration"] = r.row.contact_duration;
-            d["max_penetration"]  = r.row.max_penetration;
-            d["energy_error"]     = r.row.energy_error;
-            d["status"]           = r.status;
+            d["name"] = r.name;
+            d["law"]  = r.row.law;
+            for (const app::CorTableColumn &c : app::cor_table_columns())
+              d[c.name] = r.row.*c.value;
+            d["status"] = r.status;
             list.append(d);
           }
           return list;

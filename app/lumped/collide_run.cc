@@ -137,6 +137,21 @@ namespace kimp::app
     return rows;
   }
 
+  const std::vector<CorTableColumn> &cor_table_columns()
+  {
+    using R = lumped::CorTableRow;
+    static const std::vector<CorTableColumn> columns{{"nominal_cor", "1", &R::nominal_cor},
+                                                     {"effective_cor", "1", &R::effective_cor},
+                                                     {"relative_error", "1", &R::relative_error},
+                                                     {"peak_force", "N", &R::peak_force},
+                                                     {"contact_duration",
+                                                      "s",
+                                                      &R::contact_duration},
+                                                     {"max_penetration", "m", &R::max_penetration},
+                                                     {"energy_error", "1", &R::energy_error}};
+    return columns;
+  }
+
   namespace
   {
     /// The recalibration of C_imp (`--calibrate`) over the scene's grids, logged beside the
@@ -175,27 +190,18 @@ namespace kimp::app
     {
       Table       t;
       std::string status = "ok";
-      t.number("nominal_cor", "1")
-        .number("effective_cor", "1")
-        .number("relative_error", "1")
-        .number("peak_force", "N")
-        .number("contact_duration", "s")
-        .number("max_penetration", "m")
-        .number("energy_error", "1");
+      for (const CorTableColumn &c : cor_table_columns())
+        t.number(c.name, c.unit);
       for (const CollideRow &r : rows)
       {
         if (r.name != law.name)
           continue;
-        const lumped::CorTableRow &x = r.row;
-        t.add_row(number_cells({x.nominal_cor,
-                                x.effective_cor,
-                                x.relative_error,
-                                x.peak_force,
-                                x.contact_duration,
-                                x.max_penetration,
-                                x.energy_error}));
+        std::vector<Cell> cells;
+        for (const CorTableColumn &c : cor_table_columns())
+          cells.emplace_back(r.row.*c.value);
+        t.add_row(std::move(cells));
         if (r.status != "ok")
-          status = "failed: COR " + format_quantity(x.nominal_cor, "") + ": " + r.status;
+          status = "failed: COR " + format_quantity(r.row.nominal_cor, "") + ": " + r.status;
       }
       ResultsGroup g = collide.case_group(law.name);
       g.set_attribute("law", law.law);
@@ -261,31 +267,20 @@ namespace kimp::app
     /// cor_table.csv: one row per law and COR.
     void write_cor_table_csv(const OutputDir &output, const std::vector<CollideRow> &rows)
     {
+      std::vector<std::string> header{"law"};
+      for (const CorTableColumn &c : cor_table_columns())
+        header.push_back(csv_column(c.name, c.unit));
+      header.push_back("status");
       std::vector<std::vector<std::string>> csv;
       for (const CollideRow &r : rows)
       {
-        const lumped::CorTableRow &x = r.row;
-        csv.push_back({r.name,
-                       format_quantity(x.nominal_cor, ""),
-                       format_quantity(x.effective_cor, ""),
-                       format_quantity(x.relative_error, ""),
-                       format_quantity(x.peak_force, ""),
-                       format_quantity(x.contact_duration, ""),
-                       format_quantity(x.max_penetration, ""),
-                       format_quantity(x.energy_error, ""),
-                       r.status});
+        std::vector<std::string> line{r.name};
+        for (const CorTableColumn &c : cor_table_columns())
+          line.push_back(format_quantity(r.row.*c.value, ""));
+        line.push_back(r.status);
+        csv.push_back(std::move(line));
       }
-      write_csv_atomic(output.file("cor_table.csv"),
-                       {"law",
-                        "nominal_cor",
-                        "effective_cor",
-                        "relative_error",
-                        "peak_force_N",
-                        "contact_duration_s",
-                        "max_penetration_m",
-                        "energy_error",
-                        "status"},
-                       csv);
+      write_csv_atomic(output.file("cor_table.csv"), header, csv);
     }
 
     /// summary.json: the setup, one case per law and COR, the calibration.

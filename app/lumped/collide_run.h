@@ -138,6 +138,18 @@ namespace kimp::app
   /// The effective COR table of every law of the scene over its grid.
   std::vector<CollideRow> collide_cor_table(const CollideScene &scene);
 
+  /// A number column of the COR table: its name, SI unit ("1": none) and value in a row.
+  struct CorTableColumn
+  {
+    const char *name;
+    const char *unit;
+    double lumped::CorTableRow::*value;
+  };
+
+  /// The number columns of the COR table, in their order in collide.h5 (`cor_table`),
+  /// cor_table.csv (the unit appended to the name) and the Python module's cor_table().
+  const std::vector<CorTableColumn> &cor_table_columns();
+
   /// Run the table (and the calibration) and write collide.h5, cor_table.csv and summary.json.
   void run_collide(const io::LoadedScene<CollideScene> &scene,
                    const io::OutputDir                 &output,
