@@ -30,7 +30,7 @@ namespace kimp::app::study_internal
 
     /// The "Accuracy against cost: FEM" section: k against mesh, penalty and implicit solver. Empty
     /// without its points.
-    std::string fem_accuracy_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
+    std::string fem_accuracy_markdown(const StudyScene &scene, const StudyExtras &e)
     {
       std::string md;
       if (e.fem_accuracy.empty())
@@ -64,14 +64,11 @@ namespace kimp::app::study_internal
         }
         md += fmt::format(" {} |\n", p.status);
       }
-      md += "\nData: [accuracy_fem.csv](accuracy_fem.csv), study.h5 `/accuracy/fem`.\n\n";
-      if (charts)
-        md += "![FEM accuracy against cost](charts/accuracy_fem.png)\n\n";
       return md;
     }
 
     /// The "Accuracy against cost: building time step" section. Empty without its points.
-    std::string lumped_accuracy_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
+    std::string lumped_accuracy_markdown(const StudyScene &scene, const StudyExtras &e)
     {
       std::string md;
       if (e.lumped_accuracy.empty())
@@ -95,15 +92,11 @@ namespace kimp::app::study_internal
                           readable(p.ok ? p.base_acceleration : nan),
                           p.ok ? fmt::format("{:.3g} %", 100 * p.error_acceleration) : "",
                           p.status);
-      md += "\nData: [accuracy_lumped.csv](accuracy_lumped.csv), study.h5 `/accuracy/lumped`.\n\n";
-      if (charts)
-        md += "![building time step accuracy against cost](charts/accuracy_lumped.png)\n\n";
       return md;
     }
 
     /// The "Stability map of the central difference method" section. Empty without its points.
-    std::string
-    lumped_stability_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
+    std::string lumped_stability_markdown(const StudyScene &scene, const StudyExtras &e)
     {
       std::string md;
       if (e.stability.empty())
@@ -122,9 +115,7 @@ namespace kimp::app::study_internal
                     "{:.4g} t, modified Kelvin-Voigt at COR {}), no stability guard: {} runs, "
                     "{} stable (energy gain < 0.1 %), {} of them accurate (effective COR within "
                     "5 % of nominal); {} stable above the damped limit "
-                    "2(sqrt(1+ξ²)−ξ)/ω_imp, {} unstable below it.\n\n"
-                    "Data: [stability_lumped.csv](stability_lumped.csv), study.h5 "
-                    "`/stability/lumped`.\n\n",
+                    "2(sqrt(1+ξ²)−ξ)/ω_imp, {} unstable below it.\n",
                     scene.building.isolation_mass / 1e3,
                     scene.walls.mass / 1e3,
                     e.stability_effective_mass / 1e3,
@@ -134,13 +125,11 @@ namespace kimp::app::study_internal
                     n_accurate,
                     stable_above,
                     unstable_below);
-      if (charts)
-        md += "![stability map](charts/stability_map.png)\n\n";
       return md;
     }
 
     /// The "Stability map of the explicit FEM" section. Empty without its points.
-    std::string fem_stability_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
+    std::string fem_stability_markdown(const StudyScene &scene, const StudyExtras &e)
     {
       std::string md;
       if (e.fem_stability.empty())
@@ -178,14 +167,11 @@ namespace kimp::app::study_internal
       }
       for (const auto &[penalty, row] : rows)
         md += fmt::format("| {:g} | {:.4g} | {} |\n", penalty, row.first * 1e6, row.second);
-      md += "\nData: [stability_fem.csv](stability_fem.csv), study.h5 `/stability/fem`.\n\n";
-      if (charts)
-        md += "![FEM stability map](charts/stability_map_fem.png)\n\n";
       return md;
     }
 
     /// The "Sensitivity of k" section. Empty without its points.
-    std::string sensitivity_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
+    std::string sensitivity_markdown(const StudyScene &scene, const StudyExtras &e)
     {
       std::string md;
       if (e.sensitivity.empty())
@@ -206,17 +192,58 @@ namespace kimp::app::study_internal
           md += fmt::format(" {} |", readable(p.ok ? law_k_display(p.k, law) : nan));
         md += fmt::format(" {} |\n", p.status);
       }
-      md += "\nData: [sensitivity.csv](sensitivity.csv), study.h5 `/sensitivity`.\n\n";
-      if (charts)
-        md += "![sensitivity of k](charts/sensitivity.png)\n\n";
       return md;
     }
 
+    /// The sections of the study's extra parts: the markdown of each (empty without its points)
+    /// and where its data stand (CSV file and study.h5 path) and its chart.
+    struct ExtraSection
+    {
+      std::string (*markdown)(const StudyScene &, const StudyExtras &);
+      const char *csv;
+      const char *hdf5;
+      const char *chart_title;
+      const char *chart;
+    };
+
     std::string extras_markdown(const StudyScene &scene, const StudyExtras &e, bool charts)
     {
-      return fem_accuracy_markdown(scene, e, charts) + lumped_accuracy_markdown(scene, e, charts) +
-             lumped_stability_markdown(scene, e, charts) +
-             fem_stability_markdown(scene, e, charts) + sensitivity_markdown(scene, e, charts);
+      static const ExtraSection sections[] = {{fem_accuracy_markdown,
+                                               "accuracy_fem.csv",
+                                               "/accuracy/fem",
+                                               "FEM accuracy against cost",
+                                               "accuracy_fem.png"},
+                                              {lumped_accuracy_markdown,
+                                               "accuracy_lumped.csv",
+                                               "/accuracy/lumped",
+                                               "building time step accuracy against cost",
+                                               "accuracy_lumped.png"},
+                                              {lumped_stability_markdown,
+                                               "stability_lumped.csv",
+                                               "/stability/lumped",
+                                               "stability map",
+                                               "stability_map.png"},
+                                              {fem_stability_markdown,
+                                               "stability_fem.csv",
+                                               "/stability/fem",
+                                               "FEM stability map",
+                                               "stability_map_fem.png"},
+                                              {sensitivity_markdown,
+                                               "sensitivity.csv",
+                                               "/sensitivity",
+                                               "sensitivity of k",
+                                               "sensitivity.png"}};
+      std::string               md;
+      for (const ExtraSection &s : sections)
+      {
+        const std::string section = s.markdown(scene, e);
+        if (section.empty())
+          continue;
+        md += section + fmt::format("\nData: [{0}]({0}), study.h5 `{1}`.\n\n", s.csv, s.hdf5);
+        if (charts)
+          md += fmt::format("![{}](charts/{})\n\n", s.chart_title, s.chart);
+      }
+      return md;
     }
   } // namespace
 
