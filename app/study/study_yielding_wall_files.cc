@@ -17,15 +17,39 @@ namespace kimp::app::study_internal
 {
   namespace
   {
-    /// A number column in short: its name, its display unit and the factor from SI to it, its
-    /// SI unit, and its SI value of a row.
+    /// A display unit of the CSV files: its name, the factor from SI to it and the SI unit.
+    struct DisplayUnit
+    {
+      const char *name;
+      double      factor;
+      const char *si;
+    };
+
+    /// The display units of the yielding-wall tables.
+    namespace display_unit
+    {
+      constexpr DisplayUnit kn_per_mm_per_m{"kN/mm/m", 1e-6, "N/m/m"};
+      constexpr DisplayUnit kn_per_m{"kN/m", 1e-3, "N/m"};
+      constexpr DisplayUnit kn{"kN", 1e-3, "N"};
+      constexpr DisplayUnit kj{"kJ", 1e-3, "J"};
+      constexpr DisplayUnit mm{"mm", 1e3, "m"};
+      constexpr DisplayUnit cm{"cm", 100.0, "m"};
+      constexpr DisplayUnit kn_s_per_m2{"kN*s/m^2", 1e-3, "N*s/m^2"};
+      constexpr DisplayUnit t_per_m{"t/m", 1e-3, "kg/m"};
+
+      /// An SI unit shown as it is.
+      constexpr DisplayUnit si(const char *unit)
+      {
+        return {unit, 1.0, unit};
+      }
+    } // namespace display_unit
+
+    /// A number column in short: its name, its display unit and its SI value of a row.
     template <class Row>
     struct Scaled
     {
       const char                        *name;
-      const char                        *display_unit;
-      double                             factor;
-      const char                        *si_unit;
+      DisplayUnit                        unit;
       std::function<double(const Row &)> value;
     };
 
@@ -36,9 +60,9 @@ namespace kimp::app::study_internal
                        std::function<bool(const Row &)> ok)
     {
       for (const Scaled<Row> &c : scaled)
-        columns.push_back(number_column<Row>({c.name, c.si_unit},
-                                             {c.name, c.display_unit},
-                                             times(c.factor),
+        columns.push_back(number_column<Row>({c.name, c.unit.si},
+                                             {c.name, c.unit.name},
+                                             times(c.unit.factor),
                                              [ok, value = c.value](const Row &row)
                                              { return ok(row) ? value(row) : nan; }));
     }
@@ -76,100 +100,48 @@ namespace kimp::app::study_internal
     std::vector<Scaled<StudyYieldingWall>> element_quantities()
     {
       using W = StudyYieldingWall;
+      using namespace display_unit;
+      // A value of the pushover's fit, NaN unless the element comes from a pushover.
+      const auto of_pushover = [](double PushoverFit::*value)
+      { return [value](const W &w) { return w.source == "pushover" ? w.fit.*value : nan; }; };
       return {
         // The envelope the element runs on: the hull's first slope, its last force and where
         // it turns flat (the bilinear's k, F_y and its cap or +inf without a curve).
         {"envelope_stiffness",
-         "kN/mm/m",
-         1e-6,
-         "N/m/m",
+         kn_per_mm_per_m,
          [](const W &w) { return w.element.backfill.resolved().stiffness / w.element.width; }},
-        {"envelope_force",
-         "kN/m",
-         1e-3,
-         "N/m",
-         [](const W &w) { return element_envelope_force(w); }},
-        {"envelope_displacement",
-         "mm",
-         1e3,
-         "m",
-         [](const W &w) { return element_envelope_displacement(w); }},
+        {"envelope_force", kn_per_m, [](const W &w) { return element_envelope_force(w); }},
+        {"envelope_displacement", mm, [](const W &w) { return element_envelope_displacement(w); }},
         {"unloading_stiffness",
-         "kN/mm/m",
-         1e-6,
-         "N/m/m",
+         kn_per_mm_per_m,
          [](const W &w) { return w.inputs.unloading_stiffness; }},
         // The equal-energy bilinear of the pushover: the element's envelope only without a hull
         // (source estimate), else the comparison (ASCE 41 / FEMA 356).
-        {"bilinear_capacity", "kN/m", 1e-3, "N/m", [](const W &w) { return w.inputs.capacity; }},
-        {"bilinear_stiffness",
-         "kN/mm/m",
-         1e-6,
-         "N/m/m",
-         [](const W &w) { return w.inputs.stiffness; }},
-        {"bilinear_hardening_ratio",
-         "1",
-         1.0,
-         "1",
-         [](const W &w) { return w.inputs.hardening_ratio; }},
+        {"bilinear_capacity", kn_per_m, [](const W &w) { return w.inputs.capacity; }},
+        {"bilinear_stiffness", kn_per_mm_per_m, [](const W &w) { return w.inputs.stiffness; }},
+        {"bilinear_hardening_ratio", si("1"), [](const W &w) { return w.inputs.hardening_ratio; }},
         {"failure_displacement",
-         "cm",
-         100.0,
-         "m",
+         cm,
          [](const W &w) { return w.element.backfill.resolved().failure_displacement; }},
-        {"estimate_capacity", "kN/m", 1e-3, "N/m", [](const W &w) { return w.estimate_capacity; }},
-        {"pushover_force",
-         "kN/m",
-         1e-3,
-         "N/m",
-         [](const W &w) { return w.source == "pushover" ? w.fit.target_force : nan; }},
-        {"pushover_displacement",
-         "mm",
-         1e3,
-         "m",
-         [](const W &w) { return w.source == "pushover" ? w.fit.target_displacement : nan; }},
-        {"pushover_permanent_set",
-         "mm",
-         1e3,
-         "m",
-         [](const W &w) { return w.source == "pushover" ? w.fit.pushover_permanent_set : nan; }},
-        {"element_permanent_set",
-         "mm",
-         1e3,
-         "m",
-         [](const W &w) { return w.source == "pushover" ? w.fit.permanent_set : nan; }},
-        {"pushover_time", "s", 1.0, "s", [](const W &w) { return w.pushover_seconds; }},
-        {"soil_density", "kg/m^3", 1.0, "kg/m^3", [](const W &w) { return w.inputs.soil_density; }},
-        {"soil_wave_speed", "m/s", 1.0, "m/s", [](const W &w) { return w.inputs.soil_wave_speed; }},
-        {"loaded_height", "m", 1.0, "m", [](const W &w) { return w.inputs.loaded_height; }},
-        {"radiation_damping",
-         "kN*s/m^2",
-         1e-3,
-         "N*s/m^2",
-         [](const W &w) { return w.element.radiation_damping; }},
-        {"slab_impedance",
-         "kN*s/m^2",
-         1e-3,
-         "N*s/m^2",
-         [](const W &w) { return w.inputs.slab_impedance; }},
-        {"wall_impedance",
-         "kN*s/m^2",
-         1e-3,
-         "N*s/m^2",
-         [](const W &w) { return w.inputs.wall_impedance; }},
-        {"contact_impedance",
-         "kN*s/m^2",
-         1e-3,
-         "N*s/m^2",
-         [](const W &w) { return w.element.contact_impedance; }},
-        {"wall_mass", "t/m", 1e-3, "kg/m", [](const W &w) { return w.element.wall_mass; }},
-        {"striker_mass", "t/m", 1e-3, "kg/m", [](const W &w) { return w.inputs.striker_mass; }},
+        {"estimate_capacity", kn_per_m, [](const W &w) { return w.estimate_capacity; }},
+        {"pushover_force", kn_per_m, of_pushover(&PushoverFit::target_force)},
+        {"pushover_displacement", mm, of_pushover(&PushoverFit::target_displacement)},
+        {"pushover_permanent_set", mm, of_pushover(&PushoverFit::pushover_permanent_set)},
+        {"element_permanent_set", mm, of_pushover(&PushoverFit::permanent_set)},
+        {"pushover_time", si("s"), [](const W &w) { return w.pushover_seconds; }},
+        {"soil_density", si("kg/m^3"), [](const W &w) { return w.inputs.soil_density; }},
+        {"soil_wave_speed", si("m/s"), [](const W &w) { return w.inputs.soil_wave_speed; }},
+        {"loaded_height", si("m"), [](const W &w) { return w.inputs.loaded_height; }},
+        {"radiation_damping", kn_s_per_m2, [](const W &w) { return w.element.radiation_damping; }},
+        {"slab_impedance", kn_s_per_m2, [](const W &w) { return w.inputs.slab_impedance; }},
+        {"wall_impedance", kn_s_per_m2, [](const W &w) { return w.inputs.wall_impedance; }},
+        {"contact_impedance", kn_s_per_m2, [](const W &w) { return w.element.contact_impedance; }},
+        {"wall_mass", t_per_m, [](const W &w) { return w.element.wall_mass; }},
+        {"striker_mass", t_per_m, [](const W &w) { return w.inputs.striker_mass; }},
         {"contact_stiffness",
-         "kN/mm/m",
-         1e-6,
-         "N/m/m",
+         kn_per_mm_per_m,
          [](const W &w) { return w.element.contact_stiffness; }},
-        {"width", "m", 1.0, "m", [](const W &w) { return w.element.width; }},
+        {"width", si("m"), [](const W &w) { return w.element.width; }},
       };
     }
 
@@ -200,44 +172,23 @@ namespace kimp::app::study_internal
     std::vector<Scaled<StudyBuildingRun>> run_quantities()
     {
       using R = StudyBuildingRun;
+      using namespace display_unit;
       return {
-        {"gap", "cm", 100.0, "m", [](const R &r) { return r.gap; }},
-        {"peak_wall_resistance",
-         "kN",
-         1e-3,
-         "N",
-         [](const R &r) { return r.wall_peak_resistance; }},
+        {"gap", cm, [](const R &r) { return r.gap; }},
+        {"peak_wall_resistance", kn, [](const R &r) { return r.wall_peak_resistance; }},
         {"resistance_over_capacity",
-         "1",
-         1.0,
-         "1",
+         si("1"),
          [](const R &r)
          { return r.wall_capacity > 0 ? r.wall_peak_resistance / r.wall_capacity : nan; }},
-        {"peak_contact_force", "kN", 1e-3, "N", [](const R &r) { return r.peak_impact_force; }},
-        {"peak_wall_displacement",
-         "cm",
-         100.0,
-         "m",
-         [](const R &r) { return r.peak_wall_displacement; }},
-        {"residual_wall_displacement",
-         "cm",
-         100.0,
-         "m",
-         [](const R &r) { return r.wall_residual_displacement; }},
-        {"wall_plastic_work", "kJ", 1e-3, "J", [](const R &r) { return r.wall_plastic_work; }},
-        {"wall_radiated_work", "kJ", 1e-3, "J", [](const R &r) { return r.wall_radiated_work; }},
-        {"energy_input", "kJ", 1e-3, "J", [](const R &r) { return r.energy_input; }},
-        {"energy_error", "1", 1.0, "1", [](const R &r) { return r.energy_error; }},
-        {"peak_top_acceleration",
-         "m/s^2",
-         1.0,
-         "m/s^2",
-         [](const R &r) { return r.top_acceleration; }},
-        {"peak_interstorey_drift",
-         "cm",
-         100.0,
-         "m",
-         [](const R &r) { return r.max_interstorey_drift; }},
+        {"peak_contact_force", kn, [](const R &r) { return r.peak_impact_force; }},
+        {"peak_wall_displacement", cm, [](const R &r) { return r.peak_wall_displacement; }},
+        {"residual_wall_displacement", cm, [](const R &r) { return r.wall_residual_displacement; }},
+        {"wall_plastic_work", kj, [](const R &r) { return r.wall_plastic_work; }},
+        {"wall_radiated_work", kj, [](const R &r) { return r.wall_radiated_work; }},
+        {"energy_input", kj, [](const R &r) { return r.energy_input; }},
+        {"energy_error", si("1"), [](const R &r) { return r.energy_error; }},
+        {"peak_top_acceleration", si("m/s^2"), [](const R &r) { return r.top_acceleration; }},
+        {"peak_interstorey_drift", cm, [](const R &r) { return r.max_interstorey_drift; }},
       };
     }
 
