@@ -183,6 +183,20 @@ namespace kimp::app
       return calibration;
     }
 
+    /// A quantity of the collision set-up: its name and unit in summary.json (`setup`, `units`)
+    /// and collide.h5 (attributes of `/collide`), and its member of the scene.
+    struct SetupQuantity
+    {
+      const char *name;
+      const char *unit;
+      double CollideScene::*value;
+    };
+
+    constexpr SetupQuantity setup_quantities[] = {{"mass_1", "kg", &CollideScene::mass_1},
+                                                  {"mass_2", "kg", &CollideScene::mass_2},
+                                                  {"velocity", "m/s", &CollideScene::velocity},
+                                                  {"time_step", "s", &CollideScene::time_step}};
+
     /// collide.h5 `/collide/<law>`: the law's COR table and its status.
     void write_law_table(ResultsGroup                  &collide,
                          const CollideLawScene         &law,
@@ -253,10 +267,8 @@ namespace kimp::app
       const CollideScene &scene = loaded.scene;
       ResultsFile         file(output.file("collide.h5"), loaded.text, loaded.resolved_json);
       ResultsGroup        collide = file.root().group("collide");
-      collide.set_attribute("mass_1", scene.mass_1);
-      collide.set_attribute("mass_2", scene.mass_2);
-      collide.set_attribute("velocity", scene.velocity);
-      collide.set_attribute("time_step", scene.time_step);
+      for (const SetupQuantity &q : setup_quantities)
+        collide.set_attribute(q.name, scene.*q.value);
       for (const CollideLawScene &law : scene.laws)
         write_law_table(collide, law, rows);
       if (calibration)
@@ -293,16 +305,12 @@ namespace kimp::app
       nlohmann::json      summary = io::summary_preamble("collide");
       summary["scene"]            = loaded.file_name;
       summary["wall_time"]        = wall_time;
-      summary["units"]            = {{"mass_1", "kg"},
-                                     {"mass_2", "kg"},
-                                     {"velocity", "m/s"},
-                                     {"time_step", "s"},
-                                     {"peak_force", "N"},
-                                     {"wall_time", "s"}};
-      summary["setup"]            = {{"mass_1", scene.mass_1},
-                                     {"mass_2", scene.mass_2},
-                                     {"velocity", scene.velocity},
-                                     {"time_step", scene.time_step}};
+      summary["units"]            = {{"peak_force", "N"}, {"wall_time", "s"}};
+      for (const SetupQuantity &q : setup_quantities)
+      {
+        summary["units"][q.name] = q.unit;
+        summary["setup"][q.name] = scene.*q.value;
+      }
       // One case per law, in the shape of every command's summary.json (name, status).
       summary["cases"] = nlohmann::json::array();
       for (const CollideRow &r : rows)
