@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "app/step_budget.h"
 #include "base/logging.h"
 #include "fem/impact.h"
 #include "geometry/scene_ids.h"
@@ -217,13 +218,11 @@ namespace kimp::app
 
   void check_fem_budget(const std::string &name, const FemEstimate &estimate, double max_steps)
   {
-    if (!(estimate.n_steps <= max_steps))
-      throw std::invalid_argument(fmt::format(
-        "{}: the estimate ({}) exceeds the step budget dynamics.max_steps = {:.3g} (a coarser "
-        "mesh.h_contact, a shorter dynamics.end_time, or a larger dynamics.max_steps if the run "
-        "is intended)",
-        name,
-        estimate.text(),
-        max_steps));
+    check_step_budget(name,
+                      estimate.text(),
+                      estimate.n_steps,
+                      max_steps,
+                      "dynamics.max_steps = {:.3g} (a coarser mesh.h_contact, a shorter "
+                      "dynamics.end_time, or a larger dynamics.max_steps if the run is intended)");
   }
 } // namespace kimp::app

@@ -8,6 +8,7 @@
 #include "app/lumped/ground_motion_scene.h"
 #include "app/lumped/lumped_scene.h"
 #include "app/lumped/plan_run.h"
+#include "app/step_budget.h"
 #include "base/logging.h"
 
 namespace kimp::app
@@ -68,13 +69,12 @@ namespace kimp::app
   void
   check_sweep_budget(const std::string &sweep_file, const SweepEstimate &estimate, double max_steps)
   {
-    if (!(estimate.total_steps <= max_steps))
-      throw std::invalid_argument(fmt::format(
-        "{}: the estimate ({}) exceeds the step budget of the sweep (--max-steps = {:.3g}; fewer "
-        "values, a shorter duration, a larger dt, or a larger --max-steps or --accept-cost if "
-        "the sweep is intended)",
-        sweep_file,
-        estimate.text(),
-        max_steps));
+    check_step_budget(
+      sweep_file,
+      estimate.text(),
+      estimate.total_steps,
+      max_steps,
+      "of the sweep (--max-steps = {:.3g}; fewer values, a shorter duration, a "
+      "larger dt, or a larger --max-steps or --accept-cost if the sweep is intended)");
   }
 } // namespace kimp::app
