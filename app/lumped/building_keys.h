@@ -1,5 +1,5 @@
 // Scene keys of a building scene that stand in several sections, each kind declared once with its
-// display unit and range: a viscous damping ratio, the gap of a moat wall and a mass.
+// display unit and range: a viscous damping ratio, the gap of a moat wall, a mass and a stiffness.
 #pragma once
 
 #include <string_view>
@@ -39,5 +39,18 @@ namespace kimp::app
   void visit_mass(Io &io, std::string_view key, Q &mass, std::string_view doc)
   {
     io.quantity(key, mass, "t", doc, io::Range::positive());
+  }
+
+  /// A lateral stiffness key: a storey, an isolator, a flexible wall, a plan element (shown in
+  /// MN/m, > 0, or `range` where zero is admitted: a post-yield branch, an element stiff along one
+  /// axis only); `doc` says whose.
+  template <class Io, class Q>
+  void visit_stiffness(Io              &io,
+                       std::string_view key,
+                       Q               &stiffness,
+                       std::string_view doc,
+                       const io::Range &range = io::Range::positive())
+  {
+    io.quantity(key, stiffness, "MN/m", doc, range);
   }
 } // namespace kimp::app

@@ -61,11 +61,7 @@ namespace kimp::app
     io.integer("n_storeys", s.n_storeys, "storeys above the isolation level or the ground", 1, 100);
     visit_mass(io, "floor_mass", s.floor_mass, "mass of every floor below the top");
     visit_mass(io, "top_mass", s.top_mass, "mass of the top floor");
-    io.quantity("storey_stiffness",
-                s.storey_stiffness,
-                "MN/m",
-                "shear stiffness of each storey",
-                io::Range::positive());
+    visit_stiffness(io, "storey_stiffness", s.storey_stiffness, "shear stiffness of each storey");
   }
 
   /// The main building (thesis Table 4.2): its storeys, isolation level and damping ratios.
@@ -133,12 +129,12 @@ namespace kimp::app
                {"bouc_wen", IsolatorKind::bouc_wen}},
               "bilinear hysteretic (K1, K2, Q), linear (k), friction_pendulum (radius, mu_slow, "
               "mu_fast, rate, k_init) or bouc_wen (K1, K2, Q, A, beta, gamma, n)");
-    io.quantity("K1", s.K1, "MN/m", "bilinear, bouc_wen: initial stiffness", io::Range::positive());
-    io.quantity("K2",
-                s.K2,
-                "MN/m",
-                "bilinear, bouc_wen: post-yield stiffness (< K1; post-yield ratio K2/K1)",
-                io::Range::non_negative());
+    visit_stiffness(io, "K1", s.K1, "bilinear, bouc_wen: initial stiffness");
+    visit_stiffness(io,
+                    "K2",
+                    s.K2,
+                    "bilinear, bouc_wen: post-yield stiffness (< K1; post-yield ratio K2/K1)",
+                    io::Range::non_negative());
     io.quantity("Q_ratio",
                 s.Q_ratio,
                 "%",
@@ -150,7 +146,7 @@ namespace kimp::app
                 "kN",
                 "bilinear, bouc_wen: characteristic strength (overrides Q_ratio)",
                 io::Range::positive());
-    io.quantity("k", s.k, "MN/m", "linear: stiffness", io::Range::positive());
+    visit_stiffness(io, "k", s.k, "linear: stiffness");
     visit_damping_ratio(
       io,
       "damping_ratio",
@@ -182,11 +178,10 @@ namespace kimp::app
                 "s/m",
                 "friction_pendulum: a in mu(v) = mu_fast - (mu_fast - mu_slow) exp(-a |v|)",
                 io::Range::non_negative());
-    io.quantity("k_init",
-                s.k_init,
-                "MN/m",
-                "friction_pendulum: elastic stiffness before sliding (stick regularisation)",
-                io::Range::positive());
+    visit_stiffness(io,
+                    "k_init",
+                    s.k_init,
+                    "friction_pendulum: elastic stiffness before sliding (stick regularisation)");
     io.quantity("A",
                 s.bw_A,
                 "",
@@ -240,11 +235,10 @@ namespace kimp::app
                s.sdof_mass,
                "flexible or yielding wall: the DOF's mass (null: mass); the impact law keeps the "
                "m_eff of mass, so its dashpot is the rigid wall's");
-    io.quantity("stiffness",
-                s.stiffness,
-                "MN/m",
-                "flexible wall: stiffness to the ground at the slab level",
-                io::Range::positive());
+    visit_stiffness(io,
+                    "stiffness",
+                    s.stiffness,
+                    "flexible wall: stiffness to the ground at the slab level");
     visit_damping_ratio(io,
                         "damping_ratio",
                         s.damping_ratio,

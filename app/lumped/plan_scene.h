@@ -44,8 +44,8 @@ namespace kimp::app
   void visit(Io &io, PlanElementScene &s)
   {
     visit(io, static_cast<PlanPointScene &>(s));
-    io.quantity("k_x", s.k_x, "MN/m", "lateral stiffness along x", io::Range::non_negative());
-    io.quantity("k_y", s.k_y, "MN/m", "lateral stiffness along y", io::Range::non_negative());
+    visit_stiffness(io, "k_x", s.k_x, "lateral stiffness along x", io::Range::non_negative());
+    visit_stiffness(io, "k_y", s.k_y, "lateral stiffness along y", io::Range::non_negative());
   }
 
   /// Which second ground-motion component a plan scene takes.
@@ -192,18 +192,16 @@ namespace kimp::app
                 s.eccentricity_y,
                 "m",
                 "mass eccentricity along y: centre of mass minus the outline's centroid");
-    io.quantity("k_x",
-                s.k_x,
-                "MN/m",
-                "storey stiffness along x at the outline's centroid (null: "
-                "building.storey_stiffness)",
-                io::Range::positive());
-    io.quantity("k_y",
-                s.k_y,
-                "MN/m",
-                "storey stiffness along y at the outline's centroid (null: "
-                "building.storey_stiffness)",
-                io::Range::positive());
+    visit_stiffness(io,
+                    "k_x",
+                    s.k_x,
+                    "storey stiffness along x at the outline's centroid (null: "
+                    "building.storey_stiffness)");
+    visit_stiffness(io,
+                    "k_y",
+                    s.k_y,
+                    "storey stiffness along y at the outline's centroid (null: "
+                    "building.storey_stiffness)");
     io.quantity("k_theta",
                 s.k_theta,
                 "MN*m",

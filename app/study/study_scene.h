@@ -201,11 +201,10 @@ namespace kimp::app
             "the slab band, mass from its modes: flexible_mass) and run the building against "
             "it beside the rigid wall with the same impact laws (their m_eff keeps mass) "
             "(wall_sdof.csv, flexible_wall.csv)");
-    io.quantity("damping_ratio",
-                s.damping_ratio,
-                "%",
-                "flexible: damping ratio of the wall SDOF (c = 2 zeta sqrt(k m))",
-                io::Range::at_least(0.0).and_less(1.0));
+    visit_damping_ratio(io,
+                        "damping_ratio",
+                        s.damping_ratio,
+                        "flexible: damping ratio of the wall SDOF (c = 2 zeta sqrt(k m))");
     io.choice("flexible_mass",
               s.flexible_mass,
               {{"participation", WallSdofMass::participation}, {"mode", WallSdofMass::mode}},
