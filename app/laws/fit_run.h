@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "app/laws/cor_key.h"
+#include "app/laws/wall_keys.h"
 #include "fit/fit_config.h"
 #include "fit/fitter.h"
 #include "io/fem_results.h"
@@ -19,12 +20,10 @@ namespace kimp::fit
   void visit(Io &io, FitConfig &s)
   {
     app::visit_cor(io, s.cor, "COR of the fixed-COR Kelvin-Voigt and Jankowski fits");
-    io.quantity("width",
-                s.width,
-                "m",
-                "building side width W: k_total = k_per_metre x W (27.78 m gives the "
-                "thesis' Table 2.2 from Table 2.1)",
-                io::Range::positive());
+    app::visit_building_width(io,
+                              s.width,
+                              "building side width W: k_total = k_per_metre x W (27.78 m gives the "
+                              "thesis' Table 2.2 from Table 2.1)");
     io.flag("raw_force", s.raw_force, "fit the raw FEM contact force instead of the smoothed one");
     io.flag("force_only_contact",
             s.force_only_contact,

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "app/laws/cor_key.h"
+#include "app/laws/wall_keys.h"
 #include "io/scene_io.h"
 #include "lumped/laws/force_law_factory.h"
 
@@ -45,12 +46,12 @@ namespace kimp::app
     io.quantity("exponent", exponent, "", doc, io::Range::at_least(1.0));
   }
 
-  /// The key `wall_height`: the height of the moat wall (m, > 0) at which a k source
+  /// The key `wall_height`: the height of the moat wall (visit_wall_height()) at which a k source
   /// (app/laws/k_table.h) is interpolated; `doc` says which source and what a null means.
   template <class Io>
   void visit_k_source_height(Io &io, std::optional<double> &wall_height, std::string_view doc)
   {
-    io.quantity("wall_height", wall_height, "m", doc, io::Range::positive());
+    visit_wall_height(io, "wall_height", wall_height, doc);
   }
 
   template <class Io>

@@ -5,8 +5,10 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "app/laws/wall_keys.h"
 #include "fit/fitter.h"
 #include "io/scene_io.h"
 #include "lumped/laws/wall_backfill_law.h"
@@ -83,19 +85,37 @@ namespace kimp::app
                               const std::string       &prefix,
                               io::ValidationContext   &ctx);
 
+  /// A stiffness of the wall and backfill per metre of wall (shown in kN/mm/m, > 0); `doc` says
+  /// which.
+  template <class Io>
+  void visit_stiffness_per_metre(Io                    &io,
+                                 std::string_view       key,
+                                 std::optional<double> &stiffness,
+                                 std::string_view       doc)
+  {
+    io.quantity(key, stiffness, "kN/mm/m", doc, io::Range::positive());
+  }
+
+  /// A force of the wall and backfill per metre of wall: a capacity (shown in kN/m, > 0, or
+  /// `range` where zero is admitted); `doc` says which.
+  template <class Io>
+  void visit_force_per_metre(Io                    &io,
+                             std::string_view       key,
+                             std::optional<double> &force,
+                             std::string_view       doc,
+                             const io::Range       &range = io::Range::positive())
+  {
+    io.quantity(key, force, "kN/m", doc, range);
+  }
+
   template <class Io>
   void visit(Io &io, YieldingWallScene &s)
   {
-    io.quantity("width",
-                s.width,
-                "m",
-                "wall length the building hits (k, F × width)",
-                io::Range::positive());
-    io.quantity("height",
-                s.height,
-                "m",
-                "loaded height h of wall and backfill (for the first guesses of null keys)",
-                io::Range::positive());
+    visit_building_width(io, s.width, "wall length the building hits (k, F × width)");
+    visit_wall_height(io,
+                      "height",
+                      s.height,
+                      "loaded height h of wall and backfill (for the first guesses of null keys)");
     io.choice("envelope",
               s.envelope,
               {{"bilinear", lumped::WallEnvelope::bilinear},
@@ -110,48 +130,48 @@ namespace kimp::app
             "envelope curve: points {displacement, force per metre} from {0 mm, 0 kN/m}, "
             "displacements increasing, forces not decreasing, slopes not increasing (concave); "
             "k is the first slope and the capacity the last force");
-    io.quantity("stiffness",
-                s.stiffness,
-                "kN/mm/m",
-                "initial (cracked) stiffness of wall and backfill per metre (null: Caltrans-style "
-                "(5.5h + 20) kip/in per ft, h in ft; curve: its first slope, leave null)",
-                io::Range::positive());
-    io.quantity("capacity",
-                s.capacity,
-                "kN/m",
-                "bilinear: the force cap; hyperbolic: F_ult; per metre (null: Caltrans-style "
-                "5.5h^2.5/(1 + 2.37h) kip per ft, h in ft; curve: its last force, leave null)",
-                io::Range::positive());
+    visit_stiffness_per_metre(
+      io,
+      "stiffness",
+      s.stiffness,
+      "initial (cracked) stiffness of wall and backfill per metre (null: Caltrans-style "
+      "(5.5h + 20) kip/in per ft, h in ft; curve: its first slope, leave null)");
+    visit_force_per_metre(
+      io,
+      "capacity",
+      s.capacity,
+      "bilinear: the force cap; hyperbolic: F_ult; per metre (null: Caltrans-style "
+      "5.5h^2.5/(1 + 2.37h) kip per ft, h in ft; curve: its last force, leave null)");
     io.quantity("hardening_ratio",
                 s.hardening_ratio,
                 "%",
                 "bilinear: post-yield tangent as a fraction of stiffness",
                 io::Range::at_least(0.0).and_less(1.0));
-    io.quantity("ultimate_capacity",
-                s.ultimate_capacity,
-                "kN/m",
-                "bilinear: the force the hardening stops at, per metre (>= capacity; a pushover's "
-                "largest force; null: no cap)",
-                io::Range::positive());
+    visit_force_per_metre(
+      io,
+      "ultimate_capacity",
+      s.ultimate_capacity,
+      "bilinear: the force the hardening stops at, per metre (>= capacity; a pushover's "
+      "largest force; null: no cap)");
     io.quantity("failure_ratio",
                 s.failure_ratio,
                 "",
                 "hyperbolic: R_f, the curve tends to capacity/R_f",
                 io::Range::greater(0.0).and_at_most(1.0));
-    io.quantity("unloading_stiffness",
-                s.unloading_stiffness,
-                "kN/mm/m",
-                "unloading and reloading stiffness per metre (null: stiffness; below it, a "
-                "cracked wall's spring-back: the element unloads at the larger of it and the "
-                "envelope's secant, never leaving a negative set)",
-                io::Range::positive());
-    io.quantity("tension_capacity",
-                s.tension_capacity,
-                "kN/m",
-                "largest force pulling the wall back towards the building, per metre (its elastic "
-                "spring-back; 0: compression only, like the OpenSees gap materials; null: "
-                "capacity)",
-                io::Range::non_negative());
+    visit_stiffness_per_metre(
+      io,
+      "unloading_stiffness",
+      s.unloading_stiffness,
+      "unloading and reloading stiffness per metre (null: stiffness; below it, a "
+      "cracked wall's spring-back: the element unloads at the larger of it and the "
+      "envelope's secant, never leaving a negative set)");
+    visit_force_per_metre(
+      io,
+      "tension_capacity",
+      s.tension_capacity,
+      "largest force pulling the wall back towards the building, per metre (its elastic "
+      "spring-back; 0: compression only, like the OpenSees gap materials; null: capacity)",
+      io::Range::non_negative());
     io.quantity("soil_density",
                 s.soil_density,
                 "kg/m^3",
