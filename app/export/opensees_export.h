@@ -101,11 +101,11 @@ namespace kimp::app
                 "kN/mm",
                 "Kelvin-Voigt k for the whole contact (wins over the k source)",
                 io::Range::positive());
-    io.quantity("k_hertz",
-                s.k_hertz,
-                "kN/mm^1.5",
-                "Jankowski/Hertz k (n = 1.5) for the whole contact (wins over the k source)",
-                io::Range::positive());
+    visit_hertz_stiffness(
+      io,
+      "k_hertz",
+      s.k_hertz,
+      "Jankowski/Hertz k (n = 1.5) for the whole contact (wins over the k source)");
     visit_cor(io,
               s.cor,
               "coefficient of restitution e (default: the COR the source's k was fitted at, "

@@ -39,6 +39,14 @@ namespace kimp::app
     io.quantity_text(key, k, "N/m^n", doc, io::Range::positive());
   }
 
+  /// An impact stiffness of a Hertz law (exponent n = 1.5: hysteretic, Jankowski, Hertzdamp)
+  /// given as a number (shown in kN/mm^1.5, > 0); `doc` says of which law.
+  template <class Io, class Q>
+  void visit_hertz_stiffness(Io &io, std::string_view key, Q &k, std::string_view doc)
+  {
+    io.quantity(key, k, "kN/mm^1.5", doc, io::Range::positive());
+  }
+
   /// The key `exponent`: the impact exponent n (no unit, >= 1); `doc` says whose.
   template <class Io>
   void visit_exponent(Io &io, std::optional<double> &exponent, std::string_view doc)

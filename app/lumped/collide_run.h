@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "app/laws/cor_key.h"
@@ -29,6 +30,14 @@ namespace kimp::app
   {
     io.text("name", s.name, "row label (letters, digits, _ - .)");
     visit_law(io, s);
+  }
+
+  /// The key `time_step`: the central difference step of a two-body collision (s, > 0); `doc`
+  /// says whose.
+  template <class Io>
+  void visit_collision_time_step(Io &io, double &time_step, std::string_view doc)
+  {
+    io.quantity("time_step", time_step, "s", doc, io::Range::positive());
   }
 
   /// The C_imp calibration grid (lumped::CalibrationOptions; thesis set-up by default).
@@ -60,16 +69,8 @@ namespace kimp::app
                      "mass m1 of the striking body (at least 2)",
                      io::Range::greater(0.0).and_at_most(1e12));
     visit_mass(io, "other_mass", s.other_mass, "mass m2 of the struck body (at rest)");
-    io.quantity("stiffness",
-                s.stiffness,
-                "kN/mm^1.5",
-                "k of the hysteretic law (n = 1.5)",
-                io::Range::positive());
-    io.quantity("time_step",
-                s.time_step,
-                "s",
-                "time step of each collision",
-                io::Range::positive());
+    visit_hertz_stiffness(io, "stiffness", s.stiffness, "k of the hysteretic law (n = 1.5)");
+    visit_collision_time_step(io, s.time_step, "time step of each collision");
     io.quantity("tolerance",
                 s.tolerance,
                 "",
@@ -100,11 +101,7 @@ namespace kimp::app
     visit_mass(io, "mass_1", s.mass_1, "striking mass m1");
     visit_mass(io, "mass_2", s.mass_2, "struck mass m2 (at rest)");
     io.quantity("velocity", s.velocity, "m/s", "approach velocity of m1", io::Range::positive());
-    io.quantity("time_step",
-                s.time_step,
-                "s",
-                "central difference time step",
-                io::Range::positive());
+    visit_collision_time_step(io, s.time_step, "central difference time step");
     io.choice("velocity_estimate",
               s.velocity_estimate,
               {{"backward", lumped::VelocityEstimate::backward_difference},
