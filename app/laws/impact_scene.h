@@ -107,16 +107,19 @@ namespace kimp::app
     bool         recessed        = false;
   };
 
+  /// A dimension of one bumper (shown in mm, > 0); `doc` says which.
+  template <class Io>
+  void visit_bumper_size(Io &io, std::string_view key, double &size, std::string_view doc)
+  {
+    io.quantity(key, size, "mm", doc, io::Range::positive());
+  }
+
   template <class Io>
   void visit(Io &io, BumperScene &s)
   {
-    io.quantity("thickness", s.thickness, "mm", "bumper thickness t", io::Range::positive());
-    io.quantity("width",
-                s.width,
-                "mm",
-                "bumper width (contact area = width x height)",
-                io::Range::positive());
-    io.quantity("height", s.height, "mm", "bumper height", io::Range::positive());
+    visit_bumper_size(io, "thickness", s.thickness, "bumper thickness t");
+    visit_bumper_size(io, "width", s.width, "bumper width (contact area = width x height)");
+    visit_bumper_size(io, "height", s.height, "bumper height");
     io.integer("count", s.count, "bumpers in parallel on each wall", 1, 1000);
     io.quantity("ultimate_strain",
                 s.ultimate_strain,
