@@ -6,7 +6,9 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
+#include <vector>
 
 #include "fem/impact.h"
 #include "fem/inelastic_laws.h"
@@ -81,6 +83,28 @@ namespace kimp::app
                 io::Range::plausible(100.0, 20000.0, "concrete, steel or soil"));
   }
 
+  /// A soil angle key in degrees: a friction or dilatancy angle (no unit, 0 to 89); `doc` says
+  /// which.
+  template <class Io>
+  void
+  visit_soil_angle(Io &io, std::string_view key, std::optional<double> &angle, std::string_view doc)
+  {
+    io.quantity(key, angle, "", doc, io::Range::at_least(0.0).and_at_most(89.0));
+  }
+
+  /// The keys a material begins with: its elastic constants (E, nu, rho), then `model`, its law
+  /// among `models`; `doc` says what each model takes.
+  template <class Io, class Material>
+  void visit_elastic_and_model(
+    Io                                                                  &io,
+    Material                                                            &s,
+    const std::vector<std::pair<std::string, typename Material::Model>> &models,
+    std::string_view                                                     doc)
+  {
+    visit(io, static_cast<FemMaterial &>(s));
+    io.choice("model", s.model, models, doc);
+  }
+
   /** Backfill: elasticity plus, for the inelastic models, Mohr-Coulomb strength. */
   struct FemSoil : FemMaterial
   {
@@ -108,30 +132,22 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, FemSoil &s)
   {
-    visit(io, static_cast<FemMaterial &>(s));
-    io.choice("model",
-              s.model,
-              {{"elastic", FemSoil::Model::elastic},
-               {"mohr_coulomb", FemSoil::Model::mohr_coulomb},
-               {"drucker_prager", FemSoil::Model::drucker_prager}},
-              "elastic; mohr_coulomb: perfectly plastic, tension cut-off, non-associated; "
-              "drucker_prager: matched to Mohr-Coulomb in plane strain");
+    visit_elastic_and_model(io,
+                            s,
+                            {{"elastic", FemSoil::Model::elastic},
+                             {"mohr_coulomb", FemSoil::Model::mohr_coulomb},
+                             {"drucker_prager", FemSoil::Model::drucker_prager}},
+                            "elastic; mohr_coulomb: perfectly plastic, tension cut-off, "
+                            "non-associated; drucker_prager: matched to Mohr-Coulomb in plane "
+                            "strain");
     io.choice("preset",
               s.preset,
               {"none", "loose_sand", "medium_dense_sand", "dense_sand", "soft_clay", "stiff_clay"},
               "named soil (docs/physics.md): sets E, nu, rho, c, phi, psi; c, phi, psi given "
               "here override it");
     io.quantity("c", s.cohesion, "kPa", "cohesion", io::Range::non_negative());
-    io.quantity("phi",
-                s.friction_angle,
-                "",
-                "friction angle in degrees",
-                io::Range::at_least(0.0).and_at_most(89.0));
-    io.quantity("psi",
-                s.dilatancy,
-                "",
-                "dilatancy angle in degrees (<= phi)",
-                io::Range::at_least(0.0).and_at_most(89.0));
+    visit_soil_angle(io, "phi", s.friction_angle, "friction angle in degrees");
+    visit_soil_angle(io, "psi", s.dilatancy, "dilatancy angle in degrees (<= phi)");
     io.quantity("tension_cutoff",
                 s.tension_cutoff,
                 "kPa",
@@ -183,13 +199,13 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, FemConcrete &s)
   {
-    visit(io, static_cast<FemMaterial &>(s));
-    io.choice("model",
-              s.model,
-              {{"elastic", FemConcrete::Model::elastic},
-               {"damage_plasticity", FemConcrete::Model::damage_plasticity}},
-              "elastic (E, nu); damage_plasticity: tension/compression damage with crack band, "
-              "parameters from f_cm by fib Model Code 2010 (E then = E_ci)");
+    visit_elastic_and_model(io,
+                            s,
+                            {{"elastic", FemConcrete::Model::elastic},
+                             {"damage_plasticity", FemConcrete::Model::damage_plasticity}},
+                            "elastic (E, nu); damage_plasticity: tension/compression damage with "
+                            "crack band, parameters from f_cm by fib Model Code 2010 (E then = "
+                            "E_ci)");
     io.quantity("f_cm",
                 s.f_cm,
                 "MPa",
