@@ -13,6 +13,8 @@
 
 #include "app/fem/fem_materials.h"
 #include "fem/impact.h"
+#include "app/laws/friction_key.h"
+#include "app/step_budget_key.h"
 #include "geometry/scene_geometry.h"
 #include "io/scene_io.h"
 
@@ -399,12 +401,10 @@ namespace kimp::app
                "history samples between log lines (shown with -v; 0: none)",
                0,
                1000000000);
-    io.quantity("max_steps",
-                s.max_steps,
-                "",
-                "step budget: a case of more estimated time steps (end_time / dt) is refused "
-                "before it is meshed, with the estimate (DoFs, steps, time)",
-                io::Range::at_least(1.0));
+    visit_max_steps(io,
+                    s.max_steps,
+                    "step budget: a case of more estimated time steps (end_time / dt) is refused "
+                    "before it is meshed, with the estimate (DoFs, steps, time)");
   };
 
   /// Section `interface`: the model, its friction and fem::InterfaceOptions::penalty_factor.
@@ -416,11 +416,9 @@ namespace kimp::app
               "bonded: wall and backfill share their nodes; contact: unilateral frictional "
               "penalty contact between wall back and backfill (explicit integrator), closed by "
               "the geostatic earth pressure, free to open");
-    io.quantity("friction",
-                s.interface.friction,
-                "",
-                "contact: Coulomb friction coefficient mu (null: tan(2 phi / 3))",
-                io::Range::non_negative());
+    visit_friction(io,
+                   s.interface.friction,
+                   "contact: Coulomb friction coefficient mu (null: tan(2 phi / 3))");
     io.quantity("penalty_factor",
                 s.solver.wall_soil_interface.penalty_factor,
                 "",

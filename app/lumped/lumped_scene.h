@@ -13,6 +13,7 @@
 #include "app/laws/yielding_wall_scene.h"
 #include "app/lumped/building_keys.h"
 #include "app/lumped/ground_motion_scene.h"
+#include "app/step_budget_key.h"
 #include "io/scene_io.h"
 #include "lumped/integrators/central_difference.h"
 #include "lumped/isolators/bouc_wen_isolator.h"
@@ -373,12 +374,10 @@ namespace kimp::app
                 "analysis length (null = the record's length)",
                 io::Range::positive().because("or null"));
     io.flag("companion", s.companion, "also run without contacts (amplification factors)");
-    io.quantity("max_steps",
-                s.max_steps,
-                "",
-                "step budget: a case of more time steps is refused before it starts, with the "
-                "estimate (steps x DoFs, time)",
-                io::Range::at_least(1.0));
+    visit_max_steps(io,
+                    s.max_steps,
+                    "step budget: a case of more time steps is refused before it starts, with the "
+                    "estimate (steps x DoFs, time)");
     io.quantity("plausible_displacement",
                 s.plausible_displacement,
                 "m",

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "app/lumped/building_keys.h"
+#include "app/laws/friction_key.h"
 #include "app/lumped/lumped_scene.h"
 #include "io/scene_io.h"
 #include "lumped/excitation/ground_motion.h"
@@ -116,11 +117,7 @@ namespace kimp::app
             "wall polygon (at least 3 corners; empty: the outline's edges moved out by the gaps); "
             "must enclose the slab with a clear gap");
     visit_mass(io, "mass", s.mass, "wall mass for m_eff in the impact law");
-    io.quantity("friction",
-                s.friction,
-                "",
-                "Coulomb friction coefficient mu along the wall face",
-                io::Range::non_negative());
+    visit_friction(io, s.friction, "Coulomb friction coefficient mu along the wall face");
     io.quantity("stick_velocity",
                 s.stick_velocity,
                 "m/s",
