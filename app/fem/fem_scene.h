@@ -9,12 +9,13 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "app/fem/fem_materials.h"
-#include "fem/impact.h"
 #include "app/laws/friction_key.h"
 #include "app/step_budget_key.h"
+#include "fem/impact.h"
 #include "geometry/scene_geometry.h"
 #include "io/scene_io.h"
 
@@ -118,6 +119,20 @@ namespace kimp::app
     return io::Range::plausible(0.1, 20.0, "a moat wall");
   }
 
+  /// An output interval key: the time between two samples or snapshots a run writes (shown in ms,
+  /// >= 0); `doc` says of what and what 0 means.
+  template <class Io>
+  void visit_output_interval(Io &io, std::string_view key, double &interval, std::string_view doc)
+  {
+    io.quantity(key, interval, "ms", doc, io::Range::non_negative());
+  }
+
+  /// The sizes a contact element may have (mesh.h_contact and the studies' mesh levels), m.
+  inline io::Range contact_element_range()
+  {
+    return io::Range::plausible(1e-6, 1.0, "a contact element");
+  }
+
   /** Field output of `kimp fem` (the study records neither). */
   struct FemOutput
   {
@@ -129,18 +144,16 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, FemOutput &s)
   {
-    io.quantity("vtu_interval",
-                s.vtu_interval,
-                "ms",
-                "interval of VTU field snapshots under DIR/vtu/<case>/ (0: none)",
-                io::Range::non_negative());
-    io.quantity("frame_interval",
-                s.frame_interval,
-                "ms",
-                "interval of the deformed-mesh frames in fem.h5 (`frames`: mesh, displacements, "
-                "von Mises and mean stress, damage and plastic strain), drawn as an animation by "
-                "`kimp report` (0: none)",
-                io::Range::non_negative());
+    visit_output_interval(io,
+                          "vtu_interval",
+                          s.vtu_interval,
+                          "interval of VTU field snapshots under DIR/vtu/<case>/ (0: none)");
+    visit_output_interval(io,
+                          "frame_interval",
+                          s.frame_interval,
+                          "interval of the deformed-mesh frames in fem.h5 (`frames`: mesh, "
+                          "displacements, von Mises and mean stress, damage and plastic strain), "
+                          "drawn as an animation by `kimp report` (0: none)");
   }
 
   /** Boundary conditions of the backfill block (docs/physics.md §6). */
@@ -277,7 +290,7 @@ namespace kimp::app
                 s.geometry.h_contact,
                 "cm",
                 "element size at the contact",
-                io::Range::plausible(1e-6, 1.0, "a contact element"));
+                contact_element_range());
     io.quantity("h_max",
                 s.geometry.h_max,
                 "cm",
@@ -384,11 +397,10 @@ namespace kimp::app
                 "ms",
                 "stop once the slab has separated and the force stayed zero this long",
                 io::Range::non_negative());
-    io.quantity("output_interval",
-                s.solver.output_interval,
-                "ms",
-                "history sampling interval (0: every step)",
-                io::Range::non_negative());
+    visit_output_interval(io,
+                          "output_interval",
+                          s.solver.output_interval,
+                          "history sampling interval (0: every step)");
     io.quantity("bar_gauge_length",
                 s.solver.bar_gauge_length,
                 "cm",

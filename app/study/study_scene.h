@@ -47,6 +47,17 @@ namespace kimp::app
     std::vector<double> velocities = {0.5, 1.0, 2.0};
   };
 
+  /// A list of contact element sizes, one FEM mesh level each (shown in cm,
+  /// contact_element_range()); `doc` says how the levels are run.
+  template <class Io>
+  void visit_contact_element_sizes(Io                  &io,
+                                   std::string_view     key,
+                                   std::vector<double> &sizes,
+                                   std::string_view     doc)
+  {
+    io.quantity_list(key, sizes, "cm", doc, contact_element_range());
+  }
+
   template <class Io>
   void visit(Io &io, StudyFemScene &s)
   {
@@ -63,12 +74,11 @@ namespace kimp::app
                 "%",
                 "auto: largest relative change of k between consecutive levels",
                 io::Range::positive());
-    io.quantity_list("fidelity_h_contact",
-                     s.fidelity_h_contact,
-                     "cm",
-                     "auto: contact element sizes, coarse to fine (each level costs about 4x the "
-                     "previous one; 1.25 cm takes about 10 s per height)",
-                     io::Range::plausible(1e-6, 1.0, "a contact element"));
+    visit_contact_element_sizes(io,
+                                "fidelity_h_contact",
+                                s.fidelity_h_contact,
+                                "auto: contact element sizes, coarse to fine (each level costs "
+                                "about 4x the previous one; 1.25 cm takes about 10 s per height)");
     io.quantity_list("fidelity_penalty_factors",
                      s.fidelity_penalty_factors,
                      "",
@@ -112,12 +122,11 @@ namespace kimp::app
   void visit(Io &io, StudyAccuracyScene &s)
   {
     visit_study_wall_height(io, s.wall_height, "wall height of the accuracy study");
-    io.quantity_list("h_contact",
-                     s.h_contact,
-                     "cm",
-                     "FEM mesh levels (explicit, first penalty factor); the finest is the "
-                     "reference",
-                     io::Range::plausible(1e-6, 1.0, "a contact element"));
+    visit_contact_element_sizes(io,
+                                "h_contact",
+                                s.h_contact,
+                                "FEM mesh levels (explicit, first penalty factor); the finest is "
+                                "the reference");
     io.quantity_list("penalty_factors",
                      s.penalty_factors,
                      "",
