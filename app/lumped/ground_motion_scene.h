@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "io/at2_reader.h"
 #include "io/scene_io.h"
@@ -26,6 +27,27 @@ namespace kimp::app
   {
     return io::Range::plausible(io::min_record_dt, io::max_record_dt, "a ground-motion record");
   }
+
+  /// A peak ground acceleration key (shown in g, > 0); `doc` says what it sets.
+  template <class Io, class Q>
+  void visit_pga(Io &io, std::string_view key, Q &pga, std::string_view doc)
+  {
+    io.quantity(key, pga, "g", doc, io::Range::positive());
+  }
+
+  /// A time of the synthetic motion's pulse or window (s, > 0); `doc` says which.
+  template <class Io>
+  void visit_synthetic_time(Io &io, std::string_view key, double &time, std::string_view doc)
+  {
+    io.quantity(key, time, "s", doc, io::Range::positive());
+  }
+
+  /// A corner frequency of the synthetic motion's noise band (1/s, > 0); `doc` says which.
+  template <class Io>
+  void visit_noise_corner(Io &io, std::string_view key, double &frequency, std::string_view doc)
+  {
+    io.quantity(key, frequency, "1/s", doc, io::Range::positive());
+  }
 } // namespace kimp::app
 
 namespace kimp::lumped
@@ -36,27 +58,21 @@ namespace kimp::lumped
   void visit(Io &io, SyntheticMotionSpec &s)
   {
     using io::Range;
-    io.quantity("pga",
-                s.pga,
-                "g",
-                "target peak ground acceleration (met exactly)",
-                Range::positive());
-    io.quantity("pulse_period",
-                s.pulse_period,
-                "s",
-                "period T_p of the velocity pulse (>= 4 dt)",
-                Range::positive());
+    app::visit_pga(io, "pga", s.pga, "target peak ground acceleration (met exactly)");
+    app::visit_synthetic_time(io,
+                              "pulse_period",
+                              s.pulse_period,
+                              "period T_p of the velocity pulse (>= 4 dt)");
     io.quantity("duration",
                 s.duration,
                 "s",
                 "record length (>= 10 dt)",
                 app::record_duration_range());
     io.quantity("dt", s.dt, "s", "sampling interval", app::record_dt_range());
-    io.quantity("pulse_time",
-                s.pulse_time,
-                "s",
-                "time of the pulse centre (the pulse must lie within the record)",
-                Range::positive());
+    app::visit_synthetic_time(io,
+                              "pulse_time",
+                              s.pulse_time,
+                              "time of the pulse centre (the pulse must lie within the record)");
     io.quantity("gamma",
                 s.gamma,
                 "",
@@ -69,21 +85,15 @@ namespace kimp::lumped
                 "",
                 "RMS of the noise / RMS of the pulse",
                 Range::non_negative());
-    io.quantity("noise_f_low",
-                s.noise_f_low,
-                "1/s",
-                "high-pass corner of the noise band",
-                Range::positive());
-    io.quantity("noise_f_high",
-                s.noise_f_high,
-                "1/s",
-                "low-pass corner of the noise band (> noise_f_low, < 1/(2 dt))",
-                Range::positive());
-    io.quantity("envelope_duration",
-                s.envelope_duration,
-                "s",
-                "T_w of the Saragoni-Hart window",
-                Range::positive());
+    app::visit_noise_corner(io, "noise_f_low", s.noise_f_low, "high-pass corner of the noise band");
+    app::visit_noise_corner(io,
+                            "noise_f_high",
+                            s.noise_f_high,
+                            "low-pass corner of the noise band (> noise_f_low, < 1/(2 dt))");
+    app::visit_synthetic_time(io,
+                              "envelope_duration",
+                              s.envelope_duration,
+                              "T_w of the Saragoni-Hart window");
     io.quantity("envelope_epsilon",
                 s.envelope_epsilon,
                 "",
@@ -134,6 +144,14 @@ namespace kimp::app
     std::optional<double> two_column_unit() const;
   };
 
+  /// A factor on a ground motion (no unit, nonzero: a negative factor flips the motion); `doc`
+  /// says which motion and after what.
+  template <class Io, class Q>
+  void visit_motion_scale(Io &io, std::string_view key, Q &scale, std::string_view doc)
+  {
+    io.quantity(key, scale, "", doc, io::Range::nonzero());
+  }
+
   template <class Io>
   void visit(Io &io, GroundMotionScene &s)
   {
@@ -151,16 +169,11 @@ namespace kimp::app
             "unit of the acceleration column of a two-column 'time acceleration' record file "
             "(e.g. \"g\", \"m/s^2\", \"cm/s^2\"); required for such files, which do not state "
             "it; \"\" for AT2 files, whose header states it");
-    io.quantity("scale_to_pga",
-                s.scale_to_pga,
-                "g",
-                "scale the record to this PGA",
-                io::Range::positive());
-    io.quantity("scale",
-                s.scale,
-                "",
-                "factor applied after scale_to_pga (negative flips it)",
-                io::Range::nonzero());
+    visit_pga(io, "scale_to_pga", s.scale_to_pga, "scale the record to this PGA");
+    visit_motion_scale(io,
+                       "scale",
+                       s.scale,
+                       "factor applied after scale_to_pga (negative flips it)");
     io.quantity("duration",
                 s.duration,
                 "s",

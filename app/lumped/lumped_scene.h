@@ -421,11 +421,10 @@ namespace kimp::app
     visit_moat_gap(io, "gap", s.gap, "gap of both walls (null = walls.*.gap)");
     visit_moat_gap(io, "left_gap", s.left_gap, "gap of the left wall (wins over gap)");
     visit_moat_gap(io, "right_gap", s.right_gap, "gap of the right wall (wins over gap)");
-    io.quantity("ground_motion_scale",
-                s.ground_motion_scale,
-                "",
-                "extra factor on the ground motion of this case (negative flips it)",
-                io::Range::nonzero());
+    visit_motion_scale(io,
+                       "ground_motion_scale",
+                       s.ground_motion_scale,
+                       "extra factor on the ground motion of this case (negative flips it)");
     visit_k_source_height(
       io,
       s.wall_height,

@@ -237,11 +237,10 @@ namespace kimp::app
             s.second_record,
             "second_component record: a PEER record name or AT2 path (ground_motion's "
             "records_dir, record_unit and scale_to_pga apply)");
-    io.quantity("second_scale",
-                s.second_scale,
-                "",
-                "factor on the second component after ground_motion's scaling",
-                io::Range::nonzero());
+    visit_motion_scale(io,
+                       "second_scale",
+                       s.second_scale,
+                       "factor on the second component after ground_motion's scaling");
   }
 
   /// A `kimp lumped` scene: the planar keys and an optional `plan` section.
