@@ -94,6 +94,12 @@ namespace kimp::app
                         "damping of a fixed-base building (Rayleigh, first and last mode)");
   }
 
+  /// The friction coefficients of a friction pendulum (mu_slow, mu_fast): 0 <= mu < 1.
+  inline io::Range friction_pendulum_mu_range()
+  {
+    return io::Range::at_least(0.0).and_less(1.0);
+  }
+
   /// Isolation system: linear (k), bilinear (K1, K2, Q), friction pendulum (radius, friction) or
   /// Bouc-Wen (K1, K2, Q and A, beta, gamma, n), plus ζ_iso (docs/physics.md §2, "Isolators").
   struct IsolatorScene
@@ -168,12 +174,12 @@ namespace kimp::app
                 s.mu_slow,
                 "",
                 "friction_pendulum: friction coefficient at low sliding velocity",
-                io::Range::at_least(0.0).and_less(1.0));
+                friction_pendulum_mu_range());
     io.quantity("mu_fast",
                 s.mu_fast,
                 "",
                 "friction_pendulum: friction coefficient at high sliding velocity (>= mu_slow)",
-                io::Range::at_least(0.0).and_less(1.0));
+                friction_pendulum_mu_range());
     io.quantity("rate",
                 s.rate,
                 "s/m",

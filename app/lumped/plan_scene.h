@@ -8,10 +8,11 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "app/lumped/building_keys.h"
 #include "app/laws/friction_key.h"
+#include "app/lumped/building_keys.h"
 #include "app/lumped/lumped_scene.h"
 #include "io/scene_io.h"
 #include "lumped/excitation/ground_motion.h"
@@ -140,6 +141,13 @@ namespace kimp::app
             "face's length; width does not apply) on a DOF of its own (convex wall)");
   }
 
+  /// An extent of the rectangular plan along an axis (m, > 0); `doc` says which.
+  template <class Io>
+  void visit_plan_extent(Io &io, std::string_view key, double &extent, std::string_view doc)
+  {
+    io.quantity(key, extent, "m", doc, io::Range::positive());
+  }
+
   /**
    * The `plan` section: outline, eccentricity, storeys, isolators, moat and the second
    * ground-motion component. Masses, isolator law and damping come from the building and
@@ -168,16 +176,14 @@ namespace kimp::app
   template <class Io>
   void visit(Io &io, PlanSection &s)
   {
-    io.quantity("width",
-                s.width,
-                "m",
-                "rectangular plan: extent along x (used when outline is empty)",
-                io::Range::positive());
-    io.quantity("depth",
-                s.depth,
-                "m",
-                "rectangular plan: extent along y (used when outline is empty)",
-                io::Range::positive());
+    visit_plan_extent(io,
+                      "width",
+                      s.width,
+                      "rectangular plan: extent along x (used when outline is empty)");
+    visit_plan_extent(io,
+                      "depth",
+                      s.depth,
+                      "rectangular plan: extent along y (used when outline is empty)");
     io.list("outline",
             s.outline,
             "slab outline polygon of every level (empty: width x depth centred at the origin)");
