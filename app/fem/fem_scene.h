@@ -14,7 +14,7 @@
 
 #include "app/fem/fem_materials.h"
 #include "app/laws/friction_key.h"
-#include "app/step_budget_key.h"
+#include "app/step_budget.h"
 #include "fem/impact.h"
 #include "geometry/scene_geometry.h"
 #include "io/scene_io.h"

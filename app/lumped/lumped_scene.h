@@ -13,7 +13,7 @@
 #include "app/laws/yielding_wall_scene.h"
 #include "app/lumped/building_keys.h"
 #include "app/lumped/ground_motion_scene.h"
-#include "app/step_budget_key.h"
+#include "app/step_budget.h"
 #include "io/scene_io.h"
 #include "lumped/integrators/central_difference.h"
 #include "lumped/isolators/bouc_wen_isolator.h"
