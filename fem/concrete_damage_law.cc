@@ -132,8 +132,14 @@ namespace kimp::fem
       h[bars_ + 6] = height / (height + r_.strain_penetration);
   }
 
-  double ConcreteDamageLaw::effective_tensile_strength(double h) const
+  double ConcreteDamageLaw::tension_band(double h) const
   {
+    return r_.crack_spacing > 0 ? r_.crack_spacing : h;
+  }
+
+  double ConcreteDamageLaw::effective_tensile_strength(double cell_band) const
+  {
+    const double h = tension_band(cell_band);
     // Keep the softening branch at least as long as the elastic one (no snap-back):
     // G_F / (h f_t) - f_t / (2 E) >= f_t / E.
     const double ft = p_.f_ctm * p_.dif_tension;
@@ -245,7 +251,7 @@ namespace kimp::fem
     }
     Split r;
     r.opening      = std::max(kn, kt);
-    const double w = h * r.opening, beta = shear_retention(w);
+    const double w = tension_band(h) * r.opening, beta = shear_retention(w);
     const double dbw       = w < 0.5 * p_.aggregate_size ?
                                -(1 - p_.shear_retention_floor) / (0.5 * p_.aggregate_size) :
                                0.0;
@@ -256,7 +262,7 @@ namespace kimp::fem
     r.sigma0 = from_crack_frame({{snn, stt, mu * g}}, c, s);
     // dL / d(enn, ett, g): the normal block's released stress, and the shear's, with the
     // change of beta with the opening (w = h e_open).
-    const double dbeta = -dbw * h * psi_shear;
+    const double dbeta = -dbw * tension_band(h) * psi_shear;
     r.dloss            = from_crack_frame(
       {{snn - rn + dbeta * open_n, stt - rt + dbeta * open_t, (1 - beta) * mu * g}},
       c,
@@ -329,9 +335,10 @@ namespace kimp::fem
     return {rho * G_s, rho * tau_bar};
   }
 
-  double ConcreteDamageLaw::tension_damage(const double kt, const double h) const
+  double ConcreteDamageLaw::tension_damage(const double kt, const double cell_band) const
   {
-    const double ft = effective_tensile_strength(h), k0 = ft / p_.youngs_modulus;
+    const double h  = tension_band(cell_band);
+    const double ft = effective_tensile_strength(cell_band), k0 = ft / p_.youngs_modulus;
     if (!(kt > k0))
       return 0;
     const double ef = p_.fracture_energy / (h * ft) - 0.5 * k0;

@@ -245,6 +245,19 @@ namespace kimp::fem
      * longer depend on h (docs/physics.md §6 "Strain penetration at the base"; >= 0).
      */
     double strain_penetration = 0;
+    /**
+     * s_rm, m: the mean spacing of the cracks the bars impose (0: off, each cell's own crack
+     * band). Bars spread the cracking of a tension zone over cracks about s_rm apart, so a
+     * cracked zone's mean strain is w / s_rm for a crack opening w whatever the cells' size.
+     * With s_rm > 0 the concrete of the points of this law softens in tension over s_rm instead
+     * of their cell's height h: G_F / s_rm per unit volume, and the crack opening of the shear
+     * retention is s_rm times the crack strain (the crack band of reinforced concrete equal to
+     * the crack spacing, Bazant and Oh, J. Struct. Eng. 109(9), 1983). Without it the crack
+     * band h makes a finer mesh's cracked-but-bridged rows carry tension to a larger strain
+     * (G_F / (h f_t)), so they turn less and the base row more (docs/physics.md §6 "Crack
+     * spacing of the reinforced wall"; >= 0).
+     */
+    double crack_spacing = 0;
     /** True if any bar is present. */
     bool any() const { return ratio_x > 0 || ratio_y > 0; }
     /** Kinematic hardening modulus H = b E_s / (1 - b) (Pa): E_s H / (E_s + H) = b E_s. */
@@ -370,7 +383,11 @@ namespace kimp::fem
      *  for the virgin-state stiffness the solvers assemble. */
     VoigtTangent tangent(const VoigtStrain &strain, const double *committed) const override;
     PointOutput  output(const VoigtStrain &strain, const double *history) const override;
-    /** Tensile strength used at crack-band length h (reduced if h exceeds the snap-back limit). */
+    /** The length over which a point of crack band h softens in tension: the bars' crack
+     *  spacing if set (ReinforcementParameters::crack_spacing), else h. */
+    double tension_band(double h) const;
+    /** Tensile strength used at crack-band length h (reduced if tension_band(h) exceeds the
+     *  snap-back limit). */
     double                         effective_tensile_strength(double h) const;
     const ConcreteParameters      &parameters() const { return p_; }
     const ReinforcementParameters &reinforcement() const { return r_; }
@@ -416,7 +433,8 @@ namespace kimp::fem
     VoigtStress
     plastic_concrete_stress(const VoigtStrain &strain, const double *h0, double *h1) const;
     /** Tension damage at the tension measure kappa_t (history slot 0) of a crack band h (m):
-     *  exponential softening with the energy G_F / h, 0 up to the tensile strength. */
+     *  exponential softening with the energy G_F / tension_band(h), 0 up to the tensile
+     *  strength. */
     double tension_damage(double kappa_t, double h) const;
     /** b_c times the uniaxial curve's inelastic strain at the compression measure kappa_c. */
     double plastic_strain(double kappa_c, double band) const;

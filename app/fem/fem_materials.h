@@ -50,6 +50,16 @@ namespace kimp::fem
                 "linearised; 0.022 f_y d_b with f_y in MPa, e.g. 0.13 m for 12 mm B500 bars); "
                 "0: perfect bond to the base",
                 io::Range::at_least(0.0).and_at_most(1.0));
+    io.quantity("crack_spacing",
+                s.crack_spacing,
+                "m",
+                "s_rm, the mean spacing of the cracks the bars impose: the concrete of these "
+                "bars' cells softens in tension over s_rm instead of the cell's height, so that "
+                "a cracked zone's strain is the same on every mesh (EN 1992-1-1 7.3.4: s_r,max = "
+                "3.4 c + 0.17 d_b / rho_eff in bending, the mean about s_r,max / 1.7; e.g. "
+                "0.2 m for a 0.25 m wall with 12 mm bars at 40 mm cover, 0.4 % a face); 0: "
+                "each cell's own crack band",
+                io::Range::at_least(0.0).and_at_most(2.0));
   }
 } // namespace kimp::fem
 

@@ -244,6 +244,44 @@ namespace
       }
     }
   }
+
+  // wall_reinforcement.crack_spacing and slab_reinforcement.crack_spacing reach their laws in
+  // SI; a spacing without bars, or on an elastic concrete, is refused.
+  TEST(FemConcreteScene, CrackSpacingReachesTheLawAndIsRefusedWithoutBars)
+  {
+    EXPECT_DOUBLE_EQ(wall_law(
+                       concrete +
+                       ", wall_reinforcement: {ratio_y: \"0.8 %\", crack_spacing: \"20 cm\"}}}\n")
+                       ->reinforcement()
+                       .crack_spacing,
+                     0.2);
+    EXPECT_DOUBLE_EQ(wall_law(concrete + ", wall_reinforcement: {ratio_y: \"0.8 %\"}}}\n")
+                       ->reinforcement()
+                       .crack_spacing,
+                     0.0);
+    const std::vector<std::pair<std::string, std::string>> refused = {
+      {concrete + ", wall_reinforcement: {crack_spacing: \"20 cm\"}}}\n",
+       "concrete.wall_reinforcement.crack_spacing"},
+      {concrete + ", slab_reinforcement: {crack_spacing: \"20 cm\"}}}\n",
+       "concrete.slab_reinforcement.crack_spacing"},
+      {"materials: {concrete: {wall_reinforcement: {crack_spacing: \"20 cm\"}}}\n",
+       "concrete.wall_reinforcement.crack_spacing"},
+      {concrete + ", wall_reinforcement: {ratio_y: \"0.8 %\", crack_spacing: \"-1 cm\"}}}\n",
+       "crack_spacing"}};
+    for (const auto &[text, key] : refused)
+    {
+      try
+      {
+        kimp::io::load_scene_text<FemScene>(text, file_name);
+        ADD_FAILURE() << text << " was accepted";
+      }
+      catch (const std::exception &e)
+      {
+        EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(file_name), std::string::npos) << e.what();
+      }
+    }
+  }
 } // namespace
 
 #endif

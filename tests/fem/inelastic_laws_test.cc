@@ -486,6 +486,61 @@ namespace
     }
   }
 
+  // The bars' crack spacing (ReinforcementParameters::crack_spacing): a reinforced point
+  // softens in tension over s_rm, whatever its cell's crack band h. Pulled along x with a
+  // growing shear (the bars along y), the stress path is the same to the last bit on three
+  // cells, and s_rm times the work per unit volume is G_F (as the crack band's h times it is
+  // without the key: CrackBandDissipatesFractureEnergyForThreeElementSizes).
+  TEST(Concrete, CrackSpacingMakesTheTensionSofteningTheSameOnEveryCell)
+  {
+    ConcreteParameters c = ConcreteParameters::from_f_cm(38e6);
+    c.poisson_ratio      = 0;
+    ReinforcementParameters r;
+    r.ratio_y                    = 0.008;
+    r.crack_spacing              = 0.2;
+    ReinforcementParameters bare = r;
+    bare.crack_spacing           = 0;
+    const ConcreteDamageLaw law(c, r), unspaced(c, bare);
+    const double            ft = law.effective_tensile_strength(0.0125), e0 = ft / c.youngs_modulus;
+    EXPECT_DOUBLE_EQ(ft, unspaced.effective_tensile_strength(r.crack_spacing));
+    const double                     de = e0 / 500;
+    std::vector<std::vector<double>> paths;
+    for (const double h : {0.0125, 0.025, 0.05})
+    {
+      // Uniaxial: s_rm times the work per unit volume to 60 e_0, the crack open through.
+      std::vector<double> h0(law.n_history()), h1(law.n_history()), path;
+      law.initialize_point(h0.data(), h);
+      double work = 0, s_prev = 0;
+      for (double e = de; e < 60 * e0; e += de)
+      {
+        const double s = law.stress({{e, 0, 0}}, h0.data(), h1.data())[0];
+        work += 0.5 * (s + s_prev) * de;
+        s_prev = s;
+        h0     = h1;
+      }
+      EXPECT_NEAR(r.crack_spacing * work, c.fracture_energy, 0.05 * c.fracture_energy)
+        << "h = " << h;
+      // With a growing shear: the whole stress path, bit for bit.
+      law.initialize_point(h0.data(), h);
+      for (double e = de; e < 60 * e0; e += de)
+      {
+        const VoigtStress s = law.stress({{e, 0, 0.3 * e}}, h0.data(), h1.data());
+        path.insert(path.end(), s.begin(), s.end());
+        h0 = h1;
+      }
+      paths.push_back(path);
+    }
+    EXPECT_EQ(paths[0], paths[1]);
+    EXPECT_EQ(paths[0], paths[2]);
+    // Without the key the finest cell still carries tension at 20 e_0, where s_rm has softened:
+    // its softening strain G_F / (h f_t) is 16 times s_rm's.
+    std::vector<double> h0(unspaced.n_history()), h1(unspaced.n_history());
+    unspaced.initialize_point(h0.data(), 0.0125);
+    EXPECT_GT(unspaced.stress({{20 * e0, 0, 0}}, h0.data(), h1.data())[0], 0.3 * ft);
+    law.initialize_point(h0.data(), 0.0125);
+    EXPECT_LT(law.stress({{20 * e0, 0, 0}}, h0.data(), h1.data())[0], 0.01 * ft);
+  }
+
   TEST(Concrete, UniaxialCompressionFollowsTheModelCodeCurve)
   {
     // sigma / f_cm = (k eta - eta^2) / (1 + (k - 2) eta), eta = eps / eps_c1,
