@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -76,6 +77,17 @@ namespace kimp::lumped
     require_parameter(ok, "isolator.", key, value, unit, rule);
   }
 
+  /// require_isolator() of a parameter that must lie in [low, high) (NaN and infinity fail).
+  inline void require_isolator_in(const std::string_view key,
+                                  const double           value,
+                                  const double           low,
+                                  const double           high,
+                                  const std::string_view unit,
+                                  const std::string_view rule)
+  {
+    require_isolator(std::isfinite(value) && value >= low && value < high, key, value, unit, rule);
+  }
+
   /// require_isolator() of a parameter that must be > 0 and finite (NaN fails).
   inline void require_positive_isolator(const std::string_view key,
                                         const double           value,
@@ -93,11 +105,12 @@ namespace kimp::lumped
                                             const double           value,
                                             const std::string_view unit)
   {
-    require_isolator(std::isfinite(value) && value >= 0.0,
-                     key,
-                     value,
-                     unit,
-                     "must be >= 0 and finite");
+    require_isolator_in(key,
+                        value,
+                        0.0,
+                        std::numeric_limits<double>::infinity(),
+                        unit,
+                        "must be >= 0 and finite");
   }
 
   /**
