@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "lumped/parameter_check.h"
+#include "lumped/trial_commit.h"
 
 namespace kimp::lumped
 {
@@ -30,17 +31,12 @@ namespace kimp::lumped
    * idempotent; `commit()` accepts the last trial; `revert_to_last_commit()` discards it;
    * `revert_to_start()` returns to the virgin state; `clone()` copies committed and trial state.
    */
-  class Isolator
+  class Isolator : public TrialCommit
   {
   public:
-    virtual ~Isolator() = default;
-
     /// Evaluate at the trial displacement u (m, isolation level relative to the ground) and
     /// velocity u̇ (m/s).
     virtual IsolatorResponse set_trial(double displacement, double velocity) = 0;
-    virtual void             commit()                                        = 0;
-    virtual void             revert_to_last_commit()                         = 0;
-    virtual void             revert_to_start()                               = 0;
 
     /// Initial (elastic) stiffness, N/m: used in K for modal analysis, the Rayleigh damping and
     /// c_iso of docs/physics.md §2, and the stability limit of the explicit integrator.
