@@ -359,19 +359,13 @@ namespace kimp::fem
     const StaticPlasticityResult solved = run_static_plasticity(s, log);
 
     PushoverResult out;
-    out.geostatic_force        = band_force(solved.steps.front(), rigid);
-    out.plastic_dissipation    = solved.plastic_dissipation;
-    out.damage_dissipation     = solved.damage_dissipation;
-    out.n_cells                = s.mesh.cells.size();
-    out.n_dofs                 = solved.n_dofs;
-    out.n_interface_pairs      = static_cast<unsigned int>(s.interface.size());
-    out.n_loose_steps          = solved.n_loose_steps;
-    out.largest_loose_residual = solved.largest_loose_residual;
-    out.n_error_cuts           = solved.n_error_cuts;
-    out.n_large_error_steps    = solved.n_large_error_steps;
-    out.largest_step_error     = solved.largest_step_error;
-    out.n_newton_iterations    = solved.n_newton_iterations;
-    out.n_newton_cuts          = solved.n_newton_cuts;
+    out.geostatic_force     = band_force(solved.steps.front(), rigid);
+    out.plastic_dissipation = solved.plastic_dissipation;
+    out.damage_dissipation  = solved.damage_dissipation;
+    out.n_cells             = s.mesh.cells.size();
+    out.n_dofs              = solved.n_dofs;
+    out.n_interface_pairs   = static_cast<unsigned int>(s.interface.size());
+    out.step_control        = solved.step_control;
     for (const auto &cell : solved.cell_states)
       out.cells.push_back({cell.centre[0],
                            cell.centre[1],

@@ -12,6 +12,7 @@
 
 #include "fem/impact.h"
 #include "fem/inelastic_laws.h"
+#include "fem/static_step_statistics.h"
 
 namespace kimp::fem
 {
@@ -150,27 +151,16 @@ namespace kimp::fem
   {
     std::vector<PushoverPoint> curve; ///< from the geostatic state (0, 0)
     /** Band force of the geostatic state (the at-rest earth pressure the band holds), N/m. */
-    double        geostatic_force     = 0;
-    double        plastic_dissipation = 0; ///< J/m, soil plasticity and bars
-    double        damage_dissipation  = 0; ///< J/m, concrete cracking and crushing
-    unsigned long n_cells             = 0;
-    unsigned long n_dofs              = 0;
-    unsigned int  n_interface_pairs   = 0;
-    /** Steps accepted at loose_tolerance and their largest relative out-of-balance force. */
-    unsigned int n_loose_steps          = 0;
-    double       largest_loose_residual = 0;
-    /** IMPL-EX step control: steps halved, steps accepted above the tolerance at the last
-     *  halving and the largest error among them (in f_t). */
-    unsigned int              n_error_cuts        = 0;
-    unsigned int              n_large_error_steps = 0;
-    double                    largest_step_error  = 0;
+    double                    geostatic_force     = 0;
+    double                    plastic_dissipation = 0; ///< J/m, soil plasticity and bars
+    double                    damage_dissipation  = 0; ///< J/m, concrete cracking and crushing
+    unsigned long             n_cells             = 0;
+    unsigned long             n_dofs              = 0;
+    unsigned int              n_interface_pairs   = 0;
+    StaticStepStatistics      step_control;
     std::vector<PushoverCell> cells; ///< the final state, one per cell
-    /** Steps halved because Newton did not converge; the smallest converged step of the band
-     *  displacement after the first one (m). */
-    unsigned int n_newton_cuts      = 0;
-    double       smallest_increment = 0;
-    /** Newton iterations of the run (failed, halved attempts included). */
-    unsigned long n_newton_iterations = 0;
+    /** The smallest converged step of the band displacement after the first one (m). */
+    double smallest_increment = 0;
     /** Per converged step (curve[k] for k >= 1): its relative out-of-balance force after each
      *  Newton solve (the last one within `tolerance`). */
     std::vector<std::vector<double>> step_residuals;

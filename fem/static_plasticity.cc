@@ -868,12 +868,13 @@ namespace kimp::fem
         if (error > p_.step_error_tolerance && depth < std::min(p_.max_error_cuts, p_.max_cuts))
         {
           converged = false; // halved below
-          ++out.n_error_cuts;
+          ++out.step_control.n_error_cuts;
         }
         else if (error > p_.step_error_tolerance)
         {
-          ++out.n_large_error_steps;
-          out.largest_step_error = std::max(out.largest_step_error, error);
+          ++out.step_control.n_large_error_steps;
+          out.step_control.largest_step_error =
+            std::max(out.step_control.largest_step_error, error);
         }
       }
       if (converged)
@@ -884,8 +885,9 @@ namespace kimp::fem
         last_dload_ = load_ - load_save;
         if (step.residuals.back() > p_.newton_tolerance)
         {
-          ++out.n_loose_steps;
-          out.largest_loose_residual = std::max(out.largest_loose_residual, step.residuals.back());
+          ++out.step_control.n_loose_steps;
+          out.step_control.largest_loose_residual =
+            std::max(out.step_control.largest_loose_residual, step.residuals.back());
         }
         commit();
         step.reactions        = reactions(r_);
@@ -952,11 +954,11 @@ namespace kimp::fem
         const double        a    = start + (end - start) * static_cast<double>(pos) / total;
         const double        b    = start + (end - start) * static_cast<double>(next) / total;
         segment_ended_           = false;
-        const std::size_t n_cuts = out.n_error_cuts;
+        const std::size_t n_cuts = out.step_control.n_error_cuts;
         if (!attempt(a, b, depth_, out))
         {
-          if (out.n_error_cuts == n_cuts)
-            ++out.n_newton_cuts;
+          if (out.step_control.n_error_cuts == n_cuts)
+            ++out.step_control.n_newton_cuts;
           ++depth_;
           n_easy_ = 0;
           continue;
@@ -1050,7 +1052,7 @@ namespace kimp::fem
           state.plastic_strain = std::max(state.plastic_strain, o.equivalent_plastic_strain);
         }
       }
-      out.n_newton_iterations = n_iterations_;
+      out.step_control.n_newton_iterations = n_iterations_;
       out.vertex_displacements.assign(tria_.n_vertices(), {{0.0, 0.0}});
       for (const auto &cell : dof_handler_.active_cell_iterators())
         for (const auto v : cell->vertex_indices())

@@ -15,6 +15,7 @@
 #include "fem/material.h"
 #include "fem/material_law.h"
 #include "fem/numerical_error.h"
+#include "fem/static_step_statistics.h"
 
 namespace kimp::fem
 {
@@ -255,23 +256,12 @@ namespace kimp::fem
     std::vector<StaticStep> steps; ///< steps[0]: equilibrium at load factor 0
     /** Out-of-balance force of the initial state (gravity + initial stress) at the free DoFs
      *  before step 0, relative to the body's weight (0 if weightless). */
-    double       initial_out_of_balance = 0;
-    double       weight                 = 0; ///< total body weight, N/m
-    unsigned int n_dofs                 = 0;
-    /** Newton iterations of the whole run, those of failed (halved) attempts included. */
-    unsigned long n_newton_iterations = 0;
-    /** Steps accepted at loose_tolerance, and the largest relative residual among them. */
-    unsigned int n_loose_steps          = 0;
-    double       largest_loose_residual = 0;
-    /** Steps halved for their IMPL-EX error; steps accepted above step_error_tolerance (at the
-     *  last halving) and the largest error among them. */
-    unsigned int n_error_cuts = 0;
-    /** Steps halved because Newton did not converge. */
-    unsigned int n_newton_cuts       = 0;
-    unsigned int n_large_error_steps = 0;
-    double       largest_step_error  = 0;
-    double       plastic_dissipation = 0; ///< total at the end, J/m
-    double       damage_dissipation  = 0; ///< total at the end, J/m
+    double               initial_out_of_balance = 0;
+    double               weight                 = 0; ///< total body weight, N/m
+    unsigned int         n_dofs                 = 0;
+    StaticStepStatistics step_control;
+    double               plastic_dissipation = 0; ///< total at the end, J/m
+    double               damage_dissipation  = 0; ///< total at the end, J/m
     /** Final displacement at each mesh vertex (m), in mesh.vertices order. */
     std::vector<std::array<double, 2>> vertex_displacements;
     /** The final state of one cell: where it is, its damage and plastic strain. */

@@ -200,7 +200,7 @@ namespace kimp::app
                        s.unloaded_from,
                        std::int64_t(run.result.n_cells),
                        std::int64_t(run.result.n_dofs),
-                       std::int64_t(run.result.n_loose_steps),
+                       std::int64_t(run.result.step_control.n_loose_steps),
                        seconds});
       logger().info("pushover {}: capacity {:.4g} kN/m at {:.4g} mm, initial stiffness {:.4g} "
                     "kN/mm/m, {} steps, {} Newton iterations, {} steps halved for Newton "
@@ -210,8 +210,8 @@ namespace kimp::app
                     s.displacement_at_capacity * 1e3,
                     s.initial_stiffness / 1e6,
                     run.result.curve.size() - 1,
-                    run.result.n_newton_iterations,
-                    run.result.n_newton_cuts,
+                    run.result.step_control.n_newton_iterations,
+                    run.result.step_control.n_newton_cuts,
                     run.result.smallest_increment * 1e3,
                     seconds);
     }

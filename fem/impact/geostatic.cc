@@ -226,7 +226,6 @@ namespace kimp::fem::internal
     const QGauss<dim>                    quadrature(2);
     const unsigned int                   n = fe.n_dofs_per_cell();
     std::vector<types::global_dof_index> dof_indices(n);
-    const FEValuesExtractors::Vector     displacement(0);
     FEValues<dim>                        fe_t(fe, quadrature, update_gradients | update_JxW_values);
     FullMatrix<double>                   cell_matrix(n, n);
     std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
@@ -237,14 +236,10 @@ namespace kimp::fem::internal
       {
         const MaterialLaw &law = *laws.at(cell->material_id());
         const unsigned int c   = cell->active_cell_index();
-        fe_t.reinit(cell);
-        fe_t[displacement].get_function_symmetric_gradients(u_g, eps);
-        cell_matrix = 0;
+        cell_matrix            = 0;
         // B-bar cells: the strains and the B rows with the mean dilatation.
-        std::array<double, 4> jxw{};
-        for (unsigned int q = 0; q < quadrature.size(); ++q)
-          jxw[q] = fe_t.JxW(q);
-        const std::array<VoigtStrain, 4> strain = cell_strains(cell->material_id(), eps, jxw);
+        std::array<double, 4>            jxw{};
+        const std::array<VoigtStrain, 4> strain = cell_strains(cell, u_g, fe_t, eps, jxw);
         strain_columns(cell->material_id(), fe_t, b);
         for (unsigned int q = 0; q < quadrature.size(); ++q)
         {
@@ -448,7 +443,6 @@ namespace kimp::fem::internal
     FEValues<dim>                        fe_values(fe,
                             quadrature,
                             update_gradients | update_quadrature_points | update_JxW_values);
-    const FEValuesExtractors::Vector     displacement(0);
     std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
     std::vector<double>                  local, scratch, probe;
     double                               max_plastic = 0;
@@ -458,13 +452,9 @@ namespace kimp::fem::internal
         const unsigned int mid = cell->material_id();
         const unsigned int c   = cell->active_cell_index();
         const MaterialLaw &law = *laws.at(mid);
-        fe_values.reinit(cell);
-        fe_values[displacement].get_function_symmetric_gradients(u_g, eps);
         scratch.assign(std::max(1u, law.n_history()), 0.0);
-        std::array<double, 4> jxw{};
-        for (unsigned int q = 0; q < quadrature.size(); ++q)
-          jxw[q] = fe_values.JxW(q);
-        const std::array<VoigtStrain, 4> strain = cell_strains(mid, eps, jxw);
+        std::array<double, 4>            jxw{};
+        const std::array<VoigtStrain, 4> strain = cell_strains(cell, u_g, fe_values, eps, jxw);
         for (unsigned int q = 0; q < quadrature.size(); ++q)
         {
           const VoigtStrain &e       = strain[q];

@@ -155,6 +155,14 @@ namespace kimp::fem::internal
     std::array<VoigtStrain, 4> cell_strains(types::material_id                          id,
                                             const std::vector<SymmetricTensor<2, dim>> &eps,
                                             const std::array<double, 4>                &jxw) const;
+    /** The same for `cell` at the (ghosted) displacement u: fv (2 x 2 Gauss points, gradients
+     *  and JxW) reinit()ed on the cell, the symmetric gradients at its points in eps and their
+     *  weights in jxw. */
+    std::array<VoigtStrain, 4> cell_strains(const DoFHandler<dim>::active_cell_iterator &cell,
+                                            const Vec                                   &u,
+                                            FEValues<dim>                               &fv,
+                                            std::vector<SymmetricTensor<2, dim>>        &eps,
+                                            std::array<double, 4>                       &jxw) const;
 
     // contact_setup.cc
     void setup_contact();

@@ -48,6 +48,22 @@ namespace kimp::fem::internal
     return e;
   }
 
+  std::array<VoigtStrain, 4>
+  ImpactProblem::cell_strains(const DoFHandler<dim>::active_cell_iterator &cell,
+                              const Vec                                   &u,
+                              FEValues<dim>                               &fv,
+                              std::vector<SymmetricTensor<2, dim>>        &eps,
+                              std::array<double, 4>                       &jxw) const
+  {
+    const FEValuesExtractors::Vector displacement(0);
+    fv.reinit(cell);
+    fv[displacement].get_function_symmetric_gradients(u, eps);
+    Assert(fv.n_quadrature_points == 4, ExcInternalError());
+    for (unsigned int q = 0; q < 4; ++q)
+      jxw[q] = fv.JxW(q);
+    return cell_strains(cell->material_id(), eps, jxw);
+  }
+
   void ImpactProblem::strain_columns(const types::material_id            id,
                                      const FEValues<dim>                &fv,
                                      std::vector<std::array<double, 3>> &b) const
@@ -321,15 +337,12 @@ namespace kimp::fem::internal
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
       {
-        const MaterialLaw &law = *laws.at(cell->material_id());
-        const unsigned int c   = cell->active_cell_index();
-        fe_values.reinit(cell);
-        fe_values[displacement].get_function_symmetric_gradients(u_ghosted, eps);
-        std::array<double, 4> jxw{};
-        for (unsigned int q = 0; q < quadrature.size(); ++q)
-          jxw[q] = fe_values.JxW(q);
-        const std::array<VoigtStrain, 4> strain = cell_strains(cell->material_id(), eps, jxw);
-        std::array<VoigtStress, 4>       sigma{};
+        const MaterialLaw               &law = *laws.at(cell->material_id());
+        const unsigned int               c   = cell->active_cell_index();
+        std::array<double, 4>            jxw{};
+        const std::array<VoigtStrain, 4> strain =
+          cell_strains(cell, u_ghosted, fe_values, eps, jxw);
+        std::array<VoigtStress, 4> sigma{};
         cell_force = 0;
         for (unsigned int q = 0; q < quadrature.size(); ++q)
         {

@@ -411,22 +411,17 @@ namespace kimp::fem::internal
     // Cell means over the Gauss points of the stiffness, each from its committed history.
     const QGauss<dim> quadrature(2);
     FEValues<dim>     fe_values(fe, quadrature, update_gradients | update_JxW_values);
-    const FEValuesExtractors::Vector     displacement(0);
     std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
     std::vector<double>                  scratch;
     const double                         w = 1.0 / quadrature.size();
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
       {
-        const unsigned int c = cell->active_cell_index();
-        fe_values.reinit(cell);
-        fe_values[displacement].get_function_symmetric_gradients(u_g, eps);
+        const unsigned int c   = cell->active_cell_index();
         const MaterialLaw &law = *laws.at(cell->material_id());
         scratch.assign(std::max(1u, law.n_history()), 0.0);
-        std::array<double, 4> jxw{};
-        for (unsigned int q = 0; q < quadrature.size(); ++q)
-          jxw[q] = fe_values.JxW(q);
-        const std::array<VoigtStrain, 4> strain = cell_strains(cell->material_id(), eps, jxw);
+        std::array<double, 4>            jxw{};
+        const std::array<VoigtStrain, 4> strain = cell_strains(cell, u_g, fe_values, eps, jxw);
         for (unsigned int q = 0; q < quadrature.size(); ++q)
         {
           const VoigtStrain &e         = strain[q];

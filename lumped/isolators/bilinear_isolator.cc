@@ -8,11 +8,7 @@ namespace kimp::lumped
   void BilinearParameters::check() const
   {
     require_positive_isolator("K1", K1, "N/m");
-    require_isolator(std::isfinite(K2) && K2 >= 0.0 && K2 < K1,
-                     "K2",
-                     K2,
-                     "N/m",
-                     "must be >= 0 and smaller than K1");
+    require_isolator_in("K2", K2, 0.0, K1, "N/m", "must be >= 0 and smaller than K1");
     require_positive_isolator("Q", Q, "N");
   }
 

@@ -16,11 +16,7 @@ namespace kimp::lumped
   void BoucWenParameters::check() const
   {
     require_positive_isolator("K1", K1, "N/m");
-    require_isolator(std::isfinite(alpha) && alpha >= 0.0 && alpha < 1.0,
-                     "alpha",
-                     alpha,
-                     "",
-                     "post-yield ratio K2/K1, must be in [0, 1)");
+    require_isolator_in("alpha", alpha, 0.0, 1.0, "", "post-yield ratio K2/K1, must be in [0, 1)");
     require_isolator(std::isfinite(F_y) && F_y > 0.0, "F_y", F_y, "N", "yield force, must be > 0");
     require_isolator(std::isfinite(A) && A > 0.0, "bw_A", A, "", "must be > 0");
     require_isolator(std::isfinite(beta) && std::isfinite(gamma) && beta >= std::abs(gamma),

@@ -9,16 +9,8 @@ namespace kimp::lumped
   {
     require_positive_isolator("weight", W, "N");
     require_positive_isolator("radius", R, "m");
-    require_isolator(std::isfinite(mu_slow) && mu_slow >= 0.0 && mu_slow < 1.0,
-                     "mu_slow",
-                     mu_slow,
-                     "",
-                     "must be in [0, 1)");
-    require_isolator(std::isfinite(mu_fast) && mu_fast >= mu_slow && mu_fast < 1.0,
-                     "mu_fast",
-                     mu_fast,
-                     "",
-                     "must be in [mu_slow, 1)");
+    require_isolator_in("mu_slow", mu_slow, 0.0, 1.0, "", "must be in [0, 1)");
+    require_isolator_in("mu_fast", mu_fast, mu_slow, 1.0, "", "must be in [mu_slow, 1)");
     require_non_negative_isolator("rate", rate, "s/m");
     require_positive_isolator("k_init", k_init, "N/m");
   }

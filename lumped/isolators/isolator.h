@@ -4,11 +4,13 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 #include <string_view>
 
 #include "lumped/parameter_check.h"
+#include "lumped/trial_commit.h"
 
 namespace kimp::lumped
 {
@@ -29,17 +31,12 @@ namespace kimp::lumped
    * idempotent; `commit()` accepts the last trial; `revert_to_last_commit()` discards it;
    * `revert_to_start()` returns to the virgin state; `clone()` copies committed and trial state.
    */
-  class Isolator
+  class Isolator : public TrialCommit
   {
   public:
-    virtual ~Isolator() = default;
-
     /// Evaluate at the trial displacement u (m, isolation level relative to the ground) and
     /// velocity u̇ (m/s).
     virtual IsolatorResponse set_trial(double displacement, double velocity) = 0;
-    virtual void             commit()                                        = 0;
-    virtual void             revert_to_last_commit()                         = 0;
-    virtual void             revert_to_start()                               = 0;
 
     /// Initial (elastic) stiffness, N/m: used in K for modal analysis, the Rayleigh damping and
     /// c_iso of docs/physics.md §2, and the stability limit of the explicit integrator.
@@ -76,6 +73,17 @@ namespace kimp::lumped
     require_parameter(ok, "isolator.", key, value, unit, rule);
   }
 
+  /// require_isolator() of a parameter that must lie in [low, high) (NaN and infinity fail).
+  inline void require_isolator_in(const std::string_view key,
+                                  const double           value,
+                                  const double           low,
+                                  const double           high,
+                                  const std::string_view unit,
+                                  const std::string_view rule)
+  {
+    require_isolator(std::isfinite(value) && value >= low && value < high, key, value, unit, rule);
+  }
+
   /// require_isolator() of a parameter that must be > 0 and finite (NaN fails).
   inline void require_positive_isolator(const std::string_view key,
                                         const double           value,
@@ -93,11 +101,12 @@ namespace kimp::lumped
                                             const double           value,
                                             const std::string_view unit)
   {
-    require_isolator(std::isfinite(value) && value >= 0.0,
-                     key,
-                     value,
-                     unit,
-                     "must be >= 0 and finite");
+    require_isolator_in(key,
+                        value,
+                        0.0,
+                        std::numeric_limits<double>::infinity(),
+                        unit,
+                        "must be >= 0 and finite");
   }
 
   /**

@@ -12,6 +12,8 @@
 #include <memory>
 #include <string>
 
+#include "lumped/trial_commit.h"
+
 namespace kimp::lumped
 {
   /// Result of one trial evaluation.
@@ -32,16 +34,11 @@ namespace kimp::lumped
    *    `revert_to_last_commit()` discards it; `revert_to_start()` returns to the virgin state.
    *  - `clone()` returns an independent copy with identical committed and trial state.
    */
-  class ForceLaw
+  class ForceLaw : public TrialCommit
   {
   public:
-    virtual ~ForceLaw() = default;
-
     /// Evaluate the law at a trial deformation δ (m) and rate δ̇ (m/s).
     virtual ForceResponse set_trial(double deformation, double rate) = 0;
-    virtual void          commit()                                   = 0;
-    virtual void          revert_to_last_commit()                    = 0;
-    virtual void          revert_to_start()                          = 0;
 
     /// Stiffness k_t (N/m) that bounds the central difference time step for deformations up to
     /// `max_deformation`: stability_limit() takes ω_imp = sqrt(k_t/m_eff) and Δt_cr = 2/ω_max.

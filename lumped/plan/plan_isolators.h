@@ -14,6 +14,7 @@
 #include "lumped/isolators/friction_pendulum_isolator.h"
 #include "lumped/isolators/isolator.h"
 #include "lumped/plan/plan_geometry.h"
+#include "lumped/trial_commit.h"
 
 namespace kimp::lumped::plan
 {
@@ -26,16 +27,11 @@ namespace kimp::lumped::plan
    * `revert_to_start()` returns to the virgin state, `clone()` copies both states. The explicit
    * integrator needs the force only; its stable step uses initial_stiffness().
    */
-  class PlanIsolator
+  class PlanIsolator : public TrialCommit
   {
   public:
-    virtual ~PlanIsolator() = default;
-
     /// Force, N, at the trial displacement u (m, relative to the ground) and velocity u̇ (m/s).
     virtual Point set_trial(const Point &displacement, const Point &velocity) = 0;
-    virtual void  commit()                                                    = 0;
-    virtual void  revert_to_last_commit()                                     = 0;
-    virtual void  revert_to_start()                                           = 0;
 
     /// Initial (elastic) stiffness in every direction, N/m.
     virtual double initial_stiffness() const = 0;

@@ -439,43 +439,72 @@ namespace
     std::string expectation;
   };
 
+  /// The rule of a scene that sets only `key` (dotted: "materials.soil.nu") to `value` (YAML),
+  /// one level of indentation per part of the key: the message names the key's own line.
+  Rule one_key(const std::string &key, const std::string &value, const std::string &expectation)
+  {
+    std::string text, indent;
+    std::size_t begin = 0;
+    int         line  = 1;
+    for (std::size_t dot; (dot = key.find('.', begin)) != std::string::npos; begin = dot + 1)
+    {
+      text += indent + key.substr(begin, dot - begin) + ":\n";
+      indent += "  ";
+      ++line;
+    }
+    return {text + indent + key.substr(begin) + ": " + value + "\n", key, line, expectation};
+  }
+
   TEST(FemScene, EveryValidationRuleNamesFileLineAndKey)
   {
-    const std::vector<Rule> rules = {
-      {"wall_heights: []\n", "wall_heights", 1, "at least one"},
+    // One key each, at its own line.
+    std::vector<Rule> rules = {
+      one_key("wall_heights", "[]", "at least one"),
+      one_key("geometry.backfill_width", "\"-2 m\"", "in [0.1 m, 100 m]"),
+      one_key("geometry.slab_length", "\"0 m\"", "in [0.1 m, 500 m]"),
+      one_key("geometry.slab_thickness", "\"-1 cm\"", "in [0.02 m, 5 m]"),
+      one_key("geometry.gap", "\"0 mm\"", "overlap"),
+      one_key("geometry.gap", "\"-1 mm\"", "in (0, 1000 mm]"),
+      one_key("geometry.backfill_height", "\"2 m\"", "<= wall_heights[0] = 1.25 m"),
+      one_key("geometry.backfill_height", "\"0 m\"", "in [0.01 m, 20 m]"),
+      one_key("geometry.slab_top", "\"1.5 m\"", "face the wall"),
+      one_key("geometry.slab_top", "\"0.1 m\"", "above the ground"),
+      one_key("mesh.h_contact", "\"0 cm\"", "in [0.0001 cm, 100 cm]"),
+      one_key("mesh.h_max", "\"1 cm\"", ">= h_contact"),
+      one_key("mesh.grading", "0.9", ">= 1"),
+      one_key("mesh.wall_aspect_max", "0.5", "in [1, 20]"),
+      one_key("materials.concrete.E", "\"0 GPa\"", "in [0.0001 GPa, 1000 GPa]"),
+      one_key("materials.soil.nu", "0.5", "[0, 0.5)"),
+      one_key("materials.soil.nu", "-0.1", "[0, 0.5)"),
+      one_key("materials.soil.rho", "\"0 kg/m^3\"", "in [100 kg/m^3, 20000 kg/m^3]"),
+      one_key("slab.mass", "\"3 t/m\"", "only for a rigid slab"),
+      one_key("slab.velocity", "\"0 m/s\"", "> 0"),
+      one_key("contact.penalty_factor", "0", "> 0"),
+      one_key("contact.contact_damping_ratio", "1.5", "[0, 1]"),
+      one_key("contact.smoothing_window", "soon", "'auto'"),
+      one_key("contact.smoothing_window", "\"0 s\"", "in [1e-06 ms, 1000 ms]"),
+      one_key("dynamics.dt", "\"2 m\"", "'auto' or a time"),
+      one_key("dynamics.dt", "\"-1 s\"", "in [1e-10 s, 0.01 s]"),
+      one_key("dynamics.cfl_safety", "1.5", "(0, 1]"),
+      one_key("dynamics.implicit_dt_factor", "0", "> 0"),
+      one_key("dynamics.end_time", "\"0 ms\"", "> 0"),
+      one_key("dynamics.separation_hold_time", "\"-1 ms\"", ">= 0"),
+      one_key("dynamics.output_interval", "\"-1 ms\"", ">= 0"),
+      one_key("output.vtu_interval", "\"-1 ms\"", ">= 0"),
+    };
+    // Scenes of several keys, in flow style or after a blank line, array elements, and a rule
+    // whose message names no line (0).
+    const std::vector<Rule> combined = {
       {"wall_heights: [\"-1 m\"]\n", "wall_heights[0]", 1, "in [0.1 m, 20 m]"},
       {"wall_heights: [\"1.25 m\", \"125 cm\"]\n", "wall_heights[1]", 1, "twice"},
       {"\ngeometry:\n  wall_thickness: \"0 m\"\n",
        "geometry.wall_thickness",
        3,
        "in [0.02 m, 5 m]"},
-      {"geometry:\n  backfill_width: \"-2 m\"\n",
-       "geometry.backfill_width",
-       2,
-       "in [0.1 m, 100 m]"},
-      {"geometry:\n  slab_length: \"0 m\"\n", "geometry.slab_length", 2, "in [0.1 m, 500 m]"},
-      {"geometry:\n  slab_thickness: \"-1 cm\"\n",
-       "geometry.slab_thickness",
-       2,
-       "in [0.02 m, 5 m]"},
-      {"geometry:\n  gap: \"0 mm\"\n", "geometry.gap", 2, "overlap"},
-      {"geometry:\n  gap: \"-1 mm\"\n", "geometry.gap", 2, "in (0, 1000 mm]"},
-      {"geometry:\n  backfill_height: \"2 m\"\n",
-       "geometry.backfill_height",
-       2,
-       "<= wall_heights[0] = 1.25 m"},
-      {"geometry:\n  backfill_height: \"0 m\"\n",
-       "geometry.backfill_height",
-       2,
-       "in [0.01 m, 20 m]"},
-      {"geometry:\n  slab_top: \"1.5 m\"\n", "geometry.slab_top", 2, "face the wall"},
-      {"geometry:\n  slab_top: \"0.1 m\"\n", "geometry.slab_top", 2, "above the ground"},
       {"wall_heights: [\"0.1 m\"]\nmesh: {h_contact: \"1 cm\"}\n",
        "geometry.slab_thickness",
        0,
        "flush"},
-      {"mesh:\n  h_contact: \"0 cm\"\n", "mesh.h_contact", 2, "in [0.0001 cm, 100 cm]"},
-      {"mesh:\n  h_max: \"1 cm\"\n", "mesh.h_max", 2, ">= h_contact"},
       {"mesh:\n  h_contact: \"30 cm\"\n  h_max: \"40 cm\"\n",
        "mesh.h_contact",
        2,
@@ -484,44 +513,13 @@ namespace
        "mesh.h_contact",
        3,
        "slab_thickness"},
-      {"mesh:\n  grading: 0.9\n", "mesh.grading", 2, ">= 1"},
-      {"mesh:\n  wall_aspect_max: 0.5\n", "mesh.wall_aspect_max", 2, "in [1, 20]"},
-      {"materials:\n  concrete:\n    E: \"0 GPa\"\n",
-       "materials.concrete.E",
-       3,
-       "in [0.0001 GPa, 1000 GPa]"},
-      {"materials:\n  soil:\n    nu: 0.5\n", "materials.soil.nu", 3, "[0, 0.5)"},
-      {"materials:\n  soil:\n    nu: -0.1\n", "materials.soil.nu", 3, "[0, 0.5)"},
-      {"materials:\n  soil:\n    rho: \"0 kg/m^3\"\n",
-       "materials.soil.rho",
-       3,
-       "in [100 kg/m^3, 20000 kg/m^3]"},
       {"slab:\n  rigid: true\n  mass: \"-1 kg/m\"\n", "slab.mass", 3, "> 0"},
-      {"slab:\n  mass: \"3 t/m\"\n", "slab.mass", 2, "only for a rigid slab"},
-      {"slab:\n  velocity: \"0 m/s\"\n", "slab.velocity", 2, "> 0"},
-      {"contact:\n  penalty_factor: 0\n", "contact.penalty_factor", 2, "> 0"},
-      {"contact:\n  contact_damping_ratio: 1.5\n", "contact.contact_damping_ratio", 2, "[0, 1]"},
       {"contact:\n  subcycles: 2\ndynamics:\n  integrator: implicit\n",
        "contact.subcycles",
        2,
        "must be 1 (off) with dynamics.integrator: implicit"},
-      {"contact:\n  smoothing_window: soon\n", "contact.smoothing_window", 2, "'auto'"},
-      {"contact:\n  smoothing_window: \"0 s\"\n",
-       "contact.smoothing_window",
-       2,
-       "in [1e-06 ms, 1000 ms]"},
-      {"dynamics:\n  dt: \"2 m\"\n", "dynamics.dt", 2, "'auto' or a time"},
-      {"dynamics:\n  dt: \"-1 s\"\n", "dynamics.dt", 2, "in [1e-10 s, 0.01 s]"},
-      {"dynamics:\n  cfl_safety: 1.5\n", "dynamics.cfl_safety", 2, "(0, 1]"},
-      {"dynamics:\n  implicit_dt_factor: 0\n", "dynamics.implicit_dt_factor", 2, "> 0"},
-      {"dynamics:\n  end_time: \"0 ms\"\n", "dynamics.end_time", 2, "> 0"},
-      {"dynamics:\n  separation_hold_time: \"-1 ms\"\n",
-       "dynamics.separation_hold_time",
-       2,
-       ">= 0"},
-      {"dynamics:\n  output_interval: \"-1 ms\"\n", "dynamics.output_interval", 2, ">= 0"},
-      {"output:\n  vtu_interval: \"-1 ms\"\n", "output.vtu_interval", 2, ">= 0"},
     };
+    rules.insert(rules.end(), combined.begin(), combined.end());
     for (const Rule &rule : rules)
     {
       const std::string message = scene_error(rule.text);

@@ -414,7 +414,8 @@ TEST(LumpedScene, YieldingWallCurveEnvelopeFromPointsPerMetre)
          "      curve:\n        - {displacement: \"0 mm\", force: \"0 kN/m\"}\n"
          "        - {displacement: \"2 mm\", force: \"100 kN/m\"}\n"
          "        - {displacement: \"1 cm\", force: \"140 kN/m\"}\n");
-  const kimp::lumped::WallBackfillParams p = *make_pounding_scene(scene).left_wall->yielding;
+  const auto                              pounding = make_pounding_scene(scene);
+  const kimp::lumped::WallBackfillParams &p        = *pounding.left_wall->yielding;
   EXPECT_EQ(p.envelope, kimp::lumped::WallEnvelope::curve);
   ASSERT_EQ(p.curve_displacements.size(), 3u);
   EXPECT_NEAR(p.curve_displacements[2], 0.01, exact_tolerance);
@@ -424,7 +425,7 @@ TEST(LumpedScene, YieldingWallCurveEnvelopeFromPointsPerMetre)
   EXPECT_NEAR(p.stiffness, 500e6, exact_tolerance * 500e6);
   EXPECT_NEAR(p.unloading_stiffness, 500e6, exact_tolerance * 500e6);
   EXPECT_NEAR(p.tension_capacity, 1.4e6, exact_tolerance * 1.4e6);
-  const kimp::lumped::PoundingModel model(make_pounding_scene(scene)); // the law accepts it
+  const kimp::lumped::PoundingModel model(pounding); // the law accepts it
 
   // Refused: a convex kink (naming the point), a curve not from the origin, points without the
   // curve envelope, a curve envelope without points, and the keys the curve sets itself.

@@ -71,8 +71,7 @@ namespace
 // (exit 139).
 TEST(FailsafeCli, FullDiskExitsOneWithOneLineAndLeavesNoFile)
 {
-  if (!have_program("prlimit"))
-    GTEST_SKIP() << "prlimit (util-linux) is not installed";
+  KIMP_SKIP_WITHOUT_PROGRAM("prlimit", "util-linux");
   TempDir dir("e2e_failsafe_full");
   dir.write("scene.yaml", small_scene);
   // SIGXFSZ ignored: the write that crosses the 60 kB limit returns EFBIG instead of killing.
@@ -293,8 +292,7 @@ TEST(FailsafeCli, SweepAboveTheStepBudgetIsRefusedBeforePlanning)
 // log below 1.5 kB then): no torn line and no empty journal is left.
 TEST(FailsafeCli, SweepOnAFullDiskLeavesNoFile)
 {
-  if (!have_program("prlimit"))
-    GTEST_SKIP() << "prlimit (util-linux) is not installed";
+  KIMP_SKIP_WITHOUT_PROGRAM("prlimit", "util-linux");
   TempDir           dir("e2e_failsafe_sweep_full");
   const std::string sweep = (source_dir() / "data/studies/quick_gap_sweep.yaml").string();
   std::string       log;

@@ -75,8 +75,7 @@ namespace
   protected:
     void SetUp() override
     {
-      if (!have_program("prlimit"))
-        GTEST_SKIP() << "prlimit (util-linux) is not installed";
+      KIMP_SKIP_WITHOUT_PROGRAM("prlimit", "util-linux");
       dir.write("scene.yaml", fem_quick_scene);
     }
 
@@ -245,8 +244,7 @@ TEST(FailsafeCli, AbsurdFemMeshIsRefusedOrOneLine)
   EXPECT_NE(lines[1].find("exceeds the step budget dynamics.max_steps = 1e+06"), std::string::npos)
     << lines[1];
 
-  if (!have_program("prlimit"))
-    GTEST_SKIP() << "prlimit (util-linux) is not installed";
+  KIMP_SKIP_WITHOUT_PROGRAM("prlimit", "util-linux");
   dir.write("lifted.yaml", replaced(scene, "dynamics: {", "dynamics: {max_steps: 1e30, "));
   // 8 GB of address space at most, so the allocation fails at once whatever the machine.
   const int exit_code =

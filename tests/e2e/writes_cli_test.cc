@@ -66,8 +66,7 @@ namespace
 // like a full disk: one line, nothing left.
 TEST(WritesCli, LumpedUnderAFileSizeLimitFailsWithOneLine)
 {
-  if (!have_program("prlimit"))
-    GTEST_SKIP() << "prlimit (util-linux) is not installed";
+  KIMP_SKIP_WITHOUT_PROGRAM("prlimit", "util-linux");
   TempDir dir("e2e_writes_ulimit");
   dir.write("scene.yaml", small_scene);
   ASSERT_NO_FATAL_FAILURE(expect_results_file_too_large(dir.path(), "lumped", 60000));
@@ -79,8 +78,7 @@ TEST(WritesCli, LumpedUnderAFileSizeLimitFailsWithOneLine)
 // and the results file (0.4 MB) is refused in one line, and the mesh is removed again.
 TEST(WritesCli, FemUnderAFileSizeLimitFailsWithOneLine)
 {
-  if (!have_program("prlimit"))
-    GTEST_SKIP() << "prlimit (util-linux) is not installed";
+  KIMP_SKIP_WITHOUT_PROGRAM("prlimit", "util-linux");
   TempDir dir("e2e_writes_ulimit_fem");
   dir.write("scene.yaml",
             "wall_heights: [\"1.25 m\"]\n"

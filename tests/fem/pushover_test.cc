@@ -117,7 +117,7 @@ namespace
               << " kN/m; F at 0.6 / 0.8 / 0.99 % drift = "
               << envelope_force(r.curve, 0.006 * p.wall_height) / 1e3 << " / " << f_drift / 1e3
               << " / " << envelope_force(r.curve, 0.0099 * p.wall_height) / 1e3 << " kN/m (ratio "
-              << f_drift / f_p << "); loose steps " << r.n_loose_steps << '\n';
+              << f_drift / f_p << "); loose steps " << r.step_control.n_loose_steps << '\n';
   }
 
   /** Rankine (smooth wall) and Coulomb (wall friction, horizontal component) passive
@@ -172,8 +172,8 @@ namespace
       const PushoverResult  r = run_pushover(p);
       const PushoverSummary s = summarise_pushover(r.curve);
       EXPECT_NEAR(r.curve.back().displacement, 0.05 * p.wall_height, 1e-9);
-      EXPECT_EQ(r.n_loose_steps, 0u);
-      EXPECT_EQ(r.n_large_error_steps, 0u);
+      EXPECT_EQ(r.step_control.n_loose_steps, 0u);
+      EXPECT_EQ(r.step_control.n_large_error_steps, 0u);
       // Hand bounds at the band: the wall's plastic resistance M_p / h_c plus the backfill's.
       // From above, Coulomb's passive resultant with the wall friction taken at the band;
       // from below, the smooth-wall Rankine resultant at its own height H / 3 (the wall turns
@@ -202,7 +202,7 @@ namespace
                 << " at the band = " << upper / 1e3 << " kN/m; k0 " << s.initial_stiffness / 1e6
                 << ", cracked " << s.cracked_stiffness / 1e6 << " kN/mm/m, F(1 cm) "
                 << s.force_at_1cm / 1e3 << " kN/m; " << r.curve.size() - 1 << " steps, "
-                << r.n_error_cuts << " halved for the IMPL-EX error; bars yielded in "
+                << r.step_control.n_error_cuts << " halved for the IMPL-EX error; bars yielded in "
                 << yielded_rows.size() << " rows\n";
     }
     EXPECT_NEAR(capacity[1] / capacity[0], 1.0, 0.03);
@@ -398,7 +398,7 @@ namespace
     p.loose_tolerance      = 1e-3;
     const PushoverResult r = run_pushover(p);
     ASSERT_NEAR(r.curve.back().displacement, 0.005, 1e-9);
-    EXPECT_EQ(r.n_loose_steps, 0u);
+    EXPECT_EQ(r.step_control.n_loose_steps, 0u);
     unsigned int n_pairs = 0, n_slow = 0;
     double       largest = 0; // the largest r_k+1 / r_k of the asymptotic pairs
     for (std::size_t k = 0; k < r.step_residuals.size(); ++k)
@@ -418,7 +418,7 @@ namespace
         }
     }
     std::cout << "asymptotic pairs " << n_pairs << ", largest r_k+1 / r_k " << largest
-              << ", above 0.05: " << n_slow << "; " << r.n_newton_iterations
+              << ", above 0.05: " << n_slow << "; " << r.step_control.n_newton_iterations
               << " Newton iterations\n";
     EXPECT_GE(n_pairs, 3u);
     EXPECT_EQ(n_slow, 0u);
@@ -647,11 +647,11 @@ namespace
     const PushoverSummary f          = summarise_pushover(reference.curve);
 
     ASSERT_NEAR(controlled.curve.back().displacement, 0.05 * p.wall_height, 1e-9);
-    EXPECT_GT(controlled.n_newton_cuts, 0u);
+    EXPECT_GT(controlled.step_control.n_newton_cuts, 0u);
     EXPECT_LT(controlled.smallest_increment, hard.increment / 8);
     // Grown back: far fewer steps than the smallest step would take.
     EXPECT_LT(controlled.curve.size(), 0.05 * p.wall_height / controlled.smallest_increment / 2);
-    EXPECT_EQ(controlled.n_loose_steps, 0u);
+    EXPECT_EQ(controlled.step_control.n_loose_steps, 0u);
     EXPECT_NEAR(c.capacity / f.capacity, 1.0, 0.03);
     EXPECT_NEAR(c.force_at_1cm / f.force_at_1cm, 1.0, 0.02);
     for (const double u : {0.005, 0.02, 0.04})
@@ -660,11 +660,11 @@ namespace
                   0.02)
         << "at " << u * 1e3 << " mm";
     std::cout << "step control (8 mm, 10 iterations): " << controlled.curve.size() - 1 << " steps, "
-              << controlled.n_newton_cuts << " halved for Newton, smallest "
-              << controlled.smallest_increment * 1e3 << " mm, " << controlled.n_newton_iterations
-              << " iterations; capacity " << c.capacity / 1e3 << " kN/m, at 1 cm "
-              << c.force_at_1cm / 1e3 << ", at 5 / 20 / 40 mm "
-              << envelope_force(controlled.curve, 0.005) / 1e3 << " / "
+              << controlled.step_control.n_newton_cuts << " halved for Newton, smallest "
+              << controlled.smallest_increment * 1e3 << " mm, "
+              << controlled.step_control.n_newton_iterations << " iterations; capacity "
+              << c.capacity / 1e3 << " kN/m, at 1 cm " << c.force_at_1cm / 1e3
+              << ", at 5 / 20 / 40 mm " << envelope_force(controlled.curve, 0.005) / 1e3 << " / "
               << envelope_force(controlled.curve, 0.02) / 1e3 << " / "
               << envelope_force(controlled.curve, 0.04) / 1e3
               << " kN/m; fixed 0.25 mm steps: " << reference.curve.size() - 1 << " steps, capacity "

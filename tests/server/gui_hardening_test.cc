@@ -81,6 +81,21 @@ namespace
     return r && r->status == 200;
   }
 
+  /// The start of a test: `gui` listens on a port and answers GET /api/info (a fatal failure if
+  /// not; call it in ASSERT_NO_FATAL_FAILURE).
+  void expect_serving(const GuiProcess &gui)
+  {
+    ASSERT_GT(gui.port(), 0) << gui.err();
+    ASSERT_TRUE(info_answers(gui));
+  }
+
+  /// The end of a test that abused `gui`: it still answers GET /api/info, then stop().
+  void expect_alive_then_stop(GuiProcess &gui)
+  {
+    EXPECT_TRUE(info_answers(gui)) << "kimp gui no longer answers GET /api/info";
+    stop(gui);
+  }
+
   TEST(GuiHardening, InvalidUtf8InPathsQueriesHeadersAndBodiesIsAnsweredAndTheServerLives)
   {
     const kimp::testing::TempDir dir{"gui_utf8"};
@@ -129,16 +144,14 @@ namespace
         EXPECT_FALSE(body.value("error", "").empty()) << answer;
       }
     }
-    EXPECT_TRUE(info_answers(gui));
-    stop(gui);
+    expect_alive_then_stop(gui);
   }
 
   TEST(GuiHardening, ChunkedUploadOf200MegabytesIsRefusedWhileResidentMemoryStaysBounded)
   {
     const kimp::testing::TempDir dir{"gui_chunked"};
     GuiProcess                   gui(binary("kimp"), dir.path(), serving_runs_in(dir.path()));
-    ASSERT_GT(gui.port(), 0) << gui.err();
-    ASSERT_TRUE(info_answers(gui));
+    ASSERT_NO_FATAL_FAILURE(expect_serving(gui));
     const std::size_t before = resident_bytes(gui.pid());
     RawConnection     c(gui.port());
     ASSERT_TRUE(c.connected());
@@ -181,8 +194,7 @@ namespace
     EXPECT_LT(answer.size(), 2000u) << "the answer echoes the body: " << answer.size() << " bytes";
     EXPECT_FALSE(fs::exists(dir.path() / "runs" / "uploads" / "big.txt"));
     EXPECT_TRUE(process_alive(gui.pid()));
-    EXPECT_TRUE(info_answers(gui));
-    stop(gui);
+    expect_alive_then_stop(gui);
   }
 
   TEST(GuiHardening, TwentyFiveConcurrentRunRequestsNeverPassTheRunCap)
@@ -247,8 +259,7 @@ namespace
   {
     const kimp::testing::TempDir dir{"gui_backlog"};
     GuiProcess                   gui(binary("kimp"), dir.path(), serving_runs_in(dir.path()));
-    ASSERT_GT(gui.port(), 0) << gui.err();
-    ASSERT_TRUE(info_answers(gui));
+    ASSERT_NO_FATAL_FAILURE(expect_serving(gui));
     // Below the 128 a kernel's somaxconn may cap the backlog at.
     constexpr int     clients = 120;
     const std::string request =
@@ -268,8 +279,7 @@ namespace
       EXPECT_EQ(std::count(statuses.begin(), statuses.end(), 200), clients)
         << "round " << round << ": connections without an answer (reset or timed out)";
     }
-    EXPECT_TRUE(info_answers(gui));
-    stop(gui);
+    expect_alive_then_stop(gui);
   }
 
   TEST(GuiHardening, SigkillOfTheServerTakesItsRunsAndARestartListsThemInterrupted)
@@ -363,8 +373,7 @@ namespace
                                 ")"),
               std::string::npos)
       << second.err();
-    EXPECT_TRUE(info_answers(first));
-    stop(first);
+    expect_alive_then_stop(first);
   }
 
   TEST(GuiHardening, FortyOpenEventStreamsLeaveThreadsForOrdinaryRequests)
@@ -428,8 +437,7 @@ namespace
         big << block;
     }
     GuiProcess gui(binary("kimp"), dir.path(), serving_runs_in(dir.path()));
-    ASSERT_GT(gui.port(), 0) << gui.err();
-    ASSERT_TRUE(info_answers(gui));
+    ASSERT_NO_FATAL_FAILURE(expect_serving(gui));
     const std::size_t before = resident_bytes(gui.pid());
     std::size_t       peak = before, received = 0;
     bool              same = true;
@@ -493,8 +501,7 @@ namespace
         << path << ": " << r->body.substr(0, 300);
       EXPECT_LT(r->body.size(), 2000u) << path;
     }
-    EXPECT_TRUE(info_answers(gui));
-    stop(gui);
+    expect_alive_then_stop(gui);
   }
 
   TEST(GuiHardening, AnswersShowPathsRelativeToTheRunsAndRecordsFolders)

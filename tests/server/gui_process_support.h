@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "tests/support/files.h"
+#include "tests/support/scoped_handle.h"
 
 // Last: <httplib.h> brings <resolv.h>, whose `_res` macro breaks Eigen headers.
 #include <httplib.h>
@@ -257,18 +258,8 @@ namespace kimp::testing
       address.sin_port   = htons(static_cast<std::uint16_t>(port));
       inet_pton(AF_INET, "127.0.0.1", &address.sin_addr);
       if (fd_ >= 0 && connect(fd_, reinterpret_cast<sockaddr *>(&address), sizeof(address)) != 0)
-      {
-        close(fd_);
-        fd_ = -1;
-      }
+        fd_.reset();
     }
-    ~RawConnection()
-    {
-      if (fd_ >= 0)
-        close(fd_);
-    }
-    RawConnection(const RawConnection &)            = delete;
-    RawConnection &operator=(const RawConnection &) = delete;
 
     bool connected() const { return fd_ >= 0; }
     /// Sends all of `bytes`; false when the server closed the connection (or 30 s passed).
@@ -324,7 +315,7 @@ namespace kimp::testing
     }
 
   private:
-    int fd_ = -1;
+    ScopedHandle<int, ::close> fd_;
   };
 
   /// The answer of the server on `port` to the request `bytes`, read until the server closes

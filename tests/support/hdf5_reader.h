@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/scoped_handle.h"
+
 namespace kimp::testing
 {
   /**
@@ -26,13 +28,6 @@ namespace kimp::testing
       , id_(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT))
     {
     }
-    ~Hdf5Reader()
-    {
-      if (id_ >= 0)
-        H5Fclose(id_);
-    }
-    Hdf5Reader(const Hdf5Reader &)            = delete;
-    Hdf5Reader &operator=(const Hdf5Reader &) = delete;
 
     /// Whether the file could be opened.
     bool ok() const { return id_ >= 0; }
@@ -173,7 +168,7 @@ namespace kimp::testing
       return type;
     }
 
-    std::string file_;
-    hid_t       id_;
+    std::string                   file_;
+    ScopedHandle<hid_t, H5Fclose> id_;
   };
 } // namespace kimp::testing

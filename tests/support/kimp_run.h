@@ -82,6 +82,12 @@ namespace kimp::testing
     return command_succeeds("command -v " + program);
   }
 
+/// GoogleTest: skips the test (or fixture) unless `program` (of the Debian package `package`) is
+/// on the PATH.
+#define KIMP_SKIP_WITHOUT_PROGRAM(program, package) \
+  if (!kimp::testing::have_program(program))        \
+  GTEST_SKIP() << program << " (" << package << ") is not installed"
+
   /// Starts `kimp <arguments>` in the background (output to `log`); returns its pid.
   inline pid_t start_kimp(const std::string &arguments, const std::filesystem::path &log)
   {
