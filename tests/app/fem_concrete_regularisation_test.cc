@@ -229,53 +229,37 @@ namespace
     }
   }
 
-  // wall_reinforcement.strain_penetration reaches the wall's law in SI; it is refused where
-  // nothing could honour it: without vertical bars, on an elastic concrete, on the slab's bars.
-  TEST(FemConcreteScene, StrainPenetrationReachesTheWallsLawAndIsRefusedWhereNothingAnchors)
+  // wall_reinforcement.strain_penetration and crack_spacing reach the wall's law in SI (0 when
+  // absent); each is refused where nothing could honour it: strain penetration without vertical
+  // bars, on an elastic concrete or on the slab's bars (nothing anchors them); a crack spacing
+  // without bars or on an elastic concrete.
+  TEST(FemConcreteScene, TheBarsKeysReachTheWallsLawAndAreRefusedWhereNothingHonoursThem)
   {
-    const std::string bars = ", wall_reinforcement: {ratio_y: \"0.8 %\", strain_penetration: ";
-    EXPECT_DOUBLE_EQ(
-      wall_law(concrete + bars + "\"13 cm\"}}}\n")->reinforcement().strain_penetration,
-      0.13);
-    EXPECT_DOUBLE_EQ(wall_law(concrete + ", wall_reinforcement: {ratio_y: \"0.8 %\"}}}\n")
-                       ->reinforcement()
-                       .strain_penetration,
-                     0.0);
-    const std::vector<std::pair<std::string, std::string>> refused = {
-      {concrete + ", wall_reinforcement: {strain_penetration: \"13 cm\"}}}\n",
-       "concrete.wall_reinforcement.strain_penetration"},
-      {"materials: {concrete: {wall_reinforcement: {strain_penetration: \"13 cm\"}}}\n",
-       "concrete.wall_reinforcement.strain_penetration"},
-      {concrete + ", slab_reinforcement: {ratio_x: \"0.5 %\", strain_penetration: \"13 cm\"}}}\n",
-       "concrete.slab_reinforcement.strain_penetration"},
-      {concrete + bars + "\"-1 cm\"}}}\n", "strain_penetration"}};
-    expect_refused(refused);
-  }
-
-  // wall_reinforcement.crack_spacing and slab_reinforcement.crack_spacing reach their laws in
-  // SI; a spacing without bars, or on an elastic concrete, is refused.
-  TEST(FemConcreteScene, CrackSpacingReachesTheLawAndIsRefusedWithoutBars)
-  {
-    EXPECT_DOUBLE_EQ(wall_law(
-                       concrete +
-                       ", wall_reinforcement: {ratio_y: \"0.8 %\", crack_spacing: \"20 cm\"}}}\n")
-                       ->reinforcement()
-                       .crack_spacing,
-                     0.2);
-    EXPECT_DOUBLE_EQ(wall_law(concrete + ", wall_reinforcement: {ratio_y: \"0.8 %\"}}}\n")
-                       ->reinforcement()
-                       .crack_spacing,
-                     0.0);
-    const std::vector<std::pair<std::string, std::string>> refused = {
-      {concrete + ", wall_reinforcement: {crack_spacing: \"20 cm\"}}}\n",
-       "concrete.wall_reinforcement.crack_spacing"},
-      {concrete + ", slab_reinforcement: {crack_spacing: \"20 cm\"}}}\n",
-       "concrete.slab_reinforcement.crack_spacing"},
-      {"materials: {concrete: {wall_reinforcement: {crack_spacing: \"20 cm\"}}}\n",
-       "concrete.wall_reinforcement.crack_spacing"},
-      {concrete + ", wall_reinforcement: {ratio_y: \"0.8 %\", crack_spacing: \"-1 cm\"}}}\n",
-       "crack_spacing"}};
-    expect_refused(refused);
+    const auto bars = [](const std::string &keys)
+    {
+      return wall_law(concrete + ", wall_reinforcement: {ratio_y: \"0.8 %\"" + keys + "}}}\n")
+        ->reinforcement();
+    };
+    EXPECT_DOUBLE_EQ(bars(", strain_penetration: \"13 cm\"").strain_penetration, 0.13);
+    EXPECT_DOUBLE_EQ(bars(", crack_spacing: \"20 cm\"").crack_spacing, 0.2);
+    EXPECT_DOUBLE_EQ(bars("").strain_penetration, 0.0);
+    EXPECT_DOUBLE_EQ(bars("").crack_spacing, 0.0);
+    const std::string wall = "concrete.wall_reinforcement.", slab = "concrete.slab_reinforcement.";
+    expect_refused(
+      {{concrete + ", wall_reinforcement: {strain_penetration: \"13 cm\"}}}\n",
+        wall + "strain_penetration"},
+       {"materials: {concrete: {wall_reinforcement: {strain_penetration: \"13 cm\"}}}\n",
+        wall + "strain_penetration"},
+       {concrete + ", slab_reinforcement: {ratio_x: \"0.5 %\", strain_penetration: \"13 cm\"}}}\n",
+        slab + "strain_penetration"},
+       {concrete + ", wall_reinforcement: {ratio_y: \"0.8 %\", strain_penetration: \"-1 cm\"}}}\n",
+        "strain_penetration"},
+       {concrete + ", wall_reinforcement: {crack_spacing: \"20 cm\"}}}\n", wall + "crack_spacing"},
+       {concrete + ", slab_reinforcement: {crack_spacing: \"20 cm\"}}}\n", slab + "crack_spacing"},
+       {"materials: {concrete: {wall_reinforcement: {crack_spacing: \"20 cm\"}}}\n",
+        wall + "crack_spacing"},
+       {concrete + ", wall_reinforcement: {ratio_y: \"0.8 %\", crack_spacing: \"-1 cm\"}}}\n",
+        "crack_spacing"}});
   }
 } // namespace
 
