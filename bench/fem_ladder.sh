@@ -17,6 +17,8 @@
 # unchanged and whose summary.json exists (delete the directory to rerun). KIMP_LADDER_EXTRA
 # (YAML lines) is appended to every scene, e.g. 'contact: {penalty_step_ratio: 0.8}' or
 # 'contact: {subcycles: 0}'. KIMP_LADDER_LEVELS (default "2.5 1.25", in cm) picks the levels run.
+# KIMP_LADDER_WALL_BARS (YAML map entries) is added to the scene's wall_reinforcement, e.g.
+# 'strain_penetration: "0.13 m", crack_spacing: "0.2 m"'.
 # Usage: bench/fem_ladder.sh [BUILD_DIR (default: build)] [RANKS (default: 1)] [HOLD_MS]
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
@@ -39,7 +41,8 @@ for far in "${fars[@]}"; do
   for h in ${KIMP_LADDER_LEVELS:-2.5 1.25}; do
     run="${far}_$h"
     {
-      grep -v '^wall_heights:' "$root/data/scenes/fem_reinforced_wall.yaml"
+      grep -v '^wall_heights:' "$root/data/scenes/fem_reinforced_wall.yaml" |
+        sed -E "s/(wall_reinforcement: \{[^}]*)\}/\1${KIMP_LADDER_WALL_BARS:+, $KIMP_LADDER_WALL_BARS}}/"
       printf '%s\n' "wall_heights: [${heights%, }]" \
         "mesh: {h_contact: \"$h cm\", wall_aspect_max: 1}" 'slab: {velocity: "1.0 m/s"}' \
         'output: {frame_interval: "0 ms"}' "boundary: {far: $far}"
