@@ -3,7 +3,8 @@
 // curve's post-peak energy per unit area on every mesh, a cracked point whose principal
 // directions turn carries no more tension than its softening curve, and the two keys
 // (materials.concrete.compression_band, crack_frame) reach the impact model and the pushover
-// alike.
+// alike; the bars' keys (strain_penetration, crack_spacing) reach the wall's law and are refused
+// where nothing honours them.
 #ifdef KIMP_WITH_FEM
 
 #  include <algorithm>
