@@ -190,38 +190,22 @@ namespace kimp::python
       }
       d["contacts"] = contacts;
       py::list walls;
+      // The walls' and the energy's numbers under the names of lumped.h5 and summary.json.
       for (const app::YieldingWallLimits &w : c.yielding_walls)
       {
-        const lumped::ContactResult &part = r.contacts[w.contact];
-        py::dict                     wd;
-        wd["name"]                  = w.wall;
-        wd["peak_force"]            = part.peak_force;
-        wd["capacity"]              = w.capacity;
-        wd["peak_resistance"]       = part.peak_resistance;
-        wd["peak_displacement"]     = part.peak_deformation;
-        wd["residual_displacement"] = part.permanent_indentation;
-        wd["failure_displacement"]  = w.failure_displacement;
-        wd["failure_time"]          = part.failure_time ? py::cast(*part.failure_time) : py::none();
-        wd["plastic_work"]          = part.plastic_work;
-        wd["radiated_work"]         = part.radiated_work;
+        const app::YieldingWallRecord record = app::yielding_wall_record(w, r.contacts[w.contact]);
+        py::dict                      wd;
+        wd["name"] = w.wall;
+        for (const app::YieldingWallQuantity &q : app::yielding_wall_quantities)
+          wd[q.name] = record.*q.value;
+        wd["failure_time"] = record.failure_time ? py::cast(*record.failure_time) : py::none();
         walls.append(wd);
       }
-      d["walls"]                     = walls;
-      const lumped::EnergyBalance &e = r.energy;
-      py::dict                     ed;
-      ed["initial"]            = e.initial;
-      ed["input"]              = e.input;
-      ed["kinetic"]            = e.kinetic;
-      ed["strain"]             = e.strain;
-      ed["viscous"]            = e.viscous;
-      ed["hysteretic"]         = e.hysteretic;
-      ed["contact_work"]       = e.contact_work;
-      ed["impact_dissipated"]  = e.impact_dissipated;
-      ed["wall_plastic"]       = e.wall_plastic;
-      ed["wall_radiated"]      = e.wall_radiated;
-      ed["relative_error"]     = e.relative_error;
-      ed["max_relative_error"] = e.max_relative_error;
-      d["energy"]              = ed;
+      d["walls"] = walls;
+      py::dict energy;
+      for (const app::EnergyTerm &t : app::energy_terms())
+        energy[t.name] = r.energy.*t.value;
+      d["energy"] = energy;
       if (c.companion)
         d["companion_peaks"] = peaks(*c.companion);
       return d;

@@ -153,43 +153,15 @@ namespace kimp::app
                            "m");
     }
 
-    /// A yielding wall's peaks, capacity, residual and failure (its part's contact result
-    /// `part`).
-    lumped_internal::YieldingWallRecord yielding_record(const YieldingWallLimits    &w,
-                                                        const lumped::ContactResult &part)
-    {
-      return {part.peak_force,
-              w.capacity,
-              part.peak_resistance,
-              part.peak_deformation,
-              part.permanent_indentation,
-              w.failure_displacement,
-              part.failure_time,
-              part.plastic_work,
-              part.radiated_work};
-    }
-
     /// `energy`: the energy balance's terms (the walls' works with yielding walls).
     void write_energy(ResultsGroup &g, const LumpedCaseResult &c)
     {
       const lumped::Response      &r  = c.response;
       const lumped::EnergyBalance &e  = r.energy;
       ResultsGroup                 eg = g.group("energy");
-      eg.write_scalar("initial", e.initial, "J");
-      eg.write_scalar("input", e.input, "J");
-      eg.write_scalar("kinetic", e.kinetic, "J");
-      eg.write_scalar("strain", e.strain, "J");
-      eg.write_scalar("viscous", e.viscous, "J");
-      eg.write_scalar("hysteretic", e.hysteretic, "J");
-      eg.write_scalar("contact_work", e.contact_work, "J");
-      eg.write_scalar("impact_dissipated", e.impact_dissipated, "J");
-      if (!c.yielding_walls.empty())
-      {
-        eg.write_scalar("wall_plastic", e.wall_plastic, "J");
-        eg.write_scalar("wall_radiated", e.wall_radiated, "J");
-      }
-      eg.write_scalar("relative_error", e.relative_error, "1");
-      eg.write_scalar("max_relative_error", e.max_relative_error, "1");
+      for (const EnergyTerm &t : energy_terms())
+        if (!t.walls || !c.yielding_walls.empty())
+          eg.write_scalar(t.name, e.*t.value, t.unit);
     }
 
     void write_case(ResultsGroup &lumped_group, const LumpedCaseResult &c)
@@ -231,7 +203,7 @@ namespace kimp::app
       for (const YieldingWallLimits &w : c.yielding_walls)
       {
         ResultsGroup wg = g.group("walls/" + w.wall);
-        lumped_internal::write_yielding_wall(wg, yielding_record(w, r.contacts[w.contact]));
+        lumped_internal::write_yielding_wall(wg, yielding_wall_record(w, r.contacts[w.contact]));
       }
       write_energy(g, c);
       if (c.companion)
@@ -312,7 +284,7 @@ namespace kimp::app
         for (const YieldingWallLimits &w : c.yielding_walls)
         {
           nlohmann::json wj =
-            lumped_internal::yielding_wall_json(yielding_record(w, r.contacts[w.contact]));
+            lumped_internal::yielding_wall_json(yielding_wall_record(w, r.contacts[w.contact]));
           wj["name"] = w.wall;
           j["walls"].push_back(wj);
         }
@@ -330,6 +302,40 @@ namespace kimp::app
       return format_quantity(value, "");
     }
   } // namespace
+
+  YieldingWallRecord yielding_wall_record(const YieldingWallLimits    &w,
+                                          const lumped::ContactResult &part)
+  {
+    return {part.peak_force,
+            w.capacity,
+            part.peak_resistance,
+            part.peak_deformation,
+            part.permanent_indentation,
+            w.failure_displacement,
+            part.failure_time,
+            part.plastic_work,
+            part.radiated_work};
+  }
+
+  const std::vector<EnergyTerm> &energy_terms()
+  {
+    using E = lumped::EnergyBalance;
+    static const std::vector<EnergyTerm> terms{
+      {"initial", "J", &E::initial},
+      {"input", "J", &E::input},
+      {"kinetic", "J", &E::kinetic},
+      {"strain", "J", &E::strain},
+      {"viscous", "J", &E::viscous},
+      {"hysteretic", "J", &E::hysteretic},
+      {"contact_work", "J", &E::contact_work},
+      {"impact_dissipated", "J", &E::impact_dissipated},
+      {"wall_plastic", "J", &E::wall_plastic, true},
+      {"wall_radiated", "J", &E::wall_radiated, true},
+      {"relative_error", "1", &E::relative_error},
+      {"max_relative_error", "1", &E::max_relative_error},
+    };
+    return terms;
+  }
 
   namespace lumped_internal
   {
@@ -351,16 +357,10 @@ namespace kimp::app
 
     nlohmann::json yielding_wall_json(const YieldingWallRecord &w)
     {
-      nlohmann::json j = {{"peak_force", w.peak_force},
-                          {"capacity", w.capacity},
-                          {"peak_resistance", w.peak_resistance},
-                          {"peak_resistance_ratio", w.peak_resistance / w.capacity},
-                          {"peak_displacement", w.peak_displacement},
-                          {"residual_displacement", w.residual_displacement},
-                          {"failure_displacement", w.failure_displacement},
-                          {"failed", w.failure_time.has_value()},
-                          {"plastic_work", w.plastic_work},
-                          {"radiated_work", w.radiated_work}};
+      nlohmann::json j = {{"peak_resistance_ratio", w.peak_resistance / w.capacity},
+                          {"failed", w.failure_time.has_value()}};
+      for (const YieldingWallQuantity &q : yielding_wall_quantities)
+        j[q.name] = w.*q.value;
       if (w.failure_time)
         j["failure_time"] = *w.failure_time;
       return j;

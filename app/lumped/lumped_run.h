@@ -69,6 +69,60 @@ namespace kimp::app
     bool ok() const { return status == "ok"; }
   };
 
+  /// A yielding wall at the end of a run (a planar wall, or a wall face in plan), SI: what
+  /// lumped.h5, summary.json and the Python module give of it.
+  struct YieldingWallRecord
+  {
+    double                peak_force            = 0.0; ///< peak contact force on the wall, N
+    double                capacity              = 0.0; ///< of the wall-and-backfill part, N
+    double                peak_resistance       = 0.0; ///< N
+    double                peak_displacement     = 0.0; ///< m
+    double                residual_displacement = 0.0; ///< the permanent set, m
+    double                failure_displacement  = 0.0; ///< m
+    std::optional<double> failure_time;                ///< s (unset: not failed)
+    double                plastic_work  = 0.0;         ///< J
+    double                radiated_work = 0.0;         ///< J
+  };
+
+  /// The record of a case's yielding wall `w`: its part's values from the part's contact result
+  /// `part` (response.contacts[w.contact]).
+  YieldingWallRecord yielding_wall_record(const YieldingWallLimits    &w,
+                                          const lumped::ContactResult &part);
+
+  /// A number of a YieldingWallRecord: its name in summary.json and the Python module (the
+  /// datasets of lumped.h5 have the same names), its SI unit and its member.
+  struct YieldingWallQuantity
+  {
+    const char *name;
+    const char *unit;
+    double YieldingWallRecord::*value;
+  };
+
+  /// Every number of the record in its order, but the optional failure_time.
+  inline constexpr YieldingWallQuantity yielding_wall_quantities[] = {
+    {"peak_force", "N", &YieldingWallRecord::peak_force},
+    {"capacity", "N", &YieldingWallRecord::capacity},
+    {"peak_resistance", "N", &YieldingWallRecord::peak_resistance},
+    {"peak_displacement", "m", &YieldingWallRecord::peak_displacement},
+    {"residual_displacement", "m", &YieldingWallRecord::residual_displacement},
+    {"failure_displacement", "m", &YieldingWallRecord::failure_displacement},
+    {"plastic_work", "J", &YieldingWallRecord::plastic_work},
+    {"radiated_work", "J", &YieldingWallRecord::radiated_work}};
+
+  /// A term of a case's energy balance: its name in lumped.h5 `energy` and in the Python module,
+  /// its SI unit and its member; a `walls` term is in lumped.h5 only for a case with yielding
+  /// walls.
+  struct EnergyTerm
+  {
+    const char *name;
+    const char *unit;
+    double lumped::EnergyBalance::*value;
+    bool                           walls = false;
+  };
+
+  /// Every term of lumped::EnergyBalance, in its order.
+  const std::vector<EnergyTerm> &energy_terms();
+
   /// Seconds per DoF and time step assumed by the cost estimate: about twice the cost measured
   /// on the shipped scenes (8-17 ns for the central difference method); Newmark iterates.
   inline constexpr double cdm_seconds_per_dof_step     = 2e-8;

@@ -80,21 +80,9 @@ namespace kimp::app::lumped_internal
                           const LumpedCasesRun               &run,
                           Clock::time_point                   start);
 
-  /// A yielding wall at the end of a run (a planar wall, or a wall face in plan), SI.
-  struct YieldingWallRecord
-  {
-    double                peak_force            = 0.0; ///< peak contact force on the wall, N
-    double                capacity              = 0.0; ///< of the wall-and-backfill part, N
-    double                peak_resistance       = 0.0; ///< N
-    double                peak_displacement     = 0.0; ///< m
-    double                residual_displacement = 0.0; ///< the permanent set, m
-    double                failure_displacement  = 0.0; ///< m
-    std::optional<double> failure_time;                ///< s (unset: not failed)
-    double                plastic_work  = 0.0;         ///< J
-    double                radiated_work = 0.0;         ///< J
-  };
-  /// Its datasets (with units) and the attribute `failed` in the group `g` of lumped.h5.
+  /// A yielding wall's datasets (with units) and the attribute `failed` in the group `g` of
+  /// lumped.h5.
   void write_yielding_wall(io::ResultsGroup &g, const YieldingWallRecord &w);
-  /// Its entry of summary.json (`failure_time` only when it failed).
+  /// A yielding wall's entry of summary.json (`failure_time` only when it failed).
   nlohmann::json yielding_wall_json(const YieldingWallRecord &w);
 } // namespace kimp::app::lumped_internal

@@ -56,8 +56,8 @@ namespace kimp::app
 
     /// A yielding wall face as the planar walls' record: the face's peak contact force and the
     /// wall-and-backfill part's capacity, peak resistance, displacements, failure and work.
-    lumped_internal::YieldingWallRecord yielding_record(const plan::PlanResponse           &r,
-                                                        const plan::PlanYieldingWallResult &y)
+    YieldingWallRecord yielding_record(const plan::PlanResponse           &r,
+                                       const plan::PlanYieldingWallResult &y)
     {
       return {r.peak_wall_force[y.segment],
               y.capacity,
@@ -73,17 +73,12 @@ namespace kimp::app
     /// The units of yielding_walls_json()'s quantities (summary.json `units.yielding_walls`).
     nlohmann::json yielding_units()
     {
-      return {{"peak_force", "N"},
-              {"capacity", "N"},
-              {"peak_resistance", "N"},
-              {"peak_resistance_ratio", "1"},
-              {"peak_displacement", "m"},
-              {"residual_displacement", "m"},
-              {"final_displacement", "m"},
-              {"failure_displacement", "m"},
-              {"plastic_work", "J"},
-              {"radiated_work", "J"},
-              {"failure_time", "s"}};
+      nlohmann::json units = {{"peak_resistance_ratio", "1"},
+                              {"final_displacement", "m"},
+                              {"failure_time", "s"}};
+      for (const YieldingWallQuantity &q : yielding_wall_quantities)
+        units[q.name] = q.unit;
+      return units;
     }
 
   } // namespace
