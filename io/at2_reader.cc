@@ -256,19 +256,6 @@ namespace kimp::io
   {
   }
 
-  double AccelerationRecord::duration() const
-  {
-    return static_cast<double>(acceleration.size()) * dt;
-  }
-
-  double AccelerationRecord::pga() const
-  {
-    double peak = 0.0;
-    for (const double a : acceleration)
-      peak = std::max(peak, std::abs(a));
-    return peak;
-  }
-
   AccelerationRecord parse_at2(std::string_view content, const std::string &source)
   {
     check_text(content, source);

@@ -13,18 +13,13 @@
 
 namespace kimp::io
 {
-  /// An acceleration record as read from a file: uniform samples in SI.
+  /// An acceleration record as read from a file: uniform samples in SI. The app makes it a
+  /// lumped::GroundMotion (app::ground_motion_of), which gives its duration and PGA.
   struct AccelerationRecord
   {
     double              dt = 0.0;     ///< sampling interval, s
     std::vector<double> acceleration; ///< ü_g at t_i = i·dt, m/s²
     std::string         name;         ///< the file stem (or the source label)
-
-    /// Record length n·dt, s (the PEER convention NPTS × DT).
-    double duration() const;
-
-    /// Peak ground acceleration max_i |ü_g(t_i)|, m/s² (0 for an empty record).
-    double pga() const;
   };
 
   /**

@@ -25,6 +25,7 @@
 #include <thread>
 
 #include "app/lumped/collide_run.h"
+#include "app/lumped/ground_motion_scene.h"
 #include "app/lumped/lumped_scene.h"
 #include "app/lumped/scene_motion.h"
 #include "app/lumped/scene_preview.h"
@@ -187,16 +188,15 @@ namespace kimp::server
       return value;
     }
 
-    /// A record (io::AccelerationRecord) or a motion (lumped::GroundMotion) as the page plots it:
-    /// name, dt (s), pga (m/s²), duration (s) and the acceleration samples (m/s²).
-    template <class Record>
-    nlohmann::json record_json(const Record &record)
+    /// A motion as the page plots it: name, dt (s), pga (m/s²), duration (s) and the
+    /// acceleration samples (m/s²).
+    nlohmann::json motion_json(const lumped::GroundMotion &motion)
     {
-      return {{"name", record.name},
-              {"dt", record.dt},
-              {"pga", record.pga()},
-              {"duration", record.duration()},
-              {"acceleration", record.acceleration}};
+      return {{"name", motion.name},
+              {"dt", motion.dt},
+              {"pga", motion.pga()},
+              {"duration", motion.duration()},
+              {"acceleration", motion.acceleration}};
     }
 
     /// Contained path: `base`/`relative` when it stays below `base` (no "..", no symlink out).
@@ -572,7 +572,7 @@ namespace kimp::server
            try
            {
              send_json(res,
-                       record_json(app::scene_ground_motion(text_member(body, "command"),
+                       motion_json(app::scene_ground_motion(text_member(body, "command"),
                                                             text_member(body, "scene"),
                                                             "scene.yaml",
                                                             options.records_dir,
@@ -813,7 +813,7 @@ namespace kimp::server
                                  "KIMP_RECORDS_DIR)");
                for (const auto &path : io::list_records(*options.records_dir))
                  if (path.stem().string() == req.matches[1].str())
-                   return send_json(res, record_json(io::read_at2(path)));
+                   return send_json(res, motion_json(app::ground_motion_of(io::read_at2(path))));
                throw HttpError(404, "no record " + in_quotes(req.matches[1].str()));
              });
     post("/api/upload",
@@ -836,7 +836,7 @@ namespace kimp::server
                                    io::parse_at2(body, name) :
                                    io::parse_two_column(body, name, unit);
              io::write_text_atomic(path, body);
-             nlohmann::json j = record_json(record);
+             nlohmann::json j = motion_json(app::ground_motion_of(record));
              // The record as a run's scene names it: relative to the run's folder (the child
              // runs there, and the motion preview reads scenes as if from there).
              j["path"] = "../uploads/" + name;

@@ -133,6 +133,15 @@ namespace kimp::app
     return records_directory(flag);
   }
 
+  lumped::GroundMotion ground_motion_of(io::AccelerationRecord record)
+  {
+    lumped::GroundMotion motion;
+    motion.dt           = record.dt;
+    motion.acceleration = std::move(record.acceleration);
+    motion.name         = std::move(record.name);
+    return motion;
+  }
+
   lumped::GroundMotion
   load_ground_motion(const GroundMotionScene                    &scene,
                      const std::optional<std::filesystem::path> &records_dir_override)
@@ -140,13 +149,9 @@ namespace kimp::app
     lumped::GroundMotion motion;
     if (scene.is_record())
     {
-      io::AccelerationRecord record =
-        load_record(scene.record,
-                    scene_records_directory(scene, records_dir_override),
-                    scene.two_column_unit());
-      motion.dt           = record.dt;
-      motion.acceleration = std::move(record.acceleration);
-      motion.name         = std::move(record.name);
+      motion = ground_motion_of(load_record(scene.record,
+                                            scene_records_directory(scene, records_dir_override),
+                                            scene.two_column_unit()));
     }
     else
       motion = lumped::synthetic_near_fault(scene.synthetic);

@@ -202,6 +202,10 @@ namespace kimp::app
   /// key paths; use inside ctx.section("ground_motion")).
   void validate(const GroundMotionScene &scene, io::ValidationContext &ctx);
 
+  /// The record read from a file as a ground motion (its samples, dt and name moved over): the
+  /// engine's GroundMotion is the one home of a record's PGA and duration.
+  lumped::GroundMotion ground_motion_of(io::AccelerationRecord record);
+
   /**
    * Load or generate the motion, then scale_to_pga, scale and trim, in that order.
    * @param[in] records_dir_override directory from the command line (wins over the scene's)

@@ -62,8 +62,7 @@ namespace kimp::lumped
   }
 
   CentralDifference::CentralDifference(PoundingModel model, CentralDifferenceOptions options)
-    : model_(std::move(model))
-    , options_(std::move(options))
+    : CentralDifferenceMethod(std::move(model), std::move(options))
   {
     check_stepping(options_, model_.n_dofs());
     const ParameterCheck check("central_difference.");
@@ -118,11 +117,6 @@ namespace kimp::lumped
     const double target = options.safety * stability.dt_critical;
     const double n_sub  = std::ceil(record_dt / target * (1.0 - 1e-12));
     return record_dt / std::max(n_sub, 1.0);
-  }
-
-  double CentralDifference::time_step(const double record_dt) const
-  {
-    return central_difference_step(record_dt, options_, stability_);
   }
 
 

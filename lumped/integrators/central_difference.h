@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lumped/excitation/ground_motion.h"
@@ -143,6 +144,43 @@ namespace kimp::lumped
                                  const StabilityLimit  &stability);
 
   /**
+   * What every fixed-step central difference integrator holds (CentralDifference, the plan
+   * engine's lumped::plan::PlanCentralDifference): its model, its options (SteppingOptions or
+   * derived) and their stability limit, and the step it takes for a record. The derived
+   * constructor checks the options and sets stability_.
+   */
+  template <class Model, class Options>
+  class CentralDifferenceMethod
+  {
+  public:
+    /// ω_max of the structure, with the contacts closed, of the impacts, and Δt_cr = 2/ω_max.
+    const StabilityLimit &stability() const { return stability_; }
+
+    /**
+     * The step used for a record sampled every `record_dt` seconds (central_difference_step()).
+     * @throws TimeStepError when options.dt exceeds stability().dt_critical (both numbers named).
+     */
+    double time_step(double record_dt) const
+    {
+      return central_difference_step(record_dt, options_, stability_);
+    }
+
+    const Model   &model() const { return model_; }
+    const Options &options() const { return options_; }
+
+  protected:
+    CentralDifferenceMethod(Model model, Options options)
+      : model_(std::move(model))
+      , options_(std::move(options))
+    {
+    }
+
+    Model          model_;
+    Options        options_;
+    StabilityLimit stability_;
+  };
+
+  /**
    * Fixed-step central difference integrator with an allocation-free time loop. The effective
    * matrix A = M/Δt² + C/(2Δt) is block-tridiagonal (one block per building, no coupling between
    * blocks) and is inverted once. Contacts and the isolator are evaluated explicitly at u_n
@@ -185,19 +223,11 @@ namespace kimp::lumped
    * + ü_g(t_n) (docs/physics.md §5), the contact forces F_n, and the energy terms (E_kin and
    * E_strain only at the check points, where they are used).
    */
-  class CentralDifference
+  class CentralDifference : public CentralDifferenceMethod<PoundingModel, CentralDifferenceOptions>
   {
   public:
     /// @throws std::invalid_argument for invalid options.
     explicit CentralDifference(PoundingModel model, CentralDifferenceOptions options = {});
-
-    const StabilityLimit &stability() const { return stability_; }
-
-    /**
-     * The step used for a record sampled every `record_dt` seconds.
-     * @throws TimeStepError when options.dt exceeds stability().dt_critical (both numbers named).
-     */
-    double time_step(double record_dt) const;
 
     /**
      * Integrate from rest (or the initial conditions) under ü_g (zero past the record's end):
@@ -205,15 +235,6 @@ namespace kimp::lumped
      * @throws TimeStepError, DivergenceError (time, step and DoF named).
      */
     Response run(const GroundMotion &motion) const;
-
-    const PoundingModel &model() const { return model_; }
-
-    const CentralDifferenceOptions &options() const { return options_; }
-
-  private:
-    PoundingModel            model_;
-    CentralDifferenceOptions options_;
-    StabilityLimit           stability_;
   };
 
   /**

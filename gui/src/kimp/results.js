@@ -4,7 +4,7 @@
 
 (function () {
   const {
-    view, COLORS, el, fmt, parseCsv, seriesGroups, chart, section, table, cellNumber, cellUnit,
+    view, COLORS, el, fmt, parseCsv, seriesGroups, chart, section, table, columnTable, cellNumber, cellUnit,
     columnNumbers, csvSection, seriesSection, lumpedSection, planSection, femSection, femSummarySection, DISPLAY_UNITS,
     units, setDisplayUnit,
   } = kimp;
@@ -312,38 +312,23 @@
         ? 'Moat walls as yielding elements (estimate, beside the linear springs): capacity and residual displacement'
         : 'Yielding moat walls (the answer with inelastic materials)',
     );
-    table(
+    columnTable(
       sec,
       [
-        'record',
-        'H (m)',
-        'element from',
-        'envelope',
-        'capacity (kN/m)',
-        'capacity W (kN)',
-        'peak wall resistance (kN)',
-        'resistance / capacity W',
-        'peak wall displacement (cm)',
-        'residual (cm)',
-        'failed',
-        'status',
+        ['record', (r) => r[col('record')]],
+        ['H (m)', (r) => cell(r, 'wall_height_m', 4)],
+        ['element from', (r) => source(r[col('wall_height_m')])],
+        ['envelope', (r) => elementValue(r[col('wall_height_m')], 'envelope')],
+        ['capacity (kN/m)', (r) => cell(r, 'wall_capacity_per_metre_kN_per_m', 4)],
+        ['capacity W (kN)', (r) => cell(r, 'wall_capacity_kN', 4)],
+        ['peak wall resistance (kN)', (r) => cell(r, 'peak_wall_resistance_kN', 4)],
+        ['resistance / capacity W', (r) => cell(r, 'resistance_over_capacity', 3)],
+        ['peak wall displacement (cm)', (r) => cell(r, 'peak_wall_displacement_cm', 4)],
+        ['residual (cm)', (r) => cell(r, 'residual_wall_displacement_cm', 4)],
+        ['failed', (r) => (r[col('failed')] === '1' ? `yes, at ${cell(r, 'failure_time_s', 4)} s` : 'no')],
+        ['status', (r) => r[col('status')]],
       ],
-      runs
-        .slice(1)
-        .map((r) => [
-          r[col('record')],
-          cell(r, 'wall_height_m', 4),
-          source(r[col('wall_height_m')]),
-          elementValue(r[col('wall_height_m')], 'envelope'),
-          cell(r, 'wall_capacity_per_metre_kN_per_m', 4),
-          cell(r, 'wall_capacity_kN', 4),
-          cell(r, 'peak_wall_resistance_kN', 4),
-          cell(r, 'resistance_over_capacity', 3),
-          cell(r, 'peak_wall_displacement_cm', 4),
-          cell(r, 'residual_wall_displacement_cm', 4),
-          r[col('failed')] === '1' ? `yes, at ${cell(r, 'failure_time_s', 4)} s` : 'no',
-          r[col('status')],
-        ]),
+      runs.slice(1),
       'data yielding-answer',
       2,
     );
@@ -489,37 +474,29 @@
     const head = rows[0];
     const col = (n) => head.indexOf(n);
     const unit = (r, n) => (col(n) >= 0 ? r[col(n)] : '');
-    table(
+    const number = (r, n, digits) => fmt(parseFloat(r[col(n)]), digits);
+    columnTable(
       sec,
       [
-        'case',
-        'H (m)',
-        'variant',
-        'law',
-        'k per metre',
-        'k 95 % interval',
-        'k of the wall width',
-        'COR',
-        'exponent',
-        'normalised RMS',
-        'status',
+        ['case', (r) => r[col('case')]],
+        ['H (m)', (r) => r[col('wall_height_m')]],
+        ['variant', (r) => r[col('variant')]],
+        ['law', (r) => r[col('law')]],
+        [
+          'k per metre',
+          (r) => el('span', { class: 'fit-k', text: `${number(r, 'k_per_m', 4)} ${unit(r, 'k_per_m_unit')}` }),
+        ],
+        [
+          'k 95 % interval',
+          (r) => `${number(r, 'k_per_m_lower', 3)} to ${number(r, 'k_per_m_upper', 3)} ${unit(r, 'k_per_m_unit')}`,
+        ],
+        ['k of the wall width', (r) => `${number(r, 'k_total', 4)} ${unit(r, 'k_total_unit')}`],
+        ['COR', (r) => number(r, 'cor', 4)],
+        ['exponent', (r) => r[col('exponent')]],
+        ['normalised RMS', (r) => number(r, 'normalised_rms', 3)],
+        ['status', (r) => r[col('status')]],
       ],
-      rows
-        .slice(1)
-        .map((r) => [
-          r[col('case')],
-          r[col('wall_height_m')],
-          r[col('variant')],
-          r[col('law')],
-          el('span', { class: 'fit-k', text: `${fmt(parseFloat(r[col('k_per_m')]), 4)} ${unit(r, 'k_per_m_unit')}` }),
-          `${fmt(parseFloat(r[col('k_per_m_lower')]), 3)} to ` +
-            `${fmt(parseFloat(r[col('k_per_m_upper')]), 3)} ${unit(r, 'k_per_m_unit')}`,
-          `${fmt(parseFloat(r[col('k_total')]), 4)} ${unit(r, 'k_total_unit')}`,
-          fmt(parseFloat(r[col('cor')]), 4),
-          r[col('exponent')],
-          fmt(parseFloat(r[col('normalised_rms')]), 3),
-          r[col('status')],
-        ]),
+      rows.slice(1),
       'data fit-table',
     );
   }

@@ -64,6 +64,15 @@
     return t;
   }
 
+  /**
+   * table() of `rows` whose columns are [heading, cell of a row] pairs, so that each heading
+   * stands beside the value under it.
+   */
+  function columnTable(parent, columns, rows, cls, pin) {
+    const header = columns.map(([heading]) => heading);
+    return table(parent, header, rows.map((r) => columns.map(([, cell]) => cell(r))), cls, pin);
+  }
+
   /** A table cell as a number: "0.5", "1e-3", or a quantity "10 cm" (its number, in its unit). */
   function cellNumber(v) {
     return /^\s*-?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?(\s*[A-Za-z%/^.0-9*]+)?\s*$/.test(v) ? parseFloat(v) : NaN;
@@ -268,5 +277,7 @@
     });
   }
 
-  Object.assign(kimp, { section, table, cellNumber, cellUnit, columnNumbers, csvSection, seriesSection, peakCell });
+  Object.assign(kimp, {
+    section, table, columnTable, cellNumber, cellUnit, columnNumbers, csvSection, seriesSection, peakCell,
+  });
 })();
