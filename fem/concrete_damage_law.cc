@@ -187,7 +187,7 @@ namespace kimp::fem
     if (!implex_on_)
       return 0;
     const double kt = h[0], band = h[5];
-    const double lag = std::clamp(tension_damage(kt, h, h[6], h[7]), 0.0, max_damage) - h[2];
+    const double lag = std::clamp(tension_damage(kt, band, h[6], h[7]), 0.0, max_damage) - h[2];
     return std::max(0.0, lag) * p_.youngs_modulus * kt / effective_tensile_strength(band);
   }
 
@@ -200,7 +200,7 @@ namespace kimp::fem
     const double el = kc - plastic_strain(kc, h0[5]);
     const double dc =
       kc > 0 && el > 0 ? 1 - p_.compression_curve(kc, h0[5]) / (p_.youngs_modulus * el) : 0.0;
-    return {{std::clamp(std::max(tension_damage(kt, h0, h0[6], h0[7]), h0[2]), 0.0, max_damage),
+    return {{std::clamp(std::max(tension_damage(kt, h0[5], h0[6], h0[7]), h0[2]), 0.0, max_damage),
              std::clamp(std::max(dc, h0[3]), 0.0, max_damage)}};
   }
 
@@ -340,10 +340,10 @@ namespace kimp::fem
     return {rho * G_s, rho * tau_bar};
   }
 
-  double ConcreteDamageLaw::tension_damage(const double  kt,
-                                           const double *history,
-                                           const double  c,
-                                           const double  s) const
+  double ConcreteDamageLaw::tension_damage(const double kt,
+                                           const double cell_band,
+                                           const double c,
+                                           const double s) const
   {
     const double E = p_.youngs_modulus;
     if (r_.tension_stiffening)
@@ -352,7 +352,7 @@ namespace kimp::fem
       const double ft = p_.f_ctm * p_.dif_tension;
       return kt > ft / E ? 1 - stiffened_tension(kt, c, s) / (E * kt) : 0.0;
     }
-    const double cell_band = history[5], h = tension_band(cell_band);
+    const double h  = tension_band(cell_band);
     const double ft = effective_tensile_strength(cell_band), k0 = ft / E;
     if (!(kt > k0))
       return 0;
@@ -465,7 +465,7 @@ namespace kimp::fem
     // The crack normal the damage is measured across: the fixed one of a cracked point, else
     // the largest principal effective stress's (damaged_stress() fixes it when it cracks).
     const bool cracked = h0[2] > 0 && !p_.rotating_crack;
-    double     dt      = tension_damage(kt, h0, cracked ? h0[6] : ca, cracked ? h0[7] : sa_n);
+    double     dt      = tension_damage(kt, h0[5], cracked ? h0[6] : ca, cracked ? h0[7] : sa_n);
     // sigma_c(kappa_c) = (1 - d_c) E (kappa_c - eps_p) in uniaxial compression.
     const double el = kc - plastic_strain(kc, h0[5]);
     double       dc = kc > 0 && el > 0 ? 1 - p_.compression_curve(kc, h0[5]) / (E * el) : 0.0;
@@ -513,7 +513,7 @@ namespace kimp::fem
     else if (kt > h0[0] || kc > h0[1])
     {
       const bool cracked = h0[2] > 0 && !p_.rotating_crack;
-      dt = std::clamp(std::max(tension_damage(kt, h0, cracked ? h0[6] : c, cracked ? h0[7] : s),
+      dt = std::clamp(std::max(tension_damage(kt, h0[5], cracked ? h0[6] : c, cracked ? h0[7] : s),
                                h0[2]),
                       0.0,
                       max_damage);

@@ -265,8 +265,9 @@ namespace kimp::fem
      * field theory's average tension) instead of softening to nothing over s_rm. It is capped
      * by what the bars can still take at a crack, sum rho_i (f_y - E_s eps_i) cos^2 theta_i with
      * eps_i = eps_1 cos^2 theta_i (the crack check in its strain form, exact for monotonic
-     * loading), so it is gone when the bars yield and the member's capacity stays its bars'
-     * (docs/physics.md §6 "Tension stiffening").
+     * loading), so it is gone where the bars at the point reach yield. Each point checks its
+     * own strain, so in bending the concrete nearer the neutral axis keeps some tension after
+     * the face's bars have yielded (docs/physics.md §6 "Tension stiffening").
      */
     bool tension_stiffening = false;
     /** The steel ratios the crack check of tension stiffening reads (< 0: ratio_x, ratio_y).
@@ -447,11 +448,11 @@ namespace kimp::fem
     /** As concrete_stress() with compressive plastic strain (history slots 0-11). */
     VoigtStress
     plastic_concrete_stress(const VoigtStrain &strain, const double *h0, double *h1) const;
-    /** Tension damage at the tension measure kappa_t (history slot 0) of the point with
-     *  history @p h (crack band h[5]) and crack normal (c, s): exponential softening with the
-     *  energy G_F / tension_band(h[5]), 0 up to the tensile strength; with tension stiffening
+    /** Tension damage at the tension measure kappa_t (history slot 0) of a crack band h (m)
+     *  across a crack of normal (c, s): exponential softening with the energy
+     *  G_F / tension_band(h), 0 up to the tensile strength; with tension stiffening
      *  1 - sigma_ts / (E kappa_t) instead. */
-    double tension_damage(double kappa_t, const double *h, double c, double s) const;
+    double tension_damage(double kappa_t, double h, double c, double s) const;
     /** The tension-stiffening stress sigma_ts at kappa_t across a crack of normal (c, s), Pa
      *  (ReinforcementParameters::tension_stiffening). */
     double stiffened_tension(double kappa_t, double c, double s) const;
