@@ -20,6 +20,8 @@
 # KIMP_PUSHOVER_EXTRAS=0 skips the cases after the convergence study. KIMP_PUSHOVER_UNLOAD_DRIFTS
 # (e.g. "1 2"; default none) unloads the convergence study's pushes to zero force and reloads at
 # those drifts (% of H), the study's element's unloadings; each unloading's secant is printed.
+# KIMP_PUSHOVER_WALL_BARS (YAML map entries) is added to the wall's bars, e.g. 'crack_spacing:
+# "0.2 m", tension_stiffening: true'.
 # KIMP_PUSHOVER_KEEP=DIR keeps each run's output directory and log in DIR/<case> (with
 # KIMP_PUSHOVER_VERBOSE=1, the default when keeping, the log has the static solver's line per
 # step and per halved step).
@@ -38,7 +40,7 @@ bench_require fem time
 export KIMP_DATA_DIR="$root"
 bench_workdir
 scene() { # $1: h_contact, $2: unload_at list, $3: concrete model, $4: with_backfill, $5: height, $6: increment
-  local concrete="{model: damage_plasticity, f_cm: \"38 MPa\", wall_reinforcement: {ratio_y: \"0.5 %\", hardening: 0.01}}"
+  local concrete="{model: damage_plasticity, f_cm: \"38 MPa\", wall_reinforcement: {ratio_y: \"0.5 %\", hardening: 0.01${KIMP_PUSHOVER_WALL_BARS:+, $KIMP_PUSHOVER_WALL_BARS}}}"
   [[ "$3" == elastic ]] && concrete="{model: elastic}"
   local interface=contact
   [[ "$4" == false ]] && interface=bonded

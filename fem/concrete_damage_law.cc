@@ -86,6 +86,11 @@ namespace kimp::fem
         !(reinforcement.strain_penetration >= 0))
       throw std::invalid_argument("reinforcement: need dowel_coefficient, hinge_length and "
                                   "strain_penetration >= 0");
+    if (reinforcement.tension_stiffening &&
+        !(reinforcement.crack_spacing > 0 && (reinforced_ || reinforcement.bridging_ratio_x > 0 ||
+                                              reinforcement.bridging_ratio_y > 0)))
+      throw std::invalid_argument("reinforcement: tension stiffening needs bars and a crack "
+                                  "spacing > 0");
     if (!(p.plastic_fraction >= 0 && p.plastic_fraction < 1))
       throw std::invalid_argument("concrete damage law: need 0 <= plastic_fraction < 1");
     const ReinforcementParameters &r = reinforcement;
@@ -182,7 +187,7 @@ namespace kimp::fem
     if (!implex_on_)
       return 0;
     const double kt = h[0], band = h[5];
-    const double lag = std::clamp(tension_damage(kt, band), 0.0, max_damage) - h[2];
+    const double lag = std::clamp(tension_damage(kt, band, h[6], h[7]), 0.0, max_damage) - h[2];
     return std::max(0.0, lag) * p_.youngs_modulus * kt / effective_tensile_strength(band);
   }
 
@@ -195,7 +200,7 @@ namespace kimp::fem
     const double el = kc - plastic_strain(kc, h0[5]);
     const double dc =
       kc > 0 && el > 0 ? 1 - p_.compression_curve(kc, h0[5]) / (p_.youngs_modulus * el) : 0.0;
-    return {{std::clamp(std::max(tension_damage(kt, h0[5]), h0[2]), 0.0, max_damage),
+    return {{std::clamp(std::max(tension_damage(kt, h0[5], h0[6], h0[7]), h0[2]), 0.0, max_damage),
              std::clamp(std::max(dc, h0[3]), 0.0, max_damage)}};
   }
 
@@ -335,14 +340,38 @@ namespace kimp::fem
     return {rho * G_s, rho * tau_bar};
   }
 
-  double ConcreteDamageLaw::tension_damage(const double kt, const double cell_band) const
+  double ConcreteDamageLaw::tension_damage(const double kt,
+                                           const double cell_band,
+                                           const double c,
+                                           const double s) const
   {
+    const double E = p_.youngs_modulus;
+    if (r_.tension_stiffening)
+    {
+      // No softening branch to keep from snapping back: the material's own f_t.
+      const double ft = p_.f_ctm * p_.dif_tension;
+      return kt > ft / E ? 1 - stiffened_tension(kt, c, s) / (E * kt) : 0.0;
+    }
     const double h  = tension_band(cell_band);
-    const double ft = effective_tensile_strength(cell_band), k0 = ft / p_.youngs_modulus;
+    const double ft = effective_tensile_strength(cell_band), k0 = ft / E;
     if (!(kt > k0))
       return 0;
     const double ef = p_.fracture_energy / (h * ft) - 0.5 * k0;
     return 1 - k0 / kt * std::exp(-(kt - k0) / ef);
+  }
+
+  double ConcreteDamageLaw::stiffened_tension(double kt, double c, double s) const
+  {
+    // Collins and Mitchell's average tension, capped by the bars' reserve at a crack: a bar at
+    // angle theta to the crack normal strains eps_1 cos^2 theta and carries its force across
+    // the crack with the weight cos^2 theta.
+    const double ft = p_.f_ctm * p_.dif_tension, fy = r_.yield_stress, Es = r_.youngs_modulus;
+    const double cc = c * c, ss = s * s;
+    const double rx = r_.bridging_ratio_x >= 0 ? r_.bridging_ratio_x : r_.ratio_x;
+    const double ry = r_.bridging_ratio_y >= 0 ? r_.bridging_ratio_y : r_.ratio_y;
+    const double reserve =
+      rx * std::max(0.0, fy - Es * kt * cc) * cc + ry * std::max(0.0, fy - Es * kt * ss) * ss;
+    return std::min(ft / (1 + std::sqrt(500 * kt)), reserve);
   }
 
   double ConcreteDamageLaw::plastic_strain(double kc, double band) const
@@ -433,7 +462,10 @@ namespace kimp::fem
     const double kt = std::max(h0[0], std::max(std::max(sa, szz), 0.0) / E);
     h1[0]           = kt;
     h1[1]           = kc;
-    double dt       = tension_damage(kt, h0[5]);
+    // The crack normal the damage is measured across: the fixed one of a cracked point, else
+    // the largest principal effective stress's (damaged_stress() fixes it when it cracks).
+    const bool cracked = h0[2] > 0 && !p_.rotating_crack;
+    double     dt      = tension_damage(kt, h0[5], cracked ? h0[6] : ca, cracked ? h0[7] : sa_n);
     // sigma_c(kappa_c) = (1 - d_c) E (kappa_c - eps_p) in uniaxial compression.
     const double el = kc - plastic_strain(kc, h0[5]);
     double       dc = kc > 0 && el > 0 ? 1 - p_.compression_curve(kc, h0[5]) / (E * el) : 0.0;
@@ -480,7 +512,11 @@ namespace kimp::fem
     }
     else if (kt > h0[0] || kc > h0[1])
     {
-      dt = std::clamp(std::max(tension_damage(kt, h0[5]), h0[2]), 0.0, max_damage);
+      const bool cracked = h0[2] > 0 && !p_.rotating_crack;
+      dt = std::clamp(std::max(tension_damage(kt, h0[5], cracked ? h0[6] : c, cracked ? h0[7] : s),
+                               h0[2]),
+                      0.0,
+                      max_damage);
       dc =
         std::clamp(std::max(kc > 0 ? 1 - p_.compression_curve(kc, h0[5]) / (E * kc) : 0.0, h0[3]),
                    0.0,

@@ -258,6 +258,22 @@ namespace kimp::fem
      * spacing of the reinforced wall"; >= 0).
      */
     double crack_spacing = 0;
+    /**
+     * Tension stiffening (needs crack_spacing > 0): the concrete between the cracks the bars
+     * impose carries, on average, f_t / (1 + sqrt(500 eps_1)) at the crack-normal strain eps_1
+     * (Collins and Mitchell, Prestressed Concrete Structures, 1991; the modified compression
+     * field theory's average tension) instead of softening to nothing over s_rm. It is capped
+     * by what the bars can still take at a crack, sum rho_i (f_y - E_s eps_i) cos^2 theta_i with
+     * eps_i = eps_1 cos^2 theta_i (the crack check in its strain form, exact for monotonic
+     * loading), so it is gone where the bars at the point reach yield. Each point checks its
+     * own strain, so in bending the concrete nearer the neutral axis keeps some tension after
+     * the face's bars have yielded (docs/physics.md §6 "Tension stiffening").
+     */
+    bool tension_stiffening = false;
+    /** The steel ratios the crack check of tension stiffening reads (< 0: ratio_x, ratio_y).
+     *  The pushover's wall concentrates its bars in columns of cells, but every cell's cracks
+     *  are bridged by the section's smeared steel: it sets both to that. Not a scene key. */
+    double bridging_ratio_x = -1, bridging_ratio_y = -1;
     /** True if any bar is present. */
     bool any() const { return ratio_x > 0 || ratio_y > 0; }
     /** Kinematic hardening modulus H = b E_s / (1 - b) (Pa): E_s H / (E_s + H) = b E_s. */
@@ -432,10 +448,14 @@ namespace kimp::fem
     /** As concrete_stress() with compressive plastic strain (history slots 0-11). */
     VoigtStress
     plastic_concrete_stress(const VoigtStrain &strain, const double *h0, double *h1) const;
-    /** Tension damage at the tension measure kappa_t (history slot 0) of a crack band h (m):
-     *  exponential softening with the energy G_F / tension_band(h), 0 up to the tensile
-     *  strength. */
-    double tension_damage(double kappa_t, double h) const;
+    /** Tension damage at the tension measure kappa_t (history slot 0) of a crack band h (m)
+     *  across a crack of normal (c, s): exponential softening with the energy
+     *  G_F / tension_band(h), 0 up to the tensile strength; with tension stiffening
+     *  1 - sigma_ts / (E kappa_t) instead. */
+    double tension_damage(double kappa_t, double h, double c, double s) const;
+    /** The tension-stiffening stress sigma_ts at kappa_t across a crack of normal (c, s), Pa
+     *  (ReinforcementParameters::tension_stiffening). */
+    double stiffened_tension(double kappa_t, double c, double s) const;
     /** b_c times the uniaxial curve's inelastic strain at the compression measure kappa_c. */
     double plastic_strain(double kappa_c, double band) const;
     /** The bars' steel at a point of crack band @p h (m): H scaled by h / L_p with a hinge

@@ -255,6 +255,9 @@ namespace kimp::fem
         plain.ratio_y = 0;
         // Half the section's vertical steel in each bar column.
         barred.ratio_y = p.bars.ratio_y * p.wall_thickness / 2 / bar_width;
+        // Tension stiffening: every cell's cracks are bridged by the section's smeared bars.
+        plain.bridging_ratio_x = barred.bridging_ratio_x = p.bars.ratio_x;
+        plain.bridging_ratio_y = barred.bridging_ratio_y = p.bars.ratio_y;
         check(barred.ratio_y < 1,
               "the bars' area exceeds their column of cells (ratio_y = " + num(p.bars.ratio_y) +
                 ")");

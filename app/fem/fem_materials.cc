@@ -98,6 +98,14 @@ namespace kimp::app
                 std::string("concrete.") + key + ".crack_spacing",
                 format_quantity(r->crack_spacing, "m"),
                 "needs bars (ratio_x or ratio_y > 0) in a damage_plasticity concrete");
+    for (const auto &[key, r] :
+         {std::pair{"wall_reinforcement", &materials.concrete.wall_reinforcement},
+          std::pair{"slab_reinforcement", &materials.concrete.slab_reinforcement}})
+      ctx.check(!r->tension_stiffening || r->crack_spacing > 0,
+                std::string("concrete.") + key + ".tension_stiffening",
+                "true",
+                "needs the bars' crack_spacing (> 0): the tension between the cracks is that of "
+                "a member cracked every s_rm");
   }
 
   fem::SoilParameters soil_parameters(const FemSoil &s)

@@ -60,6 +60,11 @@ namespace kimp::fem
                 "0.2 m for a 0.25 m wall with 12 mm bars at 40 mm cover, 0.4 % a face); 0: "
                 "each cell's own crack band",
                 io::Range::at_least(0.0).and_at_most(2.0));
+    io.flag("tension_stiffening",
+            s.tension_stiffening,
+            "the concrete between the cracks keeps an average tension f_t / (1 + sqrt(500 "
+            "eps)) (Collins and Mitchell), capped by the bars' reserve at a crack, instead of "
+            "softening to nothing over crack_spacing (needs crack_spacing)");
   }
 } // namespace kimp::fem
 

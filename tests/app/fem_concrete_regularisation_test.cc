@@ -3,8 +3,8 @@
 // curve's post-peak energy per unit area on every mesh, a cracked point whose principal
 // directions turn carries no more tension than its softening curve, and the two keys
 // (materials.concrete.compression_band, crack_frame) reach the impact model and the pushover
-// alike; the bars' keys (strain_penetration, crack_spacing) reach the wall's law and are refused
-// where nothing honours them.
+// alike; the bars' keys (strain_penetration, crack_spacing, tension_stiffening) reach the wall's
+// law and are refused where nothing honours them.
 #ifdef KIMP_WITH_FEM
 
 #  include <algorithm>
@@ -230,10 +230,11 @@ namespace
     }
   }
 
-  // wall_reinforcement.strain_penetration and crack_spacing reach the wall's law in SI (0 when
-  // absent); each is refused where nothing could honour it: strain penetration without vertical
-  // bars, on an elastic concrete or on the slab's bars (nothing anchors them); a crack spacing
-  // without bars or on an elastic concrete.
+  // wall_reinforcement.strain_penetration, crack_spacing and tension_stiffening reach the wall's
+  // law in SI (0 when absent); each is refused where nothing could honour it: strain penetration
+  // without vertical bars, on an elastic concrete or on the slab's bars (nothing anchors them); a
+  // crack spacing without bars or on an elastic concrete; tension stiffening without the crack
+  // spacing it is the tension of.
   TEST(FemConcreteScene, TheBarsKeysReachTheWallsLawAndAreRefusedWhereNothingHonoursThem)
   {
     const auto bars = [](const std::string &keys)
@@ -245,6 +246,8 @@ namespace
     EXPECT_DOUBLE_EQ(bars(", crack_spacing: \"20 cm\"").crack_spacing, 0.2);
     EXPECT_DOUBLE_EQ(bars("").strain_penetration, 0.0);
     EXPECT_DOUBLE_EQ(bars("").crack_spacing, 0.0);
+    EXPECT_TRUE(bars(", crack_spacing: \"20 cm\", tension_stiffening: true").tension_stiffening);
+    EXPECT_FALSE(bars("").tension_stiffening);
     const std::string wall = "concrete.wall_reinforcement.", slab = "concrete.slab_reinforcement.";
     expect_refused(
       {{concrete + ", wall_reinforcement: {strain_penetration: \"13 cm\"}}}\n",
@@ -260,7 +263,11 @@ namespace
        {"materials: {concrete: {wall_reinforcement: {crack_spacing: \"20 cm\"}}}\n",
         wall + "crack_spacing"},
        {concrete + ", wall_reinforcement: {ratio_y: \"0.8 %\", crack_spacing: \"-1 cm\"}}}\n",
-        "crack_spacing"}});
+        "crack_spacing"},
+       {concrete + ", wall_reinforcement: {ratio_y: \"0.8 %\", tension_stiffening: true}}}\n",
+        wall + "tension_stiffening"},
+       {concrete + ", slab_reinforcement: {ratio_x: \"0.5 %\", tension_stiffening: true}}}\n",
+        slab + "tension_stiffening"}});
   }
 } // namespace
 

@@ -541,6 +541,75 @@ namespace
     EXPECT_LT(law.stress({{20 * e0, 0, 0}}, h0.data(), h1.data())[0], 0.01 * ft);
   }
 
+  // Tension stiffening (ReinforcementParameters::tension_stiffening): a tie with bars along y
+  // (rho_y = 0.8 %, nu = 0) pulled along y. The concrete's part of sigma_yy, the total less the
+  // bars' rho E_s eps, follows min(f_t / (1 + sqrt(500 eps)), rho (f_y - E_s eps)) written out
+  // here (Collins and Mitchell's average tension and the crack check), so the tie's force at
+  // the bars' yield strain is rho f_y exactly; the path is the same on three cells; unloading
+  // is secant (the damage) and the law is refused without a crack spacing.
+  TEST(Concrete, TensionStiffeningFollowsTheAverageTensionAndTheBarsReserve)
+  {
+    ConcreteParameters c = ConcreteParameters::from_f_cm(38e6);
+    c.poisson_ratio      = 0;
+    ReinforcementParameters r;
+    r.ratio_y                  = 0.008;
+    r.crack_spacing            = 0.2;
+    r.tension_stiffening       = true;
+    ReinforcementParameters rp = r;
+    rp.strain_penetration      = 0.13;
+    const ConcreteDamageLaw          law(c, r), anchored(c, rp);
+    const double                     ft = c.f_ctm, E = c.youngs_modulus, Es = r.youngs_modulus;
+    const double                     ey = r.yield_stress / Es, e0 = ft / E;
+    std::vector<std::vector<double>> paths;
+    for (const double h : {0.0125, 0.025, 0.05})
+    {
+      std::vector<double> h0(law.n_history()), h1(law.n_history()), path;
+      law.initialize_point(h0.data(), h);
+      for (int i = 1; i <= 400; ++i)
+      {
+        const double e = 1.5 * ey * i / 400;
+        const double s = law.stress({{0, e, 0}}, h0.data(), h1.data())[1];
+        const double concrete =
+          s - r.ratio_y *
+                SteelBar(r)
+                  .update(e, h0[ConcreteDamageLaw::p_slot + 2], h0[ConcreteDamageLaw::p_slot + 3])
+                  .stress;
+        const double expected = e <= e0 ?
+                                  E * e :
+                                  std::min(ft / (1 + std::sqrt(500 * e)),
+                                           r.ratio_y * std::max(0.0, r.yield_stress - Es * e));
+        // A fully damaged point keeps 10^-6 of E (the damage's cap).
+        EXPECT_NEAR(concrete, expected, 1e-9 * ft + 1e-6 * E * e) << "h = " << h << ", eps = " << e;
+        path.push_back(s);
+        h0 = h1;
+      }
+      paths.push_back(path);
+    }
+    EXPECT_EQ(paths[0], paths[1]);
+    EXPECT_EQ(paths[0], paths[2]);
+    // At the bars' yield strain the concrete between the cracks has nothing left to carry.
+    std::vector<double> h0(law.n_history()), h1(law.n_history());
+    law.initialize_point(h0.data(), 0.025);
+    for (const double e : {0.5 * ey, ey})
+    {
+      const double s = law.stress({{0, e, 0}}, h0.data(), h1.data())[1];
+      h0             = h1;
+      if (e == ey)
+        EXPECT_NEAR(s, r.ratio_y * r.yield_stress, 1.01e-6 * E * ey);
+      else
+      {
+        // Unloading from 0.5 eps_y to 0.25 eps_y: the concrete's part halves (secant).
+        const double ts =
+          law.stress({{0, 0.25 * ey, 0}}, h0.data(), h1.data())[1] - r.ratio_y * Es * 0.25 * ey;
+        EXPECT_NEAR(ts, 0.5 * (s - r.ratio_y * Es * 0.5 * ey), 1e-9 * ft);
+      }
+    }
+    // Refused without the crack spacing it is defined over.
+    ReinforcementParameters unspaced = r;
+    unspaced.crack_spacing           = 0;
+    EXPECT_THROW(ConcreteDamageLaw(c, unspaced), std::invalid_argument);
+  }
+
   TEST(Concrete, UniaxialCompressionFollowsTheModelCodeCurve)
   {
     // sigma / f_cm = (k eta - eta^2) / (1 + (k - 2) eta), eta = eps / eps_c1,
