@@ -18,7 +18,7 @@
 # (YAML lines) is appended to every scene, e.g. 'contact: {penalty_step_ratio: 0.8}' or
 # 'contact: {subcycles: 0}'. KIMP_LADDER_LEVELS (default "2.5 1.25", in cm) picks the levels run.
 # KIMP_LADDER_WALL_BARS (YAML map entries) is added to the scene's wall_reinforcement, e.g.
-# 'strain_penetration: "0.13 m", crack_spacing: "0.2 m"'.
+# 'strain_penetration: "0.13 m", crack_spacing: "0.2 m", tension_stiffening: true'.
 # Usage: bench/fem_ladder.sh [BUILD_DIR (default: build)] [RANKS (default: 1)] [HOLD_MS]
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
