@@ -35,6 +35,39 @@ namespace
     return {{m + r, m - r, szz}};
   }
 
+  /** MC2010 concrete of f_cm = 38 MPa with nu = 0 (uniaxial strain is uniaxial stress). */
+  ConcreteParameters uniaxial_concrete()
+  {
+    ConcreteParameters c = ConcreteParameters::from_f_cm(38e6);
+    c.poisson_ratio      = 0;
+    return c;
+  }
+
+  /** The moat wall's vertical bars (0.8 %) with their crack spacing of 0.2 m. */
+  ReinforcementParameters spaced_wall_bars()
+  {
+    ReinforcementParameters r;
+    r.ratio_y       = 0.008;
+    r.crack_spacing = 0.2;
+    return r;
+  }
+
+  /** The stress path (all three components, step after step) of a virgin point of @p law in a
+   *  cell of crack band @p h strained by strain(i), i = 1..n. */
+  template <class Strain>
+  std::vector<double> stress_path(const ConcreteDamageLaw &law, double h, int n, Strain strain)
+  {
+    std::vector<double> h0(law.n_history()), h1(law.n_history()), path;
+    law.initialize_point(h0.data(), h);
+    for (int i = 1; i <= n; ++i)
+    {
+      const VoigtStress s = law.stress(strain(i), h0.data(), h1.data());
+      path.insert(path.end(), s.begin(), s.end());
+      h0 = h1;
+    }
+    return path;
+  }
+
   /** A fixed linear congruential sequence in [-1, 1): the random strain walks repeat run to run. */
   class UniformSequence
   {
@@ -493,13 +526,10 @@ namespace
   // without the key: CrackBandDissipatesFractureEnergyForThreeElementSizes).
   TEST(Concrete, CrackSpacingMakesTheTensionSofteningTheSameOnEveryCell)
   {
-    ConcreteParameters c = ConcreteParameters::from_f_cm(38e6);
-    c.poisson_ratio      = 0;
-    ReinforcementParameters r;
-    r.ratio_y                    = 0.008;
-    r.crack_spacing              = 0.2;
-    ReinforcementParameters bare = r;
-    bare.crack_spacing           = 0;
+    const ConcreteParameters      c    = uniaxial_concrete();
+    const ReinforcementParameters r    = spaced_wall_bars();
+    ReinforcementParameters       bare = r;
+    bare.crack_spacing                 = 0;
     const ConcreteDamageLaw law(c, r), unspaced(c, bare);
     const double            ft = law.effective_tensile_strength(0.0125), e0 = ft / c.youngs_modulus;
     EXPECT_DOUBLE_EQ(ft, unspaced.effective_tensile_strength(r.crack_spacing));
@@ -508,7 +538,7 @@ namespace
     for (const double h : {0.0125, 0.025, 0.05})
     {
       // Uniaxial: s_rm times the work per unit volume to 60 e_0, the crack open through.
-      std::vector<double> h0(law.n_history()), h1(law.n_history()), path;
+      std::vector<double> h0(law.n_history()), h1(law.n_history());
       law.initialize_point(h0.data(), h);
       double work = 0, s_prev = 0;
       for (double e = de; e < 60 * e0; e += de)
@@ -521,14 +551,12 @@ namespace
       EXPECT_NEAR(r.crack_spacing * work, c.fracture_energy, 0.05 * c.fracture_energy)
         << "h = " << h;
       // With a growing shear: the whole stress path, bit for bit.
-      law.initialize_point(h0.data(), h);
-      for (double e = de; e < 60 * e0; e += de)
-      {
-        const VoigtStress s = law.stress({{e, 0, 0.3 * e}}, h0.data(), h1.data());
-        path.insert(path.end(), s.begin(), s.end());
-        h0 = h1;
-      }
-      paths.push_back(path);
+      paths.push_back(stress_path(law,
+                                  h,
+                                  30000,
+                                  [&](int i) {
+                                    return VoigtStrain{{i * de, 0, 0.3 * i * de}};
+                                  }));
     }
     EXPECT_EQ(paths[0], paths[1]);
     EXPECT_EQ(paths[0], paths[2]);
@@ -549,44 +577,30 @@ namespace
   // is secant (the damage) and the law is refused without a crack spacing.
   TEST(Concrete, TensionStiffeningFollowsTheAverageTensionAndTheBarsReserve)
   {
-    ConcreteParameters c = ConcreteParameters::from_f_cm(38e6);
-    c.poisson_ratio      = 0;
-    ReinforcementParameters r;
-    r.ratio_y                  = 0.008;
-    r.crack_spacing            = 0.2;
+    const ConcreteParameters c = uniaxial_concrete();
+    ReinforcementParameters  r = spaced_wall_bars();
     r.tension_stiffening       = true;
-    ReinforcementParameters rp = r;
-    rp.strain_penetration      = 0.13;
-    const ConcreteDamageLaw          law(c, r), anchored(c, rp);
-    const double                     ft = c.f_ctm, E = c.youngs_modulus, Es = r.youngs_modulus;
-    const double                     ey = r.yield_stress / Es, e0 = ft / E;
-    std::vector<std::vector<double>> paths;
-    for (const double h : {0.0125, 0.025, 0.05})
+    const ConcreteDamageLaw law(c, r);
+    const double            ft = c.f_ctm, E = c.youngs_modulus, Es = r.youngs_modulus;
+    const double            ey = r.yield_stress / Es, e0 = ft / E;
+    // Along y: the path's sigma_yy less the bars' f_y + b E_s (eps - eps_y) past yield.
+    const auto   along_y = [&](int i) { return VoigtStrain{{0, 1.5 * ey * i / 400, 0}}; };
+    const auto   path    = stress_path(law, 0.0125, 400, along_y);
+    const double b       = r.hardening;
+    for (int i = 1; i <= 400; ++i)
     {
-      std::vector<double> h0(law.n_history()), h1(law.n_history()), path;
-      law.initialize_point(h0.data(), h);
-      for (int i = 1; i <= 400; ++i)
-      {
-        const double e = 1.5 * ey * i / 400;
-        const double s = law.stress({{0, e, 0}}, h0.data(), h1.data())[1];
-        const double concrete =
-          s - r.ratio_y *
-                SteelBar(r)
-                  .update(e, h0[ConcreteDamageLaw::p_slot + 2], h0[ConcreteDamageLaw::p_slot + 3])
-                  .stress;
-        const double expected = e <= e0 ?
-                                  E * e :
-                                  std::min(ft / (1 + std::sqrt(500 * e)),
-                                           r.ratio_y * std::max(0.0, r.yield_stress - Es * e));
-        // A fully damaged point keeps 10^-6 of E (the damage's cap).
-        EXPECT_NEAR(concrete, expected, 1e-9 * ft + 1e-6 * E * e) << "h = " << h << ", eps = " << e;
-        path.push_back(s);
-        h0 = h1;
-      }
-      paths.push_back(path);
+      const double e        = along_y(i)[1];
+      const double bar      = e <= ey ? Es * e : r.yield_stress + b * Es * (e - ey);
+      const double concrete = path[3 * (i - 1) + 1] - r.ratio_y * bar;
+      const double expected = e <= e0 ?
+                                E * e :
+                                std::min(ft / (1 + std::sqrt(500 * e)),
+                                         r.ratio_y * std::max(0.0, r.yield_stress - Es * e));
+      // A fully damaged point keeps 10^-6 of E (the damage's cap).
+      EXPECT_NEAR(concrete, expected, 1e-9 * ft + 1e-6 * E * e) << "eps = " << e;
     }
-    EXPECT_EQ(paths[0], paths[1]);
-    EXPECT_EQ(paths[0], paths[2]);
+    EXPECT_EQ(path, stress_path(law, 0.025, 400, along_y));
+    EXPECT_EQ(path, stress_path(law, 0.05, 400, along_y));
     // At the bars' yield strain the concrete between the cracks has nothing left to carry.
     std::vector<double> h0(law.n_history()), h1(law.n_history());
     law.initialize_point(h0.data(), 0.025);
