@@ -266,8 +266,8 @@ namespace kimp::fem
      * by what the bars can still take at a crack, sum rho_i (f_y - E_s eps_i) cos^2 theta_i with
      * eps_i = eps_1 cos^2 theta_i (the crack check in its strain form, exact for monotonic
      * loading), so it is gone where the bars at the point reach yield. Each point checks its
-     * own strain, so in bending the concrete nearer the neutral axis keeps some tension after
-     * the face's bars have yielded (docs/physics.md §6 "Tension stiffening").
+     * own strain, not the section's bars at the crack (docs/physics.md §6 "Tension
+     * stiffening": the bare wall's force past yield is 6.4 % above its bars alone).
      */
     bool tension_stiffening = false;
     /** The steel ratios the crack check of tension stiffening reads (< 0: ratio_x, ratio_y).

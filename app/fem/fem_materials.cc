@@ -89,23 +89,24 @@ namespace kimp::app
               format_quantity(materials.concrete.slab_reinforcement.strain_penetration, "m"),
               "must be 0: the slab has no clamped base to anchor its bars in (the wall's "
               "vertical bars take it, wall_reinforcement.strain_penetration)");
-    // A crack spacing is what bars impose: without them the cell's crack band keeps G_F.
+    // A crack spacing is what bars impose: without them the cell's crack band keeps G_F. Tension
+    // stiffening is the tension between those cracks.
     for (const auto &[key, r] :
          {std::pair{"wall_reinforcement", &materials.concrete.wall_reinforcement},
           std::pair{"slab_reinforcement", &materials.concrete.slab_reinforcement}})
+    {
+      const std::string path = std::string("concrete.") + key;
       ctx.check(r->crack_spacing == 0 ||
                   (materials.concrete.model != FemConcrete::Model::elastic && r->any()),
-                std::string("concrete.") + key + ".crack_spacing",
+                path + ".crack_spacing",
                 format_quantity(r->crack_spacing, "m"),
                 "needs bars (ratio_x or ratio_y > 0) in a damage_plasticity concrete");
-    for (const auto &[key, r] :
-         {std::pair{"wall_reinforcement", &materials.concrete.wall_reinforcement},
-          std::pair{"slab_reinforcement", &materials.concrete.slab_reinforcement}})
       ctx.check(!r->tension_stiffening || r->crack_spacing > 0,
-                std::string("concrete.") + key + ".tension_stiffening",
+                path + ".tension_stiffening",
                 "true",
                 "needs the bars' crack_spacing (> 0): the tension between the cracks is that of "
                 "a member cracked every s_rm");
+    }
   }
 
   fem::SoilParameters soil_parameters(const FemSoil &s)

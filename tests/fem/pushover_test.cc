@@ -660,9 +660,9 @@ namespace
   // the cracks keeps f_t / (1 + sqrt(500 eps)), so the cracked wall is stiffer than its bars
   // alone (+26 % at 5 mm: 52.57 against 41.59 kN/m), nearly the same on 5 and 2.5 cm cells
   // (-3.1 %, -2.1 %, -3.1 % at 5, 10, 20 mm; held to 4 %). Past the bars' yield the crack
-  // check has taken the tension of the yielded zone away, but each point checks its own strain:
-  // the concrete nearer the neutral axis, below the yield strain, keeps its average tension,
-  // so the force at 20 mm is 6.4 % above the bars alone (9.1 % above M_p / h_c), held to 10 %.
+  // check has taken the tension of the yielded points away, but each point checks its own
+  // strain, not the section's bars at the crack: the force at 20 mm is 6.4 % above the bars
+  // alone (9.1 % above M_p / h_c), held to 10 % (which points carry it was not read).
   TEST(Pushover, TensionStiffeningStiffensTheCrackedWallAlikeOnTwoMeshes)
   {
     const auto push = [](int level, bool stiffening)
