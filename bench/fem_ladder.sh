@@ -17,8 +17,9 @@
 # unchanged and whose summary.json exists (delete the directory to rerun). KIMP_LADDER_EXTRA
 # (YAML lines) is appended to every scene, e.g. 'contact: {penalty_step_ratio: 0.8}' or
 # 'contact: {subcycles: 0}'. KIMP_LADDER_LEVELS (default "2.5 1.25", in cm) picks the levels run.
-# KIMP_LADDER_WALL_BARS (YAML map entries) is added to the scene's wall_reinforcement, e.g.
-# 'strain_penetration: "0.13 m", crack_spacing: "0.2 m", tension_stiffening: true'.
+# KIMP_LADDER_WALL_BARS (YAML map entries) replaces the entries of the scene's
+# wall_reinforcement, e.g. 'ratio_y: "0.8 %", ratio_x: "0.2 %"' for perfectly bonded bars in
+# the crack band without tension stiffening (the scene before its bars' three keys).
 # Usage: bench/fem_ladder.sh [BUILD_DIR (default: build)] [RANKS (default: 1)] [HOLD_MS]
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
@@ -42,7 +43,9 @@ for far in "${fars[@]}"; do
     run="${far}_$h"
     {
       grep -v '^wall_heights:' "$root/data/scenes/fem_reinforced_wall.yaml" |
-        sed -E "s/(wall_reinforcement: \{[^}]*)\}/\1${KIMP_LADDER_WALL_BARS:+, $KIMP_LADDER_WALL_BARS}}/"
+        if [[ -n "${KIMP_LADDER_WALL_BARS:-}" ]]; then
+          sed -E "s/(wall_reinforcement: \{)[^}]*\}/\1${KIMP_LADDER_WALL_BARS}}/"
+        else cat; fi
       printf '%s\n' "wall_heights: [${heights%, }]" \
         "mesh: {h_contact: \"$h cm\", wall_aspect_max: 1}" 'slab: {velocity: "1.0 m/s"}' \
         'output: {frame_interval: "0 ms"}' "boundary: {far: $far}"

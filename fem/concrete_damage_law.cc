@@ -187,7 +187,8 @@ namespace kimp::fem
     if (!implex_on_)
       return 0;
     const double kt = h[0], band = h[5];
-    const double lag = std::clamp(tension_damage(kt, band, h[6], h[7]), 0.0, max_damage) - h[2];
+    const double lag =
+      std::clamp(tension_damage(kt, band, h[6], h[7], anchor_scale(h)), 0.0, max_damage) - h[2];
     return std::max(0.0, lag) * p_.youngs_modulus * kt / effective_tensile_strength(band);
   }
 
@@ -200,7 +201,9 @@ namespace kimp::fem
     const double el = kc - plastic_strain(kc, h0[5]);
     const double dc =
       kc > 0 && el > 0 ? 1 - p_.compression_curve(kc, h0[5]) / (p_.youngs_modulus * el) : 0.0;
-    return {{std::clamp(std::max(tension_damage(kt, h0[5], h0[6], h0[7]), h0[2]), 0.0, max_damage),
+    return {{std::clamp(std::max(tension_damage(kt, h0[5], h0[6], h0[7], anchor_scale(h0)), h0[2]),
+                        0.0,
+                        max_damage),
              std::clamp(std::max(dc, h0[3]), 0.0, max_damage)}};
   }
 
@@ -343,14 +346,15 @@ namespace kimp::fem
   double ConcreteDamageLaw::tension_damage(const double kt,
                                            const double cell_band,
                                            const double c,
-                                           const double s) const
+                                           const double s,
+                                           const double a) const
   {
     const double E = p_.youngs_modulus;
     if (r_.tension_stiffening)
     {
       // No softening branch to keep from snapping back: the material's own f_t.
       const double ft = p_.f_ctm * p_.dif_tension;
-      return kt > ft / E ? 1 - stiffened_tension(kt, c, s) / (E * kt) : 0.0;
+      return kt > ft / E ? 1 - stiffened_tension(kt, c, s, a) / (E * kt) : 0.0;
     }
     const double h  = tension_band(cell_band);
     const double ft = effective_tensile_strength(cell_band), k0 = ft / E;
@@ -360,18 +364,21 @@ namespace kimp::fem
     return 1 - k0 / kt * std::exp(-(kt - k0) / ef);
   }
 
-  double ConcreteDamageLaw::stiffened_tension(double kt, double c, double s) const
+  double ConcreteDamageLaw::stiffened_tension(double kt, double c, double s, const double a) const
   {
     // Collins and Mitchell's average tension, capped by the bars' reserve at a crack: a bar at
     // angle theta to the crack normal strains eps_1 cos^2 theta and carries its force across
-    // the crack with the weight cos^2 theta.
+    // the crack with the weight cos^2 theta. On the clamped base the joint's opening along y
+    // spreads over h + L_sp (the bond length both the bars and the concrete beside them take
+    // their share over), so the y part of the strain is a kappa_t there; off the base a = 1.
     const double ft = p_.f_ctm * p_.dif_tension, fy = r_.yield_stress, Es = r_.youngs_modulus;
     const double cc = c * c, ss = s * s;
     const double rx = r_.bridging_ratio_x >= 0 ? r_.bridging_ratio_x : r_.ratio_x;
     const double ry = r_.bridging_ratio_y >= 0 ? r_.bridging_ratio_y : r_.ratio_y;
+    const double ey = a < 1 ? a * kt : kt, em = a < 1 ? kt * cc + ey * ss : kt;
     const double reserve =
-      rx * std::max(0.0, fy - Es * kt * cc) * cc + ry * std::max(0.0, fy - Es * kt * ss) * ss;
-    return std::min(ft / (1 + std::sqrt(500 * kt)), reserve);
+      rx * std::max(0.0, fy - Es * kt * cc) * cc + ry * std::max(0.0, fy - Es * ey * ss) * ss;
+    return std::min(ft / (1 + std::sqrt(500 * em)), reserve);
   }
 
   double ConcreteDamageLaw::plastic_strain(double kc, double band) const
@@ -465,7 +472,8 @@ namespace kimp::fem
     // The crack normal the damage is measured across: the fixed one of a cracked point, else
     // the largest principal effective stress's (damaged_stress() fixes it when it cracks).
     const bool cracked = h0[2] > 0 && !p_.rotating_crack;
-    double     dt      = tension_damage(kt, h0[5], cracked ? h0[6] : ca, cracked ? h0[7] : sa_n);
+    double     dt =
+      tension_damage(kt, h0[5], cracked ? h0[6] : ca, cracked ? h0[7] : sa_n, anchor_scale(h0));
     // sigma_c(kappa_c) = (1 - d_c) E (kappa_c - eps_p) in uniaxial compression.
     const double el = kc - plastic_strain(kc, h0[5]);
     double       dc = kc > 0 && el > 0 ? 1 - p_.compression_curve(kc, h0[5]) / (E * el) : 0.0;
@@ -513,10 +521,12 @@ namespace kimp::fem
     else if (kt > h0[0] || kc > h0[1])
     {
       const bool cracked = h0[2] > 0 && !p_.rotating_crack;
-      dt = std::clamp(std::max(tension_damage(kt, h0[5], cracked ? h0[6] : c, cracked ? h0[7] : s),
-                               h0[2]),
-                      0.0,
-                      max_damage);
+      dt                 = std::clamp(
+        std::max(
+          tension_damage(kt, h0[5], cracked ? h0[6] : c, cracked ? h0[7] : s, anchor_scale(h0)),
+          h0[2]),
+        0.0,
+        max_damage);
       dc =
         std::clamp(std::max(kc > 0 ? 1 - p_.compression_curve(kc, h0[5]) / (E * kc) : 0.0, h0[3]),
                    0.0,

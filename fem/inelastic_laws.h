@@ -451,11 +451,19 @@ namespace kimp::fem
     /** Tension damage at the tension measure kappa_t (history slot 0) of a crack band h (m)
      *  across a crack of normal (c, s): exponential softening with the energy
      *  G_F / tension_band(h), 0 up to the tensile strength; with tension stiffening
-     *  1 - sigma_ts / (E kappa_t) instead. */
-    double tension_damage(double kappa_t, double h, double c, double s) const;
+     *  1 - sigma_ts / (E kappa_t) instead, sigma_ts read at the y bars' strain scale @p a
+     *  (anchor_scale()). */
+    double tension_damage(double kappa_t, double h, double c, double s, double a) const;
     /** The tension-stiffening stress sigma_ts at kappa_t across a crack of normal (c, s), Pa
-     *  (ReinforcementParameters::tension_stiffening). */
-    double stiffened_tension(double kappa_t, double c, double s) const;
+     *  (ReinforcementParameters::tension_stiffening). On the clamped base (@p a < 1) the y
+     *  part of the opening spreads over the bars' height + L_sp, as for the bars: the average
+     *  tension and the y bars' reserve read kappa_t scaled by @p a along y. */
+    double stiffened_tension(double kappa_t, double c, double s, double a) const;
+    /** The y bars' strain scale of a point: h / (h + L_sp) on the clamped base, else 1. */
+    double anchor_scale(const double *history) const
+    {
+      return bar_slots_ > 6 ? history[bars_ + 6] : 1.0;
+    }
     /** b_c times the uniaxial curve's inelastic strain at the compression measure kappa_c. */
     double plastic_strain(double kappa_c, double band) const;
     /** The bars' steel at a point of crack band @p h (m): H scaled by h / L_p with a hinge

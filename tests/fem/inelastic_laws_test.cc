@@ -624,6 +624,47 @@ namespace
     EXPECT_THROW(ConcreteDamageLaw(c, unspaced), std::invalid_argument);
   }
 
+  // Tension stiffening on the clamped base with strain penetration (L_sp = 0.13 m): the joint's
+  // opening w spreads over h + L_sp for the bars and the concrete beside them alike, so the base
+  // row's concrete follows min(f_t / (1 + sqrt(500 eps_s)), rho (f_y - E_s eps_s)) at the bars'
+  // strain eps_s = w / (h + L_sp), not at the row's w / h. Its tension is gone at the opening
+  // eps_y (h + L_sp) on every row height (0.39 mm on 2.5 cm rows), where reading w / h took it
+  // away at eps_y h (0.06 mm), the finer the row the sooner.
+  TEST(Concrete, TensionStiffeningOnTheBaseReadsTheOpeningOverTheBondLength)
+  {
+    const ConcreteParameters c = uniaxial_concrete();
+    ReinforcementParameters  r = spaced_wall_bars();
+    r.tension_stiffening       = true;
+    r.strain_penetration       = 0.13;
+    const ConcreteDamageLaw law(c, r);
+    const double            ft = c.f_ctm, E = c.youngs_modulus, Es = r.youngs_modulus;
+    const double            ey = r.yield_stress / Es;
+    for (const double h : {0.0125, 0.025, 0.05})
+    {
+      std::vector<double> h0(law.n_history()), h1(law.n_history());
+      law.initialize_anchored_point(h0.data(), h, h);
+      const double reach = ey * (h + r.strain_penetration); // the opening at the bars' yield
+      for (int i = 1; i <= 200; ++i)
+      {
+        const double w = 1.2 * reach * i / 200, e = w / h, es = w / (h + r.strain_penetration);
+        const double syy      = law.stress({{0, e, 0}}, h0.data(), h1.data())[1];
+        const double bar      = es <= ey ? Es * es : r.yield_stress + r.hardening * Es * (es - ey);
+        const double concrete = syy - r.ratio_y * bar;
+        const double expected = e <= ft / E ?
+                                  E * e :
+                                  std::min(ft / (1 + std::sqrt(500 * es)),
+                                           r.ratio_y * std::max(0.0, r.yield_stress - Es * es));
+        EXPECT_NEAR(concrete, expected, 1e-9 * ft + 1e-6 * E * e)
+          << "h = " << h << ", w = " << w * 1e3 << " mm";
+        if (w < 0.9 * reach && e > 2 * ft / E)
+        {
+          EXPECT_GT(concrete, 0.05 * ft) << "h = " << h << ", w = " << w * 1e3 << " mm";
+        }
+        h0 = h1;
+      }
+    }
+  }
+
   TEST(Concrete, UniaxialCompressionFollowsTheModelCodeCurve)
   {
     // sigma / f_cm = (k eta - eta^2) / (1 + (k - 2) eta), eta = eps / eps_c1,
