@@ -203,5 +203,6 @@ int main(int argc, char **argv)
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
+  kimp::testing::remove_shared_temp_dir("fem_bench", MPI_COMM_WORLD);
   return 0;
 }
