@@ -601,6 +601,11 @@ namespace kimp::fem
     o.stored_energy      = wc * (sp.psi0 - dt * sp.loss);
     o.damage             = 1 - (1 - dt) * wc;
     o.damage_dissipation = h[4];
+    o.tension_damage     = dt;
+    {
+      const double c = h[6] == 0 && h[7] == 0 ? 1.0 : h[6], sn = h[7];
+      o.crack_normal_yy = sn * sn / (c * c + sn * sn);
+    }
     if (plastic_)
     {
       o.plastic_dissipation       = h[p_slot + 3];
@@ -613,6 +618,8 @@ namespace kimp::fem
       const double  ys = bar_slots_ > 6 ? b[6] : 1.0;
       const double  ex = e[0] - b[0], ey = ys * e[1] - b[2], Es = r_.youngs_modulus;
       o.stored_energy += 0.5 * Es * (r_.ratio_x * ex * ex + r_.ratio_y * ey * ey / ys);
+      o.reinforcement_stress_xx = r_.ratio_x * Es * ex;
+      o.reinforcement_stress_yy = r_.ratio_y * Es * ey;
       if (dt > 0 && !p_.rotating_crack)
       {
         const double g = to_crack_frame(e, h[6], h[7])[2] - b[5];

@@ -29,6 +29,12 @@ namespace kimp::fem
     double damage_dissipation        = 0; ///< accumulated, J/m^3
     double damage                    = 0; ///< scalar damage, -
     double equivalent_plastic_strain = 0; ///< -
+    /** Smeared bars (ConcreteDamageLaw): their share of sigma_xx and sigma_yy (ratio times the
+     *  bar's stress), Pa; the concrete carries the rest of the point's stress. */
+    double reinforcement_stress_xx = 0, reinforcement_stress_yy = 0;
+    /** Concrete: the tension damage d_t and its crack normal's n_y^2 (the weight cos^2 theta
+     *  of the vertical bars in the crack check), -. */
+    double tension_damage = 0, crack_normal_yy = 0;
   };
 
   /**

@@ -147,6 +147,10 @@ namespace kimp::fem
       void begin_step(double increment);
       void commit();
       void revert();
+      /** The final state of @p cell (StaticPlasticityResult::CellState); adds its dissipation to
+       *  @p out's totals. */
+      StaticPlasticityResult::CellState cell_state(const FEValues<dim>    &fv,
+                                                   StaticPlasticityResult &out) const;
       /** The largest MaterialLaw::step_error() of the trial history (the converged iterate). */
       double largest_step_error() const;
       /** The unit-resultant band traction vector g_ of p.controlled_load. */
@@ -162,11 +166,13 @@ namespace kimp::fem
       FESystem<dim>                        fe_;
       DoFHandler<dim>                      dof_handler_;
       std::vector<const MaterialLaw *>     cell_law_;
-      std::vector<bool>                    cell_fd_;     // numerical tangent per cell
-      std::vector<types::global_dof_index> cell_dofs_;   // n_cells x n_d
-      std::vector<double>                  bbar_;        // n_cells x n_q x n_d x 3
-      std::vector<double>                  jxw_;         // n_cells x n_q
-      std::vector<VoigtStrain>             eps0_;        // n_cells x n_q
+      std::vector<bool>                    cell_fd_;   // numerical tangent per cell
+      std::vector<types::global_dof_index> cell_dofs_; // n_cells x n_d
+      std::vector<double>                  bbar_;      // n_cells x n_q x n_d x 3
+      std::vector<double>                  jxw_;       // n_cells x n_q
+      std::vector<VoigtStrain>             eps0_;      // n_cells x n_q
+      // n_cells x n_q: the stress of the last residual(), whose trial history a commit keeps.
+      std::vector<VoigtStress>             stress_;
       std::vector<VoigtTangent>            virgin_;      // per cell: its law's virgin tangent
       std::vector<int>                     governed_by_; // per DoF: entry or -1
       std::vector<unsigned int>            component_;   // per DoF
@@ -317,6 +323,7 @@ namespace kimp::fem
       bbar_.resize(n_cells * n_q * n_d * 3);
       jxw_.resize(n_cells * n_q);
       eps0_.assign(n_cells * n_q, VoigtStrain{});
+      stress_.assign(n_cells * n_q, VoigtStress{});
       f_ext_.reinit(n_dofs);
       const QGauss<dim>                    quadrature(2);
       FEValues<dim>                        fv(fe_,
@@ -406,8 +413,9 @@ namespace kimp::fem
         {
           const VoigtStress s =
             cell_law_[c]->stress(strain(u, c, q), history_.committed(c, q), history_.trial(c, q));
-          const double *B = &bbar_[(c * n_q + q) * n_d * 3];
-          const double  w = jxw_[c * n_q + q];
+          stress_[c * n_q + q] = s;
+          const double *B      = &bbar_[(c * n_q + q) * n_d * 3];
+          const double  w      = jxw_[c * n_q + q];
           for (unsigned int i = 0; i < n_d; ++i)
             r[dofs[i]] += (B[3 * i] * s[0] + B[3 * i + 1] * s[1] + B[3 * i + 2] * s[2]) * w;
         }
@@ -1003,6 +1011,55 @@ namespace kimp::fem
       }
     }
 
+    StaticPlasticityResult::CellState StaticProblem::cell_state(const FEValues<dim>    &fv,
+                                                                StaticPlasticityResult &out) const
+    {
+      const auto                       &cell = fv.get_cell();
+      const unsigned int                c    = cell->active_cell_index();
+      const Point<dim>                  x    = cell->center();
+      StaticPlasticityResult::CellState state;
+      state.centre = {{x[0], x[1]}};
+      state.size   = {{cell->extent_in_direction(0), cell->extent_in_direction(1)}};
+      double area = 0, cracked = 0;
+      for (unsigned int q = 0; q < n_q; ++q)
+      {
+        const VoigtStrain  e = strain(u_, c, q);
+        const double      *h = history_.committed(c, q);
+        const PointOutput  o = cell_law_[c]->output(e, h);
+        const VoigtStress &s = stress_[c * n_q + q];
+        const double       w = jxw_[c * n_q + q];
+        out.plastic_dissipation += o.plastic_dissipation * w;
+        out.damage_dissipation += o.damage_dissipation * w;
+        state.damage += o.damage / n_q;
+        state.plastic_strain = std::max(state.plastic_strain, o.equivalent_plastic_strain);
+        const double dx      = fv.quadrature_point(q)[0] - x[0];
+        for (unsigned int i = 0; i < 3; ++i)
+          state.stress[i] += s[i] * w;
+        state.reinforcement_stress[0] += o.reinforcement_stress_xx * w;
+        state.reinforcement_stress[1] += o.reinforcement_stress_yy * w;
+        state.stress_moment[0] += dx * s[0] * w;
+        state.stress_moment[1] += dx * s[1] * w;
+        state.stress_moment[2] += dx * o.reinforcement_stress_yy * w;
+        state.stress_moment[3] += (fv.quadrature_point(q)[1] - x[1]) * s[2] * w;
+        state.tension_damage += o.tension_damage * w;
+        if (o.tension_damage > 0)
+        {
+          state.crack_normal_yy += o.crack_normal_yy * w;
+          cracked += w;
+        }
+        area += w;
+      }
+      for (double &v : state.stress)
+        v /= area;
+      for (double &v : state.reinforcement_stress)
+        v /= area;
+      for (double &v : state.stress_moment)
+        v /= area;
+      state.tension_damage /= area;
+      state.crack_normal_yy = cracked > 0 ? state.crack_normal_yy / cracked : 0.0;
+      return state;
+    }
+
     StaticPlasticityResult StaticProblem::run(std::ostream *log)
     {
       log_ = log;
@@ -1037,20 +1094,11 @@ namespace kimp::fem
 
       // Totals, cell states and vertex displacements.
       out.cell_states.resize(cell_law_.size());
-      for (const auto &cell : tria_.active_cell_iterators())
+      FEValues<dim> fv(fe_, QGauss<dim>(2), update_quadrature_points);
+      for (const auto &cell : dof_handler_.active_cell_iterators())
       {
-        const unsigned int c     = cell->active_cell_index();
-        const Point<dim>   x     = cell->center();
-        auto              &state = out.cell_states[c];
-        state.centre             = {{x[0], x[1]}};
-        for (unsigned int q = 0; q < n_q; ++q)
-        {
-          const PointOutput o = cell_law_[c]->output(strain(u_, c, q), history_.committed(c, q));
-          out.plastic_dissipation += o.plastic_dissipation * jxw_[c * n_q + q];
-          out.damage_dissipation += o.damage_dissipation * jxw_[c * n_q + q];
-          state.damage += o.damage / n_q;
-          state.plastic_strain = std::max(state.plastic_strain, o.equivalent_plastic_strain);
-        }
+        fv.reinit(cell);
+        out.cell_states[cell->active_cell_index()] = cell_state(fv, out);
       }
       out.step_control.n_newton_iterations = n_iterations_;
       out.vertex_displacements.assign(tria_.n_vertices(), {{0.0, 0.0}});

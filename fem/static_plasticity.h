@@ -264,12 +264,25 @@ namespace kimp::fem
     double               damage_dissipation  = 0; ///< total at the end, J/m
     /** Final displacement at each mesh vertex (m), in mesh.vertices order. */
     std::vector<std::array<double, 2>> vertex_displacements;
-    /** The final state of one cell: where it is, its damage and plastic strain. */
+    /** The final state of one cell: where it is, its damage, plastic strain and stress (means
+     *  weighted by the points' JxW, so that mean times size[0] size[1] is the integral). */
     struct CellState
     {
       std::array<double, 2> centre{};   ///< m
+      std::array<double, 2> size{};     ///< extent in x and y, m
       double                damage = 0; ///< mean over the cell's quadrature points, -
       double plastic_strain        = 0; ///< largest equivalent plastic strain of its points, -
+      /** Mean {sigma_xx, sigma_yy, sigma_xy}, Pa: the stress of the converged state. */
+      std::array<double, 3> stress{};
+      /** Mean PointOutput::reinforcement_stress_xx/yy (the smeared bars' share), Pa. */
+      std::array<double, 2> reinforcement_stress{};
+      /** Means of (x - centre[0]) times sigma_xx, sigma_yy and the bars' share of sigma_yy, and
+       *  of (y - centre[1]) times sigma_xy, Pa m (first moments in the cell; what they add to
+       *  a cut's moment: PushoverCell::sigma_yy_moment). */
+      std::array<double, 4> stress_moment{};
+      double                tension_damage = 0; ///< mean PointOutput::tension_damage, -
+      /** Mean PointOutput::crack_normal_yy over the points with d_t > 0 (0: none), -. */
+      double crack_normal_yy = 0;
     };
     std::vector<CellState> cell_states; ///< one per cell (mesh.cells order)
   };
