@@ -366,10 +366,11 @@ pushover: {displacement: "30 mm", unload_at: ["20 mm"]}
 
   TEST(PushoverResistance, ReinforcedWallWithItsBackfillUnloadsAtOneAndTwoPercentDrift)
   {
-    // The reinforced wall of data/scenes/fem_reinforced_wall.yaml (bonded interface), H =
-    // 1.25 m, no pushover section: the study's pushover unloads to zero force at 1 % and 2 % of
-    // H and reloads (IMPL-EX at 0.25 mm steps after the implicit update's stall), and k_ur is
-    // fitted to both sets. Hand bounds of k_ur: from below the cracked section's cantilever
+    // The reinforced wall of data/scenes/fem_reinforced_wall.yaml with its bars perfectly bonded
+    // (without the scene's strain penetration, crack spacing and tension stiffening; bonded
+    // interface), H = 1.25 m, no pushover section: the study's pushover unloads to zero force at 1
+    // % and 2 % of H and reloads (IMPL-EX at 0.25 mm steps after the implicit update's stall), and
+    // k_ur is fitted to both sets. Hand bounds of k_ur: from below the cracked section's cantilever
     // 3·E_ci·I_cr/h_c³ (0.4 % of the section at each face, d = 0.20 m, n = 5.97: x = 43.3 mm,
     // I_cr = 1.737e-4 m⁴/m; 11.48 kN/mm/m), the wall alone springing back (the sand cannot pull
     // it back); from above the loading's own k (the equal-energy bilinear's, the uncracked wall

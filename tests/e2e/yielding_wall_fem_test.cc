@@ -11,8 +11,9 @@
 // KIMP_YIELDING_WALL_FULL=1 runs the four rows of docs/validation.md (the FEM's slab and the heavy
 // slab, 0.5 and 1 m/s) against both far sides and checks the absorbing ones;
 // KIMP_YIELDING_WALL_FEM_DIR=DIR keeps each FEM run in DIR/<row>_<far side> (with VTU fields every
-// 50 ms) and reuses a finished one there. docs/validation.md "Yielding wall element against the
-// dynamic FEM" has the numbers.
+// 50 ms) and reuses a finished one there; KIMP_YIELDING_WALL_SCENE=FILE runs the scene FILE's wall
+// (default: the shipped reinforced wall's materials with perfectly bonded bars). docs/validation.md
+// "Yielding wall element against the dynamic FEM" has the numbers.
 #ifdef KIMP_WITH_FEM
 
 #  include <algorithm>
@@ -45,18 +46,32 @@ namespace
   using namespace kimp;
   using namespace kimp::testing;
 
-  /// The reinforced moat wall of docs/validation.md (data/scenes/fem_reinforced_wall.yaml):
-  /// damaged concrete with bars, geostatic Mohr-Coulomb sand.
-  /// Throws when the file cannot be read (run from the repository root or under ctest), so that
-  /// a missing scene never turns into a comparison of the elastic defaults.
+  /// The reinforced moat wall of docs/validation.md with its bars perfectly bonded: the
+  /// materials of data/scenes/fem_reinforced_wall.yaml without the bars' strain penetration,
+  /// crack spacing and tension stiffening (the FEM this test's numbers were measured against).
+  /// KIMP_YIELDING_WALL_SCENE=FILE takes the scene FILE instead, e.g. the shipped one, whose
+  /// table docs/validation.md "Yielding wall element against the dynamic FEM" gives (its heavy
+  /// slab at 0.5 m/s misses the peak-force criterion by 0.4 points). Throws when FILE cannot be
+  /// read, so that a missing scene never turns into a comparison of the elastic defaults.
   std::string reinforced_scene()
   {
-    const auto        file = source_dir() / "data/scenes/fem_reinforced_wall.yaml";
-    const std::string text = read_text(file);
-    if (text.find("damage_plasticity") == std::string::npos)
-      throw std::runtime_error(file.string() + ": cannot read the reinforced wall's scene (run "
-                                               "from the repository root or set KIMP_SOURCE_DIR)");
-    return text;
+    if (const char *file = std::getenv("KIMP_YIELDING_WALL_SCENE"))
+    {
+      const std::string text = read_text(file);
+      if (text.find("damage_plasticity") == std::string::npos)
+        throw std::runtime_error(std::string(file) + ": not a reinforced wall's scene (no "
+                                                     "damage_plasticity concrete)");
+      return text;
+    }
+    return R"(wall_heights: ["1.25 m"]
+materials:
+  concrete:
+    model: damage_plasticity
+    f_cm: "38 MPa"
+    wall_reinforcement: {ratio_y: "0.8 %", ratio_x: "0.2 %"}
+    slab_reinforcement: {ratio_x: "0.5 %"}
+  soil: {model: mohr_coulomb, preset: medium_dense_sand}
+)";
   }
 
   /// The scene at the coarse mesh whose wall cells do not lock: 5 cm at the contact graded to
