@@ -2,7 +2,9 @@
 # Why the dynamic FEM's reinforced wall with its backfill resists about twice its static pushover
 # (docs/validation.md "Yielding wall element against the dynamic FEM", "What the dynamic FEM's wall
 # resists"). The reinforced 0.25 m wall of data/scenes/fem_reinforced_wall.yaml (H = 1.25 m,
-# f_cm 38 MPa damaged concrete, bars rho_y 0.8 % / rho_x 0.2 %, geostatic medium-dense sand),
+# f_cm 38 MPa damaged concrete, bars rho_y 0.8 % / rho_x 0.2 % with the scene's strain
+# penetration, crack spacing and tension stiffening, geostatic medium-dense sand; the numbers of
+# docs/validation.md were measured with perfect bond, before the scene carried those keys),
 # pushed in three ways and compared at the same band displacement:
 #   - `kimp fem --pushover` (static, uniform band traction, IMPL-EX, 0.25 mm steps, to 40 mm);
 #   - `kimp fem` with a rigid slab of 1e8 kg/m at 0.1 m/s (a displacement-controlled push in the
