@@ -16,6 +16,7 @@
 #include "app/fem/pushover_run.h"
 #include "app/study/pushover_fit.h"
 #include "io/scene_io.h"
+#include "tests/support/reinforced_wall_scene.h"
 
 namespace kimp::app
 {
@@ -375,17 +376,9 @@ pushover: {displacement: "30 mm", unload_at: ["20 mm"]}
     // I_cr = 1.737e-4 m⁴/m; 11.48 kN/mm/m), the wall alone springing back (the sand cannot pull
     // it back); from above the loading's own k (the equal-energy bilinear's, the uncracked wall
     // with the elastic sand): a cracked wall springs back softer than it was first loaded.
-    const FemScene           scene = io::load_scene_text<FemScene>(R"(wall_heights: ["1.25 m"]
-materials:
-  concrete:
-    model: damage_plasticity
-    f_cm: "38 MPa"
-    wall_reinforcement: {ratio_y: "0.8 %", ratio_x: "0.2 %"}
-    slab_reinforcement: {ratio_x: "0.5 %"}
-  soil: {model: mohr_coulomb, preset: medium_dense_sand}
-)",
+    const FemScene     scene = io::load_scene_text<FemScene>(testing::perfectly_bonded_wall_scene(),
                                                          "fem_reinforced_wall.yaml");
-    YieldingWallInputs       in;
+    YieldingWallInputs in;
     const PushoverResistance r = pushover_resistance(scene, 1.25, in);
     std::cout << "reinforced wall with its backfill: F_y " << in.capacity / 1e3 << " kN/m, k "
               << in.stiffness / 1e6 << " kN/mm/m, k_ur " << in.unloading_stiffness / 1e6

@@ -39,6 +39,7 @@
 #  include "tests/support/csv.h"
 #  include "tests/support/files.h"
 #  include "tests/support/kimp_run.h"
+#  include "tests/support/reinforced_wall_scene.h"
 #  include "tests/support/temp_dir.h"
 
 namespace
@@ -63,15 +64,7 @@ namespace
                                                      "damage_plasticity concrete)");
       return text;
     }
-    return R"(wall_heights: ["1.25 m"]
-materials:
-  concrete:
-    model: damage_plasticity
-    f_cm: "38 MPa"
-    wall_reinforcement: {ratio_y: "0.8 %", ratio_x: "0.2 %"}
-    slab_reinforcement: {ratio_x: "0.5 %"}
-  soil: {model: mohr_coulomb, preset: medium_dense_sand}
-)";
+    return perfectly_bonded_wall_scene();
   }
 
   /// The scene at the coarse mesh whose wall cells do not lock: 5 cm at the contact graded to
