@@ -371,27 +371,10 @@ namespace kimp::fem
     out.step_control        = solved.step_control;
     for (std::size_t c = 0; c < solved.cell_states.size(); ++c)
     {
-      const auto  &cell = solved.cell_states[c];
       PushoverCell pc;
-      pc.x                    = cell.centre[0];
-      pc.y                    = cell.centre[1];
-      pc.width                = cell.size[0];
-      pc.height               = cell.size[1];
-      pc.in_wall              = cell.centre[0] < p.wall_thickness;
-      pc.in_bars              = s.mesh.cells[c].material == bar_id;
-      pc.damage               = cell.damage;
-      pc.plastic_strain       = cell.plastic_strain;
-      pc.sigma_xx             = cell.stress[0];
-      pc.sigma_yy             = cell.stress[1];
-      pc.sigma_xy             = cell.stress[2];
-      pc.bars_sigma_xx        = cell.reinforcement_stress[0];
-      pc.bars_sigma_yy        = cell.reinforcement_stress[1];
-      pc.sigma_xx_moment      = cell.stress_moment[0];
-      pc.sigma_yy_moment      = cell.stress_moment[1];
-      pc.bars_sigma_yy_moment = cell.stress_moment[2];
-      pc.sigma_xy_moment_y    = cell.stress_moment[3];
-      pc.tension_damage       = cell.tension_damage;
-      pc.crack_normal_yy      = cell.crack_normal_yy;
+      pc.state   = solved.cell_states[c];
+      pc.in_wall = pc.state.centre[0] < p.wall_thickness;
+      pc.in_bars = s.mesh.cells[c].material == bar_id;
       out.cells.push_back(pc);
     }
     out.curve.push_back({0, 0, 0, false});

@@ -12,6 +12,7 @@
 
 #include "fem/impact.h"
 #include "fem/inelastic_laws.h"
+#include "fem/static_plasticity.h"
 #include "fem/static_step_statistics.h"
 
 namespace kimp::fem
@@ -138,38 +139,13 @@ namespace kimp::fem
     bool         unloading    = false;
   };
 
-  /**
-   * The final state of one cell of the pushover mesh: where the wall cracked and yielded, and
-   * what carries its stress (cell means: mean times width times height is the cell's integral).
-   */
+  /** The final state of one cell of the pushover mesh: where the wall cracked and yielded, and
+   *  what carries its stress (StaticPlasticityResult::CellState, cell means). */
   struct PushoverCell
   {
-    double x = 0, y = 0;          ///< centre, m (the wall is x in [0, t])
-    double width = 0, height = 0; ///< m
-    bool   in_wall        = false;
-    bool   in_bars        = false; ///< one of the wall's bar columns (Wall::reinforced)
-    double damage         = 0;     ///< mean over the cell, -
-    double plastic_strain = 0;     ///< largest equivalent plastic strain (bars, soil), -
-    double sigma_xx = 0, sigma_yy = 0, sigma_xy = 0; ///< mean stress, Pa
-    /** The bars' share of sigma_xx and sigma_yy (their ratio in the cell times their mean
-     *  stress; the concrete carries the rest), Pa. */
-    double bars_sigma_xx = 0, bars_sigma_yy = 0;
-    /**
-     * First moments in the cell, Pa m: the means of (x_point - x) times sigma_xx, sigma_yy and
-     * the bars' share of sigma_yy, and of (y_point - y) times sigma_xy. The moment about the
-     * line x = x_0 that a row of cells passes across its mid-height, in equilibrium with the
-     * loads above it to round-off, is the sum over the row of (sigma_yy (x - x_0) +
-     * (sigma_yy_moment - sigma_xx_moment) / 2 + sigma_xy_moment_y) width: the solver's
-     * mean-dilatation strain (B-bar) passes half the deviator of a cell's own moments, and the
-     * bilinear cells carry part of the bending as a couple of their shear stress (sigma_xy
-     * linear in y; 1.6 % of the moment of an elastic wall on 5 cm cells, 4 % at a hinge).
-     */
-    double sigma_xx_moment = 0, sigma_yy_moment = 0, bars_sigma_yy_moment = 0,
-           sigma_xy_moment_y = 0;
-    double tension_damage    = 0; ///< the concrete's mean d_t, -
-    /** Mean n_y^2 of the crack normal over the cracked points (1: a horizontal crack, the
-     *  vertical bars' cos^2 theta in the crack check; 0: uncracked), -. */
-    double crack_normal_yy = 0;
+    StaticPlasticityResult::CellState state;
+    bool                              in_wall = false; ///< x < t (the wall is x in [0, t])
+    bool in_bars = false; ///< one of the wall's bar columns (Wall::reinforced)
   };
 
   struct PushoverResult

@@ -276,9 +276,16 @@ namespace kimp::fem
       std::array<double, 3> stress{};
       /** Mean PointOutput::reinforcement_stress_xx/yy (the smeared bars' share), Pa. */
       std::array<double, 2> reinforcement_stress{};
-      /** Means of (x - centre[0]) times sigma_xx, sigma_yy and the bars' share of sigma_yy, and
-       *  of (y - centre[1]) times sigma_xy, Pa m (first moments in the cell; what they add to
-       *  a cut's moment: PushoverCell::sigma_yy_moment). */
+      /**
+       * First moments in the cell, Pa m: the means of (x - centre[0]) times sigma_xx, sigma_yy
+       * and the bars' share of sigma_yy, and of (y - centre[1]) times sigma_xy. The moment about
+       * the line x = x_0 that a row of cells passes across its mid-height, in equilibrium with
+       * the loads above it to round-off, is the sum over the row of (sigma_yy (x - x_0) +
+       * (stress_moment[1] - stress_moment[0]) / 2 + stress_moment[3]) size[0]: the solver's
+       * mean-dilatation strain (B-bar) passes half the deviator of a cell's own moments, and
+       * the bilinear cells carry part of the bending as a couple of their shear stress (sigma_xy
+       * linear in y; 1.6 % of the moment of an elastic wall on 5 cm cells, 4 % at a hinge).
+       */
       std::array<double, 4> stress_moment{};
       double                tension_damage = 0; ///< mean PointOutput::tension_damage, -
       /** Mean PointOutput::crack_normal_yy over the points with d_t > 0 (0: none), -. */

@@ -172,7 +172,7 @@ namespace
     double y = 0;
     double n = 0, n_bars = 0, n_concrete_tension = 0;
     /** Moment about the wall's centre line, positive with tension at the band's face x = 0:
-     *  in equilibrium with the loads (PushoverCell::sigma_yy_moment), and of sigma_yy alone. */
+     *  in equilibrium with the loads (CellState::stress_moment), and of sigma_yy alone. */
     double m = 0, m_sigma_yy = 0;
     /** The bars' force in the column at the band face and in the one at the back. */
     double front_bars = 0, back_bars = 0;
@@ -182,27 +182,29 @@ namespace
   std::map<long, RowResultants> row_resultants(const PushoverResult &r, double t)
   {
     std::map<long, RowResultants> rows;
-    for (const PushoverCell &c : r.cells)
+    for (const PushoverCell &cell : r.cells)
     {
-      if (!c.in_wall)
+      if (!cell.in_wall)
         continue;
-      RowResultants &row = rows[std::lround(c.y * 1e4)];
-      const double   w = c.width, arm = t / 2 - c.x;
-      row.y = c.y;
-      row.n += c.sigma_yy * w;
-      row.n_bars += c.bars_sigma_yy * w;
-      row.n_concrete_tension += std::max(0.0, c.sigma_yy - c.bars_sigma_yy) * w;
-      row.m_sigma_yy += (c.sigma_yy * arm - 0.5 * (c.sigma_yy_moment - c.sigma_xx_moment)) * w;
-      row.m +=
-        (c.sigma_yy * arm - 0.5 * (c.sigma_yy_moment - c.sigma_xx_moment) - c.sigma_xy_moment_y) *
-        w;
-      if (c.in_bars && c.x < t / 2)
+      const auto    &c   = cell.state;
+      RowResultants &row = rows[std::lround(c.centre[1] * 1e4)];
+      const double   w = c.size[0], arm = t / 2 - c.centre[0];
+      const double   syy = c.stress[1], bars = c.reinforcement_stress[1];
+      // The cell's own moment that the row passes (StaticPlasticityResult::CellState).
+      const double own = 0.5 * (c.stress_moment[1] - c.stress_moment[0]);
+      row.y            = c.centre[1];
+      row.n += syy * w;
+      row.n_bars += bars * w;
+      row.n_concrete_tension += std::max(0.0, syy - bars) * w;
+      row.m_sigma_yy += (syy * arm - own) * w;
+      row.m += (syy * arm - own - c.stress_moment[3]) * w;
+      if (cell.in_bars && c.centre[0] < t / 2)
       {
-        row.front_bars                = c.bars_sigma_yy * w;
+        row.front_bars                = bars * w;
         row.front_bars_plastic_strain = c.plastic_strain;
       }
-      else if (c.in_bars)
-        row.back_bars = c.bars_sigma_yy * w;
+      else if (cell.in_bars)
+        row.back_bars = bars * w;
     }
     return rows;
   }
@@ -246,8 +248,8 @@ namespace
       // The hinge spreads: the bars yield in several rows of cells (the reason for L_p = 0).
       std::set<long> yielded_rows;
       for (const PushoverCell &cell : r.cells)
-        if (cell.in_wall && cell.plastic_strain > 1e-3)
-          yielded_rows.insert(std::lround(cell.y * 1e4));
+        if (cell.in_wall && cell.state.plastic_strain > 1e-3)
+          yielded_rows.insert(std::lround(cell.state.centre[1] * 1e4));
       EXPECT_GE(yielded_rows.size(), 3u);
       capacity[level]     = s.capacity;
       force_at_1cm[level] = s.force_at_1cm;
