@@ -79,4 +79,34 @@ namespace kimp::fem
     }
     return ev;
   }
+
+  std::array<double, 4>
+  FrictionalInterface::tangent(std::size_t i, const std::vector<double> &u, bool stick) const
+  {
+    const Pair      &p  = pairs_.at(i);
+    const PairState &c  = committed_.at(i);
+    const double     tx = -p.ny, ty = p.nx;
+    const double     kn = p.normal_stiffness, kt = p.tangential_stiffness;
+    // k_N n n^T + k_T t t^T: the stick springs.
+    std::array<double, 4> a{{kn * p.nx * p.nx + kt * tx * tx,
+                             kn * p.nx * p.ny + kt * tx * ty,
+                             kn * p.ny * p.nx + kt * ty * tx,
+                             kn * p.ny * p.ny + kt * ty * ty}};
+    if (stick)
+      return a;
+    const double dx = u[2 * p.b] - u[2 * p.a], dy = u[2 * p.b + 1] - u[2 * p.a + 1];
+    const double pen = -(dx * p.nx + dy * p.ny);
+    if (pen < 0)
+      return {{0, 0, 0, 0}}; // open: no force, whatever the move (at p = 0 the closed side)
+    const double s       = dx * tx + dy * ty;
+    const double t_trial = (c.closed ? c.tangential_force : 0.0) + kt * (s - c.tangential_slip);
+    if (std::abs(t_trial) <= p.friction * kn * pen)
+      return a;
+    // Slip: T = mu k_N p sign(T*), dT/dd = -mu k_N sign(T*) n; -df_b/dd = k_N n n^T - t dT/dd^T.
+    const double m = p.friction * kn * std::copysign(1.0, t_trial);
+    return {{kn * p.nx * p.nx - m * tx * p.nx,
+             kn * p.nx * p.ny - m * tx * p.ny,
+             kn * p.ny * p.nx - m * ty * p.nx,
+             kn * p.ny * p.ny - m * ty * p.ny}};
+  }
 } // namespace kimp::fem

@@ -4,6 +4,8 @@
 // Mechanics, 2006, §5.2 and §10.3), history committed once per accepted step. No deal.II.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <vector>
 
 namespace kimp::fem
@@ -56,6 +58,13 @@ namespace kimp::fem
     /** Forces at compact displacements @p u from the committed history; writes the trial one.
      *  Pure in the committed state: repeated calls with the same u give the same result. */
     Evaluation evaluate(const std::vector<double> &u);
+    /** The consistent tangent of pair @p i at compact displacements @p u from the committed
+     *  history: the 2 x 2 block A (row-major, x then y) of d(-f_b)/d(u_b), so that the pair's
+     *  stiffness over (u_a, u_b) is [[A, -A], [-A, A]]. Open (p < 0): 0; stick (and p = 0, the
+     *  closed side of the kink): k_N n n^T + k_T t t^T; slip: k_N n n^T - mu k_N sign(T) t n^T
+     *  (unsymmetric: the friction force follows the normal force, not the slip). With @p stick
+     *  the stick springs whatever the state (the virgin operator). */
+    std::array<double, 4> tangent(std::size_t i, const std::vector<double> &u, bool stick) const;
     /** The last trial history becomes the committed one (an accepted step). */
     void commit() { committed_ = trial_; }
     /** The trial history is discarded. */

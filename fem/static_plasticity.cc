@@ -480,14 +480,24 @@ namespace kimp::fem
                                            const Vector<double> &lift,
                                            Vector<double>       &rhs)
     {
-      // Each pair's forces depend on its own four DoFs only: a central difference per DoF.
+      // Each pair's forces depend on its own four DoFs only: a central difference per DoF. A pair
+      // exactly at the kink of the no-tension law (normal gap zero: the start of step 0, where
+      // the backfill is placed against the wall) takes the closed side's stick springs instead:
+      // the difference there would average the open and closed sides, half k_N and no
+      // tangential stiffness at all, and the first Newton update would let the whole backfill
+      // slide down the wall frictionlessly (docs/physics.md §6 "Static pushover", "Newton").
       std::vector<double>                  uc = interface_displacements(u);
       FullMatrix<double>                   k(4, 4);
       Vector<double>                       k_lift(4);
       std::vector<types::global_dof_index> dofs(4);
       for (std::size_t pair = 0; pair < p_.interface.size(); ++pair)
       {
-        for (unsigned int j = 0; j < 4; ++j)
+        const StaticInterfacePair &sp   = p_.interface[pair];
+        const double               n[2] = {sp.nx, sp.ny}, tv[2] = {-sp.ny, sp.nx};
+        const bool                 at_kink =
+          (uc[4 * pair + 2] - uc[4 * pair]) * n[0] + (uc[4 * pair + 3] - uc[4 * pair + 1]) * n[1] ==
+          0;
+        for (unsigned int j = 0; j < 4 && !at_kink; ++j)
         {
           const std::size_t d          = 4 * pair + j;
           const double      delta      = 1e-9 * std::max(1e-3, std::abs(uc[d]));
@@ -500,12 +510,14 @@ namespace kimp::fem
           for (unsigned int i = 0; i < 4; ++i)
             k(i, j) = -(fp[4 * pair + i] - fm[4 * pair + i]) / (2 * delta);
         }
-        if (floor_ > 0)
+        if (floor_ > 0 || at_kink)
         {
-          // An open (or sliding) pair keeps a floor of its springs in the Newton matrix.
-          const StaticInterfacePair &sp = p_.interface[pair];
-          const double kn = floor_ * sp.normal_stiffness, kt = floor_ * sp.tangential_stiffness;
-          const double n[2] = {sp.nx, sp.ny}, tv[2] = {-sp.ny, sp.nx};
+          // An open (or sliding) pair keeps a floor of its springs in the Newton matrix; one at
+          // the kink gets the whole springs.
+          const double share = at_kink ? 1.0 : floor_;
+          const double kn = share * sp.normal_stiffness, kt = share * sp.tangential_stiffness;
+          if (at_kink)
+            k = 0;
           for (unsigned int i = 0; i < 4; ++i)
             for (unsigned int j = 0; j < 4; ++j)
             {
@@ -1087,6 +1099,14 @@ namespace kimp::fem
                                0);
       }
       commit();
+      if (log_ != nullptr && !step0.residuals.empty())
+      {
+        std::ostringstream line; // 4 significant digits
+        line.precision(4);
+        line << "static step 0 (gravity and initial stress): " << step0.residuals.size()
+             << " Newton iterations, residual " << step0.residuals.back();
+        *log_ << line.str() << '\n';
+      }
       step0.reactions        = reactions(r_);
       step0.controlled_force = load_;
       out.steps.push_back(step0);

@@ -198,15 +198,18 @@ namespace kimp::fem::internal
   }
 
   void ImpactProblem::finish_static_operator(TrilinosWrappers::SparseMatrix &matrix,
-                                             const GeostaticHold            &hold) const
+                                             const GeostaticHold            &hold,
+                                             const Vec                      *u) const
   {
     // The virgin stiffness (or tangent), with the free slab's DoFs held by their diagonal and
     // the supported rows replaced by their diagonal (their residual is zero, so du = 0 there:
-    // the constrained solve).
+    // the constrained solve). The interface: its stick springs in the virgin operator, the
+    // pairs' consistent tangent at u (open, stick, slip) with the same regularising share of
+    // the springs as the bodies' in the tangent.
     for (const auto i : hold.slab_dofs)
       matrix.add(i, i, stiffness.diag_element(i));
     if (interface)
-      add_interface_stiffness(matrix);
+      add_interface_stiffness(matrix, u, tangent_regularization);
     matrix.compress(VectorOperation::add);
     for (const auto i : hold.supported)
       matrix.clear_row(i, stiffness.diag_element(i));
@@ -274,7 +277,7 @@ namespace kimp::fem::internal
     // of the virgin stiffness keeps it regular; it only slows the final quadratic rate by a
     // linear term of that order.
     tangent.add(tangent_regularization, stiffness);
-    finish_static_operator(tangent, hold);
+    finish_static_operator(tangent, hold, &u);
   }
 
   ImpactProblem::GeostaticIterations

@@ -297,9 +297,11 @@ namespace kimp::fem::internal
     /** The absorbing faces' DoFs held as by rollers during the static step, into @p hold. */
     void hold_geostatic_supports(GeostaticHold &hold) const;
     /** Turns an assembled stiffness into the static operator: the slab's diagonal, the
-     *  interface, the supported rows replaced by their diagonal. */
+     *  interface (its springs; with @p u its regularised consistent tangent at u), the supported
+     *  rows replaced by their diagonal. */
     void finish_static_operator(TrilinosWrappers::SparseMatrix &matrix,
-                                const GeostaticHold            &hold) const;
+                                const GeostaticHold            &hold,
+                                const Vec                      *u = nullptr) const;
     /** The consistent tangent at @p u from the committed state, regularised, as an operator. */
     void assemble_geostatic_tangent(const Vec                      &u,
                                     const GeostaticHold            &hold,
@@ -322,8 +324,12 @@ namespace kimp::fem::internal
     void setup_interface();
     /** f -= the interface forces at u (trial history of the interface written). */
     void subtract_interface_force(const Vec &u, Vec &f);
-    /** Adds the interface's penalty springs to a matrix whose sparsity has their couplings. */
-    void add_interface_stiffness(TrilinosWrappers::SparseMatrix &matrix) const;
+    /** Adds the interface's penalty springs to a matrix whose sparsity has their couplings;
+     *  with @p u the pairs' consistent tangent at u (open, stick or slip from the committed
+     *  history) plus @p floor x the springs. */
+    void add_interface_stiffness(TrilinosWrappers::SparseMatrix &matrix,
+                                 const Vec                      *u     = nullptr,
+                                 double                          floor = 0) const;
 
     // explicit.cc
     void run_explicit();

@@ -104,25 +104,39 @@ namespace kimp::fem::internal
     f.compress(VectorOperation::add);
   }
 
-  void ImpactProblem::add_interface_stiffness(TrilinosWrappers::SparseMatrix &matrix) const
+  void ImpactProblem::add_interface_stiffness(TrilinosWrappers::SparseMatrix &matrix,
+                                              const Vec                      *u,
+                                              double                          floor) const
   {
-    // k_N n n^T + k_T t t^T between the pair's nodes, on the free DoFs; n = +x, t = +y.
-    for (const auto &p : interface->pairs())
+    // Per pair [[A, -A], [-A, A]] over (u_a, u_b) on the free DoFs: without u the stick springs
+    // k_N n n^T + k_T t t^T (n = +x, t = +y), with u the consistent tangent of the pair's state
+    // at u plus floor x the stick springs.
+    const std::vector<double> all =
+      u ? gather_owned(interface_dofs, *u) : std::vector<double>(interface_dofs.size(), 0.0);
+    const auto fixed = [&](types::global_dof_index i)
+    { return locally_relevant.is_element(i) && constraints.is_constrained(i); };
+    const std::vector<FrictionalInterface::Pair> &pairs = interface->pairs();
+    for (std::size_t k = 0; k < pairs.size(); ++k)
     {
+      const FrictionalInterface::Pair &p = pairs[k];
+      std::array<double, 4>            a = interface->tangent(k, all, u == nullptr);
+      if (u)
+      {
+        const std::array<double, 4> stick = interface->tangent(k, all, true);
+        for (unsigned int e = 0; e < 4; ++e)
+          a[e] += floor * stick[e];
+      }
       const std::array<types::global_dof_index, 4> dofs{{interface_dofs[2 * p.a],
                                                          interface_dofs[2 * p.a + 1],
                                                          interface_dofs[2 * p.b],
                                                          interface_dofs[2 * p.b + 1]}};
-      const std::array<double, 2>                  k{{p.normal_stiffness, p.tangential_stiffness}};
       for (unsigned int r = 0; r < 4; ++r)
         for (unsigned int c = 0; c < 4; ++c)
         {
-          const auto fixed = [&](types::global_dof_index i)
-          { return locally_relevant.is_element(i) && constraints.is_constrained(i); };
-          if (r % 2 != c % 2 || !locally_owned.is_element(dofs[r]) || fixed(dofs[r]) ||
-              fixed(dofs[c]))
+          const double value = a[2 * (r % 2) + c % 2];
+          if (value == 0 || !locally_owned.is_element(dofs[r]) || fixed(dofs[r]) || fixed(dofs[c]))
             continue;
-          matrix.add(dofs[r], dofs[c], (r / 2 == c / 2 ? 1.0 : -1.0) * k[r % 2]);
+          matrix.add(dofs[r], dofs[c], (r / 2 == c / 2 ? 1.0 : -1.0) * value);
         }
     }
   }

@@ -128,6 +128,61 @@ namespace
     EXPECT_LT(std::abs(balance), tolerance * total);
   }
 
+  TEST(FrictionalInterface, TangentIsTheDerivativeOfTheForceInEveryState)
+  {
+    // On an inclined face, open, stick and slip (either sign): the consistent tangent A equals
+    // the central difference of -f_b over u_b and of f_b over u_a (relative 1e-6 of k_N); the
+    // stick springs whatever the state when asked; and at p = 0 (the backfill placed against
+    // the wall) the closed side's stick springs.
+    const double              c45 = std::sqrt(0.5);
+    FrictionalInterface::Pair p;
+    p.a = 0, p.b = 1, p.nx = c45, p.ny = -c45;
+    p.normal_stiffness = k_n, p.tangential_stiffness = k_t, p.friction = mu;
+    FrictionalInterface c({p}, 2);
+    c.evaluate({0, 0, -1e-6 * c45, 1e-6 * c45}); // closed, T = 0
+    c.commit();
+    const double tx = -p.ny, ty = p.nx;
+    // Soil node b moved by (-pen n + s t) from the committed state.
+    const auto at = [&](double pen, double s) {
+      return std::vector<double>{0,
+                                 0,
+                                 (-1e-6 - pen) * p.nx + s * tx,
+                                 (-1e-6 - pen) * p.ny + s * ty};
+    };
+    const std::vector<std::pair<const char *, std::vector<double>>> states{
+      {"open", at(-2e-6, 0)},
+      {"stick", at(0.5e-6, 1e-8)},
+      {"slip +", at(0.5e-6, 5e-6)},
+      {"slip -", at(0.5e-6, -5e-6)}};
+    for (const auto &[name, u] : states)
+    {
+      const std::array<double, 4> a = c.tangent(0, u, false);
+      for (unsigned int j = 0; j < 2; ++j)
+      {
+        const double        d  = 1e-12;
+        std::vector<double> up = u, um = u;
+        up[2 + j] += d, um[2 + j] -= d;
+        const auto fp = c.evaluate(up).force, fm = c.evaluate(um).force;
+        for (unsigned int i = 0; i < 2; ++i)
+          EXPECT_NEAR(a[2 * i + j], -(fp[2 + i] - fm[2 + i]) / (2 * d), 1e-6 * k_n)
+            << name << " (" << i << ", " << j << ")";
+        up = u, um = u;
+        up[j] += d, um[j] -= d;
+        const auto ga = c.evaluate(up).force, gm = c.evaluate(um).force;
+        for (unsigned int i = 0; i < 2; ++i)
+          EXPECT_NEAR(-a[2 * i + j], -(ga[2 + i] - gm[2 + i]) / (2 * d), 1e-6 * k_n)
+            << name << " over u_a (" << i << ", " << j << ")";
+      }
+    }
+    const std::array<double, 4> stick = c.tangent(0, at(-2e-6, 0), true);
+    EXPECT_NEAR(stick[0], k_n * p.nx * p.nx + k_t * tx * tx, 1e-9 * k_n);
+    EXPECT_NEAR(stick[1], k_n * p.nx * p.ny + k_t * tx * ty, 1e-9 * k_n);
+    FrictionalInterface         fresh({p}, 2);
+    const std::array<double, 4> kink = fresh.tangent(0, {0, 0, 0, 0}, false);
+    for (unsigned int e = 0; e < 4; ++e)
+      EXPECT_DOUBLE_EQ(kink[e], stick[e]);
+  }
+
   TEST(FrictionalInterface, BadPairsAreRefused)
   {
     FrictionalInterface::Pair p;
