@@ -11,7 +11,7 @@
 # With HOLD (a time in ms) the runs are held that long (the stop rule off:
 # separation_hold_time = end_time = HOLD) so that the wall face at the end is the settled
 # permanent displacement; the table then has the set, the wall's mean over the last 50 ms (what
-# docs/validation.md quotes), and says how far it still vibrates and how far the two finest
+# docs/validation.md quotes), and says how far it still vibrates and drifts, how far the two finest
 # levels' sets differ, also as a share of the largest wall displacement. With three levels
 # (KIMP_LADDER_LEVELS="5 2.5 1.25") each quantity also gets its observed order p = log2(d1/d2)
 # and the Richardson estimate of the finest level's error, where its changes shrink.
@@ -99,8 +99,11 @@ def load_sets(far, h):
         hist.setdefault(r["case"], []).append((float(r["time_s"]), float(r["wall_displacement_m"])))
     out = {}
     for case, h_ in hist.items():
-        w = [u for t, u in h_ if t >= h_[-1][0] - set_window]
-        out[case] = (sum(w) / len(w), min(w), max(w))
+        t_end = h_[-1][0]
+        w = [u for t, u in h_ if t >= t_end - set_window]
+        before = [u for t, u in h_ if t_end - 2 * set_window <= t < t_end - set_window]
+        drift = sum(w) / len(w) - sum(before) / len(before) if before else math.nan
+        out[case] = (sum(w) / len(w), min(w), max(w), drift)
     return out
 
 runs = {(far, h): load(far, h) for far in fars for h in levels}
@@ -108,7 +111,7 @@ sets = {(far, h): load_sets(far, h) for far in fars for h in levels}
 for key, cases in runs.items():
     for name, c in cases.items():
         if name in sets[key]:
-            c["set_mean"], c["set_least"], c["set_largest"] = sets[key][name]
+            c["set_mean"], c["set_least"], c["set_largest"], c["set_drift"] = sets[key][name]
 rows = [("first peak force (kN/m)", "first_peak_force", 1e-3),
         ("impulse of the first pulse (N s/m)", "first_peak_impulse", 1.0),
         ("energy-equivalent resistance (kN/m)", "energy_equivalent_resistance", 1e-3),
@@ -182,8 +185,10 @@ for name in names:
         move = val(b, "max_wall_displacement", 1e3)
         diff = abs(a["set_mean"] - b["set_mean"]) * 1e3 if a and "set_mean" in a else float("nan")
         print(f"  set on {fine} cm vibrates over the last 50 ms between {b['set_least'] * 1e3:.3f} "
-              f"and {b['set_largest'] * 1e3:.3f} mm; the two finest levels differ by {diff:.3f} mm, "
-              f"{diff / move * 100:.2f} % of the largest wall displacement")
+              f"and {b['set_largest'] * 1e3:.3f} mm and drifts by {b['set_drift'] * 1e3:+.3f} mm "
+              f"(mean of the last 50 ms less that of the 50 ms before; a drift beside the "
+              f"difference below means the wall has not settled); the two finest levels differ "
+              f"by {diff:.3f} mm, {diff / move * 100:.2f} % of the largest wall displacement")
     for far in fars[1:]:
         print(f"  far side {far}: its own change from {coarse} to {fine} cm:")
         for label, key, scale in rows:
