@@ -5,6 +5,7 @@
 #include "fem/static_plasticity.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -480,51 +481,28 @@ namespace kimp::fem
                                            const Vector<double> &lift,
                                            Vector<double>       &rhs)
     {
-      // Each pair's forces depend on its own four DoFs only: a central difference per DoF. A pair
-      // exactly at the kink of the no-tension law (normal gap zero: the start of step 0, where
-      // the backfill is placed against the wall) takes the closed side's stick springs instead:
-      // the difference there would average the open and closed sides, half k_N and no
-      // tangential stiffness at all, and the first Newton update would let the whole backfill
-      // slide down the wall frictionlessly (docs/physics.md §6 "Static pushover", "Newton").
-      std::vector<double>                  uc = interface_displacements(u);
+      // Each pair's consistent tangent (FrictionalInterface::tangent: open, stick or slip from the
+      // committed history; a pair exactly at the no-tension kink, as every pair at the start of
+      // step 0 where the backfill is placed against the wall, takes the closed side's stick
+      // springs, docs/physics.md §6 "Static pushover", "Newton"), plus floor_ times the springs:
+      // an open or sliding pair keeps a floor of them in the Newton matrix. Over the pair's DoFs
+      // (a_x, a_y, b_x, b_y) the block is [[A, -A], [-A, A]].
+      const std::vector<double>            uc = interface_displacements(u);
       FullMatrix<double>                   k(4, 4);
       Vector<double>                       k_lift(4);
       std::vector<types::global_dof_index> dofs(4);
       for (std::size_t pair = 0; pair < p_.interface.size(); ++pair)
       {
-        const StaticInterfacePair &sp   = p_.interface[pair];
-        const double               n[2] = {sp.nx, sp.ny}, tv[2] = {-sp.ny, sp.nx};
-        const bool                 at_kink =
-          (uc[4 * pair + 2] - uc[4 * pair]) * n[0] + (uc[4 * pair + 3] - uc[4 * pair + 1]) * n[1] ==
-          0;
-        for (unsigned int j = 0; j < 4 && !at_kink; ++j)
+        std::array<double, 4> a = interface_->tangent(pair, uc, false);
+        if (floor_ > 0)
         {
-          const std::size_t d          = 4 * pair + j;
-          const double      delta      = 1e-9 * std::max(1e-3, std::abs(uc[d]));
-          const double      u0         = uc[d];
-          uc[d]                        = u0 + delta;
-          const std::vector<double> fp = interface_->evaluate(uc).force;
-          uc[d]                        = u0 - delta;
-          const std::vector<double> fm = interface_->evaluate(uc).force;
-          uc[d]                        = u0;
-          for (unsigned int i = 0; i < 4; ++i)
-            k(i, j) = -(fp[4 * pair + i] - fm[4 * pair + i]) / (2 * delta);
+          const std::array<double, 4> springs = interface_->tangent(pair, uc, true);
+          for (unsigned int e = 0; e < 4; ++e)
+            a[e] += floor_ * springs[e];
         }
-        if (floor_ > 0 || at_kink)
-        {
-          // An open (or sliding) pair keeps a floor of its springs in the Newton matrix; one at
-          // the kink gets the whole springs.
-          const double share = at_kink ? 1.0 : floor_;
-          const double kn = share * sp.normal_stiffness, kt = share * sp.tangential_stiffness;
-          if (at_kink)
-            k = 0;
-          for (unsigned int i = 0; i < 4; ++i)
-            for (unsigned int j = 0; j < 4; ++j)
-            {
-              const double sign = (i < 2) == (j < 2) ? 1.0 : -1.0;
-              k(i, j) += sign * (kn * n[i % 2] * n[j % 2] + kt * tv[i % 2] * tv[j % 2]);
-            }
-        }
+        for (unsigned int i = 0; i < 4; ++i)
+          for (unsigned int j = 0; j < 4; ++j)
+            k(i, j) = ((i < 2) == (j < 2) ? 1.0 : -1.0) * a[2 * (i % 2) + j % 2];
         for (unsigned int i = 0; i < 4; ++i)
         {
           dofs[i]   = interface_dofs_[4 * pair + i];
