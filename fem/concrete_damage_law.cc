@@ -350,6 +350,11 @@ namespace kimp::fem
                                            const double a) const
   {
     const double E = p_.youngs_modulus;
+    if (a < 1 && r_.base_joint_tension > 0)
+    {
+      const double kj = r_.base_joint_tension / E;
+      return kt > 0 ? kt / (kt + kj) : 0.0;
+    }
     if (r_.tension_stiffening)
     {
       // No softening branch to keep from snapping back: the material's own f_t.
@@ -535,8 +540,44 @@ namespace kimp::fem
     return damaged_stress(e, h0, h1, dt, dc, c, s);
   }
 
+  bool ConcreteDamageLaw::step_grows_damage(const VoigtStrain &e, const double *h) const
+  {
+    static_assert(
+      p_slot + 4 + 7 + 4 <= max_history,
+      "the most history values (plastic strain, bars with strain penetration, IMPL-EX)");
+    std::array<double, max_history> trial{};
+    stress(e, h, trial.data());
+    return trial[2] > h[2] || trial[3] > h[3] || (plastic_ && trial[1] > h[1]);
+  }
+
+  VoigtTangent ConcreteDamageLaw::growing_damage_tangent(const VoigtStrain &e,
+                                                         const double      *h) const
+  {
+    // The central difference of the implicit update's concrete stress from the committed state:
+    // it has the damage's growth, the crack frame an uncracked point takes from the step's
+    // principal stress (and turns with the strain), beta's change with the opening, the plastic
+    // strain. The bars' and dowels' tangent is added exactly (a difference across a bar's yield
+    // point would average its two slopes).
+    std::array<double, max_history> trial{};
+    const double                    d =
+      1e-6 *
+      std::max({std::abs(e[0]), std::abs(e[1]), std::abs(e[2]), p_.f_ctm / p_.youngs_modulus});
+    VoigtTangent t = central_difference_tangent(
+      [&](const VoigtStrain &x)
+      {
+        return plastic_ ? plastic_concrete_stress(x, h, trial.data()) :
+                          concrete_stress(x, h, trial.data());
+      },
+      e,
+      d);
+    add_reinforcement_tangent(t, e, h);
+    return t;
+  }
+
   VoigtTangent ConcreteDamageLaw::tangent(const VoigtStrain &e, const double *h) const
   {
+    if (!implex_on_ && step_grows_damage(e, h))
+      return growing_damage_tangent(e, h);
     // The tangent of the committed damage at e with beta frozen (its change with the opening is
     // of the order of the shear energy over the opening, left out), and the bars' and dowel's.
     const double      lam = lambda_, mu = mu_, a = lam + 2 * mu, ep = a - lam * lam / a;
@@ -567,26 +608,35 @@ namespace kimp::fem
                  ctt = wc * ((1 - dt) * a + dt * qtt), css = wc * mu * (1 - dt * (1 - sp.beta));
     // T = A^T C' A, A the strain transformation of to_crack_frame().
     VoigtTangent t = detail::tangent_from_frame({{cnn, cnt, 0, cnt, ctt, 0, 0, 0, css}}, c, sn);
-    if (reinforced_)
-    {
-      const double  *b     = h + bars_;
-      const SteelBar steel = steel_at(h[5]);
-      t[0] += r_.ratio_x * steel.update(e[0], b[0], b[1]).tangent;
-      const double ys = bar_slots_ > 6 ? b[6] : 1.0;
-      t[4] += r_.ratio_y * ys * steel.update(ys * e[1], b[2], b[3]).tangent;
-      if (dt > 0 && !p_.rotating_crack)
-      {
-        // The dowel's shear stiffness on g = a2 . e, a2 the shear row of to_crack_frame().
-        const Dowel  dw = dowel(c, sn);
-        const double g  = to_crack_frame(e, c, sn)[2];
-        const double cs = c * sn, a2[3] = {-2 * cs, 2 * cs, c * c - sn * sn};
-        if (std::abs(dw.stiffness * (g - b[5])) <= dw.strength)
-          for (unsigned int i = 0; i < 3; ++i)
-            for (unsigned int j = 0; j < 3; ++j)
-              t[3 * i + j] += a2[i] * dw.stiffness * a2[j];
-      }
-    }
+    add_reinforcement_tangent(t, e, h);
     return t;
+  }
+
+  void ConcreteDamageLaw::add_reinforcement_tangent(VoigtTangent      &t,
+                                                    const VoigtStrain &e,
+                                                    const double      *h) const
+  {
+    if (!reinforced_)
+      return;
+    const double  *b     = h + bars_;
+    const SteelBar steel = steel_at(h[5]);
+    t[0] += r_.ratio_x * steel.update(e[0], b[0], b[1]).tangent;
+    const double ys = bar_slots_ > 6 ? b[6] : 1.0;
+    t[4] += r_.ratio_y * ys * steel.update(ys * e[1], b[2], b[3]).tangent;
+    // The dowel acts across a committed crack (one that forms in the step starts unloaded at
+    // the step's strain, so it adds no stiffness to it).
+    if (h[2] > 0 && !p_.rotating_crack)
+    {
+      // The dowel's shear stiffness on g = a2 . e, a2 the shear row of to_crack_frame().
+      const double c = h[6], sn = h[7];
+      const Dowel  dw = dowel(c, sn);
+      const double g  = to_crack_frame(e, c, sn)[2];
+      const double cs = c * sn, a2[3] = {-2 * cs, 2 * cs, c * c - sn * sn};
+      if (std::abs(dw.stiffness * (g - b[5])) <= dw.strength)
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            t[3 * i + j] += a2[i] * dw.stiffness * a2[j];
+    }
   }
 
   PointOutput ConcreteDamageLaw::output(const VoigtStrain &e, const double *h) const

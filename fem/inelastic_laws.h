@@ -246,6 +246,17 @@ namespace kimp::fem
      */
     double strain_penetration = 0;
     /**
+     * f_j, Pa: the tension a construction joint at the clamped base carries (0: off, the base
+     * row cracks as the wall's concrete). With strain penetration, the concrete of the cells on
+     * the base then has no strength criterion in tension: its damage is
+     * d_t = kappa_t / (kappa_t + f_j / E), so it carries E kappa_t f_j / (E kappa_t + f_j),
+     * rising from the first tensile strain and saturating at f_j, and never softens. The
+     * elastic stress at the clamped corner is singular, so a strength criterion there cracks at
+     * a load that falls as the cells shrink; this joint has no such onset (docs/physics.md §6
+     * "The base joint"; >= 0).
+     */
+    double base_joint_tension = 0;
+    /**
      * s_rm, m: the mean spacing of the cracks the bars impose (0: off, each cell's own crack
      * band). Bars spread the cracking of a tension zone over cracks about s_rm apart, so a
      * cracked zone's mean strain is w / s_rm for a crack opening w whatever the cells' size.
@@ -395,8 +406,10 @@ namespace kimp::fem
     void initial_history(double *history) const override;
     VoigtStress
     stress(const VoigtStrain &strain, const double *committed, double *trial) const override;
-    /** The tangent at the committed damage (beta's change with the opening left out): enough
-     *  for the virgin-state stiffness the solvers assemble. */
+    /** The tangent at @p strain from the committed state. Where the implicit update's step
+     *  grows the damage, the consistent one (a central difference of the stress: the damage's
+     *  growth, the crack frame it turns, beta, the plastic strain); elsewhere, and with
+     *  IMPL-EX, that of the step's damage (beta's change with the opening left out). */
     VoigtTangent tangent(const VoigtStrain &strain, const double *committed) const override;
     PointOutput  output(const VoigtStrain &strain, const double *history) const override;
     /** The length over which a point of crack band h softens in tension: the bars' crack
@@ -426,6 +439,17 @@ namespace kimp::fem
 
   private:
     static constexpr double steel_poisson_ratio = 0.3;
+    /** Most history values of any configuration (the tangent's stack scratch). */
+    static constexpr unsigned int max_history = 32;
+    /** True if the implicit update at @p strain from @p committed grows d_t, d_c or kappa_c. */
+    bool step_grows_damage(const VoigtStrain &strain, const double *committed) const;
+    /** The implicit update's tangent where the step grows the damage: a central difference of
+     *  the concrete's stress, plus the bars' and dowels'. */
+    VoigtTangent growing_damage_tangent(const VoigtStrain &strain, const double *committed) const;
+    /** Adds the bars' and dowels' consistent tangent at @p strain from @p committed to @p t. */
+    void add_reinforcement_tangent(VoigtTangent      &t,
+                                   const VoigtStrain &strain,
+                                   const double      *committed) const;
     /** psi_0, the loss L, their stress d psi_0 / d eps and d L / d eps (x, y), their sigma_zz
      *  parts, the crack opening strain and beta at strain e in the frame (c, s), band h. */
     struct Split

@@ -20,6 +20,25 @@ namespace kimp::fem
   /** A plane-strain stress state with its out-of-plane part: {xx, yy, zz, xy} (Pa). */
   using InitialStress = std::array<double, 4>;
 
+  /** The central difference d sigma / d eps of @p stress (VoigtStrain -> VoigtStress) at @p e,
+   *  each strain component moved by +-@p step. */
+  template <class Stress>
+  VoigtTangent central_difference_tangent(Stress &&stress, const VoigtStrain &e, double step)
+  {
+    VoigtTangent t{};
+    for (unsigned int j = 0; j < 3; ++j)
+    {
+      VoigtStrain ep = e, em = e;
+      ep[j] += step;
+      em[j] -= step;
+      const VoigtStress sp = stress(ep);
+      const VoigtStress sm = stress(em);
+      for (unsigned int i = 0; i < 3; ++i)
+        t[3 * i + j] = (sp[i] - sm[i]) / (2 * step);
+    }
+    return t;
+  }
+
   /** Per-point quantities for energy bookkeeping and field output. */
   struct PointOutput
   {

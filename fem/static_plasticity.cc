@@ -65,18 +65,10 @@ namespace kimp::fem
                                     std::vector<double> &scratch)
     {
       const double d = 1e-7 * std::max({std::abs(e[0]), std::abs(e[1]), std::abs(e[2]), 1e-6});
-      VoigtTangent t{};
-      for (unsigned int j = 0; j < 3; ++j)
-      {
-        VoigtStrain ep = e, em = e;
-        ep[j] += d;
-        em[j] -= d;
-        const VoigtStress sp = law.stress(ep, h, scratch.data());
-        const VoigtStress sm = law.stress(em, h, scratch.data());
-        for (unsigned int i = 0; i < 3; ++i)
-          t[3 * i + j] = (sp[i] - sm[i]) / (2 * d);
-      }
-      return t;
+      return central_difference_tangent([&](const VoigtStrain &x)
+                                        { return law.stress(x, h, scratch.data()); },
+                                        e,
+                                        d);
     }
 
     /** Refuses a parameter the static solve cannot honour. */

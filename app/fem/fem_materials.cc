@@ -84,6 +84,16 @@ namespace kimp::app
               format_quantity(wall.strain_penetration, "m"),
               "needs vertical bars (wall_reinforcement.ratio_y > 0) in a damage_plasticity "
               "concrete");
+    // The base joint is the base row's concrete: the cells strain penetration marks.
+    ctx.check(wall.base_joint_tension == 0 || wall.strain_penetration > 0,
+              "concrete.wall_reinforcement.base_joint_tension",
+              format_quantity(wall.base_joint_tension, "MPa"),
+              "needs wall_reinforcement.strain_penetration > 0 (the joint is the base row's "
+              "crack, where the vertical bars slip out of the base)");
+    ctx.check(materials.concrete.slab_reinforcement.base_joint_tension == 0,
+              "concrete.slab_reinforcement.base_joint_tension",
+              format_quantity(materials.concrete.slab_reinforcement.base_joint_tension, "MPa"),
+              "must be 0: the slab has no clamped base (wall_reinforcement.base_joint_tension)");
     ctx.check(materials.concrete.slab_reinforcement.strain_penetration == 0,
               "concrete.slab_reinforcement.strain_penetration",
               format_quantity(materials.concrete.slab_reinforcement.strain_penetration, "m"),

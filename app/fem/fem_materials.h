@@ -50,6 +50,16 @@ namespace kimp::fem
                 "linearised; 0.022 f_y d_b with f_y in MPa, e.g. 0.13 m for 12 mm B500 bars); "
                 "0: perfect bond to the base",
                 io::Range::at_least(0.0).and_at_most(1.0));
+    io.quantity("base_joint_tension",
+                s.base_joint_tension,
+                "MPa",
+                "f_j, the tension of a construction joint at the wall's clamped base (needs "
+                "strain_penetration): the base row's concrete carries E k f_j / (E k + f_j) at "
+                "the tension measure k, no strength criterion, saturating at f_j and never "
+                "softening (of the order of EN 1992-1-1 6.2.5's cohesion c f_ctd of a smooth "
+                "joint, 0.2 x 1.35 MPa = 0.27 MPa for C30/37); 0: the base row cracks as the "
+                "wall's concrete",
+                io::Range::at_least(0.0).and_at_most(10e6));
     io.quantity("crack_spacing",
                 s.crack_spacing,
                 "m",

@@ -234,7 +234,8 @@ namespace
   // law in SI (0 when absent); each is refused where nothing could honour it: strain penetration
   // without vertical bars, on an elastic concrete or on the slab's bars (nothing anchors them); a
   // crack spacing without bars or on an elastic concrete; tension stiffening without the crack
-  // spacing it is the tension of.
+  // spacing it is the tension of; a base joint without the strain penetration that marks the base
+  // row, or on the slab.
   TEST(FemConcreteScene, TheBarsKeysReachTheWallsLawAndAreRefusedWhereNothingHonoursThem)
   {
     const auto bars = [](const std::string &keys)
@@ -248,6 +249,10 @@ namespace
     EXPECT_DOUBLE_EQ(bars("").crack_spacing, 0.0);
     EXPECT_TRUE(bars(", crack_spacing: \"20 cm\", tension_stiffening: true").tension_stiffening);
     EXPECT_FALSE(bars("").tension_stiffening);
+    EXPECT_DOUBLE_EQ(
+      bars(", strain_penetration: \"13 cm\", base_joint_tension: \"0.3 MPa\"").base_joint_tension,
+      0.3e6);
+    EXPECT_DOUBLE_EQ(bars("").base_joint_tension, 0.0);
     const std::string wall = "concrete.wall_reinforcement.", slab = "concrete.slab_reinforcement.";
     expect_refused(
       {{concrete + ", wall_reinforcement: {strain_penetration: \"13 cm\"}}}\n",
@@ -267,7 +272,16 @@ namespace
        {concrete + ", wall_reinforcement: {ratio_y: \"0.8 %\", tension_stiffening: true}}}\n",
         wall + "tension_stiffening"},
        {concrete + ", slab_reinforcement: {ratio_x: \"0.5 %\", tension_stiffening: true}}}\n",
-        slab + "tension_stiffening"}});
+        slab + "tension_stiffening"},
+       {concrete +
+          ", wall_reinforcement: {ratio_y: \"0.8 %\", base_joint_tension: \"0.3 MPa\"}}}\n",
+        wall + "base_joint_tension"},
+       {concrete +
+          ", slab_reinforcement: {ratio_x: \"0.5 %\", base_joint_tension: \"0.3 MPa\"}}}\n",
+        slab + "base_joint_tension"},
+       {concrete + ", wall_reinforcement: {ratio_y: \"0.8 %\", strain_penetration: \"13 cm\", "
+                   "base_joint_tension: \"-1 MPa\"}}}\n",
+        "base_joint_tension"}});
   }
 } // namespace
 

@@ -136,6 +136,41 @@ namespace kimp::fem::testing
     EXPECT_LT(s.geostatic_wall_displacement, 0);
   }
 
+  TEST(Geostatic, WallWithABaseJointConvergesOnAFineMesh)
+  {
+    // h_contact = 1.25 cm, the reinforced wall with its bars' strain penetration and a base joint
+    // (ReinforcementParameters::base_joint_tension): the joint has no tensile strength, so it
+    // opens on the heel side under the earth pressure at rest and its damage grows with the
+    // strain. With the committed damage's tangent (the secant of the saturating joint) the step
+    // converged only linearly: 19 iterations here, 873 at H = 2.00 m on the study's wall mesh
+    // (`kimp fem`, wall_aspect_max 1). With the consistent tangent of the points whose damage
+    // grows: 12 here, 29 there.
+    constexpr double        balance_tolerance = 1e-8;
+    constexpr unsigned      max_iterations    = 15;
+    auto                    p  = geostatic_scene("geostatic_joint_fine.msh", true, 0.0125);
+    const auto              cp = ConcreteParameters::from_f_cm(38e6);
+    ReinforcementParameters wall;
+    wall.ratio_x                        = 0.002;
+    wall.ratio_y                        = 0.008;
+    wall.strain_penetration             = 0.13;
+    wall.crack_spacing                  = 0.2;
+    wall.tension_stiffening             = true;
+    wall.base_joint_tension             = 0.33e6;
+    p.material_laws[ids::wall_material] = std::make_shared<const ConcreteDamageLaw>(cp, wall);
+    p.materials[ids::wall_material] =
+      Material{cp.youngs_modulus, cp.poisson_ratio, concrete.density};
+    p.end_time    = 1e-4;
+    const auto  r = run_impact(p, MPI_COMM_WORLD, nullptr);
+    const auto &s = r.summary;
+    if (rank() == 0)
+      std::cout << "geostatic, base joint, h = 1.25 cm: out-of-balance " << s.geostatic_residual
+                << ", " << s.geostatic_iterations << " iterations, wall face u_x "
+                << s.geostatic_wall_displacement << " m\n";
+    EXPECT_LT(s.geostatic_residual, balance_tolerance);
+    EXPECT_LE(s.geostatic_iterations, max_iterations);
+    EXPECT_LT(s.geostatic_wall_displacement, 0);
+  }
+
   TEST(Geostatic, AbsorbingBoundaryStartsAtRest)
   {
     // Absorbing far side and base: the geostatic step holds them on rollers, their reactions

@@ -115,6 +115,26 @@ namespace
     double szz(const VoigtStrain &e) const { return law.output(e, h0.data()).sigma_zz; }
   };
 
+  /** x with t x = r (t row-major), by Cramer's rule. */
+  VoigtStrain solve_3x3(const VoigtTangent &t, const VoigtStress &r)
+  {
+    const auto det = [](const std::array<double, 9> &m)
+    {
+      return m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
+             m[2] * (m[3] * m[7] - m[4] * m[6]);
+    };
+    const double d = det(t);
+    VoigtStrain  x{};
+    for (unsigned int j = 0; j < 3; ++j)
+    {
+      std::array<double, 9> m = t;
+      for (unsigned int i = 0; i < 3; ++i)
+        m[3 * i + j] = r[i];
+      x[j] = det(m) / d;
+    }
+    return x;
+  }
+
   /** Relative difference of the law's tangent and a central difference of its stress. */
   double tangent_error(const MaterialLaw &law, const VoigtStrain &e, const double *h)
   {
@@ -661,6 +681,118 @@ namespace
           EXPECT_GT(concrete, 0.05 * ft) << "h = " << h << ", w = " << w * 1e3 << " mm";
         }
         h0 = h1;
+      }
+    }
+  }
+
+  // The base joint (ReinforcementParameters::base_joint_tension): on the base row the concrete's
+  // tension is E e f_j / (E e + f_j) at the row's strain e (uniaxial, nu = 0), from the first
+  // strain, below f_j at every strain, never softening, on every row height; unloading follows the
+  // secant of the damage reached; off the base the concrete still reaches f_t before it cracks.
+  TEST(Concrete, BaseJointCarriesItsTensionWithoutAStrengthAndWithoutSoftening)
+  {
+    const ConcreteParameters c = uniaxial_concrete();
+    ReinforcementParameters  r = spaced_wall_bars();
+    r.tension_stiffening       = true;
+    r.strain_penetration       = 0.13;
+    r.base_joint_tension       = 0.3e6;
+    const ConcreteDamageLaw law(c, r);
+    const double            E = c.youngs_modulus, fj = r.base_joint_tension, ej = fj / E;
+    const double            Es = r.youngs_modulus;
+    for (const double h : {0.0125, 0.025, 0.05})
+    {
+      std::vector<double> h0(law.n_history()), h1(law.n_history()), off(law.n_history());
+      law.initialize_anchored_point(h0.data(), h, h);
+      law.initialize_point(off.data(), h);
+      const double scale = h / (h + r.strain_penetration); // the bars' strain scale on the base
+      for (const double m : {0.1, 0.5, 1.0, 3.0, 10.0, 100.0, 1000.0})
+      {
+        const double e        = m * ej;
+        const double syy      = law.stress({{0, e, 0}}, h0.data(), h1.data())[1];
+        const double concrete = syy - r.ratio_y * Es * scale * e; // bars elastic here
+        EXPECT_NEAR(concrete, E * e * fj / (E * e + fj), 1e-9 * fj) << "h = " << h << ", " << m;
+        EXPECT_LT(concrete, fj);
+        h0 = h1;
+      }
+      // Unloading to half the last strain: the secant of the damage reached.
+      const double e = 500 * ej, d = h0[2];
+      const double syy = law.stress({{0, e, 0}}, h0.data(), h1.data())[1];
+      EXPECT_NEAR(syy - r.ratio_y * Es * scale * e, (1 - d) * E * e, 1e-9 * fj);
+      // Off the base: uncracked up to f_t.
+      const double et = 0.99 * c.f_ctm / E;
+      EXPECT_NEAR(law.stress({{0, et, 0}}, off.data(), h1.data())[1] - r.ratio_y * Es * et,
+                  E * et,
+                  1e-9 * c.f_ctm);
+    }
+  }
+
+  // The implicit update's Newton tangent is consistent where the step's strain grows the tension
+  // damage (what the geostatic step assembles from the committed state): against a central
+  // difference of the stress at the same committed state (a tenth of the law's own step), for
+  // softening plain concrete, tension stiffening off the base and on it, and the base joint
+  // (base_joint_tension), each from an uncracked and from a cracked committed state, strains off
+  // the axes. And it does what it is for: Newton on the point's strain finds the strain of a
+  // given stress from the committed state in a few iterations, where the committed damage's
+  // tangent (the secant of a saturating joint) creeps.
+  TEST(Concrete, TangentOfGrowingTensionDamageIsTheDerivativeOfTheStress)
+  {
+    const ConcreteParameters c         = uniaxial_concrete();
+    const double             e0        = c.f_ctm / c.youngs_modulus;
+    ReinforcementParameters  stiffened = spaced_wall_bars(), joint = spaced_wall_bars();
+    stiffened.tension_stiffening = joint.tension_stiffening = true;
+    stiffened.strain_penetration = joint.strain_penetration = 0.13;
+    joint.base_joint_tension                                = 0.3e6;
+    const ConcreteDamageLaw plain(c), bars(c, stiffened), base(c, joint);
+    struct Case
+    {
+      const char              *name;
+      const ConcreteDamageLaw &law;
+      bool                     anchored;
+      double                   to; ///< the committed state's strain, in e0
+    };
+    for (const Case &k : {Case{"softening", plain, false, 1.3},
+                          Case{"stiffened", bars, false, 3},
+                          Case{"stiffened, base", bars, true, 3},
+                          Case{"joint", base, true, 0},
+                          Case{"joint", base, true, 2}})
+    {
+      std::vector<double> h0(k.law.n_history()), h1(k.law.n_history());
+      if (k.anchored)
+        k.law.initialize_anchored_point(h0.data(), 0.025, 0.025);
+      else
+        k.law.initialize_point(h0.data(), 0.025);
+      if (k.to > 0)
+      {
+        k.law.stress({{-0.2 * k.to * e0, k.to * e0, 0.3 * k.to * e0}}, h0.data(), h1.data());
+        h0 = h1;
+      }
+      for (const double f : {1.2, 2.0, 4.0})
+      {
+        const double      m = std::max(k.to, 1.0) * f;
+        const VoigtStrain e{{-0.2 * m * e0, m * e0, 0.35 * m * e0}};
+        k.law.stress(e, h0.data(), h1.data());
+        ASSERT_GT(h1[2], h0[2]) << k.name << ": the step grows the damage";
+        std::printf("%-16s from %.1f e0 to %.2f e0: ", k.name, k.to, m);
+        EXPECT_LT(tangent_error(k.law, e, h0.data()), 1e-4) << k.name << " at " << m;
+        if (k.law.parameters().f_ctm > 0 && &k.law != &plain)
+        {
+          const VoigtStress target = k.law.stress(e, h0.data(), h1.data());
+          // From the committed strain (on its loading surface).
+          VoigtStrain  x{{-0.2 * k.to * e0, k.to * e0, 0.3 * k.to * e0}};
+          unsigned int n = 0;
+          for (; n < 30; ++n)
+          {
+            const VoigtStress s = k.law.stress(x, h0.data(), h1.data());
+            const VoigtStress r{{s[0] - target[0], s[1] - target[1], s[2] - target[2]}};
+            if (std::hypot(r[0], r[1], r[2]) < 1e-9 * std::abs(target[1]))
+              break;
+            const VoigtStrain dx = solve_3x3(k.law.tangent(x, h0.data()), r);
+            for (unsigned int i = 0; i < 3; ++i)
+              x[i] -= dx[i];
+          }
+          std::printf("  Newton to its stress: %u iterations\n", n);
+          EXPECT_LE(n, 8u) << k.name << " at " << m;
+        }
       }
     }
   }
