@@ -39,6 +39,26 @@ namespace kimp::fem
     return t;
   }
 
+  /** x with t x = b (t row-major) by Cramer's rule: not finite if t is singular. */
+  inline VoigtStrain solve_tangent(const VoigtTangent &t, const VoigtStress &b)
+  {
+    const auto det = [](const VoigtTangent &m)
+    {
+      return m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
+             m[2] * (m[3] * m[7] - m[4] * m[6]);
+    };
+    const double d0 = det(t);
+    VoigtStrain  x{};
+    for (unsigned int c = 0; c < 3; ++c)
+    {
+      VoigtTangent m = t;
+      for (unsigned int r = 0; r < 3; ++r)
+        m[3 * r + c] = b[r];
+      x[c] = det(m) / d0;
+    }
+    return x;
+  }
+
   /** Per-point quantities for energy bookkeeping and field output. */
   struct PointOutput
   {

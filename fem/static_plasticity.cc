@@ -36,25 +36,12 @@ namespace kimp::fem
     constexpr int          dim = 2;
     constexpr unsigned int n_q = 4, n_d = 8; // Q1: 2 x 2 Gauss points, 8 DoFs per cell
 
-    /** Solves the 3 x 3 system d x = b (row-major) by Cramer's rule. */
+    /** Solves the 3 x 3 system d x = b (row-major). */
     VoigtStrain solve3(const VoigtTangent &d, const VoigtStress &b)
     {
-      const auto det = [](const std::array<double, 9> &m)
-      {
-        return m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
-               m[2] * (m[3] * m[7] - m[4] * m[6]);
-      };
-      const double d0 = det(d);
-      if (!(std::abs(d0) > 0))
+      const VoigtStrain x = solve_tangent(d, b);
+      if (!std::isfinite(x[0] + x[1] + x[2]))
         throw std::invalid_argument("initial stress: the law's virgin tangent is singular");
-      VoigtStrain x{};
-      for (unsigned int c = 0; c < 3; ++c)
-      {
-        std::array<double, 9> m = d;
-        for (unsigned int r = 0; r < 3; ++r)
-          m[3 * r + c] = b[r];
-        x[c] = det(m) / d0;
-      }
       return x;
     }
 

@@ -115,26 +115,6 @@ namespace
     double szz(const VoigtStrain &e) const { return law.output(e, h0.data()).sigma_zz; }
   };
 
-  /** x with t x = r (t row-major), by Cramer's rule. */
-  VoigtStrain solve_3x3(const VoigtTangent &t, const VoigtStress &r)
-  {
-    const auto det = [](const std::array<double, 9> &m)
-    {
-      return m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
-             m[2] * (m[3] * m[7] - m[4] * m[6]);
-    };
-    const double d = det(t);
-    VoigtStrain  x{};
-    for (unsigned int j = 0; j < 3; ++j)
-    {
-      std::array<double, 9> m = t;
-      for (unsigned int i = 0; i < 3; ++i)
-        m[3 * i + j] = r[i];
-      x[j] = det(m) / d;
-    }
-    return x;
-  }
-
   /** Relative difference of the law's tangent and a central difference of its stress. */
   double tangent_error(const MaterialLaw &law, const VoigtStrain &e, const double *h)
   {
@@ -786,7 +766,7 @@ namespace
             const VoigtStress r{{s[0] - target[0], s[1] - target[1], s[2] - target[2]}};
             if (std::hypot(r[0], r[1], r[2]) < 1e-9 * std::abs(target[1]))
               break;
-            const VoigtStrain dx = solve_3x3(k.law.tangent(x, h0.data()), r);
+            const VoigtStrain dx = solve_tangent(k.law.tangent(x, h0.data()), r);
             for (unsigned int i = 0; i < 3; ++i)
               x[i] -= dx[i];
           }
