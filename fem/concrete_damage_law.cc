@@ -83,9 +83,12 @@ namespace kimp::fem
       throw std::invalid_argument("concrete damage law: need aggregate_size >= 1 mm and 0 <= "
                                   "shear_retention_floor <= 1");
     if (!(reinforcement.dowel_coefficient >= 0) || !(reinforcement.hinge_length >= 0) ||
-        !(reinforcement.strain_penetration >= 0))
-      throw std::invalid_argument("reinforcement: need dowel_coefficient, hinge_length and "
-                                  "strain_penetration >= 0");
+        !(reinforcement.strain_penetration >= 0) || !(reinforcement.base_joint_tension >= 0))
+      throw std::invalid_argument("reinforcement: need dowel_coefficient, hinge_length, "
+                                  "strain_penetration and base_joint_tension >= 0");
+    // The base joint acts on the cells strain penetration marks as the base row.
+    if (reinforcement.base_joint_tension > 0 && !(reinforcement.strain_penetration > 0))
+      throw std::invalid_argument("reinforcement: base_joint_tension needs strain_penetration > 0");
     if (reinforcement.tension_stiffening &&
         !(reinforcement.crack_spacing > 0 && (reinforced_ || reinforcement.bridging_ratio_x > 0 ||
                                               reinforcement.bridging_ratio_y > 0)))
@@ -93,6 +96,8 @@ namespace kimp::fem
                                   "spacing > 0");
     if (!(p.plastic_fraction >= 0 && p.plastic_fraction < 1))
       throw std::invalid_argument("concrete damage law: need 0 <= plastic_fraction < 1");
+    if (n_history() > max_history)
+      throw std::logic_error("concrete damage law: more history values than the tangent's scratch");
     const ReinforcementParameters &r = reinforcement;
     if (!(r.ratio_x >= 0 && r.ratio_x < 1) || !(r.ratio_y >= 0 && r.ratio_y < 1) ||
         !(r.yield_stress > 0) || !(r.youngs_modulus > 0) || !(r.hardening >= 0 && r.hardening < 1))
@@ -542,11 +547,12 @@ namespace kimp::fem
 
   bool ConcreteDamageLaw::step_grows_damage(const VoigtStrain &e, const double *h) const
   {
-    static_assert(
-      p_slot + 4 + 7 + 4 <= max_history,
-      "the most history values (plastic strain, bars with strain penetration, IMPL-EX)");
+    // The concrete's update alone (the bars' yielding is in their exact tangent either way).
     std::array<double, max_history> trial{};
-    stress(e, h, trial.data());
+    if (plastic_)
+      plastic_concrete_stress(e, h, trial.data());
+    else
+      concrete_stress(e, h, trial.data());
     return trial[2] > h[2] || trial[3] > h[3] || (plastic_ && trial[1] > h[1]);
   }
 
