@@ -24,6 +24,8 @@
 # KIMP_LADDER_WALL_BARS (YAML map entries) replaces the entries of the scene's
 # wall_reinforcement, e.g. 'ratio_y: "0.8 %", ratio_x: "0.2 %"' for perfectly bonded bars in
 # the crack band without tension stiffening (the scene before its bars' three keys).
+# KIMP_LADDER_SLAB (YAML map entries) is added to the scene's `slab` section, e.g.
+# 'damping_ratio: 0.05' for the slab's damping (docs/physics.md §4 "Slab damping").
 # Usage: bench/fem_ladder.sh [BUILD_DIR (default: build)] [RANKS (default: 1)] [HOLD_MS]
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
@@ -52,7 +54,7 @@ for far in "${fars[@]}"; do
           sed -E "s/(wall_reinforcement: \{)[^}]*\}/\1${KIMP_LADDER_WALL_BARS}}/"
         else cat; fi
       printf '%s\n' "wall_heights: [${heights%, }]" \
-        "mesh: {h_contact: \"$h cm\", wall_aspect_max: 1}" 'slab: {velocity: "1.0 m/s"}' \
+        "mesh: {h_contact: \"$h cm\", wall_aspect_max: 1}" "slab: {velocity: \"1.0 m/s\"${KIMP_LADDER_SLAB:+, $KIMP_LADDER_SLAB}}" \
         'output: {frame_interval: "0 ms"}' "boundary: {far: $far}"
       if [[ -n "$hold" ]]; then
         printf '%s\n' "dynamics: {end_time: \"$hold ms\", separation_hold_time: \"$hold ms\"}"

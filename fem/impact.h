@@ -195,6 +195,21 @@ namespace kimp::fem
     double slab_face_y1 = 0; ///< m, rigid slab only (> slab_face_y0)
     double slab_front_x = 0; ///< m, rigid slab only: x of the front face at t = 0
 
+    /**
+     * Elastic slab, explicit integrator only: damping of the slab's axial vibration, as a
+     * fraction of critical at its first free-free axial mode omega_1 = pi c / L (c = sqrt(E /
+     * (rho (1 - nu^2))) of the slab's Material, L the slab's length in x). Each slab node's x
+     * velocity is damped by alpha m_i (v_i - v_plane(y_i)), alpha = 2 ratio omega_1, where
+     * v_plane(y) = V + w (y - y_c) is the mass-weighted least-squares fit of the slab's x
+     * velocities (the plane sections' motion): the slab's momentum and angular momentum and its
+     * bending's transverse motion are not damped, and axial mode n keeps ratio omega_1 /
+     * omega_n of it (mass-proportional). It stands for the damping of a concrete slab that an
+     * undamped elastic slab lacks: without it the slab rings after the first pulse and makes
+     * and breaks the contact in the rebound (docs/physics.md §4). Its work is
+     * ImpactHistory::slab_damping. 0 (the default): undamped. In [0, 1].
+     */
+    double slab_damping_ratio = 0;
+
     double initial_velocity = 1.0; ///< m/s, slab, +x (> 0)
     /**
      * Wave-propagation checks only: the elastic slab starts moving in +y instead of +x (a
@@ -339,7 +354,7 @@ namespace kimp::fem
     std::vector<double> strain;          ///< J/m
     std::vector<double> penalty;         ///< J/m, energy stored in the penalty springs
     std::vector<double> contact_dissipation; ///< J/m, work of the contact damping
-    /// (E_kin + E_strain - W_contact + E_radiated) / E_0 - 1
+    /// (E_kin + E_strain - W_contact + E_radiated + E_slab_damping) / E_0 - 1
     std::vector<double> energy_error;
     /// Non-linear laws only (empty otherwise), J/m: accumulated plastic and damage
     /// dissipation, and the internal work (integrated stress power) that replaces E_strain in
@@ -348,6 +363,9 @@ namespace kimp::fem
     /// Absorbing boundaries only (empty otherwise), J/m: energy radiated through the dashpots,
     /// the time integral of v . C v.
     std::vector<double> radiation;
+    /// ImpactParameters::slab_damping_ratio > 0 only (empty otherwise), J/m: energy the slab's
+    /// damping took from its vibration.
+    std::vector<double> slab_damping;
     /// Wall-soil contact interface only (empty otherwise): total normal force (N/m), closed
     /// pairs, friction dissipation since the start of the impact (J/m).
     std::vector<double> interface_normal_force, interface_closed, friction_dissipation;
@@ -401,8 +419,9 @@ namespace kimp::fem
     std::array<double, 3> plastic_dissipation_by_body{}, damage_dissipation_by_body{};
     /** Non-linear laws: max |W_int - (E_stored + D_plastic + D_damage)| / E_0 over the run,
      *  the consistency of the point-wise bookkeeping with the integrated stress power. */
-    double dissipation_gap = 0;
-    double radiated_energy = 0; ///< J/m at the end (absorbing boundaries)
+    double dissipation_gap          = 0;
+    double radiated_energy          = 0; ///< J/m at the end (absorbing boundaries)
+    double slab_damping_dissipation = 0; ///< J/m at the end (ImpactParameters::slab_damping_ratio)
     /**
      * m: permanent indentation of the wall, the x displacement (+x: pushed back, away from the
      * slab) of the wall face in the contact range that stays once the vibrations have died out:

@@ -103,6 +103,7 @@ namespace kimp::io
         {"wall_residual_displacement", "m", &S::wall_residual_displacement},
         {"stored_energy_share", "1", &S::stored_energy_share},
         {"radiated_energy", "J/m", &S::radiated_energy},
+        {"slab_damping_dissipation", "J/m", &S::slab_damping_dissipation},
         {"plastic_dissipation_slab", "J/m", &S::plastic_dissipation_slab},
         {"plastic_dissipation_wall", "J/m", &S::plastic_dissipation_wall},
         {"plastic_dissipation_soil", "J/m", &S::plastic_dissipation_soil},

@@ -128,6 +128,8 @@ namespace kimp::app
                                        {"geostatic", geostatic_enabled(scene) ? "on" : "off"},
                                        {"interface",
                  scene.interface.model == FemInterface::Model::contact ? "contact" : "bonded"}};
+    if (scene.solver.slab_damping_ratio > 0)
+      c.summary.slab_damping_dissipation = s.slab_damping_dissipation;
     if (scene.boundary.far == FemBoundary::Far::absorbing)
     {
       c.summary.radiated_energy = s.radiated_energy;

@@ -87,6 +87,8 @@ namespace kimp::app
       series(energy, "damage_dissipation", h.damage_dissipation, "J/m");
       // Absorbing boundaries only.
       series(energy, "radiation", h.radiation, "J/m");
+      // Slab damping only.
+      series(energy, "slab_damping", h.slab_damping, "J/m");
       ResultsGroup contact = case_group.group("contact");
       series(contact, "n_active", h.n_active, "1");
       series(contact, "max_penetration", h.max_penetration, "m");

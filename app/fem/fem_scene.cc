@@ -151,6 +151,19 @@ namespace kimp::app
                 format_quantity(*s.rigid_slab_mass, "kg/m"),
                 "is only for a rigid slab (slab.rigid: true); an elastic slab's mass is "
                 "rho x length x thickness");
+    if (s.solver.slab_damping_ratio > 0)
+    {
+      const auto scope = ctx.section("slab");
+      ctx.check(!s.solver.rigid_slab,
+                "damping_ratio",
+                fmt::format("{:g}", s.solver.slab_damping_ratio),
+                "is only for an elastic slab (a rigid slab does not vibrate)");
+      ctx.check(s.solver.integrator ==
+                  fem::ImpactParameters::Integrator::explicit_central_difference,
+                "damping_ratio",
+                fmt::format("{:g}", s.solver.slab_damping_ratio),
+                "needs dynamics.integrator: explicit (the implicit path has no slab damping)");
+    }
     {
       const auto scope = ctx.section("contact");
       validate_auto_time(s.smoothing_window, "smoothing_window", ctx);

@@ -327,6 +327,13 @@ namespace kimp::app
                 "rigid slab mass per metre of wall (null: rho_concrete x slab length x "
                 "thickness)",
                 io::Range::positive());
+    io.quantity("damping_ratio",
+                s.solver.slab_damping_ratio,
+                "",
+                "elastic slab: damping of its axial vibration as a fraction of critical at its "
+                "first free-free axial mode (mass-proportional, relative to the plane sections' "
+                "motion; 0: undamped)",
+                io::Range::at_least(0.0).and_at_most(1.0));
     io.quantity("velocity",
                 s.solver.initial_velocity,
                 "m/s",

@@ -60,6 +60,8 @@ namespace kimp::fem::internal
       a.scale(inverse_mass);
       if (absorbing)
         apply_dashpots_explicit(n == 0, v_half, a);
+      if (slab_alpha > 0)
+        apply_slab_damping(n == 0, v_half, a);
       const double a_r = prm.rigid_slab && !subcycled ? fc.back() / prm.slab_mass : 0;
 
       // v_{n+1/2} = v_{n-1/2} + dt a_n (half a step at the start); v_n = mean of the two.

@@ -264,6 +264,15 @@ namespace kimp::fem::internal
     void add_dashpot_matrix(TrilinosWrappers::SparseMatrix &matrix, double factor) const;
     /** Trapezoidal dashpot work since the last call, added to radiation_local. */
     void accumulate_radiation(const Vec &u, const Vec &v);
+
+    // slab_damping.cc
+    /** The slab's damped x DoFs (owned, free), their masses and heights about the slab's
+     *  centre, and alpha = 2 ratio omega_1 (ImpactParameters::slab_damping_ratio). */
+    void setup_slab_damping();
+    /** Explicit: a = M^{-1} (f - K u) on entry; on the slab's x DoFs it gains
+     *  -alpha (v - v_plane) at v_{n-1/2} (the damping lags half a step, as the contact's), and the
+     *  step's dissipation is added to slab_damping_local. */
+    void apply_slab_damping(bool first_step, const Vec &v_half, Vec &a);
     /** Slab velocity at t = 0: +x, or +y with initial_velocity_along_y (then E_0 is set to
      *  the initial kinetic energy). */
     void set_initial_slab_velocity(Vec &v);
@@ -525,6 +534,12 @@ namespace kimp::fem::internal
     std::vector<unsigned int> damped_index;
     std::vector<double>       damped_c, damped_m, damped_u_prev, damped_f_prev;
     double                    radiation_local = 0;
+    // Slab damping: alpha (1/s), the owned free slab x DoFs (local index), m_i, y_i - y_c, the
+    // slab's sum of m and of m (y - y_c)^2, and this rank's dissipated energy.
+    double                    slab_alpha = 0, slab_damped_mass = 0, slab_damped_inertia = 0;
+    std::vector<unsigned int> slab_damped_index;
+    std::vector<double>       slab_damped_m, slab_damped_y;
+    double                    slab_damping_local = 0;
     // Kernel of internal_force(): Q1 cells with 4 Gauss points; per point the 4 vertex shape
     // gradients d/dx, then d/dy, then JxW (gradient_width values).
     static constexpr unsigned int dofs_per_cell = 8, vertices_per_cell = 4, points_per_cell = 4;

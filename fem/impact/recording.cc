@@ -160,12 +160,15 @@ namespace kimp::fem::internal
     }
     // Linear laws: 1/2 u.Ku is the strain energy. Otherwise the integrated stress power is the
     // energy the body took, and the points split it into stored, plastic and damage.
-    const double work     = linear_laws ? global[1] : global[4];
-    const double strain   = linear_laws ? global[1] : global[5];
-    const double radiated = absorbing ? Utilities::MPI::sum(radiation_local, comm) : 0.0;
-    const double error    = (kinetic + work - contact_work + radiated) / e0 - 1;
+    const double work        = linear_laws ? global[1] : global[4];
+    const double strain      = linear_laws ? global[1] : global[5];
+    const double radiated    = absorbing ? Utilities::MPI::sum(radiation_local, comm) : 0.0;
+    const double slab_damped = slab_alpha > 0 ? Utilities::MPI::sum(slab_damping_local, comm) : 0.0;
+    const double error       = (kinetic + work - contact_work + radiated + slab_damped) / e0 - 1;
     if (absorbing)
       history.radiation.push_back(radiated);
+    if (slab_alpha > 0)
+      history.slab_damping.push_back(slab_damped);
     if (!linear_laws)
     {
       history.internal_work.push_back(global[4]);
@@ -698,6 +701,8 @@ namespace kimp::fem::internal
     }
     if (!history.radiation.empty())
       s.radiated_energy = history.radiation.back();
+    if (!history.slab_damping.empty())
+      s.slab_damping_dissipation = history.slab_damping.back();
     if (bar_yield_strain > 0)
       summarise_bar_strain(s);
     // After the impact: the wall's state and where the slab's energy went (last sample).

@@ -164,6 +164,7 @@ namespace kimp::fem::internal
     if (prm.integrator == ImpactParameters::Integrator::implicit_newmark || interface)
       assemble_system();
     assemble_dashpots();
+    setup_slab_damping();
     if (prm.geostatic.enabled)
       run_geostatic_step();
     compute_time_step();
@@ -231,6 +232,13 @@ namespace kimp::fem::internal
     require(prm.contact_damping_ratio >= 0 && prm.contact_damping_ratio <= 1,
             "contact_damping_ratio = " + fmt_double(prm.contact_damping_ratio) +
               " (must be in [0, 1])");
+    require(prm.slab_damping_ratio >= 0 && prm.slab_damping_ratio <= 1,
+            "slab_damping_ratio = " + fmt_double(prm.slab_damping_ratio) + " (must be in [0, 1])");
+    require(prm.slab_damping_ratio == 0 ||
+              (!prm.rigid_slab &&
+               prm.integrator == ImpactParameters::Integrator::explicit_central_difference),
+            "slab_damping_ratio = " + fmt_double(prm.slab_damping_ratio) +
+              " (needs an elastic slab and the explicit integrator; 0 = off)");
     require(prm.smoothing_window >= 0,
             "smoothing_window = " + fmt_double(prm.smoothing_window) + " s (must be >= 0)");
     require(prm.dt >= 0, "dt = " + fmt_double(prm.dt) + " s (must be >= 0; 0 = automatic)");

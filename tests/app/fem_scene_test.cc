@@ -192,6 +192,22 @@ namespace
                     "soil E");
   }
 
+  TEST(FemScene, SlabDampingReachesTheSolver)
+  {
+    const FemScene s = load_scene_text<FemScene>("slab: {damping_ratio: 0.05}\n", file_name);
+    const kimp::fem::ImpactParameters p =
+      kimp::app::impact_parameters(s, 1.25, "H1.25.msh", "vtu/H1.25");
+    EXPECT_FALSE(p.rigid_slab);
+    expect_relative(p.slab_damping_ratio, 0.05, exact_tolerance, "slab damping");
+    EXPECT_EQ(kimp::app::impact_parameters(load_scene_text<FemScene>("{}\n", file_name),
+                                           1.25,
+                                           "H1.25.msh",
+                                           "vtu/H1.25")
+                .slab_damping_ratio,
+              0.0)
+      << "undamped by default";
+  }
+
   TEST(FemScene, InelasticMaterialKeysSelectLawsAndPresets)
   {
     // Default: elastic, no laws. A preset sets E, nu, rho, c, phi, psi; c given overrides it.
@@ -479,6 +495,7 @@ namespace
       one_key("materials.soil.rho", "\"0 kg/m^3\"", "in [100 kg/m^3, 20000 kg/m^3]"),
       one_key("slab.mass", "\"3 t/m\"", "only for a rigid slab"),
       one_key("slab.velocity", "\"0 m/s\"", "> 0"),
+      one_key("slab.damping_ratio", "1.5", "[0, 1]"),
       one_key("contact.penalty_factor", "0", "> 0"),
       one_key("contact.contact_damping_ratio", "1.5", "[0, 1]"),
       one_key("contact.smoothing_window", "soon", "'auto'"),
@@ -514,6 +531,14 @@ namespace
        3,
        "slab_thickness"},
       {"slab:\n  rigid: true\n  mass: \"-1 kg/m\"\n", "slab.mass", 3, "> 0"},
+      {"slab:\n  rigid: true\n  damping_ratio: 0.05\n",
+       "slab.damping_ratio",
+       3,
+       "only for an elastic slab"},
+      {"slab:\n  damping_ratio: 0.05\ndynamics:\n  integrator: implicit\n",
+       "slab.damping_ratio",
+       2,
+       "needs dynamics.integrator: explicit"},
       {"contact:\n  subcycles: 2\ndynamics:\n  integrator: implicit\n",
        "contact.subcycles",
        2,
