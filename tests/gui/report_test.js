@@ -208,6 +208,16 @@ async function main() {
             peak.text === String(Number((c.peak_force * 1e-3).toPrecision(4))),
           `FEM summary: ${c.name} peak force ${peak ? peak.text : '(missing)'} kN/m from ${c.peak_force} N/m`,
         );
+        // Where the energy went: every dissipation the case reports is listed, to 4 significant
+        // figures (the slab's damping in the damped-slab run).
+        for (const key of ['contact_dissipation', 'radiated_energy', 'slab_damping_dissipation']) {
+          if (typeof c[key] !== 'number') continue;
+          const v = shown.find((x) => x.key === `${c.name}.${key}`);
+          check(
+            v !== undefined && v.si === c[key] && v.text === String(Number(c[key].toPrecision(4))),
+            `FEM summary: ${c.name} ${key} ${v ? v.text : '(missing)'} J/m from ${c[key]} J/m`,
+          );
+        }
         const cor = shown.find((v) => v.key === `${c.name}.apparent_cor`);
         check(
           cor !== undefined && cor.text.replace('-', '').replace('.', '').replace(/^0+/, '').length <= 4,

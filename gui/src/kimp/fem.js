@@ -337,6 +337,7 @@
     ['damage_dissipation_wall', 'damage dissipation in the wall (J/m)', 1],
     ['contact_dissipation', 'contact dissipation (J/m)', 1],
     ['radiated_energy', 'radiated energy (J/m)', 1],
+    ['slab_damping_dissipation', "work of the slab's damping (J/m)", 1],
     ['energy_error', 'energy balance error (of E_0)', 1],
     ['n_dofs', 'DoFs', null],
     ['n_steps', 'steps', null],
