@@ -234,6 +234,19 @@ namespace kimp::fem
     std::vector<unsigned int> absorbing_boundaries;
 
     /**
+     * Viscous-spring boundary (docs/physics.md §6 "Viscous-spring boundary"; Deeks & Randolph,
+     * J. Eng. Mech. 120, 1994; Liu et al., Earthq. Eng. Eng. Vib. 5, 2006): springs beside the
+     * dashpots of absorbing_boundaries, per unit area alpha_n G / R normal and alpha_t G / R
+     * tangential to the face, G the soil's shear modulus and R the distance from the face's
+     * midpoint to the contact band's centre (the waves' source). Lumped to the face's nodes as
+     * the dashpots are, they hold the displacement the time loop starts from (the geostatic
+     * state): a residual thrust then settles the far field at a finite displacement instead of
+     * drifting through the dashpots. Their energy is stored (ImpactHistory::boundary_springs).
+     * 0 and 0 (default): the dashpots alone. Both >= 0; either > 0 needs absorbing_boundaries.
+     */
+    double boundary_spring_normal = 0, boundary_spring_tangential = 0;
+
+    /**
      * Penalty stiffness per slave node: k_i = penalty_factor * E_master / h_contact * l_i (N/m per
      * metre of depth), with l_i the node's tributary face length and h_contact the smallest
      * contact-face segment length. Factor 1 makes the contact spring as stiff as one element;
@@ -354,7 +367,7 @@ namespace kimp::fem
     std::vector<double> strain;          ///< J/m
     std::vector<double> penalty;         ///< J/m, energy stored in the penalty springs
     std::vector<double> contact_dissipation; ///< J/m, work of the contact damping
-    /// (E_kin + E_strain - W_contact + E_radiated + E_slab_damping) / E_0 - 1
+    /// (E_kin + E_strain - W_contact + E_radiated + E_slab_damping + E_springs) / E_0 - 1
     std::vector<double> energy_error;
     /// Non-linear laws only (empty otherwise), J/m: accumulated plastic and damage
     /// dissipation, and the internal work (integrated stress power) that replaces E_strain in
@@ -366,6 +379,9 @@ namespace kimp::fem
     /// ImpactParameters::slab_damping_ratio > 0 only (empty otherwise), J/m: energy the slab's
     /// damping took from its vibration.
     std::vector<double> slab_damping;
+    /// Viscous-spring boundary only (empty otherwise), J/m: energy stored in the boundary's
+    /// springs, 1/2 k (u - u_0)^2 summed over their DoFs.
+    std::vector<double> boundary_springs;
     /// Wall-soil contact interface only (empty otherwise): total normal force (N/m), closed
     /// pairs, friction dissipation since the start of the impact (J/m).
     std::vector<double> interface_normal_force, interface_closed, friction_dissipation;
@@ -422,6 +438,7 @@ namespace kimp::fem
     double dissipation_gap          = 0;
     double radiated_energy          = 0; ///< J/m at the end (absorbing boundaries)
     double slab_damping_dissipation = 0; ///< J/m at the end (ImpactParameters::slab_damping_ratio)
+    double boundary_spring_energy   = 0; ///< J/m stored at the end (viscous-spring boundary)
     /**
      * m: permanent indentation of the wall, the x displacement (+x: pushed back, away from the
      * slab) of the wall face in the contact range that stays once the vibrations have died out:

@@ -104,6 +104,7 @@ namespace kimp::io
         {"stored_energy_share", "1", &S::stored_energy_share},
         {"radiated_energy", "J/m", &S::radiated_energy},
         {"slab_damping_dissipation", "J/m", &S::slab_damping_dissipation},
+        {"boundary_spring_energy", "J/m", &S::boundary_spring_energy},
         {"plastic_dissipation_slab", "J/m", &S::plastic_dissipation_slab},
         {"plastic_dissipation_wall", "J/m", &S::plastic_dissipation_wall},
         {"plastic_dissipation_soil", "J/m", &S::plastic_dissipation_soil},

@@ -63,6 +63,7 @@ namespace kimp::io
     std::optional<double> stored_energy_share;        ///< in wall and soil at the end / E_0
     std::optional<double> radiated_energy;            ///< absorbing far boundary, J/m
     std::optional<double> slab_damping_dissipation;   ///< slab.damping_ratio > 0, J/m
+    std::optional<double> boundary_spring_energy;     ///< viscous-spring boundary, J/m stored
     /// Inelastic materials: plastic work and damage dissipation per body, J/m.
     std::optional<double> plastic_dissipation_slab, plastic_dissipation_wall,
       plastic_dissipation_soil;

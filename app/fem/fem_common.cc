@@ -130,11 +130,14 @@ namespace kimp::app
                  scene.interface.model == FemInterface::Model::contact ? "contact" : "bonded"}};
     if (scene.solver.slab_damping_ratio > 0)
       c.summary.slab_damping_dissipation = s.slab_damping_dissipation;
-    if (scene.boundary.far == FemBoundary::Far::absorbing)
+    if (scene.boundary.far != FemBoundary::Far::rollers)
     {
       c.summary.radiated_energy = s.radiated_energy;
-      c.labels["far_boundary"]  = "absorbing";
+      c.labels["far_boundary"] =
+        scene.boundary.far == FemBoundary::Far::absorbing ? "absorbing" : "viscous_spring";
     }
+    if (scene.boundary.far == FemBoundary::Far::viscous_spring)
+      c.summary.boundary_spring_energy = s.boundary_spring_energy;
     // After the impact (fem::ImpactSummary): dissipation, the COR it implies, the wall's state.
     FemSummary &sum                = c.summary;
     sum.plastic_dissipation        = s.plastic_dissipation;

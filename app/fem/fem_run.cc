@@ -89,6 +89,8 @@ namespace kimp::app
       series(energy, "radiation", h.radiation, "J/m");
       // Slab damping only.
       series(energy, "slab_damping", h.slab_damping, "J/m");
+      // Viscous-spring boundary only: stored in its springs.
+      series(energy, "boundary_springs", h.boundary_springs, "J/m");
       ResultsGroup contact = case_group.group("contact");
       series(contact, "n_active", h.n_active, "1");
       series(contact, "max_penetration", h.max_penetration, "m");

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <set>
 #include <stdexcept>
+#include <utility>
 
 #include "fem/inelastic_laws.h"
 #include "fem/material_law.h"
@@ -102,11 +103,19 @@ namespace kimp::app
                 "must differ from the other heights (case " + name + " appears twice)");
     }
 
-    if (s.boundary.far == FemBoundary::Far::absorbing)
+    if (s.boundary.far != FemBoundary::Far::rollers)
       ctx.check(s.geometry.with_backfill,
                 "boundary.far",
-                "absorbing",
+                s.boundary.far == FemBoundary::Far::absorbing ? "absorbing" : "viscous_spring",
                 "needs a backfill (geometry.with_backfill: true): the dashpots sit on the soil");
+    for (const auto &[key, alpha] :
+         {std::pair{"boundary.spring_normal", s.boundary.spring_normal},
+          std::pair{"boundary.spring_tangential", s.boundary.spring_tangential}})
+      if (alpha)
+        ctx.check(s.boundary.far == FemBoundary::Far::viscous_spring,
+                  key,
+                  fmt::format("{:g}", *alpha),
+                  "needs boundary.far: viscous_spring (the other far sides have no springs)");
     {
       const auto scope = ctx.section("materials");
       validate(s.materials, ctx);
@@ -282,8 +291,14 @@ namespace kimp::app
         p.material_laws[geometry::soil_material] = soil_law;
     }
 
-    if (scene.boundary.far == FemBoundary::Far::absorbing && scene.geometry.with_backfill)
+    if (scene.boundary.far != FemBoundary::Far::rollers && scene.geometry.with_backfill)
       p.absorbing_boundaries = {geometry::fixed_base, geometry::soil_far_side};
+    if (scene.boundary.far == FemBoundary::Far::viscous_spring && scene.geometry.with_backfill)
+    {
+      p.boundary_spring_normal = scene.boundary.spring_normal.value_or(default_spring_normal);
+      p.boundary_spring_tangential =
+        scene.boundary.spring_tangential.value_or(default_spring_tangential);
+    }
 
     p.slab_mass        = p.rigid_slab ? slab_mass(scene) : 0.0;
     p.slab_face_y0     = g.slab_bottom();

@@ -162,22 +162,43 @@ namespace kimp::app
     /** What ends the model's soil at its far side and base. */
     enum class Far
     {
-      rollers,  ///< far side u_x = 0, base u = 0 (the thesis' finite block)
-      absorbing ///< Lysmer-Kuhlemeyer dashpots rho c_p (normal), rho c_s (tangential)
+      rollers,       ///< far side u_x = 0, base u = 0 (the thesis' finite block)
+      absorbing,     ///< Lysmer-Kuhlemeyer dashpots rho c_p (normal), rho c_s (tangential)
+      viscous_spring ///< the dashpots with springs alpha G / R beside them
     };
     Far far = Far::rollers;
+    /// viscous_spring: alpha_n and alpha_t of the springs alpha G / R (null: 1.0 and 0.5).
+    std::optional<double> spring_normal, spring_tangential;
   };
+
+  /// alpha_n and alpha_t of the viscous-spring boundary when the scene does not give them (the
+  /// two-dimensional values of docs/physics.md §6 "Viscous-spring boundary").
+  inline constexpr double default_spring_normal = 1.0, default_spring_tangential = 0.5;
 
   template <class Io>
   void visit(Io &io, FemBoundary &s)
   {
     io.choice("far",
               s.far,
-              {{"rollers", FemBoundary::Far::rollers}, {"absorbing", FemBoundary::Far::absorbing}},
+              {{"rollers", FemBoundary::Far::rollers},
+               {"absorbing", FemBoundary::Far::absorbing},
+               {"viscous_spring", FemBoundary::Far::viscous_spring}},
               "soil far side and base: rollers (far side u_x = 0, base fixed: a finite block "
-              "that reflects the waves) or absorbing (Lysmer-Kuhlemeyer dashpots rho c_p normal, "
+              "that reflects the waves), absorbing (Lysmer-Kuhlemeyer dashpots rho c_p normal, "
               "rho c_s tangential on the soil's far side and base, for an unbounded backfill; "
-              "the wall base stays fixed)");
+              "the wall base stays fixed) or viscous_spring (those dashpots with springs "
+              "alpha G / R beside them, R the distance to the contact band's centre: an "
+              "unbounded backfill that also holds a permanent displacement)");
+    io.quantity("spring_normal",
+                s.spring_normal,
+                "",
+                "viscous_spring: alpha_n of the normal springs alpha_n G / R (null: 1.0)",
+                io::Range::positive().and_at_most(4.0));
+    io.quantity("spring_tangential",
+                s.spring_tangential,
+                "",
+                "viscous_spring: alpha_t of the tangential springs alpha_t G / R (null: 0.5)",
+                io::Range::positive().and_at_most(4.0));
   }
 
   /** Wall-soil interface (docs/physics.md §6 "Wall-soil interface"); its penalty factor is

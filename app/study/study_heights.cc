@@ -57,7 +57,9 @@ namespace kimp::app::study_internal
     {
       const FidelityLevel &level = h.ladder.used_level();
       FemScene             other = fem_level_scene(material, level.h_contact, level.penalty_factor);
-      const bool           absorbing = other.boundary.far == FemBoundary::Far::absorbing;
+      // The rollered block against the unbounded backfill the scene chose (absorbing when it
+      // chose rollers).
+      const bool absorbing    = other.boundary.far != FemBoundary::Far::rollers;
       other.boundary.far      = absorbing ? FemBoundary::Far::rollers : FemBoundary::Far::absorbing;
       h.ladder.other_far_side = absorbing ? "rollers" : "absorbing";
       StudyFemCase fem =

@@ -1,8 +1,11 @@
 // ImpactProblem absorbing boundary: Lysmer-Kuhlemeyer viscous dashpots (Lysmer & Kuhlemeyer,
 // J. Eng. Mech. Div. ASCE 95, 1969) on soil faces of the far side and the base, lumped into a
-// diagonal C, its explicit and implicit treatment and the radiated energy (docs/physics.md §6).
+// diagonal C, with the viscous-spring boundary's springs beside them (Deeks & Randolph, J. Eng.
+// Mech. 120, 1994; Liu et al., Earthq. Eng. Eng. Vib. 5, 2006), their explicit and implicit
+// treatment, the radiated energy and the springs' energy (docs/physics.md §6).
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include <deal.II/base/mpi.h>
 
@@ -56,8 +59,10 @@ namespace kimp::fem::internal
     absorbing = !prm.absorbing_boundaries.empty();
     if (!absorbing)
       return;
-    Vec damping_w;
+    boundary_springs = prm.boundary_spring_normal + prm.boundary_spring_tangential > 0;
+    Vec damping_w, spring_w;
     damping_w.reinit(locally_owned, locally_relevant, comm, true);
+    spring_w.reinit(locally_owned, locally_relevant, comm, true);
     double local_length = 0;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned() && cell->material_id() == geometry::soil_material)
@@ -79,16 +84,25 @@ namespace kimp::fem::internal
                          tangential = m.density * s_wave_speed(m);
             const double cx         = 0.5 * l * (normal * nx * nx + tangential * ny * ny);
             const double cy         = 0.5 * l * (normal * ny * ny + tangential * nx * nx);
+            const auto [kn, kt] =
+              boundary_spring_stiffness(m, Point<dim>(0.5 * (face->vertex(0) + face->vertex(1))));
+            const double kx = 0.5 * l * (kn * nx * nx + kt * ny * ny);
+            const double ky = 0.5 * l * (kn * ny * ny + kt * nx * nx);
             for (unsigned int v = 0; v < face->n_vertices(); ++v)
             {
               damping_w(face->vertex_dof_index(v, 0)) += cx;
               damping_w(face->vertex_dof_index(v, 1)) += cy;
+              spring_w(face->vertex_dof_index(v, 0)) += kx;
+              spring_w(face->vertex_dof_index(v, 1)) += ky;
             }
             local_length += l;
           }
     damping_w.compress(VectorOperation::add);
+    spring_w.compress(VectorOperation::add);
     damping.reinit(locally_owned, comm);
-    damping             = damping_w;
+    damping = damping_w;
+    Vec springs(locally_owned, comm);
+    springs             = spring_w;
     const double length = Utilities::MPI::sum(local_length, comm);
     require(length > 0,
             "absorbing_boundaries: mesh '" + prm.mesh_file.string() +
@@ -97,51 +111,93 @@ namespace kimp::fem::internal
 
     damped_index.clear();
     damped_c.clear();
+    damped_k.clear();
     damped_m.clear();
     for (const auto i : locally_owned)
       if (damping(i) > 0 && free_mask(i) > 0)
       {
         damped_index.push_back(static_cast<unsigned int>(locally_owned.index_within_set(i)));
         damped_c.push_back(damping(i));
+        damped_k.push_back(springs(i));
         damped_m.push_back(mass(i));
       }
     damped_u_prev.clear();
     damped_f_prev.clear();
     radiation_local = 0;
-    log_line("absorbing boundary: " + fmt_sig(length) + " m of soil faces with dashpots");
+    log_line("absorbing boundary: " + fmt_sig(length) + " m of soil faces with dashpots" +
+             (boundary_springs ?
+                " and springs (alpha_n " + fmt_sig(prm.boundary_spring_normal) + ", alpha_t " +
+                  fmt_sig(prm.boundary_spring_tangential) + ", R from the contact band's centre (" +
+                  fmt_sig(contact_centre[0]) + ", " + fmt_sig(contact_centre[1]) + ") m)" :
+                std::string()));
   }
 
-  void
-  ImpactProblem::apply_dashpots_explicit(const bool first_step, const Vec &v_half, Vec &a) const
+  std::pair<double, double> ImpactProblem::boundary_spring_stiffness(const Material   &material,
+                                                                     const Point<dim> &mid) const
   {
-    const double *vp = v_half.begin();
+    if (!boundary_springs)
+      return {0.0, 0.0};
+    const double g = material.youngs_modulus / (2 * (1 + material.poisson_ratio));
+    const double r = mid.distance(contact_centre);
+    require(r > 0,
+            "viscous-spring boundary: a soil face of the far boundary at (" + fmt_double(mid[0]) +
+              ", " + fmt_double(mid[1]) + ") m lies at the contact band's centre (R = 0)");
+    return {prm.boundary_spring_normal * g / r, prm.boundary_spring_tangential * g / r};
+  }
+
+  double ImpactProblem::spring_rest(const unsigned int j) const
+  {
+    return geostatic_on ? geostatic_u.begin()[j] : 0.0;
+  }
+
+  void ImpactProblem::apply_dashpots_explicit(const bool first_step,
+                                              const Vec &u,
+                                              const Vec &v_half,
+                                              Vec       &a) const
+  {
+    const double *up = u.begin(), *vp = v_half.begin();
     double       *ap = a.begin();
     for (std::size_t k = 0; k < damped_index.size(); ++k)
     {
       const unsigned int j = damped_index[k];
       const double       m = damped_m[k], c = damped_c[k];
-      const double       g   = ap[j] * m; // f - K u
-      const double       v_n = first_step ? vp[j] : (m * vp[j] + 0.5 * dt * g) / (m + 0.5 * dt * c);
-      ap[j]                  = (g - c * v_n) / m;
+      // f - K u - k (u - u_0): the springs are part of the stiffness.
+      const double g   = ap[j] * m - damped_k[k] * (up[j] - spring_rest(j));
+      const double v_n = first_step ? vp[j] : (m * vp[j] + 0.5 * dt * g) / (m + 0.5 * dt * c);
+      ap[j]            = (g - c * v_n) / m;
     }
   }
 
-  void ImpactProblem::add_dashpot_force(const Vec &v, Vec &r) const
+  void ImpactProblem::add_dashpot_force(const Vec &u, const Vec &v, Vec &r) const
   {
-    const double *vp = v.begin();
+    const double *up = u.begin(), *vp = v.begin();
     double       *rp = r.begin();
     for (std::size_t k = 0; k < damped_index.size(); ++k)
-      rp[damped_index[k]] += damped_c[k] * vp[damped_index[k]];
+    {
+      const unsigned int j = damped_index[k];
+      rp[j] += damped_c[k] * vp[j] + damped_k[k] * (up[j] - spring_rest(j));
+    }
   }
 
   void ImpactProblem::add_dashpot_matrix(TrilinosWrappers::SparseMatrix &matrix,
                                          const double                    factor) const
   {
-    if (!absorbing)
-      return;
-    for (const auto i : locally_owned)
-      if (damping(i) > 0 && free_mask(i) > 0)
-        matrix.add(i, i, factor * damping(i));
+    for (std::size_t k = 0; k < damped_index.size(); ++k)
+      matrix.add(locally_owned.nth_index_in_set(damped_index[k]),
+                 locally_owned.nth_index_in_set(damped_index[k]),
+                 factor * damped_c[k] + damped_k[k]);
+  }
+
+  double ImpactProblem::boundary_spring_energy_local(const Vec &u) const
+  {
+    const double *up     = u.begin();
+    double        energy = 0;
+    for (std::size_t k = 0; k < damped_index.size(); ++k)
+    {
+      const double du = up[damped_index[k]] - spring_rest(damped_index[k]);
+      energy += 0.5 * damped_k[k] * du * du;
+    }
+    return energy;
   }
 
   void ImpactProblem::accumulate_radiation(const Vec &u, const Vec &v)

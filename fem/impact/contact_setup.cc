@@ -322,6 +322,14 @@ namespace kimp::fem::internal
         for (double &x : *w)
           x /= sum;
     }
+    // The contact band's centre, the wall face's weighted mean point: the waves' source for the
+    // viscous-spring boundary's distances.
+    contact_centre = Point<dim>();
+    for (unsigned int k = 0; k < n_nodes; ++k)
+    {
+      contact_centre[0] += wall_weight[2 * k] * c.nodes[k].x;
+      contact_centre[1] += wall_weight[2 * k] * c.nodes[k].y;
+    }
   }
 
   void ImpactProblem::setup_contact()

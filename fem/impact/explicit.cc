@@ -59,7 +59,7 @@ namespace kimp::fem::internal
         scatter_add(fc, a);
       a.scale(inverse_mass);
       if (absorbing)
-        apply_dashpots_explicit(n == 0, v_half, a);
+        apply_dashpots_explicit(n == 0, u, v_half, a);
       if (slab_alpha > 0)
         apply_slab_damping(n == 0, v_half, a);
       const double a_r = prm.rigid_slab && !subcycled ? fc.back() / prm.slab_mass : 0;

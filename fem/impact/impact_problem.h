@@ -252,18 +252,29 @@ namespace kimp::fem::internal
                   f(face->vertex_dof_index(v, c), c);
             }
     }
-    /** Lumped Lysmer-Kuhlemeyer dashpots into `damping` and the list of damped free DoFs. */
+    /** Lumped Lysmer-Kuhlemeyer dashpots into `damping` and the list of damped free DoFs, with
+     *  the viscous-spring boundary's springs beside them (damped_k). */
     void assemble_dashpots();
+    /** The springs' stiffness per unit area, normal and tangential, of a soil face of
+     *  `material` whose midpoint is `mid` (alpha G / R, R from contact_centre). */
+    std::pair<double, double> boundary_spring_stiffness(const Material   &material,
+                                                        const Point<dim> &mid) const;
+    /** The displacement the boundary springs hold at owned local index j: the time loop's
+     *  start, the geostatic state (else 0). */
+    double spring_rest(unsigned int j) const;
     /** Explicit: a = M^{-1} (f - K u) on entry; on the damped DoFs it becomes the acceleration
-     *  with the dashpot force -C v_n at v_n = (M v_{n-1/2} + dt/2 (f - K u)) / (M + dt/2 C)
-     *  (v_0 itself at the first step), so the usual v updates stay. */
-    void apply_dashpots_explicit(bool first_step, const Vec &v_half, Vec &a) const;
-    /** Implicit: r += C v (owned entries). */
-    void add_dashpot_force(const Vec &v, Vec &r) const;
-    /** Implicit: matrix += factor C on the diagonal (before compress). */
+     *  with the springs' force -k (u - u_0) and the dashpot force -C v_n at
+     *  v_n = (M v_{n-1/2} + dt/2 (f - K u - k (u - u_0))) / (M + dt/2 C) (v_0 itself at the
+     *  first step), so the usual v updates stay. */
+    void apply_dashpots_explicit(bool first_step, const Vec &u, const Vec &v_half, Vec &a) const;
+    /** Implicit: r += C v + k (u - u_0) (owned entries). */
+    void add_dashpot_force(const Vec &u, const Vec &v, Vec &r) const;
+    /** Implicit: matrix += factor C + k on the diagonal (before compress). */
     void add_dashpot_matrix(TrilinosWrappers::SparseMatrix &matrix, double factor) const;
     /** Trapezoidal dashpot work since the last call, added to radiation_local. */
     void accumulate_radiation(const Vec &u, const Vec &v);
+    /** This rank's energy in the boundary springs, 1/2 k (u - u_0)^2, J/m. */
+    double boundary_spring_energy_local(const Vec &u) const;
 
     // slab_damping.cc
     /** The slab's damped x DoFs (owned, free), their masses and heights about the slab's
@@ -529,11 +540,14 @@ namespace kimp::fem::internal
     Vec                 u_ghosted, force_writable; // internal_force() of non-linear laws
     // Absorbing boundary: diagonal dashpot matrix C, its free owned DoFs (local index into the
     // owned range, c_i, m_i), their last u and C v, and this rank's radiated energy.
-    bool                      absorbing = false;
+    // Viscous-spring boundary: whether the springs are on (every rank), their stiffness per
+    // damped DoF (damped_k, beside damped_c) and the contact band's centre, their source.
+    bool                      absorbing = false, boundary_springs = false;
     Vec                       damping;
     std::vector<unsigned int> damped_index;
-    std::vector<double>       damped_c, damped_m, damped_u_prev, damped_f_prev;
+    std::vector<double>       damped_c, damped_k, damped_m, damped_u_prev, damped_f_prev;
     double                    radiation_local = 0;
+    Point<dim>                contact_centre;
     // Slab damping: alpha (1/s), the owned free slab x DoFs (local index), m_i, y_i - y_c, the
     // slab's sum of m and of m (y - y_c)^2, and this rank's dissipated energy.
     double                    slab_alpha = 0, slab_damped_mass = 0, slab_damped_inertia = 0;

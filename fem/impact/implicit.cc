@@ -299,7 +299,7 @@ namespace kimp::fem::internal
     const double inertia_norm = s.residual.l2_norm();
     s.residual += s.Ku;
     if (absorbing)
-      add_dashpot_force(s.v_np1, s.residual);
+      add_dashpot_force(s.u_np1, s.v_np1, s.residual);
     s.rhs = 0;
     scatter_add(fc, s.rhs);
     s.residual -= s.rhs;

@@ -146,6 +146,9 @@ namespace kimp::fem::internal
           body_dissipation[b][i] =
             global[9 + 2 * b + i] - (geostatic_on ? geostatic_body_dissipation[b][i] : 0.0);
     const double kinetic = global[0] + (prm.rigid_slab ? 0.5 * prm.slab_mass * v_r * v_r : 0);
+    // The viscous-spring boundary's springs store the far field's energy.
+    const double spring_energy =
+      boundary_springs ? Utilities::MPI::sum(boundary_spring_energy_local(u), comm) : 0.0;
     {
       // Stored in wall and soil: their kinetic energy less that of a free mean translation (a
       // free body carried away keeps it for ever) and their recoverable strain energy: 1/2 du.f
@@ -156,7 +159,7 @@ namespace kimp::fem::internal
         if (body_free_mass[c] > 0)
           translation += 0.5 * global[18 + c] * global[18 + c] / body_free_mass[c];
       const double strain_energy = linear_laws ? global[20] : global[5] - global[21];
-      stored_share               = (global[17] - translation + strain_energy) / e0;
+      stored_share               = (global[17] - translation + strain_energy + spring_energy) / e0;
     }
     // Linear laws: 1/2 u.Ku is the strain energy. Otherwise the integrated stress power is the
     // energy the body took, and the points split it into stored, plastic and damage.
@@ -164,9 +167,12 @@ namespace kimp::fem::internal
     const double strain      = linear_laws ? global[1] : global[5];
     const double radiated    = absorbing ? Utilities::MPI::sum(radiation_local, comm) : 0.0;
     const double slab_damped = slab_alpha > 0 ? Utilities::MPI::sum(slab_damping_local, comm) : 0.0;
-    const double error       = (kinetic + work - contact_work + radiated + slab_damped) / e0 - 1;
+    const double error =
+      (kinetic + work - contact_work + radiated + slab_damped + spring_energy) / e0 - 1;
     if (absorbing)
       history.radiation.push_back(radiated);
+    if (boundary_springs)
+      history.boundary_springs.push_back(spring_energy);
     if (slab_alpha > 0)
       history.slab_damping.push_back(slab_damped);
     if (!linear_laws)
@@ -703,6 +709,8 @@ namespace kimp::fem::internal
       s.radiated_energy = history.radiation.back();
     if (!history.slab_damping.empty())
       s.slab_damping_dissipation = history.slab_damping.back();
+    if (!history.boundary_springs.empty())
+      s.boundary_spring_energy = history.boundary_springs.back();
     if (bar_yield_strain > 0)
       summarise_bar_strain(s);
     // After the impact: the wall's state and where the slab's energy went (last sample).

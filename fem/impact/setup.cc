@@ -239,6 +239,12 @@ namespace kimp::fem::internal
                prm.integrator == ImpactParameters::Integrator::explicit_central_difference),
             "slab_damping_ratio = " + fmt_double(prm.slab_damping_ratio) +
               " (needs an elastic slab and the explicit integrator; 0 = off)");
+    require(prm.boundary_spring_normal >= 0 && prm.boundary_spring_tangential >= 0 &&
+              (prm.boundary_spring_normal + prm.boundary_spring_tangential == 0 ||
+               !prm.absorbing_boundaries.empty()),
+            "boundary springs alpha_n = " + fmt_double(prm.boundary_spring_normal) +
+              ", alpha_t = " + fmt_double(prm.boundary_spring_tangential) +
+              " (must be >= 0; either > 0 needs absorbing_boundaries)");
     require(prm.smoothing_window >= 0,
             "smoothing_window = " + fmt_double(prm.smoothing_window) + " s (must be >= 0)");
     require(prm.dt >= 0, "dt = " + fmt_double(prm.dt) + " s (must be >= 0; 0 = automatic)");

@@ -631,6 +631,47 @@ namespace
     EXPECT_NE(scene_error("boundary: {far: sponge}\n").find("boundary.far"), std::string::npos);
   }
 
+  TEST(FemScene, ViscousSpringBoundaryPutsSpringsBesideTheDashpots)
+  {
+    // viscous_spring: the dashpots' faces, with alpha_n = 1.0 and alpha_t = 0.5 unless given;
+    // the dashpots alone have no springs; alphas are refused without viscous_spring.
+    const auto absorbing =
+      kimp::app::impact_parameters(load_scene_text<FemScene>("boundary: {far: absorbing}\n",
+                                                             file_name),
+                                   1.25,
+                                   "m.msh");
+    EXPECT_EQ(absorbing.boundary_spring_normal, 0.0);
+    EXPECT_EQ(absorbing.boundary_spring_tangential, 0.0);
+    const auto springs =
+      kimp::app::impact_parameters(load_scene_text<FemScene>("boundary: {far: viscous_spring}\n",
+                                                             file_name),
+                                   1.25,
+                                   "m.msh");
+    EXPECT_EQ(springs.absorbing_boundaries, absorbing.absorbing_boundaries);
+    EXPECT_EQ(springs.boundary_spring_normal, 1.0);
+    EXPECT_EQ(springs.boundary_spring_tangential, 0.5);
+    const auto given = kimp::app::impact_parameters(
+      load_scene_text<FemScene>(
+        "boundary: {far: viscous_spring, spring_normal: 1.2, spring_tangential: 0.35}\n",
+        file_name),
+      1.25,
+      "m.msh");
+    EXPECT_EQ(given.boundary_spring_normal, 1.2);
+    EXPECT_EQ(given.boundary_spring_tangential, 0.35);
+    for (const char *text : {"boundary: {far: absorbing, spring_normal: 1.0}\n",
+                             "boundary: {spring_tangential: 0.5}\n"})
+    {
+      const std::string e = scene_error(text);
+      EXPECT_NE(e.find("needs boundary.far: viscous_spring"), std::string::npos) << e;
+    }
+    for (const char *text : {"boundary: {far: viscous_spring, spring_normal: 0}\n",
+                             "boundary: {far: viscous_spring, spring_tangential: 5}\n"})
+      EXPECT_NE(scene_error(text).find("boundary.spring_"), std::string::npos) << text;
+    const std::string no_soil =
+      scene_error("geometry: {with_backfill: false}\nboundary: {far: viscous_spring}\n");
+    EXPECT_NE(no_soil.find("needs a backfill"), std::string::npos) << no_soil;
+  }
+
   TEST(FemCommands, ErrorMessageKeepsTheAdditionalInformationOfDealIIExceptions)
   {
     const std::runtime_error deal_ii(

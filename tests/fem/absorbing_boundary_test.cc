@@ -1,6 +1,8 @@
 // Lysmer-Kuhlemeyer absorbing boundary (fem::ImpactParameters::absorbing_boundaries): plane P and
 // S pulses through soil columns reflect almost nothing at the dashpots and everything at a fixed
-// end; energy balance with the radiated energy; 1 vs 2 MPI ranks (Mpi.*).
+// end; the viscous-spring boundary's springs pull a bar back at the continuum's rate; energy
+// balance with the radiated and the springs' energy; 1 vs 2 MPI ranks (Mpi.*).
+#include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
 #include <iostream>
@@ -206,23 +208,124 @@ namespace
                                             "impact P-wave through the far side (rollers)"));
   }
 
+  /** The slab's mean x displacement at the sample nearest to time t. */
+  double slab_at(const ImpactResult &r, double t)
+  {
+    const auto &h    = r.history;
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < h.time.size(); ++i)
+      if (std::abs(h.time[i] - t) < std::abs(h.time[best] - t))
+        best = i;
+    return h.slab_displacement[best];
+  }
+
+  TEST(AbsorbingBoundary, ViscousSpringBoundaryPullsABarBackAtTheContinuumsRate)
+  {
+    // A bar (nu = 0: exactly 1D) of slab [-L_s, 0] bonded to soil [0, L], free at -L_s, its end
+    // x = L on dashpots C = rho c w and springs K = alpha_n G w / R (R from the end's face
+    // midpoints to the centre of a far dummy wall face, which the slab never reaches). The slab
+    // starts at v in +x. Once the pulse has left through the dashpot, the bar's displacement is
+    // the slowest mode u = cosh(s x / c) e^(s t) of the free-ended bar (x from the free end):
+    // at the end E w u' + C u_t + K u = 0 with E w / c = C gives, for s = -lambda,
+    // K = C lambda (1 - tanh(lambda L_t / c)). The dashpots alone hold the displacement the
+    // pulse left (lambda = 0).
+    const Material   bar{50e6, 0.0, 1900};
+    const double     L = 0.5, L_s = 0.1, w = 0.05, gap = 5.4, c = p_wave_speed(bar), L_t = L + L_s;
+    const double     d = L_s + gap + L; // x distance from the dummy face to the bar's end
+    ImpactParameters p;
+    p.mesh_file =
+      write_blocks({{-L_s, 0, 0, w, cells(L_s), 2, ids::slab_material, ids::slab_contact, 0, 0, 0},
+                    {0, L, 0, w, cells(L), 2, ids::soil_material, 0, ids::soil_far_side, 0, 0},
+                    {-L_s - gap - dummy_width,
+                     -L_s - gap,
+                     0,
+                     w,
+                     4,
+                     2,
+                     ids::wall_material,
+                     0,
+                     ids::wall_contact,
+                     0,
+                     0}},
+                   "spring_bar.msh");
+    for (const unsigned int material : {ids::soil_material, ids::slab_material, ids::wall_material})
+      p.materials[material] = bar;
+    p.separation_hold_time       = 1; // s: no contact ever starts; run to end_time
+    p.output_interval            = 1e-4;
+    p.end_time                   = 0.16;
+    p.absorbing_boundaries       = {ids::soil_far_side};
+    const ImpactResult dashpots  = run_impact(p, MPI_COMM_WORLD, nullptr);
+    p.boundary_spring_normal     = 1.0;
+    p.boundary_spring_tangential = 0.5;
+    const ImpactResult springs   = run_impact(p, MPI_COMM_WORLD, nullptr);
+
+    const double g = bar.youngs_modulus / 2, r = std::hypot(d, w / 4);
+    const double k = g * w / r, damper = bar.density * c * w;
+    double       lo = 0, hi = 2 * k / damper; // K - C l (1 - tanh(l L_t / c)) changes sign
+    for (int i = 0; i < 100; ++i)
+    {
+      const double mid                                                  = 0.5 * (lo + hi);
+      (k - damper * mid * (1 - std::tanh(mid * L_t / c)) > 0 ? lo : hi) = mid;
+    }
+    const double lambda = 0.5 * (lo + hi);
+    const double t1 = 0.03, t2 = 0.15; // after the pulse's exit (2 L_t / c = 7.4 ms)
+    const double measured = std::log(slab_at(springs, t1) / slab_at(springs, t2)) / (t2 - t1);
+    const double held     = slab_at(dashpots, t2) / slab_at(dashpots, t1) - 1;
+    if (rank() == 0)
+      std::cout << "bar on a viscous-spring end: decay rate " << measured << " 1/s against "
+                << lambda << " 1/s (K/C = " << k / damper
+                << "); dashpots alone: " << slab_at(dashpots, t1) * 1e3 << " mm at " << t1 * 1e3
+                << " ms, changed by " << held << " by " << t2 * 1e3
+                << " ms; springs' energy at the end " << springs.summary.boundary_spring_energy
+                << " J/m of " << springs.history.kinetic.front() << " J/m\n";
+    EXPECT_NEAR(measured / lambda, 1.0, 0.01);
+    EXPECT_LT(std::abs(held), 1e-3);
+    EXPECT_GT(slab_at(dashpots, t1), 0);
+    // The springs store energy, within the balance; the dashpots alone have none. (E_0 is the
+    // first sample's kinetic energy: the bonded bar's shared nodes move with the slab, so the
+    // summary's 1/2 m_slab v^2 is not it.)
+    ASSERT_EQ(springs.history.boundary_springs.size(), springs.history.time.size());
+    const auto  &h = springs.history;
+    const double balance =
+      (h.kinetic.back() + h.strain.back() + h.radiation.back() + h.boundary_springs.back()) /
+        h.kinetic.front() -
+      1;
+    EXPECT_LT(std::abs(balance), energy_tolerance);
+    EXPECT_GT(springs.summary.boundary_spring_energy, 0);
+    EXPECT_TRUE(dashpots.history.boundary_springs.empty());
+  }
+
   TEST(AbsorbingBoundary, SceneImpactEnergyBalanceClosesWithTheRadiatedEnergy)
   {
-    for (const auto integrator : {ImpactParameters::Integrator::explicit_central_difference,
-                                  ImpactParameters::Integrator::implicit_newmark})
-    {
-      auto p                 = scene_parameters(0.05, false, "scene_absorbing.msh");
-      p.integrator           = integrator;
-      p.absorbing_boundaries = {ids::fixed_base, ids::soil_far_side};
-      const auto   r         = run_impact(p, MPI_COMM_WORLD, nullptr);
-      const double e0        = r.history.kinetic.front();
-      if (rank() == 0)
-        std::cout << "scene, absorbing far side and soil base: " << summary_line(r) << ", radiated "
-                  << r.summary.radiated_energy / e0 << " E_0\n";
-      EXPECT_LT(r.summary.energy_error, energy_tolerance);
-      EXPECT_GT(r.summary.radiated_energy, 0);
-      ASSERT_EQ(r.history.radiation.size(), r.history.time.size());
-    }
+    // Dashpots alone and with the viscous-spring boundary's springs, whose energy is stored.
+    for (const bool springs : {false, true})
+      for (const auto integrator : {ImpactParameters::Integrator::explicit_central_difference,
+                                    ImpactParameters::Integrator::implicit_newmark})
+      {
+        auto p                       = scene_parameters(0.05, false, "scene_absorbing.msh");
+        p.integrator                 = integrator;
+        p.absorbing_boundaries       = {ids::fixed_base, ids::soil_far_side};
+        p.boundary_spring_normal     = springs ? 1.0 : 0.0;
+        p.boundary_spring_tangential = springs ? 0.5 : 0.0;
+        const auto   r               = run_impact(p, MPI_COMM_WORLD, nullptr);
+        const double e0              = r.history.kinetic.front();
+        double       stored          = 0;
+        for (const double e : r.history.boundary_springs)
+          stored = std::max(stored, e);
+        if (rank() == 0)
+          std::cout << "scene, absorbing far side and soil base" << (springs ? " with springs" : "")
+                    << ": " << summary_line(r) << ", radiated " << r.summary.radiated_energy / e0
+                    << " E_0, largest in the springs " << stored / e0 << " E_0\n";
+        EXPECT_LT(r.summary.energy_error, energy_tolerance);
+        EXPECT_GT(r.summary.radiated_energy, 0);
+        ASSERT_EQ(r.history.radiation.size(), r.history.time.size());
+        if (springs)
+        {
+          ASSERT_EQ(r.history.boundary_springs.size(), r.history.time.size());
+          EXPECT_GT(stored, 0);
+          EXPECT_LT(stored, 0.5 * e0);
+        }
+      }
   }
 
   TEST(AbsorbingBoundary, RefusesAnIdWithoutDashpotMeaning)
@@ -239,5 +342,8 @@ namespace
     p.absorbing_boundaries     = {ids::fixed_base, ids::soil_far_side};
     p.end_time                 = 0.02;
     expect_same_absorbing_run(p, tolerance, "MPI absorbing");
+    p.boundary_spring_normal     = 1.0; // the viscous-spring boundary
+    p.boundary_spring_tangential = 0.5;
+    expect_same_absorbing_run(p, tolerance, "MPI viscous-spring");
   }
 } // namespace

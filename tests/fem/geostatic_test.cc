@@ -178,38 +178,45 @@ namespace kimp::fem::testing
     // 1 nm/s, 2e-11 m in the 20 ms) the soil stays where the geostatic step left it: every
     // vertex moves by less than 1e-5 of the largest geostatic displacement, and the bodies'
     // kinetic energy stays below 1e-9 of the work scale weight x that displacement.
+    // With the viscous-spring boundary's springs as well: they hold the geostatic state.
     constexpr double rest_tolerance   = 1e-5;
     constexpr double energy_tolerance = 1e-9;
-    auto             p                = geostatic_scene("geostatic_absorbing_rest.msh", true);
-    p.absorbing_boundaries            = {ids::fixed_base, ids::soil_far_side};
-    p.initial_velocity                = 1e-9;
-    p.end_time                        = 0.02;
-    p.frame_interval                  = 0.01;
-    const auto  r                     = run_impact(p, MPI_COMM_WORLD, nullptr);
-    const auto &f                     = r.frames;
-    if (rank() != 0)
-      return; // the frames are complete on rank 0
-    ASSERT_GE(f.time.size(), 3u);
-    const std::size_t n           = f.vertices.size();
-    double            u_geostatic = 0, drift = 0;
-    for (std::size_t k = 0; k < n; ++k)
+    for (const bool springs : {false, true})
     {
-      u_geostatic = std::max(u_geostatic, std::abs(f.displacement[k]));
-      drift =
-        std::max(drift, std::abs(f.displacement[(f.time.size() - 1) * n + k] - f.displacement[k]));
+      auto p                       = geostatic_scene("geostatic_absorbing_rest.msh", true);
+      p.absorbing_boundaries       = {ids::fixed_base, ids::soil_far_side};
+      p.boundary_spring_normal     = springs ? 1.0 : 0.0;
+      p.boundary_spring_tangential = springs ? 0.5 : 0.0;
+      p.initial_velocity           = 1e-9;
+      p.end_time                   = 0.02;
+      p.frame_interval             = 0.01;
+      const auto  r                = run_impact(p, MPI_COMM_WORLD, nullptr);
+      const auto &f                = r.frames;
+      if (rank() != 0)
+        continue; // the frames are complete on rank 0
+      ASSERT_GE(f.time.size(), 3u);
+      const std::size_t n           = f.vertices.size();
+      double            u_geostatic = 0, drift = 0;
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        u_geostatic = std::max(u_geostatic, std::abs(f.displacement[k]));
+        drift       = std::max(drift,
+                         std::abs(f.displacement[(f.time.size() - 1) * n + k] - f.displacement[k]));
+      }
+      double kinetic = 0;
+      for (const double e : r.history.kinetic)
+        kinetic = std::max(kinetic, e - r.history.kinetic.front());
+      const double work = r.summary.geostatic_weight * u_geostatic;
+      std::cout << (springs ? "viscous-spring" : "absorbing")
+                << " boundary at rest: largest geostatic displacement " << u_geostatic
+                << " m, largest move after " << f.time.back() << " s " << drift
+                << " m, bodies' kinetic energy " << kinetic << " J/m (weight x u_g = " << work
+                << " J/m), out-of-balance " << r.summary.geostatic_residual << '\n';
+      EXPECT_LT(r.summary.geostatic_residual, 1e-8);
+      ASSERT_GT(u_geostatic, 0);
+      EXPECT_LT(drift, rest_tolerance * u_geostatic);
+      EXPECT_LT(kinetic, energy_tolerance * work);
     }
-    double kinetic = 0;
-    for (const double e : r.history.kinetic)
-      kinetic = std::max(kinetic, e - r.history.kinetic.front());
-    const double work = r.summary.geostatic_weight * u_geostatic;
-    std::cout << "absorbing boundary at rest: largest geostatic displacement " << u_geostatic
-              << " m, largest move after " << f.time.back() << " s " << drift
-              << " m, bodies' kinetic energy " << kinetic << " J/m (weight x u_g = " << work
-              << " J/m), out-of-balance " << r.summary.geostatic_residual << '\n';
-    EXPECT_LT(r.summary.geostatic_residual, 1e-8);
-    ASSERT_GT(u_geostatic, 0);
-    EXPECT_LT(drift, rest_tolerance * u_geostatic);
-    EXPECT_LT(kinetic, energy_tolerance * work);
   }
 
   /**
@@ -217,13 +224,20 @@ namespace kimp::fem::testing
    * if @p absorbing), run: it must separate, and its energy balance and the points' bookkeeping
    * close within 1 % of E_0; rank 0 prints @p label with the energies. The run.
    */
-  ImpactResult
-  expect_geostatic_impact_balance(const std::string &label, const std::string &name, bool absorbing)
+  ImpactResult expect_geostatic_impact_balance(const std::string &label,
+                                               const std::string &name,
+                                               bool               absorbing,
+                                               bool               springs = false)
   {
     constexpr double energy_tolerance = 0.01;
     auto             p                = geostatic_scene(name, true);
     if (absorbing)
       p.absorbing_boundaries = {ids::fixed_base, ids::soil_far_side};
+    if (springs)
+    {
+      p.boundary_spring_normal     = 1.0;
+      p.boundary_spring_tangential = 0.5;
+    }
     p.initial_velocity     = 2.0;
     ImpactResult         r = run_impact(p, MPI_COMM_WORLD, nullptr);
     const ImpactSummary &s = r.summary;
@@ -247,6 +261,13 @@ namespace kimp::fem::testing
                                                    "geostatic_absorbing.msh",
                                                    true);
     EXPECT_GT(r.summary.radiated_energy, 0);
+    // The viscous-spring boundary: + the energy its springs hold.
+    const auto s = expect_geostatic_impact_balance("geostatic impact, viscous-spring",
+                                                   "geostatic_viscous_spring.msh",
+                                                   true,
+                                                   true);
+    EXPECT_GT(s.summary.radiated_energy, 0);
+    EXPECT_GT(s.summary.boundary_spring_energy, 0);
   }
 
   TEST(Geostatic, ImpactFromTheGeostaticStateClosesItsEnergyBalance)

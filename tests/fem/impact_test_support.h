@@ -208,5 +208,8 @@ namespace kimp::fem::testing
     EXPECT_NEAR(runs.world.summary.radiated_energy,
                 runs.self.summary.radiated_energy,
                 tolerance * runs.self.history.kinetic.front());
+    EXPECT_NEAR(runs.world.summary.boundary_spring_energy,
+                runs.self.summary.boundary_spring_energy,
+                tolerance * runs.self.history.kinetic.front());
   }
 } // namespace kimp::fem::testing

@@ -338,6 +338,7 @@
     ['contact_dissipation', 'contact dissipation (J/m)', 1],
     ['radiated_energy', 'radiated energy (J/m)', 1],
     ['slab_damping_dissipation', "work of the slab's damping (J/m)", 1],
+    ['boundary_spring_energy', "energy in the far boundary's springs (J/m)", 1],
     ['energy_error', 'energy balance error (of E_0)', 1],
     ['n_dofs', 'DoFs', null],
     ['n_steps', 'steps', null],
