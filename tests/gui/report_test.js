@@ -209,8 +209,14 @@ async function main() {
           `FEM summary: ${c.name} peak force ${peak ? peak.text : '(missing)'} kN/m from ${c.peak_force} N/m`,
         );
         // Where the energy went: every dissipation the case reports is listed, to 4 significant
-        // figures (the slab's damping in the damped-slab run).
-        for (const key of ['contact_dissipation', 'radiated_energy', 'slab_damping_dissipation']) {
+        // figures (the slab's damping and the far side's dashpots and springs in the damped-slab
+        // run).
+        for (const key of [
+          'contact_dissipation',
+          'radiated_energy',
+          'slab_damping_dissipation',
+          'boundary_spring_energy',
+        ]) {
           if (typeof c[key] !== 'number') continue;
           const v = shown.find((x) => x.key === `${c.name}.${key}`);
           check(
