@@ -16,16 +16,20 @@
 # (KIMP_LADDER_LEVELS="5 2.5 1.25") each quantity also gets its observed order p = log2(d1/d2)
 # and the Richardson estimate of the finest level's error, where its changes shrink.
 # KIMP_LADDER_HEIGHTS (default "1.25 1.5 2.0", in m) picks the heights; KIMP_LADDER_FAR
-# (default "rollers absorbing") the far sides (the first is the reference of the convergence
-# table). KIMP_LADDER_OUT (a directory) keeps the runs there and reuses a run whose scene is
-# unchanged and whose summary.json exists (delete the directory to rerun). KIMP_LADDER_EXTRA
+# (default "rollers absorbing"; viscous_spring the third choice) the far sides (the first is the
+# reference of the convergence table). KIMP_LADDER_OUT (a directory) keeps the runs there and
+# reuses a run whose scene is unchanged and whose summary.json exists (delete the directory to
+# rerun). KIMP_LADDER_EXTRA
 # (YAML lines) is appended to every scene, e.g. 'contact: {penalty_step_ratio: 0.8}' or
 # 'contact: {subcycles: 0}'. KIMP_LADDER_LEVELS (default "2.5 1.25", in cm) picks the levels run.
 # KIMP_LADDER_WALL_BARS (YAML map entries) replaces the entries of the scene's
 # wall_reinforcement, e.g. 'ratio_y: "0.8 %", ratio_x: "0.2 %"' for perfectly bonded bars in
 # the crack band without tension stiffening (the scene before its bars' three keys).
-# KIMP_LADDER_SLAB (YAML map entries) is added to the scene's `slab` section, e.g.
-# 'damping_ratio: 0.05' for the slab's damping (docs/physics.md §4 "Slab damping").
+# KIMP_LADDER_SLAB (YAML map entries) replaces the entries of the scene's `slab` section (its
+# damping), e.g. 'damping_ratio: 0' for the undamped slab (docs/physics.md §4 "Slab damping");
+# the bench adds the slab's velocity. The scene before its base joint and slab damping is
+# KIMP_LADDER_SLAB='damping_ratio: 0' with KIMP_LADDER_WALL_BARS='ratio_y: "0.8 %", ratio_x:
+# "0.2 %", strain_penetration: "0.13 m", crack_spacing: "0.2 m", tension_stiffening: true'.
 # Usage: bench/fem_ladder.sh [BUILD_DIR (default: build)] [RANKS (default: 1)] [HOLD_MS]
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
@@ -35,6 +39,8 @@ hold="${3:-}"
 heights="$(printf '"%s m", ' ${KIMP_LADDER_HEIGHTS:-1.25 1.5 2.0})"
 read -r -a fars <<< "${KIMP_LADDER_FAR:-rollers absorbing}"
 bench_require fem time
+# The slab's entries: the scene's (one line, `slab: {...}`), or KIMP_LADDER_SLAB in their place.
+slab_entries="${KIMP_LADDER_SLAB-$(sed -nE 's/^slab: \{(.*)\}$/\1/p' "$root/data/scenes/fem_reinforced_wall.yaml")}"
 if [[ -n "${KIMP_LADDER_OUT:-}" ]]; then
   work="$KIMP_LADDER_OUT"
   mkdir -p "$work"
@@ -49,12 +55,12 @@ for far in "${fars[@]}"; do
   for h in ${KIMP_LADDER_LEVELS:-2.5 1.25}; do
     run="${far}_$h"
     {
-      grep -v '^wall_heights:' "$root/data/scenes/fem_reinforced_wall.yaml" |
+      grep -v -e '^wall_heights:' -e '^slab:' "$root/data/scenes/fem_reinforced_wall.yaml" |
         if [[ -n "${KIMP_LADDER_WALL_BARS:-}" ]]; then
           sed -E "s/(wall_reinforcement: \{)[^}]*\}/\1${KIMP_LADDER_WALL_BARS}}/"
         else cat; fi
       printf '%s\n' "wall_heights: [${heights%, }]" \
-        "mesh: {h_contact: \"$h cm\", wall_aspect_max: 1}" "slab: {velocity: \"1.0 m/s\"${KIMP_LADDER_SLAB:+, $KIMP_LADDER_SLAB}}" \
+        "mesh: {h_contact: \"$h cm\", wall_aspect_max: 1}" "slab: {velocity: \"1.0 m/s\"${slab_entries:+, $slab_entries}}" \
         'output: {frame_interval: "0 ms"}' "boundary: {far: $far}"
       if [[ -n "$hold" ]]; then
         printf '%s\n' "dynamics: {end_time: \"$hold ms\", separation_hold_time: \"$hold ms\"}"
