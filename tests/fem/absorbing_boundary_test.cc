@@ -27,15 +27,23 @@ namespace
     return std::sqrt(m.youngs_modulus / (2 * (1 + m.poisson_ratio)) / m.density);
   }
 
+  /** The index of the history sample nearest to time t. */
+  std::size_t sample_at(const ImpactResult &r, double t)
+  {
+    const auto &time = r.history.time;
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < time.size(); ++i)
+      if (std::abs(time[i] - t) < std::abs(time[best] - t))
+        best = i;
+    return best;
+  }
+
   /** Kinetic + strain energy at the sample nearest to time t, over E_0 (the initial kinetic). */
   double energy_left(const ImpactResult &r, double t)
   {
-    const auto &h    = r.history;
-    std::size_t best = 0;
-    for (std::size_t i = 0; i < h.time.size(); ++i)
-      if (std::abs(h.time[i] - t) < std::abs(h.time[best] - t))
-        best = i;
-    return (h.kinetic[best] + h.strain[best]) / h.kinetic.front();
+    const auto       &h = r.history;
+    const std::size_t i = sample_at(r, t);
+    return (h.kinetic[i] + h.strain[i]) / h.kinetic.front();
   }
 
   constexpr double h_cell      = 0.025; // m, element size of the columns
@@ -211,12 +219,7 @@ namespace
   /** The slab's mean x displacement at the sample nearest to time t. */
   double slab_at(const ImpactResult &r, double t)
   {
-    const auto &h    = r.history;
-    std::size_t best = 0;
-    for (std::size_t i = 0; i < h.time.size(); ++i)
-      if (std::abs(h.time[i] - t) < std::abs(h.time[best] - t))
-        best = i;
-    return h.slab_displacement[best];
+    return r.history.slab_displacement[sample_at(r, t)];
   }
 
   TEST(AbsorbingBoundary, ViscousSpringBoundaryPullsABarBackAtTheContinuumsRate)
