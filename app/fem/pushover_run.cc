@@ -151,9 +151,15 @@ namespace kimp::app
     if (rank != 0)
       return;
     const FemScene &scene = loaded.scene;
-    ResultsFile     results(output.file("pushover.h5"), loaded.text, loaded.resolved_json);
-    ResultsGroup    root    = results.root().group("pushover");
-    Table           summary = summary_table(), curves = curve_table();
+    if (scene.boundary.far != FemBoundary::Far::rollers)
+      logger().warn("pushover: the backfill's far side and base are held as the rollered block "
+                    "(boundary.far: {} is the impact's: dashpots have no static part, and the "
+                    "static solver has no springs of the viscous-spring boundary)",
+                    scene.boundary.far == FemBoundary::Far::absorbing ? "absorbing" :
+                                                                        "viscous_spring");
+    ResultsFile  results(output.file("pushover.h5"), loaded.text, loaded.resolved_json);
+    ResultsGroup root    = results.root().group("pushover");
+    Table        summary = summary_table(), curves = curve_table();
     for (const double height : scene.wall_heights)
     {
       const std::string name  = fem_case_name(height);

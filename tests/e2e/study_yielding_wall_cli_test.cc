@@ -236,6 +236,19 @@ TEST(StudyYieldingWallCli, ElementTakesItsResistanceFromTheHeightsPushover)
   EXPECT_NEAR(f_d / std::stod(summary.at(0).at("capacity_N_per_m")), 1.0, 1e-9);
   EXPECT_NEAR(w_d / std::stod(summary.at(0).at("displacement_at_capacity_m")), 1.0, 1e-9);
 
+  // The pushover's far side is the rollered block whatever the impact's is: the same curve with
+  // a viscous-spring far side, and a warning that says so.
+  write_text(dir.path() / "pushover_springs.yaml",
+             read_text(dir.path() / "pushover.yaml") + "boundary: {far: viscous_spring}\n");
+  const KimpRun springs = run_kimp("fem --pushover pushover_springs.yaml -o pos", dir.path());
+  ASSERT_EQ(springs.exit_code, 0) << springs.output();
+  EXPECT_NE(springs.output().find("held as the rollered block (boundary.far: viscous_spring"),
+            std::string::npos)
+    << springs.output();
+  const auto springs_summary = read_csv_records(dir.path() / "pos" / "pushover_summary.csv");
+  ASSERT_EQ(springs_summary.size(), 1u);
+  EXPECT_EQ(springs_summary.at(0).at("capacity_N_per_m"), summary.at(0).at("capacity_N_per_m"));
+
   // study.h5 keeps the curve the element was fitted to.
   Hdf5Reader h5(out / "study.h5");
   const auto force = h5.doubles("/yielding_wall/pushover/H1.25/force");
