@@ -133,8 +133,7 @@ namespace kimp::app
     if (scene.boundary.far != FemBoundary::Far::rollers)
     {
       c.summary.radiated_energy = s.radiated_energy;
-      c.labels["far_boundary"] =
-        scene.boundary.far == FemBoundary::Far::absorbing ? "absorbing" : "viscous_spring";
+      c.labels["far_boundary"]  = far_boundary_name(scene.boundary.far);
     }
     if (scene.boundary.far == FemBoundary::Far::viscous_spring)
       c.summary.boundary_spring_energy = s.boundary_spring_energy;

@@ -106,7 +106,7 @@ namespace kimp::app
     if (s.boundary.far != FemBoundary::Far::rollers)
       ctx.check(s.geometry.with_backfill,
                 "boundary.far",
-                s.boundary.far == FemBoundary::Far::absorbing ? "absorbing" : "viscous_spring",
+                far_boundary_name(s.boundary.far),
                 "needs a backfill (geometry.with_backfill: true): the dashpots sit on the soil");
     for (const auto &[key, alpha] :
          {std::pair{"boundary.spring_normal", s.boundary.spring_normal},

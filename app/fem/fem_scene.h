@@ -175,14 +175,30 @@ namespace kimp::app
   /// two-dimensional values of docs/physics.md §6 "Viscous-spring boundary").
   inline constexpr double default_spring_normal = 1.0, default_spring_tangential = 0.5;
 
+  /// The scene's word for a far side (`boundary.far`), as logs, labels and errors print it.
+  inline const char *far_boundary_name(const FemBoundary::Far far)
+  {
+    switch (far)
+    {
+      case FemBoundary::Far::rollers:
+        return "rollers";
+      case FemBoundary::Far::absorbing:
+        return "absorbing";
+      case FemBoundary::Far::viscous_spring:
+        return "viscous_spring";
+    }
+    return "?";
+  }
+
   template <class Io>
   void visit(Io &io, FemBoundary &s)
   {
     io.choice("far",
               s.far,
-              {{"rollers", FemBoundary::Far::rollers},
-               {"absorbing", FemBoundary::Far::absorbing},
-               {"viscous_spring", FemBoundary::Far::viscous_spring}},
+              {{far_boundary_name(FemBoundary::Far::rollers), FemBoundary::Far::rollers},
+               {far_boundary_name(FemBoundary::Far::absorbing), FemBoundary::Far::absorbing},
+               {far_boundary_name(FemBoundary::Far::viscous_spring),
+                FemBoundary::Far::viscous_spring}},
               "soil far side and base: rollers (far side u_x = 0, base fixed: a finite block "
               "that reflects the waves), absorbing (Lysmer-Kuhlemeyer dashpots rho c_p normal, "
               "rho c_s tangential on the soil's far side and base, for an unbounded backfill; "

@@ -155,8 +155,7 @@ namespace kimp::app
       logger().warn("pushover: the backfill's far side and base are held as the rollered block "
                     "(boundary.far: {} is the impact's: dashpots have no static part, and the "
                     "static solver has no springs of the viscous-spring boundary)",
-                    scene.boundary.far == FemBoundary::Far::absorbing ? "absorbing" :
-                                                                        "viscous_spring");
+                    far_boundary_name(scene.boundary.far));
     ResultsFile  results(output.file("pushover.h5"), loaded.text, loaded.resolved_json);
     ResultsGroup root    = results.root().group("pushover");
     Table        summary = summary_table(), curves = curve_table();

@@ -61,7 +61,7 @@ namespace kimp::app::study_internal
       // chose rollers).
       const bool absorbing    = other.boundary.far != FemBoundary::Far::rollers;
       other.boundary.far      = absorbing ? FemBoundary::Far::rollers : FemBoundary::Far::absorbing;
-      h.ladder.other_far_side = absorbing ? "rollers" : "absorbing";
+      h.ladder.other_far_side = far_boundary_name(other.boundary.far);
       StudyFemCase fem =
         study_fem_case(other,
                        wall_height,
